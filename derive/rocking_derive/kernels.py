@@ -1,0 +1,163 @@
+"""The functions every variant exports, with named inputs and outputs.
+
+The interface is the same for every variant (state [theta, u, theta', u'] even for the rigid
+column, whose kernels never read u), so the solver can run any variant through one Rust trait.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import casadi as ca
+
+from .mechanics import Mechanics, Symbols, at, flexible_twin
+from .models import Variant
+
+
+@dataclass
+class Input:
+    name: str
+    doc: str
+    elements: list[str]
+    symbols: list[ca.SX]
+    scalar: bool = False
+    params: bool = False
+
+
+@dataclass
+class Output:
+    name: str
+    doc: str
+    elements: list[str]
+    exprs: list
+    scalar: bool = False
+
+
+@dataclass
+class Kernel:
+    name: str
+    doc: str
+    inputs: list[Input]
+    output: Output
+
+
+def kernels(variant: Variant) -> list[Kernel]:
+    sym = Symbols.create(variant)
+    mech = Mechanics(variant, sym)
+    twin = Mechanics(flexible_twin(variant), sym)  # reference quantities: flexible, exact angles
+    names = [p.name for p in variant.model.params]
+
+    x = Input("x", "state while rocking", ["theta", "u", "theta_dot", "u_dot"],
+              [sym.theta, sym.u, sym.theta_dot, sym.u_dot])
+    q = Input("q", "configuration", ["theta", "u"], [sym.theta, sym.u])
+    xc = Input("xc", "state in full contact (theta = theta' = 0)", ["u", "u_dot"], [sym.u, sym.u_dot])
+    xi = Input("xi", "state just before the impact (theta = 0)", ["u", "u_dot", "theta_dot"],
+               [sym.u, sym.u_dot, sym.theta_dot])
+    ug = Input("ug", "horizontal ground acceleration (positive towards +x)", ["ug"], [sym.ug], scalar=True)
+    s = Input("s", "active pivot: +1 right corner (theta > 0), -1 left corner", ["s"], [sym.s], scalar=True)
+    s1 = Input("s", "pivot before the impact; the corner -s hits the ground", ["s"], [sym.s], scalar=True)
+    p = Input("p", "parameters", names, [sym.params[n] for n in names], params=True)
+
+    mass, force = mech.equations()
+    if mech.rigid:
+        # u is frozen: its row reads u'' = 0, which keeps one interface for every variant.
+        m_out = [mass[0, 0], ca.SX(0), ca.SX(1)]
+        f_out = [force[0], ca.SX(0)]
+        acc = [force[0] / mass[0, 0], ca.SX(0)]
+    else:
+        m_out = [mass[0, 0], mass[0, 1], mass[1, 1]]
+        f_out = [force[0], force[1]]
+        det = mass[0, 0] * mass[1, 1] - mass[0, 1] ** 2
+        acc = [
+            (mass[1, 1] * force[0] - mass[0, 1] * force[1]) / det,
+            (mass[0, 0] * force[1] - mass[0, 1] * force[0]) / det,
+        ]
+
+    v_g, v_s, _ = mech.potentials()
+    p_x = mech.momentum_x()
+    damping = ca.SX(0) if mech.rigid else mech.damping_c() * mech.u_dot**2
+    contact = mech.contact_accel()
+
+    impact = mech.impact_maps(sym.u, sym.u_dot, sym.theta_dot)
+    inf = ca.SX(float("inf"))
+    if mech.rigid:
+        # Rigid limit of VVEL (equations.md 4.2): full contact keeps the horizontal kinetic energy,
+        # then the base re-uplifts at once and only the rocking-mode projection of the velocity remains.
+        flex = twin.impact_maps(ca.SX(0), ca.SX(0), sym.theta_dot)
+        mt, _ = twin.equations()
+        after = [(sym.theta, 0), (sym.u, 0), (sym.s, -sym.s)]
+        th2 = at(mt[0, 1], after) / at(mt[0, 0], after) * flex["u_dot_vvel"]
+        vvel = [ca.SX(1), th2, ca.SX(0), mech.kinetic(th2, ca.SX(0), ca.SX(0), -mech.b), impact["e_before"]]
+        adjex = [ca.SX(0), inf, impact["theta_dot_rocking"], ca.SX(0), impact["e_rocking"],
+                 impact["e_before"], ca.SX(0), inf]
+    else:
+        vvel = [ca.SX(0), ca.SX(0), impact["u_dot_vvel"], impact["e_vvel"], impact["e_before"]]
+        adjex = [impact["u_dot_contact"], impact["e_contact"], impact["theta_dot_rocking"],
+                 impact["u_dot_rocking"], impact["e_rocking"], impact["e_before"],
+                 impact["u_dot_momentum"], impact["e_momentum"]]
+    housner = [impact["theta_dot_rocking"], impact["u_dot_rocking"] if not mech.rigid else ca.SX(0),
+               impact["e_rocking"], impact["e_before"]]
+
+    # Reference quantities, from the flexible exact-angle twin with this variant's masses.
+    m_t, k_t = twin.m_tilde(), twin.k_tilde()
+    _, tv = twin.contact_lagrangian()
+    gamma = ca.jacobian(ca.gradient(tv, sym.u), sym.ug) / m_t  # u'' = -gamma ug + ...
+    w_n = twin.omega_n()
+    mt, _ = twin.equations()
+    rest = [(sym.theta, 0), (sym.u, 0), (sym.s, 1)]
+    j0, m_tu, m_uu = at(mt[0, 0], rest), at(mt[0, 1], rest), at(mt[1, 1], rest)
+    modal_s = ca.sqrt(j0 / (j0 - m_tu**2 / m_uu))
+    a_g, c_g = twin.rigid_gravity_profile()
+    f_plus = at(twin.uplift(), [(sym.u_dot, 0), (sym.ug, 0), (sym.s, 1)])
+    u_cr = -at(f_plus, [(sym.u, 0)]) / ca.jacobian(f_plus, sym.u)
+    h, b, g = sym.params["h"], sym.params["b"], sym.params["g"]
+    r = ca.sqrt(h**2 + b**2)
+    structure = {
+        "m_tilde": m_t, "k_tilde": k_t, "gamma_tilde": gamma, "omega_n": w_n,
+        "damping_c": twin.damping_c(), "modal_s": modal_s, "omega_up": w_n * modal_s,
+        "zeta_up": sym.params["zeta"] * modal_s, "theta_cr": ca.atan2(a_g, c_g), "u_cr": u_cr,
+        "e_ref": ca.sqrt(a_g**2 + c_g**2) - c_g, "r": r, "alpha": ca.atan2(b, h), "p_freq": ca.sqrt(g / r),
+    }
+
+    K = Kernel
+    return [
+        K("mass_matrix", "Mass matrix M(q) of the rocking phase about corner s (symmetric).", [q, s, p],
+          Output("m", "upper triangle of M", ["m_tt", "m_tu", "m_uu"], m_out)),
+        K("forcing", "Right-hand side F of M q'' = F while rocking about corner s: gravity, ground "
+          "acceleration, stiffness, damping and velocity terms (corrected eqs (8)-(9)).", [x, ug, s, p],
+          Output("f", "generalised forces", ["f_theta", "f_u"], f_out)),
+        K("rocking_rhs", "State derivative while rocking about corner s (M q'' = F solved in closed form).",
+          [x, ug, s, p], Output("dx", "state derivative", ["theta_dot", "u_dot", "theta_ddot", "u_ddot"],
+                                [mech.theta_dot, mech.u_dot, acc[0], acc[1]])),
+        K("contact_rhs", "State derivative in full contact, eq (3): the fixed-base cantilever.", [xc, ug, p],
+          Output("dxc", "state derivative", ["u_dot", "u_ddot"], [mech.u_dot, contact])),
+        K("uplift", "Uplift function f_s of eq (24): in full contact the base starts to rock about corner s "
+          "as soon as f_s > 0 (f_+ + f_- < 0, so at most one corner at a time).", [xc, ug, s, p],
+          Output("f_s", "uplift function", ["f_s"], [mech.uplift()], scalar=True)),
+        K("energy", "Kinetic energy, gravity and strain potentials and horizontal momentum while rocking "
+          "about corner s (theta = theta' = 0 gives full contact).", [x, s, p],
+          Output("e", "energies and momentum", ["kinetic", "gravity", "strain", "momentum_x"],
+                 [mech.kinetic(), v_g, v_s, p_x])),
+        K("power", "Power balance terms: dE/dt = ground - damping, with ground = -ug P_x and "
+          "damping = c u'^2.", [x, ug, s, p],
+          Output("w", "power terms", ["ground", "damping"], [-sym.ug * p_x, damping])),
+        K("impact_vvel", "VVEL impact map, eqs (31)-(32): the kinetic energy of the vertical velocities is "
+          "lost and the structure continues in full contact (`rock` = 0, `u_dot`), or for the rigid "
+          "column in its rigid limit, rocking about the impacting corner (`rock` = 1, `theta_dot`).",
+          [xi, s1, p], Output("vvel", "post-impact state", ["rock", "theta_dot", "u_dot", "energy_after",
+                                                             "energy_before"], vvel)),
+        K("impact_adjex", "ADJex impact candidates, eqs (26)-(30): full contact from angular momentum, "
+          "immediate rocking about the impacting corner (admissible when -s theta_dot_rocking > 0), and "
+          "the horizontal-momentum fallback, each with its kinetic energy. The choice is the solver's.",
+          [xi, s1, p], Output("adjex", "candidate post-impact states",
+                              ["u_dot_contact", "energy_contact", "theta_dot_rocking", "u_dot_rocking",
+                               "energy_rocking", "energy_before", "u_dot_momentum", "energy_momentum"],
+                              adjex)),
+        K("impact_housner", "Housner's rule: angular momentum about the impacting corner is conserved and "
+          "the structure rocks on about that corner with u' unchanged.", [xi, s1, p],
+          Output("housner", "post-impact state", ["theta_dot", "u_dot", "energy_after", "energy_before"],
+                 housner)),
+        K("structure", "Fixed-base and reference quantities: eqs (5)-(7), (18)-(19), (39)-(40), E_ref "
+          "(the rigid column's potential-energy barrier with all masses), R, alpha and p = sqrt(g/R).",
+          [p], Output("st", "structure quantities", list(structure), list(structure.values()))),
+    ]

@@ -1,0 +1,174 @@
+"""Model descriptions and kernel variants: the file a model developer edits.
+
+A *model* is a shape function for the column deflection plus a set of masses. A *variant* is a
+model specialised symbolically: masses removed (their parameter is replaced by the constant 0 before
+anything is derived, so their terms never reach the kernels), the column made rigid (u = 0, one
+degree of freedom), or the rotation linearised. Every variant exports the same set of functions
+(see ``kernels.py``), so the Rust solver runs any of them through one trait.
+
+To change the model, edit or add a ``Model`` below and list its variants in ``VARIANTS``, then run
+``cargo xtask regen``: the IR, the Rust kernels and the golden samples are rebuilt, and the physics
+tests of the ``rocking-kernels`` crate run on every variant.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from fractions import Fraction
+
+from .shape import Function, Polynomial
+
+
+@dataclass(frozen=True)
+class Param:
+    """A symbolic parameter. ``physical`` names the field of the Rust struct ``Physical`` that
+    supplies it; parameters a model adds beyond those have a ``default`` instead."""
+
+    name: str
+    doc: str
+    physical: str | None = None
+    default: float | None = None
+
+
+@dataclass(frozen=True)
+class ColumnMass:
+    """Mass distributed uniformly along the column (parameter ``mass`` is the total)."""
+
+    mass: str
+
+
+@dataclass(frozen=True)
+class LumpedMass:
+    """A point mass on the column axis at height eta * H, moving with the column deflection."""
+
+    mass: str
+    eta: Fraction | str = Fraction(1)  # a number, or the name of a parameter
+
+
+@dataclass(frozen=True)
+class BaseMass:
+    """The thin rigid base plate: mass at the base centre and inertia ``inertia`` about a corner."""
+
+    mass: str
+    inertia: str
+
+
+#: Parameters every model has; their order is the order of the kernels' parameter array.
+CORE_PARAMS = (
+    Param("h", "column height H", "h"),
+    Param("b", "half-width B of the base", "b"),
+    Param("ei", "bending stiffness EI of the column", "ei"),
+    Param("m", "top mass m", "m"),
+    Param("m_c", "total column mass m_c", "m_c"),
+    Param("m_b", "base mass m_b", "m_b"),
+    Param("i_bc", "base inertia about a corner, I_bc = I_b + m_b B^2", "i_bc"),
+    Param("zeta", "fixed-base damping ratio", "zeta"),
+    Param("g", "gravitational acceleration", "g"),
+)
+
+
+@dataclass(frozen=True)
+class Model:
+    name: str
+    description: str
+    shape: Polynomial | Function
+    masses: tuple
+    extra_params: tuple[Param, ...] = ()
+
+    @property
+    def params(self) -> tuple[Param, ...]:
+        return CORE_PARAMS + self.extra_params
+
+
+@dataclass(frozen=True)
+class Variant:
+    name: str  # Rust module name
+    title: str
+    doc: str
+    model: Model
+    remove: tuple[str, ...] = ()  # mass parameters fixed to zero (their masses vanish)
+    rigid: bool = False  # u = 0: one degree of freedom
+    small_angle: bool = False  # sin(theta) -> theta, cos(theta) -> 1 - theta^2/2 in the energies
+    impact_doc: str = field(default="")
+
+
+# --- the paper's model ---------------------------------------------------------------------------
+
+CUBIC = Polynomial("psi = 3/2 eta^2 - 1/2 eta^3 (paper eq 1)", {2: Fraction(3, 2), 3: Fraction(-1, 2)})
+
+PAPER = Model(
+    name="cubic",
+    description="Elastic cantilever with distributed mass, a top mass and a rigid base (paper Fig. 1)",
+    shape=CUBIC,
+    masses=(ColumnMass("m_c"), LumpedMass("m"), BaseMass("m_b", "i_bc")),
+)
+
+# --- two examples of the model developer's path (kept, so they stay tested) ----------------------
+
+COSINE = Model(
+    name="cosine",
+    description="Same masses, shape psi = 1 - cos(pi xi / 2H)",
+    shape=Function(
+        "psi = 1 - cos(pi eta / 2)",
+        psi=lambda e: 1.0 - math.cos(math.pi * e / 2.0),
+        psi_dd=lambda e: (math.pi / 2.0) ** 2 * math.cos(math.pi * e / 2.0),
+    ),
+    masses=PAPER.masses,
+)
+
+PLATFORM = Model(
+    name="cubic_platform",
+    description="The paper's model plus a lumped mass m_a at height eta_a H (e.g. a platform)",
+    shape=CUBIC,
+    masses=PAPER.masses + (LumpedMass("m_a", "eta_a"),),
+    extra_params=(
+        Param("m_a", "added lumped mass", default=0.0),
+        Param("eta_a", "height of the added mass as a fraction of H", default=0.5),
+    ),
+)
+
+VARIANTS = (
+    Variant("full", "Full model: distributed column mass, top mass, base mass and inertia", "", PAPER),
+    Variant(
+        "massless_column",
+        "Massless column (m_c = 0): top mass, base mass and inertia",
+        "",
+        PAPER,
+        remove=("m_c",),
+    ),
+    Variant(
+        "massless_base",
+        "Massless base (m_b = I_bc = 0): distributed column mass and top mass",
+        "",
+        PAPER,
+        remove=("m_b", "i_bc"),
+    ),
+    Variant(
+        "point_mass",
+        "Top mass only (m_c = m_b = I_bc = 0): the model of Acikgoz & DeJong",
+        "",
+        PAPER,
+        remove=("m_c", "m_b", "i_bc"),
+    ),
+    Variant(
+        "rigid",
+        "Rigid column (u = 0): one degree of freedom, Housner's rocking block with these masses",
+        "The column deflection is frozen: `u` and `u_dot` are inputs for a uniform interface but are "
+        "never read, and `u_ddot` is 0. The VVEL map is its rigid limit: the horizontal kinetic "
+        "energy is kept and projected on the rocking mode about the impacting corner "
+        "(equations.md 4.2). ADJex has no full-contact branch without a deformation degree of "
+        "freedom: its contact energies are +inf, so it reduces to Housner's rule.",
+        PAPER,
+        rigid=True,
+    ),
+    Variant(
+        "small_angle",
+        "Full model linearised in theta (sin -> theta, cos -> 1 - theta^2/2 in the energies)",
+        "Consistent to second order in the energies, so that the energy balance of a run still closes.",
+        PAPER,
+        small_angle=True,
+    ),
+    Variant("cosine_shape", "Example: the full model with the shape psi = 1 - cos(pi xi / 2H)", "", COSINE),
+    Variant("added_mass", "Example: the full model plus a lumped mass m_a at height eta_a H", "", PLATFORM),
+)
