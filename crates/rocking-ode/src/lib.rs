@@ -1,0 +1,852 @@
+//! Explicit Runge–Kutta integration with dense output and event location for
+//! small, fixed-size, hybrid (event-driven) systems.
+//!
+//! This crate is the time integrator of a rocking-structure simulator. The
+//! state has a handful of components (`nalgebra::SVector<f64, N>`, `N` a
+//! const generic), the integration runs until an *event* (uplift, impact,
+//! overturning) is located to near machine precision, a map is applied to the
+//! state, and the integration restarts at the event. The crate knows nothing
+//! about the model: it only sees a right-hand side `f(t, y)` and, for events,
+//! an event function `g(t, y)`.
+//!
+//! # Methods
+//!
+//! * [`Method::Dopri5`]: the Dormand–Prince 5(4) pair with the FSAL property
+//!   and Hairer's 4th-order continuous extension (`dopri5.f`), see Hairer,
+//!   Nørsett & Wanner, *Solving Ordinary Differential Equations I*
+//!   (HNW I), Sect. II.5 and II.6. Six right-hand side evaluations per step.
+//! * [`Method::Dop853`]: the 8th-order Dormand–Prince method DOP853 with the
+//!   combined 5th/3rd-order error estimator and the 7th-order dense output
+//!   (three extra stages), HNW I, Sect. II.10 and `dop853.f`. Twelve
+//!   evaluations per step plus three for the dense output.
+//!
+//! Step sizes are chosen by Hairer's (PI) controller with the defaults of his
+//! codes; the error norm is the RMS over the components of
+//! `err_i / (atol_i + rtol * max(|y_i|, |y_new_i|))`.
+//!
+//! # Use in a hybrid driver
+//!
+//! [`Integrator::step`] performs exactly one accepted step and never passes
+//! the `t_stop` it is given, landing on it exactly when the step would cross
+//! it (use this for the final time and for kinks of a piecewise excitation).
+//! After every step the driver evaluates its event function at the new point
+//! and calls [`events::locate`] with the values at both ends of the step.
+//! When an event is found, [`Integrator::truncate_at`] moves the current point
+//! back to the event, the driver applies its map, and
+//! [`Integrator::reset_with_step`] restarts cheaply from the mapped state,
+//! reusing the last step size as the initial guess.
+//!
+//! Everything lives on the stack: an [`Integrator`] is plain `Copy` data and
+//! no step allocates.
+//!
+//! ```
+//! use nalgebra::{SVector, Vector1, Vector2};
+//! use rocking_ode::events::{locate, Direction};
+//! use rocking_ode::{Integrator, Method, Options, Tolerances};
+//!
+//! // Bouncing ball: y = (height, velocity), impact when the height falls to 0.
+//! let mut rhs = |_t: f64, y: &SVector<f64, 2>| Vector2::new(y[1], -9.81);
+//! let mut g = |_t: f64, y: &SVector<f64, 2>| Vector1::new(y[0]);
+//! let dirs = [Direction::Falling];
+//!
+//! let tol = Tolerances::uniform(1e-10, 1e-12);
+//! // h_max: a flight must not fit into one step (see `events`, limitations).
+//! let opts = Options { h_max: 0.05, ..Options::new(Method::Dopri5) };
+//! let mut ode = Integrator::new(opts, tol).unwrap();
+//! ode.reset(0.0, Vector2::new(1.0, 0.0), &mut rhs).unwrap();
+//! let mut g_old = g(ode.t(), ode.y());
+//! let mut bounces = Vec::new();
+//! loop {
+//!     let info = ode.step(&mut rhs, 3.0).unwrap();
+//!     let g_new = g(ode.t(), ode.y());
+//!     if let Some(ev) = locate(&mut ode, &mut g, &dirs, &g_old, &g_new) {
+//!         bounces.push(ev.t);
+//!         ode.truncate_at(ev.t);
+//!         let mapped = Vector2::new(0.0, -0.8 * ev.y[1]); // restitution 0.8
+//!         let h = ode.last_step_size();
+//!         ode.reset_with_step(ev.t, mapped, h, &mut rhs).unwrap();
+//!         g_old = g(ode.t(), ode.y());
+//!         continue;
+//!     }
+//!     g_old = g_new;
+//!     if info.reached {
+//!         break;
+//!     }
+//! }
+//! let t1 = (2.0 / 9.81f64).sqrt();
+//! assert!((bounces[0] - t1).abs() < 1e-12);
+//! assert!((bounces[1] - (t1 + 1.6 * t1)).abs() < 1e-12);
+//! assert_eq!(ode.stats().events, bounces.len() as u64);
+//! ```
+#![warn(missing_docs)]
+
+use nalgebra::SVector;
+use std::fmt;
+use std::ops::{Add, AddAssign};
+
+pub mod events;
+mod tableau;
+
+use tableau::Row;
+
+/// The Runge–Kutta method used by an [`Integrator`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Method {
+    /// Dormand–Prince 5(4), FSAL, 4th-order dense output (HNW I, II.5/II.6).
+    Dopri5,
+    /// DOP853: 8th order, 5th/3rd-order combined error estimate, 7th-order
+    /// dense output (HNW I, II.10).
+    Dop853,
+}
+
+impl Method {
+    /// Classical order of the propagated solution (5 or 8).
+    pub fn order(self) -> u32 {
+        match self {
+            Method::Dopri5 => 5,
+            Method::Dop853 => 8,
+        }
+    }
+}
+
+/// Error tolerances: scalar relative tolerance, per-component absolute one.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Tolerances<const N: usize> {
+    /// Relative tolerance (`>= 0`).
+    pub rtol: f64,
+    /// Absolute tolerance of each component (each `> 0`).
+    pub atol: SVector<f64, N>,
+}
+
+impl<const N: usize> Tolerances<N> {
+    /// Same absolute tolerance for every component.
+    pub fn uniform(rtol: f64, atol: f64) -> Self {
+        Self {
+            rtol,
+            atol: SVector::from_element(atol),
+        }
+    }
+}
+
+/// Integrator options.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Options {
+    /// Integration method.
+    pub method: Method,
+    /// Maximal step size (`f64::INFINITY` for none). A step may exceed it by
+    /// at most 1 % when it is stretched to land on `t_stop`.
+    pub h_max: f64,
+    /// Initial step size used by [`Integrator::reset`]; `None` selects
+    /// Hairer's `hinit` heuristic.
+    pub h_init: Option<f64>,
+    /// Maximal number of step attempts (accepted + rejected) between two
+    /// resets.
+    pub max_steps: u64,
+}
+
+impl Options {
+    /// Defaults for `method`: no `h_max`, automatic initial step,
+    /// `max_steps = 100_000`.
+    pub fn new(method: Method) -> Self {
+        Self {
+            method,
+            h_max: f64::INFINITY,
+            h_init: None,
+            max_steps: 100_000,
+        }
+    }
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Self::new(Method::Dopri5)
+    }
+}
+
+/// Work counters. They accumulate over resets; add them up across runs with
+/// `+` / `+=`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Stats {
+    /// Accepted steps.
+    pub steps: u64,
+    /// Rejected step attempts.
+    pub rejected: u64,
+    /// Right-hand side evaluations.
+    pub rhs_evals: u64,
+    /// Events located by [`events::locate`].
+    pub events: u64,
+}
+
+impl Add for Stats {
+    type Output = Stats;
+    fn add(self, o: Stats) -> Stats {
+        Stats {
+            steps: self.steps + o.steps,
+            rejected: self.rejected + o.rejected,
+            rhs_evals: self.rhs_evals + o.rhs_evals,
+            events: self.events + o.events,
+        }
+    }
+}
+
+impl AddAssign for Stats {
+    fn add_assign(&mut self, o: Stats) {
+        *self = *self + o;
+    }
+}
+
+/// What went wrong, see [`OdeError`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OdeErrorKind {
+    /// The step size became too small relative to `t`.
+    StepSizeUnderflow,
+    /// The right-hand side or the state became NaN or infinite.
+    NonFinite,
+    /// More than [`Options::max_steps`] attempts since the last reset.
+    MaxSteps,
+    /// Invalid options, tolerances or arguments.
+    InvalidInput,
+    /// [`Integrator::step`] was called before [`Integrator::reset`].
+    NotInitialised,
+}
+
+/// Integration error, with the time at which it happened.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OdeError {
+    /// Error category.
+    pub kind: OdeErrorKind,
+    /// Time of the current point when the error occurred (NaN if none).
+    pub t: f64,
+    /// Human-readable explanation.
+    pub message: String,
+}
+
+impl OdeError {
+    fn new(kind: OdeErrorKind, t: f64, message: String) -> Self {
+        Self { kind, t, message }
+    }
+}
+
+impl fmt::Display for OdeError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "ODE integration failed at t = {}: {}",
+            self.t, self.message
+        )
+    }
+}
+
+impl std::error::Error for OdeError {}
+
+/// Result of one accepted step.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StepInfo {
+    /// Start of the step.
+    pub t_old: f64,
+    /// End of the step (the new current time).
+    pub t_new: f64,
+    /// `true` when the step landed exactly on `t_stop`.
+    pub reached: bool,
+}
+
+/// Number of stored stages (DOP853 incl. FSAL and dense-output stages).
+const STAGES: usize = 16;
+
+/// An explicit Runge–Kutta integrator with step-size control and dense output
+/// for a state of fixed dimension `N`.
+///
+/// Plain `Copy` data: stages, dense-output coefficients and counters are held
+/// inline, nothing is allocated.
+#[derive(Clone, Copy, Debug)]
+pub struct Integrator<const N: usize> {
+    opts: Options,
+    tol: Tolerances<N>,
+    /// Current time and state.
+    t: f64,
+    y: SVector<f64, N>,
+    /// f(t, y) (exact unless `fsal_valid` is false, then approximated from
+    /// the dense output after `truncate_at`).
+    dy: SVector<f64, N>,
+    fsal_valid: bool,
+    initialised: bool,
+    /// Step size to try next.
+    h_next: f64,
+    /// Last accepted step: start, nominal length, and whether one exists.
+    t_old: f64,
+    h_last: f64,
+    has_step: bool,
+    /// Hairer's `facold` for the PI controller.
+    facold: f64,
+    /// Attempts since the last reset (for `max_steps`).
+    attempts: u64,
+    k: [SVector<f64, N>; STAGES],
+    /// Dense-output coefficients (5 used by Dopri5, 8 by DOP853).
+    cont: [SVector<f64, N>; 8],
+    stats: Stats,
+}
+
+/// Controller constants.
+struct Ctrl {
+    /// Exponent alpha = 1/q - 0.75 beta (q = 5 or 8).
+    expo1: f64,
+    beta: f64,
+    safe: f64,
+    /// Minimal factor h_new/h.
+    facmin: f64,
+    /// Maximal factor h_new/h.
+    facmax: f64,
+}
+
+const DOPRI5_CTRL: Ctrl = Ctrl {
+    expo1: 0.2 - 0.04 * 0.75,
+    beta: 0.04,
+    safe: 0.9,
+    facmin: 0.2,
+    facmax: 10.0,
+};
+
+const DOP853_CTRL: Ctrl = Ctrl {
+    expo1: 1.0 / 8.0,
+    beta: 0.0,
+    safe: 0.9,
+    facmin: 0.333,
+    facmax: 6.0,
+};
+
+#[inline(always)]
+fn comb<const N: usize>(k: &[SVector<f64, N>; STAGES], row: Row) -> SVector<f64, N> {
+    let mut s = SVector::<f64, N>::zeros();
+    for &(j, a) in row {
+        s.axpy(a, &k[j], 1.0);
+    }
+    s
+}
+
+fn all_finite<const N: usize>(v: &SVector<f64, N>) -> bool {
+    v.iter().all(|x| x.is_finite())
+}
+
+impl<const N: usize> Integrator<N> {
+    /// Create an integrator. It must be [`reset`](Self::reset) before the
+    /// first step. Fails on invalid tolerances or options.
+    pub fn new(opts: Options, tol: Tolerances<N>) -> Result<Self, OdeError> {
+        let bad = |m: &str| {
+            Err(OdeError::new(
+                OdeErrorKind::InvalidInput,
+                f64::NAN,
+                m.into(),
+            ))
+        };
+        if !(tol.rtol >= 0.0 && tol.rtol.is_finite()) {
+            return bad("rtol must be finite and >= 0");
+        }
+        if !tol.atol.iter().all(|&a| a > 0.0 && a.is_finite()) {
+            return bad("every atol component must be finite and > 0");
+        }
+        if opts.h_max.is_nan() || opts.h_max <= 0.0 {
+            return bad("h_max must be > 0 (use f64::INFINITY for no limit)");
+        }
+        if let Some(h) = opts.h_init {
+            if !(h > 0.0 && h.is_finite()) {
+                return bad("h_init must be finite and > 0");
+            }
+        }
+        let z = SVector::<f64, N>::zeros();
+        Ok(Self {
+            opts,
+            tol,
+            t: f64::NAN,
+            y: z,
+            dy: z,
+            fsal_valid: false,
+            initialised: false,
+            h_next: f64::NAN,
+            t_old: f64::NAN,
+            h_last: 0.0,
+            has_step: false,
+            facold: 1e-4,
+            attempts: 0,
+            k: [z; STAGES],
+            cont: [z; 8],
+            stats: Stats::default(),
+        })
+    }
+
+    /// Restart at `(t0, y0)`; the initial step is [`Options::h_init`] or
+    /// Hairer's `hinit` estimate. Costs one RHS evaluation (two with
+    /// `hinit`). Statistics are kept.
+    pub fn reset<F>(&mut self, t0: f64, y0: SVector<f64, N>, rhs: &mut F) -> Result<(), OdeError>
+    where
+        F: FnMut(f64, &SVector<f64, N>) -> SVector<f64, N>,
+    {
+        self.reset_impl(t0, y0, self.opts.h_init, rhs)
+    }
+
+    /// Restart at `(t0, y0)` using `h` (e.g. [`last_step_size`](Self::last_step_size)
+    /// before an event) as the initial step size; falls back to
+    /// [`reset`](Self::reset)'s choice when `h` is not finite and positive.
+    /// Costs one RHS evaluation.
+    pub fn reset_with_step<F>(
+        &mut self,
+        t0: f64,
+        y0: SVector<f64, N>,
+        h: f64,
+        rhs: &mut F,
+    ) -> Result<(), OdeError>
+    where
+        F: FnMut(f64, &SVector<f64, N>) -> SVector<f64, N>,
+    {
+        let hint = if h > 0.0 && h.is_finite() {
+            Some(h)
+        } else {
+            self.opts.h_init
+        };
+        self.reset_impl(t0, y0, hint, rhs)
+    }
+
+    fn reset_impl<F>(
+        &mut self,
+        t0: f64,
+        y0: SVector<f64, N>,
+        h: Option<f64>,
+        rhs: &mut F,
+    ) -> Result<(), OdeError>
+    where
+        F: FnMut(f64, &SVector<f64, N>) -> SVector<f64, N>,
+    {
+        self.initialised = false;
+        self.has_step = false;
+        if !t0.is_finite() || !all_finite(&y0) {
+            return Err(OdeError::new(
+                OdeErrorKind::NonFinite,
+                t0,
+                format!("non-finite initial time or state {y0:?}"),
+            ));
+        }
+        let f0 = rhs(t0, &y0);
+        self.stats.rhs_evals += 1;
+        if !all_finite(&f0) {
+            return Err(OdeError::new(
+                OdeErrorKind::NonFinite,
+                t0,
+                format!("non-finite right-hand side {f0:?} at the initial state"),
+            ));
+        }
+        self.t = t0;
+        self.y = y0;
+        self.dy = f0;
+        self.fsal_valid = true;
+        self.facold = 1e-4;
+        self.attempts = 0;
+        self.t_old = t0;
+        self.h_last = 0.0;
+        self.h_next = match h {
+            Some(h) => h.min(self.opts.h_max),
+            None => self.hinit(rhs),
+        };
+        self.initialised = true;
+        Ok(())
+    }
+
+    /// Hairer's initial step-size heuristic (`hinit` in dopri5.f/dop853.f).
+    fn hinit<F>(&mut self, rhs: &mut F) -> f64
+    where
+        F: FnMut(f64, &SVector<f64, N>) -> SVector<f64, N>,
+    {
+        let (t, y, f0) = (self.t, self.y, self.dy);
+        let sk = self.tol.atol + y.abs() * self.tol.rtol;
+        let dnf = f0.component_div(&sk).norm_squared();
+        let dny = y.component_div(&sk).norm_squared();
+        let mut h = if dnf <= 1e-10 || dny <= 1e-10 {
+            1e-6
+        } else {
+            (dny / dnf).sqrt() * 0.01
+        };
+        h = h.min(self.opts.h_max);
+        let y1 = y + f0 * h;
+        let f1 = rhs(t + h, &y1);
+        self.stats.rhs_evals += 1;
+        let der2 = (f1 - f0).component_div(&sk).norm() / h;
+        let der12 = der2.abs().max(dnf.sqrt());
+        let h1 = if der12 <= 1e-15 {
+            (h * 1e-3).max(1e-6)
+        } else {
+            (0.01 / der12).powf(1.0 / self.opts.method.order() as f64)
+        };
+        let h = (100.0 * h).min(h1).min(self.opts.h_max);
+        if h > 0.0 && h.is_finite() {
+            h
+        } else {
+            1e-6f64.min(self.opts.h_max)
+        }
+    }
+
+    /// Perform one accepted step (rejected attempts are retried internally)
+    /// without passing `t_stop`; a step that would reach or pass `t_stop`
+    /// (or end within 1 % of a step before it) is set to land on `t_stop`
+    /// exactly. Integration is forward only: `t_stop` must exceed `t()`.
+    ///
+    /// Errors: step-size underflow (`h <= 10 eps |t|`), non-finite stage,
+    /// state or error estimate (returned immediately, the step is not
+    /// retried), `max_steps` attempts since the last reset, `t_stop <= t`.
+    /// On error the current point is unchanged.
+    pub fn step<F>(&mut self, rhs: &mut F, t_stop: f64) -> Result<StepInfo, OdeError>
+    where
+        F: FnMut(f64, &SVector<f64, N>) -> SVector<f64, N>,
+    {
+        if !self.initialised {
+            return Err(OdeError::new(
+                OdeErrorKind::NotInitialised,
+                self.t,
+                "step called before reset".into(),
+            ));
+        }
+        if t_stop.is_nan() || t_stop <= self.t {
+            return Err(OdeError::new(
+                OdeErrorKind::InvalidInput,
+                self.t,
+                format!("t_stop = {t_stop} is not after the current time"),
+            ));
+        }
+        if !self.fsal_valid {
+            let f = rhs(self.t, &self.y);
+            self.stats.rhs_evals += 1;
+            if !all_finite(&f) {
+                return Err(OdeError::new(
+                    OdeErrorKind::NonFinite,
+                    self.t,
+                    format!("non-finite right-hand side {f:?}"),
+                ));
+            }
+            self.dy = f;
+            self.fsal_valid = true;
+        }
+        let ctrl = match self.opts.method {
+            Method::Dopri5 => &DOPRI5_CTRL,
+            Method::Dop853 => &DOP853_CTRL,
+        };
+        let mut rejected = false;
+        loop {
+            if self.attempts >= self.opts.max_steps {
+                return Err(OdeError::new(
+                    OdeErrorKind::MaxSteps,
+                    self.t,
+                    format!("more than max_steps = {} attempts", self.opts.max_steps),
+                ));
+            }
+            let h_ctrl = self.h_next.min(self.opts.h_max);
+            if h_ctrl.is_nan() || h_ctrl <= 10.0 * f64::EPSILON * self.t.abs() || h_ctrl < 1e-300 {
+                return Err(OdeError::new(
+                    OdeErrorKind::StepSizeUnderflow,
+                    self.t,
+                    format!("step size underflow (h = {h_ctrl:e})"),
+                ));
+            }
+            let mut h = h_ctrl;
+            let reaches = self.t + 1.01 * h >= t_stop;
+            if reaches {
+                h = t_stop - self.t;
+            }
+            self.attempts += 1;
+            let (y_new, err) = match self.opts.method {
+                Method::Dopri5 => self.attempt_dopri5(rhs, h),
+                Method::Dop853 => self.attempt_dop853(rhs, h),
+            };
+            if !all_finite(&y_new) || !err.is_finite() {
+                return Err(OdeError::new(
+                    OdeErrorKind::NonFinite,
+                    self.t,
+                    format!(
+                        "non-finite stage, state or error estimate in a step of size {h:e} \
+                         (y_new = {y_new:?})"
+                    ),
+                ));
+            }
+            let fac11 = err.powf(ctrl.expo1);
+            if err <= 1.0 {
+                // Accepted.
+                let f_new = match self.opts.method {
+                    Method::Dopri5 => self.k[6],
+                    Method::Dop853 => {
+                        let f = rhs(self.t + h, &y_new);
+                        self.stats.rhs_evals += 1;
+                        f
+                    }
+                };
+                if !all_finite(&f_new) {
+                    return Err(OdeError::new(
+                        OdeErrorKind::NonFinite,
+                        self.t + h,
+                        format!("non-finite right-hand side {f_new:?} at the end of a step"),
+                    ));
+                }
+                // Hairer's PI controller: fac = err^alpha / errold^beta.
+                let fac = (fac11 / self.facold.powf(ctrl.beta) / ctrl.safe)
+                    .clamp(1.0 / ctrl.facmax, 1.0 / ctrl.facmin);
+                let mut h_new = h / fac;
+                self.facold = err.max(1e-4);
+                if rejected {
+                    h_new = h_new.min(h);
+                }
+                if reaches {
+                    // A step shortened to hit t_stop says little about the
+                    // step size the solution allows: keep the larger proposal.
+                    h_new = h_new.max(h_ctrl);
+                }
+                match self.opts.method {
+                    Method::Dopri5 => self.dense_dopri5(h, &y_new, &f_new),
+                    Method::Dop853 => self.dense_dop853(rhs, h, &y_new, &f_new),
+                }
+                self.t_old = self.t;
+                self.h_last = h;
+                self.t = if reaches { t_stop } else { self.t + h };
+                self.y = y_new;
+                self.dy = f_new;
+                self.h_next = h_new;
+                self.has_step = true;
+                self.stats.steps += 1;
+                return Ok(StepInfo {
+                    t_old: self.t_old,
+                    t_new: self.t,
+                    reached: reaches,
+                });
+            }
+            // Rejected: shrink, no increase afterwards.
+            self.stats.rejected += 1;
+            rejected = true;
+            self.h_next = h / (1.0 / ctrl.facmin).min(fac11 / ctrl.safe);
+        }
+    }
+
+    /// One Dopri5 attempt of size `h`; stages in `self.k[0..7]`, `k[6]` is
+    /// f(t+h, y_new). Returns `(y_new, err)`.
+    fn attempt_dopri5<F>(&mut self, rhs: &mut F, h: f64) -> (SVector<f64, N>, f64)
+    where
+        F: FnMut(f64, &SVector<f64, N>) -> SVector<f64, N>,
+    {
+        use tableau::{DP5_A, DP5_C, DP5_E};
+        self.k[0] = self.dy;
+        for i in 1..6 {
+            let ys = self.y + comb(&self.k, DP5_A[i]) * h;
+            self.k[i] = rhs(self.t + DP5_C[i] * h, &ys);
+        }
+        // Row 6 of A is b: the last stage is evaluated at y_new (FSAL).
+        let y_new = self.y + comb(&self.k, DP5_A[6]) * h;
+        self.k[6] = rhs(self.t + h, &y_new);
+        self.stats.rhs_evals += 6;
+        let e = comb(&self.k, DP5_E) * h;
+        (y_new, self.err_norm(&e, &y_new))
+    }
+
+    /// One DOP853 attempt of size `h`; stages in `self.k[0..12]`.
+    fn attempt_dop853<F>(&mut self, rhs: &mut F, h: f64) -> (SVector<f64, N>, f64)
+    where
+        F: FnMut(f64, &SVector<f64, N>) -> SVector<f64, N>,
+    {
+        use tableau::{DOP853_A, DOP853_BHH, DOP853_C, DOP853_E5};
+        self.k[0] = self.dy;
+        for i in 1..12 {
+            let ys = self.y + comb(&self.k, DOP853_A[i]) * h;
+            self.k[i] = rhs(self.t + DOP853_C[i] * h, &ys);
+        }
+        self.stats.rhs_evals += 11;
+        let bk = comb(&self.k, DOP853_A[12]);
+        let y_new = self.y + bk * h;
+        let e5 = comb(&self.k, DOP853_E5);
+        let e3 = bk - comb(&self.k, DOP853_BHH);
+        let sk = self.scale(&y_new);
+        let err5 = e5.component_div(&sk).norm_squared();
+        let err3 = e3.component_div(&sk).norm_squared();
+        let mut deno = err5 + 0.01 * err3;
+        if deno <= 0.0 {
+            deno = 1.0;
+        }
+        let err = h.abs() * err5 * (1.0 / (N as f64 * deno)).sqrt();
+        (y_new, err)
+    }
+
+    fn scale(&self, y_new: &SVector<f64, N>) -> SVector<f64, N> {
+        self.tol.atol + self.y.abs().sup(&y_new.abs()) * self.tol.rtol
+    }
+
+    fn err_norm(&self, e: &SVector<f64, N>, y_new: &SVector<f64, N>) -> f64 {
+        (e.component_div(&self.scale(y_new)).norm_squared() / N as f64).sqrt()
+    }
+
+    fn dense_dopri5(&mut self, h: f64, y_new: &SVector<f64, N>, f_new: &SVector<f64, N>) {
+        let ydiff = y_new - self.y;
+        let bspl = self.dy * h - ydiff;
+        self.cont[0] = self.y;
+        self.cont[1] = ydiff;
+        self.cont[2] = bspl;
+        self.cont[3] = ydiff - f_new * h - bspl;
+        self.cont[4] = comb(&self.k, tableau::DP5_D) * h;
+    }
+
+    fn dense_dop853<F>(
+        &mut self,
+        rhs: &mut F,
+        h: f64,
+        y_new: &SVector<f64, N>,
+        f_new: &SVector<f64, N>,
+    ) where
+        F: FnMut(f64, &SVector<f64, N>) -> SVector<f64, N>,
+    {
+        use tableau::{DOP853_A, DOP853_C, DOP853_D};
+        self.k[12] = *f_new;
+        for i in 13..16 {
+            let ys = self.y + comb(&self.k, DOP853_A[i]) * h;
+            self.k[i] = rhs(self.t + DOP853_C[i] * h, &ys);
+        }
+        self.stats.rhs_evals += 3;
+        let ydiff = y_new - self.y;
+        let bspl = self.dy * h - ydiff;
+        self.cont[0] = self.y;
+        self.cont[1] = ydiff;
+        self.cont[2] = bspl;
+        self.cont[3] = ydiff - f_new * h - bspl;
+        for (r, row) in DOP853_D.iter().enumerate() {
+            self.cont[4 + r] = comb(&self.k, row) * h;
+        }
+    }
+
+    /// Value of the continuous extension of the last accepted step at
+    /// `t in [t_old, t_new]` (4th order for Dopri5, 7th for DOP853).
+    /// Returns `y()` exactly at the current time. Outside the step the
+    /// polynomial is extrapolated (inaccurate). Before any step it returns
+    /// the current state.
+    pub fn dense(&self, t: f64) -> SVector<f64, N> {
+        if !self.has_step || t == self.t {
+            return self.y;
+        }
+        let s = (t - self.t_old) / self.h_last;
+        let s1 = 1.0 - s;
+        let c = &self.cont;
+        match self.opts.method {
+            Method::Dopri5 => c[0] + (c[1] + (c[2] + (c[3] + c[4] * s1) * s) * s1) * s,
+            Method::Dop853 => {
+                let conpar = c[4] + (c[5] + (c[6] + c[7] * s) * s1) * s;
+                c[0] + (c[1] + (c[2] + (c[3] + conpar * s1) * s) * s1) * s
+            }
+        }
+    }
+
+    /// Time derivative of the continuous extension of the last accepted step
+    /// (one order lower accuracy than [`dense`](Self::dense)).
+    pub fn dense_derivative(&self, t: f64) -> SVector<f64, N> {
+        if !self.has_step {
+            return self.dy;
+        }
+        let s = (t - self.t_old) / self.h_last;
+        let s1 = 1.0 - s;
+        let c = &self.cont;
+        // Differentiate the nested Horner forms with respect to s.
+        let d = match self.opts.method {
+            Method::Dopri5 => {
+                let p = c[3] + c[4] * s1;
+                let dp = -c[4];
+                let q = c[2] + p * s;
+                let dq = p + dp * s;
+                let r = c[1] + q * s1;
+                let dr = dq * s1 - q;
+                r + dr * s
+            }
+            Method::Dop853 => {
+                let a = c[6] + c[7] * s;
+                let da = c[7];
+                let b = c[5] + a * s1;
+                let db = da * s1 - a;
+                let cp = c[4] + b * s;
+                let dcp = b + db * s;
+                let p = c[3] + cp * s1;
+                let dp = dcp * s1 - cp;
+                let q = c[2] + p * s;
+                let dq = p + dp * s;
+                let r = c[1] + q * s1;
+                let dr = dq * s1 - q;
+                r + dr * s
+            }
+        };
+        d / self.h_last
+    }
+
+    /// Move the current point back to `t_event` inside the last step:
+    /// the state becomes [`dense`](Self::dense)`(t_event)`, the derivative
+    /// the dense-output derivative (the exact `f` is re-evaluated lazily if
+    /// stepping continues without a reset). The dense output of the last step
+    /// stays available on `[t_old, t_event]`. `t_event` is clamped to the
+    /// last step.
+    pub fn truncate_at(&mut self, t_event: f64) {
+        if !self.has_step || t_event == self.t || t_event.is_nan() {
+            return;
+        }
+        let te = t_event.clamp(self.t_old, self.t);
+        self.y = self.dense(te);
+        self.dy = self.dense_derivative(te);
+        self.t = te;
+        self.fsal_valid = false;
+    }
+
+    /// Current time.
+    pub fn t(&self) -> f64 {
+        self.t
+    }
+
+    /// Current state.
+    pub fn y(&self) -> &SVector<f64, N> {
+        &self.y
+    }
+
+    /// Derivative f(t, y) at the current point (after
+    /// [`truncate_at`](Self::truncate_at): the dense-output approximation).
+    pub fn dy(&self) -> &SVector<f64, N> {
+        &self.dy
+    }
+
+    /// Start time of the last accepted step.
+    pub fn t_old(&self) -> f64 {
+        self.t_old
+    }
+
+    /// Length of the last accepted step (0 before the first step).
+    pub fn last_step_size(&self) -> f64 {
+        self.h_last
+    }
+
+    /// Step size the controller will try next (before `h_max`/`t_stop`
+    /// clipping).
+    pub fn next_step_size(&self) -> f64 {
+        self.h_next
+    }
+
+    /// Whether a step has been taken since the last reset (i.e. whether the
+    /// dense output is meaningful).
+    pub fn has_step(&self) -> bool {
+        self.has_step
+    }
+
+    /// Work counters accumulated since creation.
+    pub fn stats(&self) -> Stats {
+        self.stats
+    }
+
+    /// Reset the work counters to zero, returning the old ones.
+    pub fn take_stats(&mut self) -> Stats {
+        std::mem::take(&mut self.stats)
+    }
+
+    /// The options.
+    pub fn options(&self) -> &Options {
+        &self.opts
+    }
+
+    /// The tolerances.
+    pub fn tolerances(&self) -> &Tolerances<N> {
+        &self.tol
+    }
+
+    pub(crate) fn count_event(&mut self) {
+        self.stats.events += 1;
+    }
+}

@@ -1,0 +1,589 @@
+//! The hybrid driver: full contact, rocking about either corner, impacts, overturning.
+//!
+//! The driver is generic over the kernel variant `V` (monomorphised: no run-time branch for absent
+//! effects) and the ground motion `M`. It owns two fixed-size integrators, one per phase, and
+//! moves between them at located events:
+//!
+//! * **contact** (state `[u, u', W, D]`): events f_+ and f_- of eq (24) rising through zero
+//!   (uplift about that corner). At every start of a contact phase the uplift functions are checked
+//!   at once, which is how the rigid limit works (impact, zero-length contact, re-uplift).
+//! * **rocking about s** (state `[θ, u, θ', u', W, D]`): the impact event s θ / (t − t0)^n falling
+//!   through zero, regularised so it cannot fire at the phase start t0 (n = 2 after an uplift, where
+//!   θ' = 0; n = 1 after an immediate-rocking impact), and the overturning event s θ − θ_over.
+//!
+//! W and D (ground work and damping dissipation) are integrated only when `ENERGY` is true;
+//! they are excluded from the error control so that trajectories do not depend on it.
+
+use nalgebra::SVector;
+use rocking_kernels::Variant;
+use rocking_motion::GroundMotion;
+use rocking_ode::events::{locate, Direction};
+use rocking_ode::{Integrator, OdeError, Options as OdeOptions, Tolerances};
+
+use crate::options::{History, ImpactModel, Options};
+use crate::results::{
+    EnergyBalance, EventKind, EventRecord, HistoryRow, Phase, Run, SolverStats, Summary, Time,
+};
+use crate::structure::{Derived, Structure};
+
+/// Why a run failed.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SimError {
+    /// The integrator failed (step-size underflow, non-finite state, too many steps).
+    Integration(OdeError),
+    /// A guard on the number of events or steps fired: the run would not end.
+    Guard(String),
+    /// Invalid options.
+    Options(String),
+}
+
+impl std::fmt::Display for SimError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            SimError::Integration(e) => write!(f, "{e}"),
+            SimError::Guard(m) | SimError::Options(m) => f.write_str(m),
+        }
+    }
+}
+
+impl std::error::Error for SimError {}
+
+impl From<OdeError> for SimError {
+    fn from(e: OdeError) -> Self {
+        SimError::Integration(e)
+    }
+}
+
+type Y4 = SVector<f64, 4>;
+type Y6 = SVector<f64, 6>;
+type G2 = SVector<f64, 2>;
+
+/// Where the hybrid system goes next.
+enum Next {
+    Contact { t: f64, u: f64, u_dot: f64, w: f64, d: f64 },
+    Rocking { t: f64, s: f64, x: [f64; 4], n: i32, w: f64, d: f64 },
+    Done { t: f64, phase: Phase, state: [f64; 4], w: f64, d: f64 },
+}
+
+/// Post-impact state chosen by an impact model.
+enum After {
+    Contact { u_dot: f64, energy: f64 },
+    Rocking { theta_dot: f64, u_dot: f64, energy: f64 },
+}
+
+struct Sim<'a, V: Variant, M: GroundMotion, const ENERGY: bool> {
+    p: V::Params,
+    motion: &'a M,
+    opts: &'a Options,
+    derived: Derived,
+    p_seconds: Option<f64>,
+    rest_rate: f64,
+    significant_rate: f64,
+    v_rest: f64,
+    contact_ode: Integrator<4>,
+    rocking_ode: Integrator<6>,
+    stats: SolverStats,
+    max_theta: f64,
+    max_u: f64,
+    impacts: u64,
+    significant: u64,
+    events: u64,
+    first_uplift: Option<f64>,
+    first_impact: Option<f64>,
+    overturn: Option<f64>,
+    losses: f64,
+    log: Vec<EventRecord>,
+    history: Vec<HistoryRow>,
+    next_grid: f64,
+}
+
+const RIGHT: f64 = 1.0;
+const LEFT: f64 = -1.0;
+
+/// Runs one simulation with kernel variant `V`; `ENERGY` switches the energy bookkeeping on.
+pub fn simulate<V: Variant, M: GroundMotion, const ENERGY: bool>(
+    structure: &Structure,
+    motion: &M,
+    opts: &Options,
+) -> Result<Run, SimError> {
+    let tol = opts.accuracy.tol;
+    if !(tol > 0.0 && tol < 1.0) {
+        return Err(SimError::Options(format!("tolerance {tol} is not allowed: 0 < tol < 1")));
+    }
+    if !(opts.t_end.is_finite() && opts.t_end > 0.0) {
+        return Err(SimError::Options(format!("end time {} is not allowed: 0 < t_end < inf", opts.t_end)));
+    }
+    let derived = structure.derived();
+    let p = V::params(structure.physical());
+    let rigid = V::NAME == "rigid";
+    let (a, pf) = (derived.alpha, derived.p);
+    let u_scale = if rigid { 1.0 } else { derived.u_cr };
+    let ud_scale = if rigid { 1.0 } else { derived.u_cr * derived.omega_n };
+    let off = 1e300; // W and D do not take part in the error control
+    let ode = OdeOptions { max_steps: opts.max_steps, ..OdeOptions::new(opts.accuracy.method) };
+    let contact_tol = Tolerances { rtol: tol, atol: Y4::new(u_scale, ud_scale, off, off) * tol };
+    let rocking_tol = Tolerances { rtol: tol, atol: Y6::new(a, u_scale, a * pf, ud_scale, off, off) * tol };
+    let e0 = V::energy(&[0.0; 4], RIGHT, &p);
+    let sim = Sim::<V, M, ENERGY> {
+        p,
+        motion,
+        opts,
+        derived,
+        p_seconds: structure.p_per_second(),
+        rest_rate: opts.rest_rate * a * pf,
+        significant_rate: 0.01 * a * pf,
+        v_rest: e0[1] + e0[2],
+        contact_ode: Integrator::new(ode, contact_tol)?,
+        rocking_ode: Integrator::new(ode, rocking_tol)?,
+        stats: SolverStats::default(),
+        max_theta: 0.0,
+        max_u: 0.0,
+        impacts: 0,
+        significant: 0,
+        events: 0,
+        first_uplift: None,
+        first_impact: None,
+        overturn: None,
+        losses: 0.0,
+        log: Vec::new(),
+        history: Vec::new(),
+        next_grid: 0.0,
+    };
+    sim.run()
+}
+
+impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
+    fn time(&self, t: f64) -> Time {
+        let tau = t * self.derived.p;
+        Time { tau, seconds: self.p_seconds.map(|ps| tau / ps) }
+    }
+
+    fn total_energy(&self, x: &[f64; 4], s: f64) -> f64 {
+        let e = V::energy(x, s, &self.p);
+        e[0] + e[1] + e[2] - self.v_rest
+    }
+
+    fn run(mut self) -> Result<Run, SimError> {
+        let i = self.opts.initial;
+        let x0 = [i.theta, i.u, i.theta_dot, i.u_dot];
+        let s0 = if i.theta > 0.0 || (i.theta == 0.0 && i.theta_dot > 0.0) { RIGHT } else { LEFT };
+        let e_initial = self.total_energy(&x0, s0);
+        self.track(&x0);
+        let mut next = if i.theta != 0.0 || i.theta_dot != 0.0 {
+            // Free rocking from θ0 != 0 needs no regularisation (n = 0); from θ = 0 with θ' != 0, n = 1.
+            Next::Rocking { t: 0.0, s: s0, x: x0, n: if i.theta != 0.0 { 0 } else { 1 }, w: 0.0, d: 0.0 }
+        } else {
+            Next::Contact { t: 0.0, u: i.u, u_dot: i.u_dot, w: 0.0, d: 0.0 }
+        };
+        let (t_end, phase, state, w, d) = loop {
+            next = match next {
+                Next::Contact { t, u, u_dot, w, d } => self.contact(t, u, u_dot, w, d)?,
+                Next::Rocking { t, s, x, n, w, d } => self.rocking(t, s, x, n, w, d)?,
+                Next::Done { t, phase, state, w, d } => break (t, phase, state, w, d),
+            };
+        };
+        let s_end = if phase == Phase::RockingLeft { LEFT } else { RIGHT };
+        let e_ref = self.derived.e_ref;
+        let (energy, residual) = if ENERGY {
+            let last = self.total_energy(&state, s_end);
+            let residual = (last - e_initial - w + d + self.losses) / e_ref;
+            let balance = EnergyBalance {
+                initial: e_initial / e_ref,
+                last: last / e_ref,
+                ground_work: w / e_ref,
+                damping: d / e_ref,
+                impact_losses: self.losses / e_ref,
+            };
+            (Some(balance), Some(residual))
+        } else {
+            (None, None)
+        };
+        let rigid = V::NAME == "rigid";
+        let summary = Summary {
+            kernel_variant: V::NAME,
+            max_theta_over_alpha: self.max_theta / self.derived.alpha,
+            max_theta_over_theta_cr: self.max_theta / self.derived.theta_cr,
+            max_u_over_ucr: if rigid { 0.0 } else { self.max_u / self.derived.u_cr },
+            overturned: self.overturn.is_some(),
+            overturn_time: self.overturn.map(|t| self.time(t)),
+            impacts: self.impacts,
+            significant_impacts: self.significant,
+            first_uplift_time: self.first_uplift.map(|t| self.time(t)),
+            first_impact_time: self.first_impact.map(|t| self.time(t)),
+            final_phase: phase,
+            end_time: self.time(t_end),
+            energy_balance_residual: residual,
+            energy,
+            solver_stats: self.stats,
+        };
+        Ok(Run { summary, events: self.log, history: self.history })
+    }
+
+    fn track(&mut self, x: &[f64; 4]) {
+        self.max_theta = self.max_theta.max(x[0].abs());
+        self.max_u = self.max_u.max(x[1].abs());
+    }
+
+    fn count_event(&mut self, t: f64) -> Result<(), SimError> {
+        self.events += 1;
+        if self.events > self.opts.max_events {
+            return Err(SimError::Guard(format!(
+                "more than {} events by τ = {:.6}: the run does not settle (raise max_events, or the rest rate)",
+                self.opts.max_events,
+                self.time(t).tau
+            )));
+        }
+        Ok(())
+    }
+
+    fn t_stop(&self, t: f64) -> f64 {
+        self.motion.next_kink(t).map_or(self.opts.t_end, |k| k.min(self.opts.t_end))
+    }
+
+    fn record_history(&mut self, t: f64, x: &[f64; 4], phase: Phase, s: f64) {
+        let e = V::energy(x, s, &self.p);
+        let row = HistoryRow {
+            tau: t * self.derived.p,
+            theta: x[0],
+            u: x[1],
+            theta_dot: x[2],
+            u_dot: x[3],
+            phase,
+            e_kin: e[0] / self.derived.e_ref,
+            e_total: (e[0] + e[1] + e[2] - self.v_rest) / self.derived.e_ref,
+            ug: self.motion.accel(t),
+        };
+        self.history.push(row);
+    }
+
+    /// History rows for the step (t_old, t_new] of a phase, from the dense output.
+    fn step_history(&mut self, t_old: f64, t_new: f64, at: impl Fn(f64) -> [f64; 4], phase: Phase, s: f64) {
+        match self.opts.history {
+            History::None => {}
+            History::Steps => self.record_history(t_new, &at(t_new), phase, s),
+            History::Grid(dt) => {
+                while self.next_grid <= t_new {
+                    if self.next_grid >= t_old {
+                        let tg = self.next_grid;
+                        self.record_history(tg, &at(tg), phase, s);
+                    }
+                    self.next_grid += dt;
+                }
+            }
+        }
+    }
+
+    fn log_event(&mut self, t: f64, kind: EventKind, branch: &'static str, phase_after: Phase, pre: [f64; 3], energies: (f64, f64)) {
+        if self.opts.event_log {
+            let e_ref = self.derived.e_ref;
+            self.log.push(EventRecord {
+                time: self.time(t),
+                kind,
+                branch,
+                phase_after,
+                theta_dot: pre[0],
+                u: pre[1],
+                u_dot: pre[2],
+                energy_before: energies.0 / e_ref,
+                energy_after: energies.1 / e_ref,
+            });
+        }
+    }
+
+    /// The uplift test at the start of a contact phase and at every step.
+    fn uplift_functions(&self, t: f64, u: f64, u_dot: f64, ug: f64) -> G2 {
+        let _ = t;
+        let xc = [u, u_dot];
+        G2::new(V::uplift(&xc, ug, RIGHT, &self.p), V::uplift(&xc, ug, LEFT, &self.p))
+    }
+
+    /// In contact after the excitation: can the column's vibration energy ever uplift the base?
+    /// f_s is affine in (u, u') and the free vibration stays inside the energy ellipse, so the
+    /// largest reachable f_s is f_s(0) + sqrt(2 E (a²/k̃ + b²/m̃)).
+    fn can_never_uplift(&self, u: f64, u_dot: f64) -> bool {
+        let f = |a: f64, b: f64| V::uplift(&[a, b], 0.0, RIGHT, &self.p);
+        let (c, a, b) = (f(0.0, 0.0), f(1.0, 0.0) - f(0.0, 0.0), f(0.0, 1.0) - f(0.0, 0.0));
+        let e = V::energy(&[0.0, u, 0.0, u_dot], RIGHT, &self.p);
+        let vib = e[0] + e[2];
+        let reach = (2.0 * vib * (a * a / self.derived.k_tilde + b * b / self.derived.m_tilde)).sqrt();
+        c + reach < 0.0
+    }
+
+    fn contact(&mut self, t0: f64, u: f64, u_dot: f64, w: f64, d: f64) -> Result<Next, SimError> {
+        let ug0 = self.motion.accel_right(t0);
+        let f = self.uplift_functions(t0, u, u_dot, ug0);
+        for (k, s) in [(0, RIGHT), (1, LEFT)] {
+            if f[k] > 0.0 {
+                return self.uplift(t0, s, u, u_dot, w, d);
+            }
+        }
+        let full_history = !matches!(self.opts.history, History::None);
+        let may_stop = self.opts.stop_when_known && !full_history;
+        let (p, motion) = (self.p, self.motion);
+        let mut rhs = |t: f64, y: &Y4| -> Y4 {
+            let ug = motion.accel(t);
+            let dx = V::contact_rhs(&[y[0], y[1]], ug, &p);
+            if ENERGY {
+                let pw = V::power(&[0.0, y[0], 0.0, y[1]], ug, RIGHT, &p);
+                Y4::new(dx[0], dx[1], pw[0], pw[1])
+            } else {
+                Y4::new(dx[0], dx[1], 0.0, 0.0)
+            }
+        };
+        let mut g = |t: f64, y: &Y4| -> G2 {
+            let ug = motion.accel(t);
+            G2::new(V::uplift(&[y[0], y[1]], ug, RIGHT, &p), V::uplift(&[y[0], y[1]], ug, LEFT, &p))
+        };
+        let mut ode = self.contact_ode.clone();
+        ode.reset(t0, Y4::new(u, u_dot, w, d), &mut rhs)?;
+        let mut g_old = f;
+        let dirs = [Direction::Rising, Direction::Rising];
+        let excitation_end = motion.end();
+        loop {
+            let t_stop = self.t_stop(ode.t());
+            let info = ode.step(&mut rhs, t_stop)?;
+            let (t_old, t_new) = (info.t_old, info.t_new);
+            let g_new = g(t_new, ode.y());
+            if let Some(ev) = locate(&mut ode, &mut g, &dirs, &g_old, &g_new) {
+                self.extremes_contact(&ode, t_old, ev.t);
+                let y = ev.y;
+                self.step_history(t_old, ev.t, |t| contact_state(&ode.dense(t)), Phase::Contact, RIGHT);
+                self.stats.add(ode.take_stats());
+                self.contact_ode = ode;
+                let s = if ev.index == 0 { RIGHT } else { LEFT };
+                return self.uplift(ev.t, s, y[0], y[1], y[2], y[3]);
+            }
+            self.extremes_contact(&ode, t_old, t_new);
+            self.step_history(t_old, t_new, |t| contact_state(&ode.dense(t)), Phase::Contact, RIGHT);
+            g_old = g_new;
+            let y = *ode.y();
+            let done = t_new >= self.opts.t_end
+                || (may_stop && t_new >= excitation_end && self.can_never_uplift(y[0], y[1]));
+            if done {
+                self.stats.add(ode.take_stats());
+                self.contact_ode = ode;
+                return Ok(Next::Done { t: t_new, phase: Phase::Contact, state: [0.0, y[0], 0.0, y[1]], w: y[2], d: y[3] });
+            }
+        }
+    }
+
+    fn uplift(&mut self, t: f64, s: f64, u: f64, u_dot: f64, w: f64, d: f64) -> Result<Next, SimError> {
+        self.count_event(t)?;
+        self.first_uplift.get_or_insert(t);
+        let e = V::energy(&[0.0, u, 0.0, u_dot], s, &self.p)[0];
+        self.log_event(t, EventKind::Uplift, "", Phase::rocking(s), [0.0, u, u_dot], (e, e));
+        Ok(Next::Rocking { t, s, x: [0.0, u, 0.0, u_dot], n: 2, w, d })
+    }
+
+    /// max |u| within a contact step, including a turning point inside it.
+    fn extremes_contact(&mut self, ode: &Integrator<4>, t_old: f64, t_new: f64) {
+        let (a, b) = (ode.dense(t_old), ode.dense(t_new));
+        self.max_u = self.max_u.max(b[0].abs());
+        if a[1] * b[1] < 0.0 {
+            let tm = turning_point(|t| ode.dense(t)[1], t_old, t_new, a[1]);
+            self.max_u = self.max_u.max(ode.dense(tm)[0].abs());
+        }
+    }
+
+    /// max |θ| and |u| within a rocking step, including turning points inside it.
+    fn extremes_rocking(&mut self, ode: &Integrator<6>, t_old: f64, t_new: f64) {
+        let (a, b) = (ode.dense(t_old), ode.dense(t_new));
+        self.track(&[b[0], b[1], 0.0, 0.0]);
+        for (pos, rate) in [(0usize, 2usize), (1, 3)] {
+            if a[rate] * b[rate] < 0.0 {
+                let tm = turning_point(|t| ode.dense(t)[rate], t_old, t_new, a[rate]);
+                let y = ode.dense(tm);
+                if pos == 0 {
+                    self.max_theta = self.max_theta.max(y[0].abs());
+                } else {
+                    self.max_u = self.max_u.max(y[1].abs());
+                }
+            }
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn rocking(&mut self, t0: f64, s: f64, x0: [f64; 4], n: i32, w: f64, d: f64) -> Result<Next, SimError> {
+        let (p, motion) = (self.p, self.motion);
+        let over = self.opts.overturn_angle;
+        let mut rhs = |t: f64, y: &Y6| -> Y6 {
+            let ug = motion.accel(t);
+            let x = [y[0], y[1], y[2], y[3]];
+            let dx = V::rocking_rhs(&x, ug, s, &p);
+            if ENERGY {
+                let pw = V::power(&x, ug, s, &p);
+                Y6::new(dx[0], dx[1], dx[2], dx[3], pw[0], pw[1])
+            } else {
+                Y6::new(dx[0], dx[1], dx[2], dx[3], 0.0, 0.0)
+            }
+        };
+        // The impact event s θ / (t − t0)^n, with its limit at t0 (equations.md §5, note 4).
+        let start_limit = if n == 0 {
+            s * x0[0]
+        } else if n == 1 {
+            s * x0[2]
+        } else {
+            s * V::rocking_rhs(&x0, motion.accel_right(t0), s, &p)[2] / 2.0
+        };
+        let mut g = |t: f64, y: &Y6| -> G2 {
+            let dt = t - t0;
+            let impact = if dt > 0.0 { s * y[0] / dt.powi(n) } else { start_limit };
+            G2::new(impact, s * y[0] - over)
+        };
+        let y0 = Y6::new(x0[0], x0[1], x0[2], x0[3], w, d);
+        let mut ode = self.rocking_ode.clone();
+        ode.reset(t0, y0, &mut rhs)?;
+        let mut g_old = g(t0, &y0);
+        let dirs = [Direction::Falling, Direction::Rising];
+        let phase = Phase::rocking(s);
+        loop {
+            let t_stop = self.t_stop(ode.t());
+            let info = ode.step(&mut rhs, t_stop)?;
+            let (t_old, t_new) = (info.t_old, info.t_new);
+            let g_new = g(t_new, ode.y());
+            if let Some(ev) = locate(&mut ode, &mut g, &dirs, &g_old, &g_new) {
+                self.extremes_rocking(&ode, t_old, ev.t);
+                self.step_history(t_old, ev.t, |t| rocking_state(&ode.dense(t)), phase, s);
+                self.stats.add(ode.take_stats());
+                self.rocking_ode = ode;
+                let y = ev.y;
+                if ev.index == 1 {
+                    self.count_event(ev.t)?;
+                    self.overturn = Some(ev.t);
+                    let x = [y[0], y[1], y[2], y[3]];
+                    self.track(&x);
+                    let e = V::energy(&x, s, &self.p)[0];
+                    self.log_event(ev.t, EventKind::Overturn, "", Phase::Overturned, [y[2], y[1], y[3]], (e, e));
+                    return Ok(Next::Done { t: ev.t, phase: Phase::Overturned, state: x, w: y[4], d: y[5] });
+                }
+                return self.impact(ev.t, s, [y[1], y[3], y[2]], y[4], y[5]);
+            }
+            self.extremes_rocking(&ode, t_old, t_new);
+            self.step_history(t_old, t_new, |t| rocking_state(&ode.dense(t)), phase, s);
+            g_old = g_new;
+            if t_new >= self.opts.t_end {
+                let y = *ode.y();
+                self.stats.add(ode.take_stats());
+                self.rocking_ode = ode;
+                return Ok(Next::Done { t: t_new, phase, state: [y[0], y[1], y[2], y[3]], w: y[4], d: y[5] });
+            }
+        }
+    }
+
+    /// The impact at θ = 0 while rocking about `s`: the corner −s hits the ground.
+    fn impact(&mut self, t: f64, s: f64, xi: [f64; 3], w: f64, d: f64) -> Result<Next, SimError> {
+        self.count_event(t)?;
+        self.impacts += 1;
+        self.first_impact.get_or_insert(t);
+        let [u, u_dot, theta_dot] = xi;
+        if theta_dot.abs() >= self.significant_rate {
+            self.significant += 1;
+        }
+        let p = &self.p;
+        let s2 = -s;
+        let contact_energy = |ud: f64| V::energy(&[0.0, u, 0.0, ud], s2, p)[0];
+        let rocking_energy = |td: f64, ud: f64| V::energy(&[0.0, u, td, ud], s2, p)[0];
+        let (after, branch, e_before) = match self.opts.impact {
+            ImpactModel::Vvel => {
+                let v = V::impact_vvel(&xi, s, p);
+                if v[0] != 0.0 {
+                    (After::Rocking { theta_dot: v[1], u_dot: v[2], energy: v[3] }, "vvel-rigid-limit", v[4])
+                } else {
+                    (After::Contact { u_dot: v[2], energy: v[3] }, "vvel-contact", v[4])
+                }
+            }
+            ImpactModel::Adjex => {
+                let a = V::impact_adjex(&xi, s, p);
+                let e_i = a[5];
+                let rocking_ok = s2 * a[2] > 0.0;
+                let contact = (a[1], "adjex-contact", After::Contact { u_dot: a[0], energy: a[1] });
+                let rocking = (a[4], "adjex-rocking", After::Rocking { theta_dot: a[2], u_dot: a[3], energy: a[4] });
+                let momentum = (a[7], "adjex-momentum", After::Contact { u_dot: a[6], energy: a[7] });
+                let best = if rocking_ok && rocking.0 < contact.0 { rocking } else { contact };
+                let chosen = if best.0 <= e_i {
+                    best
+                } else if momentum.0 <= e_i {
+                    momentum
+                } else {
+                    // Every candidate gains energy (unspecified by the paper): take the least.
+                    let least = if momentum.0 < best.0 { momentum } else { best };
+                    (least.0, "adjex-least-energy-gain", least.2)
+                };
+                (chosen.2, chosen.1, e_i)
+            }
+            ImpactModel::Housner => {
+                let h = V::impact_housner(&xi, s, p);
+                if s2 * h[0] > 0.0 {
+                    (After::Rocking { theta_dot: h[0], u_dot: h[1], energy: h[2] }, "housner", h[3])
+                } else {
+                    // A squat body whose angular momentum reverses cannot rock on: it stops.
+                    (After::Contact { u_dot: u_dot, energy: contact_energy(u_dot) }, "housner-stop", h[3])
+                }
+            }
+            ImpactModel::Restitution(r) => {
+                let td = r * theta_dot;
+                let e_b = V::energy(&[0.0, u, theta_dot, u_dot], s, p)[0];
+                (After::Rocking { theta_dot: td, u_dot, energy: rocking_energy(td, u_dot) }, "restitution", e_b)
+            }
+        };
+        let (after, kind, branch) = match after {
+            After::Rocking { theta_dot: td, u_dot: ud, .. } if td.abs() < self.rest_rate => {
+                (After::Contact { u_dot: ud, energy: contact_energy(ud) }, EventKind::Rest, branch)
+            }
+            other => (other, EventKind::Impact, branch),
+        };
+        let e_after = match after {
+            After::Contact { energy, .. } | After::Rocking { energy, .. } => energy,
+        };
+        self.losses += e_before - e_after;
+        let pre = [theta_dot, u, u_dot];
+        match after {
+            After::Contact { u_dot: ud, .. } => {
+                self.log_event(t, kind, branch, Phase::Contact, pre, (e_before, e_after));
+                Ok(Next::Contact { t, u, u_dot: ud, w, d })
+            }
+            After::Rocking { theta_dot: td, u_dot: ud, .. } => {
+                self.log_event(t, kind, branch, Phase::rocking(s2), pre, (e_before, e_after));
+                Ok(Next::Rocking { t, s: s2, x: [0.0, u, td, ud], n: 1, w, d })
+            }
+        }
+    }
+}
+
+fn contact_state(y: &Y4) -> [f64; 4] {
+    [0.0, y[0], 0.0, y[1]]
+}
+
+fn rocking_state(y: &Y6) -> [f64; 4] {
+    [y[0], y[1], y[2], y[3]]
+}
+
+/// The zero of a rate inside (a, b) where it changes sign (Illinois on the dense output).
+fn turning_point(rate: impl Fn(f64) -> f64, a: f64, b: f64, ra: f64) -> f64 {
+    let (mut a, mut b, mut fa, mut fb) = (a, b, ra, rate(b));
+    let mut side = 0;
+    for _ in 0..60 {
+        let m = (a * fb - b * fa) / (fb - fa);
+        let m = if m > a && m < b { m } else { 0.5 * (a + b) };
+        let fm = rate(m);
+        if fm == 0.0 || (b - a) <= 1e-14 * b.abs().max(1.0) {
+            return m;
+        }
+        if (fm < 0.0) == (fa < 0.0) {
+            a = m;
+            fa = fm;
+            if side == -1 {
+                fb *= 0.5;
+            }
+            side = -1;
+        } else {
+            b = m;
+            fb = fm;
+            if side == 1 {
+                fa *= 0.5;
+            }
+            side = 1;
+        }
+    }
+    0.5 * (a + b)
+}

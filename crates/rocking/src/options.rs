@@ -1,0 +1,130 @@
+//! What to simulate and how accurately.
+
+use std::f64::consts::FRAC_PI_2;
+
+use rocking_ode::Method;
+use serde::{Deserialize, Serialize};
+
+/// Integration method and tolerance. `tol` is the relative tolerance; absolute tolerances are
+/// `tol` times the natural scale of each component (α for θ, u_cr for u, α p and u_cr ω_n for
+/// the rates, E_ref for the energy integrals).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Accuracy {
+    /// Runge–Kutta method.
+    pub method: Method,
+    /// Relative tolerance.
+    pub tol: f64,
+}
+
+/// Named accuracy settings. Their measured error and cost are in `docs/accuracy.md`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Preset {
+    /// Dormand–Prince 5(4) at 1e-5: spectra drafts.
+    Fast,
+    /// Dormand–Prince 5(4) at 1e-7.
+    Default,
+    /// DOP853 at 1e-10.
+    Accurate,
+    /// DOP853 at 1e-12: the tightest setting that converges reliably; reference solutions.
+    Reference,
+}
+
+impl Preset {
+    /// The method and tolerance of the preset.
+    pub fn accuracy(self) -> Accuracy {
+        match self {
+            Preset::Fast => Accuracy { method: Method::Dopri5, tol: 1e-5 },
+            Preset::Default => Accuracy { method: Method::Dopri5, tol: 1e-7 },
+            Preset::Accurate => Accuracy { method: Method::Dop853, tol: 1e-10 },
+            Preset::Reference => Accuracy { method: Method::Dop853, tol: 1e-12 },
+        }
+    }
+}
+
+/// The energy-loss model at impact (equations.md 1.5).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ImpactModel {
+    /// Vertical Velocity Energy Loss, eqs (31)-(32): the paper's choice.
+    Vvel,
+    /// Acikgoz–DeJong extended, eqs (26)-(30).
+    Adjex,
+    /// Housner's angular-momentum rule: immediate rocking about the impacting corner.
+    Housner,
+    /// A fixed coefficient of restitution r: θ' after = r θ' before, u' kept.
+    Restitution(f64),
+}
+
+/// Per-step output.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum History {
+    /// Nothing stored per step (summary only).
+    None,
+    /// One row per accepted integrator step and per event.
+    Steps,
+    /// One row every `dt` (model time units), from the dense output.
+    Grid(f64),
+}
+
+/// The initial state (full contact unless θ ≠ 0).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Initial {
+    /// Initial rotation θ (rad); its sign is the pivot.
+    pub theta: f64,
+    /// Initial column displacement u.
+    pub u: f64,
+    /// Initial rotation rate θ'.
+    pub theta_dot: f64,
+    /// Initial column velocity u'.
+    pub u_dot: f64,
+}
+
+/// Everything that controls a run besides the structure and the excitation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Options {
+    /// Method and tolerance.
+    pub accuracy: Accuracy,
+    /// Impact model.
+    pub impact: ImpactModel,
+    /// |θ| at which the structure is overturned (default π/2: lying on the ground).
+    pub overturn_angle: f64,
+    /// End of the simulation, in model time units.
+    pub t_end: f64,
+    /// Integrate the ground work and the damping dissipation, for the energy balance.
+    pub energy: bool,
+    /// Per-step output.
+    pub history: History,
+    /// Keep the log of events (uplifts, impacts with their branch and energies).
+    pub event_log: bool,
+    /// Stop as soon as the answer is known: overturned, or at rest in full contact after the
+    /// excitation with too little energy to uplift again. Off when a full history is asked.
+    pub stop_when_known: bool,
+    /// Rest rule: a rocking phase that starts with |θ'| below `rest_rate` α p ends at once in
+    /// full contact (this resolves the Zeno accumulation of impacts of free rocking).
+    pub rest_rate: f64,
+    /// Guard: at most this many events (uplifts + impacts) before the run fails with an error.
+    pub max_events: u64,
+    /// Guard: at most this many integrator steps.
+    pub max_steps: u64,
+    /// Initial state.
+    pub initial: Initial,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            accuracy: Preset::Default.accuracy(),
+            impact: ImpactModel::Vvel,
+            overturn_angle: FRAC_PI_2,
+            t_end: 40.0,
+            energy: false,
+            history: History::None,
+            event_log: false,
+            stop_when_known: true,
+            rest_rate: 1e-6,
+            max_events: 1_000_000,
+            max_steps: 50_000_000,
+            initial: Initial::default(),
+        }
+    }
+}
