@@ -18,9 +18,16 @@ fn number(v: &Value) -> f64 {
 #[test]
 fn kernels_reproduce_casadi_golden_samples() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("ir");
-    let mut files: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().path()).collect();
+    let mut files: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
     files.sort();
-    assert!(files.len() >= 6, "expected the IR of every variant in {}", dir.display());
+    assert!(
+        files.len() >= 6,
+        "expected the IR of every variant in {}",
+        dir.display()
+    );
     let (mut checked, mut worst) = (0usize, 0.0f64);
     for file in files {
         let ir: Value = serde_json::from_str(&std::fs::read_to_string(&file).unwrap()).unwrap();
@@ -37,17 +44,28 @@ fn kernels_reproduce_casadi_golden_samples() {
                 let refs: Vec<&[f64]> = inputs.iter().map(|v| v.as_slice()).collect();
                 let got = rocking_kernels::kernels::call(variant, name, &refs)
                     .unwrap_or_else(|| panic!("{variant}::{name} cannot be called"));
-                let want: Vec<f64> = sample["output"].as_array().unwrap().iter().map(number).collect();
+                let want: Vec<f64> = sample["output"]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .map(number)
+                    .collect();
                 assert_eq!(got.len(), want.len(), "{variant}::{name}: output length");
                 for (k, (g, w)) in got.iter().zip(&want).enumerate() {
                     if w.is_infinite() || w.is_nan() {
-                        assert!(g == w || (g.is_nan() && w.is_nan()), "{variant}::{name}[{k}]: {g} vs {w}");
+                        assert!(
+                            g == w || (g.is_nan() && w.is_nan()),
+                            "{variant}::{name}[{k}]: {g} vs {w}"
+                        );
                         continue;
                     }
                     let err = (g - w).abs() / w.abs().max(1e-300);
                     let err = if w.abs() < 1e-300 { (g - w).abs() } else { err };
                     worst = worst.max(err);
-                    assert!(err <= 1e-12, "{variant}::{name}[{k}]: {g} vs CasADi {w} (rel {err:e})");
+                    assert!(
+                        err <= 1e-12,
+                        "{variant}::{name}[{k}]: {g} vs CasADi {w} (rel {err:e})"
+                    );
                 }
                 checked += 1;
             }

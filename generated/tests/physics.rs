@@ -50,8 +50,16 @@ fn structure(rng: &mut Rng) -> Physical {
 fn state<V: Variant>(rng: &mut Rng, phys: &Physical) -> [f64; 4] {
     let p = (phys.g / phys.h.hypot(phys.b)).sqrt();
     let rigid = V::NAME == "rigid";
-    let u = if rigid { 0.0 } else { rng.range(-0.3, 0.3) * phys.h };
-    let ud = if rigid { 0.0 } else { rng.range(-3.0, 3.0) * p * phys.h };
+    let u = if rigid {
+        0.0
+    } else {
+        rng.range(-0.3, 0.3) * phys.h
+    };
+    let ud = if rigid {
+        0.0
+    } else {
+        rng.range(-3.0, 3.0) * p * phys.h
+    };
     [rng.range(-1.5, 1.5), u, rng.range(-3.0, 3.0) * p, ud]
 }
 
@@ -82,11 +90,19 @@ fn mass_matrix_spd_and_consistent<V: Variant>() {
             let [mtt, mtu, muu] = V::mass_matrix(&[x[0], x[1]], s, &p);
             assert!(mtt > 0.0 && muu > 0.0, "{}: diagonal {mtt} {muu}", V::NAME);
             let det = mtt * muu - mtu * mtu;
-            assert!(det > 1e-9 * mtt * muu, "{}: det {det} at {x:?} s={s}", V::NAME);
+            assert!(
+                det > 1e-9 * mtt * muu,
+                "{}: det {det} at {x:?} s={s}",
+                V::NAME
+            );
             // T = 1/2 q'^T M q' must be the kinetic energy the kernels report.
             let t = V::energy(&x, s, &p)[0];
             let quad = 0.5 * (mtt * x[2] * x[2] + 2.0 * mtu * x[2] * x[3] + muu * x[3] * x[3]);
-            assert!(close(t, quad, 1e-12, 0.0), "{}: T {t} vs 1/2 q'Mq' {quad}", V::NAME);
+            assert!(
+                close(t, quad, 1e-12, 0.0),
+                "{}: T {t} vs 1/2 q'Mq' {quad}",
+                V::NAME
+            );
         }
     }
 }
@@ -110,14 +126,29 @@ fn mirror<V: Variant>() {
         let s = if rng.next() < 0.5 { 1.0 } else { -1.0 };
         let name = V::NAME;
         // (θ, u, s, üg) -> -(θ, u, s, üg) maps solutions onto solutions: bitwise for these kernels.
-        assert_eq!(V::rocking_rhs(&neg(x), -ug, -s, &p), neg(V::rocking_rhs(&x, ug, s, &p)), "{name}");
+        assert_eq!(
+            V::rocking_rhs(&neg(x), -ug, -s, &p),
+            neg(V::rocking_rhs(&x, ug, s, &p)),
+            "{name}"
+        );
         let xc = [x[1], x[3]];
-        assert_eq!(V::contact_rhs(&neg(xc), -ug, &p), neg(V::contact_rhs(&xc, ug, &p)), "{name}");
-        assert_eq!(V::uplift(&neg(xc), -ug, -s, &p), V::uplift(&xc, ug, s, &p), "{name}");
+        assert_eq!(
+            V::contact_rhs(&neg(xc), -ug, &p),
+            neg(V::contact_rhs(&xc, ug, &p)),
+            "{name}"
+        );
+        assert_eq!(
+            V::uplift(&neg(xc), -ug, -s, &p),
+            V::uplift(&xc, ug, s, &p),
+            "{name}"
+        );
         let (e, em) = (V::energy(&x, s, &p), V::energy(&neg(x), -s, &p));
         assert_eq!([em[0], em[1], em[2], -em[3]], e, "{name}");
         let xi = [x[1], x[3], -s * x[2].abs()];
-        let (a, b) = (V::impact_adjex(&xi, s, &p), V::impact_adjex(&neg(xi), -s, &p));
+        let (a, b) = (
+            V::impact_adjex(&xi, s, &p),
+            V::impact_adjex(&neg(xi), -s, &p),
+        );
         for k in [0, 2, 3, 6] {
             assert_eq!(a[k], -b[k], "{name} adjex[{k}]");
         }
@@ -189,7 +220,9 @@ fn frequencies<V: Variant>() {
         let s = V::structure(&p);
         // Fixed base: u'' = -ω_n² u - ... in full contact (the kernel is linear in u).
         let du = 1e-3 * phys.h;
-        let w2 = -(V::contact_rhs(&[du, 0.0], 0.0, &p)[1] - V::contact_rhs(&[0.0, 0.0], 0.0, &p)[1]) / du;
+        let w2 = -(V::contact_rhs(&[du, 0.0], 0.0, &p)[1]
+            - V::contact_rhs(&[0.0, 0.0], 0.0, &p)[1])
+            / du;
         assert!(close(w2.sqrt(), s[st::OMEGA_N], 1e-9, 0.0), "{}", V::NAME);
         // Uplifted: det(K - ω² M) = 0 with K = diag(0, k~) and M at θ = u = 0.
         let [mtt, mtu, muu] = V::mass_matrix(&[0.0, 0.0], 1.0, &p);
@@ -206,7 +239,12 @@ fn frequencies<V: Variant>() {
                 kept.i_bc = 0.0;
             }
             let eq18 = omega_up_eq18(&kept, s[st::OMEGA_N]);
-            assert!(close(s[st::OMEGA_UP], eq18, 1e-12, 0.0), "{}: {} vs eq (18) {eq18}", V::NAME, s[st::OMEGA_UP]);
+            assert!(
+                close(s[st::OMEGA_UP], eq18, 1e-12, 0.0),
+                "{}: {} vs eq (18) {eq18}",
+                V::NAME,
+                s[st::OMEGA_UP]
+            );
         }
         if V::NAME == "point_mass" {
             let eq20 = s[st::OMEGA_N] * phys.h.hypot(phys.b) / phys.b;
@@ -226,7 +264,10 @@ fn figure_5_models_have_the_uplifted_frequencies_23_08_and_92_32() {
     for (omega_n, expected) in [(5.0, 23.080), (20.0, 92.322)] {
         let p = Full::params(&Physical::dimensionless(0.1, omega_n, 1.0, 2.0, 1.0, 0.005));
         let w = Full::structure(&p)[st::OMEGA_UP];
-        assert!((w - expected).abs() < 6e-4, "ω_up/p = {w}, equations.md §4 gives {expected}");
+        assert!(
+            (w - expected).abs() < 6e-4,
+            "ω_up/p = {w}, equations.md §4 gives {expected}"
+        );
     }
 }
 
@@ -237,12 +278,21 @@ fn cubic_shape_integrals_are_exact() {
         let phys = Physical::dimensionless(0.2, 10.0, gamma, 0.0, 1.0, 0.0);
         let p = Full::params(&phys);
         let s = Full::structure(&p);
-        assert!(close(s[st::M_TILDE], 1.0 + 33.0 / 140.0 * gamma, 2e-16, 0.0), "∫ψ² dm = 33/140 m_c");
+        assert!(
+            close(s[st::M_TILDE], 1.0 + 33.0 / 140.0 * gamma, 2e-16, 0.0),
+            "∫ψ² dm = 33/140 m_c"
+        );
         let gt = (1.0 + 3.0 / 8.0 * gamma) / (1.0 + 33.0 / 140.0 * gamma);
         assert!(close(s[st::GAMMA_TILDE], gt, 4e-16, 0.0), "∫ψ dm = 3/8 m_c");
         let mtu = Full::mass_matrix(&[0.0, 0.0], 1.0, &p)[1];
-        assert!(close(mtu, (1.0 + 11.0 / 40.0 * gamma) * phys.h, 4e-16, 0.0), "∫ξψ dm = 11/40 m_c H");
-        assert!(close(s[st::K_TILDE], 3.0 * phys.ei / phys.h.powi(3), 4e-16, 0.0), "k~ = 3EI/H³");
+        assert!(
+            close(mtu, (1.0 + 11.0 / 40.0 * gamma) * phys.h, 4e-16, 0.0),
+            "∫ξψ dm = 11/40 m_c H"
+        );
+        assert!(
+            close(s[st::K_TILDE], 3.0 * phys.ei / phys.h.powi(3), 4e-16, 0.0),
+            "k~ = 3EI/H³"
+        );
     }
 }
 
@@ -254,8 +304,18 @@ fn cosine_shape_integrals() {
     let s = CosineShape::structure(&CosineShape::params(&phys));
     let m_tilde = 1.0 + 1.5 * (1.5 - 4.0 / PI);
     assert!(close(s[st::M_TILDE], m_tilde, 1e-14, 0.0));
-    assert!(close(s[st::K_TILDE], phys.ei / phys.h.powi(3) * PI.powi(4) / 32.0, 1e-14, 0.0));
-    assert!(close(s[st::GAMMA_TILDE], (1.0 + 1.5 * (1.0 - 2.0 / PI)) / m_tilde, 1e-14, 0.0));
+    assert!(close(
+        s[st::K_TILDE],
+        phys.ei / phys.h.powi(3) * PI.powi(4) / 32.0,
+        1e-14,
+        0.0
+    ));
+    assert!(close(
+        s[st::GAMMA_TILDE],
+        (1.0 + 1.5 * (1.0 - 2.0 / PI)) / m_tilde,
+        1e-14,
+        0.0
+    ));
 }
 
 /// Every function of `A` and `B` agrees at random inputs (parameters from the same physics).
@@ -270,20 +330,54 @@ fn agree<A: Variant, B: Variant>(phys_of: impl Fn(&mut Rng) -> Physical, rel: f6
         let xi = [x[1], x[3], x[2]];
         for s in [1.0, -1.0] {
             let pairs: Vec<(Vec<f64>, Vec<f64>)> = vec![
-                (A::rocking_rhs(&x, ug, s, &pa).to_vec(), B::rocking_rhs(&x, ug, s, &pb).to_vec()),
-                (A::contact_rhs(&xc, ug, &pa).to_vec(), B::contact_rhs(&xc, ug, &pb).to_vec()),
-                (vec![A::uplift(&xc, ug, s, &pa)], vec![B::uplift(&xc, ug, s, &pb)]),
-                (A::energy(&x, s, &pa).to_vec(), B::energy(&x, s, &pb).to_vec()),
-                (A::power(&x, ug, s, &pa).to_vec(), B::power(&x, ug, s, &pb).to_vec()),
-                (A::impact_vvel(&xi, s, &pa).to_vec(), B::impact_vvel(&xi, s, &pb).to_vec()),
-                (A::impact_adjex(&xi, s, &pa).to_vec(), B::impact_adjex(&xi, s, &pb).to_vec()),
-                (A::impact_housner(&xi, s, &pa).to_vec(), B::impact_housner(&xi, s, &pb).to_vec()),
+                (
+                    A::rocking_rhs(&x, ug, s, &pa).to_vec(),
+                    B::rocking_rhs(&x, ug, s, &pb).to_vec(),
+                ),
+                (
+                    A::contact_rhs(&xc, ug, &pa).to_vec(),
+                    B::contact_rhs(&xc, ug, &pb).to_vec(),
+                ),
+                (
+                    vec![A::uplift(&xc, ug, s, &pa)],
+                    vec![B::uplift(&xc, ug, s, &pb)],
+                ),
+                (
+                    A::energy(&x, s, &pa).to_vec(),
+                    B::energy(&x, s, &pb).to_vec(),
+                ),
+                (
+                    A::power(&x, ug, s, &pa).to_vec(),
+                    B::power(&x, ug, s, &pb).to_vec(),
+                ),
+                (
+                    A::impact_vvel(&xi, s, &pa).to_vec(),
+                    B::impact_vvel(&xi, s, &pb).to_vec(),
+                ),
+                (
+                    A::impact_adjex(&xi, s, &pa).to_vec(),
+                    B::impact_adjex(&xi, s, &pb).to_vec(),
+                ),
+                (
+                    A::impact_housner(&xi, s, &pa).to_vec(),
+                    B::impact_housner(&xi, s, &pb).to_vec(),
+                ),
                 (A::structure(&pa).to_vec(), B::structure(&pb).to_vec()),
             ];
             for (k, (a, b)) in pairs.iter().enumerate() {
-                let scale = a.iter().chain(b).map(|v| v.abs()).filter(|v| v.is_finite()).fold(0.0, f64::max);
+                let scale = a
+                    .iter()
+                    .chain(b)
+                    .map(|v| v.abs())
+                    .filter(|v| v.is_finite())
+                    .fold(0.0, f64::max);
                 for (va, vb) in a.iter().zip(b) {
-                    assert!(va == vb || close(*va, *vb, rel, scale), "{} vs {} (function #{k}): {a:?} vs {b:?}", A::NAME, B::NAME);
+                    assert!(
+                        va == vb || close(*va, *vb, rel, scale),
+                        "{} vs {} (function #{k}): {a:?} vs {b:?}",
+                        A::NAME,
+                        B::NAME
+                    );
                 }
             }
         }
@@ -292,9 +386,30 @@ fn agree<A: Variant, B: Variant>(phys_of: impl Fn(&mut Rng) -> Physical, rel: f6
 
 #[test]
 fn specialised_variants_equal_the_full_model_with_those_masses_zero() {
-    agree::<Full, MasslessColumn>(|r| Physical { m_c: 0.0, ..structure(r) }, 1e-12);
-    agree::<Full, MasslessBase>(|r| Physical { m_b: 0.0, i_bc: 0.0, ..structure(r) }, 1e-12);
-    agree::<Full, PointMass>(|r| Physical { m_c: 0.0, m_b: 0.0, i_bc: 0.0, ..structure(r) }, 1e-12);
+    agree::<Full, MasslessColumn>(
+        |r| Physical {
+            m_c: 0.0,
+            ..structure(r)
+        },
+        1e-12,
+    );
+    agree::<Full, MasslessBase>(
+        |r| Physical {
+            m_b: 0.0,
+            i_bc: 0.0,
+            ..structure(r)
+        },
+        1e-12,
+    );
+    agree::<Full, PointMass>(
+        |r| Physical {
+            m_c: 0.0,
+            m_b: 0.0,
+            i_bc: 0.0,
+            ..structure(r)
+        },
+        1e-12,
+    );
     // The added-mass example with its default height and m_a = 0 (its default) is the paper's model.
     agree::<Full, AddedMass>(structure, 1e-12);
 }
@@ -308,11 +423,17 @@ fn small_angle_model_agrees_to_second_order_in_theta() {
         let mut x = state::<Full>(&mut rng, &phys);
         for theta in [0.0, 1e-3, 1e-2] {
             x[0] = theta;
-            let (f, s) = (Full::rocking_rhs(&x, 0.3, 1.0, &pf), SmallAngle::rocking_rhs(&x, 0.3, 1.0, &ps));
+            let (f, s) = (
+                Full::rocking_rhs(&x, 0.3, 1.0, &pf),
+                SmallAngle::rocking_rhs(&x, 0.3, 1.0, &ps),
+            );
             let scale = f.iter().map(|v| v.abs()).fold(0.0, f64::max);
             for k in 0..4 {
                 // The difference is O(θ²) relative to the terms (plus rounding).
-                assert!((f[k] - s[k]).abs() <= (theta * theta + 1e-13) * 10.0 * scale, "θ = {theta}: {f:?} vs {s:?}");
+                assert!(
+                    (f[k] - s[k]).abs() <= (theta * theta + 1e-13) * 10.0 * scale,
+                    "θ = {theta}: {f:?} vs {s:?}"
+                );
             }
         }
     }
@@ -381,5 +502,8 @@ fn impact_maps_in_the_rigid_state_match_verification_table_3() {
     let v = Rigid::impact_vvel(&[0.0, 0.0, -0.3], 1.0, &p);
     assert!((v[1] / -0.3 - alpha.cos().powi(2)).abs() < 1e-15);
     let h = Rigid::impact_housner(&[0.0, 0.0, -0.3], 1.0, &p);
-    assert!((h[0] / -0.3 - (2.0 * alpha).cos()).abs() < 1e-15, "Housner e = cos 2α");
+    assert!(
+        (h[0] / -0.3 - (2.0 * alpha).cos()).abs() < 1e-15,
+        "Housner e = cos 2α"
+    );
 }

@@ -7,7 +7,10 @@
 
 use std::io::Write;
 
-use rocking::{simulate, DampingConvention, Dimensionless, Effects, History, ImpactModel, Options, Preset, Structure};
+use rocking::{
+    simulate, DampingConvention, Dimensionless, Effects, History, ImpactModel, Options, Preset,
+    Structure,
+};
 use rocking_motion::SinePulse;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -39,27 +42,61 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let run = simulate(&structure, &pulse, &Effects::default(), &options)?;
         let s = &run.summary;
         println!("\n== {name}: kernel variant {}", s.kernel_variant);
-        println!("max θ/α = {:.4}, max u/u_cr = {:.4}, overturned = {}, impacts = {} ({} significant)",
-            s.max_theta_over_alpha, s.max_u_over_ucr, s.overturned, s.impacts, s.significant_impacts);
+        println!(
+            "max θ/α = {:.4}, max u/u_cr = {:.4}, overturned = {}, impacts = {} ({} significant)",
+            s.max_theta_over_alpha,
+            s.max_u_over_ucr,
+            s.overturned,
+            s.impacts,
+            s.significant_impacts
+        );
         println!("first uplift τ = {:.4}, first impact τ = {:.4}, energy balance residual = {:.2e} E_ref",
             s.first_uplift_time.map_or(f64::NAN, |t| t.tau), s.first_impact_time.map_or(f64::NAN, |t| t.tau),
             s.energy_balance_residual.unwrap_or(f64::NAN));
         if let Some(e) = s.energy {
-            println!("impact losses = {:.4} E_ref, damping = {:.4} E_ref, ground work = {:.4} E_ref",
-                e.impact_losses, e.damping, e.ground_work);
+            println!(
+                "impact losses = {:.4} E_ref, damping = {:.4} E_ref, ground work = {:.4} E_ref",
+                e.impact_losses, e.damping, e.ground_work
+            );
         }
-        println!("solver: {} steps, {} rejected, {} RHS evaluations, {} events",
-            s.solver_stats.steps, s.solver_stats.rejected_steps, s.solver_stats.rhs_evaluations, s.solver_stats.events);
-        println!("{:>9} {:>8} {:>22} {:>10} {:>10} {:>10}", "τ", "event", "branch", "θ'/αp", "E before", "E after");
+        println!(
+            "solver: {} steps, {} rejected, {} RHS evaluations, {} events",
+            s.solver_stats.steps,
+            s.solver_stats.rejected_steps,
+            s.solver_stats.rhs_evaluations,
+            s.solver_stats.events
+        );
+        println!(
+            "{:>9} {:>8} {:>22} {:>10} {:>10} {:>10}",
+            "τ", "event", "branch", "θ'/αp", "E before", "E after"
+        );
         for e in run.events.iter().take(12) {
-            println!("{:>9.4} {:>8} {:>22} {:>10.4} {:>10.4} {:>10.4}",
-                e.time.tau, format!("{:?}", e.kind).to_lowercase(), e.branch, e.theta_dot / d.alpha, e.energy_before, e.energy_after);
+            println!(
+                "{:>9.4} {:>8} {:>22} {:>10.4} {:>10.4} {:>10.4}",
+                e.time.tau,
+                format!("{:?}", e.kind).to_lowercase(),
+                e.branch,
+                e.theta_dot / d.alpha,
+                e.energy_before,
+                e.energy_after
+            );
         }
         let path = format!("target/fig3-{name}.csv");
         let mut f = std::io::BufWriter::new(std::fs::File::create(&path)?);
-        writeln!(f, "tau,theta_over_alpha,u_over_ucr,e_total_over_eref,ug_over_g_tan_alpha")?;
+        writeln!(
+            f,
+            "tau,theta_over_alpha,u_over_ucr,e_total_over_eref,ug_over_g_tan_alpha"
+        )?;
         for r in &run.history {
-            writeln!(f, "{},{},{},{},{}", r.tau, r.theta / d.alpha, r.u / derived.u_cr, r.e_total, r.ug / d.alpha.tan())?;
+            writeln!(
+                f,
+                "{},{},{},{},{}",
+                r.tau,
+                r.theta / d.alpha,
+                r.u / derived.u_cr,
+                r.e_total,
+                r.ug / d.alpha.tan()
+            )?;
         }
         println!("history: {path} ({} rows)", run.history.len());
     }

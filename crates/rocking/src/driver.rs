@@ -60,15 +60,41 @@ type G2 = SVector<f64, 2>;
 
 /// Where the hybrid system goes next.
 enum Next {
-    Contact { t: f64, u: f64, u_dot: f64, w: f64, d: f64 },
-    Rocking { t: f64, s: f64, x: [f64; 4], n: i32, w: f64, d: f64 },
-    Done { t: f64, phase: Phase, state: [f64; 4], w: f64, d: f64 },
+    Contact {
+        t: f64,
+        u: f64,
+        u_dot: f64,
+        w: f64,
+        d: f64,
+    },
+    Rocking {
+        t: f64,
+        s: f64,
+        x: [f64; 4],
+        n: i32,
+        w: f64,
+        d: f64,
+    },
+    Done {
+        t: f64,
+        phase: Phase,
+        state: [f64; 4],
+        w: f64,
+        d: f64,
+    },
 }
 
 /// Post-impact state chosen by an impact model.
 enum After {
-    Contact { u_dot: f64, energy: f64 },
-    Rocking { theta_dot: f64, u_dot: f64, energy: f64 },
+    Contact {
+        u_dot: f64,
+        energy: f64,
+    },
+    Rocking {
+        theta_dot: f64,
+        u_dot: f64,
+        energy: f64,
+    },
 }
 
 struct Sim<'a, V: Variant, M: GroundMotion, const ENERGY: bool> {
@@ -108,21 +134,39 @@ pub fn simulate<V: Variant, M: GroundMotion, const ENERGY: bool>(
 ) -> Result<Run, SimError> {
     let tol = opts.accuracy.tol;
     if !(tol > 0.0 && tol < 1.0) {
-        return Err(SimError::Options(format!("tolerance {tol} is not allowed: 0 < tol < 1")));
+        return Err(SimError::Options(format!(
+            "tolerance {tol} is not allowed: 0 < tol < 1"
+        )));
     }
     if !(opts.t_end.is_finite() && opts.t_end > 0.0) {
-        return Err(SimError::Options(format!("end time {} is not allowed: 0 < t_end < inf", opts.t_end)));
+        return Err(SimError::Options(format!(
+            "end time {} is not allowed: 0 < t_end < inf",
+            opts.t_end
+        )));
     }
     let derived = structure.derived();
     let p = V::params(structure.physical());
     let rigid = V::NAME == "rigid";
     let (a, pf) = (derived.alpha, derived.p);
     let u_scale = if rigid { 1.0 } else { derived.u_cr };
-    let ud_scale = if rigid { 1.0 } else { derived.u_cr * derived.omega_n };
+    let ud_scale = if rigid {
+        1.0
+    } else {
+        derived.u_cr * derived.omega_n
+    };
     let off = 1e300; // W and D do not take part in the error control
-    let ode = OdeOptions { max_steps: opts.max_steps, ..OdeOptions::new(opts.accuracy.method) };
-    let contact_tol = Tolerances { rtol: tol, atol: Y4::new(u_scale, ud_scale, off, off) * tol };
-    let rocking_tol = Tolerances { rtol: tol, atol: Y6::new(a, u_scale, a * pf, ud_scale, off, off) * tol };
+    let ode = OdeOptions {
+        max_steps: opts.max_steps,
+        ..OdeOptions::new(opts.accuracy.method)
+    };
+    let contact_tol = Tolerances {
+        rtol: tol,
+        atol: Y4::new(u_scale, ud_scale, off, off) * tol,
+    };
+    let rocking_tol = Tolerances {
+        rtol: tol,
+        atol: Y6::new(a, u_scale, a * pf, ud_scale, off, off) * tol,
+    };
     let e0 = V::energy(&[0.0; 4], RIGHT, &p);
     let sim = Sim::<V, M, ENERGY> {
         p,
@@ -155,7 +199,10 @@ pub fn simulate<V: Variant, M: GroundMotion, const ENERGY: bool>(
 impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
     fn time(&self, t: f64) -> Time {
         let tau = t * self.derived.p;
-        Time { tau, seconds: self.p_seconds.map(|ps| tau / ps) }
+        Time {
+            tau,
+            seconds: self.p_seconds.map(|ps| tau / ps),
+        }
     }
 
     fn total_energy(&self, x: &[f64; 4], s: f64) -> f64 {
@@ -166,23 +213,50 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
     fn run(mut self) -> Result<Run, SimError> {
         let i = self.opts.initial;
         let x0 = [i.theta, i.u, i.theta_dot, i.u_dot];
-        let s0 = if i.theta > 0.0 || (i.theta == 0.0 && i.theta_dot > 0.0) { RIGHT } else { LEFT };
+        let s0 = if i.theta > 0.0 || (i.theta == 0.0 && i.theta_dot > 0.0) {
+            RIGHT
+        } else {
+            LEFT
+        };
         let e_initial = self.total_energy(&x0, s0);
         self.track(&x0);
         let mut next = if i.theta != 0.0 || i.theta_dot != 0.0 {
             // Free rocking from θ0 != 0 needs no regularisation (n = 0); from θ = 0 with θ' != 0, n = 1.
-            Next::Rocking { t: 0.0, s: s0, x: x0, n: if i.theta != 0.0 { 0 } else { 1 }, w: 0.0, d: 0.0 }
+            Next::Rocking {
+                t: 0.0,
+                s: s0,
+                x: x0,
+                n: if i.theta != 0.0 { 0 } else { 1 },
+                w: 0.0,
+                d: 0.0,
+            }
         } else {
-            Next::Contact { t: 0.0, u: i.u, u_dot: i.u_dot, w: 0.0, d: 0.0 }
+            Next::Contact {
+                t: 0.0,
+                u: i.u,
+                u_dot: i.u_dot,
+                w: 0.0,
+                d: 0.0,
+            }
         };
         let (t_end, phase, state, w, d) = loop {
             next = match next {
                 Next::Contact { t, u, u_dot, w, d } => self.contact(t, u, u_dot, w, d)?,
                 Next::Rocking { t, s, x, n, w, d } => self.rocking(t, s, x, n, w, d)?,
-                Next::Done { t, phase, state, w, d } => break (t, phase, state, w, d),
+                Next::Done {
+                    t,
+                    phase,
+                    state,
+                    w,
+                    d,
+                } => break (t, phase, state, w, d),
             };
         };
-        let s_end = if phase == Phase::RockingLeft { LEFT } else { RIGHT };
+        let s_end = if phase == Phase::RockingLeft {
+            LEFT
+        } else {
+            RIGHT
+        };
         let e_ref = self.derived.e_ref;
         let (energy, residual) = if ENERGY {
             let last = self.total_energy(&state, s_end);
@@ -203,7 +277,11 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
             kernel_variant: V::NAME,
             max_theta_over_alpha: self.max_theta / self.derived.alpha,
             max_theta_over_theta_cr: self.max_theta / self.derived.theta_cr,
-            max_u_over_ucr: if rigid { 0.0 } else { self.max_u / self.derived.u_cr },
+            max_u_over_ucr: if rigid {
+                0.0
+            } else {
+                self.max_u / self.derived.u_cr
+            },
             overturned: self.overturn.is_some(),
             overturn_time: self.overturn.map(|t| self.time(t)),
             impacts: self.impacts,
@@ -216,7 +294,11 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
             energy,
             solver_stats: self.stats,
         };
-        Ok(Run { summary, events: self.log, history: self.history })
+        Ok(Run {
+            summary,
+            events: self.log,
+            history: self.history,
+        })
     }
 
     fn track(&mut self, x: &[f64; 4]) {
@@ -237,7 +319,9 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
     }
 
     fn t_stop(&self, t: f64) -> f64 {
-        self.motion.next_kink(t).map_or(self.opts.t_end, |k| k.min(self.opts.t_end))
+        self.motion
+            .next_kink(t)
+            .map_or(self.opts.t_end, |k| k.min(self.opts.t_end))
     }
 
     fn record_history(&mut self, t: f64, x: &[f64; 4], phase: Phase, s: f64) {
@@ -257,7 +341,14 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
     }
 
     /// History rows for the step (t_old, t_new] of a phase, from the dense output.
-    fn step_history(&mut self, t_old: f64, t_new: f64, at: impl Fn(f64) -> [f64; 4], phase: Phase, s: f64) {
+    fn step_history(
+        &mut self,
+        t_old: f64,
+        t_new: f64,
+        at: impl Fn(f64) -> [f64; 4],
+        phase: Phase,
+        s: f64,
+    ) {
         match self.opts.history {
             History::None => {}
             History::Steps => self.record_history(t_new, &at(t_new), phase, s),
@@ -273,7 +364,15 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
         }
     }
 
-    fn log_event(&mut self, t: f64, kind: EventKind, branch: &'static str, phase_after: Phase, pre: [f64; 3], energies: (f64, f64)) {
+    fn log_event(
+        &mut self,
+        t: f64,
+        kind: EventKind,
+        branch: &'static str,
+        phase_after: Phase,
+        pre: [f64; 3],
+        energies: (f64, f64),
+    ) {
         if self.opts.event_log {
             let e_ref = self.derived.e_ref;
             self.log.push(EventRecord {
@@ -294,7 +393,10 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
     fn uplift_functions(&self, t: f64, u: f64, u_dot: f64, ug: f64) -> G2 {
         let _ = t;
         let xc = [u, u_dot];
-        G2::new(V::uplift(&xc, ug, RIGHT, &self.p), V::uplift(&xc, ug, LEFT, &self.p))
+        G2::new(
+            V::uplift(&xc, ug, RIGHT, &self.p),
+            V::uplift(&xc, ug, LEFT, &self.p),
+        )
     }
 
     /// In contact after the excitation: can the column's vibration energy ever uplift the base?
@@ -302,10 +404,15 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
     /// largest reachable f_s is f_s(0) + sqrt(2 E (a²/k̃ + b²/m̃)).
     fn can_never_uplift(&self, u: f64, u_dot: f64) -> bool {
         let f = |a: f64, b: f64| V::uplift(&[a, b], 0.0, RIGHT, &self.p);
-        let (c, a, b) = (f(0.0, 0.0), f(1.0, 0.0) - f(0.0, 0.0), f(0.0, 1.0) - f(0.0, 0.0));
+        let (c, a, b) = (
+            f(0.0, 0.0),
+            f(1.0, 0.0) - f(0.0, 0.0),
+            f(0.0, 1.0) - f(0.0, 0.0),
+        );
         let e = V::energy(&[0.0, u, 0.0, u_dot], RIGHT, &self.p);
         let vib = e[0] + e[2];
-        let reach = (2.0 * vib * (a * a / self.derived.k_tilde + b * b / self.derived.m_tilde)).sqrt();
+        let reach =
+            (2.0 * vib * (a * a / self.derived.k_tilde + b * b / self.derived.m_tilde)).sqrt();
         c + reach < 0.0
     }
 
@@ -332,9 +439,12 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
         };
         let mut g = |t: f64, y: &Y4| -> G2 {
             let ug = motion.accel(t);
-            G2::new(V::uplift(&[y[0], y[1]], ug, RIGHT, &p), V::uplift(&[y[0], y[1]], ug, LEFT, &p))
+            G2::new(
+                V::uplift(&[y[0], y[1]], ug, RIGHT, &p),
+                V::uplift(&[y[0], y[1]], ug, LEFT, &p),
+            )
         };
-        let mut ode = self.contact_ode.clone();
+        let mut ode = self.contact_ode;
         ode.reset(t0, Y4::new(u, u_dot, w, d), &mut rhs)?;
         let mut g_old = f;
         let dirs = [Direction::Rising, Direction::Rising];
@@ -347,14 +457,26 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
             if let Some(ev) = locate(&mut ode, &mut g, &dirs, &g_old, &g_new) {
                 self.extremes_contact(&ode, t_old, ev.t);
                 let y = ev.y;
-                self.step_history(t_old, ev.t, |t| contact_state(&ode.dense(t)), Phase::Contact, RIGHT);
+                self.step_history(
+                    t_old,
+                    ev.t,
+                    |t| contact_state(&ode.dense(t)),
+                    Phase::Contact,
+                    RIGHT,
+                );
                 self.stats.add(ode.take_stats());
                 self.contact_ode = ode;
                 let s = if ev.index == 0 { RIGHT } else { LEFT };
                 return self.uplift(ev.t, s, y[0], y[1], y[2], y[3]);
             }
             self.extremes_contact(&ode, t_old, t_new);
-            self.step_history(t_old, t_new, |t| contact_state(&ode.dense(t)), Phase::Contact, RIGHT);
+            self.step_history(
+                t_old,
+                t_new,
+                |t| contact_state(&ode.dense(t)),
+                Phase::Contact,
+                RIGHT,
+            );
             g_old = g_new;
             let y = *ode.y();
             let done = t_new >= self.opts.t_end
@@ -362,17 +484,45 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
             if done {
                 self.stats.add(ode.take_stats());
                 self.contact_ode = ode;
-                return Ok(Next::Done { t: t_new, phase: Phase::Contact, state: [0.0, y[0], 0.0, y[1]], w: y[2], d: y[3] });
+                return Ok(Next::Done {
+                    t: t_new,
+                    phase: Phase::Contact,
+                    state: [0.0, y[0], 0.0, y[1]],
+                    w: y[2],
+                    d: y[3],
+                });
             }
         }
     }
 
-    fn uplift(&mut self, t: f64, s: f64, u: f64, u_dot: f64, w: f64, d: f64) -> Result<Next, SimError> {
+    fn uplift(
+        &mut self,
+        t: f64,
+        s: f64,
+        u: f64,
+        u_dot: f64,
+        w: f64,
+        d: f64,
+    ) -> Result<Next, SimError> {
         self.count_event(t)?;
         self.first_uplift.get_or_insert(t);
         let e = V::energy(&[0.0, u, 0.0, u_dot], s, &self.p)[0];
-        self.log_event(t, EventKind::Uplift, "", Phase::rocking(s), [0.0, u, u_dot], (e, e));
-        Ok(Next::Rocking { t, s, x: [0.0, u, 0.0, u_dot], n: 2, w, d })
+        self.log_event(
+            t,
+            EventKind::Uplift,
+            "",
+            Phase::rocking(s),
+            [0.0, u, u_dot],
+            (e, e),
+        );
+        Ok(Next::Rocking {
+            t,
+            s,
+            x: [0.0, u, 0.0, u_dot],
+            n: 2,
+            w,
+            d,
+        })
     }
 
     /// max |u| within a contact step, including a turning point inside it.
@@ -403,7 +553,15 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
     }
 
     #[allow(clippy::too_many_arguments)]
-    fn rocking(&mut self, t0: f64, s: f64, x0: [f64; 4], n: i32, w: f64, d: f64) -> Result<Next, SimError> {
+    fn rocking(
+        &mut self,
+        t0: f64,
+        s: f64,
+        x0: [f64; 4],
+        n: i32,
+        w: f64,
+        d: f64,
+    ) -> Result<Next, SimError> {
         let (p, motion) = (self.p, self.motion);
         let over = self.opts.overturn_angle;
         let mut rhs = |t: f64, y: &Y6| -> Y6 {
@@ -427,11 +585,15 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
         };
         let mut g = |t: f64, y: &Y6| -> G2 {
             let dt = t - t0;
-            let impact = if dt > 0.0 { s * y[0] / dt.powi(n) } else { start_limit };
+            let impact = if dt > 0.0 {
+                s * y[0] / dt.powi(n)
+            } else {
+                start_limit
+            };
             G2::new(impact, s * y[0] - over)
         };
         let y0 = Y6::new(x0[0], x0[1], x0[2], x0[3], w, d);
-        let mut ode = self.rocking_ode.clone();
+        let mut ode = self.rocking_ode;
         ode.reset(t0, y0, &mut rhs)?;
         let mut g_old = g(t0, &y0);
         let dirs = [Direction::Falling, Direction::Rising];
@@ -453,8 +615,21 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
                     let x = [y[0], y[1], y[2], y[3]];
                     self.track(&x);
                     let e = V::energy(&x, s, &self.p)[0];
-                    self.log_event(ev.t, EventKind::Overturn, "", Phase::Overturned, [y[2], y[1], y[3]], (e, e));
-                    return Ok(Next::Done { t: ev.t, phase: Phase::Overturned, state: x, w: y[4], d: y[5] });
+                    self.log_event(
+                        ev.t,
+                        EventKind::Overturn,
+                        "",
+                        Phase::Overturned,
+                        [y[2], y[1], y[3]],
+                        (e, e),
+                    );
+                    return Ok(Next::Done {
+                        t: ev.t,
+                        phase: Phase::Overturned,
+                        state: x,
+                        w: y[4],
+                        d: y[5],
+                    });
                 }
                 return self.impact(ev.t, s, [y[1], y[3], y[2]], y[4], y[5]);
             }
@@ -465,7 +640,13 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
                 let y = *ode.y();
                 self.stats.add(ode.take_stats());
                 self.rocking_ode = ode;
-                return Ok(Next::Done { t: t_new, phase, state: [y[0], y[1], y[2], y[3]], w: y[4], d: y[5] });
+                return Ok(Next::Done {
+                    t: t_new,
+                    phase,
+                    state: [y[0], y[1], y[2], y[3]],
+                    w: y[4],
+                    d: y[5],
+                });
             }
         }
     }
@@ -487,19 +668,60 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
             ImpactModel::Vvel => {
                 let v = V::impact_vvel(&xi, s, p);
                 if v[0] != 0.0 {
-                    (After::Rocking { theta_dot: v[1], u_dot: v[2], energy: v[3] }, "vvel-rigid-limit", v[4])
+                    (
+                        After::Rocking {
+                            theta_dot: v[1],
+                            u_dot: v[2],
+                            energy: v[3],
+                        },
+                        "vvel-rigid-limit",
+                        v[4],
+                    )
                 } else {
-                    (After::Contact { u_dot: v[2], energy: v[3] }, "vvel-contact", v[4])
+                    (
+                        After::Contact {
+                            u_dot: v[2],
+                            energy: v[3],
+                        },
+                        "vvel-contact",
+                        v[4],
+                    )
                 }
             }
             ImpactModel::Adjex => {
                 let a = V::impact_adjex(&xi, s, p);
                 let e_i = a[5];
                 let rocking_ok = s2 * a[2] > 0.0;
-                let contact = (a[1], "adjex-contact", After::Contact { u_dot: a[0], energy: a[1] });
-                let rocking = (a[4], "adjex-rocking", After::Rocking { theta_dot: a[2], u_dot: a[3], energy: a[4] });
-                let momentum = (a[7], "adjex-momentum", After::Contact { u_dot: a[6], energy: a[7] });
-                let best = if rocking_ok && rocking.0 < contact.0 { rocking } else { contact };
+                let contact = (
+                    a[1],
+                    "adjex-contact",
+                    After::Contact {
+                        u_dot: a[0],
+                        energy: a[1],
+                    },
+                );
+                let rocking = (
+                    a[4],
+                    "adjex-rocking",
+                    After::Rocking {
+                        theta_dot: a[2],
+                        u_dot: a[3],
+                        energy: a[4],
+                    },
+                );
+                let momentum = (
+                    a[7],
+                    "adjex-momentum",
+                    After::Contact {
+                        u_dot: a[6],
+                        energy: a[7],
+                    },
+                );
+                let best = if rocking_ok && rocking.0 < contact.0 {
+                    rocking
+                } else {
+                    contact
+                };
                 let chosen = if best.0 <= e_i {
                     best
                 } else if momentum.0 <= e_i {
@@ -514,22 +736,54 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
             ImpactModel::Housner => {
                 let h = V::impact_housner(&xi, s, p);
                 if s2 * h[0] > 0.0 {
-                    (After::Rocking { theta_dot: h[0], u_dot: h[1], energy: h[2] }, "housner", h[3])
+                    (
+                        After::Rocking {
+                            theta_dot: h[0],
+                            u_dot: h[1],
+                            energy: h[2],
+                        },
+                        "housner",
+                        h[3],
+                    )
                 } else {
                     // A squat body whose angular momentum reverses cannot rock on: it stops.
-                    (After::Contact { u_dot: u_dot, energy: contact_energy(u_dot) }, "housner-stop", h[3])
+                    (
+                        After::Contact {
+                            u_dot,
+                            energy: contact_energy(u_dot),
+                        },
+                        "housner-stop",
+                        h[3],
+                    )
                 }
             }
             ImpactModel::Restitution(r) => {
                 let td = r * theta_dot;
                 let e_b = V::energy(&[0.0, u, theta_dot, u_dot], s, p)[0];
-                (After::Rocking { theta_dot: td, u_dot, energy: rocking_energy(td, u_dot) }, "restitution", e_b)
+                (
+                    After::Rocking {
+                        theta_dot: td,
+                        u_dot,
+                        energy: rocking_energy(td, u_dot),
+                    },
+                    "restitution",
+                    e_b,
+                )
             }
         };
         let (after, kind, branch) = match after {
-            After::Rocking { theta_dot: td, u_dot: ud, .. } if td.abs() < self.rest_rate => {
-                (After::Contact { u_dot: ud, energy: contact_energy(ud) }, EventKind::Rest, branch)
-            }
+            After::Rocking {
+                theta_dot: td,
+                u_dot: ud,
+                ..
+            } if td.abs() < self.rest_rate => (
+                After::Contact {
+                    u_dot: ud,
+                    energy: contact_energy(ud),
+                },
+                EventKind::Rest,
+                branch,
+            ),
             other => (other, EventKind::Impact, branch),
         };
         let e_after = match after {
@@ -540,11 +794,35 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
         match after {
             After::Contact { u_dot: ud, .. } => {
                 self.log_event(t, kind, branch, Phase::Contact, pre, (e_before, e_after));
-                Ok(Next::Contact { t, u, u_dot: ud, w, d })
+                Ok(Next::Contact {
+                    t,
+                    u,
+                    u_dot: ud,
+                    w,
+                    d,
+                })
             }
-            After::Rocking { theta_dot: td, u_dot: ud, .. } => {
-                self.log_event(t, kind, branch, Phase::rocking(s2), pre, (e_before, e_after));
-                Ok(Next::Rocking { t, s: s2, x: [0.0, u, td, ud], n: 1, w, d })
+            After::Rocking {
+                theta_dot: td,
+                u_dot: ud,
+                ..
+            } => {
+                self.log_event(
+                    t,
+                    kind,
+                    branch,
+                    Phase::rocking(s2),
+                    pre,
+                    (e_before, e_after),
+                );
+                Ok(Next::Rocking {
+                    t,
+                    s: s2,
+                    x: [0.0, u, td, ud],
+                    n: 1,
+                    w,
+                    d,
+                })
             }
         }
     }

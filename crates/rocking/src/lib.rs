@@ -70,7 +70,13 @@ pub struct Effects {
 
 impl Default for Effects {
     fn default() -> Self {
-        Effects { flexibility: true, column_mass: true, base_mass: true, damping: true, large_rotations: true }
+        Effects {
+            flexibility: true,
+            column_mass: true,
+            base_mass: true,
+            damping: true,
+            large_rotations: true,
+        }
     }
 }
 
@@ -108,7 +114,10 @@ impl KernelVariant {
 
 /// The structure with the switched-off effects removed, the most specialised variant that runs
 /// it exactly, and the reasons for the choice.
-pub fn select_variant(structure: &Structure, effects: &Effects) -> Result<(Structure, KernelVariant, Vec<String>), ParamError> {
+pub fn select_variant(
+    structure: &Structure,
+    effects: &Effects,
+) -> Result<(Structure, KernelVariant, Vec<String>), ParamError> {
     let mut ph = *structure.physical();
     let mut why = Vec::new();
     if !effects.column_mass && ph.m_c != 0.0 {
@@ -131,7 +140,9 @@ pub fn select_variant(structure: &Structure, effects: &Effects) -> Result<(Struc
         why.push("flexibility = false: rigid column, one degree of freedom".to_string());
         KernelVariant::Rigid
     } else if !effects.large_rotations {
-        why.push("large_rotations = false: small-angle model (sin θ → θ, cos θ → 1 − θ²/2)".to_string());
+        why.push(
+            "large_rotations = false: small-angle model (sin θ → θ, cos θ → 1 − θ²/2)".to_string(),
+        );
         KernelVariant::SmallAngle
     } else if no_column && no_base {
         why.push("m_c = 0 and m_b = I_bc = 0: top mass only".to_string());
@@ -150,8 +161,14 @@ pub fn select_variant(structure: &Structure, effects: &Effects) -> Result<(Struc
 }
 
 /// Runs a simulation with the most specialised kernel variant for `structure` and `effects`.
-pub fn simulate<M: GroundMotion>(structure: &Structure, motion: &M, effects: &Effects, options: &Options) -> Result<Run, SimError> {
-    let (structure, variant, _) = select_variant(structure, effects).map_err(|e| SimError::Options(e.to_string()))?;
+pub fn simulate<M: GroundMotion>(
+    structure: &Structure,
+    motion: &M,
+    effects: &Effects,
+    options: &Options,
+) -> Result<Run, SimError> {
+    let (structure, variant, _) =
+        select_variant(structure, effects).map_err(|e| SimError::Options(e.to_string()))?;
     macro_rules! run {
         ($v:ty) => {
             if options.energy {

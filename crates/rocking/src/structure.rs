@@ -50,17 +50,30 @@ pub struct ParamError {
 
 impl fmt::Display for ParamError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "`{}` = {} is not allowed: {}", self.parameter, self.value, self.allowed)
+        write!(
+            f,
+            "`{}` = {} is not allowed: {}",
+            self.parameter, self.value, self.allowed
+        )
     }
 }
 
 impl std::error::Error for ParamError {}
 
-fn check(parameter: &'static str, value: f64, ok: bool, allowed: &'static str) -> Result<(), ParamError> {
+fn check(
+    parameter: &'static str,
+    value: f64,
+    ok: bool,
+    allowed: &'static str,
+) -> Result<(), ParamError> {
     if ok && value.is_finite() {
         Ok(())
     } else {
-        Err(ParamError { parameter, value, allowed })
+        Err(ParamError {
+            parameter,
+            value,
+            allowed,
+        })
     }
 }
 
@@ -119,38 +132,100 @@ impl Structure {
         check("m_c", p.m_c, p.m_c >= 0.0, "a column mass m_c >= 0")?;
         check("m_b", p.m_b, p.m_b >= 0.0, "a base mass m_b >= 0")?;
         let i_min = p.m_b * p.b * p.b;
-        check("i_bc", p.i_bc, p.i_bc >= i_min * (1.0 - 1e-12), "I_bc >= m_b B^2, i.e. gamma_ib >= 3/4 (the base's own inertia I_b >= 0)")?;
-        check("zeta", p.zeta, (0.0..1.0).contains(&p.zeta), "a damping ratio 0 <= zeta < 1")?;
+        check(
+            "i_bc",
+            p.i_bc,
+            p.i_bc >= i_min * (1.0 - 1e-12),
+            "I_bc >= m_b B^2, i.e. gamma_ib >= 3/4 (the base's own inertia I_b >= 0)",
+        )?;
+        check(
+            "zeta",
+            p.zeta,
+            (0.0..1.0).contains(&p.zeta),
+            "a damping ratio 0 <= zeta < 1",
+        )?;
         check("g", p.g, p.g > 0.0, "a gravitational acceleration g > 0")?;
-        let s = Structure { physical, p_per_second: None };
+        let s = Structure {
+            physical,
+            p_per_second: None,
+        };
         let p_model = s.derived().p;
-        Ok(Structure { physical, p_per_second: Some(p_model) })
+        Ok(Structure {
+            physical,
+            p_per_second: Some(p_model),
+        })
     }
 
     /// A structure from the dimensionless groups, with R = g = m = 1 (time in τ). `p_per_second`
     /// (p in 1/s, for example from R: p = sqrt(9.81/R)) lets results be reported in seconds too.
-    pub fn from_dimensionless(d: &Dimensionless, p_per_second: Option<f64>) -> Result<Structure, ParamError> {
-        check("alpha", d.alpha, d.alpha > 0.0 && d.alpha < FRAC_PI_2, "a slenderness 0 < alpha < pi/2 rad")?;
-        check("omega_n_over_p", d.omega_n_over_p, d.omega_n_over_p > 0.0, "omega_n/p > 0")?;
-        check("gamma_mc", d.gamma_mc, d.gamma_mc >= 0.0, "gamma_mc = m_c/m >= 0")?;
-        check("gamma_mb", d.gamma_mb, d.gamma_mb >= 0.0, "gamma_mb = m_b/m >= 0")?;
-        check("gamma_ib", d.gamma_ib, d.gamma_ib >= 0.75, "gamma_ib = I_bc/(4/3 m_b B^2) >= 3/4 (I_b >= 0)")?;
-        check("zeta", d.zeta, (0.0..1.0).contains(&d.zeta), "a damping ratio 0 <= zeta < 1")?;
+    pub fn from_dimensionless(
+        d: &Dimensionless,
+        p_per_second: Option<f64>,
+    ) -> Result<Structure, ParamError> {
+        check(
+            "alpha",
+            d.alpha,
+            d.alpha > 0.0 && d.alpha < FRAC_PI_2,
+            "a slenderness 0 < alpha < pi/2 rad",
+        )?;
+        check(
+            "omega_n_over_p",
+            d.omega_n_over_p,
+            d.omega_n_over_p > 0.0,
+            "omega_n/p > 0",
+        )?;
+        check(
+            "gamma_mc",
+            d.gamma_mc,
+            d.gamma_mc >= 0.0,
+            "gamma_mc = m_c/m >= 0",
+        )?;
+        check(
+            "gamma_mb",
+            d.gamma_mb,
+            d.gamma_mb >= 0.0,
+            "gamma_mb = m_b/m >= 0",
+        )?;
+        check(
+            "gamma_ib",
+            d.gamma_ib,
+            d.gamma_ib >= 0.75,
+            "gamma_ib = I_bc/(4/3 m_b B^2) >= 3/4 (I_b >= 0)",
+        )?;
+        check(
+            "zeta",
+            d.zeta,
+            (0.0..1.0).contains(&d.zeta),
+            "a damping ratio 0 <= zeta < 1",
+        )?;
         if let Some(p) = p_per_second {
             check("p", p, p > 0.0, "p = sqrt(g/R) > 0 (1/s)")?;
         }
-        let mut physical = Physical::dimensionless(d.alpha, d.omega_n_over_p, d.gamma_mc, d.gamma_mb, d.gamma_ib, d.zeta);
+        let mut physical = Physical::dimensionless(
+            d.alpha,
+            d.omega_n_over_p,
+            d.gamma_mc,
+            d.gamma_mb,
+            d.gamma_ib,
+            d.zeta,
+        );
         if d.damping == DampingConvention::Uplifted {
             let s = Full::structure(&Full::params(&physical))[st::MODAL_S];
             physical.zeta = d.zeta / s;
         }
-        Ok(Structure { physical, p_per_second })
+        Ok(Structure {
+            physical,
+            p_per_second,
+        })
     }
 
     /// The same structure (and time scale) with other physical parameters, validated.
     pub fn with_physical(&self, physical: Physical) -> Result<Structure, ParamError> {
         let checked = Structure::from_physical(physical)?;
-        Ok(Structure { physical: checked.physical, p_per_second: self.p_per_second })
+        Ok(Structure {
+            physical: checked.physical,
+            p_per_second: self.p_per_second,
+        })
     }
 
     /// The physical parameters the kernels run with.
@@ -172,7 +247,11 @@ impl Structure {
             alpha: d.alpha,
             gamma_mc: ph.m_c / ph.m,
             gamma_mb: ph.m_b / ph.m,
-            gamma_ib: if ph.m_b > 0.0 { ph.i_bc / (4.0 / 3.0 * ph.m_b * ph.b * ph.b) } else { 1.0 },
+            gamma_ib: if ph.m_b > 0.0 {
+                ph.i_bc / (4.0 / 3.0 * ph.m_b * ph.b * ph.b)
+            } else {
+                1.0
+            },
             zeta: ph.zeta,
             damping: DampingConvention::FixedBase,
         }
@@ -205,7 +284,11 @@ impl Structure {
         let p = Full::params(&self.physical);
         // The contact and uplift kernels are affine in (u, ug): solve them as such.
         let acc = |u: f64, ug: f64| Full::contact_rhs(&[u, 0.0], ug, &p)[1];
-        let (a0, au, ag) = (acc(0.0, 0.0), acc(1.0, 0.0) - acc(0.0, 0.0), acc(0.0, 1.0) - acc(0.0, 0.0));
+        let (a0, au, ag) = (
+            acc(0.0, 0.0),
+            acc(1.0, 0.0) - acc(0.0, 0.0),
+            acc(0.0, 1.0) - acc(0.0, 0.0),
+        );
         let u_static = |ug: f64| -(a0 + ag * ug) / au;
         // Uplift about s = +1 needs a negative ug; by symmetry the magnitude is the same for s = -1.
         let f = |ug: f64| Full::uplift(&[u_static(ug), 0.0], ug, 1.0, &p);

@@ -1,0 +1,56 @@
+//! Renders the intermediate form produced by the symbolic derivation
+//! (`derive/rocking_derive`, one JSON file per kernel variant in `generated/ir/`)
+//! into the Rust modules of the `rocking-kernels` crate (`generated/src/kernels/`).
+//!
+//! The output is deterministic (no maps with unspecified order, no timestamps) and is
+//! laid out by the templates themselves: the generated variant modules are not run
+//! through rustfmt.
+//!
+//! Entry points: [`render_variant`], [`render_mod`] and [`render_all`].
+
+mod error;
+pub mod ir;
+mod render;
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+pub use error::{Error, Result};
+pub use ir::{load_dir, Float, Function, Golden, Input, Instruction, Ir, Output, Param};
+pub use render::{camel_case, float_literal, render_mod, render_variant};
+
+/// Directory of the IR files, relative to the repository root.
+pub const IR_DIR: &str = "generated/ir";
+/// Directory of the rendered kernel modules, relative to the repository root.
+pub const KERNELS_DIR: &str = "generated/src/kernels";
+
+/// Renders every `*.json` IR file of `ir_dir`.
+///
+/// Returns the contents of every rendered file keyed by its path relative to the
+/// repository root, with `/` separators (`generated/src/kernels/<variant>.rs` and
+/// `generated/src/kernels/mod.rs`).
+pub fn render_all(ir_dir: &Path) -> Result<BTreeMap<String, String>> {
+    let irs = load_dir(ir_dir)?;
+    let mut out = BTreeMap::new();
+    for ir in &irs {
+        let origin = ir.origin();
+        let stem = Path::new(&origin)
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        if stem != ir.variant {
+            return Err(Error::invalid(
+                &origin,
+                format!(
+                    "variant {:?} must be stored in a file named {:?}",
+                    ir.variant,
+                    format!("{}.json", ir.variant)
+                ),
+            ));
+        }
+        let path = format!("{KERNELS_DIR}/{}.rs", ir.variant);
+        out.insert(path, render_variant(ir)?);
+    }
+    out.insert(format!("{KERNELS_DIR}/mod.rs"), render_mod(&irs)?);
+    Ok(out)
+}

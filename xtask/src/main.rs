@@ -1,0 +1,72 @@
+//! Project automation: `cargo xtask regen [--check] [--skip-derive]`.
+//!
+//! `regen` re-derives the kernel IR with the pinned Python environment
+//! (`derive/requirements.txt`, installed into `<repo>/.venv`), renders it with
+//! `rocking-codegen`, and updates the generated files that are checked in:
+//!
+//! - `generated/ir/*.json` (copied byte-for-byte from the derivation),
+//! - `generated/src/kernels/*.rs` (rendered),
+//! - `docs/errata.md` (copied from the derivation).
+//!
+//! With `--check` nothing is written: every difference is printed as a unified diff
+//! and the command fails. With `--skip-derive` the checked-in `generated/ir/` is
+//! rendered instead of a fresh derivation (no Python needed).
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+mod regen;
+mod venv;
+
+const USAGE: &str = "\
+usage: cargo xtask <command>
+
+commands:
+  regen [--check] [--skip-derive]
+      Re-derive the kernels (Python/CasADi in .venv), render them and update
+      generated/ir, generated/src/kernels and docs/errata.md.
+      --check        write nothing; print diffs and fail if anything is stale
+      --skip-derive  render the checked-in generated/ir (no Python needed)
+  help
+      Print this message.
+";
+
+/// The repository root (the parent of this crate's directory).
+pub fn repo_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("xtask lives one level below the repository root")
+        .to_path_buf()
+}
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let Some((command, rest)) = args.split_first() else {
+        eprint!("{USAGE}");
+        return ExitCode::from(2);
+    };
+    let result = match command.as_str() {
+        "regen" => match regen::Options::parse(rest) {
+            Ok(opts) => regen::run(&repo_root(), &opts),
+            Err(msg) => {
+                eprintln!("error: {msg}\n\n{USAGE}");
+                return ExitCode::from(2);
+            }
+        },
+        "help" | "--help" | "-h" => {
+            print!("{USAGE}");
+            return ExitCode::SUCCESS;
+        }
+        other => {
+            eprintln!("error: unknown command {other:?}\n\n{USAGE}");
+            return ExitCode::from(2);
+        }
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
