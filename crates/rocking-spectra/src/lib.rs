@@ -1,0 +1,482 @@
+//! Parallel, resumable sweeps: rocking and overturning spectra, and record suites.
+//!
+//! A sweep is a list of [`Axis`] (named by scene key paths, e.g. `excitation.amplitude`) whose
+//! cartesian product gives the cells, in a fixed order (the last axis varies fastest). Every cell
+//! is one simulation, run by a caller-supplied function, and is classified ([`CellClass`]) from
+//! its summary. Cells run in parallel (rayon); each finished cell is appended to a journal in the
+//! output directory, so an interrupted sweep (killed, Ctrl-C) resumes where it stopped when run
+//! again with the same directory. The journal's first line is a fingerprint of the sweep (scene
+//! and axes); a different sweep in the same directory is refused instead of mixing results. A
+//! torn last line (the process died mid-write) fails its checksum and is simply recomputed.
+//! Results do not depend on the number of threads: cells are independent and written out in
+//! cell order.
+
+#![warn(missing_docs)]
+
+use std::collections::BTreeMap;
+use std::fmt;
+use std::fs::{self, File, OpenOptions};
+use std::io::{BufRead, BufReader, Write};
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::time::{Duration, Instant};
+
+use rayon::prelude::*;
+use rocking::Summary;
+
+/// One axis of a sweep: a scene key path and its values.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Axis {
+    /// Key path in the scene, e.g. `excitation.omega_p_over_p`.
+    pub key: String,
+    /// Values, in sweep order.
+    pub values: Vec<f64>,
+}
+
+impl Axis {
+    /// `key=start:stop:count` (count points from start to stop inclusive) or `key=v1,v2,...`.
+    pub fn parse(spec: &str) -> Result<Axis, String> {
+        let (key, range) = spec.split_once('=').ok_or_else(|| {
+            format!("axis `{spec}`: expected key=start:stop:count or key=v1,v2,...")
+        })?;
+        let key = key.trim().to_string();
+        if key.is_empty() {
+            return Err(format!("axis `{spec}`: empty key"));
+        }
+        let num = |s: &str| -> Result<f64, String> {
+            let v: f64 = s
+                .trim()
+                .parse()
+                .map_err(|_| format!("axis `{spec}`: `{s}` is not a number"))?;
+            if v.is_finite() {
+                Ok(v)
+            } else {
+                Err(format!("axis `{spec}`: `{s}` is not finite"))
+            }
+        };
+        let values = if range.contains(':') {
+            let parts: Vec<&str> = range.split(':').collect();
+            if parts.len() != 3 {
+                return Err(format!("axis `{spec}`: expected start:stop:count"));
+            }
+            let (a, b) = (num(parts[0])?, num(parts[1])?);
+            let n: usize = parts[2].trim().parse().map_err(|_| {
+                format!(
+                    "axis `{spec}`: count `{}` is not a positive integer",
+                    parts[2]
+                )
+            })?;
+            match n {
+                0 => return Err(format!("axis `{spec}`: count must be at least 1")),
+                1 => vec![a],
+                _ => (0..n)
+                    .map(|i| a + (b - a) * i as f64 / (n - 1) as f64)
+                    .collect(),
+            }
+        } else {
+            range.split(',').map(num).collect::<Result<Vec<_>, _>>()?
+        };
+        Ok(Axis { key, values })
+    }
+}
+
+/// What happened in a cell (the paper's spectrum regions).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum CellClass {
+    /// The base never uplifted.
+    NoUplift,
+    /// It rocked and came back (max θ/α tells how far).
+    Survived,
+    /// It overturned before any impact.
+    OverturnedNoImpact,
+    /// It overturned after exactly one impact.
+    OverturnedOneImpact,
+    /// It overturned after two or more impacts.
+    OverturnedImpacts,
+}
+
+impl CellClass {
+    /// The name used in `cells.csv`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            CellClass::NoUplift => "no-uplift",
+            CellClass::Survived => "survived",
+            CellClass::OverturnedNoImpact => "overturned-no-impact",
+            CellClass::OverturnedOneImpact => "overturned-one-impact",
+            CellClass::OverturnedImpacts => "overturned-impacts",
+        }
+    }
+
+    /// Inverse of [`CellClass::as_str`].
+    pub fn parse(s: &str) -> Option<CellClass> {
+        [
+            CellClass::NoUplift,
+            CellClass::Survived,
+            CellClass::OverturnedNoImpact,
+            CellClass::OverturnedOneImpact,
+            CellClass::OverturnedImpacts,
+        ]
+        .into_iter()
+        .find(|c| c.as_str() == s)
+    }
+
+    /// The class of a finished run.
+    pub fn of(summary: &Summary) -> CellClass {
+        match (
+            summary.overturned,
+            summary.impacts,
+            summary.first_uplift_time.is_some(),
+        ) {
+            (true, 0, _) => CellClass::OverturnedNoImpact,
+            (true, 1, _) => CellClass::OverturnedOneImpact,
+            (true, _, _) => CellClass::OverturnedImpacts,
+            (false, _, false) => CellClass::NoUplift,
+            (false, _, true) => CellClass::Survived,
+        }
+    }
+}
+
+/// The O(1) result of one cell.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Cell {
+    /// Cell index in sweep order.
+    pub index: usize,
+    /// Class.
+    pub class: CellClass,
+    /// max |θ|/α.
+    pub max_theta_over_alpha: f64,
+    /// Number of impacts.
+    pub impacts: u64,
+}
+
+/// Why a sweep failed.
+#[derive(Debug)]
+pub enum SweepError {
+    /// Reading or writing the output directory failed.
+    Io(PathBuf, std::io::Error),
+    /// The output directory holds a different sweep.
+    Mismatch(PathBuf),
+    /// A cell failed.
+    Cell {
+        /// The cell's index.
+        index: usize,
+        /// Its axis values.
+        values: Vec<(String, f64)>,
+        /// What went wrong.
+        message: String,
+    },
+}
+
+impl fmt::Display for SweepError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SweepError::Io(p, e) => write!(f, "{}: {e}", p.display()),
+            SweepError::Mismatch(p) => write!(
+                f,
+                "{}: this output directory holds the cells of a different sweep (scene or axes changed); \
+                 use another --out directory or delete it",
+                p.display()
+            ),
+            SweepError::Cell { index, values, message } => {
+                let at: Vec<String> = values.iter().map(|(k, v)| format!("{k} = {v}")).collect();
+                write!(f, "cell {index} ({}): {message}", at.join(", "))
+            }
+        }
+    }
+}
+
+impl std::error::Error for SweepError {}
+
+/// A sweep: axes and a fingerprint of everything that determines its cells.
+#[derive(Clone, Debug)]
+pub struct Sweep {
+    /// The axes; the last varies fastest.
+    pub axes: Vec<Axis>,
+    /// Identifies the sweep (for example a hash of the scene text and the axes).
+    pub fingerprint: String,
+}
+
+impl Sweep {
+    /// Number of cells.
+    pub fn len(&self) -> usize {
+        self.axes.iter().map(|a| a.values.len()).product()
+    }
+
+    /// Whether the sweep has no cell.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The axis values of cell `index`.
+    pub fn values(&self, mut index: usize) -> Vec<f64> {
+        let mut out = vec![0.0; self.axes.len()];
+        for (k, axis) in self.axes.iter().enumerate().rev() {
+            let n = axis.values.len();
+            out[k] = axis.values[index % n];
+            index /= n;
+        }
+        out
+    }
+}
+
+/// A 64-bit FNV-1a hash, to fingerprint sweeps and check journal lines.
+pub fn fnv1a(bytes: &[u8]) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for b in bytes {
+        h ^= u64::from(*b);
+        h = h.wrapping_mul(0x0000_0100_0000_01b3);
+    }
+    h
+}
+
+const JOURNAL: &str = "cells.journal";
+
+fn journal_line(c: &Cell) -> String {
+    let body = format!(
+        "{},{},{:e},{}",
+        c.index,
+        c.class.as_str(),
+        c.max_theta_over_alpha,
+        c.impacts
+    );
+    format!("{body},{:016x}\n", fnv1a(body.as_bytes()))
+}
+
+fn parse_journal_line(line: &str) -> Option<Cell> {
+    let (body, sum) = line.rsplit_once(',')?;
+    if format!("{:016x}", fnv1a(body.as_bytes())) != sum {
+        return None;
+    }
+    let f: Vec<&str> = body.split(',').collect();
+    if f.len() != 4 {
+        return None;
+    }
+    Some(Cell {
+        index: f[0].parse().ok()?,
+        class: CellClass::parse(f[1])?,
+        max_theta_over_alpha: f[2].parse().ok()?,
+        impacts: f[3].parse().ok()?,
+    })
+}
+
+/// Progress display.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Progress {
+    /// A bar with rate and ETA when stderr is a terminal and `CI` is not set.
+    Auto,
+    /// Nothing.
+    Quiet,
+}
+
+/// The finished sweep.
+#[derive(Clone, Debug)]
+pub struct Outcome {
+    /// Every cell, in cell order.
+    pub cells: Vec<Cell>,
+    /// Cells computed in this invocation (the rest came from the journal).
+    pub computed: usize,
+    /// Wall time of this invocation.
+    pub elapsed: Duration,
+}
+
+/// Runs (or resumes) a sweep in `out_dir`. `run_cell` gets the cell's axis values and returns
+/// the summary of its simulation. Finished cells are journaled as they complete.
+pub fn run<F>(
+    sweep: &Sweep,
+    out_dir: &Path,
+    progress: Progress,
+    run_cell: F,
+) -> Result<Outcome, SweepError>
+where
+    F: Fn(&[f64]) -> Result<Summary, String> + Sync,
+{
+    let start = Instant::now();
+    fs::create_dir_all(out_dir).map_err(|e| SweepError::Io(out_dir.to_path_buf(), e))?;
+    let path = out_dir.join(JOURNAL);
+    let header = format!("# rocking sweep {}\n", sweep.fingerprint);
+    let mut done: BTreeMap<usize, Cell> = BTreeMap::new();
+    if path.exists() {
+        let file = File::open(&path).map_err(|e| SweepError::Io(path.clone(), e))?;
+        let mut lines = BufReader::new(file).lines();
+        match lines.next() {
+            Some(Ok(first)) if format!("{first}\n") == header => {}
+            _ => return Err(SweepError::Mismatch(path)),
+        }
+        for line in lines.map_while(Result::ok) {
+            if let Some(c) = parse_journal_line(&line) {
+                if c.index < sweep.len() {
+                    done.insert(c.index, c);
+                }
+            }
+        }
+    }
+    // Rewrite the journal with only the valid lines, so that a torn line is gone for good.
+    let mut text = header.clone();
+    for c in done.values() {
+        text.push_str(&journal_line(c));
+    }
+    write_atomic(&path, text.as_bytes())?;
+    let journal = OpenOptions::new()
+        .append(true)
+        .open(&path)
+        .map_err(|e| SweepError::Io(path.clone(), e))?;
+    let journal = Mutex::new(journal);
+    let todo: Vec<usize> = (0..sweep.len()).filter(|i| !done.contains_key(i)).collect();
+    let bar = match progress {
+        Progress::Quiet => indicatif::ProgressBar::hidden(),
+        Progress::Auto if std::env::var_os("CI").is_some() => indicatif::ProgressBar::hidden(),
+        Progress::Auto => {
+            let bar = indicatif::ProgressBar::with_draw_target(
+                Some(todo.len() as u64),
+                indicatif::ProgressDrawTarget::stderr(),
+            );
+            bar.set_style(
+                indicatif::ProgressStyle::with_template(
+                    "{bar:40} {pos}/{len} cells  {per_sec}  ETA {eta}",
+                )
+                .expect("static template"),
+            );
+            bar
+        }
+    };
+    let fresh: Vec<Cell> = todo
+        .par_iter()
+        .map(|&index| {
+            let values = sweep.values(index);
+            let summary = run_cell(&values).map_err(|message| SweepError::Cell {
+                index,
+                values: sweep
+                    .axes
+                    .iter()
+                    .map(|a| a.key.clone())
+                    .zip(values.iter().copied())
+                    .collect(),
+                message,
+            })?;
+            let cell = Cell {
+                index,
+                class: CellClass::of(&summary),
+                max_theta_over_alpha: summary.max_theta_over_alpha,
+                impacts: summary.impacts,
+            };
+            let line = journal_line(&cell);
+            let mut j = journal.lock().unwrap_or_else(|p| p.into_inner());
+            j.write_all(line.as_bytes())
+                .map_err(|e| SweepError::Io(path.clone(), e))?;
+            drop(j);
+            bar.inc(1);
+            Ok(cell)
+        })
+        .collect::<Result<_, SweepError>>()?;
+    bar.finish_and_clear();
+    let computed = fresh.len();
+    for c in fresh {
+        done.insert(c.index, c);
+    }
+    Ok(Outcome {
+        cells: done.into_values().collect(),
+        computed,
+        elapsed: start.elapsed(),
+    })
+}
+
+/// Writes `bytes` to `path` atomically: a temporary file in the same directory, then a rename.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), SweepError> {
+    let dir = path.parent().unwrap_or(Path::new("."));
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let tmp = dir.join(format!(".{name}.tmp{}", std::process::id()));
+    let io = |e| SweepError::Io(path.to_path_buf(), e);
+    let mut f = File::create(&tmp).map_err(io)?;
+    f.write_all(bytes).map_err(io)?;
+    f.sync_all().map_err(io)?;
+    fs::rename(&tmp, path).map_err(io)
+}
+
+/// `cells.csv`: one row per cell with the axis values (columns named by their key paths),
+/// the class, max θ/α and the number of impacts.
+pub fn cells_csv(sweep: &Sweep, cells: &[Cell]) -> String {
+    let mut out = String::new();
+    for a in &sweep.axes {
+        out.push_str(&a.key);
+        out.push(',');
+    }
+    out.push_str("class,max_theta_over_alpha,impacts\n");
+    for c in cells {
+        for v in sweep.values(c.index) {
+            out.push_str(&format!("{v},"));
+        }
+        out.push_str(&format!(
+            "{},{},{}\n",
+            c.class.as_str(),
+            c.max_theta_over_alpha,
+            c.impacts
+        ));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn axis_parsing() {
+        let a = Axis::parse("excitation.amplitude=1:20:5").unwrap();
+        assert_eq!(a.key, "excitation.amplitude");
+        assert_eq!(a.values, vec![1.0, 5.75, 10.5, 15.25, 20.0]);
+        assert_eq!(
+            Axis::parse("structure.alpha=0.1,0.2").unwrap().values,
+            vec![0.1, 0.2]
+        );
+        for bad in [
+            "x",
+            "=1:2:3",
+            "x=1:2",
+            "x=1:2:0",
+            "x=a:2:3",
+            "x=1:inf:3",
+            "x=1,,2",
+        ] {
+            assert!(Axis::parse(bad).is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn cell_order_is_last_axis_fastest() {
+        let s = Sweep {
+            axes: vec![
+                Axis {
+                    key: "a".into(),
+                    values: vec![1.0, 2.0],
+                },
+                Axis {
+                    key: "b".into(),
+                    values: vec![10.0, 20.0, 30.0],
+                },
+            ],
+            fingerprint: "x".into(),
+        };
+        assert_eq!(s.len(), 6);
+        assert_eq!(s.values(0), vec![1.0, 10.0]);
+        assert_eq!(s.values(2), vec![1.0, 30.0]);
+        assert_eq!(s.values(3), vec![2.0, 10.0]);
+    }
+
+    #[test]
+    fn journal_lines_round_trip_and_torn_lines_are_rejected() {
+        let c = Cell {
+            index: 17,
+            class: CellClass::OverturnedOneImpact,
+            max_theta_over_alpha: 15.707,
+            impacts: 1,
+        };
+        let line = journal_line(&c);
+        assert_eq!(parse_journal_line(line.trim_end()), Some(c));
+        for cut in 1..line.len() - 1 {
+            assert_eq!(parse_journal_line(&line[..cut]), None, "{}", &line[..cut]);
+        }
+    }
+}

@@ -1,0 +1,120 @@
+//! Sweeps resume after an interruption without losing or corrupting cells, refuse a changed
+//! sweep, and give the same cells whatever the number of threads.
+
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use rocking::{simulate, DampingConvention, Dimensionless, Effects, Options, Structure, Summary};
+use rocking_motion::SinePulse;
+use rocking_spectra::{run, Axis, CellClass, Progress, Sweep};
+
+/// A cell of the Fig-8 structure's spectrum (γ_mb = γ_mc = 2, ω_n/p = 5, α = 0.1, uplifted ζ = 0.01).
+fn cell(values: &[f64]) -> Result<Summary, String> {
+    let d = Dimensionless {
+        omega_n_over_p: 5.0,
+        alpha: 0.1,
+        gamma_mc: 2.0,
+        gamma_mb: 2.0,
+        gamma_ib: 1.0,
+        zeta: 0.01,
+        damping: DampingConvention::Uplifted,
+    };
+    let s = Structure::from_dimensionless(&d, None).map_err(|e| e.to_string())?;
+    let (wp, amp) = (values[0], values[1]);
+    let opts = Options {
+        t_end: 2.0 * std::f64::consts::PI / wp + 20.0,
+        ..Options::default()
+    };
+    let run = simulate(
+        &s,
+        &SinePulse::new(amp * d.alpha.tan(), wp),
+        &Effects::default(),
+        &opts,
+    );
+    run.map(|r| r.summary).map_err(|e| e.to_string())
+}
+
+fn sweep(fingerprint: &str) -> Sweep {
+    Sweep {
+        axes: vec![
+            Axis::parse("excitation.omega_p_over_p=1:10:6").unwrap(),
+            Axis::parse("excitation.amplitude=0.5:20:8").unwrap(),
+        ],
+        fingerprint: fingerprint.to_string(),
+    }
+}
+
+#[test]
+fn interrupted_sweep_resumes_to_the_uninterrupted_result() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = sweep("fig8-test");
+    let reference = run(&s, &dir.path().join("whole"), Progress::Quiet, cell).unwrap();
+    assert_eq!(reference.cells.len(), 48);
+    let classes: std::collections::BTreeSet<_> = reference.cells.iter().map(|c| c.class).collect();
+    assert!(classes.contains(&CellClass::NoUplift) && classes.contains(&CellClass::Survived));
+    assert!(classes.iter().any(|c| matches!(
+        c,
+        CellClass::OverturnedNoImpact
+            | CellClass::OverturnedOneImpact
+            | CellClass::OverturnedImpacts
+    )));
+
+    // Interrupt: the 20th cell to start fails, as if the process had been stopped there.
+    let out = dir.path().join("interrupted");
+    let started = AtomicUsize::new(0);
+    let first = run(&s, &out, Progress::Quiet, |v| {
+        if started.fetch_add(1, Ordering::SeqCst) >= 20 {
+            Err("interrupted".to_string())
+        } else {
+            cell(v)
+        }
+    });
+    assert!(first.is_err());
+    // A torn last line, as a kill in the middle of a write leaves it.
+    let journal = out.join("cells.journal");
+    let mut text = std::fs::read_to_string(&journal).unwrap();
+    let kept = text.lines().count() - 1;
+    assert!(kept > 0 && kept < 48, "{kept} cells kept");
+    text.push_str("47,survived,1.2");
+    std::fs::write(&journal, text).unwrap();
+
+    let calls = AtomicUsize::new(0);
+    let resumed = run(&s, &out, Progress::Quiet, |v| {
+        calls.fetch_add(1, Ordering::SeqCst);
+        cell(v)
+    })
+    .unwrap();
+    assert_eq!(
+        calls.load(Ordering::SeqCst),
+        48 - kept,
+        "only the missing cells are computed"
+    );
+    assert_eq!(
+        resumed.cells, reference.cells,
+        "resumed sweep equals the uninterrupted one"
+    );
+
+    // A different sweep in the same directory is refused.
+    let err = run(&sweep("another-scene"), &out, Progress::Quiet, cell).unwrap_err();
+    assert!(err.to_string().contains("different sweep"), "{err}");
+}
+
+#[test]
+fn cells_do_not_depend_on_the_number_of_threads() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = sweep("threads");
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let two = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap();
+    let a = one
+        .install(|| run(&s, &dir.path().join("1"), Progress::Quiet, cell))
+        .unwrap();
+    let b = two
+        .install(|| run(&s, &dir.path().join("2"), Progress::Quiet, cell))
+        .unwrap();
+    assert_eq!(a.cells, b.cells);
+}
