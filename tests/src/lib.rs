@@ -241,3 +241,33 @@ pub fn zero_crossings(t: &[f64], y: &[f64]) -> Vec<f64> {
 pub fn rel(a: f64, b: f64, floor: f64) -> f64 {
     (a - b).abs() / b.abs().max(floor)
 }
+
+/// The uplifted (rocking-phase) frequency of the column from the 2×2 linearisation of the
+/// rocking equations (equations.md 1.3) about a rocking state with s·u = `u_s`, |θ| = `theta`
+/// (θ' and θ'' neglected): det(K − ω² M) = 0, larger root. With `gravity` false the gravity
+/// stiffness is dropped, and at u_s = 0 this is eq (18), ω_up = ω_n S.
+pub fn uplifted_frequency_linearised(
+    ph: &rocking_kernels::Physical,
+    u_s: f64,
+    theta: f64,
+    gravity: bool,
+) -> f64 {
+    let (m, mc, mb, b, h, g) = (ph.m, ph.m_c, ph.m_b, ph.b, ph.h, ph.g);
+    let m_uu = m + 33.0 / 140.0 * mc;
+    let m_ut = (m + 11.0 / 40.0 * mc) * h;
+    let s1 = m + mc / 2.0;
+    let s2 = m + 3.0 / 8.0 * mc;
+    let m_tot = m + mc + mb;
+    let j0 = ph.i_bc + mc * (b * b + h * h / 3.0) + m * (b * b + h * h);
+    let k = 3.0 * ph.ei / (h * h * h);
+    let m_tt = j0 + m_uu * u_s * u_s - 2.0 * s2 * b * u_s;
+    let gg = if gravity { g } else { 0.0 };
+    let k_uu = k;
+    let k_ut = -s2 * gg * theta.cos();
+    let k_tt = -gg * (m_tot * b * theta.sin() + s1 * h * theta.cos() - s2 * u_s * theta.sin());
+    let a = m_uu * m_tt - m_ut * m_ut;
+    let bq = -(k_uu * m_tt + k_tt * m_uu - 2.0 * k_ut * m_ut);
+    let c = k_uu * k_tt - k_ut * k_ut;
+    let w2 = (-bq + (bq * bq - 4.0 * a * c).sqrt()) / (2.0 * a);
+    w2.sqrt()
+}

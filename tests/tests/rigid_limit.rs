@@ -1,9 +1,7 @@
 //! The rigid limit against Housner's exact rigid block (verification.md §2), and the
 //! flexible model at ω_n/p = 1000 against the rigid variant (equations.md §4.2).
 
-use rocking::{
-    DampingConvention, Effects, EventKind, ImpactModel, Initial, Options, Preset,
-};
+use rocking::{DampingConvention, Effects, EventKind, ImpactModel, Initial, Options, Preset};
 use rocking_motion::NoMotion;
 use rocking_verification::*;
 
@@ -53,7 +51,10 @@ fn period_integral_matches_table() {
             "θ0/α = {r}: exact pT = {t:.9} (table {t_exact}), linearised {tl:.6} (table {t_lin}), exact/linear − 1 = {:.3e}",
             t / tl - 1.0
         );
-        assert!((t - t_exact).abs() < 1.5e-6, "exact period {t} vs {t_exact}");
+        assert!(
+            (t - t_exact).abs() < 1.5e-6,
+            "exact period {t} vs {t_exact}"
+        );
         assert!((tl - t_lin).abs() < 1.5e-6, "linear period {tl} vs {t_lin}");
         // the nonlinear period is slightly longer than the linearised one, by < 0.3 %
         assert!(t > tl && t / tl - 1.0 < 3e-3);
@@ -72,7 +73,10 @@ fn period_integral_matches_table() {
         48,
         8,
     );
-    eprintln!("quarter period at θ0/α = 0.5: {a:.15} (finer quadrature differs by {:.1e})", (a - b).abs());
+    eprintln!(
+        "quarter period at θ0/α = 0.5: {a:.15} (finer quadrature differs by {:.1e})",
+        (a - b).abs()
+    );
     assert!((a - b).abs() < 1e-13);
 }
 
@@ -113,7 +117,10 @@ fn rigid_housner_free_rocking_exact() {
     let (mut worst_t, mut worst_v, mut worst_e) = (0.0f64, 0.0f64, 0.0f64);
     for (k, ev) in imp.iter().take(n_check).enumerate() {
         let v_pred = sign * housner_impact_rate(ALPHA, theta_n);
-        let (et, ev_) = (rel(ev.time.tau, t_pred, 1.0), rel(ev.theta_dot, v_pred, 1e-300));
+        let (et, ev_) = (
+            rel(ev.time.tau, t_pred, 1.0),
+            rel(ev.theta_dot, v_pred, 1e-300),
+        );
         let er = rel(ev.energy_after / ev.energy_before, e * e, 1.0);
         eprintln!(
             "impact {k}: τ = {:.12} (exact {:.12}, rel err {et:.2e}); θ' = {:.12} (exact {:.12}, rel err {ev_:.2e}); E2/E1 − e² = {er:.2e}; branch {}",
@@ -156,11 +163,19 @@ fn rigid_vvel_restitution_is_cos2_alpha() {
     let mut worst = 0.0f64;
     for k in 1..5 {
         let r = imp[k].theta_dot.abs() / imp[k - 1].theta_dot.abs();
-        eprintln!("rigid VVEL: |θ'_{k}|/|θ'_{}| = {r:.12} (cos²α = {want:.12}), branch {}", k - 1, imp[k - 1].branch);
+        eprintln!(
+            "rigid VVEL: |θ'_{k}|/|θ'_{}| = {r:.12} (cos²α = {want:.12}), branch {}",
+            k - 1,
+            imp[k - 1].branch
+        );
         worst = worst.max((r - want).abs());
         // the map itself keeps cos² α of the energy (rigid point mass: energy ∝ θ'^2, θ'2/θ'1 = cos² α → cos⁴ α)
         let er = imp[k - 1].energy_after / imp[k - 1].energy_before;
-        assert!((er - want * want).abs() < 1e-9, "energy ratio {er} vs cos⁴α {}", want * want);
+        assert!(
+            (er - want * want).abs() < 1e-9,
+            "energy ratio {er} vs cos⁴α {}",
+            want * want
+        );
     }
     eprintln!("rigid VVEL restitution: max |ratio − cos²α| = {worst:.2e}");
     assert!(worst < 1e-8);
@@ -172,7 +187,13 @@ fn rigid_vvel_restitution_is_cos2_alpha() {
 fn stiff_flexible_housner_matches_rigid() {
     let s = point_mass(1000.0, 0.05);
     let opts = free_rocking(ImpactModel::Housner, 3.0);
-    let flex = run_checked(&s, &NoMotion, &Effects::default(), &opts, "stiff flexible housner");
+    let flex = run_checked(
+        &s,
+        &NoMotion,
+        &Effects::default(),
+        &opts,
+        "stiff flexible housner",
+    );
     let rigid = run_checked(&s, &NoMotion, &rigid_effects(), &opts, "rigid housner");
     assert_eq!(flex.summary.kernel_variant, "point_mass");
     let (fi, ri) = (impacts(&flex), impacts(&rigid));
@@ -212,7 +233,10 @@ fn stiff_flexible_vvel_restitution_is_cos2_alpha() {
         );
         worst = worst.max((r - want).abs());
     }
-    eprintln!("ω_n/p = 1000 VVEL: max |restitution − cos²α| = {worst:.2e}, steps {}", run.summary.solver_stats.steps);
+    eprintln!(
+        "ω_n/p = 1000 VVEL: max |restitution − cos²α| = {worst:.2e}, steps {}",
+        run.summary.solver_stats.steps
+    );
     // the brief asks ~1e-3; the finite-stiffness error measured is a few 1e-6
     assert!(worst < 1e-4, "effective restitution off cos²α by {worst}");
 }

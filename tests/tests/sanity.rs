@@ -1,0 +1,191 @@
+//! Every configuration of the suite reports solver statistics > 0 and no NaN in its history or
+//! event log. (Every run in the other files also goes through `run_checked`, which asserts the
+//! same.) Here each configuration is run once more with a per-step history at default accuracy.
+
+use rocking::{DampingConvention, Effects, History, ImpactModel, Initial, Options, Run};
+use rocking_motion::{NoMotion, SinePulse};
+use rocking_verification::*;
+
+fn opts(impact: ImpactModel, theta0: f64) -> Options {
+    Options {
+        impact,
+        t_end: 10.0,
+        energy: true,
+        event_log: true,
+        history: History::Steps,
+        initial: Initial {
+            theta: theta0,
+            ..Initial::default()
+        },
+        ..Options::default()
+    }
+}
+
+/// name, structure, pulse (None: free rocking), effects, impact model, θ0.
+type Case<'a> = (
+    &'a str,
+    &'a rocking::Structure,
+    Option<SinePulse>,
+    Effects,
+    ImpactModel,
+    f64,
+);
+
+fn all_runs() -> Vec<(String, Run)> {
+    let mut out = Vec::new();
+    let fig3 = fig3_structure();
+    let fig5 = fig5_structure(5.0);
+    let fig5_20 = fig5_structure(20.0);
+    let free_full = dimensionless(0.2, 10.0, 1.0, 1.0, 0.0, DampingConvention::FixedBase);
+    let stiff = dimensionless(0.2, 1000.0, 0.0, 0.0, 0.05, DampingConvention::Uplifted);
+    let pm01 = dimensionless(0.1, 5.0, 0.0, 0.0, 0.005, DampingConvention::FixedBase);
+    let pulse5 = SinePulse::new(3.0 * 0.1f64.tan(), 4.0);
+    let flex = Effects::default();
+    let rigid = rigid_effects();
+    let cases: Vec<Case> = vec![
+        (
+            "Fig. 3 VVEL",
+            &fig3,
+            Some(fig3_pulse()),
+            flex,
+            ImpactModel::Vvel,
+            0.0,
+        ),
+        (
+            "Fig. 3 ADJex",
+            &fig3,
+            Some(fig3_pulse()),
+            flex,
+            ImpactModel::Adjex,
+            0.0,
+        ),
+        (
+            "Fig.-5 model VVEL",
+            &fig5,
+            Some(pulse5),
+            flex,
+            ImpactModel::Vvel,
+            0.0,
+        ),
+        (
+            "Fig.-5 model ADJex",
+            &fig5,
+            Some(pulse5),
+            flex,
+            ImpactModel::Adjex,
+            0.0,
+        ),
+        (
+            "Fig.-5 model rigid Housner",
+            &fig5,
+            Some(pulse5),
+            rigid,
+            ImpactModel::Housner,
+            0.0,
+        ),
+        (
+            "free full ζ = 0",
+            &free_full,
+            None,
+            flex,
+            ImpactModel::Vvel,
+            0.1,
+        ),
+        (
+            "stiff point mass Housner",
+            &stiff,
+            None,
+            flex,
+            ImpactModel::Housner,
+            0.1,
+        ),
+        (
+            "stiff point mass VVEL",
+            &stiff,
+            None,
+            flex,
+            ImpactModel::Vvel,
+            0.1,
+        ),
+        (
+            "rigid point mass Housner",
+            &stiff,
+            None,
+            rigid,
+            ImpactModel::Housner,
+            0.1,
+        ),
+        (
+            "rigid point mass VVEL",
+            &stiff,
+            None,
+            rigid,
+            ImpactModel::Vvel,
+            0.1,
+        ),
+        (
+            "Fig.-5 ω_n/p = 20 free",
+            &fig5_20,
+            None,
+            flex,
+            ImpactModel::Vvel,
+            0.09,
+        ),
+        (
+            "point mass α = 0.1 free",
+            &pm01,
+            None,
+            flex,
+            ImpactModel::Vvel,
+            0.09,
+        ),
+    ];
+    for (name, s, pulse, eff, impact, th0) in cases {
+        let o = opts(impact, th0);
+        let run = match pulse {
+            Some(p) => run_checked(s, &p, &eff, &o, name),
+            None => run_checked(s, &NoMotion, &eff, &o, name),
+        };
+        out.push((name.to_string(), run));
+    }
+    out
+}
+
+#[test]
+fn every_configuration_has_stats_and_no_nan() {
+    for (name, run) in all_runs() {
+        let st = run.summary.solver_stats;
+        eprintln!(
+            "{name}: variant {}, {} steps ({} rejected), {} RHS evaluations, {} events, {} history rows, {} impacts, residual {:.1e}",
+            run.summary.kernel_variant, st.steps, st.rejected_steps, st.rhs_evaluations, st.events,
+            run.history.len(), run.summary.impacts, run.summary.energy_balance_residual.unwrap()
+        );
+        assert!(
+            st.steps > 0 && st.rhs_evaluations > 0 && st.events > 0,
+            "{name}: {st:?}"
+        );
+        assert!(!run.history.is_empty());
+        assert!(run.summary.impacts > 0, "{name}: expected impacts");
+        // default accuracy (1e-7): the balance still closes to well below the tolerance scale
+        assert!(
+            run.summary.energy_balance_residual.unwrap().abs() < 1e-5,
+            "{name}"
+        );
+    }
+}
+
+/// The checker itself catches a NaN.
+#[test]
+#[should_panic(expected = "non-finite history row")]
+fn check_run_catches_nan() {
+    let s = fig3_structure();
+    let mut run = run_checked(
+        &s,
+        &fig3_pulse(),
+        &Effects::default(),
+        &opts(ImpactModel::Vvel, 0.0),
+        "nan",
+    );
+    run.history[3].u = f64::NAN;
+    check_run(&run, "nan");
+}
