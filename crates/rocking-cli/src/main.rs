@@ -1,0 +1,257 @@
+//! `rocking`: run and check scene files of the rocking-cantilever simulator.
+//!
+//! ```text
+//! rocking run SCENE [--set key.path=value ...] [--out DIR] [--json]
+//! rocking check SCENE [--set key.path=value ...] [--json]
+//! ```
+//!
+//! Exit codes: 0 ok, 2 invalid input (scene, record, arguments), 1 internal failure.
+//! The scene format is described in `scenes/README.md`.
+
+mod model;
+mod plot;
+mod report;
+mod scene;
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+use crate::model::Model;
+use crate::scene::CliError;
+
+/// Simulator of a deformable cantilever that uplifts and rocks on a rigid surface
+/// (Vassiliou, Mackie & Stojadinović 2015).
+#[derive(Parser, Debug)]
+#[command(name = "rocking", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Run a scene: write summary.json (and history.csv, events.csv, plots when asked) into DIR.
+    Run {
+        /// The scene file (TOML).
+        scene: PathBuf,
+        /// Override a scene value, e.g. `--set excitation.amplitude=1.5` (repeatable).
+        #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
+        set: Vec<String>,
+        /// Output directory (default: out/<scene-stem>/).
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// Print the summary on stdout as one JSON object.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Validate a scene and print the kernel variant, why, and the derived quantities.
+    Check {
+        /// The scene file (TOML).
+        scene: PathBuf,
+        /// Override a scene value (repeatable).
+        #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
+        set: Vec<String>,
+        /// Print the result as one JSON object.
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+fn load(scene: &Path, set: &[String]) -> Result<(scene::Scene, Model), CliError> {
+    let sc = scene::load(scene, set)?;
+    let model = model::build(&sc)?;
+    Ok((sc, model))
+}
+
+fn check(scene: &Path, set: &[String], json: bool) -> Result<(), CliError> {
+    let (_, m) = load(scene, set)?;
+    let derived = report::derived_json(&m);
+    if json {
+        let v = serde_json::json!({
+            "scene": scene.display().to_string(),
+            "kernel_variant": m.variant.name(),
+            "variant_reasons": m.reasons,
+            "excitation": m.excitation_description,
+            "t_end": m.options.t_end * m.units.p_model,
+            "excitation_end": m.excitation_end * m.units.p_model,
+            "derived": derived,
+        });
+        println!("{v}");
+        return Ok(());
+    }
+    let d = m.structure.derived();
+    let u = &m.units;
+    println!("scene: {}", scene.display());
+    if let Some(t) = &m.title {
+        println!("title: {t}");
+    }
+    println!("kernel variant: {}", m.variant.name());
+    for r in &m.reasons {
+        println!("  because {r}");
+    }
+    println!("excitation: {}", m.excitation_description);
+    let secs = |tau: f64| match m.structure.p_per_second() {
+        Some(p) => format!(" ({:.4} s)", tau / p),
+        None => String::new(),
+    };
+    let ex_end = m.excitation_end * u.p_model;
+    println!("excitation ends at τ = {ex_end:.4}{}", secs(ex_end));
+    println!(
+        "simulated: τ = 0 .. {:.4}{}",
+        m.options.t_end * u.p_model,
+        secs(m.options.t_end * u.p_model)
+    );
+    println!(
+        "derived quantities ({}):",
+        derived["units"].as_str().unwrap_or("")
+    );
+    if let Some(ps) = m.structure.p_per_second() {
+        println!("  p          = {:.6} (= {ps:.6} 1/s)", d.p);
+    } else {
+        println!("  p          = {:.6}", d.p);
+    }
+    println!(
+        "  ω_n        = {:.6} (ω_n/p = {:.4})",
+        d.omega_n,
+        d.omega_n / d.p
+    );
+    println!("  ω_up       = {:.6}", d.omega_up);
+    println!("  S          = {:.6}", d.modal_s);
+    println!("  α          = {:.6} rad", d.alpha);
+    println!("  u_cr       = {:.6e}", d.u_cr);
+    println!(
+        "  θ_cr       = {:.6} rad (θ_cr/α = {:.4})",
+        d.theta_cr,
+        d.theta_cr / d.alpha
+    );
+    println!("  E_ref      = {:.6e}", d.e_ref);
+    println!(
+        "  static uplift threshold = {:.6} g tan α",
+        derived["static_uplift_over_g_tan_alpha"]
+            .as_f64()
+            .unwrap_or(f64::NAN)
+    );
+    Ok(())
+}
+
+fn run(scene: &Path, set: &[String], out: Option<PathBuf>, json: bool) -> Result<(), CliError> {
+    let (_, mut m) = load(scene, set)?;
+    let events_csv = m.options.event_log;
+    if m.plots {
+        m.options.event_log = true; // impacts are marked on the plots
+    }
+    let run = rocking::simulate(&m.structure, &m.excitation, &m.effects, &m.options).map_err(
+        |e| match e {
+            rocking::SimError::Options(msg) => {
+                CliError::Input(format!("{}: {msg}", scene.display()))
+            }
+            other => CliError::Internal(format!("{}: simulation failed: {other}", scene.display())),
+        },
+    )?;
+    let summary = report::summary_json(&m, scene, &run)?;
+    let history = if m.history_csv {
+        Some(report::history_csv(&m, &run)?)
+    } else {
+        None
+    };
+    let events = if events_csv {
+        Some(report::events_csv(&m, &run)?)
+    } else {
+        None
+    };
+    let dir = out.unwrap_or_else(|| {
+        let stem = scene
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "scene".into());
+        Path::new("out").join(stem)
+    });
+    std::fs::create_dir_all(&dir)
+        .map_err(|e| CliError::Internal(format!("{}: cannot create: {e}", dir.display())))?;
+    let mut written = Vec::new();
+    let text = serde_json::to_string_pretty(&summary)
+        .map_err(|e| CliError::Internal(format!("cannot serialise the summary: {e}")))?;
+    let path = dir.join("summary.json");
+    report::write_atomic(&path, (text + "\n").as_bytes())?;
+    written.push(path);
+    if let Some(h) = history {
+        let path = dir.join("history.csv");
+        report::write_atomic(&path, h.as_bytes())?;
+        written.push(path);
+    }
+    if let Some(e) = events {
+        let path = dir.join("events.csv");
+        report::write_atomic(&path, e.as_bytes())?;
+        written.push(path);
+    }
+    if m.plots {
+        written.extend(plot::plots(&m, &run, &dir)?);
+    }
+    if json {
+        println!("{summary}");
+        return Ok(());
+    }
+    let s = &run.summary;
+    let t = |x: Option<rocking::Time>| match x {
+        Some(t) => match t.seconds {
+            Some(sec) => format!("τ = {:.4} ({sec:.4} s)", t.tau),
+            None => format!("τ = {:.4}", t.tau),
+        },
+        None => "never".into(),
+    };
+    println!("{}: kernel variant {}", scene.display(), s.kernel_variant);
+    println!("  excitation: {}", m.excitation_description);
+    println!(
+        "  max θ/α = {:.4}, max u/u_cr = {:.4}",
+        s.max_theta_over_alpha, s.max_u_over_ucr
+    );
+    println!(
+        "  impacts: {} ({} significant); first uplift {}; first impact {}",
+        s.impacts,
+        s.significant_impacts,
+        t(s.first_uplift_time),
+        t(s.first_impact_time)
+    );
+    if s.overturned {
+        println!("  OVERTURNED at {}", t(s.overturn_time));
+    } else {
+        println!("  not overturned (final phase {:?})", s.final_phase);
+    }
+    if let Some(r) = s.energy_balance_residual {
+        println!("  energy balance residual: {r:.3e} E_ref");
+    }
+    println!(
+        "  solver: {} steps, {} rejected, {} events",
+        s.solver_stats.steps, s.solver_stats.rejected_steps, s.solver_stats.events
+    );
+    println!("  wrote:");
+    for p in written {
+        println!("    {}", p.display());
+    }
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Run {
+            scene,
+            set,
+            out,
+            json,
+        } => run(&scene, &set, out, json),
+        Command::Check { scene, set, json } => check(&scene, &set, json),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            match e {
+                CliError::Input(_) => ExitCode::from(2),
+                CliError::Internal(_) => ExitCode::from(1),
+            }
+        }
+    }
+}

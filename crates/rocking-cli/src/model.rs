@@ -1,0 +1,797 @@
+//! From a typed scene to what the solver runs: structure, excitation, effects, options.
+
+use std::f64::consts::{FRAC_PI_2, PI};
+
+use rocking::{
+    select_variant, Accuracy, DampingConvention, Dimensionless, Effects, History, ImpactModel,
+    Initial, KernelVariant, Method, Options, ParamError, Preset, Structure,
+};
+use rocking_kernels::Physical;
+use rocking_motion::{
+    read_at2, CosinePulse, Excitation, GroundMotion, MavroeidisPapageorgiou, Record, Ricker,
+    SinePulse,
+};
+use toml::Value;
+
+use crate::scene::{describe, CliError, ExcitationSpec, Scene, Source, StructureSpec};
+
+/// Acceleration of gravity (m/s²) that relates a dimensionless structure's R and p.
+pub const G_DIMENSIONLESS: f64 = 9.81;
+
+/// How model units relate to τ, g tan α and seconds.
+#[derive(Clone, Copy, Debug)]
+pub struct Units {
+    /// Physical (SI) structure.
+    pub physical: bool,
+    /// g in model units (1 for a dimensionless structure).
+    pub g_model: f64,
+    /// g in m/s² (the structure's g, or 9.81 for a dimensionless one).
+    pub g_si: f64,
+    /// p in model units (1/model time).
+    pub p_model: f64,
+    /// Seconds per model time unit, when known.
+    pub sec_per_unit: Option<f64>,
+    /// tan α.
+    pub tan_alpha: f64,
+    /// α.
+    pub alpha: f64,
+}
+
+impl Units {
+    /// Model acceleration of `a` in units of g tan α.
+    pub fn accel_g_tan_alpha(&self) -> f64 {
+        self.g_model * self.tan_alpha
+    }
+}
+
+/// Everything a run or a check needs.
+pub struct Model {
+    pub title: Option<String>,
+    pub structure: Structure,
+    pub effects: Effects,
+    pub options: Options,
+    pub excitation: Excitation,
+    pub excitation_description: String,
+    /// End of the excitation, model time.
+    pub excitation_end: f64,
+    pub variant: KernelVariant,
+    pub reasons: Vec<String>,
+    pub units: Units,
+    pub plots: bool,
+    /// History rows were asked for in the scene (written to history.csv).
+    pub history_csv: bool,
+}
+
+fn param_err(src: &Source, table: &str, e: ParamError) -> CliError {
+    src.err(
+        &format!("{table}.{}", e.parameter),
+        format_args!("[{table}] {e}"),
+    )
+}
+
+/// A finite number check with the scene path in the message.
+fn finite(src: &Source, path: &str, v: f64, cond: bool, allowed: &str) -> Result<f64, CliError> {
+    if v.is_finite() && cond {
+        Ok(v)
+    } else {
+        Err(src.err(
+            path,
+            format_args!("{} = {v} is not allowed: {allowed}", describe(path)),
+        ))
+    }
+}
+
+fn build_structure(src: &Source, s: &StructureSpec, rigid: bool) -> Result<Structure, CliError> {
+    let physical_keys: Vec<&str> = [
+        ("h", s.h.is_some()),
+        ("b", s.b.is_some()),
+        ("ei", s.ei.is_some()),
+        ("m", s.m.is_some()),
+        ("m_c", s.m_c.is_some()),
+        ("m_b", s.m_b.is_some()),
+        ("i_bc", s.i_bc.is_some()),
+        ("g", s.g.is_some()),
+    ]
+    .iter()
+    .filter(|(_, b)| *b)
+    .map(|(k, _)| *k)
+    .collect();
+    let dimless_keys: Vec<&str> = [
+        ("omega_n_over_p", s.omega_n_over_p.is_some()),
+        ("alpha", s.alpha.is_some()),
+        ("gamma_mc", s.gamma_mc.is_some()),
+        ("gamma_mb", s.gamma_mb.is_some()),
+        ("gamma_ib", s.gamma_ib.is_some()),
+        ("damping", s.damping.is_some()),
+        ("r", s.r.is_some()),
+        ("p", s.p.is_some()),
+    ]
+    .iter()
+    .filter(|(_, b)| *b)
+    .map(|(k, _)| *k)
+    .collect();
+    if !physical_keys.is_empty() && !dimless_keys.is_empty() {
+        return Err(src.err(
+            &format!("structure.{}", dimless_keys[0]),
+            format_args!(
+                "[structure] mixes the physical form (`{}`) and the dimensionless form (`{}`); \
+                 give either h, b, ei, m, m_c, m_b, i_bc, zeta, g (SI) or omega_n_over_p, alpha, \
+                 gamma_mc, gamma_mb, gamma_ib, zeta, damping, r|p",
+                physical_keys.join("`, `"),
+                dimless_keys.join("`, `")
+            ),
+        ));
+    }
+    if !physical_keys.is_empty() {
+        let need = |k: &str, v: Option<f64>| {
+            v.ok_or_else(|| {
+                src.err(
+                    "structure",
+                    format_args!(
+                        "missing key `{k}` in [structure] (the physical form needs h, b, ei, m)"
+                    ),
+                )
+            })
+        };
+        let h = need("h", s.h)?;
+        let b = need("b", s.b)?;
+        let ei = need("ei", s.ei)?;
+        let m = need("m", s.m)?;
+        let m_b = s.m_b.unwrap_or(0.0);
+        let ph = Physical {
+            h,
+            b,
+            ei,
+            m,
+            m_c: s.m_c.unwrap_or(0.0),
+            m_b,
+            // Default: a thin rectangular plate, I_bc = 4/3 m_b B².
+            i_bc: s.i_bc.unwrap_or(4.0 / 3.0 * m_b * b * b),
+            zeta: s.zeta.unwrap_or(0.0),
+            g: s.g.unwrap_or(9.81),
+        };
+        return Structure::from_physical(ph).map_err(|e| param_err(src, "structure", e));
+    }
+    let alpha = s.alpha.ok_or_else(|| {
+        src.err(
+            "structure",
+            "missing key `alpha` in [structure] (give the dimensionless form: omega_n_over_p, \
+             alpha, ...; or the physical form: h, b, ei, m, ...)",
+        )
+    })?;
+    let omega_n_over_p = match (s.omega_n_over_p, rigid) {
+        (Some(w), _) => w,
+        // A rigid column does not use it; any stiff value keeps the derived quantities finite.
+        (None, true) => 1000.0,
+        (None, false) => {
+            return Err(src.err(
+                "structure",
+                "missing key `omega_n_over_p` in [structure] (needed unless [effects] flexibility = false)",
+            ))
+        }
+    };
+    let p_si = match (s.r, s.p) {
+        (Some(_), Some(_)) => {
+            return Err(src.err(
+                "structure.p",
+                "give either `r` (m) or `p` (1/s) in [structure], not both",
+            ))
+        }
+        (Some(r), None) => Some(
+            finite(src, "structure.r", r, r > 0.0, "a length R > 0 (m)")
+                .map(|r| (G_DIMENSIONLESS / r).sqrt())?,
+        ),
+        (None, Some(p)) => Some(finite(
+            src,
+            "structure.p",
+            p,
+            p > 0.0,
+            "p = sqrt(g/R) > 0 (1/s)",
+        )?),
+        (None, None) => None,
+    };
+    let d = Dimensionless {
+        omega_n_over_p,
+        alpha,
+        gamma_mc: s.gamma_mc.unwrap_or(0.0),
+        gamma_mb: s.gamma_mb.unwrap_or(0.0),
+        gamma_ib: s.gamma_ib.unwrap_or(1.0),
+        zeta: s.zeta.unwrap_or(0.0),
+        damping: s.damping.unwrap_or(DampingConvention::FixedBase),
+    };
+    Structure::from_dimensionless(&d, p_si).map_err(|e| param_err(src, "structure", e))
+}
+
+fn impact_model(src: &Source, v: Option<&Value>) -> Result<ImpactModel, CliError> {
+    const ALLOWED: &str =
+        "expected \"vvel\", \"adjex\", \"housner\" or { restitution = r } with 0 <= r <= 1";
+    let path = "effects.impact";
+    match v {
+        None => Ok(ImpactModel::Vvel),
+        Some(Value::String(s)) => match s.to_lowercase().as_str() {
+            "vvel" => Ok(ImpactModel::Vvel),
+            "adjex" => Ok(ImpactModel::Adjex),
+            "housner" => Ok(ImpactModel::Housner),
+            other => {
+                let hint = crate::scene::suggest(other, &["vvel", "adjex", "housner"])
+                    .map(|s| format!("; did you mean \"{s}\"?"))
+                    .unwrap_or_default();
+                Err(src.err(
+                    path,
+                    format_args!("`impact` = \"{s}\" is not allowed: {ALLOWED}{hint}"),
+                ))
+            }
+        },
+        Some(Value::Table(t)) => {
+            if let Some(k) = t.keys().find(|k| *k != "restitution") {
+                return Err(src.err(
+                    path,
+                    format_args!("unknown key `{k}` in `impact`: {ALLOWED}"),
+                ));
+            }
+            let r = match t.get("restitution") {
+                Some(Value::Float(r)) => *r,
+                Some(Value::Integer(r)) => *r as f64,
+                _ => return Err(src.err(path, format_args!("`impact`: {ALLOWED}"))),
+            };
+            finite(
+                src,
+                "effects.impact.restitution",
+                r,
+                (0.0..=1.0).contains(&r),
+                "a coefficient of restitution 0 <= r <= 1",
+            )
+            .map(ImpactModel::Restitution)
+        }
+        Some(other) => Err(src.err(
+            path,
+            format_args!("`impact` = {other} is not allowed: {ALLOWED}"),
+        )),
+    }
+}
+
+fn overturn_angle(src: &Source, v: Option<&Value>) -> Result<f64, CliError> {
+    const ALLOWED: &str = "an angle in rad with 0 < angle <= pi/2, or \"pi/2\", \"pi/N\"";
+    let path = "effects.overturn";
+    let angle = match v {
+        None => return Ok(FRAC_PI_2),
+        Some(Value::Float(a)) => *a,
+        Some(Value::Integer(a)) => *a as f64,
+        Some(Value::String(s)) => {
+            let t = s.trim().to_lowercase().replace(' ', "");
+            if t == "pi" {
+                PI
+            } else if let Some(n) = t.strip_prefix("pi/").and_then(|n| n.parse::<f64>().ok()) {
+                PI / n
+            } else if let Ok(x) = t.parse::<f64>() {
+                x
+            } else {
+                return Err(src.err(
+                    path,
+                    format_args!("`overturn` = \"{s}\" is not allowed: {ALLOWED}"),
+                ));
+            }
+        }
+        Some(other) => {
+            return Err(src.err(
+                path,
+                format_args!("`overturn` = {other} is not allowed: {ALLOWED}"),
+            ))
+        }
+    };
+    finite(
+        src,
+        path,
+        angle,
+        angle > 0.0 && angle <= FRAC_PI_2 + 1e-12,
+        ALLOWED,
+    )
+}
+
+/// Which excitation keys each kind uses.
+fn kind_keys(kind: &str) -> Option<&'static [&'static str]> {
+    const PULSE: &[&str] = &[
+        "kind",
+        "omega_p_over_p",
+        "omega_p",
+        "amplitude",
+        "amplitude_g",
+        "a_p",
+    ];
+    const RICKER: &[&str] = &[
+        "kind",
+        "omega_p_over_p",
+        "omega_p",
+        "amplitude",
+        "amplitude_g",
+        "a_p",
+        "shape",
+    ];
+    const MP: &[&str] = &[
+        "kind",
+        "omega_p_over_p",
+        "omega_p",
+        "velocity_amplitude",
+        "v_p",
+        "gamma",
+        "nu",
+    ];
+    Some(match kind {
+        "none" => &["kind"],
+        "sine-pulse" | "cosine-pulse" => PULSE,
+        "ricker" => RICKER,
+        "mp-pulse" => MP,
+        "record" => &["kind", "path", "scale"],
+        _ => return None,
+    })
+}
+
+const KINDS: &[&str] = &[
+    "none",
+    "sine-pulse",
+    "cosine-pulse",
+    "ricker",
+    "mp-pulse",
+    "record",
+];
+
+fn present(e: &ExcitationSpec) -> Vec<&'static str> {
+    [
+        ("kind", e.kind.is_some()),
+        ("omega_p_over_p", e.omega_p_over_p.is_some()),
+        ("omega_p", e.omega_p.is_some()),
+        ("amplitude", e.amplitude.is_some()),
+        ("amplitude_g", e.amplitude_g.is_some()),
+        ("a_p", e.a_p.is_some()),
+        ("shape", e.shape.is_some()),
+        ("velocity_amplitude", e.velocity_amplitude.is_some()),
+        ("v_p", e.v_p.is_some()),
+        ("gamma", e.gamma.is_some()),
+        ("nu", e.nu.is_some()),
+        ("path", e.path.is_some()),
+        ("scale", e.scale.is_some()),
+    ]
+    .iter()
+    .filter(|(_, b)| *b)
+    .map(|(k, _)| *k)
+    .collect()
+}
+
+fn need_seconds(src: &Source, key: &str, u: &Units) -> Result<f64, CliError> {
+    u.sec_per_unit.ok_or_else(|| {
+        src.err(
+            &format!("excitation.{key}"),
+            format_args!(
+                "`{key}` in [excitation] is in seconds, but the structure has no time scale: \
+                 give `r` (m) or `p` (1/s) in [structure], or a physical structure"
+            ),
+        )
+    })
+}
+
+/// Exactly one of several alternative keys.
+fn one_of<'a>(
+    src: &Source,
+    kind: &str,
+    opts: &[(&'a str, Option<f64>)],
+) -> Result<(&'a str, f64), CliError> {
+    let given: Vec<_> = opts.iter().filter(|(_, v)| v.is_some()).collect();
+    let names: Vec<String> = opts.iter().map(|(k, _)| format!("`{k}`")).collect();
+    match given.as_slice() {
+        [(k, Some(v))] => Ok((k, *v)),
+        [] => Err(src.err(
+            "excitation",
+            format_args!(
+                "missing key in [excitation]: kind = \"{kind}\" needs one of {}",
+                names.join(", ")
+            ),
+        )),
+        _ => Err(src.err(
+            &format!("excitation.{}", given[1].0),
+            format_args!(
+                "give only one of {} in [excitation] (found `{}` and `{}`)",
+                names.join(", "),
+                given[0].0,
+                given[1].0
+            ),
+        )),
+    }
+}
+
+/// Angular frequency in model units from `omega_p_over_p` or `omega_p` (rad/s).
+fn omega(src: &Source, kind: &str, e: &ExcitationSpec, u: &Units) -> Result<f64, CliError> {
+    let (k, v) = one_of(
+        src,
+        kind,
+        &[("omega_p_over_p", e.omega_p_over_p), ("omega_p", e.omega_p)],
+    )?;
+    let path = format!("excitation.{k}");
+    finite(src, &path, v, v > 0.0, "a frequency > 0")?;
+    Ok(match k {
+        "omega_p_over_p" => v * u.p_model,
+        _ => v * need_seconds(src, k, u)?,
+    })
+}
+
+/// Acceleration amplitude in model units from `amplitude` (g tan α), `amplitude_g` (g) or `a_p`
+/// (m/s²).
+fn accel_amplitude(
+    src: &Source,
+    kind: &str,
+    e: &ExcitationSpec,
+    u: &Units,
+) -> Result<f64, CliError> {
+    let (k, v) = one_of(
+        src,
+        kind,
+        &[
+            ("amplitude", e.amplitude),
+            ("amplitude_g", e.amplitude_g),
+            ("a_p", e.a_p),
+        ],
+    )?;
+    finite(
+        src,
+        &format!("excitation.{k}"),
+        v,
+        true,
+        "a finite amplitude",
+    )?;
+    Ok(match k {
+        "amplitude" => v * u.accel_g_tan_alpha(),
+        "amplitude_g" => v * u.g_model,
+        _ => v / u.g_si * u.g_model,
+    })
+}
+
+fn build_excitation(scene: &Scene, u: &Units) -> Result<(Excitation, String, f64), CliError> {
+    let src = &scene.src;
+    let default = ExcitationSpec::default();
+    let e = scene.spec.excitation.as_ref().unwrap_or(&default);
+    let kind = e.kind.as_deref().unwrap_or("none");
+    let Some(allowed) = kind_keys(kind) else {
+        let hint = crate::scene::suggest(kind, KINDS)
+            .map(|s| format!("; did you mean \"{s}\"?"))
+            .unwrap_or_default();
+        return Err(src.err(
+            "excitation.kind",
+            format_args!(
+                "`kind` = \"{kind}\" in [excitation] is not allowed: one of \"{}\"{hint}",
+                KINDS.join("\", \"")
+            ),
+        ));
+    };
+    if let Some(k) = present(e).into_iter().find(|k| !allowed.contains(k)) {
+        return Err(src.err(
+            &format!("excitation.{k}"),
+            format_args!(
+                "key `{k}` in [excitation] is not used by kind = \"{kind}\" (its keys: {})",
+                allowed.join(", ")
+            ),
+        ));
+    }
+    let ga = u.accel_g_tan_alpha();
+    Ok(match kind {
+        "none" => (Excitation::None, "none (free rocking)".into(), 0.0),
+        "sine-pulse" | "cosine-pulse" => {
+            let w = omega(src, kind, e, u)?;
+            let a = accel_amplitude(src, kind, e, u)?;
+            let desc = format!(
+                "{kind}: a_p/(g tan α) = {:.4}, ω_p/p = {:.4}",
+                a / ga,
+                w / u.p_model
+            );
+            let ex: Excitation = if kind == "sine-pulse" {
+                SinePulse::new(a, w).into()
+            } else {
+                CosinePulse::new(a, w).into()
+            };
+            let end = ex.end();
+            (ex, desc, end)
+        }
+        "ricker" => {
+            let w = omega(src, kind, e, u)?;
+            let a = accel_amplitude(src, kind, e, u)?;
+            let shape = e.shape.as_deref().unwrap_or("symmetric");
+            let r = match shape {
+                "symmetric" => Ricker::symmetric(a, w),
+                "antisymmetric" => Ricker::antisymmetric(a, w),
+                other => {
+                    return Err(src.err(
+                        "excitation.shape",
+                        format_args!(
+                            "`shape` = \"{other}\" in [excitation] is not allowed: \
+                             \"symmetric\" or \"antisymmetric\""
+                        ),
+                    ))
+                }
+            };
+            let desc = format!(
+                "ricker ({shape}): a_p/(g tan α) = {:.4}, ω_p/p = {:.4}",
+                a / ga,
+                w / u.p_model
+            );
+            let end = r.end();
+            (r.into(), desc, end)
+        }
+        "mp-pulse" => {
+            let w = omega(src, kind, e, u)?;
+            let (k, v) = one_of(
+                src,
+                kind,
+                &[("velocity_amplitude", e.velocity_amplitude), ("v_p", e.v_p)],
+            )?;
+            finite(
+                src,
+                &format!("excitation.{k}"),
+                v,
+                true,
+                "a finite amplitude",
+            )?;
+            // Velocity unit of the model: (g tan α)/p for `velocity_amplitude`, m/s for `v_p`.
+            let a_vel = match k {
+                "velocity_amplitude" => v * ga / u.p_model,
+                _ => v * u.g_model / (u.g_si * need_seconds(src, k, u)?),
+            };
+            let gamma = e.gamma.unwrap_or(2.0);
+            finite(
+                src,
+                "excitation.gamma",
+                gamma,
+                gamma > 1.0,
+                "an oscillatory character gamma > 1",
+            )?;
+            let nu = e.nu.unwrap_or(0.0);
+            finite(src, "excitation.nu", nu, true, "a finite phase (rad)")?;
+            let mp = MavroeidisPapageorgiou::starting_at(a_vel, w / (2.0 * PI), gamma, nu, 0.0);
+            let desc = format!(
+                "mp-pulse: A p/(g tan α) = {:.4}, ω_p/p = {:.4}, γ = {gamma}, ν = {nu}",
+                a_vel * u.p_model / ga,
+                w / u.p_model
+            );
+            let end = mp.end();
+            (mp.into(), desc, end)
+        }
+        "record" => {
+            let rel = e.path.as_deref().ok_or_else(|| {
+                src.err(
+                    "excitation",
+                    "missing key `path` in [excitation] (kind = \"record\" needs a PEER .AT2 file)",
+                )
+            })?;
+            let scale = e.scale.unwrap_or(1.0);
+            finite(
+                src,
+                "excitation.scale",
+                scale,
+                true,
+                "a finite scale factor",
+            )?;
+            let file = src.dir().join(rel);
+            let at2 = read_at2(&file).map_err(|err| {
+                src.err(
+                    "excitation.path",
+                    format_args!("cannot use the record: {err}"),
+                )
+            })?;
+            let spu = u.sec_per_unit.ok_or_else(|| {
+                src.err(
+                    "excitation.path",
+                    "a record is sampled in seconds, but the structure has no time scale: \
+                     give `r` (m) or `p` (1/s) in [structure], or a physical structure",
+                )
+            })?;
+            let pga = at2.pga();
+            let (dt, npts) = (at2.dt, at2.npts);
+            let rec = Record::new(dt / spu, at2.samples)
+                .map_err(|err| src.err("excitation.path", err))?
+                .with_scale(scale * u.g_model);
+            let desc = format!(
+                "record {} ({npts} samples, dt = {dt} s, PGA = {pga:.4} g) × {scale}: \
+                 PGA/(g tan α) = {:.4}",
+                file.display(),
+                pga * scale / u.tan_alpha
+            );
+            let end = rec.end();
+            (rec.into(), desc, end)
+        }
+        _ => unreachable!("kind checked above"),
+    })
+}
+
+/// Builds the model of a scene.
+pub fn build(scene: &Scene) -> Result<Model, CliError> {
+    let src = &scene.src;
+    let spec = &scene.spec;
+    let fx = spec.effects.as_ref();
+    let effects = Effects {
+        flexibility: fx.and_then(|f| f.flexibility).unwrap_or(true),
+        column_mass: fx.and_then(|f| f.column_mass).unwrap_or(true),
+        base_mass: fx.and_then(|f| f.base_mass).unwrap_or(true),
+        damping: fx.and_then(|f| f.damping).unwrap_or(true),
+        large_rotations: fx.and_then(|f| f.large_rotations).unwrap_or(true),
+    };
+    let st = spec
+        .structure
+        .as_ref()
+        .ok_or_else(|| src.err("", "missing table [structure]"))?;
+    let structure = build_structure(src, st, !effects.flexibility)?;
+    // The structure with the switched-off effects removed: what is simulated and reported.
+    let (structure, variant, reasons) =
+        select_variant(&structure, &effects).map_err(|e| param_err(src, "structure", e))?;
+    let derived = structure.derived();
+    let ph = structure.physical();
+    let physical = st.h.is_some();
+    let units = Units {
+        physical,
+        g_model: ph.g,
+        g_si: if physical { ph.g } else { G_DIMENSIONLESS },
+        p_model: derived.p,
+        sec_per_unit: structure.p_per_second().map(|ps| derived.p / ps),
+        tan_alpha: derived.alpha.tan(),
+        alpha: derived.alpha,
+    };
+    let (excitation, excitation_description, excitation_end) = build_excitation(scene, &units)?;
+
+    let impact = impact_model(src, fx.and_then(|f| f.impact.as_ref()))?;
+    let overturn = overturn_angle(src, fx.and_then(|f| f.overturn.as_ref()))?;
+    let energy = fx.and_then(|f| f.energy).unwrap_or(false);
+
+    let sv = spec.solver.as_ref();
+    let mut accuracy: Accuracy = sv
+        .and_then(|s| s.accuracy)
+        .unwrap_or(Preset::Default)
+        .accuracy();
+    if let Some(m) = sv.and_then(|s| s.method.as_deref()) {
+        accuracy.method = match m.to_lowercase().as_str() {
+            "dopri5" => Method::Dopri5,
+            "dop853" => Method::Dop853,
+            other => {
+                return Err(src.err(
+                    "solver.method",
+                    format_args!(
+                    "`method` = \"{other}\" in [solver] is not allowed: \"dopri5\" or \"dop853\""
+                ),
+                ))
+            }
+        };
+    }
+    if let Some(tol) = sv.and_then(|s| s.tol) {
+        accuracy.tol = finite(
+            src,
+            "solver.tol",
+            tol,
+            (1e-14..=1e-2).contains(&tol),
+            "a relative tolerance 1e-14 <= tol <= 1e-2",
+        )?;
+    }
+    let after = sv.and_then(|s| s.after_excitation).unwrap_or(40.0);
+    finite(
+        src,
+        "solver.after_excitation",
+        after,
+        (0.0..=1e6).contains(&after),
+        "a duration 0 <= τ <= 1e6 after the excitation ends",
+    )?;
+    let t_end = excitation_end + after / units.p_model;
+    if t_end <= 0.0 {
+        return Err(src.err(
+            "solver.after_excitation",
+            "nothing to simulate: the excitation has no duration and `after_excitation` = 0",
+        ));
+    }
+
+    let mut initial = Initial::default();
+    if let Some(i) = spec.initial.as_ref() {
+        if let Some(x) = i.theta_over_alpha {
+            let limit = overturn / units.alpha;
+            finite(
+                src,
+                "initial.theta_over_alpha",
+                x,
+                x.abs() < limit,
+                &format!("|θ/α| < {limit:.4} (the overturning angle / α)"),
+            )?;
+            initial.theta = x * units.alpha;
+        }
+        if let Some(x) = i.u_over_ucr {
+            finite(
+                src,
+                "initial.u_over_ucr",
+                x,
+                x.abs() <= 1e3,
+                "|u/u_cr| <= 1000",
+            )?;
+            initial.u = x * derived.u_cr;
+        }
+        if let Some(x) = i.theta_dot_over_alpha_p {
+            finite(
+                src,
+                "initial.theta_dot_over_alpha_p",
+                x,
+                x.abs() <= 1e3,
+                "|θ'/(α p)| <= 1000",
+            )?;
+            initial.theta_dot = x * units.alpha * units.p_model;
+        }
+        if let Some(x) = i.u_dot_over_ucr_omega_n {
+            finite(
+                src,
+                "initial.u_dot_over_ucr_omega_n",
+                x,
+                x.abs() <= 1e3,
+                "|u'/(u_cr ω_n)| <= 1000",
+            )?;
+            initial.u_dot = x * derived.u_cr * derived.omega_n;
+        }
+    }
+
+    let out = spec.output.as_ref();
+    let plots = out.and_then(|o| o.plots).unwrap_or(false);
+    let history = match (
+        out.and_then(|o| o.history.as_deref()),
+        out.and_then(|o| o.history_dt),
+    ) {
+        // `history = "none"` switches a grid off too (handy with --set).
+        (Some("none"), _) | (None, None) => History::None,
+        (Some("steps"), Some(_)) => {
+            return Err(src.err(
+                "output.history_dt",
+                "give either `history = \"steps\"` or `history_dt` in [output], not both",
+            ))
+        }
+        (Some("steps"), None) => History::Steps,
+        (Some(other), _) => {
+            return Err(src.err(
+                "output.history",
+                format_args!(
+                    "`history` = \"{other}\" in [output] is not allowed: \"none\" or \"steps\" \
+                     (or a grid: history_dt = τ step)"
+                ),
+            ))
+        }
+        (None, Some(dt)) => {
+            finite(
+                src,
+                "output.history_dt",
+                dt,
+                dt > 0.0 && t_end * units.p_model / dt <= 5e6,
+                "a grid step τ > 0 giving at most 5e6 rows",
+            )?;
+            History::Grid(dt / units.p_model)
+        }
+    };
+    let history_csv = history != History::None;
+    // Plots need a history: a 0.01 τ grid unless the scene asked for one.
+    let history = if plots && history == History::None {
+        History::Grid(0.01 / units.p_model)
+    } else {
+        history
+    };
+
+    let options = Options {
+        accuracy,
+        impact,
+        overturn_angle: overturn,
+        t_end,
+        energy,
+        history,
+        event_log: out.and_then(|o| o.events).unwrap_or(false),
+        initial,
+        ..Options::default()
+    };
+    Ok(Model {
+        title: spec.title.clone(),
+        structure,
+        effects,
+        options,
+        excitation,
+        excitation_description,
+        excitation_end,
+        variant,
+        reasons,
+        units,
+        plots,
+        history_csv,
+    })
+}

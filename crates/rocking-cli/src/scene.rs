@@ -1,0 +1,409 @@
+//! Scene files: TOML text → `toml::Table` → `--set` overrides → typed [`SceneSpec`] (serde), with
+//! errors that name the file, the line:column and the key.
+
+use std::collections::HashMap;
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+use rocking::{DampingConvention, Preset};
+use serde::Deserialize;
+use toml::{Table, Value};
+
+/// An error in the user's input (exit code 2) or an internal failure (exit code 1).
+#[derive(Debug)]
+pub enum CliError {
+    /// Invalid input: scene, record, arguments.
+    Input(String),
+    /// Something that should not happen (I/O on the output, a solver failure).
+    Internal(String),
+}
+
+impl fmt::Display for CliError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            CliError::Input(m) | CliError::Internal(m) => f.write_str(m),
+        }
+    }
+}
+
+/// `[structure]`: physical (SI) or dimensionless. All optional here; the combination is checked
+/// when the structure is built.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StructureSpec {
+    // Dimensionless form (eq 34).
+    pub omega_n_over_p: Option<f64>,
+    pub alpha: Option<f64>,
+    pub gamma_mc: Option<f64>,
+    pub gamma_mb: Option<f64>,
+    pub gamma_ib: Option<f64>,
+    pub damping: Option<DampingConvention>,
+    /// Length scale R (m), to report seconds.
+    pub r: Option<f64>,
+    /// p = sqrt(g/R) (1/s), to report seconds.
+    pub p: Option<f64>,
+    // Both forms.
+    pub zeta: Option<f64>,
+    // Physical form (SI).
+    pub h: Option<f64>,
+    pub b: Option<f64>,
+    pub ei: Option<f64>,
+    pub m: Option<f64>,
+    pub m_c: Option<f64>,
+    pub m_b: Option<f64>,
+    pub i_bc: Option<f64>,
+    pub g: Option<f64>,
+}
+
+/// `[excitation]`: a flat table; which keys a `kind` uses is checked when it is built.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ExcitationSpec {
+    pub kind: Option<String>,
+    pub omega_p_over_p: Option<f64>,
+    pub omega_p: Option<f64>,
+    pub amplitude: Option<f64>,
+    pub amplitude_g: Option<f64>,
+    pub a_p: Option<f64>,
+    pub shape: Option<String>,
+    pub velocity_amplitude: Option<f64>,
+    pub v_p: Option<f64>,
+    pub gamma: Option<f64>,
+    pub nu: Option<f64>,
+    pub path: Option<String>,
+    pub scale: Option<f64>,
+}
+
+/// `[effects]`.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EffectsSpec {
+    pub flexibility: Option<bool>,
+    pub column_mass: Option<bool>,
+    pub base_mass: Option<bool>,
+    pub damping: Option<bool>,
+    pub large_rotations: Option<bool>,
+    /// "vvel", "adjex", "housner" or { restitution = r }.
+    pub impact: Option<Value>,
+    /// Angle in rad, or "pi/2".
+    pub overturn: Option<Value>,
+    pub energy: Option<bool>,
+}
+
+/// `[solver]`.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolverSpec {
+    pub accuracy: Option<Preset>,
+    pub method: Option<String>,
+    pub tol: Option<f64>,
+    pub after_excitation: Option<f64>,
+}
+
+/// `[initial]`.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InitialSpec {
+    pub theta_over_alpha: Option<f64>,
+    pub u_over_ucr: Option<f64>,
+    pub theta_dot_over_alpha_p: Option<f64>,
+    pub u_dot_over_ucr_omega_n: Option<f64>,
+}
+
+/// `[output]`.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSpec {
+    /// "none" or "steps".
+    pub history: Option<String>,
+    /// Grid spacing in τ.
+    pub history_dt: Option<f64>,
+    pub events: Option<bool>,
+    pub plots: Option<bool>,
+}
+
+/// A whole scene file.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneSpec {
+    pub title: Option<String>,
+    pub structure: Option<StructureSpec>,
+    pub excitation: Option<ExcitationSpec>,
+    pub effects: Option<EffectsSpec>,
+    pub solver: Option<SolverSpec>,
+    pub initial: Option<InitialSpec>,
+    pub output: Option<OutputSpec>,
+}
+
+/// A loaded scene: the typed spec and what is needed to point at its source.
+pub struct Scene {
+    pub spec: SceneSpec,
+    pub src: Source,
+}
+
+/// Where the scene's values came from, for error messages.
+pub struct Source {
+    /// The scene file as given.
+    pub path: PathBuf,
+    text: String,
+    /// Byte offset of each key (dotted path) in the file.
+    spans: HashMap<String, usize>,
+    /// Dotted paths set (or replaced) with `--set`, and the argument that set each.
+    overridden: HashMap<String, String>,
+}
+
+impl Source {
+    /// The directory of the scene file (relative paths in the scene are relative to it).
+    pub fn dir(&self) -> PathBuf {
+        self.path
+            .parent()
+            .map(Path::to_path_buf)
+            .unwrap_or_else(|| PathBuf::from("."))
+    }
+
+    fn line_col(&self, offset: usize) -> (usize, usize) {
+        let before = &self.text[..offset.min(self.text.len())];
+        let line = before.matches('\n').count() + 1;
+        let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+        (line, col)
+    }
+
+    /// "FILE:LINE:COL" for the key at `path` (or its closest ancestor present in the file),
+    /// or "FILE (--set k=v)" when the value came from the command line.
+    pub fn locate(&self, path: &str) -> String {
+        let file = self.path.display();
+        let mut p = path.to_string();
+        loop {
+            if let Some(arg) = self.overridden.get(&p) {
+                return format!("{file}: --set {arg}");
+            }
+            if let Some(&off) = self.spans.get(&p) {
+                let (l, c) = self.line_col(off);
+                return format!("{file}:{l}:{c}");
+            }
+            match p.rfind('.') {
+                Some(i) => p.truncate(i),
+                None => return format!("{file}"),
+            }
+        }
+    }
+
+    /// An input error about the key at `path`.
+    pub fn err(&self, path: &str, msg: impl fmt::Display) -> CliError {
+        CliError::Input(format!("{}: {msg}", self.locate(path)))
+    }
+}
+
+/// `[table]` name and key of a dotted path, for messages.
+pub fn describe(path: &str) -> String {
+    match path.rsplit_once('.') {
+        Some((table, key)) => format!("`{key}` in [{table}]"),
+        None => format!("`{path}`"),
+    }
+}
+
+/// Levenshtein distance.
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut prev: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut cur = vec![i + 1; b.len() + 1];
+        for (j, &cb) in b.iter().enumerate() {
+            let sub = prev[j] + usize::from(ca != cb);
+            cur[j + 1] = sub.min(prev[j + 1] + 1).min(cur[j] + 1);
+        }
+        prev = cur;
+    }
+    prev[b.len()]
+}
+
+/// The allowed key closest to `key`, if it is close enough to be a typo.
+pub fn suggest<'a>(key: &str, allowed: &[&'a str]) -> Option<&'a str> {
+    let lower = key.to_lowercase();
+    if lower.len() >= 3 {
+        if let Some(a) = allowed.iter().find(|a| a.starts_with(&lower)) {
+            return Some(a);
+        }
+    }
+    let (best, d) = allowed
+        .iter()
+        .map(|a| (*a, edit_distance(&key.to_lowercase(), a)))
+        .min_by_key(|&(_, d)| d)?;
+    let limit = (key.chars().count().max(best.len()) / 3).max(2);
+    (d <= limit).then_some(best)
+}
+
+/// Parses one `--set key.path=value` argument: the value as TOML (number, bool, string, inline
+/// table, array), a bare word as a string.
+pub fn parse_override(arg: &str) -> Result<(Vec<String>, Value), CliError> {
+    let bad = |why: &str| {
+        CliError::Input(format!(
+            "--set {arg}: {why} (expected KEY.PATH=VALUE, e.g. structure.alpha=0.2)"
+        ))
+    };
+    let (key, raw) = arg.split_once('=').ok_or_else(|| bad("no `=`"))?;
+    let path: Vec<String> = key
+        .trim()
+        .split('.')
+        .map(|s| s.trim().to_string())
+        .collect();
+    if path.iter().any(|s| s.is_empty()) {
+        return Err(bad("empty key in the path"));
+    }
+    let raw = raw.trim();
+    if raw.is_empty() {
+        return Err(bad("empty value"));
+    }
+    let value = match toml::from_str::<Table>(&format!("v = {raw}")) {
+        Ok(mut t) => t.remove("v").unwrap_or(Value::String(raw.to_string())),
+        Err(_) => Value::String(raw.to_string()),
+    };
+    Ok((path, value))
+}
+
+fn collect_spans(prefix: &str, table: &toml::de::DeTable<'_>, out: &mut HashMap<String, usize>) {
+    for (k, v) in table.iter() {
+        let path = if prefix.is_empty() {
+            k.get_ref().to_string()
+        } else {
+            format!("{prefix}.{}", k.get_ref())
+        };
+        out.entry(path.clone()).or_insert(k.span().start);
+        if let Some(t) = v.get_ref().as_table() {
+            collect_spans(&path, t, out);
+        }
+    }
+}
+
+/// Extracts "unknown field `x`, expected one of `a`, `b`" (serde's wording).
+fn parse_unknown_field(msg: &str) -> Option<(String, Vec<String>)> {
+    let rest = msg.strip_prefix("unknown field `")?;
+    let (key, rest) = rest.split_once('`')?;
+    let allowed = rest
+        .split('`')
+        .enumerate()
+        .filter(|(i, _)| i % 2 == 1)
+        .map(|(_, s)| s.to_string())
+        .collect();
+    Some((key.to_string(), allowed))
+}
+
+/// Reads, overrides and deserializes a scene file.
+pub fn load(path: &Path, sets: &[String]) -> Result<Scene, CliError> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| CliError::Input(format!("{}: cannot read scene file: {e}", path.display())))?;
+    let mut table: Table = toml::from_str(&text).map_err(|e| {
+        let at = e
+            .span()
+            .map(|s| {
+                let before = &text[..s.start.min(text.len())];
+                let line = before.matches('\n').count() + 1;
+                let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+                format!(":{line}:{col}")
+            })
+            .unwrap_or_default();
+        CliError::Input(format!(
+            "{}{at}: invalid TOML: {}",
+            path.display(),
+            e.message().trim()
+        ))
+    })?;
+    let mut spans = HashMap::new();
+    if let Ok(de) = toml::de::DeTable::parse(&text) {
+        collect_spans("", de.get_ref(), &mut spans);
+    }
+    let mut src = Source {
+        path: path.to_path_buf(),
+        text,
+        spans,
+        overridden: HashMap::new(),
+    };
+    for arg in sets {
+        let (keys, value) = parse_override(arg)?;
+        let mut t = &mut table;
+        for (i, k) in keys[..keys.len() - 1].iter().enumerate() {
+            let entry = t
+                .entry(k.clone())
+                .or_insert_with(|| Value::Table(Table::new()));
+            t = match entry {
+                Value::Table(t) => t,
+                _ => {
+                    return Err(CliError::Input(format!(
+                        "{}: --set {arg}: `{}` is a value, not a table",
+                        path.display(),
+                        keys[..=i].join(".")
+                    )))
+                }
+            };
+        }
+        t.insert(keys[keys.len() - 1].clone(), value);
+        src.overridden.insert(keys.join("."), arg.clone());
+    }
+    let de = Value::Table(table);
+    let spec: SceneSpec = serde_path_to_error::deserialize(de).map_err(|e| {
+        let p = e.path().to_string();
+        let p = if p == "." { String::new() } else { p };
+        let inner = e.into_inner();
+        let msg = inner.message().trim().to_string();
+        if let Some((key, allowed)) = parse_unknown_field(&msg) {
+            // The path may or may not end with the unknown key itself.
+            let p = match p.strip_suffix(key.as_str()) {
+                Some("") => String::new(),
+                Some(t) if t.ends_with('.') => t[..t.len() - 1].to_string(),
+                _ => p,
+            };
+            let full = if p.is_empty() {
+                key.clone()
+            } else {
+                format!("{p}.{key}")
+            };
+            let allowed_ref: Vec<&str> = allowed.iter().map(String::as_str).collect();
+            let place = if p.is_empty() {
+                "at the top level".to_string()
+            } else {
+                format!("in [{p}]")
+            };
+            let hint = match suggest(&key, &allowed_ref) {
+                Some(s) => format!("; did you mean `{s}`?"),
+                None => format!("; allowed keys: {}", allowed.join(", ")),
+            };
+            return src.err(&full, format_args!("unknown key `{key}` {place}{hint}"));
+        }
+        if p.is_empty() {
+            return CliError::Input(format!("{}: {msg}", path.display()));
+        }
+        src.err(
+            &p,
+            format_args!("invalid value for {}: {msg}", describe(&p)),
+        )
+    })?;
+    Ok(Scene { spec, src })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn suggestions() {
+        let allowed = ["omega_n_over_p", "alpha", "gamma_mc", "gamma_mb", "zeta"];
+        assert_eq!(suggest("omega_n_ovr_p", &allowed), Some("omega_n_over_p"));
+        assert_eq!(suggest("alpah", &allowed), Some("alpha"));
+        assert_eq!(suggest("gama_mc", &allowed), Some("gamma_mc"));
+        assert_eq!(suggest("completely_else", &allowed), None);
+        assert_eq!(suggest("sine", &["none", "sine-pulse"]), Some("sine-pulse"));
+    }
+
+    #[test]
+    fn overrides_parse() {
+        let (p, v) = parse_override("structure.alpha=0.3").unwrap();
+        assert_eq!(p, ["structure", "alpha"]);
+        assert_eq!(v, Value::Float(0.3));
+        let (_, v) = parse_override("effects.impact=housner").unwrap();
+        assert_eq!(v, Value::String("housner".into()));
+        let (_, v) = parse_override("effects.impact={ restitution = 0.9 }").unwrap();
+        assert!(v.is_table());
+        assert!(parse_override("alpha").is_err());
+        assert!(parse_override("a..b=1").is_err());
+    }
+}

@@ -1,0 +1,468 @@
+//! The `rocking` binary end to end: example scenes, overrides, bad input, outputs.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use serde_json::Value;
+
+fn scenes() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes")
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let d = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join("rocking-cli")
+        .join(name);
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn rocking(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_rocking"))
+        .args(args)
+        .output()
+        .expect("run rocking")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// `rocking run SCENE --json --out DIR [extra]`: the parsed summary.
+fn run_json(scene: &Path, out: &Path, extra: &[&str]) -> Value {
+    let mut args = vec![
+        "run",
+        scene.to_str().unwrap(),
+        "--json",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    let o = rocking(&args);
+    assert!(
+        o.status.success(),
+        "{}: exit {:?}: {}",
+        scene.display(),
+        o.status.code(),
+        stderr(&o)
+    );
+    let text = String::from_utf8(o.stdout).unwrap();
+    assert_eq!(text.trim().lines().count(), 1, "one JSON object: {text}");
+    serde_json::from_str(&text).unwrap()
+}
+
+const KEYS: &[&str] = &[
+    "max_theta_over_alpha",
+    "max_u_over_ucr",
+    "overturned",
+    "overturn_time",
+    "impacts",
+    "significant_impacts",
+    "first_uplift_time",
+    "first_impact_time",
+    "energy_balance_residual",
+    "kernel_variant",
+    "solver_stats",
+];
+
+#[test]
+fn every_example_scene_runs() {
+    let mut names: Vec<PathBuf> = std::fs::read_dir(scenes())
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    names.sort();
+    assert!(names.len() >= 8, "{names:?}");
+    for scene in &names {
+        let stem = scene.file_stem().unwrap().to_str().unwrap();
+        // Plots are checked in `outputs_are_written`; skip them here to keep the suite fast.
+        let s = run_json(scene, &tmp(stem), &["--set", "output.plots=false"]);
+        for k in KEYS {
+            assert!(s.get(k).is_some(), "{stem}: missing `{k}` in {s}");
+        }
+        let max = s["max_theta_over_alpha"].as_f64().unwrap();
+        assert!(max.is_finite() && max >= 0.0, "{stem}: {max}");
+        assert!(s["max_u_over_ucr"].as_f64().unwrap().is_finite());
+        assert!(s["solver_stats"]["steps"].as_u64().unwrap() > 0);
+        if let Some(r) = s["energy_balance_residual"].as_f64() {
+            assert!(r.abs() < 1e-4, "{stem}: energy residual {r}");
+        }
+        let overturned = s["overturned"].as_bool().unwrap();
+        assert_eq!(overturned, s["overturn_time"].is_number(), "{stem}");
+        match stem {
+            "fig3-vvel" | "fig3-adjex" => {
+                let t = s["first_impact_time"].as_f64().unwrap();
+                assert!((t - 0.9).abs() < 0.05, "{stem}: first impact τ = {t}");
+                assert!(!overturned);
+                assert_eq!(s["kernel_variant"], "point_mass");
+            }
+            "fig10-overturns" => assert!(overturned),
+            "fig10-survives" | "fig5-flexible" | "fig5-stiff" | "wind-turbine-elcentro" => {
+                assert!(!overturned, "{stem}");
+                assert!(s["impacts"].as_u64().unwrap() >= 1, "{stem} rocks");
+            }
+            "housner-free" => {
+                assert_eq!(s["kernel_variant"], "rigid");
+                assert!((max - 0.5).abs() < 1e-9);
+                assert!(s["first_impact_time_s"].is_number(), "R given: seconds");
+            }
+            _ => {}
+        }
+    }
+}
+
+#[test]
+fn outputs_are_written() {
+    let out = tmp("outputs");
+    let o = rocking(&[
+        "run",
+        scenes().join("fig3-vvel.toml").to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let human = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        human.contains("max θ/α") && human.contains("summary.json"),
+        "{human}"
+    );
+    let s: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(s["kernel_variant"], "point_mass");
+    let h = std::fs::read_to_string(out.join("history.csv")).unwrap();
+    assert!(
+        h.starts_with("tau,t_s,theta_over_alpha,u_over_ucr,"),
+        "{}",
+        &h[..80]
+    );
+    assert!(h.lines().count() > 1000);
+    assert!(!h.contains("NaN") && !h.contains("inf"));
+    let e = std::fs::read_to_string(out.join("events.csv")).unwrap();
+    assert!(e.starts_with("tau,t_s,kind,branch,"));
+    assert!(e.contains(",impact,") && e.contains(",uplift,"));
+    for f in ["plot.png", "plot.svg"] {
+        let len = std::fs::metadata(out.join(f)).unwrap().len();
+        assert!(len > 10_000, "{f}: {len} bytes");
+    }
+    let png = std::fs::read(out.join("plot.png")).unwrap();
+    assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
+    let svg = std::fs::read_to_string(out.join("plot.svg")).unwrap();
+    assert!(svg.contains("<svg") && svg.contains("θ/α"));
+    // No temporary files left behind.
+    let leftovers: Vec<_> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.contains(".tmp"))
+        .collect();
+    assert!(leftovers.is_empty(), "{leftovers:?}");
+}
+
+#[test]
+fn summary_only_runs_write_only_the_summary() {
+    let out = tmp("summary-only");
+    let scene = scenes().join("fig5-stiff.toml");
+    let s = run_json(
+        &scene,
+        &out,
+        &[
+            "--set",
+            "output.plots=false",
+            "--set",
+            "output.events=false",
+            "--set",
+            "output.history=none",
+            "--set",
+            "effects.energy=false",
+        ],
+    );
+    assert!(s["energy_balance_residual"].is_null());
+    let files: Vec<_> = std::fs::read_dir(&out).unwrap().collect();
+    assert_eq!(files.len(), 1, "{files:?}");
+    assert!(out.join("summary.json").exists());
+}
+
+#[test]
+fn overrides_change_the_result() {
+    let scene = scenes().join("fig3-vvel.toml");
+    let off = ["--set", "output.plots=false"];
+    let base = run_json(&scene, &tmp("set-base"), &off);
+    let stronger = run_json(
+        &scene,
+        &tmp("set-strong"),
+        &[
+            "--set",
+            "output.plots=false",
+            "--set",
+            "excitation.amplitude=1.6",
+        ],
+    );
+    let (a, b) = (
+        base["max_theta_over_alpha"].as_f64().unwrap(),
+        stronger["max_theta_over_alpha"].as_f64().unwrap(),
+    );
+    assert!(b > a, "{a} -> {b}");
+    let rigid = run_json(
+        &scene,
+        &tmp("set-rigid"),
+        &[
+            "--set",
+            "output.plots=false",
+            "--set",
+            "effects.flexibility=false",
+            "--set",
+            "effects.impact={ restitution = 0.9 }",
+        ],
+    );
+    assert_eq!(rigid["kernel_variant"], "rigid");
+    // Other pulse kinds through --set.
+    for kind in ["cosine-pulse", "ricker"] {
+        let s = run_json(
+            &scene,
+            &tmp(kind),
+            &[
+                "--set",
+                "output.plots=false",
+                "--set",
+                &format!("excitation.kind={kind}"),
+            ],
+        );
+        assert!(s["excitation"].as_str().unwrap().starts_with(kind));
+    }
+    // Bad overrides: exit 2 with the key named.
+    for (arg, needle) in [
+        ("structure.alpha=2.0", "alpha"),
+        ("structure.alhpa=0.1", "did you mean `alpha`"),
+        ("structure.alpha=nan", "alpha"),
+        ("structure.zeta=-0.1", "zeta"),
+        ("excitation.amplitude=big", "amplitude"),
+        ("excitation.kind=sine", "did you mean \"sine-pulse\""),
+        ("effects.impact=bounce", "impact"),
+        ("solver.accuracy=fastest", "accuracy"),
+        ("noequals", "KEY.PATH=VALUE"),
+        ("structure.alpha.x=1", "not a table"),
+    ] {
+        let o = rocking(&["run", scene.to_str().unwrap(), "--json", "--set", arg]);
+        assert_eq!(o.status.code(), Some(2), "--set {arg}: {}", stderr(&o));
+        let err = stderr(&o);
+        assert!(err.contains(needle), "--set {arg}: {err}");
+        assert!(o.stdout.is_empty());
+    }
+}
+
+const GOOD: &str = r#"
+[structure]
+omega_n_over_p = 11.9
+alpha = 0.2
+zeta = 0.005
+
+[excitation]
+kind = "sine-pulse"
+omega_p_over_p = 5.1
+amplitude = 1.3
+"#;
+
+/// Writes a scene made from GOOD by replacing `from` with `to`, runs `check`, returns the output.
+fn check_variant(dir: &Path, name: &str, text: &str) -> Output {
+    let path = dir.join(format!("{name}.toml"));
+    std::fs::write(&path, text).unwrap();
+    rocking(&["check", path.to_str().unwrap()])
+}
+
+#[test]
+fn bad_scenes_exit_2_naming_file_line_and_key() {
+    let dir = tmp("bad");
+    std::fs::write(
+        dir.join("malformed.AT2"),
+        "title\nevent\nunits\nNPTS= 3, DT= .01\n0.1 x 0.3\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("good.AT2"),
+        "title\nevent\nunits\nNPTS= 3, DT= .01\n0.1 0.2 0.3\n",
+    )
+    .unwrap();
+    let cases: &[(&str, &str, &str, &[&str])] = &[
+        (
+            "typo",
+            "omega_n_over_p = 11.9",
+            "omega_n_ovr_p = 11.9",
+            &[
+                "typo.toml:3:",
+                "unknown key `omega_n_ovr_p` in [structure]",
+                "did you mean `omega_n_over_p`?",
+            ],
+        ),
+        (
+            "wrongtype",
+            "alpha = 0.2",
+            "alpha = \"steep\"",
+            &["wrongtype.toml:4:", "alpha", "string"],
+        ),
+        (
+            "zerofreq",
+            "omega_p_over_p = 5.1",
+            "omega_p_over_p = 0",
+            &["zerofreq.toml:9:", "omega_p_over_p", "> 0"],
+        ),
+        (
+            "negzeta",
+            "zeta = 0.005",
+            "zeta = -0.1",
+            &["negzeta.toml:5:", "zeta", "0 <= zeta < 1"],
+        ),
+        (
+            "steep",
+            "alpha = 0.2",
+            "alpha = 1.6",
+            &["steep.toml:4:", "alpha", "pi/2"],
+        ),
+        (
+            "nan",
+            "alpha = 0.2",
+            "alpha = nan",
+            &["nan.toml:4:", "alpha", "NaN"],
+        ),
+        (
+            "inf",
+            "amplitude = 1.3",
+            "amplitude = inf",
+            &["inf.toml:10:", "amplitude"],
+        ),
+        (
+            "missing",
+            "alpha = 0.2\n",
+            "",
+            &["missing.toml:2:", "missing key `alpha`"],
+        ),
+        (
+            "syntax",
+            "alpha = 0.2",
+            "alpha = ",
+            &["syntax.toml:4:", "invalid TOML"],
+        ),
+        (
+            "badkind",
+            "kind = \"sine-pulse\"",
+            "kind = \"ricker\"\nshape = \"round\"",
+            &["badkind.toml:9:", "shape"],
+        ),
+        (
+            "norecord",
+            "kind = \"sine-pulse\"\nomega_p_over_p = 5.1\namplitude = 1.3",
+            "kind = \"record\"\npath = \"nowhere.AT2\"",
+            &["norecord.toml:", "nowhere.AT2", "cannot read"],
+        ),
+        (
+            "noscale",
+            "kind = \"sine-pulse\"\nomega_p_over_p = 5.1\namplitude = 1.3",
+            "kind = \"record\"\npath = \"good.AT2\"",
+            &["noscale.toml:", "`r` (m) or `p` (1/s)"],
+        ),
+    ];
+    for (name, from, to, needles) in cases {
+        assert!(GOOD.contains(from), "{name}");
+        let o = check_variant(&dir, name, &GOOD.replacen(from, to, 1));
+        assert_eq!(o.status.code(), Some(2), "{name}: {}", stderr(&o));
+        let err = stderr(&o);
+        for n in *needles {
+            assert!(err.contains(n), "{name}: `{n}` not in: {err}");
+        }
+    }
+    // A malformed record: the record's file and line, and the scene's.
+    let text = GOOD
+        .replace("zeta = 0.005", "zeta = 0.005\nr = 2.0")
+        .replace(
+            "kind = \"sine-pulse\"\nomega_p_over_p = 5.1\namplitude = 1.3",
+            "kind = \"record\"\npath = \"malformed.AT2\"",
+        );
+    let o = check_variant(&dir, "malformed", &text);
+    assert_eq!(o.status.code(), Some(2));
+    let err = stderr(&o);
+    assert!(
+        err.contains("malformed.toml:10:") && err.contains("malformed.AT2:5"),
+        "{err}"
+    );
+    // Missing scene file and clap usage errors.
+    let o = rocking(&["run", dir.join("absent.toml").to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("absent.toml"));
+    assert_eq!(rocking(&["run"]).status.code(), Some(2));
+    assert_eq!(rocking(&["frobnicate"]).status.code(), Some(2));
+}
+
+#[test]
+fn check_prints_variant_reasons_and_derived_quantities() {
+    let o = rocking(&[
+        "check",
+        scenes().join("fig5-flexible.toml").to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = String::from_utf8_lossy(&o.stdout);
+    for needle in [
+        "kernel variant: full",
+        "because all masses present",
+        "ω_n",
+        "ω_up",
+        "u_cr",
+        "θ_cr",
+        "E_ref",
+        "static uplift threshold",
+    ] {
+        assert!(out.contains(needle), "`{needle}` not in:\n{out}");
+    }
+    let o = rocking(&[
+        "check",
+        scenes().join("fig5-flexible.toml").to_str().unwrap(),
+        "--set",
+        "effects.column_mass=false",
+        "--set",
+        "effects.base_mass=false",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["kernel_variant"], "point_mass");
+    let reasons = v["variant_reasons"].as_array().unwrap();
+    assert!(reasons
+        .iter()
+        .any(|r| r.as_str().unwrap().contains("column_mass = false")));
+    let thr = v["derived"]["static_uplift_over_g_tan_alpha"]
+        .as_f64()
+        .unwrap();
+    assert!(thr > 0.5 && thr < 1.5, "{thr}");
+}
+
+#[test]
+fn mp_pulse_and_physical_si_pulse() {
+    let dir = tmp("kinds");
+    let mp = r#"
+[structure]
+omega_n_over_p = 11.9
+alpha = 0.2
+[excitation]
+kind = "mp-pulse"
+omega_p_over_p = 4.0
+velocity_amplitude = 0.8
+gamma = 2.0
+"#;
+    std::fs::write(dir.join("mp.toml"), mp).unwrap();
+    let s = run_json(&dir.join("mp.toml"), &dir.join("mp"), &[]);
+    assert!(s["excitation"].as_str().unwrap().starts_with("mp-pulse"));
+    let si = r#"
+[structure]
+h = 10.0
+b = 1.0
+ei = 1e9
+m = 1e4
+zeta = 0.02
+[excitation]
+kind = "sine-pulse"
+omega_p = 6.0
+amplitude_g = 0.3
+"#;
+    std::fs::write(dir.join("si.toml"), si).unwrap();
+    let s = run_json(&dir.join("si.toml"), &dir.join("si"), &[]);
+    assert!(s["first_uplift_time_s"].is_number(), "{s}");
+}
