@@ -133,6 +133,15 @@ pub trait GroundMotion {
         self.accel(t)
     }
 
+    /// The longest time step that resolves the motion between two kinks: a
+    /// sixteenth of the shortest period of a smooth pulse, infinite for a
+    /// motion that is linear between kinks (a record). A simulator uses it to
+    /// bound its steps where nothing else does (a rigid body in full contact),
+    /// so that no excursion of the excitation falls between two steps.
+    fn resolution(&self) -> f64 {
+        f64::INFINITY
+    }
+
     /// Iterator over the kinks in the open-closed interval `(from, to]`, in
     /// increasing order.
     fn kinks(&self, from: f64, to: f64) -> Kinks<'_, Self>
@@ -193,6 +202,9 @@ impl<M: GroundMotion + ?Sized> GroundMotion for &M {
     fn accel_right(&self, t: f64) -> f64 {
         (**self).accel_right(t)
     }
+    fn resolution(&self) -> f64 {
+        (**self).resolution()
+    }
 }
 
 impl<M: GroundMotion + ?Sized> GroundMotion for Box<M> {
@@ -210,6 +222,9 @@ impl<M: GroundMotion + ?Sized> GroundMotion for Box<M> {
     }
     fn accel_right(&self, t: f64) -> f64 {
         (**self).accel_right(t)
+    }
+    fn resolution(&self) -> f64 {
+        (**self).resolution()
     }
 }
 
@@ -262,6 +277,9 @@ impl<M: GroundMotion> GroundMotion for Scaled<M> {
     }
     fn accel_right(&self, t: f64) -> f64 {
         self.factor * self.inner.accel_right(t)
+    }
+    fn resolution(&self) -> f64 {
+        self.inner.resolution()
     }
 }
 
@@ -323,6 +341,9 @@ impl GroundMotion for Excitation {
     }
     fn accel_right(&self, t: f64) -> f64 {
         dispatch!(self, m => m.accel_right(t), 0.0)
+    }
+    fn resolution(&self) -> f64 {
+        dispatch!(self, m => m.resolution(), f64::INFINITY)
     }
 }
 

@@ -87,6 +87,9 @@ impl SinePulse {
 }
 
 impl GroundMotion for SinePulse {
+    fn resolution(&self) -> f64 {
+        self.period() / 16.0
+    }
     #[inline]
     fn accel(&self, t: f64) -> f64 {
         if t >= self.start && t <= self.end() {
@@ -157,6 +160,9 @@ impl CosinePulse {
 }
 
 impl GroundMotion for CosinePulse {
+    fn resolution(&self) -> f64 {
+        self.period() / 16.0
+    }
     #[inline]
     fn accel(&self, t: f64) -> f64 {
         if t >= self.start && t <= self.end() {
@@ -298,6 +304,9 @@ impl Ricker {
 }
 
 impl GroundMotion for Ricker {
+    fn resolution(&self) -> f64 {
+        self.period() / 16.0
+    }
     #[inline]
     fn accel(&self, t: f64) -> f64 {
         if t >= self.start && t <= self.end() {
@@ -416,6 +425,9 @@ impl MavroeidisPapageorgiou {
 }
 
 impl GroundMotion for MavroeidisPapageorgiou {
+    fn resolution(&self) -> f64 {
+        1.0 / (16.0 * self.f_p)
+    }
     #[inline]
     fn accel(&self, t: f64) -> f64 {
         if !self.on_support(t) {

@@ -34,7 +34,11 @@ fn main() {
             let wp = 1.0 + 9.0 * i as f64 / (n - 1) as f64;
             let amp = 1.0 + 19.0 * j as f64 / (n - 1) as f64;
             let pulse = SinePulse::new(amp * d.alpha.tan(), wp);
-            let opts = Options { accuracy: preset.accuracy(), t_end: 2.0 * std::f64::consts::PI / wp + 20.0, ..Options::default() };
+            let opts = Options {
+                accuracy: preset.accuracy(),
+                t_end: 2.0 * std::f64::consts::PI / wp + 20.0,
+                ..Options::default()
+            };
             let run = simulate(&structure, &pulse, &Effects::default(), &opts).unwrap();
             rhs += run.summary.solver_stats.rhs_evaluations;
             overturned += run.summary.overturned as usize;

@@ -35,13 +35,15 @@ pub enum SimError {
     Guard(String),
     /// Invalid options.
     Options(String),
+    /// The model itself became singular (see the message).
+    Singular(String),
 }
 
 impl std::fmt::Display for SimError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             SimError::Integration(e) => write!(f, "{e}"),
-            SimError::Guard(m) | SimError::Options(m) => f.write_str(m),
+            SimError::Guard(m) | SimError::Options(m) | SimError::Singular(m) => f.write_str(m),
         }
     }
 }
@@ -66,6 +68,8 @@ enum Next {
         u_dot: f64,
         w: f64,
         d: f64,
+        /// Just come to rest: no uplift before one step has been taken (see `contact`).
+        settle: bool,
     },
     Rocking {
         t: f64,
@@ -78,6 +82,7 @@ enum Next {
     Done {
         t: f64,
         phase: Phase,
+        s: f64,
         state: [f64; 4],
         w: f64,
         d: f64,
@@ -106,8 +111,9 @@ struct Sim<'a, V: Variant, M: GroundMotion, const ENERGY: bool> {
     rest_rate: f64,
     significant_rate: f64,
     v_rest: f64,
-    contact_ode: Integrator<4>,
-    rocking_ode: Integrator<6>,
+    ode_options: OdeOptions,
+    contact_tol: Tolerances<4>,
+    rocking_tol: Tolerances<6>,
     stats: SolverStats,
     max_theta: f64,
     max_u: f64,
@@ -177,8 +183,9 @@ pub fn simulate<V: Variant, M: GroundMotion, const ENERGY: bool>(
         rest_rate: opts.rest_rate * a * pf,
         significant_rate: 0.01 * a * pf,
         v_rest: e0[1] + e0[2],
-        contact_ode: Integrator::new(ode, contact_tol)?,
-        rocking_ode: Integrator::new(ode, rocking_tol)?,
+        ode_options: ode,
+        contact_tol,
+        rocking_tol,
         stats: SolverStats::default(),
         max_theta: 0.0,
         max_u: 0.0,
@@ -237,25 +244,29 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
                 u_dot: i.u_dot,
                 w: 0.0,
                 d: 0.0,
+                settle: false,
             }
         };
-        let (t_end, phase, state, w, d) = loop {
+        let (t_end, phase, s_end, state, w, d) = loop {
             next = match next {
-                Next::Contact { t, u, u_dot, w, d } => self.contact(t, u, u_dot, w, d)?,
+                Next::Contact {
+                    t,
+                    u,
+                    u_dot,
+                    w,
+                    d,
+                    settle,
+                } => self.contact(t, u, u_dot, w, d, settle)?,
                 Next::Rocking { t, s, x, n, w, d } => self.rocking(t, s, x, n, w, d)?,
                 Next::Done {
                     t,
                     phase,
+                    s,
                     state,
                     w,
                     d,
-                } => break (t, phase, state, w, d),
+                } => break (t, phase, s, state, w, d),
             };
-        };
-        let s_end = if phase == Phase::RockingLeft {
-            LEFT
-        } else {
-            RIGHT
         };
         let e_ref = self.derived.e_ref;
         let (energy, residual) = if ENERGY {
@@ -416,14 +427,103 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
         c + reach < 0.0
     }
 
-    fn contact(&mut self, t0: f64, u: f64, u_dot: f64, w: f64, d: f64) -> Result<Next, SimError> {
+    /// Whether the base really lifts about `s` from full contact: the rocking equations give
+    /// s θ'' > 0. It is equivalent to f_s > 0 (equations.md 1.2) except within rounding of
+    /// f_s = 0, where it decides consistently with the integrator that will follow.
+    fn lifts(&self, s: f64, u: f64, u_dot: f64, ug: f64) -> bool {
+        s * V::rocking_rhs(&[0.0, u, 0.0, u_dot], ug, s, &self.p)[2] > 0.0
+    }
+
+    /// The first time in [t_a, t_b] at which the base lifts about `s`, given that f_s > 0
+    /// at t_a; `None` when it does not lift even at t_b (a rounding-level excursion of f_s).
+    fn first_lift(&self, ode: &Integrator<4>, s: f64, t_a: f64, t_b: f64) -> Option<f64> {
+        let lifts_at = |t: f64| {
+            let y = ode.dense(t);
+            self.lifts(s, y[0], y[1], self.motion.accel(t))
+        };
+        if lifts_at(t_a) {
+            return Some(t_a);
+        }
+        if !lifts_at(t_b) {
+            return None;
+        }
+        let (mut lo, mut hi) = (t_a, t_b);
+        while hi - lo > 4.0 * f64::EPSILON * hi.abs().max(1.0) {
+            let mid = 0.5 * (lo + hi);
+            if lifts_at(mid) {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        Some(hi)
+    }
+
+    /// Integrator options for a contact phase starting at `t0`.
+    fn phase_options(&self, t0: f64) -> OdeOptions {
+        let h_max = if t0 < self.motion.end() {
+            self.motion.resolution()
+        } else {
+            f64::INFINITY
+        };
+        OdeOptions {
+            h_max,
+            ..self.ode_options
+        }
+    }
+
+    /// The guard on the total number of step attempts of a run.
+    fn guard_steps<const N: usize>(&self, ode: &Integrator<N>) -> Result<(), SimError> {
+        let st = ode.stats();
+        let steps = self.stats.steps + self.stats.rejected_steps + st.steps + st.rejected;
+        if steps > self.opts.max_steps {
+            return Err(SimError::Guard(format!(
+                "more than {} integrator steps by τ = {:.6}: the run does not end (raise max_steps)",
+                self.opts.max_steps,
+                self.time(ode.t()).tau
+            )));
+        }
+        Ok(())
+    }
+
+    /// An integration failure while rocking, explained when the mass matrix became singular.
+    fn explain_failure(&self, e: OdeError, y: &Y6, s: f64) -> SimError {
+        let [mtt, mtu, muu] = V::mass_matrix(&[y[0], y[1]], s, &self.p);
+        let conditioning = (mtt * muu - mtu * mtu) / (mtt * muu);
+        if conditioning.is_finite() && conditioning > 1e-8 {
+            return SimError::Integration(e);
+        }
+        SimError::Singular(format!(
+            "the mass matrix became singular at τ = {:.6} (det M / (M_θθ M_uu) = {conditioning:.1e}, \
+             u/u_cr = {:.1}): with a massless column the top mass is then above the pivot and θ and u \
+             cannot be told apart; such deflections are far outside the model's validity ({e})",
+            self.time(e.t).tau,
+            y[1] / self.derived.u_cr,
+        ))
+    }
+
+    /// Full contact from `t0`. The uplift functions are checked at once (after an impact this is
+    /// how the rigid limit works), except when the structure has just come to rest (`settle`):
+    /// then a first step is taken before an uplift is possible, so that a grazing excursion of
+    /// f_s cannot make the run chatter at one instant.
+    #[allow(clippy::too_many_arguments)]
+    fn contact(
+        &mut self,
+        t0: f64,
+        u: f64,
+        u_dot: f64,
+        w: f64,
+        d: f64,
+        settle: bool,
+    ) -> Result<Next, SimError> {
         let ug0 = self.motion.accel_right(t0);
         let f = self.uplift_functions(t0, u, u_dot, ug0);
         for (k, s) in [(0, RIGHT), (1, LEFT)] {
-            if f[k] > 0.0 {
+            if !settle && f[k] > 0.0 && self.lifts(s, u, u_dot, ug0) {
                 return self.uplift(t0, s, u, u_dot, w, d);
             }
         }
+        let mut settling = settle;
         let full_history = !matches!(self.opts.history, History::None);
         let may_stop = self.opts.stop_when_known && !full_history;
         let (p, motion) = (self.p, self.motion);
@@ -444,7 +544,9 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
                 V::uplift(&[y[0], y[1]], ug, LEFT, &p),
             )
         };
-        let mut ode = self.contact_ode;
+        // A rigid column in contact gives the error control nothing to follow: the steps are
+        // bounded by the excitation's resolution, so that no excursion of f_s falls between them.
+        let mut ode = Integrator::new(self.phase_options(t0), self.contact_tol)?;
         ode.reset(t0, Y4::new(u, u_dot, w, d), &mut rhs)?;
         let mut g_old = f;
         let dirs = [Direction::Rising, Direction::Rising];
@@ -452,22 +554,34 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
         loop {
             let t_stop = self.t_stop(ode.t());
             let info = ode.step(&mut rhs, t_stop)?;
+            self.guard_steps(&ode)?;
             let (t_old, t_new) = (info.t_old, info.t_new);
             let g_new = g(t_new, ode.y());
-            if let Some(ev) = locate(&mut ode, &mut g, &dirs, &g_old, &g_new) {
-                self.extremes_contact(&ode, t_old, ev.t);
-                let y = ev.y;
+            let crossing = if settling {
+                settling = false;
+                (0..2).find(|&k| g_new[k] > 0.0).map(|k| (t_new, k, t_new))
+            } else {
+                locate(&mut ode, &mut g, &dirs, &g_old, &g_new)
+                    .map(|ev| (ev.t, ev.index, t_new))
+                    .or_else(|| grazing(&mut g, &|t| ode.dense(t), t_old, t_new, &g_old, &g_new))
+            };
+            let lift = crossing.and_then(|(t_up, index, t_far)| {
+                let s = if index == 0 { RIGHT } else { LEFT };
+                self.first_lift(&ode, s, t_up, t_far).map(|t| (t, index))
+            });
+            if let Some((t_up, index)) = lift {
+                self.extremes_contact(&ode, t_old, t_up);
+                let y = ode.dense(t_up);
                 self.step_history(
                     t_old,
-                    ev.t,
+                    t_up,
                     |t| contact_state(&ode.dense(t)),
                     Phase::Contact,
                     RIGHT,
                 );
                 self.stats.add(ode.take_stats());
-                self.contact_ode = ode;
-                let s = if ev.index == 0 { RIGHT } else { LEFT };
-                return self.uplift(ev.t, s, y[0], y[1], y[2], y[3]);
+                let s = if index == 0 { RIGHT } else { LEFT };
+                return self.uplift(t_up, s, y[0], y[1], y[2], y[3]);
             }
             self.extremes_contact(&ode, t_old, t_new);
             self.step_history(
@@ -483,10 +597,10 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
                 || (may_stop && t_new >= excitation_end && self.can_never_uplift(y[0], y[1]));
             if done {
                 self.stats.add(ode.take_stats());
-                self.contact_ode = ode;
                 return Ok(Next::Done {
                     t: t_new,
                     phase: Phase::Contact,
+                    s: RIGHT,
                     state: [0.0, y[0], 0.0, y[1]],
                     w: y[2],
                     d: y[3],
@@ -583,6 +697,9 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
         } else {
             s * V::rocking_rhs(&x0, motion.accel_right(t0), s, &p)[2] / 2.0
         };
+        // An uplift exactly at f_s = 0 has θ'' = 0: keep the event armed (it fires at once if θ
+        // turns back, which ends the zero-length rocking phase with an impact).
+        let start_limit = start_limit.max(f64::MIN_POSITIVE);
         let mut g = |t: f64, y: &Y6| -> G2 {
             let dt = t - t0;
             let impact = if dt > 0.0 {
@@ -593,21 +710,23 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
             G2::new(impact, s * y[0] - over)
         };
         let y0 = Y6::new(x0[0], x0[1], x0[2], x0[3], w, d);
-        let mut ode = self.rocking_ode;
+        let mut ode = Integrator::new(self.ode_options, self.rocking_tol)?;
         ode.reset(t0, y0, &mut rhs)?;
         let mut g_old = g(t0, &y0);
         let dirs = [Direction::Falling, Direction::Rising];
         let phase = Phase::rocking(s);
         loop {
             let t_stop = self.t_stop(ode.t());
-            let info = ode.step(&mut rhs, t_stop)?;
+            let info = ode
+                .step(&mut rhs, t_stop)
+                .map_err(|e| self.explain_failure(e, ode.y(), s))?;
+            self.guard_steps(&ode)?;
             let (t_old, t_new) = (info.t_old, info.t_new);
             let g_new = g(t_new, ode.y());
             if let Some(ev) = locate(&mut ode, &mut g, &dirs, &g_old, &g_new) {
                 self.extremes_rocking(&ode, t_old, ev.t);
                 self.step_history(t_old, ev.t, |t| rocking_state(&ode.dense(t)), phase, s);
                 self.stats.add(ode.take_stats());
-                self.rocking_ode = ode;
                 let y = ev.y;
                 if ev.index == 1 {
                     self.count_event(ev.t)?;
@@ -626,6 +745,7 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
                     return Ok(Next::Done {
                         t: ev.t,
                         phase: Phase::Overturned,
+                        s,
                         state: x,
                         w: y[4],
                         d: y[5],
@@ -639,10 +759,10 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
             if t_new >= self.opts.t_end {
                 let y = *ode.y();
                 self.stats.add(ode.take_stats());
-                self.rocking_ode = ode;
                 return Ok(Next::Done {
                     t: t_new,
                     phase,
+                    s,
                     state: [y[0], y[1], y[2], y[3]],
                     w: y[4],
                     d: y[5],
@@ -654,8 +774,6 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
     /// The impact at θ = 0 while rocking about `s`: the corner −s hits the ground.
     fn impact(&mut self, t: f64, s: f64, xi: [f64; 3], w: f64, d: f64) -> Result<Next, SimError> {
         self.count_event(t)?;
-        self.impacts += 1;
-        self.first_impact.get_or_insert(t);
         let [u, u_dot, theta_dot] = xi;
         if theta_dot.abs() >= self.significant_rate {
             self.significant += 1;
@@ -663,6 +781,32 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
         let p = &self.p;
         let s2 = -s;
         let contact_energy = |ud: f64| V::energy(&[0.0, u, 0.0, ud], s2, p)[0];
+        if theta_dot.abs() < self.rest_rate {
+            // A negligible rocking excursion (grazing, or the end of a Zeno sequence): the base
+            // settles in full contact with the column's motion unchanged.
+            let e_before = V::energy(&[0.0, u, theta_dot, u_dot], s, p)[0];
+            let e_after = contact_energy(u_dot);
+            self.losses += e_before - e_after;
+            let pre = [theta_dot, u, u_dot];
+            self.log_event(
+                t,
+                EventKind::Rest,
+                "rest",
+                Phase::Contact,
+                pre,
+                (e_before, e_after),
+            );
+            return Ok(Next::Contact {
+                t,
+                u,
+                u_dot,
+                w,
+                d,
+                settle: true,
+            });
+        }
+        self.impacts += 1;
+        self.first_impact.get_or_insert(t);
         let rocking_energy = |td: f64, ud: f64| V::energy(&[0.0, u, td, ud], s2, p)[0];
         let (after, branch, e_before) = match self.opts.impact {
             ImpactModel::Vvel => {
@@ -800,6 +944,7 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
                     u_dot: ud,
                     w,
                     d,
+                    settle: kind == EventKind::Rest,
                 })
             }
             After::Rocking {
@@ -864,4 +1009,65 @@ fn turning_point(rate: impl Fn(f64) -> f64, a: f64, b: f64, ra: f64) -> f64 {
         }
     }
     0.5 * (a + b)
+}
+
+/// An uplift function negative at both ends of a step can still touch zero inside it (grazing).
+/// Where it rises at the start of the step and falls at its end, its maximum is found on the
+/// dense output (golden section); if that is positive, the uplift is the first positive point
+/// after the zero before it.
+fn grazing<G, D>(
+    g: &mut G,
+    dense: &D,
+    t_old: f64,
+    t_new: f64,
+    g_old: &G2,
+    g_new: &G2,
+) -> Option<(f64, usize, f64)>
+where
+    G: FnMut(f64, &Y4) -> G2,
+    D: Fn(f64) -> Y4,
+{
+    let delta = (t_new - t_old) * 1e-4;
+    let mut at = |t: f64, k: usize| g(t, &dense(t))[k];
+    let mut best: Option<(f64, usize, f64)> = None;
+    for k in 0..2 {
+        if g_old[k] >= 0.0 || g_new[k] >= 0.0 {
+            continue;
+        }
+        if !(at(t_old + delta, k) > g_old[k] && at(t_new - delta, k) > g_new[k]) {
+            continue;
+        }
+        let r = 0.5 * (5f64.sqrt() - 1.0);
+        let (mut a, mut b) = (t_old, t_new);
+        let (mut c, mut d) = (b - r * (b - a), a + r * (b - a));
+        let (mut fc, mut fd) = (at(c, k), at(d, k));
+        while b - a > 4.0 * f64::EPSILON * b.abs().max(1.0) && fc.max(fd) <= 0.0 {
+            if fc > fd {
+                (b, d, fd) = (d, c, fc);
+                c = b - r * (b - a);
+                fc = at(c, k);
+            } else {
+                (a, c, fc) = (c, d, fd);
+                d = a + r * (b - a);
+                fd = at(d, k);
+            }
+        }
+        let (t_max, f_max) = if fc > fd { (c, fc) } else { (d, fd) };
+        if f_max <= 0.0 {
+            continue;
+        }
+        let (mut lo, mut hi) = (t_old, t_max);
+        while hi - lo > 4.0 * f64::EPSILON * hi.abs().max(1.0) {
+            let mid = 0.5 * (lo + hi);
+            if at(mid, k) > 0.0 {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        if best.is_none_or(|(t, _, _)| hi < t) {
+            best = Some((hi, k, t_max));
+        }
+    }
+    best
 }
