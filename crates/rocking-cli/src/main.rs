@@ -3,6 +3,8 @@
 //! ```text
 //! rocking run SCENE [--set key.path=value ...] [--out DIR] [--json]
 //! rocking check SCENE [--set key.path=value ...] [--json]
+//! rocking spectrum SCENE [--axis key.path=start:stop:count ...] [--set ...] [--out DIR] [--quiet]
+//! rocking batch SCENE [--records FILE|DIR ...] [--scales 0.5,1,2] [--set ...] [--out DIR] [--quiet]
 //! ```
 //!
 //! Exit codes: 0 ok, 2 invalid input (scene, record, arguments), 1 internal failure.
@@ -12,6 +14,7 @@ mod model;
 mod plot;
 mod report;
 mod scene;
+mod sweep;
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -56,6 +59,53 @@ enum Command {
         /// Print the result as one JSON object.
         #[arg(long)]
         json: bool,
+    },
+    /// Sweep a scene over axes of scene values (default: the paper's ω_p/p × a_p/(g tan α)),
+    /// in parallel; writes cells.csv, meta.json and the spectrum plot. An interrupted sweep
+    /// resumes when run again with the same output directory.
+    Spectrum {
+        /// The scene file (TOML).
+        scene: PathBuf,
+        /// An axis `key.path=start:stop:count` or `key.path=v1,v2,...` (repeatable; the last
+        /// varies fastest; three axes draw one overturning boundary per value of the first).
+        #[arg(long = "axis", value_name = "KEY.PATH=START:STOP:COUNT")]
+        axes: Vec<String>,
+        /// Override a scene value (repeatable).
+        #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
+        set: Vec<String>,
+        /// Output directory (default: out/<scene-stem>-spectrum/).
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// No progress bar.
+        #[arg(long)]
+        quiet: bool,
+        /// Number of threads (default: all cores).
+        #[arg(long)]
+        threads: Option<usize>,
+    },
+    /// Run a record scene for every record and scale factor: per run the summary, per scale the
+    /// fraction that overturned (fragility-style curve).
+    Batch {
+        /// The scene file (TOML), with `kind = "record"` in [excitation].
+        scene: PathBuf,
+        /// Records: .AT2 files or folders of them (default: `records` in [sweep]).
+        #[arg(long = "records", value_name = "FILE|DIR", num_args = 1..)]
+        records: Vec<PathBuf>,
+        /// Scale factors, comma separated (default: `scales` in [sweep], or 1).
+        #[arg(long, value_delimiter = ',')]
+        scales: Vec<f64>,
+        /// Override a scene value (repeatable).
+        #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
+        set: Vec<String>,
+        /// Output directory (default: out/<scene-stem>-batch/).
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// No progress bar.
+        #[arg(long)]
+        quiet: bool,
+        /// Number of threads (default: all cores).
+        #[arg(long)]
+        threads: Option<usize>,
     },
 }
 
@@ -243,6 +293,23 @@ fn main() -> ExitCode {
             json,
         } => run(&scene, &set, out, json),
         Command::Check { scene, set, json } => check(&scene, &set, json),
+        Command::Spectrum {
+            scene,
+            axes,
+            set,
+            out,
+            quiet,
+            threads,
+        } => sweep::spectrum(&scene, &set, &axes, out, quiet, threads),
+        Command::Batch {
+            scene,
+            records,
+            scales,
+            set,
+            out,
+            quiet,
+            threads,
+        } => sweep::batch(&scene, &set, &records, &scales, out, quiet, threads),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

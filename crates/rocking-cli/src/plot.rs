@@ -204,3 +204,232 @@ fn encode_png(rgb: &[u8], w: u32, h: u32) -> Result<Vec<u8>, String> {
         .map_err(|e| e.to_string())?;
     Ok(out)
 }
+
+/// Grey of a survivor with max θ/α = `theta`, on a scale that ends at `top` (black).
+fn grey(theta: f64, top: f64) -> RGBColor {
+    let v = (1.0 - (theta / top).clamp(0.0, 1.0)) * 225.0 + 20.0;
+    RGBColor(v as u8, v as u8, v as u8)
+}
+
+/// Colour of a spectrum cell: the overturning classes as regions (as in the paper's Figs 6-8),
+/// survivors shaded by max θ/α (white = 0, black = the largest survivor of the sweep).
+fn cell_colour(c: &rocking_spectra::Cell, top: f64) -> RGBColor {
+    use rocking_spectra::CellClass::*;
+    match c.class {
+        NoUplift => RGBColor(236, 240, 244),
+        Survived => grey(c.max_theta_over_alpha, top),
+        OverturnedNoImpact => RGBColor(60, 110, 200),
+        OverturnedOneImpact => RGBColor(150, 90, 40),
+        OverturnedImpacts => RGBColor(230, 150, 40),
+    }
+}
+
+fn draw_spectrum<DB: DrawingBackend>(
+    root: DrawingArea<DB, Shift>,
+    title: &str,
+    sweep: &rocking_spectra::Sweep,
+    cells: &[rocking_spectra::Cell],
+) -> Result<(), String> {
+    let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
+    let top = cells
+        .iter()
+        .filter(|c| c.class == rocking_spectra::CellClass::Survived)
+        .map(|c| c.max_theta_over_alpha)
+        .fold(1e-9, f64::max);
+    root.fill(&WHITE).map_err(e)?;
+    let (plot_area, legend) = root.split_horizontally(WIDTH - 230);
+    let n = sweep.axes.len();
+    let (ax, ay) = (&sweep.axes[n - 2], &sweep.axes[n - 1]);
+    let span = |v: &[f64]| {
+        let (lo, hi) = (v[0].min(v[v.len() - 1]), v[0].max(v[v.len() - 1]));
+        let h = if v.len() > 1 {
+            (hi - lo) / (v.len() - 1) as f64 / 2.0
+        } else {
+            0.5
+        };
+        (lo - h, hi + h, h)
+    };
+    let (x0, x1, hx) = span(&ax.values);
+    let (y0, y1, hy) = span(&ay.values);
+    let mut chart = ChartBuilder::on(&plot_area)
+        .caption(title, ("sans-serif", 17))
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(60)
+        .build_cartesian_2d(x0..x1, y0..y1)
+        .map_err(e)?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_desc(ax.key.as_str())
+        .y_desc(ay.key.as_str())
+        .label_style(("sans-serif", 14))
+        .draw()
+        .map_err(e)?;
+    if n == 2 {
+        chart
+            .draw_series(cells.iter().map(|c| {
+                let v = sweep.values(c.index);
+                Rectangle::new(
+                    [(v[0] - hx, v[1] - hy), (v[0] + hx, v[1] + hy)],
+                    cell_colour(c, top).filled(),
+                )
+            }))
+            .map_err(e)?;
+        let items = [
+            ("no uplift".to_string(), RGBColor(236, 240, 244)),
+            ("survived, max θ/α = 0".to_string(), grey(0.0, top)),
+            (
+                format!("survived, max θ/α = {:.2}", top / 2.0),
+                grey(top / 2.0, top),
+            ),
+            (format!("survived, max θ/α = {top:.2}"), grey(top, top)),
+            ("overturned, no impact".to_string(), RGBColor(60, 110, 200)),
+            ("overturned, one impact".to_string(), RGBColor(150, 90, 40)),
+            ("overturned, impacts".to_string(), RGBColor(230, 150, 40)),
+        ];
+        for (i, (label, colour)) in items.iter().enumerate() {
+            let y = 60 + 30 * i as i32;
+            legend
+                .draw(&Rectangle::new([(10, y), (30, y + 18)], colour.filled()))
+                .map_err(e)?;
+            legend
+                .draw(&Rectangle::new([(10, y), (30, y + 18)], BLACK))
+                .map_err(e)?;
+            legend
+                .draw(&Text::new(
+                    label.clone(),
+                    (38, y + 2),
+                    ("sans-serif", 14).into_font(),
+                ))
+                .map_err(e)?;
+        }
+    } else {
+        let palette = [
+            BLUE,
+            RED,
+            GREEN,
+            MAGENTA,
+            CYAN,
+            BLACK,
+            RGBColor(150, 90, 40),
+            RGBColor(230, 150, 40),
+        ];
+        for (i, (family, pts)) in crate::sweep::boundary(sweep, cells).into_iter().enumerate() {
+            let colour = palette[i % palette.len()];
+            chart
+                .draw_series(LineSeries::new(pts, colour.stroke_width(2)))
+                .map_err(e)?
+                .label(format!("{} = {family}", sweep.axes[n - 3].key))
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
+                });
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .label_font(("sans-serif", 13))
+            .draw()
+            .map_err(e)?;
+    }
+    root.present().map_err(e)
+}
+
+/// The spectrum plot of a 2-axis sweep (regions and θ/α shading) or the overturning boundaries
+/// of a 3-axis sweep (one line per value of the first axis: the smallest overturning amplitude),
+/// as PNG and SVG.
+pub fn spectrum_plots(
+    title: &str,
+    sweep: &rocking_spectra::Sweep,
+    cells: &[rocking_spectra::Cell],
+    dir: &Path,
+) -> Result<Vec<PathBuf>, CliError> {
+    if sweep.axes.len() < 2 || cells.is_empty() {
+        return Ok(Vec::new());
+    }
+    register();
+    let size = (WIDTH + 130, 720);
+    render_pair(
+        dir,
+        "spectrum",
+        size,
+        |root| draw_spectrum(root, title, sweep, cells),
+        |root| draw_spectrum(root, title, sweep, cells),
+    )
+}
+
+fn draw_fragility<DB: DrawingBackend>(
+    root: DrawingArea<DB, Shift>,
+    points: &[(f64, f64)],
+    records: usize,
+) -> Result<(), String> {
+    let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
+    root.fill(&WHITE).map_err(e)?;
+    let x_hi = points.iter().map(|p| p.0).fold(0.0, f64::max) * 1.05;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(
+            format!("Fraction of {records} records that overturn"),
+            ("sans-serif", 20),
+        )
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(60)
+        .build_cartesian_2d(0.0..x_hi.max(1e-9), 0.0..1.05)
+        .map_err(e)?;
+    chart
+        .configure_mesh()
+        .x_desc("scale factor")
+        .y_desc("fraction overturned")
+        .label_style(("sans-serif", 14))
+        .draw()
+        .map_err(e)?;
+    chart
+        .draw_series(LineSeries::new(points.to_vec(), BLUE.stroke_width(2)))
+        .map_err(e)?;
+    chart
+        .draw_series(points.iter().map(|&p| Circle::new(p, 4, BLUE.filled())))
+        .map_err(e)?;
+    root.present().map_err(e)
+}
+
+/// The fragility-style curve of a record suite, as PNG and SVG.
+pub fn fragility_plots(
+    points: &[(f64, f64)],
+    records: usize,
+    dir: &Path,
+) -> Result<Vec<PathBuf>, CliError> {
+    register();
+    render_pair(
+        dir,
+        "fragility",
+        (800, 560),
+        |r| draw_fragility(r, points, records),
+        |r| draw_fragility(r, points, records),
+    )
+}
+
+/// Renders a figure to `<name>.png` and `<name>.svg` in `dir`, each written atomically.
+fn render_pair(
+    dir: &Path,
+    name: &str,
+    size: (u32, u32),
+    png: impl FnOnce(DrawingArea<BitMapBackend<'_>, Shift>) -> Result<(), String>,
+    svg: impl FnOnce(DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), String>,
+) -> Result<Vec<PathBuf>, CliError> {
+    let fail = |what: &str, m: String| {
+        CliError::Internal(format!("{}: cannot draw the {what}: {m}", dir.display()))
+    };
+    let mut pixels = vec![255u8; (size.0 * size.1 * 3) as usize];
+    png(BitMapBackend::with_buffer(&mut pixels, size).into_drawing_area())
+        .map_err(|m| fail("PNG", m))?;
+    let bytes = encode_png(&pixels, size.0, size.1).map_err(|m| fail("PNG", m))?;
+    let png_path = dir.join(format!("{name}.png"));
+    write_atomic(&png_path, &bytes)?;
+    let mut text = String::new();
+    svg(SVGBackend::with_string(&mut text, size).into_drawing_area())
+        .map_err(|m| fail("SVG", m))?;
+    let svg_path = dir.join(format!("{name}.svg"));
+    write_atomic(&svg_path, text.as_bytes())?;
+    Ok(vec![png_path, svg_path])
+}

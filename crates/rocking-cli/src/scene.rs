@@ -133,6 +133,17 @@ pub struct SceneSpec {
     pub solver: Option<SolverSpec>,
     pub initial: Option<InitialSpec>,
     pub output: Option<OutputSpec>,
+    pub sweep: Option<SweepSpec>,
+}
+
+/// `[sweep]`: the axes of `rocking spectrum` (same syntax as `--axis`), and for `rocking batch`
+/// a list of records (paths relative to the scene) and scale factors.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SweepSpec {
+    pub axes: Option<Vec<String>>,
+    pub records: Option<Vec<String>>,
+    pub scales: Option<Vec<f64>>,
 }
 
 /// A loaded scene: the typed spec and what is needed to point at its source.
@@ -288,10 +299,19 @@ fn parse_unknown_field(msg: &str) -> Option<(String, Vec<String>)> {
     Some((key.to_string(), allowed))
 }
 
+/// Reads a scene file.
+pub fn read(path: &Path) -> Result<String, CliError> {
+    std::fs::read_to_string(path)
+        .map_err(|e| CliError::Input(format!("{}: cannot read scene file: {e}", path.display())))
+}
+
 /// Reads, overrides and deserializes a scene file.
 pub fn load(path: &Path, sets: &[String]) -> Result<Scene, CliError> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| CliError::Input(format!("{}: cannot read scene file: {e}", path.display())))?;
+    load_text(path, read(path)?, sets)
+}
+
+/// Overrides and deserializes the text of the scene file `path`.
+pub fn load_text(path: &Path, text: String, sets: &[String]) -> Result<Scene, CliError> {
     let mut table: Table = toml::from_str(&text).map_err(|e| {
         let at = e
             .span()
