@@ -412,11 +412,15 @@ pub fn batch(
     Ok(())
 }
 
+/// One boundary: the family value and, per x value, the smallest overturning y.
+type Line = (f64, BTreeMap<u64, (f64, f64)>);
+
 /// The smallest value of the last axis at which cells overturn, per value of the others (the
 /// overturning boundary of Fig. 9), for cells of a 2- or 3-axis sweep.
 pub fn boundary(sweep: &Sweep, cells: &[Cell]) -> Vec<(f64, Vec<(f64, f64)>)> {
     let n = sweep.axes.len();
-    let mut lines: BTreeMap<u64, (f64, BTreeMap<u64, (f64, f64)>)> = BTreeMap::new();
+    // Keyed by the bit patterns of the family and x values (exact, ordered for positive values).
+    let mut lines: BTreeMap<u64, Line> = BTreeMap::new();
     for c in cells {
         let v = sweep.values(c.index);
         let family = if n >= 3 { v[n - 3] } else { 0.0 };
