@@ -221,6 +221,7 @@ fn cell_colour(c: &rocking_spectra::Cell, top: f64) -> RGBColor {
         OverturnedNoImpact => RGBColor(60, 110, 200),
         OverturnedOneImpact => RGBColor(150, 90, 40),
         OverturnedImpacts => RGBColor(230, 150, 40),
+        Failed => RGBColor(220, 30, 30),
     }
 }
 
@@ -287,6 +288,7 @@ fn draw_spectrum<DB: DrawingBackend>(
             ("overturned, no impact".to_string(), RGBColor(60, 110, 200)),
             ("overturned, one impact".to_string(), RGBColor(150, 90, 40)),
             ("overturned, impacts".to_string(), RGBColor(230, 150, 40)),
+            ("failed (see meta.json)".to_string(), RGBColor(220, 30, 30)),
         ];
         for (i, (label, colour)) in items.iter().enumerate() {
             let y = 60 + 30 * i as i32;

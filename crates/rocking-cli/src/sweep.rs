@@ -192,8 +192,15 @@ pub fn spectrum(
         outcome.cells.len() - outcome.computed,
         outcome.elapsed.as_secs_f64(),
         pool.current_num_threads(),
-        1e3 * outcome.elapsed.as_secs_f64() / outcome.computed.max(1) as f64
+                1e3 * outcome.elapsed.as_secs_f64() / outcome.computed.max(1) as f64
     );
+    if !outcome.failures.is_empty() {
+        eprintln!(
+            "warning: {} cells failed and are marked `failed` (messages in meta.json); first: {}",
+            outcome.failures.len(),
+            outcome.failures[0].1
+        );
+    }
     for (class, n) in counts {
         println!("  {class}: {n}");
     }
@@ -223,7 +230,11 @@ fn write_outputs(
         "axes": sweep.axes.iter().map(|a| json!({"key": a.key, "values": a.values})).collect::<Vec<_>>(),
         "fingerprint": sweep.fingerprint,
         "cells": outcome.cells.len(),
-        "computed_now": outcome.computed,
+                "computed_now": outcome.computed,
+        "failures": outcome.failures.iter().map(|(i, m)| {
+            let v = sweep.values(*i);
+            json!({"cell": i, "values": v, "message": m})
+        }).collect::<Vec<_>>(),
         "seconds": start.elapsed().as_secs_f64(),
         "threads": threads,
         "versions": {"rocking": env!("CARGO_PKG_VERSION"), "kernels": "generated/ir (CasADi 3.8.2)"},
@@ -350,6 +361,9 @@ pub fn batch(
             })
         })
         .map_err(sweep_error)?;
+    for (i, m) in &outcome.failures {
+        eprintln!("warning: run {i} failed and is marked `failed`: {m}");
+    }
     let mut rows = String::from("record,scale,class,overturned,max_theta_over_alpha,impacts\n");
     let mut fraction: Vec<(f64, usize, usize)> = scales.iter().map(|&s| (s, 0, 0)).collect();
     for c in &outcome.cells {

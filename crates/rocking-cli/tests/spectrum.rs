@@ -15,21 +15,31 @@ fn repo() -> PathBuf {
 }
 
 fn tmp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("rocking-spectrum-test-{}-{name}", std::process::id()));
+    let dir = std::env::temp_dir().join(format!(
+        "rocking-spectrum-test-{}-{name}",
+        std::process::id()
+    ));
     let _ = std::fs::remove_dir_all(&dir);
     dir
 }
 
 fn spectrum(out: &Path, axes: &[&str], extra: &[&str]) -> std::process::Output {
     let mut c = bin();
-    c.arg("spectrum").arg(repo().join("scenes/spectra/fig8.toml")).arg("--quiet").arg("--out").arg(out);
+    c.arg("spectrum")
+        .arg(repo().join("scenes/spectra/fig8.toml"))
+        .arg("--quiet")
+        .arg("--out")
+        .arg(out);
     for a in axes {
         c.arg("--axis").arg(a);
     }
     c.args(extra).output().unwrap()
 }
 
-const AXES: [&str; 2] = ["excitation.omega_p_over_p=1:10:24", "excitation.amplitude=1:20:24"];
+const AXES: [&str; 2] = [
+    "excitation.omega_p_over_p=1:10:24",
+    "excitation.amplitude=1:20:24",
+];
 
 #[test]
 fn spectrum_writes_classified_cells_and_plots() {
@@ -42,12 +52,20 @@ fn spectrum_writes_classified_cells_and_plots() {
         lines.next().unwrap(),
         "excitation.omega_p_over_p,excitation.amplitude,class,max_theta_over_alpha,impacts"
     );
-    let rows: Vec<Vec<String>> = lines.map(|l| l.split(',').map(String::from).collect()).collect();
+    let rows: Vec<Vec<String>> = lines
+        .map(|l| l.split(',').map(String::from).collect())
+        .collect();
     assert_eq!(rows.len(), 24 * 24);
     let classes: std::collections::BTreeSet<&str> = rows.iter().map(|r| r[2].as_str()).collect();
     // The paper's regions all appear on the Fig-8 structure: no uplift at small amplitudes,
     // survivors, overturning without impact at small ω_p/p, and after one and more impacts.
-    for c in ["no-uplift", "survived", "overturned-no-impact", "overturned-one-impact", "overturned-impacts"] {
+    for c in [
+        "no-uplift",
+        "survived",
+        "overturned-no-impact",
+        "overturned-one-impact",
+        "overturned-impacts",
+    ] {
         assert!(classes.contains(c), "class {c} missing: {classes:?}");
     }
     for r in &rows {
@@ -57,7 +75,8 @@ fn spectrum_writes_classified_cells_and_plots() {
             assert_eq!(theta, 0.0);
         }
     }
-    let meta: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("meta.json")).unwrap()).unwrap();
+    let meta: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("meta.json")).unwrap()).unwrap();
     assert_eq!(meta["cells"], 576);
     assert!(meta["seconds"].as_f64().unwrap() > 0.0);
     for f in ["spectrum.png", "spectrum.svg"] {
@@ -68,7 +87,9 @@ fn spectrum_writes_classified_cells_and_plots() {
 #[test]
 fn killed_spectrum_resumes_to_the_uninterrupted_result() {
     let whole = tmp("whole");
-    assert!(spectrum(&whole, &AXES, &["--threads", "2"]).status.success());
+    assert!(spectrum(&whole, &AXES, &["--threads", "2"])
+        .status
+        .success());
     let reference = std::fs::read_to_string(whole.join("cells.csv")).unwrap();
 
     let out = tmp("killed");
@@ -85,7 +106,9 @@ fn killed_spectrum_resumes_to_the_uninterrupted_result() {
     let journal = out.join("cells.journal");
     let start = Instant::now();
     loop {
-        let n = std::fs::read_to_string(&journal).map(|t| t.lines().count()).unwrap_or(0);
+        let n = std::fs::read_to_string(&journal)
+            .map(|t| t.lines().count())
+            .unwrap_or(0);
         if n > 40 || start.elapsed() > Duration::from_secs(60) {
             break;
         }
@@ -95,13 +118,22 @@ fn killed_spectrum_resumes_to_the_uninterrupted_result() {
     child.wait().unwrap();
     let done = std::fs::read_to_string(&journal).unwrap().lines().count() - 1;
     assert!(done > 0 && done < 576, "killed after {done} cells");
-    assert!(!out.join("cells.csv").exists(), "no final output from the killed run");
+    assert!(
+        !out.join("cells.csv").exists(),
+        "no final output from the killed run"
+    );
 
     let o = spectrum(&out, &AXES, &["--threads", "2"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let stdout = String::from_utf8_lossy(&o.stdout);
-    assert!(stdout.contains(&format!("{} computed now", 576 - done)) || stdout.contains("resumed"), "{stdout}");
-    assert_eq!(std::fs::read_to_string(out.join("cells.csv")).unwrap(), reference);
+    assert!(
+        stdout.contains(&format!("{} computed now", 576 - done)) || stdout.contains("resumed"),
+        "{stdout}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(out.join("cells.csv")).unwrap(),
+        reference
+    );
 
     // The same directory with a changed scene is refused (exit 2), not mixed.
     let o = spectrum(&out, &AXES, &["--set", "structure.alpha=0.2"]);
@@ -112,7 +144,10 @@ fn killed_spectrum_resumes_to_the_uninterrupted_result() {
 #[test]
 fn one_and_two_threads_give_identical_cells() {
     let (a, b) = (tmp("t1"), tmp("t2"));
-    let axes = ["excitation.omega_p_over_p=2:8:10", "excitation.amplitude=2:16:10"];
+    let axes = [
+        "excitation.omega_p_over_p=2:8:10",
+        "excitation.amplitude=2:16:10",
+    ];
     assert!(spectrum(&a, &axes, &["--threads", "1"]).status.success());
     assert!(spectrum(&b, &axes, &["--threads", "2"]).status.success());
     assert_eq!(
@@ -123,9 +158,18 @@ fn one_and_two_threads_give_identical_cells() {
 
 #[test]
 fn bad_axes_are_input_errors() {
-    for axis in ["excitation.amplitude=1:2", "excitation.amplitud=1:2:3", "structure.alpha=0.1:2:3"] {
+    for axis in [
+        "excitation.amplitude=1:2",
+        "excitation.amplitud=1:2:3",
+        "structure.alpha=0.1:2:3",
+    ] {
         let o = spectrum(&tmp("bad"), &[axis], &[]);
-        assert_eq!(o.status.code(), Some(2), "{axis}: {}", String::from_utf8_lossy(&o.stderr));
+        assert_eq!(
+            o.status.code(),
+            Some(2),
+            "{axis}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
     }
 }
 
@@ -133,7 +177,11 @@ fn bad_axes_are_input_errors() {
 fn batch_over_records_gives_the_fraction_overturned_per_scale() {
     let out = tmp("batch");
     let records = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data/ground-motions");
-    let records = if records.is_dir() { records } else { repo().join("scenes/records") };
+    let records = if records.is_dir() {
+        records
+    } else {
+        repo().join("scenes/records")
+    };
     let files: Vec<PathBuf> = std::fs::read_dir(&records)
         .unwrap()
         .map(|e| e.unwrap().path())
@@ -151,9 +199,16 @@ fn batch_over_records_gives_the_fraction_overturned_per_scale() {
         .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let frag = std::fs::read_to_string(out.join("fragility.csv")).unwrap();
-    let fractions: Vec<f64> = frag.lines().skip(1).map(|l| l.rsplit(',').next().unwrap().parse().unwrap()).collect();
+    let fractions: Vec<f64> = frag
+        .lines()
+        .skip(1)
+        .map(|l| l.rsplit(',').next().unwrap().parse().unwrap())
+        .collect();
     assert_eq!(fractions.len(), 3);
-    assert!(fractions.windows(2).all(|w| w[0] <= w[1]), "fraction grows with the scale: {fractions:?}");
+    assert!(
+        fractions.windows(2).all(|w| w[0] <= w[1]),
+        "fraction grows with the scale: {fractions:?}"
+    );
     let runs = std::fs::read_to_string(out.join("runs.csv")).unwrap();
     assert_eq!(runs.lines().count(), 1 + 3 * files.len());
     assert!(out.join("fragility.png").exists() && out.join("fragility.svg").exists());

@@ -93,6 +93,9 @@ pub enum CellClass {
     OverturnedOneImpact,
     /// It overturned after two or more impacts.
     OverturnedImpacts,
+    /// The simulation failed (for example the model became singular); the message is in the
+    /// sweep's outcome. The other cells are unaffected.
+    Failed,
 }
 
 impl CellClass {
@@ -104,6 +107,7 @@ impl CellClass {
             CellClass::OverturnedNoImpact => "overturned-no-impact",
             CellClass::OverturnedOneImpact => "overturned-one-impact",
             CellClass::OverturnedImpacts => "overturned-impacts",
+            CellClass::Failed => "failed",
         }
     }
 
@@ -115,6 +119,7 @@ impl CellClass {
             CellClass::OverturnedNoImpact,
             CellClass::OverturnedOneImpact,
             CellClass::OverturnedImpacts,
+            CellClass::Failed,
         ]
         .into_iter()
         .find(|c| c.as_str() == s)
@@ -156,15 +161,6 @@ pub enum SweepError {
     Io(PathBuf, std::io::Error),
     /// The output directory holds a different sweep.
     Mismatch(PathBuf),
-    /// A cell failed.
-    Cell {
-        /// The cell's index.
-        index: usize,
-        /// Its axis values.
-        values: Vec<(String, f64)>,
-        /// What went wrong.
-        message: String,
-    },
 }
 
 impl fmt::Display for SweepError {
@@ -177,10 +173,6 @@ impl fmt::Display for SweepError {
                  use another --out directory or delete it",
                 p.display()
             ),
-            SweepError::Cell { index, values, message } => {
-                let at: Vec<String> = values.iter().map(|(k, v)| format!("{k} = {v}")).collect();
-                write!(f, "cell {index} ({}): {message}", at.join(", "))
-            }
         }
     }
 }
@@ -273,6 +265,8 @@ pub enum Progress {
 pub struct Outcome {
     /// Every cell, in cell order.
     pub cells: Vec<Cell>,
+    /// Cells that failed in this invocation, with the error message.
+    pub failures: Vec<(usize, String)>,
     /// Cells computed in this invocation (the rest came from the journal).
     pub computed: usize,
     /// Wall time of this invocation.
@@ -339,25 +333,30 @@ where
             bar
         }
     };
+    let failures = Mutex::new(Vec::new());
     let fresh: Vec<Cell> = todo
         .par_iter()
         .map(|&index| {
             let values = sweep.values(index);
-            let summary = run_cell(&values).map_err(|message| SweepError::Cell {
-                index,
-                values: sweep
-                    .axes
-                    .iter()
-                    .map(|a| a.key.clone())
-                    .zip(values.iter().copied())
-                    .collect(),
-                message,
-            })?;
-            let cell = Cell {
-                index,
-                class: CellClass::of(&summary),
-                max_theta_over_alpha: summary.max_theta_over_alpha,
-                impacts: summary.impacts,
+            let cell = match run_cell(&values) {
+                Ok(summary) => Cell {
+                    index,
+                    class: CellClass::of(&summary),
+                    max_theta_over_alpha: summary.max_theta_over_alpha,
+                    impacts: summary.impacts,
+                },
+                Err(message) => {
+                    failures
+                        .lock()
+                        .unwrap_or_else(|p| p.into_inner())
+                        .push((index, message));
+                    Cell {
+                        index,
+                        class: CellClass::Failed,
+                        max_theta_over_alpha: 0.0,
+                        impacts: 0,
+                    }
+                }
             };
             let line = journal_line(&cell);
             let mut j = journal.lock().unwrap_or_else(|p| p.into_inner());
@@ -373,8 +372,11 @@ where
     for c in fresh {
         done.insert(c.index, c);
     }
+    let mut failures = failures.into_inner().unwrap_or_else(|p| p.into_inner());
+    failures.sort_by_key(|f| f.0);
     Ok(Outcome {
         cells: done.into_values().collect(),
+        failures,
         computed,
         elapsed: start.elapsed(),
     })
