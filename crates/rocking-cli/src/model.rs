@@ -560,13 +560,14 @@ fn build_excitation(scene: &Scene, u: &Units) -> Result<(Excitation, String, f64
                 )
             })?;
             let scale = e.scale.unwrap_or(1.0);
-            finite(
-                src,
-                "excitation.scale",
-                scale,
-                true,
-                "a finite scale factor",
-            )?;
+            let allowed = "a finite, nonzero scale factor (a negative one reverses the record)";
+            finite(src, "excitation.scale", scale, true, allowed)?;
+            if scale == 0.0 {
+                return Err(src.err(
+                    "excitation.scale",
+                    format_args!("`scale` in [excitation] = 0 is not allowed: {allowed}"),
+                ));
+            }
             let file = src.dir().join(rel);
             let at2 = read_at2(&file).map_err(|err| {
                 src.err(

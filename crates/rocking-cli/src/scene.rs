@@ -426,4 +426,33 @@ mod tests {
         assert!(parse_override("alpha").is_err());
         assert!(parse_override("a..b=1").is_err());
     }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(512))]
+
+        /// The scene parser and the model builder never panic on arbitrary text: they answer
+        /// with a scene or an input error.
+        #[test]
+        fn arbitrary_text_never_panics(text in "\\PC{0,300}") {
+            let path = Path::new("fuzz.toml");
+            if let Ok(sc) = load_text(path, text, &[]) {
+                let _ = crate::model::build(&sc);
+            }
+        }
+
+        /// Nor on a valid scene with one byte range replaced by arbitrary text.
+        #[test]
+        fn mutated_scenes_never_panic(start in 0usize..400, len in 0usize..20, insert in "\\PC{0,12}") {
+            let base = include_str!("../../../scenes/fig5-flexible.toml");
+            let mut text: String = base.chars().collect();
+            let chars: Vec<char> = text.chars().collect();
+            let a = start.min(chars.len());
+            let b = (a + len).min(chars.len());
+            text = chars[..a].iter().collect::<String>() + &insert + &chars[b..].iter().collect::<String>();
+            let path = Path::new("fuzz.toml");
+            if let Ok(sc) = load_text(path, text, &[]) {
+                let _ = crate::model::build(&sc);
+            }
+        }
+    }
 }

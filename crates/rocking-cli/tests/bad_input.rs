@@ -1,0 +1,374 @@
+//! Every row of the bad-input table in docs/bad-input.md: the invalid input, exit code 2, and one
+//! message naming the file, the line or key, the value and what is allowed. The table's row ids
+//! and this test's rows must be the same set.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+const SCENE: &str = r#"[structure]
+omega_n_over_p = 11.9
+alpha = 0.2
+gamma_mc = 0.0
+gamma_mb = 1.0
+gamma_ib = 1.0
+zeta = 0.005
+damping = "fixed-base"
+r = 2.0
+
+[excitation]
+kind = "sine-pulse"
+omega_p_over_p = 5.1
+amplitude = 1.3
+
+[solver]
+after_excitation = 5.0
+"#;
+
+const PHYSICAL: &str = r#"[structure]
+h = 30.0
+b = 3.0
+ei = 2.0e10
+m = 1.0e5
+m_c = 5.0e4
+m_b = 1.0e5
+zeta = 0.01
+g = 9.81
+
+[excitation]
+kind = "sine-pulse"
+omega_p = 3.0
+amplitude_g = 0.3
+"#;
+
+const RECORD: &str = "title\nevent\nunits\nNPTS= 4, DT= .01\n0.1 0.2 0.3 0.4\n";
+
+/// (id, base scene, replace this, by this, record file text, expected fragments of the message).
+/// The message must also name `scene.toml:LINE:` where LINE is the line of the replacement (or,
+/// for a record, of its `path`; for a missing key, of its table).
+type Row = (
+    &'static str,
+    &'static str,
+    &'static str,
+    &'static str,
+    Option<&'static str>,
+    &'static [&'static str],
+);
+
+const ROWS: &[Row] = &[
+    (
+        "zero-frequency",
+        SCENE,
+        "omega_p_over_p = 5.1",
+        "omega_p_over_p = 0",
+        None,
+        &["omega_p_over_p", "0", "> 0"],
+    ),
+    (
+        "negative-zeta",
+        SCENE,
+        "zeta = 0.005",
+        "zeta = -0.1",
+        None,
+        &["zeta", "-0.1", "0 <= zeta < 1"],
+    ),
+    (
+        "alpha-too-large",
+        SCENE,
+        "alpha = 0.2",
+        "alpha = 1.5708",
+        None,
+        &["alpha", "1.5708", "pi/2"],
+    ),
+    (
+        "alpha-zero",
+        SCENE,
+        "alpha = 0.2",
+        "alpha = 0.0",
+        None,
+        &["alpha", "0 < alpha"],
+    ),
+    (
+        "negative-omega-n",
+        SCENE,
+        "omega_n_over_p = 11.9",
+        "omega_n_over_p = -2",
+        None,
+        &["omega_n_over_p", "-2", "> 0"],
+    ),
+    (
+        "negative-gamma",
+        SCENE,
+        "gamma_mb = 1.0",
+        "gamma_mb = -1.0",
+        None,
+        &["gamma_mb", ">= 0"],
+    ),
+    (
+        "gamma-ib-too-small",
+        SCENE,
+        "gamma_ib = 1.0",
+        "gamma_ib = 0.5",
+        None,
+        &["gamma_ib", "0.5", "3/4"],
+    ),
+    (
+        "nan",
+        SCENE,
+        "alpha = 0.2",
+        "alpha = nan",
+        None,
+        &["alpha", "NaN"],
+    ),
+    (
+        "infinite",
+        SCENE,
+        "amplitude = 1.3",
+        "amplitude = inf",
+        None,
+        &["amplitude", "inf"],
+    ),
+    (
+        "negative-length-scale",
+        SCENE,
+        "r = 2.0",
+        "r = -2.0",
+        None,
+        &["-2", "r"],
+    ),
+    (
+        "missing-key",
+        SCENE,
+        "alpha = 0.2\n",
+        "",
+        None,
+        &["missing key `alpha`"],
+    ),
+    (
+        "unknown-key",
+        SCENE,
+        "zeta = 0.005",
+        "zeeta = 0.005",
+        None,
+        &["unknown key `zeeta`", "did you mean `zeta`?"],
+    ),
+    (
+        "unknown-table",
+        SCENE,
+        "[solver]",
+        "[solvr]",
+        None,
+        &["unknown key `solvr`", "did you mean `solver`?"],
+    ),
+    (
+        "wrong-type",
+        SCENE,
+        "alpha = 0.2",
+        "alpha = \"steep\"",
+        None,
+        &["alpha", "string"],
+    ),
+    (
+        "bad-enum",
+        SCENE,
+        "damping = \"fixed-base\"",
+        "damping = \"fixed\"",
+        None,
+        &["damping", "fixed-base"],
+    ),
+    (
+        "toml-syntax",
+        SCENE,
+        "alpha = 0.2",
+        "alpha = ",
+        None,
+        &["invalid TOML"],
+    ),
+    (
+        "physical-negative-mass",
+        PHYSICAL,
+        "m = 1.0e5",
+        "m = -1.0e5",
+        None,
+        &["`m`", "-100000", "m > 0"],
+    ),
+    (
+        "physical-zero-stiffness",
+        PHYSICAL,
+        "ei = 2.0e10",
+        "ei = 0.0",
+        None,
+        &["ei", "EI > 0"],
+    ),
+    (
+        "physical-base-inertia",
+        PHYSICAL,
+        "m_b = 1.0e5",
+        "m_b = 1.0e5\ni_bc = 1.0",
+        None,
+        &["i_bc", "gamma_ib >= 3/4"],
+    ),
+    (
+        "mixed-forms",
+        SCENE,
+        "alpha = 0.2",
+        "alpha = 0.2\nh = 3.0",
+        None,
+        &["either"],
+    ),
+    (
+        "record-missing-file",
+        SCENE,
+        "kind = \"sine-pulse\"\nomega_p_over_p = 5.1\namplitude = 1.3",
+        "kind = \"record\"\npath = \"nowhere.AT2\"",
+        None,
+        &["nowhere.AT2", "cannot read"],
+    ),
+    (
+        "record-empty",
+        SCENE,
+        "kind = \"sine-pulse\"\nomega_p_over_p = 5.1\namplitude = 1.3",
+        "kind = \"record\"\npath = \"rec.AT2\"",
+        Some(""),
+        &["rec.AT2", "empty"],
+    ),
+    (
+        "record-truncated-header",
+        SCENE,
+        "kind = \"sine-pulse\"\nomega_p_over_p = 5.1\namplitude = 1.3",
+        "kind = \"record\"\npath = \"rec.AT2\"",
+        Some("title\nevent\n"),
+        &["rec.AT2:", "header"],
+    ),
+    (
+        "record-npts-too-many",
+        SCENE,
+        "kind = \"sine-pulse\"\nomega_p_over_p = 5.1\namplitude = 1.3",
+        "kind = \"record\"\npath = \"rec.AT2\"",
+        Some("title\nevent\nunits\nNPTS= 5, DT= .01\n0.1 0.2 0.3 0.4\n"),
+        &["rec.AT2:", "5", "4"],
+    ),
+    (
+        "record-npts-too-few",
+        SCENE,
+        "kind = \"sine-pulse\"\nomega_p_over_p = 5.1\namplitude = 1.3",
+        "kind = \"record\"\npath = \"rec.AT2\"",
+        Some("title\nevent\nunits\nNPTS= 3, DT= .01\n0.1 0.2 0.3 0.4\n"),
+        &["rec.AT2:5", "3"],
+    ),
+    (
+        "record-dt-zero",
+        SCENE,
+        "kind = \"sine-pulse\"\nomega_p_over_p = 5.1\namplitude = 1.3",
+        "kind = \"record\"\npath = \"rec.AT2\"",
+        Some("title\nevent\nunits\nNPTS= 4, DT= 0\n0.1 0.2 0.3 0.4\n"),
+        &["rec.AT2:4", "DT"],
+    ),
+    (
+        "record-dt-negative",
+        SCENE,
+        "kind = \"sine-pulse\"\nomega_p_over_p = 5.1\namplitude = 1.3",
+        "kind = \"record\"\npath = \"rec.AT2\"",
+        Some("title\nevent\nunits\nNPTS= 4, DT= -.01\n0.1 0.2 0.3 0.4\n"),
+        &["rec.AT2:4", "DT"],
+    ),
+    (
+        "record-bad-number",
+        SCENE,
+        "kind = \"sine-pulse\"\nomega_p_over_p = 5.1\namplitude = 1.3",
+        "kind = \"record\"\npath = \"rec.AT2\"",
+        Some("title\nevent\nunits\nNPTS= 4, DT= .01\n0.1 0.2 x 0.4\n"),
+        &["rec.AT2:5", "\"x\""],
+    ),
+    (
+        "record-zero-scale",
+        SCENE,
+        "kind = \"sine-pulse\"\nomega_p_over_p = 5.1\namplitude = 1.3",
+        "kind = \"record\"\npath = \"rec.AT2\"\nscale = 0.0",
+        Some(RECORD),
+        &["scale", "= 0", "nonzero"],
+    ),
+];
+
+fn doc_ids() -> Vec<String> {
+    let doc = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/bad-input.md");
+    let text = std::fs::read_to_string(&doc).unwrap();
+    text.lines()
+        .filter_map(|l| l.strip_prefix("| `"))
+        .filter_map(|l| l.split('`').next())
+        .map(String::from)
+        .collect()
+}
+
+#[test]
+fn the_documented_table_and_the_tested_rows_are_the_same() {
+    let mut doc = doc_ids();
+    let mut rows: Vec<String> = ROWS.iter().map(|r| r.0.to_string()).collect();
+    doc.sort();
+    rows.sort();
+    assert_eq!(
+        doc, rows,
+        "docs/bad-input.md and tests/bad_input.rs must list the same cases"
+    );
+}
+
+#[test]
+fn every_bad_input_exits_2_with_one_clear_message() {
+    let root = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bad-input");
+    for (id, base, from, to, record, needles) in ROWS {
+        let dir = root.join(id);
+        std::fs::create_dir_all(&dir).unwrap();
+        assert!(base.contains(from), "{id}: the base scene has no `{from}`");
+        std::fs::write(dir.join("scene.toml"), base.replacen(from, to, 1)).unwrap();
+        if let Some(r) = record {
+            std::fs::write(dir.join("rec.AT2"), r).unwrap();
+        }
+        let out = Command::new(env!("CARGO_BIN_EXE_rocking"))
+            .args(["run", "--out"])
+            .arg(dir.join("out"))
+            .arg(dir.join("scene.toml"))
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(
+            out.status.code(),
+            Some(2),
+            "{id}: exit {:?}: {err}",
+            out.status.code()
+        );
+        assert_eq!(
+            err.trim().lines().count(),
+            1,
+            "{id}: one message, got: {err}"
+        );
+        eprintln!(
+            "BAD|{id}|{}",
+            err.trim().replace(dir.to_str().unwrap(), "DIR")
+        );
+        for n in *needles {
+            assert!(err.contains(n), "{id}: `{n}` not in: {err}");
+        }
+        let text = base.replacen(from, to, 1);
+        let anchor = if *id == "record-zero-scale" {
+            "scale ="
+        } else if *id == "mixed-forms" {
+            "omega_n_over_p" // the table's first key: the message names both forms' keys
+        } else if record.is_some() || id.starts_with("record") {
+            "path ="
+        } else if to.is_empty() {
+            "[structure]"
+        } else {
+            to.lines().last().unwrap()
+        };
+        let line = text
+            .lines()
+            .position(|l| l.contains(anchor.trim()))
+            .unwrap()
+            + 1;
+        let place = format!("scene.toml:{line}:");
+        assert!(err.contains(&place), "{id}: `{place}` not in: {err}");
+        assert!(
+            !dir.join("out").join("summary.json").exists(),
+            "{id}: no output on bad input"
+        );
+    }
+}
