@@ -1,4 +1,4 @@
-//! Project automation: `cargo xtask regen [--check] [--skip-derive]`.
+//! Project automation: `cargo xtask regen [--check] [--skip-derive]`, `cargo xtask bench [--quick]`.
 //!
 //! `regen` re-derives the kernel IR with the pinned Python environment
 //! (`derive/requirements.txt`, installed into `<repo>/.venv`), renders it with
@@ -15,6 +15,7 @@
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
+mod bench;
 mod regen;
 mod venv;
 
@@ -27,6 +28,13 @@ commands:
       generated/ir, generated/src/kernels and docs/errata.md.
       --check        write nothing; print diffs and fail if anything is stale
       --skip-derive  render the checked-in generated/ir (no Python needed)
+  bench [--quick] [--no-peers]
+      The accuracy/cost study: both integrators x tolerances on every case against
+      a reference, the SciPy and OpenSees peers (installed into .venv from
+      bench/requirements.txt), written to docs/accuracy.md and docs/img/.
+      --quick     fewer tolerances and cases (about two minutes); writes
+                  target/bench-quick/docs/ instead of docs/
+      --no-peers  Rust study and report only (no Python)
   help
       Print this message.
 ";
@@ -48,6 +56,13 @@ fn main() -> ExitCode {
     let result = match command.as_str() {
         "regen" => match regen::Options::parse(rest) {
             Ok(opts) => regen::run(&repo_root(), &opts),
+            Err(msg) => {
+                eprintln!("error: {msg}\n\n{USAGE}");
+                return ExitCode::from(2);
+            }
+        },
+        "bench" => match bench::Options::parse(rest) {
+            Ok(opts) => bench::run_bench(&repo_root(), &opts),
             Err(msg) => {
                 eprintln!("error: {msg}\n\n{USAGE}");
                 return ExitCode::from(2);

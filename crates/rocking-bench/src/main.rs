@@ -1,0 +1,81 @@
+//! The accuracy/cost study of the rocking solver (`cargo xtask bench`).
+//!
+//! `rocking-bench run [--quick] --out DIR` runs every case with both integrators over a range of
+//! tolerances, measures the error of each answer against a reference solution (DOP853 at 1e-12,
+//! itself checked against 1e-13), the CPU time and the RHS evaluations, and writes
+//! `DIR/rust.json` (results) and `DIR/cases.json` (the cases, for the SciPy peer).
+//!
+//! `rocking-bench report --dir DIR --docs DOCS` reads `rust.json` and, when present, `scipy.json`
+//! and `opensees.json`, and writes `DOCS/accuracy.md` and the work-precision diagrams
+//! `DOCS/img/accuracy-*.{png,svg}`.
+
+mod report;
+mod study;
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+const USAGE: &str = "\
+usage: rocking-bench run [--quick] [--out DIR]
+       rocking-bench report [--dir DIR] [--docs DOCS]
+
+run     the accuracy/cost study (both integrators, tolerances 1e-3..1e-12, reference DOP853 1e-12);
+        writes DIR/rust.json and DIR/cases.json (default DIR: target/bench)
+        --quick  fewer tolerances and cases (a minute or two)
+report  writes DOCS/accuracy.md and DOCS/img/accuracy-*.{png,svg} from DIR/{rust,scipy,opensees}.json
+        (default DOCS: docs)
+";
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let mut quick = false;
+    let mut dir = PathBuf::from("target/bench");
+    let mut docs = PathBuf::from("docs");
+    let Some((cmd, rest)) = args.split_first() else {
+        eprint!("{USAGE}");
+        return ExitCode::from(2);
+    };
+    let mut it = rest.iter();
+    while let Some(a) = it.next() {
+        match a.as_str() {
+            "--quick" => quick = true,
+            "--out" | "--dir" => match it.next() {
+                Some(v) => dir = PathBuf::from(v),
+                None => {
+                    eprint!("{a} needs a value\n{USAGE}");
+                    return ExitCode::from(2);
+                }
+            },
+            "--docs" => match it.next() {
+                Some(v) => docs = PathBuf::from(v),
+                None => {
+                    eprint!("--docs needs a value\n{USAGE}");
+                    return ExitCode::from(2);
+                }
+            },
+            other => {
+                eprint!("unknown argument {other:?}\n{USAGE}");
+                return ExitCode::from(2);
+            }
+        }
+    }
+    let result = match cmd.as_str() {
+        "run" => study::run(quick, &dir),
+        "report" => report::run(&dir, &docs),
+        "help" | "--help" | "-h" => {
+            print!("{USAGE}");
+            return ExitCode::SUCCESS;
+        }
+        other => Err(format!("unknown command {other:?}").into()),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("rocking-bench: error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// Error type of the bench.
+pub type Result<T, E = Box<dyn std::error::Error>> = std::result::Result<T, E>;
