@@ -312,7 +312,22 @@ pub fn load(path: &Path, sets: &[String]) -> Result<Scene, CliError> {
 
 /// Overrides and deserializes the text of the scene file `path`.
 pub fn load_text(path: &Path, text: String, sets: &[String]) -> Result<Scene, CliError> {
-    let mut table: Table = toml::from_str(&text).map_err(|e| {
+    parse_text(path, text)?.load(sets)
+}
+
+/// A parsed scene file, before overrides: parse once, then [`Parsed::load`] it with different
+/// overrides (as the cells of a sweep do).
+#[derive(Clone, Debug)]
+pub struct Parsed {
+    path: PathBuf,
+    text: String,
+    table: Table,
+    spans: HashMap<String, usize>,
+}
+
+/// Parses the text of the scene file `path`.
+pub fn parse_text(path: &Path, text: String) -> Result<Parsed, CliError> {
+    let table: Table = toml::from_str(&text).map_err(|e| {
         let at = e
             .span()
             .map(|s| {
@@ -332,15 +347,40 @@ pub fn load_text(path: &Path, text: String, sets: &[String]) -> Result<Scene, Cl
     if let Ok(de) = toml::de::DeTable::parse(&text) {
         collect_spans("", de.get_ref(), &mut spans);
     }
-    let mut src = Source {
+    Ok(Parsed {
         path: path.to_path_buf(),
         text,
+        table,
         spans,
-        overridden: HashMap::new(),
-    };
+    })
+}
+
+impl Parsed {
+    /// Applies `--set` overrides and deserializes the scene.
+    pub fn load(&self, sets: &[String]) -> Result<Scene, CliError> {
+        let path = self.path.as_path();
+        let mut table = self.table.clone();
+        let mut src = Source {
+            path: self.path.clone(),
+            text: self.text.clone(),
+            spans: self.spans.clone(),
+            overridden: HashMap::new(),
+        };
+        finish(path, &mut table, &mut src, sets)?;
+        let spec = deserialize(path, table, &src)?;
+        Ok(Scene { spec, src })
+    }
+}
+
+fn finish(
+    path: &Path,
+    table: &mut Table,
+    src: &mut Source,
+    sets: &[String],
+) -> Result<(), CliError> {
     for arg in sets {
         let (keys, value) = parse_override(arg)?;
-        let mut t = &mut table;
+        let mut t = &mut *table;
         for (i, k) in keys[..keys.len() - 1].iter().enumerate() {
             let entry = t
                 .entry(k.clone())
@@ -359,8 +399,12 @@ pub fn load_text(path: &Path, text: String, sets: &[String]) -> Result<Scene, Cl
         t.insert(keys[keys.len() - 1].clone(), value);
         src.overridden.insert(keys.join("."), arg.clone());
     }
+    Ok(())
+}
+
+fn deserialize(path: &Path, table: Table, src: &Source) -> Result<SceneSpec, CliError> {
     let de = Value::Table(table);
-    let spec: SceneSpec = serde_path_to_error::deserialize(de).map_err(|e| {
+    serde_path_to_error::deserialize(de).map_err(|e| {
         let p = e.path().to_string();
         let p = if p == "." { String::new() } else { p };
         let inner = e.into_inner();
@@ -396,8 +440,7 @@ pub fn load_text(path: &Path, text: String, sets: &[String]) -> Result<Scene, Cl
             &p,
             format_args!("invalid value for {}: {msg}", describe(&p)),
         )
-    })?;
-    Ok(Scene { spec, src })
+    })
 }
 
 #[cfg(test)]

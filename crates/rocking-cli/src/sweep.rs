@@ -23,6 +23,7 @@ pub const DEFAULT_AXES: [&str; 2] = [
 pub struct Base {
     path: PathBuf,
     text: String,
+    parsed: scene::Parsed,
     sets: Vec<String>,
     title: Option<String>,
 }
@@ -31,7 +32,8 @@ impl Base {
     /// Reads and validates the scene with the command line's overrides.
     pub fn load(path: &Path, sets: &[String]) -> Result<(Base, scene::Scene), CliError> {
         let text = scene::read(path)?;
-        let sc = scene::load_text(path, text.clone(), sets)?;
+        let parsed = scene::parse_text(path, text.clone())?;
+        let sc = parsed.load(sets)?;
         let m = model::build(&sc)?;
         let title = m.title.clone().map(|t| {
             if sets.is_empty() {
@@ -43,6 +45,7 @@ impl Base {
         let base = Base {
             path: path.to_path_buf(),
             text,
+            parsed,
             sets: sets.to_vec(),
             title,
         };
@@ -53,7 +56,7 @@ impl Base {
     pub fn run(&self, extra: &[String]) -> Result<Summary, CliError> {
         let mut sets = self.sets.clone();
         sets.extend_from_slice(extra);
-        let sc = scene::load_text(&self.path, self.text.clone(), &sets)?;
+        let sc = self.parsed.load(&sets)?;
         let mut m = model::build(&sc)?;
         m.options.history = History::None;
         m.options.event_log = false;
