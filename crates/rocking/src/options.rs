@@ -38,10 +38,22 @@ impl Preset {
     /// The method and tolerance of the preset.
     pub fn accuracy(self) -> Accuracy {
         match self {
-            Preset::Fast => Accuracy { method: Method::Dop853, tol: 1e-5 },
-            Preset::Default => Accuracy { method: Method::Dop853, tol: 1e-8 },
-            Preset::Accurate => Accuracy { method: Method::Dop853, tol: 1e-10 },
-            Preset::Reference => Accuracy { method: Method::Dop853, tol: 1e-12 },
+            Preset::Fast => Accuracy {
+                method: Method::Dop853,
+                tol: 1e-5,
+            },
+            Preset::Default => Accuracy {
+                method: Method::Dop853,
+                tol: 1e-8,
+            },
+            Preset::Accurate => Accuracy {
+                method: Method::Dop853,
+                tol: 1e-10,
+            },
+            Preset::Reference => Accuracy {
+                method: Method::Dop853,
+                tol: 1e-12,
+            },
         }
     }
 }
