@@ -11,6 +11,7 @@
 //!
 //! A peer that fails is reported in the doc; the Rust study failing fails the command.
 
+use crate::venv::{fnv1a64, run};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
@@ -40,27 +41,6 @@ impl Options {
             }
         }
         Ok(opts)
-    }
-}
-
-fn fnv1a64(bytes: &[u8]) -> u64 {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for b in bytes {
-        h ^= u64::from(*b);
-        h = h.wrapping_mul(0x0000_0100_0000_01b3);
-    }
-    h
-}
-
-fn run(cmd: &mut Command) -> Result<()> {
-    println!("xtask: running {cmd:?}");
-    let status = cmd
-        .status()
-        .map_err(|e| format!("cannot run {:?}: {e}", cmd.get_program()))?;
-    if status.success() {
-        Ok(())
-    } else {
-        Err(format!("{cmd:?} failed with {status}").into())
     }
 }
 

@@ -9,7 +9,7 @@ use crate::regen::Result;
 const STAMP: &str = ".rocking-requirements.stamp";
 
 /// FNV-1a, 64 bit: a stable hash with no dependency (not for security).
-fn fnv1a64(bytes: &[u8]) -> u64 {
+pub(crate) fn fnv1a64(bytes: &[u8]) -> u64 {
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
     for b in bytes {
         h ^= u64::from(*b);
@@ -26,7 +26,8 @@ fn venv_python(venv: &Path) -> PathBuf {
     }
 }
 
-fn run(cmd: &mut Command) -> Result<()> {
+/// Runs a command, echoing it; a non-zero exit is an error.
+pub(crate) fn run(cmd: &mut Command) -> Result<()> {
     println!("xtask: running {cmd:?}");
     let status = cmd
         .status()
