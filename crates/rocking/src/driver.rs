@@ -401,8 +401,7 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
     }
 
     /// The uplift test at the start of a contact phase and at every step.
-    fn uplift_functions(&self, t: f64, u: f64, u_dot: f64, ug: f64) -> G2 {
-        let _ = t;
+    fn uplift_functions(&self, u: f64, u_dot: f64, ug: f64) -> G2 {
         let xc = [u, u_dot];
         G2::new(
             V::uplift(&xc, ug, RIGHT, &self.p),
@@ -517,7 +516,7 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
         settle: bool,
     ) -> Result<Next, SimError> {
         let ug0 = self.motion.accel_right(t0);
-        let f = self.uplift_functions(t0, u, u_dot, ug0);
+        let f = self.uplift_functions(u, u_dot, ug0);
         for (k, s) in [(0, RIGHT), (1, LEFT)] {
             if !settle && f[k] > 0.0 && self.lifts(s, u, u_dot, ug0) {
                 return self.uplift(t0, s, u, u_dot, w, d);
