@@ -1,0 +1,86 @@
+//! The accuracy presets deliver the accuracy docs/accuracy.md and `rocking --help` state for them:
+//! the error in max θ/α and in the impact times, against DOP853 at 1e-13, within the preset's
+//! target (fast 1e-3, default 1e-6, accurate 1e-9 with a factor 10 of margin, reference 1e-11).
+
+use rocking::{
+    simulate, Accuracy, DampingConvention, Dimensionless, Effects, ImpactModel, Method, Options,
+    Preset, Run, Structure,
+};
+use rocking_motion::SinePulse;
+
+fn case(name: &str) -> (Structure, SinePulse, Options) {
+    let (d, amp, wp, t_end) = match name {
+        "fig3" => ((11.9, 0.2, 0.0, 0.0), 1.3, 5.1, 8.0),
+        _ => (
+            (5.0, 0.1, 1.0, 2.0),
+            3.0,
+            4.0,
+            2.0 * std::f64::consts::PI / 4.0 + 20.0,
+        ),
+    };
+    let dl = Dimensionless {
+        omega_n_over_p: d.0,
+        alpha: d.1,
+        gamma_mc: d.2,
+        gamma_mb: d.3,
+        gamma_ib: 1.0,
+        zeta: 0.005,
+        damping: DampingConvention::FixedBase,
+    };
+    let s = Structure::from_dimensionless(&dl, None).unwrap();
+    let o = Options {
+        t_end,
+        event_log: true,
+        impact: ImpactModel::Vvel,
+        ..Options::default()
+    };
+    (s, SinePulse::new(amp * d.1.tan(), wp), o)
+}
+
+fn run(name: &str, accuracy: Accuracy) -> Run {
+    let (s, pulse, o) = case(name);
+    simulate(&s, &pulse, &Effects::default(), &Options { accuracy, ..o }).unwrap()
+}
+
+/// The worse of the max θ/α error and the relative error of the impact times.
+fn error(run: &Run, reference: &Run) -> f64 {
+    let theta = (run.summary.max_theta_over_alpha - reference.summary.max_theta_over_alpha).abs();
+    let times = |r: &Run| -> Vec<f64> {
+        r.events
+            .iter()
+            .filter(|e| e.kind == rocking::EventKind::Impact)
+            .map(|e| e.time.tau)
+            .collect()
+    };
+    let (a, b) = (times(run), times(reference));
+    assert_eq!(a.len(), b.len(), "the same impact sequence");
+    let t = a
+        .iter()
+        .zip(&b)
+        .map(|(x, y)| ((x - y) / y).abs())
+        .fold(0.0, f64::max);
+    theta.max(t)
+}
+
+#[test]
+fn presets_meet_their_stated_accuracy() {
+    for name in ["fig3", "fig5-flexible"] {
+        let reference = run(
+            name,
+            Accuracy {
+                method: Method::Dop853,
+                tol: 1e-13,
+            },
+        );
+        for (preset, bound) in [
+            (Preset::Fast, 1e-3),
+            (Preset::Default, 1e-6),
+            (Preset::Accurate, 1e-8),
+            (Preset::Reference, 1e-11),
+        ] {
+            let e = error(&run(name, preset.accuracy()), &reference);
+            eprintln!("{name} {preset:?}: error {e:.1e} (bound {bound:.0e})");
+            assert!(e <= bound, "{name} {preset:?}: error {e:e} > {bound:e}");
+        }
+    }
+}
