@@ -66,8 +66,9 @@ impl Physical {
     /// slenderness `alpha`, `omega_n_over_p` = ω_n/p, `gamma_mc` = m_c/m, `gamma_mb` = m_b/m,
     /// `gamma_ib` = I_bc/(4/3 m_b B²) and the fixed-base damping ratio `zeta`.
     ///
-    /// EI is set so that the fixed-base frequency of the cubic shape is ω_n/p
-    /// (k̃ = 3EI/H³, m̃ = m + 33/140 m_c); for another shape use the kernels' `structure`.
+    /// EI is set so that the fixed-base frequency of the paper's (cubic-shape) model is ω_n/p:
+    /// k̃ is proportional to EI, so one evaluation of the generated `structure` kernel at EI = 1
+    /// gives the EI that makes k̃/m̃ = (ω_n/p)² (no formula is re-typed here).
     pub fn dimensionless(
         alpha: f64,
         omega_n_over_p: f64,
@@ -76,19 +77,22 @@ impl Physical {
         gamma_ib: f64,
         zeta: f64,
     ) -> Physical {
+        use kernels::full::structure as st;
         let (b, h) = alpha.sin_cos();
-        let m_tilde = 1.0 + 33.0 / 140.0 * gamma_mc;
-        Physical {
+        let mut phys = Physical {
             h,
             b,
-            ei: omega_n_over_p * omega_n_over_p * m_tilde * h * h * h / 3.0,
+            ei: 1.0,
             m: 1.0,
             m_c: gamma_mc,
             m_b: gamma_mb,
             i_bc: gamma_ib * 4.0 / 3.0 * gamma_mb * b * b,
             zeta,
             g: 1.0,
-        }
+        };
+        let unit = kernels::full::structure(&kernels::full::params(&phys));
+        phys.ei = omega_n_over_p * omega_n_over_p * unit[st::M_TILDE] / unit[st::K_TILDE];
+        phys
     }
 }
 
