@@ -136,3 +136,44 @@ fn fig5_model_energy_balance_closes() {
     let s = fig5_structure(5.0);
     forced_balance(&s, &SinePulse::new(3.0 * 0.1f64.tan(), 4.0), "Fig.-5 model");
 }
+
+/// The energy integrals are carried only when asked for, and outside the error control: the
+/// steps and the answer are the same with and without them (to rounding: the error norm sums
+/// 4 or 6 components in a different order).
+#[test]
+fn energy_bookkeeping_does_not_change_the_run() {
+    use rocking::{simulate, DampingConvention, Dimensionless, Effects, Options, Structure};
+    use rocking_motion::SinePulse;
+    let d = Dimensionless {
+        omega_n_over_p: 5.0,
+        alpha: 0.1,
+        gamma_mc: 1.0,
+        gamma_mb: 2.0,
+        gamma_ib: 1.0,
+        zeta: 0.005,
+        damping: DampingConvention::FixedBase,
+    };
+    let s = Structure::from_dimensionless(&d, None).unwrap();
+    let pulse = SinePulse::new(3.0 * 0.1f64.tan(), 4.0);
+    let run = |energy: bool| {
+        let o = Options {
+            t_end: 20.0,
+            energy,
+            ..Options::default()
+        };
+        simulate(&s, &pulse, &Effects::default(), &o)
+            .unwrap()
+            .summary
+    };
+    let (with, without) = (run(true), run(false));
+    assert!(with.energy_balance_residual.is_some() && without.energy_balance_residual.is_none());
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * a.abs().max(b.abs());
+    assert!(close(
+        with.max_theta_over_alpha,
+        without.max_theta_over_alpha
+    ));
+    assert!(close(with.max_u_over_ucr, without.max_u_over_ucr));
+    assert_eq!(with.impacts, without.impacts);
+    assert_eq!(with.solver_stats.steps, without.solver_stats.steps);
+    assert!(close(with.end_time.tau, without.end_time.tau));
+}

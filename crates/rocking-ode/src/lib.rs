@@ -114,7 +114,8 @@ impl Method {
 pub struct Tolerances<const N: usize> {
     /// Relative tolerance (`>= 0`).
     pub rtol: f64,
-    /// Absolute tolerance of each component (each `> 0`).
+    /// Absolute tolerance of each component (each `> 0`; `f64::INFINITY` leaves a component out
+    /// of the error control, e.g. an integral that is only carried along).
     pub atol: SVector<f64, N>,
 }
 
@@ -262,6 +263,9 @@ const STAGES: usize = 16;
 pub struct Integrator<const N: usize> {
     opts: Options,
     tol: Tolerances<N>,
+    /// Number of error-controlled components (finite atol): the RMS error norm averages over
+    /// these only, so a carried-along component (atol = +inf) does not loosen the tolerance.
+    controlled: f64,
     /// Current time and state.
     t: f64,
     y: SVector<f64, N>,
@@ -341,9 +345,10 @@ impl<const N: usize> Integrator<N> {
         if !(tol.rtol >= 0.0 && tol.rtol.is_finite()) {
             return bad("rtol must be finite and >= 0");
         }
-        if !tol.atol.iter().all(|&a| a > 0.0 && a.is_finite()) {
-            return bad("every atol component must be finite and > 0");
+        if !tol.atol.iter().all(|&a| a > 0.0 && !a.is_nan()) {
+            return bad("every atol component must be > 0 (+inf: not error-controlled)");
         }
+        let controlled = tol.atol.iter().filter(|a| a.is_finite()).count().max(1) as f64;
         if opts.h_max.is_nan() || opts.h_max <= 0.0 {
             return bad("h_max must be > 0 (use f64::INFINITY for no limit)");
         }
@@ -356,6 +361,7 @@ impl<const N: usize> Integrator<N> {
         Ok(Self {
             opts,
             tol,
+            controlled,
             t: f64::NAN,
             y: z,
             dy: z,
@@ -662,7 +668,7 @@ impl<const N: usize> Integrator<N> {
         if deno <= 0.0 {
             deno = 1.0;
         }
-        let err = h.abs() * err5 * (1.0 / (N as f64 * deno)).sqrt();
+        let err = h.abs() * err5 * (1.0 / (self.controlled * deno)).sqrt();
         (y_new, err)
     }
 
@@ -671,7 +677,7 @@ impl<const N: usize> Integrator<N> {
     }
 
     fn err_norm(&self, e: &SVector<f64, N>, y_new: &SVector<f64, N>) -> f64 {
-        (e.component_div(&self.scale(y_new)).norm_squared() / N as f64).sqrt()
+        (e.component_div(&self.scale(y_new)).norm_squared() / self.controlled).sqrt()
     }
 
     fn dense_dopri5(&mut self, h: f64, y_new: &SVector<f64, N>, f_new: &SVector<f64, N>) {

@@ -11,7 +11,8 @@
 //!   through zero, regularised so it cannot fire at the phase start t0 (n = 2 after an uplift, where
 //!   θ' = 0; n = 1 after an immediate-rocking impact), and the overturning event s θ − θ_over.
 //!
-//! W and D (ground work and damping dissipation) are integrated only when `ENERGY` is true;
+//! W and D (ground work and damping dissipation) are carried as two more state components only
+//! when the energy bookkeeping is asked for (`ENERGY`);
 //! they are excluded from the error control so that trajectories do not depend on it.
 
 use nalgebra::SVector;
@@ -56,8 +57,8 @@ impl From<OdeError> for SimError {
     }
 }
 
-type Y4 = SVector<f64, 4>;
-type Y6 = SVector<f64, 6>;
+/// A phase's integrator state: the mechanical state, then W and D when they are carried.
+type Y<const N: usize> = SVector<f64, N>;
 type G2 = SVector<f64, 2>;
 
 /// Where the hybrid system goes next.
@@ -102,7 +103,9 @@ enum After {
     },
 }
 
-struct Sim<'a, V: Variant, M: GroundMotion, const ENERGY: bool> {
+/// One run: `NR` and `NC` are the sizes of the rocking and contact states (4 and 2, or 6 and 4
+/// with the energy integrals).
+struct Sim<'a, V: Variant, M: GroundMotion, const NR: usize, const NC: usize> {
     p: V::Params,
     motion: &'a M,
     opts: &'a Options,
@@ -112,8 +115,8 @@ struct Sim<'a, V: Variant, M: GroundMotion, const ENERGY: bool> {
     significant_rate: f64,
     v_rest: f64,
     ode_options: OdeOptions,
-    contact_tol: Tolerances<4>,
-    rocking_tol: Tolerances<6>,
+    contact_tol: Tolerances<NC>,
+    rocking_tol: Tolerances<NR>,
     stats: SolverStats,
     max_theta: f64,
     max_u: f64,
@@ -134,6 +137,18 @@ const LEFT: f64 = -1.0;
 
 /// Runs one simulation with kernel variant `V`; `ENERGY` switches the energy bookkeeping on.
 pub fn simulate<V: Variant, M: GroundMotion, const ENERGY: bool>(
+    structure: &Structure,
+    motion: &M,
+    opts: &Options,
+) -> Result<Run, SimError> {
+    if ENERGY {
+        run::<V, M, 6, 4>(structure, motion, opts)
+    } else {
+        run::<V, M, 4, 2>(structure, motion, opts)
+    }
+}
+
+fn run<V: Variant, M: GroundMotion, const NR: usize, const NC: usize>(
     structure: &Structure,
     motion: &M,
     opts: &Options,
@@ -160,21 +175,21 @@ pub fn simulate<V: Variant, M: GroundMotion, const ENERGY: bool>(
     } else {
         derived.u_cr * derived.omega_n
     };
-    let off = 1e300; // W and D do not take part in the error control
+    let off = f64::INFINITY; // W and D take no part in the error control
     let ode = OdeOptions {
         max_steps: opts.max_steps,
         ..OdeOptions::new(opts.accuracy.method)
     };
     let contact_tol = Tolerances {
         rtol: tol,
-        atol: Y4::new(u_scale, ud_scale, off, off) * tol,
+        atol: Y::<NC>::from_fn(|i, _| [u_scale, ud_scale, off, off][i] * tol),
     };
     let rocking_tol = Tolerances {
         rtol: tol,
-        atol: Y6::new(a, u_scale, a * pf, ud_scale, off, off) * tol,
+        atol: Y::<NR>::from_fn(|i, _| [a, u_scale, a * pf, ud_scale, off, off][i] * tol),
     };
     let e0 = V::energy(&[0.0; 4], RIGHT, &p);
-    let sim = Sim::<V, M, ENERGY> {
+    let sim = Sim::<V, M, NR, NC> {
         p,
         motion,
         opts,
@@ -203,7 +218,10 @@ pub fn simulate<V: Variant, M: GroundMotion, const ENERGY: bool>(
     sim.run()
 }
 
-impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
+impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M, NR, NC> {
+    /// Whether W and D are carried (the energy bookkeeping was asked for).
+    const ENERGY: bool = NR > 4;
+
     fn time(&self, t: f64) -> Time {
         let tau = t * self.derived.p;
         Time {
@@ -269,7 +287,7 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
             };
         };
         let e_ref = self.derived.e_ref;
-        let (energy, residual) = if ENERGY {
+        let (energy, residual) = if Self::ENERGY {
             let last = self.total_energy(&state, s_end);
             let residual = (last - e_initial - w + d + self.losses) / e_ref;
             let balance = EnergyBalance {
@@ -435,7 +453,7 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
 
     /// The first time in [t_a, t_b] at which the base lifts about `s`, given that f_s > 0
     /// at t_a; `None` when it does not lift even at t_b (a rounding-level excursion of f_s).
-    fn first_lift(&self, ode: &Integrator<4>, s: f64, t_a: f64, t_b: f64) -> Option<f64> {
+    fn first_lift(&self, ode: &Integrator<NC>, s: f64, t_a: f64, t_b: f64) -> Option<f64> {
         let lifts_at = |t: f64| {
             let y = ode.dense(t);
             self.lifts(s, y[0], y[1], self.motion.accel(t))
@@ -486,7 +504,7 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
     }
 
     /// An integration failure while rocking, explained when the mass matrix became singular.
-    fn explain_failure(&self, e: OdeError, y: &Y6, s: f64) -> SimError {
+    fn explain_failure(&self, e: OdeError, y: &Y<NR>, s: f64) -> SimError {
         let [mtt, mtu, muu] = V::mass_matrix(&[y[0], y[1]], s, &self.p);
         let conditioning = (mtt * muu - mtu * mtu) / (mtt * muu);
         if conditioning.is_finite() && conditioning > 1e-8 {
@@ -526,17 +544,20 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
         let full_history = !matches!(self.opts.history, History::None);
         let may_stop = self.opts.stop_when_known && !full_history;
         let (p, motion) = (self.p, self.motion);
-        let mut rhs = |t: f64, y: &Y4| -> Y4 {
+        let mut rhs = |t: f64, y: &Y<NC>| -> Y<NC> {
             let ug = motion.accel(t);
             let dx = V::contact_rhs(&[y[0], y[1]], ug, &p);
-            if ENERGY {
+            let mut out = Y::<NC>::zeros();
+            out[0] = dx[0];
+            out[1] = dx[1];
+            if Self::ENERGY {
                 let pw = V::power(&[0.0, y[0], 0.0, y[1]], ug, RIGHT, &p);
-                Y4::new(dx[0], dx[1], pw[0], pw[1])
-            } else {
-                Y4::new(dx[0], dx[1], 0.0, 0.0)
+                out[2] = pw[0];
+                out[3] = pw[1];
             }
+            out
         };
-        let mut g = |t: f64, y: &Y4| -> G2 {
+        let mut g = |t: f64, y: &Y<NC>| -> G2 {
             let ug = motion.accel(t);
             G2::new(
                 V::uplift(&[y[0], y[1]], ug, RIGHT, &p),
@@ -546,7 +567,7 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
         // A rigid column in contact gives the error control nothing to follow: the steps are
         // bounded by the excitation's resolution, so that no excursion of f_s falls between them.
         let mut ode = Integrator::new(self.phase_options(t0), self.contact_tol)?;
-        ode.reset(t0, Y4::new(u, u_dot, w, d), &mut rhs)?;
+        ode.reset(t0, Y::<NC>::from_fn(|i, _| [u, u_dot, w, d][i]), &mut rhs)?;
         let mut g_old = f;
         let dirs = [Direction::Rising, Direction::Rising];
         let excitation_end = motion.end();
@@ -580,7 +601,8 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
                 );
                 self.stats.add(ode.take_stats());
                 let s = if index == 0 { RIGHT } else { LEFT };
-                return self.uplift(t_up, s, y[0], y[1], y[2], y[3]);
+                let (w, d) = carried(&y, 2);
+                return self.uplift(t_up, s, y[0], y[1], w, d);
             }
             self.extremes_contact(&ode, t_old, t_new);
             self.step_history(
@@ -596,13 +618,14 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
                 || (may_stop && t_new >= excitation_end && self.can_never_uplift(y[0], y[1]));
             if done {
                 self.stats.add(ode.take_stats());
+                let (w, d) = carried(&y, 2);
                 return Ok(Next::Done {
                     t: t_new,
                     phase: Phase::Contact,
                     s: RIGHT,
                     state: [0.0, y[0], 0.0, y[1]],
-                    w: y[2],
-                    d: y[3],
+                    w,
+                    d,
                 });
             }
         }
@@ -639,7 +662,7 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
     }
 
     /// max |u| within a contact step, including a turning point inside it.
-    fn extremes_contact(&mut self, ode: &Integrator<4>, t_old: f64, t_new: f64) {
+    fn extremes_contact(&mut self, ode: &Integrator<NC>, t_old: f64, t_new: f64) {
         let (a, b) = (ode.dense(t_old), ode.dense(t_new));
         self.max_u = self.max_u.max(b[0].abs());
         if a[1] * b[1] < 0.0 {
@@ -649,7 +672,7 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
     }
 
     /// max |θ| and |u| within a rocking step, including turning points inside it.
-    fn extremes_rocking(&mut self, ode: &Integrator<6>, t_old: f64, t_new: f64) {
+    fn extremes_rocking(&mut self, ode: &Integrator<NR>, t_old: f64, t_new: f64) {
         let (a, b) = (ode.dense(t_old), ode.dense(t_new));
         self.track(&[b[0], b[1], 0.0, 0.0]);
         for (pos, rate) in [(0usize, 2usize), (1, 3)] {
@@ -677,16 +700,18 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
     ) -> Result<Next, SimError> {
         let (p, motion) = (self.p, self.motion);
         let over = self.opts.overturn_angle;
-        let mut rhs = |t: f64, y: &Y6| -> Y6 {
+        let mut rhs = |t: f64, y: &Y<NR>| -> Y<NR> {
             let ug = motion.accel(t);
             let x = [y[0], y[1], y[2], y[3]];
             let dx = V::rocking_rhs(&x, ug, s, &p);
-            if ENERGY {
+            let mut out = Y::<NR>::zeros();
+            out.fixed_rows_mut::<4>(0).copy_from_slice(&dx);
+            if Self::ENERGY {
                 let pw = V::power(&x, ug, s, &p);
-                Y6::new(dx[0], dx[1], dx[2], dx[3], pw[0], pw[1])
-            } else {
-                Y6::new(dx[0], dx[1], dx[2], dx[3], 0.0, 0.0)
+                out[4] = pw[0];
+                out[5] = pw[1];
             }
+            out
         };
         // The impact event s θ / (t − t0)^n, with its limit at t0 (equations.md §5, note 4).
         let start_limit = if n == 0 {
@@ -699,7 +724,7 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
         // An uplift exactly at f_s = 0 has θ'' = 0: keep the event armed (it fires at once if θ
         // turns back, which ends the zero-length rocking phase with an impact).
         let start_limit = start_limit.max(f64::MIN_POSITIVE);
-        let mut g = |t: f64, y: &Y6| -> G2 {
+        let mut g = |t: f64, y: &Y<NR>| -> G2 {
             let dt = t - t0;
             let impact = if dt > 0.0 {
                 s * y[0] / dt.powi(n)
@@ -708,7 +733,7 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
             };
             G2::new(impact, s * y[0] - over)
         };
-        let y0 = Y6::new(x0[0], x0[1], x0[2], x0[3], w, d);
+        let y0 = Y::<NR>::from_fn(|i, _| [x0[0], x0[1], x0[2], x0[3], w, d][i]);
         let mut ode = Integrator::new(self.ode_options, self.rocking_tol)?;
         ode.reset(t0, y0, &mut rhs)?;
         let mut g_old = g(t0, &y0);
@@ -741,16 +766,18 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
                         [y[2], y[1], y[3]],
                         (e, e),
                     );
+                    let (w, d) = carried(&y, 4);
                     return Ok(Next::Done {
                         t: ev.t,
                         phase: Phase::Overturned,
                         s,
                         state: x,
-                        w: y[4],
-                        d: y[5],
+                        w,
+                        d,
                     });
                 }
-                return self.impact(ev.t, s, [y[1], y[3], y[2]], y[4], y[5]);
+                let (w, d) = carried(&y, 4);
+                return self.impact(ev.t, s, [y[1], y[3], y[2]], w, d);
             }
             self.extremes_rocking(&ode, t_old, t_new);
             self.step_history(t_old, t_new, |t| rocking_state(&ode.dense(t)), phase, s);
@@ -758,13 +785,14 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
             if t_new >= self.opts.t_end {
                 let y = *ode.y();
                 self.stats.add(ode.take_stats());
+                let (w, d) = carried(&y, 4);
                 return Ok(Next::Done {
                     t: t_new,
                     phase,
                     s,
                     state: [y[0], y[1], y[2], y[3]],
-                    w: y[4],
-                    d: y[5],
+                    w,
+                    d,
                 });
             }
         }
@@ -972,11 +1000,20 @@ impl<V: Variant, M: GroundMotion, const ENERGY: bool> Sim<'_, V, M, ENERGY> {
     }
 }
 
-fn contact_state(y: &Y4) -> [f64; 4] {
+/// The energy integrals (W, D) carried from component `first` on, or zeros when not carried.
+fn carried<const N: usize>(y: &Y<N>, first: usize) -> (f64, f64) {
+    if N >= first + 2 {
+        (y[first], y[first + 1])
+    } else {
+        (0.0, 0.0)
+    }
+}
+
+fn contact_state<const N: usize>(y: &Y<N>) -> [f64; 4] {
     [0.0, y[0], 0.0, y[1]]
 }
 
-fn rocking_state(y: &Y6) -> [f64; 4] {
+fn rocking_state<const N: usize>(y: &Y<N>) -> [f64; 4] {
     [y[0], y[1], y[2], y[3]]
 }
 
@@ -1014,7 +1051,7 @@ fn turning_point(rate: impl Fn(f64) -> f64, a: f64, b: f64, ra: f64) -> f64 {
 /// Where it rises at the start of the step and falls at its end, its maximum is found on the
 /// dense output (golden section); if that is positive, the uplift is the first positive point
 /// after the zero before it.
-fn grazing<G, D>(
+fn grazing<G, D, const N: usize>(
     g: &mut G,
     dense: &D,
     t_old: f64,
@@ -1023,8 +1060,8 @@ fn grazing<G, D>(
     g_new: &G2,
 ) -> Option<(f64, usize, f64)>
 where
-    G: FnMut(f64, &Y4) -> G2,
-    D: Fn(f64) -> Y4,
+    G: FnMut(f64, &Y<N>) -> G2,
+    D: Fn(f64) -> Y<N>,
 {
     let delta = (t_new - t_old) * 1e-4;
     let mut at = |t: f64, k: usize| g(t, &dense(t))[k];
