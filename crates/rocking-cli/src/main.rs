@@ -28,10 +28,10 @@ use crate::scene::CliError;
 /// (Vassiliou, Mackie & Stojadinović 2015).
 /// Shown by `--help`: what each accuracy preset costs (docs/accuracy.md, `cargo xtask bench`).
 const PRESETS: &str = "Accuracy presets ([solver] accuracy in a scene; measured by `cargo xtask bench`, docs/accuracy.md):
-  fast       DOP853 at 1e-5:  error in max θ/α and impact times about 6e-5,  about 0.57 ms per simulation
-  default    DOP853 at 1e-8:  error about 2e-7,  about 0.93 ms
-  accurate   DOP853 at 1e-10: error about 9e-10, about 1.3 ms
-  reference  DOP853 at 1e-12: converged against 1e-13, about 2.1 ms
+  fast       DOP853 at 1e-5:  error in max θ/α and impact times about 4e-5,  about 0.49 ms per simulation
+  default    DOP853 at 1e-7:  error about 7e-7,  about 0.66 ms
+  accurate   DOP853 at 1e-10: error about 6e-10, about 1.1 ms
+  reference  DOP853 at 1e-12: converged against 1e-13, about 1.7 ms
 An explicit method (\"dopri5\" or \"dop853\") and tol are allowed too.";
 
 #[derive(Parser, Debug)]
