@@ -81,8 +81,13 @@ fn finite(src: &Source, path: &str, v: f64, cond: bool, allowed: &str) -> Result
     }
 }
 
+/// The names of the keys that are present.
+fn present_keys<'a>(keys: &[(&'a str, bool)]) -> Vec<&'a str> {
+    keys.iter().filter(|(_, b)| *b).map(|(k, _)| *k).collect()
+}
+
 fn build_structure(src: &Source, s: &StructureSpec, rigid: bool) -> Result<Structure, CliError> {
-    let physical_keys: Vec<&str> = [
+    let physical_keys = present_keys(&[
         ("h", s.h.is_some()),
         ("b", s.b.is_some()),
         ("ei", s.ei.is_some()),
@@ -91,12 +96,8 @@ fn build_structure(src: &Source, s: &StructureSpec, rigid: bool) -> Result<Struc
         ("m_b", s.m_b.is_some()),
         ("i_bc", s.i_bc.is_some()),
         ("g", s.g.is_some()),
-    ]
-    .iter()
-    .filter(|(_, b)| *b)
-    .map(|(k, _)| *k)
-    .collect();
-    let dimless_keys: Vec<&str> = [
+    ]);
+    let dimless_keys = present_keys(&[
         ("omega_n_over_p", s.omega_n_over_p.is_some()),
         ("alpha", s.alpha.is_some()),
         ("gamma_mc", s.gamma_mc.is_some()),
@@ -105,11 +106,7 @@ fn build_structure(src: &Source, s: &StructureSpec, rigid: bool) -> Result<Struc
         ("damping", s.damping.is_some()),
         ("r", s.r.is_some()),
         ("p", s.p.is_some()),
-    ]
-    .iter()
-    .filter(|(_, b)| *b)
-    .map(|(k, _)| *k)
-    .collect();
+    ]);
     if !physical_keys.is_empty() && !dimless_keys.is_empty() {
         return Err(src.err(
             &format!("structure.{}", dimless_keys[0]),
@@ -336,7 +333,7 @@ const KINDS: &[&str] = &[
 ];
 
 fn present(e: &ExcitationSpec) -> Vec<&'static str> {
-    [
+    present_keys(&[
         ("kind", e.kind.is_some()),
         ("omega_p_over_p", e.omega_p_over_p.is_some()),
         ("omega_p", e.omega_p.is_some()),
@@ -350,11 +347,7 @@ fn present(e: &ExcitationSpec) -> Vec<&'static str> {
         ("nu", e.nu.is_some()),
         ("path", e.path.is_some()),
         ("scale", e.scale.is_some()),
-    ]
-    .iter()
-    .filter(|(_, b)| *b)
-    .map(|(k, _)| *k)
-    .collect()
+    ])
 }
 
 fn need_seconds(src: &Source, key: &str, u: &Units) -> Result<f64, CliError> {
