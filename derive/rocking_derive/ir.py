@@ -4,9 +4,10 @@ from __future__ import annotations
 
 import json
 import math
+import random
 
 import casadi as ca
-import numpy as np
+import mpmath
 
 from . import __version__
 from .kernels import Kernel, kernels
@@ -59,7 +60,18 @@ SAMPLE_RANGES = {
 }
 
 
-def sample_params(variant: Variant, rng) -> list[float]:
+class Sampler:
+    """Uniform samples from Python's Mersenne Twister through ``random()`` alone, whose sequence
+    for a seed is guaranteed across Python versions and machines."""
+
+    def __init__(self, seed: int):
+        self._rng = random.Random(seed)
+
+    def uniform(self, lo: float, hi: float) -> float:
+        return lo + (hi - lo) * self._rng.random()
+
+
+def sample_params(variant: Variant, rng: Sampler) -> list[float]:
     h = rng.uniform(5, 30)
     b = h * rng.uniform(0.05, 0.3)
     m = rng.uniform(1, 3)
@@ -75,8 +87,72 @@ def sample_params(variant: Variant, rng) -> list[float]:
     return [values[p.name] for p in variant.model.params]
 
 
-def golden(k: Kernel, f: ca.Function, variant: Variant, count: int = 3) -> list[dict]:
-    rng = np.random.default_rng(abs(hash(k.name)) % 2**32 if False else 20151122 + len(k.name))
+def _rounded(f):
+    """An elementary function evaluated in mpmath at 113 bits and rounded once to f64: the
+    correctly rounded value (up to a double rounding that is itself deterministic), independent
+    of the machine's libm."""
+    def g(*args):
+        with mpmath.workprec(113):
+            return float(f(*(mpmath.mpf(a) for a in args)))
+    return g
+
+
+#: Each instruction of the tape on Python floats. +, -, *, / and sqrt are IEEE operations
+#: (correctly rounded everywhere); the transcendental ones are rounded once from mpmath.
+REPLAY = {
+    "add": lambda a, b: a + b, "sub": lambda a, b: a - b, "mul": lambda a, b: a * b,
+    "div": lambda a, b: _ieee_div(a, b),
+    "neg": lambda a: -a, "sq": lambda a: a * a, "twice": lambda a: 2.0 * a,
+    "sqrt": lambda a: math.sqrt(a) if a >= 0 else math.nan, "fabs": abs,
+    "sign": lambda a: math.nan if math.isnan(a) else float((a > 0) - (a < 0)),
+    "sin": _rounded(mpmath.sin), "cos": _rounded(mpmath.cos), "atan2": _rounded(mpmath.atan2),
+}
+
+
+def _ieee_div(a: float, b: float) -> float:
+    """a / b as IEEE 754 defines it (Python raises on a zero divisor instead)."""
+    if b != 0:
+        return a / b
+    if a == 0 or math.isnan(a):
+        return math.nan
+    return math.copysign(math.inf, a) * math.copysign(1.0, b)
+
+
+def replay(instructions: list[list], args: list[list[float]]) -> list[float]:
+    """Evaluates a tape as the generated Rust does, op by op in f64, deterministically."""
+    work: dict[int, float] = {}
+    out: dict[int, float] = {}
+    for row in instructions:
+        op, dst = row[0], row[1]
+        if op == "input":
+            work[dst] = float(args[row[2]][row[3]])
+        elif op == "const":
+            work[dst] = _number_in(row[2])
+        elif op == "output":
+            out[dst] = work[row[2]]
+        elif op in REPLAY:
+            work[dst] = REPLAY[op](*(work[a] for a in row[2:]))
+        else:
+            raise ValueError(f"no deterministic replay of the CasADi operation {op!r}: add it to REPLAY")
+    return [out[k] for k in range(len(out))]
+
+
+def _number_in(v):
+    return {"nan": math.nan, "inf": math.inf, "-inf": -math.inf}.get(v, v) if isinstance(v, str) else float(v)
+
+
+def _close(a: float, b: float) -> bool:
+    if math.isnan(a) or math.isnan(b) or math.isinf(a) or math.isinf(b):
+        return a == b or (math.isnan(a) and math.isnan(b))
+    return abs(a - b) <= 1e-11 * max(abs(a), abs(b), 1e-300) or abs(a - b) <= 1e-280
+
+
+def golden(k: Kernel, f: ca.Function, instructions: list[list], variant: Variant,
+           count: int = 3) -> list[dict]:
+    """Golden samples: the tape replayed deterministically (``replay``) at pseudo-random inputs,
+    checked here against CasADi's own evaluation of the function (which calls the machine's libm,
+    so it is a check, never an output)."""
+    rng = Sampler(20151122 + len(k.name))
     samples = []
     for j in range(count):
         args = []
@@ -86,9 +162,12 @@ def golden(k: Kernel, f: ca.Function, variant: Variant, count: int = 3) -> list[
             elif inp.name == "s":
                 args.append([1.0 if j % 2 == 0 else -1.0])
             else:
-                args.append([float(rng.uniform(*SAMPLE_RANGES[e])) for e in inp.elements])
-        out = f(*args)
-        values = np.array(out).reshape(-1)
+                args.append([rng.uniform(*SAMPLE_RANGES[e]) for e in inp.elements])
+        values = replay(instructions, args)
+        casadi_values = [float(v) for v in ca.DM(f(*args)).full().reshape(-1)]
+        bad = [(i, a, b) for i, (a, b) in enumerate(zip(values, casadi_values)) if not _close(a, b)]
+        if len(values) != len(casadi_values) or bad:
+            raise ValueError(f"{variant.name}::{k.name}: replay differs from CasADi at {bad[:3]}")
         samples.append({"inputs": args, "output": [number(v) for v in values]})
     return samples
 
@@ -97,6 +176,7 @@ def variant_ir(variant: Variant) -> dict:
     functions = []
     for k in kernels(variant):
         f = casadi_function(k)
+        instructions = tape(f)
         functions.append({
             "name": k.name,
             "doc": k.doc,
@@ -107,8 +187,8 @@ def variant_ir(variant: Variant) -> dict:
             ],
             "output": {"name": k.output.name, "doc": k.output.doc, "elements": k.output.elements,
                        "scalar": k.output.scalar},
-            "instructions": tape(f),
-            "golden": golden(k, f, variant),
+            "instructions": instructions,
+            "golden": golden(k, f, instructions, variant),
         })
     params = []
     for p in variant.model.params:

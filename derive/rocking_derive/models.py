@@ -13,11 +13,12 @@ tests of the ``rocking-kernels`` crate run on every variant.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from fractions import Fraction
 
-from .shape import Function, Polynomial
+import sympy as sp
+
+from .shape import ETA, Function, Polynomial
 
 
 @dataclass(frozen=True)
@@ -109,11 +110,7 @@ PAPER = Model(
 COSINE = Model(
     name="cosine",
     description="Same masses, shape psi = 1 - cos(pi xi / 2H)",
-    shape=Function(
-        "psi = 1 - cos(pi eta / 2)",
-        psi=lambda e: 1.0 - math.cos(math.pi * e / 2.0),
-        psi_dd=lambda e: (math.pi / 2.0) ** 2 * math.cos(math.pi * e / 2.0),
-    ),
+    shape=Function("psi = 1 - cos(pi eta / 2)", 1 - sp.cos(sp.pi * ETA / 2)),
     masses=PAPER.masses,
 )
 

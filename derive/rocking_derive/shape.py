@@ -3,17 +3,22 @@
 The column deflection is u(t) psi(xi/H). Every column integral the energies need reduces to six
 moments of the shape over eta in [0, 1] (see ``mechanics.column_integral``) plus the stiffness
 integral of psi''. Polynomial shapes are integrated exactly in rational arithmetic, so the cubic
-shape of the paper's eq (1) gives exactly 3/8, 33/140 and 11/40; other shapes use Gauss-Legendre
-quadrature, exact to rounding for smooth functions.
+shape of the paper's eq (1) gives exactly 3/8, 33/140 and 11/40; other shapes (a sympy expression)
+use Gauss-Legendre quadrature in mpmath at 40 digits. Every value is rounded once to f64: nothing
+here depends on the CPU, a BLAS kernel, the thread count or the hash seed.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import Callable
 
-import numpy as np
+import casadi as ca
+import mpmath
+import sympy as sp
+
+#: The symbol of the height coordinate eta = xi / H in a shape expression.
+ETA = sp.Symbol("eta")
 
 #: Names of the mass moments, each the integral over eta in [0, 1] of the named product.
 MOMENTS = ("1", "eta", "psi", "eta2", "eta_psi", "psi2")
@@ -38,9 +43,12 @@ class Polynomial:
             raise ValueError(f"shape {description!r}: psi(1) must be 1 (u is the top displacement)")
 
     def value(self, eta):
-        """psi at eta: exact for a Fraction, floating point for a float or a CasADi expression."""
+        """psi at eta: exact for a Fraction, correctly rounded for a float (computed exactly,
+        rounded once), a CasADi expression for a CasADi symbol."""
         if isinstance(eta, Fraction):
             return sum(c * eta**k for k, c in self.coefficients.items())
+        if isinstance(eta, (int, float)):
+            return float(self.value(Fraction(eta)))
         return sum(float(c) * eta**k for k, c in self.coefficients.items())
 
     def _mul(self, a: dict[int, Fraction], b: dict[int, Fraction]) -> dict[int, Fraction]:
@@ -72,28 +80,66 @@ class Polynomial:
 
 
 class Function:
-    """psi(eta) given as a smooth function with its second derivative: Gauss-Legendre moments."""
+    """psi(eta) given as a sympy expression in ``ETA``: moments by Gauss-Legendre in mpmath.
 
-    def __init__(self, description: str, psi: Callable, psi_dd: Callable, points: int = 40):
+    psi'' is derived by sympy. Every moment is computed at ``DIGITS`` significant digits in
+    mpmath (pure Python: no BLAS or LAPACK, so no dependence on the CPU or its math kernels) and
+    rounded once to f64, so the derivation writes the same bytes on every machine.
+    """
+
+    #: Working precision of the quadrature, in decimal digits.
+    DIGITS = 40
+
+    def __init__(self, description: str, psi: sp.Expr):
         self.description = description
-        self.psi, self.psi_dd, self.points = psi, psi_dd, points
-        if abs(psi(1.0) - 1.0) > 1e-14:
+        self.expr = sp.sympify(psi)
+        free = self.expr.free_symbols - {ETA}
+        if free:
+            raise ValueError(f"shape {description!r}: psi may depend on eta only, not on {free}")
+        if sp.simplify(self.expr.subs(ETA, 1) - 1) != 0:
             raise ValueError(f"shape {description!r}: psi(1) must be 1 (u is the top displacement)")
+        self.expr_dd = sp.diff(self.expr, ETA, 2)
+        self._casadi = sp.lambdify(ETA, self.expr, modules=[_CASADI_FUNCTIONS, "math"])
 
     def value(self, eta):
-        return self.psi(eta)
+        """psi at eta: correctly rounded for a number, a CasADi expression for a CasADi symbol."""
+        if isinstance(eta, (Fraction, int, float)):
+            exact = self.expr.subs(ETA, sp.Rational(eta.numerator, eta.denominator)
+                                   if isinstance(eta, Fraction) else sp.Rational(eta))
+            return float(sp.N(exact, self.DIGITS))
+        return self._casadi(eta)
 
     def moments(self) -> Moments:
-        x, w = np.polynomial.legendre.leggauss(self.points)
-        eta, w = 0.5 * (x + 1.0), 0.5 * w
-        psi = np.array([self.psi(e) for e in eta])
-        dd = np.array([self.psi_dd(e) for e in eta])
-        values = {
-            "1": float(w.sum()),
-            "eta": float(w @ eta),
-            "psi": float(w @ psi),
-            "eta2": float(w @ eta**2),
-            "eta_psi": float(w @ (eta * psi)),
-            "psi2": float(w @ psi**2),
-        }
-        return Moments(values, float(w @ dd**2))
+        with mpmath.workdps(self.DIGITS):
+            psi = sp.lambdify(ETA, self.expr, modules="mpmath")
+            dd = sp.lambdify(ETA, self.expr_dd, modules="mpmath")
+            integrands = {
+                "1": lambda e: mpmath.mpf(1),
+                "eta": lambda e: e,
+                "psi": psi,
+                "eta2": lambda e: e**2,
+                "eta_psi": lambda e: e * psi(e),
+                "psi2": lambda e: psi(e) ** 2,
+            }
+            values = {k: _integral(f, self.description, k) for k, f in integrands.items()}
+            stiffness = _integral(lambda e: dd(e) ** 2, self.description, "(psi'')^2")
+        return Moments(values, stiffness)
+
+
+#: CasADi counterparts of the sympy functions a shape may use (for psi at a symbolic height).
+_CASADI_FUNCTIONS = {
+    "sin": ca.sin, "cos": ca.cos, "tan": ca.tan, "exp": ca.exp, "log": ca.log, "sqrt": ca.sqrt,
+    "sinh": ca.sinh, "cosh": ca.cosh, "tanh": ca.tanh, "atan": ca.atan,
+}
+
+
+def _integral(f, description: str, what: str) -> float:
+    """Integral of f over [0, 1] by Gauss-Legendre at the working precision, rounded once to f64.
+
+    mpmath refines the degree until two estimates agree; the error estimate must be far below
+    the f64 resolution, so that rounding the result is the only error left."""
+    value, error = mpmath.quad(f, [0, 1], method="gauss-legendre", error=True)
+    if not error < mpmath.mpf(10) ** (-(Function.DIGITS - 10)) * max(1, abs(value)):
+        raise ValueError(f"shape {description!r}: the quadrature of {what} did not converge "
+                         f"(error estimate {mpmath.nstr(error, 3)}); is psi smooth on [0, 1]?")
+    return float(value)

@@ -1,4 +1,5 @@
-//! Project automation: `cargo xtask regen [--check] [--skip-derive]`, `cargo xtask bench [--quick]`.
+//! Project automation: `cargo xtask regen [--check] [--skip-derive]`, `cargo xtask bench [--quick]`,
+//! `cargo xtask try-model`.
 //!
 //! `regen` re-derives the kernel IR with the pinned Python environment
 //! (`derive/requirements.txt`, installed into `<repo>/.venv`), renders it with
@@ -17,6 +18,7 @@ use std::process::ExitCode;
 
 mod bench;
 mod regen;
+mod try_model;
 mod venv;
 
 const USAGE: &str = "\
@@ -35,6 +37,10 @@ commands:
       --quick     fewer tolerances and cases (about two minutes); writes
                   target/bench-quick/docs/ instead of docs/
       --no-peers  Rust study and report only (no Python)
+  try-model
+      The model developer's path in a temporary copy (target/try-model/): append
+      a new model to derive/rocking_derive/models.py, regenerate, and run the
+      tests of the generated and codegen crates there.
   help
       Print this message.
 ";
@@ -68,6 +74,7 @@ fn main() -> ExitCode {
                 return ExitCode::from(2);
             }
         },
+        "try-model" if rest.is_empty() => try_model::run(&repo_root()),
         "help" | "--help" | "-h" => {
             print!("{USAGE}");
             return ExitCode::SUCCESS;
