@@ -96,7 +96,7 @@ pub fn peak_velocity_displacement(record: &Record) -> (f64, f64) {
     };
     for a1 in it {
         let c = (a1 - a0) / h; // da/dt on the step
-        // v(s) = v + a0 s + c s²/2 peaks where a(s) = 0 inside the step
+                               // v(s) = v + a0 s + c s²/2 peaks where a(s) = 0 inside the step
         if a0 * a1 < 0.0 {
             let s = -a0 / c;
             pgv = pgv.max((v + a0 * s + 0.5 * c * s * s).abs());
@@ -280,13 +280,14 @@ pub fn spectral_response(
     let e = (-z * w * h).exp();
     let (sn, cs) = (wd * h).sin_cos();
     let k = w * w; // unit mass
-    // u_{i+1} = A u + B v + C p_i + D p_{i+1}, v likewise (primes), p = −a
+                   // u_{i+1} = A u + B v + C p_i + D p_{i+1}, v likewise (primes), p = −a
     let ca = e * (z / r * sn + cs);
     let cb = e * sn / wd;
     let cc = (2.0 * z / (w * h)
         + e * (((1.0 - 2.0 * z * z) / (wd * h) - z / r) * sn - (1.0 + 2.0 * z / (w * h)) * cs))
         / k;
-    let cd = (1.0 - 2.0 * z / (w * h) + e * ((2.0 * z * z - 1.0) / (wd * h) * sn + 2.0 * z / (w * h) * cs))
+    let cd = (1.0 - 2.0 * z / (w * h)
+        + e * ((2.0 * z * z - 1.0) / (wd * h) * sn + 2.0 * z / (w * h) * cs))
         / k;
     let pa = -e * w / r * sn;
     let pb = e * (cs - z / r * sn);
@@ -376,7 +377,10 @@ mod tests {
         // a = 2 on [0, 1]: v = 2t, d = t², I = 4·1
         let r = rec(0.25, &[2.0; 5]);
         let (v, d) = peak_velocity_displacement(&r);
-        assert!((v - 2.0).abs() < 1e-15 && (d - 1.0).abs() < 1e-15, "{v} {d}");
+        assert!(
+            (v - 2.0).abs() < 1e-15 && (d - 1.0).abs() < 1e-15,
+            "{v} {d}"
+        );
         let ia = arias_intensity(&r);
         assert!((ia - PI / (2.0 * STANDARD_GRAVITY) * 4.0).abs() < 1e-15);
         // uniform energy: D5-95 = 0.9 of the duration
@@ -392,8 +396,8 @@ mod tests {
         let (v, d) = peak_velocity_displacement(&r);
         assert!((v - 0.25).abs() < 1e-15, "{v}");
         assert!((d - 1.0 / 6.0).abs() < 1e-15, "{d}"); // d = s²/2 - s³/3
-        // v changes sign inside the last step: d peaks there; check against a
-        // fine brute-force integration
+                                                       // v changes sign inside the last step: d peaks there; check against a
+                                                       // fine brute-force integration
         let r = rec(1.0, &[1.0, 1.0, -1.0, -3.0]);
         let (_, d) = peak_velocity_displacement(&r);
         let mut best = 0.0f64;
@@ -415,7 +419,9 @@ mod tests {
     fn spectral_static_limit_and_resonance() {
         // a stiff oscillator follows the ground: Sd ≈ PGA/ω², PSA ≈ PGA
         let dt = 0.01;
-        let a: Vec<f64> = (0..2000).map(|k| (2.0 * PI * 0.5 * k as f64 * dt).sin()).collect();
+        let a: Vec<f64> = (0..2000)
+            .map(|k| (2.0 * PI * 0.5 * k as f64 * dt).sin())
+            .collect();
         let r = rec(dt, &a);
         let s = spectral_response(&r, 0.02, 0.05).unwrap();
         assert!((s.psa_m_s2 - 1.0).abs() < 2e-3, "{}", s.psa_m_s2);
@@ -424,7 +430,11 @@ mod tests {
         let s = spectral_response(&r, 2.0, 0.0).unwrap();
         let w = PI;
         let expect = 19.99 / (2.0 * w);
-        assert!((s.sd_m - expect).abs() / expect < 2e-2, "{} {expect}", s.sd_m);
+        assert!(
+            (s.sd_m - expect).abs() / expect < 2e-2,
+            "{} {expect}",
+            s.sd_m
+        );
     }
 
     #[test]
@@ -444,9 +454,18 @@ mod tests {
         let zero = rec(0.01, &[0.0; 10]);
         assert!(significant_duration(&zero, 0.05, 0.95).is_err());
         assert!(mean_period(&zero).is_err());
-        assert!(significant_duration(&r, 0.9, 0.1).unwrap_err().to_string().contains("from"));
-        assert!(pga_over_uplift(1.0, 0.0).unwrap_err().to_string().contains("alpha"));
-        assert!(pgv_over_uplift(1.0, f64::NAN, 0.1).unwrap_err().to_string().contains(" p "));
+        assert!(significant_duration(&r, 0.9, 0.1)
+            .unwrap_err()
+            .to_string()
+            .contains("from"));
+        assert!(pga_over_uplift(1.0, 0.0)
+            .unwrap_err()
+            .to_string()
+            .contains("alpha"));
+        assert!(pgv_over_uplift(1.0, f64::NAN, 0.1)
+            .unwrap_err()
+            .to_string()
+            .contains(" p "));
         let x = pga_over_uplift(STANDARD_GRAVITY * 0.2f64.tan(), 0.2).unwrap();
         assert!((x - 1.0).abs() < 1e-15);
     }
