@@ -1,5 +1,5 @@
 //! Bootstrap confidence bands of a fitted fragility curve: refit on
-//! resampled data, read percentiles. Seeded ChaCha8, so a band is the same
+//! resampled data, read intervals off the refits. Seeded ChaCha8, so a band is the same
 //! on every machine and every run.
 
 use crate::fit::{fit_capacities, fit_stripes, Lognormal, Stripe};
@@ -33,9 +33,18 @@ impl Default for BootstrapOptions {
     }
 }
 
-/// The refitted curves of a bootstrap, and percentile intervals from them.
+/// The refitted curves of a bootstrap, and confidence intervals from them.
+///
+/// Intervals are the *basic* (pivotal) bootstrap on the log scale (on the
+/// probit scale for the curve): with x̂ the estimate and q the bootstrap
+/// percentiles of ln x, [x̂²/e^{q(1−α/2)}, x̂²/e^{q(α/2)}]. The plain
+/// percentile interval undercovers β, whose estimate is biased low and
+/// skewed (about 87 % coverage for a 95 % band with 40 capacities; the test
+/// `bootstrap_band_covers_the_truth_at_its_level` measures it).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Bootstrap {
+    /// The fit of the data themselves.
+    pub estimate: Lognormal,
     /// One fit per successful resample.
     pub fits: Vec<Lognormal>,
     /// Resamples that had no finite fit (e.g. no collapse drawn); they are
@@ -57,25 +66,34 @@ fn percentile(sorted: &[f64], q: f64) -> f64 {
 }
 
 impl Bootstrap {
-    fn interval(&self, mut values: Vec<f64>) -> (f64, f64) {
+    /// Basic bootstrap interval of a quantity g (on its transformed scale).
+    fn interval(&self, g: impl Fn(&Lognormal) -> f64) -> (f64, f64) {
+        let mut values: Vec<f64> = self.fits.iter().map(&g).collect();
         values.sort_by(f64::total_cmp);
         let tail = 0.5 * (1.0 - self.level);
-        (percentile(&values, tail), percentile(&values, 1.0 - tail))
+        let est = g(&self.estimate);
+        (
+            2.0 * est - percentile(&values, 1.0 - tail),
+            2.0 * est - percentile(&values, tail),
+        )
     }
 
-    /// Percentile interval of the median θ.
+    /// Confidence interval of the median θ.
     pub fn theta_interval(&self) -> (f64, f64) {
-        self.interval(self.fits.iter().map(|f| f.theta).collect())
+        let (lo, hi) = self.interval(|f| f.theta.ln());
+        (lo.exp(), hi.exp())
     }
 
-    /// Percentile interval of the dispersion β.
+    /// Confidence interval of the dispersion β.
     pub fn beta_interval(&self) -> (f64, f64) {
-        self.interval(self.fits.iter().map(|f| f.beta).collect())
+        let (lo, hi) = self.interval(|f| f.beta.ln());
+        (lo.exp(), hi.exp())
     }
 
-    /// Pointwise band of P(collapse | IM = `im`).
+    /// Pointwise confidence band of P(collapse | IM = `im`) (`im` > 0).
     pub fn band(&self, im: f64) -> (f64, f64) {
-        self.interval(self.fits.iter().map(|f| f.probability(im)).collect())
+        let (lo, hi) = self.interval(|f| (im / f.theta).ln() / f.beta);
+        (crate::normal::cdf(lo), crate::normal::cdf(hi))
     }
 }
 
@@ -96,6 +114,7 @@ fn check(options: &BootstrapOptions) -> Result<ChaCha8Rng, FragilityError> {
 }
 
 fn finish(
+    estimate: Lognormal,
     fits: Vec<Lognormal>,
     failed: usize,
     options: &BootstrapOptions,
@@ -106,6 +125,7 @@ fn finish(
         )));
     }
     Ok(Bootstrap {
+        estimate,
         fits,
         failed,
         level: options.level,
@@ -122,7 +142,7 @@ pub fn bootstrap_capacities(
     capacities: &[f64],
     options: &BootstrapOptions,
 ) -> Result<Bootstrap, FragilityError> {
-    fit_capacities(capacities)?;
+    let estimate = fit_capacities(capacities)?;
     let mut rng = check(options)?;
     let n = capacities.len();
     let mut sample = vec![0.0; n];
@@ -136,7 +156,7 @@ pub fn bootstrap_capacities(
             Err(_) => failed += 1,
         }
     }
-    finish(fits, failed, options)
+    finish(estimate, fits, failed, options)
 }
 
 /// Bootstrap of [`fit_stripes`]: within each stripe, the n_j outcomes are
@@ -150,7 +170,7 @@ pub fn bootstrap_stripes(
     stripes: &[Stripe],
     options: &BootstrapOptions,
 ) -> Result<Bootstrap, FragilityError> {
-    fit_stripes(stripes)?;
+    let estimate = fit_stripes(stripes)?;
     let mut rng = check(options)?;
     let mut sample = stripes.to_vec();
     let (mut fits, mut failed) = (Vec::with_capacity(options.resamples), 0);
@@ -165,5 +185,5 @@ pub fn bootstrap_stripes(
             Err(_) => failed += 1,
         }
     }
-    finish(fits, failed, options)
+    finish(estimate, fits, failed, options)
 }
