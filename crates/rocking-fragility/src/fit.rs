@@ -69,7 +69,7 @@ pub fn fit_capacities(capacities: &[f64]) -> Result<Lognormal, FragilityError> {
         .map(|c| (c.ln() - mean).powi(2))
         .sum::<f64>()
         / n;
-    if !(var > 0.0) {
+    if var <= 0.0 {
         return Err(FragilityError::NoEstimate(
             "fit_capacities: all capacities are equal, so beta = 0".into(),
         ));
@@ -147,7 +147,7 @@ pub fn fit_stripes(stripes: &[Stripe]) -> Result<Lognormal, FragilityError> {
     let logs: Vec<f64> = stripes.iter().map(|s| s.im.ln()).collect();
     let m = logs.iter().sum::<f64>() / logs.len() as f64;
     let s = (logs.iter().map(|l| (l - m).powi(2)).sum::<f64>() / logs.len() as f64).sqrt();
-    if !(s > 0.0) {
+    if s <= 0.0 {
         return Err(FragilityError::NoEstimate(
             "fit_stripes: every stripe is at the same IM: beta is undetermined".into(),
         ));
@@ -224,7 +224,7 @@ pub fn fit_stripes(stripes: &[Stripe]) -> Result<Lognormal, FragilityError> {
             "fit_stripes: Newton iteration did not converge".into(),
         ));
     }
-    if !(b > 0.0) {
+    if b.is_nan() || b <= 0.0 {
         return Err(FragilityError::NoEstimate(format!(
             "fit_stripes: the fitted probability of collapse falls as the IM grows \
              (slope {b}): not a fragility curve"

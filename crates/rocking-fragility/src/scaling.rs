@@ -46,7 +46,7 @@ impl ScalingIm {
             )));
         }
         let im = self.of(record)?;
-        if !(im > 0.0) {
+        if im <= 0.0 {
             return Err(FragilityError::InvalidParameter(format!(
                 "scale_factor: the record's {self:?} is {im}: it cannot be scaled to {target}"
             )));

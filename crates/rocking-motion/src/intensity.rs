@@ -167,7 +167,7 @@ pub fn significant_duration(record: &Record, from: f64, to: f64) -> Result<f64, 
     }
     let cum = squared_integrals(record);
     let total = *cum.last().expect("a record has a sample");
-    if !(total > 0.0) {
+    if total <= 0.0 {
         return Err(invalid(
             "significant_duration: record has zero Arias intensity (no motion)".into(),
         ));
@@ -225,7 +225,7 @@ pub fn mean_period(record: &Record) -> Result<f64, MotionError> {
             den += c2;
         }
     }
-    if !(den > 0.0) {
+    if den <= 0.0 {
         return Err(invalid(format!(
             "mean_period: record has no Fourier amplitude in {lo}-{hi} Hz \
              (n = {n}, dt = {} s)",
