@@ -3,7 +3,7 @@
 
 use crate::FragilityError;
 use rocking_motion::intensity::{pga, spectral_response};
-use rocking_motion::Record;
+use rocking_motion::{MotionError, Record};
 
 /// The intensity measure a record is scaled by.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -27,9 +27,12 @@ impl ScalingIm {
     pub fn of(&self, record: &Record) -> Result<f64, FragilityError> {
         match *self {
             ScalingIm::Pga => Ok(pga(record)),
-            ScalingIm::Sa { period, damping } => Ok(spectral_response(record, period, damping)
-                .map_err(|e| FragilityError::InvalidParameter(e.to_string()))?
-                .psa_m_s2),
+            ScalingIm::Sa { period, damping } => spectral_response(record, period, damping)
+                .map(|r| r.psa_m_s2)
+                .map_err(|e| match e {
+                    MotionError::InvalidParameter(m) => FragilityError::InvalidParameter(m),
+                    other => FragilityError::InvalidParameter(other.to_string()),
+                }),
         }
     }
 

@@ -116,20 +116,21 @@ pub fn peak_velocity_displacement(record: &Record) -> (f64, f64) {
     (pgv, pgd)
 }
 
-/// Real roots of q2 s² + q1 s + q0 (the stable form, no cancellation).
-fn quadratic_roots(q2: f64, q1: f64, q0: f64) -> Vec<f64> {
+/// Real roots of q2 s² + q1 s + q0 by the stable form (no cancellation);
+/// NaN where there is none, so that a caller's range test skips it.
+fn quadratic_roots(q2: f64, q1: f64, q0: f64) -> [f64; 2] {
     if q2 == 0.0 {
-        return if q1 == 0.0 { vec![] } else { vec![-q0 / q1] };
+        return [-q0 / q1, f64::NAN]; // NaN or ±∞ when q1 = 0: skipped too
     }
     let disc = q1 * q1 - 4.0 * q2 * q0;
     if disc < 0.0 {
-        return vec![];
+        return [f64::NAN; 2];
     }
     let q = -0.5 * (q1 + q1.signum() * disc.sqrt());
     if q == 0.0 {
-        return vec![0.0];
+        return [0.0, f64::NAN];
     }
-    vec![q / q2, q0 / q]
+    [q / q2, q0 / q]
 }
 
 /// ∫a²dt of the interpolant, step by step (exact: h(a0² + a0a1 + a1²)/3).
