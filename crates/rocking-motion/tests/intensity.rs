@@ -67,3 +67,55 @@ fn intensity_measures_match_scipy_reference_on_real_records() {
         println!("  {name:14} {rel:.2e}  ({at})");
     }
 }
+
+/// Every one of the 61 records: the IMs exist and obey what they must
+/// (PGA as the reader's peak in g, D5-95 within the duration, T_m inside
+/// the band's periods, Arias and PGV consistent with the PGA bound), and
+/// all are linear (or, for Arias, quadratic) in the record's scale.
+#[test]
+fn intensity_measures_of_all_records_are_consistent() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data/ground-motions");
+    assert!(
+        dir.is_dir(),
+        "needs the shared records at {}",
+        dir.display()
+    );
+    let mut files: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("at2")))
+        .collect();
+    files.sort();
+    assert_eq!(files.len(), 61);
+    let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
+    for f in &files {
+        let at2 = read_at2(f).unwrap();
+        let record = at2.to_record_si();
+        let im = IntensityMeasures::of(&record).unwrap();
+        let name = f.file_name().unwrap().to_string_lossy();
+        let g = rocking_motion::STANDARD_GRAVITY;
+        assert!(
+            (im.pga_m_s2 - at2.pga() * g).abs() <= 1e-15 * im.pga_m_s2,
+            "{name}"
+        );
+        assert!(im.d5_95_s > 0.0 && im.d5_95_s < at2.duration(), "{name}");
+        assert!(
+            im.mean_period_s > 0.05 && im.mean_period_s < 4.0,
+            "{name}: {}",
+            im.mean_period_s
+        );
+        // |v(t)| ≤ PGA·t and I_A ≤ π/(2g)·PGA²·duration
+        assert!(im.pgv_m_s <= im.pga_m_s2 * at2.duration(), "{name}");
+        let bound = std::f64::consts::PI / (2.0 * g) * im.pga_m_s2.powi(2) * at2.duration();
+        assert!(im.arias_m_s > 0.0 && im.arias_m_s <= bound, "{name}");
+        // scaling: ×2.5 scales every amplitude by 2.5, Arias by 6.25, durations not at all
+        let s = IntensityMeasures::of(&record.clone().with_scale(record.scale() * 2.5)).unwrap();
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs();
+        assert!(close(s.pga_m_s2, 2.5 * im.pga_m_s2) && close(s.pgv_m_s, 2.5 * im.pgv_m_s));
+        assert!(close(s.pgd_m, 2.5 * im.pgd_m) && close(s.arias_m_s, 6.25 * im.arias_m_s));
+        assert!(close(s.d5_95_s, im.d5_95_s) && close(s.mean_period_s, im.mean_period_s));
+        lo = lo.min(at2.pga());
+        hi = hi.max(at2.pga());
+    }
+    println!("61 records: PGA from {lo:.4} g to {hi:.4} g");
+}
