@@ -85,6 +85,7 @@
 
 mod at2;
 mod error;
+pub mod intensity;
 mod pulses;
 mod record;
 
