@@ -37,6 +37,8 @@
 #![warn(missing_docs)]
 
 pub mod kernels;
+pub mod series;
+pub mod taylor;
 
 /// The physical parameters of the paper's model (any consistent unit system).
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -6,7 +6,7 @@ use std::io::Write as _;
 use std::path::Path;
 use std::process::{Command, Stdio};
 
-use rocking_codegen::{render_all, IR_DIR, KERNELS_DIR};
+use rocking_codegen::{render_all, IR_DIR, KERNELS_DIR, TAYLOR_DIR};
 
 /// Error type of the xtask commands.
 pub type Result<T, E = Box<dyn std::error::Error>> = std::result::Result<T, E>;
@@ -245,7 +245,7 @@ pub fn apply(root: &Path, changes: &[Change]) -> Result<()> {
 /// The wanted contents of the owned files, and the owned directories.
 pub fn desired_files(root: &Path, opts: &Options) -> Result<(Files, Owned)> {
     let mut desired = BTreeMap::new();
-    let mut owned = vec![(KERNELS_DIR, "rs")];
+    let mut owned = vec![(KERNELS_DIR, "rs"), (TAYLOR_DIR, "rs")];
     // Keeps the derivation output alive until rendering is done.
     let tmp;
     let ir_dir = if opts.skip_derive {
@@ -390,7 +390,11 @@ mod tests {
         };
         let (desired, owned) = desired_files(root, &opts).unwrap();
         let first = changes(root, &desired, &owned).unwrap();
-        assert_eq!(first.len(), 3, "mod.rs and two variants are missing");
+        assert_eq!(
+            first.len(),
+            6,
+            "mod.rs and two variants are missing, each with its Taylor-mode twin"
+        );
         assert!(first.iter().all(|c| c.kind() == "missing"));
         apply(root, &first).unwrap();
         assert!(changes(root, &desired, &owned).unwrap().is_empty());

@@ -11,6 +11,7 @@
 mod error;
 pub mod ir;
 mod render;
+mod taylor;
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -18,6 +19,7 @@ use std::path::Path;
 pub use error::{Error, Result};
 pub use ir::{load_dir, Float, Function, Golden, Input, Instruction, Ir, Output, Param};
 pub use render::{camel_case, float_literal, render_mod, render_variant};
+pub use taylor::{render_taylor, render_taylor_mod, TAYLOR_DIR};
 
 /// Directory of the IR files, relative to the repository root.
 pub const IR_DIR: &str = "generated/ir";
@@ -27,8 +29,8 @@ pub const KERNELS_DIR: &str = "generated/src/kernels";
 /// Renders every `*.json` IR file of `ir_dir`.
 ///
 /// Returns the contents of every rendered file keyed by its path relative to the
-/// repository root, with `/` separators (`generated/src/kernels/<variant>.rs` and
-/// `generated/src/kernels/mod.rs`).
+/// repository root, with `/` separators (`generated/src/kernels/<variant>.rs`,
+/// `generated/src/kernels/mod.rs` and their Taylor-mode twins in `generated/src/taylor/`).
 pub fn render_all(ir_dir: &Path) -> Result<BTreeMap<String, String>> {
     let irs = load_dir(ir_dir)?;
     let mut out = BTreeMap::new();
@@ -52,5 +54,12 @@ pub fn render_all(ir_dir: &Path) -> Result<BTreeMap<String, String>> {
         out.insert(path, render_variant(ir)?);
     }
     out.insert(format!("{KERNELS_DIR}/mod.rs"), render_mod(&irs)?);
+    for ir in &irs {
+        out.insert(
+            format!("{TAYLOR_DIR}/{}.rs", ir.variant),
+            render_taylor(ir)?,
+        );
+    }
+    out.insert(format!("{TAYLOR_DIR}/mod.rs"), render_taylor_mod(&irs)?);
     Ok(out)
 }

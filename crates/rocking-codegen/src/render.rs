@@ -44,7 +44,7 @@ fn tera_for(name: &str, source: &str, origin: &str) -> Result<tera::Tera> {
     Ok(tera)
 }
 
-fn render_template<T: Serialize>(
+pub(crate) fn render_template<T: Serialize>(
     name: &str,
     source: &str,
     view: &T,
@@ -129,7 +129,7 @@ fn is_work_var_name(s: &str) -> bool {
     matches!(chars.next(), Some('w' | 'o')) && s.len() > 1 && chars.all(|c| c.is_ascii_digit())
 }
 
-fn str_lit(s: &str) -> String {
+pub(crate) fn str_lit(s: &str) -> String {
     format!("{s:?}")
 }
 

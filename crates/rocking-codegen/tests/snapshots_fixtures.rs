@@ -2,7 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
-use rocking_codegen::{render_all, render_mod, render_variant, Ir};
+use rocking_codegen::{render_all, render_mod, render_taylor, render_variant, Ir};
 
 fn fixtures() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures")
@@ -20,6 +20,30 @@ fn variant_ops() {
 #[test]
 fn variant_rigid_block() {
     insta::assert_snapshot!(render_variant(&fixture("rigid_block")).unwrap());
+}
+
+/// The Taylor-mode twin of a rocking right-hand side (sin/cos pair, constants hoisted).
+#[test]
+fn taylor_rigid_block() {
+    insta::assert_snapshot!(render_taylor(&fixture("rigid_block")).unwrap());
+}
+
+/// An operation without a Taylor recurrence in a Taylor-mode function is refused by name.
+#[test]
+fn taylor_refuses_an_operation_without_a_rule() {
+    let mut ir = fixture("rigid_block");
+    let f = &mut ir.functions[0];
+    let op = f
+        .instructions
+        .iter_mut()
+        .find_map(|ins| match ins {
+            rocking_codegen::Instruction::Op { op, .. } if op == "sin" => Some(op),
+            _ => None,
+        })
+        .expect("the fixture takes a sine");
+    *op = "tan".to_string();
+    let msg = render_taylor(&ir).unwrap_err().to_string();
+    assert!(msg.contains("\"tan\" has no Taylor-mode rule"), "{msg}");
 }
 
 #[test]
@@ -44,6 +68,9 @@ fn render_all_fixture_dir() {
             "generated/src/kernels/mod.rs",
             "generated/src/kernels/ops.rs",
             "generated/src/kernels/rigid_block.rs",
+            "generated/src/taylor/mod.rs",
+            "generated/src/taylor/ops.rs",
+            "generated/src/taylor/rigid_block.rs",
         ]
     );
     assert_eq!(

@@ -1,0 +1,158 @@
+//! The Taylor-mode kernels (`rocking_kernels::taylor`) on every variant.
+//!
+//! The identity checked is the energy balance, order by order: along the series solution
+//! x(t0 + h) = Σ x_k h^k of the rocking (or contact) equations, the series of the total energy
+//! E = T + V_g + V_s and of the power P = ground − damping must satisfy k E_k = P_{k−1} for every
+//! k ≥ 1. Energy and power come from other kernels than the right-hand side, so one wrong
+//! coefficient anywhere in x breaks the identity at its order. The first coefficient is also
+//! compared with the ordinary right-hand-side kernel.
+
+use rocking_kernels::{kernels, taylor, Physical};
+
+/// Coefficients per series: order 23 of the solution.
+const N: usize = 24;
+
+/// A small deterministic generator (xorshift64*).
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.next()
+    }
+}
+
+/// Taylor coefficients of a sine ground motion `a sin(ω t + φ)` about t0 = 0.
+fn sine_series(a: f64, omega: f64, phi: f64) -> [f64; N] {
+    let mut out = [0.0; N];
+    let mut factor = a; // a ω^k / k!
+    for (k, c) in out.iter_mut().enumerate() {
+        *c = factor * (phi + k as f64 * std::f64::consts::FRAC_PI_2).sin();
+        factor *= omega / (k + 1) as f64;
+    }
+    out
+}
+
+/// Worst violation of k E_k = P_{k-1}, relative to the size of the terms at each order.
+fn energy_identity(energy: &[[f64; N]; 4], power: &[[f64; N]; 2]) -> f64 {
+    let mut worst: f64 = 0.0;
+    for k in 1..N {
+        let kf = k as f64;
+        let lhs = kf * (energy[0][k] + energy[1][k] + energy[2][k]);
+        let rhs = power[0][k - 1] - power[1][k - 1];
+        let scale = kf * (energy[0][k].abs() + energy[1][k].abs() + energy[2][k].abs())
+            + power[0][k - 1].abs()
+            + power[1][k - 1].abs();
+        if scale > 0.0 {
+            worst = worst.max((lhs - rhs).abs() / scale);
+        }
+    }
+    worst
+}
+
+macro_rules! check_variant {
+    ($m:ident, $rigid:expr) => {{
+        let mut rng = Rng(0x7a71_0e00 ^ stringify!($m).len() as u64);
+        let mut worst: f64 = 0.0;
+        for _ in 0..50 {
+            let alpha = rng.range(0.05, 0.4);
+            let phys = Physical::dimensionless(
+                alpha,
+                rng.range(2.0, 30.0),
+                rng.range(0.0, 2.0),
+                rng.range(0.0, 2.0),
+                rng.range(0.9, 1.2),
+                rng.range(0.0, 0.1),
+            );
+            let p = kernels::$m::params(&phys);
+            let ug = sine_series(
+                rng.range(-0.5, 0.5),
+                rng.range(1.0, 8.0),
+                rng.range(0.0, 6.3),
+            );
+            let (u, ud) = if $rigid {
+                (0.0, 0.0)
+            } else {
+                (rng.range(-0.02, 0.02), rng.range(-0.1, 0.1))
+            };
+            // Rocking about either corner.
+            for s in [1.0, -1.0] {
+                let x0 = [s * rng.range(0.0, alpha), u, rng.range(-0.5, 0.5), ud];
+                let mut x = [[0.0; N]; 4];
+                for i in 0..4 {
+                    x[i][0] = x0[i];
+                }
+                taylor::$m::rocking_rhs::<N>(&mut x, &ug, s, &p);
+                let f = kernels::$m::rocking_rhs(&x0, ug[0], s, &p);
+                for i in 0..4 {
+                    assert!(
+                        (x[i][1] - f[i]).abs() <= 1e-14 * f[i].abs().max(1.0),
+                        "{}: first coefficient {} vs rhs {}",
+                        stringify!($m),
+                        x[i][1],
+                        f[i]
+                    );
+                }
+                let e = taylor::$m::energy::<N>(&x, s, &p);
+                let pw = taylor::$m::power::<N>(&x, &ug, s, &p);
+                worst = worst.max(energy_identity(&e, &pw));
+            }
+            // Full contact: θ ≡ 0, the column vibrates.
+            let mut xc = [[0.0; N]; 2];
+            xc[0][0] = u;
+            xc[1][0] = ud;
+            taylor::$m::contact_rhs::<N>(&mut xc, &ug, &p);
+            let x = [[0.0; N], xc[0], [0.0; N], xc[1]];
+            let e = taylor::$m::energy::<N>(&x, 1.0, &p);
+            let pw = taylor::$m::power::<N>(&x, &ug, 1.0, &p);
+            worst = worst.max(energy_identity(&e, &pw));
+        }
+        eprintln!(
+            "taylor {}: worst relative violation of k E_k = P_(k-1) up to order {}: {worst:.1e}",
+            stringify!($m),
+            N - 1
+        );
+        assert!(worst < 1e-11, "{}: {worst:e}", stringify!($m));
+    }};
+}
+
+#[test]
+fn series_solutions_balance_energy_order_by_order() {
+    check_variant!(full, false);
+    check_variant!(massless_column, false);
+    check_variant!(massless_base, false);
+    check_variant!(point_mass, false);
+    check_variant!(rigid, true);
+    check_variant!(small_angle, false);
+    check_variant!(cosine_shape, false);
+    check_variant!(added_mass, false);
+}
+
+/// The uplift function's series along a contact solution matches its values at nearby times,
+/// computed by the ordinary kernels on the series state: the series of a composition is the
+/// composition of the series (to the truncation error at a small step).
+#[test]
+fn uplift_series_agrees_with_pointwise_evaluation() {
+    let phys = Physical::dimensionless(0.2, 5.0, 1.0, 1.0, 1.0, 0.02);
+    let p = kernels::full::params(&phys);
+    let ug = sine_series(0.1, 3.0, 0.4);
+    let mut xc = [[0.0; N]; 2];
+    xc[0][0] = 0.01;
+    xc[1][0] = -0.03;
+    taylor::full::contact_rhs::<N>(&mut xc, &ug, &p);
+    let fs = taylor::full::uplift::<N>(&xc, &ug, 1.0, &p);
+    let eval = |c: &[f64; N], h: f64| c.iter().rev().fold(0.0, |acc, v| acc * h + v);
+    for h in [0.01, 0.05, 0.1] {
+        let state = [eval(&xc[0], h), eval(&xc[1], h)];
+        let direct = kernels::full::uplift(&state, eval(&ug, h), 1.0, &p);
+        let series = eval(&fs[0], h);
+        assert!(
+            (direct - series).abs() <= 1e-13 * direct.abs().max(1.0),
+            "h = {h}: uplift {direct} vs its series {series}"
+        );
+    }
+}
