@@ -1,0 +1,228 @@
+//! Real roots of a polynomial on one step, for events located on a Taylor step.
+//!
+//! Isolation is Descartes' rule of signs in the Bernstein basis with bisection by de Casteljau
+//! subdivision (the Vincent–Collins–Akritas method in its Bernstein form, e.g. Mourrain, Rouillier
+//! & Roy, J. Symbolic Comput. 39, 2005): the number of sign changes of the Bernstein coefficients
+//! on an interval bounds the number of roots there and has the same parity, so an interval with no
+//! change has no root and one with a single change has exactly one. Intervals are split in halves,
+//! left first, so roots come out in time order. Why not Sturm sequences: they need divisions that
+//! lose accuracy at double roots; de Casteljau is a sequence of convex combinations (stable).
+//!
+//! A pair of roots closer than the subdivision limit (2⁻⁵⁰ of the step), a double root or a tangency
+//! with zero within rounding is a *cluster*: the polynomial reaches zero there, so it is reported
+//! (a grazing contact that touches the threshold counts as reaching it, as `g >= 0` does in
+//! [`Direction`]). An isolated simple root is polished by the Illinois method on the power
+//! form (Horner), to a bracket of 2 ulp.
+
+use crate::events::Direction;
+
+/// Highest polynomial degree handled (coefficient arrays live on the stack).
+pub const MAX_DEGREE: usize = 32;
+
+/// Subdivision limit, as a fraction of the step: below it an interval with sign changes is a
+/// cluster (about 50 bisections).
+const MIN_WIDTH: f64 = 1.0 / (1u64 << 50) as f64;
+
+/// A root of `g(τ) = Σ c_k τ^k` on `(0, h]`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Root {
+    /// Offset from the step start: the first point found on the far side (g crossed or is 0).
+    pub tau: f64,
+    /// Last point found before the crossing (`tau_before <= tau`, a few ulp apart for a simple
+    /// root, at most 2⁻⁵⁰ h for a cluster).
+    pub tau_before: f64,
+    /// `true` when `g < 0` just before the root (a rising crossing, or a touch from below).
+    pub rising: bool,
+    /// `true` for a cluster (double root, grazing, or two roots closer than 2⁻⁵⁰ h).
+    pub cluster: bool,
+}
+
+fn accepts(dir: Direction, rising: bool) -> bool {
+    match dir {
+        Direction::Rising => rising,
+        Direction::Falling => !rising,
+        Direction::Either => true,
+    }
+}
+
+/// Value of `Σ c_k τ^k` (Horner).
+#[inline]
+pub fn horner(c: &[f64], tau: f64) -> f64 {
+    c.iter().rev().fold(0.0, |acc, &ck| acc * tau + ck)
+}
+
+/// Sign changes of a sequence, zeros skipped, and the signs of its first and last nonzero terms.
+fn variations(b: &[f64]) -> (usize, f64, f64) {
+    let (mut v, mut first, mut last) = (0, 0.0, 0.0);
+    for &x in b {
+        if x != 0.0 {
+            let s = x.signum();
+            if last != 0.0 && s != last {
+                v += 1;
+            }
+            if first == 0.0 {
+                first = s;
+            }
+            last = s;
+        }
+    }
+    (v, first, last)
+}
+
+/// The earliest root of `g(τ) = Σ c[k] τ^k` in `(0, h]` whose direction `dir` accepts, or `None`.
+///
+/// Semantics match [`Direction::triggers`]: a root at τ = 0 never counts (g is divided by its
+/// exact factor τ^m first, which leaves the sign on `(0, h]` unchanged), a root at τ = h does.
+/// Panics when `c` has more than `MAX_DEGREE + 1` coefficients or `h` is not finite and positive.
+pub fn first_root(c: &[f64], h: f64, dir: Direction) -> Option<Root> {
+    assert!(c.len() <= MAX_DEGREE + 1, "degree above MAX_DEGREE");
+    assert!(h > 0.0 && h.is_finite(), "step {h} must be finite and > 0");
+    let lead = c.iter().take_while(|&&v| v == 0.0).count();
+    let c = &c[lead..];
+    let n = c.iter().rposition(|&v| v != 0.0)?;
+    let c = &c[..=n];
+    if n == 0 {
+        return None;
+    }
+    // Scaled to s = τ/h in [0, 1], then to the Bernstein basis of degree n:
+    // b_i = Σ_{k<=i} C(i,k)/C(n,k) d_k.
+    let mut d = [0.0; MAX_DEGREE + 1];
+    let mut hk = 1.0;
+    for k in 0..=n {
+        d[k] = c[k] * hk;
+        hk *= h;
+    }
+    let mut binom = [[0.0f64; MAX_DEGREE + 1]; MAX_DEGREE + 1];
+    for i in 0..=n {
+        binom[i][0] = 1.0;
+        for k in 1..=i {
+            binom[i][k] = binom[i - 1][k - 1] + if k < i { binom[i - 1][k] } else { 0.0 };
+        }
+    }
+    let mut b = [0.0; MAX_DEGREE + 1];
+    for i in 0..=n {
+        b[i] = (0..=i).map(|k| binom[i][k] / binom[n][k] * d[k]).sum();
+    }
+    let ctx = Ctx { c, h, n, dir };
+    ctx.search(&b, 0.0, 1.0)
+}
+
+struct Ctx<'a> {
+    c: &'a [f64],
+    h: f64,
+    n: usize,
+    dir: Direction,
+}
+
+impl Ctx<'_> {
+    fn search(&self, b: &[f64; MAX_DEGREE + 1], lo: f64, hi: f64) -> Option<Root> {
+        let n = self.n;
+        let (v, first, _) = variations(&b[..=n]);
+        let end_root = b[n] == 0.0;
+        if v == 0 {
+            if end_root && first != 0.0 {
+                let rising = first < 0.0;
+                let tau = if hi == 1.0 { self.h } else { self.h * hi };
+                return accepts(self.dir, rising).then_some(Root {
+                    tau,
+                    tau_before: tau.next_down(),
+                    rising,
+                    cluster: false,
+                });
+            }
+            return None;
+        }
+        if v == 1 && !end_root && b[0] != 0.0 {
+            let rising = b[0] < 0.0;
+            if !accepts(self.dir, rising) {
+                return None;
+            }
+            if let Some(r) = self.polish(lo, hi, rising) {
+                return Some(r);
+            }
+        }
+        if hi - lo <= MIN_WIDTH {
+            let rising = first < 0.0;
+            let tau = if end_root && hi == 1.0 {
+                self.h
+            } else {
+                self.h * 0.5 * (lo + hi)
+            };
+            return accepts(self.dir, rising).then_some(Root {
+                tau,
+                tau_before: (self.h * lo).min(tau),
+                rising,
+                cluster: v != 1,
+            });
+        }
+        // de Casteljau at 1/2: left gets the first entries of each column, right the last.
+        let mut w = *b;
+        let mut left = [0.0; MAX_DEGREE + 1];
+        let mut right = [0.0; MAX_DEGREE + 1];
+        left[0] = w[0];
+        right[n] = w[n];
+        for r in 1..=n {
+            for i in 0..=n - r {
+                w[i] = 0.5 * (w[i] + w[i + 1]);
+            }
+            left[r] = w[0];
+            right[n - r] = w[n - r];
+        }
+        let mid = 0.5 * (lo + hi);
+        self.search(&left, lo, mid)
+            .or_else(|| self.search(&right, mid, hi))
+    }
+
+    /// Illinois (modified regula falsi) on the power form in τ, bisection after 40 iterations,
+    /// to a bracket of 2 ulp; `None` when rounding hides the sign change at the bracket ends (the
+    /// caller subdivides further).
+    fn polish(&self, lo: f64, hi: f64, rising: bool) -> Option<Root> {
+        let s0 = if rising { -1.0 } else { 1.0 };
+        let mut a = self.h * lo;
+        let mut b = if hi == 1.0 { self.h } else { self.h * hi };
+        let (mut fa, mut fb) = (horner(self.c, a), horner(self.c, b));
+        if !(fa * s0 > 0.0 && fb * s0 <= 0.0) {
+            return None;
+        }
+        let mut side = 0i8;
+        for iter in 0..200 {
+            if fb == 0.0 || b - a <= 2.0 * f64::EPSILON * b.abs() {
+                break;
+            }
+            let mid = 0.5 * (a + b);
+            let mut x = if iter < 40 {
+                b - fb * (b - a) / (fb - fa)
+            } else {
+                mid
+            };
+            if !(x > a && x < b) {
+                x = mid;
+                if !(x > a && x < b) {
+                    break;
+                }
+            }
+            let f = horner(self.c, x);
+            if f * s0 <= 0.0 {
+                b = x;
+                fb = f;
+                if side == 1 {
+                    fa *= 0.5;
+                }
+                side = 1;
+            } else {
+                a = x;
+                fa = f;
+                if side == -1 {
+                    fb *= 0.5;
+                }
+                side = -1;
+            }
+        }
+        Some(Root {
+            tau: b,
+            tau_before: a,
+            rising,
+            cluster: false,
+        })
+    }
+}
