@@ -11,7 +11,10 @@
 //! A pair of roots closer than the subdivision limit (2⁻⁵⁰ of the step), a double root or a tangency
 //! with zero within rounding is a *cluster*: the polynomial reaches zero there, so it is reported
 //! (a grazing contact that touches the threshold counts as reaching it, as `g >= 0` does in
-//! [`Direction`]). An isolated simple root is polished by the Illinois method on the power
+//! [`Direction`]). "Within rounding" is a bound of the Bernstein coefficients' rounding error,
+//! 8 (n + 1) ε Σ|c_k h^k|: an interval without a sign change is still searched while one of its
+//! coefficients is that close to zero, and a touch is placed at the extremum of g (Newton on g'),
+//! or where |g| first falls below the bound when that fails. An isolated simple root is polished by the Illinois method on the power
 //! form (Horner), to a bracket of 2 ulp.
 
 use crate::events::Direction;
@@ -103,7 +106,17 @@ pub fn first_root(c: &[f64], h: f64, dir: Direction) -> Option<Root> {
     for i in 0..=n {
         b[i] = (0..=i).map(|k| binom[i][k] / binom[n][k] * d[k]).sum();
     }
-    let ctx = Ctx { c, h, n, dir };
+    // Rounding bound of the Bernstein coefficients (conversion and ~50 subdivisions): values
+    // within it of zero are zero as far as f64 can tell.
+    let scale: f64 = d[..=n].iter().map(|v| v.abs()).sum();
+    let delta = 8.0 * (n + 1) as f64 * f64::EPSILON * scale;
+    let ctx = Ctx {
+        c,
+        h,
+        n,
+        dir,
+        delta,
+    };
     ctx.search(&b, 0.0, 1.0)
 }
 
@@ -112,6 +125,7 @@ struct Ctx<'a> {
     h: f64,
     n: usize,
     dir: Direction,
+    delta: f64,
 }
 
 impl Ctx<'_> {
@@ -130,7 +144,13 @@ impl Ctx<'_> {
                     cluster: false,
                 });
             }
-            return None;
+            // No sign change, but a touch within rounding of zero (a double root whose computed
+            // maximum came out a few ulp below zero) still reaches the threshold: subdivide
+            // while some coefficient is within the rounding bound.
+            let near = b[..=n].iter().any(|x| x.abs() <= self.delta);
+            if !(near && accepts(self.dir, first < 0.0)) {
+                return None;
+            }
         }
         if v == 1 && !end_root && b[0] != 0.0 {
             let rising = b[0] < 0.0;
@@ -148,7 +168,15 @@ impl Ctx<'_> {
             } else {
                 self.h * 0.5 * (lo + hi)
             };
-            return accepts(self.dir, rising).then_some(Root {
+            if !accepts(self.dir, rising) {
+                return None;
+            }
+            let tau = if v % 2 == 0 && !end_root {
+                self.extremum(tau)
+            } else {
+                tau
+            };
+            return Some(Root {
                 tau,
                 tau_before: (self.h * lo).min(tau),
                 rising,
@@ -171,6 +199,37 @@ impl Ctx<'_> {
         let mid = 0.5 * (lo + hi);
         self.search(&left, lo, mid)
             .or_else(|| self.search(&right, mid, hi))
+    }
+
+    /// A touch (even number of roots in a tiny interval) is found where |g| first falls below the
+    /// rounding bound, ~√ε before the extremum: a few Newton steps on g' move it to the extremum,
+    /// kept only if they stay in the step and where g is still within the bound.
+    fn extremum(&self, tau0: f64) -> f64 {
+        let c = self.c;
+        let mut tau = tau0;
+        for _ in 0..8 {
+            let (mut d1, mut d2) = (0.0, 0.0);
+            for k in (1..c.len()).rev() {
+                d2 = d2 * tau + d1;
+                d1 = d1 * tau + k as f64 * c[k];
+            }
+            if d2 == 0.0 {
+                break;
+            }
+            let next = tau - d1 / d2;
+            if !(next >= tau0 && next <= self.h) {
+                return tau0;
+            }
+            if next == tau {
+                break;
+            }
+            tau = next;
+        }
+        if horner(c, tau).abs() <= self.delta {
+            tau
+        } else {
+            tau0
+        }
     }
 
     /// Illinois (modified regula falsi) on the power form in τ, bisection after 40 iterations,
