@@ -13,9 +13,12 @@
 //! (a grazing contact that touches the threshold counts as reaching it, as `g >= 0` does in
 //! [`Direction`]). "Within rounding" is a bound of the Bernstein coefficients' rounding error,
 //! 8 (n + 1) ε Σ|c_k h^k|: an interval without a sign change is still searched while one of its
-//! coefficients is that close to zero, and a touch is placed at the extremum of g (Newton on g'),
-//! or where |g| first falls below the bound when that fails. An isolated simple root is polished by the Illinois method on the power
-//! form (Horner), to a bracket of 2 ulp.
+//! coefficients is that close to zero and g is not monotone there (a monotone piece comes closest
+//! at an end: the step start, moving away from a restart on the surface, is not a touch). A touch
+//! is placed at the extremum of g (Newton on g'), or where |g| first falls below the bound.
+//!
+//! An isolated simple root is polished by the Illinois method on the power form (Horner), to a
+//! bracket of 2 ulp.
 
 use crate::events::Direction;
 
@@ -31,13 +34,22 @@ const MIN_WIDTH: f64 = 1.0 / (1u64 << 50) as f64;
 pub struct Root {
     /// Offset from the step start: the first point found on the far side (g crossed or is 0).
     pub tau: f64,
-    /// Last point found before the crossing (`tau_before <= tau`, a few ulp apart for a simple
-    /// root, at most 2⁻⁵⁰ h for a cluster).
+    /// Last point before the crossing (`tau_before < tau`, at most 2 ulp apart for a simple
+    /// root, the predecessor of `tau` where g(tau) is exactly 0, at most 2⁻⁵⁰ h for a cluster).
     pub tau_before: f64,
     /// `true` when `g < 0` just before the root (a rising crossing, or a touch from below).
     pub rising: bool,
     /// `true` for a cluster (double root, grazing, or two roots closer than 2⁻⁵⁰ h).
     pub cluster: bool,
+}
+
+/// The next f64 below a finite `x >= 0` (`f64::next_down` is newer than the MSRV).
+fn next_down(x: f64) -> f64 {
+    if x > 0.0 {
+        f64::from_bits(x.to_bits() - 1)
+    } else {
+        -f64::from_bits(1)
+    }
 }
 
 fn accepts(dir: Direction, rising: bool) -> bool {
@@ -52,6 +64,15 @@ fn accepts(dir: Direction, rising: bool) -> bool {
 #[inline]
 pub fn horner(c: &[f64], tau: f64) -> f64 {
     c.iter().rev().fold(0.0, |acc, &ck| acc * tau + ck)
+}
+
+/// Forward differences of Bernstein coefficients (the signs of g's derivative's coefficients).
+fn diffs(b: &[f64; MAX_DEGREE + 1], n: usize) -> [f64; MAX_DEGREE + 1] {
+    let mut d = [0.0; MAX_DEGREE + 1];
+    for i in 0..n {
+        d[i] = b[i + 1] - b[i];
+    }
+    d
 }
 
 /// Sign changes of a sequence, zeros skipped, and the signs of its first and last nonzero terms.
@@ -139,16 +160,34 @@ impl Ctx<'_> {
                 let tau = if hi == 1.0 { self.h } else { self.h * hi };
                 return accepts(self.dir, rising).then_some(Root {
                     tau,
-                    tau_before: tau.next_down(),
+                    tau_before: next_down(tau),
                     rising,
                     cluster: false,
                 });
             }
             // No sign change, but a touch within rounding of zero (a double root whose computed
-            // maximum came out a few ulp below zero) still reaches the threshold: subdivide
+            // maximum came out a few ulp below zero) still reaches the threshold: search on
             // while some coefficient is within the rounding bound.
-            let near = b[..=n].iter().any(|x| x.abs() <= self.delta);
-            if !(near && accepts(self.dir, first < 0.0)) {
+            let rising = first < 0.0;
+            if !(accepts(self.dir, rising) && b[..=n].iter().any(|x| x.abs() <= self.delta)) {
+                return None;
+            }
+            let (dv, dfirst, _) = variations(&diffs(b, n)[..n]);
+            if dv == 0 {
+                // Monotone here, so closest to zero at an end. At `lo` that is the step start
+                // (moving away from a restart on the surface) or the left neighbour's end,
+                // already searched; at `hi` it is a touch if g is within the bound there.
+                let toward_hi = dfirst * first < 0.0;
+                if toward_hi && b[n].abs() <= self.delta {
+                    let tau_hi = if hi == 1.0 { self.h } else { self.h * hi };
+                    let tau = self.extremum(tau_hi).unwrap_or(tau_hi);
+                    return Some(Root {
+                        tau,
+                        tau_before: next_down(tau),
+                        rising,
+                        cluster: true,
+                    });
+                }
                 return None;
             }
         }
@@ -172,7 +211,7 @@ impl Ctx<'_> {
                 return None;
             }
             let tau = if v % 2 == 0 && !end_root {
-                self.extremum(tau)
+                self.extremum(tau).unwrap_or(tau)
             } else {
                 tau
             };
@@ -201,10 +240,10 @@ impl Ctx<'_> {
             .or_else(|| self.search(&right, mid, hi))
     }
 
-    /// A touch (even number of roots in a tiny interval) is found where |g| first falls below the
-    /// rounding bound, ~√ε before the extremum: a few Newton steps on g' move it to the extremum,
-    /// kept only if they stay in the step and where g is still within the bound.
-    fn extremum(&self, tau0: f64) -> f64 {
+    /// A touch is first met where |g| falls below the rounding bound, ~√ε before the extremum:
+    /// Newton on g' from there finds the extremum, kept if it stays in the step, not before
+    /// `tau0`'s interval, and where g is still within the bound.
+    fn extremum(&self, tau0: f64) -> Option<f64> {
         let c = self.c;
         let mut tau = tau0;
         for _ in 0..8 {
@@ -217,19 +256,15 @@ impl Ctx<'_> {
                 break;
             }
             let next = tau - d1 / d2;
-            if !(next >= tau0 && next <= self.h) {
-                return tau0;
+            if !(next >= tau0 - MIN_WIDTH * self.h && next <= self.h) {
+                return None;
             }
             if next == tau {
                 break;
             }
             tau = next;
         }
-        if horner(c, tau).abs() <= self.delta {
-            tau
-        } else {
-            tau0
-        }
+        (horner(c, tau).abs() <= self.delta).then_some(tau)
     }
 
     /// Illinois (modified regula falsi) on the power form in τ, bisection after 40 iterations,
@@ -276,6 +311,10 @@ impl Ctx<'_> {
                 }
                 side = -1;
             }
+        }
+        if fb == 0.0 {
+            // g exactly 0 at b: the crossing is there.
+            a = a.max(next_down(b));
         }
         Some(Root {
             tau: b,

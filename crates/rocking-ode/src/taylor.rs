@@ -96,7 +96,8 @@ impl<const D: usize> TaylorOptions<D> {
 pub struct TaylorEvent<const D: usize> {
     /// Event component that fires first (lowest index on ties).
     pub index: usize,
-    /// Event time `t_old + root.tau`.
+    /// Event time `t_old + root.tau`, in `(t_old, t_new]` (`t_new` exactly for a root at the
+    /// step end).
     pub t: f64,
     /// State at `t` (the step's polynomial; the step's end state when `t` is its end).
     pub y: [f64; D],
@@ -121,6 +122,17 @@ pub struct Taylor<const D: usize, const M: usize = 21> {
     /// Coefficients of the last step (expanded at `t_old`), orders `0..=order`; the rest zero.
     coef: [[f64; M]; D],
     stats: Stats,
+}
+
+/// The next f64 above a finite `x` (`f64::next_up` is newer than the MSRV).
+fn next_up(x: f64) -> f64 {
+    if x == 0.0 {
+        f64::from_bits(1)
+    } else if x > 0.0 {
+        f64::from_bits(x.to_bits() + 1)
+    } else {
+        f64::from_bits(x.to_bits() - 1)
+    }
 }
 
 fn err(kind: OdeErrorKind, t: f64, m: String) -> OdeError {
@@ -295,8 +307,8 @@ impl<const D: usize, const M: usize> Taylor<D, M> {
             ));
         }
         let mut coef = self.coef;
-        for i in 0..D {
-            coef[i][0] = self.y[i];
+        for (c, &y) in coef.iter_mut().zip(&self.y) {
+            c[0] = y;
         }
         by_order!(self.order, jet_n, S, D, M; sys, self.t, &mut coef);
         self.stats.rhs_evals += 1;
@@ -377,24 +389,17 @@ impl<const D: usize, const M: usize> Taylor<D, M> {
             return self.y;
         }
         let tau = t - self.t_old;
-        let mut out = [0.0; D];
-        for i in 0..D {
-            out[i] = poly::horner(&self.coef[i][..=self.order], tau);
-        }
-        out
+        self.coef.map(|c| poly::horner(&c[..=self.order], tau))
     }
 
     /// Time derivative of the step's polynomial at `t`.
     pub fn dense_derivative(&self, t: f64) -> [f64; D] {
         let tau = t - self.t_old;
-        let mut out = [0.0; D];
-        for i in 0..D {
-            let c = &self.coef[i];
-            out[i] = (1..=self.order)
+        self.coef.map(|c| {
+            (1..=self.order)
                 .rev()
-                .fold(0.0, |acc, k| acc * tau + k as f64 * c[k]);
-        }
-        out
+                .fold(0.0, |acc, k| acc * tau + k as f64 * c[k])
+        })
     }
 
     /// Move the current point back to `t_event` in the last step (clamped to it); the polynomial
@@ -410,7 +415,10 @@ impl<const D: usize, const M: usize> Taylor<D, M> {
 
     /// The earliest root in `(t_old, t_new]` of the event functions' polynomials on the last
     /// step, per component in its direction (see [`poly::first_root`]); counted in
-    /// [`Stats::events`]. Costs one event-series evaluation, no state evaluation.
+    /// [`Stats::events`]. Costs one event-series evaluation, no state evaluation. As with the
+    /// RK events, a component exactly 0 at the step start does not trigger there: the driver's
+    /// map should put the state on the surface exactly (a restart a few ulp off it sees a real
+    /// crossing of the polynomial at once).
     pub fn locate<V: TaylorEvents<D, E>, const E: usize>(
         &mut self,
         ev: &mut V,
@@ -430,10 +438,11 @@ impl<const D: usize, const M: usize> Taylor<D, M> {
         }
         let (index, root) = best?;
         self.stats.events += 1;
+        // At the step end exactly t_new; otherwise after t_old even when τ is below its ulp.
         let t = if root.tau == self.h_last {
             self.t
         } else {
-            self.t_old + root.tau
+            (self.t_old + root.tau).max(next_up(self.t_old)).min(self.t)
         };
         Some(TaylorEvent {
             index,
