@@ -29,6 +29,22 @@ pub const MAX_DEGREE: usize = 32;
 /// cluster (about 50 bisections).
 const MIN_WIDTH: f64 = 1.0 / (1u64 << 50) as f64;
 
+/// Binomial coefficients C(i, k), i, k <= MAX_DEGREE (exact in f64).
+const BINOM: [[f64; MAX_DEGREE + 1]; MAX_DEGREE + 1] = {
+    let mut t = [[0.0; MAX_DEGREE + 1]; MAX_DEGREE + 1];
+    let mut i = 0;
+    while i <= MAX_DEGREE {
+        t[i][0] = 1.0;
+        let mut k = 1;
+        while k <= i {
+            t[i][k] = t[i - 1][k - 1] + t[i - 1][k];
+            k += 1;
+        }
+        i += 1;
+    }
+    t
+};
+
 /// A root of `g(τ) = Σ c_k τ^k` on `(0, h]`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Root {
@@ -116,13 +132,7 @@ pub fn first_root(c: &[f64], h: f64, dir: Direction) -> Option<Root> {
         d[k] = c[k] * hk;
         hk *= h;
     }
-    let mut binom = [[0.0f64; MAX_DEGREE + 1]; MAX_DEGREE + 1];
-    for i in 0..=n {
-        binom[i][0] = 1.0;
-        for k in 1..=i {
-            binom[i][k] = binom[i - 1][k - 1] + if k < i { binom[i - 1][k] } else { 0.0 };
-        }
-    }
+    let binom = &BINOM;
     let mut b = [0.0; MAX_DEGREE + 1];
     for i in 0..=n {
         b[i] = (0..=i).map(|k| binom[i][k] / binom[n][k] * d[k]).sum();

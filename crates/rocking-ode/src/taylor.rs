@@ -117,6 +117,8 @@ pub struct Taylor<const D: usize, const M: usize = 21> {
     initialised: bool,
     t_old: f64,
     h_last: f64,
+    /// Length of the last step still valid (less than `h_last` after `truncate_at`).
+    h_valid: f64,
     has_step: bool,
     steps_since_reset: u64,
     /// Coefficients of the last step (expanded at `t_old`), orders `0..=order`; the rest zero.
@@ -224,6 +226,7 @@ impl<const D: usize, const M: usize> Taylor<D, M> {
             initialised: false,
             t_old: f64::NAN,
             h_last: 0.0,
+            h_valid: 0.0,
             has_step: false,
             steps_since_reset: 0,
             coef: [[0.0; M]; D],
@@ -355,6 +358,7 @@ impl<const D: usize, const M: usize> Taylor<D, M> {
         self.coef = coef;
         self.t_old = self.t;
         self.h_last = h;
+        self.h_valid = h;
         self.t = if reaches { t_stop } else { self.t + h };
         self.y = y_new;
         self.has_step = true;
@@ -411,10 +415,11 @@ impl<const D: usize, const M: usize> Taylor<D, M> {
         let te = t_event.clamp(self.t_old, self.t);
         self.y = self.dense(te);
         self.t = te;
+        self.h_valid = te - self.t_old;
     }
 
-    /// The earliest root in `(t_old, t_new]` of the event functions' polynomials on the last
-    /// step, per component in its direction (see [`poly::first_root`]); counted in
+    /// The earliest root in `(t_old, t]` of the event functions' polynomials on the last
+    /// step (up to the current point, which [`truncate_at`](Self::truncate_at) may have moved), per component in its direction (see [`poly::first_root`]); counted in
     /// [`Stats::events`]. Costs one event-series evaluation, no state evaluation. As with the
     /// RK events, a component exactly 0 at the step start does not trigger there: the driver's
     /// map should put the state on the surface exactly (a restart a few ulp off it sees a real
@@ -428,9 +433,12 @@ impl<const D: usize, const M: usize> Taylor<D, M> {
             return None;
         }
         let g = by_order!(self.order, events_n, V, D, E, M; ev, self.t_old, &self.coef);
+        if self.h_valid <= 0.0 {
+            return None;
+        }
         let mut best: Option<(usize, Root)> = None;
         for (j, gj) in g.iter().enumerate() {
-            if let Some(r) = poly::first_root(&gj[..=self.order], self.h_last, dirs[j]) {
+            if let Some(r) = poly::first_root(&gj[..=self.order], self.h_valid, dirs[j]) {
                 if best.is_none_or(|(_, b)| r.tau < b.tau) {
                     best = Some((j, r));
                 }
@@ -439,7 +447,7 @@ impl<const D: usize, const M: usize> Taylor<D, M> {
         let (index, root) = best?;
         self.stats.events += 1;
         // At the step end exactly t_new; otherwise after t_old even when τ is below its ulp.
-        let t = if root.tau == self.h_last {
+        let t = if root.tau == self.h_valid {
             self.t
         } else {
             (self.t_old + root.tau).max(next_up(self.t_old)).min(self.t)

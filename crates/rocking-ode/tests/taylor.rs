@@ -500,3 +500,63 @@ fn oscillator_zero_crossings_by_polynomial_roots() {
         assert_eq!(ode.stats().events, want.len() as u64);
     }
 }
+
+/// The oscillator with a carried integral w' = x² (like the driver's work and damping integrals).
+struct OscillatorWithIntegral(f64);
+impl TaylorSystem<3> for OscillatorWithIntegral {
+    fn coefficients<const N: usize>(&mut self, _t0: f64, x: &mut [[f64; N]; 3]) {
+        for k in 0..N - 1 {
+            let kf = (k + 1) as f64;
+            x[0][k + 1] = x[1][k] / kf;
+            x[1][k + 1] = -x[0][k] / kf;
+            x[2][k + 1] = self.0 * series::sq(&x[0], k) / kf;
+        }
+    }
+}
+
+#[test]
+fn uncontrolled_components_do_not_change_the_steps() {
+    // A carried integral scaled by 1e6 is left out of the step rule: the steps are those of the
+    // plain oscillator, bit for bit, and the integral is still accurate.
+    let tol = 1e-12;
+    let mut a = Taylor::<2>::new(TaylorOptions::new(tol)).unwrap();
+    let mut opts = TaylorOptions::<3>::new(tol);
+    opts.controlled = [true, true, false];
+    let mut b = Taylor::<3>::new(opts).unwrap();
+    a.reset(0.0, [1.0, 0.0]).unwrap();
+    b.reset(0.0, [1.0, 0.0, 0.0]).unwrap();
+    let mut sys = OscillatorWithIntegral(1e6);
+    loop {
+        let ia = a.step(&mut Oscillator, 10.0).unwrap();
+        let ib = b.step(&mut sys, 10.0).unwrap();
+        assert_eq!(ia, ib);
+        assert_eq!(a.y()[..], b.y()[..2]);
+        if ia.reached {
+            break;
+        }
+    }
+    // ∫ cos² = t/2 + sin 2t / 4.
+    let want = 1e6 * (5.0 + 20.0f64.sin() / 4.0);
+    println!(
+        "carried integral: relative error {:.2e}",
+        (b.y()[2] - want) / want
+    );
+    assert!(((b.y()[2] - want) / want).abs() < 1e-12);
+}
+
+#[test]
+fn locate_after_truncate_searches_the_remaining_step_only() {
+    let mut opts = TaylorOptions::<2>::new(1e-15);
+    opts.h_max = 4.0;
+    let mut ode = Taylor::<2>::new(opts).unwrap();
+    ode.reset(0.0, [0.0, 1.0]).unwrap();
+    let mut first = None;
+    while first.is_none() {
+        ode.step(&mut Oscillator, 20.0).unwrap();
+        first = ode.locate(&mut X, &[Direction::Either]);
+    }
+    let ev = first.unwrap();
+    assert!((ev.t - std::f64::consts::PI).abs() < 1e-14);
+    ode.truncate_at(ev.t - 0.5);
+    assert!(ode.locate(&mut X, &[Direction::Either]).is_none());
+}
