@@ -6,7 +6,8 @@
 //!
 //! # Order and step size (heyoka's rule)
 //!
-//! Biscani & Izzo 2021 (MNRAS 504, 2614, Sect. 2.2), after Jorba & Zou 2005 (Exp. Math. 14):
+//! Biscani & Izzo 2021 (MNRAS 504, 2614), after Jorba & Zou 2005 (Exp. Math. 14, 99), as heyoka
+//! implements it (`taylor_order_from_tol`, its step function's ρ and `rhofac`):
 //! with one tolerance ε, the order is `p = max(2, ⌈−ln ε / 2 + 1⌉)`; from the coefficients at
 //! the current point, with `‖·‖` the max norm over the controlled components,
 //! `ρ_j = (A / ‖x^[j]‖)^(1/j)` for j = p−1 and p, `A = 1` when `‖x^[0]‖ ≤ 1` (absolute error)
