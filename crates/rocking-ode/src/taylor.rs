@@ -30,7 +30,10 @@
 //! The system owns its excitation: at `t0` it supplies the ground acceleration's series of the
 //! piece that starts at `t0` (a piecewise-linear record: two nonzero coefficients; a sine pulse:
 //! closed form). Steps never cross the `t_stop` given to [`Taylor::step`], so the driver passes
-//! the next kink there, exactly as for the Runge–Kutta methods.
+//! the next kink there, exactly as for the Runge–Kutta methods. The step rule sees only the
+//! state's coefficients: where the state does not follow the excitation (a rigid column in
+//! contact) it allows any step, so bound it with [`TaylorOptions::h_max`], as the driver bounds
+//! its RK contact steps (event series are truncated Taylor series too).
 
 use crate::events::Direction;
 use crate::poly::{self, Root};

@@ -560,3 +560,101 @@ fn locate_after_truncate_searches_the_remaining_step_only() {
     ode.truncate_at(ev.t - 0.5);
     assert!(ode.locate(&mut X, &[Direction::Either]).is_none());
 }
+
+// --- grazing uplift with the generated uplift series ----------------------------------------
+
+/// A sine ground acceleration's series at t0 (closed form).
+fn sine_series<const N: usize>(amp: f64, om: f64, t0: f64) -> [f64; N] {
+    let (s, c) = (om * t0).sin_cos();
+    let mut f = [0.0; N];
+    let mut fact = amp;
+    for (k, fk) in f.iter_mut().enumerate() {
+        if k > 0 {
+            fact *= om / k as f64;
+        }
+        *fk = fact * [s, c, -s, -c][k % 4];
+    }
+    f
+}
+
+/// A rigid block in full contact under ug = A sin(Ω t).
+struct RigidContact {
+    p: kr::Params,
+    amp: f64,
+    om: f64,
+    s: f64,
+}
+
+impl TaylorSystem<2> for RigidContact {
+    fn coefficients<const N: usize>(&mut self, t0: f64, x: &mut [[f64; N]; 2]) {
+        tr::contact_rhs::<N>(x, &sine_series::<N>(self.amp, self.om, t0), &self.p);
+    }
+}
+
+impl TaylorEvents<2, 1> for RigidContact {
+    fn event_coefficients<const N: usize>(&mut self, t0: f64, x: &[[f64; N]; 2]) -> [[f64; N]; 1] {
+        tr::uplift::<N>(x, &sine_series::<N>(self.amp, self.om, t0), self.s, &self.p)
+    }
+}
+
+#[test]
+fn grazing_uplift_at_one_plus_minus_1e9_of_the_threshold() {
+    // f_s is affine in ug for the rigid block: uplift about s when ug crosses ug* (the
+    // pointwise kernel gives ug*). A = ug* (1 ± 1e-9): the peak of the sine grazes the threshold.
+    let p = rigid_params();
+    let (s, ug_star) = [1.0, -1.0]
+        .into_iter()
+        .map(|s| {
+            let (f0, f1) = (
+                kr::uplift(&[0.0; 2], 0.0, s, &p),
+                kr::uplift(&[0.0; 2], 1.0, s, &p),
+            );
+            (s, -f0 / (f1 - f0))
+        })
+        .find(|&(_, u)| u > 0.0)
+        .unwrap();
+    let om = 2.0;
+    for rel in [1e-9, -1e-9, 1e-6] {
+        let amp = ug_star * (1.0 + rel);
+        let mut sys = RigidContact { p, amp, om, s };
+        let period = 2.0 * std::f64::consts::PI / om;
+        // A rigid column in contact does not move: the step rule sees zero coefficients, so the
+        // step is bounded by the excitation's resolution, as the driver bounds its RK steps.
+        let mut opts = TaylorOptions::new(1e-15);
+        opts.h_max = period / 16.0;
+        let mut ode = Taylor::<2>::new(opts).unwrap();
+        ode.reset(0.0, [0.0, 0.0]).unwrap();
+        let mut found = None;
+        loop {
+            let info = ode.step(&mut sys, period).unwrap();
+            let mut ev = RigidContact { p, amp, om, s };
+            if let Some(e) = ode.locate(&mut ev, &[Direction::Rising]) {
+                found = Some(e.t);
+                break;
+            }
+            if info.reached {
+                break;
+            }
+        }
+        let want = (ug_star / amp).asin() / om;
+        match found {
+            Some(t) => {
+                println!(
+                    "ug* = {ug_star:.6}, A = ug* (1 + {rel:e}): uplift at {t:.15}, closed form \
+                     {want:.15}, difference {:.2e} ({} steps)",
+                    t - want,
+                    ode.stats().steps
+                );
+                assert!(rel > 0.0, "uplift below the threshold");
+                assert!((t - want).abs() <= 1e-9 * want, "{t} vs {want}");
+            }
+            None => {
+                println!(
+                    "ug* = {ug_star:.6}, A = ug* (1 {rel:e}): no uplift over a period ({} steps)",
+                    ode.stats().steps
+                );
+                assert!(rel < 0.0, "grazing uplift missed");
+            }
+        }
+    }
+}
