@@ -19,6 +19,9 @@
 //!   combined 5th/3rd-order error estimator and the 7th-order dense output
 //!   (three extra stages), HNW I, Sect. II.10 and `dop853.f`. Twelve
 //!   evaluations per step plus three for the dense output.
+//! * [`taylor::Taylor`]: a Taylor-series method (order and step by heyoka's rule) for systems
+//!   that supply their Taylor coefficients; dense output is the step's polynomial and events
+//!   are its roots ([`poly`]: Bernstein/Descartes isolation, so none inside a step is missed).
 //!
 //! Step sizes are chosen by Hairer's (PI) controller with the defaults of his
 //! codes; the error norm is the RMS over the components of
@@ -85,7 +88,9 @@ use std::fmt;
 use std::ops::{Add, AddAssign};
 
 pub mod events;
+pub mod poly;
 mod tableau;
+pub mod taylor;
 
 use tableau::Row;
 

@@ -1,0 +1,517 @@
+//! Taylor-series integration with the polynomial as dense output and events as its roots.
+//!
+//! Independent of the model, like the Runge–Kutta methods: a [`TaylorSystem`] fills the Taylor
+//! coefficients of the solution through x(t0) (the generated `rocking_kernels::taylor` kernels do
+//! exactly that), a [`TaylorEvents`] the coefficients of event functions along them.
+//!
+//! # Order and step size (heyoka's rule)
+//!
+//! Biscani & Izzo 2021 (MNRAS 504, 2614), after Jorba & Zou 2005 (Exp. Math. 14, 99), as heyoka
+//! implements it (`taylor_order_from_tol`, its step function's ρ and `rhofac`):
+//! with one tolerance ε, the order is `p = max(2, ⌈−ln ε / 2 + 1⌉)`; from the coefficients at
+//! the current point, with `‖·‖` the max norm over the controlled components,
+//! `ρ_j = (A / ‖x^[j]‖)^(1/j)` for j = p−1 and p, `A = 1` when `‖x^[0]‖ ≤ 1` (absolute error)
+//! and `A = ‖x^[0]‖` otherwise (relative), and `h = min(ρ_{p−1}, ρ_p) · e⁻² · exp(−0.7/(p−1))`.
+//! No error estimate, so no rejected steps: one coefficient evaluation per step.
+//!
+//! # Why a small set of orders
+//!
+//! The generated kernels are generic over the number of coefficients N and always compute all N
+//! (the loop bound is the const generic), so their cost is fixed at compile time, ~N². One
+//! monomorphised maximum order would pay O(N_max²) at every tolerance; one instance per order
+//! would multiply the driver's compile time. The order from the rule is therefore rounded up to
+//! the next of [`ORDERS`] (10 instances per system; a higher order at the same rule only lowers
+//! the truncation error, since the step scales with the radius of convergence, not with p). The
+//! integrator stores `M` coefficients per component (`M - 1` is the highest order it accepts);
+//! the instance for N = order + 1 fills a stack array that is copied into that storage.
+//!
+//! # Excitation
+//!
+//! The system owns its excitation: at `t0` it supplies the ground acceleration's series of the
+//! piece that starts at `t0` (a piecewise-linear record: two nonzero coefficients; a sine pulse:
+//! closed form). Steps never cross the `t_stop` given to [`Taylor::step`], so the driver passes
+//! the next kink there, exactly as for the Runge–Kutta methods. The step rule sees only the
+//! state's coefficients: where the state does not follow the excitation (a rigid column in
+//! contact) it allows any step, so bound it with [`TaylorOptions::h_max`], as the driver bounds
+//! its RK contact steps (event series are truncated Taylor series too).
+
+use crate::events::Direction;
+use crate::poly::{self, Root};
+use crate::{OdeError, OdeErrorKind, Stats, StepInfo};
+
+/// A system whose solution's Taylor coefficients can be computed.
+pub trait TaylorSystem<const D: usize> {
+    /// On entry `x[i][0]` is the state at `t0`; fill `x[i][k]`, `k < N`, with the Taylor
+    /// coefficients of the solution (`x_i(t0 + τ) ≈ Σ x[i][k] τ^k`). Must not depend on what
+    /// `x[i][1..]` held on entry.
+    fn coefficients<const N: usize>(&mut self, t0: f64, x: &mut [[f64; N]; D]);
+}
+
+/// Event functions evaluated along a step's Taylor polynomial.
+pub trait TaylorEvents<const D: usize, const E: usize> {
+    /// The first N Taylor coefficients of each of the E event functions along the state series
+    /// `x` expanded at `t0` (e.g. the generated `uplift::<N>`).
+    fn event_coefficients<const N: usize>(&mut self, t0: f64, x: &[[f64; N]; D]) -> [[f64; N]; E];
+}
+
+/// The orders an integrator can run (a requested order is rounded up to the next of these).
+pub const ORDERS: [usize; 10] = [3, 4, 5, 6, 8, 10, 12, 14, 16, 20];
+
+/// Heyoka's (Jorba's) order for a tolerance: `max(2, ⌈−ln tol / 2 + 1⌉)`.
+pub fn order_from_tol(tol: f64) -> usize {
+    (-tol.ln() / 2.0 + 1.0).ceil().max(2.0) as usize
+}
+
+/// The order actually run for a requested order `p`: the next of [`ORDERS`] (None above 20).
+pub fn supported_order(p: usize) -> Option<usize> {
+    ORDERS.iter().copied().find(|&o| o >= p)
+}
+
+/// Options of a [`Taylor`] integrator.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TaylorOptions<const D: usize> {
+    /// Tolerance ε of the step rule (absolute where the state is ≤ 1, relative above).
+    pub tol: f64,
+    /// Fixed order instead of [`order_from_tol`] (rounded up to [`ORDERS`] either way).
+    pub order: Option<usize>,
+    /// Maximal step size (`f64::INFINITY` for none).
+    pub h_max: f64,
+    /// Maximal number of steps between two resets.
+    pub max_steps: u64,
+    /// Components in the step rule's norms (`false`: carried along, e.g. work integrals).
+    pub controlled: [bool; D],
+}
+
+impl<const D: usize> TaylorOptions<D> {
+    /// Defaults: order from `tol`, no `h_max`, 100 000 steps, every component controlled.
+    pub fn new(tol: f64) -> Self {
+        Self {
+            tol,
+            order: None,
+            h_max: f64::INFINITY,
+            max_steps: 100_000,
+            controlled: [true; D],
+        }
+    }
+}
+
+/// An event located on the last step of a [`Taylor`] integrator.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TaylorEvent<const D: usize> {
+    /// Event component that fires first (lowest index on ties).
+    pub index: usize,
+    /// Event time `t_old + root.tau`, in `(t_old, t_new]` (`t_new` exactly for a root at the
+    /// step end).
+    pub t: f64,
+    /// State at `t` (the step's polynomial; the step's end state when `t` is its end).
+    pub y: [f64; D],
+    /// The root on the step.
+    pub root: Root,
+}
+
+/// A Taylor-series integrator for a state of `D` components storing `M` coefficients each
+/// (orders up to `M - 1`). Plain `Copy` data, no allocation.
+#[derive(Clone, Copy, Debug)]
+pub struct Taylor<const D: usize, const M: usize = 21> {
+    opts: TaylorOptions<D>,
+    order: usize,
+    rhofac: f64,
+    t: f64,
+    y: [f64; D],
+    initialised: bool,
+    t_old: f64,
+    h_last: f64,
+    /// Length of the last step still valid (less than `h_last` after `truncate_at`).
+    h_valid: f64,
+    has_step: bool,
+    steps_since_reset: u64,
+    /// Coefficients of the last step (expanded at `t_old`), orders `0..=order`; the rest zero.
+    coef: [[f64; M]; D],
+    stats: Stats,
+}
+
+/// The next f64 above a finite `x` (`f64::next_up` is newer than the MSRV).
+fn next_up(x: f64) -> f64 {
+    if x == 0.0 {
+        f64::from_bits(1)
+    } else if x > 0.0 {
+        f64::from_bits(x.to_bits() + 1)
+    } else {
+        f64::from_bits(x.to_bits() - 1)
+    }
+}
+
+fn err(kind: OdeErrorKind, t: f64, m: String) -> OdeError {
+    OdeError {
+        kind,
+        t,
+        message: m,
+    }
+}
+
+fn jet_n<S: TaylorSystem<D>, const D: usize, const M: usize, const N: usize>(
+    sys: &mut S,
+    t0: f64,
+    coef: &mut [[f64; M]; D],
+) {
+    let mut x = [[0.0; N]; D];
+    for i in 0..D {
+        x[i][0] = coef[i][0];
+    }
+    sys.coefficients::<N>(t0, &mut x);
+    for i in 0..D {
+        coef[i][..N].copy_from_slice(&x[i]);
+    }
+}
+
+fn events_n<V, const D: usize, const E: usize, const M: usize, const N: usize>(
+    ev: &mut V,
+    t0: f64,
+    coef: &[[f64; M]; D],
+) -> [[f64; M]; E]
+where
+    V: TaylorEvents<D, E>,
+{
+    let mut x = [[0.0; N]; D];
+    for i in 0..D {
+        x[i].copy_from_slice(&coef[i][..N]);
+    }
+    let g = ev.event_coefficients::<N>(t0, &x);
+    let mut out = [[0.0; M]; E];
+    for j in 0..E {
+        out[j][..N].copy_from_slice(&g[j]);
+    }
+    out
+}
+
+macro_rules! by_order {
+    ($order:expr, $f:ident, $($g:ty),* ; $($arg:expr),*) => {
+        match $order {
+            3 => $f::<$($g),*, 4>($($arg),*),
+            4 => $f::<$($g),*, 5>($($arg),*),
+            5 => $f::<$($g),*, 6>($($arg),*),
+            6 => $f::<$($g),*, 7>($($arg),*),
+            8 => $f::<$($g),*, 9>($($arg),*),
+            10 => $f::<$($g),*, 11>($($arg),*),
+            12 => $f::<$($g),*, 13>($($arg),*),
+            14 => $f::<$($g),*, 15>($($arg),*),
+            16 => $f::<$($g),*, 17>($($arg),*),
+            20 => $f::<$($g),*, 21>($($arg),*),
+            o => unreachable!("order {o} is not in ORDERS"),
+        }
+    };
+}
+
+impl<const D: usize, const M: usize> Taylor<D, M> {
+    /// Create an integrator; fails on a tolerance outside (0, 1), `h_max <= 0`, or an order
+    /// above `M - 1` or 20.
+    pub fn new(opts: TaylorOptions<D>) -> Result<Self, OdeError> {
+        let bad = |m: String| Err(err(OdeErrorKind::InvalidInput, f64::NAN, m));
+        if !(opts.tol > 0.0 && opts.tol < 1.0) {
+            return bad(format!("tol = {} must be in (0, 1)", opts.tol));
+        }
+        if opts.h_max.is_nan() || opts.h_max <= 0.0 {
+            return bad("h_max must be > 0 (f64::INFINITY for no limit)".into());
+        }
+        let want = opts.order.unwrap_or_else(|| order_from_tol(opts.tol));
+        let Some(order) = supported_order(want) else {
+            return bad(format!("order {want} above the highest supported, 20"));
+        };
+        if order + 1 > M {
+            return bad(format!("order {order} needs M >= {}, M = {M}", order + 1));
+        }
+        let p = order as f64;
+        Ok(Self {
+            opts,
+            order,
+            rhofac: (-2.0f64).exp() * (-0.7 / (p - 1.0)).exp(),
+            t: f64::NAN,
+            y: [0.0; D],
+            initialised: false,
+            t_old: f64::NAN,
+            h_last: 0.0,
+            h_valid: 0.0,
+            has_step: false,
+            steps_since_reset: 0,
+            coef: [[0.0; M]; D],
+            stats: Stats::default(),
+        })
+    }
+
+    /// Restart at `(t0, y0)` (no evaluation: the coefficients are computed by the next step).
+    pub fn reset(&mut self, t0: f64, y0: [f64; D]) -> Result<(), OdeError> {
+        self.initialised = false;
+        self.has_step = false;
+        if !t0.is_finite() || !y0.iter().all(|v| v.is_finite()) {
+            return Err(err(
+                OdeErrorKind::NonFinite,
+                t0,
+                format!("non-finite initial time or state {y0:?}"),
+            ));
+        }
+        self.t = t0;
+        self.y = y0;
+        self.t_old = t0;
+        self.h_last = 0.0;
+        self.steps_since_reset = 0;
+        self.initialised = true;
+        Ok(())
+    }
+
+    /// One step by heyoka's rule, never past `t_stop` (landing on it exactly when the step would
+    /// reach it or end within 1 % of a step before it). Forward only.
+    pub fn step<S: TaylorSystem<D>>(
+        &mut self,
+        sys: &mut S,
+        t_stop: f64,
+    ) -> Result<StepInfo, OdeError> {
+        self.step_impl(sys, t_stop, None)
+    }
+
+    /// One step of length `h` (or to `t_stop`), without the step rule: for order studies and for
+    /// callers with their own control.
+    pub fn step_fixed<S: TaylorSystem<D>>(
+        &mut self,
+        sys: &mut S,
+        h: f64,
+        t_stop: f64,
+    ) -> Result<StepInfo, OdeError> {
+        if !(h > 0.0 && h.is_finite()) {
+            return Err(err(
+                OdeErrorKind::InvalidInput,
+                self.t,
+                format!("h = {h} must be > 0"),
+            ));
+        }
+        self.step_impl(sys, t_stop, Some(h))
+    }
+
+    fn step_impl<S: TaylorSystem<D>>(
+        &mut self,
+        sys: &mut S,
+        t_stop: f64,
+        fixed: Option<f64>,
+    ) -> Result<StepInfo, OdeError> {
+        if !self.initialised {
+            return Err(err(
+                OdeErrorKind::NotInitialised,
+                self.t,
+                "step called before reset".into(),
+            ));
+        }
+        if t_stop.is_nan() || t_stop <= self.t {
+            return Err(err(
+                OdeErrorKind::InvalidInput,
+                self.t,
+                format!("t_stop = {t_stop} is not after the current time"),
+            ));
+        }
+        if self.steps_since_reset >= self.opts.max_steps {
+            return Err(err(
+                OdeErrorKind::MaxSteps,
+                self.t,
+                format!("more than max_steps = {} steps", self.opts.max_steps),
+            ));
+        }
+        let mut coef = self.coef;
+        for (c, &y) in coef.iter_mut().zip(&self.y) {
+            c[0] = y;
+        }
+        by_order!(self.order, jet_n, S, D, M; sys, self.t, &mut coef);
+        self.stats.rhs_evals += 1;
+        let p = self.order;
+        if !coef.iter().all(|c| c[..=p].iter().all(|v| v.is_finite())) {
+            return Err(err(
+                OdeErrorKind::NonFinite,
+                self.t,
+                "non-finite Taylor coefficient".into(),
+            ));
+        }
+        let h_ctrl = match fixed {
+            Some(h) => h,
+            None => self.rule(&coef),
+        }
+        .min(self.opts.h_max);
+        if h_ctrl.is_nan() || h_ctrl <= 10.0 * f64::EPSILON * self.t.abs() || h_ctrl < 1e-300 {
+            return Err(err(
+                OdeErrorKind::StepSizeUnderflow,
+                self.t,
+                format!("step size underflow (h = {h_ctrl:e})"),
+            ));
+        }
+        let reaches = self.t + 1.01 * h_ctrl >= t_stop;
+        let h = if reaches { t_stop - self.t } else { h_ctrl };
+        if !h.is_finite() {
+            return Err(err(
+                OdeErrorKind::InvalidInput,
+                self.t,
+                "infinite step (polynomial solution, no h_max and no finite t_stop)".into(),
+            ));
+        }
+        let mut y_new = [0.0; D];
+        for i in 0..D {
+            y_new[i] = poly::horner(&coef[i][..=p], h);
+        }
+        if !y_new.iter().all(|v| v.is_finite()) {
+            return Err(err(
+                OdeErrorKind::NonFinite,
+                self.t,
+                format!("non-finite state {y_new:?} at the end of a step of {h:e}"),
+            ));
+        }
+        self.coef = coef;
+        self.t_old = self.t;
+        self.h_last = h;
+        self.h_valid = h;
+        self.t = if reaches { t_stop } else { self.t + h };
+        self.y = y_new;
+        self.has_step = true;
+        self.steps_since_reset += 1;
+        self.stats.steps += 1;
+        Ok(StepInfo {
+            t_old: self.t_old,
+            t_new: self.t,
+            reached: reaches,
+        })
+    }
+
+    /// Heyoka's step: `min(ρ_{p−1}, ρ_p) · e⁻² · exp(−0.7/(p−1))` (module docs).
+    fn rule(&self, coef: &[[f64; M]; D]) -> f64 {
+        let p = self.order;
+        let (mut n0, mut n1, mut n2) = (0.0f64, 0.0f64, 0.0f64);
+        for i in (0..D).filter(|&i| self.opts.controlled[i]) {
+            n0 = n0.max(coef[i][0].abs());
+            n1 = n1.max(coef[i][p - 1].abs());
+            n2 = n2.max(coef[i][p].abs());
+        }
+        let a = if n0 <= 1.0 { 1.0 } else { n0 };
+        let rho1 = (a / n1).powf(1.0 / (p - 1) as f64);
+        let rho2 = (a / n2).powf(1.0 / p as f64);
+        rho1.min(rho2) * self.rhofac
+    }
+
+    /// The step's polynomial at `t` in `[t_old, t_new]` (Horner); exactly the step's end state
+    /// at its end. Before any step: the current state.
+    pub fn dense(&self, t: f64) -> [f64; D] {
+        if !self.has_step || t == self.t {
+            return self.y;
+        }
+        let tau = t - self.t_old;
+        self.coef.map(|c| poly::horner(&c[..=self.order], tau))
+    }
+
+    /// Time derivative of the step's polynomial at `t`.
+    pub fn dense_derivative(&self, t: f64) -> [f64; D] {
+        let tau = t - self.t_old;
+        self.coef.map(|c| {
+            (1..=self.order)
+                .rev()
+                .fold(0.0, |acc, k| acc * tau + k as f64 * c[k])
+        })
+    }
+
+    /// Move the current point back to `t_event` in the last step (clamped to it); the polynomial
+    /// stays available on `[t_old, t_event]`. The next step expands afresh at `t_event`.
+    pub fn truncate_at(&mut self, t_event: f64) {
+        if !self.has_step || t_event == self.t || t_event.is_nan() {
+            return;
+        }
+        let te = t_event.clamp(self.t_old, self.t);
+        self.y = self.dense(te);
+        self.t = te;
+        self.h_valid = te - self.t_old;
+    }
+
+    /// The earliest root in `(t_old, t]` of the event functions' polynomials on the last
+    /// step (up to the current point, which [`truncate_at`](Self::truncate_at) may have moved), per component in its direction (see [`poly::first_root`]); counted in
+    /// [`Stats::events`]. Costs one event-series evaluation, no state evaluation. As with the
+    /// RK events, a component exactly 0 at the step start does not trigger there: the driver's
+    /// map should put the state on the surface exactly (a restart a few ulp off it sees a real
+    /// crossing of the polynomial at once).
+    pub fn locate<V: TaylorEvents<D, E>, const E: usize>(
+        &mut self,
+        ev: &mut V,
+        dirs: &[Direction; E],
+    ) -> Option<TaylorEvent<D>> {
+        if !self.has_step {
+            return None;
+        }
+        let g = by_order!(self.order, events_n, V, D, E, M; ev, self.t_old, &self.coef);
+        if self.h_valid <= 0.0 {
+            return None;
+        }
+        let mut best: Option<(usize, Root)> = None;
+        for (j, gj) in g.iter().enumerate() {
+            if let Some(r) = poly::first_root(&gj[..=self.order], self.h_valid, dirs[j]) {
+                if best.is_none_or(|(_, b)| r.tau < b.tau) {
+                    best = Some((j, r));
+                }
+            }
+        }
+        let (index, root) = best?;
+        self.stats.events += 1;
+        // At the step end exactly t_new; otherwise after t_old even when τ is below its ulp.
+        let t = if root.tau == self.h_valid {
+            self.t
+        } else {
+            (self.t_old + root.tau).max(next_up(self.t_old)).min(self.t)
+        };
+        Some(TaylorEvent {
+            index,
+            t,
+            y: self.dense(t),
+            root,
+        })
+    }
+
+    /// The coefficients of the last step (expanded at [`t_old`](Self::t_old)), orders
+    /// `0..=`[`order`](Self::order); e.g. θ's row is an event polynomial for [`poly::first_root`].
+    pub fn coefficients(&self) -> &[[f64; M]; D] {
+        &self.coef
+    }
+
+    /// The order run.
+    pub fn order(&self) -> usize {
+        self.order
+    }
+
+    /// Current time.
+    pub fn t(&self) -> f64 {
+        self.t
+    }
+
+    /// Current state.
+    pub fn y(&self) -> &[f64; D] {
+        &self.y
+    }
+
+    /// Start of the last step.
+    pub fn t_old(&self) -> f64 {
+        self.t_old
+    }
+
+    /// Length of the last step (0 before the first).
+    pub fn last_step_size(&self) -> f64 {
+        self.h_last
+    }
+
+    /// Whether a step has been taken since the last reset.
+    pub fn has_step(&self) -> bool {
+        self.has_step
+    }
+
+    /// Work counters (`rhs_evals` counts coefficient evaluations, one per step).
+    pub fn stats(&self) -> Stats {
+        self.stats
+    }
+
+    /// Reset the work counters to zero, returning the old ones.
+    pub fn take_stats(&mut self) -> Stats {
+        std::mem::take(&mut self.stats)
+    }
+
+    /// The options.
+    pub fn options(&self) -> &TaylorOptions<D> {
+        &self.opts
+    }
+}
