@@ -8,8 +8,8 @@ use rocking::{
 };
 use rocking_kernels::Physical;
 use rocking_motion::{
-    read_at2, CosinePulse, Excitation, GroundMotion, MavroeidisPapageorgiou, Record, Ricker,
-    SinePulse,
+    read_at2, AccelUnit, CosinePulse, Excitation, GroundMotion, MavroeidisPapageorgiou, Record,
+    Ricker, SinePulse,
 };
 use toml::Value;
 
@@ -318,7 +318,7 @@ fn kind_keys(kind: &str) -> Option<&'static [&'static str]> {
         "sine-pulse" | "cosine-pulse" => PULSE,
         "ricker" => RICKER,
         "mp-pulse" => MP,
-        "record" => &["kind", "path", "scale"],
+        "record" => &["kind", "path", "scale", "units"],
         _ => return None,
     })
 }
@@ -347,6 +347,7 @@ fn present(e: &ExcitationSpec) -> Vec<&'static str> {
         ("nu", e.nu.is_some()),
         ("path", e.path.is_some()),
         ("scale", e.scale.is_some()),
+        ("units", e.units.is_some()),
     ])
 }
 
@@ -568,6 +569,27 @@ fn build_excitation(scene: &Scene, u: &Units) -> Result<(Excitation, String, f64
                     format_args!("cannot use the record: {err}"),
                 )
             })?;
+            let at2 = match e.units.as_deref() {
+                None => at2,
+                Some(name) => {
+                    let unit = AccelUnit::parse(name).ok_or_else(|| {
+                        src.err(
+                            "excitation.units",
+                            format_args!(
+                                "`units` = \"{name}\" in [excitation] is not allowed: one of \"{}\"",
+                                AccelUnit::NAMES.join("\", \"")
+                            ),
+                        )
+                    })?;
+                    at2.with_stated_unit(unit).map_err(|err| {
+                        src.err(
+                            "excitation.units",
+                            format_args!("cannot use the record: {err}"),
+                        )
+                    })?
+                }
+            };
+            let unit = at2.declared_unit.map_or("g (not stated)", AccelUnit::name);
             let spu = u.sec_per_unit.ok_or_else(|| {
                 src.err(
                     "excitation.path",
@@ -581,8 +603,8 @@ fn build_excitation(scene: &Scene, u: &Units) -> Result<(Excitation, String, f64
                 .map_err(|err| src.err("excitation.path", err))?
                 .with_scale(scale * u.g_model);
             let desc = format!(
-                "record {} ({npts} samples, dt = {dt} s, PGA = {pga:.4} g) × {scale}: \
-                 PGA/(g tan α) = {:.4}",
+                "record {} ({npts} samples, dt = {dt} s, units {unit}, PGA = {pga:.4} g) × \
+                 {scale}: PGA/(g tan α) = {:.4}",
                 file.display(),
                 pga * scale / u.tan_alpha
             );

@@ -72,6 +72,8 @@ pub struct ExcitationSpec {
     pub nu: Option<f64>,
     pub path: Option<String>,
     pub scale: Option<f64>,
+    /// Units of a record whose header states none: "g", "cm/s2" or "m/s2".
+    pub units: Option<String>,
 }
 
 /// `[effects]`.
