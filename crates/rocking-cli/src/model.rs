@@ -15,6 +15,9 @@ use toml::Value;
 
 use crate::scene::{describe, CliError, ExcitationSpec, Scene, Source, StructureSpec};
 
+/// The most history rows a run may ask for (about 80 bytes each in memory and in history.csv).
+const MAX_ROWS: f64 = 5e6;
+
 /// Acceleration of gravity (m/s²) that relates a dimensionless structure's R and p.
 pub const G_DIMENSIONLESS: f64 = 9.81;
 
@@ -76,8 +79,44 @@ fn finite(src: &Source, path: &str, v: f64, cond: bool, allowed: &str) -> Result
     } else {
         Err(src.err(
             path,
-            format_args!("{} = {v} is not allowed: {allowed}", describe(path)),
+            format_args!(
+                "{} = {} is not allowed: {allowed}",
+                describe(path),
+                crate::report::short(v)
+            ),
         ))
+    }
+}
+
+/// A value formed from the key `path` (a product with the structure's scales) must be finite:
+/// an accepted input times a large scale can overflow.
+fn formed(src: &Source, path: &str, given: f64, v: f64, what: &str) -> Result<f64, CliError> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(src.err(
+            path,
+            format_args!(
+                "{} = {} is too large: the {what} it gives overflows (not finite)",
+                describe(path),
+                crate::report::short(given)
+            ),
+        ))
+    }
+}
+
+/// A run guard (`max_steps`, `max_events` in [solver]): a whole number from 1 to 1e12.
+fn guard(src: &Source, path: &str, v: Option<f64>, default: u64) -> Result<u64, CliError> {
+    match v {
+        None => Ok(default),
+        Some(x) => finite(
+            src,
+            path,
+            x,
+            (1.0..=1e12).contains(&x) && x.fract() == 0.0,
+            "a whole number 1 <= n <= 1e12",
+        )
+        .map(|x| x as u64),
     }
 }
 
@@ -87,6 +126,7 @@ fn present_keys<'a>(keys: &[(&'a str, bool)]) -> Vec<&'a str> {
 }
 
 fn build_structure(src: &Source, s: &StructureSpec, rigid: bool) -> Result<Structure, CliError> {
+    crate::limits::structure_magnitudes(src, s)?;
     let physical_keys = present_keys(&[
         ("h", s.h.is_some()),
         ("b", s.b.is_some()),
@@ -401,10 +441,13 @@ fn omega(src: &Source, kind: &str, e: &ExcitationSpec, u: &Units) -> Result<f64,
     )?;
     let path = format!("excitation.{k}");
     finite(src, &path, v, v > 0.0, "a frequency > 0")?;
-    Ok(match k {
+    let w = match k {
         "omega_p_over_p" => v * u.p_model,
         _ => v * need_seconds(src, k, u)?,
-    })
+    };
+    formed(src, &path, v, w, "frequency in model units")?;
+    crate::limits::frequency(src, &path, v, w / u.p_model)?;
+    Ok(w)
 }
 
 /// Acceleration amplitude in model units from `amplitude` (g tan α), `amplitude_g` (g) or `a_p`
@@ -431,11 +474,15 @@ fn accel_amplitude(
         true,
         "a finite amplitude",
     )?;
-    Ok(match k {
+    let a = match k {
         "amplitude" => v * u.accel_g_tan_alpha(),
         "amplitude_g" => v * u.g_model,
         _ => v / u.g_si * u.g_model,
-    })
+    };
+    let path = format!("excitation.{k}");
+    formed(src, &path, v, a, "ground acceleration in model units")?;
+    crate::limits::acceleration(src, &path, v, a / u.g_model)?;
+    Ok(a)
 }
 
 fn build_excitation(scene: &Scene, u: &Units) -> Result<(Excitation, String, f64), CliError> {
@@ -527,6 +574,10 @@ fn build_excitation(scene: &Scene, u: &Units) -> Result<(Excitation, String, f64
                 "velocity_amplitude" => v * ga / u.p_model,
                 _ => v * u.g_model / (u.g_si * need_seconds(src, k, u)?),
             };
+            let path = format!("excitation.{k}");
+            let a_vel = formed(src, &path, v, a_vel, "ground velocity in model units")?;
+            // The pulse's peak acceleration is of order A ω_p.
+            crate::limits::acceleration(src, &path, v, a_vel * w / u.g_model)?;
             let gamma = e.gamma.unwrap_or(2.0);
             finite(
                 src,
@@ -599,6 +650,14 @@ fn build_excitation(scene: &Scene, u: &Units) -> Result<(Excitation, String, f64
             })?;
             let pga = at2.pga();
             let (dt, npts) = (at2.dt, at2.npts);
+            formed(
+                src,
+                "excitation.scale",
+                scale,
+                pga * scale * u.g_model,
+                "peak ground acceleration in model units",
+            )?;
+            crate::limits::acceleration(src, "excitation.scale", scale, pga * scale)?;
             let rec = Record::new(dt / spu, at2.samples)
                 .map_err(|err| src.err("excitation.path", err))?
                 .with_scale(scale * u.g_model);
@@ -635,9 +694,10 @@ pub fn build(scene: &Scene) -> Result<Model, CliError> {
     // The structure with the switched-off effects removed: what is simulated and reported.
     let (structure, variant, reasons) =
         select_variant(&structure, &effects).map_err(|e| param_err(src, "structure", e))?;
+    let physical = st.h.is_some();
+    crate::limits::derived_quantities(src, &structure, physical)?;
     let derived = structure.derived();
     let ph = structure.physical();
-    let physical = st.h.is_some();
     let units = Units {
         physical,
         g_model: ph.g,
@@ -690,6 +750,13 @@ pub fn build(scene: &Scene) -> Result<Model, CliError> {
         "a duration 0 <= τ <= 1e6 after the excitation ends",
     )?;
     let t_end = excitation_end + after / units.p_model;
+    formed(
+        src,
+        "solver.after_excitation",
+        after,
+        t_end,
+        "end time in model units",
+    )?;
     if t_end <= 0.0 {
         return Err(src.err(
             "solver.after_excitation",
@@ -771,7 +838,7 @@ pub fn build(scene: &Scene) -> Result<Model, CliError> {
                 src,
                 "output.history_dt",
                 dt,
-                dt > 0.0 && t_end * units.p_model / dt <= 5e6,
+                dt > 0.0 && t_end * units.p_model / dt <= MAX_ROWS,
                 "a grid step τ > 0 giving at most 5e6 rows",
             )?;
             History::Grid(dt / units.p_model)
@@ -780,13 +847,40 @@ pub fn build(scene: &Scene) -> Result<Model, CliError> {
     let history_csv = history != History::None;
     // Plots need a history: a 0.01 τ grid unless the scene asked for one.
     let history = if plots && history == History::None {
+        let rows = t_end * units.p_model / 0.01;
+        if rows > MAX_ROWS {
+            return Err(src.err(
+                "output.plots",
+                format_args!(
+                    "`plots` = true in [output] samples the run every 0.01 τ: τ = 0 .. {} gives \
+                     {} rows, at most {MAX_ROWS:e}; give a coarser history_dt or a shorter run",
+                    crate::report::short(t_end * units.p_model),
+                    crate::report::short(rows.ceil())
+                ),
+            ));
+        }
         History::Grid(0.01 / units.p_model)
     } else {
         history
     };
 
+    let defaults = Options::default();
+    let max_steps = guard(
+        src,
+        "solver.max_steps",
+        sv.and_then(|s| s.max_steps),
+        defaults.max_steps,
+    )?;
+    let max_events = guard(
+        src,
+        "solver.max_events",
+        sv.and_then(|s| s.max_events),
+        defaults.max_events,
+    )?;
     let options = Options {
         accuracy,
+        max_steps,
+        max_events,
         impact,
         overturn_angle: overturn,
         t_end,

@@ -100,6 +100,9 @@ pub struct SolverSpec {
     pub method: Option<String>,
     pub tol: Option<f64>,
     pub after_excitation: Option<f64>,
+    /// Guards that end a run that would not end: integrator steps and events.
+    pub max_steps: Option<f64>,
+    pub max_events: Option<f64>,
 }
 
 /// `[initial]`.
