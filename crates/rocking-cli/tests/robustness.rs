@@ -512,3 +512,67 @@ fn non_finite_derived_quantities_are_refused_not_written_as_null() {
         assert!(!x.is_null(), "derived {k} is null");
     }
 }
+
+/// A run killed while writing its outputs leaves the previous run's directory as it was (it used
+/// to leave a new summary.json beside the old history.csv, and a temporary file nothing removed);
+/// what it staged is removed by the next run. The kill happens once the staging directory
+/// exists (polled, not timed); if the run finished first, the kill is not exercised and that is
+/// said.
+#[test]
+fn a_run_killed_while_writing_leaves_the_previous_run_intact() {
+    let dir = tmp("killed");
+    let scene = scene_file(&dir, SCENE);
+    let s = scene.to_str().unwrap();
+    let out = dir.join("out");
+    let o = out.to_str().unwrap();
+    let first = rocking(&["run", s, "--out", o, "--set", "output.events=true"]);
+    assert!(first.status.success(), "{}", stderr(&first));
+    let before = std::fs::read(out.join("summary.json")).unwrap();
+    let staged = || {
+        names(&dir)
+            .into_iter()
+            .any(|n| n.starts_with(".out.rocking-") && !n.contains("-old-"))
+    };
+    let mut child = Command::new(env!("CARGO_BIN_EXE_rocking"))
+        .args(["run", s, "--out", o, "--set", "output.history_dt=0.0005"])
+        .args([
+            "--set",
+            "solver.after_excitation=150",
+            "--set",
+            "excitation.amplitude=1.4",
+        ])
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let killed = loop {
+        if staged() {
+            child.kill().unwrap();
+            child.wait().unwrap();
+            break true;
+        }
+        if child.try_wait().unwrap().is_some() {
+            break false;
+        }
+        std::thread::yield_now();
+    };
+    eprintln!("killed while writing: {killed}");
+    if killed {
+        assert_eq!(
+            names(&out),
+            ["events.csv", "summary.json"],
+            "the previous run's files"
+        );
+        assert_eq!(std::fs::read(out.join("summary.json")).unwrap(), before);
+    } else {
+        assert_eq!(
+            names(&out),
+            ["history.csv", "summary.json"],
+            "the new run's files"
+        );
+    }
+    let next = rocking(&["run", s, "--out", o]);
+    assert!(next.status.success(), "{}", stderr(&next));
+    assert_eq!(names(&out), ["summary.json"]);
+    assert!(!staged(), "leftovers removed: {:?}", names(&dir));
+}
