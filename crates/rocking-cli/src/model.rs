@@ -66,9 +66,15 @@ pub struct Model {
 }
 
 fn param_err(src: &Source, table: &str, e: ParamError) -> CliError {
+    // ParamError's own Display prints 1e308 with 309 digits: the value in short form here.
     src.err(
         &format!("{table}.{}", e.parameter),
-        format_args!("[{table}] {e}"),
+        format_args!(
+            "[{table}] `{}` = {} is not allowed: {}",
+            e.parameter,
+            crate::report::short(e.value),
+            e.allowed
+        ),
     )
 }
 

@@ -481,6 +481,16 @@ fn messages_name_the_key_the_user_wrote() {
     ]);
     assert_input_error(&r, &["omega_p_over_p", "1e308"], "omega_p_over_p = 1e308");
     assert!(!stderr(&r).contains("underflow"), "{}", stderr(&r));
+    for set in ["structure.zeta=1e308", "structure.gamma_ib=-1e300"] {
+        let r = rocking(&["run", s, "--out", o, "--set", set]);
+        let key = &set["structure.".len()..set.find('=').unwrap()];
+        assert_input_error(&r, &[key, "e30"], set);
+        assert!(
+            !stderr(&r).contains("0000000000"),
+            "short numbers: {}",
+            stderr(&r)
+        );
+    }
 }
 
 /// Derived quantities that would be infinite or NaN (E_ref = inf from m = 1e308, a threshold
