@@ -177,3 +177,138 @@ fn energy_bookkeeping_does_not_change_the_run() {
     assert_eq!(with.solver_stats.steps, without.solver_stats.steps);
     assert!(close(with.end_time.tau, without.end_time.tau));
 }
+
+/// The largest relative gain of kinetic energy at any impact of a run (0 when none gains).
+fn worst_impact_gain(run: &Run) -> f64 {
+    impacts(run)
+        .iter()
+        .map(|e| (e.energy_after - e.energy_before) / e.energy_before.abs().max(1e-300))
+        .fold(0.0f64, f64::max)
+}
+
+/// The issue's case: r = 1, no excitation, ζ = 0, ω_n/p = 5, α = 0.2, released from θ/α = 0.5.
+/// Fixed restitution scales θ' alone, which on a deformable column raised the kinetic energy at
+/// impacts until the column overturned (τ ≈ 20 736). With the energy cap no impact gains energy,
+/// the capped impacts are counted and logged, and the column cannot overturn.
+#[test]
+fn elastic_restitution_on_a_flexible_column_creates_no_energy() {
+    let s = dimensionless(0.2, 5.0, 0.0, 0.0, 0.0, DampingConvention::FixedBase);
+    let opts = Options {
+        impact: ImpactModel::Restitution(1.0),
+        t_end: 25_000.0,
+        energy: true,
+        event_log: true,
+        initial: Initial {
+            theta: 0.5 * 0.2,
+            ..Initial::default()
+        },
+        ..Options::default()
+    };
+    let run = run_checked(&s, &NoMotion, &Effects::default(), &opts, "r=1 flexible");
+    let sm = &run.summary;
+    let e = sm.energy.unwrap();
+    let gain = worst_impact_gain(&run);
+    let capped_logged = run
+        .events
+        .iter()
+        .filter(|e| e.branch.ends_with("energy-capped"))
+        .count() as u64;
+    eprintln!(
+        "r=1, ω_n/p=5: {} impacts, {} capped, worst gain {gain:.3e}, impact losses {:.3e} E_ref, \
+         overturned {}, max θ/α {:.4}",
+        sm.impacts,
+        sm.energy_capped_impacts,
+        e.impact_losses,
+        sm.overturned,
+        sm.max_theta_over_alpha
+    );
+    assert!(!sm.overturned, "no energy source: it cannot overturn");
+    assert!(
+        gain <= 1e-8,
+        "an impact gained {gain:e} of its kinetic energy"
+    );
+    assert!(
+        e.impact_losses >= -1e-8,
+        "impacts created {} E_ref",
+        -e.impact_losses
+    );
+    assert!(
+        sm.energy_capped_impacts > 0,
+        "the map would gain: capped impacts counted"
+    );
+    assert_eq!(
+        capped_logged, sm.energy_capped_impacts,
+        "each capped impact is logged"
+    );
+}
+
+/// No impact model increases the kinetic energy at any impact, over a grid of flexible and rigid
+/// columns (α, ω_n/p, column and base masses) in free rocking and under a pulse.
+#[test]
+fn no_impact_model_creates_kinetic_energy() {
+    let models = [
+        ImpactModel::Vvel,
+        ImpactModel::Adjex,
+        ImpactModel::Housner,
+        ImpactModel::Restitution(1.0),
+        ImpactModel::Restitution(0.9),
+        ImpactModel::Restitution(0.5),
+    ];
+    let (mut runs, mut n_impacts, mut n_capped) = (0, 0u64, 0u64);
+    let mut worst: f64 = 0.0;
+    for alpha in [0.1, 0.2, 0.4] {
+        for w in [2.0, 5.0, 20.0, f64::INFINITY] {
+            for (gmc, gmb) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)] {
+                let rigid = w.is_infinite();
+                let s = dimensionless(
+                    alpha,
+                    if rigid { 1000.0 } else { w },
+                    gmc,
+                    gmb,
+                    0.0,
+                    DampingConvention::FixedBase,
+                );
+                let fx = if rigid {
+                    rigid_effects()
+                } else {
+                    Effects::default()
+                };
+                for impact in models {
+                    for pulse in [false, true] {
+                        let opts = Options {
+                            impact,
+                            t_end: 60.0,
+                            event_log: true,
+                            initial: Initial {
+                                theta: if pulse { 0.0 } else { 0.5 * alpha },
+                                ..Initial::default()
+                            },
+                            ..Options::default()
+                        };
+                        let label =
+                            format!("α={alpha} ω_n/p={w} γ=({gmc},{gmb}) {impact:?} pulse={pulse}");
+                        let run = if pulse {
+                            let a = 3.0 * alpha.tan();
+                            run_checked(&s, &SinePulse::new(a, 3.0), &fx, &opts, &label)
+                        } else {
+                            run_checked(&s, &NoMotion, &fx, &opts, &label)
+                        };
+                        runs += 1;
+                        n_impacts += run.summary.impacts;
+                        n_capped += run.summary.energy_capped_impacts;
+                        let g = worst_impact_gain(&run);
+                        assert!(
+                            g <= 1e-8,
+                            "{label}: an impact gained {g:e} of its kinetic energy"
+                        );
+                        worst = worst.max(g);
+                    }
+                }
+            }
+        }
+    }
+    eprintln!(
+        "{runs} runs, {n_impacts} impacts, {n_capped} capped, worst relative kinetic-energy gain {worst:.3e}"
+    );
+    assert!(n_impacts > 1000, "the grid exercises impacts: {n_impacts}");
+}

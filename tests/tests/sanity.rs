@@ -189,3 +189,92 @@ fn check_run_catches_nan() {
     run.history[3].u = f64::NAN;
     check_run(&run, "nan");
 }
+
+/// The library validates the options it is given (item 15 of issue 11): an overturning angle of
+/// NaN, 0, −1 or ∞, a restitution of 2 or −1, a start beyond π/2 and a history grid of 0 or −0.1
+/// used to run to nonsense (θ/α = 159) or without end; each is an error naming the field.
+#[test]
+fn invalid_options_are_errors_naming_the_field() {
+    use rocking::{simulate, History, ImpactModel, Initial, Options, SimError};
+    let s = fig3_structure();
+    let ok = Options::default();
+    let theta = |t: f64| Initial {
+        theta: t,
+        ..Initial::default()
+    };
+    let cases: Vec<(Options, &str)> = vec![
+        (
+            Options {
+                overturn_angle: f64::NAN,
+                ..ok
+            },
+            "overturn_angle",
+        ),
+        (
+            Options {
+                overturn_angle: 0.0,
+                ..ok
+            },
+            "overturn_angle",
+        ),
+        (
+            Options {
+                overturn_angle: -1.0,
+                ..ok
+            },
+            "overturn_angle",
+        ),
+        (
+            Options {
+                overturn_angle: f64::INFINITY,
+                ..ok
+            },
+            "overturn_angle",
+        ),
+        (
+            Options {
+                impact: ImpactModel::Restitution(2.0),
+                ..ok
+            },
+            "restitution",
+        ),
+        (
+            Options {
+                impact: ImpactModel::Restitution(-1.0),
+                ..ok
+            },
+            "restitution",
+        ),
+        (
+            Options {
+                initial: theta(1.6),
+                ..ok
+            },
+            "initial.theta",
+        ),
+        (
+            Options {
+                history: History::Grid(0.0),
+                ..ok
+            },
+            "history",
+        ),
+        (
+            Options {
+                history: History::Grid(-0.1),
+                ..ok
+            },
+            "history",
+        ),
+    ];
+    for (o, field) in cases {
+        match simulate(&s, &fig3_pulse(), &rocking::Effects::default(), &o) {
+            Err(SimError::Options(m)) => assert!(m.contains(field), "{field}: {m}"),
+            Err(e) => panic!("{field}: not an options error: {e}"),
+            Ok(r) => panic!(
+                "{field}: ran (max θ/α = {})",
+                r.summary.max_theta_over_alpha
+            ),
+        }
+    }
+}

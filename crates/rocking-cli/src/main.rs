@@ -10,6 +10,16 @@
 //! Exit codes: 0 ok, 2 invalid input (scene, record, arguments), 1 internal failure.
 //! The scene format is described in `scenes/README.md`.
 
+/// `println!` that returns an error from the enclosing function instead of panicking when
+/// standard output is closed (`| true`, EPIPE) or full (`> /dev/full`).
+macro_rules! out {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        writeln!(std::io::stdout(), $($arg)*).map_err($crate::stdout_error)?
+    }};
+}
+
+mod limits;
 mod model;
 mod plot;
 mod report;
@@ -126,7 +136,7 @@ fn load(scene: &Path, set: &[String]) -> Result<(scene::Scene, Model), CliError>
 
 fn check(scene: &Path, set: &[String], json: bool) -> Result<(), CliError> {
     let (_, m) = load(scene, set)?;
-    let derived = report::derived_json(&m);
+    let derived = report::derived_json(&m)?;
     if json {
         let v = serde_json::json!({
             "scene": scene.display().to_string(),
@@ -137,56 +147,56 @@ fn check(scene: &Path, set: &[String], json: bool) -> Result<(), CliError> {
             "excitation_end": m.excitation_end * m.units.p_model,
             "derived": derived,
         });
-        println!("{v}");
+        out!("{v}");
         return Ok(());
     }
     let d = m.structure.derived();
     let u = &m.units;
-    println!("scene: {}", scene.display());
+    out!("scene: {}", scene.display());
     if let Some(t) = &m.title {
-        println!("title: {t}");
+        out!("title: {t}");
     }
-    println!("kernel variant: {}", m.variant.name());
+    out!("kernel variant: {}", m.variant.name());
     for r in &m.reasons {
-        println!("  because {r}");
+        out!("  because {r}");
     }
-    println!("excitation: {}", m.excitation_description);
+    out!("excitation: {}", m.excitation_description);
     let secs = |tau: f64| match m.structure.p_per_second() {
         Some(p) => format!(" ({:.4} s)", tau / p),
         None => String::new(),
     };
     let ex_end = m.excitation_end * u.p_model;
-    println!("excitation ends at τ = {ex_end:.4}{}", secs(ex_end));
-    println!(
+    out!("excitation ends at τ = {ex_end:.4}{}", secs(ex_end));
+    out!(
         "simulated: τ = 0 .. {:.4}{}",
         m.options.t_end * u.p_model,
         secs(m.options.t_end * u.p_model)
     );
-    println!(
+    out!(
         "derived quantities ({}):",
         derived["units"].as_str().unwrap_or("")
     );
     if let Some(ps) = m.structure.p_per_second() {
-        println!("  p          = {:.6} (= {ps:.6} 1/s)", d.p);
+        out!("  p          = {:.6} (= {ps:.6} 1/s)", d.p);
     } else {
-        println!("  p          = {:.6}", d.p);
+        out!("  p          = {:.6}", d.p);
     }
-    println!(
+    out!(
         "  ω_n        = {:.6} (ω_n/p = {:.4})",
         d.omega_n,
         d.omega_n / d.p
     );
-    println!("  ω_up       = {:.6}", d.omega_up);
-    println!("  S          = {:.6}", d.modal_s);
-    println!("  α          = {:.6} rad", d.alpha);
-    println!("  u_cr       = {:.6e}", d.u_cr);
-    println!(
+    out!("  ω_up       = {:.6}", d.omega_up);
+    out!("  S          = {:.6}", d.modal_s);
+    out!("  α          = {:.6} rad", d.alpha);
+    out!("  u_cr       = {:.6e}", d.u_cr);
+    out!(
         "  θ_cr       = {:.6} rad (θ_cr/α = {:.4})",
         d.theta_cr,
         d.theta_cr / d.alpha
     );
-    println!("  E_ref      = {:.6e}", d.e_ref);
-    println!(
+    out!("  E_ref      = {:.6e}", d.e_ref);
+    out!(
         "  static uplift threshold = {:.6} g tan α",
         derived["static_uplift_over_g_tan_alpha"]
             .as_f64()
@@ -206,6 +216,13 @@ fn run(scene: &Path, set: &[String], out: Option<PathBuf>, json: bool) -> Result
             rocking::SimError::Options(msg) => {
                 CliError::Input(format!("{}: {msg}", scene.display()))
             }
+            rocking::SimError::Guard(msg) => CliError::Internal(format!(
+                "{}: simulation stopped: {msg}; both limits are scene settings: `max_steps` and \
+                 `max_events` in [solver] (defaults {} and {})",
+                scene.display(),
+                report::short(rocking::Options::default().max_steps as f64),
+                report::short(rocking::Options::default().max_events as f64)
+            )),
             other => CliError::Internal(format!("{}: simulation failed: {other}", scene.display())),
         },
     )?;
@@ -227,29 +244,34 @@ fn run(scene: &Path, set: &[String], out: Option<PathBuf>, json: bool) -> Result
             .unwrap_or_else(|| "scene".into());
         Path::new("out").join(stem)
     });
-    std::fs::create_dir_all(&dir)
-        .map_err(|e| CliError::Internal(format!("{}: cannot create: {e}", dir.display())))?;
+    // Everything is written into a staging directory that replaces `dir` whole at the end.
+    let out_dir = report::OutDir::begin(&dir)?;
+    let stage = out_dir.path().to_path_buf();
     let mut written = Vec::new();
     let text = serde_json::to_string_pretty(&summary)
         .map_err(|e| CliError::Internal(format!("cannot serialise the summary: {e}")))?;
-    let path = dir.join("summary.json");
-    report::write_atomic(&path, (text + "\n").as_bytes())?;
-    written.push(path);
+    let write = |name: &str, bytes: &[u8]| {
+        let path = stage.join(name);
+        std::fs::write(&path, bytes)
+            .map_err(|e| {
+                CliError::Internal(format!("{}: cannot write: {e}", dir.join(name).display()))
+            })
+            .map(|()| path)
+    };
+    written.push(write("summary.json", (text + "\n").as_bytes())?);
     if let Some(h) = history {
-        let path = dir.join("history.csv");
-        report::write_atomic(&path, h.as_bytes())?;
-        written.push(path);
+        written.push(write("history.csv", h.as_bytes())?);
     }
     if let Some(e) = events {
-        let path = dir.join("events.csv");
-        report::write_atomic(&path, e.as_bytes())?;
-        written.push(path);
+        written.push(write("events.csv", e.as_bytes())?);
     }
     if m.plots {
-        written.extend(plot::plots(&m, &run, &dir)?);
+        written.extend(plot::plots(&m, &run, &stage)?);
     }
+    let written: Vec<PathBuf> = written.iter().map(|p| out_dir.final_path(p)).collect();
+    out_dir.commit()?;
     if json {
-        println!("{summary}");
+        out!("{summary}");
         return Ok(());
     }
     let s = &run.summary;
@@ -260,36 +282,51 @@ fn run(scene: &Path, set: &[String], out: Option<PathBuf>, json: bool) -> Result
         },
         None => "never".into(),
     };
-    println!("{}: kernel variant {}", scene.display(), s.kernel_variant);
-    println!("  excitation: {}", m.excitation_description);
-    println!(
+    out!("{}: kernel variant {}", scene.display(), s.kernel_variant);
+    out!("  excitation: {}", m.excitation_description);
+    out!(
         "  max θ/α = {:.4}, max u/u_cr = {:.4}",
-        s.max_theta_over_alpha, s.max_u_over_ucr
+        s.max_theta_over_alpha,
+        s.max_u_over_ucr
     );
-    println!(
+    out!(
         "  impacts: {} ({} significant); first uplift {}; first impact {}",
         s.impacts,
         s.significant_impacts,
         t(s.first_uplift_time),
         t(s.first_impact_time)
     );
+    if s.energy_capped_impacts > 0 {
+        out!(
+            "  {} impacts kept the pre-impact kinetic energy: the impact model would have created \
+             energy (branch *-energy-capped in events.csv)",
+            s.energy_capped_impacts
+        );
+    }
     if s.overturned {
-        println!("  OVERTURNED at {}", t(s.overturn_time));
+        out!("  OVERTURNED at {}", t(s.overturn_time));
     } else {
-        println!("  not overturned (final phase {:?})", s.final_phase);
+        out!("  not overturned (final phase {:?})", s.final_phase);
     }
     if let Some(r) = s.energy_balance_residual {
-        println!("  energy balance residual: {r:.3e} E_ref");
+        out!("  energy balance residual: {r:.3e} E_ref");
     }
-    println!(
+    out!(
         "  solver: {} steps, {} rejected, {} events",
-        s.solver_stats.steps, s.solver_stats.rejected_steps, s.solver_stats.events
+        s.solver_stats.steps,
+        s.solver_stats.rejected_steps,
+        s.solver_stats.events
     );
-    println!("  wrote:");
+    out!("  wrote:");
     for p in written {
-        println!("    {}", p.display());
+        out!("    {}", p.display());
     }
     Ok(())
+}
+
+/// A failed write to standard output.
+pub(crate) fn stdout_error(e: std::io::Error) -> CliError {
+    CliError::Internal(format!("cannot write to standard output: {e}"))
 }
 
 fn main() -> ExitCode {
@@ -320,6 +357,11 @@ fn main() -> ExitCode {
             threads,
         } => sweep::batch(&scene, &set, &records, &scales, out, quiet, threads),
     };
+    // Buffered output reaches a closed or full stdout only here.
+    let result = result.and_then(|()| {
+        use std::io::Write as _;
+        std::io::stdout().flush().map_err(stdout_error)
+    });
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {

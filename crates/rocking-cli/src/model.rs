@@ -8,12 +8,15 @@ use rocking::{
 };
 use rocking_kernels::Physical;
 use rocking_motion::{
-    read_at2, CosinePulse, Excitation, GroundMotion, MavroeidisPapageorgiou, Record, Ricker,
-    SinePulse,
+    read_at2, AccelUnit, CosinePulse, Excitation, GroundMotion, MavroeidisPapageorgiou, Record,
+    Ricker, SinePulse,
 };
 use toml::Value;
 
 use crate::scene::{describe, CliError, ExcitationSpec, Scene, Source, StructureSpec};
+
+/// The most history rows a run may ask for (about 80 bytes each in memory and in history.csv).
+const MAX_ROWS: f64 = 5e6;
 
 /// Acceleration of gravity (m/s²) that relates a dimensionless structure's R and p.
 pub const G_DIMENSIONLESS: f64 = 9.81;
@@ -63,9 +66,15 @@ pub struct Model {
 }
 
 fn param_err(src: &Source, table: &str, e: ParamError) -> CliError {
+    // ParamError's own Display prints 1e308 with 309 digits: the value in short form here.
     src.err(
         &format!("{table}.{}", e.parameter),
-        format_args!("[{table}] {e}"),
+        format_args!(
+            "[{table}] `{}` = {} is not allowed: {}",
+            e.parameter,
+            crate::report::short(e.value),
+            e.allowed
+        ),
     )
 }
 
@@ -76,8 +85,44 @@ fn finite(src: &Source, path: &str, v: f64, cond: bool, allowed: &str) -> Result
     } else {
         Err(src.err(
             path,
-            format_args!("{} = {v} is not allowed: {allowed}", describe(path)),
+            format_args!(
+                "{} = {} is not allowed: {allowed}",
+                describe(path),
+                crate::report::short(v)
+            ),
         ))
+    }
+}
+
+/// A value formed from the key `path` (a product with the structure's scales) must be finite:
+/// an accepted input times a large scale can overflow.
+fn formed(src: &Source, path: &str, given: f64, v: f64, what: &str) -> Result<f64, CliError> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(src.err(
+            path,
+            format_args!(
+                "{} = {} is too large: the {what} it gives overflows (not finite)",
+                describe(path),
+                crate::report::short(given)
+            ),
+        ))
+    }
+}
+
+/// A run guard (`max_steps`, `max_events` in [solver]): a whole number from 1 to 1e12.
+fn guard(src: &Source, path: &str, v: Option<f64>, default: u64) -> Result<u64, CliError> {
+    match v {
+        None => Ok(default),
+        Some(x) => finite(
+            src,
+            path,
+            x,
+            (1.0..=1e12).contains(&x) && x.fract() == 0.0,
+            "a whole number 1 <= n <= 1e12",
+        )
+        .map(|x| x as u64),
     }
 }
 
@@ -87,6 +132,7 @@ fn present_keys<'a>(keys: &[(&'a str, bool)]) -> Vec<&'a str> {
 }
 
 fn build_structure(src: &Source, s: &StructureSpec, rigid: bool) -> Result<Structure, CliError> {
+    crate::limits::structure_magnitudes(src, s)?;
     let physical_keys = present_keys(&[
         ("h", s.h.is_some()),
         ("b", s.b.is_some()),
@@ -318,7 +364,7 @@ fn kind_keys(kind: &str) -> Option<&'static [&'static str]> {
         "sine-pulse" | "cosine-pulse" => PULSE,
         "ricker" => RICKER,
         "mp-pulse" => MP,
-        "record" => &["kind", "path", "scale"],
+        "record" => &["kind", "path", "scale", "units"],
         _ => return None,
     })
 }
@@ -347,6 +393,7 @@ fn present(e: &ExcitationSpec) -> Vec<&'static str> {
         ("nu", e.nu.is_some()),
         ("path", e.path.is_some()),
         ("scale", e.scale.is_some()),
+        ("units", e.units.is_some()),
     ])
 }
 
@@ -400,10 +447,13 @@ fn omega(src: &Source, kind: &str, e: &ExcitationSpec, u: &Units) -> Result<f64,
     )?;
     let path = format!("excitation.{k}");
     finite(src, &path, v, v > 0.0, "a frequency > 0")?;
-    Ok(match k {
+    let w = match k {
         "omega_p_over_p" => v * u.p_model,
         _ => v * need_seconds(src, k, u)?,
-    })
+    };
+    formed(src, &path, v, w, "frequency in model units")?;
+    crate::limits::frequency(src, &path, v, w / u.p_model)?;
+    Ok(w)
 }
 
 /// Acceleration amplitude in model units from `amplitude` (g tan α), `amplitude_g` (g) or `a_p`
@@ -430,11 +480,15 @@ fn accel_amplitude(
         true,
         "a finite amplitude",
     )?;
-    Ok(match k {
+    let a = match k {
         "amplitude" => v * u.accel_g_tan_alpha(),
         "amplitude_g" => v * u.g_model,
         _ => v / u.g_si * u.g_model,
-    })
+    };
+    let path = format!("excitation.{k}");
+    formed(src, &path, v, a, "ground acceleration in model units")?;
+    crate::limits::acceleration(src, &path, v, a / u.g_model)?;
+    Ok(a)
 }
 
 fn build_excitation(scene: &Scene, u: &Units) -> Result<(Excitation, String, f64), CliError> {
@@ -526,6 +580,10 @@ fn build_excitation(scene: &Scene, u: &Units) -> Result<(Excitation, String, f64
                 "velocity_amplitude" => v * ga / u.p_model,
                 _ => v * u.g_model / (u.g_si * need_seconds(src, k, u)?),
             };
+            let path = format!("excitation.{k}");
+            let a_vel = formed(src, &path, v, a_vel, "ground velocity in model units")?;
+            // The pulse's peak acceleration is of order A ω_p.
+            crate::limits::acceleration(src, &path, v, a_vel * w / u.g_model)?;
             let gamma = e.gamma.unwrap_or(2.0);
             finite(
                 src,
@@ -568,6 +626,27 @@ fn build_excitation(scene: &Scene, u: &Units) -> Result<(Excitation, String, f64
                     format_args!("cannot use the record: {err}"),
                 )
             })?;
+            let at2 = match e.units.as_deref() {
+                None => at2,
+                Some(name) => {
+                    let unit = AccelUnit::parse(name).ok_or_else(|| {
+                        src.err(
+                            "excitation.units",
+                            format_args!(
+                                "`units` = \"{name}\" in [excitation] is not allowed: one of \"{}\"",
+                                AccelUnit::NAMES.join("\", \"")
+                            ),
+                        )
+                    })?;
+                    at2.with_stated_unit(unit).map_err(|err| {
+                        src.err(
+                            "excitation.units",
+                            format_args!("cannot use the record: {err}"),
+                        )
+                    })?
+                }
+            };
+            let unit = at2.declared_unit.map_or("g (not stated)", AccelUnit::name);
             let spu = u.sec_per_unit.ok_or_else(|| {
                 src.err(
                     "excitation.path",
@@ -577,12 +656,20 @@ fn build_excitation(scene: &Scene, u: &Units) -> Result<(Excitation, String, f64
             })?;
             let pga = at2.pga();
             let (dt, npts) = (at2.dt, at2.npts);
+            formed(
+                src,
+                "excitation.scale",
+                scale,
+                pga * scale * u.g_model,
+                "peak ground acceleration in model units",
+            )?;
+            crate::limits::acceleration(src, "excitation.scale", scale, pga * scale)?;
             let rec = Record::new(dt / spu, at2.samples)
                 .map_err(|err| src.err("excitation.path", err))?
                 .with_scale(scale * u.g_model);
             let desc = format!(
-                "record {} ({npts} samples, dt = {dt} s, PGA = {pga:.4} g) × {scale}: \
-                 PGA/(g tan α) = {:.4}",
+                "record {} ({npts} samples, dt = {dt} s, units {unit}, PGA = {pga:.4} g) × \
+                 {scale}: PGA/(g tan α) = {:.4}",
                 file.display(),
                 pga * scale / u.tan_alpha
             );
@@ -613,9 +700,10 @@ pub fn build(scene: &Scene) -> Result<Model, CliError> {
     // The structure with the switched-off effects removed: what is simulated and reported.
     let (structure, variant, reasons) =
         select_variant(&structure, &effects).map_err(|e| param_err(src, "structure", e))?;
+    let physical = st.h.is_some();
+    crate::limits::derived_quantities(src, &structure, physical)?;
     let derived = structure.derived();
     let ph = structure.physical();
-    let physical = st.h.is_some();
     let units = Units {
         physical,
         g_model: ph.g,
@@ -668,6 +756,13 @@ pub fn build(scene: &Scene) -> Result<Model, CliError> {
         "a duration 0 <= τ <= 1e6 after the excitation ends",
     )?;
     let t_end = excitation_end + after / units.p_model;
+    formed(
+        src,
+        "solver.after_excitation",
+        after,
+        t_end,
+        "end time in model units",
+    )?;
     if t_end <= 0.0 {
         return Err(src.err(
             "solver.after_excitation",
@@ -749,7 +844,7 @@ pub fn build(scene: &Scene) -> Result<Model, CliError> {
                 src,
                 "output.history_dt",
                 dt,
-                dt > 0.0 && t_end * units.p_model / dt <= 5e6,
+                dt > 0.0 && t_end * units.p_model / dt <= MAX_ROWS,
                 "a grid step τ > 0 giving at most 5e6 rows",
             )?;
             History::Grid(dt / units.p_model)
@@ -758,13 +853,40 @@ pub fn build(scene: &Scene) -> Result<Model, CliError> {
     let history_csv = history != History::None;
     // Plots need a history: a 0.01 τ grid unless the scene asked for one.
     let history = if plots && history == History::None {
+        let rows = t_end * units.p_model / 0.01;
+        if rows > MAX_ROWS {
+            return Err(src.err(
+                "output.plots",
+                format_args!(
+                    "`plots` = true in [output] samples the run every 0.01 τ: τ = 0 .. {} gives \
+                     {} rows, at most {MAX_ROWS:e}; give a coarser history_dt or a shorter run",
+                    crate::report::short(t_end * units.p_model),
+                    crate::report::short(rows.ceil())
+                ),
+            ));
+        }
         History::Grid(0.01 / units.p_model)
     } else {
         history
     };
 
+    let defaults = Options::default();
+    let max_steps = guard(
+        src,
+        "solver.max_steps",
+        sv.and_then(|s| s.max_steps),
+        defaults.max_steps,
+    )?;
+    let max_events = guard(
+        src,
+        "solver.max_events",
+        sv.and_then(|s| s.max_events),
+        defaults.max_events,
+    )?;
     let options = Options {
         accuracy,
+        max_steps,
+        max_events,
         impact,
         overturn_angle: overturn,
         t_end,

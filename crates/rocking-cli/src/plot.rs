@@ -350,6 +350,26 @@ pub fn spectrum_plots(
     if sweep.axes.len() < 2 || cells.is_empty() {
         return Ok(Vec::new());
     }
+    // plotters' tick search does not end on a range near the f64 limit, or one too narrow for
+    // its magnitude (x + step == x): such a spectrum is not drawn (its cells are in cells.csv).
+    let n = sweep.axes.len();
+    let drawable = |v: &[f64]| {
+        let (lo, hi) = v
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+                (a.min(x), b.max(x))
+            });
+        let big = lo.abs().max(hi.abs());
+        big <= 1e15 && (v.len() < 2 || hi - lo >= 1e-9 * big)
+    };
+    if let Some(a) = sweep.axes[n - 2..].iter().find(|a| !drawable(&a.values)) {
+        eprintln!(
+            "note: the spectrum plot is not drawn: the values of `{}` span a range a plot cannot \
+             show (beyond ±1e15, or too narrow for their size); the cells are in cells.csv",
+            a.key
+        );
+        return Ok(Vec::new());
+    }
     register();
     let size = (WIDTH + 130, 720);
     render_pair(

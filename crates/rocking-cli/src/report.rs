@@ -2,7 +2,7 @@
 
 use std::fmt::Write as _;
 use std::io::Write as _;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use rocking::{Run, Time};
 use serde_json::{json, Value};
@@ -29,6 +29,163 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
     std::fs::rename(&tmp, path).map_err(fail)
 }
 
+/// A number for a message: as written for ordinary magnitudes, in short exponent form (`1e308`,
+/// not 309 digits) for very large or very small ones.
+pub fn short(x: f64) -> String {
+    let a = x.abs();
+    if x == 0.0 || !x.is_finite() || (1e-4..1e9).contains(&a) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// The files `rocking run` writes; an existing output directory holding anything else is not
+/// replaced (it is not a run's directory).
+pub const RUN_FILES: [&str; 5] = [
+    "summary.json",
+    "history.csv",
+    "events.csv",
+    "plot.png",
+    "plot.svg",
+];
+
+/// The output directory of one run, built aside and swapped in whole: the directory always holds
+/// exactly one run's files, whether the run is killed while writing (the old directory stays),
+/// runs in parallel into the same `--out` (the last to finish wins, never a mix), or writes fewer
+/// files than the previous run (no stale ones). The swap happens under a lock file beside the
+/// directory; leftovers of killed runs are removed by the next run.
+pub struct OutDir {
+    target: PathBuf,
+    staging: tempfile::TempDir,
+    _lock: std::fs::File,
+}
+
+impl OutDir {
+    /// Locks `target`'s name, removes what killed runs left, and creates the staging directory.
+    pub fn begin(target: &Path) -> Result<OutDir, CliError> {
+        use fs4::fs_std::FileExt as _;
+        let io = |what: &str, p: &Path, e: std::io::Error| {
+            CliError::Internal(format!("{}: cannot {what}: {e}", p.display()))
+        };
+        let name = target
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .ok_or_else(|| {
+                CliError::Input(format!(
+                    "{}: not a directory name for --out",
+                    target.display()
+                ))
+            })?;
+        let parent = match target.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+            _ => PathBuf::from("."),
+        };
+        std::fs::create_dir_all(&parent).map_err(|e| io("create", &parent, e))?;
+        if target.exists() {
+            check_is_run_dir(target)?;
+        }
+        let lock_path = parent.join(format!(".{name}.lock"));
+        let lock = std::fs::OpenOptions::new()
+            .create(true)
+            .truncate(false)
+            .write(true)
+            .open(&lock_path)
+            .map_err(|e| io("open", &lock_path, e))?;
+        lock.lock_exclusive()
+            .map_err(|e| io("lock", &lock_path, e))?;
+        // Under the lock no other run is staging: whatever staging directory exists is a
+        // leftover of a killed run.
+        let prefix = format!(".{name}.rocking-");
+        if let Ok(entries) = std::fs::read_dir(&parent) {
+            for e in entries.flatten() {
+                if e.file_name().to_string_lossy().starts_with(&prefix) {
+                    let _ = std::fs::remove_dir_all(e.path());
+                }
+            }
+        }
+        let staging = tempfile::Builder::new()
+            .prefix(&prefix)
+            .tempdir_in(&parent)
+            .map_err(|e| io("create a directory in", &parent, e))?;
+        Ok(OutDir {
+            target: target.to_path_buf(),
+            staging,
+            _lock: lock,
+        })
+    }
+
+    /// Where the files are written before the swap.
+    pub fn path(&self) -> &Path {
+        self.staging.path()
+    }
+
+    /// The final path of a file written into [`OutDir::path`].
+    pub fn final_path(&self, staged: &Path) -> PathBuf {
+        staged
+            .file_name()
+            .map_or_else(|| self.target.clone(), |n| self.target.join(n))
+    }
+
+    /// Swaps the staged directory in for the target (the old one is removed).
+    pub fn commit(self) -> Result<(), CliError> {
+        let fail = |e: std::io::Error| {
+            CliError::Internal(format!("{}: cannot replace: {e}", self.target.display()))
+        };
+        let parent = self.staging.path().parent().unwrap_or(Path::new("."));
+        let old = tempfile::Builder::new()
+            .prefix(&format!(
+                ".{}.rocking-old-",
+                self.target
+                    .file_name()
+                    .unwrap_or_default()
+                    .to_string_lossy()
+            ))
+            .tempdir_in(parent)
+            .map_err(fail)?;
+        let had_target = self.target.exists();
+        if had_target {
+            check_is_run_dir(&self.target)?;
+            // rename() replaces an empty directory: the old run moves into the (empty) `old`.
+            std::fs::rename(&self.target, old.path()).map_err(fail)?;
+        }
+        let staged = self.staging.keep();
+        std::fs::rename(&staged, &self.target).map_err(|e| {
+            let _ = std::fs::remove_dir_all(&staged);
+            fail(e)
+        })?;
+        drop(old); // removes the previous run's files
+        Ok(())
+    }
+}
+
+/// An existing `--out` must be a directory of run outputs only (never a user's folder).
+fn check_is_run_dir(target: &Path) -> Result<(), CliError> {
+    if !target.is_dir() {
+        return Err(CliError::Input(format!(
+            "{}: --out exists and is not a directory",
+            target.display()
+        )));
+    }
+    let entries = std::fs::read_dir(target)
+        .map_err(|e| CliError::Internal(format!("{}: cannot read: {e}", target.display())))?;
+    for e in entries.flatten() {
+        let n = e.file_name().to_string_lossy().into_owned();
+        // `.summary.json.tmp123`: a temporary file an older version left when killed.
+        let leftover = RUN_FILES
+            .iter()
+            .any(|f| n.starts_with(&format!(".{f}.tmp")));
+        if !RUN_FILES.contains(&n.as_str()) && !leftover {
+            return Err(CliError::Input(format!(
+                "{}: --out holds `{n}`, which `rocking run` does not write; the run replaces the \
+                 whole directory, so give an --out that holds only a previous run's outputs",
+                target.display()
+            )));
+        }
+    }
+    Ok(())
+}
+
 fn finite(name: &str, x: f64) -> Result<f64, CliError> {
     if x.is_finite() {
         Ok(x)
@@ -47,11 +204,12 @@ fn seconds(t: Option<Time>) -> Value {
     t.and_then(|t| t.seconds).map_or(Value::Null, |s| json!(s))
 }
 
-/// Derived quantities of the structure, for `check` and the summary.
-pub fn derived_json(model: &Model) -> Value {
+/// Derived quantities of the structure, for `check` and the summary. A non-finite value would be
+/// written as `null`: it is an error instead (the model checks them when it is built).
+pub fn derived_json(model: &Model) -> Result<Value, CliError> {
     let d = model.structure.derived();
     let u = &model.units;
-    json!({
+    let v = json!({
         "p": d.p,
         "p_per_second": model.structure.p_per_second(),
         "omega_n": d.omega_n,
@@ -68,7 +226,18 @@ pub fn derived_json(model: &Model) -> Value {
         "static_uplift_over_g_tan_alpha":
             model.structure.static_uplift_acceleration() / u.accel_g_tan_alpha(),
         "units": if u.physical { "SI (s, m, kg)" } else { "model (R = g = m = 1, time τ)" },
-    })
+    });
+    if let Some((k, _)) = v
+        .as_object()
+        .into_iter()
+        .flatten()
+        .find(|(k, x)| x.is_null() && k.as_str() != "p_per_second")
+    {
+        return Err(CliError::Input(format!(
+            "the derived quantity {k} is not finite: the structure's values are out of range"
+        )));
+    }
+    Ok(v)
 }
 
 /// The summary object printed by `--json` and written to summary.json.
@@ -102,6 +271,7 @@ pub fn summary_json(model: &Model, scene: &Path, run: &Run) -> Result<Value, Cli
         "overturn_time_s": seconds(s.overturn_time),
         "impacts": s.impacts,
         "significant_impacts": s.significant_impacts,
+        "energy_capped_impacts": s.energy_capped_impacts,
         "first_uplift_time": tau(s.first_uplift_time),
         "first_uplift_time_s": seconds(s.first_uplift_time),
         "first_impact_time": tau(s.first_impact_time),
@@ -112,7 +282,7 @@ pub fn summary_json(model: &Model, scene: &Path, run: &Run) -> Result<Value, Cli
         "energy_balance_residual": residual,
         "energy": energy,
         "solver_stats": s.solver_stats,
-        "derived": derived_json(model),
+        "derived": derived_json(model)?,
     }))
 }
 

@@ -72,6 +72,8 @@ pub struct ExcitationSpec {
     pub nu: Option<f64>,
     pub path: Option<String>,
     pub scale: Option<f64>,
+    /// Units of a record whose header states none: "g", "cm/s2" or "m/s2".
+    pub units: Option<String>,
 }
 
 /// `[effects]`.
@@ -98,6 +100,9 @@ pub struct SolverSpec {
     pub method: Option<String>,
     pub tol: Option<f64>,
     pub after_excitation: Option<f64>,
+    /// Guards that end a run that would not end: integrator steps and events.
+    pub max_steps: Option<f64>,
+    pub max_events: Option<f64>,
 }
 
 /// `[initial]`.

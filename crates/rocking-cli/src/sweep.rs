@@ -26,6 +26,29 @@ pub struct Base {
     parsed: scene::Parsed,
     sets: Vec<String>,
     title: Option<String>,
+    /// Digest of the scene's record file (contents), when it has one.
+    record_digest: Option<String>,
+}
+
+/// A digest of a file's contents: results computed from a record are reused only while the
+/// record's bytes are the same.
+pub fn file_digest(path: &Path) -> Result<String, CliError> {
+    let bytes = std::fs::read(path)
+        .map_err(|e| CliError::Input(format!("{}: cannot read: {e}", path.display())))?;
+    Ok(format!("{:016x}", fnv1a(&bytes)))
+}
+
+/// A digest of the running program (its executable), so that a journal written by another build
+/// is not reused; the package version when the executable cannot be read.
+fn program_digest() -> &'static str {
+    static DIGEST: std::sync::OnceLock<String> = std::sync::OnceLock::new();
+    DIGEST.get_or_init(|| {
+        let exe = std::env::current_exe().and_then(std::fs::read);
+        match exe {
+            Ok(bytes) => format!("{} {:016x}", env!("CARGO_PKG_VERSION"), fnv1a(&bytes)),
+            Err(_) => env!("CARGO_PKG_VERSION").to_string(),
+        }
+    })
 }
 
 impl Base {
@@ -42,12 +65,19 @@ impl Base {
                 format!("{t} [{}]", sets.join(", "))
             }
         });
+        let record = sc.spec.excitation.as_ref().and_then(|e| {
+            (e.kind.as_deref() == Some("record"))
+                .then(|| e.path.as_ref().map(|p| sc.src.dir().join(p)))
+                .flatten()
+        });
+        let record_digest = record.as_deref().map(file_digest).transpose()?;
         let base = Base {
             path: path.to_path_buf(),
             text,
             parsed,
             sets: sets.to_vec(),
             title,
+            record_digest,
         };
         Ok((base, sc))
     }
@@ -69,12 +99,16 @@ impl Base {
             })
     }
 
+    /// Identifies everything a cell's result depends on: the program, the scene text, the
+    /// overrides, the record contents, the axes and `extra` (for batch, the records and their
+    /// digests).
     fn fingerprint(&self, axes: &[Axis], extra: &str) -> String {
         let mut key = format!(
-            "{}\n{}\n{:?}\n{extra}\n",
-            env!("CARGO_PKG_VERSION"),
+            "{}\n{}\n{:?}\n{:?}\n{extra}\n",
+            program_digest(),
             self.text,
-            self.sets
+            self.sets,
+            self.record_digest
         );
         for a in axes {
             key.push_str(&format!("{}={:?}\n", a.key, a.values));
@@ -87,11 +121,16 @@ fn set_arg(key: &str, v: f64) -> String {
     format!("{key}={v:?}")
 }
 
+/// The most threads `--threads` may ask for: more than the cores only adds switching.
+const MAX_THREADS: usize = 1024;
+
 fn threads_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, CliError> {
     let mut b = rayon::ThreadPoolBuilder::new();
     if let Some(n) = threads {
-        if n == 0 {
-            return Err(CliError::Input("--threads: must be at least 1".into()));
+        if !(1..=MAX_THREADS).contains(&n) {
+            return Err(CliError::Input(format!(
+                "--threads {n} is not allowed: 1 <= threads <= {MAX_THREADS}"
+            )));
         }
         b = b.num_threads(n);
     }
@@ -111,7 +150,9 @@ fn out_dir(scene: &Path, out: Option<PathBuf>, what: &str) -> PathBuf {
 
 fn sweep_error(e: rocking_spectra::SweepError) -> CliError {
     match e {
-        rocking_spectra::SweepError::Mismatch(_) => CliError::Input(e.to_string()),
+        rocking_spectra::SweepError::Mismatch(_) | rocking_spectra::SweepError::NotJournal(..) => {
+            CliError::Input(e.to_string())
+        }
         other => CliError::Internal(other.to_string()),
     }
 }
@@ -139,7 +180,20 @@ pub fn spectrum(
             Axis::parse(s).map_err(|e| CliError::Input(format!("{}: {e}", scene_path.display())))
         })
         .collect::<Result<Vec<_>, _>>()?;
-    // Validate every axis value against the scene before running anything.
+    // Bound the sweep, then validate every axis value against the scene before running anything.
+    rocking_spectra::Sweep::checked_len(&axes)
+        .map_err(|e| CliError::Input(format!("{}: {e}", scene_path.display())))?;
+    let keys: Vec<&str> = axes.iter().map(|a| a.key.as_str()).collect();
+    if let Some(k) = keys
+        .iter()
+        .enumerate()
+        .find_map(|(i, k)| keys[..i].contains(k).then_some(k))
+    {
+        return Err(CliError::Input(format!(
+            "{}: two axes on `{k}`: each key may have one axis (list its values in one --axis)",
+            scene_path.display()
+        )));
+    }
     for a in &axes {
         for &v in &a.values {
             let sc = scene::load_text(
@@ -187,7 +241,7 @@ pub fn spectrum(
     for c in &outcome.cells {
         *counts.entry(c.class.as_str()).or_default() += 1;
     }
-    println!(
+    out!(
         "{}: {} cells ({} computed now, {} resumed) in {:.2} s on {} threads ({:.3} ms per computed cell)",
         scene_path.display(),
         outcome.cells.len(),
@@ -197,21 +251,27 @@ pub fn spectrum(
         pool.current_num_threads(),
                 1e3 * outcome.elapsed.as_secs_f64() / outcome.computed.max(1) as f64
     );
-    if !outcome.failures.is_empty() {
-        eprintln!(
-            "warning: {} cells failed and are marked `failed` (messages in meta.json); first: {}",
-            outcome.failures.len(),
-            outcome.failures[0].1
-        );
-    }
     for (class, n) in counts {
-        println!("  {class}: {n}");
+        out!("  {class}: {n}");
     }
-    println!("  wrote:");
+    out!("  wrote:");
     for p in written {
-        println!("    {}", p.display());
+        out!("    {}", p.display());
     }
-    Ok(())
+    failed_runs(&outcome, "cells", "cells.csv")
+}
+
+/// Exit status 1 when any cell failed (on a first run and on a resume alike): its results are
+/// written, marked `failed`, with the messages in meta.json.
+fn failed_runs(outcome: &Outcome, what: &str, table: &str) -> Result<(), CliError> {
+    match outcome.failures.first() {
+        None => Ok(()),
+        Some((_, first)) => Err(CliError::Internal(format!(
+            "{} of {} {what} failed (marked `failed` in {table}, messages in meta.json); first: {first}",
+            outcome.failures.len(),
+            outcome.cells.len()
+        ))),
+    }
 }
 
 fn write_outputs(
@@ -345,8 +405,19 @@ pub fn batch(
             values: scales.clone(),
         },
     ];
+    rocking_spectra::Sweep::checked_len(&axes)
+        .map_err(|e| CliError::Input(format!("{}: records x scales: {e}", scene_path.display())))?;
+    let digests = list
+        .iter()
+        .map(|p| file_digest(p))
+        .collect::<Result<Vec<_>, _>>()?;
+    let records_key: Vec<String> = abs
+        .iter()
+        .zip(&digests)
+        .map(|(a, d)| format!("{a} {d}"))
+        .collect();
     let sweep = Sweep {
-        fingerprint: base.fingerprint(&axes, &abs.join("\n")),
+        fingerprint: base.fingerprint(&axes, &records_key.join("\n")),
         axes,
     };
     let dir = out_dir(scene_path, out, "batch");
@@ -364,51 +435,112 @@ pub fn batch(
             })
         })
         .map_err(sweep_error)?;
-    for (i, m) in &outcome.failures {
-        eprintln!("warning: run {i} failed and is marked `failed`: {m}");
-    }
-    let mut rows = String::from("record,scale,class,overturned,max_theta_over_alpha,impacts\n");
-    let mut fraction: Vec<(f64, usize, usize)> = scales.iter().map(|&s| (s, 0, 0)).collect();
+    let names: Vec<String> = list
+        .iter()
+        .map(|p| {
+            p.file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default()
+        })
+        .collect();
+    let messages: BTreeMap<usize, &str> = outcome
+        .failures
+        .iter()
+        .map(|(i, m)| (*i, m.as_str()))
+        .collect();
+    // Per scale: runs, failed, overturned (of the runs that finished).
+    let mut tally: Vec<(f64, usize, usize, usize)> = scales.iter().map(|&s| (s, 0, 0, 0)).collect();
+    let mut runs = csv::Writer::from_writer(Vec::new());
+    let csv_err = |e: csv::Error| CliError::Internal(format!("cannot write runs.csv: {e}"));
+    runs.write_record([
+        "record",
+        "scale",
+        "class",
+        "overturned",
+        "max_theta_over_alpha",
+        "impacts",
+        "message",
+    ])
+    .map_err(csv_err)?;
     for c in &outcome.cells {
         let v = sweep.values(c.index);
         let (r, k) = (v[0] as usize, c.index % scales.len());
-        let over = matches!(
-            c.class,
-            CellClass::OverturnedNoImpact
-                | CellClass::OverturnedOneImpact
-                | CellClass::OverturnedImpacts
-        );
-        let name = list[r]
-            .file_name()
-            .map(|n| n.to_string_lossy().into_owned())
-            .unwrap_or_default();
-        rows.push_str(&format!(
-            "{name},{},{},{over},{},{}\n",
-            v[1],
-            c.class.as_str(),
-            c.max_theta_over_alpha,
-            c.impacts
-        ));
-        fraction[k].1 += 1;
-        fraction[k].2 += usize::from(over);
+        let t = &mut tally[k];
+        t.1 += 1;
+        let row = if c.class == CellClass::Failed {
+            t.2 += 1;
+            // A failed run has no result: its fields are empty, never a made-up "survived".
+            let m = messages.get(&c.index).copied().unwrap_or("failed");
+            [
+                names[r].clone(),
+                v[1].to_string(),
+                c.class.as_str().into(),
+                String::new(),
+                String::new(),
+                String::new(),
+                m.to_string(),
+            ]
+        } else {
+            let over = is_overturned(c.class);
+            t.3 += usize::from(over);
+            [
+                names[r].clone(),
+                v[1].to_string(),
+                c.class.as_str().into(),
+                over.to_string(),
+                c.max_theta_over_alpha.to_string(),
+                c.impacts.to_string(),
+                String::new(),
+            ]
+        };
+        runs.write_record(&row).map_err(csv_err)?;
     }
+    let rows = runs
+        .into_inner()
+        .map_err(|e| CliError::Internal(format!("cannot write runs.csv: {e}")))?;
     let mut written = Vec::new();
     let path = dir.join("runs.csv");
-    write_atomic(&path, rows.as_bytes())?;
+    write_atomic(&path, &rows)?;
     written.push(path);
-    let mut frag = String::from("scale,records,overturned,fraction_overturned\n");
-    for (s, n, o) in &fraction {
-        frag.push_str(&format!("{s},{n},{o},{}\n", *o as f64 / *n as f64));
+    // The fraction overturned is of the runs that finished; failed runs are counted apart, and a
+    // scale whose runs all failed has no fraction (an empty field, no plotted point).
+    let fraction = |n: usize, f: usize, o: usize| (n > f).then(|| o as f64 / (n - f) as f64);
+    let mut frag = String::from("scale,runs,failed,completed,overturned,fraction_overturned\n");
+    for &(s, n, f, o) in &tally {
+        let x = fraction(n, f, o).map_or(String::new(), |x| x.to_string());
+        frag.push_str(&format!("{s},{n},{f},{},{o},{x}\n", n - f));
     }
     let path = dir.join("fragility.csv");
     write_atomic(&path, frag.as_bytes())?;
     written.push(path);
-    let points: Vec<(f64, f64)> = fraction
+    let meta = json!({
+        "scene": base.path.display().to_string(),
+        "scene_text": base.text,
+        "set": base.sets,
+        "records": abs.iter().zip(&digests).map(|(a, d)| json!({"path": a, "digest": d})).collect::<Vec<_>>(),
+        "scales": scales,
+        "fingerprint": sweep.fingerprint,
+        "runs": outcome.cells.len(),
+        "computed_now": outcome.computed,
+        "failed": outcome.failures.len(),
+        "failures": outcome.failures.iter().map(|(i, m)| {
+            let v = sweep.values(*i);
+            json!({"run": i, "record": names[v[0] as usize], "scale": v[1], "message": m})
+        }).collect::<Vec<_>>(),
+        "versions": {"rocking": env!("CARGO_PKG_VERSION"), "program": program_digest()},
+    });
+    let path = dir.join("meta.json");
+    write_atomic(
+        &path,
+        (serde_json::to_string_pretty(&meta).unwrap_or_default() + "\n").as_bytes(),
+    )?;
+    written.push(path);
+    let points: Vec<(f64, f64)> = tally
         .iter()
-        .map(|(s, n, o)| (*s, *o as f64 / *n as f64))
+        .filter_map(|&(s, n, f, o)| fraction(n, f, o).map(|x| (s, x)))
         .collect();
     written.extend(plot::fragility_plots(&points, list.len(), &dir)?);
-    println!(
+    out!(
         "{}: {} records x {} scales ({} runs computed now) in {:.2} s",
         scene_path.display(),
         list.len(),
@@ -416,17 +548,36 @@ pub fn batch(
         outcome.computed,
         outcome.elapsed.as_secs_f64()
     );
-    for (s, n, o) in &fraction {
-        println!(
-            "  scale {s}: {o}/{n} overturned ({:.1} %)",
-            100.0 * *o as f64 / *n as f64
-        );
+    for &(s, n, f, o) in &tally {
+        let failed = if f > 0 {
+            format!("; {f} of {n} runs failed")
+        } else {
+            String::new()
+        };
+        match fraction(n, f, o) {
+            Some(x) => out!(
+                "  scale {s}: {o}/{} overturned ({:.1} %){failed}",
+                n - f,
+                100.0 * x
+            ),
+            None => out!("  scale {s}: no run finished{failed}"),
+        }
     }
-    println!("  wrote:");
+    out!("  wrote:");
     for p in written {
-        println!("    {}", p.display());
+        out!("    {}", p.display());
     }
-    Ok(())
+    failed_runs(&outcome, "runs", "runs.csv")
+}
+
+/// Whether a class is one of the overturned ones.
+fn is_overturned(class: CellClass) -> bool {
+    matches!(
+        class,
+        CellClass::OverturnedNoImpact
+            | CellClass::OverturnedOneImpact
+            | CellClass::OverturnedImpacts
+    )
 }
 
 /// One boundary: the family value and, per x value, the smallest overturning y.

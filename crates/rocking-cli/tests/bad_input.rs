@@ -280,6 +280,94 @@ const ROWS: &[Row] = &[
         &["rec.AT2:5", "\"x\""],
     ),
     (
+        "record-velocity",
+        SCENE,
+        "kind = \"sine-pulse\"\nomega_p_over_p = 5.1\namplitude = 1.3",
+        "kind = \"record\"\npath = \"rec.AT2\"",
+        Some("title\nevent\nVELOCITY TIME HISTORY IN UNITS OF CM/SEC\nNPTS= 4, DT= .01\n0.1 0.2 0.3 0.4\n"),
+        &["rec.AT2:3", "expected an acceleration history", "VELOCITY"],
+    ),
+    (
+        "record-unknown-units",
+        SCENE,
+        "kind = \"sine-pulse\"\nomega_p_over_p = 5.1\namplitude = 1.3",
+        "kind = \"record\"\npath = \"rec.AT2\"",
+        Some("title\nevent\nACCELERATION IN UNITS OF FT/S/S\nNPTS= 4, DT= .01\n0.1 0.2 0.3 0.4\n"),
+        &["rec.AT2:3", "FT/S/S", "g, cm/s2"],
+    ),
+    (
+        "record-units-contradiction",
+        SCENE,
+        "kind = \"sine-pulse\"\nomega_p_over_p = 5.1\namplitude = 1.3",
+        "kind = \"record\"\npath = \"rec.AT2\"\nunits = \"cm/s2\"",
+        Some("title\nevent\nACCELERATION IN UNITS OF G\nNPTS= 4, DT= .01\n0.1 0.2 0.3 0.4\n"),
+        &["rec.AT2", "declares the units g", "\"cm/s2\""],
+    ),
+    (
+        "record-bad-units",
+        SCENE,
+        "kind = \"sine-pulse\"\nomega_p_over_p = 5.1\namplitude = 1.3",
+        "kind = \"record\"\npath = \"rec.AT2\"\nunits = \"ft/s2\"",
+        Some(RECORD),
+        &["units", "ft/s2", "\"g\", \"cm/s2\", \"m/s2\""],
+    ),
+    (
+        "huge-omega-n",
+        SCENE,
+        "omega_n_over_p = 11.9",
+        "omega_n_over_p = 1e308",
+        None,
+        &["omega_n_over_p", "1e308", "<= 1000000"],
+    ),
+    (
+        "alpha-near-pi-2",
+        SCENE,
+        "alpha = 0.2",
+        "alpha = 1.57",
+        None,
+        &["alpha", "1.57", "1.5698"],
+    ),
+    (
+        "huge-amplitude",
+        SCENE,
+        "amplitude = 1.3",
+        "amplitude = 1e308",
+        None,
+        &["amplitude", "1e308", "at most 10000 g"],
+    ),
+    (
+        "huge-frequency",
+        SCENE,
+        "omega_p_over_p = 5.1",
+        "omega_p_over_p = 1e308",
+        None,
+        &["omega_p_over_p", "1e308", "at most 1000000"],
+    ),
+    (
+        "physical-huge-height",
+        PHYSICAL,
+        "h = 30.0",
+        "h = 1e308",
+        None,
+        &["`h`", "1e308", "1e20"],
+    ),
+    (
+        "too-many-plot-rows",
+        SCENE,
+        "after_excitation = 5.0",
+        "after_excitation = 1e6\n\n[output]\nplots = true",
+        None,
+        &["plots", "at most 5e6"],
+    ),
+    (
+        "bad-max-steps",
+        SCENE,
+        "after_excitation = 5.0",
+        "after_excitation = 5.0\nmax_steps = 0.5",
+        None,
+        &["max_steps", "0.5", "1 <= n <= 1e12"],
+    ),
+    (
         "record-zero-scale",
         SCENE,
         "kind = \"sine-pulse\"\nomega_p_over_p = 5.1\namplitude = 1.3",
@@ -350,6 +438,8 @@ fn every_bad_input_exits_2_with_one_clear_message() {
         let text = base.replacen(from, to, 1);
         let anchor = if *id == "record-zero-scale" {
             "scale ="
+        } else if to.contains("units =") {
+            "units ="
         } else if *id == "mixed-forms" {
             "omega_n_over_p" // the table's first key: the message names both forms' keys
         } else if record.is_some() || id.starts_with("record") {

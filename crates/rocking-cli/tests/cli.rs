@@ -466,3 +466,119 @@ amplitude_g = 0.3
     let s = run_json(&dir.join("si.toml"), &dir.join("si"), &[]);
     assert!(s["first_uplift_time_s"].is_number(), "{s}");
 }
+
+/// A one-sine record of 0.3 g written in g, in cm/s² and in m/s² (header units), and an
+/// unlabelled one with `units` stated in the scene, give the same run; before units were read,
+/// the cm/s² file reported a PGA of 294 g and overturned.
+#[test]
+fn record_units_are_read_and_converted() {
+    let dir = tmp("record-units");
+    let samples = |k: f64| -> String {
+        (0..=40)
+            .map(|i| {
+                format!(
+                    "{:.12e}",
+                    k * 0.3 * (2.0 * std::f64::consts::PI * i as f64 / 40.0).sin()
+                )
+            })
+            .collect::<Vec<_>>()
+            .join("\n")
+    };
+    let g0 = 9.80665;
+    let files = [
+        (
+            "g.AT2",
+            "ACCELERATION TIME HISTORY IN UNITS OF G",
+            1.0,
+            None,
+        ),
+        (
+            "cm.AT2",
+            "ACCELERATION TIME HISTORY IN UNITS OF CM/SEC/SEC",
+            100.0 * g0,
+            None,
+        ),
+        (
+            "m.AT2",
+            "ACCELERATION TIME HISTORY IN UNITS OF M/S/S",
+            g0,
+            None,
+        ),
+        ("bare.AT2", "no units here", 100.0 * g0, Some("cm/s2")),
+    ];
+    let mut results = Vec::new();
+    for (name, units, k, stated) in files {
+        std::fs::write(
+            dir.join(name),
+            format!("T\nE\n{units}\nNPTS= 41, DT= .01 SEC\n{}\n", samples(k)),
+        )
+        .unwrap();
+        let units_line = stated
+            .map(|u| format!("units = \"{u}\"\n"))
+            .unwrap_or_default();
+        let scene = dir.join(format!("{name}.toml"));
+        std::fs::write(
+            &scene,
+            format!(
+                "[structure]\nomega_n_over_p = 8.0\nalpha = 0.2\ngamma_mb = 1.0\nr = 2.0\n\n\
+                 [excitation]\nkind = \"record\"\npath = \"{name}\"\n{units_line}\n\
+                 [solver]\nafter_excitation = 5.0\n"
+            ),
+        )
+        .unwrap();
+        let o = rocking(&["check", scene.to_str().unwrap(), "--json"]);
+        assert!(o.status.success(), "{name}: {}", stderr(&o));
+        let check: Value = serde_json::from_slice(&o.stdout).unwrap();
+        let desc = check["excitation"].as_str().unwrap().to_string();
+        assert!(desc.contains("PGA = 0.3000 g"), "{name}: {desc}");
+        let v = run_json(&scene, &dir.join(format!("out-{name}")), &[]);
+        eprintln!(
+            "{name}: {desc}; max θ/α = {}, overturned = {}",
+            v["max_theta_over_alpha"], v["overturned"]
+        );
+        results.push((name, v));
+    }
+    let reference = results[0].1["max_theta_over_alpha"].as_f64().unwrap();
+    assert!(reference > 0.0 && results[0].1["overturned"] == false);
+    for (name, v) in &results[1..] {
+        let x = v["max_theta_over_alpha"].as_f64().unwrap();
+        assert!(
+            (x - reference).abs() <= 1e-6 * reference,
+            "{name}: max θ/α {x}, in g {reference}"
+        );
+        assert_eq!(v["overturned"], results[0].1["overturned"], "{name}");
+    }
+}
+
+/// PEER velocity and displacement histories are refused with exit 2 naming the file.
+#[test]
+fn velocity_and_displacement_records_are_refused() {
+    let dir = tmp("record-velocity");
+    let body = "T\nE\nVELOCITY TIME HISTORY IN UNITS OF CM/SEC\nNPTS= 3, DT= .01 SEC\n0 1 0\n";
+    let accel = "T\nE\nACCELERATION TIME HISTORY IN UNITS OF G\nNPTS= 3, DT= .01 SEC\n0 1 0\n";
+    for (name, text) in [("v.AT2", body), ("rec.VT2", accel), ("rec.DT2", accel)] {
+        std::fs::write(dir.join(name), text).unwrap();
+        let scene = dir.join(format!("{name}.toml"));
+        std::fs::write(
+            &scene,
+            format!(
+                "[structure]\nomega_n_over_p = 8.0\nalpha = 0.2\nr = 2.0\n\n\
+                 [excitation]\nkind = \"record\"\npath = \"{name}\"\n"
+            ),
+        )
+        .unwrap();
+        let o = rocking(&[
+            "run",
+            scene.to_str().unwrap(),
+            "--out",
+            dir.join("out").to_str().unwrap(),
+        ]);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{name}: {err}");
+        assert!(
+            err.contains(name) && err.contains("acceleration"),
+            "{name}: {err}"
+        );
+        assert!(!dir.join("out").exists(), "{name}: nothing written");
+    }
+}

@@ -213,3 +213,249 @@ fn batch_over_records_gives_the_fraction_overturned_per_scale() {
     assert_eq!(runs.lines().count(), 1 + 3 * files.len());
     assert!(out.join("fragility.png").exists() && out.join("fragility.svg").exists());
 }
+
+/// A one-sine record of amplitude `a` g and period 2 s (header units g).
+fn sine_record(a: f64) -> String {
+    let s: Vec<String> = (0..=40)
+        .map(|i| {
+            format!(
+                "{:.10e}",
+                a * (2.0 * std::f64::consts::PI * i as f64 / 40.0).sin()
+            )
+        })
+        .collect();
+    format!(
+        "T\nE\nACCELERATION TIME HISTORY IN UNITS OF G\nNPTS= 41, DT= .05 SEC\n{}\n",
+        s.join("\n")
+    )
+}
+
+const RECORD_SCENE: &str =
+    "[structure]\nomega_n_over_p = 8.0\nalpha = 0.2\ngamma_mb = 1.0\nr = 2.0\n\n\
+    [excitation]\nkind = \"record\"\npath = \"rec.AT2\"\n\n[solver]\nafter_excitation = 5.0\n";
+
+/// A batch resumed after a record file was replaced by a 10× weaker one must not reuse the old
+/// results (it reused the journal: "0 runs computed now", still 100 % overturned): the record's
+/// contents are in the fingerprint, so the directory is refused as a different sweep, and a fresh
+/// run gives the weaker record's answer. The same holds for a spectrum of a record scene.
+#[test]
+fn a_changed_record_is_not_resumed() {
+    let dir = tmp("changed-record");
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = dir.join("scene.toml");
+    std::fs::write(&scene, RECORD_SCENE).unwrap();
+    let rec = dir.join("rec.AT2");
+    let batch = |out: &str| {
+        bin()
+            .arg("batch")
+            .arg(&scene)
+            .arg("--records")
+            .arg(&rec)
+            .args(["--scales", "1", "--quiet", "--out"])
+            .arg(dir.join(out))
+            .output()
+            .unwrap()
+    };
+    let fraction = |out: &str| {
+        let f = std::fs::read_to_string(dir.join(out).join("fragility.csv")).unwrap();
+        f.lines()
+            .nth(1)
+            .unwrap()
+            .rsplit(',')
+            .next()
+            .unwrap()
+            .to_string()
+    };
+    std::fs::write(&rec, sine_record(1.5)).unwrap();
+    let o = batch("out");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(fraction("out"), "1", "1.5 g overturns");
+    std::fs::write(&rec, sine_record(0.15)).unwrap();
+    let o = batch("out");
+    let err = String::from_utf8_lossy(&o.stderr);
+    eprintln!("resume after the change: exit {:?}: {err}", o.status.code());
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("different sweep"), "{err}");
+    let o = batch("fresh");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(fraction("fresh"), "0", "0.15 g does not overturn");
+
+    // spectrum of the record scene over a scale axis
+    let spectrum = |out: &str| {
+        bin()
+            .arg("spectrum")
+            .arg(&scene)
+            .args(["--axis", "excitation.scale=1,2", "--quiet", "--out"])
+            .arg(dir.join(out))
+            .output()
+            .unwrap()
+    };
+    let o = spectrum("spec");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    std::fs::write(&rec, sine_record(1.5)).unwrap();
+    let o = spectrum("spec");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("different sweep"), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Runs that fail (a singular mass matrix: ω_n/p = 0.3, top mass only, under the shared records
+/// at scales 2, 8, 16) are reported as failed everywhere, on the first run and on a resume: in
+/// runs.csv (no "overturned = false"), in fragility.csv (counted apart; the fraction is of the runs
+/// that finished), in meta.json, and in the exit status. They used to count as survivors, and a
+/// resume dropped the warnings.
+#[test]
+fn failed_runs_are_reported_as_failed_on_first_runs_and_resumes() {
+    let records = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data/ground-motions");
+    if !records.is_dir() {
+        eprintln!("SKIPPED: {} is absent", records.display());
+        return;
+    }
+    let dir = tmp("failed-runs");
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = dir.join("scene.toml");
+    std::fs::write(
+        &scene,
+        "[structure]\nomega_n_over_p = 0.3\nalpha = 0.2\ngamma_mc = 0.0\ngamma_mb = 0.0\nr = 1.0\n\n\
+         [excitation]\nkind = \"record\"\npath = \"x.AT2\"\n\n[solver]\nafter_excitation = 5.0\n",
+    )
+    .unwrap();
+    std::fs::write(dir.join("x.AT2"), sine_record(0.1)).unwrap();
+    let out = dir.join("out");
+    let batch = || {
+        bin()
+            .arg("batch")
+            .arg(&scene)
+            .arg("--records")
+            .arg(&records)
+            .args(["--scales", "2,8,16", "--quiet", "--out"])
+            .arg(&out)
+            .output()
+            .unwrap()
+    };
+    let mut previous: Option<(String, String, serde_json::Value)> = None;
+    for pass in ["first run", "resume"] {
+        let o = batch();
+        let err = String::from_utf8_lossy(&o.stderr);
+        let stdout = String::from_utf8_lossy(&o.stdout);
+        eprintln!(
+            "{pass}: exit {:?}: {}\n{stdout}",
+            o.status.code(),
+            err.trim()
+        );
+        assert_eq!(
+            o.status.code(),
+            Some(1),
+            "{pass}: failures give a non-zero exit: {err}"
+        );
+        assert!(err.contains("runs failed"), "{err}");
+        let runs = std::fs::read_to_string(out.join("runs.csv")).unwrap();
+        let mut rdr = csv_rows(&runs);
+        let header = rdr.remove(0);
+        assert_eq!(header[2], "class");
+        let failed: Vec<&Vec<String>> = rdr.iter().filter(|r| r[2] == "failed").collect();
+        assert!(!failed.is_empty(), "{pass}: this case has failing runs");
+        for r in &failed {
+            assert!(
+                r[3].is_empty() && r[4].is_empty(),
+                "{pass}: a failed run has no result: {r:?}"
+            );
+            assert!(
+                r[6].contains("singular"),
+                "{pass}: the message is kept: {r:?}"
+            );
+        }
+        let frag = std::fs::read_to_string(out.join("fragility.csv")).unwrap();
+        let mut total_failed = 0;
+        for line in frag.lines().skip(1) {
+            let f: Vec<&str> = line.split(',').collect();
+            let (runs_n, failed_n, completed, over): (usize, usize, usize, usize) = (
+                f[1].parse().unwrap(),
+                f[2].parse().unwrap(),
+                f[3].parse().unwrap(),
+                f[4].parse().unwrap(),
+            );
+            assert_eq!(runs_n, 61);
+            assert_eq!(completed, runs_n - failed_n, "{line}");
+            let frac: f64 = f[5].parse().unwrap();
+            assert!(
+                (frac - over as f64 / completed as f64).abs() < 1e-12,
+                "{line}"
+            );
+            total_failed += failed_n;
+        }
+        assert_eq!(total_failed, failed.len(), "{pass}: {frag}");
+        let meta: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("meta.json")).unwrap()).unwrap();
+        assert_eq!(meta["failed"], failed.len(), "{pass}");
+        assert_eq!(
+            meta["failures"].as_array().unwrap().len(),
+            failed.len(),
+            "{pass}"
+        );
+        if let Some((r0, f0, m0)) = &previous {
+            assert_eq!(meta["computed_now"], 0, "the resume computes nothing");
+            assert_eq!(&runs, r0, "runs.csv the same on resume");
+            assert_eq!(&frag, f0, "fragility.csv the same on resume");
+            assert_eq!(meta["failures"], m0["failures"], "failures kept on resume");
+        }
+        previous = Some((runs, frag, meta));
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Rows of a CSV text (quoted fields allowed).
+fn csv_rows(text: &str) -> Vec<Vec<String>> {
+    let mut rows = Vec::new();
+    for line in text.lines() {
+        let mut row = Vec::new();
+        let (mut field, mut quoted, mut chars) = (String::new(), false, line.chars().peekable());
+        while let Some(c) = chars.next() {
+            match (c, quoted) {
+                ('"', true) if chars.peek() == Some(&'"') => {
+                    field.push('"');
+                    chars.next();
+                }
+                ('"', _) => quoted = !quoted,
+                (',', false) => row.push(std::mem::take(&mut field)),
+                _ => field.push(c),
+            }
+        }
+        row.push(field);
+        rows.push(row);
+    }
+    rows
+}
+
+/// runs.csv is written by a CSV library: a record named `a,b.AT2` is one quoted field (it shifted
+/// the columns).
+#[test]
+fn runs_csv_quotes_record_names() {
+    let dir = tmp("quoted");
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = dir.join("scene.toml");
+    std::fs::write(&scene, RECORD_SCENE).unwrap();
+    std::fs::write(dir.join("rec.AT2"), sine_record(0.15)).unwrap();
+    let odd = dir.join("a,b \"x\".AT2");
+    std::fs::write(&odd, sine_record(0.15)).unwrap();
+    let o = bin()
+        .arg("batch")
+        .arg(&scene)
+        .arg("--records")
+        .arg(&odd)
+        .args(["--scales", "1,2", "--quiet", "--out"])
+        .arg(dir.join("out"))
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let runs = std::fs::read_to_string(dir.join("out/runs.csv")).unwrap();
+    let rows = csv_rows(&runs);
+    assert_eq!(rows.len(), 3, "{runs}");
+    for r in &rows {
+        assert_eq!(r.len(), rows[0].len(), "same columns in every row: {runs}");
+    }
+    assert_eq!(rows[1][0], "a,b \"x\".AT2", "{runs}");
+    assert_eq!(rows[1][2], "no-uplift", "{runs}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

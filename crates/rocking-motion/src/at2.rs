@@ -4,11 +4,137 @@ use crate::error::excerpt;
 use crate::{MotionError, Record, STANDARD_GRAVITY};
 use std::path::Path;
 
+/// The acceleration unit of a record's samples.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum AccelUnit {
+    /// Multiples of the standard gravity.
+    G,
+    /// cm/s² (gal).
+    CmPerS2,
+    /// m/s².
+    MPerS2,
+}
+
+impl AccelUnit {
+    /// Every unit, in the order of [`AccelUnit::NAMES`].
+    pub const ALL: [AccelUnit; 3] = [AccelUnit::G, AccelUnit::CmPerS2, AccelUnit::MPerS2];
+    /// The names accepted by [`AccelUnit::parse`] (first spelling of each unit).
+    pub const NAMES: [&'static str; 3] = ["g", "cm/s2", "m/s2"];
+
+    /// One sample in this unit, in g.
+    pub fn in_g(self) -> f64 {
+        match self {
+            AccelUnit::G => 1.0,
+            AccelUnit::CmPerS2 => 0.01 / STANDARD_GRAVITY,
+            AccelUnit::MPerS2 => 1.0 / STANDARD_GRAVITY,
+        }
+    }
+
+    /// The short name (`g`, `cm/s2`, `m/s2`).
+    pub fn name(self) -> &'static str {
+        match self {
+            AccelUnit::G => "g",
+            AccelUnit::CmPerS2 => "cm/s2",
+            AccelUnit::MPerS2 => "m/s2",
+        }
+    }
+
+    /// A unit as a user writes it: `g`, `cm/s2` (`cm/s^2`, `cm/s/s`, `gal`), `m/s2` (`m/s^2`,
+    /// `m/s/s`); case and spaces ignored.
+    pub fn parse(s: &str) -> Option<AccelUnit> {
+        let t: String = s
+            .chars()
+            .filter(|c| !c.is_whitespace())
+            .collect::<String>()
+            .to_ascii_lowercase();
+        match t.as_str() {
+            "g" => Some(AccelUnit::G),
+            "cm/s2" | "cm/s^2" | "cm/s/s" | "cm/sec2" | "cm/sec^2" | "cm/sec/sec" | "gal" => {
+                Some(AccelUnit::CmPerS2)
+            }
+            "m/s2" | "m/s^2" | "m/s/s" | "m/sec2" | "m/sec^2" | "m/sec/sec" => {
+                Some(AccelUnit::MPerS2)
+            }
+            _ => None,
+        }
+    }
+}
+
+/// What header line 3 says about the quantity and its unit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Declared {
+    /// No unit stated (the samples are taken as g unless the user states one).
+    Nothing,
+    /// An acceleration unit.
+    Unit(AccelUnit),
+    /// A unit this reader does not know.
+    Unknown,
+    /// A velocity or displacement history.
+    NotAcceleration,
+}
+
+/// Reads the quantity and the unit from header line 3, as the PEER files write them:
+/// `ACCELERATION TIME HISTORY IN UNITS OF G`, `... IN UNITS OF CM/SEC/SEC`, `The units are (g)`,
+/// `VELOCITY TIME HISTORY IN UNITS OF CM/SEC`.
+fn declared_unit(line: &str) -> Declared {
+    let up = line.to_ascii_uppercase();
+    if up.contains("VELOCITY") || up.contains("DISPLACEMENT") {
+        return Declared::NotAcceleration;
+    }
+    let compact: String = up.chars().filter(|c| !c.is_whitespace()).collect();
+    // Longest spellings first: "CM/S/S" contains "M/S/S".
+    const CM: [&str; 7] = [
+        "CM/SEC/SEC",
+        "CM/SEC^2",
+        "CM/SEC**2",
+        "CM/SEC2",
+        "CM/S/S",
+        "CM/S^2",
+        "CM/S2",
+    ];
+    const M: [&str; 7] = [
+        "M/SEC/SEC",
+        "M/SEC^2",
+        "M/SEC**2",
+        "M/SEC2",
+        "M/S/S",
+        "M/S^2",
+        "M/S2",
+    ];
+    if compact.contains("MM/S") {
+        return Declared::Unknown;
+    }
+    if CM.iter().any(|u| compact.contains(u))
+        || up
+            .split(|c: char| !c.is_ascii_alphanumeric())
+            .any(|w| w == "GAL" || w == "GALS")
+    {
+        return Declared::Unit(AccelUnit::CmPerS2);
+    }
+    if M.iter().any(|u| compact.contains(u)) {
+        return Declared::Unit(AccelUnit::MPerS2);
+    }
+    for intro in ["UNITSOF", "UNITSARE", "UNITS:", "UNITS=", "UNIT:", "UNIT="] {
+        if let Some(rest) = compact.find(intro).map(|i| &compact[i + intro.len()..]) {
+            let rest = rest.trim_start_matches(['(', '[']);
+            let after = rest.chars().nth(1);
+            return if rest.starts_with('G') && !after.is_some_and(|c| c.is_ascii_alphabetic()) {
+                Declared::Unit(AccelUnit::G)
+            } else {
+                Declared::Unknown
+            };
+        }
+    }
+    Declared::Nothing
+}
+
 /// An acceleration record read from a PEER `.AT2` file.
 ///
 /// The format (PEER strong-motion database, both the older "Pacific
 /// Engineering" and the NGA flavours) is four header lines followed by the
-/// samples, several per line, in units of g:
+/// samples, several per line. Header line 3 names the unit (g, cm/s² or m/s²,
+/// see [`AccelUnit`]); the samples are converted to g when read. A velocity or
+/// displacement history (line 3, or a `.VT2`/`.DT2` name) is refused.
 ///
 /// ```text
 /// PEER STRONG MOTION DATABASE RECORD. PROCESSING BY PACIFIC ENGINEERING.   <- title
@@ -38,11 +164,37 @@ pub struct At2Record {
     pub npts: usize,
     /// Time step (s).
     pub dt: f64,
-    /// Accelerations in units of g.
+    /// The unit the header declares (`None`: not stated, the samples are taken as g; see
+    /// [`At2Record::with_stated_unit`]).
+    pub declared_unit: Option<AccelUnit>,
+    /// Accelerations in units of g (converted from the declared unit).
     pub samples: Vec<f64>,
 }
 
 impl At2Record {
+    /// The record with the unit the user states for it: the samples of a record whose header
+    /// states no unit are converted from `unit`; a header that declares another unit is a
+    /// contradiction and an error.
+    ///
+    /// # Errors
+    /// [`MotionError::UnitMismatch`] when the header declares a different unit.
+    pub fn with_stated_unit(mut self, unit: AccelUnit) -> Result<Self, MotionError> {
+        match self.declared_unit {
+            Some(d) if d == unit => Ok(self),
+            Some(d) => Err(MotionError::UnitMismatch {
+                file: self.source,
+                declared: d.name(),
+                stated: unit.name(),
+            }),
+            None => {
+                let k = unit.in_g();
+                self.samples.iter_mut().for_each(|a| *a *= k);
+                self.declared_unit = Some(unit);
+                Ok(self)
+            }
+        }
+    }
+
     /// Duration (npts − 1)·dt of the record.
     pub fn duration(&self) -> f64 {
         self.samples.len().saturating_sub(1) as f64 * self.dt
@@ -84,6 +236,24 @@ impl At2Record {
 /// [`parse_at2`].
 pub fn read_at2(path: impl AsRef<Path>) -> Result<At2Record, MotionError> {
     let path = path.as_ref();
+    if let Some(ext) = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_uppercase())
+    {
+        if ext == "VT2" || ext == "DT2" {
+            return Err(MotionError::NotAcceleration {
+                file: path.display().to_string(),
+                found: format!(
+                    "a PEER {} file (.{ext})",
+                    if ext == "VT2" {
+                        "velocity"
+                    } else {
+                        "displacement"
+                    }
+                ),
+            });
+        }
+    }
     let bytes = std::fs::read(path).map_err(|source| MotionError::Io {
         path: path.to_path_buf(),
         source,
@@ -137,6 +307,23 @@ pub fn parse_at2(text: impl AsRef<[u8]>, source_name: &str) -> Result<At2Record,
         })?;
     }
 
+    let declared_unit = match declared_unit(header[2]) {
+        Declared::Nothing => None,
+        Declared::Unit(u) => Some(u),
+        Declared::Unknown => {
+            return Err(MotionError::UnknownUnits {
+                file: file(),
+                line: 3,
+                found: excerpt(header[2]),
+            })
+        }
+        Declared::NotAcceleration => {
+            return Err(MotionError::NotAcceleration {
+                file: format!("{}:3", file()),
+                found: format!("\"{}\"", excerpt(header[2])),
+            })
+        }
+    };
     const HEADER_LINE: usize = 4;
     let (npts, dt) = parse_npts_dt(header[3]).ok_or_else(|| MotionError::BadHeader {
         file: file(),
@@ -184,7 +371,7 @@ pub fn parse_at2(text: impl AsRef<[u8]>, source_name: &str) -> Result<At2Record,
             }
             found += 1;
             if found <= npts {
-                samples.push(value);
+                samples.push(value * declared_unit.map_or(1.0, AccelUnit::in_g));
             } else if surplus_line.is_none() {
                 surplus_line = Some(line_no);
             }
@@ -204,6 +391,7 @@ pub fn parse_at2(text: impl AsRef<[u8]>, source_name: &str) -> Result<At2Record,
         title: header[0].trim().to_owned(),
         event: header[1].trim().to_owned(),
         units: header[2].trim().to_owned(),
+        declared_unit,
         npts,
         dt,
         samples,
@@ -282,6 +470,41 @@ mod tests {
         ] {
             assert_eq!(parse_npts_dt(bad), None, "{bad}");
         }
+    }
+
+    #[test]
+    fn units_lines() {
+        use Declared::*;
+        let g = Unit(AccelUnit::G);
+        let cm = Unit(AccelUnit::CmPerS2);
+        let m = Unit(AccelUnit::MPerS2);
+        for (line, want) in [
+            (
+                "ACCELERATION TIME HISTORY IN UNITS OF G. FILTER POINTS: HP=0.2 Hz",
+                g,
+            ),
+            ("The units are (g)", g),
+            ("ACCELERATION TIME SERIES IN UNITS OF G", g),
+            ("ACCELERATION TIME HISTORY IN UNITS OF CM/SEC/SEC", cm),
+            ("ACCELERATION IN UNITS OF CM/S^2", cm),
+            ("accel. in gal", cm),
+            ("ACCELERATION TIME HISTORY IN UNITS OF M/S/S", m),
+            ("ACCELERATION IN M/S^2", m),
+            ("units", Nothing),
+            ("U", Nothing),
+            ("ACCELERATION IN UNITS OF FT/S/S", Unknown),
+            ("ACCELERATION IN UNITS OF GALILEO", Unknown),
+            ("ACCELERATION IN MM/S/S", Unknown),
+            ("VELOCITY TIME HISTORY IN UNITS OF CM/SEC", NotAcceleration),
+            ("DISPLACEMENT TIME HISTORY IN UNITS OF CM", NotAcceleration),
+        ] {
+            assert_eq!(declared_unit(line), want, "{line}");
+        }
+        for (name, u) in AccelUnit::NAMES.iter().zip(AccelUnit::ALL) {
+            assert_eq!(AccelUnit::parse(name), Some(u));
+        }
+        assert_eq!(AccelUnit::parse("CM/S^2"), Some(AccelUnit::CmPerS2));
+        assert_eq!(AccelUnit::parse("ft/s2"), None);
     }
 
     #[test]

@@ -111,6 +111,31 @@ pub enum MotionError {
         /// Number of samples actually present.
         found: usize,
     },
+    /// Header line 3 names a unit this reader does not know.
+    UnknownUnits {
+        /// Name of the input.
+        file: String,
+        /// Line number (3).
+        line: usize,
+        /// The offending line (possibly shortened).
+        found: String,
+    },
+    /// A velocity or displacement history, not an acceleration.
+    NotAcceleration {
+        /// Name of the input (with the line, when the header says so).
+        file: String,
+        /// What gave it away.
+        found: String,
+    },
+    /// The user states a unit for a record whose header declares another.
+    UnitMismatch {
+        /// Name of the input.
+        file: String,
+        /// The unit in the header.
+        declared: &'static str,
+        /// The unit the user stated.
+        stated: &'static str,
+    },
     /// Parameters of a programmatically built motion are invalid
     /// (e.g. a [`Record`](crate::Record) with `dt <= 0` or no samples).
     InvalidParameter(String),
@@ -120,7 +145,11 @@ impl MotionError {
     /// The 1-based line number the error refers to, if any.
     pub fn line(&self) -> Option<usize> {
         match self {
-            MotionError::Io { .. } | MotionError::InvalidParameter(_) => None,
+            MotionError::Io { .. }
+            | MotionError::InvalidParameter(_)
+            | MotionError::NotAcceleration { .. }
+            | MotionError::UnitMismatch { .. } => None,
+            MotionError::UnknownUnits { line, .. } => Some(*line),
             MotionError::Empty { .. } => Some(1),
             MotionError::NotUtf8 { line, .. }
             | MotionError::TruncatedHeader { line, .. }
@@ -182,6 +211,25 @@ impl fmt::Display for MotionError {
             } => write!(
                 f,
                 "{file}:{line}: expected {declared} samples (NPTS in the header), found {found}"
+            ),
+            MotionError::UnknownUnits { file, line, found } => write!(
+                f,
+                "{file}:{line}: expected the units of g, cm/s2 (CM/SEC/SEC) or m/s2 (M/S/S), \
+                 found \"{found}\""
+            ),
+            MotionError::NotAcceleration { file, found } => write!(
+                f,
+                "{file}: expected an acceleration history, found {found}; only PEER \
+                 acceleration files (.AT2) can be used"
+            ),
+            MotionError::UnitMismatch {
+                file,
+                declared,
+                stated,
+            } => write!(
+                f,
+                "{file}: the header declares the units {declared}, but the scene states \
+                 `units` = \"{stated}\"; remove `units` or make it agree"
             ),
             MotionError::InvalidParameter(msg) => write!(f, "invalid parameter: {msg}"),
         }

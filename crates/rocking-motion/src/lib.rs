@@ -89,7 +89,7 @@ pub mod intensity;
 mod pulses;
 mod record;
 
-pub use at2::{parse_at2, read_at2, At2Record};
+pub use at2::{parse_at2, read_at2, AccelUnit, At2Record};
 pub use error::MotionError;
 pub use pulses::{
     CosinePulse, MavroeidisPapageorgiou, Ricker, RickerKind, SinePulse, ANTISYMMETRIC_RICKER_NORM,

@@ -1,7 +1,7 @@
 //! PEER AT2 reader: real files, malformed inputs, fuzzing.
 
 use proptest::prelude::*;
-use rocking_motion::{parse_at2, read_at2, GroundMotion, MotionError, STANDARD_GRAVITY};
+use rocking_motion::{parse_at2, read_at2, AccelUnit, GroundMotion, MotionError, STANDARD_GRAVITY};
 use std::path::{Path, PathBuf};
 
 fn data_dir() -> Option<PathBuf> {
@@ -40,6 +40,13 @@ fn parses_all_real_files() {
     for path in &files {
         let rec = read_at2(path).unwrap_or_else(|e| panic!("{e}"));
         let name = path.display();
+        // Every file of the suite declares its unit (g), in one of two spellings.
+        assert_eq!(
+            rec.declared_unit,
+            Some(AccelUnit::G),
+            "{name}: {}",
+            rec.units
+        );
         assert_eq!(rec.npts, rec.samples.len(), "{name}");
         assert!(rec.dt > 0.0 && rec.dt.is_finite(), "{name}");
         assert!(rec.dt <= 0.02 + 1e-12, "{name}: dt = {}", rec.dt);
@@ -320,4 +327,76 @@ proptest! {
             Err(e) => prop_assert!(e.line().is_some()),
         }
     }
+}
+
+/// One record written in g, cm/s² and m/s² (as PEER headers spell them) reads as the same
+/// accelerations in g; velocity and displacement histories are refused naming the file.
+#[test]
+fn units_are_read_and_converted() {
+    let g = [0.0, 0.3, 0.0, -0.3, 0.0];
+    let file = |units: &str, k: f64| {
+        let body: Vec<String> = g.iter().map(|a| format!("{:.10e}", a * k)).collect();
+        format!("T\nE\n{units}\nNPTS= 5, DT= .01 SEC\n{}\n", body.join(" "))
+    };
+    let cases = [
+        ("ACCELERATION TIME HISTORY IN UNITS OF G", 1.0),
+        (
+            "ACCELERATION TIME HISTORY IN UNITS OF CM/SEC/SEC",
+            100.0 * STANDARD_GRAVITY,
+        ),
+        (
+            "ACCELERATION TIME SERIES IN UNITS OF M/S^2",
+            STANDARD_GRAVITY,
+        ),
+        (
+            "ACCELERATION TIME HISTORY IN UNITS OF M/S/S",
+            STANDARD_GRAVITY,
+        ),
+    ];
+    for (units, k) in cases {
+        let rec = parse_at2(file(units, k), "u.AT2").unwrap();
+        for (a, want) in rec.samples.iter().zip(g) {
+            assert!((a - want).abs() <= 1e-12, "{units}: {a} g, want {want} g");
+        }
+        assert!(
+            (rec.pga() - 0.3).abs() <= 1e-12,
+            "{units}: PGA {} g",
+            rec.pga()
+        );
+    }
+    // No unit in the header: the scene states it; a stated unit that contradicts the header is
+    // an error.
+    let bare = parse_at2(file("no unit here", 100.0 * STANDARD_GRAVITY), "b.AT2").unwrap();
+    assert_eq!(bare.declared_unit, None);
+    let stated = bare.with_stated_unit(AccelUnit::CmPerS2).unwrap();
+    assert!((stated.pga() - 0.3).abs() <= 1e-12, "{}", stated.pga());
+    let in_g = parse_at2(file("IN UNITS OF G", 1.0), "g.AT2").unwrap();
+    let e = in_g.with_stated_unit(AccelUnit::MPerS2).unwrap_err();
+    assert!(matches!(e, MotionError::UnitMismatch { .. }), "{e:?}");
+    assert!(e.to_string().contains("g.AT2"), "{e}");
+
+    for bad in [
+        "VELOCITY TIME HISTORY IN UNITS OF CM/SEC",
+        "DISPLACEMENT TIME HISTORY IN UNITS OF CM",
+    ] {
+        let e = parse_at2(file(bad, 1.0), "v.AT2").unwrap_err();
+        assert!(matches!(e, MotionError::NotAcceleration { .. }), "{e:?}");
+        assert!(e.to_string().starts_with("v.AT2:3:"), "{e}");
+    }
+    let e = parse_at2(file("ACCELERATION IN UNITS OF FT/S/S", 1.0), "f.AT2").unwrap_err();
+    assert!(
+        matches!(e, MotionError::UnknownUnits { line: 3, .. }),
+        "{e:?}"
+    );
+
+    let dir = std::env::temp_dir().join(format!("at2-units-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for ext in ["VT2", "dt2"] {
+        let path = dir.join(format!("rec.{ext}"));
+        std::fs::write(&path, file("IN UNITS OF G", 1.0)).unwrap();
+        let e = read_at2(&path).unwrap_err();
+        assert!(matches!(e, MotionError::NotAcceleration { .. }), "{e:?}");
+        assert!(e.to_string().contains(&*path.to_string_lossy()), "{e}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -16,7 +16,7 @@
 use std::collections::BTreeMap;
 use std::fmt;
 use std::fs::{self, File, OpenOptions};
-use std::io::{BufRead, BufReader, Write};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
@@ -32,6 +32,12 @@ pub struct Axis {
     /// Values, in sweep order.
     pub values: Vec<f64>,
 }
+
+/// The most values one axis may have (each is validated and run: far more than a plot shows).
+pub const MAX_AXIS_VALUES: usize = 100_000;
+
+/// The most cells a sweep may have (its journal, cells.csv and the cells in memory grow with it).
+pub const MAX_CELLS: usize = 1_000_000;
 
 impl Axis {
     /// `key=start:stop:count` (count points from start to stop inclusive) or `key=v1,v2,...`.
@@ -60,12 +66,26 @@ impl Axis {
                 return Err(format!("axis `{spec}`: expected start:stop:count"));
             }
             let (a, b) = (num(parts[0])?, num(parts[1])?);
-            let n: usize = parts[2].trim().parse().map_err(|_| {
-                format!(
-                    "axis `{spec}`: count `{}` is not a positive integer",
-                    parts[2]
-                )
-            })?;
+            // A count may be written as a float (`1e4`) when it is a whole number.
+            let count = parts[2].trim();
+            let n: usize = count
+                .parse()
+                .ok()
+                .or_else(|| {
+                    let x: f64 = count.parse().ok()?;
+                    (x.fract() == 0.0 && x >= 0.0).then(|| x.min(usize::MAX as f64) as usize)
+                })
+                .ok_or_else(|| {
+                    format!(
+                        "axis `{spec}`: count `{}` is not a positive integer",
+                        parts[2]
+                    )
+                })?;
+            if n > MAX_AXIS_VALUES {
+                return Err(format!(
+                    "axis `{spec}`: count {n} is too large: at most {MAX_AXIS_VALUES} values per axis"
+                ));
+            }
             match n {
                 0 => return Err(format!("axis `{spec}`: count must be at least 1")),
                 1 => vec![a],
@@ -74,7 +94,15 @@ impl Axis {
                     .collect(),
             }
         } else {
-            range.split(',').map(num).collect::<Result<Vec<_>, _>>()?
+            let values = range.split(',').map(num).collect::<Result<Vec<_>, _>>()?;
+            if values.len() > MAX_AXIS_VALUES {
+                return Err(format!(
+                    "axis `{}`: {} values are too many: at most {MAX_AXIS_VALUES} values per axis",
+                    key,
+                    values.len()
+                ));
+            }
+            values
         };
         Ok(Axis { key, values })
     }
@@ -161,6 +189,8 @@ pub enum SweepError {
     Io(PathBuf, std::io::Error),
     /// The output directory holds a different sweep.
     Mismatch(PathBuf),
+    /// The journal file is not a sweep journal (a directory, binary data, another file).
+    NotJournal(PathBuf, &'static str),
 }
 
 impl fmt::Display for SweepError {
@@ -169,8 +199,14 @@ impl fmt::Display for SweepError {
             SweepError::Io(p, e) => write!(f, "{}: {e}", p.display()),
             SweepError::Mismatch(p) => write!(
                 f,
-                "{}: this output directory holds the cells of a different sweep (scene or axes changed); \
+                "{}: this output directory holds the cells of a different sweep (scene, record contents, axes or program changed); \
                  use another --out directory or delete it",
+                p.display()
+            ),
+            SweepError::NotJournal(p, why) => write!(
+                f,
+                "{}: not a journal of rocking sweeps ({why}); delete it or use another --out \
+                 directory",
                 p.display()
             ),
         }
@@ -189,6 +225,28 @@ pub struct Sweep {
 }
 
 impl Sweep {
+    /// The number of cells of `axes`, or an error when it exceeds [`MAX_CELLS`] (checked before
+    /// anything is allocated for them; the product is formed without overflow).
+    pub fn checked_len(axes: &[Axis]) -> Result<usize, String> {
+        let mut n: usize = 1;
+        for a in axes {
+            n = n.saturating_mul(a.values.len());
+        }
+        if n > MAX_CELLS {
+            let sizes: Vec<String> = axes.iter().map(|a| a.values.len().to_string()).collect();
+            return Err(format!(
+                "{} cells ({}) are too many: a sweep has at most {MAX_CELLS} cells",
+                if n == usize::MAX {
+                    "so many".to_string()
+                } else {
+                    n.to_string()
+                },
+                sizes.join(" x ")
+            ));
+        }
+        Ok(n)
+    }
+
     /// Number of cells.
     pub fn len(&self) -> usize {
         self.axes.iter().map(|a| a.values.len()).product()
@@ -223,32 +281,86 @@ pub fn fnv1a(bytes: &[u8]) -> u64 {
 
 const JOURNAL: &str = "cells.journal";
 
-fn journal_line(c: &Cell) -> String {
-    let body = format!(
+/// A journal line: the cell, for a failed cell its error message (so that a resumed sweep still
+/// reports it), and a checksum that rejects a torn line.
+fn journal_line(c: &Cell, message: Option<&str>) -> String {
+    let mut body = format!(
         "{},{},{:e},{}",
         c.index,
         c.class.as_str(),
         c.max_theta_over_alpha,
         c.impacts
     );
+    if let Some(m) = message {
+        body.push(',');
+        body.push_str(&m.replace(['\n', '\r'], " "));
+    }
     format!("{body},{:016x}\n", fnv1a(body.as_bytes()))
 }
 
-fn parse_journal_line(line: &str) -> Option<Cell> {
+fn parse_journal_line(line: &str) -> Option<(Cell, Option<String>)> {
     let (body, sum) = line.rsplit_once(',')?;
     if format!("{:016x}", fnv1a(body.as_bytes())) != sum {
         return None;
     }
-    let f: Vec<&str> = body.split(',').collect();
-    if f.len() != 4 {
+    let f: Vec<&str> = body.splitn(5, ',').collect();
+    if f.len() < 4 {
         return None;
     }
-    Some(Cell {
+    let cell = Cell {
         index: f[0].parse().ok()?,
         class: CellClass::parse(f[1])?,
         max_theta_over_alpha: f[2].parse().ok()?,
         impacts: f[3].parse().ok()?,
-    })
+    };
+    Some((cell, f.get(4).map(|m| m.to_string())))
+}
+
+/// The cells (and failure messages) of the journal at `path` when it belongs to this sweep;
+/// nothing when there is no journal or it is empty (a sweep killed before its first write).
+fn read_journal(
+    path: &Path,
+    header: &str,
+    len: usize,
+) -> Result<BTreeMap<usize, (Cell, Option<String>)>, SweepError> {
+    let mut done = BTreeMap::new();
+    let meta = match fs::metadata(path) {
+        Ok(m) => m,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(done),
+        Err(e) => return Err(SweepError::Io(path.to_path_buf(), e)),
+    };
+    if meta.is_dir() {
+        return Err(SweepError::NotJournal(
+            path.to_path_buf(),
+            "it is a directory",
+        ));
+    }
+    let bytes = fs::read(path).map_err(|e| SweepError::Io(path.to_path_buf(), e))?;
+    if bytes.is_empty() {
+        return Ok(done);
+    }
+    let Ok(text) = std::str::from_utf8(&bytes) else {
+        return Err(SweepError::NotJournal(path.to_path_buf(), "it is not text"));
+    };
+    let mut lines = text.lines();
+    let first = lines.next().unwrap_or_default();
+    if !first.starts_with("# rocking sweep ") {
+        return Err(SweepError::NotJournal(
+            path.to_path_buf(),
+            "its first line is not a sweep header",
+        ));
+    }
+    if format!("{first}\n") != header {
+        return Err(SweepError::Mismatch(path.to_path_buf()));
+    }
+    for line in lines {
+        if let Some((c, m)) = parse_journal_line(line) {
+            if c.index < len {
+                done.insert(c.index, (c, m));
+            }
+        }
+    }
+    Ok(done)
 }
 
 /// Progress display.
@@ -265,7 +377,8 @@ pub enum Progress {
 pub struct Outcome {
     /// Every cell, in cell order.
     pub cells: Vec<Cell>,
-    /// Cells that failed in this invocation, with the error message.
+    /// Every failed cell with its error message, whether it failed in this invocation or in an
+    /// earlier one that this one resumed (failures are never dropped on resume).
     pub failures: Vec<(usize, String)>,
     /// Cells computed in this invocation (the rest came from the journal).
     pub computed: usize,
@@ -285,30 +398,28 @@ where
     F: Fn(&[f64]) -> Result<Summary, String> + Sync,
 {
     let start = Instant::now();
+    Sweep::checked_len(&sweep.axes)
+        .map_err(|m| SweepError::Io(out_dir.to_path_buf(), std::io::Error::other(m)))?;
     fs::create_dir_all(out_dir).map_err(|e| SweepError::Io(out_dir.to_path_buf(), e))?;
     let path = out_dir.join(JOURNAL);
     let header = format!("# rocking sweep {}\n", sweep.fingerprint);
-    let mut done: BTreeMap<usize, Cell> = BTreeMap::new();
-    if path.exists() {
-        let file = File::open(&path).map_err(|e| SweepError::Io(path.clone(), e))?;
-        let mut lines = BufReader::new(file).lines();
-        match lines.next() {
-            Some(Ok(first)) if format!("{first}\n") == header => {}
-            _ => return Err(SweepError::Mismatch(path)),
-        }
-        for line in lines.map_while(Result::ok) {
-            if let Some(c) = parse_journal_line(&line) {
-                if c.index < sweep.len() {
-                    done.insert(c.index, c);
-                }
-            }
-        }
-    }
+    let journaled = read_journal(&path, &header, sweep.len())?;
     // Rewrite the journal with only the valid lines, so that a torn line is gone for good.
     let mut text = header.clone();
-    for c in done.values() {
-        text.push_str(&journal_line(c));
+    for (c, m) in journaled.values() {
+        text.push_str(&journal_line(c, m.as_deref()));
     }
+    let mut failures: Vec<(usize, String)> = journaled
+        .values()
+        .filter(|(c, _)| c.class == CellClass::Failed)
+        .map(|(c, m)| {
+            let m = m
+                .clone()
+                .unwrap_or_else(|| "failed in an earlier run".into());
+            (c.index, m)
+        })
+        .collect();
+    let mut done: BTreeMap<usize, Cell> = journaled.into_iter().map(|(i, (c, _))| (i, c)).collect();
     write_atomic(&path, text.as_bytes())?;
     let journal = OpenOptions::new()
         .append(true)
@@ -333,32 +444,38 @@ where
             bar
         }
     };
-    let failures = Mutex::new(Vec::new());
+    let fresh_failures = Mutex::new(Vec::new());
     let fresh: Vec<Cell> = todo
         .par_iter()
         .map(|&index| {
             let values = sweep.values(index);
-            let cell = match run_cell(&values) {
-                Ok(summary) => Cell {
-                    index,
-                    class: CellClass::of(&summary),
-                    max_theta_over_alpha: summary.max_theta_over_alpha,
-                    impacts: summary.impacts,
-                },
-                Err(message) => {
-                    failures
-                        .lock()
-                        .unwrap_or_else(|p| p.into_inner())
-                        .push((index, message));
+            let (cell, message) = match run_cell(&values) {
+                Ok(summary) => (
+                    Cell {
+                        index,
+                        class: CellClass::of(&summary),
+                        max_theta_over_alpha: summary.max_theta_over_alpha,
+                        impacts: summary.impacts,
+                    },
+                    None,
+                ),
+                Err(message) => (
                     Cell {
                         index,
                         class: CellClass::Failed,
                         max_theta_over_alpha: 0.0,
                         impacts: 0,
-                    }
-                }
+                    },
+                    Some(message),
+                ),
             };
-            let line = journal_line(&cell);
+            let line = journal_line(&cell, message.as_deref());
+            if let Some(m) = message {
+                fresh_failures
+                    .lock()
+                    .unwrap_or_else(|p| p.into_inner())
+                    .push((index, m));
+            }
             let mut j = journal.lock().unwrap_or_else(|p| p.into_inner());
             j.write_all(line.as_bytes())
                 .map_err(|e| SweepError::Io(path.clone(), e))?;
@@ -372,7 +489,11 @@ where
     for c in fresh {
         done.insert(c.index, c);
     }
-    let mut failures = failures.into_inner().unwrap_or_else(|p| p.into_inner());
+    failures.extend(
+        fresh_failures
+            .into_inner()
+            .unwrap_or_else(|p| p.into_inner()),
+    );
     failures.sort_by_key(|f| f.0);
     Ok(Outcome {
         cells: done.into_values().collect(),
@@ -410,6 +531,11 @@ pub fn cells_csv(sweep: &Sweep, cells: &[Cell]) -> String {
         for v in sweep.values(c.index) {
             out.push_str(&format!("{v},"));
         }
+        if c.class == CellClass::Failed {
+            // A failed cell has no result: empty fields, not zeros that read as one.
+            out.push_str("failed,,\n");
+            continue;
+        }
         out.push_str(&format!(
             "{},{},{}\n",
             c.class.as_str(),
@@ -441,9 +567,19 @@ mod tests {
             "x=a:2:3",
             "x=1:inf:3",
             "x=1,,2",
+            "x=1:2:1e11",
+            "x=1:2:100000000000",
         ] {
             assert!(Axis::parse(bad).is_err(), "{bad}");
         }
+        let e = Axis::parse("x=1:2:100000000000").unwrap_err();
+        assert!(e.contains("at most 100000"), "{e}");
+        let five: Vec<Axis> = (0..5)
+            .map(|k| Axis::parse(&format!("a{k}=1:2:10000")).unwrap())
+            .collect();
+        let e = Sweep::checked_len(&five).unwrap_err();
+        assert!(e.contains("at most 1000000 cells"), "{e}");
+        assert_eq!(Sweep::checked_len(&five[..1]), Ok(10_000));
     }
 
     #[test]
@@ -475,8 +611,17 @@ mod tests {
             max_theta_over_alpha: 15.707,
             impacts: 1,
         };
-        let line = journal_line(&c);
-        assert_eq!(parse_journal_line(line.trim_end()), Some(c));
+        let line = journal_line(&c, None);
+        assert_eq!(parse_journal_line(line.trim_end()), Some((c, None)));
+        let failed = Cell {
+            class: CellClass::Failed,
+            ..c
+        };
+        let line = journal_line(&failed, Some("singular, at u = 1\nbad"));
+        assert_eq!(
+            parse_journal_line(line.trim_end()),
+            Some((failed, Some("singular, at u = 1 bad".to_string())))
+        );
         for cut in 1..line.len() - 1 {
             assert_eq!(parse_journal_line(&line[..cut]), None, "{}", &line[..cut]);
         }

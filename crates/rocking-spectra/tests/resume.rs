@@ -136,3 +136,71 @@ fn a_failing_cell_is_recorded_and_the_others_are_unaffected() {
         }
     }
 }
+
+/// A resumed sweep reports the cells that failed before, with their messages (it used to empty
+/// the failure list).
+#[test]
+fn failures_are_reported_again_on_resume() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = sweep("failures-resume");
+    let failing = |v: &[f64]| {
+        if v[1] == 20.0 {
+            Err(format!("model singular at ω_p/p = {}", v[0]))
+        } else {
+            cell(v)
+        }
+    };
+    let first = run(&s, dir.path(), Progress::Quiet, failing).unwrap();
+    assert_eq!(first.failures.len(), 6);
+    let calls = AtomicUsize::new(0);
+    let resumed = run(&s, dir.path(), Progress::Quiet, |v| {
+        calls.fetch_add(1, Ordering::SeqCst);
+        cell(v)
+    })
+    .unwrap();
+    assert_eq!(calls.load(Ordering::SeqCst), 0, "nothing recomputed");
+    assert_eq!(resumed.computed, 0);
+    assert_eq!(
+        resumed.failures, first.failures,
+        "failures kept with their messages"
+    );
+    assert_eq!(resumed.cells, first.cells);
+}
+
+/// A `cells.journal` that is a directory or binary is reported as not a journal (not as "the
+/// cells of a different sweep"); an empty one (a sweep killed before it wrote) starts afresh.
+#[test]
+fn a_journal_that_is_not_one_is_reported_as_such() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = sweep("not-a-journal");
+    let as_dir = dir.path().join("dir");
+    std::fs::create_dir_all(as_dir.join("cells.journal")).unwrap();
+    let binary = dir.path().join("binary");
+    std::fs::create_dir_all(&binary).unwrap();
+    std::fs::write(
+        binary.join("cells.journal"),
+        [0xffu8, 0xfe, 0x00, 0x13, 0x80],
+    )
+    .unwrap();
+    let other = dir.path().join("other");
+    std::fs::create_dir_all(&other).unwrap();
+    std::fs::write(other.join("cells.journal"), "index,class\n1,2\n").unwrap();
+    for (d, why) in [
+        (&as_dir, "directory"),
+        (&binary, "not text"),
+        (&other, "not a sweep header"),
+    ] {
+        let e = run(&s, d, Progress::Quiet, cell).unwrap_err();
+        let msg = e.to_string();
+        assert!(
+            msg.contains("not a journal") && msg.contains(why) && !msg.contains("different sweep"),
+            "{}: {msg}",
+            d.display()
+        );
+    }
+    let empty = dir.path().join("empty");
+    std::fs::create_dir_all(&empty).unwrap();
+    std::fs::write(empty.join("cells.journal"), "").unwrap();
+    let out = run(&s, &empty, Progress::Quiet, cell).unwrap();
+    assert_eq!(out.computed, 48, "an empty journal holds no cells");
+}

@@ -122,6 +122,7 @@ struct Sim<'a, V: Variant, M: GroundMotion, const NR: usize, const NC: usize> {
     max_u: f64,
     impacts: u64,
     significant: u64,
+    energy_capped: u64,
     events: u64,
     first_uplift: Option<f64>,
     first_impact: Option<f64>,
@@ -153,18 +154,8 @@ fn run<V: Variant, M: GroundMotion, const NR: usize, const NC: usize>(
     motion: &M,
     opts: &Options,
 ) -> Result<Run, SimError> {
+    opts.validate().map_err(SimError::Options)?;
     let tol = opts.accuracy.tol;
-    if !(tol > 0.0 && tol < 1.0) {
-        return Err(SimError::Options(format!(
-            "tolerance {tol} is not allowed: 0 < tol < 1"
-        )));
-    }
-    if !(opts.t_end.is_finite() && opts.t_end > 0.0) {
-        return Err(SimError::Options(format!(
-            "end time {} is not allowed: 0 < t_end < inf",
-            opts.t_end
-        )));
-    }
     let derived = structure.derived();
     let p = V::params(structure.physical());
     let rigid = V::NAME == "rigid";
@@ -205,6 +196,7 @@ fn run<V: Variant, M: GroundMotion, const NR: usize, const NC: usize>(
         max_theta: 0.0,
         max_u: 0.0,
         impacts: 0,
+        energy_capped: 0,
         significant: 0,
         events: 0,
         first_uplift: None,
@@ -315,6 +307,7 @@ impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M
             overturn_time: self.overturn.map(|t| self.time(t)),
             impacts: self.impacts,
             significant_impacts: self.significant,
+            energy_capped_impacts: self.energy_capped,
             first_uplift_time: self.first_uplift.map(|t| self.time(t)),
             first_impact_time: self.first_impact.map(|t| self.time(t)),
             final_phase: phase,
@@ -798,6 +791,56 @@ impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M
         }
     }
 
+    /// No impact may create kinetic energy. Housner's rule and a fixed restitution conserve
+    /// angular momentum or scale θ' alone, which on a deformable column can raise the kinetic
+    /// energy (the paper says so for ADJex). Where a map's post-impact state has more kinetic
+    /// energy than before the impact (beyond rounding, 1e-9 relative), its velocities are
+    /// scaled down by one common factor to keep exactly the pre-impact kinetic energy: the
+    /// direction of motion the map chose is kept, and no energy is created. Returns the state
+    /// and whether it was capped (counted in the summary, named `*-energy-capped` in the log).
+    fn without_energy_gain(
+        &mut self,
+        after: After,
+        e_before: f64,
+        u: f64,
+        s: f64,
+    ) -> (After, bool) {
+        let p = &self.p;
+        // Kinetic energy is a quadratic form in the velocities, so it scales with k².
+        let (e_after, rest) = match after {
+            After::Contact { energy, .. } | After::Rocking { energy, .. } => {
+                (energy, V::energy(&[0.0, u, 0.0, 0.0], s, p)[0])
+            }
+        };
+        let (t_before, t_after) = (e_before - rest, e_after - rest);
+        let gains = t_after > t_before * (1.0 + 1e-9) && t_after > 0.0;
+        if !gains {
+            return (after, false);
+        }
+        self.energy_capped += 1;
+        let k = (t_before.max(0.0) / t_after).sqrt();
+        let capped = match after {
+            After::Contact { u_dot, .. } => {
+                let ud = k * u_dot;
+                After::Contact {
+                    u_dot: ud,
+                    energy: V::energy(&[0.0, u, 0.0, ud], s, p)[0],
+                }
+            }
+            After::Rocking {
+                theta_dot, u_dot, ..
+            } => {
+                let (td, ud) = (k * theta_dot, k * u_dot);
+                After::Rocking {
+                    theta_dot: td,
+                    u_dot: ud,
+                    energy: V::energy(&[0.0, u, td, ud], s, p)[0],
+                }
+            }
+        };
+        (capped, true)
+    }
+
     /// The impact at θ = 0 while rocking about `s`: the corner −s hits the ground.
     fn impact(&mut self, t: f64, s: f64, xi: [f64; 3], w: f64, d: f64) -> Result<Next, SimError> {
         self.count_event(t)?;
@@ -812,13 +855,19 @@ impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M
             // A negligible rocking excursion (grazing, or the end of a Zeno sequence): the base
             // settles in full contact with the column's motion unchanged.
             let e_before = V::energy(&[0.0, u, theta_dot, u_dot], s, p)[0];
-            let e_after = contact_energy(u_dot);
-            self.losses += e_before - e_after;
+            let after = After::Contact {
+                u_dot,
+                energy: contact_energy(u_dot),
+            };
+            let (after, capped) = self.without_energy_gain(after, e_before, u, s);
             let pre = [theta_dot, u, u_dot];
+            let (After::Contact { u_dot, energy } | After::Rocking { u_dot, energy, .. }) = after;
+            let e_after = energy;
+            self.losses += e_before - e_after;
             self.log_event(
                 t,
                 EventKind::Rest,
-                "rest",
+                if capped { "rest-energy-capped" } else { "rest" },
                 Phase::Contact,
                 pre,
                 (e_before, e_after),
@@ -957,6 +1006,12 @@ impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M
             ),
             other => (other, EventKind::Impact, branch),
         };
+        let (after, capped) = self.without_energy_gain(after, e_before, u, s2);
+        let branch = if capped {
+            capped_branch(branch)
+        } else {
+            branch
+        };
         let e_after = match after {
             After::Contact { energy, .. } | After::Rocking { energy, .. } => energy,
         };
@@ -997,6 +1052,20 @@ impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M
                 })
             }
         }
+    }
+}
+
+/// The event-log name of an impact branch whose map would have created kinetic energy and was
+/// capped (see `Sim::without_energy_gain`).
+fn capped_branch(branch: &'static str) -> &'static str {
+    match branch {
+        "vvel-rigid-limit" | "vvel-contact" => "vvel-energy-capped",
+        "adjex-contact" | "adjex-rocking" | "adjex-momentum" | "adjex-least-energy-gain" => {
+            "adjex-energy-capped"
+        }
+        "housner" | "housner-stop" => "housner-energy-capped",
+        "restitution" => "restitution-energy-capped",
+        _ => "energy-capped",
     }
 }
 

@@ -145,3 +145,174 @@ impl Default for Options {
         }
     }
 }
+
+/// The most rows a [`History::Grid`] may ask for (each row is 80 bytes in memory).
+pub const MAX_HISTORY_ROWS: f64 = 5e7;
+
+impl Options {
+    /// Checks every field, so that a library caller gets an error naming the field instead of a
+    /// run to nonsense (an overturning angle of NaN, a restitution of 2, a start beyond π/2) or an
+    /// unbounded allocation (`History::Grid(0)`). Called by every entry point that simulates.
+    ///
+    /// # Errors
+    /// A message `Options::FIELD = VALUE is not allowed: RANGE`.
+    pub fn validate(&self) -> Result<(), String> {
+        fn check(field: &str, v: f64, ok: bool, allowed: &str) -> Result<(), String> {
+            if ok && v.is_finite() {
+                Ok(())
+            } else {
+                Err(format!(
+                    "Options::{field} = {v:e} is not allowed: {allowed}"
+                ))
+            }
+        }
+        let tol = self.accuracy.tol;
+        check("accuracy.tol", tol, tol > 0.0 && tol < 1.0, "0 < tol < 1")?;
+        check("t_end", self.t_end, self.t_end > 0.0, "0 < t_end < inf")?;
+        let a = self.overturn_angle;
+        check(
+            "overturn_angle",
+            a,
+            a > 0.0 && a <= FRAC_PI_2 + 1e-12,
+            "0 < overturn_angle <= pi/2",
+        )?;
+        if let ImpactModel::Restitution(r) = self.impact {
+            check(
+                "impact (restitution)",
+                r,
+                (0.0..=1.0).contains(&r),
+                "a coefficient of restitution 0 <= r <= 1",
+            )?;
+        }
+        if let History::Grid(dt) = self.history {
+            check("history (grid step)", dt, dt > 0.0, "a grid step > 0")?;
+            check(
+                "history (grid step)",
+                dt,
+                self.t_end / dt <= MAX_HISTORY_ROWS,
+                &format!(
+                    "at most {MAX_HISTORY_ROWS:e} rows up to t_end = {:e}",
+                    self.t_end
+                ),
+            )?;
+        }
+        check(
+            "rest_rate",
+            self.rest_rate,
+            self.rest_rate >= 0.0,
+            "rest_rate >= 0",
+        )?;
+        if self.max_events == 0 || self.max_steps == 0 {
+            return Err("Options::max_events and max_steps must be at least 1".into());
+        }
+        let i = &self.initial;
+        check(
+            "initial.theta",
+            i.theta,
+            i.theta.abs() < a,
+            "|theta| < overturn_angle (rad)",
+        )?;
+        check("initial.u", i.u, true, "a finite displacement")?;
+        check("initial.theta_dot", i.theta_dot, true, "a finite rate")?;
+        check("initial.u_dot", i.u_dot, true, "a finite rate")?;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn invalid_options_name_the_field() {
+        let ok = Options::default();
+        assert_eq!(ok.validate(), Ok(()));
+        let cases: Vec<(Options, &str)> = vec![
+            (
+                Options {
+                    overturn_angle: f64::NAN,
+                    ..ok
+                },
+                "overturn_angle",
+            ),
+            (
+                Options {
+                    overturn_angle: 0.0,
+                    ..ok
+                },
+                "overturn_angle",
+            ),
+            (
+                Options {
+                    overturn_angle: -1.0,
+                    ..ok
+                },
+                "overturn_angle",
+            ),
+            (
+                Options {
+                    overturn_angle: f64::INFINITY,
+                    ..ok
+                },
+                "overturn_angle",
+            ),
+            (
+                Options {
+                    impact: ImpactModel::Restitution(2.0),
+                    ..ok
+                },
+                "restitution",
+            ),
+            (
+                Options {
+                    impact: ImpactModel::Restitution(-1.0),
+                    ..ok
+                },
+                "restitution",
+            ),
+            (
+                Options {
+                    history: History::Grid(0.0),
+                    ..ok
+                },
+                "history",
+            ),
+            (
+                Options {
+                    history: History::Grid(-0.1),
+                    ..ok
+                },
+                "history",
+            ),
+            (
+                Options {
+                    history: History::Grid(1e-9),
+                    ..ok
+                },
+                "history",
+            ),
+            (
+                Options {
+                    t_end: f64::INFINITY,
+                    ..ok
+                },
+                "t_end",
+            ),
+            (Options { max_steps: 0, ..ok }, "max_steps"),
+            (
+                Options {
+                    initial: Initial {
+                        theta: 2.0,
+                        ..Initial::default()
+                    },
+                    ..ok
+                },
+                "initial.theta",
+            ),
+        ];
+        for (o, field) in cases {
+            let e = o.validate().unwrap_err();
+            assert!(e.contains(field), "{field}: {e}");
+        }
+    }
+}

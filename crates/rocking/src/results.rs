@@ -77,6 +77,9 @@ pub struct Summary {
     pub impacts: u64,
     /// Impacts with |θ'| >= 0.01 α p.
     pub significant_impacts: u64,
+    /// Impacts whose model's map would have created kinetic energy and that kept the pre-impact
+    /// kinetic energy instead (branch `*-energy-capped` in the event log; ARCHITECTURE.md).
+    pub energy_capped_impacts: u64,
     /// First uplift.
     pub first_uplift_time: Option<Time>,
     /// First impact.
