@@ -10,16 +10,15 @@
 //! Exit codes: 0 ok, 2 invalid input (scene, record, arguments), 1 internal failure.
 //! The scene format is described in `scenes/README.md`.
 
-mod model;
 mod plot;
 mod report;
-mod scene;
 mod sweep;
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
+use rocking_scene::{model, scene};
 
 use crate::model::Model;
 use crate::scene::CliError;
