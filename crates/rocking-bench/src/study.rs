@@ -6,10 +6,9 @@ use std::path::Path;
 
 use rocking::{
     select_variant, simulate, Accuracy, DampingConvention, Dimensionless, Effects, EventKind,
-    History, ImpactModel, Initial, KernelVariant, Method, Options, Run, Structure,
+    History, ImpactModel, Initial, Method, Options, Run, Structure,
 };
-use rocking_kernels::kernels::{Full, MasslessBase, MasslessColumn, PointMass, Rigid, SmallAngle};
-use rocking_kernels::{Physical, Variant};
+use rocking_kernels::{with_variant, Physical, Variant};
 use rocking_motion::{read_at2, Excitation, GroundMotion, SinePulse};
 use serde::{Deserialize, Serialize};
 use serde_json::{json, Value};
@@ -517,8 +516,8 @@ fn production(case: &Case, acc: Accuracy, min_total: f64) -> (f64, usize, f64, f
 }
 
 /// ns per call of the rocking and contact right-hand sides of a variant (direct microtiming).
-fn kernel_ns<V: Variant>(ph: &Physical) -> (f64, f64) {
-    let p = V::params(ph);
+fn kernel_ns<V: Variant>(s: &Structure) -> (f64, f64) {
+    let p = s.params::<V>();
     let n = 2_000_000;
     let mut x = [0.05, 1e-3, -0.02, 3e-3];
     let best = |f: &mut dyn FnMut()| {
@@ -551,26 +550,14 @@ fn kernel_ns<V: Variant>(ph: &Physical) -> (f64, f64) {
     (rock, cont)
 }
 
-fn variant_ns(v: KernelVariant, ph: &Physical) -> (f64, f64) {
-    match v {
-        KernelVariant::Full => kernel_ns::<Full>(ph),
-        KernelVariant::MasslessColumn => kernel_ns::<MasslessColumn>(ph),
-        KernelVariant::MasslessBase => kernel_ns::<MasslessBase>(ph),
-        KernelVariant::PointMass => kernel_ns::<PointMass>(ph),
-        KernelVariant::Rigid => kernel_ns::<Rigid>(ph),
-        KernelVariant::SmallAngle => kernel_ns::<SmallAngle>(ph),
-    }
+/// ns per call of the kernels of the variant called `name` (through the generated dispatch).
+fn variant_ns(name: &str, s: &Structure) -> (f64, f64) {
+    with_variant!(name, V => kernel_ns::<V>(s)).expect("a generated variant")
 }
 
-fn params_of(v: KernelVariant, ph: &Physical) -> Vec<f64> {
-    match v {
-        KernelVariant::Full => Full::params(ph).as_ref().to_vec(),
-        KernelVariant::MasslessColumn => MasslessColumn::params(ph).as_ref().to_vec(),
-        KernelVariant::MasslessBase => MasslessBase::params(ph).as_ref().to_vec(),
-        KernelVariant::PointMass => PointMass::params(ph).as_ref().to_vec(),
-        KernelVariant::Rigid => Rigid::params(ph).as_ref().to_vec(),
-        KernelVariant::SmallAngle => SmallAngle::params(ph).as_ref().to_vec(),
-    }
+/// The parameter vector of the variant called `name` for the structure `s`.
+fn params_of(name: &str, s: &Structure) -> Vec<f64> {
+    with_variant!(name, V => s.params::<V>().as_ref().to_vec()).expect("a generated variant")
 }
 
 fn impact_name(i: ImpactModel) -> &'static str {
@@ -583,7 +570,7 @@ fn impact_name(i: ImpactModel) -> &'static str {
 }
 
 /// The case as the SciPy peer needs it.
-fn case_json(case: &Case, variant: KernelVariant, reduced: &Structure) -> Value {
+fn case_json(case: &Case, variant: &str, reduced: &Structure) -> Value {
     let d = reduced.derived();
     let rigid = !case.effects.flexibility;
     let motion = |m: &Excitation| -> Value {
@@ -599,8 +586,8 @@ fn case_json(case: &Case, variant: KernelVariant, reduced: &Structure) -> Value 
     };
     json!({
         "name": case.name,
-        "variant": variant.name(),
-        "params": params_of(variant, reduced.physical()),
+        "variant": variant,
+        "params": params_of(variant, reduced),
         "alpha": d.alpha, "p": d.p, "omega_n": d.omega_n, "e_ref": d.e_ref,
         "u_scale": if rigid { 1.0 } else { d.u_cr },
         "ud_scale": if rigid { 1.0 } else { d.u_cr * d.omega_n },
@@ -628,11 +615,12 @@ pub fn run(quick: bool, dir: &Path) -> Result<()> {
     let mut kernels = serde_json::Map::new();
     let t_study = std::time::Instant::now();
     for case in &cases {
-        let (reduced, variant, _) = select_variant(&case.structure, &case.effects)?;
+        let sel = select_variant(&case.structure, &case.effects)?;
+        let (reduced, variant) = (sel.structure, sel.variant.name);
         peer_cases.push(case_json(case, variant, &reduced));
-        let ns = variant_ns(variant, reduced.physical());
+        let ns = variant_ns(variant, &reduced);
         kernels.insert(
-            variant.name().into(),
+            variant.into(),
             json!({"rocking_rhs_ns": ns.0, "contact_rhs_ns": ns.1}),
         );
         let amps = case.slice.as_ref().map(|(_, a)| a.as_slice());
@@ -640,7 +628,7 @@ pub fn run(quick: bool, dir: &Path) -> Result<()> {
             "[{:7.1} s] {}: variant {}, reference DOP853 {REF_TOL:e}",
             t_study.elapsed().as_secs_f64(),
             case.name,
-            variant.name()
+            variant
         );
         let reference = diagnostic(
             case,
@@ -761,7 +749,7 @@ pub fn run(quick: bool, dir: &Path) -> Result<()> {
             });
         }
         out_cases.push(json!({
-            "name": case.name, "title": case.title, "variant": variant.name(),
+            "name": case.name, "title": case.title, "variant": variant,
             "reference": {"method": "dop853", "tol": REF_TOL, "answers": reference,
                           "boundary": amps.map(|a| boundary(&reference, a)),
                           "boundary_bisect": ref_bisect, "bracket": bracket},

@@ -10,6 +10,7 @@
 //! Exit codes: 0 ok, 2 invalid input (scene, record, arguments), 1 internal failure.
 //! The scene format is described in `scenes/README.md`.
 
+mod models;
 mod plot;
 mod report;
 mod sweep;
@@ -54,6 +55,12 @@ enum Command {
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
         /// Print the summary on stdout as one JSON object.
+        #[arg(long)]
+        json: bool,
+    },
+    /// List every model (from the derivation): variants, parameters and effect switches.
+    Models {
+        /// Print the list as one JSON object.
         #[arg(long)]
         json: bool,
     },
@@ -129,7 +136,9 @@ fn check(scene: &Path, set: &[String], json: bool) -> Result<(), CliError> {
     if json {
         let v = serde_json::json!({
             "scene": scene.display().to_string(),
-            "kernel_variant": m.variant.name(),
+            "model": m.structure.model().name,
+            "params": models::params_json(&m.structure),
+            "kernel_variant": m.variant.name,
             "variant_reasons": m.reasons,
             "excitation": m.excitation_description,
             "t_end": m.options.t_end * m.units.p_model,
@@ -145,7 +154,13 @@ fn check(scene: &Path, set: &[String], json: bool) -> Result<(), CliError> {
     if let Some(t) = &m.title {
         println!("title: {t}");
     }
-    println!("kernel variant: {}", m.variant.name());
+    let model = m.structure.model();
+    println!("model: {} ({})", model.name, model.description);
+    println!(
+        "parameters (model units): {}",
+        models::params_line(&m.structure)
+    );
+    println!("kernel variant: {}", m.variant.name);
     for r in &m.reasons {
         println!("  because {r}");
     }
@@ -301,6 +316,14 @@ fn main() -> ExitCode {
             json,
         } => run(&scene, &set, out, json),
         Command::Check { scene, set, json } => check(&scene, &set, json),
+        Command::Models { json } => {
+            if json {
+                println!("{}", models::json());
+            } else {
+                print!("{}", models::text());
+            }
+            Ok(())
+        }
         Command::Spectrum {
             scene,
             axes,

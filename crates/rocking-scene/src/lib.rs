@@ -2,5 +2,6 @@
 //! effects, options and units a run needs, with errors that name the file, line:column and key.
 //! The `rocking` command, the tests, the benchmark study and the examples load scenes through it.
 
+pub mod knob;
 pub mod model;
 pub mod scene;

@@ -165,9 +165,10 @@ fn run<V: Variant, M: GroundMotion, const NR: usize, const NC: usize>(
             opts.t_end
         )));
     }
-    let derived = structure.derived();
-    let p = V::params(structure.physical());
-    let rigid = V::NAME == "rigid";
+    // The running variant's own reference quantities and scales.
+    let derived = structure.derived_by::<V>();
+    let p = structure.params::<V>();
+    let rigid = V::RIGID;
     let (a, pf) = (derived.alpha, derived.p);
     let u_scale = if rigid { 1.0 } else { derived.u_cr };
     let ud_scale = if rigid {
@@ -301,7 +302,7 @@ impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M
         } else {
             (None, None)
         };
-        let rigid = V::NAME == "rigid";
+        let rigid = V::RIGID;
         let summary = Summary {
             kernel_variant: V::NAME,
             max_theta_over_alpha: self.max_theta / self.derived.alpha,

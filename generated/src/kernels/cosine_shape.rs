@@ -14,6 +14,12 @@ pub const MODEL: &str = "cosine";
 pub const TITLE: &str = "Example: the full model with the shape psi = 1 - cos(pi xi / 2H)";
 /// Names of the parameters, in the order of [`Params`].
 pub const PARAM_NAMES: [&str; 9] = ["h", "b", "ei", "m", "m_c", "m_b", "i_bc", "zeta", "g"];
+/// Mass (and inertia) parameters this variant removes: they are zero in its kernels.
+pub const REMOVED: &[&str] = &[];
+/// Rigid column (u = 0): one degree of freedom.
+pub const RIGID: bool = false;
+/// Linearised in θ.
+pub const SMALL_ANGLE: bool = false;
 
 /// Parameter vector of this variant, in this order:
 ///
@@ -32,10 +38,19 @@ pub const PARAM_NAMES: [&str; 9] = ["h", "b", "ei", "m", "m_c", "m_b", "i_bc", "
 /// Build it with [`params()`]; index it with the constants of [`param`].
 pub type Params = [f64; 9];
 
-/// Builds the parameter vector from the physical parameters.
+/// Builds the parameter vector from the physical parameters (the parameters the model adds take
+/// their defaults).
 #[inline]
 #[must_use]
 pub fn params(phys: &crate::Physical) -> Params {
+    params_with(phys, &[])
+}
+
+/// Builds the parameter vector from the physical parameters and the values of the parameters the
+/// model adds, in their order (missing ones take their defaults).
+#[inline]
+#[must_use]
+pub fn params_with(phys: &crate::Physical, _extra: &[f64]) -> Params {
     [
         phys.h,
         phys.b,
@@ -211,7 +226,7 @@ pub fn forcing(x: &[f64; 4], ug: f64, s: f64, p: &Params) -> [f64; 2] {
     let w14 = ug; // ug
     let w15 = w9 * w14;
     let w16 = w13 * w15;
-    let w17: f64 = 0.5;
+    let w17: f64 = 0.49999999999999994;
     let w18 = p[4]; // m_c
     let w19 = w18 * w14;
     let w20 = w17 * w19;
@@ -250,92 +265,93 @@ pub fn forcing(x: &[f64; 4], ug: f64, s: f64, p: &Params) -> [f64; 2] {
     let w53 = x[2]; // theta_dot
     let w54 = w53 * w8;
     let w55 = 2.0 * w54;
-    let w56 = w17 * w9;
-    let w57 = w55 * w56;
-    let w58 = w2 * w57;
-    let w59: f64 = 1.9999999999999998;
-    let w60 = w59 * w53;
-    let w61 = w56 * w60;
-    let w62 = w8 * w61;
-    let w63 = w58 + w62;
-    let w64: f64 = 0.05669011381620957;
-    let w65 = w64 * w18;
-    let w66 = w3 * w65;
-    let w67 = 2.0 * w53;
-    let w68 = w66 * w67;
-    let w69 = w53 * w3;
-    let w70 = 2.0 * w69;
-    let w71 = w70 * w65;
-    let w72 = w68 + w71;
-    let w73 = w63 + w72;
-    let w74 = w53 * w66;
-    let w75 = 2.0 * w74;
-    let w76 = w53 * w65;
-    let w77 = 2.0 * w76;
-    let w78 = w3 * w77;
-    let w79 = w75 + w78;
-    let w80 = w73 + w79;
-    let w81 = w53 * w7;
-    let w82 = -w81;
-    let w83 = 2.0 * w82;
-    let w84: f64 = 0.18169011381620961;
-    let w85 = w84 * w18;
-    let w86 = w83 * w85;
-    let w87 = w80 + w86;
-    let w88 = w53 * w85;
-    let w89 = 2.0 * w88;
-    let w90 = w7 * w89;
-    let w91 = w87 - w90;
-    let w92 = x[3]; // u_dot
-    let w93 = w91 * w92;
-    let w94 = w52 - w93;
-    let o0 = w94; // f_theta
-    let w95 = 2.0 * w3;
-    let w96: f64 = -1.5220170474062875;
-    let w97 = p[2]; // ei
-    let w98 = w13 * w13;
-    let w99 = w13 * w98;
-    let w100 = w97 / w99;
-    let w101 = w96 * w100;
-    let w102 = w95 * w101;
-    let w103 = w1 * w15;
-    let w104 = w2 * w103;
-    let w105 = w1 * w41;
-    let w106 = w104 + w105;
-    let w107 = w102 - w106;
-    let w108 = w36 * w11;
-    let w109 = w2 * w108;
-    let w110 = w107 + w109;
-    let w111 = w36 * w30;
-    let w112 = w110 + w111;
-    let w113 = w53 * w57;
-    let w114 = w2 * w113;
-    let w115 = w112 + w114;
-    let w116 = w53 * w70;
-    let w117 = w116 * w65;
-    let w118 = w115 + w117;
-    let w119 = w53 * w75;
-    let w120 = w118 + w119;
-    let w121 = w53 * w83;
-    let w122 = w121 * w85;
-    let w123 = w120 + w122;
-    let w124 = p[7]; // zeta
-    let w125 = 2.0 * w124;
-    let w126: f64 = 3.044034094812575;
-    let w127 = w126 * w100;
-    let w128: f64 = 0.9999999999999998;
-    let w129 = w128 * w9;
-    let w130: f64 = 0.11338022763241914;
-    let w131 = w130 * w18;
-    let w132 = w129 + w131;
-    let w133 = w132 + w131;
-    let w134 = w127 / w133;
-    let w135 = w134.sqrt();
-    let w136 = w125 * w135;
-    let w137 = w136 * w133;
-    let w138 = w137 * w92;
-    let w139 = w123 - w138;
-    let o1 = w139; // f_u
+    let w56: f64 = 0.5;
+    let w57 = w56 * w9;
+    let w58 = w55 * w57;
+    let w59 = w2 * w58;
+    let w60: f64 = 1.9999999999999998;
+    let w61 = w60 * w53;
+    let w62 = w57 * w61;
+    let w63 = w8 * w62;
+    let w64 = w59 + w63;
+    let w65: f64 = 0.05669011381620957;
+    let w66 = w65 * w18;
+    let w67 = w3 * w66;
+    let w68 = 2.0 * w53;
+    let w69 = w67 * w68;
+    let w70 = w53 * w3;
+    let w71 = 2.0 * w70;
+    let w72 = w71 * w66;
+    let w73 = w69 + w72;
+    let w74 = w64 + w73;
+    let w75 = w53 * w67;
+    let w76 = 2.0 * w75;
+    let w77 = w53 * w66;
+    let w78 = 2.0 * w77;
+    let w79 = w3 * w78;
+    let w80 = w76 + w79;
+    let w81 = w74 + w80;
+    let w82 = w53 * w7;
+    let w83 = -w82;
+    let w84 = 2.0 * w83;
+    let w85: f64 = 0.18169011381620961;
+    let w86 = w85 * w18;
+    let w87 = w84 * w86;
+    let w88 = w81 + w87;
+    let w89 = w53 * w86;
+    let w90 = 2.0 * w89;
+    let w91 = w7 * w90;
+    let w92 = w88 - w91;
+    let w93 = x[3]; // u_dot
+    let w94 = w92 * w93;
+    let w95 = w52 - w94;
+    let o0 = w95; // f_theta
+    let w96 = 2.0 * w3;
+    let w97: f64 = -1.5220170474062875;
+    let w98 = p[2]; // ei
+    let w99 = w13 * w13;
+    let w100 = w13 * w99;
+    let w101 = w98 / w100;
+    let w102 = w97 * w101;
+    let w103 = w96 * w102;
+    let w104 = w1 * w15;
+    let w105 = w2 * w104;
+    let w106 = w1 * w41;
+    let w107 = w105 + w106;
+    let w108 = w103 - w107;
+    let w109 = w36 * w11;
+    let w110 = w2 * w109;
+    let w111 = w108 + w110;
+    let w112 = w36 * w30;
+    let w113 = w111 + w112;
+    let w114 = w53 * w58;
+    let w115 = w2 * w114;
+    let w116 = w113 + w115;
+    let w117 = w53 * w71;
+    let w118 = w117 * w66;
+    let w119 = w116 + w118;
+    let w120 = w53 * w76;
+    let w121 = w119 + w120;
+    let w122 = w53 * w84;
+    let w123 = w122 * w86;
+    let w124 = w121 + w123;
+    let w125 = p[7]; // zeta
+    let w126 = 2.0 * w125;
+    let w127: f64 = 3.044034094812575;
+    let w128 = w127 * w101;
+    let w129: f64 = 0.9999999999999998;
+    let w130 = w129 * w9;
+    let w131: f64 = 0.11338022763241914;
+    let w132 = w131 * w18;
+    let w133 = w130 + w132;
+    let w134 = w133 + w132;
+    let w135 = w128 / w134;
+    let w136 = w135.sqrt();
+    let w137 = w126 * w136;
+    let w138 = w137 * w134;
+    let w139 = w138 * w93;
+    let w140 = w124 - w139;
+    let o1 = w140; // f_u
     [o0, o1]
 }
 
@@ -404,7 +420,7 @@ pub fn rocking_rhs(x: &[f64; 4], ug: f64, s: f64, p: &Params) -> [f64; 4] {
     let w23 = ug; // ug
     let w24 = w3 * w23;
     let w25 = w22 * w24;
-    let w26: f64 = 0.5;
+    let w26: f64 = 0.49999999999999994;
     let w27 = w6 * w23;
     let w28 = w26 * w27;
     let w29 = w22 * w28;
@@ -441,138 +457,139 @@ pub fn rocking_rhs(x: &[f64; 4], ug: f64, s: f64, p: &Params) -> [f64; 4] {
     let w60 = w43 - w59;
     let w61 = w0 * w18;
     let w62 = 2.0 * w61;
-    let w63 = w26 * w3;
-    let w64 = w62 * w63;
-    let w65 = w12 * w64;
-    let w66: f64 = 1.9999999999999998;
-    let w67 = w66 * w0;
-    let w68 = w63 * w67;
-    let w69 = w18 * w68;
-    let w70 = w65 + w69;
-    let w71: f64 = 0.05669011381620957;
-    let w72 = w71 * w6;
-    let w73 = w13 * w72;
-    let w74 = 2.0 * w0;
-    let w75 = w73 * w74;
-    let w76 = w0 * w13;
-    let w77 = 2.0 * w76;
-    let w78 = w77 * w72;
-    let w79 = w75 + w78;
-    let w80 = w70 + w79;
-    let w81 = w0 * w73;
-    let w82 = 2.0 * w81;
-    let w83 = w0 * w72;
-    let w84 = 2.0 * w83;
-    let w85 = w13 * w84;
-    let w86 = w82 + w85;
-    let w87 = w80 + w86;
-    let w88 = w0 * w17;
-    let w89 = -w88;
-    let w90 = 2.0 * w89;
-    let w91: f64 = 0.18169011381620961;
-    let w92 = w91 * w6;
-    let w93 = w90 * w92;
-    let w94 = w87 + w93;
-    let w95 = w0 * w92;
-    let w96 = 2.0 * w95;
-    let w97 = w17 * w96;
-    let w98 = w94 - w97;
-    let w99 = w98 * w1;
-    let w100 = w60 - w99;
-    let w101 = w9 * w100;
-    let w102 = w12 * w3;
-    let w103 = w22 * w102;
-    let w104: f64 = 0.13433248110088528;
-    let w105 = w104 * w6;
-    let w106 = w22 * w105;
-    let w107 = 2.0 * w106;
-    let w108 = w103 + w107;
-    let w109 = 2.0 * w13;
-    let w110: f64 = -1.5220170474062875;
-    let w111 = p[2]; // ei
-    let w112 = w22 * w22;
-    let w113 = w22 * w112;
-    let w114 = w111 / w113;
-    let w115 = w110 * w114;
-    let w116 = w109 * w115;
-    let w117 = w11 * w24;
-    let w118 = w12 * w117;
-    let w119 = w11 * w49;
-    let w120 = w118 + w119;
-    let w121 = w116 - w120;
-    let w122 = w44 * w20;
-    let w123 = w12 * w122;
-    let w124 = w121 + w123;
-    let w125 = w44 * w38;
-    let w126 = w124 + w125;
-    let w127 = w0 * w64;
-    let w128 = w12 * w127;
-    let w129 = w126 + w128;
-    let w130 = w0 * w77;
-    let w131 = w130 * w72;
-    let w132 = w129 + w131;
-    let w133 = w0 * w82;
-    let w134 = w132 + w133;
-    let w135 = w0 * w90;
-    let w136 = w135 * w92;
-    let w137 = w134 + w136;
-    let w138 = p[7]; // zeta
-    let w139 = 2.0 * w138;
-    let w140: f64 = 3.044034094812575;
-    let w141 = w140 * w114;
-    let w142 = w141 / w9;
-    let w143 = w142.sqrt();
-    let w144 = w139 * w143;
-    let w145 = w144 * w9;
-    let w146 = w145 * w1;
-    let w147 = w137 - w146;
-    let w148 = w108 * w147;
-    let w149 = w101 - w148;
-    let w150 = p[6]; // i_bc
-    let w151 = 2.0 * w18;
-    let w152 = w63 * w151;
-    let w153 = w18 * w152;
-    let w154 = w150 + w153;
-    let w155 = 2.0 * w22;
-    let w156 = w63 * w155;
-    let w157 = w22 * w156;
-    let w158 = w154 + w157;
-    let w159 = w73 * w109;
-    let w160 = w158 + w159;
-    let w161 = 2.0 * w73;
-    let w162 = w13 * w161;
-    let w163 = w160 + w162;
-    let w164: f64 = 0.08333333333333348;
-    let w165 = w164 * w6;
-    let w166 = w22 * w165;
-    let w167 = w166 * w155;
-    let w168 = w163 + w167;
-    let w169 = 2.0 * w166;
-    let w170 = w22 * w169;
-    let w171 = w168 + w170;
-    let w172 = w13 * w92;
-    let w173 = -w17;
-    let w174 = 2.0 * w173;
-    let w175 = w172 * w174;
-    let w176 = w171 + w175;
-    let w177 = 2.0 * w172;
-    let w178 = w17 * w177;
-    let w179 = w176 - w178;
-    let w180 = w26 * w6;
-    let w181 = 2.0 * w17;
-    let w182 = w180 * w181;
-    let w183 = w17 * w182;
-    let w184 = w179 + w183;
-    let w185 = w184 * w9;
-    let w186 = w108 * w108;
-    let w187 = w185 - w186;
-    let w188 = w149 / w187;
-    let o2 = w188; // theta_ddot
-    let w189 = w184 * w147;
-    let w190 = w108 * w100;
-    let w191 = w189 - w190;
-    let w192 = w191 / w187;
-    let o3 = w192; // u_ddot
+    let w63: f64 = 0.5;
+    let w64 = w63 * w3;
+    let w65 = w62 * w64;
+    let w66 = w12 * w65;
+    let w67: f64 = 1.9999999999999998;
+    let w68 = w67 * w0;
+    let w69 = w64 * w68;
+    let w70 = w18 * w69;
+    let w71 = w66 + w70;
+    let w72: f64 = 0.05669011381620957;
+    let w73 = w72 * w6;
+    let w74 = w13 * w73;
+    let w75 = 2.0 * w0;
+    let w76 = w74 * w75;
+    let w77 = w0 * w13;
+    let w78 = 2.0 * w77;
+    let w79 = w78 * w73;
+    let w80 = w76 + w79;
+    let w81 = w71 + w80;
+    let w82 = w0 * w74;
+    let w83 = 2.0 * w82;
+    let w84 = w0 * w73;
+    let w85 = 2.0 * w84;
+    let w86 = w13 * w85;
+    let w87 = w83 + w86;
+    let w88 = w81 + w87;
+    let w89 = w0 * w17;
+    let w90 = -w89;
+    let w91 = 2.0 * w90;
+    let w92: f64 = 0.18169011381620961;
+    let w93 = w92 * w6;
+    let w94 = w91 * w93;
+    let w95 = w88 + w94;
+    let w96 = w0 * w93;
+    let w97 = 2.0 * w96;
+    let w98 = w17 * w97;
+    let w99 = w95 - w98;
+    let w100 = w99 * w1;
+    let w101 = w60 - w100;
+    let w102 = w9 * w101;
+    let w103 = w12 * w3;
+    let w104 = w22 * w103;
+    let w105: f64 = 0.13433248110088528;
+    let w106 = w105 * w6;
+    let w107 = w22 * w106;
+    let w108 = 2.0 * w107;
+    let w109 = w104 + w108;
+    let w110 = 2.0 * w13;
+    let w111: f64 = -1.5220170474062875;
+    let w112 = p[2]; // ei
+    let w113 = w22 * w22;
+    let w114 = w22 * w113;
+    let w115 = w112 / w114;
+    let w116 = w111 * w115;
+    let w117 = w110 * w116;
+    let w118 = w11 * w24;
+    let w119 = w12 * w118;
+    let w120 = w11 * w49;
+    let w121 = w119 + w120;
+    let w122 = w117 - w121;
+    let w123 = w44 * w20;
+    let w124 = w12 * w123;
+    let w125 = w122 + w124;
+    let w126 = w44 * w38;
+    let w127 = w125 + w126;
+    let w128 = w0 * w65;
+    let w129 = w12 * w128;
+    let w130 = w127 + w129;
+    let w131 = w0 * w78;
+    let w132 = w131 * w73;
+    let w133 = w130 + w132;
+    let w134 = w0 * w83;
+    let w135 = w133 + w134;
+    let w136 = w0 * w91;
+    let w137 = w136 * w93;
+    let w138 = w135 + w137;
+    let w139 = p[7]; // zeta
+    let w140 = 2.0 * w139;
+    let w141: f64 = 3.044034094812575;
+    let w142 = w141 * w115;
+    let w143 = w142 / w9;
+    let w144 = w143.sqrt();
+    let w145 = w140 * w144;
+    let w146 = w145 * w9;
+    let w147 = w146 * w1;
+    let w148 = w138 - w147;
+    let w149 = w109 * w148;
+    let w150 = w102 - w149;
+    let w151 = p[6]; // i_bc
+    let w152 = 2.0 * w18;
+    let w153 = w64 * w152;
+    let w154 = w18 * w153;
+    let w155 = w151 + w154;
+    let w156 = 2.0 * w22;
+    let w157 = w64 * w156;
+    let w158 = w22 * w157;
+    let w159 = w155 + w158;
+    let w160 = w74 * w110;
+    let w161 = w159 + w160;
+    let w162 = 2.0 * w74;
+    let w163 = w13 * w162;
+    let w164 = w161 + w163;
+    let w165: f64 = 0.08333333333333348;
+    let w166 = w165 * w6;
+    let w167 = w22 * w166;
+    let w168 = w167 * w156;
+    let w169 = w164 + w168;
+    let w170 = 2.0 * w167;
+    let w171 = w22 * w170;
+    let w172 = w169 + w171;
+    let w173 = w13 * w93;
+    let w174 = -w17;
+    let w175 = 2.0 * w174;
+    let w176 = w173 * w175;
+    let w177 = w172 + w176;
+    let w178 = 2.0 * w173;
+    let w179 = w17 * w178;
+    let w180 = w177 - w179;
+    let w181 = w63 * w6;
+    let w182 = 2.0 * w17;
+    let w183 = w181 * w182;
+    let w184 = w17 * w183;
+    let w185 = w180 + w184;
+    let w186 = w185 * w9;
+    let w187 = w109 * w109;
+    let w188 = w186 - w187;
+    let w189 = w150 / w188;
+    let o2 = w189; // theta_ddot
+    let w190 = w185 * w148;
+    let w191 = w109 * w101;
+    let w192 = w190 - w191;
+    let w193 = w192 / w188;
+    let o3 = w193; // u_ddot
     [o0, o1, o2, o3]
 }
 
@@ -708,7 +725,7 @@ pub fn uplift(xc: &[f64; 2], ug: f64, s: f64, p: &Params) -> f64 {
     let w12 = ug; // ug
     let w13 = w7 * w12;
     let w14 = w11 * w13;
-    let w15: f64 = 0.5;
+    let w15: f64 = 0.49999999999999994;
     let w16 = p[4]; // m_c
     let w17 = w16 * w12;
     let w18 = w15 * w17;
@@ -864,7 +881,7 @@ pub fn energy(x: &[f64; 4], s: f64, p: &Params) -> [f64; 4] {
     let w60 = x[0]; // theta
     let w61 = w60.sin();
     let w62 = w4 * w61;
-    let w63: f64 = 0.5;
+    let w63: f64 = 0.49999999999999994;
     let w64 = w60.cos();
     let w65 = w16 * w64;
     let w66 = w63 * w65;
@@ -952,7 +969,7 @@ pub mod energy {
 pub fn power(x: &[f64; 4], ug: f64, s: f64, p: &Params) -> [f64; 2] {
     let w0 = ug; // ug
     let w1 = p[4]; // m_c
-    let w2: f64 = 0.5;
+    let w2: f64 = 0.49999999999999994;
     let w3 = p[0]; // h
     let w4 = x[0]; // theta
     let w5 = w4.cos();
@@ -1350,7 +1367,7 @@ pub fn impact_adjex(xi: &[f64; 3], s: f64, p: &Params) -> [f64; 8] {
     let w164 = w163 / w63;
     let w165 = w161 + w164;
     let o5 = w165; // energy_before
-    let w166: f64 = 0.5;
+    let w166: f64 = 0.49999999999999994;
     let w167 = w2 * w3;
     let w168 = w166 * w167;
     let w169 = w71 * w15;
@@ -1602,7 +1619,7 @@ pub mod impact_housner {
     }
 }
 
-/// Fixed-base and reference quantities: eqs (5)-(7), (18)-(19), (39)-(40), E_ref (the rigid column's potential-energy barrier with all masses), R, alpha and p = sqrt(g/R).
+/// Fixed-base and reference quantities: eqs (5)-(7), (18)-(19), (39)-(40), E_ref (the rigid column's potential-energy barrier with all masses), R, alpha, p = sqrt(g/R) and the thin-plate base inertia 4/3 m_b B^2 (the unit of gamma_ib).
 ///
 /// # Inputs
 ///
@@ -1610,12 +1627,12 @@ pub mod impact_housner {
 ///
 /// # Output
 ///
-/// `st: [f64; 14]`: structure quantities — `m_tilde`, `k_tilde`, `gamma_tilde`, `omega_n`, `damping_c`, `modal_s`, `omega_up`, `zeta_up`, `theta_cr`, `u_cr`, `e_ref`, `r`, `alpha`, `p_freq`
+/// `st: [f64; 15]`: structure quantities — `m_tilde`, `k_tilde`, `gamma_tilde`, `omega_n`, `damping_c`, `modal_s`, `omega_up`, `zeta_up`, `theta_cr`, `u_cr`, `e_ref`, `r`, `alpha`, `p_freq`, `i_bc_plate`
 ///
-/// Operations: 90 (43 mul, 16 add, 8 div, 6 twice, 5 sq, 5 sqrt, 4 sub, 2 atan2, 1 neg).
+/// Operations: 93 (45 mul, 16 add, 9 div, 6 twice, 5 sq, 5 sqrt, 4 sub, 2 atan2, 1 neg).
 #[inline]
 #[must_use]
-pub fn structure(p: &Params) -> [f64; 14] {
+pub fn structure(p: &Params) -> [f64; 15] {
     let w0: f64 = 0.9999999999999998;
     let w1 = p[3]; // m
     let w2 = w0 * w1;
@@ -1698,47 +1715,70 @@ pub fn structure(p: &Params) -> [f64; 14] {
     let w71 = w70 * w28;
     let w72 = w69 + w71;
     let w73 = w66 * w72;
-    let w74 = w29 * w10;
-    let w75 = w4 * w74;
-    let w76 = w1 * w10;
-    let w77 = w75 + w76;
-    let w78 = w66 * w77;
-    let w79 = w73.atan2(w78);
-    let o8 = w79; // theta_cr
-    let w80 = w1 * w66;
-    let w81 = w28 * w80;
-    let w82 = w70 * w66;
-    let w83 = w28 * w82;
-    let w84 = w81 + w83;
-    let w85 = w4 * w66;
-    let w86 = w28 * w85;
-    let w87 = w84 + w86;
-    let w88 = w15 * w80;
-    let w89 = w17 * w85;
-    let w90 = w88 + w89;
-    let w91: f64 = -3.044034094812575;
-    let w92 = w91 * w13;
-    let w93 = w92 / w7;
-    let w94 = w58 * w93;
-    let w95 = w90 - w94;
-    let w96 = w87 / w95;
-    let o9 = w96; // u_cr
-    let w97 = w73 * w73;
-    let w98 = w78 * w78;
-    let w99 = w97 + w98;
-    let w100 = w99.sqrt();
-    let w101 = w100 - w78;
-    let o10 = w101; // e_ref
-    let w102 = w28 * w28;
-    let w103 = w11 + w102;
-    let w104 = w103.sqrt();
-    let o11 = w104; // r
-    let w105 = w28.atan2(w10);
-    let o12 = w105; // alpha
-    let w106 = w66 / w104;
-    let w107 = w106.sqrt();
-    let o13 = w107; // p_freq
-    [o0, o1, o2, o3, o4, o5, o6, o7, o8, o9, o10, o11, o12, o13]
+    let w74: f64 = 0.49999999999999994;
+    let w75 = w74 * w10;
+    let w76 = w4 * w75;
+    let w77 = w1 * w10;
+    let w78 = w76 + w77;
+    let w79 = w66 * w78;
+    let w80 = w73.atan2(w79);
+    let o8 = w80; // theta_cr
+    let w81 = w1 * w66;
+    let w82 = w28 * w81;
+    let w83 = w70 * w66;
+    let w84 = w28 * w83;
+    let w85 = w82 + w84;
+    let w86 = w4 * w66;
+    let w87 = w28 * w86;
+    let w88 = w85 + w87;
+    let w89 = w15 * w81;
+    let w90 = w17 * w86;
+    let w91 = w89 + w90;
+    let w92: f64 = -3.044034094812575;
+    let w93 = w92 * w13;
+    let w94 = w93 / w7;
+    let w95 = w58 * w94;
+    let w96 = w91 - w95;
+    let w97 = w88 / w96;
+    let o9 = w97; // u_cr
+    let w98 = w73 * w73;
+    let w99 = w79 * w79;
+    let w100 = w98 + w99;
+    let w101 = w100.sqrt();
+    let w102 = w101 - w79;
+    let o10 = w102; // e_ref
+    let w103 = w28 * w28;
+    let w104 = w11 + w103;
+    let w105 = w104.sqrt();
+    let o11 = w105; // r
+    let w106 = w28.atan2(w10);
+    let o12 = w106; // alpha
+    let w107 = w66 / w105;
+    let w108 = w107.sqrt();
+    let o13 = w108; // p_freq
+    let w109: f64 = 4.0;
+    let w110 = w109 * w70;
+    let w111 = w110 * w103;
+    let w112: f64 = 3.0;
+    let w113 = w111 / w112;
+    let o14 = w113; // i_bc_plate
+    [
+        o0,
+        o1,
+        o2,
+        o3,
+        o4,
+        o5,
+        o6,
+        o7,
+        o8,
+        o9,
+        o10,
+        o11,
+        o12,
+        o13,
+        o14,
+    ]
 }
 
 /// Indices of the elements of the output `st` of [`structure()`].
@@ -1771,6 +1811,8 @@ pub mod structure {
     pub const ALPHA: usize = 12;
     /// Index of `p_freq`.
     pub const P_FREQ: usize = 13;
+    /// Index of `i_bc_plate`.
+    pub const I_BC_PLATE: usize = 14;
 }
 
 /// Example: the full model with the shape psi = 1 - cos(pi xi / 2H)
@@ -1784,11 +1826,19 @@ impl crate::Variant for CosineShape {
     const MODEL: &'static str = MODEL;
     const TITLE: &'static str = TITLE;
     const PARAM_NAMES: &'static [&'static str] = &PARAM_NAMES;
+    const REMOVED: &'static [&'static str] = REMOVED;
+    const RIGID: bool = RIGID;
+    const SMALL_ANGLE: bool = SMALL_ANGLE;
     type Params = Params;
 
     #[inline]
     fn params(phys: &crate::Physical) -> Params {
         params(phys)
+    }
+
+    #[inline]
+    fn params_with(phys: &crate::Physical, extra: &[f64]) -> Params {
+        params_with(phys, extra)
     }
 
     #[inline]
@@ -1842,7 +1892,7 @@ impl crate::Variant for CosineShape {
     }
 
     #[inline]
-    fn structure(p: &Params) -> [f64; 14] {
+    fn structure(p: &Params) -> [f64; 15] {
         structure(p)
     }
 }
