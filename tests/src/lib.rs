@@ -65,26 +65,26 @@ pub fn dimensionless(
     Structure::from_dimensionless(&d, None).expect("valid dimensionless structure")
 }
 
-/// The paper's Fig. 3 structure: point mass, ω_n/p = 11.9, α = 0.2, ζ = 0.005 fixed-base.
+/// The paper's Fig. 3 structure (point mass, ω_n/p = 11.9, α = 0.2, ζ = 0.005 fixed-base), from
+/// `scenes/fig3-vvel.toml`.
 pub fn fig3_structure() -> Structure {
-    dimensionless(0.2, 11.9, 0.0, 0.0, 0.005, DampingConvention::FixedBase)
+    scene("fig3-vvel.toml", &[]).structure
 }
 
-/// The paper's Fig. 3 pulse: a_p/(g tan α) = 1.30, ω_p/p = 5.1 (α = 0.2).
+/// The paper's Fig. 3 pulse (a_p/(g tan α) = 1.30, ω_p/p = 5.1, α = 0.2), from
+/// `scenes/fig3-vvel.toml`.
 pub fn fig3_pulse() -> rocking_motion::SinePulse {
-    rocking_motion::SinePulse::new(1.30 * 0.2f64.tan(), 5.1)
+    match scene("fig3-vvel.toml", &[]).excitation {
+        rocking_motion::Excitation::Sine(p) => p,
+        other => panic!("scenes/fig3-vvel.toml: a sine pulse, not {other:?}"),
+    }
 }
 
-/// The Fig.-5 models: α = 0.1, γ_mc = 1, γ_mb = 2, γ_Ib = 1, ζ = 0.005 fixed-base.
+/// The Fig.-5 models (α = 0.1, γ_mc = 1, γ_mb = 2, γ_Ib = 1, ζ = 0.005 fixed-base) at
+/// `omega_n_over_p`, from `scenes/fig5-flexible.toml`.
 pub fn fig5_structure(omega_n_over_p: f64) -> Structure {
-    dimensionless(
-        0.1,
-        omega_n_over_p,
-        1.0,
-        2.0,
-        0.005,
-        DampingConvention::FixedBase,
-    )
+    let set = format!("structure.omega_n_over_p={omega_n_over_p:?}");
+    scene("fig5-flexible.toml", &[&set]).structure
 }
 
 /// Asserts the sanity every run must have: solver statistics > 0 and no NaN (or infinity)

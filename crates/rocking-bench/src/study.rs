@@ -8,8 +8,8 @@ use rocking::{
     select_variant, simulate, Accuracy, DampingConvention, Dimensionless, Effects, EventKind,
     History, ImpactModel, Initial, Method, Options, Run, Structure,
 };
-use rocking_kernels::{with_variant, Physical, Variant};
-use rocking_motion::{read_at2, Excitation, GroundMotion, SinePulse};
+use rocking_kernels::{with_variant, Variant};
+use rocking_motion::{Excitation, SinePulse};
 use serde::{Deserialize, Serialize};
 use serde_json::{json, Value};
 
@@ -75,11 +75,21 @@ fn housner_impacts(alpha: f64, theta0: f64, t_end: f64) -> Vec<f64> {
     out
 }
 
+/// The setup of a scene of `scenes/` with overrides, through `rocking-scene` (the paper's cases
+/// are typed once, in their scene files).
+fn scene(file: &str, sets: &[String]) -> Result<rocking_scene::model::Model> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../scenes")
+        .join(file);
+    let sc = rocking_scene::scene::load(&path, sets).map_err(|e| e.to_string())?;
+    Ok(rocking_scene::model::build(&sc).map_err(|e| e.to_string())?)
+}
+
 pub fn cases(quick: bool) -> Result<Vec<Case>> {
     let fb = DampingConvention::FixedBase;
     let mut v = Vec::new();
-    let fig3 = dimless(0.2, 11.9, 0.0, 0.0, 0.005, fb);
-    let fig3_pulse = SinePulse::new(1.30 * 0.2f64.tan(), 5.1);
+    let fig3_scene = scene("fig3-vvel.toml", &[])?;
+    let (fig3, fig3_pulse) = (fig3_scene.structure, fig3_scene.excitation);
     for (name, impact) in [
         ("fig3-vvel", ImpactModel::Vvel),
         ("fig3-adjex", ImpactModel::Adjex),
@@ -95,7 +105,7 @@ pub fn cases(quick: bool) -> Result<Vec<Case>> {
             ),
             structure: fig3,
             effects: Effects::default(),
-            motion: fig3_pulse.into(),
+            motion: fig3_pulse.clone(),
             impact,
             t_end: 8.0,
             initial: Initial::default(),
@@ -103,7 +113,6 @@ pub fn cases(quick: bool) -> Result<Vec<Case>> {
             exact_impacts: None,
         });
     }
-    let pulse5 = SinePulse::new(3.0 * 0.1f64.tan(), 4.0);
     let t5 = 2.0 * PI / 4.0 + 20.0;
     for (name, wn) in [
         ("fig5-flexible", 5.0),
@@ -113,15 +122,19 @@ pub fn cases(quick: bool) -> Result<Vec<Case>> {
         if quick && name != "fig5-flexible" {
             continue;
         }
+        let fig5 = scene(
+            "fig5-flexible.toml",
+            &[format!("structure.omega_n_over_p={wn:?}")],
+        )?;
         v.push(Case {
             name,
             title: format!(
                 "{}: γ_mc = 1, γ_mb = 2, γ_Ib = 1, α = 0.1, ζ = 0.005 fixed-base, ω_n/p = {wn}; sine ω_p/p = 4, a_p/(g tan α) = 3; VVEL; τ ≤ pulse + 20",
                 match name { "fig5-flexible" => "Fig. 5 flexible", "fig5-stiff" => "Fig. 5 stiff", _ => "Near-rigid column" }
             ),
-            structure: dimless(0.1, wn, 1.0, 2.0, 0.005, fb),
+            structure: fig5.structure,
             effects: Effects::default(),
-            motion: pulse5.into(),
+            motion: fig5.excitation,
             impact: ImpactModel::Vvel,
             t_end: t5,
             initial: Initial::default(),
@@ -144,33 +157,15 @@ pub fn cases(quick: bool) -> Result<Vec<Case>> {
         exact_impacts: Some(housner_impacts(alpha, 0.5 * alpha, t_rigid)),
     });
     if !quick {
-        // 123 m wind turbine under El Centro 1940 NS × 3 (scenes/wind-turbine-elcentro.toml).
-        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/records/elCentro.AT2");
-        let at2 = read_at2(&path).map_err(|e| format!("{}: {e}", path.display()))?;
-        let record = at2
-            .to_record()
-            .with_scale(3.0 * rocking_motion::STANDARD_GRAVITY);
-        let (b, m_b) = (6.0, 6.0e5);
-        let ph = Physical {
-            h: 120.0,
-            b,
-            ei: 4.163e11,
-            m: 3.0e5,
-            m_c: 3.0e5,
-            m_b,
-            i_bc: 4.0 / 3.0 * m_b * b * b,
-            zeta: 0.01,
-            g: 9.81,
-        };
-        let structure = Structure::from_physical(ph)?;
-        let p = structure.derived().p;
-        let t_end = record.end() + 10.0 / p;
+        // 123 m wind turbine under El Centro 1940 NS × 3: the scene's structure, record and end.
+        let turbine = scene("wind-turbine-elcentro.toml", &[])?;
+        let (structure, t_end) = (turbine.structure, turbine.options.t_end);
         v.push(Case {
             name: "elcentro-turbine",
             title: "123 m wind turbine (H = 120 m, B = 6 m, T_n ≈ 4.5 s, SI units) under El Centro 1940 NS × 3; VVEL; record + 10/p".into(),
             structure,
             effects: Effects::default(),
-            motion: record.into(),
+            motion: turbine.excitation,
             impact: ImpactModel::Vvel,
             t_end,
             initial: Initial::default(),
@@ -188,7 +183,7 @@ pub fn cases(quick: bool) -> Result<Vec<Case>> {
         title: format!(
             "Fig-8 spectrum column: γ_mb = γ_mc = 2, ω_n/p = 5, α = 0.1, uplifted ζ = 0.01; sine ω_p/p = 4, a_p/(g tan α) = 1..20 ({n} cells); τ ≤ pulse + 20"
         ),
-        structure: dimless(0.1, 5.0, 2.0, 2.0, 0.01, DampingConvention::Uplifted),
+        structure: scene("spectra/fig8.toml", &[])?.structure,
         effects: Effects::default(),
         motion: Excitation::None,
         impact: ImpactModel::Vvel,

@@ -218,7 +218,20 @@ pub fn select_variant(structure: &Structure, effects: &Effects) -> Result<Select
             variant.title
         ));
     } else if !variant.rigid && !variant.small_angle {
-        reasons.push(format!("no mass to remove: {}", variant.title));
+        let zero: Vec<&str> = model
+            .removable_masses()
+            .filter(|m| s.param(m) == Some(0.0))
+            .collect();
+        reasons.push(if zero.is_empty() {
+            format!("all masses present: {}", variant.title)
+        } else {
+            format!(
+                "no variant of model `{}` removes {} = 0: {}",
+                model.name,
+                zero.join(", "),
+                variant.title
+            )
+        });
     }
     Ok(Selection {
         structure: s,
