@@ -38,7 +38,7 @@ pub struct StructureSpec {
     /// The values of the parameters the model adds (`m_a = 0.5`), taken out of the table before
     /// the rest is deserialized.
     #[serde(skip)]
-    pub extra: Vec<(&'static str, f64)>,
+    pub extra: ModelParams,
     // Dimensionless form (eq 34).
     pub omega_n_over_p: Option<f64>,
     pub alpha: Option<f64>,
@@ -89,7 +89,7 @@ pub struct EffectsSpec {
     /// The model's removable masses switched on or off by name (`m_a = false`), taken out of the
     /// table before the rest is deserialized.
     #[serde(skip)]
-    pub masses: Vec<(&'static str, bool)>,
+    pub masses: MassSwitches,
     pub flexibility: Option<bool>,
     pub column_mass: Option<bool>,
     pub base_mass: Option<bool>,
@@ -468,13 +468,18 @@ fn scene_model(table: &Table, src: &Source) -> Result<&'static ModelInfo, CliErr
     })
 }
 
+/// A model's own parameters given in a scene, by name.
+pub type ModelParams = Vec<(&'static str, f64)>;
+/// A model's mass switches given in a scene, by name.
+pub type MassSwitches = Vec<(&'static str, bool)>;
+
 /// Takes the keys that are data of the model out of `table`: its own parameters in [structure]
 /// and its removable masses as switches in [effects].
 fn take_model_keys(
     model: &'static ModelInfo,
     table: &mut Table,
     src: &Source,
-) -> Result<(Vec<(&'static str, f64)>, Vec<(&'static str, bool)>), CliError> {
+) -> Result<(ModelParams, MassSwitches), CliError> {
     let mut extra = Vec::new();
     if let Some(Value::Table(st)) = table.get_mut("structure") {
         for p in model.extra_params() {
