@@ -11,7 +11,7 @@ import mpmath
 
 from . import __version__
 from .kernels import Kernel, kernels
-from .models import Variant
+from .models import BaseMass, ColumnMass, LumpedMass, Variant
 
 OP_NAMES = {}
 for _name in dir(ca):
@@ -172,6 +172,24 @@ def golden(k: Kernel, f: ca.Function, instructions: list[list], variant: Variant
     return samples
 
 
+def mass_roles(model) -> dict[str, dict]:
+    """What each parameter is to the model's masses: a mass ("column", "lumped", "base"; removable
+    or not), the inertia of a base mass, or the height of a lumped mass (scenes and the solver's
+    variant selection read these)."""
+    roles = {}
+    for mass in model.masses:
+        if isinstance(mass, ColumnMass):
+            roles[mass.mass] = {"mass": "column", "removable": True}
+        elif isinstance(mass, LumpedMass):
+            roles[mass.mass] = {"mass": "lumped", "removable": mass.removable}
+            if isinstance(mass.eta, str):
+                roles[mass.eta] = {"height_of": mass.mass}
+        elif isinstance(mass, BaseMass):
+            roles[mass.mass] = {"mass": "base", "removable": True}
+            roles[mass.inertia] = {"inertia_of": mass.mass}
+    return roles
+
+
 def variant_ir(variant: Variant) -> dict:
     functions = []
     for k in kernels(variant):
@@ -190,10 +208,12 @@ def variant_ir(variant: Variant) -> dict:
             "instructions": instructions,
             "golden": golden(k, f, instructions, variant),
         })
+    roles = mass_roles(variant.model)
     params = []
     for p in variant.model.params:
         entry = {"name": p.name, "doc": p.doc}
         entry.update({"physical": p.physical} if p.physical else {"default": p.default})
+        entry.update(roles.get(p.name, {}))
         params.append(entry)
     return {
         "schema": 1,
@@ -203,6 +223,11 @@ def variant_ir(variant: Variant) -> dict:
         "model": variant.model.name,
         "variant": variant.name,
         "title": variant.title,
+        "model_description": variant.model.description,
+        "shape": variant.model.shape.description,
+        "removed": list(variant.remove),
+        "rigid": variant.rigid,
+        "small_angle": variant.small_angle,
         "doc": (variant.model.description + ". Shape: " + variant.model.shape.description + "."
                 + (" " + variant.doc if variant.doc else "")),
         "params": params,

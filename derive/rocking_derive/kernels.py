@@ -116,7 +116,7 @@ def kernels(variant: Variant) -> list[Kernel]:
         "m_tilde": m_t, "k_tilde": k_t, "gamma_tilde": gamma, "omega_n": w_n,
         "damping_c": twin.damping_c(), "modal_s": modal_s, "omega_up": w_n * modal_s,
         "zeta_up": sym.params["zeta"] * modal_s, "theta_cr": ca.atan2(a_g, c_g), "u_cr": u_cr,
-        "e_ref": ca.sqrt(a_g**2 + c_g**2) - c_g, "r": r, "alpha": ca.atan2(b, h), "p_freq": ca.sqrt(g / r),
+        "e_ref": ca.sqrt(a_g**2 + c_g**2) - c_g, "r": r, "alpha": ca.atan2(b, h), "p_freq": ca.sqrt(g / r), "i_bc_plate": twin.plate_inertia(),
     }
 
     K = Kernel
@@ -158,6 +158,7 @@ def kernels(variant: Variant) -> list[Kernel]:
           Output("housner", "post-impact state", ["theta_dot", "u_dot", "energy_after", "energy_before"],
                  housner)),
         K("structure", "Fixed-base and reference quantities: eqs (5)-(7), (18)-(19), (39)-(40), E_ref "
-          "(the rigid column's potential-energy barrier with all masses), R, alpha and p = sqrt(g/R).",
+          "(the rigid column's potential-energy barrier with all masses), R, alpha, p = sqrt(g/R) and the "
+          "thin-plate base inertia 4/3 m_b B^2 (the unit of gamma_ib).",
           [p], Output("st", "structure quantities", list(structure), list(structure.values()))),
     ]

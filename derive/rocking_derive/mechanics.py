@@ -137,6 +137,11 @@ class Mechanics:
     def base_inertia_about_pivot(self) -> ca.SX:
         return sum((self.P[m.inertia] for m in self.variant.model.masses if isinstance(m, BaseMass)), ca.SX(0))
 
+    def plate_inertia(self) -> ca.SX:
+        """I_bc of thin rectangular base plates, m_b (B^2/3 + B^2) = 4/3 m_b B^2 (the unit of gamma_ib)."""
+        return sum((4 * self.P[m.mass] * self.B**2 / 3 for m in self.variant.model.masses
+                    if isinstance(m, BaseMass)), ca.SX(0))
+
     def base_spin_inertia(self) -> ca.SX:
         """I_b about the base centre: I_bc - m_b B^2 (written with b^2 = B^2)."""
         total = ca.SX(0)

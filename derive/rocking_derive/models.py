@@ -41,10 +41,13 @@ class ColumnMass:
 
 @dataclass(frozen=True)
 class LumpedMass:
-    """A point mass on the column axis at height eta * H, moving with the column deflection."""
+    """A point mass on the column axis at height eta * H, moving with the column deflection.
+    ``removable``: a scene may switch it off (``[effects] <mass> = false``); the top mass m is the
+    unit of mass of the dimensionless form and stays."""
 
     mass: str
     eta: Fraction | str = Fraction(1)  # a number, or the name of a parameter
+    removable: bool = True
 
 
 @dataclass(frozen=True)
@@ -102,7 +105,7 @@ PAPER = Model(
     name="cubic",
     description="Elastic cantilever with distributed mass, a top mass and a rigid base (paper Fig. 1)",
     shape=CUBIC,
-    masses=(ColumnMass("m_c"), LumpedMass("m"), BaseMass("m_b", "i_bc")),
+    masses=(ColumnMass("m_c"), LumpedMass("m", removable=False), BaseMass("m_b", "i_bc")),
 )
 
 # --- two examples of the model developer's path (kept, so they stay tested) ----------------------

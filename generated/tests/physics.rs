@@ -67,16 +67,13 @@ fn close(a: f64, b: f64, rel: f64, scale: f64) -> bool {
     (a - b).abs() <= rel * a.abs().max(b.abs()).max(scale)
 }
 
+/// Runs a check on every generated variant (the registry, so a new model is checked too).
 macro_rules! for_each_variant {
     ($check:ident) => {
-        $check::<Full>();
-        $check::<MasslessColumn>();
-        $check::<MasslessBase>();
-        $check::<PointMass>();
-        $check::<Rigid>();
-        $check::<SmallAngle>();
-        $check::<CosineShape>();
-        $check::<AddedMass>();
+        for v in rocking_kernels::kernels::VARIANT_INFO {
+            rocking_kernels::with_variant!(v.name, V => $check::<V>())
+                .expect("every registered variant dispatches");
+        }
     };
 }
 

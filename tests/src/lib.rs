@@ -8,6 +8,42 @@ use rocking::{
 };
 use rocking_motion::GroundMotion;
 
+/// The setup of a scene of `scenes/` (e.g. `"fig3-vvel.toml"`) with `--set` overrides, loaded
+/// through `rocking-scene` as the `rocking` command loads it: the paper's cases are typed once,
+/// in their scene files.
+pub fn scene(file: &str, sets: &[&str]) -> rocking_scene::model::Model {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../scenes")
+        .join(file);
+    let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+    let sc = rocking_scene::scene::load(&path, &sets)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    rocking_scene::model::build(&sc).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+/// The frequency of the column mode of the rocking equations linearised about (θ, u) while
+/// rocking about `s`, from the variant's own kernels (M(q) and central differences of F at rest
+/// velocities and no ground motion): the kernel-based form of [`uplifted_frequency_linearised`]
+/// with gravity, for any model.
+pub fn uplifted_frequency_kernels<V: rocking_kernels::Variant>(
+    p: &V::Params,
+    s: f64,
+    theta: f64,
+    u: f64,
+) -> f64 {
+    let [m_tt, m_tu, m_uu] = V::mass_matrix(&[theta, u], s, p);
+    let f = |th: f64, uu: f64| V::forcing(&[th, uu, 0.0, 0.0], 0.0, s, p);
+    let (ht, hu) = (1e-6 * theta.abs().max(1e-3), 1e-6 * u.abs().max(1e-6));
+    let dth = |k: usize| -(f(theta + ht, u)[k] - f(theta - ht, u)[k]) / (2.0 * ht);
+    let du = |k: usize| -(f(theta, u + hu)[k] - f(theta, u - hu)[k]) / (2.0 * hu);
+    let (k_tt, k_ut, k_tu, k_uu) = (dth(0), dth(1), du(0), du(1));
+    let k_off = 0.5 * (k_ut + k_tu);
+    let a = m_uu * m_tt - m_tu * m_tu;
+    let bq = -(k_uu * m_tt + k_tt * m_uu - 2.0 * k_off * m_tu);
+    let c = k_uu * k_tt - k_off * k_off;
+    ((-bq + (bq * bq - 4.0 * a * c).sqrt()) / (2.0 * a)).sqrt()
+}
+
 /// A structure from the dimensionless groups (R = g = m = 1, time in τ), γ_Ib = 1.
 pub fn dimensionless(
     alpha: f64,
@@ -29,26 +65,26 @@ pub fn dimensionless(
     Structure::from_dimensionless(&d, None).expect("valid dimensionless structure")
 }
 
-/// The paper's Fig. 3 structure: point mass, ω_n/p = 11.9, α = 0.2, ζ = 0.005 fixed-base.
+/// The paper's Fig. 3 structure (point mass, ω_n/p = 11.9, α = 0.2, ζ = 0.005 fixed-base), from
+/// `scenes/fig3-vvel.toml`.
 pub fn fig3_structure() -> Structure {
-    dimensionless(0.2, 11.9, 0.0, 0.0, 0.005, DampingConvention::FixedBase)
+    scene("fig3-vvel.toml", &[]).structure
 }
 
-/// The paper's Fig. 3 pulse: a_p/(g tan α) = 1.30, ω_p/p = 5.1 (α = 0.2).
+/// The paper's Fig. 3 pulse (a_p/(g tan α) = 1.30, ω_p/p = 5.1, α = 0.2), from
+/// `scenes/fig3-vvel.toml`.
 pub fn fig3_pulse() -> rocking_motion::SinePulse {
-    rocking_motion::SinePulse::new(1.30 * 0.2f64.tan(), 5.1)
+    match scene("fig3-vvel.toml", &[]).excitation {
+        rocking_motion::Excitation::Sine(p) => p,
+        other => panic!("scenes/fig3-vvel.toml: a sine pulse, not {other:?}"),
+    }
 }
 
-/// The Fig.-5 models: α = 0.1, γ_mc = 1, γ_mb = 2, γ_Ib = 1, ζ = 0.005 fixed-base.
+/// The Fig.-5 models (α = 0.1, γ_mc = 1, γ_mb = 2, γ_Ib = 1, ζ = 0.005 fixed-base) at
+/// `omega_n_over_p`, from `scenes/fig5-flexible.toml`.
 pub fn fig5_structure(omega_n_over_p: f64) -> Structure {
-    dimensionless(
-        0.1,
-        omega_n_over_p,
-        1.0,
-        2.0,
-        0.005,
-        DampingConvention::FixedBase,
-    )
+    let set = format!("structure.omega_n_over_p={omega_n_over_p:?}");
+    scene("fig5-flexible.toml", &[&set]).structure
 }
 
 /// Asserts the sanity every run must have: solver statistics > 0 and no NaN (or infinity)

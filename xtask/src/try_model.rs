@@ -4,8 +4,10 @@
 //! expects everything downstream to keep working. This command does exactly that to a copy of
 //! the workspace (the files git knows, committed or not): it appends a new model to `models.py`
 //! ([`NEW_MODEL`]: another shape function and another added mass, with its own parameter),
-//! regenerates, and runs the tests of the generated crate, the codegen crate and the freshness
-//! check there. The working tree is never touched.
+//! regenerates, runs the tests of the generated crate, the codegen crate and the freshness check
+//! there, and then runs a scene that names the new model and sets its parameter ([`scene`]) with
+//! the `rocking` command built in the copy: no hand-written Rust is edited. Its derived quantities
+//! must match the closed forms of that model ([`closed_forms`]). The working tree is never touched.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -22,7 +24,7 @@ TRY_MODEL = Model(
     name="parabolic_tank",
     description="Top mass, a tank m_t at 3/4 H and a base, on a column deflecting as psi = eta^2",
     shape=Polynomial("psi = eta^2", {2: Fraction(1)}),
-    masses=(LumpedMass("m"), LumpedMass("m_t", Fraction(3, 4)), BaseMass("m_b", "i_bc")),
+    masses=(LumpedMass("m", removable=False), LumpedMass("m_t", Fraction(3, 4)), BaseMass("m_b", "i_bc")),
     extra_params=(Param("m_t", "mass of the tank at 3/4 H", default=0.0),),
 )
 VARIANTS = VARIANTS + (
@@ -99,7 +101,153 @@ pub fn run(root: &Path) -> Result<()> {
         "xtask: try-model: a new model regenerated and the generated crate's, the codegen \
          crate's and the freshness tests passed in the copy"
     );
+
+    let scene = copy.join("scenes").join("try-model.toml");
+    std::fs::write(&scene, scene())?;
+    let rocking = |args: &[&str]| -> Result<serde_json::Value> {
+        let mut cmd = cargo_in_copy(&["run", "--quiet", "-p", "rocking-cli", "--"]);
+        cmd.args(args);
+        println!("xtask: running {cmd:?}");
+        let out = cmd.output().map_err(|e| format!("cannot run cargo: {e}"))?;
+        if !out.status.success() {
+            return Err(format!(
+                "rocking {} failed with {}:\n{}",
+                args.join(" "),
+                out.status,
+                String::from_utf8_lossy(&out.stderr)
+            )
+            .into());
+        }
+        Ok(serde_json::from_slice(&out.stdout)?)
+    };
+    let scene_arg = scene.to_str().ok_or("non-UTF-8 path")?;
+    let check = rocking(&["check", scene_arg, "--json"])?;
+    let want = closed_forms(ALPHA, OMEGA_N, M_T, GAMMA_MB, GAMMA_IB);
+    let got = |key: &str| -> Result<f64> {
+        check["derived"][key]
+            .as_f64()
+            .ok_or_else(|| format!("rocking check --json has no number derived.{key}").into())
+    };
+    let ei = check["params"]["ei"]
+        .as_f64()
+        .ok_or("rocking check --json has no number params.ei")?;
+    let model = check["model"].as_str().unwrap_or_default();
+    let variant = check["kernel_variant"].as_str().unwrap_or_default();
+    println!("xtask: try-model: `rocking check` runs model {model}, kernel variant {variant}");
+    if model != "parabolic_tank" || variant != "parabolic_tank" {
+        return Err(format!("the scene ran model {model:?} / variant {variant:?}").into());
+    }
+    let rows = [
+        (
+            "omega_up / omega_n",
+            got("omega_up")? / got("omega_n")?,
+            want.modal_s,
+        ),
+        ("E_ref", got("e_ref")?, want.e_ref),
+        ("EI", ei, want.ei),
+    ];
+    let mut worst: f64 = 0.0;
+    for (name, have, closed) in rows {
+        let rel = (have - closed).abs() / closed.abs();
+        worst = worst.max(rel);
+        println!("xtask: try-model: {name} = {have:.15e}, closed form {closed:.15e}, relative difference {rel:.1e}");
+    }
+    if !(worst <= 1e-12) {
+        return Err(format!("derived quantities differ from the closed forms by {worst:e}").into());
+    }
+    let run = rocking(&[
+        "run",
+        scene_arg,
+        "--json",
+        "--out",
+        target
+            .join("try-model-run")
+            .to_str()
+            .ok_or("non-UTF-8 path")?,
+    ])?;
+    let residual = run["energy_balance_residual"]
+        .as_f64()
+        .ok_or("the run has no energy balance residual")?;
+    let max_theta = run["max_theta_over_alpha"]
+        .as_f64()
+        .ok_or("the run has no max_theta_over_alpha")?;
+    println!("xtask: try-model: `rocking run` of the new model: max θ/α = {max_theta:.4}, energy balance residual {residual:.1e} E_ref");
+    if !(residual.abs() <= 1e-6) || !max_theta.is_finite() {
+        return Err("the new model's run does not balance its energy".into());
+    }
+    println!("xtask: try-model: passed");
     Ok(())
+}
+
+/// The new model's scene (dimensionless, R = g = m = 1): its own parameter `m_t` is set.
+const ALPHA: f64 = 0.15;
+const OMEGA_N: f64 = 6.0;
+const M_T: f64 = 0.7;
+const GAMMA_MB: f64 = 1.5;
+const GAMMA_IB: f64 = 1.1;
+fn scene() -> String {
+    format!(
+        r#"title = "cargo xtask try-model: the model parabolic_tank, added in a temporary copy"
+
+[structure]
+model = "parabolic_tank"
+m_t = {M_T}
+omega_n_over_p = {OMEGA_N}
+alpha = {ALPHA}
+gamma_mc = 0.0
+gamma_mb = {GAMMA_MB}
+gamma_ib = {GAMMA_IB}
+zeta = 0.0
+damping = "fixed-base"
+
+[excitation]
+kind = "sine-pulse"
+omega_p_over_p = 3.0
+amplitude = 2.5
+
+[effects]
+impact = "vvel"
+energy = true
+
+[solver]
+accuracy = "reference"
+after_excitation = 5.0
+"#
+    )
+}
+
+/// Closed forms of the new model (ψ = η², masses m = 1 at H, m_t at 3/4 H with ψ(3/4) = 9/16,
+/// a base m_b with inertia I_bc about a corner), dimensionless: B = sin α, H = cos α.
+pub struct ClosedForms {
+    /// ω_up/ω_n = sqrt(J0 / (J0 − M_ut²/M_uu)) (equations.md 1.6).
+    pub modal_s: f64,
+    /// g (sqrt((M B)² + (S1 H)²) − S1 H) of the rigid column with all masses.
+    pub e_ref: f64,
+    /// EI = ω_n² M_uu H³ / ∫ψ''², with ∫(ψ'')² = 4.
+    pub ei: f64,
+}
+
+/// The closed forms for slenderness `alpha`, `omega_n` = ω_n/p, tank mass `m_t`, base ratios.
+pub fn closed_forms(
+    alpha: f64,
+    omega_n: f64,
+    m_t: f64,
+    gamma_mb: f64,
+    gamma_ib: f64,
+) -> ClosedForms {
+    let (b, h) = alpha.sin_cos();
+    let m_b = gamma_mb;
+    let i_bc = gamma_ib * 4.0 / 3.0 * m_b * b * b;
+    let j0 = i_bc + (b * b + h * h) + m_t * (b * b + 9.0 / 16.0 * h * h);
+    let m_ut = h * (1.0 + 27.0 / 64.0 * m_t);
+    let m_uu = 1.0 + 81.0 / 256.0 * m_t;
+    let m_tot = 1.0 + m_t + m_b;
+    let s1h = h * (1.0 + 0.75 * m_t);
+    ClosedForms {
+        modal_s: (j0 / (j0 - m_ut * m_ut / m_uu)).sqrt(),
+        e_ref: (m_tot * b).hypot(s1h) - s1h,
+        ei: omega_n * omega_n * m_uu * h.powi(3) / 4.0,
+    }
 }
 
 /// Copies every file git knows (tracked, or untracked and not ignored) from `root` to `dest`.

@@ -6,11 +6,10 @@ use std::path::Path;
 
 use rocking::{
     select_variant, simulate, Accuracy, DampingConvention, Dimensionless, Effects, EventKind,
-    History, ImpactModel, Initial, KernelVariant, Method, Options, Run, Structure,
+    History, ImpactModel, Initial, Method, Options, Run, Structure,
 };
-use rocking_kernels::kernels::{Full, MasslessBase, MasslessColumn, PointMass, Rigid, SmallAngle};
-use rocking_kernels::{Physical, Variant};
-use rocking_motion::{read_at2, Excitation, GroundMotion, SinePulse};
+use rocking_kernels::{with_variant, Variant};
+use rocking_motion::{Excitation, SinePulse};
 use serde::{Deserialize, Serialize};
 use serde_json::{json, Value};
 
@@ -76,11 +75,21 @@ fn housner_impacts(alpha: f64, theta0: f64, t_end: f64) -> Vec<f64> {
     out
 }
 
+/// The setup of a scene of `scenes/` with overrides, through `rocking-scene` (the paper's cases
+/// are typed once, in their scene files).
+fn scene(file: &str, sets: &[String]) -> Result<rocking_scene::model::Model> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../scenes")
+        .join(file);
+    let sc = rocking_scene::scene::load(&path, sets).map_err(|e| e.to_string())?;
+    Ok(rocking_scene::model::build(&sc).map_err(|e| e.to_string())?)
+}
+
 pub fn cases(quick: bool) -> Result<Vec<Case>> {
     let fb = DampingConvention::FixedBase;
     let mut v = Vec::new();
-    let fig3 = dimless(0.2, 11.9, 0.0, 0.0, 0.005, fb);
-    let fig3_pulse = SinePulse::new(1.30 * 0.2f64.tan(), 5.1);
+    let fig3_scene = scene("fig3-vvel.toml", &[])?;
+    let (fig3, fig3_pulse) = (fig3_scene.structure, fig3_scene.excitation);
     for (name, impact) in [
         ("fig3-vvel", ImpactModel::Vvel),
         ("fig3-adjex", ImpactModel::Adjex),
@@ -96,7 +105,7 @@ pub fn cases(quick: bool) -> Result<Vec<Case>> {
             ),
             structure: fig3,
             effects: Effects::default(),
-            motion: fig3_pulse.into(),
+            motion: fig3_pulse.clone(),
             impact,
             t_end: 8.0,
             initial: Initial::default(),
@@ -104,7 +113,6 @@ pub fn cases(quick: bool) -> Result<Vec<Case>> {
             exact_impacts: None,
         });
     }
-    let pulse5 = SinePulse::new(3.0 * 0.1f64.tan(), 4.0);
     let t5 = 2.0 * PI / 4.0 + 20.0;
     for (name, wn) in [
         ("fig5-flexible", 5.0),
@@ -114,15 +122,19 @@ pub fn cases(quick: bool) -> Result<Vec<Case>> {
         if quick && name != "fig5-flexible" {
             continue;
         }
+        let fig5 = scene(
+            "fig5-flexible.toml",
+            &[format!("structure.omega_n_over_p={wn:?}")],
+        )?;
         v.push(Case {
             name,
             title: format!(
                 "{}: γ_mc = 1, γ_mb = 2, γ_Ib = 1, α = 0.1, ζ = 0.005 fixed-base, ω_n/p = {wn}; sine ω_p/p = 4, a_p/(g tan α) = 3; VVEL; τ ≤ pulse + 20",
                 match name { "fig5-flexible" => "Fig. 5 flexible", "fig5-stiff" => "Fig. 5 stiff", _ => "Near-rigid column" }
             ),
-            structure: dimless(0.1, wn, 1.0, 2.0, 0.005, fb),
+            structure: fig5.structure,
             effects: Effects::default(),
-            motion: pulse5.into(),
+            motion: fig5.excitation,
             impact: ImpactModel::Vvel,
             t_end: t5,
             initial: Initial::default(),
@@ -145,33 +157,15 @@ pub fn cases(quick: bool) -> Result<Vec<Case>> {
         exact_impacts: Some(housner_impacts(alpha, 0.5 * alpha, t_rigid)),
     });
     if !quick {
-        // 123 m wind turbine under El Centro 1940 NS × 3 (scenes/wind-turbine-elcentro.toml).
-        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/records/elCentro.AT2");
-        let at2 = read_at2(&path).map_err(|e| format!("{}: {e}", path.display()))?;
-        let record = at2
-            .to_record()
-            .with_scale(3.0 * rocking_motion::STANDARD_GRAVITY);
-        let (b, m_b) = (6.0, 6.0e5);
-        let ph = Physical {
-            h: 120.0,
-            b,
-            ei: 4.163e11,
-            m: 3.0e5,
-            m_c: 3.0e5,
-            m_b,
-            i_bc: 4.0 / 3.0 * m_b * b * b,
-            zeta: 0.01,
-            g: 9.81,
-        };
-        let structure = Structure::from_physical(ph)?;
-        let p = structure.derived().p;
-        let t_end = record.end() + 10.0 / p;
+        // 123 m wind turbine under El Centro 1940 NS × 3: the scene's structure, record and end.
+        let turbine = scene("wind-turbine-elcentro.toml", &[])?;
+        let (structure, t_end) = (turbine.structure, turbine.options.t_end);
         v.push(Case {
             name: "elcentro-turbine",
             title: "123 m wind turbine (H = 120 m, B = 6 m, T_n ≈ 4.5 s, SI units) under El Centro 1940 NS × 3; VVEL; record + 10/p".into(),
             structure,
             effects: Effects::default(),
-            motion: record.into(),
+            motion: turbine.excitation,
             impact: ImpactModel::Vvel,
             t_end,
             initial: Initial::default(),
@@ -189,7 +183,7 @@ pub fn cases(quick: bool) -> Result<Vec<Case>> {
         title: format!(
             "Fig-8 spectrum column: γ_mb = γ_mc = 2, ω_n/p = 5, α = 0.1, uplifted ζ = 0.01; sine ω_p/p = 4, a_p/(g tan α) = 1..20 ({n} cells); τ ≤ pulse + 20"
         ),
-        structure: dimless(0.1, 5.0, 2.0, 2.0, 0.01, DampingConvention::Uplifted),
+        structure: scene("spectra/fig8.toml", &[])?.structure,
         effects: Effects::default(),
         motion: Excitation::None,
         impact: ImpactModel::Vvel,
@@ -517,8 +511,8 @@ fn production(case: &Case, acc: Accuracy, min_total: f64) -> (f64, usize, f64, f
 }
 
 /// ns per call of the rocking and contact right-hand sides of a variant (direct microtiming).
-fn kernel_ns<V: Variant>(ph: &Physical) -> (f64, f64) {
-    let p = V::params(ph);
+fn kernel_ns<V: Variant>(s: &Structure) -> (f64, f64) {
+    let p = s.params::<V>();
     let n = 2_000_000;
     let mut x = [0.05, 1e-3, -0.02, 3e-3];
     let best = |f: &mut dyn FnMut()| {
@@ -551,26 +545,14 @@ fn kernel_ns<V: Variant>(ph: &Physical) -> (f64, f64) {
     (rock, cont)
 }
 
-fn variant_ns(v: KernelVariant, ph: &Physical) -> (f64, f64) {
-    match v {
-        KernelVariant::Full => kernel_ns::<Full>(ph),
-        KernelVariant::MasslessColumn => kernel_ns::<MasslessColumn>(ph),
-        KernelVariant::MasslessBase => kernel_ns::<MasslessBase>(ph),
-        KernelVariant::PointMass => kernel_ns::<PointMass>(ph),
-        KernelVariant::Rigid => kernel_ns::<Rigid>(ph),
-        KernelVariant::SmallAngle => kernel_ns::<SmallAngle>(ph),
-    }
+/// ns per call of the kernels of the variant called `name` (through the generated dispatch).
+fn variant_ns(name: &str, s: &Structure) -> (f64, f64) {
+    with_variant!(name, V => kernel_ns::<V>(s)).expect("a generated variant")
 }
 
-fn params_of(v: KernelVariant, ph: &Physical) -> Vec<f64> {
-    match v {
-        KernelVariant::Full => Full::params(ph).as_ref().to_vec(),
-        KernelVariant::MasslessColumn => MasslessColumn::params(ph).as_ref().to_vec(),
-        KernelVariant::MasslessBase => MasslessBase::params(ph).as_ref().to_vec(),
-        KernelVariant::PointMass => PointMass::params(ph).as_ref().to_vec(),
-        KernelVariant::Rigid => Rigid::params(ph).as_ref().to_vec(),
-        KernelVariant::SmallAngle => SmallAngle::params(ph).as_ref().to_vec(),
-    }
+/// The parameter vector of the variant called `name` for the structure `s`.
+fn params_of(name: &str, s: &Structure) -> Vec<f64> {
+    with_variant!(name, V => s.params::<V>().as_ref().to_vec()).expect("a generated variant")
 }
 
 fn impact_name(i: ImpactModel) -> &'static str {
@@ -583,7 +565,7 @@ fn impact_name(i: ImpactModel) -> &'static str {
 }
 
 /// The case as the SciPy peer needs it.
-fn case_json(case: &Case, variant: KernelVariant, reduced: &Structure) -> Value {
+fn case_json(case: &Case, variant: &str, reduced: &Structure) -> Value {
     let d = reduced.derived();
     let rigid = !case.effects.flexibility;
     let motion = |m: &Excitation| -> Value {
@@ -599,8 +581,8 @@ fn case_json(case: &Case, variant: KernelVariant, reduced: &Structure) -> Value 
     };
     json!({
         "name": case.name,
-        "variant": variant.name(),
-        "params": params_of(variant, reduced.physical()),
+        "variant": variant,
+        "params": params_of(variant, reduced),
         "alpha": d.alpha, "p": d.p, "omega_n": d.omega_n, "e_ref": d.e_ref,
         "u_scale": if rigid { 1.0 } else { d.u_cr },
         "ud_scale": if rigid { 1.0 } else { d.u_cr * d.omega_n },
@@ -628,11 +610,12 @@ pub fn run(quick: bool, dir: &Path) -> Result<()> {
     let mut kernels = serde_json::Map::new();
     let t_study = std::time::Instant::now();
     for case in &cases {
-        let (reduced, variant, _) = select_variant(&case.structure, &case.effects)?;
+        let sel = select_variant(&case.structure, &case.effects)?;
+        let (reduced, variant) = (sel.structure, sel.variant.name);
         peer_cases.push(case_json(case, variant, &reduced));
-        let ns = variant_ns(variant, reduced.physical());
+        let ns = variant_ns(variant, &reduced);
         kernels.insert(
-            variant.name().into(),
+            variant.into(),
             json!({"rocking_rhs_ns": ns.0, "contact_rhs_ns": ns.1}),
         );
         let amps = case.slice.as_ref().map(|(_, a)| a.as_slice());
@@ -640,7 +623,7 @@ pub fn run(quick: bool, dir: &Path) -> Result<()> {
             "[{:7.1} s] {}: variant {}, reference DOP853 {REF_TOL:e}",
             t_study.elapsed().as_secs_f64(),
             case.name,
-            variant.name()
+            variant
         );
         let reference = diagnostic(
             case,
@@ -761,7 +744,7 @@ pub fn run(quick: bool, dir: &Path) -> Result<()> {
             });
         }
         out_cases.push(json!({
-            "name": case.name, "title": case.title, "variant": variant.name(),
+            "name": case.name, "title": case.title, "variant": variant,
             "reference": {"method": "dop853", "tol": REF_TOL, "answers": reference,
                           "boundary": amps.map(|a| boundary(&reference, a)),
                           "boundary_bisect": ref_bisect, "bracket": bracket},

@@ -19,17 +19,16 @@ macro_rules! out {
     }};
 }
 
-mod limits;
-mod model;
+mod models;
 mod plot;
 mod report;
-mod scene;
 mod sweep;
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
+use rocking_scene::{model, scene};
 
 use crate::model::Model;
 use crate::scene::CliError;
@@ -65,6 +64,12 @@ enum Command {
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
         /// Print the summary on stdout as one JSON object.
+        #[arg(long)]
+        json: bool,
+    },
+    /// List every model (from the derivation): variants, parameters and effect switches.
+    Models {
+        /// Print the list as one JSON object.
         #[arg(long)]
         json: bool,
     },
@@ -134,13 +139,25 @@ fn load(scene: &Path, set: &[String]) -> Result<(scene::Scene, Model), CliError>
     Ok((sc, model))
 }
 
+/// `rocking models`: the generated registry, as text or JSON.
+fn models_command(json: bool) -> Result<(), CliError> {
+    if json {
+        out!("{}", models::json());
+    } else {
+        out!("{}", models::text().trim_end());
+    }
+    Ok(())
+}
+
 fn check(scene: &Path, set: &[String], json: bool) -> Result<(), CliError> {
     let (_, m) = load(scene, set)?;
     let derived = report::derived_json(&m)?;
     if json {
         let v = serde_json::json!({
             "scene": scene.display().to_string(),
-            "kernel_variant": m.variant.name(),
+            "model": m.structure.model().name,
+            "params": models::params_json(&m.structure),
+            "kernel_variant": m.variant.name,
             "variant_reasons": m.reasons,
             "excitation": m.excitation_description,
             "t_end": m.options.t_end * m.units.p_model,
@@ -156,7 +173,13 @@ fn check(scene: &Path, set: &[String], json: bool) -> Result<(), CliError> {
     if let Some(t) = &m.title {
         out!("title: {t}");
     }
-    out!("kernel variant: {}", m.variant.name());
+    let model = m.structure.model();
+    out!("model: {} ({})", model.name, model.description);
+    out!(
+        "parameters (model units): {}",
+        models::params_line(&m.structure)
+    );
+    out!("kernel variant: {}", m.variant.name);
     for r in &m.reasons {
         out!("  because {r}");
     }
@@ -339,6 +362,7 @@ fn main() -> ExitCode {
             json,
         } => run(&scene, &set, out, json),
         Command::Check { scene, set, json } => check(&scene, &set, json),
+        Command::Models { json } => models_command(json),
         Command::Spectrum {
             scene,
             axes,

@@ -29,16 +29,7 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
     std::fs::rename(&tmp, path).map_err(fail)
 }
 
-/// A number for a message: as written for ordinary magnitudes, in short exponent form (`1e308`,
-/// not 309 digits) for very large or very small ones.
-pub fn short(x: f64) -> String {
-    let a = x.abs();
-    if x == 0.0 || !x.is_finite() || (1e-4..1e9).contains(&a) {
-        format!("{x}")
-    } else {
-        format!("{x:e}")
-    }
-}
+pub use rocking_scene::limits::short;
 
 /// The files `rocking run` writes; an existing output directory holding anything else is not
 /// replaced (it is not a run's directory).

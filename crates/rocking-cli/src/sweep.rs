@@ -12,6 +12,7 @@ use serde_json::json;
 use crate::report::write_atomic;
 use crate::scene::{self, CliError};
 use crate::{model, plot};
+use rocking_scene::knob::{self, Knob, KnobValue};
 
 /// The paper's spectrum axes (Figs 6-8).
 pub const DEFAULT_AXES: [&str; 2] = [
@@ -26,6 +27,8 @@ pub struct Base {
     parsed: scene::Parsed,
     sets: Vec<String>,
     title: Option<String>,
+    /// The scene with the command line's overrides, loaded once: cells apply knobs to it.
+    scene: scene::Scene,
     /// Digest of the scene's record file (contents), when it has one.
     record_digest: Option<String>,
 }
@@ -78,8 +81,23 @@ impl Base {
             sets: sets.to_vec(),
             title,
             record_digest,
+            scene: sc.clone(),
         };
         Ok((base, sc))
+    }
+
+    /// Resolves the keys of the axes once; `None` when one is not a knob (then cells go through
+    /// `--set` overrides).
+    fn knobs(&self, keys: &[&str]) -> Option<Vec<Knob>> {
+        keys.iter()
+            .map(|k| Knob::resolve(&self.scene, k).ok())
+            .collect()
+    }
+
+    /// Runs a cell: the scene with its knobs set, summary only.
+    pub fn run_knobs(&self, cell: &[(&Knob, KnobValue)]) -> Result<Summary, CliError> {
+        let m = knob::setup(&self.scene, cell)?;
+        self.simulate(m)
     }
 
     /// Runs the scene with extra overrides, summary only (no history, events or energy).
@@ -87,7 +105,10 @@ impl Base {
         let mut sets = self.sets.clone();
         sets.extend_from_slice(extra);
         let sc = self.parsed.load(&sets)?;
-        let mut m = model::build(&sc)?;
+        self.simulate(model::build(&sc)?)
+    }
+
+    fn simulate(&self, mut m: model::Model) -> Result<Summary, CliError> {
         m.options.history = History::None;
         m.options.event_log = false;
         m.options.energy = false;
@@ -208,6 +229,8 @@ pub fn spectrum(
         fingerprint: base.fingerprint(&axes, "spectrum"),
         axes,
     };
+    let keys: Vec<&str> = sweep.axes.iter().map(|a| a.key.as_str()).collect();
+    let knobs = base.knobs(&keys);
     let dir = out_dir(scene_path, out, "spectrum");
     let progress = if quiet {
         Progress::Quiet
@@ -218,14 +241,24 @@ pub fn spectrum(
     let pool = threads_pool(threads)?;
     let outcome = pool
         .install(|| {
-            rocking_spectra::run(&sweep, &dir, progress, |values| {
-                let extra: Vec<String> = sweep
-                    .axes
-                    .iter()
-                    .zip(values)
-                    .map(|(a, &v)| set_arg(&a.key, v))
-                    .collect();
-                base.run(&extra).map_err(|e| e.to_string())
+            rocking_spectra::run(&sweep, &dir, progress, |values| match &knobs {
+                Some(knobs) => {
+                    let cell: Vec<(&Knob, KnobValue)> = knobs
+                        .iter()
+                        .zip(values)
+                        .map(|(k, &v)| (k, KnobValue::Number(v)))
+                        .collect();
+                    base.run_knobs(&cell).map_err(|e| e.to_string())
+                }
+                None => {
+                    let extra: Vec<String> = sweep
+                        .axes
+                        .iter()
+                        .zip(values)
+                        .map(|(a, &v)| set_arg(&a.key, v))
+                        .collect();
+                    base.run(&extra).map_err(|e| e.to_string())
+                }
             })
         })
         .map_err(sweep_error)?;
@@ -420,6 +453,9 @@ pub fn batch(
         fingerprint: base.fingerprint(&axes, &records_key.join("\n")),
         axes,
     };
+    let knobs = base
+        .knobs(&["excitation.path", "excitation.scale"])
+        .expect("record path and scale are knobs");
     let dir = out_dir(scene_path, out, "batch");
     let progress = if quiet {
         Progress::Quiet
@@ -430,8 +466,11 @@ pub fn batch(
     let outcome = pool
         .install(|| {
             rocking_spectra::run(&sweep, &dir, progress, |v| {
-                let extra = [record_set(v[0] as usize), set_arg("excitation.scale", v[1])];
-                base.run(&extra).map_err(|e| e.to_string())
+                let cell = [
+                    (&knobs[0], KnobValue::Text(abs[v[0] as usize].clone())),
+                    (&knobs[1], KnobValue::Number(v[1])),
+                ];
+                base.run_knobs(&cell).map_err(|e| e.to_string())
             })
         })
         .map_err(sweep_error)?;

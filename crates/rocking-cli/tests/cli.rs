@@ -427,7 +427,7 @@ fn check_prints_variant_reasons_and_derived_quantities() {
     let reasons = v["variant_reasons"].as_array().unwrap();
     assert!(reasons
         .iter()
-        .any(|r| r.as_str().unwrap().contains("column_mass = false")));
+        .any(|r| r.as_str().unwrap().contains("m_c = false")));
     let thr = v["derived"]["static_uplift_over_g_tan_alpha"]
         .as_f64()
         .unwrap();
@@ -581,4 +581,87 @@ fn velocity_and_displacement_records_are_refused() {
         );
         assert!(!dir.join("out").exists(), "{name}: nothing written");
     }
+}
+
+/// The example models: `rocking check` reports the scene's model, its own parameters and its own
+/// derived quantities; `rocking models` lists every model; a key of another model is refused with
+/// a pointer to that model (exit 2).
+#[test]
+fn example_models_check_and_models_listing() {
+    let o = rocking(&[
+        "check",
+        scenes().join("added-mass.toml").to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["model"], "cubic_platform");
+    assert_eq!(v["kernel_variant"], "added_mass");
+    assert_eq!(v["params"]["m_a"], 0.5);
+    assert_eq!(v["params"]["eta_a"], 0.25);
+    // EI is set so that this model's own ω_n/p is the scene's.
+    let wn = v["derived"]["omega_n_over_p"].as_f64().unwrap();
+    assert!((wn - 5.0).abs() < 1e-12, "{wn}");
+    let o = rocking(&[
+        "check",
+        scenes().join("cosine-shape.toml").to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["model"], "cosine");
+    assert_eq!(v["kernel_variant"], "cosine_shape");
+    let wn = v["derived"]["omega_n_over_p"].as_f64().unwrap();
+    assert!((wn - 5.0).abs() < 1e-12, "{wn}");
+
+    let o = rocking(&["models"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = String::from_utf8_lossy(&o.stdout);
+    for needle in [
+        "model \"cubic\"",
+        "model \"cosine\"",
+        "model \"cubic_platform\"",
+        "m_a",
+        "eta_a",
+        "point_mass",
+    ] {
+        assert!(out.contains(needle), "`{needle}` not in:\n{out}");
+    }
+
+    let o = rocking(&[
+        "check",
+        scenes().join("fig3-vvel.toml").to_str().unwrap(),
+        "--set",
+        "structure.m_a=0.5",
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("belongs to model `cubic_platform`"),
+        "{}",
+        stderr(&o)
+    );
+    let o = rocking(&[
+        "check",
+        scenes().join("fig3-vvel.toml").to_str().unwrap(),
+        "--set",
+        "structure.model=cosin",
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("did you mean \"cosine\""),
+        "{}",
+        stderr(&o)
+    );
+    let o = rocking(&[
+        "check",
+        scenes().join("cosine-shape.toml").to_str().unwrap(),
+        "--set",
+        "effects.flexibility=false",
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("has no rigid variant"),
+        "{}",
+        stderr(&o)
+    );
 }

@@ -29,6 +29,21 @@ pub struct Ir {
     pub variant: String,
     /// One-line title.
     pub title: String,
+    /// One-line description of the model family.
+    #[serde(default)]
+    pub model_description: String,
+    /// The model's shape function, in words.
+    #[serde(default)]
+    pub shape: String,
+    /// Mass (and inertia) parameters this variant removes (fixed to zero before the derivation).
+    #[serde(default)]
+    pub removed: Vec<String>,
+    /// Rigid column (u = 0): one degree of freedom.
+    #[serde(default)]
+    pub rigid: bool,
+    /// Linearised in θ.
+    #[serde(default)]
+    pub small_angle: bool,
     /// Markdown description.
     #[serde(default)]
     pub doc: String,
@@ -55,6 +70,18 @@ pub struct Param {
     /// Fixed value used when there is no `physical` field.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub default: Option<Float>,
+    /// The kind of mass this parameter is (`column`, `lumped`, `base`), if it is one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mass: Option<String>,
+    /// A mass a scene may switch off.
+    #[serde(default)]
+    pub removable: bool,
+    /// This is the inertia of the base mass named here.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub inertia_of: Option<String>,
+    /// This is the height (fraction of H) of the lumped mass named here.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub height_of: Option<String>,
 }
 
 /// One generated function.

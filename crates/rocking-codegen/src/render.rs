@@ -267,6 +267,10 @@ struct VariantView {
     param_names: Vec<String>,
     param_table: Vec<String>,
     phys_arg: String,
+    extra_arg: String,
+    removed: Vec<String>,
+    rigid: bool,
+    small_angle: bool,
     param_body: Vec<String>,
     param_consts: Vec<IndexConst>,
     functions: Vec<FnView>,
@@ -756,6 +760,7 @@ pub fn render_variant(ir: &Ir) -> Result<String> {
     ];
     let mut param_values = Vec::new();
     let mut uses_phys = false;
+    let mut n_extra = 0;
     for (k, p) in ir.params.iter().enumerate() {
         let (value, source) = match (&p.physical, &p.default) {
             (Some(field), None) => {
@@ -773,7 +778,9 @@ pub fn render_variant(ir: &Ir) -> Result<String> {
             }
             (None, Some(v)) => {
                 let lit = float_literal(v.0);
-                (lit.clone(), format!("`{lit}`"))
+                let value = format!("extra.get({n_extra}).copied().unwrap_or({lit})");
+                n_extra += 1;
+                (value, format!("`{lit}` (default)"))
             }
             _ => {
                 return Err(Error::invalid(
@@ -834,6 +841,10 @@ pub fn render_variant(ir: &Ir) -> Result<String> {
         param_names: names.iter().map(|n| str_lit(n)).collect(),
         param_table,
         phys_arg: if uses_phys { "phys" } else { "_phys" }.to_string(),
+        extra_arg: if n_extra > 0 { "extra" } else { "_extra" }.to_string(),
+        removed: ir.removed.iter().map(|n| str_lit(n)).collect(),
+        rigid: ir.rigid,
+        small_angle: ir.small_angle,
         param_body: array_lines(&param_values),
         param_consts,
         functions,
@@ -849,6 +860,36 @@ struct ModEntry {
     name_lit: String,
     title: String,
     title_lit: String,
+    model_lit: String,
+    removed: Vec<String>,
+    rigid: bool,
+    small_angle: bool,
+}
+
+#[derive(Serialize)]
+struct ParamEntry {
+    name_lit: String,
+    doc_lit: String,
+    default: String,
+    role: String,
+}
+
+#[derive(Serialize)]
+struct ModelEntry {
+    name_lit: String,
+    description_lit: String,
+    shape_lit: String,
+    full_lit: String,
+    variants: Vec<String>,
+    params: Vec<ParamEntry>,
+}
+
+#[derive(Serialize)]
+struct IndexFn {
+    name: String,
+    doc: String,
+    consts: Vec<IndexConst>,
+    input_mods: Vec<InputMod>,
 }
 
 #[derive(Serialize)]
@@ -858,6 +899,147 @@ struct ModView {
     variants: Vec<ModEntry>,
     /// The `VARIANTS` array on one line, when rustfmt would keep it there.
     variants_inline: String,
+    models: Vec<ModelEntry>,
+    max_params: usize,
+    index: Vec<IndexFn>,
+}
+
+/// The Rust expression of a parameter's role (`crate::Role`).
+fn role_expr(origin: &str, p: &crate::ir::Param) -> Result<String> {
+    let kind = |k: &str| match k {
+        "column" => Ok("Column"),
+        "lumped" => Ok("Lumped"),
+        "base" => Ok("Base"),
+        other => Err(Error::invalid(
+            origin,
+            format!("param {:?}: unknown mass kind {other:?}", p.name),
+        )),
+    };
+    Ok(match (&p.mass, &p.inertia_of, &p.height_of) {
+        (Some(k), None, None) => format!(
+            "crate::Role::Mass {{ kind: crate::MassKind::{}, removable: {} }}",
+            kind(k)?,
+            p.removable
+        ),
+        (None, Some(of), None) => format!("crate::Role::InertiaOf({})", str_lit(of)),
+        (None, None, Some(of)) => format!("crate::Role::HeightOf({})", str_lit(of)),
+        (None, None, None) => "crate::Role::Other".to_string(),
+        _ => {
+            return Err(Error::invalid(
+                origin,
+                format!("param {:?}: more than one role", p.name),
+            ))
+        }
+    })
+}
+
+/// The models of the variants (sorted by name), each with its parameters, which must be the
+/// same in every variant of the model.
+fn model_entries(sorted: &[&Ir]) -> Result<Vec<ModelEntry>> {
+    let mut by_model: BTreeMap<&str, Vec<&Ir>> = BTreeMap::new();
+    for ir in sorted {
+        by_model.entry(ir.model.as_str()).or_default().push(ir);
+    }
+    let mut out = Vec::new();
+    for (name, irs) in by_model {
+        let first = irs[0];
+        for ir in &irs[1..] {
+            if ir.params != first.params {
+                return Err(Error::invalid(
+                    &ir.origin(),
+                    format!(
+                        "variant {:?} of model {name:?} has other parameters than {:?}",
+                        ir.variant, first.variant
+                    ),
+                ));
+            }
+        }
+        // The variant that runs the model as it is: nothing removed, flexible, exact angles.
+        let full = irs
+            .iter()
+            .find(|ir| ir.removed.is_empty() && !ir.rigid && !ir.small_angle)
+            .unwrap_or(&first);
+        let params = first
+            .params
+            .iter()
+            .map(|p| {
+                Ok(ParamEntry {
+                    name_lit: str_lit(&p.name),
+                    doc_lit: str_lit(&one_line(&p.doc)),
+                    default: match p.default {
+                        Some(v) => format!("Some({})", float_literal(v.0)),
+                        None => "None".to_string(),
+                    },
+                    role: role_expr(&first.origin(), p)?,
+                })
+            })
+            .collect::<Result<Vec<_>>>()?;
+        out.push(ModelEntry {
+            name_lit: str_lit(name),
+            description_lit: str_lit(&one_line(&first.model_description)),
+            shape_lit: str_lit(&one_line(&first.shape)),
+            full_lit: str_lit(&full.variant),
+            variants: irs.iter().map(|ir| str_lit(&ir.variant)).collect(),
+            params,
+        });
+    }
+    Ok(out)
+}
+
+/// Named indices of the functions every variant exports with the same inputs and outputs.
+fn index_entries(sorted: &[&Ir]) -> Result<Vec<IndexFn>> {
+    let Some(first) = sorted.first() else {
+        return Ok(Vec::new());
+    };
+    let layout = |f: &Function| {
+        (
+            // The parameter vector differs between models; its indices are per variant.
+            f.inputs
+                .iter()
+                .map(|i| {
+                    (
+                        i.name.clone(),
+                        if i.params {
+                            Vec::new()
+                        } else {
+                            i.elements.clone()
+                        },
+                    )
+                })
+                .collect::<Vec<_>>(),
+            f.output.elements.clone(),
+        )
+    };
+    let mut out = Vec::new();
+    for f in &first.functions {
+        let same = sorted.iter().all(|ir| {
+            ir.functions
+                .iter()
+                .any(|g| g.name == f.name && layout(g) == layout(f))
+        });
+        if !same {
+            continue;
+        }
+        let origin = first.origin();
+        let mut input_mods = Vec::new();
+        for inp in f.inputs.iter().filter(|i| !i.scalar && !i.params) {
+            input_mods.push(InputMod {
+                name: inp.name.clone(),
+                doc: format!("Indices of the elements of input `{}`.", inp.name),
+                consts: index_consts(&origin, &f.name, &inp.elements, &[])?,
+            });
+        }
+        out.push(IndexFn {
+            name: f.name.clone(),
+            doc: format!(
+                "Indices of the output `{}` of `{}` (and of its inputs).",
+                f.output.name, f.name
+            ),
+            consts: index_consts(&origin, &f.name, &f.output.elements, &[])?,
+            input_mods,
+        });
+    }
+    Ok(out)
 }
 
 /// Renders `generated/src/kernels/mod.rs` declaring every variant (sorted by name).
@@ -903,6 +1085,9 @@ pub fn render_mod(irs: &[Ir]) -> Result<String> {
         header,
         allow: ALLOWED_LINTS.iter().map(ToString::to_string).collect(),
         variants_inline,
+        models: model_entries(&sorted)?,
+        max_params: sorted.iter().map(|ir| ir.params.len()).max().unwrap_or(0),
+        index: index_entries(&sorted)?,
         variants: sorted
             .iter()
             .map(|ir| ModEntry {
@@ -911,6 +1096,10 @@ pub fn render_mod(irs: &[Ir]) -> Result<String> {
                 name_lit: str_lit(&ir.variant),
                 title: one_line(&ir.title),
                 title_lit: str_lit(&one_line(&ir.title)),
+                model_lit: str_lit(&ir.model),
+                removed: ir.removed.iter().map(|n| str_lit(n)).collect(),
+                rigid: ir.rigid,
+                small_angle: ir.small_angle,
             })
             .collect(),
     };

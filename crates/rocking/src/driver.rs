@@ -16,6 +16,10 @@
 //! they are excluded from the error control so that trajectories do not depend on it.
 
 use nalgebra::SVector;
+use rocking_kernels::kernels::index::{
+    energy as en, impact_adjex as ax, impact_housner as ho, impact_vvel as vv, power as pwr,
+    rocking_rhs as rr,
+};
 use rocking_kernels::Variant;
 use rocking_motion::GroundMotion;
 use rocking_ode::events::{locate, Direction};
@@ -156,9 +160,10 @@ fn run<V: Variant, M: GroundMotion, const NR: usize, const NC: usize>(
 ) -> Result<Run, SimError> {
     opts.validate().map_err(SimError::Options)?;
     let tol = opts.accuracy.tol;
-    let derived = structure.derived();
-    let p = V::params(structure.physical());
-    let rigid = V::NAME == "rigid";
+    // The running variant's own reference quantities and scales.
+    let derived = structure.derived_by::<V>();
+    let p = structure.params::<V>();
+    let rigid = V::RIGID;
     let (a, pf) = (derived.alpha, derived.p);
     let u_scale = if rigid { 1.0 } else { derived.u_cr };
     let ud_scale = if rigid {
@@ -188,7 +193,7 @@ fn run<V: Variant, M: GroundMotion, const NR: usize, const NC: usize>(
         p_seconds: structure.p_per_second(),
         rest_rate: opts.rest_rate * a * pf,
         significant_rate: 0.01 * a * pf,
-        v_rest: e0[1] + e0[2],
+        v_rest: e0[en::GRAVITY] + e0[en::STRAIN],
         ode_options: ode,
         contact_tol,
         rocking_tol,
@@ -224,7 +229,7 @@ impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M
 
     fn total_energy(&self, x: &[f64; 4], s: f64) -> f64 {
         let e = V::energy(x, s, &self.p);
-        e[0] + e[1] + e[2] - self.v_rest
+        e[en::KINETIC] + e[en::GRAVITY] + e[en::STRAIN] - self.v_rest
     }
 
     fn run(mut self) -> Result<Run, SimError> {
@@ -293,7 +298,7 @@ impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M
         } else {
             (None, None)
         };
-        let rigid = V::NAME == "rigid";
+        let rigid = V::RIGID;
         let summary = Summary {
             kernel_variant: V::NAME,
             max_theta_over_alpha: self.max_theta / self.derived.alpha,
@@ -355,8 +360,9 @@ impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M
             theta_dot: x[2],
             u_dot: x[3],
             phase,
-            e_kin: e[0] / self.derived.e_ref,
-            e_total: (e[0] + e[1] + e[2] - self.v_rest) / self.derived.e_ref,
+            e_kin: e[en::KINETIC] / self.derived.e_ref,
+            e_total: (e[en::KINETIC] + e[en::GRAVITY] + e[en::STRAIN] - self.v_rest)
+                / self.derived.e_ref,
             ug: self.motion.accel(t),
         };
         self.history.push(row);
@@ -431,7 +437,7 @@ impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M
             f(0.0, 1.0) - f(0.0, 0.0),
         );
         let e = V::energy(&[0.0, u, 0.0, u_dot], RIGHT, &self.p);
-        let vib = e[0] + e[2];
+        let vib = e[en::KINETIC] + e[en::STRAIN];
         let reach =
             (2.0 * vib * (a * a / self.derived.k_tilde + b * b / self.derived.m_tilde)).sqrt();
         c + reach < 0.0
@@ -441,7 +447,7 @@ impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M
     /// s θ'' > 0. It is equivalent to f_s > 0 (equations.md 1.2) except within rounding of
     /// f_s = 0, where it decides consistently with the integrator that will follow.
     fn lifts(&self, s: f64, u: f64, u_dot: f64, ug: f64) -> bool {
-        s * V::rocking_rhs(&[0.0, u, 0.0, u_dot], ug, s, &self.p)[2] > 0.0
+        s * V::rocking_rhs(&[0.0, u, 0.0, u_dot], ug, s, &self.p)[rr::THETA_DDOT] > 0.0
     }
 
     /// The first time in [t_a, t_b] at which the base lifts about `s`, given that f_s > 0
@@ -545,8 +551,8 @@ impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M
             out[1] = dx[1];
             if Self::ENERGY {
                 let pw = V::power(&[0.0, y[0], 0.0, y[1]], ug, RIGHT, &p);
-                out[2] = pw[0];
-                out[3] = pw[1];
+                out[2] = pw[pwr::GROUND];
+                out[3] = pw[pwr::DAMPING];
             }
             out
         };
@@ -635,7 +641,7 @@ impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M
     ) -> Result<Next, SimError> {
         self.count_event(t)?;
         self.first_uplift.get_or_insert(t);
-        let e = V::energy(&[0.0, u, 0.0, u_dot], s, &self.p)[0];
+        let e = V::energy(&[0.0, u, 0.0, u_dot], s, &self.p)[en::KINETIC];
         self.log_event(
             t,
             EventKind::Uplift,
@@ -701,8 +707,8 @@ impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M
             out.fixed_rows_mut::<4>(0).copy_from_slice(&dx);
             if Self::ENERGY {
                 let pw = V::power(&x, ug, s, &p);
-                out[4] = pw[0];
-                out[5] = pw[1];
+                out[4] = pw[pwr::GROUND];
+                out[5] = pw[pwr::DAMPING];
             }
             out
         };
@@ -712,7 +718,7 @@ impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M
         } else if n == 1 {
             s * x0[2]
         } else {
-            s * V::rocking_rhs(&x0, motion.accel_right(t0), s, &p)[2] / 2.0
+            s * V::rocking_rhs(&x0, motion.accel_right(t0), s, &p)[rr::THETA_DDOT] / 2.0
         };
         // An uplift exactly at f_s = 0 has θ'' = 0: keep the event armed (it fires at once if θ
         // turns back, which ends the zero-length rocking phase with an impact).
@@ -750,7 +756,7 @@ impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M
                     self.overturn = Some(ev.t);
                     let x = [y[0], y[1], y[2], y[3]];
                     self.track(&x);
-                    let e = V::energy(&x, s, &self.p)[0];
+                    let e = V::energy(&x, s, &self.p)[en::KINETIC];
                     self.log_event(
                         ev.t,
                         EventKind::Overturn,
@@ -809,7 +815,7 @@ impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M
         // Kinetic energy is a quadratic form in the velocities, so it scales with k².
         let (e_after, rest) = match after {
             After::Contact { energy, .. } | After::Rocking { energy, .. } => {
-                (energy, V::energy(&[0.0, u, 0.0, 0.0], s, p)[0])
+                (energy, V::energy(&[0.0, u, 0.0, 0.0], s, p)[en::KINETIC])
             }
         };
         let (t_before, t_after) = (e_before - rest, e_after - rest);
@@ -824,7 +830,7 @@ impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M
                 let ud = k * u_dot;
                 After::Contact {
                     u_dot: ud,
-                    energy: V::energy(&[0.0, u, 0.0, ud], s, p)[0],
+                    energy: V::energy(&[0.0, u, 0.0, ud], s, p)[en::KINETIC],
                 }
             }
             After::Rocking {
@@ -834,7 +840,7 @@ impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M
                 After::Rocking {
                     theta_dot: td,
                     u_dot: ud,
-                    energy: V::energy(&[0.0, u, td, ud], s, p)[0],
+                    energy: V::energy(&[0.0, u, td, ud], s, p)[en::KINETIC],
                 }
             }
         };
@@ -850,11 +856,11 @@ impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M
         }
         let p = &self.p;
         let s2 = -s;
-        let contact_energy = |ud: f64| V::energy(&[0.0, u, 0.0, ud], s2, p)[0];
+        let contact_energy = |ud: f64| V::energy(&[0.0, u, 0.0, ud], s2, p)[en::KINETIC];
         if theta_dot.abs() < self.rest_rate {
             // A negligible rocking excursion (grazing, or the end of a Zeno sequence): the base
             // settles in full contact with the column's motion unchanged.
-            let e_before = V::energy(&[0.0, u, theta_dot, u_dot], s, p)[0];
+            let e_before = V::energy(&[0.0, u, theta_dot, u_dot], s, p)[en::KINETIC];
             let after = After::Contact {
                 u_dot,
                 energy: contact_energy(u_dot),
@@ -883,58 +889,58 @@ impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M
         }
         self.impacts += 1;
         self.first_impact.get_or_insert(t);
-        let rocking_energy = |td: f64, ud: f64| V::energy(&[0.0, u, td, ud], s2, p)[0];
+        let rocking_energy = |td: f64, ud: f64| V::energy(&[0.0, u, td, ud], s2, p)[en::KINETIC];
         let (after, branch, e_before) = match self.opts.impact {
             ImpactModel::Vvel => {
                 let v = V::impact_vvel(&xi, s, p);
-                if v[0] != 0.0 {
+                if v[vv::ROCK] != 0.0 {
                     (
                         After::Rocking {
-                            theta_dot: v[1],
-                            u_dot: v[2],
-                            energy: v[3],
+                            theta_dot: v[vv::THETA_DOT],
+                            u_dot: v[vv::U_DOT],
+                            energy: v[vv::ENERGY_AFTER],
                         },
                         "vvel-rigid-limit",
-                        v[4],
+                        v[vv::ENERGY_BEFORE],
                     )
                 } else {
                     (
                         After::Contact {
-                            u_dot: v[2],
-                            energy: v[3],
+                            u_dot: v[vv::U_DOT],
+                            energy: v[vv::ENERGY_AFTER],
                         },
                         "vvel-contact",
-                        v[4],
+                        v[vv::ENERGY_BEFORE],
                     )
                 }
             }
             ImpactModel::Adjex => {
                 let a = V::impact_adjex(&xi, s, p);
-                let e_i = a[5];
-                let rocking_ok = s2 * a[2] > 0.0;
+                let e_i = a[ax::ENERGY_BEFORE];
+                let rocking_ok = s2 * a[ax::THETA_DOT_ROCKING] > 0.0;
                 let contact = (
-                    a[1],
+                    a[ax::ENERGY_CONTACT],
                     "adjex-contact",
                     After::Contact {
-                        u_dot: a[0],
-                        energy: a[1],
+                        u_dot: a[ax::U_DOT_CONTACT],
+                        energy: a[ax::ENERGY_CONTACT],
                     },
                 );
                 let rocking = (
-                    a[4],
+                    a[ax::ENERGY_ROCKING],
                     "adjex-rocking",
                     After::Rocking {
-                        theta_dot: a[2],
-                        u_dot: a[3],
-                        energy: a[4],
+                        theta_dot: a[ax::THETA_DOT_ROCKING],
+                        u_dot: a[ax::U_DOT_ROCKING],
+                        energy: a[ax::ENERGY_ROCKING],
                     },
                 );
                 let momentum = (
-                    a[7],
+                    a[ax::ENERGY_MOMENTUM],
                     "adjex-momentum",
                     After::Contact {
-                        u_dot: a[6],
-                        energy: a[7],
+                        u_dot: a[ax::U_DOT_MOMENTUM],
+                        energy: a[ax::ENERGY_MOMENTUM],
                     },
                 );
                 let best = if rocking_ok && rocking.0 < contact.0 {
@@ -955,15 +961,15 @@ impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M
             }
             ImpactModel::Housner => {
                 let h = V::impact_housner(&xi, s, p);
-                if s2 * h[0] > 0.0 {
+                if s2 * h[ho::THETA_DOT] > 0.0 {
                     (
                         After::Rocking {
-                            theta_dot: h[0],
-                            u_dot: h[1],
-                            energy: h[2],
+                            theta_dot: h[ho::THETA_DOT],
+                            u_dot: h[ho::U_DOT],
+                            energy: h[ho::ENERGY_AFTER],
                         },
                         "housner",
-                        h[3],
+                        h[ho::ENERGY_BEFORE],
                     )
                 } else {
                     // A squat body whose angular momentum reverses cannot rock on: it stops.
@@ -973,13 +979,13 @@ impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M
                             energy: contact_energy(u_dot),
                         },
                         "housner-stop",
-                        h[3],
+                        h[ho::ENERGY_BEFORE],
                     )
                 }
             }
             ImpactModel::Restitution(r) => {
                 let td = r * theta_dot;
-                let e_b = V::energy(&[0.0, u, theta_dot, u_dot], s, p)[0];
+                let e_b = V::energy(&[0.0, u, theta_dot, u_dot], s, p)[en::KINETIC];
                 (
                     After::Rocking {
                         theta_dot: td,

@@ -46,118 +46,198 @@ pub use options::{Accuracy, History, ImpactModel, Initial, Options, Preset};
 pub use results::{
     EnergyBalance, EventKind, EventRecord, HistoryRow, Phase, Run, SolverStats, Summary, Time,
 };
+pub use rocking_kernels::{ModelInfo, VariantInfo};
 pub use rocking_ode::Method;
-pub use structure::{DampingConvention, Derived, Dimensionless, ParamError, Structure};
+pub use structure::{
+    find_model, model_names, plate_inertia, DampingConvention, Derived, Dimensionless, ParamError,
+    Structure, PAPER_MODEL,
+};
 
-use rocking_kernels::kernels::{Full, MasslessBase, MasslessColumn, PointMass, Rigid, SmallAngle};
+use rocking_kernels::{kernels::MAX_PARAMS, with_variant, Role};
 use rocking_motion::GroundMotion;
 
 /// Which physical effects a run includes. An effect that is off, or implied absent by a zero
-/// parameter, selects a more specialised kernel variant.
+/// parameter, selects a more specialised kernel variant of the structure's model.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Effects {
     /// Column flexibility (false: rigid column, one degree of freedom).
     pub flexibility: bool,
-    /// Distributed column mass.
-    pub column_mass: bool,
-    /// Base mass and inertia.
-    pub base_mass: bool,
     /// Viscous damping in the column.
     pub damping: bool,
     /// Exact rotations (false: the small-angle model).
     pub large_rotations: bool,
+    /// Masses switched off, by parameter name (`m_c`, `m_b`, a model's own such as `m_a`): each
+    /// is set to zero, a base mass with its inertia. They must be removable masses of the model.
+    pub masses_off: MassesOff,
+}
+
+/// A set of mass parameters switched off (at most one per parameter of a model; `Copy`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MassesOff {
+    names: [&'static str; MAX_PARAMS],
+    n: usize,
+}
+
+impl Default for MassesOff {
+    fn default() -> Self {
+        MassesOff {
+            names: [""; MAX_PARAMS],
+            n: 0,
+        }
+    }
+}
+
+impl MassesOff {
+    /// The names, in the order they were switched off.
+    pub fn iter(&self) -> impl Iterator<Item = &'static str> + '_ {
+        self.names[..self.n].iter().copied()
+    }
+
+    /// Whether the mass `name` is switched off.
+    pub fn contains(&self, name: &str) -> bool {
+        self.iter().any(|m| m == name)
+    }
 }
 
 impl Default for Effects {
     fn default() -> Self {
         Effects {
             flexibility: true,
-            column_mass: true,
-            base_mass: true,
             damping: true,
             large_rotations: true,
+            masses_off: MassesOff::default(),
         }
     }
 }
 
-/// The generated kernel variants the solver can run.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum KernelVariant {
-    /// All masses, flexible column.
-    Full,
-    /// m_c = 0.
-    MasslessColumn,
-    /// m_b = I_bc = 0.
-    MasslessBase,
-    /// m_c = m_b = I_bc = 0.
-    PointMass,
-    /// u ≡ 0.
-    Rigid,
-    /// Linearised in θ.
-    SmallAngle,
+impl Effects {
+    /// These effects with the mass `name` switched off.
+    ///
+    /// # Panics
+    /// When more masses are switched off than a model has parameters.
+    pub fn without_mass(mut self, name: &'static str) -> Effects {
+        let m = &mut self.masses_off;
+        if !m.contains(name) {
+            m.names[m.n] = name;
+            m.n += 1;
+        }
+        self
+    }
 }
 
-impl KernelVariant {
-    /// The generated module name.
-    pub fn name(self) -> &'static str {
-        use rocking_kernels::Variant;
-        match self {
-            KernelVariant::Full => Full::NAME,
-            KernelVariant::MasslessColumn => MasslessColumn::NAME,
-            KernelVariant::MasslessBase => MasslessBase::NAME,
-            KernelVariant::PointMass => PointMass::NAME,
-            KernelVariant::Rigid => Rigid::NAME,
-            KernelVariant::SmallAngle => SmallAngle::NAME,
+/// The variant a run gets: the structure with the switched-off effects removed, the most
+/// specialised generated variant of its model that runs it exactly, and the reasons.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Selection {
+    /// The structure that is simulated (switched-off masses and damping set to zero).
+    pub structure: Structure,
+    /// The kernel variant.
+    pub variant: &'static VariantInfo,
+    /// Why, in words.
+    pub reasons: Vec<String>,
+}
+
+/// Selects the variant for `structure` and `effects` from the generated registry: among the
+/// variants of the structure's model that match the flexibility and rotation effects and whose
+/// removed masses are all zero, the one that removes the most.
+pub fn select_variant(structure: &Structure, effects: &Effects) -> Result<Selection, ParamError> {
+    let model = structure.model();
+    let mut s = *structure;
+    let mut reasons = Vec::new();
+    for name in effects.masses_off.iter() {
+        if !model.removable_masses().any(|m| m == name) {
+            return Err(ParamError {
+                parameter: name,
+                value: 0.0,
+                allowed: format!(
+                    "`{name}` is not a mass model `{}` can switch off (its masses: {})",
+                    model.name,
+                    model.removable_masses().collect::<Vec<_>>().join(", ")
+                ),
+            });
+        }
+        let mut zeroed = vec![name];
+        zeroed.extend(
+            model
+                .params
+                .iter()
+                .filter(|p| p.role == Role::InertiaOf(name))
+                .map(|p| p.name),
+        );
+        if zeroed.iter().any(|z| s.param(z) != Some(0.0)) {
+            for z in &zeroed {
+                s = s.with_param(z, 0.0)?;
+            }
+            reasons.push(format!("{name} = false: {} set to 0", zeroed.join(" and ")));
         }
     }
-}
-
-/// The structure with the switched-off effects removed, the most specialised variant that runs
-/// it exactly, and the reasons for the choice.
-pub fn select_variant(
-    structure: &Structure,
-    effects: &Effects,
-) -> Result<(Structure, KernelVariant, Vec<String>), ParamError> {
-    let mut ph = *structure.physical();
-    let mut why = Vec::new();
-    if !effects.column_mass && ph.m_c != 0.0 {
-        ph.m_c = 0.0;
-        why.push("column_mass = false: m_c set to 0".to_string());
+    if !effects.damping && s.physical().zeta != 0.0 {
+        s = s.with_param("zeta", 0.0)?;
+        reasons.push("damping = false: zeta set to 0".to_string());
     }
-    if !effects.base_mass && (ph.m_b != 0.0 || ph.i_bc != 0.0) {
-        ph.m_b = 0.0;
-        ph.i_bc = 0.0;
-        why.push("base_mass = false: m_b and I_bc set to 0".to_string());
+    let candidates = model.variant_infos().filter(|v| {
+        v.rigid != effects.flexibility
+            && v.small_angle != effects.large_rotations
+            && v.removed.iter().all(|r| s.param(r) == Some(0.0))
+    });
+    let mut best: Option<&'static VariantInfo> = None;
+    for v in candidates {
+        if best.is_none_or(|b| v.removed.len() > b.removed.len()) {
+            best = Some(v);
+        }
     }
-    if !effects.damping && ph.zeta != 0.0 {
-        ph.zeta = 0.0;
-        why.push("damping = false: zeta set to 0".to_string());
+    let Some(variant) = best else {
+        let (parameter, what) = if !effects.flexibility {
+            ("flexibility", "rigid")
+        } else {
+            ("large_rotations", "small-angle")
+        };
+        return Err(ParamError {
+            parameter,
+            value: 0.0,
+            allowed: format!(
+                "model `{}` has no {what} variant (its variants: {}); add one in \
+                 derive/rocking_derive/models.py",
+                model.name,
+                model.variants.join(", ")
+            ),
+        });
+    };
+    if variant.rigid {
+        reasons.push("flexibility = false: rigid column, one degree of freedom".to_string());
     }
-    let reduced = structure.with_physical(ph)?;
-    let no_column = ph.m_c == 0.0;
-    let no_base = ph.m_b == 0.0 && ph.i_bc == 0.0;
-    let variant = if !effects.flexibility {
-        why.push("flexibility = false: rigid column, one degree of freedom".to_string());
-        KernelVariant::Rigid
-    } else if !effects.large_rotations {
-        why.push(
+    if variant.small_angle {
+        reasons.push(
             "large_rotations = false: small-angle model (sin θ → θ, cos θ → 1 − θ²/2)".to_string(),
         );
-        KernelVariant::SmallAngle
-    } else if no_column && no_base {
-        why.push("m_c = 0 and m_b = I_bc = 0: top mass only".to_string());
-        KernelVariant::PointMass
-    } else if no_column {
-        why.push("m_c = 0: massless column".to_string());
-        KernelVariant::MasslessColumn
-    } else if no_base {
-        why.push("m_b = I_bc = 0: massless base".to_string());
-        KernelVariant::MasslessBase
-    } else {
-        why.push("all masses present: full model".to_string());
-        KernelVariant::Full
-    };
-    Ok((reduced, variant, why))
+    }
+    if !variant.removed.is_empty() {
+        reasons.push(format!(
+            "{} = 0: {}",
+            variant.removed.join(" = "),
+            variant.title
+        ));
+    } else if !variant.rigid && !variant.small_angle {
+        let zero: Vec<&str> = model
+            .removable_masses()
+            .filter(|m| s.param(m) == Some(0.0))
+            .collect();
+        reasons.push(if zero.is_empty() {
+            format!("all masses present: {}", variant.title)
+        } else {
+            format!(
+                "no variant of model `{}` removes {} = 0: {}",
+                model.name,
+                zero.join(", "),
+                variant.title
+            )
+        });
+    }
+    Ok(Selection {
+        structure: s,
+        variant,
+        reasons,
+    })
 }
 
 /// Runs a simulation with the most specialised kernel variant for `structure` and `effects`.
@@ -167,23 +247,33 @@ pub fn simulate<M: GroundMotion>(
     effects: &Effects,
     options: &Options,
 ) -> Result<Run, SimError> {
-    let (structure, variant, _) =
-        select_variant(structure, effects).map_err(|e| SimError::Options(e.to_string()))?;
-    macro_rules! run {
-        ($v:ty) => {
-            if options.energy {
-                driver::simulate::<$v, M, true>(&structure, motion, options)
-            } else {
-                driver::simulate::<$v, M, false>(&structure, motion, options)
-            }
-        };
+    let sel = select_variant(structure, effects).map_err(|e| SimError::Options(e.to_string()))?;
+    run_variant(sel.variant.name, &sel.structure, motion, options)
+}
+
+/// Runs the generated variant called `name` (monomorphised through the generated dispatch) on a
+/// structure of its model.
+pub fn run_variant<M: GroundMotion>(
+    name: &str,
+    structure: &Structure,
+    motion: &M,
+    options: &Options,
+) -> Result<Run, SimError> {
+    match VariantInfo::find(name) {
+        Some(v) if v.model == structure.model().name => {}
+        _ => {
+            return Err(SimError::Options(format!(
+                "no kernel variant `{name}` of model `{}`",
+                structure.model().name
+            )))
+        }
     }
-    match variant {
-        KernelVariant::Full => run!(Full),
-        KernelVariant::MasslessColumn => run!(MasslessColumn),
-        KernelVariant::MasslessBase => run!(MasslessBase),
-        KernelVariant::PointMass => run!(PointMass),
-        KernelVariant::Rigid => run!(Rigid),
-        KernelVariant::SmallAngle => run!(SmallAngle),
-    }
+    with_variant!(name, V => {
+        if options.energy {
+            driver::simulate::<V, M, true>(structure, motion, options)
+        } else {
+            driver::simulate::<V, M, false>(structure, motion, options)
+        }
+    })
+    .unwrap_or_else(|| Err(SimError::Options(format!("no kernel variant `{name}`"))))
 }

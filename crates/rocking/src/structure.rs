@@ -1,12 +1,16 @@
-//! Structures: physical (any consistent units) or dimensionless (the paper's eq (34)), converted
-//! both ways, validated, with the derived quantities the reports need.
+//! Structures of any generated model: its whole parameter set, physical (any consistent units) or
+//! dimensionless (the paper's eq (34), R = g = m = 1), validated, with the derived quantities of
+//! the model's own kernels.
 
 use std::f64::consts::FRAC_PI_2;
 use std::fmt;
 
-use rocking_kernels::kernels::{full::structure as st, Full};
-use rocking_kernels::{Physical, Variant};
+use rocking_kernels::kernels::{index::structure as st, MAX_PARAMS};
+use rocking_kernels::{with_variant, ModelInfo, ParamInfo, Physical, Role, Variant};
 use serde::{Deserialize, Serialize};
+
+/// The model of a structure that names none: the paper's (cubic shape function).
+pub const PAPER_MODEL: &str = "cubic";
 
 /// How the damping ratio ζ is meant.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -29,7 +33,7 @@ pub struct Dimensionless {
     pub gamma_mc: f64,
     /// γ_mb = m_b / m.
     pub gamma_mb: f64,
-    /// γ_Ib = I_bc / (4/3 m_b B²): 1 for a thin rectangular plate.
+    /// γ_Ib = I_bc / (4/3 m_b B²), the base inertia over a thin plate's: 1 for a thin plate.
     pub gamma_ib: f64,
     /// Damping ratio, in the convention `damping`.
     pub zeta: f64,
@@ -45,7 +49,7 @@ pub struct ParamError {
     /// The value that was given.
     pub value: f64,
     /// The allowed range, in words.
-    pub allowed: &'static str,
+    pub allowed: String,
 }
 
 impl fmt::Display for ParamError {
@@ -72,21 +76,26 @@ fn check(
         Err(ParamError {
             parameter,
             value,
-            allowed,
+            allowed: allowed.to_string(),
         })
     }
 }
 
-/// A validated structure. The solver runs in the units of [`Structure::physical`]; a structure
-/// built from dimensionless groups uses R = g = m = 1, so its time unit is τ = p t.
+/// A validated structure of one generated model: the fields of [`Physical`] plus the values of
+/// the parameters the model adds (in the order of [`ModelInfo::extra_params`]). The solver runs in
+/// the units of [`Structure::physical`]; a structure built from dimensionless groups uses
+/// R = g = m = 1, so its time unit is τ = p t.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Structure {
+    model: &'static ModelInfo,
     physical: Physical,
+    extra: [f64; MAX_PARAMS],
+    n_extra: usize,
     /// p in 1/s when known (physical input, or dimensionless input with a length scale).
     p_per_second: Option<f64>,
 }
 
-/// Quantities derived from a structure by the generated `structure` kernel, in model units.
+/// Quantities derived from a structure by its model's generated `structure` kernel, in model units.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Derived {
     /// p = sqrt(g/R).
@@ -118,11 +127,166 @@ pub struct Derived {
     /// Reference energy: the rigid structure's potential-energy barrier V_g(θ_cr) − V_g(0), with
     /// all masses (equals m g R (1 − cos α) when m_c = m_b = 0).
     pub e_ref: f64,
+    /// I_bc of a thin base plate, 4/3 m_b B²: the unit of γ_Ib.
+    pub i_bc_plate: f64,
+}
+
+impl Derived {
+    /// The quantities of one evaluation of a variant's `structure` kernel.
+    pub fn from_kernel(s: &[f64; 15], zeta_fixed_base: f64) -> Derived {
+        Derived {
+            p: s[st::P_FREQ],
+            r: s[st::R],
+            alpha: s[st::ALPHA],
+            omega_n: s[st::OMEGA_N],
+            omega_up: s[st::OMEGA_UP],
+            modal_s: s[st::MODAL_S],
+            zeta_fixed_base,
+            zeta_uplifted: s[st::ZETA_UP],
+            m_tilde: s[st::M_TILDE],
+            k_tilde: s[st::K_TILDE],
+            gamma_tilde: s[st::GAMMA_TILDE],
+            theta_cr: s[st::THETA_CR],
+            u_cr: s[st::U_CR],
+            e_ref: s[st::E_REF],
+            i_bc_plate: s[st::I_BC_PLATE],
+        }
+    }
+}
+
+/// The generated model called `name`.
+pub fn find_model(name: &str) -> Result<&'static ModelInfo, ParamError> {
+    ModelInfo::find(name).ok_or_else(|| ParamError {
+        parameter: "model",
+        value: f64::NAN,
+        allowed: format!(
+            "`{name}` is not a generated model; the models are {}",
+            model_names().join(", ")
+        ),
+    })
+}
+
+/// The names of every generated model.
+pub fn model_names() -> Vec<&'static str> {
+    rocking_kernels::kernels::MODELS
+        .iter()
+        .map(|m| m.name)
+        .collect()
+}
+
+fn paper_model() -> &'static ModelInfo {
+    ModelInfo::find(PAPER_MODEL).expect("the paper's model is generated")
+}
+
+/// Checks the value of a parameter a model adds, by its role.
+fn check_extra(p: &'static ParamInfo, v: f64) -> Result<(), ParamError> {
+    match p.role {
+        Role::Mass { .. } => check(p.name, v, v >= 0.0, "a mass >= 0"),
+        Role::InertiaOf(_) => check(p.name, v, v >= 0.0, "an inertia >= 0"),
+        Role::HeightOf(_) => check(
+            p.name,
+            v,
+            (0.0..=1.0).contains(&v),
+            "a height 0 <= eta <= 1 (a fraction of the column height H)",
+        ),
+        Role::Other => check(p.name, v, true, "a finite value"),
+    }
+}
+
+/// The values of the parameters `model` adds: the `given` (name, value) pairs, defaults for the
+/// rest. A name the model does not add is an error.
+fn extra_values(
+    model: &'static ModelInfo,
+    given: &[(&str, f64)],
+) -> Result<([f64; MAX_PARAMS], usize), ParamError> {
+    if let Some((k, v)) = given
+        .iter()
+        .find(|(k, _)| model.extra_params().all(|p| p.name != *k))
+    {
+        return Err(ParamError {
+            parameter: "model",
+            value: *v,
+            allowed: format!(
+                "model `{}` has no parameter `{k}` of its own (it adds: {})",
+                model.name,
+                model
+                    .extra_params()
+                    .map(|p| p.name)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        });
+    }
+    let mut out = [0.0; MAX_PARAMS];
+    let mut n = 0;
+    for p in model.extra_params() {
+        out[n] = p.default.unwrap_or(0.0);
+        if let Some(&(_, v)) = given.iter().find(|(k, _)| *k == p.name) {
+            check_extra(p, v)?;
+            out[n] = v;
+        }
+        n += 1;
+    }
+    Ok((out, n))
+}
+
+/// The field of [`Physical`] called `name`.
+fn core_field<'a>(ph: &'a mut Physical, name: &str) -> Option<&'a mut f64> {
+    Some(match name {
+        "h" => &mut ph.h,
+        "b" => &mut ph.b,
+        "ei" => &mut ph.ei,
+        "m" => &mut ph.m,
+        "m_c" => &mut ph.m_c,
+        "m_b" => &mut ph.m_b,
+        "i_bc" => &mut ph.i_bc,
+        "zeta" => &mut ph.zeta,
+        "g" => &mut ph.g,
+        _ => return None,
+    })
+}
+
+/// Runs `$body` with `$V` the model's full variant (its own kernels, nothing removed).
+macro_rules! with_full {
+    ($model:expr, $V:ident => $body:expr) => {
+        with_variant!($model.full, $V => $body).expect("a model's full variant is generated")
+    };
+}
+
+/// I_bc of a thin base plate, 4/3 m_b B², for `model` with these parameters (from its kernels):
+/// the default base inertia.
+pub fn plate_inertia(model: &'static ModelInfo, physical: &Physical) -> f64 {
+    with_full!(model, V => V::structure(&V::params_with(physical, &[]))[st::I_BC_PLATE])
 }
 
 impl Structure {
-    /// A structure from physical parameters (any consistent units; SI gives seconds).
+    /// A structure of the paper's model from physical parameters (any consistent units; SI gives
+    /// seconds).
     pub fn from_physical(physical: Physical) -> Result<Structure, ParamError> {
+        Structure::of_model(paper_model(), physical, &[])
+    }
+
+    /// A structure of `model` from physical parameters and the values of the parameters the model
+    /// adds, by name (in the same units; missing ones take their defaults).
+    pub fn of_model(
+        model: &'static ModelInfo,
+        physical: Physical,
+        extra: &[(&str, f64)],
+    ) -> Result<Structure, ParamError> {
+        let (values, n_extra) = extra_values(model, extra)?;
+        let mut s = Structure::checked(model, physical, values, n_extra, None)?;
+        // Physical units: the model's time unit is the second.
+        s.p_per_second = Some(s.derived().p);
+        Ok(s)
+    }
+
+    fn checked(
+        model: &'static ModelInfo,
+        physical: Physical,
+        extra: [f64; MAX_PARAMS],
+        n_extra: usize,
+        p_per_second: Option<f64>,
+    ) -> Result<Structure, ParamError> {
         let p = physical;
         check("h", p.h, p.h > 0.0, "a column height H > 0")?;
         check("b", p.b, p.b > 0.0, "a base half-width B > 0")?;
@@ -145,21 +309,35 @@ impl Structure {
             "a damping ratio 0 <= zeta < 1",
         )?;
         check("g", p.g, p.g > 0.0, "a gravitational acceleration g > 0")?;
-        let s = Structure {
-            physical,
-            p_per_second: None,
-        };
-        let p_model = s.derived().p;
+        for (param, &v) in model.extra_params().zip(&extra[..n_extra]) {
+            check_extra(param, v)?;
+        }
         Ok(Structure {
+            model,
             physical,
-            p_per_second: Some(p_model),
+            extra,
+            n_extra,
+            p_per_second,
         })
     }
 
-    /// A structure from the dimensionless groups, with R = g = m = 1 (time in τ). `p_per_second`
-    /// (p in 1/s, for example from R: p = sqrt(9.81/R)) lets results be reported in seconds too.
+    /// A structure of the paper's model from the dimensionless groups, with R = g = m = 1 (time
+    /// in τ). `p_per_second` (p in 1/s, for example from R: p = sqrt(9.81/R)) lets results be
+    /// reported in seconds too.
     pub fn from_dimensionless(
         d: &Dimensionless,
+        p_per_second: Option<f64>,
+    ) -> Result<Structure, ParamError> {
+        Structure::dimensionless_of_model(paper_model(), d, &[], p_per_second)
+    }
+
+    /// A structure of `model` from the dimensionless groups and the values of the parameters the
+    /// model adds, in R = g = m = 1 units (a mass relative to m, a length relative to R). EI is
+    /// set so that this model's ω_n/p is `d.omega_n_over_p`, from the model's own kernels.
+    pub fn dimensionless_of_model(
+        model: &'static ModelInfo,
+        d: &Dimensionless,
+        extra: &[(&str, f64)],
         p_per_second: Option<f64>,
     ) -> Result<Structure, ParamError> {
         check(
@@ -201,36 +379,82 @@ impl Structure {
         if let Some(p) = p_per_second {
             check("p", p, p > 0.0, "p = sqrt(g/R) > 0 (1/s)")?;
         }
-        let mut physical = Physical::dimensionless(
+        let (values, n_extra) = extra_values(model, extra)?;
+        let ex = &values[..n_extra];
+        let mut physical = with_full!(model, V => Physical::dimensionless_with::<V>(
             d.alpha,
             d.omega_n_over_p,
             d.gamma_mc,
             d.gamma_mb,
             d.gamma_ib,
             d.zeta,
-        );
+            ex,
+        ));
         if d.damping == DampingConvention::Uplifted {
-            let s = Full::structure(&Full::params(&physical))[st::MODAL_S];
+            let s =
+                with_full!(model, V => V::structure(&V::params_with(&physical, ex))[st::MODAL_S]);
             physical.zeta = d.zeta / s;
         }
-        Ok(Structure {
-            physical,
-            p_per_second,
-        })
+        Structure::checked(model, physical, values, n_extra, p_per_second)
     }
 
-    /// The same structure (and time scale) with other physical parameters, validated.
+    /// The same structure (model, extra parameters and time scale) with other physical
+    /// parameters, validated.
     pub fn with_physical(&self, physical: Physical) -> Result<Structure, ParamError> {
-        let checked = Structure::from_physical(physical)?;
-        Ok(Structure {
-            physical: checked.physical,
-            p_per_second: self.p_per_second,
-        })
+        Structure::checked(
+            self.model,
+            physical,
+            self.extra,
+            self.n_extra,
+            self.p_per_second,
+        )
+    }
+
+    /// The same structure with the parameter `name` (a field of [`Physical`] or one the model
+    /// adds) set to `value`, validated.
+    pub fn with_param(&self, name: &str, value: f64) -> Result<Structure, ParamError> {
+        let (mut ph, mut extra) = (self.physical, self.extra);
+        match core_field(&mut ph, name) {
+            Some(f) => *f = value,
+            None => match self.model.extra_params().position(|p| p.name == name) {
+                Some(k) => extra[k] = value,
+                None => return extra_values(self.model, &[(name, value)]).map(|_| *self),
+            },
+        }
+        Structure::checked(self.model, ph, extra, self.n_extra, self.p_per_second)
+    }
+
+    /// The value of the parameter `name` (a field of [`Physical`] or one the model adds).
+    pub fn param(&self, name: &str) -> Option<f64> {
+        let mut ph = self.physical;
+        match core_field(&mut ph, name) {
+            Some(f) => Some(*f),
+            None => {
+                let k = self.model.extra_params().position(|p| p.name == name)?;
+                Some(self.extra[k])
+            }
+        }
+    }
+
+    /// The model of this structure.
+    pub fn model(&self) -> &'static ModelInfo {
+        self.model
     }
 
     /// The physical parameters the kernels run with.
     pub fn physical(&self) -> &Physical {
         &self.physical
+    }
+
+    /// The values of the parameters the model adds, in order.
+    pub fn extra(&self) -> &[f64] {
+        &self.extra[..self.n_extra]
+    }
+
+    /// The parameter array of variant `V` (which must be a variant of this structure's model).
+    pub fn params<V: Variant>(&self) -> V::Params {
+        debug_assert_eq!(V::MODEL, self.model.name);
+        V::params_with(&self.physical, self.extra())
     }
 
     /// p in 1/s, when the structure has a time scale in seconds.
@@ -247,8 +471,8 @@ impl Structure {
             alpha: d.alpha,
             gamma_mc: ph.m_c / ph.m,
             gamma_mb: ph.m_b / ph.m,
-            gamma_ib: if ph.m_b > 0.0 {
-                ph.i_bc / (4.0 / 3.0 * ph.m_b * ph.b * ph.b)
+            gamma_ib: if d.i_bc_plate > 0.0 {
+                ph.i_bc / d.i_bc_plate
             } else {
                 1.0
             },
@@ -257,33 +481,28 @@ impl Structure {
         }
     }
 
-    /// Derived quantities, from the generated `structure` kernel of the full model.
+    /// Derived quantities, from the generated `structure` kernel of the structure's own model
+    /// (its full variant: a specialised variant gives the same numbers, since the masses it
+    /// removes are zero when it runs).
     pub fn derived(&self) -> Derived {
-        let s = Full::structure(&Full::params(&self.physical));
-        Derived {
-            p: s[st::P_FREQ],
-            r: s[st::R],
-            alpha: s[st::ALPHA],
-            omega_n: s[st::OMEGA_N],
-            omega_up: s[st::OMEGA_UP],
-            modal_s: s[st::MODAL_S],
-            zeta_fixed_base: self.physical.zeta,
-            zeta_uplifted: s[st::ZETA_UP],
-            m_tilde: s[st::M_TILDE],
-            k_tilde: s[st::K_TILDE],
-            gamma_tilde: s[st::GAMMA_TILDE],
-            theta_cr: s[st::THETA_CR],
-            u_cr: s[st::U_CR],
-            e_ref: s[st::E_REF],
-        }
+        with_full!(self.model, V => self.derived_by::<V>())
+    }
+
+    /// Derived quantities from the `structure` kernel of the variant `V` of this model.
+    pub fn derived_by<V: Variant>(&self) -> Derived {
+        Derived::from_kernel(&V::structure(&self.params::<V>()), self.physical.zeta)
     }
 
     /// The smallest constant ground acceleration that uplifts the structure when applied
-    /// quasi-statically (the column at its static deflection), from the generated kernels.
+    /// quasi-statically (the column at its static deflection), from the model's kernels.
     pub fn static_uplift_acceleration(&self) -> f64 {
-        let p = Full::params(&self.physical);
+        with_full!(self.model, V => self.static_uplift_acceleration_by::<V>())
+    }
+
+    fn static_uplift_acceleration_by<V: Variant>(&self) -> f64 {
+        let p = self.params::<V>();
         // The contact and uplift kernels are affine in (u, ug): solve them as such.
-        let acc = |u: f64, ug: f64| Full::contact_rhs(&[u, 0.0], ug, &p)[1];
+        let acc = |u: f64, ug: f64| V::contact_rhs(&[u, 0.0], ug, &p)[1];
         let (a0, au, ag) = (
             acc(0.0, 0.0),
             acc(1.0, 0.0) - acc(0.0, 0.0),
@@ -291,7 +510,7 @@ impl Structure {
         );
         let u_static = |ug: f64| -(a0 + ag * ug) / au;
         // Uplift about s = +1 needs a negative ug; by symmetry the magnitude is the same for s = -1.
-        let f = |ug: f64| Full::uplift(&[u_static(ug), 0.0], ug, 1.0, &p);
+        let f = |ug: f64| V::uplift(&[u_static(ug), 0.0], ug, 1.0, &p);
         let (f0, f1) = (f(0.0), f(-1.0) - f(0.0));
         f0.abs() / f1
     }

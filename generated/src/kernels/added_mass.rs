@@ -14,6 +14,12 @@ pub const MODEL: &str = "cubic_platform";
 pub const TITLE: &str = "Example: the full model plus a lumped mass m_a at height eta_a H";
 /// Names of the parameters, in the order of [`Params`].
 pub const PARAM_NAMES: [&str; 11] = ["h", "b", "ei", "m", "m_c", "m_b", "i_bc", "zeta", "g", "m_a", "eta_a"];
+/// Mass (and inertia) parameters this variant removes: they are zero in its kernels.
+pub const REMOVED: &[&str] = &[];
+/// Rigid column (u = 0): one degree of freedom.
+pub const RIGID: bool = false;
+/// Linearised in θ.
+pub const SMALL_ANGLE: bool = false;
 
 /// Parameter vector of this variant, in this order:
 ///
@@ -28,16 +34,25 @@ pub const PARAM_NAMES: [&str; 11] = ["h", "b", "ei", "m", "m_c", "m_b", "i_bc", 
 /// | 6 | `i_bc` | `Physical::i_bc` | base inertia about a corner, I_bc = I_b + m_b B^2 |
 /// | 7 | `zeta` | `Physical::zeta` | fixed-base damping ratio |
 /// | 8 | `g` | `Physical::g` | gravitational acceleration |
-/// | 9 | `m_a` | `0.0` | added lumped mass |
-/// | 10 | `eta_a` | `0.5` | height of the added mass as a fraction of H |
+/// | 9 | `m_a` | `0.0` (default) | added lumped mass |
+/// | 10 | `eta_a` | `0.5` (default) | height of the added mass as a fraction of H |
 ///
 /// Build it with [`params()`]; index it with the constants of [`param`].
 pub type Params = [f64; 11];
 
-/// Builds the parameter vector from the physical parameters.
+/// Builds the parameter vector from the physical parameters (the parameters the model adds take
+/// their defaults).
 #[inline]
 #[must_use]
 pub fn params(phys: &crate::Physical) -> Params {
+    params_with(phys, &[])
+}
+
+/// Builds the parameter vector from the physical parameters and the values of the parameters the
+/// model adds, in their order (missing ones take their defaults).
+#[inline]
+#[must_use]
+pub fn params_with(phys: &crate::Physical, extra: &[f64]) -> Params {
     [
         phys.h,
         phys.b,
@@ -48,8 +63,8 @@ pub fn params(phys: &crate::Physical) -> Params {
         phys.i_bc,
         phys.zeta,
         phys.g,
-        0.0,
-        0.5,
+        extra.get(0).copied().unwrap_or(0.0),
+        extra.get(1).copied().unwrap_or(0.5),
     ]
 }
 
@@ -1907,7 +1922,7 @@ pub mod impact_housner {
     }
 }
 
-/// Fixed-base and reference quantities: eqs (5)-(7), (18)-(19), (39)-(40), E_ref (the rigid column's potential-energy barrier with all masses), R, alpha and p = sqrt(g/R).
+/// Fixed-base and reference quantities: eqs (5)-(7), (18)-(19), (39)-(40), E_ref (the rigid column's potential-energy barrier with all masses), R, alpha, p = sqrt(g/R) and the thin-plate base inertia 4/3 m_b B^2 (the unit of gamma_ib).
 ///
 /// # Inputs
 ///
@@ -1915,12 +1930,12 @@ pub mod impact_housner {
 ///
 /// # Output
 ///
-/// `st: [f64; 14]`: structure quantities — `m_tilde`, `k_tilde`, `gamma_tilde`, `omega_n`, `damping_c`, `modal_s`, `omega_up`, `zeta_up`, `theta_cr`, `u_cr`, `e_ref`, `r`, `alpha`, `p_freq`
+/// `st: [f64; 15]`: structure quantities — `m_tilde`, `k_tilde`, `gamma_tilde`, `omega_n`, `damping_c`, `modal_s`, `omega_up`, `zeta_up`, `theta_cr`, `u_cr`, `e_ref`, `r`, `alpha`, `p_freq`, `i_bc_plate`
 ///
-/// Operations: 118 (58 mul, 25 add, 8 div, 8 twice, 6 sq, 5 sqrt, 5 sub, 2 atan2, 1 neg).
+/// Operations: 121 (60 mul, 25 add, 9 div, 8 twice, 6 sq, 5 sqrt, 5 sub, 2 atan2, 1 neg).
 #[inline]
 #[must_use]
-pub fn structure(p: &Params) -> [f64; 14] {
+pub fn structure(p: &Params) -> [f64; 15] {
     let w0: f64 = 1.5;
     let w1 = p[10]; // eta_a
     let w2 = w1 * w1;
@@ -2073,7 +2088,28 @@ pub fn structure(p: &Params) -> [f64; 14] {
     let w136 = w88 / w134;
     let w137 = w136.sqrt();
     let o13 = w137; // p_freq
-    [o0, o1, o2, o3, o4, o5, o6, o7, o8, o9, o10, o11, o12, o13]
+    let w138: f64 = 4.0;
+    let w139 = w138 * w92;
+    let w140 = w139 * w132;
+    let w141 = w140 / w21;
+    let o14 = w141; // i_bc_plate
+    [
+        o0,
+        o1,
+        o2,
+        o3,
+        o4,
+        o5,
+        o6,
+        o7,
+        o8,
+        o9,
+        o10,
+        o11,
+        o12,
+        o13,
+        o14,
+    ]
 }
 
 /// Indices of the elements of the output `st` of [`structure()`].
@@ -2106,6 +2142,8 @@ pub mod structure {
     pub const ALPHA: usize = 12;
     /// Index of `p_freq`.
     pub const P_FREQ: usize = 13;
+    /// Index of `i_bc_plate`.
+    pub const I_BC_PLATE: usize = 14;
 }
 
 /// Example: the full model plus a lumped mass m_a at height eta_a H
@@ -2119,11 +2157,19 @@ impl crate::Variant for AddedMass {
     const MODEL: &'static str = MODEL;
     const TITLE: &'static str = TITLE;
     const PARAM_NAMES: &'static [&'static str] = &PARAM_NAMES;
+    const REMOVED: &'static [&'static str] = REMOVED;
+    const RIGID: bool = RIGID;
+    const SMALL_ANGLE: bool = SMALL_ANGLE;
     type Params = Params;
 
     #[inline]
     fn params(phys: &crate::Physical) -> Params {
         params(phys)
+    }
+
+    #[inline]
+    fn params_with(phys: &crate::Physical, extra: &[f64]) -> Params {
+        params_with(phys, extra)
     }
 
     #[inline]
@@ -2177,7 +2223,7 @@ impl crate::Variant for AddedMass {
     }
 
     #[inline]
-    fn structure(p: &Params) -> [f64; 14] {
+    fn structure(p: &Params) -> [f64; 15] {
         structure(p)
     }
 }

@@ -127,6 +127,584 @@ pub const VARIANTS: &[(&str, &str)] = &[
     (small_angle::NAME, small_angle::TITLE),
 ];
 
+/// Every variant's metadata (model, title, removed masses, rigid and small-angle flags), sorted by
+/// name.
+#[rustfmt::skip]
+pub const VARIANT_INFO: &[crate::VariantInfo] = &[
+    crate::VariantInfo {
+        name: "added_mass",
+        model: "cubic_platform",
+        title: "Example: the full model plus a lumped mass m_a at height eta_a H",
+        removed: &[],
+        rigid: false,
+        small_angle: false,
+    },
+    crate::VariantInfo {
+        name: "cosine_shape",
+        model: "cosine",
+        title: "Example: the full model with the shape psi = 1 - cos(pi xi / 2H)",
+        removed: &[],
+        rigid: false,
+        small_angle: false,
+    },
+    crate::VariantInfo {
+        name: "full",
+        model: "cubic",
+        title: "Full model: distributed column mass, top mass, base mass and inertia",
+        removed: &[],
+        rigid: false,
+        small_angle: false,
+    },
+    crate::VariantInfo {
+        name: "massless_base",
+        model: "cubic",
+        title: "Massless base (m_b = I_bc = 0): distributed column mass and top mass",
+        removed: &["m_b", "i_bc"],
+        rigid: false,
+        small_angle: false,
+    },
+    crate::VariantInfo {
+        name: "massless_column",
+        model: "cubic",
+        title: "Massless column (m_c = 0): top mass, base mass and inertia",
+        removed: &["m_c"],
+        rigid: false,
+        small_angle: false,
+    },
+    crate::VariantInfo {
+        name: "point_mass",
+        model: "cubic",
+        title: "Top mass only (m_c = m_b = I_bc = 0): the model of Acikgoz & DeJong",
+        removed: &["m_c", "m_b", "i_bc"],
+        rigid: false,
+        small_angle: false,
+    },
+    crate::VariantInfo {
+        name: "rigid",
+        model: "cubic",
+        title: "Rigid column (u = 0): one degree of freedom, Housner's rocking block with these masses",
+        removed: &[],
+        rigid: true,
+        small_angle: false,
+    },
+    crate::VariantInfo {
+        name: "small_angle",
+        model: "cubic",
+        title: "Full model linearised in theta (sin -> theta, cos -> 1 - theta^2/2 in the energies)",
+        removed: &[],
+        rigid: false,
+        small_angle: true,
+    },
+];
+
+/// Every model, sorted by name: description, shape, the variant that runs it as it is (`full`),
+/// its variants and its parameters (in the order of the parameter vector; the ones with a default
+/// are the parameters the model adds to [`crate::Physical`]).
+#[rustfmt::skip]
+pub const MODELS: &[crate::ModelInfo] = &[
+    crate::ModelInfo {
+        name: "cosine",
+        description: "Same masses, shape psi = 1 - cos(pi xi / 2H)",
+        shape: "psi = 1 - cos(pi eta / 2)",
+        full: "cosine_shape",
+        variants: &["cosine_shape"],
+        params: &[
+            crate::ParamInfo {
+                name: "h",
+                doc: "column height H",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "b",
+                doc: "half-width B of the base",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "ei",
+                doc: "bending stiffness EI of the column",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "m",
+                doc: "top mass m",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Lumped, removable: false },
+            },
+            crate::ParamInfo {
+                name: "m_c",
+                doc: "total column mass m_c",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Column, removable: true },
+            },
+            crate::ParamInfo {
+                name: "m_b",
+                doc: "base mass m_b",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Base, removable: true },
+            },
+            crate::ParamInfo {
+                name: "i_bc",
+                doc: "base inertia about a corner, I_bc = I_b + m_b B^2",
+                default: None,
+                role: crate::Role::InertiaOf("m_b"),
+            },
+            crate::ParamInfo {
+                name: "zeta",
+                doc: "fixed-base damping ratio",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "g",
+                doc: "gravitational acceleration",
+                default: None,
+                role: crate::Role::Other,
+            },
+        ],
+    },
+    crate::ModelInfo {
+        name: "cubic",
+        description: "Elastic cantilever with distributed mass, a top mass and a rigid base (paper Fig. 1)",
+        shape: "psi = 3/2 eta^2 - 1/2 eta^3 (paper eq 1)",
+        full: "full",
+        variants: &["full", "massless_base", "massless_column", "point_mass", "rigid", "small_angle"],
+        params: &[
+            crate::ParamInfo {
+                name: "h",
+                doc: "column height H",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "b",
+                doc: "half-width B of the base",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "ei",
+                doc: "bending stiffness EI of the column",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "m",
+                doc: "top mass m",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Lumped, removable: false },
+            },
+            crate::ParamInfo {
+                name: "m_c",
+                doc: "total column mass m_c",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Column, removable: true },
+            },
+            crate::ParamInfo {
+                name: "m_b",
+                doc: "base mass m_b",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Base, removable: true },
+            },
+            crate::ParamInfo {
+                name: "i_bc",
+                doc: "base inertia about a corner, I_bc = I_b + m_b B^2",
+                default: None,
+                role: crate::Role::InertiaOf("m_b"),
+            },
+            crate::ParamInfo {
+                name: "zeta",
+                doc: "fixed-base damping ratio",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "g",
+                doc: "gravitational acceleration",
+                default: None,
+                role: crate::Role::Other,
+            },
+        ],
+    },
+    crate::ModelInfo {
+        name: "cubic_platform",
+        description: "The paper's model plus a lumped mass m_a at height eta_a H (e.g. a platform)",
+        shape: "psi = 3/2 eta^2 - 1/2 eta^3 (paper eq 1)",
+        full: "added_mass",
+        variants: &["added_mass"],
+        params: &[
+            crate::ParamInfo {
+                name: "h",
+                doc: "column height H",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "b",
+                doc: "half-width B of the base",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "ei",
+                doc: "bending stiffness EI of the column",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "m",
+                doc: "top mass m",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Lumped, removable: false },
+            },
+            crate::ParamInfo {
+                name: "m_c",
+                doc: "total column mass m_c",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Column, removable: true },
+            },
+            crate::ParamInfo {
+                name: "m_b",
+                doc: "base mass m_b",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Base, removable: true },
+            },
+            crate::ParamInfo {
+                name: "i_bc",
+                doc: "base inertia about a corner, I_bc = I_b + m_b B^2",
+                default: None,
+                role: crate::Role::InertiaOf("m_b"),
+            },
+            crate::ParamInfo {
+                name: "zeta",
+                doc: "fixed-base damping ratio",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "g",
+                doc: "gravitational acceleration",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "m_a",
+                doc: "added lumped mass",
+                default: Some(0.0),
+                role: crate::Role::Mass { kind: crate::MassKind::Lumped, removable: true },
+            },
+            crate::ParamInfo {
+                name: "eta_a",
+                doc: "height of the added mass as a fraction of H",
+                default: Some(0.5),
+                role: crate::Role::HeightOf("m_a"),
+            },
+        ],
+    },
+];
+
+/// The length of the longest parameter vector of any model.
+pub const MAX_PARAMS: usize = 11;
+
+/// Named indices of the inputs and outputs of the functions every variant exports alike, for
+/// code that is generic over [`crate::Variant`].
+#[rustfmt::skip]
+pub mod index {
+
+    /// Indices of the output `m` of `mass_matrix` (and of its inputs).
+    pub mod mass_matrix {
+        /// Index of `m_tt`.
+        pub const M_TT: usize = 0;
+        /// Index of `m_tu`.
+        pub const M_TU: usize = 1;
+        /// Index of `m_uu`.
+        pub const M_UU: usize = 2;
+
+        /// Indices of the elements of input `q`.
+        pub mod q {
+            /// Index of `theta`.
+            pub const THETA: usize = 0;
+            /// Index of `u`.
+            pub const U: usize = 1;
+        }
+    }
+
+    /// Indices of the output `f` of `forcing` (and of its inputs).
+    pub mod forcing {
+        /// Index of `f_theta`.
+        pub const F_THETA: usize = 0;
+        /// Index of `f_u`.
+        pub const F_U: usize = 1;
+
+        /// Indices of the elements of input `x`.
+        pub mod x {
+            /// Index of `theta`.
+            pub const THETA: usize = 0;
+            /// Index of `u`.
+            pub const U: usize = 1;
+            /// Index of `theta_dot`.
+            pub const THETA_DOT: usize = 2;
+            /// Index of `u_dot`.
+            pub const U_DOT: usize = 3;
+        }
+    }
+
+    /// Indices of the output `dx` of `rocking_rhs` (and of its inputs).
+    pub mod rocking_rhs {
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 0;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 1;
+        /// Index of `theta_ddot`.
+        pub const THETA_DDOT: usize = 2;
+        /// Index of `u_ddot`.
+        pub const U_DDOT: usize = 3;
+
+        /// Indices of the elements of input `x`.
+        pub mod x {
+            /// Index of `theta`.
+            pub const THETA: usize = 0;
+            /// Index of `u`.
+            pub const U: usize = 1;
+            /// Index of `theta_dot`.
+            pub const THETA_DOT: usize = 2;
+            /// Index of `u_dot`.
+            pub const U_DOT: usize = 3;
+        }
+    }
+
+    /// Indices of the output `dxc` of `contact_rhs` (and of its inputs).
+    pub mod contact_rhs {
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 0;
+        /// Index of `u_ddot`.
+        pub const U_DDOT: usize = 1;
+
+        /// Indices of the elements of input `xc`.
+        pub mod xc {
+            /// Index of `u`.
+            pub const U: usize = 0;
+            /// Index of `u_dot`.
+            pub const U_DOT: usize = 1;
+        }
+    }
+
+    /// Indices of the output `f_s` of `uplift` (and of its inputs).
+    pub mod uplift {
+        /// Index of `f_s`.
+        pub const F_S: usize = 0;
+
+        /// Indices of the elements of input `xc`.
+        pub mod xc {
+            /// Index of `u`.
+            pub const U: usize = 0;
+            /// Index of `u_dot`.
+            pub const U_DOT: usize = 1;
+        }
+    }
+
+    /// Indices of the output `e` of `energy` (and of its inputs).
+    pub mod energy {
+        /// Index of `kinetic`.
+        pub const KINETIC: usize = 0;
+        /// Index of `gravity`.
+        pub const GRAVITY: usize = 1;
+        /// Index of `strain`.
+        pub const STRAIN: usize = 2;
+        /// Index of `momentum_x`.
+        pub const MOMENTUM_X: usize = 3;
+
+        /// Indices of the elements of input `x`.
+        pub mod x {
+            /// Index of `theta`.
+            pub const THETA: usize = 0;
+            /// Index of `u`.
+            pub const U: usize = 1;
+            /// Index of `theta_dot`.
+            pub const THETA_DOT: usize = 2;
+            /// Index of `u_dot`.
+            pub const U_DOT: usize = 3;
+        }
+    }
+
+    /// Indices of the output `w` of `power` (and of its inputs).
+    pub mod power {
+        /// Index of `ground`.
+        pub const GROUND: usize = 0;
+        /// Index of `damping`.
+        pub const DAMPING: usize = 1;
+
+        /// Indices of the elements of input `x`.
+        pub mod x {
+            /// Index of `theta`.
+            pub const THETA: usize = 0;
+            /// Index of `u`.
+            pub const U: usize = 1;
+            /// Index of `theta_dot`.
+            pub const THETA_DOT: usize = 2;
+            /// Index of `u_dot`.
+            pub const U_DOT: usize = 3;
+        }
+    }
+
+    /// Indices of the output `vvel` of `impact_vvel` (and of its inputs).
+    pub mod impact_vvel {
+        /// Index of `rock`.
+        pub const ROCK: usize = 0;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 1;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 2;
+        /// Index of `energy_after`.
+        pub const ENERGY_AFTER: usize = 3;
+        /// Index of `energy_before`.
+        pub const ENERGY_BEFORE: usize = 4;
+
+        /// Indices of the elements of input `xi`.
+        pub mod xi {
+            /// Index of `u`.
+            pub const U: usize = 0;
+            /// Index of `u_dot`.
+            pub const U_DOT: usize = 1;
+            /// Index of `theta_dot`.
+            pub const THETA_DOT: usize = 2;
+        }
+    }
+
+    /// Indices of the output `adjex` of `impact_adjex` (and of its inputs).
+    pub mod impact_adjex {
+        /// Index of `u_dot_contact`.
+        pub const U_DOT_CONTACT: usize = 0;
+        /// Index of `energy_contact`.
+        pub const ENERGY_CONTACT: usize = 1;
+        /// Index of `theta_dot_rocking`.
+        pub const THETA_DOT_ROCKING: usize = 2;
+        /// Index of `u_dot_rocking`.
+        pub const U_DOT_ROCKING: usize = 3;
+        /// Index of `energy_rocking`.
+        pub const ENERGY_ROCKING: usize = 4;
+        /// Index of `energy_before`.
+        pub const ENERGY_BEFORE: usize = 5;
+        /// Index of `u_dot_momentum`.
+        pub const U_DOT_MOMENTUM: usize = 6;
+        /// Index of `energy_momentum`.
+        pub const ENERGY_MOMENTUM: usize = 7;
+
+        /// Indices of the elements of input `xi`.
+        pub mod xi {
+            /// Index of `u`.
+            pub const U: usize = 0;
+            /// Index of `u_dot`.
+            pub const U_DOT: usize = 1;
+            /// Index of `theta_dot`.
+            pub const THETA_DOT: usize = 2;
+        }
+    }
+
+    /// Indices of the output `housner` of `impact_housner` (and of its inputs).
+    pub mod impact_housner {
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 0;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 1;
+        /// Index of `energy_after`.
+        pub const ENERGY_AFTER: usize = 2;
+        /// Index of `energy_before`.
+        pub const ENERGY_BEFORE: usize = 3;
+
+        /// Indices of the elements of input `xi`.
+        pub mod xi {
+            /// Index of `u`.
+            pub const U: usize = 0;
+            /// Index of `u_dot`.
+            pub const U_DOT: usize = 1;
+            /// Index of `theta_dot`.
+            pub const THETA_DOT: usize = 2;
+        }
+    }
+
+    /// Indices of the output `st` of `structure` (and of its inputs).
+    pub mod structure {
+        /// Index of `m_tilde`.
+        pub const M_TILDE: usize = 0;
+        /// Index of `k_tilde`.
+        pub const K_TILDE: usize = 1;
+        /// Index of `gamma_tilde`.
+        pub const GAMMA_TILDE: usize = 2;
+        /// Index of `omega_n`.
+        pub const OMEGA_N: usize = 3;
+        /// Index of `damping_c`.
+        pub const DAMPING_C: usize = 4;
+        /// Index of `modal_s`.
+        pub const MODAL_S: usize = 5;
+        /// Index of `omega_up`.
+        pub const OMEGA_UP: usize = 6;
+        /// Index of `zeta_up`.
+        pub const ZETA_UP: usize = 7;
+        /// Index of `theta_cr`.
+        pub const THETA_CR: usize = 8;
+        /// Index of `u_cr`.
+        pub const U_CR: usize = 9;
+        /// Index of `e_ref`.
+        pub const E_REF: usize = 10;
+        /// Index of `r`.
+        pub const R: usize = 11;
+        /// Index of `alpha`.
+        pub const ALPHA: usize = 12;
+        /// Index of `p_freq`.
+        pub const P_FREQ: usize = 13;
+        /// Index of `i_bc_plate`.
+        pub const I_BC_PLATE: usize = 14;
+    }
+}
+
+/// Evaluates `$body` with the type `$V` standing for the variant named `$name` (a `&str`),
+/// monomorphised: `Some($body)`, or `None` when no variant has that name. The solver runs any
+/// generated variant through this, without a hand-written list.
+#[rustfmt::skip]
+#[macro_export]
+macro_rules! with_variant {
+    ($name:expr, $V:ident => $body:expr) => {
+        match $name {
+            "added_mass" => {
+                type $V = $crate::kernels::AddedMass;
+                ::core::option::Option::Some($body)
+            }
+            "cosine_shape" => {
+                type $V = $crate::kernels::CosineShape;
+                ::core::option::Option::Some($body)
+            }
+            "full" => {
+                type $V = $crate::kernels::Full;
+                ::core::option::Option::Some($body)
+            }
+            "massless_base" => {
+                type $V = $crate::kernels::MasslessBase;
+                ::core::option::Option::Some($body)
+            }
+            "massless_column" => {
+                type $V = $crate::kernels::MasslessColumn;
+                ::core::option::Option::Some($body)
+            }
+            "point_mass" => {
+                type $V = $crate::kernels::PointMass;
+                ::core::option::Option::Some($body)
+            }
+            "rigid" => {
+                type $V = $crate::kernels::Rigid;
+                ::core::option::Option::Some($body)
+            }
+            "small_angle" => {
+                type $V = $crate::kernels::SmallAngle;
+                ::core::option::Option::Some($body)
+            }
+            _ => ::core::option::Option::None,
+        }
+    };
+}
+
 /// Calls `function` of `variant` by name with slices for its inputs (scalars as
 /// one-element slices), for tests and tools.
 ///

@@ -14,6 +14,12 @@ pub const MODEL: &str = "cubic";
 pub const TITLE: &str = "Top mass only (m_c = m_b = I_bc = 0): the model of Acikgoz & DeJong";
 /// Names of the parameters, in the order of [`Params`].
 pub const PARAM_NAMES: [&str; 9] = ["h", "b", "ei", "m", "m_c", "m_b", "i_bc", "zeta", "g"];
+/// Mass (and inertia) parameters this variant removes: they are zero in its kernels.
+pub const REMOVED: &[&str] = &["m_c", "m_b", "i_bc"];
+/// Rigid column (u = 0): one degree of freedom.
+pub const RIGID: bool = false;
+/// Linearised in θ.
+pub const SMALL_ANGLE: bool = false;
 
 /// Parameter vector of this variant, in this order:
 ///
@@ -32,10 +38,19 @@ pub const PARAM_NAMES: [&str; 9] = ["h", "b", "ei", "m", "m_c", "m_b", "i_bc", "
 /// Build it with [`params()`]; index it with the constants of [`param`].
 pub type Params = [f64; 9];
 
-/// Builds the parameter vector from the physical parameters.
+/// Builds the parameter vector from the physical parameters (the parameters the model adds take
+/// their defaults).
 #[inline]
 #[must_use]
 pub fn params(phys: &crate::Physical) -> Params {
+    params_with(phys, &[])
+}
+
+/// Builds the parameter vector from the physical parameters and the values of the parameters the
+/// model adds, in their order (missing ones take their defaults).
+#[inline]
+#[must_use]
+pub fn params_with(phys: &crate::Physical, _extra: &[f64]) -> Params {
     [
         phys.h,
         phys.b,
@@ -921,7 +936,7 @@ pub mod impact_housner {
     }
 }
 
-/// Fixed-base and reference quantities: eqs (5)-(7), (18)-(19), (39)-(40), E_ref (the rigid column's potential-energy barrier with all masses), R, alpha and p = sqrt(g/R).
+/// Fixed-base and reference quantities: eqs (5)-(7), (18)-(19), (39)-(40), E_ref (the rigid column's potential-energy barrier with all masses), R, alpha, p = sqrt(g/R) and the thin-plate base inertia 4/3 m_b B^2 (the unit of gamma_ib).
 ///
 /// # Inputs
 ///
@@ -929,12 +944,12 @@ pub mod impact_housner {
 ///
 /// # Output
 ///
-/// `st: [f64; 14]`: structure quantities — `m_tilde`, `k_tilde`, `gamma_tilde`, `omega_n`, `damping_c`, `modal_s`, `omega_up`, `zeta_up`, `theta_cr`, `u_cr`, `e_ref`, `r`, `alpha`, `p_freq`
+/// `st: [f64; 15]`: structure quantities — `m_tilde`, `k_tilde`, `gamma_tilde`, `omega_n`, `damping_c`, `modal_s`, `omega_up`, `zeta_up`, `theta_cr`, `u_cr`, `e_ref`, `r`, `alpha`, `p_freq`, `i_bc_plate`
 ///
 /// Operations: 49 (20 mul, 7 div, 5 sq, 5 sqrt, 4 sub, 3 twice, 2 add, 2 atan2, 1 neg).
 #[inline]
 #[must_use]
-pub fn structure(p: &Params) -> [f64; 14] {
+pub fn structure(p: &Params) -> [f64; 15] {
     let w0 = p[3]; // m
     let o0 = w0; // m_tilde
     let w1: f64 = 3.0;
@@ -1008,7 +1023,25 @@ pub fn structure(p: &Params) -> [f64; 14] {
     let w57 = w34 / w55;
     let w58 = w57.sqrt();
     let o13 = w58; // p_freq
-    [o0, o1, o2, o3, o4, o5, o6, o7, o8, o9, o10, o11, o12, o13]
+    let w59: f64 = 0.0;
+    let o14 = w59; // i_bc_plate
+    [
+        o0,
+        o1,
+        o2,
+        o3,
+        o4,
+        o5,
+        o6,
+        o7,
+        o8,
+        o9,
+        o10,
+        o11,
+        o12,
+        o13,
+        o14,
+    ]
 }
 
 /// Indices of the elements of the output `st` of [`structure()`].
@@ -1041,6 +1074,8 @@ pub mod structure {
     pub const ALPHA: usize = 12;
     /// Index of `p_freq`.
     pub const P_FREQ: usize = 13;
+    /// Index of `i_bc_plate`.
+    pub const I_BC_PLATE: usize = 14;
 }
 
 /// Top mass only (m_c = m_b = I_bc = 0): the model of Acikgoz & DeJong
@@ -1054,11 +1089,19 @@ impl crate::Variant for PointMass {
     const MODEL: &'static str = MODEL;
     const TITLE: &'static str = TITLE;
     const PARAM_NAMES: &'static [&'static str] = &PARAM_NAMES;
+    const REMOVED: &'static [&'static str] = REMOVED;
+    const RIGID: bool = RIGID;
+    const SMALL_ANGLE: bool = SMALL_ANGLE;
     type Params = Params;
 
     #[inline]
     fn params(phys: &crate::Physical) -> Params {
         params(phys)
+    }
+
+    #[inline]
+    fn params_with(phys: &crate::Physical, extra: &[f64]) -> Params {
+        params_with(phys, extra)
     }
 
     #[inline]
@@ -1112,7 +1155,7 @@ impl crate::Variant for PointMass {
     }
 
     #[inline]
-    fn structure(p: &Params) -> [f64; 14] {
+    fn structure(p: &Params) -> [f64; 15] {
         structure(p)
     }
 }

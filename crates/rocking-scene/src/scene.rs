@@ -4,8 +4,10 @@
 use std::collections::HashMap;
 use std::fmt;
 use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
 
-use rocking::{DampingConvention, Preset};
+use rocking::{DampingConvention, ModelInfo, Preset, PAPER_MODEL};
+use rocking_motion::{read_at2, At2Record};
 use serde::Deserialize;
 use toml::{Table, Value};
 
@@ -28,9 +30,15 @@ impl fmt::Display for CliError {
 
 /// `[structure]`: physical (SI) or dimensionless. All optional here; the combination is checked
 /// when the structure is built.
-#[derive(Debug, Default, Deserialize)]
+#[derive(Clone, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct StructureSpec {
+    /// The model (`name` of a `Model` in derive/rocking_derive/models.py); default the paper's.
+    pub model: Option<String>,
+    /// The values of the parameters the model adds (`m_a = 0.5`), taken out of the table before
+    /// the rest is deserialized.
+    #[serde(skip)]
+    pub extra: ModelParams,
     // Dimensionless form (eq 34).
     pub omega_n_over_p: Option<f64>,
     pub alpha: Option<f64>,
@@ -56,7 +64,7 @@ pub struct StructureSpec {
 }
 
 /// `[excitation]`: a flat table; which keys a `kind` uses is checked when it is built.
-#[derive(Debug, Default, Deserialize)]
+#[derive(Clone, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ExcitationSpec {
     pub kind: Option<String>,
@@ -77,9 +85,13 @@ pub struct ExcitationSpec {
 }
 
 /// `[effects]`.
-#[derive(Debug, Default, Deserialize)]
+#[derive(Clone, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct EffectsSpec {
+    /// The model's removable masses switched on or off by name (`m_a = false`), taken out of the
+    /// table before the rest is deserialized.
+    #[serde(skip)]
+    pub masses: MassSwitches,
     pub flexibility: Option<bool>,
     pub column_mass: Option<bool>,
     pub base_mass: Option<bool>,
@@ -93,7 +105,7 @@ pub struct EffectsSpec {
 }
 
 /// `[solver]`.
-#[derive(Debug, Default, Deserialize)]
+#[derive(Clone, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SolverSpec {
     pub accuracy: Option<Preset>,
@@ -106,7 +118,7 @@ pub struct SolverSpec {
 }
 
 /// `[initial]`.
-#[derive(Debug, Default, Deserialize)]
+#[derive(Clone, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct InitialSpec {
     pub theta_over_alpha: Option<f64>,
@@ -116,7 +128,7 @@ pub struct InitialSpec {
 }
 
 /// `[output]`.
-#[derive(Debug, Default, Deserialize)]
+#[derive(Clone, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct OutputSpec {
     /// "none" or "steps".
@@ -128,7 +140,7 @@ pub struct OutputSpec {
 }
 
 /// A whole scene file.
-#[derive(Debug, Default, Deserialize)]
+#[derive(Clone, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SceneSpec {
     pub title: Option<String>,
@@ -143,7 +155,7 @@ pub struct SceneSpec {
 
 /// `[sweep]`: the axes of `rocking spectrum` (same syntax as `--axis`), and for `rocking batch`
 /// a list of records (paths relative to the scene) and scale factors.
-#[derive(Debug, Default, Deserialize)]
+#[derive(Clone, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SweepSpec {
     pub axes: Option<Vec<String>>,
@@ -152,12 +164,14 @@ pub struct SweepSpec {
 }
 
 /// A loaded scene: the typed spec and what is needed to point at its source.
+#[derive(Clone)]
 pub struct Scene {
     pub spec: SceneSpec,
     pub src: Source,
 }
 
 /// Where the scene's values came from, for error messages.
+#[derive(Clone)]
 pub struct Source {
     /// The scene file as given.
     pub path: PathBuf,
@@ -166,9 +180,25 @@ pub struct Source {
     spans: HashMap<String, usize>,
     /// Dotted paths set (or replaced) with `--set`, and the argument that set each.
     overridden: HashMap<String, String>,
+    /// Records read so far, by path: a sweep reads each once.
+    records: Records,
 }
 
+/// Records read by the scenes of one sweep, by path (shared by every cell).
+pub type Records = Arc<Mutex<HashMap<PathBuf, At2Record>>>;
+
 impl Source {
+    /// The record at `file`, read once per scene (and per sweep).
+    pub fn record(&self, file: &Path) -> Result<At2Record, rocking_motion::MotionError> {
+        let mut cache = self.records.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(r) = cache.get(file) {
+            return Ok(r.clone());
+        }
+        let r = read_at2(file)?;
+        cache.insert(file.to_path_buf(), r.clone());
+        Ok(r)
+    }
+
     /// The directory of the scene file (relative paths in the scene are relative to it).
     pub fn dir(&self) -> PathBuf {
         self.path
@@ -328,6 +358,7 @@ pub struct Parsed {
     text: String,
     table: Table,
     spans: HashMap<String, usize>,
+    records: Records,
 }
 
 /// Parses the text of the scene file `path`.
@@ -357,6 +388,7 @@ pub fn parse_text(path: &Path, text: String) -> Result<Parsed, CliError> {
         text,
         table,
         spans,
+        records: Records::default(),
     })
 }
 
@@ -370,6 +402,7 @@ impl Parsed {
             text: self.text.clone(),
             spans: self.spans.clone(),
             overridden: HashMap::new(),
+            records: self.records.clone(),
         };
         finish(path, &mut table, &mut src, sets)?;
         let spec = deserialize(path, table, &src)?;
@@ -407,8 +440,132 @@ fn finish(
     Ok(())
 }
 
-fn deserialize(path: &Path, table: Table, src: &Source) -> Result<SceneSpec, CliError> {
+/// The model a scene names in `[structure] model` (default: the paper's).
+fn scene_model(table: &Table, src: &Source) -> Result<&'static ModelInfo, CliError> {
+    let name = match table.get("structure").and_then(|s| s.get("model")) {
+        None => return Ok(rocking::find_model(PAPER_MODEL).expect("the paper's model")),
+        Some(Value::String(name)) => name,
+        Some(other) => {
+            return Err(src.err(
+                "structure.model",
+                format_args!(
+                    "invalid value for `model` in [structure]: {other} is not a model name (a \
+                     string: {})",
+                    rocking::model_names().join(", ")
+                ),
+            ))
+        }
+    };
+    rocking::find_model(name).map_err(|_| {
+        let names = rocking::model_names();
+        let hint = match suggest(name, &names) {
+            Some(s) => format!("; did you mean \"{s}\"?"),
+            None => String::new(),
+        };
+        src.err(
+            "structure.model",
+            format_args!(
+                "`model` = \"{name}\" in [structure] is not a model: one of \"{}\" (`rocking \
+                 models` lists them){hint}",
+                names.join("\", \"")
+            ),
+        )
+    })
+}
+
+/// A model's own parameters given in a scene, by name.
+pub type ModelParams = Vec<(&'static str, f64)>;
+/// A model's mass switches given in a scene, by name.
+pub type MassSwitches = Vec<(&'static str, bool)>;
+
+/// Takes the keys that are data of the model out of `table`: its own parameters in [structure]
+/// and its removable masses as switches in [effects].
+fn take_model_keys(
+    model: &'static ModelInfo,
+    table: &mut Table,
+    src: &Source,
+) -> Result<(ModelParams, MassSwitches), CliError> {
+    let mut extra = Vec::new();
+    if let Some(Value::Table(st)) = table.get_mut("structure") {
+        for p in model.extra_params() {
+            let path = format!("structure.{}", p.name);
+            match st.remove(p.name) {
+                None => {}
+                Some(Value::Float(v)) => extra.push((p.name, v)),
+                Some(Value::Integer(v)) => extra.push((p.name, v as f64)),
+                Some(other) => {
+                    return Err(src.err(
+                        &path,
+                        format_args!(
+                            "invalid value for {}: {other} is not a number ({})",
+                            describe(&path),
+                            p.doc
+                        ),
+                    ))
+                }
+            }
+        }
+    }
+    let mut masses = Vec::new();
+    if let Some(Value::Table(fx)) = table.get_mut("effects") {
+        for m in model.removable_masses() {
+            let path = format!("effects.{m}");
+            match fx.remove(m) {
+                None => {}
+                Some(Value::Boolean(on)) => masses.push((m, on)),
+                Some(other) => {
+                    return Err(src.err(
+                        &path,
+                        format_args!(
+                            "invalid value for {}: {other} is not true or false (switches the \
+                             mass `{m}` on or off)",
+                            describe(&path)
+                        ),
+                    ))
+                }
+            }
+        }
+    }
+    Ok((extra, masses))
+}
+
+/// A key of `table_name` that belongs to another model, as a hint.
+fn other_model_hint(table_name: &str, key: &str, model: &ModelInfo) -> Option<String> {
+    let other = rocking_kernels::kernels::MODELS.iter().find(|m| {
+        m.name != model.name
+            && match table_name {
+                "structure" => m.extra_params().any(|p| p.name == key),
+                "effects" => m.removable_masses().any(|p| p == key),
+                _ => false,
+            }
+    })?;
+    Some(format!(
+        "; `{key}` belongs to model `{}`, and this scene's model is `{}` (set `model = \"{}\"` \
+         in [structure])",
+        other.name, model.name, other.name
+    ))
+}
+
+fn deserialize(path: &Path, mut table: Table, src: &Source) -> Result<SceneSpec, CliError> {
+    let model = scene_model(&table, src)?;
+    let (extra, masses) = take_model_keys(model, &mut table, src)?;
     let de = Value::Table(table);
+    let mut spec: SceneSpec = deserialize_spec(path, de, src, model)?;
+    if !extra.is_empty() {
+        spec.structure.get_or_insert_with(Default::default).extra = extra;
+    }
+    if !masses.is_empty() {
+        spec.effects.get_or_insert_with(Default::default).masses = masses;
+    }
+    Ok(spec)
+}
+
+fn deserialize_spec(
+    path: &Path,
+    de: Value,
+    src: &Source,
+    model: &'static ModelInfo,
+) -> Result<SceneSpec, CliError> {
     serde_path_to_error::deserialize(de).map_err(|e| {
         let p = e.path().to_string();
         let p = if p == "." { String::new() } else { p };
@@ -426,15 +583,33 @@ fn deserialize(path: &Path, table: Table, src: &Source) -> Result<SceneSpec, Cli
             } else {
                 format!("{p}.{key}")
             };
+            // The model's own keys are allowed too.
+            let mut allowed = allowed;
+            match p.as_str() {
+                "structure" => allowed.extend(model.extra_params().map(|q| q.name.to_string())),
+                "effects" => {
+                    let own: Vec<String> = model
+                        .removable_masses()
+                        .filter(|m| !allowed.iter().any(|a| a == m))
+                        .map(str::to_string)
+                        .collect();
+                    allowed.extend(own);
+                }
+                _ => {}
+            }
             let allowed_ref: Vec<&str> = allowed.iter().map(String::as_str).collect();
             let place = if p.is_empty() {
                 "at the top level".to_string()
             } else {
                 format!("in [{p}]")
             };
-            let hint = match suggest(&key, &allowed_ref) {
-                Some(s) => format!("; did you mean `{s}`?"),
-                None => format!("; allowed keys: {}", allowed.join(", ")),
+            let hint = match (
+                other_model_hint(&p, &key, model),
+                suggest(&key, &allowed_ref),
+            ) {
+                (Some(h), _) => h,
+                (None, Some(s)) => format!("; did you mean `{s}`?"),
+                (None, None) => format!("; allowed keys: {}", allowed.join(", ")),
             };
             return src.err(&full, format_args!("unknown key `{key}` {place}{hint}"));
         }

@@ -4,8 +4,18 @@
 
 use rocking::Structure;
 
-use crate::report::short;
 use crate::scene::{describe, CliError, Source, StructureSpec};
+
+/// A number for a message: as written for ordinary magnitudes, in short exponent form (`1e308`,
+/// not 309 digits) for very large or very small ones.
+pub fn short(x: f64) -> String {
+    let a = x.abs();
+    if x == 0.0 || !x.is_finite() || (1e-4..1e9).contains(&a) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
 
 /// Largest |value| of a dimensional structure key (SI): far beyond any structure, far below
 /// the f64 overflow of the products formed from them (EI/H³, m g R, ...).

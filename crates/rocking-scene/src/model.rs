@@ -3,17 +3,18 @@
 use std::f64::consts::{FRAC_PI_2, PI};
 
 use rocking::{
-    select_variant, Accuracy, DampingConvention, Dimensionless, Effects, History, ImpactModel,
-    Initial, KernelVariant, Method, Options, ParamError, Preset, Structure,
+    find_model, select_variant, Accuracy, DampingConvention, Dimensionless, Effects, History,
+    ImpactModel, Initial, Method, ModelInfo, Options, ParamError, Preset, Selection, Structure,
+    VariantInfo, PAPER_MODEL,
 };
 use rocking_kernels::Physical;
 use rocking_motion::{
-    read_at2, AccelUnit, CosinePulse, Excitation, GroundMotion, MavroeidisPapageorgiou, Record,
-    Ricker, SinePulse,
+    AccelUnit, CosinePulse, Excitation, GroundMotion, MavroeidisPapageorgiou, Record, Ricker,
+    SinePulse,
 };
 use toml::Value;
 
-use crate::scene::{describe, CliError, ExcitationSpec, Scene, Source, StructureSpec};
+use crate::scene::{describe, CliError, ExcitationSpec, Scene, SceneSpec, Source, StructureSpec};
 
 /// The most history rows a run may ask for (about 80 bytes each in memory and in history.csv).
 const MAX_ROWS: f64 = 5e6;
@@ -57,7 +58,7 @@ pub struct Model {
     pub excitation_description: String,
     /// End of the excitation, model time.
     pub excitation_end: f64,
-    pub variant: KernelVariant,
+    pub variant: &'static VariantInfo,
     pub reasons: Vec<String>,
     pub units: Units,
     pub plots: bool,
@@ -72,7 +73,7 @@ fn param_err(src: &Source, table: &str, e: ParamError) -> CliError {
         format_args!(
             "[{table}] `{}` = {} is not allowed: {}",
             e.parameter,
-            crate::report::short(e.value),
+            crate::limits::short(e.value),
             e.allowed
         ),
     )
@@ -88,7 +89,7 @@ fn finite(src: &Source, path: &str, v: f64, cond: bool, allowed: &str) -> Result
             format_args!(
                 "{} = {} is not allowed: {allowed}",
                 describe(path),
-                crate::report::short(v)
+                crate::limits::short(v)
             ),
         ))
     }
@@ -105,7 +106,7 @@ fn formed(src: &Source, path: &str, given: f64, v: f64, what: &str) -> Result<f6
             format_args!(
                 "{} = {} is too large: the {what} it gives overflows (not finite)",
                 describe(path),
-                crate::report::short(given)
+                crate::limits::short(given)
             ),
         ))
     }
@@ -131,7 +132,12 @@ fn present_keys<'a>(keys: &[(&'a str, bool)]) -> Vec<&'a str> {
     keys.iter().filter(|(_, b)| *b).map(|(k, _)| *k).collect()
 }
 
-fn build_structure(src: &Source, s: &StructureSpec, rigid: bool) -> Result<Structure, CliError> {
+fn build_structure(
+    src: &Source,
+    s: &StructureSpec,
+    rigid: bool,
+    model: &'static ModelInfo,
+) -> Result<Structure, CliError> {
     crate::limits::structure_magnitudes(src, s)?;
     let physical_keys = present_keys(&[
         ("h", s.h.is_some()),
@@ -180,20 +186,24 @@ fn build_structure(src: &Source, s: &StructureSpec, rigid: bool) -> Result<Struc
         let b = need("b", s.b)?;
         let ei = need("ei", s.ei)?;
         let m = need("m", s.m)?;
-        let m_b = s.m_b.unwrap_or(0.0);
-        let ph = Physical {
+        let mut ph = Physical {
             h,
             b,
             ei,
             m,
             m_c: s.m_c.unwrap_or(0.0),
-            m_b,
-            // Default: a thin rectangular plate, I_bc = 4/3 m_b B².
-            i_bc: s.i_bc.unwrap_or(4.0 / 3.0 * m_b * b * b),
+            m_b: s.m_b.unwrap_or(0.0),
+            i_bc: 0.0,
             zeta: s.zeta.unwrap_or(0.0),
             g: s.g.unwrap_or(9.81),
         };
-        return Structure::from_physical(ph).map_err(|e| param_err(src, "structure", e));
+        // Default: a thin rectangular plate (the model's kernels give its inertia, 4/3 m_b B²).
+        ph.i_bc = match s.i_bc {
+            Some(i) => i,
+            None => rocking::plate_inertia(model, &ph),
+        };
+        return Structure::of_model(model, ph, &s.extra)
+            .map_err(|e| param_err(src, "structure", e));
     }
     let alpha = s.alpha.ok_or_else(|| {
         src.err(
@@ -242,7 +252,8 @@ fn build_structure(src: &Source, s: &StructureSpec, rigid: bool) -> Result<Struc
         zeta: s.zeta.unwrap_or(0.0),
         damping: s.damping.unwrap_or(DampingConvention::FixedBase),
     };
-    Structure::from_dimensionless(&d, p_si).map_err(|e| param_err(src, "structure", e))
+    Structure::dimensionless_of_model(model, &d, &s.extra, p_si)
+        .map_err(|e| param_err(src, "structure", e))
 }
 
 fn impact_model(src: &Source, v: Option<&Value>) -> Result<ImpactModel, CliError> {
@@ -491,10 +502,13 @@ fn accel_amplitude(
     Ok(a)
 }
 
-fn build_excitation(scene: &Scene, u: &Units) -> Result<(Excitation, String, f64), CliError> {
-    let src = &scene.src;
+fn build_excitation(
+    spec: &SceneSpec,
+    src: &Source,
+    u: &Units,
+) -> Result<(Excitation, String, f64), CliError> {
     let default = ExcitationSpec::default();
-    let e = scene.spec.excitation.as_ref().unwrap_or(&default);
+    let e = spec.excitation.as_ref().unwrap_or(&default);
     let kind = e.kind.as_deref().unwrap_or("none");
     let Some(allowed) = kind_keys(kind) else {
         let hint = crate::scene::suggest(kind, KINDS)
@@ -620,7 +634,7 @@ fn build_excitation(scene: &Scene, u: &Units) -> Result<(Excitation, String, f64
                 ));
             }
             let file = src.dir().join(rel);
-            let at2 = read_at2(&file).map_err(|err| {
+            let at2 = src.record(&file).map_err(|err| {
                 src.err(
                     "excitation.path",
                     format_args!("cannot use the record: {err}"),
@@ -680,26 +694,58 @@ fn build_excitation(scene: &Scene, u: &Units) -> Result<(Excitation, String, f64
     })
 }
 
+/// The model a typed scene names (default: the paper's).
+pub fn scene_model(spec: &SceneSpec) -> Result<&'static ModelInfo, ParamError> {
+    let name = spec.structure.as_ref().and_then(|s| s.model.as_deref());
+    find_model(name.unwrap_or(PAPER_MODEL))
+}
+
 /// Builds the model of a scene.
 pub fn build(scene: &Scene) -> Result<Model, CliError> {
-    let src = &scene.src;
-    let spec = &scene.spec;
+    build_spec(&scene.spec, &scene.src)
+}
+
+/// Builds the model of a typed scene (as a sweep cell does after applying its knobs); `src`
+/// places error messages.
+pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Model, CliError> {
     let fx = spec.effects.as_ref();
-    let effects = Effects {
-        flexibility: fx.and_then(|f| f.flexibility).unwrap_or(true),
-        column_mass: fx.and_then(|f| f.column_mass).unwrap_or(true),
-        base_mass: fx.and_then(|f| f.base_mass).unwrap_or(true),
-        damping: fx.and_then(|f| f.damping).unwrap_or(true),
-        large_rotations: fx.and_then(|f| f.large_rotations).unwrap_or(true),
-    };
     let st = spec
         .structure
         .as_ref()
         .ok_or_else(|| src.err("", "missing table [structure]"))?;
-    let structure = build_structure(src, st, !effects.flexibility)?;
+    let model = scene_model(spec).map_err(|e| param_err(src, "structure", e))?;
+    let mut effects = Effects {
+        flexibility: fx.and_then(|f| f.flexibility).unwrap_or(true),
+        damping: fx.and_then(|f| f.damping).unwrap_or(true),
+        large_rotations: fx.and_then(|f| f.large_rotations).unwrap_or(true),
+        ..Effects::default()
+    };
+    // `column_mass` and `base_mass` are the older names of the switches `m_c` and `m_b`.
+    let aliases = [
+        ("m_c", fx.and_then(|f| f.column_mass)),
+        ("m_b", fx.and_then(|f| f.base_mass)),
+    ];
+    let switches = fx.map(|f| f.masses.as_slice()).unwrap_or_default();
+    for (name, on) in aliases
+        .iter()
+        .filter_map(|&(n, on)| Some((n, on?)))
+        .chain(switches.iter().copied())
+    {
+        if !on {
+            effects = effects.without_mass(name);
+        }
+    }
+    let structure = build_structure(src, st, !effects.flexibility, model)?;
     // The structure with the switched-off effects removed: what is simulated and reported.
-    let (structure, variant, reasons) =
-        select_variant(&structure, &effects).map_err(|e| param_err(src, "structure", e))?;
+    let Selection {
+        structure,
+        variant,
+        reasons,
+    } = select_variant(&structure, &effects).map_err(|e| {
+        let switch = matches!(e.parameter, "flexibility" | "large_rotations")
+            || effects.masses_off.contains(e.parameter);
+        param_err(src, if switch { "effects" } else { "structure" }, e)
+    })?;
     let physical = st.h.is_some();
     crate::limits::derived_quantities(src, &structure, physical)?;
     let derived = structure.derived();
@@ -713,7 +759,7 @@ pub fn build(scene: &Scene) -> Result<Model, CliError> {
         tan_alpha: derived.alpha.tan(),
         alpha: derived.alpha,
     };
-    let (excitation, excitation_description, excitation_end) = build_excitation(scene, &units)?;
+    let (excitation, excitation_description, excitation_end) = build_excitation(spec, src, &units)?;
 
     let impact = impact_model(src, fx.and_then(|f| f.impact.as_ref()))?;
     let overturn = overturn_angle(src, fx.and_then(|f| f.overturn.as_ref()))?;
@@ -860,8 +906,8 @@ pub fn build(scene: &Scene) -> Result<Model, CliError> {
                 format_args!(
                     "`plots` = true in [output] samples the run every 0.01 τ: τ = 0 .. {} gives \
                      {} rows, at most {MAX_ROWS:e}; give a coarser history_dt or a shorter run",
-                    crate::report::short(t_end * units.p_model),
-                    crate::report::short(rows.ceil())
+                    crate::limits::short(t_end * units.p_model),
+                    crate::limits::short(rows.ceil())
                 ),
             ));
         }
