@@ -360,12 +360,12 @@ def main():
     ap.add_argument("cases")
     ap.add_argument("out")
     ap.add_argument("--quick", action="store_true")
-    ap.add_argument("--tols", default=None, help="comma-separated tolerances (default 1e-5,1e-7,1e-9,1e-11; "
-                    "--quick: 1e-7,1e-9)")
+    ap.add_argument("--tols", default=None, help="comma-separated tolerances (default 1e-5,1e-7,1e-9,1e-10,1e-12; "
+                    "--quick: 1e-5,1e-7,1e-9,1e-11)")
     ap.add_argument("--repeats", type=int, default=5)
     ap.add_argument("--only", default=None, help="comma-separated case names")
     args = ap.parse_args()
-    tols = [float(x) for x in (args.tols or ("1e-7,1e-9" if args.quick else "1e-5,1e-7,1e-9,1e-11")).split(",")]
+    tols = [float(x) for x in (args.tols or ("1e-5,1e-7,1e-9,1e-11" if args.quick else "1e-5,1e-7,1e-9,1e-10,1e-12")).split(",")]
     cases = json.load(open(args.cases))["cases"]
     only = set(args.only.split(",")) if args.only else None
     built = {}

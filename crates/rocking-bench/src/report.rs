@@ -637,7 +637,10 @@ pub fn run(dir: &Path, docs: &Path) -> Result<()> {
     }
 
     // heyoka peer.
-    writeln!(w, "## Peer: heyoka.py (Taylor integrator compiled with LLVM, events as polynomial roots)\n")?;
+    writeln!(
+        w,
+        "## Peer: heyoka.py (Taylor integrator compiled with LLVM, events as polynomial roots)\n"
+    )?;
     match &heyoka {
         None => writeln!(w, "Not run (no {}/heyoka.json).\n", dir.display())?,
         Some(hy) => {
