@@ -81,6 +81,11 @@ def replay(f, inputs: list[list]) -> list:
     return [out[k] for k in range(len(out))]
 
 
+# Tapes longer than this are compiled in compact mode (heyoka loops over the operations instead
+# of unrolling them: much faster to compile, slower to run).
+COMPACT_OPS = int(os.environ.get("HEYOKA_PEER_COMPACT_OPS", "1000"))
+
+
 def tape_ops(f) -> int:
     return sum(1 for r in ir.tape(f) if r[0] not in ("input", "output", "const"))
 
@@ -117,7 +122,7 @@ class Model:
         x = [d[i] * X[i] for i in range(4)]
         rhs = replay(self.f["rocking_rhs"], [x, [ug], [s], par])
         sys_r = [(X[i], rhs[i] / d[i]) for i in range(4)]
-        compact = tape_ops(self.f["rocking_rhs"]) > 120
+        compact = tape_ops(self.f["rocking_rhs"]) > COMPACT_OPS
         self.turning = []
 
         def on_turn(ta, t, d_sgn):
@@ -142,7 +147,7 @@ class Model:
         sys_c = [(Y[0], rhs_c[0] / d[1]), (Y[1], rhs_c[1] / d[3])]
         ev_c = [hy.t_event(replay(self.f["uplift"], [y, [ug], [hy.expression(sg)], par])[0],
                            direction=hy.event_direction.positive) for sg in (1.0, -1.0)]
-        compact_c = tape_ops(self.f["contact_rhs"]) + tape_ops(self.f["uplift"]) > 120
+        compact_c = tape_ops(self.f["contact_rhs"]) + tape_ops(self.f["uplift"]) > COMPACT_OPS
         # the uplift functions at the start of a contact phase, compiled by heyoka from the same tape
         yu, yd, g = hy.make_vars("yu", "yd", "g")
         pc = [hy.par[i] for i in range(n)]
