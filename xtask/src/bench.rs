@@ -1,12 +1,13 @@
 //! `cargo xtask bench [--quick]`: the accuracy/cost study and its peers, into docs/accuracy.md.
 //!
 //! 1. the project venv (`.venv`, derive/requirements.txt, see `venv.rs`) plus the peers' pins of
-//!    `bench/requirements.txt` (SciPy, openseespy), re-installed when their hash changes (own stamp);
+//!    `bench/requirements.txt` (SciPy, openseespy, heyoka), re-installed when their hash changes (own stamp);
 //! 2. `rocking-bench run` (release build): both integrators × tolerances on every case, errors
 //!    against the reference, CPU times → `target/bench/{rust,cases}.json`;
 //! 3. the SciPy peer `bench/scipy_peer.py` → `target/bench/scipy.json`;
-//! 4. the OpenSees peer `bench/opensees_rocking.py` → `target/bench/opensees.json`;
-//! 5. `rocking-bench report` → `docs/accuracy.md`, `docs/img/accuracy-*.{png,svg}` (with
+//! 4. the heyoka peer `bench/heyoka_peer.py` → `target/bench/heyoka.json`;
+//! 5. the OpenSees peer `bench/opensees_rocking.py` → `target/bench/opensees.json`;
+//! 6. `rocking-bench report` → `docs/accuracy.md`, `docs/img/accuracy-*.{png,svg}` (with
 //!    `--quick`: `target/bench-quick/docs/`, so the full study's doc is never replaced).
 //!
 //! A peer that fails is reported in the doc; the Rust study failing fails the command.
@@ -101,7 +102,7 @@ pub fn run_bench(root: &Path, opts: &Options) -> Result<()> {
         study.arg("--quick");
     }
     run(&mut study)?;
-    for f in ["scipy.json", "opensees.json"] {
+    for f in ["scipy.json", "heyoka.json", "opensees.json"] {
         let _ = std::fs::remove_file(out.join(f));
     }
     if let Some(py) = &python {
@@ -117,6 +118,18 @@ pub fn run_bench(root: &Path, opts: &Options) -> Result<()> {
         }
         if let Err(e) = run(&mut scipy) {
             eprintln!("xtask: warning: the SciPy peer failed ({e}); the report leaves it out");
+        }
+        let mut hy = Command::new(py);
+        hy.arg(root.join("bench").join("heyoka_peer.py"))
+            .arg(out.join("cases.json"))
+            .arg(out.join("heyoka.json"))
+            .env("PYTHONPATH", root.join("derive"))
+            .current_dir(root);
+        if opts.quick {
+            hy.arg("--quick");
+        }
+        if let Err(e) = run(&mut hy) {
+            eprintln!("xtask: warning: the heyoka peer failed ({e}); the report leaves it out");
         }
         let mut os = Command::new(py);
         os.arg(root.join("bench").join("opensees_rocking.py"))

@@ -32,7 +32,7 @@ commands:
       --skip-derive  render the checked-in generated/ir (no Python needed)
   bench [--quick] [--no-peers]
       The accuracy/cost study: both integrators x tolerances on every case against
-      a reference, the SciPy and OpenSees peers (installed into .venv from
+      a reference, the SciPy, heyoka and OpenSees peers (installed into .venv from
       bench/requirements.txt), written to docs/accuracy.md and docs/img/.
       --quick     fewer tolerances and cases (about two minutes); writes
                   target/bench-quick/docs/ instead of docs/

@@ -72,17 +72,20 @@ fn combined(p: &Value, check: &Value, target: f64) -> f64 {
 /// A line of a work-precision diagram: label, colour, (CPU s, error, tol) points.
 type Series = (String, RGBColor, Vec<(f64, f64, f64)>);
 
-fn plot_case(case: &Value, scipy: Option<&Value>, path: &Path, png: bool) -> Result<()> {
+/// A peer's results for one case: label, colour, its case entry.
+type Peer<'a> = (&'a str, RGBColor, &'a Value);
+
+fn plot_case(case: &Value, peers: &[Peer], path: &Path, png: bool) -> Result<()> {
     if png {
         draw_case(
             case,
-            scipy,
+            peers,
             BitMapBackend::new(path, (1200, 520)).into_drawing_area(),
         )
     } else {
         draw_case(
             case,
-            scipy,
+            peers,
             SVGBackend::new(path, (1200, 520)).into_drawing_area(),
         )
     }
@@ -91,7 +94,7 @@ fn plot_case(case: &Value, scipy: Option<&Value>, path: &Path, png: bool) -> Res
 
 fn draw_case<DB: DrawingBackend>(
     case: &Value,
-    scipy: Option<&Value>,
+    peers: &[Peer],
     root: DrawingArea<DB, plotters::coord::Shift>,
 ) -> std::result::Result<(), String> {
     let title = case["name"].as_str().unwrap_or("");
@@ -130,7 +133,7 @@ fn draw_case<DB: DrawingBackend>(
                     .collect();
                 series.push((format!("{m} (Rust)"), color, pts));
             }
-            if let Some(sp) = scipy {
+            for (peer_label, peer_color, sp) in peers {
                 let pts: Vec<(f64, f64, f64)> = sp["points"]
                     .as_array()
                     .into_iter()
@@ -139,7 +142,7 @@ fn draw_case<DB: DrawingBackend>(
                     .map(|p| (f(&p["seconds"]), err(p, key).max(1e-16), f(&p["tol"])))
                     .filter(|(t, e, _)| t.is_finite() && e.is_finite())
                     .collect();
-                series.push(("SciPy DOP853".into(), RGBColor(44, 160, 44), pts));
+                series.push((peer_label.to_string(), *peer_color, pts));
             }
             let all: Vec<&(f64, f64, f64)> = series.iter().flat_map(|s| s.2.iter()).collect();
             if all.is_empty() {
@@ -211,7 +214,8 @@ fn draw_case<DB: DrawingBackend>(
     }
 }
 
-/// SciPy answers against the Rust reference and the Rust run at the same method and tolerance.
+/// A Python peer's answers (SciPy, heyoka) against the Rust reference and the Rust DOP853 run at
+/// the same tolerance.
 fn add_scipy_errors(rust_case: &Value, sp: &mut Value) {
     let reference = &rust_case["reference"]["answers"];
     let cells: Vec<usize> = sp["cells"]
@@ -279,14 +283,17 @@ pub fn run(dir: &Path, docs: &Path) -> Result<()> {
     let mut scipy: Option<Value> = std::fs::read_to_string(dir.join("scipy.json"))
         .ok()
         .and_then(|s| serde_json::from_str(&s).ok());
+    let mut heyoka: Option<Value> = std::fs::read_to_string(dir.join("heyoka.json"))
+        .ok()
+        .and_then(|s| serde_json::from_str(&s).ok());
     let opensees: Option<Value> = std::fs::read_to_string(dir.join("opensees.json"))
         .ok()
         .and_then(|s| serde_json::from_str(&s).ok());
     let img = docs.join("img");
     std::fs::create_dir_all(&img)?;
     let cases = rust["cases"].as_array().cloned().unwrap_or_default();
-    if let Some(sp) = scipy.as_mut() {
-        if let Some(list) = sp["cases"].as_array_mut() {
+    for peer in [scipy.as_mut(), heyoka.as_mut()].into_iter().flatten() {
+        if let Some(list) = peer["cases"].as_array_mut() {
             for c in list {
                 if let Some(rc) = cases.iter().find(|r| r["name"] == c["name"]) {
                     add_scipy_errors(rc, c);
@@ -294,13 +301,15 @@ pub fn run(dir: &Path, docs: &Path) -> Result<()> {
             }
         }
     }
-    let sp_case = |name: &Value| {
-        scipy.as_ref().and_then(|s| {
+    let peer_case = |peer: &Option<Value>, name: &Value| -> Option<Value> {
+        peer.as_ref().and_then(|s| {
             s["cases"]
                 .as_array()
-                .and_then(|l| l.iter().find(|c| c["name"] == *name))
+                .and_then(|l| l.iter().find(|c| c["name"] == *name).cloned())
         })
     };
+    let sp_case = |name: &Value| peer_case(&scipy, name);
+    let hy_case = |name: &Value| peer_case(&heyoka, name);
 
     let quick = rust["quick"].as_bool().unwrap_or(false);
     let mut md = String::new();
@@ -413,12 +422,19 @@ pub fn run(dir: &Path, docs: &Path) -> Result<()> {
     }
 
     writeln!(w, "\n## Work-precision per case\n")?;
-    writeln!(w, "Diagrams: error against CPU time per simulation, log-log, one line per method (labels: log10 tol); SciPy's DOP853 peer in green where it ran.\n")?;
+    writeln!(w, "Diagrams: error against CPU time per simulation, log-log, one line per method (labels: log10 tol); SciPy's DOP853 peer in green and heyoka's Taylor integrator in purple where they ran.\n")?;
     for c in &cases {
         let name = c["name"].as_str().unwrap_or("case");
-        let sp = sp_case(&c["name"]);
-        plot_case(c, sp, &img.join(format!("accuracy-{name}.png")), true)?;
-        plot_case(c, sp, &img.join(format!("accuracy-{name}.svg")), false)?;
+        let (sp, hy) = (sp_case(&c["name"]), hy_case(&c["name"]));
+        let mut peers: Vec<Peer> = Vec::new();
+        if let Some(sp) = &sp {
+            peers.push(("SciPy DOP853", RGBColor(44, 160, 44), sp));
+        }
+        if let Some(hy) = &hy {
+            peers.push(("heyoka Taylor", RGBColor(148, 103, 189), hy));
+        }
+        plot_case(c, &peers, &img.join(format!("accuracy-{name}.png")), true)?;
+        plot_case(c, &peers, &img.join(format!("accuracy-{name}.svg")), false)?;
         writeln!(w, "### `{name}`\n\n{}\n", c["title"].as_str().unwrap_or(""))?;
         writeln!(
             w,
@@ -617,6 +633,81 @@ pub fn run(dir: &Path, docs: &Path) -> Result<()> {
                 }
             }
             writeln!(w, "\nTarget: ≥ 1000× per simulation at matched accuracy. *ratio*: against the Rust DOP853 run at the same tolerance; *matched accuracy*: against the cheapest Rust configuration (either method, any tolerance of the study except the reference itself) whose error against the reference is at most the SciPy run's. A slice's times are per cell (SciPy: the sampled cells; Rust: all cells).\n")?;
+        }
+    }
+
+    // heyoka peer.
+    writeln!(
+        w,
+        "## Peer: heyoka.py (Taylor integrator compiled with LLVM, events as polynomial roots)\n"
+    )?;
+    match &heyoka {
+        None => writeln!(w, "Not run (no {}/heyoka.json).\n", dir.display())?,
+        Some(hy) => {
+            writeln!(w, "`bench/heyoka_peer.py`: the same model, the derivation's CasADi instruction tapes (rocking and contact right-hand sides, uplift functions) replayed into heyoka expressions (no physics re-typed) and integrated by heyoka's `taylor_adaptive` (compiled with LLVM at run time, not in compact mode: every tape is short enough to unroll) in the study's scaled state [θ/α, u/u_s, θ'/(αp), u'/u'_s] with tolerance = tol; uplift, impact and overturning are heyoka's terminal directional `t_event`s, the turning points (max θ) a non-terminal event; the impact maps go through the CasADi functions and the hybrid logic is the SciPy peer's, in Python, restarting at every event and every kink of the excitation (records: the ground acceleration linear in time per segment, its coefficients runtime parameters). Python time: `time.perf_counter`, median of ≥ {} repeats (repeated for ≥ 0.5 s, one when a run exceeds 20 s), per simulation; the one-time LLVM compilation of the integrators (one rocking + contact pair per variant, excitation kind and tolerance) is not in it and is shown apart (total {:.1} s, compiled into a fresh temporary cache: heyoka 7.13 otherwise reuses machine code cached on disk by an earlier run). Versions: {}. The spectrum slice runs the SciPy peer's cells. *Agreement*: heyoka against Rust DOP853 at the same tolerance; *error*: each against the Rust reference.\n", hy["repeats"], f(&hy["compile_s"]), hy["versions"])?;
+            writeln!(w, "| case | tol | heyoka s/sim | compile (s) | Taylor steps | Rust s/sim (DOP853, same tol) | ratio | ratio at matched accuracy (cheapest Rust config with error ≤ heyoka's) | SciPy s/sim (same tol) | agreement max θ/α | agreement impact τ | agreement ovt | heyoka error max θ/α | heyoka error impact τ | Rust error max θ/α | Rust error impact τ |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")?;
+            for c in hy["cases"].as_array().into_iter().flatten() {
+                let rc = cases.iter().find(|r| r["name"] == c["name"]);
+                let spc = sp_case(&c["name"]);
+                for p in c["points"].as_array().into_iter().flatten() {
+                    let tol = f(&p["tol"]);
+                    let name = c["name"].as_str().unwrap_or("");
+                    if let Some(fail) = p["failed"].as_str() {
+                        writeln!(w, "| `{name}` | {tol:.0e} | failed: {fail} ||||||||||||||")?;
+                        continue;
+                    }
+                    let same_tol = |q: &&Value| (f(&q["tol"]) / tol - 1.0).abs() < 1e-9;
+                    let rp = rc.and_then(|rc| {
+                        rc["points"]
+                            .as_array()
+                            .into_iter()
+                            .flatten()
+                            .filter(same_tol)
+                            .find(|q| q["method"] == "dop853")
+                    });
+                    let sp_t = spc.as_ref().and_then(|s| {
+                        s["points"]
+                            .as_array()
+                            .into_iter()
+                            .flatten()
+                            .filter(same_tol)
+                            .find(|q| q["seconds"].is_number())
+                            .map(|q| f(&q["seconds"]))
+                    });
+                    let rt = rp.map_or(f64::NAN, |q| f(&q["cpu_s"]));
+                    let st = f(&p["seconds"]);
+                    let e_hy = err(p, "max_theta").max(err(p, "impact_time"));
+                    let matched = rc.and_then(|rc| {
+                        rc["points"]
+                            .as_array()
+                            .into_iter()
+                            .flatten()
+                            .filter(|q| {
+                                !q["failed"].is_string()
+                                    && err(q, "max_theta").max(err(q, "impact_time")) <= e_hy
+                            })
+                            .filter(|q| {
+                                !(q["method"] == "dop853"
+                                    && (f(&q["tol"]) / crate::study::REF_TOL - 1.0).abs() < 1e-9)
+                            })
+                            .min_by(|a, b| f(&a["cpu_s"]).partial_cmp(&f(&b["cpu_s"])).unwrap())
+                    });
+                    let matched_txt = matched.map_or("–".to_string(), |q| {
+                        format!(
+                            "**{:.2}×** ({} {:.0e}, {})",
+                            st / f(&q["cpu_s"]),
+                            q["method"].as_str().unwrap_or(""),
+                            f(&q["tol"]),
+                            ms(f(&q["cpu_s"]))
+                        )
+                    });
+                    writeln!(w, "| `{name}` | {tol:.0e} | {} | {:.1} | {:.0} | {} | {:.2}× | {} | {} | {} | {} | {} | {} | {} | {} | {} |", ms(st), f(&p["compile_s"]), f(&p["steps"]), ms(rt), st / rt, matched_txt, sp_t.map_or("–".into(), ms),
+                        sci(f(&p["agreement"]["max_theta"])), sci(f(&p["agreement"]["impact_time"])), f(&p["agreement"]["overturn_mismatch"]),
+                        sci(err(p, "max_theta")), sci(err(p, "impact_time")),
+                        rp.map_or("–".into(), |q| sci(err(q, "max_theta"))), rp.map_or("–".into(), |q| sci(err(q, "impact_time"))))?;
+                }
+            }
+            writeln!(w, "\n*ratio*: heyoka's time per simulation over the Rust DOP853 run's at the same tolerance (above 1: Rust faster); *matched accuracy*: over the cheapest Rust configuration (either method, any tolerance of the study except the reference itself) whose error against the reference is at most heyoka's. heyoka's times are Python wall times of the driver plus the compiled integrator; Rust's are process CPU times. A slice's times are per cell (heyoka: the sampled cells; Rust: all cells).\n")?;
         }
     }
 
