@@ -368,6 +368,14 @@ const ROWS: &[Row] = &[
         &["max_steps", "0.5", "1 <= n <= 1e12"],
     ),
     (
+        "steps-history-too-long",
+        SCENE,
+        "after_excitation = 5.0",
+        "after_excitation = 5.0\nmax_steps = 1e9\n\n[output]\nhistory = \"steps\"",
+        None,
+        &["max_steps", "1e9", "history = \"steps\"", "at most 5e7"],
+    ),
+    (
         "record-zero-scale",
         SCENE,
         "kind = \"sine-pulse\"\nomega_p_over_p = 5.1\namplitude = 1.3",

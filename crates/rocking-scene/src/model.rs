@@ -923,6 +923,17 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Model, CliError> {
         sv.and_then(|s| s.max_steps),
         defaults.max_steps,
     )?;
+    if history == History::Steps && max_steps as f64 > rocking::MAX_HISTORY_ROWS {
+        return Err(src.err(
+            "solver.max_steps",
+            format_args!(
+                "`max_steps` = {} in [solver] is not allowed with history = \"steps\" (one row \
+                 per step): at most {:e}; give a grid (history_dt) for longer runs",
+                crate::limits::short(max_steps as f64),
+                rocking::MAX_HISTORY_ROWS
+            ),
+        ));
+    }
     let max_events = guard(
         src,
         "solver.max_events",

@@ -42,7 +42,7 @@ mod results;
 mod structure;
 
 pub use driver::{simulate as simulate_variant, SimError};
-pub use options::{Accuracy, History, ImpactModel, Initial, Options, Preset};
+pub use options::{Accuracy, History, ImpactModel, Initial, Options, Preset, MAX_HISTORY_ROWS};
 pub use results::{
     EnergyBalance, EventKind, EventRecord, HistoryRow, Phase, Run, SolverStats, Summary, Time,
 };

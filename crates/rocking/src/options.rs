@@ -146,7 +146,8 @@ impl Default for Options {
     }
 }
 
-/// The most rows a [`History::Grid`] may ask for (each row is 80 bytes in memory).
+/// The most rows a [`History`] may ask for (each row is 80 bytes in memory): a grid's rows up to
+/// `t_end`, or `max_steps` when every step is recorded.
 pub const MAX_HISTORY_ROWS: f64 = 5e7;
 
 impl Options {
@@ -182,6 +183,16 @@ impl Options {
                 r,
                 (0.0..=1.0).contains(&r),
                 "a coefficient of restitution 0 <= r <= 1",
+            )?;
+        }
+        if self.history == History::Steps {
+            // One row per integrator step: the step guard bounds the rows up front.
+            let steps = self.max_steps as f64;
+            check(
+                "max_steps (with History::Steps)",
+                steps,
+                steps <= MAX_HISTORY_ROWS,
+                &format!("at most {MAX_HISTORY_ROWS:e} steps when every step is recorded"),
             )?;
         }
         if let History::Grid(dt) = self.history {
@@ -255,6 +266,14 @@ mod tests {
                     ..ok
                 },
                 "overturn_angle",
+            ),
+            (
+                Options {
+                    history: History::Steps,
+                    max_steps: 1_000_000_000,
+                    ..ok
+                },
+                "max_steps",
             ),
             (
                 Options {
