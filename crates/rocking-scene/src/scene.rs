@@ -28,6 +28,8 @@ impl fmt::Display for CliError {
     }
 }
 
+impl std::error::Error for CliError {}
+
 /// `[structure]`: physical (SI) or dimensionless. All optional here; the combination is checked
 /// when the structure is built.
 #[derive(Clone, Debug, Default, Deserialize)]

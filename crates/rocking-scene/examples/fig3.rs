@@ -1,45 +1,28 @@
-//! The paper's Fig. 3 case through the library alone: a massless column and base
-//! (ω_n/p = 11.9, α = 0.2, ζ = 0.005) under one cycle of a sine pulse
-//! (ω_p/p = 5.1, a_p/(g tan α) = 1.30), with the VVEL and the ADJex impact models.
+//! The paper's Fig. 3 case through the libraries: the scenes `scenes/fig3-vvel.toml` and
+//! `scenes/fig3-adjex.toml` (a massless column and base, ω_n/p = 11.9, α = 0.2, ζ = 0.005, under
+//! one cycle of a sine pulse, ω_p/p = 5.1, a_p/(g tan α) = 1.30; VVEL and ADJex impacts) loaded by
+//! `rocking-scene`, then simulated by `rocking::simulate` as any library user would.
 //!
-//! Run with `cargo run --release -p rocking --example fig3`. Prints the summary and the event log
-//! of each model, and writes the time histories to `target/fig3-<model>.csv`.
+//! Run with `cargo run --release -p rocking-scene --example fig3`. Prints the summary and the
+//! event log of each model, and writes the time histories to `target/fig3-<model>.csv`.
 
 use std::io::Write;
+use std::path::Path;
 
-use rocking::{
-    simulate, DampingConvention, Dimensionless, Effects, History, ImpactModel, Options, Preset,
-    Structure,
-};
-use rocking_motion::SinePulse;
+use rocking::simulate;
+use rocking_scene::{model, scene};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let d = Dimensionless {
-        omega_n_over_p: 11.9,
-        alpha: 0.2,
-        gamma_mc: 0.0,
-        gamma_mb: 0.0,
-        gamma_ib: 1.0,
-        zeta: 0.005,
-        damping: DampingConvention::FixedBase,
-    };
-    let structure = Structure::from_dimensionless(&d, None)?;
-    let derived = structure.derived();
-    println!("Fig. 3 structure: p = {:.4}, ω_n = {:.4}, ω_up = {:.4} (S = {:.4}), θ_cr = {:.5} rad, u_cr = {:.4e}, E_ref = {:.4e}",
-        derived.p, derived.omega_n, derived.omega_up, derived.modal_s, derived.theta_cr, derived.u_cr, derived.e_ref);
-    // R = g = 1: an acceleration of a_p/(g tan α) = 1.30 is 1.30 tan α.
-    let pulse = SinePulse::new(1.30 * d.alpha.tan(), 5.1);
-    for (name, impact) in [("vvel", ImpactModel::Vvel), ("adjex", ImpactModel::Adjex)] {
-        let options = Options {
-            accuracy: Preset::Accurate.accuracy(),
-            impact,
-            t_end: 8.0,
-            energy: true,
-            event_log: true,
-            history: History::Grid(0.002),
-            ..Options::default()
-        };
-        let run = simulate(&structure, &pulse, &Effects::default(), &options)?;
+    let scenes = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes");
+    for name in ["vvel", "adjex"] {
+        let sc = scene::load(&scenes.join(format!("fig3-{name}.toml")), &[])?;
+        let m = model::build(&sc)?;
+        let (structure, options) = (&m.structure, &m.options);
+        let derived = structure.derived();
+        let alpha = derived.alpha;
+        println!("Fig. 3 structure: p = {:.4}, ω_n = {:.4}, ω_up = {:.4} (S = {:.4}), θ_cr = {:.5} rad, u_cr = {:.4e}, E_ref = {:.4e}",
+            derived.p, derived.omega_n, derived.omega_up, derived.modal_s, derived.theta_cr, derived.u_cr, derived.e_ref);
+        let run = simulate(structure, &m.excitation, &m.effects, options)?;
         let s = &run.summary;
         println!("\n== {name}: kernel variant {}", s.kernel_variant);
         println!(
@@ -76,7 +59,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 e.time.tau,
                 format!("{:?}", e.kind).to_lowercase(),
                 e.branch,
-                e.theta_dot / d.alpha,
+                e.theta_dot / alpha,
                 e.energy_before,
                 e.energy_after
             );
@@ -92,10 +75,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 f,
                 "{},{},{},{},{}",
                 r.tau,
-                r.theta / d.alpha,
+                r.theta / alpha,
                 r.u / derived.u_cr,
                 r.e_total,
-                r.ug / d.alpha.tan()
+                r.ug / alpha.tan()
             )?;
         }
         println!("history: {path} ({} rows)", run.history.len());
