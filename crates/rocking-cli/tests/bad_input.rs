@@ -446,6 +446,8 @@ fn every_bad_input_exits_2_with_one_clear_message() {
         let text = base.replacen(from, to, 1);
         let anchor = if *id == "record-zero-scale" {
             "scale ="
+        } else if *id == "steps-history-too-long" {
+            "max_steps =" // the guard the message names, not the history key after it
         } else if to.contains("units =") {
             "units ="
         } else if *id == "mixed-forms" {
