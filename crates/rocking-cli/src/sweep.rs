@@ -5,142 +5,13 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use rocking::{History, Summary};
-use rocking_spectra::{cells_csv, fnv1a, Axis, Cell, CellClass, Outcome, Progress, Sweep};
+use rocking_spectra::plan::{program_digest, Base, Plan, Records};
+use rocking_spectra::{cells_csv, Cell, CellClass, Outcome, Progress, Sweep};
 use serde_json::json;
 
+use crate::plot;
 use crate::report::write_atomic;
-use crate::scene::{self, CliError};
-use crate::{model, plot};
-use rocking_scene::knob::{self, Knob, KnobValue};
-
-/// The paper's spectrum axes (Figs 6-8).
-pub const DEFAULT_AXES: [&str; 2] = [
-    "excitation.omega_p_over_p=1:10:40",
-    "excitation.amplitude=1:20:40",
-];
-
-/// A scene that every cell of a sweep starts from.
-pub struct Base {
-    path: PathBuf,
-    text: String,
-    parsed: scene::Parsed,
-    sets: Vec<String>,
-    title: Option<String>,
-    /// The scene with the command line's overrides, loaded once: cells apply knobs to it.
-    scene: scene::Scene,
-    /// Digest of the scene's record file (contents), when it has one.
-    record_digest: Option<String>,
-}
-
-/// A digest of a file's contents: results computed from a record are reused only while the
-/// record's bytes are the same.
-pub fn file_digest(path: &Path) -> Result<String, CliError> {
-    let bytes = std::fs::read(path)
-        .map_err(|e| CliError::Input(format!("{}: cannot read: {e}", path.display())))?;
-    Ok(format!("{:016x}", fnv1a(&bytes)))
-}
-
-/// A digest of the running program (its executable), so that a journal written by another build
-/// is not reused; the package version when the executable cannot be read.
-fn program_digest() -> &'static str {
-    static DIGEST: std::sync::OnceLock<String> = std::sync::OnceLock::new();
-    DIGEST.get_or_init(|| {
-        let exe = std::env::current_exe().and_then(std::fs::read);
-        match exe {
-            Ok(bytes) => format!("{} {:016x}", env!("CARGO_PKG_VERSION"), fnv1a(&bytes)),
-            Err(_) => env!("CARGO_PKG_VERSION").to_string(),
-        }
-    })
-}
-
-impl Base {
-    /// Reads and validates the scene with the command line's overrides.
-    pub fn load(path: &Path, sets: &[String]) -> Result<(Base, scene::Scene), CliError> {
-        let text = scene::read(path)?;
-        let parsed = scene::parse_text(path, text.clone())?;
-        let sc = parsed.load(sets)?;
-        let m = model::build(&sc)?;
-        let title = m.title.clone().map(|t| {
-            if sets.is_empty() {
-                t
-            } else {
-                format!("{t} [{}]", sets.join(", "))
-            }
-        });
-        let record = sc.spec.excitation.as_ref().and_then(|e| {
-            (e.kind.as_deref() == Some("record"))
-                .then(|| e.path.as_ref().map(|p| sc.src.dir().join(p)))
-                .flatten()
-        });
-        let record_digest = record.as_deref().map(file_digest).transpose()?;
-        let base = Base {
-            path: path.to_path_buf(),
-            text,
-            parsed,
-            sets: sets.to_vec(),
-            title,
-            record_digest,
-            scene: sc.clone(),
-        };
-        Ok((base, sc))
-    }
-
-    /// Resolves the keys of the axes once; `None` when one is not a knob (then cells go through
-    /// `--set` overrides).
-    fn knobs(&self, keys: &[&str]) -> Option<Vec<Knob>> {
-        keys.iter()
-            .map(|k| Knob::resolve(&self.scene, k).ok())
-            .collect()
-    }
-
-    /// Runs a cell: the scene with its knobs set, summary only.
-    pub fn run_knobs(&self, cell: &[(&Knob, KnobValue)]) -> Result<Summary, CliError> {
-        let m = knob::setup(&self.scene, cell)?;
-        self.simulate(m)
-    }
-
-    /// Runs the scene with extra overrides, summary only (no history, events or energy).
-    pub fn run(&self, extra: &[String]) -> Result<Summary, CliError> {
-        let mut sets = self.sets.clone();
-        sets.extend_from_slice(extra);
-        let sc = self.parsed.load(&sets)?;
-        self.simulate(model::build(&sc)?)
-    }
-
-    fn simulate(&self, mut m: model::Model) -> Result<Summary, CliError> {
-        m.options.history = History::None;
-        m.options.event_log = false;
-        m.options.energy = false;
-        m.options.stop_when_known = true;
-        rocking::simulate(&m.structure, &m.excitation, &m.effects, &m.options)
-            .map(|r| r.summary)
-            .map_err(|e| {
-                CliError::Internal(format!("{}: simulation failed: {e}", self.path.display()))
-            })
-    }
-
-    /// Identifies everything a cell's result depends on: the program, the scene text, the
-    /// overrides, the record contents, the axes and `extra` (for batch, the records and their
-    /// digests).
-    fn fingerprint(&self, axes: &[Axis], extra: &str) -> String {
-        let mut key = format!(
-            "{}\n{}\n{:?}\n{:?}\n{extra}\n",
-            program_digest(),
-            self.text,
-            self.sets,
-            self.record_digest
-        );
-        for a in axes {
-            key.push_str(&format!("{}={:?}\n", a.key, a.values));
-        }
-        format!("{:016x}", fnv1a(key.as_bytes()))
-    }
-}
-
-fn set_arg(key: &str, v: f64) -> String {
-    format!("{key}={v:?}")
-}
+use crate::scene::CliError;
 
 /// The most threads `--threads` may ask for: more than the cores only adds switching.
 const MAX_THREADS: usize = 1024;
@@ -187,50 +58,8 @@ pub fn spectrum(
     quiet: bool,
     threads: Option<usize>,
 ) -> Result<(), CliError> {
-    let (base, sc) = Base::load(scene_path, sets)?;
-    let specs: Vec<String> = if !axis_args.is_empty() {
-        axis_args.to_vec()
-    } else if let Some(a) = sc.spec.sweep.as_ref().and_then(|s| s.axes.clone()) {
-        a
-    } else {
-        DEFAULT_AXES.iter().map(|s| s.to_string()).collect()
-    };
-    let axes = specs
-        .iter()
-        .map(|s| {
-            Axis::parse(s).map_err(|e| CliError::Input(format!("{}: {e}", scene_path.display())))
-        })
-        .collect::<Result<Vec<_>, _>>()?;
-    // Bound the sweep, then validate every axis value against the scene before running anything.
-    rocking_spectra::Sweep::checked_len(&axes)
-        .map_err(|e| CliError::Input(format!("{}: {e}", scene_path.display())))?;
-    let keys: Vec<&str> = axes.iter().map(|a| a.key.as_str()).collect();
-    if let Some(k) = keys
-        .iter()
-        .enumerate()
-        .find_map(|(i, k)| keys[..i].contains(k).then_some(k))
-    {
-        return Err(CliError::Input(format!(
-            "{}: two axes on `{k}`: each key may have one axis (list its values in one --axis)",
-            scene_path.display()
-        )));
-    }
-    for a in &axes {
-        for &v in &a.values {
-            let sc = scene::load_text(
-                scene_path,
-                base.text.clone(),
-                &[sets, &[set_arg(&a.key, v)]].concat(),
-            )?;
-            model::build(&sc)?;
-        }
-    }
-    let sweep = Sweep {
-        fingerprint: base.fingerprint(&axes, "spectrum"),
-        axes,
-    };
-    let keys: Vec<&str> = sweep.axes.iter().map(|a| a.key.as_str()).collect();
-    let knobs = base.knobs(&keys);
+    let plan = Plan::spectrum(Base::load(scene_path, sets)?, axis_args)?;
+    let (base, sweep) = (&plan.base, &plan.sweep);
     let dir = out_dir(scene_path, out, "spectrum");
     let progress = if quiet {
         Progress::Quiet
@@ -241,30 +70,14 @@ pub fn spectrum(
     let pool = threads_pool(threads)?;
     let outcome = pool
         .install(|| {
-            rocking_spectra::run(&sweep, &dir, progress, |values| match &knobs {
-                Some(knobs) => {
-                    let cell: Vec<(&Knob, KnobValue)> = knobs
-                        .iter()
-                        .zip(values)
-                        .map(|(k, &v)| (k, KnobValue::Number(v)))
-                        .collect();
-                    base.run_knobs(&cell).map_err(|e| e.to_string())
-                }
-                None => {
-                    let extra: Vec<String> = sweep
-                        .axes
-                        .iter()
-                        .zip(values)
-                        .map(|(a, &v)| set_arg(&a.key, v))
-                        .collect();
-                    base.run(&extra).map_err(|e| e.to_string())
-                }
+            rocking_spectra::run(sweep, &dir, progress, |values| {
+                plan.run_cell(values).map_err(|e| e.to_string())
             })
         })
         .map_err(sweep_error)?;
     let written = write_outputs(
-        &base,
-        &sweep,
+        base,
+        sweep,
         &outcome,
         &dir,
         start,
@@ -320,9 +133,9 @@ fn write_outputs(
     write_atomic(&cells, cells_csv(sweep, &outcome.cells).as_bytes())?;
     written.push(cells);
     let meta = json!({
-        "scene": base.path.display().to_string(),
-        "scene_text": base.text,
-        "set": base.sets,
+        "scene": base.path().display().to_string(),
+        "scene_text": base.text(),
+        "set": base.sets(),
         "axes": sweep.axes.iter().map(|a| json!({"key": a.key, "values": a.values})).collect::<Vec<_>>(),
         "fingerprint": sweep.fingerprint,
         "cells": outcome.cells.len(),
@@ -346,7 +159,7 @@ fn write_outputs(
     } else {
         "rocking spectrum"
     };
-    let title = match &base.title {
+    let title = match base.title() {
         Some(t) => format!("{t}: {kind}"),
         None => kind.to_string(),
     };
@@ -364,98 +177,18 @@ pub fn batch(
     quiet: bool,
     threads: Option<usize>,
 ) -> Result<(), CliError> {
-    let (base, sc) = Base::load(scene_path, sets)?;
-    let sweep_spec = sc.spec.sweep.as_ref();
-    let mut files: Vec<PathBuf> = records.to_vec();
-    if files.is_empty() {
-        let dir = sc.src.dir();
-        files = sweep_spec
-            .and_then(|s| s.records.clone())
-            .unwrap_or_default()
-            .iter()
-            .map(|r| dir.join(r))
-            .collect();
-    }
-    // A directory stands for all the .AT2 files in it.
-    let mut list = Vec::new();
-    for f in files {
-        if f.is_dir() {
-            let mut found: Vec<PathBuf> = std::fs::read_dir(&f)
-                .map_err(|e| CliError::Input(format!("{}: {e}", f.display())))?
-                .filter_map(|e| e.ok().map(|e| e.path()))
-                .filter(|p| p.extension().is_some_and(|x| x.eq_ignore_ascii_case("at2")))
-                .collect();
-            found.sort();
-            list.extend(found);
-        } else {
-            list.push(f);
-        }
-    }
-    if list.is_empty() {
-        return Err(CliError::Input(format!(
-            "{}: no records: give --records FILE|DIR or `records = [...]` in [sweep]",
-            scene_path.display()
-        )));
-    }
-    let scales: Vec<f64> = if scales.is_empty() {
-        sweep_spec
-            .and_then(|s| s.scales.clone())
-            .unwrap_or_else(|| vec![1.0])
-    } else {
-        scales.to_vec()
+    let plan = Plan::batch(Base::load(scene_path, sets)?, records, scales)?;
+    let (base, sweep) = (&plan.base, &plan.sweep);
+    let Some(Records {
+        files: list,
+        paths: abs,
+        digests,
+        names,
+        scales,
+    }) = &plan.records
+    else {
+        return Err(CliError::Internal("a batch plan without records".into()));
     };
-    if let Some(bad) = scales.iter().find(|s| !(s.is_finite() && **s > 0.0)) {
-        return Err(CliError::Input(format!(
-            "scale factor {bad} is not allowed: scales must be > 0"
-        )));
-    }
-    let abs: Vec<String> = list
-        .iter()
-        .map(|p| {
-            std::fs::canonicalize(p)
-                .unwrap_or_else(|_| p.clone())
-                .display()
-                .to_string()
-        })
-        .collect();
-    let record_set = |i: usize| format!("excitation.path={:?}", abs[i]);
-    // Validate every record (readable, well formed) before running anything.
-    for i in 0..abs.len() {
-        let sc = scene::load_text(
-            scene_path,
-            base.text.clone(),
-            &[sets, &[record_set(i)]].concat(),
-        )?;
-        model::build(&sc)?;
-    }
-    let axes = vec![
-        Axis {
-            key: "record".into(),
-            values: (0..abs.len()).map(|i| i as f64).collect(),
-        },
-        Axis {
-            key: "excitation.scale".into(),
-            values: scales.clone(),
-        },
-    ];
-    rocking_spectra::Sweep::checked_len(&axes)
-        .map_err(|e| CliError::Input(format!("{}: records x scales: {e}", scene_path.display())))?;
-    let digests = list
-        .iter()
-        .map(|p| file_digest(p))
-        .collect::<Result<Vec<_>, _>>()?;
-    let records_key: Vec<String> = abs
-        .iter()
-        .zip(&digests)
-        .map(|(a, d)| format!("{a} {d}"))
-        .collect();
-    let sweep = Sweep {
-        fingerprint: base.fingerprint(&axes, &records_key.join("\n")),
-        axes,
-    };
-    let knobs = base
-        .knobs(&["excitation.path", "excitation.scale"])
-        .expect("record path and scale are knobs");
     let dir = out_dir(scene_path, out, "batch");
     let progress = if quiet {
         Progress::Quiet
@@ -465,23 +198,11 @@ pub fn batch(
     let pool = threads_pool(threads)?;
     let outcome = pool
         .install(|| {
-            rocking_spectra::run(&sweep, &dir, progress, |v| {
-                let cell = [
-                    (&knobs[0], KnobValue::Text(abs[v[0] as usize].clone())),
-                    (&knobs[1], KnobValue::Number(v[1])),
-                ];
-                base.run_knobs(&cell).map_err(|e| e.to_string())
+            rocking_spectra::run(sweep, &dir, progress, |v| {
+                plan.run_cell(v).map_err(|e| e.to_string())
             })
         })
         .map_err(sweep_error)?;
-    let names: Vec<String> = list
-        .iter()
-        .map(|p| {
-            p.file_name()
-                .map(|n| n.to_string_lossy().into_owned())
-                .unwrap_or_default()
-        })
-        .collect();
     let messages: BTreeMap<usize, &str> = outcome
         .failures
         .iter()
@@ -553,10 +274,10 @@ pub fn batch(
     write_atomic(&path, frag.as_bytes())?;
     written.push(path);
     let meta = json!({
-        "scene": base.path.display().to_string(),
-        "scene_text": base.text,
-        "set": base.sets,
-        "records": abs.iter().zip(&digests).map(|(a, d)| json!({"path": a, "digest": d})).collect::<Vec<_>>(),
+        "scene": base.path().display().to_string(),
+        "scene_text": base.text(),
+        "set": base.sets(),
+        "records": abs.iter().zip(digests).map(|(a, d)| json!({"path": a, "digest": d})).collect::<Vec<_>>(),
         "scales": scales,
         "fingerprint": sweep.fingerprint,
         "runs": outcome.cells.len(),

@@ -24,6 +24,8 @@ use std::time::{Duration, Instant};
 use rayon::prelude::*;
 use rocking::Summary;
 
+pub mod plan;
+
 /// One axis of a sweep: a scene key path and its values.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Axis {
@@ -448,27 +450,7 @@ where
     let fresh: Vec<Cell> = todo
         .par_iter()
         .map(|&index| {
-            let values = sweep.values(index);
-            let (cell, message) = match run_cell(&values) {
-                Ok(summary) => (
-                    Cell {
-                        index,
-                        class: CellClass::of(&summary),
-                        max_theta_over_alpha: summary.max_theta_over_alpha,
-                        impacts: summary.impacts,
-                    },
-                    None,
-                ),
-                Err(message) => (
-                    Cell {
-                        index,
-                        class: CellClass::Failed,
-                        max_theta_over_alpha: 0.0,
-                        impacts: 0,
-                    },
-                    Some(message),
-                ),
-            };
+            let (cell, message) = evaluate(sweep, index, &run_cell);
             let line = journal_line(&cell, message.as_deref());
             if let Some(m) = message {
                 fresh_failures
@@ -499,6 +481,58 @@ where
         cells: done.into_values().collect(),
         failures,
         computed,
+        elapsed: start.elapsed(),
+    })
+}
+
+/// Runs one cell: its class and numbers, or `Failed` with the error message.
+fn evaluate<F>(sweep: &Sweep, index: usize, run_cell: &F) -> (Cell, Option<String>)
+where
+    F: Fn(&[f64]) -> Result<Summary, String>,
+{
+    match run_cell(&sweep.values(index)) {
+        Ok(summary) => (
+            Cell {
+                index,
+                class: CellClass::of(&summary),
+                max_theta_over_alpha: summary.max_theta_over_alpha,
+                impacts: summary.impacts,
+            },
+            None,
+        ),
+        Err(message) => (
+            Cell {
+                index,
+                class: CellClass::Failed,
+                max_theta_over_alpha: 0.0,
+                impacts: 0,
+            },
+            Some(message),
+        ),
+    }
+}
+
+/// Runs every cell of a sweep in parallel, without a journal (nothing is written): for callers
+/// that keep the results in memory, such as the Python package.
+pub fn run_in_memory<F>(sweep: &Sweep, run_cell: F) -> Result<Outcome, SweepError>
+where
+    F: Fn(&[f64]) -> Result<Summary, String> + Sync,
+{
+    let start = Instant::now();
+    Sweep::checked_len(&sweep.axes)
+        .map_err(|m| SweepError::Io(PathBuf::new(), std::io::Error::other(m)))?;
+    let results: Vec<(Cell, Option<String>)> = (0..sweep.len())
+        .into_par_iter()
+        .map(|index| evaluate(sweep, index, &run_cell))
+        .collect();
+    let failures = results
+        .iter()
+        .filter_map(|(c, m)| m.clone().map(|m| (c.index, m)))
+        .collect();
+    Ok(Outcome {
+        computed: results.len(),
+        cells: results.into_iter().map(|(c, _)| c).collect(),
+        failures,
         elapsed: start.elapsed(),
     })
 }

@@ -204,3 +204,27 @@ fn a_journal_that_is_not_one_is_reported_as_such() {
     let out = run(&s, &empty, Progress::Quiet, cell).unwrap();
     assert_eq!(out.computed, 48, "an empty journal holds no cells");
 }
+
+/// The in-memory run (no journal) gives the journaled run's cells and failures.
+#[test]
+fn an_in_memory_run_equals_the_journaled_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = sweep("in-memory");
+    let failing = |v: &[f64]| {
+        if v[0] == 1.0 && v[1] == 20.0 {
+            Err("model singular".to_string())
+        } else {
+            cell(v)
+        }
+    };
+    let journaled = run(&s, dir.path(), Progress::Quiet, failing).unwrap();
+    let memory = rocking_spectra::run_in_memory(&s, failing).unwrap();
+    assert_eq!(memory.cells, journaled.cells);
+    assert_eq!(memory.failures, journaled.failures);
+    assert_eq!(memory.computed, 48);
+    assert_eq!(
+        std::fs::read_dir(dir.path()).unwrap().count(),
+        1,
+        "only the journaled run writes"
+    );
+}

@@ -1,0 +1,416 @@
+//! Sweeps of a scene file: the scene loaded once with its overrides ([`Base`]), and the two
+//! kinds of study built on it, a spectrum over axes of scene values ([`Plan::spectrum`]) and a
+//! record suite at scale factors ([`Plan::batch`]). The command line and the Python package
+//! both plan here, so a cell means the same thing wherever it is run.
+
+use std::path::{Path, PathBuf};
+
+use rocking::{History, Summary};
+use rocking_scene::knob::{self, Knob, KnobValue};
+use rocking_scene::model::{self, Model};
+use rocking_scene::scene::{self, CliError, Scene};
+
+use crate::{fnv1a, Axis, Sweep};
+
+/// The paper's spectrum axes (Figs 6-8), used when neither the command nor the scene names any.
+pub const DEFAULT_AXES: [&str; 2] = [
+    "excitation.omega_p_over_p=1:10:40",
+    "excitation.amplitude=1:20:40",
+];
+
+/// A scene that every cell of a sweep starts from.
+pub struct Base {
+    path: PathBuf,
+    text: String,
+    parsed: scene::Parsed,
+    sets: Vec<String>,
+    title: Option<String>,
+    /// The scene with the overrides, loaded once: cells apply knobs to it.
+    scene: Scene,
+    /// Digest of the scene's record file (contents), when it has one.
+    record_digest: Option<String>,
+}
+
+/// A digest of a file's contents: results computed from a record are reused only while the
+/// record's bytes are the same.
+pub fn file_digest(path: &Path) -> Result<String, CliError> {
+    let bytes = std::fs::read(path)
+        .map_err(|e| CliError::Input(format!("{}: cannot read: {e}", path.display())))?;
+    Ok(format!("{:016x}", fnv1a(&bytes)))
+}
+
+/// A digest of the running program (its executable), so that a journal written by another build
+/// is not reused; the package version when the executable cannot be read.
+pub fn program_digest() -> &'static str {
+    static DIGEST: std::sync::OnceLock<String> = std::sync::OnceLock::new();
+    DIGEST.get_or_init(|| {
+        let exe = std::env::current_exe().and_then(std::fs::read);
+        match exe {
+            Ok(bytes) => format!("{} {:016x}", env!("CARGO_PKG_VERSION"), fnv1a(&bytes)),
+            Err(_) => env!("CARGO_PKG_VERSION").to_string(),
+        }
+    })
+}
+
+impl Base {
+    /// Reads and validates the scene file with the overrides `sets`.
+    pub fn load(path: &Path, sets: &[String]) -> Result<Base, CliError> {
+        Base::from_text(path, scene::read(path)?, sets)
+    }
+
+    /// The same from the scene's text; `path` names it in messages and resolves relative paths.
+    pub fn from_text(path: &Path, text: String, sets: &[String]) -> Result<Base, CliError> {
+        let parsed = scene::parse_text(path, text.clone())?;
+        let sc = parsed.load(sets)?;
+        let m = model::build(&sc)?;
+        let title = m.title.clone().map(|t| {
+            if sets.is_empty() {
+                t
+            } else {
+                format!("{t} [{}]", sets.join(", "))
+            }
+        });
+        let record = sc.spec.excitation.as_ref().and_then(|e| {
+            (e.kind.as_deref() == Some("record"))
+                .then(|| e.path.as_ref().map(|p| sc.src.dir().join(p)))
+                .flatten()
+        });
+        let record_digest = record.as_deref().map(file_digest).transpose()?;
+        Ok(Base {
+            path: path.to_path_buf(),
+            text,
+            parsed,
+            sets: sets.to_vec(),
+            title,
+            record_digest,
+            scene: sc,
+        })
+    }
+
+    /// The scene file's path.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// The scene file's text.
+    pub fn text(&self) -> &str {
+        &self.text
+    }
+
+    /// The overrides (`key.path=value`).
+    pub fn sets(&self) -> &[String] {
+        &self.sets
+    }
+
+    /// The scene's title with the overrides, when it has one.
+    pub fn title(&self) -> Option<&str> {
+        self.title.as_deref()
+    }
+
+    /// The scene with the overrides.
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// Resolves the keys of the axes once; `None` when one is not a knob (then cells go through
+    /// `--set` overrides).
+    pub fn knobs(&self, keys: &[&str]) -> Option<Vec<Knob>> {
+        keys.iter()
+            .map(|k| Knob::resolve(&self.scene, k).ok())
+            .collect()
+    }
+
+    /// Runs a cell: the scene with its knobs set, summary only.
+    pub fn run_knobs(&self, cell: &[(&Knob, KnobValue)]) -> Result<Summary, CliError> {
+        let m = knob::setup(&self.scene, cell)?;
+        self.simulate(m)
+    }
+
+    /// Runs the scene with extra overrides, summary only (no history, events or energy).
+    pub fn run(&self, extra: &[String]) -> Result<Summary, CliError> {
+        self.simulate(self.model(extra)?)
+    }
+
+    /// The scene with the overrides and `extra` ones, built.
+    pub fn model(&self, extra: &[String]) -> Result<Model, CliError> {
+        let mut sets = self.sets.clone();
+        sets.extend_from_slice(extra);
+        model::build(&self.parsed.load(&sets)?)
+    }
+
+    fn simulate(&self, mut m: Model) -> Result<Summary, CliError> {
+        m.options.history = History::None;
+        m.options.event_log = false;
+        m.options.energy = false;
+        m.options.stop_when_known = true;
+        rocking::simulate(&m.structure, &m.excitation, &m.effects, &m.options)
+            .map(|r| r.summary)
+            .map_err(|e| {
+                CliError::Internal(format!("{}: simulation failed: {e}", self.path.display()))
+            })
+    }
+
+    /// Identifies everything a cell's result depends on: the program, the scene text, the
+    /// overrides, the record contents, the axes and `extra` (for batch, the records and their
+    /// digests).
+    pub fn fingerprint(&self, axes: &[Axis], extra: &str) -> String {
+        let mut key = format!(
+            "{}\n{}\n{:?}\n{:?}\n{extra}\n",
+            program_digest(),
+            self.text,
+            self.sets,
+            self.record_digest
+        );
+        for a in axes {
+            key.push_str(&format!("{}={:?}\n", a.key, a.values));
+        }
+        format!("{:016x}", fnv1a(key.as_bytes()))
+    }
+}
+
+/// An override `key=value` that reads back as the same f64.
+fn set_arg(key: &str, v: f64) -> String {
+    format!("{key}={v:?}")
+}
+
+/// How a cell's axis values reach its simulation.
+enum Cells {
+    /// Knobs resolved once (the fast path).
+    Knobs(Vec<Knob>),
+    /// Overrides re-parsed per cell (keys that are not knobs).
+    Sets,
+    /// A record suite: the record's index and the scale factor.
+    Records {
+        knobs: Vec<Knob>,
+        paths: Vec<String>,
+    },
+}
+
+/// The records of a batch study.
+pub struct Records {
+    /// The record files as given (a directory expanded to its .AT2 files, sorted).
+    pub files: Vec<PathBuf>,
+    /// Their canonical paths (what the scene is given).
+    pub paths: Vec<String>,
+    /// Digests of their contents.
+    pub digests: Vec<String>,
+    /// Their file names (for tables).
+    pub names: Vec<String>,
+    /// The scale factors.
+    pub scales: Vec<f64>,
+}
+
+/// A planned sweep: the base scene, the cells (axes and fingerprint) and how each cell runs.
+pub struct Plan {
+    /// The scene every cell starts from.
+    pub base: Base,
+    /// The axes and the fingerprint.
+    pub sweep: Sweep,
+    /// The records of a batch study (`None` for a spectrum).
+    pub records: Option<Records>,
+    cells: Cells,
+}
+
+impl Plan {
+    /// A spectrum: `axis_specs` (`key.path=start:stop:count` or `key.path=v1,v2,...`), else the
+    /// scene's `[sweep] axes`, else the paper's. Every axis value is validated against the scene
+    /// before anything runs.
+    pub fn spectrum(base: Base, axis_specs: &[String]) -> Result<Plan, CliError> {
+        let path = base.path.clone();
+        let specs: Vec<String> = if !axis_specs.is_empty() {
+            axis_specs.to_vec()
+        } else if let Some(a) = base.scene.spec.sweep.as_ref().and_then(|s| s.axes.clone()) {
+            a
+        } else {
+            DEFAULT_AXES.iter().map(|s| s.to_string()).collect()
+        };
+        let axes = specs
+            .iter()
+            .map(|s| {
+                Axis::parse(s).map_err(|e| CliError::Input(format!("{}: {e}", path.display())))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        // Bound the sweep, then validate every axis value against the scene.
+        Sweep::checked_len(&axes)
+            .map_err(|e| CliError::Input(format!("{}: {e}", path.display())))?;
+        let keys: Vec<&str> = axes.iter().map(|a| a.key.as_str()).collect();
+        if let Some(k) = keys
+            .iter()
+            .enumerate()
+            .find_map(|(i, k)| keys[..i].contains(k).then_some(k))
+        {
+            return Err(CliError::Input(format!(
+                "{}: two axes on `{k}`: each key may have one axis (list its values in one --axis)",
+                path.display()
+            )));
+        }
+        for a in &axes {
+            for &v in &a.values {
+                base.model(&[set_arg(&a.key, v)])?;
+            }
+        }
+        let cells = match base.knobs(&keys) {
+            Some(k) => Cells::Knobs(k),
+            None => Cells::Sets,
+        };
+        let sweep = Sweep {
+            fingerprint: base.fingerprint(&axes, "spectrum"),
+            axes,
+        };
+        Ok(Plan {
+            base,
+            sweep,
+            records: None,
+            cells,
+        })
+    }
+
+    /// A record suite: every record (files, or directories of .AT2 files; else the scene's
+    /// `[sweep] records`) at every scale factor (else the scene's `[sweep] scales`, else 1). Every
+    /// record is read and validated before anything runs.
+    pub fn batch(base: Base, records: &[PathBuf], scales: &[f64]) -> Result<Plan, CliError> {
+        let path = base.path.clone();
+        let sweep_spec = base.scene.spec.sweep.as_ref();
+        let mut given: Vec<PathBuf> = records.to_vec();
+        if given.is_empty() {
+            let dir = base.scene.src.dir();
+            given = sweep_spec
+                .and_then(|s| s.records.clone())
+                .unwrap_or_default()
+                .iter()
+                .map(|r| dir.join(r))
+                .collect();
+        }
+        // A directory stands for all the .AT2 files in it.
+        let mut files = Vec::new();
+        for f in given {
+            if f.is_dir() {
+                let mut found: Vec<PathBuf> = std::fs::read_dir(&f)
+                    .map_err(|e| CliError::Input(format!("{}: {e}", f.display())))?
+                    .filter_map(|e| e.ok().map(|e| e.path()))
+                    .filter(|p| p.extension().is_some_and(|x| x.eq_ignore_ascii_case("at2")))
+                    .collect();
+                found.sort();
+                files.extend(found);
+            } else {
+                files.push(f);
+            }
+        }
+        if files.is_empty() {
+            return Err(CliError::Input(format!(
+                "{}: no records: give --records FILE|DIR or `records = [...]` in [sweep]",
+                path.display()
+            )));
+        }
+        let scales: Vec<f64> = if scales.is_empty() {
+            sweep_spec
+                .and_then(|s| s.scales.clone())
+                .unwrap_or_else(|| vec![1.0])
+        } else {
+            scales.to_vec()
+        };
+        if let Some(bad) = scales.iter().find(|s| !(s.is_finite() && **s > 0.0)) {
+            return Err(CliError::Input(format!(
+                "scale factor {bad} is not allowed: scales must be > 0"
+            )));
+        }
+        let paths: Vec<String> = files
+            .iter()
+            .map(|p| {
+                std::fs::canonicalize(p)
+                    .unwrap_or_else(|_| p.clone())
+                    .display()
+                    .to_string()
+            })
+            .collect();
+        let record_set = |i: usize| format!("excitation.path={:?}", paths[i]);
+        for i in 0..paths.len() {
+            base.model(&[record_set(i)])?;
+        }
+        let axes = vec![
+            Axis {
+                key: "record".into(),
+                values: (0..paths.len()).map(|i| i as f64).collect(),
+            },
+            Axis {
+                key: "excitation.scale".into(),
+                values: scales.clone(),
+            },
+        ];
+        Sweep::checked_len(&axes)
+            .map_err(|e| CliError::Input(format!("{}: records x scales: {e}", path.display())))?;
+        let digests = files
+            .iter()
+            .map(|p| file_digest(p))
+            .collect::<Result<Vec<_>, _>>()?;
+        let key: Vec<String> = paths
+            .iter()
+            .zip(&digests)
+            .map(|(a, d)| format!("{a} {d}"))
+            .collect();
+        let knobs = base
+            .knobs(&["excitation.path", "excitation.scale"])
+            .ok_or_else(|| CliError::Internal("record path and scale are not knobs".into()))?;
+        let names = files
+            .iter()
+            .map(|p| {
+                p.file_name()
+                    .map(|n| n.to_string_lossy().into_owned())
+                    .unwrap_or_default()
+            })
+            .collect();
+        let sweep = Sweep {
+            fingerprint: base.fingerprint(&axes, &key.join("\n")),
+            axes,
+        };
+        Ok(Plan {
+            base,
+            sweep,
+            cells: Cells::Records {
+                knobs,
+                paths: paths.clone(),
+            },
+            records: Some(Records {
+                files,
+                paths,
+                digests,
+                names,
+                scales,
+            }),
+        })
+    }
+
+    /// Runs the cell with these axis values (summary only).
+    pub fn run_cell(&self, values: &[f64]) -> Result<Summary, CliError> {
+        match &self.cells {
+            Cells::Knobs(knobs) => {
+                let cell: Vec<(&Knob, KnobValue)> = knobs
+                    .iter()
+                    .zip(values)
+                    .map(|(k, &v)| (k, KnobValue::Number(v)))
+                    .collect();
+                self.base.run_knobs(&cell)
+            }
+            Cells::Sets => {
+                let extra: Vec<String> = self
+                    .sweep
+                    .axes
+                    .iter()
+                    .zip(values)
+                    .map(|(a, &v)| set_arg(&a.key, v))
+                    .collect();
+                self.base.run(&extra)
+            }
+            Cells::Records { knobs, paths } => {
+                let cell = [
+                    (
+                        &knobs[0],
+                        KnobValue::Text(paths[values[0] as usize].clone()),
+                    ),
+                    (&knobs[1], KnobValue::Number(values[1])),
+                ];
+                self.base.run_knobs(&cell)
+            }
+        }
+    }
+}
