@@ -5,6 +5,8 @@
 //! rocking check SCENE [--set key.path=value ...] [--json]
 //! rocking spectrum SCENE [--axis key.path=start:stop:count ...] [--set ...] [--out DIR] [--quiet]
 //! rocking batch SCENE [--records FILE|DIR ...] [--scales 0.5,1,2] [--set ...] [--out DIR] [--quiet]
+//! rocking spectrum|batch ... --shard K/N --out SHARD_DIR    (one shard of a job array)
+//! rocking merge OUT SHARD_DIR...
 //! ```
 //!
 //! Exit codes: 0 ok, 2 invalid input (scene, record, arguments), 1 internal failure.
@@ -19,6 +21,7 @@ macro_rules! out {
     }};
 }
 
+mod merge;
 mod models;
 mod plot;
 mod report;
@@ -106,6 +109,10 @@ enum Command {
         /// Number of threads (default: all cores).
         #[arg(long)]
         threads: Option<usize>,
+        /// Run only shard K of N (cells whose index is K modulo N, 0 <= K < N) into --out, for
+        /// `rocking merge`.
+        #[arg(long, value_name = "K/N", value_parser = rocking_spectra::Shard::parse)]
+        shard: Option<rocking_spectra::Shard>,
     },
     /// Run a record scene for every record and scale factor: per run the summary, per scale the
     /// fraction that overturned (fragility-style curve).
@@ -130,6 +137,20 @@ enum Command {
         /// Number of threads (default: all cores).
         #[arg(long)]
         threads: Option<usize>,
+        /// Run only shard K of N (cells whose index is K modulo N, 0 <= K < N) into --out, for
+        /// `rocking merge`.
+        #[arg(long, value_name = "K/N", value_parser = rocking_spectra::Shard::parse)]
+        shard: Option<rocking_spectra::Shard>,
+    },
+    /// Join the shards of a spectrum or batch (`--shard K/N`) into OUT: the same cells.csv
+    /// (runs.csv), meta.json and plots as one unsharded run. Exit 2 when a shard is of another
+    /// study, given twice, missing or lacks cells (they are listed); 1 when cells failed.
+    Merge {
+        /// Output directory (written whole, atomically).
+        out: PathBuf,
+        /// The shards' --out directories, all N of them.
+        #[arg(required = true, num_args = 1..)]
+        shards: Vec<PathBuf>,
     },
 }
 
@@ -370,7 +391,8 @@ fn main() -> ExitCode {
             out,
             quiet,
             threads,
-        } => sweep::spectrum(&scene, &set, &axes, out, quiet, threads),
+            shard,
+        } => sweep::spectrum(&scene, &set, &axes, out, quiet, threads, shard),
         Command::Batch {
             scene,
             records,
@@ -379,7 +401,9 @@ fn main() -> ExitCode {
             out,
             quiet,
             threads,
-        } => sweep::batch(&scene, &set, &records, &scales, out, quiet, threads),
+            shard,
+        } => sweep::batch(&scene, &set, &records, &scales, out, quiet, threads, shard),
+        Command::Merge { out, shards } => merge::merge(&out, &shards),
     };
     // Buffered output reaches a closed or full stdout only here.
     let result = result.and_then(|()| {

@@ -50,11 +50,33 @@ pub struct OutDir {
     target: PathBuf,
     staging: tempfile::TempDir,
     _lock: std::fs::File,
+    kind: OutKind,
 }
+
+/// What an output directory holds: the files its command writes, and the command's name.
+#[derive(Clone, Copy)]
+pub struct OutKind {
+    /// Whether a file of this name is one the command writes.
+    pub writes: fn(&str) -> bool,
+    /// The command, for messages.
+    pub command: &'static str,
+}
+
+/// The outputs of `rocking run`.
+pub const RUN_OUT: OutKind = OutKind {
+    writes: |n| RUN_FILES.contains(&n),
+    command: "rocking run",
+};
 
 impl OutDir {
     /// Locks `target`'s name, removes what killed runs left, and creates the staging directory.
     pub fn begin(target: &Path) -> Result<OutDir, CliError> {
+        OutDir::begin_for(target, RUN_OUT)
+    }
+
+    /// [`OutDir::begin`] for the outputs of another command: an existing `target` may hold only
+    /// files that `kind` writes.
+    pub fn begin_for(target: &Path, kind: OutKind) -> Result<OutDir, CliError> {
         use fs4::fs_std::FileExt as _;
         let io = |what: &str, p: &Path, e: std::io::Error| {
             CliError::Internal(format!("{}: cannot {what}: {e}", p.display()))
@@ -74,7 +96,7 @@ impl OutDir {
         };
         std::fs::create_dir_all(&parent).map_err(|e| io("create", &parent, e))?;
         if target.exists() {
-            check_is_run_dir(target)?;
+            check_is_run_dir(target, kind)?;
         }
         let lock_path = parent.join(format!(".{name}.lock"));
         let lock = std::fs::OpenOptions::new()
@@ -103,6 +125,7 @@ impl OutDir {
             target: target.to_path_buf(),
             staging,
             _lock: lock,
+            kind,
         })
     }
 
@@ -136,7 +159,7 @@ impl OutDir {
             .map_err(fail)?;
         let had_target = self.target.exists();
         if had_target {
-            check_is_run_dir(&self.target)?;
+            check_is_run_dir(&self.target, self.kind)?;
             // rename() replaces an empty directory: the old run moves into the (empty) `old`.
             std::fs::rename(&self.target, old.path()).map_err(fail)?;
         }
@@ -151,7 +174,7 @@ impl OutDir {
 }
 
 /// An existing `--out` must be a directory of run outputs only (never a user's folder).
-fn check_is_run_dir(target: &Path) -> Result<(), CliError> {
+fn check_is_run_dir(target: &Path, kind: OutKind) -> Result<(), CliError> {
     if !target.is_dir() {
         return Err(CliError::Input(format!(
             "{}: --out exists and is not a directory",
@@ -163,14 +186,16 @@ fn check_is_run_dir(target: &Path) -> Result<(), CliError> {
     for e in entries.flatten() {
         let n = e.file_name().to_string_lossy().into_owned();
         // `.summary.json.tmp123`: a temporary file an older version left when killed.
-        let leftover = RUN_FILES
-            .iter()
-            .any(|f| n.starts_with(&format!(".{f}.tmp")));
-        if !RUN_FILES.contains(&n.as_str()) && !leftover {
+        let leftover = n
+            .strip_prefix('.')
+            .and_then(|m| m.rsplit_once(".tmp"))
+            .is_some_and(|(f, _)| (kind.writes)(f));
+        if !(kind.writes)(&n) && !leftover {
             return Err(CliError::Input(format!(
-                "{}: --out holds `{n}`, which `rocking run` does not write; the run replaces the \
+                "{}: --out holds `{n}`, which `{}` does not write; the run replaces the \
                  whole directory, so give an --out that holds only a previous run's outputs",
-                target.display()
+                target.display(),
+                kind.command
             )));
         }
     }

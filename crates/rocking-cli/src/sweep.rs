@@ -3,12 +3,12 @@
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 
 use rocking_spectra::plan::{program_digest, Base, Plan, Records};
-use rocking_spectra::{cells_csv, Cell, CellClass, Outcome, Progress, Sweep};
+use rocking_spectra::{cells_csv, Cell, CellClass, Outcome, Progress, Shard, Sweep};
 use serde_json::json;
 
+use crate::merge;
 use crate::plot;
 use crate::report::write_atomic;
 use crate::scene::CliError;
@@ -40,7 +40,7 @@ fn out_dir(scene: &Path, out: Option<PathBuf>, what: &str) -> PathBuf {
     })
 }
 
-fn sweep_error(e: rocking_spectra::SweepError) -> CliError {
+pub(crate) fn sweep_error(e: rocking_spectra::SweepError) -> CliError {
     match e {
         rocking_spectra::SweepError::Mismatch(_) | rocking_spectra::SweepError::NotJournal(..) => {
             CliError::Input(e.to_string())
@@ -57,6 +57,7 @@ pub fn spectrum(
     out: Option<PathBuf>,
     quiet: bool,
     threads: Option<usize>,
+    shard: Option<Shard>,
 ) -> Result<(), CliError> {
     let plan = Plan::spectrum(Base::load(scene_path, sets)?, axis_args)?;
     let (base, sweep) = (&plan.base, &plan.sweep);
@@ -66,8 +67,10 @@ pub fn spectrum(
     } else {
         Progress::Auto
     };
-    let start = Instant::now();
     let pool = threads_pool(threads)?;
+    if let Some(shard) = shard {
+        return merge::run_shard(&plan, merge::Kind::Spectrum, shard, &dir, progress, &pool);
+    }
     let outcome = pool
         .install(|| {
             rocking_spectra::run(sweep, &dir, progress, |values| {
@@ -75,14 +78,8 @@ pub fn spectrum(
             })
         })
         .map_err(sweep_error)?;
-    let written = write_outputs(
-        base,
-        sweep,
-        &outcome,
-        &dir,
-        start,
-        pool.current_num_threads(),
-    )?;
+    let mut written = write_outputs(base, sweep, &outcome, &dir)?;
+    written.push(write_timing(&outcome, &dir, pool.current_num_threads())?);
     let mut counts: BTreeMap<&str, usize> = BTreeMap::new();
     for c in &outcome.cells {
         *counts.entry(c.class.as_str()).or_default() += 1;
@@ -109,7 +106,7 @@ pub fn spectrum(
 
 /// Exit status 1 when any cell failed (on a first run and on a resume alike): its results are
 /// written, marked `failed`, with the messages in meta.json.
-fn failed_runs(outcome: &Outcome, what: &str, table: &str) -> Result<(), CliError> {
+pub(crate) fn failed_runs(outcome: &Outcome, what: &str, table: &str) -> Result<(), CliError> {
     match outcome.failures.first() {
         None => Ok(()),
         Some((_, first)) => Err(CliError::Internal(format!(
@@ -120,13 +117,29 @@ fn failed_runs(outcome: &Outcome, what: &str, table: &str) -> Result<(), CliErro
     }
 }
 
-fn write_outputs(
+/// What a run took: timing.json, apart from meta.json, which is a function of the study alone
+/// (the same bytes whether run at once, resumed, or sharded and merged).
+fn write_timing(outcome: &Outcome, dir: &Path, threads: usize) -> Result<PathBuf, CliError> {
+    let timing = json!({
+        "cells": outcome.cells.len(),
+        "computed_now": outcome.computed,
+        "seconds": outcome.elapsed.as_secs_f64(),
+        "threads": threads,
+    });
+    let path = dir.join("timing.json");
+    write_atomic(
+        &path,
+        (serde_json::to_string_pretty(&timing).unwrap_or_default() + "\n").as_bytes(),
+    )?;
+    Ok(path)
+}
+
+/// cells.csv, meta.json and the plots of a spectrum (also of a merge of its shards).
+pub(crate) fn write_outputs(
     base: &Base,
     sweep: &Sweep,
     outcome: &Outcome,
     dir: &Path,
-    start: Instant,
-    threads: usize,
 ) -> Result<Vec<PathBuf>, CliError> {
     let mut written = Vec::new();
     let cells = dir.join("cells.csv");
@@ -139,13 +152,10 @@ fn write_outputs(
         "axes": sweep.axes.iter().map(|a| json!({"key": a.key, "values": a.values})).collect::<Vec<_>>(),
         "fingerprint": sweep.fingerprint,
         "cells": outcome.cells.len(),
-                "computed_now": outcome.computed,
         "failures": outcome.failures.iter().map(|(i, m)| {
             let v = sweep.values(*i);
             json!({"cell": i, "values": v, "message": m})
         }).collect::<Vec<_>>(),
-        "seconds": start.elapsed().as_secs_f64(),
-        "threads": threads,
         "versions": {"rocking": env!("CARGO_PKG_VERSION"), "kernels": "generated/ir (CasADi 3.8.2)"},
     });
     let path = dir.join("meta.json");
@@ -176,8 +186,69 @@ pub fn batch(
     out: Option<PathBuf>,
     quiet: bool,
     threads: Option<usize>,
+    shard: Option<Shard>,
 ) -> Result<(), CliError> {
     let plan = Plan::batch(Base::load(scene_path, sets)?, records, scales)?;
+    let dir = out_dir(scene_path, out, "batch");
+    let progress = if quiet {
+        Progress::Quiet
+    } else {
+        Progress::Auto
+    };
+    let pool = threads_pool(threads)?;
+    if let Some(shard) = shard {
+        return merge::run_shard(&plan, merge::Kind::Batch, shard, &dir, progress, &pool);
+    }
+    let outcome = pool
+        .install(|| {
+            rocking_spectra::run(&plan.sweep, &dir, progress, |v| {
+                plan.run_cell(v).map_err(|e| e.to_string())
+            })
+        })
+        .map_err(sweep_error)?;
+    let (mut written, tally) = write_batch_outputs(&plan, &outcome, &dir)?;
+    written.push(write_timing(&outcome, &dir, pool.current_num_threads())?);
+    let fraction = |n: usize, f: usize, o: usize| (n > f).then(|| o as f64 / (n - f) as f64);
+    out!(
+        "{}: {} records x {} scales ({} runs computed now) in {:.2} s",
+        scene_path.display(),
+        plan.records.as_ref().map_or(0, |r| r.files.len()),
+        tally.len(),
+        outcome.computed,
+        outcome.elapsed.as_secs_f64()
+    );
+    for &(s, n, f, o) in &tally {
+        let failed = if f > 0 {
+            format!("; {f} of {n} runs failed")
+        } else {
+            String::new()
+        };
+        match fraction(n, f, o) {
+            Some(x) => out!(
+                "  scale {s}: {o}/{} overturned ({:.1} %){failed}",
+                n - f,
+                100.0 * x
+            ),
+            None => out!("  scale {s}: no run finished{failed}"),
+        }
+    }
+    out!("  wrote:");
+    for p in written {
+        out!("    {}", p.display());
+    }
+    failed_runs(&outcome, "runs", "runs.csv")
+}
+
+/// Per scale factor: the runs, the failed ones and the overturned ones.
+type Tally = Vec<(f64, usize, usize, usize)>;
+
+/// runs.csv, fragility.csv, meta.json and the fragility plots of a record suite (also of a merge
+/// of its shards).
+pub(crate) fn write_batch_outputs(
+    plan: &Plan,
+    outcome: &Outcome,
+    dir: &Path,
+) -> Result<(Vec<PathBuf>, Tally), CliError> {
     let (base, sweep) = (&plan.base, &plan.sweep);
     let Some(Records {
         files: list,
@@ -189,27 +260,13 @@ pub fn batch(
     else {
         return Err(CliError::Internal("a batch plan without records".into()));
     };
-    let dir = out_dir(scene_path, out, "batch");
-    let progress = if quiet {
-        Progress::Quiet
-    } else {
-        Progress::Auto
-    };
-    let pool = threads_pool(threads)?;
-    let outcome = pool
-        .install(|| {
-            rocking_spectra::run(sweep, &dir, progress, |v| {
-                plan.run_cell(v).map_err(|e| e.to_string())
-            })
-        })
-        .map_err(sweep_error)?;
     let messages: BTreeMap<usize, &str> = outcome
         .failures
         .iter()
         .map(|(i, m)| (*i, m.as_str()))
         .collect();
     // Per scale: runs, failed, overturned (of the runs that finished).
-    let mut tally: Vec<(f64, usize, usize, usize)> = scales.iter().map(|&s| (s, 0, 0, 0)).collect();
+    let mut tally: Tally = scales.iter().map(|&s| (s, 0, 0, 0)).collect();
     let mut runs = csv::Writer::from_writer(Vec::new());
     let csv_err = |e: csv::Error| CliError::Internal(format!("cannot write runs.csv: {e}"));
     runs.write_record([
@@ -281,7 +338,6 @@ pub fn batch(
         "scales": scales,
         "fingerprint": sweep.fingerprint,
         "runs": outcome.cells.len(),
-        "computed_now": outcome.computed,
         "failed": outcome.failures.len(),
         "failures": outcome.failures.iter().map(|(i, m)| {
             let v = sweep.values(*i);
@@ -300,34 +356,7 @@ pub fn batch(
         .filter_map(|&(s, n, f, o)| fraction(n, f, o).map(|x| (s, x)))
         .collect();
     written.extend(plot::fragility_plots(&points, list.len(), &dir)?);
-    out!(
-        "{}: {} records x {} scales ({} runs computed now) in {:.2} s",
-        scene_path.display(),
-        list.len(),
-        scales.len(),
-        outcome.computed,
-        outcome.elapsed.as_secs_f64()
-    );
-    for &(s, n, f, o) in &tally {
-        let failed = if f > 0 {
-            format!("; {f} of {n} runs failed")
-        } else {
-            String::new()
-        };
-        match fraction(n, f, o) {
-            Some(x) => out!(
-                "  scale {s}: {o}/{} overturned ({:.1} %){failed}",
-                n - f,
-                100.0 * x
-            ),
-            None => out!("  scale {s}: no run finished{failed}"),
-        }
-    }
-    out!("  wrote:");
-    for p in written {
-        out!("    {}", p.display());
-    }
-    failed_runs(&outcome, "runs", "runs.csv")
+    Ok((written, tally))
 }
 
 /// Whether a class is one of the overturned ones.

@@ -25,6 +25,9 @@ use rayon::prelude::*;
 use rocking::Summary;
 
 pub mod plan;
+pub mod shard;
+
+pub use shard::Shard;
 
 /// One axis of a sweep: a scene key path and its values.
 #[derive(Clone, Debug, PartialEq)]
@@ -281,7 +284,7 @@ pub fn fnv1a(bytes: &[u8]) -> u64 {
     h
 }
 
-const JOURNAL: &str = "cells.journal";
+pub(crate) const JOURNAL: &str = "cells.journal";
 
 /// A journal line: the cell, for a failed cell its error message (so that a resumed sweep still
 /// reports it), and a checksum that rejects a torn line.
@@ -320,7 +323,7 @@ fn parse_journal_line(line: &str) -> Option<(Cell, Option<String>)> {
 
 /// The cells (and failure messages) of the journal at `path` when it belongs to this sweep;
 /// nothing when there is no journal or it is empty (a sweep killed before its first write).
-fn read_journal(
+pub(crate) fn read_journal(
     path: &Path,
     header: &str,
     len: usize,
@@ -399,13 +402,53 @@ pub fn run<F>(
 where
     F: Fn(&[f64]) -> Result<Summary, String> + Sync,
 {
+    let header = format!("# rocking sweep {}\n", sweep.fingerprint);
+    run_cells(sweep, &header, |_| true, out_dir, progress, run_cell)
+}
+
+/// Runs (or resumes) one shard of a sweep in `out_dir`, with the shard's own journal: the
+/// outcome holds only the shard's cells. [`shard::merge`] joins the shards' journals.
+pub fn run_shard<F>(
+    sweep: &Sweep,
+    shard: Shard,
+    out_dir: &Path,
+    progress: Progress,
+    run_cell: F,
+) -> Result<Outcome, SweepError>
+where
+    F: Fn(&[f64]) -> Result<Summary, String> + Sync,
+{
+    let header = shard.header(sweep);
+    run_cells(
+        sweep,
+        &header,
+        |i| shard.owns(i),
+        out_dir,
+        progress,
+        run_cell,
+    )
+}
+
+/// Runs the cells that `owns` selects, journaled under `header`.
+fn run_cells<F>(
+    sweep: &Sweep,
+    header: &str,
+    owns: impl Fn(usize) -> bool,
+    out_dir: &Path,
+    progress: Progress,
+    run_cell: F,
+) -> Result<Outcome, SweepError>
+where
+    F: Fn(&[f64]) -> Result<Summary, String> + Sync,
+{
     let start = Instant::now();
     Sweep::checked_len(&sweep.axes)
         .map_err(|m| SweepError::Io(out_dir.to_path_buf(), std::io::Error::other(m)))?;
     fs::create_dir_all(out_dir).map_err(|e| SweepError::Io(out_dir.to_path_buf(), e))?;
     let path = out_dir.join(JOURNAL);
-    let header = format!("# rocking sweep {}\n", sweep.fingerprint);
-    let journaled = read_journal(&path, &header, sweep.len())?;
+    let mut journaled = read_journal(&path, header, sweep.len())?;
+    journaled.retain(|&i, _| owns(i));
+    let header = header.to_string();
     // Rewrite the journal with only the valid lines, so that a torn line is gone for good.
     let mut text = header.clone();
     for (c, m) in journaled.values() {
@@ -428,7 +471,9 @@ where
         .open(&path)
         .map_err(|e| SweepError::Io(path.clone(), e))?;
     let journal = Mutex::new(journal);
-    let todo: Vec<usize> = (0..sweep.len()).filter(|i| !done.contains_key(i)).collect();
+    let todo: Vec<usize> = (0..sweep.len())
+        .filter(|&i| owns(i) && !done.contains_key(&i))
+        .collect();
     let bar = match progress {
         Progress::Quiet => indicatif::ProgressBar::hidden(),
         Progress::Auto if std::env::var_os("CI").is_some() => indicatif::ProgressBar::hidden(),
@@ -453,6 +498,8 @@ where
             let (cell, message) = evaluate(sweep, index, &run_cell);
             let line = journal_line(&cell, message.as_deref());
             if let Some(m) = message {
+                // As the journal keeps it, so a resumed or merged sweep reports the same text.
+                let m = m.replace(['\n', '\r'], " ");
                 fresh_failures
                     .lock()
                     .unwrap_or_else(|p| p.into_inner())
