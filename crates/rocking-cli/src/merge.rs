@@ -38,9 +38,17 @@ struct Manifest {
     directory: String,
     scene_text: String,
     set: Vec<String>,
-    axes: Vec<(String, Vec<f64>)>,
+    /// `key=v1,v2,...`, each value printed to read back as the same f64 (a JSON number need
+    /// not: serde_json's default parser is not correctly rounded).
+    axes: Vec<String>,
     records: Vec<String>,
-    scales: Vec<f64>,
+    /// The same for the scale factors.
+    scales: Vec<String>,
+}
+
+/// A value as text that reads back as the same f64.
+fn exact(v: &f64) -> String {
+    format!("{v:?}")
 }
 
 const MANIFEST: &str = "shard.json";
@@ -78,7 +86,7 @@ pub fn run_shard(
     let base = &plan.base;
     let cwd = std::env::current_dir().map_err(|e| io(Path::new("."), "read", e))?;
     let (records, scales) = match &plan.records {
-        Some(r) => (r.paths.clone(), r.scales.clone()),
+        Some(r) => (r.paths.clone(), r.scales.iter().map(exact).collect()),
         None => (Vec::new(), Vec::new()),
     };
     let manifest = Manifest {
@@ -95,7 +103,10 @@ pub fn run_shard(
                 .sweep
                 .axes
                 .iter()
-                .map(|a| (a.key.clone(), a.values.clone()))
+                .map(|a| {
+                    let v: Vec<String> = a.values.iter().map(exact).collect();
+                    format!("{}={}", a.key, v.join(","))
+                })
                 .collect(),
             Kind::Batch => Vec::new(),
         },
@@ -219,20 +230,18 @@ pub fn merge(out: &Path, dirs: &[PathBuf]) -> Result<(), CliError> {
     // (unless a record's contents changed since), and outputs from the same writers.
     let base = Base::from_text(&scene, m.scene_text.clone(), &m.set)?;
     let plan = match m.kind {
-        Kind::Spectrum => {
-            let specs: Vec<String> = m
-                .axes
-                .iter()
-                .map(|(k, v)| {
-                    let v: Vec<String> = v.iter().map(|x| format!("{x:?}")).collect();
-                    format!("{k}={}", v.join(","))
-                })
-                .collect();
-            Plan::spectrum(base, &specs)?
-        }
+        Kind::Spectrum => Plan::spectrum(base, &m.axes)?,
         Kind::Batch => {
             let records: Vec<PathBuf> = m.records.iter().map(PathBuf::from).collect();
-            Plan::batch(base, &records, &m.scales)?
+            let scales = m
+                .scales
+                .iter()
+                .map(|s| s.parse::<f64>())
+                .collect::<Result<Vec<_>, _>>()
+                .map_err(|e| {
+                    CliError::Input(format!("{}: {MANIFEST}: scales: {e}", dir0.display()))
+                })?;
+            Plan::batch(base, &records, &scales)?
         }
     };
     if plan.sweep.fingerprint != m.fingerprint {
