@@ -2,8 +2,8 @@
 # A sharded study on a real single-node Slurm (Debian's slurm-wlm and munge on localhost):
 #  1. a 4-task job array and its dependent merge (examples/slurm) give the same cells.csv,
 #     meta.json and plots, byte for byte, as one unsharded run on this machine;
-#  2. the same with one array task killed mid-run (SIGKILL, as a crashed node) and requeued with
-#     `scontrol requeue`: the task resumes from its journal and the merge is still identical.
+#  2. the same with one array task killed mid-run and requeued by `scontrol requeue`: the task
+#     resumes from its journal and the merge is still identical.
 # ROCKING names a built binary (default: built here with the test profile).
 # Installs the packages with apt-get when missing (as root, or through sudo); the daemons' state
 # lives in a temporary directory and they are stopped on exit.
@@ -77,7 +77,7 @@ SlurmUser=root
 AuthType=auth/munge
 # A killed job's credential is revoked for this long, and a requeued job waits as long
 # (default 120 s).
-AuthInfo=cred_expire=10
+AuthInfo=cred_expire=5
 CredType=cred/munge
 StateSaveLocation=$work/state
 SlurmdSpoolDir=$work/spool
@@ -151,7 +151,7 @@ submit() { "$repo/examples/slurm/submit.sh" 4 "$1" spectrum "$scene" "${axes[@]}
 echo "== job array of 4 shards and a dependent merge"
 read -r array merge < <(submit "$work/a")
 echo "  array job $array, merge job $merge"
-wait_ended "$merge" 300
+wait_ended "$merge" 180
 cat "rocking-merge-$merge.out"
 [ "$(job_field "$merge" JobState)" = COMPLETED ] || { scontrol show job "$merge"; exit 1; }
 same_as_whole "$work/a"
@@ -166,17 +166,12 @@ for _ in $(seq 600); do
 done
 [ "$(job_field "${array}_2" JobState)" = RUNNING ] || { echo "task 2 is not running" >&2; exit 1; }
 before=$(($(wc -l <"$journal") - 1))
-scancel --batch --signal=KILL "${array}_2"
-for _ in $(seq 60); do
-    state=$(job_field "${array}_2" JobState)
-    [ "$state" = FAILED ] && break
-    sleep 0.5
-done
-echo "  task ${array}_2 killed with $before cells journaled: state $state"
-[ "$state" = FAILED ]
+# Slurm kills the running task (SIGTERM, then SIGKILL) and puts it back in the queue, as on
+# preemption or a node failure. (A task killed outside Slurm ends FAILED, and Slurm 22.05 then
+# keeps the merge's afterok dependency unsatisfiable even after a requeue.)
 scontrol requeue "${array}_2"
-echo "  requeued: $(job_field "${array}_2" JobState), restarts $(job_field "${array}_2" Restarts)"
-wait_ended "$merge" 300
+echo "  task ${array}_2 killed by scontrol requeue with $before cells journaled: $(job_field "${array}_2" JobState), restarts $(job_field "${array}_2" Restarts)"
+wait_ended "$merge" 180
 cat "rocking-shard-${array}_2.out"
 grep -Eq "[1-9][0-9]* resumed" "rocking-shard-${array}_2.out"
 cat "rocking-merge-$merge.out"
