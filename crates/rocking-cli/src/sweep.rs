@@ -178,6 +178,7 @@ pub(crate) fn write_outputs(
 }
 
 /// `rocking batch`: every record at every scale factor; per scale, the fraction that overturned.
+#[allow(clippy::too_many_arguments)] // the command's arguments, one to one
 pub fn batch(
     scene_path: &Path,
     sets: &[String],

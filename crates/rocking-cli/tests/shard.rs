@@ -166,7 +166,9 @@ fn a_sharded_record_suite_merges_to_the_bytes_of_an_unsharded_run() {
         ],
     );
     // A shard of the spectrum is not a shard of this suite.
-    let spec = shards(&root, 4, |dir, shard| spectrum(dir, &["--shard", shard]));
+    let spec = shards(&root.join("spectrum"), 4, |dir, shard| {
+        spectrum(dir, &["--shard", shard])
+    });
     let o = merge(&root.join("mixed"), &[dirs[0].clone(), spec[1].clone()]);
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(
