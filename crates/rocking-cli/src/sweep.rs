@@ -356,7 +356,7 @@ pub(crate) fn write_batch_outputs(
         .iter()
         .filter_map(|&(s, n, f, o)| fraction(n, f, o).map(|x| (s, x)))
         .collect();
-    written.extend(plot::fragility_plots(&points, list.len(), &dir)?);
+    written.extend(plot::fragility_plots(&points, list.len(), dir)?);
     Ok((written, tally))
 }
 
