@@ -145,7 +145,10 @@ fn columns<'py>(py: Python<'py>, csv: &str) -> PyResult<Bound<'py, PyDict>> {
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
     let out = PyDict::new(py);
     for (j, name) in header.iter().enumerate() {
-        let cells: Vec<&str> = rows.iter().map(|r| r.get(j).copied().unwrap_or("")).collect();
+        let cells: Vec<&str> = rows
+            .iter()
+            .map(|r| r.get(j).copied().unwrap_or(""))
+            .collect();
         if !cells.is_empty() && cells.iter().all(|c| c.is_empty()) {
             continue;
         }

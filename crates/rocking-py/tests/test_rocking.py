@@ -147,7 +147,7 @@ def test_models_equal_the_commands_list():
     [
         ({"structure.alpha": -1}, "alpha"),
         ({"structure.alpah": 0.2}, "alpah"),
-        (["excitation.amplitude=-3"], "amplitude"),
+        (["excitation.omega_p_over_p=0"], "omega_p_over_p"),
         ({"solver.tol": 0}, "tol"),
     ],
 )
