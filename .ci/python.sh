@@ -10,12 +10,16 @@ ROOT="$PWD/target/python-ci"
 rm -rf "$ROOT"
 mkdir -p "$ROOT/wheels"
 
-echo "-- build venv, maturin, the wheel and the command (release)"
+echo "-- build venv, maturin, the release wheel"
 "$PY" -m venv "$ROOT/build-venv"
 "$ROOT/build-venv/bin/pip" install --quiet --disable-pip-version-check maturin==1.16.0
-"$ROOT/build-venv/bin/maturin" build --release --quiet -m crates/rocking-py/Cargo.toml --out "$ROOT/wheels"
-cargo build --release --quiet -p rocking-cli
-export ROCKING_CLI="$PWD/target/release/rocking"
+"$ROOT/build-venv/bin/maturin" build --release --quiet -m crates/rocking-py/Cargo.toml \
+    --out "$ROOT/wheels"
+# The command the tests compare with: the one `cargo test --workspace` (the step before this one in
+# .ci/run) built for its own tests, in the test profile (opt-level 3; no rebuild here). Rust does
+# not reorder floating point, so it prints the release build's numbers; run alone, this builds it.
+cargo test --workspace --no-run --quiet
+export ROCKING_CLI="$PWD/target/debug/rocking"
 
 echo "-- a clean venv with the wheel and the test dependencies"
 "$PY" -m venv "$ROOT/test-venv"
@@ -25,7 +29,8 @@ echo "-- a clean venv with the wheel and the test dependencies"
 
 echo "-- pytest (from outside the tree: the installed package is tested)"
 set +e
-(cd "$ROOT" && "$ROOT/test-venv/bin/python" -m pytest -q -p no:cacheprovider "$OLDPWD/crates/rocking-py/tests")
+TESTS="$PWD/crates/rocking-py/tests"
+(cd "$ROOT" && "$ROOT/test-venv/bin/python" -m pytest -q -p no:cacheprovider "$TESTS")
 status=$?
 set -e
 case $status in
@@ -41,6 +46,8 @@ import nbformat
 from nbclient import NotebookClient
 path = sys.argv[1]
 nb = nbformat.read(path, as_version=4)
-NotebookClient(nb, timeout=600, kernel_name="python3", resources={"metadata": {"path": "."}}).execute()
+client = NotebookClient(nb, timeout=600, kernel_name="python3",
+                        resources={"metadata": {"path": "."}})
+client.execute()
 print(f"{path}: {sum(c.cell_type == 'code' for c in nb.cells)} code cells ran")
 PYEOF

@@ -1,6 +1,7 @@
 """Tests of the installed `rocking` package against the `rocking` command.
 
-The command is found through ROCKING_CLI (set by .ci/python.sh), else target/release/rocking.
+The command is found through ROCKING_CLI (set by .ci/python.sh), else target/debug/rocking
+(the build `cargo test` makes for the command's own tests).
 Scenes are read from the repository this file belongs to.
 """
 
@@ -18,7 +19,7 @@ import pytest
 import rocking
 
 REPO = Path(__file__).resolve().parents[3]
-CLI = os.environ.get("ROCKING_CLI", str(REPO / "target" / "release" / "rocking"))
+CLI = os.environ.get("ROCKING_CLI", str(REPO / "target" / "debug" / "rocking"))
 SCENES = sorted((REPO / "scenes").glob("*.toml"))
 FIG3 = REPO / "scenes" / "fig3-vvel.toml"
 FIG8 = REPO / "scenes" / "spectra" / "fig8.toml"
@@ -198,11 +199,12 @@ def test_building_blocks_run_as_the_scene():
     assert r.history is None  # no [output] asked for
 
 
-def test_a_record_building_block_is_the_record_scene():
+def test_from_toml_reads_a_record_given_by_absolute_path():
     scene = rocking.load_scene(REPO / "scenes" / "wind-turbine-elcentro.toml")
     text = (REPO / "scenes" / "wind-turbine-elcentro.toml").read_text()
     assert 'path = "records/elCentro.AT2"' in text
-    moved = text.replace('"records/elCentro.AT2"', json.dumps(str(REPO / "scenes" / "records" / "elCentro.AT2")))
+    record = json.dumps(str(REPO / "scenes" / "records" / "elCentro.AT2"))
+    moved = text.replace('"records/elCentro.AT2"', record)
     other = rocking.Scene.from_toml(moved, base_dir="/", name="x.toml").run().summary
     assert other.max_theta_over_alpha == scene.run().summary.max_theta_over_alpha
 
