@@ -22,7 +22,6 @@ macro_rules! out {
 }
 
 mod merge;
-mod models;
 mod plot;
 mod report;
 mod sweep;
@@ -31,7 +30,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use rocking_scene::{model, scene};
+use rocking_scene::{model, models, scene};
 
 use crate::model::Model;
 use crate::scene::CliError;
@@ -255,21 +254,7 @@ fn run(scene: &Path, set: &[String], out: Option<PathBuf>, json: bool) -> Result
     if m.plots {
         m.options.event_log = true; // impacts are marked on the plots
     }
-    let run = rocking::simulate(&m.structure, &m.excitation, &m.effects, &m.options).map_err(
-        |e| match e {
-            rocking::SimError::Options(msg) => {
-                CliError::Input(format!("{}: {msg}", scene.display()))
-            }
-            rocking::SimError::Guard(msg) => CliError::Internal(format!(
-                "{}: simulation stopped: {msg}; both limits are scene settings: `max_steps` and \
-                 `max_events` in [solver] (defaults {} and {})",
-                scene.display(),
-                report::short(rocking::Options::default().max_steps as f64),
-                report::short(rocking::Options::default().max_events as f64)
-            )),
-            other => CliError::Internal(format!("{}: simulation failed: {other}", scene.display())),
-        },
-    )?;
+    let run = report::simulate(&m, scene)?;
     let summary = report::summary_json(&m, scene, &run)?;
     let history = if m.history_csv {
         Some(report::history_csv(&m, &run)?)

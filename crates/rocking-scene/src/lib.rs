@@ -5,4 +5,6 @@
 pub mod knob;
 pub mod limits;
 pub mod model;
+pub mod models;
+pub mod report;
 pub mod scene;

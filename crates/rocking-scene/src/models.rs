@@ -1,5 +1,6 @@
-//! `rocking models`: every generated model, its variants, parameters and effect switches, read
-//! from the registry the derivation generates (nothing here names a model).
+//! `rocking models` and the Python package's `models()`: every generated model, its variants,
+//! parameters and effect switches, read from the registry the derivation generates (nothing here
+//! names a model).
 
 use rocking::ModelInfo;
 use rocking_kernels::{kernels::MODELS, Role, VariantInfo};

@@ -1,0 +1,400 @@
+"""Deformable cantilevers that uplift and rock on a rigid base (Vassiliou, Mackie & Stojadinović
+2015), from Python.
+
+The package runs the same library code as the ``rocking`` command: a scene loaded here is
+validated with the same messages, ``Scene.run().summary`` is what ``rocking run --json`` prints,
+and ``spectrum``/``batch`` plan their cells as ``rocking spectrum``/``rocking batch`` do.
+Simulations and sweeps release the GIL; sweeps use all cores (or ``threads``).
+
+Bad input raises :class:`ValueError` with the command's message (it names the file and the key);
+an internal failure raises :class:`RuntimeError`.
+
+>>> import rocking
+>>> scene = rocking.load_scene("scenes/fig3-vvel.toml", set={"excitation.amplitude": 1.2})
+>>> result = scene.run()
+>>> result.summary.max_theta_over_alpha            # doctest: +SKIP
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from typing import Any, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _rocking
+
+__version__: str = _rocking.__version__
+
+__all__ = [
+    "Batch",
+    "Excitation",
+    "Result",
+    "Scene",
+    "Spectrum",
+    "Structure",
+    "Summary",
+    "batch",
+    "load_scene",
+    "models",
+    "simulate",
+    "spectrum",
+]
+
+PathLike = Union[str, "os.PathLike[str]"]
+Overrides = Union[None, Mapping[str, Any], Sequence[str]]
+
+
+def _toml_value(v: Any) -> str:
+    """One value in TOML syntax (numbers round-trip exactly: ``repr`` of a float)."""
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, (int, float, np.integer, np.floating)):
+        return repr(float(v)) if isinstance(v, (float, np.floating)) else str(int(v))
+    if isinstance(v, (str, os.PathLike)):
+        return json.dumps(os.fspath(v))  # a TOML basic string
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
+    raise ValueError(f"cannot write {v!r} ({type(v).__name__}) as a scene value")
+
+
+def _sets(set: Overrides) -> List[str]:
+    """Overrides as ``key.path=value`` strings, from a dict or a list of such strings."""
+    if set is None:
+        return []
+    if isinstance(set, Mapping):
+        return [f"{k}={_toml_value(v)}" for k, v in set.items()]
+    if isinstance(set, str):
+        return [set]
+    return [str(s) for s in set]
+
+
+class Summary:
+    """A run's summary: every field of ``rocking run --json`` as an attribute
+    (``max_theta_over_alpha``, ``overturned``, ``impacts``, ``derived``, ...)."""
+
+    def __init__(self, data: Dict[str, Any]) -> None:
+        self._data = data
+        self.__dict__.update(data)
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The summary as a dict, equal to the JSON that ``rocking run --json`` prints."""
+        return json.loads(json.dumps(self._data))
+
+    def __repr__(self) -> str:
+        s = self._data
+        return (
+            f"Summary(max_theta_over_alpha={s['max_theta_over_alpha']!r}, "
+            f"overturned={s['overturned']!r}, impacts={s['impacts']!r}, "
+            f"kernel_variant={s['kernel_variant']!r})"
+        )
+
+
+def _table(columns: Optional[Dict[str, Any]]) -> Optional[Dict[str, Any]]:
+    """Columns from the compiled module: float64 bytes become numpy arrays."""
+    if columns is None:
+        return None
+    return {
+        k: np.frombuffer(v, dtype=np.float64) if isinstance(v, bytes) else np.asarray(v)
+        for k, v in columns.items()
+    }
+
+
+class Result:
+    """One simulation: ``summary``, ``history`` (the columns of history.csv as numpy arrays) and
+    ``events`` (the rows of events.csv as dicts)."""
+
+    def __init__(self, output: Any) -> None:
+        self._output = output
+        self.summary = Summary(json.loads(output.summary_json))
+        self._history: Optional[Dict[str, np.ndarray]] = None
+        self._events: Optional[List[Dict[str, Any]]] = None
+
+    @property
+    def history(self) -> Optional[Dict[str, np.ndarray]]:
+        """The time history (columns named as in history.csv: ``tau``, ``t_s`` when the scene is
+        physical, ``theta_over_alpha``, ``u_over_ucr``, ..., ``phase``), or None when the scene
+        asks for none (set ``output.history_dt``). Built on first access."""
+        if self._history is None:
+            self._history = _table(self._output.history())
+        return self._history
+
+    @property
+    def events(self) -> Optional[List[Dict[str, Any]]]:
+        """Uplifts, impacts, rests and overturning, one dict per row of events.csv, or None when
+        the run logged no events (set ``output.events = true``)."""
+        if self._events is None:
+            cols = _table(self._output.events())
+            if cols is None:
+                return None
+            n = len(next(iter(cols.values()))) if cols else 0
+            self._events = [
+                {k: (v[i].item() if hasattr(v[i], "item") else v[i]) for k, v in cols.items()}
+                for i in range(n)
+            ]
+        return self._events
+
+    def to_dataframe(self) -> Any:
+        """The history as a pandas DataFrame (needs pandas: ``pip install pandas``)."""
+        try:
+            import pandas as pd
+        except ImportError as e:  # pragma: no cover - depends on the environment
+            raise ImportError("Result.to_dataframe() needs pandas: pip install pandas") from e
+        if self.history is None:
+            raise ValueError(
+                "the run has no history: set output.history_dt in the scene or in set={...}"
+            )
+        return pd.DataFrame(self.history)
+
+    def __repr__(self) -> str:
+        return f"Result({self.summary!r})"
+
+
+class Scene:
+    """A scene (TOML) loaded and validated with its overrides. ``run()`` simulates it."""
+
+    def __init__(self, inner: Any) -> None:
+        self._inner = inner
+
+    @classmethod
+    def load(cls, path: PathLike, set: Overrides = None) -> "Scene":
+        """Loads the scene file ``path`` with overrides (``{"structure.alpha": 0.15}`` or
+        ``["structure.alpha=0.15"]``)."""
+        return cls(_rocking.Scene.load(os.fspath(path), _sets(set)))
+
+    @classmethod
+    def from_toml(
+        cls,
+        text: str,
+        base_dir: PathLike = ".",
+        name: str = "<scene>.toml",
+        set: Overrides = None,
+    ) -> "Scene":
+        """A scene from its TOML text. Relative paths in it (records) are resolved against
+        ``base_dir``; ``name`` names it in messages and in ``summary.scene``."""
+        path = os.path.join(os.fspath(base_dir), name)
+        return cls(_rocking.Scene.from_text(text, path, _sets(set)))
+
+    @property
+    def path(self) -> str:
+        """The scene's path (as given)."""
+        return os.fspath(self._inner.path)
+
+    @property
+    def text(self) -> str:
+        """The scene's TOML text."""
+        return self._inner.text
+
+    @property
+    def title(self) -> Optional[str]:
+        """The scene's title."""
+        return self._inner.title
+
+    @property
+    def kernel_variant(self) -> Tuple[str, List[str]]:
+        """The kernel variant the solver runs and the reasons it was picked."""
+        return self._inner.kernel_variant
+
+    def with_set(self, set: Overrides) -> "Scene":
+        """The same scene with more overrides."""
+        return Scene(_rocking.Scene.from_text(self.text, self.path, self._inner.sets + _sets(set)))
+
+    def run(self) -> Result:
+        """Simulates the scene (the GIL is released) and returns the :class:`Result`."""
+        return Result(self._inner.run())
+
+    def __repr__(self) -> str:
+        return f"Scene({self.path!r}, title={self.title!r})"
+
+
+def load_scene(path: PathLike, set: Overrides = None) -> Scene:
+    """Loads a scene file with overrides; see :meth:`Scene.load`."""
+    return Scene.load(path, set)
+
+
+def _scene(scene: Union[Scene, PathLike]) -> Scene:
+    return scene if isinstance(scene, Scene) else Scene.load(scene)
+
+
+class Spectrum:
+    """A spectrum over one or more axes of scene values. Grids have one dimension per axis (the
+    last axis varies fastest, as in cells.csv)."""
+
+    def __init__(self, raw: Dict[str, Any]) -> None:
+        #: The axes' scene keys, e.g. ``["excitation.omega_p_over_p", "excitation.amplitude"]``.
+        self.keys: List[str] = list(raw["keys"])
+        #: The axes' values (one array per axis).
+        self.axes: List[np.ndarray] = [np.frombuffer(v, dtype=np.float64) for v in raw["values"]]
+        shape = tuple(len(a) for a in self.axes)
+        names = np.asarray(raw["classes"])
+        #: Class names (as in cells.csv), the index of ``codes``.
+        self.class_names: List[str] = sorted(set(names.tolist()))
+        lookup = {n: i for i, n in enumerate(self.class_names)}
+        #: Class code per cell (an index into ``class_names``).
+        self.codes: np.ndarray = np.array([lookup[n] for n in names], dtype=np.int64).reshape(shape)
+        #: Class name per cell.
+        self.classes: np.ndarray = names.reshape(shape)
+        failed = self.classes == "failed"
+        #: max θ/α per cell (masked where the simulation failed).
+        self.max_theta_over_alpha: np.ma.MaskedArray = np.ma.masked_array(
+            np.frombuffer(raw["max_theta_over_alpha"], dtype=np.float64).reshape(shape), failed
+        )
+        #: Impacts per cell.
+        self.impacts: np.ndarray = np.asarray(raw["impacts"], dtype=np.int64).reshape(shape)
+        #: Failed cells: (cell index, message).
+        self.failures: List[Tuple[int, str]] = list(raw["failures"])
+
+    @property
+    def overturned(self) -> np.ndarray:
+        """True where the structure overturned."""
+        return np.char.startswith(self.classes.astype(str), "overturned")
+
+    def __repr__(self) -> str:
+        return f"{type(self).__name__}(keys={self.keys}, shape={self.classes.shape})"
+
+
+class Batch(Spectrum):
+    """Every record at every scale factor: grids of shape (records, scales)."""
+
+    def __init__(self, raw: Dict[str, Any]) -> None:
+        super().__init__(raw)
+        #: The records' file names.
+        self.record_names: List[str] = list(raw["record_names"])
+        #: The records' canonical paths.
+        self.record_paths: List[str] = list(raw["record_paths"])
+        #: The scale factors.
+        self.scales: np.ndarray = np.asarray(raw["scales"], dtype=np.float64)
+
+    def overturned_fraction(self) -> np.ndarray:
+        """Per scale factor, the fraction of records that overturned (failed runs excluded)."""
+        ok = self.classes != "failed"
+        return (self.overturned & ok).sum(axis=0) / np.maximum(ok.sum(axis=0), 1)
+
+
+def spectrum(
+    scene: Union[Scene, PathLike],
+    axes: Optional[Sequence[str]] = None,
+    threads: Optional[int] = None,
+) -> Spectrum:
+    """Sweeps ``scene`` over ``axes`` (``"key.path=start:stop:count"`` or ``"key.path=v1,v2"``;
+    default: the scene's ``[sweep] axes``, else the paper's), in parallel on ``threads`` threads
+    (default: all cores), with the GIL released. Nothing is written to disk."""
+    s = _scene(scene)
+    return Spectrum(_rocking.spectrum(s._inner, list(axes or []), threads))
+
+
+def batch(
+    scene: Union[Scene, PathLike],
+    records: Optional[Iterable[PathLike]] = None,
+    scales: Optional[Iterable[float]] = None,
+    threads: Optional[int] = None,
+) -> Batch:
+    """Runs a record scene for every record (AT2 files or folders of them; default: the scene's
+    ``[sweep] records``) at every scale factor (default: ``[sweep] scales``, else 1)."""
+    s = _scene(scene)
+    recs = [os.fspath(r) for r in (records or [])]
+    return Batch(_rocking.batch(s._inner, recs, [float(x) for x in (scales or [])], threads))
+
+
+def models() -> List[Dict[str, Any]]:
+    """The generated models with their variants, parameters and effect switches, as
+    ``rocking models --json`` lists them."""
+    return json.loads(_rocking.models_json())["models"]
+
+
+class _Table:
+    """A table of scene keys (a building block turned into scene text)."""
+
+    _table = ""
+
+    def __init__(self, **keys: Any) -> None:
+        self.keys: Dict[str, Any] = {k: v for k, v in keys.items() if v is not None}
+
+    def toml(self) -> str:
+        lines = [f"[{self._table}]"] + [f"{k} = {_toml_value(v)}" for k, v in self.keys.items()]
+        return "\n".join(lines) + "\n"
+
+    def __repr__(self) -> str:
+        args = ", ".join(f"{k}={v!r}" for k, v in self.keys.items())
+        return f"{type(self).__name__}({args})"
+
+
+class Structure(_Table):
+    """A structure: the keys of a scene's ``[structure]`` table, dimensionless
+    (``omega_n_over_p``, ``alpha``, ``gamma_mc``, ...) or physical (``h``, ``b``, ``ei``, ``m``,
+    ...), with ``model=`` for any generated model and its own parameters (see :func:`models`).
+    Validated when it is built, with the scene's messages."""
+
+    _table = "structure"
+
+    def __init__(self, **keys: Any) -> None:
+        super().__init__(**keys)
+        Scene.from_toml(self.toml(), name="<structure>.toml")
+
+
+class Excitation(_Table):
+    """A ground motion: the keys of a scene's ``[excitation]`` table."""
+
+    _table = "excitation"
+
+    def __init__(self, kind: str, **keys: Any) -> None:
+        super().__init__(kind=kind, **keys)
+
+    @classmethod
+    def sine_pulse(cls, omega_p_over_p: Optional[float] = None, amplitude: Optional[float] = None,
+                   **keys: Any) -> "Excitation":
+        """One cycle of a_p sin(ω_p t); ``amplitude`` is a_p/(g tan α) (or give ``omega_p``,
+        ``a_p``, ``amplitude_g``)."""
+        return cls("sine-pulse", omega_p_over_p=omega_p_over_p, amplitude=amplitude, **keys)
+
+    @classmethod
+    def cosine_pulse(cls, omega_p_over_p: Optional[float] = None,
+                     amplitude: Optional[float] = None, **keys: Any) -> "Excitation":
+        """One cycle of a_p cos(ω_p t); keys as :meth:`sine_pulse`."""
+        return cls("cosine-pulse", omega_p_over_p=omega_p_over_p, amplitude=amplitude, **keys)
+
+    @classmethod
+    def record(cls, path: PathLike, scale: Optional[float] = None,
+               units: Optional[str] = None) -> "Excitation":
+        """A PEER .AT2 record (read by the library: its time step and units as the command reads
+        them); ``units`` ("g", "cm/s2", "m/s2") only when the header states none."""
+        return cls("record", path=os.path.abspath(os.fspath(path)), scale=scale, units=units)
+
+
+class Options(_Table):
+    """Solver settings: the keys of a scene's ``[solver]`` table (``accuracy``, ``method``,
+    ``tol``, ``after_excitation``, ``t_end``, ...)."""
+
+    _table = "solver"
+
+
+class Effects(_Table):
+    """Effect switches: the keys of a scene's ``[effects]`` table (``impact``, ``energy``,
+    ``flexibility``, ...)."""
+
+    _table = "effects"
+
+
+class Output(_Table):
+    """What a run records: the keys of a scene's ``[output]`` table (``history_dt``,
+    ``events``)."""
+
+    _table = "output"
+
+
+def simulate(
+    structure: Structure,
+    motion: Excitation,
+    options: Optional[Options] = None,
+    effects: Optional[Effects] = None,
+    output: Optional[Output] = None,
+) -> Result:
+    """Simulates ``structure`` under ``motion``: the building blocks are put together as a scene
+    (so they are checked exactly as a scene file is) and run."""
+    parts = [structure, motion, options, effects, output]
+    text = "\n".join(p.toml() for p in parts if p is not None)
+    return Scene.from_toml(text, name="<simulate>.toml").run()
+
+
+__all__ += ["Effects", "Options", "Output"]

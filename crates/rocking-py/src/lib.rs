@@ -1,0 +1,320 @@
+//! `rocking._rocking`: the compiled half of the Python package `rocking`. It exposes the same
+//! library code paths as the `rocking` command (scene loading, `rocking_scene::report` for the
+//! summary, history and events, `rocking_spectra::plan` for sweeps), so that a result from
+//! Python is the command's result. The pure-Python wrapper (`python/rocking/__init__.py`) turns
+//! what this module returns into numpy arrays and friendly objects.
+//!
+//! Every simulation and sweep runs with the GIL released (`Python::detach`).
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyBytes, PyDict, PyList};
+use rocking_scene::model::{self, Model};
+use rocking_scene::scene::{self, CliError};
+use rocking_scene::{models, report};
+use rocking_spectra::plan::{Base, Plan};
+use rocking_spectra::{Outcome, Sweep};
+
+/// The command's errors as Python exceptions: bad input is a `ValueError`, anything else a
+/// `RuntimeError`, with the command's message.
+fn py_err(e: CliError) -> PyErr {
+    match e {
+        CliError::Input(m) => PyValueError::new_err(m),
+        CliError::Internal(m) => PyRuntimeError::new_err(m),
+    }
+}
+
+/// f64 values as native-endian bytes, for `numpy.frombuffer` (one copy, exact).
+fn f64_bytes<'py>(py: Python<'py>, values: impl Iterator<Item = f64>) -> Bound<'py, PyBytes> {
+    let bytes: Vec<u8> = values.flat_map(f64::to_ne_bytes).collect();
+    PyBytes::new(py, &bytes)
+}
+
+/// A scene loaded and validated with its overrides; `run()` simulates it.
+#[pyclass(module = "rocking._rocking", frozen)]
+struct Scene {
+    path: PathBuf,
+    text: String,
+    sets: Vec<String>,
+    model: Arc<Model>,
+}
+
+impl Scene {
+    fn build(path: PathBuf, text: String, sets: Vec<String>) -> Result<Scene, CliError> {
+        let sc = scene::load_text(&path, text.clone(), &sets)?;
+        let mut m = model::build(&sc)?;
+        // As `rocking run` does: a scene with plots logs its events (impacts are marked on them).
+        if m.plots {
+            m.options.event_log = true;
+        }
+        Ok(Scene {
+            path,
+            text,
+            sets,
+            model: Arc::new(m),
+        })
+    }
+}
+
+#[pymethods]
+impl Scene {
+    /// Loads the scene file `path` with the overrides `set` (`key.path=value` strings).
+    #[staticmethod]
+    #[pyo3(signature = (path, set = Vec::new()))]
+    fn load(py: Python<'_>, path: PathBuf, set: Vec<String>) -> PyResult<Scene> {
+        py.detach(|| {
+            let text = scene::read(&path)?;
+            Scene::build(path, text, set)
+        })
+        .map_err(py_err)
+    }
+
+    /// A scene from its TOML text; `path` names it in messages and resolves relative paths
+    /// (records) against its directory.
+    #[staticmethod]
+    #[pyo3(signature = (text, path, set = Vec::new()))]
+    fn from_text(py: Python<'_>, text: String, path: PathBuf, set: Vec<String>) -> PyResult<Scene> {
+        py.detach(|| Scene::build(path, text, set)).map_err(py_err)
+    }
+
+    /// The scene file's path (as given).
+    #[getter]
+    fn path(&self) -> PathBuf {
+        self.path.clone()
+    }
+
+    /// The scene's TOML text.
+    #[getter]
+    fn text(&self) -> &str {
+        &self.text
+    }
+
+    /// The overrides, `key.path=value`.
+    #[getter]
+    fn sets(&self) -> Vec<String> {
+        self.sets.clone()
+    }
+
+    /// The scene's title, if it has one.
+    #[getter]
+    fn title(&self) -> Option<String> {
+        self.model.title.clone()
+    }
+
+    /// The kernel variant the solver picked and why.
+    #[getter]
+    fn kernel_variant(&self) -> (&'static str, Vec<String>) {
+        (self.model.variant.name, self.model.reasons.clone())
+    }
+
+    /// Simulates the scene (GIL released) and returns the run.
+    fn run(&self, py: Python<'_>) -> PyResult<RunOutput> {
+        let model = Arc::clone(&self.model);
+        let path = self.path.clone();
+        py.detach(move || {
+            let run = report::simulate(&model, &path)?;
+            let summary = report::summary_json(&model, &path, &run)?.to_string();
+            Ok(RunOutput {
+                model,
+                run,
+                summary,
+            })
+        })
+        .map_err(py_err)
+    }
+}
+
+/// One simulation's results: the summary (as `rocking run --json` prints it), and the history
+/// and events tables of history.csv and events.csv, made on demand.
+#[pyclass(module = "rocking._rocking", frozen)]
+struct RunOutput {
+    model: Arc<Model>,
+    run: rocking::Run,
+    summary: String,
+}
+
+/// Parses a table of `report` (CSV with a header) into columns: numbers as f64 bytes, text as
+/// strings; a column that is empty in every row (seconds of a dimensionless run) is left out.
+/// Rust prints every f64 in its shortest round-trip form, so the numbers are the run's exactly.
+fn columns<'py>(py: Python<'py>, csv: &str) -> PyResult<Bound<'py, PyDict>> {
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap_or_default().split(',').collect();
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    let out = PyDict::new(py);
+    for (j, name) in header.iter().enumerate() {
+        let cells: Vec<&str> = rows
+            .iter()
+            .map(|r| r.get(j).copied().unwrap_or(""))
+            .collect();
+        if !cells.is_empty() && cells.iter().all(|c| c.is_empty()) {
+            continue;
+        }
+        let numbers: Option<Vec<f64>> = cells.iter().map(|c| c.parse().ok()).collect();
+        match numbers {
+            Some(v) => out.set_item(*name, f64_bytes(py, v.into_iter()))?,
+            None => out.set_item(*name, PyList::new(py, &cells)?)?,
+        }
+    }
+    Ok(out)
+}
+
+#[pymethods]
+impl RunOutput {
+    /// The summary as one JSON object, exactly as `rocking run --json` prints it.
+    #[getter]
+    fn summary_json(&self) -> &str {
+        &self.summary
+    }
+
+    /// history.csv's columns (numbers as float64 bytes, `phase` as strings), or None when the
+    /// scene asks for no history (`[output] history_dt`).
+    fn history<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        if !self.model.history_csv {
+            return Ok(None);
+        }
+        let csv = py
+            .detach(|| report::history_csv(&self.model, &self.run))
+            .map_err(py_err)?;
+        columns(py, &csv).map(Some)
+    }
+
+    /// events.csv's columns, or None when the run logged no events (`[output] events`).
+    fn events<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        if !self.model.options.event_log {
+            return Ok(None);
+        }
+        let csv = py
+            .detach(|| report::events_csv(&self.model, &self.run))
+            .map_err(py_err)?;
+        columns(py, &csv).map(Some)
+    }
+}
+
+/// The most threads a sweep may ask for (the command's bound).
+const MAX_THREADS: usize = 1024;
+
+/// Runs a planned sweep in memory on `threads` threads (default: all cores), GIL released.
+fn run_plan(py: Python<'_>, plan: &Plan, threads: Option<usize>) -> PyResult<Outcome> {
+    let mut b = rayon::ThreadPoolBuilder::new();
+    if let Some(n) = threads {
+        if !(1..=MAX_THREADS).contains(&n) {
+            return Err(PyValueError::new_err(format!(
+                "threads = {n} is not allowed: 1 <= threads <= {MAX_THREADS}"
+            )));
+        }
+        b = b.num_threads(n);
+    }
+    let pool = b
+        .build()
+        .map_err(|e| PyRuntimeError::new_err(format!("cannot start the thread pool: {e}")))?;
+    py.detach(|| {
+        pool.install(|| {
+            rocking_spectra::run_in_memory(&plan.sweep, |v| {
+                plan.run_cell(v).map_err(|e| e.to_string())
+            })
+        })
+    })
+    .map_err(|e| PyRuntimeError::new_err(e.to_string()))
+}
+
+/// A sweep's outcome as plain Python values: axis keys and values, per cell (in sweep order, the
+/// last axis fastest) the class name, max θ/α (float64 bytes) and impacts, and the failures.
+fn outcome_dict<'py>(
+    py: Python<'py>,
+    sweep: &Sweep,
+    outcome: &Outcome,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    let keys: Vec<&str> = sweep.axes.iter().map(|a| a.key.as_str()).collect();
+    let values: Vec<Bound<'py, PyBytes>> = sweep
+        .axes
+        .iter()
+        .map(|a| f64_bytes(py, a.values.iter().copied()))
+        .collect();
+    d.set_item("keys", keys)?;
+    d.set_item("values", values)?;
+    let classes: Vec<&str> = outcome.cells.iter().map(|c| c.class.as_str()).collect();
+    d.set_item("classes", classes)?;
+    d.set_item(
+        "max_theta_over_alpha",
+        f64_bytes(py, outcome.cells.iter().map(|c| c.max_theta_over_alpha)),
+    )?;
+    let impacts: Vec<u64> = outcome.cells.iter().map(|c| c.impacts).collect();
+    d.set_item("impacts", impacts)?;
+    d.set_item("failures", outcome.failures.clone())?;
+    Ok(d)
+}
+
+fn base(scene: &Scene) -> Result<Base, CliError> {
+    Base::from_text(&scene.path, scene.text.clone(), &scene.sets)
+}
+
+/// A spectrum of `scene` over `axes` (`key.path=start:stop:count` or `key.path=v1,v2,...`;
+/// default: the scene's `[sweep] axes`, else the paper's), as `rocking spectrum` plans it.
+#[pyfunction]
+#[pyo3(signature = (scene, axes = Vec::new(), threads = None))]
+fn spectrum<'py>(
+    py: Python<'py>,
+    scene: &Scene,
+    axes: Vec<String>,
+    threads: Option<usize>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let plan = py
+        .detach(|| Plan::spectrum(base(scene)?, &axes))
+        .map_err(py_err)?;
+    let outcome = run_plan(py, &plan, threads)?;
+    outcome_dict(py, &plan.sweep, &outcome)
+}
+
+/// Every record (AT2 files or folders of them; default: the scene's `[sweep] records`) at every
+/// scale factor (default: `[sweep] scales`, else 1), as `rocking batch` plans it.
+#[pyfunction]
+#[pyo3(signature = (scene, records = Vec::new(), scales = Vec::new(), threads = None))]
+fn batch<'py>(
+    py: Python<'py>,
+    scene: &Scene,
+    records: Vec<PathBuf>,
+    scales: Vec<f64>,
+    threads: Option<usize>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let plan = py
+        .detach(|| Plan::batch(base(scene)?, &records, &scales))
+        .map_err(py_err)?;
+    let outcome = run_plan(py, &plan, threads)?;
+    let d = outcome_dict(py, &plan.sweep, &outcome)?;
+    if let Some(r) = &plan.records {
+        d.set_item("record_names", r.names.clone())?;
+        d.set_item("record_paths", r.paths.clone())?;
+        d.set_item("scales", r.scales.clone())?;
+    }
+    Ok(d)
+}
+
+/// The generated models, their variants and parameters, as `rocking models --json` prints them
+/// (a JSON string).
+#[pyfunction]
+fn models_json() -> String {
+    models::json().to_string()
+}
+
+/// Reads a scene file's text (the command's message when it cannot).
+#[pyfunction]
+fn read_scene(path: PathBuf) -> PyResult<String> {
+    scene::read(Path::new(&path)).map_err(py_err)
+}
+
+/// The compiled module.
+#[pymodule]
+fn _rocking(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<Scene>()?;
+    m.add_class::<RunOutput>()?;
+    m.add_function(wrap_pyfunction!(spectrum, m)?)?;
+    m.add_function(wrap_pyfunction!(batch, m)?)?;
+    m.add_function(wrap_pyfunction!(models_json, m)?)?;
+    m.add_function(wrap_pyfunction!(read_scene, m)?)?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}

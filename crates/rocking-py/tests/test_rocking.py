@@ -1,0 +1,239 @@
+"""Tests of the installed `rocking` package against the `rocking` command.
+
+The command is found through ROCKING_CLI (set by .ci/python.sh), else target/debug/rocking
+(the build `cargo test` makes for the command's own tests).
+Scenes are read from the repository this file belongs to.
+"""
+
+import csv
+import json
+import os
+import subprocess
+import threading
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import rocking
+
+REPO = Path(__file__).resolve().parents[3]
+CLI = os.environ.get("ROCKING_CLI", str(REPO / "target" / "debug" / "rocking"))
+SCENES = sorted((REPO / "scenes").glob("*.toml"))
+FIG3 = REPO / "scenes" / "fig3-vvel.toml"
+FIG8 = REPO / "scenes" / "spectra" / "fig8.toml"
+SMALL_AXES = ["excitation.omega_p_over_p=2:6:3", "excitation.amplitude=2:8:4"]
+
+
+def cli(*args: str) -> str:
+    """Runs the command, returns its standard output (fails the test on a non-zero exit)."""
+    done = subprocess.run([CLI, *args], capture_output=True, text=True, cwd=REPO)
+    assert done.returncode == 0, done.stderr
+    return done.stdout
+
+
+def test_the_scenes_are_found():
+    assert len(SCENES) >= 5, SCENES
+
+
+@pytest.mark.parametrize("scene", SCENES, ids=lambda p: p.name)
+def test_summary_equals_the_commands_json(scene, tmp_path):
+    expected = json.loads(cli("run", "--json", str(scene), "--out", str(tmp_path / "out")))
+    got = rocking.load_scene(str(scene)).run().summary.to_dict()
+    assert got == expected
+
+
+def test_summary_attributes_are_the_dicts_fields():
+    s = rocking.load_scene(FIG3).run().summary
+    d = s.to_dict()
+    assert s.max_theta_over_alpha == d["max_theta_over_alpha"]
+    assert s.impacts == d["impacts"] and s.impacts > 0
+    assert s.derived["alpha"] == 0.2
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def test_history_and_events_equal_the_commands_csv(tmp_path):
+    out = tmp_path / "out"
+    cli("run", str(FIG3), "--out", str(out))
+    result = rocking.load_scene(FIG3).run()
+    rows = read_csv(out / "history.csv")
+    h = result.history
+    assert len(rows) == len(h["tau"]) > 1000
+    for name in rows[0]:
+        if name == "phase":
+            assert list(h["phase"]) == [r["phase"] for r in rows]
+        elif rows[0][name] == "":
+            assert name not in h  # seconds of a dimensionless scene
+        else:
+            assert h[name].dtype == np.float64
+            assert np.array_equal(h[name], [float(r[name]) for r in rows]), name
+    events = read_csv(out / "events.csv")
+    assert len(result.events) == len(events) > 0
+    for got, want in zip(result.events, events):
+        assert got["kind"] == want["kind"] and got["branch"] == want["branch"]
+        assert got["tau"] == float(want["tau"])
+
+
+def test_dataframe():
+    pd = pytest.importorskip("pandas")
+    df = rocking.load_scene(FIG3).run().to_dataframe()
+    assert isinstance(df, pd.DataFrame)
+    assert df["theta_over_alpha"].abs().max() == pytest.approx(
+        rocking.load_scene(FIG3).run().summary.max_theta_over_alpha, rel=1e-3
+    )
+
+
+def test_scene_from_toml_is_the_file():
+    text = FIG3.read_text()
+    a = rocking.Scene.from_toml(text, base_dir=FIG3.parent, name=FIG3.name).run()
+    b = rocking.load_scene(FIG3).run()
+    assert a.summary.to_dict() == b.summary.to_dict()
+
+
+def test_overrides_as_dict_or_list_are_the_commands_set(tmp_path):
+    expected = json.loads(
+        cli("run", "--json", str(FIG3), "--set", "excitation.amplitude=1.2",
+            "--out", str(tmp_path / "o"))
+    )
+    for s in ({"excitation.amplitude": 1.2}, ["excitation.amplitude=1.2"]):
+        assert rocking.load_scene(str(FIG3), set=s).run().summary.to_dict() == expected
+
+
+def test_spectrum_equals_the_commands_cells_csv(tmp_path):
+    out = tmp_path / "spectrum"
+    args = ["spectrum", str(FIG8), "--out", str(out), "--quiet"]
+    for a in SMALL_AXES:
+        args += ["--axis", a]
+    cli(*args)
+    rows = read_csv(out / "cells.csv")
+    sp = rocking.spectrum(FIG8, axes=SMALL_AXES, threads=2)
+    assert sp.keys == ["excitation.omega_p_over_p", "excitation.amplitude"]
+    assert sp.classes.shape == (3, 4) and len(rows) == 12
+    flat = list(zip(sp.classes.ravel(), sp.max_theta_over_alpha.ravel(), sp.impacts.ravel()))
+    for (cls, mx, imp), r, (i, j) in zip(flat, rows, np.ndindex(3, 4)):
+        assert cls == r["class"]
+        assert mx == float(r["max_theta_over_alpha"])
+        assert imp == int(r["impacts"])
+        assert sp.axes[0][i] == float(r["excitation.omega_p_over_p"])
+        assert sp.axes[1][j] == float(r["excitation.amplitude"])
+        assert sp.class_names[sp.codes[i, j]] == cls
+    assert sp.overturned.any() and not sp.overturned.all()
+    assert sp.failures == []
+
+
+def test_batch_is_the_scene_run_per_record_and_scale(tmp_path):
+    scene = REPO / "scenes" / "wind-turbine-elcentro.toml"
+    record = REPO / "scenes" / "records" / "elCentro.AT2"
+    b = rocking.batch(scene, records=[record], scales=[0.5, 2.0], threads=2)
+    assert b.record_names == ["elCentro.AT2"] and list(b.scales) == [0.5, 2.0]
+    assert b.classes.shape == (1, 2)
+    for j, s in enumerate(b.scales):
+        one = rocking.load_scene(scene, set={"excitation.scale": float(s)}).run().summary
+        assert bool(b.overturned[0, j]) == one.overturned
+        if not one.overturned:  # a cell stops early only once it has overturned
+            assert b.max_theta_over_alpha[0, j] == one.max_theta_over_alpha
+
+
+def test_models_equal_the_commands_list():
+    assert rocking.models() == json.loads(cli("models", "--json"))["models"]
+
+
+@pytest.mark.parametrize(
+    "set_, key",
+    [
+        ({"structure.alpha": -1}, "alpha"),
+        ({"structure.alpah": 0.2}, "alpah"),
+        (["excitation.omega_p_over_p=0"], "omega_p_over_p"),
+        ({"solver.tol": 0}, "tol"),
+    ],
+)
+def test_bad_input_raises_value_error_naming_the_key(set_, key):
+    with pytest.raises(ValueError, match=key) as e:
+        rocking.load_scene(FIG3, set=set_)
+    assert str(FIG3) in str(e.value)
+
+
+def test_bad_input_messages_are_the_commands(tmp_path):
+    done = subprocess.run(
+        [CLI, "run", str(FIG3), "--set", "structure.alpha=-1", "--out", str(tmp_path / "o")],
+        capture_output=True, text=True,
+    )
+    assert done.returncode == 2
+    with pytest.raises(ValueError) as e:
+        rocking.load_scene(str(FIG3), set=["structure.alpha=-1"])
+    assert done.stderr.strip() == f"error: {e.value}"
+
+
+def test_other_bad_inputs():
+    with pytest.raises(ValueError, match="cannot read scene file"):
+        rocking.load_scene(REPO / "scenes" / "no-such-scene.toml")
+    with pytest.raises(ValueError, match="invalid TOML"):
+        rocking.Scene.from_toml("[structure\nalpha = ")
+    with pytest.raises(ValueError, match="excitation.amplitud"):
+        rocking.spectrum(FIG8, axes=["excitation.amplitud=1:2:2"])
+    with pytest.raises(ValueError, match="threads"):
+        rocking.spectrum(FIG8, axes=SMALL_AXES, threads=0)
+    with pytest.raises(ValueError, match="alpha"):
+        rocking.Structure(omega_n_over_p=5.0, alpha=2.0)
+
+
+def test_building_blocks_run_as_the_scene():
+    structure = rocking.Structure(
+        omega_n_over_p=11.9, alpha=0.2, gamma_mc=0.0, gamma_mb=0.0, gamma_ib=1.0,
+        zeta=0.005, damping="fixed-base",
+    )
+    r = rocking.simulate(
+        structure,
+        rocking.Excitation.sine_pulse(omega_p_over_p=5.1, amplitude=1.30),
+        rocking.Options(accuracy="accurate", after_excitation=6.8),
+        rocking.Effects(impact="vvel", energy=True),
+    )
+    want = rocking.load_scene(FIG3).run().summary
+    assert r.summary.max_theta_over_alpha == want.max_theta_over_alpha
+    assert r.summary.impacts == want.impacts
+    assert r.history is None  # no [output] asked for
+
+
+def test_from_toml_reads_a_record_given_by_absolute_path():
+    scene = rocking.load_scene(REPO / "scenes" / "wind-turbine-elcentro.toml")
+    text = (REPO / "scenes" / "wind-turbine-elcentro.toml").read_text()
+    assert 'path = "records/elCentro.AT2"' in text
+    record = json.dumps(str(REPO / "scenes" / "records" / "elCentro.AT2"))
+    moved = text.replace('"records/elCentro.AT2"', record)
+    other = rocking.Scene.from_toml(moved, base_dir="/", name="x.toml").run().summary
+    assert other.max_theta_over_alpha == scene.run().summary.max_theta_over_alpha
+
+
+def test_the_gil_is_released_during_a_spectrum():
+    """Another Python thread makes progress while a spectrum runs (no timing assert: with the
+    GIL held by the call, the other thread could not run at all in the middle of it)."""
+    stamps = []
+    stop = threading.Event()
+
+    def count():
+        while not stop.is_set():
+            for _ in range(1000):
+                pass
+            stamps.append(time.perf_counter())
+
+    t = threading.Thread(target=count)
+    t.start()
+    try:
+        start = time.perf_counter()
+        sp = rocking.spectrum(
+            FIG8, axes=["excitation.omega_p_over_p=1:10:16", "excitation.amplitude=1:20:16"],
+            threads=1,
+        )
+        end = time.perf_counter()
+    finally:
+        stop.set()
+        t.join()
+    assert sp.classes.size == 256
+    q = (end - start) / 4
+    middle = [s for s in stamps if start + q < s < end - q]
+    assert len(middle) > 10, (len(stamps), end - start)

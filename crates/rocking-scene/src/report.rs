@@ -1,0 +1,196 @@
+//! What a run reports, as the `rocking` command writes it and the Python package returns it:
+//! the summary object (`--json`, summary.json), the derived quantities, history.csv and
+//! events.csv. One implementation, so that both print the same numbers.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use rocking::{Run, Time};
+use serde_json::{json, Value};
+
+use crate::model::Model;
+use crate::scene::CliError;
+
+/// Runs a built scene with the command's error messages: bad options are input errors, a
+/// guard that stops a run names the scene settings that bound it.
+pub fn simulate(m: &Model, scene: &Path) -> Result<Run, CliError> {
+    rocking::simulate(&m.structure, &m.excitation, &m.effects, &m.options).map_err(|e| match e {
+        rocking::SimError::Options(msg) => CliError::Input(format!("{}: {msg}", scene.display())),
+        rocking::SimError::Guard(msg) => CliError::Internal(format!(
+            "{}: simulation stopped: {msg}; both limits are scene settings: `max_steps` and \
+             `max_events` in [solver] (defaults {} and {})",
+            scene.display(),
+            crate::limits::short(rocking::Options::default().max_steps as f64),
+            crate::limits::short(rocking::Options::default().max_events as f64)
+        )),
+        other => CliError::Internal(format!("{}: simulation failed: {other}", scene.display())),
+    })
+}
+
+fn finite(name: &str, x: f64) -> Result<f64, CliError> {
+    if x.is_finite() {
+        Ok(x)
+    } else {
+        Err(CliError::Internal(format!(
+            "the run produced a non-finite {name} ({x}); no results written"
+        )))
+    }
+}
+
+fn tau(t: Option<Time>) -> Value {
+    t.map_or(Value::Null, |t| json!(t.tau))
+}
+
+fn seconds(t: Option<Time>) -> Value {
+    t.and_then(|t| t.seconds).map_or(Value::Null, |s| json!(s))
+}
+
+/// Derived quantities of the structure, for `check` and the summary. A non-finite value would be
+/// written as `null`: it is an error instead (the model checks them when it is built).
+pub fn derived_json(model: &Model) -> Result<Value, CliError> {
+    let d = model.structure.derived();
+    let u = &model.units;
+    let v = json!({
+        "p": d.p,
+        "p_per_second": model.structure.p_per_second(),
+        "omega_n": d.omega_n,
+        "omega_n_over_p": d.omega_n / d.p,
+        "omega_up": d.omega_up,
+        "modal_s": d.modal_s,
+        "alpha": d.alpha,
+        "r": d.r,
+        "zeta_fixed_base": d.zeta_fixed_base,
+        "zeta_uplifted": d.zeta_uplifted,
+        "u_cr": d.u_cr,
+        "theta_cr": d.theta_cr,
+        "e_ref": d.e_ref,
+        "static_uplift_over_g_tan_alpha":
+            model.structure.static_uplift_acceleration() / u.accel_g_tan_alpha(),
+        "units": if u.physical { "SI (s, m, kg)" } else { "model (R = g = m = 1, time τ)" },
+    });
+    if let Some((k, _)) = v
+        .as_object()
+        .into_iter()
+        .flatten()
+        .find(|(k, x)| x.is_null() && k.as_str() != "p_per_second")
+    {
+        return Err(CliError::Input(format!(
+            "the derived quantity {k} is not finite: the structure's values are out of range"
+        )));
+    }
+    Ok(v)
+}
+
+/// The summary object printed by `--json` and written to summary.json.
+pub fn summary_json(model: &Model, scene: &Path, run: &Run) -> Result<Value, CliError> {
+    let s = &run.summary;
+    let energy = match s.energy {
+        Some(e) => json!({
+            "initial": finite("energy", e.initial)?,
+            "last": finite("energy", e.last)?,
+            "ground_work": finite("energy", e.ground_work)?,
+            "damping": finite("energy", e.damping)?,
+            "impact_losses": finite("energy", e.impact_losses)?,
+        }),
+        None => Value::Null,
+    };
+    let residual = match s.energy_balance_residual {
+        Some(r) => json!(finite("energy balance residual", r)?),
+        None => Value::Null,
+    };
+    Ok(json!({
+        "scene": scene.display().to_string(),
+        "title": model.title,
+        "kernel_variant": s.kernel_variant,
+        "variant_reasons": model.reasons,
+        "excitation": model.excitation_description,
+        "max_theta_over_alpha": finite("max θ/α", s.max_theta_over_alpha)?,
+        "max_theta_over_theta_cr": finite("max θ/θ_cr", s.max_theta_over_theta_cr)?,
+        "max_u_over_ucr": finite("max u/u_cr", s.max_u_over_ucr)?,
+        "overturned": s.overturned,
+        "overturn_time": tau(s.overturn_time),
+        "overturn_time_s": seconds(s.overturn_time),
+        "impacts": s.impacts,
+        "significant_impacts": s.significant_impacts,
+        "energy_capped_impacts": s.energy_capped_impacts,
+        "first_uplift_time": tau(s.first_uplift_time),
+        "first_uplift_time_s": seconds(s.first_uplift_time),
+        "first_impact_time": tau(s.first_impact_time),
+        "first_impact_time_s": seconds(s.first_impact_time),
+        "final_phase": s.final_phase,
+        "end_time": s.end_time.tau,
+        "end_time_s": s.end_time.seconds,
+        "energy_balance_residual": residual,
+        "energy": energy,
+        "solver_stats": s.solver_stats,
+        "derived": derived_json(model)?,
+    }))
+}
+
+fn num(out: &mut String, x: f64) -> Result<(), CliError> {
+    let x = finite("history value", x)?;
+    let _ = write!(out, ",{x}");
+    Ok(())
+}
+
+/// history.csv: τ, seconds (when known), normalised state, phase, energies, ground acceleration.
+pub fn history_csv(model: &Model, run: &Run) -> Result<String, CliError> {
+    let d = model.structure.derived();
+    let u = &model.units;
+    let ps = model.structure.p_per_second();
+    let mut out = String::from(
+        "tau,t_s,theta_over_alpha,u_over_ucr,theta_dot_over_alpha_p,u_dot_over_ucr_omega_n,\
+         phase,e_kin_over_eref,e_total_over_eref,ug_over_g_tan_alpha\n",
+    );
+    for r in &run.history {
+        let _ = write!(out, "{}", finite("τ", r.tau)?);
+        match ps {
+            Some(p) => num(&mut out, r.tau / p)?,
+            None => out.push(','),
+        }
+        num(&mut out, r.theta / u.alpha)?;
+        num(&mut out, r.u / d.u_cr)?;
+        num(&mut out, r.theta_dot / (u.alpha * d.p))?;
+        num(&mut out, r.u_dot / (d.u_cr * d.omega_n))?;
+        let phase = serde_json::to_value(r.phase).unwrap_or(Value::Null);
+        let _ = write!(out, ",{}", phase.as_str().unwrap_or("?"));
+        num(&mut out, r.e_kin)?;
+        num(&mut out, r.e_total)?;
+        num(&mut out, r.ug / u.accel_g_tan_alpha())?;
+        out.push('\n');
+    }
+    Ok(out)
+}
+
+/// events.csv: one row per uplift, impact, rest or overturning.
+pub fn events_csv(model: &Model, run: &Run) -> Result<String, CliError> {
+    let d = model.structure.derived();
+    let u = &model.units;
+    let mut out = String::from(
+        "tau,t_s,kind,branch,phase_after,theta_dot_over_alpha_p,u_over_ucr,\
+         u_dot_over_ucr_omega_n,e_kin_before_over_eref,e_kin_after_over_eref\n",
+    );
+    for e in &run.events {
+        let _ = write!(out, "{}", finite("τ", e.time.tau)?);
+        match e.time.seconds {
+            Some(s) => num(&mut out, s)?,
+            None => out.push(','),
+        }
+        let kind = serde_json::to_value(e.kind).unwrap_or(Value::Null);
+        let phase = serde_json::to_value(e.phase_after).unwrap_or(Value::Null);
+        let _ = write!(
+            out,
+            ",{},{},{}",
+            kind.as_str().unwrap_or("?"),
+            e.branch,
+            phase.as_str().unwrap_or("?")
+        );
+        num(&mut out, e.theta_dot / (u.alpha * d.p))?;
+        num(&mut out, e.u / d.u_cr)?;
+        num(&mut out, e.u_dot / (d.u_cr * d.omega_n))?;
+        num(&mut out, e.energy_before)?;
+        num(&mut out, e.energy_after)?;
+        out.push('\n');
+    }
+    Ok(out)
+}
