@@ -41,6 +41,17 @@ pub const RUN_FILES: [&str; 5] = [
     "plot.svg",
 ];
 
+/// The files `rocking ida` writes (its --out is replaced whole like a run's).
+pub const IDA_FILES: [&str; 7] = [
+    "records.csv",
+    "ida.csv",
+    "fragility.json",
+    "ida.png",
+    "ida.svg",
+    "fragility-fit.png",
+    "fragility-fit.svg",
+];
+
 /// The output directory of one run, built aside and swapped in whole: the directory always holds
 /// exactly one run's files, whether the run is killed while writing (the old directory stays),
 /// runs in parallel into the same `--out` (the last to finish wins, never a mix), or writes fewer
@@ -165,8 +176,9 @@ fn check_is_run_dir(target: &Path) -> Result<(), CliError> {
         // `.summary.json.tmp123`: a temporary file an older version left when killed.
         let leftover = RUN_FILES
             .iter()
+            .chain(&IDA_FILES)
             .any(|f| n.starts_with(&format!(".{f}.tmp")));
-        if !RUN_FILES.contains(&n.as_str()) && !leftover {
+        if !RUN_FILES.contains(&n.as_str()) && !IDA_FILES.contains(&n.as_str()) && !leftover {
             return Err(CliError::Input(format!(
                 "{}: --out holds `{n}`, which `rocking run` does not write; the run replaces the \
                  whole directory, so give an --out that holds only a previous run's outputs",

@@ -393,13 +393,20 @@ pub fn parse_knet(text: &str, file: &str) -> Result<At2Record, MotionError> {
             })
     };
     let (freq, freq_line) = field("Sampling Freq(Hz)")?;
-    let hz = number(freq.trim_end_matches(|c: char| c.is_ascii_alphabetic()), file, freq_line)?;
+    let hz = number(
+        freq.trim_end_matches(|c: char| c.is_ascii_alphabetic()),
+        file,
+        freq_line,
+    )?;
     let dt = positive_dt(1.0 / hz, file, freq_line)?;
     let (scale, scale_line) = field("Scale Factor")?;
     let bad_scale = || malformed(file, scale_line, "\"Scale Factor <a>(gal)/<b>\"", scale);
     let (num, den) = scale.split_once('/').ok_or_else(bad_scale)?;
     let unit_start = num.find('(').ok_or_else(bad_scale)?;
-    let unit = match declared_unit(&format!("UNITS: {}", num[unit_start..].trim_matches(['(', ')']))) {
+    let unit = match declared_unit(&format!(
+        "UNITS: {}",
+        num[unit_start..].trim_matches(['(', ')'])
+    )) {
         Declared::Unit(u) => u,
         _ => {
             return Err(MotionError::UnknownUnits {
@@ -409,12 +416,14 @@ pub fn parse_knet(text: &str, file: &str) -> Result<At2Record, MotionError> {
             })
         }
     };
-    let factor = number(num[..unit_start].trim(), file, scale_line)?
-        / number(den.trim(), file, scale_line)?;
+    let factor =
+        number(num[..unit_start].trim(), file, scale_line)? / number(den.trim(), file, scale_line)?;
     if !(factor.is_finite() && factor != 0.0) {
         return Err(bad_scale());
     }
-    let title = field("Station Code").map(|(s, _)| s.to_owned()).unwrap_or_default();
+    let title = field("Station Code")
+        .map(|(s, _)| s.to_owned())
+        .unwrap_or_default();
     let mut samples = Vec::new();
     for (i, line) in lines.iter().enumerate().skip(KNET_HEADER) {
         for token in line.split_whitespace() {
@@ -449,13 +458,20 @@ mod tests {
         let e = parse_text("0.1\n0.2\n", "f.txt", None).unwrap_err();
         assert!(e.to_string().contains("`dt`"), "{e}");
         let e = parse_text("0 1\n0.01 2\n0.03 3\n", "f.txt", None).unwrap_err();
-        assert!(e.to_string().starts_with("f.txt:3: expected equally spaced"), "{e}");
+        assert!(
+            e.to_string()
+                .starts_with("f.txt:3: expected equally spaced"),
+            "{e}"
+        );
         let e = parse_text("0 1\n0.01\n", "f.txt", None).unwrap_err();
         assert!(e.to_string().starts_with("f.txt:2:"), "{e}");
         let e = parse_text("0 1\n0.01 2\n", "f.txt", Some(0.02)).unwrap_err();
         assert!(e.to_string().contains("contradicts"), "{e}");
         let e = parse_text("0 1\n0.01 x\n", "f.txt", None).unwrap_err();
-        assert!(e.to_string().starts_with("f.txt:2: expected a number"), "{e}");
+        assert!(
+            e.to_string().starts_with("f.txt:2: expected a number"),
+            "{e}"
+        );
     }
 
     #[test]
