@@ -248,7 +248,7 @@ fn study(base: &Base, s: &Settings, file: &Path) -> Result<Done, CliError> {
     let bad = |e: &dyn std::fmt::Display| CliError::Input(format!("{path}: {e}"));
     let ims = IntensityMeasures::of(&si).map_err(|e| bad(&e))?;
     let im_unscaled = s.im.of(&si).map_err(|e| bad(&e))?;
-    if !(im_unscaled > 0.0) {
+    if !(im_unscaled.is_finite() && im_unscaled > 0.0) {
         return Err(bad(
             &"the record's intensity measure is 0: it cannot be scaled",
         ));

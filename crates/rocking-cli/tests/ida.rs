@@ -141,7 +141,10 @@ fn same_record_in_every_format_gives_the_at2_summary() {
     }
     for row in a.chunks(8) {
         for x in row {
-            s.push_str(&format!(" {:8}", ((x - mean) / gal / factor).round() as i64));
+            s.push_str(&format!(
+                " {:8}",
+                ((x - mean) / gal / factor).round() as i64
+            ));
         }
         s.push('\n');
     }
@@ -243,7 +246,13 @@ fn ida_capacities_agree_with_a_bisection_and_the_fit_is_written() {
     let median = fit["median_m_s2"].as_f64().unwrap();
     let band = &fit["bootstrap"]["median_interval_m_s2"];
     assert!(band[0].as_f64().unwrap() <= median && median <= band[1].as_f64().unwrap());
-    for f in ["ida.csv", "ida.png", "ida.svg", "fragility-fit.png", "fragility-fit.svg"] {
+    for f in [
+        "ida.csv",
+        "ida.png",
+        "ida.svg",
+        "fragility-fit.png",
+        "fragility-fit.svg",
+    ] {
         assert!(out.join(f).is_file(), "{f}");
     }
     let mut table = csv::Reader::from_path(out.join("records.csv")).unwrap();
@@ -276,8 +285,14 @@ fn ida_capacities_agree_with_a_bisection_and_the_fit_is_written() {
         }
     }
     // both bracket the same threshold: the intervals (lo, hi] and (below, cap] overlap
-    assert!(lo < cap && below < hi, "bisection ({lo}, {hi}] vs IDA ({below}, {cap}]");
-    assert!((hi - cap).abs() <= 2.0 * tol * cap, "bisection {hi} vs IDA {cap}");
+    assert!(
+        lo < cap && below < hi,
+        "bisection ({lo}, {hi}] vs IDA ({below}, {cap}]"
+    );
+    assert!(
+        (hi - cap).abs() <= 2.0 * tol * cap,
+        "bisection {hi} vs IDA {cap}"
+    );
 }
 
 #[test]
