@@ -462,7 +462,7 @@ pub fn ida(
     let text = serde_json::to_string_pretty(&json)
         .map_err(|e| CliError::Internal(format!("cannot write fragility.json: {e}")))?;
     write_atomic(&dir.path().join("fragility.json"), text.as_bytes())?;
-    let curves: Vec<(String, Vec<(f64, f64, bool)>)> = done
+    let curves: Vec<(String, ida_plot::Points)> = done
         .iter()
         .map(|d| {
             let pts = d

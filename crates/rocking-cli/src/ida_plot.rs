@@ -26,7 +26,8 @@ fn register() {
     });
 }
 
-type Points = Vec<(f64, f64, bool)>;
+/// One record's IDA curve: (max θ/α, IM, collapsed) per analysis.
+pub type Points = Vec<(f64, f64, bool)>;
 
 fn draw_ida<DB: DrawingBackend>(
     root: DrawingArea<DB, Shift>,
