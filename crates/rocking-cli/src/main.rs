@@ -7,6 +7,7 @@
 //! rocking batch SCENE [--records FILE|DIR ...] [--scales 0.5,1,2] [--set ...] [--out DIR] [--quiet]
 //! rocking spectrum|batch ... --shard K/N --out SHARD_DIR    (one shard of a job array)
 //! rocking merge OUT SHARD_DIR...
+//! rocking ida SCENE [--records FILE|DIR ...] [--set ...] [--out DIR] [--threads N]
 //! ```
 //!
 //! Exit codes: 0 ok, 2 invalid input (scene, record, arguments), 1 internal failure.
@@ -21,6 +22,8 @@ macro_rules! out {
     }};
 }
 
+mod ida;
+mod ida_plot;
 mod merge;
 mod plot;
 mod report;
@@ -150,6 +153,26 @@ enum Command {
         /// The shards' --out directories, all N of them.
         #[arg(required = true, num_args = 1..)]
         shards: Vec<PathBuf>,
+    },
+    /// Incremental dynamic analysis of a record scene (settings in [ida]): per record its
+    /// intensity measures and its overturning capacity by hunt-and-fill; the lognormal fragility
+    /// fitted by maximum likelihood with a bootstrap band. Writes records.csv, ida.csv,
+    /// fragility.json and plots (docs/records.md).
+    Ida {
+        /// The scene file (TOML), with `kind = "record"` in [excitation].
+        scene: PathBuf,
+        /// Records: files or folders of them (default: `records` in [ida], else in [sweep]).
+        #[arg(long = "records", value_name = "FILE|DIR", num_args = 1..)]
+        records: Vec<PathBuf>,
+        /// Override a scene value (repeatable).
+        #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
+        set: Vec<String>,
+        /// Output directory (default: out/<scene-stem>-ida/).
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// Number of threads (default: all cores).
+        #[arg(long)]
+        threads: Option<usize>,
     },
 }
 
@@ -389,6 +412,13 @@ fn main() -> ExitCode {
             shard,
         } => sweep::batch(&scene, &set, &records, &scales, out, quiet, threads, shard),
         Command::Merge { out, shards } => merge::merge(&out, &shards),
+        Command::Ida {
+            scene,
+            records,
+            set,
+            out,
+            threads,
+        } => ida::ida(&scene, &set, &records, out, threads),
     };
     // Buffered output reaches a closed or full stdout only here.
     let result = result.and_then(|()| {

@@ -35,6 +35,17 @@ pub const RUN_FILES: [&str; 5] = [
     "plot.svg",
 ];
 
+/// The files `rocking ida` writes (its --out is replaced whole like a run's).
+pub const IDA_FILES: [&str; 7] = [
+    "records.csv",
+    "ida.csv",
+    "fragility.json",
+    "ida.png",
+    "ida.svg",
+    "fragility-fit.png",
+    "fragility-fit.svg",
+];
+
 /// The output directory of one run, built aside and swapped in whole: the directory always holds
 /// exactly one run's files, whether the run is killed while writing (the old directory stays),
 /// runs in parallel into the same `--out` (the last to finish wins, never a mix), or writes fewer
@@ -60,6 +71,12 @@ pub struct OutKind {
 pub const RUN_OUT: OutKind = OutKind {
     writes: |n| RUN_FILES.contains(&n),
     command: "rocking run",
+};
+
+/// The outputs of `rocking ida`.
+pub const IDA_OUT: OutKind = OutKind {
+    writes: |n| IDA_FILES.contains(&n),
+    command: "rocking ida",
 };
 
 impl OutDir {

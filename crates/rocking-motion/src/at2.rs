@@ -62,7 +62,7 @@ impl AccelUnit {
 
 /// What header line 3 says about the quantity and its unit.
 #[derive(Debug, Clone, Copy, PartialEq)]
-enum Declared {
+pub(crate) enum Declared {
     /// No unit stated (the samples are taken as g unless the user states one).
     Nothing,
     /// An acceleration unit.
@@ -76,7 +76,7 @@ enum Declared {
 /// Reads the quantity and the unit from header line 3, as the PEER files write them:
 /// `ACCELERATION TIME HISTORY IN UNITS OF G`, `... IN UNITS OF CM/SEC/SEC`, `The units are (g)`,
 /// `VELOCITY TIME HISTORY IN UNITS OF CM/SEC`.
-fn declared_unit(line: &str) -> Declared {
+pub(crate) fn declared_unit(line: &str) -> Declared {
     let up = line.to_ascii_uppercase();
     if up.contains("VELOCITY") || up.contains("DISPLACEMENT") {
         return Declared::NotAcceleration;
@@ -399,7 +399,7 @@ pub fn parse_at2(text: impl AsRef<[u8]>, source_name: &str) -> Result<At2Record,
 }
 
 /// Parse a number, accepting Fortran `D` exponents (`1.0D-03`).
-fn parse_number(token: &str) -> Option<f64> {
+pub(crate) fn parse_number(token: &str) -> Option<f64> {
     token.parse::<f64>().ok().or_else(|| {
         if token.contains(['d', 'D']) {
             token.replace(['d', 'D'], "e").parse::<f64>().ok()

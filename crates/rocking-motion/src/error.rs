@@ -136,6 +136,17 @@ pub enum MotionError {
         /// The unit the user stated.
         stated: &'static str,
     },
+    /// A text, ESM or K-NET file does not have the layout of its format.
+    Malformed {
+        /// Name of the input.
+        file: String,
+        /// Line (1-based).
+        line: usize,
+        /// What the format needs there.
+        expected: String,
+        /// What was found (possibly shortened).
+        found: String,
+    },
     /// Parameters of a programmatically built motion are invalid
     /// (e.g. a [`Record`](crate::Record) with `dt <= 0` or no samples).
     InvalidParameter(String),
@@ -158,6 +169,7 @@ impl MotionError {
             | MotionError::InvalidDt { line, .. }
             | MotionError::BadToken { line, .. }
             | MotionError::NonFiniteSample { line, .. }
+            | MotionError::Malformed { line, .. }
             | MotionError::CountMismatch { line, .. } => Some(*line),
         }
     }
@@ -231,6 +243,12 @@ impl fmt::Display for MotionError {
                 "{file}: the header declares the units {declared}, but the scene states \
                  `units` = \"{stated}\"; remove `units` or make it agree"
             ),
+            MotionError::Malformed {
+                file,
+                line,
+                expected,
+                found,
+            } => write!(f, "{file}:{line}: expected {expected}, found {found}"),
             MotionError::InvalidParameter(msg) => write!(f, "invalid parameter: {msg}"),
         }
     }

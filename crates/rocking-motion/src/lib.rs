@@ -85,12 +85,14 @@
 
 mod at2;
 mod error;
+pub mod formats;
 pub mod intensity;
 mod pulses;
 mod record;
 
 pub use at2::{parse_at2, read_at2, AccelUnit, At2Record};
 pub use error::MotionError;
+pub use formats::{read_record, RecordFormat};
 pub use pulses::{
     CosinePulse, MavroeidisPapageorgiou, Ricker, RickerKind, SinePulse, ANTISYMMETRIC_RICKER_NORM,
     RICKER_HALF_WIDTH_PERIODS,

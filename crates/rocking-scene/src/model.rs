@@ -9,10 +9,12 @@ use rocking::{
 };
 use rocking_kernels::Physical;
 use rocking_motion::{
-    AccelUnit, CosinePulse, Excitation, GroundMotion, MavroeidisPapageorgiou, Record, Ricker,
-    SinePulse,
+    AccelUnit, CosinePulse, Excitation, GroundMotion, MavroeidisPapageorgiou, Record, RecordFormat,
+    Ricker, SinePulse,
 };
 use toml::Value;
+
+use std::path::Path;
 
 use crate::scene::{describe, CliError, ExcitationSpec, Scene, SceneSpec, Source, StructureSpec};
 
@@ -375,7 +377,7 @@ fn kind_keys(kind: &str) -> Option<&'static [&'static str]> {
         "sine-pulse" | "cosine-pulse" => PULSE,
         "ricker" => RICKER,
         "mp-pulse" => MP,
-        "record" => &["kind", "path", "scale", "units"],
+        "record" => &["kind", "path", "scale", "units", "format", "dt"],
         _ => return None,
     })
 }
@@ -405,6 +407,8 @@ fn present(e: &ExcitationSpec) -> Vec<&'static str> {
         ("path", e.path.is_some()),
         ("scale", e.scale.is_some()),
         ("units", e.units.is_some()),
+        ("format", e.format.is_some()),
+        ("dt", e.dt.is_some()),
     ])
 }
 
@@ -634,13 +638,21 @@ fn build_excitation(
                 ));
             }
             let file = src.dir().join(rel);
-            let at2 = src.record(&file).map_err(|err| {
+            let format = record_format(src, e, &file)?;
+            let at2 = src.record_as(&file, format, e.dt).map_err(|err| {
                 src.err(
                     "excitation.path",
                     format_args!("cannot use the record: {err}"),
                 )
             })?;
             let at2 = match e.units.as_deref() {
+                None if format == RecordFormat::Text => {
+                    return Err(src.err(
+                        "excitation.units",
+                        "a text record states no unit: give `units` in [excitation], one of \
+                         \"g\", \"cm/s2\", \"m/s2\"",
+                    ))
+                }
                 None => at2,
                 Some(name) => {
                     let unit = AccelUnit::parse(name).ok_or_else(|| {
@@ -692,6 +704,24 @@ fn build_excitation(
         }
         _ => unreachable!("kind checked above"),
     })
+}
+
+/// The record format a scene names (`excitation.format`), else the one the file's extension
+/// implies.
+fn record_format(src: &Source, e: &ExcitationSpec, file: &Path) -> Result<RecordFormat, CliError> {
+    let allowed = RecordFormat::NAMES.join("\", \"");
+    match e.format.as_deref() {
+        Some(name) => RecordFormat::parse(name).ok_or_else(|| {
+            src.err(
+                "excitation.format",
+                format_args!(
+                    "`format` = \"{name}\" in [excitation] is not allowed: one of \"{allowed}\""
+                ),
+            )
+        }),
+        // PEER AT2 unless the extension names another format (as before formats were added)
+        None => Ok(RecordFormat::from_path(file).unwrap_or(RecordFormat::At2)),
+    }
 }
 
 /// The model a typed scene names (default: the paper's).

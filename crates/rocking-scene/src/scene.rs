@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
 use rocking::{DampingConvention, ModelInfo, Preset, PAPER_MODEL};
-use rocking_motion::{read_at2, At2Record};
+use rocking_motion::{read_record, At2Record, RecordFormat};
 use serde::Deserialize;
 use toml::{Table, Value};
 
@@ -84,6 +84,11 @@ pub struct ExcitationSpec {
     pub scale: Option<f64>,
     /// Units of a record whose header states none: "g", "cm/s2" or "m/s2".
     pub units: Option<String>,
+    // record-format keys (issue 14)
+    /// Layout of the record file: "at2", "text", "esm" or "knet" (default: from its extension).
+    pub format: Option<String>,
+    /// Time step (s) of a one-column text record.
+    pub dt: Option<f64>,
 }
 
 /// `[effects]`.
@@ -153,6 +158,38 @@ pub struct SceneSpec {
     pub initial: Option<InitialSpec>,
     pub output: Option<OutputSpec>,
     pub sweep: Option<SweepSpec>,
+    /// `[ida]`: the settings of `rocking ida` (issue 14).
+    pub ida: Option<IdaSpec>,
+}
+
+/// `[ida]`: incremental dynamic analysis and the fragility fit of `rocking ida`. Checked by the
+/// command (every key has a default there).
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct IdaSpec {
+    /// Records (paths relative to the scene, files or folders); default: `[sweep] records`.
+    pub records: Option<Vec<String>>,
+    /// Intensity measure the records are scaled to: "sa" (PSA(T, ζ)) or "pga".
+    pub im: Option<String>,
+    /// Period T of "sa" (s).
+    pub period: Option<f64>,
+    /// Damping ratio ζ of "sa".
+    pub damping: Option<f64>,
+    /// Hunt-and-fill: first level, first step and step increment (m/s²).
+    pub first: Option<f64>,
+    pub step: Option<f64>,
+    pub step_increment: Option<f64>,
+    /// Relative tolerance of each capacity.
+    pub tolerance: Option<f64>,
+    /// Fill until no gap below the capacity is wider than this fraction of it.
+    pub max_gap: Option<f64>,
+    /// Most analyses per record.
+    pub max_runs: Option<usize>,
+    /// Collapse: overturning, or max θ/α reaching this limit (when given).
+    pub theta_over_alpha_limit: Option<f64>,
+    /// Bootstrap resamples and seed of the confidence band.
+    pub bootstrap: Option<usize>,
+    pub seed: Option<u64>,
 }
 
 /// `[sweep]`: the axes of `rocking spectrum` (same syntax as `--axis`), and for `rocking batch`
@@ -187,17 +224,29 @@ pub struct Source {
 }
 
 /// Records read by the scenes of one sweep, by path (shared by every cell).
-pub type Records = Arc<Mutex<HashMap<PathBuf, At2Record>>>;
+pub type Records = Arc<Mutex<HashMap<(PathBuf, RecordFormat), At2Record>>>;
 
 impl Source {
     /// The record at `file`, read once per scene (and per sweep).
     pub fn record(&self, file: &Path) -> Result<At2Record, rocking_motion::MotionError> {
+        self.record_as(file, RecordFormat::At2, None)
+    }
+
+    /// The record at `file` in `format` (`dt`: the step of a one-column text file), read once
+    /// per scene (and per sweep).
+    pub fn record_as(
+        &self,
+        file: &Path,
+        format: RecordFormat,
+        dt: Option<f64>,
+    ) -> Result<At2Record, rocking_motion::MotionError> {
         let mut cache = self.records.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some(r) = cache.get(file) {
+        let key = (file.to_path_buf(), format);
+        if let Some(r) = cache.get(&key).filter(|r| dt.is_none_or(|d| d == r.dt)) {
             return Ok(r.clone());
         }
-        let r = read_at2(file)?;
-        cache.insert(file.to_path_buf(), r.clone());
+        let r = read_record(file, format, dt)?;
+        cache.insert(key, r.clone());
         Ok(r)
     }
 

@@ -1,0 +1,312 @@
+//! `rocking ida` and the record formats, end to end through the binary: the same record in each
+//! format gives the run summary of its AT2; hunt-and-fill capacities agree with an independent
+//! bisection; bad [ida] settings exit 2 naming the key and the allowed range.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use serde_json::Value;
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn rocking(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_rocking"))
+        .args(args)
+        .current_dir(root())
+        .output()
+        .expect("rocking runs")
+}
+
+fn summary(sets: &[String], out: &Path) -> Value {
+    let mut args = vec![
+        "run",
+        "scenes/wind-turbine-elcentro.toml",
+        "--json",
+        "--set",
+        "output.history=\"none\"",
+        "--set",
+        "output.plots=false",
+        "--set",
+        "output.events=false",
+    ];
+    let out_s = out.display().to_string();
+    for s in sets {
+        args.extend(["--set", s.as_str()]);
+    }
+    args.extend(["--out", &out_s]);
+    let o = rocking(&args);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let mut v: Value = serde_json::from_slice(&o.stdout).unwrap();
+    for k in ["excitation", "scene", "title"] {
+        v.as_object_mut().unwrap().remove(k);
+    }
+    v
+}
+
+/// The AT2 record of the wind-turbine scene, in g.
+fn at2() -> (f64, Vec<f64>) {
+    let r = rocking_motion::read_at2(root().join("scenes/records/elCentro.AT2")).unwrap();
+    (r.dt, r.samples)
+}
+
+#[test]
+fn same_record_in_every_format_gives_the_at2_summary() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (dt, a) = at2();
+    let reference = summary(&[], &tmp.path().join("at2"));
+
+    // plain text, one column in g with the stated dt: the same f64 samples, the same summary
+    let text = tmp.path().join("el.txt");
+    let body: String = a.iter().map(|x| format!("{x:?}\n")).collect();
+    std::fs::write(&text, format!("# El Centro in g\n{body}")).unwrap();
+    let got = summary(
+        &[
+            format!("excitation.path={:?}", text.display().to_string()),
+            "excitation.units=\"g\"".into(),
+            format!("excitation.dt={dt:?}"),
+        ],
+        &tmp.path().join("text"),
+    );
+    assert_eq!(got, reference, "text");
+
+    // ESM ASCII in cm/s^2 (the database's unit): samples agree to rounding of the unit change
+    let esm = tmp.path().join("el.ASC");
+    let k = 100.0 * rocking_motion::STANDARD_GRAVITY;
+    let mut s = format!(
+        "EVENT_NAME: Imperial Valley\nNETWORK: CI\nSTATION_CODE: ELC\nDATA_TYPE: ACCELERATION\n\
+         UNITS: cm/s^2\nSAMPLING_INTERVAL_S: {dt:.6}\nNDATA: {}\nUSER5:\n",
+        a.len()
+    );
+    for x in &a {
+        s.push_str(&format!("{:?}\n", x * k));
+    }
+    std::fs::write(&esm, s).unwrap();
+    let r = rocking_motion::read_record(&esm, rocking_motion::RecordFormat::Esm, None).unwrap();
+    assert_eq!(r.dt, dt);
+    for (x, y) in r.samples.iter().zip(&a) {
+        assert!((x - y).abs() <= 4.0 * f64::EPSILON * y.abs(), "{x} {y}");
+    }
+    let got = summary(
+        &[format!("excitation.path={:?}", esm.display().to_string())],
+        &tmp.path().join("esm"),
+    );
+    let rel = |v: &Value, k: &str| v[k].as_f64().unwrap();
+    for key in ["max_theta_over_alpha", "max_u_over_ucr", "end_time"] {
+        let (x, y) = (rel(&got, key), rel(&reference, key));
+        assert!((x - y).abs() <= 1e-9 * y.abs(), "esm {key}: {x} vs {y}");
+    }
+    assert_eq!(got["impacts"], reference["impacts"]);
+    // the scene may not contradict the file's unit
+    let o = rocking(&[
+        "check",
+        "scenes/wind-turbine-elcentro.toml",
+        "--set",
+        &format!("excitation.path={:?}", esm.display().to_string()),
+        "--set",
+        "excitation.units=\"g\"",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(e.contains("el.ASC") && e.contains("units"), "{e}");
+
+    // K-NET ASCII: integer counts × scale factor, mean removed
+    let knet = tmp.path().join("EL0001.NS");
+    let gal = 0.01 / rocking_motion::STANDARD_GRAVITY; // g per gal
+    let factor = 7845.0 / 8223420.0; // gal per count
+    let mean = a.iter().sum::<f64>() / a.len() as f64;
+    let mut s = String::new();
+    for l in [
+        "Origin Time       1940/05/19 04:36:00",
+        "Lat.              32.733",
+        "Long.             -115.500",
+        "Depth. (km)       16",
+        "Mag.              6.9",
+        "Station Code      ELC",
+        "Station Lat.      32.795",
+        "Station Long.     -115.548",
+        "Station Height(m) 0",
+        "Record Time       1940/05/19 04:36:00",
+        "Sampling Freq(Hz) 50Hz",
+        "Duration Time(s)  31",
+        "Dir.              N-S",
+        "Scale Factor      7845(gal)/8223420",
+        "Max. Acc. (gal)   312.6",
+        "Last Correction   1940/05/19 04:36:00",
+        "Memo.",
+    ] {
+        s.push_str(l);
+        s.push('\n');
+    }
+    for row in a.chunks(8) {
+        for x in row {
+            s.push_str(&format!(
+                " {:8}",
+                ((x - mean) / gal / factor).round() as i64
+            ));
+        }
+        s.push('\n');
+    }
+    std::fs::write(&knet, s).unwrap();
+    let r = rocking_motion::read_record(&knet, rocking_motion::RecordFormat::Knet, None).unwrap();
+    assert!((r.dt - dt).abs() < 1e-15);
+    for (x, y) in r.samples.iter().zip(&a) {
+        // one count of quantisation, plus the mean of the rounding errors
+        assert!((x - (y - mean)).abs() <= 1.01 * factor * gal, "{x} {y}");
+    }
+    let got = summary(
+        &[format!("excitation.path={:?}", knet.display().to_string())],
+        &tmp.path().join("knet"),
+    );
+    for key in ["max_theta_over_alpha", "max_u_over_ucr"] {
+        let (x, y) = (rel(&got, key), rel(&reference, key));
+        assert!((x - y).abs() <= 1e-3 * y.abs(), "knet {key}: {x} vs {y}");
+    }
+}
+
+#[test]
+fn text_record_without_units_and_velocity_files_are_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let text = tmp.path().join("a.txt");
+    std::fs::write(&text, "0 0.1\n0.01 0.2\n0.02 0\n").unwrap();
+    let o = rocking(&[
+        "check",
+        "scenes/wind-turbine-elcentro.toml",
+        "--set",
+        &format!("excitation.path={:?}", text.display().to_string()),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(e.contains("units") && e.contains("\"m/s2\""), "{e}");
+    let esm = tmp.path().join("v.ASC");
+    std::fs::write(
+        &esm,
+        "DATA_TYPE: VELOCITY\nUNITS: cm/s\nSAMPLING_INTERVAL_S: 0.01\nNDATA: 2\n1\n2\n",
+    )
+    .unwrap();
+    let o = rocking(&[
+        "check",
+        "scenes/wind-turbine-elcentro.toml",
+        "--set",
+        &format!("excitation.path={:?}", esm.display().to_string()),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(e.contains("v.ASC:1") && e.contains("acceleration"), "{e}");
+    let o = rocking(&[
+        "check",
+        "scenes/wind-turbine-elcentro.toml",
+        "--set",
+        "excitation.format=\"sac\"",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(e.contains("`format`") && e.contains("\"knet\""), "{e}");
+}
+
+/// Overturns at this Sa level (m/s²)? `sa1`: the record's Sa at scale 1.
+fn overturns(record: &str, sa: f64, sa1: f64, out: &Path) -> bool {
+    let o = rocking(&[
+        "run",
+        "scenes/wind-turbine-ida.toml",
+        "--json",
+        "--set",
+        &format!("excitation.path={record:?}"),
+        "--set",
+        &format!("excitation.scale={:?}", sa / sa1),
+        "--set",
+        "output.history=\"none\"",
+        "--out",
+        &out.display().to_string(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: Value = serde_json::from_slice(&o.stdout).unwrap();
+    v["overturned"].as_bool().unwrap()
+}
+
+#[test]
+fn ida_capacities_agree_with_a_bisection_and_the_fit_is_written() {
+    let tmp = tempfile::tempdir().unwrap();
+    let gm = root().join("../shared/data/ground-motions");
+    let recs: Vec<String> = ["A-ELC180.AT2", "A-PEL180.AT2", "A-BEN360.AT2"]
+        .iter()
+        .map(|r| gm.join(r).canonicalize().unwrap().display().to_string())
+        .collect();
+    let out = tmp.path().join("ida");
+    let mut args = vec!["ida", "scenes/wind-turbine-ida.toml", "--records"];
+    args.extend(recs.iter().map(String::as_str));
+    let out_s = out.display().to_string();
+    args.extend(["--set", "ida.bootstrap=200", "--out", &out_s]);
+    let o = rocking(&args);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let json = std::fs::read_to_string(out.join("fragility.json")).unwrap();
+    assert!(!json.contains("null") && !json.contains("NaN"), "{json}");
+    let fit: Value = serde_json::from_str(&json).unwrap();
+    let median = fit["median_m_s2"].as_f64().unwrap();
+    let band = &fit["bootstrap"]["median_interval_m_s2"];
+    assert!(band[0].as_f64().unwrap() <= median && median <= band[1].as_f64().unwrap());
+    for f in [
+        "ida.csv",
+        "ida.png",
+        "ida.svg",
+        "fragility-fit.png",
+        "fragility-fit.svg",
+    ] {
+        assert!(out.join(f).is_file(), "{f}");
+    }
+    let mut table = csv::Reader::from_path(out.join("records.csv")).unwrap();
+    let heads = table.headers().unwrap().clone();
+    let col = |n: &str| heads.iter().position(|h| h == n).unwrap();
+    let rows: Vec<csv::StringRecord> = table.records().map(Result::unwrap).collect();
+    assert_eq!(rows.len(), 3);
+    let tol = 0.01;
+    let row = &rows[0];
+    let num = |c: &str| row[col(c)].parse::<f64>().unwrap();
+    let (sa1, cap, below) = (
+        num("im_m_s2"),
+        num("capacity_im_m_s2"),
+        num("survived_below_im_m_s2"),
+    );
+    assert!(cap - below <= tol * cap + 1e-12, "{below} .. {cap}");
+    let path = &row[col("path")];
+    // an independent bisection on [0, 2 × capacity] to the same tolerance
+    let scratch = tmp.path().join("run");
+    let (mut lo, mut hi) = (0.0, 2.0 * cap);
+    assert!(overturns(path, hi, sa1, &scratch));
+    assert!(overturns(path, cap, sa1, &scratch));
+    assert!(!overturns(path, below, sa1, &scratch));
+    while hi - lo > tol * hi {
+        let mid = 0.5 * (lo + hi);
+        if overturns(path, mid, sa1, &scratch) {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    // both bracket the same threshold: the intervals (lo, hi] and (below, cap] overlap
+    assert!(
+        lo < cap && below < hi,
+        "bisection ({lo}, {hi}] vs IDA ({below}, {cap}]"
+    );
+    assert!(
+        (hi - cap).abs() <= 2.0 * tol * cap,
+        "bisection {hi} vs IDA {cap}"
+    );
+}
+
+#[test]
+fn bad_ida_settings_exit_2_naming_the_key_and_range() {
+    for (set, key, allowed) in [
+        ("ida.tolerance=2.0", "`tolerance`", "0 < tolerance < 1"),
+        ("ida.im=\"pgv\"", "`im`", "\"pga\""),
+        ("ida.period=-1.0", "`period`", "> 0"),
+        ("ida.max_gap=0.001", "`max_gap`", "tolerance <= max_gap < 1"),
+    ] {
+        let o = rocking(&["ida", "scenes/wind-turbine-ida.toml", "--set", set]);
+        assert_eq!(o.status.code(), Some(2), "{set}");
+        let e = String::from_utf8_lossy(&o.stderr);
+        assert!(e.contains(key) && e.contains(allowed), "{set}: {e}");
+        assert!(e.contains("wind-turbine-ida.toml"), "{set}: {e}");
+    }
+}
