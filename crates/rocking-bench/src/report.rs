@@ -514,10 +514,7 @@ pub fn run(dir: &Path, docs: &Path) -> Result<()> {
     // The presets as crates/rocking/src/options.rs defines them now.
     let preset = |p: rocking::Preset| {
         let a = p.accuracy();
-        let m = match a.method {
-            rocking::Method::Dopri5 => "dopri5",
-            rocking::Method::Dop853 => "dop853",
-        };
+        let m = crate::study::method_name(a.method);
         format!("{m} {:.0e}", a.tol)
     };
     let current = [

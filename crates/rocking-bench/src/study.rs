@@ -467,6 +467,7 @@ pub fn method_name(m: Method) -> &'static str {
     match m {
         Method::Dopri5 => "dopri5",
         Method::Dop853 => "dop853",
+        Method::Taylor => "taylor",
     }
 }
 
