@@ -679,7 +679,7 @@ pub fn run(quick: bool, dir: &Path) -> Result<()> {
             tol: REF_TOL,
         };
         let mut configs: Vec<Accuracy> = Vec::new();
-        for m in [Method::Dopri5, Method::Dop853] {
+        for m in [Method::Dopri5, Method::Dop853, Method::Taylor] {
             for &tol in &tols {
                 configs.push(Accuracy { method: m, tol });
             }
