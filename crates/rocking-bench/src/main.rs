@@ -1,6 +1,6 @@
 //! The accuracy/cost study of the rocking solver (`cargo xtask bench`).
 //!
-//! `rocking-bench run [--quick] --out DIR` runs every case with both integrators over a range of
+//! `rocking-bench run [--quick] --out DIR` runs every case with each integrator (dopri5, dop853, taylor) over a range of
 //! tolerances, measures the error of each answer against a reference solution (DOP853 at 1e-12,
 //! itself checked against 1e-13), the CPU time and the RHS evaluations, and writes
 //! `DIR/rust.json` (results) and `DIR/cases.json` (the cases, for the SciPy peer).
@@ -19,7 +19,7 @@ const USAGE: &str = "\
 usage: rocking-bench run [--quick] [--out DIR]
        rocking-bench report [--dir DIR] [--docs DOCS]
 
-run     the accuracy/cost study (both integrators, tolerances 1e-3..1e-12, reference DOP853 1e-12);
+run     the accuracy/cost study (dopri5, dop853, taylor; tolerances 1e-3..1e-12, reference DOP853 1e-12);
         writes DIR/rust.json and DIR/cases.json (default DIR: target/bench)
         --quick  fewer tolerances and cases (a minute or two)
 report  writes DOCS/accuracy.md and DOCS/img/accuracy-*.{png,svg} from DIR/{rust,scipy,opensees}.json

@@ -467,6 +467,7 @@ pub fn method_name(m: Method) -> &'static str {
     match m {
         Method::Dopri5 => "dopri5",
         Method::Dop853 => "dop853",
+        Method::Taylor => "taylor",
     }
 }
 
@@ -678,7 +679,7 @@ pub fn run(quick: bool, dir: &Path) -> Result<()> {
             tol: REF_TOL,
         };
         let mut configs: Vec<Accuracy> = Vec::new();
-        for m in [Method::Dopri5, Method::Dop853] {
+        for m in [Method::Dopri5, Method::Dop853, Method::Taylor] {
             for &tol in &tols {
                 configs.push(Accuracy { method: m, tol });
             }

@@ -46,7 +46,7 @@ const PRESETS: &str = "Accuracy presets ([solver] accuracy in a scene; measured 
   default    DOP853 at 1e-7:  error about 7e-7,  about 0.66 ms
   accurate   DOP853 at 1e-10: error about 6e-10, about 1.1 ms
   reference  DOP853 at 1e-12: converged against 1e-13, about 1.7 ms
-An explicit method (\"dopri5\" or \"dop853\") and tol are allowed too.";
+An explicit method (\"dopri5\", \"dop853\" or \"taylor\") and tol are allowed too.";
 
 #[derive(Parser, Debug)]
 #[command(name = "rocking", version, about, after_help = PRESETS)]

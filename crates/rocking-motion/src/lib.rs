@@ -145,6 +145,23 @@ pub trait GroundMotion {
         f64::INFINITY
     }
 
+    /// Taylor coefficients `out[k] = ü_g⁽ᵏ⁾(t0⁺) / k!` of the smooth piece of the motion that
+    /// starts at `t0` and lasts to the next kink, for Taylor-series integrators; `false` when the
+    /// motion cannot give them exactly. The default serves motions linear between kinks
+    /// (infinite [`resolution`](Self::resolution), e.g. records): the value from the right at
+    /// `t0` and the slope to the left limit at the next kink.
+    fn accel_series(&self, t0: f64, out: &mut [f64]) -> bool {
+        if self.resolution() != f64::INFINITY || out.is_empty() {
+            return false;
+        }
+        out.fill(0.0);
+        out[0] = self.accel_right(t0);
+        if let (Some(k), Some(slope)) = (self.next_kink(t0), out.get_mut(1)) {
+            *slope = (self.accel_left(k) - self.accel_right(t0)) / (k - t0);
+        }
+        true
+    }
+
     /// Iterator over the kinks in the open-closed interval `(from, to]`, in
     /// increasing order.
     fn kinks(&self, from: f64, to: f64) -> Kinks<'_, Self>
@@ -208,6 +225,9 @@ impl<M: GroundMotion + ?Sized> GroundMotion for &M {
     fn resolution(&self) -> f64 {
         (**self).resolution()
     }
+    fn accel_series(&self, t0: f64, out: &mut [f64]) -> bool {
+        (**self).accel_series(t0, out)
+    }
 }
 
 impl<M: GroundMotion + ?Sized> GroundMotion for Box<M> {
@@ -228,6 +248,9 @@ impl<M: GroundMotion + ?Sized> GroundMotion for Box<M> {
     }
     fn resolution(&self) -> f64 {
         (**self).resolution()
+    }
+    fn accel_series(&self, t0: f64, out: &mut [f64]) -> bool {
+        (**self).accel_series(t0, out)
     }
 }
 
@@ -283,6 +306,11 @@ impl<M: GroundMotion> GroundMotion for Scaled<M> {
     }
     fn resolution(&self) -> f64 {
         self.inner.resolution()
+    }
+    fn accel_series(&self, t0: f64, out: &mut [f64]) -> bool {
+        let ok = self.inner.accel_series(t0, out);
+        out.iter_mut().for_each(|c| *c *= self.factor);
+        ok
     }
 }
 
@@ -347,6 +375,9 @@ impl GroundMotion for Excitation {
     }
     fn resolution(&self) -> f64 {
         dispatch!(self, m => m.resolution(), f64::INFINITY)
+    }
+    fn accel_series(&self, t0: f64, out: &mut [f64]) -> bool {
+        dispatch!(self, m => m.accel_series(t0, out), NoMotion.accel_series(t0, out))
     }
 }
 

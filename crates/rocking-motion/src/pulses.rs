@@ -90,6 +90,17 @@ impl GroundMotion for SinePulse {
     fn resolution(&self) -> f64 {
         self.period() / 16.0
     }
+    fn accel_series(&self, t0: f64, out: &mut [f64]) -> bool {
+        let on = t0 >= self.start && t0 < self.end();
+        harmonic_series(
+            on,
+            self.amplitude,
+            self.omega,
+            self.omega * (t0 - self.start),
+            out,
+        );
+        true
+    }
     #[inline]
     fn accel(&self, t: f64) -> f64 {
         if t >= self.start && t <= self.end() {
@@ -163,6 +174,12 @@ impl GroundMotion for CosinePulse {
     fn resolution(&self) -> f64 {
         self.period() / 16.0
     }
+    fn accel_series(&self, t0: f64, out: &mut [f64]) -> bool {
+        let on = t0 >= self.start && t0 < self.end();
+        let phase = self.omega * (t0 - self.start) + 0.5 * PI;
+        harmonic_series(on, self.amplitude, self.omega, phase, out);
+        true
+    }
     #[inline]
     fn accel(&self, t: f64) -> f64 {
         if t >= self.start && t <= self.end() {
@@ -182,6 +199,23 @@ impl GroundMotion for CosinePulse {
     }
     fn accel_right(&self, t: f64) -> f64 {
         right_limit(self.start, self.end(), t, |t| self.formula(t))
+    }
+}
+
+/// Taylor coefficients of `a sin(φ + ω τ)` at τ = 0 (`a ωᵏ/k! sin(φ + kπ/2)`), or zeros
+/// outside the support (`on == false`).
+fn harmonic_series(on: bool, a: f64, omega: f64, phase: f64, out: &mut [f64]) {
+    out.fill(0.0);
+    if !on {
+        return;
+    }
+    let (s, c) = phase.sin_cos();
+    let mut scale = a;
+    for (k, o) in out.iter_mut().enumerate() {
+        if k > 0 {
+            scale *= omega / k as f64;
+        }
+        *o = scale * [s, c, -s, -c][k % 4];
     }
 }
 

@@ -804,11 +804,12 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Model, CliError> {
         accuracy.method = match m.to_lowercase().as_str() {
             "dopri5" => Method::Dopri5,
             "dop853" => Method::Dop853,
+            "taylor" => Method::Taylor,
             other => {
                 return Err(src.err(
                     "solver.method",
                     format_args!(
-                    "`method` = \"{other}\" in [solver] is not allowed: \"dopri5\" or \"dop853\""
+                    "`method` = \"{other}\" in [solver] is not allowed: \"dopri5\", \"dop853\" or \"taylor\""
                 ),
                 ))
             }

@@ -20,16 +20,18 @@ use rocking_kernels::kernels::index::{
     energy as en, impact_adjex as ax, impact_housner as ho, impact_vvel as vv, power as pwr,
     rocking_rhs as rr,
 };
-use rocking_kernels::Variant;
 use rocking_motion::GroundMotion;
 use rocking_ode::events::{locate, Direction};
+use rocking_ode::poly;
+use rocking_ode::taylor::{Taylor, TaylorOptions};
 use rocking_ode::{Integrator, OdeError, Options as OdeOptions, Tolerances};
 
-use crate::options::{History, ImpactModel, Options};
+use crate::options::{History, ImpactModel, Method, Options};
 use crate::results::{
     EnergyBalance, EventKind, EventRecord, HistoryRow, Phase, Run, SolverStats, Summary, Time,
 };
 use crate::structure::{Derived, Structure};
+use crate::taylor::{ContactSystem, RockingSystem, TaylorVariant};
 
 /// Why a run failed.
 #[derive(Debug, Clone, PartialEq)]
@@ -109,7 +111,7 @@ enum After {
 
 /// One run: `NR` and `NC` are the sizes of the rocking and contact states (4 and 2, or 6 and 4
 /// with the energy integrals).
-struct Sim<'a, V: Variant, M: GroundMotion, const NR: usize, const NC: usize> {
+struct Sim<'a, V: TaylorVariant, M: GroundMotion, const NR: usize, const NC: usize> {
     p: V::Params,
     motion: &'a M,
     opts: &'a Options,
@@ -121,6 +123,9 @@ struct Sim<'a, V: Variant, M: GroundMotion, const NR: usize, const NC: usize> {
     ode_options: OdeOptions,
     contact_tol: Tolerances<NC>,
     rocking_tol: Tolerances<NR>,
+    /// Natural scales of the phase states (the Taylor method integrates the state over them).
+    contact_scale: [f64; NC],
+    rocking_scale: [f64; NR],
     stats: SolverStats,
     max_theta: f64,
     max_u: f64,
@@ -141,7 +146,7 @@ const RIGHT: f64 = 1.0;
 const LEFT: f64 = -1.0;
 
 /// Runs one simulation with kernel variant `V`; `ENERGY` switches the energy bookkeeping on.
-pub fn simulate<V: Variant, M: GroundMotion, const ENERGY: bool>(
+pub fn simulate<V: TaylorVariant, M: GroundMotion, const ENERGY: bool>(
     structure: &Structure,
     motion: &M,
     opts: &Options,
@@ -153,12 +158,19 @@ pub fn simulate<V: Variant, M: GroundMotion, const ENERGY: bool>(
     }
 }
 
-fn run<V: Variant, M: GroundMotion, const NR: usize, const NC: usize>(
+fn run<V: TaylorVariant, M: GroundMotion, const NR: usize, const NC: usize>(
     structure: &Structure,
     motion: &M,
     opts: &Options,
 ) -> Result<Run, SimError> {
     opts.validate().map_err(SimError::Options)?;
+    if opts.accuracy.method == Method::Taylor && !motion.accel_series(0.0, &mut [0.0; 2]) {
+        return Err(SimError::Options(
+            "method = taylor needs the excitation's Taylor series, which this motion does not \
+             give (the Ricker and Mavroeidis-Papageorgiou pulses): use dop853"
+                .into(),
+        ));
+    }
     let tol = opts.accuracy.tol;
     // The running variant's own reference quantities and scales.
     let derived = structure.derived_by::<V>();
@@ -174,15 +186,24 @@ fn run<V: Variant, M: GroundMotion, const NR: usize, const NC: usize>(
     let off = f64::INFINITY; // W and D take no part in the error control
     let ode = OdeOptions {
         max_steps: opts.max_steps,
-        ..OdeOptions::new(opts.accuracy.method)
+        // The Taylor method keeps these for nothing but the RK options' shape.
+        ..OdeOptions::new(
+            opts.accuracy
+                .method
+                .runge_kutta()
+                .unwrap_or(rocking_ode::Method::Dop853),
+        )
     };
+    let contact_scale: [f64; NC] = std::array::from_fn(|i| [u_scale, ud_scale, 1.0, 1.0][i]);
+    let rocking_scale: [f64; NR] =
+        std::array::from_fn(|i| [a, u_scale, a * pf, ud_scale, 1.0, 1.0][i]);
     let contact_tol = Tolerances {
         rtol: tol,
-        atol: Y::<NC>::from_fn(|i, _| [u_scale, ud_scale, off, off][i] * tol),
+        atol: Y::<NC>::from_fn(|i, _| if i < 2 { contact_scale[i] * tol } else { off }),
     };
     let rocking_tol = Tolerances {
         rtol: tol,
-        atol: Y::<NR>::from_fn(|i, _| [a, u_scale, a * pf, ud_scale, off, off][i] * tol),
+        atol: Y::<NR>::from_fn(|i, _| if i < 4 { rocking_scale[i] * tol } else { off }),
     };
     let e0 = V::energy(&[0.0; 4], RIGHT, &p);
     let sim = Sim::<V, M, NR, NC> {
@@ -197,6 +218,8 @@ fn run<V: Variant, M: GroundMotion, const NR: usize, const NC: usize>(
         ode_options: ode,
         contact_tol,
         rocking_tol,
+        contact_scale,
+        rocking_scale,
         stats: SolverStats::default(),
         max_theta: 0.0,
         max_u: 0.0,
@@ -215,7 +238,7 @@ fn run<V: Variant, M: GroundMotion, const NR: usize, const NC: usize>(
     sim.run()
 }
 
-impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M, NR, NC> {
+impl<V: TaylorVariant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M, NR, NC> {
     /// Whether W and D are carried (the energy bookkeeping was asked for).
     const ENERGY: bool = NR > 4;
 
@@ -452,10 +475,16 @@ impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M
 
     /// The first time in [t_a, t_b] at which the base lifts about `s`, given that f_s > 0
     /// at t_a; `None` when it does not lift even at t_b (a rounding-level excursion of f_s).
-    fn first_lift(&self, ode: &Integrator<NC>, s: f64, t_a: f64, t_b: f64) -> Option<f64> {
+    fn first_lift(
+        &self,
+        dense: impl Fn(f64) -> [f64; 4],
+        s: f64,
+        t_a: f64,
+        t_b: f64,
+    ) -> Option<f64> {
         let lifts_at = |t: f64| {
-            let y = ode.dense(t);
-            self.lifts(s, y[0], y[1], self.motion.accel(t))
+            let y = dense(t);
+            self.lifts(s, y[1], y[3], self.motion.accel(t))
         };
         if lifts_at(t_a) {
             return Some(t_a);
@@ -475,35 +504,42 @@ impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M
         Some(hi)
     }
 
-    /// Integrator options for a contact phase starting at `t0`.
-    fn phase_options(&self, t0: f64) -> OdeOptions {
-        let h_max = if t0 < self.motion.end() {
+    /// The longest contact step from `t0`: the excitation's resolution while it lasts.
+    fn contact_h_max(&self, t0: f64) -> f64 {
+        if t0 < self.motion.end() {
             self.motion.resolution()
         } else {
             f64::INFINITY
-        };
+        }
+    }
+
+    /// Integrator options for a contact phase starting at `t0`.
+    fn phase_options(&self, t0: f64) -> OdeOptions {
         OdeOptions {
-            h_max,
+            h_max: self.contact_h_max(t0),
             ..self.ode_options
         }
     }
 
     /// The guard on the total number of step attempts of a run.
     fn guard_steps<const N: usize>(&self, ode: &Integrator<N>) -> Result<(), SimError> {
-        let st = ode.stats();
+        self.guard_step_count(ode.stats(), ode.t())
+    }
+
+    fn guard_step_count(&self, st: rocking_ode::Stats, t: f64) -> Result<(), SimError> {
         let steps = self.stats.steps + self.stats.rejected_steps + st.steps + st.rejected;
         if steps > self.opts.max_steps {
             return Err(SimError::Guard(format!(
                 "more than {} integrator steps by τ = {:.6}: the run does not end (raise max_steps)",
                 self.opts.max_steps,
-                self.time(ode.t()).tau
+                self.time(t).tau
             )));
         }
         Ok(())
     }
 
     /// An integration failure while rocking, explained when the mass matrix became singular.
-    fn explain_failure(&self, e: OdeError, y: &Y<NR>, s: f64) -> SimError {
+    fn explain_failure(&self, e: OdeError, y: &[f64], s: f64) -> SimError {
         let [mtt, mtu, muu] = V::mass_matrix(&[y[0], y[1]], s, &self.p);
         let conditioning = (mtt * muu - mtu * mtu) / (mtt * muu);
         if conditioning.is_finite() && conditioning > 1e-8 {
@@ -538,6 +574,9 @@ impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M
             if !settle && f[k] > 0.0 && self.lifts(s, u, u_dot, ug0) {
                 return self.uplift(t0, s, u, u_dot, w, d);
             }
+        }
+        if self.opts.accuracy.method == Method::Taylor {
+            return self.contact_taylor(t0, [u, u_dot, w, d], settle);
         }
         let mut settling = settle;
         let full_history = !matches!(self.opts.history, History::None);
@@ -586,10 +625,11 @@ impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M
             };
             let lift = crossing.and_then(|(t_up, index, t_far)| {
                 let s = if index == 0 { RIGHT } else { LEFT };
-                self.first_lift(&ode, s, t_up, t_far).map(|t| (t, index))
+                self.first_lift(|t| contact_state(&ode.dense(t)), s, t_up, t_far)
+                    .map(|t| (t, index))
             });
             if let Some((t_up, index)) = lift {
-                self.extremes_contact(&ode, t_old, t_up);
+                self.extremes_contact(|t| contact_state(&ode.dense(t)), t_old, t_up);
                 let y = ode.dense(t_up);
                 self.step_history(
                     t_old,
@@ -603,7 +643,7 @@ impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M
                 let (w, d) = carried(&y, 2);
                 return self.uplift(t_up, s, y[0], y[1], w, d);
             }
-            self.extremes_contact(&ode, t_old, t_new);
+            self.extremes_contact(|t| contact_state(&ode.dense(t)), t_old, t_new);
             self.step_history(
                 t_old,
                 t_new,
@@ -661,23 +701,23 @@ impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M
     }
 
     /// max |u| within a contact step, including a turning point inside it.
-    fn extremes_contact(&mut self, ode: &Integrator<NC>, t_old: f64, t_new: f64) {
-        let (a, b) = (ode.dense(t_old), ode.dense(t_new));
-        self.max_u = self.max_u.max(b[0].abs());
-        if a[1] * b[1] < 0.0 {
-            let tm = turning_point(|t| ode.dense(t)[1], t_old, t_new, a[1]);
-            self.max_u = self.max_u.max(ode.dense(tm)[0].abs());
+    fn extremes_contact(&mut self, dense: impl Fn(f64) -> [f64; 4], t_old: f64, t_new: f64) {
+        let (a, b) = (dense(t_old), dense(t_new));
+        self.max_u = self.max_u.max(b[1].abs());
+        if a[3] * b[3] < 0.0 {
+            let tm = turning_point(|t| dense(t)[3], t_old, t_new, a[3]);
+            self.max_u = self.max_u.max(dense(tm)[1].abs());
         }
     }
 
     /// max |θ| and |u| within a rocking step, including turning points inside it.
-    fn extremes_rocking(&mut self, ode: &Integrator<NR>, t_old: f64, t_new: f64) {
-        let (a, b) = (ode.dense(t_old), ode.dense(t_new));
+    fn extremes_rocking(&mut self, dense: impl Fn(f64) -> [f64; 4], t_old: f64, t_new: f64) {
+        let (a, b) = (dense(t_old), dense(t_new));
         self.track(&[b[0], b[1], 0.0, 0.0]);
         for (pos, rate) in [(0usize, 2usize), (1, 3)] {
             if a[rate] * b[rate] < 0.0 {
-                let tm = turning_point(|t| ode.dense(t)[rate], t_old, t_new, a[rate]);
-                let y = ode.dense(tm);
+                let tm = turning_point(|t| dense(t)[rate], t_old, t_new, a[rate]);
+                let y = dense(tm);
                 if pos == 0 {
                     self.max_theta = self.max_theta.max(y[0].abs());
                 } else {
@@ -697,6 +737,9 @@ impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M
         w: f64,
         d: f64,
     ) -> Result<Next, SimError> {
+        if self.opts.accuracy.method == Method::Taylor {
+            return self.rocking_taylor(t0, s, x0, n, w, d);
+        }
         let (p, motion) = (self.p, self.motion);
         let over = self.opts.overturn_angle;
         let mut rhs = |t: f64, y: &Y<NR>| -> Y<NR> {
@@ -742,43 +785,19 @@ impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M
             let t_stop = self.t_stop(ode.t());
             let info = ode
                 .step(&mut rhs, t_stop)
-                .map_err(|e| self.explain_failure(e, ode.y(), s))?;
+                .map_err(|e| self.explain_failure(e, ode.y().as_slice(), s))?;
             self.guard_steps(&ode)?;
             let (t_old, t_new) = (info.t_old, info.t_new);
             let g_new = g(t_new, ode.y());
             if let Some(ev) = locate(&mut ode, &mut g, &dirs, &g_old, &g_new) {
-                self.extremes_rocking(&ode, t_old, ev.t);
+                self.extremes_rocking(|t| rocking_state(&ode.dense(t)), t_old, ev.t);
                 self.step_history(t_old, ev.t, |t| rocking_state(&ode.dense(t)), phase, s);
                 self.stats.add(ode.take_stats());
                 let y = ev.y;
-                if ev.index == 1 {
-                    self.count_event(ev.t)?;
-                    self.overturn = Some(ev.t);
-                    let x = [y[0], y[1], y[2], y[3]];
-                    self.track(&x);
-                    let e = V::energy(&x, s, &self.p)[en::KINETIC];
-                    self.log_event(
-                        ev.t,
-                        EventKind::Overturn,
-                        "",
-                        Phase::Overturned,
-                        [y[2], y[1], y[3]],
-                        (e, e),
-                    );
-                    let (w, d) = carried(&y, 4);
-                    return Ok(Next::Done {
-                        t: ev.t,
-                        phase: Phase::Overturned,
-                        s,
-                        state: x,
-                        w,
-                        d,
-                    });
-                }
                 let (w, d) = carried(&y, 4);
-                return self.impact(ev.t, s, [y[1], y[3], y[2]], w, d);
+                return self.rocking_event(ev.index, ev.t, s, rocking_state(&y), w, d);
             }
-            self.extremes_rocking(&ode, t_old, t_new);
+            self.extremes_rocking(|t| rocking_state(&ode.dense(t)), t_old, t_new);
             self.step_history(t_old, t_new, |t| rocking_state(&ode.dense(t)), phase, s);
             g_old = g_new;
             if t_new >= self.opts.t_end {
@@ -790,6 +809,227 @@ impl<V: Variant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M
                     phase,
                     s,
                     state: [y[0], y[1], y[2], y[3]],
+                    w,
+                    d,
+                });
+            }
+        }
+    }
+
+    /// The event `index` (0 impact, 1 overturning) of a rocking phase about `s` at `t`, state `x`.
+    fn rocking_event(
+        &mut self,
+        index: usize,
+        t: f64,
+        s: f64,
+        x: [f64; 4],
+        w: f64,
+        d: f64,
+    ) -> Result<Next, SimError> {
+        if index == 0 {
+            return self.impact(t, s, [x[1], x[3], x[2]], w, d);
+        }
+        self.count_event(t)?;
+        self.overturn = Some(t);
+        self.track(&x);
+        let e = V::energy(&x, s, &self.p)[en::KINETIC];
+        self.log_event(
+            t,
+            EventKind::Overturn,
+            "",
+            Phase::Overturned,
+            [x[2], x[1], x[3]],
+            (e, e),
+        );
+        Ok(Next::Done {
+            t,
+            phase: Phase::Overturned,
+            s,
+            state: x,
+            w,
+            d,
+        })
+    }
+
+    /// A Taylor integrator for a phase: order from the tolerance, the mechanical components
+    /// controlled (W and D carried).
+    fn taylor<const N: usize>(
+        &self,
+        h_max: f64,
+        t0: f64,
+        y0: [f64; N],
+        mechanical: usize,
+    ) -> Result<Taylor<N>, SimError> {
+        let opts = TaylorOptions {
+            h_max,
+            max_steps: self.opts.max_steps,
+            controlled: std::array::from_fn(|i| i < mechanical),
+            ..TaylorOptions::new(self.opts.accuracy.tol)
+        };
+        let mut ode = Taylor::new(opts)?;
+        ode.reset(t0, y0)?;
+        Ok(ode)
+    }
+
+    /// Full contact from `t0` with the Taylor method (see [`Self::contact`]; the uplift
+    /// functions' series along each step are the event polynomials).
+    fn contact_taylor(
+        &mut self,
+        t0: f64,
+        start: [f64; 4],
+        mut settling: bool,
+    ) -> Result<Next, SimError> {
+        let scale = self.contact_scale;
+        let y0: [f64; NC] = std::array::from_fn(|i| start[i] / scale[i]);
+        let mut ode = self.taylor(self.contact_h_max(t0), t0, y0, 2)?;
+        let mut sys = ContactSystem::<V, M, NC> {
+            p: self.p,
+            motion: self.motion,
+            scale,
+        };
+        let unscale = |y: [f64; NC]| -> [f64; NC] { std::array::from_fn(|i| y[i] * scale[i]) };
+        let may_stop = self.opts.stop_when_known && matches!(self.opts.history, History::None);
+        let excitation_end = self.motion.end();
+        loop {
+            let t_stop = self.t_stop(ode.t());
+            ode.step(&mut sys, t_stop)?;
+            self.guard_step_count(ode.stats(), ode.t())?;
+            let (t_old, t_new) = (ode.t_old(), ode.t());
+            let crossing = if settling {
+                settling = false;
+                let y = unscale(*ode.y());
+                let g_new = self.uplift_functions(y[0], y[1], self.motion.accel(t_new));
+                (0..2).find(|&k| g_new[k] > 0.0).map(|k| (t_new, k))
+            } else {
+                let dirs = [Direction::Rising, Direction::Rising];
+                ode.locate(&mut sys, &dirs).map(|ev| (ev.t, ev.index))
+            };
+            let dense = |t: f64| {
+                let y = unscale(ode.dense(t));
+                [0.0, y[0], 0.0, y[1]]
+            };
+            let lift = crossing.and_then(|(t_up, index)| {
+                let s = if index == 0 { RIGHT } else { LEFT };
+                self.first_lift(dense, s, t_up, t_new).map(|t| (t, s))
+            });
+            if let Some((t_up, s)) = lift {
+                self.extremes_contact(dense, t_old, t_up);
+                self.step_history(t_old, t_up, dense, Phase::Contact, RIGHT);
+                self.stats.add(ode.take_stats());
+                let y = unscale(ode.dense(t_up));
+                let (w, d) = carried_array(&y, 2);
+                return self.uplift(t_up, s, y[0], y[1], w, d);
+            }
+            self.extremes_contact(dense, t_old, t_new);
+            self.step_history(t_old, t_new, dense, Phase::Contact, RIGHT);
+            let y = unscale(*ode.y());
+            let done = t_new >= self.opts.t_end
+                || (may_stop && t_new >= excitation_end && self.can_never_uplift(y[0], y[1]));
+            if done {
+                self.stats.add(ode.take_stats());
+                let (w, d) = carried_array(&y, 2);
+                return Ok(Next::Done {
+                    t: t_new,
+                    phase: Phase::Contact,
+                    s: RIGHT,
+                    state: [0.0, y[0], 0.0, y[1]],
+                    w,
+                    d,
+                });
+            }
+        }
+    }
+
+    /// Rocking about `s` from `t0` with the Taylor method (see [`Self::rocking`]). The impact is
+    /// the first falling root of s θ's polynomial on a step, the overturning the first rising root
+    /// of s θ − θ_over's. The start guard of the RK path is exact here: at the phase start θ and,
+    /// after an uplift, θ' are exactly 0, so the polynomial's factor τ^n is exact and
+    /// [`poly::first_root`] divides it out before it looks for a root.
+    #[allow(clippy::too_many_arguments)]
+    fn rocking_taylor(
+        &mut self,
+        t0: f64,
+        s: f64,
+        x0: [f64; 4],
+        n: i32,
+        w: f64,
+        d: f64,
+    ) -> Result<Next, SimError> {
+        let scale = self.rocking_scale;
+        let start = [x0[0], x0[1], x0[2], x0[3], w, d];
+        let y0: [f64; NR] = std::array::from_fn(|i| start[i] / scale[i]);
+        let mut ode = self.taylor(f64::INFINITY, t0, y0, 4)?;
+        let mut sys = RockingSystem::<V, M, NR> {
+            p: self.p,
+            motion: self.motion,
+            s,
+            scale,
+        };
+        let unscale = |y: [f64; NR]| -> [f64; NR] { std::array::from_fn(|i| y[i] * scale[i]) };
+        let over = self.opts.overturn_angle / scale[0];
+        let phase = Phase::rocking(s);
+        loop {
+            let t_stop = self.t_stop(ode.t());
+            ode.step(&mut sys, t_stop)
+                .map_err(|e| self.explain_failure(e, &unscale(*ode.y()), s))?;
+            self.guard_step_count(ode.stats(), ode.t())?;
+            let (t_old, t_new) = (ode.t_old(), ode.t());
+            let h = t_new - t_old;
+            let order = ode.order();
+            let theta = &ode.coefficients()[0][..=order];
+            let mut g = [[0.0; 21]; 2];
+            for (k, &c) in theta.iter().enumerate() {
+                g[0][k] = s * c;
+                g[1][k] = s * c;
+            }
+            g[1][0] -= over;
+            // An uplift exactly at f_s = 0 (θ'' = 0) that turns back at once: an impact at t0,
+            // as the RK path's armed event fires at its first step.
+            let first = t_old == t0 && n > 0;
+            let turns_back = first && g[0].iter().find(|c| **c != 0.0).is_some_and(|c| *c < 0.0);
+            let roots: [Option<f64>; 2] = if turns_back {
+                [Some(0.0), None]
+            } else {
+                [
+                    poly::first_root(&g[0][..=order], h, Direction::Falling).map(|r| r.tau),
+                    poly::first_root(&g[1][..=order], h, Direction::Rising).map(|r| r.tau),
+                ]
+            };
+            // The earliest; the impact on ties.
+            let event = roots
+                .iter()
+                .enumerate()
+                .filter_map(|(i, r)| r.map(|tau| (i, tau)))
+                .min_by(|a, b| a.1.total_cmp(&b.1));
+            let dense = |t: f64| rocking_state_array(&unscale(ode.dense(t)));
+            if let Some((index, tau)) = event {
+                // Strictly after t_old for a root inside the step, even below t_old's ulp.
+                let t = if tau >= h {
+                    t_new
+                } else if tau == 0.0 {
+                    t_old
+                } else {
+                    (t_old + tau).max(after(t_old)).min(t_new)
+                };
+                self.extremes_rocking(dense, t_old, t);
+                self.step_history(t_old, t, dense, phase, s);
+                self.stats.add(ode.take_stats());
+                self.stats.events += 1;
+                let y = unscale(ode.dense(t));
+                let (w, d) = carried_array(&y, 4);
+                return self.rocking_event(index, t, s, rocking_state_array(&y), w, d);
+            }
+            self.extremes_rocking(dense, t_old, t_new);
+            self.step_history(t_old, t_new, dense, phase, s);
+            if t_new >= self.opts.t_end {
+                let y = unscale(*ode.y());
+                self.stats.add(ode.take_stats());
+                let (w, d) = carried_array(&y, 4);
+                return Ok(Next::Done {
+                    t: t_new,
+                    phase,
+                    s,
+                    state: rocking_state_array(&y),
                     w,
                     d,
                 });
@@ -1082,6 +1322,24 @@ fn carried<const N: usize>(y: &Y<N>, first: usize) -> (f64, f64) {
     } else {
         (0.0, 0.0)
     }
+}
+
+/// The next f64 after a time `t >= 0`.
+fn after(t: f64) -> f64 {
+    f64::from_bits(t.to_bits() + 1)
+}
+
+/// The energy integrals of a Taylor phase's (unscaled) state, as [`carried`].
+fn carried_array<const N: usize>(y: &[f64; N], first: usize) -> (f64, f64) {
+    if N >= first + 2 {
+        (y[first], y[first + 1])
+    } else {
+        (0.0, 0.0)
+    }
+}
+
+fn rocking_state_array<const N: usize>(y: &[f64; N]) -> [f64; 4] {
+    [y[0], y[1], y[2], y[3]]
 }
 
 fn contact_state<const N: usize>(y: &Y<N>) -> [f64; 4] {

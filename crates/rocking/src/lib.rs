@@ -40,14 +40,16 @@ mod driver;
 mod options;
 mod results;
 mod structure;
+mod taylor;
 
 pub use driver::{simulate as simulate_variant, SimError};
-pub use options::{Accuracy, History, ImpactModel, Initial, Options, Preset, MAX_HISTORY_ROWS};
+pub use options::{
+    Accuracy, History, ImpactModel, Initial, Method, Options, Preset, MAX_HISTORY_ROWS,
+};
 pub use results::{
     EnergyBalance, EventKind, EventRecord, HistoryRow, Phase, Run, SolverStats, Summary, Time,
 };
 pub use rocking_kernels::{ModelInfo, VariantInfo};
-pub use rocking_ode::Method;
 pub use structure::{
     find_model, model_names, plate_inertia, DampingConvention, Derived, Dimensionless, ParamError,
     Structure, PAPER_MODEL,

@@ -2,15 +2,39 @@
 
 use std::f64::consts::FRAC_PI_2;
 
-use rocking_ode::Method;
 use serde::{Deserialize, Serialize};
+
+/// The integration method of every phase.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Method {
+    /// Dormand–Prince 5(4) (`rocking_ode::Method::Dopri5`).
+    Dopri5,
+    /// DOP853 (`rocking_ode::Method::Dop853`).
+    Dop853,
+    /// Taylor series from the generated Taylor-mode kernels (`rocking_ode::taylor`), order from
+    /// the tolerance by heyoka's rule, events as roots of each step's polynomials. Needs the
+    /// excitation's Taylor series (`GroundMotion::accel_series`): sine and cosine pulses and
+    /// records, not the Ricker and Mavroeidis–Papageorgiou pulses.
+    Taylor,
+}
+
+impl Method {
+    /// The Runge–Kutta method, `None` for [`Method::Taylor`].
+    pub fn runge_kutta(self) -> Option<rocking_ode::Method> {
+        match self {
+            Method::Dopri5 => Some(rocking_ode::Method::Dopri5),
+            Method::Dop853 => Some(rocking_ode::Method::Dop853),
+            Method::Taylor => None,
+        }
+    }
+}
 
 /// Integration method and tolerance. `tol` is the relative tolerance; absolute tolerances are
 /// `tol` times the natural scale of each component (α for θ, u_cr for u, α p and u_cr ω_n for
 /// the rates, E_ref for the energy integrals).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Accuracy {
-    /// Runge–Kutta method.
+    /// Integration method.
     pub method: Method,
     /// Relative tolerance.
     pub tol: f64,

@@ -1,0 +1,197 @@
+//! The generated Taylor-mode kernels (`rocking_kernels::taylor`) of each kernel variant, behind a
+//! trait so that the hybrid driver stays generic and monomorphised as with [`Variant`].
+//!
+//! The generator emits the Taylor kernels as free functions per variant module but no trait
+//! implementation; the list below binds each variant type to its module. It cannot drift from
+//! the generated set: `run_variant` dispatches every generated variant through `with_variant!`
+//! with this trait as a bound, so a variant without an implementation does not compile.
+
+use rocking_kernels::kernels::{self, index::power as pwr};
+use rocking_kernels::taylor;
+use rocking_kernels::Variant;
+use rocking_motion::GroundMotion;
+use rocking_ode::taylor::{TaylorEvents, TaylorSystem};
+
+const RIGHT: f64 = 1.0;
+const LEFT: f64 = -1.0;
+
+/// A kernel variant's Taylor-mode kernels (see the generated `rocking_kernels::taylor::<variant>`
+/// for the inputs; series hold their first N coefficients).
+pub trait TaylorVariant: Variant {
+    /// Taylor coefficients of the rocking state `[θ, u, θ', u']` from `x[i][0]`.
+    fn rocking_series<const N: usize>(
+        x: &mut [[f64; N]; 4],
+        ug: &[f64; N],
+        s: f64,
+        p: &Self::Params,
+    );
+    /// Taylor coefficients of the contact state `[u, u']` from `xc[i][0]`.
+    fn contact_series<const N: usize>(xc: &mut [[f64; N]; 2], ug: &[f64; N], p: &Self::Params);
+    /// The uplift function f_s along a contact series.
+    fn uplift_series<const N: usize>(
+        xc: &[[f64; N]; 2],
+        ug: &[f64; N],
+        s: f64,
+        p: &Self::Params,
+    ) -> [f64; N];
+    /// `[ground, damping]` power along a state series.
+    fn power_series<const N: usize>(
+        x: &[[f64; N]; 4],
+        ug: &[f64; N],
+        s: f64,
+        p: &Self::Params,
+    ) -> [[f64; N]; 2];
+}
+
+macro_rules! taylor_variant {
+    ($($ty:ident => $module:ident),* $(,)?) => {$(
+        impl TaylorVariant for kernels::$ty {
+            fn rocking_series<const N: usize>(
+                x: &mut [[f64; N]; 4],
+                ug: &[f64; N],
+                s: f64,
+                p: &Self::Params,
+            ) {
+                taylor::$module::rocking_rhs(x, ug, s, p);
+            }
+            fn contact_series<const N: usize>(
+                xc: &mut [[f64; N]; 2],
+                ug: &[f64; N],
+                p: &Self::Params,
+            ) {
+                taylor::$module::contact_rhs(xc, ug, p);
+            }
+            fn uplift_series<const N: usize>(
+                xc: &[[f64; N]; 2],
+                ug: &[f64; N],
+                s: f64,
+                p: &Self::Params,
+            ) -> [f64; N] {
+                taylor::$module::uplift(xc, ug, s, p)[0]
+            }
+            fn power_series<const N: usize>(
+                x: &[[f64; N]; 4],
+                ug: &[f64; N],
+                s: f64,
+                p: &Self::Params,
+            ) -> [[f64; N]; 2] {
+                taylor::$module::power(x, ug, s, p)
+            }
+        }
+    )*};
+}
+
+taylor_variant!(
+    AddedMass => added_mass,
+    CosineShape => cosine_shape,
+    Full => full,
+    MasslessBase => massless_base,
+    MasslessColumn => massless_column,
+    PointMass => point_mass,
+    Rigid => rigid,
+    SmallAngle => small_angle,
+);
+
+/// The rocking phase about `s` as a [`TaylorSystem`]: state `[θ, u, θ', u']`, then `[W, D]` when
+/// `D == 6`, each divided by its natural scale so that one tolerance serves all (as the
+/// Runge–Kutta path's absolute tolerances do).
+pub(crate) struct RockingSystem<'a, V: TaylorVariant, M, const D: usize> {
+    pub p: V::Params,
+    pub motion: &'a M,
+    pub s: f64,
+    pub scale: [f64; D],
+}
+
+impl<V: TaylorVariant, M: GroundMotion, const D: usize> TaylorSystem<D>
+    for RockingSystem<'_, V, M, D>
+{
+    fn coefficients<const N: usize>(&mut self, t0: f64, x: &mut [[f64; N]; D]) {
+        let mut ug = [0.0; N];
+        self.motion.accel_series(t0, &mut ug);
+        let mut q = [[0.0; N]; 4];
+        for (qi, (xi, sc)) in q.iter_mut().zip(x.iter().zip(&self.scale)) {
+            qi[0] = xi[0] * sc;
+        }
+        V::rocking_series(&mut q, &ug, self.s, &self.p);
+        for i in 0..4 {
+            for k in 1..N {
+                x[i][k] = q[i][k] / self.scale[i];
+            }
+        }
+        if D > 4 {
+            let pw = V::power_series(&q, &ug, self.s, &self.p);
+            integrate_power(x, 4, &pw, &self.scale);
+        }
+    }
+}
+
+/// Full contact as a [`TaylorSystem`]: state `[u, u']`, then `[W, D]` when `D == 4`, scaled as
+/// in [`RockingSystem`].
+pub(crate) struct ContactSystem<'a, V: TaylorVariant, M, const D: usize> {
+    pub p: V::Params,
+    pub motion: &'a M,
+    pub scale: [f64; D],
+}
+
+impl<V: TaylorVariant, M: GroundMotion, const D: usize> ContactSystem<'_, V, M, D> {
+    /// The unscaled contact series `[u, u']` from the first coefficients of `x`, and ü_g's.
+    fn contact<const N: usize>(&self, t0: f64, x: &[[f64; N]; D], all: bool) -> Series<N> {
+        let mut ug = [0.0; N];
+        self.motion.accel_series(t0, &mut ug);
+        let mut q = [[0.0; N]; 2];
+        for i in 0..2 {
+            let upto = if all { N } else { 1 };
+            for k in 0..upto {
+                q[i][k] = x[i][k] * self.scale[i];
+            }
+        }
+        (q, ug)
+    }
+}
+
+type Series<const N: usize> = ([[f64; N]; 2], [f64; N]);
+
+impl<V: TaylorVariant, M: GroundMotion, const D: usize> TaylorSystem<D>
+    for ContactSystem<'_, V, M, D>
+{
+    fn coefficients<const N: usize>(&mut self, t0: f64, x: &mut [[f64; N]; D]) {
+        let (mut q, ug) = self.contact(t0, x, false);
+        V::contact_series(&mut q, &ug, &self.p);
+        for i in 0..2 {
+            for k in 1..N {
+                x[i][k] = q[i][k] / self.scale[i];
+            }
+        }
+        if D > 2 {
+            let [u, u_dot] = q;
+            let full = [[0.0; N], u, [0.0; N], u_dot];
+            let pw = V::power_series(&full, &ug, RIGHT, &self.p);
+            integrate_power(x, 2, &pw, &self.scale);
+        }
+    }
+}
+
+/// The uplift functions `[f_+, f_-]` along a contact step are the events of full contact.
+impl<V: TaylorVariant, M: GroundMotion, const D: usize> TaylorEvents<D, 2>
+    for ContactSystem<'_, V, M, D>
+{
+    fn event_coefficients<const N: usize>(&mut self, t0: f64, x: &[[f64; N]; D]) -> [[f64; N]; 2] {
+        let (q, ug) = self.contact(t0, x, true);
+        [RIGHT, LEFT].map(|s| V::uplift_series(&q, &ug, s, &self.p))
+    }
+}
+
+/// `W' = P_ground`, `D' = P_damping`: coefficient k + 1 of an integral is coefficient k of its
+/// rate over k + 1 (W and D sit from component `first` on).
+fn integrate_power<const N: usize, const D: usize>(
+    x: &mut [[f64; N]; D],
+    first: usize,
+    pw: &[[f64; N]; 2],
+    scale: &[f64; D],
+) {
+    for (j, rate) in [pwr::GROUND, pwr::DAMPING].into_iter().enumerate() {
+        for k in 0..N - 1 {
+            x[first + j][k + 1] = pw[rate][k] / ((k + 1) as f64 * scale[first + j]);
+        }
+    }
+}

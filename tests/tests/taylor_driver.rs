@@ -1,0 +1,292 @@
+//! `method = "taylor"` in the hybrid driver against DOP853 at its reference setting: the Fig. 3
+//! case, the full-mass case (a Fig-8 cell), a coarse record on a flexible column and a grazing
+//! uplift of a rigid block; energy balance and mirror symmetry.
+
+use rocking::{
+    simulate, Accuracy, DampingConvention, Effects, EventKind, History, ImpactModel, Method,
+    Options, Preset, Run, Structure,
+};
+use rocking_motion::{Excitation, GroundMotion, Record};
+use rocking_verification::*;
+
+/// Agreement asked of Taylor at 1e-12 and DOP853 at 1e-12 (both about 1e-11 from the truth).
+const AGREE: f64 = 1e-9;
+
+fn taylor(tol: f64) -> Accuracy {
+    Accuracy {
+        method: Method::Taylor,
+        tol,
+    }
+}
+
+fn options(accuracy: Accuracy, t_end: f64, impact: ImpactModel) -> Options {
+    Options {
+        accuracy,
+        impact,
+        t_end,
+        energy: true,
+        event_log: true,
+        ..Options::default()
+    }
+}
+
+/// The full-mass case: γ_mc = γ_mb = 2, ω_n/p = 5, α = 0.1 (scenes/spectra/fig8.toml), sine
+/// ω_p/p = 4, a_p/(g tan α) = 3.
+fn full_mass() -> (Structure, Excitation, f64) {
+    let m = scene(
+        "spectra/fig8.toml",
+        &["excitation.omega_p_over_p=4", "excitation.amplitude=3"],
+    );
+    (m.structure, m.excitation, m.options.t_end)
+}
+
+/// The energy residual over the largest energy that passed through the bookkeeping (at least
+/// E_ref), as in hard_cases.rs.
+fn residual(r: &Run) -> f64 {
+    let e = r.summary.energy.expect("energy asked for");
+    let scale = [e.initial, e.last, e.ground_work, e.damping, e.impact_losses]
+        .iter()
+        .fold(1f64, |m, v| m.max(v.abs()));
+    r.summary.energy_balance_residual.unwrap().abs() / scale
+}
+
+/// The impact times before the first rest.
+fn until_rest(r: &Run) -> Vec<f64> {
+    r.events
+        .iter()
+        .take_while(|e| e.kind != EventKind::Rest)
+        .filter(|e| e.kind == EventKind::Impact)
+        .map(|e| e.time.tau)
+        .collect()
+}
+
+/// The (τ, kind, branch, θ') of a run's events, for failure messages.
+fn events(r: &Run) -> Vec<(f64, String, f64)> {
+    r.events
+        .iter()
+        .map(|e| {
+            (
+                e.time.tau,
+                format!("{:?} {}", e.kind, e.branch),
+                e.theta_dot,
+            )
+        })
+        .collect()
+}
+
+/// Taylor at 1e-12 against DOP853 at the reference preset: max θ/α, the impacts (count and
+/// times), first uplift and impact time to [`AGREE`], and the energy balance of both closing.
+fn agrees<M: GroundMotion>(label: &str, s: &Structure, m: &M, eff: &Effects, o: Options) -> Run {
+    let rk = Options {
+        accuracy: Preset::Reference.accuracy(),
+        ..o
+    };
+    let ty = Options {
+        accuracy: taylor(1e-12),
+        ..o
+    };
+    let a = run_checked(s, m, eff, &rk, label);
+    let b = run_checked(s, m, eff, &ty, label);
+    let (x, y) = (&a.summary, &b.summary);
+    eprintln!(
+        "TAYLOR| {label}: max θ/α {:.12} vs {:.12}, impacts {} vs {}, steps {} vs {}, evaluations {} vs {}, residual {:.1e}",
+        x.max_theta_over_alpha,
+        y.max_theta_over_alpha,
+        x.impacts,
+        y.impacts,
+        x.solver_stats.steps,
+        y.solver_stats.steps,
+        x.solver_stats.rhs_evaluations,
+        y.solver_stats.rhs_evaluations,
+        residual(&b)
+    );
+    let d = (x.max_theta_over_alpha - y.max_theta_over_alpha).abs();
+    assert!(
+        d <= AGREE * x.max_theta_over_alpha.max(1.0),
+        "{label}: max θ/α differs by {d:e}"
+    );
+    // The impacts up to the first rest agree in number and time. After a rest the driver lifts
+    // at the end of the first contact step where f_s > 0 (`settle`), which depends on the step
+    // size of the method, so later events are compared only when no rest occurs.
+    let (p, q) = (until_rest(&a), until_rest(&b));
+    let msg = || format!("DOP853 {:?}\nTaylor {:?}", events(&a), events(&b));
+    assert_eq!(
+        p.len(),
+        q.len(),
+        "{label}: impacts before a rest\n{}",
+        msg()
+    );
+    for (t, u) in p.iter().zip(&q) {
+        assert!(
+            (t - u).abs() <= AGREE * t,
+            "{label}: impact τ {t} vs {u}\n{}",
+            msg()
+        );
+    }
+    let rests = |r: &Run| r.events.iter().any(|e| e.kind == EventKind::Rest);
+    if !rests(&a) && !rests(&b) {
+        assert_eq!(x.impacts, y.impacts, "{label}: impact count\n{}", msg());
+    }
+    assert_eq!(x.overturned, y.overturned, "{label}: overturning");
+    for (what, p, q) in [
+        ("first uplift", x.first_uplift_time, y.first_uplift_time),
+        ("first impact", x.first_impact_time, y.first_impact_time),
+    ] {
+        match (p, q) {
+            (Some(p), Some(q)) => {
+                let d = (p.tau - q.tau).abs() / p.tau.max(1e-3);
+                assert!(
+                    d <= AGREE,
+                    "{label}: {what} τ {} vs {} ({d:e})",
+                    p.tau,
+                    q.tau
+                );
+            }
+            (None, None) => {}
+            _ => panic!("{label}: {what} {p:?} vs {q:?}"),
+        }
+    }
+    for r in [&a, &b] {
+        assert!(
+            residual(r) <= 1e-9,
+            "{label}: energy residual {:e}",
+            residual(r)
+        );
+    }
+    b
+}
+
+#[test]
+fn fig3_case_agrees_with_dop853() {
+    for impact in [ImpactModel::Vvel, ImpactModel::Adjex] {
+        let r = agrees(
+            &format!("Fig. 3 {impact:?}"),
+            &fig3_structure(),
+            &fig3_pulse(),
+            &Effects::default(),
+            options(Preset::Reference.accuracy(), 8.0, impact),
+        );
+        assert!(r.summary.impacts >= 2, "Fig. 3 rocks and impacts");
+    }
+}
+
+#[test]
+fn full_mass_case_agrees_with_dop853() {
+    let (s, m, t_end) = full_mass();
+    let o = options(Preset::Reference.accuracy(), t_end, ImpactModel::Vvel);
+    let r = agrees("full mass", &s, &m, &Effects::default(), o);
+    assert_eq!(r.summary.kernel_variant, "full");
+    assert!(r.summary.impacts >= 1);
+}
+
+/// A record (piecewise-linear ü_g, its series changes at every sample) on a flexible column.
+#[test]
+fn coarse_record_agrees_with_dop853() {
+    let s = dimensionless(0.2, 50.0, 1.0, 1.0, 0.01, DampingConvention::FixedBase);
+    let t = 0.2f64.tan();
+    let m = Record::new(0.5, vec![0.0, 2.5 * t, -3.0 * t, 2.0 * t, -1.5 * t, 0.0]).unwrap();
+    for impact in [ImpactModel::Vvel, ImpactModel::Adjex] {
+        let o = options(Preset::Reference.accuracy(), 8.0, impact);
+        let r = agrees("coarse record", &s, &m, &Effects::default(), o);
+        assert!(r.summary.impacts >= 1);
+    }
+}
+
+/// A plateau at (1 ± 1e-9) of the rigid block's uplift threshold g tan α: decided as DOP853
+/// decides it (below: no uplift; above: uplift), from either side.
+#[test]
+fn grazing_uplift_decided_as_dop853() {
+    let alpha = 0.2;
+    let s = dimensionless(alpha, 10.0, 0.0, 0.0, 0.0, DampingConvention::FixedBase);
+    for (eps, uplifts) in [(-1e-9, false), (1e-9, true)] {
+        for sign in [1.0, -1.0] {
+            let a = sign * (1.0 + eps) * alpha.tan();
+            let m = Record::new(0.25, vec![0.0, a, a, a, 0.0]).unwrap();
+            let o = options(Preset::Reference.accuracy(), 3.0, ImpactModel::Vvel);
+            let label = format!("grazing uplift ε = {eps:e}, sign {sign}");
+            let r = agrees(&label, &s, &m, &rigid_effects(), o);
+            assert_eq!(r.summary.first_uplift_time.is_some(), uplifts, "{label}");
+        }
+    }
+}
+
+/// The negated excitation gives the mirrored motion: θ and u negated at every grid time, the
+/// same max θ/α and impact times.
+#[test]
+fn mirror_symmetry() {
+    let (s, m, t_end) = full_mass();
+    let o = Options {
+        history: History::Grid(0.05),
+        ..options(taylor(1e-10), t_end, ImpactModel::Vvel)
+    };
+    let a = run_checked(&s, &m, &Effects::default(), &o, "full mass");
+    let b = run_checked(
+        &s,
+        &m.clone().scale(-1.0),
+        &Effects::default(),
+        &o,
+        "mirrored",
+    );
+    assert_eq!(a.history.len(), b.history.len());
+    assert!(a.summary.impacts >= 1);
+    let scale = s.derived().alpha;
+    for (p, q) in a.history.iter().zip(&b.history) {
+        assert_eq!(p.tau, q.tau);
+        assert!(
+            (p.theta + q.theta).abs() <= 1e-12 * scale,
+            "θ at τ = {}",
+            p.tau
+        );
+        assert!((p.u + q.u).abs() <= 1e-12 * s.derived().u_cr.max(1e-300) + 1e-300);
+    }
+    assert_eq!(a.summary.impacts, b.summary.impacts);
+    assert_eq!(
+        a.summary.max_theta_over_alpha,
+        b.summary.max_theta_over_alpha
+    );
+}
+
+/// Errors shrink with the tolerance at the chosen orders: Taylor at 1e-6, 1e-9 and 1e-12
+/// against DOP853 at 1e-13 on the Fig. 3 case, each within 100 × its tolerance.
+#[test]
+fn error_follows_the_tolerance() {
+    let o = options(
+        Accuracy {
+            method: Method::Dop853,
+            tol: 1e-13,
+        },
+        8.0,
+        ImpactModel::Vvel,
+    );
+    let (s, m) = (fig3_structure(), fig3_pulse());
+    let reference = run_checked(&s, &m, &Effects::default(), &o, "reference").summary;
+    for tol in [1e-6, 1e-9, 1e-12] {
+        let r = run_checked(
+            &s,
+            &m,
+            &Effects::default(),
+            &Options {
+                accuracy: taylor(tol),
+                ..o
+            },
+            "taylor",
+        )
+        .summary;
+        let e = (r.max_theta_over_alpha - reference.max_theta_over_alpha).abs();
+        let t = (r.first_impact_time.unwrap().tau - reference.first_impact_time.unwrap().tau).abs();
+        eprintln!("TAYLOR| Fig. 3 tol {tol:e}: max θ/α error {e:.1e}, first impact error {t:.1e}");
+        assert!(
+            e <= 100.0 * tol && t <= 100.0 * tol,
+            "tol {tol:e}: {e:e}, {t:e}"
+        );
+    }
+}
+
+/// A motion without a Taylor series is refused with a message naming the method.
+#[test]
+fn ricker_is_refused() {
+    let m = rocking_motion::Ricker::symmetric(1.0, 4.0);
+    let o = options(taylor(1e-8), 4.0, ImpactModel::Vvel);
+    let e = simulate(&fig3_structure(), &m, &Effects::default(), &o).unwrap_err();
+    assert!(e.to_string().contains("method = taylor"), "{e}");
+}
