@@ -1,7 +1,7 @@
 //! `rocking`: run and check scene files of the rocking-cantilever simulator.
 //!
 //! ```text
-//! rocking run SCENE [--set key.path=value ...] [--out DIR] [--json]
+//! rocking run SCENE [--set key.path=value ...] [--out DIR] [--json] [--animate]
 //! rocking check SCENE [--set key.path=value ...] [--json]
 //! rocking spectrum SCENE [--axis key.path=start:stop:count ...] [--set ...] [--out DIR] [--quiet]
 //! rocking batch SCENE [--records FILE|DIR ...] [--scales 0.5,1,2] [--set ...] [--out DIR] [--quiet]
@@ -71,6 +71,10 @@ enum Command {
         /// Print the summary on stdout as one JSON object.
         #[arg(long)]
         json: bool,
+        /// Also write animation.gif: the structure rocking, as `[output] animation = true`
+        /// (150 frames of 480 × 600 pixels unless the scene sets animation_frames/_width/_height).
+        #[arg(long)]
+        animate: bool,
     },
     /// List every model (from the derivation): variants, parameters and effect switches.
     Models {
@@ -320,6 +324,17 @@ fn run(scene: &Path, set: &[String], out: Option<PathBuf>, json: bool) -> Result
     if m.plots {
         written.extend(plot::plots(&m, &run, &stage)?);
     }
+    let mut animation_note = None;
+    if let Some(spec) = &m.animation {
+        let (path, frames, bytes) = plot::animation::animation(&m, &run, spec, &stage)?;
+        animation_note = Some(format!(
+            "  animation: {frames} frames of {} × {} pixels, {:.2} MB",
+            spec.width,
+            spec.height,
+            bytes as f64 / 1e6
+        ));
+        written.push(path);
+    }
     let written: Vec<PathBuf> = written.iter().map(|p| out_dir.final_path(p)).collect();
     out_dir.commit()?;
     if json {
@@ -335,6 +350,9 @@ fn run(scene: &Path, set: &[String], out: Option<PathBuf>, json: bool) -> Result
         None => "never".into(),
     };
     out!("{}: kernel variant {}", scene.display(), s.kernel_variant);
+    if let Some(note) = animation_note {
+        out!("{note}");
+    }
     out!("  excitation: {}", m.excitation_description);
     out!(
         "  max θ/α = {:.4}, max u/u_cr = {:.4}",
@@ -389,7 +407,15 @@ fn main() -> ExitCode {
             set,
             out,
             json,
-        } => run(&scene, &set, out, json),
+            animate,
+        } => {
+            // `--animate` is the scene key, set last (so a scene's frame count and size stay).
+            let mut set = set;
+            if animate {
+                set.push("output.animation=true".into());
+            }
+            run(&scene, &set, out, json)
+        }
         Command::Check { scene, set, json } => check(&scene, &set, json),
         Command::Models { json } => models_command(json),
         Command::Spectrum {

@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use rocking_spectra::plan::{program_digest, Base, Plan, Records};
-use rocking_spectra::{cells_csv, Cell, CellClass, Outcome, Progress, Shard, Sweep};
+use rocking_spectra::{cells_csv, CellClass, Outcome, Progress, Shard, Sweep};
 use serde_json::json;
 
 use crate::merge;
@@ -164,10 +164,10 @@ pub(crate) fn write_outputs(
         (serde_json::to_string_pretty(&meta).unwrap_or_default() + "\n").as_bytes(),
     )?;
     written.push(path);
-    let kind = if sweep.axes.len() >= 3 {
-        "overturning boundaries"
-    } else {
-        "rocking spectrum"
+    let kind = match sweep.axes.len() {
+        1 => "one-axis sweep",
+        2 => "rocking spectrum",
+        _ => "overturning boundaries",
     };
     let title = match base.title() {
         Some(t) => format!("{t}: {kind}"),
@@ -368,42 +368,4 @@ fn is_overturned(class: CellClass) -> bool {
             | CellClass::OverturnedOneImpact
             | CellClass::OverturnedImpacts
     )
-}
-
-/// One boundary: the family value and, per x value, the smallest overturning y.
-type Line = (f64, BTreeMap<u64, (f64, f64)>);
-
-/// The smallest value of the last axis at which cells overturn, per value of the others (the
-/// overturning boundary of Fig. 9), for cells of a 2- or 3-axis sweep.
-pub fn boundary(sweep: &Sweep, cells: &[Cell]) -> Vec<(f64, Vec<(f64, f64)>)> {
-    let n = sweep.axes.len();
-    // Keyed by the bit patterns of the family and x values (exact, ordered for positive values).
-    let mut lines: BTreeMap<u64, Line> = BTreeMap::new();
-    for c in cells {
-        let v = sweep.values(c.index);
-        let family = if n >= 3 { v[n - 3] } else { 0.0 };
-        let x = v[n - 2];
-        let y = v[n - 1];
-        let over = matches!(
-            c.class,
-            CellClass::OverturnedNoImpact
-                | CellClass::OverturnedOneImpact
-                | CellClass::OverturnedImpacts
-        );
-        let line = lines
-            .entry(family.to_bits())
-            .or_insert((family, BTreeMap::new()));
-        let e = line.1.entry(x.to_bits()).or_insert((x, f64::INFINITY));
-        if over {
-            e.1 = e.1.min(y);
-        }
-    }
-    lines
-        .into_values()
-        .map(|(f, pts)| {
-            let mut p: Vec<(f64, f64)> = pts.into_values().filter(|(_, y)| y.is_finite()).collect();
-            p.sort_by(|a, b| a.0.total_cmp(&b.0));
-            (f, p)
-        })
-        .collect()
 }

@@ -112,6 +112,23 @@ impl Knob {
     }
 }
 
+/// The numeric keys a sweep may vary.
+pub fn number_keys() -> impl Iterator<Item = &'static str> {
+    NUMBERS.iter().map(|(k, _)| *k)
+}
+
+/// The text keys a sweep may vary.
+pub fn text_keys() -> impl Iterator<Item = &'static str> {
+    TEXTS.iter().map(|(k, _)| *k)
+}
+
+impl Knob {
+    /// The knob's label in the paper's notation (`crate::labels`).
+    pub fn label(&self) -> String {
+        crate::labels::axis_label(&self.key)
+    }
+}
+
 /// The setup of `scene` with the knobs set to `values` (a sweep cell).
 pub fn setup(scene: &Scene, knobs: &[(&Knob, KnobValue)]) -> Result<Model, CliError> {
     let mut spec = scene.spec.clone();

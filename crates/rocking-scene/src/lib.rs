@@ -3,6 +3,7 @@
 //! The `rocking` command, the tests, the benchmark study and the examples load scenes through it.
 
 pub mod knob;
+pub mod labels;
 pub mod limits;
 pub mod model;
 pub mod models;

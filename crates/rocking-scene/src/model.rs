@@ -16,7 +16,9 @@ use toml::Value;
 
 use std::path::Path;
 
-use crate::scene::{describe, CliError, ExcitationSpec, Scene, SceneSpec, Source, StructureSpec};
+use crate::scene::{
+    describe, CliError, ExcitationSpec, OutputSpec, Scene, SceneSpec, Source, StructureSpec,
+};
 
 /// The most history rows a run may ask for (about 80 bytes each in memory and in history.csv).
 const MAX_ROWS: f64 = 5e6;
@@ -66,6 +68,54 @@ pub struct Model {
     pub plots: bool,
     /// History rows were asked for in the scene (written to history.csv).
     pub history_csv: bool,
+    /// The animated GIF asked for (`[output] animation = true`).
+    pub animation: Option<Animation>,
+}
+
+/// The frame count and size (pixels) of an animated GIF of a run: bounded so that a GIF stays a
+/// few MB (400 frames of 800 × 600 at most).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Animation {
+    pub frames: usize,
+    pub width: u32,
+    pub height: u32,
+}
+
+impl Animation {
+    /// Defaults and bounds: (key, default, lowest, highest).
+    pub const FRAMES: (&'static str, i64, i64, i64) = ("animation_frames", 150, 2, 400);
+    pub const WIDTH: (&'static str, i64, i64, i64) = ("animation_width", 480, 160, 800);
+    pub const HEIGHT: (&'static str, i64, i64, i64) = ("animation_height", 600, 120, 600);
+}
+
+impl Default for Animation {
+    fn default() -> Self {
+        Animation {
+            frames: Self::FRAMES.1 as usize,
+            width: Self::WIDTH.1 as u32,
+            height: Self::HEIGHT.1 as u32,
+        }
+    }
+}
+
+/// `[output] animation` and its frame count and size, checked against their bounds.
+fn animation(src: &Source, out: Option<&OutputSpec>) -> Result<Option<Animation>, CliError> {
+    let Some(o) = out.filter(|o| o.animation == Some(true)) else {
+        return Ok(None);
+    };
+    let pick = |given: Option<i64>, (key, default, lo, hi): (&str, i64, i64, i64)| match given {
+        None => Ok(default),
+        Some(v) if (lo..=hi).contains(&v) => Ok(v),
+        Some(v) => Err(src.err(
+            &format!("output.{key}"),
+            format_args!("`{key}` = {v} in [output] is not allowed: {lo} <= {key} <= {hi}"),
+        )),
+    };
+    Ok(Some(Animation {
+        frames: pick(o.animation_frames, Animation::FRAMES)? as usize,
+        width: pick(o.animation_width, Animation::WIDTH)? as u32,
+        height: pick(o.animation_height, Animation::HEIGHT)? as u32,
+    }))
 }
 
 fn param_err(src: &Source, table: &str, e: ParamError) -> CliError {
@@ -928,8 +978,9 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Model, CliError> {
         }
     };
     let history_csv = history != History::None;
-    // Plots need a history: a 0.01 τ grid unless the scene asked for one.
-    let history = if plots && history == History::None {
+    let animation = animation(src, out)?;
+    // Plots and animations need a history: a 0.01 τ grid unless the scene asked for one.
+    let history = if (plots || animation.is_some()) && history == History::None {
         let rows = t_end * units.p_model / 0.01;
         if rows > MAX_ROWS {
             return Err(src.err(
@@ -997,5 +1048,6 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Model, CliError> {
         units,
         plots,
         history_csv,
+        animation,
     })
 }

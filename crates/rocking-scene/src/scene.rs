@@ -144,6 +144,12 @@ pub struct OutputSpec {
     pub history_dt: Option<f64>,
     pub events: Option<bool>,
     pub plots: Option<bool>,
+    /// An animated GIF of the structure (`rocking run --animate`), with its frame count and size
+    /// in pixels (bounds in `model::Animation`).
+    pub animation: Option<bool>,
+    pub animation_frames: Option<i64>,
+    pub animation_width: Option<i64>,
+    pub animation_height: Option<i64>,
 }
 
 /// A whole scene file.

@@ -43,6 +43,7 @@ mod structure;
 mod taylor;
 
 pub use driver::{simulate as simulate_variant, SimError};
+pub use taylor::TaylorVariant;
 pub use options::{
     Accuracy, History, ImpactModel, Initial, Method, Options, Preset, MAX_HISTORY_ROWS,
 };

@@ -1,26 +1,36 @@
-//! Time-history plots in the paper's style (Figs 3, 5, 10): θ/α, u/u_cr, E/E_ref and
-//! ü_g/(g tan α) against τ in four stacked panels, impacts marked. PNG and SVG, with an embedded
-//! font (DejaVu Sans, see assets/DejaVuSans-LICENSE.txt) so no system font is needed.
+//! Figures, each as PNG and SVG with an embedded font (DejaVu Sans, see
+//! assets/DejaVuSans-LICENSE.txt) so no system font is needed. Here: the time history in the
+//! paper's style (Figs 3, 5, 10: θ/α, u/u_cr, E/E_ref and ü_g/(g tan α) against τ in four stacked
+//! panels, impacts marked) and the fragility curve of a batch; `spectrum`: rocking spectra,
+//! overturning boundaries and one-axis line plots; `contour`: marching squares; `animation`: the
+//! animated GIF of a run. Labels come from `rocking_scene::labels`.
+
+pub mod animation;
+pub mod contour;
+mod spectrum;
+
+pub use spectrum::spectrum_plots;
 
 use std::path::{Path, PathBuf};
 use std::sync::Once;
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use plotters::style::{register_font, FontStyle};
+use plotters::style::{register_font, text_anchor, FontStyle};
 use rocking::{EventKind, Run};
+use rocking_scene::labels;
 
 use crate::model::Model;
 use crate::report::write_atomic;
 use crate::scene::CliError;
 
-static FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
+static FONT: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
 static REGISTER: Once = Once::new();
 
 const WIDTH: u32 = 900;
 const HEIGHT: u32 = 1100;
 
-fn register() {
+pub(crate) fn register() {
     REGISTER.call_once(|| {
         // The font is bundled and known to be valid; a failure leaves text unrendered only.
         let _ = register_font("sans-serif", FontStyle::Normal, FONT);
@@ -61,9 +71,7 @@ fn draw<DB: DrawingBackend>(
 ) -> Result<(), String> {
     let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
     root.fill(&WHITE).map_err(e)?;
-    let root = root
-        .titled(title, ("sans-serif", 18).into_font())
-        .map_err(e)?;
+    let root = titled(root, title, 18)?;
     let panels = root.split_evenly((series.len(), 1));
     for (i, (area, s)) in panels.iter().zip(series).enumerate() {
         let (lo, hi) = range(&s.points);
@@ -81,7 +89,7 @@ fn draw<DB: DrawingBackend>(
             .label_style(("sans-serif", 15))
             .axis_desc_style(("sans-serif", 18));
         if last {
-            mesh.x_desc("τ = p t");
+            mesh.x_desc(labels::TAU);
         }
         mesh.draw().map_err(e)?;
         // Impacts: thin vertical lines in every panel.
@@ -135,19 +143,19 @@ pub fn plots(model: &Model, run: &Run, dir: &Path) -> Result<Vec<PathBuf>, CliEr
     let h = &run.history;
     let series = [
         Series {
-            label: "θ/α",
+            label: labels::THETA_OVER_ALPHA,
             points: h.iter().map(|r| (r.tau, r.theta / u.alpha)).collect(),
         },
         Series {
-            label: "u/u_cr",
+            label: labels::U_OVER_UCR,
             points: h.iter().map(|r| (r.tau, r.u / d.u_cr)).collect(),
         },
         Series {
-            label: "E/E_ref",
+            label: labels::E_OVER_EREF,
             points: h.iter().map(|r| (r.tau, r.e_total)).collect(),
         },
         Series {
-            label: "ü_g/(g tan α)",
+            label: labels::UG_OVER_G_TAN_ALPHA,
             points: h
                 .iter()
                 .map(|r| (r.tau, r.ug / u.accel_g_tan_alpha()))
@@ -196,189 +204,13 @@ pub fn plots(model: &Model, run: &Run, dir: &Path) -> Result<Vec<PathBuf>, CliEr
 }
 
 /// PNG encoding of an RGB buffer through the `image` crate that plotters' bitmap backend uses.
-fn encode_png(rgb: &[u8], w: u32, h: u32) -> Result<Vec<u8>, String> {
+pub(crate) fn encode_png(rgb: &[u8], w: u32, h: u32) -> Result<Vec<u8>, String> {
     use image::ImageEncoder;
     let mut out = Vec::new();
     image::codecs::png::PngEncoder::new(&mut out)
         .write_image(rgb, w, h, image::ColorType::Rgb8)
         .map_err(|e| e.to_string())?;
     Ok(out)
-}
-
-/// Grey of a survivor with max θ/α = `theta`, on a scale that ends at `top` (black).
-fn grey(theta: f64, top: f64) -> RGBColor {
-    let v = (1.0 - (theta / top).clamp(0.0, 1.0)) * 225.0 + 20.0;
-    RGBColor(v as u8, v as u8, v as u8)
-}
-
-/// Colour of a spectrum cell: the overturning classes as regions (as in the paper's Figs 6-8),
-/// survivors shaded by max θ/α (white = 0, black = the largest survivor of the sweep).
-fn cell_colour(c: &rocking_spectra::Cell, top: f64) -> RGBColor {
-    use rocking_spectra::CellClass::*;
-    match c.class {
-        NoUplift => RGBColor(236, 240, 244),
-        Survived => grey(c.max_theta_over_alpha, top),
-        OverturnedNoImpact => RGBColor(60, 110, 200),
-        OverturnedOneImpact => RGBColor(150, 90, 40),
-        OverturnedImpacts => RGBColor(230, 150, 40),
-        Failed => RGBColor(220, 30, 30),
-    }
-}
-
-fn draw_spectrum<DB: DrawingBackend>(
-    root: DrawingArea<DB, Shift>,
-    title: &str,
-    sweep: &rocking_spectra::Sweep,
-    cells: &[rocking_spectra::Cell],
-) -> Result<(), String> {
-    let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
-    let top = cells
-        .iter()
-        .filter(|c| c.class == rocking_spectra::CellClass::Survived)
-        .map(|c| c.max_theta_over_alpha)
-        .fold(1e-9, f64::max);
-    root.fill(&WHITE).map_err(e)?;
-    let (plot_area, legend) = root.split_horizontally(WIDTH - 230);
-    let n = sweep.axes.len();
-    let (ax, ay) = (&sweep.axes[n - 2], &sweep.axes[n - 1]);
-    let span = |v: &[f64]| {
-        let (lo, hi) = (v[0].min(v[v.len() - 1]), v[0].max(v[v.len() - 1]));
-        let h = if v.len() > 1 {
-            (hi - lo) / (v.len() - 1) as f64 / 2.0
-        } else {
-            0.5
-        };
-        (lo - h, hi + h, h)
-    };
-    let (x0, x1, hx) = span(&ax.values);
-    let (y0, y1, hy) = span(&ay.values);
-    let mut chart = ChartBuilder::on(&plot_area)
-        .caption(title, ("sans-serif", 17))
-        .margin(12)
-        .x_label_area_size(45)
-        .y_label_area_size(60)
-        .build_cartesian_2d(x0..x1, y0..y1)
-        .map_err(e)?;
-    chart
-        .configure_mesh()
-        .disable_mesh()
-        .x_desc(ax.key.as_str())
-        .y_desc(ay.key.as_str())
-        .label_style(("sans-serif", 14))
-        .draw()
-        .map_err(e)?;
-    if n == 2 {
-        chart
-            .draw_series(cells.iter().map(|c| {
-                let v = sweep.values(c.index);
-                Rectangle::new(
-                    [(v[0] - hx, v[1] - hy), (v[0] + hx, v[1] + hy)],
-                    cell_colour(c, top).filled(),
-                )
-            }))
-            .map_err(e)?;
-        let items = [
-            ("no uplift".to_string(), RGBColor(236, 240, 244)),
-            ("survived, max θ/α = 0".to_string(), grey(0.0, top)),
-            (
-                format!("survived, max θ/α = {:.2}", top / 2.0),
-                grey(top / 2.0, top),
-            ),
-            (format!("survived, max θ/α = {top:.2}"), grey(top, top)),
-            ("overturned, no impact".to_string(), RGBColor(60, 110, 200)),
-            ("overturned, one impact".to_string(), RGBColor(150, 90, 40)),
-            ("overturned, impacts".to_string(), RGBColor(230, 150, 40)),
-            ("failed (see meta.json)".to_string(), RGBColor(220, 30, 30)),
-        ];
-        for (i, (label, colour)) in items.iter().enumerate() {
-            let y = 60 + 30 * i as i32;
-            legend
-                .draw(&Rectangle::new([(10, y), (30, y + 18)], colour.filled()))
-                .map_err(e)?;
-            legend
-                .draw(&Rectangle::new([(10, y), (30, y + 18)], BLACK))
-                .map_err(e)?;
-            legend
-                .draw(&Text::new(
-                    label.clone(),
-                    (38, y + 2),
-                    ("sans-serif", 14).into_font(),
-                ))
-                .map_err(e)?;
-        }
-    } else {
-        let palette = [
-            BLUE,
-            RED,
-            GREEN,
-            MAGENTA,
-            CYAN,
-            BLACK,
-            RGBColor(150, 90, 40),
-            RGBColor(230, 150, 40),
-        ];
-        for (i, (family, pts)) in crate::sweep::boundary(sweep, cells).into_iter().enumerate() {
-            let colour = palette[i % palette.len()];
-            chart
-                .draw_series(LineSeries::new(pts, colour.stroke_width(2)))
-                .map_err(e)?
-                .label(format!("{} = {family}", sweep.axes[n - 3].key))
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
-                });
-        }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.8))
-            .border_style(BLACK)
-            .label_font(("sans-serif", 13))
-            .draw()
-            .map_err(e)?;
-    }
-    root.present().map_err(e)
-}
-
-/// The spectrum plot of a 2-axis sweep (regions and θ/α shading) or the overturning boundaries
-/// of a 3-axis sweep (one line per value of the first axis: the smallest overturning amplitude),
-/// as PNG and SVG.
-pub fn spectrum_plots(
-    title: &str,
-    sweep: &rocking_spectra::Sweep,
-    cells: &[rocking_spectra::Cell],
-    dir: &Path,
-) -> Result<Vec<PathBuf>, CliError> {
-    if sweep.axes.len() < 2 || cells.is_empty() {
-        return Ok(Vec::new());
-    }
-    // plotters' tick search does not end on a range near the f64 limit, or one too narrow for
-    // its magnitude (x + step == x): such a spectrum is not drawn (its cells are in cells.csv).
-    let n = sweep.axes.len();
-    let drawable = |v: &[f64]| {
-        let (lo, hi) = v
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
-                (a.min(x), b.max(x))
-            });
-        let big = lo.abs().max(hi.abs());
-        big <= 1e15 && (v.len() < 2 || hi - lo >= 1e-9 * big)
-    };
-    if let Some(a) = sweep.axes[n - 2..].iter().find(|a| !drawable(&a.values)) {
-        eprintln!(
-            "note: the spectrum plot is not drawn: the values of `{}` span a range a plot cannot \
-             show (beyond ±1e15, or too narrow for their size); the cells are in cells.csv",
-            a.key
-        );
-        return Ok(Vec::new());
-    }
-    register();
-    let size = (WIDTH + 130, 720);
-    render_pair(
-        dir,
-        "spectrum",
-        size,
-        |root| draw_spectrum(root, title, sweep, cells),
-        |root| draw_spectrum(root, title, sweep, cells),
-    )
 }
 
 fn draw_fragility<DB: DrawingBackend>(
@@ -389,11 +221,12 @@ fn draw_fragility<DB: DrawingBackend>(
     let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
     root.fill(&WHITE).map_err(e)?;
     let x_hi = points.iter().map(|p| p.0).fold(0.0, f64::max) * 1.05;
+    let root = titled(
+        root,
+        &format!("Fraction of {records} records that overturn"),
+        20,
+    )?;
     let mut chart = ChartBuilder::on(&root)
-        .caption(
-            format!("Fraction of {records} records that overturn"),
-            ("sans-serif", 20),
-        )
         .margin(12)
         .x_label_area_size(45)
         .y_label_area_size(60)
@@ -401,8 +234,8 @@ fn draw_fragility<DB: DrawingBackend>(
         .map_err(e)?;
     chart
         .configure_mesh()
-        .x_desc("scale factor")
-        .y_desc("fraction overturned")
+        .x_desc(labels::SCALE_FACTOR)
+        .y_desc(labels::FRACTION_OVERTURNED)
         .label_style(("sans-serif", 14))
         .draw()
         .map_err(e)?;
@@ -432,7 +265,7 @@ pub fn fragility_plots(
 }
 
 /// Renders a figure to `<name>.png` and `<name>.svg` in `dir`, each written atomically.
-fn render_pair(
+pub(crate) fn render_pair(
     dir: &Path,
     name: &str,
     size: (u32, u32),
@@ -454,4 +287,65 @@ fn render_pair(
     let svg_path = dir.join(format!("{name}.svg"));
     write_atomic(&svg_path, text.as_bytes())?;
     Ok(vec![png_path, svg_path])
+}
+
+/// `text` broken into lines of at most `chars` characters at spaces (a longer word stays whole).
+pub(crate) fn wrap(text: &str, chars: usize) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    for word in text.split_whitespace() {
+        match lines.last_mut() {
+            Some(line) if line.chars().count() + 1 + word.chars().count() <= chars => {
+                line.push(' ');
+                line.push_str(word);
+            }
+            _ => lines.push(word.to_string()),
+        }
+    }
+    lines
+}
+
+/// Draws `title` centred at the top of `root`, wrapped to its width (never cut), and returns the
+/// area below it.
+pub(crate) fn titled<DB: DrawingBackend>(
+    root: DrawingArea<DB, Shift>,
+    title: &str,
+    size: u32,
+) -> Result<DrawingArea<DB, Shift>, String> {
+    let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
+    let width = root.dim_in_pixel().0;
+    // DejaVu Sans averages about 0.55 em per character; 40 px of margin.
+    let chars = ((width.saturating_sub(40)) as f64 / (0.58 * size as f64)).max(10.0) as usize;
+    let lines = wrap(title, chars);
+    let line_height = (size as f64 * 1.35) as u32;
+    let (top, rest) = root.split_vertically(line_height * lines.len() as u32 + 12);
+    let style = ("sans-serif", size)
+        .into_font()
+        .into_text_style(&top)
+        .pos(text_anchor::Pos::new(
+            text_anchor::HPos::Center,
+            text_anchor::VPos::Top,
+        ));
+    for (i, line) in lines.iter().enumerate() {
+        top.draw_text(
+            line,
+            &style,
+            ((width / 2) as i32, 8 + (i as u32 * line_height) as i32),
+        )
+        .map_err(e)?;
+    }
+    Ok(rest)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::wrap;
+
+    #[test]
+    fn a_long_title_wraps_at_spaces_and_keeps_every_word() {
+        let title = "Fig. 8: γ_mb = γ_mc = 2, α = 0.1, ω_n/p = 2.5: rocking spectrum";
+        let lines = wrap(title, 30);
+        assert!(lines.len() >= 2, "{lines:?}");
+        assert!(lines.iter().all(|l| l.chars().count() <= 30), "{lines:?}");
+        assert_eq!(lines.join(" "), title);
+    }
 }

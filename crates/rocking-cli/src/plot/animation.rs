@@ -1,0 +1,585 @@
+//! The animated GIF of a run (`rocking run --animate`): the base plate rocking on its corner, the
+//! column deflected along the model's shape function ψ, the top mass, and the ground moving by
+//! u_g (integrated from the history's ü_g), with τ and θ/α on each frame. The frame geometry is
+//! computed by [`geometry`], which the drawing and the tests share.
+
+use std::path::{Path, PathBuf};
+
+use plotters::prelude::*;
+use rocking::{HistoryRow, Run};
+use rocking_scene::labels;
+use rocking_scene::model::{Animation, Model};
+
+use super::register;
+use crate::report::write_atomic;
+use crate::scene::CliError;
+
+/// Pixels of the text band above the picture and of the margins.
+const BAND: f64 = 56.0;
+const MARGIN: f64 = 24.0;
+
+/// The drawn geometry of one frame, in pixels (x right, y down), before rounding.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Frame {
+    /// τ of the frame's history row.
+    pub tau: f64,
+    /// θ/α of the row.
+    pub theta_over_alpha: f64,
+    /// Base plate corners: bottom left, bottom right, top right, top left.
+    pub base: [(f64, f64); 4],
+    /// The column's axis from its foot to its top.
+    pub column: Vec<(f64, f64)>,
+    /// Centre and radius of the top mass.
+    pub mass: ((f64, f64), f64),
+    /// The ground's surface row and its tick marks (moving with u_g).
+    pub ground_y: f64,
+    pub ticks: Vec<f64>,
+}
+
+/// The model's shape function ψ(η), evaluated from the derivation's own statement of it
+/// (`ModelInfo::shape`, e.g. "psi = 3/2 eta^2 - 1/2 eta^3"); `None` when that text is not a
+/// formula in η with ψ(0) = 0 and ψ(1) = 1 (the column is then drawn as its chord).
+pub fn shape_function(model: &rocking_kernels::ModelInfo) -> Option<impl Fn(f64) -> f64> {
+    let text = model.shape.split_once('=').map_or(model.shape, |(_, r)| r);
+    let expr = formula::parse(text).or_else(|| {
+        // A trailing remark in parentheses: "(paper eq 1)".
+        let cut = text.trim_end().strip_suffix(')')?.rfind('(')?;
+        formula::parse(&text[..cut])
+    })?;
+    let ok = expr.eval(0.0).abs() < 1e-12
+        && (expr.eval(1.0) - 1.0).abs() < 1e-12
+        && (0..=20).all(|k| expr.eval(k as f64 / 20.0).is_finite());
+    ok.then(move || move |eta: f64| expr.eval(eta))
+}
+
+/// Ground displacement at each history row, from ü_g by the trapezoidal rule twice (the ground
+/// starts at rest at 0); in model units.
+fn ground_displacement(history: &[HistoryRow], p_model: f64) -> Vec<f64> {
+    let mut out = Vec::with_capacity(history.len());
+    let (mut v, mut x) = (0.0, 0.0);
+    for (k, r) in history.iter().enumerate() {
+        if k > 0 {
+            let prev = &history[k - 1];
+            let dt = (r.tau - prev.tau) / p_model;
+            let v_new = v + 0.5 * (prev.ug + r.ug) * dt;
+            x += 0.5 * (v + v_new) * dt;
+            v = v_new;
+        }
+        out.push(x);
+    }
+    out
+}
+
+/// The rows shown: `frames` rows evenly spaced in τ, the first and the last row included.
+fn frame_rows(history: &[HistoryRow], frames: usize) -> Vec<usize> {
+    let (t0, t1) = (history[0].tau, history[history.len() - 1].tau);
+    let mut k = 0;
+    (0..frames)
+        .map(|f| {
+            let t = t0 + (t1 - t0) * f as f64 / (frames - 1).max(1) as f64;
+            while k + 1 < history.len()
+                && (history[k + 1].tau - t).abs() <= (history[k].tau - t).abs()
+            {
+                k += 1;
+            }
+            if f + 1 == frames {
+                history.len() - 1
+            } else {
+                k
+            }
+        })
+        .collect()
+}
+
+/// World geometry of a row (x right, y up, origin at the base centre at rest): base corners,
+/// column axis, top-mass centre.
+struct World {
+    base: [(f64, f64); 4],
+    column: Vec<(f64, f64)>,
+    mass: (f64, f64),
+}
+
+fn world(row: &HistoryRow, ug: f64, h: f64, b: f64, psi: &dyn Fn(f64) -> f64) -> World {
+    // θ > 0 is clockwise about the right corner (s = +1), θ < 0 about the left one; a body point
+    // (X, Y) from the base centre goes to pivot + R(θ)(X - sB, Y).
+    let s = if row.theta >= 0.0 { 1.0 } else { -1.0 };
+    let (sin, cos) = row.theta.sin_cos();
+    let place = |x: f64, y: f64| {
+        let xr = x - s * b;
+        (s * b + ug + xr * cos + y * sin, -xr * sin + y * cos)
+    };
+    // The plate's thickness is drawn, not modelled (a thin plate): a third of B.
+    let t = b.min(h) / 3.0;
+    let column: Vec<(f64, f64)> = (0..=24)
+        .map(|k| {
+            let eta = k as f64 / 24.0;
+            place(row.u * psi(eta), t + eta * (h - t))
+        })
+        .collect();
+    World {
+        base: [place(-b, 0.0), place(b, 0.0), place(b, t), place(-b, t)],
+        mass: place(row.u, h),
+        column,
+    }
+}
+
+/// The frames of an animation of `run` at `size` pixels: geometry in pixels, one per shown row.
+pub fn geometry(model: &Model, run: &Run, spec: &Animation) -> Result<Vec<Frame>, String> {
+    let h = &run.history;
+    if h.len() < 2 {
+        return Err("the run has fewer than two history rows".into());
+    }
+    let phys = model.structure.physical();
+    let (hh, b) = (phys.h, phys.b);
+    let chord = |eta: f64| eta;
+    let psi_fn = shape_function(model.structure.model());
+    let psi: &dyn Fn(f64) -> f64 = match &psi_fn {
+        Some(f) => f,
+        None => &chord,
+    };
+    let ug = ground_displacement(h, model.units.p_model);
+    let rows = frame_rows(h, spec.frames);
+    let worlds: Vec<World> = rows
+        .iter()
+        .map(|&k| world(&h[k], ug[k], hh, b, psi))
+        .collect();
+    let radius = 0.06 * hh;
+    // One scale for every frame: the box of everything drawn, x centred on the rest position.
+    let (mut x_reach, mut y_top) = (b, hh + radius);
+    for w in &worlds {
+        for &(x, y) in w.base.iter().chain(&w.column).chain([&w.mass]) {
+            x_reach = x_reach.max(x.abs() + radius);
+            y_top = y_top.max(y + radius);
+        }
+    }
+    let (wpx, hpx) = (spec.width as f64, spec.height as f64);
+    let scale = ((wpx - 2.0 * MARGIN) / (2.0 * x_reach)).min((hpx - BAND - 2.0 * MARGIN) / y_top);
+    let ground_y = hpx - MARGIN - 12.0;
+    let to_px = |(x, y): (f64, f64)| (wpx / 2.0 + scale * x, ground_y - scale * y);
+    let tick = (wpx / 12.0) / scale;
+    Ok(rows
+        .iter()
+        .zip(&worlds)
+        .map(|(&k, w)| {
+            let first = ((-wpx / 2.0 / scale - ug[k]) / tick).floor() as i64;
+            let last = ((wpx / 2.0 / scale - ug[k]) / tick).ceil() as i64;
+            Frame {
+                tau: h[k].tau,
+                theta_over_alpha: h[k].theta / model.units.alpha,
+                base: w.base.map(to_px),
+                column: w.column.iter().map(|&p| to_px(p)).collect(),
+                mass: (to_px(w.mass), radius * scale),
+                ground_y,
+                ticks: (first..=last)
+                    .map(|i| to_px((ug[k] + i as f64 * tick, 0.0)).0)
+                    .collect(),
+            }
+        })
+        .collect())
+}
+
+fn round((x, y): (f64, f64)) -> (i32, i32) {
+    (x.round() as i32, y.round() as i32)
+}
+
+/// Colours of the drawing (exact entries of the GIF palette, so tests can find them).
+pub const BASE: RGBColor = RGBColor(51, 51, 153);
+pub const COLUMN: RGBColor = RGBColor(204, 51, 0);
+pub const MASS: RGBColor = RGBColor(0, 0, 0);
+const GROUND: RGBColor = RGBColor(153, 102, 51);
+
+fn draw_frame(
+    area: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
+    f: &Frame,
+    title: &str,
+) -> Result<(), String> {
+    let e = |e: DrawingAreaErrorKind<_>| format!("{e}");
+    area.fill(&WHITE).map_err(e)?;
+    let (w, _) = area.dim_in_pixel();
+    let gy = f.ground_y.round() as i32;
+    area.draw(&Rectangle::new(
+        [(0, gy), (w as i32, gy + 10)],
+        GROUND.mix(0.35).filled(),
+    ))
+    .map_err(e)?;
+    area.draw(&PathElement::new(
+        vec![(0, gy), (w as i32, gy)],
+        GROUND.stroke_width(2),
+    ))
+    .map_err(e)?;
+    for &x in &f.ticks {
+        let x = x.round() as i32;
+        area.draw(&PathElement::new(
+            vec![(x, gy), (x - 8, gy + 10)],
+            GROUND.stroke_width(2),
+        ))
+        .map_err(e)?;
+    }
+    area.draw(&Polygon::new(f.base.map(round).to_vec(), BASE.filled()))
+        .map_err(e)?;
+    area.draw(&PathElement::new(
+        f.column.iter().map(|&p| round(p)).collect::<Vec<_>>(),
+        COLUMN.stroke_width(4),
+    ))
+    .map_err(e)?;
+    let (c, r) = f.mass;
+    area.draw(&Circle::new(
+        round(c),
+        r.round().max(3.0) as i32,
+        MASS.filled(),
+    ))
+    .map_err(e)?;
+    let font = ("sans-serif", 16).into_font();
+    area.draw(&Text::new(title.to_string(), (10, 8), font.clone()))
+        .map_err(e)?;
+    let state = format!(
+        "{} = {:6.2}    {} = {:+.3}",
+        labels::TAU.split(' ').next().unwrap_or("τ"),
+        f.tau,
+        labels::THETA_OVER_ALPHA,
+        f.theta_over_alpha
+    );
+    area.draw(&Text::new(state, (10, 30), font)).map_err(e)?;
+    Ok(())
+}
+
+/// The global palette: a 6×6×6 colour cube and 40 greys (256 entries), and a pixel's index.
+fn palette() -> Vec<u8> {
+    let mut p = Vec::with_capacity(768);
+    for r in 0..6u8 {
+        for g in 0..6u8 {
+            for b in 0..6u8 {
+                p.extend([r * 51, g * 51, b * 51]);
+            }
+        }
+    }
+    for k in 0..40u32 {
+        let v = (k * 255 / 39) as u8;
+        p.extend([v, v, v]);
+    }
+    p
+}
+
+fn index_of(r: u8, g: u8, b: u8) -> u8 {
+    let (lo, hi) = (r.min(g).min(b), r.max(g).max(b));
+    if hi - lo < 12 {
+        let v = (r as u32 + g as u32 + b as u32) / 3;
+        216 + ((v * 39 + 127) / 255) as u8
+    } else {
+        let q = |c: u8| ((c as u32 + 25) / 51) as u8;
+        q(r) * 36 + q(g) * 6 + q(b)
+    }
+}
+
+/// Renders the animation of `run` into `dir/animation.gif` (atomically); returns its path, the
+/// number of frames and the file size in bytes.
+pub fn animation(
+    model: &Model,
+    run: &Run,
+    spec: &Animation,
+    dir: &Path,
+) -> Result<(PathBuf, usize, usize), CliError> {
+    let fail = |m: String| {
+        CliError::Internal(format!(
+            "{}: cannot draw the animation: {m}",
+            dir.join("animation.gif").display()
+        ))
+    };
+    register();
+    let frames = geometry(model, run, spec).map_err(fail)?;
+    let title = model
+        .title
+        .clone()
+        .unwrap_or_else(|| model.excitation_description.clone());
+    let title: String = super::wrap(&title, (spec.width as usize / 9).max(10))
+        .into_iter()
+        .next()
+        .unwrap_or_default();
+    let (w, h) = (spec.width, spec.height);
+    let mut bytes = Vec::new();
+    {
+        let mut enc = gif::Encoder::new(&mut bytes, w as u16, h as u16, &palette())
+            .map_err(|e| fail(e.to_string()))?;
+        enc.set_repeat(gif::Repeat::Infinite)
+            .map_err(|e| fail(e.to_string()))?;
+        // About 8 s for the whole run, 2..10 hundredths of a second per frame.
+        let delay = (800 / frames.len()).clamp(2, 10) as u16;
+        let mut rgb = vec![255u8; (w * h * 3) as usize];
+        for f in &frames {
+            {
+                let area = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
+                draw_frame(&area, f, &title).map_err(fail)?;
+                area.present().map_err(|e| fail(e.to_string()))?;
+            }
+            let indexed: Vec<u8> = rgb
+                .chunks_exact(3)
+                .map(|p| index_of(p[0], p[1], p[2]))
+                .collect();
+            let frame = gif::Frame {
+                width: w as u16,
+                height: h as u16,
+                delay,
+                buffer: std::borrow::Cow::Owned(indexed),
+                ..gif::Frame::default()
+            };
+            enc.write_frame(&frame).map_err(|e| fail(e.to_string()))?;
+        }
+    }
+    let path = dir.join("animation.gif");
+    write_atomic(&path, &bytes)?;
+    Ok((path, frames.len(), bytes.len()))
+}
+
+/// A small formula in η (the derivation's text of ψ): numbers, η, π, + - * / ^, implied
+/// multiplication ("3/2 eta^2"), parentheses and cos, sin, exp, sqrt.
+mod formula {
+    #[derive(Debug)]
+    pub enum Expr {
+        Num(f64),
+        Eta,
+        Neg(Box<Expr>),
+        Bin(char, Box<Expr>, Box<Expr>),
+        Call(fn(f64) -> f64, Box<Expr>),
+    }
+
+    impl Expr {
+        pub fn eval(&self, eta: f64) -> f64 {
+            match self {
+                Expr::Num(v) => *v,
+                Expr::Eta => eta,
+                Expr::Neg(a) => -a.eval(eta),
+                Expr::Call(f, a) => f(a.eval(eta)),
+                Expr::Bin(op, a, b) => {
+                    let (a, b) = (a.eval(eta), b.eval(eta));
+                    match op {
+                        '+' => a + b,
+                        '-' => a - b,
+                        '*' => a * b,
+                        '/' => a / b,
+                        _ => a.powf(b),
+                    }
+                }
+            }
+        }
+    }
+
+    #[derive(Clone, Debug, PartialEq)]
+    enum Tok {
+        Num(f64),
+        Word(String),
+        Op(char),
+    }
+
+    fn tokens(text: &str) -> Option<Vec<Tok>> {
+        let mut out = Vec::new();
+        let chars: Vec<char> = text.chars().collect();
+        let mut i = 0;
+        while i < chars.len() {
+            let c = chars[i];
+            if c.is_whitespace() {
+                i += 1;
+            } else if c.is_ascii_digit() || c == '.' {
+                let j = (i..chars.len())
+                    .find(|&j| !(chars[j].is_ascii_digit() || chars[j] == '.'))
+                    .unwrap_or(chars.len());
+                out.push(Tok::Num(
+                    chars[i..j].iter().collect::<String>().parse().ok()?,
+                ));
+                i = j;
+            } else if c.is_alphabetic() {
+                let j = (i..chars.len())
+                    .find(|&j| !(chars[j].is_alphanumeric() || chars[j] == '_'))
+                    .unwrap_or(chars.len());
+                out.push(Tok::Word(chars[i..j].iter().collect()));
+                i = j;
+            } else if "+-*/^()".contains(c) {
+                out.push(Tok::Op(c));
+                i += 1;
+            } else {
+                return None;
+            }
+        }
+        Some(out)
+    }
+
+    struct Parser {
+        toks: Vec<Tok>,
+        at: usize,
+    }
+
+    impl Parser {
+        fn peek(&self) -> Option<&Tok> {
+            self.toks.get(self.at)
+        }
+        fn eat(&mut self, op: char) -> bool {
+            let hit = self.peek() == Some(&Tok::Op(op));
+            self.at += usize::from(hit);
+            hit
+        }
+        fn sum(&mut self) -> Option<Expr> {
+            let mut a = self.product()?;
+            loop {
+                let op = if self.eat('+') {
+                    '+'
+                } else if self.eat('-') {
+                    '-'
+                } else {
+                    return Some(a);
+                };
+                a = Expr::Bin(op, Box::new(a), Box::new(self.product()?));
+            }
+        }
+        fn product(&mut self) -> Option<Expr> {
+            let mut a = self.unary()?;
+            loop {
+                let op = if self.eat('*') {
+                    '*'
+                } else if self.eat('/') {
+                    '/'
+                } else if matches!(self.peek(), Some(Tok::Num(_) | Tok::Word(_) | Tok::Op('('))) {
+                    '*' // implied: "3/2 eta^2"
+                } else {
+                    return Some(a);
+                };
+                a = Expr::Bin(op, Box::new(a), Box::new(self.unary()?));
+            }
+        }
+        fn unary(&mut self) -> Option<Expr> {
+            if self.eat('-') {
+                return Some(Expr::Neg(Box::new(self.unary()?)));
+            }
+            let base = self.atom()?;
+            if self.eat('^') {
+                return Some(Expr::Bin('^', Box::new(base), Box::new(self.unary()?)));
+            }
+            Some(base)
+        }
+        fn atom(&mut self) -> Option<Expr> {
+            let tok = self.peek()?.clone();
+            self.at += 1;
+            match tok {
+                Tok::Num(v) => Some(Expr::Num(v)),
+                Tok::Op('(') => {
+                    let e = self.sum()?;
+                    self.eat(')').then_some(e)
+                }
+                Tok::Word(w) => {
+                    let f: fn(f64) -> f64 = match w.as_str() {
+                        "eta" | "η" => return Some(Expr::Eta),
+                        "pi" | "π" => return Some(Expr::Num(std::f64::consts::PI)),
+                        "cos" => f64::cos,
+                        "sin" => f64::sin,
+                        "exp" => f64::exp,
+                        "sqrt" => f64::sqrt,
+                        _ => return None,
+                    };
+                    self.eat('(').then_some(())?;
+                    let e = self.sum()?;
+                    self.eat(')').then_some(Expr::Call(f, Box::new(e)))
+                }
+                Tok::Op(_) => None,
+            }
+        }
+    }
+
+    /// The formula of `text`, or `None` when it is not one (an unknown word, unbalanced
+    /// parentheses, trailing text).
+    pub fn parse(text: &str) -> Option<Expr> {
+        let mut p = Parser {
+            toks: tokens(text)?,
+            at: 0,
+        };
+        let e = p.sum()?;
+        (p.at == p.toks.len()).then_some(e)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_models_shape_function_is_read_from_the_registry() {
+        for m in rocking_kernels::kernels::MODELS {
+            let psi = shape_function(m).unwrap_or_else(|| panic!("{}: {}", m.name, m.shape));
+            // ψ(0) = 0 and ψ(1) = 1 are checked on reading; the column bends smoothly and
+            // monotonically between them.
+            let mut last = 0.0;
+            for k in 1..=10 {
+                let v = psi(k as f64 / 10.0);
+                assert!(
+                    v > last && v <= 1.0 + 1e-12,
+                    "{}: ψ({}) = {v}",
+                    m.name,
+                    k as f64 / 10.0
+                );
+                last = v;
+            }
+        }
+    }
+
+    #[test]
+    fn the_formula_reader_follows_precedence_and_implied_products() {
+        let e = formula::parse("3/2 eta^2 - 1/2 eta^3").expect("cubic");
+        assert!((e.eval(0.5) - (1.5 * 0.25 - 0.5 * 0.125)).abs() < 1e-15);
+        let e = formula::parse("1 - cos(pi eta / 2)").expect("cosine");
+        assert!((e.eval(0.5) - (1.0 - (std::f64::consts::PI / 4.0).cos())).abs() < 1e-15);
+        assert!(formula::parse("eta (paper eq 1)").is_none());
+        assert!(formula::parse("2 ^ -1").is_some_and(|e| (e.eval(0.0) - 0.5).abs() < 1e-15));
+    }
+
+    #[test]
+    fn the_drawn_frames_show_the_simulated_angles_and_deflections() {
+        let scene = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../scenes/fig10-overturns.toml");
+        let (_, mut m) = crate::load(&scene, &["output.animation=true".into()]).expect("scene");
+        m.options.history = rocking::History::Grid(0.01 / m.units.p_model);
+        let run =
+            rocking::simulate(&m.structure, &m.excitation, &m.effects, &m.options).expect("run");
+        let spec = Animation {
+            frames: 25,
+            width: 500,
+            height: 400,
+        };
+        let frames = geometry(&m, &run, &spec).expect("frames");
+        assert_eq!(frames.len(), 25);
+        assert_eq!(frames[0].tau, run.history[0].tau);
+        assert_eq!(frames[24].tau, run.history.last().unwrap().tau);
+        let phys = m.structure.physical();
+        for f in &frames {
+            // θ read back from the plate's bottom edge (y down on the screen: clockwise > 0).
+            let [(x0, y0), (x1, y1), ..] = f.base;
+            let theta = (y1 - y0).atan2(x1 - x0);
+            assert!(
+                (theta - f.theta_over_alpha * m.units.alpha).abs() < 1e-9,
+                "τ = {}: drawn θ = {theta}, simulated {}",
+                f.tau,
+                f.theta_over_alpha * m.units.alpha
+            );
+            // The plate is 2B long, the column's top is the mass, the frame holds everything.
+            let scale = (x1 - x0).hypot(y1 - y0) / (2.0 * phys.b);
+            let top = f.column[f.column.len() - 1];
+            assert!((top.0 - f.mass.0 .0).abs() < 1e-9 && (top.1 - f.mass.0 .1).abs() < 1e-9);
+            assert!((f.mass.1 - 0.06 * phys.h * scale).abs() < 1e-9);
+            for &(x, y) in f.base.iter().chain(&f.column) {
+                assert!(
+                    (0.0..=500.0).contains(&x) && (0.0..=400.0).contains(&y),
+                    "({x}, {y})"
+                );
+            }
+        }
+        assert!(
+            frames[24].theta_over_alpha.abs() * m.units.alpha > 1.0,
+            "it overturns"
+        );
+    }
+
+    #[test]
+    fn palette_indices_keep_the_drawing_colours_exact() {
+        let p = palette();
+        for c in [BASE, COLUMN, MASS, WHITE] {
+            let i = index_of(c.0, c.1, c.2) as usize;
+            assert_eq!(&p[3 * i..3 * i + 3], &[c.0, c.1, c.2], "{c:?}");
+        }
+    }
+}

@@ -1,0 +1,124 @@
+//! Marching squares on a grid of yes/no cells (overturned or not): the boundary between the two
+//! classes as line segments through the midpoints between neighbouring cells of different class
+//! (the paper's Fig. 9 boundaries, drawn between cells rather than along cell edges).
+
+/// A segment of a contour, in the axes' values.
+pub type Segment = [(f64, f64); 2];
+
+/// The contour between `true` and `false` cells of the grid `inside[i][j]` whose cell centres
+/// are at (`xs[i]`, `ys[j]`). Each segment joins the midpoints of two sides of a square of four
+/// neighbouring cell centres, on the sides whose ends differ. Where a square is a saddle (its
+/// diagonals differ), the `true` cells are taken as joined through its centre.
+pub fn contour(inside: &[Vec<bool>], xs: &[f64], ys: &[f64]) -> Vec<Segment> {
+    let mut out = Vec::new();
+    for i in 0..xs.len().saturating_sub(1) {
+        for j in 0..ys.len().saturating_sub(1) {
+            // Corners counter-clockwise: a (i, j), b (i+1, j), c (i+1, j+1), d (i, j+1).
+            let corner = [
+                inside[i][j],
+                inside[i + 1][j],
+                inside[i + 1][j + 1],
+                inside[i][j + 1],
+            ];
+            let (xm, ym) = ((xs[i] + xs[i + 1]) / 2.0, (ys[j] + ys[j + 1]) / 2.0);
+            // Side k joins corner k and corner k+1.
+            let mid = [(xm, ys[j]), (xs[i + 1], ym), (xm, ys[j + 1]), (xs[i], ym)];
+            let crossed: Vec<usize> = (0..4)
+                .filter(|&k| corner[k] != corner[(k + 1) % 4])
+                .collect();
+            match crossed.len() {
+                2 => out.push([mid[crossed[0]], mid[crossed[1]]]),
+                4 => {
+                    // Saddle: cut off each `false` corner k by the sides that meet at it
+                    // (sides k-1 and k).
+                    for k in (0..4).filter(|&k| !corner[k]) {
+                        out.push([mid[(k + 3) % 4], mid[k]]);
+                    }
+                }
+                _ => {}
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A staircase boundary: cell (i, j) is inside when j >= step[i].
+    fn grid(step: &[usize], ny: usize) -> Vec<Vec<bool>> {
+        step.iter()
+            .map(|&s| (0..ny).map(|j| j >= s).collect())
+            .collect()
+    }
+
+    #[test]
+    fn the_contour_passes_between_cells_of_different_class() {
+        let step = [4, 3, 3, 1, 5, 0];
+        let ny = 6;
+        let inside = grid(&step, ny);
+        let xs: Vec<f64> = (0..step.len()).map(|i| 1.0 + 0.5 * i as f64).collect();
+        let ys: Vec<f64> = (0..ny).map(|j| 10.0 + 2.0 * j as f64).collect();
+        let segs = contour(&inside, &xs, &ys);
+        assert!(!segs.is_empty());
+        // Every end point is the midpoint of two neighbouring cells of different class.
+        let class_at = |x: f64, y: f64| {
+            let i = xs.iter().position(|&v| (v - x).abs() < 1e-12);
+            let j = ys.iter().position(|&v| (v - y).abs() < 1e-12);
+            (i, j)
+        };
+        let mut midpoints = std::collections::BTreeSet::new();
+        for s in &segs {
+            for &(x, y) in s {
+                let (i, j) = match class_at(x, y) {
+                    // On a vertical side: between (i, j) and (i, j+1).
+                    (Some(i), None) => {
+                        let j = ys.iter().position(|&v| v > y).expect("inside the grid") - 1;
+                        assert_ne!(inside[i][j], inside[i][j + 1], "({x}, {y})");
+                        (2 * i, 2 * j + 1)
+                    }
+                    // On a horizontal side: between (i, j) and (i+1, j).
+                    (None, Some(j)) => {
+                        let i = xs.iter().position(|&v| v > x).expect("inside the grid") - 1;
+                        assert_ne!(inside[i][j], inside[i + 1][j], "({x}, {y})");
+                        (2 * i + 1, 2 * j)
+                    }
+                    other => panic!("({x}, {y}) is not between two cells: {other:?}"),
+                };
+                midpoints.insert((i, j));
+            }
+        }
+        // And every pair of neighbours of different class is crossed.
+        let mut expected = std::collections::BTreeSet::new();
+        for i in 0..xs.len() {
+            for j in 0..ys.len() {
+                if j + 1 < ys.len() && inside[i][j] != inside[i][j + 1] {
+                    expected.insert((2 * i, 2 * j + 1));
+                }
+                if i + 1 < xs.len() && inside[i][j] != inside[i + 1][j] {
+                    expected.insert((2 * i + 1, 2 * j));
+                }
+            }
+        }
+        assert_eq!(midpoints, expected);
+    }
+
+    #[test]
+    fn a_uniform_grid_has_no_contour_and_a_saddle_cuts_off_the_outside_corners() {
+        let xs = [0.0, 1.0];
+        let ys = [0.0, 1.0];
+        assert!(contour(&[vec![true; 2], vec![true; 2]], &xs, &ys).is_empty());
+        assert!(contour(&[vec![false; 2], vec![false; 2]], &xs, &ys).is_empty());
+        // inside at (0,0) and (1,1): the outside corners (1,0) and (0,1) are cut off.
+        let segs = contour(&[vec![true, false], vec![false, true]], &xs, &ys);
+        assert_eq!(segs.len(), 2);
+        let cuts_off = |corner: (f64, f64)| {
+            segs.iter().any(|s| {
+                s.iter()
+                    .all(|p| (p.0 - corner.0).abs() + (p.1 - corner.1).abs() == 0.5)
+            })
+        };
+        assert!(cuts_off((1.0, 0.0)) && cuts_off((0.0, 1.0)), "{segs:?}");
+    }
+}

@@ -1,0 +1,212 @@
+//! Figures on what they draw, not on pixels: the labels in the SVG text of the time history, the
+//! spectrum and the one-axis line plot; a one-axis sweep writes its line plot; the animated GIF
+//! has the stated frame count and size, and its first and last frames show the base plate at the
+//! simulated angles (read back from the drawn plate's pixels).
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_rocking"))
+}
+
+fn repo() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!(
+        "rocking-figures-test-{}-{name}",
+        std::process::id()
+    ));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+fn ok(o: &std::process::Output) {
+    assert!(
+        o.status.success(),
+        "{}\n{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
+
+fn svg_text(path: &Path) -> String {
+    let svg = std::fs::read_to_string(path).unwrap();
+    // The text of <text> elements only (labels, not attributes).
+    svg.split("<text")
+        .skip(1)
+        .filter_map(|t| t.split_once('>').map(|(_, rest)| rest))
+        .filter_map(|t| t.split_once("</text>").map(|(text, _)| text))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+fn sweep(out: &Path, axes: &[&str]) {
+    let mut c = bin();
+    c.arg("spectrum")
+        .arg(repo().join("scenes/spectra/fig8.toml"))
+        .arg("--quiet")
+        .arg("--out")
+        .arg(out);
+    for a in axes {
+        c.arg("--axis").arg(a);
+    }
+    ok(&c.output().unwrap());
+}
+
+#[test]
+fn the_spectrum_is_labelled_in_the_papers_notation() {
+    let out = tmp("spectrum");
+    sweep(
+        &out,
+        &[
+            "excitation.omega_p_over_p=1:10:8",
+            "excitation.amplitude=1:20:8",
+        ],
+    );
+    let text = svg_text(&out.join("spectrum.svg"));
+    for label in ["ω_p/p", "a_p/(g tan α)", "θ/α", "overturned", "Fig. 8"] {
+        assert!(
+            text.contains(label),
+            "`{label}` is not in the SVG text:\n{text}"
+        );
+    }
+    assert!(
+        !text.contains("excitation."),
+        "a raw key in the labels:\n{text}"
+    );
+    assert!(out.join("spectrum.png").is_file());
+}
+
+#[test]
+fn a_one_axis_sweep_writes_its_line_plot() {
+    let out = tmp("line");
+    sweep(&out, &["excitation.amplitude=1:20:12"]);
+    for f in ["line.png", "line.svg"] {
+        assert!(out.join(f).is_file(), "{f} is missing");
+    }
+    let text = svg_text(&out.join("line.svg"));
+    for label in ["a_p/(g tan α)", "max |θ|/α", "fraction overturned"] {
+        assert!(
+            text.contains(label),
+            "`{label}` is not in the SVG text:\n{text}"
+        );
+    }
+    // The fraction printed is the cells' own: from cells.csv.
+    let csv = std::fs::read_to_string(out.join("cells.csv")).unwrap();
+    let rows: Vec<&str> = csv.lines().skip(1).collect();
+    let over = rows.iter().filter(|r| r.contains(",overturned")).count();
+    assert!(
+        text.contains(&format!("fraction overturned = {over}/{}", rows.len())),
+        "{text}"
+    );
+}
+
+#[test]
+fn the_time_history_is_labelled_in_the_papers_notation() {
+    let out = tmp("history");
+    ok(&bin()
+        .arg("run")
+        .arg(repo().join("scenes/fig3-vvel.toml"))
+        .args(["--set", "output.plots=true", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap());
+    let text = svg_text(&out.join("plot.svg"));
+    for label in ["θ/α", "u/u_cr", "E/E_ref", "ü_g/(g tan α)", "τ = p t"] {
+        assert!(
+            text.contains(label),
+            "`{label}` is not in the SVG text:\n{text}"
+        );
+    }
+}
+
+/// The orientation (radians, clockwise on the screen) of the pixels of one colour, from their
+/// second moments, and their count.
+fn orientation(frame: &gif::Frame, palette: &[u8], rgb: [u8; 3]) -> (f64, usize) {
+    let w = frame.width as usize;
+    let pts: Vec<(f64, f64)> = frame
+        .buffer
+        .iter()
+        .enumerate()
+        .filter(|(_, &i)| palette[3 * i as usize..3 * i as usize + 3] == rgb)
+        .map(|(k, _)| ((k % w) as f64, (k / w) as f64))
+        .collect();
+    let n = pts.len() as f64;
+    let (mx, my) = pts
+        .iter()
+        .fold((0.0, 0.0), |(a, b), p| (a + p.0 / n, b + p.1 / n));
+    let (mut sxx, mut syy, mut sxy) = (0.0, 0.0, 0.0);
+    for (x, y) in &pts {
+        sxx += (x - mx) * (x - mx);
+        syy += (y - my) * (y - my);
+        sxy += (x - mx) * (y - my);
+    }
+    (0.5 * (2.0 * sxy).atan2(sxx - syy), pts.len())
+}
+
+#[test]
+fn the_animation_has_its_frames_and_size_and_shows_the_simulated_angles() {
+    // An overturning run: the last frame lies far from the first.
+    let out = tmp("animation");
+    let o = bin()
+        .arg("run")
+        .arg(repo().join("scenes/fig10-overturns.toml"))
+        .args([
+            "--animate",
+            "--set",
+            "output.plots=false",
+            "--set",
+            "output.animation_frames=37",
+            "--set",
+            "output.animation_width=640",
+            "--set",
+            "output.animation_height=480",
+            "--out",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    ok(&o);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        stdout.contains("animation: 37 frames of 640 × 480 pixels"),
+        "{stdout}"
+    );
+    // θ/α of the first and last history rows (the first and last frames).
+    let csv = std::fs::read_to_string(out.join("history.csv")).unwrap();
+    let theta = |line: &str| -> f64 { line.split(',').nth(2).unwrap().parse().unwrap() };
+    let rows: Vec<&str> = csv.lines().skip(1).collect();
+    let alpha = 0.1; // the scene's α
+    let (first, last) = (theta(rows[0]) * alpha, theta(rows[rows.len() - 1]) * alpha);
+    assert!(last.abs() > 1.0, "the run overturns: θ = {last}");
+
+    let mut opts = gif::DecodeOptions::new();
+    opts.set_color_output(gif::ColorOutput::Indexed);
+    let file = std::fs::File::open(out.join("animation.gif")).unwrap();
+    let mut dec = opts.read_info(file).unwrap();
+    assert_eq!((dec.width(), dec.height()), (640, 480));
+    let palette = dec.global_palette().unwrap().to_vec();
+    let mut frames = Vec::new();
+    while let Some(f) = dec.read_next_frame().unwrap() {
+        assert_eq!((f.width, f.height), (640, 480));
+        frames.push(f.clone());
+    }
+    assert_eq!(frames.len(), 37);
+    // The base plate's colour (plot::animation::BASE).
+    let base = [51, 51, 153];
+    for (frame, theta) in [(&frames[0], first), (&frames[36], last)] {
+        let (angle, pixels) = orientation(frame, &palette, base);
+        assert!(pixels > 50, "the base plate is drawn ({pixels} pixels)");
+        // The plate's axis is known up to a half turn; a few pixels' rounding on a plate of
+        // about a hundred pixels gives about 0.03 rad.
+        let d = (angle - theta).rem_euclid(std::f64::consts::PI);
+        let d = d.min(std::f64::consts::PI - d);
+        assert!(
+            d < 0.03,
+            "drawn {angle:.4} rad, simulated θ = {theta:.4} rad"
+        );
+    }
+}
