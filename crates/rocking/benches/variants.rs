@@ -5,9 +5,9 @@
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion};
+use rocking::TaylorVariant;
 use rocking::{simulate_variant, DampingConvention, Dimensionless, Options, Structure};
 use rocking_kernels::kernels::{Full, MasslessBase, MasslessColumn, PointMass, Rigid, SmallAngle};
-use rocking::TaylorVariant;
 use rocking_motion::SinePulse;
 
 fn structure(gamma_mc: f64, gamma_mb: f64, omega_n: f64) -> Structure {
