@@ -49,7 +49,7 @@ pub fn shape_function(model: &rocking_kernels::ModelInfo) -> Option<impl Fn(f64)
     let ok = expr.eval(0.0).abs() < 1e-12
         && (expr.eval(1.0) - 1.0).abs() < 1e-12
         && (0..=20).all(|k| expr.eval(k as f64 / 20.0).is_finite());
-    ok.then(move || move |eta: f64| expr.eval(eta))
+    ok.then_some(move |eta: f64| expr.eval(eta))
 }
 
 /// Ground displacement at each history row, from ü_g by the trapezoidal rule twice (the ground

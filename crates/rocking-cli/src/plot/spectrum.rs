@@ -186,7 +186,7 @@ fn colour_bar<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, top: f64) -> Re
             )
         }))
         .map_err(e)?;
-    Ok(height as i32)
+    Ok(height)
 }
 
 /// A cell's position (i, j) on the grid of the last two axes.
