@@ -54,6 +54,7 @@ pub use structure::{
     find_model, model_names, plate_inertia, DampingConvention, Derived, Dimensionless, ParamError,
     Structure, PAPER_MODEL,
 };
+pub use taylor::TaylorVariant;
 
 use rocking_kernels::{kernels::MAX_PARAMS, with_variant, Role};
 use rocking_motion::GroundMotion;
