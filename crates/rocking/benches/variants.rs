@@ -5,7 +5,6 @@
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use rocking::TaylorVariant;
 use rocking::{simulate_variant, DampingConvention, Dimensionless, Options, Structure};
 use rocking_kernels::kernels::{Full, MasslessBase, MasslessColumn, PointMass, Rigid, SmallAngle};
 use rocking_motion::SinePulse;
@@ -23,7 +22,7 @@ fn structure(gamma_mc: f64, gamma_mb: f64, omega_n: f64) -> Structure {
     Structure::from_dimensionless(&d, None).unwrap()
 }
 
-fn run<V: TaylorVariant>(s: &Structure, pulse: &SinePulse, o: &Options) -> f64 {
+fn run<V: rocking::TaylorVariant>(s: &Structure, pulse: &SinePulse, o: &Options) -> f64 {
     simulate_variant::<V, _, false>(s, pulse, o)
         .unwrap()
         .summary
