@@ -67,7 +67,13 @@ fn the_spectrum_is_labelled_in_the_papers_notation() {
         ],
     );
     let text = svg_text(&out.join("spectrum.svg"));
-    for label in ["ω_p/p", "a_p/(g tan α)", "θ/α", "overturned", "Fig. 8"] {
+    for label in [
+        "ω_p/p",
+        "a_p/(g tan α)",
+        "max |θ|/α",
+        "overturned",
+        "Fig. 8",
+    ] {
         assert!(
             text.contains(label),
             "`{label}` is not in the SVG text:\n{text}"

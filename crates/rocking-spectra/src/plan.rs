@@ -67,7 +67,8 @@ impl Base {
             if sets.is_empty() {
                 t
             } else {
-                format!("{t} [{}]", sets.join(", "))
+                let shown: Vec<String> = sets.iter().map(|s| labelled(s)).collect();
+                format!("{t} [{}]", shown.join(", "))
             }
         });
         let record = sc.spec.excitation.as_ref().and_then(|e| {
@@ -165,6 +166,18 @@ impl Base {
             key.push_str(&format!("{}={:?}\n", a.key, a.values));
         }
         format!("{:016x}", fnv1a(key.as_bytes()))
+    }
+}
+
+/// An override `key=value` as a title shows it: a number in the paper's notation
+/// (`ω_n/p = 2.5`), anything else as written.
+fn labelled(set: &str) -> String {
+    match set.split_once('=') {
+        Some((key, value)) => match value.trim().parse::<f64>() {
+            Ok(v) => rocking_scene::labels::axis_value(key.trim(), v),
+            Err(_) => set.to_string(),
+        },
+        None => set.to_string(),
     }
 }
 
