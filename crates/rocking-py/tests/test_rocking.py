@@ -237,3 +237,41 @@ def test_the_gil_is_released_during_a_spectrum():
     q = (end - start) / 4
     middle = [s for s in stamps if start + q < s < end - q]
     assert len(middle) > 10, (len(stamps), end - start)
+
+
+def _at2_samples(path):
+    """The samples and time step of a PEER AT2 file in g (4 header lines), parsed here in Python."""
+    lines = Path(path).read_text().splitlines()
+    dt = float(lines[3].split("DT=")[1].split()[0])
+    return np.array([float(x) for line in lines[4:] for x in line.split()]), dt
+
+
+def test_a_record_from_an_array_runs_as_its_file():
+    path = REPO / "scenes" / "records" / "elCentro.AT2"
+    samples, dt = _at2_samples(path)
+    structure = rocking.Structure(h=120.0, b=6.0, ei=4.163e11, m=3.0e5, m_c=3.0e5, m_b=6.0e5,
+                                  zeta=0.01, g=9.81)
+    opts = rocking.Options(accuracy="default", after_excitation=10.0)
+    effects = rocking.Effects(impact="vvel", energy=True)
+    from_file = rocking.simulate(structure, rocking.Excitation.record(path, scale=3.0),
+                                 opts, effects).summary.to_dict()
+    from_array = rocking.simulate(structure,
+                                  rocking.Excitation.samples(samples, dt, "g", scale=3.0),
+                                  opts, effects).summary.to_dict()
+    assert from_file["impacts"] > 0
+    # The same record (samples, dt, units, PGA) described under its own path; all else equal.
+    tail = lambda d: d.pop("excitation").split(" ", 2)[2]
+    assert tail(from_array) == tail(from_file)
+    assert from_array == from_file
+
+
+@pytest.mark.parametrize("samples,dt,units,key", [
+    ([0.0, float("nan"), 0.1], 0.01, "g", "acceleration[1]"),
+    ([[0.0, 0.1]], 0.01, "g", "1-D"),
+    ([0.0, 0.1, 0.0], -0.01, "g", "dt"),
+    ([0.0, 0.1, 0.0], 0.01, "ft/s2", "units"),
+])
+def test_a_bad_array_record_raises_value_error_naming_it(samples, dt, units, key):
+    structure = rocking.Structure(omega_n_over_p=5.0, alpha=0.1)
+    with pytest.raises(ValueError, match=key.replace("[", r"\[").replace("]", r"\]")):
+        rocking.simulate(structure, rocking.Excitation.samples(samples, dt, units))

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import json
 import os
+import tempfile
 from typing import Any, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -360,6 +361,32 @@ class Excitation(_Table):
         """A PEER .AT2 record (read by the library: its time step and units as the command reads
         them); ``units`` ("g", "cm/s2", "m/s2") only when the header states none."""
         return cls("record", path=os.path.abspath(os.fspath(path)), scale=scale, units=units)
+
+    @classmethod
+    def samples(cls, acceleration: Any, dt: float, units: str,
+                scale: Optional[float] = None) -> "Excitation":
+        """A record given as an array of ground accelerations at time step ``dt`` (seconds) in
+        ``units`` ("g", "cm/s2" or "m/s2"). The samples are written, exactly (shortest repr), to a
+        plain-text record that lives as long as this object, and read by the library's text
+        reader: the same unit conversion and checks as a record file in a scene."""
+        a = np.asarray(acceleration, dtype=float)
+        if a.ndim != 1 or a.size < 2:
+            raise ValueError(f"acceleration: a 1-D array of at least 2 samples is needed, "
+                             f"got shape {a.shape}")
+        bad = np.flatnonzero(~np.isfinite(a))
+        if bad.size:
+            raise ValueError(f"acceleration[{bad[0]}] = {a[bad[0]]}: samples must be finite")
+        if not (isinstance(dt, (int, float)) and np.isfinite(dt) and dt > 0):
+            raise ValueError(f"dt = {dt!r}: the time step must be a finite number > 0 (s)")
+        directory = tempfile.TemporaryDirectory(prefix="rocking-record-")
+        path = os.path.join(directory.name, "samples.txt")
+        with open(path, "w", encoding="utf-8") as f:
+            f.write("# written by rocking.Excitation.samples\n")
+            f.writelines(f"{float(x)!r}\n" for x in a)
+        excitation = cls("record", path=path, format="text", dt=float(dt), units=units,
+                         scale=scale)
+        excitation._directory = directory  # removed with the object
+        return excitation
 
 
 class Options(_Table):
