@@ -1,10 +1,9 @@
 //! The generated Taylor-mode kernels (`rocking_kernels::taylor`) of each kernel variant, behind a
 //! trait so that the hybrid driver stays generic and monomorphised as with [`Variant`].
 //!
-//! The generator emits the Taylor kernels as free functions per variant module but no trait
-//! implementation; the list below binds each variant type to its module. It cannot drift from
-//! the generated set: `run_variant` dispatches every generated variant through `with_variant!`
-//! with this trait as a bound, so a variant without an implementation does not compile.
+//! The generator emits the Taylor kernels as free functions per variant module; the generated
+//! `for_each_variant!` binds each variant type to its module here, so a model added to the
+//! derivation gets its implementation without a hand-written list.
 
 use rocking_kernels::kernels::{self, index::power as pwr};
 use rocking_kernels::taylor;
@@ -81,16 +80,7 @@ macro_rules! taylor_variant {
     )*};
 }
 
-taylor_variant!(
-    AddedMass => added_mass,
-    CosineShape => cosine_shape,
-    Full => full,
-    MasslessBase => massless_base,
-    MasslessColumn => massless_column,
-    PointMass => point_mass,
-    Rigid => rigid,
-    SmallAngle => small_angle,
-);
+rocking_kernels::for_each_variant!(taylor_variant);
 
 /// The rocking phase about `s` as a [`TaylorSystem`]: state `[θ, u, θ', u']`, then `[W, D]` when
 /// `D == 6`, each divided by its natural scale so that one tolerance serves all (as the

@@ -705,6 +705,25 @@ macro_rules! with_variant {
     };
 }
 
+/// Invokes the macro `$callback` once with every generated variant as `Type => module`, so that
+/// code binding each variant to companion modules (the Taylor kernels) lists none by hand.
+#[rustfmt::skip]
+#[macro_export]
+macro_rules! for_each_variant {
+    ($callback:ident) => {
+        $callback!(
+            AddedMass => added_mass,
+            CosineShape => cosine_shape,
+            Full => full,
+            MasslessBase => massless_base,
+            MasslessColumn => massless_column,
+            PointMass => point_mass,
+            Rigid => rigid,
+            SmallAngle => small_angle,
+        );
+    };
+}
+
 /// Calls `function` of `variant` by name with slices for its inputs (scalars as
 /// one-element slices), for tests and tools.
 ///
