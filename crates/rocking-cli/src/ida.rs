@@ -190,20 +190,8 @@ fn record_files(base: &Base, given: &[PathBuf]) -> Result<Vec<PathBuf>, CliError
     } else {
         given.to_vec()
     };
-    let mut files = Vec::new();
-    for f in given {
-        if f.is_dir() {
-            let mut found: Vec<PathBuf> = std::fs::read_dir(&f)
-                .map_err(|e| CliError::Input(format!("{}: {e}", f.display())))?
-                .filter_map(|e| e.ok().map(|e| e.path()))
-                .filter(|p| RecordFormat::from_path(p).is_some())
-                .collect();
-            found.sort();
-            files.extend(found);
-        } else {
-            files.push(f);
-        }
-    }
+    let files =
+        rocking_spectra::plan::expand_records(given, |p| RecordFormat::from_path(p).is_some())?;
     if files.is_empty() {
         return Err(CliError::Input(format!(
             "{}: no records: give --records FILE|DIR or `records = [...]` in [ida]",

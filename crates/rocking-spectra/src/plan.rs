@@ -169,6 +169,29 @@ impl Base {
     }
 }
 
+/// Record files as given: a file stands for itself, a directory for its files that `keep`
+/// accepts, sorted by name.
+pub fn expand_records(
+    given: impl IntoIterator<Item = PathBuf>,
+    keep: impl Fn(&Path) -> bool,
+) -> Result<Vec<PathBuf>, CliError> {
+    let mut files = Vec::new();
+    for f in given {
+        if f.is_dir() {
+            let mut found: Vec<PathBuf> = std::fs::read_dir(&f)
+                .map_err(|e| CliError::Input(format!("{}: {e}", f.display())))?
+                .filter_map(|e| e.ok().map(|e| e.path()))
+                .filter(|p| keep(p))
+                .collect();
+            found.sort();
+            files.extend(found);
+        } else {
+            files.push(f);
+        }
+    }
+    Ok(files)
+}
+
 /// An override `key=value` as a title shows it: a number in the paper's notation
 /// (`ω_n/p = 2.5`), anything else as written.
 fn labelled(set: &str) -> String {
@@ -295,20 +318,9 @@ impl Plan {
                 .collect();
         }
         // A directory stands for all the .AT2 files in it.
-        let mut files = Vec::new();
-        for f in given {
-            if f.is_dir() {
-                let mut found: Vec<PathBuf> = std::fs::read_dir(&f)
-                    .map_err(|e| CliError::Input(format!("{}: {e}", f.display())))?
-                    .filter_map(|e| e.ok().map(|e| e.path()))
-                    .filter(|p| p.extension().is_some_and(|x| x.eq_ignore_ascii_case("at2")))
-                    .collect();
-                found.sort();
-                files.extend(found);
-            } else {
-                files.push(f);
-            }
-        }
+        let files = expand_records(given, |p| {
+            p.extension().is_some_and(|x| x.eq_ignore_ascii_case("at2"))
+        })?;
         if files.is_empty() {
             return Err(CliError::Input(format!(
                 "{}: no records: give --records FILE|DIR or `records = [...]` in [sweep]",
