@@ -57,6 +57,9 @@ def kernels(variant: Variant) -> list[Kernel]:
     s = Input("s", "active pivot: +1 right corner (theta > 0), -1 left corner", ["s"], [sym.s], scalar=True)
     s1 = Input("s", "pivot before the impact; the corner -s hits the ground", ["s"], [sym.s], scalar=True)
     p = Input("p", "parameters", names, [sym.params[n] for n in names], params=True)
+    eta_sym = ca.SX.sym("eta")
+    eta = Input("eta", "height along the column over H (0 at the base, 1 at the top)", ["eta"], [eta_sym],
+                scalar=True)
 
     mass, force = mech.equations()
     if mech.rigid:
@@ -161,4 +164,7 @@ def kernels(variant: Variant) -> list[Kernel]:
           "(the rigid column's potential-energy barrier with all masses), R, alpha, p = sqrt(g/R) and the "
           "thin-plate base inertia 4/3 m_b B^2 (the unit of gamma_ib).",
           [p], Output("st", "structure quantities", list(structure), list(structure.values()))),
+        K("shape", "Shape function psi(eta) of the column: its deflection at height eta H is psi(eta) u "
+          "(psi(0) = 0, psi(1) = 1), for drawing the deformed column.", [eta],
+          Output("psi", "shape function", ["psi"], [variant.model.shape.value(eta_sym)], scalar=True)),
     ]

@@ -292,4 +292,6 @@ pub trait Variant: Copy + Default + Send + Sync + 'static {
     fn impact_housner(xi: &[f64; 3], s: f64, p: &Self::Params) -> [f64; 4];
     /// Structure and reference quantities (see the generated doc for the order).
     fn structure(p: &Self::Params) -> [f64; 15];
+    /// Shape function ψ(η): the column's deflection at height ηH is ψ(η)·u (for drawing it).
+    fn shape(eta: f64) -> f64;
 }

@@ -290,7 +290,7 @@ pub fn merge(out: &Path, dirs: &[PathBuf]) -> Result<(), CliError> {
 
 fn write(plan: &Plan, kind: Kind, outcome: &Outcome, dir: &Path) -> Result<Vec<PathBuf>, CliError> {
     match kind {
-        Kind::Spectrum => sweep::write_outputs(&plan.base, &plan.sweep, outcome, dir),
+        Kind::Spectrum => sweep::write_outputs(plan, outcome, dir),
         Kind::Batch => sweep::write_batch_outputs(plan, outcome, dir).map(|(w, _)| w),
     }
 }

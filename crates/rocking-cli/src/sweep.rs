@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use rocking_spectra::plan::{program_digest, Base, Plan, Records};
-use rocking_spectra::{cells_csv, CellClass, Outcome, Progress, Shard, Sweep};
+use rocking_spectra::{cells_csv, CellClass, Outcome, Progress, Shard};
 use serde_json::json;
 
 use crate::merge;
@@ -60,7 +60,7 @@ pub fn spectrum(
     shard: Option<Shard>,
 ) -> Result<(), CliError> {
     let plan = Plan::spectrum(Base::load(scene_path, sets)?, axis_args)?;
-    let (base, sweep) = (&plan.base, &plan.sweep);
+    let sweep = &plan.sweep;
     let dir = out_dir(scene_path, out, "spectrum");
     let progress = if quiet {
         Progress::Quiet
@@ -78,7 +78,7 @@ pub fn spectrum(
             })
         })
         .map_err(sweep_error)?;
-    let mut written = write_outputs(base, sweep, &outcome, &dir)?;
+    let mut written = pool.install(|| write_outputs(&plan, &outcome, &dir))?;
     written.push(write_timing(&outcome, &dir, pool.current_num_threads())?);
     let mut counts: BTreeMap<&str, usize> = BTreeMap::new();
     for c in &outcome.cells {
@@ -134,18 +134,42 @@ fn write_timing(outcome: &Outcome, dir: &Path, threads: usize) -> Result<PathBuf
     Ok(path)
 }
 
-/// cells.csv, meta.json and the plots of a spectrum (also of a merge of its shards).
+/// cells.csv, meta.json and the plots of a spectrum (also of a merge of its shards); with
+/// `[sweep] reference`, the reference structure's cells (run here, in memory) in reference.csv
+/// and on the figure.
 pub(crate) fn write_outputs(
-    base: &Base,
-    sweep: &Sweep,
+    plan: &Plan,
     outcome: &Outcome,
     dir: &Path,
 ) -> Result<Vec<PathBuf>, CliError> {
+    let (base, sweep) = (&plan.base, &plan.sweep);
     let mut written = Vec::new();
     let cells = dir.join("cells.csv");
     write_atomic(&cells, cells_csv(sweep, &outcome.cells).as_bytes())?;
     written.push(cells);
-    let meta = json!({
+    let reference = match plan.reference()? {
+        Some(r) => {
+            let run = rocking_spectra::run_in_memory(&r.plan.sweep, |values| {
+                r.plan.run_cell(values).map_err(|e| e.to_string())
+            })
+            .map_err(sweep_error)?;
+            let path = dir.join("reference.csv");
+            write_atomic(&path, cells_csv(&r.plan.sweep, &run.cells).as_bytes())?;
+            written.push(path);
+            if let Some((_, first)) = run.failures.first() {
+                eprintln!(
+                    "note: {} of {} cells of the reference ({}) failed (marked `failed` in \
+                     reference.csv); first: {first}",
+                    r.name,
+                    run.failures.len(),
+                    run.cells.len()
+                );
+            }
+            Some((r, run))
+        }
+        None => None,
+    };
+    let mut meta = json!({
         "scene": base.path().display().to_string(),
         "scene_text": base.text(),
         "set": base.sets(),
@@ -158,6 +182,17 @@ pub(crate) fn write_outputs(
         }).collect::<Vec<_>>(),
         "versions": {"rocking": env!("CARGO_PKG_VERSION"), "kernels": "generated/ir (CasADi 3.8.2)"},
     });
+    if let Some((r, run)) = &reference {
+        meta["reference"] = json!({
+            "name": r.name,
+            "set": r.plan.base.sets(),
+            "axes": r.plan.sweep.axes.iter().map(|a| a.key.clone()).collect::<Vec<_>>(),
+            "cells": run.cells.len(),
+            "failures": run.failures.iter().map(|(i, m)| {
+                json!({"cell": i, "values": r.plan.sweep.values(*i), "message": m})
+            }).collect::<Vec<_>>(),
+        });
+    }
     let path = dir.join("meta.json");
     write_atomic(
         &path,
@@ -173,7 +208,18 @@ pub(crate) fn write_outputs(
         Some(t) => format!("{t}: {kind}"),
         None => kind.to_string(),
     };
-    written.extend(plot::spectrum_plots(&title, sweep, &outcome.cells, dir)?);
+    let shown = reference.as_ref().map(|(r, run)| plot::Reference {
+        label: r.label,
+        sweep: &r.plan.sweep,
+        cells: &run.cells,
+    });
+    written.extend(plot::spectrum_plots(
+        &title,
+        sweep,
+        &outcome.cells,
+        shown.as_ref(),
+        dir,
+    )?);
     Ok(written)
 }
 

@@ -216,3 +216,110 @@ fn the_animation_has_its_frames_and_size_and_shows_the_simulated_angles() {
         );
     }
 }
+
+/// Runs `rocking spectrum` on the Fig-9 scene (`[sweep] reference = "rigid"`) with small axes.
+fn fig9(out: &Path, extra: &[&str]) -> std::process::Output {
+    let mut c = bin();
+    c.arg("spectrum")
+        .arg(repo().join("scenes/spectra/fig9.toml"))
+        .arg("--quiet")
+        .arg("--out")
+        .arg(out)
+        .args(extra);
+    c.output().unwrap()
+}
+
+#[test]
+fn the_rigid_reference_is_the_rigid_columns_own_spectrum_and_is_drawn() {
+    let grid = [
+        "--axis",
+        "excitation.omega_p_over_p=2:6:4",
+        "--axis",
+        "excitation.amplitude=2:12:5",
+    ];
+    // Three axes (boundaries of two structures) with the reference beside them.
+    let out = tmp("fig9-reference");
+    let mut args = vec!["--axis", "structure.omega_n_over_p=2.5,10"];
+    args.extend(grid);
+    ok(&fig9(&out, &args));
+    // The reference's cells are those of the rigid column's own spectrum over the figure's axes.
+    let rigid = tmp("fig9-rigid");
+    let mut args = vec!["--set", "effects.flexibility=false"];
+    args.extend(grid);
+    ok(&fig9(&rigid, &args));
+    let reference = std::fs::read_to_string(out.join("reference.csv")).unwrap();
+    assert_eq!(
+        reference,
+        std::fs::read_to_string(rigid.join("cells.csv")).unwrap(),
+        "reference.csv differs from the rigid column's spectrum"
+    );
+    assert_eq!(reference.lines().count(), 1 + 4 * 5);
+    assert!(reference.contains("overturned"), "{reference}");
+    let text = svg_text(&out.join("spectrum.svg"));
+    assert!(text.contains("rigid column"), "{text}");
+    assert!(
+        text.contains("ω_n/p = 2.5") && text.contains("ω_n/p = 10"),
+        "{text}"
+    );
+    let meta: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("meta.json")).unwrap()).unwrap();
+    assert_eq!(meta["reference"]["name"], "rigid");
+    assert_eq!(meta["reference"]["cells"], 20);
+    // The two-axis spectrum of the rigid run (which names the reference too) draws it dashed on
+    // its colour map, with a legend entry.
+    // (The legend wraps its text over lines: compare with the whitespace normalised.)
+    let text = svg_text(&rigid.join("spectrum.svg"));
+    let words = text.split_whitespace().collect::<Vec<_>>().join(" ");
+    assert!(
+        words.contains("overturning boundary, rigid column"),
+        "{text}"
+    );
+    let svg = std::fs::read_to_string(rigid.join("spectrum.svg")).unwrap();
+    assert!(
+        svg.matches("stroke=\"#000000\"").count() > 10,
+        "no dashes drawn in black"
+    );
+    // Sharded and merged, the reference is run where the figure is drawn: the same bytes.
+    let shards: Vec<PathBuf> = (0..2).map(|k| tmp(&format!("fig9-shard{k}"))).collect();
+    for (k, dir) in shards.iter().enumerate() {
+        let shard = format!("{k}/2");
+        let mut args = vec![
+            "--axis",
+            "structure.omega_n_over_p=2.5,10",
+            "--shard",
+            &shard,
+        ];
+        args.extend(grid);
+        ok(&fig9(dir, &args));
+    }
+    let merged = tmp("fig9-merged");
+    ok(&bin()
+        .arg("merge")
+        .arg(&merged)
+        .args(&shards)
+        .output()
+        .unwrap());
+    for f in ["cells.csv", "reference.csv", "meta.json", "spectrum.svg"] {
+        assert_eq!(
+            std::fs::read(merged.join(f)).unwrap(),
+            std::fs::read(out.join(f)).unwrap(),
+            "merged {f} differs"
+        );
+    }
+    for d in [out, rigid, merged].into_iter().chain(shards) {
+        let _ = std::fs::remove_dir_all(d);
+    }
+}
+
+#[test]
+fn an_unknown_reference_is_refused_naming_the_key_and_the_choices() {
+    let out = tmp("fig9-bad-reference");
+    let o = fig9(&out, &["--set", "sweep.reference=\"elastic\""]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("fig9.toml") && err.contains("sweep.reference") && err.contains("\"rigid\""),
+        "{err}"
+    );
+    assert!(!out.exists(), "nothing is written for a refused scene");
+}

@@ -198,12 +198,14 @@ pub struct IdaSpec {
     pub seed: Option<u64>,
 }
 
-/// `[sweep]`: the axes of `rocking spectrum` (same syntax as `--axis`), and for `rocking batch`
-/// a list of records (paths relative to the scene) and scale factors.
+/// `[sweep]`: the axes of `rocking spectrum` (same syntax as `--axis`) and the reference structure
+/// drawn on its figure, and for `rocking batch` a list of records (paths relative to the scene)
+/// and scale factors.
 #[derive(Clone, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SweepSpec {
     pub axes: Option<Vec<String>>,
+    pub reference: Option<String>,
     pub records: Option<Vec<String>>,
     pub scales: Option<Vec<f64>>,
 }

@@ -169,6 +169,32 @@ impl Base {
     }
 }
 
+/// The reference `[sweep] reference` names and its override, checked against [`REFERENCES`].
+type ReferenceKind = (&'static str, &'static str, &'static str);
+
+fn reference_sets(base: &Base) -> Result<Option<ReferenceKind>, CliError> {
+    let spec = base.scene.spec.sweep.as_ref();
+    let Some(name) = spec.and_then(|s| s.reference.as_deref()) else {
+        return Ok(None);
+    };
+    match REFERENCES.iter().find(|(n, _, _)| *n == name) {
+        Some(&r) => Ok(Some(r)),
+        None => {
+            let allowed: Vec<String> = REFERENCES
+                .iter()
+                .map(|(n, _, _)| format!("\"{n}\""))
+                .collect();
+            Err(base.scene.src.err(
+                "sweep.reference",
+                format!(
+                    "`sweep.reference = \"{name}\"` is not a reference structure: allowed: {}",
+                    allowed.join(", ")
+                ),
+            ))
+        }
+    }
+}
+
 /// Record files as given: a file stands for itself, a directory for its files that `keep`
 /// accepts, sorted by name.
 pub fn expand_records(
@@ -205,6 +231,21 @@ fn labelled(set: &str) -> String {
 }
 
 /// An override `key=value` that reads back as the same f64.
+/// The reference structures a spectrum's figure can be drawn against (`[sweep] reference`): name,
+/// the override that makes one from the scene, and its legend text.
+pub const REFERENCES: [(&str, &str, &str); 1] =
+    [("rigid", "effects.flexibility=false", "rigid column")];
+
+/// The sweep of a reference structure over the axes a spectrum's figure shows.
+pub struct ReferencePlan {
+    /// Its name in `[sweep] reference`.
+    pub name: &'static str,
+    /// Its legend text.
+    pub label: &'static str,
+    /// The reference scene swept over the figure's axes.
+    pub plan: Plan,
+}
+
 fn set_arg(key: &str, v: f64) -> String {
     format!("{key}={v:?}")
 }
@@ -285,6 +326,7 @@ impl Plan {
                 base.model(&[set_arg(&a.key, v)])?;
             }
         }
+        reference_sets(&base)?;
         let cells = match base.knobs(&keys) {
             Some(k) => Cells::Knobs(k),
             None => Cells::Sets,
@@ -403,6 +445,35 @@ impl Plan {
                 scales,
             }),
         })
+    }
+
+    /// The sweep of the reference structure `[sweep] reference` asks for (the rigid column: the
+    /// scene with `effects.flexibility = false`) over the axes the figure shows (the last two),
+    /// or `None`. Its cells are cheap beside the sweep's (one structure, the rigid model) and are
+    /// run where the figure is drawn, so a sharded sweep's merge draws the same figure.
+    pub fn reference(&self) -> Result<Option<ReferencePlan>, CliError> {
+        if self.records.is_some() {
+            return Ok(None);
+        }
+        let Some((name, set, label)) = reference_sets(&self.base)? else {
+            return Ok(None);
+        };
+        let mut sets = self.base.sets.clone();
+        sets.push(set.to_string());
+        let base = Base::from_text(&self.base.path, self.base.text.clone(), &sets)?;
+        let n = self.sweep.axes.len();
+        let specs: Vec<String> = self.sweep.axes[n.saturating_sub(2)..]
+            .iter()
+            .map(|a| {
+                let values: Vec<String> = a.values.iter().map(|v| format!("{v:?}")).collect();
+                format!("{}={}", a.key, values.join(","))
+            })
+            .collect();
+        Ok(Some(ReferencePlan {
+            name,
+            label,
+            plan: Plan::spectrum(base, &specs)?,
+        }))
     }
 
     /// Runs the cell with these axis values (summary only).

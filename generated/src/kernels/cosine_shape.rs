@@ -1745,6 +1745,36 @@ pub mod structure {
     pub const I_BC_PLATE: usize = 14;
 }
 
+/// Shape function psi(eta) of the column: its deflection at height eta H is psi(eta) u (psi(0) = 0, psi(1) = 1), for drawing the deformed column.
+///
+/// # Inputs
+///
+/// - `eta: f64`: height along the column over H (0 at the base, 1 at the top) — `eta`
+///
+/// # Output
+///
+/// `psi: f64`: shape function — `psi`
+///
+/// Operations: 3 (1 cos, 1 mul, 1 sub).
+#[inline]
+#[must_use]
+pub fn shape(eta: f64) -> f64 {
+    let w0: f64 = 1.0;
+    let w1: f64 = 1.5707963267948966;
+    let w2 = eta; // eta
+    let w3 = w1 * w2;
+    let w4 = w3.cos();
+    let w5 = w0 - w4;
+    let o0 = w5; // psi
+    o0
+}
+
+/// Indices of the elements of the output `psi` of [`shape()`].
+pub mod shape {
+    /// Index of `psi`.
+    pub const PSI: usize = 0;
+}
+
 /// Example: the full model with the shape psi = 1 - cos(pi xi / 2H)
 ///
 /// Type-level handle of this variant, implementing [`crate::Variant`].
@@ -1824,6 +1854,11 @@ impl crate::Variant for CosineShape {
     #[inline]
     fn structure(p: &Params) -> [f64; 15] {
         structure(p)
+    }
+
+    #[inline]
+    fn shape(eta: f64) -> f64 {
+        shape(eta)
     }
 }
 
@@ -1934,6 +1969,13 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             };
             let p: &Params = (*p).try_into().ok()?;
             Some(structure(p).to_vec())
+        }
+        "shape" => {
+            let [eta] = inputs else {
+                return None;
+            };
+            let eta: f64 = match eta { [v] => *v, _ => return None };
+            Some(vec![shape(eta)])
         }
         _ => None,
     }

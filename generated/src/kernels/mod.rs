@@ -658,6 +658,12 @@ pub mod index {
         /// Index of `i_bc_plate`.
         pub const I_BC_PLATE: usize = 14;
     }
+
+    /// Indices of the output `psi` of `shape` (and of its inputs).
+    pub mod shape {
+        /// Index of `psi`.
+        pub const PSI: usize = 0;
+    }
 }
 
 /// Evaluates `$body` with the type `$V` standing for the variant named `$name` (a `&str`),

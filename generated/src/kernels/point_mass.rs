@@ -1078,6 +1078,38 @@ pub mod structure {
     pub const I_BC_PLATE: usize = 14;
 }
 
+/// Shape function psi(eta) of the column: its deflection at height eta H is psi(eta) u (psi(0) = 0, psi(1) = 1), for drawing the deformed column.
+///
+/// # Inputs
+///
+/// - `eta: f64`: height along the column over H (0 at the base, 1 at the top) — `eta`
+///
+/// # Output
+///
+/// `psi: f64`: shape function — `psi`
+///
+/// Operations: 5 (3 mul, 1 add, 1 sq).
+#[inline]
+#[must_use]
+pub fn shape(eta: f64) -> f64 {
+    let w0: f64 = 1.5;
+    let w1 = eta; // eta
+    let w2 = w1 * w1;
+    let w3 = w0 * w2;
+    let w4: f64 = -0.5;
+    let w5 = w1 * w2;
+    let w6 = w4 * w5;
+    let w7 = w3 + w6;
+    let o0 = w7; // psi
+    o0
+}
+
+/// Indices of the elements of the output `psi` of [`shape()`].
+pub mod shape {
+    /// Index of `psi`.
+    pub const PSI: usize = 0;
+}
+
 /// Top mass only (m_c = m_b = I_bc = 0): the model of Acikgoz & DeJong
 ///
 /// Type-level handle of this variant, implementing [`crate::Variant`].
@@ -1157,6 +1189,11 @@ impl crate::Variant for PointMass {
     #[inline]
     fn structure(p: &Params) -> [f64; 15] {
         structure(p)
+    }
+
+    #[inline]
+    fn shape(eta: f64) -> f64 {
+        shape(eta)
     }
 }
 
@@ -1267,6 +1304,13 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             };
             let p: &Params = (*p).try_into().ok()?;
             Some(structure(p).to_vec())
+        }
+        "shape" => {
+            let [eta] = inputs else {
+                return None;
+            };
+            let eta: f64 = match eta { [v] => *v, _ => return None };
+            Some(vec![shape(eta)])
         }
         _ => None,
     }

@@ -36,20 +36,14 @@ pub struct Frame {
     pub ticks: Vec<f64>,
 }
 
-/// The model's shape function ψ(η), evaluated from the derivation's own statement of it
-/// (`ModelInfo::shape`, e.g. "psi = 3/2 eta^2 - 1/2 eta^3"); `None` when that text is not a
-/// formula in η with ψ(0) = 0 and ψ(1) = 1 (the column is then drawn as its chord).
-pub fn shape_function(model: &rocking_kernels::ModelInfo) -> Option<impl Fn(f64) -> f64> {
-    let text = model.shape.split_once('=').map_or(model.shape, |(_, r)| r);
-    let expr = formula::parse(text).or_else(|| {
-        // A trailing remark in parentheses: "(paper eq 1)".
-        let cut = text.trim_end().strip_suffix(')')?.rfind('(')?;
-        formula::parse(&text[..cut])
-    })?;
-    let ok = expr.eval(0.0).abs() < 1e-12
-        && (expr.eval(1.0) - 1.0).abs() < 1e-12
-        && (0..=20).all(|k| expr.eval(k as f64 / 20.0).is_finite());
-    ok.then_some(move |eta: f64| expr.eval(eta))
+/// The model's shape function ψ(η), the derivation's own `shape` kernel of the model's variant
+/// (so a model with a new shape function is drawn with it, with nothing re-typed here).
+pub fn shape_function(model: &rocking_kernels::ModelInfo) -> impl Fn(f64) -> f64 {
+    let variant = model.full;
+    move |eta: f64| {
+        rocking_kernels::with_variant!(variant, V => <V as rocking_kernels::Variant>::shape(eta))
+            .unwrap_or(eta)
+    }
 }
 
 /// Ground displacement at each history row, from ü_g by the trapezoidal rule twice (the ground
@@ -131,12 +125,8 @@ pub fn geometry(model: &Model, run: &Run, spec: &Animation) -> Result<Vec<Frame>
     }
     let phys = model.structure.physical();
     let (hh, b) = (phys.h, phys.b);
-    let chord = |eta: f64| eta;
     let psi_fn = shape_function(model.structure.model());
-    let psi: &dyn Fn(f64) -> f64 = match &psi_fn {
-        Some(f) => f,
-        None => &chord,
-    };
+    let psi: &dyn Fn(f64) -> f64 = &psi_fn;
     let ug = ground_displacement(h, model.units.p_model);
     let rows = frame_rows(h, spec.frames);
     let worlds: Vec<World> = rows
@@ -330,180 +320,22 @@ pub fn animation(
     Ok((path, frames.len(), bytes.len()))
 }
 
-/// A small formula in η (the derivation's text of ψ): numbers, η, π, + - * / ^, implied
-/// multiplication ("3/2 eta^2"), parentheses and cos, sin, exp, sqrt.
-mod formula {
-    #[derive(Debug)]
-    pub enum Expr {
-        Num(f64),
-        Eta,
-        Neg(Box<Expr>),
-        Bin(char, Box<Expr>, Box<Expr>),
-        Call(fn(f64) -> f64, Box<Expr>),
-    }
-
-    impl Expr {
-        pub fn eval(&self, eta: f64) -> f64 {
-            match self {
-                Expr::Num(v) => *v,
-                Expr::Eta => eta,
-                Expr::Neg(a) => -a.eval(eta),
-                Expr::Call(f, a) => f(a.eval(eta)),
-                Expr::Bin(op, a, b) => {
-                    let (a, b) = (a.eval(eta), b.eval(eta));
-                    match op {
-                        '+' => a + b,
-                        '-' => a - b,
-                        '*' => a * b,
-                        '/' => a / b,
-                        _ => a.powf(b),
-                    }
-                }
-            }
-        }
-    }
-
-    #[derive(Clone, Debug, PartialEq)]
-    enum Tok {
-        Num(f64),
-        Word(String),
-        Op(char),
-    }
-
-    fn tokens(text: &str) -> Option<Vec<Tok>> {
-        let mut out = Vec::new();
-        let chars: Vec<char> = text.chars().collect();
-        let mut i = 0;
-        while i < chars.len() {
-            let c = chars[i];
-            if c.is_whitespace() {
-                i += 1;
-            } else if c.is_ascii_digit() || c == '.' {
-                let j = (i..chars.len())
-                    .find(|&j| !(chars[j].is_ascii_digit() || chars[j] == '.'))
-                    .unwrap_or(chars.len());
-                out.push(Tok::Num(
-                    chars[i..j].iter().collect::<String>().parse().ok()?,
-                ));
-                i = j;
-            } else if c.is_alphabetic() {
-                let j = (i..chars.len())
-                    .find(|&j| !(chars[j].is_alphanumeric() || chars[j] == '_'))
-                    .unwrap_or(chars.len());
-                out.push(Tok::Word(chars[i..j].iter().collect()));
-                i = j;
-            } else if "+-*/^()".contains(c) {
-                out.push(Tok::Op(c));
-                i += 1;
-            } else {
-                return None;
-            }
-        }
-        Some(out)
-    }
-
-    struct Parser {
-        toks: Vec<Tok>,
-        at: usize,
-    }
-
-    impl Parser {
-        fn peek(&self) -> Option<&Tok> {
-            self.toks.get(self.at)
-        }
-        fn eat(&mut self, op: char) -> bool {
-            let hit = self.peek() == Some(&Tok::Op(op));
-            self.at += usize::from(hit);
-            hit
-        }
-        fn sum(&mut self) -> Option<Expr> {
-            let mut a = self.product()?;
-            loop {
-                let op = if self.eat('+') {
-                    '+'
-                } else if self.eat('-') {
-                    '-'
-                } else {
-                    return Some(a);
-                };
-                a = Expr::Bin(op, Box::new(a), Box::new(self.product()?));
-            }
-        }
-        fn product(&mut self) -> Option<Expr> {
-            let mut a = self.unary()?;
-            loop {
-                let op = if self.eat('*') {
-                    '*'
-                } else if self.eat('/') {
-                    '/'
-                } else if matches!(self.peek(), Some(Tok::Num(_) | Tok::Word(_) | Tok::Op('('))) {
-                    '*' // implied: "3/2 eta^2"
-                } else {
-                    return Some(a);
-                };
-                a = Expr::Bin(op, Box::new(a), Box::new(self.unary()?));
-            }
-        }
-        fn unary(&mut self) -> Option<Expr> {
-            if self.eat('-') {
-                return Some(Expr::Neg(Box::new(self.unary()?)));
-            }
-            let base = self.atom()?;
-            if self.eat('^') {
-                return Some(Expr::Bin('^', Box::new(base), Box::new(self.unary()?)));
-            }
-            Some(base)
-        }
-        fn atom(&mut self) -> Option<Expr> {
-            let tok = self.peek()?.clone();
-            self.at += 1;
-            match tok {
-                Tok::Num(v) => Some(Expr::Num(v)),
-                Tok::Op('(') => {
-                    let e = self.sum()?;
-                    self.eat(')').then_some(e)
-                }
-                Tok::Word(w) => {
-                    let f: fn(f64) -> f64 = match w.as_str() {
-                        "eta" | "η" => return Some(Expr::Eta),
-                        "pi" | "π" => return Some(Expr::Num(std::f64::consts::PI)),
-                        "cos" => f64::cos,
-                        "sin" => f64::sin,
-                        "exp" => f64::exp,
-                        "sqrt" => f64::sqrt,
-                        _ => return None,
-                    };
-                    self.eat('(').then_some(())?;
-                    let e = self.sum()?;
-                    self.eat(')').then_some(Expr::Call(f, Box::new(e)))
-                }
-                Tok::Op(_) => None,
-            }
-        }
-    }
-
-    /// The formula of `text`, or `None` when it is not one (an unknown word, unbalanced
-    /// parentheses, trailing text).
-    pub fn parse(text: &str) -> Option<Expr> {
-        let mut p = Parser {
-            toks: tokens(text)?,
-            at: 0,
-        };
-        let e = p.sum()?;
-        (p.at == p.toks.len()).then_some(e)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
-    fn every_models_shape_function_is_read_from_the_registry() {
+    fn every_models_shape_function_comes_from_its_kernel() {
         for m in rocking_kernels::kernels::MODELS {
-            let psi = shape_function(m).unwrap_or_else(|| panic!("{}: {}", m.name, m.shape));
-            // ψ(0) = 0 and ψ(1) = 1 are checked on reading; the column bends smoothly and
-            // monotonically between them.
+            let psi = shape_function(m);
+            assert!(psi(0.0).abs() < 1e-15, "{}: ψ(0) = {}", m.name, psi(0.0));
+            assert!(
+                (psi(1.0) - 1.0).abs() < 1e-15,
+                "{}: ψ(1) = {}",
+                m.name,
+                psi(1.0)
+            );
+            // The column bends smoothly and monotonically between them.
             let mut last = 0.0;
             for k in 1..=10 {
                 let v = psi(k as f64 / 10.0);
@@ -516,16 +348,6 @@ mod tests {
                 last = v;
             }
         }
-    }
-
-    #[test]
-    fn the_formula_reader_follows_precedence_and_implied_products() {
-        let e = formula::parse("3/2 eta^2 - 1/2 eta^3").expect("cubic");
-        assert!((e.eval(0.5) - (1.5 * 0.25 - 0.5 * 0.125)).abs() < 1e-15);
-        let e = formula::parse("1 - cos(pi eta / 2)").expect("cosine");
-        assert!((e.eval(0.5) - (1.0 - (std::f64::consts::PI / 4.0).cos())).abs() < 1e-15);
-        assert!(formula::parse("eta (paper eq 1)").is_none());
-        assert!(formula::parse("2 ^ -1").is_some_and(|e| (e.eval(0.0) - 0.5).abs() < 1e-15));
     }
 
     #[test]

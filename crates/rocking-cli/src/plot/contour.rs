@@ -42,6 +42,46 @@ pub fn contour(inside: &[Vec<bool>], xs: &[f64], ys: &[f64]) -> Vec<Segment> {
     out
 }
 
+/// The segments joined into polylines at their shared ends (marching squares computes a shared
+/// midpoint by the same expression in both squares, so ends match exactly): dashes then run on
+/// along a boundary instead of restarting at every cell. A closed loop ends at its start.
+pub fn polylines(segments: &[Segment]) -> Vec<Vec<(f64, f64)>> {
+    use std::collections::HashMap;
+    let key = |p: (f64, f64)| (p.0.to_bits(), p.1.to_bits());
+    let mut at: HashMap<(u64, u64), Vec<usize>> = HashMap::new();
+    for (k, s) in segments.iter().enumerate() {
+        at.entry(key(s[0])).or_default().push(k);
+        at.entry(key(s[1])).or_default().push(k);
+    }
+    let mut used = vec![false; segments.len()];
+    // The segment at `p` not used yet, and its other end.
+    let next = |p: (f64, f64), used: &mut Vec<bool>| -> Option<(f64, f64)> {
+        let k = *at.get(&key(p))?.iter().find(|&&k| !used[k])?;
+        used[k] = true;
+        let s = segments[k];
+        Some(if key(s[0]) == key(p) { s[1] } else { s[0] })
+    };
+    let mut out = Vec::new();
+    // Open chains first, from an end that only one segment touches; then the closed loops.
+    let mut starts: Vec<usize> = (0..segments.len()).collect();
+    starts.sort_by_key(|&k| at[&key(segments[k][0])].len() != 1);
+    for k in starts {
+        if used[k] {
+            continue;
+        }
+        used[k] = true;
+        let mut line = vec![segments[k][0], segments[k][1]];
+        while let Some(p) = next(*line.last().unwrap_or(&segments[k][1]), &mut used) {
+            line.push(p);
+        }
+        while let Some(p) = next(line[0], &mut used) {
+            line.insert(0, p);
+        }
+        out.push(line);
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -120,5 +160,21 @@ mod tests {
             })
         };
         assert!(cuts_off((1.0, 0.0)) && cuts_off((0.0, 1.0)), "{segs:?}");
+    }
+
+    #[test]
+    fn segments_join_into_one_line_per_boundary() {
+        let ys: Vec<f64> = (0..6).map(|j| j as f64 * 0.5).collect();
+        let xs: Vec<f64> = (0..6).map(|i| i as f64).collect();
+        // A staircase (one open line) and, apart, one inside cell (a closed loop of 4 segments).
+        let mut inside = grid(&[1, 2, 2, 6, 6, 6], ys.len());
+        inside[4][3] = true;
+        let segments = contour(&inside, &xs, &ys);
+        let lines = polylines(&segments);
+        assert_eq!(lines.len(), 2, "{lines:?}");
+        let total: usize = lines.iter().map(|l| l.len() - 1).sum();
+        assert_eq!(total, segments.len(), "every segment is used once");
+        let closed = lines.iter().filter(|l| l.first() == l.last()).count();
+        assert_eq!(closed, 1, "the lone cell is a closed loop: {lines:?}");
     }
 }

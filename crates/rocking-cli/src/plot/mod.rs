@@ -9,7 +9,7 @@ pub mod animation;
 pub mod contour;
 mod spectrum;
 
-pub use spectrum::spectrum_plots;
+pub use spectrum::{spectrum_plots, Reference};
 
 use std::path::{Path, PathBuf};
 use std::sync::Once;

@@ -1,18 +1,20 @@
 //! Sweep figures: the rocking spectrum of a two-axis sweep (the paper's Figs 6-8: max θ/α of the
 //! survivors on a continuous colour scale with its colour bar, the overturning classes in their
 //! own colours), the overturning boundaries of a three-axis sweep (Fig. 9: one contour per value
-//! of the first axis, by marching squares) and the line plot of a one-axis sweep. Legends sit
-//! beside the plot area, never on the data.
+//! of the first axis, by marching squares) and the line plot of a one-axis sweep, each with the
+//! reference structure's boundary (or line) dashed when `[sweep] reference` asks for it. Legends
+//! sit beside the plot area, never on the data.
 
 use std::path::{Path, PathBuf};
 
 use plotters::coord::Shift;
+use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 use plotters::style::colors::colormaps::ViridisRGB;
 use rocking_scene::labels;
 use rocking_spectra::{Cell, CellClass, Sweep};
 
-use super::contour::{contour, Segment};
+use super::contour::{contour, polylines, Segment};
 use super::{register, render_pair, titled};
 use crate::scene::CliError;
 
@@ -56,6 +58,45 @@ const LINES: &[RGBColor] = &[
     RGBColor(140, 86, 75),
     RGBColor(0, 0, 0),
 ];
+
+/// A reference structure's cells over the axes the figure shows (`[sweep] reference`).
+pub struct Reference<'a> {
+    /// Legend text, e.g. "rigid column".
+    pub label: &'a str,
+    pub sweep: &'a Sweep,
+    pub cells: &'a [Cell],
+}
+
+/// How a legend entry is drawn.
+#[derive(Clone, Copy)]
+enum Swatch {
+    Box,
+    Line,
+    Dashed,
+}
+
+/// The reference's style: black, dashed.
+const DASH: (u32, u32, u32) = (9, 6, 3);
+
+/// Draws `points` dashed in black (the reference).
+fn dashed<DB: DrawingBackend>(
+    chart: &mut ChartContext<
+        '_,
+        DB,
+        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+    >,
+    lines: Vec<Vec<(f64, f64)>>,
+) -> Result<(), String> {
+    let (size, gap, width) = DASH;
+    chart
+        .draw_series(
+            lines
+                .into_iter()
+                .map(|l| DashedPathElement::new(l, size, gap, BLACK.stroke_width(width))),
+        )
+        .map_err(|e| e.to_string())?;
+    Ok(())
+}
 
 /// Whether a class is one of the overturned ones.
 fn overturned(class: CellClass) -> bool {
@@ -107,23 +148,36 @@ fn top_of_survivors(cells: &[Cell]) -> f64 {
 fn legend<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     top: i32,
-    items: &[(RGBColor, String, bool)],
+    items: &[(RGBColor, String, Swatch)],
 ) -> Result<(), String> {
     let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
     let width = area.dim_in_pixel().0 as usize;
     let mut y = top;
-    for (colour, text, line) in items {
-        if *line {
-            area.draw(&PathElement::new(
-                vec![(8, y + 9), (34, y + 9)],
-                colour.stroke_width(3),
-            ))
-            .map_err(e)?;
-        } else {
-            area.draw(&Rectangle::new([(10, y), (30, y + 18)], colour.filled()))
+    for (colour, text, swatch) in items {
+        match swatch {
+            Swatch::Line => {
+                area.draw(&PathElement::new(
+                    vec![(8, y + 9), (34, y + 9)],
+                    colour.stroke_width(3),
+                ))
                 .map_err(e)?;
-            area.draw(&Rectangle::new([(10, y), (30, y + 18)], BLACK))
+            }
+            Swatch::Dashed => {
+                let (size, gap, width) = DASH;
+                area.draw(&DashedPathElement::new(
+                    vec![(6, y + 9), (36, y + 9)],
+                    size,
+                    gap,
+                    colour.stroke_width(width),
+                ))
                 .map_err(e)?;
+            }
+            Swatch::Box => {
+                area.draw(&Rectangle::new([(10, y), (30, y + 18)], colour.filled()))
+                    .map_err(e)?;
+                area.draw(&Rectangle::new([(10, y), (30, y + 18)], BLACK))
+                    .map_err(e)?;
+            }
         }
         let lines = super::wrap(text, (width.saturating_sub(48) / 8).max(12));
         for (k, l) in lines.iter().enumerate() {
@@ -237,6 +291,7 @@ fn draw_spectrum<DB: DrawingBackend>(
     title: &str,
     sweep: &Sweep,
     cells: &[Cell],
+    reference: Option<&Reference>,
 ) -> Result<(), String> {
     let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
     root.fill(&WHITE).map_err(e)?;
@@ -256,18 +311,36 @@ fn draw_spectrum<DB: DrawingBackend>(
             )
         }))
         .map_err(e)?;
+    if let Some(r) = reference {
+        dashed(&mut chart, reference_boundary(r))?;
+    }
     let below = colour_bar(&side, top)?;
-    let present: Vec<(RGBColor, String, bool)> = CLASSES
+    let mut present: Vec<(RGBColor, String, Swatch)> = CLASSES
         .iter()
         .filter(|(k, _, _)| cells.iter().any(|c| c.class == *k))
-        .map(|(_, colour, text)| (*colour, text.to_string(), false))
+        .map(|(_, colour, text)| (*colour, text.to_string(), Swatch::Box))
         .collect();
+    if let Some(r) = reference {
+        present.push((
+            BLACK,
+            format!("overturning boundary, {}", r.label),
+            Swatch::Dashed,
+        ));
+    }
     legend(&side, below + 10, &present)?;
     root.present().map_err(e)
 }
 
-/// The overturning contour of each structure (value of the leading axes) of a sweep of three or
-/// more axes, with its legend text.
+/// The overturning boundary of a reference's two-axis sweep, as polylines.
+fn reference_boundary(r: &Reference) -> Vec<Vec<(f64, f64)>> {
+    boundaries(r.sweep, r.cells)
+        .into_iter()
+        .flat_map(|(_, segments)| polylines(&segments))
+        .collect()
+}
+
+/// The overturning contour of each structure (value of the leading axes) of a sweep of two or
+/// more axes, with its legend text (empty for two axes: one structure).
 pub fn boundaries(sweep: &Sweep, cells: &[Cell]) -> Vec<(String, Vec<Segment>)> {
     let n = sweep.axes.len();
     let (xs, ys) = (&sweep.axes[n - 2].values, &sweep.axes[n - 1].values);
@@ -292,7 +365,6 @@ pub fn boundaries(sweep: &Sweep, cells: &[Cell]) -> Vec<(String, Vec<Segment>)> 
     }
     grids
         .into_iter()
-        .filter(|(name, _)| !name.is_empty())
         .map(|(name, g)| (name, contour(&g, xs, ys)))
         .collect()
 }
@@ -302,6 +374,7 @@ fn draw_boundaries<DB: DrawingBackend>(
     title: &str,
     sweep: &Sweep,
     cells: &[Cell],
+    reference: Option<&Reference>,
 ) -> Result<(), String> {
     let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
     root.fill(&WHITE).map_err(e)?;
@@ -313,12 +386,16 @@ fn draw_boundaries<DB: DrawingBackend>(
         let colour = LINES[k % LINES.len()];
         chart
             .draw_series(
-                segments
+                polylines(&segments)
                     .into_iter()
-                    .map(|s| PathElement::new(s.to_vec(), colour.stroke_width(3))),
+                    .map(|l| PathElement::new(l, colour.stroke_width(3))),
             )
             .map_err(e)?;
-        items.push((colour, name, true));
+        items.push((colour, name, Swatch::Line));
+    }
+    if let Some(r) = reference {
+        dashed(&mut chart, reference_boundary(r))?;
+        items.push((BLACK, r.label.to_string(), Swatch::Dashed));
     }
     side.draw(&Text::new(
         "overturning boundary (overturned above):",
@@ -335,6 +412,7 @@ fn draw_line<DB: DrawingBackend>(
     title: &str,
     sweep: &Sweep,
     cells: &[Cell],
+    reference: Option<&Reference>,
 ) -> Result<(), String> {
     let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
     root.fill(&WHITE).map_err(e)?;
@@ -362,23 +440,12 @@ fn draw_line<DB: DrawingBackend>(
     let mut sorted: Vec<&Cell> = cells.iter().collect();
     sorted.sort_by(|a, b| sweep.values(a.index)[0].total_cmp(&sweep.values(b.index)[0]));
     let blue = LINES[0];
-    // Survivors joined by a line where consecutive; other classes marked on the axis.
-    let mut run: Vec<(f64, f64)> = Vec::new();
-    for c in &sorted {
-        let x = sweep.values(c.index)[0];
-        if matches!(c.class, CellClass::Survived | CellClass::NoUplift) {
-            run.push((x, c.max_theta_over_alpha));
-        } else if !run.is_empty() {
-            chart
-                .draw_series(LineSeries::new(
-                    std::mem::take(&mut run),
-                    blue.stroke_width(2),
-                ))
-                .map_err(e)?;
-        }
-    }
     chart
-        .draw_series(LineSeries::new(run, blue.stroke_width(2)))
+        .draw_series(
+            survivor_runs(sweep, cells)
+                .into_iter()
+                .map(|run| PathElement::new(run, blue.stroke_width(2))),
+        )
         .map_err(e)?;
     chart
         .draw_series(sorted.iter().map(|c| {
@@ -402,24 +469,54 @@ fn draw_line<DB: DrawingBackend>(
         .iter()
         .filter(|c| c.class != CellClass::Failed)
         .count();
+    if let Some(r) = reference {
+        dashed(&mut chart, survivor_runs(r.sweep, r.cells))?;
+    }
     let mut items = vec![(
         blue,
         format!("survived: {}", labels::MAX_THETA_OVER_ALPHA),
-        false,
+        Swatch::Box,
     )];
+    if let Some(r) = reference {
+        items.push((
+            BLACK,
+            format!("{}: {}", r.label, labels::MAX_THETA_OVER_ALPHA),
+            Swatch::Dashed,
+        ));
+    }
     items.extend(
         CLASSES
             .iter()
             .filter(|(k, _, _)| cells.iter().any(|c| c.class == *k))
-            .map(|(_, colour, text)| (*colour, text.to_string(), false)),
+            .map(|(_, colour, text)| (*colour, text.to_string(), Swatch::Box)),
     );
     items.push((
         WHITE,
         format!("{} = {over}/{done}", labels::FRACTION_OVERTURNED),
-        false,
+        Swatch::Box,
     ));
     legend(&side, 40, &items)?;
     root.present().map_err(e)
+}
+
+/// The (axis value, max θ/α) lines of a one-axis sweep's cells that did not overturn, split where
+/// a cell between them did.
+fn survivor_runs(sweep: &Sweep, cells: &[Cell]) -> Vec<Vec<(f64, f64)>> {
+    let mut sorted: Vec<&Cell> = cells.iter().collect();
+    sorted.sort_by(|a, b| sweep.values(a.index)[0].total_cmp(&sweep.values(b.index)[0]));
+    let mut runs = vec![Vec::new()];
+    for c in sorted {
+        if matches!(c.class, CellClass::Survived | CellClass::NoUplift) {
+            let x = sweep.values(c.index)[0];
+            if let Some(run) = runs.last_mut() {
+                run.push((x, c.max_theta_over_alpha));
+            }
+        } else if runs.last().is_some_and(|r| !r.is_empty()) {
+            runs.push(Vec::new());
+        }
+    }
+    runs.retain(|r| !r.is_empty());
+    runs
 }
 
 /// The figure of a sweep, as PNG and SVG: `line` for one axis, `spectrum` for two (regions and
@@ -428,6 +525,7 @@ pub fn spectrum_plots(
     title: &str,
     sweep: &Sweep,
     cells: &[Cell],
+    reference: Option<&Reference>,
     dir: &Path,
 ) -> Result<Vec<PathBuf>, CliError> {
     if sweep.axes.is_empty() || cells.is_empty() {
@@ -460,22 +558,22 @@ pub fn spectrum_plots(
             dir,
             "line",
             SIZE,
-            |r| draw_line(r, title, sweep, cells),
-            |r| draw_line(r, title, sweep, cells),
+            |r| draw_line(r, title, sweep, cells, reference),
+            |r| draw_line(r, title, sweep, cells, reference),
         ),
         2 => render_pair(
             dir,
             "spectrum",
             SIZE,
-            |r| draw_spectrum(r, title, sweep, cells),
-            |r| draw_spectrum(r, title, sweep, cells),
+            |r| draw_spectrum(r, title, sweep, cells, reference),
+            |r| draw_spectrum(r, title, sweep, cells, reference),
         ),
         _ => render_pair(
             dir,
             "spectrum",
             SIZE,
-            |r| draw_boundaries(r, title, sweep, cells),
-            |r| draw_boundaries(r, title, sweep, cells),
+            |r| draw_boundaries(r, title, sweep, cells, reference),
+            |r| draw_boundaries(r, title, sweep, cells, reference),
         ),
     }
 }
