@@ -1,14 +1,17 @@
 //! `rocking ida`: incremental dynamic analysis of a record scene over a suite of records. Per
 //! record its intensity measures (once), its overturning capacity in the chosen IM by
 //! hunt-and-fill, and its IDA curve; over the suite the lognormal fragility fitted by maximum
-//! likelihood with a bootstrap band. Not resumable: the whole study is rerun (see docs/records.md).
+//! likelihood with a bootstrap band. With `[ida] stripes` a multiple-stripe analysis instead:
+//! every record at each IM level, the fit from the fraction collapsed per level (Baker 2015).
+//! Not resumable: the whole study is rerun (see docs/records.md).
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use rayon::prelude::*;
 use rocking_fragility::{
-    bootstrap_capacities, BootstrapOptions, HuntFill, Ida, IdaError, Outcome, ScalingIm,
+    bootstrap_capacities, bootstrap_stripes, BootstrapOptions, HuntFill, IdaError, IdaPoint,
+    Outcome, ScalingIm, Stripe,
 };
 use rocking_motion::intensity::{pga_over_uplift, IntensityMeasures};
 use rocking_motion::{AccelUnit, Record, RecordFormat};
@@ -25,6 +28,8 @@ use crate::scene::CliError;
 struct Settings {
     im: ScalingIm,
     hunt: HuntFill,
+    /// The IM levels of a multiple-stripe analysis (`None`: IDA by hunt-and-fill).
+    stripes: Option<Vec<f64>>,
     limit: Option<f64>,
     bootstrap: BootstrapOptions,
 }
@@ -38,8 +43,14 @@ struct Done {
     unit: &'static str,
     ims: IntensityMeasures,
     im_unscaled: f64,
-    ida: Ida,
+    /// Every analysis of the record, sorted by IM.
+    points: Vec<IdaPoint>,
+    /// The IDA capacity and the highest survivor below it (`None` for stripes).
+    capacity: Option<(f64, f64)>,
 }
+
+/// The most IM levels `[ida] stripes` may list.
+const MAX_STRIPES: usize = 1000;
 
 fn check(
     src: &Source,
@@ -146,6 +157,24 @@ fn settings(spec: &IdaSpec, src: &Source) -> Result<Settings, CliError> {
             "a finite value > 0 (collapse when max θ/α reaches it)",
         )?;
     }
+    if let Some(levels) = &spec.stripes {
+        check(
+            src,
+            "stripes",
+            (1..=MAX_STRIPES).contains(&levels.len()),
+            format_args!("a list of {} levels", levels.len()),
+            &format!("1 to {MAX_STRIPES} IM levels"),
+        )?;
+        if let Some(bad) = levels.iter().find(|v| !(v.is_finite() && **v > 0.0)) {
+            check(
+                src,
+                "stripes",
+                false,
+                format_args!("[..., {bad}, ...]"),
+                "IM levels finite and > 0 (m/s^2)",
+            )?;
+        }
+    }
     let resamples = spec.bootstrap.unwrap_or(2000);
     let max = rocking_fragility::bootstrap::MAX_RESAMPLES;
     check(
@@ -165,6 +194,12 @@ fn settings(spec: &IdaSpec, src: &Source) -> Result<Settings, CliError> {
             max_gap,
             max_runs,
         },
+        // Sorted, each level once (a repeated level would count its records twice).
+        stripes: spec.stripes.clone().map(|mut v| {
+            v.sort_by(f64::total_cmp);
+            v.dedup();
+            v
+        }),
         limit: spec.theta_over_alpha_limit,
         bootstrap: BootstrapOptions {
             resamples,
@@ -201,7 +236,7 @@ fn record_files(base: &Base, given: &[PathBuf]) -> Result<Vec<PathBuf>, CliError
     Ok(files)
 }
 
-/// Runs one record's IDA.
+/// Runs one record's IDA, or its stripes.
 fn study(base: &Base, s: &Settings, file: &Path) -> Result<Done, CliError> {
     let path = std::fs::canonicalize(file)
         .unwrap_or_else(|_| file.to_path_buf())
@@ -244,27 +279,38 @@ fn study(base: &Base, s: &Settings, file: &Path) -> Result<Done, CliError> {
     let knobs = base
         .knobs(&["excitation.path", "excitation.scale"])
         .ok_or_else(|| CliError::Internal("record path and scale are not knobs".into()))?;
-    let ida = s
-        .hunt
-        .run(|im| {
-            let cell = [
-                (&knobs[0], KnobValue::Text(path.clone())),
-                (&knobs[1], KnobValue::Number(im / im_unscaled)),
-            ];
-            let sum = base.run_knobs(&cell)?;
-            let r = sum.max_theta_over_alpha;
-            Ok::<_, CliError>(Outcome {
-                collapsed: sum.overturned || s.limit.is_some_and(|l| r >= l),
-                response: r,
-            })
+    let run_at = |im: f64| -> Result<Outcome, CliError> {
+        let cell = [
+            (&knobs[0], KnobValue::Text(path.clone())),
+            (&knobs[1], KnobValue::Number(im / im_unscaled)),
+        ];
+        let sum = base.run_knobs(&cell)?;
+        let r = sum.max_theta_over_alpha;
+        Ok(Outcome {
+            collapsed: sum.overturned || s.limit.is_some_and(|l| r >= l),
+            response: r,
         })
-        .map_err(|e| match e {
-            IdaError::Analysis { source, .. } => source,
-            IdaError::InvalidParameter(m) => CliError::Internal(m),
-            budget => CliError::Input(format!(
-                "{path}: {budget}; raise `max_runs` in [ida] (1 <= max_runs <= 10000) or `step`"
-            )),
-        })?;
+    };
+    let (points, capacity) = match &s.stripes {
+        Some(levels) => {
+            let mut points = levels
+                .iter()
+                .map(|&im| run_at(im).map(|outcome| IdaPoint { im, outcome }))
+                .collect::<Result<Vec<_>, _>>()?;
+            points.sort_by(|a, b| a.im.total_cmp(&b.im));
+            (points, None)
+        }
+        None => {
+            let ida = s.hunt.run(run_at).map_err(|e| match e {
+                IdaError::Analysis { source, .. } => source,
+                IdaError::InvalidParameter(m) => CliError::Internal(m),
+                budget => CliError::Input(format!(
+                    "{path}: {budget}; raise `max_runs` in [ida] (1 <= max_runs <= 10000) or `step`"
+                )),
+            })?;
+            (ida.points, Some((ida.capacity, ida.survived_below)))
+        }
+    };
     let name = file
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
@@ -277,7 +323,8 @@ fn study(base: &Base, s: &Settings, file: &Path) -> Result<Done, CliError> {
         unit,
         ims,
         im_unscaled,
-        ida,
+        points,
+        capacity,
     })
 }
 
@@ -323,13 +370,15 @@ fn records_csv(done: &[Done], alpha: f64, g_si: f64) -> Result<Vec<u8>, CliError
                 m.mean_period_s,
                 d.im_unscaled,
                 norm,
-                d.ida.capacity,
-                d.ida.survived_below,
-                d.ida.runs() as f64,
             ]
             .iter()
             .map(|x| x.to_string()),
         );
+        // A stripe study has no capacity per record: those fields stay empty.
+        let (capacity, below) = d.capacity.map_or((String::new(), String::new()), |(c, b)| {
+            (c.to_string(), b.to_string())
+        });
+        row.extend([capacity, below, d.points.len().to_string()]);
         w.write_record(&row).map_err(csv_err)?;
     }
     w.into_inner()
@@ -347,7 +396,7 @@ fn ida_csv(done: &[Done]) -> Result<Vec<u8>, CliError> {
     ])
     .map_err(csv_err)?;
     for d in done {
-        for p in &d.ida.points {
+        for p in &d.points {
             w.write_record([
                 d.name.clone(),
                 p.im.to_string(),
@@ -362,7 +411,17 @@ fn ida_csv(done: &[Done]) -> Result<Vec<u8>, CliError> {
         .map_err(|e| CliError::Internal(e.to_string()))
 }
 
-/// `rocking ida`.
+/// The intensity measure's axis label, e.g. "Sa(T = 4.5 s, ζ = 5 %) (m/s²)".
+fn im_label(im: &ScalingIm) -> String {
+    match *im {
+        ScalingIm::Pga => "PGA (m/s²)".to_string(),
+        ScalingIm::Sa { period, damping } => {
+            format!("Sa(T = {period} s, ζ = {} %) (m/s²)", 100.0 * damping)
+        }
+    }
+}
+
+/// `rocking ida`: IDA by hunt-and-fill, or with `[ida] stripes` a multiple-stripe analysis.
 pub fn ida(
     scene_path: &Path,
     sets: &[String],
@@ -395,30 +454,79 @@ pub fn ida(
             .map(|f| study(&base, &s, f))
             .collect::<Result<Vec<_>, _>>()
     })?;
-    let capacities: Vec<f64> = done.iter().map(|d| d.ida.capacity).collect();
-    let fit = bootstrap_capacities(&capacities, &s.bootstrap).map_err(|e| {
+    let runs: usize = done.iter().map(|d| d.points.len()).sum();
+    let cannot_fit = |what: String, e: rocking_fragility::FragilityError| {
         CliError::Input(format!(
-            "{}: cannot fit a lognormal to the {} capacities: {e}",
-            scene_path.display(),
-            capacities.len()
+            "{}: cannot fit a lognormal to {what}: {e}",
+            scene_path.display()
         ))
-    })?;
-    let runs: usize = done.iter().map(|d| d.ida.runs()).sum();
+    };
+    // The fit, what it was fitted to (for fragility.json) and its empirical points (for the plot).
+    let (method, fit, evidence, empirical) = match &s.stripes {
+        None => {
+            let capacities: Vec<f64> = done
+                .iter()
+                .filter_map(|d| d.capacity)
+                .map(|c| c.0)
+                .collect();
+            let fit = bootstrap_capacities(&capacities, &s.bootstrap)
+                .map_err(|e| cannot_fit(format!("the {} capacities", capacities.len()), e))?;
+            let mut sorted = capacities.clone();
+            sorted.sort_by(f64::total_cmp);
+            let n = sorted.len() as f64;
+            let empirical: Vec<(f64, f64)> = sorted
+                .iter()
+                .enumerate()
+                .map(|(i, &c)| (c, (i as f64 + 0.5) / n))
+                .collect();
+            let evidence = json!({
+                "tolerance": s.hunt.tolerance,
+                "capacities_m_s2": capacities,
+            });
+            ("ida", fit, evidence, empirical)
+        }
+        Some(levels) => {
+            let records = u32::try_from(done.len()).unwrap_or(u32::MAX);
+            let stripes: Vec<Stripe> = levels
+                .iter()
+                .map(|&im| Stripe {
+                    im,
+                    n: records,
+                    collapsed: done
+                        .iter()
+                        .filter(|d| d.points.iter().any(|p| p.im == im && p.outcome.collapsed))
+                        .count() as u32,
+                })
+                .collect();
+            let fit = bootstrap_stripes(&stripes, &s.bootstrap)
+                .map_err(|e| cannot_fit(format!("the {} stripes", stripes.len()), e))?;
+            let empirical: Vec<(f64, f64)> = stripes
+                .iter()
+                .map(|st| (st.im, f64::from(st.collapsed) / f64::from(st.n)))
+                .collect();
+            let evidence = json!({
+                "stripes": stripes.iter().map(|st| json!({
+                    "im_m_s2": st.im, "records": st.n, "collapsed": st.collapsed,
+                })).collect::<Vec<_>>(),
+            });
+            ("multiple-stripe", fit, evidence, empirical)
+        }
+    };
     let (im_name, period, damping) = match s.im {
         ScalingIm::Pga => ("pga", None, None),
         ScalingIm::Sa { period, damping } => ("sa", Some(period), Some(damping)),
     };
     let (tl, th) = fit.theta_interval();
     let (bl, bh) = fit.beta_interval();
-    let json = json!({
+    let mut json = json!({
         "scene": scene_path.display().to_string(),
         "overrides": sets,
+        "method": method,
         "im": { "kind": im_name, "period_s": period, "damping": damping, "unit": "m/s2" },
         "collapse": match s.limit {
             Some(l) => format!("overturned or max theta/alpha >= {l}"),
             None => "overturned".to_string(),
         },
-        "tolerance": s.hunt.tolerance,
         "records": done.len(),
         "analyses": runs,
         "median_m_s2": fit.estimate.theta,
@@ -431,9 +539,11 @@ pub fn ida(
             "median_interval_m_s2": [tl, th],
             "beta_interval": [bl, bh],
         },
-        "capacities_m_s2": capacities,
         "elapsed_s": start.elapsed().as_secs_f64(),
     });
+    if let (Some(j), Some(e)) = (json.as_object_mut(), evidence.as_object()) {
+        j.extend(e.clone());
+    }
     let target = out.unwrap_or_else(|| {
         let stem = scene_path
             .file_stem()
@@ -446,7 +556,12 @@ pub fn ida(
         &dir.path().join("records.csv"),
         &records_csv(&done, alpha, g_si)?,
     )?;
-    write_atomic(&dir.path().join("ida.csv"), &ida_csv(&done)?)?;
+    let table = if s.stripes.is_some() {
+        "stripes.csv"
+    } else {
+        "ida.csv"
+    };
+    write_atomic(&dir.path().join(table), &ida_csv(&done)?)?;
     let text = serde_json::to_string_pretty(&json)
         .map_err(|e| CliError::Internal(format!("cannot write fragility.json: {e}")))?;
     write_atomic(&dir.path().join("fragility.json"), text.as_bytes())?;
@@ -454,19 +569,19 @@ pub fn ida(
         .iter()
         .map(|d| {
             let pts = d
-                .ida
                 .points
                 .iter()
                 .map(|p| (p.outcome.response, p.im, p.outcome.collapsed));
             (d.name.clone(), pts.collect())
         })
         .collect();
-    ida_plot::ida_curves(&curves, dir.path())?;
-    ida_plot::fragility_fit(&capacities, &fit, dir.path())?;
+    let im_label = im_label(&s.im);
+    ida_plot::ida_curves(&curves, &im_label, dir.path())?;
+    ida_plot::fragility_fit(&empirical, done.len(), &fit, &im_label, dir.path())?;
     dir.commit()?;
     out!(
-        "{} records, {runs} analyses in {:.2} s: median capacity {:.4} m/s2 ({:.4} g), beta {:.3} \
-         (95 % band: median {:.4}..{:.4}, beta {:.3}..{:.3}); outputs in {}",
+        "{} records, {runs} analyses ({method}) in {:.2} s: median capacity {:.4} m/s2 ({:.4} g), \
+         beta {:.3} (95 % band: median {:.4}..{:.4}, beta {:.3}..{:.3}); outputs in {}",
         done.len(),
         start.elapsed().as_secs_f64(),
         fit.estimate.theta,

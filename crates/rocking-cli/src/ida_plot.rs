@@ -32,6 +32,7 @@ pub type Points = Vec<(f64, f64, bool)>;
 fn draw_ida<DB: DrawingBackend>(
     root: DrawingArea<DB, Shift>,
     curves: &[(String, Points)],
+    im_label: &str,
 ) -> Result<(), String> {
     let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
     root.fill(&WHITE).map_err(e)?;
@@ -56,7 +57,7 @@ fn draw_ida<DB: DrawingBackend>(
     chart
         .configure_mesh()
         .x_desc("max θ/α")
-        .y_desc("intensity measure (m/s²)")
+        .y_desc(im_label)
         .label_style(("sans-serif", 14))
         .draw()
         .map_err(e)?;
@@ -80,19 +81,19 @@ fn draw_ida<DB: DrawingBackend>(
 
 fn draw_fit<DB: DrawingBackend>(
     root: DrawingArea<DB, Shift>,
-    capacities: &[f64],
+    empirical: &[(f64, f64)],
+    records: usize,
     fit: &Bootstrap,
+    im_label: &str,
 ) -> Result<(), String> {
     let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
     root.fill(&WHITE).map_err(e)?;
-    let x_hi = capacities.iter().copied().fold(0.0, f64::max) * 1.2;
+    let x_hi = empirical.iter().map(|p| p.0).fold(0.0, f64::max) * 1.2;
     let mut chart = ChartBuilder::on(&root)
         .caption(
             format!(
                 "Fragility: median {:.3} m/s², β = {:.3} ({} records)",
-                fit.estimate.theta,
-                fit.estimate.beta,
-                capacities.len()
+                fit.estimate.theta, fit.estimate.beta, records
             ),
             ("sans-serif", 20),
         )
@@ -103,7 +104,7 @@ fn draw_fit<DB: DrawingBackend>(
         .map_err(e)?;
     chart
         .configure_mesh()
-        .x_desc("intensity measure (m/s²)")
+        .x_desc(im_label)
         .y_desc("P(overturning | IM)")
         .label_style(("sans-serif", 14))
         .draw()
@@ -125,15 +126,11 @@ fn draw_fit<DB: DrawingBackend>(
             BLUE.stroke_width(2),
         ))
         .map_err(e)?;
-    let mut sorted = capacities.to_vec();
-    sorted.sort_by(f64::total_cmp);
-    let n = sorted.len() as f64;
     chart
         .draw_series(
-            sorted
+            empirical
                 .iter()
-                .enumerate()
-                .map(|(i, &c)| Circle::new((c, (i as f64 + 0.5) / n), 3, BLACK.filled())),
+                .map(|&(x, p)| Circle::new((x, p), 3, BLACK.filled())),
         )
         .map_err(e)?;
     root.present().map_err(e)
@@ -173,20 +170,32 @@ fn pair(
 }
 
 /// `ida.png`/`ida.svg`: per record (name, [(max θ/α, IM, collapsed)]) sorted by IM.
-pub fn ida_curves(curves: &[(String, Points)], dir: &Path) -> Result<Vec<PathBuf>, CliError> {
-    pair(dir, "ida", |r| draw_ida(r, curves), |r| draw_ida(r, curves))
+pub fn ida_curves(
+    curves: &[(String, Points)],
+    im_label: &str,
+    dir: &Path,
+) -> Result<Vec<PathBuf>, CliError> {
+    pair(
+        dir,
+        "ida",
+        |r| draw_ida(r, curves, im_label),
+        |r| draw_ida(r, curves, im_label),
+    )
 }
 
-/// `fragility-fit.png`/`.svg`: the fitted curve, its band and the capacities' empirical CDF.
+/// `fragility-fit.png`/`.svg`: the fitted curve, its band and the empirical points (the
+/// capacities' empirical CDF for IDA, the fraction collapsed per stripe for stripes).
 pub fn fragility_fit(
-    capacities: &[f64],
+    empirical: &[(f64, f64)],
+    records: usize,
     fit: &Bootstrap,
+    im_label: &str,
     dir: &Path,
 ) -> Result<Vec<PathBuf>, CliError> {
     pair(
         dir,
         "fragility-fit",
-        |r| draw_fit(r, capacities, fit),
-        |r| draw_fit(r, capacities, fit),
+        |r| draw_fit(r, empirical, records, fit, im_label),
+        |r| draw_fit(r, empirical, records, fit, im_label),
     )
 }

@@ -302,11 +302,131 @@ fn bad_ida_settings_exit_2_naming_the_key_and_range() {
         ("ida.im=\"pgv\"", "`im`", "\"pga\""),
         ("ida.period=-1.0", "`period`", "> 0"),
         ("ida.max_gap=0.001", "`max_gap`", "tolerance <= max_gap < 1"),
+        ("ida.stripes=[1.0, -2.0]", "`stripes`", "finite and > 0"),
+        ("ida.stripes=[]", "`stripes`", "1 to 1000 IM levels"),
     ] {
         let o = rocking(&["ida", "scenes/wind-turbine-ida.toml", "--set", set]);
         assert_eq!(o.status.code(), Some(2), "{set}");
         let e = String::from_utf8_lossy(&o.stderr);
         assert!(e.contains(key) && e.contains(allowed), "{set}: {e}");
         assert!(e.contains("wind-turbine-ida.toml"), "{set}: {e}");
+    }
+}
+
+/// Log-likelihood of stripe counts under a lognormal fragility (Baker 2015, eq. 11).
+fn stripe_log_likelihood(stripes: &[(f64, f64, f64)], theta: f64, beta: f64) -> f64 {
+    // Φ by Simpson's rule on the normal density from -12 to x (about 1e-12 with 20000 panels;
+    // std has no erf), independent of the library's own Φ.
+    fn phi(x: f64) -> f64 {
+        let (a, n) = (-12.0_f64, 20_000);
+        if x <= a {
+            return 0.0;
+        }
+        let h = (x - a) / n as f64;
+        let f = |t: f64| (-0.5 * t * t).exp() / (2.0 * std::f64::consts::PI).sqrt();
+        let mut sum = f(a) + f(x);
+        for k in 1..n {
+            sum += f(a + k as f64 * h) * if k % 2 == 1 { 4.0 } else { 2.0 };
+        }
+        (sum * h / 3.0).min(1.0)
+    }
+    stripes
+        .iter()
+        .map(|&(im, n, z)| {
+            let p = phi((im / theta).ln() / beta).clamp(1e-300, 1.0 - 1e-16);
+            z * p.ln() + (n - z) * (1.0 - p).ln()
+        })
+        .sum()
+}
+
+#[test]
+fn multiple_stripes_count_the_runs_and_fit_by_maximum_likelihood() {
+    let tmp = tempfile::tempdir().unwrap();
+    let gm = root().join("../shared/data/ground-motions");
+    let recs: Vec<String> = [
+        "A-ELC180.AT2",
+        "A-PEL180.AT2",
+        "A-BEN360.AT2",
+        "A-BPL160.AT2",
+    ]
+    .iter()
+    .map(|r| gm.join(r).canonicalize().unwrap().display().to_string())
+    .collect();
+    let out = tmp.path().join("msa");
+    let out_s = out.display().to_string();
+    let mut args = vec!["ida", "scenes/wind-turbine-ida.toml", "--records"];
+    args.extend(recs.iter().map(String::as_str));
+    // Unsorted, with a repeated level: each level is run once.
+    let levels = "ida.stripes=[30.0, 4.0, 8.0, 12.0, 16.0, 20.0, 8.0]";
+    args.extend([
+        "--set",
+        levels,
+        "--set",
+        "ida.bootstrap=200",
+        "--out",
+        &out_s,
+    ]);
+    let o = rocking(&args);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        !out.join("ida.csv").exists(),
+        "a stripe study writes stripes.csv"
+    );
+    let json = std::fs::read_to_string(out.join("fragility.json")).unwrap();
+    assert!(!json.contains("null") && !json.contains("NaN"), "{json}");
+    let fit: Value = serde_json::from_str(&json).unwrap();
+    assert_eq!(fit["method"], "multiple-stripe");
+    assert_eq!(fit["analyses"], 4 * 6);
+    // The counts are those of stripes.csv, level by level, and every run is at its level.
+    let mut table = csv::Reader::from_path(out.join("stripes.csv")).unwrap();
+    let rows: Vec<csv::StringRecord> = table.records().map(Result::unwrap).collect();
+    assert_eq!(rows.len(), 4 * 6);
+    let mut counts: Vec<(f64, f64, f64)> = Vec::new();
+    for st in fit["stripes"].as_array().unwrap() {
+        let im = st["im_m_s2"].as_f64().unwrap();
+        let at: Vec<&csv::StringRecord> = rows
+            .iter()
+            .filter(|r| r[1].parse::<f64>().unwrap() == im)
+            .collect();
+        assert_eq!(at.len(), 4, "level {im}");
+        let collapsed = at.iter().filter(|r| &r[3] == "true").count();
+        assert_eq!(
+            st["collapsed"].as_u64().unwrap() as usize,
+            collapsed,
+            "level {im}"
+        );
+        counts.push((im, 4.0, collapsed as f64));
+    }
+    let levels: Vec<f64> = counts.iter().map(|c| c.0).collect();
+    assert_eq!(levels, [4.0, 8.0, 12.0, 16.0, 20.0, 30.0]);
+    let total: f64 = counts.iter().map(|c| c.2).sum();
+    assert!(
+        total > 0.0 && total < 24.0,
+        "the levels bracket the capacities: {counts:?}"
+    );
+    // The fit maximises the likelihood: every nearby (θ, β) is less likely.
+    let (theta, beta) = (
+        fit["median_m_s2"].as_f64().unwrap(),
+        fit["beta"].as_f64().unwrap(),
+    );
+    let best = stripe_log_likelihood(&counts, theta, beta);
+    for (dt, db) in [
+        (1.02, 1.0),
+        (0.98, 1.0),
+        (1.0, 1.03),
+        (1.0, 0.97),
+        (1.02, 1.03),
+    ] {
+        let other = stripe_log_likelihood(&counts, theta * dt, beta * db);
+        assert!(
+            other < best,
+            "L({dt} θ, {db} β) = {other} >= L(θ, β) = {best}"
+        );
+    }
+    let band = &fit["bootstrap"]["median_interval_m_s2"];
+    assert!(band[0].as_f64().unwrap() <= theta && theta <= band[1].as_f64().unwrap());
+    for f in ["fragility-fit.svg", "ida.svg"] {
+        let svg = std::fs::read_to_string(out.join(f)).unwrap();
+        assert!(svg.contains("Sa(T = 4.5 s, ζ = 5 %)"), "{f} names the IM");
     }
 }

@@ -191,6 +191,9 @@ pub struct IdaSpec {
     pub max_gap: Option<f64>,
     /// Most analyses per record.
     pub max_runs: Option<usize>,
+    /// Multiple-stripe analysis instead of IDA: every record scaled to each of these IM levels
+    /// (m/s²), the fit from the fraction that collapsed at each.
+    pub stripes: Option<Vec<f64>>,
     /// Collapse: overturning, or max θ/α reaching this limit (when given).
     pub theta_over_alpha_limit: Option<f64>,
     /// Bootstrap resamples and seed of the confidence band.
