@@ -9,7 +9,7 @@ use serde_json::Value;
 
 use crate::Result;
 
-static FONT: &[u8] = include_bytes!("../../rocking-cli/assets/DejaVuSans.ttf");
+static FONT: &[u8] = include_bytes!("../../rocking-plot/assets/DejaVuSans.ttf");
 
 fn f(v: &Value) -> f64 {
     v.as_f64().unwrap_or(f64::NAN)

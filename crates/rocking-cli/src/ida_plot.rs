@@ -3,28 +3,18 @@
 //! PNG and SVG with the embedded font of the other plots.
 
 use std::path::{Path, PathBuf};
-use std::sync::Once;
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use plotters::style::{register_font, FontStyle};
 use rocking_fragility::Bootstrap;
+use rocking_plot::register;
 
 use crate::report::write_atomic;
 use crate::scene::CliError;
 
-static FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
-static REGISTER: Once = Once::new();
 const SIZE: (u32, u32) = (800, 560);
 /// Where the IDA curves put a collapse: max θ/α of an overturned run is not a response.
 const COLLAPSE_X: f64 = 1.1;
-
-fn register() {
-    REGISTER.call_once(|| {
-        // The font is bundled and known to be valid; a failure leaves text unrendered only.
-        let _ = register_font("sans-serif", FontStyle::Normal, FONT);
-    });
-}
 
 /// One record's IDA curve: (max θ/α, IM, collapsed) per analysis.
 pub type Points = Vec<(f64, f64, bool)>;

@@ -326,7 +326,15 @@ fn run(scene: &Path, set: &[String], out: Option<PathBuf>, json: bool) -> Result
     }
     let mut animation_note = None;
     if let Some(spec) = &m.animation {
-        let (path, frames, bytes) = plot::animation::animation(&m, &run, spec, &stage)?;
+        let path = stage.join("animation.gif");
+        let (gif, frames) = rocking_plot::animation::render(&m, &run, spec).map_err(|e| {
+            CliError::Internal(format!(
+                "{}: cannot draw the animation: {e}",
+                path.display()
+            ))
+        })?;
+        report::write_atomic(&path, &gif)?;
+        let bytes = gif.len();
         animation_note = Some(format!(
             "  animation: {frames} frames of {} × {} pixels, {:.2} MB",
             spec.width,

@@ -12,7 +12,7 @@ use std::sync::Arc;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyList};
-use rocking_scene::model::{self, Model};
+use rocking_scene::model::{self, Animation, Model};
 use rocking_scene::scene::{self, CliError};
 use rocking_scene::{models, report};
 use rocking_spectra::plan::{Base, Plan};
@@ -190,6 +190,41 @@ impl RunOutput {
             .detach(|| report::events_csv(&self.model, &self.run))
             .map_err(py_err)?;
         columns(py, &csv).map(Some)
+    }
+
+    /// The animated GIF of the run (its bytes), drawn as `rocking run --animate` draws it:
+    /// `frames`, `width` and `height` default to the scene's `[output] animation_*` (else 150,
+    /// 480, 600), within the same bounds. The run needs its history rows (a scene with
+    /// `[output] animation = true` records them).
+    #[pyo3(signature = (frames=None, width=None, height=None))]
+    fn animation<'py>(
+        &self,
+        py: Python<'py>,
+        frames: Option<i64>,
+        width: Option<i64>,
+        height: Option<i64>,
+    ) -> PyResult<Bound<'py, PyBytes>> {
+        let scene = self.model.animation.unwrap_or_default();
+        // The scene's bounds, named as the arguments here.
+        let pick = |name: &str, given: Option<i64>, bounds: (&str, i64, i64, i64), default: i64| {
+            let (_, _, lo, hi) = bounds;
+            match given {
+                None => Ok(default),
+                Some(v) if (lo..=hi).contains(&v) => Ok(v),
+                Some(v) => Err(PyValueError::new_err(format!(
+                    "{name} = {v} is not allowed: {lo} <= {name} <= {hi}"
+                ))),
+            }
+        };
+        let spec = Animation {
+            frames: pick("frames", frames, Animation::FRAMES, scene.frames as i64)? as usize,
+            width: pick("width", width, Animation::WIDTH, i64::from(scene.width))? as u32,
+            height: pick("height", height, Animation::HEIGHT, i64::from(scene.height))? as u32,
+        };
+        let (gif, _) = py
+            .detach(|| rocking_plot::animation::render(&self.model, &self.run, &spec))
+            .map_err(|e| PyValueError::new_err(format!("cannot draw the animation: {e}")))?;
+        Ok(PyBytes::new(py, &gif))
     }
 }
 

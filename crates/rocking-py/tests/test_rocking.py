@@ -275,3 +275,37 @@ def test_a_bad_array_record_raises_value_error_naming_it(samples, dt, units, key
     structure = rocking.Structure(omega_n_over_p=5.0, alpha=0.1)
     with pytest.raises(ValueError, match=key.replace("[", r"\[").replace("]", r"\]")):
         rocking.simulate(structure, rocking.Excitation.samples(samples, dt, units))
+
+
+def test_the_animation_is_the_commands_gif(tmp_path):
+    sets = [
+        "output.animation=true",
+        "output.animation_frames=24",
+        "output.animation_width=320",
+        "output.animation_height=240",
+    ]
+    out = tmp_path / "out"
+    args = ["run", str(FIG3), "--out", str(out)]
+    for s in sets:
+        args += ["--set", s]
+    cli(*args)
+    want = (out / "animation.gif").read_bytes()
+    result = rocking.load_scene(FIG3, set=sets).run()
+    path = tmp_path / "py.gif"
+    got = result.animation(path)
+    assert got == want and path.read_bytes() == want
+    # GIF header: logical screen width and height, little-endian.
+    assert got[:6] == b"GIF89a"
+    assert int.from_bytes(got[6:8], "little") == 320
+    assert int.from_bytes(got[8:10], "little") == 240
+    # Other sizes than the scene's, within the command's bounds.
+    small = result.animation(frames=5, width=160, height=120)
+    assert int.from_bytes(small[6:8], "little") == 160 and small != got
+    with pytest.raises(ValueError, match="frames = 1 is not allowed: 2 <= frames"):
+        result.animation(frames=1)
+    with pytest.raises(ValueError, match="width = 2000 is not allowed"):
+        result.animation(width=2000)
+    # Without history rows there is nothing to draw, and the message says how to get them.
+    bare = rocking.load_scene(FIG3, set={"output.history": "none"}).run()
+    with pytest.raises(ValueError, match="animation = true"):
+        bare.animation()

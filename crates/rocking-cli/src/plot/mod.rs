@@ -1,22 +1,20 @@
-//! Figures, each as PNG and SVG with an embedded font (DejaVu Sans, see
-//! assets/DejaVuSans-LICENSE.txt) so no system font is needed. Here: the time history in the
-//! paper's style (Figs 3, 5, 10: θ/α, u/u_cr, E/E_ref and ü_g/(g tan α) against τ in four stacked
-//! panels, impacts marked) and the fragility curve of a batch; `spectrum`: rocking spectra,
-//! overturning boundaries and one-axis line plots; `contour`: marching squares; `animation`: the
-//! animated GIF of a run. Labels come from `rocking_scene::labels`.
+//! Figures, each as PNG and SVG with the font embedded by `rocking_plot` (no system font is
+//! needed). Here: the time history in the paper's style (Figs 3, 5, 10: θ/α, u/u_cr, E/E_ref and
+//! ü_g/(g tan α) against τ in four stacked panels, impacts marked) and the fragility curve of a
+//! batch; `spectrum`: rocking spectra, overturning boundaries and one-axis line plots; `contour`:
+//! marching squares. The animated GIF of a run is `rocking_plot::animation` (shared with the
+//! Python package). Labels come from `rocking_scene::labels`.
 
-pub mod animation;
 pub mod contour;
 mod spectrum;
 
 pub use spectrum::{spectrum_plots, Reference};
 
 use std::path::{Path, PathBuf};
-use std::sync::Once;
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use plotters::style::{register_font, text_anchor, FontStyle};
+use plotters::style::text_anchor;
 use rocking::{EventKind, Run};
 use rocking_scene::labels;
 
@@ -24,18 +22,10 @@ use crate::model::Model;
 use crate::report::write_atomic;
 use crate::scene::CliError;
 
-static FONT: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
-static REGISTER: Once = Once::new();
+pub(crate) use rocking_plot::{register, wrap};
 
 const WIDTH: u32 = 900;
 const HEIGHT: u32 = 1100;
-
-pub(crate) fn register() {
-    REGISTER.call_once(|| {
-        // The font is bundled and known to be valid; a failure leaves text unrendered only.
-        let _ = register_font("sans-serif", FontStyle::Normal, FONT);
-    });
-}
 
 struct Series<'a> {
     label: &'a str,
@@ -289,21 +279,6 @@ pub(crate) fn render_pair(
     Ok(vec![png_path, svg_path])
 }
 
-/// `text` broken into lines of at most `chars` characters at spaces (a longer word stays whole).
-pub(crate) fn wrap(text: &str, chars: usize) -> Vec<String> {
-    let mut lines: Vec<String> = Vec::new();
-    for word in text.split_whitespace() {
-        match lines.last_mut() {
-            Some(line) if line.chars().count() + 1 + word.chars().count() <= chars => {
-                line.push(' ');
-                line.push_str(word);
-            }
-            _ => lines.push(word.to_string()),
-        }
-    }
-    lines
-}
-
 /// Draws `title` centred at the top of `root`, wrapped to its width (never cut), and returns the
 /// area below it.
 pub(crate) fn titled<DB: DrawingBackend>(
@@ -334,18 +309,4 @@ pub(crate) fn titled<DB: DrawingBackend>(
         .map_err(e)?;
     }
     Ok(rest)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::wrap;
-
-    #[test]
-    fn a_long_title_wraps_at_spaces_and_keeps_every_word() {
-        let title = "Fig. 8: γ_mb = γ_mc = 2, α = 0.1, ω_n/p = 2.5: rocking spectrum";
-        let lines = wrap(title, 30);
-        assert!(lines.len() >= 2, "{lines:?}");
-        assert!(lines.iter().all(|l| l.chars().count() <= 30), "{lines:?}");
-        assert_eq!(lines.join(" "), title);
-    }
 }

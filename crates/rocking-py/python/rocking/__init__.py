@@ -148,6 +148,33 @@ class Result:
             )
         return pd.DataFrame(self.history)
 
+    def animation(
+        self,
+        path: Optional[PathLike] = None,
+        *,
+        frames: Optional[int] = None,
+        width: Optional[int] = None,
+        height: Optional[int] = None,
+    ) -> bytes:
+        """The animated GIF of the run (base, deformed column, top mass, moving ground, with τ
+        and θ/α on each frame), the same bytes as ``rocking run --animate``. ``frames`` (2-400),
+        ``width`` (160-800) and ``height`` (120-600) default to the scene's ``[output]
+        animation_*`` keys. Written to ``path`` when given (whole or not at all); in a notebook,
+        ``IPython.display.Image(data=result.animation())`` shows it. Needs the run's history:
+        load the scene with ``set={"output.animation": True}``."""
+        data = self._output.animation(frames, width, height)
+        if path is not None:
+            target = os.path.abspath(os.fspath(path))
+            fd, tmp = tempfile.mkstemp(prefix=".animation-", dir=os.path.dirname(target))
+            try:
+                with os.fdopen(fd, "wb") as f:
+                    f.write(data)
+                os.replace(tmp, target)
+            except BaseException:
+                os.unlink(tmp)
+                raise
+        return data
+
     def __repr__(self) -> str:
         return f"Result({self.summary!r})"
 

@@ -1,18 +1,15 @@
-//! The animated GIF of a run (`rocking run --animate`): the base plate rocking on its corner, the
+//! The animated GIF of a run (`rocking run --animate`, `Result.animation()` in Python): the base
+//! plate rocking on its corner, the
 //! column deflected along the model's shape function ψ, the top mass, and the ground moving by
 //! u_g (integrated from the history's ü_g), with τ and θ/α on each frame. The frame geometry is
 //! computed by [`geometry`], which the drawing and the tests share.
-
-use std::path::{Path, PathBuf};
 
 use plotters::prelude::*;
 use rocking::{HistoryRow, Run};
 use rocking_scene::labels;
 use rocking_scene::model::{Animation, Model};
 
-use super::register;
-use crate::report::write_atomic;
-use crate::scene::CliError;
+use crate::{register, wrap};
 
 /// Pixels of the text band above the picture and of the margins.
 const BAND: f64 = 56.0;
@@ -121,7 +118,11 @@ fn world(row: &HistoryRow, ug: f64, h: f64, b: f64, psi: &dyn Fn(f64) -> f64) ->
 pub fn geometry(model: &Model, run: &Run, spec: &Animation) -> Result<Vec<Frame>, String> {
     let h = &run.history;
     if h.len() < 2 {
-        return Err("the run has fewer than two history rows".into());
+        return Err(
+            "the run has fewer than two history rows (a scene with `[output] animation = true` \
+             records them)"
+                .into(),
+        );
     }
     let phys = model.structure.physical();
     let (hh, b) = (phys.h, phys.b);
@@ -261,27 +262,15 @@ fn index_of(r: u8, g: u8, b: u8) -> u8 {
     }
 }
 
-/// Renders the animation of `run` into `dir/animation.gif` (atomically); returns its path, the
-/// number of frames and the file size in bytes.
-pub fn animation(
-    model: &Model,
-    run: &Run,
-    spec: &Animation,
-    dir: &Path,
-) -> Result<(PathBuf, usize, usize), CliError> {
-    let fail = |m: String| {
-        CliError::Internal(format!(
-            "{}: cannot draw the animation: {m}",
-            dir.join("animation.gif").display()
-        ))
-    };
+/// The animated GIF of `run` (its bytes) and its number of frames; the error says what failed.
+pub fn render(model: &Model, run: &Run, spec: &Animation) -> Result<(Vec<u8>, usize), String> {
     register();
-    let frames = geometry(model, run, spec).map_err(fail)?;
+    let frames = geometry(model, run, spec)?;
     let title = model
         .title
         .clone()
         .unwrap_or_else(|| model.excitation_description.clone());
-    let title: String = super::wrap(&title, (spec.width as usize / 9).max(10))
+    let title: String = wrap(&title, (spec.width as usize / 9).max(10))
         .into_iter()
         .next()
         .unwrap_or_default();
@@ -289,17 +278,17 @@ pub fn animation(
     let mut bytes = Vec::new();
     {
         let mut enc = gif::Encoder::new(&mut bytes, w as u16, h as u16, &palette())
-            .map_err(|e| fail(e.to_string()))?;
+            .map_err(|e| e.to_string())?;
         enc.set_repeat(gif::Repeat::Infinite)
-            .map_err(|e| fail(e.to_string()))?;
+            .map_err(|e| e.to_string())?;
         // About 8 s for the whole run, 2..10 hundredths of a second per frame.
         let delay = (800 / frames.len()).clamp(2, 10) as u16;
         let mut rgb = vec![255u8; (w * h * 3) as usize];
         for f in &frames {
             {
                 let area = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
-                draw_frame(&area, f, &title).map_err(fail)?;
-                area.present().map_err(|e| fail(e.to_string()))?;
+                draw_frame(&area, f, &title)?;
+                area.present().map_err(|e| e.to_string())?;
             }
             let indexed: Vec<u8> = rgb
                 .chunks_exact(3)
@@ -312,12 +301,10 @@ pub fn animation(
                 buffer: std::borrow::Cow::Owned(indexed),
                 ..gif::Frame::default()
             };
-            enc.write_frame(&frame).map_err(|e| fail(e.to_string()))?;
+            enc.write_frame(&frame).map_err(|e| e.to_string())?;
         }
     }
-    let path = dir.join("animation.gif");
-    write_atomic(&path, &bytes)?;
-    Ok((path, frames.len(), bytes.len()))
+    Ok((bytes, frames.len()))
 }
 
 #[cfg(test)]
@@ -354,7 +341,9 @@ mod tests {
     fn the_drawn_frames_show_the_simulated_angles_and_deflections() {
         let scene = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
             .join("../../scenes/fig10-overturns.toml");
-        let (_, mut m) = crate::load(&scene, &["output.animation=true".into()]).expect("scene");
+        let sc =
+            rocking_scene::scene::load(&scene, &["output.animation=true".into()]).expect("scene");
+        let mut m = rocking_scene::model::build(&sc).expect("model");
         m.options.history = rocking::History::Grid(0.01 / m.units.p_model);
         let run =
             rocking::simulate(&m.structure, &m.excitation, &m.effects, &m.options).expect("run");
