@@ -192,7 +192,9 @@ fn check_run_catches_nan() {
 
 /// The library validates the options it is given (item 15 of issue 11): an overturning angle of
 /// NaN, 0, −1 or ∞, a restitution of 2 or −1, a start beyond π/2 and a history grid of 0 or −0.1
-/// used to run to nonsense (θ/α = 159) or without end; each is an error naming the field.
+/// used to run to nonsense (θ/α = 159) or without end; so would a grid too fine or a step
+/// history too long for the row bound, an infinite t_end or no steps; each is an error naming the
+/// field.
 #[test]
 fn invalid_options_are_errors_naming_the_field() {
     use rocking::{simulate, History, ImpactModel, Initial, Options, SimError};
@@ -266,7 +268,31 @@ fn invalid_options_are_errors_naming_the_field() {
             },
             "history",
         ),
+        (
+            Options {
+                history: History::Grid(1e-9),
+                ..ok
+            },
+            "history",
+        ),
+        (
+            Options {
+                history: History::Steps,
+                max_steps: 1_000_000_000,
+                ..ok
+            },
+            "max_steps",
+        ),
+        (
+            Options {
+                t_end: f64::INFINITY,
+                ..ok
+            },
+            "t_end",
+        ),
+        (Options { max_steps: 0, ..ok }, "max_steps"),
     ];
+    assert_eq!(ok.validate(), Ok(()));
     for (o, field) in cases {
         match simulate(&s, &fig3_pulse(), &rocking::Effects::default(), &o) {
             Err(SimError::Options(m)) => assert!(m.contains(field), "{field}: {m}"),

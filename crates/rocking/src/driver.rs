@@ -111,7 +111,7 @@ enum After {
 
 /// One run: `NR` and `NC` are the sizes of the rocking and contact states (4 and 2, or 6 and 4
 /// with the energy integrals).
-struct Sim<'a, V: TaylorVariant, M: GroundMotion, const NR: usize, const NC: usize> {
+struct Sim<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usize> {
     p: V::Params,
     motion: &'a M,
     opts: &'a Options,
@@ -146,7 +146,7 @@ const RIGHT: f64 = 1.0;
 const LEFT: f64 = -1.0;
 
 /// Runs one simulation with kernel variant `V`; `ENERGY` switches the energy bookkeeping on.
-pub fn simulate<V: TaylorVariant, M: GroundMotion, const ENERGY: bool>(
+pub fn simulate<V: TaylorVariant, M: GroundMotion + ?Sized, const ENERGY: bool>(
     structure: &Structure,
     motion: &M,
     opts: &Options,
@@ -158,7 +158,7 @@ pub fn simulate<V: TaylorVariant, M: GroundMotion, const ENERGY: bool>(
     }
 }
 
-fn run<V: TaylorVariant, M: GroundMotion, const NR: usize, const NC: usize>(
+fn run<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usize>(
     structure: &Structure,
     motion: &M,
     opts: &Options,
@@ -238,7 +238,9 @@ fn run<V: TaylorVariant, M: GroundMotion, const NR: usize, const NC: usize>(
     sim.run()
 }
 
-impl<V: TaylorVariant, M: GroundMotion, const NR: usize, const NC: usize> Sim<'_, V, M, NR, NC> {
+impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usize>
+    Sim<'_, V, M, NR, NC>
+{
     /// Whether W and D are carried (the energy bookkeeping was asked for).
     const ENERGY: bool = NR > 4;
 

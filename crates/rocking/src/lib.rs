@@ -244,9 +244,14 @@ pub fn select_variant(structure: &Structure, effects: &Effects) -> Result<Select
 }
 
 /// Runs a simulation with the most specialised kernel variant for `structure` and `effects`.
-pub fn simulate<M: GroundMotion>(
+///
+/// The driver sees the ground motion as `&dyn GroundMotion`: it is compiled once per variant,
+/// here, whatever motion types the callers have (monomorphised per motion type, every test
+/// binary and tool instantiated the whole driver again; the virtual call per evaluation of ü_g
+/// costs nothing measurable beside a kernel call, see docs/performance.md).
+pub fn simulate(
     structure: &Structure,
-    motion: &M,
+    motion: &dyn GroundMotion,
     effects: &Effects,
     options: &Options,
 ) -> Result<Run, SimError> {
@@ -256,10 +261,10 @@ pub fn simulate<M: GroundMotion>(
 
 /// Runs the generated variant called `name` (monomorphised through the generated dispatch) on a
 /// structure of its model.
-pub fn run_variant<M: GroundMotion>(
+pub fn run_variant(
     name: &str,
     structure: &Structure,
-    motion: &M,
+    motion: &dyn GroundMotion,
     options: &Options,
 ) -> Result<Run, SimError> {
     match VariantInfo::find(name) {
@@ -273,9 +278,9 @@ pub fn run_variant<M: GroundMotion>(
     }
     with_variant!(name, V => {
         if options.energy {
-            driver::simulate::<V, M, true>(structure, motion, options)
+            driver::simulate::<V, dyn GroundMotion, true>(structure, motion, options)
         } else {
-            driver::simulate::<V, M, false>(structure, motion, options)
+            driver::simulate::<V, dyn GroundMotion, false>(structure, motion, options)
         }
     })
     .unwrap_or_else(|| Err(SimError::Options(format!("no kernel variant `{name}`"))))

@@ -85,14 +85,14 @@ rocking_kernels::for_each_variant!(taylor_variant);
 /// The rocking phase about `s` as a [`TaylorSystem`]: state `[θ, u, θ', u']`, then `[W, D]` when
 /// `D == 6`, each divided by its natural scale so that one tolerance serves all (as the
 /// Runge–Kutta path's absolute tolerances do).
-pub(crate) struct RockingSystem<'a, V: TaylorVariant, M, const D: usize> {
+pub(crate) struct RockingSystem<'a, V: TaylorVariant, M: ?Sized, const D: usize> {
     pub p: V::Params,
     pub motion: &'a M,
     pub s: f64,
     pub scale: [f64; D],
 }
 
-impl<V: TaylorVariant, M: GroundMotion, const D: usize> TaylorSystem<D>
+impl<V: TaylorVariant, M: GroundMotion + ?Sized, const D: usize> TaylorSystem<D>
     for RockingSystem<'_, V, M, D>
 {
     fn coefficients<const N: usize>(&mut self, t0: f64, x: &mut [[f64; N]; D]) {
@@ -117,13 +117,13 @@ impl<V: TaylorVariant, M: GroundMotion, const D: usize> TaylorSystem<D>
 
 /// Full contact as a [`TaylorSystem`]: state `[u, u']`, then `[W, D]` when `D == 4`, scaled as
 /// in [`RockingSystem`].
-pub(crate) struct ContactSystem<'a, V: TaylorVariant, M, const D: usize> {
+pub(crate) struct ContactSystem<'a, V: TaylorVariant, M: ?Sized, const D: usize> {
     pub p: V::Params,
     pub motion: &'a M,
     pub scale: [f64; D],
 }
 
-impl<V: TaylorVariant, M: GroundMotion, const D: usize> ContactSystem<'_, V, M, D> {
+impl<V: TaylorVariant, M: GroundMotion + ?Sized, const D: usize> ContactSystem<'_, V, M, D> {
     /// The unscaled contact series `[u, u']` from the first coefficients of `x`, and ü_g's.
     fn contact<const N: usize>(&self, t0: f64, x: &[[f64; N]; D], all: bool) -> Series<N> {
         let mut ug = [0.0; N];
@@ -141,7 +141,7 @@ impl<V: TaylorVariant, M: GroundMotion, const D: usize> ContactSystem<'_, V, M, 
 
 type Series<const N: usize> = ([[f64; N]; 2], [f64; N]);
 
-impl<V: TaylorVariant, M: GroundMotion, const D: usize> TaylorSystem<D>
+impl<V: TaylorVariant, M: GroundMotion + ?Sized, const D: usize> TaylorSystem<D>
     for ContactSystem<'_, V, M, D>
 {
     fn coefficients<const N: usize>(&mut self, t0: f64, x: &mut [[f64; N]; D]) {
@@ -162,7 +162,7 @@ impl<V: TaylorVariant, M: GroundMotion, const D: usize> TaylorSystem<D>
 }
 
 /// The uplift functions `[f_+, f_-]` along a contact step are the events of full contact.
-impl<V: TaylorVariant, M: GroundMotion, const D: usize> TaylorEvents<D, 2>
+impl<V: TaylorVariant, M: GroundMotion + ?Sized, const D: usize> TaylorEvents<D, 2>
     for ContactSystem<'_, V, M, D>
 {
     fn event_coefficients<const N: usize>(&mut self, t0: f64, x: &[[f64; N]; D]) -> [[f64; N]; 2] {
