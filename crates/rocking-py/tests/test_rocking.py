@@ -306,6 +306,6 @@ def test_the_animation_is_the_commands_gif(tmp_path):
     with pytest.raises(ValueError, match="width = 2000 is not allowed"):
         result.animation(width=2000)
     # Without history rows there is nothing to draw, and the message says how to get them.
-    bare = rocking.load_scene(FIG3, set={"output.history": "none"}).run()
+    bare = rocking.load_scene(FIG3, set={"output.history": "none", "output.plots": False}).run()
     with pytest.raises(ValueError, match="animation = true"):
         bare.animation()
