@@ -12,6 +12,8 @@ rocking=target/release/rocking
 spectrum() { "$rocking" spectrum "$@" || { s=$?; [ "$s" -eq 1 ] || exit "$s"; }; }
 img=docs/img/spectra
 mkdir -p "$img"
+# Its own scratch outputs, made anew (a journal of another build would be refused, not resumed).
+rm -rf out/spectra out/fig3-vvel-animation
 for fig in 6 7 8; do
   for alpha in 0.1 0.2; do
     for wn in 2.5 5 10 20 rigid; do

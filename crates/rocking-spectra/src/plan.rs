@@ -221,6 +221,9 @@ pub fn expand_records(
 /// An override `key=value` as a title shows it: a number in the paper's notation
 /// (`ω_n/p = 2.5`), anything else as written.
 fn labelled(set: &str) -> String {
+    if let Some((_, _, label)) = REFERENCES.iter().find(|(_, s, _)| *s == set) {
+        return (*label).to_string();
+    }
     match set.split_once('=') {
         Some((key, value)) => match value.trim().parse::<f64>() {
             Ok(v) => rocking_scene::labels::axis_value(key.trim(), v),
@@ -230,7 +233,6 @@ fn labelled(set: &str) -> String {
     }
 }
 
-/// An override `key=value` that reads back as the same f64.
 /// The reference structures a spectrum's figure can be drawn against (`[sweep] reference`): name,
 /// the override that makes one from the scene, and its legend text.
 pub const REFERENCES: [(&str, &str, &str); 1] =
@@ -246,6 +248,7 @@ pub struct ReferencePlan {
     pub plan: Plan,
 }
 
+/// An override `key=value` that reads back as the same f64.
 fn set_arg(key: &str, v: f64) -> String {
     format!("{key}={v:?}")
 }
