@@ -231,8 +231,8 @@ impl RunOutput {
 /// The most threads a sweep may ask for (the command's bound).
 const MAX_THREADS: usize = 1024;
 
-/// Runs a planned sweep in memory on `threads` threads (default: all cores), GIL released.
-fn run_plan(py: Python<'_>, plan: &Plan, threads: Option<usize>) -> PyResult<Outcome> {
+/// A thread pool of `threads` threads (default: all cores), within the command's bound.
+fn pool(threads: Option<usize>) -> PyResult<rayon::ThreadPool> {
     let mut b = rayon::ThreadPoolBuilder::new();
     if let Some(n) = threads {
         if !(1..=MAX_THREADS).contains(&n) {
@@ -242,9 +242,13 @@ fn run_plan(py: Python<'_>, plan: &Plan, threads: Option<usize>) -> PyResult<Out
         }
         b = b.num_threads(n);
     }
-    let pool = b
-        .build()
-        .map_err(|e| PyRuntimeError::new_err(format!("cannot start the thread pool: {e}")))?;
+    b.build()
+        .map_err(|e| PyRuntimeError::new_err(format!("cannot start the thread pool: {e}")))
+}
+
+/// Runs a planned sweep in memory on `threads` threads (default: all cores), GIL released.
+fn run_plan(py: Python<'_>, plan: &Plan, threads: Option<usize>) -> PyResult<Outcome> {
+    let pool = pool(threads)?;
     py.detach(|| {
         pool.install(|| {
             rocking_spectra::run_in_memory(&plan.sweep, |v| {
@@ -328,6 +332,29 @@ fn batch<'py>(
     Ok(d)
 }
 
+/// A record-suite fragility study of the scene's `[ida]` table, as `rocking ida` runs it (IDA by
+/// hunt-and-fill, or multiple stripes): `(fragility, records)` as two JSON strings, the first
+/// what fragility.json holds (without the scene), the second per record its intensity measures,
+/// capacity and analyses.
+#[pyfunction]
+#[pyo3(signature = (scene, records = Vec::new(), threads = None))]
+fn ida(
+    py: Python<'_>,
+    scene: &Scene,
+    records: Vec<PathBuf>,
+    threads: Option<usize>,
+) -> PyResult<(String, String)> {
+    let base = py.detach(|| base(scene)).map_err(py_err)?;
+    let pool = pool(threads)?;
+    let study = py
+        .detach(|| pool.install(|| rocking_spectra::ida::run(&base, &records)))
+        .map_err(py_err)?;
+    Ok((
+        study.fragility_json().to_string(),
+        study.records_json().to_string(),
+    ))
+}
+
 /// The generated models, their variants and parameters, as `rocking models --json` prints them
 /// (a JSON string).
 #[pyfunction]
@@ -348,6 +375,7 @@ fn _rocking(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<RunOutput>()?;
     m.add_function(wrap_pyfunction!(spectrum, m)?)?;
     m.add_function(wrap_pyfunction!(batch, m)?)?;
+    m.add_function(wrap_pyfunction!(ida, m)?)?;
     m.add_function(wrap_pyfunction!(models_json, m)?)?;
     m.add_function(wrap_pyfunction!(read_scene, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

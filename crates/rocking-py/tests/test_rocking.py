@@ -309,3 +309,30 @@ def test_the_animation_is_the_commands_gif(tmp_path):
     bare = rocking.load_scene(FIG3, set={"output.history": "none", "output.plots": False}).run()
     with pytest.raises(ValueError, match="animation = true"):
         bare.animation()
+
+
+def test_ida_is_the_commands_study(tmp_path):
+    gm = REPO.parent / "shared" / "data" / "ground-motions"
+    recs = [str(gm / r) for r in ("A-ELC180.AT2", "A-PEL180.AT2", "A-BEN360.AT2")]
+    scene = REPO / "scenes" / "wind-turbine-msa.toml"
+    sets = ["ida.bootstrap=100", "ida.stripes=[4.0, 8.0, 16.0, 30.0]"]
+    out = tmp_path / "msa"
+    args = ["ida", str(scene), "--out", str(out), "--records", *recs]
+    for s in sets:
+        args += ["--set", s]
+    cli(*args)
+    want = json.loads((out / "fragility.json").read_text())
+    got = rocking.ida(rocking.load_scene(scene, set=sets), records=recs)
+    for key in ("method", "median_m_s2", "beta", "bootstrap", "stripes", "analyses", "im"):
+        assert got.fragility[key] == want[key], key
+    assert got.fragility["method"] == "multiple-stripe"
+    # Per record: the IMs and analyses of records.csv and stripes.csv.
+    rows = read_csv(out / "records.csv")
+    assert [r["name"] for r in got.records] == [r["record"] for r in rows]
+    for r, row in zip(got.records, rows):
+        assert r["pga_m_s2"] == float(row["pga_m_s2"]) and r["im_m_s2"] == float(row["im_m_s2"])
+        assert len(r["analyses"]) == 4 and r["capacity_im_m_s2"] is None
+    # The fitted curve is the lognormal with that median and β.
+    assert abs(got.probability(got.median_m_s2) - 0.5) < 1e-15
+    with pytest.raises(ValueError, match="`stripes`"):
+        rocking.ida(rocking.load_scene(scene, set=["ida.stripes=[-1.0]"]), records=recs)

@@ -24,6 +24,7 @@ use std::time::{Duration, Instant};
 use rayon::prelude::*;
 use rocking::Summary;
 
+pub mod ida;
 pub mod plan;
 pub mod shard;
 

@@ -31,12 +31,14 @@ __version__: str = _rocking.__version__
 __all__ = [
     "Batch",
     "Excitation",
+    "Fragility",
     "Result",
     "Scene",
     "Spectrum",
     "Structure",
     "Summary",
     "batch",
+    "ida",
     "load_scene",
     "models",
     "simulate",
@@ -323,6 +325,46 @@ def batch(
     s = _scene(scene)
     recs = [os.fspath(r) for r in (records or [])]
     return Batch(_rocking.batch(s._inner, recs, [float(x) for x in (scales or [])], threads))
+
+
+class Fragility:
+    """A record-suite fragility study (:func:`ida`): ``fragility`` (what ``fragility.json`` of
+    ``rocking ida`` holds: ``method`` "ida" or "multiple-stripe", ``median_m_s2``, ``beta``, the
+    bootstrap intervals, and the ``capacities_m_s2`` or the ``stripes``) and ``records`` (per
+    record its intensity measures, ``im_m_s2`` at scale 1, its capacity and its ``analyses``)."""
+
+    def __init__(self, fragility: Dict[str, Any], records: List[Dict[str, Any]]) -> None:
+        self.fragility = fragility
+        self.records = records
+        self.median_m_s2: float = fragility["median_m_s2"]
+        self.beta: float = fragility["beta"]
+
+    def probability(self, im: Any) -> Any:
+        """P(overturning | IM = im) of the fitted lognormal, for IM values in m/s² (numpy)."""
+        from math import erf, log, sqrt
+
+        f = np.vectorize(lambda x: 0.5 * (1 + erf(log(x / self.median_m_s2) / (self.beta * sqrt(2)))))
+        return f(np.asarray(im, dtype=float))
+
+    def __repr__(self) -> str:
+        return (
+            f"Fragility({self.fragility['method']}, median {self.median_m_s2:.4g} m/s², "
+            f"beta {self.beta:.3f}, {len(self.records)} records)"
+        )
+
+
+def ida(
+    scene: Union[Scene, PathLike],
+    records: Optional[Iterable[PathLike]] = None,
+    threads: Optional[int] = None,
+) -> Fragility:
+    """Runs the scene's ``[ida]`` study as ``rocking ida`` does: every record (default: ``[ida]
+    records``, else ``[sweep] records``) by hunt-and-fill IDA, or at every level of ``stripes``,
+    then the lognormal fragility by maximum likelihood with its bootstrap band (GIL released)."""
+    s = _scene(scene)
+    recs = [os.fspath(r) for r in (records or [])]
+    fragility, per_record = _rocking.ida(s._inner, recs, threads)
+    return Fragility(json.loads(fragility), json.loads(per_record))
 
 
 def models() -> List[Dict[str, Any]]:
