@@ -12,7 +12,7 @@ use rocking_scene::model::{Animation, Model};
 use crate::{register, wrap};
 
 /// Pixels of the text band above the picture and of the margins.
-const BAND: f64 = 56.0;
+const BAND: f64 = 74.0;
 const MARGIN: f64 = 24.0;
 
 /// The drawn geometry of one frame, in pixels (x right, y down), before rounding.
@@ -182,7 +182,7 @@ const GROUND: RGBColor = RGBColor(153, 102, 51);
 fn draw_frame(
     area: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
     f: &Frame,
-    title: &str,
+    title: &[String],
 ) -> Result<(), String> {
     let e = |e: DrawingAreaErrorKind<_>| format!("{e}");
     area.fill(&WHITE).map_err(e)?;
@@ -221,8 +221,14 @@ fn draw_frame(
     ))
     .map_err(e)?;
     let font = ("sans-serif", 16).into_font();
-    area.draw(&Text::new(title.to_string(), (10, 8), font.clone()))
+    for (i, line) in title.iter().enumerate() {
+        area.draw(&Text::new(
+            line.clone(),
+            (10, 6 + 19 * i as i32),
+            font.clone(),
+        ))
         .map_err(e)?;
+    }
     let state = format!(
         "{} = {:6.2}    {} = {:+.3}",
         labels::TAU.split(' ').next().unwrap_or("τ"),
@@ -230,7 +236,8 @@ fn draw_frame(
         labels::THETA_OVER_ALPHA,
         f.theta_over_alpha
     );
-    area.draw(&Text::new(state, (10, 30), font)).map_err(e)?;
+    let below = 6 + 19 * title.len() as i32 + 4;
+    area.draw(&Text::new(state, (10, below), font)).map_err(e)?;
     Ok(())
 }
 
@@ -270,10 +277,12 @@ pub fn render(model: &Model, run: &Run, spec: &Animation) -> Result<(Vec<u8>, us
         .title
         .clone()
         .unwrap_or_else(|| model.excitation_description.clone());
-    let title: String = wrap(&title, (spec.width as usize / 9).max(10))
-        .into_iter()
-        .next()
-        .unwrap_or_default();
+    // At most two lines of title above the state line; a longer title ends in "…".
+    let mut title = wrap(&title, (spec.width as usize / 9).max(10));
+    if title.len() > 2 {
+        title.truncate(2);
+        title[1].push_str(" …");
+    }
     let (w, h) = (spec.width, spec.height);
     let mut bytes = Vec::new();
     {
