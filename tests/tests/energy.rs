@@ -2,8 +2,8 @@
 //! balance E_final + ∫ü_g P_x dt + ∫c u'² dt + Σ losses = E_initial (verification.md §4).
 
 use rocking::{
-    DampingConvention, Effects, EventKind, History, ImpactModel, Initial, Options, Preset, Run,
-    Structure,
+    Accuracy, DampingConvention, Effects, EventKind, History, ImpactModel, Initial, Method,
+    Options, Preset, Run, Structure,
 };
 use rocking_motion::{NoMotion, SinePulse};
 use rocking_verification::*;
@@ -92,16 +92,19 @@ fn free_rocking_energy_constant_between_impacts() {
     }
 }
 
+/// The reference accuracy, and the Taylor method at the same tolerance.
+const METHODS: [Method; 2] = [Method::Dop853, Method::Taylor];
+
 fn forced_balance(s: &Structure, pulse: &SinePulse, label: &str) -> Vec<f64> {
     let mut out = Vec::new();
-    for impact in [ImpactModel::Vvel, ImpactModel::Adjex] {
-        let run = run_checked(
-            s,
-            pulse,
-            &Effects::default(),
-            &reference(impact, 12.0),
-            label,
-        );
+    for (impact, method) in [ImpactModel::Vvel, ImpactModel::Adjex]
+        .into_iter()
+        .flat_map(|i| METHODS.map(|m| (i, m)))
+    {
+        let mut opts = reference(impact, 12.0);
+        opts.accuracy.method = method;
+        let label = &format!("{label} ({method:?})");
+        let run = run_checked(s, pulse, &Effects::default(), &opts, label);
         let res = run.summary.energy_balance_residual.unwrap();
         let e = run.summary.energy.unwrap();
         eprintln!(
@@ -243,7 +246,8 @@ fn elastic_restitution_on_a_flexible_column_creates_no_energy() {
 }
 
 /// No impact model increases the kinetic energy at any impact, over a grid of flexible and rigid
-/// columns (α, ω_n/p, column and base masses) in free rocking and under a pulse.
+/// columns (α, ω_n/p, column and base masses) in free rocking and under a pulse, with DOP853 and
+/// with the Taylor method.
 #[test]
 fn no_impact_model_creates_kinetic_energy() {
     let models = [
@@ -273,9 +277,13 @@ fn no_impact_model_creates_kinetic_energy() {
                 } else {
                     Effects::default()
                 };
-                for impact in models {
+                for (impact, method) in models.into_iter().flat_map(|i| METHODS.map(|m| (i, m))) {
                     for pulse in [false, true] {
                         let opts = Options {
+                            accuracy: Accuracy {
+                                method,
+                                ..Options::default().accuracy
+                            },
                             impact,
                             t_end: 60.0,
                             event_log: true,
@@ -285,8 +293,9 @@ fn no_impact_model_creates_kinetic_energy() {
                             },
                             ..Options::default()
                         };
-                        let label =
-                            format!("α={alpha} ω_n/p={w} γ=({gmc},{gmb}) {impact:?} pulse={pulse}");
+                        let label = format!(
+                            "α={alpha} ω_n/p={w} γ=({gmc},{gmb}) {impact:?} {method:?} pulse={pulse}"
+                        );
                         let run = if pulse {
                             let a = 3.0 * alpha.tan();
                             run_checked(&s, &SinePulse::new(a, 3.0), &fx, &opts, &label)

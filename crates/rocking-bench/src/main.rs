@@ -18,12 +18,15 @@ use std::process::ExitCode;
 const USAGE: &str = "\
 usage: rocking-bench run [--quick] [--out DIR]
        rocking-bench report [--dir DIR] [--docs DOCS]
+       rocking-bench probe CASE METHOD TOL [SECONDS]
 
 run     the accuracy/cost study (dopri5, dop853, taylor; tolerances 1e-3..1e-12, reference DOP853 1e-12);
         writes DIR/rust.json and DIR/cases.json (default DIR: target/bench)
         --quick  fewer tolerances and cases (a minute or two)
 report  writes DOCS/accuracy.md and DOCS/img/accuracy-*.{png,svg} from DIR/{rust,scipy,opensees}.json
         (default DOCS: docs)
+probe   one case of the study at one method and tolerance: CPU per simulation (median over
+        SECONDS, default 1), steps, evaluations and the errors against the reference
 ";
 
 fn main() -> ExitCode {
@@ -35,6 +38,23 @@ fn main() -> ExitCode {
         eprint!("{USAGE}");
         return ExitCode::from(2);
     };
+    if cmd == "probe" {
+        let (case, method) = (rest.first(), rest.get(1));
+        let tol = rest.get(2).and_then(|t| t.parse::<f64>().ok());
+        let seconds = rest.get(3).map_or(Some(1.0), |s| s.parse::<f64>().ok());
+        let (Some(case), Some(method), Some(tol), Some(seconds)) = (case, method, tol, seconds)
+        else {
+            eprint!("probe needs CASE METHOD TOL [SECONDS]\n{USAGE}");
+            return ExitCode::from(2);
+        };
+        return match study::probe(case, method, tol, seconds) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("rocking-bench: error: {e}");
+                ExitCode::from(2)
+            }
+        };
+    }
     let mut it = rest.iter();
     while let Some(a) = it.next() {
         match a.as_str() {

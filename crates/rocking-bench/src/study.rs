@@ -844,3 +844,49 @@ fn bisect_boundary(case: &Case, acc: Accuracy, mut lo: f64, mut hi: f64) -> f64 
     }
     0.5 * (lo + hi)
 }
+
+/// One case at one configuration, for profiling and quick comparisons: CPU per simulation
+/// (production options), steps and evaluations, and the errors against the reference.
+pub fn probe(name: &str, method: &str, tol: f64, seconds: f64) -> Result<()> {
+    let method = match method {
+        "dopri5" => Method::Dopri5,
+        "dop853" => Method::Dop853,
+        "taylor" => Method::Taylor,
+        other => return Err(format!("method {other:?}: dopri5, dop853 or taylor").into()),
+    };
+    if !(tol > 0.0 && tol < 1.0) {
+        return Err(format!("tolerance {tol}: must be in (0, 1)").into());
+    }
+    let all = cases(false)?;
+    let Some(case) = all.iter().find(|c| c.name == name) else {
+        let names: Vec<_> = all.iter().map(|c| c.name).collect();
+        return Err(format!("case {name:?}: one of {}", names.join(", ")).into());
+    };
+    let reference = diagnostic(
+        case,
+        Accuracy {
+            method: Method::Dop853,
+            tol: REF_TOL,
+        },
+    )?;
+    let acc = Accuracy { method, tol };
+    let ans = diagnostic(case, acc)?;
+    let e = errors(
+        &ans,
+        &reference,
+        case.slice.as_ref().map(|(_, a)| a.as_slice()),
+    );
+    let (cpu, reps, rhs, steps) = production(case, acc, seconds);
+    println!(
+        "{name} {} {tol:e}: {:.4} ms per simulation (median of {reps}), {steps:.0} steps, \
+         {rhs:.0} evaluations, {:.1} ns per step; error max θ/α {:.2e}, impact τ {:.2e}, \
+         branch divergences {}",
+        method_name(method),
+        1e3 * cpu,
+        1e9 * cpu / steps,
+        e.max_theta,
+        e.impact_time,
+        e.branch_divergences
+    );
+    Ok(())
+}

@@ -8,10 +8,13 @@
 //! the solution x(t0 + h) = Σ x_k h^k by x_{k+1} = f_k / (k + 1).
 //!
 //! Work variables that depend only on constants, the pivot `s` and the parameters are computed
-//! once as scalars before the order loop; only time-dependent ones become series. The recurrences
+//! once as scalars before the order loop; only time-dependent ones become series. Of those, only
+//! the ones whose lower coefficients a recurrence reads (the arguments of products, quotients,
+//! square roots and sines, and the results of the self-referencing ones) keep arrays; the rest
+//! are a local of the current order (found by a first rendering pass). The recurrences
 //! themselves are the hand-written helpers of `rocking_kernels::series`.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 use serde::Serialize;
 
@@ -57,6 +60,9 @@ enum Kind {
     Const,
     /// A truncated series (`wN: [f64; N]`).
     Series,
+    /// A series of which only the current order's coefficient is ever read (`let wN: f64` in
+    /// the order loop).
+    Coef,
 }
 
 /// Renders the Taylor module of one variant.
@@ -66,7 +72,8 @@ pub fn render_taylor(ir: &Ir) -> Result<String> {
     for f in &ir.functions {
         let ode = ODE_FUNCTIONS.contains(&f.name.as_str());
         if ode || SERIES_FUNCTIONS.contains(&f.name.as_str()) {
-            functions.push(render_fn(&origin, f, ode)?);
+            let (_, history) = render_fn(&origin, f, ode, None)?;
+            functions.push(render_fn(&origin, f, ode, Some(&history))?.0);
         }
     }
     let view = TaylorView {
@@ -108,7 +115,15 @@ fn is_const_input(inp: &Input) -> bool {
     inp.params || inp.name == "s"
 }
 
-fn render_fn(origin: &str, f: &Function, ode: bool) -> Result<TaylorFn> {
+/// Renders one function in Taylor mode, with every time-dependent variable a series when `keep`
+/// is `None`, or only those in `keep`. Also returns the variables whose lower coefficients a
+/// recurrence reads.
+fn render_fn(
+    origin: &str,
+    f: &Function,
+    ode: bool,
+    keep: Option<&BTreeSet<String>>,
+) -> Result<(TaylorFn, BTreeSet<String>)> {
     let err = |i: usize, msg: String| {
         Error::invalid(
             origin,
@@ -149,6 +164,17 @@ fn render_fn(origin: &str, f: &Function, ode: bool) -> Result<TaylorFn> {
     };
     let mut prelude = Vec::new();
     let mut body = Vec::new();
+    let mut history: BTreeSet<String> = BTreeSet::new();
+    // A time-dependent variable: an array when its history is read, else the current coefficient.
+    let series_kind = |name: &str| match keep {
+        Some(keep) if !keep.contains(name) => Kind::Coef,
+        _ => Kind::Series,
+    };
+    // The statement that sets the current coefficient of a new time-dependent variable.
+    let assign = |name: &str, kind: Kind, expr: String| match kind {
+        Kind::Coef => format!("let {name} = {expr};"),
+        _ => format!("{name}[k] = {expr};"),
+    };
     // sin/cos of the same series argument share one recurrence: argument -> (sin, cos) arrays.
     let mut trig: BTreeMap<String, (String, String)> = BTreeMap::new();
     let mut outputs: Vec<Option<(String, Kind)>> = vec![None; n_out];
@@ -164,6 +190,7 @@ fn render_fn(origin: &str, f: &Function, ode: bool) -> Result<TaylorFn> {
     // The k-th coefficient of a work variable, as an expression.
     let coef = |(name, k): &(String, Kind)| match k {
         Kind::Series => format!("{name}[k]"),
+        Kind::Coef => name.clone(),
         Kind::Const => format!("at0(k, {name})"),
     };
 
@@ -188,8 +215,12 @@ fn render_fn(origin: &str, f: &Function, ode: bool) -> Result<TaylorFn> {
                     prelude.push(format!("let {name}: f64 = {expr};"));
                 } else {
                     let name = define(&mut current, *dest, Kind::Series);
-                    prelude.push(format!("let mut {name} = [0.0f64; N];"));
-                    body.push(format!("{name}[k] = {expr}[k];"));
+                    let kind = series_kind(&name);
+                    current.insert(*dest, (name.clone(), kind));
+                    if kind == Kind::Series {
+                        prelude.push(format!("let mut {name} = [0.0f64; N];"));
+                    }
+                    body.push(assign(&name, kind, format!("{expr}[k]")));
                 }
             }
             Instruction::Const { dest, value } => {
@@ -228,13 +259,26 @@ fn render_fn(origin: &str, f: &Function, ode: bool) -> Result<TaylorFn> {
                 }
                 // Named after its arguments are read: the tape may re-assign an argument's slot.
                 let d = define(&mut current, *dest, Kind::Series);
+                let dk = series_kind(&d);
+                current.insert(*dest, (d.clone(), dk));
+                // The recurrences that read lower coefficients (of arguments, or of the result).
+                let mut reads =
+                    |names: &[&String]| history.extend(names.iter().map(|n| (*n).clone()));
+                let set = |expr: String| assign(&d, dk, expr);
                 let line = match op.as_str() {
-                    "assign" => format!("{d}[k] = {ca};"),
-                    "neg" => format!("{d}[k] = -{ca};"),
-                    "twice" => format!("{d}[k] = 2.0 * {ca};"),
-                    "sq" => format!("{d}[k] = series::sq(&{a}, k);"),
-                    "sqrt" => format!("series::sqrt(&{a}, &mut {d}, k);"),
+                    "assign" => set(ca),
+                    "neg" => set(format!("-{ca}")),
+                    "twice" => set(format!("2.0 * {ca}")),
+                    "sq" => {
+                        reads(&[a]);
+                        set(format!("series::sq(&{a}, k)"))
+                    }
+                    "sqrt" => {
+                        reads(&[a, &d]);
+                        format!("series::sqrt(&{a}, &mut {d}, k);")
+                    }
                     "sin" | "cos" => {
+                        reads(&[a]);
                         let (s, c) = trig.entry(a.clone()).or_insert_with(|| {
                             let (s, c) = (format!("sin_{a}"), format!("cos_{a}"));
                             prelude.push(format!("let mut {s} = [0.0f64; N];"));
@@ -243,30 +287,39 @@ fn render_fn(origin: &str, f: &Function, ode: bool) -> Result<TaylorFn> {
                             (s, c)
                         });
                         let src = if op == "sin" { s.clone() } else { c.clone() };
-                        format!("{d}[k] = {src}[k];")
+                        set(format!("{src}[k]"))
                     }
                     "add" | "sub" => {
                         let sign = if op == "add" { '+' } else { '-' };
-                        format!("{d}[k] = {ca} {sign} {};", coef(&vars[1]))
+                        set(format!("{ca} {sign} {}", coef(&vars[1])))
                     }
                     "mul" => {
                         let (b, kb) = &vars[1];
+                        let cb = coef(&vars[1]);
                         match (ka, kb) {
-                            (Kind::Const, _) => format!("{d}[k] = {a} * {b}[k];"),
-                            (_, Kind::Const) => format!("{d}[k] = {a}[k] * {b};"),
-                            _ => format!("{d}[k] = series::mul(&{a}, &{b}, k);"),
+                            (Kind::Const, _) => set(format!("{a} * {cb}")),
+                            (_, Kind::Const) => set(format!("{ca} * {b}")),
+                            _ => {
+                                reads(&[a, b]);
+                                set(format!("series::mul(&{a}, &{b}, k)"))
+                            }
                         }
                     }
                     "div" => {
                         let (b, kb) = &vars[1];
                         match kb {
-                            Kind::Const => format!("{d}[k] = {a}[k] / {b};"),
-                            Kind::Series => format!("{d}[k] = series::div({ca}, &{b}, &{d}, k);"),
+                            Kind::Const => set(format!("{ca} / {b}")),
+                            _ => {
+                                reads(&[b, &d]);
+                                set(format!("series::div({ca}, &{b}, &{d}, k)"))
+                            }
                         }
                     }
                     _ => return Err(no_rule()),
                 };
-                prelude.push(format!("let mut {d} = [0.0f64; N];"));
+                if dk == Kind::Series {
+                    prelude.push(format!("let mut {d} = [0.0f64; N];"));
+                }
                 body.push(line);
             }
         }
@@ -329,7 +382,7 @@ fn render_fn(origin: &str, f: &Function, ode: bool) -> Result<TaylorFn> {
             "for k in 0..N {".to_string(),
         )
     };
-    Ok(TaylorFn {
+    let rendered = TaylorFn {
         name: f.name.clone(),
         doc,
         args: args.join(", "),
@@ -338,7 +391,8 @@ fn render_fn(origin: &str, f: &Function, ode: bool) -> Result<TaylorFn> {
         loop_head,
         body,
         result,
-    })
+    };
+    Ok((rendered, history))
 }
 
 /// The scalar form of an operation on constants (the same forms as the ordinary kernels).

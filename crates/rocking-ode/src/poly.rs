@@ -132,15 +132,23 @@ pub fn first_root(c: &[f64], h: f64, dir: Direction) -> Option<Root> {
         d[k] = c[k] * hk;
         hk *= h;
     }
+    // Rounding bound of the Bernstein coefficients (conversion and ~50 subdivisions): values
+    // within it of zero are zero as far as f64 can tell.
+    let scale: f64 = d[..=n].iter().map(|v| v.abs()).sum();
+    let delta = 8.0 * (n + 1) as f64 * f64::EPSILON * scale;
+    // Most steps are far from an event: every Bernstein coefficient lies within Σ_{k≥1} |d_k| of
+    // d_0 (C(i,k) ≤ C(n,k)), so when that keeps them all beyond twice the rounding bound on
+    // d_0's side, the search below would find no sign change and no coefficient within the bound
+    // (so no touch either). Skip the O(n²) conversion then.
+    let tail = scale - d[0].abs();
+    if d[0].abs() - tail > 2.0 * delta {
+        return None;
+    }
     let binom = &BINOM;
     let mut b = [0.0; MAX_DEGREE + 1];
     for i in 0..=n {
         b[i] = (0..=i).map(|k| binom[i][k] / binom[n][k] * d[k]).sum();
     }
-    // Rounding bound of the Bernstein coefficients (conversion and ~50 subdivisions): values
-    // within it of zero are zero as far as f64 can tell.
-    let scale: f64 = d[..=n].iter().map(|v| v.abs()).sum();
-    let delta = 8.0 * (n + 1) as f64 * f64::EPSILON * scale;
     let ctx = Ctx {
         c,
         h,

@@ -390,14 +390,28 @@ impl<const D: usize, const M: usize> Taylor<D, M> {
         rho1.min(rho2) * self.rhofac
     }
 
-    /// The step's polynomial at `t` in `[t_old, t_new]` (Horner); exactly the step's end state
-    /// at its end. Before any step: the current state.
+    /// The step's polynomial at `t` in `[t_old, t_new]` (Horner); exactly the step's end (start)
+    /// state at its end (start). Before any step: the current state.
     pub fn dense(&self, t: f64) -> [f64; D] {
         if !self.has_step || t == self.t {
             return self.y;
         }
+        if t == self.t_old {
+            return std::array::from_fn(|i| self.coef[i][0]);
+        }
         let tau = t - self.t_old;
-        self.coef.map(|c| poly::horner(&c[..=self.order], tau))
+        std::array::from_fn(|i| poly::horner(&self.coef[i][..=self.order], tau))
+    }
+
+    /// Component `i` of [`dense`](Self::dense) alone (one Horner sum instead of D).
+    pub fn dense_component(&self, i: usize, t: f64) -> f64 {
+        if !self.has_step || t == self.t {
+            return self.y[i];
+        }
+        if t == self.t_old {
+            return self.coef[i][0];
+        }
+        poly::horner(&self.coef[i][..=self.order], t - self.t_old)
     }
 
     /// Time derivative of the step's polynomial at `t`.

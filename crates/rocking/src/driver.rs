@@ -26,6 +26,7 @@ use rocking_ode::poly;
 use rocking_ode::taylor::{Taylor, TaylorOptions};
 use rocking_ode::{Integrator, OdeError, Options as OdeOptions, Tolerances};
 
+use crate::dense::{StepView, TaylorStep};
 use crate::options::{History, ImpactModel, Method, Options};
 use crate::results::{
     EnergyBalance, EventKind, EventRecord, HistoryRow, Phase, Run, SolverStats, Summary, Time,
@@ -631,7 +632,8 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
                     .map(|t| (t, index))
             });
             if let Some((t_up, index)) = lift {
-                self.extremes_contact(|t| contact_state(&ode.dense(t)), t_old, t_up);
+                let dense = |t| contact_state(&ode.dense(t));
+                self.extremes_contact(&dense, t_old, t_up);
                 let y = ode.dense(t_up);
                 self.step_history(
                     t_old,
@@ -645,7 +647,8 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
                 let (w, d) = carried(&y, 2);
                 return self.uplift(t_up, s, y[0], y[1], w, d);
             }
-            self.extremes_contact(|t| contact_state(&ode.dense(t)), t_old, t_new);
+            let dense = |t| contact_state(&ode.dense(t));
+            self.extremes_contact(&dense, t_old, t_new);
             self.step_history(
                 t_old,
                 t_new,
@@ -703,27 +706,28 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
     }
 
     /// max |u| within a contact step, including a turning point inside it.
-    fn extremes_contact(&mut self, dense: impl Fn(f64) -> [f64; 4], t_old: f64, t_new: f64) {
-        let (a, b) = (dense(t_old), dense(t_new));
+    fn extremes_contact(&mut self, step: &impl StepView, t_old: f64, t_new: f64) {
+        let (a, b) = (step.state(t_old), step.state(t_new));
         self.max_u = self.max_u.max(b[1].abs());
-        if a[3] * b[3] < 0.0 {
-            let tm = turning_point(|t| dense(t)[3], t_old, t_new, a[3]);
-            self.max_u = self.max_u.max(dense(tm)[1].abs());
+        if a[3] * b[3] < 0.0 && step.bound(1) > self.max_u {
+            let tm = turning_point(|t| step.component(3, t), t_old, t_new, a[3]);
+            self.max_u = self.max_u.max(step.component(1, tm).abs());
         }
     }
 
     /// max |θ| and |u| within a rocking step, including turning points inside it.
-    fn extremes_rocking(&mut self, dense: impl Fn(f64) -> [f64; 4], t_old: f64, t_new: f64) {
-        let (a, b) = (dense(t_old), dense(t_new));
+    fn extremes_rocking(&mut self, step: &impl StepView, t_old: f64, t_new: f64) {
+        let (a, b) = (step.state(t_old), step.state(t_new));
         self.track(&[b[0], b[1], 0.0, 0.0]);
         for (pos, rate) in [(0usize, 2usize), (1, 3)] {
-            if a[rate] * b[rate] < 0.0 {
-                let tm = turning_point(|t| dense(t)[rate], t_old, t_new, a[rate]);
-                let y = dense(tm);
+            let max = if pos == 0 { self.max_theta } else { self.max_u };
+            if a[rate] * b[rate] < 0.0 && step.bound(pos) > max {
+                let tm = turning_point(|t| step.component(rate, t), t_old, t_new, a[rate]);
+                let y = step.component(pos, tm).abs();
                 if pos == 0 {
-                    self.max_theta = self.max_theta.max(y[0].abs());
+                    self.max_theta = self.max_theta.max(y);
                 } else {
-                    self.max_u = self.max_u.max(y[1].abs());
+                    self.max_u = self.max_u.max(y);
                 }
             }
         }
@@ -792,14 +796,16 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             let (t_old, t_new) = (info.t_old, info.t_new);
             let g_new = g(t_new, ode.y());
             if let Some(ev) = locate(&mut ode, &mut g, &dirs, &g_old, &g_new) {
-                self.extremes_rocking(|t| rocking_state(&ode.dense(t)), t_old, ev.t);
+                let dense = |t| rocking_state(&ode.dense(t));
+                self.extremes_rocking(&dense, t_old, ev.t);
                 self.step_history(t_old, ev.t, |t| rocking_state(&ode.dense(t)), phase, s);
                 self.stats.add(ode.take_stats());
                 let y = ev.y;
                 let (w, d) = carried(&y, 4);
                 return self.rocking_event(ev.index, ev.t, s, rocking_state(&y), w, d);
             }
-            self.extremes_rocking(|t| rocking_state(&ode.dense(t)), t_old, t_new);
+            let dense = |t| rocking_state(&ode.dense(t));
+            self.extremes_rocking(&dense, t_old, t_new);
             self.step_history(t_old, t_new, |t| rocking_state(&ode.dense(t)), phase, s);
             g_old = g_new;
             if t_new >= self.opts.t_end {
@@ -906,23 +912,25 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
                 let dirs = [Direction::Rising, Direction::Rising];
                 ode.locate(&mut sys, &dirs).map(|ev| (ev.t, ev.index))
             };
-            let dense = |t: f64| {
-                let y = unscale(ode.dense(t));
-                [0.0, y[0], 0.0, y[1]]
+            let step = TaylorStep {
+                ode: &ode,
+                scale,
+                rows: [None, Some(0), None, Some(1)],
             };
+            let dense = |t: f64| step.state(t);
             let lift = crossing.and_then(|(t_up, index)| {
                 let s = if index == 0 { RIGHT } else { LEFT };
                 self.first_lift(dense, s, t_up, t_new).map(|t| (t, s))
             });
             if let Some((t_up, s)) = lift {
-                self.extremes_contact(dense, t_old, t_up);
+                self.extremes_contact(&step, t_old, t_up);
                 self.step_history(t_old, t_up, dense, Phase::Contact, RIGHT);
                 self.stats.add(ode.take_stats());
                 let y = unscale(ode.dense(t_up));
                 let (w, d) = carried_array(&y, 2);
                 return self.uplift(t_up, s, y[0], y[1], w, d);
             }
-            self.extremes_contact(dense, t_old, t_new);
+            self.extremes_contact(&step, t_old, t_new);
             self.step_history(t_old, t_new, dense, Phase::Contact, RIGHT);
             let y = unscale(*ode.y());
             let done = t_new >= self.opts.t_end
@@ -1003,7 +1011,12 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
                 .enumerate()
                 .filter_map(|(i, r)| r.map(|tau| (i, tau)))
                 .min_by(|a, b| a.1.total_cmp(&b.1));
-            let dense = |t: f64| rocking_state_array(&unscale(ode.dense(t)));
+            let step = TaylorStep {
+                ode: &ode,
+                scale,
+                rows: [Some(0), Some(1), Some(2), Some(3)],
+            };
+            let dense = |t: f64| step.state(t);
             if let Some((index, tau)) = event {
                 // Strictly after t_old for a root inside the step, even below t_old's ulp.
                 let t = if tau >= h {
@@ -1013,7 +1026,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
                 } else {
                     (t_old + tau).max(after(t_old)).min(t_new)
                 };
-                self.extremes_rocking(dense, t_old, t);
+                self.extremes_rocking(&step, t_old, t);
                 self.step_history(t_old, t, dense, phase, s);
                 self.stats.add(ode.take_stats());
                 self.stats.events += 1;
@@ -1021,7 +1034,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
                 let (w, d) = carried_array(&y, 4);
                 return self.rocking_event(index, t, s, rocking_state_array(&y), w, d);
             }
-            self.extremes_rocking(dense, t_old, t_new);
+            self.extremes_rocking(&step, t_old, t_new);
             self.step_history(t_old, t_new, dense, phase, s);
             if t_new >= self.opts.t_end {
                 let y = unscale(*ode.y());

@@ -36,6 +36,7 @@
 
 #![warn(missing_docs)]
 
+mod dense;
 mod driver;
 mod options;
 mod results;
