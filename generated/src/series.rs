@@ -76,7 +76,7 @@ pub fn sin_cos<const N: usize>(a: &[f64; N], s: &mut [f64; N], c: &mut [f64; N],
         ds += ja * ckj;
         dc += ja * skj;
     }
-    let kf = k as f64;
-    s[k] = ds / kf;
-    c[k] = -dc / kf;
+    let inv_k = 1.0 / k as f64;
+    s[k] = ds * inv_k;
+    c[k] = -dc * inv_k;
 }

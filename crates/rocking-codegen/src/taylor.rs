@@ -349,9 +349,11 @@ fn render_fn(
     };
     let (ret, result, loop_head) = if let Some(sj) = state {
         let x = &f.inputs[sj].name;
+        // One division per order: x_{k+1} = f_k / (k + 1) for every component.
+        body.push("let inv_k1 = 1.0 / (k + 1) as f64;".to_string());
         for (e, out) in outputs.iter().enumerate() {
             let out = out.as_ref().ok_or_else(missing)?;
-            body.push(format!("{x}[{e}][k + 1] = {} / (k + 1) as f64;", coef(out)));
+            body.push(format!("{x}[{e}][k + 1] = {} * inv_k1;", coef(out)));
         }
         doc.push(format!(
             "/// Taylor coefficients of the solution of `{x}' = {}(..)`: on entry `{x}[i][0]` holds",

@@ -104,8 +104,9 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const D: usize> TaylorSystem<D>
         }
         V::rocking_series(&mut q, &ug, self.s, &self.p);
         for i in 0..4 {
+            let inv = 1.0 / self.scale[i];
             for k in 1..N {
-                x[i][k] = q[i][k] / self.scale[i];
+                x[i][k] = q[i][k] * inv;
             }
         }
         if D > 4 {
@@ -148,8 +149,9 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const D: usize> TaylorSystem<D>
         let (mut q, ug) = self.contact(t0, x, false);
         V::contact_series(&mut q, &ug, &self.p);
         for i in 0..2 {
+            let inv = 1.0 / self.scale[i];
             for k in 1..N {
-                x[i][k] = q[i][k] / self.scale[i];
+                x[i][k] = q[i][k] * inv;
             }
         }
         if D > 2 {

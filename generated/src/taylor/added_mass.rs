@@ -288,10 +288,11 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         let w235 = w139 * w130;
         let w236 = w234 - w235;
         w237[k] = series::div(w236, &w232, &w237, k);
-        x[0][k + 1] = w0[k] / (k + 1) as f64;
-        x[1][k + 1] = w1[k] / (k + 1) as f64;
-        x[2][k + 1] = w233[k] / (k + 1) as f64;
-        x[3][k + 1] = w237[k] / (k + 1) as f64;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        x[0][k + 1] = w0[k] * inv_k1;
+        x[1][k + 1] = w1[k] * inv_k1;
+        x[2][k + 1] = w233[k] * inv_k1;
+        x[3][k + 1] = w237[k] * inv_k1;
     }
 }
 
@@ -353,8 +354,9 @@ pub fn contact_rhs<const N: usize>(xc: &mut [[f64; N]; 2], ug: &[f64; N], p: &Pa
         let w50 = w49 * w0;
         let w51 = w31 - w50;
         let w52 = w51 / w45;
-        xc[0][k + 1] = w0 / (k + 1) as f64;
-        xc[1][k + 1] = w52 / (k + 1) as f64;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        xc[0][k + 1] = w0 * inv_k1;
+        xc[1][k + 1] = w52 * inv_k1;
     }
 }
 

@@ -227,10 +227,11 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         let w179 = w100 * w93;
         let w180 = w178 - w179;
         w181[k] = series::div(w180, &w176, &w181, k);
-        x[0][k + 1] = w0[k] / (k + 1) as f64;
-        x[1][k + 1] = w1[k] / (k + 1) as f64;
-        x[2][k + 1] = w177[k] / (k + 1) as f64;
-        x[3][k + 1] = w181[k] / (k + 1) as f64;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        x[0][k + 1] = w0[k] * inv_k1;
+        x[1][k + 1] = w1[k] * inv_k1;
+        x[2][k + 1] = w177[k] * inv_k1;
+        x[3][k + 1] = w181[k] * inv_k1;
     }
 }
 
@@ -274,8 +275,9 @@ pub fn contact_rhs<const N: usize>(xc: &mut [[f64; N]; 2], ug: &[f64; N], p: &Pa
         let w32 = w31 * w0;
         let w33 = w19 - w32;
         let w34 = w33 / w27;
-        xc[0][k + 1] = w0 / (k + 1) as f64;
-        xc[1][k + 1] = w34 / (k + 1) as f64;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        xc[0][k + 1] = w0 * inv_k1;
+        xc[1][k + 1] = w34 * inv_k1;
     }
 }
 

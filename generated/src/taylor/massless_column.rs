@@ -123,10 +123,11 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         let w85 = w44 * w42;
         let w86 = w84 - w85;
         w87[k] = series::div(w86, &w82, &w87, k);
-        x[0][k + 1] = w0[k] / (k + 1) as f64;
-        x[1][k + 1] = w1[k] / (k + 1) as f64;
-        x[2][k + 1] = w83[k] / (k + 1) as f64;
-        x[3][k + 1] = w87[k] / (k + 1) as f64;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        x[0][k + 1] = w0[k] * inv_k1;
+        x[1][k + 1] = w1[k] * inv_k1;
+        x[2][k + 1] = w83[k] * inv_k1;
+        x[3][k + 1] = w87[k] * inv_k1;
     }
 }
 
@@ -161,8 +162,9 @@ pub fn contact_rhs<const N: usize>(xc: &mut [[f64; N]; 2], ug: &[f64; N], p: &Pa
         let w23 = w22 * w0;
         let w24 = w14 - w23;
         let w25 = w24 / w11;
-        xc[0][k + 1] = w0 / (k + 1) as f64;
-        xc[1][k + 1] = w25 / (k + 1) as f64;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        xc[0][k + 1] = w0 * inv_k1;
+        xc[1][k + 1] = w25 * inv_k1;
     }
 }
 

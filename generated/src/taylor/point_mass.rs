@@ -114,10 +114,11 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         let w76 = w37 * w35;
         let w77 = w75 - w76;
         w78[k] = series::div(w77, &w73, &w78, k);
-        x[0][k + 1] = w0[k] / (k + 1) as f64;
-        x[1][k + 1] = w1[k] / (k + 1) as f64;
-        x[2][k + 1] = w74[k] / (k + 1) as f64;
-        x[3][k + 1] = w78[k] / (k + 1) as f64;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        x[0][k + 1] = w0[k] * inv_k1;
+        x[1][k + 1] = w1[k] * inv_k1;
+        x[2][k + 1] = w74[k] * inv_k1;
+        x[3][k + 1] = w78[k] * inv_k1;
     }
 }
 
@@ -152,8 +153,9 @@ pub fn contact_rhs<const N: usize>(xc: &mut [[f64; N]; 2], ug: &[f64; N], p: &Pa
         let w23 = w22 * w0;
         let w24 = w14 - w23;
         let w25 = w24 / w11;
-        xc[0][k + 1] = w0 / (k + 1) as f64;
-        xc[1][k + 1] = w25 / (k + 1) as f64;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        xc[0][k + 1] = w0 * inv_k1;
+        xc[1][k + 1] = w25 * inv_k1;
     }
 }
 

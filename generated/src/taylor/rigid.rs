@@ -90,10 +90,11 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         let w43 = w29 + w42;
         let w66 = w43 / w65;
         let w67 = -w66;
-        x[0][k + 1] = w0 / (k + 1) as f64;
-        x[1][k + 1] = at0(k, w1) / (k + 1) as f64;
-        x[2][k + 1] = w67 / (k + 1) as f64;
-        x[3][k + 1] = at0(k, w1) / (k + 1) as f64;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        x[0][k + 1] = w0 * inv_k1;
+        x[1][k + 1] = at0(k, w1) * inv_k1;
+        x[2][k + 1] = w67 * inv_k1;
+        x[3][k + 1] = at0(k, w1) * inv_k1;
     }
 }
 
@@ -103,8 +104,9 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
 pub fn contact_rhs<const N: usize>(xc: &mut [[f64; N]; 2], ug: &[f64; N], p: &Params) {
     let w0: f64 = 0.0;
     for k in 0..N - 1 {
-        xc[0][k + 1] = at0(k, w0) / (k + 1) as f64;
-        xc[1][k + 1] = at0(k, w0) / (k + 1) as f64;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        xc[0][k + 1] = at0(k, w0) * inv_k1;
+        xc[1][k + 1] = at0(k, w0) * inv_k1;
     }
 }
 
