@@ -84,3 +84,53 @@ fn presets_meet_their_stated_accuracy() {
         }
     }
 }
+
+/// `accurate` is the Taylor method where the excitation has a Taylor series, and DOP853 at 1e-10
+/// (the study's tolerance for the same error) where it has none: on a Ricker pulse it runs and
+/// meets the preset's bound.
+#[test]
+fn accurate_falls_back_to_dop853_without_a_taylor_series() {
+    let (s, sine, o) = case("fig3");
+    assert_eq!(
+        Preset::Accurate.accuracy_for(&sine),
+        Accuracy {
+            method: Method::Taylor,
+            tol: 1e-9
+        }
+    );
+    let ricker = rocking_motion::Ricker::symmetric(2.0 * 0.2f64.tan(), 4.0);
+    let fallback = Preset::Accurate.accuracy_for(&ricker);
+    assert_eq!(
+        fallback,
+        Accuracy {
+            method: Method::Dop853,
+            tol: 1e-10
+        }
+    );
+    // The preset's plain accuracy is refused on the Ricker pulse with a message naming the way
+    // out; the fallback runs, and agrees with the reference setting.
+    let err = simulate(
+        &s,
+        &ricker,
+        &Effects::default(),
+        &Options {
+            accuracy: Preset::Accurate.accuracy(),
+            ..o
+        },
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(err.contains("accuracy_for"), "{err}");
+    let run_at =
+        |accuracy| simulate(&s, &ricker, &Effects::default(), &Options { accuracy, ..o }).unwrap();
+    let (a, r) = (
+        run_at(fallback),
+        run_at(Accuracy {
+            method: Method::Dop853,
+            tol: 1e-13,
+        }),
+    );
+    assert!(r.summary.impacts > 0, "the Ricker pulse rocks the block");
+    let e = error(&a, &r);
+    assert!(e <= 1e-8, "accurate on a Ricker pulse: error {e:e}");
+}

@@ -849,7 +849,7 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Model, CliError> {
     let mut accuracy: Accuracy = sv
         .and_then(|s| s.accuracy)
         .unwrap_or(Preset::Default)
-        .accuracy();
+        .accuracy_for(&excitation);
     if let Some(m) = sv.and_then(|s| s.method.as_deref()) {
         accuracy.method = match m.to_lowercase().as_str() {
             "dopri5" => Method::Dopri5,

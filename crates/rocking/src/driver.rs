@@ -168,7 +168,8 @@ fn run<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: us
     if opts.accuracy.method == Method::Taylor && !motion.accel_series(0.0, &mut [0.0; 2]) {
         return Err(SimError::Options(
             "method = taylor needs the excitation's Taylor series, which this motion does not \
-             give (the Ricker and Mavroeidis-Papageorgiou pulses): use dop853"
+             give (the Ricker and Mavroeidis-Papageorgiou pulses): use dop853, or \
+             Preset::accuracy_for, which does for this motion"
                 .into(),
         ));
     }
@@ -898,6 +899,14 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         let unscale = |y: [f64; NC]| -> [f64; NC] { std::array::from_fn(|i| y[i] * scale[i]) };
         let may_stop = self.opts.stop_when_known && matches!(self.opts.history, History::None);
         let excitation_end = self.motion.end();
+        // The settling step exists for an f_s already above zero at the rest (a grazing
+        // excursion that would make the run chatter at one instant). The RK path's first step is
+        // tiny, so it sees any later crossing at once; a Taylor step is long, and must look for
+        // crossings inside it as usual when no f_s starts above zero.
+        if settling {
+            let g0 = self.uplift_functions(start[0], start[1], self.motion.accel_right(t0));
+            settling = g0.iter().any(|g| *g > 0.0);
+        }
         loop {
             let t_stop = self.t_stop(ode.t());
             ode.step(&mut sys, t_stop)?;
