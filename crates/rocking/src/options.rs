@@ -48,16 +48,16 @@ pub struct Accuracy {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Preset {
-    /// DOP853 at 1e-5: error about 4e-5, about 0.38 ms per simulation. Spectra drafts.
+    /// DOP853 at 1e-5: error about 4e-5, about 0.49 ms per simulation. Spectra drafts.
     Fast,
-    /// DOP853 at 1e-7: error about 7e-7, about 0.49 ms.
+    /// DOP853 at 1e-7: error about 7e-7, about 0.66 ms.
     Default,
-    /// The Taylor method at 1e-9: error about 2e-10, about 0.71 ms (DOP853 at 1e-10 took
-    /// 0.80 ms). An excitation without a Taylor series (the Ricker and Mavroeidis–Papageorgiou
+    /// The Taylor method at 1e-9: error about 2e-10, about 0.97 ms (DOP853 at 1e-10 took
+    /// 1.10 ms). An excitation without a Taylor series (the Ricker and Mavroeidis–Papageorgiou
     /// pulses) runs DOP853 at 1e-10 instead: see [`Preset::accuracy_for`].
     Accurate,
     /// DOP853 at 1e-12: converged against 1e-13 (impact times to ≤ 1e-11 relative), about
-    /// 1.2 ms. Reference solutions.
+    /// 1.7 ms. Reference solutions.
     Reference,
 }
 
