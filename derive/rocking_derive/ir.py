@@ -172,6 +172,65 @@ def golden(k: Kernel, f: ca.Function, instructions: list[list], variant: Variant
     return samples
 
 
+#: Order of the golden Taylor coefficients (x_1 .. x_TAYLOR_ORDER of the solution).
+TAYLOR_ORDER = 8
+
+#: The kernels that are right-hand sides of an ODE (the solver's Taylor method expands them).
+TAYLOR_RHS = ("rocking_rhs", "contact_rhs")
+
+
+def taylor_golden(k: Kernel, variant: Variant, count: int = 2) -> list[dict]:
+    """Golden Taylor coefficients of the solution of x' = k(x, ug(t), ...) at the sampled state:
+    x_n = x^(n)/n!, with x^(n) from repeated Lie derivatives of the right-hand side taken by CasADi's
+    own symbolic differentiation (the ground acceleration a polynomial whose Taylor coefficients
+    are inputs). This is an algorithm independent of the Taylor-mode recurrences the codegen emits
+    on the tape, which the Rust test `taylor_kernels_match_casadi_derivatives` compares with. The
+    numbers are the deterministic replay of the derivative's tape, checked against CasADi's
+    evaluation like ``golden``. Output layout: ``output[(n - 1) * dim + i]`` is coefficient n of
+    component i."""
+    state = k.inputs[0]
+    x = ca.vertcat(*state.symbols)
+    g = [ca.SX.sym(f"ug_{j}") for j in range(TAYLOR_ORDER)]
+    ug = next(i for i in k.inputs if i.name == "ug").symbols[0]
+    rhs = ca.substitute(ca.vertcat(*k.output.exprs), ug, g[0])
+
+    def lie(e):
+        """d/dt of e along the solution: the state moves with rhs, ug's coefficients shift."""
+        d = ca.jtimes(e, x, rhs)
+        for j in range(TAYLOR_ORDER - 1):
+            d += ca.jacobian(e, g[j]) * ((j + 1) * g[j + 1])
+        return d
+
+    coefficients, derivative = [rhs], rhs
+    for n in range(2, TAYLOR_ORDER + 1):
+        derivative = lie(derivative)
+        coefficients.append(derivative / math.factorial(n))
+    ins = [ca.vertcat(*g) if i.name == "ug" else ca.vertcat(*i.symbols) for i in k.inputs]
+    f = ca.Function(k.name + "_taylor", ins, [ca.densify(ca.vertcat(*coefficients))],
+                    {"cse": True, "live_variables": False})
+    instructions = tape(f)
+    rng = Sampler(20251125 + len(k.name))
+    samples = []
+    for j in range(count):
+        args = []
+        for inp in k.inputs:
+            if inp.params:
+                args.append(sample_params(variant, rng))
+            elif inp.name == "s":
+                args.append([1.0 if j % 2 == 0 else -1.0])
+            elif inp.name == "ug":
+                args.append([rng.uniform(*SAMPLE_RANGES["ug"]) / math.factorial(m) for m in range(TAYLOR_ORDER)])
+            else:
+                args.append([rng.uniform(*SAMPLE_RANGES[e]) for e in inp.elements])
+        values = replay(instructions, args)
+        casadi_values = [float(v) for v in ca.DM(f(*args)).full().reshape(-1)]
+        bad = [(i, a, b) for i, (a, b) in enumerate(zip(values, casadi_values)) if not _close(a, b)]
+        if len(values) != len(casadi_values) or bad:
+            raise ValueError(f"{variant.name}::{k.name}: Taylor replay differs from CasADi at {bad[:3]}")
+        samples.append({"inputs": args, "output": [number(v) for v in values]})
+    return samples
+
+
 def mass_roles(model) -> dict[str, dict]:
     """What each parameter is to the model's masses: a mass ("column", "lumped", "base"; removable
     or not), the inertia of a base mass, or the height of a lumped mass (scenes and the solver's
@@ -207,6 +266,8 @@ def variant_ir(variant: Variant) -> dict:
                        "scalar": k.output.scalar},
             "instructions": instructions,
             "golden": golden(k, f, instructions, variant),
+            **({"taylor_order": TAYLOR_ORDER, "taylor_golden": taylor_golden(k, variant)}
+               if k.name in TAYLOR_RHS else {}),
         })
     roles = mass_roles(variant.model)
     params = []
@@ -248,7 +309,7 @@ def dumps(ir: dict) -> str:
                 fkeys = list(fn)
                 for m, fk in enumerate(fkeys):
                     fc = "," if m + 1 < len(fkeys) else ""
-                    if fk in ("instructions", "golden", "inputs"):
+                    if fk in ("instructions", "golden", "inputs", "taylor_golden"):
                         lines.append(f'      "{fk}": [')
                         rows = fn[fk]
                         for r, row in enumerate(rows):

@@ -5,7 +5,8 @@
 //! E = T + V_g + V_s and of the power P = ground − damping must satisfy k E_k = P_{k−1} for every
 //! k ≥ 1. Energy and power come from other kernels than the right-hand side, so one wrong
 //! coefficient anywhere in x breaks the identity at its order. The first coefficient is also
-//! compared with the ordinary right-hand-side kernel.
+//! compared with the ordinary right-hand-side kernel. Second, independently, the coefficients
+//! of the right-hand sides are compared with CasADi's own derivatives (the IR's `taylor_golden`).
 
 use rocking_kernels::{kernels, taylor, Physical};
 
@@ -155,4 +156,127 @@ fn uplift_series_agrees_with_pointwise_evaluation() {
             "h = {h}: uplift {direct} vs its series {series}"
         );
     }
+}
+
+/// Defines `taylor_rhs(variant, function, input, order)`: the Taylor-mode right-hand side
+/// `function` of `variant` run on inputs looked up by their IR name (the state's values, the
+/// ground acceleration's coefficients, s, the parameters), returning coefficients 1..=order of
+/// every state component in the layout of the IR's `taylor_golden` outputs.
+macro_rules! taylor_rhs_by_name {
+    ($($T:ident => $m:ident),* $(,)?) => {
+        fn taylor_rhs(variant: &str, function: &str, input: &dyn Fn(&str) -> Vec<f64>, order: usize) -> Vec<f64> {
+            let mut ug = [0.0; N];
+            let g = input("ug");
+            ug[..g.len()].copy_from_slice(&g);
+            fn coefficients<const D: usize>(x: &[[f64; N]; D], order: usize) -> Vec<f64> {
+                (1..=order).flat_map(|n| x.iter().map(move |c| c[n])).collect()
+            }
+            fn state<const D: usize>(values: Vec<f64>) -> [[f64; N]; D] {
+                assert_eq!(values.len(), D, "state length");
+                let mut x = [[0.0; N]; D];
+                for (c, v) in x.iter_mut().zip(values) {
+                    c[0] = v;
+                }
+                x
+            }
+            match (variant, function) {
+                $(
+                    (stringify!($m), "rocking_rhs") => {
+                        let p: kernels::$m::Params = input("p").try_into().expect("parameter count");
+                        let mut x = state::<4>(input("x"));
+                        taylor::$m::rocking_rhs::<N>(&mut x, &ug, input("s")[0], &p);
+                        coefficients(&x, order)
+                    }
+                    (stringify!($m), "contact_rhs") => {
+                        let p: kernels::$m::Params = input("p").try_into().expect("parameter count");
+                        let mut xc = state::<2>(input("xc"));
+                        taylor::$m::contact_rhs::<N>(&mut xc, &ug, &p);
+                        coefficients(&xc, order)
+                    }
+                )*
+                _ => panic!("{variant}::{function} has no Taylor-mode kernel"),
+            }
+        }
+    };
+}
+rocking_kernels::for_each_variant!(taylor_rhs_by_name);
+
+/// The coefficient kernels against CasADi's own derivatives: each IR's `taylor_golden` holds the
+/// solution's Taylor coefficients x_1..x_8 at sampled states, from repeated symbolic Lie
+/// derivatives of the right-hand side (derive/rocking_derive/ir.py, `taylor_golden`), an
+/// algorithm independent of the Taylor-mode recurrences on the tape. Agreement to 1e-12 of the
+/// largest coefficient of the same order (a coefficient near zero by cancellation is compared
+/// at its order's scale).
+#[test]
+fn taylor_kernels_match_casadi_derivatives() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("ir");
+    let mut files: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    files.sort();
+    let (mut checked, mut worst) = (0usize, 0.0f64);
+    for file in files {
+        let ir: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&file).unwrap()).unwrap();
+        let variant = ir["variant"].as_str().unwrap();
+        let mut found = 0;
+        for function in ir["functions"].as_array().unwrap() {
+            let Some(samples) = function.get("taylor_golden") else {
+                continue;
+            };
+            found += 1;
+            let name = function["name"].as_str().unwrap();
+            let order = function["taylor_order"].as_u64().unwrap() as usize;
+            let names: Vec<&str> = function["inputs"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|i| i["name"].as_str().unwrap())
+                .collect();
+            let floats = |v: &serde_json::Value| -> Vec<f64> {
+                v.as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|x| x.as_f64().expect("a finite number"))
+                    .collect()
+            };
+            for sample in samples.as_array().unwrap() {
+                let inputs = sample["inputs"].as_array().unwrap();
+                let input = |n: &str| {
+                    let k = names.iter().position(|m| *m == n);
+                    floats(&inputs[k.unwrap_or_else(|| panic!("{variant}::{name}: no input {n}"))])
+                };
+                let want = floats(&sample["output"]);
+                let got = taylor_rhs(variant, name, &input, order);
+                assert_eq!(got.len(), want.len(), "{variant}::{name}: output length");
+                let dim = want.len() / order;
+                for n in 0..order {
+                    let row = n * dim..(n + 1) * dim;
+                    let scale = want[row.clone()]
+                        .iter()
+                        .fold(f64::MIN_POSITIVE, |m, w| m.max(w.abs()));
+                    for k in row {
+                        let err = (got[k] - want[k]).abs() / scale;
+                        worst = worst.max(err);
+                        assert!(
+                            err <= 1e-12,
+                            "{variant}::{name}: coefficient {} of component {}: {} vs CasADi {} ({err:.1e} of the order's scale)",
+                            n + 1,
+                            k % dim,
+                            got[k],
+                            want[k]
+                        );
+                        checked += 1;
+                    }
+                }
+            }
+        }
+        assert_eq!(
+            found, 2,
+            "{variant}: rocking_rhs and contact_rhs carry taylor_golden"
+        );
+    }
+    assert!(checked > 0, "no Taylor golden coefficients found");
+    eprintln!("{checked} Taylor coefficients match CasADi's derivatives; worst {worst:.1e} of their order's scale");
 }

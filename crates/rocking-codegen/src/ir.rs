@@ -101,6 +101,15 @@ pub struct Function {
     /// CasADi's own evaluation at a few points.
     #[serde(default)]
     pub golden: Vec<Golden>,
+    /// Right-hand sides only: the order of `taylor_golden`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub taylor_order: Option<usize>,
+    /// Right-hand sides only: Taylor coefficients 1..=`taylor_order` of the ODE's solution at a
+    /// few points (the ground acceleration's input holds its coefficients), from CasADi's symbolic
+    /// Lie derivatives; `output[(n - 1) * dim + i]` is coefficient n of component i. Read by the
+    /// tests of the Taylor-mode kernels.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub taylor_golden: Vec<Golden>,
 }
 
 /// One function argument.
