@@ -148,11 +148,12 @@ def _close(a: float, b: float) -> bool:
 
 
 def golden(k: Kernel, f: ca.Function, instructions: list[list], variant: Variant,
-           count: int = 3) -> list[dict]:
-    """Golden samples: the tape replayed deterministically (``replay``) at pseudo-random inputs,
-    checked here against CasADi's own evaluation of the function (which calls the machine's libm,
-    so it is a check, never an output)."""
-    rng = Sampler(20151122 + len(k.name))
+           count: int = 3, seed: int = 20151122, ug_series: int = 0) -> list[dict]:
+    """Golden samples: the tape of ``f`` (the kernel ``k``'s inputs) replayed deterministically
+    (``replay``) at pseudo-random inputs, checked here against CasADi's own evaluation of the
+    function (which calls the machine's libm, so it is a check, never an output). With
+    ``ug_series`` > 0 the ground acceleration is that many Taylor coefficients instead of a value."""
+    rng = Sampler(seed + len(k.name))
     samples = []
     for j in range(count):
         args = []
@@ -161,13 +162,15 @@ def golden(k: Kernel, f: ca.Function, instructions: list[list], variant: Variant
                 args.append(sample_params(variant, rng))
             elif inp.name == "s":
                 args.append([1.0 if j % 2 == 0 else -1.0])
+            elif inp.name == "ug" and ug_series:
+                args.append([rng.uniform(*SAMPLE_RANGES["ug"]) / math.factorial(m) for m in range(ug_series)])
             else:
                 args.append([rng.uniform(*SAMPLE_RANGES[e]) for e in inp.elements])
         values = replay(instructions, args)
         casadi_values = [float(v) for v in ca.DM(f(*args)).full().reshape(-1)]
         bad = [(i, a, b) for i, (a, b) in enumerate(zip(values, casadi_values)) if not _close(a, b)]
         if len(values) != len(casadi_values) or bad:
-            raise ValueError(f"{variant.name}::{k.name}: replay differs from CasADi at {bad[:3]}")
+            raise ValueError(f"{variant.name}::{f.name()}: replay differs from CasADi at {bad[:3]}")
         samples.append({"inputs": args, "output": [number(v) for v in values]})
     return samples
 
@@ -208,27 +211,7 @@ def taylor_golden(k: Kernel, variant: Variant, count: int = 2) -> list[dict]:
     ins = [ca.vertcat(*g) if i.name == "ug" else ca.vertcat(*i.symbols) for i in k.inputs]
     f = ca.Function(k.name + "_taylor", ins, [ca.densify(ca.vertcat(*coefficients))],
                     {"cse": True, "live_variables": False})
-    instructions = tape(f)
-    rng = Sampler(20251125 + len(k.name))
-    samples = []
-    for j in range(count):
-        args = []
-        for inp in k.inputs:
-            if inp.params:
-                args.append(sample_params(variant, rng))
-            elif inp.name == "s":
-                args.append([1.0 if j % 2 == 0 else -1.0])
-            elif inp.name == "ug":
-                args.append([rng.uniform(*SAMPLE_RANGES["ug"]) / math.factorial(m) for m in range(TAYLOR_ORDER)])
-            else:
-                args.append([rng.uniform(*SAMPLE_RANGES[e]) for e in inp.elements])
-        values = replay(instructions, args)
-        casadi_values = [float(v) for v in ca.DM(f(*args)).full().reshape(-1)]
-        bad = [(i, a, b) for i, (a, b) in enumerate(zip(values, casadi_values)) if not _close(a, b)]
-        if len(values) != len(casadi_values) or bad:
-            raise ValueError(f"{variant.name}::{k.name}: Taylor replay differs from CasADi at {bad[:3]}")
-        samples.append({"inputs": args, "output": [number(v) for v in values]})
-    return samples
+    return golden(k, f, tape(f), variant, count=2, seed=20251125, ug_series=TAYLOR_ORDER)
 
 
 def mass_roles(model) -> dict[str, dict]:
