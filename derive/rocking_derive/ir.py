@@ -191,8 +191,7 @@ def taylor_golden(k: Kernel, variant: Variant, count: int = 2) -> list[dict]:
     numbers are the deterministic replay of the derivative's tape, checked against CasADi's
     evaluation like ``golden``. Output layout: ``output[(n - 1) * dim + i]`` is coefficient n of
     component i."""
-    state = k.inputs[0]
-    x = ca.vertcat(*state.symbols)
+    x = ca.vertcat(*k.inputs[0].symbols)
     g = [ca.SX.sym(f"ug_{j}") for j in range(TAYLOR_ORDER)]
     ug = next(i for i in k.inputs if i.name == "ug").symbols[0]
     rhs = ca.substitute(ca.vertcat(*k.output.exprs), ug, g[0])
@@ -211,7 +210,7 @@ def taylor_golden(k: Kernel, variant: Variant, count: int = 2) -> list[dict]:
     ins = [ca.vertcat(*g) if i.name == "ug" else ca.vertcat(*i.symbols) for i in k.inputs]
     f = ca.Function(k.name + "_taylor", ins, [ca.densify(ca.vertcat(*coefficients))],
                     {"cse": True, "live_variables": False})
-    return golden(k, f, tape(f), variant, count=2, seed=20251125, ug_series=TAYLOR_ORDER)
+    return golden(k, f, tape(f), variant, count=count, seed=20251125, ug_series=TAYLOR_ORDER)
 
 
 def mass_roles(model) -> dict[str, dict]:
