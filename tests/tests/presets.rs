@@ -95,7 +95,7 @@ fn accurate_falls_back_to_dop853_without_a_taylor_series() {
         Preset::Accurate.accuracy_for(&sine),
         Accuracy {
             method: Method::Taylor,
-            tol: 1e-9
+            tol: 1e-11
         }
     );
     let ricker = rocking_motion::Ricker::symmetric(2.0 * 0.2f64.tan(), 4.0);

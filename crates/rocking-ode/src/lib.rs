@@ -19,7 +19,7 @@
 //!   combined 5th/3rd-order error estimator and the 7th-order dense output
 //!   (three extra stages), HNW I, Sect. II.10 and `dop853.f`. Twelve
 //!   evaluations per step plus three for the dense output.
-//! * [`taylor::Taylor`]: a Taylor-series method (order and step by heyoka's rule) for systems
+//! * [`taylor::Taylor`]: a Taylor-series method (Jorba–Zou step, order from a cost model) for systems
 //!   that supply their Taylor coefficients; dense output is the step's polynomial and events
 //!   are its roots ([`poly`]: Bernstein/Descartes isolation, so none inside a step is missed).
 //!
