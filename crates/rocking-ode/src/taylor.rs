@@ -28,10 +28,9 @@
 //! The generated kernels are generic over the number of coefficients N and always compute all N
 //! (the loop bound is the const generic), so their cost is fixed at compile time, ~N². One
 //! monomorphised maximum order would pay O(N_max²) at every tolerance; one instance per order
-//! would multiply the driver's compile time. The order from the rule is therefore rounded up to
-//! the next of [`ORDERS`] (10 instances per system; the order from the tolerance is chosen among
-//! them). The
-//! integrator stores `M` coefficients per component (`M - 1` is the highest order it accepts);
+//! would multiply the driver's compile time. The order from the tolerance is therefore chosen
+//! among [`ORDERS`] (10 instances per system), and a fixed order is rounded up to the next of
+//! them. The integrator stores `M` coefficients per component (`M - 1` is the highest order it accepts);
 //! the instance for N = order + 1 fills a stack array that is copied into that storage.
 //!
 //! # Excitation
