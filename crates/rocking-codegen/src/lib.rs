@@ -11,6 +11,7 @@
 mod error;
 pub mod ir;
 mod render;
+mod simplify;
 mod taylor;
 
 use std::collections::BTreeMap;

@@ -20,6 +20,7 @@ use serde::Serialize;
 
 use crate::ir::{Function, Input, Instruction, Ir};
 use crate::render::{float_literal, render_template, str_lit};
+use crate::simplify::simplify;
 use crate::{Error, Result};
 
 const TAYLOR_TEMPLATE: &str = include_str!("../templates/taylor.rs.tera");
@@ -72,8 +73,9 @@ pub fn render_taylor(ir: &Ir) -> Result<String> {
     for f in &ir.functions {
         let ode = ODE_FUNCTIONS.contains(&f.name.as_str());
         if ode || SERIES_FUNCTIONS.contains(&f.name.as_str()) {
-            let (_, history) = render_fn(&origin, f, ode, None)?;
-            functions.push(render_fn(&origin, f, ode, Some(&history))?.0);
+            let f = simplify(&origin, f, |j| f.inputs.get(j).is_some_and(is_const_input))?;
+            let (_, history) = render_fn(&origin, &f, ode, None)?;
+            functions.push(render_fn(&origin, &f, ode, Some(&history))?.0);
         }
     }
     let view = TaylorView {

@@ -23,7 +23,7 @@ use rocking_kernels::kernels::index::{
 use rocking_motion::GroundMotion;
 use rocking_ode::events::{locate, Direction};
 use rocking_ode::poly;
-use rocking_ode::taylor::{Taylor, TaylorOptions};
+use rocking_ode::taylor::{Taylor, TaylorOptions, TaylorSystem};
 use rocking_ode::{Integrator, OdeError, Options as OdeOptions, Tolerances};
 
 use crate::dense::{StepView, TaylorStep};
@@ -470,10 +470,27 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         c + reach < 0.0
     }
 
-    /// Whether the base really lifts about `s` from full contact: the rocking equations give
-    /// s θ'' > 0. It is equivalent to f_s > 0 (equations.md 1.2) except within rounding of
-    /// f_s = 0, where it decides consistently with the integrator that will follow.
-    fn lifts(&self, s: f64, u: f64, u_dot: f64, ug: f64) -> bool {
+    /// Whether the base really lifts about `s` at `t` from full contact: the rocking equations
+    /// give s θ'' > 0. It is equivalent to f_s > 0 (equations.md 1.2) except within rounding of
+    /// f_s = 0, where it decides consistently with the integrator that will follow: with the
+    /// Taylor method, θ'' is that integrator's first coefficient, computed as its first step
+    /// will (the Taylor-mode kernel regroups the tape, so the pointwise θ'' may differ from it
+    /// in the last bits and a lift decided on it could turn back at once); `ug` is ü_g(t) for
+    /// the Runge–Kutta methods.
+    fn lifts(&self, s: f64, t: f64, u: f64, u_dot: f64, ug: f64) -> bool {
+        if self.opts.accuracy.method == Method::Taylor {
+            let scale = self.rocking_scale;
+            let start = [0.0, u, 0.0, u_dot, 0.0, 0.0];
+            let mut x: [[f64; 2]; NR] = std::array::from_fn(|i| [start[i] / scale[i], 0.0]);
+            let mut sys = RockingSystem::<V, M, NR> {
+                p: self.p,
+                motion: self.motion,
+                s,
+                scale,
+            };
+            sys.coefficients::<2>(t, &mut x);
+            return s * x[2][1] > 0.0;
+        }
         s * V::rocking_rhs(&[0.0, u, 0.0, u_dot], ug, s, &self.p)[rr::THETA_DDOT] > 0.0
     }
 
@@ -489,7 +506,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
     ) -> Option<f64> {
         let lifts_at = |t: f64| {
             let y = dense(t);
-            self.lifts(s, y[1], y[3], self.motion.accel(t))
+            self.lifts(s, t, y[1], y[3], self.motion.accel(t))
         };
         if lifts_at(t_a) {
             return Some(t_a);
@@ -584,7 +601,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         let ug0 = self.motion.accel_right(t0);
         let f = self.uplift_functions(u, u_dot, ug0);
         for (k, s) in [(0, RIGHT), (1, LEFT)] {
-            if !settle && f[k] > 0.0 && self.lifts(s, u, u_dot, ug0) {
+            if !settle && f[k] > 0.0 && self.lifts(s, t0, u, u_dot, ug0) {
                 return self.uplift(t0, s, u, u_dot, w, d);
             }
         }
@@ -727,12 +744,27 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
 
     /// max |θ| and |u| within a rocking step, including turning points inside it.
     fn extremes_rocking(&mut self, step: &impl StepView, t_old: f64, t_new: f64) {
+        const SAMPLES: u32 = 32;
         let (a, b) = (step.state(t_old), step.state(t_new));
         self.track(&[b[0], b[1], 0.0, 0.0]);
         for (pos, rate) in [(0usize, 2usize), (1, 3)] {
             let max = if pos == 0 { self.max_theta } else { self.max_u };
-            if a[rate] * b[rate] < 0.0 && step.bound(pos) > max {
-                let tm = turning_point(|t| step.component(rate, t), t_old, t_new, a[rate]);
+            if step.bound(pos) <= max {
+                continue;
+            }
+            // A step from rest (θ' = 0 at an uplift) has no sign change at its ends: its first
+            // turning point lies after a point of the other sign than the end's, which one of
+            // a few samples finds unless the excursion is far shorter than the step.
+            let start = if a[rate] == 0.0 && b[rate] != 0.0 {
+                (1..SAMPLES)
+                    .map(|j| t_old + (t_new - t_old) * f64::from(j) / f64::from(SAMPLES))
+                    .map(|t| (t, step.component(rate, t)))
+                    .find(|&(_, r)| r * b[rate] < 0.0)
+            } else {
+                Some((t_old, a[rate]))
+            };
+            if let Some((ta, ra)) = start.filter(|&(_, r)| r * b[rate] < 0.0) {
+                let tm = turning_point(|t| step.component(rate, t), ta, t_new, ra);
                 let y = step.component(pos, tm).abs();
                 if pos == 0 {
                     self.max_theta = self.max_theta.max(y);

@@ -1,0 +1,788 @@
+//! The tape rewritten for Taylor mode: every product of two series paid for once.
+//!
+//! In Taylor mode a product (or quotient, square root, sine) of series costs O(k) operations
+//! at order k; a sum or a constant factor costs one. A kernel's cost is therefore its number of
+//! such *nonlinear* nodes, and CasADi's tape repeats them under constant factors and offsets:
+//! the Fig. 3 right-hand side multiplies θ' by u as `(2θ')·(c u)`, `θ'·(c u)`, `(c θ')·u`, ...
+//! This pass keeps every time-dependent value as a linear combination `Σ c_i a_i + c_0` of
+//! *atoms* (series inputs and nonlinear results) with coefficients constant along the step, so:
+//!
+//! - constant factors and offsets are hoisted out of products, and a product of two atoms is
+//!   one shared atom whatever the factors (commutative: `a b` and `b a` are one);
+//! - a product of two combinations is expanded over their terms when that costs no more new
+//!   atoms than multiplying the two combinations as they stand, so later products can share;
+//! - a combination is evaluated (once) only where a nonlinear node or an output needs it.
+//!
+//! The coefficients are scalar nodes (products and sums of parameters), computed once before
+//! the order loop by the renderer, like every other constant of the tape. The result is an
+//! ordinary tape of the same function, in single assignment, without dead nodes.
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use crate::ir::{Function, Instruction};
+use crate::{Error, Result};
+
+/// A work variable of the rewritten tape.
+type Node = usize;
+
+/// A coefficient constant along the step: `±1` or `±` a scalar node.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+struct Coef {
+    neg: bool,
+    var: Option<Node>,
+}
+
+const ONE: Coef = Coef {
+    neg: false,
+    var: None,
+};
+
+/// `Σ coef · atom + offset`, the terms keyed by atom.
+#[derive(Clone, Debug, Default, PartialEq, Eq, PartialOrd, Ord)]
+struct Lin {
+    terms: BTreeMap<Node, Coef>,
+    offset: Option<Coef>,
+}
+
+impl Lin {
+    fn atom(a: Node) -> Lin {
+        Lin {
+            terms: BTreeMap::from([(a, ONE)]),
+            offset: None,
+        }
+    }
+}
+
+/// The value of an original work variable: constant along the step, or a combination.
+#[derive(Clone, Debug)]
+enum Val {
+    Scalar(Node),
+    Series(Lin),
+}
+
+/// Whether an operation's arguments commute (their order is normalised for sharing).
+fn commutes(op: &str) -> bool {
+    matches!(op, "add" | "mul")
+}
+
+struct Builder {
+    tape: Vec<Instruction>,
+    /// Scalar and nonlinear series nodes by (operation, arguments): each is computed once.
+    ops: BTreeMap<(String, Vec<Node>), Node>,
+    consts: BTreeMap<u64, Node>,
+    /// Combinations already evaluated into a node.
+    evaluated: BTreeMap<Lin, Node>,
+}
+
+impl Builder {
+    fn fresh(&self) -> Node {
+        self.tape.len()
+    }
+
+    fn constant(&mut self, value: f64) -> Node {
+        if let Some(&n) = self.consts.get(&value.to_bits()) {
+            return n;
+        }
+        let dest = self.fresh();
+        self.tape.push(Instruction::Const { dest, value });
+        self.consts.insert(value.to_bits(), dest);
+        dest
+    }
+
+    /// The node of `op(args)`, shared with an earlier identical one.
+    fn op(&mut self, op: &str, mut args: Vec<Node>) -> Node {
+        if commutes(op) {
+            args.sort_unstable();
+        }
+        let key = (op.to_string(), args);
+        if let Some(&n) = self.ops.get(&key) {
+            return n;
+        }
+        let dest = self.fresh();
+        self.tape.push(Instruction::Op {
+            op: if key.0 == "mul" && key.1[0] == key.1[1] {
+                "sq".to_string()
+            } else {
+                key.0.clone()
+            },
+            dest,
+            args: if key.0 == "mul" && key.1[0] == key.1[1] {
+                vec![key.1[0]]
+            } else {
+                key.1.clone()
+            },
+        });
+        self.ops.insert(key, dest);
+        dest
+    }
+
+    fn exists(&self, op: &str, mut args: Vec<Node>) -> bool {
+        if commutes(op) {
+            args.sort_unstable();
+        }
+        self.ops.contains_key(&(op.to_string(), args))
+    }
+
+    /// The magnitude of a coefficient as a node (`1` becomes the constant 1).
+    fn magnitude(&mut self, c: Coef) -> Node {
+        match c.var {
+            Some(v) => v,
+            None => self.constant(1.0),
+        }
+    }
+
+    fn coef_mul(&mut self, a: Coef, b: Coef) -> Coef {
+        let var = match (a.var, b.var) {
+            (None, v) | (v, None) => v,
+            (Some(x), Some(y)) => Some(self.op("mul", vec![x, y])),
+        };
+        Coef {
+            neg: a.neg != b.neg,
+            var,
+        }
+    }
+
+    /// `a + b`, or `None` when they cancel.
+    fn coef_add(&mut self, a: Coef, b: Coef) -> Option<Coef> {
+        if a.var == b.var {
+            if a.neg != b.neg {
+                return None;
+            }
+            let two = self.constant(2.0);
+            let var = match a.var {
+                Some(v) => self.op("mul", vec![two, v]),
+                None => two,
+            };
+            return Some(Coef {
+                neg: a.neg,
+                var: Some(var),
+            });
+        }
+        let (x, y) = (self.magnitude(a), self.magnitude(b));
+        Some(match (a.neg, b.neg) {
+            (na, nb) if na == nb => Coef {
+                neg: na,
+                var: Some(self.op("add", vec![x, y])),
+            },
+            (false, _) => Coef {
+                neg: false,
+                var: Some(self.op("sub", vec![x, y])),
+            },
+            (true, _) => Coef {
+                neg: false,
+                var: Some(self.op("sub", vec![y, x])),
+            },
+        })
+    }
+
+    fn coef_inv(&mut self, c: Coef) -> Coef {
+        match c.var {
+            None => c,
+            Some(v) => {
+                let one = self.constant(1.0);
+                Coef {
+                    neg: c.neg,
+                    var: Some(self.op("div", vec![one, v])),
+                }
+            }
+        }
+    }
+
+    fn add(&mut self, a: &Lin, b: &Lin) -> Lin {
+        let mut sum = a.clone();
+        for (&atom, &c) in &b.terms {
+            match sum.terms.get(&atom).copied() {
+                None => {
+                    sum.terms.insert(atom, c);
+                }
+                Some(old) => match self.coef_add(old, c) {
+                    Some(new) => {
+                        sum.terms.insert(atom, new);
+                    }
+                    None => {
+                        sum.terms.remove(&atom);
+                    }
+                },
+            }
+        }
+        sum.offset = match (a.offset, b.offset) {
+            (x, None) | (None, x) => x,
+            (Some(x), Some(y)) => self.coef_add(x, y),
+        };
+        sum
+    }
+
+    fn scale(&mut self, a: &Lin, c: Coef) -> Lin {
+        let mut out = Lin::default();
+        for (&atom, &t) in &a.terms {
+            out.terms.insert(atom, self.coef_mul(t, c));
+        }
+        out.offset = a.offset.map(|o| self.coef_mul(o, c));
+        out
+    }
+
+    /// A combination with the scalar `x` added.
+    fn with_offset(&mut self, a: &Lin, x: Node, neg: bool) -> Lin {
+        let b = Lin {
+            terms: BTreeMap::new(),
+            offset: Some(Coef { neg, var: Some(x) }),
+        };
+        self.add(a, &b)
+    }
+
+    /// A combination as a value: a scalar when no series term is left.
+    fn value(&mut self, lin: Lin) -> Val {
+        if !lin.terms.is_empty() {
+            return Val::Series(lin);
+        }
+        Val::Scalar(match lin.offset {
+            None => self.constant(0.0),
+            Some(Coef { neg: false, var }) => match var {
+                Some(v) => v,
+                None => self.constant(1.0),
+            },
+            Some(Coef { neg: true, var }) => match var {
+                Some(v) => self.op("neg", vec![v]),
+                None => self.constant(-1.0),
+            },
+        })
+    }
+
+    /// The node holding a combination, evaluated once: a single atom is itself.
+    fn eval(&mut self, lin: &Lin) -> Node {
+        if lin.offset.is_none() && lin.terms.len() == 1 {
+            if let Some((&atom, &ONE)) = lin.terms.iter().next() {
+                return atom;
+            }
+        }
+        if let Some(&n) = self.evaluated.get(lin) {
+            return n;
+        }
+        // Positive terms first, so a negative one is a subtraction.
+        let mut parts: Vec<(bool, Node)> = Vec::new();
+        for (&atom, &c) in &lin.terms {
+            let node = match c.var {
+                None => atom,
+                Some(v) => self.op("mul", vec![v, atom]),
+            };
+            parts.push((c.neg, node));
+        }
+        if let Some(o) = lin.offset {
+            let m = self.magnitude(o);
+            parts.push((o.neg, m));
+        }
+        parts.sort_by_key(|&(neg, _)| neg);
+        let (neg0, first) = parts[0];
+        let mut acc = if neg0 {
+            self.op("neg", vec![first])
+        } else {
+            first
+        };
+        for &(neg, node) in &parts[1..] {
+            acc = self.op(if neg { "sub" } else { "add" }, vec![acc, node]);
+        }
+        self.evaluated.insert(lin.clone(), acc);
+        acc
+    }
+
+    /// A node for an argument of a nonlinear operation.
+    fn node(&mut self, v: &Val) -> Node {
+        match v {
+            Val::Scalar(n) => *n,
+            Val::Series(lin) => self.eval(lin),
+        }
+    }
+
+    /// The number of atoms a product would add: expanded over the terms, or as it stands.
+    fn new_products(&self, a: &Lin, b: &Lin) -> (usize, usize) {
+        let mut pairs = BTreeSet::new();
+        for &x in a.terms.keys() {
+            for &y in b.terms.keys() {
+                pairs.insert((x.min(y), x.max(y)));
+            }
+        }
+        let expanded = pairs
+            .iter()
+            .filter(|&&(x, y)| !self.exists("mul", vec![x, y]))
+            .count();
+        let node = |l: &Lin| -> Option<Node> {
+            match l.terms.iter().next() {
+                Some((&atom, &ONE)) if l.terms.len() == 1 && l.offset.is_none() => Some(atom),
+                _ => self.evaluated.get(l).copied(),
+            }
+        };
+        let whole = match (node(a), node(b)) {
+            (Some(x), Some(y)) if self.exists("mul", vec![x, y]) => 0,
+            _ => 1,
+        };
+        (expanded, whole)
+    }
+
+    fn mul(&mut self, a: &Lin, b: &Lin) -> Lin {
+        let (expanded, whole) = self.new_products(a, b);
+        if expanded > whole {
+            let (x, y) = (self.eval(a), self.eval(b));
+            return Lin::atom(self.op("mul", vec![x, y]));
+        }
+        let mut out = Lin::default();
+        for (&x, &cx) in &a.terms {
+            for (&y, &cy) in &b.terms {
+                let c = self.coef_mul(cx, cy);
+                let p = Lin::atom(self.op("mul", vec![x, y]));
+                let term = self.scale(&p, c);
+                out = self.add(&out, &term);
+            }
+        }
+        let cross = [(a.offset, b), (b.offset, a)];
+        for (o, other) in cross {
+            if let Some(o) = o {
+                let terms = Lin {
+                    terms: other.terms.clone(),
+                    offset: None,
+                };
+                let t = self.scale(&terms, o);
+                out = self.add(&out, &t);
+            }
+        }
+        if let (Some(x), Some(y)) = (a.offset, b.offset) {
+            let c = self.coef_mul(x, y);
+            let t = Lin {
+                terms: BTreeMap::new(),
+                offset: Some(c),
+            };
+            out = self.add(&out, &t);
+        }
+        out
+    }
+
+    /// `num / den` with a series denominator: a constant factor of the denominator hoisted.
+    fn div(&mut self, num: &Val, den: &Lin) -> Lin {
+        let n = self.node(num);
+        if den.offset.is_none() && den.terms.len() == 1 {
+            let (&atom, &c) = den.terms.iter().next().expect("one term");
+            let q = Lin::atom(self.op("div", vec![n, atom]));
+            let inv = self.coef_inv(c);
+            return self.scale(&q, inv);
+        }
+        let d = self.eval(den);
+        Lin::atom(self.op("div", vec![n, d]))
+    }
+}
+
+/// The tape of `f` rewritten so that every nonlinear operation on series is computed once
+/// (see the module docs). `is_const_input` tells the inputs constant along a step.
+pub(crate) fn simplify(
+    origin: &str,
+    f: &Function,
+    is_const_input: impl Fn(usize) -> bool,
+) -> Result<Function> {
+    let err = |i: usize, msg: String| {
+        Error::invalid(
+            origin,
+            format!("Taylor mode of {:?}, instruction {i}: {msg}", f.name),
+        )
+    };
+    let mut b = Builder {
+        tape: Vec::new(),
+        ops: BTreeMap::new(),
+        consts: BTreeMap::new(),
+        evaluated: BTreeMap::new(),
+    };
+    let mut vals: BTreeMap<usize, Val> = BTreeMap::new();
+    for (i, ins) in f.instructions.iter().enumerate() {
+        match ins {
+            Instruction::Input {
+                dest,
+                input,
+                element,
+            } => {
+                let node = b.fresh();
+                b.tape.push(Instruction::Input {
+                    dest: node,
+                    input: *input,
+                    element: *element,
+                });
+                let v = if is_const_input(*input) {
+                    Val::Scalar(node)
+                } else {
+                    Val::Series(Lin::atom(node))
+                };
+                vals.insert(*dest, v);
+            }
+            Instruction::Const { dest, value } => {
+                let n = b.constant(*value);
+                vals.insert(*dest, Val::Scalar(n));
+            }
+            Instruction::Output { element, src } => {
+                let v = vals.get(src).cloned().ok_or_else(|| {
+                    err(
+                        i,
+                        format!("work variable w{src} is read before it is written"),
+                    )
+                })?;
+                let n = b.node(&v);
+                b.tape.push(Instruction::Output {
+                    element: *element,
+                    src: n,
+                });
+            }
+            Instruction::Op { op, dest, args } => {
+                let vs = args
+                    .iter()
+                    .map(|a| {
+                        vals.get(a).cloned().ok_or_else(|| {
+                            err(
+                                i,
+                                format!("work variable w{a} is read before it is written"),
+                            )
+                        })
+                    })
+                    .collect::<Result<Vec<_>>>()?;
+                let arg = |j: usize| {
+                    vs.get(j)
+                        .cloned()
+                        .ok_or_else(|| err(i, format!("{op:?} lacks argument {j}")))
+                };
+                if vs.iter().all(|v| matches!(v, Val::Scalar(_))) {
+                    let nodes = vs.iter().map(|v| b.node(v)).collect();
+                    vals.insert(*dest, Val::Scalar(b.op(op, nodes)));
+                    continue;
+                }
+                let v = match op.as_str() {
+                    "assign" => arg(0)?,
+                    "neg" | "twice" => {
+                        let Val::Series(a) = arg(0)? else {
+                            unreachable!("a series argument")
+                        };
+                        let c = if op == "neg" {
+                            Coef {
+                                neg: true,
+                                var: None,
+                            }
+                        } else {
+                            Coef {
+                                neg: false,
+                                var: Some(b.constant(2.0)),
+                            }
+                        };
+                        Val::Series(b.scale(&a, c))
+                    }
+                    "add" | "sub" => {
+                        let neg = op == "sub";
+                        let lin = match (arg(0)?, arg(1)?) {
+                            (Val::Series(x), Val::Series(y)) => {
+                                let y = if neg {
+                                    b.scale(
+                                        &y,
+                                        Coef {
+                                            neg: true,
+                                            var: None,
+                                        },
+                                    )
+                                } else {
+                                    y
+                                };
+                                b.add(&x, &y)
+                            }
+                            (Val::Series(x), Val::Scalar(s)) => b.with_offset(&x, s, neg),
+                            (Val::Scalar(s), Val::Series(y)) => {
+                                let y = if neg {
+                                    b.scale(
+                                        &y,
+                                        Coef {
+                                            neg: true,
+                                            var: None,
+                                        },
+                                    )
+                                } else {
+                                    y
+                                };
+                                b.with_offset(&y, s, false)
+                            }
+                            (Val::Scalar(_), Val::Scalar(_)) => unreachable!("handled above"),
+                        };
+                        b.value(lin)
+                    }
+                    "mul" | "sq" => {
+                        let (x, y) = if op == "sq" {
+                            (arg(0)?, arg(0)?)
+                        } else {
+                            (arg(0)?, arg(1)?)
+                        };
+                        let lin = match (x, y) {
+                            (Val::Series(x), Val::Series(y)) => b.mul(&x, &y),
+                            (Val::Series(l), Val::Scalar(s)) | (Val::Scalar(s), Val::Series(l)) => {
+                                b.scale(
+                                    &l,
+                                    Coef {
+                                        neg: false,
+                                        var: Some(s),
+                                    },
+                                )
+                            }
+                            (Val::Scalar(_), Val::Scalar(_)) => unreachable!("handled above"),
+                        };
+                        b.value(lin)
+                    }
+                    "div" => match arg(1)? {
+                        Val::Scalar(s) => {
+                            let Val::Series(x) = arg(0)? else {
+                                unreachable!("a series numerator")
+                            };
+                            let inv = b.coef_inv(Coef {
+                                neg: false,
+                                var: Some(s),
+                            });
+                            Val::Series(b.scale(&x, inv))
+                        }
+                        Val::Series(den) => {
+                            let q = b.div(&arg(0)?, &den);
+                            Val::Series(q)
+                        }
+                    },
+                    "sqrt" | "sin" | "cos" => {
+                        let n = b.node(&arg(0)?);
+                        Val::Series(Lin::atom(b.op(op, vec![n])))
+                    }
+                    _ => return Err(err(i, format!("operation {op:?} has no Taylor-mode rule"))),
+                };
+                vals.insert(*dest, v);
+            }
+        }
+    }
+    Ok(Function {
+        instructions: live(b.tape),
+        ..f.clone()
+    })
+}
+
+/// The instructions an output depends on, in order (the rewrite leaves unused coefficients).
+fn live(tape: Vec<Instruction>) -> Vec<Instruction> {
+    let mut needed: BTreeSet<Node> = BTreeSet::new();
+    let mut keep = vec![false; tape.len()];
+    for (i, ins) in tape.iter().enumerate().rev() {
+        match ins {
+            Instruction::Output { src, .. } => {
+                keep[i] = true;
+                needed.insert(*src);
+            }
+            Instruction::Input { dest, .. } | Instruction::Const { dest, .. } => {
+                keep[i] = needed.contains(dest);
+            }
+            Instruction::Op { dest, args, .. } => {
+                if needed.contains(dest) {
+                    keep[i] = true;
+                    needed.extend(args.iter().copied());
+                }
+            }
+        }
+    }
+    tape.into_iter()
+        .zip(keep)
+        .filter_map(|(ins, k)| k.then_some(ins))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ir::{Input, Output};
+
+    /// `[x0, x1]` a series input, `p` a constant one, one output.
+    fn function(instructions: Vec<Instruction>) -> Function {
+        let input = |name: &str, params: bool| Input {
+            name: name.into(),
+            doc: String::new(),
+            elements: vec!["a".into(), "b".into()],
+            scalar: false,
+            params,
+        };
+        Function {
+            name: "f".into(),
+            doc: String::new(),
+            inputs: vec![input("x", false), input("p", true)],
+            output: Output {
+                name: "y".into(),
+                doc: String::new(),
+                elements: vec!["y".into()],
+                scalar: true,
+            },
+            instructions,
+            golden: Vec::new(),
+            taylor_order: None,
+            taylor_golden: Vec::new(),
+        }
+    }
+
+    fn op(op: &str, dest: usize, args: &[usize]) -> Instruction {
+        Instruction::Op {
+            op: op.into(),
+            dest,
+            args: args.to_vec(),
+        }
+    }
+
+    /// The tape evaluated on numbers (`x`, `p` the two inputs' values).
+    fn eval(f: &Function, x: [f64; 2], p: [f64; 2]) -> f64 {
+        let mut w: BTreeMap<usize, f64> = BTreeMap::new();
+        let mut out = f64::NAN;
+        for ins in &f.instructions {
+            match ins {
+                Instruction::Input {
+                    dest,
+                    input,
+                    element,
+                } => {
+                    w.insert(
+                        *dest,
+                        if *input == 0 {
+                            x[*element]
+                        } else {
+                            p[*element]
+                        },
+                    );
+                }
+                Instruction::Const { dest, value } => {
+                    w.insert(*dest, *value);
+                }
+                Instruction::Output { src, .. } => out = w[src],
+                Instruction::Op { op, dest, args } => {
+                    let a = |j: usize| w[&args[j]];
+                    let v = match op.as_str() {
+                        "add" => a(0) + a(1),
+                        "sub" => a(0) - a(1),
+                        "mul" => a(0) * a(1),
+                        "div" => a(0) / a(1),
+                        "neg" => -a(0),
+                        "twice" => 2.0 * a(0),
+                        "sq" => a(0) * a(0),
+                        "sin" => a(0).sin(),
+                        _ => panic!("no rule for {op}"),
+                    };
+                    w.insert(*dest, v);
+                }
+            }
+        }
+        out
+    }
+
+    /// Products of series in the rewritten tape (`sq` included).
+    fn series_products(f: &Function) -> usize {
+        let consts: BTreeSet<usize> = f
+            .instructions
+            .iter()
+            .filter_map(|i| match i {
+                Instruction::Const { dest, .. } => Some(*dest),
+                Instruction::Input { dest, input: 1, .. } => Some(*dest),
+                _ => None,
+            })
+            .collect();
+        let mut scalar = consts.clone();
+        let mut n = 0;
+        for ins in &f.instructions {
+            if let Instruction::Op { op, dest, args } = ins {
+                if args.iter().all(|a| scalar.contains(a)) {
+                    scalar.insert(*dest);
+                } else if op == "sq" || (op == "mul" && args.iter().all(|a| !scalar.contains(a))) {
+                    n += 1;
+                }
+            }
+        }
+        n
+    }
+
+    fn simplified(f: &Function) -> Function {
+        simplify("test.json", f, |j| j == 1).unwrap()
+    }
+
+    /// x0·x1 under constant factors and in either order is one product; the value is the
+    /// original tape's.
+    #[test]
+    fn a_product_under_constant_factors_is_computed_once() {
+        let f = function(vec![
+            Instruction::Input {
+                dest: 0,
+                input: 0,
+                element: 0,
+            },
+            Instruction::Input {
+                dest: 1,
+                input: 0,
+                element: 1,
+            },
+            Instruction::Input {
+                dest: 2,
+                input: 1,
+                element: 0,
+            },
+            op("twice", 3, &[0]),
+            op("mul", 4, &[2, 1]),
+            op("mul", 5, &[3, 4]),
+            op("mul", 6, &[0, 4]),
+            op("mul", 7, &[4, 0]),
+            op("add", 8, &[5, 6]),
+            op("sub", 8, &[8, 7]),
+            Instruction::Output { element: 0, src: 8 },
+        ]);
+        let g = simplified(&f);
+        assert_eq!(series_products(&f), 3);
+        assert_eq!(series_products(&g), 1);
+        for (x, p) in [([0.3, -1.7], [2.5, 0.0]), ([-4.0, 0.01], [-0.3, 0.0])] {
+            let (a, b) = (eval(&f, x, p), eval(&g, x, p));
+            assert!((a - b).abs() <= 1e-15 * a.abs(), "{a} vs {b}");
+        }
+    }
+
+    /// (x0 − p)·x1 + x0·x1 + (p x1)·sin(x0 + p)·sin(x0 + p): the offset is hoisted so the second
+    /// product is the first's, the square of a sum is one `sq`, and its factor `x1` one more
+    /// product; the value is the original tape's.
+    #[test]
+    fn offsets_are_hoisted_and_combinations_evaluated_once() {
+        let f = function(vec![
+            Instruction::Input {
+                dest: 0,
+                input: 0,
+                element: 0,
+            },
+            Instruction::Input {
+                dest: 1,
+                input: 0,
+                element: 1,
+            },
+            Instruction::Input {
+                dest: 2,
+                input: 1,
+                element: 0,
+            },
+            op("sub", 3, &[0, 2]),
+            op("mul", 4, &[3, 1]),
+            op("mul", 5, &[0, 1]),
+            op("add", 6, &[0, 2]),
+            op("sin", 7, &[6]),
+            op("add", 8, &[0, 2]),
+            op("sin", 9, &[8]),
+            op("mul", 10, &[7, 9]),
+            op("mul", 11, &[2, 1]),
+            op("mul", 12, &[11, 10]),
+            op("add", 13, &[4, 5]),
+            op("add", 13, &[13, 12]),
+            Instruction::Output {
+                element: 0,
+                src: 13,
+            },
+        ]);
+        let g = simplified(&f);
+        assert_eq!(series_products(&f), 4);
+        assert_eq!(series_products(&g), 3);
+        let sines = g
+            .instructions
+            .iter()
+            .filter(|i| matches!(i, Instruction::Op { op, .. } if op == "sin"))
+            .count();
+        assert_eq!(sines, 1, "sin(x0 + p) twice is one sine");
+        for (x, p) in [([0.3, -1.7], [2.5, 0.0]), ([-4.0, 0.01], [-0.3, 0.0])] {
+            let (a, b) = (eval(&f, x, p), eval(&g, x, p));
+            assert!((a - b).abs() <= 1e-14 * a.abs().max(1.0), "{a} vs {b}");
+        }
+    }
+}
