@@ -7,6 +7,9 @@
 //! coefficient order k gives, for an ODE right-hand side x' = f(x, ug(t)), the coefficients of
 //! the solution x(t0 + h) = Σ x_k h^k by x_{k+1} = f_k / (k + 1).
 //!
+//! The tape is first rewritten by [`crate::simplify`] so that each product of series (the only
+//! operations whose cost grows with the order) is computed once.
+//!
 //! Work variables that depend only on constants, the pivot `s` and the parameters are computed
 //! once as scalars before the order loop; only time-dependent ones become series. Of those, only
 //! the ones whose lower coefficients a recurrence reads (the arguments of products, quotients,
