@@ -99,19 +99,12 @@ impl Builder {
             return n;
         }
         let dest = self.fresh();
-        self.tape.push(Instruction::Op {
-            op: if key.0 == "mul" && key.1[0] == key.1[1] {
-                "sq".to_string()
-            } else {
-                key.0.clone()
-            },
-            dest,
-            args: if key.0 == "mul" && key.1[0] == key.1[1] {
-                vec![key.1[0]]
-            } else {
-                key.1.clone()
-            },
-        });
+        // A product of a node with itself is its square (half the recurrence's work).
+        let (op, args) = match key.1.as_slice() {
+            &[a, b] if key.0 == "mul" && a == b => ("sq".to_string(), vec![a]),
+            _ => key.clone(),
+        };
+        self.tape.push(Instruction::Op { op, dest, args });
         self.ops.insert(key, dest);
         dest
     }
