@@ -20,6 +20,7 @@
 use std::collections::{BTreeMap, BTreeSet};
 
 use crate::ir::{Function, Instruction};
+use crate::taylor::check_series_op;
 use crate::{Error, Result};
 
 /// A work variable of the rewritten tape.
@@ -441,6 +442,7 @@ pub(crate) fn simplify(
                     vals.insert(*dest, Val::Scalar(b.op(op, nodes)));
                     continue;
                 }
+                check_series_op(op, vs.len()).map_err(|msg| err(i, msg))?;
                 let v = match op.as_str() {
                     "assign" => arg(0)?,
                     "neg" | "twice" => {
@@ -777,5 +779,31 @@ mod tests {
             let (a, b) = (eval(&f, x, p), eval(&g, x, p));
             assert!((a - b).abs() <= 1e-14 * a.abs().max(1.0), "{a} vs {b}");
         }
+    }
+
+    /// A malformed tape is refused with the instruction named, never a panic.
+    #[test]
+    fn a_wrong_argument_count_is_an_error() {
+        let f = function(vec![
+            Instruction::Input {
+                dest: 0,
+                input: 0,
+                element: 0,
+            },
+            Instruction::Input {
+                dest: 1,
+                input: 1,
+                element: 0,
+            },
+            op("neg", 2, &[1, 0]),
+            Instruction::Output { element: 0, src: 2 },
+        ]);
+        let msg = simplify("test.json", &f, |j| j == 1)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            msg.contains("instruction 2: \"neg\" takes 1 argument(s)"),
+            "{msg}"
+        );
     }
 }

@@ -254,14 +254,7 @@ fn render_fn(
                 }
                 let (a, ka) = &vars[0];
                 let ca = coef(&vars[0]);
-                let arity = match op.as_str() {
-                    "add" | "sub" | "mul" | "div" => 2,
-                    "assign" | "neg" | "twice" | "sq" | "sqrt" | "sin" | "cos" => 1,
-                    _ => return Err(no_rule()),
-                };
-                if vars.len() != arity {
-                    return Err(err(i, format!("{op:?} takes {arity} argument(s)")));
-                }
+                check_series_op(op, vars.len()).map_err(|msg| err(i, msg))?;
                 // Named after its arguments are read: the tape may re-assign an argument's slot.
                 let d = define(&mut current, *dest, Kind::Series);
                 let dk = series_kind(&d);
@@ -400,6 +393,19 @@ fn render_fn(
         result,
     };
     Ok((rendered, history))
+}
+
+/// Whether `op` has a Taylor-mode recurrence and takes `n` arguments (else the message).
+pub(crate) fn check_series_op(op: &str, n: usize) -> std::result::Result<(), String> {
+    let arity = match op {
+        "add" | "sub" | "mul" | "div" => 2,
+        "assign" | "neg" | "twice" | "sq" | "sqrt" | "sin" | "cos" => 1,
+        _ => return Err(format!("operation {op:?} has no Taylor-mode rule")),
+    };
+    if n != arity {
+        return Err(format!("{op:?} takes {arity} argument(s)"));
+    }
+    Ok(())
 }
 
 /// The scalar form of an operation on constants (the same forms as the ordinary kernels).

@@ -240,8 +240,8 @@ fn run<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: us
     sim.run()
 }
 
-impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usize>
-    Sim<'_, V, M, NR, NC>
+impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usize>
+    Sim<'a, V, M, NR, NC>
 {
     /// Whether W and D are carried (the energy bookkeeping was asked for).
     const ENERGY: bool = NR > 4;
@@ -479,16 +479,9 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
     /// the Runge–Kutta methods.
     fn lifts(&self, s: f64, t: f64, u: f64, u_dot: f64, ug: f64) -> bool {
         if self.opts.accuracy.method == Method::Taylor {
-            let scale = self.rocking_scale;
-            let start = [0.0, u, 0.0, u_dot, 0.0, 0.0];
-            let mut x: [[f64; 2]; NR] = std::array::from_fn(|i| [start[i] / scale[i], 0.0]);
-            let mut sys = RockingSystem::<V, M, NR> {
-                p: self.p,
-                motion: self.motion,
-                s,
-                scale,
-            };
-            sys.coefficients::<2>(t, &mut x);
+            let y0 = self.rocking_start([0.0, u, 0.0, u_dot], 0.0, 0.0);
+            let mut x: [[f64; 2]; NR] = std::array::from_fn(|i| [y0[i], 0.0]);
+            self.rocking_system(s).coefficients::<2>(t, &mut x);
             return s * x[2][1] > 0.0;
         }
         s * V::rocking_rhs(&[0.0, u, 0.0, u_dot], ug, s, &self.p)[rr::THETA_DDOT] > 0.0
@@ -1003,6 +996,22 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         }
     }
 
+    /// The rocking phase about `s` as the Taylor integrator sees it.
+    fn rocking_system(&self, s: f64) -> RockingSystem<'a, V, M, NR> {
+        RockingSystem {
+            p: self.p,
+            motion: self.motion,
+            s,
+            scale: self.rocking_scale,
+        }
+    }
+
+    /// The scaled Taylor state of `[θ, u, θ', u']` and the carried integrals `W`, `D`.
+    fn rocking_start(&self, x: [f64; 4], w: f64, d: f64) -> [f64; NR] {
+        let start = [x[0], x[1], x[2], x[3], w, d];
+        std::array::from_fn(|i| start[i] / self.rocking_scale[i])
+    }
+
     /// Rocking about `s` from `t0` with the Taylor method (see [`Self::rocking`]). The impact is
     /// the first falling root of s θ's polynomial on a step, the overturning the first rising root
     /// of s θ − θ_over's. The start guard of the RK path is exact here: at the phase start θ and,
@@ -1019,15 +1028,9 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         d: f64,
     ) -> Result<Next, SimError> {
         let scale = self.rocking_scale;
-        let start = [x0[0], x0[1], x0[2], x0[3], w, d];
-        let y0: [f64; NR] = std::array::from_fn(|i| start[i] / scale[i]);
+        let y0 = self.rocking_start(x0, w, d);
         let mut ode = self.taylor(f64::INFINITY, t0, y0, 4)?;
-        let mut sys = RockingSystem::<V, M, NR> {
-            p: self.p,
-            motion: self.motion,
-            s,
-            scale,
-        };
+        let mut sys = self.rocking_system(s);
         let unscale = |y: [f64; NR]| -> [f64; NR] { std::array::from_fn(|i| y[i] * scale[i]) };
         let over = self.opts.overturn_angle / scale[0];
         let phase = Phase::rocking(s);
