@@ -1,8 +1,8 @@
 //! The accuracy/cost study of the rocking solver (`cargo xtask bench`).
 //!
 //! `rocking-bench run [--quick] --out DIR` runs every case with each integrator (dopri5, dop853, taylor) over a range of
-//! tolerances, measures the error of each answer against a reference solution (DOP853 at 1e-12,
-//! itself checked against 1e-13), the CPU time and the RHS evaluations, and writes
+//! tolerances, measures the error of each answer against a reference solution (DOP853 at 1e-14,
+//! itself checked against 1e-15), the CPU time and the RHS evaluations, and writes
 //! `DIR/rust.json` (results) and `DIR/cases.json` (the cases, for the SciPy peer).
 //!
 //! `rocking-bench report --dir DIR --docs DOCS` reads `rust.json` and, when present, `scipy.json`
@@ -20,7 +20,8 @@ usage: rocking-bench run [--quick] [--out DIR]
        rocking-bench report [--dir DIR] [--docs DOCS]
        rocking-bench probe CASE METHOD TOL [SECONDS]
 
-run     the accuracy/cost study (dopri5, dop853, taylor; tolerances 1e-3..1e-12, reference DOP853 1e-12);
+run     the accuracy/cost study (dopri5, dop853, taylor; tolerances 1e-3..1e-12, taylor also 1e-13 and 1e-14;
+        reference DOP853 1e-14);
         writes DIR/rust.json and DIR/cases.json (default DIR: target/bench)
         --quick  fewer tolerances and cases (a minute or two)
 report  writes DOCS/accuracy.md and DOCS/img/accuracy-*.{png,svg} from DIR/{rust,scipy,opensees}.json
