@@ -35,6 +35,56 @@ fn bench_variant<V: Variant>(c: &mut Criterion) {
     group.finish();
 }
 
+/// One Taylor step's coefficients (the rocking state to order N − 1): what a Taylor step costs,
+/// with a ground motion and after it (the `_free` twins).
+fn bench_taylor<const N: usize>(c: &mut Criterion) {
+    use rocking_kernels::taylor::{full, point_mass};
+    let phys = Physical::dimensionless(0.1, 5.0, 2.0, 2.0, 1.0, 0.01);
+    let x0 = [0.05, 1e-3, -0.02, 3e-3];
+    let mut ug = [0.0; N];
+    ug[0] = 0.3;
+    ug[1] = -0.1;
+    let start = || -> [[f64; N]; 4] {
+        let mut x = [[0.0; N]; 4];
+        for (xi, v) in x.iter_mut().zip(x0) {
+            xi[0] = v;
+        }
+        x
+    };
+    let mut group = c.benchmark_group(format!("taylor_rocking_rhs_N{N}"));
+    let p = Full::params(&phys);
+    group.bench_function(Full::NAME, |b| {
+        b.iter(|| {
+            let mut x = black_box(start());
+            full::rocking_rhs(&mut x, black_box(&ug), black_box(1.0), black_box(&p));
+            x
+        })
+    });
+    group.bench_function(format!("{}_free", Full::NAME), |b| {
+        b.iter(|| {
+            let mut x = black_box(start());
+            full::rocking_rhs_free(&mut x, black_box(1.0), black_box(&p));
+            x
+        })
+    });
+    let p = PointMass::params(&phys);
+    group.bench_function(PointMass::NAME, |b| {
+        b.iter(|| {
+            let mut x = black_box(start());
+            point_mass::rocking_rhs(&mut x, black_box(&ug), black_box(1.0), black_box(&p));
+            x
+        })
+    });
+    group.bench_function(format!("{}_free", PointMass::NAME), |b| {
+        b.iter(|| {
+            let mut x = black_box(start());
+            point_mass::rocking_rhs_free(&mut x, black_box(1.0), black_box(&p));
+            x
+        })
+    });
+    group.finish();
+}
+
 fn kernels(c: &mut Criterion) {
     bench_variant::<Full>(c);
     bench_variant::<MasslessColumn>(c);
@@ -44,6 +94,9 @@ fn kernels(c: &mut Criterion) {
     bench_variant::<SmallAngle>(c);
     bench_variant::<CosineShape>(c);
     bench_variant::<AddedMass>(c);
+    bench_taylor::<13>(c);
+    bench_taylor::<17>(c);
+    bench_taylor::<21>(c);
 }
 
 criterion_group! {

@@ -19,7 +19,7 @@ fn recurrences_match_known_series() {
     let d = [1.0, -1.0, 0.0, 0.0, 0.0, 0.0];
     let mut q = [0.0; 6];
     for k in 0..6 {
-        q[k] = div(one[k], &d, &q, k);
+        q[k] = div(one[k], &d, &q, 1.0 / d[0], k);
     }
     assert_eq!(q, [1.0; 6]);
     // √(1 + 2t + t²) = 1 + t
@@ -30,9 +30,9 @@ fn recurrences_match_known_series() {
     assert_eq!(r, a);
     // sin(t), cos(t): 1/k! with alternating signs
     let t = [0.0, 1.0, 0.0, 0.0, 0.0, 0.0];
-    let (mut s, mut c) = ([0.0; 6], [0.0; 6]);
+    let (mut dt, mut s, mut c) = ([0.0; 6], [0.0; 6], [0.0; 6]);
     for k in 0..6 {
-        sin_cos(&t, &mut s, &mut c, k);
+        sin_cos(&t, &mut dt, &mut s, &mut c, k);
     }
     let want_s = [0.0, 1.0, 0.0, -1.0 / 6.0, 0.0, 1.0 / 120.0];
     let want_c = [1.0, 0.0, -0.5, 0.0, 1.0 / 24.0, 0.0];

@@ -66,6 +66,20 @@ fn commutes(op: &str) -> bool {
     matches!(op, "add" | "mul")
 }
 
+/// Structural names of expressions, shared by the passes of [`simplify`]: two nodes of any pass
+/// with the same name compute the same expression, whatever their node numbers.
+#[derive(Default)]
+struct Names {
+    ids: BTreeMap<(String, Vec<u64>), u64>,
+}
+
+impl Names {
+    fn id(&mut self, key: (String, Vec<u64>)) -> u64 {
+        let next = self.ids.len() as u64;
+        *self.ids.entry(key).or_insert(next)
+    }
+}
+
 struct Builder {
     tape: Vec<Instruction>,
     /// Scalar and nonlinear series nodes by (operation, arguments): each is computed once.
@@ -73,6 +87,11 @@ struct Builder {
     consts: BTreeMap<u64, Node>,
     /// Combinations already evaluated into a node.
     evaluated: BTreeMap<Lin, Node>,
+    /// The structural name of each node.
+    names: Names,
+    name_of: BTreeMap<Node, u64>,
+    /// Names of the products a previous pass ended up computing: free to expand into.
+    expected: BTreeSet<u64>,
 }
 
 impl Builder {
@@ -87,7 +106,24 @@ impl Builder {
         let dest = self.fresh();
         self.tape.push(Instruction::Const { dest, value });
         self.consts.insert(value.to_bits(), dest);
+        self.name(dest, "const", vec![value.to_bits()]);
         dest
+    }
+
+    /// Names `node` as `op(args)` (argument names sorted for a commutative operation).
+    fn name(&mut self, node: Node, op: &str, mut args: Vec<u64>) {
+        if commutes(op) {
+            args.sort_unstable();
+        }
+        let id = self.names.id((op.to_string(), args));
+        self.name_of.insert(node, id);
+    }
+
+    /// The name of a product of `x` and `y`, if any pass has met one.
+    fn product_name(&self, x: Node, y: Node) -> Option<u64> {
+        let mut args = vec![*self.name_of.get(&x)?, *self.name_of.get(&y)?];
+        args.sort_unstable();
+        self.names.ids.get(&("mul".to_string(), args)).copied()
     }
 
     /// The node of `op(args)`, shared with an earlier identical one.
@@ -106,6 +142,8 @@ impl Builder {
             _ => key.clone(),
         };
         self.tape.push(Instruction::Op { op, dest, args });
+        let arg_names = key.1.iter().map(|a| self.name_of[a]).collect();
+        self.name(dest, &key.0, arg_names);
         self.ops.insert(key, dest);
         dest
     }
@@ -295,10 +333,13 @@ impl Builder {
                 pairs.insert((x.min(y), x.max(y)));
             }
         }
-        let expanded = pairs
-            .iter()
-            .filter(|&&(x, y)| !self.exists("mul", vec![x, y]))
-            .count();
+        let free = |x: Node, y: Node| {
+            self.exists("mul", vec![x, y])
+                || self
+                    .product_name(x, y)
+                    .is_some_and(|n| self.expected.contains(&n))
+        };
+        let expanded = pairs.iter().filter(|&&(x, y)| !free(x, y)).count();
         let node = |l: &Lin| -> Option<Node> {
             match l.terms.iter().next() {
                 Some((&atom, &ONE)) if l.terms.len() == 1 && l.offset.is_none() => Some(atom),
@@ -365,11 +406,79 @@ impl Builder {
 
 /// The tape of `f` rewritten so that every nonlinear operation on series is computed once
 /// (see the module docs). `is_const_input` tells the inputs constant along a step.
+///
+/// Two passes: whether expanding a product pays depends on products met later in the tape (the
+/// full-mass rocking right-hand side computes θ'·(a θ'u − b θ') before θ'·(θ'u) and θ'²), so the
+/// second pass counts the products the first one ended up computing as free, and the pass with
+/// fewer series products is kept.
 pub(crate) fn simplify(
     origin: &str,
     f: &Function,
     is_const_input: impl Fn(usize) -> bool,
 ) -> Result<Function> {
+    let first = pass(
+        origin,
+        f,
+        &is_const_input,
+        Names::default(),
+        BTreeSet::new(),
+    )?;
+    let second = pass(origin, f, &is_const_input, first.names, first.products)?;
+    let cost = |g: &Function| series_costs(g, &is_const_input).len();
+    Ok(if cost(&second.function) < cost(&first.function) {
+        second.function
+    } else {
+        first.function
+    })
+}
+
+/// The outcome of one pass of [`simplify`].
+struct Pass {
+    function: Function,
+    names: Names,
+    /// Names of the series products of the rewritten tape.
+    products: BTreeSet<u64>,
+}
+
+/// The nonlinear operations on series of a tape (products, squares, quotients, roots, sines):
+/// the nodes whose Taylor recurrence costs O(k) at order k.
+fn series_costs(f: &Function, is_const_input: impl Fn(usize) -> bool) -> BTreeSet<Node> {
+    let mut scalar: BTreeSet<Node> = BTreeSet::new();
+    let mut costly = BTreeSet::new();
+    for ins in &f.instructions {
+        match ins {
+            Instruction::Const { dest, .. } => {
+                scalar.insert(*dest);
+            }
+            Instruction::Input { dest, input, .. } if is_const_input(*input) => {
+                scalar.insert(*dest);
+            }
+            Instruction::Op { op, dest, args } => {
+                let series: Vec<bool> = args.iter().map(|a| !scalar.contains(a)).collect();
+                if !series.contains(&true) {
+                    scalar.insert(*dest);
+                } else if match op.as_str() {
+                    "mul" => series.iter().all(|&s| s),
+                    "div" => series[1],
+                    "sq" | "sqrt" | "sin" | "cos" => true,
+                    _ => false,
+                } {
+                    costly.insert(*dest);
+                }
+            }
+            _ => {}
+        }
+    }
+    costly
+}
+
+fn pass(
+    origin: &str,
+    f: &Function,
+    is_const_input: &impl Fn(usize) -> bool,
+    names: Names,
+    expected: BTreeSet<u64>,
+) -> Result<Pass> {
     let err = |i: usize, msg: String| {
         Error::invalid(
             origin,
@@ -381,6 +490,9 @@ pub(crate) fn simplify(
         ops: BTreeMap::new(),
         consts: BTreeMap::new(),
         evaluated: BTreeMap::new(),
+        names,
+        name_of: BTreeMap::new(),
+        expected,
     };
     let mut vals: BTreeMap<usize, Val> = BTreeMap::new();
     for (i, ins) in f.instructions.iter().enumerate() {
@@ -396,6 +508,7 @@ pub(crate) fn simplify(
                     input: *input,
                     element: *element,
                 });
+                b.name(node, "input", vec![*input as u64, *element as u64]);
                 let v = if is_const_input(*input) {
                     Val::Scalar(node)
                 } else {
@@ -545,9 +658,27 @@ pub(crate) fn simplify(
             }
         }
     }
-    Ok(Function {
+    let function = Function {
         instructions: live(b.tape),
         ..f.clone()
+    };
+    let costly = series_costs(&function, is_const_input);
+    let products = function
+        .instructions
+        .iter()
+        .filter_map(|ins| match ins {
+            Instruction::Op { op, dest, .. }
+                if (op == "mul" || op == "sq") && costly.contains(dest) =>
+            {
+                Some(b.name_of[dest])
+            }
+            _ => None,
+        })
+        .collect();
+    Ok(Pass {
+        function,
+        names: b.names,
+        products,
     })
 }
 

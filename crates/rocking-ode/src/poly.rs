@@ -109,6 +109,25 @@ fn variations(b: &[f64]) -> (usize, f64, f64) {
     (v, first, last)
 }
 
+/// Rounding bound of the Bernstein coefficients of a polynomial of degree `n` with
+/// `Σ |c_k h^k| = scale` (conversion and ~50 subdivisions): values within it of zero are zero as
+/// far as f64 can tell.
+fn rounding_bound(scale: f64, n: usize) -> f64 {
+    8.0 * (n + 1) as f64 * f64::EPSILON * scale
+}
+
+/// Whether a polynomial of degree at most `n` with value `d0` at the step start and
+/// `Σ_{k≥1} |c_k| h^k = tail` surely has no root and no touch on the step, so that
+/// [`first_root`] returns `None` without a search. Most steps are far from an event: every
+/// Bernstein coefficient lies within `tail` of d0 (C(i,k) ≤ C(n,k)), so when that keeps them all
+/// beyond twice the rounding bound on d0's side, the search would find no sign change and no
+/// coefficient within the bound. Callers with several events on one polynomial (θ against 0 and
+/// against the overturning angle) test them all with one `tail`.
+#[must_use]
+pub fn far_from_zero(d0: f64, tail: f64, n: usize) -> bool {
+    d0.abs() - tail > 2.0 * rounding_bound(d0.abs() + tail, n)
+}
+
 /// The earliest root of `g(τ) = Σ c[k] τ^k` in `(0, h]` whose direction `dir` accepts, or `None`.
 ///
 /// Semantics match [`Direction::triggers`]: a root at τ = 0 never counts (g is divided by its
@@ -132,18 +151,11 @@ pub fn first_root(c: &[f64], h: f64, dir: Direction) -> Option<Root> {
         d[k] = c[k] * hk;
         hk *= h;
     }
-    // Rounding bound of the Bernstein coefficients (conversion and ~50 subdivisions): values
-    // within it of zero are zero as far as f64 can tell.
-    let scale: f64 = d[..=n].iter().map(|v| v.abs()).sum();
-    let delta = 8.0 * (n + 1) as f64 * f64::EPSILON * scale;
-    // Most steps are far from an event: every Bernstein coefficient lies within Σ_{k≥1} |d_k| of
-    // d_0 (C(i,k) ≤ C(n,k)), so when that keeps them all beyond twice the rounding bound on
-    // d_0's side, the search below would find no sign change and no coefficient within the bound
-    // (so no touch either). Skip the O(n²) conversion then.
-    let tail = scale - d[0].abs();
-    if d[0].abs() - tail > 2.0 * delta {
+    let tail: f64 = d[1..=n].iter().map(|v| v.abs()).sum();
+    if far_from_zero(d[0], tail, n) {
         return None;
     }
+    let delta = rounding_bound(d[0].abs() + tail, n);
     let binom = &BINOM;
     let mut b = [0.0; MAX_DEGREE + 1];
     for i in 0..=n {

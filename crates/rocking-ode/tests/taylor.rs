@@ -85,9 +85,9 @@ impl Driven {
 struct Pendulum;
 impl TaylorSystem<2> for Pendulum {
     fn coefficients<const N: usize>(&mut self, _t0: f64, x: &mut [[f64; N]; 2]) {
-        let (mut s, mut c) = ([0.0; N], [0.0; N]);
+        let (mut d, mut s, mut c) = ([0.0; N], [0.0; N], [0.0; N]);
         for k in 0..N - 1 {
-            series::sin_cos(&x[0], &mut s, &mut c, k);
+            series::sin_cos(&x[0], &mut d, &mut s, &mut c, k);
             let kf = (k + 1) as f64;
             x[0][k + 1] = x[1][k] / kf;
             x[1][k + 1] = -s[k] / kf;

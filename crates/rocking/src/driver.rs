@@ -1053,12 +1053,21 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
             // as the RK path's armed event fires at its first step.
             let first = t_old == t0 && n > 0;
             let turns_back = first && g[0].iter().find(|c| **c != 0.0).is_some_and(|c| *c < 0.0);
+            // One bound of θ's change over the step rules out both events on most steps.
+            let tail = theta[1..]
+                .iter()
+                .rev()
+                .fold(0.0, |acc, c| (acc + c.abs()) * h);
+            let root = |g: &[f64], dir| {
+                let far = poly::far_from_zero(g[0], tail, order);
+                (!far).then(|| poly::first_root(g, h, dir).map(|r| r.tau))?
+            };
             let roots: [Option<f64>; 2] = if turns_back {
                 [Some(0.0), None]
             } else {
                 [
-                    poly::first_root(&g[0][..=order], h, Direction::Falling).map(|r| r.tau),
-                    poly::first_root(&g[1][..=order], h, Direction::Rising).map(|r| r.tau),
+                    root(&g[0][..=order], Direction::Falling),
+                    root(&g[1][..=order], Direction::Rising),
                 ]
             };
             // The earliest; the impact on ties.

@@ -24,8 +24,12 @@ pub trait TaylorVariant: Variant {
         s: f64,
         p: &Self::Params,
     );
+    /// [`rocking_series`](Self::rocking_series) with `ug` ≡ 0 (fewer series products).
+    fn rocking_series_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Self::Params);
     /// Taylor coefficients of the contact state `[u, u']` from `xc[i][0]`.
     fn contact_series<const N: usize>(xc: &mut [[f64; N]; 2], ug: &[f64; N], p: &Self::Params);
+    /// [`contact_series`](Self::contact_series) with `ug` ≡ 0.
+    fn contact_series_free<const N: usize>(xc: &mut [[f64; N]; 2], p: &Self::Params);
     /// The uplift function f_s along a contact series.
     fn uplift_series<const N: usize>(
         xc: &[[f64; N]; 2],
@@ -53,12 +57,22 @@ macro_rules! taylor_variant {
             ) {
                 taylor::$module::rocking_rhs(x, ug, s, p);
             }
+            fn rocking_series_free<const N: usize>(
+                x: &mut [[f64; N]; 4],
+                s: f64,
+                p: &Self::Params,
+            ) {
+                taylor::$module::rocking_rhs_free(x, s, p);
+            }
             fn contact_series<const N: usize>(
                 xc: &mut [[f64; N]; 2],
                 ug: &[f64; N],
                 p: &Self::Params,
             ) {
                 taylor::$module::contact_rhs(xc, ug, p);
+            }
+            fn contact_series_free<const N: usize>(xc: &mut [[f64; N]; 2], p: &Self::Params) {
+                taylor::$module::contact_rhs_free(xc, p);
             }
             fn uplift_series<const N: usize>(
                 xc: &[[f64; N]; 2],
@@ -102,7 +116,11 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const D: usize> TaylorSystem<D>
         for (qi, (xi, sc)) in q.iter_mut().zip(x.iter().zip(&self.scale)) {
             qi[0] = xi[0] * sc;
         }
-        V::rocking_series(&mut q, &ug, self.s, &self.p);
+        if is_zero(&ug) {
+            V::rocking_series_free(&mut q, self.s, &self.p);
+        } else {
+            V::rocking_series(&mut q, &ug, self.s, &self.p);
+        }
         for i in 0..4 {
             let inv = 1.0 / self.scale[i];
             for k in 1..N {
@@ -147,7 +165,11 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const D: usize> TaylorSystem<D>
 {
     fn coefficients<const N: usize>(&mut self, t0: f64, x: &mut [[f64; N]; D]) {
         let (mut q, ug) = self.contact(t0, x, false);
-        V::contact_series(&mut q, &ug, &self.p);
+        if is_zero(&ug) {
+            V::contact_series_free(&mut q, &self.p);
+        } else {
+            V::contact_series(&mut q, &ug, &self.p);
+        }
         for i in 0..2 {
             let inv = 1.0 / self.scale[i];
             for k in 1..N {
@@ -171,6 +193,11 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const D: usize> TaylorEvents<D,
         let (q, ug) = self.contact(t0, x, true);
         [RIGHT, LEFT].map(|s| V::uplift_series(&q, &ug, s, &self.p))
     }
+}
+
+/// No ground acceleration on the step (after the excitation): the kernels' `_free` twins apply.
+fn is_zero<const N: usize>(ug: &[f64; N]) -> bool {
+    ug.iter().all(|&a| a == 0.0)
 }
 
 /// `W' = P_ground`, `D' = P_damping`: coefficient k + 1 of an integral is coefficient k of its

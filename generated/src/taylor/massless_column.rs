@@ -17,6 +17,7 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
     let mut w2 = [0.0f64; N];
     let w4: f64 = p[3];
     let mut w5 = [0.0f64; N];
+    let mut d_w5 = [0.0f64; N];
     let mut sin_w5 = [0.0f64; N];
     let mut cos_w5 = [0.0f64; N];
     let mut w6 = [0.0f64; N];
@@ -84,6 +85,7 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
     let w86: f64 = w16 * w16;
     let w87: f64 = w85 - w86;
     let mut w106 = [0.0f64; N];
+    let mut inv_w106 = 0.0f64;
     let mut w107 = [0.0f64; N];
     let mut w112 = [0.0f64; N];
     let mut w120 = [0.0f64; N];
@@ -92,7 +94,7 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         w0[k] = x[2][k];
         w2[k] = x[3][k];
         w5[k] = x[0][k];
-        series::sin_cos(&w5, &mut sin_w5, &mut cos_w5, k);
+        series::sin_cos(&w5, &mut d_w5, &mut sin_w5, &mut cos_w5, k);
         w6[k] = cos_w5[k];
         w7[k] = x[1][k];
         w15[k] = ug[k];
@@ -138,7 +140,8 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         let w104 = w76 * w84;
         let w105 = at0(k, w87) + w104;
         w106[k] = w105 - w103;
-        w107[k] = series::div(w102, &w106, &w107, k);
+        if k == 0 { inv_w106 = 1.0 / w106[0]; }
+        w107[k] = series::div(w102, &w106, &w107, inv_w106, k);
         let w109 = w7[k] * w45;
         let w110 = w43 * w76;
         let w111 = at0(k, w82) + w110;
@@ -158,12 +161,178 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         let w125 = w123 + w124;
         let w126 = w121 + w125;
         let w127 = w126 - w122;
-        w128[k] = series::div(w127, &w106, &w128, k);
+        w128[k] = series::div(w127, &w106, &w128, inv_w106, k);
         let inv_k1 = 1.0 / (k + 1) as f64;
         x[0][k + 1] = w0[k] * inv_k1;
         x[1][k + 1] = w2[k] * inv_k1;
         x[2][k + 1] = w107[k] * inv_k1;
         x[3][k + 1] = w128[k] * inv_k1;
+    }
+}
+
+/// Taylor coefficients of the solution of `x' = rocking_rhs_free(..)`: on entry `x[i][0]` holds
+/// the state at the expansion point; on return `x[i][k]` is the k-th coefficient.
+/// Series inputs hold their first N coefficients.
+/// The twin of `rocking_rhs` with `ug` identically zero: for the steps after the excitation.
+pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Params) {
+    let mut w0 = [0.0f64; N];
+    let mut w2 = [0.0f64; N];
+    let w4: f64 = p[3];
+    let mut w5 = [0.0f64; N];
+    let mut d_w5 = [0.0f64; N];
+    let mut sin_w5 = [0.0f64; N];
+    let mut cos_w5 = [0.0f64; N];
+    let mut w6 = [0.0f64; N];
+    let mut w7 = [0.0f64; N];
+    let w8: f64 = s;
+    let w9: f64 = p[1];
+    let w10: f64 = w8 * w9;
+    let w11: f64 = p[8];
+    let w12: f64 = w4 * w11;
+    let w13: f64 = w10 * w12;
+    let w14: f64 = p[0];
+    let w15: f64 = 0.0;
+    let w16: f64 = w4 * w15;
+    let w17: f64 = w14 * w16;
+    let w18: f64 = p[5];
+    let w19: f64 = w11 * w18;
+    let w20: f64 = w10 * w19;
+    let w21: f64 = w17 + w20;
+    let w22: f64 = w13 + w21;
+    let mut w24 = [0.0f64; N];
+    let w25: f64 = w15 * w18;
+    let w26: f64 = w10 * w25;
+    let w27: f64 = w10 * w16;
+    let w28: f64 = w26 + w27;
+    let w29: f64 = w12 * w14;
+    let w30: f64 = w28 - w29;
+    let w33: f64 = 2.0;
+    let w34: f64 = w10 * w33;
+    let w35: f64 = 0.5;
+    let w36: f64 = w4 * w35;
+    let w37: f64 = w34 * w36;
+    let w38: f64 = w33 * w36;
+    let w39: f64 = w10 * w38;
+    let w40: f64 = w37 + w39;
+    let w41: f64 = w33 * w38;
+    let mut w44 = [0.0f64; N];
+    let w46: f64 = w4 * w22;
+    let w47: f64 = w4 * w12;
+    let w48: f64 = w4 * w30;
+    let w49: f64 = w4 * w16;
+    let w50: f64 = w4 * w14;
+    let w51: f64 = -1.5;
+    let w52: f64 = p[2];
+    let w53: f64 = w14 * w14;
+    let w54: f64 = w14 * w53;
+    let w55: f64 = w52 / w54;
+    let w56: f64 = w51 * w55;
+    let w57: f64 = w33 * w56;
+    let mut w60 = [0.0f64; N];
+    let w62: f64 = p[7];
+    let w63: f64 = 2.0 * w62;
+    let w64: f64 = 3.0;
+    let w65: f64 = w55 * w64;
+    let w66: f64 = w65 / w4;
+    let w67: f64 = w66.sqrt();
+    let w68: f64 = w63 * w67;
+    let w69: f64 = w4 * w68;
+    let w70: f64 = w50 * w69;
+    let w71: f64 = w16 * w50;
+    let w72: f64 = w50 * w57;
+    let w73: f64 = w12 * w50;
+    let w74: f64 = w71 - w46;
+    let w75: f64 = w48 + w73;
+    let w76: f64 = p[6];
+    let w78: f64 = w10 * w37;
+    let w79: f64 = w76 + w78;
+    let w80: f64 = 2.0 * w14;
+    let w81: f64 = w36 * w80;
+    let w82: f64 = w14 * w81;
+    let w83: f64 = w79 + w82;
+    let w84: f64 = w4 * w40;
+    let w85: f64 = w4 * w38;
+    let w86: f64 = w4 * w83;
+    let w87: f64 = w50 * w50;
+    let w88: f64 = w86 - w87;
+    let mut w107 = [0.0f64; N];
+    let mut inv_w107 = 0.0f64;
+    let mut w108 = [0.0f64; N];
+    let mut w113 = [0.0f64; N];
+    let mut w121 = [0.0f64; N];
+    let w123: f64 = w22 * w50;
+    let w124: f64 = w30 * w50;
+    let mut w135 = [0.0f64; N];
+    for k in 0..N - 1 {
+        w0[k] = x[2][k];
+        w2[k] = x[3][k];
+        w5[k] = x[0][k];
+        series::sin_cos(&w5, &mut d_w5, &mut sin_w5, &mut cos_w5, k);
+        w6[k] = cos_w5[k];
+        w7[k] = x[1][k];
+        let w23 = series::mul(&w6, &w7, k);
+        w24[k] = sin_w5[k];
+        let w31 = series::mul(&w7, &w24, k);
+        let w32 = series::mul(&w0, &w7, k);
+        let w42 = w0[k] * w40;
+        let w43 = w32 * w41;
+        w44[k] = w43 - w42;
+        let w45 = series::mul(&w2, &w44, k);
+        let w58 = w0[k] * w37;
+        let w59 = w32 * w38;
+        w60[k] = w59 - w58;
+        let w61 = series::mul(&w0, &w60, k);
+        let w77 = series::sq(&w7, k);
+        let w89 = w2[k] * w70;
+        let w90 = w6[k] * w74;
+        let w91 = w7[k] * w72;
+        let w92 = w23 * w47;
+        let w93 = w24[k] * w75;
+        let w94 = w31 * w49;
+        let w95 = w4 * w45;
+        let w96 = w50 * w61;
+        let w97 = w89 + w90;
+        let w98 = w92 + w97;
+        let w99 = w94 + w98;
+        let w100 = w99 - w91;
+        let w101 = w100 - w93;
+        let w102 = w101 - w95;
+        let w103 = w102 - w96;
+        let w104 = w7[k] * w84;
+        let w105 = w77 * w85;
+        let w106 = at0(k, w88) + w105;
+        w107[k] = w106 - w104;
+        if k == 0 { inv_w107 = 1.0 / w107[0]; }
+        w108[k] = series::div(w103, &w107, &w108, inv_w107, k);
+        let w110 = w7[k] * w40;
+        let w111 = w38 * w77;
+        let w112 = at0(k, w83) + w111;
+        w113[k] = w112 - w110;
+        let w114 = w2[k] * w69;
+        let w115 = w6[k] * w16;
+        let w116 = w7[k] * w57;
+        let w117 = w12 * w24[k];
+        let w118 = w116 + w117;
+        let w119 = w61 + w118;
+        let w120 = w119 - w114;
+        w121[k] = w120 - w115;
+        let w122 = series::mul(&w113, &w121, k);
+        let w125 = w6[k] * w123;
+        let w126 = w23 * w73;
+        let w127 = w24[k] * w124;
+        let w128 = w31 * w71;
+        let w129 = w45 * w50;
+        let w130 = w125 + w127;
+        let w131 = w129 + w130;
+        let w132 = w122 + w131;
+        let w133 = w132 - w126;
+        let w134 = w133 - w128;
+        w135[k] = series::div(w134, &w107, &w135, inv_w107, k);
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        x[0][k + 1] = w0[k] * inv_k1;
+        x[1][k + 1] = w2[k] * inv_k1;
+        x[2][k + 1] = w108[k] * inv_k1;
+        x[3][k + 1] = w135[k] * inv_k1;
     }
 }
 
@@ -203,6 +372,49 @@ pub fn contact_rhs<const N: usize>(xc: &mut [[f64; N]; 2], ug: &[f64; N], p: &Pa
         let w29 = w13 * w26;
         let w30 = w28 - w27;
         let w31 = w30 - w29;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        xc[0][k + 1] = w0 * inv_k1;
+        xc[1][k + 1] = w31 * inv_k1;
+    }
+}
+
+/// Taylor coefficients of the solution of `xc' = contact_rhs_free(..)`: on entry `xc[i][0]` holds
+/// the state at the expansion point; on return `xc[i][k]` is the k-th coefficient.
+/// Series inputs hold their first N coefficients.
+/// The twin of `contact_rhs` with `ug` identically zero: for the steps after the excitation.
+pub fn contact_rhs_free<const N: usize>(xc: &mut [[f64; N]; 2], p: &Params) {
+    let w3: f64 = 2.0;
+    let w4: f64 = -1.5;
+    let w5: f64 = p[2];
+    let w6: f64 = p[0];
+    let w7: f64 = w6 * w6;
+    let w8: f64 = w6 * w7;
+    let w9: f64 = w5 / w8;
+    let w10: f64 = w4 * w9;
+    let w11: f64 = w3 * w10;
+    let w12: f64 = p[3];
+    let w13: f64 = 0.0;
+    let w14: f64 = w12 * w13;
+    let w15: f64 = p[7];
+    let w16: f64 = 2.0 * w15;
+    let w17: f64 = 3.0;
+    let w18: f64 = w9 * w17;
+    let w19: f64 = w18 / w12;
+    let w20: f64 = w19.sqrt();
+    let w21: f64 = w16 * w20;
+    let w22: f64 = w12 * w21;
+    let w23: f64 = 1.0;
+    let w24: f64 = w23 / w12;
+    let w25: f64 = w22 * w24;
+    let w26: f64 = w11 * w24;
+    let w27: f64 = w14 * w24;
+    for k in 0..N - 1 {
+        let w0 = xc[1][k];
+        let w2 = xc[0][k];
+        let w28 = w0 * w25;
+        let w29 = w2 * w26;
+        let w30 = w29 - w28;
+        let w31 = w30 - at0(k, w27);
         let inv_k1 = 1.0 / (k + 1) as f64;
         xc[0][k + 1] = w0 * inv_k1;
         xc[1][k + 1] = w31 * inv_k1;
@@ -292,6 +504,7 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
     let w21: f64 = w17 * w19;
     let w28: f64 = p[8];
     let mut w29 = [0.0f64; N];
+    let mut d_w29 = [0.0f64; N];
     let mut sin_w29 = [0.0f64; N];
     let mut cos_w29 = [0.0f64; N];
     let mut w30 = [0.0f64; N];
@@ -331,7 +544,7 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
         let w25 = w22 + w23;
         let w26 = w24 + w25;
         w29[k] = x[0][k];
-        series::sin_cos(&w29, &mut sin_w29, &mut cos_w29, k);
+        series::sin_cos(&w29, &mut d_w29, &mut sin_w29, &mut cos_w29, k);
         w30[k] = cos_w29[k];
         w31[k] = sin_w29[k];
         let w32 = series::mul(&w7, &w31, k);
@@ -366,6 +579,7 @@ pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Param
     let w1: f64 = p[3];
     let w2: f64 = p[0];
     let mut w3 = [0.0f64; N];
+    let mut d_w3 = [0.0f64; N];
     let mut sin_w3 = [0.0f64; N];
     let mut cos_w3 = [0.0f64; N];
     let mut w4 = [0.0f64; N];
@@ -399,7 +613,7 @@ pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Param
     for k in 0..N {
         w0[k] = ug[k];
         w3[k] = x[0][k];
-        series::sin_cos(&w3, &mut sin_w3, &mut cos_w3, k);
+        series::sin_cos(&w3, &mut d_w3, &mut sin_w3, &mut cos_w3, k);
         w4[k] = cos_w3[k];
         w5[k] = x[1][k];
         w9[k] = sin_w3[k];

@@ -17,6 +17,7 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
     let mut w2 = [0.0f64; N];
     let w4: f64 = p[3];
     let mut w5 = [0.0f64; N];
+    let mut d_w5 = [0.0f64; N];
     let mut sin_w5 = [0.0f64; N];
     let mut cos_w5 = [0.0f64; N];
     let mut w6 = [0.0f64; N];
@@ -76,6 +77,7 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
     let w78: f64 = w16 * w16;
     let w79: f64 = w77 - w78;
     let mut w98 = [0.0f64; N];
+    let mut inv_w98 = 0.0f64;
     let mut w99 = [0.0f64; N];
     let mut w104 = [0.0f64; N];
     let mut w112 = [0.0f64; N];
@@ -84,7 +86,7 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         w0[k] = x[2][k];
         w2[k] = x[3][k];
         w5[k] = x[0][k];
-        series::sin_cos(&w5, &mut sin_w5, &mut cos_w5, k);
+        series::sin_cos(&w5, &mut d_w5, &mut sin_w5, &mut cos_w5, k);
         w6[k] = cos_w5[k];
         w7[k] = x[1][k];
         w15[k] = ug[k];
@@ -130,7 +132,8 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         let w96 = w69 * w76;
         let w97 = at0(k, w79) + w96;
         w98[k] = w97 - w95;
-        w99[k] = series::div(w94, &w98, &w99, k);
+        if k == 0 { inv_w98 = 1.0 / w98[0]; }
+        w99[k] = series::div(w94, &w98, &w99, inv_w98, k);
         let w101 = w7[k] * w39;
         let w102 = w37 * w69;
         let w103 = at0(k, w74) + w102;
@@ -150,12 +153,169 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         let w117 = w113 + w116;
         let w118 = w117 - w114;
         let w119 = w118 - w115;
-        w120[k] = series::div(w119, &w98, &w120, k);
+        w120[k] = series::div(w119, &w98, &w120, inv_w98, k);
         let inv_k1 = 1.0 / (k + 1) as f64;
         x[0][k + 1] = w0[k] * inv_k1;
         x[1][k + 1] = w2[k] * inv_k1;
         x[2][k + 1] = w99[k] * inv_k1;
         x[3][k + 1] = w120[k] * inv_k1;
+    }
+}
+
+/// Taylor coefficients of the solution of `x' = rocking_rhs_free(..)`: on entry `x[i][0]` holds
+/// the state at the expansion point; on return `x[i][k]` is the k-th coefficient.
+/// Series inputs hold their first N coefficients.
+/// The twin of `rocking_rhs` with `ug` identically zero: for the steps after the excitation.
+pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Params) {
+    let mut w0 = [0.0f64; N];
+    let mut w2 = [0.0f64; N];
+    let w4: f64 = p[3];
+    let mut w5 = [0.0f64; N];
+    let mut d_w5 = [0.0f64; N];
+    let mut sin_w5 = [0.0f64; N];
+    let mut cos_w5 = [0.0f64; N];
+    let mut w6 = [0.0f64; N];
+    let mut w7 = [0.0f64; N];
+    let w8: f64 = s;
+    let w9: f64 = p[1];
+    let w10: f64 = w8 * w9;
+    let w11: f64 = p[8];
+    let w12: f64 = w4 * w11;
+    let w13: f64 = w10 * w12;
+    let w14: f64 = p[0];
+    let w15: f64 = 0.0;
+    let w16: f64 = w4 * w15;
+    let w17: f64 = w14 * w16;
+    let w18: f64 = w13 + w17;
+    let mut w20 = [0.0f64; N];
+    let w21: f64 = w10 * w16;
+    let w22: f64 = w12 * w14;
+    let w23: f64 = w22 - w21;
+    let w26: f64 = 2.0;
+    let w27: f64 = w10 * w26;
+    let w28: f64 = 0.5;
+    let w29: f64 = w4 * w28;
+    let w30: f64 = w27 * w29;
+    let w31: f64 = w26 * w29;
+    let w32: f64 = w10 * w31;
+    let w33: f64 = w30 + w32;
+    let w34: f64 = w26 * w31;
+    let mut w37 = [0.0f64; N];
+    let w39: f64 = w4 * w18;
+    let w40: f64 = w4 * w12;
+    let w41: f64 = w4 * w23;
+    let w42: f64 = w4 * w16;
+    let w43: f64 = w4 * w14;
+    let w44: f64 = -1.5;
+    let w45: f64 = p[2];
+    let w46: f64 = w14 * w14;
+    let w47: f64 = w14 * w46;
+    let w48: f64 = w45 / w47;
+    let w49: f64 = w44 * w48;
+    let w50: f64 = w26 * w49;
+    let mut w53 = [0.0f64; N];
+    let w55: f64 = p[7];
+    let w56: f64 = 2.0 * w55;
+    let w57: f64 = 3.0;
+    let w58: f64 = w48 * w57;
+    let w59: f64 = w58 / w4;
+    let w60: f64 = w59.sqrt();
+    let w61: f64 = w56 * w60;
+    let w62: f64 = w4 * w61;
+    let w63: f64 = w43 * w62;
+    let w64: f64 = w16 * w43;
+    let w65: f64 = w43 * w50;
+    let w66: f64 = w12 * w43;
+    let w67: f64 = w64 - w39;
+    let w68: f64 = w41 - w66;
+    let w70: f64 = w10 * w30;
+    let w71: f64 = 2.0 * w14;
+    let w72: f64 = w29 * w71;
+    let w73: f64 = w14 * w72;
+    let w74: f64 = w70 + w73;
+    let w75: f64 = w4 * w33;
+    let w76: f64 = w4 * w31;
+    let w77: f64 = w4 * w74;
+    let w78: f64 = w43 * w43;
+    let w79: f64 = w77 - w78;
+    let mut w98 = [0.0f64; N];
+    let mut inv_w98 = 0.0f64;
+    let mut w99 = [0.0f64; N];
+    let mut w104 = [0.0f64; N];
+    let mut w112 = [0.0f64; N];
+    let w114: f64 = w18 * w43;
+    let w115: f64 = w23 * w43;
+    let mut w126 = [0.0f64; N];
+    for k in 0..N - 1 {
+        w0[k] = x[2][k];
+        w2[k] = x[3][k];
+        w5[k] = x[0][k];
+        series::sin_cos(&w5, &mut d_w5, &mut sin_w5, &mut cos_w5, k);
+        w6[k] = cos_w5[k];
+        w7[k] = x[1][k];
+        let w19 = series::mul(&w6, &w7, k);
+        w20[k] = sin_w5[k];
+        let w24 = series::mul(&w7, &w20, k);
+        let w25 = series::mul(&w0, &w7, k);
+        let w35 = w0[k] * w33;
+        let w36 = w25 * w34;
+        w37[k] = w36 - w35;
+        let w38 = series::mul(&w2, &w37, k);
+        let w51 = w0[k] * w30;
+        let w52 = w25 * w31;
+        w53[k] = w52 - w51;
+        let w54 = series::mul(&w0, &w53, k);
+        let w69 = series::sq(&w7, k);
+        let w80 = w2[k] * w63;
+        let w81 = w6[k] * w67;
+        let w82 = w7[k] * w65;
+        let w83 = w19 * w40;
+        let w84 = w20[k] * w68;
+        let w85 = w24 * w42;
+        let w86 = w4 * w38;
+        let w87 = w43 * w54;
+        let w88 = w80 + w81;
+        let w89 = w83 + w88;
+        let w90 = w84 + w89;
+        let w91 = w85 + w90;
+        let w92 = w91 - w82;
+        let w93 = w92 - w86;
+        let w94 = w93 - w87;
+        let w95 = w7[k] * w75;
+        let w96 = w69 * w76;
+        let w97 = at0(k, w79) + w96;
+        w98[k] = w97 - w95;
+        if k == 0 { inv_w98 = 1.0 / w98[0]; }
+        w99[k] = series::div(w94, &w98, &w99, inv_w98, k);
+        let w101 = w7[k] * w33;
+        let w102 = w31 * w69;
+        let w103 = at0(k, w74) + w102;
+        w104[k] = w103 - w101;
+        let w105 = w2[k] * w62;
+        let w106 = w6[k] * w16;
+        let w107 = w7[k] * w50;
+        let w108 = w12 * w20[k];
+        let w109 = w107 + w108;
+        let w110 = w54 + w109;
+        let w111 = w110 - w105;
+        w112[k] = w111 - w106;
+        let w113 = series::mul(&w104, &w112, k);
+        let w116 = w6[k] * w114;
+        let w117 = w19 * w66;
+        let w118 = w20[k] * w115;
+        let w119 = w24 * w64;
+        let w120 = w38 * w43;
+        let w121 = w116 + w120;
+        let w122 = w113 + w121;
+        let w123 = w122 - w117;
+        let w124 = w123 - w118;
+        let w125 = w124 - w119;
+        w126[k] = series::div(w125, &w98, &w126, inv_w98, k);
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        x[0][k + 1] = w0[k] * inv_k1;
+        x[1][k + 1] = w2[k] * inv_k1;
+        x[2][k + 1] = w99[k] * inv_k1;
+        x[3][k + 1] = w126[k] * inv_k1;
     }
 }
 
@@ -195,6 +355,49 @@ pub fn contact_rhs<const N: usize>(xc: &mut [[f64; N]; 2], ug: &[f64; N], p: &Pa
         let w29 = w13 * w26;
         let w30 = w28 - w27;
         let w31 = w30 - w29;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        xc[0][k + 1] = w0 * inv_k1;
+        xc[1][k + 1] = w31 * inv_k1;
+    }
+}
+
+/// Taylor coefficients of the solution of `xc' = contact_rhs_free(..)`: on entry `xc[i][0]` holds
+/// the state at the expansion point; on return `xc[i][k]` is the k-th coefficient.
+/// Series inputs hold their first N coefficients.
+/// The twin of `contact_rhs` with `ug` identically zero: for the steps after the excitation.
+pub fn contact_rhs_free<const N: usize>(xc: &mut [[f64; N]; 2], p: &Params) {
+    let w3: f64 = 2.0;
+    let w4: f64 = -1.5;
+    let w5: f64 = p[2];
+    let w6: f64 = p[0];
+    let w7: f64 = w6 * w6;
+    let w8: f64 = w6 * w7;
+    let w9: f64 = w5 / w8;
+    let w10: f64 = w4 * w9;
+    let w11: f64 = w3 * w10;
+    let w12: f64 = p[3];
+    let w13: f64 = 0.0;
+    let w14: f64 = w12 * w13;
+    let w15: f64 = p[7];
+    let w16: f64 = 2.0 * w15;
+    let w17: f64 = 3.0;
+    let w18: f64 = w9 * w17;
+    let w19: f64 = w18 / w12;
+    let w20: f64 = w19.sqrt();
+    let w21: f64 = w16 * w20;
+    let w22: f64 = w12 * w21;
+    let w23: f64 = 1.0;
+    let w24: f64 = w23 / w12;
+    let w25: f64 = w22 * w24;
+    let w26: f64 = w11 * w24;
+    let w27: f64 = w14 * w24;
+    for k in 0..N - 1 {
+        let w0 = xc[1][k];
+        let w2 = xc[0][k];
+        let w28 = w0 * w25;
+        let w29 = w2 * w26;
+        let w30 = w29 - w28;
+        let w31 = w30 - at0(k, w27);
         let inv_k1 = 1.0 / (k + 1) as f64;
         xc[0][k + 1] = w0 * inv_k1;
         xc[1][k + 1] = w31 * inv_k1;
@@ -278,6 +481,7 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
     let w18: f64 = w0 * w17;
     let w23: f64 = p[8];
     let mut w24 = [0.0f64; N];
+    let mut d_w24 = [0.0f64; N];
     let mut sin_w24 = [0.0f64; N];
     let mut cos_w24 = [0.0f64; N];
     let mut w25 = [0.0f64; N];
@@ -311,7 +515,7 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
         let w20 = w14 * w18;
         let w21 = w19 + w20;
         w24[k] = x[0][k];
-        series::sin_cos(&w24, &mut sin_w24, &mut cos_w24, k);
+        series::sin_cos(&w24, &mut d_w24, &mut sin_w24, &mut cos_w24, k);
         w25[k] = cos_w24[k];
         w26[k] = sin_w24[k];
         let w27 = series::mul(&w7, &w26, k);
@@ -346,6 +550,7 @@ pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Param
     let w1: f64 = p[3];
     let w2: f64 = p[0];
     let mut w3 = [0.0f64; N];
+    let mut d_w3 = [0.0f64; N];
     let mut sin_w3 = [0.0f64; N];
     let mut cos_w3 = [0.0f64; N];
     let mut w4 = [0.0f64; N];
@@ -376,7 +581,7 @@ pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Param
     for k in 0..N {
         w0[k] = ug[k];
         w3[k] = x[0][k];
-        series::sin_cos(&w3, &mut sin_w3, &mut cos_w3, k);
+        series::sin_cos(&w3, &mut d_w3, &mut sin_w3, &mut cos_w3, k);
         w4[k] = cos_w3[k];
         w5[k] = x[1][k];
         w9[k] = sin_w3[k];

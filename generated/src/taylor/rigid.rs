@@ -15,6 +15,7 @@ pub const NAME: &str = "rigid";
 pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64, p: &Params) {
     let w2: f64 = 0.0;
     let mut w4 = [0.0f64; N];
+    let mut d_w4 = [0.0f64; N];
     let mut sin_w4 = [0.0f64; N];
     let mut cos_w4 = [0.0f64; N];
     let mut w5 = [0.0f64; N];
@@ -80,7 +81,7 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
     for k in 0..N - 1 {
         let w0 = x[2][k];
         w4[k] = x[0][k];
-        series::sin_cos(&w4, &mut sin_w4, &mut cos_w4, k);
+        series::sin_cos(&w4, &mut d_w4, &mut sin_w4, &mut cos_w4, k);
         w5[k] = sin_w4[k];
         w10[k] = ug[k];
         let w27 = series::mul(&w5, &w10, k);
@@ -101,10 +102,112 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
     }
 }
 
+/// Taylor coefficients of the solution of `x' = rocking_rhs_free(..)`: on entry `x[i][0]` holds
+/// the state at the expansion point; on return `x[i][k]` is the k-th coefficient.
+/// Series inputs hold their first N coefficients.
+/// The twin of `rocking_rhs` with `ug` identically zero: for the steps after the excitation.
+pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Params) {
+    let w2: f64 = 0.0;
+    let mut w4 = [0.0f64; N];
+    let mut d_w4 = [0.0f64; N];
+    let mut sin_w4 = [0.0f64; N];
+    let mut cos_w4 = [0.0f64; N];
+    let w6: f64 = s;
+    let w7: f64 = p[1];
+    let w8: f64 = w6 * w7;
+    let w9: f64 = p[5];
+    let w10: f64 = w2 * w9;
+    let w11: f64 = w8 * w10;
+    let w12: f64 = p[3];
+    let w13: f64 = w2 * w12;
+    let w14: f64 = w8 * w13;
+    let w15: f64 = w11 + w14;
+    let w16: f64 = p[4];
+    let w17: f64 = w2 * w16;
+    let w18: f64 = w8 * w17;
+    let w19: f64 = w15 + w18;
+    let w20: f64 = p[0];
+    let w21: f64 = p[8];
+    let w22: f64 = w12 * w21;
+    let w23: f64 = w20 * w22;
+    let w24: f64 = w19 - w23;
+    let w25: f64 = 0.5;
+    let w26: f64 = w16 * w21;
+    let w27: f64 = w25 * w26;
+    let w28: f64 = w20 * w27;
+    let w29: f64 = w24 - w28;
+    let w31: f64 = w13 * w20;
+    let w32: f64 = w17 * w25;
+    let w33: f64 = w20 * w32;
+    let w34: f64 = w31 + w33;
+    let w35: f64 = w9 * w21;
+    let w36: f64 = w8 * w35;
+    let w37: f64 = w34 + w36;
+    let w38: f64 = w8 * w22;
+    let w39: f64 = w37 + w38;
+    let w40: f64 = w8 * w26;
+    let w41: f64 = w39 + w40;
+    let w42: f64 = p[6];
+    let w43: f64 = w12 * w25;
+    let w44: f64 = 2.0 * w8;
+    let w45: f64 = w43 * w44;
+    let w46: f64 = w8 * w45;
+    let w47: f64 = w42 + w46;
+    let w48: f64 = 2.0 * w20;
+    let w49: f64 = w43 * w48;
+    let w50: f64 = w20 * w49;
+    let w51: f64 = w47 + w50;
+    let w52: f64 = 0.08333333333333333;
+    let w53: f64 = w16 * w52;
+    let w54: f64 = w20 * w53;
+    let w55: f64 = w48 * w54;
+    let w56: f64 = w51 + w55;
+    let w57: f64 = 2.0 * w54;
+    let w58: f64 = w20 * w57;
+    let w59: f64 = w56 + w58;
+    let w60: f64 = w16 * w25;
+    let w61: f64 = w44 * w60;
+    let w62: f64 = w8 * w61;
+    let w63: f64 = w59 + w62;
+    let w64: f64 = 1.0;
+    let w65: f64 = w64 / w63;
+    let w66: f64 = w29 * w65;
+    let w67: f64 = w41 * w65;
+    for k in 0..N - 1 {
+        let w0 = x[2][k];
+        w4[k] = x[0][k];
+        series::sin_cos(&w4, &mut d_w4, &mut sin_w4, &mut cos_w4, k);
+        let w5 = sin_w4[k];
+        let w30 = cos_w4[k];
+        let w68 = w5 * w66;
+        let w69 = w30 * w67;
+        let w70 = -w68;
+        let w71 = w70 - w69;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        x[0][k + 1] = w0 * inv_k1;
+        x[1][k + 1] = at0(k, w2) * inv_k1;
+        x[2][k + 1] = w71 * inv_k1;
+        x[3][k + 1] = at0(k, w2) * inv_k1;
+    }
+}
+
 /// Taylor coefficients of the solution of `xc' = contact_rhs(..)`: on entry `xc[i][0]` holds
 /// the state at the expansion point; on return `xc[i][k]` is the k-th coefficient.
 /// Series inputs hold their first N coefficients.
 pub fn contact_rhs<const N: usize>(xc: &mut [[f64; N]; 2], ug: &[f64; N], p: &Params) {
+    let w0: f64 = 0.0;
+    for k in 0..N - 1 {
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        xc[0][k + 1] = at0(k, w0) * inv_k1;
+        xc[1][k + 1] = at0(k, w0) * inv_k1;
+    }
+}
+
+/// Taylor coefficients of the solution of `xc' = contact_rhs_free(..)`: on entry `xc[i][0]` holds
+/// the state at the expansion point; on return `xc[i][k]` is the k-th coefficient.
+/// Series inputs hold their first N coefficients.
+/// The twin of `contact_rhs` with `ug` identically zero: for the steps after the excitation.
+pub fn contact_rhs_free<const N: usize>(xc: &mut [[f64; N]; 2], p: &Params) {
     let w0: f64 = 0.0;
     for k in 0..N - 1 {
         let inv_k1 = 1.0 / (k + 1) as f64;
@@ -180,6 +283,7 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
     let w25: f64 = w22 + w24;
     let w28: f64 = p[8];
     let mut w29 = [0.0f64; N];
+    let mut d_w29 = [0.0f64; N];
     let mut sin_w29 = [0.0f64; N];
     let mut cos_w29 = [0.0f64; N];
     let w31: f64 = 0.5;
@@ -203,7 +307,7 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
         let w6 = series::sq(&w1, k);
         let w26 = w6 * w25;
         w29[k] = x[0][k];
-        series::sin_cos(&w29, &mut sin_w29, &mut cos_w29, k);
+        series::sin_cos(&w29, &mut d_w29, &mut sin_w29, &mut cos_w29, k);
         let w30 = sin_w29[k];
         let w32 = cos_w29[k];
         let w45 = w30 * w43;
@@ -229,6 +333,7 @@ pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Param
     let w2: f64 = 0.5;
     let w3: f64 = p[0];
     let mut w4 = [0.0f64; N];
+    let mut d_w4 = [0.0f64; N];
     let mut sin_w4 = [0.0f64; N];
     let mut cos_w4 = [0.0f64; N];
     let w6: f64 = w2 * w3;
@@ -253,7 +358,7 @@ pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Param
     for k in 0..N {
         w0[k] = ug[k];
         w4[k] = x[0][k];
-        series::sin_cos(&w4, &mut sin_w4, &mut cos_w4, k);
+        series::sin_cos(&w4, &mut d_w4, &mut sin_w4, &mut cos_w4, k);
         let w5 = cos_w4[k];
         let w10 = sin_w4[k];
         w21[k] = x[2][k];
