@@ -912,6 +912,47 @@ mod tests {
         }
     }
 
+    /// θ'·(a θ'u − θ') before θ'·(θ'u) and a θ'²: the first pass multiplies the combination as
+    /// it stands (expanding would add two products then), the second knows both products come
+    /// anyway and expands it: 3 series products, not 4, and the same value.
+    #[test]
+    fn a_product_is_expanded_into_products_met_later() {
+        let f = function(vec![
+            Instruction::Input {
+                dest: 0,
+                input: 0,
+                element: 0,
+            },
+            Instruction::Input {
+                dest: 1,
+                input: 0,
+                element: 1,
+            },
+            Instruction::Input {
+                dest: 2,
+                input: 1,
+                element: 0,
+            },
+            op("mul", 3, &[0, 1]),
+            op("mul", 4, &[2, 3]),
+            op("sub", 5, &[4, 0]),
+            op("mul", 6, &[0, 5]),
+            op("mul", 7, &[0, 3]),
+            op("mul", 8, &[0, 0]),
+            op("mul", 8, &[2, 8]),
+            op("add", 9, &[6, 7]),
+            op("add", 9, &[9, 8]),
+            Instruction::Output { element: 0, src: 9 },
+        ]);
+        let g = simplified(&f);
+        assert_eq!(series_products(&f), 4);
+        assert_eq!(series_products(&g), 3);
+        for (x, p) in [([0.3, -1.7], [2.5, 0.0]), ([-4.0, 0.01], [-0.3, 0.0])] {
+            let (a, b) = (eval(&f, x, p), eval(&g, x, p));
+            assert!((a - b).abs() <= 1e-14 * a.abs().max(1.0), "{a} vs {b}");
+        }
+    }
+
     /// A malformed tape is refused with the instruction named, never a panic.
     #[test]
     fn a_wrong_argument_count_is_an_error() {
