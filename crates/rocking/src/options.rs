@@ -52,8 +52,8 @@ pub enum Preset {
     Fast,
     /// DOP853 at 1e-7: error about 7e-7, about 0.67 ms.
     Default,
-    /// The Taylor method at 1e-11: error about 4e-11, about 0.73 ms (DOP853 at 1e-10 took
-    /// 1.12 ms; Taylor at 1e-9 misses the 1e-9 target on the spectrum slice's impact times).
+    /// The Taylor method at 1e-11: error about 3e-11, about 0.57 ms (DOP853 at 1e-10 takes
+    /// 1.12 ms; Taylor at 1e-10 misses the 1e-9 target on the spectrum slice's impact times).
     /// An excitation without a Taylor series (the Ricker and Mavroeidis–Papageorgiou pulses)
     /// runs DOP853 at 1e-10 instead: see [`Preset::accuracy_for`].
     Accurate,
