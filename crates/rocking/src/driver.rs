@@ -601,7 +601,12 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
         if self.opts.accuracy.method == Method::Taylor {
             return self.contact_taylor(t0, [u, u_dot, w, d], settle);
         }
-        let mut settling = settle;
+        // The settling step exists for an f_s already above zero at the rest (a grazing
+        // excursion that would make the run chatter at one instant); with every f_s below zero
+        // the first step looks for crossings inside it as every step does (placing a crossing of
+        // the first step at its end delayed a near-rigid column's uplift by a tenth of its
+        // period: 1e-4 τ at DOP853 1e-10, `an_uplift_after_a_rest_is_located_inside_the_first_step`).
+        let mut settling = settle && f.iter().any(|g| *g > 0.0);
         let full_history = !matches!(self.opts.history, History::None);
         let may_stop = self.opts.stop_when_known && !full_history;
         let (p, motion) = (self.p, self.motion);
@@ -638,13 +643,14 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
             self.guard_steps(&ode)?;
             let (t_old, t_new) = (info.t_old, info.t_new);
             let g_new = g(t_new, ode.y());
-            let crossing = if settling {
-                settling = false;
-                (0..2).find(|&k| g_new[k] > 0.0).map(|k| (t_new, k, t_new))
+            let located =
+                locate(&mut ode, &mut g, &dirs, &g_old, &g_new).map(|ev| (ev.t, ev.index, t_new));
+            // In the settling step, an f_s that started above zero and is still there at its end
+            // lifts at the end; a rising crossing of one that started below zero is an uplift.
+            let crossing = if std::mem::take(&mut settling) {
+                located.or_else(|| (0..2).find(|&k| g_new[k] > 0.0).map(|k| (t_new, k, t_new)))
             } else {
-                locate(&mut ode, &mut g, &dirs, &g_old, &g_new)
-                    .map(|ev| (ev.t, ev.index, t_new))
-                    .or_else(|| grazing(&mut g, &|t| ode.dense(t), t_old, t_new, &g_old, &g_new))
+                located.or_else(|| grazing(&mut g, &|t| ode.dense(t), t_old, t_new, &g_old, &g_new))
             };
             let lift = crossing.and_then(|(t_up, index, t_far)| {
                 let s = if index == 0 { RIGHT } else { LEFT };
@@ -934,9 +940,8 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
         let may_stop = self.opts.stop_when_known && matches!(self.opts.history, History::None);
         let excitation_end = self.motion.end();
         // The settling step exists for an f_s already above zero at the rest (a grazing
-        // excursion that would make the run chatter at one instant). The RK path's first step is
-        // tiny, so it sees any later crossing at once; a Taylor step is long, and must look for
-        // crossings inside it as usual when no f_s starts above zero.
+        // excursion that would make the run chatter at one instant); otherwise the first step
+        // looks for crossings inside it as usual (as in the Runge–Kutta path).
         if settling {
             let g0 = self.uplift_functions(start[0], start[1], self.motion.accel_right(t0));
             settling = g0.iter().any(|g| *g > 0.0);
