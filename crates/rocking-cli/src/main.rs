@@ -42,9 +42,9 @@ use crate::scene::CliError;
 /// (Vassiliou, Mackie & Stojadinović 2015).
 /// Shown by `--help`: what each accuracy preset costs (docs/accuracy.md, `cargo xtask bench`).
 const PRESETS: &str = "Accuracy presets ([solver] accuracy in a scene; measured by `cargo xtask bench`, docs/accuracy.md):
-  fast       DOP853 at 1e-5:  error in max θ/α and impact times about 4e-5,  about 0.49 ms per simulation
-  default    DOP853 at 1e-7:  error about 7e-7,  about 0.67 ms
-  accurate   Taylor at 1e-11: error about 3e-11, about 0.57 ms (Ricker and M&P pulses: DOP853 at 1e-10)
+  fast       DOP853 at 1e-5:  error in max θ/α and impact times about 4e-5,  about 0.51 ms per simulation
+  default    DOP853 at 1e-7:  error about 7e-7,  about 0.69 ms
+  accurate   Taylor at 1e-11: error about 3e-11, about 0.58 ms (Ricker and M&P pulses: DOP853 at 1e-10)
   reference  DOP853 at 1e-12: error about 3e-12 against DOP853 at 1e-14, about 1.7 ms
 Times: geometric means over the study's eight cases, one thread of a 2-core AMD EPYC machine.
 An explicit method (\"dopri5\", \"dop853\" or \"taylor\") and tol are allowed too.";

@@ -42,24 +42,27 @@ pub struct Accuracy {
 
 /// Named accuracy settings, chosen from the work-precision study (`cargo xtask bench`,
 /// docs/accuracy.md): DOP853 is cheaper than Dormand–Prince 5(4) for the same error from 1e-5 on,
-/// and the Taylor method cheaper than DOP853 from about 1e-9 on. Errors are the worse of the max
-/// θ/α error and the relative impact-time error over the study's cases; times are geometric
-/// means per simulation over its eight cases on the 2-core machine.
+/// and the Taylor method cheaper than DOP853 at every target of the study. The study recommends
+/// it for every preset; only `accurate` is the Taylor method: `fast` and `default` must run
+/// every excitation as they are (the Ricker and Mavroeidis–Papageorgiou pulses have no Taylor
+/// series), and `reference` is the independent method the tests hold the Taylor method to.
+/// Errors are the worse of the max θ/α error and the relative impact-time error over the study's
+/// cases; times are geometric means per simulation over its eight cases on the 2-core machine.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Preset {
-    /// DOP853 at 1e-5: error about 4e-5, about 0.49 ms per simulation. Spectra drafts.
+    /// DOP853 at 1e-5: error about 4e-5, about 0.51 ms per simulation. Spectra drafts.
     Fast,
-    /// DOP853 at 1e-7: error about 7e-7, about 0.67 ms.
+    /// DOP853 at 1e-7: error about 7e-7, about 0.69 ms.
     Default,
-    /// The Taylor method at 1e-11: error about 3e-11, about 0.57 ms (DOP853 at 1e-10 takes
-    /// 1.12 ms; Taylor at 1e-10 misses the 1e-9 target on the spectrum slice's impact times).
+    /// The Taylor method at 1e-11: error about 3e-11, about 0.58 ms (DOP853 at 1e-10 takes
+    /// 1.16 ms; Taylor at 1e-10 misses the 1e-9 target on the spectrum slice's impact times).
     /// An excitation without a Taylor series (the Ricker and Mavroeidis–Papageorgiou pulses)
     /// runs DOP853 at 1e-10 instead: see [`Preset::accuracy_for`].
     Accurate,
     /// DOP853 at 1e-12: impact times within 3.4e-12 relative of DOP853 at 1e-14 on the pulse
-    /// cases of the study (2.2e-11 on the spectrum slice; the late impacts of a near-rigid
-    /// structure 4.3e-5), about 1.7 ms. Reference solutions.
+    /// cases of the study, the near-rigid column's included (2.2e-11 on the spectrum slice),
+    /// about 1.7 ms. Reference solutions.
     Reference,
 }
 
