@@ -41,6 +41,12 @@ fn err(p: &Value, key: &str) -> f64 {
     f(&p["errors"][key])
 }
 
+/// Whether the reference resolves measure `k` to a tenth of `target` (its difference to the
+/// check is no larger; a NaN, no check, counts as resolved).
+fn resolves(check: &Value, k: &str, target: f64) -> bool {
+    f(&check["errors"][k]).partial_cmp(&(0.1 * target)) != Some(std::cmp::Ordering::Greater)
+}
+
 /// The error a preset is judged by: the worse of max θ/α (absolute) and impact τ (relative), leaving out a measure
 /// that the reference itself does not resolve to a tenth of `target` (its difference to the
 /// check, `check`, is larger).
@@ -48,10 +54,7 @@ fn combined(p: &Value, check: &Value, target: f64) -> f64 {
     if p["failed"].is_string() {
         return f64::INFINITY;
     }
-    // a NaN (no check) counts as resolved
-    let resolved = |k: &str| {
-        f(&check["errors"][k]).partial_cmp(&(0.1 * target)) != Some(std::cmp::Ordering::Greater)
-    };
+    let resolved = |k: &str| resolves(check, k, target);
     let a = if resolved("max_theta") {
         err(p, "max_theta")
     } else {
@@ -122,7 +125,7 @@ fn levels_table(w: &mut String, hy: &Value, cases: &[Value]) -> Result<()> {
                 _ => "–".to_string(),
             };
             // Which measures judge the row (the others the reference does not resolve).
-            let resolved = |k: &str| f(&rc["check"]["errors"][k]) <= 0.1 * level;
+            let resolved = |k: &str| resolves(&rc["check"], k, level);
             let judged = match (resolved("max_theta"), resolved("impact_time_rel")) {
                 (true, true) => String::new(),
                 (true, false) => format!(

@@ -440,11 +440,11 @@ struct Pass {
     products: BTreeSet<u64>,
 }
 
-/// The nonlinear operations on series of a tape (products, squares, quotients, roots, sines):
-/// the nodes whose Taylor recurrence costs O(k) at order k.
-fn series_costs(f: &Function, is_const_input: impl Fn(usize) -> bool) -> BTreeSet<Node> {
+/// The nonlinear operations on series of a tape (products, squares, quotients, roots, sines),
+/// one entry per instruction: those whose Taylor recurrence costs O(k) at order k.
+fn series_costs(f: &Function, is_const_input: impl Fn(usize) -> bool) -> Vec<&Instruction> {
     let mut scalar: BTreeSet<Node> = BTreeSet::new();
-    let mut costly = BTreeSet::new();
+    let mut costly = Vec::new();
     for ins in &f.instructions {
         match ins {
             Instruction::Const { dest, .. } => {
@@ -463,13 +463,24 @@ fn series_costs(f: &Function, is_const_input: impl Fn(usize) -> bool) -> BTreeSe
                     "sq" | "sqrt" | "sin" | "cos" => true,
                     _ => false,
                 } {
-                    costly.insert(*dest);
+                    costly.push(ins);
                 }
             }
             _ => {}
         }
     }
     costly
+}
+
+/// The products and squares among [`series_costs`]: what expanding a product trades in.
+fn series_products(f: &Function, is_const_input: impl Fn(usize) -> bool) -> Vec<Node> {
+    series_costs(f, is_const_input)
+        .into_iter()
+        .filter_map(|ins| match ins {
+            Instruction::Op { op, dest, .. } if op == "mul" || op == "sq" => Some(*dest),
+            _ => None,
+        })
+        .collect()
 }
 
 fn pass(
@@ -662,18 +673,9 @@ fn pass(
         instructions: live(b.tape),
         ..f.clone()
     };
-    let costly = series_costs(&function, is_const_input);
-    let products = function
-        .instructions
-        .iter()
-        .filter_map(|ins| match ins {
-            Instruction::Op { op, dest, .. }
-                if (op == "mul" || op == "sq") && costly.contains(dest) =>
-            {
-                Some(b.name_of[dest])
-            }
-            _ => None,
-        })
+    let products = series_products(&function, is_const_input)
+        .into_iter()
+        .map(|n| b.name_of[&n])
         .collect();
     Ok(Pass {
         function,
@@ -792,31 +794,6 @@ mod tests {
         out
     }
 
-    /// Products of series in the rewritten tape (`sq` included).
-    fn series_products(f: &Function) -> usize {
-        let consts: BTreeSet<usize> = f
-            .instructions
-            .iter()
-            .filter_map(|i| match i {
-                Instruction::Const { dest, .. } => Some(*dest),
-                Instruction::Input { dest, input: 1, .. } => Some(*dest),
-                _ => None,
-            })
-            .collect();
-        let mut scalar = consts.clone();
-        let mut n = 0;
-        for ins in &f.instructions {
-            if let Instruction::Op { op, dest, args } = ins {
-                if args.iter().all(|a| scalar.contains(a)) {
-                    scalar.insert(*dest);
-                } else if op == "sq" || (op == "mul" && args.iter().all(|a| !scalar.contains(a))) {
-                    n += 1;
-                }
-            }
-        }
-        n
-    }
-
     fn simplified(f: &Function) -> Function {
         simplify("test.json", f, |j| j == 1).unwrap()
     }
@@ -851,8 +828,8 @@ mod tests {
             Instruction::Output { element: 0, src: 8 },
         ]);
         let g = simplified(&f);
-        assert_eq!(series_products(&f), 3);
-        assert_eq!(series_products(&g), 1);
+        assert_eq!(series_products(&f, |j| j == 1).len(), 3);
+        assert_eq!(series_products(&g, |j| j == 1).len(), 1);
         for (x, p) in [([0.3, -1.7], [2.5, 0.0]), ([-4.0, 0.01], [-0.3, 0.0])] {
             let (a, b) = (eval(&f, x, p), eval(&g, x, p));
             assert!((a - b).abs() <= 1e-15 * a.abs(), "{a} vs {b}");
@@ -898,8 +875,8 @@ mod tests {
             },
         ]);
         let g = simplified(&f);
-        assert_eq!(series_products(&f), 4);
-        assert_eq!(series_products(&g), 3);
+        assert_eq!(series_products(&f, |j| j == 1).len(), 4);
+        assert_eq!(series_products(&g, |j| j == 1).len(), 3);
         let sines = g
             .instructions
             .iter()
@@ -945,8 +922,8 @@ mod tests {
             Instruction::Output { element: 0, src: 9 },
         ]);
         let g = simplified(&f);
-        assert_eq!(series_products(&f), 4);
-        assert_eq!(series_products(&g), 3);
+        assert_eq!(series_products(&f, |j| j == 1).len(), 4);
+        assert_eq!(series_products(&g, |j| j == 1).len(), 3);
         for (x, p) in [([0.3, -1.7], [2.5, 0.0]), ([-4.0, 0.01], [-0.3, 0.0])] {
             let (a, b) = (eval(&f, x, p), eval(&g, x, p));
             assert!((a - b).abs() <= 1e-14 * a.abs().max(1.0), "{a} vs {b}");
