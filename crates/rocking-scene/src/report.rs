@@ -14,16 +14,20 @@ use crate::scene::CliError;
 /// Runs a built scene with the command's error messages: bad options are input errors, a
 /// guard that stops a run names the scene settings that bound it.
 pub fn simulate(m: &Model, scene: &Path) -> Result<Run, CliError> {
-    rocking::simulate(&m.structure, &m.excitation, &m.effects, &m.options).map_err(|e| match e {
-        rocking::SimError::Options(msg) => CliError::Input(format!("{}: {msg}", scene.display())),
-        rocking::SimError::Guard(msg) => CliError::Internal(format!(
-            "{}: simulation stopped: {msg}; both limits are scene settings: `max_steps` and \
-             `max_events` in [solver] (defaults {} and {})",
-            scene.display(),
-            crate::limits::short(rocking::Options::default().max_steps as f64),
-            crate::limits::short(rocking::Options::default().max_events as f64)
-        )),
-        other => CliError::Internal(format!("{}: simulation failed: {other}", scene.display())),
+    rocking::simulate(&m.structure, &m.excitation, &m.effects, &m.options).map_err(|e| {
+        if e.is_invalid_input() {
+            CliError::Input(format!("{}: {e}", scene.display()))
+        } else if e.is_guard() {
+            CliError::Internal(format!(
+                "{}: simulation stopped: {e}; both limits are scene settings: `max_steps` and \
+                 `max_events` in [solver] (defaults {} and {})",
+                scene.display(),
+                crate::limits::short(rocking::Options::default().max_steps as f64),
+                crate::limits::short(rocking::Options::default().max_events as f64)
+            ))
+        } else {
+            CliError::Internal(format!("{}: simulation failed: {e}", scene.display()))
+        }
     })
 }
 

@@ -38,12 +38,14 @@
 
 mod dense;
 mod driver;
+mod error;
 mod options;
 mod results;
 mod structure;
 mod taylor;
 
-pub use driver::{simulate as simulate_variant, SimError};
+pub use driver::simulate as simulate_variant;
+pub use error::{OptionError, SimError};
 pub use options::{
     Accuracy, History, ImpactModel, Initial, Method, Options, Preset, MAX_HISTORY_ROWS,
 };
@@ -256,7 +258,7 @@ pub fn simulate(
     effects: &Effects,
     options: &Options,
 ) -> Result<Run, SimError> {
-    let sel = select_variant(structure, effects).map_err(|e| SimError::Options(e.to_string()))?;
+    let sel = select_variant(structure, effects).map_err(|e| SimError::NoVariant(e.to_string()))?;
     run_variant(sel.variant.name, &sel.structure, motion, options)
 }
 
@@ -271,7 +273,7 @@ pub fn run_variant(
     match VariantInfo::find(name) {
         Some(v) if v.model == structure.model().name => {}
         _ => {
-            return Err(SimError::Options(format!(
+            return Err(SimError::NoVariant(format!(
                 "no kernel variant `{name}` of model `{}`",
                 structure.model().name
             )))
@@ -284,5 +286,5 @@ pub fn run_variant(
             driver::simulate::<V, dyn GroundMotion, false>(structure, motion, options)
         }
     })
-    .unwrap_or_else(|| Err(SimError::Options(format!("no kernel variant `{name}`"))))
+    .unwrap_or_else(|| Err(SimError::NoVariant(format!("no kernel variant `{name}`"))))
 }

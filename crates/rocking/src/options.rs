@@ -4,6 +4,8 @@ use std::f64::consts::FRAC_PI_2;
 
 use serde::{Deserialize, Serialize};
 
+use crate::error::OptionError;
+
 /// The integration method of every phase.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Method {
@@ -202,15 +204,17 @@ impl Options {
     /// unbounded allocation (`History::Grid(0)`). Called by every entry point that simulates.
     ///
     /// # Errors
-    /// A message `Options::FIELD = VALUE is not allowed: RANGE`.
-    pub fn validate(&self) -> Result<(), String> {
-        fn check(field: &str, v: f64, ok: bool, allowed: &str) -> Result<(), String> {
+    /// The first field out of range (`Options::FIELD = VALUE is not allowed: RANGE`).
+    pub fn validate(&self) -> Result<(), OptionError> {
+        fn check(field: &str, v: f64, ok: bool, allowed: &str) -> Result<(), OptionError> {
             if ok && v.is_finite() {
                 Ok(())
             } else {
-                Err(format!(
-                    "Options::{field} = {v:e} is not allowed: {allowed}"
-                ))
+                Err(OptionError {
+                    field: field.to_string(),
+                    value: v,
+                    allowed: allowed.to_string(),
+                })
             }
         }
         let tol = self.accuracy.tol;
@@ -259,8 +263,11 @@ impl Options {
             self.rest_rate >= 0.0,
             "rest_rate >= 0",
         )?;
-        if self.max_events == 0 || self.max_steps == 0 {
-            return Err("Options::max_events and max_steps must be at least 1".into());
+        for (field, n) in [
+            ("max_events", self.max_events),
+            ("max_steps", self.max_steps),
+        ] {
+            check(field, n as f64, n >= 1, "at least 1")?;
         }
         let i = &self.initial;
         check(
