@@ -1,6 +1,8 @@
 //! Drawing that both the `rocking` command and the Python package need: the embedded font
 //! (DejaVu Sans, see assets/DejaVuSans-LICENSE.txt, so no system font is needed), text wrapping
 //! for titles and legends, and [`animation`], the animated GIF of a run.
+//!
+//! It owns how things look; it must not compute results (it draws what a run or a study gives).
 
 pub mod animation;
 

@@ -5,7 +5,12 @@
 //! rocking on a rigid surface under a horizontal ground acceleration. The physics comes from the
 //! generated kernels of [`rocking_kernels`]; this crate integrates it through its phases (full
 //! contact, rocking about either corner, impacts, overturning) with the event-locating
-//! Runge–Kutta integrators of [`rocking_ode`].
+//! Runge–Kutta integrators of [`rocking_ode`] and the Taylor method generated from the
+//! derivation.
+//!
+//! It owns the hybrid logic (phases, events, the impact policy) and the run's summary; it must
+//! not know the physics beyond the generated kernels' interface (no equation is typed here),
+//! nor scene files, units of a record, or how results are written.
 //!
 //! # A run
 //!

@@ -18,9 +18,9 @@ use plotters::style::text_anchor;
 use rocking::{EventKind, Run};
 use rocking_scene::labels;
 
-use crate::model::Model;
-use crate::report::write_atomic;
-use crate::scene::CliError;
+use crate::out_dir::write_atomic;
+use rocking_scene::setup::Setup;
+use rocking_scene::SceneError;
 
 pub(crate) use rocking_plot::{register, wrap};
 
@@ -126,7 +126,7 @@ fn draw<DB: DrawingBackend>(
 }
 
 /// Writes plot.png and plot.svg into `dir` (atomically); returns their paths.
-pub fn plots(model: &Model, run: &Run, dir: &Path) -> Result<Vec<PathBuf>, CliError> {
+pub fn plots(model: &Setup, run: &Run, dir: &Path) -> Result<Vec<PathBuf>, SceneError> {
     register();
     let d = model.structure.derived();
     let u = &model.units;
@@ -169,7 +169,7 @@ pub fn plots(model: &Model, run: &Run, dir: &Path) -> Result<Vec<PathBuf>, CliEr
         .unwrap_or_else(|| model.excitation_description.clone());
     title.push_str(&format!("  [{}]", run.summary.kernel_variant));
 
-    let fail = |what: &str, m: String| CliError::Internal(format!("cannot draw the {what}: {m}"));
+    let fail = |what: &str, m: String| SceneError::failure(format!("cannot draw the {what}: {m}"));
     let mut written = Vec::new();
     // PNG: render into a buffer, encode, write atomically.
     let mut buf = vec![0u8; (WIDTH * HEIGHT * 3) as usize];
@@ -243,7 +243,7 @@ pub fn fragility_plots(
     points: &[(f64, f64)],
     records: usize,
     dir: &Path,
-) -> Result<Vec<PathBuf>, CliError> {
+) -> Result<Vec<PathBuf>, SceneError> {
     register();
     render_pair(
         dir,
@@ -261,9 +261,9 @@ pub(crate) fn render_pair(
     size: (u32, u32),
     png: impl FnOnce(DrawingArea<BitMapBackend<'_>, Shift>) -> Result<(), String>,
     svg: impl FnOnce(DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), String>,
-) -> Result<Vec<PathBuf>, CliError> {
+) -> Result<Vec<PathBuf>, SceneError> {
     let fail = |what: &str, m: String| {
-        CliError::Internal(format!("{}: cannot draw the {what}: {m}", dir.display()))
+        SceneError::failure(format!("{}: cannot draw the {what}: {m}", dir.display()))
     };
     let mut pixels = vec![255u8; (size.0 * size.1 * 3) as usize];
     png(BitMapBackend::with_buffer(&mut pixels, size).into_drawing_area())

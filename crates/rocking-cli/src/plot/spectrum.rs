@@ -16,7 +16,7 @@ use rocking_spectra::{Cell, CellClass, Sweep};
 
 use super::contour::{contour, polylines, Segment};
 use super::{register, render_pair, titled};
-use crate::scene::CliError;
+use rocking_scene::SceneError;
 
 /// Figure size (pixels) and the width of the legend column on its right.
 const SIZE: (u32, u32) = (1040, 760);
@@ -527,7 +527,7 @@ pub fn spectrum_plots(
     cells: &[Cell],
     reference: Option<&Reference>,
     dir: &Path,
-) -> Result<Vec<PathBuf>, CliError> {
+) -> Result<Vec<PathBuf>, SceneError> {
     if sweep.axes.is_empty() || cells.is_empty() {
         return Ok(Vec::new());
     }
