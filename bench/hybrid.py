@@ -14,7 +14,11 @@ end of the first contact step) and overturning. A peer supplies two things and n
 * `phases`: its integrator of the two phases, ``contact(t0, u, u', settling) -> (t, s, u, u')``
   (s the corner that lifts at t, None when the run reached its end) and
   ``rocking(t0, s, x0, n) -> (t, event, x, max |theta| on the way)`` (event IMPACT, OVERTURN or
-  None at the end; n as in the Rust driver: theta's order of vanishing at t0).
+  None at the end; n as in the Rust driver: theta's order of vanishing at t0; x0 and x are
+  [theta, u, theta', u']).
+
+Numbers cross this interface as Python floats where the peer can: arithmetic on numpy scalars
+costs several times more, which matters on the per-event path of a fast integrator.
 
 The answers are the study's (`rocking-bench`, crates/rocking-bench/src/study.rs): max theta/alpha,
 the significant impacts' tau (|theta'| >= 0.01 alpha p) and every impact's (rests included),
@@ -113,7 +117,7 @@ class Driver:
         th0, u0, td0, ud0 = c.initial
         if th0 != 0.0 or td0 != 0.0:
             s = RIGHT if th0 > 0 or (th0 == 0 and td0 > 0) else LEFT
-            phase = ("rock", 0.0, s, np.array([th0, u0, td0, ud0]), 0 if th0 != 0 else 1)
+            phase = ("rock", 0.0, s, (th0, u0, td0, ud0), 0 if th0 != 0 else 1)
         else:
             phase = ("contact", 0.0, u0, ud0, False)
         while True:
@@ -129,9 +133,9 @@ class Driver:
                     settling = settle and (f[0] > 0 or f[1] > 0)
                     t, s, u, ud = self.phases.contact(t, u, ud, settling)
                     if s is None:
-                        final = (t, np.array([0.0, u, 0.0, ud]))
+                        final = (t, (0.0, u, 0.0, ud))
                         break
-                phase = ("rock", t, s, np.array([0.0, u, 0.0, ud]), 2)
+                phase = ("rock", t, s, (0.0, u, 0.0, ud), 2)
                 continue
             _, t0, s, x0, n = phase
             t, event, x, max_theta = self.phases.rocking(t0, s, x0, n)
@@ -162,6 +166,8 @@ class Driver:
         """No impact may create kinetic energy: where the post-impact kinetic energy exceeds the
         pre-impact one (beyond 1e-9 relative; both less the part of a base at rest), the
         velocities are scaled by one common factor to keep it (the Rust driver's rule)."""
+        if e_after <= e_before:
+            return after  # the same test less the same rest energy cannot find a gain
         rest = self.physics.kinetic((0.0, u, 0.0, 0.0), s)
         t_before, t_after = e_before - rest, e_after - rest
         if not (t_after > t_before * (1.0 + 1e-9) and t_after > 0.0):
@@ -225,4 +231,4 @@ class Driver:
         after = self.without_energy_gain(after, e_after, e_before, u, s2)
         if after[0] == "contact":
             return ("contact", t, u, after[1], rest)
-        return ("rock", t, s2, np.array([0.0, u, after[1], after[2]]), 1)
+        return ("rock", t, s2, (0.0, u, after[1], after[2]), 1)

@@ -115,6 +115,7 @@ class Phases:
 
     def rocking(self, t0, s, x0, n):
         kern, motion, p = self.kern, self.motion, self.case.params
+        x0 = np.asarray(x0, dtype=float)
         over, t_end = self.case.overturn_angle, self.case.t_end
 
         def rhs(t, x, s=s):
