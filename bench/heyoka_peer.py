@@ -107,25 +107,35 @@ PY_NAMESPACE = {"sqrt": math.sqrt, "sin": math.sin, "cos": math.cos, "tan": math
                 "log": math.log, "atan2": math.atan2, "sign": _py_sign}
 
 
-def replay(f, inputs: list[list]) -> list:
-    """The outputs of a CasADi function as heyoka expressions: its instruction tape replayed on
-    ``inputs`` (one list of expressions per input, element by element)."""
+def walk(f, load, const, apply) -> list:
+    """The outputs of a CasADi function's instruction tape evaluated in another algebra: `load(i, j)`
+    gives element j of input i, `const(v)` a constant, `apply(op, args)` an operation's result."""
     work, out = {}, {}
     for row in ir.tape(f):
         op, dest, args = row[0], row[1], row[2:]
         if op == "input":
-            work[dest] = inputs[args[0]][args[1]]
+            work[dest] = load(args[0], args[1])
         elif op == "output":
             out[dest] = work[args[0]]
         elif op == "const":
-            work[dest] = hy.expression(float(args[0]))
-        elif op in UNARY:
-            work[dest] = UNARY[op](work[args[0]])
-        elif op in BINARY:
-            work[dest] = BINARY[op](work[args[0]], work[args[1]])
+            work[dest] = const(float(args[0]))
         else:
-            raise ValueError(f"tape op {op!r} has no heyoka translation")
+            work[dest] = apply(op, [work[a] for a in args])
     return [out[k] for k in range(len(out))]
+
+
+def replay(f, inputs: list[list]) -> list:
+    """The outputs of a CasADi function as heyoka expressions of ``inputs`` (one list of
+    expressions per input, element by element)."""
+
+    def apply(op, args):
+        if op in UNARY:
+            return UNARY[op](*args)
+        if op in BINARY:
+            return BINARY[op](*args)
+        raise ValueError(f"tape op {op!r} has no heyoka translation")
+
+    return walk(f, lambda i, j: inputs[i][j], hy.expression, apply)
 
 
 def python_function(f):
@@ -133,22 +143,21 @@ def python_function(f):
     floats) returning a tuple: its tape, one statement per instruction. For the few evaluations per
     event, plain Python floats beat both a CasADi call (~50-150 us) and a heyoka ``cfunc`` call
     (~6 us: numpy argument checks), at about 1 us for 60 operations."""
-    body, out = [], {}
-    for row in ir.tape(f):
-        op, dest, args = row[0], row[1], row[2:]
-        if op == "input":
-            body.append(f"w{dest} = i{args[0]}[{args[1]}]")
-        elif op == "output":
-            out[dest] = f"w{args[0]}"
-        elif op == "const":
-            body.append(f"w{dest} = {float(args[0])!r}")
-        elif op in PYTHON:
-            body.append(f"w{dest} = " + PYTHON[op].format(*(f"w{a}" for a in args)))
-        else:
+    body = []
+
+    def bind(expr):
+        body.append(f"w{len(body)} = {expr}")
+        return f"w{len(body) - 1}"
+
+    def apply(op, args):
+        if op not in PYTHON:
             raise ValueError(f"tape op {op!r} has no Python translation")
+        return bind(PYTHON[op].format(*args))
+
+    out = walk(f, lambda i, j: bind(f"i{i}[{j}]"), lambda v: bind(repr(v)), apply)
     names = ", ".join(f"i{k}" for k in range(f.n_in()))
     src = (f"def {f.name()}({names}):\n    " + "\n    ".join(body or ["pass"])
-           + "\n    return (" + "".join(out[k] + ", " for k in range(len(out))) + ")\n")
+           + "\n    return (" + "".join(o + ", " for o in out) + ")\n")
     namespace = dict(PY_NAMESPACE, inf=math.inf, nan=math.nan)
     exec(compile(src, f"<tape {f.name()}>", "exec"), namespace)
     return namespace[f.name()]
@@ -206,8 +215,8 @@ class Model:
 
     def integrators(self, kind: str, tol: float, over: float):
         """(rocking, contact, turning-point box, compile seconds, compact modes) for an excitation
-        kind ('sine' or 'linear'), tol and the overturning angle. Parameters: the kernels' p, then s, the four
-        scales, the excitation's coefficients."""
+        kind ('sine' or 'linear'), tol and the overturning angle. Parameters: the kernels' p, then
+        s, the four scales, the excitation's coefficients."""
         key = (kind, tol, over)
         if key in self.built:
             return self.built[key]
