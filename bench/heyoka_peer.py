@@ -1,15 +1,18 @@
 """heyoka peer of the rocking solver: the same model, integrated by heyoka.py's Taylor integrator.
 
 The physics is not re-typed: each kernel's CasADi instruction tape (``rocking_derive.ir.tape``) is
-replayed into heyoka ``expression`` objects (rocking and contact right-hand sides, uplift
-functions), so heyoka's ``taylor_adaptive`` (compiled with LLVM at run time) integrates exactly the
-derivation's equations; the impact maps are evaluated through the CasADi functions, as in the SciPy
-peer. The hybrid logic (full contact, rocking about either corner, impacts with VVEL / ADJex /
-Housner, overturning, the rest rule) is the SciPy peer's, written here in Python around
-``propagate_until`` with heyoka's own terminal, directional events (``t_event``: uplift, impact,
-overturning) and a non-terminal event at the turning points (max theta), restarting at every event
-and at every kink of the excitation (the ends of a pulse, the samples of a record; between samples
-the ground acceleration is linear in time, with its coefficients as runtime parameters).
+replayed, once per variant, into heyoka ``expression`` objects (the rocking and contact right-hand
+sides and the uplift functions, which heyoka's ``taylor_adaptive`` compiles with LLVM) and into
+straight-line Python functions of floats (uplift functions, theta'' at lift-off, kinetic energy,
+impact maps: what the driver evaluates once per event). No CasADi function is called while a
+simulation runs. The hybrid logic (phases, impact policy, rest rule) is the Python peers' shared
+driver, ``bench/hybrid.py``; this file is its integrator: heyoka's ``propagate_until`` over each
+span between kinks of the excitation (the ends of a pulse, the samples of a record), stopped by
+heyoka's own terminal, directional events (``t_event``: uplift, impact, overturning), with the
+turning points (max theta) a non-terminal event. Between kinks the ground acceleration is
+``c0 sin(c1 t + c2)`` or ``c0 + c1 t``, its coefficients runtime parameters. The integrators (one
+rocking and one contact integrator per variant, excitation kind, tolerance and overturning angle)
+are built once and reused by every run: a phase sets the time, the state and the parameters.
 
 The state is integrated in the study's scales, X = [theta/alpha, u/u_s, theta'/(alpha p),
 u'/ud_s] (the scales are runtime parameters), so heyoka's single tolerance plays the part of the
@@ -18,8 +21,9 @@ Rust run's rtol with its scaled atol.
     PYTHONPATH=derive python bench/heyoka_peer.py target/bench/cases.json target/bench/heyoka.json \
         [--quick] [--tols 1e-7,1e-9] [--repeats 5] [--only fig3-vvel]
 
-Timings: time.perf_counter, median of the repeats, per simulation; the one-time LLVM compilation of
-the integrators (one per variant, excitation kind and tolerance) is excluded and reported apart.
+Timings: the process's CPU time (time.process_time, as the Rust study's), median of the repeats, per
+simulation: on a machine shared with other builds, wall time measures the others too. The one-time
+LLVM compilation of the integrators is excluded and reported apart (wall time).
 """
 
 from __future__ import annotations
@@ -47,12 +51,24 @@ import heyoka as hy  # noqa: E402
 import numpy as np  # noqa: E402
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "derive"))
+from hybrid import IMPACT, LEFT, OVERTURN, RIGHT, Case, Driver, Motion  # noqa: E402
 from rocking_derive import ir, kernels, models  # noqa: E402
 
+
+def _zero():
+    return hy.expression(0.0)
+
+
+def _sign(a):
+    return hy.select(hy.gt(a, _zero()), hy.expression(1.0),
+                     hy.select(hy.lt(a, _zero()), hy.expression(-1.0), _zero()))
+
+
+# The tape's operations (crates/rocking-codegen's schema) as heyoka expressions ...
 UNARY = {
     "neg": lambda a: -a,
     "twice": lambda a: 2.0 * a,
-    "sq": lambda a: hy.square(a) if hasattr(hy, "square") else a * a,
+    "sq": lambda a: a * a,
     "sqrt": hy.sqrt,
     "sin": hy.sin,
     "cos": hy.cos,
@@ -61,6 +77,8 @@ UNARY = {
     "log": hy.log,
     "inv": lambda a: 1.0 / a,
     "assign": lambda a: a,
+    "fabs": lambda a: hy.select(hy.lt(a, _zero()), -a, a),
+    "sign": _sign,
 }
 BINARY = {
     "add": lambda a, b: a + b,
@@ -69,28 +87,80 @@ BINARY = {
     "div": lambda a, b: a / b,
     "pow": lambda a, b: a**b,
     "constpow": lambda a, b: a**b,
+    "atan2": hy.atan2,
+}
+# ... and as Python source on floats.
+PYTHON = {
+    "neg": "-{0}", "twice": "2.0 * {0}", "sq": "{0} * {0}", "sqrt": "sqrt({0})", "sin": "sin({0})",
+    "cos": "cos({0})", "tan": "tan({0})", "exp": "exp({0})", "log": "log({0})", "inv": "1.0 / {0}",
+    "assign": "{0}", "fabs": "abs({0})", "sign": "sign({0})", "add": "{0} + {1}", "sub": "{0} - {1}",
+    "mul": "{0} * {1}", "div": "{0} / {1}", "pow": "{0} ** {1}", "constpow": "{0} ** {1}",
+    "atan2": "atan2({0}, {1})",
 }
 
 
-def replay(f, inputs: list[list]) -> list:
-    """The outputs of a CasADi function as heyoka expressions: its instruction tape replayed on
-    ``inputs`` (one list of expressions per input, element by element)."""
+def _py_sign(x):
+    return 1.0 if x > 0 else (-1.0 if x < 0 else 0.0 * x)  # CasADi's sign: 0 at 0, NaN at NaN
+
+
+PY_NAMESPACE = {"sqrt": math.sqrt, "sin": math.sin, "cos": math.cos, "tan": math.tan, "exp": math.exp,
+                "log": math.log, "atan2": math.atan2, "sign": _py_sign}
+
+
+def walk(f, load, const, apply) -> list:
+    """The outputs of a CasADi function's instruction tape evaluated in another algebra: `load(i, j)`
+    gives element j of input i, `const(v)` a constant, `apply(op, args)` an operation's result."""
     work, out = {}, {}
     for row in ir.tape(f):
         op, dest, args = row[0], row[1], row[2:]
         if op == "input":
-            work[dest] = inputs[args[0]][args[1]]
+            work[dest] = load(args[0], args[1])
         elif op == "output":
             out[dest] = work[args[0]]
         elif op == "const":
-            work[dest] = hy.expression(float(args[0]))
-        elif op in UNARY:
-            work[dest] = UNARY[op](work[args[0]])
-        elif op in BINARY:
-            work[dest] = BINARY[op](work[args[0]], work[args[1]])
+            work[dest] = const(float(args[0]))
         else:
-            raise ValueError(f"tape op {op!r} has no heyoka translation")
+            work[dest] = apply(op, [work[a] for a in args])
     return [out[k] for k in range(len(out))]
+
+
+def replay(f, inputs: list[list]) -> list:
+    """The outputs of a CasADi function as heyoka expressions of ``inputs`` (one list of
+    expressions per input, element by element)."""
+
+    def apply(op, args):
+        if op in UNARY:
+            return UNARY[op](*args)
+        if op in BINARY:
+            return BINARY[op](*args)
+        raise ValueError(f"tape op {op!r} has no heyoka translation")
+
+    return walk(f, lambda i, j: inputs[i][j], hy.expression, apply)
+
+
+def python_function(f):
+    """A CasADi function as a straight-line Python function of its inputs (each a sequence of
+    floats) returning a tuple: its tape, one statement per instruction. For the few evaluations per
+    event, plain Python floats beat both a CasADi call (~50-150 us) and a heyoka ``cfunc`` call
+    (~6 us: numpy argument checks), at about 1 us for 60 operations."""
+    body = []
+
+    def bind(expr):
+        body.append(f"w{len(body)} = {expr}")
+        return f"w{len(body) - 1}"
+
+    def apply(op, args):
+        if op not in PYTHON:
+            raise ValueError(f"tape op {op!r} has no Python translation")
+        return bind(PYTHON[op].format(*args))
+
+    out = walk(f, lambda i, j: bind(f"i{i}[{j}]"), lambda v: bind(repr(v)), apply)
+    names = ", ".join(f"i{k}" for k in range(f.n_in()))
+    src = (f"def {f.name()}({names}):\n    " + "\n    ".join(body or ["pass"])
+           + "\n    return (" + "".join(o + ", " for o in out) + ")\n")
+    namespace = dict(PY_NAMESPACE, inf=math.inf, nan=math.nan)
+    exec(compile(src, f"<tape {f.name()}>", "exec"), namespace)
+    return namespace[f.name()]
 
 
 # Tapes longer than this are compiled in compact mode (heyoka loops over the operations instead
@@ -102,22 +172,51 @@ def tape_ops(f) -> int:
     return sum(1 for r in ir.tape(f) if r[0] not in ("input", "output", "const"))
 
 
+class Physics:
+    """The pointwise physics of one variant (see `hybrid`), as Python functions of the tapes."""
+
+    def __init__(self, f: dict, names: dict):
+        self.py = {name: python_function(f[name]) for name in
+                   ("uplift", "rocking_rhs", "energy", "impact_vvel", "impact_adjex", "impact_housner")}
+        self.names = names
+        self.kinetic_index = names["energy"].index("kinetic")
+        self.theta_ddot_index = names["rocking_rhs"].index("theta_ddot")
+        self.p = None  # the parameter vector of the case being run (a list of floats)
+
+    def fields(self, name):
+        return self.names[name]
+
+    def uplift(self, u, u_dot, ug):
+        up = self.py["uplift"]
+        return (up((u, u_dot), (ug,), (RIGHT,), self.p)[0], up((u, u_dot), (ug,), (LEFT,), self.p)[0])
+
+    def theta_ddot(self, s, u, u_dot, ug):
+        return self.py["rocking_rhs"]((0.0, u, 0.0, u_dot), (ug,), (s,), self.p)[self.theta_ddot_index]
+
+    def kinetic(self, x, s):
+        return self.py["energy"](x, (s,), self.p)[self.kinetic_index]
+
+    def impact(self, name, u, u_dot, theta_dot, s):
+        return self.py[name]((u, u_dot, theta_dot), (s,), self.p)
+
+
 class Model:
-    """The CasADi functions of one variant, and heyoka integrators built from their tapes."""
+    """One variant: its CasADi functions (used only to build), the `Physics` and the heyoka
+    integrators built from the tapes."""
 
     def __init__(self, variant_name: str):
         variant = next(v for v in models.VARIANTS if v.name == variant_name)
-        self.f = {k.name: ir.casadi_function(k) for k in kernels.kernels(variant)}
+        ks = kernels.kernels(variant)
+        self.f = {k.name: ir.casadi_function(k) for k in ks}
+        self.physics = Physics(self.f, {k.name: k.output.elements for k in ks})
         self.np = len(variant.model.params)
         self.built = {}
         self.compile_s = 0.0
 
-    def __call__(self, name, *args):
-        return np.asarray(self.f[name](*args)).ravel()
-
     def integrators(self, kind: str, tol: float, over: float):
-        """(rocking, contact) integrators for an excitation kind ('sine' or 'linear'), tol and the
-        overturning angle."""
+        """(rocking, contact, turning-point box, compile seconds, compact modes) for an excitation
+        kind ('sine' or 'linear'), tol and the overturning angle. Parameters: the kernels' p, then
+        s, the four scales, the excitation's coefficients."""
         key = (kind, tol, over)
         if key in self.built:
             return self.built[key]
@@ -135,11 +234,14 @@ class Model:
         rhs = replay(self.f["rocking_rhs"], [x, [ug], [s], par])
         sys_r = [(X[i], rhs[i] / d[i]) for i in range(4)]
         compact = tape_ops(self.f["rocking_rhs"]) > COMPACT_OPS
-        self.turning = []
+        turn = [0.0]  # the largest |theta/alpha| at a turning point of the phase
+        # LLVM's fast-math flags (reassociation, reciprocals, contraction): 27-30 % less time per
+        # simulation on the full-mass cases, 3 % on the point-mass one, errors unchanged
+        # (bench/NOTES.md).
+        opts = {"fast_math": True}
 
         def on_turn(ta, t, d_sgn):
-            ta.update_d_output(t)
-            self.turning.append(abs(ta.d_output[0]))
+            turn[0] = max(turn[0], abs(ta.update_d_output(t)[0]))
 
         ev_r = [
             # impact: s theta falls through 0. A phase starts at theta = 0 exactly, and heyoka 7.13
@@ -149,227 +251,146 @@ class Model:
             hy.t_event(s * X[0] + 1e-30, direction=hy.event_direction.negative),
             hy.t_event(s * d[0] * X[0] - over, direction=hy.event_direction.positive),
         ]
-        nt_r = [hy.nt_event(X[2], on_turn)]
+        # Only the maxima of s theta (theta' falling through zero about the right corner, rising
+        # about the left) can be the phase's max |theta|: half the callbacks of a turning-point event.
+        nt_r = [hy.nt_event(s * X[2], on_turn, direction=hy.event_direction.negative)]
         ta_r = hy.taylor_adaptive(sys_r, [0.0] * 4, tol=tol, compact_mode=compact,
-                                  pars=[0.0] * npar, t_events=ev_r, nt_events=nt_r)
+                                  pars=[0.0] * npar, t_events=ev_r, nt_events=nt_r, **opts)
         # full contact
         Y = hy.make_vars("u", "ud")
         y = [d[1] * Y[0], d[3] * Y[1]]
         rhs_c = replay(self.f["contact_rhs"], [y, [ug], par])
         sys_c = [(Y[0], rhs_c[0] / d[1]), (Y[1], rhs_c[1] / d[3])]
         ev_c = [hy.t_event(replay(self.f["uplift"], [y, [ug], [hy.expression(sg)], par])[0],
-                           direction=hy.event_direction.positive) for sg in (1.0, -1.0)]
+                           direction=hy.event_direction.positive) for sg in (RIGHT, LEFT)]
         compact_c = tape_ops(self.f["contact_rhs"]) + tape_ops(self.f["uplift"]) > COMPACT_OPS
-        # the uplift functions at the start of a contact phase, compiled by heyoka from the same tape
-        yu, yd, g = hy.make_vars("yu", "yd", "g")
-        pc = [hy.par[i] for i in range(n)]
-        up = [replay(self.f["uplift"], [[yu, yd], [g], [hy.expression(sg)], pc])[0] for sg in (1.0, -1.0)]
-        self.uplift_cf = hy.cfunc(up, [yu, yd, g])
         ta_c = hy.taylor_adaptive(sys_c, [0.0] * 2, tol=tol, compact_mode=compact_c,
-                                  pars=[0.0] * npar, t_events=ev_c)
+                                  pars=[0.0] * npar, t_events=ev_c, **opts)
         dt = time.perf_counter() - t0
         self.compile_s += dt
-        self.built[key] = (ta_r, ta_c, dt, compact, compact_c)
+        self.built[key] = (ta_r, ta_c, turn, dt, (compact, compact_c))
         return self.built[key]
 
 
-class Motion:
-    """Ground acceleration as segments on which it is c0 sin(c1 t + c2) ('sine') or c0 + c1 t."""
-
-    def __init__(self, m: dict):
-        self.kind = m["kind"]
-        if self.kind == "sine":
-            self.a, self.w, self.t0 = m["amplitude"], m["omega"], m["start"]
-            self.t1 = self.t0 + 2 * math.pi / self.w
-            self.kinks = [self.t0, self.t1]
-        elif self.kind == "record":
-            self.dt = m["dt"]
-            self.samples = np.asarray(m["samples"], dtype=float)
-            self.grid = self.dt * np.arange(len(self.samples))
-            self.kinks = list(self.grid)
-            self.t1 = self.grid[-1]
-        elif self.kind == "none":
-            self.kinks, self.t1 = [], 0.0
-        else:
-            raise ValueError(f"unsupported motion {self.kind}")
-        self.integrator_kind = "sine" if self.kind == "sine" else "linear"
-
-    def accel(self, t: float) -> float:
-        if self.kind == "sine":
-            return self.a * math.sin(self.w * (t - self.t0)) if self.t0 <= t <= self.t1 else 0.0
-        if self.kind == "record":
-            return float(np.interp(t, self.grid, self.samples, left=0.0, right=0.0)) if t <= self.t1 else 0.0
-        return 0.0
-
-    def coeffs(self, t: float, t_stop: float):
-        """The segment's coefficients on [t, t_stop] (t_stop the next kink or the end)."""
-        tm = 0.5 * (t + t_stop)
-        if self.kind == "sine":
-            if self.t0 <= tm <= self.t1:
-                return (self.a, self.w, -self.w * self.t0)
-            return (0.0, 0.0, 0.0)
-        if self.kind == "record" and tm <= self.t1:
-            i = min(int(tm / self.dt), len(self.samples) - 2)
-            slope = (self.samples[i + 1] - self.samples[i]) / self.dt
-            return (self.samples[i] - slope * self.grid[i], slope)
-        return (0.0, 0.0)
-
-    def next_stop(self, t: float, t_end: float) -> float:
-        for k in self.kinks:
-            if k > t * (1 + 1e-15) + 1e-300:
-                return min(k, t_end)
-        return t_end
-
-
-def set_pars(ta, p, s, scales, coeffs):
-    pars = ta.pars
-    n = len(p)
-    pars[:n] = p
-    pars[n] = s
-    pars[n + 1:n + 5] = scales
-    pars[n + 5:n + 5 + len(coeffs)] = coeffs
-
-
 def outcome_event(oc) -> int | None:
-    """Index of the terminal event that stopped propagate_until, or None (time limit)."""
+    """Index of the terminal event that stopped propagate_until or step, or None."""
     k = int(oc)  # terminal event i stops with taylor_outcome(-i - 1); the others are < -2**32
     return -k - 1 if -(2**31) < k < 0 else None
 
 
-def simulate(case: dict, model: Model, motion: Motion, tol: float) -> dict:
-    p = np.asarray(case["params"], dtype=float)
-    alpha, pf = case["alpha"], case["p"]
-    us, uds = case["u_scale"], case["ud_scale"]
-    D = np.array([alpha, us, alpha * pf, uds])
-    t_end = case["t_end"]
-    over = case["overturn_angle"]
-    rest = case["rest_rate"] * alpha * pf
-    significant = 0.01 * alpha * pf
-    impact_model = case["impact"]
-    th0, u0, td0, ud0 = case["initial"]
-    ta_r, ta_c = model.integrators(motion.integrator_kind, tol, over)[:2]
-    eps_t = 8 * np.finfo(float).eps
+class Excitation:
+    """The excitation's coefficients per span between kinks, as the integrators' parameters."""
 
-    steps = 0
-    max_theta = abs(th0)
-    impacts, all_impacts = [], []
-    overturn = None
+    def __init__(self, motion: Motion):
+        self.motion = motion
+        if motion.kind == "record":
+            slope = np.diff(motion.samples) / motion.dt
+            self.c0 = (motion.samples[:-1] - slope * motion.grid[:-1]).tolist()
+            self.c1 = slope.tolist()
+        self.zero = (0.0, 0.0) if motion.kind != "sine" else (0.0, 0.0, 0.0)
 
-    if th0 != 0.0 or td0 != 0.0:
-        s = 1.0 if th0 > 0 or (th0 == 0 and td0 > 0) else -1.0
-        phase = ("rock", 0.0, s, np.array([th0, u0, td0, ud0]))
-    else:
-        phase = ("contact", 0.0, np.array([u0, ud0]))
+    def coeffs(self, t: float, t_stop: float):
+        """The span's coefficients on [t, t_stop] (t_stop the next kink or the end)."""
+        m = self.motion
+        tm = 0.5 * (t + t_stop)
+        if m.kind == "sine":
+            return (m.a, m.w, -m.w * m.t0) if m.t0 <= tm <= m.t1 else self.zero
+        if m.kind == "record" and tm <= m.t1:
+            i = min(int(tm / m.dt), len(self.c1) - 1)
+            return (self.c0[i], self.c1[i])
+        return self.zero
 
-    final = None
-    while True:
-        if phase[0] == "contact":
-            _, t, y = phase
-            f = model.uplift_cf([y[0], y[1], motion.accel(t)], pars=p)
-            if f[0] > 0 or f[1] > 0:
-                s = 1.0 if f[0] > 0 else -1.0
-                phase = ("rock", t, s, np.array([0.0, y[0], 0.0, y[1]]))
-                continue
-            ta_c.time = t
-            ta_c.state[:] = [y[0] / us, y[1] / uds]
-            ta_c.reset_cooldowns()
-            uplifted = None
-            while t < t_end:
-                t_stop = motion.next_stop(t, t_end)
-                set_pars(ta_c, p, 0.0, D, motion.coeffs(t, t_stop))
-                oc, _, _, n, *_ = ta_c.propagate_until(t_stop)
-                steps += n
-                k = outcome_event(oc)
-                t = ta_c.time
-                if k is not None:
-                    uplifted = (t, 1.0 if k == 0 else -1.0,
-                                np.array([ta_c.state[0] * us, ta_c.state[1] * uds]))
-                    break
-            if uplifted is None:
-                final = (t, np.array([0.0, ta_c.state[0] * us, 0.0, ta_c.state[1] * uds]))
-                break
-            te, s, ye = uplifted
-            phase = ("rock", te, s, np.array([0.0, ye[0], 0.0, ye[1]]))
-            continue
 
-        _, t0, s, x0 = phase
-        ta_r.time = t0
-        ta_r.state[:] = x0 / D
-        ta_r.reset_cooldowns()
-        model.turning = []
-        t = t0
-        hit = None
-        while t < t_end:
-            t_stop = motion.next_stop(t, t_end)
-            set_pars(ta_r, p, s, D, motion.coeffs(t, t_stop))
-            oc, _, _, n, *_ = ta_r.propagate_until(t_stop)
-            steps += n
+class Phases:
+    """The two phases integrated by the model's heyoka integrators (see the module doc)."""
+
+    def __init__(self, case: Case, model: Model, motion: Motion, tol: float, driver: Driver):
+        self.case, self.motion, self.driver = case, motion, driver
+        self.excitation = Excitation(motion)
+        kind = "sine" if motion.kind == "sine" else "linear"
+        self.ta_r, self.ta_c, self.turn = model.integrators(kind, tol, case.overturn_angle)[:3]
+        n = len(case.params)
+        self.s_index, self.c_index = n, n + 5
+        # Views on the integrators' state and parameters (valid while the integrators live).
+        self.x_r, self.x_c = self.ta_r.state, self.ta_c.state
+        self.p_r, self.p_c = self.ta_r.pars, self.ta_c.pars
+        for pars in (self.p_r, self.p_c):
+            pars[:n] = case.params
+            pars[n + 1:n + 5] = case.scales
+        self.scales = case.scales.tolist()
+        self.steps = 0
+        self.eps_t = 8 * float(np.finfo(float).eps)
+
+    def span(self, pars, t: float) -> float:
+        """Sets the excitation's coefficients from t to the next kink and returns the kink."""
+        t_stop = self.motion.next_stop(t, self.case.t_end)
+        c = self.excitation.coeffs(t, t_stop)
+        pars[self.c_index:self.c_index + len(c)] = c
+        return t_stop
+
+    def contact(self, t, u, u_dot, settling):
+        ta, x, t_end = self.ta_c, self.x_c, self.case.t_end
+        _, us, _, uds = self.scales
+        ta.time = t
+        x[:] = (u / us, u_dot / uds)
+        ta.reset_cooldowns()
+        if settling:
+            # The settling step: one step (a rising root inside it still lifts), then an f_s still
+            # above zero lifts at its end.
+            t_stop = self.span(self.p_c, t)
+            oc, _ = ta.step(max_delta_t=t_stop - t)
+            self.steps += 1
             k = outcome_event(oc)
-            t = ta_r.time
-            if k == 0 and t - t0 <= eps_t * max(1.0, abs(t0)):
-                continue  # the phase's own start at theta = 0 (uplift: a double root), not an impact
-            max_theta = max(max_theta, abs(ta_r.state[0]) * alpha)
+            t = ta.time
+            y = x.tolist()
             if k is not None:
-                hit = (t, k, ta_r.state * D)
-                break
-        if model.turning:
-            max_theta = max(max_theta, max(model.turning) * alpha)
-        if hit is None:
-            final = (t, ta_r.state * D)
-            break
-        te, k, xe = hit
-        if k == 1:
-            overturn = te
-            max_theta = max(max_theta, abs(xe[0]))
-            final = (te, xe)
-            break
-        # impact at theta = 0: the corner -s hits the ground (maps through CasADi, as the SciPy peer)
-        u, ud, td = xe[1], xe[3], xe[2]
-        all_impacts.append(te * pf)
-        if abs(td) >= significant:
-            impacts.append(te * pf)
-        xi = np.array([u, ud, td])
-        s2 = -s
-        if impact_model == "vvel":
-            v = model("impact_vvel", xi, s, p)
-            after = ("rock", v[1], v[2]) if v[0] != 0 else ("contact", v[2])
-        elif impact_model == "adjex":
-            a = model("impact_adjex", xi, s, p)
-            e_i = a[5]
-            contact = (a[1], ("contact", a[0]))
-            rocking = (a[4], ("rock", a[2], a[3]))
-            momentum = (a[7], ("contact", a[6]))
-            best = rocking if (s2 * a[2] > 0 and rocking[0] < contact[0]) else contact
-            if best[0] <= e_i:
-                after = best[1]
-            elif momentum[0] <= e_i:
-                after = momentum[1]
-            else:
-                after = (momentum if momentum[0] < best[0] else best)[1]
-        elif impact_model == "housner":
-            h = model("impact_housner", xi, s, p)
-            after = ("rock", h[0], h[1]) if s2 * h[0] > 0 else ("contact", ud)
-        else:
-            raise ValueError(impact_model)
-        if after[0] == "rock" and abs(after[1]) < rest:
-            after = ("contact", after[2])
-        if after[0] == "contact":
-            phase = ("contact", te, np.array([u, after[1]]))
-        else:
-            phase = ("rock", te, s2, np.array([0.0, u, after[1], after[2]]))
+                return t, RIGHT if k == 0 else LEFT, y[0] * us, y[1] * uds
+            s = self.driver.lift_side(y[0] * us, y[1] * uds, self.motion.accel(t))
+            if s is not None:
+                return t, s, y[0] * us, y[1] * uds
+        k = None
+        while t < t_end and k is None:
+            oc, _, _, n, *_ = ta.propagate_until(self.span(self.p_c, t))
+            self.steps += n
+            k = outcome_event(oc)
+            t = ta.time
+        y = x.tolist()
+        return t, None if k is None else (RIGHT if k == 0 else LEFT), y[0] * us, y[1] * uds
 
-    tf, xf = final
-    return {
-        "max_theta_over_alpha": max_theta / alpha,
-        "impacts": impacts,
-        "all_impacts": all_impacts,
-        "impact_count": len(all_impacts),
-        "overturned": overturn is not None,
-        "overturn_tau": None if overturn is None else overturn * pf,
-        "final_state": [xf[0] / alpha, xf[1] / us, xf[2] / (alpha * pf), xf[3] / uds],
-        "final_tau": tf * pf,
-        "steps": steps,
-    }
+    def rocking(self, t0, s, x0, n):
+        ta, x, pars, turn = self.ta_r, self.x_r, self.p_r, self.turn
+        t_end, alpha = self.case.t_end, self.case.alpha
+        a, us, ap, uds = self.scales
+        ta.time = t0
+        x[:] = (x0[0] / a, x0[1] / us, x0[2] / ap, x0[3] / uds)
+        ta.reset_cooldowns()
+        pars[self.s_index] = s
+        turn[0] = 0.0
+        t, k, max_theta = t0, None, 0.0
+        while t < t_end:
+            oc, _, _, steps, *_ = ta.propagate_until(self.span(pars, t))
+            self.steps += steps
+            k = outcome_event(oc)
+            t = ta.time
+            if k == IMPACT and t - t0 <= self.eps_t * max(1.0, abs(t0)):
+                continue  # the phase's own start at theta = 0 (uplift: a double root), not an impact
+            max_theta = max(max_theta, abs(x[0]) * alpha)
+            if k is not None:
+                break
+        y = x.tolist()
+        event = None if k is None else (IMPACT, OVERTURN)[k]
+        return t, event, (y[0] * a, y[1] * us, y[2] * ap, y[3] * uds), float(max(max_theta, turn[0] * alpha))
+
+
+def simulate(case: Case, model: Model, motion: Motion, tol: float) -> dict:
+    """One hybrid simulation: the answer, with the number of Taylor steps."""
+    physics = model.physics
+    physics.p = case.params.tolist()
+    driver = Driver(case, physics, None)
+    driver.phases = phases = Phases(case, model, motion, tol, driver)
+    answer = driver.run(motion)
+    answer["steps"] = phases.steps
+    return answer
 
 
 def main():
@@ -407,16 +428,15 @@ def main():
             try:
                 # compile outside the timed runs (one integrator pair per excitation kind)
                 compile_s, compact = 0.0, None
-                for kind in sorted({Motion(motions[i]).integrator_kind for i in idx}):
-                    _, _, dt, cr, cc = model.integrators(kind, tol, case["overturn_angle"])
+                for kind in sorted({"sine" if motions[i]["kind"] == "sine" else "linear" for i in idx}):
+                    *_, dt, compact = model.integrators(kind, tol, case["overturn_angle"])
                     compile_s += dt
-                    compact = (cr, cc)
                 times, answers = [], None
-                t_all = time.perf_counter()
-                while len(times) < args.repeats or (time.perf_counter() - t_all < 0.5 and len(times) < 50):
-                    t0 = time.perf_counter()
-                    ans = [simulate(case, model, Motion(motions[i]), tol) for i in idx]
-                    times.append(time.perf_counter() - t0)
+                t_all = time.process_time()
+                while len(times) < args.repeats or (time.process_time() - t_all < 0.5 and len(times) < 50):
+                    t0 = time.process_time()
+                    ans = [simulate(Case(case), model, Motion(motions[i]), tol) for i in idx]
+                    times.append(time.process_time() - t0)
                     answers = ans
                     if times[0] > 20.0:
                         break

@@ -3,9 +3,10 @@
 The physics is not re-typed: the right-hand sides, uplift functions and impact maps are the CasADi
 functions built by the derivation package (``rocking_derive``), called with numpy arrays. The
 hybrid logic (full contact, rocking about either corner, impacts with VVEL / ADJex / Housner,
-overturning, the rest rule) is written here in Python around ``solve_ivp(method='DOP853',
-events=...)`` with terminal, directional events, restarting at every event and at every kink of
-the excitation (the ends of a pulse, the samples of a record), like the Rust driver.
+overturning, the rest rule) is the Python peers' shared driver, ``bench/hybrid.py``; this file is
+its integrator: ``solve_ivp(method='DOP853', events=...)`` with terminal, directional events,
+restarting at every event and at every kink of the excitation (the ends of a pulse, the samples
+of a record), like the Rust driver.
 
     PYTHONPATH=derive python bench/scipy_peer.py target/bench/cases.json target/bench/scipy.json \
         [--quick] [--tols 1e-7,1e-10] [--repeats 3]
@@ -20,136 +21,113 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import os
 import sys
 import time
 
 import numpy as np
-from scipy.integrate import solve_ivp
+from scipy.integrate import DOP853, solve_ivp
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "derive"))
+from hybrid import IMPACT, LEFT, OVERTURN, RIGHT, Case, Driver, Motion  # noqa: E402
 from rocking_derive import ir, kernels, models  # noqa: E402
 
 
 class Kernels:
-    """The CasADi functions of one variant, called with numpy arrays."""
+    """The pointwise physics of one variant (see `hybrid`): the derivation's CasADi functions,
+    called with numpy arrays."""
 
     def __init__(self, variant_name: str):
         variant = next(v for v in models.VARIANTS if v.name == variant_name)
-        self.f = {k.name: ir.casadi_function(k) for k in kernels.kernels(variant)}
+        ks = kernels.kernels(variant)
+        self.f = {k.name: ir.casadi_function(k) for k in ks}
+        self.names = {k.name: k.output.elements for k in ks}
+        self.kinetic_index = self.names["energy"].index("kinetic")
+        self.theta_ddot_index = self.names["rocking_rhs"].index("theta_ddot")
+        self.p = None  # the parameter vector of the case being run
 
     def __call__(self, name, *args):
         return np.asarray(self.f[name](*args)).ravel()
 
+    def fields(self, name):
+        return self.names[name]
 
-class Motion:
-    def __init__(self, m: dict):
-        self.kind = m["kind"]
-        if self.kind == "sine":
-            self.a, self.w, self.t0 = m["amplitude"], m["omega"], m["start"]
-            self.t1 = self.t0 + 2 * math.pi / self.w
-            self.kinks = [self.t0, self.t1]
-        elif self.kind == "record":
-            self.dt = m["dt"]
-            self.samples = np.asarray(m["samples"], dtype=float)
-            self.grid = self.dt * np.arange(len(self.samples))
-            self.kinks = list(self.grid)
-            self.t1 = self.grid[-1]
-        elif self.kind == "none":
-            self.kinks, self.t1 = [], 0.0
-        else:
-            raise ValueError(f"unsupported motion {self.kind}")
+    def uplift(self, u, u_dot, ug):
+        y = np.array([u, u_dot])
+        return (self("uplift", y, ug, 1.0, self.p)[0], self("uplift", y, ug, -1.0, self.p)[0])
 
-    def accel(self, t: float) -> float:
-        if self.kind == "sine":
-            return self.a * math.sin(self.w * (t - self.t0)) if self.t0 <= t <= self.t1 else 0.0
-        if self.kind == "record":
-            return float(np.interp(t, self.grid, self.samples, left=0.0, right=0.0)) if t <= self.t1 else 0.0
-        return 0.0
+    def theta_ddot(self, s, u, u_dot, ug):
+        return self("rocking_rhs", np.array([0.0, u, 0.0, u_dot]), ug, s, self.p)[self.theta_ddot_index]
 
-    def next_stop(self, t: float, t_end: float) -> float:
-        for k in self.kinks:
-            if k > t * (1 + 1e-15) + 1e-300:
-                return min(k, t_end)
-        return t_end
+    def kinetic(self, x, s):
+        return self("energy", np.asarray(x, dtype=float), s, self.p)[self.kinetic_index]
+
+    def impact(self, name, u, u_dot, theta_dot, s):
+        return self(name, np.array([u, u_dot, theta_dot]), s, self.p)
 
 
-def simulate(case: dict, kern: Kernels, motion: Motion, rtol: float) -> dict:
-    """One hybrid simulation; returns the answer and the number of RHS evaluations."""
-    p = np.asarray(case["params"], dtype=float)
-    alpha, pf = case["alpha"], case["p"]
-    us, uds = case["u_scale"], case["ud_scale"]
-    atol_c = rtol * np.array([us, uds])
-    atol_r = rtol * np.array([alpha, us, alpha * pf, uds])
-    t_end, over = case["t_end"], case["overturn_angle"]
-    rest = case["rest_rate"] * alpha * pf
-    significant = 0.01 * alpha * pf
-    impact_model = case["impact"]
-    th0, u0, td0, ud0 = case["initial"]
+class Phases:
+    """The two phases integrated by `solve_ivp(method='DOP853')`, restarted at every kink."""
 
-    nfev = 0
-    max_theta = abs(th0)
-    impacts, all_impacts = [], []
-    overturn = None
+    def __init__(self, case: Case, kern: Kernels, motion: Motion, rtol: float, driver: Driver):
+        self.case, self.kern, self.motion, self.rtol, self.driver = case, kern, motion, rtol, driver
+        self.atol_c = rtol * np.array([case.u_scale, case.ud_scale])
+        self.atol_r = rtol * case.scales
+        self.nfev = 0
 
-    if th0 != 0.0 or td0 != 0.0:
-        s = 1.0 if th0 > 0 or (th0 == 0 and td0 > 0) else -1.0
-        phase = ("rock", 0.0, s, np.array([th0, u0, td0, ud0]), 0 if th0 != 0 else 1)
-    else:
-        phase = ("contact", 0.0, np.array([u0, ud0]))
+    def contact(self, t, u, u_dot, settling):
+        kern, motion, p, t_end = self.kern, self.motion, self.case.params, self.case.t_end
+        y = np.array([u, u_dot])
 
-    final = None
-    while True:
-        if phase[0] == "contact":
-            _, t, y = phase
-            f = [kern("uplift", y, motion.accel(t), s_, p)[0] for s_ in (1.0, -1.0)]
-            if f[0] > 0 or f[1] > 0:
-                s = 1.0 if f[0] > 0 else -1.0
-                phase = ("rock", t, s, np.array([0.0, y[0], 0.0, y[1]]), 2)
-                continue
+        def rhs(t, y):
+            return kern("contact_rhs", y, motion.accel(t), p)
 
-            def rhs(t, y):
-                return kern("contact_rhs", y, motion.accel(t), p)
+        if settling:
+            # The settling step: one step, then an f_s still above zero lifts at its end.
+            solver = DOP853(rhs, t, y, motion.next_stop(t, t_end), rtol=self.rtol, atol=self.atol_c)
+            solver.step()
+            self.nfev += solver.nfev
+            t, y = solver.t, solver.y
+            s = self.driver.lift_side(y[0], y[1], motion.accel(t))
+            if s is not None:
+                return t, s, y[0], y[1]
 
-            def up_right(t, y):
-                return kern("uplift", y, motion.accel(t), 1.0, p)[0]
+        def up_right(t, y):
+            return kern("uplift", y, motion.accel(t), 1.0, p)[0]
 
-            def up_left(t, y):
-                return kern("uplift", y, motion.accel(t), -1.0, p)[0]
+        def up_left(t, y):
+            return kern("uplift", y, motion.accel(t), -1.0, p)[0]
 
-            for ev in (up_right, up_left):
-                ev.terminal, ev.direction = True, 1.0
-            uplifted = None
-            while t < t_end:
-                t_stop = motion.next_stop(t, t_end)
-                sol = solve_ivp(rhs, (t, t_stop), y, method="DOP853", rtol=rtol, atol=atol_c,
-                                events=(up_right, up_left))
-                nfev += sol.nfev
-                if sol.status == 1:
-                    hits = [(te[0], k) for k, te in enumerate(sol.t_events) if len(te)]
-                    te, k = min(hits)
-                    uplifted = (te, 1.0 if k == 0 else -1.0, sol.y_events[k][0])
-                    break
-                t, y = sol.t[-1], sol.y[:, -1]
-            if uplifted is None:
-                final = (t, np.array([0.0, y[0], 0.0, y[1]]))
-                break
-            te, s, ye = uplifted
-            phase = ("rock", te, s, np.array([0.0, ye[0], 0.0, ye[1]]), 2)
-            continue
+        for ev in (up_right, up_left):
+            ev.terminal, ev.direction = True, 1.0
+        while t < t_end:
+            t_stop = motion.next_stop(t, t_end)
+            sol = solve_ivp(rhs, (t, t_stop), y, method="DOP853", rtol=self.rtol, atol=self.atol_c,
+                            events=(up_right, up_left))
+            self.nfev += sol.nfev
+            if sol.status == 1:
+                hits = [(te[0], k) for k, te in enumerate(sol.t_events) if len(te)]
+                te, k = min(hits)
+                ye = sol.y_events[k][0]
+                return te, RIGHT if k == 0 else LEFT, ye[0], ye[1]
+            t, y = sol.t[-1], sol.y[:, -1]
+        return t, None, y[0], y[1]
 
-        _, t0, s, x0, n = phase
+    def rocking(self, t0, s, x0, n):
+        kern, motion, p = self.kern, self.motion, self.case.params
+        x0 = np.asarray(x0, dtype=float)
+        over, t_end = self.case.overturn_angle, self.case.t_end
 
         def rhs(t, x, s=s):
             return kern("rocking_rhs", x, motion.accel(t), s, p)
 
+        # The impact event s theta / (t - t0)^n, with its limit at t0 (equations.md 5, note 4).
         if n == 0:
             start_limit = s * x0[0]
         elif n == 1:
             start_limit = s * x0[2]
         else:
-            start_limit = s * kern("rocking_rhs", x0, motion.accel(t0), s, p)[2] / 2.0
+            start_limit = s * kern("rocking_rhs", x0, motion.accel(t0), s, p)[kern.theta_ddot_index] / 2.0
 
         def impact(t, x, s=s, t0=t0, n=n, lim=start_limit):
             dt = t - t0
@@ -165,78 +143,31 @@ def simulate(case: dict, kern: Kernels, motion: Motion, rtol: float) -> dict:
         overturn_ev.terminal, overturn_ev.direction = True, 1.0
         turning.terminal, turning.direction = False, 0.0
         t, x = t0, x0
-        hit = None
+        max_theta = 0.0
         while t < t_end:
             t_stop = motion.next_stop(t, t_end)
-            sol = solve_ivp(rhs, (t, t_stop), x, method="DOP853", rtol=rtol, atol=atol_r,
+            sol = solve_ivp(rhs, (t, t_stop), x, method="DOP853", rtol=self.rtol, atol=self.atol_r,
                             events=(impact, overturn_ev, turning))
-            nfev += sol.nfev
+            self.nfev += sol.nfev
             max_theta = max(max_theta, float(np.max(np.abs(sol.y[0]))))
             if len(sol.y_events[2]):
                 max_theta = max(max_theta, float(np.max(np.abs(sol.y_events[2][:, 0]))))
             if sol.status == 1:
                 hits = [(te[0], k) for k, te in enumerate(sol.t_events[:2]) if len(te)]
                 te, k = min(hits)
-                hit = (te, k, sol.y_events[k][0])
-                break
+                return te, (IMPACT, OVERTURN)[k], sol.y_events[k][0], max_theta
             t, x = sol.t[-1], sol.y[:, -1]
-        if hit is None:
-            final = (t, x)
-            break
-        te, k, xe = hit
-        if k == 1:
-            overturn = te
-            max_theta = max(max_theta, abs(xe[0]))
-            final = (te, xe)
-            break
-        # impact at theta = 0: the corner -s hits the ground
-        u, ud, td = xe[1], xe[3], xe[2]
-        all_impacts.append(te * pf)
-        if abs(td) >= significant:
-            impacts.append(te * pf)
-        xi = np.array([u, ud, td])
-        s2 = -s
-        after = None  # ("contact", u_dot) or ("rock", theta_dot, u_dot)
-        if impact_model == "vvel":
-            v = kern("impact_vvel", xi, s, p)
-            after = ("rock", v[1], v[2]) if v[0] != 0 else ("contact", v[2])
-        elif impact_model == "adjex":
-            a = kern("impact_adjex", xi, s, p)
-            e_i = a[5]
-            contact = (a[1], ("contact", a[0]))
-            rocking = (a[4], ("rock", a[2], a[3]))
-            momentum = (a[7], ("contact", a[6]))
-            best = rocking if (s2 * a[2] > 0 and rocking[0] < contact[0]) else contact
-            if best[0] <= e_i:
-                after = best[1]
-            elif momentum[0] <= e_i:
-                after = momentum[1]
-            else:
-                after = (momentum if momentum[0] < best[0] else best)[1]
-        elif impact_model == "housner":
-            h = kern("impact_housner", xi, s, p)
-            after = ("rock", h[0], h[1]) if s2 * h[0] > 0 else ("contact", ud)
-        else:
-            raise ValueError(impact_model)
-        if after[0] == "rock" and abs(after[1]) < rest:
-            after = ("contact", after[2])
-        if after[0] == "contact":
-            phase = ("contact", te, np.array([u, after[1]]))
-        else:
-            phase = ("rock", te, s2, np.array([0.0, u, after[1], after[2]]), 1)
+        return t, None, x, max_theta
 
-    tf, xf = final
-    return {
-        "max_theta_over_alpha": max_theta / alpha,
-        "impacts": impacts,
-        "all_impacts": all_impacts,
-        "impact_count": len(all_impacts),
-        "overturned": overturn is not None,
-        "overturn_tau": None if overturn is None else overturn * pf,
-        "final_state": [xf[0] / alpha, xf[1] / us, xf[2] / (alpha * pf), xf[3] / uds],
-        "final_tau": tf * pf,
-        "nfev": nfev,
-    }
+
+def simulate(case: Case, kern: Kernels, motion: Motion, rtol: float) -> dict:
+    """One hybrid simulation: the answer, with the number of RHS evaluations."""
+    kern.p = case.params
+    driver = Driver(case, kern, None)
+    driver.phases = phases = Phases(case, kern, motion, rtol, driver)
+    answer = driver.run(motion)
+    answer["nfev"] = phases.nfev
+    return answer
 
 
 def main():
@@ -276,7 +207,7 @@ def main():
             for r in range(args.repeats):
                 t0 = time.perf_counter()
                 try:
-                    ans = [simulate(case, kern, Motion(motions[i]), tol) for i in idx]
+                    ans = [simulate(Case(case), kern, Motion(motions[i]), tol) for i in idx]
                 except Exception as e:  # a researcher's script would just crash; record it
                     failed = f"{type(e).__name__}: {e}"
                     break
