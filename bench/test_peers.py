@@ -2,8 +2,8 @@
 
     PYTHONPATH=derive .venv/bin/python -m unittest bench/test_peers.py
 
-(after `cargo xtask bench` has installed bench/requirements.txt into .venv; not part of CI, which
-installs no peer).
+CI runs it with the derivation's .venv (numpy, CasADi): the shared driver's tests run there, the
+heyoka translations skip unless `cargo xtask bench` has installed bench/requirements.txt.
 """
 
 from __future__ import annotations
