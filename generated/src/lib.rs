@@ -294,4 +294,13 @@ pub trait Variant: Copy + Default + Send + Sync + 'static {
     fn structure(p: &Self::Params) -> [f64; 15];
     /// Shape function ψ(η): the column's deflection at height ηH is ψ(η)·u (for drawing it).
     fn shape(eta: f64) -> f64;
+    /// Section forces at the column base and ground reaction in full contact:
+    /// `[moment, shear, axial, moment_elastic, reaction_h, reaction_v]` (see [`kernels::index`]
+    /// and the generated doc for the section and the signs).
+    fn forces_contact(xc: &[f64; 2], ug: f64, p: &Self::Params) -> [f64; 6];
+    /// The same while rocking about corner `s` (accelerations from the rocking equations).
+    fn forces_rocking(x: &[f64; 4], ug: f64, s: f64, p: &Self::Params) -> [f64; 6];
+    /// Quasi-static uplift about the right corner:
+    /// `[weight, moment_uplift, ug_uplift, u_uplift, moment_elastic_uplift]`.
+    fn static_uplift(p: &Self::Params) -> [f64; 5];
 }
