@@ -32,6 +32,8 @@ EXPECTED = {
     "(4)": (True, "#1: omega_n = k~/m~ is missing the square root"),
     "(8)": (True, "#2 (m u_c for m_c u) and #3 (u theta' for u u' theta')"),
     "(9)": (False, "correct as printed"),
+    "(21)": (False, "#5: the integrand is misprinted, the result is right; M_ot is M_b at g = 0"),
+    "(22)": (False, "correct as printed; M_rt = W B - s (M_b - M_ot)"),
     "(23)": (True, "#6: with M_rt a restoring moment the condition is +-M_ot - M_rt > 0"),
     "(24)": (False, "correct as printed (omega_1 read as omega_n, #7)"),
     "(26)": (False, "correct as printed"),
@@ -136,6 +138,10 @@ def printed_equations(d: Derived):
     f_free = sym.s * (at(force[0], rest) - at(mass[0, 1], rest) * sym.u_ddot)
     m_ot = -u_ddot * h * (m + sp.Rational(11, 40) * m_c) - S1 * ug * h  # (21)
     m_rt = Mtot * g * b - s * S2 * g * u  # (22): upper sign = right pivot (s = +1)
+    m_base = mech.contact_forces(sym.u_ddot)["moment"]  # M_b in full contact, for a free u''.
+    yield "(21)", m_ot, d(at(m_base, [(sym.params["g"], 0)]))
+    w_b = mech.static_uplift()["moment_uplift"]
+    yield "(22)", m_rt, d(w_b - sym.s * at(m_base, [(sym.ug, 0), (sym.u_ddot, 0)]))
     yield "(23)", s * (m_ot + m_rt), d(f_free)
 
     gam = S2 / M_uu_p
@@ -203,6 +209,26 @@ def _u_cr(mech, sym):
     return -at(f, [(sym.u, 0)]) / ca.jacobian(f, sym.u)
 
 
+#: The report's note on the section forces (the rows (21) and (22) above are its evidence).
+SECTION_FORCES = [
+    "",
+    "## Section forces",
+    "",
+    "The paper prints the base moment only inside the uplift condition, as the overturning moment",
+    "(21) and the restoring moment (22) about the pivot; it prints no shear, axial force or ground",
+    "reaction, and its conclusion that rocking limits the design moment and shear at the base is",
+    "not an equation. The derivation's M_b, the bending moment of the column on its base plate by",
+    "equilibrium of the column and its masses (kernels `forces_contact`, `forces_rocking`), is in",
+    "full contact M_b = M_ot + (m + 3/8 m_c) g u: the overturning moment (21) plus the P-Delta moment",
+    "of the deflected masses; and (22) is M_rt = W B - s (M_b - M_ot), W = (m + m_c + m_b) g (rows",
+    "(21) and (22) above). Hence f_s = s M_b - W B (eq 24): in full contact |M_b| <= W B, with",
+    "equality at each uplift. While rocking, the base plate's moment balance about its centre is",
+    "M_b = s B (R_v cos theta + R_h sin theta) + I_b theta'' (I_b = I_bc - m_b B^2), with the",
+    "ground reactions R_h, R_v of the whole body: W B is no bound there (R_v - W is the rate of the",
+    "vertical momentum), and impacts (impulses) are outside every one of these forces.",
+]
+
+
 def _residual(printed, derived, sign):
     r = (printed - derived).subs(s, sign)
     r = sp.expand(sp.expand_trig(r))
@@ -238,5 +264,6 @@ def report() -> tuple[str, list[str]]:
             problems.append(f"{eq}: derived {'differs' if differs else 'matches'}, expected the opposite ({note})")
         status = "**differs**" if differs else "matches"
         lines.append(f"| {eq} | {status} | `{sp.sstr(r_plus)}` | `{sp.sstr(r_minus)}` | {note} |")
+    lines += SECTION_FORCES
     lines.append("")
     return "\n".join(lines), problems

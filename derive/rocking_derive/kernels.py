@@ -41,6 +41,22 @@ class Kernel:
     output: Output
 
 
+#: Outputs of the section-force kernels.
+FORCES = ("moment", "shear", "axial", "moment_elastic", "reaction_h", "reaction_v")
+FORCES_DOC = (
+    "\n\nThe section is the column's foot, at the base centre on the line of the pivots. The column, "
+    "its top mass and every mass on it are in equilibrium under gravity acting on the deflected "
+    "masses, their inertia from absolute accelerations (ground motion included) and the plate's "
+    "actions. Body components (equations.md section 0): X along the plate, positive towards "
+    "positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive "
+    "in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` "
+    "V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); "
+    "`moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has "
+    "none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, "
+    "masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded."
+)
+
+
 def kernels(variant: Variant) -> list[Kernel]:
     sym = Symbols.create(variant)
     mech = Mechanics(variant, sym)
@@ -122,6 +138,12 @@ def kernels(variant: Variant) -> list[Kernel]:
         "e_ref": ca.sqrt(a_g**2 + c_g**2) - c_g, "r": r, "alpha": ca.atan2(b, h), "p_freq": ca.sqrt(g / r), "i_bc_plate": twin.plate_inertia(),
     }
 
+    # Section forces and ground reactions, with the accelerations of the phase's own equations.
+    forces = list(FORCES)
+    rocking = mech.base_forces(acc[0], acc[1])
+    in_contact = mech.contact_forces()
+    uplift_static = twin.static_uplift()
+
     K = Kernel
     return [
         K("mass_matrix", "Mass matrix M(q) of the rocking phase about corner s (symmetric).", [q, s, p],
@@ -167,4 +189,23 @@ def kernels(variant: Variant) -> list[Kernel]:
         K("shape", "Shape function psi(eta) of the column: its deflection at height eta H is psi(eta) u "
           "(psi(0) = 0, psi(1) = 1), for drawing the deformed column.", [eta],
           Output("psi", "shape function", ["psi"], [variant.model.shape.value(eta_sym)], scalar=True)),
+        K("forces_contact", "Section forces at the column base and ground reaction in full contact "
+          "(theta = theta' = 0), with u'' from eq (3). |moment| <= W B in full contact: f_s = s moment "
+          "- W B (eq 24), W the total weight." + FORCES_DOC,
+          [xc, ug, p], Output("fc", "section forces and ground reaction", forces,
+                              [in_contact[k] for k in forces])),
+        K("forces_rocking", "Section forces at the column base and ground reaction while rocking about "
+          "corner s, with theta'' and u'' from the rocking equations (corrected (8)-(9)). The base "
+          "plate's moment balance about its centre: moment = s B (reaction_v cos theta + reaction_h sin "
+          "theta) + I_b theta'', I_b = I_bc - m_b B^2. The rotation is exact in every variant: a "
+          "small-angle variant's forces are those of the motion its equations predict." + FORCES_DOC,
+          [x, ug, s, p], Output("fr", "section forces and ground reaction", forces,
+                                [rocking[k] for k in forces])),
+        K("static_uplift", "Quasi-static uplift about the right corner (s = +1; the left corner is its "
+          "mirror), from the flexible exact-angle twin: the total weight W, the base moment W B at "
+          "which the base uplifts (f_s = s M_b - W B), the ground acceleration ug (< 0) that lifts "
+          "the base when applied so slowly that u' = u'' = 0, the deflection u then, and the elastic "
+          "moment EI psi''(0) u / H^2 at the column base then, which differs from W B by the P-Delta "
+          "moment and the shape function's error (docs/design-forces.md).",
+          [p], Output("up", "static uplift", list(uplift_static), list(uplift_static.values()))),
     ]

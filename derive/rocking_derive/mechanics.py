@@ -89,10 +89,10 @@ class Mechanics:
 
     # --- summing over the masses --------------------------------------------------------------
 
-    def _column_integral(self, f, u, u_dot) -> ca.SX:
-        """Integral over the column of f(X_c, Y, X_c', Y') dm, exact for f quadratic in (eta, psi)."""
+    def _column_integral(self, f) -> ca.SX:
+        """Integral over eta in [0, 1] of f(psi(eta), eta H), exact for f quadratic in (eta, psi)."""
         eta, psi = ca.SX.sym("eta"), ca.SX.sym("psi")
-        q = f(u * psi, eta * self.H, u_dot * psi, ca.SX(0))
+        q = f(psi, eta * self.H)
         z = ca.vertcat(eta, psi)
         hess, grad = ca.hessian(q, z)
         if ca.depends_on(hess, z):
@@ -111,28 +111,33 @@ class Mechanics:
         )
         return total
 
-    def over_masses(self, f, u=None, u_dot=None, base=True) -> ca.SX:
-        """Sum over all masses of mass * f(X_c, Y, X_c', Y'), body coordinates from the base centre."""
-        u = self.u if u is None else u
-        u_dot = self.u_dot if u_dot is None else u_dot
+    def over_points(self, f, base=True) -> ca.SX:
+        """Sum over all masses of mass * f(psi, y), with psi the shape function at the mass point
+        (its body abscissa from the base centre is u psi) and y its height above the base."""
         total = ca.SX(0)
         shape = self.variant.model.shape
         for mass in self.variant.model.masses:
             m = self.P[mass.mass]
             if isinstance(mass, ColumnMass):
-                total += m * self._column_integral(f, u, u_dot)
+                total += m * self._column_integral(f)
             elif isinstance(mass, LumpedMass):
                 eta = self.P[mass.eta] if isinstance(mass.eta, str) else mass.eta
                 psi = shape.value(eta)
                 psi = float(psi) if isinstance(psi, Fraction) else psi
                 eta_f = float(eta) if isinstance(eta, Fraction) else eta
-                total += m * f(u * psi, eta_f * self.H, u_dot * psi, ca.SX(0))
+                total += m * f(psi, eta_f * self.H)
             elif isinstance(mass, BaseMass):
                 if base:
-                    total += m * f(ca.SX(0), ca.SX(0), ca.SX(0), ca.SX(0))
+                    total += m * f(ca.SX(0), ca.SX(0))
             else:
                 raise TypeError(f"unknown mass kind {mass!r}")
         return total
+
+    def over_masses(self, f, u=None, u_dot=None, base=True) -> ca.SX:
+        """Sum over all masses of mass * f(X_c, Y, X_c', Y'), body coordinates from the base centre."""
+        u = self.u if u is None else u
+        u_dot = self.u_dot if u_dot is None else u_dot
+        return self.over_points(lambda psi, y: f(u * psi, y, u_dot * psi, ca.SX(0)), base)
 
     def base_inertia_about_pivot(self) -> ca.SX:
         return sum((self.P[m.inertia] for m in self.variant.model.masses if isinstance(m, BaseMass)), ca.SX(0))
@@ -244,6 +249,84 @@ class Mechanics:
         if self.rigid:
             return self.s * f_theta
         return self.s * (f_theta - at(mass[0, 1], rest) * self.contact_accel())
+
+    # --- section forces at the column base and the ground reaction -----------------------------
+
+    def base_forces(self, theta_ddot, u_ddot) -> dict[str, ca.SX]:
+        """The section forces at the column base and the ground reaction, by Newton's law for every
+        mass, for a motion with the accelerations theta'' and u''.
+
+        The section is the column's foot at the base centre O (the thin plate's centre, on the line
+        of the pivots). Body components: X along the plate (towards positive u), Y up the column
+        axis. A mass point at (X, Y) = (u psi, eta H) from O is at r = Rot(theta) (X - b, Y) from
+        the pivot, with Rot' = Rot J (J (X, Y) = (Y, -X), theta clockwise), so its absolute
+        acceleration in body components is
+            a = theta'' J (X - b, Y) - theta'^2 (X - b, Y) + 2 theta' J (X', 0) + (X'', 0) + ug (cos, sin)
+        and gravity is g (sin, -cos). f = a - gravity is the force per unit mass its supports must
+        supply. Over the column and the masses on it, the sum of f is the force of the base plate
+        on the column (X: shear, Y: axial force, compression positive), and the sum of X f_Y - Y f_X
+        is the plate's moment on the column about O, counter-clockwise: the column's moment on the
+        plate in the sense of theta (clockwise), of the sign of the curvature EI psi''(0) u / H^2.
+        Over every mass, the base's included, the sum of f is the ground's force on the body at the
+        pivot, turned into the world frame (x, y up).
+
+        The rotation is exact even in a small-angle variant: its forces are those of the motion
+        its equations predict (the linearisation enters only through theta'' and u'').
+        """
+        sin, cos = ca.sin(self.theta), ca.cos(self.theta)
+        b, g, ug, thd = self.b, self.g, self.ug, self.theta_dot
+
+        def supplied(psi, y):
+            """(f_X, f_Y) at the point (u psi, y)."""
+            x = self.u * psi
+            f_x = theta_ddot * y - thd**2 * (x - b) + u_ddot * psi + ug * cos - g * sin
+            f_y = -theta_ddot * (x - b) - thd**2 * y - 2 * thd * self.u_dot * psi + ug * sin + g * cos
+            return f_x, f_y
+
+        def column(f):
+            return self.over_points(f, base=False)
+
+        moment = column(lambda psi, y: self.u * psi * supplied(psi, y)[1] - y * supplied(psi, y)[0])
+        total_x = self.over_points(lambda psi, y: supplied(psi, y)[0])
+        total_y = self.over_points(lambda psi, y: supplied(psi, y)[1])
+        return {
+            "moment": moment,
+            "shear": column(lambda psi, y: supplied(psi, y)[0]),
+            "axial": column(lambda psi, y: supplied(psi, y)[1]),
+            # A rigid column has no curvature: its section moment is the equilibrium one.
+            "moment_elastic": moment if self.rigid else self.elastic_moment(self.u),
+            "reaction_h": cos * total_x + sin * total_y,
+            "reaction_v": -sin * total_x + cos * total_y,
+        }
+
+    def contact_forces(self, u_ddot=None) -> dict[str, ca.SX]:
+        """``base_forces`` in full contact (theta = theta' = theta'' = 0), with u'' of eq (3) unless
+        given. Nothing depends on the pivot then (checked)."""
+        u_ddot = self.contact_accel() if u_ddot is None else u_ddot
+        rest = [(self.theta, 0), (self.theta_dot, 0)]
+        forces = {k: at(v, rest) for k, v in self.base_forces(ca.SX(0), u_ddot).items()}
+        if any(ca.depends_on(v, self.s) for v in forces.values()):
+            raise ValueError("the section forces in full contact depend on the pivot")
+        return forces
+
+    def static_uplift(self) -> dict[str, ca.SX]:
+        """The quasi-static uplift about the right corner: the ground acceleration ug that, applied
+        so slowly that u' = u'' = 0, makes f_+ = 0, the column's deflection u then and its elastic
+        base moment. The equilibrium moment then is W B (f_s = s M_b - W B)."""
+        rest = [(self.u_dot, 0), (self.s, 1)]
+        u_static = solve_linear(at(self.contact_accel(), rest), self.u)  # u'' = 0: u(ug)
+        f_plus = at(self.uplift(), rest + [(self.u, u_static)])
+        ug = solve_linear(f_plus, self.ug)
+        u = at(u_static, [(self.ug, ug)])
+        weight = self.g * self.over_points(lambda psi, y: ca.SX(1))
+        return {
+            "weight": weight, "moment_uplift": weight * self.B, "ug_uplift": ug, "u_uplift": u,
+            "moment_elastic_uplift": self.elastic_moment(u),
+        }
+
+    def elastic_moment(self, u) -> ca.SX:
+        """The bending moment EI psi''(0) u / H^2 of the deflection u psi at the column base."""
+        return self.P["ei"] / self.H**2 * self.variant.model.shape.curvature_at_base() * u
 
     # --- impacts (theta returns to 0 while rocking about s1 = s; the corner -s hits) ----------
 

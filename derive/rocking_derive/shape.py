@@ -51,6 +51,10 @@ class Polynomial:
             return float(self.value(Fraction(eta)))
         return sum(float(c) * eta**k for k, c in self.coefficients.items())
 
+    def curvature_at_base(self) -> float:
+        """psi''(0), the second derivative in eta at the base (exact, rounded once)."""
+        return float(2 * self.coefficients.get(2, Fraction(0)))
+
     def _mul(self, a: dict[int, Fraction], b: dict[int, Fraction]) -> dict[int, Fraction]:
         out: dict[int, Fraction] = {}
         for i, x in a.items():
@@ -108,6 +112,10 @@ class Function:
                                    if isinstance(eta, Fraction) else sp.Rational(eta))
             return float(sp.N(exact, self.DIGITS))
         return self._casadi(eta)
+
+    def curvature_at_base(self) -> float:
+        """psi''(0), the second derivative in eta at the base (correctly rounded)."""
+        return float(sp.N(self.expr_dd.subs(ETA, 0), self.DIGITS))
 
     def moments(self) -> Moments:
         with mpmath.workdps(self.DIGITS):

@@ -1,4 +1,4 @@
-//! Kernel microbenchmarks: the cost of one right-hand side per variant.
+//! Kernel microbenchmarks: the cost of one right-hand side (and of the section forces) per variant.
 //!
 //! `cargo bench -p rocking-kernels --bench kernels`; numbers are in docs/performance.md.
 
@@ -31,6 +31,13 @@ fn bench_variant<V: Variant>(c: &mut Criterion) {
             let f = V::uplift(&xc, black_box(0.3), black_box(1.0), black_box(&p));
             (d, f)
         })
+    });
+    // Section forces and ground reaction: each computes its phase's accelerations again.
+    group.bench_function("forces_rocking", |b| {
+        b.iter(|| V::forces_rocking(black_box(&x), black_box(0.3), black_box(1.0), black_box(&p)))
+    });
+    group.bench_function("forces_contact", |b| {
+        b.iter(|| V::forces_contact(black_box(&[x[1], x[3]]), black_box(0.3), black_box(&p)))
     });
     group.finish();
 }

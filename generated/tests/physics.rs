@@ -7,75 +7,9 @@ use rocking_kernels::kernels::{
 };
 use rocking_kernels::{Physical, Variant};
 
-/// A small deterministic generator (xorshift64*), so the tests need no extra dependency.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next()
-    }
-}
-
-/// A random structure over the whole range the project supports, in physical units.
-fn structure(rng: &mut Rng) -> Physical {
-    let alpha = rng.range(0.01, 0.5);
-    let r = rng.range(1.0, 150.0);
-    let mut phys = Physical::dimensionless(
-        alpha,
-        rng.range(1.0, 1000.0),
-        rng.range(0.0, 3.0),
-        rng.range(0.0, 3.0),
-        rng.range(0.9, 1.2),
-        rng.range(0.0, 0.2),
-    );
-    // Scale to R metres, m = 2e5 kg, g = 9.81: exercises units other than R = g = m = 1.
-    let (mass, g) = (2.0e5, 9.81);
-    phys.h *= r;
-    phys.b *= r;
-    phys.m *= mass;
-    phys.m_c *= mass;
-    phys.m_b *= mass;
-    phys.i_bc *= mass * r * r;
-    phys.ei *= mass * g * r * r; // k = EI/H^3 scales with m g / R
-    phys.g = g;
-    phys
-}
-
-/// A random state: θ up to ±1.5 rad, u up to ±0.3 H, rates up to a few times sqrt(g/R).
-fn state<V: Variant>(rng: &mut Rng, phys: &Physical) -> [f64; 4] {
-    let p = (phys.g / phys.h.hypot(phys.b)).sqrt();
-    let rigid = V::NAME == "rigid";
-    let u = if rigid {
-        0.0
-    } else {
-        rng.range(-0.3, 0.3) * phys.h
-    };
-    let ud = if rigid {
-        0.0
-    } else {
-        rng.range(-3.0, 3.0) * p * phys.h
-    };
-    [rng.range(-1.5, 1.5), u, rng.range(-3.0, 3.0) * p, ud]
-}
-
-fn close(a: f64, b: f64, rel: f64, scale: f64) -> bool {
-    (a - b).abs() <= rel * a.abs().max(b.abs()).max(scale)
-}
-
-/// Runs a check on every generated variant (the registry, so a new model is checked too).
-macro_rules! for_each_variant {
-    ($check:ident) => {
-        for v in rocking_kernels::kernels::VARIANT_INFO {
-            rocking_kernels::with_variant!(v.name, V => $check::<V>())
-                .expect("every registered variant dispatches");
-        }
-    };
-}
+#[macro_use]
+mod common;
+use common::{close, state, structure, Rng};
 
 fn mass_matrix_spd_and_consistent<V: Variant>() {
     let mut rng = Rng(0x5eed_0001);
@@ -360,6 +294,18 @@ fn agree<A: Variant, B: Variant>(phys_of: impl Fn(&mut Rng) -> Physical, rel: f6
                     B::impact_housner(&xi, s, &pb).to_vec(),
                 ),
                 (A::structure(&pa).to_vec(), B::structure(&pb).to_vec()),
+                (
+                    A::forces_contact(&xc, ug, &pa).to_vec(),
+                    B::forces_contact(&xc, ug, &pb).to_vec(),
+                ),
+                (
+                    A::forces_rocking(&x, ug, s, &pa).to_vec(),
+                    B::forces_rocking(&x, ug, s, &pb).to_vec(),
+                ),
+                (
+                    A::static_uplift(&pa).to_vec(),
+                    B::static_uplift(&pb).to_vec(),
+                ),
             ];
             for (k, (a, b)) in pairs.iter().enumerate() {
                 let scale = a
@@ -451,6 +397,8 @@ fn rigid_variant_is_the_full_model_with_the_column_frozen() {
         let r = Rigid::rocking_rhs(&x, ug, s, &pr);
         assert!(close(r[2], f / m, 1e-12, 0.0) && r[3] == 0.0);
         assert_eq!(Rigid::energy(&x, s, &pr), Full::energy(&x, s, &pf));
+        // Reference quantities come from the flexible twin.
+        assert_eq!(Rigid::static_uplift(&pr), Full::static_uplift(&pf));
     }
 }
 

@@ -13,19 +13,8 @@ use rocking_kernels::{kernels, taylor, Physical};
 /// Coefficients per series: order 23 of the solution.
 const N: usize = 24;
 
-/// A small deterministic generator (xorshift64*).
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next()
-    }
-}
+mod common;
+use common::Rng;
 
 /// Taylor coefficients of a sine ground motion `a sin(ω t + φ)` about t0 = 0.
 fn sine_series(a: f64, omega: f64, phi: f64) -> [f64; N] {

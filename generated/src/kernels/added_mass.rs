@@ -2178,6 +2178,699 @@ pub mod shape {
     pub const PSI: usize = 0;
 }
 
+/// Section forces at the column base and ground reaction in full contact (theta = theta' = 0), with u'' from eq (3). |moment| <= W B in full contact: f_s = s moment - W B (eq 24), W the total weight.
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded.
+///
+/// # Inputs
+///
+/// - `xc: &[f64; 2]`: state in full contact (theta = theta' = 0) — `u`, `u_dot`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `m_a`, `eta_a`
+///
+/// # Output
+///
+/// `fc: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 80 (45 mul, 19 add, 6 sub, 4 div, 3 twice, 2 sq, 1 sqrt).
+#[inline]
+#[must_use]
+pub fn forces_contact(xc: &[f64; 2], ug: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[4]; // m_c
+    let w1: f64 = 0.375;
+    let w2 = xc[0]; // u
+    let w3 = p[8]; // g
+    let w4 = w2 * w3;
+    let w5 = w1 * w4;
+    let w6: f64 = 0.5;
+    let w7 = p[0]; // h
+    let w8 = ug; // ug
+    let w9 = w7 * w8;
+    let w10 = w6 * w9;
+    let w11 = w5 - w10;
+    let w12: f64 = 0.275;
+    let w13 = 2.0 * w2;
+    let w14: f64 = -1.5;
+    let w15 = p[2]; // ei
+    let w16 = w7 * w7;
+    let w17 = w7 * w16;
+    let w18 = w15 / w17;
+    let w19 = w14 * w18;
+    let w20 = w13 * w19;
+    let w21: f64 = 1.5;
+    let w22 = p[10]; // eta_a
+    let w23 = w22 * w22;
+    let w24 = w21 * w23;
+    let w25: f64 = -0.5;
+    let w26 = w22 * w23;
+    let w27 = w25 * w26;
+    let w28 = w24 + w27;
+    let w29 = p[9]; // m_a
+    let w30 = w29 * w8;
+    let w31 = w28 * w30;
+    let w32 = p[3]; // m
+    let w33 = w32 * w8;
+    let w34 = w31 + w33;
+    let w35 = w0 * w8;
+    let w36 = w1 * w35;
+    let w37 = w34 + w36;
+    let w38 = w20 - w37;
+    let w39 = p[7]; // zeta
+    let w40 = 2.0 * w39;
+    let w41: f64 = 3.0;
+    let w42 = w41 * w18;
+    let w43 = w6 * w29;
+    let w44 = 2.0 * w28;
+    let w45 = w43 * w44;
+    let w46 = w28 * w45;
+    let w47 = w46 + w32;
+    let w48: f64 = 0.11785714285714285;
+    let w49 = w48 * w0;
+    let w50 = w47 + w49;
+    let w51 = w50 + w49;
+    let w52 = w42 / w51;
+    let w53 = w52.sqrt();
+    let w54 = w40 * w53;
+    let w55 = w54 * w51;
+    let w56 = xc[1]; // u_dot
+    let w57 = w55 * w56;
+    let w58 = w38 - w57;
+    let w59 = w58 / w51;
+    let w60 = w59 * w7;
+    let w61 = w12 * w60;
+    let w62 = w11 - w61;
+    let w63 = w0 * w62;
+    let w64 = w59 + w8;
+    let w65 = w7 * w64;
+    let w66 = w4 - w65;
+    let w67 = w32 * w66;
+    let w68 = w63 + w67;
+    let w69 = w2 * w28;
+    let w70 = w69 * w3;
+    let w71 = w22 * w7;
+    let w72 = w59 * w28;
+    let w73 = w72 + w8;
+    let w74 = w71 * w73;
+    let w75 = w70 - w74;
+    let w76 = w29 * w75;
+    let w77 = w68 + w76;
+    let o0 = w77; // moment
+    let w78 = w1 * w59;
+    let w79 = w8 + w78;
+    let w80 = w0 * w79;
+    let w81 = w32 * w64;
+    let w82 = w80 + w81;
+    let w83 = w29 * w73;
+    let w84 = w82 + w83;
+    let o1 = w84; // shear
+    let w85 = w0 * w3;
+    let w86 = w32 * w3;
+    let w87 = w85 + w86;
+    let w88 = w29 * w3;
+    let w89 = w87 + w88;
+    let o2 = w89; // axial
+    let w90 = w15 / w16;
+    let w91 = w41 * w90;
+    let w92 = w91 * w2;
+    let o3 = w92; // moment_elastic
+    let w93 = p[5]; // m_b
+    let w94 = w93 * w8;
+    let w95 = w82 + w94;
+    let w96 = w95 + w83;
+    let o4 = w96; // reaction_h
+    let w97 = w93 * w3;
+    let w98 = w87 + w97;
+    let w99 = w98 + w88;
+    let o5 = w99; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `fc` of [`forces_contact()`].
+pub mod forces_contact {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `xc` of [`forces_contact()`](super::forces_contact()).
+    pub mod xc {
+        /// Index of `u`.
+        pub const U: usize = 0;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 1;
+    }
+}
+
+/// Section forces at the column base and ground reaction while rocking about corner s, with theta'' and u'' from the rocking equations (corrected (8)-(9)). The base plate's moment balance about its centre: moment = s B (reaction_v cos theta + reaction_h sin theta) + I_b theta'', I_b = I_bc - m_b B^2. The rotation is exact in every variant: a small-angle variant's forces are those of the motion its equations predict.
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded.
+///
+/// # Inputs
+///
+/// - `x: &[f64; 4]`: state while rocking — `theta`, `u`, `theta_dot`, `u_dot`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `m_a`, `eta_a`
+///
+/// # Output
+///
+/// `fr: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 321 (176 mul, 71 add, 37 sub, 23 twice, 5 div, 4 sq, 2 neg, 1 cos, 1 sin, 1 sqrt).
+#[inline]
+#[must_use]
+pub fn forces_rocking(x: &[f64; 4], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[4]; // m_c
+    let w1: f64 = 0.375;
+    let w2 = x[1]; // u
+    let w3 = ug; // ug
+    let w4 = x[0]; // theta
+    let w5 = w4.sin();
+    let w6 = w3 * w5;
+    let w7: f64 = 1.5;
+    let w8 = p[10]; // eta_a
+    let w9 = w8 * w8;
+    let w10 = w7 * w9;
+    let w11: f64 = -0.5;
+    let w12 = w8 * w9;
+    let w13 = w11 * w12;
+    let w14 = w10 + w13;
+    let w15: f64 = 0.5;
+    let w16 = p[9]; // m_a
+    let w17 = w15 * w16;
+    let w18 = 2.0 * w14;
+    let w19 = w17 * w18;
+    let w20 = w14 * w19;
+    let w21 = p[3]; // m
+    let w22 = w20 + w21;
+    let w23: f64 = 0.11785714285714285;
+    let w24 = w23 * w0;
+    let w25 = w22 + w24;
+    let w26 = w25 + w24;
+    let w27 = w4.cos();
+    let w28 = w2 * w14;
+    let w29 = s; // s
+    let w30 = p[1]; // b
+    let w31 = w29 * w30;
+    let w32 = w28 - w31;
+    let w33 = p[8]; // g
+    let w34 = w16 * w33;
+    let w35 = w32 * w34;
+    let w36 = p[0]; // h
+    let w37 = w8 * w36;
+    let w38 = w16 * w3;
+    let w39 = w37 * w38;
+    let w40 = w21 * w3;
+    let w41 = w36 * w40;
+    let w42 = w39 + w41;
+    let w43 = w0 * w3;
+    let w44 = w15 * w43;
+    let w45 = w36 * w44;
+    let w46 = w42 + w45;
+    let w47 = w35 - w46;
+    let w48 = p[5]; // m_b
+    let w49 = w48 * w33;
+    let w50 = w31 * w49;
+    let w51 = w47 - w50;
+    let w52 = w2 - w31;
+    let w53 = w21 * w33;
+    let w54 = w52 * w53;
+    let w55 = w51 + w54;
+    let w56 = w0 * w33;
+    let w57 = w1 * w56;
+    let w58 = w2 * w57;
+    let w59 = w55 + w58;
+    let w60 = w31 * w56;
+    let w61 = w59 - w60;
+    let w62 = w27 * w61;
+    let w63 = w48 * w3;
+    let w64 = w31 * w63;
+    let w65 = w32 * w38;
+    let w66 = w64 - w65;
+    let w67 = w52 * w40;
+    let w68 = w66 - w67;
+    let w69 = w1 * w43;
+    let w70 = w2 * w69;
+    let w71 = w68 - w70;
+    let w72 = w31 * w43;
+    let w73 = w71 + w72;
+    let w74 = w37 * w34;
+    let w75 = w73 - w74;
+    let w76 = w36 * w53;
+    let w77 = w75 - w76;
+    let w78 = w15 * w56;
+    let w79 = w36 * w78;
+    let w80 = w77 - w79;
+    let w81 = w5 * w80;
+    let w82 = w62 - w81;
+    let w83 = x[2]; // theta_dot
+    let w84 = w83 * w32;
+    let w85 = 2.0 * w84;
+    let w86 = w85 * w17;
+    let w87 = w86 * w14;
+    let w88 = w83 * w14;
+    let w89 = 2.0 * w88;
+    let w90 = w17 * w89;
+    let w91 = w32 * w90;
+    let w92 = w87 + w91;
+    let w93 = w83 * w52;
+    let w94 = 2.0 * w93;
+    let w95 = w15 * w21;
+    let w96 = w94 * w95;
+    let w97 = 2.0 * w83;
+    let w98 = w95 * w97;
+    let w99 = w52 * w98;
+    let w100 = w96 + w99;
+    let w101 = w92 + w100;
+    let w102: f64 = 0.05892857142857143;
+    let w103 = w102 * w0;
+    let w104 = w2 * w103;
+    let w105 = w104 * w97;
+    let w106 = w83 * w2;
+    let w107 = 2.0 * w106;
+    let w108 = w107 * w103;
+    let w109 = w105 + w108;
+    let w110 = w101 + w109;
+    let w111 = w83 * w104;
+    let w112 = 2.0 * w111;
+    let w113 = w83 * w103;
+    let w114 = 2.0 * w113;
+    let w115 = w2 * w114;
+    let w116 = w112 + w115;
+    let w117 = w110 + w116;
+    let w118 = w83 * w31;
+    let w119 = -w118;
+    let w120 = 2.0 * w119;
+    let w121: f64 = 0.1875;
+    let w122 = w121 * w0;
+    let w123 = w120 * w122;
+    let w124 = w117 + w123;
+    let w125 = w83 * w122;
+    let w126 = 2.0 * w125;
+    let w127 = w31 * w126;
+    let w128 = w124 - w127;
+    let w129 = x[3]; // u_dot
+    let w130 = w128 * w129;
+    let w131 = w82 - w130;
+    let w132 = w26 * w131;
+    let w133 = w37 * w19;
+    let w134 = w36 * w21;
+    let w135 = w133 + w134;
+    let w136: f64 = 0.1375;
+    let w137 = w136 * w0;
+    let w138 = w36 * w137;
+    let w139 = 2.0 * w138;
+    let w140 = w135 + w139;
+    let w141 = 2.0 * w2;
+    let w142: f64 = -1.5;
+    let w143 = p[2]; // ei
+    let w144 = w36 * w36;
+    let w145 = w36 * w144;
+    let w146 = w143 / w145;
+    let w147 = w142 * w146;
+    let w148 = w141 * w147;
+    let w149 = w27 * w38;
+    let w150 = w14 * w149;
+    let w151 = w27 * w40;
+    let w152 = w150 + w151;
+    let w153 = w27 * w69;
+    let w154 = w152 + w153;
+    let w155 = w148 - w154;
+    let w156 = w5 * w34;
+    let w157 = w14 * w156;
+    let w158 = w155 + w157;
+    let w159 = w5 * w53;
+    let w160 = w158 + w159;
+    let w161 = w5 * w57;
+    let w162 = w160 + w161;
+    let w163 = w83 * w86;
+    let w164 = w14 * w163;
+    let w165 = w162 + w164;
+    let w166 = w83 * w96;
+    let w167 = w165 + w166;
+    let w168 = w83 * w107;
+    let w169 = w168 * w103;
+    let w170 = w167 + w169;
+    let w171 = w83 * w112;
+    let w172 = w170 + w171;
+    let w173 = w83 * w120;
+    let w174 = w173 * w122;
+    let w175 = w172 + w174;
+    let w176 = p[7]; // zeta
+    let w177 = 2.0 * w176;
+    let w178: f64 = 3.0;
+    let w179 = w178 * w146;
+    let w180 = w179 / w26;
+    let w181 = w180.sqrt();
+    let w182 = w177 * w181;
+    let w183 = w182 * w26;
+    let w184 = w183 * w129;
+    let w185 = w175 - w184;
+    let w186 = w140 * w185;
+    let w187 = w132 - w186;
+    let w188 = p[6]; // i_bc
+    let w189 = 2.0 * w32;
+    let w190 = w17 * w189;
+    let w191 = w32 * w190;
+    let w192 = w188 + w191;
+    let w193 = 2.0 * w37;
+    let w194 = w17 * w193;
+    let w195 = w37 * w194;
+    let w196 = w192 + w195;
+    let w197 = 2.0 * w52;
+    let w198 = w95 * w197;
+    let w199 = w52 * w198;
+    let w200 = w196 + w199;
+    let w201 = 2.0 * w36;
+    let w202 = w95 * w201;
+    let w203 = w36 * w202;
+    let w204 = w200 + w203;
+    let w205 = w104 * w141;
+    let w206 = w204 + w205;
+    let w207 = 2.0 * w104;
+    let w208 = w2 * w207;
+    let w209 = w206 + w208;
+    let w210: f64 = 0.08333333333333333;
+    let w211 = w210 * w0;
+    let w212 = w36 * w211;
+    let w213 = w212 * w201;
+    let w214 = w209 + w213;
+    let w215 = 2.0 * w212;
+    let w216 = w36 * w215;
+    let w217 = w214 + w216;
+    let w218 = w2 * w122;
+    let w219 = -w31;
+    let w220 = 2.0 * w219;
+    let w221 = w218 * w220;
+    let w222 = w217 + w221;
+    let w223 = 2.0 * w218;
+    let w224 = w31 * w223;
+    let w225 = w222 - w224;
+    let w226 = w15 * w0;
+    let w227 = 2.0 * w31;
+    let w228 = w226 * w227;
+    let w229 = w31 * w228;
+    let w230 = w225 + w229;
+    let w231 = w230 * w26;
+    let w232 = w140 * w140;
+    let w233 = w231 - w232;
+    let w234 = w187 / w233;
+    let w235 = w234 * w31;
+    let w236 = w6 + w235;
+    let w237 = w33 * w27;
+    let w238 = w236 + w237;
+    let w239 = w2 * w238;
+    let w240 = w1 * w239;
+    let w241 = w83 * w83;
+    let w242 = w241 * w31;
+    let w243 = w3 * w27;
+    let w244 = w242 + w243;
+    let w245 = w33 * w5;
+    let w246 = w244 - w245;
+    let w247 = w36 * w246;
+    let w248 = w15 * w247;
+    let w249 = w240 - w248;
+    let w250: f64 = 0.16666666666666666;
+    let w251 = w234 * w36;
+    let w252 = 2.0 * w251;
+    let w253 = w36 * w252;
+    let w254 = w250 * w253;
+    let w255 = w249 - w254;
+    let w256: f64 = 0.275;
+    let w257 = w230 * w185;
+    let w258 = w140 * w131;
+    let w259 = w257 - w258;
+    let w260 = w259 / w233;
+    let w261 = w36 * w260;
+    let w262 = w256 * w261;
+    let w263 = w255 - w262;
+    let w264 = w97 * w129;
+    let w265 = w264 * w2;
+    let w266 = w234 * w2;
+    let w267 = w2 * w266;
+    let w268 = w265 + w267;
+    let w269 = w266 + w264;
+    let w270 = w2 * w269;
+    let w271 = w268 + w270;
+    let w272 = w23 * w271;
+    let w273 = w263 - w272;
+    let w274 = w0 * w273;
+    let w275 = w234 * w52;
+    let w276 = w241 * w36;
+    let w277 = w275 + w276;
+    let w278 = w277 + w264;
+    let w279 = w6 - w278;
+    let w280 = w279 + w237;
+    let w281 = w2 * w280;
+    let w282 = w241 * w52;
+    let w283 = w251 - w282;
+    let w284 = w283 + w260;
+    let w285 = w284 + w243;
+    let w286 = w285 - w245;
+    let w287 = w36 * w286;
+    let w288 = w281 - w287;
+    let w289 = w21 * w288;
+    let w290 = w274 + w289;
+    let w291 = w234 * w32;
+    let w292 = w241 * w37;
+    let w293 = w291 + w292;
+    let w294 = w264 * w14;
+    let w295 = w293 + w294;
+    let w296 = w6 - w295;
+    let w297 = w296 + w237;
+    let w298 = w28 * w297;
+    let w299 = w234 * w37;
+    let w300 = w241 * w32;
+    let w301 = w299 - w300;
+    let w302 = w260 * w14;
+    let w303 = w301 + w302;
+    let w304 = w303 + w243;
+    let w305 = w304 - w245;
+    let w306 = w37 * w305;
+    let w307 = w298 - w306;
+    let w308 = w16 * w307;
+    let w309 = w290 + w308;
+    let o0 = w309; // moment
+    let w310 = w36 * w234;
+    let w311 = w15 * w310;
+    let w312 = w246 + w311;
+    let w313 = w2 * w241;
+    let w314 = w260 - w313;
+    let w315 = w1 * w314;
+    let w316 = w312 + w315;
+    let w317 = w0 * w316;
+    let w318 = w21 * w286;
+    let w319 = w317 + w318;
+    let w320 = w16 * w305;
+    let w321 = w319 + w320;
+    let o1 = w321; // shear
+    let w322 = w36 * w241;
+    let w323 = w15 * w322;
+    let w324 = w238 - w323;
+    let w325 = w2 * w234;
+    let w326 = w264 + w325;
+    let w327 = w1 * w326;
+    let w328 = w324 - w327;
+    let w329 = w0 * w328;
+    let w330 = w21 * w280;
+    let w331 = w329 + w330;
+    let w332 = w16 * w297;
+    let w333 = w331 + w332;
+    let o2 = w333; // axial
+    let w334 = w143 / w144;
+    let w335 = w178 * w334;
+    let w336 = w335 * w2;
+    let o3 = w336; // moment_elastic
+    let w337 = w48 * w246;
+    let w338 = w319 + w337;
+    let w339 = w338 + w320;
+    let w340 = w27 * w339;
+    let w341 = w235 + w6;
+    let w342 = w341 + w237;
+    let w343 = w48 * w342;
+    let w344 = w331 + w343;
+    let w345 = w344 + w332;
+    let w346 = w5 * w345;
+    let w347 = w340 + w346;
+    let o4 = w347; // reaction_h
+    let w348 = w27 * w345;
+    let w349 = w5 * w339;
+    let w350 = w348 - w349;
+    let o5 = w350; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `fr` of [`forces_rocking()`].
+pub mod forces_rocking {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `x` of [`forces_rocking()`](super::forces_rocking()).
+    pub mod x {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `u`.
+        pub const U: usize = 1;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 2;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 3;
+    }
+}
+
+/// Quasi-static uplift about the right corner (s = +1; the left corner is its mirror), from the flexible exact-angle twin: the total weight W, the base moment W B at which the base uplifts (f_s = s M_b - W B), the ground acceleration ug (< 0) that lifts the base when applied so slowly that u' = u'' = 0, the deflection u then, and the elastic moment EI psi''(0) u / H^2 at the column base then, which differs from W B by the P-Delta moment and the shape function's error (docs/design-forces.md).
+///
+/// # Inputs
+///
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `m_a`, `eta_a`
+///
+/// # Output
+///
+/// `up: [f64; 5]`: static uplift — `weight`, `moment_uplift`, `ug_uplift`, `u_uplift`, `moment_elastic_uplift`
+///
+/// Operations: 81 (44 mul, 20 add, 9 div, 3 sub, 3 twice, 2 sq).
+#[inline]
+#[must_use]
+pub fn static_uplift(p: &Params) -> [f64; 5] {
+    let w0 = p[8]; // g
+    let w1 = p[4]; // m_c
+    let w2 = p[3]; // m
+    let w3 = w1 + w2;
+    let w4 = p[5]; // m_b
+    let w5 = w3 + w4;
+    let w6 = p[9]; // m_a
+    let w7 = w5 + w6;
+    let w8 = w0 * w7;
+    let o0 = w8; // weight
+    let w9 = p[1]; // b
+    let w10 = w8 * w9;
+    let o1 = w10; // moment_uplift
+    let w11 = w6 * w0;
+    let w12 = w9 * w11;
+    let w13 = w4 * w0;
+    let w14 = w9 * w13;
+    let w15 = w12 + w14;
+    let w16 = w2 * w0;
+    let w17 = w9 * w16;
+    let w18 = w15 + w17;
+    let w19 = w1 * w0;
+    let w20 = w9 * w19;
+    let w21 = w18 + w20;
+    let w22: f64 = 1.5;
+    let w23 = p[10]; // eta_a
+    let w24 = w23 * w23;
+    let w25 = w22 * w24;
+    let w26: f64 = -0.5;
+    let w27 = w23 * w24;
+    let w28 = w26 * w27;
+    let w29 = w25 + w28;
+    let w30 = w29 * w6;
+    let w31 = w30 + w2;
+    let w32: f64 = 0.375;
+    let w33 = w32 * w1;
+    let w34 = w31 + w33;
+    let w35: f64 = 0.5;
+    let w36 = w35 * w6;
+    let w37 = 2.0 * w29;
+    let w38 = w36 * w37;
+    let w39 = w29 * w38;
+    let w40 = w39 + w2;
+    let w41: f64 = 0.11785714285714285;
+    let w42 = w41 * w1;
+    let w43 = w40 + w42;
+    let w44 = w43 + w42;
+    let w45 = w34 / w44;
+    let w46: f64 = -3.0;
+    let w47 = p[2]; // ei
+    let w48 = p[0]; // h
+    let w49 = w48 * w48;
+    let w50 = w48 * w49;
+    let w51 = w47 / w50;
+    let w52 = w46 * w51;
+    let w53 = w52 / w44;
+    let w54 = w45 / w53;
+    let w55 = w29 * w54;
+    let w56 = w11 * w55;
+    let w57 = w23 * w48;
+    let w58 = w57 * w6;
+    let w59 = w48 * w2;
+    let w60 = w58 + w59;
+    let w61 = w35 * w1;
+    let w62 = w48 * w61;
+    let w63 = w60 + w62;
+    let w64 = w56 - w63;
+    let w65 = w16 * w54;
+    let w66 = w64 + w65;
+    let w67 = w32 * w19;
+    let w68 = w67 * w54;
+    let w69 = w66 + w68;
+    let w70 = w57 * w38;
+    let w71 = w70 + w59;
+    let w72: f64 = 0.1375;
+    let w73 = w72 * w1;
+    let w74 = w48 * w73;
+    let w75 = 2.0 * w74;
+    let w76 = w71 + w75;
+    let w77: f64 = -1.5;
+    let w78 = w77 * w51;
+    let w79 = 2.0 * w54;
+    let w80 = w78 * w79;
+    let w81 = w80 - w34;
+    let w82 = w81 / w44;
+    let w83 = w76 * w82;
+    let w84 = w69 - w83;
+    let w85 = w21 / w84;
+    let o2 = w85; // ug_uplift
+    let w86 = w6 * w85;
+    let w87 = w29 * w86;
+    let w88 = w2 * w85;
+    let w89 = w87 + w88;
+    let w90 = w1 * w85;
+    let w91 = w32 * w90;
+    let w92 = w89 + w91;
+    let w93 = w92 / w44;
+    let w94 = w93 / w53;
+    let o3 = w94; // u_uplift
+    let w95: f64 = 3.0;
+    let w96 = w47 / w49;
+    let w97 = w95 * w96;
+    let w98 = w97 * w94;
+    let o4 = w98; // moment_elastic_uplift
+    [o0, o1, o2, o3, o4]
+}
+
+/// Indices of the elements of the output `up` of [`static_uplift()`].
+pub mod static_uplift {
+    /// Index of `weight`.
+    pub const WEIGHT: usize = 0;
+    /// Index of `moment_uplift`.
+    pub const MOMENT_UPLIFT: usize = 1;
+    /// Index of `ug_uplift`.
+    pub const UG_UPLIFT: usize = 2;
+    /// Index of `u_uplift`.
+    pub const U_UPLIFT: usize = 3;
+    /// Index of `moment_elastic_uplift`.
+    pub const MOMENT_ELASTIC_UPLIFT: usize = 4;
+}
+
 /// Example: the full model plus a lumped mass m_a at height eta_a H
 ///
 /// Type-level handle of this variant, implementing [`crate::Variant`].
@@ -2262,6 +2955,21 @@ impl crate::Variant for AddedMass {
     #[inline]
     fn shape(eta: f64) -> f64 {
         shape(eta)
+    }
+
+    #[inline]
+    fn forces_contact(xc: &[f64; 2], ug: f64, p: &Params) -> [f64; 6] {
+        forces_contact(xc, ug, p)
+    }
+
+    #[inline]
+    fn forces_rocking(x: &[f64; 4], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+        forces_rocking(x, ug, s, p)
+    }
+
+    #[inline]
+    fn static_uplift(p: &Params) -> [f64; 5] {
+        static_uplift(p)
     }
 }
 
@@ -2379,6 +3087,32 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             };
             let eta: f64 = match eta { [v] => *v, _ => return None };
             Some(vec![shape(eta)])
+        }
+        "forces_contact" => {
+            let [xc, ug, p] = inputs else {
+                return None;
+            };
+            let xc: &[f64; 2] = (*xc).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(forces_contact(xc, ug, p).to_vec())
+        }
+        "forces_rocking" => {
+            let [x, ug, s, p] = inputs else {
+                return None;
+            };
+            let x: &[f64; 4] = (*x).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(forces_rocking(x, ug, s, p).to_vec())
+        }
+        "static_uplift" => {
+            let [p] = inputs else {
+                return None;
+            };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(static_uplift(p).to_vec())
         }
         _ => None,
     }

@@ -1775,6 +1775,557 @@ pub mod shape {
     pub const PSI: usize = 0;
 }
 
+/// Section forces at the column base and ground reaction in full contact (theta = theta' = 0), with u'' from eq (3). |moment| <= W B in full contact: f_s = s moment - W B (eq 24), W the total weight.
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded.
+///
+/// # Inputs
+///
+/// - `xc: &[f64; 2]`: state in full contact (theta = theta' = 0) — `u`, `u_dot`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `fc: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 52 (29 mul, 10 add, 5 sub, 4 div, 2 twice, 1 sq, 1 sqrt).
+#[inline]
+#[must_use]
+pub fn forces_contact(xc: &[f64; 2], ug: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[4]; // m_c
+    let w1: f64 = 0.3633802276324187;
+    let w2 = xc[0]; // u
+    let w3 = p[8]; // g
+    let w4 = w2 * w3;
+    let w5 = w1 * w4;
+    let w6: f64 = 0.5;
+    let w7 = p[0]; // h
+    let w8 = ug; // ug
+    let w9 = w7 * w8;
+    let w10 = w6 * w9;
+    let w11 = w5 - w10;
+    let w12: f64 = 0.2686649622017697;
+    let w13 = 2.0 * w2;
+    let w14: f64 = -1.5220170474062882;
+    let w15 = p[2]; // ei
+    let w16 = w7 * w7;
+    let w17 = w7 * w16;
+    let w18 = w15 / w17;
+    let w19 = w14 * w18;
+    let w20 = w13 * w19;
+    let w21 = p[3]; // m
+    let w22 = w21 * w8;
+    let w23 = w0 * w8;
+    let w24 = w1 * w23;
+    let w25 = w22 + w24;
+    let w26 = w20 - w25;
+    let w27 = p[7]; // zeta
+    let w28 = 2.0 * w27;
+    let w29: f64 = 3.0440340948125764;
+    let w30 = w29 * w18;
+    let w31: f64 = 0.11338022763241866;
+    let w32 = w31 * w0;
+    let w33 = w21 + w32;
+    let w34 = w33 + w32;
+    let w35 = w30 / w34;
+    let w36 = w35.sqrt();
+    let w37 = w28 * w36;
+    let w38 = w37 * w34;
+    let w39 = xc[1]; // u_dot
+    let w40 = w38 * w39;
+    let w41 = w26 - w40;
+    let w42 = w41 / w34;
+    let w43 = w42 * w7;
+    let w44 = w12 * w43;
+    let w45 = w11 - w44;
+    let w46 = w0 * w45;
+    let w47 = w42 + w8;
+    let w48 = w7 * w47;
+    let w49 = w4 - w48;
+    let w50 = w21 * w49;
+    let w51 = w46 + w50;
+    let o0 = w51; // moment
+    let w52 = w1 * w42;
+    let w53 = w8 + w52;
+    let w54 = w0 * w53;
+    let w55 = w21 * w47;
+    let w56 = w54 + w55;
+    let o1 = w56; // shear
+    let w57 = w0 * w3;
+    let w58 = w21 * w3;
+    let w59 = w57 + w58;
+    let o2 = w59; // axial
+    let w60: f64 = 2.4674011002723395;
+    let w61 = w15 / w16;
+    let w62 = w60 * w61;
+    let w63 = w62 * w2;
+    let o3 = w63; // moment_elastic
+    let w64 = p[5]; // m_b
+    let w65 = w64 * w8;
+    let w66 = w56 + w65;
+    let o4 = w66; // reaction_h
+    let w67 = w64 * w3;
+    let w68 = w59 + w67;
+    let o5 = w68; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `fc` of [`forces_contact()`].
+pub mod forces_contact {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `xc` of [`forces_contact()`](super::forces_contact()).
+    pub mod xc {
+        /// Index of `u`.
+        pub const U: usize = 0;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 1;
+    }
+}
+
+/// Section forces at the column base and ground reaction while rocking about corner s, with theta'' and u'' from the rocking equations (corrected (8)-(9)). The base plate's moment balance about its centre: moment = s B (reaction_v cos theta + reaction_h sin theta) + I_b theta'', I_b = I_bc - m_b B^2. The rotation is exact in every variant: a small-angle variant's forces are those of the motion its equations predict.
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded.
+///
+/// # Inputs
+///
+/// - `x: &[f64; 4]`: state while rocking — `theta`, `u`, `theta_dot`, `u_dot`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `fr: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 244 (134 mul, 50 add, 29 sub, 18 twice, 5 div, 3 sq, 2 neg, 1 cos, 1 sin, 1 sqrt).
+#[inline]
+#[must_use]
+pub fn forces_rocking(x: &[f64; 4], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[4]; // m_c
+    let w1: f64 = 0.3633802276324187;
+    let w2 = x[1]; // u
+    let w3 = ug; // ug
+    let w4 = x[0]; // theta
+    let w5 = w4.sin();
+    let w6 = w3 * w5;
+    let w7 = p[3]; // m
+    let w8: f64 = 0.11338022763241866;
+    let w9 = w8 * w0;
+    let w10 = w7 + w9;
+    let w11 = w10 + w9;
+    let w12 = w4.cos();
+    let w13 = s; // s
+    let w14 = p[1]; // b
+    let w15 = w13 * w14;
+    let w16 = w2 - w15;
+    let w17 = p[8]; // g
+    let w18 = w7 * w17;
+    let w19 = w16 * w18;
+    let w20 = p[0]; // h
+    let w21 = w7 * w3;
+    let w22 = w20 * w21;
+    let w23: f64 = 0.5;
+    let w24 = w0 * w3;
+    let w25 = w23 * w24;
+    let w26 = w20 * w25;
+    let w27 = w22 + w26;
+    let w28 = p[5]; // m_b
+    let w29 = w28 * w17;
+    let w30 = w15 * w29;
+    let w31 = w27 + w30;
+    let w32 = w19 - w31;
+    let w33 = w0 * w17;
+    let w34 = w1 * w33;
+    let w35 = w2 * w34;
+    let w36 = w32 + w35;
+    let w37 = w15 * w33;
+    let w38 = w36 - w37;
+    let w39 = w12 * w38;
+    let w40 = w28 * w3;
+    let w41 = w15 * w40;
+    let w42 = w16 * w21;
+    let w43 = w41 - w42;
+    let w44 = w1 * w24;
+    let w45 = w2 * w44;
+    let w46 = w43 - w45;
+    let w47 = w15 * w24;
+    let w48 = w46 + w47;
+    let w49 = w20 * w18;
+    let w50 = w48 - w49;
+    let w51 = w23 * w33;
+    let w52 = w20 * w51;
+    let w53 = w50 - w52;
+    let w54 = w5 * w53;
+    let w55 = w39 - w54;
+    let w56 = x[2]; // theta_dot
+    let w57 = w56 * w16;
+    let w58 = 2.0 * w57;
+    let w59 = w23 * w7;
+    let w60 = w58 * w59;
+    let w61 = 2.0 * w56;
+    let w62 = w59 * w61;
+    let w63 = w16 * w62;
+    let w64 = w60 + w63;
+    let w65: f64 = 0.05669011381620933;
+    let w66 = w65 * w0;
+    let w67 = w2 * w66;
+    let w68 = w67 * w61;
+    let w69 = w56 * w2;
+    let w70 = 2.0 * w69;
+    let w71 = w70 * w66;
+    let w72 = w68 + w71;
+    let w73 = w64 + w72;
+    let w74 = w56 * w67;
+    let w75 = 2.0 * w74;
+    let w76 = w56 * w66;
+    let w77 = 2.0 * w76;
+    let w78 = w2 * w77;
+    let w79 = w75 + w78;
+    let w80 = w73 + w79;
+    let w81 = w56 * w15;
+    let w82 = -w81;
+    let w83 = 2.0 * w82;
+    let w84: f64 = 0.18169011381620934;
+    let w85 = w84 * w0;
+    let w86 = w83 * w85;
+    let w87 = w80 + w86;
+    let w88 = w56 * w85;
+    let w89 = 2.0 * w88;
+    let w90 = w15 * w89;
+    let w91 = w87 - w90;
+    let w92 = x[3]; // u_dot
+    let w93 = w91 * w92;
+    let w94 = w55 - w93;
+    let w95 = w11 * w94;
+    let w96 = w20 * w7;
+    let w97: f64 = 0.13433248110088486;
+    let w98 = w97 * w0;
+    let w99 = w20 * w98;
+    let w100 = 2.0 * w99;
+    let w101 = w96 + w100;
+    let w102 = 2.0 * w2;
+    let w103: f64 = -1.5220170474062882;
+    let w104 = p[2]; // ei
+    let w105 = w20 * w20;
+    let w106 = w20 * w105;
+    let w107 = w104 / w106;
+    let w108 = w103 * w107;
+    let w109 = w102 * w108;
+    let w110 = w12 * w21;
+    let w111 = w12 * w44;
+    let w112 = w110 + w111;
+    let w113 = w109 - w112;
+    let w114 = w5 * w18;
+    let w115 = w113 + w114;
+    let w116 = w5 * w34;
+    let w117 = w115 + w116;
+    let w118 = w56 * w60;
+    let w119 = w117 + w118;
+    let w120 = w56 * w70;
+    let w121 = w120 * w66;
+    let w122 = w119 + w121;
+    let w123 = w56 * w75;
+    let w124 = w122 + w123;
+    let w125 = w56 * w83;
+    let w126 = w125 * w85;
+    let w127 = w124 + w126;
+    let w128 = p[7]; // zeta
+    let w129 = 2.0 * w128;
+    let w130: f64 = 3.0440340948125764;
+    let w131 = w130 * w107;
+    let w132 = w131 / w11;
+    let w133 = w132.sqrt();
+    let w134 = w129 * w133;
+    let w135 = w134 * w11;
+    let w136 = w135 * w92;
+    let w137 = w127 - w136;
+    let w138 = w101 * w137;
+    let w139 = w95 - w138;
+    let w140 = p[6]; // i_bc
+    let w141 = 2.0 * w16;
+    let w142 = w59 * w141;
+    let w143 = w16 * w142;
+    let w144 = w140 + w143;
+    let w145 = 2.0 * w20;
+    let w146 = w59 * w145;
+    let w147 = w20 * w146;
+    let w148 = w144 + w147;
+    let w149 = w67 * w102;
+    let w150 = w148 + w149;
+    let w151 = 2.0 * w67;
+    let w152 = w2 * w151;
+    let w153 = w150 + w152;
+    let w154: f64 = 0.08333333333333333;
+    let w155 = w154 * w0;
+    let w156 = w20 * w155;
+    let w157 = w156 * w145;
+    let w158 = w153 + w157;
+    let w159 = 2.0 * w156;
+    let w160 = w20 * w159;
+    let w161 = w158 + w160;
+    let w162 = w2 * w85;
+    let w163 = -w15;
+    let w164 = 2.0 * w163;
+    let w165 = w162 * w164;
+    let w166 = w161 + w165;
+    let w167 = 2.0 * w162;
+    let w168 = w15 * w167;
+    let w169 = w166 - w168;
+    let w170 = w23 * w0;
+    let w171 = 2.0 * w15;
+    let w172 = w170 * w171;
+    let w173 = w15 * w172;
+    let w174 = w169 + w173;
+    let w175 = w174 * w11;
+    let w176 = w101 * w101;
+    let w177 = w175 - w176;
+    let w178 = w139 / w177;
+    let w179 = w178 * w15;
+    let w180 = w6 + w179;
+    let w181 = w17 * w12;
+    let w182 = w180 + w181;
+    let w183 = w2 * w182;
+    let w184 = w1 * w183;
+    let w185 = w56 * w56;
+    let w186 = w185 * w15;
+    let w187 = w3 * w12;
+    let w188 = w186 + w187;
+    let w189 = w17 * w5;
+    let w190 = w188 - w189;
+    let w191 = w20 * w190;
+    let w192 = w23 * w191;
+    let w193 = w184 - w192;
+    let w194: f64 = 0.16666666666666666;
+    let w195 = w178 * w20;
+    let w196 = 2.0 * w195;
+    let w197 = w20 * w196;
+    let w198 = w194 * w197;
+    let w199 = w193 - w198;
+    let w200: f64 = 0.2686649622017697;
+    let w201 = w174 * w137;
+    let w202 = w101 * w94;
+    let w203 = w201 - w202;
+    let w204 = w203 / w177;
+    let w205 = w20 * w204;
+    let w206 = w200 * w205;
+    let w207 = w199 - w206;
+    let w208 = w61 * w92;
+    let w209 = w208 * w2;
+    let w210 = w178 * w2;
+    let w211 = w2 * w210;
+    let w212 = w209 + w211;
+    let w213 = w210 + w208;
+    let w214 = w2 * w213;
+    let w215 = w212 + w214;
+    let w216 = w8 * w215;
+    let w217 = w207 - w216;
+    let w218 = w0 * w217;
+    let w219 = w178 * w16;
+    let w220 = w185 * w20;
+    let w221 = w219 + w220;
+    let w222 = w221 + w208;
+    let w223 = w6 - w222;
+    let w224 = w223 + w181;
+    let w225 = w2 * w224;
+    let w226 = w185 * w16;
+    let w227 = w195 - w226;
+    let w228 = w227 + w204;
+    let w229 = w228 + w187;
+    let w230 = w229 - w189;
+    let w231 = w20 * w230;
+    let w232 = w225 - w231;
+    let w233 = w7 * w232;
+    let w234 = w218 + w233;
+    let o0 = w234; // moment
+    let w235 = w20 * w178;
+    let w236 = w23 * w235;
+    let w237 = w190 + w236;
+    let w238 = w2 * w185;
+    let w239 = w204 - w238;
+    let w240 = w1 * w239;
+    let w241 = w237 + w240;
+    let w242 = w0 * w241;
+    let w243 = w7 * w230;
+    let w244 = w242 + w243;
+    let o1 = w244; // shear
+    let w245 = w20 * w185;
+    let w246 = w23 * w245;
+    let w247 = w182 - w246;
+    let w248 = w2 * w178;
+    let w249 = w208 + w248;
+    let w250 = w1 * w249;
+    let w251 = w247 - w250;
+    let w252 = w0 * w251;
+    let w253 = w7 * w224;
+    let w254 = w252 + w253;
+    let o2 = w254; // axial
+    let w255: f64 = 2.4674011002723395;
+    let w256 = w104 / w105;
+    let w257 = w255 * w256;
+    let w258 = w257 * w2;
+    let o3 = w258; // moment_elastic
+    let w259 = w28 * w190;
+    let w260 = w244 + w259;
+    let w261 = w12 * w260;
+    let w262 = w179 + w6;
+    let w263 = w262 + w181;
+    let w264 = w28 * w263;
+    let w265 = w254 + w264;
+    let w266 = w5 * w265;
+    let w267 = w261 + w266;
+    let o4 = w267; // reaction_h
+    let w268 = w12 * w265;
+    let w269 = w5 * w260;
+    let w270 = w268 - w269;
+    let o5 = w270; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `fr` of [`forces_rocking()`].
+pub mod forces_rocking {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `x` of [`forces_rocking()`](super::forces_rocking()).
+    pub mod x {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `u`.
+        pub const U: usize = 1;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 2;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 3;
+    }
+}
+
+/// Quasi-static uplift about the right corner (s = +1; the left corner is its mirror), from the flexible exact-angle twin: the total weight W, the base moment W B at which the base uplifts (f_s = s M_b - W B), the ground acceleration ug (< 0) that lifts the base when applied so slowly that u' = u'' = 0, the deflection u then, and the elastic moment EI psi''(0) u / H^2 at the column base then, which differs from W B by the P-Delta moment and the shape function's error (docs/design-forces.md).
+///
+/// # Inputs
+///
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `up: [f64; 5]`: static uplift — `weight`, `moment_uplift`, `ug_uplift`, `u_uplift`, `moment_elastic_uplift`
+///
+/// Operations: 54 (28 mul, 11 add, 9 div, 3 sub, 2 twice, 1 sq).
+#[inline]
+#[must_use]
+pub fn static_uplift(p: &Params) -> [f64; 5] {
+    let w0 = p[8]; // g
+    let w1 = p[4]; // m_c
+    let w2 = p[3]; // m
+    let w3 = w1 + w2;
+    let w4 = p[5]; // m_b
+    let w5 = w3 + w4;
+    let w6 = w0 * w5;
+    let o0 = w6; // weight
+    let w7 = p[1]; // b
+    let w8 = w6 * w7;
+    let o1 = w8; // moment_uplift
+    let w9 = w2 * w0;
+    let w10 = w7 * w9;
+    let w11 = w4 * w0;
+    let w12 = w7 * w11;
+    let w13 = w10 + w12;
+    let w14 = w1 * w0;
+    let w15 = w7 * w14;
+    let w16 = w13 + w15;
+    let w17: f64 = 0.3633802276324187;
+    let w18 = w17 * w1;
+    let w19 = w2 + w18;
+    let w20: f64 = 0.11338022763241866;
+    let w21 = w20 * w1;
+    let w22 = w2 + w21;
+    let w23 = w22 + w21;
+    let w24 = w19 / w23;
+    let w25: f64 = -3.0440340948125764;
+    let w26 = p[2]; // ei
+    let w27 = p[0]; // h
+    let w28 = w27 * w27;
+    let w29 = w27 * w28;
+    let w30 = w26 / w29;
+    let w31 = w25 * w30;
+    let w32 = w31 / w23;
+    let w33 = w24 / w32;
+    let w34 = w9 * w33;
+    let w35 = w27 * w2;
+    let w36: f64 = 0.5;
+    let w37 = w36 * w1;
+    let w38 = w27 * w37;
+    let w39 = w35 + w38;
+    let w40 = w34 - w39;
+    let w41 = w17 * w14;
+    let w42 = w41 * w33;
+    let w43 = w40 + w42;
+    let w44: f64 = 0.13433248110088486;
+    let w45 = w44 * w1;
+    let w46 = w27 * w45;
+    let w47 = 2.0 * w46;
+    let w48 = w35 + w47;
+    let w49: f64 = -1.5220170474062882;
+    let w50 = w49 * w30;
+    let w51 = 2.0 * w33;
+    let w52 = w50 * w51;
+    let w53 = w52 - w19;
+    let w54 = w53 / w23;
+    let w55 = w48 * w54;
+    let w56 = w43 - w55;
+    let w57 = w16 / w56;
+    let o2 = w57; // ug_uplift
+    let w58 = w2 * w57;
+    let w59 = w1 * w57;
+    let w60 = w17 * w59;
+    let w61 = w58 + w60;
+    let w62 = w61 / w23;
+    let w63 = w62 / w32;
+    let o3 = w63; // u_uplift
+    let w64: f64 = 2.4674011002723395;
+    let w65 = w26 / w28;
+    let w66 = w64 * w65;
+    let w67 = w66 * w63;
+    let o4 = w67; // moment_elastic_uplift
+    [o0, o1, o2, o3, o4]
+}
+
+/// Indices of the elements of the output `up` of [`static_uplift()`].
+pub mod static_uplift {
+    /// Index of `weight`.
+    pub const WEIGHT: usize = 0;
+    /// Index of `moment_uplift`.
+    pub const MOMENT_UPLIFT: usize = 1;
+    /// Index of `ug_uplift`.
+    pub const UG_UPLIFT: usize = 2;
+    /// Index of `u_uplift`.
+    pub const U_UPLIFT: usize = 3;
+    /// Index of `moment_elastic_uplift`.
+    pub const MOMENT_ELASTIC_UPLIFT: usize = 4;
+}
+
 /// Example: the full model with the shape psi = 1 - cos(pi xi / 2H)
 ///
 /// Type-level handle of this variant, implementing [`crate::Variant`].
@@ -1859,6 +2410,21 @@ impl crate::Variant for CosineShape {
     #[inline]
     fn shape(eta: f64) -> f64 {
         shape(eta)
+    }
+
+    #[inline]
+    fn forces_contact(xc: &[f64; 2], ug: f64, p: &Params) -> [f64; 6] {
+        forces_contact(xc, ug, p)
+    }
+
+    #[inline]
+    fn forces_rocking(x: &[f64; 4], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+        forces_rocking(x, ug, s, p)
+    }
+
+    #[inline]
+    fn static_uplift(p: &Params) -> [f64; 5] {
+        static_uplift(p)
     }
 }
 
@@ -1976,6 +2542,32 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             };
             let eta: f64 = match eta { [v] => *v, _ => return None };
             Some(vec![shape(eta)])
+        }
+        "forces_contact" => {
+            let [xc, ug, p] = inputs else {
+                return None;
+            };
+            let xc: &[f64; 2] = (*xc).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(forces_contact(xc, ug, p).to_vec())
+        }
+        "forces_rocking" => {
+            let [x, ug, s, p] = inputs else {
+                return None;
+            };
+            let x: &[f64; 4] = (*x).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(forces_rocking(x, ug, s, p).to_vec())
+        }
+        "static_uplift" => {
+            let [p] = inputs else {
+                return None;
+            };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(static_uplift(p).to_vec())
         }
         _ => None,
     }

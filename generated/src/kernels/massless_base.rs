@@ -1686,6 +1686,530 @@ pub mod shape {
     pub const PSI: usize = 0;
 }
 
+/// Section forces at the column base and ground reaction in full contact (theta = theta' = 0), with u'' from eq (3). |moment| <= W B in full contact: f_s = s moment - W B (eq 24), W the total weight.
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded.
+///
+/// # Inputs
+///
+/// - `xc: &[f64; 2]`: state in full contact (theta = theta' = 0) — `u`, `u_dot`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `fc: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 48 (27 mul, 8 add, 5 sub, 4 div, 2 twice, 1 sq, 1 sqrt).
+#[inline]
+#[must_use]
+pub fn forces_contact(xc: &[f64; 2], ug: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[4]; // m_c
+    let w1: f64 = 0.375;
+    let w2 = xc[0]; // u
+    let w3 = p[8]; // g
+    let w4 = w2 * w3;
+    let w5 = w1 * w4;
+    let w6: f64 = 0.5;
+    let w7 = p[0]; // h
+    let w8 = ug; // ug
+    let w9 = w7 * w8;
+    let w10 = w6 * w9;
+    let w11 = w5 - w10;
+    let w12: f64 = 0.275;
+    let w13 = 2.0 * w2;
+    let w14: f64 = -1.5;
+    let w15 = p[2]; // ei
+    let w16 = w7 * w7;
+    let w17 = w7 * w16;
+    let w18 = w15 / w17;
+    let w19 = w14 * w18;
+    let w20 = w13 * w19;
+    let w21 = p[3]; // m
+    let w22 = w21 * w8;
+    let w23 = w0 * w8;
+    let w24 = w1 * w23;
+    let w25 = w22 + w24;
+    let w26 = w20 - w25;
+    let w27 = p[7]; // zeta
+    let w28 = 2.0 * w27;
+    let w29: f64 = 3.0;
+    let w30 = w29 * w18;
+    let w31: f64 = 0.11785714285714285;
+    let w32 = w31 * w0;
+    let w33 = w21 + w32;
+    let w34 = w33 + w32;
+    let w35 = w30 / w34;
+    let w36 = w35.sqrt();
+    let w37 = w28 * w36;
+    let w38 = w37 * w34;
+    let w39 = xc[1]; // u_dot
+    let w40 = w38 * w39;
+    let w41 = w26 - w40;
+    let w42 = w41 / w34;
+    let w43 = w42 * w7;
+    let w44 = w12 * w43;
+    let w45 = w11 - w44;
+    let w46 = w0 * w45;
+    let w47 = w42 + w8;
+    let w48 = w7 * w47;
+    let w49 = w4 - w48;
+    let w50 = w21 * w49;
+    let w51 = w46 + w50;
+    let o0 = w51; // moment
+    let w52 = w1 * w42;
+    let w53 = w8 + w52;
+    let w54 = w0 * w53;
+    let w55 = w21 * w47;
+    let w56 = w54 + w55;
+    let o1 = w56; // shear
+    let w57 = w0 * w3;
+    let w58 = w21 * w3;
+    let w59 = w57 + w58;
+    let o2 = w59; // axial
+    let w60 = w15 / w16;
+    let w61 = w29 * w60;
+    let w62 = w61 * w2;
+    let o3 = w62; // moment_elastic
+    let o4 = w56; // reaction_h
+    let o5 = w59; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `fc` of [`forces_contact()`].
+pub mod forces_contact {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `xc` of [`forces_contact()`](super::forces_contact()).
+    pub mod xc {
+        /// Index of `u`.
+        pub const U: usize = 0;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 1;
+    }
+}
+
+/// Section forces at the column base and ground reaction while rocking about corner s, with theta'' and u'' from the rocking equations (corrected (8)-(9)). The base plate's moment balance about its centre: moment = s B (reaction_v cos theta + reaction_h sin theta) + I_b theta'', I_b = I_bc - m_b B^2. The rotation is exact in every variant: a small-angle variant's forces are those of the motion its equations predict.
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded.
+///
+/// # Inputs
+///
+/// - `x: &[f64; 4]`: state while rocking — `theta`, `u`, `theta_dot`, `u_dot`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `fr: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 231 (128 mul, 44 add, 28 sub, 18 twice, 5 div, 3 sq, 2 neg, 1 cos, 1 sin, 1 sqrt).
+#[inline]
+#[must_use]
+pub fn forces_rocking(x: &[f64; 4], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[4]; // m_c
+    let w1: f64 = 0.375;
+    let w2 = x[1]; // u
+    let w3 = ug; // ug
+    let w4 = x[0]; // theta
+    let w5 = w4.sin();
+    let w6 = w3 * w5;
+    let w7 = p[3]; // m
+    let w8: f64 = 0.11785714285714285;
+    let w9 = w8 * w0;
+    let w10 = w7 + w9;
+    let w11 = w10 + w9;
+    let w12 = w4.cos();
+    let w13 = s; // s
+    let w14 = p[1]; // b
+    let w15 = w13 * w14;
+    let w16 = w2 - w15;
+    let w17 = p[8]; // g
+    let w18 = w7 * w17;
+    let w19 = w16 * w18;
+    let w20 = p[0]; // h
+    let w21 = w7 * w3;
+    let w22 = w20 * w21;
+    let w23: f64 = 0.5;
+    let w24 = w0 * w3;
+    let w25 = w23 * w24;
+    let w26 = w20 * w25;
+    let w27 = w22 + w26;
+    let w28 = w19 - w27;
+    let w29 = w0 * w17;
+    let w30 = w1 * w29;
+    let w31 = w2 * w30;
+    let w32 = w28 + w31;
+    let w33 = w15 * w29;
+    let w34 = w32 - w33;
+    let w35 = w12 * w34;
+    let w36 = w15 * w24;
+    let w37 = w16 * w21;
+    let w38 = w1 * w24;
+    let w39 = w2 * w38;
+    let w40 = w37 + w39;
+    let w41 = w36 - w40;
+    let w42 = w20 * w18;
+    let w43 = w41 - w42;
+    let w44 = w23 * w29;
+    let w45 = w20 * w44;
+    let w46 = w43 - w45;
+    let w47 = w5 * w46;
+    let w48 = w35 - w47;
+    let w49 = x[2]; // theta_dot
+    let w50 = w49 * w16;
+    let w51 = 2.0 * w50;
+    let w52 = w23 * w7;
+    let w53 = w51 * w52;
+    let w54 = 2.0 * w49;
+    let w55 = w52 * w54;
+    let w56 = w16 * w55;
+    let w57 = w53 + w56;
+    let w58: f64 = 0.05892857142857143;
+    let w59 = w58 * w0;
+    let w60 = w2 * w59;
+    let w61 = w60 * w54;
+    let w62 = w49 * w2;
+    let w63 = 2.0 * w62;
+    let w64 = w63 * w59;
+    let w65 = w61 + w64;
+    let w66 = w57 + w65;
+    let w67 = w49 * w60;
+    let w68 = 2.0 * w67;
+    let w69 = w49 * w59;
+    let w70 = 2.0 * w69;
+    let w71 = w2 * w70;
+    let w72 = w68 + w71;
+    let w73 = w66 + w72;
+    let w74 = w49 * w15;
+    let w75 = -w74;
+    let w76 = 2.0 * w75;
+    let w77: f64 = 0.1875;
+    let w78 = w77 * w0;
+    let w79 = w76 * w78;
+    let w80 = w73 + w79;
+    let w81 = w49 * w78;
+    let w82 = 2.0 * w81;
+    let w83 = w15 * w82;
+    let w84 = w80 - w83;
+    let w85 = x[3]; // u_dot
+    let w86 = w84 * w85;
+    let w87 = w48 - w86;
+    let w88 = w11 * w87;
+    let w89 = w20 * w7;
+    let w90: f64 = 0.1375;
+    let w91 = w90 * w0;
+    let w92 = w20 * w91;
+    let w93 = 2.0 * w92;
+    let w94 = w89 + w93;
+    let w95 = 2.0 * w2;
+    let w96: f64 = -1.5;
+    let w97 = p[2]; // ei
+    let w98 = w20 * w20;
+    let w99 = w20 * w98;
+    let w100 = w97 / w99;
+    let w101 = w96 * w100;
+    let w102 = w95 * w101;
+    let w103 = w12 * w21;
+    let w104 = w12 * w38;
+    let w105 = w103 + w104;
+    let w106 = w102 - w105;
+    let w107 = w5 * w18;
+    let w108 = w106 + w107;
+    let w109 = w5 * w30;
+    let w110 = w108 + w109;
+    let w111 = w49 * w53;
+    let w112 = w110 + w111;
+    let w113 = w49 * w63;
+    let w114 = w113 * w59;
+    let w115 = w112 + w114;
+    let w116 = w49 * w68;
+    let w117 = w115 + w116;
+    let w118 = w49 * w76;
+    let w119 = w118 * w78;
+    let w120 = w117 + w119;
+    let w121 = p[7]; // zeta
+    let w122 = 2.0 * w121;
+    let w123: f64 = 3.0;
+    let w124 = w123 * w100;
+    let w125 = w124 / w11;
+    let w126 = w125.sqrt();
+    let w127 = w122 * w126;
+    let w128 = w127 * w11;
+    let w129 = w128 * w85;
+    let w130 = w120 - w129;
+    let w131 = w94 * w130;
+    let w132 = w88 - w131;
+    let w133 = 2.0 * w16;
+    let w134 = w52 * w133;
+    let w135 = w16 * w134;
+    let w136 = 2.0 * w20;
+    let w137 = w52 * w136;
+    let w138 = w20 * w137;
+    let w139 = w135 + w138;
+    let w140 = w60 * w95;
+    let w141 = w139 + w140;
+    let w142 = 2.0 * w60;
+    let w143 = w2 * w142;
+    let w144 = w141 + w143;
+    let w145: f64 = 0.08333333333333333;
+    let w146 = w145 * w0;
+    let w147 = w20 * w146;
+    let w148 = w147 * w136;
+    let w149 = w144 + w148;
+    let w150 = 2.0 * w147;
+    let w151 = w20 * w150;
+    let w152 = w149 + w151;
+    let w153 = w2 * w78;
+    let w154 = -w15;
+    let w155 = 2.0 * w154;
+    let w156 = w153 * w155;
+    let w157 = w152 + w156;
+    let w158 = 2.0 * w153;
+    let w159 = w15 * w158;
+    let w160 = w157 - w159;
+    let w161 = w23 * w0;
+    let w162 = 2.0 * w15;
+    let w163 = w161 * w162;
+    let w164 = w15 * w163;
+    let w165 = w160 + w164;
+    let w166 = w165 * w11;
+    let w167 = w94 * w94;
+    let w168 = w166 - w167;
+    let w169 = w132 / w168;
+    let w170 = w169 * w15;
+    let w171 = w6 + w170;
+    let w172 = w17 * w12;
+    let w173 = w171 + w172;
+    let w174 = w2 * w173;
+    let w175 = w1 * w174;
+    let w176 = w49 * w49;
+    let w177 = w176 * w15;
+    let w178 = w3 * w12;
+    let w179 = w177 + w178;
+    let w180 = w17 * w5;
+    let w181 = w179 - w180;
+    let w182 = w20 * w181;
+    let w183 = w23 * w182;
+    let w184 = w175 - w183;
+    let w185: f64 = 0.16666666666666666;
+    let w186 = w169 * w20;
+    let w187 = 2.0 * w186;
+    let w188 = w20 * w187;
+    let w189 = w185 * w188;
+    let w190 = w184 - w189;
+    let w191: f64 = 0.275;
+    let w192 = w165 * w130;
+    let w193 = w94 * w87;
+    let w194 = w192 - w193;
+    let w195 = w194 / w168;
+    let w196 = w20 * w195;
+    let w197 = w191 * w196;
+    let w198 = w190 - w197;
+    let w199 = w54 * w85;
+    let w200 = w199 * w2;
+    let w201 = w169 * w2;
+    let w202 = w2 * w201;
+    let w203 = w200 + w202;
+    let w204 = w201 + w199;
+    let w205 = w2 * w204;
+    let w206 = w203 + w205;
+    let w207 = w8 * w206;
+    let w208 = w198 - w207;
+    let w209 = w0 * w208;
+    let w210 = w169 * w16;
+    let w211 = w176 * w20;
+    let w212 = w210 + w211;
+    let w213 = w212 + w199;
+    let w214 = w6 - w213;
+    let w215 = w214 + w172;
+    let w216 = w2 * w215;
+    let w217 = w176 * w16;
+    let w218 = w186 - w217;
+    let w219 = w218 + w195;
+    let w220 = w219 + w178;
+    let w221 = w220 - w180;
+    let w222 = w20 * w221;
+    let w223 = w216 - w222;
+    let w224 = w7 * w223;
+    let w225 = w209 + w224;
+    let o0 = w225; // moment
+    let w226 = w20 * w169;
+    let w227 = w23 * w226;
+    let w228 = w181 + w227;
+    let w229 = w2 * w176;
+    let w230 = w195 - w229;
+    let w231 = w1 * w230;
+    let w232 = w228 + w231;
+    let w233 = w0 * w232;
+    let w234 = w7 * w221;
+    let w235 = w233 + w234;
+    let o1 = w235; // shear
+    let w236 = w20 * w176;
+    let w237 = w23 * w236;
+    let w238 = w173 - w237;
+    let w239 = w2 * w169;
+    let w240 = w199 + w239;
+    let w241 = w1 * w240;
+    let w242 = w238 - w241;
+    let w243 = w0 * w242;
+    let w244 = w7 * w215;
+    let w245 = w243 + w244;
+    let o2 = w245; // axial
+    let w246 = w97 / w98;
+    let w247 = w123 * w246;
+    let w248 = w247 * w2;
+    let o3 = w248; // moment_elastic
+    let w249 = w12 * w235;
+    let w250 = w5 * w245;
+    let w251 = w249 + w250;
+    let o4 = w251; // reaction_h
+    let w252 = w12 * w245;
+    let w253 = w5 * w235;
+    let w254 = w252 - w253;
+    let o5 = w254; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `fr` of [`forces_rocking()`].
+pub mod forces_rocking {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `x` of [`forces_rocking()`](super::forces_rocking()).
+    pub mod x {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `u`.
+        pub const U: usize = 1;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 2;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 3;
+    }
+}
+
+/// Quasi-static uplift about the right corner (s = +1; the left corner is its mirror), from the flexible exact-angle twin: the total weight W, the base moment W B at which the base uplifts (f_s = s M_b - W B), the ground acceleration ug (< 0) that lifts the base when applied so slowly that u' = u'' = 0, the deflection u then, and the elastic moment EI psi''(0) u / H^2 at the column base then, which differs from W B by the P-Delta moment and the shape function's error (docs/design-forces.md).
+///
+/// # Inputs
+///
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `up: [f64; 5]`: static uplift — `weight`, `moment_uplift`, `ug_uplift`, `u_uplift`, `moment_elastic_uplift`
+///
+/// Operations: 50 (26 mul, 9 add, 9 div, 3 sub, 2 twice, 1 sq).
+#[inline]
+#[must_use]
+pub fn static_uplift(p: &Params) -> [f64; 5] {
+    let w0 = p[8]; // g
+    let w1 = p[4]; // m_c
+    let w2 = p[3]; // m
+    let w3 = w1 + w2;
+    let w4 = w0 * w3;
+    let o0 = w4; // weight
+    let w5 = p[1]; // b
+    let w6 = w4 * w5;
+    let o1 = w6; // moment_uplift
+    let w7 = w2 * w0;
+    let w8 = w5 * w7;
+    let w9 = w1 * w0;
+    let w10 = w5 * w9;
+    let w11 = w8 + w10;
+    let w12: f64 = 0.375;
+    let w13 = w12 * w1;
+    let w14 = w2 + w13;
+    let w15: f64 = 0.11785714285714285;
+    let w16 = w15 * w1;
+    let w17 = w2 + w16;
+    let w18 = w17 + w16;
+    let w19 = w14 / w18;
+    let w20: f64 = -3.0;
+    let w21 = p[2]; // ei
+    let w22 = p[0]; // h
+    let w23 = w22 * w22;
+    let w24 = w22 * w23;
+    let w25 = w21 / w24;
+    let w26 = w20 * w25;
+    let w27 = w26 / w18;
+    let w28 = w19 / w27;
+    let w29 = w7 * w28;
+    let w30 = w22 * w2;
+    let w31: f64 = 0.5;
+    let w32 = w31 * w1;
+    let w33 = w22 * w32;
+    let w34 = w30 + w33;
+    let w35 = w29 - w34;
+    let w36 = w12 * w9;
+    let w37 = w36 * w28;
+    let w38 = w35 + w37;
+    let w39: f64 = 0.1375;
+    let w40 = w39 * w1;
+    let w41 = w22 * w40;
+    let w42 = 2.0 * w41;
+    let w43 = w30 + w42;
+    let w44: f64 = -1.5;
+    let w45 = w44 * w25;
+    let w46 = 2.0 * w28;
+    let w47 = w45 * w46;
+    let w48 = w47 - w14;
+    let w49 = w48 / w18;
+    let w50 = w43 * w49;
+    let w51 = w38 - w50;
+    let w52 = w11 / w51;
+    let o2 = w52; // ug_uplift
+    let w53 = w2 * w52;
+    let w54 = w1 * w52;
+    let w55 = w12 * w54;
+    let w56 = w53 + w55;
+    let w57 = w56 / w18;
+    let w58 = w57 / w27;
+    let o3 = w58; // u_uplift
+    let w59: f64 = 3.0;
+    let w60 = w21 / w23;
+    let w61 = w59 * w60;
+    let w62 = w61 * w58;
+    let o4 = w62; // moment_elastic_uplift
+    [o0, o1, o2, o3, o4]
+}
+
+/// Indices of the elements of the output `up` of [`static_uplift()`].
+pub mod static_uplift {
+    /// Index of `weight`.
+    pub const WEIGHT: usize = 0;
+    /// Index of `moment_uplift`.
+    pub const MOMENT_UPLIFT: usize = 1;
+    /// Index of `ug_uplift`.
+    pub const UG_UPLIFT: usize = 2;
+    /// Index of `u_uplift`.
+    pub const U_UPLIFT: usize = 3;
+    /// Index of `moment_elastic_uplift`.
+    pub const MOMENT_ELASTIC_UPLIFT: usize = 4;
+}
+
 /// Massless base (m_b = I_bc = 0): distributed column mass and top mass
 ///
 /// Type-level handle of this variant, implementing [`crate::Variant`].
@@ -1770,6 +2294,21 @@ impl crate::Variant for MasslessBase {
     #[inline]
     fn shape(eta: f64) -> f64 {
         shape(eta)
+    }
+
+    #[inline]
+    fn forces_contact(xc: &[f64; 2], ug: f64, p: &Params) -> [f64; 6] {
+        forces_contact(xc, ug, p)
+    }
+
+    #[inline]
+    fn forces_rocking(x: &[f64; 4], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+        forces_rocking(x, ug, s, p)
+    }
+
+    #[inline]
+    fn static_uplift(p: &Params) -> [f64; 5] {
+        static_uplift(p)
     }
 }
 
@@ -1887,6 +2426,32 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             };
             let eta: f64 = match eta { [v] => *v, _ => return None };
             Some(vec![shape(eta)])
+        }
+        "forces_contact" => {
+            let [xc, ug, p] = inputs else {
+                return None;
+            };
+            let xc: &[f64; 2] = (*xc).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(forces_contact(xc, ug, p).to_vec())
+        }
+        "forces_rocking" => {
+            let [x, ug, s, p] = inputs else {
+                return None;
+            };
+            let x: &[f64; 4] = (*x).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(forces_rocking(x, ug, s, p).to_vec())
+        }
+        "static_uplift" => {
+            let [p] = inputs else {
+                return None;
+            };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(static_uplift(p).to_vec())
         }
         _ => None,
     }

@@ -664,6 +664,72 @@ pub mod index {
         /// Index of `psi`.
         pub const PSI: usize = 0;
     }
+
+    /// Indices of the output `fc` of `forces_contact` (and of its inputs).
+    pub mod forces_contact {
+        /// Index of `moment`.
+        pub const MOMENT: usize = 0;
+        /// Index of `shear`.
+        pub const SHEAR: usize = 1;
+        /// Index of `axial`.
+        pub const AXIAL: usize = 2;
+        /// Index of `moment_elastic`.
+        pub const MOMENT_ELASTIC: usize = 3;
+        /// Index of `reaction_h`.
+        pub const REACTION_H: usize = 4;
+        /// Index of `reaction_v`.
+        pub const REACTION_V: usize = 5;
+
+        /// Indices of the elements of input `xc`.
+        pub mod xc {
+            /// Index of `u`.
+            pub const U: usize = 0;
+            /// Index of `u_dot`.
+            pub const U_DOT: usize = 1;
+        }
+    }
+
+    /// Indices of the output `fr` of `forces_rocking` (and of its inputs).
+    pub mod forces_rocking {
+        /// Index of `moment`.
+        pub const MOMENT: usize = 0;
+        /// Index of `shear`.
+        pub const SHEAR: usize = 1;
+        /// Index of `axial`.
+        pub const AXIAL: usize = 2;
+        /// Index of `moment_elastic`.
+        pub const MOMENT_ELASTIC: usize = 3;
+        /// Index of `reaction_h`.
+        pub const REACTION_H: usize = 4;
+        /// Index of `reaction_v`.
+        pub const REACTION_V: usize = 5;
+
+        /// Indices of the elements of input `x`.
+        pub mod x {
+            /// Index of `theta`.
+            pub const THETA: usize = 0;
+            /// Index of `u`.
+            pub const U: usize = 1;
+            /// Index of `theta_dot`.
+            pub const THETA_DOT: usize = 2;
+            /// Index of `u_dot`.
+            pub const U_DOT: usize = 3;
+        }
+    }
+
+    /// Indices of the output `up` of `static_uplift` (and of its inputs).
+    pub mod static_uplift {
+        /// Index of `weight`.
+        pub const WEIGHT: usize = 0;
+        /// Index of `moment_uplift`.
+        pub const MOMENT_UPLIFT: usize = 1;
+        /// Index of `ug_uplift`.
+        pub const UG_UPLIFT: usize = 2;
+        /// Index of `u_uplift`.
+        pub const U_UPLIFT: usize = 3;
+        /// Index of `moment_elastic_uplift`.
+        pub const MOMENT_ELASTIC_UPLIFT: usize = 4;
+    }
 }
 
 /// Evaluates `$body` with the type `$V` standing for the variant named `$name` (a `&str`),

@@ -1110,6 +1110,331 @@ pub mod shape {
     pub const PSI: usize = 0;
 }
 
+/// Section forces at the column base and ground reaction in full contact (theta = theta' = 0), with u'' from eq (3). |moment| <= W B in full contact: f_s = s moment - W B (eq 24), W the total weight.
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded.
+///
+/// # Inputs
+///
+/// - `xc: &[f64; 2]`: state in full contact (theta = theta' = 0) — `u`, `u_dot`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `fc: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 27 (15 mul, 4 div, 3 sub, 2 twice, 1 add, 1 sq, 1 sqrt).
+#[inline]
+#[must_use]
+pub fn forces_contact(xc: &[f64; 2], ug: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[3]; // m
+    let w1 = xc[0]; // u
+    let w2 = p[8]; // g
+    let w3 = w1 * w2;
+    let w4 = p[0]; // h
+    let w5 = 2.0 * w1;
+    let w6: f64 = -1.5;
+    let w7 = p[2]; // ei
+    let w8 = w4 * w4;
+    let w9 = w4 * w8;
+    let w10 = w7 / w9;
+    let w11 = w6 * w10;
+    let w12 = w5 * w11;
+    let w13 = ug; // ug
+    let w14 = w0 * w13;
+    let w15 = w12 - w14;
+    let w16 = p[7]; // zeta
+    let w17 = 2.0 * w16;
+    let w18: f64 = 3.0;
+    let w19 = w18 * w10;
+    let w20 = w19 / w0;
+    let w21 = w20.sqrt();
+    let w22 = w17 * w21;
+    let w23 = w22 * w0;
+    let w24 = xc[1]; // u_dot
+    let w25 = w23 * w24;
+    let w26 = w15 - w25;
+    let w27 = w26 / w0;
+    let w28 = w27 + w13;
+    let w29 = w4 * w28;
+    let w30 = w3 - w29;
+    let w31 = w0 * w30;
+    let o0 = w31; // moment
+    let w32 = w0 * w28;
+    let o1 = w32; // shear
+    let w33 = w0 * w2;
+    let o2 = w33; // axial
+    let w34 = w7 / w8;
+    let w35 = w18 * w34;
+    let w36 = w35 * w1;
+    let o3 = w36; // moment_elastic
+    let o4 = w32; // reaction_h
+    let o5 = w33; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `fc` of [`forces_contact()`].
+pub mod forces_contact {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `xc` of [`forces_contact()`](super::forces_contact()).
+    pub mod xc {
+        /// Index of `u`.
+        pub const U: usize = 0;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 1;
+    }
+}
+
+/// Section forces at the column base and ground reaction while rocking about corner s, with theta'' and u'' from the rocking equations (corrected (8)-(9)). The base plate's moment balance about its centre: moment = s B (reaction_v cos theta + reaction_h sin theta) + I_b theta'', I_b = I_bc - m_b B^2. The rotation is exact in every variant: a small-angle variant's forces are those of the motion its equations predict.
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded.
+///
+/// # Inputs
+///
+/// - `x: &[f64; 4]`: state while rocking — `theta`, `u`, `theta_dot`, `u_dot`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `fr: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 97 (55 mul, 13 sub, 12 add, 6 twice, 5 div, 3 sq, 1 cos, 1 sin, 1 sqrt).
+#[inline]
+#[must_use]
+pub fn forces_rocking(x: &[f64; 4], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[3]; // m
+    let w1 = x[1]; // u
+    let w2 = ug; // ug
+    let w3 = x[0]; // theta
+    let w4 = w3.sin();
+    let w5 = w2 * w4;
+    let w6 = w3.cos();
+    let w7 = s; // s
+    let w8 = p[1]; // b
+    let w9 = w7 * w8;
+    let w10 = w1 - w9;
+    let w11 = p[8]; // g
+    let w12 = w0 * w11;
+    let w13 = w10 * w12;
+    let w14 = p[0]; // h
+    let w15 = w0 * w2;
+    let w16 = w14 * w15;
+    let w17 = w13 - w16;
+    let w18 = w6 * w17;
+    let w19 = w10 * w15;
+    let w20 = w14 * w12;
+    let w21 = w19 + w20;
+    let w22 = w4 * w21;
+    let w23 = w18 + w22;
+    let w24 = x[2]; // theta_dot
+    let w25 = w24 * w10;
+    let w26 = 2.0 * w25;
+    let w27: f64 = 0.5;
+    let w28 = w27 * w0;
+    let w29 = w26 * w28;
+    let w30 = 2.0 * w24;
+    let w31 = w28 * w30;
+    let w32 = w10 * w31;
+    let w33 = w29 + w32;
+    let w34 = x[3]; // u_dot
+    let w35 = w33 * w34;
+    let w36 = w23 - w35;
+    let w37 = w0 * w36;
+    let w38 = w14 * w0;
+    let w39 = 2.0 * w1;
+    let w40: f64 = -1.5;
+    let w41 = p[2]; // ei
+    let w42 = w14 * w14;
+    let w43 = w14 * w42;
+    let w44 = w41 / w43;
+    let w45 = w40 * w44;
+    let w46 = w39 * w45;
+    let w47 = w6 * w15;
+    let w48 = w46 - w47;
+    let w49 = w4 * w12;
+    let w50 = w48 + w49;
+    let w51 = w24 * w29;
+    let w52 = w50 + w51;
+    let w53 = p[7]; // zeta
+    let w54 = 2.0 * w53;
+    let w55: f64 = 3.0;
+    let w56 = w55 * w44;
+    let w57 = w56 / w0;
+    let w58 = w57.sqrt();
+    let w59 = w54 * w58;
+    let w60 = w59 * w0;
+    let w61 = w60 * w34;
+    let w62 = w52 - w61;
+    let w63 = w38 * w62;
+    let w64 = w37 - w63;
+    let w65 = 2.0 * w10;
+    let w66 = w28 * w65;
+    let w67 = w10 * w66;
+    let w68 = 2.0 * w14;
+    let w69 = w28 * w68;
+    let w70 = w14 * w69;
+    let w71 = w67 + w70;
+    let w72 = w71 * w0;
+    let w73 = w38 * w38;
+    let w74 = w72 - w73;
+    let w75 = w64 / w74;
+    let w76 = w75 * w10;
+    let w77 = w24 * w24;
+    let w78 = w77 * w14;
+    let w79 = w76 + w78;
+    let w80 = w30 * w34;
+    let w81 = w79 + w80;
+    let w82 = w5 - w81;
+    let w83 = w11 * w6;
+    let w84 = w82 + w83;
+    let w85 = w1 * w84;
+    let w86 = w75 * w14;
+    let w87 = w77 * w10;
+    let w88 = w86 - w87;
+    let w89 = w71 * w62;
+    let w90 = w38 * w36;
+    let w91 = w89 - w90;
+    let w92 = w91 / w74;
+    let w93 = w88 + w92;
+    let w94 = w2 * w6;
+    let w95 = w93 + w94;
+    let w96 = w11 * w4;
+    let w97 = w95 - w96;
+    let w98 = w14 * w97;
+    let w99 = w85 - w98;
+    let w100 = w0 * w99;
+    let o0 = w100; // moment
+    let w101 = w0 * w97;
+    let o1 = w101; // shear
+    let w102 = w0 * w84;
+    let o2 = w102; // axial
+    let w103 = w41 / w42;
+    let w104 = w55 * w103;
+    let w105 = w104 * w1;
+    let o3 = w105; // moment_elastic
+    let w106 = w6 * w101;
+    let w107 = w4 * w102;
+    let w108 = w106 + w107;
+    let o4 = w108; // reaction_h
+    let w109 = w6 * w102;
+    let w110 = w4 * w101;
+    let w111 = w109 - w110;
+    let o5 = w111; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `fr` of [`forces_rocking()`].
+pub mod forces_rocking {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `x` of [`forces_rocking()`](super::forces_rocking()).
+    pub mod x {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `u`.
+        pub const U: usize = 1;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 2;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 3;
+    }
+}
+
+/// Quasi-static uplift about the right corner (s = +1; the left corner is its mirror), from the flexible exact-angle twin: the total weight W, the base moment W B at which the base uplifts (f_s = s M_b - W B), the ground acceleration ug (< 0) that lifts the base when applied so slowly that u' = u'' = 0, the deflection u then, and the elastic moment EI psi''(0) u / H^2 at the column base then, which differs from W B by the P-Delta moment and the shape function's error (docs/design-forces.md).
+///
+/// # Inputs
+///
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `up: [f64; 5]`: static uplift — `weight`, `moment_uplift`, `ug_uplift`, `u_uplift`, `moment_elastic_uplift`
+///
+/// Operations: 24 (12 mul, 8 div, 3 sub, 1 sq).
+#[inline]
+#[must_use]
+pub fn static_uplift(p: &Params) -> [f64; 5] {
+    let w0 = p[8]; // g
+    let w1 = p[3]; // m
+    let w2 = w0 * w1;
+    let o0 = w2; // weight
+    let w3 = p[1]; // b
+    let w4 = w2 * w3;
+    let o1 = w4; // moment_uplift
+    let w5 = w1 * w0;
+    let w6 = w3 * w5;
+    let w7: f64 = -3.0;
+    let w8 = p[2]; // ei
+    let w9 = p[0]; // h
+    let w10 = w9 * w9;
+    let w11 = w9 * w10;
+    let w12 = w8 / w11;
+    let w13 = w7 * w12;
+    let w14 = w13 / w1;
+    let w15 = w5 / w14;
+    let w16 = w9 * w1;
+    let w17 = w15 - w16;
+    let w18: f64 = -1.5;
+    let w19 = w18 * w12;
+    let w20: f64 = 2.0;
+    let w21 = w20 / w14;
+    let w22 = w19 * w21;
+    let w23 = w22 - w1;
+    let w24 = w23 / w1;
+    let w25 = w16 * w24;
+    let w26 = w17 - w25;
+    let w27 = w6 / w26;
+    let o2 = w27; // ug_uplift
+    let w28 = w27 / w14;
+    let o3 = w28; // u_uplift
+    let w29: f64 = 3.0;
+    let w30 = w8 / w10;
+    let w31 = w29 * w30;
+    let w32 = w31 * w28;
+    let o4 = w32; // moment_elastic_uplift
+    [o0, o1, o2, o3, o4]
+}
+
+/// Indices of the elements of the output `up` of [`static_uplift()`].
+pub mod static_uplift {
+    /// Index of `weight`.
+    pub const WEIGHT: usize = 0;
+    /// Index of `moment_uplift`.
+    pub const MOMENT_UPLIFT: usize = 1;
+    /// Index of `ug_uplift`.
+    pub const UG_UPLIFT: usize = 2;
+    /// Index of `u_uplift`.
+    pub const U_UPLIFT: usize = 3;
+    /// Index of `moment_elastic_uplift`.
+    pub const MOMENT_ELASTIC_UPLIFT: usize = 4;
+}
+
 /// Top mass only (m_c = m_b = I_bc = 0): the model of Acikgoz & DeJong
 ///
 /// Type-level handle of this variant, implementing [`crate::Variant`].
@@ -1194,6 +1519,21 @@ impl crate::Variant for PointMass {
     #[inline]
     fn shape(eta: f64) -> f64 {
         shape(eta)
+    }
+
+    #[inline]
+    fn forces_contact(xc: &[f64; 2], ug: f64, p: &Params) -> [f64; 6] {
+        forces_contact(xc, ug, p)
+    }
+
+    #[inline]
+    fn forces_rocking(x: &[f64; 4], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+        forces_rocking(x, ug, s, p)
+    }
+
+    #[inline]
+    fn static_uplift(p: &Params) -> [f64; 5] {
+        static_uplift(p)
     }
 }
 
@@ -1311,6 +1651,32 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             };
             let eta: f64 = match eta { [v] => *v, _ => return None };
             Some(vec![shape(eta)])
+        }
+        "forces_contact" => {
+            let [xc, ug, p] = inputs else {
+                return None;
+            };
+            let xc: &[f64; 2] = (*xc).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(forces_contact(xc, ug, p).to_vec())
+        }
+        "forces_rocking" => {
+            let [x, ug, s, p] = inputs else {
+                return None;
+            };
+            let x: &[f64; 4] = (*x).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(forces_rocking(x, ug, s, p).to_vec())
+        }
+        "static_uplift" => {
+            let [p] = inputs else {
+                return None;
+            };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(static_uplift(p).to_vec())
         }
         _ => None,
     }

@@ -1415,6 +1415,358 @@ pub mod shape {
     pub const PSI: usize = 0;
 }
 
+/// Section forces at the column base and ground reaction in full contact (theta = theta' = 0), with u'' from eq (3). |moment| <= W B in full contact: f_s = s moment - W B (eq 24), W the total weight.
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded.
+///
+/// # Inputs
+///
+/// - `xc: &[f64; 2]`: state in full contact (theta = theta' = 0) — `u`, `u_dot`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `fc: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 16 (10 mul, 5 add, 1 neg).
+#[inline]
+#[must_use]
+pub fn forces_contact(_xc: &[f64; 2], ug: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[4]; // m_c
+    let w1: f64 = 0.5;
+    let w2 = p[0]; // h
+    let w3 = ug; // ug
+    let w4 = w2 * w3;
+    let w5 = w1 * w4;
+    let w6 = w0 * w5;
+    let w7 = p[3]; // m
+    let w8 = w7 * w4;
+    let w9 = w6 + w8;
+    let w10 = -w9;
+    let o0 = w10; // moment
+    let w11 = w0 * w3;
+    let w12 = w7 * w3;
+    let w13 = w11 + w12;
+    let o1 = w13; // shear
+    let w14 = p[8]; // g
+    let w15 = w0 * w14;
+    let w16 = w7 * w14;
+    let w17 = w15 + w16;
+    let o2 = w17; // axial
+    let o3 = w10; // moment_elastic
+    let w18 = p[5]; // m_b
+    let w19 = w18 * w3;
+    let w20 = w13 + w19;
+    let o4 = w20; // reaction_h
+    let w21 = w18 * w14;
+    let w22 = w17 + w21;
+    let o5 = w22; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `fc` of [`forces_contact()`].
+pub mod forces_contact {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `xc` of [`forces_contact()`](super::forces_contact()).
+    pub mod xc {
+        /// Index of `u`.
+        pub const U: usize = 0;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 1;
+    }
+}
+
+/// Section forces at the column base and ground reaction while rocking about corner s, with theta'' and u'' from the rocking equations (corrected (8)-(9)). The base plate's moment balance about its centre: moment = s B (reaction_v cos theta + reaction_h sin theta) + I_b theta'', I_b = I_bc - m_b B^2. The rotation is exact in every variant: a small-angle variant's forces are those of the motion its equations predict.
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded.
+///
+/// # Inputs
+///
+/// - `x: &[f64; 4]`: state while rocking — `theta`, `u`, `theta_dot`, `u_dot`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `fr: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 104 (62 mul, 22 add, 12 sub, 4 twice, 1 cos, 1 div, 1 sin, 1 sq).
+#[inline]
+#[must_use]
+pub fn forces_rocking(x: &[f64; 4], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[4]; // m_c
+    let w1: f64 = 0.16666666666666666;
+    let w2 = p[0]; // h
+    let w3 = x[0]; // theta
+    let w4 = w3.sin();
+    let w5 = s; // s
+    let w6 = p[1]; // b
+    let w7 = w5 * w6;
+    let w8 = p[5]; // m_b
+    let w9 = ug; // ug
+    let w10 = w8 * w9;
+    let w11 = w7 * w10;
+    let w12 = p[3]; // m
+    let w13 = w12 * w9;
+    let w14 = w7 * w13;
+    let w15 = w11 + w14;
+    let w16 = w0 * w9;
+    let w17 = w7 * w16;
+    let w18 = w15 + w17;
+    let w19 = p[8]; // g
+    let w20 = w12 * w19;
+    let w21 = w2 * w20;
+    let w22 = w18 - w21;
+    let w23: f64 = 0.5;
+    let w24 = w0 * w19;
+    let w25 = w23 * w24;
+    let w26 = w2 * w25;
+    let w27 = w22 - w26;
+    let w28 = w4 * w27;
+    let w29 = w3.cos();
+    let w30 = w2 * w13;
+    let w31 = w23 * w16;
+    let w32 = w2 * w31;
+    let w33 = w30 + w32;
+    let w34 = w8 * w19;
+    let w35 = w7 * w34;
+    let w36 = w33 + w35;
+    let w37 = w7 * w20;
+    let w38 = w36 + w37;
+    let w39 = w7 * w24;
+    let w40 = w38 + w39;
+    let w41 = w29 * w40;
+    let w42 = w28 + w41;
+    let w43 = p[6]; // i_bc
+    let w44 = w23 * w12;
+    let w45 = 2.0 * w7;
+    let w46 = w44 * w45;
+    let w47 = w7 * w46;
+    let w48 = w43 + w47;
+    let w49 = 2.0 * w2;
+    let w50 = w44 * w49;
+    let w51 = w2 * w50;
+    let w52 = w48 + w51;
+    let w53: f64 = 0.08333333333333333;
+    let w54 = w53 * w0;
+    let w55 = w2 * w54;
+    let w56 = w55 * w49;
+    let w57 = w52 + w56;
+    let w58 = 2.0 * w55;
+    let w59 = w2 * w58;
+    let w60 = w57 + w59;
+    let w61 = w23 * w0;
+    let w62 = w61 * w45;
+    let w63 = w7 * w62;
+    let w64 = w60 + w63;
+    let w65 = w42 / w64;
+    let w66 = w65 * w2;
+    let w67 = 2.0 * w66;
+    let w68 = w2 * w67;
+    let w69 = w1 * w68;
+    let w70 = x[2]; // theta_dot
+    let w71 = w70 * w70;
+    let w72 = w71 * w7;
+    let w73 = w9 * w29;
+    let w74 = w72 + w73;
+    let w75 = w19 * w4;
+    let w76 = w74 - w75;
+    let w77 = w2 * w76;
+    let w78 = w23 * w77;
+    let w79 = w69 - w78;
+    let w80 = w0 * w79;
+    let w81 = w72 - w66;
+    let w82 = w81 + w73;
+    let w83 = w82 - w75;
+    let w84 = w2 * w83;
+    let w85 = w12 * w84;
+    let w86 = w80 - w85;
+    let o0 = w86; // moment
+    let w87 = w2 * w65;
+    let w88 = w23 * w87;
+    let w89 = w76 - w88;
+    let w90 = w0 * w89;
+    let w91 = w12 * w83;
+    let w92 = w90 + w91;
+    let o1 = w92; // shear
+    let w93 = w9 * w4;
+    let w94 = w65 * w7;
+    let w95 = w93 - w94;
+    let w96 = w19 * w29;
+    let w97 = w95 + w96;
+    let w98 = w2 * w71;
+    let w99 = w23 * w98;
+    let w100 = w97 - w99;
+    let w101 = w0 * w100;
+    let w102 = w71 * w2;
+    let w103 = w94 + w102;
+    let w104 = w93 - w103;
+    let w105 = w104 + w96;
+    let w106 = w12 * w105;
+    let w107 = w101 + w106;
+    let o2 = w107; // axial
+    let o3 = w86; // moment_elastic
+    let w108 = w8 * w76;
+    let w109 = w92 + w108;
+    let w110 = w29 * w109;
+    let w111 = w8 * w97;
+    let w112 = w107 + w111;
+    let w113 = w4 * w112;
+    let w114 = w110 + w113;
+    let o4 = w114; // reaction_h
+    let w115 = w29 * w112;
+    let w116 = w4 * w109;
+    let w117 = w115 - w116;
+    let o5 = w117; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `fr` of [`forces_rocking()`].
+pub mod forces_rocking {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `x` of [`forces_rocking()`](super::forces_rocking()).
+    pub mod x {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `u`.
+        pub const U: usize = 1;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 2;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 3;
+    }
+}
+
+/// Quasi-static uplift about the right corner (s = +1; the left corner is its mirror), from the flexible exact-angle twin: the total weight W, the base moment W B at which the base uplifts (f_s = s M_b - W B), the ground acceleration ug (< 0) that lifts the base when applied so slowly that u' = u'' = 0, the deflection u then, and the elastic moment EI psi''(0) u / H^2 at the column base then, which differs from W B by the P-Delta moment and the shape function's error (docs/design-forces.md).
+///
+/// # Inputs
+///
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `up: [f64; 5]`: static uplift — `weight`, `moment_uplift`, `ug_uplift`, `u_uplift`, `moment_elastic_uplift`
+///
+/// Operations: 54 (28 mul, 11 add, 9 div, 3 sub, 2 twice, 1 sq).
+#[inline]
+#[must_use]
+pub fn static_uplift(p: &Params) -> [f64; 5] {
+    let w0 = p[8]; // g
+    let w1 = p[4]; // m_c
+    let w2 = p[3]; // m
+    let w3 = w1 + w2;
+    let w4 = p[5]; // m_b
+    let w5 = w3 + w4;
+    let w6 = w0 * w5;
+    let o0 = w6; // weight
+    let w7 = p[1]; // b
+    let w8 = w6 * w7;
+    let o1 = w8; // moment_uplift
+    let w9 = w2 * w0;
+    let w10 = w7 * w9;
+    let w11 = w4 * w0;
+    let w12 = w7 * w11;
+    let w13 = w10 + w12;
+    let w14 = w1 * w0;
+    let w15 = w7 * w14;
+    let w16 = w13 + w15;
+    let w17: f64 = 0.375;
+    let w18 = w17 * w1;
+    let w19 = w2 + w18;
+    let w20: f64 = 0.11785714285714285;
+    let w21 = w20 * w1;
+    let w22 = w2 + w21;
+    let w23 = w22 + w21;
+    let w24 = w19 / w23;
+    let w25: f64 = -3.0;
+    let w26 = p[2]; // ei
+    let w27 = p[0]; // h
+    let w28 = w27 * w27;
+    let w29 = w27 * w28;
+    let w30 = w26 / w29;
+    let w31 = w25 * w30;
+    let w32 = w31 / w23;
+    let w33 = w24 / w32;
+    let w34 = w9 * w33;
+    let w35 = w27 * w2;
+    let w36: f64 = 0.5;
+    let w37 = w36 * w1;
+    let w38 = w27 * w37;
+    let w39 = w35 + w38;
+    let w40 = w34 - w39;
+    let w41 = w17 * w14;
+    let w42 = w41 * w33;
+    let w43 = w40 + w42;
+    let w44: f64 = 0.1375;
+    let w45 = w44 * w1;
+    let w46 = w27 * w45;
+    let w47 = 2.0 * w46;
+    let w48 = w35 + w47;
+    let w49: f64 = -1.5;
+    let w50 = w49 * w30;
+    let w51 = 2.0 * w33;
+    let w52 = w50 * w51;
+    let w53 = w52 - w19;
+    let w54 = w53 / w23;
+    let w55 = w48 * w54;
+    let w56 = w43 - w55;
+    let w57 = w16 / w56;
+    let o2 = w57; // ug_uplift
+    let w58 = w2 * w57;
+    let w59 = w1 * w57;
+    let w60 = w17 * w59;
+    let w61 = w58 + w60;
+    let w62 = w61 / w23;
+    let w63 = w62 / w32;
+    let o3 = w63; // u_uplift
+    let w64: f64 = 3.0;
+    let w65 = w26 / w28;
+    let w66 = w64 * w65;
+    let w67 = w66 * w63;
+    let o4 = w67; // moment_elastic_uplift
+    [o0, o1, o2, o3, o4]
+}
+
+/// Indices of the elements of the output `up` of [`static_uplift()`].
+pub mod static_uplift {
+    /// Index of `weight`.
+    pub const WEIGHT: usize = 0;
+    /// Index of `moment_uplift`.
+    pub const MOMENT_UPLIFT: usize = 1;
+    /// Index of `ug_uplift`.
+    pub const UG_UPLIFT: usize = 2;
+    /// Index of `u_uplift`.
+    pub const U_UPLIFT: usize = 3;
+    /// Index of `moment_elastic_uplift`.
+    pub const MOMENT_ELASTIC_UPLIFT: usize = 4;
+}
+
 /// Rigid column (u = 0): one degree of freedom, Housner's rocking block with these masses
 ///
 /// Type-level handle of this variant, implementing [`crate::Variant`].
@@ -1499,6 +1851,21 @@ impl crate::Variant for Rigid {
     #[inline]
     fn shape(eta: f64) -> f64 {
         shape(eta)
+    }
+
+    #[inline]
+    fn forces_contact(xc: &[f64; 2], ug: f64, p: &Params) -> [f64; 6] {
+        forces_contact(xc, ug, p)
+    }
+
+    #[inline]
+    fn forces_rocking(x: &[f64; 4], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+        forces_rocking(x, ug, s, p)
+    }
+
+    #[inline]
+    fn static_uplift(p: &Params) -> [f64; 5] {
+        static_uplift(p)
     }
 }
 
@@ -1616,6 +1983,32 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             };
             let eta: f64 = match eta { [v] => *v, _ => return None };
             Some(vec![shape(eta)])
+        }
+        "forces_contact" => {
+            let [xc, ug, p] = inputs else {
+                return None;
+            };
+            let xc: &[f64; 2] = (*xc).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(forces_contact(xc, ug, p).to_vec())
+        }
+        "forces_rocking" => {
+            let [x, ug, s, p] = inputs else {
+                return None;
+            };
+            let x: &[f64; 4] = (*x).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(forces_rocking(x, ug, s, p).to_vec())
+        }
+        "static_uplift" => {
+            let [p] = inputs else {
+                return None;
+            };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(static_uplift(p).to_vec())
         }
         _ => None,
     }
