@@ -100,6 +100,27 @@ impl Record {
         k as f64 * self.dt
     }
 
+    /// The index of the first sample after `t`, `None` from the last one on (or for a NaN).
+    fn next_sample(&self, t: f64) -> Option<usize> {
+        if t.is_nan() {
+            return None;
+        }
+        if t < 0.0 {
+            return Some(0);
+        }
+        let n = self.samples.len();
+        // initial guess, then fix up rounding so that k is the smallest index
+        // with time_of(k) > t
+        let mut k = ((t / self.dt) as usize).min(n - 1);
+        while k < n && self.time_of(k) <= t {
+            k += 1;
+        }
+        while k > 0 && self.time_of(k - 1) > t {
+            k -= 1;
+        }
+        (k < n).then_some(k)
+    }
+
     /// Largest |scaled sample| (peak ground acceleration).
     pub fn peak(&self) -> f64 {
         self.samples.iter().fold(0.0f64, |m, x| m.max(x.abs())) * self.scale.abs()
@@ -129,23 +150,24 @@ impl GroundMotion for Record {
     }
 
     fn next_kink(&self, t: f64) -> Option<f64> {
-        if t.is_nan() {
-            return None;
+        self.next_sample(t).map(|k| self.time_of(k))
+    }
+
+    /// The line of the sample interval that starts at or before `t0`: the interpolated value
+    /// and the interval's own slope. (The trait's default takes the slope from two values,
+    /// which loses digits as `t0` nears the next sample, where an event can end a step.)
+    fn accel_series(&self, t0: f64, out: &mut [f64]) -> bool {
+        out.fill(0.0);
+        let Some(k) = self.next_sample(t0).filter(|&k| k > 0) else {
+            return true; // before the record or from its end on
+        };
+        if let Some(value) = out.first_mut() {
+            *value = self.accel_right(t0);
         }
-        if t < 0.0 {
-            return Some(0.0);
+        if let Some(slope) = out.get_mut(1) {
+            *slope = self.scale * (self.samples[k] - self.samples[k - 1]) / self.dt;
         }
-        let n = self.samples.len();
-        // initial guess, then fix up rounding so that k is the smallest index
-        // with time_of(k) > t
-        let mut k = ((t / self.dt) as usize).min(n - 1);
-        while k < n && self.time_of(k) <= t {
-            k += 1;
-        }
-        while k > 0 && self.time_of(k - 1) > t {
-            k -= 1;
-        }
-        (k < n).then(|| self.time_of(k))
+        true
     }
 
     fn accel_left(&self, t: f64) -> f64 {

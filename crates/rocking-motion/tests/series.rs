@@ -1,10 +1,11 @@
 //! `GroundMotion::accel_series` of every excitation kind against independent references: the
 //! pulses against their closed forms' derivatives (sympy, evaluated in mpmath at 50 digits:
-//! fixture `tests/fixtures/series_reference.json` from `series_reference.py` beside it), and
-//! every kind against its own pointwise `accel` summed from the series across a step.
+//! fixture `tests/fixtures/series_reference.json` from `series_reference.py` beside it), every
+//! kind against its own pointwise `accel` summed from the series across a step, and records
+//! against the exact line of each sample interval.
 
 use rocking_motion::{
-    CosinePulse, Excitation, GroundMotion, MavroeidisPapageorgiou, Ricker, SinePulse,
+    CosinePulse, Excitation, GroundMotion, MavroeidisPapageorgiou, Record, Ricker, SinePulse,
 };
 use serde_json::Value;
 
@@ -162,5 +163,57 @@ fn series_sum_to_the_pulse_across_a_step() {
             series(m, start - 1.0, 21).iter().all(|&c| c == 0.0),
             "{m:?}: 0 before"
         );
+    }
+}
+
+/// A record's series is the line of the sample interval that starts at or before t0: the
+/// interpolated value and the interval's slope, exactly, wherever in the interval t0 is
+/// (an event can end a step just before a sample); zero before the record and from its end.
+#[test]
+fn record_series_is_the_sample_interval_line() {
+    let (dt, samples) = (0.02, vec![0.0, 0.31, -0.52, -0.49, 0.2, 0.9, -0.3]);
+    let r = Record::new(dt, samples.clone())
+        .unwrap()
+        .with_scale(9.80665);
+    let scale = 9.80665;
+    let slope_scale = samples
+        .windows(2)
+        .map(|w| (w[1] - w[0]).abs() * scale / dt)
+        .fold(0f64, f64::max);
+    let next_down = |x: f64| f64::from_bits(x.to_bits() - 1);
+    for i in 0..samples.len() - 1 {
+        let (t_i, t_j) = (r.time_of(i), r.time_of(i + 1));
+        let slope = scale * (samples[i + 1] - samples[i]) / dt;
+        for t0 in [
+            t_i,
+            t_i + 0.37 * dt,
+            t_j - 1e-6 * dt,
+            t_j - 1e-12 * dt,
+            next_down(t_j),
+        ] {
+            let c = series(&r, t0, 21);
+            let line = scale * samples[i] + slope * (t0 - t_i);
+            assert!(
+                (c[0] - line).abs() <= 1e-14 * r.peak(),
+                "value at {t0}: {} vs {line}",
+                c[0]
+            );
+            assert!(
+                (c[1] - slope).abs() <= 1e-12 * slope_scale,
+                "interval {i}, t0 = {t0}: slope {} vs {slope} (error {:.1e} of the largest slope)",
+                c[1],
+                (c[1] - slope).abs() / slope_scale
+            );
+            assert!(c[2..].iter().all(|&x| x == 0.0), "a line at {t0}");
+        }
+    }
+    for t0 in [-1.0, -f64::from_bits(1), r.end(), r.end() + 1.0] {
+        assert!(series(&r, t0, 21).iter().all(|&c| c == 0.0), "0 at {t0}");
+    }
+    // Through the wrappers: Excitation and Scaled.
+    let e = Excitation::from(r.clone()).scale(-0.5);
+    let (a, b) = (series(&e, 0.05, 21), series(&r, 0.05, 21));
+    for (x, y) in a.iter().zip(&b) {
+        assert_eq!(*x, -0.5 * y);
     }
 }
