@@ -44,6 +44,19 @@
 //! | [`Record`] | piecewise-linear, equally spaced samples |
 //! | [`Scaled`] | factor × any motion |
 //!
+//! # Taylor series
+//!
+//! Every motion gives the Taylor coefficients of the piece that starts at a
+//! time t0 ([`GroundMotion::accel_series`]), to any order, for Taylor-series
+//! integrators (which, like the others, never step past a kink): without
+//! allocating, and with a fixed number of transcendental calls whatever the
+//! order. Sine and cosine pulses: closed form, one `sin_cos`; the
+//! Mavroeidis–Papageorgiou pulse: the same for each of the three harmonics its
+//! products of sines and cosines sum to; Ricker wavelets: the Gaussian's
+//! coefficients from one `exp` by the recurrence of its linear ODE
+//! g' = −2cβ g, times the polynomial factor's; records: the line of the
+//! sample interval (every sample is a kink, so a step ends at the next one).
+//!
 //! All implement the [`GroundMotion`] trait (use it as a generic bound for
 //! static dispatch); the closed enum [`Excitation`] wraps them when the kind
 //! of motion is only known at run time — its methods are a `match`, still
@@ -146,10 +159,11 @@ pub trait GroundMotion {
     }
 
     /// Taylor coefficients `out[k] = ü_g⁽ᵏ⁾(t0⁺) / k!` of the smooth piece of the motion that
-    /// starts at `t0` and lasts to the next kink, for Taylor-series integrators; `false` when the
-    /// motion cannot give them exactly. The default serves motions linear between kinks
-    /// (infinite [`resolution`](Self::resolution), e.g. records): the value from the right at
-    /// `t0` and the slope to the left limit at the next kink.
+    /// starts at `t0` and lasts to the next kink, for as many orders as `out` holds, for
+    /// Taylor-series integrators; `false` when the motion cannot give them exactly (every motion
+    /// of this crate can). The default serves motions linear between kinks (infinite
+    /// [`resolution`](Self::resolution)): the value from the right at `t0` and the slope to the
+    /// left limit at the next kink.
     fn accel_series(&self, t0: f64, out: &mut [f64]) -> bool {
         if self.resolution() != f64::INFINITY || out.is_empty() {
             return false;

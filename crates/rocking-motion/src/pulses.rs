@@ -91,14 +91,11 @@ impl GroundMotion for SinePulse {
         self.period() / 16.0
     }
     fn accel_series(&self, t0: f64, out: &mut [f64]) -> bool {
-        let on = t0 >= self.start && t0 < self.end();
-        harmonic_series(
-            on,
-            self.amplitude,
-            self.omega,
-            self.omega * (t0 - self.start),
-            out,
-        );
+        out.fill(0.0);
+        if t0 >= self.start && t0 < self.end() {
+            let phase = (self.omega * (t0 - self.start)).sin_cos();
+            add_harmonic(self.amplitude, self.omega, phase, out);
+        }
         true
     }
     #[inline]
@@ -175,9 +172,12 @@ impl GroundMotion for CosinePulse {
         self.period() / 16.0
     }
     fn accel_series(&self, t0: f64, out: &mut [f64]) -> bool {
-        let on = t0 >= self.start && t0 < self.end();
-        let phase = self.omega * (t0 - self.start) + 0.5 * PI;
-        harmonic_series(on, self.amplitude, self.omega, phase, out);
+        out.fill(0.0);
+        if t0 >= self.start && t0 < self.end() {
+            // cos x = sin(x + π/2), whose sine and cosine are cos x and −sin x.
+            let (s, c) = (self.omega * (t0 - self.start)).sin_cos();
+            add_harmonic(self.amplitude, self.omega, (c, -s), out);
+        }
         true
     }
     #[inline]
@@ -202,20 +202,42 @@ impl GroundMotion for CosinePulse {
     }
 }
 
-/// Taylor coefficients of `a sin(φ + ω τ)` at τ = 0 (`a ωᵏ/k! sin(φ + kπ/2)`), or zeros
-/// outside the support (`on == false`).
-fn harmonic_series(on: bool, a: f64, omega: f64, phase: f64, out: &mut [f64]) {
-    out.fill(0.0);
-    if !on {
-        return;
-    }
-    let (s, c) = phase.sin_cos();
+/// Adds the Taylor coefficients of `a sin(φ + ω h)` at h = 0, `a ωᵏ/k! sin(φ + kπ/2)`, to `out`,
+/// given `(sin φ, cos φ)`: no transcendental function per order.
+fn add_harmonic(a: f64, omega: f64, (s, c): (f64, f64), out: &mut [f64]) {
     let mut scale = a;
     for (k, o) in out.iter_mut().enumerate() {
         if k > 0 {
             scale *= omega / k as f64;
         }
-        *o = scale * [s, c, -s, -c][k % 4];
+        *o += scale * [s, c, -s, -c][k % 4];
+    }
+}
+
+/// Overwrites `out` with the Taylor coefficients of the Gaussian e^{−β²} along β = b + c h at
+/// h = 0. Its rate g' = −2cβ g is a linear ODE with a linear coefficient, so the coefficients
+/// follow from one `exp` by (k+1) g_{k+1} = −2c (b g_k + c g_{k−1}) (the Hermite recurrence:
+/// g_k = e^{−b²} (−c)ᵏ H_k(b)/k!).
+fn gaussian_series(b: f64, c: f64, out: &mut [f64]) {
+    let (mut previous, mut current) = (0.0, (-(b * b)).exp());
+    for (k, o) in out.iter_mut().enumerate() {
+        *o = current;
+        let next = -2.0 * c * (b * current + c * previous) / (k + 1) as f64;
+        (previous, current) = (current, next);
+    }
+}
+
+/// Multiplies the series in `out` in place by the polynomial `p[0] + p[1] h + …` (Cauchy
+/// product, truncated to `out`'s length; from the top so that each order reads lower orders not
+/// yet overwritten).
+fn multiply_by_polynomial(p: &[f64], out: &mut [f64]) {
+    for k in (0..out.len()).rev() {
+        out[k] = p
+            .iter()
+            .take(k + 1)
+            .enumerate()
+            .map(|(j, pj)| pj * out[k - j])
+            .sum();
     }
 }
 
@@ -327,19 +349,64 @@ impl Ricker {
     /// The untruncated wavelet.
     #[inline]
     pub fn untruncated(&self, t: f64) -> f64 {
-        let b = 0.5 * self.omega_p * (t - self.center());
-        let b2 = b * b;
-        let shape = match self.kind {
-            RickerKind::Symmetric => 1.0 - 2.0 * b2,
-            RickerKind::Antisymmetric => b * (2.0 * b2 - 3.0) / ANTISYMMETRIC_RICKER_NORM,
-        };
-        self.amplitude * shape * (-b2).exp()
+        let b = self.beta(t);
+        self.amplitude * self.shape(b) * (-(b * b)).exp()
+    }
+
+    /// β = ω_p (t − t_s)/2.
+    #[inline]
+    fn beta(&self, t: f64) -> f64 {
+        0.5 * self.omega_p * (t - self.center())
+    }
+
+    /// The polynomial factor of the wavelet at β (without the amplitude).
+    #[inline]
+    fn shape(&self, b: f64) -> f64 {
+        match self.kind {
+            RickerKind::Symmetric => 1.0 - 2.0 * b * b,
+            RickerKind::Antisymmetric => b * (2.0 * b * b - 3.0) / ANTISYMMETRIC_RICKER_NORM,
+        }
+    }
+
+    /// Taylor coefficients, in h, of the polynomial factor times the amplitude along
+    /// β = b + c h: `a P⁽ʲ⁾(b) cʲ / j!` (degree 2 or 3).
+    fn shape_series(&self, b: f64, c: f64) -> [f64; 4] {
+        let a = self.amplitude;
+        match self.kind {
+            RickerKind::Symmetric => [
+                a * self.shape(b),
+                a * (-4.0 * b * c),
+                a * (-2.0 * c * c),
+                0.0,
+            ],
+            RickerKind::Antisymmetric => {
+                let n = a / ANTISYMMETRIC_RICKER_NORM;
+                [
+                    a * self.shape(b),
+                    n * (6.0 * b * b - 3.0) * c,
+                    n * 6.0 * b * c * c,
+                    n * 2.0 * c * c * c,
+                ]
+            }
+        }
     }
 }
 
 impl GroundMotion for Ricker {
     fn resolution(&self) -> f64 {
         self.period() / 16.0
+    }
+    /// The Gaussian's series ([`gaussian_series`]) times the polynomial factor's: one `exp`
+    /// and a few products per order.
+    fn accel_series(&self, t0: f64, out: &mut [f64]) -> bool {
+        if !(t0 >= self.start && t0 < self.end()) {
+            out.fill(0.0);
+            return true;
+        }
+        let (b, c) = (self.beta(t0), 0.5 * self.omega_p);
+        gaussian_series(b, c, out);
+        multiply_by_polynomial(&self.shape_series(b, c), out);
+        true
     }
     #[inline]
     fn accel(&self, t: f64) -> f64 {
@@ -378,7 +445,10 @@ impl GroundMotion for Ricker {
 ///
 /// ü_g(t) = −(A Ω / 2) [ (1/γ) sin(Ω τ/γ) cos(Ω τ + ν)
 ///                        + (1 + cos(Ω τ/γ)) sin(Ω τ + ν) ]
-///        = −π f_p A [ (1/γ) sin(Ω τ/γ) cos(Ω τ + ν) + (1 + cos(Ω τ/γ)) sin(Ω τ + ν) ].
+///        = −π f_p A [ (1/γ) sin(Ω τ/γ) cos(Ω τ + ν) + (1 + cos(Ω τ/γ)) sin(Ω τ + ν) ],
+///
+/// evaluated as the equal sum of three harmonics (sums of angles instead of products), which
+/// also gives its Taylor series in closed form.
 ///
 /// Both v and ü_g vanish at the ends τ = ±γ/(2 f_p) (there Ω τ/γ = ±π), so
 /// ü_g is continuous; its derivative jumps, and the ends are the kinks.
@@ -443,8 +513,27 @@ impl MavroeidisPapageorgiou {
         self.t0 - self.half_duration()
     }
 
+    /// On the closed support, bounded as the kinks are (so the series agrees with `accel` there).
     fn on_support(&self, t: f64) -> bool {
-        (t - self.t0).abs() <= self.half_duration()
+        t >= self.start() && t <= self.end()
+    }
+
+    /// ü_g on the support as three harmonics `a sin(φ + ω h)` at h = 0, each as
+    /// `(a, ω, (sin φ, cos φ))`: the products of the formula are sums of angles,
+    /// ü_g = −(AΩ/2) [sin C + ½(1 + 1/γ) sin(C + E) + ½(1 − 1/γ) sin(C − E)] with C = Ωτ + ν
+    /// and E = Ωτ/γ, so that ü_g and its Taylor series are one expression.
+    fn harmonics(&self, t: f64) -> [(f64, f64, (f64, f64)); 3] {
+        let w = 2.0 * PI * self.f_p;
+        let we = w / self.gamma;
+        let tau = t - self.t0;
+        let (c, e) = (w * tau + self.nu, we * tau);
+        let a = -0.5 * self.amplitude * w;
+        let r = 1.0 / self.gamma;
+        [
+            (a, w, c.sin_cos()),
+            (0.5 * a * (1.0 + r), w + we, (c + e).sin_cos()),
+            (0.5 * a * (1.0 - r), w - we, (c - e).sin_cos()),
+        ]
     }
 
     /// Ground velocity v(t) of the MP model (0 outside the support).
@@ -462,16 +551,22 @@ impl GroundMotion for MavroeidisPapageorgiou {
     fn resolution(&self) -> f64 {
         1.0 / (16.0 * self.f_p)
     }
+    /// The sum of the three [`harmonics`](Self::harmonics)' series: no series products.
+    fn accel_series(&self, t0: f64, out: &mut [f64]) -> bool {
+        out.fill(0.0);
+        if t0 >= self.start() && t0 < self.end() {
+            for (a, omega, phase) in self.harmonics(t0) {
+                add_harmonic(a, omega, phase, out);
+            }
+        }
+        true
+    }
     #[inline]
     fn accel(&self, t: f64) -> f64 {
         if !self.on_support(t) {
             return 0.0;
         }
-        let w = 2.0 * PI * self.f_p;
-        let tau = t - self.t0;
-        let (se, ce) = (w * tau / self.gamma).sin_cos();
-        let (sc, cc) = (w * tau + self.nu).sin_cos();
-        -0.5 * self.amplitude * w * (se * cc / self.gamma + (1.0 + ce) * sc)
+        self.harmonics(t).iter().map(|(a, _, (s, _))| a * s).sum()
     }
     fn end(&self) -> f64 {
         self.t0 + self.half_duration()
