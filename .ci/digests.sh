@@ -23,14 +23,14 @@ digest() { # NAME FILE
     for scene in scenes/*.toml; do
         stem=$(basename "$scene" .toml)
         case $stem in *-ida | *-msa) continue ;; esac
-        "$ROCKING" run "$scene" --json --out "$work/$stem" >"$work/$stem.json"
+        "$ROCKING" run "$scene" --json --out "$work/$stem" >"$work/$stem.json" 2>>"$work/stderr"
         digest "$stem run --json" "$work/$stem.json"
         for f in summary.json history.csv events.csv; do
             [ -f "$work/$stem/$f" ] && digest "$stem/$f" "$work/$stem/$f"
         done
         # The same scene by the Taylor method (the accurate preset), whatever the scene asks for.
         "$ROCKING" run "$scene" --set solver.accuracy=accurate --json --out "$work/$stem-acc" \
-            >"$work/$stem-acc.json"
+            >"$work/$stem-acc.json" 2>>"$work/stderr"
         digest "$stem accurate run --json" "$work/$stem-acc.json"
         for f in history.csv events.csv; do
             [ -f "$work/$stem-acc/$f" ] && digest "$stem accurate/$f" "$work/$stem-acc/$f"

@@ -61,7 +61,25 @@ fn check_mirror(
             .max(close(a.theta_dot, -b.theta_dot, sad))
             .max(close(a.u_dot, -b.u_dot, sud))
             .max(close(a.ug, -b.ug, 1.0))
-            .max((a.e_total - b.e_total).abs());
+            .max((a.e_total - b.e_total).abs())
+            // The base moment and shear and the horizontal reaction are odd, the vertical even.
+            .max(close(a.base_moment_over_wb, -b.base_moment_over_wb, 1.0))
+            .max(close(a.base_shear_over_w, -b.base_shear_over_w, 1.0))
+            .max(close(
+                a.elastic_base_moment_over_wb,
+                -b.elastic_base_moment_over_wb,
+                1.0,
+            ))
+            .max(close(
+                a.horizontal_reaction_over_w,
+                -b.horizontal_reaction_over_w,
+                1.0,
+            ))
+            .max(close(
+                a.vertical_reaction_over_w,
+                b.vertical_reaction_over_w,
+                1.0,
+            ));
     }
     let (p, m) = (&plus.summary, &minus.summary);
     assert_eq!(p.impacts, m.impacts);
@@ -83,6 +101,18 @@ fn check_mirror(
         ),
         (p.energy.unwrap().ground_work, m.energy.unwrap().ground_work),
         (p.energy.unwrap().damping, m.energy.unwrap().damping),
+        (
+            p.forces.unwrap().max_base_moment_over_wb,
+            m.forces.unwrap().max_base_moment_over_wb,
+        ),
+        (
+            p.forces.unwrap().max_base_shear_over_w,
+            m.forces.unwrap().max_base_shear_over_w,
+        ),
+        (
+            p.forces.unwrap().min_vertical_reaction_over_w,
+            m.forces.unwrap().min_vertical_reaction_over_w,
+        ),
     ];
     let worst_s = pairs
         .iter()

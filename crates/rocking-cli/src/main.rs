@@ -290,8 +290,14 @@ fn run(scene: &Path, set: &[String], out: Option<PathBuf>, json: bool) -> Result
     if m.plots {
         m.options.event_log = true; // impacts are marked on the plots
     }
-    let run = report::simulate(&m, scene)?;
-    let summary = report::summary_json(&m, scene, &run)?;
+    let report = report::simulate(&m, scene)?;
+    let summary = report::summary_json(&m, scene, &report)?;
+    if let Some(f) = &report.run.summary.forces {
+        for w in report::warnings(&m, f) {
+            eprintln!("warning: {}: {w}", scene.display());
+        }
+    }
+    let run = report.run;
     let history = if m.history_csv {
         Some(report::history_csv(&m, &run)?)
     } else {

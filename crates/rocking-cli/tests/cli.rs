@@ -138,7 +138,21 @@ fn outputs_are_written() {
         &h[..80]
     );
     assert!(h.lines().count() > 1000);
-    assert!(!h.contains("NaN") && !h.contains("inf"));
+    // No NaN anywhere; "inf" only as the required friction where the vertical reaction is not
+    // positive (no friction holds there: the lift-off warning).
+    assert!(!h.contains("NaN"));
+    let header: Vec<&str> = h.lines().next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|c| *c == name).unwrap();
+    let (friction, vertical) = (col("required_friction"), col("vertical_reaction_over_w"));
+    for line in h.lines().skip(1) {
+        let cells: Vec<&str> = line.split(',').collect();
+        for (i, c) in cells.iter().enumerate() {
+            if c.contains("inf") {
+                let v: f64 = cells[vertical].parse().unwrap();
+                assert!(i == friction && *c == "inf" && v <= 0.0, "{line}");
+            }
+        }
+    }
     let e = std::fs::read_to_string(out.join("events.csv")).unwrap();
     assert!(e.starts_with("tau,t_s,kind,branch,"));
     assert!(e.contains(",impact,") && e.contains(",uplift,"));

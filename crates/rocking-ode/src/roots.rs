@@ -102,6 +102,31 @@ pub fn first_true(mut holds: impl FnMut(f64) -> bool, a: f64, b: f64) -> f64 {
     hi
 }
 
+/// The largest value of `f` on [a, b] where it is unimodal (golden-section search, to 1e-10
+/// relative in t): the time and the value. Outside unimodality it finds a local maximum.
+pub fn golden_max(mut f: impl FnMut(f64) -> f64, a: f64, b: f64) -> (f64, f64) {
+    let r = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut a, mut b) = (a, b);
+    let (mut c, mut d) = (b - r * (b - a), a + r * (b - a));
+    let (mut fc, mut fd) = (f(c), f(d));
+    while b - a > 1e-10 * b.abs().max(1.0) {
+        if fc > fd {
+            (b, d, fd) = (d, c, fc);
+            c = b - r * (b - a);
+            fc = f(c);
+        } else {
+            (a, c, fc) = (c, d, fd);
+            d = a + r * (b - a);
+            fd = f(d);
+        }
+    }
+    if fc > fd {
+        (c, fc)
+    } else {
+        (d, fd)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -129,6 +154,12 @@ mod tests {
     fn a_function_that_stays_negative_does_not_graze() {
         let g = |t: f64| SVector::<f64, 1>::new(-1e-6 - (t - 0.3).powi(2));
         assert_eq!(grazing(g, 0.0, 1.0, &g(0.0), &g(1.0)), None);
+    }
+
+    #[test]
+    fn golden_max_finds_the_peak_of_a_cosine() {
+        let (t, v) = golden_max(|t| (t - 0.3).cos(), 0.0, 1.0);
+        assert!((t - 0.3).abs() < 1e-9 && (v - 1.0).abs() < 1e-16, "{t} {v}");
     }
 
     #[test]

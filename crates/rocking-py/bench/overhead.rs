@@ -21,7 +21,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     let mut checksum = 0.0;
     for _ in 0..n.div_ceil(10) {
-        checksum += report::simulate(&m, &path)?.summary.max_theta_over_alpha; // warm-up
+        checksum += report::simulate(&m, &path)?
+            .run
+            .summary
+            .max_theta_over_alpha; // warm-up
     }
     // The best of 20 batches: on a shared machine the minimum is the least disturbed.
     let batch = n.div_ceil(20);
@@ -29,8 +32,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     for _ in 0..20 {
         let start = Instant::now();
         for _ in 0..batch {
-            let run = report::simulate(&m, &path)?;
-            let summary = report::summary_json(&m, &path, &run)?.to_string();
+            let report = report::simulate(&m, &path)?;
+            let summary = report::summary_json(&m, &path, &report)?.to_string();
             checksum += summary.len() as f64;
         }
         best = best.min(start.elapsed().as_secs_f64() / batch as f64);

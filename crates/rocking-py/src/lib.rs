@@ -120,8 +120,9 @@ impl Scene {
         let model = Arc::clone(&self.model);
         let path = self.path.clone();
         py.detach(move || {
-            let run = report::simulate(&model, &path)?;
-            let summary = report::summary_json(&model, &path, &run)?.to_string();
+            let report = report::simulate(&model, &path)?;
+            let summary = report::summary_json(&model, &path, &report)?.to_string();
+            let run = report.run;
             Ok(RunOutput {
                 model,
                 run,

@@ -92,6 +92,10 @@ pub struct EffectsSpec {
     /// Angle in rad, or "pi/2".
     pub overturn: Option<Value>,
     pub energy: Option<bool>,
+    /// false: the fixed-base twin (held in full contact, no uplift check).
+    pub uplift: Option<bool>,
+    /// The ground's coefficient of friction: a warning when the run needs more.
+    pub friction: Option<f64>,
 }
 
 /// `[solver]`.
@@ -133,6 +137,10 @@ pub struct OutputSpec {
     pub animation_frames: Option<i64>,
     pub animation_width: Option<i64>,
     pub animation_height: Option<i64>,
+    /// Track the section forces and reactions (default true; a sweep may skip them).
+    pub forces: Option<bool>,
+    /// Run the fixed-base twin too and report the ratios of the forces.
+    pub fixed_base_reference: Option<bool>,
 }
 
 /// A whole scene file.

@@ -69,6 +69,8 @@ pub struct Setup {
     pub history_csv: bool,
     /// The animated GIF asked for (`[output] animation = true`).
     pub animation: Option<Animation>,
+    /// Run the fixed-base twin too (`[output] fixed_base_reference = true`).
+    pub fixed_base_reference: bool,
 }
 
 /// The frame count and size (pixels) of an animated GIF of a run: bounded so that a GIF stays a
@@ -848,6 +850,17 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Setup, SceneError> {
     let impact = impact_model(src, fx.and_then(|f| f.impact.as_ref()))?;
     let overturn = overturn_angle(src, fx.and_then(|f| f.overturn.as_ref()))?;
     let energy = fx.and_then(|f| f.energy).unwrap_or(false);
+    let uplift = fx.and_then(|f| f.uplift).unwrap_or(true);
+    let friction = match fx.and_then(|f| f.friction) {
+        Some(mu) => Some(finite(
+            src,
+            "effects.friction",
+            mu,
+            mu >= 0.0,
+            "a coefficient of friction >= 0",
+        )?),
+        None => None,
+    };
 
     let sv = spec.solver.as_ref();
     let mut accuracy: Accuracy = sv
@@ -1044,8 +1057,26 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Setup, SceneError> {
         history,
         event_log: out.and_then(|o| o.events).unwrap_or(false),
         initial,
+        uplift,
+        forces: out.and_then(|o| o.forces).unwrap_or(true),
+        friction,
         ..Options::default()
     };
+    let fixed_base_reference = out.and_then(|o| o.fixed_base_reference).unwrap_or(false);
+    if fixed_base_reference && !uplift {
+        return Err(src.err(
+            "output.fixed_base_reference",
+            "`fixed_base_reference` in [output] compares the run with its fixed-base twin: it \
+             needs the run itself to uplift (`uplift = true` in [effects])",
+        ));
+    }
+    if fixed_base_reference && !options.forces {
+        return Err(src.err(
+            "output.fixed_base_reference",
+            "`fixed_base_reference` in [output] compares the forces of the run and of its \
+             fixed-base twin: it needs `forces = true` in [output]",
+        ));
+    }
     Ok(Setup {
         title: spec.title.clone(),
         structure,
@@ -1059,6 +1090,7 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Setup, SceneError> {
         units,
         plots,
         history_csv,
+        fixed_base_reference,
         animation,
     })
 }

@@ -156,6 +156,8 @@ impl Base {
         m.options.event_log = false;
         m.options.energy = false;
         m.options.stop_when_known = true;
+        // A cell reports its class, max θ/α and impacts: the forces cost a kernel per step.
+        m.options.forces = false;
         rocking::simulate(&m.structure, &m.excitation, &m.effects, &m.options)
             .map(|r| r.summary)
             .map_err(|e| {

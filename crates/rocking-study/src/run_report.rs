@@ -5,16 +5,42 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use rocking::Run;
+use rocking::{ForceSummary, Run, Summary, Time};
 use serde_json::{json, Value};
 
 use rocking_scene::setup::Setup;
 use rocking_scene::SceneError;
 
-/// Runs a built scene with the command's error messages: bad options are input errors, a
-/// guard that stops a run names the scene settings that bound it.
-pub fn simulate(m: &Setup, scene: &Path) -> Result<Run, SceneError> {
-    rocking::simulate(&m.structure, &m.excitation, &m.effects, &m.options).map_err(|e| {
+/// A run and, when the scene asks for it (`[output] fixed_base_reference`), the summary of its
+/// fixed-base twin: the same structure under the same excitation, held in full contact.
+pub struct Report {
+    /// The run.
+    pub run: Run,
+    /// The fixed-base twin's summary.
+    pub fixed_base: Option<Summary>,
+}
+
+/// Runs a built scene (and its fixed-base twin when asked for) with the command's error
+/// messages: bad options are input errors, a guard that stops a run names the scene settings
+/// that bound it.
+pub fn simulate(m: &Setup, scene: &Path) -> Result<Report, SceneError> {
+    let run = simulate_with(m, &m.options, scene)?;
+    let fixed_base = if m.fixed_base_reference {
+        let twin = rocking::Options {
+            uplift: false,
+            history: rocking::History::None,
+            event_log: false,
+            ..m.options
+        };
+        Some(simulate_with(m, &twin, scene)?.summary)
+    } else {
+        None
+    };
+    Ok(Report { run, fixed_base })
+}
+
+fn simulate_with(m: &Setup, options: &rocking::Options, scene: &Path) -> Result<Run, SceneError> {
+    rocking::simulate(&m.structure, &m.excitation, &m.effects, options).map_err(|e| {
         if e.is_invalid_input() {
             SceneError::input(format!("{}: {e}", scene.display()))
         } else if e.is_guard() {
@@ -46,6 +72,7 @@ fn finite(name: &str, x: f64) -> Result<f64, SceneError> {
 pub fn derived_json(model: &Setup) -> Result<Value, SceneError> {
     let d = model.structure.derived();
     let u = &model.units;
+    let lift = model.structure.static_uplift();
     let v = json!({
         "p": d.p,
         "p_per_second": model.structure.p_per_second(),
@@ -62,6 +89,9 @@ pub fn derived_json(model: &Setup) -> Result<Value, SceneError> {
         "e_ref": d.e_ref,
         "static_uplift_over_g_tan_alpha":
             model.structure.static_uplift_acceleration() / u.accel_g_tan_alpha(),
+        "weight": lift.weight,
+        "uplift_moment": lift.moment,
+        "elastic_moment_at_uplift_over_wb": lift.elastic_moment / lift.moment,
         "units": if u.physical { "SI (s, m, kg)" } else { "model (R = g = m = 1, time τ)" },
     });
     if let Some((k, _)) = v
@@ -80,18 +110,9 @@ pub fn derived_json(model: &Setup) -> Result<Value, SceneError> {
 /// The summary object printed by `--json` and written to summary.json: the run's
 /// [`Summary`](rocking::Summary) as it serializes (a time `*_time` as τ and `*_time_s` in seconds),
 /// with what produced it (scene, title, variant and why, excitation) and the derived quantities.
-pub fn summary_json(model: &Setup, scene: &Path, run: &Run) -> Result<Value, SceneError> {
-    let fields = serde_path_to_error::serialize(&run.summary, serde_json::value::Serializer)
-        .map_err(|e| {
-            SceneError::failure(format!(
-                "the run produced a non-finite {}: {}; no results written",
-                e.path(),
-                e.inner()
-            ))
-        })?;
-    let Value::Object(fields) = fields else {
-        unreachable!("a struct serializes to an object")
-    };
+pub fn summary_json(model: &Setup, scene: &Path, report: &Report) -> Result<Value, SceneError> {
+    let run = &report.run;
+    let fields = serialized(&run.summary)?;
     let mut out = serde_json::Map::new();
     for (key, value) in fields {
         if key.ends_with("_time") {
@@ -110,7 +131,103 @@ pub fn summary_json(model: &Setup, scene: &Path, run: &Run) -> Result<Value, Sce
     out.insert("variant_reasons".into(), json!(model.reasons));
     out.insert("excitation".into(), json!(model.excitation_description));
     out.insert("derived".into(), derived_json(model)?);
+    if let Some(f) = &run.summary.forces {
+        forces_json(model, f, report.fixed_base.as_ref(), &mut out)?;
+    }
     Ok(Value::Object(out))
+}
+
+/// A serializable value as a JSON object; a non-finite number is an error naming its field.
+fn serialized(v: &impl serde::Serialize) -> Result<serde_json::Map<String, Value>, SceneError> {
+    let value = serde_path_to_error::serialize(v, serde_json::value::Serializer).map_err(|e| {
+        SceneError::failure(format!(
+            "the run produced a non-finite {}: {}; no results written",
+            e.path(),
+            e.inner()
+        ))
+    })?;
+    match value {
+        Value::Object(map) => Ok(map),
+        _ => unreachable!("a struct serializes to an object"),
+    }
+}
+
+/// The force maxima in SI (when the scene has units), the warnings of the model's no-sliding
+/// and no-jumping assumptions, and, with the fixed-base twin, its maxima and the ratios.
+fn forces_json(
+    model: &Setup,
+    f: &ForceSummary,
+    twin: Option<&Summary>,
+    out: &mut serde_json::Map<String, Value>,
+) -> Result<(), SceneError> {
+    let lift = model.structure.static_uplift();
+    if model.units.physical {
+        out.insert(
+            "max_base_moment_nm".into(),
+            json!(f.max_base_moment_over_wb * lift.moment),
+        );
+        out.insert(
+            "max_base_shear_n".into(),
+            json!(f.max_base_shear_over_w * lift.weight),
+        );
+    }
+    out.insert("warnings".into(), json!(warnings(model, f)));
+    if let Some(t) = twin {
+        let Some(tf) = &t.forces else {
+            return Ok(());
+        };
+        let mut fixed = serialized(tf)?;
+        fixed.retain(|k, _| !k.ends_with("_time"));
+        fixed.insert("max_u_over_ucr".into(), json!(t.max_u_over_ucr));
+        out.insert("fixed_base".into(), Value::Object(fixed));
+        let ratios = [
+            (
+                "base_moment_ratio",
+                f.max_base_moment_over_wb,
+                tf.max_base_moment_over_wb,
+            ),
+            (
+                "base_shear_ratio",
+                f.max_base_shear_over_w,
+                tf.max_base_shear_over_w,
+            ),
+        ];
+        for (key, rocking, fixed) in ratios {
+            // A twin that carries no force (no excitation) has no ratio.
+            if fixed > 0.0 {
+                out.insert(key.into(), json!(rocking / fixed));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The model's assumptions that a run breaks, with the first time it does.
+pub fn warnings(model: &Setup, f: &ForceSummary) -> Vec<String> {
+    let when = |t: Time| match t.seconds {
+        Some(s) => format!("τ = {:.6} (t = {s:.6} s)", t.tau),
+        None => format!("τ = {:.6}", t.tau),
+    };
+    let mut out = Vec::new();
+    if let (Some(t), Some(mu)) = (f.first_slip_time, model.options.friction) {
+        out.push(format!(
+            "the required friction |R_h|/R_v exceeds the ground's friction {mu} first at {}: \
+             the structure would slide there, which the model does not include (max required \
+             friction {:.4})",
+            when(t),
+            f.max_required_friction
+        ));
+    }
+    if let Some(t) = f.first_lift_off_time {
+        out.push(format!(
+            "the vertical reaction R_v falls below zero first at {} (min R_v/W = {:.4}): the \
+             ground would have to pull, the structure would jump there, which the model does not \
+             include",
+            when(t),
+            f.min_vertical_reaction_over_w
+        ));
+    }
+    out
 }
 
 fn num(out: &mut String, x: f64) -> Result<(), SceneError> {
@@ -119,14 +236,16 @@ fn num(out: &mut String, x: f64) -> Result<(), SceneError> {
     Ok(())
 }
 
-/// history.csv: τ, seconds (when known), normalised state, phase, energies, ground acceleration.
+/// history.csv: τ, seconds (when known), normalised state, phase, energies, ground acceleration,
+/// the section forces at the column base and the ground reactions.
 pub fn history_csv(model: &Setup, run: &Run) -> Result<String, SceneError> {
     let d = model.structure.derived();
     let u = &model.units;
     let ps = model.structure.p_per_second();
     let mut out = String::from(
         "tau,t_s,theta_over_alpha,u_over_ucr,theta_dot_over_alpha_p,u_dot_over_ucr_omega_n,\
-         phase,e_kin_over_eref,e_total_over_eref,ug_over_g_tan_alpha\n",
+         phase,e_kin_over_eref,e_total_over_eref,ug_over_g_tan_alpha,base_moment_over_wb,\
+         base_shear_over_w,elastic_base_moment_over_wb,required_friction,vertical_reaction_over_w\n",
     );
     for r in &run.history {
         let _ = write!(out, "{}", finite("τ", r.tau)?);
@@ -143,6 +262,15 @@ pub fn history_csv(model: &Setup, run: &Run) -> Result<String, SceneError> {
         num(&mut out, r.e_kin)?;
         num(&mut out, r.e_total)?;
         num(&mut out, r.ug / u.accel_g_tan_alpha())?;
+        num(&mut out, r.base_moment_over_wb)?;
+        num(&mut out, r.base_shear_over_w)?;
+        num(&mut out, r.elastic_base_moment_over_wb)?;
+        // Where R_v <= 0 no friction holds the structure: "inf".
+        match r.required_friction() {
+            f if f.is_finite() => num(&mut out, f)?,
+            _ => out.push_str(",inf"),
+        }
+        num(&mut out, r.vertical_reaction_over_w)?;
         out.push('\n');
     }
     Ok(out)

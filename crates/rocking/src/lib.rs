@@ -55,12 +55,13 @@ pub use options::{
     Accuracy, History, ImpactModel, Initial, Method, Options, Preset, MAX_HISTORY_ROWS,
 };
 pub use results::{
-    EnergyBalance, EventKind, EventRecord, HistoryRow, Phase, Run, SolverStats, Summary, Time,
+    EnergyBalance, EventKind, EventRecord, ForceSummary, HistoryRow, Phase, Run, SolverStats,
+    Summary, Time,
 };
 pub use rocking_kernels::{ModelInfo, VariantInfo};
 pub use structure::{
     find_model, model_names, plate_inertia, DampingConvention, Derived, Dimensionless, ParamError,
-    Structure, PAPER_MODEL,
+    StaticUplift, Structure, PAPER_MODEL,
 };
 pub use taylor::TaylorVariant;
 

@@ -244,6 +244,17 @@ pub struct Options {
     pub max_steps: u64,
     /// Initial state.
     pub initial: Initial,
+    /// The base may uplift (false: the fixed-base twin, held in full contact for the whole run
+    /// with no uplift check, under the same excitation).
+    pub uplift: bool,
+    /// Track the section forces at the column base and the ground reactions ([`ForceSummary`]
+    /// in the summary; about one force kernel per step). A sweep that reports none may skip them.
+    ///
+    /// [`ForceSummary`]: crate::ForceSummary
+    pub forces: bool,
+    /// Coefficient of friction of the ground: the first time the required friction |R_h|/R_v
+    /// exceeds it is reported (the model assumes no sliding). `None`: not checked.
+    pub friction: Option<f64>,
 }
 
 impl Default for Options {
@@ -261,6 +272,9 @@ impl Default for Options {
             max_events: 1_000_000,
             max_steps: 50_000_000,
             initial: Initial::default(),
+            uplift: true,
+            forces: true,
+            friction: None,
         }
     }
 }
@@ -339,6 +353,9 @@ impl Options {
             ("max_steps", self.max_steps),
         ] {
             check(field, n as f64, n >= 1, "at least 1")?;
+        }
+        if let Some(mu) = self.friction {
+            check("friction", mu, mu >= 0.0, "a coefficient of friction >= 0")?;
         }
         let i = &self.initial;
         check(

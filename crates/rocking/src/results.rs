@@ -122,6 +122,39 @@ pub struct Summary {
     pub energy: Option<EnergyBalance>,
     /// Integrator work.
     pub solver_stats: SolverStats,
+    /// Section forces at the column base and ground reactions, when tracked (`Options::forces`).
+    #[serde(flatten, skip_serializing_if = "Option::is_none")]
+    pub forces: Option<ForceSummary>,
+}
+
+/// The largest section forces at the column base and the extremes of the ground reactions over
+/// a run, from the generated force kernels at every step and inside steps where a new extreme
+/// may lie (docs/design-forces.md). M_b is the equilibrium moment (P-Δ and damping included), W
+/// the total weight, B the half-width: |M_b| = W B is the moment at which the base uplifts.
+/// Reactions exclude impact impulses.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct ForceSummary {
+    /// max |M_b| / (W B).
+    #[serde(serialize_with = "finite")]
+    pub max_base_moment_over_wb: f64,
+    /// max |V_b| / W (the shear normal to the column axis).
+    #[serde(serialize_with = "finite")]
+    pub max_base_shear_over_w: f64,
+    /// max |M_el| / (W B), M_el = EI Σ u_i ψ_i''(0) / H² (the moment from the curvature).
+    #[serde(serialize_with = "finite")]
+    pub max_elastic_base_moment_over_wb: f64,
+    /// max |R_h| / R_v over the instants where R_v > 0: the friction coefficient the no-sliding
+    /// assumption needs.
+    #[serde(serialize_with = "finite")]
+    pub max_required_friction: f64,
+    /// min R_v / W (below 0: the ground would have to pull, the no-jumping assumption fails).
+    #[serde(serialize_with = "finite")]
+    pub min_vertical_reaction_over_w: f64,
+    /// The first time |R_h| / R_v exceeded the ground's friction coefficient (`Options::friction`,
+    /// when given; R_v > 0): the structure would slide.
+    pub first_slip_time: Option<Time>,
+    /// The first time R_v fell below zero: the structure would jump.
+    pub first_lift_off_time: Option<Time>,
 }
 
 /// The terms of E_final = E_initial + W_ground − D − Σ losses, in units of E_ref.
@@ -202,6 +235,28 @@ pub struct HistoryRow {
     pub e_total: f64,
     /// Ground acceleration.
     pub ug: f64,
+    /// M_b / (W B): the equilibrium moment at the column base.
+    pub base_moment_over_wb: f64,
+    /// V_b / W.
+    pub base_shear_over_w: f64,
+    /// M_el / (W B): the moment from the curvature.
+    pub elastic_base_moment_over_wb: f64,
+    /// R_h / W.
+    pub horizontal_reaction_over_w: f64,
+    /// R_v / W.
+    pub vertical_reaction_over_w: f64,
+}
+
+impl HistoryRow {
+    /// |R_h| / R_v, the friction coefficient the instant needs; infinite where R_v <= 0 (no
+    /// friction holds a structure the ground would have to pull).
+    pub fn required_friction(&self) -> f64 {
+        if self.vertical_reaction_over_w > 0.0 {
+            self.horizontal_reaction_over_w.abs() / self.vertical_reaction_over_w
+        } else {
+            f64::INFINITY
+        }
+    }
 }
 
 /// Everything a run produced.

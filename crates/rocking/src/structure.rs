@@ -496,22 +496,36 @@ impl Structure {
     /// The smallest constant ground acceleration that uplifts the structure when applied
     /// quasi-statically (the column at its static deflection), from the model's kernels.
     pub fn static_uplift_acceleration(&self) -> f64 {
-        with_full!(self.model, V => self.static_uplift_acceleration_by::<V>())
+        self.static_uplift().ground_acceleration
     }
 
-    fn static_uplift_acceleration_by<V: Variant>(&self) -> f64 {
-        let p = self.params::<V>();
-        // The contact and uplift kernels are affine in (u, ug): solve them as such.
-        let acc = |u: f64, ug: f64| V::contact_rhs(&[u, 0.0], ug, &p)[1];
-        let (a0, au, ag) = (
-            acc(0.0, 0.0),
-            acc(1.0, 0.0) - acc(0.0, 0.0),
-            acc(0.0, 1.0) - acc(0.0, 0.0),
-        );
-        let u_static = |ug: f64| -(a0 + ag * ug) / au;
-        // Uplift about s = +1 needs a negative ug; by symmetry the magnitude is the same for s = -1.
-        let f = |ug: f64| V::uplift(&[u_static(ug), 0.0], ug, 1.0, &p);
-        let (f0, f1) = (f(0.0), f(-1.0) - f(0.0));
-        f0.abs() / f1
+    /// The weight, the uplift moment W B and the quasi-static uplift point of the structure,
+    /// from its model's `static_uplift` kernel.
+    pub fn static_uplift(&self) -> StaticUplift {
+        use rocking_kernels::kernels::index::static_uplift as su;
+        let k = with_full!(self.model, V => V::static_uplift(&self.params::<V>()));
+        StaticUplift {
+            weight: k[su::WEIGHT],
+            moment: k[su::MOMENT_UPLIFT],
+            ground_acceleration: k[su::UG_UPLIFT].abs(),
+            deflection: k[su::U_UPLIFT].abs(),
+            elastic_moment: k[su::MOMENT_ELASTIC_UPLIFT].abs(),
+        }
     }
+}
+
+/// A structure's weight and quasi-static uplift (the derivation's `static_uplift` kernel, about
+/// either corner: magnitudes), in the structure's units.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct StaticUplift {
+    /// The total weight W.
+    pub weight: f64,
+    /// W B: the base moment at which the base uplifts.
+    pub moment: f64,
+    /// The constant ground acceleration that uplifts the structure applied quasi-statically.
+    pub ground_acceleration: f64,
+    /// The column's top deflection at that uplift.
+    pub deflection: f64,
+    /// The elastic base moment M_el at that uplift (below W B by P-Δ and the shape's error).
+    pub elastic_moment: f64,
 }

@@ -21,6 +21,7 @@
 //! `taylor_phases` (one integrator each, they never call each other), `recorder` (maxima,
 //! history, events, summary).
 
+mod forces;
 mod impact;
 mod recorder;
 mod rk_phases;
@@ -28,7 +29,7 @@ mod state;
 mod taylor_phases;
 mod transitions;
 
-use rocking_kernels::kernels::index::energy as en;
+use rocking_kernels::kernels::index::{energy as en, static_uplift as su};
 use rocking_motion::GroundMotion;
 use rocking_ode::{Options as OdeOptions, Tolerances};
 
@@ -95,6 +96,13 @@ fn set_up<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const
         atol: Y::<NR>::from_fn(|i, _| if i < 4 { rocking_scale[i] * tol } else { off }),
     };
     let e0 = V::energy(&[0.0; 4], RIGHT, &p);
+    let uplift = V::static_uplift(&p);
+    // The excitation's resolution is a sixteenth of its shortest period.
+    let excitation_rate = 2.0 * std::f64::consts::PI / (16.0 * motion.resolution());
+    let fastest_rate = [derived.omega_n, derived.omega_up, pf, excitation_rate]
+        .into_iter()
+        .filter(|w| w.is_finite())
+        .fold(0.0, f64::max);
     Ok(Sim {
         p,
         motion,
@@ -111,6 +119,9 @@ fn set_up<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const
         rocking_scale,
         stats: SolverStats::default(),
         events: 0,
+        weight: uplift[su::WEIGHT],
+        wb: uplift[su::MOMENT_UPLIFT],
+        fastest_rate,
         rec: Record::default(),
     })
 }

@@ -21,6 +21,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
 
     fn record_history(&mut self, t: f64, x: &[f64; 4], phase: Phase, s: f64) {
         let e = V::energy(x, s, &self.p);
+        let f = self.forces_at(phase == Phase::Contact, s, t, x);
         let row = HistoryRow {
             tau: t * self.derived.p,
             theta: x[0],
@@ -32,6 +33,11 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             e_total: (e[en::KINETIC] + e[en::GRAVITY] + e[en::STRAIN] - self.v_rest)
                 / self.derived.e_ref,
             ug: self.motion.accel(t),
+            base_moment_over_wb: f.moment,
+            base_shear_over_w: f.shear,
+            elastic_base_moment_over_wb: f.elastic,
+            horizontal_reaction_over_w: f.horizontal,
+            vertical_reaction_over_w: f.vertical,
         };
         self.rec.history.push(row);
     }
@@ -185,6 +191,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             energy_balance_residual: residual,
             energy,
             solver_stats: self.stats,
+            forces: self.force_summary(),
         }
     }
 }

@@ -60,20 +60,26 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         let mut g_old = f0;
         let dirs = [Direction::Rising, Direction::Rising];
         let excitation_end = motion.end();
+        let mut f_prev = self.forces_start(true, RIGHT, t0, &[0.0, u, 0.0, u_dot]);
         loop {
             let t_stop = self.t_stop(ode.t());
             let info = ode.step(&mut rhs, t_stop)?;
             self.guard_steps(ode.stats(), ode.t())?;
             let (t_old, t_new) = (info.t_old, info.t_new);
             let g_new = g(t_new, ode.y());
-            let located =
-                locate(&mut ode, &mut g, &dirs, &g_old, &g_new).map(|ev| (ev.t, ev.index, t_new));
+            let located = if self.opts.uplift {
+                locate(&mut ode, &mut g, &dirs, &g_old, &g_new).map(|ev| (ev.t, ev.index, t_new))
+            } else {
+                None
+            };
             // In the settling step, an f_s that started above zero and is still there at its end
             // lifts at the end; a rising crossing of one that started below zero is an uplift.
             let crossing = if std::mem::take(&mut settling) {
                 located.or_else(|| (0..2).find(|&k| g_new[k] > 0.0).map(|k| (t_new, k, t_new)))
-            } else {
+            } else if self.opts.uplift {
                 located.or_else(|| grazing(|t| g(t, &ode.dense(t)), t_old, t_new, &g_old, &g_new))
+            } else {
+                None
             };
             let dense = |t| contact_state(&ode.dense(t));
             let lift = crossing.and_then(|(t_up, index, t_far)| {
@@ -82,6 +88,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             });
             if let Some((t_up, s)) = lift {
                 self.extremes_contact(&dense, t_old, t_up);
+                self.extremes_forces(&dense, true, RIGHT, t_old, f_prev, t_up);
                 let y = ode.dense(t_up);
                 self.step_history(t_old, t_up, dense, Phase::Contact, RIGHT);
                 self.stats.add(ode.take_stats());
@@ -89,11 +96,15 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
                 return self.uplift(t_up, s, y[0], y[1], w, d);
             }
             self.extremes_contact(&dense, t_old, t_new);
+            f_prev = self.extremes_forces(&dense, true, RIGHT, t_old, f_prev, t_new);
             self.step_history(t_old, t_new, dense, Phase::Contact, RIGHT);
             g_old = g_new;
             let y = *ode.y();
             let done = t_new >= self.opts.t_end
-                || (may_stop && t_new >= excitation_end && self.can_never_uplift(y[0], y[1]));
+                || (may_stop
+                    && self.opts.uplift
+                    && t_new >= excitation_end
+                    && self.can_never_uplift(y[0], y[1]));
             if done {
                 self.stats.add(ode.take_stats());
                 let (w, d) = carried(y.as_slice(), 2);
@@ -163,6 +174,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         let mut g_old = g(t0, &y0);
         let dirs = [Direction::Falling, Direction::Rising];
         let phase = Phase::rocking(s);
+        let mut f_prev = self.forces_start(false, s, t0, &x0);
         loop {
             let t_stop = self.t_stop(ode.t());
             let info = ode
@@ -174,6 +186,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             if let Some(ev) = locate(&mut ode, &mut g, &dirs, &g_old, &g_new) {
                 let dense = |t| rocking_state(ode.dense(t).as_slice());
                 self.extremes_rocking(&dense, t_old, ev.t);
+                self.extremes_forces(&dense, false, s, t_old, f_prev, ev.t);
                 self.step_history(t_old, ev.t, dense, phase, s);
                 self.stats.add(ode.take_stats());
                 let y = ev.y;
@@ -182,6 +195,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             }
             let dense = |t| rocking_state(ode.dense(t).as_slice());
             self.extremes_rocking(&dense, t_old, t_new);
+            f_prev = self.extremes_forces(&dense, false, s, t_old, f_prev, t_new);
             self.step_history(t_old, t_new, dense, phase, s);
             g_old = g_new;
             if t_new >= self.opts.t_end {

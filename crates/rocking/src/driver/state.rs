@@ -8,6 +8,7 @@ use rocking_kernels::kernels::index::energy as en;
 use rocking_motion::GroundMotion;
 use rocking_ode::{Options as OdeOptions, Stats, Tolerances};
 
+use super::forces::ForceRecord;
 use crate::error::SimError;
 use crate::options::Options;
 use crate::results::{EventRecord, HistoryRow, Phase, SolverStats, Time};
@@ -85,6 +86,13 @@ pub(super) struct Sim<
     pub(super) stats: SolverStats,
     /// Events so far (the guard `max_events`).
     pub(super) events: u64,
+    /// The total weight W and the uplift moment W B (the forces' units).
+    pub(super) weight: f64,
+    pub(super) wb: f64,
+    /// The fastest rate of the dynamics (the larger of the column's fixed-base and uplifted
+    /// frequencies, the rocking time scale p and the excitation's): how much a quantity can
+    /// change inside a step.
+    pub(super) fastest_rate: f64,
     pub(super) rec: Record,
 }
 
@@ -105,6 +113,8 @@ pub(super) struct Record {
     pub(super) history: Vec<HistoryRow>,
     /// The next time of the history grid.
     pub(super) next_grid: f64,
+    /// The extremes of the section forces and reactions.
+    pub(super) forces: ForceRecord,
 }
 
 impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usize>

@@ -56,19 +56,27 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
             scale,
         };
         let unscale = |y: [f64; NC]| -> [f64; NC] { std::array::from_fn(|i| y[i] * scale[i]) };
-        let may_stop = self.opts.stop_when_known && matches!(self.opts.history, History::None);
+        let may_stop = self.opts.stop_when_known
+            && self.opts.uplift
+            && matches!(self.opts.history, History::None);
         let excitation_end = self.motion.end();
+        let mut f_prev = self.forces_start(true, RIGHT, t0, &[0.0, start[0], 0.0, start[1]]);
         loop {
             let t_stop = self.t_stop(ode.t());
             ode.step(&mut sys, t_stop)?;
             self.guard_steps(ode.stats(), ode.t())?;
             let (t_old, t_new) = (ode.t_old(), ode.t());
             let dirs = [Direction::Rising, Direction::Rising];
-            let rising = ode.locate(&mut sys, &dirs).map(|ev| (ev.t, ev.index));
+            let rising = if self.opts.uplift {
+                ode.locate(&mut sys, &dirs).map(|ev| (ev.t, ev.index))
+            } else {
+                None
+            };
             // A rising root inside the settling step comes after f_s fell below zero: a real
             // uplift, as on any step (missed when only the end was looked at, once steps grew to
             // a fraction of the period).
-            let crossing = if std::mem::take(&mut settling) && rising.is_none() {
+            let crossing = if std::mem::take(&mut settling) && rising.is_none() && self.opts.uplift
+            {
                 let y = unscale(*ode.y());
                 let g_new = self.uplift_functions(y[0], y[1], self.motion.accel(t_new));
                 (0..2).find(|&k| g_new[k] > 0.0).map(|k| (t_new, k))
@@ -87,6 +95,7 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
             });
             if let Some((t_up, s)) = lift {
                 self.extremes_contact(&step, t_old, t_up);
+                self.extremes_forces(&step, true, RIGHT, t_old, f_prev, t_up);
                 self.step_history(t_old, t_up, dense, Phase::Contact, RIGHT);
                 self.stats.add(ode.take_stats());
                 let y = unscale(ode.dense(t_up));
@@ -94,6 +103,7 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
                 return self.uplift(t_up, s, y[0], y[1], w, d);
             }
             self.extremes_contact(&step, t_old, t_new);
+            f_prev = self.extremes_forces(&step, true, RIGHT, t_old, f_prev, t_new);
             self.step_history(t_old, t_new, dense, Phase::Contact, RIGHT);
             let y = unscale(*ode.y());
             let done = t_new >= self.opts.t_end
@@ -151,6 +161,7 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
         let unscale = |y: [f64; NR]| -> [f64; NR] { std::array::from_fn(|i| y[i] * scale[i]) };
         let over = self.opts.overturn_angle / scale[0];
         let phase = Phase::rocking(s);
+        let mut f_prev = self.forces_start(false, s, t0, &x0);
         loop {
             let t_stop = self.t_stop(ode.t());
             ode.step(&mut sys, t_stop)
@@ -209,6 +220,7 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
                     (t_old + tau).max(after(t_old)).min(t_new)
                 };
                 self.extremes_rocking(&step, t_old, t);
+                self.extremes_forces(&step, false, s, t_old, f_prev, t);
                 self.step_history(t_old, t, dense, phase, s);
                 self.stats.add(ode.take_stats());
                 self.stats.events += 1;
@@ -217,6 +229,7 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
                 return self.rocking_event(index, t, s, rocking_state(&y), w, d);
             }
             self.extremes_rocking(&step, t_old, t_new);
+            f_prev = self.extremes_forces(&step, false, s, t_old, f_prev, t_new);
             self.step_history(t_old, t_new, dense, phase, s);
             if t_new >= self.opts.t_end {
                 let y = unscale(*ode.y());

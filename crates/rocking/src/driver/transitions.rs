@@ -50,7 +50,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         let ug0 = self.motion.accel_right(t0);
         let f0 = self.uplift_functions(u, u_dot, ug0);
         for (k, s) in [(0, RIGHT), (1, LEFT)] {
-            if !settle && f0[k] > 0.0 && self.lifts(s, t0, u, u_dot, ug0) {
+            if self.opts.uplift && !settle && f0[k] > 0.0 && self.lifts(s, t0, u, u_dot, ug0) {
                 return self.uplift(t0, s, u, u_dot, w, d).map(ContactStart::Lifted);
             }
         }
