@@ -290,13 +290,22 @@ fn run(scene: &Path, set: &[String], out: Option<PathBuf>, json: bool) -> Result
     if m.plots {
         m.options.event_log = true; // impacts are marked on the plots
     }
+    let dir = out.unwrap_or_else(|| {
+        let stem = scene
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "scene".into());
+        Path::new("out").join(stem)
+    });
+    // Everything is written into a staging directory that replaces `dir` whole at the end; an
+    // --out that cannot be replaced is refused before the run.
+    let out_dir = out_dir::OutDir::begin(&dir)?;
     let report = report::simulate(&m, scene)?;
     let summary = report::summary_json(&m, scene, &report)?;
-    if let Some(f) = &report.run.summary.forces {
-        for w in report::warnings(&m, f) {
-            eprintln!("warning: {}: {w}", scene.display());
-        }
-    }
+    let warnings = match &report.run.summary.forces {
+        Some(f) => report::warnings(&m, f),
+        None => Vec::new(),
+    };
     let run = report.run;
     let history = if m.history_csv {
         Some(report::history_csv(&m, &run)?)
@@ -308,15 +317,6 @@ fn run(scene: &Path, set: &[String], out: Option<PathBuf>, json: bool) -> Result
     } else {
         None
     };
-    let dir = out.unwrap_or_else(|| {
-        let stem = scene
-            .file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_else(|| "scene".into());
-        Path::new("out").join(stem)
-    });
-    // Everything is written into a staging directory that replaces `dir` whole at the end.
-    let out_dir = out_dir::OutDir::begin(&dir)?;
     let stage = out_dir.path().to_path_buf();
     let mut written = Vec::new();
     let text = serde_json::to_string_pretty(&summary)
@@ -360,6 +360,9 @@ fn run(scene: &Path, set: &[String], out: Option<PathBuf>, json: bool) -> Result
     }
     let written: Vec<PathBuf> = written.iter().map(|p| out_dir.final_path(p)).collect();
     out_dir.commit()?;
+    for w in warnings {
+        eprintln!("warning: {}: {w}", scene.display());
+    }
     if json {
         out!("{summary}");
         return Ok(());

@@ -158,8 +158,9 @@ mod tests {
 
     #[test]
     fn golden_max_finds_the_peak_of_a_cosine() {
+        // The value is found to rounding; the time to where cos stops changing (~1e-8 from it).
         let (t, v) = golden_max(|t| (t - 0.3).cos(), 0.0, 1.0);
-        assert!((t - 0.3).abs() < 1e-9 && (v - 1.0).abs() < 1e-16, "{t} {v}");
+        assert!((t - 0.3).abs() < 1e-7 && (v - 1.0).abs() < 1e-16, "{t} {v}");
     }
 
     #[test]

@@ -199,6 +199,9 @@ pub struct IdaSpec {
 #[serde(deny_unknown_fields)]
 pub struct SweepSpec {
     pub axes: Option<Vec<String>>,
+    /// Quantities every cell reports besides its class, max θ/α and impacts: any numeric key of
+    /// the run's summary, `fixed_base.KEY` and the ratios to the fixed-base twin.
+    pub report: Option<Vec<String>>,
     pub reference: Option<String>,
     pub records: Option<Vec<String>>,
     pub scales: Option<Vec<f64>>,

@@ -178,7 +178,7 @@ impl CellClass {
 }
 
 /// The O(1) result of one cell.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Cell {
     /// Cell index in sweep order.
     pub index: usize,
@@ -188,6 +188,27 @@ pub struct Cell {
     pub max_theta_over_alpha: f64,
     /// Number of impacts.
     pub impacts: u64,
+    /// The values of the sweep's reported quantities ([`Sweep::reported`]), in order.
+    pub reported: Vec<f64>,
+}
+
+/// What the run of one cell gives the sweep: its summary (for the class, max θ/α and impacts)
+/// and the values of the sweep's reported quantities.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CellRun {
+    /// The run's summary.
+    pub summary: Summary,
+    /// The values of [`Sweep::reported`], in order.
+    pub reported: Vec<f64>,
+}
+
+impl From<Summary> for CellRun {
+    fn from(summary: Summary) -> Self {
+        CellRun {
+            summary,
+            reported: Vec::new(),
+        }
+    }
 }
 
 /// Why a sweep failed.
@@ -230,6 +251,9 @@ pub struct Sweep {
     pub axes: Vec<Axis>,
     /// Identifies the sweep (for example a hash of the scene text and the axes).
     pub fingerprint: String,
+    /// The quantities each cell reports besides its class, max θ/α and impacts (the names of
+    /// their columns in cells.csv; the caller's run of a cell gives their values, in order).
+    pub reported: Vec<String>,
 }
 
 impl Sweep {
@@ -291,12 +315,14 @@ pub(crate) const JOURNAL: &str = "cells.journal";
 /// A journal line: the cell, for a failed cell its error message (so that a resumed sweep still
 /// reports it), and a checksum that rejects a torn line.
 fn journal_line(c: &Cell, message: Option<&str>) -> String {
+    let reported: Vec<String> = c.reported.iter().map(|v| format!("{v:e}")).collect();
     let mut body = format!(
-        "{},{},{:e},{}",
+        "{},{},{:e},{},{}",
         c.index,
         c.class.as_str(),
         c.max_theta_over_alpha,
-        c.impacts
+        c.impacts,
+        reported.join(";")
     );
     if let Some(m) = message {
         body.push(',');
@@ -310,17 +336,25 @@ fn parse_journal_line(line: &str) -> Option<(Cell, Option<String>)> {
     if format!("{:016x}", fnv1a(body.as_bytes())) != sum {
         return None;
     }
-    let f: Vec<&str> = body.splitn(5, ',').collect();
-    if f.len() < 4 {
+    let f: Vec<&str> = body.splitn(6, ',').collect();
+    if f.len() < 5 {
         return None;
     }
+    let reported = if f[4].is_empty() {
+        Vec::new()
+    } else {
+        f[4].split(';')
+            .map(|v| v.parse().ok())
+            .collect::<Option<Vec<f64>>>()?
+    };
     let cell = Cell {
         index: f[0].parse().ok()?,
         class: CellClass::parse(f[1])?,
         max_theta_over_alpha: f[2].parse().ok()?,
         impacts: f[3].parse().ok()?,
+        reported,
     };
-    Some((cell, f.get(4).map(|m| m.to_string())))
+    Some((cell, f.get(5).map(|m| m.to_string())))
 }
 
 /// The cells (and failure messages) of the journal at `path` when it belongs to this sweep;
@@ -395,14 +429,15 @@ pub struct Outcome {
 
 /// Runs (or resumes) a sweep in `out_dir`. `run_cell` gets the cell's axis values and returns
 /// the summary of its simulation. Finished cells are journaled as they complete.
-pub fn run<F>(
+pub fn run<F, R>(
     sweep: &Sweep,
     out_dir: &Path,
     progress: Progress,
     run_cell: F,
 ) -> Result<Outcome, SweepError>
 where
-    F: Fn(&[f64]) -> Result<Summary, String> + Sync,
+    F: Fn(&[f64]) -> Result<R, String> + Sync,
+    R: Into<CellRun>,
 {
     let header = format!("# rocking sweep {}\n", sweep.fingerprint);
     run_cells(sweep, &header, |_| true, out_dir, progress, run_cell)
@@ -410,7 +445,7 @@ where
 
 /// Runs (or resumes) one shard of a sweep in `out_dir`, with the shard's own journal: the
 /// outcome holds only the shard's cells. [`shard::merge`] joins the shards' journals.
-pub fn run_shard<F>(
+pub fn run_shard<F, R>(
     sweep: &Sweep,
     shard: Shard,
     out_dir: &Path,
@@ -418,7 +453,8 @@ pub fn run_shard<F>(
     run_cell: F,
 ) -> Result<Outcome, SweepError>
 where
-    F: Fn(&[f64]) -> Result<Summary, String> + Sync,
+    F: Fn(&[f64]) -> Result<R, String> + Sync,
+    R: Into<CellRun>,
 {
     let header = shard.header(sweep);
     run_cells(
@@ -432,7 +468,7 @@ where
 }
 
 /// Runs the cells that `owns` selects, journaled under `header`.
-fn run_cells<F>(
+fn run_cells<F, R>(
     sweep: &Sweep,
     header: &str,
     owns: impl Fn(usize) -> bool,
@@ -441,7 +477,8 @@ fn run_cells<F>(
     run_cell: F,
 ) -> Result<Outcome, SweepError>
 where
-    F: Fn(&[f64]) -> Result<Summary, String> + Sync,
+    F: Fn(&[f64]) -> Result<R, String> + Sync,
+    R: Into<CellRun>,
 {
     let start = Instant::now();
     Sweep::checked_len(&sweep.axes)
@@ -535,37 +572,53 @@ where
 }
 
 /// Runs one cell: its class and numbers, or `Failed` with the error message.
-fn evaluate<F>(sweep: &Sweep, index: usize, run_cell: &F) -> (Cell, Option<String>)
+fn evaluate<F, R>(sweep: &Sweep, index: usize, run_cell: &F) -> (Cell, Option<String>)
 where
-    F: Fn(&[f64]) -> Result<Summary, String>,
+    F: Fn(&[f64]) -> Result<R, String>,
+    R: Into<CellRun>,
 {
-    match run_cell(&sweep.values(index)) {
-        Ok(summary) => (
+    match run_cell(&sweep.values(index)).map(Into::into) {
+        Ok(CellRun { summary, reported }) if reported.len() == sweep.reported.len() => (
             Cell {
                 index,
                 class: CellClass::of(&summary),
                 max_theta_over_alpha: summary.max_theta_over_alpha,
                 impacts: summary.impacts,
+                reported,
             },
             None,
         ),
-        Err(message) => (
-            Cell {
-                index,
-                class: CellClass::Failed,
-                max_theta_over_alpha: 0.0,
-                impacts: 0,
-            },
-            Some(message),
+        Ok(run) => failed(
+            index,
+            format!(
+                "the cell gave {} reported values for the sweep's {}",
+                run.reported.len(),
+                sweep.reported.len()
+            ),
         ),
+        Err(message) => failed(index, message),
     }
+}
+
+fn failed(index: usize, message: String) -> (Cell, Option<String>) {
+    (
+        Cell {
+            index,
+            class: CellClass::Failed,
+            max_theta_over_alpha: 0.0,
+            impacts: 0,
+            reported: Vec::new(),
+        },
+        Some(message),
+    )
 }
 
 /// Runs every cell of a sweep in parallel, without a journal (nothing is written): for callers
 /// that keep the results in memory, such as the Python package.
-pub fn run_in_memory<F>(sweep: &Sweep, run_cell: F) -> Result<Outcome, SweepError>
+pub fn run_in_memory<F, R>(sweep: &Sweep, run_cell: F) -> Result<Outcome, SweepError>
 where
-    F: Fn(&[f64]) -> Result<Summary, String> + Sync,
+    F: Fn(&[f64]) -> Result<R, String> + Sync,
+    R: Into<CellRun>,
 {
     let start = Instant::now();
     Sweep::checked_len(&sweep.axes)
@@ -606,29 +659,40 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
 }
 
 /// `cells.csv`: one row per cell with the axis values (columns named by their key paths),
-/// the class, max θ/α and the number of impacts.
+/// the class, max θ/α, the number of impacts and the reported quantities.
 pub fn cells_csv(sweep: &Sweep, cells: &[Cell]) -> String {
     let mut out = String::new();
     for a in &sweep.axes {
         out.push_str(&a.key);
         out.push(',');
     }
-    out.push_str("class,max_theta_over_alpha,impacts\n");
+    out.push_str("class,max_theta_over_alpha,impacts");
+    for q in &sweep.reported {
+        out.push(',');
+        out.push_str(q);
+    }
+    out.push('\n');
     for c in cells {
         for v in sweep.values(c.index) {
             out.push_str(&format!("{v},"));
         }
         if c.class == CellClass::Failed {
             // A failed cell has no result: empty fields, not zeros that read as one.
-            out.push_str("failed,,\n");
+            out.push_str("failed,,");
+            out.push_str(&",".repeat(sweep.reported.len()));
+            out.push('\n');
             continue;
         }
         out.push_str(&format!(
-            "{},{},{}\n",
+            "{},{},{}",
             c.class.as_str(),
             c.max_theta_over_alpha,
             c.impacts
         ));
+        for v in &c.reported {
+            out.push_str(&format!(",{v}"));
+        }
+        out.push('\n');
     }
     out
 }
@@ -683,6 +747,7 @@ mod tests {
                 },
             ],
             fingerprint: "x".into(),
+            reported: Vec::new(),
         };
         assert_eq!(s.len(), 6);
         assert_eq!(s.values(0), vec![1.0, 10.0]);
@@ -697,11 +762,13 @@ mod tests {
             class: CellClass::OverturnedOneImpact,
             max_theta_over_alpha: 15.707,
             impacts: 1,
+            reported: vec![1.25, -3e-17],
         };
         let line = journal_line(&c, None);
-        assert_eq!(parse_journal_line(line.trim_end()), Some((c, None)));
+        assert_eq!(parse_journal_line(line.trim_end()), Some((c.clone(), None)));
         let failed = Cell {
             class: CellClass::Failed,
+            reported: Vec::new(),
             ..c
         };
         let line = journal_line(&failed, Some("singular, at u = 1\nbad"));

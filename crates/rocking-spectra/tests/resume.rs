@@ -40,6 +40,7 @@ fn sweep(fingerprint: &str) -> Sweep {
             Axis::parse("excitation.amplitude=0.5:20:8").unwrap(),
         ],
         fingerprint: fingerprint.to_string(),
+        reported: Vec::new(),
     }
 }
 

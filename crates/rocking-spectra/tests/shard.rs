@@ -41,6 +41,7 @@ fn sweep() -> Sweep {
             Axis::parse("excitation.amplitude=0.5:20:7").unwrap(),
         ],
         fingerprint: "shard-test".into(),
+        reported: Vec::new(),
     }
 }
 

@@ -472,7 +472,7 @@ fn study(base: &Base, s: &Settings, file: &Path) -> Result<RecordStudy, SceneErr
             (&knobs[0], KnobValue::Text(path.clone())),
             (&knobs[1], KnobValue::Number(im / im_unscaled)),
         ];
-        let sum = base.run_knobs(&cell)?;
+        let sum = base.run_knobs(&cell)?.summary;
         let r = sum.max_theta_over_alpha;
         Ok(Outcome {
             collapsed: sum.overturned || s.limit.is_some_and(|l| r >= l),

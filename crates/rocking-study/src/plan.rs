@@ -5,13 +5,15 @@
 
 use std::path::{Path, PathBuf};
 
-use rocking::{History, Summary};
+use rocking::History;
 use rocking_scene::knob::{self, Knob, KnobValue};
 use rocking_scene::scene::{self, Scene};
 use rocking_scene::setup::{self, Setup};
 use rocking_scene::SceneError;
 
-use rocking_spectra::{fnv1a, Axis, Sweep};
+use rocking_spectra::{fnv1a, Axis, CellRun, Sweep};
+
+use crate::run_report;
 
 /// The paper's spectrum axes (Figs 6-8), used when neither the command nor the scene names any.
 pub const DEFAULT_AXES: [&str; 2] = [
@@ -30,6 +32,8 @@ pub struct Base {
     scene: Scene,
     /// Digest of the scene's record file (contents), when it has one.
     record_digest: Option<String>,
+    /// What every cell reports besides its class, max θ/α and impacts (`[sweep] report`).
+    report: Vec<String>,
 }
 
 /// A sweep engine's error as a study reports it: a journal of another sweep in the output
@@ -64,6 +68,82 @@ pub fn program_digest() -> &'static str {
     })
 }
 
+/// Whether the reported quantity `key` needs the cell's fixed-base twin.
+fn needs_twin(key: &str) -> bool {
+    key.starts_with("fixed_base.") || run_report::RATIOS.contains(&key)
+}
+
+/// The number at `key` (`a.b` for a nested entry) of a run's quantities.
+fn lookup(q: &serde_json::Map<String, serde_json::Value>, key: &str) -> Option<f64> {
+    let (head, tail) = match key.split_once('.') {
+        Some((h, t)) => (h, Some(t)),
+        None => (key, None),
+    };
+    let v = q.get(head)?;
+    match tail {
+        Some(t) => lookup(v.as_object()?, t),
+        None => v.as_f64().filter(|x| x.is_finite()),
+    }
+}
+
+/// Refuses a reported quantity that no run of the scene has: the allowed ones are the numeric
+/// entries of a run's quantities (found by a run of the scene that ends at once, forces on, with
+/// its fixed-base twin), and the ratios to the twin.
+fn check_report(sc: &Scene, m: &Setup, report: &[String]) -> Result<(), SceneError> {
+    if report.is_empty() {
+        return Ok(());
+    }
+    let probe = rocking::Options {
+        t_end: 1e-9,
+        forces: true,
+        history: History::None,
+        event_log: false,
+        ..m.options
+    };
+    let run = |o: &rocking::Options| {
+        rocking::simulate(&m.structure, &m.excitation, &m.effects, o)
+            .map(|r| r.summary)
+            .map_err(|e| SceneError::failure(format!("{}: {e}", sc.src.path.display())))
+    };
+    let twin = run(&rocking::Options {
+        uplift: false,
+        ..probe
+    })?;
+    let q = run_report::quantities(&run(&probe)?, Some(&twin))?;
+    let mut allowed: Vec<String> = Vec::new();
+    for (k, v) in &q {
+        match v {
+            serde_json::Value::Number(_) => allowed.push(k.clone()),
+            serde_json::Value::Object(o) => allowed.extend(
+                o.iter()
+                    .filter(|(_, x)| x.is_number())
+                    .map(|(j, _)| format!("{k}.{j}")),
+            ),
+            _ => {}
+        }
+    }
+    allowed.extend(run_report::RATIOS.iter().map(|r| r.to_string()));
+    allowed.sort();
+    allowed.dedup();
+    for (i, key) in report.iter().enumerate() {
+        if !allowed.contains(key) {
+            let names: Vec<&str> = allowed.iter().map(String::as_str).collect();
+            let hint = rocking_scene::scene::suggest(key, &names)
+                .map(|s| format!("; did you mean `{s}`?"))
+                .unwrap_or_default();
+            return Err(sc.src.err(
+                &format!("sweep.report.{i}"),
+                format_args!(
+                    "`report` in [sweep] names `{key}`, which a run does not report as a number \
+                     (allowed: {}){hint}",
+                    allowed.join(", ")
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 impl Base {
     /// Reads and validates the scene file with the overrides `sets`.
     pub fn load(path: &Path, sets: &[String]) -> Result<Base, SceneError> {
@@ -89,6 +169,13 @@ impl Base {
                 .flatten()
         });
         let record_digest = record.as_deref().map(file_digest).transpose()?;
+        let report = sc
+            .spec
+            .sweep
+            .as_ref()
+            .and_then(|s| s.report.clone())
+            .unwrap_or_default();
+        check_report(&sc, &m, &report)?;
         Ok(Base {
             path: path.to_path_buf(),
             text,
@@ -97,7 +184,13 @@ impl Base {
             title,
             record_digest,
             scene: sc,
+            report,
         })
+    }
+
+    /// The quantities every cell reports (`[sweep] report`).
+    pub fn report(&self) -> &[String] {
+        &self.report
     }
 
     /// The scene file's path.
@@ -133,14 +226,15 @@ impl Base {
             .collect()
     }
 
-    /// Runs a cell: the scene with its knobs set, summary only.
-    pub fn run_knobs(&self, cell: &[(&Knob, KnobValue)]) -> Result<Summary, SceneError> {
+    /// Runs a cell: the scene with its knobs set, summary and reported quantities only.
+    pub fn run_knobs(&self, cell: &[(&Knob, KnobValue)]) -> Result<CellRun, SceneError> {
         let m = knob::setup(&self.scene, cell)?;
         self.simulate(m)
     }
 
-    /// Runs the scene with extra overrides, summary only (no history, events or energy).
-    pub fn run(&self, extra: &[String]) -> Result<Summary, SceneError> {
+    /// Runs the scene with extra overrides, summary and reported quantities only (no history,
+    /// events or energy).
+    pub fn run(&self, extra: &[String]) -> Result<CellRun, SceneError> {
         self.simulate(self.model(extra)?)
     }
 
@@ -151,18 +245,46 @@ impl Base {
         setup::build(&self.parsed.load(&sets)?)
     }
 
-    fn simulate(&self, mut m: Setup) -> Result<Summary, SceneError> {
+    fn simulate(&self, mut m: Setup) -> Result<CellRun, SceneError> {
         m.options.history = History::None;
         m.options.event_log = false;
         m.options.energy = false;
         m.options.stop_when_known = true;
-        // A cell reports its class, max θ/α and impacts: the forces cost a kernel per step.
-        m.options.forces = false;
-        rocking::simulate(&m.structure, &m.excitation, &m.effects, &m.options)
-            .map(|r| r.summary)
-            .map_err(|e| {
+        // The forces cost a kernel per step: only a sweep that reports some pays for them.
+        m.options.forces = !self.report.is_empty();
+        let run = |options: &rocking::Options| {
+            rocking::simulate(&m.structure, &m.excitation, &m.effects, options).map_err(|e| {
                 SceneError::failure(format!("{}: simulation failed: {e}", self.path.display()))
             })
+        };
+        let summary = run(&m.options)?.summary;
+        if self.report.is_empty() {
+            return Ok(summary.into());
+        }
+        let twin = if self.report.iter().any(|k| needs_twin(k)) {
+            let fixed = rocking::Options {
+                uplift: false,
+                ..m.options
+            };
+            Some(run(&fixed)?.summary)
+        } else {
+            None
+        };
+        let q = run_report::quantities(&summary, twin.as_ref())?;
+        let reported = self
+            .report
+            .iter()
+            .map(|k| {
+                lookup(&q, k).ok_or_else(|| {
+                    SceneError::failure(format!(
+                        "{}: the run has no value of `{k}` (a ratio to a fixed-base twin that \
+                         carries no force has none)",
+                        self.path.display()
+                    ))
+                })
+            })
+            .collect::<Result<Vec<f64>, _>>()?;
+        Ok(CellRun { summary, reported })
     }
 
     /// Identifies everything a cell's result depends on: the program, the scene text, the
@@ -351,6 +473,7 @@ impl Plan {
         let sweep = Sweep {
             fingerprint: base.fingerprint(&axes, "spectrum"),
             axes,
+            reported: base.report.clone(),
         };
         Ok(Plan {
             base,
@@ -446,6 +569,7 @@ impl Plan {
         let sweep = Sweep {
             fingerprint: base.fingerprint(&axes, &key.join("\n")),
             axes,
+            reported: base.report.clone(),
         };
         Ok(Plan {
             base,
@@ -494,7 +618,7 @@ impl Plan {
     }
 
     /// Runs the cell with these axis values (summary only).
-    pub fn run_cell(&self, values: &[f64]) -> Result<Summary, SceneError> {
+    pub fn run_cell(&self, values: &[f64]) -> Result<CellRun, SceneError> {
         match &self.cells {
             Cells::Knobs(knobs) => {
                 let cell: Vec<(&Knob, KnobValue)> = knobs

@@ -108,13 +108,46 @@ pub fn derived_json(model: &Setup) -> Result<Value, SceneError> {
 }
 
 /// The summary object printed by `--json` and written to summary.json: the run's
-/// [`Summary`](rocking::Summary) as it serializes (a time `*_time` as τ and `*_time_s` in seconds),
-/// with what produced it (scene, title, variant and why, excitation) and the derived quantities.
+/// [`quantities`], with what produced it (scene, title, variant and why, excitation), the
+/// derived quantities, the force maxima in SI (when the scene has units) and the warnings.
 pub fn summary_json(model: &Setup, scene: &Path, report: &Report) -> Result<Value, SceneError> {
     let run = &report.run;
-    let fields = serialized(&run.summary)?;
+    let mut out = quantities(&run.summary, report.fixed_base.as_ref())?;
+    out.insert("scene".into(), json!(scene.display().to_string()));
+    out.insert("title".into(), json!(model.title));
+    out.insert("variant_reasons".into(), json!(model.reasons));
+    out.insert("excitation".into(), json!(model.excitation_description));
+    out.insert("derived".into(), derived_json(model)?);
+    if let Some(f) = &run.summary.forces {
+        let lift = model.structure.static_uplift();
+        if model.units.physical {
+            out.insert(
+                "max_base_moment_nm".into(),
+                json!(f.max_base_moment_over_wb * lift.moment),
+            );
+            out.insert(
+                "max_base_shear_n".into(),
+                json!(f.max_base_shear_over_w * lift.weight),
+            );
+        }
+        out.insert("warnings".into(), json!(warnings(model, f)));
+    }
+    Ok(Value::Object(out))
+}
+
+/// The ratios of a run's force maxima to its fixed-base twin's (rocking over fixed base).
+pub const RATIOS: [&str; 2] = ["base_moment_ratio", "base_shear_ratio"];
+
+/// What a run reports about itself: its [`Summary`] as it serializes (a time `*_time` as τ, with
+/// `*_time_s` in seconds), and with its fixed-base twin's summary the twin's force maxima
+/// (`fixed_base`) and the ratios `base_moment_ratio`, `base_shear_ratio` (rocking over fixed
+/// base; absent where the twin carries no force). A sweep's cells report any numeric entry.
+pub fn quantities(
+    run: &Summary,
+    twin: Option<&Summary>,
+) -> Result<serde_json::Map<String, Value>, SceneError> {
     let mut out = serde_json::Map::new();
-    for (key, value) in fields {
+    for (key, value) in serialized(run)? {
         if key.ends_with("_time") {
             let (tau, seconds) = match value {
                 Value::Object(t) => (t["tau"].clone(), t["seconds"].clone()),
@@ -126,15 +159,29 @@ pub fn summary_json(model: &Setup, scene: &Path, report: &Report) -> Result<Valu
             out.insert(key, value);
         }
     }
-    out.insert("scene".into(), json!(scene.display().to_string()));
-    out.insert("title".into(), json!(model.title));
-    out.insert("variant_reasons".into(), json!(model.reasons));
-    out.insert("excitation".into(), json!(model.excitation_description));
-    out.insert("derived".into(), derived_json(model)?);
-    if let Some(f) = &run.summary.forces {
-        forces_json(model, f, report.fixed_base.as_ref(), &mut out)?;
+    if let (Some(f), Some(t)) = (&run.forces, twin) {
+        if let Some(tf) = &t.forces {
+            let mut fixed = serialized(tf)?;
+            fixed.retain(|k, _| !k.ends_with("_time"));
+            fixed.insert("max_u_over_ucr".into(), json!(t.max_u_over_ucr));
+            out.insert("fixed_base".into(), Value::Object(fixed));
+            let ratios = [
+                (
+                    RATIOS[0],
+                    f.max_base_moment_over_wb,
+                    tf.max_base_moment_over_wb,
+                ),
+                (RATIOS[1], f.max_base_shear_over_w, tf.max_base_shear_over_w),
+            ];
+            for (key, rocking, fixed) in ratios {
+                // A twin that carries no force (no excitation) has no ratio.
+                if fixed > 0.0 {
+                    out.insert(key.into(), json!(rocking / fixed));
+                }
+            }
+        }
     }
-    Ok(Value::Object(out))
+    Ok(out)
 }
 
 /// A serializable value as a JSON object; a non-finite number is an error naming its field.
@@ -150,56 +197,6 @@ fn serialized(v: &impl serde::Serialize) -> Result<serde_json::Map<String, Value
         Value::Object(map) => Ok(map),
         _ => unreachable!("a struct serializes to an object"),
     }
-}
-
-/// The force maxima in SI (when the scene has units), the warnings of the model's no-sliding
-/// and no-jumping assumptions, and, with the fixed-base twin, its maxima and the ratios.
-fn forces_json(
-    model: &Setup,
-    f: &ForceSummary,
-    twin: Option<&Summary>,
-    out: &mut serde_json::Map<String, Value>,
-) -> Result<(), SceneError> {
-    let lift = model.structure.static_uplift();
-    if model.units.physical {
-        out.insert(
-            "max_base_moment_nm".into(),
-            json!(f.max_base_moment_over_wb * lift.moment),
-        );
-        out.insert(
-            "max_base_shear_n".into(),
-            json!(f.max_base_shear_over_w * lift.weight),
-        );
-    }
-    out.insert("warnings".into(), json!(warnings(model, f)));
-    if let Some(t) = twin {
-        let Some(tf) = &t.forces else {
-            return Ok(());
-        };
-        let mut fixed = serialized(tf)?;
-        fixed.retain(|k, _| !k.ends_with("_time"));
-        fixed.insert("max_u_over_ucr".into(), json!(t.max_u_over_ucr));
-        out.insert("fixed_base".into(), Value::Object(fixed));
-        let ratios = [
-            (
-                "base_moment_ratio",
-                f.max_base_moment_over_wb,
-                tf.max_base_moment_over_wb,
-            ),
-            (
-                "base_shear_ratio",
-                f.max_base_shear_over_w,
-                tf.max_base_shear_over_w,
-            ),
-        ];
-        for (key, rocking, fixed) in ratios {
-            // A twin that carries no force (no excitation) has no ratio.
-            if fixed > 0.0 {
-                out.insert(key.into(), json!(rocking / fixed));
-            }
-        }
-    }
-    Ok(())
 }
 
 /// The model's assumptions that a run breaks, with the first time it does.
