@@ -134,7 +134,7 @@ enum Command {
     Batch {
         /// The scene file (TOML), with `kind = "record"` in [excitation].
         scene: PathBuf,
-        /// Records: .AT2 files or folders of them (default: `records` in [sweep]).
+        /// Record files, or folders of them (.AT2, ESM .ASC, K-NET; default: `records` in [sweep]).
         #[arg(long = "records", value_name = "FILE|DIR", num_args = 1..)]
         records: Vec<PathBuf>,
         /// Scale factors, comma separated (default: `scales` in [sweep], or 1).
@@ -174,7 +174,8 @@ enum Command {
     Ida {
         /// The scene file (TOML), with `kind = "record"` in [excitation].
         scene: PathBuf,
-        /// Records: files or folders of them (default: `records` in [ida], else in [sweep]).
+        /// Record files, or folders of them (.AT2, ESM .ASC, K-NET; default: `records` in [ida], else
+        /// in [sweep]).
         #[arg(long = "records", value_name = "FILE|DIR", num_args = 1..)]
         records: Vec<PathBuf>,
         /// Override a scene value (repeatable).

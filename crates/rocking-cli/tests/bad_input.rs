@@ -42,6 +42,25 @@ amplitude_g = 0.3
 
 const RECORD: &str = "title\nevent\nunits\nNPTS= 4, DT= .01\n0.1 0.2 0.3 0.4\n";
 
+/// The record kind replacing the scene's pulse, and the same read as ESM or K-NET.
+const PULSE: &str = "kind = \"sine-pulse\"\nomega_p_over_p = 5.1\namplitude = 1.3";
+const AS_ESM: &str = "kind = \"record\"\npath = \"rec.AT2\"\nformat = \"esm\"";
+
+/// An ESM header (the keys the reader needs; `DATA_TYPE` and `NDATA` replaced per row).
+macro_rules! esm {
+    ($data_type:literal, $ndata:literal, $samples:literal) => {
+        concat!(
+            "EVENT_NAME: Test\nVS30_M/S: 580\nSAMPLING_INTERVAL_S: 0.010000\n",
+            "NDATA: ",
+            $ndata,
+            "\nUNITS: cm/s^2\nPGA_CM/S^2: 3.0\nDATA_TYPE: ",
+            $data_type,
+            "\nUSER5:\n",
+            $samples
+        )
+    };
+}
+
 /// (id, base scene, replace this, by this, record file text, expected fragments of the message).
 /// The message must also name `scene.toml:LINE:` where LINE is the line of the replacement (or,
 /// for a record, of its `path`; for a missing key, of its table).
@@ -374,6 +393,78 @@ const ROWS: &[Row] = &[
         "after_excitation = 5.0\nmax_steps = 1e9\n\n[output]\nhistory = \"steps\"",
         None,
         &["max_steps", "1e9", "history = \"steps\"", "at most 5e7"],
+    ),
+    (
+        "record-km-units",
+        SCENE,
+        PULSE,
+        "kind = \"record\"\npath = \"rec.AT2\"",
+        Some("title\nevent\nACCELERATION TIME SERIES IN UNITS OF KM/S/S\nNPTS= 4, DT= .01\n0.1 0.2 0.3 0.4\n"),
+        &["rec.AT2:3", "KM/S/S", "1000 m/s2", "do not convert"],
+    ),
+    (
+        "record-binary",
+        SCENE,
+        PULSE,
+        "kind = \"record\"\npath = \"rec.AT2\"",
+        Some("title\nevent\u{0}\n"),
+        &["rec.AT2:2", "expected text", "NUL"],
+    ),
+    (
+        "record-dt-too-small",
+        SCENE,
+        PULSE,
+        "kind = \"record\"\npath = \"rec.AT2\"",
+        Some("title\nevent\nunits\nNPTS= 4, DT= 1e-250\n0.1 0.2 0.3 0.4\n"),
+        &["rec.AT2:4", "DT = 1e-250 s", ">= 1e-6 s"],
+    ),
+    (
+        "record-too-long",
+        SCENE,
+        PULSE,
+        "kind = \"record\"\npath = \"rec.AT2\"",
+        Some("title\nevent\nunits\nNPTS= 3, DT= 1e300\n0.1 0.2 0.3\n"),
+        &["rec.AT2", "lasts 2e300 s", "at most 1e9 τ", "DT"],
+    ),
+    (
+        "record-too-many-steps",
+        SCENE,
+        PULSE,
+        "kind = \"record\"\npath = \"rec.AT2\"",
+        Some("title\nevent\nunits\nNPTS= 3, DT= 1e7\n0.1 0.2 0.3\n"),
+        &["rec.AT2", "lasts 20000000 s", "integrator steps", "`max_steps` = 50000000"],
+    ),
+    (
+        "record-esm-spectrum",
+        SCENE,
+        PULSE,
+        AS_ESM,
+        Some(esm!("ACCELERATION RESPONSE SPECTRUM", "3", "0.05 3.0\n0.10 4.0\n0.15 3.5\n")),
+        &["rec.AT2:7", "a response spectrum, not a time history"],
+    ),
+    (
+        "record-esm-velocity",
+        SCENE,
+        PULSE,
+        AS_ESM,
+        Some(esm!("VELOCITY", "3", "1.0\n2.0\n3.0\n")),
+        &["rec.AT2:7", "a velocity history"],
+    ),
+    (
+        "record-esm-ndata",
+        SCENE,
+        PULSE,
+        AS_ESM,
+        Some(esm!("ACCELERATION", "4", "1.0\n2.0\n3.0\n")),
+        &["rec.AT2:4", "expected 4 samples (NDATA in the header), found 3"],
+    ),
+    (
+        "record-knet-short-header",
+        SCENE,
+        PULSE,
+        "kind = \"record\"\npath = \"rec.AT2\"\nformat = \"knet\"",
+        Some("Origin Time       2011/03/11 14:46:00\nLat.              38.103\n"),
+        &["rec.AT2:3", "\"Long. …\"", "header line 3 of 17"],
     ),
     (
         "record-zero-scale",

@@ -71,9 +71,12 @@ fn same_record_in_every_format_gives_the_at2_summary() {
     );
     assert_eq!(got, reference, "text");
 
-    // ESM ASCII in cm/s^2 (the database's unit): samples agree to rounding of the unit change
+    // ESM ASCII in cm/s^2 (the database's unit), an absolute unit: the same motion as the AT2
+    // in g is felt by this structure (g = 9.81) when written as a x 981 cm/s^2, whatever
+    // standard gravity is; the summary agrees to the rounding of the unit change
     let esm = tmp.path().join("el.ASC");
-    let k = 100.0 * rocking_motion::STANDARD_GRAVITY;
+    let g_structure = 9.81;
+    let k = 100.0 * g_structure;
     let mut s = format!(
         "EVENT_NAME: Imperial Valley\nNETWORK: CI\nSTATION_CODE: ELC\nDATA_TYPE: ACCELERATION\n\
          UNITS: cm/s^2\nSAMPLING_INTERVAL_S: {dt:.6}\nNDATA: {}\nUSER5:\n",
@@ -86,7 +89,7 @@ fn same_record_in_every_format_gives_the_at2_summary() {
     let r = rocking_motion::read_record(&esm, rocking_motion::RecordFormat::Esm, None).unwrap();
     assert_eq!(r.dt, dt);
     for (x, y) in r.samples.iter().zip(&a) {
-        assert!((x - y).abs() <= 4.0 * f64::EPSILON * y.abs(), "{x} {y}");
+        assert_eq!(*x, y * k); // as written, in cm/s^2
     }
     let got = summary(
         &[format!("excitation.path={:?}", esm.display().to_string())],
@@ -113,7 +116,7 @@ fn same_record_in_every_format_gives_the_at2_summary() {
 
     // K-NET ASCII: integer counts × scale factor, mean removed
     let knet = tmp.path().join("EL0001.NS");
-    let gal = 0.01 / rocking_motion::STANDARD_GRAVITY; // g per gal
+    let gal = 0.01 / g_structure; // the structure's g per gal
     let factor = 7845.0 / 8223420.0; // gal per count
     let mean = a.iter().sum::<f64>() / a.len() as f64;
     let mut s = String::new();
@@ -152,8 +155,11 @@ fn same_record_in_every_format_gives_the_at2_summary() {
     let r = rocking_motion::read_record(&knet, rocking_motion::RecordFormat::Knet, None).unwrap();
     assert!((r.dt - dt).abs() < 1e-15);
     for (x, y) in r.samples.iter().zip(&a) {
-        // one count of quantisation, plus the mean of the rounding errors
-        assert!((x - (y - mean)).abs() <= 1.01 * factor * gal, "{x} {y}");
+        // in gal: one count of quantisation, plus the mean of the rounding errors
+        assert!(
+            (x * gal - (y - mean)).abs() <= 1.01 * factor * gal,
+            "{x} {y}"
+        );
     }
     let got = summary(
         &[format!("excitation.path={:?}", knet.display().to_string())],

@@ -1,155 +1,35 @@
-//! Reader for PEER strong-motion `.AT2` acceleration files.
+//! Reader for PEER strong-motion `.AT2` acceleration files, and the record every reader gives.
 
 use crate::error::excerpt;
-use crate::{MotionError, Record, STANDARD_GRAVITY};
+use crate::input::{decode, parse_number, read_bytes, time_step};
+use crate::units::{declared_unit, unit_expression, Declared, Quantity};
+use crate::{AccelUnit, MotionError, Record};
 use std::path::Path;
 
-/// The acceleration unit of a record's samples.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum AccelUnit {
-    /// Multiples of the standard gravity.
-    G,
-    /// cm/s² (gal).
-    CmPerS2,
-    /// m/s².
-    MPerS2,
-}
-
-impl AccelUnit {
-    /// Every unit, in the order of [`AccelUnit::NAMES`].
-    pub const ALL: [AccelUnit; 3] = [AccelUnit::G, AccelUnit::CmPerS2, AccelUnit::MPerS2];
-    /// The names accepted by [`AccelUnit::parse`] (first spelling of each unit).
-    pub const NAMES: [&'static str; 3] = ["g", "cm/s2", "m/s2"];
-
-    /// One sample in this unit, in g.
-    pub fn in_g(self) -> f64 {
-        match self {
-            AccelUnit::G => 1.0,
-            AccelUnit::CmPerS2 => 0.01 / STANDARD_GRAVITY,
-            AccelUnit::MPerS2 => 1.0 / STANDARD_GRAVITY,
-        }
-    }
-
-    /// The short name (`g`, `cm/s2`, `m/s2`).
-    pub fn name(self) -> &'static str {
-        match self {
-            AccelUnit::G => "g",
-            AccelUnit::CmPerS2 => "cm/s2",
-            AccelUnit::MPerS2 => "m/s2",
-        }
-    }
-
-    /// A unit as a user writes it: `g`, `cm/s2` (`cm/s^2`, `cm/s/s`, `gal`), `m/s2` (`m/s^2`,
-    /// `m/s/s`); case and spaces ignored.
-    pub fn parse(s: &str) -> Option<AccelUnit> {
-        let t: String = s
-            .chars()
-            .filter(|c| !c.is_whitespace())
-            .collect::<String>()
-            .to_ascii_lowercase();
-        match t.as_str() {
-            "g" => Some(AccelUnit::G),
-            "cm/s2" | "cm/s^2" | "cm/s/s" | "cm/sec2" | "cm/sec^2" | "cm/sec/sec" | "gal" => {
-                Some(AccelUnit::CmPerS2)
-            }
-            "m/s2" | "m/s^2" | "m/s/s" | "m/sec2" | "m/sec^2" | "m/sec/sec" => {
-                Some(AccelUnit::MPerS2)
-            }
-            _ => None,
-        }
-    }
-}
-
-/// What header line 3 says about the quantity and its unit.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) enum Declared {
-    /// No unit stated (the samples are taken as g unless the user states one).
-    Nothing,
-    /// An acceleration unit.
-    Unit(AccelUnit),
-    /// A unit this reader does not know.
-    Unknown,
-    /// A velocity or displacement history.
-    NotAcceleration,
-}
-
-/// Reads the quantity and the unit from header line 3, as the PEER files write them:
-/// `ACCELERATION TIME HISTORY IN UNITS OF G`, `... IN UNITS OF CM/SEC/SEC`, `The units are (g)`,
-/// `VELOCITY TIME HISTORY IN UNITS OF CM/SEC`.
-pub(crate) fn declared_unit(line: &str) -> Declared {
-    let up = line.to_ascii_uppercase();
-    if up.contains("VELOCITY") || up.contains("DISPLACEMENT") {
-        return Declared::NotAcceleration;
-    }
-    let compact: String = up.chars().filter(|c| !c.is_whitespace()).collect();
-    // Longest spellings first: "CM/S/S" contains "M/S/S".
-    const CM: [&str; 7] = [
-        "CM/SEC/SEC",
-        "CM/SEC^2",
-        "CM/SEC**2",
-        "CM/SEC2",
-        "CM/S/S",
-        "CM/S^2",
-        "CM/S2",
-    ];
-    const M: [&str; 7] = [
-        "M/SEC/SEC",
-        "M/SEC^2",
-        "M/SEC**2",
-        "M/SEC2",
-        "M/S/S",
-        "M/S^2",
-        "M/S2",
-    ];
-    if compact.contains("MM/S") {
-        return Declared::Unknown;
-    }
-    if CM.iter().any(|u| compact.contains(u))
-        || up
-            .split(|c: char| !c.is_ascii_alphanumeric())
-            .any(|w| w == "GAL" || w == "GALS")
-    {
-        return Declared::Unit(AccelUnit::CmPerS2);
-    }
-    if M.iter().any(|u| compact.contains(u)) {
-        return Declared::Unit(AccelUnit::MPerS2);
-    }
-    for intro in ["UNITSOF", "UNITSARE", "UNITS:", "UNITS=", "UNIT:", "UNIT="] {
-        if let Some(rest) = compact.find(intro).map(|i| &compact[i + intro.len()..]) {
-            let rest = rest.trim_start_matches(['(', '[']);
-            let after = rest.chars().nth(1);
-            return if rest.starts_with('G') && !after.is_some_and(|c| c.is_ascii_alphabetic()) {
-                Declared::Unit(AccelUnit::G)
-            } else {
-                Declared::Unknown
-            };
-        }
-    }
-    Declared::Nothing
-}
-
-/// An acceleration record read from a PEER `.AT2` file.
+/// An acceleration record as a reader gives it: a PEER `.AT2` file, or any other format
+/// ([`read_record`](crate::read_record)).
 ///
-/// The format (PEER strong-motion database, both the older "Pacific
-/// Engineering" and the NGA flavours) is four header lines followed by the
-/// samples, several per line. Header line 3 names the unit (g, cm/s² or m/s²,
-/// see [`AccelUnit`]); the samples are converted to g when read. A velocity or
-/// displacement history (line 3, or a `.VT2`/`.DT2` name) is refused.
+/// The PEER format (strong-motion database, the older "Pacific Engineering" and the NGA
+/// flavours) is four header lines followed by the samples, several per line. Header line 3
+/// names the unit (see [`AccelUnit`] and its units model); the samples are kept as the file
+/// states them. A velocity or displacement history (line 3, or a `.VT2`/`.DT2` name) is
+/// refused.
 ///
 /// ```text
-/// PEER STRONG MOTION DATABASE RECORD. PROCESSING BY PACIFIC ENGINEERING.   <- title
-/// CHALFANT VALLEY 07/21/86 14:42, BENTON, 360 (CDMG STATION 54100)         <- event
-/// ACCELERATION TIME HISTORY IN UNITS OF G. FILTER POINTS: HP=0.2 Hz ...    <- units
-/// NPTS=  7996, DT= .00500 SEC                                              <- npts, dt
-///    .4417812E-03   .4396098E-03   .4036100E-03   .3622979E-03   .3223605E-03
+/// PEER NGA STRONG MOTION DATABASE RECORD                                  <- title
+/// Imperial Valley-06, 10/15/1979, El Centro Array #6, 140                  <- event
+/// ACCELERATION TIME SERIES IN UNITS OF G                                  <- units
+/// NPTS=  7807, DT=   .0050 SEC                                            <- npts, dt
+///   .1234567E-02  .2345678E-02 -.3456789E-02  .4567890E-02  .5678901E-02
 /// ```
 ///
-/// Line 4 is accepted in the spellings found in practice —
-/// `NPTS=  1559, DT= .02000 SEC`, `NPTS=  12000, dt=  .00500`, with or
-/// without trailing text/commas, case-insensitive, and the older
-/// `  2000   0.0100   NPTS, DT` form. Samples may be separated by
-/// whitespace or commas, any number per line (fixed `8F10.5` or E-format),
-/// and Fortran `D` exponents are accepted.
+/// Line 3 is read as a unit expression after `UNITS OF` (`G`, `CM/SEC/SEC`, `M/S^2`, `gal`;
+/// an explanation after it such as `(1 G = 980.665 CM/SEC/SEC)` is not read). Line 4 is
+/// accepted in the spellings found in practice — `NPTS=  1559, DT= .02000 SEC`,
+/// `NPTS=  12000, dt=  .00500`, `DT= 20 MSEC` (a time unit after DT is applied), with or without
+/// trailing text/commas, case-insensitive, and the older `  2000   0.0100   NPTS, DT` form.
+/// Samples may be separated by whitespace or commas, any number per line (fixed `8F10.5` or
+/// E-format), and Fortran `D` exponents are accepted.
 #[derive(Debug, Clone, PartialEq)]
 pub struct At2Record {
     /// Name of the input (file path or the name given to [`parse_at2`]).
@@ -162,37 +42,38 @@ pub struct At2Record {
     pub units: String,
     /// Number of points declared in the header (= `samples.len()`).
     pub npts: usize,
-    /// Time step (s).
+    /// Time step (s), at least [`MIN_DT`](crate::MIN_DT).
     pub dt: f64,
     /// The unit the header declares (`None`: not stated, the samples are taken as g; see
     /// [`At2Record::with_stated_unit`]).
     pub declared_unit: Option<AccelUnit>,
-    /// Accelerations in units of g (converted from the declared unit).
+    /// Accelerations as the file states them, in [`unit`](At2Record::unit).
     pub samples: Vec<f64>,
 }
 
 impl At2Record {
-    /// The record with the unit the user states for it: the samples of a record whose header
-    /// states no unit are converted from `unit`; a header that declares another unit is a
-    /// contradiction and an error.
+    /// The record with the unit the user states for it: a record whose header states no unit
+    /// takes `unit`; a header that declares another unit is a contradiction and an error.
     ///
     /// # Errors
     /// [`MotionError::UnitMismatch`] when the header declares a different unit.
     pub fn with_stated_unit(mut self, unit: AccelUnit) -> Result<Self, MotionError> {
         match self.declared_unit {
-            Some(d) if d == unit => Ok(self),
-            Some(d) => Err(MotionError::UnitMismatch {
+            Some(d) if d != unit => Err(MotionError::UnitMismatch {
                 file: self.source,
                 declared: d.name(),
                 stated: unit.name(),
             }),
-            None => {
-                let k = unit.in_g();
-                self.samples.iter_mut().for_each(|a| *a *= k);
+            _ => {
                 self.declared_unit = Some(unit);
                 Ok(self)
             }
         }
+    }
+
+    /// The unit of the samples: the declared one, g when none is declared or stated.
+    pub fn unit(&self) -> AccelUnit {
+        self.declared_unit.unwrap_or(AccelUnit::G)
     }
 
     /// Duration (npts − 1)·dt of the record.
@@ -200,31 +81,28 @@ impl At2Record {
         self.samples.len().saturating_sub(1) as f64 * self.dt
     }
 
-    /// Peak ground acceleration max |a| in g.
+    /// Peak ground acceleration max |a| in the record's [`unit`](At2Record::unit).
     pub fn pga(&self) -> f64 {
         self.samples.iter().fold(0.0f64, |m, x| m.max(x.abs()))
     }
 
-    /// Samples converted to m/s²: `samples × 9.80665` ([`STANDARD_GRAVITY`]).
-    pub fn samples_si(&self) -> Vec<f64> {
-        self.samples.iter().map(|a| a * STANDARD_GRAVITY).collect()
-    }
-
-    /// Piecewise-linear [`Record`] in units of g (time in s).
+    /// Piecewise-linear [`Record`] of the samples as stated, in the record's unit (time in s).
     pub fn to_record(&self) -> Record {
         self.clone().into_record()
     }
 
-    /// Piecewise-linear [`Record`] in m/s² (scale factor
-    /// [`STANDARD_GRAVITY`]; time in s).
-    pub fn to_record_si(&self) -> Record {
-        self.to_record().with_scale(STANDARD_GRAVITY)
+    /// Piecewise-linear [`Record`] in m/s² (time in s) as a structure whose g is `g_si` m/s²
+    /// feels it: the units model of [`AccelUnit`] (a record in g is scaled by `g_si`, an absolute
+    /// one is not).
+    pub fn to_record_si(&self, g_si: f64) -> Record {
+        self.to_record().with_scale(self.unit().in_m_s2(g_si))
     }
 
-    /// Consume into a [`Record`] in units of g without copying the samples.
+    /// Consume into a [`Record`] in the record's unit without copying the samples.
     pub fn into_record(self) -> Record {
-        // Invariants established by the parser: dt > 0 finite, ≥ 1 finite sample.
-        Record::new(self.dt, self.samples).expect("parser validated the record")
+        // Invariants established by the readers: dt >= MIN_DT, finite duration, >= 1 finite
+        // sample.
+        Record::new(self.dt, self.samples).expect("the reader validated the record")
     }
 }
 
@@ -243,6 +121,7 @@ pub fn read_at2(path: impl AsRef<Path>) -> Result<At2Record, MotionError> {
         if ext == "VT2" || ext == "DT2" {
             return Err(MotionError::NotAcceleration {
                 file: path.display().to_string(),
+                line: None,
                 found: format!(
                     "a PEER {} file (.{ext})",
                     if ext == "VT2" {
@@ -254,72 +133,68 @@ pub fn read_at2(path: impl AsRef<Path>) -> Result<At2Record, MotionError> {
             });
         }
     }
-    let bytes = std::fs::read(path).map_err(|source| MotionError::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
-    parse_at2(bytes, &path.display().to_string())
+    parse_at2(read_bytes(path)?, &path.display().to_string())
 }
+
+/// The lines of the PEER header.
+const HEADER: [&str; 4] = [
+    "a title line",
+    "an event/station line",
+    "a units line",
+    "\"NPTS=<n>, DT=<dt>\"",
+];
 
 /// Parse the contents of a PEER `.AT2` file (see [`At2Record`] for the
 /// format). `source_name` is used in error messages, which have the form
 /// `NAME:LINE: expected …, found …`.
 ///
-/// Validation: the input must be UTF-8 (in practice ASCII), have the four
-/// header lines, `NPTS ≥ 1`, `DT > 0` and finite, every data token must be
-/// a finite number, and the number of samples must equal `NPTS`. Never
-/// panics, whatever the bytes.
+/// Validation: the input must be text (ASCII, UTF-8 or Latin-1), have the four header lines, a
+/// unit the readers convert (or none), `NPTS ≥ 1`, `DT ≥` [`MIN_DT`](crate::MIN_DT) with a
+/// finite duration, every data token must be a finite number, and the number of samples must
+/// equal `NPTS`. Never panics, whatever the bytes.
 ///
 /// # Errors
-/// [`MotionError::NotUtf8`], [`MotionError::Empty`],
-/// [`MotionError::TruncatedHeader`], [`MotionError::BadHeader`],
-/// [`MotionError::InvalidNpts`], [`MotionError::InvalidDt`],
+/// [`MotionError::NotText`], [`MotionError::Empty`], [`MotionError::TruncatedHeader`],
+/// [`MotionError::UnknownUnits`], [`MotionError::NotAcceleration`],
+/// [`MotionError::BadHeader`], [`MotionError::InvalidNpts`], [`MotionError::InvalidDt`],
 /// [`MotionError::BadToken`], [`MotionError::NonFiniteSample`],
 /// [`MotionError::CountMismatch`].
 pub fn parse_at2(text: impl AsRef<[u8]>, source_name: &str) -> Result<At2Record, MotionError> {
-    let bytes = text.as_ref();
     let file = || source_name.to_owned();
-    let text = std::str::from_utf8(bytes).map_err(|e| MotionError::NotUtf8 {
-        file: file(),
-        line: 1 + bytes[..e.valid_up_to()]
-            .iter()
-            .filter(|&&b| b == b'\n')
-            .count(),
-    })?;
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let text = decode(text.as_ref(), source_name)?;
     if text.is_empty() {
-        return Err(MotionError::Empty { file: file() });
+        return Err(MotionError::Empty {
+            file: file(),
+            expected: "a PEER AT2 header (4 lines)",
+        });
     }
 
     let mut lines = text.lines();
-    const EXPECTED: [&str; 4] = [
-        "a title line",
-        "an event/station line",
-        "a units line",
-        "\"NPTS=<n>, DT=<dt>\"",
-    ];
     let mut header = [""; 4];
     for (i, slot) in header.iter_mut().enumerate() {
         *slot = lines.next().ok_or(MotionError::TruncatedHeader {
             file: file(),
             line: i + 1,
-            expected: EXPECTED[i],
+            total: HEADER.len(),
+            expected: HEADER[i],
         })?;
     }
 
     let declared_unit = match declared_unit(header[2]) {
         Declared::Nothing => None,
         Declared::Unit(u) => Some(u),
-        Declared::Unknown => {
+        Declared::Unknown(m_s2) => {
             return Err(MotionError::UnknownUnits {
                 file: file(),
                 line: 3,
                 found: excerpt(header[2]),
+                m_s2,
             })
         }
         Declared::NotAcceleration => {
             return Err(MotionError::NotAcceleration {
-                file: format!("{}:3", file()),
+                file: file(),
+                line: Some(3),
                 found: format!("\"{}\"", excerpt(header[2])),
             })
         }
@@ -337,13 +212,7 @@ pub fn parse_at2(text: impl AsRef<[u8]>, source_name: &str) -> Result<At2Record,
             npts,
         });
     }
-    if !(dt.is_finite() && dt > 0.0) {
-        return Err(MotionError::InvalidDt {
-            file: file(),
-            line: HEADER_LINE,
-            dt,
-        });
-    }
+    let dt = time_step(dt, npts, source_name, HEADER_LINE, "DT")?;
 
     // Never trust NPTS for the allocation size: each sample needs ≥ 2 bytes.
     let mut samples = Vec::with_capacity(npts.min(text.len() / 2 + 1));
@@ -357,21 +226,10 @@ pub fn parse_at2(text: impl AsRef<[u8]>, source_name: &str) -> Result<At2Record,
             .split(|c: char| c.is_whitespace() || c == ',')
             .filter(|s| !s.is_empty())
         {
-            let value = parse_number(token).ok_or_else(|| MotionError::BadToken {
-                file: file(),
-                line: line_no,
-                token: excerpt(token),
-            })?;
-            if !value.is_finite() {
-                return Err(MotionError::NonFiniteSample {
-                    file: file(),
-                    line: line_no,
-                    token: excerpt(token),
-                });
-            }
+            let value = crate::input::number(token, source_name, line_no)?;
             found += 1;
             if found <= npts {
-                samples.push(value * declared_unit.map_or(1.0, AccelUnit::in_g));
+                samples.push(value);
             } else if surplus_line.is_none() {
                 surplus_line = Some(line_no);
             }
@@ -381,6 +239,7 @@ pub fn parse_at2(text: impl AsRef<[u8]>, source_name: &str) -> Result<At2Record,
         return Err(MotionError::CountMismatch {
             file: file(),
             line: surplus_line.unwrap_or(last_line),
+            key: "NPTS",
             declared: npts,
             found,
         });
@@ -398,19 +257,9 @@ pub fn parse_at2(text: impl AsRef<[u8]>, source_name: &str) -> Result<At2Record,
     })
 }
 
-/// Parse a number, accepting Fortran `D` exponents (`1.0D-03`).
-pub(crate) fn parse_number(token: &str) -> Option<f64> {
-    token.parse::<f64>().ok().or_else(|| {
-        if token.contains(['d', 'D']) {
-            token.replace(['d', 'D'], "e").parse::<f64>().ok()
-        } else {
-            None
-        }
-    })
-}
-
-/// Parse header line 4: `NPTS = n [,] DT = dt [anything]` (any case), or
-/// the older `n dt NPTS, DT`. Returns `None` if it has neither form.
+/// Parse header line 4: `NPTS = n [,] DT = dt [unit] [anything]` (any case; the unit a time
+/// such as `SEC` or `MSEC`, seconds when absent), or the older `n dt NPTS, DT`. Returns `None`
+/// if it has neither form or names a unit of DT that is not a time.
 fn parse_npts_dt(line: &str) -> Option<(usize, f64)> {
     let up = line.to_ascii_uppercase();
     let npts_at = up.find("NPTS")?;
@@ -426,7 +275,20 @@ fn parse_npts_dt(line: &str) -> Option<(usize, f64)> {
             .bytes()
             .take_while(|b| b.is_ascii_digit() || b"+-.ED".contains(b))
             .count();
-        Some((npts, parse_number(&r[..len])?))
+        let dt = parse_number(&r[..len])?;
+        let unit: String = r[len..]
+            .trim_start()
+            .chars()
+            .take_while(char::is_ascii_alphabetic)
+            .collect();
+        let seconds = match unit.as_str() {
+            "" => 1.0,
+            u => match unit_expression(u)? {
+                Quantity::Time(s) => s,
+                _ => return None,
+            },
+        };
+        Some((npts, dt * seconds))
     } else {
         // 2000   0.0100   NPTS, DT
         let mut tokens = up[..npts_at]
@@ -449,8 +311,13 @@ mod tests {
             ("NPTS=  12000, dt=  .00500", (12000, 0.005)),
             ("NPTS=   2364, dt=   .0100 SEC", (2364, 0.01)),
             ("NPTS=  5590, DT=   .0050 SEC,", (5590, 0.005)),
+            ("NPTS=  7807  DT=  0.0050 SEC,", (7807, 0.005)),
             ("npts = 10,dt=0.01", (10, 0.01)),
             ("NPTS=10 DT=1.0D-02 SEC", (10, 0.01)),
+            ("NPTS=10, DT= 20 MSEC", (10, 0.02)),
+            ("NPTS=10, DT= 5 ms", (10, 0.005)),
+            ("NPTS=10, DT=.005SEC", (10, 0.005)),
+            ("NPTS=10, DT= .01 SECONDS FORMAT (5E15.7)", (10, 0.01)),
             ("  2000    0.0100    NPTS, DT", (2000, 0.01)),
             ("NPTS=  3, DT= -.01 SEC", (3, -0.01)),
         ];
@@ -463,6 +330,8 @@ mod tests {
             "NPTS= 10",
             "NPTS=10, DT=",
             "NPTS=10, DT= SEC",
+            "NPTS=10, DT= .01 HZ",
+            "NPTS=10, DT= .01 CM",
             "DT=.01 NPTS=10",
             "1 2 3 NPTS DT",
             "NPTS=99999999999999999999999999, DT=.01",
@@ -470,41 +339,6 @@ mod tests {
         ] {
             assert_eq!(parse_npts_dt(bad), None, "{bad}");
         }
-    }
-
-    #[test]
-    fn units_lines() {
-        use Declared::*;
-        let g = Unit(AccelUnit::G);
-        let cm = Unit(AccelUnit::CmPerS2);
-        let m = Unit(AccelUnit::MPerS2);
-        for (line, want) in [
-            (
-                "ACCELERATION TIME HISTORY IN UNITS OF G. FILTER POINTS: HP=0.2 Hz",
-                g,
-            ),
-            ("The units are (g)", g),
-            ("ACCELERATION TIME SERIES IN UNITS OF G", g),
-            ("ACCELERATION TIME HISTORY IN UNITS OF CM/SEC/SEC", cm),
-            ("ACCELERATION IN UNITS OF CM/S^2", cm),
-            ("accel. in gal", cm),
-            ("ACCELERATION TIME HISTORY IN UNITS OF M/S/S", m),
-            ("ACCELERATION IN M/S^2", m),
-            ("units", Nothing),
-            ("U", Nothing),
-            ("ACCELERATION IN UNITS OF FT/S/S", Unknown),
-            ("ACCELERATION IN UNITS OF GALILEO", Unknown),
-            ("ACCELERATION IN MM/S/S", Unknown),
-            ("VELOCITY TIME HISTORY IN UNITS OF CM/SEC", NotAcceleration),
-            ("DISPLACEMENT TIME HISTORY IN UNITS OF CM", NotAcceleration),
-        ] {
-            assert_eq!(declared_unit(line), want, "{line}");
-        }
-        for (name, u) in AccelUnit::NAMES.iter().zip(AccelUnit::ALL) {
-            assert_eq!(AccelUnit::parse(name), Some(u));
-        }
-        assert_eq!(AccelUnit::parse("CM/S^2"), Some(AccelUnit::CmPerS2));
-        assert_eq!(AccelUnit::parse("ft/s2"), None);
     }
 
     #[test]

@@ -6,15 +6,33 @@ use std::path::PathBuf;
 /// Longest excerpt of offending input quoted in an error message.
 const MAX_QUOTE: usize = 60;
 
-/// Quote at most [`MAX_QUOTE`] characters of `s` for an error message.
+/// Quote at most [`MAX_QUOTE`] characters of `s` for an error message, control characters
+/// escaped (a message stays one line whatever the bytes).
 pub(crate) fn excerpt(s: &str) -> String {
     let s = s.trim_end();
-    if s.chars().count() <= MAX_QUOTE {
-        s.to_owned()
+    let mut out = String::new();
+    for (k, c) in s.chars().enumerate() {
+        if k == MAX_QUOTE {
+            out.push('…');
+            break;
+        }
+        if c.is_control() {
+            out.extend(c.escape_default());
+        } else {
+            out.push(c);
+        }
+    }
+    out
+}
+
+/// A number for a message: as written for ordinary magnitudes, in exponent form (`1e-250`, not
+/// 250 digits) for very large or very small ones.
+pub fn short_number(x: f64) -> String {
+    let a = x.abs();
+    if x == 0.0 || !x.is_finite() || (1e-4..1e9).contains(&a) {
+        format!("{x}")
     } else {
-        let mut out: String = s.chars().take(MAX_QUOTE).collect();
-        out.push('…');
-        out
+        format!("{x:e}")
     }
 }
 
@@ -33,24 +51,30 @@ pub enum MotionError {
         /// Underlying I/O error.
         source: std::io::Error,
     },
-    /// The input is not valid UTF-8.
-    NotUtf8 {
+    /// The input is not text (a NUL byte, or UTF-16).
+    NotText {
         /// Name of the input.
         file: String,
-        /// Line containing the first invalid byte.
+        /// Line of the first offending byte.
         line: usize,
+        /// What it is instead.
+        found: &'static str,
     },
     /// The input is empty (no header at all).
     Empty {
         /// Name of the input.
         file: String,
+        /// What the format starts with.
+        expected: &'static str,
     },
-    /// The input ended inside the 4-line header.
+    /// The input ended inside a header of a fixed number of lines.
     TruncatedHeader {
         /// Name of the input.
         file: String,
         /// The missing header line (1-based).
         line: usize,
+        /// The number of header lines of the format.
+        total: usize,
         /// What that line should have contained.
         expected: &'static str,
     },
@@ -72,13 +96,16 @@ pub enum MotionError {
         /// The value read.
         npts: usize,
     },
-    /// `DT` in the header is not strictly positive and finite.
+    /// The time step is outside [`MIN_DT`](crate::MIN_DT) … ∞, or the record's duration
+    /// overflows.
     InvalidDt {
         /// Name of the input.
         file: String,
         /// Line number of the header line.
         line: usize,
-        /// The value read.
+        /// The header key or field that gives it (`DT`, `SAMPLING_INTERVAL_S`, ...).
+        key: &'static str,
+        /// The time step read (s).
         dt: f64,
     },
     /// A data token is not a number.
@@ -99,32 +126,38 @@ pub enum MotionError {
         /// The token (possibly shortened).
         token: String,
     },
-    /// The number of samples differs from the declared `NPTS`.
+    /// The number of samples differs from the declared count.
     CountMismatch {
         /// Name of the input.
         file: String,
         /// Where the mismatch shows: the line of the first surplus sample,
         /// or the last line of the file when samples are missing.
         line: usize,
-        /// `NPTS` from the header.
+        /// The header key of the count (`NPTS`, `NDATA`).
+        key: &'static str,
+        /// The count in the header.
         declared: usize,
         /// Number of samples actually present.
         found: usize,
     },
-    /// Header line 3 names a unit this reader does not know.
+    /// A header names a unit this reader does not convert.
     UnknownUnits {
         /// Name of the input.
         file: String,
-        /// Line number (3).
+        /// Line number of the header line.
         line: usize,
         /// The offending line (possibly shortened).
         found: String,
+        /// The unit in m/s², when it is an acceleration unit the readers do not take.
+        m_s2: Option<f64>,
     },
-    /// A velocity or displacement history, not an acceleration.
+    /// A velocity or displacement history, or a response spectrum: not an acceleration history.
     NotAcceleration {
-        /// Name of the input (with the line, when the header says so).
+        /// Name of the input.
         file: String,
-        /// What gave it away.
+        /// The header line that says so, if a line does.
+        line: Option<usize>,
+        /// What it is.
         found: String,
     },
     /// The user states a unit for a record whose header declares another.
@@ -158,11 +191,10 @@ impl MotionError {
         match self {
             MotionError::Io { .. }
             | MotionError::InvalidParameter(_)
-            | MotionError::NotAcceleration { .. }
             | MotionError::UnitMismatch { .. } => None,
-            MotionError::UnknownUnits { line, .. } => Some(*line),
+            MotionError::NotAcceleration { line, .. } => *line,
             MotionError::Empty { .. } => Some(1),
-            MotionError::NotUtf8 { line, .. }
+            MotionError::NotText { line, .. }
             | MotionError::TruncatedHeader { line, .. }
             | MotionError::BadHeader { line, .. }
             | MotionError::InvalidNpts { line, .. }
@@ -170,6 +202,7 @@ impl MotionError {
             | MotionError::BadToken { line, .. }
             | MotionError::NonFiniteSample { line, .. }
             | MotionError::Malformed { line, .. }
+            | MotionError::UnknownUnits { line, .. }
             | MotionError::CountMismatch { line, .. } => Some(*line),
         }
     }
@@ -181,32 +214,42 @@ impl fmt::Display for MotionError {
             MotionError::Io { path, source } => {
                 write!(f, "{}: cannot read file: {source}", path.display())
             }
-            MotionError::NotUtf8 { file, line } => write!(
+            MotionError::NotText { file, line, found } => write!(
                 f,
-                "{file}:{line}: expected UTF-8/ASCII text, found invalid byte sequence"
+                "{file}:{line}: expected text (ASCII, UTF-8 or Latin-1), found {found}"
             ),
-            MotionError::Empty { file } => write!(
-                f,
-                "{file}:1: expected a PEER AT2 header (4 lines), found an empty file"
-            ),
+            MotionError::Empty { file, expected } => {
+                write!(f, "{file}:1: expected {expected}, found an empty file")
+            }
             MotionError::TruncatedHeader {
                 file,
                 line,
+                total,
                 expected,
             } => write!(
                 f,
-                "{file}:{line}: expected {expected} (header line {line} of 4), found end of file"
+                "{file}:{line}: expected {expected} (header line {line} of {total}), found end \
+                 of file"
             ),
             MotionError::BadHeader { file, line, found } => write!(
                 f,
-                "{file}:{line}: expected \"NPTS=<n>, DT=<dt>\" in the header, found \"{found}\""
+                "{file}:{line}: expected \"NPTS=<n>, DT=<dt> [SEC|MSEC]\" in the header, found \
+                 \"{found}\""
             ),
             MotionError::InvalidNpts { file, line, npts } => {
                 write!(f, "{file}:{line}: expected NPTS >= 1, found NPTS = {npts}")
             }
-            MotionError::InvalidDt { file, line, dt } => write!(
+            MotionError::InvalidDt {
+                file,
+                line,
+                key,
+                dt,
+            } => write!(
                 f,
-                "{file}:{line}: expected DT > 0 and finite, found DT = {dt}"
+                "{file}:{line}: expected a time step {key} >= {} s (sampled at 1 MHz at most) \
+                 with a finite duration, found {key} = {} s",
+                short_number(crate::MIN_DT),
+                short_number(*dt)
             ),
             MotionError::BadToken { file, line, token } => {
                 write!(f, "{file}:{line}: expected a number, found \"{token}\"")
@@ -218,22 +261,40 @@ impl fmt::Display for MotionError {
             MotionError::CountMismatch {
                 file,
                 line,
+                key,
                 declared,
                 found,
             } => write!(
                 f,
-                "{file}:{line}: expected {declared} samples (NPTS in the header), found {found}"
+                "{file}:{line}: expected {declared} samples ({key} in the header), found {found}"
             ),
-            MotionError::UnknownUnits { file, line, found } => write!(
-                f,
-                "{file}:{line}: expected the units of g, cm/s2 (CM/SEC/SEC) or m/s2 (M/S/S), \
-                 found \"{found}\""
-            ),
-            MotionError::NotAcceleration { file, found } => write!(
-                f,
-                "{file}: expected an acceleration history, found {found}; only PEER \
-                 acceleration files (.AT2) can be used"
-            ),
+            MotionError::UnknownUnits {
+                file,
+                line,
+                found,
+                m_s2,
+            } => {
+                write!(
+                    f,
+                    "{file}:{line}: expected the units of g, cm/s2 (CM/SEC/SEC) or m/s2 \
+                     (M/S/S), found \"{found}\""
+                )?;
+                match m_s2 {
+                    Some(v) => write!(
+                        f,
+                        ", an acceleration of {} m/s2 per unit that the readers do not convert",
+                        short_number(*v)
+                    ),
+                    None => Ok(()),
+                }
+            }
+            MotionError::NotAcceleration { file, line, found } => {
+                write!(f, "{file}")?;
+                if let Some(l) = line {
+                    write!(f, ":{l}")?;
+                }
+                write!(f, ": expected an acceleration history, found {found}")
+            }
             MotionError::UnitMismatch {
                 file,
                 declared,

@@ -1,13 +1,15 @@
 //! Record formats besides PEER `.AT2`: plain text, ESM ASCII and K-NET/KiK-net ASCII, read into
-//! the same [`At2Record`] (samples in g, the declared unit kept) so that every format shares the
-//! units model of the AT2 reader: a unit stated in the file converts the samples, a file that
+//! the same [`At2Record`] (samples as stated, the declared unit kept) so that every format shares
+//! one units model ([`AccelUnit`]): a unit stated in the file is the samples' unit, a file that
 //! states none takes the unit the user states ([`At2Record::with_stated_unit`]), and a file that
-//! holds velocity or displacement is refused.
+//! holds velocity, displacement or a response spectrum is refused. Also the one rule for which
+//! files of a folder are records ([`record_files_in`]).
 
-use crate::at2::{declared_unit, parse_number, Declared};
 use crate::error::excerpt;
-use crate::{read_at2, At2Record, MotionError};
-use std::path::Path;
+use crate::input::{decode, number, read_bytes, time_step};
+use crate::units::{declared_unit, Declared};
+use crate::{parse_at2, read_at2, AccelUnit, At2Record, MotionError};
+use std::path::{Path, PathBuf};
 
 /// The layout of a record file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -53,6 +55,7 @@ impl RecordFormat {
 
     /// The format a file name implies: `.AT2`; `.txt`, `.dat`, `.csv`; `.ASC` (ESM); K-NET's
     /// component extensions `.NS`, `.EW`, `.UD` and KiK-net's `.NS1` … `.UD2`. `None` otherwise.
+    /// Case is ignored.
     pub fn from_path(path: &Path) -> Option<RecordFormat> {
         let ext = path.extension()?.to_string_lossy().to_ascii_uppercase();
         match ext.as_str() {
@@ -67,6 +70,39 @@ impl RecordFormat {
     }
 }
 
+/// The files of `dir` that a folder of records stands for, sorted: its regular files whose
+/// extension names a format that describes itself in a header (`.AT2`, ESM `.ASC`, K-NET and
+/// KiK-net), not hidden. Text records (`.txt`, `.dat`, `.csv`) are given by name: they say
+/// nothing of themselves and share their extensions with the READMEs and tables that download
+/// folders hold (PEER's `_SearchResults.csv`). Sub-folders are not entered (a folder named
+/// `RSN1.AT2` is not a record).
+///
+/// # Errors
+/// [`MotionError::Io`] when the folder cannot be listed.
+pub fn record_files_in(dir: &Path) -> Result<Vec<PathBuf>, MotionError> {
+    let io = |source| MotionError::Io {
+        path: dir.to_path_buf(),
+        source,
+    };
+    let mut files = Vec::new();
+    for entry in std::fs::read_dir(dir).map_err(io)? {
+        let path = entry.map_err(io)?.path();
+        let hidden = path
+            .file_name()
+            .is_some_and(|n| n.to_string_lossy().starts_with('.'));
+        let described = RecordFormat::from_path(&path).is_some_and(|f| f != RecordFormat::Text);
+        if described && !hidden && path.is_file() {
+            files.push(path);
+        }
+    }
+    files.sort();
+    Ok(files)
+}
+
+/// What [`record_files_in`] lists, for messages about an empty folder.
+pub const FOLDER_RULE: &str = "a folder stands for its .AT2, ESM .ASC and K-NET/KiK-net files; \
+                               give text records (.txt, .dat, .csv) by name";
+
 /// Reads a record file in `format`; `dt` is the time step of a one-column text file (s) and
 /// must agree with the times of a two-column one; other formats state their own and refuse it.
 ///
@@ -79,44 +115,57 @@ pub fn read_record(
     dt: Option<f64>,
 ) -> Result<At2Record, MotionError> {
     let path = path.as_ref();
-    let name = path.display().to_string();
+    if format == RecordFormat::At2 {
+        refuse_dt(format, dt, &path.display().to_string())?;
+        return read_at2(path);
+    }
+    parse_record(read_bytes(path)?, format, &path.display().to_string(), dt)
+}
+
+/// [`read_record`] of the bytes of a file called `name` (for messages).
+///
+/// # Errors
+/// As [`read_record`].
+pub fn parse_record(
+    bytes: impl AsRef<[u8]>,
+    format: RecordFormat,
+    name: &str,
+    dt: Option<f64>,
+) -> Result<At2Record, MotionError> {
+    refuse_dt(format, dt, name)?;
+    if format == RecordFormat::At2 {
+        return parse_at2(bytes, name);
+    }
+    let text = decode(bytes.as_ref(), name)?;
+    match format {
+        RecordFormat::Text => parse_text(&text, name, dt),
+        RecordFormat::Esm => parse_esm(&text, name),
+        RecordFormat::Knet => parse_knet(&text, name),
+        RecordFormat::At2 => unreachable!("parsed above"),
+    }
+}
+
+/// A time step stated for a format that states its own is an error.
+fn refuse_dt(format: RecordFormat, dt: Option<f64>, name: &str) -> Result<(), MotionError> {
     if format != RecordFormat::Text && dt.is_some() {
         return Err(MotionError::InvalidParameter(format!(
             "{name}: a {} file states its own time step; `dt` is for one-column text files",
             format.name()
         )));
     }
-    if format == RecordFormat::At2 {
-        return read_at2(path);
-    }
-    let bytes = std::fs::read(path).map_err(|source| MotionError::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
-    let text = utf8(&bytes, &name)?;
-    match format {
-        RecordFormat::Text => parse_text(text, &name, dt),
-        RecordFormat::Esm => parse_esm(text, &name),
-        RecordFormat::Knet => parse_knet(text, &name),
-        RecordFormat::At2 => unreachable!("read above"),
-    }
+    Ok(())
 }
 
-fn utf8<'a>(bytes: &'a [u8], file: &str) -> Result<&'a str, MotionError> {
-    let text = std::str::from_utf8(bytes).map_err(|e| MotionError::NotUtf8 {
-        file: file.to_owned(),
-        line: 1 + bytes[..e.valid_up_to()]
-            .iter()
-            .filter(|&&b| b == b'\n')
-            .count(),
-    })?;
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+/// `Empty` unless `text` has something besides blanks.
+fn not_blank(text: &str, file: &str, expected: &'static str) -> Result<(), MotionError> {
     if text.trim().is_empty() {
-        return Err(MotionError::Empty {
+        Err(MotionError::Empty {
             file: file.to_owned(),
-        });
+            expected,
+        })
+    } else {
+        Ok(())
     }
-    Ok(text)
 }
 
 fn malformed(file: &str, line: usize, expected: &str, found: &str) -> MotionError {
@@ -128,46 +177,41 @@ fn malformed(file: &str, line: usize, expected: &str, found: &str) -> MotionErro
     }
 }
 
-/// A finite number, or the error naming the token.
-fn number(token: &str, file: &str, line: usize) -> Result<f64, MotionError> {
-    let v = parse_number(token).ok_or_else(|| MotionError::BadToken {
-        file: file.to_owned(),
-        line,
-        token: excerpt(token),
-    })?;
-    if v.is_finite() {
-        Ok(v)
-    } else {
-        Err(MotionError::NonFiniteSample {
-            file: file.to_owned(),
-            line,
-            token: excerpt(token),
-        })
-    }
-}
-
-fn positive_dt(dt: f64, file: &str, line: usize) -> Result<f64, MotionError> {
-    if dt.is_finite() && dt > 0.0 {
-        Ok(dt)
-    } else {
-        Err(MotionError::InvalidDt {
-            file: file.to_owned(),
-            line,
-            dt,
-        })
-    }
-}
-
-fn record(file: &str, title: &str, units: &str, dt: f64, samples: Vec<f64>) -> At2Record {
+fn record(file: &str, title: &str, event: &str, dt: f64, samples: Vec<f64>) -> At2Record {
     At2Record {
         source: file.to_owned(),
         title: title.to_owned(),
-        event: String::new(),
-        units: units.to_owned(),
+        event: event.to_owned(),
+        units: String::new(),
         npts: samples.len(),
         dt,
         declared_unit: None,
         samples,
+    }
+}
+
+/// The acceleration unit a header field states (`UNITS: cm/s^2`, K-NET's `(gal)`), or the error
+/// saying what it is instead.
+fn stated_unit(field: &str, file: &str, line: usize, raw: &str) -> Result<AccelUnit, MotionError> {
+    match declared_unit(field) {
+        Declared::Unit(u) => Ok(u),
+        Declared::NotAcceleration => Err(MotionError::NotAcceleration {
+            file: file.to_owned(),
+            line: Some(line),
+            found: format!("a velocity or displacement unit (\"{}\")", excerpt(raw)),
+        }),
+        Declared::Unknown(m_s2) => Err(MotionError::UnknownUnits {
+            file: file.to_owned(),
+            line,
+            found: excerpt(raw),
+            m_s2,
+        }),
+        Declared::Nothing => Err(MotionError::UnknownUnits {
+            file: file.to_owned(),
+            line,
+            found: excerpt(raw),
+            m_s2: None,
+        }),
     }
 }
 
@@ -177,6 +221,7 @@ const SPACING_TOL: f64 = 1e-6;
 /// Plain text: one column with `dt` stated, or two columns time, acceleration (spaces, tabs or
 /// commas; `#` comments and blank lines skipped). The unit is not stated.
 pub fn parse_text(text: &str, file: &str, dt: Option<f64>) -> Result<At2Record, MotionError> {
+    not_blank(text, file, "samples (one or two columns)")?;
     let mut columns = None;
     let mut times = Vec::new();
     let mut samples = Vec::new();
@@ -211,6 +256,7 @@ pub fn parse_text(text: &str, file: &str, dt: Option<f64>) -> Result<At2Record, 
         }
         samples.push(number(tokens[n - 1], file, line_no)?);
     }
+    let n = samples.len();
     let dt = match (columns, dt) {
         (None, _) => return Err(malformed(file, 1, "samples", "only comments")),
         (Some(1), None) => {
@@ -219,12 +265,13 @@ pub fn parse_text(text: &str, file: &str, dt: Option<f64>) -> Result<At2Record, 
                  [excitation]"
             )))
         }
-        (Some(1), Some(dt)) => positive_dt(dt, file, first_line)?,
+        (Some(1), Some(dt)) => time_step(dt, n, file, first_line, "dt")?,
         (Some(_), stated) => {
             if times.len() < 2 {
                 return Err(malformed(file, first_line, "at least two rows", "one"));
             }
-            let step = positive_dt(times[1].0 - times[0].0, file, times[1].1)?;
+            let step = times[1].0 - times[0].0;
+            let step = time_step(step, n, file, times[1].1, "t1 - t0")?;
             let t0 = times[0].0;
             for (k, &(t, line)) in times.iter().enumerate() {
                 let want = t0 + k as f64 * step;
@@ -247,135 +294,194 @@ pub fn parse_text(text: &str, file: &str, dt: Option<f64>) -> Result<At2Record, 
                     )));
                 }
             }
-            dt
+            time_step(dt, n, file, times[1].1, "t1 - t0")?
         }
     };
     Ok(record(file, "", "", dt, samples))
 }
 
-/// ESM ASCII (the database's converted and processed files, `*.ASC`): header lines `KEY: value`
-/// until the samples, one per line. `SAMPLING_INTERVAL_S` gives dt, `NDATA` the count, `UNITS`
-/// the unit (cm/s^2 in the database), `DATA_TYPE` must be an acceleration.
+/// An ESM header line `KEY: value`: a key of one word that starts with a letter (`VS30_M/S`,
+/// `PGA_CM/S^2`, `LATE/NORMAL_TRIGGERED`), the value after the first colon.
+fn esm_field(line: &str) -> Option<(&str, &str)> {
+    let (key, value) = line.split_once(':')?;
+    let key = key.trim();
+    (key.starts_with(|c: char| c.is_ascii_alphabetic()) && !key.contains(char::is_whitespace))
+        .then(|| (key, value.trim()))
+}
+
+/// What an ESM `DATA_TYPE` that is not `ACCELERATION` holds.
+fn esm_data_type(value: &str) -> &'static str {
+    let up = value.to_ascii_uppercase();
+    if up.contains("SPECTRUM") {
+        "a response spectrum, not a time history"
+    } else if up.contains("VELOCITY") {
+        "a velocity history"
+    } else if up.contains("DISPLACEMENT") {
+        "a displacement history"
+    } else {
+        "another quantity"
+    }
+}
+
+/// ESM ASCII (the database's converted and processed files, `*.ASC`, DYNA 1.2 header): header
+/// lines `KEY: value` until the samples, one per line. `DATA_TYPE` must be `ACCELERATION` (a
+/// velocity, displacement or response-spectrum file is refused as such), `UNITS` gives the unit
+/// (cm/s^2 in the database), `SAMPLING_INTERVAL_S` the time step and `NDATA` the count.
 pub fn parse_esm(text: &str, file: &str) -> Result<At2Record, MotionError> {
-    let mut dt = None;
-    let mut ndata = None;
-    let mut unit = None;
-    let mut title = String::new();
-    let mut samples = Vec::new();
-    let mut header_lines = 0;
-    for (i, raw) in text.lines().enumerate() {
-        let line_no = i + 1;
-        let line = raw.trim();
-        if line.is_empty() {
-            continue;
-        }
-        if samples.is_empty() {
-            if let Some((key, value)) = line.split_once(':') {
-                if key.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
-                    header_lines = line_no;
-                    let value = value.trim();
-                    match key {
-                        "EVENT_NAME" | "EVENT_ID" if title.is_empty() => title = value.to_owned(),
-                        "SAMPLING_INTERVAL_S" => {
-                            dt = Some((number(value, file, line_no)?, line_no));
-                        }
-                        "NDATA" => {
-                            let n = value.parse::<usize>().map_err(|_| {
-                                malformed(file, line_no, "NDATA: <count>", &excerpt(value))
-                            })?;
-                            ndata = Some((n, line_no));
-                        }
-                        "DATA_TYPE" => {
-                            let up = value.to_ascii_uppercase();
-                            if !up.contains("ACCELERATION") {
-                                return Err(MotionError::NotAcceleration {
-                                    file: format!("{file}:{line_no}"),
-                                    found: format!("\"{}\"", excerpt(raw)),
-                                });
-                            }
-                        }
-                        "UNITS" => {
-                            unit = Some(match declared_unit(&format!("UNITS: {value}")) {
-                                Declared::Unit(u) => u,
-                                Declared::NotAcceleration => {
-                                    return Err(MotionError::NotAcceleration {
-                                        file: format!("{file}:{line_no}"),
-                                        found: format!("\"{}\"", excerpt(raw)),
-                                    })
-                                }
-                                _ => {
-                                    return Err(MotionError::UnknownUnits {
-                                        file: file.to_owned(),
-                                        line: line_no,
-                                        found: excerpt(raw),
-                                    })
-                                }
-                            });
-                        }
-                        _ => {}
-                    }
-                    continue;
-                }
-            }
-        }
-        for token in line.split_whitespace() {
-            samples.push(number(token, file, line_no)?);
-        }
+    not_blank(text, file, "an ESM header (KEY: value lines)")?;
+    // The header: `KEY: value` lines up to the first other non-blank line.
+    let lines: Vec<(usize, &str)> = text
+        .lines()
+        .enumerate()
+        .map(|(i, l)| (i + 1, l))
+        .filter(|(_, l)| !l.trim().is_empty())
+        .collect();
+    let fields: Vec<(&str, &str, usize, &str)> = lines
+        .iter()
+        .map_while(|&(n, raw)| esm_field(raw.trim()).map(|(k, v)| (k, v, n, raw)))
+        .collect();
+    let header_end = fields.last().map_or(0, |f| f.2);
+    let field = |key: &str| fields.iter().find(|f| f.0 == key).copied();
+    let need = |key: &str, form: &str| {
+        field(key).ok_or_else(|| {
+            malformed(
+                file,
+                header_end.max(1),
+                &format!("a header line \"{key}: {form}\" (the ESM header)"),
+                "none",
+            )
+        })
+    };
+    let (_, kind, line, raw) = need("DATA_TYPE", "ACCELERATION")?;
+    if !kind.eq_ignore_ascii_case("ACCELERATION") {
+        return Err(MotionError::NotAcceleration {
+            file: file.to_owned(),
+            line: Some(line),
+            found: format!("{} (\"{}\")", esm_data_type(kind), excerpt(raw)),
+        });
     }
-    let (dt, dt_line) = dt.ok_or_else(|| {
-        malformed(
-            file,
-            header_lines.max(1),
-            "a header line \"SAMPLING_INTERVAL_S: <dt>\"",
-            "none",
-        )
-    })?;
-    let dt = positive_dt(dt, file, dt_line)?;
-    let unit = unit.ok_or_else(|| {
-        malformed(
-            file,
-            header_lines.max(1),
-            "a header line \"UNITS: cm/s^2\" (or g, m/s^2)",
-            "none",
-        )
-    })?;
-    if let Some((n, line)) = ndata {
-        if n != samples.len() {
-            return Err(MotionError::CountMismatch {
-                file: file.to_owned(),
-                line,
-                declared: n,
-                found: samples.len(),
-            });
+    let (_, units, line, raw) = need("UNITS", "cm/s^2")?;
+    let unit = stated_unit(&format!("UNITS: {units}"), file, line, raw)?;
+    let (_, count, ndata_line, raw) = need("NDATA", "<count>")?;
+    let ndata = count
+        .parse::<usize>()
+        .ok()
+        .filter(|&n| n >= 1)
+        .ok_or_else(|| {
+            malformed(
+                file,
+                ndata_line,
+                "\"NDATA: <count >= 1>\"",
+                &format!("\"{}\"", excerpt(raw)),
+            )
+        })?;
+    let (_, interval, line, _) = need("SAMPLING_INTERVAL_S", "<seconds>")?;
+    let dt = time_step(
+        number(interval, file, line)?,
+        ndata,
+        file,
+        line,
+        "SAMPLING_INTERVAL_S",
+    )?;
+    let mut samples = Vec::with_capacity(ndata.min(text.len() / 2 + 1));
+    for &(line_no, raw) in &lines[fields.len()..] {
+        let mut tokens = raw.split_whitespace();
+        let value = number(tokens.next().unwrap_or(""), file, line_no)?;
+        if tokens.next().is_some() {
+            return Err(malformed(
+                file,
+                line_no,
+                "one sample per line (an ESM time history)",
+                &format!("\"{}\"", excerpt(raw)),
+            ));
         }
+        samples.push(value);
     }
-    if samples.is_empty() {
-        return Err(malformed(file, header_lines + 1, "samples", "none"));
+    if ndata != samples.len() {
+        return Err(MotionError::CountMismatch {
+            file: file.to_owned(),
+            line: ndata_line,
+            key: "NDATA",
+            declared: ndata,
+            found: samples.len(),
+        });
     }
-    let k = unit.in_g();
-    samples.iter_mut().for_each(|a| *a *= k);
-    let mut r = record(file, &title, unit.name(), dt, samples);
+    let value = |key: &str| field(key).map_or("", |f| f.1);
+    let title = [value("EVENT_NAME"), value("EVENT_ID")]
+        .into_iter()
+        .find(|s| !s.is_empty())
+        .unwrap_or("");
+    let event = format!(
+        "{}.{} {}",
+        value("NETWORK"),
+        value("STATION_CODE"),
+        value("STREAM")
+    );
+    let mut r = record(file, title, event.trim(), dt, samples);
+    r.units = format!("UNITS: {units}");
     r.declared_unit = Some(unit);
     Ok(r)
 }
 
-/// Number of header lines of a K-NET/KiK-net ASCII file.
-const KNET_HEADER: usize = 17;
+/// The 17 header lines of a K-NET/KiK-net ASCII file, by label (columns 1-18).
+const KNET_LABELS: [&str; 17] = [
+    "Origin Time",
+    "Lat.",
+    "Long.",
+    "Depth. (km)",
+    "Mag.",
+    "Station Code",
+    "Station Lat.",
+    "Station Long.",
+    "Station Height(m)",
+    "Record Time",
+    "Sampling Freq(Hz)",
+    "Duration Time(s)",
+    "Dir.",
+    "Scale Factor",
+    "Max. Acc. (gal)",
+    "Last Correction",
+    "Memo.",
+];
+
+/// What each K-NET header line holds, for a file that ends inside the header.
+const KNET_EXPECTED: [&str; 17] = [
+    "the K-NET header line \"Origin Time …\"",
+    "the K-NET header line \"Lat. …\"",
+    "the K-NET header line \"Long. …\"",
+    "the K-NET header line \"Depth. (km) …\"",
+    "the K-NET header line \"Mag. …\"",
+    "the K-NET header line \"Station Code …\"",
+    "the K-NET header line \"Station Lat. …\"",
+    "the K-NET header line \"Station Long. …\"",
+    "the K-NET header line \"Station Height(m) …\"",
+    "the K-NET header line \"Record Time …\"",
+    "the K-NET header line \"Sampling Freq(Hz) …\"",
+    "the K-NET header line \"Duration Time(s) …\"",
+    "the K-NET header line \"Dir. …\"",
+    "the K-NET header line \"Scale Factor …\"",
+    "the K-NET header line \"Max. Acc. (gal) …\"",
+    "the K-NET header line \"Last Correction …\"",
+    "the K-NET header line \"Memo. …\"",
+];
 
 /// K-NET / KiK-net ASCII: 17 header lines (label in columns 1-18, value after), then integer
 /// counts, 8 per line. Acceleration (gal) = counts × `Scale Factor` (`3920(gal)/6182761`) with
-/// the record's mean removed; dt = 1 / `Sampling Freq(Hz)`.
+/// the record's mean removed; dt = 1 / `Sampling Freq(Hz)` (`100Hz`, `50 Hz`).
 pub fn parse_knet(text: &str, file: &str) -> Result<At2Record, MotionError> {
+    not_blank(text, file, "a K-NET header (17 lines)")?;
     let lines: Vec<&str> = text.lines().collect();
-    if lines.len() < KNET_HEADER {
+    let header = KNET_LABELS.len();
+    if lines.len() < header {
         return Err(MotionError::TruncatedHeader {
             file: file.to_owned(),
             line: lines.len() + 1,
-            expected: "a K-NET header line (17 in all)",
+            total: header,
+            expected: KNET_EXPECTED[lines.len()],
         });
     }
     let field = |label: &str| -> Result<(&str, usize), MotionError> {
-        lines[..KNET_HEADER]
+        lines[..header]
             .iter()
             .enumerate()
             .find_map(|(i, l)| {
@@ -387,56 +493,56 @@ pub fn parse_knet(text: &str, file: &str) -> Result<At2Record, MotionError> {
                 malformed(
                     file,
                     1,
-                    &format!("a header line \"{label} ...\" among the first {KNET_HEADER}"),
+                    &format!("a header line \"{label} ...\" among the first {header}"),
                     "none",
                 )
             })
     };
     let (freq, freq_line) = field("Sampling Freq(Hz)")?;
-    let hz = number(
-        freq.trim_end_matches(|c: char| c.is_ascii_alphabetic()),
-        file,
-        freq_line,
-    )?;
-    let dt = positive_dt(1.0 / hz, file, freq_line)?;
+    let hz = freq
+        .strip_suffix("Hz")
+        .or_else(|| freq.strip_suffix("HZ"))
+        .or_else(|| freq.strip_suffix("hz"))
+        .unwrap_or(freq)
+        .trim();
+    let hz = number(hz, file, freq_line)?;
     let (scale, scale_line) = field("Scale Factor")?;
     let bad_scale = || malformed(file, scale_line, "\"Scale Factor <a>(gal)/<b>\"", scale);
     let (num, den) = scale.split_once('/').ok_or_else(bad_scale)?;
     let unit_start = num.find('(').ok_or_else(bad_scale)?;
-    let unit = match declared_unit(&format!(
-        "UNITS: {}",
-        num[unit_start..].trim_matches(['(', ')'])
-    )) {
-        Declared::Unit(u) => u,
-        _ => {
-            return Err(MotionError::UnknownUnits {
-                file: file.to_owned(),
-                line: scale_line,
-                found: excerpt(scale),
-            })
-        }
-    };
+    let unit = stated_unit(
+        &format!("UNITS: {}", num[unit_start..].trim_matches(['(', ')', ' '])),
+        file,
+        scale_line,
+        lines[scale_line - 1],
+    )?;
     let factor =
         number(num[..unit_start].trim(), file, scale_line)? / number(den.trim(), file, scale_line)?;
     if !(factor.is_finite() && factor != 0.0) {
         return Err(bad_scale());
     }
-    let title = field("Station Code")
-        .map(|(s, _)| s.to_owned())
-        .unwrap_or_default();
     let mut samples = Vec::new();
-    for (i, line) in lines.iter().enumerate().skip(KNET_HEADER) {
+    for (i, line) in lines.iter().enumerate().skip(header) {
         for token in line.split_whitespace() {
             samples.push(number(token, file, i + 1)? * factor);
         }
     }
     if samples.is_empty() {
-        return Err(malformed(file, KNET_HEADER + 1, "samples", "none"));
+        return Err(malformed(file, header + 1, "samples", "none"));
     }
+    let dt = time_step(
+        1.0 / hz,
+        samples.len(),
+        file,
+        freq_line,
+        "1/Sampling Freq(Hz)",
+    )?;
     let mean = samples.iter().sum::<f64>() / samples.len() as f64;
-    let k = unit.in_g();
-    samples.iter_mut().for_each(|a| *a = (*a - mean) * k);
-    let mut r = record(file, &title, unit.name(), dt, samples);
+    samples.iter_mut().for_each(|a| *a -= mean);
+    let text_of = |label| field(label).map(|(s, _)| s.to_owned()).unwrap_or_default();
+    let event = format!("{} {}", text_of("Origin Time"), text_of("Dir."));
+    let mut r = record(file, &text_of("Station Code"), event.trim(), dt, samples);
+    r.units = lines[scale_line - 1].trim().to_owned();
     r.declared_unit = Some(unit);
     Ok(r)
 }
@@ -481,14 +587,30 @@ mod tests {
         let r = parse_esm(&format!("{head}1.0\n-2.0\n3.0\n"), "e.ASC").unwrap();
         assert_eq!(r.declared_unit, Some(AccelUnit::CmPerS2));
         assert_eq!(r.dt, 0.01);
-        assert!((r.samples[1] + 2.0 * AccelUnit::CmPerS2.in_g()).abs() < 1e-18);
+        assert_eq!(r.samples, vec![1.0, -2.0, 3.0]);
         let e = parse_esm(&format!("{head}1.0\n"), "e.ASC").unwrap_err();
-        assert!(e.to_string().contains("expected 3 samples"), "{e}");
+        assert_eq!(
+            e.to_string(),
+            "e.ASC:5: expected 3 samples (NDATA in the header), found 1"
+        );
+        // two columns (a spectrum's period and Sa) are not a time history
+        let e = parse_esm(&format!("{head}1.0\n-2.0 1\n3.0\n"), "e.ASC").unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with("e.ASC:8: expected one sample per line"),
+            "{e}"
+        );
         let v = head.replace("ACCELERATION", "VELOCITY");
         let e = parse_esm(&format!("{v}1\n2\n3\n"), "e.ASC").unwrap_err();
         assert!(matches!(e, MotionError::NotAcceleration { .. }), "{e}");
+        assert_eq!(
+            e.to_string(),
+            "e.ASC:2: expected an acceleration history, found a velocity history \
+             (\"DATA_TYPE: VELOCITY\")"
+        );
         let u = head.replace("cm/s^2", "cm/s");
         let e = parse_esm(&format!("{u}1\n2\n3\n"), "e.ASC").unwrap_err();
+        assert!(matches!(e, MotionError::NotAcceleration { .. }), "{e}");
         assert!(e.to_string().starts_with("e.ASC:3:"), "{e}");
         let n = head.replace("UNITS: cm/s^2\n", "");
         let e = parse_esm(&format!("{n}1\n2\n3\n"), "e.ASC").unwrap_err();
@@ -522,13 +644,23 @@ mod tests {
         }
         text.push_str("  10  20  30\n");
         let r = parse_knet(&text, "k.NS").unwrap();
-        let f = 3920.0 / 6182761.0 * AccelUnit::CmPerS2.in_g();
+        let f = 3920.0 / 6182761.0;
         assert_eq!(r.dt, 0.01);
+        assert_eq!(r.declared_unit, Some(AccelUnit::CmPerS2));
         assert!((r.samples[0] + 10.0 * f).abs() < 1e-15 && r.samples[1].abs() < 1e-15);
+        for freq in ["100 Hz", "100", "100HZ"] {
+            let r = parse_knet(&text.replace("100Hz", freq), "k.NS").unwrap();
+            assert_eq!(r.dt, 0.01, "{freq}");
+        }
         let e = parse_knet(&text.replace("3920(gal)", "3920(kine)"), "k.NS").unwrap_err();
+        assert!(matches!(e, MotionError::NotAcceleration { .. }), "{e}");
         assert!(e.to_string().starts_with("k.NS:14:"), "{e}");
-        let e = parse_knet("Origin Time x\n", "k.NS").unwrap_err();
-        assert!(e.to_string().starts_with("k.NS:2:"), "{e}");
+        let e = parse_knet("Origin Time x\nLat.  1\n", "k.NS").unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "k.NS:3: expected the K-NET header line \"Long. …\" (header line 3 of 17), found \
+             end of file"
+        );
     }
 
     #[test]
@@ -543,5 +675,45 @@ mod tests {
         assert_eq!(f("MYG0041103111446.NS"), Some(RecordFormat::Knet));
         assert_eq!(f("IWTH251103111446.EW2"), Some(RecordFormat::Knet));
         assert_eq!(f("x.VT2"), None);
+        assert_eq!(f("x.asc"), Some(RecordFormat::Esm));
+    }
+
+    /// A PEER download folder: records, `_SearchResults.csv`, a README and a sub-folder named
+    /// like a record; only the records are listed.
+    #[test]
+    fn folder_lists_its_records() {
+        let dir = std::env::temp_dir().join(format!("record-folder-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(dir.join("RSN9.AT2")).unwrap();
+        for f in [
+            "RSN2_B.AT2",
+            "RSN1_A.at2",
+            "_SearchResults.csv",
+            "README.txt",
+            "notes.dat",
+            ".hidden.AT2",
+            "EMSC.HNE.ASC",
+            "MYG0041103111446.NS",
+            "RSN1_A.VT2",
+        ] {
+            std::fs::write(dir.join(f), "x").unwrap();
+        }
+        let names: Vec<String> = record_files_in(&dir)
+            .unwrap()
+            .iter()
+            .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+            .collect();
+        assert_eq!(
+            names,
+            [
+                "EMSC.HNE.ASC",
+                "MYG0041103111446.NS",
+                "RSN1_A.at2",
+                "RSN2_B.AT2"
+            ]
+        );
+        let e = record_files_in(&dir.join("nowhere")).unwrap_err();
+        assert!(e.to_string().contains("nowhere"), "{e}");
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -1,7 +1,7 @@
 //! Intensity measures of a recorded ground motion, computed once per record.
 //!
 //! Every function takes a [`Record`] whose acceleration (samples × scale) is
-//! in **m/s²** (for a PEER file, [`At2Record::to_record_si`](crate::At2Record::to_record_si))
+//! in **m/s²** (for a record file, [`At2Record::to_record_si`](crate::At2Record::to_record_si))
 //! and treats it, as the simulator does, as the piecewise-linear interpolant
 //! of its samples on [0, (n−1)·dt], starting from rest. Integrals of that
 //! interpolant are exact (no quadrature error), so the results do not depend

@@ -3,9 +3,9 @@
 //! The crate is **unit-agnostic**: every motion is a plain function of time
 //! and the caller decides what the numbers mean — seconds and m/s², or the
 //! dimensionless time τ = p·t with accelerations in units of g. (The one
-//! exception is the PEER reader, whose samples are in g as the files state;
-//! [`At2Record::samples_si`] and [`At2Record::to_record_si`] convert with
-//! [`STANDARD_GRAVITY`].)
+//! exception is a record file, whose samples are in the unit the file states;
+//! [`AccelUnit`] holds the one units model that converts them for a structure,
+//! and [`At2Record::to_record_si`] applies it.)
 //!
 //! # Kinks
 //!
@@ -84,7 +84,8 @@
 //!             0.0  0.1  -0.2  0.0\n";
 //! let at2 = parse_at2(text, "demo.AT2")?;
 //! assert_eq!((at2.npts, at2.dt), (4, 0.01));
-//! let record = at2.to_record_si(); // samples × 9.80665 → m/s²
+//! // In g: felt as the structure's g (here standard gravity), in m/s².
+//! let record = at2.to_record_si(rocking_motion::STANDARD_GRAVITY);
 //! assert!((record.accel(0.015) - (-0.05 * 9.80665)).abs() < 1e-12); // midpoint
 //! assert_eq!(record.next_kink(0.015), Some(0.02));
 //!
@@ -99,21 +100,25 @@
 mod at2;
 mod error;
 pub mod formats;
+mod input;
 pub mod intensity;
 mod pulses;
 mod record;
+mod units;
 
-pub use at2::{parse_at2, read_at2, AccelUnit, At2Record};
-pub use error::MotionError;
-pub use formats::{read_record, RecordFormat};
+pub use at2::{parse_at2, read_at2, At2Record};
+pub use error::{short_number, MotionError};
+pub use formats::{parse_record, read_record, record_files_in, RecordFormat};
+pub use input::MIN_DT;
 pub use pulses::{
     CosinePulse, MavroeidisPapageorgiou, Ricker, RickerKind, SinePulse, ANTISYMMETRIC_RICKER_NORM,
     RICKER_HALF_WIDTH_PERIODS,
 };
 pub use record::Record;
+pub use units::AccelUnit;
 
-/// Standard gravity g₀ = 9.80665 m/s² (exact, CGPM 1901), for converting
-/// accelerations from units of g to m/s².
+/// Standard gravity g₀ = 9.80665 m/s² (exact, CGPM 1901): the one value of g, for a structure
+/// that does not set its own and for the intensity measures (Arias).
 pub const STANDARD_GRAVITY: f64 = 9.80665;
 
 /// A horizontal ground acceleration history ü_g(t).

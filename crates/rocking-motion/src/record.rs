@@ -30,7 +30,7 @@ impl Record {
     ///
     /// # Errors
     /// [`MotionError::InvalidParameter`] if `dt` is not positive and finite,
-    /// `samples` is empty, or a sample is not finite.
+    /// `samples` is empty, the duration (n − 1)·dt overflows, or a sample is not finite.
     pub fn new(dt: f64, samples: Vec<f64>) -> Result<Self, MotionError> {
         if !(dt.is_finite() && dt > 0.0) {
             return Err(MotionError::InvalidParameter(format!(
@@ -41,6 +41,12 @@ impl Record {
             return Err(MotionError::InvalidParameter(
                 "Record: expected at least one sample, found none".into(),
             ));
+        }
+        if !((samples.len() - 1) as f64 * dt).is_finite() {
+            return Err(MotionError::InvalidParameter(format!(
+                "Record: expected a finite duration (n - 1) dt, found {} samples of dt = {dt}",
+                samples.len()
+            )));
         }
         if let Some(k) = samples.iter().position(|x| !x.is_finite()) {
             return Err(MotionError::InvalidParameter(format!(
@@ -317,6 +323,8 @@ mod tests {
         assert!(Record::new(-0.1, vec![1.0]).is_err());
         assert!(Record::new(f64::NAN, vec![1.0]).is_err());
         assert!(Record::new(0.1, vec![]).is_err());
+        assert!(Record::new(1e308, vec![0.0; 3]).is_err());
+        assert!(Record::new(1e308, vec![0.0]).is_ok());
         let e = Record::new(0.1, vec![1.0, f64::INFINITY]).unwrap_err();
         assert!(e.to_string().contains("index 1"), "{e}");
     }

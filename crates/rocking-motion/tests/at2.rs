@@ -55,7 +55,7 @@ fn parses_all_real_files() {
         assert!(rec.samples.iter().all(|a| a.abs() < 5.0));
         assert!(!rec.title.is_empty() && !rec.event.is_empty(), "{name}");
         // converts to a record with the right extent
-        let r = rec.to_record_si();
+        let r = rec.to_record_si(STANDARD_GRAVITY);
         assert_eq!(r.len(), rec.npts);
         assert!((r.end() - (rec.npts - 1) as f64 * rec.dt).abs() < 1e-9);
         assert!((r.peak() - pga * STANDARD_GRAVITY).abs() < 1e-12);
@@ -85,8 +85,9 @@ fn el_centro() {
         .unwrap();
     assert_eq!((k, *a), (101, -0.31882));
     assert!((rec.duration() - 31.16).abs() < 1e-9);
-    let si = rec.samples_si();
-    assert!((si[101] - -0.31882 * 9.80665).abs() < 1e-15);
+    // in g: felt as the structure's g
+    let si = rec.to_record_si(9.81);
+    assert_eq!(si.accel(2.02), -0.31882 * 9.81);
     let r = rec.to_record();
     assert_eq!(r.accel(2.02), -0.31882);
     assert_eq!(r.next_kink(2.02), Some(r.time_of(102)));
@@ -142,7 +143,8 @@ fn bad_header_line() {
     let e = err(header("NPTS: lots, DT: small"));
     assert_eq!(
         e.to_string(),
-        "T.AT2:4: expected \"NPTS=<n>, DT=<dt>\" in the header, found \"NPTS: lots, DT: small\""
+        "T.AT2:4: expected \"NPTS=<n>, DT=<dt> [SEC|MSEC]\" in the header, found \"NPTS: lots, \
+         DT: small\""
     );
     let e = err(header("1.0 2.0 3.0"));
     assert!(matches!(e, MotionError::BadHeader { line: 4, .. }), "{e:?}");
@@ -206,14 +208,26 @@ fn dt_zero_negative_infinite() {
         (".00000", "0"),
         ("-.01", "-0.01"),
         ("1e999", "inf"),
+        ("1e-250", "1e-250"),
+        ("9.9e-7", "9.9e-7"),
+        ("5e-4 MSEC", "5e-7"),
     ] {
         let e = err(header(&format!("NPTS= 1, DT= {dt} SEC")) + "0.1\n");
         assert!(matches!(e, MotionError::InvalidDt { line: 4, .. }), "{e:?}");
         assert_eq!(
             e.to_string(),
-            format!("T.AT2:4: expected DT > 0 and finite, found DT = {shown}")
+            format!(
+                "T.AT2:4: expected a time step DT >= 1e-6 s (sampled at 1 MHz at most) with a \
+                 finite duration, found DT = {shown} s"
+            )
         );
     }
+    // the duration (NPTS - 1) DT overflows
+    let e = err(header("NPTS= 3, DT= 1e308 SEC") + "0.1 0.2 0.3\n");
+    assert!(matches!(e, MotionError::InvalidDt { line: 4, .. }), "{e:?}");
+    // the shortest step is accepted
+    let r = parse_at2(header("NPTS= 2, DT= 1e-6 SEC") + "0.1 0.2\n", "T.AT2").unwrap();
+    assert_eq!(r.dt, 1e-6);
 }
 
 #[test]
@@ -235,15 +249,28 @@ fn non_finite_sample() {
     }
 }
 
+/// A Latin-1 byte (a station name) is text; a byte inside a number is a bad number; NUL bytes
+/// and UTF-16 are not text.
 #[test]
-fn non_utf8_bytes() {
+fn latin1_text_binary_bytes() {
+    let mut bytes =
+        b"TITLE\nD\xfczce, 1999, 270\nACCELERATION IN UNITS OF G\nNPTS= 2, DT= .01\n".to_vec();
+    bytes.extend_from_slice(b"0.1 0.2\n");
+    let r = parse_at2(&bytes, "T.AT2").unwrap();
+    assert_eq!(r.event, "Düzce, 1999, 270");
     let mut bytes = header("NPTS= 2, DT= .01").into_bytes();
     bytes.extend_from_slice(b"0.1\n0.\xff2\n");
     let e = err(&bytes);
-    assert!(matches!(e, MotionError::NotUtf8 { line: 6, .. }), "{e:?}");
-    assert!(e.to_string().starts_with("T.AT2:6: expected UTF-8"), "{e}");
-    let e = err(b"\xc3\x28");
-    assert_eq!(e.line(), Some(1));
+    assert!(matches!(e, MotionError::BadToken { line: 6, .. }), "{e:?}");
+    assert_eq!(e.to_string(), "T.AT2:6: expected a number, found \"0.ÿ2\"");
+    let e = err(b"TITLE\nE\x00\n");
+    assert!(matches!(e, MotionError::NotText { line: 2, .. }), "{e:?}");
+    assert_eq!(
+        e.to_string(),
+        "T.AT2:2: expected text (ASCII, UTF-8 or Latin-1), found a NUL byte (a binary file)"
+    );
+    let e = err(b"\xff\xfeT\x00");
+    assert!(matches!(e, MotionError::NotText { line: 1, .. }), "{e:?}");
 }
 
 #[test]
@@ -329,8 +356,9 @@ proptest! {
     }
 }
 
-/// One record written in g, cm/s² and m/s² (as PEER headers spell them) reads as the same
-/// accelerations in g; velocity and displacement histories are refused naming the file.
+/// One record written in g, cm/s² and m/s² (as PEER headers spell them) keeps its samples and
+/// reads as the same accelerations in m/s² under standard gravity; velocity and displacement
+/// histories are refused naming the file.
 #[test]
 fn units_are_read_and_converted() {
     let g = [0.0, 0.3, 0.0, -0.3, 0.0];
@@ -339,28 +367,41 @@ fn units_are_read_and_converted() {
         format!("T\nE\n{units}\nNPTS= 5, DT= .01 SEC\n{}\n", body.join(" "))
     };
     let cases = [
-        ("ACCELERATION TIME HISTORY IN UNITS OF G", 1.0),
+        ("ACCELERATION TIME HISTORY IN UNITS OF G", 1.0, AccelUnit::G),
+        (
+            "ACCELERATION TIME SERIES IN UNITS OF G (1 G = 980.665 CM/SEC/SEC)",
+            1.0,
+            AccelUnit::G,
+        ),
+        ("UNITS: g (9.81 m/s/s)", 1.0, AccelUnit::G),
         (
             "ACCELERATION TIME HISTORY IN UNITS OF CM/SEC/SEC",
             100.0 * STANDARD_GRAVITY,
+            AccelUnit::CmPerS2,
         ),
         (
             "ACCELERATION TIME SERIES IN UNITS OF M/S^2",
             STANDARD_GRAVITY,
+            AccelUnit::MPerS2,
         ),
         (
             "ACCELERATION TIME HISTORY IN UNITS OF M/S/S",
             STANDARD_GRAVITY,
+            AccelUnit::MPerS2,
         ),
     ];
-    for (units, k) in cases {
+    for (units, k, unit) in cases {
         let rec = parse_at2(file(units, k), "u.AT2").unwrap();
-        for (a, want) in rec.samples.iter().zip(g) {
-            assert!((a - want).abs() <= 1e-12, "{units}: {a} g, want {want} g");
+        assert_eq!(rec.declared_unit, Some(unit), "{units}");
+        let si = rec.to_record_si(STANDARD_GRAVITY);
+        for (i, want) in g.iter().enumerate() {
+            let a = si.accel(si.time_of(i));
+            let want = want * STANDARD_GRAVITY;
+            assert!((a - want).abs() <= 1e-12, "{units}: {a} m/s2, want {want}");
         }
         assert!(
-            (rec.pga() - 0.3).abs() <= 1e-12,
-            "{units}: PGA {} g",
+            (rec.pga() - 0.3 * k).abs() <= 1e-12 * k,
+            "{units}: PGA {}",
             rec.pga()
         );
     }
@@ -368,8 +409,11 @@ fn units_are_read_and_converted() {
     // an error.
     let bare = parse_at2(file("no unit here", 100.0 * STANDARD_GRAVITY), "b.AT2").unwrap();
     assert_eq!(bare.declared_unit, None);
+    assert_eq!(bare.unit(), AccelUnit::G);
     let stated = bare.with_stated_unit(AccelUnit::CmPerS2).unwrap();
-    assert!((stated.pga() - 0.3).abs() <= 1e-12, "{}", stated.pga());
+    assert_eq!(stated.unit(), AccelUnit::CmPerS2);
+    let peak = stated.to_record_si(20.0).peak();
+    assert!((peak - 0.3 * STANDARD_GRAVITY).abs() <= 1e-12, "{peak}");
     let in_g = parse_at2(file("IN UNITS OF G", 1.0), "g.AT2").unwrap();
     let e = in_g.with_stated_unit(AccelUnit::MPerS2).unwrap_err();
     assert!(matches!(e, MotionError::UnitMismatch { .. }), "{e:?}");
@@ -387,6 +431,13 @@ fn units_are_read_and_converted() {
     assert!(
         matches!(e, MotionError::UnknownUnits { line: 3, .. }),
         "{e:?}"
+    );
+    let e = parse_at2(file("ACCELERATION IN UNITS OF KM/S/S", 1.0), "k.AT2").unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "k.AT2:3: expected the units of g, cm/s2 (CM/SEC/SEC) or m/s2 (M/S/S), found \
+         \"ACCELERATION IN UNITS OF KM/S/S\", an acceleration of 1000 m/s2 per unit that the \
+         readers do not convert"
     );
 
     let dir = std::env::temp_dir().join(format!("at2-units-{}", std::process::id()));

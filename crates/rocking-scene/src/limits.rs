@@ -9,14 +9,7 @@ use crate::SceneError;
 
 /// A number for a message: as written for ordinary magnitudes, in short exponent form (`1e308`,
 /// not 309 digits) for very large or very small ones.
-pub fn short(x: f64) -> String {
-    let a = x.abs();
-    if x == 0.0 || !x.is_finite() || (1e-4..1e9).contains(&a) {
-        format!("{x}")
-    } else {
-        format!("{x:e}")
-    }
-}
+pub use rocking_motion::short_number as short;
 
 /// Largest |value| of a dimensional structure key (SI): far beyond any structure, far below
 /// the f64 overflow of the products formed from them (EI/H³, m g R, ...).
@@ -183,4 +176,64 @@ pub fn frequency(src: &Source, path: &str, v: f64, over_p: f64) -> Result<(), Sc
             ),
         ))
     }
+}
+
+/// Longest record, in τ = p t: a run's clock is an f64, which at 1e9 τ resolves 2e-7 τ, still
+/// finer than any event the structure's time scale makes; a record longer than that (years for
+/// any structure) is a wrong time step, and its run would end in "step size underflow".
+pub const MAX_RECORD_TAU: f64 = 1e9;
+
+/// A record the run cannot get through: longer than [`MAX_RECORD_TAU`], or needing more than
+/// `max_steps` steps — every sample is a kink (a step ends there), and while the record lasts a
+/// flexible column (fixed-base ω_n, model units) vibrates, which no integrator here follows in
+/// fewer than one step per period. `record` is in model time, `p` in 1/model time;
+/// `sec_per_unit` gives seconds for the message, `name` names the file.
+pub fn record_length(
+    src: &Source,
+    name: &str,
+    record: &rocking_motion::Record,
+    p: f64,
+    omega_n: Option<f64>,
+    sec_per_unit: f64,
+    max_steps: u64,
+) -> Result<(), SceneError> {
+    use rocking_motion::GroundMotion;
+    use std::f64::consts::TAU;
+    let lasts = format!(
+        "the record {name} lasts {} s ({} samples of dt = {} s)",
+        short(record.end() * sec_per_unit),
+        record.len(),
+        short(record.dt() * sec_per_unit)
+    );
+    let fix = "check the record's time step (DT, in s)";
+    let tau = record.end() * p;
+    if tau > MAX_RECORD_TAU {
+        return Err(src.err(
+            "excitation.path",
+            format_args!(
+                "{lasts}, {:.1e} τ: at most {} τ (τ = p t), beyond which a run's clock cannot \
+                 resolve its events; {fix}",
+                tau,
+                short(MAX_RECORD_TAU)
+            ),
+        ));
+    }
+    let periods = omega_n.map_or(0.0, |w| record.end() * w / TAU);
+    let steps = record.len() as f64 - 1.0 + periods;
+    if steps <= max_steps as f64 {
+        return Ok(());
+    }
+    let why = if periods > 0.0 {
+        "one per sample, one per period of the column's vibration"
+    } else {
+        "one per sample"
+    };
+    Err(src.err(
+        "excitation.path",
+        format_args!(
+            "{lasts}: at least {steps:.1e} integrator steps ({why}), more than `max_steps` = {} \
+             in [solver]; {fix} or raise max_steps",
+            short(max_steps as f64)
+        ),
+    ))
 }

@@ -9,8 +9,8 @@ use rocking::{
 };
 use rocking_kernels::Physical;
 use rocking_motion::{
-    AccelUnit, CosinePulse, Excitation, GroundMotion, MavroeidisPapageorgiou, Record, RecordFormat,
-    Ricker, SinePulse,
+    AccelUnit, At2Record, CosinePulse, Excitation, GroundMotion, MavroeidisPapageorgiou, Record,
+    RecordFormat, Ricker, SinePulse, STANDARD_GRAVITY,
 };
 use toml::Value;
 
@@ -22,9 +22,6 @@ use crate::SceneError;
 /// The most history rows a run may ask for (about 80 bytes each in memory and in history.csv).
 const MAX_ROWS: f64 = 5e6;
 
-/// Acceleration of gravity (m/s²) that relates a dimensionless structure's R and p.
-pub const G_DIMENSIONLESS: f64 = 9.81;
-
 /// How model units relate to τ, g tan α and seconds.
 #[derive(Clone, Copy, Debug)]
 pub struct Units {
@@ -32,7 +29,8 @@ pub struct Units {
     pub physical: bool,
     /// g in model units (1 for a dimensionless structure).
     pub g_model: f64,
-    /// g in m/s² (the structure's g, or 9.81 for a dimensionless one).
+    /// g in m/s²: the structure's g, or standard gravity for a dimensionless one (it relates its
+    /// R and p, and converts a record in absolute units).
     pub g_si: f64,
     /// p in model units (1/model time).
     pub p_model: f64,
@@ -243,7 +241,7 @@ fn build_structure(
             m_b: s.m_b.unwrap_or(0.0),
             i_bc: 0.0,
             zeta: s.zeta.unwrap_or(0.0),
-            g: s.g.unwrap_or(9.81),
+            g: s.g.unwrap_or(STANDARD_GRAVITY),
         };
         // Default: a thin rectangular plate (the model's kernels give its inertia, 4/3 m_b B²).
         ph.i_bc = match s.i_bc {
@@ -280,7 +278,7 @@ fn build_structure(
         }
         (Some(r), None) => Some(
             finite(src, "structure.r", r, r > 0.0, "a length R > 0 (m)")
-                .map(|r| (G_DIMENSIONLESS / r).sqrt())?,
+                .map(|r| (STANDARD_GRAVITY / r).sqrt())?,
         ),
         (None, Some(p)) => Some(finite(
             src,
@@ -674,12 +672,6 @@ fn build_excitation(
             (mp.into(), desc, end)
         }
         "record" => {
-            let rel = e.path.as_deref().ok_or_else(|| {
-                src.err(
-                    "excitation",
-                    "missing key `path` in [excitation] (kind = \"record\" needs a PEER .AT2 file)",
-                )
-            })?;
             let scale = e.scale.unwrap_or(1.0);
             let allowed = "a finite, nonzero scale factor (a negative one reverses the record)";
             finite(src, "excitation.scale", scale, true, allowed)?;
@@ -689,42 +681,7 @@ fn build_excitation(
                     format_args!("`scale` in [excitation] = 0 is not allowed: {allowed}"),
                 ));
             }
-            let file = src.dir().join(rel);
-            let format = record_format(src, e, &file)?;
-            let at2 = src.record_as(&file, format, e.dt).map_err(|err| {
-                src.err(
-                    "excitation.path",
-                    format_args!("cannot use the record: {err}"),
-                )
-            })?;
-            let at2 = match e.units.as_deref() {
-                None if format == RecordFormat::Text => {
-                    return Err(src.err(
-                        "excitation.units",
-                        "a text record states no unit: give `units` in [excitation], one of \
-                         \"g\", \"cm/s2\", \"m/s2\"",
-                    ))
-                }
-                None => at2,
-                Some(name) => {
-                    let unit = AccelUnit::parse(name).ok_or_else(|| {
-                        src.err(
-                            "excitation.units",
-                            format_args!(
-                                "`units` = \"{name}\" in [excitation] is not allowed: one of \"{}\"",
-                                AccelUnit::NAMES.join("\", \"")
-                            ),
-                        )
-                    })?;
-                    at2.with_stated_unit(unit).map_err(|err| {
-                        src.err(
-                            "excitation.units",
-                            format_args!("cannot use the record: {err}"),
-                        )
-                    })?
-                }
-            };
-            let unit = at2.declared_unit.map_or("g (not stated)", AccelUnit::name);
+            let at2 = scene_record(src, e)?;
             let spu = u.sec_per_unit.ok_or_else(|| {
                 src.err(
                     "excitation.path",
@@ -732,30 +689,95 @@ fn build_excitation(
                      give `r` (m) or `p` (1/s) in [structure], or a physical structure",
                 )
             })?;
+            let unit = at2.unit();
+            let unit_name = match at2.declared_unit {
+                Some(u) => u.name(),
+                None => "g (not stated)",
+            };
+            let per_unit = unit.in_model_units(u.g_model, u.g_si);
             let pga = at2.pga();
             let (dt, npts) = (at2.dt, at2.npts);
-            formed(
+            let pga_model = formed(
                 src,
                 "excitation.scale",
                 scale,
-                pga * scale * u.g_model,
+                pga * per_unit * scale,
                 "peak ground acceleration in model units",
             )?;
-            crate::limits::acceleration(src, "excitation.scale", scale, pga * scale)?;
+            crate::limits::acceleration(src, "excitation.scale", scale, pga_model / u.g_model)?;
             let rec = Record::new(dt / spu, at2.samples)
                 .map_err(|err| src.err("excitation.path", err))?
-                .with_scale(scale * u.g_model);
+                .with_scale(scale * per_unit);
+            let short = crate::limits::short;
+            // The PGA in the structure's g, and as the file states it when that is not g.
+            let stated = match unit {
+                AccelUnit::G => String::new(),
+                absolute => format!(" = {pga:.4} {}", absolute.name()),
+            };
             let desc = format!(
-                "record {} ({npts} samples, dt = {dt} s, units {unit}, PGA = {pga:.4} g) × \
-                 {scale}: PGA/(g tan α) = {:.4}",
-                file.display(),
-                pga * scale / u.tan_alpha
+                "record {} ({npts} samples, dt = {} s, units {unit_name}, PGA = {:.4} g{stated}) \
+                 × {}: PGA/(g tan α) = {:.4}",
+                file_of(src, e)?.display(),
+                short(dt),
+                pga * per_unit / u.g_model,
+                short(scale),
+                pga_model / u.accel_g_tan_alpha()
             );
             let end = rec.end();
             (rec.into(), desc, end)
         }
         _ => unreachable!("kind checked above"),
     })
+}
+
+/// The record file a scene names (`excitation.path`, relative to the scene).
+fn file_of(src: &Source, e: &ExcitationSpec) -> Result<std::path::PathBuf, SceneError> {
+    let rel = e.path.as_deref().ok_or_else(|| {
+        src.err(
+            "excitation",
+            "missing key `path` in [excitation] (kind = \"record\" needs a record file)",
+        )
+    })?;
+    Ok(src.dir().join(rel))
+}
+
+/// The record a scene's `[excitation]` names, read in its format and with the unit the scene
+/// states (`units`, required for a text file, refused when the file declares another): what
+/// `run` simulates and what a record study measures.
+pub fn scene_record(src: &Source, e: &ExcitationSpec) -> Result<At2Record, SceneError> {
+    let file = file_of(src, e)?;
+    let format = record_format(src, e, &file)?;
+    let at2 = src.record_as(&file, format, e.dt).map_err(|err| {
+        src.err(
+            "excitation.path",
+            format_args!("cannot use the record: {err}"),
+        )
+    })?;
+    match e.units.as_deref() {
+        None if format == RecordFormat::Text => Err(src.err(
+            "excitation.units",
+            "a text record states no unit: give `units` in [excitation], one of \
+             \"g\", \"cm/s2\", \"m/s2\"",
+        )),
+        None => Ok(at2),
+        Some(name) => {
+            let unit = AccelUnit::parse(name).ok_or_else(|| {
+                src.err(
+                    "excitation.units",
+                    format_args!(
+                        "`units` = \"{name}\" in [excitation] is not allowed: one of \"{}\"",
+                        AccelUnit::NAMES.join("\", \"")
+                    ),
+                )
+            })?;
+            at2.with_stated_unit(unit).map_err(|err| {
+                src.err(
+                    "excitation.units",
+                    format_args!("cannot use the record: {err}"),
+                )
+            })
+        }
+    }
 }
 
 /// The record format a scene names (`excitation.format`), else the one the file's extension
@@ -839,7 +861,7 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Setup, SceneError> {
     let units = Units {
         physical,
         g_model: ph.g,
-        g_si: if physical { ph.g } else { G_DIMENSIONLESS },
+        g_si: if physical { ph.g } else { STANDARD_GRAVITY },
         p_model: derived.p,
         sec_per_unit: structure.p_per_second().map(|ps| derived.p / ps),
         tan_alpha: derived.alpha.tan(),
@@ -1029,6 +1051,13 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Setup, SceneError> {
         sv.and_then(|s| s.max_steps),
         defaults.max_steps,
     )?;
+    if let (Excitation::Record(record), Some(spu)) = (&excitation, units.sec_per_unit) {
+        let omega_n = (!variant.rigid).then_some(derived.omega_n);
+        let name = file_of(src, spec.excitation.as_ref().unwrap_or(&Default::default()))?;
+        let name = name.display().to_string();
+        let p = units.p_model;
+        crate::limits::record_length(src, &name, record, p, omega_n, spu, max_steps)?;
+    }
     if history == History::Steps && max_steps as f64 > rocking::MAX_HISTORY_ROWS {
         return Err(src.err(
             "solver.max_steps",

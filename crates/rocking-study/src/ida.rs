@@ -13,9 +13,9 @@ use rocking_fragility::{
     IdaPoint, Outcome, ScalingIm, Stripe,
 };
 use rocking_motion::intensity::IntensityMeasures;
-use rocking_motion::{AccelUnit, Record, RecordFormat};
+use rocking_motion::AccelUnit;
 use rocking_scene::knob::KnobValue;
-use rocking_scene::scene::{IdaSpec, Source};
+use rocking_scene::scene::{ExcitationSpec, IdaSpec, Source};
 use rocking_scene::SceneError;
 
 use serde_json::json;
@@ -414,11 +414,12 @@ pub fn record_files(base: &Base, given: &[PathBuf]) -> Result<Vec<PathBuf>, Scen
     } else {
         given.to_vec()
     };
-    let files = crate::plan::expand_records(given, |p| RecordFormat::from_path(p).is_some())?;
+    let files = crate::plan::expand_records(given)?;
     if files.is_empty() {
         return Err(SceneError::input(format!(
-            "{}: no records: give --records FILE|DIR or `records = [...]` in [ida]",
-            base.path().display()
+            "{}: no records: give --records FILE|DIR or `records = [...]` in [ida] ({})",
+            base.path().display(),
+            rocking_motion::formats::FOLDER_RULE
         )));
     }
     Ok(files)
@@ -436,26 +437,15 @@ fn study(base: &Base, s: &Settings, file: &Path) -> Result<RecordStudy, SceneErr
         "excitation.scale=1.0".into(),
     ])?;
     let sc = base.scene();
-    let exc = sc.spec.excitation.clone().unwrap_or_default();
-    let format = match exc.format.as_deref() {
-        Some(f) => RecordFormat::parse(f).unwrap_or(RecordFormat::At2),
-        None => RecordFormat::from_path(file).unwrap_or(RecordFormat::At2),
+    let exc = ExcitationSpec {
+        path: Some(path.clone()),
+        ..sc.spec.excitation.clone().unwrap_or_default()
     };
-    let mut rec = sc
-        .src
-        .record_as(Path::new(&path), format, exc.dt)
-        .map_err(|e| SceneError::input(e.to_string()))?;
-    if let Some(u) = exc.units.as_deref().and_then(AccelUnit::parse) {
-        rec = rec
-            .with_stated_unit(u)
-            .map_err(|e| SceneError::input(e.to_string()))?;
-    }
+    let rec = rocking_scene::setup::scene_record(&sc.src, &exc)?;
     let unit = rec.declared_unit.map_or("g (not stated)", AccelUnit::name);
     let (dt, npts) = (rec.dt, rec.npts);
-    // The record as the structure feels it: 1 g is the structure's g.
-    let si = Record::new(dt, rec.samples)
-        .map_err(|e| SceneError::input(format!("{path}: {e}")))?
-        .with_scale(model.units.g_si);
+    // The record as the structure feels it (the units model of `AccelUnit`), in m/s².
+    let si = rec.to_record_si(model.units.g_si);
     let bad = |e: &dyn std::fmt::Display| SceneError::input(format!("{path}: {e}"));
     let ims = IntensityMeasures::of(&si).map_err(|e| bad(&e))?;
     let im_unscaled = s.im.of(&si).map_err(|e| bad(&e))?;

@@ -331,22 +331,18 @@ fn reference_sets(base: &Base) -> Result<Option<ReferenceKind>, SceneError> {
     }
 }
 
-/// Record files as given: a file stands for itself, a directory for its files that `keep`
-/// accepts, sorted by name.
+/// Record files as given: a file stands for itself, a folder for its record files
+/// ([`rocking_motion::record_files_in`], the one rule of `ida` and `batch`), sorted by name.
 pub fn expand_records(
     given: impl IntoIterator<Item = PathBuf>,
-    keep: impl Fn(&Path) -> bool,
 ) -> Result<Vec<PathBuf>, SceneError> {
     let mut files = Vec::new();
     for f in given {
         if f.is_dir() {
-            let mut found: Vec<PathBuf> = std::fs::read_dir(&f)
-                .map_err(|e| SceneError::input(format!("{}: {e}", f.display())))?
-                .filter_map(|e| e.ok().map(|e| e.path()))
-                .filter(|p| keep(p))
-                .collect();
-            found.sort();
-            files.extend(found);
+            files.extend(
+                rocking_motion::record_files_in(&f)
+                    .map_err(|e| SceneError::input(e.to_string()))?,
+            );
         } else {
             files.push(f);
         }
@@ -500,13 +496,12 @@ impl Plan {
                 .collect();
         }
         // A directory stands for all the .AT2 files in it.
-        let files = expand_records(given, |p| {
-            p.extension().is_some_and(|x| x.eq_ignore_ascii_case("at2"))
-        })?;
+        let files = expand_records(given)?;
         if files.is_empty() {
             return Err(SceneError::input(format!(
-                "{}: no records: give --records FILE|DIR or `records = [...]` in [sweep]",
-                path.display()
+                "{}: no records: give --records FILE|DIR or `records = [...]` in [sweep] ({})",
+                path.display(),
+                rocking_motion::formats::FOLDER_RULE
             )));
         }
         let scales: Vec<f64> = if scales.is_empty() {
