@@ -27,12 +27,13 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
 
 /// The files `rocking run` writes; an existing output directory holding anything else is not
 /// replaced (it is not a run's directory).
-pub const RUN_FILES: [&str; 5] = [
+pub const RUN_FILES: [&str; 6] = [
     "summary.json",
     "history.csv",
     "events.csv",
     "plot.png",
     "plot.svg",
+    "plot.pdf",
 ];
 
 /// The files `rocking ida` writes (its --out is replaced whole like a run's).
