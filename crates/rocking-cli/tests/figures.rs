@@ -450,7 +450,8 @@ fn every_paper_figure_is_drawn_and_shows_what_it_compares() {
     for label in ["stiff", "14.5", "= 15", "/(u_cr ω_n)"] {
         assert!(t10.contains(label), "fig10: `{label}` missing: {t10}");
     }
-    // Drawn again from the cache: the same bytes.
+    // Drawn again from the cache: the same SVG and PNG bytes (svg2pdf's object order for the
+    // hatching patterns varies between processes, so the PDF is not compared byte for byte).
     let again = tmp("paper-again");
     ok(&bin()
         .arg("figure")
@@ -463,7 +464,7 @@ fn every_paper_figure_is_drawn_and_shows_what_it_compares() {
         .unwrap());
     for f in &files {
         let stem = f.file_stem().unwrap().to_string_lossy();
-        for ext in ["svg", "png", "pdf"] {
+        for ext in ["svg", "png"] {
             let name = format!("{stem}.{ext}");
             assert!(
                 std::fs::read(out.join(&name)).unwrap()
