@@ -11,14 +11,14 @@ use rocking_motion::GroundMotion;
 /// The setup of a scene of `scenes/` (e.g. `"fig3-vvel.toml"`) with `--set` overrides, loaded
 /// through `rocking-scene` as the `rocking` command loads it: the paper's cases are typed once,
 /// in their scene files.
-pub fn scene(file: &str, sets: &[&str]) -> rocking_scene::model::Model {
+pub fn scene(file: &str, sets: &[&str]) -> rocking_scene::setup::Setup {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../scenes")
         .join(file);
     let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
     let sc = rocking_scene::scene::load(&path, &sets)
         .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    rocking_scene::model::build(&sc).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+    rocking_scene::setup::build(&sc).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
 
 /// The frequency of the column mode of the rocking equations linearised about (θ, u) while

@@ -56,7 +56,9 @@ fn housner_rattling_on_a_slender_flexible_column_ends_in_bounded_work() {
         &o,
     ) {
         Ok(run) => assert!(run.summary.solver_stats.events <= 20_000),
-        Err(SimError::Guard(message)) => assert!(message.contains("20000 events"), "{message}"),
+        Err(e @ SimError::TooManyEvents { .. }) => {
+            assert!(e.to_string().contains("20000 events"), "{e}")
+        }
         Err(other) => panic!("unexpected failure: {other}"),
     }
 }

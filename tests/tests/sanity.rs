@@ -295,7 +295,7 @@ fn invalid_options_are_errors_naming_the_field() {
     assert_eq!(ok.validate(), Ok(()));
     for (o, field) in cases {
         match simulate(&s, &fig3_pulse(), &rocking::Effects::default(), &o) {
-            Err(SimError::Options(m)) => assert!(m.contains(field), "{field}: {m}"),
+            Err(SimError::InvalidOption(e)) => assert!(e.field.contains(field), "{field}: {e}"),
             Err(e) => panic!("{field}: not an options error: {e}"),
             Ok(r) => panic!(
                 "{field}: ran (max θ/α = {})",

@@ -17,7 +17,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
 
-use crate::regen::Result;
+use crate::Result;
 
 const STAMP: &str = ".rocking-bench-requirements.stamp";
 

@@ -16,6 +16,9 @@
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
+/// Every task's result: an error is printed and the task exits 1.
+pub type Result<T, E = Box<dyn std::error::Error>> = std::result::Result<T, E>;
+
 mod bench;
 mod regen;
 mod try_model;

@@ -8,8 +8,7 @@ use std::process::{Command, Stdio};
 
 use rocking_codegen::{render_all, IR_DIR, KERNELS_DIR, TAYLOR_DIR};
 
-/// Error type of the xtask commands.
-pub type Result<T, E = Box<dyn std::error::Error>> = std::result::Result<T, E>;
+use crate::Result;
 
 /// Where the derivation's errata go, relative to the repository root.
 const ERRATA: &str = "docs/errata.md";

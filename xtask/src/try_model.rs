@@ -12,8 +12,8 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use crate::regen::Result;
 use crate::venv;
+use crate::Result;
 
 /// The change a model developer makes: a model that is neither of the kept examples (shape
 /// ψ = η², a lumped tank mass `m_t` at 3/4 H with its own parameter), and its kernel variant.

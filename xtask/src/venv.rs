@@ -3,19 +3,17 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use crate::regen::Result;
+use crate::Result;
 
 /// Name of the stamp file kept inside the virtual environment.
 const STAMP: &str = ".rocking-requirements.stamp";
 
-/// FNV-1a, 64 bit: a stable hash with no dependency (not for security).
+/// FNV-1a, 64 bit (the `fnv` crate's): a stable hash of the pinned requirements (not for security).
 pub(crate) fn fnv1a64(bytes: &[u8]) -> u64 {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for b in bytes {
-        h ^= u64::from(*b);
-        h = h.wrapping_mul(0x0000_0100_0000_01b3);
-    }
-    h
+    use std::hash::Hasher as _;
+    let mut h = fnv::FnvHasher::default();
+    h.write(bytes);
+    h.finish()
 }
 
 fn venv_python(venv: &Path) -> PathBuf {

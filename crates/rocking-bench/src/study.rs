@@ -80,12 +80,12 @@ fn housner_impacts(alpha: f64, theta0: f64, t_end: f64) -> Vec<f64> {
 
 /// The setup of a scene of `scenes/` with overrides, through `rocking-scene` (the paper's cases
 /// are typed once, in their scene files).
-fn scene(file: &str, sets: &[String]) -> Result<rocking_scene::model::Model> {
+fn scene(file: &str, sets: &[String]) -> Result<rocking_scene::setup::Setup> {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../scenes")
         .join(file);
     let sc = rocking_scene::scene::load(&path, sets).map_err(|e| e.to_string())?;
-    Ok(rocking_scene::model::build(&sc).map_err(|e| e.to_string())?)
+    Ok(rocking_scene::setup::build(&sc).map_err(|e| e.to_string())?)
 }
 
 pub fn cases(quick: bool) -> Result<Vec<Case>> {
@@ -559,15 +559,6 @@ fn params_of(name: &str, s: &Structure) -> Vec<f64> {
     with_variant!(name, V => s.params::<V>().as_ref().to_vec()).expect("a generated variant")
 }
 
-fn impact_name(i: ImpactModel) -> &'static str {
-    match i {
-        ImpactModel::Vvel => "vvel",
-        ImpactModel::Adjex => "adjex",
-        ImpactModel::Housner => "housner",
-        ImpactModel::Restitution(_) => "restitution",
-    }
-}
-
 /// The case as the SciPy peer needs it.
 fn case_json(case: &Case, variant: &str, reduced: &Structure) -> Value {
     let d = reduced.derived();
@@ -590,7 +581,7 @@ fn case_json(case: &Case, variant: &str, reduced: &Structure) -> Value {
         "alpha": d.alpha, "p": d.p, "omega_n": d.omega_n, "e_ref": d.e_ref,
         "u_scale": if rigid { 1.0 } else { d.u_cr },
         "ud_scale": if rigid { 1.0 } else { d.u_cr * d.omega_n },
-        "impact": impact_name(case.impact),
+        "impact": ImpactModel::name(case.impact),
         "t_end": case.t_end,
         "initial": [case.initial.theta, case.initial.u, case.initial.theta_dot, case.initial.u_dot],
         "rest_rate": Options::default().rest_rate,

@@ -1,4 +1,4 @@
-//! `rocking ida`: the record-suite study of `rocking_spectra::ida` (IDA by hunt-and-fill, or
+//! `rocking ida`: the record-suite study of `rocking_study::ida` (IDA by hunt-and-fill, or
 //! multiple stripes with `[ida] stripes`) written out: records.csv, ida.csv or stripes.csv,
 //! fragility.json and the plots. Not resumable: the whole study is rerun (see docs/records.md).
 
@@ -7,19 +7,19 @@ use std::time::Instant;
 
 use rocking_fragility::ScalingIm;
 use rocking_motion::intensity::pga_over_uplift;
-use rocking_spectra::ida::RecordStudy;
-use rocking_spectra::plan::Base;
+use rocking_study::ida::RecordStudy;
+use rocking_study::plan::Base;
 use serde_json::json;
 
 use crate::ida_plot;
-use crate::report::{write_atomic, OutDir};
-use crate::scene::CliError;
+use crate::out_dir::{write_atomic, OutDir};
+use rocking_scene::SceneError;
 
-fn csv_err(e: csv::Error) -> CliError {
-    CliError::Internal(format!("cannot write a table: {e}"))
+fn csv_err(e: csv::Error) -> SceneError {
+    SceneError::failure(format!("cannot write a table: {e}"))
 }
 
-fn records_csv(done: &[RecordStudy], alpha: f64, g_si: f64) -> Result<Vec<u8>, CliError> {
+fn records_csv(done: &[RecordStudy], alpha: f64, g_si: f64) -> Result<Vec<u8>, SceneError> {
     let mut w = csv::Writer::from_writer(Vec::new());
     w.write_record([
         "record",
@@ -43,7 +43,7 @@ fn records_csv(done: &[RecordStudy], alpha: f64, g_si: f64) -> Result<Vec<u8>, C
     for d in done {
         let m = &d.ims;
         let norm = pga_over_uplift(m.pga_m_s2 / g_si * rocking_motion::STANDARD_GRAVITY, alpha)
-            .map_err(|e| CliError::Internal(e.to_string()))?;
+            .map_err(|e| SceneError::failure(e.to_string()))?;
         let mut row = vec![d.name.clone(), d.path.clone(), d.unit.to_string()];
         row.extend(
             [
@@ -69,10 +69,10 @@ fn records_csv(done: &[RecordStudy], alpha: f64, g_si: f64) -> Result<Vec<u8>, C
         w.write_record(&row).map_err(csv_err)?;
     }
     w.into_inner()
-        .map_err(|e| CliError::Internal(e.to_string()))
+        .map_err(|e| SceneError::failure(e.to_string()))
 }
 
-fn ida_csv(done: &[RecordStudy]) -> Result<Vec<u8>, CliError> {
+fn ida_csv(done: &[RecordStudy]) -> Result<Vec<u8>, SceneError> {
     let mut w = csv::Writer::from_writer(Vec::new());
     w.write_record([
         "record",
@@ -95,7 +95,7 @@ fn ida_csv(done: &[RecordStudy]) -> Result<Vec<u8>, CliError> {
         }
     }
     w.into_inner()
-        .map_err(|e| CliError::Internal(e.to_string()))
+        .map_err(|e| SceneError::failure(e.to_string()))
 }
 
 /// The intensity measure's axis label, e.g. "Sa(T = 4.5 s, ζ = 5 %) (m/s²)".
@@ -115,7 +115,7 @@ pub fn ida(
     records: &[PathBuf],
     out: Option<PathBuf>,
     threads: Option<usize>,
-) -> Result<(), CliError> {
+) -> Result<(), SceneError> {
     let start = Instant::now();
     let base = Base::load(scene_path, sets)?;
     let model = base.model(&[])?;
@@ -123,7 +123,7 @@ pub fn ida(
     let mut pool = rayon::ThreadPoolBuilder::new();
     if let Some(n) = threads {
         if !(1..=1024).contains(&n) {
-            return Err(CliError::Input(format!(
+            return Err(SceneError::input(format!(
                 "--threads {n} is not allowed: 1 <= threads <= 1024"
             )));
         }
@@ -131,8 +131,8 @@ pub fn ida(
     }
     let pool = pool
         .build()
-        .map_err(|e| CliError::Internal(format!("cannot start the thread pool: {e}")))?;
-    let st = pool.install(|| rocking_spectra::ida::run(&base, records))?;
+        .map_err(|e| SceneError::failure(format!("cannot start the thread pool: {e}")))?;
+    let st = pool.install(|| rocking_study::ida::run(&base, records))?;
     let (done, fit) = (&st.records, &st.fit);
     let runs = st.analyses();
     let empirical = st.empirical();
@@ -154,7 +154,7 @@ pub fn ida(
             .unwrap_or_else(|| "scene".into());
         Path::new("out").join(format!("{stem}-ida"))
     });
-    let dir = OutDir::begin_for(&target, crate::report::IDA_OUT)?;
+    let dir = OutDir::begin_for(&target, crate::out_dir::IDA_OUT)?;
     write_atomic(
         &dir.path().join("records.csv"),
         &records_csv(done, alpha, g_si)?,
@@ -166,7 +166,7 @@ pub fn ida(
     };
     write_atomic(&dir.path().join(table), &ida_csv(done)?)?;
     let text = serde_json::to_string_pretty(&json)
-        .map_err(|e| CliError::Internal(format!("cannot write fragility.json: {e}")))?;
+        .map_err(|e| SceneError::failure(format!("cannot write fragility.json: {e}")))?;
     write_atomic(&dir.path().join("fragility.json"), text.as_bytes())?;
     let curves: Vec<(String, ida_plot::Points)> = done
         .iter()

@@ -9,8 +9,8 @@ use plotters::prelude::*;
 use rocking_fragility::Bootstrap;
 use rocking_plot::register;
 
-use crate::report::write_atomic;
-use crate::scene::CliError;
+use crate::out_dir::write_atomic;
+use rocking_scene::SceneError;
 
 const SIZE: (u32, u32) = (800, 560);
 /// Where the IDA curves put a collapse: max θ/α of an overturned run is not a response.
@@ -141,10 +141,10 @@ fn pair(
     name: &str,
     png: impl FnOnce(DrawingArea<BitMapBackend<'_>, Shift>) -> Result<(), String>,
     svg: impl FnOnce(DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), String>,
-) -> Result<Vec<PathBuf>, CliError> {
+) -> Result<Vec<PathBuf>, SceneError> {
     register();
     let fail =
-        |m: String| CliError::Internal(format!("{}: cannot draw {name}: {m}", dir.display()));
+        |m: String| SceneError::failure(format!("{}: cannot draw {name}: {m}", dir.display()));
     let mut pixels = vec![255u8; (SIZE.0 * SIZE.1 * 3) as usize];
     png(BitMapBackend::with_buffer(&mut pixels, SIZE).into_drawing_area()).map_err(fail)?;
     let png_path = dir.join(format!("{name}.png"));
@@ -164,7 +164,7 @@ pub fn ida_curves(
     curves: &[(String, Points)],
     im_label: &str,
     dir: &Path,
-) -> Result<Vec<PathBuf>, CliError> {
+) -> Result<Vec<PathBuf>, SceneError> {
     pair(
         dir,
         "ida",
@@ -181,7 +181,7 @@ pub fn fragility_fit(
     fit: &Bootstrap,
     im_label: &str,
     dir: &Path,
-) -> Result<Vec<PathBuf>, CliError> {
+) -> Result<Vec<PathBuf>, SceneError> {
     pair(
         dir,
         "fragility-fit",

@@ -13,6 +13,9 @@
 //!
 //! Exit codes: 0 ok, 2 invalid input (scene, record, arguments), 1 internal failure.
 //! The scene format is described in `scenes/README.md`.
+//!
+//! It owns the command line, output directories and plots; it must not hold physics, scene
+//! semantics or study logic (the library crates do, so Python and the tests share them).
 
 /// `println!` that returns an error from the enclosing function instead of panicking when
 /// standard output is closed (`| true`, EPIPE) or full (`> /dev/full`).
@@ -27,32 +30,37 @@ mod figure;
 mod ida;
 mod ida_plot;
 mod merge;
+mod out_dir;
 mod plot;
-mod report;
+mod shard;
 mod sweep;
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use rocking_scene::{model, models, scene};
+use rocking_scene::{models, scene, setup};
+use rocking_study::run_report as report;
 
-use crate::model::Model;
-use crate::scene::CliError;
+use rocking_scene::setup::Setup;
+use rocking_scene::SceneError;
+
+/// Shown by `--help`: what each accuracy preset costs (`rocking::Preset::measured`).
+fn presets_help() -> String {
+    format!(
+        "Accuracy presets ([solver] accuracy in a scene; measured by `cargo xtask bench`, \
+         docs/accuracy.md):\n{}Errors: the worse of max θ/α and impact times over the study's \
+         cases; times: geometric means per simulation over its eight cases, one thread of a \
+         2-core AMD EPYC machine.\nAn explicit method (\"dopri5\", \"dop853\" or \"taylor\") and \
+         tol are allowed too.",
+        rocking::Preset::table()
+    )
+}
 
 /// Simulator of a deformable cantilever that uplifts and rocks on a rigid surface
 /// (Vassiliou, Mackie & Stojadinović 2015).
-/// Shown by `--help`: what each accuracy preset costs (docs/accuracy.md, `cargo xtask bench`).
-const PRESETS: &str = "Accuracy presets ([solver] accuracy in a scene; measured by `cargo xtask bench`, docs/accuracy.md):
-  fast       DOP853 at 1e-5:  error in max θ/α and impact times about 4e-5,  about 0.51 ms per simulation
-  default    DOP853 at 1e-7:  error about 7e-7,  about 0.69 ms
-  accurate   Taylor at 1e-11: error about 3e-11, about 0.58 ms (Ricker and M&P pulses: DOP853 at 1e-10)
-  reference  DOP853 at 1e-12: error about 3e-12 against DOP853 at 1e-14, about 1.7 ms
-Times: geometric means over the study's eight cases, one thread of a 2-core AMD EPYC machine.
-An explicit method (\"dopri5\", \"dop853\" or \"taylor\") and tol are allowed too.";
-
 #[derive(Parser, Debug)]
-#[command(name = "rocking", version, about, after_help = PRESETS)]
+#[command(name = "rocking", version, about, after_help = presets_help())]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -61,7 +69,7 @@ struct Cli {
 #[derive(Subcommand, Debug)]
 enum Command {
     /// Run a scene: write summary.json (and history.csv, events.csv, plots when asked) into DIR.
-    #[command(after_help = PRESETS)]
+    #[command(after_help = presets_help())]
     Run {
         /// The scene file (TOML).
         scene: PathBuf,
@@ -203,14 +211,14 @@ enum Command {
     },
 }
 
-fn load(scene: &Path, set: &[String]) -> Result<(scene::Scene, Model), CliError> {
+fn load(scene: &Path, set: &[String]) -> Result<(scene::Scene, Setup), SceneError> {
     let sc = scene::load(scene, set)?;
-    let model = model::build(&sc)?;
+    let model = setup::build(&sc)?;
     Ok((sc, model))
 }
 
 /// `rocking models`: the generated registry, as text or JSON.
-fn models_command(json: bool) -> Result<(), CliError> {
+fn models_command(json: bool) -> Result<(), SceneError> {
     if json {
         out!("{}", models::json());
     } else {
@@ -219,7 +227,7 @@ fn models_command(json: bool) -> Result<(), CliError> {
     Ok(())
 }
 
-fn check(scene: &Path, set: &[String], json: bool) -> Result<(), CliError> {
+fn check(scene: &Path, set: &[String], json: bool) -> Result<(), SceneError> {
     let (_, m) = load(scene, set)?;
     let derived = report::derived_json(&m)?;
     if json {
@@ -298,7 +306,7 @@ fn check(scene: &Path, set: &[String], json: bool) -> Result<(), CliError> {
     Ok(())
 }
 
-fn run(scene: &Path, set: &[String], out: Option<PathBuf>, json: bool) -> Result<(), CliError> {
+fn run(scene: &Path, set: &[String], out: Option<PathBuf>, json: bool) -> Result<(), SceneError> {
     let (_, mut m) = load(scene, set)?;
     let events_csv = m.options.event_log;
     if m.plots {
@@ -324,16 +332,16 @@ fn run(scene: &Path, set: &[String], out: Option<PathBuf>, json: bool) -> Result
         Path::new("out").join(stem)
     });
     // Everything is written into a staging directory that replaces `dir` whole at the end.
-    let out_dir = report::OutDir::begin(&dir)?;
+    let out_dir = out_dir::OutDir::begin(&dir)?;
     let stage = out_dir.path().to_path_buf();
     let mut written = Vec::new();
     let text = serde_json::to_string_pretty(&summary)
-        .map_err(|e| CliError::Internal(format!("cannot serialise the summary: {e}")))?;
+        .map_err(|e| SceneError::failure(format!("cannot serialise the summary: {e}")))?;
     let write = |name: &str, bytes: &[u8]| {
         let path = stage.join(name);
         std::fs::write(&path, bytes)
             .map_err(|e| {
-                CliError::Internal(format!("{}: cannot write: {e}", dir.join(name).display()))
+                SceneError::failure(format!("{}: cannot write: {e}", dir.join(name).display()))
             })
             .map(|()| path)
     };
@@ -351,12 +359,12 @@ fn run(scene: &Path, set: &[String], out: Option<PathBuf>, json: bool) -> Result
     if let Some(spec) = &m.animation {
         let path = stage.join("animation.gif");
         let (gif, frames) = rocking_plot::animation::render(&m, &run, spec).map_err(|e| {
-            CliError::Internal(format!(
+            SceneError::failure(format!(
                 "{}: cannot draw the animation: {e}",
                 path.display()
             ))
         })?;
-        report::write_atomic(&path, &gif)?;
+        out_dir::write_atomic(&path, &gif)?;
         let bytes = gif.len();
         animation_note = Some(format!(
             "  animation: {frames} frames of {} × {} pixels, {:.2} MB",
@@ -426,8 +434,8 @@ fn run(scene: &Path, set: &[String], out: Option<PathBuf>, json: bool) -> Result
 }
 
 /// A failed write to standard output.
-pub(crate) fn stdout_error(e: std::io::Error) -> CliError {
-    CliError::Internal(format!("cannot write to standard output: {e}"))
+pub(crate) fn stdout_error(e: std::io::Error) -> SceneError {
+    SceneError::failure(format!("cannot write to standard output: {e}"))
 }
 
 fn main() -> ExitCode {
@@ -501,10 +509,7 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e}");
-            match e {
-                CliError::Input(_) => ExitCode::from(2),
-                CliError::Internal(_) => ExitCode::from(1),
-            }
+            ExitCode::from(e.exit_code())
         }
     }
 }

@@ -4,30 +4,30 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use rocking_spectra::plan::{program_digest, Base, Plan, Records};
 use rocking_spectra::{cells_csv, CellClass, Outcome, Progress, Shard};
+use rocking_study::plan::{program_digest, sweep_error, Base, Plan, Records};
 use serde_json::json;
 
-use crate::merge;
+use crate::out_dir::write_atomic;
 use crate::plot;
-use crate::report::write_atomic;
-use crate::scene::CliError;
+use crate::shard;
+use rocking_scene::SceneError;
 
 /// The most threads `--threads` may ask for: more than the cores only adds switching.
 const MAX_THREADS: usize = 1024;
 
-fn threads_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, CliError> {
+fn threads_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, SceneError> {
     let mut b = rayon::ThreadPoolBuilder::new();
     if let Some(n) = threads {
         if !(1..=MAX_THREADS).contains(&n) {
-            return Err(CliError::Input(format!(
+            return Err(SceneError::input(format!(
                 "--threads {n} is not allowed: 1 <= threads <= {MAX_THREADS}"
             )));
         }
         b = b.num_threads(n);
     }
     b.build()
-        .map_err(|e| CliError::Internal(format!("cannot start the thread pool: {e}")))
+        .map_err(|e| SceneError::failure(format!("cannot start the thread pool: {e}")))
 }
 
 fn out_dir(scene: &Path, out: Option<PathBuf>, what: &str) -> PathBuf {
@@ -40,15 +40,6 @@ fn out_dir(scene: &Path, out: Option<PathBuf>, what: &str) -> PathBuf {
     })
 }
 
-pub(crate) fn sweep_error(e: rocking_spectra::SweepError) -> CliError {
-    match e {
-        rocking_spectra::SweepError::Mismatch(_) | rocking_spectra::SweepError::NotJournal(..) => {
-            CliError::Input(e.to_string())
-        }
-        other => CliError::Internal(other.to_string()),
-    }
-}
-
 /// `rocking spectrum`.
 pub fn spectrum(
     scene_path: &Path,
@@ -58,7 +49,7 @@ pub fn spectrum(
     quiet: bool,
     threads: Option<usize>,
     shard: Option<Shard>,
-) -> Result<(), CliError> {
+) -> Result<(), SceneError> {
     let plan = Plan::spectrum(Base::load(scene_path, sets)?, axis_args)?;
     let sweep = &plan.sweep;
     let dir = out_dir(scene_path, out, "spectrum");
@@ -69,7 +60,7 @@ pub fn spectrum(
     };
     let pool = threads_pool(threads)?;
     if let Some(shard) = shard {
-        return merge::run_shard(&plan, merge::Kind::Spectrum, shard, &dir, progress, &pool);
+        return shard::run_shard(&plan, shard::Kind::Spectrum, shard, &dir, progress, &pool);
     }
     let outcome = pool
         .install(|| {
@@ -106,10 +97,10 @@ pub fn spectrum(
 
 /// Exit status 1 when any cell failed (on a first run and on a resume alike): its results are
 /// written, marked `failed`, with the messages in meta.json.
-pub(crate) fn failed_runs(outcome: &Outcome, what: &str, table: &str) -> Result<(), CliError> {
+pub(crate) fn failed_runs(outcome: &Outcome, what: &str, table: &str) -> Result<(), SceneError> {
     match outcome.failures.first() {
         None => Ok(()),
-        Some((_, first)) => Err(CliError::Internal(format!(
+        Some((_, first)) => Err(SceneError::failure(format!(
             "{} of {} {what} failed (marked `failed` in {table}, messages in meta.json); first: {first}",
             outcome.failures.len(),
             outcome.cells.len()
@@ -119,7 +110,7 @@ pub(crate) fn failed_runs(outcome: &Outcome, what: &str, table: &str) -> Result<
 
 /// What a run took: timing.json, apart from meta.json, which is a function of the study alone
 /// (the same bytes whether run at once, resumed, or sharded and merged).
-fn write_timing(outcome: &Outcome, dir: &Path, threads: usize) -> Result<PathBuf, CliError> {
+fn write_timing(outcome: &Outcome, dir: &Path, threads: usize) -> Result<PathBuf, SceneError> {
     let timing = json!({
         "cells": outcome.cells.len(),
         "computed_now": outcome.computed,
@@ -141,7 +132,7 @@ pub(crate) fn write_outputs(
     plan: &Plan,
     outcome: &Outcome,
     dir: &Path,
-) -> Result<Vec<PathBuf>, CliError> {
+) -> Result<Vec<PathBuf>, SceneError> {
     let (base, sweep) = (&plan.base, &plan.sweep);
     let mut written = Vec::new();
     let cells = dir.join("cells.csv");
@@ -224,7 +215,7 @@ pub(crate) fn write_outputs(
 
 /// θ_cr/α of a sweep's structure, when no axis changes it (the axes of the figure's grid are
 /// the pulse's, or the structure's stiffness or damping).
-pub(crate) fn theta_cr_over_alpha(plan: &Plan) -> Result<Option<f64>, CliError> {
+pub(crate) fn theta_cr_over_alpha(plan: &Plan) -> Result<Option<f64>, SceneError> {
     let keeps = |k: &str| {
         !k.starts_with("structure.") || k == "structure.omega_n_over_p" || k == "structure.zeta"
     };
@@ -246,7 +237,7 @@ pub fn batch(
     quiet: bool,
     threads: Option<usize>,
     shard: Option<Shard>,
-) -> Result<(), CliError> {
+) -> Result<(), SceneError> {
     let plan = Plan::batch(Base::load(scene_path, sets)?, records, scales)?;
     let dir = out_dir(scene_path, out, "batch");
     let progress = if quiet {
@@ -256,7 +247,7 @@ pub fn batch(
     };
     let pool = threads_pool(threads)?;
     if let Some(shard) = shard {
-        return merge::run_shard(&plan, merge::Kind::Batch, shard, &dir, progress, &pool);
+        return shard::run_shard(&plan, shard::Kind::Batch, shard, &dir, progress, &pool);
     }
     let outcome = pool
         .install(|| {
@@ -307,7 +298,7 @@ pub(crate) fn write_batch_outputs(
     plan: &Plan,
     outcome: &Outcome,
     dir: &Path,
-) -> Result<(Vec<PathBuf>, Tally), CliError> {
+) -> Result<(Vec<PathBuf>, Tally), SceneError> {
     let (base, sweep) = (&plan.base, &plan.sweep);
     let Some(Records {
         files: list,
@@ -317,7 +308,7 @@ pub(crate) fn write_batch_outputs(
         scales,
     }) = &plan.records
     else {
-        return Err(CliError::Internal("a batch plan without records".into()));
+        return Err(SceneError::failure("a batch plan without records"));
     };
     let messages: BTreeMap<usize, &str> = outcome
         .failures
@@ -327,7 +318,7 @@ pub(crate) fn write_batch_outputs(
     // Per scale: runs, failed, overturned (of the runs that finished).
     let mut tally: Tally = scales.iter().map(|&s| (s, 0, 0, 0)).collect();
     let mut runs = csv::Writer::from_writer(Vec::new());
-    let csv_err = |e: csv::Error| CliError::Internal(format!("cannot write runs.csv: {e}"));
+    let csv_err = |e: csv::Error| SceneError::failure(format!("cannot write runs.csv: {e}"));
     runs.write_record([
         "record",
         "scale",
@@ -373,7 +364,7 @@ pub(crate) fn write_batch_outputs(
     }
     let rows = runs
         .into_inner()
-        .map_err(|e| CliError::Internal(format!("cannot write runs.csv: {e}")))?;
+        .map_err(|e| SceneError::failure(format!("cannot write runs.csv: {e}")))?;
     let mut written = Vec::new();
     let path = dir.join("runs.csv");
     write_atomic(&path, &rows)?;

@@ -7,6 +7,9 @@
 //! through rustfmt.
 //!
 //! Entry points: [`render_variant`], [`render_mod`] and [`render_all`].
+//!
+//! It owns how the IR becomes Rust (templates, the Taylor-mode tape); it must not know any
+//! equation, model or variant by name: everything it renders comes from the IR.
 
 mod error;
 pub mod ir;

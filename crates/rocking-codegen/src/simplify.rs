@@ -20,8 +20,20 @@
 use std::collections::{BTreeMap, BTreeSet};
 
 use crate::ir::{Function, Instruction};
-use crate::taylor::check_series_op;
 use crate::{Error, Result};
+
+/// Whether `op` has a Taylor-mode recurrence and takes `n` arguments (else the message).
+pub(crate) fn check_series_op(op: &str, n: usize) -> std::result::Result<(), String> {
+    let arity = match op {
+        "add" | "sub" | "mul" | "div" => 2,
+        "assign" | "neg" | "twice" | "sq" | "sqrt" | "sin" | "cos" => 1,
+        _ => return Err(format!("operation {op:?} has no Taylor-mode rule")),
+    };
+    if n != arity {
+        return Err(format!("{op:?} takes {arity} argument(s)"));
+    }
+    Ok(())
+}
 
 /// A work variable of the rewritten tape.
 type Node = usize;

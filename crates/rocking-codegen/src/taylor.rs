@@ -27,7 +27,7 @@ use serde::Serialize;
 
 use crate::ir::{Function, Input, Instruction, Ir};
 use crate::render::{float_literal, render_template, str_lit};
-use crate::simplify::simplify;
+use crate::simplify::{check_series_op, simplify};
 use crate::{Error, Result};
 
 const TAYLOR_TEMPLATE: &str = include_str!("../templates/taylor.rs.tera");
@@ -472,19 +472,6 @@ fn render_fn(
         result,
     };
     Ok((rendered, history))
-}
-
-/// Whether `op` has a Taylor-mode recurrence and takes `n` arguments (else the message).
-pub(crate) fn check_series_op(op: &str, n: usize) -> std::result::Result<(), String> {
-    let arity = match op {
-        "add" | "sub" | "mul" | "div" => 2,
-        "assign" | "neg" | "twice" | "sq" | "sqrt" | "sin" | "cos" => 1,
-        _ => return Err(format!("operation {op:?} has no Taylor-mode rule")),
-    };
-    if n != arity {
-        return Err(format!("{op:?} takes {arity} argument(s)"));
-    }
-    Ok(())
 }
 
 /// The scalar form of an operation on constants (the same forms as the ordinary kernels).

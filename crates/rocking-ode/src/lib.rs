@@ -89,6 +89,7 @@ use std::ops::{Add, AddAssign};
 
 pub mod events;
 pub mod poly;
+pub mod roots;
 mod tableau;
 pub mod taylor;
 

@@ -7,7 +7,7 @@
 use plotters::prelude::*;
 use rocking::{HistoryRow, Run};
 use rocking_scene::labels;
-use rocking_scene::model::{Animation, Model};
+use rocking_scene::setup::{Animation, Setup};
 
 use crate::{register, wrap};
 
@@ -115,7 +115,7 @@ fn world(row: &HistoryRow, ug: f64, h: f64, b: f64, psi: &dyn Fn(f64) -> f64) ->
 }
 
 /// The frames of an animation of `run` at `size` pixels: geometry in pixels, one per shown row.
-pub fn geometry(model: &Model, run: &Run, spec: &Animation) -> Result<Vec<Frame>, String> {
+pub fn geometry(model: &Setup, run: &Run, spec: &Animation) -> Result<Vec<Frame>, String> {
     let h = &run.history;
     if h.len() < 2 {
         return Err(
@@ -270,7 +270,7 @@ fn index_of(r: u8, g: u8, b: u8) -> u8 {
 }
 
 /// The animated GIF of `run` (its bytes) and its number of frames; the error says what failed.
-pub fn render(model: &Model, run: &Run, spec: &Animation) -> Result<(Vec<u8>, usize), String> {
+pub fn render(model: &Setup, run: &Run, spec: &Animation) -> Result<(Vec<u8>, usize), String> {
     register();
     let frames = geometry(model, run, spec)?;
     let title = model
@@ -352,7 +352,7 @@ mod tests {
             .join("../../scenes/fig10-overturns.toml");
         let sc =
             rocking_scene::scene::load(&scene, &["output.animation=true".into()]).expect("scene");
-        let mut m = rocking_scene::model::build(&sc).expect("model");
+        let mut m = rocking_scene::setup::build(&sc).expect("model");
         m.options.history = rocking::History::Grid(0.01 / m.units.p_model);
         let run =
             rocking::simulate(&m.structure, &m.excitation, &m.effects, &m.options).expect("run");

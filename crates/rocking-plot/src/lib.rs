@@ -3,6 +3,8 @@
 //! (subscripts, tick labels, titles wrapped between items), [`colour`] and [`style`] (a palette
 //! that stays distinct for colour-blind readers and in greyscale, measured), [`export`] (one SVG
 //! turned into PNG and PDF) and [`animation`], the animated GIF of a run.
+//!
+//! It owns how things look; it must not compute results (it draws what a run or a study gives).
 
 pub mod animation;
 pub mod colour;

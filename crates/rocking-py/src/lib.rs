@@ -1,10 +1,13 @@
 //! `rocking._rocking`: the compiled half of the Python package `rocking`. It exposes the same
-//! library code paths as the `rocking` command (scene loading, `rocking_scene::report` for the
-//! summary, history and events, `rocking_spectra::plan` for sweeps), so that a result from
+//! library code paths as the `rocking` command (scene loading, `rocking_study::run_report` for the
+//! summary, history and events, `rocking_study::plan` for sweeps), so that a result from
 //! Python is the command's result. The pure-Python wrapper (`python/rocking/__init__.py`) turns
 //! what this module returns into numpy arrays and friendly objects.
 //!
 //! Every simulation and sweep runs with the GIL released (`Python::detach`).
+//!
+//! It owns the Python API; it must not compute or format anything the library crates do (a
+//! result from Python is the command's).
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -12,18 +15,20 @@ use std::sync::Arc;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyList};
-use rocking_scene::model::{self, Animation, Model};
-use rocking_scene::scene::{self, CliError};
-use rocking_scene::{models, report};
-use rocking_spectra::plan::{Base, Plan};
+use rocking_scene::models;
+use rocking_scene::scene;
+use rocking_scene::setup::{self, Animation, Setup};
+use rocking_scene::SceneError;
 use rocking_spectra::{Outcome, Sweep};
+use rocking_study::plan::{Base, Plan};
+use rocking_study::run_report as report;
 
 /// The command's errors as Python exceptions: bad input is a `ValueError`, anything else a
 /// `RuntimeError`, with the command's message.
-fn py_err(e: CliError) -> PyErr {
+fn py_err(e: SceneError) -> PyErr {
     match e {
-        CliError::Input(m) => PyValueError::new_err(m),
-        CliError::Internal(m) => PyRuntimeError::new_err(m),
+        SceneError::Input(e) => PyValueError::new_err(e.message),
+        SceneError::Failure(m) => PyRuntimeError::new_err(m),
     }
 }
 
@@ -39,13 +44,13 @@ struct Scene {
     path: PathBuf,
     text: String,
     sets: Vec<String>,
-    model: Arc<Model>,
+    model: Arc<Setup>,
 }
 
 impl Scene {
-    fn build(path: PathBuf, text: String, sets: Vec<String>) -> Result<Scene, CliError> {
+    fn build(path: PathBuf, text: String, sets: Vec<String>) -> Result<Scene, SceneError> {
         let sc = scene::load_text(&path, text.clone(), &sets)?;
-        let mut m = model::build(&sc)?;
+        let mut m = setup::build(&sc)?;
         // As `rocking run` does: a scene with plots logs its events (impacts are marked on them).
         if m.plots {
             m.options.event_log = true;
@@ -131,7 +136,7 @@ impl Scene {
 /// and events tables of history.csv and events.csv, made on demand.
 #[pyclass(module = "rocking._rocking", frozen)]
 struct RunOutput {
-    model: Arc<Model>,
+    model: Arc<Setup>,
     run: rocking::Run,
     summary: String,
 }
@@ -287,7 +292,7 @@ fn outcome_dict<'py>(
     Ok(d)
 }
 
-fn base(scene: &Scene) -> Result<Base, CliError> {
+fn base(scene: &Scene) -> Result<Base, SceneError> {
     Base::from_text(&scene.path, scene.text.clone(), &scene.sets)
 }
 
@@ -347,7 +352,7 @@ fn ida(
     let base = py.detach(|| base(scene)).map_err(py_err)?;
     let pool = pool(threads)?;
     let study = py
-        .detach(|| pool.install(|| rocking_spectra::ida::run(&base, &records)))
+        .detach(|| pool.install(|| rocking_study::ida::run(&base, &records)))
         .map_err(py_err)?;
     Ok((
         study.fragility_json().to_string(),

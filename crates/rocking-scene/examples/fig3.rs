@@ -10,13 +10,13 @@ use std::io::Write;
 use std::path::Path;
 
 use rocking::simulate;
-use rocking_scene::{model, scene};
+use rocking_scene::{scene, setup};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let scenes = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes");
     for name in ["vvel", "adjex"] {
         let sc = scene::load(&scenes.join(format!("fig3-{name}.toml")), &[])?;
-        let m = model::build(&sc)?;
+        let m = setup::build(&sc)?;
         let (structure, options) = (&m.structure, &m.options);
         let derived = structure.derived();
         let alpha = derived.alpha;

@@ -1,8 +1,9 @@
 //! Knobs: a scene value that a sweep varies, resolved once per axis. A cell applies its value to
 //! the typed scene (no `--set` string is formatted and no TOML re-parsed) and builds its setup.
 
-use crate::model::{build_spec, Model};
-use crate::scene::{CliError, Scene, SceneSpec};
+use crate::scene::{Scene, SceneSpec};
+use crate::setup::{build_spec, Setup};
+use crate::SceneError;
 
 type Number = fn(&mut SceneSpec) -> &mut Option<f64>;
 type Text = fn(&mut SceneSpec) -> &mut Option<String>;
@@ -62,13 +63,13 @@ impl Knob {
     /// Resolves `key` for `scene`: a numeric or text key of the scene format, or a parameter the
     /// scene's model adds. Other keys (tables such as `effects.impact`) are not knobs: sweep them
     /// with `--set`.
-    pub fn resolve(scene: &Scene, key: &str) -> Result<Knob, CliError> {
+    pub fn resolve(scene: &Scene, key: &str) -> Result<Knob, SceneError> {
         let kind = if let Some((_, f)) = NUMBERS.iter().find(|(k, _)| *k == key) {
             Kind::Number(*f)
         } else if let Some((_, f)) = TEXTS.iter().find(|(k, _)| *k == key) {
             Kind::Text(*f)
         } else {
-            let model = crate::model::scene_model(&scene.spec)
+            let model = crate::setup::scene_model(&scene.spec)
                 .map_err(|e| scene.src.err("structure.model", e))?;
             match key
                 .strip_prefix("structure.")
@@ -76,7 +77,7 @@ impl Knob {
             {
                 Some(p) => Kind::Extra(p.name),
                 None => {
-                    return Err(CliError::Input(format!(
+                    return Err(SceneError::input(format!(
                         "{}: `{key}` cannot be swept: not a number or text key of the scene \
                          format, nor a parameter of model `{}`",
                         scene.src.path.display(),
@@ -92,7 +93,7 @@ impl Knob {
     }
 
     /// Sets the knob's value in `spec`.
-    pub fn apply(&self, spec: &mut SceneSpec, value: &KnobValue) -> Result<(), CliError> {
+    pub fn apply(&self, spec: &mut SceneSpec, value: &KnobValue) -> Result<(), SceneError> {
         match (self.kind, value) {
             (Kind::Number(f), KnobValue::Number(v)) => *f(spec) = Some(*v),
             (Kind::Text(f), KnobValue::Text(t)) => *f(spec) = Some(t.clone()),
@@ -102,7 +103,7 @@ impl Knob {
                 st.extra.push((name, *v));
             }
             _ => {
-                return Err(CliError::Input(format!(
+                return Err(SceneError::input(format!(
                     "`{}`: a value of the wrong kind ({value:?})",
                     self.key
                 )))
@@ -130,7 +131,7 @@ impl Knob {
 }
 
 /// The setup of `scene` with the knobs set to `values` (a sweep cell).
-pub fn setup(scene: &Scene, knobs: &[(&Knob, KnobValue)]) -> Result<Model, CliError> {
+pub fn setup(scene: &Scene, knobs: &[(&Knob, KnobValue)]) -> Result<Setup, SceneError> {
     let mut spec = scene.spec.clone();
     for (knob, v) in knobs {
         knob.apply(&mut spec, v)?;

@@ -4,7 +4,8 @@
 
 use rocking::Structure;
 
-use crate::scene::{describe, CliError, Source, StructureSpec};
+use crate::scene::{Source, StructureSpec};
+use crate::SceneError;
 
 /// A number for a message: as written for ordinary magnitudes, in short exponent form (`1e308`,
 /// not 309 digits) for very large or very small ones.
@@ -38,20 +39,9 @@ pub const MAX_ACCEL_G: f64 = 1e4;
 /// Largest excitation frequency ω_p/p: its period is then 6e-6 of the structure's time scale.
 pub const MAX_OMEGA_P_OVER_P: f64 = 1e6;
 
-fn refuse(src: &Source, path: &str, v: f64, allowed: &str) -> CliError {
-    src.err(
-        path,
-        format_args!(
-            "{} = {} is not allowed: {allowed}",
-            describe(path),
-            short(v)
-        ),
-    )
-}
-
 /// Magnitudes of the `[structure]` keys the user wrote, checked before anything is formed from
 /// them (so that `h = 1e308` is reported as `h`, not as an overflowed product).
-pub fn structure_magnitudes(src: &Source, s: &StructureSpec) -> Result<(), CliError> {
+pub fn structure_magnitudes(src: &Source, s: &StructureSpec) -> Result<(), SceneError> {
     let dimensional = [
         ("h", s.h),
         ("b", s.b),
@@ -67,8 +57,7 @@ pub fn structure_magnitudes(src: &Source, s: &StructureSpec) -> Result<(), CliEr
     for (k, v) in dimensional {
         if let Some(v) = v.filter(|v| v.is_finite() && *v != 0.0) {
             if !(v.abs() <= MAX_MAGNITUDE && v.abs() >= 1.0 / MAX_MAGNITUDE) {
-                return Err(refuse(
-                    src,
+                return Err(src.not_allowed(
                     &format!("structure.{k}"),
                     v,
                     &format!(
@@ -84,8 +73,7 @@ pub fn structure_magnitudes(src: &Source, s: &StructureSpec) -> Result<(), CliEr
         .omega_n_over_p
         .filter(|w| w.is_finite() && *w > MAX_OMEGA_N_OVER_P)
     {
-        return Err(refuse(
-            src,
+        return Err(src.not_allowed(
             "structure.omega_n_over_p",
             w,
             &format!(
@@ -100,8 +88,7 @@ pub fn structure_magnitudes(src: &Source, s: &StructureSpec) -> Result<(), CliEr
         ("gamma_ib", s.gamma_ib),
     ] {
         if let Some(v) = v.filter(|v| v.is_finite() && *v > MAX_GAMMA) {
-            return Err(refuse(
-                src,
+            return Err(src.not_allowed(
                 &format!("structure.{k}"),
                 v,
                 &format!("{k} <= {}", short(MAX_GAMMA)),
@@ -112,8 +99,7 @@ pub fn structure_magnitudes(src: &Source, s: &StructureSpec) -> Result<(), CliEr
         .alpha
         .filter(|a| a.is_finite() && *a >= max_alpha() && *a < std::f64::consts::FRAC_PI_2)
     {
-        return Err(refuse(
-            src,
+        return Err(src.not_allowed(
             "structure.alpha",
             a,
             &format!(
@@ -131,7 +117,7 @@ pub fn derived_quantities(
     src: &Source,
     structure: &Structure,
     physical: bool,
-) -> Result<(), CliError> {
+) -> Result<(), SceneError> {
     let d = structure.derived();
     let threshold = structure.static_uplift_acceleration();
     let quantities = [
@@ -166,12 +152,11 @@ pub fn derived_quantities(
 }
 
 /// A ground acceleration (peak, in g) formed from the key `path` (given as `v`).
-pub fn acceleration(src: &Source, path: &str, v: f64, in_g: f64) -> Result<(), CliError> {
+pub fn acceleration(src: &Source, path: &str, v: f64, in_g: f64) -> Result<(), SceneError> {
     if in_g.abs() <= MAX_ACCEL_G {
         Ok(())
     } else {
-        Err(refuse(
-            src,
+        Err(src.not_allowed(
             path,
             v,
             &format!(
@@ -184,12 +169,11 @@ pub fn acceleration(src: &Source, path: &str, v: f64, in_g: f64) -> Result<(), C
 }
 
 /// An excitation frequency ω_p/p formed from the key `path` (given as `v`).
-pub fn frequency(src: &Source, path: &str, v: f64, over_p: f64) -> Result<(), CliError> {
+pub fn frequency(src: &Source, path: &str, v: f64, over_p: f64) -> Result<(), SceneError> {
     if over_p <= MAX_OMEGA_P_OVER_P {
         Ok(())
     } else {
-        Err(refuse(
-            src,
+        Err(src.not_allowed(
             path,
             v,
             &format!(

@@ -11,24 +11,7 @@ use rocking_motion::{read_record, At2Record, RecordFormat};
 use serde::Deserialize;
 use toml::{Table, Value};
 
-/// An error in the user's input (exit code 2) or an internal failure (exit code 1).
-#[derive(Debug)]
-pub enum CliError {
-    /// Invalid input: scene, record, arguments.
-    Input(String),
-    /// Something that should not happen (I/O on the output, a solver failure).
-    Internal(String),
-}
-
-impl fmt::Display for CliError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            CliError::Input(m) | CliError::Internal(m) => f.write_str(m),
-        }
-    }
-}
-
-impl std::error::Error for CliError {}
+use crate::{InputError, SceneError};
 
 /// `[structure]`: physical (SI) or dimensionless. All optional here; the combination is checked
 /// when the structure is built.
@@ -276,30 +259,69 @@ impl Source {
         (line, col)
     }
 
-    /// "FILE:LINE:COL" for the key at `path` (or its closest ancestor present in the file),
-    /// or "FILE (--set k=v)" when the value came from the command line.
-    pub fn locate(&self, path: &str) -> String {
-        let file = self.path.display();
+    /// Where the key at `path` (or its closest ancestor present in the file) is: its line and
+    /// column, or the `--set` argument that gave it; `None` when it is nowhere in the file.
+    fn place(&self, path: &str) -> Option<Place> {
         let mut p = path.to_string();
         loop {
             if let Some(arg) = self.overridden.get(&p) {
-                return format!("{file}: --set {arg}");
+                return Some(Place::Set(arg.clone()));
             }
             if let Some(&off) = self.spans.get(&p) {
                 let (l, c) = self.line_col(off);
-                return format!("{file}:{l}:{c}");
+                return Some(Place::At(l, c));
             }
             match p.rfind('.') {
                 Some(i) => p.truncate(i),
-                None => return format!("{file}"),
+                None => return None,
             }
         }
     }
 
-    /// An input error about the key at `path`.
-    pub fn err(&self, path: &str, msg: impl fmt::Display) -> CliError {
-        CliError::Input(format!("{}: {msg}", self.locate(path)))
+    /// "FILE:LINE:COL" for the key at `path` (or its closest ancestor present in the file),
+    /// or "FILE: --set k=v" when the value came from the command line.
+    pub fn locate(&self, path: &str) -> String {
+        let file = self.path.display();
+        match self.place(path) {
+            Some(Place::Set(arg)) => format!("{file}: --set {arg}"),
+            Some(Place::At(l, c)) => format!("{file}:{l}:{c}"),
+            None => format!("{file}"),
+        }
     }
+
+    /// An input error about the key at `path`: the message is "LOCATION: msg".
+    pub fn err(&self, path: &str, msg: impl fmt::Display) -> SceneError {
+        let mut e = InputError {
+            file: Some(self.path.clone()),
+            key: Some(path.to_string()),
+            message: format!("{}: {msg}", self.locate(path)),
+            ..InputError::default()
+        };
+        match self.place(path) {
+            Some(Place::Set(arg)) => e.set = Some(arg),
+            Some(Place::At(l, c)) => (e.line, e.column) = (Some(l), Some(c)),
+            None => {}
+        }
+        SceneError::Input(Box::new(e))
+    }
+
+    /// The value `v` of the key at `path` is outside what is `allowed`.
+    pub fn not_allowed(&self, path: &str, v: f64, allowed: &str) -> SceneError {
+        let value = crate::limits::short(v);
+        self.err(
+            path,
+            format_args!("{} = {value} is not allowed: {allowed}", describe(path)),
+        )
+        .with_value(value, allowed)
+    }
+}
+
+/// Where a key's value came from.
+enum Place {
+    /// Line and column in the file.
+    At(usize, usize),
+    /// A `--set` argument.
+    Set(String),
 }
 
 /// `[table]` name and key of a dotted path, for messages.
@@ -308,21 +330,6 @@ pub fn describe(path: &str) -> String {
         Some((table, key)) => format!("`{key}` in [{table}]"),
         None => format!("`{path}`"),
     }
-}
-
-/// Levenshtein distance.
-fn edit_distance(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut prev: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut cur = vec![i + 1; b.len() + 1];
-        for (j, &cb) in b.iter().enumerate() {
-            let sub = prev[j] + usize::from(ca != cb);
-            cur[j + 1] = sub.min(prev[j + 1] + 1).min(cur[j] + 1);
-        }
-        prev = cur;
-    }
-    prev[b.len()]
 }
 
 /// The allowed key closest to `key`, if it is close enough to be a typo.
@@ -335,7 +342,7 @@ pub fn suggest<'a>(key: &str, allowed: &[&'a str]) -> Option<&'a str> {
     }
     let (best, d) = allowed
         .iter()
-        .map(|a| (*a, edit_distance(&key.to_lowercase(), a)))
+        .map(|a| (*a, strsim::levenshtein(&key.to_lowercase(), a)))
         .min_by_key(|&(_, d)| d)?;
     let limit = (key.chars().count().max(best.len()) / 3).max(2);
     (d <= limit).then_some(best)
@@ -343,9 +350,9 @@ pub fn suggest<'a>(key: &str, allowed: &[&'a str]) -> Option<&'a str> {
 
 /// Parses one `--set key.path=value` argument: the value as TOML (number, bool, string, inline
 /// table, array), a bare word as a string.
-pub fn parse_override(arg: &str) -> Result<(Vec<String>, Value), CliError> {
+pub fn parse_override(arg: &str) -> Result<(Vec<String>, Value), SceneError> {
     let bad = |why: &str| {
-        CliError::Input(format!(
+        SceneError::input(format!(
             "--set {arg}: {why} (expected KEY.PATH=VALUE, e.g. structure.alpha=0.2)"
         ))
     };
@@ -397,18 +404,18 @@ fn parse_unknown_field(msg: &str) -> Option<(String, Vec<String>)> {
 }
 
 /// Reads a scene file.
-pub fn read(path: &Path) -> Result<String, CliError> {
+pub fn read(path: &Path) -> Result<String, SceneError> {
     std::fs::read_to_string(path)
-        .map_err(|e| CliError::Input(format!("{}: cannot read scene file: {e}", path.display())))
+        .map_err(|e| SceneError::input(format!("{}: cannot read scene file: {e}", path.display())))
 }
 
 /// Reads, overrides and deserializes a scene file.
-pub fn load(path: &Path, sets: &[String]) -> Result<Scene, CliError> {
+pub fn load(path: &Path, sets: &[String]) -> Result<Scene, SceneError> {
     load_text(path, read(path)?, sets)
 }
 
 /// Overrides and deserializes the text of the scene file `path`.
-pub fn load_text(path: &Path, text: String, sets: &[String]) -> Result<Scene, CliError> {
+pub fn load_text(path: &Path, text: String, sets: &[String]) -> Result<Scene, SceneError> {
     parse_text(path, text)?.load(sets)
 }
 
@@ -424,7 +431,7 @@ pub struct Parsed {
 }
 
 /// Parses the text of the scene file `path`.
-pub fn parse_text(path: &Path, text: String) -> Result<Parsed, CliError> {
+pub fn parse_text(path: &Path, text: String) -> Result<Parsed, SceneError> {
     let table: Table = toml::from_str(&text).map_err(|e| {
         let at = e
             .span()
@@ -435,7 +442,7 @@ pub fn parse_text(path: &Path, text: String) -> Result<Parsed, CliError> {
                 format!(":{line}:{col}")
             })
             .unwrap_or_default();
-        CliError::Input(format!(
+        SceneError::input(format!(
             "{}{at}: invalid TOML: {}",
             path.display(),
             e.message().trim()
@@ -456,7 +463,7 @@ pub fn parse_text(path: &Path, text: String) -> Result<Parsed, CliError> {
 
 impl Parsed {
     /// Applies `--set` overrides and deserializes the scene.
-    pub fn load(&self, sets: &[String]) -> Result<Scene, CliError> {
+    pub fn load(&self, sets: &[String]) -> Result<Scene, SceneError> {
         let path = self.path.as_path();
         let mut table = self.table.clone();
         let mut src = Source {
@@ -477,7 +484,7 @@ fn finish(
     table: &mut Table,
     src: &mut Source,
     sets: &[String],
-) -> Result<(), CliError> {
+) -> Result<(), SceneError> {
     for arg in sets {
         let (keys, value) = parse_override(arg)?;
         let mut t = &mut *table;
@@ -488,7 +495,7 @@ fn finish(
             t = match entry {
                 Value::Table(t) => t,
                 _ => {
-                    return Err(CliError::Input(format!(
+                    return Err(SceneError::input(format!(
                         "{}: --set {arg}: `{}` is a value, not a table",
                         path.display(),
                         keys[..=i].join(".")
@@ -503,7 +510,7 @@ fn finish(
 }
 
 /// The model a scene names in `[structure] model` (default: the paper's).
-fn scene_model(table: &Table, src: &Source) -> Result<&'static ModelInfo, CliError> {
+fn scene_model(table: &Table, src: &Source) -> Result<&'static ModelInfo, SceneError> {
     let name = match table.get("structure").and_then(|s| s.get("model")) {
         None => return Ok(rocking::find_model(PAPER_MODEL).expect("the paper's model")),
         Some(Value::String(name)) => name,
@@ -546,7 +553,7 @@ fn take_model_keys(
     model: &'static ModelInfo,
     table: &mut Table,
     src: &Source,
-) -> Result<(ModelParams, MassSwitches), CliError> {
+) -> Result<(ModelParams, MassSwitches), SceneError> {
     let mut extra = Vec::new();
     if let Some(Value::Table(st)) = table.get_mut("structure") {
         for p in model.extra_params() {
@@ -608,7 +615,7 @@ fn other_model_hint(table_name: &str, key: &str, model: &ModelInfo) -> Option<St
     ))
 }
 
-fn deserialize(path: &Path, mut table: Table, src: &Source) -> Result<SceneSpec, CliError> {
+fn deserialize(path: &Path, mut table: Table, src: &Source) -> Result<SceneSpec, SceneError> {
     let model = scene_model(&table, src)?;
     let (extra, masses) = take_model_keys(model, &mut table, src)?;
     let de = Value::Table(table);
@@ -627,7 +634,7 @@ fn deserialize_spec(
     de: Value,
     src: &Source,
     model: &'static ModelInfo,
-) -> Result<SceneSpec, CliError> {
+) -> Result<SceneSpec, SceneError> {
     serde_path_to_error::deserialize(de).map_err(|e| {
         let p = e.path().to_string();
         let p = if p == "." { String::new() } else { p };
@@ -676,7 +683,7 @@ fn deserialize_spec(
             return src.err(&full, format_args!("unknown key `{key}` {place}{hint}"));
         }
         if p.is_empty() {
-            return CliError::Input(format!("{}: {msg}", path.display()));
+            return SceneError::input(format!("{}: {msg}", path.display()));
         }
         src.err(
             &p,
@@ -712,6 +719,52 @@ mod tests {
         assert!(parse_override("a..b=1").is_err());
     }
 
+    /// An input error carries its parts as fields, and its message is built from them.
+    #[test]
+    fn a_refused_value_names_its_file_line_key_value_and_range() {
+        let text = "[structure]\nomega_n_over_p = 5.0\nalpha = 2.0\nzeta = 0.01\n\n\
+                    [excitation]\nkind = \"sine-pulse\"\nomega_p_over_p = 4.0\namplitude = 2.0\n";
+        let sc = load_text(Path::new("dir/s.toml"), text.to_string(), &[]).expect("parses");
+        let err = crate::setup::build(&sc)
+            .err()
+            .expect("alpha = 2 is refused");
+        let e = err.as_input().expect("an input error");
+        assert_eq!(e.file.as_deref(), Some(Path::new("dir/s.toml")));
+        assert_eq!((e.line, e.column), (Some(3), Some(1)));
+        assert_eq!(e.key.as_deref(), Some("structure.alpha"));
+        assert_eq!(e.value.as_deref(), Some("2"));
+        assert_eq!(
+            e.allowed.as_deref(),
+            Some("a slenderness 0 < alpha < pi/2 rad")
+        );
+        assert_eq!(err.exit_code(), 2);
+        assert_eq!(
+            err.to_string(),
+            "dir/s.toml:3:1: [structure] `alpha` = 2 is not allowed: a slenderness 0 < alpha < \
+             pi/2 rad"
+        );
+        // The same value from the command line names the --set argument instead of a line.
+        let sc = load_text(
+            Path::new("dir/s.toml"),
+            text.replace("alpha = 2.0", "alpha = 0.2"),
+            &["structure.alpha=3".to_string()],
+        )
+        .expect("parses");
+        let err = crate::setup::build(&sc)
+            .err()
+            .expect("alpha = 3 is refused");
+        let e = err.as_input().expect("an input error");
+        assert_eq!(
+            (e.set.as_deref(), e.line),
+            (Some("structure.alpha=3"), None)
+        );
+        assert!(
+            err.to_string()
+                .starts_with("dir/s.toml: --set structure.alpha=3: "),
+            "{err}"
+        );
+    }
+
     proptest::proptest! {
         #![proptest_config(proptest::prelude::ProptestConfig::with_cases(512))]
 
@@ -721,7 +774,7 @@ mod tests {
         fn arbitrary_text_never_panics(text in "\\PC{0,300}") {
             let path = Path::new("fuzz.toml");
             if let Ok(sc) = load_text(path, text, &[]) {
-                let _ = crate::model::build(&sc);
+                let _ = crate::setup::build(&sc);
             }
         }
 
@@ -736,7 +789,7 @@ mod tests {
             text = chars[..a].iter().collect::<String>() + &insert + &chars[b..].iter().collect::<String>();
             let path = Path::new("fuzz.toml");
             if let Ok(sc) = load_text(path, text, &[]) {
-                let _ = crate::model::build(&sc);
+                let _ = crate::setup::build(&sc);
             }
         }
     }

@@ -1,4 +1,8 @@
-//! Parallel, resumable sweeps: rocking and overturning spectra, and record suites.
+//! The generic sweep engine: parallel, journaled, resumable, sharded sweeps of simulations.
+//!
+//! It owns cells, journals, shards and their merge; it knows a run only by its
+//! [`rocking::Summary`] and must not know scenes, records or what a cell's axes mean (the
+//! scene-aware studies are `rocking-study`'s).
 //!
 //! A sweep is a list of [`Axis`] (named by scene key paths, e.g. `excitation.amplitude`) whose
 //! cartesian product gives the cells, in a fixed order (the last axis varies fastest). Every cell
@@ -15,7 +19,7 @@
 
 use std::collections::BTreeMap;
 use std::fmt;
-use std::fs::{self, File, OpenOptions};
+use std::fs::{self, OpenOptions};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -24,8 +28,6 @@ use std::time::{Duration, Instant};
 use rayon::prelude::*;
 use rocking::Summary;
 
-pub mod ida;
-pub mod plan;
 pub mod shard;
 
 pub use shard::Shard;
@@ -275,14 +277,13 @@ impl Sweep {
     }
 }
 
-/// A 64-bit FNV-1a hash, to fingerprint sweeps and check journal lines.
+/// The 64-bit FNV-1a hash of `bytes` (the `fnv` crate's), to fingerprint sweeps and check journal
+/// lines.
 pub fn fnv1a(bytes: &[u8]) -> u64 {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for b in bytes {
-        h ^= u64::from(*b);
-        h = h.wrapping_mul(0x0000_0100_0000_01b3);
-    }
-    h
+    use std::hash::Hasher as _;
+    let mut h = fnv::FnvHasher::default();
+    h.write(bytes);
+    h.finish()
 }
 
 pub(crate) const JOURNAL: &str = "cells.journal";
@@ -466,7 +467,7 @@ where
         })
         .collect();
     let mut done: BTreeMap<usize, Cell> = journaled.into_iter().map(|(i, (c, _))| (i, c)).collect();
-    write_atomic(&path, text.as_bytes())?;
+    write_atomic(&path, text.as_bytes()).map_err(|e| SweepError::Io(path.clone(), e))?;
     let journal = OpenOptions::new()
         .append(true)
         .open(&path)
@@ -585,19 +586,23 @@ where
     })
 }
 
-/// Writes `bytes` to `path` atomically: a temporary file in the same directory, then a rename.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), SweepError> {
-    let dir = path.parent().unwrap_or(Path::new("."));
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let tmp = dir.join(format!(".{name}.tmp{}", std::process::id()));
-    let io = |e| SweepError::Io(path.to_path_buf(), e);
-    let mut f = File::create(&tmp).map_err(io)?;
-    f.write_all(bytes).map_err(io)?;
-    f.sync_all().map_err(io)?;
-    fs::rename(&tmp, path).map_err(io)
+/// Writes `bytes` to `path` atomically: a temporary file in the same directory, synced, then
+/// renamed over `path` (a reader sees the old file or the new one, never a part). The file gets
+/// the permissions of a file created the usual way (0666 less the umask, where tempfile alone
+/// would give 0600: results are meant to be read by others).
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let mut builder = tempfile::Builder::new();
+    #[cfg(unix)]
+    builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o666));
+    let mut tmp = builder.tempfile_in(dir)?;
+    tmp.write_all(bytes)?;
+    tmp.as_file().sync_all()?;
+    tmp.persist(path).map_err(|e| e.error)?;
+    Ok(())
 }
 
 /// `cells.csv`: one row per cell with the axis values (columns named by their key paths),

@@ -5,7 +5,12 @@
 //! rocking on a rigid surface under a horizontal ground acceleration. The physics comes from the
 //! generated kernels of [`rocking_kernels`]; this crate integrates it through its phases (full
 //! contact, rocking about either corner, impacts, overturning) with the event-locating
-//! Runge–Kutta integrators of [`rocking_ode`].
+//! Runge–Kutta integrators of [`rocking_ode`] and the Taylor method generated from the
+//! derivation.
+//!
+//! It owns the hybrid logic (phases, events, the impact policy) and the run's summary; it must
+//! not know the physics beyond the generated kernels' interface (no equation is typed here),
+//! nor scene files, units of a record, or how results are written.
 //!
 //! # A run
 //!
@@ -38,12 +43,14 @@
 
 mod dense;
 mod driver;
+mod error;
 mod options;
 mod results;
 mod structure;
 mod taylor;
 
-pub use driver::{simulate as simulate_variant, SimError};
+pub use driver::simulate as simulate_variant;
+pub use error::{OptionError, SimError};
 pub use options::{
     Accuracy, History, ImpactModel, Initial, Method, Options, Preset, MAX_HISTORY_ROWS,
 };
@@ -256,7 +263,7 @@ pub fn simulate(
     effects: &Effects,
     options: &Options,
 ) -> Result<Run, SimError> {
-    let sel = select_variant(structure, effects).map_err(|e| SimError::Options(e.to_string()))?;
+    let sel = select_variant(structure, effects).map_err(|e| SimError::NoVariant(e.to_string()))?;
     run_variant(sel.variant.name, &sel.structure, motion, options)
 }
 
@@ -271,7 +278,7 @@ pub fn run_variant(
     match VariantInfo::find(name) {
         Some(v) if v.model == structure.model().name => {}
         _ => {
-            return Err(SimError::Options(format!(
+            return Err(SimError::NoVariant(format!(
                 "no kernel variant `{name}` of model `{}`",
                 structure.model().name
             )))
@@ -284,5 +291,5 @@ pub fn run_variant(
             driver::simulate::<V, dyn GroundMotion, false>(structure, motion, options)
         }
     })
-    .unwrap_or_else(|| Err(SimError::Options(format!("no kernel variant `{name}`"))))
+    .unwrap_or_else(|| Err(SimError::NoVariant(format!("no kernel variant `{name}`"))))
 }

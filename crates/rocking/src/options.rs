@@ -4,6 +4,8 @@ use std::f64::consts::FRAC_PI_2;
 
 use serde::{Deserialize, Serialize};
 
+use crate::error::OptionError;
+
 /// The integration method of every phase.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Method {
@@ -19,6 +21,18 @@ pub enum Method {
 }
 
 impl Method {
+    /// Every method.
+    pub const ALL: [Method; 3] = [Method::Dopri5, Method::Dop853, Method::Taylor];
+
+    /// The method's name in a scene (`[solver] method`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Dopri5 => "dopri5",
+            Method::Dop853 => "dop853",
+            Method::Taylor => "taylor",
+        }
+    }
+
     /// The Runge–Kutta method, `None` for [`Method::Taylor`].
     pub fn runge_kutta(self) -> Option<rocking_ode::Method> {
         match self {
@@ -41,32 +55,74 @@ pub struct Accuracy {
 }
 
 /// Named accuracy settings, chosen from the work-precision study (`cargo xtask bench`,
-/// docs/accuracy.md): DOP853 is cheaper than Dormand–Prince 5(4) for the same error from 1e-5 on,
-/// and the Taylor method cheaper than DOP853 at every target of the study. The study recommends
-/// it for every preset; only `accurate` is the Taylor method: `fast` and `default` must run
-/// every excitation as they are (the Ricker and Mavroeidis–Papageorgiou pulses have no Taylor
-/// series), and `reference` is the independent method the tests hold the Taylor method to.
-/// Errors are the worse of the max θ/α error and the relative impact-time error over the study's
-/// cases; times are geometric means per simulation over its eight cases on the 2-core machine.
+/// docs/accuracy.md). What each costs and how accurate it is, as measured, is
+/// [`Preset::measured`]: the one table `rocking --help` and the docs quote.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Preset {
-    /// DOP853 at 1e-5: error about 4e-5, about 0.51 ms per simulation. Spectra drafts.
+    /// Spectra drafts.
     Fast,
-    /// DOP853 at 1e-7: error about 7e-7, about 0.69 ms.
+    /// Everyday runs.
     Default,
-    /// The Taylor method at 1e-11: error about 3e-11, about 0.58 ms (DOP853 at 1e-10 takes
-    /// 1.16 ms; Taylor at 1e-10 misses the 1e-9 target on the spectrum slice's impact times).
-    /// An excitation without a Taylor series (the Ricker and Mavroeidis–Papageorgiou pulses)
-    /// runs DOP853 at 1e-10 instead: see [`Preset::accuracy_for`].
+    /// Results to publish. An excitation without a Taylor series runs DOP853 instead: see
+    /// [`Preset::accuracy_for`].
     Accurate,
-    /// DOP853 at 1e-12: impact times within 3.4e-12 relative of DOP853 at 1e-14 on the pulse
-    /// cases of the study, the near-rigid column's included (2.2e-11 on the spectrum slice),
-    /// about 1.7 ms. Reference solutions.
+    /// Reference solutions: the independent method the tests hold the others to.
     Reference,
 }
 
 impl Preset {
+    /// Every preset, from the cheapest.
+    pub const ALL: [Preset; 4] = [
+        Preset::Fast,
+        Preset::Default,
+        Preset::Accurate,
+        Preset::Reference,
+    ];
+
+    /// The preset's name in a scene (`[solver] accuracy`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Preset::Fast => "fast",
+            Preset::Default => "default",
+            Preset::Accurate => "accurate",
+            Preset::Reference => "reference",
+        }
+    }
+
+    /// What the study measured for the preset: its error (the worse of the max θ/α error and
+    /// the relative impact-time error over the study's cases) and its time (geometric mean per
+    /// simulation over the study's eight cases, one thread of the 2-core machine). The study
+    /// recommends the Taylor method for every preset; only `accurate` is: `fast` and `default`
+    /// must run every excitation as it is (the Ricker and Mavroeidis–Papageorgiou pulses have no
+    /// Taylor series), and `reference` is the independent method the tests hold Taylor to.
+    pub fn measured(self) -> &'static str {
+        match self {
+            Preset::Fast => "error in max θ/α and impact times about 4e-5, about 0.51 ms",
+            Preset::Default => "error about 7e-7, about 0.69 ms",
+            Preset::Accurate => {
+                "error about 3e-11, about 0.58 ms (DOP853 at 1e-10 takes 1.16 ms; Taylor at \
+                 1e-10 misses the 1e-9 target on the spectrum slice's impact times)"
+            }
+            Preset::Reference => {
+                "error about 3e-12 against DOP853 at 1e-14 (2.2e-11 on the spectrum slice), \
+                 about 1.7 ms"
+            }
+        }
+    }
+
+    /// The presets as a table of text (one line each: name, method and tolerance, what the study
+    /// measured), for `--help`.
+    pub fn table() -> String {
+        let mut out = String::new();
+        for p in Preset::ALL {
+            let a = p.accuracy();
+            let method = format!("{} at {:e}:", a.method.name(), a.tol);
+            out += &format!("  {:<10} {method:<16} {}\n", p.name(), p.measured());
+        }
+        out
+    }
+
     /// The method and tolerance of the preset.
     pub fn accuracy(self) -> Accuracy {
         match self {
@@ -115,6 +171,23 @@ pub enum ImpactModel {
     Housner,
     /// A fixed coefficient of restitution r: θ' after = r θ' before, u' kept.
     Restitution(f64),
+}
+
+impl ImpactModel {
+    /// The models named by a word alone (a restitution also takes its coefficient, in a scene
+    /// `{ restitution = r }`).
+    pub const NAMED: [ImpactModel; 3] =
+        [ImpactModel::Vvel, ImpactModel::Adjex, ImpactModel::Housner];
+
+    /// The model's name (in a scene, the event log's branches, the study's cases).
+    pub fn name(self) -> &'static str {
+        match self {
+            ImpactModel::Vvel => "vvel",
+            ImpactModel::Adjex => "adjex",
+            ImpactModel::Housner => "housner",
+            ImpactModel::Restitution(_) => "restitution",
+        }
+    }
 }
 
 /// Per-step output.
@@ -202,15 +275,17 @@ impl Options {
     /// unbounded allocation (`History::Grid(0)`). Called by every entry point that simulates.
     ///
     /// # Errors
-    /// A message `Options::FIELD = VALUE is not allowed: RANGE`.
-    pub fn validate(&self) -> Result<(), String> {
-        fn check(field: &str, v: f64, ok: bool, allowed: &str) -> Result<(), String> {
+    /// The first field out of range (`Options::FIELD = VALUE is not allowed: RANGE`).
+    pub fn validate(&self) -> Result<(), OptionError> {
+        fn check(field: &str, v: f64, ok: bool, allowed: &str) -> Result<(), OptionError> {
             if ok && v.is_finite() {
                 Ok(())
             } else {
-                Err(format!(
-                    "Options::{field} = {v:e} is not allowed: {allowed}"
-                ))
+                Err(OptionError {
+                    field: field.to_string(),
+                    value: v,
+                    allowed: allowed.to_string(),
+                })
             }
         }
         let tol = self.accuracy.tol;
@@ -259,8 +334,11 @@ impl Options {
             self.rest_rate >= 0.0,
             "rest_rate >= 0",
         )?;
-        if self.max_events == 0 || self.max_steps == 0 {
-            return Err("Options::max_events and max_steps must be at least 1".into());
+        for (field, n) in [
+            ("max_events", self.max_events),
+            ("max_steps", self.max_steps),
+        ] {
+            check(field, n as f64, n >= 1, "at least 1")?;
         }
         let i = &self.initial;
         check(

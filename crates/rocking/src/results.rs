@@ -1,13 +1,33 @@
 //! What a run reports: the summary, the event log and the time history.
 
-use serde::Serialize;
+use serde::{Serialize, Serializer};
+
+/// Serializes a float that must be finite: a NaN or an infinity is an error naming the field
+/// (through `serde_path_to_error`), never a `null` in a result.
+fn finite<S: Serializer>(x: &f64, s: S) -> Result<S::Ok, S::Error> {
+    if x.is_finite() {
+        s.serialize_f64(*x)
+    } else {
+        Err(serde::ser::Error::custom(format!("not finite ({x})")))
+    }
+}
+
+/// [`finite`] for an optional float (`None` is `null`).
+fn finite_opt<S: Serializer>(x: &Option<f64>, s: S) -> Result<S::Ok, S::Error> {
+    match x {
+        Some(x) => finite(x, s),
+        None => s.serialize_none(),
+    }
+}
 
 /// A time, as τ = p t and, when the structure has a time scale, in seconds.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Time {
     /// Dimensionless time τ = p t.
+    #[serde(serialize_with = "finite")]
     pub tau: f64,
     /// Seconds, when known.
+    #[serde(serialize_with = "finite_opt")]
     pub seconds: Option<f64>,
 }
 
@@ -58,16 +78,22 @@ impl SolverStats {
     }
 }
 
-/// The answer of a run.
+/// The answer of a run. Serialized, it is the summary a run reports (`rocking run --json`,
+/// summary.json, Python's `Result.summary`): every field is reported as it is named here (a
+/// time `*_time` as τ, with `*_time_s` in seconds), so a field added here is reported with no
+/// other edit.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Summary {
     /// The generated kernel variant that ran.
     pub kernel_variant: &'static str,
     /// max |θ| / α.
+    #[serde(serialize_with = "finite")]
     pub max_theta_over_alpha: f64,
     /// max |θ| / θ_cr.
+    #[serde(serialize_with = "finite")]
     pub max_theta_over_theta_cr: f64,
     /// max |u| / u_cr (0 for a rigid column).
+    #[serde(serialize_with = "finite")]
     pub max_u_over_ucr: f64,
     /// Whether the structure overturned.
     pub overturned: bool,
@@ -90,6 +116,7 @@ pub struct Summary {
     pub end_time: Time,
     /// (E_final + ground work out + damping + impact losses − E_initial) / E_ref, when the energy
     /// bookkeeping was asked for.
+    #[serde(serialize_with = "finite_opt")]
     pub energy_balance_residual: Option<f64>,
     /// Energy bookkeeping in units of E_ref, when asked for.
     pub energy: Option<EnergyBalance>,
@@ -101,14 +128,19 @@ pub struct Summary {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct EnergyBalance {
     /// Total energy T + V_g + V_s at the start, relative to the structure at rest.
+    #[serde(serialize_with = "finite")]
     pub initial: f64,
     /// Total energy at the end.
+    #[serde(serialize_with = "finite")]
     pub last: f64,
     /// Work done by the ground acceleration, ∫ −ü_g P_x dt.
+    #[serde(serialize_with = "finite")]
     pub ground_work: f64,
     /// Viscous dissipation in the column, ∫ c u'² dt.
+    #[serde(serialize_with = "finite")]
     pub damping: f64,
     /// Kinetic energy lost in impacts.
+    #[serde(serialize_with = "finite")]
     pub impact_losses: f64,
 }
 

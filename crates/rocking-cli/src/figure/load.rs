@@ -8,11 +8,11 @@ use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
 use rocking_plot::style::LineStyle;
-use rocking_spectra::plan::{Base, Plan, DEFAULT_AXES};
 use rocking_spectra::{Cell, CellClass, Progress};
+use rocking_study::plan::{Base, Plan, DEFAULT_AXES};
 
 use crate::plot::Trace;
-use crate::scene::CliError;
+use rocking_scene::SceneError;
 
 /// A sweep's plan and cells, and θ_cr/α of its structure.
 pub struct Swept {
@@ -51,14 +51,14 @@ impl Loader {
         set: &[String],
         label: String,
         style: LineStyle,
-    ) -> Result<Trace, CliError> {
+    ) -> Result<Trace, SceneError> {
         let mut sets = set.to_vec();
         sets.push("output.plots=true".into());
         let sc = rocking_scene::scene::load(scene, &sets)?;
-        let mut m = rocking_scene::model::build(&sc)?;
+        let mut m = rocking_scene::setup::build(&sc)?;
         m.options.event_log = true;
         m.options.energy = true;
-        let run = crate::report::simulate(&m, scene)?;
+        let run = rocking_study::run_report::simulate(&m, scene)?;
         Ok(Trace::of(&m, &run, label, style))
     }
 
@@ -70,7 +70,7 @@ impl Loader {
         set: &[String],
         axes: Option<&[String]>,
         cells: Option<usize>,
-    ) -> Result<Rc<Swept>, CliError> {
+    ) -> Result<Rc<Swept>, SceneError> {
         let base = Base::load(scene, set)?;
         let specs: Vec<String> = match axes {
             Some(a) => a.to_vec(),
@@ -85,7 +85,7 @@ impl Loader {
         let specs: Vec<String> = specs.iter().map(|s| capped(s, cells)).collect();
         let plan = Plan::spectrum(base, &specs)?;
         if plan.sweep.axes.len() != 2 {
-            return Err(CliError::Input(format!(
+            return Err(SceneError::input(format!(
                 "{}: a figure's sweep has two axes (the panel's x and y), not {}",
                 scene.display(),
                 plan.sweep.axes.len()
@@ -98,7 +98,7 @@ impl Loader {
         let outcome = rocking_spectra::run(&plan.sweep, &dir, self.progress, |v| {
             plan.run_cell(v).map_err(|e| e.to_string())
         })
-        .map_err(crate::sweep::sweep_error)?;
+        .map_err(rocking_study::plan::sweep_error)?;
         if let Some((_, first)) = outcome.failures.first() {
             eprintln!(
                 "note: {} of {} cells of {} failed (drawn black); first: {first}",

@@ -13,9 +13,9 @@ use std::path::{Path, PathBuf};
 use serde::Deserialize;
 
 use crate::plot::{self, Figure, HistoryPanel, Panel, Quantity, SpectrumPanel, Structure};
-use crate::scene::CliError;
 use load::Loader;
 use rocking_plot::style;
+use rocking_scene::SceneError;
 
 /// A figure file.
 #[derive(Deserialize)]
@@ -124,10 +124,10 @@ pub struct Options {
 }
 
 /// `rocking figure`.
-pub fn figure(files: &[PathBuf], opts: &Options) -> Result<(), CliError> {
+pub fn figure(files: &[PathBuf], opts: &Options) -> Result<(), SceneError> {
     let mut loader = Loader::new(&opts.cache, opts.quiet);
     std::fs::create_dir_all(&opts.out)
-        .map_err(|e| CliError::Internal(format!("{}: cannot create: {e}", opts.out.display())))?;
+        .map_err(|e| SceneError::failure(format!("{}: cannot create: {e}", opts.out.display())))?;
     for file in files {
         let spec = read(file)?;
         let figure = build(file, &spec, &mut loader, opts.cells)?;
@@ -145,13 +145,13 @@ pub fn figure(files: &[PathBuf], opts: &Options) -> Result<(), CliError> {
 }
 
 /// Reads and checks a figure file: TOML errors name the file, the line and the field.
-fn read(file: &Path) -> Result<FigureFile, CliError> {
+fn read(file: &Path) -> Result<FigureFile, SceneError> {
     let text = std::fs::read_to_string(file)
-        .map_err(|e| CliError::Input(format!("{}: cannot read: {e}", file.display())))?;
+        .map_err(|e| SceneError::input(format!("{}: cannot read: {e}", file.display())))?;
     let de = toml::Deserializer::parse(&text)
-        .map_err(|e| CliError::Input(format!("{}: {e}", file.display())))?;
+        .map_err(|e| SceneError::input(format!("{}: {e}", file.display())))?;
     let spec: FigureFile = serde_path_to_error::deserialize(de).map_err(|e| {
-        CliError::Input(format!(
+        SceneError::input(format!(
             "{}: `{}`: {}",
             file.display(),
             e.path(),
@@ -304,8 +304,8 @@ fn read(file: &Path) -> Result<FigureFile, CliError> {
 }
 
 /// A refused value of a figure file: the file, the field and why.
-fn bad<T>(file: &Path, field: &str, why: String) -> Result<T, CliError> {
-    Err(CliError::Input(format!(
+fn bad<T>(file: &Path, field: &str, why: String) -> Result<T, SceneError> {
+    Err(SceneError::input(format!(
         "{}: `{field}`: {why}",
         file.display()
     )))
@@ -324,7 +324,7 @@ fn build(
     spec: &FigureFile,
     loader: &mut Loader,
     cells: Option<usize>,
-) -> Result<Figure, CliError> {
+) -> Result<Figure, SceneError> {
     let dir = file.parent().unwrap_or(Path::new("."));
     let cells = match (spec.cells, cells) {
         (Some(a), Some(b)) => Some(a.min(b)),
@@ -382,7 +382,7 @@ fn build(
                 if let Some(z) = zoom {
                     let t = &traces[&z.run];
                     let at = t.impacts.get(z.impact - 1).ok_or_else(|| {
-                        CliError::Input(format!(
+                        SceneError::input(format!(
                             "{}: `zoom.impact` = {}: run `{}` has {} impacts",
                             file.display(),
                             z.impact,

@@ -10,7 +10,7 @@ use rocking_plot::style::LineStyle;
 use rocking_scene::labels;
 
 use super::{axes, fail, mark_at, rgb, styled_line, Area, LegendItem, Panel};
-use crate::model::Model;
+use rocking_scene::setup::Setup;
 
 /// What the caption of a figure with impacts or an overturning says about the marks.
 pub const CAPTION: &str = "Markers on a line: the run's impacts. An arrow at a panel's edge: the \
@@ -84,7 +84,7 @@ pub struct Trace {
 
 impl Trace {
     /// The trace of a run of `model`.
-    pub fn of(model: &Model, run: &Run, label: String, style: LineStyle) -> Trace {
+    pub fn of(model: &Setup, run: &Run, label: String, style: LineStyle) -> Trace {
         let d = model.structure.derived();
         let u = &model.units;
         let rows = run

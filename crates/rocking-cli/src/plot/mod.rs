@@ -26,9 +26,9 @@ use rocking_plot::text::{rich, tick, wrap_items};
 use rocking_scene::labels;
 use rocking_spectra::{Cell, Sweep};
 
-use crate::model::Model;
-use crate::report::write_atomic;
-use crate::scene::CliError;
+use crate::out_dir::write_atomic;
+use rocking_scene::setup::Setup;
+use rocking_scene::SceneError;
 
 pub(crate) use rocking_plot::register;
 
@@ -234,9 +234,9 @@ impl Figure {
     }
 
     /// Writes `<name>.svg`, `.png` and `.pdf` into `dir`, each atomically; returns their paths.
-    pub fn write(&self, dir: &Path, name: &str) -> Result<Vec<PathBuf>, CliError> {
+    pub fn write(&self, dir: &Path, name: &str) -> Result<Vec<PathBuf>, SceneError> {
         let failed =
-            |m: String| CliError::Internal(format!("{}: cannot draw {name}: {m}", dir.display()));
+            |m: String| SceneError::failure(format!("{}: cannot draw {name}: {m}", dir.display()));
         let svg = self.svg().map_err(failed)?;
         let out = rocking_plot::export::export(&svg).map_err(failed)?;
         let mut written = Vec::new();
@@ -502,7 +502,7 @@ pub(crate) fn legend(area: &Area<'_>, top: i32, items: &[LegendItem]) -> Result<
 
 /// `rocking run`'s figure: θ/α, u/u_cr, E/E_ref and ü_g/(g tan α) against τ, stacked, impacts
 /// marked (the paper's Figs 3, 5 and 10 style), written as plot.svg, plot.png and plot.pdf.
-pub fn plots(model: &Model, run: &Run, dir: &Path) -> Result<Vec<PathBuf>, CliError> {
+pub fn plots(model: &Setup, run: &Run, dir: &Path) -> Result<Vec<PathBuf>, SceneError> {
     let trace = Trace::of(model, run, String::new(), style::LINES[0]);
     let panels = [
         Quantity::ThetaOverAlpha,
@@ -539,7 +539,7 @@ pub fn fragility_plots(
     points: &[(f64, f64)],
     records: usize,
     dir: &Path,
-) -> Result<Vec<PathBuf>, CliError> {
+) -> Result<Vec<PathBuf>, SceneError> {
     let figure = Figure {
         title: format!("Fraction of {records} records that overturn"),
         caption: None,

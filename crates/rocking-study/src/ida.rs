@@ -15,7 +15,8 @@ use rocking_fragility::{
 use rocking_motion::intensity::IntensityMeasures;
 use rocking_motion::{AccelUnit, Record, RecordFormat};
 use rocking_scene::knob::KnobValue;
-use rocking_scene::scene::{CliError, IdaSpec, Source};
+use rocking_scene::scene::{IdaSpec, Source};
+use rocking_scene::SceneError;
 
 use serde_json::json;
 
@@ -185,7 +186,7 @@ impl Study {
 
 /// Runs the study of the scene `base` (`[ida]`) over `records` (else the scene's), in the
 /// current rayon pool.
-pub fn run(base: &Base, records: &[PathBuf]) -> Result<Study, CliError> {
+pub fn run(base: &Base, records: &[PathBuf]) -> Result<Study, SceneError> {
     let spec = base.scene().spec.ida.clone().unwrap_or_default();
     let settings = settings(&spec, &base.scene().src)?;
     let files = record_files(base, records)?;
@@ -194,7 +195,7 @@ pub fn run(base: &Base, records: &[PathBuf]) -> Result<Study, CliError> {
         .map(|f| study(base, &settings, f))
         .collect::<Result<Vec<_>, _>>()?;
     let cannot_fit = |what: String, e: rocking_fragility::FragilityError| {
-        CliError::Input(format!(
+        SceneError::input(format!(
             "{}: cannot fit a lognormal to {what}: {e}",
             base.path().display()
         ))
@@ -245,7 +246,7 @@ fn check(
     ok: bool,
     value: impl std::fmt::Display,
     allowed: &str,
-) -> Result<(), CliError> {
+) -> Result<(), SceneError> {
     if ok {
         Ok(())
     } else {
@@ -257,7 +258,7 @@ fn check(
 }
 
 /// `[ida]` checked: a bad value is an input error naming the file, the key and the allowed range.
-pub fn settings(spec: &IdaSpec, src: &Source) -> Result<Settings, CliError> {
+pub fn settings(spec: &IdaSpec, src: &Source) -> Result<Settings, SceneError> {
     let im = match spec.im.as_deref().unwrap_or("sa") {
         "pga" => ScalingIm::Pga,
         "sa" => {
@@ -291,7 +292,7 @@ pub fn settings(spec: &IdaSpec, src: &Source) -> Result<Settings, CliError> {
             ))
         }
     };
-    let positive = |key: &str, v: Option<f64>, default: f64| -> Result<f64, CliError> {
+    let positive = |key: &str, v: Option<f64>, default: f64| -> Result<f64, SceneError> {
         let v = v.unwrap_or(default);
         check(
             src,
@@ -399,7 +400,7 @@ pub fn settings(spec: &IdaSpec, src: &Source) -> Result<Settings, CliError> {
 
 /// The record files: the arguments, else `[ida] records`, else `[sweep] records`; a folder
 /// stands for its files of a known record format, sorted.
-pub fn record_files(base: &Base, given: &[PathBuf]) -> Result<Vec<PathBuf>, CliError> {
+pub fn record_files(base: &Base, given: &[PathBuf]) -> Result<Vec<PathBuf>, SceneError> {
     let spec = &base.scene().spec;
     let dir = base.scene().src.dir();
     let listed = spec
@@ -415,7 +416,7 @@ pub fn record_files(base: &Base, given: &[PathBuf]) -> Result<Vec<PathBuf>, CliE
     };
     let files = crate::plan::expand_records(given, |p| RecordFormat::from_path(p).is_some())?;
     if files.is_empty() {
-        return Err(CliError::Input(format!(
+        return Err(SceneError::input(format!(
             "{}: no records: give --records FILE|DIR or `records = [...]` in [ida]",
             base.path().display()
         )));
@@ -424,7 +425,7 @@ pub fn record_files(base: &Base, given: &[PathBuf]) -> Result<Vec<PathBuf>, CliE
 }
 
 /// Runs one record's IDA, or its stripes.
-fn study(base: &Base, s: &Settings, file: &Path) -> Result<RecordStudy, CliError> {
+fn study(base: &Base, s: &Settings, file: &Path) -> Result<RecordStudy, SceneError> {
     let path = std::fs::canonicalize(file)
         .unwrap_or_else(|_| file.to_path_buf())
         .display()
@@ -443,19 +444,19 @@ fn study(base: &Base, s: &Settings, file: &Path) -> Result<RecordStudy, CliError
     let mut rec = sc
         .src
         .record_as(Path::new(&path), format, exc.dt)
-        .map_err(|e| CliError::Input(e.to_string()))?;
+        .map_err(|e| SceneError::input(e.to_string()))?;
     if let Some(u) = exc.units.as_deref().and_then(AccelUnit::parse) {
         rec = rec
             .with_stated_unit(u)
-            .map_err(|e| CliError::Input(e.to_string()))?;
+            .map_err(|e| SceneError::input(e.to_string()))?;
     }
     let unit = rec.declared_unit.map_or("g (not stated)", AccelUnit::name);
     let (dt, npts) = (rec.dt, rec.npts);
     // The record as the structure feels it: 1 g is the structure's g.
     let si = Record::new(dt, rec.samples)
-        .map_err(|e| CliError::Input(format!("{path}: {e}")))?
+        .map_err(|e| SceneError::input(format!("{path}: {e}")))?
         .with_scale(model.units.g_si);
-    let bad = |e: &dyn std::fmt::Display| CliError::Input(format!("{path}: {e}"));
+    let bad = |e: &dyn std::fmt::Display| SceneError::input(format!("{path}: {e}"));
     let ims = IntensityMeasures::of(&si).map_err(|e| bad(&e))?;
     let im_unscaled = s.im.of(&si).map_err(|e| bad(&e))?;
     if !(im_unscaled.is_finite() && im_unscaled > 0.0) {
@@ -465,8 +466,8 @@ fn study(base: &Base, s: &Settings, file: &Path) -> Result<RecordStudy, CliError
     }
     let knobs = base
         .knobs(&["excitation.path", "excitation.scale"])
-        .ok_or_else(|| CliError::Internal("record path and scale are not knobs".into()))?;
-    let run_at = |im: f64| -> Result<Outcome, CliError> {
+        .ok_or_else(|| SceneError::failure("record path and scale are not knobs"))?;
+    let run_at = |im: f64| -> Result<Outcome, SceneError> {
         let cell = [
             (&knobs[0], KnobValue::Text(path.clone())),
             (&knobs[1], KnobValue::Number(im / im_unscaled)),
@@ -490,8 +491,8 @@ fn study(base: &Base, s: &Settings, file: &Path) -> Result<RecordStudy, CliError
         None => {
             let ida = s.hunt.run(run_at).map_err(|e| match e {
                 IdaError::Analysis { source, .. } => source,
-                IdaError::InvalidParameter(m) => CliError::Internal(m),
-                budget => CliError::Input(format!(
+                IdaError::InvalidParameter(m) => SceneError::failure(m),
+                budget => SceneError::input(format!(
                     "{path}: {budget}; raise `max_runs` in [ida] (1 <= max_runs <= 10000) or `step`"
                 )),
             })?;

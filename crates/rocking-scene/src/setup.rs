@@ -16,9 +16,8 @@ use toml::Value;
 
 use std::path::Path;
 
-use crate::scene::{
-    describe, CliError, ExcitationSpec, OutputSpec, Scene, SceneSpec, Source, StructureSpec,
-};
+use crate::scene::{describe, ExcitationSpec, OutputSpec, Scene, SceneSpec, Source, StructureSpec};
+use crate::SceneError;
 
 /// The most history rows a run may ask for (about 80 bytes each in memory and in history.csv).
 const MAX_ROWS: f64 = 5e6;
@@ -46,14 +45,14 @@ pub struct Units {
 }
 
 impl Units {
-    /// Model acceleration of `a` in units of g tan α.
+    /// Setup acceleration of `a` in units of g tan α.
     pub fn accel_g_tan_alpha(&self) -> f64 {
         self.g_model * self.tan_alpha
     }
 }
 
 /// Everything a run or a check needs.
-pub struct Model {
+pub struct Setup {
     pub title: Option<String>,
     pub structure: Structure,
     pub effects: Effects,
@@ -99,17 +98,19 @@ impl Default for Animation {
 }
 
 /// `[output] animation` and its frame count and size, checked against their bounds.
-fn animation(src: &Source, out: Option<&OutputSpec>) -> Result<Option<Animation>, CliError> {
+fn animation(src: &Source, out: Option<&OutputSpec>) -> Result<Option<Animation>, SceneError> {
     let Some(o) = out.filter(|o| o.animation == Some(true)) else {
         return Ok(None);
     };
     let pick = |given: Option<i64>, (key, default, lo, hi): (&str, i64, i64, i64)| match given {
         None => Ok(default),
         Some(v) if (lo..=hi).contains(&v) => Ok(v),
-        Some(v) => Err(src.err(
-            &format!("output.{key}"),
-            format_args!("`{key}` = {v} in [output] is not allowed: {lo} <= {key} <= {hi}"),
-        )),
+        Some(v) => Err(src
+            .err(
+                &format!("output.{key}"),
+                format_args!("`{key}` = {v} in [output] is not allowed: {lo} <= {key} <= {hi}"),
+            )
+            .with_value(v, format!("{lo} <= {key} <= {hi}"))),
     };
     Ok(Some(Animation {
         frames: pick(o.animation_frames, Animation::FRAMES)? as usize,
@@ -118,38 +119,31 @@ fn animation(src: &Source, out: Option<&OutputSpec>) -> Result<Option<Animation>
     }))
 }
 
-fn param_err(src: &Source, table: &str, e: ParamError) -> CliError {
+fn param_err(src: &Source, table: &str, e: ParamError) -> SceneError {
     // ParamError's own Display prints 1e308 with 309 digits: the value in short form here.
+    let value = crate::limits::short(e.value);
     src.err(
         &format!("{table}.{}", e.parameter),
         format_args!(
-            "[{table}] `{}` = {} is not allowed: {}",
-            e.parameter,
-            crate::limits::short(e.value),
-            e.allowed
+            "[{table}] `{}` = {value} is not allowed: {}",
+            e.parameter, e.allowed
         ),
     )
+    .with_value(value, e.allowed)
 }
 
 /// A finite number check with the scene path in the message.
-fn finite(src: &Source, path: &str, v: f64, cond: bool, allowed: &str) -> Result<f64, CliError> {
+fn finite(src: &Source, path: &str, v: f64, cond: bool, allowed: &str) -> Result<f64, SceneError> {
     if v.is_finite() && cond {
         Ok(v)
     } else {
-        Err(src.err(
-            path,
-            format_args!(
-                "{} = {} is not allowed: {allowed}",
-                describe(path),
-                crate::limits::short(v)
-            ),
-        ))
+        Err(src.not_allowed(path, v, allowed))
     }
 }
 
 /// A value formed from the key `path` (a product with the structure's scales) must be finite:
 /// an accepted input times a large scale can overflow.
-fn formed(src: &Source, path: &str, given: f64, v: f64, what: &str) -> Result<f64, CliError> {
+fn formed(src: &Source, path: &str, given: f64, v: f64, what: &str) -> Result<f64, SceneError> {
     if v.is_finite() {
         Ok(v)
     } else {
@@ -165,7 +159,7 @@ fn formed(src: &Source, path: &str, given: f64, v: f64, what: &str) -> Result<f6
 }
 
 /// A run guard (`max_steps`, `max_events` in [solver]): a whole number from 1 to 1e12.
-fn guard(src: &Source, path: &str, v: Option<f64>, default: u64) -> Result<u64, CliError> {
+fn guard(src: &Source, path: &str, v: Option<f64>, default: u64) -> Result<u64, SceneError> {
     match v {
         None => Ok(default),
         Some(x) => finite(
@@ -189,7 +183,7 @@ fn build_structure(
     s: &StructureSpec,
     rigid: bool,
     model: &'static ModelInfo,
-) -> Result<Structure, CliError> {
+) -> Result<Structure, SceneError> {
     crate::limits::structure_magnitudes(src, s)?;
     let physical_keys = present_keys(&[
         ("h", s.h.is_some()),
@@ -308,37 +302,43 @@ fn build_structure(
         .map_err(|e| param_err(src, "structure", e))
 }
 
-fn impact_model(src: &Source, v: Option<&Value>) -> Result<ImpactModel, CliError> {
-    const ALLOWED: &str =
-        "expected \"vvel\", \"adjex\", \"housner\" or { restitution = r } with 0 <= r <= 1";
+fn impact_model(src: &Source, v: Option<&Value>) -> Result<ImpactModel, SceneError> {
+    let names: Vec<&str> = ImpactModel::NAMED.iter().map(|m| m.name()).collect();
+    let quoted: Vec<String> = names.iter().map(|n| format!("\"{n}\"")).collect();
+    let allowed = format!(
+        "expected {} or {{ restitution = r }} with 0 <= r <= 1",
+        quoted.join(", ")
+    );
     let path = "effects.impact";
     match v {
         None => Ok(ImpactModel::Vvel),
-        Some(Value::String(s)) => match s.to_lowercase().as_str() {
-            "vvel" => Ok(ImpactModel::Vvel),
-            "adjex" => Ok(ImpactModel::Adjex),
-            "housner" => Ok(ImpactModel::Housner),
-            other => {
-                let hint = crate::scene::suggest(other, &["vvel", "adjex", "housner"])
-                    .map(|s| format!("; did you mean \"{s}\"?"))
-                    .unwrap_or_default();
-                Err(src.err(
-                    path,
-                    format_args!("`impact` = \"{s}\" is not allowed: {ALLOWED}{hint}"),
-                ))
-            }
-        },
+        Some(Value::String(s)) => {
+            let wanted = s.to_lowercase();
+            ImpactModel::NAMED
+                .into_iter()
+                .find(|m| m.name() == wanted)
+                .ok_or_else(|| {
+                    let hint = crate::scene::suggest(&wanted, &names)
+                        .map(|s| format!("; did you mean \"{s}\"?"))
+                        .unwrap_or_default();
+                    src.err(
+                        path,
+                        format_args!("`impact` = \"{s}\" is not allowed: {allowed}{hint}"),
+                    )
+                    .with_value(s, allowed.clone())
+                })
+        }
         Some(Value::Table(t)) => {
             if let Some(k) = t.keys().find(|k| *k != "restitution") {
                 return Err(src.err(
                     path,
-                    format_args!("unknown key `{k}` in `impact`: {ALLOWED}"),
+                    format_args!("unknown key `{k}` in `impact`: {allowed}"),
                 ));
             }
             let r = match t.get("restitution") {
                 Some(Value::Float(r)) => *r,
                 Some(Value::Integer(r)) => *r as f64,
-                _ => return Err(src.err(path, format_args!("`impact`: {ALLOWED}"))),
+                _ => return Err(src.err(path, format_args!("`impact`: {allowed}"))),
             };
             finite(
                 src,
@@ -351,12 +351,12 @@ fn impact_model(src: &Source, v: Option<&Value>) -> Result<ImpactModel, CliError
         }
         Some(other) => Err(src.err(
             path,
-            format_args!("`impact` = {other} is not allowed: {ALLOWED}"),
+            format_args!("`impact` = {other} is not allowed: {allowed}"),
         )),
     }
 }
 
-fn overturn_angle(src: &Source, v: Option<&Value>) -> Result<f64, CliError> {
+fn overturn_angle(src: &Source, v: Option<&Value>) -> Result<f64, SceneError> {
     const ALLOWED: &str = "an angle in rad with 0 < angle <= pi/2, or \"pi/2\", \"pi/N\"";
     let path = "effects.overturn";
     let angle = match v {
@@ -462,7 +462,7 @@ fn present(e: &ExcitationSpec) -> Vec<&'static str> {
     ])
 }
 
-fn need_seconds(src: &Source, key: &str, u: &Units) -> Result<f64, CliError> {
+fn need_seconds(src: &Source, key: &str, u: &Units) -> Result<f64, SceneError> {
     u.sec_per_unit.ok_or_else(|| {
         src.err(
             &format!("excitation.{key}"),
@@ -479,7 +479,7 @@ fn one_of<'a>(
     src: &Source,
     kind: &str,
     opts: &[(&'a str, Option<f64>)],
-) -> Result<(&'a str, f64), CliError> {
+) -> Result<(&'a str, f64), SceneError> {
     let given: Vec<_> = opts.iter().filter(|(_, v)| v.is_some()).collect();
     let names: Vec<String> = opts.iter().map(|(k, _)| format!("`{k}`")).collect();
     match given.as_slice() {
@@ -504,7 +504,7 @@ fn one_of<'a>(
 }
 
 /// Angular frequency in model units from `omega_p_over_p` or `omega_p` (rad/s).
-fn omega(src: &Source, kind: &str, e: &ExcitationSpec, u: &Units) -> Result<f64, CliError> {
+fn omega(src: &Source, kind: &str, e: &ExcitationSpec, u: &Units) -> Result<f64, SceneError> {
     let (k, v) = one_of(
         src,
         kind,
@@ -528,7 +528,7 @@ fn accel_amplitude(
     kind: &str,
     e: &ExcitationSpec,
     u: &Units,
-) -> Result<f64, CliError> {
+) -> Result<f64, SceneError> {
     let (k, v) = one_of(
         src,
         kind,
@@ -560,7 +560,7 @@ fn build_excitation(
     spec: &SceneSpec,
     src: &Source,
     u: &Units,
-) -> Result<(Excitation, String, f64), CliError> {
+) -> Result<(Excitation, String, f64), SceneError> {
     let default = ExcitationSpec::default();
     let e = spec.excitation.as_ref().unwrap_or(&default);
     let kind = e.kind.as_deref().unwrap_or("none");
@@ -758,7 +758,11 @@ fn build_excitation(
 
 /// The record format a scene names (`excitation.format`), else the one the file's extension
 /// implies.
-fn record_format(src: &Source, e: &ExcitationSpec, file: &Path) -> Result<RecordFormat, CliError> {
+fn record_format(
+    src: &Source,
+    e: &ExcitationSpec,
+    file: &Path,
+) -> Result<RecordFormat, SceneError> {
     let allowed = RecordFormat::NAMES.join("\", \"");
     match e.format.as_deref() {
         Some(name) => RecordFormat::parse(name).ok_or_else(|| {
@@ -781,13 +785,13 @@ pub fn scene_model(spec: &SceneSpec) -> Result<&'static ModelInfo, ParamError> {
 }
 
 /// Builds the model of a scene.
-pub fn build(scene: &Scene) -> Result<Model, CliError> {
+pub fn build(scene: &Scene) -> Result<Setup, SceneError> {
     build_spec(&scene.spec, &scene.src)
 }
 
 /// Builds the model of a typed scene (as a sweep cell does after applying its knobs); `src`
 /// places error messages.
-pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Model, CliError> {
+pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Setup, SceneError> {
     let fx = spec.effects.as_ref();
     let st = spec
         .structure
@@ -851,19 +855,26 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Model, CliError> {
         .unwrap_or(Preset::Default)
         .accuracy_for(&excitation);
     if let Some(m) = sv.and_then(|s| s.method.as_deref()) {
-        accuracy.method = match m.to_lowercase().as_str() {
-            "dopri5" => Method::Dopri5,
-            "dop853" => Method::Dop853,
-            "taylor" => Method::Taylor,
-            other => {
-                return Err(src.err(
+        let wanted = m.to_lowercase();
+        accuracy.method = Method::ALL
+            .into_iter()
+            .find(|method| method.name() == wanted)
+            .ok_or_else(|| {
+                let names: Vec<String> = Method::ALL
+                    .iter()
+                    .map(|m| format!("\"{}\"", m.name()))
+                    .collect();
+                let allowed = format!(
+                    "{} or {}",
+                    names[..names.len() - 1].join(", "),
+                    names[names.len() - 1]
+                );
+                src.err(
                     "solver.method",
-                    format_args!(
-                    "`method` = \"{other}\" in [solver] is not allowed: \"dopri5\", \"dop853\" or \"taylor\""
-                ),
-                ))
-            }
-        };
+                    format_args!("`method` = \"{wanted}\" in [solver] is not allowed: {allowed}"),
+                )
+                .with_value(&wanted, allowed)
+            })?;
     }
     if let Some(tol) = sv.and_then(|s| s.tol) {
         accuracy.tol = finite(
@@ -1035,7 +1046,7 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Model, CliError> {
         initial,
         ..Options::default()
     };
-    Ok(Model {
+    Ok(Setup {
         title: spec.title.clone(),
         structure,
         effects,

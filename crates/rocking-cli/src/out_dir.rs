@@ -1,28 +1,14 @@
 //! Outputs: atomic file writes and the run's output directory; the summary, history and event
-//! tables themselves come from `rocking_scene::report` (shared with the Python package).
+//! tables themselves come from `rocking_study::run_report` (shared with the Python package).
 
-use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
-use crate::scene::CliError;
+use rocking_scene::SceneError;
 
-/// Writes `bytes` to `path` atomically: a temporary file in the same directory, then a rename.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
-    let dir = path.parent().unwrap_or_else(|| Path::new("."));
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "out".into());
-    let tmp = dir.join(format!(".{name}.tmp{}", std::process::id()));
-    let fail = |e: std::io::Error| {
-        let _ = std::fs::remove_file(&tmp);
-        CliError::Internal(format!("{}: cannot write: {e}", path.display()))
-    };
-    let mut f = std::fs::File::create(&tmp).map_err(fail)?;
-    f.write_all(bytes).map_err(fail)?;
-    f.sync_all().map_err(fail)?;
-    drop(f);
-    std::fs::rename(&tmp, path).map_err(fail)
+/// Writes `bytes` to `path` atomically ([`rocking_spectra::write_atomic`]).
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), SceneError> {
+    rocking_spectra::write_atomic(path, bytes)
+        .map_err(|e| SceneError::failure(format!("{}: cannot write: {e}", path.display())))
 }
 
 /// The files `rocking run` writes; an existing output directory holding anything else is not
@@ -82,22 +68,22 @@ pub const IDA_OUT: OutKind = OutKind {
 
 impl OutDir {
     /// Locks `target`'s name, removes what killed runs left, and creates the staging directory.
-    pub fn begin(target: &Path) -> Result<OutDir, CliError> {
+    pub fn begin(target: &Path) -> Result<OutDir, SceneError> {
         OutDir::begin_for(target, RUN_OUT)
     }
 
     /// [`OutDir::begin`] for the outputs of another command: an existing `target` may hold only
     /// files that `kind` writes.
-    pub fn begin_for(target: &Path, kind: OutKind) -> Result<OutDir, CliError> {
+    pub fn begin_for(target: &Path, kind: OutKind) -> Result<OutDir, SceneError> {
         use fs4::fs_std::FileExt as _;
         let io = |what: &str, p: &Path, e: std::io::Error| {
-            CliError::Internal(format!("{}: cannot {what}: {e}", p.display()))
+            SceneError::failure(format!("{}: cannot {what}: {e}", p.display()))
         };
         let name = target
             .file_name()
             .map(|n| n.to_string_lossy().into_owned())
             .ok_or_else(|| {
-                CliError::Input(format!(
+                SceneError::input(format!(
                     "{}: not a directory name for --out",
                     target.display()
                 ))
@@ -154,9 +140,9 @@ impl OutDir {
     }
 
     /// Swaps the staged directory in for the target (the old one is removed).
-    pub fn commit(self) -> Result<(), CliError> {
+    pub fn commit(self) -> Result<(), SceneError> {
         let fail = |e: std::io::Error| {
-            CliError::Internal(format!("{}: cannot replace: {e}", self.target.display()))
+            SceneError::failure(format!("{}: cannot replace: {e}", self.target.display()))
         };
         let parent = self.staging.path().parent().unwrap_or(Path::new("."));
         let old = tempfile::Builder::new()
@@ -186,15 +172,15 @@ impl OutDir {
 }
 
 /// An existing `--out` must be a directory of run outputs only (never a user's folder).
-fn check_is_run_dir(target: &Path, kind: OutKind) -> Result<(), CliError> {
+fn check_is_run_dir(target: &Path, kind: OutKind) -> Result<(), SceneError> {
     if !target.is_dir() {
-        return Err(CliError::Input(format!(
+        return Err(SceneError::input(format!(
             "{}: --out exists and is not a directory",
             target.display()
         )));
     }
     let entries = std::fs::read_dir(target)
-        .map_err(|e| CliError::Internal(format!("{}: cannot read: {e}", target.display())))?;
+        .map_err(|e| SceneError::failure(format!("{}: cannot read: {e}", target.display())))?;
     for e in entries.flatten() {
         let n = e.file_name().to_string_lossy().into_owned();
         // `.summary.json.tmp123`: a temporary file an older version left when killed.
@@ -203,7 +189,7 @@ fn check_is_run_dir(target: &Path, kind: OutKind) -> Result<(), CliError> {
             .and_then(|m| m.rsplit_once(".tmp"))
             .is_some_and(|(f, _)| (kind.writes)(f));
         if !(kind.writes)(&n) && !leftover {
-            return Err(CliError::Input(format!(
+            return Err(SceneError::input(format!(
                 "{}: --out holds `{n}`, which `{}` does not write; the run replaces the \
                  whole directory, so give an --out that holds only a previous run's outputs",
                 target.display(),
@@ -213,5 +199,3 @@ fn check_is_run_dir(target: &Path, kind: OutKind) -> Result<(), CliError> {
     }
     Ok(())
 }
-
-pub use rocking_scene::report::{derived_json, events_csv, history_csv, simulate, summary_json};

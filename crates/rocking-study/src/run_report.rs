@@ -5,49 +5,45 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use rocking::{Run, Time};
+use rocking::Run;
 use serde_json::{json, Value};
 
-use crate::model::Model;
-use crate::scene::CliError;
+use rocking_scene::setup::Setup;
+use rocking_scene::SceneError;
 
 /// Runs a built scene with the command's error messages: bad options are input errors, a
 /// guard that stops a run names the scene settings that bound it.
-pub fn simulate(m: &Model, scene: &Path) -> Result<Run, CliError> {
-    rocking::simulate(&m.structure, &m.excitation, &m.effects, &m.options).map_err(|e| match e {
-        rocking::SimError::Options(msg) => CliError::Input(format!("{}: {msg}", scene.display())),
-        rocking::SimError::Guard(msg) => CliError::Internal(format!(
-            "{}: simulation stopped: {msg}; both limits are scene settings: `max_steps` and \
-             `max_events` in [solver] (defaults {} and {})",
-            scene.display(),
-            crate::limits::short(rocking::Options::default().max_steps as f64),
-            crate::limits::short(rocking::Options::default().max_events as f64)
-        )),
-        other => CliError::Internal(format!("{}: simulation failed: {other}", scene.display())),
+pub fn simulate(m: &Setup, scene: &Path) -> Result<Run, SceneError> {
+    rocking::simulate(&m.structure, &m.excitation, &m.effects, &m.options).map_err(|e| {
+        if e.is_invalid_input() {
+            SceneError::input(format!("{}: {e}", scene.display()))
+        } else if e.is_guard() {
+            SceneError::failure(format!(
+                "{}: simulation stopped: {e}; both limits are scene settings: `max_steps` and \
+                 `max_events` in [solver] (defaults {} and {})",
+                scene.display(),
+                rocking_scene::limits::short(rocking::Options::default().max_steps as f64),
+                rocking_scene::limits::short(rocking::Options::default().max_events as f64)
+            ))
+        } else {
+            SceneError::failure(format!("{}: simulation failed: {e}", scene.display()))
+        }
     })
 }
 
-fn finite(name: &str, x: f64) -> Result<f64, CliError> {
+fn finite(name: &str, x: f64) -> Result<f64, SceneError> {
     if x.is_finite() {
         Ok(x)
     } else {
-        Err(CliError::Internal(format!(
+        Err(SceneError::failure(format!(
             "the run produced a non-finite {name} ({x}); no results written"
         )))
     }
 }
 
-fn tau(t: Option<Time>) -> Value {
-    t.map_or(Value::Null, |t| json!(t.tau))
-}
-
-fn seconds(t: Option<Time>) -> Value {
-    t.and_then(|t| t.seconds).map_or(Value::Null, |s| json!(s))
-}
-
 /// Derived quantities of the structure, for `check` and the summary. A non-finite value would be
 /// written as `null`: it is an error instead (the model checks them when it is built).
-pub fn derived_json(model: &Model) -> Result<Value, CliError> {
+pub fn derived_json(model: &Setup) -> Result<Value, SceneError> {
     let d = model.structure.derived();
     let u = &model.units;
     let v = json!({
@@ -74,67 +70,57 @@ pub fn derived_json(model: &Model) -> Result<Value, CliError> {
         .flatten()
         .find(|(k, x)| x.is_null() && k.as_str() != "p_per_second")
     {
-        return Err(CliError::Input(format!(
+        return Err(SceneError::input(format!(
             "the derived quantity {k} is not finite: the structure's values are out of range"
         )));
     }
     Ok(v)
 }
 
-/// The summary object printed by `--json` and written to summary.json.
-pub fn summary_json(model: &Model, scene: &Path, run: &Run) -> Result<Value, CliError> {
-    let s = &run.summary;
-    let energy = match s.energy {
-        Some(e) => json!({
-            "initial": finite("energy", e.initial)?,
-            "last": finite("energy", e.last)?,
-            "ground_work": finite("energy", e.ground_work)?,
-            "damping": finite("energy", e.damping)?,
-            "impact_losses": finite("energy", e.impact_losses)?,
-        }),
-        None => Value::Null,
+/// The summary object printed by `--json` and written to summary.json: the run's
+/// [`Summary`](rocking::Summary) as it serializes (a time `*_time` as τ and `*_time_s` in seconds),
+/// with what produced it (scene, title, variant and why, excitation) and the derived quantities.
+pub fn summary_json(model: &Setup, scene: &Path, run: &Run) -> Result<Value, SceneError> {
+    let fields = serde_path_to_error::serialize(&run.summary, serde_json::value::Serializer)
+        .map_err(|e| {
+            SceneError::failure(format!(
+                "the run produced a non-finite {}: {}; no results written",
+                e.path(),
+                e.inner()
+            ))
+        })?;
+    let Value::Object(fields) = fields else {
+        unreachable!("a struct serializes to an object")
     };
-    let residual = match s.energy_balance_residual {
-        Some(r) => json!(finite("energy balance residual", r)?),
-        None => Value::Null,
-    };
-    Ok(json!({
-        "scene": scene.display().to_string(),
-        "title": model.title,
-        "kernel_variant": s.kernel_variant,
-        "variant_reasons": model.reasons,
-        "excitation": model.excitation_description,
-        "max_theta_over_alpha": finite("max θ/α", s.max_theta_over_alpha)?,
-        "max_theta_over_theta_cr": finite("max θ/θ_cr", s.max_theta_over_theta_cr)?,
-        "max_u_over_ucr": finite("max u/u_cr", s.max_u_over_ucr)?,
-        "overturned": s.overturned,
-        "overturn_time": tau(s.overturn_time),
-        "overturn_time_s": seconds(s.overturn_time),
-        "impacts": s.impacts,
-        "significant_impacts": s.significant_impacts,
-        "energy_capped_impacts": s.energy_capped_impacts,
-        "first_uplift_time": tau(s.first_uplift_time),
-        "first_uplift_time_s": seconds(s.first_uplift_time),
-        "first_impact_time": tau(s.first_impact_time),
-        "first_impact_time_s": seconds(s.first_impact_time),
-        "final_phase": s.final_phase,
-        "end_time": s.end_time.tau,
-        "end_time_s": s.end_time.seconds,
-        "energy_balance_residual": residual,
-        "energy": energy,
-        "solver_stats": s.solver_stats,
-        "derived": derived_json(model)?,
-    }))
+    let mut out = serde_json::Map::new();
+    for (key, value) in fields {
+        if key.ends_with("_time") {
+            let (tau, seconds) = match value {
+                Value::Object(t) => (t["tau"].clone(), t["seconds"].clone()),
+                _ => (Value::Null, Value::Null),
+            };
+            out.insert(format!("{key}_s"), seconds);
+            out.insert(key, tau);
+        } else {
+            out.insert(key, value);
+        }
+    }
+    out.insert("scene".into(), json!(scene.display().to_string()));
+    out.insert("title".into(), json!(model.title));
+    out.insert("variant_reasons".into(), json!(model.reasons));
+    out.insert("excitation".into(), json!(model.excitation_description));
+    out.insert("derived".into(), derived_json(model)?);
+    Ok(Value::Object(out))
 }
 
-fn num(out: &mut String, x: f64) -> Result<(), CliError> {
+fn num(out: &mut String, x: f64) -> Result<(), SceneError> {
     let x = finite("history value", x)?;
     let _ = write!(out, ",{x}");
     Ok(())
 }
 
 /// history.csv: τ, seconds (when known), normalised state, phase, energies, ground acceleration.
-pub fn history_csv(model: &Model, run: &Run) -> Result<String, CliError> {
+pub fn history_csv(model: &Setup, run: &Run) -> Result<String, SceneError> {
     let d = model.structure.derived();
     let u = &model.units;
     let ps = model.structure.p_per_second();
@@ -163,7 +149,7 @@ pub fn history_csv(model: &Model, run: &Run) -> Result<String, CliError> {
 }
 
 /// events.csv: one row per uplift, impact, rest or overturning.
-pub fn events_csv(model: &Model, run: &Run) -> Result<String, CliError> {
+pub fn events_csv(model: &Setup, run: &Run) -> Result<String, SceneError> {
     let d = model.structure.derived();
     let u = &model.units;
     let mut out = String::from(

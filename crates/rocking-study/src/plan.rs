@@ -7,10 +7,11 @@ use std::path::{Path, PathBuf};
 
 use rocking::{History, Summary};
 use rocking_scene::knob::{self, Knob, KnobValue};
-use rocking_scene::model::{self, Model};
-use rocking_scene::scene::{self, CliError, Scene};
+use rocking_scene::scene::{self, Scene};
+use rocking_scene::setup::{self, Setup};
+use rocking_scene::SceneError;
 
-use crate::{fnv1a, Axis, Sweep};
+use rocking_spectra::{fnv1a, Axis, Sweep};
 
 /// The paper's spectrum axes (Figs 6-8), used when neither the command nor the scene names any.
 pub const DEFAULT_AXES: [&str; 2] = [
@@ -31,11 +32,22 @@ pub struct Base {
     record_digest: Option<String>,
 }
 
+/// A sweep engine's error as a study reports it: a journal of another sweep in the output
+/// directory is the user's to fix (input), anything else a failure.
+pub fn sweep_error(e: rocking_spectra::SweepError) -> SceneError {
+    match e {
+        rocking_spectra::SweepError::Mismatch(_) | rocking_spectra::SweepError::NotJournal(..) => {
+            SceneError::input(e.to_string())
+        }
+        other => SceneError::failure(other.to_string()),
+    }
+}
+
 /// A digest of a file's contents: results computed from a record are reused only while the
 /// record's bytes are the same.
-pub fn file_digest(path: &Path) -> Result<String, CliError> {
+pub fn file_digest(path: &Path) -> Result<String, SceneError> {
     let bytes = std::fs::read(path)
-        .map_err(|e| CliError::Input(format!("{}: cannot read: {e}", path.display())))?;
+        .map_err(|e| SceneError::input(format!("{}: cannot read: {e}", path.display())))?;
     Ok(format!("{:016x}", fnv1a(&bytes)))
 }
 
@@ -54,15 +66,15 @@ pub fn program_digest() -> &'static str {
 
 impl Base {
     /// Reads and validates the scene file with the overrides `sets`.
-    pub fn load(path: &Path, sets: &[String]) -> Result<Base, CliError> {
+    pub fn load(path: &Path, sets: &[String]) -> Result<Base, SceneError> {
         Base::from_text(path, scene::read(path)?, sets)
     }
 
     /// The same from the scene's text; `path` names it in messages and resolves relative paths.
-    pub fn from_text(path: &Path, text: String, sets: &[String]) -> Result<Base, CliError> {
+    pub fn from_text(path: &Path, text: String, sets: &[String]) -> Result<Base, SceneError> {
         let parsed = scene::parse_text(path, text.clone())?;
         let sc = parsed.load(sets)?;
-        let m = model::build(&sc)?;
+        let m = setup::build(&sc)?;
         let title = m.title.clone().map(|t| {
             if sets.is_empty() {
                 t
@@ -122,24 +134,24 @@ impl Base {
     }
 
     /// Runs a cell: the scene with its knobs set, summary only.
-    pub fn run_knobs(&self, cell: &[(&Knob, KnobValue)]) -> Result<Summary, CliError> {
+    pub fn run_knobs(&self, cell: &[(&Knob, KnobValue)]) -> Result<Summary, SceneError> {
         let m = knob::setup(&self.scene, cell)?;
         self.simulate(m)
     }
 
     /// Runs the scene with extra overrides, summary only (no history, events or energy).
-    pub fn run(&self, extra: &[String]) -> Result<Summary, CliError> {
+    pub fn run(&self, extra: &[String]) -> Result<Summary, SceneError> {
         self.simulate(self.model(extra)?)
     }
 
     /// The scene with the overrides and `extra` ones, built.
-    pub fn model(&self, extra: &[String]) -> Result<Model, CliError> {
+    pub fn model(&self, extra: &[String]) -> Result<Setup, SceneError> {
         let mut sets = self.sets.clone();
         sets.extend_from_slice(extra);
-        model::build(&self.parsed.load(&sets)?)
+        setup::build(&self.parsed.load(&sets)?)
     }
 
-    fn simulate(&self, mut m: Model) -> Result<Summary, CliError> {
+    fn simulate(&self, mut m: Setup) -> Result<Summary, SceneError> {
         m.options.history = History::None;
         m.options.event_log = false;
         m.options.energy = false;
@@ -147,7 +159,7 @@ impl Base {
         rocking::simulate(&m.structure, &m.excitation, &m.effects, &m.options)
             .map(|r| r.summary)
             .map_err(|e| {
-                CliError::Internal(format!("{}: simulation failed: {e}", self.path.display()))
+                SceneError::failure(format!("{}: simulation failed: {e}", self.path.display()))
             })
     }
 
@@ -172,7 +184,7 @@ impl Base {
 /// The reference `[sweep] reference` names and its override, checked against [`REFERENCES`].
 type ReferenceKind = (&'static str, &'static str, &'static str);
 
-fn reference_sets(base: &Base) -> Result<Option<ReferenceKind>, CliError> {
+fn reference_sets(base: &Base) -> Result<Option<ReferenceKind>, SceneError> {
     let spec = base.scene.spec.sweep.as_ref();
     let Some(name) = spec.and_then(|s| s.reference.as_deref()) else {
         return Ok(None);
@@ -200,12 +212,12 @@ fn reference_sets(base: &Base) -> Result<Option<ReferenceKind>, CliError> {
 pub fn expand_records(
     given: impl IntoIterator<Item = PathBuf>,
     keep: impl Fn(&Path) -> bool,
-) -> Result<Vec<PathBuf>, CliError> {
+) -> Result<Vec<PathBuf>, SceneError> {
     let mut files = Vec::new();
     for f in given {
         if f.is_dir() {
             let mut found: Vec<PathBuf> = std::fs::read_dir(&f)
-                .map_err(|e| CliError::Input(format!("{}: {e}", f.display())))?
+                .map_err(|e| SceneError::input(format!("{}: {e}", f.display())))?
                 .filter_map(|e| e.ok().map(|e| e.path()))
                 .filter(|p| keep(p))
                 .collect();
@@ -295,7 +307,7 @@ impl Plan {
     /// A spectrum: `axis_specs` (`key.path=start:stop:count` or `key.path=v1,v2,...`), else the
     /// scene's `[sweep] axes`, else the paper's. Every axis value is validated against the scene
     /// before anything runs.
-    pub fn spectrum(base: Base, axis_specs: &[String]) -> Result<Plan, CliError> {
+    pub fn spectrum(base: Base, axis_specs: &[String]) -> Result<Plan, SceneError> {
         let path = base.path.clone();
         let specs: Vec<String> = if !axis_specs.is_empty() {
             axis_specs.to_vec()
@@ -307,19 +319,19 @@ impl Plan {
         let axes = specs
             .iter()
             .map(|s| {
-                Axis::parse(s).map_err(|e| CliError::Input(format!("{}: {e}", path.display())))
+                Axis::parse(s).map_err(|e| SceneError::input(format!("{}: {e}", path.display())))
             })
             .collect::<Result<Vec<_>, _>>()?;
         // Bound the sweep, then validate every axis value against the scene.
         Sweep::checked_len(&axes)
-            .map_err(|e| CliError::Input(format!("{}: {e}", path.display())))?;
+            .map_err(|e| SceneError::input(format!("{}: {e}", path.display())))?;
         let keys: Vec<&str> = axes.iter().map(|a| a.key.as_str()).collect();
         if let Some(k) = keys
             .iter()
             .enumerate()
             .find_map(|(i, k)| keys[..i].contains(k).then_some(k))
         {
-            return Err(CliError::Input(format!(
+            return Err(SceneError::input(format!(
                 "{}: two axes on `{k}`: each key may have one axis (list its values in one --axis)",
                 path.display()
             )));
@@ -349,7 +361,7 @@ impl Plan {
     /// A record suite: every record (files, or directories of .AT2 files; else the scene's
     /// `[sweep] records`) at every scale factor (else the scene's `[sweep] scales`, else 1). Every
     /// record is read and validated before anything runs.
-    pub fn batch(base: Base, records: &[PathBuf], scales: &[f64]) -> Result<Plan, CliError> {
+    pub fn batch(base: Base, records: &[PathBuf], scales: &[f64]) -> Result<Plan, SceneError> {
         let path = base.path.clone();
         let sweep_spec = base.scene.spec.sweep.as_ref();
         let mut given: Vec<PathBuf> = records.to_vec();
@@ -367,7 +379,7 @@ impl Plan {
             p.extension().is_some_and(|x| x.eq_ignore_ascii_case("at2"))
         })?;
         if files.is_empty() {
-            return Err(CliError::Input(format!(
+            return Err(SceneError::input(format!(
                 "{}: no records: give --records FILE|DIR or `records = [...]` in [sweep]",
                 path.display()
             )));
@@ -380,7 +392,7 @@ impl Plan {
             scales.to_vec()
         };
         if let Some(bad) = scales.iter().find(|s| !(s.is_finite() && **s > 0.0)) {
-            return Err(CliError::Input(format!(
+            return Err(SceneError::input(format!(
                 "scale factor {bad} is not allowed: scales must be > 0"
             )));
         }
@@ -408,7 +420,7 @@ impl Plan {
             },
         ];
         Sweep::checked_len(&axes)
-            .map_err(|e| CliError::Input(format!("{}: records x scales: {e}", path.display())))?;
+            .map_err(|e| SceneError::input(format!("{}: records x scales: {e}", path.display())))?;
         let digests = files
             .iter()
             .map(|p| file_digest(p))
@@ -420,7 +432,7 @@ impl Plan {
             .collect();
         let knobs = base
             .knobs(&["excitation.path", "excitation.scale"])
-            .ok_or_else(|| CliError::Internal("record path and scale are not knobs".into()))?;
+            .ok_or_else(|| SceneError::failure("record path and scale are not knobs"))?;
         let names = files
             .iter()
             .map(|p| {
@@ -454,7 +466,7 @@ impl Plan {
     /// scene with `effects.flexibility = false`) over the axes the figure shows (the last two),
     /// or `None`. Its cells are cheap beside the sweep's (one structure, the rigid model) and are
     /// run where the figure is drawn, so a sharded sweep's merge draws the same figure.
-    pub fn reference(&self) -> Result<Option<ReferencePlan>, CliError> {
+    pub fn reference(&self) -> Result<Option<ReferencePlan>, SceneError> {
         if self.records.is_some() {
             return Ok(None);
         }
@@ -480,7 +492,7 @@ impl Plan {
     }
 
     /// Runs the cell with these axis values (summary only).
-    pub fn run_cell(&self, values: &[f64]) -> Result<Summary, CliError> {
+    pub fn run_cell(&self, values: &[f64]) -> Result<Summary, SceneError> {
         match &self.cells {
             Cells::Knobs(knobs) => {
                 let cell: Vec<(&Knob, KnobValue)> = knobs

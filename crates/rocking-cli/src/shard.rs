@@ -1,0 +1,145 @@
+//! One shard of a sweep: `rocking spectrum|batch --shard K/N` runs the cells of shard K into
+//! its own directory, with its journal and `shard.json` (the study's description, enough to
+//! plan the whole study again at the merge).
+
+use std::path::Path;
+
+use rocking_scene::SceneError;
+use rocking_spectra::{Progress, Shard};
+use rocking_study::plan::{program_digest, sweep_error, Plan};
+use serde::{Deserialize, Serialize};
+
+use crate::out_dir::write_atomic;
+
+/// The kind of study a shard belongs to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Kind {
+    /// `rocking spectrum`.
+    Spectrum,
+    /// `rocking batch`.
+    Batch,
+}
+
+/// `shard.json`: what a shard ran, enough to plan the whole study again at the merge.
+#[derive(Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Manifest {
+    pub kind: Kind,
+    pub shard: String,
+    pub program: String,
+    pub fingerprint: String,
+    pub scene: String,
+    pub directory: String,
+    pub scene_text: String,
+    pub set: Vec<String>,
+    /// `key=v1,v2,...`, each value printed to read back as the same f64 (a JSON number need
+    /// not: serde_json's default parser is not correctly rounded).
+    pub axes: Vec<String>,
+    pub records: Vec<String>,
+    /// The same for the scale factors.
+    pub scales: Vec<String>,
+}
+
+/// A value as text that reads back as the same f64.
+fn exact(v: &f64) -> String {
+    format!("{v:?}")
+}
+
+pub const MANIFEST: &str = "shard.json";
+
+pub fn io(path: &Path, what: &str, e: impl std::fmt::Display) -> SceneError {
+    SceneError::failure(format!("{}: cannot {what}: {e}", path.display()))
+}
+
+/// Runs (or resumes) shard `shard` of `plan` into `dir`: `shard.json` first (so that a shard
+/// killed before its first cell is still named by the merge), then the shard's cells, journaled.
+/// A failed cell is a result here; the merge reports it (exit status 1).
+pub fn run_shard(
+    plan: &Plan,
+    kind: Kind,
+    shard: Shard,
+    dir: &Path,
+    progress: Progress,
+    pool: &rayon::ThreadPool,
+) -> Result<(), SceneError> {
+    let base = &plan.base;
+    let cwd = std::env::current_dir().map_err(|e| io(Path::new("."), "read", e))?;
+    let (records, scales) = match &plan.records {
+        Some(r) => (r.paths.clone(), r.scales.iter().map(exact).collect()),
+        None => (Vec::new(), Vec::new()),
+    };
+    let manifest = Manifest {
+        kind,
+        shard: shard.to_string(),
+        program: program_digest().to_string(),
+        fingerprint: plan.sweep.fingerprint.clone(),
+        scene: base.path().display().to_string(),
+        directory: cwd.display().to_string(),
+        scene_text: base.text().to_string(),
+        set: base.sets().to_vec(),
+        axes: match kind {
+            Kind::Spectrum => plan
+                .sweep
+                .axes
+                .iter()
+                .map(|a| {
+                    let v: Vec<String> = a.values.iter().map(exact).collect();
+                    format!("{}={}", a.key, v.join(","))
+                })
+                .collect(),
+            Kind::Batch => Vec::new(),
+        },
+        records,
+        scales,
+    };
+    std::fs::create_dir_all(dir).map_err(|e| io(dir, "create", e))?;
+    let text = serde_json::to_string_pretty(&manifest)
+        .map_err(|e| SceneError::failure(format!("cannot serialise {MANIFEST}: {e}")))?;
+    write_atomic(&dir.join(MANIFEST), (text + "\n").as_bytes())?;
+    let outcome = pool
+        .install(|| {
+            rocking_spectra::run_shard(&plan.sweep, shard, dir, progress, |v| {
+                plan.run_cell(v).map_err(|e| e.to_string())
+            })
+        })
+        .map_err(sweep_error)?;
+    out!(
+        "{}: shard {shard}: {} of {} cells ({} computed now, {} resumed, {} failed) in {:.2} s on {} threads",
+        base.path().display(),
+        outcome.cells.len(),
+        plan.sweep.len(),
+        outcome.computed,
+        outcome.cells.len() - outcome.computed,
+        outcome.failures.len(),
+        outcome.elapsed.as_secs_f64(),
+        pool.current_num_threads()
+    );
+    out!(
+        "  wrote {} (join the {} shards with `rocking merge OUT SHARD_DIR...`)",
+        dir.display(),
+        shard.n
+    );
+    Ok(())
+}
+
+/// `shard.json` of the shard directory `dir`, as JSON and as read.
+pub fn read_manifest(dir: &Path) -> Result<(serde_json::Value, Manifest), SceneError> {
+    let path = dir.join(MANIFEST);
+    let text = std::fs::read_to_string(&path).map_err(|e| {
+        SceneError::input(format!(
+            "{}: not a shard directory: cannot read {MANIFEST} ({e}); give the --out directories \
+             of `rocking spectrum|batch --shard K/N`",
+            dir.display()
+        ))
+    })?;
+    let bad = |e: serde_json::Error| {
+        SceneError::input(format!(
+            "{}: not a shard description of this program: {e}",
+            path.display()
+        ))
+    };
+    let value: serde_json::Value = serde_json::from_str(&text).map_err(bad)?;
+    let manifest = serde_json::from_value(value.clone()).map_err(bad)?;
+    Ok((value, manifest))
+}

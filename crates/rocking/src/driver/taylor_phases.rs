@@ -1,0 +1,241 @@
+//! The two phases integrated by the Taylor method generated from the derivation: full contact
+//! and rocking about a corner, each to its first event. Events are roots of each step's
+//! polynomial (the uplift functions' series in contact, θ's series while rocking), so none inside
+//! a step is missed.
+
+use rocking_motion::GroundMotion;
+use rocking_ode::events::Direction;
+use rocking_ode::poly;
+use rocking_ode::taylor::{Taylor, TaylorOptions};
+
+use super::state::{carried, rocking_state, Next, Sim, LEFT, RIGHT};
+use crate::dense::{StepView, TaylorStep};
+use crate::options::History;
+use crate::results::Phase;
+use crate::taylor::{ContactSystem, RockingSystem, TaylorVariant};
+use crate::SimError;
+
+impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usize>
+    Sim<'a, V, M, NR, NC>
+{
+    /// A Taylor integrator for a phase: order from the tolerance, the mechanical components
+    /// controlled (W and D carried).
+    fn taylor<const N: usize>(
+        &self,
+        h_max: f64,
+        t0: f64,
+        y0: [f64; N],
+        mechanical: usize,
+    ) -> Result<Taylor<N>, SimError> {
+        let opts = TaylorOptions {
+            h_max,
+            max_steps: self.opts.max_steps,
+            controlled: std::array::from_fn(|i| i < mechanical),
+            ..TaylorOptions::new(self.opts.accuracy.tol)
+        };
+        let mut ode = Taylor::new(opts)?;
+        ode.reset(t0, y0)?;
+        Ok(ode)
+    }
+
+    /// Full contact from `t0` with the Taylor method (see [`Sim::contact_rk`]; the uplift
+    /// functions' series along each step are the event polynomials).
+    pub(super) fn contact_taylor(
+        &mut self,
+        t0: f64,
+        start: [f64; 4],
+        settling: bool,
+    ) -> Result<Next, SimError> {
+        let mut settling = settling;
+        let scale = self.contact_scale;
+        let y0: [f64; NC] = std::array::from_fn(|i| start[i] / scale[i]);
+        let mut ode = self.taylor(self.contact_h_max(t0), t0, y0, 2)?;
+        let mut sys = ContactSystem::<V, M, NC> {
+            p: self.p,
+            motion: self.motion,
+            scale,
+        };
+        let unscale = |y: [f64; NC]| -> [f64; NC] { std::array::from_fn(|i| y[i] * scale[i]) };
+        let may_stop = self.opts.stop_when_known && matches!(self.opts.history, History::None);
+        let excitation_end = self.motion.end();
+        loop {
+            let t_stop = self.t_stop(ode.t());
+            ode.step(&mut sys, t_stop)?;
+            self.guard_steps(ode.stats(), ode.t())?;
+            let (t_old, t_new) = (ode.t_old(), ode.t());
+            let dirs = [Direction::Rising, Direction::Rising];
+            let rising = ode.locate(&mut sys, &dirs).map(|ev| (ev.t, ev.index));
+            // A rising root inside the settling step comes after f_s fell below zero: a real
+            // uplift, as on any step (missed when only the end was looked at, once steps grew to
+            // a fraction of the period).
+            let crossing = if std::mem::take(&mut settling) && rising.is_none() {
+                let y = unscale(*ode.y());
+                let g_new = self.uplift_functions(y[0], y[1], self.motion.accel(t_new));
+                (0..2).find(|&k| g_new[k] > 0.0).map(|k| (t_new, k))
+            } else {
+                rising
+            };
+            let step = TaylorStep {
+                ode: &ode,
+                scale,
+                rows: [None, Some(0), None, Some(1)],
+            };
+            let dense = |t: f64| step.state(t);
+            let lift = crossing.and_then(|(t_up, index)| {
+                let s = if index == 0 { RIGHT } else { LEFT };
+                self.first_lift(dense, s, t_up, t_new).map(|t| (t, s))
+            });
+            if let Some((t_up, s)) = lift {
+                self.extremes_contact(&step, t_old, t_up);
+                self.step_history(t_old, t_up, dense, Phase::Contact, RIGHT);
+                self.stats.add(ode.take_stats());
+                let y = unscale(ode.dense(t_up));
+                let (w, d) = carried(&y, 2);
+                return self.uplift(t_up, s, y[0], y[1], w, d);
+            }
+            self.extremes_contact(&step, t_old, t_new);
+            self.step_history(t_old, t_new, dense, Phase::Contact, RIGHT);
+            let y = unscale(*ode.y());
+            let done = t_new >= self.opts.t_end
+                || (may_stop && t_new >= excitation_end && self.can_never_uplift(y[0], y[1]));
+            if done {
+                self.stats.add(ode.take_stats());
+                let (w, d) = carried(&y, 2);
+                return Ok(Next::Done {
+                    t: t_new,
+                    phase: Phase::Contact,
+                    s: RIGHT,
+                    state: [0.0, y[0], 0.0, y[1]],
+                    w,
+                    d,
+                });
+            }
+        }
+    }
+
+    /// The rocking phase about `s` as the Taylor integrator sees it.
+    pub(super) fn rocking_system(&self, s: f64) -> RockingSystem<'a, V, M, NR> {
+        RockingSystem {
+            p: self.p,
+            motion: self.motion,
+            s,
+            scale: self.rocking_scale,
+        }
+    }
+
+    /// The scaled Taylor state of `[θ, u, θ', u']` and the carried integrals `W`, `D`.
+    pub(super) fn rocking_start(&self, x: [f64; 4], w: f64, d: f64) -> [f64; NR] {
+        let start = [x[0], x[1], x[2], x[3], w, d];
+        std::array::from_fn(|i| start[i] / self.rocking_scale[i])
+    }
+
+    /// Rocking about `s` from `t0` with the Taylor method (see [`Sim::rocking_rk`]). The impact is
+    /// the first falling root of s θ's polynomial on a step, the overturning the first rising root
+    /// of s θ − θ_over's. The start guard of the RK path is exact here: at the phase start θ and,
+    /// after an uplift, θ' are exactly 0, so the polynomial's factor τ^n is exact and
+    /// [`poly::first_root`] divides it out before it looks for a root.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn rocking_taylor(
+        &mut self,
+        t0: f64,
+        s: f64,
+        x0: [f64; 4],
+        n: i32,
+        w: f64,
+        d: f64,
+    ) -> Result<Next, SimError> {
+        let scale = self.rocking_scale;
+        let y0 = self.rocking_start(x0, w, d);
+        let mut ode = self.taylor(f64::INFINITY, t0, y0, 4)?;
+        let mut sys = self.rocking_system(s);
+        let unscale = |y: [f64; NR]| -> [f64; NR] { std::array::from_fn(|i| y[i] * scale[i]) };
+        let over = self.opts.overturn_angle / scale[0];
+        let phase = Phase::rocking(s);
+        loop {
+            let t_stop = self.t_stop(ode.t());
+            ode.step(&mut sys, t_stop)
+                .map_err(|e| self.explain_failure(e, &unscale(*ode.y()), s))?;
+            self.guard_steps(ode.stats(), ode.t())?;
+            let (t_old, t_new) = (ode.t_old(), ode.t());
+            let h = t_new - t_old;
+            let order = ode.order();
+            let theta = &ode.coefficients()[0][..=order];
+            let mut g = [[0.0; 21]; 2];
+            for (k, &c) in theta.iter().enumerate() {
+                g[0][k] = s * c;
+                g[1][k] = s * c;
+            }
+            g[1][0] -= over;
+            // An uplift exactly at f_s = 0 (θ'' = 0) that turns back at once: an impact at t0,
+            // as the RK path's armed event fires at its first step.
+            let first = t_old == t0 && n > 0;
+            let turns_back = first && g[0].iter().find(|c| **c != 0.0).is_some_and(|c| *c < 0.0);
+            // One bound of θ's change over the step rules out both events on most steps.
+            let tail = theta[1..]
+                .iter()
+                .rev()
+                .fold(0.0, |acc, c| (acc + c.abs()) * h);
+            let root = |g: &[f64], dir| {
+                let far = poly::far_from_zero(g[0], tail, order);
+                (!far).then(|| poly::first_root(g, h, dir).map(|r| r.tau))?
+            };
+            let roots: [Option<f64>; 2] = if turns_back {
+                [Some(0.0), None]
+            } else {
+                [
+                    root(&g[0][..=order], Direction::Falling),
+                    root(&g[1][..=order], Direction::Rising),
+                ]
+            };
+            // The earliest; the impact on ties.
+            let event = roots
+                .iter()
+                .enumerate()
+                .filter_map(|(i, r)| r.map(|tau| (i, tau)))
+                .min_by(|a, b| a.1.total_cmp(&b.1));
+            let step = TaylorStep {
+                ode: &ode,
+                scale,
+                rows: [Some(0), Some(1), Some(2), Some(3)],
+            };
+            let dense = |t: f64| step.state(t);
+            if let Some((index, tau)) = event {
+                // Strictly after t_old for a root inside the step, even below t_old's ulp.
+                let t = if tau >= h {
+                    t_new
+                } else if tau == 0.0 {
+                    t_old
+                } else {
+                    (t_old + tau).max(after(t_old)).min(t_new)
+                };
+                self.extremes_rocking(&step, t_old, t);
+                self.step_history(t_old, t, dense, phase, s);
+                self.stats.add(ode.take_stats());
+                self.stats.events += 1;
+                let y = unscale(ode.dense(t));
+                let (w, d) = carried(&y, 4);
+                return self.rocking_event(index, t, s, rocking_state(&y), w, d);
+            }
+            self.extremes_rocking(&step, t_old, t_new);
+            self.step_history(t_old, t_new, dense, phase, s);
+            if t_new >= self.opts.t_end {
+                let y = unscale(*ode.y());
+                self.stats.add(ode.take_stats());
+                let (w, d) = carried(&y, 4);
+                return Ok(Next::Done {
+                    t: t_new,
+                    phase,
+                    s,
+                    state: rocking_state(&y),
+                    w,
+                    d,
+                });
+            }
+        }
+    }
+}
+
+/// The next f64 after a time `t >= 0`.
+fn after(t: f64) -> f64 {
+    f64::from_bits(t.to_bits() + 1)
+}

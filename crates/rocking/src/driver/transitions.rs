@@ -1,0 +1,257 @@
+//! The transitions between phases: uplift from full contact (and the test that decides it),
+//! the rocking phase's events (impact, overturning), and the impact as the policy decides it.
+
+use rocking_kernels::kernels::index::{energy as en, rocking_rhs as rr};
+use rocking_motion::GroundMotion;
+use rocking_ode::roots::first_true;
+use rocking_ode::taylor::TaylorSystem;
+
+use super::impact::{self, After};
+use super::state::{Next, Sim, G2, LEFT, RIGHT};
+use crate::error::SimError;
+use crate::options::Method;
+use crate::results::{EventKind, Phase};
+use crate::taylor::TaylorVariant;
+
+/// How a contact phase starts: the uplift functions checked at once.
+pub(super) enum ContactStart {
+    /// The base lifts at the phase start (after an impact: the rigid limit).
+    Lifted(Next),
+    /// Full contact; `settling`: the first step is taken before an uplift is possible; `f0`:
+    /// the uplift functions at the start.
+    Contact { settling: bool, f0: G2 },
+}
+
+impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usize>
+    Sim<'_, V, M, NR, NC>
+{
+    /// The uplift functions [f_+, f_-] (eq 24) in full contact.
+    pub(super) fn uplift_functions(&self, u: f64, u_dot: f64, ug: f64) -> G2 {
+        let xc = [u, u_dot];
+        G2::new(
+            V::uplift(&xc, ug, RIGHT, &self.p),
+            V::uplift(&xc, ug, LEFT, &self.p),
+        )
+    }
+
+    /// The start of full contact at `t0`. The uplift functions are checked at once (after an
+    /// impact this is how the rigid limit works), except when the structure has just come to rest
+    /// (`settle`): then, if an f_s is already above zero (a grazing excursion that would make the
+    /// run chatter at one instant), a first step is taken before an uplift is possible. With
+    /// every f_s below zero the first step looks for crossings inside it as every step does
+    /// (placing a crossing of the first step at its end delayed a near-rigid column's uplift by a
+    /// tenth of its period: `an_uplift_after_a_rest_is_located_inside_the_first_step`).
+    pub(super) fn contact_start(
+        &mut self,
+        t0: f64,
+        [u, u_dot, w, d]: [f64; 4],
+        settle: bool,
+    ) -> Result<ContactStart, SimError> {
+        let ug0 = self.motion.accel_right(t0);
+        let f0 = self.uplift_functions(u, u_dot, ug0);
+        for (k, s) in [(0, RIGHT), (1, LEFT)] {
+            if !settle && f0[k] > 0.0 && self.lifts(s, t0, u, u_dot, ug0) {
+                return self.uplift(t0, s, u, u_dot, w, d).map(ContactStart::Lifted);
+            }
+        }
+        Ok(ContactStart::Contact {
+            settling: settle && f0.iter().any(|g| *g > 0.0),
+            f0,
+        })
+    }
+
+    /// In contact after the excitation: can the column's vibration energy ever uplift the base?
+    /// f_s is affine in (u, u') and the free vibration stays inside the energy ellipse, so the
+    /// largest reachable f_s is f_s(0) + sqrt(2 E (a²/k̃ + b²/m̃)).
+    pub(super) fn can_never_uplift(&self, u: f64, u_dot: f64) -> bool {
+        let f = |a: f64, b: f64| V::uplift(&[a, b], 0.0, RIGHT, &self.p);
+        let (c, a, b) = (
+            f(0.0, 0.0),
+            f(1.0, 0.0) - f(0.0, 0.0),
+            f(0.0, 1.0) - f(0.0, 0.0),
+        );
+        let e = V::energy(&[0.0, u, 0.0, u_dot], RIGHT, &self.p);
+        let vib = e[en::KINETIC] + e[en::STRAIN];
+        let reach =
+            (2.0 * vib * (a * a / self.derived.k_tilde + b * b / self.derived.m_tilde)).sqrt();
+        c + reach < 0.0
+    }
+
+    /// Whether the base really lifts about `s` at `t` from full contact: the rocking equations
+    /// give s θ'' > 0. It is equivalent to f_s > 0 (equations.md 1.2) except within rounding of
+    /// f_s = 0, where it decides consistently with the integrator that will follow: with the
+    /// Taylor method, θ'' is that integrator's first coefficient, computed as its first step
+    /// will (the Taylor-mode kernel regroups the tape, so the pointwise θ'' may differ from it
+    /// in the last bits and a lift decided on it could turn back at once); `ug` is ü_g(t) for
+    /// the Runge–Kutta methods.
+    fn lifts(&self, s: f64, t: f64, u: f64, u_dot: f64, ug: f64) -> bool {
+        if self.opts.accuracy.method == Method::Taylor {
+            let y0 = self.rocking_start([0.0, u, 0.0, u_dot], 0.0, 0.0);
+            let mut x: [[f64; 2]; NR] = std::array::from_fn(|i| [y0[i], 0.0]);
+            self.rocking_system(s).coefficients::<2>(t, &mut x);
+            return s * x[2][1] > 0.0;
+        }
+        s * V::rocking_rhs(&[0.0, u, 0.0, u_dot], ug, s, &self.p)[rr::THETA_DDOT] > 0.0
+    }
+
+    /// The first time in [t_a, t_b] at which the base lifts about `s`, given that f_s rises
+    /// through zero at t_a (`dense`: the contact phase's state); `None` when it lifts nowhere in
+    /// (t_a, t_b] (a rounding-level excursion of f_s).
+    pub(super) fn first_lift(
+        &self,
+        dense: impl Fn(f64) -> [f64; 4],
+        s: f64,
+        t_a: f64,
+        t_b: f64,
+    ) -> Option<f64> {
+        let lifts_at = |t: f64| {
+            let y = dense(t);
+            self.lifts(s, t, y[1], y[3], self.motion.accel(t))
+        };
+        if lifts_at(t_a) {
+            return Some(t_a);
+        }
+        // f_s may fall below zero again before t_b (an excursion shorter than a long Taylor
+        // step): bring t_b halfway back to t_a until the base lifts there, or until the gap is
+        // a rounding-level one.
+        let mut t_b = t_b;
+        while !lifts_at(t_b) {
+            let mid = 0.5 * (t_a + t_b);
+            if mid <= t_a || mid >= t_b {
+                return None;
+            }
+            t_b = mid;
+        }
+        Some(first_true(lifts_at, t_a, t_b))
+    }
+
+    /// The base lifts about `s` at `t` from full contact with the column at (u, u').
+    pub(super) fn uplift(
+        &mut self,
+        t: f64,
+        s: f64,
+        u: f64,
+        u_dot: f64,
+        w: f64,
+        d: f64,
+    ) -> Result<Next, SimError> {
+        self.count_event(t)?;
+        self.rec.first_uplift.get_or_insert(t);
+        let e = V::energy(&[0.0, u, 0.0, u_dot], s, &self.p)[en::KINETIC];
+        self.log_event(
+            t,
+            EventKind::Uplift,
+            "",
+            Phase::rocking(s),
+            [0.0, u, u_dot],
+            (e, e),
+        );
+        Ok(Next::Rocking {
+            t,
+            s,
+            x: [0.0, u, 0.0, u_dot],
+            n: 2,
+            w,
+            d,
+        })
+    }
+
+    /// The event `index` (0 impact, 1 overturning) of a rocking phase about `s` at `t`, state `x`.
+    pub(super) fn rocking_event(
+        &mut self,
+        index: usize,
+        t: f64,
+        s: f64,
+        x: [f64; 4],
+        w: f64,
+        d: f64,
+    ) -> Result<Next, SimError> {
+        if index == 0 {
+            return self.impact(t, s, [x[1], x[3], x[2]], w, d);
+        }
+        self.count_event(t)?;
+        self.rec.overturn = Some(t);
+        self.track(&x);
+        let e = V::energy(&x, s, &self.p)[en::KINETIC];
+        self.log_event(
+            t,
+            EventKind::Overturn,
+            "",
+            Phase::Overturned,
+            [x[2], x[1], x[3]],
+            (e, e),
+        );
+        Ok(Next::Done {
+            t,
+            phase: Phase::Overturned,
+            s,
+            state: x,
+            w,
+            d,
+        })
+    }
+
+    /// The impact at θ = 0 while rocking about `s` (pre-impact `xi` = [u, u', θ']): the policy
+    /// ([`impact::resolve`]) decides, the run records it and goes on from its choice.
+    fn impact(&mut self, t: f64, s: f64, xi: [f64; 3], w: f64, d: f64) -> Result<Next, SimError> {
+        self.count_event(t)?;
+        let [u, u_dot, theta_dot] = xi;
+        if theta_dot.abs() >= self.significant_rate {
+            self.rec.significant += 1;
+        }
+        let out = impact::resolve::<V>(self.opts.impact, xi, s, &self.p, self.rest_rate);
+        if out.counted {
+            self.rec.impacts += 1;
+            self.rec.first_impact.get_or_insert(t);
+        }
+        if out.capped {
+            self.rec.energy_capped += 1;
+        }
+        let (e_before, e_after) = (out.energy_before, out.energy_after());
+        self.rec.losses += e_before - e_after;
+        let pre = [theta_dot, u, u_dot];
+        match out.after {
+            After::Contact { u_dot: ud, .. } => {
+                self.log_event(
+                    t,
+                    out.kind,
+                    out.branch,
+                    Phase::Contact,
+                    pre,
+                    (e_before, e_after),
+                );
+                Ok(Next::Contact {
+                    t,
+                    u,
+                    u_dot: ud,
+                    w,
+                    d,
+                    settle: out.kind == EventKind::Rest,
+                })
+            }
+            After::Rocking {
+                theta_dot: td,
+                u_dot: ud,
+                ..
+            } => {
+                let s2 = -s;
+                self.log_event(
+                    t,
+                    out.kind,
+                    out.branch,
+                    Phase::rocking(s2),
+                    pre,
+                    (e_before, e_after),
+                );
+                Ok(Next::Rocking {
+                    t,
+                    s: s2,
+                    x: [0.0, u, td, ud],
+                    n: 1,
+                    w,
+                    d,
+                })
+            }
+        }
+    }
+}
