@@ -28,7 +28,6 @@ macro_rules! out {
 
 mod figure;
 mod ida;
-mod ida_plot;
 mod merge;
 mod out_dir;
 mod plot;

@@ -23,14 +23,16 @@ pub const RUN_FILES: [&str; 6] = [
 ];
 
 /// The files `rocking ida` writes (its --out is replaced whole like a run's).
-pub const IDA_FILES: [&str; 7] = [
+pub const IDA_FILES: [&str; 9] = [
     "records.csv",
     "ida.csv",
     "fragility.json",
-    "ida.png",
     "ida.svg",
-    "fragility-fit.png",
+    "ida.png",
+    "ida.pdf",
     "fragility-fit.svg",
+    "fragility-fit.png",
+    "fragility-fit.pdf",
 ];
 
 /// The output directory of one run, built aside and swapped in whole: the directory always holds

@@ -1,5 +1,6 @@
-//! Drawing that both the `rocking` command and the Python package need: the embedded font
-//! (DejaVu Sans, see assets/DejaVuSans-LICENSE.txt, so no system font is needed), [`text`]
+//! Drawing that the `rocking` command, the work-precision study and the Python package need: the
+//! embedded font (DejaVu Sans, see assets/DejaVuSans-LICENSE.txt, so no system font is needed),
+//! [`chart`] (a figure's page, axes, lines, markers and legend), [`text`]
 //! (subscripts, tick labels, titles wrapped between items), [`colour`] and [`style`] (a palette
 //! that stays distinct for colour-blind readers and in greyscale, measured), [`export`] (one SVG
 //! turned into PNG and PDF) and [`animation`], the animated GIF of a run.
@@ -7,6 +8,7 @@
 //! It owns how things look; it must not compute results (it draws what a run or a study gives).
 
 pub mod animation;
+pub mod chart;
 pub mod colour;
 pub mod export;
 pub mod style;

@@ -165,6 +165,11 @@ pub fn tick(v: f64) -> String {
     }
 }
 
+/// The tick label of 10^`e` on a logarithmic axis: "10⁻⁵", "10⁰", "10²".
+pub fn power_of_ten(e: i32) -> String {
+    format!("10{}", superscript(e))
+}
+
 /// An exponent in superscript digits (⁻¹²).
 fn superscript(e: i32) -> String {
     const DIGITS: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];

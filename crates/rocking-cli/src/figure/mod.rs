@@ -233,7 +233,7 @@ fn read(file: &Path) -> Result<FigureFile, SceneError> {
                 ..
             } => {
                 if Quantity::parse(quantity).is_none() {
-                    let names: Vec<&str> = Quantity::ALL.iter().map(|q| q.0).collect();
+                    let names: Vec<&str> = plot::QUANTITIES.iter().map(|q| q.name).collect();
                     return bad(
                         file,
                         &field("quantity"),
@@ -373,7 +373,7 @@ fn build(
                 zoom,
                 black,
             } => {
-                let q = Quantity::parse(quantity).unwrap_or(Quantity::ThetaOverAlpha);
+                let q = Quantity::parse(quantity).unwrap_or(plot::THETA_OVER_ALPHA);
                 let mut panel =
                     HistoryPanel::new(q, runs.iter().map(|r| traces[r].clone()).collect());
                 panel.title = title.clone();

@@ -4,76 +4,106 @@
 //! of τ. θ/α is never scaled to π/2 by an overturning run: its line leaves the panel and an arrow
 //! at the edge says it overturned.
 
+use std::sync::Arc;
+
 use plotters::prelude::*;
-use rocking::{EventKind, Run};
+use rocking::{EventKind, HistoryRow, Run};
+use rocking_plot::chart::{axes, fail, mark_at, pixel, rgb, styled_line, Area, LegendItem};
 use rocking_plot::style::LineStyle;
 use rocking_scene::labels;
-
-use super::{axes, fail, mark_at, rgb, styled_line, Area, LegendItem, Panel};
 use rocking_scene::setup::Setup;
+
+use super::Panel;
 
 /// What the caption of a figure with impacts or an overturning says about the marks.
 pub const CAPTION: &str = "Markers on a line: the run's impacts. An arrow at a panel's edge: the \
                            run overturns there (θ goes on to π/2, beyond the panel).";
 
-/// A quantity of a run's history, named as in history.csv.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Quantity {
-    ThetaOverAlpha,
-    UOverUcr,
-    UDotOverUcrOmegaN,
-    EKin,
-    ETotal,
-    Ug,
+/// A quantity of a run's history that a panel can show: its name (as in history.csv and
+/// figure files), its axis label and its value in a history row.
+#[derive(Clone, Copy, Debug)]
+pub struct Quantity {
+    pub name: &'static str,
+    pub label: &'static str,
+    value: fn(&HistoryRow, &Scales) -> f64,
 }
+
+impl PartialEq for Quantity {
+    fn eq(&self, other: &Quantity) -> bool {
+        self.name == other.name
+    }
+}
+
+/// What a run's quantities are normalised by.
+#[derive(Clone, Copy, Debug)]
+struct Scales {
+    alpha: f64,
+    u_cr: f64,
+    omega_n: f64,
+    g_tan_alpha: f64,
+}
+
+/// θ/α: never scaled by an overturning run (see [`HistoryPanel`]).
+pub const THETA_OVER_ALPHA: Quantity = Quantity {
+    name: "theta_over_alpha",
+    label: labels::THETA_OVER_ALPHA,
+    value: |r, s| r.theta / s.alpha,
+};
+
+/// Every quantity a panel can show. A new one is one entry here (and one in [`RUN_PANELS`] to
+/// appear in `rocking run`'s figure).
+pub const QUANTITIES: [Quantity; 6] = [
+    THETA_OVER_ALPHA,
+    Quantity {
+        name: "u_over_ucr",
+        label: labels::U_OVER_UCR,
+        value: |r, s| r.u / s.u_cr,
+    },
+    Quantity {
+        name: "u_dot_over_ucr_omega_n",
+        label: "u'/(u_cr ω_n)",
+        value: |r, s| r.u_dot / (s.u_cr * s.omega_n),
+    },
+    Quantity {
+        name: "e_kin_over_eref",
+        label: "E_kin/E_ref",
+        value: |r, _| r.e_kin,
+    },
+    Quantity {
+        name: "e_total_over_eref",
+        label: labels::E_OVER_EREF,
+        value: |r, _| r.e_total,
+    },
+    Quantity {
+        name: "ug_over_g_tan_alpha",
+        label: labels::UG_OVER_G_TAN_ALPHA,
+        value: |r, s| r.ug / s.g_tan_alpha,
+    },
+];
+
+/// The panels of `rocking run`'s figure, top to bottom (the paper's Figs 3, 5 and 10).
+pub const RUN_PANELS: [&str; 4] = [
+    "theta_over_alpha",
+    "u_over_ucr",
+    "e_total_over_eref",
+    "ug_over_g_tan_alpha",
+];
 
 impl Quantity {
-    /// Every quantity with its history.csv column name.
-    pub const ALL: [(&'static str, Quantity); 6] = [
-        ("theta_over_alpha", Quantity::ThetaOverAlpha),
-        ("u_over_ucr", Quantity::UOverUcr),
-        ("u_dot_over_ucr_omega_n", Quantity::UDotOverUcrOmegaN),
-        ("e_kin_over_eref", Quantity::EKin),
-        ("e_total_over_eref", Quantity::ETotal),
-        ("ug_over_g_tan_alpha", Quantity::Ug),
-    ];
-
-    /// The quantity of a history.csv column name.
+    /// The quantity named `name` (a history.csv column name).
     pub fn parse(name: &str) -> Option<Quantity> {
-        Quantity::ALL
-            .iter()
-            .find(|(n, _)| *n == name)
-            .map(|&(_, q)| q)
-    }
-
-    /// The axis label, in the paper's notation.
-    pub fn label(self) -> &'static str {
-        match self {
-            Quantity::ThetaOverAlpha => labels::THETA_OVER_ALPHA,
-            Quantity::UOverUcr => labels::U_OVER_UCR,
-            Quantity::UDotOverUcrOmegaN => "u'/(u_cr ω_n)",
-            Quantity::EKin => "E_kin/E_ref",
-            Quantity::ETotal => labels::E_OVER_EREF,
-            Quantity::Ug => labels::UG_OVER_G_TAN_ALPHA,
-        }
-    }
-
-    fn column(self) -> usize {
-        Quantity::ALL
-            .iter()
-            .position(|&(_, q)| q == self)
-            .unwrap_or(0)
+        QUANTITIES.iter().find(|q| q.name == name).copied()
     }
 }
 
-/// One run's history, normalised as in history.csv, with its impacts and its style.
+/// One run's history with its impacts and its style.
 #[derive(Clone)]
 pub struct Trace {
     /// The legend text (empty: no legend entry).
     pub label: String,
     pub style: LineStyle,
-    /// τ and the six quantities of [`Quantity::ALL`] per history row.
-    rows: std::sync::Arc<Vec<(f64, [f64; 6])>>,
+    rows: Arc<Vec<HistoryRow>>,
+    scales: Scales,
     /// τ of the impacts.
     pub impacts: Vec<f64>,
     /// Whether the run overturned.
@@ -87,27 +117,16 @@ impl Trace {
     pub fn of(model: &Setup, run: &Run, label: String, style: LineStyle) -> Trace {
         let d = model.structure.derived();
         let u = &model.units;
-        let rows = run
-            .history
-            .iter()
-            .map(|r| {
-                (
-                    r.tau,
-                    [
-                        r.theta / u.alpha,
-                        r.u / d.u_cr,
-                        r.u_dot / (d.u_cr * d.omega_n),
-                        r.e_kin,
-                        r.e_total,
-                        r.ug / u.accel_g_tan_alpha(),
-                    ],
-                )
-            })
-            .collect();
         Trace {
             label,
             style,
-            rows: std::sync::Arc::new(rows),
+            rows: Arc::new(run.history.clone()),
+            scales: Scales {
+                alpha: u.alpha,
+                u_cr: d.u_cr,
+                omega_n: d.omega_n,
+                g_tan_alpha: u.accel_g_tan_alpha(),
+            },
             impacts: run
                 .events
                 .iter()
@@ -121,30 +140,33 @@ impl Trace {
 
     /// (τ, value) of a quantity.
     pub fn points(&self, q: Quantity) -> Vec<(f64, f64)> {
-        let k = q.column();
-        self.rows.iter().map(|(t, v)| (*t, v[k])).collect()
+        self.rows
+            .iter()
+            .map(|r| (r.tau, (q.value)(r, &self.scales)))
+            .collect()
     }
 
     /// The last τ of the history.
     pub fn end(&self) -> f64 {
-        self.rows.last().map_or(0.0, |r| r.0)
+        self.rows.last().map_or(0.0, |r| r.tau)
     }
 
     /// The value of `q` at τ, interpolated between history rows.
     fn at(&self, q: Quantity, tau: f64) -> Option<f64> {
-        let k = q.column();
-        let i = self.rows.partition_point(|r| r.0 < tau);
+        let i = self.rows.partition_point(|r| r.tau < tau);
         let b = self.rows.get(i)?;
+        let vb = (q.value)(b, &self.scales);
         if i == 0 {
-            return Some(b.1[k]);
+            return Some(vb);
         }
         let a = &self.rows[i - 1];
-        let w = if b.0 > a.0 {
-            (tau - a.0) / (b.0 - a.0)
+        let va = (q.value)(a, &self.scales);
+        let w = if b.tau > a.tau {
+            (tau - a.tau) / (b.tau - a.tau)
         } else {
             0.0
         };
-        Some(a.1[k] + w * (b.1[k] - a.1[k]))
+        Some(va + w * (vb - va))
     }
 }
 
@@ -184,7 +206,7 @@ impl HistoryPanel {
             .traces
             .iter()
             .filter(|t| !t.overturned)
-            .flat_map(|t| t.points(Quantity::ThetaOverAlpha))
+            .flat_map(|t| t.points(THETA_OVER_ALPHA))
             .fold(0.0, |m: f64, p| m.max(p.1.abs()));
         let critical = self
             .traces
@@ -197,7 +219,7 @@ impl HistoryPanel {
     /// The lowest and highest value in the panel's window (θ/α bounded by [`Self::theta_limit`]).
     fn data_range(&self) -> Option<(f64, f64)> {
         let (x0, x1) = self.x_range();
-        let limit = (self.quantity == Quantity::ThetaOverAlpha).then(|| self.theta_limit());
+        let limit = (self.quantity == THETA_OVER_ALPHA).then(|| self.theta_limit());
         let mut range: Option<(f64, f64)> = None;
         for t in &self.traces {
             for (x, y) in t.points(self.quantity) {
@@ -234,7 +256,7 @@ impl HistoryPanel {
             self.title.as_deref(),
             x,
             (lo, hi),
-            (labels::TAU, self.quantity.label()),
+            (labels::TAU, self.quantity.label),
             true,
         )?;
         if lo < 0.0 && hi > 0.0 {
@@ -263,25 +285,24 @@ impl HistoryPanel {
                 if tau < x.0 || tau > x.1 {
                     continue;
                 }
-                let v = match self.quantity {
-                    Quantity::ThetaOverAlpha => Some(0.0),
-                    q => t.at(q, tau),
+                let v = if self.quantity == THETA_OVER_ALPHA {
+                    Some(0.0)
+                } else {
+                    t.at(self.quantity, tau)
                 };
                 if let Some(v) = v.filter(|v| (lo..=hi).contains(v)) {
                     mark_at(&chart, t.style.marker, (tau, v), 4, colour, true)?;
                 }
             }
             // Overturning: an arrow where θ/α leaves the panel.
-            if t.overturned && self.quantity == Quantity::ThetaOverAlpha {
+            if t.overturned && self.quantity == THETA_OVER_ALPHA {
                 if let Some(&(tau, v)) = points
                     .iter()
                     .find(|p| p.0 >= x.0 && p.0 <= x.1 && !(lo..=hi).contains(&p.1))
                 {
                     let edge = if v > 0.0 { hi } else { lo };
                     let area = chart.plotting_area().strip_coord_spec();
-                    let (px, py) = chart.backend_coord(&(tau, edge));
-                    let (bx, by) = area.get_base_pixel();
-                    let (px, py) = (px - bx, py - by);
+                    let (px, py) = pixel(&chart, (tau, edge));
                     let dir = if v > 0.0 { 1 } else { -1 };
                     let tip = (px, py + dir * 2);
                     area.draw(&Polygon::new(

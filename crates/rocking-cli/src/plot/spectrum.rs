@@ -14,7 +14,9 @@ use rocking_scene::labels;
 use rocking_spectra::{Cell, CellClass, Sweep};
 
 use super::boundary::{cell_bounds, cell_edges, lowest_overturning, polylines, Lowest};
-use super::{axes, fail, line_height, mark_at, rgb, styled_line, Area, LegendItem, LEGEND, TICKS};
+use rocking_plot::chart::{
+    axes, fail, line_height, mark_at, rgb, styled_line, Area, LegendItem, LEGEND, TICKS,
+};
 
 /// The style of a class that is not a survivor's shade.
 fn class_style(class: CellClass) -> Option<ClassStyle> {
@@ -82,8 +84,14 @@ fn grid(sweep: &Sweep, cells: &[Cell]) -> Grid {
     (axis(ax), axis(ay), cells)
 }
 
+/// Polylines in the axes' values.
+type Lines = Vec<Vec<(f64, f64)>>;
+
+/// A one-axis sweep's cells: (value, class, max θ/α) by increasing value.
+type LineCells = Vec<(f64, CellClass, f64)>;
+
 /// The lines between overturned and upright cells of a grid.
-fn boundary_lines(g: &Grid) -> Vec<Vec<(f64, f64)>> {
+fn boundary_lines(g: &Grid) -> Lines {
     let (x, y, cells) = g;
     let mut over = vec![vec![None; y.values.len()]; x.values.len()];
     for &(i, j, class, _) in cells {
@@ -96,9 +104,9 @@ fn boundary_lines(g: &Grid) -> Vec<Vec<(f64, f64)>> {
 pub struct SpectrumPanel {
     pub title: Option<String>,
     grid: Grid,
-    boundary: Vec<Vec<(f64, f64)>>,
+    boundary: Lines,
     /// A reference structure's boundary (dashed), with its legend text.
-    reference: Option<(String, Vec<Vec<(f64, f64)>>)>,
+    reference: Option<(String, Lines)>,
     /// θ_cr/α of the structure, with its text on the colour bar.
     pub theta_cr: Option<(f64, String)>,
 }
@@ -466,9 +474,9 @@ pub struct LinePanel {
     pub title: Option<String>,
     pub axis: Axis,
     /// (value, class, max θ/α) by increasing value.
-    pub cells: Vec<(f64, CellClass, f64)>,
+    pub cells: LineCells,
     /// A reference structure's line, with its legend text.
-    pub reference: Option<(String, Vec<(f64, CellClass, f64)>)>,
+    pub reference: Option<(String, LineCells)>,
 }
 
 impl LinePanel {
@@ -582,8 +590,8 @@ impl LinePanel {
     }
 }
 
-fn line_cells(sweep: &Sweep, cells: &[Cell]) -> Vec<(f64, CellClass, f64)> {
-    let mut out: Vec<(f64, CellClass, f64)> = cells
+fn line_cells(sweep: &Sweep, cells: &[Cell]) -> LineCells {
+    let mut out: LineCells = cells
         .iter()
         .map(|c| (sweep.values(c.index)[0], c.class, c.max_theta_over_alpha))
         .collect();
@@ -593,7 +601,7 @@ fn line_cells(sweep: &Sweep, cells: &[Cell]) -> Vec<(f64, CellClass, f64)> {
 
 /// The (value, max θ/α) runs of cells that stayed upright, split where a cell between them did
 /// not.
-fn upright_runs(cells: &[(f64, CellClass, f64)]) -> Vec<Vec<(f64, f64)>> {
+fn upright_runs(cells: &[(f64, CellClass, f64)]) -> Lines {
     let mut runs = vec![Vec::new()];
     for &(x, class, theta) in cells {
         if overturned(class) == Some(false) {
