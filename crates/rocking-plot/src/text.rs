@@ -261,6 +261,8 @@ mod tests {
         assert_eq!(tick(-2.5), "\u{2212}2.5");
         assert_eq!(tick(2e-6), "2×10⁻⁶");
         assert_eq!(tick(1e7), "10⁷");
+        assert_eq!(power_of_ten(-12), "10⁻¹²");
+        assert_eq!(power_of_ten(0), "10⁰");
     }
 
     #[test]
