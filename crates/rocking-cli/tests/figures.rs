@@ -425,10 +425,47 @@ fn every_paper_figure_is_drawn_and_shows_what_it_compares() {
     ] {
         assert!(t3.contains(label), "fig3: `{label}` missing: {t3}");
     }
-    for colour in ["#1B80C6", "#AC2000"] {
-        let lines = fig3.matches(&format!("stroke=\"{colour}\"")).count();
-        assert!(lines >= 3, "fig3: {lines} lines in {colour}");
-    }
+    // Both runs are drawn in the three overlaid panels: each impact of each run is marked in
+    // each of them with the run's marker in its colour (VVEL circles, ADJex squares), plus one
+    // in the legend.
+    let impacts = |scene: &str| {
+        let o = bin()
+            .arg("run")
+            .arg(repo().join(scene))
+            .args(["--json", "--out"])
+            .arg(out.join(scene.replace('/', "-")))
+            .output()
+            .unwrap();
+        ok(&o);
+        let summary: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        summary["impacts"].as_u64().unwrap() as usize
+    };
+    let marks = |element: &str, colour: &str| {
+        fig3.split(element)
+            .skip(1)
+            .filter(|e| {
+                e.split('>')
+                    .next()
+                    .unwrap()
+                    .contains(&format!("fill=\"{colour}\""))
+            })
+            .count()
+    };
+    let (vvel, adjex) = (
+        impacts("scenes/fig3-vvel.toml"),
+        impacts("scenes/fig3-adjex.toml"),
+    );
+    assert!(vvel > 0 && adjex > vvel, "{vvel} and {adjex} impacts");
+    assert_eq!(
+        marks("<circle", "#1B80C6"),
+        1 + 3 * vvel,
+        "fig3: VVEL's impacts"
+    );
+    assert_eq!(
+        marks("<rect", "#AC2000"),
+        1 + 3 * adjex,
+        "fig3: ADJex's impacts"
+    );
     // Figs 6-8: ten panels on one colour scale, θ_cr/α marked once per slenderness.
     // (Mass only on top: θ_cr = α whatever α, one mark.)
     for (stem, marks) in [("fig6", 1), ("fig7", 2), ("fig8", 2)] {

@@ -71,8 +71,8 @@ pub fn lowest_overturning(cells: &[(f64, bool)]) -> Lowest {
     }
 }
 
-/// The segments joined into polylines at their shared ends (marching squares computes a shared
-/// midpoint by the same expression in both squares, so ends match exactly): dashes then run on
+/// The segments joined into polylines at their shared ends (neighbouring edges take a shared
+/// corner from the same [`cell_bounds`] expression, so ends match exactly): dashes then run on
 /// along a boundary instead of restarting at every cell. A closed loop ends at its start.
 pub fn polylines(segments: &[Segment]) -> Vec<Vec<(f64, f64)>> {
     use std::collections::HashMap;
