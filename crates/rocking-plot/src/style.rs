@@ -60,7 +60,7 @@ pub const FAILED: ClassStyle = ClassStyle {
     fill: [0, 0, 0],
     hatch: None,
     ink: [0xFF, 0xFF, 0xFF],
-    label: "failed (see meta.json)",
+    label: "run failed (no result)",
 };
 
 /// Every class fill, for the test and the hatching patterns.
