@@ -6,6 +6,8 @@
 # Usage: bash scenes/spectra/make-figures.sh           draw them into docs/img/
 #        bash scenes/spectra/make-figures.sh --check   draw them aside and compare with docs/img/
 #                                                      (exit 1 naming the files that differ)
+# ROCKING names a built binary (default: the release build, built first), e.g. the test
+# profile's target/debug/rocking in CI: the images are the same bytes.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 mode=${1:---write}
@@ -16,9 +18,12 @@ case $mode in
     exit 2
     ;;
 esac
-cargo build --release -q -p rocking-cli
+if [ -z "${ROCKING:-}" ]; then
+    cargo build --release -q -p rocking-cli
+    ROCKING=$PWD/target/release/rocking
+fi
 start=$(date +%s)
-rocking=$PWD/target/release/rocking
+rocking=$ROCKING
 work=$(mktemp -d /tmp/rocking-figures.XXXXXX)
 trap 'rm -rf "$work"' EXIT
 # `rocking spectrum` exits 1 when some cells failed (they are marked in cells.csv and meta.json,
