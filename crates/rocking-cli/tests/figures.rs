@@ -152,6 +152,9 @@ fn the_time_history_is_labelled_in_the_papers_notation() {
             "`{label}` is not in the SVG text:\n{text}"
         );
     }
+    // The caption explains the marks drawn: impacts, and no overturning arrow (the run stays up).
+    assert!(text.contains("Markers on a line"), "{text}");
+    assert!(!text.contains("overturns there"), "{text}");
 }
 
 /// The orientation (radians, clockwise on the screen) of the pixels of one colour, from their

@@ -15,17 +15,32 @@ use rocking_scene::setup::Setup;
 
 use super::Panel;
 
-/// What the caption of a figure with impacts or an overturning says about the marks.
-pub const CAPTION: &str = "Markers on a line: the run's impacts. An arrow at a panel's edge: the \
-                           run overturns there (θ goes on to π/2, beyond the panel).";
+/// What a figure's caption says about the marks it shows: the impact markers, the arrow of an
+/// overturning run.
+pub fn caption(impacts: bool, overturned: bool) -> Option<String> {
+    let mut parts = Vec::new();
+    if impacts {
+        parts.push("Markers on a line: the run's impacts.");
+    }
+    if overturned {
+        parts.push(
+            "An arrow at a panel's edge: the run overturns there (θ goes on to π/2, beyond the \
+             panel).",
+        );
+    }
+    (!parts.is_empty()).then(|| parts.join(" "))
+}
 
 /// A quantity of a run's history that a panel can show: its name (as in history.csv and
-/// figure files), its axis label and its value in a history row.
+/// figure files), its axis label, its value in a history row, and whether `rocking run`'s
+/// figure shows it.
 #[derive(Clone, Copy, Debug)]
 pub struct Quantity {
     pub name: &'static str,
     pub label: &'static str,
     value: fn(&HistoryRow, &Scales) -> f64,
+    /// A panel of `rocking run`'s figure (in the order of [`QUANTITIES`]).
+    pub run_panel: bool,
 }
 
 impl PartialEq for Quantity {
@@ -48,45 +63,43 @@ pub const THETA_OVER_ALPHA: Quantity = Quantity {
     name: "theta_over_alpha",
     label: labels::THETA_OVER_ALPHA,
     value: |r, s| r.theta / s.alpha,
+    run_panel: true,
 };
 
-/// Every quantity a panel can show. A new one is one entry here (and one in [`RUN_PANELS`] to
-/// appear in `rocking run`'s figure).
+/// Every quantity a panel can show; those with `run_panel` make `rocking run`'s figure, top to
+/// bottom (the paper's Figs 3, 5 and 10). A new quantity or panel is one entry here.
 pub const QUANTITIES: [Quantity; 6] = [
     THETA_OVER_ALPHA,
     Quantity {
         name: "u_over_ucr",
         label: labels::U_OVER_UCR,
         value: |r, s| r.u / s.u_cr,
+        run_panel: true,
     },
     Quantity {
         name: "u_dot_over_ucr_omega_n",
         label: "u'/(u_cr ω_n)",
         value: |r, s| r.u_dot / (s.u_cr * s.omega_n),
+        run_panel: false,
     },
     Quantity {
         name: "e_kin_over_eref",
         label: "E_kin/E_ref",
         value: |r, _| r.e_kin,
+        run_panel: false,
     },
     Quantity {
         name: "e_total_over_eref",
         label: labels::E_OVER_EREF,
         value: |r, _| r.e_total,
+        run_panel: true,
     },
     Quantity {
         name: "ug_over_g_tan_alpha",
         label: labels::UG_OVER_G_TAN_ALPHA,
         value: |r, s| r.ug / s.g_tan_alpha,
+        run_panel: true,
     },
-];
-
-/// The panels of `rocking run`'s figure, top to bottom (the paper's Figs 3, 5 and 10).
-pub const RUN_PANELS: [&str; 4] = [
-    "theta_over_alpha",
-    "u_over_ucr",
-    "e_total_over_eref",
-    "ug_over_g_tan_alpha",
 ];
 
 impl Quantity {

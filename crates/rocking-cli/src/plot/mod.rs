@@ -13,7 +13,7 @@ mod history;
 mod ida;
 mod spectrum;
 
-pub use history::{HistoryPanel, Quantity, Trace, QUANTITIES, RUN_PANELS, THETA_OVER_ALPHA};
+pub use history::{HistoryPanel, Quantity, Trace, QUANTITIES, THETA_OVER_ALPHA};
 pub use ida::{ida_plots, FitPanel, IdaPanel, Points};
 pub use spectrum::{BoundaryPanel, CurvePanel, LinePanel, SpectrumPanel, Structure};
 
@@ -185,9 +185,9 @@ impl Figure {
 /// marked (the paper's Figs 3, 5 and 10 style), written as plot.svg, plot.png and plot.pdf.
 pub fn plots(model: &Setup, run: &Run, dir: &Path) -> Result<Vec<PathBuf>, SceneError> {
     let trace = Trace::of(model, run, String::new(), style::LINES[0]);
-    let panels = RUN_PANELS
-        .iter()
-        .filter_map(|name| Quantity::parse(name))
+    let panels = QUANTITIES
+        .into_iter()
+        .filter(|q| q.run_panel)
         .map(|q| Panel::History(HistoryPanel::new(q, vec![trace.clone()])))
         .collect();
     let title = model
@@ -201,7 +201,7 @@ pub fn plots(model: &Setup, run: &Run, dir: &Path) -> Result<Vec<PathBuf>, Scene
         .count();
     let figure = Figure {
         title,
-        caption: (impacts > 0 || run.summary.overturned).then(|| history::CAPTION.to_string()),
+        caption: history::caption(impacts > 0, run.summary.overturned),
         columns: 1,
         panel: (860, 270),
         panels,
