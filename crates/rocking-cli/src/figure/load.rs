@@ -58,7 +58,7 @@ impl Loader {
         let mut m = rocking_scene::setup::build(&sc)?;
         m.options.event_log = true;
         m.options.energy = true;
-        let run = rocking_study::run_report::simulate(&m, scene)?;
+        let run = rocking_study::run_report::simulate(&m, scene)?.run;
         Ok(Trace::of(&m, &run, label, style))
     }
 
@@ -143,7 +143,7 @@ pub fn bisect(plan: &Plan, x: f64, upright: f64, overturned: f64, steps: usize) 
     for _ in 0..steps {
         let mid = 0.5 * (lo + hi);
         match plan.run_cell(&[x, mid]) {
-            Ok(s) => match CellClass::of(&s) {
+            Ok(cell) => match CellClass::of(&cell.summary) {
                 CellClass::OverturnedNoImpact
                 | CellClass::OverturnedOneImpact
                 | CellClass::OverturnedImpacts => hi = mid,

@@ -68,7 +68,7 @@ pub const THETA_OVER_ALPHA: Quantity = Quantity {
 
 /// Every quantity a panel can show; those with `run_panel` make `rocking run`'s figure, top to
 /// bottom (the paper's Figs 3, 5 and 10). A new quantity or panel is one entry here.
-pub const QUANTITIES: [Quantity; 6] = [
+pub const QUANTITIES: [Quantity; 10] = [
     THETA_OVER_ALPHA,
     Quantity {
         name: "u_over_ucr",
@@ -93,6 +93,30 @@ pub const QUANTITIES: [Quantity; 6] = [
         label: labels::E_OVER_EREF,
         value: |r, _| r.e_total,
         run_panel: true,
+    },
+    Quantity {
+        name: "base_moment_over_wb",
+        label: "M_b/(W B)",
+        value: |r, _| r.base_moment_over_wb,
+        run_panel: true,
+    },
+    Quantity {
+        name: "base_shear_over_w",
+        label: "V_b/W",
+        value: |r, _| r.base_shear_over_w,
+        run_panel: false,
+    },
+    Quantity {
+        name: "elastic_base_moment_over_wb",
+        label: "M_el/(W B)",
+        value: |r, _| r.elastic_base_moment_over_wb,
+        run_panel: false,
+    },
+    Quantity {
+        name: "vertical_reaction_over_w",
+        label: "R_v/W",
+        value: |r, _| r.vertical_reaction_over_w,
+        run_panel: false,
     },
     Quantity {
         name: "ug_over_g_tan_alpha",

@@ -285,7 +285,7 @@ pub fn sweep_figure(
                 let mine: Vec<Cell> = cells
                     .iter()
                     .filter(|c| c.index / per == s)
-                    .copied()
+                    .cloned()
                     .collect();
                 let Some(first) = mine.first() else { continue };
                 let values = sweep.values(first.index);
@@ -389,6 +389,7 @@ mod tests {
                 },
             ],
             fingerprint: "test".into(),
+            reported: Vec::new(),
         }
     }
 
@@ -401,6 +402,7 @@ mod tests {
                 class: CellClass::Survived,
                 max_theta_over_alpha: t,
                 impacts: 1,
+                reported: Vec::new(),
             })
             .collect();
         cells.push(Cell {
@@ -408,6 +410,7 @@ mod tests {
             class: CellClass::OverturnedOneImpact,
             max_theta_over_alpha: 15.7,
             impacts: 1,
+            reported: Vec::new(),
         });
         cells
     }

@@ -7,7 +7,7 @@ use rocking_kernels::kernels::index::forces_rocking as fk;
 use rocking_motion::GroundMotion;
 use rocking_ode::roots::{first_true, golden_max};
 
-use super::state::Sim;
+use super::state::{Ellipse, Sim};
 use crate::dense::StepView;
 use crate::results::ForceSummary;
 use crate::taylor::TaylorVariant;
@@ -198,22 +198,15 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
     }
 
     /// After the excitation in full contact: can no force extreme grow any more? Each force is
-    /// affine in (u, u') there; `reach` gives (its value at rest, its largest swing over the
-    /// energy ellipse).
-    pub(super) fn forces_settled(
-        &self,
-        reach: &dyn Fn(&dyn Fn(f64, f64) -> f64) -> (f64, f64),
-    ) -> bool {
+    /// affine in (u, u') there, and the vibration stays inside `ellipse`.
+    pub(super) fn forces_settled(&self, ellipse: &Ellipse) -> bool {
         let max = self.rec.forces.max;
-        let force = |k: usize| {
-            move |a: f64, b: f64| {
-                let f = self.forces_of(true, 1.0, 0.0, &[0.0, a, 0.0, b]);
-                [f.moment, f.shear, f.elastic, f.horizontal][k]
-            }
-        };
         // |M_b|, |V_b|, |M_el| and, as R_v = W in contact, the required friction |R_h| / W.
         (0..4).all(|k| {
-            let (c, r) = reach(&force(k));
+            let (c, r) = ellipse.reach(|a, b| {
+                let f = self.forces_of(true, 1.0, 0.0, &[0.0, a, 0.0, b]);
+                [f.moment, f.shear, f.elastic, f.horizontal][k]
+            });
             c.abs() + r <= max[k]
         })
     }

@@ -7,7 +7,7 @@ use rocking_ode::roots::first_true;
 use rocking_ode::taylor::TaylorSystem;
 
 use super::impact::{self, After};
-use super::state::{Next, Sim, G2, LEFT, RIGHT};
+use super::state::{Ellipse, Next, Sim, G2, LEFT, RIGHT};
 use crate::error::SimError;
 use crate::options::Method;
 use crate::results::{EventKind, Phase};
@@ -66,31 +66,24 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
     /// vibration stays inside its energy ellipse.
     pub(super) fn settled(&self, u: f64, u_dot: f64) -> bool {
         let e = V::energy(&[0.0, u, 0.0, u_dot], RIGHT, &self.p);
-        let vib = e[en::KINETIC] + e[en::STRAIN];
-        // The largest value over the ellipse of g(u, u') = c + a u + b u'.
-        let reach = |g: &dyn Fn(f64, f64) -> f64| {
-            let (c, a, b) = (
-                g(0.0, 0.0),
-                g(1.0, 0.0) - g(0.0, 0.0),
-                g(0.0, 1.0) - g(0.0, 0.0),
-            );
-            let r =
-                (2.0 * vib * (a * a / self.derived.k_tilde + b * b / self.derived.m_tilde)).sqrt();
-            (c, r)
+        let ellipse = Ellipse {
+            vib: e[en::KINETIC] + e[en::STRAIN],
+            k: self.derived.k_tilde,
+            m: self.derived.m_tilde,
         };
         if self.opts.uplift {
             // f_s is affine in (u, u'): the base can never uplift when its largest reachable value
             // stays below zero.
-            let (c, r) = reach(&|a, b| V::uplift(&[a, b], 0.0, RIGHT, &self.p));
+            let (c, r) = ellipse.reach(|a, b| V::uplift(&[a, b], 0.0, RIGHT, &self.p));
             if c + r >= 0.0 {
                 return false;
             }
         }
-        let (_, r_u) = reach(&|a, _| a);
+        let (_, r_u) = ellipse.reach(|a, _| a);
         if !V::RIGID && r_u > self.rec.max_u {
             return false;
         }
-        !self.opts.forces || self.forces_settled(&reach)
+        !self.opts.forces || self.forces_settled(&ellipse)
     }
 
     /// Whether the base really lifts about `s` at `t` from full contact: the rocking equations
