@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# Rebuilds the figures of docs/gallery.md and docs/spectra.md: the paper's Figs 3-10 from the
-# figure files of scenes/paper (one `rocking figure` command: each spectrum is computed once,
-# journaled in out/figure-cache/ and shared by Figs 6-9), the one-axis line plot and the
-# animation of the Fig. 3 run. The images are the same bytes on every machine.
+# Rebuilds the figures of docs/gallery.md, docs/spectra.md and docs/design-forces.md: the paper's
+# Figs 3-10 from the figure files of scenes/paper (one `rocking figure` command: each spectrum is
+# computed once, journaled in out/figure-cache/ and shared by Figs 6-9), the one-axis line plot,
+# the design-force figures and the animation of the Fig. 3 run. The images are the same bytes on every machine.
 # Usage: bash scenes/spectra/make-figures.sh           draw them into docs/img/
 #        bash scenes/spectra/make-figures.sh --check   draw them aside and compare with docs/img/
 #                                                      (exit 1 naming the files that differ)
@@ -41,6 +41,17 @@ spectrum scenes/spectra/fig8.toml --quiet --out "$work/fig8-line" --set structur
     --axis "excitation.amplitude=1:20:40" | sed -n 1p
 pairs+=("$work/fig8-line/line.png" docs/img/spectra/fig8-line.png)
 pairs+=("$work/fig8-line/line.svg" docs/img/spectra/fig8-line.svg)
+# The design forces (docs/design-forces.md): the Fig-8 structure's spectra of the base moment over
+# its fixed-base twin's and of the friction it needs, and the wind turbine rocking against fixed.
+spectrum scenes/spectra/fig8-forces.toml --quiet --out "$work/fig8-forces" | sed -n 1p
+for q in base_moment_ratio max_required_friction; do
+    for ext in png svg; do
+        pairs+=("$work/fig8-forces/spectrum-$q.$ext" "docs/img/forces/fig8-$q.$ext")
+    done
+done
+"$rocking" figure scenes/forces/turbine-elcentro.toml --out "$work/forces" --quiet >/dev/null
+pairs+=("$work/forces/turbine-elcentro.png" docs/img/forces/turbine-elcentro.png)
+pairs+=("$work/forces/turbine-elcentro.svg" docs/img/forces/turbine-elcentro.svg)
 # The animation of the Fig. 3 scene (docs/img/fig3-vvel.gif).
 "$rocking" run scenes/fig3-vvel.toml --animate --out "$work/fig3-vvel-animation" | sed -n 2p
 pairs+=("$work/fig3-vvel-animation/animation.gif" docs/img/fig3-vvel.gif)

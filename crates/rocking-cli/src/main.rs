@@ -297,11 +297,19 @@ fn check(scene: &Path, set: &[String], json: bool) -> Result<(), SceneError> {
         d.theta_cr / d.alpha
     );
     out!("  E_ref      = {:.6e}", d.e_ref);
+    let number = |key: &str| derived[key].as_f64().unwrap_or(f64::NAN);
     out!(
         "  static uplift threshold = {:.6} g tan α",
-        derived["static_uplift_over_g_tan_alpha"]
-            .as_f64()
-            .unwrap_or(f64::NAN)
+        number("static_uplift_over_g_tan_alpha")
+    );
+    out!(
+        "  W          = {:.6e}, W B = {:.6e} (the base moment at uplift)",
+        number("weight"),
+        number("uplift_moment")
+    );
+    out!(
+        "  M_el       = {:.6} W B at static uplift (the elastic moment; P-Δ and the shape make up the rest)",
+        number("elastic_moment_at_uplift_over_wb")
     );
     Ok(())
 }

@@ -34,9 +34,7 @@ const SAME: [(&str, &str); 10] = [
 /// Which files a merge writes into OUT (the outputs of a spectrum or of a record suite).
 fn merge_writes(name: &str) -> bool {
     ["cells.csv", "meta.json", "runs.csv", "fragility.csv"].contains(&name)
-        || plot::SWEEP_FIGURES
-            .iter()
-            .any(|figure| plot::is_figure_file(name, figure))
+        || plot::is_sweep_figure(name)
 }
 
 /// `rocking merge OUT SHARD_DIR...`: the outputs of the whole study from all its shards. Shards

@@ -209,6 +209,12 @@ pub(crate) fn write_outputs(
         let (figure, name) =
             plot::sweep_figure(&title, sweep, &outcome.cells, shown.as_ref(), theta_cr);
         written.extend(figure.write(dir, name)?);
+        if sweep.axes.len() == 2 {
+            for k in 0..sweep.reported.len() {
+                let (figure, name) = plot::reported_figure(&title, sweep, &outcome.cells, k);
+                written.extend(figure.write(dir, &name)?);
+            }
+        }
     }
     Ok(written)
 }

@@ -423,6 +423,10 @@ fn check_prints_variant_reasons_and_derived_quantities() {
         "θ_cr",
         "E_ref",
         "static uplift threshold",
+        // The Fig. 5 flexible column's weight and uplift moment (R = g = m = 1: W = 1 + γ_mc +
+        // γ_mb = 4, B = R sin α), and its elastic moment at static uplift (docs/design-forces.md).
+        "W          = 4.000000e0, W B = 3.993337e-1",
+        "M_el       = 0.880",
     ] {
         assert!(out.contains(needle), "`{needle}` not in:\n{out}");
     }

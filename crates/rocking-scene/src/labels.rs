@@ -21,6 +21,30 @@ pub const FRACTION_OVERTURNED: &str = "fraction overturned";
 /// A record's scale factor.
 pub const SCALE_FACTOR: &str = "scale factor";
 
+/// What a run reports about its forces and its fixed-base twin, in the paper's notation (M_b,
+/// V_b the moment and shear at the column base, M_el the elastic moment, R_h and R_v the ground
+/// reactions, W the total weight, B the half-width); the other quantities by their key.
+const QUANTITIES: [(&str, &str); 9] = [
+    ("max_theta_over_alpha", MAX_THETA_OVER_ALPHA),
+    ("max_u_over_ucr", "max |u|/u_cr"),
+    ("max_base_moment_over_wb", "max |M_b|/(W B)"),
+    ("max_base_shear_over_w", "max |V_b|/W"),
+    ("max_elastic_base_moment_over_wb", "max |M_el|/(W B)"),
+    ("max_required_friction", "max |R_h|/R_v"),
+    ("min_vertical_reaction_over_w", "min R_v/W"),
+    ("base_moment_ratio", "max |M_b|, rocking / fixed base"),
+    ("base_shear_ratio", "max |V_b|, rocking / fixed base"),
+];
+
+/// The label of a quantity a run reports (a key of its summary, as a sweep's `report` names
+/// it).
+pub fn quantity_label(key: &str) -> &str {
+    QUANTITIES
+        .iter()
+        .find(|(k, _)| *k == key)
+        .map_or(key, |(_, label)| label)
+}
+
 /// The label of a scene key a sweep varies: the paper's notation for the keys of the format; for
 /// a parameter a model adds (`structure.m_a`), its name and the registry's doc; else the key.
 pub fn axis_label(key: &str) -> String {
@@ -68,6 +92,12 @@ mod tests {
         assert_eq!(axis_label("excitation.omega_p_over_p"), "ω_p/p");
         assert_eq!(axis_label("excitation.amplitude"), "a_p/(g tan α)");
         assert_eq!(axis_value("structure.omega_n_over_p", 2.5), "ω_n/p = 2.5");
+    }
+
+    #[test]
+    fn reported_quantities_are_labelled_in_the_papers_notation() {
+        assert_eq!(quantity_label("max_base_moment_over_wb"), "max |M_b|/(W B)");
+        assert_eq!(quantity_label("impacts"), "impacts");
     }
 
     #[test]

@@ -415,7 +415,7 @@ fn build(
                         .unwrap_or_else(|| spec.sweeps[sweep].label.clone()),
                 );
                 let alpha = rocking_plot::text::tick(s.alpha);
-                panel.theta_cr = s.theta_cr.map(|v| {
+                panel.mark = s.theta_cr.map(|v| {
                     let v2 = rocking_plot::text::tick((v * 100.0).round() / 100.0);
                     (v, format!("θ_cr/α = {v2} (α = {alpha})"))
                 });

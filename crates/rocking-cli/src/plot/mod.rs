@@ -48,7 +48,8 @@ pub struct Figure {
     pub columns: usize,
     pub panel: (u32, u32),
     pub panels: Vec<Panel>,
-    /// Top of the shared colour scale of the spectrum panels (default: their largest survivor).
+    /// Top of the shared colour scale of the spectrum panels (default: their largest shaded
+    /// value).
     pub colour_top: Option<f64>,
 }
 
@@ -63,13 +64,13 @@ pub fn is_figure_file(file: &str, name: &str) -> bool {
 }
 
 impl Figure {
-    /// The shared colour scale's top: the given one, else the largest survivor of any panel.
+    /// The shared colour scale's top: the given one, else the largest shaded value of any panel.
     fn colour_top(&self) -> Option<f64> {
         let tops: Vec<f64> = self
             .panels
             .iter()
             .filter_map(|p| match p {
-                Panel::Spectrum(s) => Some(s.top_of_survivors()),
+                Panel::Spectrum(s) => Some(s.top_of_shaded()),
                 _ => None,
             })
             .collect();
@@ -80,6 +81,17 @@ impl Figure {
             self.colour_top
                 .unwrap_or_else(|| tops.iter().fold(1e-9, |a, &b| a.max(b))),
         )
+    }
+
+    /// The shared colour scale's bottom: 0, or the lowest shaded value where it is negative.
+    fn colour_bottom(&self) -> f64 {
+        self.panels
+            .iter()
+            .filter_map(|p| match p {
+                Panel::Spectrum(s) => Some(s.bottom_of_shaded()),
+                _ => None,
+            })
+            .fold(0.0, f64::min)
     }
 
     fn page(&self) -> Page<'_> {
@@ -98,11 +110,12 @@ impl Figure {
     pub fn svg(&self) -> Result<String, String> {
         self.page().svg(|areas, side| {
             let top = self.colour_top();
+            let bottom = self.colour_bottom();
             let shared = history::shared_ranges(&self.panels);
             for (k, (p, area)) in self.panels.iter().zip(areas).enumerate() {
                 match p {
                     Panel::History(h) => h.draw(area, shared[k])?,
-                    Panel::Spectrum(s) => s.draw(area, top.unwrap_or(1.0))?,
+                    Panel::Spectrum(s) => s.draw(area, (bottom, top.unwrap_or(1.0)))?,
                     Panel::Boundaries(b) => b.draw(area)?,
                     Panel::Line(l) => l.draw(area)?,
                     Panel::Curve(c) => c.draw(area)?,
@@ -111,20 +124,29 @@ impl Figure {
                 }
             }
             let mut y = 10;
-            if let Some(top) = top {
-                y = spectrum::colour_bar(side, top, &self.theta_cr_marks(), y)?;
+            if let (Some(top), Some(label)) = (top, self.shade_label()) {
+                y = spectrum::colour_bar(side, label, (bottom, top), &self.colour_bar_marks(), y)?;
             }
             legend(side, y, &self.legend())
         })
     }
 
-    /// The θ_cr/α marks of the spectrum panels for the colour bar: one per value; marks of
+    /// The title of the shared colour scale: what the first spectrum panel shades (the panels of
+    /// one figure shade one quantity).
+    fn shade_label(&self) -> Option<&str> {
+        self.panels.iter().find_map(|p| match p {
+            Panel::Spectrum(s) => Some(s.shade().label.as_str()),
+            _ => None,
+        })
+    }
+
+    /// The marks of the spectrum panels for the colour bar (θ_cr/α): one per value; marks of
     /// structures that share it drop their "(α = …)".
-    fn theta_cr_marks(&self) -> Vec<(f64, String)> {
+    fn colour_bar_marks(&self) -> Vec<(f64, String)> {
         self.panels
             .iter()
             .filter_map(|p| match p {
-                Panel::Spectrum(s) => s.theta_cr_mark(),
+                Panel::Spectrum(s) => s.colour_bar_mark(),
                 _ => None,
             })
             .fold(Vec::new(), |mut all: Vec<(f64, String)>, m| {
@@ -272,7 +294,7 @@ pub fn sweep_figure(
             if let Some(r) = reference {
                 p = p.with_reference(r.label, r.sweep, r.cells);
             }
-            p.theta_cr =
+            p.mark =
                 theta_cr.map(|v| (v, format!("θ_cr/α = {}", tick((v * 100.0).round() / 100.0))));
             (Panel::Spectrum(p), "spectrum", None)
         }
@@ -326,6 +348,44 @@ pub fn sweep_figure(
         colour_top: None,
     };
     (figure, name)
+}
+
+/// The figure of a two-axis sweep's reported quantity `k` (of [`Sweep::reported`]): every upright
+/// cell shaded by its value, the overturned ones filled by class; a ratio to the fixed-base twin
+/// marks 1 on the colour bar. Returns the figure and its file name, `spectrum-<quantity>`.
+pub fn reported_figure(title: &str, sweep: &Sweep, cells: &[Cell], k: usize) -> (Figure, String) {
+    let key = &sweep.reported[k];
+    let label = labels::quantity_label(key);
+    let mut panel = SpectrumPanel::reported(sweep, cells, k, label);
+    if rocking_study::run_report::RATIOS.contains(&key.as_str()) {
+        panel.mark = Some((1.0, "fixed base".to_string()));
+    }
+    let figure = Figure {
+        title: format!("{title}: {label}"),
+        caption: Some(
+            "Upright cells shaded by the quantity, overturned cells filled by class; the dotted \
+             line surrounds the cells that never uplift."
+                .to_string(),
+        ),
+        columns: 1,
+        panel: (760, 700),
+        panels: vec![Panel::Spectrum(panel)],
+        colour_top: None,
+    };
+    (figure, format!("{REPORTED_FIGURE}{key}"))
+}
+
+/// The start of the name of a reported quantity's figure.
+const REPORTED_FIGURE: &str = "spectrum-";
+
+/// Whether `file` is one of the figures a sweep writes ([`SWEEP_FIGURES`], [`reported_figure`]).
+pub fn is_sweep_figure(file: &str) -> bool {
+    let name = file.rsplit_once('.').map_or(file, |(name, _)| name);
+    let ours = SWEEP_FIGURES.contains(&name)
+        || name
+            .strip_prefix(REPORTED_FIGURE)
+            .is_some_and(|quantity| !quantity.is_empty());
+    ours && is_figure_file(file, name)
 }
 
 /// Whether a sweep's figure can be drawn: plotters' tick search does not end on a range near the
@@ -452,5 +512,41 @@ mod tests {
             texts.contains(&"3") && !texts.contains(&"4"),
             "ticks: {texts:?}"
         );
+    }
+
+    #[test]
+    fn a_reported_quantity_shades_every_upright_cell_on_its_own_range() {
+        let mut s = sweep();
+        s.reported = vec!["min_vertical_reaction_over_w".into()];
+        let mut c = cells([0.2, 0.65, 1.3]);
+        c[0].class = CellClass::NoUplift;
+        for (cell, v) in c.iter_mut().zip([1.0, 0.4, -0.3, 0.1]) {
+            cell.reported = vec![v];
+        }
+        let (figure, name) = reported_figure("t", &s, &c, 0);
+        assert_eq!(name, "spectrum-min_vertical_reaction_over_w");
+        assert!(is_sweep_figure(&format!("{name}.pdf")) && is_sweep_figure("spectrum.png"));
+        assert!(!is_sweep_figure("spectrum-.svg") && !is_sweep_figure("cells.csv"));
+        let svg = figure.svg().unwrap();
+        let hex = |c: RGBColor| format!("fill=\"#{:02X}{:02X}{:02X}\"", c.0, c.1, c.2);
+        // The scale runs from the lowest value (-0.3) to the highest (1.0, the no-uplift cell,
+        // shaded too, not filled by its class); the overturned cell keeps its class.
+        for v in [1.0, 0.4, -0.3] {
+            let shade = hex(ViridisRGB.get_color_normalized(v, -0.3, 1.0));
+            assert!(svg.contains(&shade), "{v}: {shade} missing");
+        }
+        assert!(!svg.contains(&hex(rgb_of(style::NO_UPLIFT.fill))));
+        assert!(
+            svg.contains("min R<tspan") || svg.contains("min R"),
+            "colour bar title"
+        );
+        assert!(
+            svg.contains("uplift | no uplift"),
+            "the line around the no-uplift cells"
+        );
+    }
+
+    fn rgb_of(c: [u8; 3]) -> RGBColor {
+        RGBColor(c[0], c[1], c[2])
     }
 }

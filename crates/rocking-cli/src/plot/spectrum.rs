@@ -59,23 +59,39 @@ impl Axis {
 }
 
 /// The (x, y) axes of the grid of a sweep's last two axes, each cell's grid position, class and
-/// max θ/α.
+/// shaded value.
 type Grid = (Axis, Axis, Vec<(usize, usize, CellClass, f64)>);
 
-fn grid(sweep: &Sweep, cells: &[Cell]) -> Grid {
+/// What a spectrum's shaded cells show on the figure's colour scale.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Shade {
+    /// The colour bar's title.
+    pub label: String,
+    /// Whether the cells that never uplift are shaded too (else filled as their class).
+    pub no_uplift: bool,
+}
+
+impl Shade {
+    /// The paper's shade: the survivors' max θ/α.
+    pub fn theta() -> Shade {
+        Shade {
+            label: format!("survived: {}", labels::MAX_THETA_OVER_ALPHA),
+            no_uplift: false,
+        }
+    }
+
+    fn shades(&self, class: CellClass) -> bool {
+        class == CellClass::Survived || (self.no_uplift && class == CellClass::NoUplift)
+    }
+}
+
+fn grid(sweep: &Sweep, cells: &[Cell], value: impl Fn(&Cell) -> f64) -> Grid {
     let n = sweep.axes.len();
     let (ax, ay) = (&sweep.axes[n - 2], &sweep.axes[n - 1]);
     let (nx, ny) = (ax.values.len(), ay.values.len());
     let cells = cells
         .iter()
-        .map(|c| {
-            (
-                (c.index / ny) % nx,
-                c.index % ny,
-                c.class,
-                c.max_theta_over_alpha,
-            )
-        })
+        .map(|c| ((c.index / ny) % nx, c.index % ny, c.class, value(c)))
         .collect();
     let axis = |a: &rocking_spectra::Axis| Axis {
         key: a.key.clone(),
@@ -90,59 +106,114 @@ type Lines = Vec<Vec<(f64, f64)>>;
 /// A one-axis sweep's cells: (value, class, max θ/α) by increasing value.
 type LineCells = Vec<(f64, CellClass, f64)>;
 
-/// The lines between overturned and upright cells of a grid.
-fn boundary_lines(g: &Grid) -> Lines {
+/// The lines between the cells of a grid on which `side` differs (`None`: a cell on neither).
+fn boundary_lines(g: &Grid, side: impl Fn(CellClass) -> Option<bool>) -> Lines {
     let (x, y, cells) = g;
-    let mut over = vec![vec![None; y.values.len()]; x.values.len()];
+    let mut sides = vec![vec![None; y.values.len()]; x.values.len()];
     for &(i, j, class, _) in cells {
-        over[i][j] = overturned(class);
+        sides[i][j] = side(class);
     }
-    polylines(&cell_edges(&over, &x.values, &y.values))
+    polylines(&cell_edges(&sides, &x.values, &y.values))
 }
+
+/// Whether a cell uplifted (`None` for a failed cell), for the line around the cells that never
+/// did.
+fn uplifted(class: CellClass) -> Option<bool> {
+    match class {
+        CellClass::Failed => None,
+        CellClass::NoUplift => Some(false),
+        _ => Some(true),
+    }
+}
+
+/// The line between the cells that uplifted and those that never did (dotted).
+const UPLIFT_LINE: LineStyle = LineStyle {
+    dash: Some((3, 4)),
+    ..style::BLACK
+};
 
 /// A rocking spectrum panel.
 pub struct SpectrumPanel {
     pub title: Option<String>,
     grid: Grid,
+    shade: Shade,
     boundary: Lines,
+    /// Around the cells that never uplift, where their class is not filled (dotted).
+    uplift: Lines,
     /// A reference structure's boundary (dashed), with its legend text.
     reference: Option<(String, Lines)>,
-    /// θ_cr/α of the structure, with its text on the colour bar.
-    pub theta_cr: Option<(f64, String)>,
+    /// A value marked on the colour bar, with its text: θ_cr/α of the structure, or 1 for a
+    /// ratio to the fixed base.
+    pub mark: Option<(f64, String)>,
 }
 
 impl SpectrumPanel {
-    /// The panel of a sweep's cells over its last two axes.
+    /// The panel of a sweep's cells over its last two axes, survivors shaded by max θ/α.
     pub fn new(sweep: &Sweep, cells: &[Cell]) -> SpectrumPanel {
-        let grid = grid(sweep, cells);
+        SpectrumPanel::shaded(
+            grid(sweep, cells, |c| c.max_theta_over_alpha),
+            Shade::theta(),
+        )
+    }
+
+    /// The panel of a sweep's reported quantity `k` (of [`Sweep::reported`], labelled `label`):
+    /// every upright cell shaded by its value, a dotted line around those that never uplift.
+    pub fn reported(sweep: &Sweep, cells: &[Cell], k: usize, label: &str) -> SpectrumPanel {
+        let value = |c: &Cell| c.reported.get(k).copied().unwrap_or(f64::NAN);
+        let shade = Shade {
+            label: label.to_string(),
+            no_uplift: true,
+        };
+        let mut panel = SpectrumPanel::shaded(grid(sweep, cells, value), shade);
+        panel.uplift = boundary_lines(&panel.grid, uplifted);
+        panel
+    }
+
+    fn shaded(grid: Grid, shade: Shade) -> SpectrumPanel {
         SpectrumPanel {
             title: None,
-            boundary: boundary_lines(&grid),
+            boundary: boundary_lines(&grid, overturned),
+            uplift: Vec::new(),
             grid,
+            shade,
             reference: None,
-            theta_cr: None,
+            mark: None,
         }
     }
 
     /// Draws a reference structure's overturning boundary over it, dashed.
     pub fn with_reference(mut self, label: &str, sweep: &Sweep, cells: &[Cell]) -> SpectrumPanel {
-        let lines = boundary_lines(&grid(sweep, cells));
+        let lines = boundary_lines(&grid(sweep, cells, |_| 0.0), overturned);
         self.reference = Some((label.to_string(), lines));
         self
     }
 
-    /// The largest max θ/α of the survivors.
-    pub(super) fn top_of_survivors(&self) -> f64 {
+    /// The largest finite value of the shaded cells.
+    pub(super) fn top_of_shaded(&self) -> f64 {
         self.grid
             .2
             .iter()
-            .filter(|c| c.2 == CellClass::Survived)
+            .filter(|c| self.shade.shades(c.2) && c.3.is_finite())
             .map(|c| c.3)
             .fold(1e-9, f64::max)
     }
 
-    pub(super) fn theta_cr_mark(&self) -> Option<(f64, String)> {
-        self.theta_cr.clone()
+    /// The bottom of the colour scale: 0, or the lowest shaded value where it is negative.
+    pub(super) fn bottom_of_shaded(&self) -> f64 {
+        self.grid
+            .2
+            .iter()
+            .filter(|c| self.shade.shades(c.2) && c.3.is_finite())
+            .map(|c| c.3)
+            .fold(0.0, f64::min)
+    }
+
+    pub(super) fn shade(&self) -> &Shade {
+        &self.shade
+    }
+
+    pub(super) fn colour_bar_mark(&self) -> Option<(f64, String)> {
+        self.mark.clone()
     }
 
     pub(super) fn legend(&self) -> Vec<LegendItem> {
@@ -154,7 +225,7 @@ impl SpectrumPanel {
             CellClass::Failed,
         ]
         .into_iter()
-        .filter(|k| self.grid.2.iter().any(|c| c.2 == *k))
+        .filter(|k| !self.shade.shades(*k) && self.grid.2.iter().any(|c| c.2 == *k))
         .filter_map(class_style)
         .map(|s| LegendItem::Fill(s.fill, s.label.to_string()))
         .collect();
@@ -163,6 +234,13 @@ impl SpectrumPanel {
                 [0, 0, 0],
                 None,
                 "overturned | upright".to_string(),
+            ));
+        }
+        if !self.uplift.is_empty() {
+            items.push(LegendItem::Rule(
+                [0, 0, 0],
+                UPLIFT_LINE.dash,
+                "uplift | no uplift".to_string(),
             ));
         }
         if let Some((label, _)) = &self.reference {
@@ -175,7 +253,9 @@ impl SpectrumPanel {
         items
     }
 
-    pub(super) fn draw(&self, area: &Area<'_>, top: f64) -> Result<(), String> {
+    /// Draws the panel, shading on the colour scale `scale` (bottom, top).
+    pub(super) fn draw(&self, area: &Area<'_>, scale: (f64, f64)) -> Result<(), String> {
+        let (bottom, top) = scale;
         let (x, y, cells) = &self.grid;
         let mut chart = axes(
             area,
@@ -190,9 +270,10 @@ impl SpectrumPanel {
         sorted.sort_by_key(|c| (c.0, c.1));
         let mut k = 0;
         while k < sorted.len() {
-            let (i, j, class, theta) = sorted[k];
+            let (i, j, class, value) = sorted[k];
             let mut last = j;
-            if class != CellClass::Survived {
+            let shaded = self.shade.shades(class);
+            if !shaded {
                 while k + 1 < sorted.len()
                     && sorted[k + 1].0 == i
                     && sorted[k + 1].1 == last + 1
@@ -203,8 +284,8 @@ impl SpectrumPanel {
                 }
             }
             let fill = match class_style(class) {
-                Some(s) => rgb(s.fill),
-                None => ViridisRGB.get_color_normalized(theta.min(top), 0.0, top),
+                Some(s) if !shaded => rgb(s.fill),
+                _ => ViridisRGB.get_color_normalized(value.clamp(bottom, top), bottom, top),
             };
             let (x0, x1) = cell_bounds(&x.values, i);
             let (y0, _) = cell_bounds(&y.values, j);
@@ -219,6 +300,9 @@ impl SpectrumPanel {
         }
         for line in &self.boundary {
             styled_line(&mut chart, line.clone(), &solid(), BLACK, 2)?;
+        }
+        for line in &self.uplift {
+            styled_line(&mut chart, line.clone(), &UPLIFT_LINE, BLACK, 2)?;
         }
         if let Some((_, lines)) = &self.reference {
             for line in lines {
@@ -237,19 +321,22 @@ fn solid() -> LineStyle {
     }
 }
 
-/// The colour bar of the survivors' max θ/α (0 to `top`) with θ_cr/α marked, at `y` in the
-/// legend column; returns the y below it.
+/// The colour bar of the shaded cells (`scale`: bottom to top, titled `label`) with `marks`
+/// (θ_cr/α), at `y` in the legend column; returns the y below it.
 pub(super) fn colour_bar(
     side: &Area<'_>,
-    top: f64,
+    label: &str,
+    scale: (f64, f64),
     marks: &[(f64, String)],
     y: i32,
 ) -> Result<i32, String> {
+    let (bottom, top) = scale;
+    let span = top - bottom;
     let height = 330;
     let (width, _) = side.dim_in_pixel();
     let area = side.clone().shrink((0, y), (width, height));
     area.draw(&Text::new(
-        rich(&format!("survived: {}", labels::MAX_THETA_OVER_ALPHA)),
+        rich(label),
         (10, 4),
         ("sans-serif", LEGEND).into_font(),
     ))
@@ -257,19 +344,19 @@ pub(super) fn colour_bar(
     let bar = area.clone().shrink((10, 30), (34, height - 44));
     let mut chart = ChartBuilder::on(&bar)
         .set_label_area_size(LabelAreaPosition::Right, 0)
-        .build_cartesian_2d(0.0..1.0, 0.0..top)
+        .build_cartesian_2d(0.0..1.0, bottom..top)
         .map_err(fail)?;
     let steps = 120;
     chart
         .draw_series((0..steps).map(|k| {
             let (a, b) = (
-                top * k as f64 / steps as f64,
-                top * (k + 1) as f64 / steps as f64,
+                bottom + span * k as f64 / steps as f64,
+                bottom + span * (k + 1) as f64 / steps as f64,
             );
             Rectangle::new(
                 [(0.0, a), (1.0, b)],
                 ViridisRGB
-                    .get_color_normalized((a + b) / 2.0, 0.0, top)
+                    .get_color_normalized((a + b) / 2.0, bottom, top)
                     .filled(),
             )
         }))
@@ -280,15 +367,18 @@ pub(super) fn colour_bar(
         .into_text_style(&area)
         .pos(Pos::new(HPos::Left, VPos::Center));
     let (_, bar_h) = bar.dim_in_pixel();
-    let to_y = |v: f64| 30 + ((1.0 - v / top) * bar_h as f64).round() as i32;
-    for v in nice_ticks(top) {
+    let to_y = |v: f64| 30 + ((top - v) / span * bar_h as f64).round() as i32;
+    for v in nice_ticks(bottom, top) {
         let py = to_y(v);
         area.draw(&PathElement::new(vec![(44, py), (50, py)], BLACK))
             .map_err(fail)?;
         area.draw_text(&tick(v), &font, (54, py)).map_err(fail)?;
     }
     // Marks from the top down; a label too close to the one above moves below it.
-    let mut shown: Vec<&(f64, String)> = marks.iter().filter(|m| m.0 <= top).collect();
+    let mut shown: Vec<&(f64, String)> = marks
+        .iter()
+        .filter(|m| (bottom..=top).contains(&m.0))
+        .collect();
     shown.sort_by(|a, b| b.0.total_cmp(&a.0));
     let mut last_text = i32::MIN / 2;
     for (v, text) in shown {
@@ -310,18 +400,19 @@ pub(super) fn colour_bar(
     Ok(y + height)
 }
 
-/// About five round tick values from 0 to `top`.
-fn nice_ticks(top: f64) -> Vec<f64> {
-    let raw = top / 5.0;
+/// About five round tick values from `bottom` to `top`.
+fn nice_ticks(bottom: f64, top: f64) -> Vec<f64> {
+    let raw = (top - bottom) / 5.0;
     let mag = 10f64.powf(raw.log10().floor());
     let step = [1.0, 2.0, 2.5, 5.0, 10.0]
         .iter()
         .map(|m| m * mag)
         .find(|s| *s >= raw)
         .unwrap_or(10.0 * mag);
-    (0..)
+    let first = (bottom / step * (1.0 - 1e-9)).ceil() as i64;
+    (first..)
         .map(|k| k as f64 * step)
-        .take_while(|v| *v <= top * (1.0 + 1e-9))
+        .take_while(|v| *v <= top * (1.0 + 1e-9) + 1e-12 * step)
         .collect()
 }
 
@@ -348,7 +439,7 @@ impl Structure {
         cells: &[Cell],
         mut refine: impl FnMut(f64, f64, f64) -> f64,
     ) -> Structure {
-        let (x, y, grid) = grid(sweep, cells);
+        let (x, y, grid) = grid(sweep, cells, |c| c.max_theta_over_alpha);
         let mut line = vec![Vec::new()];
         let mut islands = Vec::new();
         for (i, &xv) in x.values.iter().enumerate() {
