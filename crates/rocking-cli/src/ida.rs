@@ -100,12 +100,7 @@ fn ida_csv(done: &[RecordStudy]) -> Result<Vec<u8>, SceneError> {
 
 /// The intensity measure's axis label, e.g. "Sa(T = 4.5 s, ζ = 5 %) (m/s²)".
 fn im_label(im: &ScalingIm) -> String {
-    match *im {
-        ScalingIm::Pga => "PGA (m/s²)".to_string(),
-        ScalingIm::Sa { period, damping } => {
-            format!("Sa(T = {period} s, ζ = {} %) (m/s²)", 100.0 * damping)
-        }
-    }
+    format!("{} (m/s²)", im.name())
 }
 
 /// `rocking ida`: IDA by hunt-and-fill, or with `[ida] stripes` a multiple-stripe analysis.
@@ -132,7 +127,19 @@ pub fn ida(
     let pool = pool
         .build()
         .map_err(|e| SceneError::failure(format!("cannot start the thread pool: {e}")))?;
-    let st = pool.install(|| rocking_study::ida::run(&base, records))?;
+    let target = out.unwrap_or_else(|| {
+        let stem = scene_path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "scene".into());
+        Path::new("out").join(format!("{stem}-ida"))
+    });
+    // Everything that can be refused is, before the first analysis: the scene, the settings and
+    // the records (planned), and an --out that could not be replaced (it was refused after the
+    // whole study).
+    let planned = pool.install(|| rocking_study::ida::plan(&base, records))?;
+    let dir = OutDir::begin(&target, crate::out_dir::IDA_OUT)?;
+    let st = pool.install(|| planned.run())?;
     let (done, fit) = (&st.records, &st.fit);
     let runs = st.analyses();
     let empirical = st.empirical();
@@ -147,14 +154,6 @@ pub fn ida(
     let (tl, th) = fit.theta_interval();
     let (bl, bh) = fit.beta_interval();
     let method = st.method();
-    let target = out.unwrap_or_else(|| {
-        let stem = scene_path
-            .file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_else(|| "scene".into());
-        Path::new("out").join(format!("{stem}-ida"))
-    });
-    let dir = OutDir::begin_for(&target, crate::out_dir::IDA_OUT)?;
     write_atomic(
         &dir.path().join("records.csv"),
         &records_csv(done, alpha, g_si)?,

@@ -300,7 +300,7 @@ fn run(scene: &Path, set: &[String], out: Option<PathBuf>, json: bool) -> Result
     });
     // Everything is written into a staging directory that replaces `dir` whole at the end; an
     // --out that cannot be replaced is refused before the run.
-    let out_dir = out_dir::OutDir::begin(&dir)?;
+    let out_dir = out_dir::OutDir::begin(&dir, out_dir::RUN_OUT)?;
     let report = report::simulate(&m, scene)?;
     let summary = report::summary_json(&m, scene, &report)?;
     let warnings = match &report.run.summary.forces {
