@@ -207,7 +207,11 @@ fn models_command(json: bool) -> Result<(), SceneError> {
 }
 
 fn check(scene: &Path, set: &[String], json: bool) -> Result<(), SceneError> {
-    let (_, m) = load(scene, set)?;
+    // What `run`, `spectrum`, `batch` and `ida` refuse in the scene, by their own checks.
+    let base = rocking_study::plan::Base::load(scene, set)?;
+    rocking_study::plan::check_table(&base)?;
+    rocking_study::ida::check_table(&base)?;
+    let m = base.model(&[])?;
     let derived = report::derived_json(&m)?;
     if json {
         let v = serde_json::json!({

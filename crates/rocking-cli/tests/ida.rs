@@ -310,8 +310,16 @@ fn bad_ida_settings_exit_2_naming_the_key_and_range() {
         ("ida.period=1e300", "`period`", "0.001 s <= period <= 100 s"),
         ("ida.max_gap=0.001", "`max_gap`", "tolerance <= max_gap < 1"),
         ("ida.stripes=[1.0, -2.0]", "`stripes`", "finite and > 0"),
-        ("ida.stripes=[]", "`stripes`", "2 to 1000 different IM levels"),
-        ("ida.stripes=[5.0]", "`stripes`", "2 to 1000 different IM levels"),
+        (
+            "ida.stripes=[]",
+            "`stripes`",
+            "2 to 1000 different IM levels",
+        ),
+        (
+            "ida.stripes=[5.0]",
+            "`stripes`",
+            "2 to 1000 different IM levels",
+        ),
     ] {
         let o = rocking(&["ida", "scenes/wind-turbine-ida.toml", "--set", set]);
         assert_eq!(o.status.code(), Some(2), "{set}");

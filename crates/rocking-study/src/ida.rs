@@ -213,6 +213,12 @@ struct Prepared {
     im_max: f64,
 }
 
+/// A computed number for a message, to 5 significant digits (`1019716.2129779282` reads
+/// `1019700`).
+fn derived(v: f64) -> String {
+    short(format!("{v:.4e}").parse().unwrap_or(v))
+}
+
 /// Plans the study of the scene `base` over `records` (else the scene's): everything a bad input
 /// can be found in without an analysis is checked here (a scene that is not a record scene, the
 /// `[ida]` settings, the record files, each record's intensity measures, stripe levels a record
@@ -255,11 +261,11 @@ pub fn plan<'a>(base: &'a Base, records: &[PathBuf]) -> Result<Planned<'a>, Scen
                     settings.im.name(),
                     short(top),
                     r.path,
-                    short(top / r.im_unscaled),
-                    short(top / r.im_max * MAX_ACCEL_G),
+                    derived(top / r.im_unscaled),
+                    derived(top / r.im_max * MAX_ACCEL_G),
                     short(MAX_ACCEL_G),
                     settings.im.name(),
-                    short(r.im_max)
+                    derived(r.im_max)
                 ),
             ));
         }
@@ -334,6 +340,15 @@ impl Planned<'_> {
             fit,
             evidence,
         })
+    }
+}
+
+/// Everything a study would refuse in the scene's `[ida]` table, checked without one: `rocking
+/// check` refuses what `rocking ida` refuses.
+pub fn check_table(base: &Base) -> Result<(), SceneError> {
+    match &base.scene().spec.ida {
+        Some(spec) => settings(spec, &base.scene().src).map(|_| ()),
+        None => Ok(()),
     }
 }
 
@@ -571,7 +586,7 @@ fn prepare(base: &Base, s: &Settings, file: &Path) -> Result<Prepared, SceneErro
         return Err(bad(&format_args!(
             "its {} at scale 1 is {}: a record without motion there cannot be scaled to a level",
             s.im.name(),
-            short(im_unscaled)
+            derived(im_unscaled)
         )));
     }
     Ok(Prepared {
@@ -622,7 +637,7 @@ fn study(base: &Base, s: &Settings, r: Prepared) -> Result<RecordStudy, SceneErr
                 ScalingIm::Sa { period, .. } => format!(
                     " (its {im_name} at scale 1 is {} m/s²: is `period` = {} s in [ida] the \
                      structure's?)",
-                    short(r.im_unscaled),
+                    derived(r.im_unscaled),
                     short(period)
                 ),
                 ScalingIm::Pga => String::new(),
@@ -634,8 +649,8 @@ fn study(base: &Base, s: &Settings, r: Prepared) -> Result<RecordStudy, SceneErr
                      needs a scale factor of {}, a PGA of {} g; at most {} g: the structure \
                      stands up to the strongest version of this record a scene allows{hint}",
                     short(im),
-                    short(scale),
-                    short(im / r.im_max * MAX_ACCEL_G),
+                    derived(scale),
+                    derived(im / r.im_max * MAX_ACCEL_G),
                     short(MAX_ACCEL_G)
                 ),
             ));
@@ -650,7 +665,7 @@ fn study(base: &Base, s: &Settings, r: Prepared) -> Result<RecordStudy, SceneErr
                 e.context(format_args!(
                     "record {path}, the analysis at {im_name} = {} m/s² (scale {})",
                     short(im),
-                    short(scale)
+                    derived(scale)
                 ))
             })?
             .summary;
