@@ -150,7 +150,6 @@ pub fn ida(
     if let (Some(j), serde_json::Value::Object(f)) = (json.as_object_mut(), st.fragility_json()) {
         j.extend(f);
     }
-    json["elapsed_s"] = json!(start.elapsed().as_secs_f64());
     let (tl, th) = fit.theta_interval();
     let (bl, bh) = fit.beta_interval();
     let method = st.method();
@@ -166,7 +165,18 @@ pub fn ida(
     write_atomic(&dir.path().join(table), &ida_csv(done)?)?;
     let text = serde_json::to_string_pretty(&json)
         .map_err(|e| SceneError::failure(format!("cannot write fragility.json: {e}")))?;
-    write_atomic(&dir.path().join("fragility.json"), text.as_bytes())?;
+    write_atomic(&dir.path().join("fragility.json"), (text + "\n").as_bytes())?;
+    // What the study took, apart: fragility.json is a function of the study alone (the same
+    // bytes on every run), as a spectrum's meta.json is.
+    let timing = json!({
+        "seconds": start.elapsed().as_secs_f64(),
+        "threads": pool.current_num_threads(),
+        "analyses": runs,
+    });
+    write_atomic(
+        &dir.path().join("timing.json"),
+        (serde_json::to_string_pretty(&timing).unwrap_or_default() + "\n").as_bytes(),
+    )?;
     let curves: Vec<(String, ida_plot::Points)> = done
         .iter()
         .map(|d| {
@@ -181,6 +191,9 @@ pub fn ida(
     ida_plot::ida_curves(&curves, &im_label, dir.path())?;
     ida_plot::fragility_fit(&empirical, done.len(), fit, &im_label, dir.path())?;
     dir.commit()?;
+    if let Some(w) = st.band_warning() {
+        eprintln!("warning: {w}");
+    }
     out!(
         "{} records, {runs} analyses ({method}) in {:.2} s: median capacity {:.4} m/s2 ({:.4} g), \
          beta {:.3} (95 % band: median {:.4}..{:.4}, beta {:.3}..{:.3}); outputs in {}",

@@ -218,6 +218,7 @@ fn check(scene: &Path, set: &[String], json: bool) -> Result<(), SceneError> {
             "scene": scene.display().to_string(),
             "model": m.structure.model().name,
             "params": models::params_json(&m.structure),
+            "overrides": set,
             "kernel_variant": m.variant.name,
             "variant_reasons": m.reasons,
             "excitation": m.excitation_description,
@@ -306,7 +307,7 @@ fn run(scene: &Path, set: &[String], out: Option<PathBuf>, json: bool) -> Result
     // --out that cannot be replaced is refused before the run.
     let out_dir = out_dir::OutDir::begin(&dir, out_dir::RUN_OUT)?;
     let report = report::simulate(&m, scene)?;
-    let summary = report::summary_json(&m, scene, &report)?;
+    let summary = report::summary_json(&m, scene, set, &report)?;
     let warnings = match &report.run.summary.forces {
         Some(f) => report::warnings(&m, f),
         None => Vec::new(),

@@ -538,6 +538,14 @@ const ROWS: &[Row] = &[
         &["`stripes` in [ida] reaches PGA = 1000000 m/s²", "rec.AT2", "at most 10000 g"],
     ),
     (
+        "ida-bootstrap-one",
+        SCENE,
+        PULSE,
+        "kind = \"record\"\npath = \"rec.AT2\"\n\n[ida]\nrecords = [\"rec.AT2\"]\nim = \"pga\"\nbootstrap = 1",
+        Some(RECORD),
+        &["`bootstrap` = 1 in [ida]", "200 <= bootstrap <= 100000"],
+    ),
+    (
         "ida-pulse-scene",
         SCENE,
         "[solver]",
