@@ -11,8 +11,8 @@ use rocking_study::ida::RecordStudy;
 use rocking_study::plan::Base;
 use serde_json::json;
 
-use crate::ida_plot;
 use crate::out_dir::{write_atomic, OutDir};
+use crate::plot;
 use rocking_scene::SceneError;
 
 fn csv_err(e: csv::Error) -> SceneError {
@@ -177,7 +177,7 @@ pub fn ida(
         &dir.path().join("timing.json"),
         (serde_json::to_string_pretty(&timing).unwrap_or_default() + "\n").as_bytes(),
     )?;
-    let curves: Vec<(String, ida_plot::Points)> = done
+    let curves: Vec<(String, plot::Points)> = done
         .iter()
         .map(|d| {
             let pts = d
@@ -188,8 +188,26 @@ pub fn ida(
         })
         .collect();
     let im_label = im_label(&st.settings.im);
-    ida_plot::ida_curves(&curves, &im_label, dir.path())?;
-    ida_plot::fragility_fit(&empirical, done.len(), fit, &im_label, dir.path())?;
+    let empirical_label = if st.settings.stripes.is_some() {
+        "fraction overturned per stripe"
+    } else {
+        "a record's capacity at (i + ½)/n"
+    };
+    plot::ida_plots(
+        plot::IdaPanel {
+            curves,
+            im_label: im_label.clone(),
+            stripes: st.settings.stripes.is_some(),
+        },
+        plot::FitPanel {
+            fit: fit.clone(),
+            empirical,
+            empirical_label: empirical_label.to_string(),
+            im_label,
+            unit: "m/s²".to_string(),
+        },
+        dir.path(),
+    )?;
     dir.commit()?;
     if let Some(w) = st.band_warning() {
         eprintln!("warning: {w}");

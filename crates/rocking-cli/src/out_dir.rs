@@ -4,6 +4,8 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::plot;
+
 use rocking_scene::SceneError;
 
 /// Writes `bytes` to `path` atomically ([`rocking_spectra::write_atomic`]).
@@ -16,66 +18,58 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), SceneError> {
 /// existing directory holding anything else is not replaced (it is not this command's).
 #[derive(Clone, Copy)]
 pub struct OutKind {
-    /// Every file the command may write.
-    pub files: &'static [&'static str],
+    /// Whether a file of this name is one the command may write (all of them: a command rewrites
+    /// its own previous outputs, whichever options wrote them).
+    pub writes: fn(&str) -> bool,
     /// The command, for messages.
     pub command: &'static str,
 }
 
-/// The outputs of `rocking run`.
+/// The outputs of `rocking run` (with --animate, plots in every format).
 pub const RUN_OUT: OutKind = OutKind {
-    files: &[
-        "summary.json",
-        "history.csv",
-        "events.csv",
-        "plot.png",
-        "plot.svg",
-        "animation.gif",
-    ],
+    writes: |n| {
+        ["summary.json", "history.csv", "events.csv", "animation.gif"].contains(&n)
+            || plot::is_figure_file(n, "plot")
+    },
     command: "rocking run",
 };
 
 /// The outputs of `rocking ida` (IDA or stripes).
 pub const IDA_OUT: OutKind = OutKind {
-    files: &[
-        "records.csv",
-        "ida.csv",
-        "stripes.csv",
-        "fragility.json",
-        "timing.json",
-        "ida.png",
-        "ida.svg",
-        "fragility-fit.png",
-        "fragility-fit.svg",
-    ],
+    writes: |n| {
+        [
+            "records.csv",
+            "ida.csv",
+            "stripes.csv",
+            "fragility.json",
+            "timing.json",
+        ]
+        .contains(&n)
+            || ["ida", "fragility-fit"]
+                .iter()
+                .any(|figure| plot::is_figure_file(n, figure))
+    },
     command: "rocking ida",
 };
 
 /// The outputs of `rocking merge`: a spectrum's (any number of axes, with its reference) or a
 /// record suite's.
 pub const MERGE_OUT: OutKind = OutKind {
-    files: &[
-        "cells.csv",
-        "meta.json",
-        "reference.csv",
-        "spectrum.png",
-        "spectrum.svg",
-        "line.png",
-        "line.svg",
-        "runs.csv",
-        "fragility.csv",
-        "fragility.png",
-        "fragility.svg",
-    ],
+    writes: |n| {
+        [
+            "cells.csv",
+            "meta.json",
+            "reference.csv",
+            "runs.csv",
+            "fragility.csv",
+        ]
+        .contains(&n)
+            || plot::SWEEP_FIGURES
+                .iter()
+                .any(|figure| plot::is_figure_file(n, figure))
+    },
     command: "rocking merge",
 };
-
-impl OutKind {
-    /// Whether a file of this name is one the command writes.
-    fn writes(&self, name: &str) -> bool {
-        self.files.contains(&name)
-    }
-}
 
 /// The output directory of one command, built aside and swapped in whole: the directory always
 /// holds exactly one run's files, whether the run is killed while writing (the old directory
@@ -232,7 +226,7 @@ impl OutDir {
                 let n = e.map(|e| e.file_name().to_string_lossy().into_owned());
                 let n = n.unwrap_or_default();
                 assert!(
-                    self.kind.writes(&n),
+                    (self.kind.writes)(&n),
                     "`{}` wrote `{n}`, which is not in its OutKind: the next run would refuse \
                      the directory",
                     self.kind.command
@@ -350,8 +344,8 @@ fn check_is_run_dir(target: &Path, shown: &Path, kind: OutKind) -> Result<(), Sc
         let leftover = n
             .strip_prefix('.')
             .and_then(|m| m.rsplit_once(".tmp"))
-            .is_some_and(|(f, _)| kind.writes(f));
-        if !kind.writes(&n) && !leftover {
+            .is_some_and(|(f, _)| (kind.writes)(f));
+        if !(kind.writes)(&n) && !leftover {
             return Err(SceneError::input(format!(
                 "{}: --out holds `{n}`, which `{}` does not write; the run replaces the \
                  whole directory, so give an --out that holds only a previous run's outputs",

@@ -314,6 +314,7 @@ fn a_merge_rewrites_its_own_out() {
             names(&out),
             [
                 "cells.csv",
+                "line.pdf",
                 "line.png",
                 "line.svg",
                 "meta.json",

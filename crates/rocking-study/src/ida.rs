@@ -602,7 +602,7 @@ fn prepare(base: &Base, s: &Settings, file: &Path) -> Result<Prepared, SceneErro
         path: Some(path.clone()),
         ..sc.spec.excitation.clone().unwrap_or_default()
     };
-    let rec = rocking_scene::setup::scene_record(&sc.src, &exc)?;
+    let rec = rocking_scene::excitation::scene_record(&sc.src, &exc)?;
     let unit = rec.declared_unit.map_or("g (not stated)", AccelUnit::name);
     let (dt, npts) = (rec.dt, rec.npts);
     // The record as the structure feels it (the units model of `AccelUnit`), in m/s².
