@@ -48,12 +48,32 @@ commands:
       Print this message.
 ";
 
-/// The repository root (the parent of this crate's directory).
-pub fn repo_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .parent()
-        .expect("xtask lives one level below the repository root")
-        .to_path_buf()
+/// The repository root: the nearest directory at or above the current one that holds the
+/// workspace's Cargo.toml and this xtask (where cargo found the `xtask` alias). Not the path the
+/// binary was compiled in: a checkout copied or moved with its `target/` works on itself.
+pub fn repo_root() -> Result<PathBuf> {
+    let cwd = std::env::current_dir()?;
+    workspace_root(&cwd).ok_or_else(|| {
+        format!(
+            "no repository at or above {}: run `cargo xtask` inside the repository (a directory \
+             whose Cargo.toml has [workspace] and which holds xtask/)",
+            cwd.display()
+        )
+        .into()
+    })
+}
+
+/// The nearest ancestor of `start` (itself included) that is a workspace root holding xtask/.
+fn workspace_root(start: &Path) -> Option<PathBuf> {
+    let is_root = |dir: &Path| {
+        dir.join("xtask/Cargo.toml").is_file()
+            && std::fs::read_to_string(dir.join("Cargo.toml"))
+                .is_ok_and(|t| t.lines().any(|l| l.trim() == "[workspace]"))
+    };
+    start
+        .ancestors()
+        .find(|d| is_root(d))
+        .map(Path::to_path_buf)
 }
 
 fn main() -> ExitCode {
@@ -62,26 +82,33 @@ fn main() -> ExitCode {
         eprint!("{USAGE}");
         return ExitCode::from(2);
     };
+    if matches!(command.as_str(), "help" | "--help" | "-h") {
+        print!("{USAGE}");
+        return ExitCode::SUCCESS;
+    }
+    let root = match repo_root() {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
     let result = match command.as_str() {
         "regen" => match regen::Options::parse(rest) {
-            Ok(opts) => regen::run(&repo_root(), &opts),
+            Ok(opts) => regen::run(&root, &opts),
             Err(msg) => {
                 eprintln!("error: {msg}\n\n{USAGE}");
                 return ExitCode::from(2);
             }
         },
         "bench" => match bench::Options::parse(rest) {
-            Ok(opts) => bench::run_bench(&repo_root(), &opts),
+            Ok(opts) => bench::run_bench(&root, &opts),
             Err(msg) => {
                 eprintln!("error: {msg}\n\n{USAGE}");
                 return ExitCode::from(2);
             }
         },
-        "try-model" if rest.is_empty() => try_model::run(&repo_root()),
-        "help" | "--help" | "-h" => {
-            print!("{USAGE}");
-            return ExitCode::SUCCESS;
-        }
+        "try-model" if rest.is_empty() => try_model::run(&root),
         other => {
             eprintln!("error: unknown command {other:?}\n\n{USAGE}");
             return ExitCode::from(2);
@@ -93,5 +120,52 @@ fn main() -> ExitCode {
             eprintln!("error: {e}");
             ExitCode::FAILURE
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::workspace_root;
+
+    /// The root is found from where xtask runs, in any copy of the tree: from the root itself,
+    /// from a folder below it and from a member crate with its own Cargo.toml, and nowhere
+    /// outside a workspace (the compile-time path is never the answer).
+    #[test]
+    fn the_repository_is_found_from_the_current_directory() {
+        let tmp = tempfile::tempdir().unwrap();
+        let copy = tmp.path().join("moved-checkout");
+        for dir in ["xtask", "crates/member/src"] {
+            std::fs::create_dir_all(copy.join(dir)).unwrap();
+        }
+        std::fs::write(
+            copy.join("Cargo.toml"),
+            "[workspace]\nmembers = [\"crates/*\"]\n",
+        )
+        .unwrap();
+        std::fs::write(
+            copy.join("xtask/Cargo.toml"),
+            "[package]\nname = \"xtask\"\n",
+        )
+        .unwrap();
+        std::fs::write(
+            copy.join("crates/member/Cargo.toml"),
+            "[package]\nname = \"m\"\n",
+        )
+        .unwrap();
+        for start in ["", "crates/member", "crates/member/src"] {
+            assert_eq!(
+                workspace_root(&copy.join(start)),
+                Some(copy.clone()),
+                "{start}"
+            );
+        }
+        assert_eq!(workspace_root(tmp.path()), None);
+        // The compile-time checkout is not where this copy's root is.
+        assert_ne!(
+            workspace_root(&copy),
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+                .parent()
+                .map(|p| p.to_path_buf())
+        );
     }
 }

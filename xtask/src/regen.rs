@@ -358,7 +358,7 @@ mod tests {
     /// template change without `cargo xtask regen`, and a stale module.
     #[test]
     fn checked_in_generated_code_is_fresh() {
-        let root = crate::repo_root();
+        let root = crate::repo_root().unwrap();
         let opts = Options {
             check: true,
             skip_derive: true,
@@ -370,7 +370,9 @@ mod tests {
 
     fn fixture_root() -> tempfile::TempDir {
         let tmp = tempfile::tempdir().unwrap();
-        let fixtures = crate::repo_root().join("crates/rocking-codegen/tests/fixtures");
+        let fixtures = crate::repo_root()
+            .unwrap()
+            .join("crates/rocking-codegen/tests/fixtures");
         let ir = tmp.path().join(IR_DIR);
         std::fs::create_dir_all(&ir).unwrap();
         for name in ["ops.json", "rigid_block.json"] {

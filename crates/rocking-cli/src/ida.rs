@@ -100,12 +100,7 @@ fn ida_csv(done: &[RecordStudy]) -> Result<Vec<u8>, SceneError> {
 
 /// The intensity measure's axis label, e.g. "Sa(T = 4.5 s, ζ = 5 %) (m/s²)".
 fn im_label(im: &ScalingIm) -> String {
-    match *im {
-        ScalingIm::Pga => "PGA (m/s²)".to_string(),
-        ScalingIm::Sa { period, damping } => {
-            format!("Sa(T = {period} s, ζ = {} %) (m/s²)", 100.0 * damping)
-        }
-    }
+    format!("{} (m/s²)", im.name())
 }
 
 /// `rocking ida`: IDA by hunt-and-fill, or with `[ida] stripes` a multiple-stripe analysis.
@@ -132,7 +127,19 @@ pub fn ida(
     let pool = pool
         .build()
         .map_err(|e| SceneError::failure(format!("cannot start the thread pool: {e}")))?;
-    let st = pool.install(|| rocking_study::ida::run(&base, records))?;
+    let target = out.unwrap_or_else(|| {
+        let stem = scene_path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "scene".into());
+        Path::new("out").join(format!("{stem}-ida"))
+    });
+    // Everything that can be refused is, before the first analysis: the scene, the settings and
+    // the records (planned), and an --out that could not be replaced (it was refused after the
+    // whole study).
+    let planned = pool.install(|| rocking_study::ida::plan(&base, records))?;
+    let dir = OutDir::begin(&target, crate::out_dir::IDA_OUT)?;
+    let st = pool.install(|| planned.run())?;
     let (done, fit) = (&st.records, &st.fit);
     let runs = st.analyses();
     let empirical = st.empirical();
@@ -143,18 +150,9 @@ pub fn ida(
     if let (Some(j), serde_json::Value::Object(f)) = (json.as_object_mut(), st.fragility_json()) {
         j.extend(f);
     }
-    json["elapsed_s"] = json!(start.elapsed().as_secs_f64());
     let (tl, th) = fit.theta_interval();
     let (bl, bh) = fit.beta_interval();
     let method = st.method();
-    let target = out.unwrap_or_else(|| {
-        let stem = scene_path
-            .file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_else(|| "scene".into());
-        Path::new("out").join(format!("{stem}-ida"))
-    });
-    let dir = OutDir::begin_for(&target, crate::out_dir::IDA_OUT)?;
     write_atomic(
         &dir.path().join("records.csv"),
         &records_csv(done, alpha, g_si)?,
@@ -167,7 +165,18 @@ pub fn ida(
     write_atomic(&dir.path().join(table), &ida_csv(done)?)?;
     let text = serde_json::to_string_pretty(&json)
         .map_err(|e| SceneError::failure(format!("cannot write fragility.json: {e}")))?;
-    write_atomic(&dir.path().join("fragility.json"), text.as_bytes())?;
+    write_atomic(&dir.path().join("fragility.json"), (text + "\n").as_bytes())?;
+    // What the study took, apart: fragility.json is a function of the study alone (the same
+    // bytes on every run), as a spectrum's meta.json is.
+    let timing = json!({
+        "seconds": start.elapsed().as_secs_f64(),
+        "threads": pool.current_num_threads(),
+        "analyses": runs,
+    });
+    write_atomic(
+        &dir.path().join("timing.json"),
+        (serde_json::to_string_pretty(&timing).unwrap_or_default() + "\n").as_bytes(),
+    )?;
     let curves: Vec<(String, plot::Points)> = done
         .iter()
         .map(|d| {
@@ -200,6 +209,9 @@ pub fn ida(
         dir.path(),
     )?;
     dir.commit()?;
+    if let Some(w) = st.band_warning() {
+        eprintln!("warning: {w}");
+    }
     out!(
         "{} records, {runs} analyses ({method}) in {:.2} s: median capacity {:.4} m/s2 ({:.4} g), \
          beta {:.3} (95 % band: median {:.4}..{:.4}, beta {:.3}..{:.3}); outputs in {}",

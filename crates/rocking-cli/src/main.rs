@@ -228,13 +228,18 @@ fn models_command(json: bool) -> Result<(), SceneError> {
 }
 
 fn check(scene: &Path, set: &[String], json: bool) -> Result<(), SceneError> {
-    let (_, m) = load(scene, set)?;
+    // What `run`, `spectrum`, `batch` and `ida` refuse in the scene, by their own checks.
+    let base = rocking_study::plan::Base::load(scene, set)?;
+    rocking_study::plan::check_table(&base)?;
+    rocking_study::ida::check_table(&base)?;
+    let m = base.model(&[])?;
     let derived = report::derived_json(&m)?;
     if json {
         let v = serde_json::json!({
             "scene": scene.display().to_string(),
             "model": m.structure.model().name,
             "params": models::params_json(&m.structure),
+            "overrides": set,
             "kernel_variant": m.variant.name,
             "variant_reasons": m.reasons,
             "excitation": m.excitation_description,
@@ -329,9 +334,9 @@ fn run(scene: &Path, set: &[String], out: Option<PathBuf>, json: bool) -> Result
     });
     // Everything is written into a staging directory that replaces `dir` whole at the end; an
     // --out that cannot be replaced is refused before the run.
-    let out_dir = out_dir::OutDir::begin(&dir)?;
+    let out_dir = out_dir::OutDir::begin(&dir, out_dir::RUN_OUT)?;
     let report = report::simulate(&m, scene)?;
-    let summary = report::summary_json(&m, scene, &report)?;
+    let summary = report::summary_json(&m, scene, set, &report)?;
     let warnings = match &report.run.summary.forces {
         Some(f) => report::warnings(&m, f),
         None => Vec::new(),

@@ -11,8 +11,7 @@ use rocking_spectra::shard::MergeError;
 use rocking_spectra::{Outcome, Shard, SweepError};
 use rocking_study::plan::{program_digest, Base, Plan};
 
-use crate::out_dir::{OutDir, OutKind};
-use crate::plot;
+use crate::out_dir::{OutDir, MERGE_OUT};
 use crate::shard::{io, read_manifest, Kind, Manifest, MANIFEST};
 use crate::sweep;
 
@@ -30,12 +29,6 @@ const SAME: [(&str, &str); 10] = [
     ("scales", "the scale factors"),
     ("fingerprint", "the record contents"),
 ];
-
-/// Which files a merge writes into OUT (the outputs of a spectrum or of a record suite).
-fn merge_writes(name: &str) -> bool {
-    ["cells.csv", "meta.json", "runs.csv", "fragility.csv"].contains(&name)
-        || plot::is_sweep_figure(name)
-}
 
 /// `rocking merge OUT SHARD_DIR...`: the outputs of the whole study from all its shards. Shards
 /// of another study, a duplicate, a missing shard or a shard that lacks cells are refused with
@@ -120,13 +113,7 @@ pub fn merge(out: &Path, dirs: &[PathBuf]) -> Result<(), SceneError> {
         }
         MergeError::Journal(e) => SceneError::input(e.to_string()),
     })?;
-    let staged = OutDir::begin_for(
-        out,
-        OutKind {
-            writes: merge_writes,
-            command: "rocking merge",
-        },
-    )?;
+    let staged = OutDir::begin(out, MERGE_OUT)?;
     let written = write(&plan, m.kind, &outcome, staged.path())?;
     let written: Vec<PathBuf> = written.iter().map(|p| staged.final_path(p)).collect();
     staged.commit()?;

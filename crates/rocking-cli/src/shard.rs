@@ -53,7 +53,8 @@ pub fn io(path: &Path, what: &str, e: impl std::fmt::Display) -> SceneError {
 }
 
 /// Runs (or resumes) shard `shard` of `plan` into `dir`: `shard.json` first (so that a shard
-/// killed before its first cell is still named by the merge), then the shard's cells, journaled.
+/// killed before its first cell is still named by the merge), then the shard's cells, journaled;
+/// a `dir` holding another shard's or study's journal is refused before anything is written.
 /// A failed cell is a result here; the merge reports it (exit status 1).
 pub fn run_shard(
     plan: &Plan,
@@ -93,6 +94,9 @@ pub fn run_shard(
         records,
         scales,
     };
+    // A directory of another study or shard is refused before shard.json is touched: a refused
+    // run changes nothing (a finished shard stays mergeable).
+    rocking_spectra::shard::check_dir(&plan.sweep, shard, dir).map_err(sweep_error)?;
     std::fs::create_dir_all(dir).map_err(|e| io(dir, "create", e))?;
     let text = serde_json::to_string_pretty(&manifest)
         .map_err(|e| SceneError::failure(format!("cannot serialise {MANIFEST}: {e}")))?;

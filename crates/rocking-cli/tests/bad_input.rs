@@ -46,6 +46,13 @@ const RECORD: &str = "title\nevent\nunits\nNPTS= 4, DT= .01\n0.1 0.2 0.3 0.4\n";
 const PULSE: &str = "kind = \"sine-pulse\"\nomega_p_over_p = 5.1\namplitude = 1.3";
 const AS_ESM: &str = "kind = \"record\"\npath = \"rec.AT2\"\nformat = \"esm\"";
 
+/// Two periods of a 2 Hz sine of 0.1 g: a record with intensity measures.
+const SINE_RECORD: &str = "title\nevent\nunits\nNPTS= 50, DT= .02\n0.000 0.025 0.048 0.068 0.084 0.095 0.100 0.098 0.090 0.077\n0.059 0.037 0.013 -0.013 -0.037 -0.059 -0.077 -0.090 -0.098 -0.100\n-0.095 -0.084 -0.068 -0.048 -0.025 -0.000 0.025 0.048 0.068 0.084\n0.095 0.100 0.098 0.090 0.077 0.059 0.037 0.013 -0.013 -0.037\n-0.059 -0.077 -0.090 -0.098 -0.100 -0.095 -0.084 -0.068 -0.048 -0.025\n";
+
+/// A record scene with a study of its record by Sa(T = -1 s).
+const IDA_SA: &str =
+    "kind = \"record\"\npath = \"rec.AT2\"\n\n[ida]\nrecords = [\"rec.AT2\"]\nim = \"sa\"\nperiod = -1.0";
+
 /// An ESM header (the keys the reader needs; `DATA_TYPE` and `NDATA` replaced per row).
 macro_rules! esm {
     ($data_type:literal, $ndata:literal, $samples:literal) => {
@@ -474,6 +481,78 @@ const ROWS: &[Row] = &[
         Some(RECORD),
         &["scale", "= 0", "nonzero"],
     ),
+    (
+        "ida-period-negative",
+        SCENE,
+        PULSE,
+        IDA_SA,
+        Some(RECORD),
+        &["`period` = -1 in [ida]", "0.001 s <= period <= 100 s"],
+    ),
+    (
+        "ida-period-huge",
+        SCENE,
+        PULSE,
+        "kind = \"record\"\npath = \"rec.AT2\"\n\n[ida]\nrecords = [\"rec.AT2\"]\nim = \"sa\"\nperiod = 1e300",
+        Some(RECORD),
+        &["`period` = 1e300 in [ida]", "period <= 100 s"],
+    ),
+    (
+        "ida-tolerance",
+        SCENE,
+        PULSE,
+        "kind = \"record\"\npath = \"rec.AT2\"\n\n[ida]\nrecords = [\"rec.AT2\"]\nim = \"pga\"\ntolerance = 1.0",
+        Some(RECORD),
+        &["`tolerance` = 1 in [ida]", "0 < tolerance < 1"],
+    ),
+    (
+        "ida-unknown-im",
+        SCENE,
+        PULSE,
+        "kind = \"record\"\npath = \"rec.AT2\"\n\n[ida]\nrecords = [\"rec.AT2\"]\nim = \"pgv\"",
+        Some(RECORD),
+        &["`im` = \"pgv\" in [ida]", "\"sa\", \"pga\""],
+    ),
+    (
+        "ida-no-stripes",
+        SCENE,
+        PULSE,
+        "kind = \"record\"\npath = \"rec.AT2\"\n\n[ida]\nrecords = [\"rec.AT2\"]\nim = \"pga\"\nstripes = []",
+        Some(RECORD),
+        &["`stripes` = a list of 0 different levels in [ida]", "2 to 1000"],
+    ),
+    (
+        "ida-one-stripe",
+        SCENE,
+        PULSE,
+        "kind = \"record\"\npath = \"rec.AT2\"\n\n[ida]\nrecords = [\"rec.AT2\"]\nim = \"pga\"\nstripes = [2.0]",
+        Some(RECORD),
+        &["`stripes` = a list of 1 different levels in [ida]", "a median and a β need two"],
+    ),
+    (
+        "ida-stripe-too-high",
+        SCENE,
+        PULSE,
+        "kind = \"record\"\npath = \"rec.AT2\"\n\n[ida]\nrecords = [\"rec.AT2\"]\nim = \"pga\"\nstripes = [1.0, 1e6]",
+        Some(SINE_RECORD),
+        &["`stripes` in [ida] reaches PGA = 1000000 m/s²", "rec.AT2", "at most 10000 g"],
+    ),
+    (
+        "ida-bootstrap-one",
+        SCENE,
+        PULSE,
+        "kind = \"record\"\npath = \"rec.AT2\"\n\n[ida]\nrecords = [\"rec.AT2\"]\nim = \"pga\"\nbootstrap = 1",
+        Some(RECORD),
+        &["`bootstrap` = 1 in [ida]", "200 <= bootstrap <= 100000"],
+    ),
+    (
+        "ida-pulse-scene",
+        SCENE,
+        "[solver]",
+        "[ida]\nim = \"pga\"\n\n[solver]",
+        None,
+        &["`kind` = \"sine-pulse\" in [excitation]", "kind = \"record\""],
+    ),
 ];
 
 fn doc_ids() -> Vec<String> {
@@ -498,6 +577,12 @@ fn the_documented_table_and_the_tested_rows_are_the_same() {
     );
 }
 
+/// Rows refused by their command only: a pulse scene is a scene to run and check (not to study),
+/// and a stripe level is too high for the study's records, which `check` does not read.
+const NOT_BY_CHECK: [&str; 2] = ["ida-pulse-scene", "ida-stripe-too-high"];
+
+/// Each row through its command (`rocking ida` for an `ida-` row, else `rocking run`) and through
+/// `rocking check`, which refuses what they refuse with the same message (issue 30, item 13).
 #[test]
 fn every_bad_input_exits_2_with_one_clear_message() {
     let root = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bad-input");
@@ -509,8 +594,9 @@ fn every_bad_input_exits_2_with_one_clear_message() {
         if let Some(r) = record {
             std::fs::write(dir.join("rec.AT2"), r).unwrap();
         }
+        let command = if id.starts_with("ida-") { "ida" } else { "run" };
         let out = Command::new(env!("CARGO_BIN_EXE_rocking"))
-            .args(["run", "--out"])
+            .args([command, "--out"])
             .arg(dir.join("out"))
             .arg(dir.join("scene.toml"))
             .output()
@@ -539,6 +625,10 @@ fn every_bad_input_exits_2_with_one_clear_message() {
             "scale ="
         } else if *id == "steps-history-too-long" {
             "max_steps =" // the guard the message names, not the history key after it
+        } else if *id == "ida-pulse-scene" {
+            "kind =" // the study needs a record scene
+        } else if id.starts_with("ida-") {
+            to.lines().last().unwrap()
         } else if to.contains("units =") {
             "units ="
         } else if *id == "mixed-forms" {
@@ -557,9 +647,22 @@ fn every_bad_input_exits_2_with_one_clear_message() {
             + 1;
         let place = format!("scene.toml:{line}:");
         assert!(err.contains(&place), "{id}: `{place}` not in: {err}");
-        assert!(
-            !dir.join("out").join("summary.json").exists(),
-            "{id}: no output on bad input"
+        assert!(!dir.join("out").exists(), "{id}: no output on bad input");
+        if NOT_BY_CHECK.contains(id) {
+            continue;
+        }
+        let checked = Command::new(env!("CARGO_BIN_EXE_rocking"))
+            .arg("check")
+            .arg(dir.join("scene.toml"))
+            .output()
+            .unwrap();
+        assert_eq!(
+            (
+                checked.status.code(),
+                String::from_utf8_lossy(&checked.stderr)
+            ),
+            (Some(2), err.clone()),
+            "{id}: `rocking check` refuses what `rocking {command}` refuses"
         );
     }
 }

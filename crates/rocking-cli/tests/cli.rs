@@ -683,3 +683,39 @@ fn example_models_check_and_models_listing() {
         stderr(&o)
     );
 }
+
+/// A result says what produced it (issue 30, item 17): summary.json names the model, its
+/// parameters and the `--set` overrides, as `rocking check --json` does (the old summary named
+/// none of them).
+#[test]
+fn the_summary_names_the_model_its_parameters_and_the_overrides() {
+    let scene = scenes().join("fig5-flexible.toml");
+    let s = scene.to_str().unwrap();
+    let sets = [
+        "--set",
+        "structure.alpha=0.15",
+        "--set",
+        "solver.after_excitation=2.0",
+    ];
+    let out = tmp("summary-provenance");
+    let mut args = vec!["run", s, "--out", out.to_str().unwrap()];
+    args.extend(sets);
+    let o = rocking(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let summary: Value =
+        serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+    let mut args = vec!["check", s, "--json"];
+    args.extend(sets);
+    let o = rocking(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let checked: Value = serde_json::from_slice(&o.stdout).unwrap();
+    for key in ["model", "params", "overrides"] {
+        assert!(!summary[key].is_null(), "summary.json has no `{key}`");
+        assert_eq!(summary[key], checked[key], "`{key}`: run and check agree");
+    }
+    assert_eq!(
+        summary["overrides"],
+        serde_json::json!(["structure.alpha=0.15", "solver.after_excitation=2.0"])
+    );
+    assert_eq!(summary["model"], "cubic");
+}

@@ -163,7 +163,7 @@ fn ida_and_batch_read_a_download_folder_alike() {
         "--records",
         &records,
         "--set",
-        "ida.bootstrap=100",
+        "ida.bootstrap=200",
         "--out",
         &out.display().to_string(),
     ]);

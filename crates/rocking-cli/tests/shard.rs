@@ -310,10 +310,34 @@ fn merges_of_inconsistent_or_incomplete_shards_are_refused() {
     assert!(o.status.success(), "{}", text(&o));
     assert_same_files(&whole, &out, &SPECTRUM_FILES);
 
-    // A shard directory is not resumed as another shard.
-    let o = spectrum(&dirs[1], &["--shard", "2/3"]);
-    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(text(&o).contains("different sweep"), "{}", text(&o));
+    // A shard directory is not resumed as another shard, and the refused run changes nothing:
+    // its shard.json used to be rewritten to 2/3, so the finished shard no longer merged.
+    let before: Vec<Vec<u8>> = ["shard.json", "cells.journal"]
+        .iter()
+        .map(|f| std::fs::read(dirs[1].join(f)).unwrap())
+        .collect();
+    for (other, says) in [
+        (&["--shard", "2/3"][..], "different sweep"),
+        (
+            &["--shard", "1/3", "--set", "structure.alpha=0.15"][..],
+            "different sweep",
+        ),
+    ] {
+        let o = spectrum(&dirs[1], other);
+        assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+        assert!(text(&o).contains(says), "{}", text(&o));
+        let after: Vec<Vec<u8>> = ["shard.json", "cells.journal"]
+            .iter()
+            .map(|f| std::fs::read(dirs[1].join(f)).unwrap())
+            .collect();
+        assert!(
+            after == before,
+            "{other:?}: the refused run changed the shard"
+        );
+    }
+    let o = merge(&out, &dirs);
+    assert!(o.status.success(), "the shard still merges: {}", text(&o));
+    assert_same_files(&whole, &out, &SPECTRUM_FILES);
     let _ = std::fs::remove_dir_all(&root);
 }
 

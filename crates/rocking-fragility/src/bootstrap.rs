@@ -11,6 +11,20 @@ use rand_chacha::ChaCha8Rng;
 /// and memory).
 pub const MAX_RESAMPLES: usize = 100_000;
 
+/// The fewest resamples a study's band may rest on. Its ends are the 2.5 % and 97.5 %
+/// percentiles of the refits: 5 refits beyond each end at 200. Measured (40 lognormal capacities,
+/// the β band over 200 seeds): the ends move by 4-6 % of the band's width from one seed to
+/// another at 200 resamples, 10-17 % at 20, 1-2 % at 2000; one resample gives a band of width 0
+/// that need not hold the estimate.
+pub const MIN_RESAMPLES: usize = 200;
+
+/// The fewest records (capacities of an IDA, records per stripe) for a band that means what its
+/// level says. Measured coverage of the 95 % band of θ and of β (400 sets of lognormal
+/// capacities, θ = 1.2, β = 0.4, 1000 resamples): 0 % with 2 records (the band is a point), 64-71
+/// % with 3 (β bands wider than a factor 100 in a third of the sets), 80-90 % with 4 to 8, 88-95
+/// % from 10 up (95 % at 40); by stripes (9 levels) 54-63 % with 2, 90-95 % from 8 up.
+pub const MIN_BAND_RECORDS: usize = 10;
+
 /// How to bootstrap.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BootstrapOptions {

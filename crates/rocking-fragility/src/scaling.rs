@@ -20,6 +20,16 @@ pub enum ScalingIm {
 }
 
 impl ScalingIm {
+    /// Its name in messages and on axes: `PGA`, `Sa(T = 4.5 s, ζ = 5 %)`.
+    pub fn name(&self) -> String {
+        match *self {
+            ScalingIm::Pga => "PGA".to_string(),
+            ScalingIm::Sa { period, damping } => {
+                format!("Sa(T = {period} s, ζ = {} %)", 100.0 * damping)
+            }
+        }
+    }
+
     /// The IM of `record` (acceleration in m/s², its scale factor included).
     ///
     /// # Errors

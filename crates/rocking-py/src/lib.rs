@@ -119,9 +119,10 @@ impl Scene {
     fn run(&self, py: Python<'_>) -> PyResult<RunOutput> {
         let model = Arc::clone(&self.model);
         let path = self.path.clone();
+        let sets = self.sets.clone();
         py.detach(move || {
             let report = report::simulate(&model, &path)?;
-            let summary = report::summary_json(&model, &path, &report)?.to_string();
+            let summary = report::summary_json(&model, &path, &sets, &report)?.to_string();
             let run = report.run;
             Ok(RunOutput {
                 model,

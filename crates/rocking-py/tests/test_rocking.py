@@ -331,7 +331,7 @@ def test_ida_is_the_commands_study(tmp_path):
     gm = REPO.parent / "shared" / "data" / "ground-motions"
     recs = [str(gm / r) for r in ("A-ELC180.AT2", "A-PEL180.AT2", "A-BEN360.AT2")]
     scene = REPO / "scenes" / "wind-turbine-msa.toml"
-    sets = ["ida.bootstrap=100", "ida.stripes=[4.0, 8.0, 16.0, 30.0]"]
+    sets = ["ida.bootstrap=200", "ida.stripes=[4.0, 8.0, 16.0, 30.0]"]
     out = tmp_path / "msa"
     args = ["ida", str(scene), "--out", str(out), "--records", *recs]
     for s in sets:

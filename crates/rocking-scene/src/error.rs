@@ -60,6 +60,16 @@ impl SceneError {
         self
     }
 
+    /// The same error with `what` it happened in before its message ("WHAT: MESSAGE"), its
+    /// kind and fields kept.
+    pub fn context(mut self, what: impl fmt::Display) -> Self {
+        match &mut self {
+            SceneError::Input(e) => e.message = format!("{what}: {}", e.message),
+            SceneError::Failure(m) => *m = format!("{what}: {m}"),
+        }
+        self
+    }
+
     /// The input error, if it is one.
     pub fn as_input(&self) -> Option<&InputError> {
         match self {

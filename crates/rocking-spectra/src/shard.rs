@@ -80,6 +80,14 @@ impl fmt::Display for Shard {
     }
 }
 
+/// Whether `dir` may run (or resume) shard `shard` of `sweep`: it holds no journal, an empty
+/// one, or this shard's. [`crate::run_shard`] starts with the same check; a caller that writes
+/// anything beside the journal (a description of the shard) checks first, so that a refused run
+/// changes nothing.
+pub fn check_dir(sweep: &Sweep, shard: Shard, dir: &Path) -> Result<(), SweepError> {
+    read_journal(&dir.join(JOURNAL), &shard.header(sweep), sweep.len()).map(|_| ())
+}
+
 /// Why shards cannot be merged.
 #[derive(Debug)]
 pub enum MergeError {

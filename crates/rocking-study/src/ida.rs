@@ -15,6 +15,7 @@ use rocking_fragility::{
 use rocking_motion::intensity::IntensityMeasures;
 use rocking_motion::AccelUnit;
 use rocking_scene::knob::KnobValue;
+use rocking_scene::limits::{short, MAX_ACCEL_G};
 use rocking_scene::scene::{ExcitationSpec, IdaSpec, Source};
 use rocking_scene::SceneError;
 
@@ -92,6 +93,26 @@ impl Study {
         self.records.iter().map(|r| r.points.len()).sum()
     }
 
+    /// Why the band may not mean what its level says: it rests on fewer than
+    /// [`MIN_BAND_RECORDS`](rocking_fragility::bootstrap::MIN_BAND_RECORDS) capacities (IDA) or
+    /// records per stripe, with which a 95 % band covers the truth far less often (a point with
+    /// two).
+    pub fn band_warning(&self) -> Option<String> {
+        let min = rocking_fragility::bootstrap::MIN_BAND_RECORDS;
+        let (n, what) = match &self.evidence {
+            Evidence::Capacities(c) => (c.len(), "capacities"),
+            Evidence::Stripes(_) => (self.records.len(), "records per stripe"),
+        };
+        (n < min).then(|| {
+            format!(
+                "the {} % band rests on {n} {what}: with fewer than {min} it covers the median and \
+                 β less often than it says (measured: never with 2, about 2 times in 3 with 3, \
+                 80-90 % of the time with 4 to 8); use it as a rough guide only",
+                100.0 * self.settings.bootstrap.level
+            )
+        })
+    }
+
     /// The fit and what it was fitted to, as `fragility.json` holds them (without the scene):
     /// method, IM, collapse definition, counts, median and β with their bootstrap intervals, and
     /// the capacities or the stripes.
@@ -123,6 +144,9 @@ impl Study {
                 "beta_interval": [bl, bh],
             },
         });
+        if let Some(w) = self.band_warning() {
+            v["bootstrap"]["warning"] = json!(w);
+        }
         match &self.evidence {
             Evidence::Capacities(c) => {
                 v["tolerance"] = json!(s.hunt.tolerance);
@@ -185,60 +209,179 @@ impl Study {
 }
 
 /// Runs the study of the scene `base` (`[ida]`) over `records` (else the scene's), in the
-/// current rayon pool.
+/// current rayon pool: [`plan`], then [`Planned::run`].
 pub fn run(base: &Base, records: &[PathBuf]) -> Result<Study, SceneError> {
-    let spec = base.scene().spec.ida.clone().unwrap_or_default();
-    let settings = settings(&spec, &base.scene().src)?;
+    plan(base, records)?.run()
+}
+
+/// A study checked before its first analysis: the scene, the settings, and every record read
+/// with its intensity measures.
+pub struct Planned<'a> {
+    base: &'a Base,
+    settings: Settings,
+    records: Vec<Prepared>,
+}
+
+/// One record read, before its analyses.
+struct Prepared {
+    file: PathBuf,
+    path: String,
+    dt: f64,
+    npts: usize,
+    unit: &'static str,
+    ims: IntensityMeasures,
+    im_unscaled: f64,
+    /// The highest IM the record may be scaled to: where its PGA reaches the most a scene
+    /// allows ([`MAX_ACCEL_G`] in the structure's g).
+    im_max: f64,
+}
+
+/// A computed number for a message, to 5 significant digits (`1019716.2129779282` reads
+/// `1019700`).
+fn derived(v: f64) -> String {
+    short(format!("{v:.4e}").parse().unwrap_or(v))
+}
+
+/// Plans the study of the scene `base` over `records` (else the scene's): everything a bad input
+/// can be found in without an analysis is checked here (a scene that is not a record scene, the
+/// `[ida]` settings, the record files, each record's intensity measures, stripe levels a record
+/// cannot be scaled to), so that a command refuses it before writing or running anything. Reads
+/// the records in the current rayon pool.
+pub fn plan<'a>(base: &'a Base, records: &[PathBuf]) -> Result<Planned<'a>, SceneError> {
+    let sc = base.scene();
+    let kind = sc
+        .spec
+        .excitation
+        .as_ref()
+        .and_then(|e| e.kind.as_deref())
+        .unwrap_or("none");
+    if kind != "record" {
+        return Err(sc.src.err(
+            "excitation.kind",
+            format_args!(
+                "`kind` = \"{kind}\" in [excitation]: a record-suite study scales records, so \
+                 the scene needs kind = \"record\" (with a `path`, which each record of the study \
+                 replaces)"
+            ),
+        ));
+    }
+    let spec = sc.spec.ida.clone().unwrap_or_default();
+    let settings = settings(&spec, &sc.src)?;
     let files = record_files(base, records)?;
-    let done: Vec<RecordStudy> = files
+    let records: Vec<Prepared> = files
         .par_iter()
-        .map(|f| study(base, &settings, f))
-        .collect::<Result<Vec<_>, _>>()?;
-    let cannot_fit = |what: String, e: rocking_fragility::FragilityError| {
-        SceneError::input(format!(
-            "{}: cannot fit a lognormal to {what}: {e}",
-            base.path().display()
-        ))
-    };
-    let (fit, evidence) = match &settings.stripes {
-        None => {
-            let capacities: Vec<f64> = done
-                .iter()
-                .filter_map(|d| d.capacity)
-                .map(|c| c.0)
-                .collect();
-            let fit = bootstrap_capacities(&capacities, &settings.bootstrap)
-                .map_err(|e| cannot_fit(format!("the {} capacities", capacities.len()), e))?;
-            (fit, Evidence::Capacities(capacities))
+        .map(|f| prepare(base, &settings, f))
+        .collect::<Result<_, _>>()?;
+    if let Some(levels) = &settings.stripes {
+        let top = levels.last().copied().unwrap_or(0.0);
+        if let Some(r) = records.iter().find(|r| r.im_max < top) {
+            return Err(sc.src.err(
+                "ida.stripes",
+                format_args!(
+                    "`stripes` in [ida] reaches {} = {} m/s², which needs {} scaled by {}: a PGA \
+                     of {} g; at most {} g, that is {} = {} m/s² for this record: lower the \
+                     highest level",
+                    settings.im.name(),
+                    short(top),
+                    r.path,
+                    derived(top / r.im_unscaled),
+                    derived(top / r.im_max * MAX_ACCEL_G),
+                    short(MAX_ACCEL_G),
+                    settings.im.name(),
+                    derived(r.im_max)
+                ),
+            ));
         }
-        Some(levels) => {
-            let records = u32::try_from(done.len()).unwrap_or(u32::MAX);
-            let stripes: Vec<Stripe> = levels
-                .iter()
-                .map(|&im| Stripe {
-                    im,
-                    n: records,
-                    collapsed: done
-                        .iter()
-                        .filter(|d| d.points.iter().any(|p| p.im == im && p.outcome.collapsed))
-                        .count() as u32,
-                })
-                .collect();
-            let fit = bootstrap_stripes(&stripes, &settings.bootstrap)
-                .map_err(|e| cannot_fit(format!("the {} stripes", stripes.len()), e))?;
-            (fit, Evidence::Stripes(stripes))
-        }
-    };
-    Ok(Study {
+    }
+    Ok(Planned {
+        base,
         settings,
-        records: done,
-        fit,
-        evidence,
+        records,
     })
+}
+
+impl Planned<'_> {
+    /// The settings.
+    pub fn settings(&self) -> &Settings {
+        &self.settings
+    }
+
+    /// The number of records.
+    pub fn records(&self) -> usize {
+        self.records.len()
+    }
+
+    /// Runs every record's analyses (one record per task of the current rayon pool) and fits.
+    pub fn run(self) -> Result<Study, SceneError> {
+        let Planned {
+            base,
+            settings,
+            records,
+        } = self;
+        let done: Vec<RecordStudy> = records
+            .into_par_iter()
+            .map(|r| study(base, &settings, r))
+            .collect::<Result<Vec<_>, _>>()?;
+        let cannot_fit = |what: String, e: rocking_fragility::FragilityError| {
+            SceneError::input(format!(
+                "{}: cannot fit a lognormal to {what}: {e}",
+                base.path().display()
+            ))
+        };
+        let (fit, evidence) = match &settings.stripes {
+            None => {
+                let capacities: Vec<f64> = done
+                    .iter()
+                    .filter_map(|d| d.capacity)
+                    .map(|c| c.0)
+                    .collect();
+                let fit = bootstrap_capacities(&capacities, &settings.bootstrap)
+                    .map_err(|e| cannot_fit(format!("the {} capacities", capacities.len()), e))?;
+                (fit, Evidence::Capacities(capacities))
+            }
+            Some(levels) => {
+                let records = u32::try_from(done.len()).unwrap_or(u32::MAX);
+                let stripes: Vec<Stripe> = levels
+                    .iter()
+                    .map(|&im| Stripe {
+                        im,
+                        n: records,
+                        collapsed: done
+                            .iter()
+                            .filter(|d| d.points.iter().any(|p| p.im == im && p.outcome.collapsed))
+                            .count() as u32,
+                    })
+                    .collect();
+                let fit = bootstrap_stripes(&stripes, &settings.bootstrap)
+                    .map_err(|e| cannot_fit(format!("the {} stripes", stripes.len()), e))?;
+                (fit, Evidence::Stripes(stripes))
+            }
+        };
+        Ok(Study {
+            settings,
+            records: done,
+            fit,
+            evidence,
+        })
+    }
+}
+
+/// Everything a study would refuse in the scene's `[ida]` table, checked without one: `rocking
+/// check` refuses what `rocking ida` refuses.
+pub fn check_table(base: &Base) -> Result<(), SceneError> {
+    match &base.scene().spec.ida {
+        Some(spec) => settings(spec, &base.scene().src).map(|_| ()),
+        None => Ok(()),
+    }
 }
 
 /// The most IM levels `[ida] stripes` may list.
 const MAX_STRIPES: usize = 1000;
+
+/// The spectral periods `[ida] period` may name (s): Sa(T) is published and used from about
+/// 0.01 s, where it is the PGA, to 10-20 s; far outside, it is the PGA or the ground displacement
+/// times (2π/T)² (the 1e300 s of a typo gave "intensity measure is 0").
+pub const PERIODS: (f64, f64) = (1e-3, 100.0);
 
 fn check(
     src: &Source,
@@ -268,12 +411,18 @@ pub fn settings(spec: &IdaSpec, src: &Source) -> Result<Settings, SceneError> {
                     "missing key `period` in [ida] (im = \"sa\" needs T in s, > 0)",
                 )
             })?;
+            let (lo, hi) = PERIODS;
             check(
                 src,
                 "period",
-                period.is_finite() && period > 0.0,
-                period,
-                "a period > 0 (s)",
+                (lo..=hi).contains(&period),
+                short(period),
+                &format!(
+                    "a spectral period {} s <= period <= {} s (beyond, Sa is the PGA or the \
+                     ground displacement times (2π/T)², not an intensity measure to scale to)",
+                    short(lo),
+                    short(hi)
+                ),
             )?;
             let damping = spec.damping.unwrap_or(0.05);
             check(
@@ -346,14 +495,13 @@ pub fn settings(spec: &IdaSpec, src: &Source) -> Result<Settings, SceneError> {
             "a finite value > 0 (collapse when max θ/α reaches it)",
         )?;
     }
-    if let Some(levels) = &spec.stripes {
-        check(
-            src,
-            "stripes",
-            (1..=MAX_STRIPES).contains(&levels.len()),
-            format_args!("a list of {} levels", levels.len()),
-            &format!("1 to {MAX_STRIPES} IM levels"),
-        )?;
+    // Sorted, each level once (a repeated level would count its records twice).
+    let stripes = spec.stripes.clone().map(|mut v| {
+        v.sort_by(f64::total_cmp);
+        v.dedup();
+        v
+    });
+    if let Some(levels) = &stripes {
         if let Some(bad) = levels.iter().find(|v| !(v.is_finite() && **v > 0.0)) {
             check(
                 src,
@@ -363,15 +511,29 @@ pub fn settings(spec: &IdaSpec, src: &Source) -> Result<Settings, SceneError> {
                 "IM levels finite and > 0 (m/s^2)",
             )?;
         }
+        // A lognormal has two parameters: the counts at one level cannot fix both.
+        check(
+            src,
+            "stripes",
+            (2..=MAX_STRIPES).contains(&levels.len()),
+            format_args!("a list of {} different levels", levels.len()),
+            &format!("2 to {MAX_STRIPES} different IM levels (a median and a β need two)"),
+        )?;
     }
     let resamples = spec.bootstrap.unwrap_or(2000);
-    let max = rocking_fragility::bootstrap::MAX_RESAMPLES;
+    let (min, max) = (
+        rocking_fragility::bootstrap::MIN_RESAMPLES,
+        rocking_fragility::bootstrap::MAX_RESAMPLES,
+    );
     check(
         src,
         "bootstrap",
-        (1..=max).contains(&resamples),
+        (min..=max).contains(&resamples),
         resamples,
-        &format!("1 <= bootstrap <= {max}"),
+        &format!(
+            "{min} <= bootstrap <= {max} (the band's ends are its 2.5 % and 97.5 % percentiles: \
+             fewer resamples move them by chance)"
+        ),
     )?;
     Ok(Settings {
         im,
@@ -383,12 +545,7 @@ pub fn settings(spec: &IdaSpec, src: &Source) -> Result<Settings, SceneError> {
             max_gap,
             max_runs,
         },
-        // Sorted, each level once (a repeated level would count its records twice).
-        stripes: spec.stripes.clone().map(|mut v| {
-            v.sort_by(f64::total_cmp);
-            v.dedup();
-            v
-        }),
+        stripes,
         limit: spec.theta_over_alpha_limit,
         bootstrap: BootstrapOptions {
             resamples,
@@ -425,17 +582,21 @@ pub fn record_files(base: &Base, given: &[PathBuf]) -> Result<Vec<PathBuf>, Scen
     Ok(files)
 }
 
-/// Runs one record's IDA, or its stripes.
-fn study(base: &Base, s: &Settings, file: &Path) -> Result<RecordStudy, SceneError> {
+/// Reads one record as the study scales it: its intensity measures as the structure feels it,
+/// the scaling IM at scale 1 and the highest IM a scene allows.
+fn prepare(base: &Base, s: &Settings, file: &Path) -> Result<Prepared, SceneError> {
     let path = std::fs::canonicalize(file)
         .unwrap_or_else(|_| file.to_path_buf())
         .display()
         .to_string();
-    // Validates the record against the scene (format, units, scale), as `run` would.
-    let model = base.model(&[
+    // Validates the record against the scene (format, units, length), as `run` would.
+    let injected = [
         format!("excitation.path={path:?}"),
-        "excitation.scale=1.0".into(),
-    ])?;
+        "excitation.scale=1.0".to_string(),
+    ];
+    let model = base
+        .model(&injected)
+        .map_err(|e| on_the_record(e, base, &injected, &path))?;
     let sc = base.scene();
     let exc = ExcitationSpec {
         path: Some(path.clone()),
@@ -445,28 +606,102 @@ fn study(base: &Base, s: &Settings, file: &Path) -> Result<RecordStudy, SceneErr
     let unit = rec.declared_unit.map_or("g (not stated)", AccelUnit::name);
     let (dt, npts) = (rec.dt, rec.npts);
     // The record as the structure feels it (the units model of `AccelUnit`), in m/s².
-    let si = rec.to_record_si(model.units.g_si);
+    let g_si = model.units.g_si;
+    let si = rec.to_record_si(g_si);
     let bad = |e: &dyn std::fmt::Display| SceneError::input(format!("{path}: {e}"));
     let ims = IntensityMeasures::of(&si).map_err(|e| bad(&e))?;
     let im_unscaled = s.im.of(&si).map_err(|e| bad(&e))?;
     if !(im_unscaled.is_finite() && im_unscaled > 0.0) {
-        return Err(bad(
-            &"the record's intensity measure is 0: it cannot be scaled",
-        ));
+        return Err(bad(&format_args!(
+            "its {} at scale 1 is {}: a record without motion there cannot be scaled to a level",
+            s.im.name(),
+            derived(im_unscaled)
+        )));
     }
+    Ok(Prepared {
+        file: file.to_path_buf(),
+        path,
+        dt,
+        npts,
+        unit,
+        im_max: im_unscaled * MAX_ACCEL_G * g_si / ims.pga_m_s2,
+        ims,
+        im_unscaled,
+    })
+}
+
+/// An error about a value the study set (a record's path or scale), as the user reads it: about
+/// the record, not about a `--set` the user never typed.
+fn on_the_record(e: SceneError, base: &Base, injected: &[String], record: &str) -> SceneError {
+    match e {
+        SceneError::Input(mut input) => {
+            let Some(arg) = input.set.take_if(|a| injected.contains(a)) else {
+                return SceneError::Input(input);
+            };
+            let placed = format!("{}: --set {arg}: ", base.path().display());
+            let text = input
+                .message
+                .strip_prefix(&placed)
+                .unwrap_or(&input.message);
+            input.message = format!("record {record} of the study: {text}");
+            SceneError::Input(input)
+        }
+        failure => failure,
+    }
+}
+
+/// Runs one record's IDA, or its stripes.
+fn study(base: &Base, s: &Settings, r: Prepared) -> Result<RecordStudy, SceneError> {
+    let path = r.path.clone();
     let knobs = base
         .knobs(&["excitation.path", "excitation.scale"])
         .ok_or_else(|| SceneError::failure("record path and scale are not knobs"))?;
+    let im_name = s.im.name();
     let run_at = |im: f64| -> Result<Outcome, SceneError> {
+        let scale = im / r.im_unscaled;
+        if im > r.im_max {
+            // Only a hunt gets here (stripes are checked when planned): the structure stood
+            // at every level up to the strongest a scene allows.
+            let hint = match s.im {
+                ScalingIm::Sa { period, .. } => format!(
+                    " (its {im_name} at scale 1 is {} m/s²: is `period` = {} s in [ida] the \
+                     structure's?)",
+                    derived(r.im_unscaled),
+                    short(period)
+                ),
+                ScalingIm::Pga => String::new(),
+            };
+            return Err(base.scene().src.err(
+                "ida",
+                format_args!(
+                    "record {path}: the hunt for its capacity reached {im_name} = {} m/s², which \
+                     needs a scale factor of {}, a PGA of {} g; at most {} g: the structure \
+                     stands up to the strongest version of this record a scene allows{hint}",
+                    short(im),
+                    derived(scale),
+                    derived(im / r.im_max * MAX_ACCEL_G),
+                    short(MAX_ACCEL_G)
+                ),
+            ));
+        }
         let cell = [
             (&knobs[0], KnobValue::Text(path.clone())),
-            (&knobs[1], KnobValue::Number(im / im_unscaled)),
+            (&knobs[1], KnobValue::Number(scale)),
         ];
-        let sum = base.run_knobs(&cell)?.summary;
-        let r = sum.max_theta_over_alpha;
+        let sum = base
+            .run_knobs(&cell)
+            .map_err(|e| {
+                e.context(format_args!(
+                    "record {path}, the analysis at {im_name} = {} m/s² (scale {})",
+                    short(im),
+                    derived(scale)
+                ))
+            })?
+            .summary;
+        let resp = sum.max_theta_over_alpha;
         Ok(Outcome {
-            collapsed: sum.overturned || s.limit.is_some_and(|l| r >= l),
-            response: r,
+            collapsed: sum.overturned || s.limit.is_some_and(|l| resp >= l),
+            response: resp,
         })
     };
     let (points, capacity) = match &s.stripes {
@@ -489,18 +724,19 @@ fn study(base: &Base, s: &Settings, file: &Path) -> Result<RecordStudy, SceneErr
             (ida.points, Some((ida.capacity, ida.survived_below)))
         }
     };
-    let name = file
+    let name = r
+        .file
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
     Ok(RecordStudy {
         name,
         path,
-        dt,
-        npts,
-        unit,
-        ims,
-        im_unscaled,
+        dt: r.dt,
+        npts: r.npts,
+        unit: r.unit,
+        ims: r.ims,
+        im_unscaled: r.im_unscaled,
         points,
         capacity,
     })

@@ -331,6 +331,12 @@ fn reference_sets(base: &Base) -> Result<Option<ReferenceKind>, SceneError> {
     }
 }
 
+/// Everything a spectrum or batch would refuse in the scene's `[sweep]` table, checked without
+/// one (`[sweep] report` is checked by [`Base::load`]): `rocking check` refuses what they refuse.
+pub fn check_table(base: &Base) -> Result<(), SceneError> {
+    reference_sets(base).map(|_| ())
+}
+
 /// Record files as given: a file stands for itself, a folder for its record files
 /// ([`rocking_motion::record_files_in`], the one rule of `ida` and `batch`), sorted by name.
 pub fn expand_records(

@@ -108,12 +108,25 @@ pub fn derived_json(model: &Setup) -> Result<Value, SceneError> {
 }
 
 /// The summary object printed by `--json` and written to summary.json: the run's
-/// [`quantities`], with what produced it (scene, title, variant and why, excitation), the
-/// derived quantities, the force maxima in SI (when the scene has units) and the warnings.
-pub fn summary_json(model: &Setup, scene: &Path, report: &Report) -> Result<Value, SceneError> {
+/// [`quantities`], with what produced it (scene, model and its parameters, the `--set`
+/// overrides, title, variant and why, excitation), the derived quantities, the force maxima in
+/// SI (when the scene has units) and the warnings.
+pub fn summary_json(
+    model: &Setup,
+    scene: &Path,
+    overrides: &[String],
+    report: &Report,
+) -> Result<Value, SceneError> {
     let run = &report.run;
     let mut out = quantities(&run.summary, report.fixed_base.as_ref())?;
     out.insert("scene".into(), json!(scene.display().to_string()));
+    // What produced the result: the model, its whole parameter set, and the overrides.
+    out.insert("model".into(), json!(model.structure.model().name));
+    out.insert(
+        "params".into(),
+        rocking_scene::models::params_json(&model.structure),
+    );
+    out.insert("overrides".into(), json!(overrides));
     out.insert("title".into(), json!(model.title));
     out.insert("variant_reasons".into(), json!(model.reasons));
     out.insert("excitation".into(), json!(model.excitation_description));
