@@ -48,9 +48,10 @@ use rocking_scene::SceneError;
 fn presets_help() -> String {
     format!(
         "Accuracy presets ([solver] accuracy in a scene; measured by `cargo xtask bench`, \
-         docs/accuracy.md):\n{}Errors: the worse of max θ/α and impact times over the study's \
-         cases; times: geometric means per simulation over its eight cases, one thread of a \
-         2-core AMD EPYC machine.\nAn explicit method (\"dopri5\", \"dop853\" or \"taylor\") and \
+         docs/accuracy.md):\n{}Each is the cheapest configuration whose error, the worse of max \
+         θ/α and impact times over the study's cases, meets its target (`reference` among DOP853 \
+         only: the independent check of the others); times: geometric means per simulation over \
+         its eight cases, one thread.\nAn explicit method (\"dopri5\", \"dop853\" or \"taylor\") and \
          tol are allowed too.",
         rocking::Preset::table()
     )

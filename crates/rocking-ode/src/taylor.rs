@@ -23,6 +23,18 @@
 //! and an error far below ε at loose tolerances. With the fixed cost counted, the order is higher
 //! (8 at 1e-3, 12 at 1e-6, 16 at 1e-9, 20 at 1e-12) and the steps longer.
 //!
+//! # The order of each step
+//!
+//! That order is the most a step runs. Where `t_stop` caps the step anyway (the next kink of the
+//! excitation: on a record, the next sample), a lower order reaches it for less: the step takes
+//! the lowest order of [`ORDERS`] whose step by the rule, predicted from the last step's radius
+//! of convergence, reaches `t_stop` with a margin ([`CAP_MARGIN`]), where the system allows it
+//! ([`TaylorSystem::may_lower_order`]: the state's coefficients must reflect every input the
+//! events see). The rule is then applied to the step's own coefficients as always, so the
+//! tolerance holds whatever the prediction; a prediction that falls short costs a shorter step,
+//! not accuracy. Steps capped by [`TaylorOptions::h_max`] and a fixed order
+//! ([`TaylorOptions::order`]) run the highest order.
+//!
 //! # Why a small set of orders
 //!
 //! The generated kernels are generic over the number of coefficients N and always compute all N
@@ -53,6 +65,15 @@ pub trait TaylorSystem<const D: usize> {
     /// coefficients of the solution (`x_i(t0 + τ) ≈ Σ x[i][k] τ^k`). Must not depend on what
     /// `x[i][1..]` held on entry.
     fn coefficients<const N: usize>(&mut self, t0: f64, x: &mut [[f64; N]; D]);
+
+    /// Whether a step from `t0` that ends at the caller's `t_stop` may run below the highest
+    /// order (module docs). The step rule sees the state's coefficients only: a system with an
+    /// input the state does not reflect (a rigid column in contact does not move, yet its uplift
+    /// functions follow the ground acceleration) must answer false unless that input is a
+    /// polynomial of low degree up to `t_stop` (a record's piece), which any order keeps exact.
+    fn may_lower_order(&mut self, _t0: f64) -> bool {
+        true
+    }
 }
 
 /// Event functions evaluated along a step's Taylor polynomial.
@@ -70,6 +91,11 @@ pub const ORDERS: [usize; 10] = [3, 4, 5, 6, 8, 10, 12, 14, 16, 20];
 /// point-mass and full variants; 100 reproduces their cheapest orders at 1e-6, 1e-9 and 1e-12
 /// (`rocking-bench probe`), where the events' fixed costs grow with the step's length too.
 pub const FIXED_COST: f64 = 100.0;
+
+/// How far beyond a step's cap the predicted step of a lowered order must reach (module docs):
+/// the radius of convergence changes from step to step, and a step that falls just short of the
+/// cap costs a whole extra step.
+pub const CAP_MARGIN: f64 = 1.5;
 
 /// The order of [`ORDERS`] with the least cost per unit time at tolerance `tol` (module docs):
 /// the minimum of `ln(FIXED_COST + (p+1)²) − ln(tol) / p`.
@@ -137,8 +163,14 @@ pub struct TaylorEvent<const D: usize> {
 #[derive(Clone, Copy, Debug)]
 pub struct Taylor<const D: usize, const M: usize = 21> {
     opts: TaylorOptions<D>,
+    /// The highest order a step runs (from the tolerance, or the fixed order).
+    max_order: usize,
+    /// The order of the last step (`max_order` before the first).
     order: usize,
-    rhofac: f64,
+    /// `ln(ε^(1/p) · exp(−0.7/(p−1)))` for each of [`ORDERS`]: the step is ρ times its exp.
+    ln_fac: [f64; ORDERS.len()],
+    /// ln of the last step's radius of convergence `min(ρ_{p−1}, ρ_p)` (NaN when unknown).
+    ln_rho: f64,
     t: f64,
     y: [f64; D],
     initialised: bool,
@@ -172,41 +204,6 @@ fn err(kind: OdeErrorKind, t: f64, m: String) -> OdeError {
     }
 }
 
-fn jet_n<S: TaylorSystem<D>, const D: usize, const M: usize, const N: usize>(
-    sys: &mut S,
-    t0: f64,
-    coef: &mut [[f64; M]; D],
-) {
-    let mut x = [[0.0; N]; D];
-    for i in 0..D {
-        x[i][0] = coef[i][0];
-    }
-    sys.coefficients::<N>(t0, &mut x);
-    for i in 0..D {
-        coef[i][..N].copy_from_slice(&x[i]);
-    }
-}
-
-fn events_n<V, const D: usize, const E: usize, const M: usize, const N: usize>(
-    ev: &mut V,
-    t0: f64,
-    coef: &[[f64; M]; D],
-) -> [[f64; M]; E]
-where
-    V: TaylorEvents<D, E>,
-{
-    let mut x = [[0.0; N]; D];
-    for i in 0..D {
-        x[i].copy_from_slice(&coef[i][..N]);
-    }
-    let g = ev.event_coefficients::<N>(t0, &x);
-    let mut out = [[0.0; M]; E];
-    for j in 0..E {
-        out[j][..N].copy_from_slice(&g[j]);
-    }
-    out
-}
-
 /// Every component's polynomial of orders `0..=p` at `tau`, by Horner's rule on all components in
 /// step: one chain of p multiply-adds the CPU overlaps, not D chains one after the other. The same
 /// operations as [`poly::horner`] per component, so the same values.
@@ -224,19 +221,20 @@ fn horner_all<const D: usize, const M: usize>(
     y
 }
 
+/// `$f::<types.., N>(args)` with N = order + 1, for an order of [`ORDERS`].
 macro_rules! by_order {
-    ($order:expr, $f:ident, $($g:ty),* ; $($arg:expr),*) => {
+    ($order:expr, $($f:ident)::+ ; $($g:ty),* ; $($arg:expr),*) => {
         match $order {
-            3 => $f::<$($g),*, 4>($($arg),*),
-            4 => $f::<$($g),*, 5>($($arg),*),
-            5 => $f::<$($g),*, 6>($($arg),*),
-            6 => $f::<$($g),*, 7>($($arg),*),
-            8 => $f::<$($g),*, 9>($($arg),*),
-            10 => $f::<$($g),*, 11>($($arg),*),
-            12 => $f::<$($g),*, 13>($($arg),*),
-            14 => $f::<$($g),*, 15>($($arg),*),
-            16 => $f::<$($g),*, 17>($($arg),*),
-            20 => $f::<$($g),*, 21>($($arg),*),
+            3 => $($f)::+::<$($g,)* 4>($($arg),*),
+            4 => $($f)::+::<$($g,)* 5>($($arg),*),
+            5 => $($f)::+::<$($g,)* 6>($($arg),*),
+            6 => $($f)::+::<$($g,)* 7>($($arg),*),
+            8 => $($f)::+::<$($g,)* 9>($($arg),*),
+            10 => $($f)::+::<$($g,)* 11>($($arg),*),
+            12 => $($f)::+::<$($g,)* 13>($($arg),*),
+            14 => $($f)::+::<$($g,)* 15>($($arg),*),
+            16 => $($f)::+::<$($g,)* 17>($($arg),*),
+            20 => $($f)::+::<$($g,)* 21>($($arg),*),
             o => unreachable!("order {o} is not in ORDERS"),
         }
     };
@@ -260,11 +258,16 @@ impl<const D: usize, const M: usize> Taylor<D, M> {
         if order + 1 > M {
             return bad(format!("order {order} needs M >= {}, M = {M}", order + 1));
         }
-        let p = order as f64;
+        let ln_fac = ORDERS.map(|p| {
+            let p = p as f64;
+            opts.tol.ln() / p - 0.7 / (p - 1.0)
+        });
         Ok(Self {
             opts,
+            max_order: order,
             order,
-            rhofac: opts.tol.powf(1.0 / p) * (-0.7 / (p - 1.0)).exp(),
+            ln_fac,
+            ln_rho: f64::NAN,
             t: f64::NAN,
             y: [0.0; D],
             initialised: false,
@@ -278,7 +281,8 @@ impl<const D: usize, const M: usize> Taylor<D, M> {
         })
     }
 
-    /// Restart at `(t0, y0)` (no evaluation: the coefficients are computed by the next step).
+    /// Restart at `(t0, y0)` (no evaluation: the coefficients are computed by the next step; the
+    /// first step runs the highest order, as on a new integrator).
     pub fn reset(&mut self, t0: f64, y0: [f64; D]) -> Result<(), OdeError> {
         self.initialised = false;
         self.has_step = false;
@@ -293,6 +297,7 @@ impl<const D: usize, const M: usize> Taylor<D, M> {
         self.y = y0;
         self.t_old = t0;
         self.h_last = 0.0;
+        self.ln_rho = f64::NAN;
         self.steps_since_reset = 0;
         self.initialised = true;
         Ok(())
@@ -353,18 +358,51 @@ impl<const D: usize, const M: usize> Taylor<D, M> {
                 format!("more than max_steps = {} steps", self.opts.max_steps),
             ));
         }
-        let mut coef = self.coef;
-        for (c, &y) in coef.iter_mut().zip(&self.y) {
+        let order = self.order_for(sys, t_stop);
+        by_order!(order, Self::step_n; S; self, sys, t_stop, fixed)
+    }
+
+    /// The order of the next step (module docs): the lowest of [`ORDERS`] whose predicted step
+    /// reaches `t_stop` with [`CAP_MARGIN`], where `t_stop` caps the step (not `h_max`: it
+    /// stands for an input's resolution, which a lower order would truncate) and the system
+    /// allows it; else the highest.
+    fn order_for<S: TaylorSystem<D>>(&self, sys: &mut S, t_stop: f64) -> usize {
+        let cap = t_stop - self.t;
+        if self.opts.order.is_some() || self.ln_rho.is_nan() || cap > self.opts.h_max {
+            return self.max_order;
+        }
+        let ln_cap = (cap * CAP_MARGIN).ln();
+        let lower = ORDERS
+            .iter()
+            .zip(&self.ln_fac)
+            .take_while(|(&p, _)| p < self.max_order)
+            .find(|(_, &f)| self.ln_rho + f >= ln_cap)
+            .map(|(&p, _)| p);
+        match lower {
+            Some(p) if sys.may_lower_order(self.t) => p,
+            _ => self.max_order,
+        }
+    }
+
+    /// One step at order `N − 1`: the coefficients in a stack array of N, stored on success.
+    fn step_n<S: TaylorSystem<D>, const N: usize>(
+        &mut self,
+        sys: &mut S,
+        t_stop: f64,
+        fixed: Option<f64>,
+    ) -> Result<StepInfo, OdeError> {
+        let mut x = [[0.0; N]; D];
+        for (c, &y) in x.iter_mut().zip(&self.y) {
             c[0] = y;
         }
-        by_order!(self.order, jet_n, S, D, M; sys, self.t, &mut coef);
+        sys.coefficients::<N>(self.t, &mut x);
         self.stats.rhs_evals += 1;
-        let p = self.order;
+        let p = N - 1;
         // Without early exits (one pass the CPU pipelines; a per-row `all` was 2 % of a
         // spectrum's time in mispredicted loop exits).
-        let non_finite = coef
+        let non_finite = x
             .iter()
-            .flat_map(|c| &c[..=p])
+            .flatten()
             .fold(false, |bad, v| bad | !v.is_finite());
         if non_finite {
             return Err(err(
@@ -373,9 +411,13 @@ impl<const D: usize, const M: usize> Taylor<D, M> {
                 "non-finite Taylor coefficient".into(),
             ));
         }
+        let ln_rho = self.ln_rho(&x);
         let h_ctrl = match fixed {
             Some(h) => h,
-            None => self.rule(&coef),
+            None => {
+                let k = ORDERS.iter().position(|&o| o == p).expect("p is in ORDERS");
+                (ln_rho + self.ln_fac[k]).exp()
+            }
         }
         .min(self.opts.h_max);
         if h_ctrl.is_nan() || h_ctrl <= 10.0 * f64::EPSILON * self.t.abs() || h_ctrl < 1e-300 {
@@ -394,7 +436,7 @@ impl<const D: usize, const M: usize> Taylor<D, M> {
                 "infinite step (polynomial solution, no h_max and no finite t_stop)".into(),
             ));
         }
-        let y_new = horner_all(&coef, p, h);
+        let y_new = horner_all(&x, p, h);
         if !y_new.iter().all(|v| v.is_finite()) {
             return Err(err(
                 OdeErrorKind::NonFinite,
@@ -402,7 +444,16 @@ impl<const D: usize, const M: usize> Taylor<D, M> {
                 format!("non-finite state {y_new:?} at the end of a step of {h:e}"),
             ));
         }
-        self.coef = coef;
+        // The orders above p stay zero (`coefficients`), so only a lower order than the last
+        // step's clears any.
+        for (c, xi) in self.coef.iter_mut().zip(&x) {
+            c[..N].copy_from_slice(xi);
+            if self.order > p {
+                c[N..=self.order].fill(0.0);
+            }
+        }
+        self.order = p;
+        self.ln_rho = ln_rho;
         self.t_old = self.t;
         self.h_last = h;
         self.h_valid = h;
@@ -418,20 +469,21 @@ impl<const D: usize, const M: usize> Taylor<D, M> {
         })
     }
 
-    /// The step `min(ρ_{p−1}, ρ_p) · ε^(1/p) · exp(−0.7/(p−1))` (module docs).
-    fn rule(&self, coef: &[[f64; M]; D]) -> f64 {
-        let p = self.order;
+    /// `ln min(ρ_{p−1}, ρ_p)` of a step's coefficients of orders `0..=p` (module docs); the
+    /// step is this radius times `ε^(1/p) · exp(−0.7/(p−1))`.
+    fn ln_rho<const N: usize>(&self, x: &[[f64; N]; D]) -> f64 {
+        let p = N - 1;
         let (mut n0, mut n1, mut n2) = (0.0f64, 0.0f64, 0.0f64);
         for i in (0..D).filter(|&i| self.opts.controlled[i]) {
-            n0 = n0.max(coef[i][0].abs());
-            n1 = n1.max(coef[i][p - 1].abs());
-            n2 = n2.max(coef[i][p].abs());
+            n0 = n0.max(x[i][0].abs());
+            n1 = n1.max(x[i][p - 1].abs());
+            n2 = n2.max(x[i][p].abs());
         }
         let a = if n0 <= 1.0 { 1.0 } else { n0 };
-        // min(ρ_{p−1}, ρ_p) through the logarithms: two `ln` and one `exp`, not two `powf`.
+        // Through the logarithms: two `ln`, not two `powf`.
         let ln_rho1 = (a / n1).ln() / (p - 1) as f64;
         let ln_rho2 = (a / n2).ln() / p as f64;
-        ln_rho1.min(ln_rho2).exp() * self.rhofac
+        ln_rho1.min(ln_rho2)
     }
 
     /// The step's polynomial at `t` in `[t_old, t_new]` (Horner); exactly the step's end (start)
@@ -493,19 +545,10 @@ impl<const D: usize, const M: usize> Taylor<D, M> {
         if !self.has_step {
             return None;
         }
-        let g = by_order!(self.order, events_n, V, D, E, M; ev, self.t_old, &self.coef);
         if self.h_valid <= 0.0 {
             return None;
         }
-        let mut best: Option<(usize, Root)> = None;
-        for (j, gj) in g.iter().enumerate() {
-            if let Some(r) = poly::first_root(&gj[..=self.order], self.h_valid, dirs[j]) {
-                if best.is_none_or(|(_, b)| r.tau < b.tau) {
-                    best = Some((j, r));
-                }
-            }
-        }
-        let (index, root) = best?;
+        let (index, root) = by_order!(self.order, Self::first_event_n; V, E; self, ev, dirs)?;
         self.stats.events += 1;
         // At the step end exactly t_new; otherwise after t_old even when τ is below its ulp.
         let t = if root.tau == self.h_valid {
@@ -521,15 +564,40 @@ impl<const D: usize, const M: usize> Taylor<D, M> {
         })
     }
 
+    /// The earliest root of the event functions on the last step (for [`locate`](Self::locate)),
+    /// their series of N = order + 1 coefficients in stack arrays.
+    fn first_event_n<V: TaylorEvents<D, E>, const E: usize, const N: usize>(
+        &self,
+        ev: &mut V,
+        dirs: &[Direction; E],
+    ) -> Option<(usize, Root)> {
+        let x: [[f64; N]; D] = std::array::from_fn(|i| std::array::from_fn(|k| self.coef[i][k]));
+        let g = ev.event_coefficients::<N>(self.t_old, &x);
+        let mut best: Option<(usize, Root)> = None;
+        for (j, gj) in g.iter().enumerate() {
+            if let Some(r) = poly::first_root(gj, self.h_valid, dirs[j]) {
+                if best.is_none_or(|(_, b)| r.tau < b.tau) {
+                    best = Some((j, r));
+                }
+            }
+        }
+        best
+    }
+
     /// The coefficients of the last step (expanded at [`t_old`](Self::t_old)), orders
     /// `0..=`[`order`](Self::order); e.g. θ's row is an event polynomial for [`poly::first_root`].
     pub fn coefficients(&self) -> &[[f64; M]; D] {
         &self.coef
     }
 
-    /// The order run.
+    /// The order of the last step (before the first: the highest a step runs).
     pub fn order(&self) -> usize {
         self.order
+    }
+
+    /// The highest order a step runs: from the tolerance, or the fixed order (module docs).
+    pub fn max_order(&self) -> usize {
+        self.max_order
     }
 
     /// Current time.

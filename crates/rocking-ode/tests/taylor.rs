@@ -354,6 +354,86 @@ fn steps_stop_at_t_stop() {
     assert!((ode.y()[0] - 4.0f64.cos()).abs() < 1e-12);
 }
 
+/// [`Oscillator`] with the order choice refused, as a system with an input its state does not
+/// reflect answers.
+struct Refusing;
+impl TaylorSystem<2> for Refusing {
+    fn coefficients<const N: usize>(&mut self, t0: f64, x: &mut [[f64; N]; 2]) {
+        Oscillator.coefficients(t0, x);
+    }
+    fn may_lower_order(&mut self, _t0: f64) -> bool {
+        false
+    }
+}
+
+/// Runs to t = 10 with a stop every `dt` (a record's samples): the largest error against cos
+/// over the step ends, the highest order of a step after the first, and the steps.
+fn stopped_run<S: TaylorSystem<2>>(
+    sys: &mut S,
+    opts: TaylorOptions<2>,
+    dt: f64,
+) -> (f64, usize, u64) {
+    let mut ode = Taylor::<2>::new(opts).unwrap();
+    ode.reset(0.0, [1.0, 0.0]).unwrap();
+    let (mut e, mut p, mut n) = (0.0f64, 0, 0usize);
+    while ode.t() < 10.0 {
+        let stop = ((n + 1) as f64 * dt).min(10.0);
+        if ode.step(sys, stop).unwrap().reached {
+            n += 1;
+        }
+        if ode.stats().steps > 1 {
+            p = p.max(ode.order());
+        }
+        let t = ode.t();
+        e = e.max(
+            (ode.y()[0] - t.cos())
+                .abs()
+                .max((ode.y()[1] + t.sin()).abs()),
+        );
+    }
+    (e, p, ode.stats().steps)
+}
+
+#[test]
+fn steps_capped_by_t_stop_run_a_lower_order_at_the_same_accuracy() {
+    // Stops every 0.02 on a unit-frequency oscillator: the tolerance's order 20 would step
+    // ~0.6 at 1e-12; a step to the next stop needs order 6 or so (module docs, CAP_MARGIN).
+    for tol in [1e-9, 1e-12] {
+        let opts = TaylorOptions::new(tol);
+        let lowered = stopped_run(&mut Oscillator, opts, 0.02);
+        let highest = stopped_run(&mut Refusing, opts, 0.02);
+        let fixed = stopped_run(
+            &mut Oscillator,
+            TaylorOptions {
+                order: Some(order_from_tol(tol)),
+                ..opts
+            },
+            0.02,
+        );
+        println!("tol {tol:e}: lowered (error, order, steps) {lowered:?}, refused {highest:?}, fixed {fixed:?}");
+        assert_eq!(lowered.2, 500, "one step per stop");
+        assert!(lowered.1 <= 8, "order {} for steps of 0.02", lowered.1);
+        assert_eq!(
+            highest.1,
+            order_from_tol(tol),
+            "the system refused a lower order"
+        );
+        assert_eq!(fixed.1, order_from_tol(tol), "a fixed order is kept");
+        // The accuracy is the rule's, at any order: within 10 tol over 500 steps.
+        assert!(
+            lowered.0 <= 10.0 * tol,
+            "error {:e} at tol {tol:e}",
+            lowered.0
+        );
+    }
+    // A step capped by h_max (an input's resolution) keeps the highest order.
+    let opts = TaylorOptions {
+        h_max: 0.02,
+        ..TaylorOptions::new(1e-12)
+    };
+    assert_eq!(stopped_run(&mut Oscillator, opts, 1.0).1, 20);
+}
+
 // --- a generated kernel: free rocking of a rigid block, impact against DOP853 ---------------
 
 use rocking_kernels::kernels::rigid as kr;

@@ -99,7 +99,7 @@ impl std::fmt::Display for SimError {
             SimError::NoVariant(why) => f.write_str(why),
             SimError::NoTaylorSeries => f.write_str(
                 "method = taylor needs the excitation's Taylor series, which this motion does not \
-                 give (the Ricker and Mavroeidis-Papageorgiou pulses): use dop853, or \
+                 give (a motion whose GroundMotion::accel_series returns false): use dop853, or \
                  Preset::accuracy_for, which does for this motion",
             ),
             SimError::SingularMassMatrix {

@@ -52,7 +52,7 @@ mod taylor;
 pub use driver::simulate as simulate_variant;
 pub use error::{OptionError, SimError};
 pub use options::{
-    Accuracy, History, ImpactModel, Initial, Method, Options, Preset, MAX_HISTORY_ROWS,
+    Accuracy, History, ImpactModel, Initial, Measured, Method, Options, Preset, MAX_HISTORY_ROWS,
 };
 pub use results::{
     EnergyBalance, EventKind, EventRecord, ForceSummary, HistoryRow, Phase, Run, SolverStats,

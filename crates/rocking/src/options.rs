@@ -15,8 +15,9 @@ pub enum Method {
     Dop853,
     /// Taylor series from the generated Taylor-mode kernels (`rocking_ode::taylor`: step from
     /// the tolerance, order from a cost model), events as roots of each step's polynomials.
-    /// Needs the excitation's Taylor series (`GroundMotion::accel_series`): sine and cosine
-    /// pulses and records, not the Ricker and Mavroeidis–Papageorgiou pulses.
+    /// Needs the excitation's Taylor series (`GroundMotion::accel_series`), which every motion
+    /// of rocking-motion gives (pulses, Ricker, Mavroeidis–Papageorgiou, records); a motion
+    /// without one runs a preset by DOP853 ([`Preset::accuracy_for`]).
     Taylor,
 }
 
@@ -54,9 +55,12 @@ pub struct Accuracy {
     pub tol: f64,
 }
 
-/// Named accuracy settings, chosen from the work-precision study (`cargo xtask bench`,
-/// docs/accuracy.md). What each costs and how accurate it is, as measured, is
-/// [`Preset::measured`]: the one table `rocking --help` and the docs quote.
+/// Named accuracy settings, chosen by the work-precision study (`cargo xtask bench`,
+/// docs/accuracy.md): each is the cheapest configuration (method and tolerance) whose worst error
+/// over the study's cases meets the preset's [`target`](Preset::target), among the methods
+/// [`Preset::method_among`] allows (`reference` stays DOP853: the independent check). The study's report
+/// compares this table ([`Preset::accuracy`], [`Preset::measured`]) with its own numbers and
+/// says when it is stale; `rocking --help` prints it ([`Preset::table`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Preset {
@@ -64,11 +68,33 @@ pub enum Preset {
     Fast,
     /// Everyday runs.
     Default,
-    /// Results to publish. An excitation without a Taylor series runs DOP853 instead: see
-    /// [`Preset::accuracy_for`].
+    /// Results to publish.
     Accurate,
-    /// Reference solutions: the independent method the tests hold the others to.
+    /// Reference solutions, by DOP853: the method independent of the Taylor kernels, step rule
+    /// and polynomial event roots that the other presets run, so that tests and users can hold
+    /// them to it.
     Reference,
+}
+
+/// What the study measured for a preset at its method and tolerance.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Measured {
+    /// The worst error over the study's cases: the worse of the absolute error of max θ/α and
+    /// the relative error of the impact times.
+    pub error: f64,
+    /// CPU seconds per simulation, the geometric mean over the study's eight cases (one thread).
+    pub seconds: f64,
+}
+
+/// One row of the presets' table: everything a preset is, in one place.
+struct Row {
+    target: f64,
+    /// The only method the preset may be chosen from, if restricted.
+    among: Option<Method>,
+    accuracy: Accuracy,
+    /// The DOP853 tolerance for the same target, for a motion without a Taylor series.
+    dop853_tol: f64,
+    measured: Measured,
 }
 
 impl Preset {
@@ -90,73 +116,94 @@ impl Preset {
         }
     }
 
-    /// What the study measured for the preset: its error (the worse of the max θ/α error and
-    /// the relative impact-time error over the study's cases) and its time (geometric mean per
-    /// simulation over the study's eight cases, one thread of the 2-core machine). The study
-    /// recommends the Taylor method for every preset; only `accurate` is: `fast` and `default`
-    /// must run every excitation as it is (the Ricker and Mavroeidis–Papageorgiou pulses have no
-    /// Taylor series), and `reference` is the independent method the tests hold Taylor to.
-    pub fn measured(self) -> &'static str {
+    /// The table (module docs of the type): targets, the study's cheapest configurations and
+    /// what it measured (`cargo xtask bench`, docs/accuracy.md).
+    fn row(self) -> Row {
+        let taylor = |tol| Accuracy {
+            method: Method::Taylor,
+            tol,
+        };
+        let dop853 = |tol| Accuracy {
+            method: Method::Dop853,
+            tol,
+        };
+        let row = |target, among, accuracy, dop853_tol, error, seconds| Row {
+            target,
+            among,
+            accuracy,
+            dop853_tol,
+            measured: Measured { error, seconds },
+        };
+        // `cargo xtask bench` of 2026-11-26 (1112 s, load 7-10 on the 2 cores; docs/accuracy.md:
+        // DOP853's cost for each target against the Taylor method's, 1.57-1.83×; `reference`'s
+        // independence costs 3.09×, Taylor 1e-12 meeting its target in 0.58 ms).
         match self {
-            Preset::Fast => "error in max θ/α and impact times about 4e-5, about 0.51 ms",
-            Preset::Default => "error about 7e-7, about 0.69 ms",
-            Preset::Accurate => {
-                "error about 3e-11, about 0.58 ms (DOP853 at 1e-10 takes 1.16 ms; Taylor at \
-                 1e-10 misses the 1e-9 target on the spectrum slice's impact times)"
-            }
-            Preset::Reference => {
-                "error about 3e-12 against DOP853 at 1e-14 (2.2e-11 on the spectrum slice), \
-                 about 1.7 ms"
-            }
+            Preset::Fast => row(1e-3, None, taylor(1e-3), 1e-5, 9.6e-4, 245e-6),
+            Preset::Default => row(1e-6, None, taylor(1e-7), 1e-7, 7.5e-7, 372e-6),
+            Preset::Accurate => row(1e-9, None, taylor(1e-11), 1e-10, 3.3e-11, 531e-6),
+            Preset::Reference => row(
+                1e-11,
+                Some(Method::Dop853),
+                dop853(1e-13),
+                1e-13,
+                1.8e-12,
+                1.80e-3,
+            ),
         }
     }
 
-    /// The presets as a table of text (one line each: name, method and tolerance, what the study
-    /// measured), for `--help`.
-    pub fn table() -> String {
-        let mut out = String::new();
-        for p in Preset::ALL {
-            let a = p.accuracy();
-            let method = format!("{} at {:e}:", a.method.name(), a.tol);
-            out += &format!("  {:<10} {method:<16} {}\n", p.name(), p.measured());
-        }
-        out
+    /// The error the preset is chosen to meet on every case of the study (the worse of the
+    /// absolute error of max θ/α and the relative error of the impact times).
+    pub fn target(self) -> f64 {
+        self.row().target
+    }
+
+    /// The only method the study may choose the preset from, if restricted: DOP853 for
+    /// `reference`, the independent check of the others.
+    pub fn method_among(self) -> Option<Method> {
+        self.row().among
     }
 
     /// The method and tolerance of the preset.
     pub fn accuracy(self) -> Accuracy {
-        match self {
-            Preset::Fast => Accuracy {
-                method: Method::Dop853,
-                tol: 1e-5,
-            },
-            Preset::Default => Accuracy {
-                method: Method::Dop853,
-                tol: 1e-7,
-            },
-            Preset::Accurate => Accuracy {
-                method: Method::Taylor,
-                tol: 1e-11,
-            },
-            Preset::Reference => Accuracy {
-                method: Method::Dop853,
-                tol: 1e-12,
-            },
-        }
+        self.row().accuracy
     }
 
-    /// The preset's accuracy for a given excitation: [`Preset::accuracy`], except that a Taylor
-    /// preset on an excitation without a Taylor series runs DOP853 at the tolerance the study
-    /// found for the same error (`accurate`: 1e-10).
+    /// What the study measured for the preset.
+    pub fn measured(self) -> Measured {
+        self.row().measured
+    }
+
+    /// The presets as a table of text (one line each: name, method and tolerance, target and what
+    /// the study measured), for `--help`.
+    pub fn table() -> String {
+        let mut out = String::new();
+        for p in Preset::ALL {
+            let (a, m) = (p.accuracy(), p.measured());
+            let method = format!("{} at {:e}:", a.method.name(), a.tol);
+            out += &format!(
+                "  {:<10} {method:<16} target {:.0e}, error about {:.0e}, about {:.2} ms\n",
+                p.name(),
+                p.target(),
+                m.error,
+                m.seconds * 1e3
+            );
+        }
+        out
+    }
+
+    /// The preset's accuracy for a given excitation: [`Preset::accuracy`], except that a motion
+    /// without a Taylor series (whose `GroundMotion::accel_series` returns false: none of
+    /// rocking-motion's) runs DOP853 at the tolerance the study found for the same target.
     pub fn accuracy_for<M: rocking_motion::GroundMotion + ?Sized>(self, motion: &M) -> Accuracy {
-        let accuracy = self.accuracy();
-        if accuracy.method == Method::Taylor && !motion.accel_series(0.0, &mut [0.0; 2]) {
+        let row = self.row();
+        if row.accuracy.method == Method::Taylor && !motion.accel_series(0.0, &mut [0.0; 2]) {
             return Accuracy {
                 method: Method::Dop853,
-                tol: 1e-10,
+                tol: row.dop853_tol,
             };
         }
-        accuracy
+        row.accuracy
     }
 }
 

@@ -183,6 +183,14 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const D: usize> TaylorSystem<D>
             integrate_power(x, 2, &pw, &self.scale);
         }
     }
+    /// The uplift functions follow ü_g even where the state does not (a rigid column in contact
+    /// does not move): a step may run a lower order only where ü_g is at most linear up to the
+    /// next kink (a record's sample interval, or no excitation), which every order keeps exact.
+    fn may_lower_order(&mut self, t0: f64) -> bool {
+        let mut ug = [0.0; 4];
+        self.motion.accel_series(t0, &mut ug);
+        ug[2] == 0.0 && ug[3] == 0.0
+    }
 }
 
 /// The uplift functions `[f_+, f_-]` along a contact step are the events of full contact.
