@@ -1,41 +1,66 @@
 #!/usr/bin/env bash
-# Rebuilds the spectrum figures of docs/spectra.md (the paper's Figs 6-9) from the scenes here.
-# Usage: bash scenes/spectra/make-figures.sh [cells per axis, default 40]
+# Rebuilds the figures of docs/gallery.md and docs/spectra.md: the paper's Figs 3-10 from the
+# figure files of scenes/paper (one `rocking figure` command: each spectrum is computed once,
+# journaled in out/figure-cache/ and shared by Figs 6-9), the one-axis line plot and the
+# animation of the Fig. 3 run. The images are the same bytes on every machine.
+# Usage: bash scenes/spectra/make-figures.sh           draw them into docs/img/
+#        bash scenes/spectra/make-figures.sh --check   draw them aside and compare with docs/img/
+#                                                      (exit 1 naming the files that differ)
+# ROCKING names a built binary (default: the release build, built first), e.g. the test
+# profile's target/debug/rocking in CI: the images are the same bytes.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-n=${1:-40}
-cargo build --release -q -p rocking-cli
+mode=${1:---write}
+case $mode in
+--write | --check) ;;
+*)
+    echo "usage: bash scenes/spectra/make-figures.sh [--check]" >&2
+    exit 2
+    ;;
+esac
+if [ -z "${ROCKING:-}" ]; then
+    cargo build --release -q -p rocking-cli
+    ROCKING=$PWD/target/release/rocking
+fi
 start=$(date +%s)
-rocking=target/release/rocking
+rocking=$ROCKING
+work=$(mktemp -d /tmp/rocking-figures.XXXXXX)
+trap 'rm -rf "$work"' EXIT
 # `rocking spectrum` exits 1 when some cells failed (they are marked in cells.csv and meta.json,
 # and the figure is still drawn); any other failure stops the script.
 spectrum() { "$rocking" spectrum "$@" || { s=$?; [ "$s" -eq 1 ] || exit "$s"; }; }
-img=docs/img/spectra
-mkdir -p "$img"
-# Its own scratch outputs, made anew (a journal of another build would be refused, not resumed).
-rm -rf out/spectra out/fig3-vvel-animation
-for fig in 6 7 8; do
-  for alpha in 0.1 0.2; do
-    for wn in 2.5 5 10 20 rigid; do
-      name="fig$fig-alpha$alpha-wn$wn"
-      if [ "$wn" = rigid ]; then set_wn=(--set effects.flexibility=false); else set_wn=(--set "structure.omega_n_over_p=$wn"); fi
-      spectrum "scenes/spectra/fig$fig.toml" --quiet --out "out/spectra/$name" \
-        --set "structure.alpha=$alpha" "${set_wn[@]}" \
-        --axis "excitation.omega_p_over_p=1:10:$n" --axis "excitation.amplitude=1:20:$n" | sed -n 1p
-      cp "out/spectra/$name/spectrum.png" "$img/$name.png"
-      cp "out/spectra/$name/spectrum.svg" "$img/$name.svg"
-    done
-  done
+
+# Each drawn file and where it is committed.
+"$rocking" figure scenes/paper/fig*.toml --out "$work/paper" --quiet >/dev/null
+pairs=()
+for f in "$work"/paper/*.svg "$work"/paper/*.png; do
+    pairs+=("$f" "docs/img/paper/$(basename "$f")")
 done
-spectrum scenes/spectra/fig9.toml --quiet --out out/spectra/fig9 | sed -n 1p
-cp out/spectra/fig9/spectrum.png "$img/fig9.png"
-cp out/spectra/fig9/spectrum.svg "$img/fig9.svg"
 # A one-axis sweep (line plot): Fig. 8, α = 0.1, ω_n/p = 5, ω_p/p = 5, against the amplitude.
-spectrum scenes/spectra/fig8.toml --quiet --out out/spectra/fig8-line --set structure.alpha=0.1 \
-  --axis "excitation.amplitude=1:20:$n" | sed -n 1p
-cp out/spectra/fig8-line/line.png "$img/fig8-line.png"
-cp out/spectra/fig8-line/line.svg "$img/fig8-line.svg"
+spectrum scenes/spectra/fig8.toml --quiet --out "$work/fig8-line" --set structure.alpha=0.1 \
+    --axis "excitation.amplitude=1:20:40" | sed -n 1p
+pairs+=("$work/fig8-line/line.png" docs/img/spectra/fig8-line.png)
+pairs+=("$work/fig8-line/line.svg" docs/img/spectra/fig8-line.svg)
 # The animation of the Fig. 3 scene (docs/img/fig3-vvel.gif).
-"$rocking" run scenes/fig3-vvel.toml --animate --out out/fig3-vvel-animation | sed -n 2p
-cp out/fig3-vvel-animation/animation.gif docs/img/fig3-vvel.gif
-echo "figures made in $(( $(date +%s) - start )) s"
+"$rocking" run scenes/fig3-vvel.toml --animate --out "$work/fig3-vvel-animation" | sed -n 2p
+pairs+=("$work/fig3-vvel-animation/animation.gif" docs/img/fig3-vvel.gif)
+
+differ=0
+for ((k = 0; k < ${#pairs[@]}; k += 2)); do
+    drawn=${pairs[k]} committed=${pairs[k + 1]}
+    if [ "$mode" = --write ]; then
+        mkdir -p "$(dirname "$committed")"
+        cp "$drawn" "$committed"
+    elif ! cmp -s "$drawn" "$committed"; then
+        echo "differs from a redraw: $committed" >&2
+        differ=1
+    fi
+done
+if [ "$mode" = --check ]; then
+    if [ "$differ" -ne 0 ]; then
+        echo "redraw with: bash scenes/spectra/make-figures.sh (and say why they changed)" >&2
+        exit 1
+    fi
+    echo "$((${#pairs[@]} / 2)) committed images are the bytes a redraw gives"
+fi
+echo "figures made in $(($(date +%s) - start)) s"

@@ -7,7 +7,7 @@
 //! 3. the SciPy peer `bench/scipy_peer.py` → `target/bench/scipy.json`;
 //! 4. the heyoka peer `bench/heyoka_peer.py` → `target/bench/heyoka.json`;
 //! 5. the OpenSees peer `bench/opensees_rocking.py` → `target/bench/opensees.json`;
-//! 6. `rocking-bench report` → `docs/accuracy.md`, `docs/img/accuracy-*.{png,svg}` (with
+//! 6. `rocking-bench report` → `docs/accuracy.md`, `docs/img/accuracy-*.{json,svg,png}` (with
 //!    `--quick`: `target/bench-quick/docs/`, so the full study's doc is never replaced).
 //!
 //! A peer that fails is reported in the doc; the Rust study failing fails the command.
@@ -151,7 +151,7 @@ pub fn run_bench(root: &Path, opts: &Options) -> Result<()> {
         .arg(&docs)
         .current_dir(root))?;
     println!(
-        "xtask: bench done in {:.0} s: {}/accuracy.md, {}/img/accuracy-*.{{png,svg}} (raw results in {})",
+        "xtask: bench done in {:.0} s: {}/accuracy.md, {}/img/accuracy-*.{{json,svg,png}} (raw results in {})",
         start.elapsed().as_secs_f64(),
         docs.display(),
         docs.display(),

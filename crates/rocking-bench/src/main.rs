@@ -7,8 +7,11 @@
 //!
 //! `rocking-bench report --dir DIR --docs DOCS` reads `rust.json` and, when present, `scipy.json`
 //! and `opensees.json`, and writes `DOCS/accuracy.md` and the work-precision diagrams
-//! `DOCS/img/accuracy-*.{png,svg}`.
+//! `DOCS/img/accuracy-*.{json,svg,png}` (each diagram's data and its images).
+//!
+//! `rocking-bench redraw --docs DOCS` draws the diagrams again from their data.
 
+mod diagram;
 mod report;
 mod study;
 
@@ -18,14 +21,16 @@ use std::process::ExitCode;
 const USAGE: &str = "\
 usage: rocking-bench run [--quick] [--out DIR]
        rocking-bench report [--dir DIR] [--docs DOCS]
+       rocking-bench redraw [--docs DOCS]
        rocking-bench probe CASE METHOD TOL [SECONDS]
 
 run     the accuracy/cost study (dopri5, dop853, taylor; tolerances 1e-3..1e-12, taylor also 1e-13 and 1e-14;
         reference DOP853 1e-14);
         writes DIR/rust.json and DIR/cases.json (default DIR: target/bench)
         --quick  fewer tolerances and cases (a minute or two)
-report  writes DOCS/accuracy.md and DOCS/img/accuracy-*.{png,svg} from DIR/{rust,scipy,opensees}.json
-        (default DOCS: docs)
+report  writes DOCS/accuracy.md and DOCS/img/accuracy-*.{json,svg,png} from
+        DIR/{rust,scipy,heyoka,opensees}.json (default DOCS: docs)
+redraw  draws DOCS/img/accuracy-*.{svg,png} again from DOCS/img/accuracy-*.json
 probe   one case of the study at one method and tolerance: CPU per simulation (median over
         SECONDS, default 1), steps, evaluations and the errors against the reference
 ";
@@ -83,6 +88,13 @@ fn main() -> ExitCode {
     let result = match cmd.as_str() {
         "run" => study::run(quick, &dir),
         "report" => report::run(&dir, &docs),
+        "redraw" => diagram::redraw(&docs).map(|files| {
+            eprintln!(
+                "redrew {} files in {}",
+                files.len(),
+                docs.join("img").display()
+            );
+        }),
         "help" | "--help" | "-h" => {
             print!("{USAGE}");
             return ExitCode::SUCCESS;

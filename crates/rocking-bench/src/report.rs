@@ -3,13 +3,10 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use plotters::prelude::*;
-use plotters::style::{register_font, FontStyle};
 use serde_json::Value;
 
+use crate::diagram::{self, Diagram};
 use crate::Result;
-
-static FONT: &[u8] = include_bytes!("../../rocking-plot/assets/DejaVuSans.ttf");
 
 fn f(v: &Value) -> f64 {
     v.as_f64().unwrap_or(f64::NAN)
@@ -153,58 +150,26 @@ fn levels_table(w: &mut String, hy: &Value, cases: &[Value]) -> Result<()> {
     Ok(())
 }
 
-/// A line of a work-precision diagram: label, colour, (CPU s, error, tol) points.
-type Series = (String, RGBColor, Vec<(f64, f64, f64)>);
+/// A peer's results for one case: its series name in the diagrams and its case entry.
+type Peer<'a> = (&'a str, &'a Value);
 
-/// A peer's results for one case: label, colour, its case entry.
-type Peer<'a> = (&'a str, RGBColor, &'a Value);
-
-fn plot_case(case: &Value, peers: &[Peer], path: &Path, png: bool) -> Result<()> {
-    if png {
-        draw_case(
-            case,
-            peers,
-            BitMapBackend::new(path, (1200, 520)).into_drawing_area(),
-        )
-    } else {
-        draw_case(
-            case,
-            peers,
-            SVGBackend::new(path, (1200, 520)).into_drawing_area(),
-        )
-    }
-    .map_err(|e| format!("{}: {e}", path.display()).into())
-}
-
-fn draw_case<DB: DrawingBackend>(
-    case: &Value,
-    peers: &[Peer],
-    root: DrawingArea<DB, plotters::coord::Shift>,
-) -> std::result::Result<(), String> {
-    let title = case["name"].as_str().unwrap_or("");
-    let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
-    {
-        root.fill(&WHITE).map_err(e)?;
-        let root = root
-            .titled(&format!("work-precision: {title}"), ("sans-serif", 20))
-            .map_err(e)?;
-        let panels = root.split_evenly((1, 2));
-        for (k, (area, (key, label))) in panels
-            .iter()
-            .zip([
-                ("max_theta", "error in max θ/α"),
-                ("impact_time", "error in impact times (τ)"),
-            ])
-            .enumerate()
-        {
-            let _ = k;
-            let mut series: Vec<Series> = Vec::new();
-            for (m, color) in [
-                ("dopri5", RGBColor(31, 119, 180)),
-                ("dop853", RGBColor(214, 39, 40)),
-                ("taylor", RGBColor(255, 127, 14)),
+/// The work-precision diagram of a case: per error measure, the Rust methods' runs (without
+/// the reference's own configuration) and the peers'.
+fn diagram(case: &Value, peers: &[Peer]) -> Diagram {
+    let measures = [
+        ("max_theta", "error in max |θ|/α"),
+        ("impact_time", "error in impact times τ"),
+    ];
+    let panels = measures
+        .iter()
+        .map(|&(key, label)| {
+            let mut series = Vec::new();
+            for (m, name) in [
+                ("dopri5", "dopri5 (Rust)"),
+                ("dop853", "dop853 (Rust)"),
+                ("taylor", "taylor (Rust)"),
             ] {
-                let pts: Vec<(f64, f64, f64)> = case["points"]
+                let points = case["points"]
                     .as_array()
                     .into_iter()
                     .flatten()
@@ -213,89 +178,41 @@ fn draw_case<DB: DrawingBackend>(
                         !(m == "dop853"
                             && (f(&p["tol"]) / crate::study::REF_TOL - 1.0).abs() < 1e-9)
                     })
-                    .map(|p| (f(&p["cpu_s"]), err(p, key).max(1e-16), f(&p["tol"])))
-                    .filter(|(t, e, _)| t.is_finite() && e.is_finite())
+                    .map(|p| [f(&p["cpu_s"]), err(p, key), f(&p["tol"])])
+                    .filter(|p| p.iter().all(|v| v.is_finite()))
                     .collect();
-                series.push((format!("{m} (Rust)"), color, pts));
+                series.push(diagram::Series {
+                    name: name.to_string(),
+                    points,
+                });
             }
-            for (peer_label, peer_color, sp) in peers {
-                let pts: Vec<(f64, f64, f64)> = sp["points"]
+            for (name, sp) in peers {
+                let points = sp["points"]
                     .as_array()
                     .into_iter()
                     .flatten()
                     .filter(|p| p["errors"].is_object())
-                    .map(|p| (f(&p["seconds"]), err(p, key).max(1e-16), f(&p["tol"])))
-                    .filter(|(t, e, _)| t.is_finite() && e.is_finite())
+                    .map(|p| [f(&p["seconds"]), err(p, key), f(&p["tol"])])
+                    .filter(|p| p.iter().all(|v| v.is_finite()))
                     .collect();
-                series.push((peer_label.to_string(), *peer_color, pts));
+                series.push(diagram::Series {
+                    name: name.to_string(),
+                    points,
+                });
             }
-            let all: Vec<&(f64, f64, f64)> = series.iter().flat_map(|s| s.2.iter()).collect();
-            if all.is_empty() {
-                continue;
+            diagram::DiagramPanel {
+                label: label.to_string(),
+                series,
             }
-            let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
-            for (x, y, _) in &all {
-                x0 = x0.min(*x);
-                x1 = x1.max(*x);
-                y0 = y0.min(*y);
-                y1 = y1.max(*y);
-            }
-            let mut chart = ChartBuilder::on(area)
-                .margin(10)
-                .x_label_area_size(45)
-                .y_label_area_size(70)
-                .build_cartesian_2d(
-                    (x0 / 1.5..x1 * 1.5).log_scale(),
-                    (y0 / 3.0..y1 * 3.0).log_scale(),
-                )
-                .map_err(e)?;
-            chart
-                .configure_mesh()
-                .x_desc("CPU time per simulation (s)")
-                .y_desc(label)
-                .x_label_formatter(&|x| format!("{x:.0e}"))
-                .y_label_formatter(&|y| format!("{y:.0e}"))
-                .light_line_style(RGBColor(235, 235, 235))
-                .draw()
-                .map_err(e)?;
-            for (name, color, pts) in &series {
-                let c = *color;
-                chart
-                    .draw_series(LineSeries::new(
-                        pts.iter().map(|(x, y, _)| (*x, *y)),
-                        c.stroke_width(2),
-                    ))
-                    .map_err(e)?
-                    .label(name.as_str())
-                    .legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2))
-                    });
-                chart
-                    .draw_series(
-                        pts.iter()
-                            .map(|(x, y, _)| Circle::new((*x, *y), 4, c.filled())),
-                    )
-                    .map_err(e)?;
-                chart
-                    .draw_series(pts.iter().map(|(x, y, tol)| {
-                        Text::new(
-                            format!("{:.0}", tol.log10()),
-                            (*x, *y),
-                            ("sans-serif", 11).into_font().color(&c),
-                        )
-                    }))
-                    .map_err(e)?;
-            }
-            chart
-                .configure_series_labels()
-                .background_style(WHITE.mix(0.8))
-                .border_style(BLACK)
-                .position(SeriesLabelPosition::UpperRight)
-                .draw()
-                .map_err(e)?;
-        }
-        root.present().map_err(e)?;
-        Ok(())
+        })
+        .collect();
+    Diagram {
+        title: case["title"]
+            .as_str()
+            .or(case["name"].as_str())
+            .unwrap_or("")
+            .to_string(),
+        panels,
     }
 }
 
@@ -363,7 +280,6 @@ fn fill(a: &Value) -> Value {
 }
 
 pub fn run(dir: &Path, docs: &Path) -> Result<()> {
-    let _ = register_font("sans-serif", FontStyle::Normal, FONT);
     let rust: Value = serde_json::from_str(&std::fs::read_to_string(dir.join("rust.json"))?)?;
     let mut scipy: Option<Value> = std::fs::read_to_string(dir.join("scipy.json"))
         .ok()
@@ -507,19 +423,18 @@ pub fn run(dir: &Path, docs: &Path) -> Result<()> {
     }
 
     writeln!(w, "\n## Work-precision per case\n")?;
-    writeln!(w, "Diagrams: error against CPU time per simulation, log-log, one line per method (labels: log10 tol); SciPy's DOP853 peer in green and heyoka's Taylor integrator in purple where they ran.\n")?;
+    writeln!(w, "Diagrams: error against CPU time per simulation, log-log, one line per method and peer (SciPy's DOP853 and heyoka's Taylor integrator where they ran), each point one tolerance labelled with its exponent. Each diagram's data is beside it (`img/accuracy-CASE.json`): `cargo run -p rocking-bench -- redraw` draws the images again from it.\n")?;
     for c in &cases {
         let name = c["name"].as_str().unwrap_or("case");
         let (sp, hy) = (sp_case(&c["name"]), hy_case(&c["name"]));
         let mut peers: Vec<Peer> = Vec::new();
         if let Some(sp) = &sp {
-            peers.push(("SciPy DOP853", RGBColor(44, 160, 44), sp));
+            peers.push(("SciPy DOP853", sp));
         }
         if let Some(hy) = &hy {
-            peers.push(("heyoka Taylor", RGBColor(148, 103, 189), hy));
+            peers.push(("heyoka Taylor", hy));
         }
-        plot_case(c, &peers, &img.join(format!("accuracy-{name}.png")), true)?;
-        plot_case(c, &peers, &img.join(format!("accuracy-{name}.svg")), false)?;
+        diagram(c, &peers).write(&img, &format!("accuracy-{name}"))?;
         writeln!(w, "### `{name}`\n\n{}\n", c["title"].as_str().unwrap_or(""))?;
         writeln!(
             w,
@@ -882,7 +797,7 @@ pub fn run(dir: &Path, docs: &Path) -> Result<()> {
     let _ = notes;
     std::fs::write(docs.join("accuracy.md"), md)?;
     eprintln!(
-        "wrote {} and {}/accuracy-*.{{png,svg}}",
+        "wrote {} and {}/accuracy-*.{{json,svg,png}}",
         docs.join("accuracy.md").display(),
         img.display()
     );

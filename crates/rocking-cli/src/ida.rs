@@ -11,8 +11,8 @@ use rocking_study::ida::RecordStudy;
 use rocking_study::plan::Base;
 use serde_json::json;
 
-use crate::ida_plot;
 use crate::out_dir::{write_atomic, OutDir};
+use crate::plot;
 use rocking_scene::SceneError;
 
 fn csv_err(e: csv::Error) -> SceneError {
@@ -168,7 +168,7 @@ pub fn ida(
     let text = serde_json::to_string_pretty(&json)
         .map_err(|e| SceneError::failure(format!("cannot write fragility.json: {e}")))?;
     write_atomic(&dir.path().join("fragility.json"), text.as_bytes())?;
-    let curves: Vec<(String, ida_plot::Points)> = done
+    let curves: Vec<(String, plot::Points)> = done
         .iter()
         .map(|d| {
             let pts = d
@@ -179,8 +179,26 @@ pub fn ida(
         })
         .collect();
     let im_label = im_label(&st.settings.im);
-    ida_plot::ida_curves(&curves, &im_label, dir.path())?;
-    ida_plot::fragility_fit(&empirical, done.len(), fit, &im_label, dir.path())?;
+    let empirical_label = if st.settings.stripes.is_some() {
+        "fraction overturned per stripe"
+    } else {
+        "a record's capacity at (i + ½)/n"
+    };
+    plot::ida_plots(
+        plot::IdaPanel {
+            curves,
+            im_label: im_label.clone(),
+            stripes: st.settings.stripes.is_some(),
+        },
+        plot::FitPanel {
+            fit: fit.clone(),
+            empirical,
+            empirical_label: empirical_label.to_string(),
+            im_label,
+            unit: "m/s²".to_string(),
+        },
+        dir.path(),
+    )?;
     dir.commit()?;
     out!(
         "{} records, {runs} analyses ({method}) in {:.2} s: median capacity {:.4} m/s2 ({:.4} g), \

@@ -8,6 +8,7 @@
 //! rocking spectrum|batch ... --shard K/N --out SHARD_DIR    (one shard of a job array)
 //! rocking merge OUT SHARD_DIR...
 //! rocking ida SCENE [--records FILE|DIR ...] [--set ...] [--out DIR] [--threads N]
+//! rocking figure FIGURE.toml... [--out DIR] [--cells N] [--cache DIR] [--quiet]
 //! ```
 //!
 //! Exit codes: 0 ok, 2 invalid input (scene, record, arguments), 1 internal failure.
@@ -25,8 +26,8 @@ macro_rules! out {
     }};
 }
 
+mod figure;
 mod ida;
-mod ida_plot;
 mod merge;
 mod out_dir;
 mod plot;
@@ -166,6 +167,26 @@ enum Command {
         /// The shards' --out directories, all N of them.
         #[arg(required = true, num_args = 1..)]
         shards: Vec<PathBuf>,
+    },
+    /// Draw figures from figure files (scenes/paper/: the paper's Figs 3-10): runs and sweeps
+    /// of scenes as panels (quantities against τ overlaid, spectra on one colour scale,
+    /// overturning boundaries), written as SVG, PNG and PDF named after each file.
+    Figure {
+        /// The figure files (TOML).
+        #[arg(required = true, num_args = 1..)]
+        files: Vec<PathBuf>,
+        /// Output directory (default: out/figures/).
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// At most N cells per ranged sweep axis (a quick draft, or CI).
+        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(2..))]
+        cells: Option<u16>,
+        /// Where sweeps are journaled and reused (default: out/figure-cache/).
+        #[arg(long, value_name = "DIR")]
+        cache: Option<PathBuf>,
+        /// No progress bar.
+        #[arg(long)]
+        quiet: bool,
     },
     /// Incremental dynamic analysis of a record scene (settings in [ida]): per record its
     /// intensity measures and its overturning capacity by hunt-and-fill; the lognormal fragility
@@ -470,6 +491,21 @@ fn main() -> ExitCode {
             shard,
         } => sweep::batch(&scene, &set, &records, &scales, out, quiet, threads, shard),
         Command::Merge { out, shards } => merge::merge(&out, &shards),
+        Command::Figure {
+            files,
+            out,
+            cells,
+            cache,
+            quiet,
+        } => figure::figure(
+            &files,
+            &figure::Options {
+                out: out.unwrap_or_else(|| PathBuf::from("out/figures")),
+                cache: cache.unwrap_or_else(|| PathBuf::from("out/figure-cache")),
+                cells: cells.map(usize::from),
+                quiet,
+            },
+        ),
         Command::Ida {
             scene,
             records,

@@ -12,6 +12,7 @@ use rocking_spectra::{Outcome, Shard, SweepError};
 use rocking_study::plan::{program_digest, Base, Plan};
 
 use crate::out_dir::{OutDir, OutKind};
+use crate::plot;
 use crate::shard::{io, read_manifest, Kind, Manifest, MANIFEST};
 use crate::sweep;
 
@@ -32,16 +33,10 @@ const SAME: [(&str, &str); 10] = [
 
 /// Which files a merge writes into OUT (the outputs of a spectrum or of a record suite).
 fn merge_writes(name: &str) -> bool {
-    [
-        "cells.csv",
-        "meta.json",
-        "runs.csv",
-        "fragility.csv",
-        "fragility.png",
-        "fragility.svg",
-    ]
-    .contains(&name)
-        || (name.starts_with("spectrum") && (name.ends_with(".png") || name.ends_with(".svg")))
+    ["cells.csv", "meta.json", "runs.csv", "fragility.csv"].contains(&name)
+        || plot::SWEEP_FIGURES
+            .iter()
+            .any(|figure| plot::is_figure_file(name, figure))
 }
 
 /// `rocking merge OUT SHARD_DIR...`: the outputs of the whole study from all its shards. Shards

@@ -13,23 +13,26 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), SceneError> {
 
 /// The files `rocking run` writes; an existing output directory holding anything else is not
 /// replaced (it is not a run's directory).
-pub const RUN_FILES: [&str; 5] = [
+pub const RUN_FILES: [&str; 6] = [
     "summary.json",
     "history.csv",
     "events.csv",
     "plot.png",
     "plot.svg",
+    "plot.pdf",
 ];
 
 /// The files `rocking ida` writes (its --out is replaced whole like a run's).
-pub const IDA_FILES: [&str; 7] = [
+pub const IDA_FILES: [&str; 9] = [
     "records.csv",
     "ida.csv",
     "fragility.json",
-    "ida.png",
     "ida.svg",
-    "fragility-fit.png",
+    "ida.png",
+    "ida.pdf",
     "fragility-fit.svg",
+    "fragility-fit.png",
+    "fragility-fit.pdf",
 ];
 
 /// The output directory of one run, built aside and swapped in whole: the directory always holds

@@ -1,5 +1,7 @@
 //! Figures on what they draw, not on pixels: the labels in the SVG text of the time history, the
-//! spectrum and the one-axis line plot; a one-axis sweep writes its line plot; the animated GIF
+//! spectrum and the one-axis line plot (subscripts as tspans); every figure file of scenes/paper
+//! drawn on small grids (overlays, one colour scale, no "-0" tick); a one-axis sweep writes its
+//! line plot; the animated GIF
 //! has the stated frame count and size, and its first and last frames show the base plate at the
 //! simulated angles (read back from the drawn plate's pixels).
 
@@ -32,15 +34,38 @@ fn ok(o: &std::process::Output) {
     );
 }
 
-fn svg_text(path: &Path) -> String {
-    let svg = std::fs::read_to_string(path).unwrap();
-    // The text of <text> elements only (labels, not attributes).
+/// The text of each <text> element (labels, not attributes), with its subscript tspans written
+/// back in the labels' notation (`u<tspan class="sub" ...>cr</tspan>` reads `u_cr`).
+fn texts(svg: &str) -> Vec<String> {
+    texts_marking(svg, "_")
+}
+
+/// The text of each <text> element, each subscript preceded by `mark`.
+fn texts_marking(svg: &str, mark: &str) -> Vec<String> {
     svg.split("<text")
         .skip(1)
         .filter_map(|t| t.split_once('>').map(|(_, rest)| rest))
         .filter_map(|t| t.split_once("</text>").map(|(text, _)| text))
-        .collect::<Vec<_>>()
-        .join("\n")
+        .map(|t| {
+            let mut out = String::new();
+            for (k, part) in t.split("<tspan").enumerate() {
+                if k == 0 {
+                    out.push_str(part);
+                    continue;
+                }
+                let (tag, rest) = part.split_once('>').unwrap();
+                if tag.contains("class=\"sub\"") {
+                    out.push_str(mark);
+                }
+                out.push_str(&rest.replace("</tspan>", ""));
+            }
+            out
+        })
+        .collect()
+}
+
+fn svg_text(path: &Path) -> String {
+    texts(&std::fs::read_to_string(path).unwrap()).join("\n")
 }
 
 fn sweep(out: &Path, axes: &[&str]) {
@@ -127,6 +152,9 @@ fn the_time_history_is_labelled_in_the_papers_notation() {
             "`{label}` is not in the SVG text:\n{text}"
         );
     }
+    // The caption explains the marks drawn: impacts, and no overturning arrow (the run stays up).
+    assert!(text.contains("Markers on a line"), "{text}");
+    assert!(!text.contains("overturns there"), "{text}");
 }
 
 /// The orientation (radians, clockwise on the screen) of the pixels of one colour, from their
@@ -271,7 +299,7 @@ fn the_rigid_reference_is_the_rigid_columns_own_spectrum_and_is_drawn() {
     let text = svg_text(&rigid.join("spectrum.svg"));
     let words = text.split_whitespace().collect::<Vec<_>>().join(" ");
     assert!(
-        words.contains("overturning boundary, rigid column"),
+        words.contains("overturned | upright, rigid column"),
         "{text}"
     );
     let svg = std::fs::read_to_string(rigid.join("spectrum.svg")).unwrap();
@@ -299,7 +327,14 @@ fn the_rigid_reference_is_the_rigid_columns_own_spectrum_and_is_drawn() {
         .args(&shards)
         .output()
         .unwrap());
-    for f in ["cells.csv", "reference.csv", "meta.json", "spectrum.svg"] {
+    for f in [
+        "cells.csv",
+        "reference.csv",
+        "meta.json",
+        "spectrum.svg",
+        "spectrum.png",
+        "spectrum.pdf",
+    ] {
         assert_eq!(
             std::fs::read(merged.join(f)).unwrap(),
             std::fs::read(out.join(f)).unwrap(),
@@ -322,4 +357,210 @@ fn an_unknown_reference_is_refused_naming_the_key_and_the_choices() {
         "{err}"
     );
     assert!(!out.exists(), "nothing is written for a refused scene");
+}
+
+/// Every tick label and number of an SVG: none is a negative zero or ends in a needless ".0",
+/// and no label shows a literal underscore (subscripts are drawn as such: read without a mark).
+fn assert_clean_text(name: &str, svg: &str) {
+    for t in texts_marking(svg, "") {
+        let t = t.trim();
+        assert!(
+            !matches!(t, "-0" | "\u{2212}0" | "-0.0" | "\u{2212}0.0"),
+            "{name}: a negative zero tick `{t}`"
+        );
+        let is_number = t
+            .chars()
+            .all(|c| c.is_ascii_digit() || c == '.' || c == '-' || c == '\u{2212}');
+        assert!(
+            !(is_number && t.contains('.') && t.ends_with('0')),
+            "{name}: a needless trailing zero in `{t}`"
+        );
+        assert!(!t.contains('_'), "{name}: a literal underscore in `{t}`");
+    }
+}
+
+/// `rocking figure` on every figure file of scenes/paper, on small grids (the test CI runs).
+#[test]
+fn every_paper_figure_is_drawn_and_shows_what_it_compares() {
+    let out = tmp("paper");
+    let cache = tmp("paper-cache");
+    let mut files: Vec<PathBuf> = std::fs::read_dir(repo().join("scenes/paper"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    files.sort();
+    assert_eq!(files.len(), 8, "Figs 3-10: {files:?}");
+    ok(&bin()
+        .arg("figure")
+        .args(&files)
+        .args(["--cells", "6", "--quiet", "--out"])
+        .arg(&out)
+        .arg("--cache")
+        .arg(&cache)
+        .output()
+        .unwrap());
+    for f in &files {
+        let stem = f.file_stem().unwrap().to_string_lossy();
+        for ext in ["svg", "png", "pdf"] {
+            assert!(out.join(format!("{stem}.{ext}")).is_file(), "{stem}.{ext}");
+        }
+        let svg = std::fs::read_to_string(out.join(format!("{stem}.svg"))).unwrap();
+        assert_clean_text(&stem, &svg);
+        assert!(std::fs::read(out.join(format!("{stem}.pdf")))
+            .unwrap()
+            .starts_with(b"%PDF"));
+    }
+    let text = |stem: &str| {
+        let t = svg_text(&out.join(format!("{stem}.svg")));
+        t.split_whitespace().collect::<Vec<_>>().join(" ")
+    };
+    // Fig. 3: one figure overlays both impact models, each in its own line colour.
+    let fig3 = std::fs::read_to_string(out.join("fig3.svg")).unwrap();
+    let t3 = text("fig3");
+    for label in [
+        "VVEL",
+        "ADJex",
+        "θ/α",
+        "u/u_cr",
+        "E_kin/E_ref",
+        "ü_g/(g tan α)",
+    ] {
+        assert!(t3.contains(label), "fig3: `{label}` missing: {t3}");
+    }
+    // Both runs are drawn in the three overlaid panels: each impact of each run is marked in
+    // each of them with the run's marker in its colour (VVEL circles, ADJex squares), plus one
+    // in the legend.
+    let impacts = |scene: &str| {
+        let o = bin()
+            .arg("run")
+            .arg(repo().join(scene))
+            .args(["--json", "--out"])
+            .arg(out.join(scene.replace('/', "-")))
+            .output()
+            .unwrap();
+        ok(&o);
+        let summary: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        summary["impacts"].as_u64().unwrap() as usize
+    };
+    let marks = |element: &str, colour: &str| {
+        fig3.split(element)
+            .skip(1)
+            .filter(|e| {
+                e.split('>')
+                    .next()
+                    .unwrap()
+                    .contains(&format!("fill=\"{colour}\""))
+            })
+            .count()
+    };
+    let (vvel, adjex) = (
+        impacts("scenes/fig3-vvel.toml"),
+        impacts("scenes/fig3-adjex.toml"),
+    );
+    assert!(vvel > 0 && adjex > vvel, "{vvel} and {adjex} impacts");
+    assert_eq!(
+        marks("<circle", "#1B80C6"),
+        1 + 3 * vvel,
+        "fig3: VVEL's impacts"
+    );
+    assert_eq!(
+        marks("<rect", "#AC2000"),
+        1 + 3 * adjex,
+        "fig3: ADJex's impacts"
+    );
+    // Figs 6-8: ten panels on one colour scale, θ_cr/α marked once per slenderness.
+    // (Mass only on top: θ_cr = α whatever α, one mark.)
+    for (stem, marks) in [("fig6", 1), ("fig7", 2), ("fig8", 2)] {
+        let t = text(stem);
+        assert_eq!(
+            t.matches("survived: max |θ|/α").count(),
+            1,
+            "{stem}: one colour bar"
+        );
+        assert_eq!(
+            t.matches("θ_cr/α =").count(),
+            marks,
+            "{stem}: θ_cr/α marks: {t}"
+        );
+        assert_eq!(t.matches("ω_p/p").count(), 10, "{stem}: ten panels");
+    }
+    // Fig. 9: a line per structure and the rigid column, with the method stated.
+    let t9 = text("fig9");
+    for label in ["ω_n/p = 2.5", "ω_n/p = 20", "rigid column", "bisection"] {
+        assert!(t9.contains(label), "fig9: `{label}` missing: {t9}");
+    }
+    // Fig. 10: three runs and the pulses in black.
+    let t10 = text("fig10");
+    for label in ["stiff", "14.5", "= 15", "/(u_cr ω_n)"] {
+        assert!(t10.contains(label), "fig10: `{label}` missing: {t10}");
+    }
+    // Drawn again from the cache (another process): the same bytes.
+    let again = tmp("paper-again");
+    ok(&bin()
+        .arg("figure")
+        .args(&files)
+        .args(["--cells", "6", "--quiet", "--out"])
+        .arg(&again)
+        .arg("--cache")
+        .arg(&cache)
+        .output()
+        .unwrap());
+    for f in &files {
+        let stem = f.file_stem().unwrap().to_string_lossy();
+        for ext in ["svg", "png", "pdf"] {
+            let name = format!("{stem}.{ext}");
+            assert!(
+                std::fs::read(out.join(&name)).unwrap()
+                    == std::fs::read(again.join(&name)).unwrap(),
+                "{name} differs when drawn again"
+            );
+        }
+    }
+    for d in [out, cache, again] {
+        let _ = std::fs::remove_dir_all(d);
+    }
+}
+
+#[test]
+fn a_bad_figure_file_is_refused_naming_the_file_and_the_field() {
+    let dir = tmp("bad-figure");
+    std::fs::create_dir_all(&dir).unwrap();
+    let base = std::fs::read_to_string(repo().join("scenes/paper/fig3.toml"))
+        .unwrap()
+        .replace("../fig3", &format!("{}/scenes/fig3", repo().display()));
+    for (edit, field) in [
+        (base.replace("columns = 2", "columns = 20"), "columns"),
+        (
+            base.replace("style = \"red\"", "style = \"pink\""),
+            "runs.adjex.style",
+        ),
+        (
+            base.replace("runs = [\"vvel\"]", "runs = [\"nope\"]"),
+            "panels[3].runs",
+        ),
+        (base.replace("columns = 2", "colums = 2"), "colums"),
+        (
+            base.replace("\"u_over_ucr\"", "\"u_over_u\""),
+            "panels[1].quantity",
+        ),
+    ] {
+        let file = dir.join("bad.toml");
+        std::fs::write(&file, edit).unwrap();
+        let o = bin()
+            .arg("figure")
+            .arg(&file)
+            .arg("--out")
+            .arg(dir.join("out"))
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(2), "{field}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            err.contains("bad.toml") && err.contains(field),
+            "{field}: {err}"
+        );
+        assert!(!dir.join("out/bad.svg").exists());
+    }
+    let _ = std::fs::remove_dir_all(dir);
 }

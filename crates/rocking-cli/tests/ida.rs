@@ -254,13 +254,29 @@ fn ida_capacities_agree_with_a_bisection_and_the_fit_is_written() {
     assert!(band[0].as_f64().unwrap() <= median && median <= band[1].as_f64().unwrap());
     for f in [
         "ida.csv",
-        "ida.png",
         "ida.svg",
-        "fragility-fit.png",
+        "ida.png",
+        "ida.pdf",
         "fragility-fit.svg",
+        "fragility-fit.png",
+        "fragility-fit.pdf",
     ] {
         assert!(out.join(f).is_file(), "{f}");
     }
+    // The IDA figure draws every analysis of ida.csv: a dot per upright one, a square (the
+    // overturned marker, red) per overturned one; one more of each in the legend.
+    let analyses = std::fs::read_to_string(out.join("ida.csv")).unwrap();
+    let overturned = analyses.lines().filter(|l| l.contains(",true,")).count();
+    let upright = analyses.lines().filter(|l| l.contains(",false,")).count();
+    assert!(overturned >= 3, "each record overturns: {analyses}");
+    let svg = std::fs::read_to_string(out.join("ida.svg")).unwrap();
+    assert_eq!(svg.matches("<circle").count(), upright + 1);
+    assert_eq!(
+        svg.split("<rect")
+            .filter(|r| r.split('>').next().unwrap().contains("fill=\"#AC2000\""))
+            .count(),
+        overturned + 1
+    );
     let mut table = csv::Reader::from_path(out.join("records.csv")).unwrap();
     let heads = table.headers().unwrap().clone();
     let col = |n: &str| heads.iter().position(|h| h == n).unwrap();

@@ -80,7 +80,13 @@ fn assert_same_files(a: &Path, b: &Path, files: &[&str]) {
     }
 }
 
-const SPECTRUM_FILES: [&str; 4] = ["cells.csv", "meta.json", "spectrum.png", "spectrum.svg"];
+const SPECTRUM_FILES: [&str; 5] = [
+    "cells.csv",
+    "meta.json",
+    "spectrum.png",
+    "spectrum.svg",
+    "spectrum.pdf",
+];
 
 #[test]
 fn sharded_spectra_merge_to_the_bytes_of_an_unsharded_run() {

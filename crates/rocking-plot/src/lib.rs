@@ -1,16 +1,24 @@
-//! Drawing that both the `rocking` command and the Python package need: the embedded font
-//! (DejaVu Sans, see assets/DejaVuSans-LICENSE.txt, so no system font is needed), text wrapping
-//! for titles and legends, and [`animation`], the animated GIF of a run.
+//! Drawing that the `rocking` command, the work-precision study and the Python package need: the
+//! embedded font (DejaVu Sans, see assets/DejaVuSans-LICENSE.txt, so no system font is needed),
+//! [`chart`] (a figure's page, axes, lines, markers and legend), [`text`]
+//! (subscripts, tick labels, titles wrapped between items), [`colour`] and [`style`] (a palette
+//! that stays distinct for colour-blind readers and in greyscale, measured), [`export`] (one SVG
+//! turned into PNG and PDF) and [`animation`], the animated GIF of a run.
 //!
 //! It owns how things look; it must not compute results (it draws what a run or a study gives).
 
 pub mod animation;
+pub mod chart;
+pub mod colour;
+pub mod export;
+pub mod style;
+pub mod text;
 
 use std::sync::Once;
 
 use plotters::style::{register_font, FontStyle};
 
-static FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
+pub(crate) static FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
 static REGISTER: Once = Once::new();
 
 /// Registers the embedded font as "sans-serif" (once per process).
@@ -41,11 +49,11 @@ mod tests {
     use super::wrap;
 
     #[test]
-    fn a_long_title_wraps_at_spaces_and_keeps_every_word() {
-        let title = "Fig. 8: γ_mb = γ_mc = 2, α = 0.1, ω_n/p = 2.5: rocking spectrum";
-        let lines = wrap(title, 30);
+    fn a_long_legend_wraps_at_spaces_and_keeps_every_word() {
+        let text = "overturned after one impact, with the rigid column's boundary dashed";
+        let lines = wrap(text, 30);
         assert!(lines.len() >= 2, "{lines:?}");
         assert!(lines.iter().all(|l| l.chars().count() <= 30), "{lines:?}");
-        assert_eq!(lines.join(" "), title);
+        assert_eq!(lines.join(" "), text);
     }
 }

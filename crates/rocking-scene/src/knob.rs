@@ -9,29 +9,59 @@ type Number = fn(&mut SceneSpec) -> &mut Option<f64>;
 type Text = fn(&mut SceneSpec) -> &mut Option<String>;
 
 macro_rules! fields {
-    ($ty:ty; $( $table:ident . $field:ident ),* $(,)?) => {
+    ($ty:ty; $( $table:ident . $field:ident => $label:expr ),* $(,)?) => {
         &[ $( (
             concat!(stringify!($table), ".", stringify!($field)),
+            $label,
             |s: &mut SceneSpec| &mut s.$table.get_or_insert_with(Default::default).$field,
         ) ),* ]
     };
 }
 
-/// The numeric keys of the scene format, with their fields.
-const NUMBERS: &[(&str, Number)] = fields!(f64;
-    structure.omega_n_over_p, structure.alpha, structure.gamma_mc, structure.gamma_mb,
-    structure.gamma_ib, structure.r, structure.p, structure.zeta, structure.h, structure.b,
-    structure.ei, structure.m, structure.m_c, structure.m_b, structure.i_bc, structure.g,
-    excitation.omega_p_over_p, excitation.omega_p, excitation.amplitude, excitation.amplitude_g,
-    excitation.a_p, excitation.velocity_amplitude, excitation.v_p, excitation.gamma,
-    excitation.nu, excitation.scale,
-    initial.theta_over_alpha, initial.u_over_ucr, initial.theta_dot_over_alpha_p,
-    initial.u_dot_over_ucr_omega_n,
-    solver.tol, solver.after_excitation, output.history_dt,
+/// The numeric keys of the scene format, each with its label in the paper's notation and its
+/// field: the one list the knobs, the axis labels and the sweeps read.
+const NUMBERS: &[(&str, &str, Number)] = fields!(f64;
+    structure.omega_n_over_p => "ω_n/p",
+    structure.alpha => "α",
+    structure.gamma_mc => "γ_mc",
+    structure.gamma_mb => "γ_mb",
+    structure.gamma_ib => "γ_ib",
+    structure.r => "R (m)",
+    structure.p => "p (1/s)",
+    structure.zeta => "ζ",
+    structure.h => "H (m)",
+    structure.b => "B (m)",
+    structure.ei => "EI (N m²)",
+    structure.m => "m (kg)",
+    structure.m_c => "m_c (kg)",
+    structure.m_b => "m_b (kg)",
+    structure.i_bc => "I_bc (kg m²)",
+    structure.g => "g (m/s²)",
+    excitation.omega_p_over_p => "ω_p/p",
+    excitation.omega_p => "ω_p (rad/s)",
+    excitation.amplitude => "a_p/(g tan α)",
+    excitation.amplitude_g => "a_p/g",
+    excitation.a_p => "a_p (m/s²)",
+    excitation.velocity_amplitude => "v_p/(g tan α/p)",
+    excitation.v_p => "v_p (m/s)",
+    excitation.gamma => "γ (pulse)",
+    excitation.nu => "ν (pulse phase)",
+    excitation.scale => crate::labels::SCALE_FACTOR,
+    initial.theta_over_alpha => "θ₀/α",
+    initial.u_over_ucr => "u₀/u_cr",
+    initial.theta_dot_over_alpha_p => "θ'₀/(α p)",
+    initial.u_dot_over_ucr_omega_n => "u'₀/(u_cr ω_n)",
+    solver.tol => "tolerance",
+    solver.after_excitation => "τ after the excitation",
+    output.history_dt => "Δτ",
+    effects.friction => "μ (ground friction)",
 );
 
-/// The text keys a sweep may vary (a batch sweeps records).
-const TEXTS: &[(&str, Text)] = fields!(String; excitation.path, excitation.kind);
+/// The text keys a sweep may vary (a batch sweeps records), with their labels.
+const TEXTS: &[(&str, &str, Text)] = fields!(String;
+    excitation.path => "record",
+    excitation.kind => "excitation",
+);
 
 /// A resolved scene key.
 #[derive(Clone, Copy)]
@@ -64,9 +94,9 @@ impl Knob {
     /// scene's model adds. Other keys (tables such as `effects.impact`) are not knobs: sweep them
     /// with `--set`.
     pub fn resolve(scene: &Scene, key: &str) -> Result<Knob, SceneError> {
-        let kind = if let Some((_, f)) = NUMBERS.iter().find(|(k, _)| *k == key) {
+        let kind = if let Some((_, _, f)) = NUMBERS.iter().find(|(k, _, _)| *k == key) {
             Kind::Number(*f)
-        } else if let Some((_, f)) = TEXTS.iter().find(|(k, _)| *k == key) {
+        } else if let Some((_, _, f)) = TEXTS.iter().find(|(k, _, _)| *k == key) {
             Kind::Text(*f)
         } else {
             let model = crate::setup::scene_model(&scene.spec)
@@ -115,12 +145,22 @@ impl Knob {
 
 /// The numeric keys a sweep may vary.
 pub fn number_keys() -> impl Iterator<Item = &'static str> {
-    NUMBERS.iter().map(|(k, _)| *k)
+    NUMBERS.iter().map(|(k, _, _)| *k)
 }
 
 /// The text keys a sweep may vary.
 pub fn text_keys() -> impl Iterator<Item = &'static str> {
-    TEXTS.iter().map(|(k, _)| *k)
+    TEXTS.iter().map(|(k, _, _)| *k)
+}
+
+/// The label of a key of the scene format in the paper's notation.
+pub fn label(key: &str) -> Option<&'static str> {
+    let numbers = NUMBERS.iter().map(|(k, l, _)| (*k, *l));
+    let texts = TEXTS.iter().map(|(k, l, _)| (*k, *l));
+    numbers
+        .chain(texts)
+        .find(|(k, _)| *k == key)
+        .map(|(_, l)| l)
 }
 
 impl Knob {

@@ -21,50 +21,11 @@ pub const FRACTION_OVERTURNED: &str = "fraction overturned";
 /// A record's scale factor.
 pub const SCALE_FACTOR: &str = "scale factor";
 
-/// The scene keys of the format with their label (the keys are those of `knob::NUMBERS`).
-const KEYS: &[(&str, &str)] = &[
-    ("structure.omega_n_over_p", "ω_n/p"),
-    ("structure.alpha", "α"),
-    ("structure.gamma_mc", "γ_mc"),
-    ("structure.gamma_mb", "γ_mb"),
-    ("structure.gamma_ib", "γ_ib"),
-    ("structure.r", "R (m)"),
-    ("structure.p", "p (1/s)"),
-    ("structure.zeta", "ζ"),
-    ("structure.h", "H (m)"),
-    ("structure.b", "B (m)"),
-    ("structure.ei", "EI (N m²)"),
-    ("structure.m", "m (kg)"),
-    ("structure.m_c", "m_c (kg)"),
-    ("structure.m_b", "m_b (kg)"),
-    ("structure.i_bc", "I_bc (kg m²)"),
-    ("structure.g", "g (m/s²)"),
-    ("excitation.omega_p_over_p", "ω_p/p"),
-    ("excitation.omega_p", "ω_p (rad/s)"),
-    ("excitation.amplitude", "a_p/(g tan α)"),
-    ("excitation.amplitude_g", "a_p/g"),
-    ("excitation.a_p", "a_p (m/s²)"),
-    ("excitation.velocity_amplitude", "v_p/(g tan α/p)"),
-    ("excitation.v_p", "v_p (m/s)"),
-    ("excitation.gamma", "γ (pulse)"),
-    ("excitation.nu", "ν (pulse phase)"),
-    ("excitation.scale", SCALE_FACTOR),
-    ("excitation.path", "record"),
-    ("excitation.kind", "excitation"),
-    ("initial.theta_over_alpha", "θ₀/α"),
-    ("initial.u_over_ucr", "u₀/u_cr"),
-    ("initial.theta_dot_over_alpha_p", "θ'₀/(α p)"),
-    ("initial.u_dot_over_ucr_omega_n", "u'₀/(u_cr ω_n)"),
-    ("solver.tol", "tolerance"),
-    ("solver.after_excitation", "τ after the excitation"),
-    ("output.history_dt", "Δτ"),
-];
-
 /// The label of a scene key a sweep varies: the paper's notation for the keys of the format; for
 /// a parameter a model adds (`structure.m_a`), its name and the registry's doc; else the key.
 pub fn axis_label(key: &str) -> String {
-    if let Some((_, label)) = KEYS.iter().find(|(k, _)| *k == key) {
-        return (*label).to_string();
+    if let Some(label) = crate::knob::label(key) {
+        return label.to_string();
     }
     key.strip_prefix("structure.")
         .and_then(|name| {

@@ -6,12 +6,15 @@
 //! [`setup::Setup`] a run needs; it must not know studies (sweeps, IDA: `rocking-study`), how a
 //! run is reported, or how anything is drawn or written.
 
+mod check;
 mod error;
+pub mod excitation;
 pub mod knob;
 pub mod labels;
 pub mod limits;
 pub mod models;
 pub mod scene;
 pub mod setup;
+pub mod units;
 
 pub use error::{InputError, SceneError};

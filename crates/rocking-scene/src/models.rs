@@ -72,9 +72,28 @@ fn model_text(m: &ModelInfo) -> String {
     out
 }
 
-/// The listing of every model.
+/// The listing of every model, then the excitation kinds and impact models a scene may name.
 pub fn text() -> String {
-    MODELS.iter().map(model_text).collect::<Vec<_>>().join("\n")
+    let mut out = MODELS.iter().map(model_text).collect::<Vec<_>>().join("\n");
+    out.push_str("\nexcitation kinds ([excitation] kind):\n");
+    for k in crate::excitation::KINDS {
+        let keys = if k.keys.is_empty() {
+            "no other key".to_string()
+        } else {
+            k.keys.join(", ")
+        };
+        out.push_str(&format!("  {:<13} {} (keys: {keys})\n", k.name, k.doc));
+    }
+    out.push_str("\nimpact models ([effects] impact):\n");
+    for m in rocking::ImpactModel::NAMED {
+        out.push_str(&format!("  {:<13} {}\n", m.name(), m.doc()));
+    }
+    out.push_str(&format!(
+        "  {:<13} {}\n",
+        "{ restitution = r }",
+        rocking::ImpactModel::Restitution(0.0).doc()
+    ));
+    out
 }
 
 /// The listing as JSON.
@@ -99,7 +118,16 @@ pub fn json() -> serde_json::Value {
             })
         })
         .collect();
-    serde_json::json!({ "models": models })
+    let kinds: Vec<serde_json::Value> = crate::excitation::KINDS
+        .iter()
+        .map(|k| serde_json::json!({ "name": k.name, "doc": k.doc, "keys": k.keys }))
+        .collect();
+    let impacts: Vec<serde_json::Value> = rocking::ImpactModel::NAMED
+        .iter()
+        .chain(&[rocking::ImpactModel::Restitution(0.0)])
+        .map(|m| serde_json::json!({ "name": m.name(), "doc": m.doc() }))
+        .collect();
+    serde_json::json!({ "models": models, "excitation_kinds": kinds, "impact_models": impacts })
 }
 
 /// The structure's whole parameter set in model units, by name, in the model's order.

@@ -8,7 +8,7 @@ use std::sync::{Arc, Mutex};
 
 use rocking::{DampingConvention, ModelInfo, Preset, PAPER_MODEL};
 use rocking_motion::{read_record, At2Record, RecordFormat};
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 use toml::{Table, Value};
 
 use crate::{InputError, SceneError};
@@ -49,7 +49,7 @@ pub struct StructureSpec {
 }
 
 /// `[excitation]`: a flat table; which keys a `kind` uses is checked when it is built.
-#[derive(Clone, Debug, Default, Deserialize)]
+#[derive(Clone, Debug, Default, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct ExcitationSpec {
     pub kind: Option<String>,

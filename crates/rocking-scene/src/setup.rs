@@ -8,46 +8,16 @@ use rocking::{
     VariantInfo, PAPER_MODEL,
 };
 use rocking_kernels::Physical;
-use rocking_motion::{
-    AccelUnit, At2Record, CosinePulse, Excitation, GroundMotion, MavroeidisPapageorgiou, Record,
-    RecordFormat, Ricker, SinePulse, STANDARD_GRAVITY,
-};
+use rocking_motion::{Excitation, STANDARD_GRAVITY};
 use toml::Value;
 
-use std::path::Path;
-
-use crate::scene::{describe, ExcitationSpec, OutputSpec, Scene, SceneSpec, Source, StructureSpec};
+use crate::check::{finite, formed};
+use crate::scene::{OutputSpec, Scene, SceneSpec, Source, StructureSpec};
+pub use crate::units::Units;
 use crate::SceneError;
 
 /// The most history rows a run may ask for (about 80 bytes each in memory and in history.csv).
 const MAX_ROWS: f64 = 5e6;
-
-/// How model units relate to τ, g tan α and seconds.
-#[derive(Clone, Copy, Debug)]
-pub struct Units {
-    /// Physical (SI) structure.
-    pub physical: bool,
-    /// g in model units (1 for a dimensionless structure).
-    pub g_model: f64,
-    /// g in m/s²: the structure's g, or standard gravity for a dimensionless one (it relates its
-    /// R and p, and converts a record in absolute units).
-    pub g_si: f64,
-    /// p in model units (1/model time).
-    pub p_model: f64,
-    /// Seconds per model time unit, when known.
-    pub sec_per_unit: Option<f64>,
-    /// tan α.
-    pub tan_alpha: f64,
-    /// α.
-    pub alpha: f64,
-}
-
-impl Units {
-    /// Setup acceleration of `a` in units of g tan α.
-    pub fn accel_g_tan_alpha(&self) -> f64 {
-        self.g_model * self.tan_alpha
-    }
-}
 
 /// Everything a run or a check needs.
 pub struct Setup {
@@ -130,32 +100,6 @@ fn param_err(src: &Source, table: &str, e: ParamError) -> SceneError {
         ),
     )
     .with_value(value, e.allowed)
-}
-
-/// A finite number check with the scene path in the message.
-fn finite(src: &Source, path: &str, v: f64, cond: bool, allowed: &str) -> Result<f64, SceneError> {
-    if v.is_finite() && cond {
-        Ok(v)
-    } else {
-        Err(src.not_allowed(path, v, allowed))
-    }
-}
-
-/// A value formed from the key `path` (a product with the structure's scales) must be finite:
-/// an accepted input times a large scale can overflow.
-fn formed(src: &Source, path: &str, given: f64, v: f64, what: &str) -> Result<f64, SceneError> {
-    if v.is_finite() {
-        Ok(v)
-    } else {
-        Err(src.err(
-            path,
-            format_args!(
-                "{} = {} is too large: the {what} it gives overflows (not finite)",
-                describe(path),
-                crate::limits::short(given)
-            ),
-        ))
-    }
 }
 
 /// A run guard (`max_steps`, `max_events` in [solver]): a whole number from 1 to 1e12.
@@ -394,414 +338,6 @@ fn overturn_angle(src: &Source, v: Option<&Value>) -> Result<f64, SceneError> {
     )
 }
 
-/// Which excitation keys each kind uses.
-fn kind_keys(kind: &str) -> Option<&'static [&'static str]> {
-    const PULSE: &[&str] = &[
-        "kind",
-        "omega_p_over_p",
-        "omega_p",
-        "amplitude",
-        "amplitude_g",
-        "a_p",
-    ];
-    const RICKER: &[&str] = &[
-        "kind",
-        "omega_p_over_p",
-        "omega_p",
-        "amplitude",
-        "amplitude_g",
-        "a_p",
-        "shape",
-    ];
-    const MP: &[&str] = &[
-        "kind",
-        "omega_p_over_p",
-        "omega_p",
-        "velocity_amplitude",
-        "v_p",
-        "gamma",
-        "nu",
-    ];
-    Some(match kind {
-        "none" => &["kind"],
-        "sine-pulse" | "cosine-pulse" => PULSE,
-        "ricker" => RICKER,
-        "mp-pulse" => MP,
-        "record" => &["kind", "path", "scale", "units", "format", "dt"],
-        _ => return None,
-    })
-}
-
-const KINDS: &[&str] = &[
-    "none",
-    "sine-pulse",
-    "cosine-pulse",
-    "ricker",
-    "mp-pulse",
-    "record",
-];
-
-fn present(e: &ExcitationSpec) -> Vec<&'static str> {
-    present_keys(&[
-        ("kind", e.kind.is_some()),
-        ("omega_p_over_p", e.omega_p_over_p.is_some()),
-        ("omega_p", e.omega_p.is_some()),
-        ("amplitude", e.amplitude.is_some()),
-        ("amplitude_g", e.amplitude_g.is_some()),
-        ("a_p", e.a_p.is_some()),
-        ("shape", e.shape.is_some()),
-        ("velocity_amplitude", e.velocity_amplitude.is_some()),
-        ("v_p", e.v_p.is_some()),
-        ("gamma", e.gamma.is_some()),
-        ("nu", e.nu.is_some()),
-        ("path", e.path.is_some()),
-        ("scale", e.scale.is_some()),
-        ("units", e.units.is_some()),
-        ("format", e.format.is_some()),
-        ("dt", e.dt.is_some()),
-    ])
-}
-
-fn need_seconds(src: &Source, key: &str, u: &Units) -> Result<f64, SceneError> {
-    u.sec_per_unit.ok_or_else(|| {
-        src.err(
-            &format!("excitation.{key}"),
-            format_args!(
-                "`{key}` in [excitation] is in seconds, but the structure has no time scale: \
-                 give `r` (m) or `p` (1/s) in [structure], or a physical structure"
-            ),
-        )
-    })
-}
-
-/// Exactly one of several alternative keys.
-fn one_of<'a>(
-    src: &Source,
-    kind: &str,
-    opts: &[(&'a str, Option<f64>)],
-) -> Result<(&'a str, f64), SceneError> {
-    let given: Vec<_> = opts.iter().filter(|(_, v)| v.is_some()).collect();
-    let names: Vec<String> = opts.iter().map(|(k, _)| format!("`{k}`")).collect();
-    match given.as_slice() {
-        [(k, Some(v))] => Ok((k, *v)),
-        [] => Err(src.err(
-            "excitation",
-            format_args!(
-                "missing key in [excitation]: kind = \"{kind}\" needs one of {}",
-                names.join(", ")
-            ),
-        )),
-        _ => Err(src.err(
-            &format!("excitation.{}", given[1].0),
-            format_args!(
-                "give only one of {} in [excitation] (found `{}` and `{}`)",
-                names.join(", "),
-                given[0].0,
-                given[1].0
-            ),
-        )),
-    }
-}
-
-/// Angular frequency in model units from `omega_p_over_p` or `omega_p` (rad/s).
-fn omega(src: &Source, kind: &str, e: &ExcitationSpec, u: &Units) -> Result<f64, SceneError> {
-    let (k, v) = one_of(
-        src,
-        kind,
-        &[("omega_p_over_p", e.omega_p_over_p), ("omega_p", e.omega_p)],
-    )?;
-    let path = format!("excitation.{k}");
-    finite(src, &path, v, v > 0.0, "a frequency > 0")?;
-    let w = match k {
-        "omega_p_over_p" => v * u.p_model,
-        _ => v * need_seconds(src, k, u)?,
-    };
-    formed(src, &path, v, w, "frequency in model units")?;
-    crate::limits::frequency(src, &path, v, w / u.p_model)?;
-    Ok(w)
-}
-
-/// Acceleration amplitude in model units from `amplitude` (g tan α), `amplitude_g` (g) or `a_p`
-/// (m/s²).
-fn accel_amplitude(
-    src: &Source,
-    kind: &str,
-    e: &ExcitationSpec,
-    u: &Units,
-) -> Result<f64, SceneError> {
-    let (k, v) = one_of(
-        src,
-        kind,
-        &[
-            ("amplitude", e.amplitude),
-            ("amplitude_g", e.amplitude_g),
-            ("a_p", e.a_p),
-        ],
-    )?;
-    finite(
-        src,
-        &format!("excitation.{k}"),
-        v,
-        true,
-        "a finite amplitude",
-    )?;
-    let a = match k {
-        "amplitude" => v * u.accel_g_tan_alpha(),
-        "amplitude_g" => v * u.g_model,
-        _ => v / u.g_si * u.g_model,
-    };
-    let path = format!("excitation.{k}");
-    formed(src, &path, v, a, "ground acceleration in model units")?;
-    crate::limits::acceleration(src, &path, v, a / u.g_model)?;
-    Ok(a)
-}
-
-fn build_excitation(
-    spec: &SceneSpec,
-    src: &Source,
-    u: &Units,
-) -> Result<(Excitation, String, f64), SceneError> {
-    let default = ExcitationSpec::default();
-    let e = spec.excitation.as_ref().unwrap_or(&default);
-    let kind = e.kind.as_deref().unwrap_or("none");
-    let Some(allowed) = kind_keys(kind) else {
-        let hint = crate::scene::suggest(kind, KINDS)
-            .map(|s| format!("; did you mean \"{s}\"?"))
-            .unwrap_or_default();
-        return Err(src.err(
-            "excitation.kind",
-            format_args!(
-                "`kind` = \"{kind}\" in [excitation] is not allowed: one of \"{}\"{hint}",
-                KINDS.join("\", \"")
-            ),
-        ));
-    };
-    if let Some(k) = present(e).into_iter().find(|k| !allowed.contains(k)) {
-        return Err(src.err(
-            &format!("excitation.{k}"),
-            format_args!(
-                "key `{k}` in [excitation] is not used by kind = \"{kind}\" (its keys: {})",
-                allowed.join(", ")
-            ),
-        ));
-    }
-    let ga = u.accel_g_tan_alpha();
-    Ok(match kind {
-        "none" => (Excitation::None, "none (free rocking)".into(), 0.0),
-        "sine-pulse" | "cosine-pulse" => {
-            let w = omega(src, kind, e, u)?;
-            let a = accel_amplitude(src, kind, e, u)?;
-            let desc = format!(
-                "{kind}: a_p/(g tan α) = {:.4}, ω_p/p = {:.4}",
-                a / ga,
-                w / u.p_model
-            );
-            let ex: Excitation = if kind == "sine-pulse" {
-                SinePulse::new(a, w).into()
-            } else {
-                CosinePulse::new(a, w).into()
-            };
-            let end = ex.end();
-            (ex, desc, end)
-        }
-        "ricker" => {
-            let w = omega(src, kind, e, u)?;
-            let a = accel_amplitude(src, kind, e, u)?;
-            let shape = e.shape.as_deref().unwrap_or("symmetric");
-            let r = match shape {
-                "symmetric" => Ricker::symmetric(a, w),
-                "antisymmetric" => Ricker::antisymmetric(a, w),
-                other => {
-                    return Err(src.err(
-                        "excitation.shape",
-                        format_args!(
-                            "`shape` = \"{other}\" in [excitation] is not allowed: \
-                             \"symmetric\" or \"antisymmetric\""
-                        ),
-                    ))
-                }
-            };
-            let desc = format!(
-                "ricker ({shape}): a_p/(g tan α) = {:.4}, ω_p/p = {:.4}",
-                a / ga,
-                w / u.p_model
-            );
-            let end = r.end();
-            (r.into(), desc, end)
-        }
-        "mp-pulse" => {
-            let w = omega(src, kind, e, u)?;
-            let (k, v) = one_of(
-                src,
-                kind,
-                &[("velocity_amplitude", e.velocity_amplitude), ("v_p", e.v_p)],
-            )?;
-            finite(
-                src,
-                &format!("excitation.{k}"),
-                v,
-                true,
-                "a finite amplitude",
-            )?;
-            // Velocity unit of the model: (g tan α)/p for `velocity_amplitude`, m/s for `v_p`.
-            let a_vel = match k {
-                "velocity_amplitude" => v * ga / u.p_model,
-                _ => v * u.g_model / (u.g_si * need_seconds(src, k, u)?),
-            };
-            let path = format!("excitation.{k}");
-            let a_vel = formed(src, &path, v, a_vel, "ground velocity in model units")?;
-            // The pulse's peak acceleration is of order A ω_p.
-            crate::limits::acceleration(src, &path, v, a_vel * w / u.g_model)?;
-            let gamma = e.gamma.unwrap_or(2.0);
-            finite(
-                src,
-                "excitation.gamma",
-                gamma,
-                gamma > 1.0,
-                "an oscillatory character gamma > 1",
-            )?;
-            let nu = e.nu.unwrap_or(0.0);
-            finite(src, "excitation.nu", nu, true, "a finite phase (rad)")?;
-            let mp = MavroeidisPapageorgiou::starting_at(a_vel, w / (2.0 * PI), gamma, nu, 0.0);
-            let desc = format!(
-                "mp-pulse: A p/(g tan α) = {:.4}, ω_p/p = {:.4}, γ = {gamma}, ν = {nu}",
-                a_vel * u.p_model / ga,
-                w / u.p_model
-            );
-            let end = mp.end();
-            (mp.into(), desc, end)
-        }
-        "record" => {
-            let scale = e.scale.unwrap_or(1.0);
-            let allowed = "a finite, nonzero scale factor (a negative one reverses the record)";
-            finite(src, "excitation.scale", scale, true, allowed)?;
-            if scale == 0.0 {
-                return Err(src.err(
-                    "excitation.scale",
-                    format_args!("`scale` in [excitation] = 0 is not allowed: {allowed}"),
-                ));
-            }
-            let at2 = scene_record(src, e)?;
-            let spu = u.sec_per_unit.ok_or_else(|| {
-                src.err(
-                    "excitation.path",
-                    "a record is sampled in seconds, but the structure has no time scale: \
-                     give `r` (m) or `p` (1/s) in [structure], or a physical structure",
-                )
-            })?;
-            let unit = at2.unit();
-            let unit_name = match at2.declared_unit {
-                Some(u) => u.name(),
-                None => "g (not stated)",
-            };
-            let per_unit = unit.in_model_units(u.g_model, u.g_si);
-            let pga = at2.pga();
-            let (dt, npts) = (at2.dt, at2.npts);
-            let pga_model = formed(
-                src,
-                "excitation.scale",
-                scale,
-                pga * per_unit * scale,
-                "peak ground acceleration in model units",
-            )?;
-            crate::limits::acceleration(src, "excitation.scale", scale, pga_model / u.g_model)?;
-            let rec = Record::new(dt / spu, at2.samples)
-                .map_err(|err| src.err("excitation.path", err))?
-                .with_scale(scale * per_unit);
-            let short = crate::limits::short;
-            // The PGA in the structure's g, and as the file states it when that is not g.
-            let stated = match unit {
-                AccelUnit::G => String::new(),
-                absolute => format!(" = {pga:.4} {}", absolute.name()),
-            };
-            let desc = format!(
-                "record {} ({npts} samples, dt = {} s, units {unit_name}, PGA = {:.4} g{stated}) \
-                 × {}: PGA/(g tan α) = {:.4}",
-                file_of(src, e)?.display(),
-                short(dt),
-                pga * per_unit / u.g_model,
-                short(scale),
-                pga_model / u.accel_g_tan_alpha()
-            );
-            let end = rec.end();
-            (rec.into(), desc, end)
-        }
-        _ => unreachable!("kind checked above"),
-    })
-}
-
-/// The record file a scene names (`excitation.path`, relative to the scene).
-fn file_of(src: &Source, e: &ExcitationSpec) -> Result<std::path::PathBuf, SceneError> {
-    let rel = e.path.as_deref().ok_or_else(|| {
-        src.err(
-            "excitation",
-            "missing key `path` in [excitation] (kind = \"record\" needs a record file)",
-        )
-    })?;
-    Ok(src.dir().join(rel))
-}
-
-/// The record a scene's `[excitation]` names, read in its format and with the unit the scene
-/// states (`units`, required for a text file, refused when the file declares another): what
-/// `run` simulates and what a record study measures.
-pub fn scene_record(src: &Source, e: &ExcitationSpec) -> Result<At2Record, SceneError> {
-    let file = file_of(src, e)?;
-    let format = record_format(src, e, &file)?;
-    let at2 = src.record_as(&file, format, e.dt).map_err(|err| {
-        src.err(
-            "excitation.path",
-            format_args!("cannot use the record: {err}"),
-        )
-    })?;
-    match e.units.as_deref() {
-        None if format == RecordFormat::Text => Err(src.err(
-            "excitation.units",
-            "a text record states no unit: give `units` in [excitation], one of \
-             \"g\", \"cm/s2\", \"m/s2\"",
-        )),
-        None => Ok(at2),
-        Some(name) => {
-            let unit = AccelUnit::parse(name).ok_or_else(|| {
-                src.err(
-                    "excitation.units",
-                    format_args!(
-                        "`units` = \"{name}\" in [excitation] is not allowed: one of \"{}\"",
-                        AccelUnit::NAMES.join("\", \"")
-                    ),
-                )
-            })?;
-            at2.with_stated_unit(unit).map_err(|err| {
-                src.err(
-                    "excitation.units",
-                    format_args!("cannot use the record: {err}"),
-                )
-            })
-        }
-    }
-}
-
-/// The record format a scene names (`excitation.format`), else the one the file's extension
-/// implies.
-fn record_format(
-    src: &Source,
-    e: &ExcitationSpec,
-    file: &Path,
-) -> Result<RecordFormat, SceneError> {
-    let allowed = RecordFormat::NAMES.join("\", \"");
-    match e.format.as_deref() {
-        Some(name) => RecordFormat::parse(name).ok_or_else(|| {
-            src.err(
-                "excitation.format",
-                format_args!(
-                    "`format` = \"{name}\" in [excitation] is not allowed: one of \"{allowed}\""
-                ),
-            )
-        }),
-        // PEER AT2 unless the extension names another format (as before formats were added)
-        None => Ok(RecordFormat::from_path(file).unwrap_or(RecordFormat::At2)),
-    }
-}
-
 /// The model a typed scene names (default: the paper's).
 pub fn scene_model(spec: &SceneSpec) -> Result<&'static ModelInfo, ParamError> {
     let name = spec.structure.as_ref().and_then(|s| s.model.as_deref());
@@ -867,7 +403,11 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Setup, SceneError> {
         tan_alpha: derived.alpha.tan(),
         alpha: derived.alpha,
     };
-    let (excitation, excitation_description, excitation_end) = build_excitation(spec, src, &units)?;
+    let crate::excitation::Built {
+        motion: excitation,
+        description: excitation_description,
+        end: excitation_end,
+    } = crate::excitation::build(spec, src, &units)?;
 
     let impact = impact_model(src, fx.and_then(|f| f.impact.as_ref()))?;
     let overturn = overturn_angle(src, fx.and_then(|f| f.overturn.as_ref()))?;
@@ -1053,7 +593,10 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Setup, SceneError> {
     )?;
     if let (Excitation::Record(record), Some(spu)) = (&excitation, units.sec_per_unit) {
         let omega_n = (!variant.rigid).then_some(derived.omega_n);
-        let name = file_of(src, spec.excitation.as_ref().unwrap_or(&Default::default()))?;
+        let name = crate::excitation::file_of(
+            src,
+            spec.excitation.as_ref().unwrap_or(&Default::default()),
+        )?;
         let name = name.display().to_string();
         let p = units.p_model;
         crate::limits::record_length(src, &name, record, p, omega_n, spu, max_steps)?;

@@ -441,7 +441,7 @@ fn study(base: &Base, s: &Settings, file: &Path) -> Result<RecordStudy, SceneErr
         path: Some(path.clone()),
         ..sc.spec.excitation.clone().unwrap_or_default()
     };
-    let rec = rocking_scene::setup::scene_record(&sc.src, &exc)?;
+    let rec = rocking_scene::excitation::scene_record(&sc.src, &exc)?;
     let unit = rec.declared_unit.map_or("g (not stated)", AccelUnit::name);
     let (dt, npts) = (rec.dt, rec.npts);
     // The record as the structure feels it (the units model of `AccelUnit`), in m/s².

@@ -179,6 +179,24 @@ impl ImpactModel {
     pub const NAMED: [ImpactModel; 3] =
         [ImpactModel::Vvel, ImpactModel::Adjex, ImpactModel::Housner];
 
+    /// What the model does at an impact, in words (`rocking models`).
+    pub fn doc(self) -> &'static str {
+        match self {
+            ImpactModel::Vvel => {
+                "VVEL, eqs (31)-(32): the vertical velocities' kinetic energy is lost, full \
+                 contact follows (the paper's choice)"
+            }
+            ImpactModel::Adjex => {
+                "ADJex, eqs (26)-(30): full contact or immediate rocking, whichever keeps less \
+                 energy, else the horizontal-momentum fallback"
+            }
+            ImpactModel::Housner => {
+                "Housner: angular momentum about the impacting corner kept, rocking goes on"
+            }
+            ImpactModel::Restitution(_) => "a fixed restitution r: θ' after = r θ' before, u' kept",
+        }
+    }
+
     /// The model's name (in a scene, the event log's branches, the study's cases).
     pub fn name(self) -> &'static str {
         match self {

@@ -1,312 +1,456 @@
-//! Figures, each as PNG and SVG with the font embedded by `rocking_plot` (no system font is
-//! needed). Here: the time history in the paper's style (Figs 3, 5, 10: θ/α, u/u_cr, E/E_ref and
-//! ü_g/(g tan α) against τ in four stacked panels, impacts marked) and the fragility curve of a
-//! batch; `spectrum`: rocking spectra, overturning boundaries and one-axis line plots; `contour`:
-//! marching squares. The animated GIF of a run is `rocking_plot::animation` (shared with the
-//! Python package). Labels come from `rocking_scene::labels`.
+//! Every figure the command draws goes through [`Figure`]: panels in a grid (quantities against
+//! τ for one or more runs, rocking spectra on one shared colour scale, overturning boundaries,
+//! one-axis sweeps, a record suite's curves), one legend column beside them (never over the
+//! data), a title wrapped between items and a caption that explains the marks. `rocking run`
+//! draws a figure of one run, `rocking spectrum` one of one sweep, `rocking ida` its curves and
+//! `rocking figure` one from a figure file: the same code, laid out and drawn with
+//! `rocking_plot::chart`. plotters draws the SVG; `rocking_plot::export` makes the PNG and PDF
+//! from it, so the three agree. Labels come from `rocking_scene::labels` and are drawn with real
+//! subscripts.
 
-pub mod contour;
+mod boundary;
+mod history;
+mod ida;
 mod spectrum;
 
-pub use spectrum::{spectrum_plots, Reference};
+pub use history::{HistoryPanel, Quantity, Trace, QUANTITIES, THETA_OVER_ALPHA};
+pub use ida::{ida_plots, FitPanel, IdaPanel, Points};
+pub use spectrum::{BoundaryPanel, CurvePanel, LinePanel, SpectrumPanel, Structure};
 
 use std::path::{Path, PathBuf};
 
-use plotters::coord::Shift;
-use plotters::prelude::*;
-use plotters::style::text_anchor;
 use rocking::{EventKind, Run};
+use rocking_plot::chart::{legend, LegendItem, Page};
+use rocking_plot::style;
+use rocking_plot::text::tick;
 use rocking_scene::labels;
+use rocking_spectra::{Cell, Sweep};
 
 use crate::out_dir::write_atomic;
 use rocking_scene::setup::Setup;
 use rocking_scene::SceneError;
 
-pub(crate) use rocking_plot::{register, wrap};
-
-const WIDTH: u32 = 900;
-const HEIGHT: u32 = 1100;
-
-struct Series<'a> {
-    label: &'a str,
-    points: Vec<(f64, f64)>,
+/// One panel of a figure.
+pub enum Panel {
+    History(HistoryPanel),
+    Spectrum(SpectrumPanel),
+    Boundaries(BoundaryPanel),
+    Line(LinePanel),
+    Curve(CurvePanel),
+    Ida(IdaPanel),
+    Fit(FitPanel),
 }
 
-fn range(points: &[(f64, f64)]) -> (f64, f64) {
-    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    for &(_, y) in points {
-        if y.is_finite() {
-            lo = lo.min(y);
-            hi = hi.max(y);
+/// A figure: its title, panels in rows of `columns`, each `panel` pixels, and a caption.
+pub struct Figure {
+    pub title: String,
+    pub caption: Option<String>,
+    pub columns: usize,
+    pub panel: (u32, u32),
+    pub panels: Vec<Panel>,
+    /// Top of the shared colour scale of the spectrum panels (default: their largest survivor).
+    pub colour_top: Option<f64>,
+}
+
+/// The formats (file extensions) every figure is written in, by [`Figure::write`].
+pub const FORMATS: [&str; 3] = ["svg", "png", "pdf"];
+
+/// Whether `file` is one of the files [`Figure::write`] writes for the figure `name`.
+pub fn is_figure_file(file: &str, name: &str) -> bool {
+    file.strip_prefix(name)
+        .and_then(|rest| rest.strip_prefix('.'))
+        .is_some_and(|ext| FORMATS.contains(&ext))
+}
+
+impl Figure {
+    /// The shared colour scale's top: the given one, else the largest survivor of any panel.
+    fn colour_top(&self) -> Option<f64> {
+        let tops: Vec<f64> = self
+            .panels
+            .iter()
+            .filter_map(|p| match p {
+                Panel::Spectrum(s) => Some(s.top_of_survivors()),
+                _ => None,
+            })
+            .collect();
+        if tops.is_empty() {
+            return None;
+        }
+        Some(
+            self.colour_top
+                .unwrap_or_else(|| tops.iter().fold(1e-9, |a, &b| a.max(b))),
+        )
+    }
+
+    fn page(&self) -> Page<'_> {
+        Page {
+            title: &self.title,
+            caption: self.caption.as_deref(),
+            columns: self.columns,
+            panels: self.panels.len(),
+            panel: self.panel,
+            // No legend column when there is nothing to explain.
+            legend: self.colour_top().is_some() || !self.legend().is_empty(),
         }
     }
-    if !lo.is_finite() || !hi.is_finite() {
-        return (-1.0, 1.0);
+
+    /// Draws the figure into an SVG string (before `rocking_plot::export` finishes it).
+    pub fn svg(&self) -> Result<String, String> {
+        self.page().svg(|areas, side| {
+            let top = self.colour_top();
+            let shared = history::shared_ranges(&self.panels);
+            for (k, (p, area)) in self.panels.iter().zip(areas).enumerate() {
+                match p {
+                    Panel::History(h) => h.draw(area, shared[k])?,
+                    Panel::Spectrum(s) => s.draw(area, top.unwrap_or(1.0))?,
+                    Panel::Boundaries(b) => b.draw(area)?,
+                    Panel::Line(l) => l.draw(area)?,
+                    Panel::Curve(c) => c.draw(area)?,
+                    Panel::Ida(i) => i.draw(area)?,
+                    Panel::Fit(f) => f.draw(area)?,
+                }
+            }
+            let mut y = 10;
+            if let Some(top) = top {
+                y = spectrum::colour_bar(side, top, &self.theta_cr_marks(), y)?;
+            }
+            legend(side, y, &self.legend())
+        })
     }
-    let pad = ((hi - lo) * 0.08).max(1e-9 + 0.05 * hi.abs().max(lo.abs()));
-    let (lo, hi) = (lo - pad, hi + pad);
-    if hi - lo < 1e-12 {
-        (lo - 1.0, hi + 1.0)
-    } else {
-        (lo, hi)
+
+    /// The θ_cr/α marks of the spectrum panels for the colour bar: one per value; marks of
+    /// structures that share it drop their "(α = …)".
+    fn theta_cr_marks(&self) -> Vec<(f64, String)> {
+        self.panels
+            .iter()
+            .filter_map(|p| match p {
+                Panel::Spectrum(s) => s.theta_cr_mark(),
+                _ => None,
+            })
+            .fold(Vec::new(), |mut all: Vec<(f64, String)>, m| {
+                match all.iter_mut().find(|(v, _)| (v - m.0).abs() < 1e-3) {
+                    Some(known) if known.1 != m.1 => {
+                        known.1 = known.1.split(" (").next().unwrap_or("").to_string();
+                    }
+                    Some(_) => {}
+                    None => all.push(m),
+                }
+                all
+            })
+    }
+
+    /// The legend: every run's line, every class and boundary the panels show, every mark.
+    fn legend(&self) -> Vec<LegendItem> {
+        let mut items: Vec<LegendItem> = Vec::new();
+        for p in &self.panels {
+            let entries = match p {
+                Panel::History(h) => h.legend(),
+                Panel::Spectrum(s) => s.legend(),
+                Panel::Boundaries(b) => b.legend(),
+                Panel::Line(l) => l.legend(),
+                Panel::Curve(c) => c.legend(),
+                Panel::Ida(i) => i.legend(),
+                Panel::Fit(f) => f.legend(),
+            };
+            for e in entries {
+                if !items.iter().any(|i| i.key() == e.key()) {
+                    items.push(e);
+                }
+            }
+        }
+        items
+    }
+
+    /// Writes `<name>.svg`, `.png` and `.pdf` into `dir`, each atomically; returns their paths.
+    pub fn write(&self, dir: &Path, name: &str) -> Result<Vec<PathBuf>, SceneError> {
+        let failed =
+            |m: String| SceneError::failure(format!("{}: cannot draw {name}: {m}", dir.display()));
+        let svg = self.svg().map_err(failed)?;
+        let out = rocking_plot::export::export(&svg).map_err(failed)?;
+        let mut written = Vec::new();
+        for (ext, bytes) in
+            FORMATS
+                .into_iter()
+                .zip([out.svg.as_bytes(), &out.png[..], &out.pdf[..]])
+        {
+            let path = dir.join(format!("{name}.{ext}"));
+            write_atomic(&path, bytes)?;
+            written.push(path);
+        }
+        Ok(written)
     }
 }
 
-fn draw<DB: DrawingBackend>(
-    root: DrawingArea<DB, Shift>,
-    title: &str,
-    series: &[Series<'_>],
-    impacts: &[f64],
-    t_max: f64,
-) -> Result<(), String> {
-    let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
-    root.fill(&WHITE).map_err(e)?;
-    let root = titled(root, title, 18)?;
-    let panels = root.split_evenly((series.len(), 1));
-    for (i, (area, s)) in panels.iter().zip(series).enumerate() {
-        let (lo, hi) = range(&s.points);
-        let last = i + 1 == series.len();
-        let mut chart = ChartBuilder::on(area)
-            .margin(8)
-            .margin_right(20)
-            .x_label_area_size(if last { 45 } else { 25 })
-            .y_label_area_size(70)
-            .build_cartesian_2d(0.0..t_max, lo..hi)
-            .map_err(e)?;
-        let mut mesh = chart.configure_mesh();
-        mesh.light_line_style(RGBColor(235, 235, 235))
-            .y_desc(s.label)
-            .label_style(("sans-serif", 15))
-            .axis_desc_style(("sans-serif", 18));
-        if last {
-            mesh.x_desc(labels::TAU);
-        }
-        mesh.draw().map_err(e)?;
-        // Impacts: thin vertical lines in every panel.
-        for &t in impacts {
-            chart
-                .draw_series(LineSeries::new(
-                    [(t, lo), (t, hi)],
-                    RGBColor(230, 140, 140).stroke_width(1),
-                ))
-                .map_err(e)?;
-        }
-        if lo < 0.0 && hi > 0.0 {
-            chart
-                .draw_series(LineSeries::new(
-                    [(0.0, 0.0), (t_max, 0.0)],
-                    BLACK.mix(0.4).stroke_width(1),
-                ))
-                .map_err(e)?;
-        }
-        chart
-            .draw_series(LineSeries::new(
-                s.points.iter().copied(),
-                // Thick polylines render steep, dense segments (records) with artefacts.
-                RGBColor(20, 60, 160).stroke_width(if s.points.len() > 5000 || i == 3 {
-                    1
-                } else {
-                    2
-                }),
-            ))
-            .map_err(e)?;
-        if i == 0 {
-            // Impacts on the θ/α panel: red dots at θ = 0, as in the paper's figures.
-            chart
-                .draw_series(
-                    impacts
-                        .iter()
-                        .map(|&t| Circle::new((t, 0.0), 4, RGBColor(200, 0, 0).filled())),
-                )
-                .map_err(e)?;
-        }
-    }
-    root.present().map_err(e)?;
-    Ok(())
-}
-
-/// Writes plot.png and plot.svg into `dir` (atomically); returns their paths.
+/// `rocking run`'s figure: θ/α, u/u_cr, E/E_ref and ü_g/(g tan α) against τ, stacked, impacts
+/// marked (the paper's Figs 3, 5 and 10 style), written as plot.svg, plot.png and plot.pdf.
 pub fn plots(model: &Setup, run: &Run, dir: &Path) -> Result<Vec<PathBuf>, SceneError> {
-    register();
-    let d = model.structure.derived();
-    let u = &model.units;
-    let h = &run.history;
-    let series = [
-        Series {
-            label: labels::THETA_OVER_ALPHA,
-            points: h.iter().map(|r| (r.tau, r.theta / u.alpha)).collect(),
-        },
-        Series {
-            label: labels::U_OVER_UCR,
-            points: h.iter().map(|r| (r.tau, r.u / d.u_cr)).collect(),
-        },
-        Series {
-            label: labels::E_OVER_EREF,
-            points: h.iter().map(|r| (r.tau, r.e_total)).collect(),
-        },
-        Series {
-            label: labels::UG_OVER_G_TAN_ALPHA,
-            points: h
-                .iter()
-                .map(|r| (r.tau, r.ug / u.accel_g_tan_alpha()))
-                .collect(),
-        },
-    ];
-    let impacts: Vec<f64> = run
-        .events
-        .iter()
-        .filter(|e| e.kind == EventKind::Impact)
-        .map(|e| e.time.tau)
+    let trace = Trace::of(model, run, String::new(), style::LINES[0]);
+    let panels = QUANTITIES
+        .into_iter()
+        .filter(|q| q.run_panel)
+        .map(|q| Panel::History(HistoryPanel::new(q, vec![trace.clone()])))
         .collect();
-    let t_max = h
-        .last()
-        .map(|r| r.tau)
-        .unwrap_or(run.summary.end_time.tau)
-        .max(1e-6);
-    let mut title = model
+    let title = model
         .title
         .clone()
         .unwrap_or_else(|| model.excitation_description.clone());
-    title.push_str(&format!("  [{}]", run.summary.kernel_variant));
-
-    let fail = |what: &str, m: String| SceneError::failure(format!("cannot draw the {what}: {m}"));
-    let mut written = Vec::new();
-    // PNG: render into a buffer, encode, write atomically.
-    let mut buf = vec![0u8; (WIDTH * HEIGHT * 3) as usize];
-    {
-        let root = BitMapBackend::with_buffer(&mut buf, (WIDTH, HEIGHT)).into_drawing_area();
-        draw(root, &title, &series, &impacts, t_max).map_err(|m| fail("PNG plot", m))?;
-    }
-    let png = encode_png(&buf, WIDTH, HEIGHT).map_err(|m| fail("PNG plot", m))?;
-    let path = dir.join("plot.png");
-    write_atomic(&path, &png)?;
-    written.push(path);
-    // SVG.
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (WIDTH, HEIGHT)).into_drawing_area();
-        draw(root, &title, &series, &impacts, t_max).map_err(|m| fail("SVG plot", m))?;
-    }
-    let path = dir.join("plot.svg");
-    write_atomic(&path, svg.as_bytes())?;
-    written.push(path);
-    Ok(written)
+    let impacts = run
+        .events
+        .iter()
+        .filter(|e| e.kind == EventKind::Impact)
+        .count();
+    let figure = Figure {
+        title,
+        caption: history::caption(impacts > 0, run.summary.overturned),
+        columns: 1,
+        panel: (860, 270),
+        panels,
+        colour_top: None,
+    };
+    figure.write(dir, "plot")
 }
 
-/// PNG encoding of an RGB buffer through the `image` crate that plotters' bitmap backend uses.
-pub(crate) fn encode_png(rgb: &[u8], w: u32, h: u32) -> Result<Vec<u8>, String> {
-    use image::ImageEncoder;
-    let mut out = Vec::new();
-    image::codecs::png::PngEncoder::new(&mut out)
-        .write_image(rgb, w, h, image::ColorType::Rgb8)
-        .map_err(|e| e.to_string())?;
-    Ok(out)
-}
-
-fn draw_fragility<DB: DrawingBackend>(
-    root: DrawingArea<DB, Shift>,
-    points: &[(f64, f64)],
-    records: usize,
-) -> Result<(), String> {
-    let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
-    root.fill(&WHITE).map_err(e)?;
-    let x_hi = points.iter().map(|p| p.0).fold(0.0, f64::max) * 1.05;
-    let root = titled(
-        root,
-        &format!("Fraction of {records} records that overturn"),
-        20,
-    )?;
-    let mut chart = ChartBuilder::on(&root)
-        .margin(12)
-        .x_label_area_size(45)
-        .y_label_area_size(60)
-        .build_cartesian_2d(0.0..x_hi.max(1e-9), 0.0..1.05)
-        .map_err(e)?;
-    chart
-        .configure_mesh()
-        .x_desc(labels::SCALE_FACTOR)
-        .y_desc(labels::FRACTION_OVERTURNED)
-        .label_style(("sans-serif", 14))
-        .draw()
-        .map_err(e)?;
-    chart
-        .draw_series(LineSeries::new(points.to_vec(), BLUE.stroke_width(2)))
-        .map_err(e)?;
-    chart
-        .draw_series(points.iter().map(|&p| Circle::new(p, 4, BLUE.filled())))
-        .map_err(e)?;
-    root.present().map_err(e)
-}
-
-/// The fragility-style curve of a record suite, as PNG and SVG.
+/// The fragility-style curve of a record suite (fraction of the records that overturn against
+/// the scale factor), as fragility.svg, .png and .pdf.
 pub fn fragility_plots(
     points: &[(f64, f64)],
     records: usize,
     dir: &Path,
 ) -> Result<Vec<PathBuf>, SceneError> {
-    register();
-    render_pair(
-        dir,
-        "fragility",
-        (800, 560),
-        |r| draw_fragility(r, points, records),
-        |r| draw_fragility(r, points, records),
-    )
-}
-
-/// Renders a figure to `<name>.png` and `<name>.svg` in `dir`, each written atomically.
-pub(crate) fn render_pair(
-    dir: &Path,
-    name: &str,
-    size: (u32, u32),
-    png: impl FnOnce(DrawingArea<BitMapBackend<'_>, Shift>) -> Result<(), String>,
-    svg: impl FnOnce(DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), String>,
-) -> Result<Vec<PathBuf>, SceneError> {
-    let fail = |what: &str, m: String| {
-        SceneError::failure(format!("{}: cannot draw the {what}: {m}", dir.display()))
+    let figure = Figure {
+        title: format!("Fraction of {records} records that overturn"),
+        caption: None,
+        columns: 1,
+        panel: (760, 520),
+        panels: vec![Panel::Curve(CurvePanel {
+            title: None,
+            labels: (
+                labels::SCALE_FACTOR.to_string(),
+                labels::FRACTION_OVERTURNED.to_string(),
+            ),
+            points: points.to_vec(),
+            y: (0.0, 1.05),
+        })],
+        colour_top: None,
     };
-    let mut pixels = vec![255u8; (size.0 * size.1 * 3) as usize];
-    png(BitMapBackend::with_buffer(&mut pixels, size).into_drawing_area())
-        .map_err(|m| fail("PNG", m))?;
-    let bytes = encode_png(&pixels, size.0, size.1).map_err(|m| fail("PNG", m))?;
-    let png_path = dir.join(format!("{name}.png"));
-    write_atomic(&png_path, &bytes)?;
-    let mut text = String::new();
-    svg(SVGBackend::with_string(&mut text, size).into_drawing_area())
-        .map_err(|m| fail("SVG", m))?;
-    let svg_path = dir.join(format!("{name}.svg"));
-    write_atomic(&svg_path, text.as_bytes())?;
-    Ok(vec![png_path, svg_path])
+    figure.write(dir, "fragility")
 }
 
-/// Draws `title` centred at the top of `root`, wrapped to its width (never cut), and returns the
-/// area below it.
-pub(crate) fn titled<DB: DrawingBackend>(
-    root: DrawingArea<DB, Shift>,
+/// The names of the figures a sweep may write: [`sweep_figure`]'s and [`fragility_plots`]'.
+pub const SWEEP_FIGURES: [&str; 3] = ["line", "spectrum", "fragility"];
+
+/// A reference structure's cells over the axes a sweep's figure shows (`[sweep] reference`).
+pub struct Reference<'a> {
+    /// Legend text, e.g. "rigid column".
+    pub label: &'a str,
+    pub sweep: &'a Sweep,
+    pub cells: &'a [Cell],
+}
+
+/// The figure of a sweep: `line` for one axis, `spectrum` for two (classes and max θ/α, with the
+/// structure's θ_cr/α on the colour bar), `spectrum` with one overturning boundary per value of
+/// the leading axes for three or more (each the midpoint between the cells that bracket the
+/// lowest overturning amplitude). Returns the figure and the file name.
+pub fn sweep_figure(
     title: &str,
-    size: u32,
-) -> Result<DrawingArea<DB, Shift>, String> {
-    let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
-    let width = root.dim_in_pixel().0;
-    // DejaVu Sans averages about 0.55 em per character; 40 px of margin.
-    let chars = ((width.saturating_sub(40)) as f64 / (0.58 * size as f64)).max(10.0) as usize;
-    let lines = wrap(title, chars);
-    let line_height = (size as f64 * 1.35) as u32;
-    let (top, rest) = root.split_vertically(line_height * lines.len() as u32 + 12);
-    let style = ("sans-serif", size)
-        .into_font()
-        .into_text_style(&top)
-        .pos(text_anchor::Pos::new(
-            text_anchor::HPos::Center,
-            text_anchor::VPos::Top,
-        ));
-    for (i, line) in lines.iter().enumerate() {
-        top.draw_text(
-            line,
-            &style,
-            ((width / 2) as i32, 8 + (i as u32 * line_height) as i32),
-        )
-        .map_err(e)?;
+    sweep: &Sweep,
+    cells: &[Cell],
+    reference: Option<&Reference>,
+    theta_cr: Option<f64>,
+) -> (Figure, &'static str) {
+    let n = sweep.axes.len();
+    let (panel, name, caption) = match n {
+        1 => {
+            let mut p = LinePanel::new(sweep, cells);
+            if let Some(r) = reference {
+                p = p.with_reference(r.label, r.sweep, r.cells);
+            }
+            (Panel::Line(p), "line", None)
+        }
+        2 => {
+            let mut p = SpectrumPanel::new(sweep, cells);
+            if let Some(r) = reference {
+                p = p.with_reference(r.label, r.sweep, r.cells);
+            }
+            p.theta_cr =
+                theta_cr.map(|v| (v, format!("θ_cr/α = {}", tick((v * 100.0).round() / 100.0))));
+            (Panel::Spectrum(p), "spectrum", None)
+        }
+        _ => {
+            let per = sweep.axes[n - 2].values.len() * sweep.axes[n - 1].values.len();
+            let leading = &sweep.axes[..n - 2];
+            let count = cells.len().div_ceil(per.max(1));
+            let mut structures = Vec::new();
+            for s in 0..count {
+                let mine: Vec<Cell> = cells
+                    .iter()
+                    .filter(|c| c.index / per == s)
+                    .cloned()
+                    .collect();
+                let Some(first) = mine.first() else { continue };
+                let values = sweep.values(first.index);
+                let label = leading
+                    .iter()
+                    .zip(&values)
+                    .map(|(a, &v)| labels::axis_value(&a.key, v))
+                    .collect::<Vec<_>>()
+                    .join(", ");
+                let style = style::LINES[s % style::LINES.len()];
+                structures.push(Structure::new(label, style, sweep, &mine, |_, lo, hi| {
+                    (lo + hi) / 2.0
+                }));
+            }
+            if let Some(r) = reference {
+                structures.push(Structure::new(
+                    r.label.to_string(),
+                    style::BLACK,
+                    r.sweep,
+                    r.cells,
+                    |_, lo, hi| (lo + hi) / 2.0,
+                ));
+            }
+            let p = BoundaryPanel::over(sweep, structures, BOUNDARY_HEADING.to_string());
+            (
+                Panel::Boundaries(p),
+                "spectrum",
+                Some(GRID_CAPTION.to_string()),
+            )
+        }
+    };
+    let figure = Figure {
+        title: title.to_string(),
+        caption,
+        columns: 1,
+        panel: (760, 700),
+        panels: vec![panel],
+        colour_top: None,
+    };
+    (figure, name)
+}
+
+/// Whether a sweep's figure can be drawn: plotters' tick search does not end on a range near the
+/// f64 limit, or one too narrow for its magnitude (x + step == x); such a sweep is not drawn (its
+/// cells are in cells.csv) and a note says so.
+pub fn drawable(sweep: &Sweep) -> bool {
+    if sweep.axes.is_empty() || sweep.is_empty() {
+        return false;
     }
-    Ok(rest)
+    let n = sweep.axes.len();
+    let ok = |v: &[f64]| {
+        let (lo, hi) = v
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+                (a.min(x), b.max(x))
+            });
+        let big = lo.abs().max(hi.abs());
+        big <= 1e15 && (v.len() < 2 || hi - lo >= 1e-9 * big)
+    };
+    match sweep.axes[n.saturating_sub(2)..]
+        .iter()
+        .find(|a| !ok(&a.values))
+    {
+        None => true,
+        Some(a) => {
+            eprintln!(
+                "note: the sweep plot is not drawn: the values of `{}` span a range a plot cannot \
+                 show (beyond ±1e15, or too narrow for their size); the cells are in cells.csv",
+                a.key
+            );
+            false
+        }
+    }
+}
+
+/// The legend heading of overturning boundaries.
+pub const BOUNDARY_HEADING: &str = "lowest amplitude that overturns:";
+/// How `rocking spectrum` finds a boundary point.
+const GRID_CAPTION: &str = "Each line joins, per value of the horizontal axis, the midpoints \
+                            between the highest upright cell below the lowest overturned cell and \
+                            that cell (the grid's resolution); `rocking figure` refines them by \
+                            bisection.";
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use plotters::prelude::*;
+    use plotters::style::colors::colormaps::ViridisRGB;
+    use rocking_spectra::CellClass;
+
+    fn sweep() -> Sweep {
+        Sweep {
+            axes: vec![
+                rocking_spectra::Axis {
+                    key: "excitation.omega_p_over_p".into(),
+                    values: vec![1.0, 2.0],
+                },
+                rocking_spectra::Axis {
+                    key: "excitation.amplitude".into(),
+                    values: vec![1.0, 2.0],
+                },
+            ],
+            fingerprint: "test".into(),
+            reported: Vec::new(),
+        }
+    }
+
+    fn cells(thetas: [f64; 3]) -> Vec<Cell> {
+        let mut cells: Vec<Cell> = thetas
+            .iter()
+            .enumerate()
+            .map(|(index, &t)| Cell {
+                index,
+                class: CellClass::Survived,
+                max_theta_over_alpha: t,
+                impacts: 1,
+                reported: Vec::new(),
+            })
+            .collect();
+        cells.push(Cell {
+            index: 3,
+            class: CellClass::OverturnedOneImpact,
+            max_theta_over_alpha: 15.7,
+            impacts: 1,
+            reported: Vec::new(),
+        });
+        cells
+    }
+
+    #[test]
+    fn spectra_of_one_figure_share_one_colour_bar_and_its_range() {
+        let s = sweep();
+        let low = cells([0.2, 0.65, 1.3]);
+        let high = cells([0.5, 1.0, 3.6]);
+        let figure = Figure {
+            title: "two panels".into(),
+            caption: None,
+            columns: 2,
+            panel: (300, 300),
+            panels: vec![
+                Panel::Spectrum(SpectrumPanel::new(&s, &low)),
+                Panel::Spectrum(SpectrumPanel::new(&s, &high)),
+            ],
+            colour_top: None,
+        };
+        let svg = figure.svg().unwrap();
+        assert_eq!(
+            svg.matches("survived: max |θ|/α").count(),
+            1,
+            "one colour bar"
+        );
+        // The 0.65 cell of the first panel is shaded on the shared 0..3.6 scale, not its own.
+        let hex = |c: RGBColor| format!("fill=\"#{:02X}{:02X}{:02X}\"", c.0, c.1, c.2);
+        let shared = hex(ViridisRGB.get_color_normalized(0.65, 0.0, 3.6));
+        let own = hex(ViridisRGB.get_color_normalized(0.65, 0.0, 1.3));
+        assert!(svg.contains(&shared), "{shared} missing");
+        assert!(!svg.contains(&own), "{own}: shaded on its own scale");
+        // The bar's ticks reach the shared top's range (0 .. 3.6: ticks 0, 1, 2, 3).
+        let texts: Vec<&str> = svg
+            .split("</text>")
+            .filter_map(|t| t.rsplit_once('>').map(|(_, v)| v.trim()))
+            .collect();
+        assert!(
+            texts.contains(&"3") && !texts.contains(&"4"),
+            "ticks: {texts:?}"
+        );
+    }
 }

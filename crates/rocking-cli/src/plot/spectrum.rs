@@ -1,230 +1,264 @@
-//! Sweep figures: the rocking spectrum of a two-axis sweep (the paper's Figs 6-8: max θ/α of the
-//! survivors on a continuous colour scale with its colour bar, the overturning classes in their
-//! own colours), the overturning boundaries of a three-axis sweep (Fig. 9: one contour per value
-//! of the first axis, by marching squares) and the line plot of a one-axis sweep, each with the
-//! reference structure's boundary (or line) dashed when `[sweep] reference` asks for it. Legends
-//! sit beside the plot area, never on the data.
+//! Sweep panels: the rocking spectrum of a two-axis sweep (the paper's Figs 6-8: survivors shaded
+//! by max θ/α on the figure's one colour scale, the overturning classes filled and hatched, a
+//! line between overturned and upright cells), the overturning boundaries of several structures
+//! (Fig. 9: per ω_p/p the lowest amplitude that overturns, each structure in its own colour, dash
+//! and marker, the survival islands above it marked apart) and the line plot of a one-axis
+//! sweep; the colour bar of the survivors with θ_cr/α marked on it.
 
-use std::path::{Path, PathBuf};
-
-use plotters::coord::Shift;
-use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 use plotters::style::colors::colormaps::ViridisRGB;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+use rocking_plot::style::{self, ClassStyle, LineStyle};
+use rocking_plot::text::{rich, tick};
 use rocking_scene::labels;
 use rocking_spectra::{Cell, CellClass, Sweep};
 
-use super::contour::{contour, polylines, Segment};
-use super::{register, render_pair, titled};
-use rocking_scene::SceneError;
+use super::boundary::{cell_bounds, cell_edges, lowest_overturning, polylines, Lowest};
+use rocking_plot::chart::{
+    axes, fail, line_height, mark_at, rgb, styled_line, Area, LegendItem, LEGEND, TICKS,
+};
 
-/// Figure size (pixels) and the width of the legend column on its right.
-const SIZE: (u32, u32) = (1040, 760);
-const LEGEND: u32 = 270;
-
-/// The colour of each class that is not a survivor's shade, with its legend text.
-const CLASSES: &[(CellClass, RGBColor, &str)] = &[
-    (CellClass::NoUplift, RGBColor(225, 225, 225), "no uplift"),
-    (
-        CellClass::OverturnedNoImpact,
-        RGBColor(165, 15, 35),
-        "overturned, no impact",
-    ),
-    (
-        CellClass::OverturnedOneImpact,
-        RGBColor(240, 120, 60),
-        "overturned after one impact",
-    ),
-    (
-        CellClass::OverturnedImpacts,
-        RGBColor(250, 190, 215),
-        "overturned after impacts",
-    ),
-    (
-        CellClass::Failed,
-        RGBColor(0, 0, 0),
-        "failed (see meta.json)",
-    ),
-];
-
-/// Line colours of the boundaries of several structures (Fig. 9).
-const LINES: &[RGBColor] = &[
-    RGBColor(31, 119, 180),
-    RGBColor(214, 39, 40),
-    RGBColor(44, 160, 44),
-    RGBColor(148, 103, 189),
-    RGBColor(255, 127, 14),
-    RGBColor(23, 190, 207),
-    RGBColor(140, 86, 75),
-    RGBColor(0, 0, 0),
-];
-
-/// A reference structure's cells over the axes the figure shows (`[sweep] reference`).
-pub struct Reference<'a> {
-    /// Legend text, e.g. "rigid column".
-    pub label: &'a str,
-    pub sweep: &'a Sweep,
-    pub cells: &'a [Cell],
+/// The style of a class that is not a survivor's shade.
+fn class_style(class: CellClass) -> Option<ClassStyle> {
+    match class {
+        CellClass::NoUplift => Some(style::NO_UPLIFT),
+        CellClass::OverturnedNoImpact => Some(style::OVERTURNED_NO_IMPACT),
+        CellClass::OverturnedOneImpact => Some(style::OVERTURNED_ONE_IMPACT),
+        CellClass::OverturnedImpacts => Some(style::OVERTURNED_IMPACTS),
+        CellClass::Failed => Some(style::FAILED),
+        CellClass::Survived => None,
+    }
 }
 
-/// How a legend entry is drawn.
-#[derive(Clone, Copy)]
-enum Swatch {
-    Box,
-    Line,
-    Dashed,
-}
-
-/// The reference's style: black, dashed.
-const DASH: (u32, u32, u32) = (9, 6, 3);
-
-/// Draws `points` dashed in black (the reference).
-fn dashed<DB: DrawingBackend>(
-    chart: &mut ChartContext<
-        '_,
-        DB,
-        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
-    >,
-    lines: Vec<Vec<(f64, f64)>>,
-) -> Result<(), String> {
-    let (size, gap, width) = DASH;
-    chart
-        .draw_series(
-            lines
-                .into_iter()
-                .map(|l| DashedPathElement::new(l, size, gap, BLACK.stroke_width(width))),
-        )
-        .map_err(|e| e.to_string())?;
-    Ok(())
-}
-
-/// Whether a class is one of the overturned ones.
-fn overturned(class: CellClass) -> bool {
-    matches!(
-        class,
+/// Whether a class is one of the overturned ones (`None` for a failed cell: neither).
+pub fn overturned(class: CellClass) -> Option<bool> {
+    match class {
+        CellClass::Failed => None,
         CellClass::OverturnedNoImpact
-            | CellClass::OverturnedOneImpact
-            | CellClass::OverturnedImpacts
-    )
-}
-
-/// The colour of a cell: a survivor's max θ/α on the viridis scale from 0 to `top`, another class
-/// its own colour.
-fn cell_colour(c: &Cell, top: f64) -> RGBColor {
-    match c.class {
-        CellClass::Survived => ViridisRGB.get_color_normalized(c.max_theta_over_alpha, 0.0, top),
-        other => CLASSES
-            .iter()
-            .find(|(k, _, _)| *k == other)
-            .map_or(RGBColor(0, 0, 0), |(_, colour, _)| *colour),
+        | CellClass::OverturnedOneImpact
+        | CellClass::OverturnedImpacts => Some(true),
+        CellClass::Survived | CellClass::NoUplift => Some(false),
     }
 }
 
-/// The range an axis's cells cover (half a step beyond the first and last values).
-fn span(v: &[f64]) -> (f64, f64, f64) {
-    let (lo, hi) = v
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
-            (a.min(x), b.max(x))
-        });
-    let h = if v.len() > 1 {
-        (hi - lo) / (v.len() - 1) as f64 / 2.0
-    } else {
-        0.5_f64.max(lo.abs() * 0.05)
-    };
-    (lo - h, hi + h, h)
+/// An axis of a panel: its scene key (for the label) and its values.
+#[derive(Clone, Debug)]
+pub struct Axis {
+    pub key: String,
+    pub values: Vec<f64>,
 }
 
-/// The largest max θ/α of the survivors (the top of the colour scale).
-fn top_of_survivors(cells: &[Cell]) -> f64 {
-    cells
-        .iter()
-        .filter(|c| c.class == CellClass::Survived)
-        .map(|c| c.max_theta_over_alpha)
-        .fold(1e-9, f64::max)
-}
-
-/// Legend entries drawn as swatches (a filled box or a line) with text, from the top of `area`.
-fn legend<DB: DrawingBackend>(
-    area: &DrawingArea<DB, Shift>,
-    top: i32,
-    items: &[(RGBColor, String, Swatch)],
-) -> Result<(), String> {
-    let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
-    let width = area.dim_in_pixel().0 as usize;
-    let mut y = top;
-    for (colour, text, swatch) in items {
-        match swatch {
-            Swatch::Line => {
-                area.draw(&PathElement::new(
-                    vec![(8, y + 9), (34, y + 9)],
-                    colour.stroke_width(3),
-                ))
-                .map_err(e)?;
-            }
-            Swatch::Dashed => {
-                let (size, gap, width) = DASH;
-                area.draw(&DashedPathElement::new(
-                    vec![(6, y + 9), (36, y + 9)],
-                    size,
-                    gap,
-                    colour.stroke_width(width),
-                ))
-                .map_err(e)?;
-            }
-            Swatch::Box => {
-                area.draw(&Rectangle::new([(10, y), (30, y + 18)], colour.filled()))
-                    .map_err(e)?;
-                area.draw(&Rectangle::new([(10, y), (30, y + 18)], BLACK))
-                    .map_err(e)?;
-            }
-        }
-        let lines = super::wrap(text, (width.saturating_sub(48) / 8).max(12));
-        for (k, l) in lines.iter().enumerate() {
-            area.draw(&Text::new(
-                l.clone(),
-                (40, y + 2 + 17 * k as i32),
-                ("sans-serif", 14).into_font(),
-            ))
-            .map_err(e)?;
-        }
-        y += 10 + 17 * lines.len().max(1) as i32;
-    }
-    Ok(())
-}
-
-/// The colour bar of the survivors' max θ/α (0 to `top`) at the top of `area`.
-fn colour_bar<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, top: f64) -> Result<i32, String> {
-    let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
-    let height = 330;
-    let (bar, _) = area.split_vertically(height);
-    let mut chart = ChartBuilder::on(&bar)
-        .margin_top(30)
-        .margin_bottom(10)
-        .margin_left(10)
-        .margin_right(150)
-        .y_label_area_size(0)
-        .right_y_label_area_size(50)
-        .caption(
-            format!("survived: {}", labels::MAX_THETA_OVER_ALPHA),
-            ("sans-serif", 15),
+impl Axis {
+    fn range(&self) -> (f64, f64) {
+        let n = self.values.len();
+        (
+            cell_bounds(&self.values, 0).0,
+            cell_bounds(&self.values, n - 1).1,
         )
+    }
+}
+
+/// The (x, y) axes of the grid of a sweep's last two axes, each cell's grid position, class and
+/// max θ/α.
+type Grid = (Axis, Axis, Vec<(usize, usize, CellClass, f64)>);
+
+fn grid(sweep: &Sweep, cells: &[Cell]) -> Grid {
+    let n = sweep.axes.len();
+    let (ax, ay) = (&sweep.axes[n - 2], &sweep.axes[n - 1]);
+    let (nx, ny) = (ax.values.len(), ay.values.len());
+    let cells = cells
+        .iter()
+        .map(|c| {
+            (
+                (c.index / ny) % nx,
+                c.index % ny,
+                c.class,
+                c.max_theta_over_alpha,
+            )
+        })
+        .collect();
+    let axis = |a: &rocking_spectra::Axis| Axis {
+        key: a.key.clone(),
+        values: a.values.clone(),
+    };
+    (axis(ax), axis(ay), cells)
+}
+
+/// Polylines in the axes' values.
+type Lines = Vec<Vec<(f64, f64)>>;
+
+/// A one-axis sweep's cells: (value, class, max θ/α) by increasing value.
+type LineCells = Vec<(f64, CellClass, f64)>;
+
+/// The lines between overturned and upright cells of a grid.
+fn boundary_lines(g: &Grid) -> Lines {
+    let (x, y, cells) = g;
+    let mut over = vec![vec![None; y.values.len()]; x.values.len()];
+    for &(i, j, class, _) in cells {
+        over[i][j] = overturned(class);
+    }
+    polylines(&cell_edges(&over, &x.values, &y.values))
+}
+
+/// A rocking spectrum panel.
+pub struct SpectrumPanel {
+    pub title: Option<String>,
+    grid: Grid,
+    boundary: Lines,
+    /// A reference structure's boundary (dashed), with its legend text.
+    reference: Option<(String, Lines)>,
+    /// θ_cr/α of the structure, with its text on the colour bar.
+    pub theta_cr: Option<(f64, String)>,
+}
+
+impl SpectrumPanel {
+    /// The panel of a sweep's cells over its last two axes.
+    pub fn new(sweep: &Sweep, cells: &[Cell]) -> SpectrumPanel {
+        let grid = grid(sweep, cells);
+        SpectrumPanel {
+            title: None,
+            boundary: boundary_lines(&grid),
+            grid,
+            reference: None,
+            theta_cr: None,
+        }
+    }
+
+    /// Draws a reference structure's overturning boundary over it, dashed.
+    pub fn with_reference(mut self, label: &str, sweep: &Sweep, cells: &[Cell]) -> SpectrumPanel {
+        let lines = boundary_lines(&grid(sweep, cells));
+        self.reference = Some((label.to_string(), lines));
+        self
+    }
+
+    /// The largest max θ/α of the survivors.
+    pub(super) fn top_of_survivors(&self) -> f64 {
+        self.grid
+            .2
+            .iter()
+            .filter(|c| c.2 == CellClass::Survived)
+            .map(|c| c.3)
+            .fold(1e-9, f64::max)
+    }
+
+    pub(super) fn theta_cr_mark(&self) -> Option<(f64, String)> {
+        self.theta_cr.clone()
+    }
+
+    pub(super) fn legend(&self) -> Vec<LegendItem> {
+        let mut items: Vec<LegendItem> = [
+            CellClass::NoUplift,
+            CellClass::OverturnedNoImpact,
+            CellClass::OverturnedOneImpact,
+            CellClass::OverturnedImpacts,
+            CellClass::Failed,
+        ]
+        .into_iter()
+        .filter(|k| self.grid.2.iter().any(|c| c.2 == *k))
+        .filter_map(class_style)
+        .map(|s| LegendItem::Fill(s.fill, s.label.to_string()))
+        .collect();
+        if !self.boundary.is_empty() {
+            items.push(LegendItem::Rule(
+                [0, 0, 0],
+                None,
+                "overturned | upright".to_string(),
+            ));
+        }
+        if let Some((label, _)) = &self.reference {
+            items.push(LegendItem::Rule(
+                [0, 0, 0],
+                style::BLACK.dash,
+                format!("overturned | upright, {label}"),
+            ));
+        }
+        items
+    }
+
+    pub(super) fn draw(&self, area: &Area<'_>, top: f64) -> Result<(), String> {
+        let (x, y, cells) = &self.grid;
+        let mut chart = axes(
+            area,
+            self.title.as_deref(),
+            x.range(),
+            y.range(),
+            (&labels::axis_label(&x.key), &labels::axis_label(&y.key)),
+            false,
+        )?;
+        // Cells of one class next to each other in a column are one rectangle.
+        let mut sorted = cells.clone();
+        sorted.sort_by_key(|c| (c.0, c.1));
+        let mut k = 0;
+        while k < sorted.len() {
+            let (i, j, class, theta) = sorted[k];
+            let mut last = j;
+            if class != CellClass::Survived {
+                while k + 1 < sorted.len()
+                    && sorted[k + 1].0 == i
+                    && sorted[k + 1].1 == last + 1
+                    && sorted[k + 1].2 == class
+                {
+                    k += 1;
+                    last += 1;
+                }
+            }
+            let fill = match class_style(class) {
+                Some(s) => rgb(s.fill),
+                None => ViridisRGB.get_color_normalized(theta.min(top), 0.0, top),
+            };
+            let (x0, x1) = cell_bounds(&x.values, i);
+            let (y0, _) = cell_bounds(&y.values, j);
+            let (_, y1) = cell_bounds(&y.values, last);
+            chart
+                .draw_series(std::iter::once(Rectangle::new(
+                    [(x0, y0), (x1, y1)],
+                    fill.filled(),
+                )))
+                .map_err(fail)?;
+            k += 1;
+        }
+        for line in &self.boundary {
+            styled_line(&mut chart, line.clone(), &solid(), BLACK, 2)?;
+        }
+        if let Some((_, lines)) = &self.reference {
+            for line in lines {
+                styled_line(&mut chart, line.clone(), &style::BLACK, BLACK, 2)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A solid black line (the overturning boundary of a spectrum).
+fn solid() -> LineStyle {
+    LineStyle {
+        dash: None,
+        ..style::BLACK
+    }
+}
+
+/// The colour bar of the survivors' max θ/α (0 to `top`) with θ_cr/α marked, at `y` in the
+/// legend column; returns the y below it.
+pub(super) fn colour_bar(
+    side: &Area<'_>,
+    top: f64,
+    marks: &[(f64, String)],
+    y: i32,
+) -> Result<i32, String> {
+    let height = 330;
+    let (width, _) = side.dim_in_pixel();
+    let area = side.clone().shrink((0, y), (width, height));
+    area.draw(&Text::new(
+        rich(&format!("survived: {}", labels::MAX_THETA_OVER_ALPHA)),
+        (10, 4),
+        ("sans-serif", LEGEND).into_font(),
+    ))
+    .map_err(fail)?;
+    let bar = area.clone().shrink((10, 30), (34, height - 44));
+    let mut chart = ChartBuilder::on(&bar)
+        .set_label_area_size(LabelAreaPosition::Right, 0)
         .build_cartesian_2d(0.0..1.0, 0.0..top)
-        .map_err(e)?
-        .set_secondary_coord(0.0..1.0, 0.0..top);
-    chart
-        .configure_mesh()
-        .disable_mesh()
-        .disable_x_axis()
-        .disable_y_axis()
-        .draw()
-        .map_err(e)?;
-    chart
-        .configure_secondary_axes()
-        .label_style(("sans-serif", 13))
-        .y_labels(6)
-        .draw()
-        .map_err(e)?;
+        .map_err(fail)?;
     let steps = 120;
     chart
         .draw_series((0..steps).map(|k| {
@@ -239,341 +273,377 @@ fn colour_bar<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, top: f64) -> Re
                     .filled(),
             )
         }))
-        .map_err(e)?;
-    Ok(height)
-}
-
-/// A cell's position (i, j) on the grid of the last two axes.
-fn grid_position(sweep: &Sweep, index: usize) -> (usize, usize) {
-    let n = sweep.axes.len();
-    let ny = sweep.axes[n - 1].values.len();
-    let nx = sweep.axes[n - 2].values.len();
-    ((index / ny) % nx, index % ny)
-}
-
-fn axes_chart<'a, DB: DrawingBackend>(
-    area: &'a DrawingArea<DB, Shift>,
-    sweep: &Sweep,
-) -> Result<
-    ChartContext<
-        'a,
-        DB,
-        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
-    >,
-    String,
-> {
-    let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
-    let n = sweep.axes.len();
-    let (ax, ay) = (&sweep.axes[n - 2], &sweep.axes[n - 1]);
-    let (x0, x1, _) = span(&ax.values);
-    let (y0, y1, _) = span(&ay.values);
-    let mut chart = ChartBuilder::on(area)
-        .margin(12)
-        .margin_right(24)
-        .x_label_area_size(55)
-        .y_label_area_size(70)
-        .build_cartesian_2d(x0..x1, y0..y1)
-        .map_err(e)?;
-    chart
-        .configure_mesh()
-        .disable_mesh()
-        .x_desc(labels::axis_label(&ax.key))
-        .y_desc(labels::axis_label(&ay.key))
-        .label_style(("sans-serif", 15))
-        .axis_desc_style(("sans-serif", 19))
-        .draw()
-        .map_err(e)?;
-    Ok(chart)
-}
-
-fn draw_spectrum<DB: DrawingBackend>(
-    root: DrawingArea<DB, Shift>,
-    title: &str,
-    sweep: &Sweep,
-    cells: &[Cell],
-    reference: Option<&Reference>,
-) -> Result<(), String> {
-    let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
-    root.fill(&WHITE).map_err(e)?;
-    let root = titled(root, title, 19)?;
-    let (plot_area, side) = root.split_horizontally(SIZE.0 - LEGEND);
-    let n = sweep.axes.len();
-    let (_, _, hx) = span(&sweep.axes[n - 2].values);
-    let (_, _, hy) = span(&sweep.axes[n - 1].values);
-    let top = top_of_survivors(cells);
-    let mut chart = axes_chart(&plot_area, sweep)?;
-    chart
-        .draw_series(cells.iter().map(|c| {
-            let v = sweep.values(c.index);
-            Rectangle::new(
-                [(v[0] - hx, v[1] - hy), (v[0] + hx, v[1] + hy)],
-                cell_colour(c, top).filled(),
-            )
-        }))
-        .map_err(e)?;
-    if let Some(r) = reference {
-        dashed(&mut chart, reference_boundary(r))?;
+        .map_err(fail)?;
+    // Ticks on the right of the bar.
+    let font = ("sans-serif", TICKS)
+        .into_font()
+        .into_text_style(&area)
+        .pos(Pos::new(HPos::Left, VPos::Center));
+    let (_, bar_h) = bar.dim_in_pixel();
+    let to_y = |v: f64| 30 + ((1.0 - v / top) * bar_h as f64).round() as i32;
+    for v in nice_ticks(top) {
+        let py = to_y(v);
+        area.draw(&PathElement::new(vec![(44, py), (50, py)], BLACK))
+            .map_err(fail)?;
+        area.draw_text(&tick(v), &font, (54, py)).map_err(fail)?;
     }
-    let below = colour_bar(&side, top)?;
-    let mut present: Vec<(RGBColor, String, Swatch)> = CLASSES
+    // Marks from the top down; a label too close to the one above moves below it.
+    let mut shown: Vec<&(f64, String)> = marks.iter().filter(|m| m.0 <= top).collect();
+    shown.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let mut last_text = i32::MIN / 2;
+    for (v, text) in shown {
+        let py = to_y(*v);
+        let ty = py.max(last_text + line_height(LEGEND) as i32);
+        last_text = ty;
+        area.draw(&PathElement::new(
+            vec![(6, py), (48, py)],
+            BLACK.stroke_width(3),
+        ))
+        .map_err(fail)?;
+        area.draw(&PathElement::new(
+            vec![(10, py), (44, py)],
+            WHITE.stroke_width(1),
+        ))
+        .map_err(fail)?;
+        area.draw_text(&rich(text), &font, (84, ty)).map_err(fail)?;
+    }
+    Ok(y + height)
+}
+
+/// About five round tick values from 0 to `top`.
+fn nice_ticks(top: f64) -> Vec<f64> {
+    let raw = top / 5.0;
+    let mag = 10f64.powf(raw.log10().floor());
+    let step = [1.0, 2.0, 2.5, 5.0, 10.0]
         .iter()
-        .filter(|(k, _, _)| cells.iter().any(|c| c.class == *k))
-        .map(|(_, colour, text)| (*colour, text.to_string(), Swatch::Box))
-        .collect();
-    if let Some(r) = reference {
-        present.push((
-            BLACK,
-            format!("overturning boundary, {}", r.label),
-            Swatch::Dashed,
-        ));
-    }
-    legend(&side, below + 10, &present)?;
-    root.present().map_err(e)
-}
-
-/// The overturning boundary of a reference's two-axis sweep, as polylines.
-fn reference_boundary(r: &Reference) -> Vec<Vec<(f64, f64)>> {
-    boundaries(r.sweep, r.cells)
-        .into_iter()
-        .flat_map(|(_, segments)| polylines(&segments))
+        .map(|m| m * mag)
+        .find(|s| *s >= raw)
+        .unwrap_or(10.0 * mag);
+    (0..)
+        .map(|k| k as f64 * step)
+        .take_while(|v| *v <= top * (1.0 + 1e-9))
         .collect()
 }
 
-/// The overturning contour of each structure (value of the leading axes) of a sweep of two or
-/// more axes, with its legend text (empty for two axes: one structure).
-pub fn boundaries(sweep: &Sweep, cells: &[Cell]) -> Vec<(String, Vec<Segment>)> {
-    let n = sweep.axes.len();
-    let (xs, ys) = (&sweep.axes[n - 2].values, &sweep.axes[n - 1].values);
-    let per_structure = xs.len() * ys.len();
-    let mut grids: Vec<(String, Vec<Vec<bool>>)> = Vec::new();
-    for c in cells {
-        let s = c.index / per_structure;
-        if grids.len() <= s {
-            grids.resize_with(s + 1, || {
-                (String::new(), vec![vec![false; ys.len()]; xs.len()])
-            });
+/// One structure's overturning boundary on Fig. 9: the lowest overturning amplitude per ω_p/p
+/// and the upright cells above it.
+pub struct Structure {
+    pub label: String,
+    pub style: LineStyle,
+    /// (ω_p/p, lowest overturning amplitude) by increasing ω_p/p, in pieces between the columns
+    /// where nothing overturned.
+    pub line: Vec<Vec<(f64, f64)>>,
+    /// Upright cells above the line (survival islands).
+    pub islands: Vec<(f64, f64)>,
+}
+
+impl Structure {
+    /// The boundary of the structure whose cells are `cells` (over the sweep's last two axes):
+    /// per column, the lowest overturning amplitude `refine(x, upright, overturned)` finds
+    /// between the cells that bracket it (or the lowest cell, when it already overturned).
+    pub fn new(
+        label: String,
+        style: LineStyle,
+        sweep: &Sweep,
+        cells: &[Cell],
+        mut refine: impl FnMut(f64, f64, f64) -> f64,
+    ) -> Structure {
+        let (x, y, grid) = grid(sweep, cells);
+        let mut line = vec![Vec::new()];
+        let mut islands = Vec::new();
+        for (i, &xv) in x.values.iter().enumerate() {
+            let mut column: Vec<(f64, bool)> = grid
+                .iter()
+                .filter(|c| c.0 == i)
+                .filter_map(|c| overturned(c.2).map(|o| (y.values[c.1], o)))
+                .collect();
+            column.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let lowest = match lowest_overturning(&column) {
+                Lowest::Never => {
+                    if line.last().is_some_and(|l| !l.is_empty()) {
+                        line.push(Vec::new());
+                    }
+                    continue;
+                }
+                Lowest::AtOrBelow(a) => a,
+                Lowest::Between(lo, hi) => refine(xv, lo, hi),
+            };
+            if let Some(l) = line.last_mut() {
+                l.push((xv, lowest));
+            }
+            islands.extend(
+                column
+                    .iter()
+                    .filter(|c| !c.1 && c.0 > lowest)
+                    .map(|c| (xv, c.0)),
+            );
         }
-        let v = sweep.values(c.index);
-        grids[s].0 = sweep.axes[..n - 2]
+        line.retain(|l| !l.is_empty());
+        Structure {
+            label,
+            style,
+            line,
+            islands,
+        }
+    }
+}
+
+/// Overturning boundaries of several structures on shared axes.
+pub struct BoundaryPanel {
+    pub title: Option<String>,
+    pub x: Axis,
+    pub y: Axis,
+    pub structures: Vec<Structure>,
+    /// How the lines were found, for the legend's heading.
+    pub method: String,
+}
+
+impl BoundaryPanel {
+    pub(super) fn legend(&self) -> Vec<LegendItem> {
+        let mut items = vec![LegendItem::Heading(self.method.clone())];
+        for s in &self.structures {
+            items.push(LegendItem::Line(s.style, s.label.clone()));
+        }
+        if self.structures.iter().any(|s| !s.islands.is_empty()) {
+            items.push(LegendItem::Mark(
+                style::LINES[0].marker,
+                [90, 90, 90],
+                false,
+                "open markers: upright cells above their structure's line (survival islands)"
+                    .to_string(),
+            ));
+        }
+        items
+    }
+
+    pub(super) fn draw(&self, area: &Area<'_>) -> Result<(), String> {
+        let mut chart = axes(
+            area,
+            self.title.as_deref(),
+            self.x.range(),
+            self.y.range(),
+            (
+                &labels::axis_label(&self.x.key),
+                &labels::axis_label(&self.y.key),
+            ),
+            true,
+        )?;
+        let n = self.structures.len().max(1);
+        for (k, s) in self.structures.iter().enumerate() {
+            let colour = rgb(s.style.colour);
+            for &(x, y) in &s.islands {
+                mark_at(&chart, s.style.marker, (x, y), 3, colour, false)?;
+            }
+            for piece in &s.line {
+                styled_line(&mut chart, piece.clone(), &s.style, colour, 2)?;
+            }
+            // Markers along the line, staggered between structures so they do not cover each
+            // other.
+            let all: Vec<(f64, f64)> = s.line.iter().flatten().copied().collect();
+            let every = (all.len() / 7).max(1);
+            let offset = k * every / n;
+            for &p in all.iter().skip(offset).step_by(every) {
+                mark_at(&chart, s.style.marker, p, 5, colour, true)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+impl BoundaryPanel {
+    /// The panel of structures drawn over the axes of `sweep`'s last two.
+    pub fn over(sweep: &Sweep, structures: Vec<Structure>, method: String) -> BoundaryPanel {
+        let n = sweep.axes.len();
+        let axis = |a: &rocking_spectra::Axis| Axis {
+            key: a.key.clone(),
+            values: a.values.clone(),
+        };
+        BoundaryPanel {
+            title: None,
+            x: axis(&sweep.axes[n - 2]),
+            y: axis(&sweep.axes[n - 1]),
+            structures,
+            method,
+        }
+    }
+}
+
+/// A one-axis sweep: max θ/α of the cells that stayed upright against the axis value, the
+/// others marked by class at the top.
+pub struct LinePanel {
+    pub title: Option<String>,
+    pub axis: Axis,
+    /// (value, class, max θ/α) by increasing value.
+    pub cells: LineCells,
+    /// A reference structure's line, with its legend text.
+    pub reference: Option<(String, LineCells)>,
+}
+
+impl LinePanel {
+    /// The panel of a one-axis sweep.
+    pub fn new(sweep: &Sweep, cells: &[Cell]) -> LinePanel {
+        LinePanel {
+            title: None,
+            axis: Axis {
+                key: sweep.axes[0].key.clone(),
+                values: sweep.axes[0].values.clone(),
+            },
+            cells: line_cells(sweep, cells),
+            reference: None,
+        }
+    }
+
+    pub fn with_reference(mut self, label: &str, sweep: &Sweep, cells: &[Cell]) -> LinePanel {
+        self.reference = Some((label.to_string(), line_cells(sweep, cells)));
+        self
+    }
+
+    fn top(&self) -> f64 {
+        self.cells
             .iter()
-            .zip(&v)
-            .map(|(a, &x)| labels::axis_value(&a.key, x))
-            .collect::<Vec<_>>()
-            .join(", ");
-        let (i, j) = grid_position(sweep, c.index);
-        grids[s].1[i][j] = overturned(c.class);
+            .filter(|c| overturned(c.1) == Some(false))
+            .map(|c| c.2)
+            .fold(1e-3, f64::max)
+            * 1.12
     }
-    grids
-        .into_iter()
-        .map(|(name, g)| (name, contour(&g, xs, ys)))
-        .collect()
+
+    pub(super) fn legend(&self) -> Vec<LegendItem> {
+        let mut items = vec![LegendItem::Line(
+            style::LINES[0],
+            format!("upright: {}", labels::MAX_THETA_OVER_ALPHA),
+        )];
+        if let Some((label, _)) = &self.reference {
+            items.push(LegendItem::Line(
+                style::BLACK,
+                format!("{label}: {}", labels::MAX_THETA_OVER_ALPHA),
+            ));
+        }
+        for class in [
+            CellClass::OverturnedNoImpact,
+            CellClass::OverturnedOneImpact,
+            CellClass::OverturnedImpacts,
+            CellClass::Failed,
+        ] {
+            if let (Some(s), true) = (class_style(class), self.cells.iter().any(|c| c.1 == class)) {
+                items.push(LegendItem::Fill(s.fill, format!("{} (top row)", s.label)));
+            }
+        }
+        let over = self
+            .cells
+            .iter()
+            .filter(|c| overturned(c.1) == Some(true))
+            .count();
+        let done = self
+            .cells
+            .iter()
+            .filter(|c| c.1 != CellClass::Failed)
+            .count();
+        items.push(LegendItem::Heading(format!(
+            "{} = {over}/{done}",
+            labels::FRACTION_OVERTURNED
+        )));
+        items
+    }
+
+    pub(super) fn draw(&self, area: &Area<'_>) -> Result<(), String> {
+        let top = self.top();
+        let mut chart = axes(
+            area,
+            self.title.as_deref(),
+            self.axis.range(),
+            (0.0, top),
+            (
+                &labels::axis_label(&self.axis.key),
+                labels::MAX_THETA_OVER_ALPHA,
+            ),
+            true,
+        )?;
+        let line = style::LINES[0];
+        for run in upright_runs(&self.cells) {
+            styled_line(&mut chart, run, &line, rgb(line.colour), 2)?;
+        }
+        if let Some((_, cells)) = &self.reference {
+            for run in upright_runs(cells) {
+                styled_line(&mut chart, run, &style::BLACK, BLACK, 2)?;
+            }
+        }
+        let (x0, x1) = self.axis.range();
+        let half = (x1 - x0) / self.cells.len().max(1) as f64 / 2.0;
+        for &(x, class, theta) in &self.cells {
+            match class_style(class).filter(|_| class != CellClass::NoUplift) {
+                // Overturned or failed: a box of its class in the top row.
+                Some(s) => {
+                    let y = top / 1.12;
+                    chart
+                        .draw_series(std::iter::once(Rectangle::new(
+                            [(x - half, y * 1.02), (x + half, y * 1.09)],
+                            rgb(s.fill).filled(),
+                        )))
+                        .map_err(fail)?;
+                }
+                None => {
+                    mark_at(&chart, line.marker, (x, theta), 4, rgb(line.colour), true)?;
+                }
+            }
+        }
+        Ok(())
+    }
 }
 
-fn draw_boundaries<DB: DrawingBackend>(
-    root: DrawingArea<DB, Shift>,
-    title: &str,
-    sweep: &Sweep,
-    cells: &[Cell],
-    reference: Option<&Reference>,
-) -> Result<(), String> {
-    let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
-    root.fill(&WHITE).map_err(e)?;
-    let root = titled(root, title, 19)?;
-    let (plot_area, side) = root.split_horizontally(SIZE.0 - LEGEND);
-    let mut chart = axes_chart(&plot_area, sweep)?;
-    let mut items = Vec::new();
-    for (k, (name, segments)) in boundaries(sweep, cells).into_iter().enumerate() {
-        let colour = LINES[k % LINES.len()];
-        chart
-            .draw_series(
-                polylines(&segments)
-                    .into_iter()
-                    .map(|l| PathElement::new(l, colour.stroke_width(3))),
-            )
-            .map_err(e)?;
-        items.push((colour, name, Swatch::Line));
-    }
-    if let Some(r) = reference {
-        dashed(&mut chart, reference_boundary(r))?;
-        items.push((BLACK, r.label.to_string(), Swatch::Dashed));
-    }
-    side.draw(&Text::new(
-        "overturning boundary (overturned above):",
-        (8, 40),
-        ("sans-serif", 14).into_font(),
-    ))
-    .map_err(e)?;
-    legend(&side, 70, &items)?;
-    root.present().map_err(e)
-}
-
-fn draw_line<DB: DrawingBackend>(
-    root: DrawingArea<DB, Shift>,
-    title: &str,
-    sweep: &Sweep,
-    cells: &[Cell],
-    reference: Option<&Reference>,
-) -> Result<(), String> {
-    let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
-    root.fill(&WHITE).map_err(e)?;
-    let root = titled(root, title, 19)?;
-    let (plot_area, side) = root.split_horizontally(SIZE.0 - LEGEND);
-    let axis = &sweep.axes[0];
-    let (x0, x1, _) = span(&axis.values);
-    let top = top_of_survivors(cells).max(1e-3) * 1.12;
-    let mut chart = ChartBuilder::on(&plot_area)
-        .margin(12)
-        .margin_right(24)
-        .x_label_area_size(55)
-        .y_label_area_size(70)
-        .build_cartesian_2d(x0..x1, 0.0..top)
-        .map_err(e)?;
-    chart
-        .configure_mesh()
-        .light_line_style(RGBColor(235, 235, 235))
-        .x_desc(labels::axis_label(&axis.key))
-        .y_desc(labels::MAX_THETA_OVER_ALPHA)
-        .label_style(("sans-serif", 15))
-        .axis_desc_style(("sans-serif", 19))
-        .draw()
-        .map_err(e)?;
-    let mut sorted: Vec<&Cell> = cells.iter().collect();
-    sorted.sort_by(|a, b| sweep.values(a.index)[0].total_cmp(&sweep.values(b.index)[0]));
-    let blue = LINES[0];
-    chart
-        .draw_series(
-            survivor_runs(sweep, cells)
-                .into_iter()
-                .map(|run| PathElement::new(run, blue.stroke_width(2))),
-        )
-        .map_err(e)?;
-    chart
-        .draw_series(sorted.iter().map(|c| {
-            let x = sweep.values(c.index)[0];
-            let colour = cell_colour(c, 1.0);
-            let y = if matches!(c.class, CellClass::Survived | CellClass::NoUplift) {
-                c.max_theta_over_alpha
-            } else {
-                top / 1.12 * 1.06
-            };
-            let colour = if c.class == CellClass::Survived {
-                blue
-            } else {
-                colour
-            };
-            Circle::new((x, y), 5, colour.filled())
-        }))
-        .map_err(e)?;
-    let over = cells.iter().filter(|c| overturned(c.class)).count();
-    let done = cells
+fn line_cells(sweep: &Sweep, cells: &[Cell]) -> LineCells {
+    let mut out: LineCells = cells
         .iter()
-        .filter(|c| c.class != CellClass::Failed)
-        .count();
-    if let Some(r) = reference {
-        dashed(&mut chart, survivor_runs(r.sweep, r.cells))?;
-    }
-    let mut items = vec![(
-        blue,
-        format!("survived: {}", labels::MAX_THETA_OVER_ALPHA),
-        Swatch::Box,
-    )];
-    if let Some(r) = reference {
-        items.push((
-            BLACK,
-            format!("{}: {}", r.label, labels::MAX_THETA_OVER_ALPHA),
-            Swatch::Dashed,
-        ));
-    }
-    items.extend(
-        CLASSES
-            .iter()
-            .filter(|(k, _, _)| cells.iter().any(|c| c.class == *k))
-            .map(|(_, colour, text)| (*colour, text.to_string(), Swatch::Box)),
-    );
-    items.push((
-        WHITE,
-        format!("{} = {over}/{done}", labels::FRACTION_OVERTURNED),
-        Swatch::Box,
-    ));
-    legend(&side, 40, &items)?;
-    root.present().map_err(e)
+        .map(|c| (sweep.values(c.index)[0], c.class, c.max_theta_over_alpha))
+        .collect();
+    out.sort_by(|a, b| a.0.total_cmp(&b.0));
+    out
 }
 
-/// The (axis value, max θ/α) lines of a one-axis sweep's cells that did not overturn, split where
-/// a cell between them did.
-fn survivor_runs(sweep: &Sweep, cells: &[Cell]) -> Vec<Vec<(f64, f64)>> {
-    let mut sorted: Vec<&Cell> = cells.iter().collect();
-    sorted.sort_by(|a, b| sweep.values(a.index)[0].total_cmp(&sweep.values(b.index)[0]));
+/// The (value, max θ/α) runs of cells that stayed upright, split where a cell between them did
+/// not.
+fn upright_runs(cells: &[(f64, CellClass, f64)]) -> Lines {
     let mut runs = vec![Vec::new()];
-    for c in sorted {
-        if matches!(c.class, CellClass::Survived | CellClass::NoUplift) {
-            let x = sweep.values(c.index)[0];
+    for &(x, class, theta) in cells {
+        if overturned(class) == Some(false) {
             if let Some(run) = runs.last_mut() {
-                run.push((x, c.max_theta_over_alpha));
+                run.push((x, theta));
             }
         } else if runs.last().is_some_and(|r| !r.is_empty()) {
             runs.push(Vec::new());
         }
     }
-    runs.retain(|r| !r.is_empty());
+    runs.retain(|r| r.len() > 1);
     runs
 }
 
-/// The figure of a sweep, as PNG and SVG: `line` for one axis, `spectrum` for two (regions and
-/// max θ/α), `spectrum` with the overturning boundaries for three or more.
-pub fn spectrum_plots(
-    title: &str,
-    sweep: &Sweep,
-    cells: &[Cell],
-    reference: Option<&Reference>,
-    dir: &Path,
-) -> Result<Vec<PathBuf>, SceneError> {
-    if sweep.axes.is_empty() || cells.is_empty() {
-        return Ok(Vec::new());
+/// A curve of points (a batch's fraction overturned against the scale factor).
+pub struct CurvePanel {
+    pub title: Option<String>,
+    pub labels: (String, String),
+    pub points: Vec<(f64, f64)>,
+    pub y: (f64, f64),
+}
+
+impl CurvePanel {
+    pub(super) fn legend(&self) -> Vec<LegendItem> {
+        Vec::new()
     }
-    // plotters' tick search does not end on a range near the f64 limit, or one too narrow for
-    // its magnitude (x + step == x): such a sweep is not drawn (its cells are in cells.csv).
-    let n = sweep.axes.len();
-    let drawable = |v: &[f64]| {
-        let (lo, hi) = v
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
-                (a.min(x), b.max(x))
-            });
-        let big = lo.abs().max(hi.abs());
-        big <= 1e15 && (v.len() < 2 || hi - lo >= 1e-9 * big)
-    };
-    let shown = &sweep.axes[n.saturating_sub(2)..];
-    if let Some(a) = shown.iter().find(|a| !drawable(&a.values)) {
-        eprintln!(
-            "note: the sweep plot is not drawn: the values of `{}` span a range a plot cannot \
-             show (beyond ±1e15, or too narrow for their size); the cells are in cells.csv",
-            a.key
-        );
-        return Ok(Vec::new());
-    }
-    register();
-    match n {
-        1 => render_pair(
-            dir,
-            "line",
-            SIZE,
-            |r| draw_line(r, title, sweep, cells, reference),
-            |r| draw_line(r, title, sweep, cells, reference),
-        ),
-        2 => render_pair(
-            dir,
-            "spectrum",
-            SIZE,
-            |r| draw_spectrum(r, title, sweep, cells, reference),
-            |r| draw_spectrum(r, title, sweep, cells, reference),
-        ),
-        _ => render_pair(
-            dir,
-            "spectrum",
-            SIZE,
-            |r| draw_boundaries(r, title, sweep, cells, reference),
-            |r| draw_boundaries(r, title, sweep, cells, reference),
-        ),
+
+    pub(super) fn draw(&self, area: &Area<'_>) -> Result<(), String> {
+        let x_hi = self.points.iter().map(|p| p.0).fold(0.0, f64::max) * 1.05;
+        let mut chart = axes(
+            area,
+            self.title.as_deref(),
+            (0.0, x_hi.max(1e-9)),
+            self.y,
+            (&self.labels.0, &self.labels.1),
+            true,
+        )?;
+        let line = style::LINES[0];
+        styled_line(&mut chart, self.points.clone(), &line, rgb(line.colour), 2)?;
+        for &p in &self.points {
+            mark_at(&chart, line.marker, p, 4, rgb(line.colour), true)?;
+        }
+        Ok(())
     }
 }

@@ -7,7 +7,7 @@ use rocking_kernels::kernels::index::forces_rocking as fk;
 use rocking_motion::GroundMotion;
 use rocking_ode::roots::{first_true, golden_max};
 
-use super::state::Sim;
+use super::state::{Ellipse, Sim};
 use crate::dense::StepView;
 use crate::results::ForceSummary;
 use crate::taylor::TaylorVariant;
@@ -79,7 +79,11 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
     /// The forces at `t` of the state `x` = [θ, u, θ', u'], in full contact (`contact`) or
     /// rocking about `s` (each phase's accelerations: a row at an event is on its own side).
     pub(super) fn forces_at(&self, contact: bool, s: f64, t: f64, x: &[f64; 4]) -> Forces {
-        let ug = self.motion.accel(t);
+        self.forces_of(contact, s, self.motion.accel(t), x)
+    }
+
+    /// The forces of the state `x` under the ground acceleration `ug`.
+    fn forces_of(&self, contact: bool, s: f64, ug: f64, x: &[f64; 4]) -> Forces {
         // Both kernels name their outputs alike (index::forces_contact has the same order).
         let f = if contact {
             V::forces_contact(&[x[1], x[3]], ug, &self.p)
@@ -191,6 +195,20 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         if rec.first_lift_off.is_none() && peak[4] > 0.0 {
             rec.first_lift_off = Some(when[4]);
         }
+    }
+
+    /// After the excitation in full contact: can no force extreme grow any more? Each force is
+    /// affine in (u, u') there, and the vibration stays inside `ellipse`.
+    pub(super) fn forces_settled(&self, ellipse: &Ellipse) -> bool {
+        let max = self.rec.forces.max;
+        // |M_b|, |V_b|, |M_el| and, as R_v = W in contact, the required friction |R_h| / W.
+        (0..4).all(|k| {
+            let (c, r) = ellipse.reach(|a, b| {
+                let f = self.forces_of(true, 1.0, 0.0, &[0.0, a, 0.0, b]);
+                [f.moment, f.shear, f.elastic, f.horizontal][k]
+            });
+            c.abs() + r <= max[k]
+        })
     }
 
     /// The force extremes of the run, as the summary reports them.

@@ -101,10 +101,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             g_old = g_new;
             let y = *ode.y();
             let done = t_new >= self.opts.t_end
-                || (may_stop
-                    && self.opts.uplift
-                    && t_new >= excitation_end
-                    && self.can_never_uplift(y[0], y[1]));
+                || (may_stop && t_new >= excitation_end && self.settled(y[0], y[1]));
             if done {
                 self.stats.add(ode.take_stats());
                 let (w, d) = carried(y.as_slice(), 2);

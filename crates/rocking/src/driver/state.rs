@@ -210,3 +210,24 @@ pub(super) fn carried(y: &[f64], first: usize) -> (f64, f64) {
 pub(super) fn rocking_state(y: &[f64]) -> [f64; 4] {
     [y[0], y[1], y[2], y[3]]
 }
+
+/// The free vibration of the column in full contact with no ground motion: it stays inside the
+/// ellipse of its energy `vib` (kinetic + strain) in (u, u'), generalised stiffness `k` and mass
+/// `m` (the derived k̃, m̃).
+pub(super) struct Ellipse {
+    pub(super) vib: f64,
+    pub(super) k: f64,
+    pub(super) m: f64,
+}
+
+impl Ellipse {
+    /// For g(u, u') = c + a u + b u' (affine): (c, the largest |a u + b u'| on the ellipse).
+    pub(super) fn reach(&self, g: impl Fn(f64, f64) -> f64) -> (f64, f64) {
+        let c = g(0.0, 0.0);
+        let (a, b) = (g(1.0, 0.0) - c, g(0.0, 1.0) - c);
+        (
+            c,
+            (2.0 * self.vib * (a * a / self.k + b * b / self.m)).sqrt(),
+        )
+    }
+}

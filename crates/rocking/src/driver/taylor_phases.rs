@@ -56,9 +56,7 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
             scale,
         };
         let unscale = |y: [f64; NC]| -> [f64; NC] { std::array::from_fn(|i| y[i] * scale[i]) };
-        let may_stop = self.opts.stop_when_known
-            && self.opts.uplift
-            && matches!(self.opts.history, History::None);
+        let may_stop = self.opts.stop_when_known && matches!(self.opts.history, History::None);
         let excitation_end = self.motion.end();
         let mut f_prev = self.forces_start(true, RIGHT, t0, &[0.0, start[0], 0.0, start[1]]);
         loop {
@@ -107,7 +105,7 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
             self.step_history(t_old, t_new, dense, Phase::Contact, RIGHT);
             let y = unscale(*ode.y());
             let done = t_new >= self.opts.t_end
-                || (may_stop && t_new >= excitation_end && self.can_never_uplift(y[0], y[1]));
+                || (may_stop && t_new >= excitation_end && self.settled(y[0], y[1]));
             if done {
                 self.stats.add(ode.take_stats());
                 let (w, d) = carried(&y, 2);

@@ -7,7 +7,7 @@ use rocking_ode::roots::first_true;
 use rocking_ode::taylor::TaylorSystem;
 
 use super::impact::{self, After};
-use super::state::{Next, Sim, G2, LEFT, RIGHT};
+use super::state::{Ellipse, Next, Sim, G2, LEFT, RIGHT};
 use crate::error::SimError;
 use crate::options::Method;
 use crate::results::{EventKind, Phase};
@@ -60,21 +60,30 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         })
     }
 
-    /// In contact after the excitation: can the column's vibration energy ever uplift the base?
-    /// f_s is affine in (u, u') and the free vibration stays inside the energy ellipse, so the
-    /// largest reachable f_s is f_s(0) + sqrt(2 E (a²/k̃ + b²/m̃)).
-    pub(super) fn can_never_uplift(&self, u: f64, u_dot: f64) -> bool {
-        let f = |a: f64, b: f64| V::uplift(&[a, b], 0.0, RIGHT, &self.p);
-        let (c, a, b) = (
-            f(0.0, 0.0),
-            f(1.0, 0.0) - f(0.0, 0.0),
-            f(0.0, 1.0) - f(0.0, 0.0),
-        );
+    /// In full contact after the excitation, with the column at (u, u'): can nothing the run
+    /// reports change any more? The base can never uplift (unless it is held down), and no
+    /// tracked maximum (|u|, the forces) can grow: each is affine in (u, u') while the free
+    /// vibration stays inside its energy ellipse.
+    pub(super) fn settled(&self, u: f64, u_dot: f64) -> bool {
         let e = V::energy(&[0.0, u, 0.0, u_dot], RIGHT, &self.p);
-        let vib = e[en::KINETIC] + e[en::STRAIN];
-        let reach =
-            (2.0 * vib * (a * a / self.derived.k_tilde + b * b / self.derived.m_tilde)).sqrt();
-        c + reach < 0.0
+        let ellipse = Ellipse {
+            vib: e[en::KINETIC] + e[en::STRAIN],
+            k: self.derived.k_tilde,
+            m: self.derived.m_tilde,
+        };
+        if self.opts.uplift {
+            // f_s is affine in (u, u'): the base can never uplift when its largest reachable value
+            // stays below zero.
+            let (c, r) = ellipse.reach(|a, b| V::uplift(&[a, b], 0.0, RIGHT, &self.p));
+            if c + r >= 0.0 {
+                return false;
+            }
+        }
+        let (_, r_u) = ellipse.reach(|a, _| a);
+        if !V::RIGID && r_u > self.rec.max_u {
+            return false;
+        }
+        !self.opts.forces || self.forces_settled(&ellipse)
     }
 
     /// Whether the base really lifts about `s` at `t` from full contact: the rocking equations

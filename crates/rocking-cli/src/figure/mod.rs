@@ -1,0 +1,471 @@
+//! `rocking figure FIGURE.toml... [--out DIR]`: one figure from several runs or sweeps (scenes
+//! with overrides), as panels in a grid: a quantity against τ with runs overlaid (a zoom on an
+//! impact), a rocking spectrum (all of a figure's spectra on one colour scale), or overturning
+//! boundaries of several structures. The file format is in scenes/paper/README.md; the paper's
+//! Figs 3-10 are such files. Sweeps are journaled in a cache directory named by their
+//! fingerprint, so figures that share a spectrum compute it once, and a rerun reads it back.
+
+mod load;
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use serde::Deserialize;
+
+use crate::plot::{self, Figure, HistoryPanel, Panel, Quantity, SpectrumPanel, Structure};
+use load::Loader;
+use rocking_plot::style;
+use rocking_scene::SceneError;
+
+/// A figure file.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FigureFile {
+    title: String,
+    caption: Option<String>,
+    #[serde(default = "one")]
+    columns: usize,
+    /// A panel's width and height in pixels.
+    panel: Option<[u32; 2]>,
+    /// The top of the spectra's shared colour scale (default: their largest survivor).
+    colour_top: Option<f64>,
+    /// Cells per ranged axis of every sweep (`start:stop:count` gets this count).
+    cells: Option<usize>,
+    #[serde(default)]
+    runs: BTreeMap<String, RunSpec>,
+    #[serde(default)]
+    sweeps: BTreeMap<String, SweepSpec>,
+    panels: Vec<PanelSpec>,
+}
+
+fn one() -> usize {
+    1
+}
+
+/// A run: a scene file (relative to the figure file) with overrides.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RunSpec {
+    scene: PathBuf,
+    #[serde(default)]
+    set: Vec<String>,
+    label: String,
+    /// A line style by name (default: the runs in order).
+    style: Option<String>,
+}
+
+/// A sweep of a scene over axes (default: the scene's `[sweep] axes`).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SweepSpec {
+    scene: PathBuf,
+    #[serde(default)]
+    set: Vec<String>,
+    axes: Option<Vec<String>>,
+    label: String,
+    style: Option<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields, tag = "kind", rename_all = "lowercase")]
+enum PanelSpec {
+    History {
+        quantity: String,
+        runs: Vec<String>,
+        title: Option<String>,
+        /// A τ window.
+        tau: Option<[f64; 2]>,
+        /// A window around an impact of a run.
+        zoom: Option<Zoom>,
+        /// Every run in black (the ground motion).
+        #[serde(default)]
+        black: bool,
+    },
+    Spectrum {
+        sweep: String,
+        title: Option<String>,
+        /// A reference sweep whose boundary is drawn dashed.
+        reference: Option<String>,
+    },
+    Boundaries {
+        sweeps: Vec<String>,
+        title: Option<String>,
+        /// Bisection of each boundary point between its bracketing cells (default true).
+        #[serde(default = "yes")]
+        refine: bool,
+    },
+}
+
+fn yes() -> bool {
+    true
+}
+
+/// A τ window around the `impact`-th impact (from 1) of `run`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Zoom {
+    run: String,
+    impact: usize,
+    half_width: f64,
+}
+
+/// Bounds of the figure layout.
+const MAX_COLUMNS: usize = 8;
+const PANEL_PIXELS: (u32, u32) = (200, 2000);
+/// Bisection steps of a boundary point: the bracket (one cell) shrinks 1024-fold.
+const BISECTIONS: usize = 10;
+
+/// Options of the command.
+pub struct Options {
+    pub out: PathBuf,
+    pub cache: PathBuf,
+    pub cells: Option<usize>,
+    pub quiet: bool,
+}
+
+/// `rocking figure`.
+pub fn figure(files: &[PathBuf], opts: &Options) -> Result<(), SceneError> {
+    let mut loader = Loader::new(&opts.cache, opts.quiet);
+    std::fs::create_dir_all(&opts.out)
+        .map_err(|e| SceneError::failure(format!("{}: cannot create: {e}", opts.out.display())))?;
+    for file in files {
+        let spec = read(file)?;
+        let figure = build(file, &spec, &mut loader, opts.cells)?;
+        let stem = file
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "figure".into());
+        let written = figure.write(&opts.out, &stem)?;
+        out!("{}:", file.display());
+        for p in written {
+            out!("  {}", p.display());
+        }
+    }
+    Ok(())
+}
+
+/// Reads and checks a figure file: TOML errors name the file, the line and the field.
+fn read(file: &Path) -> Result<FigureFile, SceneError> {
+    let text = std::fs::read_to_string(file)
+        .map_err(|e| SceneError::input(format!("{}: cannot read: {e}", file.display())))?;
+    let de = toml::Deserializer::parse(&text)
+        .map_err(|e| SceneError::input(format!("{}: {e}", file.display())))?;
+    let spec: FigureFile = serde_path_to_error::deserialize(de).map_err(|e| {
+        SceneError::input(format!(
+            "{}: `{}`: {}",
+            file.display(),
+            e.path(),
+            e.inner().message()
+        ))
+    })?;
+    if !(1..=MAX_COLUMNS).contains(&spec.columns) {
+        return bad(
+            file,
+            "columns",
+            format!(
+                "{} is not allowed: 1 <= columns <= {MAX_COLUMNS}",
+                spec.columns
+            ),
+        );
+    }
+    if let Some(p) = spec.panel {
+        if p.iter()
+            .any(|&v| !(PANEL_PIXELS.0..=PANEL_PIXELS.1).contains(&v))
+        {
+            return bad(
+                file,
+                "panel",
+                format!(
+                    "{p:?} is not allowed: each of width and height in {}..={} pixels",
+                    PANEL_PIXELS.0, PANEL_PIXELS.1
+                ),
+            );
+        }
+    }
+    if let Some(t) = spec.colour_top {
+        if !(t.is_finite() && t > 0.0) {
+            return bad(file, "colour_top", format!("{t} is not allowed: > 0"));
+        }
+    }
+    if spec.cells.is_some_and(|c| c < 2) {
+        return bad(
+            file,
+            "cells",
+            "fewer than 2 cells per axis is not allowed".into(),
+        );
+    }
+    if spec.panels.is_empty() {
+        return bad(file, "panels", "a figure needs at least one panel".into());
+    }
+    let styles = |s: &Option<String>, field: String| match s {
+        Some(name) if style::line_named(name).is_none() => bad(
+            file,
+            &field,
+            format!(
+                "`{name}` is not a line style: allowed: {}",
+                style::line_names().join(", ")
+            ),
+        ),
+        _ => Ok(()),
+    };
+    for (name, r) in &spec.runs {
+        styles(&r.style, format!("runs.{name}.style"))?;
+    }
+    for (name, s) in &spec.sweeps {
+        styles(&s.style, format!("sweeps.{name}.style"))?;
+    }
+    for (k, p) in spec.panels.iter().enumerate() {
+        let field = |f: &str| format!("panels[{k}].{f}");
+        let run = |r: &String, f: &str| match spec.runs.contains_key(r) {
+            true => Ok(()),
+            false => bad(file, &field(f), format!("no run `{r}` in [runs]")),
+        };
+        let sweep = |s: &String, f: &str| match spec.sweeps.contains_key(s) {
+            true => Ok(()),
+            false => bad(file, &field(f), format!("no sweep `{s}` in [sweeps]")),
+        };
+        match p {
+            PanelSpec::History {
+                quantity,
+                runs,
+                tau,
+                zoom,
+                ..
+            } => {
+                if Quantity::parse(quantity).is_none() {
+                    let names: Vec<&str> = plot::QUANTITIES.iter().map(|q| q.name).collect();
+                    return bad(
+                        file,
+                        &field("quantity"),
+                        format!(
+                            "`{quantity}` is not a quantity: allowed: {}",
+                            names.join(", ")
+                        ),
+                    );
+                }
+                if runs.is_empty() {
+                    return bad(
+                        file,
+                        &field("runs"),
+                        "a panel needs at least one run".into(),
+                    );
+                }
+                for r in runs {
+                    run(r, "runs")?;
+                }
+                if let Some([a, b]) = tau {
+                    if !(a.is_finite() && b.is_finite() && a < b) {
+                        return bad(
+                            file,
+                            &field("tau"),
+                            format!("[{a}, {b}] is not a window: a < b"),
+                        );
+                    }
+                }
+                if let Some(z) = zoom {
+                    run(&z.run, "zoom.run")?;
+                    if z.impact == 0 {
+                        return bad(file, &field("zoom.impact"), "impacts count from 1".into());
+                    }
+                    if !(z.half_width.is_finite() && z.half_width > 0.0) {
+                        return bad(
+                            file,
+                            &field("zoom.half_width"),
+                            format!("{} is not allowed: > 0", z.half_width),
+                        );
+                    }
+                }
+            }
+            PanelSpec::Spectrum {
+                sweep: s,
+                reference,
+                ..
+            } => {
+                sweep(s, "sweep")?;
+                if let Some(r) = reference {
+                    sweep(r, "reference")?;
+                }
+            }
+            PanelSpec::Boundaries { sweeps, .. } => {
+                if sweeps.is_empty() {
+                    return bad(
+                        file,
+                        &field("sweeps"),
+                        "a panel needs at least one sweep".into(),
+                    );
+                }
+                for s in sweeps {
+                    sweep(s, "sweeps")?;
+                }
+            }
+        }
+    }
+    Ok(spec)
+}
+
+/// A refused value of a figure file: the file, the field and why.
+fn bad<T>(file: &Path, field: &str, why: String) -> Result<T, SceneError> {
+    Err(SceneError::input(format!(
+        "{}: `{field}`: {why}",
+        file.display()
+    )))
+}
+
+/// The line style of the `k`-th run or sweep, or the one it names.
+fn line_style(named: &Option<String>, k: usize) -> style::LineStyle {
+    named
+        .as_deref()
+        .and_then(style::line_named)
+        .unwrap_or(style::LINES[k % style::LINES.len()])
+}
+
+fn build(
+    file: &Path,
+    spec: &FigureFile,
+    loader: &mut Loader,
+    cells: Option<usize>,
+) -> Result<Figure, SceneError> {
+    let dir = file.parent().unwrap_or(Path::new("."));
+    let cells = match (spec.cells, cells) {
+        (Some(a), Some(b)) => Some(a.min(b)),
+        (a, b) => a.or(b),
+    };
+    // Runs and sweeps in the order the panels use them (so default styles follow that order).
+    let mut run_names: Vec<&String> = Vec::new();
+    let mut sweep_names: Vec<&String> = Vec::new();
+    for p in &spec.panels {
+        match p {
+            PanelSpec::History { runs, .. } => run_names.extend(runs),
+            PanelSpec::Spectrum {
+                sweep, reference, ..
+            } => sweep_names.extend(std::iter::once(sweep).chain(reference)),
+            PanelSpec::Boundaries { sweeps, .. } => sweep_names.extend(sweeps),
+        }
+    }
+    let mut traces = BTreeMap::new();
+    for name in run_names {
+        if traces.contains_key(name) {
+            continue;
+        }
+        let r = &spec.runs[name];
+        let style = line_style(&r.style, traces.len());
+        let trace = loader.run(&dir.join(&r.scene), &r.set, r.label.clone(), style)?;
+        traces.insert(name.clone(), trace);
+    }
+    let mut sweeps = BTreeMap::new();
+    for name in sweep_names {
+        if sweeps.contains_key(name) {
+            continue;
+        }
+        let s = &spec.sweeps[name];
+        let swept = loader.sweep(&dir.join(&s.scene), &s.set, s.axes.as_deref(), cells)?;
+        sweeps.insert(name.clone(), swept);
+    }
+    let mut panels = Vec::new();
+    let mut structure_count = 0;
+    for p in &spec.panels {
+        panels.push(match p {
+            PanelSpec::History {
+                quantity,
+                runs,
+                title,
+                tau,
+                zoom,
+                black,
+            } => {
+                let q = Quantity::parse(quantity).unwrap_or(plot::THETA_OVER_ALPHA);
+                let mut panel =
+                    HistoryPanel::new(q, runs.iter().map(|r| traces[r].clone()).collect());
+                panel.title = title.clone();
+                panel.black = *black;
+                panel.window = tau.map(|[a, b]| (a, b));
+                if let Some(z) = zoom {
+                    let t = &traces[&z.run];
+                    let at = t.impacts.get(z.impact - 1).ok_or_else(|| {
+                        SceneError::input(format!(
+                            "{}: `zoom.impact` = {}: run `{}` has {} impacts",
+                            file.display(),
+                            z.impact,
+                            z.run,
+                            t.impacts.len()
+                        ))
+                    })?;
+                    panel.window = Some((at - z.half_width, at + z.half_width));
+                }
+                Panel::History(panel)
+            }
+            PanelSpec::Spectrum {
+                sweep,
+                title,
+                reference,
+            } => {
+                let s = &sweeps[sweep];
+                let mut panel = SpectrumPanel::new(&s.plan.sweep, &s.cells);
+                if let Some(r) = reference {
+                    let r = &sweeps[r];
+                    panel = panel.with_reference(
+                        &spec.sweeps[reference.as_ref().unwrap()].label,
+                        &r.plan.sweep,
+                        &r.cells,
+                    );
+                }
+                panel.title = Some(
+                    title
+                        .clone()
+                        .unwrap_or_else(|| spec.sweeps[sweep].label.clone()),
+                );
+                let alpha = rocking_plot::text::tick(s.alpha);
+                panel.theta_cr = s.theta_cr.map(|v| {
+                    let v2 = rocking_plot::text::tick((v * 100.0).round() / 100.0);
+                    (v, format!("θ_cr/α = {v2} (α = {alpha})"))
+                });
+                Panel::Spectrum(panel)
+            }
+            PanelSpec::Boundaries {
+                sweeps: names,
+                title,
+                refine,
+            } => {
+                let mut structures = Vec::new();
+                for name in names {
+                    let s = &sweeps[name];
+                    let sspec = &spec.sweeps[name];
+                    let style = line_style(&sspec.style, structure_count);
+                    structure_count += 1;
+                    structures.push(Structure::new(
+                        sspec.label.clone(),
+                        style,
+                        &s.plan.sweep,
+                        &s.cells,
+                        |x, lo, hi| {
+                            if *refine {
+                                load::bisect(&s.plan, x, lo, hi, BISECTIONS)
+                            } else {
+                                (lo + hi) / 2.0
+                            }
+                        },
+                    ));
+                }
+                let first = &sweeps[&names[0]];
+                let method = if *refine {
+                    format!("{} (bisection)", plot::BOUNDARY_HEADING)
+                } else {
+                    plot::BOUNDARY_HEADING.to_string()
+                };
+                let mut panel =
+                    crate::plot::BoundaryPanel::over(&first.plan.sweep, structures, method);
+                panel.title = title.clone();
+                Panel::Boundaries(panel)
+            }
+        });
+    }
+    let panel = spec.panel.map_or((560, 400), |[w, h]| (w, h));
+    Ok(Figure {
+        title: spec.title.clone(),
+        caption: spec.caption.clone(),
+        columns: spec.columns,
+        panel,
+        panels,
+        colour_top: spec.colour_top,
+    })
+}

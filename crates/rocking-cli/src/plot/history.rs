@@ -1,0 +1,463 @@
+//! Panels of one quantity against τ with one or more runs overlaid (each in its own colour, dash
+//! and marker; markers at the run's impacts), as in the paper's Figs 3, 4, 5 and 10. Panels of the
+//! same quantity share their y range, so overlays and neighbours compare; a zoom shows a window
+//! of τ. θ/α is never scaled to π/2 by an overturning run: its line leaves the panel and an arrow
+//! at the edge says it overturned.
+
+use std::sync::Arc;
+
+use plotters::prelude::*;
+use rocking::{EventKind, HistoryRow, Run};
+use rocking_plot::chart::{axes, fail, mark_at, pixel, rgb, styled_line, Area, LegendItem};
+use rocking_plot::style::LineStyle;
+use rocking_scene::labels;
+use rocking_scene::setup::Setup;
+
+use super::Panel;
+
+/// What a figure's caption says about the marks it shows: the impact markers, the arrow of an
+/// overturning run.
+pub fn caption(impacts: bool, overturned: bool) -> Option<String> {
+    let mut parts = Vec::new();
+    if impacts {
+        parts.push("Markers on a line: the run's impacts.");
+    }
+    if overturned {
+        parts.push(
+            "An arrow at a panel's edge: the run overturns there (θ goes on to π/2, beyond the \
+             panel).",
+        );
+    }
+    (!parts.is_empty()).then(|| parts.join(" "))
+}
+
+/// A quantity of a run's history that a panel can show: its name (as in history.csv and
+/// figure files), its axis label, its value in a history row, and whether `rocking run`'s
+/// figure shows it.
+#[derive(Clone, Copy, Debug)]
+pub struct Quantity {
+    pub name: &'static str,
+    pub label: &'static str,
+    value: fn(&HistoryRow, &Scales) -> f64,
+    /// A panel of `rocking run`'s figure (in the order of [`QUANTITIES`]).
+    pub run_panel: bool,
+}
+
+impl PartialEq for Quantity {
+    fn eq(&self, other: &Quantity) -> bool {
+        self.name == other.name
+    }
+}
+
+/// What a run's quantities are normalised by.
+#[derive(Clone, Copy, Debug)]
+struct Scales {
+    alpha: f64,
+    u_cr: f64,
+    omega_n: f64,
+    g_tan_alpha: f64,
+}
+
+/// θ/α: never scaled by an overturning run (see [`HistoryPanel`]).
+pub const THETA_OVER_ALPHA: Quantity = Quantity {
+    name: "theta_over_alpha",
+    label: labels::THETA_OVER_ALPHA,
+    value: |r, s| r.theta / s.alpha,
+    run_panel: true,
+};
+
+/// Every quantity a panel can show; those with `run_panel` make `rocking run`'s figure, top to
+/// bottom (the paper's Figs 3, 5 and 10). A new quantity or panel is one entry here.
+pub const QUANTITIES: [Quantity; 10] = [
+    THETA_OVER_ALPHA,
+    Quantity {
+        name: "u_over_ucr",
+        label: labels::U_OVER_UCR,
+        value: |r, s| r.u / s.u_cr,
+        run_panel: true,
+    },
+    Quantity {
+        name: "u_dot_over_ucr_omega_n",
+        label: "u'/(u_cr ω_n)",
+        value: |r, s| r.u_dot / (s.u_cr * s.omega_n),
+        run_panel: false,
+    },
+    Quantity {
+        name: "e_kin_over_eref",
+        label: "E_kin/E_ref",
+        value: |r, _| r.e_kin,
+        run_panel: false,
+    },
+    Quantity {
+        name: "e_total_over_eref",
+        label: labels::E_OVER_EREF,
+        value: |r, _| r.e_total,
+        run_panel: true,
+    },
+    Quantity {
+        name: "base_moment_over_wb",
+        label: "M_b/(W B)",
+        value: |r, _| r.base_moment_over_wb,
+        run_panel: true,
+    },
+    Quantity {
+        name: "base_shear_over_w",
+        label: "V_b/W",
+        value: |r, _| r.base_shear_over_w,
+        run_panel: false,
+    },
+    Quantity {
+        name: "elastic_base_moment_over_wb",
+        label: "M_el/(W B)",
+        value: |r, _| r.elastic_base_moment_over_wb,
+        run_panel: false,
+    },
+    Quantity {
+        name: "vertical_reaction_over_w",
+        label: "R_v/W",
+        value: |r, _| r.vertical_reaction_over_w,
+        run_panel: false,
+    },
+    Quantity {
+        name: "ug_over_g_tan_alpha",
+        label: labels::UG_OVER_G_TAN_ALPHA,
+        value: |r, s| r.ug / s.g_tan_alpha,
+        run_panel: true,
+    },
+];
+
+impl Quantity {
+    /// The quantity named `name` (a history.csv column name).
+    pub fn parse(name: &str) -> Option<Quantity> {
+        QUANTITIES.iter().find(|q| q.name == name).copied()
+    }
+}
+
+/// One run's history with its impacts and its style.
+#[derive(Clone)]
+pub struct Trace {
+    /// The legend text (empty: no legend entry).
+    pub label: String,
+    pub style: LineStyle,
+    rows: Arc<Vec<HistoryRow>>,
+    scales: Scales,
+    /// τ of the impacts.
+    pub impacts: Vec<f64>,
+    /// Whether the run overturned.
+    pub overturned: bool,
+    /// θ_cr/α of its structure.
+    pub theta_cr_over_alpha: f64,
+}
+
+impl Trace {
+    /// The trace of a run of `model`.
+    pub fn of(model: &Setup, run: &Run, label: String, style: LineStyle) -> Trace {
+        let d = model.structure.derived();
+        let u = &model.units;
+        Trace {
+            label,
+            style,
+            rows: Arc::new(run.history.clone()),
+            scales: Scales {
+                alpha: u.alpha,
+                u_cr: d.u_cr,
+                omega_n: d.omega_n,
+                g_tan_alpha: u.accel_g_tan_alpha(),
+            },
+            impacts: run
+                .events
+                .iter()
+                .filter(|e| e.kind == EventKind::Impact)
+                .map(|e| e.time.tau)
+                .collect(),
+            overturned: run.summary.overturned,
+            theta_cr_over_alpha: d.theta_cr / d.alpha,
+        }
+    }
+
+    /// (τ, value) of a quantity.
+    pub fn points(&self, q: Quantity) -> Vec<(f64, f64)> {
+        self.rows
+            .iter()
+            .map(|r| (r.tau, (q.value)(r, &self.scales)))
+            .collect()
+    }
+
+    /// The last τ of the history.
+    pub fn end(&self) -> f64 {
+        self.rows.last().map_or(0.0, |r| r.tau)
+    }
+
+    /// The value of `q` at τ, interpolated between history rows.
+    fn at(&self, q: Quantity, tau: f64) -> Option<f64> {
+        let i = self.rows.partition_point(|r| r.tau < tau);
+        let b = self.rows.get(i)?;
+        let vb = (q.value)(b, &self.scales);
+        if i == 0 {
+            return Some(vb);
+        }
+        let a = &self.rows[i - 1];
+        let va = (q.value)(a, &self.scales);
+        let w = if b.tau > a.tau {
+            (tau - a.tau) / (b.tau - a.tau)
+        } else {
+            0.0
+        };
+        Some(va + w * (vb - va))
+    }
+}
+
+/// A panel: one quantity, the runs overlaid.
+pub struct HistoryPanel {
+    pub quantity: Quantity,
+    pub traces: Vec<Trace>,
+    /// A window of τ (a zoom); else the whole runs.
+    pub window: Option<(f64, f64)>,
+    pub title: Option<String>,
+    /// Every run drawn in black in its own dash (the ground motion, as the paper's Fig. 10).
+    pub black: bool,
+}
+
+impl HistoryPanel {
+    pub fn new(quantity: Quantity, traces: Vec<Trace>) -> HistoryPanel {
+        HistoryPanel {
+            quantity,
+            traces,
+            window: None,
+            title: None,
+            black: false,
+        }
+    }
+
+    fn x_range(&self) -> (f64, f64) {
+        self.window.unwrap_or_else(|| {
+            let end = self.traces.iter().map(Trace::end).fold(1e-6, f64::max);
+            (0.0, end)
+        })
+    }
+
+    /// The largest |θ/α| the panel shows: an overturning run is followed up to this and no
+    /// further (the survivors' largest, at least 1.3 θ_cr/α).
+    fn theta_limit(&self) -> f64 {
+        let survivors = self
+            .traces
+            .iter()
+            .filter(|t| !t.overturned)
+            .flat_map(|t| t.points(THETA_OVER_ALPHA))
+            .fold(0.0, |m: f64, p| m.max(p.1.abs()));
+        let critical = self
+            .traces
+            .iter()
+            .map(|t| t.theta_cr_over_alpha)
+            .fold(0.0, f64::max);
+        survivors.max(1.3 * critical)
+    }
+
+    /// The lowest and highest value in the panel's window (θ/α bounded by [`Self::theta_limit`]).
+    fn data_range(&self) -> Option<(f64, f64)> {
+        let (x0, x1) = self.x_range();
+        let limit = (self.quantity == THETA_OVER_ALPHA).then(|| self.theta_limit());
+        let mut range: Option<(f64, f64)> = None;
+        for t in &self.traces {
+            for (x, y) in t.points(self.quantity) {
+                if x < x0 || x > x1 || !y.is_finite() {
+                    continue;
+                }
+                if limit.is_some_and(|l| y.abs() > l) {
+                    break;
+                }
+                range = Some(match range {
+                    None => (y, y),
+                    Some((a, b)) => (a.min(y), b.max(y)),
+                });
+            }
+        }
+        range
+    }
+
+    /// The panel's legend entries: each labelled run's line.
+    pub(super) fn legend(&self) -> Vec<LegendItem> {
+        // A panel in black (the ground motion) is explained by the caption, not the legend.
+        self.traces
+            .iter()
+            .filter(|t| !t.label.is_empty() && !self.black)
+            .map(|t| LegendItem::Line(t.style, t.label.clone()))
+            .collect()
+    }
+
+    pub(super) fn draw(&self, area: &Area<'_>, y: Option<(f64, f64)>) -> Result<(), String> {
+        let x = self.x_range();
+        let (lo, hi) = padded(y.or_else(|| self.data_range()).unwrap_or((-1.0, 1.0)));
+        let mut chart = axes(
+            area,
+            self.title.as_deref(),
+            x,
+            (lo, hi),
+            (labels::TAU, self.quantity.label),
+            true,
+        )?;
+        if lo < 0.0 && hi > 0.0 {
+            chart
+                .draw_series(std::iter::once(PathElement::new(
+                    vec![(x.0, 0.0), (x.1, 0.0)],
+                    RGBColor(120, 120, 120).stroke_width(1),
+                )))
+                .map_err(fail)?;
+        }
+        let frame = (x, (lo, hi));
+        for t in &self.traces {
+            let colour = if self.black {
+                BLACK
+            } else {
+                rgb(t.style.colour)
+            };
+            let points = t.points(self.quantity);
+            // Many short segments (a record) draw thinner.
+            let width = if points.len() > 5000 { 1 } else { 2 };
+            for piece in clip(&points, frame) {
+                styled_line(&mut chart, piece, &t.style, colour, width)?;
+            }
+            // Impacts: the run's marker on its line.
+            for &tau in &t.impacts {
+                if tau < x.0 || tau > x.1 {
+                    continue;
+                }
+                let v = if self.quantity == THETA_OVER_ALPHA {
+                    Some(0.0)
+                } else {
+                    t.at(self.quantity, tau)
+                };
+                if let Some(v) = v.filter(|v| (lo..=hi).contains(v)) {
+                    mark_at(&chart, t.style.marker, (tau, v), 4, colour, true)?;
+                }
+            }
+            // Overturning: an arrow where θ/α leaves the panel.
+            if t.overturned && self.quantity == THETA_OVER_ALPHA {
+                if let Some(&(tau, v)) = points
+                    .iter()
+                    .find(|p| p.0 >= x.0 && p.0 <= x.1 && !(lo..=hi).contains(&p.1))
+                {
+                    let edge = if v > 0.0 { hi } else { lo };
+                    let area = chart.plotting_area().strip_coord_spec();
+                    let (px, py) = pixel(&chart, (tau, edge));
+                    let dir = if v > 0.0 { 1 } else { -1 };
+                    let tip = (px, py + dir * 2);
+                    area.draw(&Polygon::new(
+                        vec![tip, (px - 7, py + dir * 14), (px + 7, py + dir * 14)],
+                        colour.filled(),
+                    ))
+                    .map_err(fail)?;
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A little room around a data range (a flat one gets ±1).
+fn padded((lo, hi): (f64, f64)) -> (f64, f64) {
+    if hi - lo < 1e-12 * hi.abs().max(lo.abs()).max(1e-300) {
+        return (lo - 1.0, hi + 1.0);
+    }
+    let pad = 0.06 * (hi - lo);
+    (lo - pad, hi + pad)
+}
+
+/// The y range of each history panel: panels of the same quantity that show whole runs share
+/// one (the union of their data), a zoom keeps its own.
+pub(super) fn shared_ranges(panels: &[Panel]) -> Vec<Option<(f64, f64)>> {
+    fn whole(p: &Panel) -> Option<&HistoryPanel> {
+        match p {
+            Panel::History(h) if h.window.is_none() => Some(h),
+            _ => None,
+        }
+    }
+    panels
+        .iter()
+        .map(|p| {
+            let h = whole(p)?;
+            panels
+                .iter()
+                .filter_map(whole)
+                .filter(|o| o.quantity == h.quantity)
+                .filter_map(HistoryPanel::data_range)
+                .reduce(|a, b| (a.0.min(b.0), a.1.max(b.1)))
+        })
+        .collect()
+}
+
+/// The parts of a polyline inside the rectangle `((x0, x1), (y0, y1))`, cut where it crosses the
+/// edges (Liang–Barsky on each segment).
+pub fn clip(
+    points: &[(f64, f64)],
+    ((x0, x1), (y0, y1)): ((f64, f64), (f64, f64)),
+) -> Vec<Vec<(f64, f64)>> {
+    let mut pieces: Vec<Vec<(f64, f64)>> = Vec::new();
+    let mut current: Vec<(f64, f64)> = Vec::new();
+    for w in points.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+        let (mut t0, mut t1) = (0.0f64, 1.0f64);
+        let mut inside = true;
+        for (p, q) in [
+            (-dx, a.0 - x0),
+            (dx, x1 - a.0),
+            (-dy, a.1 - y0),
+            (dy, y1 - a.1),
+        ] {
+            if p == 0.0 {
+                if q < 0.0 {
+                    inside = false;
+                }
+            } else {
+                let r = q / p;
+                if p < 0.0 {
+                    t0 = t0.max(r);
+                } else {
+                    t1 = t1.min(r);
+                }
+            }
+        }
+        if !inside || t0 > t1 || !(a.1.is_finite() && b.1.is_finite()) {
+            if current.len() > 1 {
+                pieces.push(std::mem::take(&mut current));
+            }
+            current.clear();
+            continue;
+        }
+        let start = (a.0 + t0 * dx, a.1 + t0 * dy);
+        let end = (a.0 + t1 * dx, a.1 + t1 * dy);
+        if current.last() != Some(&start) {
+            if current.len() > 1 {
+                pieces.push(std::mem::take(&mut current));
+            }
+            current.clear();
+            current.push(start);
+        }
+        current.push(end);
+        if t1 < 1.0 {
+            pieces.push(std::mem::take(&mut current));
+        }
+    }
+    if current.len() > 1 {
+        pieces.push(current);
+    }
+    pieces
+}
+
+#[cfg(test)]
+mod tests {
+    use super::clip;
+
+    #[test]
+    fn a_line_leaving_the_panel_is_cut_at_its_edge() {
+        let pts = [(0.0, 0.0), (1.0, 1.0), (2.0, 3.0), (3.0, 1.0), (4.0, 0.5)];
+        let pieces = clip(&pts, ((0.0, 4.0), (-1.0, 2.0)));
+        assert_eq!(pieces.len(), 2, "{pieces:?}");
+        assert_eq!(pieces[0], vec![(0.0, 0.0), (1.0, 1.0), (1.5, 2.0)]);
+        assert_eq!(pieces[1], vec![(2.5, 2.0), (3.0, 1.0), (4.0, 0.5)]);
+        // A window of x: the ends are interpolated.
+        let pieces = clip(&pts, ((0.5, 1.25), (-1.0, 2.0)));
+        assert_eq!(pieces, vec![vec![(0.5, 0.5), (1.0, 1.0), (1.25, 1.5)]]);
+    }
+}
