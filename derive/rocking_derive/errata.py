@@ -138,7 +138,7 @@ def printed_equations(d: Derived):
     f_free = sym.s * (at(force[0], rest) - at(mass[0, 1], rest) * sym.u_ddot)
     m_ot = -u_ddot * h * (m + sp.Rational(11, 40) * m_c) - S1 * ug * h  # (21)
     m_rt = Mtot * g * b - s * S2 * g * u  # (22): upper sign = right pivot (s = +1)
-    m_base = mech.contact_forces(sym.u_ddot)["moment"]  # M_b in full contact, for a free u''.
+    m_base = mech.contact_forces([sym.u_ddot])["moment"]  # M_b in full contact, for a free u''.
     yield "(21)", m_ot, d(at(m_base, [(sym.params["g"], 0)]))
     w_b = mech.static_uplift()["moment_uplift"]
     yield "(22)", m_rt, d(w_b - sym.s * at(m_base, [(sym.ug, 0), (sym.u_ddot, 0)]))
@@ -149,11 +149,11 @@ def printed_equations(d: Derived):
            - s * S1 * ug * h - Mtot * b * g + s * S2 * u * g)
     yield "(24)", p24, d(mech.uplift())
 
-    maps = mech.impact_maps(sym.u, sym.u_dot, sym.theta_dot)  # u1, u1', theta1'; pivot before = s
+    maps = mech.impact_maps(sym.us, sym.u_dots, sym.theta_dot)  # u1, u1', theta1'; pivot before = s
     num = (i_bc - 2 * m_b * b**2 + m_c * (-b**2 + h**2 / 3 + sp.Rational(33, 140) * u**2)
            + m * (-b**2 + h**2 + u**2))
     u2 = num / Mut * theta_dot + u_dot
-    yield "(26)", u2, d(maps["u_dot_contact"])
+    yield "(26)", u2, d(maps["u_dot_contact"][0])
     yield "(27)", M_uu_p * u2**2 / 2, d(maps["e_contact"])
     # (28): upper sign = impact on the left corner = rocking about the right corner before (s = +1).
     den = (i_bc + m_c * (b**2 + h**2 / 3 + sp.Rational(33, 140) * u**2 + s * sp.Rational(3, 4) * b * u)
@@ -168,13 +168,13 @@ def printed_equations(d: Derived):
            + m_c / 2 * ((b**2 + h**2 / 3 + sp.Rational(33, 140) * u**2 + s2 * sp.Rational(3, 4) * b * u) * t2**2
                         + sp.Rational(33, 140) * u_dot**2 + sp.Rational(11, 20) * h * t2 * u_dot)
            + m / 2 * ((b**2 + h**2 + u**2 + s2 * 2 * b * u) * t2**2 + u_dot**2 + 2 * h * t2 * u_dot))
-    yield "(29)", e29, d(mech.kinetic(d.theta2_dot, sym.u, sym.u_dot, -sym.s * sym.params["b"]))
-    yield "(30)", S1 * h / S2 * theta_dot + u_dot, d(maps["u_dot_momentum"])
+    yield "(29)", e29, d(mech.kinetic(d.theta2_dot, sym.us, sym.u_dots, -sym.s * sym.params["b"]))
+    yield "(30)", S1 * h / S2 * theta_dot + u_dot, d(maps["u_dot_momentum"][0])
     e31 = (m * (h * theta_dot + u_dot) ** 2 / 2
            + m_c / 2 * (h**2 / 3 * theta_dot**2 + sp.Rational(11, 20) * h * theta_dot * u_dot
                         + sp.Rational(33, 140) * u_dot**2))
     yield "(31)", e31, d(maps["e_vvel"])
-    yield "(32)", sp.sign(h * theta_dot + u_dot) * sp.sqrt(2 * e31 / M_uu_p), d(maps["u_dot_vvel"])
+    yield "(32)", sp.sign(h * theta_dot + u_dot) * sp.sqrt(2 * e31 / M_uu_p), d(maps["u_dot_vvel"][0])
 
     st, ct = sp.sin(theta), sp.cos(theta)
     a6 = (g * (s * m_b * b * st + m_c * (s * b * st + h / 2 * ct - sp.Rational(3, 8) * u * st))

@@ -71,6 +71,12 @@ class Sampler:
         return lo + (hi - lo) * self._rng.random()
 
 
+def sample_range(element: str) -> tuple[float, float]:
+    """The sampling range of an input element; ``u_2``, ``u_dot_3`` sample as ``u``, ``u_dot``."""
+    stem = element.rstrip("0123456789")
+    return SAMPLE_RANGES[element] if element in SAMPLE_RANGES else SAMPLE_RANGES[stem.removesuffix("_")]
+
+
 def sample_params(variant: Variant, rng: Sampler) -> list[float]:
     h = rng.uniform(5, 30)
     b = h * rng.uniform(0.05, 0.3)
@@ -84,6 +90,17 @@ def sample_params(variant: Variant, rng: Sampler) -> list[float]:
     values["ei"] = (rng.uniform(3, 30)) ** 2 * (9.81 / h) * m_tilde * h**3 / 3
     for p in variant.model.extra_params:
         values[p.name] = p.default * rng.uniform(0.5, 1.5) if p.default else rng.uniform(0.5, 1.5)
+    # A modal damping matrix (several coordinates): symmetric positive definite, of the size of
+    # 2 zeta omega m with the sampled omega (sqrt(ei / (m_tilde h^3))), its correlations below 1/2.
+    damping = [p for p in variant.model.params if p.derived == "modal_damping"]
+    if damping:
+        scale = 2 * math.sqrt(values["ei"] * m_tilde / h**3)
+        n = variant.model.coordinates
+        diagonal = [scale * rng.uniform(0.0, 0.05) for _ in range(n)]
+        for i in range(n):
+            for j in range(i, n):
+                c = diagonal[i] if i == j else rng.uniform(-0.5, 0.5) * math.sqrt(diagonal[i] * diagonal[j])
+                values[f"c_{i + 1}_{j + 1}"] = c
     return [values[p.name] for p in variant.model.params]
 
 
@@ -106,6 +123,7 @@ REPLAY = {
     "sqrt": lambda a: math.sqrt(a) if a >= 0 else math.nan, "fabs": abs,
     "sign": lambda a: math.nan if math.isnan(a) else float((a > 0) - (a < 0)),
     "sin": _rounded(mpmath.sin), "cos": _rounded(mpmath.cos), "atan2": _rounded(mpmath.atan2),
+    "sinh": _rounded(mpmath.sinh), "cosh": _rounded(mpmath.cosh),
 }
 
 
@@ -165,7 +183,7 @@ def golden(k: Kernel, f: ca.Function, instructions: list[list], variant: Variant
             elif inp.name == "ug" and ug_series:
                 args.append([rng.uniform(*SAMPLE_RANGES["ug"]) / math.factorial(m) for m in range(ug_series)])
             else:
-                args.append([rng.uniform(*SAMPLE_RANGES[e]) for e in inp.elements])
+                args.append([rng.uniform(*sample_range(e)) for e in inp.elements])
         values = replay(instructions, args)
         casadi_values = [float(v) for v in ca.DM(f(*args)).full().reshape(-1)]
         bad = [(i, a, b) for i, (a, b) in enumerate(zip(values, casadi_values)) if not _close(a, b)]
@@ -255,9 +273,14 @@ def variant_ir(variant: Variant) -> dict:
     params = []
     for p in variant.model.params:
         entry = {"name": p.name, "doc": p.doc}
-        entry.update({"physical": p.physical} if p.physical else {"default": p.default})
+        if p.derived:
+            entry["derived"] = p.derived
+        else:
+            entry.update({"physical": p.physical} if p.physical else {"default": p.default})
         entry.update(roles.get(p.name, {}))
         params.append(entry)
+    shape = variant.model.basis.description
+    n = variant.model.coordinates
     return {
         "schema": 1,
         "generator": f"rocking_derive {__version__}",
@@ -267,11 +290,13 @@ def variant_ir(variant: Variant) -> dict:
         "variant": variant.name,
         "title": variant.title,
         "model_description": variant.model.description,
-        "shape": variant.model.shape.description,
+        "shape": shape,
+        # One coordinate is the default, left out (so a one-function model's IR is as it was).
+        **({"coordinates": n} if n > 1 else {}),
         "removed": list(variant.remove),
         "rigid": variant.rigid,
         "small_angle": variant.small_angle,
-        "doc": (variant.model.description + ". Shape: " + variant.model.shape.description + "."
+        "doc": (variant.model.description + (". Shape: " if n == 1 else ". Shape functions: ") + shape + "."
                 + (" " + variant.doc if variant.doc else "")),
         "params": params,
         "functions": functions,

@@ -3,11 +3,18 @@
 Conventions (equations.md section 0): the origin is at the active pivot corner; theta > 0 is a
 clockwise rotation about the right corner (s = +1), theta < 0 about the left corner (s = -1). The
 pivot sits at the body coordinate X = s B from the base centre, so the sign s enters only through
-b = s B. u is the column-top displacement relative to the base, perpendicular to the column axis.
+b = s B. u is the column-top displacement relative to the base, perpendicular to the column axis;
+with a basis of n shape functions the deflection is sum u_i psi_i and q = [theta, u_1..u_n].
 
 Velocities are taken in the body frame, where a point at body coordinates (X, Y) relative to the
 pivot has |v|^2 = (X' + theta' Y)^2 + (Y' - theta' X)^2: the kinetic energy then contains no
 trigonometric function at all, as (A3)-(A4) do, and nothing has to be simplified.
+
+One coordinate keeps the one-coordinate derivation literally (the same CasADi expressions, so the
+same bytes of generated code): sums over the basis start from their first term, and the linear
+systems are solved in closed form there. With several coordinates the symmetric positive definite
+systems (mass matrices, stiffness) are solved by an LDL^T factorisation written out symbolically
+(``solve_spd``): straight-line, exact in rational operations, no square root, no pivoting.
 """
 
 from __future__ import annotations
@@ -20,26 +27,66 @@ import casadi as ca
 from .models import BaseMass, ColumnMass, LumpedMass, Variant
 
 
+def _only(values: list, what: str):
+    if len(values) != 1:
+        raise ValueError(f"a model with {len(values)} deformation coordinates has no single {what}")
+    return values[0]
+
+
 @dataclass
 class Symbols:
-    """The symbolic inputs shared by every function of one variant."""
+    """The symbolic inputs shared by every function of one variant: one ``us``, ``u_dots`` and
+    ``u_ddots`` per deformation coordinate (``u``, ``u_dot``, ``u_ddot`` for a one-coordinate
+    model)."""
 
     theta: ca.SX
-    u: ca.SX
+    us: list[ca.SX]
     theta_dot: ca.SX
-    u_dot: ca.SX
+    u_dots: list[ca.SX]
     ug: ca.SX  # ground acceleration
     s: ca.SX  # active pivot, +1 right corner, -1 left corner
-    u_ddot: ca.SX  # a free symbol for the column acceleration (errata comparisons only)
+    u_ddots: list[ca.SX]  # free symbols for the column accelerations (errata comparisons only)
     params: dict[str, ca.SX]
 
     @staticmethod
     def create(variant: Variant) -> "Symbols":
         sym = ca.SX.sym
-        return Symbols(
-            sym("theta"), sym("u"), sym("theta_dot"), sym("u_dot"), sym("ug"), sym("s"), sym("u_ddot"),
-            {p.name: sym(p.name) for p in variant.model.params},
-        )
+        n = variant.model.coordinates
+
+        def names(stem):
+            return [stem] if n == 1 else [f"{stem}_{i + 1}" for i in range(n)]
+
+        theta, us = sym("theta"), [sym(v) for v in names("u")]
+        theta_dot, u_dots = sym("theta_dot"), [sym(v) for v in names("u_dot")]
+        ug, s, u_ddots = sym("ug"), sym("s"), [sym(v) for v in names("u_ddot")]
+        return Symbols(theta, us, theta_dot, u_dots, ug, s, u_ddots,
+                       {p.name: sym(p.name) for p in variant.model.params})
+
+    @property
+    def u(self) -> ca.SX:
+        return _only(self.us, "u")
+
+    @property
+    def u_dot(self) -> ca.SX:
+        return _only(self.u_dots, "u'")
+
+    @property
+    def u_ddot(self) -> ca.SX:
+        return _only(self.u_ddots, "u''")
+
+
+def total(terms) -> ca.SX:
+    """t_0 + t_1 + ..., from the first term: one term is itself (no addition of a zero)."""
+    terms = list(terms)
+    out = terms[0]
+    for t in terms[1:]:
+        out = out + t
+    return out
+
+
+def dot(a, b) -> ca.SX:
+    """a_0 b_0 + a_1 b_1 + ...; for one coordinate the product a_0 b_0 itself."""
+    return total(x * y for x, y in zip(a, b, strict=True))
 
 
 def solve_linear(residual: ca.SX, x: ca.SX) -> ca.SX:
@@ -48,6 +95,34 @@ def solve_linear(residual: ca.SX, x: ca.SX) -> ca.SX:
     if ca.depends_on(a, x):
         raise ValueError("solve_linear: the residual is not affine in the unknown")
     return -ca.substitute(residual, x, ca.SX(0)) / a
+
+
+def solve_spd(a, b: list) -> list:
+    """x with A x = b for a symmetric positive definite A (an SX matrix or nested lists, of which
+    only the upper triangle is read), by A = L D L^T written out: straight-line, rational, no
+    pivoting (a mass or stiffness matrix needs none)."""
+    n = len(b)
+
+    def entry(i, j):
+        i, j = min(i, j), max(i, j)
+        return a[i, j] if isinstance(a, ca.SX) else a[i][j]
+
+    def minus(value, terms):
+        return value - total(terms) if terms else value
+
+    low = [[None] * n for _ in range(n)]
+    d = [None] * n
+    for j in range(n):
+        d[j] = minus(entry(j, j), [low[j][k] ** 2 * d[k] for k in range(j)])
+        for i in range(j + 1, n):
+            low[i][j] = minus(entry(i, j), [low[i][k] * low[j][k] * d[k] for k in range(j)]) / d[j]
+    y = []
+    for i in range(n):
+        y.append(minus(b[i], [low[i][k] * y[k] for k in range(i)]))
+    x = [None] * n
+    for i in reversed(range(n)):
+        x[i] = minus(y[i] / d[i], [low[k][i] * x[k] for k in range(i + 1, n)])
+    return x
 
 
 def at(expr: ca.SX, pairs: list[tuple[ca.SX, object]]) -> ca.SX:
@@ -66,7 +141,12 @@ class Mechanics:
         self.variant = variant
         self.sym = symbols
         model = variant.model
-        self.moments = model.shape.moments()
+        self.basis = model.basis
+        self.n = len(self.basis)
+        if variant.rigid and self.n > 1:
+            raise ValueError(f"variant {variant.name!r}: a rigid column has no deformation coordinates: "
+                             "make it a rigid variant of a one-function model with the same masses")
+        self.moments = self.basis.moments()
         # Parameters, with removed masses replaced by the constant 0 before any derivation.
         self.P = dict(symbols.params)
         for name in variant.remove:
@@ -75,8 +155,8 @@ class Mechanics:
         self.H, self.B, self.g = P["h"], P["b"], P["g"]
         self.rigid = variant.rigid
         self.theta, self.theta_dot = symbols.theta, symbols.theta_dot
-        self.u = ca.SX(0) if self.rigid else symbols.u
-        self.u_dot = ca.SX(0) if self.rigid else symbols.u_dot
+        self.us = [ca.SX(0)] if self.rigid else list(symbols.us)
+        self.u_dots = [ca.SX(0)] if self.rigid else list(symbols.u_dots)
         self.s = symbols.s
         self.b = self.s * self.B  # pivot offset from the base centre
         self.ug = symbols.ug
@@ -84,60 +164,70 @@ class Mechanics:
             self.sin, self.cos = self.theta, 1 - self.theta**2 / 2
         else:
             self.sin, self.cos = ca.sin(self.theta), ca.cos(self.theta)
-        self.q = ca.vertcat(self.theta) if self.rigid else ca.vertcat(self.theta, self.u)
-        self.qd = ca.vertcat(self.theta_dot) if self.rigid else ca.vertcat(self.theta_dot, self.u_dot)
+        self.q = ca.vertcat(self.theta) if self.rigid else ca.vertcat(self.theta, *self.us)
+        self.qd = ca.vertcat(self.theta_dot) if self.rigid else ca.vertcat(self.theta_dot, *self.u_dots)
+
+    @property
+    def u(self) -> ca.SX:
+        """The deformation coordinate of a one-coordinate model."""
+        return _only(self.us, "u")
+
+    @property
+    def u_dot(self) -> ca.SX:
+        return _only(self.u_dots, "u'")
+
+    def u_at(self, values=None) -> list[tuple[ca.SX, object]]:
+        """Substitution pairs u_i -> values_i (0 when not given)."""
+        values = [0] * self.n if values is None else values
+        return list(zip(self.us, values, strict=True))
 
     # --- summing over the masses --------------------------------------------------------------
 
     def _column_integral(self, f) -> ca.SX:
-        """Integral over eta in [0, 1] of f(psi(eta), eta H), exact for f quadratic in (eta, psi)."""
-        eta, psi = ca.SX.sym("eta"), ca.SX.sym("psi")
-        q = f(psi, eta * self.H)
-        z = ca.vertcat(eta, psi)
+        """Integral over eta in [0, 1] of f(psi_1..psi_n (eta), eta H), exact for f quadratic in
+        (eta, psi_1..psi_n): the basis's moments weighted by f's Taylor coefficients."""
+        eta = ca.SX.sym("eta")
+        psis = [ca.SX.sym("psi")] if self.n == 1 else [ca.SX.sym(f"psi_{i + 1}") for i in range(self.n)]
+        q = f(tuple(psis), eta * self.H)
+        z = ca.vertcat(eta, *psis)
         hess, grad = ca.hessian(q, z)
         if ca.depends_on(hess, z):
             raise ValueError("column integrand is not quadratic in (eta, psi)")
-        zero = [(eta, 0), (psi, 0)]
-        mom = self.moments.values
-        exact = self.moments.exact
-        half = {k: (float(exact[k] / 2) if exact else mom[k] / 2) for k in ("eta2", "psi2")}
-        total = (
-            at(q, zero) * mom["1"]
-            + at(grad[0], zero) * mom["eta"]
-            + at(grad[1], zero) * mom["psi"]
-            + hess[0, 0] * half["eta2"]
-            + hess[0, 1] * mom["eta_psi"]
-            + hess[1, 1] * half["psi2"]
-        )
-        return total
+        zero = [(eta, 0)] + [(p, 0) for p in psis]
+        mom, n = self.moments, range(self.n)
+        terms = [at(q, zero) * mom.eta["1"], at(grad[0], zero) * mom.eta["eta"]]
+        terms += [at(grad[1 + i], zero) * mom.psi[i] for i in n]
+        terms += [hess[0, 0] * mom.half_eta2]
+        terms += [hess[0, 1 + i] * mom.eta_psi[i] for i in n]
+        terms += [hess[1 + i, 1 + j] * (mom.half_psi2[i] if i == j else mom.psi_psi[i][j])
+                  for i in n for j in n if j >= i]
+        return total(terms)
 
     def over_points(self, f, base=True) -> ca.SX:
-        """Sum over all masses of mass * f(psi, y), with psi the shape function at the mass point
-        (its body abscissa from the base centre is u psi) and y its height above the base."""
-        total = ca.SX(0)
-        shape = self.variant.model.shape
+        """Sum over all masses of mass * f(psis, y), with psis the shape functions at the mass point
+        (its body abscissa from the base centre is sum u_i psi_i) and y its height above the base."""
+        total_ = ca.SX(0)
         for mass in self.variant.model.masses:
             m = self.P[mass.mass]
             if isinstance(mass, ColumnMass):
-                total += m * self._column_integral(f)
+                total_ += m * self._column_integral(f)
             elif isinstance(mass, LumpedMass):
                 eta = self.P[mass.eta] if isinstance(mass.eta, str) else mass.eta
-                psi = shape.value(eta)
-                psi = float(psi) if isinstance(psi, Fraction) else psi
+                psis = tuple(float(v) if isinstance(v, Fraction) else v for v in self.basis.values(eta))
                 eta_f = float(eta) if isinstance(eta, Fraction) else eta
-                total += m * f(psi, eta_f * self.H)
+                total_ += m * f(psis, eta_f * self.H)
             elif isinstance(mass, BaseMass):
                 if base:
-                    total += m * f(ca.SX(0), ca.SX(0))
+                    total_ += m * f((ca.SX(0),) * self.n, ca.SX(0))
             else:
                 raise TypeError(f"unknown mass kind {mass!r}")
-        return total
+        return total_
 
-    def over_masses(self, f, u=None, u_dot=None, base=True) -> ca.SX:
+    def over_masses(self, f, us=None, u_dots=None, base=True) -> ca.SX:
         """Sum over all masses of mass * f(X_c, Y, X_c', Y'), body coordinates from the base centre."""
-        u = self.u if u is None else u
-        u_dot = self.u_dot if u_dot is None else u_dot
-        return self.over_points(lambda psi, y: f(u * psi, y, u_dot * psi, ca.SX(0)), base)
+        us = self.us if us is None else us
+        u_dots = self.u_dots if u_dots is None else u_dots
+        return self.over_points(lambda psis, y: f(dot(us, psis), y, dot(u_dots, psis), ca.SX(0)), base)
 
     def base_inertia_about_pivot(self) -> ca.SX:
         return sum((self.P[m.inertia] for m in self.variant.model.masses if isinstance(m, BaseMass)), ca.SX(0))
@@ -149,15 +239,15 @@ class Mechanics:
 
     def base_spin_inertia(self) -> ca.SX:
         """I_b about the base centre: I_bc - m_b B^2 (written with b^2 = B^2)."""
-        total = ca.SX(0)
+        total_ = ca.SX(0)
         for m in self.variant.model.masses:
             if isinstance(m, BaseMass):
-                total += self.P[m.inertia] - self.P[m.mass] * self.B**2
-        return total
+                total_ += self.P[m.inertia] - self.P[m.mass] * self.B**2
+        return total_
 
     # --- energies ------------------------------------------------------------------------------
 
-    def kinetic(self, theta_dot=None, u=None, u_dot=None, b=None) -> ca.SX:
+    def kinetic(self, theta_dot=None, us=None, u_dots=None, b=None) -> ca.SX:
         """T, eq (A4): rotation about the pivot plus the deflection rate."""
         th = self.theta_dot if theta_dot is None else theta_dot
         b = self.b if b is None else b
@@ -166,7 +256,7 @@ class Mechanics:
             xp = xc - b
             return (xcd + th * y) ** 2 + (yd - th * xp) ** 2
 
-        return self.over_masses(v2, u, u_dot, base=False) / 2 + self.base_inertia_about_pivot() * th**2 / 2
+        return self.over_masses(v2, us, u_dots, base=False) / 2 + self.base_inertia_about_pivot() * th**2 / 2
 
     def world_sums(self):
         """(sum m x, sum m y) in the world frame with the origin at the pivot, eq (A1)."""
@@ -178,15 +268,25 @@ class Mechanics:
     def potentials(self):
         """(V_g gravity, V_s strain, V_a d'Alembert of the ground acceleration), eq (A6) corrected."""
         sx, sy = self.world_sums()
-        v_s = self.k_tilde() * self.u**2 / 2
-        return self.g * sy, v_s, self.ug * sx
+        return self.g * sy, self.strain(self.us), self.ug * sx
+
+    def strain(self, us) -> ca.SX:
+        """V_s = 1/2 u^T K u (one coordinate: k~ u^2 / 2)."""
+        k, n = self.stiffness(), range(self.n)
+        quadratic = total([k[i][i] * us[i] ** 2 for i in n]
+                          + [2 * k[i][j] * us[i] * us[j] for i in n for j in n if j > i])
+        return quadratic / 2
+
+    def stiffness(self) -> list[list[ca.SX]]:
+        """K of the u_i, eq (5) generalised: EI / H^3 times the integrals of psi_i'' psi_j''."""
+        return [[self.P["ei"] / self.H**3 * v for v in row] for row in self.moments.stiffness]
 
     def k_tilde(self) -> ca.SX:
-        """Generalised stiffness, eq (5): EI / H^3 times the integral of psi''(eta)^2."""
-        return self.P["ei"] / self.H**3 * self.moments.stiffness
+        """Generalised stiffness of one coordinate, eq (5): EI / H^3 times the integral of psi''^2."""
+        return _only(self.stiffness(), "k~")[0]
 
     def momentum_x(self) -> ca.SX:
-        """Horizontal momentum P_x = d/dt sum m x, consistent with V_a (so dE/dt = -ug P_x - c u'^2)."""
+        """Horizontal momentum P_x = d/dt sum m x, consistent with V_a (so dE/dt = -ug P_x - u'^T C u')."""
         sx, _ = self.world_sums()
         return ca.mtimes(ca.jacobian(sx, self.q), self.qd)
 
@@ -203,6 +303,11 @@ class Mechanics:
         t, _ = self.contact_lagrangian()
         return at(ca.hessian(t, self.u_dot)[0], [(self.u, 0)])
 
+    def mass_block(self) -> ca.SX:
+        """M of the u_i: the Hessian of T in the u_i' (the column's mass distribution: constant)."""
+        t, _ = self.contact_lagrangian()
+        return at(ca.hessian(t, ca.vertcat(*self.u_dots))[0], self.u_at())
+
     def omega_n(self) -> ca.SX:
         return ca.sqrt(self.k_tilde() / self.m_tilde())
 
@@ -210,19 +315,49 @@ class Mechanics:
         """c = 2 zeta omega_n m~: zeta is the fixed-base damping ratio of the column."""
         return 2 * self.P["zeta"] * self.omega_n() * self.m_tilde()
 
+    def damping_force(self, i: int) -> ca.SX:
+        """(C u')_i: one coordinate, c u' with c of eq (19); several, the modal damping matrix C of
+        the parameters (rocking_kernels::modes computes it from the fixed-base modes)."""
+        if self.n == 1:
+            return self.damping_c() * self.u_dot
+        return total(self.P[f"c_{min(i, j) + 1}_{max(i, j) + 1}"] * self.u_dots[j] for j in range(self.n))
+
+    def damping_power(self) -> ca.SX:
+        """u'^T C u', the power the damping takes."""
+        return total(self.damping_force(i) * self.u_dots[i] for i in range(self.n)) if self.n > 1 else \
+            self.damping_c() * self.u_dot**2
+
     def contact_accel(self) -> ca.SX:
-        """u'' in full contact, eq (3); the pivot sign drops out (checked by the caller)."""
+        """u'' in full contact of a one-coordinate model, eq (3)."""
+        return _only(self.contact_accels(), "u''")
+
+    def contact_accels(self) -> list[ca.SX]:
+        """The u_i'' in full contact, eq (3) generalised; the pivot sign drops out (checked by the
+        caller)."""
         if self.rigid:
-            return ca.SX(0)
+            return [ca.SX(0)]
         t, v = self.contact_lagrangian()
         lag = t - v
-        m = ca.hessian(t, self.u_dot)[0]
-        rhs = (
-            ca.gradient(lag, self.u)
-            - ca.jacobian(ca.gradient(lag, self.u_dot), self.u) * self.u_dot
-            - self.damping_c() * self.u_dot
-        )
-        return at(rhs / m, [(self.s, 1)])
+        if self.n == 1:
+            m = ca.hessian(t, self.u_dot)[0]
+            rhs = (
+                ca.gradient(lag, self.u)
+                - ca.jacobian(ca.gradient(lag, self.u_dot), self.u) * self.u_dot
+                - self.damping_c() * self.u_dot
+            )
+            return [at(rhs / m, [(self.s, 1)])]
+        m = ca.hessian(t, ca.vertcat(*self.u_dots))[0]
+        return [at(a, [(self.s, 1)]) for a in solve_spd(m, self.contact_residual(lag))]
+
+    def contact_residual(self, lag=None) -> list[ca.SX]:
+        """The generalised forces on the u_i in full contact, which M u'' equals (several
+        coordinates)."""
+        if lag is None:
+            t, v = self.contact_lagrangian()
+            lag = t - v
+        u, ud = ca.vertcat(*self.us), ca.vertcat(*self.u_dots)
+        rhs = ca.gradient(lag, u) - ca.mtimes(ca.jacobian(ca.gradient(lag, ud), u), ud)
+        return [rhs[i] - self.damping_force(i) for i in range(self.n)]
 
     # --- rocking about corner s --------------------------------------------------------------
 
@@ -234,8 +369,14 @@ class Mechanics:
         mass = ca.hessian(t, self.qd)[0]
         force = ca.gradient(lag, self.q) - ca.mtimes(ca.jacobian(ca.gradient(lag, self.qd), self.q), self.qd)
         if not self.rigid:
-            force[1] -= self.damping_c() * self.u_dot
+            for i in range(self.n):
+                force[1 + i] -= self.damping_force(i)
         return mass, force
+
+    def accelerations(self) -> list[ca.SX]:
+        """[theta'', u_1''..u_n''] while rocking, several coordinates: M q'' = F by LDL^T."""
+        mass, force = self.equations()
+        return solve_spd(mass, [force[i] for i in range(1 + self.n)])
 
     def uplift(self) -> ca.SX:
         """f_s of eq (24): the base starts to rock about corner s when f_s > 0.
@@ -248,18 +389,21 @@ class Mechanics:
         f_theta = at(force[0], rest)
         if self.rigid:
             return self.s * f_theta
-        return self.s * (f_theta - at(mass[0, 1], rest) * self.contact_accel())
+        if self.n == 1:
+            return self.s * (f_theta - at(mass[0, 1], rest) * self.contact_accel())
+        coupling = [at(mass[0, 1 + i], rest) for i in range(self.n)]
+        return self.s * (f_theta - dot(coupling, self.contact_accels()))
 
     # --- section forces at the column base and the ground reaction -----------------------------
 
-    def base_forces(self, theta_ddot, u_ddot) -> dict[str, ca.SX]:
+    def base_forces(self, theta_ddot, u_ddots) -> dict[str, ca.SX]:
         """The section forces at the column base and the ground reaction, by Newton's law for every
-        mass, for a motion with the accelerations theta'' and u''.
+        mass, for a motion with the accelerations theta'' and u_i''.
 
         The section is the column's foot at the base centre O (the thin plate's centre, on the line
         of the pivots). Body components: X along the plate (towards positive u), Y up the column
-        axis. A mass point at (X, Y) = (u psi, eta H) from O is at r = Rot(theta) (X - b, Y) from
-        the pivot, with Rot' = Rot J (J (X, Y) = (Y, -X), theta clockwise), so its absolute
+        axis. A mass point at (X, Y) = (sum u_i psi_i, eta H) from O is at r = Rot(theta) (X - b, Y)
+        from the pivot, with Rot' = Rot J (J (X, Y) = (Y, -X), theta clockwise), so its absolute
         acceleration in body components is
             a = theta'' J (X - b, Y) - theta'^2 (X - b, Y) + 2 theta' J (X', 0) + (X'', 0) + ug (cos, sin)
         and gravity is g (sin, -cos). f = a - gravity is the force per unit mass its supports must
@@ -276,35 +420,36 @@ class Mechanics:
         sin, cos = ca.sin(self.theta), ca.cos(self.theta)
         b, g, ug, thd = self.b, self.g, self.ug, self.theta_dot
 
-        def supplied(psi, y):
-            """(f_X, f_Y) at the point (u psi, y)."""
-            x = self.u * psi
-            f_x = theta_ddot * y - thd**2 * (x - b) + u_ddot * psi + ug * cos - g * sin
-            f_y = -theta_ddot * (x - b) - thd**2 * y - 2 * thd * self.u_dot * psi + ug * sin + g * cos
+        def supplied(psis, y):
+            """(f_X, f_Y) at the point (sum u_i psi_i, y)."""
+            x = dot(self.us, psis)
+            coriolis = total(2 * thd * ud * p for ud, p in zip(self.u_dots, psis, strict=True))
+            f_x = theta_ddot * y - thd**2 * (x - b) + dot(u_ddots, psis) + ug * cos - g * sin
+            f_y = -theta_ddot * (x - b) - thd**2 * y - coriolis + ug * sin + g * cos
             return f_x, f_y
 
         def column(f):
             return self.over_points(f, base=False)
 
-        moment = column(lambda psi, y: self.u * psi * supplied(psi, y)[1] - y * supplied(psi, y)[0])
-        total_x = self.over_points(lambda psi, y: supplied(psi, y)[0])
-        total_y = self.over_points(lambda psi, y: supplied(psi, y)[1])
+        moment = column(lambda psis, y: dot(self.us, psis) * supplied(psis, y)[1] - y * supplied(psis, y)[0])
+        total_x = self.over_points(lambda psis, y: supplied(psis, y)[0])
+        total_y = self.over_points(lambda psis, y: supplied(psis, y)[1])
         return {
             "moment": moment,
-            "shear": column(lambda psi, y: supplied(psi, y)[0]),
-            "axial": column(lambda psi, y: supplied(psi, y)[1]),
+            "shear": column(lambda psis, y: supplied(psis, y)[0]),
+            "axial": column(lambda psis, y: supplied(psis, y)[1]),
             # A rigid column has no curvature: its section moment is the equilibrium one.
-            "moment_elastic": moment if self.rigid else self.elastic_moment(self.u),
+            "moment_elastic": moment if self.rigid else self.elastic_moment(self.us),
             "reaction_h": cos * total_x + sin * total_y,
             "reaction_v": -sin * total_x + cos * total_y,
         }
 
-    def contact_forces(self, u_ddot=None) -> dict[str, ca.SX]:
-        """``base_forces`` in full contact (theta = theta' = theta'' = 0), with u'' of eq (3) unless
-        given. Nothing depends on the pivot then (checked)."""
-        u_ddot = self.contact_accel() if u_ddot is None else u_ddot
+    def contact_forces(self, u_ddots=None) -> dict[str, ca.SX]:
+        """``base_forces`` in full contact (theta = theta' = theta'' = 0), with the u_i'' of eq (3)
+        unless given. Nothing depends on the pivot then (checked)."""
+        u_ddots = self.contact_accels() if u_ddots is None else u_ddots
         rest = [(self.theta, 0), (self.theta_dot, 0)]
-        forces = {k: at(v, rest) for k, v in self.base_forces(ca.SX(0), u_ddot).items()}
+        forces = {k: at(v, rest) for k, v in self.base_forces(ca.SX(0), u_ddots).items()}
         if any(ca.depends_on(v, self.s) for v in forces.values()):
             raise ValueError("the section forces in full contact depend on the pivot")
         return forces
@@ -312,25 +457,34 @@ class Mechanics:
     def static_uplift(self) -> dict[str, ca.SX]:
         """The quasi-static uplift about the right corner: the ground acceleration ug that, applied
         so slowly that u' = u'' = 0, makes f_+ = 0, the column's deflection u then and its elastic
-        base moment. The equilibrium moment then is W B (f_s = s M_b - W B)."""
-        rest = [(self.u_dot, 0), (self.s, 1)]
-        u_static = solve_linear(at(self.contact_accel(), rest), self.u)  # u'' = 0: u(ug)
-        f_plus = at(self.uplift(), rest + [(self.u, u_static)])
+        base moment. The equilibrium moment then is W B (f_s = s M_b - W B). Several coordinates:
+        the static deflection of K u = -Gamma ug, ``u_uplift_i``."""
+        rest = [(u_dot, 0) for u_dot in self.u_dots] + [(self.s, 1)]
+        if self.n == 1:
+            u_static = [solve_linear(at(self.contact_accel(), rest), self.u)]  # u'' = 0: u(ug)
+        else:
+            residual = ca.vertcat(*[at(r, rest) for r in self.contact_residual()])  # affine in u
+            stiffness = -ca.jacobian(residual, ca.vertcat(*self.us))
+            load = at(residual, self.u_at())
+            u_static = solve_spd(stiffness, [load[i] for i in range(self.n)])
+        f_plus = at(self.uplift(), rest + self.u_at(u_static))
         ug = solve_linear(f_plus, self.ug)
-        u = at(u_static, [(self.ug, ug)])
-        weight = self.g * self.over_points(lambda psi, y: ca.SX(1))
+        us = [at(u, [(self.ug, ug)]) for u in u_static]
+        weight = self.g * self.over_points(lambda psis, y: ca.SX(1))
+        names = ["u_uplift"] if self.n == 1 else [f"u_uplift_{i + 1}" for i in range(self.n)]
         return {
-            "weight": weight, "moment_uplift": weight * self.B, "ug_uplift": ug, "u_uplift": u,
-            "moment_elastic_uplift": self.elastic_moment(u),
+            "weight": weight, "moment_uplift": weight * self.B, "ug_uplift": ug, **dict(zip(names, us)),
+            "moment_elastic_uplift": self.elastic_moment(us),
         }
 
-    def elastic_moment(self, u) -> ca.SX:
-        """The bending moment EI psi''(0) u / H^2 of the deflection u psi at the column base."""
-        return self.P["ei"] / self.H**2 * self.variant.model.shape.curvature_at_base() * u
+    def elastic_moment(self, us) -> ca.SX:
+        """The bending moment EI sum psi_i''(0) u_i / H^2 of the deflection at the column base."""
+        return total(self.P["ei"] / self.H**2 * f.curvature_at_base() * u
+                     for f, u in zip(self.basis.functions, us, strict=True))
 
     # --- impacts (theta returns to 0 while rocking about s1 = s; the corner -s hits) ----------
 
-    def angular_momentum(self, pivot_b, about_b, u, u_dot, theta_dot) -> ca.SX:
+    def angular_momentum(self, pivot_b, about_b, us, u_dots, theta_dot) -> ca.SX:
         """Clockwise angular momentum about the base point X = about_b, at theta = 0, for a motion
         that rotates about the pivot X = pivot_b (body frame = world frame at theta = 0)."""
 
@@ -339,13 +493,31 @@ class Mechanics:
             vy = yd - theta_dot * (xc - pivot_b)
             return y * vx - (xc - about_b) * vy
 
-        return self.over_masses(moment, u, u_dot) + self.base_spin_inertia() * theta_dot
+        return self.over_masses(moment, us, u_dots) + self.base_spin_inertia() * theta_dot
 
-    def momentum_x_at_rest_angle(self, u_dot, theta_dot, u) -> ca.SX:
-        return self.over_masses(lambda xc, y, xcd, yd: xcd + theta_dot * y, u, u_dot)
+    def momentum_x_at_rest_angle(self, u_dots, theta_dot, us) -> ca.SX:
+        return self.over_masses(lambda xc, y, xcd, yd: xcd + theta_dot * y, us, u_dots)
 
-    def impact_maps(self, u1, u1d, th1d):
-        """The candidate post-impact states of ADJex (26)-(30), Housner and VVEL (31)-(32)."""
+    def closest(self, u1d: list, constraint, target) -> list:
+        """The velocities u' nearest u1d in the kinetic-energy norm of the column (its mass block
+        M) with constraint(u') = target, for a constraint linear in u' with gradient c:
+        u' = u1d + lambda M^-1 c, lambda = (target - constraint(u1d)) / (c^T M^-1 c)."""
+        x = [ca.SX.sym(f"x_{i}") for i in range(self.n)]
+        grad = ca.gradient(constraint(x), ca.vertcat(*x))
+        if ca.depends_on(grad, ca.vertcat(*x)):
+            raise ValueError("closest: the constraint is not linear in the velocities")
+        c = [grad[i] for i in range(self.n)]
+        w = solve_spd(self.mass_block(), c)
+        lam = (target - constraint(u1d)) / dot(c, w)
+        return [v + lam * wi for v, wi in zip(u1d, w)]
+
+    def impact_maps(self, u1, u1d, th1d, general=None):
+        """The candidate post-impact states of ADJex (26)-(30), Housner and VVEL (31)-(32), for the
+        pre-impact u_i (list ``u1``), u_i' (``u1d``) and theta' (``th1d``). Several coordinates: each
+        full-contact map's one scalar condition taken with the velocities nearest the pre-impact
+        ones in the kinetic-energy norm (docs/modes.md); one coordinate: the paper's maps, which
+        the general ones reduce to (``general=True`` forces them, for that check)."""
+        general = self.n > 1 if general is None else general
         b1 = self.s * self.B
         b2 = -b1
         x = ca.SX.sym("x_unknown")
@@ -355,24 +527,41 @@ class Mechanics:
         # Immediate rocking about the impacting corner, u' kept (ADJex (28)-(29), Housner).
         th2 = solve_linear(self.angular_momentum(b2, b2, u1, u1d, x) - l_pre, x)
         maps["theta_dot_rocking"] = th2
-        maps["u_dot_rocking"] = u1d
+        maps["u_dot_rocking"] = list(u1d)
         maps["e_rocking"] = self.kinetic(th2, u1, u1d, b2)
         if self.rigid:
             return maps
-        # Full contact from angular momentum (26)-(27).
-        u2 = solve_linear(self.angular_momentum(b2, b2, u1, x, ca.SX(0)) - l_pre, x)
+        if not general:
+            # Full contact from angular momentum (26)-(27).
+            u2 = [solve_linear(self.angular_momentum(b2, b2, u1, [x], ca.SX(0)) - l_pre, x)]
+            # Full contact from horizontal momentum (30).
+            p_pre = self.momentum_x_at_rest_angle(u1d, th1d, u1)
+            u_hm = [solve_linear(self.momentum_x_at_rest_angle([x], ca.SX(0), u1) - p_pre, x)]
+        else:
+            u2 = self.closest(u1d, lambda v: self.angular_momentum(b2, b2, u1, v, ca.SX(0)), l_pre)
+            p_pre = self.momentum_x_at_rest_angle(u1d, th1d, u1)
+            u_hm = self.closest(u1d, lambda v: self.momentum_x_at_rest_angle(v, ca.SX(0), u1), p_pre)
         maps["u_dot_contact"] = u2
         maps["e_contact"] = self.kinetic(ca.SX(0), u1, u2, b2)
-        # Full contact from horizontal momentum (30).
-        p_pre = self.momentum_x_at_rest_angle(u1d, th1d, u1)
-        u_hm = solve_linear(self.momentum_x_at_rest_angle(x, ca.SX(0), u1) - p_pre, x)
         maps["u_dot_momentum"] = u_hm
         maps["e_momentum"] = self.kinetic(ca.SX(0), u1, u_hm, b2)
         # VVEL (31)-(32): the kinetic energy of the horizontal velocities survives, in full contact.
         e_vh = self.over_masses(lambda xc, y, xcd, yd: (xcd + th1d * y) ** 2, u1, u1d) / 2
-        m_c = at(self.m_tilde(), [(self.u, u1)])
-        top_vx = u1d * self.variant.model.shape.value(1.0) + th1d * self.H
-        maps["u_dot_vvel"] = ca.sign(top_vx) * ca.sqrt(2 * e_vh / m_c)
+        top = self.basis.values(Fraction(1))
+        top = [float(v) for v in top]
+        if not general:
+            m_c = at(self.m_tilde(), [(self.u, _only(u1, "u"))])
+            top_vx = _only(u1d, "u'") * top[0] + th1d * self.H
+            maps["u_dot_vvel"] = [ca.sign(top_vx) * ca.sqrt(2 * e_vh / m_c)]
+        else:
+            # h_i = sum m psi_i v_x: the pre-impact horizontal velocity field projected on the basis
+            # in the mass norm is M^-1 h; scaled to the energy e_vh, the top's velocity keeping its sign.
+            h = [self.over_points(lambda psis, y, i=i: psis[i] * (dot(u1d, psis) + th1d * y))
+                 for i in range(self.n)]
+            w = solve_spd(self.mass_block(), h)
+            top_vx = dot(u1d, top) + th1d * self.H
+            kappa = ca.sign(top_vx) * ca.sign(dot(w, top)) * ca.sqrt(2 * e_vh / dot(h, w))
+            maps["u_dot_vvel"] = [kappa * wi for wi in w]
         maps["e_vvel"] = e_vh
         return maps
 
@@ -381,7 +570,7 @@ class Mechanics:
     def rigid_gravity_profile(self):
         """V_g(theta) at u = 0, s = +1, which is A sin(theta) + C cos(theta) for a rigid body."""
         v_g, _, _ = self.potentials()
-        v = at(v_g, [(self.u, 0), (self.s, 1)])
+        v = at(v_g, self.u_at() + [(self.s, 1)])
         a = at(ca.jacobian(v, self.theta), [(self.theta, 0)])
         c = at(v, [(self.theta, 0)])
         return a, c

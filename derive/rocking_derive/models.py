@@ -1,6 +1,7 @@
 """Model descriptions and kernel variants: the file a model developer edits.
 
-A *model* is a shape function for the column deflection plus a set of masses. A *variant* is a
+A *model* is a shape function for the column deflection (or a tuple of them, a Ritz basis: one
+deformation coordinate u_i each, the deflection is sum u_i psi_i) plus a set of masses. A *variant* is a
 model specialised symbolically: masses removed (their parameter is replaced by the constant 0 before
 anything is derived, so their terms never reach the kernels), the column made rigid (u = 0, one
 degree of freedom), or the rotation linearised. Every variant exports the same set of functions
@@ -18,7 +19,9 @@ from fractions import Fraction
 
 import sympy as sp
 
-from .shape import ETA, Function, Polynomial
+import mpmath
+
+from .shape import ETA, Basis, Function, Polynomial
 
 
 @dataclass(frozen=True)
@@ -30,6 +33,7 @@ class Param:
     doc: str
     physical: str | None = None
     default: float | None = None
+    derived: str | None = None  # computed by the solver from the others ("modal_damping")
 
 
 @dataclass(frozen=True)
@@ -74,15 +78,42 @@ CORE_PARAMS = (
 
 @dataclass(frozen=True)
 class Model:
+    """``shape``: one function (the one-coordinate model, psi(1) = 1: u is the top displacement)
+    or a tuple of them (one coordinate u_i each). Every function has psi(0) = psi'(0) = 0."""
+
     name: str
     description: str
-    shape: Polynomial | Function
+    shape: Polynomial | Function | tuple
     masses: tuple
     extra_params: tuple[Param, ...] = ()
 
+    def __post_init__(self):
+        basis = self.basis
+        basis.check(f"model {self.name!r}")
+        if not isinstance(self.shape, tuple) and basis.functions[0].at_top() != 1:
+            raise ValueError(f"model {self.name!r}: psi(1) must be 1 (u is the top displacement)")
+
+    @property
+    def basis(self) -> Basis:
+        return Basis(self.shape if isinstance(self.shape, tuple) else (self.shape,))
+
+    @property
+    def coordinates(self) -> int:
+        """n, the number of deformation coordinates u_1..u_n."""
+        return len(self.basis)
+
     @property
     def params(self) -> tuple[Param, ...]:
-        return CORE_PARAMS + self.extra_params
+        """The parameter vector: the core, the model's own, and with several coordinates the
+        upper triangle of the modal damping matrix (row by row), which the solver computes from
+        the fixed-base modes and their damping ratios (rocking_kernels::modes)."""
+        n = self.coordinates
+        damping = tuple(
+            Param(f"c_{i + 1}_{j + 1}", f"modal damping matrix C, row {i + 1}, column {j + 1} (from zeta "
+                  "and the fixed-base modes)", derived="modal_damping")
+            for i in range(n) for j in range(i, n)
+        ) if n > 1 else ()
+        return CORE_PARAMS + self.extra_params + damping
 
 
 @dataclass(frozen=True)
@@ -128,6 +159,52 @@ PLATFORM = Model(
     ),
 )
 
+# --- several deformation coordinates: the paper's masses on a Ritz basis -------------------------
+
+POLYNOMIAL2 = Model(
+    name="polynomial2",
+    description="The paper's masses, two deformation coordinates: a polynomial basis",
+    shape=(Polynomial("eta^2", {2: Fraction(1)}), Polynomial("eta^3", {3: Fraction(1)})),
+    masses=PAPER.masses,
+)
+
+POLYNOMIAL3 = Model(
+    name="polynomial3",
+    description="The paper's masses, three deformation coordinates: a polynomial basis",
+    shape=POLYNOMIAL2.shape + (Polynomial("eta^4", {4: Fraction(1)}),),
+    masses=PAPER.masses,
+)
+
+
+def cantilever_mode(k: int) -> Function:
+    """The k-th vibration mode of a uniform clamped-free Euler-Bernoulli cantilever, scaled to 1 at
+    the top: phi(eta) = cosh(b eta) - cos(b eta) - sigma (sinh(b eta) - sin(b eta)), b = beta_k the
+    k-th root of 1 + cos(b) cosh(b) = 0 and sigma = (cosh b + cos b) / (sinh b + sin b), both to 40
+    digits (mpmath, deterministic)."""
+    digits = Function.DIGITS
+    with mpmath.workdps(digits + 10):
+        beta = mpmath.findroot(lambda b: 1 + mpmath.cos(b) * mpmath.cosh(b), (2 * k - 1) * mpmath.pi / 2)
+        sigma = (mpmath.cosh(beta) + mpmath.cos(beta)) / (mpmath.sinh(beta) + mpmath.sin(beta))
+        top = mpmath.cosh(beta) - mpmath.cos(beta) - sigma * (mpmath.sinh(beta) - mpmath.sin(beta))
+        b, c, d = (sp.Float(mpmath.nstr(v, digits + 5), digits + 5) for v in (beta, sigma, 1 / top))
+    phi = d * (sp.cosh(b * ETA) - sp.cos(b * ETA) - c * (sp.sinh(b * ETA) - sp.sin(b * ETA)))
+    return Function(f"cantilever mode {k} (beta = {mpmath.nstr(beta, 12)})", phi)
+
+
+CANTILEVER_MODES2 = Model(
+    name="cantilever_modes2",
+    description="The paper's masses, two deformation coordinates: the first two cantilever modes",
+    shape=(cantilever_mode(1), cantilever_mode(2)),
+    masses=PAPER.masses,
+)
+
+CANTILEVER_MODES3 = Model(
+    name="cantilever_modes3",
+    description="The paper's masses, three deformation coordinates: the first three cantilever modes",
+    shape=CANTILEVER_MODES2.shape + (cantilever_mode(3),),
+    masses=PAPER.masses,
+)
+
 VARIANTS = (
     Variant("full", "Full model: distributed column mass, top mass, base mass and inertia", "", PAPER),
     Variant(
@@ -171,4 +248,12 @@ VARIANTS = (
     ),
     Variant("cosine_shape", "Example: the full model with the shape psi = 1 - cos(pi xi / 2H)", "", COSINE),
     Variant("added_mass", "Example: the full model plus a lumped mass m_a at height eta_a H", "", PLATFORM),
+    Variant("polynomial2", "The full model on the basis eta^2, eta^3: two deformation coordinates", "",
+            POLYNOMIAL2),
+    Variant("polynomial3", "The full model on the basis eta^2, eta^3, eta^4: three deformation coordinates",
+            "", POLYNOMIAL3),
+    Variant("cantilever_modes2", "The full model on the first two cantilever modes: two deformation "
+            "coordinates", "", CANTILEVER_MODES2),
+    Variant("cantilever_modes3", "The full model on the first three cantilever modes: three deformation "
+            "coordinates", "", CANTILEVER_MODES3),
 )

@@ -8,9 +8,9 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use rocking_kernels::kernels::{
     AddedMass, CosineShape, Full, MasslessBase, MasslessColumn, PointMass, Rigid, SmallAngle,
 };
-use rocking_kernels::{Physical, Variant};
+use rocking_kernels::{OneCoordinate, Physical, Variant};
 
-fn bench_variant<V: Variant>(c: &mut Criterion) {
+fn bench_variant<V: OneCoordinate>(c: &mut Criterion) {
     let p = V::params(&Physical::dimensionless(0.1, 5.0, 2.0, 2.0, 1.0, 0.01));
     let x = [0.05, 1e-3, -0.02, 3e-3];
     let mut group = c.benchmark_group(V::NAME);

@@ -4,17 +4,29 @@
 //! `derive/` (CasADi): the equations of motion, the uplift condition, energies, impact maps,
 //! section forces at the column base, ground reactions and reference quantities, as straight-line
 //! `f64` functions without allocation. This file is the
-//! only hand-written part: the [`Physical`] parameter set, the [`Variant`] trait through which
-//! the solver runs any variant, monomorphised, and the types of the generated registry
-//! ([`kernels::MODELS`], [`kernels::VARIANT_INFO`]; [`with_variant!`] runs a variant by name).
+//! only hand-written part with [`series`] and [`modes`]: the [`Physical`] parameter set, the
+//! [`Variant`] trait through which the solver runs any variant, monomorphised, its array types
+//! ([`Layout`]), and the types of the generated registry ([`kernels::MODELS`],
+//! [`kernels::VARIANT_INFO`]; [`with_variant!`] runs a variant by name).
 //!
 //! # Variants
 //!
 //! A variant is the model specialised symbolically ([`kernels::VARIANTS`] lists them): masses that
 //! are absent are removed before the derivation (so their terms do not exist in the code), the
 //! rigid variant has one degree of freedom, the small-angle one is linearised in θ. All variants
-//! share one interface: the rocking state is `[θ, u, θ', u']` even for the rigid column, whose
-//! kernels never read `u`.
+//! of one deformation coordinate share one interface ([`OneCoordinate`]): the rocking state is
+//! `[θ, u, θ', u']` even for the rigid column, whose kernels never read `u`.
+//!
+//! # Several deformation coordinates
+//!
+//! A model whose column is a Ritz basis of n shape functions ψ_1..ψ_n (its deflection is
+//! Σ u_i ψ_i) has the same kernels with each `u` entry expanded to n entries:
+//! `x = [θ, u_1..u_n, θ', u_1'..u_n']`, `q = [θ, u_1..u_n]`, `xc = [u_1..u_n, u_1'..u_n']`,
+//! `xi = [u_1..u_n, u_1'..u_n', θ']`, and the outputs in the same order with each `u` or `u_dot`
+//! entry expanded (the mass matrix's upper triangle row by row over q). [`Layout`] gives each
+//! variant's array types (`V::NQ`, `V::X`, ...); [`modes`] solves its small eigenproblems (the
+//! fixed-base and uplifted frequencies, the modal damping matrix its kernels take as parameters,
+//! u_cr along the first mode).
 //!
 //! # Conventions
 //!
@@ -39,6 +51,7 @@
 #![warn(missing_docs)]
 
 pub mod kernels;
+pub mod modes;
 pub mod series;
 pub mod taylor;
 
@@ -96,6 +109,8 @@ impl Physical {
     /// EI is set so that the fixed-base frequency of this model is ω_n/p: k̃ is proportional to
     /// EI, so one evaluation of `V`'s `structure` kernel at EI = 1 gives the EI that makes
     /// k̃/m̃ = (ω_n/p)². The plate inertia comes from the same kernel (no formula re-typed here).
+    /// With several deformation coordinates ω_n is the first fixed-base frequency ([`modes`]),
+    /// which K ∝ EI scales the same way.
     pub fn dimensionless_with<V: Variant>(
         alpha: f64,
         omega_n_over_p: f64,
@@ -105,7 +120,6 @@ impl Physical {
         zeta: f64,
         extra: &[f64],
     ) -> Physical {
-        use kernels::index::structure as st;
         let (b, h) = alpha.sin_cos();
         let mut phys = Physical {
             h,
@@ -118,9 +132,19 @@ impl Physical {
             zeta,
             g: 1.0,
         };
-        phys.i_bc = gamma_ib * V::structure(&V::params_with(&phys, extra))[st::I_BC_PLATE];
-        let unit = V::structure(&V::params_with(&phys, extra));
-        phys.ei = omega_n_over_p * omega_n_over_p * unit[st::M_TILDE] / unit[st::K_TILDE];
+        let plate = V::structure(&V::params_with(&phys, extra));
+        phys.i_bc = gamma_ib * V::structure_value(&plate, "i_bc_plate");
+        let unit = V::params_with(&phys, extra);
+        phys.ei = if V::NQ == 1 {
+            // The structure output begins with m̃ and k̃ (one coordinate).
+            let s = V::structure(&unit);
+            omega_n_over_p * omega_n_over_p * s.values()[0] / s.values()[1]
+        } else {
+            let omega_1 = modes::Matrices::of::<V>(&unit)
+                .fixed_base()
+                .map_or(f64::NAN, |m| m.omega[0]);
+            (omega_n_over_p / omega_1).powi(2)
+        };
         phys
     }
 }
@@ -141,6 +165,9 @@ pub enum Role {
     InertiaOf(&'static str),
     /// The height, as a fraction of H, of the lumped mass named here.
     HeightOf(&'static str),
+    /// An entry of the modal damping matrix of a model with several deformation coordinates,
+    /// derived from ζ and the fixed-base modes ([`modes::with_modal_damping`]); not set by a scene.
+    ModalDamping,
 }
 
 /// Where a mass sits.
@@ -161,7 +188,8 @@ pub struct ParamInfo {
     pub name: &'static str,
     /// Description.
     pub doc: &'static str,
-    /// Default of a parameter the model adds (`None`: a field of [`Physical`]).
+    /// Default of a parameter the model adds (`None`: a field of [`Physical`], or derived:
+    /// [`Role::ModalDamping`]).
     pub default: Option<f64>,
     /// What it is to the model's masses.
     pub role: Role,
@@ -176,6 +204,8 @@ pub struct ModelInfo {
     pub description: &'static str,
     /// The shape function, in words.
     pub shape: &'static str,
+    /// The number of deformation coordinates u_1..u_n (shape functions of its column).
+    pub coordinates: usize,
     /// The variant that runs the model as it is (nothing removed, flexible, exact angles).
     pub full: &'static str,
     /// Every variant of the model.
@@ -194,6 +224,14 @@ impl ModelInfo {
     /// The parameters the model adds to [`Physical`], in order.
     pub fn extra_params(&self) -> impl Iterator<Item = &'static ParamInfo> {
         self.params.iter().filter(|p| p.default.is_some())
+    }
+
+    /// The position of the first entry of the modal damping matrix in the parameter vector (the
+    /// upper triangle follows, row by row), for a model with several deformation coordinates.
+    pub fn modal_damping(&self) -> Option<usize> {
+        self.params
+            .iter()
+            .position(|p| p.role == Role::ModalDamping)
     }
 
     /// The parameter called `name`.
@@ -243,13 +281,98 @@ impl VariantInfo {
     }
 }
 
+/// A kernel's input or output array: `[f64; N]`, or one `f64` (a scalar output).
+pub trait Array: Copy + std::fmt::Debug + PartialEq + Send + Sync + 'static {
+    /// The number of entries.
+    const LEN: usize;
+    /// The entries.
+    fn values(&self) -> &[f64];
+    /// The entries, to change them.
+    fn values_mut(&mut self) -> &mut [f64];
+    /// The array whose entry `i` is `f(i)`.
+    fn from_fn(f: impl FnMut(usize) -> f64) -> Self;
+}
+
+impl Array for f64 {
+    const LEN: usize = 1;
+    fn values(&self) -> &[f64] {
+        std::slice::from_ref(self)
+    }
+    fn values_mut(&mut self) -> &mut [f64] {
+        std::slice::from_mut(self)
+    }
+    fn from_fn(mut f: impl FnMut(usize) -> f64) -> Self {
+        f(0)
+    }
+}
+
+impl<const N: usize> Array for [f64; N] {
+    const LEN: usize = N;
+    fn values(&self) -> &[f64] {
+        self
+    }
+    fn values_mut(&mut self) -> &mut [f64] {
+        self
+    }
+    fn from_fn(f: impl FnMut(usize) -> f64) -> Self {
+        std::array::from_fn(f)
+    }
+}
+
+/// The array types of a variant's kernels, whose sizes follow from its number of deformation
+/// coordinates `NQ` (generated per variant in [`kernels`], with the sizes as constants in
+/// `kernels::layout::nq<n>`). Each is an input by its name, or a function's output.
+pub trait Layout {
+    /// The number n of deformation coordinates u_1..u_n.
+    const NQ: usize;
+    /// The names of the `structure` outputs, in order (code generic over n finds the rigid-body
+    /// reference quantities by name, see [`Layout::structure_value`]).
+    const STRUCTURE: &'static [&'static str];
+    /// `q = [θ, u_1..u_n]`.
+    type Q: Array;
+    /// `x = [θ, u_1..u_n, θ', u_1'..u_n']`, the state while rocking and its derivative.
+    type X: Array;
+    /// `xc = [u_1..u_n, u_1'..u_n']`, the state in full contact and its derivative.
+    type Xc: Array;
+    /// `xi = [u_1..u_n, u_1'..u_n', θ']`, the state just before an impact.
+    type Xi: Array;
+    /// The mass matrix's upper triangle, row by row over q.
+    type MassMatrix: Array;
+    /// The generalised forces `[f_θ, f_u_1..f_u_n]`.
+    type Forcing: Array;
+    /// The VVEL map's output.
+    type ImpactVvel: Array;
+    /// ADJex's candidates.
+    type ImpactAdjex: Array;
+    /// Housner's rule's output.
+    type ImpactHousner: Array;
+    /// The structure and reference quantities.
+    type Structure: Array;
+    /// ψ(η), or `[ψ_1(η)..ψ_n(η)]`.
+    type Shape: Array;
+    /// The quasi-static uplift.
+    type StaticUplift: Array;
+
+    /// The `structure` output called `name`.
+    ///
+    /// # Panics
+    ///
+    /// When the variant's `structure` kernel has no such output (a name the derivation does not
+    /// emit: a programming error, caught by the tests of every variant).
+    fn structure_value(s: &Self::Structure, name: &str) -> f64 {
+        let k = Self::STRUCTURE.iter().position(|n| *n == name);
+        s.values()[k.unwrap_or_else(|| panic!("no structure output {name:?}"))]
+    }
+}
+
 /// One generated kernel variant. Every method is the generated function of the same name in the
 /// variant's module (see there for the order of inputs and outputs); the trait lets the solver be
 /// generic over variants and monomorphised, with no run-time branch for absent effects.
 ///
 /// Inputs: `x = [θ, u, θ', u']`, `q = [θ, u]`, `xc = [u, u']` (full contact), `xi = [u, u', θ']`
-/// (just before an impact, θ = 0), `ug` ground acceleration, `s` the pivot (±1).
-pub trait Variant: Copy + Default + Send + Sync + 'static {
+/// (just before an impact, θ = 0), `ug` ground acceleration, `s` the pivot (±1); with several
+/// deformation coordinates each `u` is u_1..u_n ([`Layout`] gives the array types).
+pub trait Variant: Layout + Copy + Default + Send + Sync + 'static {
     /// Module name of the variant.
     const NAME: &'static str;
     /// Model family the variant specialises.
@@ -266,42 +389,84 @@ pub trait Variant: Copy + Default + Send + Sync + 'static {
     const SMALL_ANGLE: bool;
     /// The parameter array.
     type Params: Copy + Send + Sync + std::fmt::Debug + AsRef<[f64]> + AsMut<[f64]>;
-    /// Parameter array from the physical parameters (parameters a model adds get their defaults).
+    /// Parameter array from the physical parameters (parameters a model adds get their defaults;
+    /// a modal damping matrix is derived from ζ for every mode, [`modes::fill_derived`]).
     fn params(phys: &Physical) -> Self::Params;
     /// Parameter array from the physical parameters and the values of the parameters the model
     /// adds, in order (missing ones get their defaults).
     fn params_with(phys: &Physical, extra: &[f64]) -> Self::Params;
     /// Upper triangle `[m_tt, m_tu, m_uu]` of the mass matrix while rocking.
-    fn mass_matrix(q: &[f64; 2], s: f64, p: &Self::Params) -> [f64; 3];
+    fn mass_matrix(q: &Self::Q, s: f64, p: &Self::Params) -> Self::MassMatrix;
     /// Generalised forces `[f_θ, f_u]` while rocking.
-    fn forcing(x: &[f64; 4], ug: f64, s: f64, p: &Self::Params) -> [f64; 2];
+    fn forcing(x: &Self::X, ug: f64, s: f64, p: &Self::Params) -> Self::Forcing;
     /// State derivative `[θ', u', θ'', u'']` while rocking about corner `s`.
-    fn rocking_rhs(x: &[f64; 4], ug: f64, s: f64, p: &Self::Params) -> [f64; 4];
+    fn rocking_rhs(x: &Self::X, ug: f64, s: f64, p: &Self::Params) -> Self::X;
     /// State derivative `[u', u'']` in full contact.
-    fn contact_rhs(xc: &[f64; 2], ug: f64, p: &Self::Params) -> [f64; 2];
+    fn contact_rhs(xc: &Self::Xc, ug: f64, p: &Self::Params) -> Self::Xc;
     /// Uplift function f_s (eq 24): uplift about `s` when positive.
-    fn uplift(xc: &[f64; 2], ug: f64, s: f64, p: &Self::Params) -> f64;
+    fn uplift(xc: &Self::Xc, ug: f64, s: f64, p: &Self::Params) -> f64;
     /// `[kinetic, gravity, strain, momentum_x]`.
-    fn energy(x: &[f64; 4], s: f64, p: &Self::Params) -> [f64; 4];
+    fn energy(x: &Self::X, s: f64, p: &Self::Params) -> [f64; 4];
     /// `[ground, damping]` power: dE/dt = ground − damping.
-    fn power(x: &[f64; 4], ug: f64, s: f64, p: &Self::Params) -> [f64; 2];
+    fn power(x: &Self::X, ug: f64, s: f64, p: &Self::Params) -> [f64; 2];
     /// VVEL map: `[rock, θ', u', energy_after, energy_before]`.
-    fn impact_vvel(xi: &[f64; 3], s: f64, p: &Self::Params) -> [f64; 5];
+    fn impact_vvel(xi: &Self::Xi, s: f64, p: &Self::Params) -> Self::ImpactVvel;
     /// ADJex candidates (see the generated doc).
-    fn impact_adjex(xi: &[f64; 3], s: f64, p: &Self::Params) -> [f64; 8];
+    fn impact_adjex(xi: &Self::Xi, s: f64, p: &Self::Params) -> Self::ImpactAdjex;
     /// Housner's rule: `[θ', u', energy_after, energy_before]`.
-    fn impact_housner(xi: &[f64; 3], s: f64, p: &Self::Params) -> [f64; 4];
-    /// Structure and reference quantities (see the generated doc for the order).
-    fn structure(p: &Self::Params) -> [f64; 15];
-    /// Shape function ψ(η): the column's deflection at height ηH is ψ(η)·u (for drawing it).
-    fn shape(eta: f64) -> f64;
+    fn impact_housner(xi: &Self::Xi, s: f64, p: &Self::Params) -> Self::ImpactHousner;
+    /// Structure and reference quantities (see the generated doc for the order; with several
+    /// coordinates they begin with the upper triangles of M and K of the u_i, as m̃ and k̃ begin
+    /// them for one).
+    fn structure(p: &Self::Params) -> Self::Structure;
+    /// Shape function ψ(η): the column's deflection at height ηH is ψ(η)·u (for drawing it);
+    /// with several coordinates `[ψ_1(η)..ψ_n(η)]`.
+    fn shape(eta: f64) -> Self::Shape;
     /// Section forces at the column base and ground reaction in full contact:
     /// `[moment, shear, axial, moment_elastic, reaction_h, reaction_v]` (see [`kernels::index`]
     /// and the generated doc for the section and the signs).
-    fn forces_contact(xc: &[f64; 2], ug: f64, p: &Self::Params) -> [f64; 6];
+    fn forces_contact(xc: &Self::Xc, ug: f64, p: &Self::Params) -> [f64; 6];
     /// The same while rocking about corner `s` (accelerations from the rocking equations).
-    fn forces_rocking(x: &[f64; 4], ug: f64, s: f64, p: &Self::Params) -> [f64; 6];
+    fn forces_rocking(x: &Self::X, ug: f64, s: f64, p: &Self::Params) -> [f64; 6];
     /// Quasi-static uplift about the right corner:
     /// `[weight, moment_uplift, ug_uplift, u_uplift, moment_elastic_uplift]`.
-    fn static_uplift(p: &Self::Params) -> [f64; 5];
+    fn static_uplift(p: &Self::Params) -> Self::StaticUplift;
+}
+
+/// The variants of one deformation coordinate, with today's arrays: the driver runs these (a
+/// model with several coordinates has no driver yet). Implemented for every such variant.
+pub trait OneCoordinate:
+    Variant<
+    Q = [f64; 2],
+    X = [f64; 4],
+    Xc = [f64; 2],
+    Xi = [f64; 3],
+    MassMatrix = [f64; 3],
+    Forcing = [f64; 2],
+    ImpactVvel = [f64; 5],
+    ImpactAdjex = [f64; 8],
+    ImpactHousner = [f64; 4],
+    Structure = [f64; 15],
+    Shape = f64,
+    StaticUplift = [f64; 5],
+>
+{
+}
+
+impl<V> OneCoordinate for V where
+    V: Variant<
+        Q = [f64; 2],
+        X = [f64; 4],
+        Xc = [f64; 2],
+        Xi = [f64; 3],
+        MassMatrix = [f64; 3],
+        Forcing = [f64; 2],
+        ImpactVvel = [f64; 5],
+        ImpactAdjex = [f64; 8],
+        ImpactHousner = [f64; 4],
+        Structure = [f64; 15],
+        Shape = f64,
+        StaticUplift = [f64; 5],
+    >
+{
 }

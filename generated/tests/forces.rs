@@ -20,7 +20,7 @@
 //! while rocking, the conditioning κ of the mass matrix both sides solve.
 
 use rocking_kernels::kernels::{self, index, Full};
-use rocking_kernels::{taylor, MassKind, ModelInfo, Physical, Role, Variant};
+use rocking_kernels::{taylor, MassKind, ModelInfo, OneCoordinate, Physical, Role, Variant};
 
 #[macro_use]
 mod common;
@@ -35,7 +35,7 @@ use index::static_uplift as up;
 const SAMPLES: usize = 300;
 
 /// The value of the parameter `name` (a parameter every model has, or one of its roles).
-fn param<V: Variant>(p: &V::Params, name: &str) -> f64 {
+fn param<V: OneCoordinate>(p: &V::Params, name: &str) -> f64 {
     let k = V::PARAM_NAMES
         .iter()
         .position(|n| *n == name)
@@ -45,7 +45,7 @@ fn param<V: Variant>(p: &V::Params, name: &str) -> f64 {
 
 /// I_b: the base plates' inertia about their own centre, I_bc − m_b B² (the registry's roles
 /// name the base masses and their inertias).
-fn base_spin_inertia<V: Variant>(p: &V::Params) -> f64 {
+fn base_spin_inertia<V: OneCoordinate>(p: &V::Params) -> f64 {
     let b = param::<V>(p, "b");
     let model = ModelInfo::find(V::MODEL).unwrap();
     model
@@ -59,7 +59,7 @@ fn base_spin_inertia<V: Variant>(p: &V::Params) -> f64 {
 }
 
 /// The weight of the base plates.
-fn base_weight<V: Variant>(p: &V::Params) -> f64 {
+fn base_weight<V: OneCoordinate>(p: &V::Params) -> f64 {
     let model = ModelInfo::find(V::MODEL).unwrap();
     let mass: f64 = model
         .params
@@ -80,7 +80,7 @@ fn base_weight<V: Variant>(p: &V::Params) -> f64 {
 
 /// The variant with exact rotations of `V`'s model: `V` itself, or for a small-angle variant its
 /// model's `full` variant (run with `V`'s parameters, whose removed masses are zero).
-fn exact_twin<V: Variant>() -> &'static str {
+fn exact_twin<V: OneCoordinate>() -> &'static str {
     if V::SMALL_ANGLE {
         ModelInfo::find(V::MODEL).unwrap().full
     } else {
@@ -89,7 +89,12 @@ fn exact_twin<V: Variant>() -> &'static str {
 }
 
 /// A variant's kernel by name, with `V`'s parameters.
-fn call<V: Variant>(variant: &str, function: &str, inputs: &[&[f64]], p: &V::Params) -> Vec<f64> {
+fn call<V: OneCoordinate>(
+    variant: &str,
+    function: &str,
+    inputs: &[&[f64]],
+    p: &V::Params,
+) -> Vec<f64> {
     let mut all = inputs.to_vec();
     all.push(p.as_ref());
     kernels::call(variant, function, &all)
@@ -142,7 +147,12 @@ rocking_kernels::for_each_variant!(series_by_name);
 
 /// [dP_x/dt, dP_y/dt]: the rates of the whole body's momentum relative to the ground, from the
 /// series of the exact-angle `energy` kernel (P_x, and V_g = g Σ m y) along `V`'s solution.
-fn momentum_rates<V: Variant>(x: &[f64; 4], ug: f64, s: Option<f64>, p: &V::Params) -> [f64; 2] {
+fn momentum_rates<V: OneCoordinate>(
+    x: &[f64; 4],
+    ug: f64,
+    s: Option<f64>,
+    p: &V::Params,
+) -> [f64; 2] {
     let series = solution_series(V::NAME, x, ug, s, p.as_ref());
     let e = energy_series(exact_twin::<V>(), &series, s.unwrap_or(1.0), p.as_ref());
     let g = param::<V>(p, "g");
@@ -183,7 +193,7 @@ impl Worst {
     }
 }
 
-fn identities<V: Variant>() {
+fn identities<V: OneCoordinate>() {
     let mut rng = Rng(0x5eed_f0ce);
     let mut worst = Worst::default();
     for _ in 0..SAMPLES {
@@ -319,7 +329,7 @@ fn forces_satisfy_the_equilibrium_identities_on_every_variant() {
     for_each_variant!(identities);
 }
 
-fn at_rest<V: Variant>() {
+fn at_rest<V: OneCoordinate>() {
     let mut rng = Rng(0x5eed_0e57);
     for _ in 0..50 {
         let phys = structure(&mut rng);
@@ -355,7 +365,7 @@ fn neg<const N: usize>(a: [f64; N]) -> [f64; N] {
     a.map(|v| -v)
 }
 
-fn mirror<V: Variant>() {
+fn mirror<V: OneCoordinate>() {
     let mut rng = Rng(0x5eed_3170);
     for _ in 0..SAMPLES {
         let phys = structure(&mut rng);
@@ -407,7 +417,7 @@ fn the_mirror_image_of_a_state_has_the_mirror_image_of_its_forces() {
     for_each_variant!(mirror);
 }
 
-fn static_uplift<V: Variant>() {
+fn static_uplift<V: OneCoordinate>() {
     if V::RIGID {
         // Its `static_uplift` is the flexible twin's (physics.rs compares it with `full`).
         return;

@@ -5,13 +5,13 @@
 use rocking_kernels::kernels::{
     AddedMass, CosineShape, Full, MasslessBase, MasslessColumn, PointMass, Rigid, SmallAngle,
 };
-use rocking_kernels::{Physical, Variant};
+use rocking_kernels::{OneCoordinate, Physical, Variant};
 
 #[macro_use]
 mod common;
 use common::{close, state, structure, Rng};
 
-fn mass_matrix_spd_and_consistent<V: Variant>() {
+fn mass_matrix_spd_and_consistent<V: OneCoordinate>() {
     let mut rng = Rng(0x5eed_0001);
     for _ in 0..500 {
         let phys = structure(&mut rng);
@@ -47,7 +47,7 @@ fn neg<const N: usize>(a: [f64; N]) -> [f64; N] {
     a.map(|v| -v)
 }
 
-fn mirror<V: Variant>() {
+fn mirror<V: OneCoordinate>() {
     let mut rng = Rng(0x5eed_0002);
     for _ in 0..300 {
         let phys = structure(&mut rng);
@@ -96,7 +96,7 @@ fn every_variant_is_mirror_symmetric() {
     for_each_variant!(mirror);
 }
 
-fn energy_rate<V: Variant>() {
+fn energy_rate<V: OneCoordinate>() {
     let mut rng = Rng(0x5eed_0003);
     for _ in 0..300 {
         let phys = structure(&mut rng);
@@ -139,7 +139,7 @@ fn omega_up_eq18(phys: &Physical, omega_n: f64) -> f64 {
     omega_n * (j / (j - c)).sqrt()
 }
 
-fn frequencies<V: Variant>() {
+fn frequencies<V: OneCoordinate>() {
     use rocking_kernels::kernels::full::structure as st;
     if V::NAME == "rigid" {
         return; // u is frozen: no column vibration (its `structure` is checked with the full model)
@@ -250,7 +250,7 @@ fn cosine_shape_integrals() {
 }
 
 /// Every function of `A` and `B` agrees at random inputs (parameters from the same physics).
-fn agree<A: Variant, B: Variant>(phys_of: impl Fn(&mut Rng) -> Physical, rel: f64) {
+fn agree<A: OneCoordinate, B: OneCoordinate>(phys_of: impl Fn(&mut Rng) -> Physical, rel: f64) {
     let mut rng = Rng(0x5eed_0005);
     for _ in 0..200 {
         let phys = phys_of(&mut rng);

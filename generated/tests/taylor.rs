@@ -192,7 +192,7 @@ fn uplift_series_agrees_with_pointwise_evaluation() {
 /// ground acceleration's coefficients, s, the parameters), returning coefficients 1..=order of
 /// every state component in the layout of the IR's `taylor_golden` outputs.
 macro_rules! taylor_rhs_by_name {
-    ($($T:ident => $m:ident),* $(,)?) => {
+    ($($T:ident => $m:ident: $L:ident),* $(,)?) => {
         fn taylor_rhs(variant: &str, function: &str, input: &dyn Fn(&str) -> Vec<f64>, order: usize) -> Vec<f64> {
             let mut ug = [0.0; N];
             let g = input("ug");
@@ -212,13 +212,13 @@ macro_rules! taylor_rhs_by_name {
                 $(
                     (stringify!($m), "rocking_rhs") => {
                         let p: kernels::$m::Params = input("p").try_into().expect("parameter count");
-                        let mut x = state::<4>(input("x"));
+                        let mut x = state::<{ kernels::layout::$L::X }>(input("x"));
                         taylor::$m::rocking_rhs::<N>(&mut x, &ug, input("s")[0], &p);
                         coefficients(&x, order)
                     }
                     (stringify!($m), "contact_rhs") => {
                         let p: kernels::$m::Params = input("p").try_into().expect("parameter count");
-                        let mut xc = state::<2>(input("xc"));
+                        let mut xc = state::<{ kernels::layout::$L::XC }>(input("xc"));
                         taylor::$m::contact_rhs::<N>(&mut xc, &ug, &p);
                         coefficients(&xc, order)
                     }
@@ -228,13 +228,14 @@ macro_rules! taylor_rhs_by_name {
         }
     };
 }
-rocking_kernels::for_each_variant!(taylor_rhs_by_name);
+rocking_kernels::for_each_variant!(taylor_rhs_by_name, layout);
 
 /// The coefficient kernels against CasADi's own derivatives: each IR's `taylor_golden` holds the
 /// solution's Taylor coefficients x_1..x_8 at sampled states, from repeated symbolic Lie
 /// derivatives of the right-hand side (derive/rocking_derive/ir.py, `taylor_golden`), an
 /// algorithm independent of the Taylor-mode recurrences on the tape. Agreement to 1e-12 of the
-/// largest coefficient of the same order (a coefficient near zero by cancellation is compared
+/// largest coefficient of the same order, times max(1, κ(M)/100) for a mass matrix of condition
+/// number κ (a coefficient near zero by cancellation is compared
 /// at its order's scale).
 #[test]
 fn taylor_kernels_match_casadi_derivatives() {
@@ -244,7 +245,7 @@ fn taylor_kernels_match_casadi_derivatives() {
         .map(|e| e.unwrap().path())
         .collect();
     files.sort();
-    let (mut checked, mut worst) = (0usize, 0.0f64);
+    let (mut checked, mut worst, mut worst_kappa) = (0usize, 0.0f64, 0.0f64);
     for file in files {
         let ir: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(&file).unwrap()).unwrap();
@@ -276,6 +277,18 @@ fn taylor_kernels_match_casadi_derivatives() {
                     let k = names.iter().position(|m| *m == n);
                     floats(&inputs[k.unwrap_or_else(|| panic!("{variant}::{name}: no input {n}"))])
                 };
+                // Solving M q'' = F loses digits with the condition number of M: 1e-12 for a
+                // well-conditioned basis (one function, cantilever modes), more for a monomial
+                // basis (eta^2, eta^3, eta^4 are nearly parallel: kappa(M_uu) ~ 1e4).
+                let kappa = rocking_kernels::with_variant!(variant, V, L => {
+                    let p: <V as rocking_kernels::Variant>::Params =
+                        input("p").try_into().expect("parameter count");
+                    let m = rocking_kernels::modes::Matrices::of::<V>(&p).mass;
+                    let e = m.symmetric_eigenvalues();
+                    e.max() / e.min()
+                })
+                .expect("a registered variant");
+                let tolerance = 1e-12 * (kappa / 100.0).max(1.0);
                 let want = floats(&sample["output"]);
                 let got = taylor_rhs(variant, name, &input, order);
                 assert_eq!(got.len(), want.len(), "{variant}::{name}: output length");
@@ -288,8 +301,9 @@ fn taylor_kernels_match_casadi_derivatives() {
                     for k in row {
                         let err = (got[k] - want[k]).abs() / scale;
                         worst = worst.max(err);
+                        worst_kappa = worst_kappa.max(err / tolerance * 1e-12);
                         assert!(
-                            err <= 1e-12,
+                            err <= tolerance,
                             "{variant}::{name}: coefficient {} of component {}: {} vs CasADi {} ({err:.1e} of the order's scale)",
                             n + 1,
                             k % dim,
@@ -307,5 +321,8 @@ fn taylor_kernels_match_casadi_derivatives() {
         );
     }
     assert!(checked > 0, "no Taylor golden coefficients found");
-    eprintln!("{checked} Taylor coefficients match CasADi's derivatives; worst {worst:.1e} of their order's scale");
+    eprintln!(
+        "{checked} Taylor coefficients match CasADi's derivatives; worst {worst:.1e} of their \
+         order's scale, {worst_kappa:.1e} after dividing by max(1, kappa(M) / 100)"
+    );
 }

@@ -25,7 +25,7 @@ pub fn scene(file: &str, sets: &[&str]) -> rocking_scene::setup::Setup {
 /// rocking about `s`, from the variant's own kernels (M(q) and central differences of F at rest
 /// velocities and no ground motion): the kernel-based form of [`uplifted_frequency_linearised`]
 /// with gravity, for any model.
-pub fn uplifted_frequency_kernels<V: rocking_kernels::Variant>(
+pub fn uplifted_frequency_kernels<V: rocking_kernels::OneCoordinate>(
     p: &V::Params,
     s: f64,
     theta: f64,

@@ -7,7 +7,7 @@ use rocking::{
     run_variant, select_variant, Effects, History, ImpactModel, Initial, Options, Phase, Preset,
     Run, Structure,
 };
-use rocking_kernels::{kernels, with_variant, ModelInfo, Physical, Variant};
+use rocking_kernels::{kernels, with_variant, ModelInfo, OneCoordinate, Physical, Variant};
 use rocking_motion::NoMotion;
 use rocking_verification::*;
 
@@ -153,7 +153,7 @@ fn max_rel(a: &[f64], b: &[f64], floor: f64) -> f64 {
 }
 
 /// Every kernel of two variants at a few states, largest relative difference.
-fn kernels_differ<A: Variant, B: Variant>(pa: &A::Params, pb: &B::Params) -> f64 {
+fn kernels_differ<A: OneCoordinate, B: OneCoordinate>(pa: &A::Params, pb: &B::Params) -> f64 {
     let mut worst = 0.0f64;
     for (k, s) in [(0, 1.0), (1, -1.0), (2, 1.0)] {
         let t = 0.3 * k as f64 + 0.1;

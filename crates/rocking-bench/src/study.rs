@@ -8,7 +8,7 @@ use rocking::{
     select_variant, simulate, Accuracy, DampingConvention, Dimensionless, Effects, EventKind,
     History, ImpactModel, Initial, Method, Options, Run, Structure,
 };
-use rocking_kernels::{with_variant, Variant};
+use rocking_kernels::{with_variant, OneCoordinate};
 use rocking_motion::{Excitation, SinePulse};
 use serde::{Deserialize, Serialize};
 use serde_json::{json, Value};
@@ -517,7 +517,7 @@ fn production(case: &Case, acc: Accuracy, min_total: f64) -> (f64, usize, f64, f
 }
 
 /// ns per call of the rocking and contact right-hand sides of a variant (direct microtiming).
-fn kernel_ns<V: Variant>(s: &Structure) -> (f64, f64) {
+fn kernel_ns<V: OneCoordinate>(s: &Structure) -> (f64, f64) {
     let p = s.params::<V>();
     let n = 2_000_000;
     let mut x = [0.05, 1e-3, -0.02, 3e-3];

@@ -234,8 +234,13 @@ fn check(scene: &Path, set: &[String], json: bool) -> Result<(), SceneError> {
     rocking_study::plan::check_table(&base)?;
     rocking_study::ida::check_table(&base)?;
     let m = base.model(&[])?;
-    let derived = report::derived_json(&m)?;
+    let mut derived = report::derived_json(&m)?;
     if json {
+        // The column's natural frequencies (rad per unit of model time, ascending), here and
+        // not in a run's summary (whose bytes the digests pin).
+        let f = m.structure.frequencies();
+        derived["fixed_base_frequencies"] = serde_json::json!(f.fixed_base);
+        derived["uplifted_frequencies"] = serde_json::json!(f.uplifted);
         let v = serde_json::json!({
             "scene": scene.display().to_string(),
             "model": m.structure.model().name,

@@ -450,6 +450,18 @@ fn check_prints_variant_reasons_and_derived_quantities() {
         .as_f64()
         .unwrap();
     assert!(thr > 0.5 && thr < 1.5, "{thr}");
+    // One coordinate: the frequency lists are [omega_n] and [omega_up] of eq (18), by the
+    // generic eigenproblem of rocking_kernels::modes.
+    let d = &v["derived"];
+    for (list, one) in [
+        ("fixed_base_frequencies", "omega_n"),
+        ("uplifted_frequencies", "omega_up"),
+    ] {
+        let w = d[list].as_array().unwrap();
+        assert_eq!(w.len(), 1, "{list}: {w:?}");
+        let (w, one) = (w[0].as_f64().unwrap(), d[one].as_f64().unwrap());
+        assert!((w / one - 1.0).abs() < 1e-12, "{list}: {w} vs {one}");
+    }
 }
 
 #[test]
@@ -667,6 +679,19 @@ fn example_models_check_and_models_listing() {
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(
         stderr(&o).contains("did you mean \"cosine\""),
+        "{}",
+        stderr(&o)
+    );
+    // A model of several deformation coordinates is derived and listed, but not run yet.
+    let o = rocking(&[
+        "check",
+        scenes().join("fig3-vvel.toml").to_str().unwrap(),
+        "--set",
+        "structure.model=polynomial2",
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("has 2 deformation coordinates; the solver runs one-coordinate"),
         "{}",
         stderr(&o)
     );

@@ -35,6 +35,9 @@ pub struct Ir {
     /// The model's shape function, in words.
     #[serde(default)]
     pub shape: String,
+    /// The number n of deformation coordinates u_1..u_n (shape functions); 1 when absent.
+    #[serde(default = "one", skip_serializing_if = "is_one")]
+    pub coordinates: usize,
     /// Mass (and inertia) parameters this variant removes (fixed to zero before the derivation).
     #[serde(default)]
     pub removed: Vec<String>,
@@ -56,6 +59,14 @@ pub struct Ir {
     pub origin: String,
 }
 
+fn one() -> usize {
+    1
+}
+
+fn is_one(n: &usize) -> bool {
+    *n == 1
+}
+
 /// One entry of the parameter vector.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Param {
@@ -70,6 +81,10 @@ pub struct Param {
     /// Fixed value used when there is no `physical` field.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub default: Option<Float>,
+    /// Computed by the solver from the other parameters (`"modal_damping"`: an entry of the modal
+    /// damping matrix of a model with several deformation coordinates), instead of either.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub derived: Option<String>,
     /// The kind of mass this parameter is (`column`, `lumped`, `base`), if it is one.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mass: Option<String>,

@@ -13,6 +13,7 @@
 
 mod error;
 pub mod ir;
+mod layout;
 mod render;
 mod simplify;
 mod taylor;

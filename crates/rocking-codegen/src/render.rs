@@ -8,6 +8,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use serde::Serialize;
 
 use crate::ir::{Function, Input, Instruction, Ir};
+use crate::layout::{self, SizedType};
 use crate::{Error, Result};
 
 const VARIANT_TEMPLATE: &str = include_str!("../templates/variant.rs.tera");
@@ -182,7 +183,7 @@ fn array_lines(values: &[String]) -> Vec<String> {
 }
 
 #[derive(Serialize)]
-struct IndexConst {
+pub(crate) struct IndexConst {
     name: String,
     index: usize,
     doc: String,
@@ -225,7 +226,7 @@ fn index_consts(
 }
 
 #[derive(Serialize)]
-struct InputMod {
+pub(crate) struct InputMod {
     name: String,
     doc: String,
     consts: Vec<IndexConst>,
@@ -731,6 +732,23 @@ fn check_variant_name(origin: &str, ir: &Ir) -> Result<()> {
     }
 }
 
+/// The kind of derived parameter the renderer knows: an entry of the modal damping matrix of a
+/// model with several deformation coordinates, filled by `crate::modes::fill_derived`.
+const DERIVED_DAMPING: &str = "modal_damping";
+
+/// The body of `params_with`: the parameter array, and where some are derived from the others,
+/// the hand-written function that fills them in.
+fn param_body(values: &[String], derived: bool, camel: &str) -> Vec<String> {
+    let mut lines = array_lines(values);
+    if derived {
+        lines[0] = format!("let p = {}", lines[0]);
+        let last = lines.len() - 1;
+        lines[last].push(';');
+        lines.push(format!("crate::modes::fill_derived::<{camel}>(p, phys)"));
+    }
+    lines
+}
+
 /// Renders the module `generated/src/kernels/<variant>.rs` for one IR document.
 pub fn render_variant(ir: &Ir) -> Result<String> {
     let origin = ir.origin();
@@ -761,9 +779,27 @@ pub fn render_variant(ir: &Ir) -> Result<String> {
     let mut param_values = Vec::new();
     let mut uses_phys = false;
     let mut n_extra = 0;
+    let mut derived = false;
     for (k, p) in ir.params.iter().enumerate() {
-        let (value, source) = match (&p.physical, &p.default) {
-            (Some(field), None) => {
+        let (value, source) = match (&p.physical, &p.default, &p.derived) {
+            (None, None, Some(kind)) if kind == DERIVED_DAMPING => {
+                derived = true;
+                uses_phys = true;
+                (
+                    "0.0".to_string(),
+                    "derived (`crate::modes::fill_derived`)".to_string(),
+                )
+            }
+            (None, None, Some(kind)) => {
+                return Err(Error::invalid(
+                    &origin,
+                    format!(
+                        "param {:?}: unknown derived kind {kind:?} (known: {DERIVED_DAMPING:?})",
+                        p.name
+                    ),
+                ))
+            }
+            (Some(field), None, None) => {
                 if !is_ident(field) {
                     return Err(Error::invalid(
                         &origin,
@@ -776,7 +812,7 @@ pub fn render_variant(ir: &Ir) -> Result<String> {
                 uses_phys = true;
                 (format!("phys.{field}"), format!("`Physical::{field}`"))
             }
-            (None, Some(v)) => {
+            (None, Some(v), None) => {
                 let lit = float_literal(v.0);
                 let value = format!("extra.get({n_extra}).copied().unwrap_or({lit})");
                 n_extra += 1;
@@ -786,9 +822,9 @@ pub fn render_variant(ir: &Ir) -> Result<String> {
                 return Err(Error::invalid(
                     &origin,
                     format!(
-                        "param {:?} must have exactly one of \"physical\" and \"default\"",
-                        p.name
-                    ),
+                    "param {:?} must have exactly one of \"physical\", \"default\" and \"derived\"",
+                    p.name
+                ),
                 ))
             }
         };
@@ -845,7 +881,7 @@ pub fn render_variant(ir: &Ir) -> Result<String> {
         removed: ir.removed.iter().map(|n| str_lit(n)).collect(),
         rigid: ir.rigid,
         small_angle: ir.small_angle,
-        param_body: array_lines(&param_values),
+        param_body: param_body(&param_values, derived, &camel_case(&ir.variant)),
         param_consts,
         functions,
         needs_sign,
@@ -864,6 +900,14 @@ struct ModEntry {
     removed: Vec<String>,
     rigid: bool,
     small_angle: bool,
+    /// Number of deformation coordinates.
+    nq: usize,
+    /// Its `layout::nq<n>` module.
+    group: String,
+    /// The associated types of its `crate::Layout`.
+    types: Vec<SizedType>,
+    /// The names of its `structure` outputs, as literals.
+    structure_names: Vec<String>,
 }
 
 #[derive(Serialize)]
@@ -879,13 +923,14 @@ struct ModelEntry {
     name_lit: String,
     description_lit: String,
     shape_lit: String,
+    coordinates: usize,
     full_lit: String,
     variants: Vec<String>,
     params: Vec<ParamEntry>,
 }
 
 #[derive(Serialize)]
-struct IndexFn {
+pub(crate) struct IndexFn {
     name: String,
     doc: String,
     consts: Vec<IndexConst>,
@@ -902,6 +947,7 @@ struct ModView {
     models: Vec<ModelEntry>,
     max_params: usize,
     index: Vec<IndexFn>,
+    layouts: Vec<layout::Group>,
 }
 
 /// The Rust expression of a parameter's role (`crate::Role`).
@@ -915,6 +961,18 @@ fn role_expr(origin: &str, p: &crate::ir::Param) -> Result<String> {
             format!("param {:?}: unknown mass kind {other:?}", p.name),
         )),
     };
+    if let Some(kind) = &p.derived {
+        if kind != DERIVED_DAMPING || p.mass.is_some() || p.inertia_of.is_some() {
+            return Err(Error::invalid(
+                origin,
+                format!(
+                    "param {:?}: a derived parameter of kind {kind:?} has no role",
+                    p.name
+                ),
+            ));
+        }
+        return Ok("crate::Role::ModalDamping".to_string());
+    }
     Ok(match (&p.mass, &p.inertia_of, &p.height_of) {
         (Some(k), None, None) => format!(
             "crate::Role::Mass {{ kind: crate::MassKind::{}, removable: {} }}",
@@ -944,6 +1002,15 @@ fn model_entries(sorted: &[&Ir]) -> Result<Vec<ModelEntry>> {
     for (name, irs) in by_model {
         let first = irs[0];
         for ir in &irs[1..] {
+            if ir.coordinates != first.coordinates {
+                return Err(Error::invalid(
+                    &ir.origin(),
+                    format!(
+                        "variant {:?} of model {name:?} has {} deformation coordinates, {:?} {}",
+                        ir.variant, ir.coordinates, first.variant, first.coordinates
+                    ),
+                ));
+            }
             if ir.params != first.params {
                 return Err(Error::invalid(
                     &ir.origin(),
@@ -978,6 +1045,7 @@ fn model_entries(sorted: &[&Ir]) -> Result<Vec<ModelEntry>> {
             name_lit: str_lit(name),
             description_lit: str_lit(&one_line(&first.model_description)),
             shape_lit: str_lit(&one_line(&first.shape)),
+            coordinates: first.coordinates,
             full_lit: str_lit(&full.variant),
             variants: irs.iter().map(|ir| str_lit(&ir.variant)).collect(),
             params,
@@ -986,8 +1054,9 @@ fn model_entries(sorted: &[&Ir]) -> Result<Vec<ModelEntry>> {
     Ok(out)
 }
 
-/// Named indices of the functions every variant exports with the same inputs and outputs.
-fn index_entries(sorted: &[&Ir]) -> Result<Vec<IndexFn>> {
+/// Named indices of the functions every variant of `sorted` exports with the same inputs and
+/// outputs.
+pub(crate) fn index_entries(sorted: &[&Ir]) -> Result<Vec<IndexFn>> {
     let Some(first) = sorted.first() else {
         return Ok(Vec::new());
     };
@@ -1087,21 +1156,36 @@ pub fn render_mod(irs: &[Ir]) -> Result<String> {
         variants_inline,
         models: model_entries(&sorted)?,
         max_params: sorted.iter().map(|ir| ir.params.len()).max().unwrap_or(0),
-        index: index_entries(&sorted)?,
+        // Today's indices: common to the variants of one coordinate (the layouts of several
+        // coordinates are in `layout::nq<n>::index`).
+        index: index_entries(
+            &sorted
+                .iter()
+                .copied()
+                .filter(|ir| ir.coordinates == 1)
+                .collect::<Vec<_>>(),
+        )?,
+        layouts: layout::groups(&sorted)?,
         variants: sorted
             .iter()
-            .map(|ir| ModEntry {
-                module: ir.variant.clone(),
-                camel: camel_case(&ir.variant),
-                name_lit: str_lit(&ir.variant),
-                title: one_line(&ir.title),
-                title_lit: str_lit(&one_line(&ir.title)),
-                model_lit: str_lit(&ir.model),
-                removed: ir.removed.iter().map(|n| str_lit(n)).collect(),
-                rigid: ir.rigid,
-                small_angle: ir.small_angle,
+            .map(|ir| -> Result<ModEntry> {
+                Ok(ModEntry {
+                    module: ir.variant.clone(),
+                    camel: camel_case(&ir.variant),
+                    name_lit: str_lit(&ir.variant),
+                    title: one_line(&ir.title),
+                    title_lit: str_lit(&one_line(&ir.title)),
+                    model_lit: str_lit(&ir.model),
+                    removed: ir.removed.iter().map(|n| str_lit(n)).collect(),
+                    rigid: ir.rigid,
+                    small_angle: ir.small_angle,
+                    nq: ir.coordinates,
+                    group: layout::group_name(ir.coordinates),
+                    types: layout::types(ir)?,
+                    structure_names: layout::structure_names(ir),
+                })
             })
-            .collect(),
+            .collect::<Result<_>>()?,
     };
     render_template(
         "mod.rs",

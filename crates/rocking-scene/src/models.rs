@@ -34,6 +34,7 @@ fn role(r: Role) -> String {
         ),
         Role::InertiaOf(m) => format!(" [inertia of {m}]"),
         Role::HeightOf(m) => format!(" [height of {m}, fraction of H]"),
+        Role::ModalDamping => " [modal damping, derived from zeta]".to_string(),
     }
 }
 

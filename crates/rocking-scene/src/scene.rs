@@ -536,7 +536,7 @@ fn scene_model(table: &Table, src: &Source) -> Result<&'static ModelInfo, SceneE
             ))
         }
     };
-    rocking::find_model(name).map_err(|_| {
+    let model = rocking::find_model(name).map_err(|_| {
         let names = rocking::model_names();
         let hint = match suggest(name, &names) {
             Some(s) => format!("; did you mean \"{s}\"?"),
@@ -550,7 +550,18 @@ fn scene_model(table: &Table, src: &Source) -> Result<&'static ModelInfo, SceneE
                 names.join("\", \"")
             ),
         )
-    })
+    })?;
+    if model.coordinates > 1 {
+        return Err(src.err(
+            "structure.model",
+            format_args!(
+                "`model` = \"{name}\" in [structure] has {} deformation coordinates; the solver \
+                 runs one-coordinate models so far",
+                model.coordinates
+            ),
+        ));
+    }
+    Ok(model)
 }
 
 /// A model's own parameters given in a scene, by name.

@@ -60,8 +60,8 @@ pub use results::{
 };
 pub use rocking_kernels::{ModelInfo, VariantInfo};
 pub use structure::{
-    find_model, model_names, plate_inertia, DampingConvention, Derived, Dimensionless, ParamError,
-    StaticUplift, Structure, PAPER_MODEL,
+    find_model, model_names, plate_inertia, DampingConvention, Derived, Dimensionless, Frequencies,
+    ParamError, StaticUplift, Structure, PAPER_MODEL,
 };
 pub use taylor::TaylorVariant;
 
@@ -277,6 +277,14 @@ pub fn run_variant(
     options: &Options,
 ) -> Result<Run, SimError> {
     match VariantInfo::find(name) {
+        Some(v) if v.model == structure.model().name && structure.model().coordinates > 1 => {
+            return Err(SimError::NoVariant(format!(
+                "variant `{name}` of model `{}` has {} deformation coordinates; the solver runs \
+                 one-coordinate models so far",
+                v.model,
+                structure.model().coordinates
+            )))
+        }
         Some(v) if v.model == structure.model().name => {}
         _ => {
             return Err(SimError::NoVariant(format!(

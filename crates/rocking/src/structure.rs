@@ -6,7 +6,10 @@ use std::f64::consts::FRAC_PI_2;
 use std::fmt;
 
 use rocking_kernels::kernels::{index::structure as st, MAX_PARAMS};
-use rocking_kernels::{with_variant, ModelInfo, ParamInfo, Physical, Role, Variant};
+use rocking_kernels::modes::Matrices;
+use rocking_kernels::{
+    with_variant, Layout, ModelInfo, OneCoordinate, ParamInfo, Physical, Role, Variant,
+};
 use serde::{Deserialize, Serialize};
 
 /// The model of a structure that names none: the paper's (cubic shape function).
@@ -93,6 +96,16 @@ pub struct Structure {
     n_extra: usize,
     /// p in 1/s when known (physical input, or dimensionless input with a length scale).
     p_per_second: Option<f64>,
+}
+
+/// The natural circular frequencies of a structure's column, ascending, in model units
+/// ([`Structure::frequencies`]).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Frequencies {
+    /// Fixed base: the roots of det(K − ω² M) = 0.
+    pub fixed_base: Vec<f64>,
+    /// Rocking about a corner (gravity and ground motion dropped, as in eqs (10)–(11)).
+    pub uplifted: Vec<f64>,
 }
 
 /// Quantities derived from a structure by its model's generated `structure` kernel, in model units.
@@ -189,7 +202,7 @@ fn check_extra(p: &'static ParamInfo, v: f64) -> Result<(), ParamError> {
             (0.0..=1.0).contains(&v),
             "a height 0 <= eta <= 1 (a fraction of the column height H)",
         ),
-        Role::Other => check(p.name, v, true, "a finite value"),
+        Role::Other | Role::ModalDamping => check(p.name, v, true, "a finite value"),
     }
 }
 
@@ -199,6 +212,17 @@ fn extra_values(
     model: &'static ModelInfo,
     given: &[(&str, f64)],
 ) -> Result<([f64; MAX_PARAMS], usize), ParamError> {
+    if model.coordinates > 1 {
+        return Err(ParamError {
+            parameter: "model",
+            value: model.coordinates as f64,
+            allowed: format!(
+                "model `{}` has {} deformation coordinates; the solver runs one-coordinate \
+                 models so far",
+                model.name, model.coordinates
+            ),
+        });
+    }
     if let Some((k, v)) = given
         .iter()
         .find(|(k, _)| model.extra_params().all(|p| p.name != *k))
@@ -246,7 +270,9 @@ fn core_field<'a>(ph: &'a mut Physical, name: &str) -> Option<&'a mut f64> {
     })
 }
 
-/// Runs `$body` with `$V` the model's full variant (its own kernels, nothing removed).
+/// Runs `$body` with `$V` the model's full variant (its own kernels, nothing removed), a model of
+/// one deformation coordinate (the others are refused by [`extra_values`], which every
+/// constructor calls first).
 macro_rules! with_full {
     ($model:expr, $V:ident => $body:expr) => {
         with_variant!($model.full, $V => $body).expect("a model's full variant is generated")
@@ -256,7 +282,10 @@ macro_rules! with_full {
 /// I_bc of a thin base plate, 4/3 m_b B², for `model` with these parameters (from its kernels):
 /// the default base inertia.
 pub fn plate_inertia(model: &'static ModelInfo, physical: &Physical) -> f64 {
-    with_full!(model, V => V::structure(&V::params_with(physical, &[]))[st::I_BC_PLATE])
+    with_variant!(model.full, V, L => {
+        V::structure_value(&V::structure(&V::params_with(physical, &[])), "i_bc_plate")
+    })
+    .expect("a model's full variant is generated")
 }
 
 impl Structure {
@@ -488,8 +517,27 @@ impl Structure {
         with_full!(self.model, V => self.derived_by::<V>())
     }
 
+    /// The natural circular frequencies of the column, ascending, in model units: fixed base
+    /// (det(K − ω² M) = 0) and uplifted (det(K − ω² (M − c cᵀ/J0)) = 0, the zero rigid-rocking
+    /// root excluded; eq (18) for one coordinate), from the full variant's kernels by
+    /// [`rocking_kernels::modes`]. Empty where a mass matrix is singular (no column mass to
+    /// weigh a coordinate).
+    pub fn frequencies(&self) -> Frequencies {
+        with_variant!(self.model.full, V, L => {
+            let m = Matrices::of::<V>(&self.params::<V>());
+            let omega = |modes: Option<rocking_kernels::modes::Modes>| {
+                modes.map(|m| m.omega).unwrap_or_default()
+            };
+            Frequencies {
+                fixed_base: omega(m.fixed_base()),
+                uplifted: omega(m.uplifted()),
+            }
+        })
+        .expect("a model's full variant is generated")
+    }
+
     /// Derived quantities from the `structure` kernel of the variant `V` of this model.
-    pub fn derived_by<V: Variant>(&self) -> Derived {
+    pub fn derived_by<V: OneCoordinate>(&self) -> Derived {
         Derived::from_kernel(&V::structure(&self.params::<V>()), self.physical.zeta)
     }
 

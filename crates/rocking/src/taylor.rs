@@ -7,7 +7,7 @@
 
 use rocking_kernels::kernels::{self, index::power as pwr};
 use rocking_kernels::taylor;
-use rocking_kernels::Variant;
+use rocking_kernels::OneCoordinate;
 use rocking_motion::GroundMotion;
 use rocking_ode::taylor::{TaylorEvents, TaylorSystem};
 
@@ -15,8 +15,9 @@ const RIGHT: f64 = 1.0;
 const LEFT: f64 = -1.0;
 
 /// A kernel variant's Taylor-mode kernels (see the generated `rocking_kernels::taylor::<variant>`
-/// for the inputs; series hold their first N coefficients).
-pub trait TaylorVariant: Variant {
+/// for the inputs; series hold their first N coefficients). The driver runs the variants of one
+/// deformation coordinate so far.
+pub trait TaylorVariant: OneCoordinate {
     /// Taylor coefficients of the rocking state `[θ, u, θ', u']` from `x[i][0]`.
     fn rocking_series<const N: usize>(
         x: &mut [[f64; N]; 4],

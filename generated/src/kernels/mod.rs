@@ -15,6 +15,32 @@
 )]
 pub mod added_mass;
 
+/// The full model on the first two cantilever modes: two deformation coordinates
+#[rustfmt::skip]
+#[allow(
+    clippy::all,
+    clippy::pedantic,
+    clippy::nursery,
+    unused_parens,
+    unused_variables,
+    non_snake_case,
+    missing_docs,
+)]
+pub mod cantilever_modes2;
+
+/// The full model on the first three cantilever modes: three deformation coordinates
+#[rustfmt::skip]
+#[allow(
+    clippy::all,
+    clippy::pedantic,
+    clippy::nursery,
+    unused_parens,
+    unused_variables,
+    non_snake_case,
+    missing_docs,
+)]
+pub mod cantilever_modes3;
+
 /// Example: the full model with the shape psi = 1 - cos(pi xi / 2H)
 #[rustfmt::skip]
 #[allow(
@@ -80,6 +106,32 @@ pub mod massless_column;
 )]
 pub mod point_mass;
 
+/// The full model on the basis eta^2, eta^3: two deformation coordinates
+#[rustfmt::skip]
+#[allow(
+    clippy::all,
+    clippy::pedantic,
+    clippy::nursery,
+    unused_parens,
+    unused_variables,
+    non_snake_case,
+    missing_docs,
+)]
+pub mod polynomial2;
+
+/// The full model on the basis eta^2, eta^3, eta^4: three deformation coordinates
+#[rustfmt::skip]
+#[allow(
+    clippy::all,
+    clippy::pedantic,
+    clippy::nursery,
+    unused_parens,
+    unused_variables,
+    non_snake_case,
+    missing_docs,
+)]
+pub mod polynomial3;
+
 /// Rigid column (u = 0): one degree of freedom, Housner's rocking block with these masses
 #[rustfmt::skip]
 #[allow(
@@ -107,22 +159,247 @@ pub mod rigid;
 pub mod small_angle;
 
 pub use added_mass::AddedMass;
+pub use cantilever_modes2::CantileverModes2;
+pub use cantilever_modes3::CantileverModes3;
 pub use cosine_shape::CosineShape;
 pub use full::Full;
 pub use massless_base::MasslessBase;
 pub use massless_column::MasslessColumn;
 pub use point_mass::PointMass;
+pub use polynomial2::Polynomial2;
+pub use polynomial3::Polynomial3;
 pub use rigid::Rigid;
 pub use small_angle::SmallAngle;
+
+/// The sizes of the kernel arrays of [`AddedMass`] (1 deformation coordinate).
+#[rustfmt::skip]
+impl crate::Layout for AddedMass {
+    const NQ: usize = 1;
+    const STRUCTURE: &'static [&'static str] = &["m_tilde", "k_tilde", "gamma_tilde", "omega_n", "damping_c", "modal_s", "omega_up", "zeta_up", "theta_cr", "u_cr", "e_ref", "r", "alpha", "p_freq", "i_bc_plate"];
+    type Q = [f64; 2];
+    type X = [f64; 4];
+    type Xc = [f64; 2];
+    type Xi = [f64; 3];
+    type MassMatrix = [f64; 3];
+    type Forcing = [f64; 2];
+    type ImpactVvel = [f64; 5];
+    type ImpactAdjex = [f64; 8];
+    type ImpactHousner = [f64; 4];
+    type Structure = [f64; 15];
+    type Shape = f64;
+    type StaticUplift = [f64; 5];
+}
+/// The sizes of the kernel arrays of [`CantileverModes2`] (2 deformation coordinates).
+#[rustfmt::skip]
+impl crate::Layout for CantileverModes2 {
+    const NQ: usize = 2;
+    const STRUCTURE: &'static [&'static str] = &["m_tilde_1_1", "m_tilde_1_2", "m_tilde_2_2", "k_tilde_1_1", "k_tilde_1_2", "k_tilde_2_2", "gamma_tilde_1", "gamma_tilde_2", "theta_cr", "e_ref", "r", "alpha", "p_freq", "i_bc_plate"];
+    type Q = [f64; 3];
+    type X = [f64; 6];
+    type Xc = [f64; 4];
+    type Xi = [f64; 5];
+    type MassMatrix = [f64; 6];
+    type Forcing = [f64; 3];
+    type ImpactVvel = [f64; 6];
+    type ImpactAdjex = [f64; 11];
+    type ImpactHousner = [f64; 5];
+    type Structure = [f64; 14];
+    type Shape = [f64; 2];
+    type StaticUplift = [f64; 6];
+}
+/// The sizes of the kernel arrays of [`CantileverModes3`] (3 deformation coordinates).
+#[rustfmt::skip]
+impl crate::Layout for CantileverModes3 {
+    const NQ: usize = 3;
+    const STRUCTURE: &'static [&'static str] = &["m_tilde_1_1", "m_tilde_1_2", "m_tilde_1_3", "m_tilde_2_2", "m_tilde_2_3", "m_tilde_3_3", "k_tilde_1_1", "k_tilde_1_2", "k_tilde_1_3", "k_tilde_2_2", "k_tilde_2_3", "k_tilde_3_3", "gamma_tilde_1", "gamma_tilde_2", "gamma_tilde_3", "theta_cr", "e_ref", "r", "alpha", "p_freq", "i_bc_plate"];
+    type Q = [f64; 4];
+    type X = [f64; 8];
+    type Xc = [f64; 6];
+    type Xi = [f64; 7];
+    type MassMatrix = [f64; 10];
+    type Forcing = [f64; 4];
+    type ImpactVvel = [f64; 7];
+    type ImpactAdjex = [f64; 14];
+    type ImpactHousner = [f64; 6];
+    type Structure = [f64; 21];
+    type Shape = [f64; 3];
+    type StaticUplift = [f64; 7];
+}
+/// The sizes of the kernel arrays of [`CosineShape`] (1 deformation coordinate).
+#[rustfmt::skip]
+impl crate::Layout for CosineShape {
+    const NQ: usize = 1;
+    const STRUCTURE: &'static [&'static str] = &["m_tilde", "k_tilde", "gamma_tilde", "omega_n", "damping_c", "modal_s", "omega_up", "zeta_up", "theta_cr", "u_cr", "e_ref", "r", "alpha", "p_freq", "i_bc_plate"];
+    type Q = [f64; 2];
+    type X = [f64; 4];
+    type Xc = [f64; 2];
+    type Xi = [f64; 3];
+    type MassMatrix = [f64; 3];
+    type Forcing = [f64; 2];
+    type ImpactVvel = [f64; 5];
+    type ImpactAdjex = [f64; 8];
+    type ImpactHousner = [f64; 4];
+    type Structure = [f64; 15];
+    type Shape = f64;
+    type StaticUplift = [f64; 5];
+}
+/// The sizes of the kernel arrays of [`Full`] (1 deformation coordinate).
+#[rustfmt::skip]
+impl crate::Layout for Full {
+    const NQ: usize = 1;
+    const STRUCTURE: &'static [&'static str] = &["m_tilde", "k_tilde", "gamma_tilde", "omega_n", "damping_c", "modal_s", "omega_up", "zeta_up", "theta_cr", "u_cr", "e_ref", "r", "alpha", "p_freq", "i_bc_plate"];
+    type Q = [f64; 2];
+    type X = [f64; 4];
+    type Xc = [f64; 2];
+    type Xi = [f64; 3];
+    type MassMatrix = [f64; 3];
+    type Forcing = [f64; 2];
+    type ImpactVvel = [f64; 5];
+    type ImpactAdjex = [f64; 8];
+    type ImpactHousner = [f64; 4];
+    type Structure = [f64; 15];
+    type Shape = f64;
+    type StaticUplift = [f64; 5];
+}
+/// The sizes of the kernel arrays of [`MasslessBase`] (1 deformation coordinate).
+#[rustfmt::skip]
+impl crate::Layout for MasslessBase {
+    const NQ: usize = 1;
+    const STRUCTURE: &'static [&'static str] = &["m_tilde", "k_tilde", "gamma_tilde", "omega_n", "damping_c", "modal_s", "omega_up", "zeta_up", "theta_cr", "u_cr", "e_ref", "r", "alpha", "p_freq", "i_bc_plate"];
+    type Q = [f64; 2];
+    type X = [f64; 4];
+    type Xc = [f64; 2];
+    type Xi = [f64; 3];
+    type MassMatrix = [f64; 3];
+    type Forcing = [f64; 2];
+    type ImpactVvel = [f64; 5];
+    type ImpactAdjex = [f64; 8];
+    type ImpactHousner = [f64; 4];
+    type Structure = [f64; 15];
+    type Shape = f64;
+    type StaticUplift = [f64; 5];
+}
+/// The sizes of the kernel arrays of [`MasslessColumn`] (1 deformation coordinate).
+#[rustfmt::skip]
+impl crate::Layout for MasslessColumn {
+    const NQ: usize = 1;
+    const STRUCTURE: &'static [&'static str] = &["m_tilde", "k_tilde", "gamma_tilde", "omega_n", "damping_c", "modal_s", "omega_up", "zeta_up", "theta_cr", "u_cr", "e_ref", "r", "alpha", "p_freq", "i_bc_plate"];
+    type Q = [f64; 2];
+    type X = [f64; 4];
+    type Xc = [f64; 2];
+    type Xi = [f64; 3];
+    type MassMatrix = [f64; 3];
+    type Forcing = [f64; 2];
+    type ImpactVvel = [f64; 5];
+    type ImpactAdjex = [f64; 8];
+    type ImpactHousner = [f64; 4];
+    type Structure = [f64; 15];
+    type Shape = f64;
+    type StaticUplift = [f64; 5];
+}
+/// The sizes of the kernel arrays of [`PointMass`] (1 deformation coordinate).
+#[rustfmt::skip]
+impl crate::Layout for PointMass {
+    const NQ: usize = 1;
+    const STRUCTURE: &'static [&'static str] = &["m_tilde", "k_tilde", "gamma_tilde", "omega_n", "damping_c", "modal_s", "omega_up", "zeta_up", "theta_cr", "u_cr", "e_ref", "r", "alpha", "p_freq", "i_bc_plate"];
+    type Q = [f64; 2];
+    type X = [f64; 4];
+    type Xc = [f64; 2];
+    type Xi = [f64; 3];
+    type MassMatrix = [f64; 3];
+    type Forcing = [f64; 2];
+    type ImpactVvel = [f64; 5];
+    type ImpactAdjex = [f64; 8];
+    type ImpactHousner = [f64; 4];
+    type Structure = [f64; 15];
+    type Shape = f64;
+    type StaticUplift = [f64; 5];
+}
+/// The sizes of the kernel arrays of [`Polynomial2`] (2 deformation coordinates).
+#[rustfmt::skip]
+impl crate::Layout for Polynomial2 {
+    const NQ: usize = 2;
+    const STRUCTURE: &'static [&'static str] = &["m_tilde_1_1", "m_tilde_1_2", "m_tilde_2_2", "k_tilde_1_1", "k_tilde_1_2", "k_tilde_2_2", "gamma_tilde_1", "gamma_tilde_2", "theta_cr", "e_ref", "r", "alpha", "p_freq", "i_bc_plate"];
+    type Q = [f64; 3];
+    type X = [f64; 6];
+    type Xc = [f64; 4];
+    type Xi = [f64; 5];
+    type MassMatrix = [f64; 6];
+    type Forcing = [f64; 3];
+    type ImpactVvel = [f64; 6];
+    type ImpactAdjex = [f64; 11];
+    type ImpactHousner = [f64; 5];
+    type Structure = [f64; 14];
+    type Shape = [f64; 2];
+    type StaticUplift = [f64; 6];
+}
+/// The sizes of the kernel arrays of [`Polynomial3`] (3 deformation coordinates).
+#[rustfmt::skip]
+impl crate::Layout for Polynomial3 {
+    const NQ: usize = 3;
+    const STRUCTURE: &'static [&'static str] = &["m_tilde_1_1", "m_tilde_1_2", "m_tilde_1_3", "m_tilde_2_2", "m_tilde_2_3", "m_tilde_3_3", "k_tilde_1_1", "k_tilde_1_2", "k_tilde_1_3", "k_tilde_2_2", "k_tilde_2_3", "k_tilde_3_3", "gamma_tilde_1", "gamma_tilde_2", "gamma_tilde_3", "theta_cr", "e_ref", "r", "alpha", "p_freq", "i_bc_plate"];
+    type Q = [f64; 4];
+    type X = [f64; 8];
+    type Xc = [f64; 6];
+    type Xi = [f64; 7];
+    type MassMatrix = [f64; 10];
+    type Forcing = [f64; 4];
+    type ImpactVvel = [f64; 7];
+    type ImpactAdjex = [f64; 14];
+    type ImpactHousner = [f64; 6];
+    type Structure = [f64; 21];
+    type Shape = [f64; 3];
+    type StaticUplift = [f64; 7];
+}
+/// The sizes of the kernel arrays of [`Rigid`] (1 deformation coordinate).
+#[rustfmt::skip]
+impl crate::Layout for Rigid {
+    const NQ: usize = 1;
+    const STRUCTURE: &'static [&'static str] = &["m_tilde", "k_tilde", "gamma_tilde", "omega_n", "damping_c", "modal_s", "omega_up", "zeta_up", "theta_cr", "u_cr", "e_ref", "r", "alpha", "p_freq", "i_bc_plate"];
+    type Q = [f64; 2];
+    type X = [f64; 4];
+    type Xc = [f64; 2];
+    type Xi = [f64; 3];
+    type MassMatrix = [f64; 3];
+    type Forcing = [f64; 2];
+    type ImpactVvel = [f64; 5];
+    type ImpactAdjex = [f64; 8];
+    type ImpactHousner = [f64; 4];
+    type Structure = [f64; 15];
+    type Shape = f64;
+    type StaticUplift = [f64; 5];
+}
+/// The sizes of the kernel arrays of [`SmallAngle`] (1 deformation coordinate).
+#[rustfmt::skip]
+impl crate::Layout for SmallAngle {
+    const NQ: usize = 1;
+    const STRUCTURE: &'static [&'static str] = &["m_tilde", "k_tilde", "gamma_tilde", "omega_n", "damping_c", "modal_s", "omega_up", "zeta_up", "theta_cr", "u_cr", "e_ref", "r", "alpha", "p_freq", "i_bc_plate"];
+    type Q = [f64; 2];
+    type X = [f64; 4];
+    type Xc = [f64; 2];
+    type Xi = [f64; 3];
+    type MassMatrix = [f64; 3];
+    type Forcing = [f64; 2];
+    type ImpactVvel = [f64; 5];
+    type ImpactAdjex = [f64; 8];
+    type ImpactHousner = [f64; 4];
+    type Structure = [f64; 15];
+    type Shape = f64;
+    type StaticUplift = [f64; 5];
+}
 
 /// Every variant as `(name, title)`, sorted by name.
 pub const VARIANTS: &[(&str, &str)] = &[
     (added_mass::NAME, added_mass::TITLE),
+    (cantilever_modes2::NAME, cantilever_modes2::TITLE),
+    (cantilever_modes3::NAME, cantilever_modes3::TITLE),
     (cosine_shape::NAME, cosine_shape::TITLE),
     (full::NAME, full::TITLE),
     (massless_base::NAME, massless_base::TITLE),
     (massless_column::NAME, massless_column::TITLE),
     (point_mass::NAME, point_mass::TITLE),
+    (polynomial2::NAME, polynomial2::TITLE),
+    (polynomial3::NAME, polynomial3::TITLE),
     (rigid::NAME, rigid::TITLE),
     (small_angle::NAME, small_angle::TITLE),
 ];
@@ -135,6 +412,22 @@ pub const VARIANT_INFO: &[crate::VariantInfo] = &[
         name: "added_mass",
         model: "cubic_platform",
         title: "Example: the full model plus a lumped mass m_a at height eta_a H",
+        removed: &[],
+        rigid: false,
+        small_angle: false,
+    },
+    crate::VariantInfo {
+        name: "cantilever_modes2",
+        model: "cantilever_modes2",
+        title: "The full model on the first two cantilever modes: two deformation coordinates",
+        removed: &[],
+        rigid: false,
+        small_angle: false,
+    },
+    crate::VariantInfo {
+        name: "cantilever_modes3",
+        model: "cantilever_modes3",
+        title: "The full model on the first three cantilever modes: three deformation coordinates",
         removed: &[],
         rigid: false,
         small_angle: false,
@@ -180,6 +473,22 @@ pub const VARIANT_INFO: &[crate::VariantInfo] = &[
         small_angle: false,
     },
     crate::VariantInfo {
+        name: "polynomial2",
+        model: "polynomial2",
+        title: "The full model on the basis eta^2, eta^3: two deformation coordinates",
+        removed: &[],
+        rigid: false,
+        small_angle: false,
+    },
+    crate::VariantInfo {
+        name: "polynomial3",
+        model: "polynomial3",
+        title: "The full model on the basis eta^2, eta^3, eta^4: three deformation coordinates",
+        removed: &[],
+        rigid: false,
+        small_angle: false,
+    },
+    crate::VariantInfo {
         name: "rigid",
         model: "cubic",
         title: "Rigid column (u = 0): one degree of freedom, Housner's rocking block with these masses",
@@ -203,9 +512,192 @@ pub const VARIANT_INFO: &[crate::VariantInfo] = &[
 #[rustfmt::skip]
 pub const MODELS: &[crate::ModelInfo] = &[
     crate::ModelInfo {
+        name: "cantilever_modes2",
+        description: "The paper's masses, two deformation coordinates: the first two cantilever modes",
+        shape: "psi_1: cantilever mode 1 (beta = 1.87510406871); psi_2: cantilever mode 2 (beta = 4.69409113297)",
+        coordinates: 2,
+        full: "cantilever_modes2",
+        variants: &["cantilever_modes2"],
+        params: &[
+            crate::ParamInfo {
+                name: "h",
+                doc: "column height H",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "b",
+                doc: "half-width B of the base",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "ei",
+                doc: "bending stiffness EI of the column",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "m",
+                doc: "top mass m",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Lumped, removable: false },
+            },
+            crate::ParamInfo {
+                name: "m_c",
+                doc: "total column mass m_c",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Column, removable: true },
+            },
+            crate::ParamInfo {
+                name: "m_b",
+                doc: "base mass m_b",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Base, removable: true },
+            },
+            crate::ParamInfo {
+                name: "i_bc",
+                doc: "base inertia about a corner, I_bc = I_b + m_b B^2",
+                default: None,
+                role: crate::Role::InertiaOf("m_b"),
+            },
+            crate::ParamInfo {
+                name: "zeta",
+                doc: "fixed-base damping ratio",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "g",
+                doc: "gravitational acceleration",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "c_1_1",
+                doc: "modal damping matrix C, row 1, column 1 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_1_2",
+                doc: "modal damping matrix C, row 1, column 2 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_2_2",
+                doc: "modal damping matrix C, row 2, column 2 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+        ],
+    },
+    crate::ModelInfo {
+        name: "cantilever_modes3",
+        description: "The paper's masses, three deformation coordinates: the first three cantilever modes",
+        shape: "psi_1: cantilever mode 1 (beta = 1.87510406871); psi_2: cantilever mode 2 (beta = 4.69409113297); psi_3: cantilever mode 3 (beta = 7.85475743824)",
+        coordinates: 3,
+        full: "cantilever_modes3",
+        variants: &["cantilever_modes3"],
+        params: &[
+            crate::ParamInfo {
+                name: "h",
+                doc: "column height H",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "b",
+                doc: "half-width B of the base",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "ei",
+                doc: "bending stiffness EI of the column",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "m",
+                doc: "top mass m",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Lumped, removable: false },
+            },
+            crate::ParamInfo {
+                name: "m_c",
+                doc: "total column mass m_c",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Column, removable: true },
+            },
+            crate::ParamInfo {
+                name: "m_b",
+                doc: "base mass m_b",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Base, removable: true },
+            },
+            crate::ParamInfo {
+                name: "i_bc",
+                doc: "base inertia about a corner, I_bc = I_b + m_b B^2",
+                default: None,
+                role: crate::Role::InertiaOf("m_b"),
+            },
+            crate::ParamInfo {
+                name: "zeta",
+                doc: "fixed-base damping ratio",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "g",
+                doc: "gravitational acceleration",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "c_1_1",
+                doc: "modal damping matrix C, row 1, column 1 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_1_2",
+                doc: "modal damping matrix C, row 1, column 2 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_1_3",
+                doc: "modal damping matrix C, row 1, column 3 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_2_2",
+                doc: "modal damping matrix C, row 2, column 2 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_2_3",
+                doc: "modal damping matrix C, row 2, column 3 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_3_3",
+                doc: "modal damping matrix C, row 3, column 3 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+        ],
+    },
+    crate::ModelInfo {
         name: "cosine",
         description: "Same masses, shape psi = 1 - cos(pi xi / 2H)",
         shape: "psi = 1 - cos(pi eta / 2)",
+        coordinates: 1,
         full: "cosine_shape",
         variants: &["cosine_shape"],
         params: &[
@@ -269,6 +761,7 @@ pub const MODELS: &[crate::ModelInfo] = &[
         name: "cubic",
         description: "Elastic cantilever with distributed mass, a top mass and a rigid base (paper Fig. 1)",
         shape: "psi = 3/2 eta^2 - 1/2 eta^3 (paper eq 1)",
+        coordinates: 1,
         full: "full",
         variants: &["full", "massless_base", "massless_column", "point_mass", "rigid", "small_angle"],
         params: &[
@@ -332,6 +825,7 @@ pub const MODELS: &[crate::ModelInfo] = &[
         name: "cubic_platform",
         description: "The paper's model plus a lumped mass m_a at height eta_a H (e.g. a platform)",
         shape: "psi = 3/2 eta^2 - 1/2 eta^3 (paper eq 1)",
+        coordinates: 1,
         full: "added_mass",
         variants: &["added_mass"],
         params: &[
@@ -403,13 +897,196 @@ pub const MODELS: &[crate::ModelInfo] = &[
             },
         ],
     },
+    crate::ModelInfo {
+        name: "polynomial2",
+        description: "The paper's masses, two deformation coordinates: a polynomial basis",
+        shape: "psi_1: eta^2; psi_2: eta^3",
+        coordinates: 2,
+        full: "polynomial2",
+        variants: &["polynomial2"],
+        params: &[
+            crate::ParamInfo {
+                name: "h",
+                doc: "column height H",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "b",
+                doc: "half-width B of the base",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "ei",
+                doc: "bending stiffness EI of the column",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "m",
+                doc: "top mass m",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Lumped, removable: false },
+            },
+            crate::ParamInfo {
+                name: "m_c",
+                doc: "total column mass m_c",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Column, removable: true },
+            },
+            crate::ParamInfo {
+                name: "m_b",
+                doc: "base mass m_b",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Base, removable: true },
+            },
+            crate::ParamInfo {
+                name: "i_bc",
+                doc: "base inertia about a corner, I_bc = I_b + m_b B^2",
+                default: None,
+                role: crate::Role::InertiaOf("m_b"),
+            },
+            crate::ParamInfo {
+                name: "zeta",
+                doc: "fixed-base damping ratio",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "g",
+                doc: "gravitational acceleration",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "c_1_1",
+                doc: "modal damping matrix C, row 1, column 1 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_1_2",
+                doc: "modal damping matrix C, row 1, column 2 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_2_2",
+                doc: "modal damping matrix C, row 2, column 2 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+        ],
+    },
+    crate::ModelInfo {
+        name: "polynomial3",
+        description: "The paper's masses, three deformation coordinates: a polynomial basis",
+        shape: "psi_1: eta^2; psi_2: eta^3; psi_3: eta^4",
+        coordinates: 3,
+        full: "polynomial3",
+        variants: &["polynomial3"],
+        params: &[
+            crate::ParamInfo {
+                name: "h",
+                doc: "column height H",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "b",
+                doc: "half-width B of the base",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "ei",
+                doc: "bending stiffness EI of the column",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "m",
+                doc: "top mass m",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Lumped, removable: false },
+            },
+            crate::ParamInfo {
+                name: "m_c",
+                doc: "total column mass m_c",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Column, removable: true },
+            },
+            crate::ParamInfo {
+                name: "m_b",
+                doc: "base mass m_b",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Base, removable: true },
+            },
+            crate::ParamInfo {
+                name: "i_bc",
+                doc: "base inertia about a corner, I_bc = I_b + m_b B^2",
+                default: None,
+                role: crate::Role::InertiaOf("m_b"),
+            },
+            crate::ParamInfo {
+                name: "zeta",
+                doc: "fixed-base damping ratio",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "g",
+                doc: "gravitational acceleration",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "c_1_1",
+                doc: "modal damping matrix C, row 1, column 1 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_1_2",
+                doc: "modal damping matrix C, row 1, column 2 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_1_3",
+                doc: "modal damping matrix C, row 1, column 3 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_2_2",
+                doc: "modal damping matrix C, row 2, column 2 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_2_3",
+                doc: "modal damping matrix C, row 2, column 3 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_3_3",
+                doc: "modal damping matrix C, row 3, column 3 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+        ],
+    },
 ];
 
 /// The length of the longest parameter vector of any model.
-pub const MAX_PARAMS: usize = 11;
+pub const MAX_PARAMS: usize = 15;
 
-/// Named indices of the inputs and outputs of the functions every variant exports alike, for
-/// code that is generic over [`crate::Variant`].
+/// Named indices of the inputs and outputs of the functions every variant of one deformation
+/// coordinate exports alike, for code that is generic over [`crate::OneCoordinate`] (the
+/// variants of n coordinates: `layout::nq<n>::index`).
 #[rustfmt::skip]
 pub mod index {
 
@@ -732,12 +1409,1078 @@ pub mod index {
     }
 }
 
+/// The sizes of the kernels' arrays for each number n of deformation coordinates a variant has
+/// (the lengths of [`crate::Layout`]'s types), as constants for const-generic code, with the
+/// named indices common to the variants of n coordinates.
+#[rustfmt::skip]
+pub mod layout {
+
+    /// 1 deformation coordinate.
+    pub mod nq1 {
+        /// The number of deformation coordinates.
+        pub const NQ: usize = 1;
+        /// The length of [`crate::Layout::Q`].
+        pub const Q: usize = 2;
+        /// The length of [`crate::Layout::X`].
+        pub const X: usize = 4;
+        /// The length of [`crate::Layout::Xc`].
+        pub const XC: usize = 2;
+        /// The length of [`crate::Layout::Xi`].
+        pub const XI: usize = 3;
+        /// The length of [`crate::Layout::MassMatrix`].
+        pub const MASS_MATRIX: usize = 3;
+        /// The length of [`crate::Layout::Forcing`].
+        pub const FORCING: usize = 2;
+        /// The length of [`crate::Layout::ImpactVvel`].
+        pub const IMPACT_VVEL: usize = 5;
+        /// The length of [`crate::Layout::ImpactAdjex`].
+        pub const IMPACT_ADJEX: usize = 8;
+        /// The length of [`crate::Layout::ImpactHousner`].
+        pub const IMPACT_HOUSNER: usize = 4;
+        /// The length of [`crate::Layout::Structure`].
+        pub const STRUCTURE: usize = 15;
+        /// The length of [`crate::Layout::Shape`].
+        pub const SHAPE: usize = 1;
+        /// The length of [`crate::Layout::StaticUplift`].
+        pub const STATIC_UPLIFT: usize = 5;
+        pub use crate::kernels::index;
+    }
+
+    /// 2 deformation coordinates.
+    pub mod nq2 {
+        /// The number of deformation coordinates.
+        pub const NQ: usize = 2;
+        /// The length of [`crate::Layout::Q`].
+        pub const Q: usize = 3;
+        /// The length of [`crate::Layout::X`].
+        pub const X: usize = 6;
+        /// The length of [`crate::Layout::Xc`].
+        pub const XC: usize = 4;
+        /// The length of [`crate::Layout::Xi`].
+        pub const XI: usize = 5;
+        /// The length of [`crate::Layout::MassMatrix`].
+        pub const MASS_MATRIX: usize = 6;
+        /// The length of [`crate::Layout::Forcing`].
+        pub const FORCING: usize = 3;
+        /// The length of [`crate::Layout::ImpactVvel`].
+        pub const IMPACT_VVEL: usize = 6;
+        /// The length of [`crate::Layout::ImpactAdjex`].
+        pub const IMPACT_ADJEX: usize = 11;
+        /// The length of [`crate::Layout::ImpactHousner`].
+        pub const IMPACT_HOUSNER: usize = 5;
+        /// The length of [`crate::Layout::Structure`].
+        pub const STRUCTURE: usize = 14;
+        /// The length of [`crate::Layout::Shape`].
+        pub const SHAPE: usize = 2;
+        /// The length of [`crate::Layout::StaticUplift`].
+        pub const STATIC_UPLIFT: usize = 6;
+
+        /// Named indices of the inputs and outputs of the functions every variant of 2
+        /// coordinates exports alike.
+        pub mod index {
+
+            /// Indices of the output `m` of `mass_matrix` (and of its inputs).
+            pub mod mass_matrix {
+                /// Index of `m_tt`.
+                pub const M_TT: usize = 0;
+                /// Index of `m_tu_1`.
+                pub const M_TU_1: usize = 1;
+                /// Index of `m_tu_2`.
+                pub const M_TU_2: usize = 2;
+                /// Index of `m_uu_1_1`.
+                pub const M_UU_1_1: usize = 3;
+                /// Index of `m_uu_1_2`.
+                pub const M_UU_1_2: usize = 4;
+                /// Index of `m_uu_2_2`.
+                pub const M_UU_2_2: usize = 5;
+
+                /// Indices of the elements of input `q`.
+                pub mod q {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                }
+            }
+
+            /// Indices of the output `f` of `forcing` (and of its inputs).
+            pub mod forcing {
+                /// Index of `f_theta`.
+                pub const F_THETA: usize = 0;
+                /// Index of `f_u_1`.
+                pub const F_U_1: usize = 1;
+                /// Index of `f_u_2`.
+                pub const F_U_2: usize = 2;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 3;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 4;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 5;
+                }
+            }
+
+            /// Indices of the output `dx` of `rocking_rhs` (and of its inputs).
+            pub mod rocking_rhs {
+                /// Index of `theta_dot`.
+                pub const THETA_DOT: usize = 0;
+                /// Index of `u_dot_1`.
+                pub const U_DOT_1: usize = 1;
+                /// Index of `u_dot_2`.
+                pub const U_DOT_2: usize = 2;
+                /// Index of `theta_ddot`.
+                pub const THETA_DDOT: usize = 3;
+                /// Index of `u_ddot_1`.
+                pub const U_DDOT_1: usize = 4;
+                /// Index of `u_ddot_2`.
+                pub const U_DDOT_2: usize = 5;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 3;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 4;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 5;
+                }
+            }
+
+            /// Indices of the output `dxc` of `contact_rhs` (and of its inputs).
+            pub mod contact_rhs {
+                /// Index of `u_dot_1`.
+                pub const U_DOT_1: usize = 0;
+                /// Index of `u_dot_2`.
+                pub const U_DOT_2: usize = 1;
+                /// Index of `u_ddot_1`.
+                pub const U_DDOT_1: usize = 2;
+                /// Index of `u_ddot_2`.
+                pub const U_DDOT_2: usize = 3;
+
+                /// Indices of the elements of input `xc`.
+                pub mod xc {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 2;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 3;
+                }
+            }
+
+            /// Indices of the output `f_s` of `uplift` (and of its inputs).
+            pub mod uplift {
+                /// Index of `f_s`.
+                pub const F_S: usize = 0;
+
+                /// Indices of the elements of input `xc`.
+                pub mod xc {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 2;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 3;
+                }
+            }
+
+            /// Indices of the output `e` of `energy` (and of its inputs).
+            pub mod energy {
+                /// Index of `kinetic`.
+                pub const KINETIC: usize = 0;
+                /// Index of `gravity`.
+                pub const GRAVITY: usize = 1;
+                /// Index of `strain`.
+                pub const STRAIN: usize = 2;
+                /// Index of `momentum_x`.
+                pub const MOMENTUM_X: usize = 3;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 3;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 4;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 5;
+                }
+            }
+
+            /// Indices of the output `w` of `power` (and of its inputs).
+            pub mod power {
+                /// Index of `ground`.
+                pub const GROUND: usize = 0;
+                /// Index of `damping`.
+                pub const DAMPING: usize = 1;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 3;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 4;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 5;
+                }
+            }
+
+            /// Indices of the output `vvel` of `impact_vvel` (and of its inputs).
+            pub mod impact_vvel {
+                /// Index of `rock`.
+                pub const ROCK: usize = 0;
+                /// Index of `theta_dot`.
+                pub const THETA_DOT: usize = 1;
+                /// Index of `u_dot_1`.
+                pub const U_DOT_1: usize = 2;
+                /// Index of `u_dot_2`.
+                pub const U_DOT_2: usize = 3;
+                /// Index of `energy_after`.
+                pub const ENERGY_AFTER: usize = 4;
+                /// Index of `energy_before`.
+                pub const ENERGY_BEFORE: usize = 5;
+
+                /// Indices of the elements of input `xi`.
+                pub mod xi {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 2;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 3;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 4;
+                }
+            }
+
+            /// Indices of the output `adjex` of `impact_adjex` (and of its inputs).
+            pub mod impact_adjex {
+                /// Index of `u_dot_contact_1`.
+                pub const U_DOT_CONTACT_1: usize = 0;
+                /// Index of `u_dot_contact_2`.
+                pub const U_DOT_CONTACT_2: usize = 1;
+                /// Index of `energy_contact`.
+                pub const ENERGY_CONTACT: usize = 2;
+                /// Index of `theta_dot_rocking`.
+                pub const THETA_DOT_ROCKING: usize = 3;
+                /// Index of `u_dot_rocking_1`.
+                pub const U_DOT_ROCKING_1: usize = 4;
+                /// Index of `u_dot_rocking_2`.
+                pub const U_DOT_ROCKING_2: usize = 5;
+                /// Index of `energy_rocking`.
+                pub const ENERGY_ROCKING: usize = 6;
+                /// Index of `energy_before`.
+                pub const ENERGY_BEFORE: usize = 7;
+                /// Index of `u_dot_momentum_1`.
+                pub const U_DOT_MOMENTUM_1: usize = 8;
+                /// Index of `u_dot_momentum_2`.
+                pub const U_DOT_MOMENTUM_2: usize = 9;
+                /// Index of `energy_momentum`.
+                pub const ENERGY_MOMENTUM: usize = 10;
+
+                /// Indices of the elements of input `xi`.
+                pub mod xi {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 2;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 3;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 4;
+                }
+            }
+
+            /// Indices of the output `housner` of `impact_housner` (and of its inputs).
+            pub mod impact_housner {
+                /// Index of `theta_dot`.
+                pub const THETA_DOT: usize = 0;
+                /// Index of `u_dot_1`.
+                pub const U_DOT_1: usize = 1;
+                /// Index of `u_dot_2`.
+                pub const U_DOT_2: usize = 2;
+                /// Index of `energy_after`.
+                pub const ENERGY_AFTER: usize = 3;
+                /// Index of `energy_before`.
+                pub const ENERGY_BEFORE: usize = 4;
+
+                /// Indices of the elements of input `xi`.
+                pub mod xi {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 2;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 3;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 4;
+                }
+            }
+
+            /// Indices of the output `st` of `structure` (and of its inputs).
+            pub mod structure {
+                /// Index of `m_tilde_1_1`.
+                pub const M_TILDE_1_1: usize = 0;
+                /// Index of `m_tilde_1_2`.
+                pub const M_TILDE_1_2: usize = 1;
+                /// Index of `m_tilde_2_2`.
+                pub const M_TILDE_2_2: usize = 2;
+                /// Index of `k_tilde_1_1`.
+                pub const K_TILDE_1_1: usize = 3;
+                /// Index of `k_tilde_1_2`.
+                pub const K_TILDE_1_2: usize = 4;
+                /// Index of `k_tilde_2_2`.
+                pub const K_TILDE_2_2: usize = 5;
+                /// Index of `gamma_tilde_1`.
+                pub const GAMMA_TILDE_1: usize = 6;
+                /// Index of `gamma_tilde_2`.
+                pub const GAMMA_TILDE_2: usize = 7;
+                /// Index of `theta_cr`.
+                pub const THETA_CR: usize = 8;
+                /// Index of `e_ref`.
+                pub const E_REF: usize = 9;
+                /// Index of `r`.
+                pub const R: usize = 10;
+                /// Index of `alpha`.
+                pub const ALPHA: usize = 11;
+                /// Index of `p_freq`.
+                pub const P_FREQ: usize = 12;
+                /// Index of `i_bc_plate`.
+                pub const I_BC_PLATE: usize = 13;
+            }
+
+            /// Indices of the output `psi` of `shape` (and of its inputs).
+            pub mod shape {
+                /// Index of `psi_1`.
+                pub const PSI_1: usize = 0;
+                /// Index of `psi_2`.
+                pub const PSI_2: usize = 1;
+            }
+
+            /// Indices of the output `fc` of `forces_contact` (and of its inputs).
+            pub mod forces_contact {
+                /// Index of `moment`.
+                pub const MOMENT: usize = 0;
+                /// Index of `shear`.
+                pub const SHEAR: usize = 1;
+                /// Index of `axial`.
+                pub const AXIAL: usize = 2;
+                /// Index of `moment_elastic`.
+                pub const MOMENT_ELASTIC: usize = 3;
+                /// Index of `reaction_h`.
+                pub const REACTION_H: usize = 4;
+                /// Index of `reaction_v`.
+                pub const REACTION_V: usize = 5;
+
+                /// Indices of the elements of input `xc`.
+                pub mod xc {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 2;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 3;
+                }
+            }
+
+            /// Indices of the output `fr` of `forces_rocking` (and of its inputs).
+            pub mod forces_rocking {
+                /// Index of `moment`.
+                pub const MOMENT: usize = 0;
+                /// Index of `shear`.
+                pub const SHEAR: usize = 1;
+                /// Index of `axial`.
+                pub const AXIAL: usize = 2;
+                /// Index of `moment_elastic`.
+                pub const MOMENT_ELASTIC: usize = 3;
+                /// Index of `reaction_h`.
+                pub const REACTION_H: usize = 4;
+                /// Index of `reaction_v`.
+                pub const REACTION_V: usize = 5;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 3;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 4;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 5;
+                }
+            }
+
+            /// Indices of the output `up` of `static_uplift` (and of its inputs).
+            pub mod static_uplift {
+                /// Index of `weight`.
+                pub const WEIGHT: usize = 0;
+                /// Index of `moment_uplift`.
+                pub const MOMENT_UPLIFT: usize = 1;
+                /// Index of `ug_uplift`.
+                pub const UG_UPLIFT: usize = 2;
+                /// Index of `u_uplift_1`.
+                pub const U_UPLIFT_1: usize = 3;
+                /// Index of `u_uplift_2`.
+                pub const U_UPLIFT_2: usize = 4;
+                /// Index of `moment_elastic_uplift`.
+                pub const MOMENT_ELASTIC_UPLIFT: usize = 5;
+            }
+        }
+    }
+
+    /// 3 deformation coordinates.
+    pub mod nq3 {
+        /// The number of deformation coordinates.
+        pub const NQ: usize = 3;
+        /// The length of [`crate::Layout::Q`].
+        pub const Q: usize = 4;
+        /// The length of [`crate::Layout::X`].
+        pub const X: usize = 8;
+        /// The length of [`crate::Layout::Xc`].
+        pub const XC: usize = 6;
+        /// The length of [`crate::Layout::Xi`].
+        pub const XI: usize = 7;
+        /// The length of [`crate::Layout::MassMatrix`].
+        pub const MASS_MATRIX: usize = 10;
+        /// The length of [`crate::Layout::Forcing`].
+        pub const FORCING: usize = 4;
+        /// The length of [`crate::Layout::ImpactVvel`].
+        pub const IMPACT_VVEL: usize = 7;
+        /// The length of [`crate::Layout::ImpactAdjex`].
+        pub const IMPACT_ADJEX: usize = 14;
+        /// The length of [`crate::Layout::ImpactHousner`].
+        pub const IMPACT_HOUSNER: usize = 6;
+        /// The length of [`crate::Layout::Structure`].
+        pub const STRUCTURE: usize = 21;
+        /// The length of [`crate::Layout::Shape`].
+        pub const SHAPE: usize = 3;
+        /// The length of [`crate::Layout::StaticUplift`].
+        pub const STATIC_UPLIFT: usize = 7;
+
+        /// Named indices of the inputs and outputs of the functions every variant of 3
+        /// coordinates exports alike.
+        pub mod index {
+
+            /// Indices of the output `m` of `mass_matrix` (and of its inputs).
+            pub mod mass_matrix {
+                /// Index of `m_tt`.
+                pub const M_TT: usize = 0;
+                /// Index of `m_tu_1`.
+                pub const M_TU_1: usize = 1;
+                /// Index of `m_tu_2`.
+                pub const M_TU_2: usize = 2;
+                /// Index of `m_tu_3`.
+                pub const M_TU_3: usize = 3;
+                /// Index of `m_uu_1_1`.
+                pub const M_UU_1_1: usize = 4;
+                /// Index of `m_uu_1_2`.
+                pub const M_UU_1_2: usize = 5;
+                /// Index of `m_uu_1_3`.
+                pub const M_UU_1_3: usize = 6;
+                /// Index of `m_uu_2_2`.
+                pub const M_UU_2_2: usize = 7;
+                /// Index of `m_uu_2_3`.
+                pub const M_UU_2_3: usize = 8;
+                /// Index of `m_uu_3_3`.
+                pub const M_UU_3_3: usize = 9;
+
+                /// Indices of the elements of input `q`.
+                pub mod q {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                }
+            }
+
+            /// Indices of the output `f` of `forcing` (and of its inputs).
+            pub mod forcing {
+                /// Index of `f_theta`.
+                pub const F_THETA: usize = 0;
+                /// Index of `f_u_1`.
+                pub const F_U_1: usize = 1;
+                /// Index of `f_u_2`.
+                pub const F_U_2: usize = 2;
+                /// Index of `f_u_3`.
+                pub const F_U_3: usize = 3;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 4;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 5;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 6;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 7;
+                }
+            }
+
+            /// Indices of the output `dx` of `rocking_rhs` (and of its inputs).
+            pub mod rocking_rhs {
+                /// Index of `theta_dot`.
+                pub const THETA_DOT: usize = 0;
+                /// Index of `u_dot_1`.
+                pub const U_DOT_1: usize = 1;
+                /// Index of `u_dot_2`.
+                pub const U_DOT_2: usize = 2;
+                /// Index of `u_dot_3`.
+                pub const U_DOT_3: usize = 3;
+                /// Index of `theta_ddot`.
+                pub const THETA_DDOT: usize = 4;
+                /// Index of `u_ddot_1`.
+                pub const U_DDOT_1: usize = 5;
+                /// Index of `u_ddot_2`.
+                pub const U_DDOT_2: usize = 6;
+                /// Index of `u_ddot_3`.
+                pub const U_DDOT_3: usize = 7;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 4;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 5;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 6;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 7;
+                }
+            }
+
+            /// Indices of the output `dxc` of `contact_rhs` (and of its inputs).
+            pub mod contact_rhs {
+                /// Index of `u_dot_1`.
+                pub const U_DOT_1: usize = 0;
+                /// Index of `u_dot_2`.
+                pub const U_DOT_2: usize = 1;
+                /// Index of `u_dot_3`.
+                pub const U_DOT_3: usize = 2;
+                /// Index of `u_ddot_1`.
+                pub const U_DDOT_1: usize = 3;
+                /// Index of `u_ddot_2`.
+                pub const U_DDOT_2: usize = 4;
+                /// Index of `u_ddot_3`.
+                pub const U_DDOT_3: usize = 5;
+
+                /// Indices of the elements of input `xc`.
+                pub mod xc {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 3;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 4;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 5;
+                }
+            }
+
+            /// Indices of the output `f_s` of `uplift` (and of its inputs).
+            pub mod uplift {
+                /// Index of `f_s`.
+                pub const F_S: usize = 0;
+
+                /// Indices of the elements of input `xc`.
+                pub mod xc {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 3;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 4;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 5;
+                }
+            }
+
+            /// Indices of the output `e` of `energy` (and of its inputs).
+            pub mod energy {
+                /// Index of `kinetic`.
+                pub const KINETIC: usize = 0;
+                /// Index of `gravity`.
+                pub const GRAVITY: usize = 1;
+                /// Index of `strain`.
+                pub const STRAIN: usize = 2;
+                /// Index of `momentum_x`.
+                pub const MOMENTUM_X: usize = 3;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 4;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 5;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 6;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 7;
+                }
+            }
+
+            /// Indices of the output `w` of `power` (and of its inputs).
+            pub mod power {
+                /// Index of `ground`.
+                pub const GROUND: usize = 0;
+                /// Index of `damping`.
+                pub const DAMPING: usize = 1;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 4;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 5;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 6;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 7;
+                }
+            }
+
+            /// Indices of the output `vvel` of `impact_vvel` (and of its inputs).
+            pub mod impact_vvel {
+                /// Index of `rock`.
+                pub const ROCK: usize = 0;
+                /// Index of `theta_dot`.
+                pub const THETA_DOT: usize = 1;
+                /// Index of `u_dot_1`.
+                pub const U_DOT_1: usize = 2;
+                /// Index of `u_dot_2`.
+                pub const U_DOT_2: usize = 3;
+                /// Index of `u_dot_3`.
+                pub const U_DOT_3: usize = 4;
+                /// Index of `energy_after`.
+                pub const ENERGY_AFTER: usize = 5;
+                /// Index of `energy_before`.
+                pub const ENERGY_BEFORE: usize = 6;
+
+                /// Indices of the elements of input `xi`.
+                pub mod xi {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 3;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 4;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 5;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 6;
+                }
+            }
+
+            /// Indices of the output `adjex` of `impact_adjex` (and of its inputs).
+            pub mod impact_adjex {
+                /// Index of `u_dot_contact_1`.
+                pub const U_DOT_CONTACT_1: usize = 0;
+                /// Index of `u_dot_contact_2`.
+                pub const U_DOT_CONTACT_2: usize = 1;
+                /// Index of `u_dot_contact_3`.
+                pub const U_DOT_CONTACT_3: usize = 2;
+                /// Index of `energy_contact`.
+                pub const ENERGY_CONTACT: usize = 3;
+                /// Index of `theta_dot_rocking`.
+                pub const THETA_DOT_ROCKING: usize = 4;
+                /// Index of `u_dot_rocking_1`.
+                pub const U_DOT_ROCKING_1: usize = 5;
+                /// Index of `u_dot_rocking_2`.
+                pub const U_DOT_ROCKING_2: usize = 6;
+                /// Index of `u_dot_rocking_3`.
+                pub const U_DOT_ROCKING_3: usize = 7;
+                /// Index of `energy_rocking`.
+                pub const ENERGY_ROCKING: usize = 8;
+                /// Index of `energy_before`.
+                pub const ENERGY_BEFORE: usize = 9;
+                /// Index of `u_dot_momentum_1`.
+                pub const U_DOT_MOMENTUM_1: usize = 10;
+                /// Index of `u_dot_momentum_2`.
+                pub const U_DOT_MOMENTUM_2: usize = 11;
+                /// Index of `u_dot_momentum_3`.
+                pub const U_DOT_MOMENTUM_3: usize = 12;
+                /// Index of `energy_momentum`.
+                pub const ENERGY_MOMENTUM: usize = 13;
+
+                /// Indices of the elements of input `xi`.
+                pub mod xi {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 3;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 4;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 5;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 6;
+                }
+            }
+
+            /// Indices of the output `housner` of `impact_housner` (and of its inputs).
+            pub mod impact_housner {
+                /// Index of `theta_dot`.
+                pub const THETA_DOT: usize = 0;
+                /// Index of `u_dot_1`.
+                pub const U_DOT_1: usize = 1;
+                /// Index of `u_dot_2`.
+                pub const U_DOT_2: usize = 2;
+                /// Index of `u_dot_3`.
+                pub const U_DOT_3: usize = 3;
+                /// Index of `energy_after`.
+                pub const ENERGY_AFTER: usize = 4;
+                /// Index of `energy_before`.
+                pub const ENERGY_BEFORE: usize = 5;
+
+                /// Indices of the elements of input `xi`.
+                pub mod xi {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 3;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 4;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 5;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 6;
+                }
+            }
+
+            /// Indices of the output `st` of `structure` (and of its inputs).
+            pub mod structure {
+                /// Index of `m_tilde_1_1`.
+                pub const M_TILDE_1_1: usize = 0;
+                /// Index of `m_tilde_1_2`.
+                pub const M_TILDE_1_2: usize = 1;
+                /// Index of `m_tilde_1_3`.
+                pub const M_TILDE_1_3: usize = 2;
+                /// Index of `m_tilde_2_2`.
+                pub const M_TILDE_2_2: usize = 3;
+                /// Index of `m_tilde_2_3`.
+                pub const M_TILDE_2_3: usize = 4;
+                /// Index of `m_tilde_3_3`.
+                pub const M_TILDE_3_3: usize = 5;
+                /// Index of `k_tilde_1_1`.
+                pub const K_TILDE_1_1: usize = 6;
+                /// Index of `k_tilde_1_2`.
+                pub const K_TILDE_1_2: usize = 7;
+                /// Index of `k_tilde_1_3`.
+                pub const K_TILDE_1_3: usize = 8;
+                /// Index of `k_tilde_2_2`.
+                pub const K_TILDE_2_2: usize = 9;
+                /// Index of `k_tilde_2_3`.
+                pub const K_TILDE_2_3: usize = 10;
+                /// Index of `k_tilde_3_3`.
+                pub const K_TILDE_3_3: usize = 11;
+                /// Index of `gamma_tilde_1`.
+                pub const GAMMA_TILDE_1: usize = 12;
+                /// Index of `gamma_tilde_2`.
+                pub const GAMMA_TILDE_2: usize = 13;
+                /// Index of `gamma_tilde_3`.
+                pub const GAMMA_TILDE_3: usize = 14;
+                /// Index of `theta_cr`.
+                pub const THETA_CR: usize = 15;
+                /// Index of `e_ref`.
+                pub const E_REF: usize = 16;
+                /// Index of `r`.
+                pub const R: usize = 17;
+                /// Index of `alpha`.
+                pub const ALPHA: usize = 18;
+                /// Index of `p_freq`.
+                pub const P_FREQ: usize = 19;
+                /// Index of `i_bc_plate`.
+                pub const I_BC_PLATE: usize = 20;
+            }
+
+            /// Indices of the output `psi` of `shape` (and of its inputs).
+            pub mod shape {
+                /// Index of `psi_1`.
+                pub const PSI_1: usize = 0;
+                /// Index of `psi_2`.
+                pub const PSI_2: usize = 1;
+                /// Index of `psi_3`.
+                pub const PSI_3: usize = 2;
+            }
+
+            /// Indices of the output `fc` of `forces_contact` (and of its inputs).
+            pub mod forces_contact {
+                /// Index of `moment`.
+                pub const MOMENT: usize = 0;
+                /// Index of `shear`.
+                pub const SHEAR: usize = 1;
+                /// Index of `axial`.
+                pub const AXIAL: usize = 2;
+                /// Index of `moment_elastic`.
+                pub const MOMENT_ELASTIC: usize = 3;
+                /// Index of `reaction_h`.
+                pub const REACTION_H: usize = 4;
+                /// Index of `reaction_v`.
+                pub const REACTION_V: usize = 5;
+
+                /// Indices of the elements of input `xc`.
+                pub mod xc {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 3;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 4;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 5;
+                }
+            }
+
+            /// Indices of the output `fr` of `forces_rocking` (and of its inputs).
+            pub mod forces_rocking {
+                /// Index of `moment`.
+                pub const MOMENT: usize = 0;
+                /// Index of `shear`.
+                pub const SHEAR: usize = 1;
+                /// Index of `axial`.
+                pub const AXIAL: usize = 2;
+                /// Index of `moment_elastic`.
+                pub const MOMENT_ELASTIC: usize = 3;
+                /// Index of `reaction_h`.
+                pub const REACTION_H: usize = 4;
+                /// Index of `reaction_v`.
+                pub const REACTION_V: usize = 5;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 4;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 5;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 6;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 7;
+                }
+            }
+
+            /// Indices of the output `up` of `static_uplift` (and of its inputs).
+            pub mod static_uplift {
+                /// Index of `weight`.
+                pub const WEIGHT: usize = 0;
+                /// Index of `moment_uplift`.
+                pub const MOMENT_UPLIFT: usize = 1;
+                /// Index of `ug_uplift`.
+                pub const UG_UPLIFT: usize = 2;
+                /// Index of `u_uplift_1`.
+                pub const U_UPLIFT_1: usize = 3;
+                /// Index of `u_uplift_2`.
+                pub const U_UPLIFT_2: usize = 4;
+                /// Index of `u_uplift_3`.
+                pub const U_UPLIFT_3: usize = 5;
+                /// Index of `moment_elastic_uplift`.
+                pub const MOMENT_ELASTIC_UPLIFT: usize = 6;
+            }
+        }
+    }
+}
+
 /// Evaluates `$body` with the type `$V` standing for the variant named `$name` (a `&str`),
 /// monomorphised: `Some($body)`, or `None` when no variant has that name. The solver runs any
 /// generated variant through this, without a hand-written list.
+///
+/// `with_variant!(name, V => body)` dispatches the variants of one deformation coordinate (their
+/// arrays are today's: `V: crate::OneCoordinate`); the others give `None`.
+/// `with_variant!(name, V, L => body)` dispatches every variant, with `L` its module
+/// `layout::nq<n>`: its sizes as constants (`L::NQ`, `L::X`, ...) for const-generic code.
 #[rustfmt::skip]
 #[macro_export]
 macro_rules! with_variant {
+    ($name:expr, $V:ident, $L:ident => $body:expr) => {
+        match $name {
+            "added_mass" => {
+                type $V = $crate::kernels::AddedMass;
+                #[allow(unused_imports)]
+                use $crate::kernels::layout::nq1 as $L;
+                ::core::option::Option::Some($body)
+            }
+            "cantilever_modes2" => {
+                type $V = $crate::kernels::CantileverModes2;
+                #[allow(unused_imports)]
+                use $crate::kernels::layout::nq2 as $L;
+                ::core::option::Option::Some($body)
+            }
+            "cantilever_modes3" => {
+                type $V = $crate::kernels::CantileverModes3;
+                #[allow(unused_imports)]
+                use $crate::kernels::layout::nq3 as $L;
+                ::core::option::Option::Some($body)
+            }
+            "cosine_shape" => {
+                type $V = $crate::kernels::CosineShape;
+                #[allow(unused_imports)]
+                use $crate::kernels::layout::nq1 as $L;
+                ::core::option::Option::Some($body)
+            }
+            "full" => {
+                type $V = $crate::kernels::Full;
+                #[allow(unused_imports)]
+                use $crate::kernels::layout::nq1 as $L;
+                ::core::option::Option::Some($body)
+            }
+            "massless_base" => {
+                type $V = $crate::kernels::MasslessBase;
+                #[allow(unused_imports)]
+                use $crate::kernels::layout::nq1 as $L;
+                ::core::option::Option::Some($body)
+            }
+            "massless_column" => {
+                type $V = $crate::kernels::MasslessColumn;
+                #[allow(unused_imports)]
+                use $crate::kernels::layout::nq1 as $L;
+                ::core::option::Option::Some($body)
+            }
+            "point_mass" => {
+                type $V = $crate::kernels::PointMass;
+                #[allow(unused_imports)]
+                use $crate::kernels::layout::nq1 as $L;
+                ::core::option::Option::Some($body)
+            }
+            "polynomial2" => {
+                type $V = $crate::kernels::Polynomial2;
+                #[allow(unused_imports)]
+                use $crate::kernels::layout::nq2 as $L;
+                ::core::option::Option::Some($body)
+            }
+            "polynomial3" => {
+                type $V = $crate::kernels::Polynomial3;
+                #[allow(unused_imports)]
+                use $crate::kernels::layout::nq3 as $L;
+                ::core::option::Option::Some($body)
+            }
+            "rigid" => {
+                type $V = $crate::kernels::Rigid;
+                #[allow(unused_imports)]
+                use $crate::kernels::layout::nq1 as $L;
+                ::core::option::Option::Some($body)
+            }
+            "small_angle" => {
+                type $V = $crate::kernels::SmallAngle;
+                #[allow(unused_imports)]
+                use $crate::kernels::layout::nq1 as $L;
+                ::core::option::Option::Some($body)
+            }
+            _ => ::core::option::Option::None,
+        }
+    };
     ($name:expr, $V:ident => $body:expr) => {
         match $name {
             "added_mass" => {
@@ -777,8 +2520,10 @@ macro_rules! with_variant {
     };
 }
 
-/// Invokes the macro `$callback` once with every generated variant as `Type => module`, so that
-/// code binding each variant to companion modules (the Taylor kernels) lists none by hand.
+/// Invokes the macro `$callback` once with every generated variant of one deformation coordinate
+/// as `Type => module`, so that code binding each variant to companion modules (the Taylor
+/// kernels) lists none by hand; `for_each_variant!(callback, layout)` with every variant as
+/// `Type => module: nq<n>` (its `layout` module).
 #[rustfmt::skip]
 #[macro_export]
 macro_rules! for_each_variant {
@@ -794,6 +2539,22 @@ macro_rules! for_each_variant {
             SmallAngle => small_angle,
         );
     };
+    ($callback:ident, layout) => {
+        $callback!(
+            AddedMass => added_mass: nq1,
+            CantileverModes2 => cantilever_modes2: nq2,
+            CantileverModes3 => cantilever_modes3: nq3,
+            CosineShape => cosine_shape: nq1,
+            Full => full: nq1,
+            MasslessBase => massless_base: nq1,
+            MasslessColumn => massless_column: nq1,
+            PointMass => point_mass: nq1,
+            Polynomial2 => polynomial2: nq2,
+            Polynomial3 => polynomial3: nq3,
+            Rigid => rigid: nq1,
+            SmallAngle => small_angle: nq1,
+        );
+    };
 }
 
 /// Calls `function` of `variant` by name with slices for its inputs (scalars as
@@ -805,11 +2566,15 @@ macro_rules! for_each_variant {
 pub fn call(variant: &str, function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
     match variant {
         "added_mass" => added_mass::call(function, inputs),
+        "cantilever_modes2" => cantilever_modes2::call(function, inputs),
+        "cantilever_modes3" => cantilever_modes3::call(function, inputs),
         "cosine_shape" => cosine_shape::call(function, inputs),
         "full" => full::call(function, inputs),
         "massless_base" => massless_base::call(function, inputs),
         "massless_column" => massless_column::call(function, inputs),
         "point_mass" => point_mass::call(function, inputs),
+        "polynomial2" => polynomial2::call(function, inputs),
+        "polynomial3" => polynomial3::call(function, inputs),
         "rigid" => rigid::call(function, inputs),
         "small_angle" => small_angle::call(function, inputs),
         _ => None,

@@ -26,6 +26,30 @@ pub mod added_mass;
     non_snake_case,
     missing_docs,
 )]
+pub mod cantilever_modes2;
+#[rustfmt::skip]
+#[allow(
+    clippy::all,
+    clippy::pedantic,
+    clippy::nursery,
+    unused_parens,
+    unused_variables,
+    unused_mut,
+    non_snake_case,
+    missing_docs,
+)]
+pub mod cantilever_modes3;
+#[rustfmt::skip]
+#[allow(
+    clippy::all,
+    clippy::pedantic,
+    clippy::nursery,
+    unused_parens,
+    unused_variables,
+    unused_mut,
+    non_snake_case,
+    missing_docs,
+)]
 pub mod cosine_shape;
 #[rustfmt::skip]
 #[allow(
@@ -75,6 +99,30 @@ pub mod massless_column;
     missing_docs,
 )]
 pub mod point_mass;
+#[rustfmt::skip]
+#[allow(
+    clippy::all,
+    clippy::pedantic,
+    clippy::nursery,
+    unused_parens,
+    unused_variables,
+    unused_mut,
+    non_snake_case,
+    missing_docs,
+)]
+pub mod polynomial2;
+#[rustfmt::skip]
+#[allow(
+    clippy::all,
+    clippy::pedantic,
+    clippy::nursery,
+    unused_parens,
+    unused_variables,
+    unused_mut,
+    non_snake_case,
+    missing_docs,
+)]
+pub mod polynomial3;
 #[rustfmt::skip]
 #[allow(
     clippy::all,

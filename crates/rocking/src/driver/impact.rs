@@ -5,7 +5,7 @@
 use rocking_kernels::kernels::index::{
     energy as en, impact_adjex as ax, impact_housner as ho, impact_vvel as vv,
 };
-use rocking_kernels::Variant;
+use rocking_kernels::OneCoordinate;
 
 use crate::options::ImpactModel;
 use crate::results::EventKind;
@@ -59,7 +59,7 @@ impl Outcome {
 /// −s hits the ground. `rest_rate` is the |θ'| below which rocking ends in full contact (before
 /// the impact: a grazing excursion or the end of a Zeno sequence; after it: a rocking phase that
 /// would start that slowly).
-pub(super) fn resolve<V: Variant>(
+pub(super) fn resolve<V: OneCoordinate>(
     model: ImpactModel,
     xi: [f64; 3],
     s: f64,
@@ -238,7 +238,7 @@ fn adjex(a: &[f64; 8], s: f64) -> (After, &'static str, f64) {
 /// keep exactly the pre-impact kinetic energy (kinetic energy is a quadratic form in the
 /// velocities): the direction of motion the map chose is kept, and no energy is created. Returns
 /// the state and whether it was capped. `s` is the pivot the kinetic energy `after` refers to.
-fn without_energy_gain<V: Variant>(
+fn without_energy_gain<V: OneCoordinate>(
     after: After,
     e_before: f64,
     u: f64,
@@ -295,7 +295,7 @@ fn capped_branch(branch: &'static str) -> &'static str {
 mod tests {
     use super::*;
     use rocking_kernels::kernels::{Full, PointMass, Rigid};
-    use rocking_kernels::Physical;
+    use rocking_kernels::{Physical, Variant};
 
     const REST: f64 = 1e-4;
 
