@@ -44,6 +44,10 @@ digest() { # NAME FILE
     for study in wind-turbine-ida wind-turbine-msa; do
         "$ROCKING" ida "scenes/$study.toml" --out "$work/$study" >/dev/null 2>&1
         # Timing is apart, in timing.json (not a result).
+        # records.csv names each record file by its absolute path: digest it relative to the
+        # checkout's parent (where ../shared lies), so the digest does not depend on where the
+        # repository is cloned.
+        sed -i "s|$(dirname "$PWD")/||g" "$work/$study/records.csv"
         for f in fragility.json records.csv ida.csv stripes.csv; do
             [ -f "$work/$study/$f" ] && digest "$study/$f" "$work/$study/$f"
         done
