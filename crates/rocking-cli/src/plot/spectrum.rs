@@ -188,24 +188,23 @@ impl SpectrumPanel {
         self
     }
 
-    /// The largest finite value of the shaded cells.
-    pub(super) fn top_of_shaded(&self) -> f64 {
+    /// The finite values of the shaded cells.
+    fn shaded_values(&self) -> impl Iterator<Item = f64> + '_ {
         self.grid
             .2
             .iter()
             .filter(|c| self.shade.shades(c.2) && c.3.is_finite())
             .map(|c| c.3)
-            .fold(1e-9, f64::max)
+    }
+
+    /// The largest finite value of the shaded cells.
+    pub(super) fn top_of_shaded(&self) -> f64 {
+        self.shaded_values().fold(1e-9, f64::max)
     }
 
     /// The bottom of the colour scale: 0, or the lowest shaded value where it is negative.
     pub(super) fn bottom_of_shaded(&self) -> f64 {
-        self.grid
-            .2
-            .iter()
-            .filter(|c| self.shade.shades(c.2) && c.3.is_finite())
-            .map(|c| c.3)
-            .fold(0.0, f64::min)
+        self.shaded_values().fold(0.0, f64::min)
     }
 
     pub(super) fn shade(&self) -> &Shade {
