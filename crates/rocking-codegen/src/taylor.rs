@@ -41,12 +41,6 @@ pub const TAYLOR_DIR: &str = "generated/src/taylor";
 const ODE_FUNCTIONS: &[&str] = &["rocking_rhs", "contact_rhs"];
 const SERIES_FUNCTIONS: &[&str] = &["uplift", "energy", "power"];
 
-/// The orders a kernel computes as separate copies of its tape, `k` a constant in each: the
-/// series products' sums then have a known length (unrolled, no loop counters, no bounds checks)
-/// and `1 / (k + 1)` is a constant (no division). The integrators run up to N = 21
-/// (`rocking_ode::taylor::ORDERS`); orders beyond run in a loop, in the same arithmetic.
-const UNROLLED_ORDERS: usize = 21;
-
 #[derive(Serialize)]
 struct TaylorView {
     header: String,
@@ -62,10 +56,7 @@ struct TaylorFn {
     args: String,
     ret: String,
     prelude: Vec<String>,
-    /// The orders computed: `k < bound` (`N - 1` for an ODE's state, `N` for series outputs).
-    bound: String,
-    /// The orders run as copies of the tape with `k` a constant ([`UNROLLED_ORDERS`]).
-    unrolled: Vec<usize>,
+    loop_head: String,
     body: Vec<String>,
     result: String,
 }
@@ -433,7 +424,7 @@ fn render_fn(
             "an output element is never written".into(),
         )
     };
-    let (ret, result, bound) = if let Some(sj) = state {
+    let (ret, result, loop_head) = if let Some(sj) = state {
         let x = &f.inputs[sj].name;
         // One division per order: x_{k+1} = f_k / (k + 1) for every component.
         body.push("let inv_k1 = 1.0 / (k + 1) as f64;".to_string());
@@ -449,7 +440,11 @@ fn render_fn(
             "/// the state at the expansion point; on return `{x}[i][k]` is the k-th coefficient."
         ));
         doc.push("/// Series inputs hold their first N coefficients.".to_string());
-        (String::new(), String::new(), "N - 1".to_string())
+        (
+            String::new(),
+            String::new(),
+            "for k in 0..N - 1 {".to_string(),
+        )
     } else {
         prelude.push(format!("let mut out = [[0.0f64; N]; {n_out}];"));
         for (e, out) in outputs.iter().enumerate() {
@@ -463,7 +458,7 @@ fn render_fn(
         (
             format!(" -> [[f64; N]; {n_out}]"),
             "out".to_string(),
-            "N".to_string(),
+            "for k in 0..N {".to_string(),
         )
     };
     let rendered = TaylorFn {
@@ -472,8 +467,7 @@ fn render_fn(
         args: args.join(", "),
         ret,
         prelude,
-        bound,
-        unrolled: (0..UNROLLED_ORDERS).collect(),
+        loop_head,
         body,
         result,
     };

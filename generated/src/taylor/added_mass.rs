@@ -204,116 +204,89 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
     let w236: f64 = w57 * w129;
     let w237: f64 = w43 * w129;
     let mut w248 = [0.0f64; N];
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w0[k] = x[2][k];
-            w2[k] = x[3][k];
-            w25[k] = x[0][k];
-            series::sin_cos(&w25, &mut d_w25, &mut sin_w25, &mut cos_w25, k);
-            w26[k] = cos_w25[k];
-            w27[k] = x[1][k];
-            w37[k] = ug[k];
-            let w58 = series::mul(&w26, &w27, k);
-            let w59 = series::mul(&w26, &w37, k);
-            w60[k] = sin_w25[k];
-            let w63 = series::mul(&w27, &w37, k);
-            let w79 = w37[k] * w72;
-            let w80 = w63 * w70;
-            let w81 = w79 - w80;
-            w82[k] = w81 - at0(k, w78);
-            let w83 = series::mul(&w60, &w82, k);
-            w84[k] = series::mul(&w0, &w27, k);
-            let w116 = w0[k] * w115;
-            let w117 = w84[k] * w108;
-            w118[k] = w117 - w116;
-            let w119 = series::mul(&w2, &w118, k);
-            let w137 = series::sq(&w0, k);
-            let w138 = series::mul(&w0, &w84, k);
-            let w160 = series::sq(&w27, k);
-            let w195 = w2[k] * w152;
-            let w196 = w26[k] * w120;
-            let w197 = w27[k] * w153;
-            let w198 = w58 * w121;
-            let w199 = w59 * w158;
-            let w200 = w60[k] * w155;
-            let w201 = w24 * w83;
-            let w202 = w24 * w119;
-            let w203 = w137 * w156;
-            let w204 = w138 * w157;
-            let w205 = w195 + w198;
-            let w206 = w199 + w205;
-            let w207 = w203 + w206;
-            let w208 = w207 - w196;
-            let w209 = w208 - w197;
-            let w210 = w209 - w200;
-            let w211 = w210 - w201;
-            let w212 = w211 - w202;
-            let w213 = w212 - w204;
-            let w214 = w27[k] * w190;
-            let w215 = w160 * w191;
-            let w216 = w214 + w215;
-            w217[k] = at0(k, w194) + w216;
-            if k == 0 { inv_w217 = 1.0 / w217[0]; }
-            w218[k] = series::div(w213, &w217, &w218, inv_w217, k);
-            let w220 = w27[k] * w185;
-            let w221 = w142 * w160;
-            let w222 = w220 + w221;
-            w223[k] = at0(k, w189) + w222;
-            let w224 = w2[k] * w151;
-            let w225 = w27[k] * w136;
-            let w226 = w59 * w70;
-            let w227 = w55 * w60[k];
-            let w228 = w137 * w143;
-            let w229 = w138 * w142;
-            let w230 = w225 + w227;
-            let w231 = w229 + w230;
-            let w232 = w231 - w224;
-            let w233 = w232 - w226;
-            w234[k] = w233 - w228;
-            let w235 = series::mul(&w223, &w234, k);
-            let w238 = w26[k] * w236;
-            let w239 = w58 * w155;
-            let w240 = w59 * w237;
-            let w241 = w83 * w129;
-            let w242 = w119 * w129;
-            let w243 = w238 + w240;
-            let w244 = w241 + w243;
-            let w245 = w242 + w244;
-            let w246 = w235 + w245;
-            let w247 = w246 - w239;
-            w248[k] = series::div(w247, &w217, &w248, inv_w217, k);
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            x[0][k + 1] = w0[k] * inv_k1;
-            x[1][k + 1] = w2[k] * inv_k1;
-            x[2][k + 1] = w218[k] * inv_k1;
-            x[3][k + 1] = w248[k] * inv_k1;
-        };
+    for k in 0..N - 1 {
+        w0[k] = x[2][k];
+        w2[k] = x[3][k];
+        w25[k] = x[0][k];
+        series::sin_cos(&w25, &mut d_w25, &mut sin_w25, &mut cos_w25, k);
+        w26[k] = cos_w25[k];
+        w27[k] = x[1][k];
+        w37[k] = ug[k];
+        let w58 = series::mul(&w26, &w27, k);
+        let w59 = series::mul(&w26, &w37, k);
+        w60[k] = sin_w25[k];
+        let w63 = series::mul(&w27, &w37, k);
+        let w79 = w37[k] * w72;
+        let w80 = w63 * w70;
+        let w81 = w79 - w80;
+        w82[k] = w81 - at0(k, w78);
+        let w83 = series::mul(&w60, &w82, k);
+        w84[k] = series::mul(&w0, &w27, k);
+        let w116 = w0[k] * w115;
+        let w117 = w84[k] * w108;
+        w118[k] = w117 - w116;
+        let w119 = series::mul(&w2, &w118, k);
+        let w137 = series::sq(&w0, k);
+        let w138 = series::mul(&w0, &w84, k);
+        let w160 = series::sq(&w27, k);
+        let w195 = w2[k] * w152;
+        let w196 = w26[k] * w120;
+        let w197 = w27[k] * w153;
+        let w198 = w58 * w121;
+        let w199 = w59 * w158;
+        let w200 = w60[k] * w155;
+        let w201 = w24 * w83;
+        let w202 = w24 * w119;
+        let w203 = w137 * w156;
+        let w204 = w138 * w157;
+        let w205 = w195 + w198;
+        let w206 = w199 + w205;
+        let w207 = w203 + w206;
+        let w208 = w207 - w196;
+        let w209 = w208 - w197;
+        let w210 = w209 - w200;
+        let w211 = w210 - w201;
+        let w212 = w211 - w202;
+        let w213 = w212 - w204;
+        let w214 = w27[k] * w190;
+        let w215 = w160 * w191;
+        let w216 = w214 + w215;
+        w217[k] = at0(k, w194) + w216;
+        if k == 0 { inv_w217 = 1.0 / w217[0]; }
+        w218[k] = series::div(w213, &w217, &w218, inv_w217, k);
+        let w220 = w27[k] * w185;
+        let w221 = w142 * w160;
+        let w222 = w220 + w221;
+        w223[k] = at0(k, w189) + w222;
+        let w224 = w2[k] * w151;
+        let w225 = w27[k] * w136;
+        let w226 = w59 * w70;
+        let w227 = w55 * w60[k];
+        let w228 = w137 * w143;
+        let w229 = w138 * w142;
+        let w230 = w225 + w227;
+        let w231 = w229 + w230;
+        let w232 = w231 - w224;
+        let w233 = w232 - w226;
+        w234[k] = w233 - w228;
+        let w235 = series::mul(&w223, &w234, k);
+        let w238 = w26[k] * w236;
+        let w239 = w58 * w155;
+        let w240 = w59 * w237;
+        let w241 = w83 * w129;
+        let w242 = w119 * w129;
+        let w243 = w238 + w240;
+        let w244 = w241 + w243;
+        let w245 = w242 + w244;
+        let w246 = w235 + w245;
+        let w247 = w246 - w239;
+        w248[k] = series::div(w247, &w217, &w248, inv_w217, k);
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        x[0][k + 1] = w0[k] * inv_k1;
+        x[1][k + 1] = w2[k] * inv_k1;
+        x[2][k + 1] = w218[k] * inv_k1;
+        x[3][k + 1] = w248[k] * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// Taylor coefficients of the solution of `x' = rocking_rhs_free(..)`: on entry `x[i][0]` holds
@@ -521,107 +494,80 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
     let w238: f64 = w61 * w131;
     let w239: f64 = w82 * w131;
     let mut w250 = [0.0f64; N];
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w0[k] = x[2][k];
-            w2[k] = x[3][k];
-            w25[k] = x[0][k];
-            series::sin_cos(&w25, &mut d_w25, &mut sin_w25, &mut cos_w25, k);
-            w26[k] = cos_w25[k];
-            w27[k] = x[1][k];
-            let w62 = series::mul(&w26, &w27, k);
-            w63[k] = sin_w25[k];
-            let w83 = series::mul(&w27, &w63, k);
-            w84[k] = series::mul(&w0, &w27, k);
-            let w116 = w0[k] * w115;
-            let w117 = w84[k] * w108;
-            w118[k] = w117 - w116;
-            let w119 = series::mul(&w2, &w118, k);
-            let w139 = series::sq(&w0, k);
-            let w140 = series::mul(&w0, &w84, k);
-            let w163 = series::sq(&w27, k);
-            let w199 = w2[k] * w154;
-            let w200 = w26[k] * w160;
-            let w201 = w27[k] * w156;
-            let w202 = w62 * w121;
-            let w203 = w63[k] * w161;
-            let w204 = w83 * w123;
-            let w205 = w24 * w119;
-            let w206 = w139 * w158;
-            let w207 = w140 * w159;
-            let w208 = w199 + w200;
-            let w209 = w202 + w208;
-            let w210 = w204 + w209;
-            let w211 = w206 + w210;
-            let w212 = w211 - w201;
-            let w213 = w212 - w203;
-            let w214 = w213 - w205;
-            let w215 = w214 - w207;
-            let w216 = w27[k] * w194;
-            let w217 = w163 * w195;
-            let w218 = w216 + w217;
-            w219[k] = at0(k, w198) + w218;
-            if k == 0 { inv_w219 = 1.0 / w219[0]; }
-            w220[k] = series::div(w215, &w219, &w220, inv_w219, k);
-            let w222 = w27[k] * w188;
-            let w223 = w144 * w163;
-            let w224 = w222 + w223;
-            w225[k] = at0(k, w193) + w224;
-            let w226 = w2[k] * w153;
-            let w227 = w26[k] * w73;
-            let w228 = w27[k] * w138;
-            let w229 = w59 * w63[k];
-            let w230 = w139 * w145;
-            let w231 = w140 * w144;
-            let w232 = w228 + w229;
-            let w233 = w231 + w232;
-            let w234 = w233 - w226;
-            let w235 = w234 - w227;
-            w236[k] = w235 - w230;
-            let w237 = series::mul(&w225, &w236, k);
-            let w240 = w26[k] * w238;
-            let w241 = w62 * w157;
-            let w242 = w63[k] * w239;
-            let w243 = w83 * w155;
-            let w244 = w119 * w131;
-            let w245 = w240 + w242;
-            let w246 = w244 + w245;
-            let w247 = w237 + w246;
-            let w248 = w247 - w241;
-            let w249 = w248 - w243;
-            w250[k] = series::div(w249, &w219, &w250, inv_w219, k);
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            x[0][k + 1] = w0[k] * inv_k1;
-            x[1][k + 1] = w2[k] * inv_k1;
-            x[2][k + 1] = w220[k] * inv_k1;
-            x[3][k + 1] = w250[k] * inv_k1;
-        };
+    for k in 0..N - 1 {
+        w0[k] = x[2][k];
+        w2[k] = x[3][k];
+        w25[k] = x[0][k];
+        series::sin_cos(&w25, &mut d_w25, &mut sin_w25, &mut cos_w25, k);
+        w26[k] = cos_w25[k];
+        w27[k] = x[1][k];
+        let w62 = series::mul(&w26, &w27, k);
+        w63[k] = sin_w25[k];
+        let w83 = series::mul(&w27, &w63, k);
+        w84[k] = series::mul(&w0, &w27, k);
+        let w116 = w0[k] * w115;
+        let w117 = w84[k] * w108;
+        w118[k] = w117 - w116;
+        let w119 = series::mul(&w2, &w118, k);
+        let w139 = series::sq(&w0, k);
+        let w140 = series::mul(&w0, &w84, k);
+        let w163 = series::sq(&w27, k);
+        let w199 = w2[k] * w154;
+        let w200 = w26[k] * w160;
+        let w201 = w27[k] * w156;
+        let w202 = w62 * w121;
+        let w203 = w63[k] * w161;
+        let w204 = w83 * w123;
+        let w205 = w24 * w119;
+        let w206 = w139 * w158;
+        let w207 = w140 * w159;
+        let w208 = w199 + w200;
+        let w209 = w202 + w208;
+        let w210 = w204 + w209;
+        let w211 = w206 + w210;
+        let w212 = w211 - w201;
+        let w213 = w212 - w203;
+        let w214 = w213 - w205;
+        let w215 = w214 - w207;
+        let w216 = w27[k] * w194;
+        let w217 = w163 * w195;
+        let w218 = w216 + w217;
+        w219[k] = at0(k, w198) + w218;
+        if k == 0 { inv_w219 = 1.0 / w219[0]; }
+        w220[k] = series::div(w215, &w219, &w220, inv_w219, k);
+        let w222 = w27[k] * w188;
+        let w223 = w144 * w163;
+        let w224 = w222 + w223;
+        w225[k] = at0(k, w193) + w224;
+        let w226 = w2[k] * w153;
+        let w227 = w26[k] * w73;
+        let w228 = w27[k] * w138;
+        let w229 = w59 * w63[k];
+        let w230 = w139 * w145;
+        let w231 = w140 * w144;
+        let w232 = w228 + w229;
+        let w233 = w231 + w232;
+        let w234 = w233 - w226;
+        let w235 = w234 - w227;
+        w236[k] = w235 - w230;
+        let w237 = series::mul(&w225, &w236, k);
+        let w240 = w26[k] * w238;
+        let w241 = w62 * w157;
+        let w242 = w63[k] * w239;
+        let w243 = w83 * w155;
+        let w244 = w119 * w131;
+        let w245 = w240 + w242;
+        let w246 = w244 + w245;
+        let w247 = w237 + w246;
+        let w248 = w247 - w241;
+        let w249 = w248 - w243;
+        w250[k] = series::div(w249, &w219, &w250, inv_w219, k);
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        x[0][k + 1] = w0[k] * inv_k1;
+        x[1][k + 1] = w2[k] * inv_k1;
+        x[2][k + 1] = w220[k] * inv_k1;
+        x[3][k + 1] = w250[k] * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// Taylor coefficients of the solution of `xc' = contact_rhs(..)`: on entry `xc[i][0]` holds
@@ -676,46 +622,19 @@ pub fn contact_rhs<const N: usize>(xc: &mut [[f64; N]; 2], ug: &[f64; N], p: &Pa
     let w49: f64 = w46 * w48;
     let w50: f64 = w11 * w48;
     let w51: f64 = w28 * w48;
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let w0 = xc[1][k];
-            let w2 = xc[0][k];
-            let w21 = ug[k];
-            let w52 = w0 * w49;
-            let w53 = w2 * w50;
-            let w54 = w21 * w51;
-            let w55 = w53 - w52;
-            let w56 = w55 - w54;
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            xc[0][k + 1] = w0 * inv_k1;
-            xc[1][k + 1] = w56 * inv_k1;
-        };
+    for k in 0..N - 1 {
+        let w0 = xc[1][k];
+        let w2 = xc[0][k];
+        let w21 = ug[k];
+        let w52 = w0 * w49;
+        let w53 = w2 * w50;
+        let w54 = w21 * w51;
+        let w55 = w53 - w52;
+        let w56 = w55 - w54;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        xc[0][k + 1] = w0 * inv_k1;
+        xc[1][k + 1] = w56 * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// Taylor coefficients of the solution of `xc' = contact_rhs_free(..)`: on entry `xc[i][0]` holds
@@ -775,44 +694,17 @@ pub fn contact_rhs_free<const N: usize>(xc: &mut [[f64; N]; 2], p: &Params) {
     let w52: f64 = w49 * w51;
     let w53: f64 = w11 * w51;
     let w54: f64 = w31 * w51;
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let w0 = xc[1][k];
-            let w2 = xc[0][k];
-            let w55 = w0 * w52;
-            let w56 = w2 * w53;
-            let w57 = w56 - w55;
-            let w58 = w57 - at0(k, w54);
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            xc[0][k + 1] = w0 * inv_k1;
-            xc[1][k + 1] = w58 * inv_k1;
-        };
+    for k in 0..N - 1 {
+        let w0 = xc[1][k];
+        let w2 = xc[0][k];
+        let w55 = w0 * w52;
+        let w56 = w2 * w53;
+        let w57 = w56 - w55;
+        let w58 = w57 - at0(k, w54);
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        xc[0][k + 1] = w0 * inv_k1;
+        xc[1][k + 1] = w58 * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// The first N Taylor coefficients of each output of `uplift` along series inputs.
@@ -910,45 +802,18 @@ pub fn uplift<const N: usize>(xc: &[[f64; N]; 2], ug: &[f64; N], s: f64, p: &Par
     let w92: f64 = w0 * w87;
     let w93: f64 = w0 * w42;
     let mut out = [[0.0f64; N]; 1];
-    // The tape at order k, for k < N: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let w1 = xc[0][k];
-            let w19 = ug[k];
-            let w79 = xc[1][k];
-            let w94 = w1 * w90;
-            let w95 = w19 * w91;
-            let w96 = w79 * w92;
-            let w97 = w94 + w95;
-            let w98 = w96 + w97;
-            let w99 = w98 - at0(k, w93);
-            out[0][k] = w99;
-        };
+    for k in 0..N {
+        let w1 = xc[0][k];
+        let w19 = ug[k];
+        let w79 = xc[1][k];
+        let w94 = w1 * w90;
+        let w95 = w19 * w91;
+        let w96 = w79 * w92;
+        let w97 = w94 + w95;
+        let w98 = w96 + w97;
+        let w99 = w98 - at0(k, w93);
+        out[0][k] = w99;
     }
-    if 0 < N { order!(0); }
-    if 1 < N { order!(1); }
-    if 2 < N { order!(2); }
-    if 3 < N { order!(3); }
-    if 4 < N { order!(4); }
-    if 5 < N { order!(5); }
-    if 6 < N { order!(6); }
-    if 7 < N { order!(7); }
-    if 8 < N { order!(8); }
-    if 9 < N { order!(9); }
-    if 10 < N { order!(10); }
-    if 11 < N { order!(11); }
-    if 12 < N { order!(12); }
-    if 13 < N { order!(13); }
-    if 14 < N { order!(14); }
-    if 15 < N { order!(15); }
-    if 16 < N { order!(16); }
-    if 17 < N { order!(17); }
-    if 18 < N { order!(18); }
-    if 19 < N { order!(19); }
-    if 20 < N { order!(20); }
-    for k in 21..N { order!(k); }
     out
 }
 
@@ -1069,84 +934,57 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
     let w135: f64 = w70 * w133;
     let mut w142 = [0.0f64; N];
     let mut out = [[0.0f64; N]; 4];
-    // The tape at order k, for k < N: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w1[k] = x[2][k];
-            w6[k] = series::sq(&w1, k);
-            w8[k] = x[1][k];
-            let w11 = series::mul(&w6, &w8, k);
-            w20[k] = x[3][k];
-            let w21 = series::mul(&w1, &w20, k);
-            w24[k] = series::mul(&w1, &w8, k);
-            w25[k] = series::mul(&w1, &w24, k);
-            let w26 = series::mul(&w8, &w25, k);
-            let w27 = series::sq(&w20, k);
-            let w35 = series::sq(&w24, k);
-            let w81 = w6[k] * w80;
-            let w82 = w11 * w72;
-            let w83 = w21 * w73;
-            let w84 = w25[k] * w74;
-            let w85 = w26 * w75;
-            let w86 = w27 * w76;
-            let w87 = w35 * w77;
-            let w88 = w81 + w83;
-            let w89 = w85 + w88;
-            let w90 = w86 + w89;
-            let w91 = w87 + w90;
-            let w92 = w91 - w82;
-            let w93 = w92 - w84;
-            w96[k] = x[0][k];
-            series::sin_cos(&w96, &mut d_w96, &mut sin_w96, &mut cos_w96, k);
-            w97[k] = sin_w96[k];
-            w99[k] = cos_w96[k];
-            let w101 = series::mul(&w8, &w97, k);
-            let w122 = w97[k] * w119;
-            let w123 = w99[k] * w120;
-            let w124 = w101 * w121;
-            let w125 = w122 + w123;
-            let w126 = w125 - w124;
-            let w134 = series::sq(&w8, k);
-            let w136 = w134 * w135;
-            let w138 = w97[k] * w116;
-            let w139 = w99[k] * w117;
-            let w140 = w101 * w118;
-            let w141 = w138 + w139;
-            w142[k] = w141 - w140;
-            let w143 = series::mul(&w1, &w142, k);
-            let w144 = series::mul(&w20, &w99, k);
-            let w145 = w118 * w144;
-            let w146 = w143 + w145;
-            out[0][k] = w93;
-            out[1][k] = w126;
-            out[2][k] = w136;
-            out[3][k] = w146;
-        };
+    for k in 0..N {
+        w1[k] = x[2][k];
+        w6[k] = series::sq(&w1, k);
+        w8[k] = x[1][k];
+        let w11 = series::mul(&w6, &w8, k);
+        w20[k] = x[3][k];
+        let w21 = series::mul(&w1, &w20, k);
+        w24[k] = series::mul(&w1, &w8, k);
+        w25[k] = series::mul(&w1, &w24, k);
+        let w26 = series::mul(&w8, &w25, k);
+        let w27 = series::sq(&w20, k);
+        let w35 = series::sq(&w24, k);
+        let w81 = w6[k] * w80;
+        let w82 = w11 * w72;
+        let w83 = w21 * w73;
+        let w84 = w25[k] * w74;
+        let w85 = w26 * w75;
+        let w86 = w27 * w76;
+        let w87 = w35 * w77;
+        let w88 = w81 + w83;
+        let w89 = w85 + w88;
+        let w90 = w86 + w89;
+        let w91 = w87 + w90;
+        let w92 = w91 - w82;
+        let w93 = w92 - w84;
+        w96[k] = x[0][k];
+        series::sin_cos(&w96, &mut d_w96, &mut sin_w96, &mut cos_w96, k);
+        w97[k] = sin_w96[k];
+        w99[k] = cos_w96[k];
+        let w101 = series::mul(&w8, &w97, k);
+        let w122 = w97[k] * w119;
+        let w123 = w99[k] * w120;
+        let w124 = w101 * w121;
+        let w125 = w122 + w123;
+        let w126 = w125 - w124;
+        let w134 = series::sq(&w8, k);
+        let w136 = w134 * w135;
+        let w138 = w97[k] * w116;
+        let w139 = w99[k] * w117;
+        let w140 = w101 * w118;
+        let w141 = w138 + w139;
+        w142[k] = w141 - w140;
+        let w143 = series::mul(&w1, &w142, k);
+        let w144 = series::mul(&w20, &w99, k);
+        let w145 = w118 * w144;
+        let w146 = w143 + w145;
+        out[0][k] = w93;
+        out[1][k] = w126;
+        out[2][k] = w136;
+        out[3][k] = w146;
     }
-    if 0 < N { order!(0); }
-    if 1 < N { order!(1); }
-    if 2 < N { order!(2); }
-    if 3 < N { order!(3); }
-    if 4 < N { order!(4); }
-    if 5 < N { order!(5); }
-    if 6 < N { order!(6); }
-    if 7 < N { order!(7); }
-    if 8 < N { order!(8); }
-    if 9 < N { order!(9); }
-    if 10 < N { order!(10); }
-    if 11 < N { order!(11); }
-    if 12 < N { order!(12); }
-    if 13 < N { order!(13); }
-    if 14 < N { order!(14); }
-    if 15 < N { order!(15); }
-    if 16 < N { order!(16); }
-    if 17 < N { order!(17); }
-    if 18 < N { order!(18); }
-    if 19 < N { order!(19); }
-    if 20 < N { order!(20); }
-    for k in 21..N { order!(k); }
     out
 }
 
@@ -1223,58 +1061,31 @@ pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Param
     let w75: f64 = w57 * w74;
     let w76: f64 = w72 * w75;
     let mut out = [[0.0f64; N]; 2];
-    // The tape at order k, for k < N: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w0[k] = ug[k];
-            w4[k] = x[0][k];
-            series::sin_cos(&w4, &mut d_w4, &mut sin_w4, &mut cos_w4, k);
-            w5[k] = cos_w4[k];
-            w10[k] = sin_w4[k];
-            w12[k] = x[1][k];
-            let w13 = series::mul(&w10, &w12, k);
-            w42[k] = x[2][k];
-            let w43 = w5[k] * w39;
-            let w44 = w10[k] * w40;
-            let w45 = w13 * w41;
-            let w46 = w43 + w44;
-            w47[k] = w46 - w45;
-            let w48 = series::mul(&w42, &w47, k);
-            w49[k] = x[3][k];
-            let w50 = series::mul(&w5, &w49, k);
-            let w51 = w41 * w50;
-            w52[k] = w48 + w51;
-            let w53 = series::mul(&w0, &w52, k);
-            let w54 = -w53;
-            let w77 = series::sq(&w49, k);
-            let w78 = w76 * w77;
-            out[0][k] = w54;
-            out[1][k] = w78;
-        };
+    for k in 0..N {
+        w0[k] = ug[k];
+        w4[k] = x[0][k];
+        series::sin_cos(&w4, &mut d_w4, &mut sin_w4, &mut cos_w4, k);
+        w5[k] = cos_w4[k];
+        w10[k] = sin_w4[k];
+        w12[k] = x[1][k];
+        let w13 = series::mul(&w10, &w12, k);
+        w42[k] = x[2][k];
+        let w43 = w5[k] * w39;
+        let w44 = w10[k] * w40;
+        let w45 = w13 * w41;
+        let w46 = w43 + w44;
+        w47[k] = w46 - w45;
+        let w48 = series::mul(&w42, &w47, k);
+        w49[k] = x[3][k];
+        let w50 = series::mul(&w5, &w49, k);
+        let w51 = w41 * w50;
+        w52[k] = w48 + w51;
+        let w53 = series::mul(&w0, &w52, k);
+        let w54 = -w53;
+        let w77 = series::sq(&w49, k);
+        let w78 = w76 * w77;
+        out[0][k] = w54;
+        out[1][k] = w78;
     }
-    if 0 < N { order!(0); }
-    if 1 < N { order!(1); }
-    if 2 < N { order!(2); }
-    if 3 < N { order!(3); }
-    if 4 < N { order!(4); }
-    if 5 < N { order!(5); }
-    if 6 < N { order!(6); }
-    if 7 < N { order!(7); }
-    if 8 < N { order!(8); }
-    if 9 < N { order!(9); }
-    if 10 < N { order!(10); }
-    if 11 < N { order!(11); }
-    if 12 < N { order!(12); }
-    if 13 < N { order!(13); }
-    if 14 < N { order!(14); }
-    if 15 < N { order!(15); }
-    if 16 < N { order!(16); }
-    if 17 < N { order!(17); }
-    if 18 < N { order!(18); }
-    if 19 < N { order!(19); }
-    if 20 < N { order!(20); }
-    for k in 21..N { order!(k); }
     out
 }

@@ -177,167 +177,140 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 6], ug: &[f64; N], s: f64,
     let mut inv_w242 = 0.0f64;
     let mut w243 = [0.0f64; N];
     let mut w245 = [0.0f64; N];
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w0[k] = x[3][k];
-            w2[k] = x[4][k];
-            w4[k] = x[5][k];
-            w6[k] = x[0][k];
-            series::sin_cos(&w6, &mut d_w6, &mut sin_w6, &mut cos_w6, k);
-            w7[k] = cos_w6[k];
-            w8[k] = x[1][k];
-            w9[k] = x[2][k];
-            w18[k] = ug[k];
-            let w38 = w8[k] * w35;
-            let w39 = w9[k] * w32;
-            let w40 = w18[k] * w24;
-            let w41 = w38 + w39;
-            let w42 = w41 - w40;
-            w43[k] = w42 - at0(k, w37);
-            let w44 = series::mul(&w7, &w43, k);
-            w45[k] = sin_w6[k];
-            let w47 = series::mul(&w8, &w18, k);
-            let w48 = series::mul(&w9, &w18, k);
-            let w61 = w18[k] * w56;
-            let w62 = w47 * w54;
-            let w63 = w48 * w52;
-            let w64 = w61 - w62;
-            let w65 = w64 - w63;
-            w66[k] = w65 - at0(k, w60);
-            let w67 = series::mul(&w45, &w66, k);
-            w68[k] = series::mul(&w0, &w8, k);
-            w69[k] = series::mul(&w0, &w9, k);
-            let w91 = w0[k] * w90;
-            let w92 = w68[k] * w83;
-            let w93 = w69[k] * w77;
-            let w94 = w92 + w93;
-            w95[k] = w94 - w91;
-            let w96 = series::mul(&w2, &w95, k);
-            let w104 = w0[k] * w103;
-            let w105 = w68[k] * w77;
-            let w106 = w69[k] * w83;
-            let w107 = w105 + w106;
-            w108[k] = w107 - w104;
-            let w109 = series::mul(&w4, &w108, k);
-            let w111 = series::sq(&w8, k);
-            let w112 = series::mul(&w8, &w9, k);
-            let w113 = series::sq(&w9, k);
-            let w142 = w44 - w67;
-            let w143 = w142 - w96;
-            w144[k] = w143 - w109;
-            let w145 = w8[k] * w137;
-            let w146 = w9[k] * w134;
-            let w147 = w111 * w121;
-            let w148 = w77 * w112;
-            let w149 = w113 * w121;
-            let w150 = w145 + w146;
-            let w151 = w147 + w150;
-            let w152 = w148 + w151;
-            let w153 = w149 + w152;
-            w154[k] = at0(k, w141) + w153;
-            if k == 0 { inv_w154 = 1.0 / w154[0]; }
-            w155[k] = series::div(w144[k], &w154, &w155, inv_w154, k);
-            w161[k] = series::div(at0(k, w160), &w154, &w161, inv_w154, k);
-            let w169 = series::mul(&w7, &w18, k);
-            let w170 = series::sq(&w0, k);
-            let w171 = series::mul(&w0, &w68, k);
-            let w172 = series::mul(&w0, &w69, k);
-            let w176 = series::mul(&w144, &w161, k);
-            w181[k] = series::sq(&w161, k);
-            w182[k] = series::mul(&w154, &w181, k);
-            let w183 = w2[k] * w174;
-            let w184 = w4[k] * w175;
-            let w185 = w8[k] * w168;
-            let w186 = w35 * w45[k];
-            let w187 = w54 * w169;
-            let w188 = w170 * w173;
-            let w189 = w121 * w171;
-            let w190 = w74 * w172;
-            let w191 = w185 + w186;
-            let w192 = w189 + w191;
-            let w193 = w190 + w192;
-            let w194 = w193 - w183;
-            let w195 = w194 - w184;
-            let w196 = w195 - w187;
-            let w197 = w196 - w188;
-            w198[k] = w197 - w176;
-            w199[k] = at0(k, w180) - w182[k];
-            if k == 0 { inv_w199 = 1.0 / w199[0]; }
-            w200[k] = series::div(w198[k], &w199, &w200, inv_w199, k);
-            w206[k] = series::div(at0(k, w205), &w154, &w206, inv_w154, k);
-            w207[k] = series::mul(&w161, &w206, k);
-            let w208 = series::mul(&w154, &w207, k);
-            let w209 = at0(k, w13) - w208;
-            w210[k] = series::div(w209, &w199, &w210, inv_w199, k);
-            let w216 = series::mul(&w144, &w206, k);
-            let w217 = series::mul(&w198, &w210, k);
-            w218[k] = series::sq(&w206, k);
-            let w219 = series::mul(&w154, &w218, k);
-            w220[k] = series::sq(&w210, k);
-            let w221 = series::mul(&w182, &w220, k);
-            let w222 = w2[k] * w175;
-            let w223 = w4[k] * w215;
-            let w224 = w9[k] * w213;
-            let w225 = w32 * w45[k];
-            let w226 = w52 * w169;
-            let w227 = w170 * w214;
-            let w228 = w74 * w171;
-            let w229 = w121 * w172;
-            let w230 = w224 + w225;
-            let w231 = w228 + w230;
-            let w232 = w229 + w231;
-            let w233 = w232 - w222;
-            let w234 = w233 - w223;
-            let w235 = w234 - w226;
-            let w236 = w235 - w227;
-            let w237 = w236 - w216;
-            let w238 = w237 - w217;
-            let w239 = w180 * w220[k];
-            let w240 = at0(k, w180) + w221;
-            let w241 = w240 - w219;
-            w242[k] = w241 - w239;
-            if k == 0 { inv_w242 = 1.0 / w242[0]; }
-            w243[k] = series::div(w238, &w242, &w243, inv_w242, k);
-            let w244 = series::mul(&w210, &w243, k);
-            w245[k] = w200[k] - w244;
-            let w246 = series::mul(&w161, &w245, k);
-            let w247 = series::mul(&w206, &w243, k);
-            let w248 = w155[k] - w246;
-            let w249 = w248 - w247;
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            x[0][k + 1] = w0[k] * inv_k1;
-            x[1][k + 1] = w2[k] * inv_k1;
-            x[2][k + 1] = w4[k] * inv_k1;
-            x[3][k + 1] = w249 * inv_k1;
-            x[4][k + 1] = w245[k] * inv_k1;
-            x[5][k + 1] = w243[k] * inv_k1;
-        };
+    for k in 0..N - 1 {
+        w0[k] = x[3][k];
+        w2[k] = x[4][k];
+        w4[k] = x[5][k];
+        w6[k] = x[0][k];
+        series::sin_cos(&w6, &mut d_w6, &mut sin_w6, &mut cos_w6, k);
+        w7[k] = cos_w6[k];
+        w8[k] = x[1][k];
+        w9[k] = x[2][k];
+        w18[k] = ug[k];
+        let w38 = w8[k] * w35;
+        let w39 = w9[k] * w32;
+        let w40 = w18[k] * w24;
+        let w41 = w38 + w39;
+        let w42 = w41 - w40;
+        w43[k] = w42 - at0(k, w37);
+        let w44 = series::mul(&w7, &w43, k);
+        w45[k] = sin_w6[k];
+        let w47 = series::mul(&w8, &w18, k);
+        let w48 = series::mul(&w9, &w18, k);
+        let w61 = w18[k] * w56;
+        let w62 = w47 * w54;
+        let w63 = w48 * w52;
+        let w64 = w61 - w62;
+        let w65 = w64 - w63;
+        w66[k] = w65 - at0(k, w60);
+        let w67 = series::mul(&w45, &w66, k);
+        w68[k] = series::mul(&w0, &w8, k);
+        w69[k] = series::mul(&w0, &w9, k);
+        let w91 = w0[k] * w90;
+        let w92 = w68[k] * w83;
+        let w93 = w69[k] * w77;
+        let w94 = w92 + w93;
+        w95[k] = w94 - w91;
+        let w96 = series::mul(&w2, &w95, k);
+        let w104 = w0[k] * w103;
+        let w105 = w68[k] * w77;
+        let w106 = w69[k] * w83;
+        let w107 = w105 + w106;
+        w108[k] = w107 - w104;
+        let w109 = series::mul(&w4, &w108, k);
+        let w111 = series::sq(&w8, k);
+        let w112 = series::mul(&w8, &w9, k);
+        let w113 = series::sq(&w9, k);
+        let w142 = w44 - w67;
+        let w143 = w142 - w96;
+        w144[k] = w143 - w109;
+        let w145 = w8[k] * w137;
+        let w146 = w9[k] * w134;
+        let w147 = w111 * w121;
+        let w148 = w77 * w112;
+        let w149 = w113 * w121;
+        let w150 = w145 + w146;
+        let w151 = w147 + w150;
+        let w152 = w148 + w151;
+        let w153 = w149 + w152;
+        w154[k] = at0(k, w141) + w153;
+        if k == 0 { inv_w154 = 1.0 / w154[0]; }
+        w155[k] = series::div(w144[k], &w154, &w155, inv_w154, k);
+        w161[k] = series::div(at0(k, w160), &w154, &w161, inv_w154, k);
+        let w169 = series::mul(&w7, &w18, k);
+        let w170 = series::sq(&w0, k);
+        let w171 = series::mul(&w0, &w68, k);
+        let w172 = series::mul(&w0, &w69, k);
+        let w176 = series::mul(&w144, &w161, k);
+        w181[k] = series::sq(&w161, k);
+        w182[k] = series::mul(&w154, &w181, k);
+        let w183 = w2[k] * w174;
+        let w184 = w4[k] * w175;
+        let w185 = w8[k] * w168;
+        let w186 = w35 * w45[k];
+        let w187 = w54 * w169;
+        let w188 = w170 * w173;
+        let w189 = w121 * w171;
+        let w190 = w74 * w172;
+        let w191 = w185 + w186;
+        let w192 = w189 + w191;
+        let w193 = w190 + w192;
+        let w194 = w193 - w183;
+        let w195 = w194 - w184;
+        let w196 = w195 - w187;
+        let w197 = w196 - w188;
+        w198[k] = w197 - w176;
+        w199[k] = at0(k, w180) - w182[k];
+        if k == 0 { inv_w199 = 1.0 / w199[0]; }
+        w200[k] = series::div(w198[k], &w199, &w200, inv_w199, k);
+        w206[k] = series::div(at0(k, w205), &w154, &w206, inv_w154, k);
+        w207[k] = series::mul(&w161, &w206, k);
+        let w208 = series::mul(&w154, &w207, k);
+        let w209 = at0(k, w13) - w208;
+        w210[k] = series::div(w209, &w199, &w210, inv_w199, k);
+        let w216 = series::mul(&w144, &w206, k);
+        let w217 = series::mul(&w198, &w210, k);
+        w218[k] = series::sq(&w206, k);
+        let w219 = series::mul(&w154, &w218, k);
+        w220[k] = series::sq(&w210, k);
+        let w221 = series::mul(&w182, &w220, k);
+        let w222 = w2[k] * w175;
+        let w223 = w4[k] * w215;
+        let w224 = w9[k] * w213;
+        let w225 = w32 * w45[k];
+        let w226 = w52 * w169;
+        let w227 = w170 * w214;
+        let w228 = w74 * w171;
+        let w229 = w121 * w172;
+        let w230 = w224 + w225;
+        let w231 = w228 + w230;
+        let w232 = w229 + w231;
+        let w233 = w232 - w222;
+        let w234 = w233 - w223;
+        let w235 = w234 - w226;
+        let w236 = w235 - w227;
+        let w237 = w236 - w216;
+        let w238 = w237 - w217;
+        let w239 = w180 * w220[k];
+        let w240 = at0(k, w180) + w221;
+        let w241 = w240 - w219;
+        w242[k] = w241 - w239;
+        if k == 0 { inv_w242 = 1.0 / w242[0]; }
+        w243[k] = series::div(w238, &w242, &w243, inv_w242, k);
+        let w244 = series::mul(&w210, &w243, k);
+        w245[k] = w200[k] - w244;
+        let w246 = series::mul(&w161, &w245, k);
+        let w247 = series::mul(&w206, &w243, k);
+        let w248 = w155[k] - w246;
+        let w249 = w248 - w247;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        x[0][k + 1] = w0[k] * inv_k1;
+        x[1][k + 1] = w2[k] * inv_k1;
+        x[2][k + 1] = w4[k] * inv_k1;
+        x[3][k + 1] = w249 * inv_k1;
+        x[4][k + 1] = w245[k] * inv_k1;
+        x[5][k + 1] = w243[k] * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// Taylor coefficients of the solution of `x' = rocking_rhs_free(..)`: on entry `x[i][0]` holds
@@ -516,159 +489,132 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 6], s: f64, p: &Param
     let mut inv_w242 = 0.0f64;
     let mut w243 = [0.0f64; N];
     let mut w245 = [0.0f64; N];
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w0[k] = x[3][k];
-            w2[k] = x[4][k];
-            w4[k] = x[5][k];
-            w6[k] = x[0][k];
-            series::sin_cos(&w6, &mut d_w6, &mut sin_w6, &mut cos_w6, k);
-            w7[k] = cos_w6[k];
-            w8[k] = x[1][k];
-            w9[k] = x[2][k];
-            let w41 = w8[k] * w38;
-            let w42 = w9[k] * w35;
-            let w43 = w41 + w42;
-            w44[k] = w43 - at0(k, w40);
-            let w45 = series::mul(&w7, &w44, k);
-            w46[k] = sin_w6[k];
-            let w62 = w8[k] * w54;
-            let w63 = w9[k] * w52;
-            let w64 = at0(k, w61) - w62;
-            w65[k] = w64 - w63;
-            let w66 = series::mul(&w46, &w65, k);
-            w67[k] = series::mul(&w0, &w8, k);
-            w68[k] = series::mul(&w0, &w9, k);
-            let w90 = w0[k] * w89;
-            let w91 = w67[k] * w82;
-            let w92 = w68[k] * w76;
-            let w93 = w91 + w92;
-            w94[k] = w93 - w90;
-            let w95 = series::mul(&w2, &w94, k);
-            let w103 = w0[k] * w102;
-            let w104 = w67[k] * w76;
-            let w105 = w68[k] * w82;
-            let w106 = w104 + w105;
-            w107[k] = w106 - w103;
-            let w108 = series::mul(&w4, &w107, k);
-            let w110 = series::sq(&w8, k);
-            let w111 = series::mul(&w8, &w9, k);
-            let w112 = series::sq(&w9, k);
-            let w142 = w45 - w66;
-            let w143 = w142 - w95;
-            w144[k] = w143 - w108;
-            let w145 = w8[k] * w136;
-            let w146 = w9[k] * w133;
-            let w147 = w110 * w120;
-            let w148 = w76 * w111;
-            let w149 = w112 * w120;
-            let w150 = w145 + w146;
-            let w151 = w147 + w150;
-            let w152 = w148 + w151;
-            let w153 = w149 + w152;
-            w154[k] = at0(k, w141) + w153;
-            if k == 0 { inv_w154 = 1.0 / w154[0]; }
-            w155[k] = series::div(w144[k], &w154, &w155, inv_w154, k);
-            w162[k] = series::div(at0(k, w161), &w154, &w162, inv_w154, k);
-            let w170 = series::sq(&w0, k);
-            let w171 = series::mul(&w0, &w67, k);
-            let w172 = series::mul(&w0, &w68, k);
-            let w176 = series::mul(&w144, &w162, k);
-            w181[k] = series::sq(&w162, k);
-            w182[k] = series::mul(&w154, &w181, k);
-            let w183 = w2[k] * w174;
-            let w184 = w4[k] * w175;
-            let w185 = w7[k] * w54;
-            let w186 = w8[k] * w169;
-            let w187 = w38 * w46[k];
-            let w188 = w170 * w173;
-            let w189 = w120 * w171;
-            let w190 = w73 * w172;
-            let w191 = w186 + w187;
-            let w192 = w189 + w191;
-            let w193 = w190 + w192;
-            let w194 = w193 - w183;
-            let w195 = w194 - w184;
-            let w196 = w195 - w185;
-            let w197 = w196 - w188;
-            w198[k] = w197 - w176;
-            w199[k] = at0(k, w180) - w182[k];
-            if k == 0 { inv_w199 = 1.0 / w199[0]; }
-            w200[k] = series::div(w198[k], &w199, &w200, inv_w199, k);
-            w206[k] = series::div(at0(k, w205), &w154, &w206, inv_w154, k);
-            w207[k] = series::mul(&w162, &w206, k);
-            let w208 = series::mul(&w154, &w207, k);
-            let w209 = at0(k, w13) - w208;
-            w210[k] = series::div(w209, &w199, &w210, inv_w199, k);
-            let w216 = series::mul(&w144, &w206, k);
-            let w217 = series::mul(&w198, &w210, k);
-            w218[k] = series::sq(&w206, k);
-            let w219 = series::mul(&w154, &w218, k);
-            w220[k] = series::sq(&w210, k);
-            let w221 = series::mul(&w182, &w220, k);
-            let w222 = w2[k] * w175;
-            let w223 = w4[k] * w215;
-            let w224 = w7[k] * w52;
-            let w225 = w9[k] * w213;
-            let w226 = w35 * w46[k];
-            let w227 = w170 * w214;
-            let w228 = w73 * w171;
-            let w229 = w120 * w172;
-            let w230 = w225 + w226;
-            let w231 = w228 + w230;
-            let w232 = w229 + w231;
-            let w233 = w232 - w222;
-            let w234 = w233 - w223;
-            let w235 = w234 - w224;
-            let w236 = w235 - w227;
-            let w237 = w236 - w216;
-            let w238 = w237 - w217;
-            let w239 = w180 * w220[k];
-            let w240 = at0(k, w180) + w221;
-            let w241 = w240 - w219;
-            w242[k] = w241 - w239;
-            if k == 0 { inv_w242 = 1.0 / w242[0]; }
-            w243[k] = series::div(w238, &w242, &w243, inv_w242, k);
-            let w244 = series::mul(&w210, &w243, k);
-            w245[k] = w200[k] - w244;
-            let w246 = series::mul(&w162, &w245, k);
-            let w247 = series::mul(&w206, &w243, k);
-            let w248 = w155[k] - w246;
-            let w249 = w248 - w247;
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            x[0][k + 1] = w0[k] * inv_k1;
-            x[1][k + 1] = w2[k] * inv_k1;
-            x[2][k + 1] = w4[k] * inv_k1;
-            x[3][k + 1] = w249 * inv_k1;
-            x[4][k + 1] = w245[k] * inv_k1;
-            x[5][k + 1] = w243[k] * inv_k1;
-        };
+    for k in 0..N - 1 {
+        w0[k] = x[3][k];
+        w2[k] = x[4][k];
+        w4[k] = x[5][k];
+        w6[k] = x[0][k];
+        series::sin_cos(&w6, &mut d_w6, &mut sin_w6, &mut cos_w6, k);
+        w7[k] = cos_w6[k];
+        w8[k] = x[1][k];
+        w9[k] = x[2][k];
+        let w41 = w8[k] * w38;
+        let w42 = w9[k] * w35;
+        let w43 = w41 + w42;
+        w44[k] = w43 - at0(k, w40);
+        let w45 = series::mul(&w7, &w44, k);
+        w46[k] = sin_w6[k];
+        let w62 = w8[k] * w54;
+        let w63 = w9[k] * w52;
+        let w64 = at0(k, w61) - w62;
+        w65[k] = w64 - w63;
+        let w66 = series::mul(&w46, &w65, k);
+        w67[k] = series::mul(&w0, &w8, k);
+        w68[k] = series::mul(&w0, &w9, k);
+        let w90 = w0[k] * w89;
+        let w91 = w67[k] * w82;
+        let w92 = w68[k] * w76;
+        let w93 = w91 + w92;
+        w94[k] = w93 - w90;
+        let w95 = series::mul(&w2, &w94, k);
+        let w103 = w0[k] * w102;
+        let w104 = w67[k] * w76;
+        let w105 = w68[k] * w82;
+        let w106 = w104 + w105;
+        w107[k] = w106 - w103;
+        let w108 = series::mul(&w4, &w107, k);
+        let w110 = series::sq(&w8, k);
+        let w111 = series::mul(&w8, &w9, k);
+        let w112 = series::sq(&w9, k);
+        let w142 = w45 - w66;
+        let w143 = w142 - w95;
+        w144[k] = w143 - w108;
+        let w145 = w8[k] * w136;
+        let w146 = w9[k] * w133;
+        let w147 = w110 * w120;
+        let w148 = w76 * w111;
+        let w149 = w112 * w120;
+        let w150 = w145 + w146;
+        let w151 = w147 + w150;
+        let w152 = w148 + w151;
+        let w153 = w149 + w152;
+        w154[k] = at0(k, w141) + w153;
+        if k == 0 { inv_w154 = 1.0 / w154[0]; }
+        w155[k] = series::div(w144[k], &w154, &w155, inv_w154, k);
+        w162[k] = series::div(at0(k, w161), &w154, &w162, inv_w154, k);
+        let w170 = series::sq(&w0, k);
+        let w171 = series::mul(&w0, &w67, k);
+        let w172 = series::mul(&w0, &w68, k);
+        let w176 = series::mul(&w144, &w162, k);
+        w181[k] = series::sq(&w162, k);
+        w182[k] = series::mul(&w154, &w181, k);
+        let w183 = w2[k] * w174;
+        let w184 = w4[k] * w175;
+        let w185 = w7[k] * w54;
+        let w186 = w8[k] * w169;
+        let w187 = w38 * w46[k];
+        let w188 = w170 * w173;
+        let w189 = w120 * w171;
+        let w190 = w73 * w172;
+        let w191 = w186 + w187;
+        let w192 = w189 + w191;
+        let w193 = w190 + w192;
+        let w194 = w193 - w183;
+        let w195 = w194 - w184;
+        let w196 = w195 - w185;
+        let w197 = w196 - w188;
+        w198[k] = w197 - w176;
+        w199[k] = at0(k, w180) - w182[k];
+        if k == 0 { inv_w199 = 1.0 / w199[0]; }
+        w200[k] = series::div(w198[k], &w199, &w200, inv_w199, k);
+        w206[k] = series::div(at0(k, w205), &w154, &w206, inv_w154, k);
+        w207[k] = series::mul(&w162, &w206, k);
+        let w208 = series::mul(&w154, &w207, k);
+        let w209 = at0(k, w13) - w208;
+        w210[k] = series::div(w209, &w199, &w210, inv_w199, k);
+        let w216 = series::mul(&w144, &w206, k);
+        let w217 = series::mul(&w198, &w210, k);
+        w218[k] = series::sq(&w206, k);
+        let w219 = series::mul(&w154, &w218, k);
+        w220[k] = series::sq(&w210, k);
+        let w221 = series::mul(&w182, &w220, k);
+        let w222 = w2[k] * w175;
+        let w223 = w4[k] * w215;
+        let w224 = w7[k] * w52;
+        let w225 = w9[k] * w213;
+        let w226 = w35 * w46[k];
+        let w227 = w170 * w214;
+        let w228 = w73 * w171;
+        let w229 = w120 * w172;
+        let w230 = w225 + w226;
+        let w231 = w228 + w230;
+        let w232 = w229 + w231;
+        let w233 = w232 - w222;
+        let w234 = w233 - w223;
+        let w235 = w234 - w224;
+        let w236 = w235 - w227;
+        let w237 = w236 - w216;
+        let w238 = w237 - w217;
+        let w239 = w180 * w220[k];
+        let w240 = at0(k, w180) + w221;
+        let w241 = w240 - w219;
+        w242[k] = w241 - w239;
+        if k == 0 { inv_w242 = 1.0 / w242[0]; }
+        w243[k] = series::div(w238, &w242, &w243, inv_w242, k);
+        let w244 = series::mul(&w210, &w243, k);
+        w245[k] = w200[k] - w244;
+        let w246 = series::mul(&w162, &w245, k);
+        let w247 = series::mul(&w206, &w243, k);
+        let w248 = w155[k] - w246;
+        let w249 = w248 - w247;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        x[0][k + 1] = w0[k] * inv_k1;
+        x[1][k + 1] = w2[k] * inv_k1;
+        x[2][k + 1] = w4[k] * inv_k1;
+        x[3][k + 1] = w249 * inv_k1;
+        x[4][k + 1] = w245[k] * inv_k1;
+        x[5][k + 1] = w243[k] * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// Taylor coefficients of the solution of `xc' = contact_rhs(..)`: on entry `xc[i][0]` holds
@@ -734,63 +680,36 @@ pub fn contact_rhs<const N: usize>(xc: &mut [[f64; N]; 4], ug: &[f64; N], p: &Pa
     let w63: f64 = w29 + w58;
     let w64: f64 = w30 + w59;
     let w65: f64 = w31 + w60;
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let w0 = xc[2][k];
-            let w2 = xc[3][k];
-            let w4 = xc[0][k];
-            let w15 = ug[k];
-            let w33 = xc[1][k];
-            let w66 = w0 * w62;
-            let w67 = w2 * w63;
-            let w68 = w4 * w64;
-            let w69 = w15 * w65;
-            let w70 = w33 * w61;
-            let w71 = w68 - w66;
-            let w72 = w71 - w67;
-            let w73 = w72 - w69;
-            let w74 = w73 - w70;
-            let w76 = w0 * w52;
-            let w77 = w2 * w53;
-            let w78 = w4 * w54;
-            let w79 = w15 * w55;
-            let w80 = w33 * w56;
-            let w81 = w76 + w77;
-            let w82 = w79 + w81;
-            let w83 = w80 + w82;
-            let w84 = w83 - w78;
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            xc[0][k + 1] = w0 * inv_k1;
-            xc[1][k + 1] = w2 * inv_k1;
-            xc[2][k + 1] = w74 * inv_k1;
-            xc[3][k + 1] = w84 * inv_k1;
-        };
+    for k in 0..N - 1 {
+        let w0 = xc[2][k];
+        let w2 = xc[3][k];
+        let w4 = xc[0][k];
+        let w15 = ug[k];
+        let w33 = xc[1][k];
+        let w66 = w0 * w62;
+        let w67 = w2 * w63;
+        let w68 = w4 * w64;
+        let w69 = w15 * w65;
+        let w70 = w33 * w61;
+        let w71 = w68 - w66;
+        let w72 = w71 - w67;
+        let w73 = w72 - w69;
+        let w74 = w73 - w70;
+        let w76 = w0 * w52;
+        let w77 = w2 * w53;
+        let w78 = w4 * w54;
+        let w79 = w15 * w55;
+        let w80 = w33 * w56;
+        let w81 = w76 + w77;
+        let w82 = w79 + w81;
+        let w83 = w80 + w82;
+        let w84 = w83 - w78;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        xc[0][k + 1] = w0 * inv_k1;
+        xc[1][k + 1] = w2 * inv_k1;
+        xc[2][k + 1] = w74 * inv_k1;
+        xc[3][k + 1] = w84 * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// Taylor coefficients of the solution of `xc' = contact_rhs_free(..)`: on entry `xc[i][0]` holds
@@ -860,60 +779,33 @@ pub fn contact_rhs_free<const N: usize>(xc: &mut [[f64; N]; 4], p: &Params) {
     let w65: f64 = w31 + w60;
     let w66: f64 = w32 + w61;
     let w67: f64 = w33 + w63;
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let w0 = xc[2][k];
-            let w2 = xc[3][k];
-            let w4 = xc[0][k];
-            let w35 = xc[1][k];
-            let w68 = w0 * w64;
-            let w69 = w2 * w65;
-            let w70 = w4 * w66;
-            let w71 = w35 * w62;
-            let w72 = w70 - w68;
-            let w73 = w72 - w69;
-            let w74 = w73 - w71;
-            let w75 = w74 - at0(k, w67);
-            let w77 = w0 * w54;
-            let w78 = w2 * w55;
-            let w79 = w4 * w56;
-            let w80 = w35 * w57;
-            let w81 = w77 + w78;
-            let w82 = w80 + w81;
-            let w83 = at0(k, w58) + w82;
-            let w84 = w83 - w79;
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            xc[0][k + 1] = w0 * inv_k1;
-            xc[1][k + 1] = w2 * inv_k1;
-            xc[2][k + 1] = w75 * inv_k1;
-            xc[3][k + 1] = w84 * inv_k1;
-        };
+    for k in 0..N - 1 {
+        let w0 = xc[2][k];
+        let w2 = xc[3][k];
+        let w4 = xc[0][k];
+        let w35 = xc[1][k];
+        let w68 = w0 * w64;
+        let w69 = w2 * w65;
+        let w70 = w4 * w66;
+        let w71 = w35 * w62;
+        let w72 = w70 - w68;
+        let w73 = w72 - w69;
+        let w74 = w73 - w71;
+        let w75 = w74 - at0(k, w67);
+        let w77 = w0 * w54;
+        let w78 = w2 * w55;
+        let w79 = w4 * w56;
+        let w80 = w35 * w57;
+        let w81 = w77 + w78;
+        let w82 = w80 + w81;
+        let w83 = at0(k, w58) + w82;
+        let w84 = w83 - w79;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        xc[0][k + 1] = w0 * inv_k1;
+        xc[1][k + 1] = w2 * inv_k1;
+        xc[2][k + 1] = w75 * inv_k1;
+        xc[3][k + 1] = w84 * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// The first N Taylor coefficients of each output of `uplift` along series inputs.
@@ -1035,51 +927,24 @@ pub fn uplift<const N: usize>(xc: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Par
     let w118: f64 = w0 * w110;
     let w119: f64 = w0 * w29;
     let mut out = [[0.0f64; N]; 1];
-    // The tape at order k, for k < N: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let w1 = xc[0][k];
-            let w2 = xc[1][k];
-            let w10 = ug[k];
-            let w46 = xc[2][k];
-            let w48 = xc[3][k];
-            let w120 = w1 * w114;
-            let w121 = w2 * w115;
-            let w122 = w10 * w116;
-            let w123 = w46 * w117;
-            let w124 = w48 * w118;
-            let w125 = w120 + w121;
-            let w126 = w125 - w122;
-            let w127 = w126 - w123;
-            let w128 = w127 - w124;
-            let w129 = w128 - at0(k, w119);
-            out[0][k] = w129;
-        };
+    for k in 0..N {
+        let w1 = xc[0][k];
+        let w2 = xc[1][k];
+        let w10 = ug[k];
+        let w46 = xc[2][k];
+        let w48 = xc[3][k];
+        let w120 = w1 * w114;
+        let w121 = w2 * w115;
+        let w122 = w10 * w116;
+        let w123 = w46 * w117;
+        let w124 = w48 * w118;
+        let w125 = w120 + w121;
+        let w126 = w125 - w122;
+        let w127 = w126 - w123;
+        let w128 = w127 - w124;
+        let w129 = w128 - at0(k, w119);
+        out[0][k] = w129;
     }
-    if 0 < N { order!(0); }
-    if 1 < N { order!(1); }
-    if 2 < N { order!(2); }
-    if 3 < N { order!(3); }
-    if 4 < N { order!(4); }
-    if 5 < N { order!(5); }
-    if 6 < N { order!(6); }
-    if 7 < N { order!(7); }
-    if 8 < N { order!(8); }
-    if 9 < N { order!(9); }
-    if 10 < N { order!(10); }
-    if 11 < N { order!(11); }
-    if 12 < N { order!(12); }
-    if 13 < N { order!(13); }
-    if 14 < N { order!(14); }
-    if 15 < N { order!(15); }
-    if 16 < N { order!(16); }
-    if 17 < N { order!(17); }
-    if 18 < N { order!(18); }
-    if 19 < N { order!(19); }
-    if 20 < N { order!(20); }
-    for k in 21..N { order!(k); }
     out
 }
 
@@ -1192,115 +1057,88 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 6], s: f64, p: &Params) -> [[f64; N
     let w150: f64 = w105 + w149;
     let mut w157 = [0.0f64; N];
     let mut out = [[0.0f64; N]; 4];
-    // The tape at order k, for k < N: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w1[k] = x[3][k];
-            w6[k] = series::sq(&w1, k);
-            w8[k] = x[1][k];
-            let w11 = series::mul(&w6, &w8, k);
-            w14[k] = x[2][k];
-            let w15 = series::mul(&w6, &w14, k);
-            w24[k] = x[4][k];
-            let w25 = series::mul(&w1, &w24, k);
-            w28[k] = x[5][k];
-            let w29 = series::mul(&w1, &w28, k);
-            w32[k] = series::mul(&w1, &w8, k);
-            w33[k] = series::mul(&w1, &w32, k);
-            let w34 = series::mul(&w8, &w33, k);
-            let w35 = series::sq(&w24, k);
-            w37[k] = series::mul(&w1, &w14, k);
-            w38[k] = series::mul(&w1, &w37, k);
-            let w39 = series::mul(&w14, &w38, k);
-            let w40 = series::sq(&w28, k);
-            let w49 = series::mul(&w24, &w28, k);
-            let w50 = w1[k] * w4;
-            let w51 = w32[k] + w37[k];
-            w52[k] = w51 - w50;
-            let w53 = series::sq(&w52, k);
-            let w75 = w6[k] * w74;
-            let w76 = w11 * w64;
-            let w77 = w15 * w65;
-            let w78 = w25 * w66;
-            let w79 = w29 * w67;
-            let w80 = w34 * w68;
-            let w81 = w35 * w69;
-            let w82 = w39 * w68;
-            let w83 = w40 * w69;
-            let w84 = w49 * w70;
-            let w85 = w53 * w71;
-            let w86 = w75 + w78;
-            let w87 = w79 + w86;
-            let w88 = w80 + w87;
-            let w89 = w81 + w88;
-            let w90 = w82 + w89;
-            let w91 = w83 + w90;
-            let w92 = w84 + w91;
-            let w93 = w85 + w92;
-            let w94 = w93 - w76;
-            let w95 = w94 - w77;
-            w98[k] = x[0][k];
-            series::sin_cos(&w98, &mut d_w98, &mut sin_w98, &mut cos_w98, k);
-            w99[k] = sin_w98[k];
-            w101[k] = cos_w98[k];
-            let w103 = series::mul(&w8, &w99, k);
-            let w104 = series::mul(&w14, &w99, k);
-            let w122 = w99[k] * w118;
-            let w123 = w101[k] * w119;
-            let w124 = w103 * w120;
-            let w125 = w104 * w121;
-            let w126 = w122 + w123;
-            let w127 = w126 - w124;
-            let w128 = w127 - w125;
-            let w136 = series::sq(&w8, k);
-            let w139 = series::sq(&w14, k);
-            let w142 = w136 * w140;
-            let w143 = w139 * w141;
-            let w144 = w142 + w143;
-            let w151 = w99[k] * w150;
-            let w152 = w101[k] * w148;
-            let w153 = w103 * w113;
-            let w154 = w104 * w114;
-            let w155 = w151 + w152;
-            let w156 = w155 - w153;
-            w157[k] = w156 - w154;
-            let w158 = series::mul(&w1, &w157, k);
-            let w159 = series::mul(&w24, &w101, k);
-            let w160 = series::mul(&w28, &w101, k);
-            let w161 = w113 * w159;
-            let w162 = w114 * w160;
-            let w163 = w158 + w161;
-            let w164 = w162 + w163;
-            out[0][k] = w95;
-            out[1][k] = w128;
-            out[2][k] = w144;
-            out[3][k] = w164;
-        };
+    for k in 0..N {
+        w1[k] = x[3][k];
+        w6[k] = series::sq(&w1, k);
+        w8[k] = x[1][k];
+        let w11 = series::mul(&w6, &w8, k);
+        w14[k] = x[2][k];
+        let w15 = series::mul(&w6, &w14, k);
+        w24[k] = x[4][k];
+        let w25 = series::mul(&w1, &w24, k);
+        w28[k] = x[5][k];
+        let w29 = series::mul(&w1, &w28, k);
+        w32[k] = series::mul(&w1, &w8, k);
+        w33[k] = series::mul(&w1, &w32, k);
+        let w34 = series::mul(&w8, &w33, k);
+        let w35 = series::sq(&w24, k);
+        w37[k] = series::mul(&w1, &w14, k);
+        w38[k] = series::mul(&w1, &w37, k);
+        let w39 = series::mul(&w14, &w38, k);
+        let w40 = series::sq(&w28, k);
+        let w49 = series::mul(&w24, &w28, k);
+        let w50 = w1[k] * w4;
+        let w51 = w32[k] + w37[k];
+        w52[k] = w51 - w50;
+        let w53 = series::sq(&w52, k);
+        let w75 = w6[k] * w74;
+        let w76 = w11 * w64;
+        let w77 = w15 * w65;
+        let w78 = w25 * w66;
+        let w79 = w29 * w67;
+        let w80 = w34 * w68;
+        let w81 = w35 * w69;
+        let w82 = w39 * w68;
+        let w83 = w40 * w69;
+        let w84 = w49 * w70;
+        let w85 = w53 * w71;
+        let w86 = w75 + w78;
+        let w87 = w79 + w86;
+        let w88 = w80 + w87;
+        let w89 = w81 + w88;
+        let w90 = w82 + w89;
+        let w91 = w83 + w90;
+        let w92 = w84 + w91;
+        let w93 = w85 + w92;
+        let w94 = w93 - w76;
+        let w95 = w94 - w77;
+        w98[k] = x[0][k];
+        series::sin_cos(&w98, &mut d_w98, &mut sin_w98, &mut cos_w98, k);
+        w99[k] = sin_w98[k];
+        w101[k] = cos_w98[k];
+        let w103 = series::mul(&w8, &w99, k);
+        let w104 = series::mul(&w14, &w99, k);
+        let w122 = w99[k] * w118;
+        let w123 = w101[k] * w119;
+        let w124 = w103 * w120;
+        let w125 = w104 * w121;
+        let w126 = w122 + w123;
+        let w127 = w126 - w124;
+        let w128 = w127 - w125;
+        let w136 = series::sq(&w8, k);
+        let w139 = series::sq(&w14, k);
+        let w142 = w136 * w140;
+        let w143 = w139 * w141;
+        let w144 = w142 + w143;
+        let w151 = w99[k] * w150;
+        let w152 = w101[k] * w148;
+        let w153 = w103 * w113;
+        let w154 = w104 * w114;
+        let w155 = w151 + w152;
+        let w156 = w155 - w153;
+        w157[k] = w156 - w154;
+        let w158 = series::mul(&w1, &w157, k);
+        let w159 = series::mul(&w24, &w101, k);
+        let w160 = series::mul(&w28, &w101, k);
+        let w161 = w113 * w159;
+        let w162 = w114 * w160;
+        let w163 = w158 + w161;
+        let w164 = w162 + w163;
+        out[0][k] = w95;
+        out[1][k] = w128;
+        out[2][k] = w144;
+        out[3][k] = w164;
     }
-    if 0 < N { order!(0); }
-    if 1 < N { order!(1); }
-    if 2 < N { order!(2); }
-    if 3 < N { order!(3); }
-    if 4 < N { order!(4); }
-    if 5 < N { order!(5); }
-    if 6 < N { order!(6); }
-    if 7 < N { order!(7); }
-    if 8 < N { order!(8); }
-    if 9 < N { order!(9); }
-    if 10 < N { order!(10); }
-    if 11 < N { order!(11); }
-    if 12 < N { order!(12); }
-    if 13 < N { order!(13); }
-    if 14 < N { order!(14); }
-    if 15 < N { order!(15); }
-    if 16 < N { order!(16); }
-    if 17 < N { order!(17); }
-    if 18 < N { order!(18); }
-    if 19 < N { order!(19); }
-    if 20 < N { order!(20); }
-    for k in 21..N { order!(k); }
     out
 }
 
@@ -1349,71 +1187,44 @@ pub fn power<const N: usize>(x: &[[f64; N]; 6], ug: &[f64; N], s: f64, p: &Param
     let w55: f64 = p[11];
     let mut w58 = [0.0f64; N];
     let mut out = [[0.0f64; N]; 2];
-    // The tape at order k, for k < N: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w0[k] = ug[k];
-            w1[k] = x[0][k];
-            series::sin_cos(&w1, &mut d_w1, &mut sin_w1, &mut cos_w1, k);
-            w2[k] = cos_w1[k];
-            w11[k] = sin_w1[k];
-            let w12 = x[1][k];
-            let w13 = x[2][k];
-            let w29 = w12 * w26;
-            let w30 = w13 * w23;
-            let w31 = w29 + w30;
-            w32[k] = w31 - at0(k, w28);
-            let w33 = series::mul(&w11, &w32, k);
-            w34[k] = x[3][k];
-            let w35 = w2[k] * w10;
-            w36[k] = w35 - w33;
-            let w37 = series::mul(&w34, &w36, k);
-            w38[k] = x[4][k];
-            let w39 = series::mul(&w2, &w38, k);
-            w40[k] = x[5][k];
-            let w41 = series::mul(&w2, &w40, k);
-            let w42 = w26 * w39;
-            let w43 = w23 * w41;
-            let w44 = w37 + w42;
-            w45[k] = w43 + w44;
-            let w46 = series::mul(&w0, &w45, k);
-            let w47 = -w46;
-            let w51 = w38[k] * w49;
-            let w52 = w40[k] * w50;
-            w53[k] = w51 + w52;
-            let w54 = series::mul(&w38, &w53, k);
-            let w56 = w38[k] * w50;
-            let w57 = w40[k] * w55;
-            w58[k] = w56 + w57;
-            let w59 = series::mul(&w40, &w58, k);
-            let w60 = w54 + w59;
-            out[0][k] = w47;
-            out[1][k] = w60;
-        };
+    for k in 0..N {
+        w0[k] = ug[k];
+        w1[k] = x[0][k];
+        series::sin_cos(&w1, &mut d_w1, &mut sin_w1, &mut cos_w1, k);
+        w2[k] = cos_w1[k];
+        w11[k] = sin_w1[k];
+        let w12 = x[1][k];
+        let w13 = x[2][k];
+        let w29 = w12 * w26;
+        let w30 = w13 * w23;
+        let w31 = w29 + w30;
+        w32[k] = w31 - at0(k, w28);
+        let w33 = series::mul(&w11, &w32, k);
+        w34[k] = x[3][k];
+        let w35 = w2[k] * w10;
+        w36[k] = w35 - w33;
+        let w37 = series::mul(&w34, &w36, k);
+        w38[k] = x[4][k];
+        let w39 = series::mul(&w2, &w38, k);
+        w40[k] = x[5][k];
+        let w41 = series::mul(&w2, &w40, k);
+        let w42 = w26 * w39;
+        let w43 = w23 * w41;
+        let w44 = w37 + w42;
+        w45[k] = w43 + w44;
+        let w46 = series::mul(&w0, &w45, k);
+        let w47 = -w46;
+        let w51 = w38[k] * w49;
+        let w52 = w40[k] * w50;
+        w53[k] = w51 + w52;
+        let w54 = series::mul(&w38, &w53, k);
+        let w56 = w38[k] * w50;
+        let w57 = w40[k] * w55;
+        w58[k] = w56 + w57;
+        let w59 = series::mul(&w40, &w58, k);
+        let w60 = w54 + w59;
+        out[0][k] = w47;
+        out[1][k] = w60;
     }
-    if 0 < N { order!(0); }
-    if 1 < N { order!(1); }
-    if 2 < N { order!(2); }
-    if 3 < N { order!(3); }
-    if 4 < N { order!(4); }
-    if 5 < N { order!(5); }
-    if 6 < N { order!(6); }
-    if 7 < N { order!(7); }
-    if 8 < N { order!(8); }
-    if 9 < N { order!(9); }
-    if 10 < N { order!(10); }
-    if 11 < N { order!(11); }
-    if 12 < N { order!(12); }
-    if 13 < N { order!(13); }
-    if 14 < N { order!(14); }
-    if 15 < N { order!(15); }
-    if 16 < N { order!(16); }
-    if 17 < N { order!(17); }
-    if 18 < N { order!(18); }
-    if 19 < N { order!(19); }
-    if 20 < N { order!(20); }
-    for k in 21..N { order!(k); }
     out
 }

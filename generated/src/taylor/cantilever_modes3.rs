@@ -224,264 +224,237 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 8], ug: &[f64; N], s: f64,
     let mut w359 = [0.0f64; N];
     let mut w361 = [0.0f64; N];
     let mut w365 = [0.0f64; N];
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w0[k] = x[4][k];
-            w2[k] = x[5][k];
-            w4[k] = x[6][k];
-            w6[k] = x[7][k];
-            w8[k] = x[0][k];
-            series::sin_cos(&w8, &mut d_w8, &mut sin_w8, &mut cos_w8, k);
-            w9[k] = cos_w8[k];
-            w10[k] = x[1][k];
-            w11[k] = x[2][k];
-            w12[k] = x[3][k];
-            w21[k] = ug[k];
-            let w44 = w10[k] * w41;
-            let w45 = w11[k] * w38;
-            let w46 = w12[k] * w35;
-            let w47 = w21[k] * w27;
-            let w48 = w44 + w45;
-            let w49 = w46 + w48;
-            let w50 = w49 - w47;
-            w51[k] = w50 - at0(k, w43);
-            let w52 = series::mul(&w9, &w51, k);
-            w53[k] = sin_w8[k];
-            let w55 = series::mul(&w10, &w21, k);
-            let w56 = series::mul(&w11, &w21, k);
-            let w57 = series::mul(&w12, &w21, k);
-            let w72 = w21[k] * w67;
-            let w73 = w55 * w65;
-            let w74 = w56 * w63;
-            let w75 = w57 * w61;
-            let w76 = w72 - w73;
-            let w77 = w76 - w74;
-            let w78 = w77 - w75;
-            w79[k] = w78 - at0(k, w71);
-            let w80 = series::mul(&w53, &w79, k);
-            w91[k] = series::mul(&w0, &w10, k);
-            w97[k] = series::mul(&w0, &w11, k);
-            w98[k] = series::mul(&w0, &w12, k);
-            let w108 = w0[k] * w106;
-            let w109 = w91[k] * w107;
-            let w110 = w97[k] * w105;
-            let w111 = w98[k] * w105;
-            let w112 = w108 + w109;
-            let w113 = w110 + w112;
-            w114[k] = w111 + w113;
-            let w115 = series::mul(&w2, &w114, k);
-            let w120 = w0[k] * w119;
-            let w121 = w91[k] * w105;
-            let w122 = w97[k] * w107;
-            let w123 = w120 + w121;
-            let w124 = w122 + w123;
-            w125[k] = w111 + w124;
-            let w126 = series::mul(&w4, &w125, k);
-            let w131 = w0[k] * w130;
-            let w132 = w98[k] * w107;
-            let w133 = w121 + w131;
-            let w134 = w110 + w133;
-            w135[k] = w132 + w134;
-            let w136 = series::mul(&w6, &w135, k);
-            let w138 = w10[k] + w11[k];
-            let w139 = w12[k] + w138;
-            w140[k] = w139 - at0(k, w15);
-            let w141 = w10[k] * w101;
-            let w142 = w11[k] * w101;
-            let w143 = w12[k] * w101;
-            let w144 = w141 + w142;
-            let w145 = w143 + w144;
-            w146[k] = w145 - at0(k, w100);
-            let w147 = series::mul(&w140, &w146, k);
-            let w152 = series::sq(&w12, k);
-            let w154 = series::sq(&w11, k);
-            let w155 = series::sq(&w10, k);
-            let w180 = w52 - w80;
-            let w181 = w180 - w115;
-            let w182 = w181 - w126;
-            w183[k] = w182 - w136;
-            let w184 = w10[k] * w175;
-            let w185 = w11[k] * w171;
-            let w186 = w12[k] * w167;
-            let w187 = w152 * w153;
-            let w188 = w153 * w154;
-            let w189 = w153 * w155;
-            let w190 = w184 + w185;
-            let w191 = w186 + w190;
-            let w192 = w147 + w191;
-            let w193 = w187 + w192;
-            let w194 = w188 + w193;
-            let w195 = w189 + w194;
-            w196[k] = at0(k, w179) + w195;
-            if k == 0 { inv_w196 = 1.0 / w196[0]; }
-            w197[k] = series::div(w183[k], &w196, &w197, inv_w196, k);
-            w203[k] = series::div(at0(k, w202), &w196, &w203, inv_w196, k);
-            let w211 = series::mul(&w9, &w21, k);
-            let w212 = series::sq(&w0, k);
-            let w213 = series::mul(&w0, &w91, k);
-            let w214 = series::mul(&w0, &w97, k);
-            let w215 = series::mul(&w0, &w98, k);
-            let w223 = series::mul(&w183, &w203, k);
-            w228[k] = series::sq(&w203, k);
-            w229[k] = series::mul(&w196, &w228, k);
-            let w230 = w2[k] * w220;
-            let w231 = w4[k] * w221;
-            let w232 = w6[k] * w222;
-            let w233 = w10[k] * w210;
-            let w234 = w41 * w53[k];
-            let w235 = w65 * w211;
-            let w236 = w212 * w219;
-            let w237 = w213 * w217;
-            let w238 = w101 * w214;
-            let w239 = w101 * w215;
-            let w240 = w233 + w234;
-            let w241 = w237 + w240;
-            let w242 = w238 + w241;
-            let w243 = w239 + w242;
-            let w244 = w243 - w230;
-            let w245 = w244 - w231;
-            let w246 = w245 - w232;
-            let w247 = w246 - w235;
-            let w248 = w247 - w236;
-            w249[k] = w248 - w223;
-            w250[k] = at0(k, w227) - w229[k];
-            if k == 0 { inv_w250 = 1.0 / w250[0]; }
-            w251[k] = series::div(w249[k], &w250, &w251, inv_w250, k);
-            w257[k] = series::div(at0(k, w256), &w196, &w257, inv_w196, k);
-            w258[k] = series::mul(&w203, &w257, k);
-            let w259 = series::mul(&w196, &w258, k);
-            let w260 = at0(k, w16) - w259;
-            w261[k] = series::div(w260, &w250, &w261, inv_w250, k);
-            let w269 = series::mul(&w183, &w257, k);
-            let w270 = series::mul(&w249, &w261, k);
-            w271[k] = series::sq(&w257, k);
-            let w272 = series::mul(&w196, &w271, k);
-            w273[k] = series::sq(&w261, k);
-            let w274 = series::mul(&w229, &w273, k);
-            let w275 = w2[k] * w221;
-            let w276 = w4[k] * w267;
-            let w277 = w6[k] * w268;
-            let w278 = w11[k] * w264;
-            let w279 = w38 * w53[k];
-            let w280 = w63 * w211;
-            let w281 = w212 * w266;
-            let w282 = w101 * w213;
-            let w283 = w214 * w217;
-            let w284 = w278 + w279;
-            let w285 = w282 + w284;
-            let w286 = w283 + w285;
-            let w287 = w239 + w286;
-            let w288 = w287 - w275;
-            let w289 = w288 - w276;
-            let w290 = w289 - w277;
-            let w291 = w290 - w280;
-            let w292 = w291 - w281;
-            let w293 = w292 - w269;
-            w294[k] = w293 - w270;
-            let w295 = w227 * w273[k];
-            let w296 = at0(k, w227) + w274;
-            let w297 = w296 - w272;
-            w298[k] = w297 - w295;
-            if k == 0 { inv_w298 = 1.0 / w298[0]; }
-            w299[k] = series::div(w294[k], &w298, &w299, inv_w298, k);
-            w305[k] = series::div(at0(k, w304), &w196, &w305, inv_w196, k);
-            w306[k] = series::mul(&w257, &w305, k);
-            let w307 = series::mul(&w196, &w306, k);
-            w308[k] = series::mul(&w203, &w305, k);
-            let w309 = series::mul(&w196, &w308, k);
-            let w310 = at0(k, w16) - w309;
-            w311[k] = series::div(w310, &w250, &w311, inv_w250, k);
-            w312[k] = series::mul(&w261, &w311, k);
-            let w313 = series::mul(&w229, &w312, k);
-            let w314 = w227 * w312[k];
-            let w315 = at0(k, w16) + w313;
-            let w316 = w315 - w307;
-            let w317 = w316 - w314;
-            w318[k] = series::div(w317, &w298, &w318, inv_w298, k);
-            let w325 = series::mul(&w183, &w305, k);
-            let w326 = series::mul(&w249, &w311, k);
-            let w327 = series::mul(&w294, &w318, k);
-            w328[k] = series::sq(&w305, k);
-            let w329 = series::mul(&w196, &w328, k);
-            w330[k] = series::sq(&w311, k);
-            let w331 = series::mul(&w229, &w330, k);
-            w332[k] = series::sq(&w318, k);
-            let w333 = series::mul(&w298, &w332, k);
-            let w334 = w2[k] * w222;
-            let w335 = w4[k] * w268;
-            let w336 = w6[k] * w324;
-            let w337 = w12[k] * w321;
-            let w338 = w35 * w53[k];
-            let w339 = w61 * w211;
-            let w340 = w212 * w323;
-            let w341 = w215 * w217;
-            let w342 = w337 + w338;
-            let w343 = w282 + w342;
-            let w344 = w238 + w343;
-            let w345 = w341 + w344;
-            let w346 = w345 - w334;
-            let w347 = w346 - w335;
-            let w348 = w347 - w336;
-            let w349 = w348 - w339;
-            let w350 = w349 - w340;
-            let w351 = w350 - w325;
-            let w352 = w351 - w326;
-            let w353 = w352 - w327;
-            let w354 = w227 * w330[k];
-            let w355 = at0(k, w227) + w331;
-            let w356 = w355 - w329;
-            let w357 = w356 - w354;
-            w358[k] = w357 - w333;
-            if k == 0 { inv_w358 = 1.0 / w358[0]; }
-            w359[k] = series::div(w353, &w358, &w359, inv_w358, k);
-            let w360 = series::mul(&w318, &w359, k);
-            w361[k] = w299[k] - w360;
-            let w362 = series::mul(&w261, &w361, k);
-            let w363 = series::mul(&w311, &w359, k);
-            let w364 = w251[k] - w362;
-            w365[k] = w364 - w363;
-            let w366 = series::mul(&w203, &w365, k);
-            let w367 = series::mul(&w257, &w361, k);
-            let w368 = series::mul(&w305, &w359, k);
-            let w369 = w197[k] - w366;
-            let w370 = w369 - w367;
-            let w371 = w370 - w368;
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            x[0][k + 1] = w0[k] * inv_k1;
-            x[1][k + 1] = w2[k] * inv_k1;
-            x[2][k + 1] = w4[k] * inv_k1;
-            x[3][k + 1] = w6[k] * inv_k1;
-            x[4][k + 1] = w371 * inv_k1;
-            x[5][k + 1] = w365[k] * inv_k1;
-            x[6][k + 1] = w361[k] * inv_k1;
-            x[7][k + 1] = w359[k] * inv_k1;
-        };
+    for k in 0..N - 1 {
+        w0[k] = x[4][k];
+        w2[k] = x[5][k];
+        w4[k] = x[6][k];
+        w6[k] = x[7][k];
+        w8[k] = x[0][k];
+        series::sin_cos(&w8, &mut d_w8, &mut sin_w8, &mut cos_w8, k);
+        w9[k] = cos_w8[k];
+        w10[k] = x[1][k];
+        w11[k] = x[2][k];
+        w12[k] = x[3][k];
+        w21[k] = ug[k];
+        let w44 = w10[k] * w41;
+        let w45 = w11[k] * w38;
+        let w46 = w12[k] * w35;
+        let w47 = w21[k] * w27;
+        let w48 = w44 + w45;
+        let w49 = w46 + w48;
+        let w50 = w49 - w47;
+        w51[k] = w50 - at0(k, w43);
+        let w52 = series::mul(&w9, &w51, k);
+        w53[k] = sin_w8[k];
+        let w55 = series::mul(&w10, &w21, k);
+        let w56 = series::mul(&w11, &w21, k);
+        let w57 = series::mul(&w12, &w21, k);
+        let w72 = w21[k] * w67;
+        let w73 = w55 * w65;
+        let w74 = w56 * w63;
+        let w75 = w57 * w61;
+        let w76 = w72 - w73;
+        let w77 = w76 - w74;
+        let w78 = w77 - w75;
+        w79[k] = w78 - at0(k, w71);
+        let w80 = series::mul(&w53, &w79, k);
+        w91[k] = series::mul(&w0, &w10, k);
+        w97[k] = series::mul(&w0, &w11, k);
+        w98[k] = series::mul(&w0, &w12, k);
+        let w108 = w0[k] * w106;
+        let w109 = w91[k] * w107;
+        let w110 = w97[k] * w105;
+        let w111 = w98[k] * w105;
+        let w112 = w108 + w109;
+        let w113 = w110 + w112;
+        w114[k] = w111 + w113;
+        let w115 = series::mul(&w2, &w114, k);
+        let w120 = w0[k] * w119;
+        let w121 = w91[k] * w105;
+        let w122 = w97[k] * w107;
+        let w123 = w120 + w121;
+        let w124 = w122 + w123;
+        w125[k] = w111 + w124;
+        let w126 = series::mul(&w4, &w125, k);
+        let w131 = w0[k] * w130;
+        let w132 = w98[k] * w107;
+        let w133 = w121 + w131;
+        let w134 = w110 + w133;
+        w135[k] = w132 + w134;
+        let w136 = series::mul(&w6, &w135, k);
+        let w138 = w10[k] + w11[k];
+        let w139 = w12[k] + w138;
+        w140[k] = w139 - at0(k, w15);
+        let w141 = w10[k] * w101;
+        let w142 = w11[k] * w101;
+        let w143 = w12[k] * w101;
+        let w144 = w141 + w142;
+        let w145 = w143 + w144;
+        w146[k] = w145 - at0(k, w100);
+        let w147 = series::mul(&w140, &w146, k);
+        let w152 = series::sq(&w12, k);
+        let w154 = series::sq(&w11, k);
+        let w155 = series::sq(&w10, k);
+        let w180 = w52 - w80;
+        let w181 = w180 - w115;
+        let w182 = w181 - w126;
+        w183[k] = w182 - w136;
+        let w184 = w10[k] * w175;
+        let w185 = w11[k] * w171;
+        let w186 = w12[k] * w167;
+        let w187 = w152 * w153;
+        let w188 = w153 * w154;
+        let w189 = w153 * w155;
+        let w190 = w184 + w185;
+        let w191 = w186 + w190;
+        let w192 = w147 + w191;
+        let w193 = w187 + w192;
+        let w194 = w188 + w193;
+        let w195 = w189 + w194;
+        w196[k] = at0(k, w179) + w195;
+        if k == 0 { inv_w196 = 1.0 / w196[0]; }
+        w197[k] = series::div(w183[k], &w196, &w197, inv_w196, k);
+        w203[k] = series::div(at0(k, w202), &w196, &w203, inv_w196, k);
+        let w211 = series::mul(&w9, &w21, k);
+        let w212 = series::sq(&w0, k);
+        let w213 = series::mul(&w0, &w91, k);
+        let w214 = series::mul(&w0, &w97, k);
+        let w215 = series::mul(&w0, &w98, k);
+        let w223 = series::mul(&w183, &w203, k);
+        w228[k] = series::sq(&w203, k);
+        w229[k] = series::mul(&w196, &w228, k);
+        let w230 = w2[k] * w220;
+        let w231 = w4[k] * w221;
+        let w232 = w6[k] * w222;
+        let w233 = w10[k] * w210;
+        let w234 = w41 * w53[k];
+        let w235 = w65 * w211;
+        let w236 = w212 * w219;
+        let w237 = w213 * w217;
+        let w238 = w101 * w214;
+        let w239 = w101 * w215;
+        let w240 = w233 + w234;
+        let w241 = w237 + w240;
+        let w242 = w238 + w241;
+        let w243 = w239 + w242;
+        let w244 = w243 - w230;
+        let w245 = w244 - w231;
+        let w246 = w245 - w232;
+        let w247 = w246 - w235;
+        let w248 = w247 - w236;
+        w249[k] = w248 - w223;
+        w250[k] = at0(k, w227) - w229[k];
+        if k == 0 { inv_w250 = 1.0 / w250[0]; }
+        w251[k] = series::div(w249[k], &w250, &w251, inv_w250, k);
+        w257[k] = series::div(at0(k, w256), &w196, &w257, inv_w196, k);
+        w258[k] = series::mul(&w203, &w257, k);
+        let w259 = series::mul(&w196, &w258, k);
+        let w260 = at0(k, w16) - w259;
+        w261[k] = series::div(w260, &w250, &w261, inv_w250, k);
+        let w269 = series::mul(&w183, &w257, k);
+        let w270 = series::mul(&w249, &w261, k);
+        w271[k] = series::sq(&w257, k);
+        let w272 = series::mul(&w196, &w271, k);
+        w273[k] = series::sq(&w261, k);
+        let w274 = series::mul(&w229, &w273, k);
+        let w275 = w2[k] * w221;
+        let w276 = w4[k] * w267;
+        let w277 = w6[k] * w268;
+        let w278 = w11[k] * w264;
+        let w279 = w38 * w53[k];
+        let w280 = w63 * w211;
+        let w281 = w212 * w266;
+        let w282 = w101 * w213;
+        let w283 = w214 * w217;
+        let w284 = w278 + w279;
+        let w285 = w282 + w284;
+        let w286 = w283 + w285;
+        let w287 = w239 + w286;
+        let w288 = w287 - w275;
+        let w289 = w288 - w276;
+        let w290 = w289 - w277;
+        let w291 = w290 - w280;
+        let w292 = w291 - w281;
+        let w293 = w292 - w269;
+        w294[k] = w293 - w270;
+        let w295 = w227 * w273[k];
+        let w296 = at0(k, w227) + w274;
+        let w297 = w296 - w272;
+        w298[k] = w297 - w295;
+        if k == 0 { inv_w298 = 1.0 / w298[0]; }
+        w299[k] = series::div(w294[k], &w298, &w299, inv_w298, k);
+        w305[k] = series::div(at0(k, w304), &w196, &w305, inv_w196, k);
+        w306[k] = series::mul(&w257, &w305, k);
+        let w307 = series::mul(&w196, &w306, k);
+        w308[k] = series::mul(&w203, &w305, k);
+        let w309 = series::mul(&w196, &w308, k);
+        let w310 = at0(k, w16) - w309;
+        w311[k] = series::div(w310, &w250, &w311, inv_w250, k);
+        w312[k] = series::mul(&w261, &w311, k);
+        let w313 = series::mul(&w229, &w312, k);
+        let w314 = w227 * w312[k];
+        let w315 = at0(k, w16) + w313;
+        let w316 = w315 - w307;
+        let w317 = w316 - w314;
+        w318[k] = series::div(w317, &w298, &w318, inv_w298, k);
+        let w325 = series::mul(&w183, &w305, k);
+        let w326 = series::mul(&w249, &w311, k);
+        let w327 = series::mul(&w294, &w318, k);
+        w328[k] = series::sq(&w305, k);
+        let w329 = series::mul(&w196, &w328, k);
+        w330[k] = series::sq(&w311, k);
+        let w331 = series::mul(&w229, &w330, k);
+        w332[k] = series::sq(&w318, k);
+        let w333 = series::mul(&w298, &w332, k);
+        let w334 = w2[k] * w222;
+        let w335 = w4[k] * w268;
+        let w336 = w6[k] * w324;
+        let w337 = w12[k] * w321;
+        let w338 = w35 * w53[k];
+        let w339 = w61 * w211;
+        let w340 = w212 * w323;
+        let w341 = w215 * w217;
+        let w342 = w337 + w338;
+        let w343 = w282 + w342;
+        let w344 = w238 + w343;
+        let w345 = w341 + w344;
+        let w346 = w345 - w334;
+        let w347 = w346 - w335;
+        let w348 = w347 - w336;
+        let w349 = w348 - w339;
+        let w350 = w349 - w340;
+        let w351 = w350 - w325;
+        let w352 = w351 - w326;
+        let w353 = w352 - w327;
+        let w354 = w227 * w330[k];
+        let w355 = at0(k, w227) + w331;
+        let w356 = w355 - w329;
+        let w357 = w356 - w354;
+        w358[k] = w357 - w333;
+        if k == 0 { inv_w358 = 1.0 / w358[0]; }
+        w359[k] = series::div(w353, &w358, &w359, inv_w358, k);
+        let w360 = series::mul(&w318, &w359, k);
+        w361[k] = w299[k] - w360;
+        let w362 = series::mul(&w261, &w361, k);
+        let w363 = series::mul(&w311, &w359, k);
+        let w364 = w251[k] - w362;
+        w365[k] = w364 - w363;
+        let w366 = series::mul(&w203, &w365, k);
+        let w367 = series::mul(&w257, &w361, k);
+        let w368 = series::mul(&w305, &w359, k);
+        let w369 = w197[k] - w366;
+        let w370 = w369 - w367;
+        let w371 = w370 - w368;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        x[0][k + 1] = w0[k] * inv_k1;
+        x[1][k + 1] = w2[k] * inv_k1;
+        x[2][k + 1] = w4[k] * inv_k1;
+        x[3][k + 1] = w6[k] * inv_k1;
+        x[4][k + 1] = w371 * inv_k1;
+        x[5][k + 1] = w365[k] * inv_k1;
+        x[6][k + 1] = w361[k] * inv_k1;
+        x[7][k + 1] = w359[k] * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// Taylor coefficients of the solution of `x' = rocking_rhs_free(..)`: on entry `x[i][0]` holds
@@ -707,255 +680,228 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 8], s: f64, p: &Param
     let mut w358 = [0.0f64; N];
     let mut w360 = [0.0f64; N];
     let mut w364 = [0.0f64; N];
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w0[k] = x[4][k];
-            w2[k] = x[5][k];
-            w4[k] = x[6][k];
-            w6[k] = x[7][k];
-            w8[k] = x[0][k];
-            series::sin_cos(&w8, &mut d_w8, &mut sin_w8, &mut cos_w8, k);
-            w9[k] = cos_w8[k];
-            w10[k] = x[1][k];
-            w11[k] = x[2][k];
-            w12[k] = x[3][k];
-            let w47 = w10[k] * w44;
-            let w48 = w11[k] * w41;
-            let w49 = w12[k] * w38;
-            let w50 = w47 + w48;
-            let w51 = w49 + w50;
-            w52[k] = w51 - at0(k, w46);
-            let w53 = series::mul(&w9, &w52, k);
-            w54[k] = sin_w8[k];
-            let w72 = w10[k] * w64;
-            let w73 = w11[k] * w62;
-            let w74 = w12[k] * w60;
-            let w75 = at0(k, w71) - w72;
-            let w76 = w75 - w73;
-            w77[k] = w76 - w74;
-            let w78 = series::mul(&w54, &w77, k);
-            w89[k] = series::mul(&w0, &w10, k);
-            w95[k] = series::mul(&w0, &w11, k);
-            w96[k] = series::mul(&w0, &w12, k);
-            let w106 = w0[k] * w104;
-            let w107 = w89[k] * w105;
-            let w108 = w95[k] * w103;
-            let w109 = w96[k] * w103;
-            let w110 = w106 + w107;
-            let w111 = w108 + w110;
-            w112[k] = w109 + w111;
-            let w113 = series::mul(&w2, &w112, k);
-            let w118 = w0[k] * w117;
-            let w119 = w89[k] * w103;
-            let w120 = w95[k] * w105;
-            let w121 = w118 + w119;
-            let w122 = w120 + w121;
-            w123[k] = w109 + w122;
-            let w124 = series::mul(&w4, &w123, k);
-            let w129 = w0[k] * w128;
-            let w130 = w96[k] * w105;
-            let w131 = w119 + w129;
-            let w132 = w108 + w131;
-            w133[k] = w130 + w132;
-            let w134 = series::mul(&w6, &w133, k);
-            let w136 = w10[k] + w11[k];
-            let w137 = w12[k] + w136;
-            w138[k] = w137 - at0(k, w15);
-            let w139 = w10[k] * w99;
-            let w140 = w11[k] * w99;
-            let w141 = w12[k] * w99;
-            let w142 = w139 + w140;
-            let w143 = w141 + w142;
-            w144[k] = w143 - at0(k, w98);
-            let w145 = series::mul(&w138, &w144, k);
-            let w150 = series::sq(&w12, k);
-            let w152 = series::sq(&w11, k);
-            let w153 = series::sq(&w10, k);
-            let w179 = w53 - w78;
-            let w180 = w179 - w113;
-            let w181 = w180 - w124;
-            w182[k] = w181 - w134;
-            let w183 = w10[k] * w173;
-            let w184 = w11[k] * w169;
-            let w185 = w12[k] * w165;
-            let w186 = w150 * w151;
-            let w187 = w151 * w152;
-            let w188 = w151 * w153;
-            let w189 = w183 + w184;
-            let w190 = w185 + w189;
-            let w191 = w145 + w190;
-            let w192 = w186 + w191;
-            let w193 = w187 + w192;
-            let w194 = w188 + w193;
-            w195[k] = at0(k, w178) + w194;
-            if k == 0 { inv_w195 = 1.0 / w195[0]; }
-            w196[k] = series::div(w182[k], &w195, &w196, inv_w195, k);
-            w203[k] = series::div(at0(k, w202), &w195, &w203, inv_w195, k);
-            let w211 = series::sq(&w0, k);
-            let w212 = series::mul(&w0, &w89, k);
-            let w213 = series::mul(&w0, &w95, k);
-            let w214 = series::mul(&w0, &w96, k);
-            let w222 = series::mul(&w182, &w203, k);
-            w227[k] = series::sq(&w203, k);
-            w228[k] = series::mul(&w195, &w227, k);
-            let w229 = w2[k] * w219;
-            let w230 = w4[k] * w220;
-            let w231 = w6[k] * w221;
-            let w232 = w9[k] * w64;
-            let w233 = w10[k] * w210;
-            let w234 = w44 * w54[k];
-            let w235 = w211 * w218;
-            let w236 = w212 * w216;
-            let w237 = w99 * w213;
-            let w238 = w99 * w214;
-            let w239 = w233 + w234;
-            let w240 = w236 + w239;
-            let w241 = w237 + w240;
-            let w242 = w238 + w241;
-            let w243 = w242 - w229;
-            let w244 = w243 - w230;
-            let w245 = w244 - w231;
-            let w246 = w245 - w232;
-            let w247 = w246 - w235;
-            w248[k] = w247 - w222;
-            w249[k] = at0(k, w226) - w228[k];
-            if k == 0 { inv_w249 = 1.0 / w249[0]; }
-            w250[k] = series::div(w248[k], &w249, &w250, inv_w249, k);
-            w256[k] = series::div(at0(k, w255), &w195, &w256, inv_w195, k);
-            w257[k] = series::mul(&w203, &w256, k);
-            let w258 = series::mul(&w195, &w257, k);
-            let w259 = at0(k, w16) - w258;
-            w260[k] = series::div(w259, &w249, &w260, inv_w249, k);
-            let w268 = series::mul(&w182, &w256, k);
-            let w269 = series::mul(&w248, &w260, k);
-            w270[k] = series::sq(&w256, k);
-            let w271 = series::mul(&w195, &w270, k);
-            w272[k] = series::sq(&w260, k);
-            let w273 = series::mul(&w228, &w272, k);
-            let w274 = w2[k] * w220;
-            let w275 = w4[k] * w266;
-            let w276 = w6[k] * w267;
-            let w277 = w9[k] * w62;
-            let w278 = w11[k] * w263;
-            let w279 = w41 * w54[k];
-            let w280 = w211 * w265;
-            let w281 = w99 * w212;
-            let w282 = w213 * w216;
-            let w283 = w278 + w279;
-            let w284 = w281 + w283;
-            let w285 = w282 + w284;
-            let w286 = w238 + w285;
-            let w287 = w286 - w274;
-            let w288 = w287 - w275;
-            let w289 = w288 - w276;
-            let w290 = w289 - w277;
-            let w291 = w290 - w280;
-            let w292 = w291 - w268;
-            w293[k] = w292 - w269;
-            let w294 = w226 * w272[k];
-            let w295 = at0(k, w226) + w273;
-            let w296 = w295 - w271;
-            w297[k] = w296 - w294;
-            if k == 0 { inv_w297 = 1.0 / w297[0]; }
-            w298[k] = series::div(w293[k], &w297, &w298, inv_w297, k);
-            w304[k] = series::div(at0(k, w303), &w195, &w304, inv_w195, k);
-            w305[k] = series::mul(&w256, &w304, k);
-            let w306 = series::mul(&w195, &w305, k);
-            w307[k] = series::mul(&w203, &w304, k);
-            let w308 = series::mul(&w195, &w307, k);
-            let w309 = at0(k, w16) - w308;
-            w310[k] = series::div(w309, &w249, &w310, inv_w249, k);
-            w311[k] = series::mul(&w260, &w310, k);
-            let w312 = series::mul(&w228, &w311, k);
-            let w313 = w226 * w311[k];
-            let w314 = at0(k, w16) + w312;
-            let w315 = w314 - w306;
-            let w316 = w315 - w313;
-            w317[k] = series::div(w316, &w297, &w317, inv_w297, k);
-            let w324 = series::mul(&w182, &w304, k);
-            let w325 = series::mul(&w248, &w310, k);
-            let w326 = series::mul(&w293, &w317, k);
-            w327[k] = series::sq(&w304, k);
-            let w328 = series::mul(&w195, &w327, k);
-            w329[k] = series::sq(&w310, k);
-            let w330 = series::mul(&w228, &w329, k);
-            w331[k] = series::sq(&w317, k);
-            let w332 = series::mul(&w297, &w331, k);
-            let w333 = w2[k] * w221;
-            let w334 = w4[k] * w267;
-            let w335 = w6[k] * w323;
-            let w336 = w9[k] * w60;
-            let w337 = w12[k] * w320;
-            let w338 = w38 * w54[k];
-            let w339 = w211 * w322;
-            let w340 = w214 * w216;
-            let w341 = w337 + w338;
-            let w342 = w281 + w341;
-            let w343 = w237 + w342;
-            let w344 = w340 + w343;
-            let w345 = w344 - w333;
-            let w346 = w345 - w334;
-            let w347 = w346 - w335;
-            let w348 = w347 - w336;
-            let w349 = w348 - w339;
-            let w350 = w349 - w324;
-            let w351 = w350 - w325;
-            let w352 = w351 - w326;
-            let w353 = w226 * w329[k];
-            let w354 = at0(k, w226) + w330;
-            let w355 = w354 - w328;
-            let w356 = w355 - w353;
-            w357[k] = w356 - w332;
-            if k == 0 { inv_w357 = 1.0 / w357[0]; }
-            w358[k] = series::div(w352, &w357, &w358, inv_w357, k);
-            let w359 = series::mul(&w317, &w358, k);
-            w360[k] = w298[k] - w359;
-            let w361 = series::mul(&w260, &w360, k);
-            let w362 = series::mul(&w310, &w358, k);
-            let w363 = w250[k] - w361;
-            w364[k] = w363 - w362;
-            let w365 = series::mul(&w203, &w364, k);
-            let w366 = series::mul(&w256, &w360, k);
-            let w367 = series::mul(&w304, &w358, k);
-            let w368 = w196[k] - w365;
-            let w369 = w368 - w366;
-            let w370 = w369 - w367;
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            x[0][k + 1] = w0[k] * inv_k1;
-            x[1][k + 1] = w2[k] * inv_k1;
-            x[2][k + 1] = w4[k] * inv_k1;
-            x[3][k + 1] = w6[k] * inv_k1;
-            x[4][k + 1] = w370 * inv_k1;
-            x[5][k + 1] = w364[k] * inv_k1;
-            x[6][k + 1] = w360[k] * inv_k1;
-            x[7][k + 1] = w358[k] * inv_k1;
-        };
+    for k in 0..N - 1 {
+        w0[k] = x[4][k];
+        w2[k] = x[5][k];
+        w4[k] = x[6][k];
+        w6[k] = x[7][k];
+        w8[k] = x[0][k];
+        series::sin_cos(&w8, &mut d_w8, &mut sin_w8, &mut cos_w8, k);
+        w9[k] = cos_w8[k];
+        w10[k] = x[1][k];
+        w11[k] = x[2][k];
+        w12[k] = x[3][k];
+        let w47 = w10[k] * w44;
+        let w48 = w11[k] * w41;
+        let w49 = w12[k] * w38;
+        let w50 = w47 + w48;
+        let w51 = w49 + w50;
+        w52[k] = w51 - at0(k, w46);
+        let w53 = series::mul(&w9, &w52, k);
+        w54[k] = sin_w8[k];
+        let w72 = w10[k] * w64;
+        let w73 = w11[k] * w62;
+        let w74 = w12[k] * w60;
+        let w75 = at0(k, w71) - w72;
+        let w76 = w75 - w73;
+        w77[k] = w76 - w74;
+        let w78 = series::mul(&w54, &w77, k);
+        w89[k] = series::mul(&w0, &w10, k);
+        w95[k] = series::mul(&w0, &w11, k);
+        w96[k] = series::mul(&w0, &w12, k);
+        let w106 = w0[k] * w104;
+        let w107 = w89[k] * w105;
+        let w108 = w95[k] * w103;
+        let w109 = w96[k] * w103;
+        let w110 = w106 + w107;
+        let w111 = w108 + w110;
+        w112[k] = w109 + w111;
+        let w113 = series::mul(&w2, &w112, k);
+        let w118 = w0[k] * w117;
+        let w119 = w89[k] * w103;
+        let w120 = w95[k] * w105;
+        let w121 = w118 + w119;
+        let w122 = w120 + w121;
+        w123[k] = w109 + w122;
+        let w124 = series::mul(&w4, &w123, k);
+        let w129 = w0[k] * w128;
+        let w130 = w96[k] * w105;
+        let w131 = w119 + w129;
+        let w132 = w108 + w131;
+        w133[k] = w130 + w132;
+        let w134 = series::mul(&w6, &w133, k);
+        let w136 = w10[k] + w11[k];
+        let w137 = w12[k] + w136;
+        w138[k] = w137 - at0(k, w15);
+        let w139 = w10[k] * w99;
+        let w140 = w11[k] * w99;
+        let w141 = w12[k] * w99;
+        let w142 = w139 + w140;
+        let w143 = w141 + w142;
+        w144[k] = w143 - at0(k, w98);
+        let w145 = series::mul(&w138, &w144, k);
+        let w150 = series::sq(&w12, k);
+        let w152 = series::sq(&w11, k);
+        let w153 = series::sq(&w10, k);
+        let w179 = w53 - w78;
+        let w180 = w179 - w113;
+        let w181 = w180 - w124;
+        w182[k] = w181 - w134;
+        let w183 = w10[k] * w173;
+        let w184 = w11[k] * w169;
+        let w185 = w12[k] * w165;
+        let w186 = w150 * w151;
+        let w187 = w151 * w152;
+        let w188 = w151 * w153;
+        let w189 = w183 + w184;
+        let w190 = w185 + w189;
+        let w191 = w145 + w190;
+        let w192 = w186 + w191;
+        let w193 = w187 + w192;
+        let w194 = w188 + w193;
+        w195[k] = at0(k, w178) + w194;
+        if k == 0 { inv_w195 = 1.0 / w195[0]; }
+        w196[k] = series::div(w182[k], &w195, &w196, inv_w195, k);
+        w203[k] = series::div(at0(k, w202), &w195, &w203, inv_w195, k);
+        let w211 = series::sq(&w0, k);
+        let w212 = series::mul(&w0, &w89, k);
+        let w213 = series::mul(&w0, &w95, k);
+        let w214 = series::mul(&w0, &w96, k);
+        let w222 = series::mul(&w182, &w203, k);
+        w227[k] = series::sq(&w203, k);
+        w228[k] = series::mul(&w195, &w227, k);
+        let w229 = w2[k] * w219;
+        let w230 = w4[k] * w220;
+        let w231 = w6[k] * w221;
+        let w232 = w9[k] * w64;
+        let w233 = w10[k] * w210;
+        let w234 = w44 * w54[k];
+        let w235 = w211 * w218;
+        let w236 = w212 * w216;
+        let w237 = w99 * w213;
+        let w238 = w99 * w214;
+        let w239 = w233 + w234;
+        let w240 = w236 + w239;
+        let w241 = w237 + w240;
+        let w242 = w238 + w241;
+        let w243 = w242 - w229;
+        let w244 = w243 - w230;
+        let w245 = w244 - w231;
+        let w246 = w245 - w232;
+        let w247 = w246 - w235;
+        w248[k] = w247 - w222;
+        w249[k] = at0(k, w226) - w228[k];
+        if k == 0 { inv_w249 = 1.0 / w249[0]; }
+        w250[k] = series::div(w248[k], &w249, &w250, inv_w249, k);
+        w256[k] = series::div(at0(k, w255), &w195, &w256, inv_w195, k);
+        w257[k] = series::mul(&w203, &w256, k);
+        let w258 = series::mul(&w195, &w257, k);
+        let w259 = at0(k, w16) - w258;
+        w260[k] = series::div(w259, &w249, &w260, inv_w249, k);
+        let w268 = series::mul(&w182, &w256, k);
+        let w269 = series::mul(&w248, &w260, k);
+        w270[k] = series::sq(&w256, k);
+        let w271 = series::mul(&w195, &w270, k);
+        w272[k] = series::sq(&w260, k);
+        let w273 = series::mul(&w228, &w272, k);
+        let w274 = w2[k] * w220;
+        let w275 = w4[k] * w266;
+        let w276 = w6[k] * w267;
+        let w277 = w9[k] * w62;
+        let w278 = w11[k] * w263;
+        let w279 = w41 * w54[k];
+        let w280 = w211 * w265;
+        let w281 = w99 * w212;
+        let w282 = w213 * w216;
+        let w283 = w278 + w279;
+        let w284 = w281 + w283;
+        let w285 = w282 + w284;
+        let w286 = w238 + w285;
+        let w287 = w286 - w274;
+        let w288 = w287 - w275;
+        let w289 = w288 - w276;
+        let w290 = w289 - w277;
+        let w291 = w290 - w280;
+        let w292 = w291 - w268;
+        w293[k] = w292 - w269;
+        let w294 = w226 * w272[k];
+        let w295 = at0(k, w226) + w273;
+        let w296 = w295 - w271;
+        w297[k] = w296 - w294;
+        if k == 0 { inv_w297 = 1.0 / w297[0]; }
+        w298[k] = series::div(w293[k], &w297, &w298, inv_w297, k);
+        w304[k] = series::div(at0(k, w303), &w195, &w304, inv_w195, k);
+        w305[k] = series::mul(&w256, &w304, k);
+        let w306 = series::mul(&w195, &w305, k);
+        w307[k] = series::mul(&w203, &w304, k);
+        let w308 = series::mul(&w195, &w307, k);
+        let w309 = at0(k, w16) - w308;
+        w310[k] = series::div(w309, &w249, &w310, inv_w249, k);
+        w311[k] = series::mul(&w260, &w310, k);
+        let w312 = series::mul(&w228, &w311, k);
+        let w313 = w226 * w311[k];
+        let w314 = at0(k, w16) + w312;
+        let w315 = w314 - w306;
+        let w316 = w315 - w313;
+        w317[k] = series::div(w316, &w297, &w317, inv_w297, k);
+        let w324 = series::mul(&w182, &w304, k);
+        let w325 = series::mul(&w248, &w310, k);
+        let w326 = series::mul(&w293, &w317, k);
+        w327[k] = series::sq(&w304, k);
+        let w328 = series::mul(&w195, &w327, k);
+        w329[k] = series::sq(&w310, k);
+        let w330 = series::mul(&w228, &w329, k);
+        w331[k] = series::sq(&w317, k);
+        let w332 = series::mul(&w297, &w331, k);
+        let w333 = w2[k] * w221;
+        let w334 = w4[k] * w267;
+        let w335 = w6[k] * w323;
+        let w336 = w9[k] * w60;
+        let w337 = w12[k] * w320;
+        let w338 = w38 * w54[k];
+        let w339 = w211 * w322;
+        let w340 = w214 * w216;
+        let w341 = w337 + w338;
+        let w342 = w281 + w341;
+        let w343 = w237 + w342;
+        let w344 = w340 + w343;
+        let w345 = w344 - w333;
+        let w346 = w345 - w334;
+        let w347 = w346 - w335;
+        let w348 = w347 - w336;
+        let w349 = w348 - w339;
+        let w350 = w349 - w324;
+        let w351 = w350 - w325;
+        let w352 = w351 - w326;
+        let w353 = w226 * w329[k];
+        let w354 = at0(k, w226) + w330;
+        let w355 = w354 - w328;
+        let w356 = w355 - w353;
+        w357[k] = w356 - w332;
+        if k == 0 { inv_w357 = 1.0 / w357[0]; }
+        w358[k] = series::div(w352, &w357, &w358, inv_w357, k);
+        let w359 = series::mul(&w317, &w358, k);
+        w360[k] = w298[k] - w359;
+        let w361 = series::mul(&w260, &w360, k);
+        let w362 = series::mul(&w310, &w358, k);
+        let w363 = w250[k] - w361;
+        w364[k] = w363 - w362;
+        let w365 = series::mul(&w203, &w364, k);
+        let w366 = series::mul(&w256, &w360, k);
+        let w367 = series::mul(&w304, &w358, k);
+        let w368 = w196[k] - w365;
+        let w369 = w368 - w366;
+        let w370 = w369 - w367;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        x[0][k + 1] = w0[k] * inv_k1;
+        x[1][k + 1] = w2[k] * inv_k1;
+        x[2][k + 1] = w4[k] * inv_k1;
+        x[3][k + 1] = w6[k] * inv_k1;
+        x[4][k + 1] = w370 * inv_k1;
+        x[5][k + 1] = w364[k] * inv_k1;
+        x[6][k + 1] = w360[k] * inv_k1;
+        x[7][k + 1] = w358[k] * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// Taylor coefficients of the solution of `xc' = contact_rhs(..)`: on entry `xc[i][0]` holds
@@ -1093,88 +1039,61 @@ pub fn contact_rhs<const N: usize>(xc: &mut [[f64; N]; 6], ug: &[f64; N], p: &Pa
     let w138: f64 = w33 + w131;
     let w139: f64 = w34 - w132;
     let w140: f64 = w35 + w133;
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let w0 = xc[3][k];
-            let w2 = xc[4][k];
-            let w4 = xc[5][k];
-            let w6 = xc[0][k];
-            let w17 = ug[k];
-            let w37 = xc[1][k];
-            let w67 = xc[2][k];
-            let w141 = w0 * w136;
-            let w142 = w2 * w137;
-            let w143 = w4 * w138;
-            let w144 = w6 * w139;
-            let w145 = w17 * w140;
-            let w146 = w37 * w134;
-            let w147 = w67 * w135;
-            let w148 = w144 - w141;
-            let w149 = w148 - w142;
-            let w150 = w149 - w143;
-            let w151 = w150 - w145;
-            let w152 = w151 - w146;
-            let w153 = w152 - w147;
-            let w155 = w0 * w109;
-            let w156 = w2 * w110;
-            let w157 = w4 * w111;
-            let w158 = w6 * w112;
-            let w159 = w17 * w113;
-            let w160 = w37 * w114;
-            let w161 = w67 * w108;
-            let w162 = w155 + w156;
-            let w163 = w157 + w162;
-            let w164 = w158 + w163;
-            let w165 = w159 + w164;
-            let w166 = w160 + w165;
-            let w167 = w166 - w161;
-            let w169 = w0 * w95;
-            let w170 = w2 * w96;
-            let w171 = w4 * w97;
-            let w172 = w6 * w98;
-            let w173 = w17 * w99;
-            let w174 = w37 * w100;
-            let w175 = w67 * w101;
-            let w176 = w175 - w169;
-            let w177 = w176 - w170;
-            let w178 = w177 - w171;
-            let w179 = w178 - w172;
-            let w180 = w179 - w173;
-            let w181 = w180 - w174;
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            xc[0][k + 1] = w0 * inv_k1;
-            xc[1][k + 1] = w2 * inv_k1;
-            xc[2][k + 1] = w4 * inv_k1;
-            xc[3][k + 1] = w153 * inv_k1;
-            xc[4][k + 1] = w167 * inv_k1;
-            xc[5][k + 1] = w181 * inv_k1;
-        };
+    for k in 0..N - 1 {
+        let w0 = xc[3][k];
+        let w2 = xc[4][k];
+        let w4 = xc[5][k];
+        let w6 = xc[0][k];
+        let w17 = ug[k];
+        let w37 = xc[1][k];
+        let w67 = xc[2][k];
+        let w141 = w0 * w136;
+        let w142 = w2 * w137;
+        let w143 = w4 * w138;
+        let w144 = w6 * w139;
+        let w145 = w17 * w140;
+        let w146 = w37 * w134;
+        let w147 = w67 * w135;
+        let w148 = w144 - w141;
+        let w149 = w148 - w142;
+        let w150 = w149 - w143;
+        let w151 = w150 - w145;
+        let w152 = w151 - w146;
+        let w153 = w152 - w147;
+        let w155 = w0 * w109;
+        let w156 = w2 * w110;
+        let w157 = w4 * w111;
+        let w158 = w6 * w112;
+        let w159 = w17 * w113;
+        let w160 = w37 * w114;
+        let w161 = w67 * w108;
+        let w162 = w155 + w156;
+        let w163 = w157 + w162;
+        let w164 = w158 + w163;
+        let w165 = w159 + w164;
+        let w166 = w160 + w165;
+        let w167 = w166 - w161;
+        let w169 = w0 * w95;
+        let w170 = w2 * w96;
+        let w171 = w4 * w97;
+        let w172 = w6 * w98;
+        let w173 = w17 * w99;
+        let w174 = w37 * w100;
+        let w175 = w67 * w101;
+        let w176 = w175 - w169;
+        let w177 = w176 - w170;
+        let w178 = w177 - w171;
+        let w179 = w178 - w172;
+        let w180 = w179 - w173;
+        let w181 = w180 - w174;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        xc[0][k + 1] = w0 * inv_k1;
+        xc[1][k + 1] = w2 * inv_k1;
+        xc[2][k + 1] = w4 * inv_k1;
+        xc[3][k + 1] = w153 * inv_k1;
+        xc[4][k + 1] = w167 * inv_k1;
+        xc[5][k + 1] = w181 * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// Taylor coefficients of the solution of `xc' = contact_rhs_free(..)`: on entry `xc[i][0]` holds
@@ -1316,84 +1235,57 @@ pub fn contact_rhs_free<const N: usize>(xc: &mut [[f64; N]; 6], p: &Params) {
     let w140: f64 = w35 + w133;
     let w141: f64 = w36 - w134;
     let w142: f64 = w37 + w137;
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let w0 = xc[3][k];
-            let w2 = xc[4][k];
-            let w4 = xc[5][k];
-            let w6 = xc[0][k];
-            let w39 = xc[1][k];
-            let w69 = xc[2][k];
-            let w143 = w0 * w138;
-            let w144 = w2 * w139;
-            let w145 = w4 * w140;
-            let w146 = w6 * w141;
-            let w147 = w39 * w135;
-            let w148 = w69 * w136;
-            let w149 = w146 - w143;
-            let w150 = w149 - w144;
-            let w151 = w150 - w145;
-            let w152 = w151 - w147;
-            let w153 = w152 - w148;
-            let w154 = w153 - at0(k, w142);
-            let w156 = w0 * w111;
-            let w157 = w2 * w112;
-            let w158 = w4 * w113;
-            let w159 = w6 * w114;
-            let w160 = w39 * w115;
-            let w161 = w69 * w109;
-            let w162 = w156 + w157;
-            let w163 = w158 + w162;
-            let w164 = w159 + w163;
-            let w165 = w160 + w164;
-            let w166 = at0(k, w116) + w165;
-            let w167 = w166 - w161;
-            let w169 = w0 * w97;
-            let w170 = w2 * w98;
-            let w171 = w4 * w99;
-            let w172 = w6 * w100;
-            let w173 = w39 * w101;
-            let w174 = w69 * w102;
-            let w175 = w174 - w169;
-            let w176 = w175 - w170;
-            let w177 = w176 - w171;
-            let w178 = w177 - w172;
-            let w179 = w178 - w173;
-            let w180 = w179 - at0(k, w103);
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            xc[0][k + 1] = w0 * inv_k1;
-            xc[1][k + 1] = w2 * inv_k1;
-            xc[2][k + 1] = w4 * inv_k1;
-            xc[3][k + 1] = w154 * inv_k1;
-            xc[4][k + 1] = w167 * inv_k1;
-            xc[5][k + 1] = w180 * inv_k1;
-        };
+    for k in 0..N - 1 {
+        let w0 = xc[3][k];
+        let w2 = xc[4][k];
+        let w4 = xc[5][k];
+        let w6 = xc[0][k];
+        let w39 = xc[1][k];
+        let w69 = xc[2][k];
+        let w143 = w0 * w138;
+        let w144 = w2 * w139;
+        let w145 = w4 * w140;
+        let w146 = w6 * w141;
+        let w147 = w39 * w135;
+        let w148 = w69 * w136;
+        let w149 = w146 - w143;
+        let w150 = w149 - w144;
+        let w151 = w150 - w145;
+        let w152 = w151 - w147;
+        let w153 = w152 - w148;
+        let w154 = w153 - at0(k, w142);
+        let w156 = w0 * w111;
+        let w157 = w2 * w112;
+        let w158 = w4 * w113;
+        let w159 = w6 * w114;
+        let w160 = w39 * w115;
+        let w161 = w69 * w109;
+        let w162 = w156 + w157;
+        let w163 = w158 + w162;
+        let w164 = w159 + w163;
+        let w165 = w160 + w164;
+        let w166 = at0(k, w116) + w165;
+        let w167 = w166 - w161;
+        let w169 = w0 * w97;
+        let w170 = w2 * w98;
+        let w171 = w4 * w99;
+        let w172 = w6 * w100;
+        let w173 = w39 * w101;
+        let w174 = w69 * w102;
+        let w175 = w174 - w169;
+        let w176 = w175 - w170;
+        let w177 = w176 - w171;
+        let w178 = w177 - w172;
+        let w179 = w178 - w173;
+        let w180 = w179 - at0(k, w103);
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        xc[0][k + 1] = w0 * inv_k1;
+        xc[1][k + 1] = w2 * inv_k1;
+        xc[2][k + 1] = w4 * inv_k1;
+        xc[3][k + 1] = w154 * inv_k1;
+        xc[4][k + 1] = w167 * inv_k1;
+        xc[5][k + 1] = w180 * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// The first N Taylor coefficients of each output of `uplift` along series inputs.
@@ -1617,57 +1509,30 @@ pub fn uplift<const N: usize>(xc: &[[f64; N]; 6], ug: &[f64; N], s: f64, p: &Par
     let w222: f64 = w0 * w211;
     let w223: f64 = w0 * w33;
     let mut out = [[0.0f64; N]; 1];
-    // The tape at order k, for k < N: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let w1 = xc[0][k];
-            let w2 = xc[1][k];
-            let w3 = xc[2][k];
-            let w11 = ug[k];
-            let w50 = xc[3][k];
-            let w52 = xc[4][k];
-            let w54 = xc[5][k];
-            let w224 = w1 * w216;
-            let w225 = w2 * w217;
-            let w226 = w3 * w218;
-            let w227 = w11 * w219;
-            let w228 = w50 * w220;
-            let w229 = w52 * w221;
-            let w230 = w54 * w222;
-            let w231 = w224 + w225;
-            let w232 = w226 + w231;
-            let w233 = w232 - w227;
-            let w234 = w233 - w228;
-            let w235 = w234 - w229;
-            let w236 = w235 - w230;
-            let w237 = w236 - at0(k, w223);
-            out[0][k] = w237;
-        };
+    for k in 0..N {
+        let w1 = xc[0][k];
+        let w2 = xc[1][k];
+        let w3 = xc[2][k];
+        let w11 = ug[k];
+        let w50 = xc[3][k];
+        let w52 = xc[4][k];
+        let w54 = xc[5][k];
+        let w224 = w1 * w216;
+        let w225 = w2 * w217;
+        let w226 = w3 * w218;
+        let w227 = w11 * w219;
+        let w228 = w50 * w220;
+        let w229 = w52 * w221;
+        let w230 = w54 * w222;
+        let w231 = w224 + w225;
+        let w232 = w226 + w231;
+        let w233 = w232 - w227;
+        let w234 = w233 - w228;
+        let w235 = w234 - w229;
+        let w236 = w235 - w230;
+        let w237 = w236 - at0(k, w223);
+        out[0][k] = w237;
     }
-    if 0 < N { order!(0); }
-    if 1 < N { order!(1); }
-    if 2 < N { order!(2); }
-    if 3 < N { order!(3); }
-    if 4 < N { order!(4); }
-    if 5 < N { order!(5); }
-    if 6 < N { order!(6); }
-    if 7 < N { order!(7); }
-    if 8 < N { order!(8); }
-    if 9 < N { order!(9); }
-    if 10 < N { order!(10); }
-    if 11 < N { order!(11); }
-    if 12 < N { order!(12); }
-    if 13 < N { order!(13); }
-    if 14 < N { order!(14); }
-    if 15 < N { order!(15); }
-    if 16 < N { order!(16); }
-    if 17 < N { order!(17); }
-    if 18 < N { order!(18); }
-    if 19 < N { order!(19); }
-    if 20 < N { order!(20); }
-    for k in 21..N { order!(k); }
     out
 }
 
@@ -1789,147 +1654,120 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 8], s: f64, p: &Params) -> [[f64; N
     let w181: f64 = w125 + w180;
     let mut w190 = [0.0f64; N];
     let mut out = [[0.0f64; N]; 4];
-    // The tape at order k, for k < N: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w1[k] = x[4][k];
-            w6[k] = series::sq(&w1, k);
-            w8[k] = x[1][k];
-            let w11 = series::mul(&w6, &w8, k);
-            w14[k] = x[2][k];
-            let w15 = series::mul(&w6, &w14, k);
-            w18[k] = x[3][k];
-            let w19 = series::mul(&w6, &w18, k);
-            w28[k] = x[5][k];
-            let w29 = series::mul(&w1, &w28, k);
-            w32[k] = x[6][k];
-            let w33 = series::mul(&w1, &w32, k);
-            w36[k] = x[7][k];
-            let w37 = series::mul(&w1, &w36, k);
-            w40[k] = series::mul(&w1, &w8, k);
-            w41[k] = series::mul(&w1, &w40, k);
-            let w42 = series::mul(&w8, &w41, k);
-            let w43 = series::sq(&w28, k);
-            w45[k] = series::mul(&w1, &w14, k);
-            w46[k] = series::mul(&w1, &w45, k);
-            let w47 = series::mul(&w14, &w46, k);
-            let w48 = series::sq(&w32, k);
-            w49[k] = series::mul(&w1, &w18, k);
-            w50[k] = series::mul(&w1, &w49, k);
-            let w51 = series::mul(&w18, &w50, k);
-            let w52 = series::sq(&w36, k);
-            let w62 = w1[k] * w22;
-            let w63 = w28[k] + w62;
-            let w64 = w32[k] + w63;
-            w65[k] = w36[k] + w64;
-            let w66 = series::sq(&w65, k);
-            let w67 = w1[k] * w4;
-            let w68 = w40[k] + w45[k];
-            let w69 = w49[k] + w68;
-            w70[k] = w69 - w67;
-            let w71 = series::sq(&w70, k);
-            let w86 = w6[k] * w85;
-            let w87 = w11 * w75;
-            let w88 = w15 * w76;
-            let w89 = w19 * w77;
-            let w90 = w29 * w78;
-            let w91 = w33 * w79;
-            let w92 = w37 * w80;
-            let w93 = w42 * w81;
-            let w94 = w43 * w81;
-            let w95 = w47 * w81;
-            let w96 = w48 * w81;
-            let w97 = w51 * w81;
-            let w98 = w52 * w81;
-            let w99 = w66 * w82;
-            let w100 = w71 * w82;
-            let w101 = w86 + w90;
-            let w102 = w91 + w101;
-            let w103 = w92 + w102;
-            let w104 = w93 + w103;
-            let w105 = w94 + w104;
-            let w106 = w95 + w105;
-            let w107 = w96 + w106;
-            let w108 = w97 + w107;
-            let w109 = w98 + w108;
-            let w110 = w99 + w109;
-            let w111 = w100 + w110;
-            let w112 = w111 - w87;
-            let w113 = w112 - w88;
-            let w114 = w113 - w89;
-            w117[k] = x[0][k];
-            series::sin_cos(&w117, &mut d_w117, &mut sin_w117, &mut cos_w117, k);
-            w118[k] = sin_w117[k];
-            w120[k] = cos_w117[k];
-            let w122 = series::mul(&w8, &w118, k);
-            let w123 = series::mul(&w14, &w118, k);
-            let w124 = series::mul(&w18, &w118, k);
-            let w145 = w118[k] * w140;
-            let w146 = w120[k] * w141;
-            let w147 = w122 * w142;
-            let w148 = w123 * w143;
-            let w149 = w124 * w144;
-            let w150 = w145 + w146;
-            let w151 = w150 - w147;
-            let w152 = w151 - w148;
-            let w153 = w152 - w149;
-            let w161 = series::sq(&w8, k);
-            let w164 = series::sq(&w14, k);
-            let w167 = series::sq(&w18, k);
-            let w171 = w161 * w168;
-            let w172 = w164 * w169;
-            let w173 = w167 * w170;
-            let w174 = w171 + w172;
-            let w175 = w173 + w174;
-            let w182 = w118[k] * w181;
-            let w183 = w120[k] * w179;
-            let w184 = w122 * w134;
-            let w185 = w123 * w135;
-            let w186 = w124 * w136;
-            let w187 = w182 + w183;
-            let w188 = w187 - w184;
-            let w189 = w188 - w185;
-            w190[k] = w189 - w186;
-            let w191 = series::mul(&w1, &w190, k);
-            let w192 = series::mul(&w28, &w120, k);
-            let w193 = series::mul(&w32, &w120, k);
-            let w194 = series::mul(&w36, &w120, k);
-            let w195 = w134 * w192;
-            let w196 = w135 * w193;
-            let w197 = w136 * w194;
-            let w198 = w191 + w195;
-            let w199 = w196 + w198;
-            let w200 = w197 + w199;
-            out[0][k] = w114;
-            out[1][k] = w153;
-            out[2][k] = w175;
-            out[3][k] = w200;
-        };
+    for k in 0..N {
+        w1[k] = x[4][k];
+        w6[k] = series::sq(&w1, k);
+        w8[k] = x[1][k];
+        let w11 = series::mul(&w6, &w8, k);
+        w14[k] = x[2][k];
+        let w15 = series::mul(&w6, &w14, k);
+        w18[k] = x[3][k];
+        let w19 = series::mul(&w6, &w18, k);
+        w28[k] = x[5][k];
+        let w29 = series::mul(&w1, &w28, k);
+        w32[k] = x[6][k];
+        let w33 = series::mul(&w1, &w32, k);
+        w36[k] = x[7][k];
+        let w37 = series::mul(&w1, &w36, k);
+        w40[k] = series::mul(&w1, &w8, k);
+        w41[k] = series::mul(&w1, &w40, k);
+        let w42 = series::mul(&w8, &w41, k);
+        let w43 = series::sq(&w28, k);
+        w45[k] = series::mul(&w1, &w14, k);
+        w46[k] = series::mul(&w1, &w45, k);
+        let w47 = series::mul(&w14, &w46, k);
+        let w48 = series::sq(&w32, k);
+        w49[k] = series::mul(&w1, &w18, k);
+        w50[k] = series::mul(&w1, &w49, k);
+        let w51 = series::mul(&w18, &w50, k);
+        let w52 = series::sq(&w36, k);
+        let w62 = w1[k] * w22;
+        let w63 = w28[k] + w62;
+        let w64 = w32[k] + w63;
+        w65[k] = w36[k] + w64;
+        let w66 = series::sq(&w65, k);
+        let w67 = w1[k] * w4;
+        let w68 = w40[k] + w45[k];
+        let w69 = w49[k] + w68;
+        w70[k] = w69 - w67;
+        let w71 = series::sq(&w70, k);
+        let w86 = w6[k] * w85;
+        let w87 = w11 * w75;
+        let w88 = w15 * w76;
+        let w89 = w19 * w77;
+        let w90 = w29 * w78;
+        let w91 = w33 * w79;
+        let w92 = w37 * w80;
+        let w93 = w42 * w81;
+        let w94 = w43 * w81;
+        let w95 = w47 * w81;
+        let w96 = w48 * w81;
+        let w97 = w51 * w81;
+        let w98 = w52 * w81;
+        let w99 = w66 * w82;
+        let w100 = w71 * w82;
+        let w101 = w86 + w90;
+        let w102 = w91 + w101;
+        let w103 = w92 + w102;
+        let w104 = w93 + w103;
+        let w105 = w94 + w104;
+        let w106 = w95 + w105;
+        let w107 = w96 + w106;
+        let w108 = w97 + w107;
+        let w109 = w98 + w108;
+        let w110 = w99 + w109;
+        let w111 = w100 + w110;
+        let w112 = w111 - w87;
+        let w113 = w112 - w88;
+        let w114 = w113 - w89;
+        w117[k] = x[0][k];
+        series::sin_cos(&w117, &mut d_w117, &mut sin_w117, &mut cos_w117, k);
+        w118[k] = sin_w117[k];
+        w120[k] = cos_w117[k];
+        let w122 = series::mul(&w8, &w118, k);
+        let w123 = series::mul(&w14, &w118, k);
+        let w124 = series::mul(&w18, &w118, k);
+        let w145 = w118[k] * w140;
+        let w146 = w120[k] * w141;
+        let w147 = w122 * w142;
+        let w148 = w123 * w143;
+        let w149 = w124 * w144;
+        let w150 = w145 + w146;
+        let w151 = w150 - w147;
+        let w152 = w151 - w148;
+        let w153 = w152 - w149;
+        let w161 = series::sq(&w8, k);
+        let w164 = series::sq(&w14, k);
+        let w167 = series::sq(&w18, k);
+        let w171 = w161 * w168;
+        let w172 = w164 * w169;
+        let w173 = w167 * w170;
+        let w174 = w171 + w172;
+        let w175 = w173 + w174;
+        let w182 = w118[k] * w181;
+        let w183 = w120[k] * w179;
+        let w184 = w122 * w134;
+        let w185 = w123 * w135;
+        let w186 = w124 * w136;
+        let w187 = w182 + w183;
+        let w188 = w187 - w184;
+        let w189 = w188 - w185;
+        w190[k] = w189 - w186;
+        let w191 = series::mul(&w1, &w190, k);
+        let w192 = series::mul(&w28, &w120, k);
+        let w193 = series::mul(&w32, &w120, k);
+        let w194 = series::mul(&w36, &w120, k);
+        let w195 = w134 * w192;
+        let w196 = w135 * w193;
+        let w197 = w136 * w194;
+        let w198 = w191 + w195;
+        let w199 = w196 + w198;
+        let w200 = w197 + w199;
+        out[0][k] = w114;
+        out[1][k] = w153;
+        out[2][k] = w175;
+        out[3][k] = w200;
     }
-    if 0 < N { order!(0); }
-    if 1 < N { order!(1); }
-    if 2 < N { order!(2); }
-    if 3 < N { order!(3); }
-    if 4 < N { order!(4); }
-    if 5 < N { order!(5); }
-    if 6 < N { order!(6); }
-    if 7 < N { order!(7); }
-    if 8 < N { order!(8); }
-    if 9 < N { order!(9); }
-    if 10 < N { order!(10); }
-    if 11 < N { order!(11); }
-    if 12 < N { order!(12); }
-    if 13 < N { order!(13); }
-    if 14 < N { order!(14); }
-    if 15 < N { order!(15); }
-    if 16 < N { order!(16); }
-    if 17 < N { order!(17); }
-    if 18 < N { order!(18); }
-    if 19 < N { order!(19); }
-    if 20 < N { order!(20); }
-    for k in 21..N { order!(k); }
     out
 }
 
@@ -1986,89 +1824,62 @@ pub fn power<const N: usize>(x: &[[f64; N]; 8], ug: &[f64; N], s: f64, p: &Param
     let w76: f64 = p[14];
     let mut w81 = [0.0f64; N];
     let mut out = [[0.0f64; N]; 2];
-    // The tape at order k, for k < N: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w0[k] = ug[k];
-            w1[k] = x[0][k];
-            series::sin_cos(&w1, &mut d_w1, &mut sin_w1, &mut cos_w1, k);
-            w2[k] = cos_w1[k];
-            w11[k] = sin_w1[k];
-            let w12 = x[1][k];
-            let w13 = x[2][k];
-            let w14 = x[3][k];
-            let w33 = w12 * w30;
-            let w34 = w13 * w27;
-            let w35 = w14 * w24;
-            let w36 = w33 + w34;
-            let w37 = w35 + w36;
-            w38[k] = w37 - at0(k, w32);
-            let w39 = series::mul(&w11, &w38, k);
-            w40[k] = x[4][k];
-            let w41 = w2[k] * w10;
-            w42[k] = w41 - w39;
-            let w43 = series::mul(&w40, &w42, k);
-            w44[k] = x[5][k];
-            let w45 = series::mul(&w2, &w44, k);
-            w46[k] = x[6][k];
-            let w47 = series::mul(&w2, &w46, k);
-            w48[k] = x[7][k];
-            let w49 = series::mul(&w2, &w48, k);
-            let w50 = w30 * w45;
-            let w51 = w27 * w47;
-            let w52 = w24 * w49;
-            let w53 = w43 + w50;
-            let w54 = w51 + w53;
-            w55[k] = w52 + w54;
-            let w56 = series::mul(&w0, &w55, k);
-            let w57 = -w56;
-            let w62 = w44[k] * w59;
-            let w63 = w46[k] * w60;
-            let w64 = w48[k] * w61;
-            let w65 = w62 + w63;
-            w66[k] = w64 + w65;
-            let w67 = series::mul(&w44, &w66, k);
-            let w70 = w44[k] * w60;
-            let w71 = w46[k] * w68;
-            let w72 = w48[k] * w69;
-            let w73 = w70 + w71;
-            w74[k] = w72 + w73;
-            let w75 = series::mul(&w46, &w74, k);
-            let w77 = w44[k] * w61;
-            let w78 = w46[k] * w69;
-            let w79 = w48[k] * w76;
-            let w80 = w77 + w78;
-            w81[k] = w79 + w80;
-            let w82 = series::mul(&w48, &w81, k);
-            let w83 = w67 + w75;
-            let w84 = w82 + w83;
-            out[0][k] = w57;
-            out[1][k] = w84;
-        };
+    for k in 0..N {
+        w0[k] = ug[k];
+        w1[k] = x[0][k];
+        series::sin_cos(&w1, &mut d_w1, &mut sin_w1, &mut cos_w1, k);
+        w2[k] = cos_w1[k];
+        w11[k] = sin_w1[k];
+        let w12 = x[1][k];
+        let w13 = x[2][k];
+        let w14 = x[3][k];
+        let w33 = w12 * w30;
+        let w34 = w13 * w27;
+        let w35 = w14 * w24;
+        let w36 = w33 + w34;
+        let w37 = w35 + w36;
+        w38[k] = w37 - at0(k, w32);
+        let w39 = series::mul(&w11, &w38, k);
+        w40[k] = x[4][k];
+        let w41 = w2[k] * w10;
+        w42[k] = w41 - w39;
+        let w43 = series::mul(&w40, &w42, k);
+        w44[k] = x[5][k];
+        let w45 = series::mul(&w2, &w44, k);
+        w46[k] = x[6][k];
+        let w47 = series::mul(&w2, &w46, k);
+        w48[k] = x[7][k];
+        let w49 = series::mul(&w2, &w48, k);
+        let w50 = w30 * w45;
+        let w51 = w27 * w47;
+        let w52 = w24 * w49;
+        let w53 = w43 + w50;
+        let w54 = w51 + w53;
+        w55[k] = w52 + w54;
+        let w56 = series::mul(&w0, &w55, k);
+        let w57 = -w56;
+        let w62 = w44[k] * w59;
+        let w63 = w46[k] * w60;
+        let w64 = w48[k] * w61;
+        let w65 = w62 + w63;
+        w66[k] = w64 + w65;
+        let w67 = series::mul(&w44, &w66, k);
+        let w70 = w44[k] * w60;
+        let w71 = w46[k] * w68;
+        let w72 = w48[k] * w69;
+        let w73 = w70 + w71;
+        w74[k] = w72 + w73;
+        let w75 = series::mul(&w46, &w74, k);
+        let w77 = w44[k] * w61;
+        let w78 = w46[k] * w69;
+        let w79 = w48[k] * w76;
+        let w80 = w77 + w78;
+        w81[k] = w79 + w80;
+        let w82 = series::mul(&w48, &w81, k);
+        let w83 = w67 + w75;
+        let w84 = w82 + w83;
+        out[0][k] = w57;
+        out[1][k] = w84;
     }
-    if 0 < N { order!(0); }
-    if 1 < N { order!(1); }
-    if 2 < N { order!(2); }
-    if 3 < N { order!(3); }
-    if 4 < N { order!(4); }
-    if 5 < N { order!(5); }
-    if 6 < N { order!(6); }
-    if 7 < N { order!(7); }
-    if 8 < N { order!(8); }
-    if 9 < N { order!(9); }
-    if 10 < N { order!(10); }
-    if 11 < N { order!(11); }
-    if 12 < N { order!(12); }
-    if 13 < N { order!(13); }
-    if 14 < N { order!(14); }
-    if 15 < N { order!(15); }
-    if 16 < N { order!(16); }
-    if 17 < N { order!(17); }
-    if 18 < N { order!(18); }
-    if 19 < N { order!(19); }
-    if 20 < N { order!(20); }
-    for k in 21..N { order!(k); }
     out
 }

@@ -156,116 +156,89 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
     let w188: f64 = w35 * w89;
     let w189: f64 = w25 * w89;
     let mut w200 = [0.0f64; N];
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w0[k] = x[2][k];
-            w2[k] = x[3][k];
-            w10[k] = x[0][k];
-            series::sin_cos(&w10, &mut d_w10, &mut sin_w10, &mut cos_w10, k);
-            w11[k] = cos_w10[k];
-            w12[k] = x[1][k];
-            w20[k] = ug[k];
-            let w36 = series::mul(&w11, &w12, k);
-            let w37 = series::mul(&w11, &w20, k);
-            w38[k] = sin_w10[k];
-            let w40 = series::mul(&w12, &w20, k);
-            let w51 = w20[k] * w46;
-            let w52 = w40 * w44;
-            let w53 = w51 - w52;
-            w54[k] = w53 - at0(k, w50);
-            let w55 = series::mul(&w38, &w54, k);
-            w56[k] = series::mul(&w0, &w12, k);
-            let w78 = w0[k] * w77;
-            let w79 = w56[k] * w70;
-            w80[k] = w79 - w78;
-            let w81 = series::mul(&w2, &w80, k);
-            let w97 = series::sq(&w0, k);
-            let w98 = series::mul(&w0, &w56, k);
-            let w118 = series::sq(&w12, k);
-            let w147 = w2[k] * w110;
-            let w148 = w11[k] * w82;
-            let w149 = w12[k] * w111;
-            let w150 = w36 * w83;
-            let w151 = w37 * w116;
-            let w152 = w38[k] * w113;
-            let w153 = w9 * w55;
-            let w154 = w9 * w81;
-            let w155 = w97 * w114;
-            let w156 = w98 * w115;
-            let w157 = w147 + w150;
-            let w158 = w151 + w157;
-            let w159 = w155 + w158;
-            let w160 = w159 - w148;
-            let w161 = w160 - w149;
-            let w162 = w161 - w152;
-            let w163 = w162 - w153;
-            let w164 = w163 - w154;
-            let w165 = w164 - w156;
-            let w166 = w12[k] * w142;
-            let w167 = w118 * w143;
-            let w168 = w166 + w167;
-            w169[k] = at0(k, w146) + w168;
-            if k == 0 { inv_w169 = 1.0 / w169[0]; }
-            w170[k] = series::div(w165, &w169, &w170, inv_w169, k);
-            let w172 = w12[k] * w137;
-            let w173 = w100 * w118;
-            let w174 = w172 + w173;
-            w175[k] = at0(k, w141) + w174;
-            let w176 = w2[k] * w109;
-            let w177 = w12[k] * w96;
-            let w178 = w37 * w44;
-            let w179 = w33 * w38[k];
-            let w180 = w97 * w101;
-            let w181 = w98 * w100;
-            let w182 = w177 + w179;
-            let w183 = w181 + w182;
-            let w184 = w183 - w176;
-            let w185 = w184 - w178;
-            w186[k] = w185 - w180;
-            let w187 = series::mul(&w175, &w186, k);
-            let w190 = w11[k] * w188;
-            let w191 = w36 * w113;
-            let w192 = w37 * w189;
-            let w193 = w55 * w89;
-            let w194 = w81 * w89;
-            let w195 = w190 + w192;
-            let w196 = w193 + w195;
-            let w197 = w194 + w196;
-            let w198 = w187 + w197;
-            let w199 = w198 - w191;
-            w200[k] = series::div(w199, &w169, &w200, inv_w169, k);
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            x[0][k + 1] = w0[k] * inv_k1;
-            x[1][k + 1] = w2[k] * inv_k1;
-            x[2][k + 1] = w170[k] * inv_k1;
-            x[3][k + 1] = w200[k] * inv_k1;
-        };
+    for k in 0..N - 1 {
+        w0[k] = x[2][k];
+        w2[k] = x[3][k];
+        w10[k] = x[0][k];
+        series::sin_cos(&w10, &mut d_w10, &mut sin_w10, &mut cos_w10, k);
+        w11[k] = cos_w10[k];
+        w12[k] = x[1][k];
+        w20[k] = ug[k];
+        let w36 = series::mul(&w11, &w12, k);
+        let w37 = series::mul(&w11, &w20, k);
+        w38[k] = sin_w10[k];
+        let w40 = series::mul(&w12, &w20, k);
+        let w51 = w20[k] * w46;
+        let w52 = w40 * w44;
+        let w53 = w51 - w52;
+        w54[k] = w53 - at0(k, w50);
+        let w55 = series::mul(&w38, &w54, k);
+        w56[k] = series::mul(&w0, &w12, k);
+        let w78 = w0[k] * w77;
+        let w79 = w56[k] * w70;
+        w80[k] = w79 - w78;
+        let w81 = series::mul(&w2, &w80, k);
+        let w97 = series::sq(&w0, k);
+        let w98 = series::mul(&w0, &w56, k);
+        let w118 = series::sq(&w12, k);
+        let w147 = w2[k] * w110;
+        let w148 = w11[k] * w82;
+        let w149 = w12[k] * w111;
+        let w150 = w36 * w83;
+        let w151 = w37 * w116;
+        let w152 = w38[k] * w113;
+        let w153 = w9 * w55;
+        let w154 = w9 * w81;
+        let w155 = w97 * w114;
+        let w156 = w98 * w115;
+        let w157 = w147 + w150;
+        let w158 = w151 + w157;
+        let w159 = w155 + w158;
+        let w160 = w159 - w148;
+        let w161 = w160 - w149;
+        let w162 = w161 - w152;
+        let w163 = w162 - w153;
+        let w164 = w163 - w154;
+        let w165 = w164 - w156;
+        let w166 = w12[k] * w142;
+        let w167 = w118 * w143;
+        let w168 = w166 + w167;
+        w169[k] = at0(k, w146) + w168;
+        if k == 0 { inv_w169 = 1.0 / w169[0]; }
+        w170[k] = series::div(w165, &w169, &w170, inv_w169, k);
+        let w172 = w12[k] * w137;
+        let w173 = w100 * w118;
+        let w174 = w172 + w173;
+        w175[k] = at0(k, w141) + w174;
+        let w176 = w2[k] * w109;
+        let w177 = w12[k] * w96;
+        let w178 = w37 * w44;
+        let w179 = w33 * w38[k];
+        let w180 = w97 * w101;
+        let w181 = w98 * w100;
+        let w182 = w177 + w179;
+        let w183 = w181 + w182;
+        let w184 = w183 - w176;
+        let w185 = w184 - w178;
+        w186[k] = w185 - w180;
+        let w187 = series::mul(&w175, &w186, k);
+        let w190 = w11[k] * w188;
+        let w191 = w36 * w113;
+        let w192 = w37 * w189;
+        let w193 = w55 * w89;
+        let w194 = w81 * w89;
+        let w195 = w190 + w192;
+        let w196 = w193 + w195;
+        let w197 = w194 + w196;
+        let w198 = w187 + w197;
+        let w199 = w198 - w191;
+        w200[k] = series::div(w199, &w169, &w200, inv_w169, k);
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        x[0][k + 1] = w0[k] * inv_k1;
+        x[1][k + 1] = w2[k] * inv_k1;
+        x[2][k + 1] = w170[k] * inv_k1;
+        x[3][k + 1] = w200[k] * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// Taylor coefficients of the solution of `x' = rocking_rhs_free(..)`: on entry `x[i][0]` holds
@@ -424,107 +397,80 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
     let w189: f64 = w38 * w90;
     let w190: f64 = w53 * w90;
     let mut w201 = [0.0f64; N];
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w0[k] = x[2][k];
-            w2[k] = x[3][k];
-            w10[k] = x[0][k];
-            series::sin_cos(&w10, &mut d_w10, &mut sin_w10, &mut cos_w10, k);
-            w11[k] = cos_w10[k];
-            w12[k] = x[1][k];
-            let w39 = series::mul(&w11, &w12, k);
-            w40[k] = sin_w10[k];
-            let w54 = series::mul(&w12, &w40, k);
-            w55[k] = series::mul(&w0, &w12, k);
-            let w77 = w0[k] * w76;
-            let w78 = w55[k] * w69;
-            w79[k] = w78 - w77;
-            let w80 = series::mul(&w2, &w79, k);
-            let w98 = series::sq(&w0, k);
-            let w99 = series::mul(&w0, &w55, k);
-            let w120 = series::sq(&w12, k);
-            let w150 = w2[k] * w111;
-            let w151 = w11[k] * w117;
-            let w152 = w12[k] * w113;
-            let w153 = w39 * w82;
-            let w154 = w40[k] * w118;
-            let w155 = w54 * w84;
-            let w156 = w9 * w80;
-            let w157 = w98 * w115;
-            let w158 = w99 * w116;
-            let w159 = w150 + w151;
-            let w160 = w153 + w159;
-            let w161 = w155 + w160;
-            let w162 = w157 + w161;
-            let w163 = w162 - w152;
-            let w164 = w163 - w154;
-            let w165 = w164 - w156;
-            let w166 = w165 - w158;
-            let w167 = w12[k] * w145;
-            let w168 = w120 * w146;
-            let w169 = w167 + w168;
-            w170[k] = at0(k, w149) + w169;
-            if k == 0 { inv_w170 = 1.0 / w170[0]; }
-            w171[k] = series::div(w166, &w170, &w171, inv_w170, k);
-            let w173 = w12[k] * w139;
-            let w174 = w101 * w120;
-            let w175 = w173 + w174;
-            w176[k] = at0(k, w144) + w175;
-            let w177 = w2[k] * w110;
-            let w178 = w11[k] * w46;
-            let w179 = w12[k] * w97;
-            let w180 = w36 * w40[k];
-            let w181 = w98 * w102;
-            let w182 = w99 * w101;
-            let w183 = w179 + w180;
-            let w184 = w182 + w183;
-            let w185 = w184 - w177;
-            let w186 = w185 - w178;
-            w187[k] = w186 - w181;
-            let w188 = series::mul(&w176, &w187, k);
-            let w191 = w11[k] * w189;
-            let w192 = w39 * w114;
-            let w193 = w40[k] * w190;
-            let w194 = w54 * w112;
-            let w195 = w80 * w90;
-            let w196 = w191 + w193;
-            let w197 = w195 + w196;
-            let w198 = w188 + w197;
-            let w199 = w198 - w192;
-            let w200 = w199 - w194;
-            w201[k] = series::div(w200, &w170, &w201, inv_w170, k);
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            x[0][k + 1] = w0[k] * inv_k1;
-            x[1][k + 1] = w2[k] * inv_k1;
-            x[2][k + 1] = w171[k] * inv_k1;
-            x[3][k + 1] = w201[k] * inv_k1;
-        };
+    for k in 0..N - 1 {
+        w0[k] = x[2][k];
+        w2[k] = x[3][k];
+        w10[k] = x[0][k];
+        series::sin_cos(&w10, &mut d_w10, &mut sin_w10, &mut cos_w10, k);
+        w11[k] = cos_w10[k];
+        w12[k] = x[1][k];
+        let w39 = series::mul(&w11, &w12, k);
+        w40[k] = sin_w10[k];
+        let w54 = series::mul(&w12, &w40, k);
+        w55[k] = series::mul(&w0, &w12, k);
+        let w77 = w0[k] * w76;
+        let w78 = w55[k] * w69;
+        w79[k] = w78 - w77;
+        let w80 = series::mul(&w2, &w79, k);
+        let w98 = series::sq(&w0, k);
+        let w99 = series::mul(&w0, &w55, k);
+        let w120 = series::sq(&w12, k);
+        let w150 = w2[k] * w111;
+        let w151 = w11[k] * w117;
+        let w152 = w12[k] * w113;
+        let w153 = w39 * w82;
+        let w154 = w40[k] * w118;
+        let w155 = w54 * w84;
+        let w156 = w9 * w80;
+        let w157 = w98 * w115;
+        let w158 = w99 * w116;
+        let w159 = w150 + w151;
+        let w160 = w153 + w159;
+        let w161 = w155 + w160;
+        let w162 = w157 + w161;
+        let w163 = w162 - w152;
+        let w164 = w163 - w154;
+        let w165 = w164 - w156;
+        let w166 = w165 - w158;
+        let w167 = w12[k] * w145;
+        let w168 = w120 * w146;
+        let w169 = w167 + w168;
+        w170[k] = at0(k, w149) + w169;
+        if k == 0 { inv_w170 = 1.0 / w170[0]; }
+        w171[k] = series::div(w166, &w170, &w171, inv_w170, k);
+        let w173 = w12[k] * w139;
+        let w174 = w101 * w120;
+        let w175 = w173 + w174;
+        w176[k] = at0(k, w144) + w175;
+        let w177 = w2[k] * w110;
+        let w178 = w11[k] * w46;
+        let w179 = w12[k] * w97;
+        let w180 = w36 * w40[k];
+        let w181 = w98 * w102;
+        let w182 = w99 * w101;
+        let w183 = w179 + w180;
+        let w184 = w182 + w183;
+        let w185 = w184 - w177;
+        let w186 = w185 - w178;
+        w187[k] = w186 - w181;
+        let w188 = series::mul(&w176, &w187, k);
+        let w191 = w11[k] * w189;
+        let w192 = w39 * w114;
+        let w193 = w40[k] * w190;
+        let w194 = w54 * w112;
+        let w195 = w80 * w90;
+        let w196 = w191 + w193;
+        let w197 = w195 + w196;
+        let w198 = w188 + w197;
+        let w199 = w198 - w192;
+        let w200 = w199 - w194;
+        w201[k] = series::div(w200, &w170, &w201, inv_w170, k);
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        x[0][k + 1] = w0[k] * inv_k1;
+        x[1][k + 1] = w2[k] * inv_k1;
+        x[2][k + 1] = w171[k] * inv_k1;
+        x[3][k + 1] = w201[k] * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// Taylor coefficients of the solution of `xc' = contact_rhs(..)`: on entry `xc[i][0]` holds
@@ -562,46 +508,19 @@ pub fn contact_rhs<const N: usize>(xc: &mut [[f64; N]; 2], ug: &[f64; N], p: &Pa
     let w32: f64 = w29 * w31;
     let w33: f64 = w11 * w31;
     let w34: f64 = w17 * w31;
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let w0 = xc[1][k];
-            let w2 = xc[0][k];
-            let w13 = ug[k];
-            let w35 = w0 * w32;
-            let w36 = w2 * w33;
-            let w37 = w13 * w34;
-            let w38 = w36 - w35;
-            let w39 = w38 - w37;
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            xc[0][k + 1] = w0 * inv_k1;
-            xc[1][k + 1] = w39 * inv_k1;
-        };
+    for k in 0..N - 1 {
+        let w0 = xc[1][k];
+        let w2 = xc[0][k];
+        let w13 = ug[k];
+        let w35 = w0 * w32;
+        let w36 = w2 * w33;
+        let w37 = w13 * w34;
+        let w38 = w36 - w35;
+        let w39 = w38 - w37;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        xc[0][k + 1] = w0 * inv_k1;
+        xc[1][k + 1] = w39 * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// Taylor coefficients of the solution of `xc' = contact_rhs_free(..)`: on entry `xc[i][0]` holds
@@ -643,44 +562,17 @@ pub fn contact_rhs_free<const N: usize>(xc: &mut [[f64; N]; 2], p: &Params) {
     let w34: f64 = w31 * w33;
     let w35: f64 = w11 * w33;
     let w36: f64 = w19 * w33;
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let w0 = xc[1][k];
-            let w2 = xc[0][k];
-            let w37 = w0 * w34;
-            let w38 = w2 * w35;
-            let w39 = w38 - w37;
-            let w40 = w39 - at0(k, w36);
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            xc[0][k + 1] = w0 * inv_k1;
-            xc[1][k + 1] = w40 * inv_k1;
-        };
+    for k in 0..N - 1 {
+        let w0 = xc[1][k];
+        let w2 = xc[0][k];
+        let w37 = w0 * w34;
+        let w38 = w2 * w35;
+        let w39 = w38 - w37;
+        let w40 = w39 - at0(k, w36);
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        xc[0][k + 1] = w0 * inv_k1;
+        xc[1][k + 1] = w40 * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// The first N Taylor coefficients of each output of `uplift` along series inputs.
@@ -752,45 +644,18 @@ pub fn uplift<const N: usize>(xc: &[[f64; N]; 2], ug: &[f64; N], s: f64, p: &Par
     let w66: f64 = w0 * w61;
     let w67: f64 = w0 * w25;
     let mut out = [[0.0f64; N]; 1];
-    // The tape at order k, for k < N: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let w1 = xc[0][k];
-            let w9 = ug[k];
-            let w53 = xc[1][k];
-            let w68 = w1 * w64;
-            let w69 = w9 * w65;
-            let w70 = w53 * w66;
-            let w71 = w68 + w69;
-            let w72 = w70 + w71;
-            let w73 = w72 - at0(k, w67);
-            out[0][k] = w73;
-        };
+    for k in 0..N {
+        let w1 = xc[0][k];
+        let w9 = ug[k];
+        let w53 = xc[1][k];
+        let w68 = w1 * w64;
+        let w69 = w9 * w65;
+        let w70 = w53 * w66;
+        let w71 = w68 + w69;
+        let w72 = w70 + w71;
+        let w73 = w72 - at0(k, w67);
+        out[0][k] = w73;
     }
-    if 0 < N { order!(0); }
-    if 1 < N { order!(1); }
-    if 2 < N { order!(2); }
-    if 3 < N { order!(3); }
-    if 4 < N { order!(4); }
-    if 5 < N { order!(5); }
-    if 6 < N { order!(6); }
-    if 7 < N { order!(7); }
-    if 8 < N { order!(8); }
-    if 9 < N { order!(9); }
-    if 10 < N { order!(10); }
-    if 11 < N { order!(11); }
-    if 12 < N { order!(12); }
-    if 13 < N { order!(13); }
-    if 14 < N { order!(14); }
-    if 15 < N { order!(15); }
-    if 16 < N { order!(16); }
-    if 17 < N { order!(17); }
-    if 18 < N { order!(18); }
-    if 19 < N { order!(19); }
-    if 20 < N { order!(20); }
-    for k in 21..N { order!(k); }
     out
 }
 
@@ -879,84 +744,57 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
     let w103: f64 = w44 * w101;
     let mut w110 = [0.0f64; N];
     let mut out = [[0.0f64; N]; 4];
-    // The tape at order k, for k < N: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w1[k] = x[2][k];
-            w6[k] = series::sq(&w1, k);
-            w8[k] = x[1][k];
-            let w11 = series::mul(&w6, &w8, k);
-            w20[k] = x[3][k];
-            let w21 = series::mul(&w1, &w20, k);
-            w24[k] = series::mul(&w1, &w8, k);
-            w25[k] = series::mul(&w1, &w24, k);
-            let w26 = series::mul(&w8, &w25, k);
-            let w27 = series::sq(&w20, k);
-            let w35 = series::sq(&w24, k);
-            let w55 = w6[k] * w54;
-            let w56 = w11 * w46;
-            let w57 = w21 * w47;
-            let w58 = w25[k] * w48;
-            let w59 = w26 * w49;
-            let w60 = w27 * w50;
-            let w61 = w35 * w51;
-            let w62 = w55 + w57;
-            let w63 = w59 + w62;
-            let w64 = w60 + w63;
-            let w65 = w61 + w64;
-            let w66 = w65 - w56;
-            let w67 = w66 - w58;
-            w70[k] = x[0][k];
-            series::sin_cos(&w70, &mut d_w70, &mut sin_w70, &mut cos_w70, k);
-            w71[k] = sin_w70[k];
-            w73[k] = cos_w70[k];
-            let w75 = series::mul(&w8, &w71, k);
-            let w90 = w71[k] * w87;
-            let w91 = w73[k] * w88;
-            let w92 = w75 * w89;
-            let w93 = w90 + w91;
-            let w94 = w93 - w92;
-            let w102 = series::sq(&w8, k);
-            let w104 = w102 * w103;
-            let w106 = w71[k] * w86;
-            let w107 = w73[k] * w82;
-            let w108 = w75 * w83;
-            let w109 = w106 + w107;
-            w110[k] = w109 - w108;
-            let w111 = series::mul(&w1, &w110, k);
-            let w112 = series::mul(&w20, &w73, k);
-            let w113 = w83 * w112;
-            let w114 = w111 + w113;
-            out[0][k] = w67;
-            out[1][k] = w94;
-            out[2][k] = w104;
-            out[3][k] = w114;
-        };
+    for k in 0..N {
+        w1[k] = x[2][k];
+        w6[k] = series::sq(&w1, k);
+        w8[k] = x[1][k];
+        let w11 = series::mul(&w6, &w8, k);
+        w20[k] = x[3][k];
+        let w21 = series::mul(&w1, &w20, k);
+        w24[k] = series::mul(&w1, &w8, k);
+        w25[k] = series::mul(&w1, &w24, k);
+        let w26 = series::mul(&w8, &w25, k);
+        let w27 = series::sq(&w20, k);
+        let w35 = series::sq(&w24, k);
+        let w55 = w6[k] * w54;
+        let w56 = w11 * w46;
+        let w57 = w21 * w47;
+        let w58 = w25[k] * w48;
+        let w59 = w26 * w49;
+        let w60 = w27 * w50;
+        let w61 = w35 * w51;
+        let w62 = w55 + w57;
+        let w63 = w59 + w62;
+        let w64 = w60 + w63;
+        let w65 = w61 + w64;
+        let w66 = w65 - w56;
+        let w67 = w66 - w58;
+        w70[k] = x[0][k];
+        series::sin_cos(&w70, &mut d_w70, &mut sin_w70, &mut cos_w70, k);
+        w71[k] = sin_w70[k];
+        w73[k] = cos_w70[k];
+        let w75 = series::mul(&w8, &w71, k);
+        let w90 = w71[k] * w87;
+        let w91 = w73[k] * w88;
+        let w92 = w75 * w89;
+        let w93 = w90 + w91;
+        let w94 = w93 - w92;
+        let w102 = series::sq(&w8, k);
+        let w104 = w102 * w103;
+        let w106 = w71[k] * w86;
+        let w107 = w73[k] * w82;
+        let w108 = w75 * w83;
+        let w109 = w106 + w107;
+        w110[k] = w109 - w108;
+        let w111 = series::mul(&w1, &w110, k);
+        let w112 = series::mul(&w20, &w73, k);
+        let w113 = w83 * w112;
+        let w114 = w111 + w113;
+        out[0][k] = w67;
+        out[1][k] = w94;
+        out[2][k] = w104;
+        out[3][k] = w114;
     }
-    if 0 < N { order!(0); }
-    if 1 < N { order!(1); }
-    if 2 < N { order!(2); }
-    if 3 < N { order!(3); }
-    if 4 < N { order!(4); }
-    if 5 < N { order!(5); }
-    if 6 < N { order!(6); }
-    if 7 < N { order!(7); }
-    if 8 < N { order!(8); }
-    if 9 < N { order!(9); }
-    if 10 < N { order!(10); }
-    if 11 < N { order!(11); }
-    if 12 < N { order!(12); }
-    if 13 < N { order!(13); }
-    if 14 < N { order!(14); }
-    if 15 < N { order!(15); }
-    if 16 < N { order!(16); }
-    if 17 < N { order!(17); }
-    if 18 < N { order!(18); }
-    if 19 < N { order!(19); }
-    if 20 < N { order!(20); }
-    for k in 21..N { order!(k); }
     out
 }
 
@@ -1012,58 +850,31 @@ pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Param
     let w54: f64 = w41 * w53;
     let w55: f64 = w51 * w54;
     let mut out = [[0.0f64; N]; 2];
-    // The tape at order k, for k < N: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w0[k] = ug[k];
-            w4[k] = x[0][k];
-            series::sin_cos(&w4, &mut d_w4, &mut sin_w4, &mut cos_w4, k);
-            w5[k] = cos_w4[k];
-            w10[k] = sin_w4[k];
-            w12[k] = x[1][k];
-            let w13 = series::mul(&w10, &w12, k);
-            w26[k] = x[2][k];
-            let w27 = w5[k] * w20;
-            let w28 = w10[k] * w25;
-            let w29 = w13 * w22;
-            let w30 = w27 + w28;
-            w31[k] = w30 - w29;
-            let w32 = series::mul(&w26, &w31, k);
-            w33[k] = x[3][k];
-            let w34 = series::mul(&w5, &w33, k);
-            let w35 = w22 * w34;
-            w36[k] = w32 + w35;
-            let w37 = series::mul(&w0, &w36, k);
-            let w38 = -w37;
-            let w56 = series::sq(&w33, k);
-            let w57 = w55 * w56;
-            out[0][k] = w38;
-            out[1][k] = w57;
-        };
+    for k in 0..N {
+        w0[k] = ug[k];
+        w4[k] = x[0][k];
+        series::sin_cos(&w4, &mut d_w4, &mut sin_w4, &mut cos_w4, k);
+        w5[k] = cos_w4[k];
+        w10[k] = sin_w4[k];
+        w12[k] = x[1][k];
+        let w13 = series::mul(&w10, &w12, k);
+        w26[k] = x[2][k];
+        let w27 = w5[k] * w20;
+        let w28 = w10[k] * w25;
+        let w29 = w13 * w22;
+        let w30 = w27 + w28;
+        w31[k] = w30 - w29;
+        let w32 = series::mul(&w26, &w31, k);
+        w33[k] = x[3][k];
+        let w34 = series::mul(&w5, &w33, k);
+        let w35 = w22 * w34;
+        w36[k] = w32 + w35;
+        let w37 = series::mul(&w0, &w36, k);
+        let w38 = -w37;
+        let w56 = series::sq(&w33, k);
+        let w57 = w55 * w56;
+        out[0][k] = w38;
+        out[1][k] = w57;
     }
-    if 0 < N { order!(0); }
-    if 1 < N { order!(1); }
-    if 2 < N { order!(2); }
-    if 3 < N { order!(3); }
-    if 4 < N { order!(4); }
-    if 5 < N { order!(5); }
-    if 6 < N { order!(6); }
-    if 7 < N { order!(7); }
-    if 8 < N { order!(8); }
-    if 9 < N { order!(9); }
-    if 10 < N { order!(10); }
-    if 11 < N { order!(11); }
-    if 12 < N { order!(12); }
-    if 13 < N { order!(13); }
-    if 14 < N { order!(14); }
-    if 15 < N { order!(15); }
-    if 16 < N { order!(16); }
-    if 17 < N { order!(17); }
-    if 18 < N { order!(18); }
-    if 19 < N { order!(19); }
-    if 20 < N { order!(20); }
-    for k in 21..N { order!(k); }
     out
 }

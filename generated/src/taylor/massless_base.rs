@@ -148,116 +148,89 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
     let w180: f64 = w31 * w83;
     let w181: f64 = w25 * w83;
     let mut w192 = [0.0f64; N];
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w0[k] = x[2][k];
-            w2[k] = x[3][k];
-            w10[k] = x[0][k];
-            series::sin_cos(&w10, &mut d_w10, &mut sin_w10, &mut cos_w10, k);
-            w11[k] = cos_w10[k];
-            w12[k] = x[1][k];
-            w20[k] = ug[k];
-            let w32 = series::mul(&w11, &w12, k);
-            let w33 = series::mul(&w11, &w20, k);
-            w34[k] = sin_w10[k];
-            let w36 = series::mul(&w12, &w20, k);
-            let w45 = w20[k] * w40;
-            let w46 = w36 * w39;
-            let w47 = w45 - w46;
-            w48[k] = w47 - at0(k, w44);
-            let w49 = series::mul(&w34, &w48, k);
-            w50[k] = series::mul(&w0, &w12, k);
-            let w72 = w0[k] * w71;
-            let w73 = w50[k] * w64;
-            w74[k] = w73 - w72;
-            let w75 = series::mul(&w2, &w74, k);
-            let w91 = series::sq(&w0, k);
-            let w92 = series::mul(&w0, &w50, k);
-            let w111 = series::sq(&w12, k);
-            let w139 = w2[k] * w104;
-            let w140 = w11[k] * w76;
-            let w141 = w12[k] * w105;
-            let w142 = w32 * w77;
-            let w143 = w33 * w110;
-            let w144 = w34[k] * w107;
-            let w145 = w9 * w49;
-            let w146 = w9 * w75;
-            let w147 = w91 * w108;
-            let w148 = w92 * w109;
-            let w149 = w139 + w142;
-            let w150 = w143 + w149;
-            let w151 = w147 + w150;
-            let w152 = w151 - w140;
-            let w153 = w152 - w141;
-            let w154 = w153 - w144;
-            let w155 = w154 - w145;
-            let w156 = w155 - w146;
-            let w157 = w156 - w148;
-            let w158 = w12[k] * w134;
-            let w159 = w111 * w135;
-            let w160 = w158 + w159;
-            w161[k] = at0(k, w138) + w160;
-            if k == 0 { inv_w161 = 1.0 / w161[0]; }
-            w162[k] = series::div(w157, &w161, &w162, inv_w161, k);
-            let w164 = w12[k] * w129;
-            let w165 = w94 * w111;
-            let w166 = w164 + w165;
-            w167[k] = at0(k, w133) + w166;
-            let w168 = w2[k] * w103;
-            let w169 = w12[k] * w90;
-            let w170 = w33 * w39;
-            let w171 = w29 * w34[k];
-            let w172 = w91 * w95;
-            let w173 = w92 * w94;
-            let w174 = w169 + w171;
-            let w175 = w173 + w174;
-            let w176 = w175 - w168;
-            let w177 = w176 - w170;
-            w178[k] = w177 - w172;
-            let w179 = series::mul(&w167, &w178, k);
-            let w182 = w11[k] * w180;
-            let w183 = w32 * w107;
-            let w184 = w33 * w181;
-            let w185 = w49 * w83;
-            let w186 = w75 * w83;
-            let w187 = w182 + w184;
-            let w188 = w185 + w187;
-            let w189 = w186 + w188;
-            let w190 = w179 + w189;
-            let w191 = w190 - w183;
-            w192[k] = series::div(w191, &w161, &w192, inv_w161, k);
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            x[0][k + 1] = w0[k] * inv_k1;
-            x[1][k + 1] = w2[k] * inv_k1;
-            x[2][k + 1] = w162[k] * inv_k1;
-            x[3][k + 1] = w192[k] * inv_k1;
-        };
+    for k in 0..N - 1 {
+        w0[k] = x[2][k];
+        w2[k] = x[3][k];
+        w10[k] = x[0][k];
+        series::sin_cos(&w10, &mut d_w10, &mut sin_w10, &mut cos_w10, k);
+        w11[k] = cos_w10[k];
+        w12[k] = x[1][k];
+        w20[k] = ug[k];
+        let w32 = series::mul(&w11, &w12, k);
+        let w33 = series::mul(&w11, &w20, k);
+        w34[k] = sin_w10[k];
+        let w36 = series::mul(&w12, &w20, k);
+        let w45 = w20[k] * w40;
+        let w46 = w36 * w39;
+        let w47 = w45 - w46;
+        w48[k] = w47 - at0(k, w44);
+        let w49 = series::mul(&w34, &w48, k);
+        w50[k] = series::mul(&w0, &w12, k);
+        let w72 = w0[k] * w71;
+        let w73 = w50[k] * w64;
+        w74[k] = w73 - w72;
+        let w75 = series::mul(&w2, &w74, k);
+        let w91 = series::sq(&w0, k);
+        let w92 = series::mul(&w0, &w50, k);
+        let w111 = series::sq(&w12, k);
+        let w139 = w2[k] * w104;
+        let w140 = w11[k] * w76;
+        let w141 = w12[k] * w105;
+        let w142 = w32 * w77;
+        let w143 = w33 * w110;
+        let w144 = w34[k] * w107;
+        let w145 = w9 * w49;
+        let w146 = w9 * w75;
+        let w147 = w91 * w108;
+        let w148 = w92 * w109;
+        let w149 = w139 + w142;
+        let w150 = w143 + w149;
+        let w151 = w147 + w150;
+        let w152 = w151 - w140;
+        let w153 = w152 - w141;
+        let w154 = w153 - w144;
+        let w155 = w154 - w145;
+        let w156 = w155 - w146;
+        let w157 = w156 - w148;
+        let w158 = w12[k] * w134;
+        let w159 = w111 * w135;
+        let w160 = w158 + w159;
+        w161[k] = at0(k, w138) + w160;
+        if k == 0 { inv_w161 = 1.0 / w161[0]; }
+        w162[k] = series::div(w157, &w161, &w162, inv_w161, k);
+        let w164 = w12[k] * w129;
+        let w165 = w94 * w111;
+        let w166 = w164 + w165;
+        w167[k] = at0(k, w133) + w166;
+        let w168 = w2[k] * w103;
+        let w169 = w12[k] * w90;
+        let w170 = w33 * w39;
+        let w171 = w29 * w34[k];
+        let w172 = w91 * w95;
+        let w173 = w92 * w94;
+        let w174 = w169 + w171;
+        let w175 = w173 + w174;
+        let w176 = w175 - w168;
+        let w177 = w176 - w170;
+        w178[k] = w177 - w172;
+        let w179 = series::mul(&w167, &w178, k);
+        let w182 = w11[k] * w180;
+        let w183 = w32 * w107;
+        let w184 = w33 * w181;
+        let w185 = w49 * w83;
+        let w186 = w75 * w83;
+        let w187 = w182 + w184;
+        let w188 = w185 + w187;
+        let w189 = w186 + w188;
+        let w190 = w179 + w189;
+        let w191 = w190 - w183;
+        w192[k] = series::div(w191, &w161, &w192, inv_w161, k);
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        x[0][k + 1] = w0[k] * inv_k1;
+        x[1][k + 1] = w2[k] * inv_k1;
+        x[2][k + 1] = w162[k] * inv_k1;
+        x[3][k + 1] = w192[k] * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// Taylor coefficients of the solution of `x' = rocking_rhs_free(..)`: on entry `x[i][0]` holds
@@ -407,107 +380,80 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
     let w180: f64 = w34 * w83;
     let w181: f64 = w46 * w83;
     let mut w192 = [0.0f64; N];
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w0[k] = x[2][k];
-            w2[k] = x[3][k];
-            w10[k] = x[0][k];
-            series::sin_cos(&w10, &mut d_w10, &mut sin_w10, &mut cos_w10, k);
-            w11[k] = cos_w10[k];
-            w12[k] = x[1][k];
-            let w35 = series::mul(&w11, &w12, k);
-            w36[k] = sin_w10[k];
-            let w47 = series::mul(&w12, &w36, k);
-            w48[k] = series::mul(&w0, &w12, k);
-            let w70 = w0[k] * w69;
-            let w71 = w48[k] * w62;
-            w72[k] = w71 - w70;
-            let w73 = series::mul(&w2, &w72, k);
-            let w91 = series::sq(&w0, k);
-            let w92 = series::mul(&w0, &w48, k);
-            let w112 = series::sq(&w12, k);
-            let w141 = w2[k] * w104;
-            let w142 = w11[k] * w110;
-            let w143 = w12[k] * w106;
-            let w144 = w35 * w75;
-            let w145 = w36[k] * w111;
-            let w146 = w47 * w77;
-            let w147 = w9 * w73;
-            let w148 = w91 * w108;
-            let w149 = w92 * w109;
-            let w150 = w141 + w142;
-            let w151 = w144 + w150;
-            let w152 = w146 + w151;
-            let w153 = w148 + w152;
-            let w154 = w153 - w143;
-            let w155 = w154 - w145;
-            let w156 = w155 - w147;
-            let w157 = w156 - w149;
-            let w158 = w12[k] * w136;
-            let w159 = w112 * w137;
-            let w160 = w158 + w159;
-            w161[k] = at0(k, w140) + w160;
-            if k == 0 { inv_w161 = 1.0 / w161[0]; }
-            w162[k] = series::div(w157, &w161, &w162, inv_w161, k);
-            let w164 = w12[k] * w130;
-            let w165 = w94 * w112;
-            let w166 = w164 + w165;
-            w167[k] = at0(k, w135) + w166;
-            let w168 = w2[k] * w103;
-            let w169 = w11[k] * w40;
-            let w170 = w12[k] * w90;
-            let w171 = w32 * w36[k];
-            let w172 = w91 * w95;
-            let w173 = w92 * w94;
-            let w174 = w170 + w171;
-            let w175 = w173 + w174;
-            let w176 = w175 - w168;
-            let w177 = w176 - w169;
-            w178[k] = w177 - w172;
-            let w179 = series::mul(&w167, &w178, k);
-            let w182 = w11[k] * w180;
-            let w183 = w35 * w107;
-            let w184 = w36[k] * w181;
-            let w185 = w47 * w105;
-            let w186 = w73 * w83;
-            let w187 = w182 + w184;
-            let w188 = w186 + w187;
-            let w189 = w179 + w188;
-            let w190 = w189 - w183;
-            let w191 = w190 - w185;
-            w192[k] = series::div(w191, &w161, &w192, inv_w161, k);
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            x[0][k + 1] = w0[k] * inv_k1;
-            x[1][k + 1] = w2[k] * inv_k1;
-            x[2][k + 1] = w162[k] * inv_k1;
-            x[3][k + 1] = w192[k] * inv_k1;
-        };
+    for k in 0..N - 1 {
+        w0[k] = x[2][k];
+        w2[k] = x[3][k];
+        w10[k] = x[0][k];
+        series::sin_cos(&w10, &mut d_w10, &mut sin_w10, &mut cos_w10, k);
+        w11[k] = cos_w10[k];
+        w12[k] = x[1][k];
+        let w35 = series::mul(&w11, &w12, k);
+        w36[k] = sin_w10[k];
+        let w47 = series::mul(&w12, &w36, k);
+        w48[k] = series::mul(&w0, &w12, k);
+        let w70 = w0[k] * w69;
+        let w71 = w48[k] * w62;
+        w72[k] = w71 - w70;
+        let w73 = series::mul(&w2, &w72, k);
+        let w91 = series::sq(&w0, k);
+        let w92 = series::mul(&w0, &w48, k);
+        let w112 = series::sq(&w12, k);
+        let w141 = w2[k] * w104;
+        let w142 = w11[k] * w110;
+        let w143 = w12[k] * w106;
+        let w144 = w35 * w75;
+        let w145 = w36[k] * w111;
+        let w146 = w47 * w77;
+        let w147 = w9 * w73;
+        let w148 = w91 * w108;
+        let w149 = w92 * w109;
+        let w150 = w141 + w142;
+        let w151 = w144 + w150;
+        let w152 = w146 + w151;
+        let w153 = w148 + w152;
+        let w154 = w153 - w143;
+        let w155 = w154 - w145;
+        let w156 = w155 - w147;
+        let w157 = w156 - w149;
+        let w158 = w12[k] * w136;
+        let w159 = w112 * w137;
+        let w160 = w158 + w159;
+        w161[k] = at0(k, w140) + w160;
+        if k == 0 { inv_w161 = 1.0 / w161[0]; }
+        w162[k] = series::div(w157, &w161, &w162, inv_w161, k);
+        let w164 = w12[k] * w130;
+        let w165 = w94 * w112;
+        let w166 = w164 + w165;
+        w167[k] = at0(k, w135) + w166;
+        let w168 = w2[k] * w103;
+        let w169 = w11[k] * w40;
+        let w170 = w12[k] * w90;
+        let w171 = w32 * w36[k];
+        let w172 = w91 * w95;
+        let w173 = w92 * w94;
+        let w174 = w170 + w171;
+        let w175 = w173 + w174;
+        let w176 = w175 - w168;
+        let w177 = w176 - w169;
+        w178[k] = w177 - w172;
+        let w179 = series::mul(&w167, &w178, k);
+        let w182 = w11[k] * w180;
+        let w183 = w35 * w107;
+        let w184 = w36[k] * w181;
+        let w185 = w47 * w105;
+        let w186 = w73 * w83;
+        let w187 = w182 + w184;
+        let w188 = w186 + w187;
+        let w189 = w179 + w188;
+        let w190 = w189 - w183;
+        let w191 = w190 - w185;
+        w192[k] = series::div(w191, &w161, &w192, inv_w161, k);
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        x[0][k + 1] = w0[k] * inv_k1;
+        x[1][k + 1] = w2[k] * inv_k1;
+        x[2][k + 1] = w162[k] * inv_k1;
+        x[3][k + 1] = w192[k] * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// Taylor coefficients of the solution of `xc' = contact_rhs(..)`: on entry `xc[i][0]` holds
@@ -545,46 +491,19 @@ pub fn contact_rhs<const N: usize>(xc: &mut [[f64; N]; 2], ug: &[f64; N], p: &Pa
     let w32: f64 = w29 * w31;
     let w33: f64 = w11 * w31;
     let w34: f64 = w17 * w31;
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let w0 = xc[1][k];
-            let w2 = xc[0][k];
-            let w13 = ug[k];
-            let w35 = w0 * w32;
-            let w36 = w2 * w33;
-            let w37 = w13 * w34;
-            let w38 = w36 - w35;
-            let w39 = w38 - w37;
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            xc[0][k + 1] = w0 * inv_k1;
-            xc[1][k + 1] = w39 * inv_k1;
-        };
+    for k in 0..N - 1 {
+        let w0 = xc[1][k];
+        let w2 = xc[0][k];
+        let w13 = ug[k];
+        let w35 = w0 * w32;
+        let w36 = w2 * w33;
+        let w37 = w13 * w34;
+        let w38 = w36 - w35;
+        let w39 = w38 - w37;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        xc[0][k + 1] = w0 * inv_k1;
+        xc[1][k + 1] = w39 * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// Taylor coefficients of the solution of `xc' = contact_rhs_free(..)`: on entry `xc[i][0]` holds
@@ -626,44 +545,17 @@ pub fn contact_rhs_free<const N: usize>(xc: &mut [[f64; N]; 2], p: &Params) {
     let w34: f64 = w31 * w33;
     let w35: f64 = w11 * w33;
     let w36: f64 = w19 * w33;
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let w0 = xc[1][k];
-            let w2 = xc[0][k];
-            let w37 = w0 * w34;
-            let w38 = w2 * w35;
-            let w39 = w38 - w37;
-            let w40 = w39 - at0(k, w36);
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            xc[0][k + 1] = w0 * inv_k1;
-            xc[1][k + 1] = w40 * inv_k1;
-        };
+    for k in 0..N - 1 {
+        let w0 = xc[1][k];
+        let w2 = xc[0][k];
+        let w37 = w0 * w34;
+        let w38 = w2 * w35;
+        let w39 = w38 - w37;
+        let w40 = w39 - at0(k, w36);
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        xc[0][k + 1] = w0 * inv_k1;
+        xc[1][k + 1] = w40 * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// The first N Taylor coefficients of each output of `uplift` along series inputs.
@@ -731,45 +623,18 @@ pub fn uplift<const N: usize>(xc: &[[f64; N]; 2], ug: &[f64; N], s: f64, p: &Par
     let w62: f64 = w0 * w57;
     let w63: f64 = w0 * w21;
     let mut out = [[0.0f64; N]; 1];
-    // The tape at order k, for k < N: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let w1 = xc[0][k];
-            let w9 = ug[k];
-            let w49 = xc[1][k];
-            let w64 = w1 * w60;
-            let w65 = w9 * w61;
-            let w66 = w49 * w62;
-            let w67 = w64 + w65;
-            let w68 = w66 + w67;
-            let w69 = w68 - at0(k, w63);
-            out[0][k] = w69;
-        };
+    for k in 0..N {
+        let w1 = xc[0][k];
+        let w9 = ug[k];
+        let w49 = xc[1][k];
+        let w64 = w1 * w60;
+        let w65 = w9 * w61;
+        let w66 = w49 * w62;
+        let w67 = w64 + w65;
+        let w68 = w66 + w67;
+        let w69 = w68 - at0(k, w63);
+        out[0][k] = w69;
     }
-    if 0 < N { order!(0); }
-    if 1 < N { order!(1); }
-    if 2 < N { order!(2); }
-    if 3 < N { order!(3); }
-    if 4 < N { order!(4); }
-    if 5 < N { order!(5); }
-    if 6 < N { order!(6); }
-    if 7 < N { order!(7); }
-    if 8 < N { order!(8); }
-    if 9 < N { order!(9); }
-    if 10 < N { order!(10); }
-    if 11 < N { order!(11); }
-    if 12 < N { order!(12); }
-    if 13 < N { order!(13); }
-    if 14 < N { order!(14); }
-    if 15 < N { order!(15); }
-    if 16 < N { order!(16); }
-    if 17 < N { order!(17); }
-    if 18 < N { order!(18); }
-    if 19 < N { order!(19); }
-    if 20 < N { order!(20); }
-    for k in 21..N { order!(k); }
     out
 }
 
@@ -852,84 +717,57 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
     let w97: f64 = w44 * w95;
     let mut w104 = [0.0f64; N];
     let mut out = [[0.0f64; N]; 4];
-    // The tape at order k, for k < N: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w1[k] = x[2][k];
-            w6[k] = series::sq(&w1, k);
-            w8[k] = x[1][k];
-            let w11 = series::mul(&w6, &w8, k);
-            w20[k] = x[3][k];
-            let w21 = series::mul(&w1, &w20, k);
-            w24[k] = series::mul(&w1, &w8, k);
-            w25[k] = series::mul(&w1, &w24, k);
-            let w26 = series::mul(&w8, &w25, k);
-            let w27 = series::sq(&w20, k);
-            let w35 = series::sq(&w24, k);
-            let w52 = w6[k] * w45;
-            let w53 = w11 * w46;
-            let w54 = w21 * w47;
-            let w55 = w25[k] * w48;
-            let w56 = w26 * w49;
-            let w57 = w27 * w50;
-            let w58 = w35 * w51;
-            let w59 = w52 + w54;
-            let w60 = w56 + w59;
-            let w61 = w57 + w60;
-            let w62 = w58 + w61;
-            let w63 = w62 - w53;
-            let w64 = w63 - w55;
-            w67[k] = x[0][k];
-            series::sin_cos(&w67, &mut d_w67, &mut sin_w67, &mut cos_w67, k);
-            w68[k] = sin_w67[k];
-            w70[k] = cos_w67[k];
-            let w72 = series::mul(&w8, &w68, k);
-            let w84 = w68[k] * w81;
-            let w85 = w70[k] * w82;
-            let w86 = w72 * w83;
-            let w87 = w84 + w85;
-            let w88 = w87 - w86;
-            let w96 = series::sq(&w8, k);
-            let w98 = w96 * w97;
-            let w100 = w68[k] * w78;
-            let w101 = w70[k] * w79;
-            let w102 = w72 * w80;
-            let w103 = w100 + w101;
-            w104[k] = w103 - w102;
-            let w105 = series::mul(&w1, &w104, k);
-            let w106 = series::mul(&w20, &w70, k);
-            let w107 = w80 * w106;
-            let w108 = w105 + w107;
-            out[0][k] = w64;
-            out[1][k] = w88;
-            out[2][k] = w98;
-            out[3][k] = w108;
-        };
+    for k in 0..N {
+        w1[k] = x[2][k];
+        w6[k] = series::sq(&w1, k);
+        w8[k] = x[1][k];
+        let w11 = series::mul(&w6, &w8, k);
+        w20[k] = x[3][k];
+        let w21 = series::mul(&w1, &w20, k);
+        w24[k] = series::mul(&w1, &w8, k);
+        w25[k] = series::mul(&w1, &w24, k);
+        let w26 = series::mul(&w8, &w25, k);
+        let w27 = series::sq(&w20, k);
+        let w35 = series::sq(&w24, k);
+        let w52 = w6[k] * w45;
+        let w53 = w11 * w46;
+        let w54 = w21 * w47;
+        let w55 = w25[k] * w48;
+        let w56 = w26 * w49;
+        let w57 = w27 * w50;
+        let w58 = w35 * w51;
+        let w59 = w52 + w54;
+        let w60 = w56 + w59;
+        let w61 = w57 + w60;
+        let w62 = w58 + w61;
+        let w63 = w62 - w53;
+        let w64 = w63 - w55;
+        w67[k] = x[0][k];
+        series::sin_cos(&w67, &mut d_w67, &mut sin_w67, &mut cos_w67, k);
+        w68[k] = sin_w67[k];
+        w70[k] = cos_w67[k];
+        let w72 = series::mul(&w8, &w68, k);
+        let w84 = w68[k] * w81;
+        let w85 = w70[k] * w82;
+        let w86 = w72 * w83;
+        let w87 = w84 + w85;
+        let w88 = w87 - w86;
+        let w96 = series::sq(&w8, k);
+        let w98 = w96 * w97;
+        let w100 = w68[k] * w78;
+        let w101 = w70[k] * w79;
+        let w102 = w72 * w80;
+        let w103 = w100 + w101;
+        w104[k] = w103 - w102;
+        let w105 = series::mul(&w1, &w104, k);
+        let w106 = series::mul(&w20, &w70, k);
+        let w107 = w80 * w106;
+        let w108 = w105 + w107;
+        out[0][k] = w64;
+        out[1][k] = w88;
+        out[2][k] = w98;
+        out[3][k] = w108;
     }
-    if 0 < N { order!(0); }
-    if 1 < N { order!(1); }
-    if 2 < N { order!(2); }
-    if 3 < N { order!(3); }
-    if 4 < N { order!(4); }
-    if 5 < N { order!(5); }
-    if 6 < N { order!(6); }
-    if 7 < N { order!(7); }
-    if 8 < N { order!(8); }
-    if 9 < N { order!(9); }
-    if 10 < N { order!(10); }
-    if 11 < N { order!(11); }
-    if 12 < N { order!(12); }
-    if 13 < N { order!(13); }
-    if 14 < N { order!(14); }
-    if 15 < N { order!(15); }
-    if 16 < N { order!(16); }
-    if 17 < N { order!(17); }
-    if 18 < N { order!(18); }
-    if 19 < N { order!(19); }
-    if 20 < N { order!(20); }
-    for k in 21..N { order!(k); }
     out
 }
 
@@ -982,58 +820,31 @@ pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Param
     let w51: f64 = w38 * w50;
     let w52: f64 = w48 * w51;
     let mut out = [[0.0f64; N]; 2];
-    // The tape at order k, for k < N: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w0[k] = ug[k];
-            w4[k] = x[0][k];
-            series::sin_cos(&w4, &mut d_w4, &mut sin_w4, &mut cos_w4, k);
-            w5[k] = cos_w4[k];
-            w10[k] = sin_w4[k];
-            w12[k] = x[1][k];
-            let w13 = series::mul(&w10, &w12, k);
-            w23[k] = x[2][k];
-            let w24 = w5[k] * w20;
-            let w25 = w10[k] * w21;
-            let w26 = w13 * w22;
-            let w27 = w24 + w25;
-            w28[k] = w27 - w26;
-            let w29 = series::mul(&w23, &w28, k);
-            w30[k] = x[3][k];
-            let w31 = series::mul(&w5, &w30, k);
-            let w32 = w22 * w31;
-            w33[k] = w29 + w32;
-            let w34 = series::mul(&w0, &w33, k);
-            let w35 = -w34;
-            let w53 = series::sq(&w30, k);
-            let w54 = w52 * w53;
-            out[0][k] = w35;
-            out[1][k] = w54;
-        };
+    for k in 0..N {
+        w0[k] = ug[k];
+        w4[k] = x[0][k];
+        series::sin_cos(&w4, &mut d_w4, &mut sin_w4, &mut cos_w4, k);
+        w5[k] = cos_w4[k];
+        w10[k] = sin_w4[k];
+        w12[k] = x[1][k];
+        let w13 = series::mul(&w10, &w12, k);
+        w23[k] = x[2][k];
+        let w24 = w5[k] * w20;
+        let w25 = w10[k] * w21;
+        let w26 = w13 * w22;
+        let w27 = w24 + w25;
+        w28[k] = w27 - w26;
+        let w29 = series::mul(&w23, &w28, k);
+        w30[k] = x[3][k];
+        let w31 = series::mul(&w5, &w30, k);
+        let w32 = w22 * w31;
+        w33[k] = w29 + w32;
+        let w34 = series::mul(&w0, &w33, k);
+        let w35 = -w34;
+        let w53 = series::sq(&w30, k);
+        let w54 = w52 * w53;
+        out[0][k] = w35;
+        out[1][k] = w54;
     }
-    if 0 < N { order!(0); }
-    if 1 < N { order!(1); }
-    if 2 < N { order!(2); }
-    if 3 < N { order!(3); }
-    if 4 < N { order!(4); }
-    if 5 < N { order!(5); }
-    if 6 < N { order!(6); }
-    if 7 < N { order!(7); }
-    if 8 < N { order!(8); }
-    if 9 < N { order!(9); }
-    if 10 < N { order!(10); }
-    if 11 < N { order!(11); }
-    if 12 < N { order!(12); }
-    if 13 < N { order!(13); }
-    if 14 < N { order!(14); }
-    if 15 < N { order!(15); }
-    if 16 < N { order!(16); }
-    if 17 < N { order!(17); }
-    if 18 < N { order!(18); }
-    if 19 < N { order!(19); }
-    if 20 < N { order!(20); }
-    for k in 21..N { order!(k); }
     out
 }

@@ -90,111 +90,84 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
     let mut w112 = [0.0f64; N];
     let mut w120 = [0.0f64; N];
     let mut w128 = [0.0f64; N];
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w0[k] = x[2][k];
-            w2[k] = x[3][k];
-            w5[k] = x[0][k];
-            series::sin_cos(&w5, &mut d_w5, &mut sin_w5, &mut cos_w5, k);
-            w6[k] = cos_w5[k];
-            w7[k] = x[1][k];
-            w15[k] = ug[k];
-            let w21 = w7[k] * w12;
-            let w22 = w15[k] * w16;
-            let w23 = w21 - w22;
-            w24[k] = w23 - at0(k, w20);
-            let w25 = series::mul(&w6, &w24, k);
-            w26[k] = sin_w5[k];
-            let w28 = series::mul(&w7, &w15, k);
-            let w32 = w15[k] * w30;
-            let w33 = w4 * w28;
-            let w34 = w32 - w33;
-            w35[k] = w34 - at0(k, w31);
-            let w36 = series::mul(&w26, &w35, k);
-            let w37 = series::mul(&w0, &w7, k);
-            let w47 = w0[k] * w45;
-            let w48 = w37 * w46;
-            w49[k] = w48 - w47;
-            let w50 = series::mul(&w2, &w49, k);
-            let w58 = series::mul(&w6, &w15, k);
-            let w59 = w0[k] * w42;
-            let w60 = w37 * w43;
-            w61[k] = w60 - w59;
-            let w62 = series::mul(&w0, &w61, k);
-            let w76 = series::sq(&w7, k);
-            let w88 = w2[k] * w71;
-            let w89 = w7[k] * w72;
-            let w90 = w4 * w25;
-            let w91 = w26[k] * w73;
-            let w92 = w4 * w36;
-            let w93 = w4 * w50;
-            let w94 = w58 * w74;
-            let w95 = w16 * w62;
-            let w96 = w88 + w90;
-            let w97 = w94 + w96;
-            let w98 = w97 - w89;
-            let w99 = w98 - w91;
-            let w100 = w99 - w92;
-            let w101 = w100 - w93;
-            let w102 = w101 - w95;
-            let w103 = w7[k] * w83;
-            let w104 = w76 * w84;
-            let w105 = at0(k, w87) + w104;
-            w106[k] = w105 - w103;
-            if k == 0 { inv_w106 = 1.0 / w106[0]; }
-            w107[k] = series::div(w102, &w106, &w107, inv_w106, k);
-            let w109 = w7[k] * w45;
-            let w110 = w43 * w76;
-            let w111 = at0(k, w82) + w110;
-            w112[k] = w111 - w109;
-            let w113 = w2[k] * w70;
-            let w114 = w7[k] * w57;
-            let w115 = w12 * w26[k];
-            let w116 = w4 * w58;
-            let w117 = w114 + w115;
-            let w118 = w62 + w117;
-            let w119 = w118 - w113;
-            w120[k] = w119 - w116;
-            let w121 = series::mul(&w112, &w120, k);
-            let w122 = w16 * w25;
-            let w123 = w16 * w36;
-            let w124 = w16 * w50;
-            let w125 = w123 + w124;
-            let w126 = w121 + w125;
-            let w127 = w126 - w122;
-            w128[k] = series::div(w127, &w106, &w128, inv_w106, k);
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            x[0][k + 1] = w0[k] * inv_k1;
-            x[1][k + 1] = w2[k] * inv_k1;
-            x[2][k + 1] = w107[k] * inv_k1;
-            x[3][k + 1] = w128[k] * inv_k1;
-        };
+    for k in 0..N - 1 {
+        w0[k] = x[2][k];
+        w2[k] = x[3][k];
+        w5[k] = x[0][k];
+        series::sin_cos(&w5, &mut d_w5, &mut sin_w5, &mut cos_w5, k);
+        w6[k] = cos_w5[k];
+        w7[k] = x[1][k];
+        w15[k] = ug[k];
+        let w21 = w7[k] * w12;
+        let w22 = w15[k] * w16;
+        let w23 = w21 - w22;
+        w24[k] = w23 - at0(k, w20);
+        let w25 = series::mul(&w6, &w24, k);
+        w26[k] = sin_w5[k];
+        let w28 = series::mul(&w7, &w15, k);
+        let w32 = w15[k] * w30;
+        let w33 = w4 * w28;
+        let w34 = w32 - w33;
+        w35[k] = w34 - at0(k, w31);
+        let w36 = series::mul(&w26, &w35, k);
+        let w37 = series::mul(&w0, &w7, k);
+        let w47 = w0[k] * w45;
+        let w48 = w37 * w46;
+        w49[k] = w48 - w47;
+        let w50 = series::mul(&w2, &w49, k);
+        let w58 = series::mul(&w6, &w15, k);
+        let w59 = w0[k] * w42;
+        let w60 = w37 * w43;
+        w61[k] = w60 - w59;
+        let w62 = series::mul(&w0, &w61, k);
+        let w76 = series::sq(&w7, k);
+        let w88 = w2[k] * w71;
+        let w89 = w7[k] * w72;
+        let w90 = w4 * w25;
+        let w91 = w26[k] * w73;
+        let w92 = w4 * w36;
+        let w93 = w4 * w50;
+        let w94 = w58 * w74;
+        let w95 = w16 * w62;
+        let w96 = w88 + w90;
+        let w97 = w94 + w96;
+        let w98 = w97 - w89;
+        let w99 = w98 - w91;
+        let w100 = w99 - w92;
+        let w101 = w100 - w93;
+        let w102 = w101 - w95;
+        let w103 = w7[k] * w83;
+        let w104 = w76 * w84;
+        let w105 = at0(k, w87) + w104;
+        w106[k] = w105 - w103;
+        if k == 0 { inv_w106 = 1.0 / w106[0]; }
+        w107[k] = series::div(w102, &w106, &w107, inv_w106, k);
+        let w109 = w7[k] * w45;
+        let w110 = w43 * w76;
+        let w111 = at0(k, w82) + w110;
+        w112[k] = w111 - w109;
+        let w113 = w2[k] * w70;
+        let w114 = w7[k] * w57;
+        let w115 = w12 * w26[k];
+        let w116 = w4 * w58;
+        let w117 = w114 + w115;
+        let w118 = w62 + w117;
+        let w119 = w118 - w113;
+        w120[k] = w119 - w116;
+        let w121 = series::mul(&w112, &w120, k);
+        let w122 = w16 * w25;
+        let w123 = w16 * w36;
+        let w124 = w16 * w50;
+        let w125 = w123 + w124;
+        let w126 = w121 + w125;
+        let w127 = w126 - w122;
+        w128[k] = series::div(w127, &w106, &w128, inv_w106, k);
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        x[0][k + 1] = w0[k] * inv_k1;
+        x[1][k + 1] = w2[k] * inv_k1;
+        x[2][k + 1] = w107[k] * inv_k1;
+        x[3][k + 1] = w128[k] * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// Taylor coefficients of the solution of `x' = rocking_rhs_free(..)`: on entry `x[i][0]` holds
@@ -290,104 +263,77 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
     let w123: f64 = w22 * w50;
     let w124: f64 = w30 * w50;
     let mut w135 = [0.0f64; N];
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w0[k] = x[2][k];
-            w2[k] = x[3][k];
-            w5[k] = x[0][k];
-            series::sin_cos(&w5, &mut d_w5, &mut sin_w5, &mut cos_w5, k);
-            w6[k] = cos_w5[k];
-            w7[k] = x[1][k];
-            let w23 = series::mul(&w6, &w7, k);
-            w24[k] = sin_w5[k];
-            let w31 = series::mul(&w7, &w24, k);
-            let w32 = series::mul(&w0, &w7, k);
-            let w42 = w0[k] * w40;
-            let w43 = w32 * w41;
-            w44[k] = w43 - w42;
-            let w45 = series::mul(&w2, &w44, k);
-            let w58 = w0[k] * w37;
-            let w59 = w32 * w38;
-            w60[k] = w59 - w58;
-            let w61 = series::mul(&w0, &w60, k);
-            let w77 = series::sq(&w7, k);
-            let w89 = w2[k] * w70;
-            let w90 = w6[k] * w74;
-            let w91 = w7[k] * w72;
-            let w92 = w23 * w47;
-            let w93 = w24[k] * w75;
-            let w94 = w31 * w49;
-            let w95 = w4 * w45;
-            let w96 = w50 * w61;
-            let w97 = w89 + w90;
-            let w98 = w92 + w97;
-            let w99 = w94 + w98;
-            let w100 = w99 - w91;
-            let w101 = w100 - w93;
-            let w102 = w101 - w95;
-            let w103 = w102 - w96;
-            let w104 = w7[k] * w84;
-            let w105 = w77 * w85;
-            let w106 = at0(k, w88) + w105;
-            w107[k] = w106 - w104;
-            if k == 0 { inv_w107 = 1.0 / w107[0]; }
-            w108[k] = series::div(w103, &w107, &w108, inv_w107, k);
-            let w110 = w7[k] * w40;
-            let w111 = w38 * w77;
-            let w112 = at0(k, w83) + w111;
-            w113[k] = w112 - w110;
-            let w114 = w2[k] * w69;
-            let w115 = w6[k] * w16;
-            let w116 = w7[k] * w57;
-            let w117 = w12 * w24[k];
-            let w118 = w116 + w117;
-            let w119 = w61 + w118;
-            let w120 = w119 - w114;
-            w121[k] = w120 - w115;
-            let w122 = series::mul(&w113, &w121, k);
-            let w125 = w6[k] * w123;
-            let w126 = w23 * w73;
-            let w127 = w24[k] * w124;
-            let w128 = w31 * w71;
-            let w129 = w45 * w50;
-            let w130 = w125 + w127;
-            let w131 = w129 + w130;
-            let w132 = w122 + w131;
-            let w133 = w132 - w126;
-            let w134 = w133 - w128;
-            w135[k] = series::div(w134, &w107, &w135, inv_w107, k);
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            x[0][k + 1] = w0[k] * inv_k1;
-            x[1][k + 1] = w2[k] * inv_k1;
-            x[2][k + 1] = w108[k] * inv_k1;
-            x[3][k + 1] = w135[k] * inv_k1;
-        };
+    for k in 0..N - 1 {
+        w0[k] = x[2][k];
+        w2[k] = x[3][k];
+        w5[k] = x[0][k];
+        series::sin_cos(&w5, &mut d_w5, &mut sin_w5, &mut cos_w5, k);
+        w6[k] = cos_w5[k];
+        w7[k] = x[1][k];
+        let w23 = series::mul(&w6, &w7, k);
+        w24[k] = sin_w5[k];
+        let w31 = series::mul(&w7, &w24, k);
+        let w32 = series::mul(&w0, &w7, k);
+        let w42 = w0[k] * w40;
+        let w43 = w32 * w41;
+        w44[k] = w43 - w42;
+        let w45 = series::mul(&w2, &w44, k);
+        let w58 = w0[k] * w37;
+        let w59 = w32 * w38;
+        w60[k] = w59 - w58;
+        let w61 = series::mul(&w0, &w60, k);
+        let w77 = series::sq(&w7, k);
+        let w89 = w2[k] * w70;
+        let w90 = w6[k] * w74;
+        let w91 = w7[k] * w72;
+        let w92 = w23 * w47;
+        let w93 = w24[k] * w75;
+        let w94 = w31 * w49;
+        let w95 = w4 * w45;
+        let w96 = w50 * w61;
+        let w97 = w89 + w90;
+        let w98 = w92 + w97;
+        let w99 = w94 + w98;
+        let w100 = w99 - w91;
+        let w101 = w100 - w93;
+        let w102 = w101 - w95;
+        let w103 = w102 - w96;
+        let w104 = w7[k] * w84;
+        let w105 = w77 * w85;
+        let w106 = at0(k, w88) + w105;
+        w107[k] = w106 - w104;
+        if k == 0 { inv_w107 = 1.0 / w107[0]; }
+        w108[k] = series::div(w103, &w107, &w108, inv_w107, k);
+        let w110 = w7[k] * w40;
+        let w111 = w38 * w77;
+        let w112 = at0(k, w83) + w111;
+        w113[k] = w112 - w110;
+        let w114 = w2[k] * w69;
+        let w115 = w6[k] * w16;
+        let w116 = w7[k] * w57;
+        let w117 = w12 * w24[k];
+        let w118 = w116 + w117;
+        let w119 = w61 + w118;
+        let w120 = w119 - w114;
+        w121[k] = w120 - w115;
+        let w122 = series::mul(&w113, &w121, k);
+        let w125 = w6[k] * w123;
+        let w126 = w23 * w73;
+        let w127 = w24[k] * w124;
+        let w128 = w31 * w71;
+        let w129 = w45 * w50;
+        let w130 = w125 + w127;
+        let w131 = w129 + w130;
+        let w132 = w122 + w131;
+        let w133 = w132 - w126;
+        let w134 = w133 - w128;
+        w135[k] = series::div(w134, &w107, &w135, inv_w107, k);
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        x[0][k + 1] = w0[k] * inv_k1;
+        x[1][k + 1] = w2[k] * inv_k1;
+        x[2][k + 1] = w108[k] * inv_k1;
+        x[3][k + 1] = w135[k] * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// Taylor coefficients of the solution of `xc' = contact_rhs(..)`: on entry `xc[i][0]` holds
@@ -417,46 +363,19 @@ pub fn contact_rhs<const N: usize>(xc: &mut [[f64; N]; 2], ug: &[f64; N], p: &Pa
     let w24: f64 = w21 * w23;
     let w25: f64 = w11 * w23;
     let w26: f64 = w12 * w23;
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let w0 = xc[1][k];
-            let w2 = xc[0][k];
-            let w13 = ug[k];
-            let w27 = w0 * w24;
-            let w28 = w2 * w25;
-            let w29 = w13 * w26;
-            let w30 = w28 - w27;
-            let w31 = w30 - w29;
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            xc[0][k + 1] = w0 * inv_k1;
-            xc[1][k + 1] = w31 * inv_k1;
-        };
+    for k in 0..N - 1 {
+        let w0 = xc[1][k];
+        let w2 = xc[0][k];
+        let w13 = ug[k];
+        let w27 = w0 * w24;
+        let w28 = w2 * w25;
+        let w29 = w13 * w26;
+        let w30 = w28 - w27;
+        let w31 = w30 - w29;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        xc[0][k + 1] = w0 * inv_k1;
+        xc[1][k + 1] = w31 * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// Taylor coefficients of the solution of `xc' = contact_rhs_free(..)`: on entry `xc[i][0]` holds
@@ -489,44 +408,17 @@ pub fn contact_rhs_free<const N: usize>(xc: &mut [[f64; N]; 2], p: &Params) {
     let w25: f64 = w22 * w24;
     let w26: f64 = w11 * w24;
     let w27: f64 = w14 * w24;
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let w0 = xc[1][k];
-            let w2 = xc[0][k];
-            let w28 = w0 * w25;
-            let w29 = w2 * w26;
-            let w30 = w29 - w28;
-            let w31 = w30 - at0(k, w27);
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            xc[0][k + 1] = w0 * inv_k1;
-            xc[1][k + 1] = w31 * inv_k1;
-        };
+    for k in 0..N - 1 {
+        let w0 = xc[1][k];
+        let w2 = xc[0][k];
+        let w28 = w0 * w25;
+        let w29 = w2 * w26;
+        let w30 = w29 - w28;
+        let w31 = w30 - at0(k, w27);
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        xc[0][k + 1] = w0 * inv_k1;
+        xc[1][k + 1] = w31 * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// The first N Taylor coefficients of each output of `uplift` along series inputs.
@@ -576,45 +468,18 @@ pub fn uplift<const N: usize>(xc: &[[f64; N]; 2], ug: &[f64; N], s: f64, p: &Par
     let w44: f64 = w0 * w39;
     let w45: f64 = w0 * w14;
     let mut out = [[0.0f64; N]; 1];
-    // The tape at order k, for k < N: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let w1 = xc[0][k];
-            let w9 = ug[k];
-            let w31 = xc[1][k];
-            let w46 = w1 * w42;
-            let w47 = w9 * w43;
-            let w48 = w31 * w44;
-            let w49 = w46 + w47;
-            let w50 = w48 + w49;
-            let w51 = w50 - at0(k, w45);
-            out[0][k] = w51;
-        };
+    for k in 0..N {
+        let w1 = xc[0][k];
+        let w9 = ug[k];
+        let w31 = xc[1][k];
+        let w46 = w1 * w42;
+        let w47 = w9 * w43;
+        let w48 = w31 * w44;
+        let w49 = w46 + w47;
+        let w50 = w48 + w49;
+        let w51 = w50 - at0(k, w45);
+        out[0][k] = w51;
     }
-    if 0 < N { order!(0); }
-    if 1 < N { order!(1); }
-    if 2 < N { order!(2); }
-    if 3 < N { order!(3); }
-    if 4 < N { order!(4); }
-    if 5 < N { order!(5); }
-    if 6 < N { order!(6); }
-    if 7 < N { order!(7); }
-    if 8 < N { order!(8); }
-    if 9 < N { order!(9); }
-    if 10 < N { order!(10); }
-    if 11 < N { order!(11); }
-    if 12 < N { order!(12); }
-    if 13 < N { order!(13); }
-    if 14 < N { order!(14); }
-    if 15 < N { order!(15); }
-    if 16 < N { order!(16); }
-    if 17 < N { order!(17); }
-    if 18 < N { order!(18); }
-    if 19 < N { order!(19); }
-    if 20 < N { order!(20); }
-    for k in 21..N { order!(k); }
     out
 }
 
@@ -661,76 +526,49 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
     let w54: f64 = w17 * w52;
     let mut w61 = [0.0f64; N];
     let mut out = [[0.0f64; N]; 4];
-    // The tape at order k, for k < N: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w1[k] = x[3][k];
-            w2[k] = x[2][k];
-            let w4 = w2[k] * w3;
-            w5[k] = w1[k] + w4;
-            let w6 = series::sq(&w5, k);
-            w7[k] = x[1][k];
-            let w11 = series::mul(&w2, &w7, k);
-            let w12 = w2[k] * w10;
-            w13[k] = w11 - w12;
-            let w14 = series::sq(&w13, k);
-            let w20 = series::sq(&w2, k);
-            let w22 = w6 * w18;
-            let w23 = w14 * w18;
-            let w24 = w20 * w21;
-            let w25 = w22 + w23;
-            let w26 = w24 + w25;
-            w29[k] = x[0][k];
-            series::sin_cos(&w29, &mut d_w29, &mut sin_w29, &mut cos_w29, k);
-            w30[k] = cos_w29[k];
-            w31[k] = sin_w29[k];
-            let w32 = series::mul(&w7, &w31, k);
-            let w41 = w30[k] * w38;
-            let w42 = w31[k] * w39;
-            let w43 = w32 * w40;
-            let w44 = w41 + w42;
-            let w45 = w44 - w43;
-            let w53 = series::sq(&w7, k);
-            let w55 = w53 * w54;
-            let w57 = w30[k] * w33;
-            let w58 = w31[k] * w37;
-            let w59 = w0 * w32;
-            let w60 = w57 + w58;
-            w61[k] = w60 - w59;
-            let w62 = series::mul(&w2, &w61, k);
-            let w63 = series::mul(&w1, &w30, k);
-            let w64 = w0 * w63;
-            let w65 = w62 + w64;
-            out[0][k] = w26;
-            out[1][k] = w45;
-            out[2][k] = w55;
-            out[3][k] = w65;
-        };
+    for k in 0..N {
+        w1[k] = x[3][k];
+        w2[k] = x[2][k];
+        let w4 = w2[k] * w3;
+        w5[k] = w1[k] + w4;
+        let w6 = series::sq(&w5, k);
+        w7[k] = x[1][k];
+        let w11 = series::mul(&w2, &w7, k);
+        let w12 = w2[k] * w10;
+        w13[k] = w11 - w12;
+        let w14 = series::sq(&w13, k);
+        let w20 = series::sq(&w2, k);
+        let w22 = w6 * w18;
+        let w23 = w14 * w18;
+        let w24 = w20 * w21;
+        let w25 = w22 + w23;
+        let w26 = w24 + w25;
+        w29[k] = x[0][k];
+        series::sin_cos(&w29, &mut d_w29, &mut sin_w29, &mut cos_w29, k);
+        w30[k] = cos_w29[k];
+        w31[k] = sin_w29[k];
+        let w32 = series::mul(&w7, &w31, k);
+        let w41 = w30[k] * w38;
+        let w42 = w31[k] * w39;
+        let w43 = w32 * w40;
+        let w44 = w41 + w42;
+        let w45 = w44 - w43;
+        let w53 = series::sq(&w7, k);
+        let w55 = w53 * w54;
+        let w57 = w30[k] * w33;
+        let w58 = w31[k] * w37;
+        let w59 = w0 * w32;
+        let w60 = w57 + w58;
+        w61[k] = w60 - w59;
+        let w62 = series::mul(&w2, &w61, k);
+        let w63 = series::mul(&w1, &w30, k);
+        let w64 = w0 * w63;
+        let w65 = w62 + w64;
+        out[0][k] = w26;
+        out[1][k] = w45;
+        out[2][k] = w55;
+        out[3][k] = w65;
     }
-    if 0 < N { order!(0); }
-    if 1 < N { order!(1); }
-    if 2 < N { order!(2); }
-    if 3 < N { order!(3); }
-    if 4 < N { order!(4); }
-    if 5 < N { order!(5); }
-    if 6 < N { order!(6); }
-    if 7 < N { order!(7); }
-    if 8 < N { order!(8); }
-    if 9 < N { order!(9); }
-    if 10 < N { order!(10); }
-    if 11 < N { order!(11); }
-    if 12 < N { order!(12); }
-    if 13 < N { order!(13); }
-    if 14 < N { order!(14); }
-    if 15 < N { order!(15); }
-    if 16 < N { order!(16); }
-    if 17 < N { order!(17); }
-    if 18 < N { order!(18); }
-    if 19 < N { order!(19); }
-    if 20 < N { order!(20); }
-    for k in 21..N { order!(k); }
     out
 }
 
@@ -772,58 +610,31 @@ pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Param
     let w40: f64 = w31 * w39;
     let w41: f64 = w1 * w40;
     let mut out = [[0.0f64; N]; 2];
-    // The tape at order k, for k < N: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w0[k] = ug[k];
-            w3[k] = x[0][k];
-            series::sin_cos(&w3, &mut d_w3, &mut sin_w3, &mut cos_w3, k);
-            w4[k] = cos_w3[k];
-            w5[k] = x[1][k];
-            w9[k] = sin_w3[k];
-            let w10 = series::mul(&w5, &w9, k);
-            w16[k] = x[2][k];
-            let w17 = w4[k] * w11;
-            let w18 = w9[k] * w15;
-            let w19 = w1 * w10;
-            let w20 = w17 + w18;
-            w21[k] = w20 - w19;
-            let w22 = series::mul(&w16, &w21, k);
-            w23[k] = x[3][k];
-            let w24 = series::mul(&w4, &w23, k);
-            let w25 = w1 * w24;
-            w26[k] = w22 + w25;
-            let w27 = series::mul(&w0, &w26, k);
-            let w28 = -w27;
-            let w42 = series::sq(&w23, k);
-            let w43 = w41 * w42;
-            out[0][k] = w28;
-            out[1][k] = w43;
-        };
+    for k in 0..N {
+        w0[k] = ug[k];
+        w3[k] = x[0][k];
+        series::sin_cos(&w3, &mut d_w3, &mut sin_w3, &mut cos_w3, k);
+        w4[k] = cos_w3[k];
+        w5[k] = x[1][k];
+        w9[k] = sin_w3[k];
+        let w10 = series::mul(&w5, &w9, k);
+        w16[k] = x[2][k];
+        let w17 = w4[k] * w11;
+        let w18 = w9[k] * w15;
+        let w19 = w1 * w10;
+        let w20 = w17 + w18;
+        w21[k] = w20 - w19;
+        let w22 = series::mul(&w16, &w21, k);
+        w23[k] = x[3][k];
+        let w24 = series::mul(&w4, &w23, k);
+        let w25 = w1 * w24;
+        w26[k] = w22 + w25;
+        let w27 = series::mul(&w0, &w26, k);
+        let w28 = -w27;
+        let w42 = series::sq(&w23, k);
+        let w43 = w41 * w42;
+        out[0][k] = w28;
+        out[1][k] = w43;
     }
-    if 0 < N { order!(0); }
-    if 1 < N { order!(1); }
-    if 2 < N { order!(2); }
-    if 3 < N { order!(3); }
-    if 4 < N { order!(4); }
-    if 5 < N { order!(5); }
-    if 6 < N { order!(6); }
-    if 7 < N { order!(7); }
-    if 8 < N { order!(8); }
-    if 9 < N { order!(9); }
-    if 10 < N { order!(10); }
-    if 11 < N { order!(11); }
-    if 12 < N { order!(12); }
-    if 13 < N { order!(13); }
-    if 14 < N { order!(14); }
-    if 15 < N { order!(15); }
-    if 16 < N { order!(16); }
-    if 17 < N { order!(17); }
-    if 18 < N { order!(18); }
-    if 19 < N { order!(19); }
-    if 20 < N { order!(20); }
-    for k in 21..N { order!(k); }
     out
 }

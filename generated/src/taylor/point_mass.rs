@@ -82,111 +82,84 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
     let mut w104 = [0.0f64; N];
     let mut w112 = [0.0f64; N];
     let mut w120 = [0.0f64; N];
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w0[k] = x[2][k];
-            w2[k] = x[3][k];
-            w5[k] = x[0][k];
-            series::sin_cos(&w5, &mut d_w5, &mut sin_w5, &mut cos_w5, k);
-            w6[k] = cos_w5[k];
-            w7[k] = x[1][k];
-            w15[k] = ug[k];
-            let w17 = w7[k] * w12;
-            let w18 = w15[k] * w16;
-            let w19 = w17 - w18;
-            w20[k] = w19 - at0(k, w13);
-            let w21 = series::mul(&w6, &w20, k);
-            w22[k] = sin_w5[k];
-            let w23 = series::mul(&w7, &w15, k);
-            let w26 = w15[k] * w24;
-            let w27 = w4 * w23;
-            let w28 = at0(k, w25) + w27;
-            w29[k] = w28 - w26;
-            let w30 = series::mul(&w22, &w29, k);
-            let w31 = series::mul(&w0, &w7, k);
-            let w41 = w0[k] * w39;
-            let w42 = w31 * w40;
-            w43[k] = w42 - w41;
-            let w44 = series::mul(&w2, &w43, k);
-            let w52 = series::mul(&w6, &w15, k);
-            let w53 = w0[k] * w36;
-            let w54 = w31 * w37;
-            w55[k] = w54 - w53;
-            let w56 = series::mul(&w0, &w55, k);
-            let w69 = series::sq(&w7, k);
-            let w80 = w2[k] * w65;
-            let w81 = w7[k] * w66;
-            let w82 = w4 * w21;
-            let w83 = w22[k] * w67;
-            let w84 = w4 * w30;
-            let w85 = w4 * w44;
-            let w86 = w52 * w68;
-            let w87 = w16 * w56;
-            let w88 = w80 + w82;
-            let w89 = w84 + w88;
-            let w90 = w86 + w89;
-            let w91 = w90 - w81;
-            let w92 = w91 - w83;
-            let w93 = w92 - w85;
-            let w94 = w93 - w87;
-            let w95 = w7[k] * w75;
-            let w96 = w69 * w76;
-            let w97 = at0(k, w79) + w96;
-            w98[k] = w97 - w95;
-            if k == 0 { inv_w98 = 1.0 / w98[0]; }
-            w99[k] = series::div(w94, &w98, &w99, inv_w98, k);
-            let w101 = w7[k] * w39;
-            let w102 = w37 * w69;
-            let w103 = at0(k, w74) + w102;
-            w104[k] = w103 - w101;
-            let w105 = w2[k] * w64;
-            let w106 = w7[k] * w51;
-            let w107 = w12 * w22[k];
-            let w108 = w4 * w52;
-            let w109 = w106 + w107;
-            let w110 = w56 + w109;
-            let w111 = w110 - w105;
-            w112[k] = w111 - w108;
-            let w113 = series::mul(&w104, &w112, k);
-            let w114 = w16 * w21;
-            let w115 = w16 * w30;
-            let w116 = w16 * w44;
-            let w117 = w113 + w116;
-            let w118 = w117 - w114;
-            let w119 = w118 - w115;
-            w120[k] = series::div(w119, &w98, &w120, inv_w98, k);
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            x[0][k + 1] = w0[k] * inv_k1;
-            x[1][k + 1] = w2[k] * inv_k1;
-            x[2][k + 1] = w99[k] * inv_k1;
-            x[3][k + 1] = w120[k] * inv_k1;
-        };
+    for k in 0..N - 1 {
+        w0[k] = x[2][k];
+        w2[k] = x[3][k];
+        w5[k] = x[0][k];
+        series::sin_cos(&w5, &mut d_w5, &mut sin_w5, &mut cos_w5, k);
+        w6[k] = cos_w5[k];
+        w7[k] = x[1][k];
+        w15[k] = ug[k];
+        let w17 = w7[k] * w12;
+        let w18 = w15[k] * w16;
+        let w19 = w17 - w18;
+        w20[k] = w19 - at0(k, w13);
+        let w21 = series::mul(&w6, &w20, k);
+        w22[k] = sin_w5[k];
+        let w23 = series::mul(&w7, &w15, k);
+        let w26 = w15[k] * w24;
+        let w27 = w4 * w23;
+        let w28 = at0(k, w25) + w27;
+        w29[k] = w28 - w26;
+        let w30 = series::mul(&w22, &w29, k);
+        let w31 = series::mul(&w0, &w7, k);
+        let w41 = w0[k] * w39;
+        let w42 = w31 * w40;
+        w43[k] = w42 - w41;
+        let w44 = series::mul(&w2, &w43, k);
+        let w52 = series::mul(&w6, &w15, k);
+        let w53 = w0[k] * w36;
+        let w54 = w31 * w37;
+        w55[k] = w54 - w53;
+        let w56 = series::mul(&w0, &w55, k);
+        let w69 = series::sq(&w7, k);
+        let w80 = w2[k] * w65;
+        let w81 = w7[k] * w66;
+        let w82 = w4 * w21;
+        let w83 = w22[k] * w67;
+        let w84 = w4 * w30;
+        let w85 = w4 * w44;
+        let w86 = w52 * w68;
+        let w87 = w16 * w56;
+        let w88 = w80 + w82;
+        let w89 = w84 + w88;
+        let w90 = w86 + w89;
+        let w91 = w90 - w81;
+        let w92 = w91 - w83;
+        let w93 = w92 - w85;
+        let w94 = w93 - w87;
+        let w95 = w7[k] * w75;
+        let w96 = w69 * w76;
+        let w97 = at0(k, w79) + w96;
+        w98[k] = w97 - w95;
+        if k == 0 { inv_w98 = 1.0 / w98[0]; }
+        w99[k] = series::div(w94, &w98, &w99, inv_w98, k);
+        let w101 = w7[k] * w39;
+        let w102 = w37 * w69;
+        let w103 = at0(k, w74) + w102;
+        w104[k] = w103 - w101;
+        let w105 = w2[k] * w64;
+        let w106 = w7[k] * w51;
+        let w107 = w12 * w22[k];
+        let w108 = w4 * w52;
+        let w109 = w106 + w107;
+        let w110 = w56 + w109;
+        let w111 = w110 - w105;
+        w112[k] = w111 - w108;
+        let w113 = series::mul(&w104, &w112, k);
+        let w114 = w16 * w21;
+        let w115 = w16 * w30;
+        let w116 = w16 * w44;
+        let w117 = w113 + w116;
+        let w118 = w117 - w114;
+        let w119 = w118 - w115;
+        w120[k] = series::div(w119, &w98, &w120, inv_w98, k);
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        x[0][k + 1] = w0[k] * inv_k1;
+        x[1][k + 1] = w2[k] * inv_k1;
+        x[2][k + 1] = w99[k] * inv_k1;
+        x[3][k + 1] = w120[k] * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// Taylor coefficients of the solution of `x' = rocking_rhs_free(..)`: on entry `x[i][0]` holds
@@ -273,104 +246,77 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
     let w114: f64 = w18 * w43;
     let w115: f64 = w23 * w43;
     let mut w126 = [0.0f64; N];
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w0[k] = x[2][k];
-            w2[k] = x[3][k];
-            w5[k] = x[0][k];
-            series::sin_cos(&w5, &mut d_w5, &mut sin_w5, &mut cos_w5, k);
-            w6[k] = cos_w5[k];
-            w7[k] = x[1][k];
-            let w19 = series::mul(&w6, &w7, k);
-            w20[k] = sin_w5[k];
-            let w24 = series::mul(&w7, &w20, k);
-            let w25 = series::mul(&w0, &w7, k);
-            let w35 = w0[k] * w33;
-            let w36 = w25 * w34;
-            w37[k] = w36 - w35;
-            let w38 = series::mul(&w2, &w37, k);
-            let w51 = w0[k] * w30;
-            let w52 = w25 * w31;
-            w53[k] = w52 - w51;
-            let w54 = series::mul(&w0, &w53, k);
-            let w69 = series::sq(&w7, k);
-            let w80 = w2[k] * w63;
-            let w81 = w6[k] * w67;
-            let w82 = w7[k] * w65;
-            let w83 = w19 * w40;
-            let w84 = w20[k] * w68;
-            let w85 = w24 * w42;
-            let w86 = w4 * w38;
-            let w87 = w43 * w54;
-            let w88 = w80 + w81;
-            let w89 = w83 + w88;
-            let w90 = w84 + w89;
-            let w91 = w85 + w90;
-            let w92 = w91 - w82;
-            let w93 = w92 - w86;
-            let w94 = w93 - w87;
-            let w95 = w7[k] * w75;
-            let w96 = w69 * w76;
-            let w97 = at0(k, w79) + w96;
-            w98[k] = w97 - w95;
-            if k == 0 { inv_w98 = 1.0 / w98[0]; }
-            w99[k] = series::div(w94, &w98, &w99, inv_w98, k);
-            let w101 = w7[k] * w33;
-            let w102 = w31 * w69;
-            let w103 = at0(k, w74) + w102;
-            w104[k] = w103 - w101;
-            let w105 = w2[k] * w62;
-            let w106 = w6[k] * w16;
-            let w107 = w7[k] * w50;
-            let w108 = w12 * w20[k];
-            let w109 = w107 + w108;
-            let w110 = w54 + w109;
-            let w111 = w110 - w105;
-            w112[k] = w111 - w106;
-            let w113 = series::mul(&w104, &w112, k);
-            let w116 = w6[k] * w114;
-            let w117 = w19 * w66;
-            let w118 = w20[k] * w115;
-            let w119 = w24 * w64;
-            let w120 = w38 * w43;
-            let w121 = w116 + w120;
-            let w122 = w113 + w121;
-            let w123 = w122 - w117;
-            let w124 = w123 - w118;
-            let w125 = w124 - w119;
-            w126[k] = series::div(w125, &w98, &w126, inv_w98, k);
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            x[0][k + 1] = w0[k] * inv_k1;
-            x[1][k + 1] = w2[k] * inv_k1;
-            x[2][k + 1] = w99[k] * inv_k1;
-            x[3][k + 1] = w126[k] * inv_k1;
-        };
+    for k in 0..N - 1 {
+        w0[k] = x[2][k];
+        w2[k] = x[3][k];
+        w5[k] = x[0][k];
+        series::sin_cos(&w5, &mut d_w5, &mut sin_w5, &mut cos_w5, k);
+        w6[k] = cos_w5[k];
+        w7[k] = x[1][k];
+        let w19 = series::mul(&w6, &w7, k);
+        w20[k] = sin_w5[k];
+        let w24 = series::mul(&w7, &w20, k);
+        let w25 = series::mul(&w0, &w7, k);
+        let w35 = w0[k] * w33;
+        let w36 = w25 * w34;
+        w37[k] = w36 - w35;
+        let w38 = series::mul(&w2, &w37, k);
+        let w51 = w0[k] * w30;
+        let w52 = w25 * w31;
+        w53[k] = w52 - w51;
+        let w54 = series::mul(&w0, &w53, k);
+        let w69 = series::sq(&w7, k);
+        let w80 = w2[k] * w63;
+        let w81 = w6[k] * w67;
+        let w82 = w7[k] * w65;
+        let w83 = w19 * w40;
+        let w84 = w20[k] * w68;
+        let w85 = w24 * w42;
+        let w86 = w4 * w38;
+        let w87 = w43 * w54;
+        let w88 = w80 + w81;
+        let w89 = w83 + w88;
+        let w90 = w84 + w89;
+        let w91 = w85 + w90;
+        let w92 = w91 - w82;
+        let w93 = w92 - w86;
+        let w94 = w93 - w87;
+        let w95 = w7[k] * w75;
+        let w96 = w69 * w76;
+        let w97 = at0(k, w79) + w96;
+        w98[k] = w97 - w95;
+        if k == 0 { inv_w98 = 1.0 / w98[0]; }
+        w99[k] = series::div(w94, &w98, &w99, inv_w98, k);
+        let w101 = w7[k] * w33;
+        let w102 = w31 * w69;
+        let w103 = at0(k, w74) + w102;
+        w104[k] = w103 - w101;
+        let w105 = w2[k] * w62;
+        let w106 = w6[k] * w16;
+        let w107 = w7[k] * w50;
+        let w108 = w12 * w20[k];
+        let w109 = w107 + w108;
+        let w110 = w54 + w109;
+        let w111 = w110 - w105;
+        w112[k] = w111 - w106;
+        let w113 = series::mul(&w104, &w112, k);
+        let w116 = w6[k] * w114;
+        let w117 = w19 * w66;
+        let w118 = w20[k] * w115;
+        let w119 = w24 * w64;
+        let w120 = w38 * w43;
+        let w121 = w116 + w120;
+        let w122 = w113 + w121;
+        let w123 = w122 - w117;
+        let w124 = w123 - w118;
+        let w125 = w124 - w119;
+        w126[k] = series::div(w125, &w98, &w126, inv_w98, k);
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        x[0][k + 1] = w0[k] * inv_k1;
+        x[1][k + 1] = w2[k] * inv_k1;
+        x[2][k + 1] = w99[k] * inv_k1;
+        x[3][k + 1] = w126[k] * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// Taylor coefficients of the solution of `xc' = contact_rhs(..)`: on entry `xc[i][0]` holds
@@ -400,46 +346,19 @@ pub fn contact_rhs<const N: usize>(xc: &mut [[f64; N]; 2], ug: &[f64; N], p: &Pa
     let w24: f64 = w21 * w23;
     let w25: f64 = w11 * w23;
     let w26: f64 = w12 * w23;
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let w0 = xc[1][k];
-            let w2 = xc[0][k];
-            let w13 = ug[k];
-            let w27 = w0 * w24;
-            let w28 = w2 * w25;
-            let w29 = w13 * w26;
-            let w30 = w28 - w27;
-            let w31 = w30 - w29;
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            xc[0][k + 1] = w0 * inv_k1;
-            xc[1][k + 1] = w31 * inv_k1;
-        };
+    for k in 0..N - 1 {
+        let w0 = xc[1][k];
+        let w2 = xc[0][k];
+        let w13 = ug[k];
+        let w27 = w0 * w24;
+        let w28 = w2 * w25;
+        let w29 = w13 * w26;
+        let w30 = w28 - w27;
+        let w31 = w30 - w29;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        xc[0][k + 1] = w0 * inv_k1;
+        xc[1][k + 1] = w31 * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// Taylor coefficients of the solution of `xc' = contact_rhs_free(..)`: on entry `xc[i][0]` holds
@@ -472,44 +391,17 @@ pub fn contact_rhs_free<const N: usize>(xc: &mut [[f64; N]; 2], p: &Params) {
     let w25: f64 = w22 * w24;
     let w26: f64 = w11 * w24;
     let w27: f64 = w14 * w24;
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let w0 = xc[1][k];
-            let w2 = xc[0][k];
-            let w28 = w0 * w25;
-            let w29 = w2 * w26;
-            let w30 = w29 - w28;
-            let w31 = w30 - at0(k, w27);
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            xc[0][k + 1] = w0 * inv_k1;
-            xc[1][k + 1] = w31 * inv_k1;
-        };
+    for k in 0..N - 1 {
+        let w0 = xc[1][k];
+        let w2 = xc[0][k];
+        let w28 = w0 * w25;
+        let w29 = w2 * w26;
+        let w30 = w29 - w28;
+        let w31 = w30 - at0(k, w27);
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        xc[0][k + 1] = w0 * inv_k1;
+        xc[1][k + 1] = w31 * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// The first N Taylor coefficients of each output of `uplift` along series inputs.
@@ -555,45 +447,18 @@ pub fn uplift<const N: usize>(xc: &[[f64; N]; 2], ug: &[f64; N], s: f64, p: &Par
     let w40: f64 = w0 * w35;
     let w41: f64 = w0 * w7;
     let mut out = [[0.0f64; N]; 1];
-    // The tape at order k, for k < N: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let w1 = xc[0][k];
-            let w9 = ug[k];
-            let w27 = xc[1][k];
-            let w42 = w1 * w38;
-            let w43 = w9 * w39;
-            let w44 = w27 * w40;
-            let w45 = w42 + w43;
-            let w46 = w44 + w45;
-            let w47 = w46 - at0(k, w41);
-            out[0][k] = w47;
-        };
+    for k in 0..N {
+        let w1 = xc[0][k];
+        let w9 = ug[k];
+        let w27 = xc[1][k];
+        let w42 = w1 * w38;
+        let w43 = w9 * w39;
+        let w44 = w27 * w40;
+        let w45 = w42 + w43;
+        let w46 = w44 + w45;
+        let w47 = w46 - at0(k, w41);
+        out[0][k] = w47;
     }
-    if 0 < N { order!(0); }
-    if 1 < N { order!(1); }
-    if 2 < N { order!(2); }
-    if 3 < N { order!(3); }
-    if 4 < N { order!(4); }
-    if 5 < N { order!(5); }
-    if 6 < N { order!(6); }
-    if 7 < N { order!(7); }
-    if 8 < N { order!(8); }
-    if 9 < N { order!(9); }
-    if 10 < N { order!(10); }
-    if 11 < N { order!(11); }
-    if 12 < N { order!(12); }
-    if 13 < N { order!(13); }
-    if 14 < N { order!(14); }
-    if 15 < N { order!(15); }
-    if 16 < N { order!(16); }
-    if 17 < N { order!(17); }
-    if 18 < N { order!(18); }
-    if 19 < N { order!(19); }
-    if 20 < N { order!(20); }
-    for k in 21..N { order!(k); }
     out
 }
 
@@ -635,73 +500,46 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
     let w46: f64 = w17 * w44;
     let mut w53 = [0.0f64; N];
     let mut out = [[0.0f64; N]; 4];
-    // The tape at order k, for k < N: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w1[k] = x[3][k];
-            w2[k] = x[2][k];
-            let w4 = w2[k] * w3;
-            w5[k] = w1[k] + w4;
-            let w6 = series::sq(&w5, k);
-            w7[k] = x[1][k];
-            let w11 = series::mul(&w2, &w7, k);
-            let w12 = w2[k] * w10;
-            w13[k] = w11 - w12;
-            let w14 = series::sq(&w13, k);
-            let w19 = w6 * w18;
-            let w20 = w14 * w18;
-            let w21 = w19 + w20;
-            w24[k] = x[0][k];
-            series::sin_cos(&w24, &mut d_w24, &mut sin_w24, &mut cos_w24, k);
-            w25[k] = cos_w24[k];
-            w26[k] = sin_w24[k];
-            let w27 = series::mul(&w7, &w26, k);
-            let w33 = w25[k] * w30;
-            let w34 = w26[k] * w31;
-            let w35 = w27 * w32;
-            let w36 = w33 + w34;
-            let w37 = w36 - w35;
-            let w45 = series::sq(&w7, k);
-            let w47 = w45 * w46;
-            let w49 = w25[k] * w28;
-            let w50 = w26[k] * w29;
-            let w51 = w0 * w27;
-            let w52 = w49 + w50;
-            w53[k] = w52 - w51;
-            let w54 = series::mul(&w2, &w53, k);
-            let w55 = series::mul(&w1, &w25, k);
-            let w56 = w0 * w55;
-            let w57 = w54 + w56;
-            out[0][k] = w21;
-            out[1][k] = w37;
-            out[2][k] = w47;
-            out[3][k] = w57;
-        };
+    for k in 0..N {
+        w1[k] = x[3][k];
+        w2[k] = x[2][k];
+        let w4 = w2[k] * w3;
+        w5[k] = w1[k] + w4;
+        let w6 = series::sq(&w5, k);
+        w7[k] = x[1][k];
+        let w11 = series::mul(&w2, &w7, k);
+        let w12 = w2[k] * w10;
+        w13[k] = w11 - w12;
+        let w14 = series::sq(&w13, k);
+        let w19 = w6 * w18;
+        let w20 = w14 * w18;
+        let w21 = w19 + w20;
+        w24[k] = x[0][k];
+        series::sin_cos(&w24, &mut d_w24, &mut sin_w24, &mut cos_w24, k);
+        w25[k] = cos_w24[k];
+        w26[k] = sin_w24[k];
+        let w27 = series::mul(&w7, &w26, k);
+        let w33 = w25[k] * w30;
+        let w34 = w26[k] * w31;
+        let w35 = w27 * w32;
+        let w36 = w33 + w34;
+        let w37 = w36 - w35;
+        let w45 = series::sq(&w7, k);
+        let w47 = w45 * w46;
+        let w49 = w25[k] * w28;
+        let w50 = w26[k] * w29;
+        let w51 = w0 * w27;
+        let w52 = w49 + w50;
+        w53[k] = w52 - w51;
+        let w54 = series::mul(&w2, &w53, k);
+        let w55 = series::mul(&w1, &w25, k);
+        let w56 = w0 * w55;
+        let w57 = w54 + w56;
+        out[0][k] = w21;
+        out[1][k] = w37;
+        out[2][k] = w47;
+        out[3][k] = w57;
     }
-    if 0 < N { order!(0); }
-    if 1 < N { order!(1); }
-    if 2 < N { order!(2); }
-    if 3 < N { order!(3); }
-    if 4 < N { order!(4); }
-    if 5 < N { order!(5); }
-    if 6 < N { order!(6); }
-    if 7 < N { order!(7); }
-    if 8 < N { order!(8); }
-    if 9 < N { order!(9); }
-    if 10 < N { order!(10); }
-    if 11 < N { order!(11); }
-    if 12 < N { order!(12); }
-    if 13 < N { order!(13); }
-    if 14 < N { order!(14); }
-    if 15 < N { order!(15); }
-    if 16 < N { order!(16); }
-    if 17 < N { order!(17); }
-    if 18 < N { order!(18); }
-    if 19 < N { order!(19); }
-    if 20 < N { order!(20); }
-    for k in 21..N { order!(k); }
     out
 }
 
@@ -740,58 +578,31 @@ pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Param
     let w37: f64 = w28 * w36;
     let w38: f64 = w1 * w37;
     let mut out = [[0.0f64; N]; 2];
-    // The tape at order k, for k < N: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w0[k] = ug[k];
-            w3[k] = x[0][k];
-            series::sin_cos(&w3, &mut d_w3, &mut sin_w3, &mut cos_w3, k);
-            w4[k] = cos_w3[k];
-            w5[k] = x[1][k];
-            w9[k] = sin_w3[k];
-            let w10 = series::mul(&w5, &w9, k);
-            w13[k] = x[2][k];
-            let w14 = w4[k] * w11;
-            let w15 = w9[k] * w12;
-            let w16 = w1 * w10;
-            let w17 = w14 + w15;
-            w18[k] = w17 - w16;
-            let w19 = series::mul(&w13, &w18, k);
-            w20[k] = x[3][k];
-            let w21 = series::mul(&w4, &w20, k);
-            let w22 = w1 * w21;
-            w23[k] = w19 + w22;
-            let w24 = series::mul(&w0, &w23, k);
-            let w25 = -w24;
-            let w39 = series::sq(&w20, k);
-            let w40 = w38 * w39;
-            out[0][k] = w25;
-            out[1][k] = w40;
-        };
+    for k in 0..N {
+        w0[k] = ug[k];
+        w3[k] = x[0][k];
+        series::sin_cos(&w3, &mut d_w3, &mut sin_w3, &mut cos_w3, k);
+        w4[k] = cos_w3[k];
+        w5[k] = x[1][k];
+        w9[k] = sin_w3[k];
+        let w10 = series::mul(&w5, &w9, k);
+        w13[k] = x[2][k];
+        let w14 = w4[k] * w11;
+        let w15 = w9[k] * w12;
+        let w16 = w1 * w10;
+        let w17 = w14 + w15;
+        w18[k] = w17 - w16;
+        let w19 = series::mul(&w13, &w18, k);
+        w20[k] = x[3][k];
+        let w21 = series::mul(&w4, &w20, k);
+        let w22 = w1 * w21;
+        w23[k] = w19 + w22;
+        let w24 = series::mul(&w0, &w23, k);
+        let w25 = -w24;
+        let w39 = series::sq(&w20, k);
+        let w40 = w38 * w39;
+        out[0][k] = w25;
+        out[1][k] = w40;
     }
-    if 0 < N { order!(0); }
-    if 1 < N { order!(1); }
-    if 2 < N { order!(2); }
-    if 3 < N { order!(3); }
-    if 4 < N { order!(4); }
-    if 5 < N { order!(5); }
-    if 6 < N { order!(6); }
-    if 7 < N { order!(7); }
-    if 8 < N { order!(8); }
-    if 9 < N { order!(9); }
-    if 10 < N { order!(10); }
-    if 11 < N { order!(11); }
-    if 12 < N { order!(12); }
-    if 13 < N { order!(13); }
-    if 14 < N { order!(14); }
-    if 15 < N { order!(15); }
-    if 16 < N { order!(16); }
-    if 17 < N { order!(17); }
-    if 18 < N { order!(18); }
-    if 19 < N { order!(19); }
-    if 20 < N { order!(20); }
-    for k in 21..N { order!(k); }
     out
 }

@@ -195,184 +195,157 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 6], ug: &[f64; N], s: f64,
     let mut inv_w272 = 0.0f64;
     let mut w273 = [0.0f64; N];
     let mut w275 = [0.0f64; N];
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w0[k] = x[3][k];
-            w2[k] = x[4][k];
-            w4[k] = x[5][k];
-            w6[k] = x[0][k];
-            series::sin_cos(&w6, &mut d_w6, &mut sin_w6, &mut cos_w6, k);
-            w7[k] = cos_w6[k];
-            w8[k] = x[1][k];
-            w9[k] = x[2][k];
-            w18[k] = ug[k];
-            let w38 = w8[k] * w35;
-            let w39 = w9[k] * w32;
-            let w40 = w18[k] * w24;
-            let w41 = w38 + w39;
-            let w42 = w41 - w40;
-            w43[k] = w42 - at0(k, w37);
-            let w44 = series::mul(&w7, &w43, k);
-            w45[k] = sin_w6[k];
-            let w47 = series::mul(&w8, &w18, k);
-            let w48 = series::mul(&w9, &w18, k);
-            let w61 = w18[k] * w56;
-            let w62 = w47 * w54;
-            let w63 = w48 * w52;
-            let w64 = w61 - w62;
-            let w65 = w64 - w63;
-            w66[k] = w65 - at0(k, w60);
-            let w67 = series::mul(&w45, &w66, k);
-            w68[k] = series::mul(&w0, &w8, k);
-            w69[k] = series::mul(&w0, &w9, k);
-            let w96 = w0[k] * w95;
-            let w97 = w68[k] * w88;
-            let w98 = w69[k] * w82;
-            let w99 = w97 + w98;
-            w100[k] = w99 - w96;
-            let w101 = series::mul(&w2, &w100, k);
-            let w115 = w0[k] * w114;
-            let w116 = w68[k] * w82;
-            let w117 = w69[k] * w107;
-            let w118 = w116 + w117;
-            w119[k] = w118 - w115;
-            let w120 = series::mul(&w4, &w119, k);
-            let w122 = w8[k] + w9[k];
-            w123[k] = w122 - at0(k, w12);
-            let w124 = w8[k] * w74;
-            let w125 = w9[k] * w74;
-            let w126 = w124 + w125;
-            w127[k] = w126 - at0(k, w73);
-            let w128 = series::mul(&w123, &w127, k);
-            let w133 = w8[k] * w79;
-            let w134 = w9[k] * w103;
-            w135[k] = w133 + w134;
-            w136[k] = w9[k] * w70;
-            let w137 = series::mul(&w135, &w136, k);
-            let w138 = w8[k] * w80;
-            let w139 = w9[k] * w104;
-            w140[k] = w138 + w139;
-            let w141 = series::mul(&w9, &w140, k);
-            let w142 = series::sq(&w8, k);
-            let w159 = w44 - w67;
-            let w160 = w159 - w101;
-            w161[k] = w160 - w120;
-            let w162 = w8[k] * w154;
-            let w163 = w9[k] * w152;
-            let w164 = w86 * w142;
-            let w165 = w162 + w163;
-            let w166 = w128 + w165;
-            let w167 = w137 + w166;
-            let w168 = w141 + w167;
-            let w169 = w164 + w168;
-            w170[k] = at0(k, w158) + w169;
-            if k == 0 { inv_w170 = 1.0 / w170[0]; }
-            w171[k] = series::div(w161[k], &w170, &w171, inv_w170, k);
-            w175[k] = series::div(at0(k, w174), &w170, &w175, inv_w170, k);
-            let w184 = series::mul(&w7, &w18, k);
-            let w188 = series::sq(&w0, k);
-            let w189 = series::mul(&w0, &w68, k);
-            let w190 = series::mul(&w0, &w69, k);
-            let w197 = series::mul(&w161, &w175, k);
-            w202[k] = series::sq(&w175, k);
-            w203[k] = series::mul(&w170, &w202, k);
-            let w204 = w2[k] * w195;
-            let w205 = w4[k] * w196;
-            let w206 = w8[k] * w187;
-            let w207 = w9[k] * w183;
-            let w208 = w35 * w45[k];
-            let w209 = w54 * w184;
-            let w210 = w188 * w194;
-            let w211 = w189 * w193;
-            let w212 = w190 * w191;
-            let w213 = w206 + w207;
-            let w214 = w208 + w213;
-            let w215 = w211 + w214;
-            let w216 = w212 + w215;
-            let w217 = w216 - w204;
-            let w218 = w217 - w205;
-            let w219 = w218 - w209;
-            let w220 = w219 - w210;
-            w221[k] = w220 - w197;
-            w222[k] = at0(k, w201) - w203[k];
-            if k == 0 { inv_w222 = 1.0 / w222[0]; }
-            w223[k] = series::div(w221[k], &w222, &w223, inv_w222, k);
-            w228[k] = series::div(at0(k, w227), &w170, &w228, inv_w170, k);
-            w229[k] = series::mul(&w175, &w228, k);
-            let w230 = series::mul(&w170, &w229, k);
-            let w231 = at0(k, w224) - w230;
-            w232[k] = series::div(w231, &w222, &w232, inv_w222, k);
-            let w240 = series::mul(&w161, &w228, k);
-            let w241 = series::mul(&w221, &w232, k);
-            w246[k] = series::sq(&w228, k);
-            let w247 = series::mul(&w170, &w246, k);
-            w248[k] = series::sq(&w232, k);
-            let w249 = series::mul(&w203, &w248, k);
-            let w250 = w2[k] * w196;
-            let w251 = w4[k] * w239;
-            let w252 = w8[k] * w183;
-            let w253 = w9[k] * w235;
-            let w254 = w32 * w45[k];
-            let w255 = w52 * w184;
-            let w256 = w188 * w238;
-            let w257 = w189 * w191;
-            let w258 = w190 * w237;
-            let w259 = w252 + w253;
-            let w260 = w254 + w259;
-            let w261 = w257 + w260;
-            let w262 = w258 + w261;
-            let w263 = w262 - w250;
-            let w264 = w263 - w251;
-            let w265 = w264 - w255;
-            let w266 = w265 - w256;
-            let w267 = w266 - w240;
-            let w268 = w267 - w241;
-            let w269 = w201 * w248[k];
-            let w270 = at0(k, w245) + w249;
-            let w271 = w270 - w247;
-            w272[k] = w271 - w269;
-            if k == 0 { inv_w272 = 1.0 / w272[0]; }
-            w273[k] = series::div(w268, &w272, &w273, inv_w272, k);
-            let w274 = series::mul(&w232, &w273, k);
-            w275[k] = w223[k] - w274;
-            let w276 = series::mul(&w175, &w275, k);
-            let w277 = series::mul(&w228, &w273, k);
-            let w278 = w171[k] - w276;
-            let w279 = w278 - w277;
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            x[0][k + 1] = w0[k] * inv_k1;
-            x[1][k + 1] = w2[k] * inv_k1;
-            x[2][k + 1] = w4[k] * inv_k1;
-            x[3][k + 1] = w279 * inv_k1;
-            x[4][k + 1] = w275[k] * inv_k1;
-            x[5][k + 1] = w273[k] * inv_k1;
-        };
+    for k in 0..N - 1 {
+        w0[k] = x[3][k];
+        w2[k] = x[4][k];
+        w4[k] = x[5][k];
+        w6[k] = x[0][k];
+        series::sin_cos(&w6, &mut d_w6, &mut sin_w6, &mut cos_w6, k);
+        w7[k] = cos_w6[k];
+        w8[k] = x[1][k];
+        w9[k] = x[2][k];
+        w18[k] = ug[k];
+        let w38 = w8[k] * w35;
+        let w39 = w9[k] * w32;
+        let w40 = w18[k] * w24;
+        let w41 = w38 + w39;
+        let w42 = w41 - w40;
+        w43[k] = w42 - at0(k, w37);
+        let w44 = series::mul(&w7, &w43, k);
+        w45[k] = sin_w6[k];
+        let w47 = series::mul(&w8, &w18, k);
+        let w48 = series::mul(&w9, &w18, k);
+        let w61 = w18[k] * w56;
+        let w62 = w47 * w54;
+        let w63 = w48 * w52;
+        let w64 = w61 - w62;
+        let w65 = w64 - w63;
+        w66[k] = w65 - at0(k, w60);
+        let w67 = series::mul(&w45, &w66, k);
+        w68[k] = series::mul(&w0, &w8, k);
+        w69[k] = series::mul(&w0, &w9, k);
+        let w96 = w0[k] * w95;
+        let w97 = w68[k] * w88;
+        let w98 = w69[k] * w82;
+        let w99 = w97 + w98;
+        w100[k] = w99 - w96;
+        let w101 = series::mul(&w2, &w100, k);
+        let w115 = w0[k] * w114;
+        let w116 = w68[k] * w82;
+        let w117 = w69[k] * w107;
+        let w118 = w116 + w117;
+        w119[k] = w118 - w115;
+        let w120 = series::mul(&w4, &w119, k);
+        let w122 = w8[k] + w9[k];
+        w123[k] = w122 - at0(k, w12);
+        let w124 = w8[k] * w74;
+        let w125 = w9[k] * w74;
+        let w126 = w124 + w125;
+        w127[k] = w126 - at0(k, w73);
+        let w128 = series::mul(&w123, &w127, k);
+        let w133 = w8[k] * w79;
+        let w134 = w9[k] * w103;
+        w135[k] = w133 + w134;
+        w136[k] = w9[k] * w70;
+        let w137 = series::mul(&w135, &w136, k);
+        let w138 = w8[k] * w80;
+        let w139 = w9[k] * w104;
+        w140[k] = w138 + w139;
+        let w141 = series::mul(&w9, &w140, k);
+        let w142 = series::sq(&w8, k);
+        let w159 = w44 - w67;
+        let w160 = w159 - w101;
+        w161[k] = w160 - w120;
+        let w162 = w8[k] * w154;
+        let w163 = w9[k] * w152;
+        let w164 = w86 * w142;
+        let w165 = w162 + w163;
+        let w166 = w128 + w165;
+        let w167 = w137 + w166;
+        let w168 = w141 + w167;
+        let w169 = w164 + w168;
+        w170[k] = at0(k, w158) + w169;
+        if k == 0 { inv_w170 = 1.0 / w170[0]; }
+        w171[k] = series::div(w161[k], &w170, &w171, inv_w170, k);
+        w175[k] = series::div(at0(k, w174), &w170, &w175, inv_w170, k);
+        let w184 = series::mul(&w7, &w18, k);
+        let w188 = series::sq(&w0, k);
+        let w189 = series::mul(&w0, &w68, k);
+        let w190 = series::mul(&w0, &w69, k);
+        let w197 = series::mul(&w161, &w175, k);
+        w202[k] = series::sq(&w175, k);
+        w203[k] = series::mul(&w170, &w202, k);
+        let w204 = w2[k] * w195;
+        let w205 = w4[k] * w196;
+        let w206 = w8[k] * w187;
+        let w207 = w9[k] * w183;
+        let w208 = w35 * w45[k];
+        let w209 = w54 * w184;
+        let w210 = w188 * w194;
+        let w211 = w189 * w193;
+        let w212 = w190 * w191;
+        let w213 = w206 + w207;
+        let w214 = w208 + w213;
+        let w215 = w211 + w214;
+        let w216 = w212 + w215;
+        let w217 = w216 - w204;
+        let w218 = w217 - w205;
+        let w219 = w218 - w209;
+        let w220 = w219 - w210;
+        w221[k] = w220 - w197;
+        w222[k] = at0(k, w201) - w203[k];
+        if k == 0 { inv_w222 = 1.0 / w222[0]; }
+        w223[k] = series::div(w221[k], &w222, &w223, inv_w222, k);
+        w228[k] = series::div(at0(k, w227), &w170, &w228, inv_w170, k);
+        w229[k] = series::mul(&w175, &w228, k);
+        let w230 = series::mul(&w170, &w229, k);
+        let w231 = at0(k, w224) - w230;
+        w232[k] = series::div(w231, &w222, &w232, inv_w222, k);
+        let w240 = series::mul(&w161, &w228, k);
+        let w241 = series::mul(&w221, &w232, k);
+        w246[k] = series::sq(&w228, k);
+        let w247 = series::mul(&w170, &w246, k);
+        w248[k] = series::sq(&w232, k);
+        let w249 = series::mul(&w203, &w248, k);
+        let w250 = w2[k] * w196;
+        let w251 = w4[k] * w239;
+        let w252 = w8[k] * w183;
+        let w253 = w9[k] * w235;
+        let w254 = w32 * w45[k];
+        let w255 = w52 * w184;
+        let w256 = w188 * w238;
+        let w257 = w189 * w191;
+        let w258 = w190 * w237;
+        let w259 = w252 + w253;
+        let w260 = w254 + w259;
+        let w261 = w257 + w260;
+        let w262 = w258 + w261;
+        let w263 = w262 - w250;
+        let w264 = w263 - w251;
+        let w265 = w264 - w255;
+        let w266 = w265 - w256;
+        let w267 = w266 - w240;
+        let w268 = w267 - w241;
+        let w269 = w201 * w248[k];
+        let w270 = at0(k, w245) + w249;
+        let w271 = w270 - w247;
+        w272[k] = w271 - w269;
+        if k == 0 { inv_w272 = 1.0 / w272[0]; }
+        w273[k] = series::div(w268, &w272, &w273, inv_w272, k);
+        let w274 = series::mul(&w232, &w273, k);
+        w275[k] = w223[k] - w274;
+        let w276 = series::mul(&w175, &w275, k);
+        let w277 = series::mul(&w228, &w273, k);
+        let w278 = w171[k] - w276;
+        let w279 = w278 - w277;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        x[0][k + 1] = w0[k] * inv_k1;
+        x[1][k + 1] = w2[k] * inv_k1;
+        x[2][k + 1] = w4[k] * inv_k1;
+        x[3][k + 1] = w279 * inv_k1;
+        x[4][k + 1] = w275[k] * inv_k1;
+        x[5][k + 1] = w273[k] * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// Taylor coefficients of the solution of `x' = rocking_rhs_free(..)`: on entry `x[i][0]` holds
@@ -569,176 +542,149 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 6], s: f64, p: &Param
     let mut inv_w272 = 0.0f64;
     let mut w273 = [0.0f64; N];
     let mut w275 = [0.0f64; N];
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w0[k] = x[3][k];
-            w2[k] = x[4][k];
-            w4[k] = x[5][k];
-            w6[k] = x[0][k];
-            series::sin_cos(&w6, &mut d_w6, &mut sin_w6, &mut cos_w6, k);
-            w7[k] = cos_w6[k];
-            w8[k] = x[1][k];
-            w9[k] = x[2][k];
-            let w41 = w8[k] * w38;
-            let w42 = w9[k] * w35;
-            let w43 = w41 + w42;
-            w44[k] = w43 - at0(k, w40);
-            let w45 = series::mul(&w7, &w44, k);
-            w46[k] = sin_w6[k];
-            let w62 = w8[k] * w54;
-            let w63 = w9[k] * w52;
-            let w64 = at0(k, w61) - w62;
-            w65[k] = w64 - w63;
-            let w66 = series::mul(&w46, &w65, k);
-            w67[k] = series::mul(&w0, &w8, k);
-            w68[k] = series::mul(&w0, &w9, k);
-            let w95 = w0[k] * w94;
-            let w96 = w67[k] * w87;
-            let w97 = w68[k] * w81;
-            let w98 = w96 + w97;
-            w99[k] = w98 - w95;
-            let w100 = series::mul(&w2, &w99, k);
-            let w114 = w0[k] * w113;
-            let w115 = w67[k] * w81;
-            let w116 = w68[k] * w106;
-            let w117 = w115 + w116;
-            w118[k] = w117 - w114;
-            let w119 = series::mul(&w4, &w118, k);
-            let w121 = w8[k] + w9[k];
-            w122[k] = w121 - at0(k, w12);
-            let w123 = w8[k] * w73;
-            let w124 = w9[k] * w73;
-            let w125 = w123 + w124;
-            w126[k] = w125 - at0(k, w72);
-            let w127 = series::mul(&w122, &w126, k);
-            let w132 = w8[k] * w78;
-            let w133 = w9[k] * w102;
-            w134[k] = w132 + w133;
-            w135[k] = w9[k] * w69;
-            let w136 = series::mul(&w134, &w135, k);
-            let w137 = w8[k] * w79;
-            let w138 = w9[k] * w103;
-            w139[k] = w137 + w138;
-            let w140 = series::mul(&w9, &w139, k);
-            let w141 = series::sq(&w8, k);
-            let w159 = w45 - w66;
-            let w160 = w159 - w100;
-            w161[k] = w160 - w119;
-            let w162 = w8[k] * w153;
-            let w163 = w9[k] * w151;
-            let w164 = w85 * w141;
-            let w165 = w162 + w163;
-            let w166 = w127 + w165;
-            let w167 = w136 + w166;
-            let w168 = w140 + w167;
-            let w169 = w164 + w168;
-            w170[k] = at0(k, w158) + w169;
-            if k == 0 { inv_w170 = 1.0 / w170[0]; }
-            w171[k] = series::div(w161[k], &w170, &w171, inv_w170, k);
-            w176[k] = series::div(at0(k, w175), &w170, &w176, inv_w170, k);
-            let w188 = series::sq(&w0, k);
-            let w189 = series::mul(&w0, &w67, k);
-            let w190 = series::mul(&w0, &w68, k);
-            let w197 = series::mul(&w161, &w176, k);
-            w202[k] = series::sq(&w176, k);
-            w203[k] = series::mul(&w170, &w202, k);
-            let w204 = w2[k] * w195;
-            let w205 = w4[k] * w196;
-            let w206 = w7[k] * w54;
-            let w207 = w8[k] * w187;
-            let w208 = w9[k] * w184;
-            let w209 = w38 * w46[k];
-            let w210 = w188 * w194;
-            let w211 = w189 * w193;
-            let w212 = w190 * w191;
-            let w213 = w207 + w208;
-            let w214 = w209 + w213;
-            let w215 = w211 + w214;
-            let w216 = w212 + w215;
-            let w217 = w216 - w204;
-            let w218 = w217 - w205;
-            let w219 = w218 - w206;
-            let w220 = w219 - w210;
-            w221[k] = w220 - w197;
-            w222[k] = at0(k, w201) - w203[k];
-            if k == 0 { inv_w222 = 1.0 / w222[0]; }
-            w223[k] = series::div(w221[k], &w222, &w223, inv_w222, k);
-            w228[k] = series::div(at0(k, w227), &w170, &w228, inv_w170, k);
-            w229[k] = series::mul(&w176, &w228, k);
-            let w230 = series::mul(&w170, &w229, k);
-            let w231 = at0(k, w224) - w230;
-            w232[k] = series::div(w231, &w222, &w232, inv_w222, k);
-            let w240 = series::mul(&w161, &w228, k);
-            let w241 = series::mul(&w221, &w232, k);
-            w246[k] = series::sq(&w228, k);
-            let w247 = series::mul(&w170, &w246, k);
-            w248[k] = series::sq(&w232, k);
-            let w249 = series::mul(&w203, &w248, k);
-            let w250 = w2[k] * w196;
-            let w251 = w4[k] * w239;
-            let w252 = w7[k] * w52;
-            let w253 = w8[k] * w184;
-            let w254 = w9[k] * w235;
-            let w255 = w35 * w46[k];
-            let w256 = w188 * w238;
-            let w257 = w189 * w191;
-            let w258 = w190 * w237;
-            let w259 = w253 + w254;
-            let w260 = w255 + w259;
-            let w261 = w257 + w260;
-            let w262 = w258 + w261;
-            let w263 = w262 - w250;
-            let w264 = w263 - w251;
-            let w265 = w264 - w252;
-            let w266 = w265 - w256;
-            let w267 = w266 - w240;
-            let w268 = w267 - w241;
-            let w269 = w201 * w248[k];
-            let w270 = at0(k, w245) + w249;
-            let w271 = w270 - w247;
-            w272[k] = w271 - w269;
-            if k == 0 { inv_w272 = 1.0 / w272[0]; }
-            w273[k] = series::div(w268, &w272, &w273, inv_w272, k);
-            let w274 = series::mul(&w232, &w273, k);
-            w275[k] = w223[k] - w274;
-            let w276 = series::mul(&w176, &w275, k);
-            let w277 = series::mul(&w228, &w273, k);
-            let w278 = w171[k] - w276;
-            let w279 = w278 - w277;
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            x[0][k + 1] = w0[k] * inv_k1;
-            x[1][k + 1] = w2[k] * inv_k1;
-            x[2][k + 1] = w4[k] * inv_k1;
-            x[3][k + 1] = w279 * inv_k1;
-            x[4][k + 1] = w275[k] * inv_k1;
-            x[5][k + 1] = w273[k] * inv_k1;
-        };
+    for k in 0..N - 1 {
+        w0[k] = x[3][k];
+        w2[k] = x[4][k];
+        w4[k] = x[5][k];
+        w6[k] = x[0][k];
+        series::sin_cos(&w6, &mut d_w6, &mut sin_w6, &mut cos_w6, k);
+        w7[k] = cos_w6[k];
+        w8[k] = x[1][k];
+        w9[k] = x[2][k];
+        let w41 = w8[k] * w38;
+        let w42 = w9[k] * w35;
+        let w43 = w41 + w42;
+        w44[k] = w43 - at0(k, w40);
+        let w45 = series::mul(&w7, &w44, k);
+        w46[k] = sin_w6[k];
+        let w62 = w8[k] * w54;
+        let w63 = w9[k] * w52;
+        let w64 = at0(k, w61) - w62;
+        w65[k] = w64 - w63;
+        let w66 = series::mul(&w46, &w65, k);
+        w67[k] = series::mul(&w0, &w8, k);
+        w68[k] = series::mul(&w0, &w9, k);
+        let w95 = w0[k] * w94;
+        let w96 = w67[k] * w87;
+        let w97 = w68[k] * w81;
+        let w98 = w96 + w97;
+        w99[k] = w98 - w95;
+        let w100 = series::mul(&w2, &w99, k);
+        let w114 = w0[k] * w113;
+        let w115 = w67[k] * w81;
+        let w116 = w68[k] * w106;
+        let w117 = w115 + w116;
+        w118[k] = w117 - w114;
+        let w119 = series::mul(&w4, &w118, k);
+        let w121 = w8[k] + w9[k];
+        w122[k] = w121 - at0(k, w12);
+        let w123 = w8[k] * w73;
+        let w124 = w9[k] * w73;
+        let w125 = w123 + w124;
+        w126[k] = w125 - at0(k, w72);
+        let w127 = series::mul(&w122, &w126, k);
+        let w132 = w8[k] * w78;
+        let w133 = w9[k] * w102;
+        w134[k] = w132 + w133;
+        w135[k] = w9[k] * w69;
+        let w136 = series::mul(&w134, &w135, k);
+        let w137 = w8[k] * w79;
+        let w138 = w9[k] * w103;
+        w139[k] = w137 + w138;
+        let w140 = series::mul(&w9, &w139, k);
+        let w141 = series::sq(&w8, k);
+        let w159 = w45 - w66;
+        let w160 = w159 - w100;
+        w161[k] = w160 - w119;
+        let w162 = w8[k] * w153;
+        let w163 = w9[k] * w151;
+        let w164 = w85 * w141;
+        let w165 = w162 + w163;
+        let w166 = w127 + w165;
+        let w167 = w136 + w166;
+        let w168 = w140 + w167;
+        let w169 = w164 + w168;
+        w170[k] = at0(k, w158) + w169;
+        if k == 0 { inv_w170 = 1.0 / w170[0]; }
+        w171[k] = series::div(w161[k], &w170, &w171, inv_w170, k);
+        w176[k] = series::div(at0(k, w175), &w170, &w176, inv_w170, k);
+        let w188 = series::sq(&w0, k);
+        let w189 = series::mul(&w0, &w67, k);
+        let w190 = series::mul(&w0, &w68, k);
+        let w197 = series::mul(&w161, &w176, k);
+        w202[k] = series::sq(&w176, k);
+        w203[k] = series::mul(&w170, &w202, k);
+        let w204 = w2[k] * w195;
+        let w205 = w4[k] * w196;
+        let w206 = w7[k] * w54;
+        let w207 = w8[k] * w187;
+        let w208 = w9[k] * w184;
+        let w209 = w38 * w46[k];
+        let w210 = w188 * w194;
+        let w211 = w189 * w193;
+        let w212 = w190 * w191;
+        let w213 = w207 + w208;
+        let w214 = w209 + w213;
+        let w215 = w211 + w214;
+        let w216 = w212 + w215;
+        let w217 = w216 - w204;
+        let w218 = w217 - w205;
+        let w219 = w218 - w206;
+        let w220 = w219 - w210;
+        w221[k] = w220 - w197;
+        w222[k] = at0(k, w201) - w203[k];
+        if k == 0 { inv_w222 = 1.0 / w222[0]; }
+        w223[k] = series::div(w221[k], &w222, &w223, inv_w222, k);
+        w228[k] = series::div(at0(k, w227), &w170, &w228, inv_w170, k);
+        w229[k] = series::mul(&w176, &w228, k);
+        let w230 = series::mul(&w170, &w229, k);
+        let w231 = at0(k, w224) - w230;
+        w232[k] = series::div(w231, &w222, &w232, inv_w222, k);
+        let w240 = series::mul(&w161, &w228, k);
+        let w241 = series::mul(&w221, &w232, k);
+        w246[k] = series::sq(&w228, k);
+        let w247 = series::mul(&w170, &w246, k);
+        w248[k] = series::sq(&w232, k);
+        let w249 = series::mul(&w203, &w248, k);
+        let w250 = w2[k] * w196;
+        let w251 = w4[k] * w239;
+        let w252 = w7[k] * w52;
+        let w253 = w8[k] * w184;
+        let w254 = w9[k] * w235;
+        let w255 = w35 * w46[k];
+        let w256 = w188 * w238;
+        let w257 = w189 * w191;
+        let w258 = w190 * w237;
+        let w259 = w253 + w254;
+        let w260 = w255 + w259;
+        let w261 = w257 + w260;
+        let w262 = w258 + w261;
+        let w263 = w262 - w250;
+        let w264 = w263 - w251;
+        let w265 = w264 - w252;
+        let w266 = w265 - w256;
+        let w267 = w266 - w240;
+        let w268 = w267 - w241;
+        let w269 = w201 * w248[k];
+        let w270 = at0(k, w245) + w249;
+        let w271 = w270 - w247;
+        w272[k] = w271 - w269;
+        if k == 0 { inv_w272 = 1.0 / w272[0]; }
+        w273[k] = series::div(w268, &w272, &w273, inv_w272, k);
+        let w274 = series::mul(&w232, &w273, k);
+        w275[k] = w223[k] - w274;
+        let w276 = series::mul(&w176, &w275, k);
+        let w277 = series::mul(&w228, &w273, k);
+        let w278 = w171[k] - w276;
+        let w279 = w278 - w277;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        x[0][k + 1] = w0[k] * inv_k1;
+        x[1][k + 1] = w2[k] * inv_k1;
+        x[2][k + 1] = w4[k] * inv_k1;
+        x[3][k + 1] = w279 * inv_k1;
+        x[4][k + 1] = w275[k] * inv_k1;
+        x[5][k + 1] = w273[k] * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// Taylor coefficients of the solution of `xc' = contact_rhs(..)`: on entry `xc[i][0]` holds
@@ -820,63 +766,36 @@ pub fn contact_rhs<const N: usize>(xc: &mut [[f64; N]; 4], ug: &[f64; N], p: &Pa
     let w79: f64 = w35 - w74;
     let w80: f64 = w36 + w75;
     let w81: f64 = w37 - w76;
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let w0 = xc[2][k];
-            let w2 = xc[3][k];
-            let w12 = xc[1][k];
-            let w15 = ug[k];
-            let w20 = xc[0][k];
-            let w82 = w0 * w77;
-            let w83 = w2 * w78;
-            let w84 = w12 * w79;
-            let w85 = w15 * w80;
-            let w86 = w20 * w81;
-            let w87 = w84 + w86;
-            let w88 = w87 - w82;
-            let w89 = w88 - w83;
-            let w90 = w89 - w85;
-            let w92 = w0 * w67;
-            let w93 = w2 * w68;
-            let w94 = w12 * w69;
-            let w95 = w15 * w70;
-            let w96 = w20 * w71;
-            let w97 = w92 + w93;
-            let w98 = w94 + w97;
-            let w99 = w95 + w98;
-            let w100 = w96 + w99;
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            xc[0][k + 1] = w0 * inv_k1;
-            xc[1][k + 1] = w2 * inv_k1;
-            xc[2][k + 1] = w90 * inv_k1;
-            xc[3][k + 1] = w100 * inv_k1;
-        };
+    for k in 0..N - 1 {
+        let w0 = xc[2][k];
+        let w2 = xc[3][k];
+        let w12 = xc[1][k];
+        let w15 = ug[k];
+        let w20 = xc[0][k];
+        let w82 = w0 * w77;
+        let w83 = w2 * w78;
+        let w84 = w12 * w79;
+        let w85 = w15 * w80;
+        let w86 = w20 * w81;
+        let w87 = w84 + w86;
+        let w88 = w87 - w82;
+        let w89 = w88 - w83;
+        let w90 = w89 - w85;
+        let w92 = w0 * w67;
+        let w93 = w2 * w68;
+        let w94 = w12 * w69;
+        let w95 = w15 * w70;
+        let w96 = w20 * w71;
+        let w97 = w92 + w93;
+        let w98 = w94 + w97;
+        let w99 = w95 + w98;
+        let w100 = w96 + w99;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        xc[0][k + 1] = w0 * inv_k1;
+        xc[1][k + 1] = w2 * inv_k1;
+        xc[2][k + 1] = w90 * inv_k1;
+        xc[3][k + 1] = w100 * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// Taylor coefficients of the solution of `xc' = contact_rhs_free(..)`: on entry `xc[i][0]` holds
@@ -962,60 +881,33 @@ pub fn contact_rhs_free<const N: usize>(xc: &mut [[f64; N]; 4], p: &Params) {
     let w81: f64 = w37 - w76;
     let w82: f64 = w38 - w77;
     let w83: f64 = w39 + w78;
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let w0 = xc[2][k];
-            let w2 = xc[3][k];
-            let w12 = xc[1][k];
-            let w22 = xc[0][k];
-            let w84 = w0 * w79;
-            let w85 = w2 * w80;
-            let w86 = w12 * w81;
-            let w87 = w22 * w82;
-            let w88 = w86 + w87;
-            let w89 = w88 - w84;
-            let w90 = w89 - w85;
-            let w91 = w90 - at0(k, w83);
-            let w93 = w0 * w69;
-            let w94 = w2 * w70;
-            let w95 = w12 * w71;
-            let w96 = w22 * w72;
-            let w97 = w93 + w94;
-            let w98 = w95 + w97;
-            let w99 = w96 + w98;
-            let w100 = at0(k, w73) + w99;
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            xc[0][k + 1] = w0 * inv_k1;
-            xc[1][k + 1] = w2 * inv_k1;
-            xc[2][k + 1] = w91 * inv_k1;
-            xc[3][k + 1] = w100 * inv_k1;
-        };
+    for k in 0..N - 1 {
+        let w0 = xc[2][k];
+        let w2 = xc[3][k];
+        let w12 = xc[1][k];
+        let w22 = xc[0][k];
+        let w84 = w0 * w79;
+        let w85 = w2 * w80;
+        let w86 = w12 * w81;
+        let w87 = w22 * w82;
+        let w88 = w86 + w87;
+        let w89 = w88 - w84;
+        let w90 = w89 - w85;
+        let w91 = w90 - at0(k, w83);
+        let w93 = w0 * w69;
+        let w94 = w2 * w70;
+        let w95 = w12 * w71;
+        let w96 = w22 * w72;
+        let w97 = w93 + w94;
+        let w98 = w95 + w97;
+        let w99 = w96 + w98;
+        let w100 = at0(k, w73) + w99;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        xc[0][k + 1] = w0 * inv_k1;
+        xc[1][k + 1] = w2 * inv_k1;
+        xc[2][k + 1] = w91 * inv_k1;
+        xc[3][k + 1] = w100 * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// The first N Taylor coefficients of each output of `uplift` along series inputs.
@@ -1151,51 +1043,24 @@ pub fn uplift<const N: usize>(xc: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Par
     let w132: f64 = w0 * w124;
     let w133: f64 = w0 * w29;
     let mut out = [[0.0f64; N]; 1];
-    // The tape at order k, for k < N: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let w1 = xc[0][k];
-            let w2 = xc[1][k];
-            let w10 = ug[k];
-            let w50 = xc[2][k];
-            let w52 = xc[3][k];
-            let w134 = w1 * w128;
-            let w135 = w2 * w129;
-            let w136 = w10 * w130;
-            let w137 = w50 * w131;
-            let w138 = w52 * w132;
-            let w139 = w134 + w135;
-            let w140 = w139 - w136;
-            let w141 = w140 - w137;
-            let w142 = w141 - w138;
-            let w143 = w142 - at0(k, w133);
-            out[0][k] = w143;
-        };
+    for k in 0..N {
+        let w1 = xc[0][k];
+        let w2 = xc[1][k];
+        let w10 = ug[k];
+        let w50 = xc[2][k];
+        let w52 = xc[3][k];
+        let w134 = w1 * w128;
+        let w135 = w2 * w129;
+        let w136 = w10 * w130;
+        let w137 = w50 * w131;
+        let w138 = w52 * w132;
+        let w139 = w134 + w135;
+        let w140 = w139 - w136;
+        let w141 = w140 - w137;
+        let w142 = w141 - w138;
+        let w143 = w142 - at0(k, w133);
+        out[0][k] = w143;
     }
-    if 0 < N { order!(0); }
-    if 1 < N { order!(1); }
-    if 2 < N { order!(2); }
-    if 3 < N { order!(3); }
-    if 4 < N { order!(4); }
-    if 5 < N { order!(5); }
-    if 6 < N { order!(6); }
-    if 7 < N { order!(7); }
-    if 8 < N { order!(8); }
-    if 9 < N { order!(9); }
-    if 10 < N { order!(10); }
-    if 11 < N { order!(11); }
-    if 12 < N { order!(12); }
-    if 13 < N { order!(13); }
-    if 14 < N { order!(14); }
-    if 15 < N { order!(15); }
-    if 16 < N { order!(16); }
-    if 17 < N { order!(17); }
-    if 18 < N { order!(18); }
-    if 19 < N { order!(19); }
-    if 20 < N { order!(20); }
-    for k in 21..N { order!(k); }
     out
 }
 
@@ -1317,121 +1182,94 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 6], s: f64, p: &Params) -> [[f64; N
     let w165: f64 = w117 + w164;
     let mut w172 = [0.0f64; N];
     let mut out = [[0.0f64; N]; 4];
-    // The tape at order k, for k < N: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w1[k] = x[3][k];
-            w6[k] = series::sq(&w1, k);
-            w8[k] = x[1][k];
-            let w11 = series::mul(&w6, &w8, k);
-            w14[k] = x[2][k];
-            let w15 = series::mul(&w6, &w14, k);
-            w23[k] = x[4][k];
-            let w24 = series::mul(&w1, &w23, k);
-            w27[k] = x[5][k];
-            let w28 = series::mul(&w1, &w27, k);
-            w31[k] = series::mul(&w1, &w8, k);
-            w32[k] = series::mul(&w1, &w31, k);
-            let w33 = series::mul(&w8, &w32, k);
-            let w34 = series::sq(&w23, k);
-            w36[k] = series::mul(&w1, &w14, k);
-            w37[k] = series::mul(&w1, &w36, k);
-            let w38 = series::mul(&w8, &w37, k);
-            let w39 = series::mul(&w23, &w27, k);
-            let w42 = series::mul(&w14, &w37, k);
-            let w43 = series::sq(&w27, k);
-            let w55 = w1[k] * w4;
-            let w56 = w31[k] + w36[k];
-            w57[k] = w56 - w55;
-            let w58 = series::sq(&w57, k);
-            let w85 = w6[k] * w84;
-            let w86 = w11 * w71;
-            let w87 = w15 * w72;
-            let w88 = w24 * w73;
-            let w89 = w28 * w74;
-            let w90 = w33 * w75;
-            let w91 = w34 * w76;
-            let w92 = w38 * w77;
-            let w93 = w39 * w78;
-            let w94 = w42 * w79;
-            let w95 = w43 * w80;
-            let w96 = w58 * w81;
-            let w97 = w85 + w88;
-            let w98 = w89 + w97;
-            let w99 = w90 + w98;
-            let w100 = w91 + w99;
-            let w101 = w92 + w100;
-            let w102 = w93 + w101;
-            let w103 = w94 + w102;
-            let w104 = w95 + w103;
-            let w105 = w96 + w104;
-            let w106 = w105 - w86;
-            let w107 = w106 - w87;
-            w110[k] = x[0][k];
-            series::sin_cos(&w110, &mut d_w110, &mut sin_w110, &mut cos_w110, k);
-            w111[k] = sin_w110[k];
-            w113[k] = cos_w110[k];
-            let w115 = series::mul(&w8, &w111, k);
-            let w116 = series::mul(&w14, &w111, k);
-            let w134 = w111[k] * w130;
-            let w135 = w113[k] * w131;
-            let w136 = w115 * w132;
-            let w137 = w116 * w133;
-            let w138 = w134 + w135;
-            let w139 = w138 - w136;
-            let w140 = w139 - w137;
-            let w148 = series::sq(&w8, k);
-            let w151 = series::sq(&w14, k);
-            let w152 = series::mul(&w8, &w14, k);
-            let w155 = w148 * w153;
-            let w156 = w151 * w154;
-            let w157 = w152 * w154;
-            let w158 = w155 + w156;
-            let w159 = w157 + w158;
-            let w166 = w111[k] * w165;
-            let w167 = w113[k] * w163;
-            let w168 = w115 * w125;
-            let w169 = w116 * w126;
-            let w170 = w166 + w167;
-            let w171 = w170 - w168;
-            w172[k] = w171 - w169;
-            let w173 = series::mul(&w1, &w172, k);
-            let w174 = series::mul(&w23, &w113, k);
-            let w175 = series::mul(&w27, &w113, k);
-            let w176 = w125 * w174;
-            let w177 = w126 * w175;
-            let w178 = w173 + w176;
-            let w179 = w177 + w178;
-            out[0][k] = w107;
-            out[1][k] = w140;
-            out[2][k] = w159;
-            out[3][k] = w179;
-        };
+    for k in 0..N {
+        w1[k] = x[3][k];
+        w6[k] = series::sq(&w1, k);
+        w8[k] = x[1][k];
+        let w11 = series::mul(&w6, &w8, k);
+        w14[k] = x[2][k];
+        let w15 = series::mul(&w6, &w14, k);
+        w23[k] = x[4][k];
+        let w24 = series::mul(&w1, &w23, k);
+        w27[k] = x[5][k];
+        let w28 = series::mul(&w1, &w27, k);
+        w31[k] = series::mul(&w1, &w8, k);
+        w32[k] = series::mul(&w1, &w31, k);
+        let w33 = series::mul(&w8, &w32, k);
+        let w34 = series::sq(&w23, k);
+        w36[k] = series::mul(&w1, &w14, k);
+        w37[k] = series::mul(&w1, &w36, k);
+        let w38 = series::mul(&w8, &w37, k);
+        let w39 = series::mul(&w23, &w27, k);
+        let w42 = series::mul(&w14, &w37, k);
+        let w43 = series::sq(&w27, k);
+        let w55 = w1[k] * w4;
+        let w56 = w31[k] + w36[k];
+        w57[k] = w56 - w55;
+        let w58 = series::sq(&w57, k);
+        let w85 = w6[k] * w84;
+        let w86 = w11 * w71;
+        let w87 = w15 * w72;
+        let w88 = w24 * w73;
+        let w89 = w28 * w74;
+        let w90 = w33 * w75;
+        let w91 = w34 * w76;
+        let w92 = w38 * w77;
+        let w93 = w39 * w78;
+        let w94 = w42 * w79;
+        let w95 = w43 * w80;
+        let w96 = w58 * w81;
+        let w97 = w85 + w88;
+        let w98 = w89 + w97;
+        let w99 = w90 + w98;
+        let w100 = w91 + w99;
+        let w101 = w92 + w100;
+        let w102 = w93 + w101;
+        let w103 = w94 + w102;
+        let w104 = w95 + w103;
+        let w105 = w96 + w104;
+        let w106 = w105 - w86;
+        let w107 = w106 - w87;
+        w110[k] = x[0][k];
+        series::sin_cos(&w110, &mut d_w110, &mut sin_w110, &mut cos_w110, k);
+        w111[k] = sin_w110[k];
+        w113[k] = cos_w110[k];
+        let w115 = series::mul(&w8, &w111, k);
+        let w116 = series::mul(&w14, &w111, k);
+        let w134 = w111[k] * w130;
+        let w135 = w113[k] * w131;
+        let w136 = w115 * w132;
+        let w137 = w116 * w133;
+        let w138 = w134 + w135;
+        let w139 = w138 - w136;
+        let w140 = w139 - w137;
+        let w148 = series::sq(&w8, k);
+        let w151 = series::sq(&w14, k);
+        let w152 = series::mul(&w8, &w14, k);
+        let w155 = w148 * w153;
+        let w156 = w151 * w154;
+        let w157 = w152 * w154;
+        let w158 = w155 + w156;
+        let w159 = w157 + w158;
+        let w166 = w111[k] * w165;
+        let w167 = w113[k] * w163;
+        let w168 = w115 * w125;
+        let w169 = w116 * w126;
+        let w170 = w166 + w167;
+        let w171 = w170 - w168;
+        w172[k] = w171 - w169;
+        let w173 = series::mul(&w1, &w172, k);
+        let w174 = series::mul(&w23, &w113, k);
+        let w175 = series::mul(&w27, &w113, k);
+        let w176 = w125 * w174;
+        let w177 = w126 * w175;
+        let w178 = w173 + w176;
+        let w179 = w177 + w178;
+        out[0][k] = w107;
+        out[1][k] = w140;
+        out[2][k] = w159;
+        out[3][k] = w179;
     }
-    if 0 < N { order!(0); }
-    if 1 < N { order!(1); }
-    if 2 < N { order!(2); }
-    if 3 < N { order!(3); }
-    if 4 < N { order!(4); }
-    if 5 < N { order!(5); }
-    if 6 < N { order!(6); }
-    if 7 < N { order!(7); }
-    if 8 < N { order!(8); }
-    if 9 < N { order!(9); }
-    if 10 < N { order!(10); }
-    if 11 < N { order!(11); }
-    if 12 < N { order!(12); }
-    if 13 < N { order!(13); }
-    if 14 < N { order!(14); }
-    if 15 < N { order!(15); }
-    if 16 < N { order!(16); }
-    if 17 < N { order!(17); }
-    if 18 < N { order!(18); }
-    if 19 < N { order!(19); }
-    if 20 < N { order!(20); }
-    for k in 21..N { order!(k); }
     out
 }
 
@@ -1480,71 +1318,44 @@ pub fn power<const N: usize>(x: &[[f64; N]; 6], ug: &[f64; N], s: f64, p: &Param
     let w55: f64 = p[11];
     let mut w58 = [0.0f64; N];
     let mut out = [[0.0f64; N]; 2];
-    // The tape at order k, for k < N: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w0[k] = ug[k];
-            w1[k] = x[0][k];
-            series::sin_cos(&w1, &mut d_w1, &mut sin_w1, &mut cos_w1, k);
-            w2[k] = cos_w1[k];
-            w11[k] = sin_w1[k];
-            let w12 = x[1][k];
-            let w13 = x[2][k];
-            let w29 = w12 * w26;
-            let w30 = w13 * w23;
-            let w31 = w29 + w30;
-            w32[k] = w31 - at0(k, w28);
-            let w33 = series::mul(&w11, &w32, k);
-            w34[k] = x[3][k];
-            let w35 = w2[k] * w10;
-            w36[k] = w35 - w33;
-            let w37 = series::mul(&w34, &w36, k);
-            w38[k] = x[4][k];
-            let w39 = series::mul(&w2, &w38, k);
-            w40[k] = x[5][k];
-            let w41 = series::mul(&w2, &w40, k);
-            let w42 = w26 * w39;
-            let w43 = w23 * w41;
-            let w44 = w37 + w42;
-            w45[k] = w43 + w44;
-            let w46 = series::mul(&w0, &w45, k);
-            let w47 = -w46;
-            let w51 = w38[k] * w49;
-            let w52 = w40[k] * w50;
-            w53[k] = w51 + w52;
-            let w54 = series::mul(&w38, &w53, k);
-            let w56 = w38[k] * w50;
-            let w57 = w40[k] * w55;
-            w58[k] = w56 + w57;
-            let w59 = series::mul(&w40, &w58, k);
-            let w60 = w54 + w59;
-            out[0][k] = w47;
-            out[1][k] = w60;
-        };
+    for k in 0..N {
+        w0[k] = ug[k];
+        w1[k] = x[0][k];
+        series::sin_cos(&w1, &mut d_w1, &mut sin_w1, &mut cos_w1, k);
+        w2[k] = cos_w1[k];
+        w11[k] = sin_w1[k];
+        let w12 = x[1][k];
+        let w13 = x[2][k];
+        let w29 = w12 * w26;
+        let w30 = w13 * w23;
+        let w31 = w29 + w30;
+        w32[k] = w31 - at0(k, w28);
+        let w33 = series::mul(&w11, &w32, k);
+        w34[k] = x[3][k];
+        let w35 = w2[k] * w10;
+        w36[k] = w35 - w33;
+        let w37 = series::mul(&w34, &w36, k);
+        w38[k] = x[4][k];
+        let w39 = series::mul(&w2, &w38, k);
+        w40[k] = x[5][k];
+        let w41 = series::mul(&w2, &w40, k);
+        let w42 = w26 * w39;
+        let w43 = w23 * w41;
+        let w44 = w37 + w42;
+        w45[k] = w43 + w44;
+        let w46 = series::mul(&w0, &w45, k);
+        let w47 = -w46;
+        let w51 = w38[k] * w49;
+        let w52 = w40[k] * w50;
+        w53[k] = w51 + w52;
+        let w54 = series::mul(&w38, &w53, k);
+        let w56 = w38[k] * w50;
+        let w57 = w40[k] * w55;
+        w58[k] = w56 + w57;
+        let w59 = series::mul(&w40, &w58, k);
+        let w60 = w54 + w59;
+        out[0][k] = w47;
+        out[1][k] = w60;
     }
-    if 0 < N { order!(0); }
-    if 1 < N { order!(1); }
-    if 2 < N { order!(2); }
-    if 3 < N { order!(3); }
-    if 4 < N { order!(4); }
-    if 5 < N { order!(5); }
-    if 6 < N { order!(6); }
-    if 7 < N { order!(7); }
-    if 8 < N { order!(8); }
-    if 9 < N { order!(9); }
-    if 10 < N { order!(10); }
-    if 11 < N { order!(11); }
-    if 12 < N { order!(12); }
-    if 13 < N { order!(13); }
-    if 14 < N { order!(14); }
-    if 15 < N { order!(15); }
-    if 16 < N { order!(16); }
-    if 17 < N { order!(17); }
-    if 18 < N { order!(18); }
-    if 19 < N { order!(19); }
-    if 20 < N { order!(20); }
-    for k in 21..N { order!(k); }
     out
 }

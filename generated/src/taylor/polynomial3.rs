@@ -281,302 +281,275 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 8], ug: &[f64; N], s: f64,
     let mut w448 = [0.0f64; N];
     let mut w450 = [0.0f64; N];
     let mut w454 = [0.0f64; N];
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w0[k] = x[4][k];
-            w2[k] = x[5][k];
-            w4[k] = x[6][k];
-            w6[k] = x[7][k];
-            w8[k] = x[0][k];
-            series::sin_cos(&w8, &mut d_w8, &mut sin_w8, &mut cos_w8, k);
-            w9[k] = cos_w8[k];
-            w10[k] = x[1][k];
-            w11[k] = x[2][k];
-            w12[k] = x[3][k];
-            w21[k] = ug[k];
-            let w44 = w10[k] * w41;
-            let w45 = w11[k] * w38;
-            let w46 = w12[k] * w35;
-            let w47 = w21[k] * w27;
-            let w48 = w44 + w45;
-            let w49 = w46 + w48;
-            let w50 = w49 - w47;
-            w51[k] = w50 - at0(k, w43);
-            let w52 = series::mul(&w9, &w51, k);
-            w53[k] = sin_w8[k];
-            let w55 = series::mul(&w10, &w21, k);
-            let w56 = series::mul(&w11, &w21, k);
-            let w57 = series::mul(&w12, &w21, k);
-            let w72 = w21[k] * w67;
-            let w73 = w55 * w65;
-            let w74 = w56 * w63;
-            let w75 = w57 * w61;
-            let w76 = w72 - w73;
-            let w77 = w76 - w74;
-            let w78 = w77 - w75;
-            w79[k] = w78 - at0(k, w71);
-            let w80 = series::mul(&w53, &w79, k);
-            w91[k] = series::mul(&w0, &w10, k);
-            w99[k] = series::mul(&w0, &w11, k);
-            w103[k] = series::mul(&w0, &w12, k);
-            let w116 = w0[k] * w112;
-            let w117 = w91[k] * w113;
-            let w118 = w99[k] * w114;
-            let w119 = w103[k] * w115;
-            let w120 = w116 + w117;
-            let w121 = w118 + w120;
-            w122[k] = w119 + w121;
-            let w123 = series::mul(&w2, &w122, k);
-            let w142 = w0[k] * w138;
-            let w143 = w91[k] * w139;
-            let w144 = w99[k] * w140;
-            let w145 = w103[k] * w141;
-            let w146 = w142 + w143;
-            let w147 = w144 + w146;
-            w148[k] = w145 + w147;
-            let w149 = series::mul(&w4, &w148, k);
-            let w167 = w0[k] * w163;
-            let w168 = w91[k] * w164;
-            let w169 = w99[k] * w165;
-            let w170 = w103[k] * w166;
-            let w171 = w167 + w168;
-            let w172 = w169 + w171;
-            w173[k] = w170 + w172;
-            let w174 = series::mul(&w6, &w173, k);
-            let w176 = w10[k] + w11[k];
-            let w177 = w12[k] + w176;
-            w178[k] = w177 - at0(k, w15);
-            let w179 = w10[k] * w107;
-            let w180 = w11[k] * w107;
-            let w181 = w12[k] * w107;
-            let w182 = w179 + w180;
-            let w183 = w181 + w182;
-            w184[k] = w183 - at0(k, w106);
-            let w185 = series::mul(&w178, &w184, k);
-            let w190 = w10[k] * w102;
-            let w191 = w11[k] * w136;
-            let w192 = w12[k] * w154;
-            let w193 = w190 + w191;
-            w194[k] = w192 + w193;
-            w195[k] = w12[k] * w85;
-            let w196 = series::mul(&w194, &w195, k);
-            let w197 = w10[k] * w155;
-            let w198 = w11[k] * w156;
-            let w199 = w12[k] * w157;
-            let w200 = w197 + w198;
-            w201[k] = w199 + w200;
-            let w202 = series::mul(&w12, &w201, k);
-            let w203 = w10[k] * w98;
-            let w204 = w11[k] * w128;
-            w205[k] = w203 + w204;
-            w206[k] = w11[k] * w85;
-            let w207 = series::mul(&w205, &w206, k);
-            let w208 = w10[k] * w129;
-            let w209 = w11[k] * w130;
-            w210[k] = w208 + w209;
-            let w211 = series::mul(&w11, &w210, k);
-            let w212 = series::sq(&w10, k);
-            let w236 = w52 - w80;
-            let w237 = w236 - w123;
-            let w238 = w237 - w149;
-            w239[k] = w238 - w174;
-            let w240 = w10[k] * w231;
-            let w241 = w11[k] * w227;
-            let w242 = w12[k] * w223;
-            let w243 = w212 * w213;
-            let w244 = w240 + w241;
-            let w245 = w242 + w244;
-            let w246 = w185 + w245;
-            let w247 = w196 + w246;
-            let w248 = w202 + w247;
-            let w249 = w207 + w248;
-            let w250 = w211 + w249;
-            let w251 = w243 + w250;
-            w252[k] = at0(k, w235) + w251;
-            if k == 0 { inv_w252 = 1.0 / w252[0]; }
-            w253[k] = series::div(w239[k], &w252, &w253, inv_w252, k);
-            w257[k] = series::div(at0(k, w256), &w252, &w257, inv_w252, k);
-            let w266 = series::mul(&w9, &w21, k);
-            let w273 = series::sq(&w0, k);
-            let w274 = series::mul(&w0, &w91, k);
-            let w275 = series::mul(&w0, &w99, k);
-            let w276 = series::mul(&w0, &w103, k);
-            let w286 = series::mul(&w239, &w257, k);
-            w289[k] = series::sq(&w257, k);
-            w290[k] = series::mul(&w252, &w289, k);
-            let w291 = w2[k] * w283;
-            let w292 = w4[k] * w284;
-            let w293 = w6[k] * w285;
-            let w294 = w10[k] * w272;
-            let w295 = w11[k] * w269;
-            let w296 = w12[k] * w265;
-            let w297 = w41 * w53[k];
-            let w298 = w65 * w266;
-            let w299 = w273 * w282;
-            let w300 = w274 * w280;
-            let w301 = w275 * w278;
-            let w302 = w276 * w277;
-            let w303 = w294 + w295;
-            let w304 = w296 + w303;
-            let w305 = w297 + w304;
-            let w306 = w300 + w305;
-            let w307 = w301 + w306;
-            let w308 = w302 + w307;
-            let w309 = w308 - w291;
-            let w310 = w309 - w292;
-            let w311 = w310 - w293;
-            let w312 = w311 - w298;
-            let w313 = w312 - w299;
-            w314[k] = w313 - w286;
-            w315[k] = at0(k, w288) - w290[k];
-            if k == 0 { inv_w315 = 1.0 / w315[0]; }
-            w316[k] = series::div(w314[k], &w315, &w316, inv_w315, k);
-            w321[k] = series::div(at0(k, w320), &w252, &w321, inv_w252, k);
-            w322[k] = series::mul(&w257, &w321, k);
-            let w323 = series::mul(&w252, &w322, k);
-            let w324 = at0(k, w317) - w323;
-            w325[k] = series::div(w324, &w315, &w325, inv_w315, k);
-            let w339 = series::mul(&w239, &w321, k);
-            let w340 = series::mul(&w314, &w325, k);
-            w343[k] = series::sq(&w321, k);
-            let w344 = series::mul(&w252, &w343, k);
-            w345[k] = series::sq(&w325, k);
-            let w346 = series::mul(&w290, &w345, k);
-            let w347 = w2[k] * w284;
-            let w348 = w4[k] * w337;
-            let w349 = w6[k] * w338;
-            let w350 = w10[k] * w269;
-            let w351 = w11[k] * w331;
-            let w352 = w12[k] * w328;
-            let w353 = w38 * w53[k];
-            let w354 = w63 * w266;
-            let w355 = w273 * w336;
-            let w356 = w274 * w278;
-            let w357 = w275 * w334;
-            let w358 = w276 * w332;
-            let w359 = w350 + w351;
-            let w360 = w352 + w359;
-            let w361 = w353 + w360;
-            let w362 = w356 + w361;
-            let w363 = w357 + w362;
-            let w364 = w358 + w363;
-            let w365 = w364 - w347;
-            let w366 = w365 - w348;
-            let w367 = w366 - w349;
-            let w368 = w367 - w354;
-            let w369 = w368 - w355;
-            let w370 = w369 - w339;
-            w371[k] = w370 - w340;
-            let w372 = w288 * w345[k];
-            let w373 = at0(k, w342) + w346;
-            let w374 = w373 - w344;
-            w375[k] = w374 - w372;
-            if k == 0 { inv_w375 = 1.0 / w375[0]; }
-            w376[k] = series::div(w371[k], &w375, &w376, inv_w375, k);
-            w379[k] = series::div(at0(k, w378), &w252, &w379, inv_w252, k);
-            w380[k] = series::mul(&w321, &w379, k);
-            let w381 = series::mul(&w252, &w380, k);
-            w385[k] = series::mul(&w257, &w379, k);
-            let w386 = series::mul(&w252, &w385, k);
-            let w387 = at0(k, w384) - w386;
-            w388[k] = series::div(w387, &w315, &w388, inv_w315, k);
-            w389[k] = series::mul(&w325, &w388, k);
-            let w390 = series::mul(&w290, &w389, k);
-            let w391 = w288 * w389[k];
-            let w392 = at0(k, w377) + w390;
-            let w393 = w392 - w381;
-            let w394 = w393 - w391;
-            w395[k] = series::div(w394, &w375, &w395, inv_w375, k);
-            let w404 = series::mul(&w239, &w379, k);
-            let w405 = series::mul(&w314, &w388, k);
-            let w406 = series::mul(&w371, &w395, k);
-            w411[k] = series::sq(&w379, k);
-            let w412 = series::mul(&w252, &w411, k);
-            w413[k] = series::sq(&w388, k);
-            let w414 = series::mul(&w290, &w413, k);
-            w415[k] = series::sq(&w395, k);
-            let w416 = series::mul(&w375, &w415, k);
-            let w417 = w2[k] * w285;
-            let w418 = w4[k] * w338;
-            let w419 = w6[k] * w403;
-            let w420 = w10[k] * w265;
-            let w421 = w11[k] * w328;
-            let w422 = w12[k] * w398;
-            let w423 = w35 * w53[k];
-            let w424 = w61 * w266;
-            let w425 = w273 * w402;
-            let w426 = w274 * w277;
-            let w427 = w275 * w332;
-            let w428 = w276 * w400;
-            let w429 = w420 + w421;
-            let w430 = w422 + w429;
-            let w431 = w423 + w430;
-            let w432 = w426 + w431;
-            let w433 = w427 + w432;
-            let w434 = w428 + w433;
-            let w435 = w434 - w417;
-            let w436 = w435 - w418;
-            let w437 = w436 - w419;
-            let w438 = w437 - w424;
-            let w439 = w438 - w425;
-            let w440 = w439 - w404;
-            let w441 = w440 - w405;
-            let w442 = w441 - w406;
-            let w443 = w288 * w413[k];
-            let w444 = at0(k, w410) + w414;
-            let w445 = w444 - w412;
-            let w446 = w445 - w443;
-            w447[k] = w446 - w416;
-            if k == 0 { inv_w447 = 1.0 / w447[0]; }
-            w448[k] = series::div(w442, &w447, &w448, inv_w447, k);
-            let w449 = series::mul(&w395, &w448, k);
-            w450[k] = w376[k] - w449;
-            let w451 = series::mul(&w325, &w450, k);
-            let w452 = series::mul(&w388, &w448, k);
-            let w453 = w316[k] - w451;
-            w454[k] = w453 - w452;
-            let w455 = series::mul(&w257, &w454, k);
-            let w456 = series::mul(&w321, &w450, k);
-            let w457 = series::mul(&w379, &w448, k);
-            let w458 = w253[k] - w455;
-            let w459 = w458 - w456;
-            let w460 = w459 - w457;
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            x[0][k + 1] = w0[k] * inv_k1;
-            x[1][k + 1] = w2[k] * inv_k1;
-            x[2][k + 1] = w4[k] * inv_k1;
-            x[3][k + 1] = w6[k] * inv_k1;
-            x[4][k + 1] = w460 * inv_k1;
-            x[5][k + 1] = w454[k] * inv_k1;
-            x[6][k + 1] = w450[k] * inv_k1;
-            x[7][k + 1] = w448[k] * inv_k1;
-        };
+    for k in 0..N - 1 {
+        w0[k] = x[4][k];
+        w2[k] = x[5][k];
+        w4[k] = x[6][k];
+        w6[k] = x[7][k];
+        w8[k] = x[0][k];
+        series::sin_cos(&w8, &mut d_w8, &mut sin_w8, &mut cos_w8, k);
+        w9[k] = cos_w8[k];
+        w10[k] = x[1][k];
+        w11[k] = x[2][k];
+        w12[k] = x[3][k];
+        w21[k] = ug[k];
+        let w44 = w10[k] * w41;
+        let w45 = w11[k] * w38;
+        let w46 = w12[k] * w35;
+        let w47 = w21[k] * w27;
+        let w48 = w44 + w45;
+        let w49 = w46 + w48;
+        let w50 = w49 - w47;
+        w51[k] = w50 - at0(k, w43);
+        let w52 = series::mul(&w9, &w51, k);
+        w53[k] = sin_w8[k];
+        let w55 = series::mul(&w10, &w21, k);
+        let w56 = series::mul(&w11, &w21, k);
+        let w57 = series::mul(&w12, &w21, k);
+        let w72 = w21[k] * w67;
+        let w73 = w55 * w65;
+        let w74 = w56 * w63;
+        let w75 = w57 * w61;
+        let w76 = w72 - w73;
+        let w77 = w76 - w74;
+        let w78 = w77 - w75;
+        w79[k] = w78 - at0(k, w71);
+        let w80 = series::mul(&w53, &w79, k);
+        w91[k] = series::mul(&w0, &w10, k);
+        w99[k] = series::mul(&w0, &w11, k);
+        w103[k] = series::mul(&w0, &w12, k);
+        let w116 = w0[k] * w112;
+        let w117 = w91[k] * w113;
+        let w118 = w99[k] * w114;
+        let w119 = w103[k] * w115;
+        let w120 = w116 + w117;
+        let w121 = w118 + w120;
+        w122[k] = w119 + w121;
+        let w123 = series::mul(&w2, &w122, k);
+        let w142 = w0[k] * w138;
+        let w143 = w91[k] * w139;
+        let w144 = w99[k] * w140;
+        let w145 = w103[k] * w141;
+        let w146 = w142 + w143;
+        let w147 = w144 + w146;
+        w148[k] = w145 + w147;
+        let w149 = series::mul(&w4, &w148, k);
+        let w167 = w0[k] * w163;
+        let w168 = w91[k] * w164;
+        let w169 = w99[k] * w165;
+        let w170 = w103[k] * w166;
+        let w171 = w167 + w168;
+        let w172 = w169 + w171;
+        w173[k] = w170 + w172;
+        let w174 = series::mul(&w6, &w173, k);
+        let w176 = w10[k] + w11[k];
+        let w177 = w12[k] + w176;
+        w178[k] = w177 - at0(k, w15);
+        let w179 = w10[k] * w107;
+        let w180 = w11[k] * w107;
+        let w181 = w12[k] * w107;
+        let w182 = w179 + w180;
+        let w183 = w181 + w182;
+        w184[k] = w183 - at0(k, w106);
+        let w185 = series::mul(&w178, &w184, k);
+        let w190 = w10[k] * w102;
+        let w191 = w11[k] * w136;
+        let w192 = w12[k] * w154;
+        let w193 = w190 + w191;
+        w194[k] = w192 + w193;
+        w195[k] = w12[k] * w85;
+        let w196 = series::mul(&w194, &w195, k);
+        let w197 = w10[k] * w155;
+        let w198 = w11[k] * w156;
+        let w199 = w12[k] * w157;
+        let w200 = w197 + w198;
+        w201[k] = w199 + w200;
+        let w202 = series::mul(&w12, &w201, k);
+        let w203 = w10[k] * w98;
+        let w204 = w11[k] * w128;
+        w205[k] = w203 + w204;
+        w206[k] = w11[k] * w85;
+        let w207 = series::mul(&w205, &w206, k);
+        let w208 = w10[k] * w129;
+        let w209 = w11[k] * w130;
+        w210[k] = w208 + w209;
+        let w211 = series::mul(&w11, &w210, k);
+        let w212 = series::sq(&w10, k);
+        let w236 = w52 - w80;
+        let w237 = w236 - w123;
+        let w238 = w237 - w149;
+        w239[k] = w238 - w174;
+        let w240 = w10[k] * w231;
+        let w241 = w11[k] * w227;
+        let w242 = w12[k] * w223;
+        let w243 = w212 * w213;
+        let w244 = w240 + w241;
+        let w245 = w242 + w244;
+        let w246 = w185 + w245;
+        let w247 = w196 + w246;
+        let w248 = w202 + w247;
+        let w249 = w207 + w248;
+        let w250 = w211 + w249;
+        let w251 = w243 + w250;
+        w252[k] = at0(k, w235) + w251;
+        if k == 0 { inv_w252 = 1.0 / w252[0]; }
+        w253[k] = series::div(w239[k], &w252, &w253, inv_w252, k);
+        w257[k] = series::div(at0(k, w256), &w252, &w257, inv_w252, k);
+        let w266 = series::mul(&w9, &w21, k);
+        let w273 = series::sq(&w0, k);
+        let w274 = series::mul(&w0, &w91, k);
+        let w275 = series::mul(&w0, &w99, k);
+        let w276 = series::mul(&w0, &w103, k);
+        let w286 = series::mul(&w239, &w257, k);
+        w289[k] = series::sq(&w257, k);
+        w290[k] = series::mul(&w252, &w289, k);
+        let w291 = w2[k] * w283;
+        let w292 = w4[k] * w284;
+        let w293 = w6[k] * w285;
+        let w294 = w10[k] * w272;
+        let w295 = w11[k] * w269;
+        let w296 = w12[k] * w265;
+        let w297 = w41 * w53[k];
+        let w298 = w65 * w266;
+        let w299 = w273 * w282;
+        let w300 = w274 * w280;
+        let w301 = w275 * w278;
+        let w302 = w276 * w277;
+        let w303 = w294 + w295;
+        let w304 = w296 + w303;
+        let w305 = w297 + w304;
+        let w306 = w300 + w305;
+        let w307 = w301 + w306;
+        let w308 = w302 + w307;
+        let w309 = w308 - w291;
+        let w310 = w309 - w292;
+        let w311 = w310 - w293;
+        let w312 = w311 - w298;
+        let w313 = w312 - w299;
+        w314[k] = w313 - w286;
+        w315[k] = at0(k, w288) - w290[k];
+        if k == 0 { inv_w315 = 1.0 / w315[0]; }
+        w316[k] = series::div(w314[k], &w315, &w316, inv_w315, k);
+        w321[k] = series::div(at0(k, w320), &w252, &w321, inv_w252, k);
+        w322[k] = series::mul(&w257, &w321, k);
+        let w323 = series::mul(&w252, &w322, k);
+        let w324 = at0(k, w317) - w323;
+        w325[k] = series::div(w324, &w315, &w325, inv_w315, k);
+        let w339 = series::mul(&w239, &w321, k);
+        let w340 = series::mul(&w314, &w325, k);
+        w343[k] = series::sq(&w321, k);
+        let w344 = series::mul(&w252, &w343, k);
+        w345[k] = series::sq(&w325, k);
+        let w346 = series::mul(&w290, &w345, k);
+        let w347 = w2[k] * w284;
+        let w348 = w4[k] * w337;
+        let w349 = w6[k] * w338;
+        let w350 = w10[k] * w269;
+        let w351 = w11[k] * w331;
+        let w352 = w12[k] * w328;
+        let w353 = w38 * w53[k];
+        let w354 = w63 * w266;
+        let w355 = w273 * w336;
+        let w356 = w274 * w278;
+        let w357 = w275 * w334;
+        let w358 = w276 * w332;
+        let w359 = w350 + w351;
+        let w360 = w352 + w359;
+        let w361 = w353 + w360;
+        let w362 = w356 + w361;
+        let w363 = w357 + w362;
+        let w364 = w358 + w363;
+        let w365 = w364 - w347;
+        let w366 = w365 - w348;
+        let w367 = w366 - w349;
+        let w368 = w367 - w354;
+        let w369 = w368 - w355;
+        let w370 = w369 - w339;
+        w371[k] = w370 - w340;
+        let w372 = w288 * w345[k];
+        let w373 = at0(k, w342) + w346;
+        let w374 = w373 - w344;
+        w375[k] = w374 - w372;
+        if k == 0 { inv_w375 = 1.0 / w375[0]; }
+        w376[k] = series::div(w371[k], &w375, &w376, inv_w375, k);
+        w379[k] = series::div(at0(k, w378), &w252, &w379, inv_w252, k);
+        w380[k] = series::mul(&w321, &w379, k);
+        let w381 = series::mul(&w252, &w380, k);
+        w385[k] = series::mul(&w257, &w379, k);
+        let w386 = series::mul(&w252, &w385, k);
+        let w387 = at0(k, w384) - w386;
+        w388[k] = series::div(w387, &w315, &w388, inv_w315, k);
+        w389[k] = series::mul(&w325, &w388, k);
+        let w390 = series::mul(&w290, &w389, k);
+        let w391 = w288 * w389[k];
+        let w392 = at0(k, w377) + w390;
+        let w393 = w392 - w381;
+        let w394 = w393 - w391;
+        w395[k] = series::div(w394, &w375, &w395, inv_w375, k);
+        let w404 = series::mul(&w239, &w379, k);
+        let w405 = series::mul(&w314, &w388, k);
+        let w406 = series::mul(&w371, &w395, k);
+        w411[k] = series::sq(&w379, k);
+        let w412 = series::mul(&w252, &w411, k);
+        w413[k] = series::sq(&w388, k);
+        let w414 = series::mul(&w290, &w413, k);
+        w415[k] = series::sq(&w395, k);
+        let w416 = series::mul(&w375, &w415, k);
+        let w417 = w2[k] * w285;
+        let w418 = w4[k] * w338;
+        let w419 = w6[k] * w403;
+        let w420 = w10[k] * w265;
+        let w421 = w11[k] * w328;
+        let w422 = w12[k] * w398;
+        let w423 = w35 * w53[k];
+        let w424 = w61 * w266;
+        let w425 = w273 * w402;
+        let w426 = w274 * w277;
+        let w427 = w275 * w332;
+        let w428 = w276 * w400;
+        let w429 = w420 + w421;
+        let w430 = w422 + w429;
+        let w431 = w423 + w430;
+        let w432 = w426 + w431;
+        let w433 = w427 + w432;
+        let w434 = w428 + w433;
+        let w435 = w434 - w417;
+        let w436 = w435 - w418;
+        let w437 = w436 - w419;
+        let w438 = w437 - w424;
+        let w439 = w438 - w425;
+        let w440 = w439 - w404;
+        let w441 = w440 - w405;
+        let w442 = w441 - w406;
+        let w443 = w288 * w413[k];
+        let w444 = at0(k, w410) + w414;
+        let w445 = w444 - w412;
+        let w446 = w445 - w443;
+        w447[k] = w446 - w416;
+        if k == 0 { inv_w447 = 1.0 / w447[0]; }
+        w448[k] = series::div(w442, &w447, &w448, inv_w447, k);
+        let w449 = series::mul(&w395, &w448, k);
+        w450[k] = w376[k] - w449;
+        let w451 = series::mul(&w325, &w450, k);
+        let w452 = series::mul(&w388, &w448, k);
+        let w453 = w316[k] - w451;
+        w454[k] = w453 - w452;
+        let w455 = series::mul(&w257, &w454, k);
+        let w456 = series::mul(&w321, &w450, k);
+        let w457 = series::mul(&w379, &w448, k);
+        let w458 = w253[k] - w455;
+        let w459 = w458 - w456;
+        let w460 = w459 - w457;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        x[0][k + 1] = w0[k] * inv_k1;
+        x[1][k + 1] = w2[k] * inv_k1;
+        x[2][k + 1] = w4[k] * inv_k1;
+        x[3][k + 1] = w6[k] * inv_k1;
+        x[4][k + 1] = w460 * inv_k1;
+        x[5][k + 1] = w454[k] * inv_k1;
+        x[6][k + 1] = w450[k] * inv_k1;
+        x[7][k + 1] = w448[k] * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// Taylor coefficients of the solution of `x' = rocking_rhs_free(..)`: on entry `x[i][0]` holds
@@ -859,293 +832,266 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 8], s: f64, p: &Param
     let mut w447 = [0.0f64; N];
     let mut w449 = [0.0f64; N];
     let mut w453 = [0.0f64; N];
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w0[k] = x[4][k];
-            w2[k] = x[5][k];
-            w4[k] = x[6][k];
-            w6[k] = x[7][k];
-            w8[k] = x[0][k];
-            series::sin_cos(&w8, &mut d_w8, &mut sin_w8, &mut cos_w8, k);
-            w9[k] = cos_w8[k];
-            w10[k] = x[1][k];
-            w11[k] = x[2][k];
-            w12[k] = x[3][k];
-            let w47 = w10[k] * w44;
-            let w48 = w11[k] * w41;
-            let w49 = w12[k] * w38;
-            let w50 = w47 + w48;
-            let w51 = w49 + w50;
-            w52[k] = w51 - at0(k, w46);
-            let w53 = series::mul(&w9, &w52, k);
-            w54[k] = sin_w8[k];
-            let w72 = w10[k] * w64;
-            let w73 = w11[k] * w62;
-            let w74 = w12[k] * w60;
-            let w75 = at0(k, w71) - w72;
-            let w76 = w75 - w73;
-            w77[k] = w76 - w74;
-            let w78 = series::mul(&w54, &w77, k);
-            w89[k] = series::mul(&w0, &w10, k);
-            w97[k] = series::mul(&w0, &w11, k);
-            w101[k] = series::mul(&w0, &w12, k);
-            let w114 = w0[k] * w110;
-            let w115 = w89[k] * w111;
-            let w116 = w97[k] * w112;
-            let w117 = w101[k] * w113;
-            let w118 = w114 + w115;
-            let w119 = w116 + w118;
-            w120[k] = w117 + w119;
-            let w121 = series::mul(&w2, &w120, k);
-            let w140 = w0[k] * w136;
-            let w141 = w89[k] * w137;
-            let w142 = w97[k] * w138;
-            let w143 = w101[k] * w139;
-            let w144 = w140 + w141;
-            let w145 = w142 + w144;
-            w146[k] = w143 + w145;
-            let w147 = series::mul(&w4, &w146, k);
-            let w165 = w0[k] * w161;
-            let w166 = w89[k] * w162;
-            let w167 = w97[k] * w163;
-            let w168 = w101[k] * w164;
-            let w169 = w165 + w166;
-            let w170 = w167 + w169;
-            w171[k] = w168 + w170;
-            let w172 = series::mul(&w6, &w171, k);
-            let w174 = w10[k] + w11[k];
-            let w175 = w12[k] + w174;
-            w176[k] = w175 - at0(k, w15);
-            let w177 = w10[k] * w105;
-            let w178 = w11[k] * w105;
-            let w179 = w12[k] * w105;
-            let w180 = w177 + w178;
-            let w181 = w179 + w180;
-            w182[k] = w181 - at0(k, w104);
-            let w183 = series::mul(&w176, &w182, k);
-            let w188 = w10[k] * w100;
-            let w189 = w11[k] * w134;
-            let w190 = w12[k] * w152;
-            let w191 = w188 + w189;
-            w192[k] = w190 + w191;
-            w193[k] = w12[k] * w83;
-            let w194 = series::mul(&w192, &w193, k);
-            let w195 = w10[k] * w153;
-            let w196 = w11[k] * w154;
-            let w197 = w12[k] * w155;
-            let w198 = w195 + w196;
-            w199[k] = w197 + w198;
-            let w200 = series::mul(&w12, &w199, k);
-            let w201 = w10[k] * w96;
-            let w202 = w11[k] * w126;
-            w203[k] = w201 + w202;
-            w204[k] = w11[k] * w83;
-            let w205 = series::mul(&w203, &w204, k);
-            let w206 = w10[k] * w127;
-            let w207 = w11[k] * w128;
-            w208[k] = w206 + w207;
-            let w209 = series::mul(&w11, &w208, k);
-            let w210 = series::sq(&w10, k);
-            let w235 = w53 - w78;
-            let w236 = w235 - w121;
-            let w237 = w236 - w147;
-            w238[k] = w237 - w172;
-            let w239 = w10[k] * w229;
-            let w240 = w11[k] * w225;
-            let w241 = w12[k] * w221;
-            let w242 = w210 * w211;
-            let w243 = w239 + w240;
-            let w244 = w241 + w243;
-            let w245 = w183 + w244;
-            let w246 = w194 + w245;
-            let w247 = w200 + w246;
-            let w248 = w205 + w247;
-            let w249 = w209 + w248;
-            let w250 = w242 + w249;
-            w251[k] = at0(k, w234) + w250;
-            if k == 0 { inv_w251 = 1.0 / w251[0]; }
-            w252[k] = series::div(w238[k], &w251, &w252, inv_w251, k);
-            w257[k] = series::div(at0(k, w256), &w251, &w257, inv_w251, k);
-            let w272 = series::sq(&w0, k);
-            let w273 = series::mul(&w0, &w89, k);
-            let w274 = series::mul(&w0, &w97, k);
-            let w275 = series::mul(&w0, &w101, k);
-            let w285 = series::mul(&w238, &w257, k);
-            w288[k] = series::sq(&w257, k);
-            w289[k] = series::mul(&w251, &w288, k);
-            let w290 = w2[k] * w282;
-            let w291 = w4[k] * w283;
-            let w292 = w6[k] * w284;
-            let w293 = w9[k] * w64;
-            let w294 = w10[k] * w271;
-            let w295 = w11[k] * w268;
-            let w296 = w12[k] * w265;
-            let w297 = w44 * w54[k];
-            let w298 = w272 * w281;
-            let w299 = w273 * w279;
-            let w300 = w274 * w277;
-            let w301 = w275 * w276;
-            let w302 = w294 + w295;
-            let w303 = w296 + w302;
-            let w304 = w297 + w303;
-            let w305 = w299 + w304;
-            let w306 = w300 + w305;
-            let w307 = w301 + w306;
-            let w308 = w307 - w290;
-            let w309 = w308 - w291;
-            let w310 = w309 - w292;
-            let w311 = w310 - w293;
-            let w312 = w311 - w298;
-            w313[k] = w312 - w285;
-            w314[k] = at0(k, w287) - w289[k];
-            if k == 0 { inv_w314 = 1.0 / w314[0]; }
-            w315[k] = series::div(w313[k], &w314, &w315, inv_w314, k);
-            w320[k] = series::div(at0(k, w319), &w251, &w320, inv_w251, k);
-            w321[k] = series::mul(&w257, &w320, k);
-            let w322 = series::mul(&w251, &w321, k);
-            let w323 = at0(k, w316) - w322;
-            w324[k] = series::div(w323, &w314, &w324, inv_w314, k);
-            let w338 = series::mul(&w238, &w320, k);
-            let w339 = series::mul(&w313, &w324, k);
-            w342[k] = series::sq(&w320, k);
-            let w343 = series::mul(&w251, &w342, k);
-            w344[k] = series::sq(&w324, k);
-            let w345 = series::mul(&w289, &w344, k);
-            let w346 = w2[k] * w283;
-            let w347 = w4[k] * w336;
-            let w348 = w6[k] * w337;
-            let w349 = w9[k] * w62;
-            let w350 = w10[k] * w268;
-            let w351 = w11[k] * w330;
-            let w352 = w12[k] * w327;
-            let w353 = w41 * w54[k];
-            let w354 = w272 * w335;
-            let w355 = w273 * w277;
-            let w356 = w274 * w333;
-            let w357 = w275 * w331;
-            let w358 = w350 + w351;
-            let w359 = w352 + w358;
-            let w360 = w353 + w359;
-            let w361 = w355 + w360;
-            let w362 = w356 + w361;
-            let w363 = w357 + w362;
-            let w364 = w363 - w346;
-            let w365 = w364 - w347;
-            let w366 = w365 - w348;
-            let w367 = w366 - w349;
-            let w368 = w367 - w354;
-            let w369 = w368 - w338;
-            w370[k] = w369 - w339;
-            let w371 = w287 * w344[k];
-            let w372 = at0(k, w341) + w345;
-            let w373 = w372 - w343;
-            w374[k] = w373 - w371;
-            if k == 0 { inv_w374 = 1.0 / w374[0]; }
-            w375[k] = series::div(w370[k], &w374, &w375, inv_w374, k);
-            w378[k] = series::div(at0(k, w377), &w251, &w378, inv_w251, k);
-            w379[k] = series::mul(&w320, &w378, k);
-            let w380 = series::mul(&w251, &w379, k);
-            w384[k] = series::mul(&w257, &w378, k);
-            let w385 = series::mul(&w251, &w384, k);
-            let w386 = at0(k, w383) - w385;
-            w387[k] = series::div(w386, &w314, &w387, inv_w314, k);
-            w388[k] = series::mul(&w324, &w387, k);
-            let w389 = series::mul(&w289, &w388, k);
-            let w390 = w287 * w388[k];
-            let w391 = at0(k, w376) + w389;
-            let w392 = w391 - w380;
-            let w393 = w392 - w390;
-            w394[k] = series::div(w393, &w374, &w394, inv_w374, k);
-            let w403 = series::mul(&w238, &w378, k);
-            let w404 = series::mul(&w313, &w387, k);
-            let w405 = series::mul(&w370, &w394, k);
-            w410[k] = series::sq(&w378, k);
-            let w411 = series::mul(&w251, &w410, k);
-            w412[k] = series::sq(&w387, k);
-            let w413 = series::mul(&w289, &w412, k);
-            w414[k] = series::sq(&w394, k);
-            let w415 = series::mul(&w374, &w414, k);
-            let w416 = w2[k] * w284;
-            let w417 = w4[k] * w337;
-            let w418 = w6[k] * w402;
-            let w419 = w9[k] * w60;
-            let w420 = w10[k] * w265;
-            let w421 = w11[k] * w327;
-            let w422 = w12[k] * w397;
-            let w423 = w38 * w54[k];
-            let w424 = w272 * w401;
-            let w425 = w273 * w276;
-            let w426 = w274 * w331;
-            let w427 = w275 * w399;
-            let w428 = w420 + w421;
-            let w429 = w422 + w428;
-            let w430 = w423 + w429;
-            let w431 = w425 + w430;
-            let w432 = w426 + w431;
-            let w433 = w427 + w432;
-            let w434 = w433 - w416;
-            let w435 = w434 - w417;
-            let w436 = w435 - w418;
-            let w437 = w436 - w419;
-            let w438 = w437 - w424;
-            let w439 = w438 - w403;
-            let w440 = w439 - w404;
-            let w441 = w440 - w405;
-            let w442 = w287 * w412[k];
-            let w443 = at0(k, w409) + w413;
-            let w444 = w443 - w411;
-            let w445 = w444 - w442;
-            w446[k] = w445 - w415;
-            if k == 0 { inv_w446 = 1.0 / w446[0]; }
-            w447[k] = series::div(w441, &w446, &w447, inv_w446, k);
-            let w448 = series::mul(&w394, &w447, k);
-            w449[k] = w375[k] - w448;
-            let w450 = series::mul(&w324, &w449, k);
-            let w451 = series::mul(&w387, &w447, k);
-            let w452 = w315[k] - w450;
-            w453[k] = w452 - w451;
-            let w454 = series::mul(&w257, &w453, k);
-            let w455 = series::mul(&w320, &w449, k);
-            let w456 = series::mul(&w378, &w447, k);
-            let w457 = w252[k] - w454;
-            let w458 = w457 - w455;
-            let w459 = w458 - w456;
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            x[0][k + 1] = w0[k] * inv_k1;
-            x[1][k + 1] = w2[k] * inv_k1;
-            x[2][k + 1] = w4[k] * inv_k1;
-            x[3][k + 1] = w6[k] * inv_k1;
-            x[4][k + 1] = w459 * inv_k1;
-            x[5][k + 1] = w453[k] * inv_k1;
-            x[6][k + 1] = w449[k] * inv_k1;
-            x[7][k + 1] = w447[k] * inv_k1;
-        };
+    for k in 0..N - 1 {
+        w0[k] = x[4][k];
+        w2[k] = x[5][k];
+        w4[k] = x[6][k];
+        w6[k] = x[7][k];
+        w8[k] = x[0][k];
+        series::sin_cos(&w8, &mut d_w8, &mut sin_w8, &mut cos_w8, k);
+        w9[k] = cos_w8[k];
+        w10[k] = x[1][k];
+        w11[k] = x[2][k];
+        w12[k] = x[3][k];
+        let w47 = w10[k] * w44;
+        let w48 = w11[k] * w41;
+        let w49 = w12[k] * w38;
+        let w50 = w47 + w48;
+        let w51 = w49 + w50;
+        w52[k] = w51 - at0(k, w46);
+        let w53 = series::mul(&w9, &w52, k);
+        w54[k] = sin_w8[k];
+        let w72 = w10[k] * w64;
+        let w73 = w11[k] * w62;
+        let w74 = w12[k] * w60;
+        let w75 = at0(k, w71) - w72;
+        let w76 = w75 - w73;
+        w77[k] = w76 - w74;
+        let w78 = series::mul(&w54, &w77, k);
+        w89[k] = series::mul(&w0, &w10, k);
+        w97[k] = series::mul(&w0, &w11, k);
+        w101[k] = series::mul(&w0, &w12, k);
+        let w114 = w0[k] * w110;
+        let w115 = w89[k] * w111;
+        let w116 = w97[k] * w112;
+        let w117 = w101[k] * w113;
+        let w118 = w114 + w115;
+        let w119 = w116 + w118;
+        w120[k] = w117 + w119;
+        let w121 = series::mul(&w2, &w120, k);
+        let w140 = w0[k] * w136;
+        let w141 = w89[k] * w137;
+        let w142 = w97[k] * w138;
+        let w143 = w101[k] * w139;
+        let w144 = w140 + w141;
+        let w145 = w142 + w144;
+        w146[k] = w143 + w145;
+        let w147 = series::mul(&w4, &w146, k);
+        let w165 = w0[k] * w161;
+        let w166 = w89[k] * w162;
+        let w167 = w97[k] * w163;
+        let w168 = w101[k] * w164;
+        let w169 = w165 + w166;
+        let w170 = w167 + w169;
+        w171[k] = w168 + w170;
+        let w172 = series::mul(&w6, &w171, k);
+        let w174 = w10[k] + w11[k];
+        let w175 = w12[k] + w174;
+        w176[k] = w175 - at0(k, w15);
+        let w177 = w10[k] * w105;
+        let w178 = w11[k] * w105;
+        let w179 = w12[k] * w105;
+        let w180 = w177 + w178;
+        let w181 = w179 + w180;
+        w182[k] = w181 - at0(k, w104);
+        let w183 = series::mul(&w176, &w182, k);
+        let w188 = w10[k] * w100;
+        let w189 = w11[k] * w134;
+        let w190 = w12[k] * w152;
+        let w191 = w188 + w189;
+        w192[k] = w190 + w191;
+        w193[k] = w12[k] * w83;
+        let w194 = series::mul(&w192, &w193, k);
+        let w195 = w10[k] * w153;
+        let w196 = w11[k] * w154;
+        let w197 = w12[k] * w155;
+        let w198 = w195 + w196;
+        w199[k] = w197 + w198;
+        let w200 = series::mul(&w12, &w199, k);
+        let w201 = w10[k] * w96;
+        let w202 = w11[k] * w126;
+        w203[k] = w201 + w202;
+        w204[k] = w11[k] * w83;
+        let w205 = series::mul(&w203, &w204, k);
+        let w206 = w10[k] * w127;
+        let w207 = w11[k] * w128;
+        w208[k] = w206 + w207;
+        let w209 = series::mul(&w11, &w208, k);
+        let w210 = series::sq(&w10, k);
+        let w235 = w53 - w78;
+        let w236 = w235 - w121;
+        let w237 = w236 - w147;
+        w238[k] = w237 - w172;
+        let w239 = w10[k] * w229;
+        let w240 = w11[k] * w225;
+        let w241 = w12[k] * w221;
+        let w242 = w210 * w211;
+        let w243 = w239 + w240;
+        let w244 = w241 + w243;
+        let w245 = w183 + w244;
+        let w246 = w194 + w245;
+        let w247 = w200 + w246;
+        let w248 = w205 + w247;
+        let w249 = w209 + w248;
+        let w250 = w242 + w249;
+        w251[k] = at0(k, w234) + w250;
+        if k == 0 { inv_w251 = 1.0 / w251[0]; }
+        w252[k] = series::div(w238[k], &w251, &w252, inv_w251, k);
+        w257[k] = series::div(at0(k, w256), &w251, &w257, inv_w251, k);
+        let w272 = series::sq(&w0, k);
+        let w273 = series::mul(&w0, &w89, k);
+        let w274 = series::mul(&w0, &w97, k);
+        let w275 = series::mul(&w0, &w101, k);
+        let w285 = series::mul(&w238, &w257, k);
+        w288[k] = series::sq(&w257, k);
+        w289[k] = series::mul(&w251, &w288, k);
+        let w290 = w2[k] * w282;
+        let w291 = w4[k] * w283;
+        let w292 = w6[k] * w284;
+        let w293 = w9[k] * w64;
+        let w294 = w10[k] * w271;
+        let w295 = w11[k] * w268;
+        let w296 = w12[k] * w265;
+        let w297 = w44 * w54[k];
+        let w298 = w272 * w281;
+        let w299 = w273 * w279;
+        let w300 = w274 * w277;
+        let w301 = w275 * w276;
+        let w302 = w294 + w295;
+        let w303 = w296 + w302;
+        let w304 = w297 + w303;
+        let w305 = w299 + w304;
+        let w306 = w300 + w305;
+        let w307 = w301 + w306;
+        let w308 = w307 - w290;
+        let w309 = w308 - w291;
+        let w310 = w309 - w292;
+        let w311 = w310 - w293;
+        let w312 = w311 - w298;
+        w313[k] = w312 - w285;
+        w314[k] = at0(k, w287) - w289[k];
+        if k == 0 { inv_w314 = 1.0 / w314[0]; }
+        w315[k] = series::div(w313[k], &w314, &w315, inv_w314, k);
+        w320[k] = series::div(at0(k, w319), &w251, &w320, inv_w251, k);
+        w321[k] = series::mul(&w257, &w320, k);
+        let w322 = series::mul(&w251, &w321, k);
+        let w323 = at0(k, w316) - w322;
+        w324[k] = series::div(w323, &w314, &w324, inv_w314, k);
+        let w338 = series::mul(&w238, &w320, k);
+        let w339 = series::mul(&w313, &w324, k);
+        w342[k] = series::sq(&w320, k);
+        let w343 = series::mul(&w251, &w342, k);
+        w344[k] = series::sq(&w324, k);
+        let w345 = series::mul(&w289, &w344, k);
+        let w346 = w2[k] * w283;
+        let w347 = w4[k] * w336;
+        let w348 = w6[k] * w337;
+        let w349 = w9[k] * w62;
+        let w350 = w10[k] * w268;
+        let w351 = w11[k] * w330;
+        let w352 = w12[k] * w327;
+        let w353 = w41 * w54[k];
+        let w354 = w272 * w335;
+        let w355 = w273 * w277;
+        let w356 = w274 * w333;
+        let w357 = w275 * w331;
+        let w358 = w350 + w351;
+        let w359 = w352 + w358;
+        let w360 = w353 + w359;
+        let w361 = w355 + w360;
+        let w362 = w356 + w361;
+        let w363 = w357 + w362;
+        let w364 = w363 - w346;
+        let w365 = w364 - w347;
+        let w366 = w365 - w348;
+        let w367 = w366 - w349;
+        let w368 = w367 - w354;
+        let w369 = w368 - w338;
+        w370[k] = w369 - w339;
+        let w371 = w287 * w344[k];
+        let w372 = at0(k, w341) + w345;
+        let w373 = w372 - w343;
+        w374[k] = w373 - w371;
+        if k == 0 { inv_w374 = 1.0 / w374[0]; }
+        w375[k] = series::div(w370[k], &w374, &w375, inv_w374, k);
+        w378[k] = series::div(at0(k, w377), &w251, &w378, inv_w251, k);
+        w379[k] = series::mul(&w320, &w378, k);
+        let w380 = series::mul(&w251, &w379, k);
+        w384[k] = series::mul(&w257, &w378, k);
+        let w385 = series::mul(&w251, &w384, k);
+        let w386 = at0(k, w383) - w385;
+        w387[k] = series::div(w386, &w314, &w387, inv_w314, k);
+        w388[k] = series::mul(&w324, &w387, k);
+        let w389 = series::mul(&w289, &w388, k);
+        let w390 = w287 * w388[k];
+        let w391 = at0(k, w376) + w389;
+        let w392 = w391 - w380;
+        let w393 = w392 - w390;
+        w394[k] = series::div(w393, &w374, &w394, inv_w374, k);
+        let w403 = series::mul(&w238, &w378, k);
+        let w404 = series::mul(&w313, &w387, k);
+        let w405 = series::mul(&w370, &w394, k);
+        w410[k] = series::sq(&w378, k);
+        let w411 = series::mul(&w251, &w410, k);
+        w412[k] = series::sq(&w387, k);
+        let w413 = series::mul(&w289, &w412, k);
+        w414[k] = series::sq(&w394, k);
+        let w415 = series::mul(&w374, &w414, k);
+        let w416 = w2[k] * w284;
+        let w417 = w4[k] * w337;
+        let w418 = w6[k] * w402;
+        let w419 = w9[k] * w60;
+        let w420 = w10[k] * w265;
+        let w421 = w11[k] * w327;
+        let w422 = w12[k] * w397;
+        let w423 = w38 * w54[k];
+        let w424 = w272 * w401;
+        let w425 = w273 * w276;
+        let w426 = w274 * w331;
+        let w427 = w275 * w399;
+        let w428 = w420 + w421;
+        let w429 = w422 + w428;
+        let w430 = w423 + w429;
+        let w431 = w425 + w430;
+        let w432 = w426 + w431;
+        let w433 = w427 + w432;
+        let w434 = w433 - w416;
+        let w435 = w434 - w417;
+        let w436 = w435 - w418;
+        let w437 = w436 - w419;
+        let w438 = w437 - w424;
+        let w439 = w438 - w403;
+        let w440 = w439 - w404;
+        let w441 = w440 - w405;
+        let w442 = w287 * w412[k];
+        let w443 = at0(k, w409) + w413;
+        let w444 = w443 - w411;
+        let w445 = w444 - w442;
+        w446[k] = w445 - w415;
+        if k == 0 { inv_w446 = 1.0 / w446[0]; }
+        w447[k] = series::div(w441, &w446, &w447, inv_w446, k);
+        let w448 = series::mul(&w394, &w447, k);
+        w449[k] = w375[k] - w448;
+        let w450 = series::mul(&w324, &w449, k);
+        let w451 = series::mul(&w387, &w447, k);
+        let w452 = w315[k] - w450;
+        w453[k] = w452 - w451;
+        let w454 = series::mul(&w257, &w453, k);
+        let w455 = series::mul(&w320, &w449, k);
+        let w456 = series::mul(&w378, &w447, k);
+        let w457 = w252[k] - w454;
+        let w458 = w457 - w455;
+        let w459 = w458 - w456;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        x[0][k + 1] = w0[k] * inv_k1;
+        x[1][k + 1] = w2[k] * inv_k1;
+        x[2][k + 1] = w4[k] * inv_k1;
+        x[3][k + 1] = w6[k] * inv_k1;
+        x[4][k + 1] = w459 * inv_k1;
+        x[5][k + 1] = w453[k] * inv_k1;
+        x[6][k + 1] = w449[k] * inv_k1;
+        x[7][k + 1] = w447[k] * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// Taylor coefficients of the solution of `xc' = contact_rhs(..)`: on entry `xc[i][0]` holds
@@ -1339,88 +1285,61 @@ pub fn contact_rhs<const N: usize>(xc: &mut [[f64; N]; 6], ug: &[f64; N], p: &Pa
     let w194: f64 = w44 + w187;
     let w195: f64 = w45 - w188;
     let w196: f64 = w46 - w189;
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let w0 = xc[3][k];
-            let w2 = xc[4][k];
-            let w4 = xc[5][k];
-            let w14 = xc[2][k];
-            let w17 = ug[k];
-            let w24 = xc[1][k];
-            let w26 = xc[0][k];
-            let w197 = w0 * w190;
-            let w198 = w2 * w191;
-            let w199 = w4 * w192;
-            let w200 = w14 * w193;
-            let w201 = w17 * w194;
-            let w202 = w24 * w195;
-            let w203 = w26 * w196;
-            let w204 = w200 + w202;
-            let w205 = w203 + w204;
-            let w206 = w205 - w197;
-            let w207 = w206 - w198;
-            let w208 = w207 - w199;
-            let w209 = w208 - w201;
-            let w211 = w0 * w162;
-            let w212 = w2 * w163;
-            let w213 = w4 * w164;
-            let w214 = w14 * w165;
-            let w215 = w17 * w166;
-            let w216 = w24 * w167;
-            let w217 = w26 * w168;
-            let w218 = w211 + w212;
-            let w219 = w213 + w218;
-            let w220 = w214 + w219;
-            let w221 = w215 + w220;
-            let w222 = w216 + w221;
-            let w223 = w217 + w222;
-            let w225 = w0 * w148;
-            let w226 = w2 * w149;
-            let w227 = w4 * w150;
-            let w228 = w14 * w151;
-            let w229 = w17 * w152;
-            let w230 = w24 * w153;
-            let w231 = w26 * w154;
-            let w232 = w228 + w230;
-            let w233 = w231 + w232;
-            let w234 = w233 - w225;
-            let w235 = w234 - w226;
-            let w236 = w235 - w227;
-            let w237 = w236 - w229;
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            xc[0][k + 1] = w0 * inv_k1;
-            xc[1][k + 1] = w2 * inv_k1;
-            xc[2][k + 1] = w4 * inv_k1;
-            xc[3][k + 1] = w209 * inv_k1;
-            xc[4][k + 1] = w223 * inv_k1;
-            xc[5][k + 1] = w237 * inv_k1;
-        };
+    for k in 0..N - 1 {
+        let w0 = xc[3][k];
+        let w2 = xc[4][k];
+        let w4 = xc[5][k];
+        let w14 = xc[2][k];
+        let w17 = ug[k];
+        let w24 = xc[1][k];
+        let w26 = xc[0][k];
+        let w197 = w0 * w190;
+        let w198 = w2 * w191;
+        let w199 = w4 * w192;
+        let w200 = w14 * w193;
+        let w201 = w17 * w194;
+        let w202 = w24 * w195;
+        let w203 = w26 * w196;
+        let w204 = w200 + w202;
+        let w205 = w203 + w204;
+        let w206 = w205 - w197;
+        let w207 = w206 - w198;
+        let w208 = w207 - w199;
+        let w209 = w208 - w201;
+        let w211 = w0 * w162;
+        let w212 = w2 * w163;
+        let w213 = w4 * w164;
+        let w214 = w14 * w165;
+        let w215 = w17 * w166;
+        let w216 = w24 * w167;
+        let w217 = w26 * w168;
+        let w218 = w211 + w212;
+        let w219 = w213 + w218;
+        let w220 = w214 + w219;
+        let w221 = w215 + w220;
+        let w222 = w216 + w221;
+        let w223 = w217 + w222;
+        let w225 = w0 * w148;
+        let w226 = w2 * w149;
+        let w227 = w4 * w150;
+        let w228 = w14 * w151;
+        let w229 = w17 * w152;
+        let w230 = w24 * w153;
+        let w231 = w26 * w154;
+        let w232 = w228 + w230;
+        let w233 = w231 + w232;
+        let w234 = w233 - w225;
+        let w235 = w234 - w226;
+        let w236 = w235 - w227;
+        let w237 = w236 - w229;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        xc[0][k + 1] = w0 * inv_k1;
+        xc[1][k + 1] = w2 * inv_k1;
+        xc[2][k + 1] = w4 * inv_k1;
+        xc[3][k + 1] = w209 * inv_k1;
+        xc[4][k + 1] = w223 * inv_k1;
+        xc[5][k + 1] = w237 * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// Taylor coefficients of the solution of `xc' = contact_rhs_free(..)`: on entry `xc[i][0]` holds
@@ -1618,84 +1537,57 @@ pub fn contact_rhs_free<const N: usize>(xc: &mut [[f64; N]; 6], p: &Params) {
     let w196: f64 = w46 - w189;
     let w197: f64 = w47 - w190;
     let w198: f64 = w48 + w191;
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let w0 = xc[3][k];
-            let w2 = xc[4][k];
-            let w4 = xc[5][k];
-            let w14 = xc[2][k];
-            let w26 = xc[1][k];
-            let w28 = xc[0][k];
-            let w199 = w0 * w192;
-            let w200 = w2 * w193;
-            let w201 = w4 * w194;
-            let w202 = w14 * w195;
-            let w203 = w26 * w196;
-            let w204 = w28 * w197;
-            let w205 = w202 + w203;
-            let w206 = w204 + w205;
-            let w207 = w206 - w199;
-            let w208 = w207 - w200;
-            let w209 = w208 - w201;
-            let w210 = w209 - at0(k, w198);
-            let w212 = w0 * w164;
-            let w213 = w2 * w165;
-            let w214 = w4 * w166;
-            let w215 = w14 * w167;
-            let w216 = w26 * w168;
-            let w217 = w28 * w169;
-            let w218 = w212 + w213;
-            let w219 = w214 + w218;
-            let w220 = w215 + w219;
-            let w221 = w216 + w220;
-            let w222 = w217 + w221;
-            let w223 = at0(k, w170) + w222;
-            let w225 = w0 * w150;
-            let w226 = w2 * w151;
-            let w227 = w4 * w152;
-            let w228 = w14 * w153;
-            let w229 = w26 * w154;
-            let w230 = w28 * w155;
-            let w231 = w228 + w229;
-            let w232 = w230 + w231;
-            let w233 = w232 - w225;
-            let w234 = w233 - w226;
-            let w235 = w234 - w227;
-            let w236 = w235 - at0(k, w156);
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            xc[0][k + 1] = w0 * inv_k1;
-            xc[1][k + 1] = w2 * inv_k1;
-            xc[2][k + 1] = w4 * inv_k1;
-            xc[3][k + 1] = w210 * inv_k1;
-            xc[4][k + 1] = w223 * inv_k1;
-            xc[5][k + 1] = w236 * inv_k1;
-        };
+    for k in 0..N - 1 {
+        let w0 = xc[3][k];
+        let w2 = xc[4][k];
+        let w4 = xc[5][k];
+        let w14 = xc[2][k];
+        let w26 = xc[1][k];
+        let w28 = xc[0][k];
+        let w199 = w0 * w192;
+        let w200 = w2 * w193;
+        let w201 = w4 * w194;
+        let w202 = w14 * w195;
+        let w203 = w26 * w196;
+        let w204 = w28 * w197;
+        let w205 = w202 + w203;
+        let w206 = w204 + w205;
+        let w207 = w206 - w199;
+        let w208 = w207 - w200;
+        let w209 = w208 - w201;
+        let w210 = w209 - at0(k, w198);
+        let w212 = w0 * w164;
+        let w213 = w2 * w165;
+        let w214 = w4 * w166;
+        let w215 = w14 * w167;
+        let w216 = w26 * w168;
+        let w217 = w28 * w169;
+        let w218 = w212 + w213;
+        let w219 = w214 + w218;
+        let w220 = w215 + w219;
+        let w221 = w216 + w220;
+        let w222 = w217 + w221;
+        let w223 = at0(k, w170) + w222;
+        let w225 = w0 * w150;
+        let w226 = w2 * w151;
+        let w227 = w4 * w152;
+        let w228 = w14 * w153;
+        let w229 = w26 * w154;
+        let w230 = w28 * w155;
+        let w231 = w228 + w229;
+        let w232 = w230 + w231;
+        let w233 = w232 - w225;
+        let w234 = w233 - w226;
+        let w235 = w234 - w227;
+        let w236 = w235 - at0(k, w156);
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        xc[0][k + 1] = w0 * inv_k1;
+        xc[1][k + 1] = w2 * inv_k1;
+        xc[2][k + 1] = w4 * inv_k1;
+        xc[3][k + 1] = w210 * inv_k1;
+        xc[4][k + 1] = w223 * inv_k1;
+        xc[5][k + 1] = w236 * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// The first N Taylor coefficients of each output of `uplift` along series inputs.
@@ -1971,57 +1863,30 @@ pub fn uplift<const N: usize>(xc: &[[f64; N]; 6], ug: &[f64; N], s: f64, p: &Par
     let w274: f64 = w0 * w263;
     let w275: f64 = w0 * w33;
     let mut out = [[0.0f64; N]; 1];
-    // The tape at order k, for k < N: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let w1 = xc[0][k];
-            let w2 = xc[1][k];
-            let w3 = xc[2][k];
-            let w11 = ug[k];
-            let w57 = xc[3][k];
-            let w59 = xc[4][k];
-            let w61 = xc[5][k];
-            let w276 = w1 * w268;
-            let w277 = w2 * w269;
-            let w278 = w3 * w270;
-            let w279 = w11 * w271;
-            let w280 = w57 * w272;
-            let w281 = w59 * w273;
-            let w282 = w61 * w274;
-            let w283 = w276 + w277;
-            let w284 = w278 + w283;
-            let w285 = w284 - w279;
-            let w286 = w285 - w280;
-            let w287 = w286 - w281;
-            let w288 = w287 - w282;
-            let w289 = w288 - at0(k, w275);
-            out[0][k] = w289;
-        };
+    for k in 0..N {
+        let w1 = xc[0][k];
+        let w2 = xc[1][k];
+        let w3 = xc[2][k];
+        let w11 = ug[k];
+        let w57 = xc[3][k];
+        let w59 = xc[4][k];
+        let w61 = xc[5][k];
+        let w276 = w1 * w268;
+        let w277 = w2 * w269;
+        let w278 = w3 * w270;
+        let w279 = w11 * w271;
+        let w280 = w57 * w272;
+        let w281 = w59 * w273;
+        let w282 = w61 * w274;
+        let w283 = w276 + w277;
+        let w284 = w278 + w283;
+        let w285 = w284 - w279;
+        let w286 = w285 - w280;
+        let w287 = w286 - w281;
+        let w288 = w287 - w282;
+        let w289 = w288 - at0(k, w275);
+        out[0][k] = w289;
     }
-    if 0 < N { order!(0); }
-    if 1 < N { order!(1); }
-    if 2 < N { order!(2); }
-    if 3 < N { order!(3); }
-    if 4 < N { order!(4); }
-    if 5 < N { order!(5); }
-    if 6 < N { order!(6); }
-    if 7 < N { order!(7); }
-    if 8 < N { order!(8); }
-    if 9 < N { order!(9); }
-    if 10 < N { order!(10); }
-    if 11 < N { order!(11); }
-    if 12 < N { order!(12); }
-    if 13 < N { order!(13); }
-    if 14 < N { order!(14); }
-    if 15 < N { order!(15); }
-    if 16 < N { order!(16); }
-    if 17 < N { order!(17); }
-    if 18 < N { order!(18); }
-    if 19 < N { order!(19); }
-    if 20 < N { order!(20); }
-    for k in 21..N { order!(k); }
     out
 }
 
@@ -2184,167 +2049,140 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 8], s: f64, p: &Params) -> [[f64; N
     let w243: f64 = w172 + w242;
     let mut w252 = [0.0f64; N];
     let mut out = [[0.0f64; N]; 4];
-    // The tape at order k, for k < N: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w1[k] = x[4][k];
-            w6[k] = series::sq(&w1, k);
-            w8[k] = x[1][k];
-            let w11 = series::mul(&w6, &w8, k);
-            w14[k] = x[2][k];
-            let w15 = series::mul(&w6, &w14, k);
-            w18[k] = x[3][k];
-            let w19 = series::mul(&w6, &w18, k);
-            w27[k] = x[5][k];
-            let w28 = series::mul(&w1, &w27, k);
-            w30[k] = x[6][k];
-            let w31 = series::mul(&w1, &w30, k);
-            w33[k] = x[7][k];
-            let w34 = series::mul(&w1, &w33, k);
-            w37[k] = series::mul(&w1, &w8, k);
-            w38[k] = series::mul(&w1, &w37, k);
-            let w39 = series::mul(&w8, &w38, k);
-            let w40 = series::sq(&w27, k);
-            w42[k] = series::mul(&w1, &w14, k);
-            w43[k] = series::mul(&w1, &w42, k);
-            let w44 = series::mul(&w8, &w43, k);
-            let w45 = series::mul(&w27, &w30, k);
-            w48[k] = series::mul(&w1, &w18, k);
-            w49[k] = series::mul(&w1, &w48, k);
-            let w50 = series::mul(&w8, &w49, k);
-            let w51 = series::mul(&w27, &w33, k);
-            let w54 = series::mul(&w14, &w43, k);
-            let w55 = series::sq(&w30, k);
-            let w58 = series::mul(&w14, &w49, k);
-            let w59 = series::mul(&w30, &w33, k);
-            let w62 = series::mul(&w18, &w49, k);
-            let w63 = series::sq(&w33, k);
-            let w80 = w1[k] * w4;
-            let w81 = w37[k] + w42[k];
-            let w82 = w48[k] + w81;
-            w83[k] = w82 - w80;
-            let w84 = series::sq(&w83, k);
-            let w123 = w6[k] * w122;
-            let w124 = w11 * w101;
-            let w125 = w15 * w102;
-            let w126 = w19 * w103;
-            let w127 = w28 * w104;
-            let w128 = w31 * w105;
-            let w129 = w34 * w106;
-            let w130 = w39 * w107;
-            let w131 = w40 * w108;
-            let w132 = w44 * w109;
-            let w133 = w45 * w110;
-            let w134 = w50 * w111;
-            let w135 = w51 * w112;
-            let w136 = w54 * w113;
-            let w137 = w55 * w114;
-            let w138 = w58 * w115;
-            let w139 = w59 * w116;
-            let w140 = w62 * w117;
-            let w141 = w63 * w118;
-            let w142 = w84 * w119;
-            let w143 = w123 + w127;
-            let w144 = w128 + w143;
-            let w145 = w129 + w144;
-            let w146 = w130 + w145;
-            let w147 = w131 + w146;
-            let w148 = w132 + w147;
-            let w149 = w133 + w148;
-            let w150 = w134 + w149;
-            let w151 = w135 + w150;
-            let w152 = w136 + w151;
-            let w153 = w137 + w152;
-            let w154 = w138 + w153;
-            let w155 = w139 + w154;
-            let w156 = w140 + w155;
-            let w157 = w141 + w156;
-            let w158 = w142 + w157;
-            let w159 = w158 - w124;
-            let w160 = w159 - w125;
-            let w161 = w160 - w126;
-            w164[k] = x[0][k];
-            series::sin_cos(&w164, &mut d_w164, &mut sin_w164, &mut cos_w164, k);
-            w165[k] = sin_w164[k];
-            w167[k] = cos_w164[k];
-            let w169 = series::mul(&w8, &w165, k);
-            let w170 = series::mul(&w14, &w165, k);
-            let w171 = series::mul(&w18, &w165, k);
-            let w192 = w165[k] * w187;
-            let w193 = w167[k] * w188;
-            let w194 = w169 * w189;
-            let w195 = w170 * w190;
-            let w196 = w171 * w191;
-            let w197 = w192 + w193;
-            let w198 = w197 - w194;
-            let w199 = w198 - w195;
-            let w200 = w199 - w196;
-            let w208 = series::sq(&w8, k);
-            let w211 = series::sq(&w14, k);
-            let w214 = series::sq(&w18, k);
-            let w215 = series::mul(&w8, &w14, k);
-            let w218 = series::mul(&w8, &w18, k);
-            let w221 = series::mul(&w14, &w18, k);
-            let w227 = w208 * w222;
-            let w228 = w211 * w223;
-            let w229 = w214 * w224;
-            let w230 = w215 * w223;
-            let w231 = w218 * w225;
-            let w232 = w221 * w226;
-            let w233 = w227 + w228;
-            let w234 = w229 + w233;
-            let w235 = w230 + w234;
-            let w236 = w231 + w235;
-            let w237 = w232 + w236;
-            let w244 = w165[k] * w243;
-            let w245 = w167[k] * w241;
-            let w246 = w169 * w181;
-            let w247 = w170 * w182;
-            let w248 = w171 * w183;
-            let w249 = w244 + w245;
-            let w250 = w249 - w246;
-            let w251 = w250 - w247;
-            w252[k] = w251 - w248;
-            let w253 = series::mul(&w1, &w252, k);
-            let w254 = series::mul(&w27, &w167, k);
-            let w255 = series::mul(&w30, &w167, k);
-            let w256 = series::mul(&w33, &w167, k);
-            let w257 = w181 * w254;
-            let w258 = w182 * w255;
-            let w259 = w183 * w256;
-            let w260 = w253 + w257;
-            let w261 = w258 + w260;
-            let w262 = w259 + w261;
-            out[0][k] = w161;
-            out[1][k] = w200;
-            out[2][k] = w237;
-            out[3][k] = w262;
-        };
+    for k in 0..N {
+        w1[k] = x[4][k];
+        w6[k] = series::sq(&w1, k);
+        w8[k] = x[1][k];
+        let w11 = series::mul(&w6, &w8, k);
+        w14[k] = x[2][k];
+        let w15 = series::mul(&w6, &w14, k);
+        w18[k] = x[3][k];
+        let w19 = series::mul(&w6, &w18, k);
+        w27[k] = x[5][k];
+        let w28 = series::mul(&w1, &w27, k);
+        w30[k] = x[6][k];
+        let w31 = series::mul(&w1, &w30, k);
+        w33[k] = x[7][k];
+        let w34 = series::mul(&w1, &w33, k);
+        w37[k] = series::mul(&w1, &w8, k);
+        w38[k] = series::mul(&w1, &w37, k);
+        let w39 = series::mul(&w8, &w38, k);
+        let w40 = series::sq(&w27, k);
+        w42[k] = series::mul(&w1, &w14, k);
+        w43[k] = series::mul(&w1, &w42, k);
+        let w44 = series::mul(&w8, &w43, k);
+        let w45 = series::mul(&w27, &w30, k);
+        w48[k] = series::mul(&w1, &w18, k);
+        w49[k] = series::mul(&w1, &w48, k);
+        let w50 = series::mul(&w8, &w49, k);
+        let w51 = series::mul(&w27, &w33, k);
+        let w54 = series::mul(&w14, &w43, k);
+        let w55 = series::sq(&w30, k);
+        let w58 = series::mul(&w14, &w49, k);
+        let w59 = series::mul(&w30, &w33, k);
+        let w62 = series::mul(&w18, &w49, k);
+        let w63 = series::sq(&w33, k);
+        let w80 = w1[k] * w4;
+        let w81 = w37[k] + w42[k];
+        let w82 = w48[k] + w81;
+        w83[k] = w82 - w80;
+        let w84 = series::sq(&w83, k);
+        let w123 = w6[k] * w122;
+        let w124 = w11 * w101;
+        let w125 = w15 * w102;
+        let w126 = w19 * w103;
+        let w127 = w28 * w104;
+        let w128 = w31 * w105;
+        let w129 = w34 * w106;
+        let w130 = w39 * w107;
+        let w131 = w40 * w108;
+        let w132 = w44 * w109;
+        let w133 = w45 * w110;
+        let w134 = w50 * w111;
+        let w135 = w51 * w112;
+        let w136 = w54 * w113;
+        let w137 = w55 * w114;
+        let w138 = w58 * w115;
+        let w139 = w59 * w116;
+        let w140 = w62 * w117;
+        let w141 = w63 * w118;
+        let w142 = w84 * w119;
+        let w143 = w123 + w127;
+        let w144 = w128 + w143;
+        let w145 = w129 + w144;
+        let w146 = w130 + w145;
+        let w147 = w131 + w146;
+        let w148 = w132 + w147;
+        let w149 = w133 + w148;
+        let w150 = w134 + w149;
+        let w151 = w135 + w150;
+        let w152 = w136 + w151;
+        let w153 = w137 + w152;
+        let w154 = w138 + w153;
+        let w155 = w139 + w154;
+        let w156 = w140 + w155;
+        let w157 = w141 + w156;
+        let w158 = w142 + w157;
+        let w159 = w158 - w124;
+        let w160 = w159 - w125;
+        let w161 = w160 - w126;
+        w164[k] = x[0][k];
+        series::sin_cos(&w164, &mut d_w164, &mut sin_w164, &mut cos_w164, k);
+        w165[k] = sin_w164[k];
+        w167[k] = cos_w164[k];
+        let w169 = series::mul(&w8, &w165, k);
+        let w170 = series::mul(&w14, &w165, k);
+        let w171 = series::mul(&w18, &w165, k);
+        let w192 = w165[k] * w187;
+        let w193 = w167[k] * w188;
+        let w194 = w169 * w189;
+        let w195 = w170 * w190;
+        let w196 = w171 * w191;
+        let w197 = w192 + w193;
+        let w198 = w197 - w194;
+        let w199 = w198 - w195;
+        let w200 = w199 - w196;
+        let w208 = series::sq(&w8, k);
+        let w211 = series::sq(&w14, k);
+        let w214 = series::sq(&w18, k);
+        let w215 = series::mul(&w8, &w14, k);
+        let w218 = series::mul(&w8, &w18, k);
+        let w221 = series::mul(&w14, &w18, k);
+        let w227 = w208 * w222;
+        let w228 = w211 * w223;
+        let w229 = w214 * w224;
+        let w230 = w215 * w223;
+        let w231 = w218 * w225;
+        let w232 = w221 * w226;
+        let w233 = w227 + w228;
+        let w234 = w229 + w233;
+        let w235 = w230 + w234;
+        let w236 = w231 + w235;
+        let w237 = w232 + w236;
+        let w244 = w165[k] * w243;
+        let w245 = w167[k] * w241;
+        let w246 = w169 * w181;
+        let w247 = w170 * w182;
+        let w248 = w171 * w183;
+        let w249 = w244 + w245;
+        let w250 = w249 - w246;
+        let w251 = w250 - w247;
+        w252[k] = w251 - w248;
+        let w253 = series::mul(&w1, &w252, k);
+        let w254 = series::mul(&w27, &w167, k);
+        let w255 = series::mul(&w30, &w167, k);
+        let w256 = series::mul(&w33, &w167, k);
+        let w257 = w181 * w254;
+        let w258 = w182 * w255;
+        let w259 = w183 * w256;
+        let w260 = w253 + w257;
+        let w261 = w258 + w260;
+        let w262 = w259 + w261;
+        out[0][k] = w161;
+        out[1][k] = w200;
+        out[2][k] = w237;
+        out[3][k] = w262;
     }
-    if 0 < N { order!(0); }
-    if 1 < N { order!(1); }
-    if 2 < N { order!(2); }
-    if 3 < N { order!(3); }
-    if 4 < N { order!(4); }
-    if 5 < N { order!(5); }
-    if 6 < N { order!(6); }
-    if 7 < N { order!(7); }
-    if 8 < N { order!(8); }
-    if 9 < N { order!(9); }
-    if 10 < N { order!(10); }
-    if 11 < N { order!(11); }
-    if 12 < N { order!(12); }
-    if 13 < N { order!(13); }
-    if 14 < N { order!(14); }
-    if 15 < N { order!(15); }
-    if 16 < N { order!(16); }
-    if 17 < N { order!(17); }
-    if 18 < N { order!(18); }
-    if 19 < N { order!(19); }
-    if 20 < N { order!(20); }
-    for k in 21..N { order!(k); }
     out
 }
 
@@ -2401,89 +2239,62 @@ pub fn power<const N: usize>(x: &[[f64; N]; 8], ug: &[f64; N], s: f64, p: &Param
     let w76: f64 = p[14];
     let mut w81 = [0.0f64; N];
     let mut out = [[0.0f64; N]; 2];
-    // The tape at order k, for k < N: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w0[k] = ug[k];
-            w1[k] = x[0][k];
-            series::sin_cos(&w1, &mut d_w1, &mut sin_w1, &mut cos_w1, k);
-            w2[k] = cos_w1[k];
-            w11[k] = sin_w1[k];
-            let w12 = x[1][k];
-            let w13 = x[2][k];
-            let w14 = x[3][k];
-            let w33 = w12 * w30;
-            let w34 = w13 * w27;
-            let w35 = w14 * w24;
-            let w36 = w33 + w34;
-            let w37 = w35 + w36;
-            w38[k] = w37 - at0(k, w32);
-            let w39 = series::mul(&w11, &w38, k);
-            w40[k] = x[4][k];
-            let w41 = w2[k] * w10;
-            w42[k] = w41 - w39;
-            let w43 = series::mul(&w40, &w42, k);
-            w44[k] = x[5][k];
-            let w45 = series::mul(&w2, &w44, k);
-            w46[k] = x[6][k];
-            let w47 = series::mul(&w2, &w46, k);
-            w48[k] = x[7][k];
-            let w49 = series::mul(&w2, &w48, k);
-            let w50 = w30 * w45;
-            let w51 = w27 * w47;
-            let w52 = w24 * w49;
-            let w53 = w43 + w50;
-            let w54 = w51 + w53;
-            w55[k] = w52 + w54;
-            let w56 = series::mul(&w0, &w55, k);
-            let w57 = -w56;
-            let w62 = w44[k] * w59;
-            let w63 = w46[k] * w60;
-            let w64 = w48[k] * w61;
-            let w65 = w62 + w63;
-            w66[k] = w64 + w65;
-            let w67 = series::mul(&w44, &w66, k);
-            let w70 = w44[k] * w60;
-            let w71 = w46[k] * w68;
-            let w72 = w48[k] * w69;
-            let w73 = w70 + w71;
-            w74[k] = w72 + w73;
-            let w75 = series::mul(&w46, &w74, k);
-            let w77 = w44[k] * w61;
-            let w78 = w46[k] * w69;
-            let w79 = w48[k] * w76;
-            let w80 = w77 + w78;
-            w81[k] = w79 + w80;
-            let w82 = series::mul(&w48, &w81, k);
-            let w83 = w67 + w75;
-            let w84 = w82 + w83;
-            out[0][k] = w57;
-            out[1][k] = w84;
-        };
+    for k in 0..N {
+        w0[k] = ug[k];
+        w1[k] = x[0][k];
+        series::sin_cos(&w1, &mut d_w1, &mut sin_w1, &mut cos_w1, k);
+        w2[k] = cos_w1[k];
+        w11[k] = sin_w1[k];
+        let w12 = x[1][k];
+        let w13 = x[2][k];
+        let w14 = x[3][k];
+        let w33 = w12 * w30;
+        let w34 = w13 * w27;
+        let w35 = w14 * w24;
+        let w36 = w33 + w34;
+        let w37 = w35 + w36;
+        w38[k] = w37 - at0(k, w32);
+        let w39 = series::mul(&w11, &w38, k);
+        w40[k] = x[4][k];
+        let w41 = w2[k] * w10;
+        w42[k] = w41 - w39;
+        let w43 = series::mul(&w40, &w42, k);
+        w44[k] = x[5][k];
+        let w45 = series::mul(&w2, &w44, k);
+        w46[k] = x[6][k];
+        let w47 = series::mul(&w2, &w46, k);
+        w48[k] = x[7][k];
+        let w49 = series::mul(&w2, &w48, k);
+        let w50 = w30 * w45;
+        let w51 = w27 * w47;
+        let w52 = w24 * w49;
+        let w53 = w43 + w50;
+        let w54 = w51 + w53;
+        w55[k] = w52 + w54;
+        let w56 = series::mul(&w0, &w55, k);
+        let w57 = -w56;
+        let w62 = w44[k] * w59;
+        let w63 = w46[k] * w60;
+        let w64 = w48[k] * w61;
+        let w65 = w62 + w63;
+        w66[k] = w64 + w65;
+        let w67 = series::mul(&w44, &w66, k);
+        let w70 = w44[k] * w60;
+        let w71 = w46[k] * w68;
+        let w72 = w48[k] * w69;
+        let w73 = w70 + w71;
+        w74[k] = w72 + w73;
+        let w75 = series::mul(&w46, &w74, k);
+        let w77 = w44[k] * w61;
+        let w78 = w46[k] * w69;
+        let w79 = w48[k] * w76;
+        let w80 = w77 + w78;
+        w81[k] = w79 + w80;
+        let w82 = series::mul(&w48, &w81, k);
+        let w83 = w67 + w75;
+        let w84 = w82 + w83;
+        out[0][k] = w57;
+        out[1][k] = w84;
     }
-    if 0 < N { order!(0); }
-    if 1 < N { order!(1); }
-    if 2 < N { order!(2); }
-    if 3 < N { order!(3); }
-    if 4 < N { order!(4); }
-    if 5 < N { order!(5); }
-    if 6 < N { order!(6); }
-    if 7 < N { order!(7); }
-    if 8 < N { order!(8); }
-    if 9 < N { order!(9); }
-    if 10 < N { order!(10); }
-    if 11 < N { order!(11); }
-    if 12 < N { order!(12); }
-    if 13 < N { order!(13); }
-    if 14 < N { order!(14); }
-    if 15 < N { order!(15); }
-    if 16 < N { order!(16); }
-    if 17 < N { order!(17); }
-    if 18 < N { order!(18); }
-    if 19 < N { order!(19); }
-    if 20 < N { order!(20); }
-    for k in 21..N { order!(k); }
     out
 }

@@ -78,55 +78,28 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
     let w64: f64 = w17 * w62;
     let w65: f64 = w38 * w62;
     let w66: f64 = w32 * w62;
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let w0 = x[2][k];
-            w4[k] = x[0][k];
-            series::sin_cos(&w4, &mut d_w4, &mut sin_w4, &mut cos_w4, k);
-            w5[k] = sin_w4[k];
-            w10[k] = ug[k];
-            let w27 = series::mul(&w5, &w10, k);
-            w28[k] = cos_w4[k];
-            let w39 = series::mul(&w10, &w28, k);
-            let w67 = w5[k] * w63;
-            let w68 = w27 * w64;
-            let w69 = w28[k] * w65;
-            let w70 = w39 * w66;
-            let w71 = w67 - w68;
-            let w72 = w71 - w69;
-            let w73 = w72 - w70;
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            x[0][k + 1] = w0 * inv_k1;
-            x[1][k + 1] = at0(k, w2) * inv_k1;
-            x[2][k + 1] = w73 * inv_k1;
-            x[3][k + 1] = at0(k, w2) * inv_k1;
-        };
+    for k in 0..N - 1 {
+        let w0 = x[2][k];
+        w4[k] = x[0][k];
+        series::sin_cos(&w4, &mut d_w4, &mut sin_w4, &mut cos_w4, k);
+        w5[k] = sin_w4[k];
+        w10[k] = ug[k];
+        let w27 = series::mul(&w5, &w10, k);
+        w28[k] = cos_w4[k];
+        let w39 = series::mul(&w10, &w28, k);
+        let w67 = w5[k] * w63;
+        let w68 = w27 * w64;
+        let w69 = w28[k] * w65;
+        let w70 = w39 * w66;
+        let w71 = w67 - w68;
+        let w72 = w71 - w69;
+        let w73 = w72 - w70;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        x[0][k + 1] = w0 * inv_k1;
+        x[1][k + 1] = at0(k, w2) * inv_k1;
+        x[2][k + 1] = w73 * inv_k1;
+        x[3][k + 1] = at0(k, w2) * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// Taylor coefficients of the solution of `x' = rocking_rhs_free(..)`: on entry `x[i][0]` holds
@@ -200,49 +173,22 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
     let w65: f64 = w64 / w63;
     let w66: f64 = w29 * w65;
     let w67: f64 = w41 * w65;
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let w0 = x[2][k];
-            w4[k] = x[0][k];
-            series::sin_cos(&w4, &mut d_w4, &mut sin_w4, &mut cos_w4, k);
-            let w5 = sin_w4[k];
-            let w30 = cos_w4[k];
-            let w68 = w5 * w66;
-            let w69 = w30 * w67;
-            let w70 = -w68;
-            let w71 = w70 - w69;
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            x[0][k + 1] = w0 * inv_k1;
-            x[1][k + 1] = at0(k, w2) * inv_k1;
-            x[2][k + 1] = w71 * inv_k1;
-            x[3][k + 1] = at0(k, w2) * inv_k1;
-        };
+    for k in 0..N - 1 {
+        let w0 = x[2][k];
+        w4[k] = x[0][k];
+        series::sin_cos(&w4, &mut d_w4, &mut sin_w4, &mut cos_w4, k);
+        let w5 = sin_w4[k];
+        let w30 = cos_w4[k];
+        let w68 = w5 * w66;
+        let w69 = w30 * w67;
+        let w70 = -w68;
+        let w71 = w70 - w69;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        x[0][k + 1] = w0 * inv_k1;
+        x[1][k + 1] = at0(k, w2) * inv_k1;
+        x[2][k + 1] = w71 * inv_k1;
+        x[3][k + 1] = at0(k, w2) * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// Taylor coefficients of the solution of `xc' = contact_rhs(..)`: on entry `xc[i][0]` holds
@@ -250,38 +196,11 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
 /// Series inputs hold their first N coefficients.
 pub fn contact_rhs<const N: usize>(xc: &mut [[f64; N]; 2], ug: &[f64; N], p: &Params) {
     let w0: f64 = 0.0;
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            xc[0][k + 1] = at0(k, w0) * inv_k1;
-            xc[1][k + 1] = at0(k, w0) * inv_k1;
-        };
+    for k in 0..N - 1 {
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        xc[0][k + 1] = at0(k, w0) * inv_k1;
+        xc[1][k + 1] = at0(k, w0) * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// Taylor coefficients of the solution of `xc' = contact_rhs_free(..)`: on entry `xc[i][0]` holds
@@ -290,38 +209,11 @@ pub fn contact_rhs<const N: usize>(xc: &mut [[f64; N]; 2], ug: &[f64; N], p: &Pa
 /// The twin of `contact_rhs` with `ug` identically zero: for the steps after the excitation.
 pub fn contact_rhs_free<const N: usize>(xc: &mut [[f64; N]; 2], p: &Params) {
     let w0: f64 = 0.0;
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            xc[0][k + 1] = at0(k, w0) * inv_k1;
-            xc[1][k + 1] = at0(k, w0) * inv_k1;
-        };
+    for k in 0..N - 1 {
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        xc[0][k + 1] = at0(k, w0) * inv_k1;
+        xc[1][k + 1] = at0(k, w0) * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// The first N Taylor coefficients of each output of `uplift` along series inputs.
@@ -351,40 +243,13 @@ pub fn uplift<const N: usize>(xc: &[[f64; N]; 2], ug: &[f64; N], s: f64, p: &Par
     let w22: f64 = w0 * w9;
     let w23: f64 = w0 * w21;
     let mut out = [[0.0f64; N]; 1];
-    // The tape at order k, for k < N: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let w3 = ug[k];
-            let w24 = w3 * w22;
-            let w25 = -w24;
-            let w26 = w25 - at0(k, w23);
-            out[0][k] = w26;
-        };
+    for k in 0..N {
+        let w3 = ug[k];
+        let w24 = w3 * w22;
+        let w25 = -w24;
+        let w26 = w25 - at0(k, w23);
+        out[0][k] = w26;
     }
-    if 0 < N { order!(0); }
-    if 1 < N { order!(1); }
-    if 2 < N { order!(2); }
-    if 3 < N { order!(3); }
-    if 4 < N { order!(4); }
-    if 5 < N { order!(5); }
-    if 6 < N { order!(6); }
-    if 7 < N { order!(7); }
-    if 8 < N { order!(8); }
-    if 9 < N { order!(9); }
-    if 10 < N { order!(10); }
-    if 11 < N { order!(11); }
-    if 12 < N { order!(12); }
-    if 13 < N { order!(13); }
-    if 14 < N { order!(14); }
-    if 15 < N { order!(15); }
-    if 16 < N { order!(16); }
-    if 17 < N { order!(17); }
-    if 18 < N { order!(18); }
-    if 19 < N { order!(19); }
-    if 20 < N { order!(20); }
-    for k in 21..N { order!(k); }
     out
 }
 
@@ -437,53 +302,26 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
     let w49: f64 = 0.0;
     let mut w53 = [0.0f64; N];
     let mut out = [[0.0f64; N]; 4];
-    // The tape at order k, for k < N: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w1[k] = x[2][k];
-            let w6 = series::sq(&w1, k);
-            let w26 = w6 * w25;
-            w29[k] = x[0][k];
-            series::sin_cos(&w29, &mut d_w29, &mut sin_w29, &mut cos_w29, k);
-            let w30 = sin_w29[k];
-            let w32 = cos_w29[k];
-            let w45 = w30 * w43;
-            let w46 = w32 * w44;
-            let w47 = w45 + w46;
-            let w51 = w30 * w42;
-            let w52 = w32 * w39;
-            w53[k] = w51 + w52;
-            let w54 = series::mul(&w1, &w53, k);
-            out[0][k] = w26;
-            out[1][k] = w47;
-            out[2][k] = at0(k, w49);
-            out[3][k] = w54;
-        };
+    for k in 0..N {
+        w1[k] = x[2][k];
+        let w6 = series::sq(&w1, k);
+        let w26 = w6 * w25;
+        w29[k] = x[0][k];
+        series::sin_cos(&w29, &mut d_w29, &mut sin_w29, &mut cos_w29, k);
+        let w30 = sin_w29[k];
+        let w32 = cos_w29[k];
+        let w45 = w30 * w43;
+        let w46 = w32 * w44;
+        let w47 = w45 + w46;
+        let w51 = w30 * w42;
+        let w52 = w32 * w39;
+        w53[k] = w51 + w52;
+        let w54 = series::mul(&w1, &w53, k);
+        out[0][k] = w26;
+        out[1][k] = w47;
+        out[2][k] = at0(k, w49);
+        out[3][k] = w54;
     }
-    if 0 < N { order!(0); }
-    if 1 < N { order!(1); }
-    if 2 < N { order!(2); }
-    if 3 < N { order!(3); }
-    if 4 < N { order!(4); }
-    if 5 < N { order!(5); }
-    if 6 < N { order!(6); }
-    if 7 < N { order!(7); }
-    if 8 < N { order!(8); }
-    if 9 < N { order!(9); }
-    if 10 < N { order!(10); }
-    if 11 < N { order!(11); }
-    if 12 < N { order!(12); }
-    if 13 < N { order!(13); }
-    if 14 < N { order!(14); }
-    if 15 < N { order!(15); }
-    if 16 < N { order!(16); }
-    if 17 < N { order!(17); }
-    if 18 < N { order!(18); }
-    if 19 < N { order!(19); }
-    if 20 < N { order!(20); }
-    for k in 21..N { order!(k); }
     out
 }
 
@@ -517,48 +355,21 @@ pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Param
     let mut w25 = [0.0f64; N];
     let w29: f64 = 0.0;
     let mut out = [[0.0f64; N]; 2];
-    // The tape at order k, for k < N: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w0[k] = ug[k];
-            w4[k] = x[0][k];
-            series::sin_cos(&w4, &mut d_w4, &mut sin_w4, &mut cos_w4, k);
-            let w5 = cos_w4[k];
-            let w10 = sin_w4[k];
-            w21[k] = x[2][k];
-            let w22 = w5 * w16;
-            let w23 = w10 * w20;
-            w24[k] = w22 + w23;
-            w25[k] = series::mul(&w21, &w24, k);
-            let w26 = series::mul(&w0, &w25, k);
-            let w27 = -w26;
-            out[0][k] = w27;
-            out[1][k] = at0(k, w29);
-        };
+    for k in 0..N {
+        w0[k] = ug[k];
+        w4[k] = x[0][k];
+        series::sin_cos(&w4, &mut d_w4, &mut sin_w4, &mut cos_w4, k);
+        let w5 = cos_w4[k];
+        let w10 = sin_w4[k];
+        w21[k] = x[2][k];
+        let w22 = w5 * w16;
+        let w23 = w10 * w20;
+        w24[k] = w22 + w23;
+        w25[k] = series::mul(&w21, &w24, k);
+        let w26 = series::mul(&w0, &w25, k);
+        let w27 = -w26;
+        out[0][k] = w27;
+        out[1][k] = at0(k, w29);
     }
-    if 0 < N { order!(0); }
-    if 1 < N { order!(1); }
-    if 2 < N { order!(2); }
-    if 3 < N { order!(3); }
-    if 4 < N { order!(4); }
-    if 5 < N { order!(5); }
-    if 6 < N { order!(6); }
-    if 7 < N { order!(7); }
-    if 8 < N { order!(8); }
-    if 9 < N { order!(9); }
-    if 10 < N { order!(10); }
-    if 11 < N { order!(11); }
-    if 12 < N { order!(12); }
-    if 13 < N { order!(13); }
-    if 14 < N { order!(14); }
-    if 15 < N { order!(15); }
-    if 16 < N { order!(16); }
-    if 17 < N { order!(17); }
-    if 18 < N { order!(18); }
-    if 19 < N { order!(19); }
-    if 20 < N { order!(20); }
-    for k in 21..N { order!(k); }
     out
 }

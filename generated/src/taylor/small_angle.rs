@@ -166,114 +166,87 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
     let w201: f64 = w23 * w89;
     let w202: f64 = w56 * w89;
     let mut w212 = [0.0f64; N];
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w0[k] = x[2][k];
-            w2[k] = x[3][k];
-            w10[k] = x[1][k];
-            w18[k] = ug[k];
-            w32[k] = x[0][k];
-            let w35 = series::mul(&w10, &w18, k);
-            w49[k] = w32[k] * w33;
-            let w50 = w18[k] * w46;
-            let w51 = w35 * w47;
-            let w52 = w50 - w51;
-            w53[k] = w52 - at0(k, w48);
-            let w54 = series::mul(&w49, &w53, k);
-            w57[k] = series::mul(&w0, &w10, k);
-            let w78 = w0[k] * w77;
-            let w79 = w57[k] * w70;
-            w80[k] = w79 - w78;
-            let w81 = series::mul(&w2, &w80, k);
-            w98[k] = series::sq(&w32, k);
-            let w101 = series::mul(&w18, &w98, k);
-            let w107 = series::sq(&w0, k);
-            let w108 = series::mul(&w0, &w57, k);
-            let w130 = series::sq(&w10, k);
-            let w159 = w2[k] * w120;
-            let w160 = w10[k] * w127;
-            let w161 = w18[k] * w128;
-            let w162 = w32[k] * w123;
-            let w163 = w9 * w54;
-            let w164 = w9 * w81;
-            let w165 = w101 * w124;
-            let w166 = w107 * w125;
-            let w167 = w108 * w126;
-            let w168 = w159 + w160;
-            let w169 = w161 + w168;
-            let w170 = w166 + w169;
-            let w171 = w170 - w162;
-            let w172 = w171 - w163;
-            let w173 = w172 - w164;
-            let w174 = w173 - w165;
-            let w175 = w174 - w167;
-            let w176 = w175 - at0(k, w84);
-            let w177 = w10[k] * w154;
-            let w178 = w130 * w155;
-            let w179 = w177 + w178;
-            w180[k] = at0(k, w158) + w179;
-            if k == 0 { inv_w180 = 1.0 / w180[0]; }
-            w181[k] = series::div(w176, &w180, &w181, inv_w180, k);
-            let w183 = w10[k] * w149;
-            let w184 = w110 * w130;
-            let w185 = w183 + w184;
-            w186[k] = at0(k, w153) + w185;
-            let w187 = w2[k] * w119;
-            let w188 = w10[k] * w96;
-            let w189 = w18[k] * w105;
-            let w190 = w31 * w32[k];
-            let w191 = w101 * w106;
-            let w192 = w107 * w111;
-            let w193 = w108 * w110;
-            let w194 = w188 + w190;
-            let w195 = w191 + w194;
-            let w196 = w193 + w195;
-            let w197 = w196 - w187;
-            let w198 = w197 - w189;
-            w199[k] = w198 - w192;
-            let w200 = series::mul(&w186, &w199, k);
-            let w203 = w10[k] * w123;
-            let w204 = w18[k] * w201;
-            let w205 = w54 * w89;
-            let w206 = w81 * w89;
-            let w207 = w204 + w205;
-            let w208 = w206 + w207;
-            let w209 = w200 + w208;
-            let w210 = at0(k, w202) + w209;
-            let w211 = w210 - w203;
-            w212[k] = series::div(w211, &w180, &w212, inv_w180, k);
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            x[0][k + 1] = w0[k] * inv_k1;
-            x[1][k + 1] = w2[k] * inv_k1;
-            x[2][k + 1] = w181[k] * inv_k1;
-            x[3][k + 1] = w212[k] * inv_k1;
-        };
+    for k in 0..N - 1 {
+        w0[k] = x[2][k];
+        w2[k] = x[3][k];
+        w10[k] = x[1][k];
+        w18[k] = ug[k];
+        w32[k] = x[0][k];
+        let w35 = series::mul(&w10, &w18, k);
+        w49[k] = w32[k] * w33;
+        let w50 = w18[k] * w46;
+        let w51 = w35 * w47;
+        let w52 = w50 - w51;
+        w53[k] = w52 - at0(k, w48);
+        let w54 = series::mul(&w49, &w53, k);
+        w57[k] = series::mul(&w0, &w10, k);
+        let w78 = w0[k] * w77;
+        let w79 = w57[k] * w70;
+        w80[k] = w79 - w78;
+        let w81 = series::mul(&w2, &w80, k);
+        w98[k] = series::sq(&w32, k);
+        let w101 = series::mul(&w18, &w98, k);
+        let w107 = series::sq(&w0, k);
+        let w108 = series::mul(&w0, &w57, k);
+        let w130 = series::sq(&w10, k);
+        let w159 = w2[k] * w120;
+        let w160 = w10[k] * w127;
+        let w161 = w18[k] * w128;
+        let w162 = w32[k] * w123;
+        let w163 = w9 * w54;
+        let w164 = w9 * w81;
+        let w165 = w101 * w124;
+        let w166 = w107 * w125;
+        let w167 = w108 * w126;
+        let w168 = w159 + w160;
+        let w169 = w161 + w168;
+        let w170 = w166 + w169;
+        let w171 = w170 - w162;
+        let w172 = w171 - w163;
+        let w173 = w172 - w164;
+        let w174 = w173 - w165;
+        let w175 = w174 - w167;
+        let w176 = w175 - at0(k, w84);
+        let w177 = w10[k] * w154;
+        let w178 = w130 * w155;
+        let w179 = w177 + w178;
+        w180[k] = at0(k, w158) + w179;
+        if k == 0 { inv_w180 = 1.0 / w180[0]; }
+        w181[k] = series::div(w176, &w180, &w181, inv_w180, k);
+        let w183 = w10[k] * w149;
+        let w184 = w110 * w130;
+        let w185 = w183 + w184;
+        w186[k] = at0(k, w153) + w185;
+        let w187 = w2[k] * w119;
+        let w188 = w10[k] * w96;
+        let w189 = w18[k] * w105;
+        let w190 = w31 * w32[k];
+        let w191 = w101 * w106;
+        let w192 = w107 * w111;
+        let w193 = w108 * w110;
+        let w194 = w188 + w190;
+        let w195 = w191 + w194;
+        let w196 = w193 + w195;
+        let w197 = w196 - w187;
+        let w198 = w197 - w189;
+        w199[k] = w198 - w192;
+        let w200 = series::mul(&w186, &w199, k);
+        let w203 = w10[k] * w123;
+        let w204 = w18[k] * w201;
+        let w205 = w54 * w89;
+        let w206 = w81 * w89;
+        let w207 = w204 + w205;
+        let w208 = w206 + w207;
+        let w209 = w200 + w208;
+        let w210 = at0(k, w202) + w209;
+        let w211 = w210 - w203;
+        w212[k] = series::div(w211, &w180, &w212, inv_w180, k);
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        x[0][k + 1] = w0[k] * inv_k1;
+        x[1][k + 1] = w2[k] * inv_k1;
+        x[2][k + 1] = w181[k] * inv_k1;
+        x[3][k + 1] = w212[k] * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// Taylor coefficients of the solution of `x' = rocking_rhs_free(..)`: on entry `x[i][0]` holds
@@ -442,103 +415,76 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
     let w202: f64 = w52 * w91;
     let w203: f64 = w56 * w91;
     let mut w213 = [0.0f64; N];
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w0[k] = x[2][k];
-            w2[k] = x[3][k];
-            w10[k] = x[1][k];
-            w35[k] = x[0][k];
-            let w53 = series::mul(&w10, &w35, k);
-            w57[k] = series::mul(&w0, &w10, k);
-            let w78 = w0[k] * w77;
-            let w79 = w57[k] * w70;
-            w80[k] = w79 - w78;
-            let w81 = series::mul(&w2, &w80, k);
-            let w100 = series::sq(&w35, k);
-            let w108 = series::sq(&w0, k);
-            let w109 = series::mul(&w0, &w57, k);
-            let w132 = series::sq(&w10, k);
-            let w162 = w2[k] * w121;
-            let w163 = w10[k] * w128;
-            let w164 = w35[k] * w129;
-            let w165 = w53 * w84;
-            let w166 = w9 * w81;
-            let w167 = w100 * w124;
-            let w168 = w108 * w125;
-            let w169 = w109 * w126;
-            let w170 = w162 + w163;
-            let w171 = w165 + w170;
-            let w172 = w168 + w171;
-            let w173 = at0(k, w130) + w172;
-            let w174 = w173 - w164;
-            let w175 = w174 - w166;
-            let w176 = w175 - w167;
-            let w177 = w176 - w169;
-            let w178 = w10[k] * w157;
-            let w179 = w132 * w158;
-            let w180 = w178 + w179;
-            w181[k] = at0(k, w161) + w180;
-            if k == 0 { inv_w181 = 1.0 / w181[0]; }
-            w182[k] = series::div(w177, &w181, &w182, inv_w181, k);
-            let w184 = w10[k] * w151;
-            let w185 = w111 * w132;
-            let w186 = w184 + w185;
-            w187[k] = at0(k, w156) + w186;
-            let w188 = w2[k] * w120;
-            let w189 = w10[k] * w98;
-            let w190 = w34 * w35[k];
-            let w191 = w100 * w106;
-            let w192 = w108 * w112;
-            let w193 = w109 * w111;
-            let w194 = w189 + w190;
-            let w195 = w191 + w194;
-            let w196 = w193 + w195;
-            let w197 = w196 - w188;
-            let w198 = w197 - w192;
-            w199[k] = w198 - at0(k, w107);
-            let w200 = series::mul(&w187, &w199, k);
-            let w204 = w10[k] * w123;
-            let w205 = w35[k] * w201;
-            let w206 = w53 * w202;
-            let w207 = w81 * w91;
-            let w208 = w205 + w207;
-            let w209 = w200 + w208;
-            let w210 = at0(k, w203) + w209;
-            let w211 = w210 - w204;
-            let w212 = w211 - w206;
-            w213[k] = series::div(w212, &w181, &w213, inv_w181, k);
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            x[0][k + 1] = w0[k] * inv_k1;
-            x[1][k + 1] = w2[k] * inv_k1;
-            x[2][k + 1] = w182[k] * inv_k1;
-            x[3][k + 1] = w213[k] * inv_k1;
-        };
+    for k in 0..N - 1 {
+        w0[k] = x[2][k];
+        w2[k] = x[3][k];
+        w10[k] = x[1][k];
+        w35[k] = x[0][k];
+        let w53 = series::mul(&w10, &w35, k);
+        w57[k] = series::mul(&w0, &w10, k);
+        let w78 = w0[k] * w77;
+        let w79 = w57[k] * w70;
+        w80[k] = w79 - w78;
+        let w81 = series::mul(&w2, &w80, k);
+        let w100 = series::sq(&w35, k);
+        let w108 = series::sq(&w0, k);
+        let w109 = series::mul(&w0, &w57, k);
+        let w132 = series::sq(&w10, k);
+        let w162 = w2[k] * w121;
+        let w163 = w10[k] * w128;
+        let w164 = w35[k] * w129;
+        let w165 = w53 * w84;
+        let w166 = w9 * w81;
+        let w167 = w100 * w124;
+        let w168 = w108 * w125;
+        let w169 = w109 * w126;
+        let w170 = w162 + w163;
+        let w171 = w165 + w170;
+        let w172 = w168 + w171;
+        let w173 = at0(k, w130) + w172;
+        let w174 = w173 - w164;
+        let w175 = w174 - w166;
+        let w176 = w175 - w167;
+        let w177 = w176 - w169;
+        let w178 = w10[k] * w157;
+        let w179 = w132 * w158;
+        let w180 = w178 + w179;
+        w181[k] = at0(k, w161) + w180;
+        if k == 0 { inv_w181 = 1.0 / w181[0]; }
+        w182[k] = series::div(w177, &w181, &w182, inv_w181, k);
+        let w184 = w10[k] * w151;
+        let w185 = w111 * w132;
+        let w186 = w184 + w185;
+        w187[k] = at0(k, w156) + w186;
+        let w188 = w2[k] * w120;
+        let w189 = w10[k] * w98;
+        let w190 = w34 * w35[k];
+        let w191 = w100 * w106;
+        let w192 = w108 * w112;
+        let w193 = w109 * w111;
+        let w194 = w189 + w190;
+        let w195 = w191 + w194;
+        let w196 = w193 + w195;
+        let w197 = w196 - w188;
+        let w198 = w197 - w192;
+        w199[k] = w198 - at0(k, w107);
+        let w200 = series::mul(&w187, &w199, k);
+        let w204 = w10[k] * w123;
+        let w205 = w35[k] * w201;
+        let w206 = w53 * w202;
+        let w207 = w81 * w91;
+        let w208 = w205 + w207;
+        let w209 = w200 + w208;
+        let w210 = at0(k, w203) + w209;
+        let w211 = w210 - w204;
+        let w212 = w211 - w206;
+        w213[k] = series::div(w212, &w181, &w213, inv_w181, k);
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        x[0][k + 1] = w0[k] * inv_k1;
+        x[1][k + 1] = w2[k] * inv_k1;
+        x[2][k + 1] = w182[k] * inv_k1;
+        x[3][k + 1] = w213[k] * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// Taylor coefficients of the solution of `xc' = contact_rhs(..)`: on entry `xc[i][0]` holds
@@ -576,46 +522,19 @@ pub fn contact_rhs<const N: usize>(xc: &mut [[f64; N]; 2], ug: &[f64; N], p: &Pa
     let w32: f64 = w29 * w31;
     let w33: f64 = w11 * w31;
     let w34: f64 = w17 * w31;
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let w0 = xc[1][k];
-            let w2 = xc[0][k];
-            let w13 = ug[k];
-            let w35 = w0 * w32;
-            let w36 = w2 * w33;
-            let w37 = w13 * w34;
-            let w38 = w36 - w35;
-            let w39 = w38 - w37;
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            xc[0][k + 1] = w0 * inv_k1;
-            xc[1][k + 1] = w39 * inv_k1;
-        };
+    for k in 0..N - 1 {
+        let w0 = xc[1][k];
+        let w2 = xc[0][k];
+        let w13 = ug[k];
+        let w35 = w0 * w32;
+        let w36 = w2 * w33;
+        let w37 = w13 * w34;
+        let w38 = w36 - w35;
+        let w39 = w38 - w37;
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        xc[0][k + 1] = w0 * inv_k1;
+        xc[1][k + 1] = w39 * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// Taylor coefficients of the solution of `xc' = contact_rhs_free(..)`: on entry `xc[i][0]` holds
@@ -657,44 +576,17 @@ pub fn contact_rhs_free<const N: usize>(xc: &mut [[f64; N]; 2], p: &Params) {
     let w34: f64 = w31 * w33;
     let w35: f64 = w11 * w33;
     let w36: f64 = w19 * w33;
-    // The tape at order k, for k < N - 1: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let w0 = xc[1][k];
-            let w2 = xc[0][k];
-            let w37 = w0 * w34;
-            let w38 = w2 * w35;
-            let w39 = w38 - w37;
-            let w40 = w39 - at0(k, w36);
-            let inv_k1 = 1.0 / (k + 1) as f64;
-            xc[0][k + 1] = w0 * inv_k1;
-            xc[1][k + 1] = w40 * inv_k1;
-        };
+    for k in 0..N - 1 {
+        let w0 = xc[1][k];
+        let w2 = xc[0][k];
+        let w37 = w0 * w34;
+        let w38 = w2 * w35;
+        let w39 = w38 - w37;
+        let w40 = w39 - at0(k, w36);
+        let inv_k1 = 1.0 / (k + 1) as f64;
+        xc[0][k + 1] = w0 * inv_k1;
+        xc[1][k + 1] = w40 * inv_k1;
     }
-    if 0 < N - 1 { order!(0); }
-    if 1 < N - 1 { order!(1); }
-    if 2 < N - 1 { order!(2); }
-    if 3 < N - 1 { order!(3); }
-    if 4 < N - 1 { order!(4); }
-    if 5 < N - 1 { order!(5); }
-    if 6 < N - 1 { order!(6); }
-    if 7 < N - 1 { order!(7); }
-    if 8 < N - 1 { order!(8); }
-    if 9 < N - 1 { order!(9); }
-    if 10 < N - 1 { order!(10); }
-    if 11 < N - 1 { order!(11); }
-    if 12 < N - 1 { order!(12); }
-    if 13 < N - 1 { order!(13); }
-    if 14 < N - 1 { order!(14); }
-    if 15 < N - 1 { order!(15); }
-    if 16 < N - 1 { order!(16); }
-    if 17 < N - 1 { order!(17); }
-    if 18 < N - 1 { order!(18); }
-    if 19 < N - 1 { order!(19); }
-    if 20 < N - 1 { order!(20); }
-    for k in 21..N - 1 { order!(k); }
 }
 
 /// The first N Taylor coefficients of each output of `uplift` along series inputs.
@@ -766,45 +658,18 @@ pub fn uplift<const N: usize>(xc: &[[f64; N]; 2], ug: &[f64; N], s: f64, p: &Par
     let w66: f64 = w0 * w61;
     let w67: f64 = w0 * w25;
     let mut out = [[0.0f64; N]; 1];
-    // The tape at order k, for k < N: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            let w1 = xc[0][k];
-            let w9 = ug[k];
-            let w53 = xc[1][k];
-            let w68 = w1 * w64;
-            let w69 = w9 * w65;
-            let w70 = w53 * w66;
-            let w71 = w68 + w69;
-            let w72 = w70 + w71;
-            let w73 = w72 - at0(k, w67);
-            out[0][k] = w73;
-        };
+    for k in 0..N {
+        let w1 = xc[0][k];
+        let w9 = ug[k];
+        let w53 = xc[1][k];
+        let w68 = w1 * w64;
+        let w69 = w9 * w65;
+        let w70 = w53 * w66;
+        let w71 = w68 + w69;
+        let w72 = w70 + w71;
+        let w73 = w72 - at0(k, w67);
+        out[0][k] = w73;
     }
-    if 0 < N { order!(0); }
-    if 1 < N { order!(1); }
-    if 2 < N { order!(2); }
-    if 3 < N { order!(3); }
-    if 4 < N { order!(4); }
-    if 5 < N { order!(5); }
-    if 6 < N { order!(6); }
-    if 7 < N { order!(7); }
-    if 8 < N { order!(8); }
-    if 9 < N { order!(9); }
-    if 10 < N { order!(10); }
-    if 11 < N { order!(11); }
-    if 12 < N { order!(12); }
-    if 13 < N { order!(13); }
-    if 14 < N { order!(14); }
-    if 15 < N { order!(15); }
-    if 16 < N { order!(16); }
-    if 17 < N { order!(17); }
-    if 18 < N { order!(18); }
-    if 19 < N { order!(19); }
-    if 20 < N { order!(20); }
-    for k in 21..N { order!(k); }
     out
 }
 
@@ -907,84 +772,57 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
     let w127: f64 = w51 + w124;
     let w128: f64 = w125 + w126;
     let mut out = [[0.0f64; N]; 4];
-    // The tape at order k, for k < N: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w1[k] = x[2][k];
-            w6[k] = series::sq(&w1, k);
-            w8[k] = x[1][k];
-            let w11 = series::mul(&w6, &w8, k);
-            w20[k] = x[3][k];
-            let w21 = series::mul(&w1, &w20, k);
-            w24[k] = series::mul(&w1, &w8, k);
-            w25[k] = series::mul(&w1, &w24, k);
-            let w26 = series::mul(&w8, &w25, k);
-            let w27 = series::sq(&w20, k);
-            let w35 = series::sq(&w24, k);
-            let w55 = w6[k] * w54;
-            let w56 = w11 * w46;
-            let w57 = w21 * w47;
-            let w58 = w25[k] * w48;
-            let w59 = w26 * w49;
-            let w60 = w27 * w50;
-            let w61 = w35 * w51;
-            let w62 = w55 + w57;
-            let w63 = w59 + w62;
-            let w64 = w60 + w63;
-            let w65 = w61 + w64;
-            let w66 = w65 - w56;
-            let w67 = w66 - w58;
-            w70[k] = x[0][k];
-            w72[k] = series::sq(&w70, k);
-            let w77 = series::mul(&w8, &w70, k);
-            let w96 = w70[k] * w92;
-            let w97 = w72[k] * w93;
-            let w98 = w77 * w94;
-            let w99 = at0(k, w95) + w96;
-            let w100 = w99 - w97;
-            let w101 = w100 - w98;
-            let w109 = series::sq(&w8, k);
-            let w111 = w109 * w110;
-            let w117 = w70[k] * w91;
-            let w118 = w77 * w87;
-            let w119 = at0(k, w116) + w117;
-            w120[k] = w119 - w118;
-            let w121 = series::mul(&w1, &w120, k);
-            let w129 = series::mul(&w20, &w72, k);
-            let w130 = w20[k] * w128;
-            let w131 = w127 * w129;
-            let w132 = w121 + w130;
-            let w133 = w132 - w131;
-            out[0][k] = w67;
-            out[1][k] = w101;
-            out[2][k] = w111;
-            out[3][k] = w133;
-        };
+    for k in 0..N {
+        w1[k] = x[2][k];
+        w6[k] = series::sq(&w1, k);
+        w8[k] = x[1][k];
+        let w11 = series::mul(&w6, &w8, k);
+        w20[k] = x[3][k];
+        let w21 = series::mul(&w1, &w20, k);
+        w24[k] = series::mul(&w1, &w8, k);
+        w25[k] = series::mul(&w1, &w24, k);
+        let w26 = series::mul(&w8, &w25, k);
+        let w27 = series::sq(&w20, k);
+        let w35 = series::sq(&w24, k);
+        let w55 = w6[k] * w54;
+        let w56 = w11 * w46;
+        let w57 = w21 * w47;
+        let w58 = w25[k] * w48;
+        let w59 = w26 * w49;
+        let w60 = w27 * w50;
+        let w61 = w35 * w51;
+        let w62 = w55 + w57;
+        let w63 = w59 + w62;
+        let w64 = w60 + w63;
+        let w65 = w61 + w64;
+        let w66 = w65 - w56;
+        let w67 = w66 - w58;
+        w70[k] = x[0][k];
+        w72[k] = series::sq(&w70, k);
+        let w77 = series::mul(&w8, &w70, k);
+        let w96 = w70[k] * w92;
+        let w97 = w72[k] * w93;
+        let w98 = w77 * w94;
+        let w99 = at0(k, w95) + w96;
+        let w100 = w99 - w97;
+        let w101 = w100 - w98;
+        let w109 = series::sq(&w8, k);
+        let w111 = w109 * w110;
+        let w117 = w70[k] * w91;
+        let w118 = w77 * w87;
+        let w119 = at0(k, w116) + w117;
+        w120[k] = w119 - w118;
+        let w121 = series::mul(&w1, &w120, k);
+        let w129 = series::mul(&w20, &w72, k);
+        let w130 = w20[k] * w128;
+        let w131 = w127 * w129;
+        let w132 = w121 + w130;
+        let w133 = w132 - w131;
+        out[0][k] = w67;
+        out[1][k] = w101;
+        out[2][k] = w111;
+        out[3][k] = w133;
     }
-    if 0 < N { order!(0); }
-    if 1 < N { order!(1); }
-    if 2 < N { order!(2); }
-    if 3 < N { order!(3); }
-    if 4 < N { order!(4); }
-    if 5 < N { order!(5); }
-    if 6 < N { order!(6); }
-    if 7 < N { order!(7); }
-    if 8 < N { order!(8); }
-    if 9 < N { order!(9); }
-    if 10 < N { order!(10); }
-    if 11 < N { order!(11); }
-    if 12 < N { order!(12); }
-    if 13 < N { order!(13); }
-    if 14 < N { order!(14); }
-    if 15 < N { order!(15); }
-    if 16 < N { order!(16); }
-    if 17 < N { order!(17); }
-    if 18 < N { order!(18); }
-    if 19 < N { order!(19); }
-    if 20 < N { order!(20); }
-    for k in 21..N { order!(k); }
     out
 }
 
@@ -1047,57 +885,30 @@ pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Param
     let w65: f64 = w52 * w64;
     let w66: f64 = w62 * w65;
     let mut out = [[0.0f64; N]; 2];
-    // The tape at order k, for k < N: a copy per order with k a constant (unrolled
-    // sums, constant reciprocals), a loop beyond.
-    macro_rules! order {
-        ($k:expr) => {
-            let k: usize = $k;
-            w0[k] = ug[k];
-            w8[k] = x[0][k];
-            w10[k] = x[1][k];
-            let w11 = series::mul(&w8, &w10, k);
-            w24[k] = x[2][k];
-            let w25 = w8[k] * w23;
-            let w26 = w11 * w19;
-            let w27 = at0(k, w20) + w25;
-            w28[k] = w27 - w26;
-            let w29 = series::mul(&w24, &w28, k);
-            w31[k] = series::sq(&w8, k);
-            w42[k] = x[3][k];
-            let w43 = series::mul(&w31, &w42, k);
-            let w44 = w41 * w42[k];
-            let w45 = w40 * w43;
-            let w46 = w29 + w44;
-            w47[k] = w46 - w45;
-            let w48 = series::mul(&w0, &w47, k);
-            let w49 = -w48;
-            let w67 = series::sq(&w42, k);
-            let w68 = w66 * w67;
-            out[0][k] = w49;
-            out[1][k] = w68;
-        };
+    for k in 0..N {
+        w0[k] = ug[k];
+        w8[k] = x[0][k];
+        w10[k] = x[1][k];
+        let w11 = series::mul(&w8, &w10, k);
+        w24[k] = x[2][k];
+        let w25 = w8[k] * w23;
+        let w26 = w11 * w19;
+        let w27 = at0(k, w20) + w25;
+        w28[k] = w27 - w26;
+        let w29 = series::mul(&w24, &w28, k);
+        w31[k] = series::sq(&w8, k);
+        w42[k] = x[3][k];
+        let w43 = series::mul(&w31, &w42, k);
+        let w44 = w41 * w42[k];
+        let w45 = w40 * w43;
+        let w46 = w29 + w44;
+        w47[k] = w46 - w45;
+        let w48 = series::mul(&w0, &w47, k);
+        let w49 = -w48;
+        let w67 = series::sq(&w42, k);
+        let w68 = w66 * w67;
+        out[0][k] = w49;
+        out[1][k] = w68;
     }
-    if 0 < N { order!(0); }
-    if 1 < N { order!(1); }
-    if 2 < N { order!(2); }
-    if 3 < N { order!(3); }
-    if 4 < N { order!(4); }
-    if 5 < N { order!(5); }
-    if 6 < N { order!(6); }
-    if 7 < N { order!(7); }
-    if 8 < N { order!(8); }
-    if 9 < N { order!(9); }
-    if 10 < N { order!(10); }
-    if 11 < N { order!(11); }
-    if 12 < N { order!(12); }
-    if 13 < N { order!(13); }
-    if 14 < N { order!(14); }
-    if 15 < N { order!(15); }
-    if 16 < N { order!(16); }
-    if 17 < N { order!(17); }
-    if 18 < N { order!(18); }
-    if 19 < N { order!(19); }
-    if 20 < N { order!(20); }
-    for k in 21..N { order!(k); }
     out
 }
