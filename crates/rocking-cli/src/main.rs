@@ -51,7 +51,7 @@ fn presets_help() -> String {
          docs/accuracy.md):\n{}Each is the cheapest configuration whose error, the worse of max \
          θ/α and impact times over the study's cases, meets its target (`reference` among DOP853 \
          only: the independent check of the others); times: geometric means per simulation over \
-         its eight cases, one thread.\nAn explicit method (\"dopri5\", \"dop853\" or \"taylor\") and \
+         its nine cases, one thread.\nAn explicit method (\"dopri5\", \"dop853\" or \"taylor\") and \
          tol are allowed too.",
         rocking::Preset::table()
     )
