@@ -1,33 +1,12 @@
 //! The `rocking` binary end to end: example scenes, overrides, bad input, outputs.
 
+mod common;
+
+use common::{rocking, scenes, stderr, tmp};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
 use serde_json::Value;
-
-fn scenes() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes")
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let d = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join("rocking-cli")
-        .join(name);
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn rocking(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_rocking"))
-        .args(args)
-        .output()
-        .expect("run rocking")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
 
 /// `rocking run SCENE --json --out DIR [extra]`: the parsed summary.
 fn run_json(scene: &Path, out: &Path, extra: &[&str]) -> Value {

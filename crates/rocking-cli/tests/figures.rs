@@ -5,25 +5,10 @@
 //! has the stated frame count and size, and its first and last frames show the base plate at the
 //! simulated angles (read back from the drawn plate's pixels).
 
+mod common;
+
+use common::{bin, repo, tmp_path};
 use std::path::{Path, PathBuf};
-use std::process::Command;
-
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_rocking"))
-}
-
-fn repo() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!(
-        "rocking-figures-test-{}-{name}",
-        std::process::id()
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
-    dir
-}
 
 fn ok(o: &std::process::Output) {
     assert!(
@@ -83,7 +68,7 @@ fn sweep(out: &Path, axes: &[&str]) {
 
 #[test]
 fn the_spectrum_is_labelled_in_the_papers_notation() {
-    let out = tmp("spectrum");
+    let out = tmp_path("spectrum");
     sweep(
         &out,
         &[
@@ -113,7 +98,7 @@ fn the_spectrum_is_labelled_in_the_papers_notation() {
 
 #[test]
 fn a_one_axis_sweep_writes_its_line_plot() {
-    let out = tmp("line");
+    let out = tmp_path("line");
     sweep(&out, &["excitation.amplitude=1:20:12"]);
     for f in ["line.png", "line.svg"] {
         assert!(out.join(f).is_file(), "{f} is missing");
@@ -137,7 +122,7 @@ fn a_one_axis_sweep_writes_its_line_plot() {
 
 #[test]
 fn the_time_history_is_labelled_in_the_papers_notation() {
-    let out = tmp("history");
+    let out = tmp_path("history");
     ok(&bin()
         .arg("run")
         .arg(repo().join("scenes/fig3-vvel.toml"))
@@ -184,7 +169,7 @@ fn orientation(frame: &gif::Frame, palette: &[u8], rgb: [u8; 3]) -> (f64, usize)
 #[test]
 fn the_animation_has_its_frames_and_size_and_shows_the_simulated_angles() {
     // An overturning run: the last frame lies far from the first.
-    let out = tmp("animation");
+    let out = tmp_path("animation");
     let o = bin()
         .arg("run")
         .arg(repo().join("scenes/fig10-overturns.toml"))
@@ -266,12 +251,12 @@ fn the_rigid_reference_is_the_rigid_columns_own_spectrum_and_is_drawn() {
         "excitation.amplitude=2:12:5",
     ];
     // Three axes (boundaries of two structures) with the reference beside them.
-    let out = tmp("fig9-reference");
+    let out = tmp_path("fig9-reference");
     let mut args = vec!["--axis", "structure.omega_n_over_p=2.5,10"];
     args.extend(grid);
     ok(&fig9(&out, &args));
     // The reference's cells are those of the rigid column's own spectrum over the figure's axes.
-    let rigid = tmp("fig9-rigid");
+    let rigid = tmp_path("fig9-rigid");
     let mut args = vec!["--set", "effects.flexibility=false"];
     args.extend(grid);
     ok(&fig9(&rigid, &args));
@@ -308,7 +293,9 @@ fn the_rigid_reference_is_the_rigid_columns_own_spectrum_and_is_drawn() {
         "no dashes drawn in black"
     );
     // Sharded and merged, the reference is run where the figure is drawn: the same bytes.
-    let shards: Vec<PathBuf> = (0..2).map(|k| tmp(&format!("fig9-shard{k}"))).collect();
+    let shards: Vec<PathBuf> = (0..2)
+        .map(|k| tmp_path(&format!("fig9-shard{k}")))
+        .collect();
     for (k, dir) in shards.iter().enumerate() {
         let shard = format!("{k}/2");
         let mut args = vec![
@@ -320,7 +307,7 @@ fn the_rigid_reference_is_the_rigid_columns_own_spectrum_and_is_drawn() {
         args.extend(grid);
         ok(&fig9(dir, &args));
     }
-    let merged = tmp("fig9-merged");
+    let merged = tmp_path("fig9-merged");
     ok(&bin()
         .arg("merge")
         .arg(&merged)
@@ -348,7 +335,7 @@ fn the_rigid_reference_is_the_rigid_columns_own_spectrum_and_is_drawn() {
 
 #[test]
 fn an_unknown_reference_is_refused_naming_the_key_and_the_choices() {
-    let out = tmp("fig9-bad-reference");
+    let out = tmp_path("fig9-bad-reference");
     let o = fig9(&out, &["--set", "sweep.reference=\"elastic\""]);
     assert_eq!(o.status.code(), Some(2));
     let err = String::from_utf8_lossy(&o.stderr);
@@ -382,8 +369,8 @@ fn assert_clean_text(name: &str, svg: &str) {
 /// `rocking figure` on every figure file of scenes/paper, on small grids (the test CI runs).
 #[test]
 fn every_paper_figure_is_drawn_and_shows_what_it_compares() {
-    let out = tmp("paper");
-    let cache = tmp("paper-cache");
+    let out = tmp_path("paper");
+    let cache = tmp_path("paper-cache");
     let mut files: Vec<PathBuf> = std::fs::read_dir(repo().join("scenes/paper"))
         .unwrap()
         .map(|e| e.unwrap().path())
@@ -496,7 +483,7 @@ fn every_paper_figure_is_drawn_and_shows_what_it_compares() {
         assert!(t10.contains(label), "fig10: `{label}` missing: {t10}");
     }
     // Drawn again from the cache (another process): the same bytes.
-    let again = tmp("paper-again");
+    let again = tmp_path("paper-again");
     ok(&bin()
         .arg("figure")
         .args(&files)
@@ -524,7 +511,7 @@ fn every_paper_figure_is_drawn_and_shows_what_it_compares() {
 
 #[test]
 fn a_bad_figure_file_is_refused_naming_the_file_and_the_field() {
-    let dir = tmp("bad-figure");
+    let dir = tmp_path("bad-figure");
     std::fs::create_dir_all(&dir).unwrap();
     let base = std::fs::read_to_string(repo().join("scenes/paper/fig3.toml"))
         .unwrap()

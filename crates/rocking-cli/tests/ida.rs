@@ -2,22 +2,12 @@
 //! format gives the run summary of its AT2; hunt-and-fill capacities agree with an independent
 //! bisection; bad [ida] settings exit 2 naming the key and the allowed range.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
+
+use common::{repo, rocking};
+use std::path::Path;
 
 use serde_json::Value;
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn rocking(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_rocking"))
-        .args(args)
-        .current_dir(root())
-        .output()
-        .expect("rocking runs")
-}
 
 fn summary(sets: &[String], out: &Path) -> Value {
     let mut args = vec![
@@ -48,7 +38,7 @@ fn summary(sets: &[String], out: &Path) -> Value {
 
 /// The AT2 record of the wind-turbine scene, in g.
 fn at2() -> (f64, Vec<f64>) {
-    let r = rocking_motion::read_at2(root().join("scenes/records/elCentro.AT2")).unwrap();
+    let r = rocking_motion::read_at2(repo().join("scenes/records/elCentro.AT2")).unwrap();
     (r.dt, r.samples)
 }
 
@@ -235,7 +225,7 @@ fn overturns(record: &str, sa: f64, sa1: f64, out: &Path) -> bool {
 #[test]
 fn ida_capacities_agree_with_a_bisection_and_the_fit_is_written() {
     let tmp = tempfile::tempdir().unwrap();
-    let gm = root().join("../shared/data/ground-motions");
+    let gm = repo().join("../shared/data/ground-motions");
     let recs: Vec<String> = ["A-ELC180.AT2", "A-PEL180.AT2", "A-BEN360.AT2"]
         .iter()
         .map(|r| gm.join(r).canonicalize().unwrap().display().to_string())
@@ -375,7 +365,7 @@ fn stripe_log_likelihood(stripes: &[(f64, f64, f64)], theta: f64, beta: f64) -> 
 #[test]
 fn multiple_stripes_count_the_runs_and_fit_by_maximum_likelihood() {
     let tmp = tempfile::tempdir().unwrap();
-    let gm = root().join("../shared/data/ground-motions");
+    let gm = repo().join("../shared/data/ground-motions");
     let recs: Vec<String> = [
         "A-ELC180.AT2",
         "A-PEL180.AT2",
@@ -470,7 +460,7 @@ fn multiple_stripes_count_the_runs_and_fit_by_maximum_likelihood() {
 #[test]
 fn fragility_json_is_the_same_on_every_run_and_timing_is_apart() {
     let tmp = tempfile::tempdir().unwrap();
-    let gm = root().join("../shared/data/ground-motions");
+    let gm = repo().join("../shared/data/ground-motions");
     let recs: Vec<String> = ["A-BEN360.AT2", "A-BPL160.AT2", "A-ELC180.AT2"]
         .iter()
         .map(|r| gm.join(r).canonicalize().unwrap().display().to_string())

@@ -4,37 +4,11 @@
 //! rewrites its own `--out` (`run --animate`, `ida` with stripes, a merge of a one-axis sweep with
 //! a reference), or refuses it before the work.
 
+mod common;
+
+use common::{repo, rocking, text, tmp};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-
-fn repo() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let d = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join("out-dirs")
-        .join(name);
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn rocking(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_rocking"))
-        .args(args)
-        .output()
-        .expect("run rocking")
-}
-
-fn text(o: &Output) -> String {
-    format!(
-        "exit {:?}\n{}{}",
-        o.status.code(),
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    )
-}
 
 fn names(dir: &Path) -> Vec<String> {
     let mut v: Vec<String> = std::fs::read_dir(dir)

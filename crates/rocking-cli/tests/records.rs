@@ -3,22 +3,12 @@
 //! structure's g, and a dimensionless scene converts with the same g that relates its R and p;
 //! a download folder is read alike by `ida` and `batch`.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
+
+use common::{repo, rocking};
+use std::path::Path;
 
 use serde_json::Value;
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn rocking(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_rocking"))
-        .args(args)
-        .current_dir(root())
-        .output()
-        .expect("rocking runs")
-}
 
 /// `run --json` of `scene` (text) with the record `record` (AT2 text) beside it.
 fn run(dir: &Path, scene: &str, record: &str) -> Value {
@@ -128,13 +118,13 @@ fn ida_and_batch_read_a_download_folder_alike() {
     let dir = tmp.path().join("PEER_download");
     std::fs::create_dir_all(dir.join("RSN9_NOTHING.AT2")).unwrap();
     std::fs::write(dir.join("RSN9_NOTHING.AT2/README.txt"), "a folder").unwrap();
-    let gm = root().join("../shared/data/ground-motions");
+    let gm = repo().join("../shared/data/ground-motions");
     for f in ["A-TIN000.AT2", "ARL360.at2"] {
         std::fs::copy(gm.join(f), dir.join(f)).unwrap();
     }
     let esm = "IT.NRC..HNE.D.EMSC-20161030_0000029.ACC.MP.ASC";
     std::fs::copy(
-        root()
+        repo()
             .join("crates/rocking-motion/tests/corpus/esm")
             .join(esm),
         dir.join(esm),

@@ -2,32 +2,11 @@
 //! would exhaust memory, hangs, output directories, messages. Each test asserts the property that
 //! failed before the fix.
 
+mod common;
+
+use common::{repo, rocking, stderr, tmp};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
-
-fn repo() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let d = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join("robustness")
-        .join(name);
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn rocking(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_rocking"))
-        .args(args)
-        .output()
-        .expect("run rocking")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
 
 /// Exit 2 with one message that contains every needle, no panic (101) and no abort (134).
 fn assert_input_error(o: &Output, needles: &[&str], label: &str) {

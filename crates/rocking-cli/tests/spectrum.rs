@@ -2,26 +2,12 @@
 //! is killed mid-sweep) that resumes to the uninterrupted result, a changed scene refused, and
 //! the same cells with 1 and 2 threads.
 
+mod common;
+
+use common::{bin, repo, tmp_path};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
+use std::process::Stdio;
 use std::time::{Duration, Instant};
-
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_rocking"))
-}
-
-fn repo() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!(
-        "rocking-spectrum-test-{}-{name}",
-        std::process::id()
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
-    dir
-}
 
 fn spectrum(out: &Path, axes: &[&str], extra: &[&str]) -> std::process::Output {
     let mut c = bin();
@@ -43,7 +29,7 @@ const AXES: [&str; 2] = [
 
 #[test]
 fn spectrum_writes_classified_cells_and_plots() {
-    let out = tmp("outputs");
+    let out = tmp_path("outputs");
     let o = spectrum(&out, &AXES, &[]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let csv = std::fs::read_to_string(out.join("cells.csv")).unwrap();
@@ -90,13 +76,13 @@ fn spectrum_writes_classified_cells_and_plots() {
 
 #[test]
 fn killed_spectrum_resumes_to_the_uninterrupted_result() {
-    let whole = tmp("whole");
+    let whole = tmp_path("whole");
     assert!(spectrum(&whole, &AXES, &["--threads", "2"])
         .status
         .success());
     let reference = std::fs::read_to_string(whole.join("cells.csv")).unwrap();
 
-    let out = tmp("killed");
+    let out = tmp_path("killed");
     let mut child = bin()
         .arg("spectrum")
         .arg(repo().join("scenes/spectra/fig8.toml"))
@@ -147,7 +133,7 @@ fn killed_spectrum_resumes_to_the_uninterrupted_result() {
 
 #[test]
 fn one_and_two_threads_give_identical_cells() {
-    let (a, b) = (tmp("t1"), tmp("t2"));
+    let (a, b) = (tmp_path("t1"), tmp_path("t2"));
     let axes = [
         "excitation.omega_p_over_p=2:8:10",
         "excitation.amplitude=2:16:10",
@@ -167,7 +153,7 @@ fn bad_axes_are_input_errors() {
         "excitation.amplitud=1:2:3",
         "structure.alpha=0.1:2:3",
     ] {
-        let o = spectrum(&tmp("bad"), &[axis], &[]);
+        let o = spectrum(&tmp_path("bad"), &[axis], &[]);
         assert_eq!(
             o.status.code(),
             Some(2),
@@ -179,7 +165,7 @@ fn bad_axes_are_input_errors() {
 
 #[test]
 fn batch_over_records_gives_the_fraction_overturned_per_scale() {
-    let out = tmp("batch");
+    let out = tmp_path("batch");
     let records = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data/ground-motions");
     let records = if records.is_dir() {
         records
@@ -244,7 +230,7 @@ const RECORD_SCENE: &str =
 /// run gives the weaker record's answer. The same holds for a spectrum of a record scene.
 #[test]
 fn a_changed_record_is_not_resumed() {
-    let dir = tmp("changed-record");
+    let dir = tmp_path("changed-record");
     std::fs::create_dir_all(&dir).unwrap();
     let scene = dir.join("scene.toml");
     std::fs::write(&scene, RECORD_SCENE).unwrap();
@@ -316,7 +302,7 @@ fn failed_runs_are_reported_as_failed_on_first_runs_and_resumes() {
         eprintln!("SKIPPED: {} is absent", records.display());
         return;
     }
-    let dir = tmp("failed-runs");
+    let dir = tmp_path("failed-runs");
     std::fs::create_dir_all(&dir).unwrap();
     let scene = dir.join("scene.toml");
     std::fs::write(
@@ -439,7 +425,7 @@ fn csv_rows(text: &str) -> Vec<Vec<String>> {
 /// the columns).
 #[test]
 fn runs_csv_quotes_record_names() {
-    let dir = tmp("quoted");
+    let dir = tmp_path("quoted");
     std::fs::create_dir_all(&dir).unwrap();
     let scene = dir.join("scene.toml");
     std::fs::write(&scene, RECORD_SCENE).unwrap();
