@@ -5,11 +5,10 @@
 use std::f64::consts::FRAC_PI_2;
 use std::fmt;
 
+use nalgebra::{DMatrix, DVector};
 use rocking_kernels::kernels::{index::structure as st, MAX_PARAMS};
-use rocking_kernels::modes::Matrices;
-use rocking_kernels::{
-    with_variant, Layout, ModelInfo, OneCoordinate, ParamInfo, Physical, Role, Variant,
-};
+use rocking_kernels::modes::{critical_deflection, Matrices, RigidBody};
+use rocking_kernels::{with_variant, Array, Layout, ModelInfo, ParamInfo, Physical, Role, Variant};
 use serde::{Deserialize, Serialize};
 
 /// The model of a structure that names none: the paper's (cubic shape function).
@@ -109,6 +108,8 @@ pub struct Frequencies {
 }
 
 /// Quantities derived from a structure by its model's generated `structure` kernel, in model units.
+/// With several deformation coordinates the column's quantities are its first modes' (see
+/// [`Derived::of_modes`]).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Derived {
     /// p = sqrt(g/R).
@@ -167,6 +168,75 @@ impl Derived {
     }
 }
 
+impl Derived {
+    /// The quantities of a variant of several deformation coordinates: ω_n and ω_up the first
+    /// fixed-base and uplifted frequencies ([`rocking_kernels::modes`]), S = ω_up/ω_n, ζ_uplifted
+    /// the first uplifted mode's damping ratio under the modal damping matrix in `p`, m̃, k̃ and
+    /// Γ̃ the first fixed-base mode's generalised mass, stiffness and participation factor with
+    /// φ_1 scaled to a unit top deflection (φ_1ᵀMφ_1, φ_1ᵀKφ_1, φ_1ᵀΓ/m̃), u_cr along φ_1
+    /// ([`critical_deflection`]), and the rigid body's θ_cr, E_ref, R, α, p by name. NaN where
+    /// the column's mass matrix is singular.
+    pub fn of_modes<V: Variant>(p: &V::Params, s: &V::Structure, zeta_fixed_base: f64) -> Derived {
+        let n = V::NQ;
+        let rigid = RigidBody::of::<V>(s);
+        let mats = Matrices::of::<V>(p);
+        let fixed = mats.fixed_base();
+        let phi = fixed.as_ref().map_or_else(
+            || DVector::from_element(n, f64::NAN),
+            |f| f.shapes[0].clone(),
+        );
+        let omega_n = fixed.as_ref().map_or(f64::NAN, |f| f.omega[0]);
+        let omega_up = mats.uplifted().map_or(f64::NAN, |u| u.omega[0]);
+        let m_phi = &mats.mass * &phi;
+        let m_tilde = phi.dot(&m_phi);
+        let k_tilde = phi.dot(&(&mats.stiffness * &phi));
+        // Γ̃_i = (M⁻¹Γ)_i from the kernel, so φ_1ᵀΓ = (Mφ_1)ᵀ Γ̃.
+        let gamma = DVector::from_fn(n, |i, _| {
+            <V as Layout>::structure_value(s, &format!("gamma_tilde_{}", i + 1))
+        });
+        let damping = modal_damping::<V>(p);
+        let zeta_uplifted = mats
+            .uplifted_damping_ratios(&damping)
+            .map_or(f64::NAN, |r| r[0]);
+        Derived {
+            p: rigid.p,
+            r: rigid.r,
+            alpha: rigid.alpha,
+            omega_n,
+            omega_up,
+            modal_s: omega_up / omega_n,
+            zeta_fixed_base,
+            zeta_uplifted,
+            m_tilde,
+            k_tilde,
+            gamma_tilde: m_phi.dot(&gamma) / m_tilde,
+            theta_cr: rigid.theta_cr,
+            u_cr: critical_deflection::<V>(p, &phi),
+            e_ref: rigid.e_ref,
+            i_bc_plate: rigid.i_bc_plate,
+        }
+    }
+}
+
+/// The modal damping matrix of the u_i in the parameters `p` of a variant of several
+/// coordinates (its entries `c_i_j`, the upper triangle row by row).
+fn modal_damping<V: Variant>(p: &V::Params) -> DMatrix<f64> {
+    let n = V::NQ;
+    let model = ModelInfo::find(V::MODEL).expect("a variant's model is registered");
+    let mut c = DMatrix::zeros(n, n);
+    if let Some(first) = model.modal_damping() {
+        let mut k = first;
+        for i in 0..n {
+            for j in i..n {
+                c[(i, j)] = p.as_ref()[k];
+                c[(j, i)] = p.as_ref()[k];
+                k += 1;
+            }
+        }
+    }
+    c
+}
+
 /// The generated model called `name`.
 pub fn find_model(name: &str) -> Result<&'static ModelInfo, ParamError> {
     ModelInfo::find(name).ok_or_else(|| ParamError {
@@ -212,17 +282,6 @@ fn extra_values(
     model: &'static ModelInfo,
     given: &[(&str, f64)],
 ) -> Result<([f64; MAX_PARAMS], usize), ParamError> {
-    if model.coordinates > 1 {
-        return Err(ParamError {
-            parameter: "model",
-            value: model.coordinates as f64,
-            allowed: format!(
-                "model `{}` has {} deformation coordinates; the solver runs one-coordinate \
-                 models so far",
-                model.name, model.coordinates
-            ),
-        });
-    }
     if let Some((k, v)) = given
         .iter()
         .find(|(k, _)| model.extra_params().all(|p| p.name != *k))
@@ -270,12 +329,10 @@ fn core_field<'a>(ph: &'a mut Physical, name: &str) -> Option<&'a mut f64> {
     })
 }
 
-/// Runs `$body` with `$V` the model's full variant (its own kernels, nothing removed), a model of
-/// one deformation coordinate (the others are refused by [`extra_values`], which every
-/// constructor calls first).
+/// Runs `$body` with `$V` the model's full variant (its own kernels, nothing removed).
 macro_rules! with_full {
     ($model:expr, $V:ident => $body:expr) => {
-        with_variant!($model.full, $V => $body).expect("a model's full variant is generated")
+        with_variant!($model.full, $V, L => $body).expect("a model's full variant is generated")
     };
 }
 
@@ -420,8 +477,15 @@ impl Structure {
             ex,
         ));
         if d.damping == DampingConvention::Uplifted {
-            let s =
-                with_full!(model, V => V::structure(&V::params_with(&physical, ex))[st::MODAL_S]);
+            let s = with_full!(model, V => {
+                let p = V::params_with(&physical, ex);
+                let s = V::structure(&p);
+                if V::NQ == 1 {
+                    s.values()[st::MODAL_S]
+                } else {
+                    Derived::of_modes::<V>(&p, &s, physical.zeta).modal_s
+                }
+            });
             physical.zeta = d.zeta / s;
         }
         Structure::checked(model, physical, values, n_extra, p_per_second)
@@ -536,9 +600,15 @@ impl Structure {
         .expect("a model's full variant is generated")
     }
 
-    /// Derived quantities from the `structure` kernel of the variant `V` of this model.
-    pub fn derived_by<V: OneCoordinate>(&self) -> Derived {
-        Derived::from_kernel(&V::structure(&self.params::<V>()), self.physical.zeta)
+    /// Derived quantities from the `structure` kernel of the variant `V` of this model (and, for
+    /// several deformation coordinates, its modes: [`Derived::of_modes`]).
+    pub fn derived_by<V: Variant>(&self) -> Derived {
+        let p = self.params::<V>();
+        let s = V::structure(&p);
+        match s.values().try_into() {
+            Ok(one) if V::NQ == 1 => Derived::from_kernel(one, self.physical.zeta),
+            _ => Derived::of_modes::<V>(&p, &s, self.physical.zeta),
+        }
     }
 
     /// The smallest constant ground acceleration that uplifts the structure when applied
@@ -551,14 +621,23 @@ impl Structure {
     /// from its model's `static_uplift` kernel.
     pub fn static_uplift(&self) -> StaticUplift {
         use rocking_kernels::kernels::index::static_uplift as su;
-        let k = with_full!(self.model, V => V::static_uplift(&self.params::<V>()));
-        StaticUplift {
-            weight: k[su::WEIGHT],
-            moment: k[su::MOMENT_UPLIFT],
-            ground_acceleration: k[su::UG_UPLIFT].abs(),
-            deflection: k[su::U_UPLIFT].abs(),
-            elastic_moment: k[su::MOMENT_ELASTIC_UPLIFT].abs(),
-        }
+        with_full!(self.model, V => {
+            let k = V::static_uplift(&self.params::<V>());
+            let k = k.values();
+            // u_uplift is u_1..u_n with several coordinates: M_el follows them.
+            let n = V::NQ;
+            let top = V::shape(1.0);
+            let deflection: f64 = (0..n)
+                .map(|i| k[su::U_UPLIFT + i] * if n == 1 { 1.0 } else { top.values()[i] })
+                .sum();
+            StaticUplift {
+                weight: k[su::WEIGHT],
+                moment: k[su::MOMENT_UPLIFT],
+                ground_acceleration: k[su::UG_UPLIFT].abs(),
+                deflection: deflection.abs(),
+                elastic_moment: k[su::MOMENT_ELASTIC_UPLIFT + n - 1].abs(),
+            }
+        })
     }
 }
 
