@@ -21,6 +21,8 @@ pub enum DampingConvention {
     /// ζ is the fixed-base damping ratio of the column (the paper's Figs 3 and 5).
     FixedBase,
     /// ζ is the uplifted damping ratio: the fixed-base ratio is ζ/S, eq (19) (the spectra, Sec. 3.1).
+    /// With several deformation coordinates: the one fixed-base ratio of every mode that gives
+    /// the first uplifted mode the ratio ζ.
     Uplifted,
 }
 
@@ -218,6 +220,43 @@ impl Derived {
     }
 }
 
+/// The fixed-base damping ratio ζ (common to every fixed-base mode) that gives the first uplifted
+/// mode the ratio `zeta_uplifted`: ζ_uplifted / S for one coordinate, eq (19); for several the
+/// uplifted ratio is not proportional to ζ (the modal damping is not classical while rocking), so
+/// ζ is found by the fixed-point iteration ζ ← ζ ζ_uplifted / ζ_1^up(ζ) from ζ_uplifted / S (a few
+/// iterations: ζ_1^up is nearly proportional to ζ). NaN where the ratio cannot be reached.
+fn fixed_base_ratio<V: Variant>(physical: &Physical, extra: &[f64], zeta_uplifted: f64) -> f64 {
+    let ratio_at = |zeta: f64| {
+        let ph = Physical { zeta, ..*physical };
+        let p = V::params_with(&ph, extra);
+        let s = V::structure(&p);
+        if V::NQ == 1 {
+            (s.values()[st::MODAL_S], f64::NAN)
+        } else {
+            let d = Derived::of_modes::<V>(&p, &s, zeta);
+            (d.modal_s, d.zeta_uplifted)
+        }
+    };
+    let (modal_s, _) = ratio_at(physical.zeta);
+    let mut zeta = zeta_uplifted / modal_s;
+    if V::NQ == 1 || zeta_uplifted == 0.0 {
+        return zeta;
+    }
+    for _ in 0..50 {
+        let (_, up) = ratio_at(zeta);
+        let next = zeta * zeta_uplifted / up;
+        if !next.is_finite() {
+            return f64::NAN;
+        }
+        let done = (next - zeta).abs() <= 1e-14 * zeta;
+        zeta = next;
+        if done {
+            return zeta;
+        }
+    }
+    f64::NAN
+}
+
 /// The modal damping matrix of the u_i in the parameters `p` of a variant of several
 /// coordinates (its entries `c_i_j`, the upper triangle row by row).
 fn modal_damping<V: Variant>(p: &V::Params) -> DMatrix<f64> {
@@ -260,6 +299,10 @@ pub fn model_names() -> Vec<&'static str> {
 fn paper_model() -> &'static ModelInfo {
     ModelInfo::find(PAPER_MODEL).expect("the paper's model is generated")
 }
+
+/// Why a model of several deformation coordinates needs a column mass.
+const SEVERAL_NEED_COLUMN_MASS: &str = "a column mass m_c > 0 for a model of several deformation \
+    coordinates (without it only the top mass weighs them: their mass matrix is singular)";
 
 /// Checks the value of a parameter a model adds, by its role.
 fn check_extra(p: &'static ParamInfo, v: f64) -> Result<(), ParamError> {
@@ -398,6 +441,14 @@ impl Structure {
         for (param, &v) in model.extra_params().zip(&extra[..n_extra]) {
             check_extra(param, v)?;
         }
+        if model.coordinates > 1 {
+            let weighed = with_full!(model, V => {
+                Matrices::of::<V>(&V::params_with(&physical, &extra[..n_extra]))
+                    .fixed_base()
+                    .is_some()
+            });
+            check("m_c", p.m_c, weighed, SEVERAL_NEED_COLUMN_MASS)?;
+        }
         Ok(Structure {
             model,
             physical,
@@ -476,17 +527,12 @@ impl Structure {
             d.zeta,
             ex,
         ));
+        // EI follows the first fixed-base frequency, which a singular mass matrix does not have.
+        if model.coordinates > 1 && physical.ei.is_nan() {
+            check("gamma_mc", d.gamma_mc, false, SEVERAL_NEED_COLUMN_MASS)?;
+        }
         if d.damping == DampingConvention::Uplifted {
-            let s = with_full!(model, V => {
-                let p = V::params_with(&physical, ex);
-                let s = V::structure(&p);
-                if V::NQ == 1 {
-                    s.values()[st::MODAL_S]
-                } else {
-                    Derived::of_modes::<V>(&p, &s, physical.zeta).modal_s
-                }
-            });
-            physical.zeta = d.zeta / s;
+            physical.zeta = with_full!(model, V => fixed_base_ratio::<V>(&physical, ex, d.zeta));
         }
         Structure::checked(model, physical, values, n_extra, p_per_second)
     }

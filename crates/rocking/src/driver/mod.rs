@@ -149,11 +149,17 @@ fn set_up<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const
     let uplift = V::static_uplift(&p);
     // The excitation's resolution is a sixteenth of its shortest period.
     let excitation_rate = 2.0 * std::f64::consts::PI / (16.0 * motion.resolution());
-    let fastest_rate = [derived.omega_n, derived.omega_up, pf, excitation_rate]
-        .into_iter()
-        .filter(|w| w.is_finite())
-        .fold(0.0, f64::max);
-    let (metric, first_mode) = column_metric::<V>(&p, &derived);
+    let (metric, first_mode, highest) = column_metric::<V>(&p, &derived);
+    let fastest_rate = [
+        derived.omega_n,
+        derived.omega_up,
+        highest,
+        pf,
+        excitation_rate,
+    ]
+    .into_iter()
+    .filter(|w| w.is_finite())
+    .fold(0.0, f64::max);
     Ok(Sim {
         p,
         motion,
@@ -180,10 +186,11 @@ fn set_up<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const
     })
 }
 
-/// The column's K and M in full contact, inverted (k̃ and m̃ for one coordinate), and its first
+/// The column's K and M in full contact, inverted (k̃ and m̃ for one coordinate), its first
 /// fixed-base mode with a unit top deflection (1 for one coordinate; NaN where the mass matrix
-/// is singular, as for a rigid column of several coordinates, whose u stays 0).
-fn column_metric<V: Variant>(p: &V::Params, derived: &Derived) -> (Metric, V::Shape) {
+/// is singular), and its highest fixed-base or uplifted frequency (NaN for one coordinate, whose
+/// ω_n and ω_up are the derived ones).
+fn column_metric<V: Variant>(p: &V::Params, derived: &Derived) -> (Metric, V::Shape, f64) {
     let (k, m) = (derived.k_tilde, derived.m_tilde);
     if V::NQ == 1 {
         let one = DMatrix::from_element(1, 1, 1.0);
@@ -193,7 +200,7 @@ fn column_metric<V: Variant>(p: &V::Params, derived: &Derived) -> (Metric, V::Sh
             k_inv: one.clone(),
             m_inv: one,
         };
-        return (metric, V::Shape::from_fn(|_| 1.0));
+        return (metric, V::Shape::from_fn(|_| 1.0), f64::NAN);
     }
     let mats = Matrices::of::<V>(p);
     let nan = || DMatrix::from_element(V::NQ, V::NQ, f64::NAN);
@@ -203,9 +210,14 @@ fn column_metric<V: Variant>(p: &V::Params, derived: &Derived) -> (Metric, V::Sh
         k_inv: mats.stiffness.clone().try_inverse().unwrap_or_else(nan),
         m_inv: mats.mass.clone().try_inverse().unwrap_or_else(nan),
     };
-    let phi = mats.fixed_base().map(|modes| modes.shapes[0].clone());
+    let fixed = mats.fixed_base();
+    let phi = fixed.as_ref().map(|modes| modes.shapes[0].clone());
     let first_mode = V::Shape::from_fn(|i| phi.as_ref().map_or(f64::NAN, |phi| phi[i]));
-    (metric, first_mode)
+    let last = |m: Option<&rocking_kernels::modes::Modes>| {
+        m.and_then(|m| m.omega.last().copied()).unwrap_or(f64::NAN)
+    };
+    let highest = last(fixed.as_ref()).max(last(mats.uplifted().as_ref()));
+    (metric, first_mode, highest)
 }
 
 impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usize>
@@ -297,6 +309,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
                         summary,
                         events: self.rec.log,
                         history: self.rec.history,
+                        coordinates: self.rec.coordinates,
                     });
                 }
             };

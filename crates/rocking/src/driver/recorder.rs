@@ -46,6 +46,12 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             vertical_reaction_over_w: f.vertical,
         };
         self.rec.history.push(row);
+        if V::NQ > 1 {
+            let n = V::NQ;
+            let x = x.values();
+            self.rec.coordinates.extend_from_slice(&x[1..=n]);
+            self.rec.coordinates.extend_from_slice(&x[n + 2..]);
+        }
     }
 
     /// History rows for the step (t_old, t_new] of a phase, from the dense output.

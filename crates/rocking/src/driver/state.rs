@@ -183,6 +183,8 @@ pub(super) struct Record {
     pub(super) losses: f64,
     pub(super) log: Vec<EventRecord>,
     pub(super) history: Vec<HistoryRow>,
+    /// u_1..u_n, u_1'..u_n' of each history row, for n > 1.
+    pub(super) coordinates: Vec<f64>,
     /// The next time of the history grid.
     pub(super) next_grid: f64,
     /// The extremes of the section forces and reactions.
