@@ -15,7 +15,8 @@
 //! are absent are removed before the derivation (so their terms do not exist in the code), the
 //! rigid variant has one degree of freedom, the small-angle one is linearised in θ. All variants
 //! of one deformation coordinate share one interface ([`OneCoordinate`]): the rocking state is
-//! `[θ, u, θ', u']` even for the rigid column, whose kernels never read `u`.
+//! `[θ, u, θ', u']` even for the rigid column, whose kernels never read `u`. The solver runs
+//! every variant, of any number of coordinates, through [`Variant`] and [`Layout`].
 //!
 //! # Several deformation coordinates
 //!
@@ -433,8 +434,9 @@ pub trait Variant: Layout + Copy + Default + Send + Sync + 'static {
     fn static_uplift(p: &Self::Params) -> Self::StaticUplift;
 }
 
-/// The variants of one deformation coordinate, with today's arrays: the driver runs these (a
-/// model with several coordinates has no driver yet). Implemented for every such variant.
+/// The variants of one deformation coordinate, with their fixed arrays (`[θ, u, θ', u']`…), for
+/// code written for them alone (tests, benchmarks); the driver runs any [`Variant`]. Implemented
+/// for every such variant.
 pub trait OneCoordinate:
     Variant<
     Q = [f64; 2],

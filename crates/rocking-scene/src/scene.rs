@@ -551,16 +551,6 @@ fn scene_model(table: &Table, src: &Source) -> Result<&'static ModelInfo, SceneE
             ),
         )
     })?;
-    if model.coordinates > 1 {
-        return Err(src.err(
-            "structure.model",
-            format_args!(
-                "`model` = \"{name}\" in [structure] has {} deformation coordinates; the solver \
-                 runs one-coordinate models so far",
-                model.coordinates
-            ),
-        ));
-    }
     Ok(model)
 }
 

@@ -247,7 +247,8 @@ fn num(out: &mut String, x: f64) -> Result<(), SceneError> {
 }
 
 /// history.csv: τ, seconds (when known), normalised state, phase, energies, ground acceleration,
-/// the section forces at the column base and the ground reactions.
+/// the section forces at the column base and the ground reactions; with n > 1 deformation
+/// coordinates then u_1..u_n and u_1'..u_n' (`u_dot_i`) in the model's units.
 pub fn history_csv(model: &Setup, run: &Run) -> Result<String, SceneError> {
     let d = model.structure.derived();
     let u = &model.units;
@@ -255,9 +256,17 @@ pub fn history_csv(model: &Setup, run: &Run) -> Result<String, SceneError> {
     let mut out = String::from(
         "tau,t_s,theta_over_alpha,u_over_ucr,theta_dot_over_alpha_p,u_dot_over_ucr_omega_n,\
          phase,e_kin_over_eref,e_total_over_eref,ug_over_g_tan_alpha,base_moment_over_wb,\
-         base_shear_over_w,elastic_base_moment_over_wb,required_friction,vertical_reaction_over_w\n",
+         base_shear_over_w,elastic_base_moment_over_wb,required_friction,vertical_reaction_over_w",
     );
-    for r in &run.history {
+    // Several deformation coordinates: u_1..u_n and their rates, in the model's units.
+    let n = run.coordinate_count();
+    for name in ["u", "u_dot"] {
+        for i in 1..=n {
+            let _ = write!(out, ",{name}_{i}");
+        }
+    }
+    out.push('\n');
+    for (k, r) in run.history.iter().enumerate() {
         let _ = write!(out, "{}", finite("τ", r.tau)?);
         match ps {
             Some(p) => num(&mut out, r.tau / p)?,
@@ -281,6 +290,9 @@ pub fn history_csv(model: &Setup, run: &Run) -> Result<String, SceneError> {
             _ => out.push_str(",inf"),
         }
         num(&mut out, r.vertical_reaction_over_w)?;
+        for &c in run.coordinates_of(k) {
+            num(&mut out, c)?;
+        }
         out.push('\n');
     }
     Ok(out)

@@ -23,7 +23,7 @@ fn structure(gamma_mc: f64, gamma_mb: f64, omega_n: f64) -> Structure {
 }
 
 fn run<V: rocking::TaylorVariant>(s: &Structure, pulse: &SinePulse, o: &Options) -> f64 {
-    simulate_variant::<V, _, false>(s, pulse, o)
+    simulate_variant::<V, _, 4, 2>(s, pulse, o)
         .unwrap()
         .summary
         .max_theta_over_alpha

@@ -1,19 +1,21 @@
-//! The dense output of one step as the driver reads it: the state `[θ, u, θ', u']` anywhere on
-//! the step, one component alone, and a bound of a component's size over the step.
+//! The dense output of one step as the driver reads it: the rocking state
+//! `x = [θ, u_1..u_n, θ', u_1'..u_n']` anywhere on the step, one component alone, and a bound of
+//! a component's size over the step.
 //!
-//! A Runge–Kutta step offers the state only (any `Fn(f64) -> [f64; 4]` is a [`StepView`]); a
-//! Taylor step's polynomial evaluates one component for a D-th of the cost and bounds it for
-//! free, which is what the search of maxima inside a step spends most on.
+//! A Runge–Kutta step offers the state only (any `Fn(f64) -> X` is a [`StepView`]); a Taylor
+//! step's polynomial evaluates one component for a D-th of the cost and bounds it for free, which
+//! is what the search of maxima inside a step spends most on.
 
+use rocking_kernels::Array;
 use rocking_ode::taylor::Taylor;
 
-/// What the driver reads of a step's dense output.
-pub(crate) trait StepView {
-    /// The state `[θ, u, θ', u']` at `t` in the step.
-    fn state(&self, t: f64) -> [f64; 4];
+/// What the driver reads of a step's dense output, the rocking state `X` of its variant.
+pub(crate) trait StepView<X: Array> {
+    /// The state `[θ, u_1..u_n, θ', u_1'..u_n']` at `t` in the step.
+    fn state(&self, t: f64) -> X;
     /// Component `i` of [`state`](Self::state) alone.
     fn component(&self, i: usize, t: f64) -> f64 {
-        self.state(t)[i]
+        self.state(t).values()[i]
     }
     /// An upper bound of |component `i`| over the whole step (∞ when unknown): an extremum
     /// inside the step cannot raise a maximum already above it.
@@ -22,33 +24,52 @@ pub(crate) trait StepView {
     }
 }
 
-impl<F: Fn(f64) -> [f64; 4]> StepView for F {
-    fn state(&self, t: f64) -> [f64; 4] {
+impl<X: Array, F: Fn(f64) -> X> StepView<X> for F {
+    fn state(&self, t: f64) -> X {
         self(t)
     }
 }
 
-/// A Taylor step of a phase whose (scaled) state rows map onto `[θ, u, θ', u']` by `rows`
-/// (`None`: identically 0 in the phase, as θ and θ' in full contact).
+/// A Taylor step of a phase whose (scaled) state rows are the rocking state's (`contact`: false)
+/// or the contact state's `[u_1..u_n, u_1'..u_n']` (θ and θ' identically 0 in full contact).
 pub(crate) struct TaylorStep<'a, const D: usize> {
     pub ode: &'a Taylor<D>,
     pub scale: [f64; D],
-    pub rows: [Option<usize>; 4],
+    pub contact: bool,
 }
 
-impl<const D: usize> StepView for TaylorStep<'_, D> {
-    fn state(&self, t: f64) -> [f64; 4] {
+impl<const D: usize> TaylorStep<'_, D> {
+    /// The row of the step's state that holds component `i` of the rocking state of `n`
+    /// coordinates (`None`: identically 0 in the phase).
+    fn row(&self, i: usize, n: usize) -> Option<usize> {
+        if !self.contact {
+            Some(i)
+        } else if i == 0 || i == n + 1 {
+            None
+        } else if i <= n {
+            Some(i - 1)
+        } else {
+            Some(i - 2)
+        }
+    }
+}
+
+impl<X: Array, const D: usize> StepView<X> for TaylorStep<'_, D> {
+    fn state(&self, t: f64) -> X {
         let y = self.ode.dense(t);
-        self.rows.map(|r| r.map_or(0.0, |r| y[r] * self.scale[r]))
+        let n = (X::LEN - 2) / 2;
+        X::from_fn(|i| self.row(i, n).map_or(0.0, |r| y[r] * self.scale[r]))
     }
 
     fn component(&self, i: usize, t: f64) -> f64 {
-        self.rows[i].map_or(0.0, |r| self.ode.dense_component(r, t) * self.scale[r])
+        let n = (X::LEN - 2) / 2;
+        self.row(i, n)
+            .map_or(0.0, |r| self.ode.dense_component(r, t) * self.scale[r])
     }
 
     /// Σ |c_k| h^k over the step's polynomial, with a margin for its rounding.
     fn bound(&self, i: usize) -> f64 {
-        let Some(r) = self.rows[i] else {
+        let Some(r) = self.row(i, (X::LEN - 2) / 2) else {
             return 0.0;
         };
         let c = &self.ode.coefficients()[r][..=self.ode.order()];

@@ -277,14 +277,6 @@ pub fn run_variant(
     options: &Options,
 ) -> Result<Run, SimError> {
     match VariantInfo::find(name) {
-        Some(v) if v.model == structure.model().name && structure.model().coordinates > 1 => {
-            return Err(SimError::NoVariant(format!(
-                "variant `{name}` of model `{}` has {} deformation coordinates; the solver runs \
-                 one-coordinate models so far",
-                v.model,
-                structure.model().coordinates
-            )))
-        }
         Some(v) if v.model == structure.model().name => {}
         _ => {
             return Err(SimError::NoVariant(format!(
@@ -293,11 +285,13 @@ pub fn run_variant(
             )))
         }
     }
-    with_variant!(name, V => {
+    with_variant!(name, V, L => {
         if options.energy {
-            driver::simulate::<V, dyn GroundMotion, true>(structure, motion, options)
+            driver::simulate::<V, dyn GroundMotion, { L::X + 2 }, { L::XC + 2 }>(
+                structure, motion, options,
+            )
         } else {
-            driver::simulate::<V, dyn GroundMotion, false>(structure, motion, options)
+            driver::simulate::<V, dyn GroundMotion, { L::X }, { L::XC }>(structure, motion, options)
         }
     })
     .unwrap_or_else(|| Err(SimError::NoVariant(format!("no kernel variant `{name}`"))))

@@ -268,4 +268,21 @@ pub struct Run {
     pub events: Vec<EventRecord>,
     /// Time history, when asked for.
     pub history: Vec<HistoryRow>,
+    /// With n > 1 deformation coordinates, each history row's u_1..u_n and u_1'..u_n' (2n
+    /// numbers per row, in the order of `history`); empty for one coordinate (whose u is the
+    /// row's own).
+    pub coordinates: Vec<f64>,
+}
+
+impl Run {
+    /// The number n of deformation coordinates in [`Run::coordinates`] (0 when not recorded).
+    pub fn coordinate_count(&self) -> usize {
+        self.coordinates.len() / (2 * self.history.len().max(1))
+    }
+
+    /// u_1..u_n, u_1'..u_n' of history row `i` (empty for one coordinate).
+    pub fn coordinates_of(&self, i: usize) -> &[f64] {
+        let w = 2 * self.coordinate_count();
+        self.coordinates.get(i * w..(i + 1) * w).unwrap_or(&[])
+    }
 }

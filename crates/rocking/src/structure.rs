@@ -5,11 +5,10 @@
 use std::f64::consts::FRAC_PI_2;
 use std::fmt;
 
+use nalgebra::{DMatrix, DVector};
 use rocking_kernels::kernels::{index::structure as st, MAX_PARAMS};
-use rocking_kernels::modes::Matrices;
-use rocking_kernels::{
-    with_variant, Layout, ModelInfo, OneCoordinate, ParamInfo, Physical, Role, Variant,
-};
+use rocking_kernels::modes::{critical_deflection, Matrices, RigidBody};
+use rocking_kernels::{with_variant, Array, Layout, ModelInfo, ParamInfo, Physical, Role, Variant};
 use serde::{Deserialize, Serialize};
 
 /// The model of a structure that names none: the paper's (cubic shape function).
@@ -22,6 +21,8 @@ pub enum DampingConvention {
     /// ζ is the fixed-base damping ratio of the column (the paper's Figs 3 and 5).
     FixedBase,
     /// ζ is the uplifted damping ratio: the fixed-base ratio is ζ/S, eq (19) (the spectra, Sec. 3.1).
+    /// With several deformation coordinates: the one fixed-base ratio of every mode that gives
+    /// the first uplifted mode the ratio ζ.
     Uplifted,
 }
 
@@ -109,6 +110,8 @@ pub struct Frequencies {
 }
 
 /// Quantities derived from a structure by its model's generated `structure` kernel, in model units.
+/// With several deformation coordinates the column's quantities are its first modes' (see
+/// [`Derived::of_modes`]).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Derived {
     /// p = sqrt(g/R).
@@ -167,6 +170,112 @@ impl Derived {
     }
 }
 
+impl Derived {
+    /// The quantities of a variant of several deformation coordinates: ω_n and ω_up the first
+    /// fixed-base and uplifted frequencies ([`rocking_kernels::modes`]), S = ω_up/ω_n, ζ_uplifted
+    /// the first uplifted mode's damping ratio under the modal damping matrix in `p`, m̃, k̃ and
+    /// Γ̃ the first fixed-base mode's generalised mass, stiffness and participation factor with
+    /// φ_1 scaled to a unit top deflection (φ_1ᵀMφ_1, φ_1ᵀKφ_1, φ_1ᵀΓ/m̃), u_cr along φ_1
+    /// ([`critical_deflection`]), and the rigid body's θ_cr, E_ref, R, α, p by name. NaN where
+    /// the column's mass matrix is singular.
+    pub fn of_modes<V: Variant>(p: &V::Params, s: &V::Structure, zeta_fixed_base: f64) -> Derived {
+        let n = V::NQ;
+        let rigid = RigidBody::of::<V>(s);
+        let mats = Matrices::of::<V>(p);
+        let fixed = mats.fixed_base();
+        let phi = fixed.as_ref().map_or_else(
+            || DVector::from_element(n, f64::NAN),
+            |f| f.shapes[0].clone(),
+        );
+        let omega_n = fixed.as_ref().map_or(f64::NAN, |f| f.omega[0]);
+        let omega_up = mats.uplifted().map_or(f64::NAN, |u| u.omega[0]);
+        let m_phi = &mats.mass * &phi;
+        let m_tilde = phi.dot(&m_phi);
+        let k_tilde = phi.dot(&(&mats.stiffness * &phi));
+        // Γ̃_i = (M⁻¹Γ)_i from the kernel, so φ_1ᵀΓ = (Mφ_1)ᵀ Γ̃.
+        let gamma = DVector::from_fn(n, |i, _| {
+            <V as Layout>::structure_value(s, &format!("gamma_tilde_{}", i + 1))
+        });
+        let damping = modal_damping::<V>(p);
+        let zeta_uplifted = mats
+            .uplifted_damping_ratios(&damping)
+            .map_or(f64::NAN, |r| r[0]);
+        Derived {
+            p: rigid.p,
+            r: rigid.r,
+            alpha: rigid.alpha,
+            omega_n,
+            omega_up,
+            modal_s: omega_up / omega_n,
+            zeta_fixed_base,
+            zeta_uplifted,
+            m_tilde,
+            k_tilde,
+            gamma_tilde: m_phi.dot(&gamma) / m_tilde,
+            theta_cr: rigid.theta_cr,
+            u_cr: critical_deflection::<V>(p, &phi),
+            e_ref: rigid.e_ref,
+            i_bc_plate: rigid.i_bc_plate,
+        }
+    }
+}
+
+/// The fixed-base damping ratio ζ (common to every fixed-base mode) that gives the first uplifted
+/// mode the ratio `zeta_uplifted`: ζ_uplifted / S for one coordinate, eq (19); for several the
+/// uplifted ratio is not proportional to ζ (the modal damping is not classical while rocking), so
+/// ζ is found by the fixed-point iteration ζ ← ζ ζ_uplifted / ζ_1^up(ζ) from ζ_uplifted / S (a few
+/// iterations: ζ_1^up is nearly proportional to ζ). NaN where the ratio cannot be reached.
+fn fixed_base_ratio<V: Variant>(physical: &Physical, extra: &[f64], zeta_uplifted: f64) -> f64 {
+    let ratio_at = |zeta: f64| {
+        let ph = Physical { zeta, ..*physical };
+        let p = V::params_with(&ph, extra);
+        let s = V::structure(&p);
+        if V::NQ == 1 {
+            (s.values()[st::MODAL_S], f64::NAN)
+        } else {
+            let d = Derived::of_modes::<V>(&p, &s, zeta);
+            (d.modal_s, d.zeta_uplifted)
+        }
+    };
+    let (modal_s, _) = ratio_at(physical.zeta);
+    let mut zeta = zeta_uplifted / modal_s;
+    if V::NQ == 1 || zeta_uplifted == 0.0 {
+        return zeta;
+    }
+    for _ in 0..50 {
+        let (_, up) = ratio_at(zeta);
+        let next = zeta * zeta_uplifted / up;
+        if !next.is_finite() {
+            return f64::NAN;
+        }
+        let done = (next - zeta).abs() <= 1e-14 * zeta;
+        zeta = next;
+        if done {
+            return zeta;
+        }
+    }
+    f64::NAN
+}
+
+/// The modal damping matrix of the u_i in the parameters `p` of a variant of several
+/// coordinates (its entries `c_i_j`, the upper triangle row by row).
+fn modal_damping<V: Variant>(p: &V::Params) -> DMatrix<f64> {
+    let n = V::NQ;
+    let model = ModelInfo::find(V::MODEL).expect("a variant's model is registered");
+    let mut c = DMatrix::zeros(n, n);
+    if let Some(first) = model.modal_damping() {
+        let mut k = first;
+        for i in 0..n {
+            for j in i..n {
+                c[(i, j)] = p.as_ref()[k];
+                c[(j, i)] = p.as_ref()[k];
+                k += 1;
+            }
+        }
+    }
+    c
+}
+
 /// The generated model called `name`.
 pub fn find_model(name: &str) -> Result<&'static ModelInfo, ParamError> {
     ModelInfo::find(name).ok_or_else(|| ParamError {
@@ -191,6 +300,10 @@ fn paper_model() -> &'static ModelInfo {
     ModelInfo::find(PAPER_MODEL).expect("the paper's model is generated")
 }
 
+/// Why a model of several deformation coordinates needs a column mass.
+const SEVERAL_NEED_COLUMN_MASS: &str = "a column mass m_c > 0 for a model of several deformation \
+    coordinates (without it only the top mass weighs them: their mass matrix is singular)";
+
 /// Checks the value of a parameter a model adds, by its role.
 fn check_extra(p: &'static ParamInfo, v: f64) -> Result<(), ParamError> {
     match p.role {
@@ -212,17 +325,6 @@ fn extra_values(
     model: &'static ModelInfo,
     given: &[(&str, f64)],
 ) -> Result<([f64; MAX_PARAMS], usize), ParamError> {
-    if model.coordinates > 1 {
-        return Err(ParamError {
-            parameter: "model",
-            value: model.coordinates as f64,
-            allowed: format!(
-                "model `{}` has {} deformation coordinates; the solver runs one-coordinate \
-                 models so far",
-                model.name, model.coordinates
-            ),
-        });
-    }
     if let Some((k, v)) = given
         .iter()
         .find(|(k, _)| model.extra_params().all(|p| p.name != *k))
@@ -270,12 +372,10 @@ fn core_field<'a>(ph: &'a mut Physical, name: &str) -> Option<&'a mut f64> {
     })
 }
 
-/// Runs `$body` with `$V` the model's full variant (its own kernels, nothing removed), a model of
-/// one deformation coordinate (the others are refused by [`extra_values`], which every
-/// constructor calls first).
+/// Runs `$body` with `$V` the model's full variant (its own kernels, nothing removed).
 macro_rules! with_full {
     ($model:expr, $V:ident => $body:expr) => {
-        with_variant!($model.full, $V => $body).expect("a model's full variant is generated")
+        with_variant!($model.full, $V, L => $body).expect("a model's full variant is generated")
     };
 }
 
@@ -340,6 +440,14 @@ impl Structure {
         check("g", p.g, p.g > 0.0, "a gravitational acceleration g > 0")?;
         for (param, &v) in model.extra_params().zip(&extra[..n_extra]) {
             check_extra(param, v)?;
+        }
+        if model.coordinates > 1 {
+            let weighed = with_full!(model, V => {
+                Matrices::of::<V>(&V::params_with(&physical, &extra[..n_extra]))
+                    .fixed_base()
+                    .is_some()
+            });
+            check("m_c", p.m_c, weighed, SEVERAL_NEED_COLUMN_MASS)?;
         }
         Ok(Structure {
             model,
@@ -419,10 +527,12 @@ impl Structure {
             d.zeta,
             ex,
         ));
+        // EI follows the first fixed-base frequency, which a singular mass matrix does not have.
+        if model.coordinates > 1 && physical.ei.is_nan() {
+            check("gamma_mc", d.gamma_mc, false, SEVERAL_NEED_COLUMN_MASS)?;
+        }
         if d.damping == DampingConvention::Uplifted {
-            let s =
-                with_full!(model, V => V::structure(&V::params_with(&physical, ex))[st::MODAL_S]);
-            physical.zeta = d.zeta / s;
+            physical.zeta = with_full!(model, V => fixed_base_ratio::<V>(&physical, ex, d.zeta));
         }
         Structure::checked(model, physical, values, n_extra, p_per_second)
     }
@@ -536,9 +646,15 @@ impl Structure {
         .expect("a model's full variant is generated")
     }
 
-    /// Derived quantities from the `structure` kernel of the variant `V` of this model.
-    pub fn derived_by<V: OneCoordinate>(&self) -> Derived {
-        Derived::from_kernel(&V::structure(&self.params::<V>()), self.physical.zeta)
+    /// Derived quantities from the `structure` kernel of the variant `V` of this model (and, for
+    /// several deformation coordinates, its modes: [`Derived::of_modes`]).
+    pub fn derived_by<V: Variant>(&self) -> Derived {
+        let p = self.params::<V>();
+        let s = V::structure(&p);
+        match s.values().try_into() {
+            Ok(one) if V::NQ == 1 => Derived::from_kernel(one, self.physical.zeta),
+            _ => Derived::of_modes::<V>(&p, &s, self.physical.zeta),
+        }
     }
 
     /// The smallest constant ground acceleration that uplifts the structure when applied
@@ -551,14 +667,23 @@ impl Structure {
     /// from its model's `static_uplift` kernel.
     pub fn static_uplift(&self) -> StaticUplift {
         use rocking_kernels::kernels::index::static_uplift as su;
-        let k = with_full!(self.model, V => V::static_uplift(&self.params::<V>()));
-        StaticUplift {
-            weight: k[su::WEIGHT],
-            moment: k[su::MOMENT_UPLIFT],
-            ground_acceleration: k[su::UG_UPLIFT].abs(),
-            deflection: k[su::U_UPLIFT].abs(),
-            elastic_moment: k[su::MOMENT_ELASTIC_UPLIFT].abs(),
-        }
+        with_full!(self.model, V => {
+            let k = V::static_uplift(&self.params::<V>());
+            let k = k.values();
+            // u_uplift is u_1..u_n with several coordinates: M_el follows them.
+            let n = V::NQ;
+            let top = V::shape(1.0);
+            let deflection: f64 = (0..n)
+                .map(|i| k[su::U_UPLIFT + i] * if n == 1 { 1.0 } else { top.values()[i] })
+                .sum();
+            StaticUplift {
+                weight: k[su::WEIGHT],
+                moment: k[su::MOMENT_UPLIFT],
+                ground_acceleration: k[su::UG_UPLIFT].abs(),
+                deflection: deflection.abs(),
+                elastic_moment: k[su::MOMENT_ELASTIC_UPLIFT + n - 1].abs(),
+            }
+        })
     }
 }
 

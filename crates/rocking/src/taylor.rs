@@ -7,7 +7,7 @@
 
 use rocking_kernels::kernels::{self, index::power as pwr};
 use rocking_kernels::taylor;
-use rocking_kernels::OneCoordinate;
+use rocking_kernels::{Array, Variant};
 use rocking_motion::GroundMotion;
 use rocking_ode::taylor::{TaylorEvents, TaylorSystem};
 
@@ -15,91 +15,102 @@ const RIGHT: f64 = 1.0;
 const LEFT: f64 = -1.0;
 
 /// A kernel variant's Taylor-mode kernels (see the generated `rocking_kernels::taylor::<variant>`
-/// for the inputs; series hold their first N coefficients). The driver runs the variants of one
-/// deformation coordinate so far.
-pub trait TaylorVariant: OneCoordinate {
-    /// Taylor coefficients of the rocking state `[θ, u, θ', u']` from `x[i][0]`.
-    fn rocking_series<const N: usize>(
-        x: &mut [[f64; N]; 4],
-        ug: &[f64; N],
-        s: f64,
-        p: &Self::Params,
-    );
+/// for the inputs; series hold their first N coefficients). The series are passed as slices of
+/// the variant's lengths (`V::X::LEN` rows for a rocking state, `V::Xc::LEN` for a contact one):
+/// each call checks the length once and hands the generated kernel its array.
+///
+/// # Panics
+///
+/// When a slice does not have the variant's length (a programming error).
+pub trait TaylorVariant: Variant {
+    /// Taylor coefficients of the rocking state `[θ, u_1..u_n, θ', u_1'..u_n']` from `x[i][0]`.
+    fn rocking_series<const N: usize>(x: &mut [[f64; N]], ug: &[f64; N], s: f64, p: &Self::Params);
     /// [`rocking_series`](Self::rocking_series) with `ug` ≡ 0 (fewer series products).
-    fn rocking_series_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Self::Params);
-    /// Taylor coefficients of the contact state `[u, u']` from `xc[i][0]`.
-    fn contact_series<const N: usize>(xc: &mut [[f64; N]; 2], ug: &[f64; N], p: &Self::Params);
+    fn rocking_series_free<const N: usize>(x: &mut [[f64; N]], s: f64, p: &Self::Params);
+    /// Taylor coefficients of the contact state `[u_1..u_n, u_1'..u_n']` from `xc[i][0]`.
+    fn contact_series<const N: usize>(xc: &mut [[f64; N]], ug: &[f64; N], p: &Self::Params);
     /// [`contact_series`](Self::contact_series) with `ug` ≡ 0.
-    fn contact_series_free<const N: usize>(xc: &mut [[f64; N]; 2], p: &Self::Params);
+    fn contact_series_free<const N: usize>(xc: &mut [[f64; N]], p: &Self::Params);
     /// The uplift function f_s along a contact series.
     fn uplift_series<const N: usize>(
-        xc: &[[f64; N]; 2],
+        xc: &[[f64; N]],
         ug: &[f64; N],
         s: f64,
         p: &Self::Params,
     ) -> [f64; N];
-    /// `[ground, damping]` power along a state series.
+    /// `[ground, damping]` power along a rocking-state series.
     fn power_series<const N: usize>(
-        x: &[[f64; N]; 4],
+        x: &[[f64; N]],
         ug: &[f64; N],
         s: f64,
         p: &Self::Params,
     ) -> [[f64; N]; 2];
 }
 
+/// A slice of series as the array a generated kernel of layout `$l` takes (`$len`: `X` or `XC`).
+macro_rules! rows {
+    ($x:expr, $l:ident :: $len:ident) => {{
+        let rows = $x.len();
+        $x.try_into()
+            .unwrap_or_else(|_| panic!("series of {rows} rows, the variant has {}", $l::$len))
+    }};
+}
+
 macro_rules! taylor_variant {
-    ($($ty:ident => $module:ident),* $(,)?) => {$(
+    ($($ty:ident => $module:ident : $nq:ident),* $(,)?) => {$(
         impl TaylorVariant for kernels::$ty {
             fn rocking_series<const N: usize>(
-                x: &mut [[f64; N]; 4],
+                x: &mut [[f64; N]],
                 ug: &[f64; N],
                 s: f64,
                 p: &Self::Params,
             ) {
-                taylor::$module::rocking_rhs(x, ug, s, p);
+                use kernels::layout::$nq as l;
+                taylor::$module::rocking_rhs(rows!(x, l::X), ug, s, p);
             }
-            fn rocking_series_free<const N: usize>(
-                x: &mut [[f64; N]; 4],
-                s: f64,
-                p: &Self::Params,
-            ) {
-                taylor::$module::rocking_rhs_free(x, s, p);
+            fn rocking_series_free<const N: usize>(x: &mut [[f64; N]], s: f64, p: &Self::Params) {
+                use kernels::layout::$nq as l;
+                taylor::$module::rocking_rhs_free(rows!(x, l::X), s, p);
             }
             fn contact_series<const N: usize>(
-                xc: &mut [[f64; N]; 2],
+                xc: &mut [[f64; N]],
                 ug: &[f64; N],
                 p: &Self::Params,
             ) {
-                taylor::$module::contact_rhs(xc, ug, p);
+                use kernels::layout::$nq as l;
+                taylor::$module::contact_rhs(rows!(xc, l::XC), ug, p);
             }
-            fn contact_series_free<const N: usize>(xc: &mut [[f64; N]; 2], p: &Self::Params) {
-                taylor::$module::contact_rhs_free(xc, p);
+            fn contact_series_free<const N: usize>(xc: &mut [[f64; N]], p: &Self::Params) {
+                use kernels::layout::$nq as l;
+                taylor::$module::contact_rhs_free(rows!(xc, l::XC), p);
             }
             fn uplift_series<const N: usize>(
-                xc: &[[f64; N]; 2],
+                xc: &[[f64; N]],
                 ug: &[f64; N],
                 s: f64,
                 p: &Self::Params,
             ) -> [f64; N] {
-                taylor::$module::uplift(xc, ug, s, p)[0]
+                use kernels::layout::$nq as l;
+                taylor::$module::uplift(rows!(xc, l::XC), ug, s, p)[0]
             }
             fn power_series<const N: usize>(
-                x: &[[f64; N]; 4],
+                x: &[[f64; N]],
                 ug: &[f64; N],
                 s: f64,
                 p: &Self::Params,
             ) -> [[f64; N]; 2] {
-                taylor::$module::power(x, ug, s, p)
+                use kernels::layout::$nq as l;
+                taylor::$module::power(rows!(x, l::X), ug, s, p)
             }
         }
     )*};
 }
 
-rocking_kernels::for_each_variant!(taylor_variant);
+rocking_kernels::for_each_variant!(taylor_variant, layout);
 
-/// The rocking phase about `s` as a [`TaylorSystem`]: state `[θ, u, θ', u']`, then `[W, D]` when
-/// `D == 6`, each divided by its natural scale so that one tolerance serves all (as the
-/// Runge–Kutta path's absolute tolerances do).
+/// The rocking phase about `s` as a [`TaylorSystem`]: state `[θ, u_1..u_n, θ', u_1'..u_n']`, then
+/// `[W, D]` when `D` exceeds its length, each divided by its natural scale so that one tolerance
+/// serves all (as the Runge–Kutta path's absolute tolerances do).
 pub(crate) struct RockingSystem<'a, V: TaylorVariant, M: ?Sized, const D: usize> {
     pub p: V::Params,
     pub motion: &'a M,
@@ -111,32 +122,34 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const D: usize> TaylorSystem<D>
     for RockingSystem<'_, V, M, D>
 {
     fn coefficients<const N: usize>(&mut self, t0: f64, x: &mut [[f64; N]; D]) {
+        let nx = V::X::LEN;
         let mut ug = [0.0; N];
         self.motion.accel_series(t0, &mut ug);
-        let mut q = [[0.0; N]; 4];
-        for (qi, (xi, sc)) in q.iter_mut().zip(x.iter().zip(&self.scale)) {
+        // The mechanical rows of a D-row array (D >= nx): no array of the variant's length.
+        let mut q = [[0.0; N]; D];
+        for (qi, (xi, sc)) in q[..nx].iter_mut().zip(x.iter().zip(&self.scale)) {
             qi[0] = xi[0] * sc;
         }
         if is_zero(&ug) {
-            V::rocking_series_free(&mut q, self.s, &self.p);
+            V::rocking_series_free(&mut q[..nx], self.s, &self.p);
         } else {
-            V::rocking_series(&mut q, &ug, self.s, &self.p);
+            V::rocking_series(&mut q[..nx], &ug, self.s, &self.p);
         }
-        for i in 0..4 {
+        for i in 0..nx {
             let inv = 1.0 / self.scale[i];
             for k in 1..N {
                 x[i][k] = q[i][k] * inv;
             }
         }
-        if D > 4 {
-            let pw = V::power_series(&q, &ug, self.s, &self.p);
-            integrate_power(x, 4, &pw, &self.scale);
+        if D > nx {
+            let pw = V::power_series(&q[..nx], &ug, self.s, &self.p);
+            integrate_power(x, nx, &pw, &self.scale);
         }
     }
 }
 
-/// Full contact as a [`TaylorSystem`]: state `[u, u']`, then `[W, D]` when `D == 4`, scaled as
-/// in [`RockingSystem`].
+/// Full contact as a [`TaylorSystem`]: state `[u_1..u_n, u_1'..u_n']`, then `[W, D]` when `D`
+/// exceeds its length, scaled as in [`RockingSystem`].
 pub(crate) struct ContactSystem<'a, V: TaylorVariant, M: ?Sized, const D: usize> {
     pub p: V::Params,
     pub motion: &'a M,
@@ -144,12 +157,13 @@ pub(crate) struct ContactSystem<'a, V: TaylorVariant, M: ?Sized, const D: usize>
 }
 
 impl<V: TaylorVariant, M: GroundMotion + ?Sized, const D: usize> ContactSystem<'_, V, M, D> {
-    /// The unscaled contact series `[u, u']` from the first coefficients of `x`, and ü_g's.
-    fn contact<const N: usize>(&self, t0: f64, x: &[[f64; N]; D], all: bool) -> Series<N> {
+    /// The unscaled contact series (its first `V::Xc::LEN` rows) from the first coefficients of
+    /// `x`, or all of them (`all`), and ü_g's.
+    fn contact<const N: usize>(&self, t0: f64, x: &[[f64; N]; D], all: bool) -> Series<N, D> {
         let mut ug = [0.0; N];
         self.motion.accel_series(t0, &mut ug);
-        let mut q = [[0.0; N]; 2];
-        for i in 0..2 {
+        let mut q = [[0.0; N]; D];
+        for i in 0..V::Xc::LEN {
             let upto = if all { N } else { 1 };
             for k in 0..upto {
                 q[i][k] = x[i][k] * self.scale[i];
@@ -159,29 +173,36 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const D: usize> ContactSystem<'
     }
 }
 
-type Series<const N: usize> = ([[f64; N]; 2], [f64; N]);
+type Series<const N: usize, const D: usize> = ([[f64; N]; D], [f64; N]);
 
 impl<V: TaylorVariant, M: GroundMotion + ?Sized, const D: usize> TaylorSystem<D>
     for ContactSystem<'_, V, M, D>
 {
     fn coefficients<const N: usize>(&mut self, t0: f64, x: &mut [[f64; N]; D]) {
+        let nc = V::Xc::LEN;
         let (mut q, ug) = self.contact(t0, x, false);
         if is_zero(&ug) {
-            V::contact_series_free(&mut q, &self.p);
+            V::contact_series_free(&mut q[..nc], &self.p);
         } else {
-            V::contact_series(&mut q, &ug, &self.p);
+            V::contact_series(&mut q[..nc], &ug, &self.p);
         }
-        for i in 0..2 {
+        for i in 0..nc {
             let inv = 1.0 / self.scale[i];
             for k in 1..N {
                 x[i][k] = q[i][k] * inv;
             }
         }
-        if D > 2 {
-            let [u, u_dot] = q;
-            let full = [[0.0; N], u, [0.0; N], u_dot];
-            let pw = V::power_series(&full, &ug, RIGHT, &self.p);
-            integrate_power(x, 2, &pw, &self.scale);
+        if D > nc {
+            // The rocking state of full contact: θ ≡ θ' ≡ 0.
+            let n = V::NQ;
+            let mut full = [[[0.0; N]; D]; 2];
+            let full = &mut full.as_flattened_mut()[..V::X::LEN];
+            for i in 0..n {
+                full[1 + i] = q[i];
+                full[n + 2 + i] = q[n + i];
+            }
+            let pw = V::power_series(full, &ug, RIGHT, &self.p);
+            integrate_power(x, nc, &pw, &self.scale);
         }
     }
     /// The uplift functions follow ü_g even where the state does not (a rigid column in contact
@@ -200,7 +221,8 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const D: usize> TaylorEvents<D,
 {
     fn event_coefficients<const N: usize>(&mut self, t0: f64, x: &[[f64; N]; D]) -> [[f64; N]; 2] {
         let (q, ug) = self.contact(t0, x, true);
-        [RIGHT, LEFT].map(|s| V::uplift_series(&q, &ug, s, &self.p))
+        let q = &q[..V::Xc::LEN];
+        [RIGHT, LEFT].map(|s| V::uplift_series(q, &ug, s, &self.p))
     }
 }
 

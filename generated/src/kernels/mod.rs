@@ -54,6 +54,19 @@ pub mod cantilever_modes3;
 )]
 pub mod cosine_shape;
 
+/// The full model on the basis psi_cubic, eta^2: two deformation coordinates (the span of polynomial2)
+#[rustfmt::skip]
+#[allow(
+    clippy::all,
+    clippy::pedantic,
+    clippy::nursery,
+    unused_parens,
+    unused_variables,
+    non_snake_case,
+    missing_docs,
+)]
+pub mod cubic_quadratic;
+
 /// Full model: distributed column mass, top mass, base mass and inertia
 #[rustfmt::skip]
 #[allow(
@@ -162,6 +175,7 @@ pub use added_mass::AddedMass;
 pub use cantilever_modes2::CantileverModes2;
 pub use cantilever_modes3::CantileverModes3;
 pub use cosine_shape::CosineShape;
+pub use cubic_quadratic::CubicQuadratic;
 pub use full::Full;
 pub use massless_base::MasslessBase;
 pub use massless_column::MasslessColumn;
@@ -242,6 +256,24 @@ impl crate::Layout for CosineShape {
     type Structure = [f64; 15];
     type Shape = f64;
     type StaticUplift = [f64; 5];
+}
+/// The sizes of the kernel arrays of [`CubicQuadratic`] (2 deformation coordinates).
+#[rustfmt::skip]
+impl crate::Layout for CubicQuadratic {
+    const NQ: usize = 2;
+    const STRUCTURE: &'static [&'static str] = &["m_tilde_1_1", "m_tilde_1_2", "m_tilde_2_2", "k_tilde_1_1", "k_tilde_1_2", "k_tilde_2_2", "gamma_tilde_1", "gamma_tilde_2", "theta_cr", "e_ref", "r", "alpha", "p_freq", "i_bc_plate"];
+    type Q = [f64; 3];
+    type X = [f64; 6];
+    type Xc = [f64; 4];
+    type Xi = [f64; 5];
+    type MassMatrix = [f64; 6];
+    type Forcing = [f64; 3];
+    type ImpactVvel = [f64; 6];
+    type ImpactAdjex = [f64; 11];
+    type ImpactHousner = [f64; 5];
+    type Structure = [f64; 14];
+    type Shape = [f64; 2];
+    type StaticUplift = [f64; 6];
 }
 /// The sizes of the kernel arrays of [`Full`] (1 deformation coordinate).
 #[rustfmt::skip]
@@ -394,6 +426,7 @@ pub const VARIANTS: &[(&str, &str)] = &[
     (cantilever_modes2::NAME, cantilever_modes2::TITLE),
     (cantilever_modes3::NAME, cantilever_modes3::TITLE),
     (cosine_shape::NAME, cosine_shape::TITLE),
+    (cubic_quadratic::NAME, cubic_quadratic::TITLE),
     (full::NAME, full::TITLE),
     (massless_base::NAME, massless_base::TITLE),
     (massless_column::NAME, massless_column::TITLE),
@@ -436,6 +469,14 @@ pub const VARIANT_INFO: &[crate::VariantInfo] = &[
         name: "cosine_shape",
         model: "cosine",
         title: "Example: the full model with the shape psi = 1 - cos(pi xi / 2H)",
+        removed: &[],
+        rigid: false,
+        small_angle: false,
+    },
+    crate::VariantInfo {
+        name: "cubic_quadratic",
+        model: "cubic_quadratic",
+        title: "The full model on the basis psi_cubic, eta^2: two deformation coordinates (the span of polynomial2)",
         removed: &[],
         rigid: false,
         small_angle: false,
@@ -894,6 +935,88 @@ pub const MODELS: &[crate::ModelInfo] = &[
                 doc: "height of the added mass as a fraction of H",
                 default: Some(0.5),
                 role: crate::Role::HeightOf("m_a"),
+            },
+        ],
+    },
+    crate::ModelInfo {
+        name: "cubic_quadratic",
+        description: "The paper's masses, two deformation coordinates: the paper's cubic and eta^2 (the span of polynomial2)",
+        shape: "psi_1: psi = 3/2 eta^2 - 1/2 eta^3 (paper eq 1); psi_2: eta^2",
+        coordinates: 2,
+        full: "cubic_quadratic",
+        variants: &["cubic_quadratic"],
+        params: &[
+            crate::ParamInfo {
+                name: "h",
+                doc: "column height H",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "b",
+                doc: "half-width B of the base",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "ei",
+                doc: "bending stiffness EI of the column",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "m",
+                doc: "top mass m",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Lumped, removable: false },
+            },
+            crate::ParamInfo {
+                name: "m_c",
+                doc: "total column mass m_c",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Column, removable: true },
+            },
+            crate::ParamInfo {
+                name: "m_b",
+                doc: "base mass m_b",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Base, removable: true },
+            },
+            crate::ParamInfo {
+                name: "i_bc",
+                doc: "base inertia about a corner, I_bc = I_b + m_b B^2",
+                default: None,
+                role: crate::Role::InertiaOf("m_b"),
+            },
+            crate::ParamInfo {
+                name: "zeta",
+                doc: "fixed-base damping ratio",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "g",
+                doc: "gravitational acceleration",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "c_1_1",
+                doc: "modal damping matrix C, row 1, column 1 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_1_2",
+                doc: "modal damping matrix C, row 1, column 2 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_2_2",
+                doc: "modal damping matrix C, row 2, column 2 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
             },
         ],
     },
@@ -2430,6 +2553,12 @@ macro_rules! with_variant {
                 use $crate::kernels::layout::nq1 as $L;
                 ::core::option::Option::Some($body)
             }
+            "cubic_quadratic" => {
+                type $V = $crate::kernels::CubicQuadratic;
+                #[allow(unused_imports)]
+                use $crate::kernels::layout::nq2 as $L;
+                ::core::option::Option::Some($body)
+            }
             "full" => {
                 type $V = $crate::kernels::Full;
                 #[allow(unused_imports)]
@@ -2545,6 +2674,7 @@ macro_rules! for_each_variant {
             CantileverModes2 => cantilever_modes2: nq2,
             CantileverModes3 => cantilever_modes3: nq3,
             CosineShape => cosine_shape: nq1,
+            CubicQuadratic => cubic_quadratic: nq2,
             Full => full: nq1,
             MasslessBase => massless_base: nq1,
             MasslessColumn => massless_column: nq1,
@@ -2569,6 +2699,7 @@ pub fn call(variant: &str, function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>
         "cantilever_modes2" => cantilever_modes2::call(function, inputs),
         "cantilever_modes3" => cantilever_modes3::call(function, inputs),
         "cosine_shape" => cosine_shape::call(function, inputs),
+        "cubic_quadratic" => cubic_quadratic::call(function, inputs),
         "full" => full::call(function, inputs),
         "massless_base" => massless_base::call(function, inputs),
         "massless_column" => massless_column::call(function, inputs),

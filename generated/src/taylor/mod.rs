@@ -62,6 +62,18 @@ pub mod cosine_shape;
     non_snake_case,
     missing_docs,
 )]
+pub mod cubic_quadratic;
+#[rustfmt::skip]
+#[allow(
+    clippy::all,
+    clippy::pedantic,
+    clippy::nursery,
+    unused_parens,
+    unused_variables,
+    unused_mut,
+    non_snake_case,
+    missing_docs,
+)]
 pub mod full;
 #[rustfmt::skip]
 #[allow(

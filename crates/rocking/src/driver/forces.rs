@@ -7,7 +7,7 @@ use rocking_kernels::kernels::index::forces_rocking as fk;
 use rocking_motion::GroundMotion;
 use rocking_ode::roots::{first_true, golden_max};
 
-use super::state::{Ellipse, Sim};
+use super::state::{contact_of, contact_x, Ellipse, Sim};
 use crate::dense::StepView;
 use crate::results::ForceSummary;
 use crate::taylor::TaylorVariant;
@@ -78,15 +78,15 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
 {
     /// The forces at `t` of the state `x` = [θ, u, θ', u'], in full contact (`contact`) or
     /// rocking about `s` (each phase's accelerations: a row at an event is on its own side).
-    pub(super) fn forces_at(&self, contact: bool, s: f64, t: f64, x: &[f64; 4]) -> Forces {
+    pub(super) fn forces_at(&self, contact: bool, s: f64, t: f64, x: &V::X) -> Forces {
         self.forces_of(contact, s, self.motion.accel(t), x)
     }
 
     /// The forces of the state `x` under the ground acceleration `ug`.
-    fn forces_of(&self, contact: bool, s: f64, ug: f64, x: &[f64; 4]) -> Forces {
+    fn forces_of(&self, contact: bool, s: f64, ug: f64, x: &V::X) -> Forces {
         // Both kernels name their outputs alike (index::forces_contact has the same order).
         let f = if contact {
-            V::forces_contact(&[x[1], x[3]], ug, &self.p)
+            V::forces_contact(&contact_of::<V>(x), ug, &self.p)
         } else {
             V::forces_rocking(x, ug, s, &self.p)
         };
@@ -100,7 +100,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
     }
 
     /// The forces of the state at the start of a phase (after its event), recorded.
-    pub(super) fn forces_start(&mut self, contact: bool, s: f64, t: f64, x: &[f64; 4]) -> Forces {
+    pub(super) fn forces_start(&mut self, contact: bool, s: f64, t: f64, x: &V::X) -> Forces {
         let f = self.forces_at(contact, s, t, x);
         if self.opts.forces {
             self.record_forces(&f.measures(), [t; MEASURES]);
@@ -114,7 +114,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
     #[allow(clippy::too_many_arguments)]
     pub(super) fn extremes_forces(
         &mut self,
-        step: &impl StepView,
+        step: &impl StepView<V::X>,
         contact: bool,
         s: f64,
         t_old: f64,
@@ -203,8 +203,8 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         let max = self.rec.forces.max;
         // |M_b|, |V_b|, |M_el| and, as R_v = W in contact, the required friction |R_h| / W.
         (0..4).all(|k| {
-            let (c, r) = ellipse.reach(|a, b| {
-                let f = self.forces_of(true, 1.0, 0.0, &[0.0, a, 0.0, b]);
+            let (c, r) = ellipse.reach::<V>(|xc| {
+                let f = self.forces_of(true, 1.0, 0.0, &contact_x::<V>(xc));
                 [f.moment, f.shear, f.elastic, f.horizontal][k]
             });
             c.abs() + r <= max[k]

@@ -1,29 +1,31 @@
 //! The impact policy: from the state just before the corner −s hits the ground, the state the
 //! run continues from, and why. A pure function of the pre-impact state, the kernel variant's
 //! impact maps and the options; the driver only records what it decides.
+//!
+//! With n deformation coordinates every `u'` entry of a map's output is u_1'..u_n' (contiguous),
+//! so an output's index is its one-coordinate index (`kernels::index`) shifted by n − 1 for every
+//! `u'` entry before it ([`expanded`]; checked against the named indices the generator emits for
+//! two and three coordinates).
 
 use rocking_kernels::kernels::index::{
     energy as en, impact_adjex as ax, impact_housner as ho, impact_vvel as vv,
 };
-use rocking_kernels::OneCoordinate;
+use rocking_kernels::{Array, Variant};
 
 use crate::options::ImpactModel;
 use crate::results::EventKind;
 
-/// The post-impact state an impact model chose (`energy`: its kinetic energy).
+/// The post-impact state an impact model chose: the rocking state `x` = [θ, u, θ', u'] with
+/// θ = 0 (`energy`: its kinetic energy).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) enum After {
-    /// Full contact, with the column's rate u'.
-    Contact { u_dot: f64, energy: f64 },
+pub(super) enum After<X> {
+    /// Full contact (θ' = 0), with the column's rates u'.
+    Contact { x: X, energy: f64 },
     /// Rocking about the impacting corner at once.
-    Rocking {
-        theta_dot: f64,
-        u_dot: f64,
-        energy: f64,
-    },
+    Rocking { x: X, energy: f64 },
 }
 
-impl After {
+impl<X: Array> After<X> {
     fn energy(self) -> f64 {
         match self {
             After::Contact { energy, .. } | After::Rocking { energy, .. } => energy,
@@ -33,8 +35,8 @@ impl After {
 
 /// What the policy decided for one impact.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) struct Outcome {
-    pub(super) after: After,
+pub(super) struct Outcome<X> {
+    pub(super) after: After<X>,
     /// [`EventKind::Impact`], or [`EventKind::Rest`] when the run settles in full contact.
     pub(super) kind: EventKind,
     /// The event log's name of the branch taken (`*-energy-capped` when capped).
@@ -48,34 +50,74 @@ pub(super) struct Outcome {
     pub(super) counted: bool,
 }
 
-impl Outcome {
+impl<X: Array> Outcome<X> {
     /// Kinetic energy after the impact.
     pub(super) fn energy_after(&self) -> f64 {
         self.after.energy()
     }
 }
 
+/// The index in an output of n coordinates of the entry at `i1` in the one-coordinate output,
+/// whose `u'` entries (each expanded to n) are at `u_entries`.
+pub(super) const fn expanded(i1: usize, u_entries: &[usize], n: usize) -> usize {
+    let mut shift = 0;
+    let mut k = 0;
+    while k < u_entries.len() {
+        if u_entries[k] < i1 {
+            shift += n - 1;
+        }
+        k += 1;
+    }
+    i1 + shift
+}
+
+/// The `u'` entries of the one-coordinate outputs of the impact maps.
+const VVEL_U: &[usize] = &[vv::U_DOT];
+const ADJEX_U: &[usize] = &[ax::U_DOT_CONTACT, ax::U_DOT_ROCKING, ax::U_DOT_MOMENTUM];
+const HOUSNER_U: &[usize] = &[ho::U_DOT];
+
+/// The rocking state [0, u, θ', u'] of `V` (θ = 0 at an impact).
+fn state<V: Variant>(u: &[f64], theta_dot: f64, u_dot: &[f64]) -> V::X {
+    let n = V::NQ;
+    V::X::from_fn(|i| {
+        if i == 0 {
+            0.0
+        } else if i <= n {
+            u[i - 1]
+        } else if i == n + 1 {
+            theta_dot
+        } else {
+            u_dot[i - n - 2]
+        }
+    })
+}
+
 /// The impact at θ = 0 while rocking about `s`, pre-impact state `xi` = [u, u', θ']: the corner
 /// −s hits the ground. `rest_rate` is the |θ'| below which rocking ends in full contact (before
 /// the impact: a grazing excursion or the end of a Zeno sequence; after it: a rocking phase that
 /// would start that slowly).
-pub(super) fn resolve<V: OneCoordinate>(
+pub(super) fn resolve<V: Variant>(
     model: ImpactModel,
-    xi: [f64; 3],
+    xi: &V::Xi,
     s: f64,
     p: &V::Params,
     rest_rate: f64,
-) -> Outcome {
-    let [u, u_dot, theta_dot] = xi;
+) -> Outcome<V::X> {
+    let n = V::NQ;
+    let (u, rest) = xi.values().split_at(n);
+    let (u_dot, theta_dot) = (&rest[..n], rest[n]);
     let s2 = -s;
-    let contact_energy = |ud: f64| V::energy(&[0.0, u, 0.0, ud], s2, p)[en::KINETIC];
+    let kinetic = |x: &V::X, s: f64| V::energy(x, s, p)[en::KINETIC];
+    let contact = |ud: &[f64]| {
+        let x = state::<V>(u, 0.0, ud);
+        After::Contact {
+            x,
+            energy: kinetic(&x, s2),
+        }
+    };
     if theta_dot.abs() < rest_rate {
-        let e_before = V::energy(&[0.0, u, theta_dot, u_dot], s, p)[en::KINETIC];
-        let after = After::Contact {
-            u_dot,
-            energy: contact_energy(u_dot),
-        };
-        let (after, capped) = without_energy_gain::<V>(after, e_before, u, s, p);
+        let e_before = kinetic(&state::<V>(u, theta_dot, u_dot), s);
+        let (after, capped) = without_energy_gain::<V>(contact(u_dot), e_before, s, p);
         return Outcome {
             after,
             kind: EventKind::Rest,
@@ -89,86 +131,62 @@ pub(super) fn resolve<V: OneCoordinate>(
             counted: false,
         };
     }
-    let rocking_energy = |td: f64, ud: f64| V::energy(&[0.0, u, td, ud], s2, p)[en::KINETIC];
     let (after, branch, e_before) = match model {
         ImpactModel::Vvel => {
-            let v = V::impact_vvel(&xi, s, p);
-            if v[vv::ROCK] != 0.0 {
-                (
-                    After::Rocking {
-                        theta_dot: v[vv::THETA_DOT],
-                        u_dot: v[vv::U_DOT],
-                        energy: v[vv::ENERGY_AFTER],
-                    },
-                    "vvel-rigid-limit",
-                    v[vv::ENERGY_BEFORE],
-                )
+            let v = V::impact_vvel(xi, s, p);
+            let at = |i: usize| expanded(i, VVEL_U, n);
+            let v = v.values();
+            let ud = &v[at(vv::U_DOT)..at(vv::U_DOT) + n];
+            let (e_after, e_before) = (v[at(vv::ENERGY_AFTER)], v[at(vv::ENERGY_BEFORE)]);
+            if v[at(vv::ROCK)] != 0.0 {
+                let x = state::<V>(u, v[at(vv::THETA_DOT)], ud);
+                let after = After::Rocking { x, energy: e_after };
+                (after, "vvel-rigid-limit", e_before)
             } else {
-                (
-                    After::Contact {
-                        u_dot: v[vv::U_DOT],
-                        energy: v[vv::ENERGY_AFTER],
-                    },
-                    "vvel-contact",
-                    v[vv::ENERGY_BEFORE],
-                )
+                let x = state::<V>(u, 0.0, ud);
+                let after = After::Contact { x, energy: e_after };
+                (after, "vvel-contact", e_before)
             }
         }
-        ImpactModel::Adjex => adjex(&V::impact_adjex(&xi, s, p), s),
+        ImpactModel::Adjex => adjex::<V>(V::impact_adjex(xi, s, p).values(), u, s),
         ImpactModel::Housner => {
-            let h = V::impact_housner(&xi, s, p);
-            if s2 * h[ho::THETA_DOT] > 0.0 {
-                (
-                    After::Rocking {
-                        theta_dot: h[ho::THETA_DOT],
-                        u_dot: h[ho::U_DOT],
-                        energy: h[ho::ENERGY_AFTER],
-                    },
-                    "housner",
-                    h[ho::ENERGY_BEFORE],
-                )
+            let h = V::impact_housner(xi, s, p);
+            let at = |i: usize| expanded(i, HOUSNER_U, n);
+            let h = h.values();
+            let e_before = h[at(ho::ENERGY_BEFORE)];
+            let td = h[at(ho::THETA_DOT)];
+            if s2 * td > 0.0 {
+                let ud = &h[at(ho::U_DOT)..at(ho::U_DOT) + n];
+                let x = state::<V>(u, td, ud);
+                let after = After::Rocking {
+                    x,
+                    energy: h[at(ho::ENERGY_AFTER)],
+                };
+                (after, "housner", e_before)
             } else {
                 // A squat body whose angular momentum reverses cannot rock on: it stops.
-                (
-                    After::Contact {
-                        u_dot,
-                        energy: contact_energy(u_dot),
-                    },
-                    "housner-stop",
-                    h[ho::ENERGY_BEFORE],
-                )
+                (contact(u_dot), "housner-stop", e_before)
             }
         }
         ImpactModel::Restitution(r) => {
             let td = r * theta_dot;
-            let e_b = V::energy(&[0.0, u, theta_dot, u_dot], s, p)[en::KINETIC];
-            (
-                After::Rocking {
-                    theta_dot: td,
-                    u_dot,
-                    energy: rocking_energy(td, u_dot),
-                },
-                "restitution",
-                e_b,
-            )
+            let e_b = kinetic(&state::<V>(u, theta_dot, u_dot), s);
+            let x = state::<V>(u, td, u_dot);
+            let after = After::Rocking {
+                x,
+                energy: kinetic(&x, s2),
+            };
+            (after, "restitution", e_b)
         }
     };
     // A rocking phase that would start too slowly ends in full contact at once.
     let (after, kind) = match after {
-        After::Rocking {
-            theta_dot: td,
-            u_dot: ud,
-            ..
-        } if td.abs() < rest_rate => (
-            After::Contact {
-                u_dot: ud,
-                energy: contact_energy(ud),
-            },
-            EventKind::Rest,
-        ),
+        After::Rocking { x, .. } if x.values()[n + 1].abs() < rest_rate => {
+            (contact(&x.values()[n + 2..]), EventKind::Rest)
+        }
         other => (other, EventKind::Impact),
     };
-    let (after, capped) = without_energy_gain::<V>(after, e_before, u, s2, p);
+    let (after, capped) = without_energy_gain::<V>(after, e_before, s2, p);
     Outcome {
         after,
         kind,
@@ -184,35 +202,39 @@ pub(super) fn resolve<V: OneCoordinate>(
 }
 
 /// ADJex, eqs (26)-(30), from its candidates `a` (the `impact_adjex` kernel's output) for an
-/// impact while rocking about `s`: full contact or immediate rocking (the admissible one of least
-/// energy), provided it does not raise the kinetic energy; otherwise the horizontal-momentum
-/// fallback (30); when every candidate gains energy (unspecified by the paper), the least gain.
-fn adjex(a: &[f64; 8], s: f64) -> (After, &'static str, f64) {
-    let e_i = a[ax::ENERGY_BEFORE];
-    let rocking_ok = -s * a[ax::THETA_DOT_ROCKING] > 0.0;
+/// impact while rocking about `s` with the column at `u`: full contact or immediate rocking (the
+/// admissible one of least energy), provided it does not raise the kinetic energy; otherwise the
+/// horizontal-momentum fallback (30); when every candidate gains energy (unspecified by the
+/// paper), the least gain.
+fn adjex<V: Variant>(a: &[f64], u: &[f64], s: f64) -> (After<V::X>, &'static str, f64) {
+    let n = V::NQ;
+    let at = |i: usize| expanded(i, ADJEX_U, n);
+    let rates = |i: usize| &a[at(i)..at(i) + n];
+    let e_i = a[at(ax::ENERGY_BEFORE)];
+    let theta_dot = a[at(ax::THETA_DOT_ROCKING)];
+    let rocking_ok = -s * theta_dot > 0.0;
     let contact = (
-        a[ax::ENERGY_CONTACT],
+        a[at(ax::ENERGY_CONTACT)],
         "adjex-contact",
         After::Contact {
-            u_dot: a[ax::U_DOT_CONTACT],
-            energy: a[ax::ENERGY_CONTACT],
+            x: state::<V>(u, 0.0, rates(ax::U_DOT_CONTACT)),
+            energy: a[at(ax::ENERGY_CONTACT)],
         },
     );
     let rocking = (
-        a[ax::ENERGY_ROCKING],
+        a[at(ax::ENERGY_ROCKING)],
         "adjex-rocking",
         After::Rocking {
-            theta_dot: a[ax::THETA_DOT_ROCKING],
-            u_dot: a[ax::U_DOT_ROCKING],
-            energy: a[ax::ENERGY_ROCKING],
+            x: state::<V>(u, theta_dot, rates(ax::U_DOT_ROCKING)),
+            energy: a[at(ax::ENERGY_ROCKING)],
         },
     );
     let momentum = (
-        a[ax::ENERGY_MOMENTUM],
+        a[at(ax::ENERGY_MOMENTUM)],
         "adjex-momentum",
         After::Contact {
-            u_dot: a[ax::U_DOT_MOMENTUM],
-            energy: a[ax::ENERGY_MOMENTUM],
+            x: state::<V>(u, 0.0, rates(ax::U_DOT_MOMENTUM)),
+            energy: a[at(ax::ENERGY_MOMENTUM)],
         },
     );
     let best = if rocking_ok && rocking.0 < contact.0 {
@@ -238,36 +260,38 @@ fn adjex(a: &[f64; 8], s: f64) -> (After, &'static str, f64) {
 /// keep exactly the pre-impact kinetic energy (kinetic energy is a quadratic form in the
 /// velocities): the direction of motion the map chose is kept, and no energy is created. Returns
 /// the state and whether it was capped. `s` is the pivot the kinetic energy `after` refers to.
-fn without_energy_gain<V: OneCoordinate>(
-    after: After,
+fn without_energy_gain<V: Variant>(
+    after: After<V::X>,
     e_before: f64,
-    u: f64,
     s: f64,
     p: &V::Params,
-) -> (After, bool) {
+) -> (After<V::X>, bool) {
     let e_after = after.energy();
     let gains = e_after > e_before * (1.0 + 1e-9) && e_after > 0.0;
     if !gains {
         return (after, false);
     }
     let k = (e_before.max(0.0) / e_after).sqrt();
+    let n = V::NQ;
+    // The velocities θ', u_1'..u_n' (from n + 1 on) scaled by k.
+    let scaled = |x: V::X| {
+        let x = V::X::from_fn(|i| {
+            if i > n {
+                k * x.values()[i]
+            } else {
+                x.values()[i]
+            }
+        });
+        (x, V::energy(&x, s, p)[en::KINETIC])
+    };
     let capped = match after {
-        After::Contact { u_dot, .. } => {
-            let ud = k * u_dot;
-            After::Contact {
-                u_dot: ud,
-                energy: V::energy(&[0.0, u, 0.0, ud], s, p)[en::KINETIC],
-            }
+        After::Contact { x, .. } => {
+            let (x, energy) = scaled(x);
+            After::Contact { x, energy }
         }
-        After::Rocking {
-            theta_dot, u_dot, ..
-        } => {
-            let (td, ud) = (k * theta_dot, k * u_dot);
-            After::Rocking {
-                theta_dot: td,
-                u_dot: ud,
-                energy: V::energy(&[0.0, u, td, ud], s, p)[en::KINETIC],
-            }
+        After::Rocking { x, .. } => {
+            let (x, energy) = scaled(x);
+            After::Rocking { x, energy }
         }
     };
     (capped, true)
@@ -313,10 +337,15 @@ mod tests {
     }
 
     /// The policy for the point mass rocking about the right corner (θ' < 0 at the impact).
-    fn point_mass_impact(model: ImpactModel, alpha: f64, theta_dot: f64, u_dot: f64) -> Outcome {
+    fn point_mass_impact(
+        model: ImpactModel,
+        alpha: f64,
+        theta_dot: f64,
+        u_dot: f64,
+    ) -> Outcome<[f64; 4]> {
         let out = resolve::<PointMass>(
             model,
-            [0.0, u_dot, theta_dot],
+            &[0.0, u_dot, theta_dot],
             1.0,
             &point_mass(alpha),
             REST,
@@ -328,10 +357,13 @@ mod tests {
         out
     }
 
-    fn assert_contact(out: &Outcome, u_dot: f64, branch: &str) {
+    fn assert_contact(out: &Outcome<[f64; 4]>, u_dot: f64, branch: &str) {
         assert_eq!(out.branch, branch, "{out:?}");
         match out.after {
-            After::Contact { u_dot: ud, energy } => {
+            After::Contact {
+                x: [_, _, _, ud],
+                energy,
+            } => {
                 assert!(close(ud, u_dot), "u' {ud} against {u_dot}");
                 assert!(close(energy, 0.5 * u_dot * u_dot), "energy {energy}");
             }
@@ -339,12 +371,17 @@ mod tests {
         }
     }
 
-    fn assert_rocking(out: &Outcome, alpha: f64, theta_dot: f64, u_dot: f64, branch: &str) {
+    fn assert_rocking(
+        out: &Outcome<[f64; 4]>,
+        alpha: f64,
+        theta_dot: f64,
+        u_dot: f64,
+        branch: &str,
+    ) {
         assert_eq!(out.branch, branch, "{out:?}");
         match out.after {
             After::Rocking {
-                theta_dot: td,
-                u_dot: ud,
+                x: [_, _, td, ud],
                 energy,
             } => {
                 assert!(close(td, theta_dot), "θ' {td} against {theta_dot}");
@@ -356,6 +393,43 @@ mod tests {
             }
             other => panic!("{branch}: expected rocking, got {other:?}"),
         }
+    }
+
+    #[test]
+    fn the_index_rule_finds_the_named_outputs_of_several_coordinates() {
+        use rocking_kernels::kernels::layout::{nq2, nq3};
+        macro_rules! check {
+            ($nq:ident, $n:expr) => {{
+                let (a, v, h) = (
+                    |i| expanded(i, ADJEX_U, $n),
+                    |i| expanded(i, VVEL_U, $n),
+                    |i| expanded(i, HOUSNER_U, $n),
+                );
+                use $nq::index::{
+                    impact_adjex as ax_n, impact_housner as ho_n, impact_vvel as vv_n,
+                };
+                assert_eq!(a(ax::U_DOT_CONTACT), ax_n::U_DOT_CONTACT_1);
+                assert_eq!(a(ax::ENERGY_CONTACT), ax_n::ENERGY_CONTACT);
+                assert_eq!(a(ax::THETA_DOT_ROCKING), ax_n::THETA_DOT_ROCKING);
+                assert_eq!(a(ax::U_DOT_ROCKING), ax_n::U_DOT_ROCKING_1);
+                assert_eq!(a(ax::ENERGY_ROCKING), ax_n::ENERGY_ROCKING);
+                assert_eq!(a(ax::ENERGY_BEFORE), ax_n::ENERGY_BEFORE);
+                assert_eq!(a(ax::U_DOT_MOMENTUM), ax_n::U_DOT_MOMENTUM_1);
+                assert_eq!(a(ax::ENERGY_MOMENTUM), ax_n::ENERGY_MOMENTUM);
+                assert_eq!($nq::IMPACT_ADJEX, ax_n::ENERGY_MOMENTUM + 1);
+                assert_eq!(v(vv::ROCK), vv_n::ROCK);
+                assert_eq!(v(vv::THETA_DOT), vv_n::THETA_DOT);
+                assert_eq!(v(vv::U_DOT), vv_n::U_DOT_1);
+                assert_eq!(v(vv::ENERGY_AFTER), vv_n::ENERGY_AFTER);
+                assert_eq!(v(vv::ENERGY_BEFORE), vv_n::ENERGY_BEFORE);
+                assert_eq!(h(ho::THETA_DOT), ho_n::THETA_DOT);
+                assert_eq!(h(ho::U_DOT), ho_n::U_DOT_1);
+                assert_eq!(h(ho::ENERGY_AFTER), ho_n::ENERGY_AFTER);
+                assert_eq!(h(ho::ENERGY_BEFORE), ho_n::ENERGY_BEFORE);
+            }};
+        }
+        check!(nq2, 2);
+        check!(nq3, 3);
     }
 
     #[test]
@@ -375,7 +449,7 @@ mod tests {
         // The rigid limit (equations.md §4.2): θ2' = cos²α θ1' about the impacting corner.
         let (a, td): (f64, f64) = (0.2, -0.1);
         let p = Rigid::params(&Physical::dimensionless(a, 10.0, 0.0, 0.0, 1.0, 0.0));
-        let out = resolve::<Rigid>(ImpactModel::Vvel, [0.0, 0.0, td], 1.0, &p, REST);
+        let out = resolve::<Rigid>(ImpactModel::Vvel, &[0.0, 0.0, td], 1.0, &p, REST);
         let th2 = a.cos().powi(2) * td;
         assert_rocking(&out, a, th2, 0.0, "vvel-rigid-limit");
     }
@@ -417,20 +491,20 @@ mod tests {
         // structure): contact 1.2, rocking 1.1 (admissible), momentum 1.3 against E_I = 1.
         let s = 1.0;
         let a = [0.7, 1.2, -0.4, 0.1, 1.1, 1.0, 0.9, 1.3];
-        let (after, branch, e_i) = adjex(&a, s);
+        let u = [0.02];
+        let (after, branch, e_i) = adjex::<Full>(&a, &u, s);
         assert_eq!((branch, e_i), ("adjex-least-energy-gain", 1.0));
         assert_eq!(
             after,
             After::Rocking {
-                theta_dot: -0.4,
-                u_dot: 0.1,
+                x: [0.0, 0.02, -0.4, 0.1],
                 energy: 1.1
             }
         );
         // An inadmissible rocking candidate (θ2' of the old pivot's sign) is never taken.
         let a = [0.7, 1.2, 0.4, 0.1, 0.5, 1.0, 0.9, 1.3];
-        assert_eq!(adjex(&a, s).1, "adjex-least-energy-gain");
-        assert!(matches!(adjex(&a, s).0, After::Contact { u_dot, .. } if u_dot == 0.7));
+        assert_eq!(adjex::<Full>(&a, &u, s).1, "adjex-least-energy-gain");
+        assert!(matches!(adjex::<Full>(&a, &u, s).0, After::Contact { x, .. } if x[3] == 0.7));
     }
 
     #[test]
@@ -512,7 +586,7 @@ mod tests {
                 for u in [-0.02, 0.0, 0.013] {
                     for ud in [-0.3, -0.05, 0.0, 0.1, 0.4] {
                         for mag in [1e-3, 0.05, 0.3] {
-                            let out = resolve::<Full>(model, [u, ud, -s * mag], s, &p, REST);
+                            let out = resolve::<Full>(model, &[u, ud, -s * mag], s, &p, REST);
                             let (b, a) = (out.energy_before, out.energy_after());
                             assert!(
                                 a <= b * (1.0 + 1e-9),

@@ -5,7 +5,7 @@
 //! event; the loop here moves between phases and picks the integrator of each (Runge–Kutta or
 //! Taylor, from the options):
 //!
-//! * **contact** (state `[u, u', W, D]`): events f_+ and f_- of eq (24) rising through zero
+//! * **contact** (state `[u, u', W, D]`, each `u` the n deformation coordinates u_1..u_n): events f_+ and f_- of eq (24) rising through zero
 //!   (uplift about that corner). At every start of a contact phase the uplift functions are checked
 //!   at once, which is how the rigid limit works (impact, zero-length contact, re-uplift).
 //! * **rocking about s** (state `[θ, u, θ', u', W, D]`): the impact event s θ / (t − t0)^n falling
@@ -36,22 +36,28 @@ use rocking_ode::{Options as OdeOptions, Tolerances};
 use crate::error::SimError;
 use crate::options::{Method, Options};
 use crate::results::{Run, SolverStats};
-use crate::structure::Structure;
+use crate::structure::{Derived, Structure};
 use crate::taylor::TaylorVariant;
-use state::{Next, Record, Sim, LEFT, RIGHT, Y};
+use nalgebra::DMatrix;
+use rocking_kernels::modes::Matrices;
+use rocking_kernels::{Array, Variant};
+use state::{contact_of, Metric, Next, Record, Sim, LEFT, RIGHT, Y};
 use transitions::ContactStart;
 
-/// Runs one simulation with kernel variant `V`; `ENERGY` switches the energy bookkeeping on.
-pub fn simulate<V: TaylorVariant, M: GroundMotion + ?Sized, const ENERGY: bool>(
+/// Runs one simulation with kernel variant `V`, whose rocking and contact states have `NR` and
+/// `NC` components: `V::X::LEN` and `V::Xc::LEN`, or two more each to carry the ground work and
+/// the damping dissipation (the energy bookkeeping). The dispatch gives them from the variant's
+/// layout (`with_variant!(name, V, L => simulate::<V, _, { L::X + 2 }, { L::XC + 2 }>(..))`).
+///
+/// # Panics
+///
+/// When `NR` and `NC` are not the variant's lengths, both with or both without the integrals.
+pub fn simulate<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usize>(
     structure: &Structure,
     motion: &M,
     opts: &Options,
 ) -> Result<Run, SimError> {
-    if ENERGY {
-        set_up::<V, M, 6, 4>(structure, motion, opts)?.run()
-    } else {
-        set_up::<V, M, 4, 2>(structure, motion, opts)?.run()
-    }
+    set_up::<V, M, NR, NC>(structure, motion, opts)?.run()
 }
 
 /// The run's fixed quantities: the variant's own reference quantities and scales, tolerances.
@@ -60,6 +66,12 @@ fn set_up<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const
     motion: &'a M,
     opts: &'a Options,
 ) -> Result<Sim<'a, V, M, NR, NC>, SimError> {
+    let (nx, nc) = (V::X::LEN, V::Xc::LEN);
+    assert!(
+        (NR, NC) == (nx, nc) || (NR, NC) == (nx + 2, nc + 2),
+        "state sizes {NR}, {NC} for variant {} ({nx}, {nc} without the energy integrals)",
+        V::NAME
+    );
     opts.validate()?;
     if opts.accuracy.method == Method::Taylor && !motion.accel_series(0.0, &mut [0.0; 2]) {
         return Err(SimError::NoTaylorSeries);
@@ -68,10 +80,29 @@ fn set_up<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const
     let derived = structure.derived_by::<V>();
     let p = structure.params::<V>();
     let (a, pf) = (derived.alpha, derived.p);
-    let (u_scale, ud_scale) = if V::RIGID {
-        (1.0, 1.0)
-    } else {
-        (derived.u_cr, derived.u_cr * derived.omega_n)
+    let n = V::NQ;
+    let top = V::shape(1.0);
+    // Each u_i so that u_i ψ_i(1) is of order u_cr, each u_i' the same times ω_n.
+    let u_scale = |i: usize| {
+        if V::RIGID {
+            1.0
+        } else if n == 1 {
+            derived.u_cr
+        } else {
+            let psi = top.values()[i].abs();
+            if psi > 0.0 {
+                derived.u_cr / psi
+            } else {
+                derived.u_cr
+            }
+        }
+    };
+    let ud_scale = |i: usize| {
+        if V::RIGID {
+            1.0
+        } else {
+            u_scale(i) * derived.omega_n
+        }
     };
     let off = f64::INFINITY; // W and D take no part in the error control
     let ode_options = OdeOptions {
@@ -84,25 +115,51 @@ fn set_up<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const
                 .unwrap_or(rocking_ode::Method::Dop853),
         )
     };
-    let contact_scale: [f64; NC] = std::array::from_fn(|i| [u_scale, ud_scale, 1.0, 1.0][i]);
-    let rocking_scale: [f64; NR] =
-        std::array::from_fn(|i| [a, u_scale, a * pf, ud_scale, 1.0, 1.0][i]);
+    let contact_scale: [f64; NC] = std::array::from_fn(|i| {
+        if i < n {
+            u_scale(i)
+        } else if i < 2 * n {
+            ud_scale(i - n)
+        } else {
+            1.0
+        }
+    });
+    let rocking_scale: [f64; NR] = std::array::from_fn(|i| {
+        if i == 0 {
+            a
+        } else if i <= n {
+            u_scale(i - 1)
+        } else if i == n + 1 {
+            a * pf
+        } else if i < nx {
+            ud_scale(i - n - 2)
+        } else {
+            1.0
+        }
+    });
     let contact_tol = Tolerances {
         rtol: tol,
-        atol: Y::<NC>::from_fn(|i, _| if i < 2 { contact_scale[i] * tol } else { off }),
+        atol: Y::<NC>::from_fn(|i, _| if i < nc { contact_scale[i] * tol } else { off }),
     };
     let rocking_tol = Tolerances {
         rtol: tol,
-        atol: Y::<NR>::from_fn(|i, _| if i < 4 { rocking_scale[i] * tol } else { off }),
+        atol: Y::<NR>::from_fn(|i, _| if i < nx { rocking_scale[i] * tol } else { off }),
     };
-    let e0 = V::energy(&[0.0; 4], RIGHT, &p);
+    let e0 = V::energy(&V::X::from_fn(|_| 0.0), RIGHT, &p);
     let uplift = V::static_uplift(&p);
     // The excitation's resolution is a sixteenth of its shortest period.
     let excitation_rate = 2.0 * std::f64::consts::PI / (16.0 * motion.resolution());
-    let fastest_rate = [derived.omega_n, derived.omega_up, pf, excitation_rate]
-        .into_iter()
-        .filter(|w| w.is_finite())
-        .fold(0.0, f64::max);
+    let (metric, first_mode, highest) = column_metric::<V>(&p, &derived);
+    let fastest_rate = [
+        derived.omega_n,
+        derived.omega_up,
+        highest,
+        pf,
+        excitation_rate,
+    ]
+    .into_iter()
+    .filter(|w| w.is_finite())
+    .fold(0.0, f64::max);
     Ok(Sim {
         p,
         motion,
@@ -119,20 +176,78 @@ fn set_up<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const
         rocking_scale,
         stats: SolverStats::default(),
         events: 0,
-        weight: uplift[su::WEIGHT],
-        wb: uplift[su::MOMENT_UPLIFT],
+        weight: uplift.values()[su::WEIGHT],
+        wb: uplift.values()[su::MOMENT_UPLIFT],
         fastest_rate,
+        top,
+        first_mode,
+        metric,
         rec: Record::default(),
     })
+}
+
+/// The column's K and M in full contact, inverted (k̃ and m̃ for one coordinate), its first
+/// fixed-base mode with a unit top deflection (1 for one coordinate; NaN where the mass matrix
+/// is singular), and its highest fixed-base or uplifted frequency (NaN for one coordinate, whose
+/// ω_n and ω_up are the derived ones).
+fn column_metric<V: Variant>(p: &V::Params, derived: &Derived) -> (Metric, V::Shape, f64) {
+    let (k, m) = (derived.k_tilde, derived.m_tilde);
+    if V::NQ == 1 {
+        let one = DMatrix::from_element(1, 1, 1.0);
+        let metric = Metric {
+            k,
+            m,
+            k_inv: one.clone(),
+            m_inv: one,
+        };
+        return (metric, V::Shape::from_fn(|_| 1.0), f64::NAN);
+    }
+    let mats = Matrices::of::<V>(p);
+    let nan = || DMatrix::from_element(V::NQ, V::NQ, f64::NAN);
+    let metric = Metric {
+        k,
+        m,
+        k_inv: mats.stiffness.clone().try_inverse().unwrap_or_else(nan),
+        m_inv: mats.mass.clone().try_inverse().unwrap_or_else(nan),
+    };
+    let fixed = mats.fixed_base();
+    let phi = fixed.as_ref().map(|modes| modes.shapes[0].clone());
+    let first_mode = V::Shape::from_fn(|i| phi.as_ref().map_or(f64::NAN, |phi| phi[i]));
+    let last = |m: Option<&rocking_kernels::modes::Modes>| {
+        m.and_then(|m| m.omega.last().copied()).unwrap_or(f64::NAN)
+    };
+    let highest = last(fixed.as_ref()).max(last(mats.uplifted().as_ref()));
+    (metric, first_mode, highest)
 }
 
 impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usize>
     Sim<'_, V, M, NR, NC>
 {
+    /// The initial rocking state: for several coordinates the initial `u` and `u'` are top
+    /// deflections along the first fixed-base mode φ_1.
+    fn initial_state(&self) -> V::X {
+        let i = self.opts.initial;
+        let n = V::NQ;
+        let phi = self.first_mode.values();
+        // One coordinate: its u is the top deflection (φ_1 = 1 is not multiplied in).
+        let along = |v: f64, k: usize| if n == 1 { v } else { v * phi[k] };
+        V::X::from_fn(|k| {
+            if k == 0 {
+                i.theta
+            } else if k <= n {
+                along(i.u, k - 1)
+            } else if k == n + 1 {
+                i.theta_dot
+            } else {
+                along(i.u_dot, k - n - 2)
+            }
+        })
+    }
+
     /// From the initial state to the end of the run, one phase at a time.
     fn run(mut self) -> Result<Run, SimError> {
         let i = self.opts.initial;
-        let x0 = [i.theta, i.u, i.theta_dot, i.u_dot];
+        let x0 = self.initial_state();
         let s0 = if i.theta > 0.0 || (i.theta == 0.0 && i.theta_dot > 0.0) {
             RIGHT
         } else {
@@ -153,8 +268,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         } else {
             Next::Contact {
                 t: 0.0,
-                u: i.u,
-                u_dot: i.u_dot,
+                xc: contact_of::<V>(&x0),
                 w: 0.0,
                 d: 0.0,
                 settle: false,
@@ -165,23 +279,19 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             next = match next {
                 Next::Contact {
                     t,
-                    u,
-                    u_dot,
+                    xc,
                     w,
                     d,
                     settle,
-                } => {
-                    let start = [u, u_dot, w, d];
-                    match self.contact_start(t, start, settle)? {
-                        ContactStart::Lifted(next) => next,
-                        ContactStart::Contact { settling, .. } if taylor => {
-                            self.contact_taylor(t, start, settling)?
-                        }
-                        ContactStart::Contact { settling, f0 } => {
-                            self.contact_rk(t, start, settling, f0)?
-                        }
+                } => match self.contact_start(t, xc, w, d, settle)? {
+                    ContactStart::Lifted(next) => next,
+                    ContactStart::Contact { settling, .. } if taylor => {
+                        self.contact_taylor(t, xc, w, d, settling)?
                     }
-                }
+                    ContactStart::Contact { settling, f0 } => {
+                        self.contact_rk(t, xc, w, d, settling, f0)?
+                    }
+                },
                 Next::Rocking { t, s, x, n, w, d } if taylor => {
                     self.rocking_taylor(t, s, x, n, w, d)?
                 }
@@ -199,6 +309,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
                         summary,
                         events: self.rec.log,
                         history: self.rec.history,
+                        coordinates: self.rec.coordinates,
                     });
                 }
             };

@@ -2,6 +2,7 @@
 //! the time history, the event log, and at the end the summary.
 
 use rocking_kernels::kernels::index::energy as en;
+use rocking_kernels::Array;
 use rocking_motion::GroundMotion;
 use rocking_ode::roots::turning_point;
 
@@ -14,20 +15,25 @@ use crate::taylor::TaylorVariant;
 impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usize>
     Sim<'_, V, M, NR, NC>
 {
-    pub(super) fn track(&mut self, x: &[f64; 4]) {
-        self.rec.max_theta = self.rec.max_theta.max(x[0].abs());
-        self.rec.max_u = self.rec.max_u.max(x[1].abs());
+    /// Tracks |θ| and the top deflection |u| of the rocking state `x`.
+    pub(super) fn track(&mut self, x: &V::X) {
+        self.track_values(x.values()[0], self.top(x, false));
     }
 
-    fn record_history(&mut self, t: f64, x: &[f64; 4], phase: Phase, s: f64) {
+    fn track_values(&mut self, theta: f64, u: f64) {
+        self.rec.max_theta = self.rec.max_theta.max(theta.abs());
+        self.rec.max_u = self.rec.max_u.max(u.abs());
+    }
+
+    fn record_history(&mut self, t: f64, x: &V::X, phase: Phase, s: f64) {
         let e = V::energy(x, s, &self.p);
         let f = self.forces_at(phase == Phase::Contact, s, t, x);
         let row = HistoryRow {
             tau: t * self.derived.p,
-            theta: x[0],
-            u: x[1],
-            theta_dot: x[2],
-            u_dot: x[3],
+            theta: x.values()[0],
+            u: self.top(x, false),
+            theta_dot: x.values()[V::NQ + 1],
+            u_dot: self.top(x, true),
             phase,
             e_kin: e[en::KINETIC] / self.derived.e_ref,
             e_total: (e[en::KINETIC] + e[en::GRAVITY] + e[en::STRAIN] - self.v_rest)
@@ -40,6 +46,12 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             vertical_reaction_over_w: f.vertical,
         };
         self.rec.history.push(row);
+        if V::NQ > 1 {
+            let n = V::NQ;
+            let x = x.values();
+            self.rec.coordinates.extend_from_slice(&x[1..=n]);
+            self.rec.coordinates.extend_from_slice(&x[n + 2..]);
+        }
     }
 
     /// History rows for the step (t_old, t_new] of a phase, from the dense output.
@@ -47,7 +59,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         &mut self,
         t_old: f64,
         t_new: f64,
-        at: impl Fn(f64) -> [f64; 4],
+        at: impl Fn(f64) -> V::X,
         phase: Phase,
         s: f64,
     ) {
@@ -66,27 +78,32 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         }
     }
 
-    /// An event of the log (when asked for): `pre` is [θ', u, u'] before it, `energies` the
-    /// kinetic energy before and after.
+    /// An event of the log (when asked for): `pre` the rocking state before it (θ', the top
+    /// deflection u and its rate are logged), `energies` the kinetic energy before and after.
     pub(super) fn log_event(
         &mut self,
         t: f64,
         kind: EventKind,
         branch: &'static str,
         phase_after: Phase,
-        pre: [f64; 3],
+        pre: &V::X,
         energies: (f64, f64),
     ) {
         if self.opts.event_log {
+            let (theta_dot, u, u_dot) = (
+                pre.values()[V::NQ + 1],
+                self.top(pre, false),
+                self.top(pre, true),
+            );
             let e_ref = self.derived.e_ref;
             let record = EventRecord {
                 time: self.time(t),
                 kind,
                 branch,
                 phase_after,
-                theta_dot: pre[0],
-                u: pre[1],
-                u_dot: pre[2],
+                theta_dot,
+                u,
+                u_dot,
                 energy_before: energies.0 / e_ref,
                 energy_after: energies.1 / e_ref,
             };
@@ -94,48 +111,85 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         }
     }
 
+    /// The top deflection (`rate`: its rate) at `t` in a step, from the step's components.
+    fn top_at(&self, step: &impl StepView<V::X>, rate: bool, t: f64) -> f64 {
+        let first = if rate { V::NQ + 2 } else { 1 };
+        self.top_by(|i| step.component(i, t), first)
+    }
+
+    /// A bound of the top deflection's size over a step.
+    fn top_bound(&self, step: &impl StepView<V::X>) -> f64 {
+        if V::NQ == 1 {
+            return step.bound(1);
+        }
+        let psi = self.top.values();
+        (0..V::NQ).map(|i| psi[i].abs() * step.bound(1 + i)).sum()
+    }
+
     /// max |u| within a contact step, including a turning point inside it.
-    pub(super) fn extremes_contact(&mut self, step: &impl StepView, t_old: f64, t_new: f64) {
+    pub(super) fn extremes_contact(&mut self, step: &impl StepView<V::X>, t_old: f64, t_new: f64) {
         let (a, b) = (step.state(t_old), step.state(t_new));
-        self.rec.max_u = self.rec.max_u.max(b[1].abs());
-        if a[3] * b[3] < 0.0 && step.bound(1) > self.rec.max_u {
-            let tm = turning_point(|t| step.component(3, t), t_old, t_new, a[3]);
-            self.rec.max_u = self.rec.max_u.max(step.component(1, tm).abs());
+        let (a_rate, b_top) = (self.top(&a, true), self.top(&b, false));
+        self.rec.max_u = self.rec.max_u.max(b_top.abs());
+        if a_rate * self.top(&b, true) < 0.0 && self.top_bound(step) > self.rec.max_u {
+            let tm = turning_point(|t| self.top_at(step, true, t), t_old, t_new, a_rate);
+            self.rec.max_u = self.rec.max_u.max(self.top_at(step, false, tm).abs());
         }
     }
 
     /// max |θ| and |u| within a rocking step, including turning points inside it.
-    pub(super) fn extremes_rocking(&mut self, step: &impl StepView, t_old: f64, t_new: f64) {
+    pub(super) fn extremes_rocking(&mut self, step: &impl StepView<V::X>, t_old: f64, t_new: f64) {
         const SAMPLES: u32 = 32;
         let (a, b) = (step.state(t_old), step.state(t_new));
-        self.track(&[b[0], b[1], 0.0, 0.0]);
-        for (pos, rate) in [(0usize, 2usize), (1, 3)] {
-            let max = if pos == 0 {
-                self.rec.max_theta
-            } else {
-                self.rec.max_u
+        self.track_values(b.values()[0], self.top(&b, false));
+        let n = V::NQ;
+        // θ from its rate θ', then the top deflection from its rate.
+        for top in [false, true] {
+            let value = |t: f64| {
+                if top {
+                    self.top_at(step, false, t)
+                } else {
+                    step.component(0, t)
+                }
             };
-            if step.bound(pos) <= max {
+            let rate_at = |t: f64| {
+                if top {
+                    self.top_at(step, true, t)
+                } else {
+                    step.component(n + 1, t)
+                }
+            };
+            let (max, bound) = if top {
+                (self.rec.max_u, self.top_bound(step))
+            } else {
+                (self.rec.max_theta, step.bound(0))
+            };
+            if bound <= max {
                 continue;
             }
+            let (ra, rb) = if top {
+                (self.top(&a, true), self.top(&b, true))
+            } else {
+                (a.values()[n + 1], b.values()[n + 1])
+            };
             // A step from rest (θ' = 0 at an uplift) has no sign change at its ends: its first
             // turning point lies after a point of the other sign than the end's, which one of
             // a few samples finds unless the excursion is far shorter than the step.
-            let start = if a[rate] == 0.0 && b[rate] != 0.0 {
+            let start = if ra == 0.0 && rb != 0.0 {
                 (1..SAMPLES)
                     .map(|j| t_old + (t_new - t_old) * f64::from(j) / f64::from(SAMPLES))
-                    .map(|t| (t, step.component(rate, t)))
-                    .find(|&(_, r)| r * b[rate] < 0.0)
+                    .map(|t| (t, rate_at(t)))
+                    .find(|&(_, r)| r * rb < 0.0)
             } else {
-                Some((t_old, a[rate]))
+                Some((t_old, ra))
             };
-            if let Some((ta, ra)) = start.filter(|&(_, r)| r * b[rate] < 0.0) {
-                let tm = turning_point(|t| step.component(rate, t), ta, t_new, ra);
-                let y = step.component(pos, tm).abs();
-                if pos == 0 {
-                    self.rec.max_theta = self.rec.max_theta.max(y);
-                } else {
+            if let Some((ta, r0)) = start.filter(|&(_, r)| r * rb < 0.0) {
+                let tm = turning_point(rate_at, ta, t_new, r0);
+                let y = value(tm).abs();
+                if top {
                     self.rec.max_u = self.rec.max_u.max(y);
+                } else {
+                    self.rec.max_theta = self.rec.max_theta.max(y);
                 }
             }
         }
@@ -149,7 +203,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         t_end: f64,
         phase: Phase,
         s: f64,
-        state: &[f64; 4],
+        state: &V::X,
         (w, d): (f64, f64),
         e_initial: f64,
     ) -> Summary {

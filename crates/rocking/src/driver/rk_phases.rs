@@ -2,13 +2,18 @@
 //! contact (state [u, u'] and the carried integrals) and rocking about a corner (state
 //! [θ, u, θ', u'] and the integrals), each to its first event.
 
-use rocking_kernels::kernels::index::{power as pwr, rocking_rhs as rr};
+use rocking_kernels::kernels::index::power as pwr;
 use rocking_motion::GroundMotion;
 use rocking_ode::events::{locate, Direction};
 use rocking_ode::roots::grazing;
 use rocking_ode::{Integrator, Options as OdeOptions};
 
-use super::state::{carried, rocking_state, Next, Sim, G2, LEFT, RIGHT, Y};
+use rocking_kernels::Array;
+
+use super::state::{
+    carried, contact_state, contact_x, rocking_state, with_integrals, Next, Sim, G2, LEFT, RIGHT, Y,
+};
+use super::transitions::theta_ddot;
 use crate::options::History;
 use crate::results::Phase;
 use crate::taylor::TaylorVariant;
@@ -23,44 +28,46 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
     pub(super) fn contact_rk(
         &mut self,
         t0: f64,
-        [u, u_dot, w, d]: [f64; 4],
+        xc0: V::Xc,
+        w: f64,
+        d: f64,
         settling: bool,
         f0: G2,
-    ) -> Result<Next, SimError> {
+    ) -> Result<Next<V>, SimError> {
         let mut settling = settling;
         let full_history = !matches!(self.opts.history, History::None);
         let may_stop = self.opts.stop_when_known && !full_history;
         let (p, motion) = (self.p, self.motion);
+        let nc = V::Xc::LEN;
         let mut rhs = |t: f64, y: &Y<NC>| -> Y<NC> {
             let ug = motion.accel(t);
-            let dx = V::contact_rhs(&[y[0], y[1]], ug, &p);
+            let xc = contact_state::<V>(y.as_slice());
+            let dx = V::contact_rhs(&xc, ug, &p);
             let mut out = Y::<NC>::zeros();
-            out[0] = dx[0];
-            out[1] = dx[1];
+            out.as_mut_slice()[..nc].copy_from_slice(dx.values());
             if Self::ENERGY {
-                let pw = V::power(&[0.0, y[0], 0.0, y[1]], ug, RIGHT, &p);
-                out[2] = pw[pwr::GROUND];
-                out[3] = pw[pwr::DAMPING];
+                let pw = V::power(&contact_x::<V>(&xc), ug, RIGHT, &p);
+                out[nc] = pw[pwr::GROUND];
+                out[nc + 1] = pw[pwr::DAMPING];
             }
             out
         };
         let mut g = |t: f64, y: &Y<NC>| -> G2 {
             let ug = motion.accel(t);
-            G2::new(
-                V::uplift(&[y[0], y[1]], ug, RIGHT, &p),
-                V::uplift(&[y[0], y[1]], ug, LEFT, &p),
-            )
+            let xc = contact_state::<V>(y.as_slice());
+            G2::new(V::uplift(&xc, ug, RIGHT, &p), V::uplift(&xc, ug, LEFT, &p))
         };
         let options = OdeOptions {
             h_max: self.contact_h_max(t0),
             ..self.ode_options
         };
         let mut ode = Integrator::new(options, self.contact_tol)?;
-        ode.reset(t0, Y::<NC>::from_fn(|i, _| [u, u_dot, w, d][i]), &mut rhs)?;
+        let y0 = Y::<NC>::from_fn(|i, _| with_integrals(xc0.values(), w, d, i));
+        ode.reset(t0, y0, &mut rhs)?;
         let mut g_old = f0;
         let dirs = [Direction::Rising, Direction::Rising];
         let excitation_end = motion.end();
-        let mut f_prev = self.forces_start(true, RIGHT, t0, &[0.0, u, 0.0, u_dot]);
+        let mut f_prev = self.forces_start(true, RIGHT, t0, &contact_x::<V>(&xc0));
         loop {
             let t_stop = self.t_stop(ode.t());
             let info = ode.step(&mut rhs, t_stop)?;
@@ -81,7 +88,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             } else {
                 None
             };
-            let dense = |t| contact_state(&ode.dense(t));
+            let dense = |t| contact_x::<V>(&contact_state::<V>(ode.dense(t).as_slice()));
             let lift = crossing.and_then(|(t_up, index, t_far)| {
                 let s = if index == 0 { RIGHT } else { LEFT };
                 self.first_lift(dense, s, t_up, t_far).map(|t| (t, s))
@@ -92,24 +99,25 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
                 let y = ode.dense(t_up);
                 self.step_history(t_old, t_up, dense, Phase::Contact, RIGHT);
                 self.stats.add(ode.take_stats());
-                let (w, d) = carried(y.as_slice(), 2);
-                return self.uplift(t_up, s, y[0], y[1], w, d);
+                let (w, d) = carried(y.as_slice(), nc);
+                return self.uplift(t_up, s, &contact_state::<V>(y.as_slice()), w, d);
             }
             self.extremes_contact(&dense, t_old, t_new);
             f_prev = self.extremes_forces(&dense, true, RIGHT, t_old, f_prev, t_new);
             self.step_history(t_old, t_new, dense, Phase::Contact, RIGHT);
             g_old = g_new;
             let y = *ode.y();
+            let xc = contact_state::<V>(y.as_slice());
             let done = t_new >= self.opts.t_end
-                || (may_stop && t_new >= excitation_end && self.settled(y[0], y[1]));
+                || (may_stop && t_new >= excitation_end && self.settled(&xc));
             if done {
                 self.stats.add(ode.take_stats());
-                let (w, d) = carried(y.as_slice(), 2);
+                let (w, d) = carried(y.as_slice(), nc);
                 return Ok(Next::Done {
                     t: t_new,
                     phase: Phase::Contact,
                     s: RIGHT,
-                    state: [0.0, y[0], 0.0, y[1]],
+                    state: contact_x::<V>(&xc),
                     w,
                     d,
                 });
@@ -125,33 +133,35 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         &mut self,
         t0: f64,
         s: f64,
-        x0: [f64; 4],
+        x0: V::X,
         n: i32,
         w: f64,
         d: f64,
-    ) -> Result<Next, SimError> {
+    ) -> Result<Next<V>, SimError> {
         let (p, motion) = (self.p, self.motion);
         let over = self.opts.overturn_angle;
+        let nx = V::X::LEN;
         let mut rhs = |t: f64, y: &Y<NR>| -> Y<NR> {
             let ug = motion.accel(t);
-            let x = [y[0], y[1], y[2], y[3]];
+            let x = rocking_state::<V>(y.as_slice());
             let dx = V::rocking_rhs(&x, ug, s, &p);
             let mut out = Y::<NR>::zeros();
-            out.fixed_rows_mut::<4>(0).copy_from_slice(&dx);
+            out.as_mut_slice()[..nx].copy_from_slice(dx.values());
             if Self::ENERGY {
                 let pw = V::power(&x, ug, s, &p);
-                out[4] = pw[pwr::GROUND];
-                out[5] = pw[pwr::DAMPING];
+                out[nx] = pw[pwr::GROUND];
+                out[nx + 1] = pw[pwr::DAMPING];
             }
             out
         };
+        let x0v = x0.values();
         // The impact event s θ / (t − t0)^n, with its limit at t0 (equations.md §5, note 4).
         let start_limit = if n == 0 {
-            s * x0[0]
+            s * x0v[0]
         } else if n == 1 {
-            s * x0[2]
+            s * x0v[V::NQ + 1]
         } else {
-            s * V::rocking_rhs(&x0, motion.accel_right(t0), s, &p)[rr::THETA_DDOT] / 2.0
+            s * V::rocking_rhs(&x0, motion.accel_right(t0), s, &p).values()[theta_ddot::<V>()] / 2.0
         };
         // An uplift exactly at f_s = 0 has θ'' = 0: keep the event armed (it fires at once if θ
         // turns back, which ends the zero-length rocking phase with an impact).
@@ -165,7 +175,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             };
             G2::new(impact, s * y[0] - over)
         };
-        let y0 = Y::<NR>::from_fn(|i, _| [x0[0], x0[1], x0[2], x0[3], w, d][i]);
+        let y0 = Y::<NR>::from_fn(|i, _| with_integrals(x0v, w, d, i));
         let mut ode = Integrator::new(self.ode_options, self.rocking_tol)?;
         ode.reset(t0, y0, &mut rhs)?;
         let mut g_old = g(t0, &y0);
@@ -181,16 +191,17 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             let (t_old, t_new) = (info.t_old, info.t_new);
             let g_new = g(t_new, ode.y());
             if let Some(ev) = locate(&mut ode, &mut g, &dirs, &g_old, &g_new) {
-                let dense = |t| rocking_state(ode.dense(t).as_slice());
+                let dense = |t| rocking_state::<V>(ode.dense(t).as_slice());
                 self.extremes_rocking(&dense, t_old, ev.t);
                 self.extremes_forces(&dense, false, s, t_old, f_prev, ev.t);
                 self.step_history(t_old, ev.t, dense, phase, s);
                 self.stats.add(ode.take_stats());
                 let y = ev.y;
-                let (w, d) = carried(y.as_slice(), 4);
-                return self.rocking_event(ev.index, ev.t, s, rocking_state(y.as_slice()), w, d);
+                let (w, d) = carried(y.as_slice(), nx);
+                let x = rocking_state::<V>(y.as_slice());
+                return self.rocking_event(ev.index, ev.t, s, x, w, d);
             }
-            let dense = |t| rocking_state(ode.dense(t).as_slice());
+            let dense = |t| rocking_state::<V>(ode.dense(t).as_slice());
             self.extremes_rocking(&dense, t_old, t_new);
             f_prev = self.extremes_forces(&dense, false, s, t_old, f_prev, t_new);
             self.step_history(t_old, t_new, dense, phase, s);
@@ -198,20 +209,16 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             if t_new >= self.opts.t_end {
                 let y = *ode.y();
                 self.stats.add(ode.take_stats());
-                let (w, d) = carried(y.as_slice(), 4);
+                let (w, d) = carried(y.as_slice(), nx);
                 return Ok(Next::Done {
                     t: t_new,
                     phase,
                     s,
-                    state: [y[0], y[1], y[2], y[3]],
+                    state: rocking_state::<V>(y.as_slice()),
                     w,
                     d,
                 });
             }
         }
     }
-}
-
-fn contact_state<const N: usize>(y: &Y<N>) -> [f64; 4] {
-    [0.0, y[0], 0.0, y[1]]
 }

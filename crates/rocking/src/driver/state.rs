@@ -3,8 +3,9 @@
 //!
 //! The lowest room of the driver: every other file imports from here, this one from none of them.
 
-use nalgebra::SVector;
+use nalgebra::{DMatrix, SVector};
 use rocking_kernels::kernels::index::energy as en;
+use rocking_kernels::{Array, Variant};
 use rocking_motion::GroundMotion;
 use rocking_ode::{Options as OdeOptions, Stats, Tolerances};
 
@@ -27,11 +28,11 @@ pub(super) const RIGHT: f64 = 1.0;
 pub(super) const LEFT: f64 = -1.0;
 
 /// Where the hybrid system goes next.
-pub(super) enum Next {
+pub(super) enum Next<V: Variant> {
     Contact {
         t: f64,
-        u: f64,
-        u_dot: f64,
+        /// `[u_1..u_n, u_1'..u_n']`.
+        xc: V::Xc,
         w: f64,
         d: f64,
         /// Just come to rest: no uplift before one step has been taken (see
@@ -41,7 +42,8 @@ pub(super) enum Next {
     Rocking {
         t: f64,
         s: f64,
-        x: [f64; 4],
+        /// `[θ, u_1..u_n, θ', u_1'..u_n']`.
+        x: V::X,
         /// The impact event is s θ / (t − t0)^n (see the rocking phases).
         n: i32,
         w: f64,
@@ -51,14 +53,68 @@ pub(super) enum Next {
         t: f64,
         phase: Phase,
         s: f64,
-        state: [f64; 4],
+        state: V::X,
         w: f64,
         d: f64,
     },
 }
 
-/// One run: `NR` and `NC` are the sizes of the rocking and contact states (4 and 2, or 6 and 4
-/// with the energy integrals).
+/// The rocking state `[θ, u, θ', u']` of full contact at the contact state `xc = [u, u']`
+/// (θ = θ' = 0); each `u` is u_1..u_n.
+pub(super) fn contact_x<V: Variant>(xc: &V::Xc) -> V::X {
+    let (n, xc) = (V::NQ, xc.values());
+    V::X::from_fn(|i| {
+        if i == 0 || i == n + 1 {
+            0.0
+        } else if i <= n {
+            xc[i - 1]
+        } else {
+            xc[i - 2]
+        }
+    })
+}
+
+/// The contact state `[u, u']` of the rocking state `x`.
+pub(super) fn contact_of<V: Variant>(x: &V::X) -> V::Xc {
+    let (n, x) = (V::NQ, x.values());
+    V::Xc::from_fn(|i| if i < n { x[1 + i] } else { x[2 + i] })
+}
+
+/// The pre-impact state `xi = [u, u', θ']` of the rocking state `x` (θ = 0).
+pub(super) fn impact_state<V: Variant>(x: &V::X) -> V::Xi {
+    let (n, x) = (V::NQ, x.values());
+    V::Xi::from_fn(|i| {
+        if i < n {
+            x[1 + i]
+        } else if i < 2 * n {
+            x[2 + i]
+        } else {
+            x[n + 1]
+        }
+    })
+}
+
+/// Component `i` of a phase's integrator state: the mechanical state `x`, then W and D.
+pub(super) fn with_integrals(x: &[f64], w: f64, d: f64, i: usize) -> f64 {
+    match i.checked_sub(x.len()) {
+        None => x[i],
+        Some(0) => w,
+        Some(_) => d,
+    }
+}
+
+/// The rocking state of a phase's integrator state `y` (its first `V::X::LEN` components).
+pub(super) fn rocking_state<V: Variant>(y: &[f64]) -> V::X {
+    V::X::from_fn(|i| y[i])
+}
+
+/// The contact state of a contact phase's integrator state `y`.
+pub(super) fn contact_state<V: Variant>(y: &[f64]) -> V::Xc {
+    V::Xc::from_fn(|i| y[i])
+}
+
+/// One run: `NR` and `NC` are the sizes of the rocking and contact states (`V::X::LEN` and
+/// `V::Xc::LEN`, 2n + 2 and 2n, or two more each with the energy integrals).
 pub(super) struct Sim<
     'a,
     V: TaylorVariant,
@@ -93,7 +149,23 @@ pub(super) struct Sim<
     /// frequencies, the rocking time scale p and the excitation's): how much a quantity can
     /// change inside a step.
     pub(super) fastest_rate: f64,
+    /// ψ_i(1): the column's top deflection is Σ u_i ψ_i(1) (u itself for one coordinate).
+    pub(super) top: V::Shape,
+    /// The first fixed-base mode φ_1 with a unit top deflection: the direction of the initial
+    /// `u` and `u'` of several coordinates (u_cr is measured along it).
+    pub(super) first_mode: V::Shape,
+    /// The column's stiffness and mass in full contact, for the settle test.
+    pub(super) metric: Metric,
     pub(super) rec: Record,
+}
+
+/// K and M of the u_i (k̃ and m̃ for one coordinate), inverted once per run: the norms of the
+/// free vibration's energy ellipse.
+pub(super) struct Metric {
+    pub(super) k: f64,
+    pub(super) m: f64,
+    pub(super) k_inv: DMatrix<f64>,
+    pub(super) m_inv: DMatrix<f64>,
 }
 
 /// What the run has recorded so far (written by the recorder, read into the summary).
@@ -111,6 +183,8 @@ pub(super) struct Record {
     pub(super) losses: f64,
     pub(super) log: Vec<EventRecord>,
     pub(super) history: Vec<HistoryRow>,
+    /// u_1..u_n, u_1'..u_n' of each history row, for n > 1.
+    pub(super) coordinates: Vec<f64>,
     /// The next time of the history grid.
     pub(super) next_grid: f64,
     /// The extremes of the section forces and reactions.
@@ -121,7 +195,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
     Sim<'_, V, M, NR, NC>
 {
     /// Whether W and D are carried (the energy bookkeeping was asked for).
-    pub(super) const ENERGY: bool = NR > 4;
+    pub(super) const ENERGY: bool = NR > V::X::LEN;
 
     pub(super) fn time(&self, t: f64) -> Time {
         let tau = t * self.derived.p;
@@ -132,7 +206,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
     }
 
     /// Kinetic plus potential energy, from zero at rest.
-    pub(super) fn total_energy(&self, x: &[f64; 4], s: f64) -> f64 {
+    pub(super) fn total_energy(&self, x: &V::X, s: f64) -> f64 {
         let e = V::energy(x, s, &self.p);
         e[en::KINETIC] + e[en::GRAVITY] + e[en::STRAIN] - self.v_rest
     }
@@ -180,20 +254,73 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         }
     }
 
-    /// An integration failure while rocking, explained when the mass matrix became singular.
+    /// The column's top deflection Σ u_i ψ_i(1) of the rocking state `x` (`rate`: of its rate,
+    /// from the u_i'); u itself for one coordinate.
+    pub(super) fn top(&self, x: &V::X, rate: bool) -> f64 {
+        let first = if rate { V::NQ + 2 } else { 1 };
+        self.top_by(|i| x.values()[i], first)
+    }
+
+    /// Σ ψ_i(1) c(first + i): the top deflection (first = 1) or its rate (first = n + 2) from
+    /// the components `c` of a rocking state.
+    pub(super) fn top_by(&self, c: impl Fn(usize) -> f64, first: usize) -> f64 {
+        if V::NQ == 1 {
+            return c(first);
+        }
+        let psi = self.top.values();
+        (0..V::NQ).map(|i| psi[i] * c(first + i)).sum()
+    }
+
+    /// An integration failure while rocking, explained when the mass matrix became singular:
+    /// its conditioning is the smallest pivot of its Cholesky factorisation over the diagonal
+    /// entry (1 − m_tu²/(m_tt m_uu) for one coordinate).
     pub(super) fn explain_failure(&self, e: rocking_ode::OdeError, y: &[f64], s: f64) -> SimError {
-        let [mtt, mtu, muu] = V::mass_matrix(&[y[0], y[1]], s, &self.p);
-        let conditioning = (mtt * muu - mtu * mtu) / (mtt * muu);
+        let q = V::Q::from_fn(|i| y[i]);
+        let m = V::mass_matrix(&q, s, &self.p);
+        let conditioning = if V::NQ == 1 {
+            let [mtt, mtu, muu] = [0, 1, 2].map(|k| m.values()[k]);
+            (mtt * muu - mtu * mtu) / (mtt * muu)
+        } else {
+            smallest_pivot_ratio(m.values(), V::Q::LEN)
+        };
         if conditioning.is_finite() && conditioning > 1e-8 {
             return SimError::Integration(e);
         }
         SimError::SingularMassMatrix {
             tau: self.time(e.t).tau,
             conditioning,
-            u_over_ucr: y[1] / self.derived.u_cr,
+            u_over_ucr: self.top(&rocking_state::<V>(y), false) / self.derived.u_cr,
             cause: e,
         }
     }
+}
+
+/// The smallest ratio d_k / M_kk of the pivots d_k of the LDLᵀ factorisation of the symmetric
+/// n × n matrix whose upper triangle (row by row) is `upper`: 1 for a diagonal matrix, 0 for a
+/// singular one.
+fn smallest_pivot_ratio(upper: &[f64], n: usize) -> f64 {
+    let mut a = DMatrix::zeros(n, n);
+    let mut k = 0;
+    for i in 0..n {
+        for j in i..n {
+            a[(i, j)] = upper[k];
+            a[(j, i)] = upper[k];
+            k += 1;
+        }
+    }
+    let diag = a.diagonal();
+    let mut ratio = f64::INFINITY;
+    for k in 0..n {
+        let d = a[(k, k)];
+        ratio = ratio.min(d / diag[k]);
+        for i in k + 1..n {
+            let f = a[(i, k)] / d;
+            for j in k + 1..n {
+                a[(i, j)] -= f * a[(k, j)];
+            }
+        }
+    }
+    ratio
 }
 
 /// The energy integrals (W, D) of a phase's state from component `first` on, or zeros when they
@@ -206,28 +333,40 @@ pub(super) fn carried(y: &[f64], first: usize) -> (f64, f64) {
     }
 }
 
-/// [θ, u, θ', u'] of a rocking phase's state.
-pub(super) fn rocking_state(y: &[f64]) -> [f64; 4] {
-    [y[0], y[1], y[2], y[3]]
-}
-
 /// The free vibration of the column in full contact with no ground motion: it stays inside the
-/// ellipse of its energy `vib` (kinetic + strain) in (u, u'), generalised stiffness `k` and mass
-/// `m` (the derived k̃, m̃).
-pub(super) struct Ellipse {
+/// ellipsoid of its energy `vib` (kinetic + strain), ½ u'ᵀ M u' + ½ uᵀ K u <= vib.
+pub(super) struct Ellipse<'a> {
     pub(super) vib: f64,
-    pub(super) k: f64,
-    pub(super) m: f64,
+    pub(super) metric: &'a Metric,
 }
 
-impl Ellipse {
-    /// For g(u, u') = c + a u + b u' (affine): (c, the largest |a u + b u'| on the ellipse).
-    pub(super) fn reach(&self, g: impl Fn(f64, f64) -> f64) -> (f64, f64) {
-        let c = g(0.0, 0.0);
-        let (a, b) = (g(1.0, 0.0) - c, g(0.0, 1.0) - c);
-        (
-            c,
-            (2.0 * self.vib * (a * a / self.k + b * b / self.m)).sqrt(),
-        )
+impl Ellipse<'_> {
+    /// For g(xc) = c + aᵀu + bᵀu' (affine in the contact state xc = [u, u']): (c, the largest
+    /// |aᵀu + bᵀu'| on the ellipsoid) = (c, sqrt(2 vib (aᵀK⁻¹a + bᵀM⁻¹b))).
+    pub(super) fn reach<V: Variant>(&self, g: impl Fn(&V::Xc) -> f64) -> (f64, f64) {
+        let n = V::NQ;
+        let c = g(&V::Xc::from_fn(|_| 0.0));
+        let unit = |j: usize| g(&V::Xc::from_fn(|i| if i == j { 1.0 } else { 0.0 })) - c;
+        let Metric { k, m, .. } = *self.metric;
+        let norm = if n == 1 {
+            let (a, b) = (unit(0), unit(1));
+            a * a / k + b * b / m
+        } else {
+            let ab = V::Xc::from_fn(unit);
+            let (a, b) = ab.values().split_at(n);
+            quadratic(&self.metric.k_inv, a) + quadratic(&self.metric.m_inv, b)
+        };
+        (c, (2.0 * self.vib * norm).sqrt())
     }
+}
+
+/// vᵀ A v.
+fn quadratic(a: &DMatrix<f64>, v: &[f64]) -> f64 {
+    let mut sum = 0.0;
+    for (i, vi) in v.iter().enumerate() {
+        for (j, vj) in v.iter().enumerate() {
+            sum += vi * a[(i, j)] * vj;
+        }
+    }
+    sum
 }

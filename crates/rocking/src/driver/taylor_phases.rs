@@ -8,7 +8,11 @@ use rocking_ode::events::Direction;
 use rocking_ode::poly;
 use rocking_ode::taylor::{Taylor, TaylorOptions};
 
-use super::state::{carried, rocking_state, Next, Sim, LEFT, RIGHT};
+use rocking_kernels::Array;
+
+use super::state::{
+    carried, contact_state, contact_x, rocking_state, with_integrals, Next, Sim, LEFT, RIGHT,
+};
 use crate::dense::{StepView, TaylorStep};
 use crate::options::History;
 use crate::results::Phase;
@@ -43,13 +47,17 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
     pub(super) fn contact_taylor(
         &mut self,
         t0: f64,
-        start: [f64; 4],
+        xc0: V::Xc,
+        w: f64,
+        d: f64,
         settling: bool,
-    ) -> Result<Next, SimError> {
+    ) -> Result<Next<V>, SimError> {
         let mut settling = settling;
         let scale = self.contact_scale;
-        let y0: [f64; NC] = std::array::from_fn(|i| start[i] / scale[i]);
-        let mut ode = self.taylor(self.contact_h_max(t0), t0, y0, 2)?;
+        let nc = V::Xc::LEN;
+        let y0: [f64; NC] =
+            std::array::from_fn(|i| with_integrals(xc0.values(), w, d, i) / scale[i]);
+        let mut ode = self.taylor(self.contact_h_max(t0), t0, y0, nc)?;
         let mut sys = ContactSystem::<V, M, NC> {
             p: self.p,
             motion: self.motion,
@@ -58,7 +66,7 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
         let unscale = |y: [f64; NC]| -> [f64; NC] { std::array::from_fn(|i| y[i] * scale[i]) };
         let may_stop = self.opts.stop_when_known && matches!(self.opts.history, History::None);
         let excitation_end = self.motion.end();
-        let mut f_prev = self.forces_start(true, RIGHT, t0, &[0.0, start[0], 0.0, start[1]]);
+        let mut f_prev = self.forces_start(true, RIGHT, t0, &contact_x::<V>(&xc0));
         loop {
             let t_stop = self.t_stop(ode.t());
             ode.step(&mut sys, t_stop)?;
@@ -76,7 +84,8 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
             let crossing = if std::mem::take(&mut settling) && rising.is_none() && self.opts.uplift
             {
                 let y = unscale(*ode.y());
-                let g_new = self.uplift_functions(y[0], y[1], self.motion.accel(t_new));
+                let xc = contact_state::<V>(&y);
+                let g_new = self.uplift_functions(&xc, self.motion.accel(t_new));
                 (0..2).find(|&k| g_new[k] > 0.0).map(|k| (t_new, k))
             } else {
                 rising
@@ -84,9 +93,9 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
             let step = TaylorStep {
                 ode: &ode,
                 scale,
-                rows: [None, Some(0), None, Some(1)],
+                contact: true,
             };
-            let dense = |t: f64| step.state(t);
+            let dense = |t: f64| -> V::X { step.state(t) };
             let lift = crossing.and_then(|(t_up, index)| {
                 let s = if index == 0 { RIGHT } else { LEFT };
                 self.first_lift(dense, s, t_up, t_new).map(|t| (t, s))
@@ -97,23 +106,24 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
                 self.step_history(t_old, t_up, dense, Phase::Contact, RIGHT);
                 self.stats.add(ode.take_stats());
                 let y = unscale(ode.dense(t_up));
-                let (w, d) = carried(&y, 2);
-                return self.uplift(t_up, s, y[0], y[1], w, d);
+                let (w, d) = carried(&y, nc);
+                return self.uplift(t_up, s, &contact_state::<V>(&y), w, d);
             }
             self.extremes_contact(&step, t_old, t_new);
             f_prev = self.extremes_forces(&step, true, RIGHT, t_old, f_prev, t_new);
             self.step_history(t_old, t_new, dense, Phase::Contact, RIGHT);
             let y = unscale(*ode.y());
+            let xc = contact_state::<V>(&y);
             let done = t_new >= self.opts.t_end
-                || (may_stop && t_new >= excitation_end && self.settled(y[0], y[1]));
+                || (may_stop && t_new >= excitation_end && self.settled(&xc));
             if done {
                 self.stats.add(ode.take_stats());
-                let (w, d) = carried(&y, 2);
+                let (w, d) = carried(&y, nc);
                 return Ok(Next::Done {
                     t: t_new,
                     phase: Phase::Contact,
                     s: RIGHT,
-                    state: [0.0, y[0], 0.0, y[1]],
+                    state: contact_x::<V>(&xc),
                     w,
                     d,
                 });
@@ -132,9 +142,8 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
     }
 
     /// The scaled Taylor state of `[θ, u, θ', u']` and the carried integrals `W`, `D`.
-    pub(super) fn rocking_start(&self, x: [f64; 4], w: f64, d: f64) -> [f64; NR] {
-        let start = [x[0], x[1], x[2], x[3], w, d];
-        std::array::from_fn(|i| start[i] / self.rocking_scale[i])
+    pub(super) fn rocking_start(&self, x: &V::X, w: f64, d: f64) -> [f64; NR] {
+        std::array::from_fn(|i| with_integrals(x.values(), w, d, i) / self.rocking_scale[i])
     }
 
     /// Rocking about `s` from `t0` with the Taylor method (see [`Sim::rocking_rk`]). The impact is
@@ -147,14 +156,15 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
         &mut self,
         t0: f64,
         s: f64,
-        x0: [f64; 4],
+        x0: V::X,
         n: i32,
         w: f64,
         d: f64,
-    ) -> Result<Next, SimError> {
+    ) -> Result<Next<V>, SimError> {
         let scale = self.rocking_scale;
-        let y0 = self.rocking_start(x0, w, d);
-        let mut ode = self.taylor(f64::INFINITY, t0, y0, 4)?;
+        let nx = V::X::LEN;
+        let y0 = self.rocking_start(&x0, w, d);
+        let mut ode = self.taylor(f64::INFINITY, t0, y0, nx)?;
         let mut sys = self.rocking_system(s);
         let unscale = |y: [f64; NR]| -> [f64; NR] { std::array::from_fn(|i| y[i] * scale[i]) };
         let over = self.opts.overturn_angle / scale[0];
@@ -205,9 +215,9 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
             let step = TaylorStep {
                 ode: &ode,
                 scale,
-                rows: [Some(0), Some(1), Some(2), Some(3)],
+                contact: false,
             };
-            let dense = |t: f64| step.state(t);
+            let dense = |t: f64| -> V::X { step.state(t) };
             if let Some((index, tau)) = event {
                 // Strictly after t_old for a root inside the step, even below t_old's ulp.
                 let t = if tau >= h {
@@ -223,8 +233,8 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
                 self.stats.add(ode.take_stats());
                 self.stats.events += 1;
                 let y = unscale(ode.dense(t));
-                let (w, d) = carried(&y, 4);
-                return self.rocking_event(index, t, s, rocking_state(&y), w, d);
+                let (w, d) = carried(&y, nx);
+                return self.rocking_event(index, t, s, rocking_state::<V>(&y), w, d);
             }
             self.extremes_rocking(&step, t_old, t_new);
             f_prev = self.extremes_forces(&step, false, s, t_old, f_prev, t_new);
@@ -232,12 +242,12 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
             if t_new >= self.opts.t_end {
                 let y = unscale(*ode.y());
                 self.stats.add(ode.take_stats());
-                let (w, d) = carried(&y, 4);
+                let (w, d) = carried(&y, nx);
                 return Ok(Next::Done {
                     t: t_new,
                     phase,
                     s,
-                    state: rocking_state(&y),
+                    state: rocking_state::<V>(&y),
                     w,
                     d,
                 });

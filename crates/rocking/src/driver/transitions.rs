@@ -6,17 +6,19 @@ use rocking_motion::GroundMotion;
 use rocking_ode::roots::first_true;
 use rocking_ode::taylor::TaylorSystem;
 
+use rocking_kernels::{Array, Variant};
+
 use super::impact::{self, After};
-use super::state::{Ellipse, Next, Sim, G2, LEFT, RIGHT};
+use super::state::{contact_of, contact_x, impact_state, Ellipse, Next, Sim, G2, LEFT, RIGHT};
 use crate::error::SimError;
 use crate::options::Method;
 use crate::results::{EventKind, Phase};
 use crate::taylor::TaylorVariant;
 
 /// How a contact phase starts: the uplift functions checked at once.
-pub(super) enum ContactStart {
+pub(super) enum ContactStart<V: Variant> {
     /// The base lifts at the phase start (after an impact: the rigid limit).
-    Lifted(Next),
+    Lifted(Next<V>),
     /// Full contact; `settling`: the first step is taken before an uplift is possible; `f0`:
     /// the uplift functions at the start.
     Contact { settling: bool, f0: G2 },
@@ -26,11 +28,10 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
     Sim<'_, V, M, NR, NC>
 {
     /// The uplift functions [f_+, f_-] (eq 24) in full contact.
-    pub(super) fn uplift_functions(&self, u: f64, u_dot: f64, ug: f64) -> G2 {
-        let xc = [u, u_dot];
+    pub(super) fn uplift_functions(&self, xc: &V::Xc, ug: f64) -> G2 {
         G2::new(
-            V::uplift(&xc, ug, RIGHT, &self.p),
-            V::uplift(&xc, ug, LEFT, &self.p),
+            V::uplift(xc, ug, RIGHT, &self.p),
+            V::uplift(xc, ug, LEFT, &self.p),
         )
     }
 
@@ -44,14 +45,16 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
     pub(super) fn contact_start(
         &mut self,
         t0: f64,
-        [u, u_dot, w, d]: [f64; 4],
+        xc: V::Xc,
+        w: f64,
+        d: f64,
         settle: bool,
-    ) -> Result<ContactStart, SimError> {
+    ) -> Result<ContactStart<V>, SimError> {
         let ug0 = self.motion.accel_right(t0);
-        let f0 = self.uplift_functions(u, u_dot, ug0);
+        let f0 = self.uplift_functions(&xc, ug0);
         for (k, s) in [(0, RIGHT), (1, LEFT)] {
-            if self.opts.uplift && !settle && f0[k] > 0.0 && self.lifts(s, t0, u, u_dot, ug0) {
-                return self.uplift(t0, s, u, u_dot, w, d).map(ContactStart::Lifted);
+            if self.opts.uplift && !settle && f0[k] > 0.0 && self.lifts(s, t0, &xc, ug0) {
+                return self.uplift(t0, s, &xc, w, d).map(ContactStart::Lifted);
             }
         }
         Ok(ContactStart::Contact {
@@ -64,22 +67,22 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
     /// reports change any more? The base can never uplift (unless it is held down), and no
     /// tracked maximum (|u|, the forces) can grow: each is affine in (u, u') while the free
     /// vibration stays inside its energy ellipse.
-    pub(super) fn settled(&self, u: f64, u_dot: f64) -> bool {
-        let e = V::energy(&[0.0, u, 0.0, u_dot], RIGHT, &self.p);
+    pub(super) fn settled(&self, xc: &V::Xc) -> bool {
+        let e = V::energy(&contact_x::<V>(xc), RIGHT, &self.p);
         let ellipse = Ellipse {
             vib: e[en::KINETIC] + e[en::STRAIN],
-            k: self.derived.k_tilde,
-            m: self.derived.m_tilde,
+            metric: &self.metric,
         };
         if self.opts.uplift {
             // f_s is affine in (u, u'): the base can never uplift when its largest reachable value
             // stays below zero.
-            let (c, r) = ellipse.reach(|a, b| V::uplift(&[a, b], 0.0, RIGHT, &self.p));
+            let (c, r) = ellipse.reach::<V>(|xc| V::uplift(xc, 0.0, RIGHT, &self.p));
             if c + r >= 0.0 {
                 return false;
             }
         }
-        let (_, r_u) = ellipse.reach(|a, _| a);
+        // The top deflection Σ u_i ψ_i(1).
+        let (_, r_u) = ellipse.reach::<V>(|xc| self.top_by(|i| xc.values()[i - 1], 1));
         if !V::RIGID && r_u > self.rec.max_u {
             return false;
         }
@@ -93,14 +96,15 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
     /// will (the Taylor-mode kernel regroups the tape, so the pointwise θ'' may differ from it
     /// in the last bits and a lift decided on it could turn back at once); `ug` is ü_g(t) for
     /// the Runge–Kutta methods.
-    fn lifts(&self, s: f64, t: f64, u: f64, u_dot: f64, ug: f64) -> bool {
+    fn lifts(&self, s: f64, t: f64, xc: &V::Xc, ug: f64) -> bool {
+        let x = contact_x::<V>(xc);
         if self.opts.accuracy.method == Method::Taylor {
-            let y0 = self.rocking_start([0.0, u, 0.0, u_dot], 0.0, 0.0);
+            let y0 = self.rocking_start(&x, 0.0, 0.0);
             let mut x: [[f64; 2]; NR] = std::array::from_fn(|i| [y0[i], 0.0]);
             self.rocking_system(s).coefficients::<2>(t, &mut x);
-            return s * x[2][1] > 0.0;
+            return s * x[V::NQ + 1][1] > 0.0;
         }
-        s * V::rocking_rhs(&[0.0, u, 0.0, u_dot], ug, s, &self.p)[rr::THETA_DDOT] > 0.0
+        s * V::rocking_rhs(&x, ug, s, &self.p).values()[theta_ddot::<V>()] > 0.0
     }
 
     /// The first time in [t_a, t_b] at which the base lifts about `s`, given that f_s rises
@@ -108,14 +112,14 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
     /// (t_a, t_b] (a rounding-level excursion of f_s).
     pub(super) fn first_lift(
         &self,
-        dense: impl Fn(f64) -> [f64; 4],
+        dense: impl Fn(f64) -> V::X,
         s: f64,
         t_a: f64,
         t_b: f64,
     ) -> Option<f64> {
         let lifts_at = |t: f64| {
-            let y = dense(t);
-            self.lifts(s, t, y[1], y[3], self.motion.accel(t))
+            let xc = contact_of::<V>(&dense(t));
+            self.lifts(s, t, &xc, self.motion.accel(t))
         };
         if lifts_at(t_a) {
             return Some(t_a);
@@ -134,31 +138,24 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         Some(first_true(lifts_at, t_a, t_b))
     }
 
-    /// The base lifts about `s` at `t` from full contact with the column at (u, u').
+    /// The base lifts about `s` at `t` from full contact with the column at `xc` = (u, u').
     pub(super) fn uplift(
         &mut self,
         t: f64,
         s: f64,
-        u: f64,
-        u_dot: f64,
+        xc: &V::Xc,
         w: f64,
         d: f64,
-    ) -> Result<Next, SimError> {
+    ) -> Result<Next<V>, SimError> {
         self.count_event(t)?;
         self.rec.first_uplift.get_or_insert(t);
-        let e = V::energy(&[0.0, u, 0.0, u_dot], s, &self.p)[en::KINETIC];
-        self.log_event(
-            t,
-            EventKind::Uplift,
-            "",
-            Phase::rocking(s),
-            [0.0, u, u_dot],
-            (e, e),
-        );
+        let x = contact_x::<V>(xc);
+        let e = V::energy(&x, s, &self.p)[en::KINETIC];
+        self.log_event(t, EventKind::Uplift, "", Phase::rocking(s), &x, (e, e));
         Ok(Next::Rocking {
             t,
             s,
-            x: [0.0, u, 0.0, u_dot],
+            x,
             n: 2,
             w,
             d,
@@ -171,25 +168,18 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         index: usize,
         t: f64,
         s: f64,
-        x: [f64; 4],
+        x: V::X,
         w: f64,
         d: f64,
-    ) -> Result<Next, SimError> {
+    ) -> Result<Next<V>, SimError> {
         if index == 0 {
-            return self.impact(t, s, [x[1], x[3], x[2]], w, d);
+            return self.impact(t, s, &x, w, d);
         }
         self.count_event(t)?;
         self.rec.overturn = Some(t);
         self.track(&x);
         let e = V::energy(&x, s, &self.p)[en::KINETIC];
-        self.log_event(
-            t,
-            EventKind::Overturn,
-            "",
-            Phase::Overturned,
-            [x[2], x[1], x[3]],
-            (e, e),
-        );
+        self.log_event(t, EventKind::Overturn, "", Phase::Overturned, &x, (e, e));
         Ok(Next::Done {
             t,
             phase: Phase::Overturned,
@@ -200,15 +190,16 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         })
     }
 
-    /// The impact at θ = 0 while rocking about `s` (pre-impact `xi` = [u, u', θ']): the policy
+    /// The impact at θ = 0 while rocking about `s` (pre-impact rocking state `x`): the policy
     /// ([`impact::resolve`]) decides, the run records it and goes on from its choice.
-    fn impact(&mut self, t: f64, s: f64, xi: [f64; 3], w: f64, d: f64) -> Result<Next, SimError> {
+    fn impact(&mut self, t: f64, s: f64, x: &V::X, w: f64, d: f64) -> Result<Next<V>, SimError> {
         self.count_event(t)?;
-        let [u, u_dot, theta_dot] = xi;
+        let theta_dot = x.values()[V::NQ + 1];
         if theta_dot.abs() >= self.significant_rate {
             self.rec.significant += 1;
         }
-        let out = impact::resolve::<V>(self.opts.impact, xi, s, &self.p, self.rest_rate);
+        let xi = impact_state::<V>(x);
+        let out = impact::resolve::<V>(self.opts.impact, &xi, s, &self.p, self.rest_rate);
         if out.counted {
             self.rec.impacts += 1;
             self.rec.first_impact.get_or_insert(t);
@@ -218,44 +209,38 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         }
         let (e_before, e_after) = (out.energy_before, out.energy_after());
         self.rec.losses += e_before - e_after;
-        let pre = [theta_dot, u, u_dot];
         match out.after {
-            After::Contact { u_dot: ud, .. } => {
+            After::Contact { x: after, .. } => {
                 self.log_event(
                     t,
                     out.kind,
                     out.branch,
                     Phase::Contact,
-                    pre,
+                    x,
                     (e_before, e_after),
                 );
                 Ok(Next::Contact {
                     t,
-                    u,
-                    u_dot: ud,
+                    xc: contact_of::<V>(&after),
                     w,
                     d,
                     settle: out.kind == EventKind::Rest,
                 })
             }
-            After::Rocking {
-                theta_dot: td,
-                u_dot: ud,
-                ..
-            } => {
+            After::Rocking { x: after, .. } => {
                 let s2 = -s;
                 self.log_event(
                     t,
                     out.kind,
                     out.branch,
                     Phase::rocking(s2),
-                    pre,
+                    x,
                     (e_before, e_after),
                 );
                 Ok(Next::Rocking {
                     t,
                     s: s2,
-                    x: [0.0, u, td, ud],
+                    x: after,
                     n: 1,
                     w,
                     d,
@@ -263,4 +248,10 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             }
         }
     }
+}
+
+/// The index of θ'' in the output of `rocking_rhs` (θ' is at n + 1 in x, and the output is x's
+/// rate: `index::rocking_rhs::THETA_DDOT` for one coordinate).
+pub(super) const fn theta_ddot<V: Variant>() -> usize {
+    rr::THETA_DDOT + (V::NQ - 1)
 }
