@@ -197,3 +197,25 @@ fn the_motion_does_not_depend_on_the_basis() {
     }
     eprintln!("basis invariance: worst {worst:.2e}");
 }
+
+/// `damping = "uplifted"` with several coordinates: one fixed-base ratio for every mode, chosen
+/// so that the first uplifted mode has the scene's ratio (for one coordinate, eq (19): ζ/S).
+#[test]
+fn uplifted_damping_gives_the_first_uplifted_mode_the_scenes_ratio() {
+    for model in MODELS.into_iter().chain(["cubic"]) {
+        for zeta in [0.001, 0.01, 0.05] {
+            let d = Dimensionless {
+                zeta,
+                damping: DampingConvention::Uplifted,
+                ..structure(model).dimensionless()
+            };
+            let s = Structure::dimensionless_of_model(find_model(model).unwrap(), &d, &[], None)
+                .unwrap_or_else(|e| panic!("{model}, ζ = {zeta}: {e:?}"));
+            let derived = s.derived();
+            let rel = (derived.zeta_uplifted / zeta - 1.0).abs();
+            assert!(rel < 1e-9, "{model}, ζ = {zeta}: uplifted {derived:?}");
+            // Rocking adds the base's inertia to the mode: its ratio grows, as eq (19)'s S > 1.
+            assert!(derived.zeta_fixed_base < zeta / 2.0, "{model}: {derived:?}");
+        }
+    }
+}
