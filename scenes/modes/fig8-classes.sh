@@ -46,4 +46,20 @@ for (a, b), n in sorted(changes.items(), key=lambda kv: -kv[1]):
     print(f"| {a} | {b} | {n} |")
 print()
 print(f"cells that survive with `cubic` whose max θ/α moved by more than 1 %: {moved}")
+# Where one mode is enough: by band of the first axis (ω_p/p for Fig. 8).
+first = axes[0]
+values = sorted({float(a[first]) for a in one})
+edges = [values[0] + (values[-1] - values[0]) * k / 4 for k in range(5)]
+print()
+print(f"| {first} | cells | change class | survivors with max θ/α moved > 1 % |")
+print("|---|---|---|---|")
+for lo, hi in zip(edges, edges[1:]):
+    band = [(a, b) for a, b in zip(one, many) if lo <= float(a[first]) <= hi and
+            (float(a[first]) < hi or hi == edges[-1])]
+    changed = sum(a["class"] != b["class"] for a, b in band)
+    alive = [(a, b) for a, b in band if not a["class"].startswith("overturned")]
+    far = sum(abs(float(b["max_theta_over_alpha"]) - float(a["max_theta_over_alpha"]))
+              > 0.01 * max(abs(float(a["max_theta_over_alpha"])), 1e-12) for a, b in alive)
+    print(f"| {lo:.3g}–{hi:.3g} | {len(band)} | {changed} ({100 * changed / len(band):.1f} %) | "
+          f"{far} of {len(alive)} |")
 PY
