@@ -213,6 +213,14 @@ fn uplifted_damping_gives_the_first_uplifted_mode_the_scenes_ratio() {
                 .unwrap_or_else(|e| panic!("{model}, ζ = {zeta}: {e:?}"));
             let derived = s.derived();
             let rel = (derived.zeta_uplifted / zeta - 1.0).abs();
+            // Every uplifted mode has its ratio, the first the scene's.
+            let ratios = s.frequencies().uplifted_damping;
+            assert_eq!(ratios.len(), s.model().coordinates, "{model}: {ratios:?}");
+            assert!(
+                ratios.iter().all(|r| r.is_finite() && *r > 0.0),
+                "{model}: {ratios:?}"
+            );
+            assert!((ratios[0] / zeta - 1.0).abs() < 1e-9, "{model}: {ratios:?}");
             assert!(rel < 1e-9, "{model}, ζ = {zeta}: uplifted {derived:?}");
             // Rocking adds the base's inertia to the mode: its ratio grows, as eq (19)'s S > 1.
             assert!(derived.zeta_fixed_base < zeta / 2.0, "{model}: {derived:?}");

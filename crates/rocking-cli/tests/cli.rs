@@ -430,11 +430,12 @@ fn check_prints_variant_reasons_and_derived_quantities() {
         .unwrap();
     assert!(thr > 0.5 && thr < 1.5, "{thr}");
     // One coordinate: the frequency lists are [omega_n] and [omega_up] of eq (18), by the
-    // generic eigenproblem of rocking_kernels::modes.
+    // generic eigenproblem of rocking_kernels::modes, and the uplifted ratio is eq (19)'s.
     let d = &v["derived"];
     for (list, one) in [
         ("fixed_base_frequencies", "omega_n"),
         ("uplifted_frequencies", "omega_up"),
+        ("uplifted_damping_ratios", "zeta_uplifted"),
     ] {
         let w = d[list].as_array().unwrap();
         assert_eq!(w.len(), 1, "{list}: {w:?}");

@@ -107,6 +107,10 @@ pub struct Frequencies {
     pub fixed_base: Vec<f64>,
     /// Rocking about a corner (gravity and ground motion dropped, as in eqs (10)–(11)).
     pub uplifted: Vec<f64>,
+    /// The damping ratio of each uplifted mode, −Re λ / |λ| of the complex eigenvalues under the
+    /// structure's damping (not classical while rocking for several coordinates); ζ S, eq (19),
+    /// for one coordinate.
+    pub uplifted_damping: Vec<f64>,
 }
 
 /// Quantities derived from a structure by its model's generated `structure` kernel, in model units.
@@ -636,17 +640,24 @@ impl Structure {
     /// The natural circular frequencies of the column, ascending, in model units: fixed base
     /// (det(K − ω² M) = 0) and uplifted (det(K − ω² (M − c cᵀ/J0)) = 0, the zero rigid-rocking
     /// root excluded; eq (18) for one coordinate), from the full variant's kernels by
-    /// [`rocking_kernels::modes`]. Empty where a mass matrix is singular (no column mass to
-    /// weigh a coordinate).
+    /// [`rocking_kernels::modes`], and each uplifted mode's damping ratio. Empty where a mass
+    /// matrix is singular (no column mass to weigh a coordinate).
     pub fn frequencies(&self) -> Frequencies {
         with_variant!(self.model.full, V, L => {
             let m = Matrices::of::<V>(&self.params::<V>());
             let omega = |modes: Option<rocking_kernels::modes::Modes>| {
                 modes.map(|m| m.omega).unwrap_or_default()
             };
+            let uplifted_damping = if V::NQ == 1 {
+                vec![self.derived_by::<V>().zeta_uplifted]
+            } else {
+                let c = modal_damping::<V>(&self.params::<V>());
+                m.uplifted_damping_ratios(&c).unwrap_or_default()
+            };
             Frequencies {
                 fixed_base: omega(m.fixed_base()),
                 uplifted: omega(m.uplifted()),
+                uplifted_damping,
             }
         })
         .expect("a model's full variant is generated")
