@@ -236,6 +236,17 @@ pub fn with_modal_damping<V: Variant>(mut p: V::Params, zeta: &[f64]) -> V::Para
     p
 }
 
+/// The modal damping matrix that [`with_modal_damping`] wrote into `p` (zeros for a variant of one
+/// coordinate, whose damping is its `zeta` parameter).
+pub fn modal_damping<V: Variant>(p: &V::Params) -> DMatrix<f64> {
+    let n = V::NQ;
+    let model = ModelInfo::find(V::MODEL).expect("a variant's model is registered");
+    match model.modal_damping() {
+        Some(first) => symmetric(&p.as_ref()[first..first + n * (n + 1) / 2], n),
+        None => DMatrix::zeros(n, n),
+    }
+}
+
 /// The parameters the solver derives from the others, filled in: the modal damping matrix with
 /// the fixed-base ratio ζ for every mode (the generated `params_with` of a variant of several
 /// coordinates calls this).

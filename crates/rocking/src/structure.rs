@@ -5,9 +5,9 @@
 use std::f64::consts::FRAC_PI_2;
 use std::fmt;
 
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DVector;
 use rocking_kernels::kernels::{index::structure as st, MAX_PARAMS};
-use rocking_kernels::modes::{critical_deflection, Matrices, RigidBody};
+use rocking_kernels::modes::{critical_deflection, modal_damping, Matrices, RigidBody};
 use rocking_kernels::{with_variant, Array, Layout, ModelInfo, ParamInfo, Physical, Role, Variant};
 use serde::{Deserialize, Serialize};
 
@@ -259,25 +259,6 @@ fn fixed_base_ratio<V: Variant>(physical: &Physical, extra: &[f64], zeta_uplifte
         }
     }
     f64::NAN
-}
-
-/// The modal damping matrix of the u_i in the parameters `p` of a variant of several
-/// coordinates (its entries `c_i_j`, the upper triangle row by row).
-fn modal_damping<V: Variant>(p: &V::Params) -> DMatrix<f64> {
-    let n = V::NQ;
-    let model = ModelInfo::find(V::MODEL).expect("a variant's model is registered");
-    let mut c = DMatrix::zeros(n, n);
-    if let Some(first) = model.modal_damping() {
-        let mut k = first;
-        for i in 0..n {
-            for j in i..n {
-                c[(i, j)] = p.as_ref()[k];
-                c[(j, i)] = p.as_ref()[k];
-                k += 1;
-            }
-        }
-    }
-    c
 }
 
 /// The generated model called `name`.
