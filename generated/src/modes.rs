@@ -163,6 +163,23 @@ impl Matrices {
         c
     }
 
+    /// The damping ratio of each fixed-base mode under the damping matrix `c`, by ascending
+    /// frequency: φ_kᵀ C φ_k / (2 ω_k φ_kᵀ M φ_k), read back from `c` (for the modal damping of
+    /// [`Matrices::damping`] these are its ratios ζ_k). `None` when the mass is singular.
+    pub fn fixed_base_damping_ratios(&self, c: &DMatrix<f64>) -> Option<Vec<f64>> {
+        let modes = self.fixed_base()?;
+        Some(
+            modes
+                .omega
+                .iter()
+                .zip(&modes.shapes)
+                .map(|(omega, phi)| {
+                    phi.dot(&(c * phi)) / (2.0 * omega * phi.dot(&(&self.mass * phi)))
+                })
+                .collect(),
+        )
+    }
+
     /// The damping ratio of each uplifted mode under the damping matrix `c`, by ascending
     /// frequency: −Re λ / |λ| of the complex eigenvalues of (M − c cᵀ/J0) λ² + C λ + K = 0 (one
     /// per conjugate pair; an overdamped pair of real roots gives the ratio of their product

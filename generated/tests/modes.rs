@@ -7,7 +7,7 @@ use rocking_kernels::kernels::{
     CantileverModes2, CantileverModes3, Full, Polynomial2, Polynomial3,
 };
 use rocking_kernels::modes::Matrices;
-use rocking_kernels::{Physical, Variant};
+use rocking_kernels::{Array, Physical, Variant};
 
 /// β_k of the clamped-free cantilever, 1 + cos β cosh β = 0 (the digits).
 const BETA: [f64; 3] = [1.8751040687, 4.6940911330, 7.8547574382];
@@ -179,4 +179,52 @@ fn uplifted_frequencies_reduce_to_eq_18_and_exceed_the_fixed_base_ones() {
             assert!(u >= f, "uplifted {u} below fixed-base {f}");
         }
     }
+}
+
+/// Damping per mode reaches the kernels: with C from [`with_modal_damping`] and the ratios
+/// ζ_k given one per mode, the full-contact right-hand side at u = 0 with the velocity of mode k
+/// (no stiffness or ground force acting) has the modal damping force of that mode alone:
+/// φ_jᵀ M u'' = −2 ζ_k ω_k φ_kᵀ M φ_k δ_jk. The modal ratios read back from C are the ones given.
+fn damping_per_mode<V: Variant>(zeta: &[f64]) {
+    let mut phys = column(1.0e5);
+    phys.zeta = 0.0;
+    let p = rocking_kernels::modes::with_modal_damping::<V>(V::params(&phys), zeta);
+    let m = Matrices::of::<V>(&p);
+    let modes = m.fixed_base().expect("M is positive definite");
+    let c = rocking_kernels::modes::modal_damping::<V>(&p);
+    let read = m.fixed_base_damping_ratios(&c).unwrap();
+    let n = V::NQ;
+    for k in 0..n {
+        assert!(
+            (read[k] - zeta[k]).abs() <= 1e-12 * zeta[k],
+            "{}: mode {k} read back {} for {}",
+            V::NAME,
+            read[k],
+            zeta[k]
+        );
+        let phi = &modes.shapes[k];
+        let xc = V::Xc::from_fn(|i| if i < n { 0.0 } else { phi[i - n] });
+        let rhs = V::contact_rhs(&xc, 0.0, &p);
+        let accel = nalgebra::DVector::from_fn(n, |i, _| rhs.values()[n + i]);
+        let m_accel = &m.mass * accel;
+        let generalised = phi.dot(&(&m.mass * phi));
+        let want = -2.0 * zeta[k] * modes.omega[k] * generalised;
+        for (j, phi_j) in modes.shapes.iter().enumerate() {
+            let got = phi_j.dot(&m_accel);
+            let expected = if j == k { want } else { 0.0 };
+            assert!(
+                (got - expected).abs() <= 1e-9 * want.abs(),
+                "{}: velocity of mode {k}, force on mode {j}: {got} vs {expected}",
+                V::NAME
+            );
+        }
+    }
+}
+
+#[test]
+fn damping_ratios_given_per_mode_reach_the_kernels() {
+    damping_per_mode::<Polynomial2>(&[0.02, 0.07]);
+    damping_per_mode::<CantileverModes2>(&[0.01, 0.04]);
+    damping_per_mode::<Polynomial3>(&[0.02, 0.05, 0.003]);
+    damping_per_mode::<CantileverModes3>(&[0.005, 0.02, 0.08]);
 }

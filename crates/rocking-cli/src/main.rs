@@ -241,6 +241,7 @@ fn check(scene: &Path, set: &[String], json: bool) -> Result<(), SceneError> {
         let f = m.structure.frequencies();
         derived["fixed_base_frequencies"] = serde_json::json!(f.fixed_base);
         derived["uplifted_frequencies"] = serde_json::json!(f.uplifted);
+        derived["fixed_base_damping_ratios"] = serde_json::json!(f.fixed_base_damping);
         derived["uplifted_damping_ratios"] = serde_json::json!(f.uplifted_damping);
         let v = serde_json::json!({
             "scene": scene.display().to_string(),

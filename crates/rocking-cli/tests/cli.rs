@@ -436,12 +436,59 @@ fn check_prints_variant_reasons_and_derived_quantities() {
         ("fixed_base_frequencies", "omega_n"),
         ("uplifted_frequencies", "omega_up"),
         ("uplifted_damping_ratios", "zeta_uplifted"),
+        ("fixed_base_damping_ratios", "zeta_fixed_base"),
     ] {
         let w = d[list].as_array().unwrap();
         assert_eq!(w.len(), 1, "{list}: {w:?}");
         let (w, one) = (w[0].as_f64().unwrap(), d[one].as_f64().unwrap());
         assert!((w / one - 1.0).abs() < 1e-12, "{list}: {w} vs {one}");
     }
+}
+
+/// `zeta = [..]`, one fixed-base damping ratio per mode: `check --json` reads each mode's ratio
+/// back from the damping matrix the kernels run with, a run's summary lists them, the run differs
+/// from one with the first ratio for every mode, and `--set structure.zeta=` with one ratio
+/// replaces the list (as a sweep over `structure.zeta` does).
+#[test]
+fn damping_ratios_per_mode_from_the_scene() {
+    let dir = tmp("zeta-per-mode");
+    let scene = scenes().join("wind-turbine-elcentro.toml");
+    let scene = scene.to_str().unwrap();
+    let model = "structure.model=\"cantilever_modes3\"";
+    let list = "structure.zeta=[0.01, 0.03, 0.06]";
+    let o = rocking(&["check", scene, "--json", "--set", model, "--set", list]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: Value = serde_json::from_slice(&o.stdout).unwrap();
+    let d = &v["derived"];
+    let read: Vec<f64> = serde_json::from_value(d["fixed_base_damping_ratios"].clone()).unwrap();
+    for (r, z) in read.iter().zip([0.01, 0.03, 0.06]) {
+        assert!((r / z - 1.0).abs() < 1e-12, "{read:?}");
+    }
+    assert_eq!(read.len(), 3);
+    assert_eq!(d["zeta_fixed_base"], 0.01);
+    assert_eq!(
+        d["zeta_fixed_base_per_mode"],
+        serde_json::json!([0.01, 0.03, 0.06])
+    );
+    let run = |name: &str, zeta: &str| {
+        let set = [
+            "--set",
+            model,
+            "--set",
+            zeta,
+            "--set",
+            "solver.after_excitation=0",
+        ];
+        run_json(Path::new(scene), &dir.join(name), &set)
+    };
+    let graded = run("graded", list);
+    let first = run("first", "structure.zeta=0.01");
+    assert_eq!(
+        graded["derived"]["zeta_fixed_base_per_mode"],
+        d["zeta_fixed_base_per_mode"]
+    );
+    assert!(first["derived"].get("zeta_fixed_base_per_mode").is_none());
+    assert_ne!(graded["max_u_over_ucr"], first["max_u_over_ucr"]);
 }
 
 #[test]

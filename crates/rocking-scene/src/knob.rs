@@ -116,6 +116,19 @@ impl Knob {
                 }
             }
         };
+        // One ratio for every mode replaces a scene's list of ratios per mode, which a knob
+        // (an `Option<f64>`) cannot clear: such a sweep goes through `--set`, as other tables do.
+        let per_mode = scene
+            .spec
+            .structure
+            .as_ref()
+            .and_then(|s| s.zeta_per_mode.as_ref());
+        if key == "structure.zeta" && per_mode.is_some() {
+            return Err(scene.src.err(
+                "structure.zeta",
+                "`structure.zeta` replaces the scene's damping ratios per mode: not a knob",
+            ));
+        }
         Ok(Knob {
             key: key.to_string(),
             kind,

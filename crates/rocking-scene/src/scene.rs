@@ -37,6 +37,10 @@ pub struct StructureSpec {
     pub p: Option<f64>,
     // Both forms.
     pub zeta: Option<f64>,
+    /// `zeta = [ζ_1, ζ_2, ...]`: the fixed-base damping ratio of each mode of a model of several
+    /// deformation coordinates, taken out of the table before the rest is deserialized.
+    #[serde(skip)]
+    pub zeta_per_mode: Option<Vec<f64>>,
     // Physical form (SI).
     pub h: Option<f64>,
     pub b: Option<f64>,
@@ -627,11 +631,49 @@ fn other_model_hint(table_name: &str, key: &str, model: &ModelInfo) -> Option<St
     ))
 }
 
+/// Takes `zeta` out of [structure] when it is a list (one damping ratio per mode): its numbers.
+fn take_zeta_per_mode(table: &mut Table, src: &Source) -> Result<Option<Vec<f64>>, SceneError> {
+    let Some(Value::Table(st)) = table.get_mut("structure") else {
+        return Ok(None);
+    };
+    let Some(Value::Array(list)) = st.get("zeta") else {
+        return Ok(None);
+    };
+    let list = list.clone();
+    st.remove("zeta");
+    let invalid = |what: &dyn fmt::Display| {
+        src.err(
+            "structure.zeta",
+            format_args!(
+                "invalid value for `zeta` in [structure]: {what} (give one damping ratio, or a \
+                 list of one per fixed-base mode, e.g. zeta = [0.02, 0.05])"
+            ),
+        )
+    };
+    if list.is_empty() {
+        return Err(invalid(&"an empty list"));
+    }
+    list.iter()
+        .map(|v| match v {
+            Value::Float(x) => Ok(*x),
+            Value::Integer(i) => Ok(*i as f64),
+            other => Err(invalid(&format_args!("{other} is not a number"))),
+        })
+        .collect::<Result<Vec<_>, _>>()
+        .map(Some)
+}
+
 fn deserialize(path: &Path, mut table: Table, src: &Source) -> Result<SceneSpec, SceneError> {
     let model = scene_model(&table, src)?;
     let (extra, masses) = take_model_keys(model, &mut table, src)?;
+    let zeta_per_mode = take_zeta_per_mode(&mut table, src)?;
     let de = Value::Table(table);
     let mut spec: SceneSpec = deserialize_spec(path, de, src, model)?;
+    if zeta_per_mode.is_some() {
+        spec.structure
+            .get_or_insert_with(Default::default)
+            .zeta_per_mode = zeta_per_mode;
+    }
     if !extra.is_empty() {
         spec.structure.get_or_insert_with(Default::default).extra = extra;
     }

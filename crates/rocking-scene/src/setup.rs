@@ -122,7 +122,57 @@ fn present_keys<'a>(keys: &[(&'a str, bool)]) -> Vec<&'a str> {
     keys.iter().filter(|(_, b)| *b).map(|(k, _)| *k).collect()
 }
 
+/// The structure of [structure], with its damping ratios per mode when `zeta` is a list.
 fn build_structure(
+    src: &Source,
+    s: &StructureSpec,
+    rigid: bool,
+    model: &'static ModelInfo,
+) -> Result<Structure, SceneError> {
+    let Some(list) = &s.zeta_per_mode else {
+        return structure_of(src, s, rigid, model);
+    };
+    let n = model.coordinates;
+    let refuse = |why: String| Err(src.err("structure.zeta", format_args!("[structure] {why}")));
+    if s.zeta.is_some() {
+        return refuse("`zeta` is given both as one ratio and as a list".to_string());
+    }
+    if list.len() != 1 && list.len() != n {
+        return refuse(format!(
+            "`zeta` lists {} damping ratios, and model `{}` has {n} fixed-base mode{} (one per \
+             deformation coordinate): give one ratio for every mode, or a list of {n}",
+            list.len(),
+            model.name,
+            if n == 1 { "" } else { "s" }
+        ));
+    }
+    for &z in list {
+        finite(
+            src,
+            "structure.zeta",
+            z,
+            (0.0..1.0).contains(&z),
+            "a damping ratio 0 <= zeta < 1",
+        )?;
+    }
+    if list.len() > 1 && s.damping == Some(DampingConvention::Uplifted) {
+        return refuse(
+            "`zeta` as a list gives each fixed-base mode its own ratio: it needs damping = \
+             \"fixed-base\" (damping = \"uplifted\" takes one ratio, the first uplifted mode's)"
+                .to_string(),
+        );
+    }
+    let first = StructureSpec {
+        zeta: Some(list[0]),
+        zeta_per_mode: None,
+        ..s.clone()
+    };
+    structure_of(src, &first, rigid, model)?
+        .with_modal_damping_ratios(list)
+        .map_err(|e| param_err(src, "structure", e))
+}
+
+fn structure_of(
     src: &Source,
     s: &StructureSpec,
     rigid: bool,

@@ -73,7 +73,7 @@ pub fn derived_json(model: &Setup) -> Result<Value, SceneError> {
     let d = model.structure.derived();
     let u = &model.units;
     let lift = model.structure.static_uplift();
-    let v = json!({
+    let mut v = json!({
         "p": d.p,
         "p_per_second": model.structure.p_per_second(),
         "omega_n": d.omega_n,
@@ -94,6 +94,11 @@ pub fn derived_json(model: &Setup) -> Result<Value, SceneError> {
         "elastic_moment_at_uplift_over_wb": lift.elastic_moment / lift.moment,
         "units": if u.physical { "SI (s, m, kg)" } else { "model (R = g = m = 1, time τ)" },
     });
+    // A scene that gives each mode its own ratio: all of them (`zeta_fixed_base` is the first's).
+    let per_mode = model.structure.modal_damping_ratios();
+    if per_mode.len() > 1 {
+        v["zeta_fixed_base_per_mode"] = json!(per_mode);
+    }
     if let Some((k, _)) = v
         .as_object()
         .into_iter()

@@ -183,7 +183,7 @@ pub fn select_variant(structure: &Structure, effects: &Effects) -> Result<Select
             reasons.push(format!("{name} = false: {} set to 0", zeroed.join(" and ")));
         }
     }
-    if !effects.damping && s.physical().zeta != 0.0 {
+    if !effects.damping && s.modal_damping_ratios().iter().any(|&z| z != 0.0) {
         s = s.with_param("zeta", 0.0)?;
         reasons.push("damping = false: zeta set to 0".to_string());
     }

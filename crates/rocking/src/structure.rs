@@ -7,12 +7,28 @@ use std::fmt;
 
 use nalgebra::DVector;
 use rocking_kernels::kernels::{index::structure as st, MAX_PARAMS};
-use rocking_kernels::modes::{critical_deflection, modal_damping, Matrices, RigidBody};
+use rocking_kernels::modes::{
+    critical_deflection, modal_damping, with_modal_damping, Matrices, RigidBody,
+};
 use rocking_kernels::{with_variant, Array, Layout, ModelInfo, ParamInfo, Physical, Role, Variant};
 use serde::{Deserialize, Serialize};
 
 /// The model of a structure that names none: the paper's (cubic shape function).
 pub const PAPER_MODEL: &str = "cubic";
+
+/// The most deformation coordinates of any generated model: the size of a structure's list of
+/// damping ratios per mode.
+pub const MAX_COORDINATES: usize = {
+    let models = rocking_kernels::kernels::MODELS;
+    let (mut most, mut k) = (1, 0);
+    while k < models.len() {
+        if models[k].coordinates > most {
+            most = models[k].coordinates;
+        }
+        k += 1;
+    }
+    most
+};
 
 /// How the damping ratio ζ is meant.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -95,6 +111,9 @@ pub struct Structure {
     physical: Physical,
     extra: [f64; MAX_PARAMS],
     n_extra: usize,
+    /// The fixed-base damping ratio of each mode, when they differ ([`Structure::with_modal_damping_ratios`]);
+    /// otherwise every mode has `physical.zeta`.
+    modal_zeta: Option<[f64; MAX_COORDINATES]>,
     /// p in 1/s when known (physical input, or dimensionless input with a length scale).
     p_per_second: Option<f64>,
 }
@@ -107,6 +126,9 @@ pub struct Frequencies {
     pub fixed_base: Vec<f64>,
     /// Rocking about a corner (gravity and ground motion dropped, as in eqs (10)–(11)).
     pub uplifted: Vec<f64>,
+    /// The damping ratio of each fixed-base mode, read back from the damping matrix the kernels
+    /// run with (φ_kᵀ C φ_k / (2 ω_k φ_kᵀ M φ_k); ζ for one coordinate).
+    pub fixed_base_damping: Vec<f64>,
     /// The damping ratio of each uplifted mode, −Re λ / |λ| of the complex eigenvalues under the
     /// structure's damping (not classical while rocking for several coordinates); ζ S, eq (19),
     /// for one coordinate.
@@ -439,6 +461,7 @@ impl Structure {
             physical,
             extra,
             n_extra,
+            modal_zeta: None,
             p_per_second,
         })
     }
@@ -523,19 +546,68 @@ impl Structure {
     }
 
     /// The same structure (model, extra parameters and time scale) with other physical
-    /// parameters, validated.
+    /// parameters, validated. Damping ratios per mode are kept while `zeta` stays the first
+    /// one's.
     pub fn with_physical(&self, physical: Physical) -> Result<Structure, ParamError> {
-        Structure::checked(
+        let mut s = Structure::checked(
             self.model,
             physical,
             self.extra,
             self.n_extra,
             self.p_per_second,
-        )
+        )?;
+        if physical.zeta == self.physical.zeta {
+            s.modal_zeta = self.modal_zeta;
+        }
+        Ok(s)
+    }
+
+    /// The same structure with the fixed-base damping ratio of each mode given, `zeta[k]` for the
+    /// k-th fixed-base mode by ascending frequency (the modal damping of
+    /// [`rocking_kernels::modes`]); `zeta` of [`Structure::physical`] becomes the first one. One
+    /// ratio sets every mode's, as `with_param("zeta", ..)` does.
+    pub fn with_modal_damping_ratios(&self, zeta: &[f64]) -> Result<Structure, ParamError> {
+        let n = self.model.coordinates;
+        if zeta.len() != 1 && zeta.len() != n {
+            return Err(ParamError {
+                parameter: "zeta",
+                value: zeta.len() as f64,
+                allowed: format!(
+                    "one damping ratio, or one per fixed-base mode: model `{}` has {n} \
+                     deformation coordinate{}, and {} ratios were given",
+                    self.model.name,
+                    if n == 1 { "" } else { "s" },
+                    zeta.len()
+                ),
+            });
+        }
+        let mut s = self.with_param("zeta", zeta[0])?;
+        if zeta.len() > 1 {
+            for &z in zeta {
+                check(
+                    "zeta",
+                    z,
+                    (0.0..1.0).contains(&z),
+                    "a damping ratio 0 <= zeta < 1",
+                )?;
+            }
+            let mut modal = [0.0; MAX_COORDINATES];
+            modal[..n].copy_from_slice(zeta);
+            s.modal_zeta = Some(modal);
+        }
+        Ok(s)
+    }
+
+    /// The fixed-base damping ratios as given: one per mode, or the one ratio of every mode.
+    pub fn modal_damping_ratios(&self) -> &[f64] {
+        match &self.modal_zeta {
+            Some(z) => &z[..self.model.coordinates],
+            None => std::slice::from_ref(&self.physical.zeta),
+        }
     }
 
     /// The same structure with the parameter `name` (a field of [`Physical`] or one the model
-    /// adds) set to `value`, validated.
+    /// adds) set to `value`, validated. `zeta` sets the ratio of every mode.
     pub fn with_param(&self, name: &str, value: f64) -> Result<Structure, ParamError> {
         let (mut ph, mut extra) = (self.physical, self.extra);
         match core_field(&mut ph, name) {
@@ -545,7 +617,11 @@ impl Structure {
                 None => return extra_values(self.model, &[(name, value)]).map(|_| *self),
             },
         }
-        Structure::checked(self.model, ph, extra, self.n_extra, self.p_per_second)
+        let mut s = Structure::checked(self.model, ph, extra, self.n_extra, self.p_per_second)?;
+        if name != "zeta" {
+            s.modal_zeta = self.modal_zeta;
+        }
+        Ok(s)
     }
 
     /// The value of the parameter `name` (a field of [`Physical`], one the model adds, or one
@@ -584,7 +660,11 @@ impl Structure {
     /// The parameter array of variant `V` (which must be a variant of this structure's model).
     pub fn params<V: Variant>(&self) -> V::Params {
         debug_assert_eq!(V::MODEL, self.model.name);
-        V::params_with(&self.physical, self.extra())
+        let p = V::params_with(&self.physical, self.extra());
+        match self.modal_zeta {
+            Some(_) => with_modal_damping::<V>(p, self.modal_damping_ratios()),
+            None => p,
+        }
     }
 
     /// p in 1/s, when the structure has a time scale in seconds.
@@ -629,15 +709,19 @@ impl Structure {
             let omega = |modes: Option<rocking_kernels::modes::Modes>| {
                 modes.map(|m| m.omega).unwrap_or_default()
             };
-            let uplifted_damping = if V::NQ == 1 {
-                vec![self.derived_by::<V>().zeta_uplifted]
+            let (fixed_base_damping, uplifted_damping) = if V::NQ == 1 {
+                (vec![self.physical.zeta], vec![self.derived_by::<V>().zeta_uplifted])
             } else {
                 let c = modal_damping::<V>(&self.params::<V>());
-                m.uplifted_damping_ratios(&c).unwrap_or_default()
+                (
+                    m.fixed_base_damping_ratios(&c).unwrap_or_default(),
+                    m.uplifted_damping_ratios(&c).unwrap_or_default(),
+                )
             };
             Frequencies {
                 fixed_base: omega(m.fixed_base()),
                 uplifted: omega(m.uplifted()),
+                fixed_base_damping,
                 uplifted_damping,
             }
         })
