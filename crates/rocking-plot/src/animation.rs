@@ -33,15 +33,18 @@ pub struct Frame {
     pub ticks: Vec<f64>,
 }
 
-/// The model's shape function ψ(η), the derivation's own `shape` kernel of the model's variant
-/// (so a model with a new shape function is drawn with it, with nothing re-typed here).
-pub fn shape_function(model: &rocking_kernels::ModelInfo) -> impl Fn(f64) -> f64 {
-    let variant = model.full;
-    move |eta: f64| {
-        rocking_kernels::with_variant!(variant, V => <V as rocking_kernels::Variant>::shape(eta))
-            .unwrap_or(eta)
-    }
+/// The model's shape functions ψ_1(η)..ψ_n(η), from the derivation's own `shape` kernel of the
+/// model's full variant (so a model with a new shape function, or several, is drawn with them,
+/// with nothing re-typed here).
+pub fn shape_functions(model: &rocking_kernels::ModelInfo, eta: f64) -> Vec<f64> {
+    rocking_kernels::with_variant!(model.full, V, L => {
+        rocking_kernels::Array::values(&<V as rocking_kernels::Variant>::shape(eta)).to_vec()
+    })
+    .expect("a model's full variant is generated")
 }
+
+/// Heights of the drawn column's points, as fractions η of H.
+const COLUMN_POINTS: usize = 24;
 
 /// Ground displacement at each history row, from ü_g by the trapezoidal rule twice (the ground
 /// starts at rest at 0); in model units.
@@ -90,7 +93,9 @@ struct World {
     mass: (f64, f64),
 }
 
-fn world(row: &HistoryRow, ug: f64, h: f64, b: f64, psi: &dyn Fn(f64) -> f64) -> World {
+/// The frame of history row `row` whose deformation coordinates are `u` (u_1..u_n; for one
+/// coordinate, u), with `psi[k]` the shape functions at η = k / COLUMN_POINTS.
+fn world(row: &HistoryRow, u: &[f64], ug: f64, h: f64, b: f64, psi: &[Vec<f64>]) -> World {
     // θ > 0 is clockwise about the right corner (s = +1), θ < 0 about the left one; a body point
     // (X, Y) from the base centre goes to pivot + R(θ)(X - sB, Y).
     let s = if row.theta >= 0.0 { 1.0 } else { -1.0 };
@@ -101,10 +106,13 @@ fn world(row: &HistoryRow, ug: f64, h: f64, b: f64, psi: &dyn Fn(f64) -> f64) ->
     };
     // The plate's thickness is drawn, not modelled (a thin plate): a third of B.
     let t = b.min(h) / 3.0;
-    let column: Vec<(f64, f64)> = (0..=24)
-        .map(|k| {
-            let eta = k as f64 / 24.0;
-            place(row.u * psi(eta), t + eta * (h - t))
+    let column: Vec<(f64, f64)> = psi
+        .iter()
+        .enumerate()
+        .map(|(k, psi)| {
+            let eta = k as f64 / COLUMN_POINTS as f64;
+            let deflection: f64 = u.iter().zip(psi).map(|(u, p)| u * p).sum();
+            place(deflection, t + eta * (h - t))
         })
         .collect();
     World {
@@ -126,13 +134,31 @@ pub fn geometry(model: &Setup, run: &Run, spec: &Animation) -> Result<Vec<Frame>
     }
     let phys = model.structure.physical();
     let (hh, b) = (phys.h, phys.b);
-    let psi_fn = shape_function(model.structure.model());
-    let psi: &dyn Fn(f64) -> f64 = &psi_fn;
+    let shape = model.structure.model();
+    let psi: Vec<Vec<f64>> = (0..=COLUMN_POINTS)
+        .map(|k| shape_functions(shape, k as f64 / COLUMN_POINTS as f64))
+        .collect();
+    let n = shape.coordinates;
+    if n > 1 && run.coordinate_count() != n {
+        return Err(format!(
+            "the run recorded {} deformation coordinates per history row, and model `{}` has {n}",
+            run.coordinate_count(),
+            shape.name
+        ));
+    }
     let ug = ground_displacement(h, model.units.p_model);
     let rows = frame_rows(h, spec.frames);
     let worlds: Vec<World> = rows
         .iter()
-        .map(|&k| world(&h[k], ug[k], hh, b, psi))
+        .map(|&k| {
+            // u_1..u_n of the row (the run records them for several coordinates), or u.
+            let u = if n == 1 {
+                std::slice::from_ref(&h[k].u)
+            } else {
+                &run.coordinates_of(k)[..n]
+            };
+            world(&h[k], u, ug[k], hh, b, &psi)
+        })
         .collect();
     let radius = 0.06 * hh;
     // One scale for every frame: the box of everything drawn, x centred on the rest position.
@@ -321,29 +347,112 @@ mod tests {
     use super::*;
 
     #[test]
-    fn every_models_shape_function_comes_from_its_kernel() {
+    fn every_models_shape_functions_come_from_its_kernel() {
         for m in rocking_kernels::kernels::MODELS {
-            let psi = shape_function(m);
-            assert!(psi(0.0).abs() < 1e-15, "{}: ψ(0) = {}", m.name, psi(0.0));
+            let at = |eta: f64| shape_functions(m, eta);
+            assert_eq!(at(0.5).len(), m.coordinates, "{}", m.name);
+            // Clamped at the base; for one coordinate ψ(1) = 1 (u is the top deflection).
             assert!(
-                (psi(1.0) - 1.0).abs() < 1e-15,
-                "{}: ψ(1) = {}",
+                at(0.0).iter().all(|p| p.abs() < 1e-15),
+                "{}: {:?}",
                 m.name,
-                psi(1.0)
+                at(0.0)
             );
-            // The column bends smoothly and monotonically between them.
-            let mut last = 0.0;
-            for k in 1..=10 {
-                let v = psi(k as f64 / 10.0);
+            if m.coordinates == 1 {
                 assert!(
-                    v > last && v <= 1.0 + 1e-12,
-                    "{}: ψ({}) = {v}",
+                    (at(1.0)[0] - 1.0).abs() < 1e-15,
+                    "{}: ψ(1) = {:?}",
                     m.name,
-                    k as f64 / 10.0
+                    at(1.0)
                 );
-                last = v;
+                // The column bends smoothly and monotonically between them.
+                let mut last = 0.0;
+                for k in 1..=10 {
+                    let v = at(k as f64 / 10.0)[0];
+                    assert!(
+                        v > last && v <= 1.0 + 1e-12,
+                        "{}: ψ({}) = {v}",
+                        m.name,
+                        k as f64 / 10.0
+                    );
+                    last = v;
+                }
+            } else {
+                // Several functions: none is the straight line the drawing used to show.
+                for (i, p) in at(0.5).iter().enumerate() {
+                    assert!(
+                        (p - 0.5 * at(1.0)[i]).abs() > 1e-3,
+                        "{}: ψ_{i} is linear",
+                        m.name
+                    );
+                }
             }
         }
+    }
+
+    /// With several coordinates the drawn column is Σ u_i ψ_i(η) of the recorded coordinates:
+    /// its body-frame offsets from the undeformed axis, read back from the pixels, match the
+    /// history's u_1..u_n at every height, and its top is the mass at the top deflection u.
+    #[test]
+    fn the_drawn_column_bends_with_every_coordinate() {
+        let scene = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../scenes/wind-turbine-elcentro.toml");
+        let sets = [
+            "output.animation=true".to_string(),
+            "structure.model=\"cantilever_modes3\"".to_string(),
+            "excitation.scale=6.0".to_string(),
+        ];
+        let sc = rocking_scene::scene::load(&scene, &sets).expect("scene");
+        let m = rocking_scene::setup::build(&sc).expect("model");
+        let run =
+            rocking::simulate(&m.structure, &m.excitation, &m.effects, &m.options).expect("run");
+        let spec = Animation {
+            frames: 40,
+            width: 500,
+            height: 800,
+        };
+        let frames = geometry(&m, &run, &spec).expect("frames");
+        let rows = frame_rows(&run.history, spec.frames);
+        let phys = m.structure.physical();
+        let psi: Vec<Vec<f64>> = (0..=COLUMN_POINTS)
+            .map(|k| shape_functions(m.structure.model(), k as f64 / COLUMN_POINTS as f64))
+            .collect();
+        let (mut curved, mut largest) = (0.0f64, 0.0f64);
+        for (f, &k) in frames.iter().zip(&rows) {
+            let u = &run.coordinates_of(k)[..3];
+            let [(x0, y0), (x1, y1), ..] = f.base;
+            let scale = (x1 - x0).hypot(y1 - y0) / (2.0 * phys.b);
+            // Body axes on the screen: along the plate (x) and up the column (y down: negated).
+            let (ex, ey) = (
+                (x1 - x0) / (2.0 * phys.b * scale),
+                (y1 - y0) / (2.0 * phys.b * scale),
+            );
+            let foot = f.column[0];
+            for (j, &(x, y)) in f.column.iter().enumerate() {
+                let offset = ((x - foot.0) * ex + (y - foot.1) * ey) / scale;
+                let want: f64 = u.iter().zip(&psi[j]).map(|(a, b)| a * b).sum();
+                assert!(
+                    (offset - want).abs() <= 1e-9 * phys.h,
+                    "τ = {}, η = {j}/{COLUMN_POINTS}: drawn {offset}, Σ u_i ψ_i = {want}",
+                    f.tau
+                );
+                // How far the drawn column is from the straight line to its top.
+                let eta = j as f64 / COLUMN_POINTS as f64;
+                curved = curved.max((want - eta * run.history[k].u).abs());
+            }
+            let top = run.history[k].u;
+            largest = largest.max(top.abs());
+            let want_top: f64 = u.iter().zip(&psi[COLUMN_POINTS]).map(|(a, b)| a * b).sum();
+            assert!(
+                (want_top - top).abs() <= 1e-9 * top.abs().max(1e-12),
+                "{want_top} vs {top}"
+            );
+        }
+        // The first cantilever mode alone is 0.34 of its top deflection at mid-height, not 0.5.
+        assert!(
+            curved > 0.05 * largest,
+            "the column is drawn straight: {curved} of {largest}"
+        );
     }
 
     #[test]
