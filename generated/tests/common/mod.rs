@@ -3,7 +3,7 @@
 
 #![allow(dead_code, unused_macros)] // each test file uses its own subset
 
-use rocking_kernels::{ModelInfo, Physical, Role, Variant};
+use rocking_kernels::{Array, ModelInfo, Physical, Role, Variant};
 
 /// A small deterministic generator (xorshift64*), so the tests need no extra dependency.
 pub struct Rng(pub u64);
@@ -44,20 +44,33 @@ pub fn structure(rng: &mut Rng) -> Physical {
     phys
 }
 
-/// A random state: θ up to ±1.5 rad, u up to ±0.3 H, rates up to a few times sqrt(g/R).
-pub fn state<V: Variant>(rng: &mut Rng, phys: &Physical) -> [f64; 4] {
+/// A random state `[θ, u_1..u_n, θ', u_1'..u_n']`: θ up to ±1.5 rad, θ' up to ±3 sqrt(g/R), each
+/// u_i up to ±0.3 H / n and u_i' up to ±3 sqrt(g/R) H / n (so that the column's top stays within
+/// ±0.3 H for a basis with ψ_i(1) = 1).
+pub fn state<V: Variant>(rng: &mut Rng, phys: &Physical) -> V::X {
+    let n = V::NQ;
     let p = (phys.g / phys.h.hypot(phys.b)).sqrt();
-    let u = if V::RIGID {
-        0.0
-    } else {
-        rng.range(-0.3, 0.3) * phys.h
+    let share = phys.h / n as f64;
+    // The draws, and for one coordinate their values, are those of the one-coordinate tests.
+    let mut draw = |bound: f64, rate: f64| -> Vec<f64> {
+        (0..n)
+            .map(|_| {
+                if V::RIGID {
+                    0.0
+                } else {
+                    rng.range(-bound, bound) * rate * share
+                }
+            })
+            .collect()
     };
-    let ud = if V::RIGID {
-        0.0
-    } else {
-        rng.range(-3.0, 3.0) * p * phys.h
-    };
-    [rng.range(-1.5, 1.5), u, rng.range(-3.0, 3.0) * p, ud]
+    let (u, ud) = (draw(0.3, 1.0), draw(3.0, p));
+    let (theta, theta_dot) = (rng.range(-1.5, 1.5), rng.range(-3.0, 3.0) * p);
+    V::X::from_fn(|i| match i {
+        0 => theta,
+        i if i <= n => u[i - 1],
+        i if i == n + 1 => theta_dot,
+        i => ud[i - n - 2],
+    })
 }
 
 /// The parameter vector of `V` for `phys`, with random values of the parameters its model adds
@@ -85,8 +98,10 @@ pub fn close(a: f64, b: f64, rel: f64, scale: f64) -> bool {
     (a - b).abs() <= rel * a.abs().max(b.abs()).max(scale)
 }
 
-/// Runs a check on every generated variant of one deformation coordinate (the registry, so a new
-/// model is checked too; the variants of several coordinates have their own tests, `modes.rs`).
+/// Runs a check on every generated variant (the registry, so a new model is checked too):
+/// `for_each_variant!(check)` on those of one deformation coordinate (`check::<V:
+/// OneCoordinate>`, with fixed arrays), `for_each_variant!(check, any_coordinates)` on every
+/// variant of every model (`check::<V: Variant>`, with the arrays of `V`'s layout).
 macro_rules! for_each_variant {
     ($check:ident) => {
         for v in rocking_kernels::kernels::VARIANT_INFO {
@@ -95,6 +110,12 @@ macro_rules! for_each_variant {
                 rocking_kernels::with_variant!(v.name, V => $check::<V>())
                     .expect("every variant of one coordinate dispatches");
             }
+        }
+    };
+    ($check:ident, any_coordinates) => {
+        for v in rocking_kernels::kernels::VARIANT_INFO {
+            rocking_kernels::with_variant!(v.name, V, _L => $check::<V>())
+                .expect("every variant dispatches");
         }
     };
 }
