@@ -51,8 +51,9 @@ pub struct Modes {
     pub shapes: Vec<DVector<f64>>,
 }
 
-/// The upper triangle (row by row) of a symmetric n × n matrix, as a matrix.
-fn symmetric(upper: &[f64], n: usize) -> DMatrix<f64> {
+/// The upper triangle (row by row) of a symmetric n × n matrix, as a matrix (the kernels' layout
+/// of a mass matrix and of the modal damping parameters).
+pub fn symmetric(upper: &[f64], n: usize) -> DMatrix<f64> {
     let mut m = DMatrix::zeros(n, n);
     let mut k = 0;
     for i in 0..n {

@@ -97,18 +97,8 @@ fn kappa(m: &DMatrix<f64>) -> f64 {
 /// The mass matrix while rocking about `s` at the state `x` (its q = [θ, u_1..u_n] the first
 /// entries), unpacked from the kernel's upper triangle (row by row over q).
 fn rocking_mass<V: Variant>(x: &V::X, s: f64, p: &V::Params) -> DMatrix<f64> {
-    let dim = V::Q::LEN;
     let upper = V::mass_matrix(&V::Q::from_fn(|i| x.values()[i]), s, p);
-    let mut entries = upper.values().iter();
-    let mut m = DMatrix::zeros(dim, dim);
-    for i in 0..dim {
-        for j in i..dim {
-            let v = *entries.next().expect("an upper triangle");
-            m[(i, j)] = v;
-            m[(j, i)] = v;
-        }
-    }
-    m
+    rocking_kernels::modes::symmetric(upper.values(), V::Q::LEN)
 }
 
 /// I_b: the base plates' inertia about their own centre, I_bc − m_b B² (the registry's roles
