@@ -541,6 +541,13 @@ impl Structure {
         }
         if d.damping == DampingConvention::Uplifted {
             physical.zeta = with_full!(model, V => fixed_base_ratio::<V>(&physical, ex, d.zeta));
+            check(
+                "zeta",
+                d.zeta,
+                (0.0..1.0).contains(&physical.zeta),
+                "an uplifted damping ratio that one fixed-base ratio 0 <= zeta < 1 of every mode \
+                 gives the first uplifted mode (damping = \"uplifted\")",
+            )?;
         }
         Structure::checked(model, physical, values, n_extra, p_per_second)
     }
