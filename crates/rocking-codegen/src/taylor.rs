@@ -18,7 +18,10 @@
 //! once as scalars before the order loop; only time-dependent ones become series. Of those, only
 //! the ones whose lower coefficients a recurrence reads (the arguments of products, quotients,
 //! square roots and sines, and the results of the self-referencing ones) keep arrays; the rest
-//! are a local of the current order (found by a first rendering pass). The recurrences
+//! are a local of the current order (found by a first rendering pass). An input series and a
+//! copy of a series (an assignment, a sine or cosine of the shared recurrence) are no arrays of
+//! their own: the recurrences read the input's rows or the copied array in place, which spares
+//! each call the zeroing and each order the copying (the kernels' per-step memsets). The recurrences
 //! themselves are the hand-written helpers of `rocking_kernels::series`.
 
 use std::collections::{BTreeMap, BTreeSet};
@@ -287,14 +290,13 @@ fn render_fn(
                 if is_const_input(inp) {
                     let name = define(&mut current, *dest, Kind::Const);
                     prelude.push(format!("let {name}: f64 = {expr};"));
+                } else if series_kind(&expr) == Kind::Series {
+                    // The input's own coefficients, read in place: no array to zero and copy.
+                    // An ODE's state row k + 1 is written after every read of order k.
+                    current.insert(*dest, (expr, Kind::Series));
                 } else {
-                    let name = define(&mut current, *dest, Kind::Series);
-                    let kind = series_kind(&name);
-                    current.insert(*dest, (name.clone(), kind));
-                    if kind == Kind::Series {
-                        prelude.push(format!("let mut {name} = [0.0f64; N];"));
-                    }
-                    body.push(assign(&name, kind, format!("{expr}[k]")));
+                    let name = define(&mut current, *dest, Kind::Coef);
+                    body.push(assign(&name, Kind::Coef, format!("{expr}[k]")));
                 }
             }
             Instruction::Const { dest, value } => {
@@ -324,13 +326,35 @@ fn render_fn(
                 let (a, ka) = &vars[0];
                 let ca = coef(&vars[0]);
                 check_series_op(op, vars.len()).map_err(|msg| err(i, msg))?;
+                // A copy of a series whose history is kept anyway (an assignment, or the sine
+                // and cosine arrays of their shared recurrence) is that series, by another name.
+                if op == "assign" && *ka == Kind::Series {
+                    current.insert(*dest, vars[0].clone());
+                    continue;
+                }
+                if op == "sin" || op == "cos" {
+                    reads(&mut history, &[a]);
+                    let (s, c) = trig.entry(a.clone()).or_insert_with(|| {
+                        let id = ident(a);
+                        let (s, c) = (format!("sin_{id}"), format!("cos_{id}"));
+                        let da = format!("d_{id}");
+                        for array in [&da, &s, &c] {
+                            prelude.push(format!("let mut {array} = [0.0f64; N];"));
+                        }
+                        body.push(format!(
+                            "series::sin_cos(&{a}, &mut {da}, &mut {s}, &mut {c}, k);"
+                        ));
+                        (s, c)
+                    });
+                    let src = if op == "sin" { s.clone() } else { c.clone() };
+                    current.insert(*dest, (src, Kind::Series));
+                    continue;
+                }
                 // Named after its arguments are read: the tape may re-assign an argument's slot.
                 let d = define(&mut current, *dest, Kind::Series);
                 let dk = series_kind(&d);
                 current.insert(*dest, (d.clone(), dk));
-                // The recurrences that read lower coefficients (of arguments, or of the result).
-                let mut reads =
-                    |names: &[&String]| history.extend(names.iter().map(|n| (*n).clone()));
+                let mut reads = |names: &[&String]| reads(&mut history, names);
                 let set = |expr: String| assign(&d, dk, expr);
                 let line = match op.as_str() {
                     "assign" => set(ca),
@@ -343,22 +367,6 @@ fn render_fn(
                     "sqrt" => {
                         reads(&[a, &d]);
                         format!("series::sqrt(&{a}, &mut {d}, k);")
-                    }
-                    "sin" | "cos" => {
-                        reads(&[a]);
-                        let (s, c) = trig.entry(a.clone()).or_insert_with(|| {
-                            let (s, c) = (format!("sin_{a}"), format!("cos_{a}"));
-                            let da = format!("d_{a}");
-                            for array in [&da, &s, &c] {
-                                prelude.push(format!("let mut {array} = [0.0f64; N];"));
-                            }
-                            body.push(format!(
-                                "series::sin_cos(&{a}, &mut {da}, &mut {s}, &mut {c}, k);"
-                            ));
-                            (s, c)
-                        });
-                        let src = if op == "sin" { s.clone() } else { c.clone() };
-                        set(format!("{src}[k]"))
                     }
                     "add" | "sub" => {
                         let sign = if op == "add" { '+' } else { '-' };
@@ -383,7 +391,7 @@ fn render_fn(
                             _ => {
                                 reads(&[b, &d]);
                                 let inv = reciprocals.entry(b.clone()).or_insert_with(|| {
-                                    let inv = format!("inv_{b}");
+                                    let inv = format!("inv_{}", ident(b));
                                     prelude.push(format!("let mut {inv} = 0.0f64;"));
                                     body.push(format!("if k == 0 {{ {inv} = 1.0 / {b}[0]; }}"));
                                     inv
@@ -472,6 +480,16 @@ fn render_fn(
         result,
     };
     Ok((rendered, history))
+}
+
+/// The recurrences that read lower coefficients (of arguments, or of the result) keep them.
+fn reads(history: &mut BTreeSet<String>, names: &[&String]) {
+    history.extend(names.iter().map(|n| (*n).clone()));
+}
+
+/// A series' name as part of an identifier: an input read in place is `x[2]`, which gives `x2`.
+fn ident(series: &str) -> String {
+    series.replace(['[', ']'], "")
 }
 
 /// The scalar form of an operation on constants (the same forms as the ordinary kernels).

@@ -171,6 +171,9 @@ pub struct Taylor<const D: usize, const M: usize = 21> {
     ln_fac: [f64; ORDERS.len()],
     /// ln of the last step's radius of convergence `min(ρ_{p−1}, ρ_p)` (NaN when unknown).
     ln_rho: f64,
+    /// The step rule's step of the last step when it ran the highest order (before `h_max` and
+    /// `t_stop`; NaN otherwise): every lower order's step is shorter (module docs).
+    h_rule_max: f64,
     t: f64,
     y: [f64; D],
     initialised: bool,
@@ -268,6 +271,7 @@ impl<const D: usize, const M: usize> Taylor<D, M> {
             order,
             ln_fac,
             ln_rho: f64::NAN,
+            h_rule_max: f64::NAN,
             t: f64::NAN,
             y: [0.0; D],
             initialised: false,
@@ -298,6 +302,7 @@ impl<const D: usize, const M: usize> Taylor<D, M> {
         self.t_old = t0;
         self.h_last = 0.0;
         self.ln_rho = f64::NAN;
+        self.h_rule_max = f64::NAN;
         self.steps_since_reset = 0;
         self.initialised = true;
         Ok(())
@@ -371,6 +376,13 @@ impl<const D: usize, const M: usize> Taylor<D, M> {
         if self.opts.order.is_some() || self.ln_rho.is_nan() || cap > self.opts.h_max {
             return self.max_order;
         }
+        // A cap beyond the highest order's step (with a margin far above the rounding of its
+        // exp and of the ln below) is beyond every lower order's: `ln_fac` grows with the order,
+        // by at least 0.7 (1/15 − 1/19) ≈ 0.01 from one of ORDERS to the next. Most steps; no
+        // logarithm for them.
+        if cap * CAP_MARGIN > self.h_rule_max * (1.0 + 1e-9) {
+            return self.max_order;
+        }
         let ln_cap = (cap * CAP_MARGIN).ln();
         let lower = ORDERS
             .iter()
@@ -412,14 +424,14 @@ impl<const D: usize, const M: usize> Taylor<D, M> {
             ));
         }
         let ln_rho = self.ln_rho(&x);
-        let h_ctrl = match fixed {
-            Some(h) => h,
+        let h_rule = match fixed {
+            Some(_) => f64::NAN,
             None => {
                 let k = ORDERS.iter().position(|&o| o == p).expect("p is in ORDERS");
                 (ln_rho + self.ln_fac[k]).exp()
             }
-        }
-        .min(self.opts.h_max);
+        };
+        let h_ctrl = fixed.unwrap_or(h_rule).min(self.opts.h_max);
         if h_ctrl.is_nan() || h_ctrl <= 10.0 * f64::EPSILON * self.t.abs() || h_ctrl < 1e-300 {
             return Err(err(
                 OdeErrorKind::StepSizeUnderflow,
@@ -454,6 +466,11 @@ impl<const D: usize, const M: usize> Taylor<D, M> {
         }
         self.order = p;
         self.ln_rho = ln_rho;
+        self.h_rule_max = if p == self.max_order {
+            h_rule
+        } else {
+            f64::NAN
+        };
         self.t_old = self.t;
         self.h_last = h;
         self.h_valid = h;

@@ -5,7 +5,8 @@ use nalgebra::{SVector, Vector1, Vector4};
 use rocking_kernels::series;
 use rocking_ode::events::{locate, Direction};
 use rocking_ode::taylor::{
-    order_from_tol, Taylor, TaylorEvents, TaylorOptions, TaylorSystem, FIXED_COST, ORDERS,
+    order_from_tol, Taylor, TaylorEvents, TaylorOptions, TaylorSystem, CAP_MARGIN, FIXED_COST,
+    ORDERS,
 };
 use rocking_ode::{Integrator, Method, Options, Tolerances};
 
@@ -432,6 +433,62 @@ fn steps_capped_by_t_stop_run_a_lower_order_at_the_same_accuracy() {
         ..TaylorOptions::new(1e-12)
     };
     assert_eq!(stopped_run(&mut Oscillator, opts, 1.0).1, 20);
+}
+
+/// The order the module docs give a step capped at `cap` after a step of `prev`: the lowest of
+/// ORDERS below the highest whose step by the rule, predicted from the last step's radius of
+/// convergence, reaches `cap` with CAP_MARGIN; else the highest. Computed here from the public
+/// coefficients with the logarithms the rule is written in.
+fn documented_order(prev: &Taylor<2>, tol: f64, cap: f64) -> usize {
+    let (c, p) = (prev.coefficients(), prev.order());
+    let norm = |k: usize| c.iter().map(|ci| ci[k].abs()).fold(0.0, f64::max);
+    let a = norm(0).max(1.0);
+    let ln_rho = ((a / norm(p - 1)).ln() / (p - 1) as f64).min((a / norm(p)).ln() / p as f64);
+    let ln_cap = (cap * CAP_MARGIN).ln();
+    ORDERS
+        .into_iter()
+        .take_while(|&q| q < prev.max_order())
+        .find(|&q| {
+            let q = q as f64;
+            ln_rho + (tol.ln() / q - 0.7 / (q - 1.0)) >= ln_cap
+        })
+        .unwrap_or(prev.max_order())
+}
+
+#[test]
+fn a_capped_step_runs_the_documented_order_at_every_cap() {
+    // Caps from far below the highest order's step to far beyond it, densely, and on both sides
+    // of each order's threshold to the last bits: the integrator's shortcuts (no logarithm where
+    // the cap is beyond the highest order's step) must choose what the rule says.
+    for tol in [1e-3, 1e-7, 1e-11] {
+        let mut ode = Taylor::<2>::new(TaylorOptions::new(tol)).unwrap();
+        ode.reset(0.0, [1.0, 0.3]).unwrap();
+        ode.step(&mut Oscillator, 100.0).unwrap();
+        assert_eq!(ode.order(), ode.max_order());
+        let h = ode.last_step_size();
+        let mut caps: Vec<f64> = (0..400).map(|j| h * 1e-3 * 1.02f64.powi(j)).collect();
+        let ln_fac = |q: usize| tol.ln() / q as f64 - 0.7 / (q as f64 - 1.0);
+        for q in ORDERS.into_iter().filter(|&q| q <= ode.max_order()) {
+            // Where the cap meets order q's predicted step (the highest order's is h).
+            let edge = h * (ln_fac(q) - ln_fac(ode.max_order())).exp() / CAP_MARGIN;
+            for ulps in -3i64..=3 {
+                caps.push(f64::from_bits((edge.to_bits() as i64 + ulps) as u64));
+            }
+        }
+        let mut lowered = 0;
+        for cap in caps {
+            let mut next = ode;
+            let t_stop = next.t() + cap;
+            next.step(&mut Oscillator, t_stop).unwrap();
+            let want = documented_order(&ode, tol, t_stop - ode.t());
+            assert_eq!(next.order(), want, "tol {tol:e}, cap {cap:e} (h {h:e})");
+            lowered += usize::from(want < ode.max_order());
+        }
+        assert!(
+            lowered > 50,
+            "tol {tol:e}: only {lowered} caps ran a lower order"
+        );
+    }
 }
 
 // --- a generated kernel: free rocking of a rigid block, impact against DOP853 ---------------

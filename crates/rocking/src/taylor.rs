@@ -125,24 +125,27 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const D: usize> TaylorSystem<D>
         let nx = V::X::LEN;
         let mut ug = [0.0; N];
         self.motion.accel_series(t0, &mut ug);
-        // The mechanical rows of a D-row array (D >= nx): no array of the variant's length.
-        let mut q = [[0.0; N]; D];
-        for (qi, (xi, sc)) in q[..nx].iter_mut().zip(x.iter().zip(&self.scale)) {
-            qi[0] = xi[0] * sc;
+        // The kernels run on the mechanical rows of `x` itself, unscaled in place and scaled
+        // back after (no second array to zero and copy per step); the first coefficients are
+        // put back as they came, not rounded through the scale.
+        let y0: [f64; D] = std::array::from_fn(|i| x[i][0]);
+        for (xi, sc) in x[..nx].iter_mut().zip(&self.scale) {
+            xi[0] *= sc;
         }
         if is_zero(&ug) {
-            V::rocking_series_free(&mut q[..nx], self.s, &self.p);
+            V::rocking_series_free(&mut x[..nx], self.s, &self.p);
         } else {
-            V::rocking_series(&mut q[..nx], &ug, self.s, &self.p);
+            V::rocking_series(&mut x[..nx], &ug, self.s, &self.p);
         }
+        let pw = (D > nx).then(|| V::power_series(&x[..nx], &ug, self.s, &self.p));
         for i in 0..nx {
             let inv = 1.0 / self.scale[i];
-            for k in 1..N {
-                x[i][k] = q[i][k] * inv;
+            for c in &mut x[i][1..] {
+                *c *= inv;
             }
+            x[i][0] = y0[i];
         }
-        if D > nx {
-            let pw = V::power_series(&q[..nx], &ug, self.s, &self.p);
+        if let Some(pw) = pw {
             integrate_power(x, nx, &pw, &self.scale);
         }
     }

@@ -14,16 +14,13 @@ pub const NAME: &str = "rigid";
 /// Series inputs hold their first N coefficients.
 pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64, p: &Params) {
     let w2: f64 = 0.0;
-    let mut w4 = [0.0f64; N];
-    let mut d_w4 = [0.0f64; N];
-    let mut sin_w4 = [0.0f64; N];
-    let mut cos_w4 = [0.0f64; N];
-    let mut w5 = [0.0f64; N];
+    let mut d_x0 = [0.0f64; N];
+    let mut sin_x0 = [0.0f64; N];
+    let mut cos_x0 = [0.0f64; N];
     let w6: f64 = s;
     let w7: f64 = p[1];
     let w8: f64 = w6 * w7;
     let w9: f64 = p[5];
-    let mut w10 = [0.0f64; N];
     let w11: f64 = w8 * w9;
     let w12: f64 = p[3];
     let w13: f64 = w8 * w12;
@@ -40,7 +37,6 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
     let w24: f64 = w22 * w23;
     let w25: f64 = w18 * w24;
     let w26: f64 = w21 + w25;
-    let mut w28 = [0.0f64; N];
     let w29: f64 = w12 * w18;
     let w30: f64 = w15 * w22;
     let w31: f64 = w18 * w30;
@@ -80,16 +76,12 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
     let w66: f64 = w32 * w62;
     for k in 0..N - 1 {
         let w0 = x[2][k];
-        w4[k] = x[0][k];
-        series::sin_cos(&w4, &mut d_w4, &mut sin_w4, &mut cos_w4, k);
-        w5[k] = sin_w4[k];
-        w10[k] = ug[k];
-        let w27 = series::mul(&w5, &w10, k);
-        w28[k] = cos_w4[k];
-        let w39 = series::mul(&w10, &w28, k);
-        let w67 = w5[k] * w63;
+        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w27 = series::mul(&sin_x0, &ug, k);
+        let w39 = series::mul(&ug, &cos_x0, k);
+        let w67 = sin_x0[k] * w63;
         let w68 = w27 * w64;
-        let w69 = w28[k] * w65;
+        let w69 = cos_x0[k] * w65;
         let w70 = w39 * w66;
         let w71 = w67 - w68;
         let w72 = w71 - w69;
@@ -108,10 +100,9 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
 /// The twin of `rocking_rhs` with `ug` identically zero: for the steps after the excitation.
 pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Params) {
     let w2: f64 = 0.0;
-    let mut w4 = [0.0f64; N];
-    let mut d_w4 = [0.0f64; N];
-    let mut sin_w4 = [0.0f64; N];
-    let mut cos_w4 = [0.0f64; N];
+    let mut d_x0 = [0.0f64; N];
+    let mut sin_x0 = [0.0f64; N];
+    let mut cos_x0 = [0.0f64; N];
     let w6: f64 = s;
     let w7: f64 = p[1];
     let w8: f64 = w6 * w7;
@@ -175,12 +166,9 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
     let w67: f64 = w41 * w65;
     for k in 0..N - 1 {
         let w0 = x[2][k];
-        w4[k] = x[0][k];
-        series::sin_cos(&w4, &mut d_w4, &mut sin_w4, &mut cos_w4, k);
-        let w5 = sin_w4[k];
-        let w30 = cos_w4[k];
-        let w68 = w5 * w66;
-        let w69 = w30 * w67;
+        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w68 = sin_x0[k] * w66;
+        let w69 = cos_x0[k] * w67;
         let w70 = -w68;
         let w71 = w70 - w69;
         let inv_k1 = 1.0 / (k + 1) as f64;
@@ -257,7 +245,6 @@ pub fn uplift<const N: usize>(xc: &[[f64; N]; 2], ug: &[f64; N], s: f64, p: &Par
 #[must_use]
 pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N]; 4] {
     let w0: f64 = p[4];
-    let mut w1 = [0.0f64; N];
     let w2: f64 = s;
     let w3: f64 = p[1];
     let w4: f64 = w2 * w3;
@@ -282,10 +269,9 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
     let w24: f64 = w21 * w23;
     let w25: f64 = w22 + w24;
     let w28: f64 = p[8];
-    let mut w29 = [0.0f64; N];
-    let mut d_w29 = [0.0f64; N];
-    let mut sin_w29 = [0.0f64; N];
-    let mut cos_w29 = [0.0f64; N];
+    let mut d_x0 = [0.0f64; N];
+    let mut sin_x0 = [0.0f64; N];
+    let mut cos_x0 = [0.0f64; N];
     let w31: f64 = 0.5;
     let w33: f64 = w8 * w31;
     let w34: f64 = w0 * w4;
@@ -303,20 +289,16 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
     let mut w53 = [0.0f64; N];
     let mut out = [[0.0f64; N]; 4];
     for k in 0..N {
-        w1[k] = x[2][k];
-        let w6 = series::sq(&w1, k);
+        let w6 = series::sq(&x[2], k);
         let w26 = w6 * w25;
-        w29[k] = x[0][k];
-        series::sin_cos(&w29, &mut d_w29, &mut sin_w29, &mut cos_w29, k);
-        let w30 = sin_w29[k];
-        let w32 = cos_w29[k];
-        let w45 = w30 * w43;
-        let w46 = w32 * w44;
+        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w45 = sin_x0[k] * w43;
+        let w46 = cos_x0[k] * w44;
         let w47 = w45 + w46;
-        let w51 = w30 * w42;
-        let w52 = w32 * w39;
+        let w51 = sin_x0[k] * w42;
+        let w52 = cos_x0[k] * w39;
         w53[k] = w51 + w52;
-        let w54 = series::mul(&w1, &w53, k);
+        let w54 = series::mul(&x[2], &w53, k);
         out[0][k] = w26;
         out[1][k] = w47;
         out[2][k] = at0(k, w49);
@@ -328,14 +310,12 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
 /// The first N Taylor coefficients of each output of `power` along series inputs.
 #[must_use]
 pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Params) -> [[f64; N]; 2] {
-    let mut w0 = [0.0f64; N];
     let w1: f64 = p[4];
     let w2: f64 = 0.5;
     let w3: f64 = p[0];
-    let mut w4 = [0.0f64; N];
-    let mut d_w4 = [0.0f64; N];
-    let mut sin_w4 = [0.0f64; N];
-    let mut cos_w4 = [0.0f64; N];
+    let mut d_x0 = [0.0f64; N];
+    let mut sin_x0 = [0.0f64; N];
+    let mut cos_x0 = [0.0f64; N];
     let w6: f64 = w2 * w3;
     let w7: f64 = s;
     let w8: f64 = p[1];
@@ -350,23 +330,17 @@ pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Param
     let w18: f64 = p[5];
     let w19: f64 = w9 * w18;
     let w20: f64 = w17 + w19;
-    let mut w21 = [0.0f64; N];
     let mut w24 = [0.0f64; N];
     let mut w25 = [0.0f64; N];
     let w29: f64 = 0.0;
     let mut out = [[0.0f64; N]; 2];
     for k in 0..N {
-        w0[k] = ug[k];
-        w4[k] = x[0][k];
-        series::sin_cos(&w4, &mut d_w4, &mut sin_w4, &mut cos_w4, k);
-        let w5 = cos_w4[k];
-        let w10 = sin_w4[k];
-        w21[k] = x[2][k];
-        let w22 = w5 * w16;
-        let w23 = w10 * w20;
+        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w22 = cos_x0[k] * w16;
+        let w23 = sin_x0[k] * w20;
         w24[k] = w22 + w23;
-        w25[k] = series::mul(&w21, &w24, k);
-        let w26 = series::mul(&w0, &w25, k);
+        w25[k] = series::mul(&x[2], &w24, k);
+        let w26 = series::mul(&ug, &w25, k);
         let w27 = -w26;
         out[0][k] = w27;
         out[1][k] = at0(k, w29);

@@ -13,15 +13,12 @@ pub const NAME: &str = "small_angle";
 /// the state at the expansion point; on return `x[i][k]` is the k-th coefficient.
 /// Series inputs hold their first N coefficients.
 pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64, p: &Params) {
-    let mut w0 = [0.0f64; N];
-    let mut w2 = [0.0f64; N];
     let w4: f64 = p[3];
     let w5: f64 = 0.11785714285714285;
     let w6: f64 = p[4];
     let w7: f64 = w5 * w6;
     let w8: f64 = w4 + w7;
     let w9: f64 = w7 + w8;
-    let mut w10 = [0.0f64; N];
     let w11: f64 = s;
     let w12: f64 = p[1];
     let w13: f64 = w11 * w12;
@@ -29,7 +26,6 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
     let w15: f64 = w4 * w14;
     let w16: f64 = w13 * w15;
     let w17: f64 = p[0];
-    let mut w18 = [0.0f64; N];
     let w19: f64 = w4 * w17;
     let w20: f64 = 0.5;
     let w21: f64 = w6 * w20;
@@ -43,7 +39,6 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
     let w29: f64 = w6 * w14;
     let w30: f64 = w28 * w29;
     let w31: f64 = w15 + w30;
-    let mut w32 = [0.0f64; N];
     let w33: f64 = 2.0;
     let w34: f64 = w13 * w24;
     let w36: f64 = w4 * w13;
@@ -167,32 +162,27 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
     let w202: f64 = w56 * w89;
     let mut w212 = [0.0f64; N];
     for k in 0..N - 1 {
-        w0[k] = x[2][k];
-        w2[k] = x[3][k];
-        w10[k] = x[1][k];
-        w18[k] = ug[k];
-        w32[k] = x[0][k];
-        let w35 = series::mul(&w10, &w18, k);
-        w49[k] = w32[k] * w33;
-        let w50 = w18[k] * w46;
+        let w35 = series::mul(&x[1], &ug, k);
+        w49[k] = x[0][k] * w33;
+        let w50 = ug[k] * w46;
         let w51 = w35 * w47;
         let w52 = w50 - w51;
         w53[k] = w52 - at0(k, w48);
         let w54 = series::mul(&w49, &w53, k);
-        w57[k] = series::mul(&w0, &w10, k);
-        let w78 = w0[k] * w77;
+        w57[k] = series::mul(&x[2], &x[1], k);
+        let w78 = x[2][k] * w77;
         let w79 = w57[k] * w70;
         w80[k] = w79 - w78;
-        let w81 = series::mul(&w2, &w80, k);
-        w98[k] = series::sq(&w32, k);
-        let w101 = series::mul(&w18, &w98, k);
-        let w107 = series::sq(&w0, k);
-        let w108 = series::mul(&w0, &w57, k);
-        let w130 = series::sq(&w10, k);
-        let w159 = w2[k] * w120;
-        let w160 = w10[k] * w127;
-        let w161 = w18[k] * w128;
-        let w162 = w32[k] * w123;
+        let w81 = series::mul(&x[3], &w80, k);
+        w98[k] = series::sq(&x[0], k);
+        let w101 = series::mul(&ug, &w98, k);
+        let w107 = series::sq(&x[2], k);
+        let w108 = series::mul(&x[2], &w57, k);
+        let w130 = series::sq(&x[1], k);
+        let w159 = x[3][k] * w120;
+        let w160 = x[1][k] * w127;
+        let w161 = ug[k] * w128;
+        let w162 = x[0][k] * w123;
         let w163 = w9 * w54;
         let w164 = w9 * w81;
         let w165 = w101 * w124;
@@ -207,20 +197,20 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         let w174 = w173 - w165;
         let w175 = w174 - w167;
         let w176 = w175 - at0(k, w84);
-        let w177 = w10[k] * w154;
+        let w177 = x[1][k] * w154;
         let w178 = w130 * w155;
         let w179 = w177 + w178;
         w180[k] = at0(k, w158) + w179;
         if k == 0 { inv_w180 = 1.0 / w180[0]; }
         w181[k] = series::div(w176, &w180, &w181, inv_w180, k);
-        let w183 = w10[k] * w149;
+        let w183 = x[1][k] * w149;
         let w184 = w110 * w130;
         let w185 = w183 + w184;
         w186[k] = at0(k, w153) + w185;
-        let w187 = w2[k] * w119;
-        let w188 = w10[k] * w96;
-        let w189 = w18[k] * w105;
-        let w190 = w31 * w32[k];
+        let w187 = x[3][k] * w119;
+        let w188 = x[1][k] * w96;
+        let w189 = ug[k] * w105;
+        let w190 = w31 * x[0][k];
         let w191 = w101 * w106;
         let w192 = w107 * w111;
         let w193 = w108 * w110;
@@ -231,8 +221,8 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         let w198 = w197 - w189;
         w199[k] = w198 - w192;
         let w200 = series::mul(&w186, &w199, k);
-        let w203 = w10[k] * w123;
-        let w204 = w18[k] * w201;
+        let w203 = x[1][k] * w123;
+        let w204 = ug[k] * w201;
         let w205 = w54 * w89;
         let w206 = w81 * w89;
         let w207 = w204 + w205;
@@ -242,8 +232,8 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         let w211 = w210 - w203;
         w212[k] = series::div(w211, &w180, &w212, inv_w180, k);
         let inv_k1 = 1.0 / (k + 1) as f64;
-        x[0][k + 1] = w0[k] * inv_k1;
-        x[1][k + 1] = w2[k] * inv_k1;
+        x[0][k + 1] = x[2][k] * inv_k1;
+        x[1][k + 1] = x[3][k] * inv_k1;
         x[2][k + 1] = w181[k] * inv_k1;
         x[3][k + 1] = w212[k] * inv_k1;
     }
@@ -254,15 +244,12 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
 /// Series inputs hold their first N coefficients.
 /// The twin of `rocking_rhs` with `ug` identically zero: for the steps after the excitation.
 pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Params) {
-    let mut w0 = [0.0f64; N];
-    let mut w2 = [0.0f64; N];
     let w4: f64 = p[3];
     let w5: f64 = 0.11785714285714285;
     let w6: f64 = p[4];
     let w7: f64 = w5 * w6;
     let w8: f64 = w4 + w7;
     let w9: f64 = w7 + w8;
-    let mut w10 = [0.0f64; N];
     let w11: f64 = s;
     let w12: f64 = p[1];
     let w13: f64 = w11 * w12;
@@ -287,7 +274,6 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
     let w32: f64 = w6 * w14;
     let w33: f64 = w31 * w32;
     let w34: f64 = w15 + w33;
-    let mut w35 = [0.0f64; N];
     let w36: f64 = 2.0;
     let w37: f64 = w18 * w26;
     let w38: f64 = w13 * w37;
@@ -416,23 +402,19 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
     let w203: f64 = w56 * w91;
     let mut w213 = [0.0f64; N];
     for k in 0..N - 1 {
-        w0[k] = x[2][k];
-        w2[k] = x[3][k];
-        w10[k] = x[1][k];
-        w35[k] = x[0][k];
-        let w53 = series::mul(&w10, &w35, k);
-        w57[k] = series::mul(&w0, &w10, k);
-        let w78 = w0[k] * w77;
+        let w53 = series::mul(&x[1], &x[0], k);
+        w57[k] = series::mul(&x[2], &x[1], k);
+        let w78 = x[2][k] * w77;
         let w79 = w57[k] * w70;
         w80[k] = w79 - w78;
-        let w81 = series::mul(&w2, &w80, k);
-        let w100 = series::sq(&w35, k);
-        let w108 = series::sq(&w0, k);
-        let w109 = series::mul(&w0, &w57, k);
-        let w132 = series::sq(&w10, k);
-        let w162 = w2[k] * w121;
-        let w163 = w10[k] * w128;
-        let w164 = w35[k] * w129;
+        let w81 = series::mul(&x[3], &w80, k);
+        let w100 = series::sq(&x[0], k);
+        let w108 = series::sq(&x[2], k);
+        let w109 = series::mul(&x[2], &w57, k);
+        let w132 = series::sq(&x[1], k);
+        let w162 = x[3][k] * w121;
+        let w163 = x[1][k] * w128;
+        let w164 = x[0][k] * w129;
         let w165 = w53 * w84;
         let w166 = w9 * w81;
         let w167 = w100 * w124;
@@ -446,19 +428,19 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
         let w175 = w174 - w166;
         let w176 = w175 - w167;
         let w177 = w176 - w169;
-        let w178 = w10[k] * w157;
+        let w178 = x[1][k] * w157;
         let w179 = w132 * w158;
         let w180 = w178 + w179;
         w181[k] = at0(k, w161) + w180;
         if k == 0 { inv_w181 = 1.0 / w181[0]; }
         w182[k] = series::div(w177, &w181, &w182, inv_w181, k);
-        let w184 = w10[k] * w151;
+        let w184 = x[1][k] * w151;
         let w185 = w111 * w132;
         let w186 = w184 + w185;
         w187[k] = at0(k, w156) + w186;
-        let w188 = w2[k] * w120;
-        let w189 = w10[k] * w98;
-        let w190 = w34 * w35[k];
+        let w188 = x[3][k] * w120;
+        let w189 = x[1][k] * w98;
+        let w190 = w34 * x[0][k];
         let w191 = w100 * w106;
         let w192 = w108 * w112;
         let w193 = w109 * w111;
@@ -469,8 +451,8 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
         let w198 = w197 - w192;
         w199[k] = w198 - at0(k, w107);
         let w200 = series::mul(&w187, &w199, k);
-        let w204 = w10[k] * w123;
-        let w205 = w35[k] * w201;
+        let w204 = x[1][k] * w123;
+        let w205 = x[0][k] * w201;
         let w206 = w53 * w202;
         let w207 = w81 * w91;
         let w208 = w205 + w207;
@@ -480,8 +462,8 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
         let w212 = w211 - w206;
         w213[k] = series::div(w212, &w181, &w213, inv_w181, k);
         let inv_k1 = 1.0 / (k + 1) as f64;
-        x[0][k + 1] = w0[k] * inv_k1;
-        x[1][k + 1] = w2[k] * inv_k1;
+        x[0][k + 1] = x[2][k] * inv_k1;
+        x[1][k + 1] = x[3][k] * inv_k1;
         x[2][k + 1] = w182[k] * inv_k1;
         x[3][k + 1] = w213[k] * inv_k1;
     }
@@ -677,14 +659,12 @@ pub fn uplift<const N: usize>(xc: &[[f64; N]; 2], ug: &[f64; N], s: f64, p: &Par
 #[must_use]
 pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N]; 4] {
     let w0: f64 = p[4];
-    let mut w1 = [0.0f64; N];
     let w2: f64 = s;
     let w3: f64 = p[1];
     let w4: f64 = w2 * w3;
     let w5: f64 = w4 * w4;
     let mut w6 = [0.0f64; N];
     let w7: f64 = 0.375;
-    let mut w8 = [0.0f64; N];
     let w9: f64 = 2.0;
     let w10: f64 = w4 * w9;
     let w12: f64 = w7 * w10;
@@ -695,7 +675,6 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
     let w17: f64 = w13 * w16;
     let w18: f64 = w5 + w17;
     let w19: f64 = 0.275;
-    let mut w20 = [0.0f64; N];
     let w22: f64 = w15 * w19;
     let w23: f64 = 0.11785714285714285;
     let mut w24 = [0.0f64; N];
@@ -727,7 +706,6 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
     let w53: f64 = w44 * w52;
     let w54: f64 = w45 + w53;
     let w69: f64 = p[8];
-    let mut w70 = [0.0f64; N];
     let w71: f64 = 0.5;
     let mut w72 = [0.0f64; N];
     let w73: f64 = w14 * w44;
@@ -773,16 +751,13 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
     let w128: f64 = w125 + w126;
     let mut out = [[0.0f64; N]; 4];
     for k in 0..N {
-        w1[k] = x[2][k];
-        w6[k] = series::sq(&w1, k);
-        w8[k] = x[1][k];
-        let w11 = series::mul(&w6, &w8, k);
-        w20[k] = x[3][k];
-        let w21 = series::mul(&w1, &w20, k);
-        w24[k] = series::mul(&w1, &w8, k);
-        w25[k] = series::mul(&w1, &w24, k);
-        let w26 = series::mul(&w8, &w25, k);
-        let w27 = series::sq(&w20, k);
+        w6[k] = series::sq(&x[2], k);
+        let w11 = series::mul(&w6, &x[1], k);
+        let w21 = series::mul(&x[2], &x[3], k);
+        w24[k] = series::mul(&x[2], &x[1], k);
+        w25[k] = series::mul(&x[2], &w24, k);
+        let w26 = series::mul(&x[1], &w25, k);
+        let w27 = series::sq(&x[3], k);
         let w35 = series::sq(&w24, k);
         let w55 = w6[k] * w54;
         let w56 = w11 * w46;
@@ -797,24 +772,23 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
         let w65 = w61 + w64;
         let w66 = w65 - w56;
         let w67 = w66 - w58;
-        w70[k] = x[0][k];
-        w72[k] = series::sq(&w70, k);
-        let w77 = series::mul(&w8, &w70, k);
-        let w96 = w70[k] * w92;
+        w72[k] = series::sq(&x[0], k);
+        let w77 = series::mul(&x[1], &x[0], k);
+        let w96 = x[0][k] * w92;
         let w97 = w72[k] * w93;
         let w98 = w77 * w94;
         let w99 = at0(k, w95) + w96;
         let w100 = w99 - w97;
         let w101 = w100 - w98;
-        let w109 = series::sq(&w8, k);
+        let w109 = series::sq(&x[1], k);
         let w111 = w109 * w110;
-        let w117 = w70[k] * w91;
+        let w117 = x[0][k] * w91;
         let w118 = w77 * w87;
         let w119 = at0(k, w116) + w117;
         w120[k] = w119 - w118;
-        let w121 = series::mul(&w1, &w120, k);
-        let w129 = series::mul(&w20, &w72, k);
-        let w130 = w20[k] * w128;
+        let w121 = series::mul(&x[2], &w120, k);
+        let w129 = series::mul(&x[3], &w72, k);
+        let w130 = x[3][k] * w128;
         let w131 = w127 * w129;
         let w132 = w121 + w130;
         let w133 = w132 - w131;
@@ -829,7 +803,6 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
 /// The first N Taylor coefficients of each output of `power` along series inputs.
 #[must_use]
 pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Params) -> [[f64; N]; 2] {
-    let mut w0 = [0.0f64; N];
     let w1: f64 = p[4];
     let w2: f64 = 0.5;
     let w3: f64 = p[0];
@@ -837,9 +810,7 @@ pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Param
     let w5: f64 = s;
     let w6: f64 = p[1];
     let w7: f64 = w5 * w6;
-    let mut w8 = [0.0f64; N];
     let w9: f64 = 0.375;
-    let mut w10 = [0.0f64; N];
     let w12: f64 = w1 * w7;
     let w13: f64 = w1 * w9;
     let w14: f64 = w1 * w4;
@@ -852,7 +823,6 @@ pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Param
     let w21: f64 = p[5];
     let w22: f64 = w7 * w21;
     let w23: f64 = w18 + w22;
-    let mut w24 = [0.0f64; N];
     let mut w28 = [0.0f64; N];
     let w30: f64 = 1.0;
     let mut w31 = [0.0f64; N];
@@ -866,7 +836,6 @@ pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Param
     let w39: f64 = w15 * w30;
     let w40: f64 = w36 + w38;
     let w41: f64 = w37 + w39;
-    let mut w42 = [0.0f64; N];
     let mut w47 = [0.0f64; N];
     let w51: f64 = p[7];
     let w52: f64 = 2.0 * w51;
@@ -886,26 +855,21 @@ pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Param
     let w66: f64 = w62 * w65;
     let mut out = [[0.0f64; N]; 2];
     for k in 0..N {
-        w0[k] = ug[k];
-        w8[k] = x[0][k];
-        w10[k] = x[1][k];
-        let w11 = series::mul(&w8, &w10, k);
-        w24[k] = x[2][k];
-        let w25 = w8[k] * w23;
+        let w11 = series::mul(&x[0], &x[1], k);
+        let w25 = x[0][k] * w23;
         let w26 = w11 * w19;
         let w27 = at0(k, w20) + w25;
         w28[k] = w27 - w26;
-        let w29 = series::mul(&w24, &w28, k);
-        w31[k] = series::sq(&w8, k);
-        w42[k] = x[3][k];
-        let w43 = series::mul(&w31, &w42, k);
-        let w44 = w41 * w42[k];
+        let w29 = series::mul(&x[2], &w28, k);
+        w31[k] = series::sq(&x[0], k);
+        let w43 = series::mul(&w31, &x[3], k);
+        let w44 = w41 * x[3][k];
         let w45 = w40 * w43;
         let w46 = w29 + w44;
         w47[k] = w46 - w45;
-        let w48 = series::mul(&w0, &w47, k);
+        let w48 = series::mul(&ug, &w47, k);
         let w49 = -w48;
-        let w67 = series::sq(&w42, k);
+        let w67 = series::sq(&x[3], k);
         let w68 = w66 * w67;
         out[0][k] = w49;
         out[1][k] = w68;

@@ -159,6 +159,17 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
                     step.component(n + 1, t)
                 }
             };
+            let (ra, rb) = if top {
+                (self.top(&a, true), self.top(&b, true))
+            } else {
+                (a.values()[n + 1], b.values()[n + 1])
+            };
+            // Without a sign change of the rate at the ends, or a start from rest, the search
+            // below finds nothing: skip the bound too (most steps).
+            let from_rest = ra == 0.0 && rb != 0.0;
+            if !(ra * rb < 0.0 || from_rest) {
+                continue;
+            }
             let (max, bound) = if top {
                 (self.rec.max_u, self.top_bound(step))
             } else {
@@ -167,15 +178,10 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             if bound <= max {
                 continue;
             }
-            let (ra, rb) = if top {
-                (self.top(&a, true), self.top(&b, true))
-            } else {
-                (a.values()[n + 1], b.values()[n + 1])
-            };
             // A step from rest (θ' = 0 at an uplift) has no sign change at its ends: its first
             // turning point lies after a point of the other sign than the end's, which one of
             // a few samples finds unless the excursion is far shorter than the step.
-            let start = if ra == 0.0 && rb != 0.0 {
+            let start = if from_rest {
                 (1..SAMPLES)
                     .map(|j| t_old + (t_new - t_old) * f64::from(j) / f64::from(SAMPLES))
                     .map(|t| (t, rate_at(t)))

@@ -179,32 +179,36 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
             let h = t_new - t_old;
             let order = ode.order();
             let theta = &ode.coefficients()[0][..=order];
-            let mut g = [[0.0; 21]; 2];
-            for (k, &c) in theta.iter().enumerate() {
-                g[0][k] = s * c;
-                g[1][k] = s * c;
-            }
-            g[1][0] -= over;
             // An uplift exactly at f_s = 0 (θ'' = 0) that turns back at once: an impact at t0,
             // as the RK path's armed event fires at its first step.
             let first = t_old == t0 && n > 0;
-            let turns_back = first && g[0].iter().find(|c| **c != 0.0).is_some_and(|c| *c < 0.0);
-            // One bound of θ's change over the step rules out both events on most steps.
+            let turns_back = first
+                && theta
+                    .iter()
+                    .find(|c| **c != 0.0)
+                    .is_some_and(|c| s * c < 0.0);
+            // One bound of θ's change over the step rules out both events on most steps, before
+            // their polynomials (s θ, s θ − θ_over) are formed.
             let tail = theta[1..]
                 .iter()
                 .rev()
                 .fold(0.0, |acc, c| (acc + c.abs()) * h);
-            let root = |g: &[f64], dir| {
-                let far = poly::far_from_zero(g[0], tail, order);
-                (!far).then(|| poly::first_root(g, h, dir).map(|r| r.tau))?
+            let root = |shift: f64, dir| {
+                let g0 = s * theta[0] - shift;
+                if poly::far_from_zero(g0, tail, order) {
+                    return None;
+                }
+                let mut g = [0.0; 21];
+                for (gk, &c) in g.iter_mut().zip(theta) {
+                    *gk = s * c;
+                }
+                g[0] = g0;
+                poly::first_root(&g[..=order], h, dir).map(|r| r.tau)
             };
             let roots: [Option<f64>; 2] = if turns_back {
                 [Some(0.0), None]
             } else {
-                [
-                    root(&g[0][..=order], Direction::Falling),
-                    root(&g[1][..=order], Direction::Rising),
-                ]
+                [root(0.0, Direction::Falling), root(over, Direction::Rising)]
             };
             // The earliest; the impact on ties.
             let event = roots
