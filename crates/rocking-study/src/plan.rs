@@ -62,7 +62,12 @@ pub fn program_digest() -> &'static str {
     DIGEST.get_or_init(|| {
         let exe = std::env::current_exe().and_then(std::fs::read);
         match exe {
-            Ok(bytes) => format!("{} {:016x}", env!("CARGO_PKG_VERSION"), fnv1a(&bytes)),
+            Ok(bytes) => {
+                use std::hash::Hasher as _;
+                let mut h = rustc_hash::FxHasher::default();
+                h.write(&bytes);
+                format!("{} {:016x}", env!("CARGO_PKG_VERSION"), h.finish())
+            }
             Err(_) => env!("CARGO_PKG_VERSION").to_string(),
         }
     })
