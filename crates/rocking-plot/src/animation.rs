@@ -346,6 +346,24 @@ pub fn render(model: &Setup, run: &Run, spec: &Animation) -> Result<(Vec<u8>, us
 mod tests {
     use super::*;
 
+    /// Runs the scene `name` of scenes/ with the overrides `sets` and an animation, and draws
+    /// its frames at `spec`.
+    fn animate(name: &str, sets: &[&str], spec: &Animation) -> (Setup, Run, Vec<Frame>) {
+        let scene = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../scenes")
+            .join(name);
+        let sets: Vec<String> = std::iter::once("output.animation=true")
+            .chain(sets.iter().copied())
+            .map(String::from)
+            .collect();
+        let sc = rocking_scene::scene::load(&scene, &sets).expect("scene");
+        let m = rocking_scene::setup::build(&sc).expect("model");
+        let run =
+            rocking::simulate(&m.structure, &m.excitation, &m.effects, &m.options).expect("run");
+        let frames = geometry(&m, &run, spec).expect("frames");
+        (m, run, frames)
+    }
+
     #[test]
     fn every_models_shape_functions_come_from_its_kernel() {
         for m in rocking_kernels::kernels::MODELS {
@@ -395,23 +413,19 @@ mod tests {
     /// history's u_1..u_n at every height, and its top is the mass at the top deflection u.
     #[test]
     fn the_drawn_column_bends_with_every_coordinate() {
-        let scene = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../../scenes/wind-turbine-elcentro.toml");
-        let sets = [
-            "output.animation=true".to_string(),
-            "structure.model=\"cantilever_modes3\"".to_string(),
-            "excitation.scale=6.0".to_string(),
-        ];
-        let sc = rocking_scene::scene::load(&scene, &sets).expect("scene");
-        let m = rocking_scene::setup::build(&sc).expect("model");
-        let run =
-            rocking::simulate(&m.structure, &m.excitation, &m.effects, &m.options).expect("run");
         let spec = Animation {
             frames: 40,
             width: 500,
             height: 800,
         };
-        let frames = geometry(&m, &run, &spec).expect("frames");
+        let (m, run, frames) = animate(
+            "wind-turbine-elcentro.toml",
+            &[
+                "structure.model=\"cantilever_modes3\"",
+                "excitation.scale=6.0",
+            ],
+            &spec,
+        );
         let rows = frame_rows(&run.history, spec.frames);
         let phys = m.structure.physical();
         let psi: Vec<Vec<f64>> = (0..=COLUMN_POINTS)
@@ -457,20 +471,12 @@ mod tests {
 
     #[test]
     fn the_drawn_frames_show_the_simulated_angles_and_deflections() {
-        let scene = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../../scenes/fig10-overturns.toml");
-        let sc =
-            rocking_scene::scene::load(&scene, &["output.animation=true".into()]).expect("scene");
-        let mut m = rocking_scene::setup::build(&sc).expect("model");
-        m.options.history = rocking::History::Grid(0.01 / m.units.p_model);
-        let run =
-            rocking::simulate(&m.structure, &m.excitation, &m.effects, &m.options).expect("run");
         let spec = Animation {
             frames: 25,
             width: 500,
             height: 400,
         };
-        let frames = geometry(&m, &run, &spec).expect("frames");
+        let (m, run, frames) = animate("fig10-overturns.toml", &["output.history_dt=0.01"], &spec);
         assert_eq!(frames.len(), 25);
         assert_eq!(frames[0].tau, run.history[0].tau);
         assert_eq!(frames[24].tau, run.history.last().unwrap().tau);
