@@ -59,12 +59,12 @@ pub fn file_digest(path: &Path) -> Result<String, SceneError> {
 /// is not reused; the package version when the executable cannot be read.
 pub fn program_digest() -> &'static str {
     static DIGEST: std::sync::OnceLock<String> = std::sync::OnceLock::new();
-    DIGEST.get_or_init(|| {
-        match std::env::current_exe().and_then(|exe| executable_hash(&exe)) {
+    DIGEST.get_or_init(
+        || match std::env::current_exe().and_then(|exe| executable_hash(&exe)) {
             Ok(hash) => format!("{} {hash:016x}", env!("CARGO_PKG_VERSION")),
             Err(_) => env!("CARGO_PKG_VERSION").to_string(),
-        }
-    })
+        },
+    )
 }
 
 /// FxHash of a file's bytes, read through one reused 1 MiB buffer: reading the ~20 MB executable
@@ -676,5 +676,42 @@ impl Plan {
                 self.base.run_knobs(&cell)
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::executable_hash;
+
+    /// The hash follows every byte of a file of several chunks, the last one partial, and
+    /// nothing else: the same bytes in another file give the same hash.
+    #[test]
+    fn executable_hash_follows_the_bytes_across_chunks() {
+        let dir = tempfile::tempdir().unwrap();
+        let bytes: Vec<u8> = (0..(5 << 19) + 123)
+            .map(|i: u32| (i * 7 % 251) as u8)
+            .collect();
+        let write = |name: &str, b: &[u8]| {
+            let p = dir.path().join(name);
+            std::fs::write(&p, b).unwrap();
+            executable_hash(&p).unwrap()
+        };
+        let base = write("a", &bytes);
+        assert_eq!(write("b", &bytes), base, "same bytes, another file");
+        for at in [0, (1 << 20) - 1, 1 << 20, bytes.len() - 1] {
+            let mut changed = bytes.clone();
+            changed[at] ^= 1;
+            assert_ne!(write("c", &changed), base, "byte {at} flipped");
+        }
+        assert_ne!(
+            write("d", &bytes[..bytes.len() - 1]),
+            base,
+            "one byte shorter"
+        );
+        assert_ne!(
+            write("e", &bytes[..1 << 20]),
+            base,
+            "cut at a chunk boundary"
+        );
     }
 }
