@@ -304,3 +304,71 @@ fn invalid_options_are_errors_naming_the_field() {
         }
     }
 }
+
+/// A sweep cell skips the tracking of max |u| (`Options::max_deflection`, off when a sweep
+/// reports no quantity): what a cell keeps, the class's inputs (overturned, impacts, the first
+/// uplift), max θ/α and the impacts, is the same bit for bit with and without it, by the Taylor
+/// method and by DOP853, on cells that stay in contact, rock and overturn; the skipped max |u|
+/// is NaN (which a summary refuses to serialize), never a number that looks measured.
+#[test]
+fn skipping_max_deflection_changes_nothing_a_sweep_cell_keeps() {
+    let s = fig5_structure(5.0);
+    let ta = 0.1f64.tan();
+    let (mut rocked, mut overturned, mut stayed) = (0, 0, 0);
+    for method in [rocking::Method::Taylor, rocking::Method::Dop853] {
+        for &(wp, a) in &[
+            (4.0, 0.5),
+            (4.0, 3.0),
+            (2.0, 3.0),
+            (6.0, 6.0),
+            (1.5, 8.0),
+            (9.0, 2.0),
+        ] {
+            let pulse = SinePulse::new(a * ta, wp);
+            let mut on = Options {
+                t_end: 2.0 * std::f64::consts::PI / wp + 20.0,
+                forces: false,
+                ..Options::default()
+            };
+            on.accuracy.method = method;
+            let off = Options {
+                max_deflection: false,
+                ..on
+            };
+            let label = format!("{method:?}, ω_p/p = {wp}, a_p/(g tan α) = {a}");
+            let run = |o: &Options| {
+                rocking::simulate(&s, &pulse, &Effects::default(), o)
+                    .unwrap_or_else(|e| panic!("{label}: {e}"))
+                    .summary
+            };
+            let (x, y) = (run(&on), run(&off));
+            assert_eq!(
+                x.max_theta_over_alpha.to_bits(),
+                y.max_theta_over_alpha.to_bits(),
+                "{label}: max θ/α"
+            );
+            assert_eq!(x.impacts, y.impacts, "{label}: impacts");
+            assert_eq!(x.overturned, y.overturned, "{label}: overturned");
+            assert_eq!(
+                x.first_uplift_time, y.first_uplift_time,
+                "{label}: first uplift"
+            );
+            assert!(
+                x.max_u_over_ucr.is_finite() && x.max_u_over_ucr > 0.0,
+                "{label}: tracked max |u| {}",
+                x.max_u_over_ucr
+            );
+            assert!(y.max_u_over_ucr.is_nan(), "{label}: untracked max |u|");
+            match (x.overturned, x.first_uplift_time.is_some()) {
+                (true, _) => overturned += 1,
+                (false, true) => rocked += 1,
+                (false, false) => stayed += 1,
+            }
+        }
+    }
+    // Every kind of cell was compared.
+    assert!(
+        rocked > 0 && overturned > 0 && stayed > 0,
+        "rocked {rocked}, overturned {overturned}, stayed {stayed}"
+    );
+}

@@ -278,6 +278,9 @@ impl Base {
         m.options.stop_when_known = true;
         // The forces cost a kernel per step: only a sweep that reports some pays for them.
         m.options.forces = !self.report.is_empty();
+        // A cell keeps its class, max θ/α and impacts, and the reported quantities: max |u| is
+        // only needed for the latter.
+        m.options.max_deflection = !self.report.is_empty();
         let run = |options: &rocking::Options| {
             rocking::simulate(&m.structure, &m.excitation, &m.effects, options).map_err(|e| {
                 SceneError::failure(format!("{}: simulation failed: {e}", self.path.display()))

@@ -321,6 +321,13 @@ pub struct Options {
     ///
     /// [`ForceSummary`]: crate::ForceSummary
     pub forces: bool,
+    /// Track the largest top deflection |u| ([`Summary::max_u_over_ucr`]; NaN when off): a
+    /// turning-point search on the steps where the top's rate changes sign, and a rest that
+    /// waits until u can no longer exceed it. A sweep whose cells keep only the class, max θ/α
+    /// and the impacts may skip it.
+    ///
+    /// [`Summary::max_u_over_ucr`]: crate::Summary::max_u_over_ucr
+    pub max_deflection: bool,
     /// Coefficient of friction of the ground: the first time the required friction |R_h|/R_v
     /// exceeds it is reported (the model assumes no sliding). `None`: not checked.
     pub friction: Option<f64>,
@@ -343,6 +350,7 @@ impl Default for Options {
             initial: Initial::default(),
             uplift: true,
             forces: true,
+            max_deflection: true,
             friction: None,
         }
     }

@@ -92,7 +92,8 @@ pub struct Summary {
     /// max |θ| / θ_cr.
     #[serde(serialize_with = "finite")]
     pub max_theta_over_theta_cr: f64,
-    /// max |u| / u_cr (0 for a rigid column).
+    /// max |u| / u_cr (0 for a rigid column; NaN, which the summary refuses to serialize, when
+    /// [`Options::max_deflection`](crate::Options::max_deflection) is off).
     #[serde(serialize_with = "finite")]
     pub max_u_over_ucr: f64,
     /// Whether the structure overturned.

@@ -128,6 +128,9 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
 
     /// max |u| within a contact step, including a turning point inside it.
     pub(super) fn extremes_contact(&mut self, step: &impl StepView<V::X>, t_old: f64, t_new: f64) {
+        if !self.opts.max_deflection {
+            return;
+        }
         let (a, b) = (step.state(t_old), step.state(t_new));
         let (a_rate, b_top) = (self.top(&a, true), self.top(&b, false));
         self.rec.max_u = self.rec.max_u.max(b_top.abs());
@@ -139,64 +142,77 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
 
     /// max |θ| and |u| within a rocking step, including turning points inside it.
     pub(super) fn extremes_rocking(&mut self, step: &impl StepView<V::X>, t_old: f64, t_new: f64) {
-        const SAMPLES: u32 = 32;
         let (a, b) = (step.state(t_old), step.state(t_new));
         self.track_values(b.values()[0], self.top(&b, false));
+        // θ from its rate θ', then the top deflection from its rate (if tracked).
+        self.turning_point_extreme::<false>(step, (&a, &b), t_old, t_new);
+        if self.opts.max_deflection {
+            self.turning_point_extreme::<true>(step, (&a, &b), t_old, t_new);
+        }
+    }
+
+    /// max |θ| (`TOP` false) or max |u| of the top (`TOP` true) at a turning point inside the
+    /// rocking step (t_old, t_new) whose end states are `ends`.
+    fn turning_point_extreme<const TOP: bool>(
+        &mut self,
+        step: &impl StepView<V::X>,
+        (a, b): (&V::X, &V::X),
+        t_old: f64,
+        t_new: f64,
+    ) {
+        const SAMPLES: u32 = 32;
         let n = V::NQ;
-        // θ from its rate θ', then the top deflection from its rate.
-        for top in [false, true] {
-            let value = |t: f64| {
-                if top {
-                    self.top_at(step, false, t)
-                } else {
-                    step.component(0, t)
-                }
-            };
-            let rate_at = |t: f64| {
-                if top {
-                    self.top_at(step, true, t)
-                } else {
-                    step.component(n + 1, t)
-                }
-            };
-            let (ra, rb) = if top {
-                (self.top(&a, true), self.top(&b, true))
+        let value = |t: f64| {
+            if TOP {
+                self.top_at(step, false, t)
             } else {
-                (a.values()[n + 1], b.values()[n + 1])
-            };
-            // Without a sign change of the rate at the ends, or a start from rest, the search
-            // below finds nothing: skip the bound too (most steps).
-            let from_rest = ra == 0.0 && rb != 0.0;
-            if !(ra * rb < 0.0 || from_rest) {
-                continue;
+                step.component(0, t)
             }
-            let (max, bound) = if top {
-                (self.rec.max_u, self.top_bound(step))
+        };
+        let rate_at = |t: f64| {
+            if TOP {
+                self.top_at(step, true, t)
             } else {
-                (self.rec.max_theta, step.bound(0))
-            };
-            if bound <= max {
-                continue;
+                step.component(n + 1, t)
             }
-            // A step from rest (θ' = 0 at an uplift) has no sign change at its ends: its first
-            // turning point lies after a point of the other sign than the end's, which one of
-            // a few samples finds unless the excursion is far shorter than the step.
-            let start = if from_rest {
-                (1..SAMPLES)
-                    .map(|j| t_old + (t_new - t_old) * f64::from(j) / f64::from(SAMPLES))
-                    .map(|t| (t, rate_at(t)))
-                    .find(|&(_, r)| r * rb < 0.0)
+        };
+        let (ra, rb) = if TOP {
+            (self.top(a, true), self.top(b, true))
+        } else {
+            (a.values()[n + 1], b.values()[n + 1])
+        };
+        // Without a sign change of the rate at the ends, or a start from rest, the search
+        // below finds nothing: skip the bound too (most steps).
+        let from_rest = ra == 0.0 && rb != 0.0;
+        if !(ra * rb < 0.0 || from_rest) {
+            return;
+        }
+        let (max, bound) = if TOP {
+            (self.rec.max_u, self.top_bound(step))
+        } else {
+            (self.rec.max_theta, step.bound(0))
+        };
+        if bound <= max {
+            return;
+        }
+        // A step from rest (θ' = 0 at an uplift) has no sign change at its ends: its first
+        // turning point lies after a point of the other sign than the end's, which one of
+        // a few samples finds unless the excursion is far shorter than the step.
+        let start = if from_rest {
+            (1..SAMPLES)
+                .map(|j| t_old + (t_new - t_old) * f64::from(j) / f64::from(SAMPLES))
+                .map(|t| (t, rate_at(t)))
+                .find(|&(_, r)| r * rb < 0.0)
+        } else {
+            Some((t_old, ra))
+        };
+        if let Some((ta, r0)) = start.filter(|&(_, r)| r * rb < 0.0) {
+            let tm = turning_point(rate_at, ta, t_new, r0);
+            let y = value(tm).abs();
+            if TOP {
+                self.rec.max_u = self.rec.max_u.max(y);
             } else {
-                Some((t_old, ra))
-            };
-            if let Some((ta, r0)) = start.filter(|&(_, r)| r * rb < 0.0) {
-                let tm = turning_point(rate_at, ta, t_new, r0);
-                let y = value(tm).abs();
-                if top {
-                    self.rec.max_u = self.rec.max_u.max(y);
-                } else {
-                    self.rec.max_theta = self.rec.max_theta.max(y);
-                }
+                self.rec.max_theta = self.rec.max_theta.max(y);
             }
         }
     }
@@ -236,6 +252,8 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             max_theta_over_theta_cr: rec.max_theta / self.derived.theta_cr,
             max_u_over_ucr: if V::RIGID {
                 0.0
+            } else if !self.opts.max_deflection {
+                f64::NAN
             } else {
                 rec.max_u / self.derived.u_cr
             },

@@ -81,10 +81,12 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
                 return false;
             }
         }
-        // The top deflection Σ u_i ψ_i(1).
-        let (_, r_u) = ellipse.reach::<V>(|xc| self.top_by(|i| xc.values()[i - 1], 1));
-        if !V::RIGID && r_u > self.rec.max_u {
-            return false;
+        // The top deflection Σ u_i ψ_i(1), where its maximum is tracked.
+        if !V::RIGID && self.opts.max_deflection {
+            let (_, r_u) = ellipse.reach::<V>(|xc| self.top_by(|i| xc.values()[i - 1], 1));
+            if r_u > self.rec.max_u {
+                return false;
+            }
         }
         !self.opts.forces || self.forces_settled(&ellipse)
     }
