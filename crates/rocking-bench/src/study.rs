@@ -262,6 +262,8 @@ impl Case {
             stop_when_known: false,
             // The peers compute no section forces; a spectrum's cells skip them too.
             forces: false,
+            // Nor the largest top deflection: the answers compared hold max θ/α, not max |u|.
+            max_deflection: false,
             initial: self.initial,
             ..Options::default()
         }
