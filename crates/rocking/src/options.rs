@@ -134,24 +134,24 @@ impl Preset {
             dop853_tol,
             measured: Measured { error, seconds },
         };
-        // `cargo xtask bench` of 2026-11-26 11:09 UTC (470 s, load ~1 on the 2 cores; nine
-        // cases, docs/accuracy.md). `fast` is Taylor 1e-7 like `default`: on `long-record` (a
-        // record with 147 impacts that amplifies errors, bench/NOTES.md) Taylor 1e-3 to 1e-6 take
-        // other branches (max θ/α off by 0.09-0.33), and Taylor 1e-7 is the cheapest configuration
+        // `cargo xtask bench` of 2026-11-26 14:27 UTC (376 s, quiet 2-core VM; nine cases,
+        // docs/accuracy.md). `fast` is Taylor 1e-7 like `default`: on `long-record` (a record
+        // with 147 impacts that amplifies errors, bench/NOTES.md) Taylor 1e-3 to 1e-6 take other
+        // branches (max θ/α off by 0.09-0.33), and Taylor 1e-7 is the cheapest configuration
         // within 1e-3 there and on every other case; the cheapest DOP853 for 1e-3, 1e-5, costs
-        // 1.39× more. DOP853 against the Taylor method for the other targets: 1.76-1.91×;
-        // `reference`'s independence costs 3.08×.
+        // 1.32× more. DOP853 against the Taylor method for the other targets: 1.73-1.79×;
+        // `reference`'s independence costs 3.10×.
         match self {
-            Preset::Fast => row(1e-3, None, taylor(1e-7), 1e-5, 7.6e-4, 383e-6),
-            Preset::Default => row(1e-6, None, taylor(1e-7), 1e-7, 7.5e-7, 383e-6),
-            Preset::Accurate => row(1e-9, None, taylor(1e-11), 1e-10, 3.3e-11, 554e-6),
+            Preset::Fast => row(1e-3, None, taylor(1e-7), 1e-5, 7.6e-4, 380e-6),
+            Preset::Default => row(1e-6, None, taylor(1e-7), 1e-7, 7.5e-7, 380e-6),
+            Preset::Accurate => row(1e-9, None, taylor(1e-11), 1e-10, 3.3e-11, 582e-6),
             Preset::Reference => row(
                 1e-11,
                 Some(Method::Dop853),
                 dop853(1e-13),
                 1e-13,
                 1.8e-12,
-                1.88e-3,
+                1.93e-3,
             ),
         }
     }
