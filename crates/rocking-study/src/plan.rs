@@ -68,9 +68,9 @@ pub fn program_digest() -> &'static str {
 }
 
 /// FxHash of a file's bytes, read through one reused 1 MiB buffer: reading the ~20 MB executable
-/// whole into a fresh allocation cost a page fault per 4 KiB (2-3 % of a 100 × 100 spectrum,
-/// `perf record`). Every chunk but the last is full, so the hash does not depend on how the
-/// operating system splits the reads.
+/// whole into a fresh allocation cost a page fault per 4 KiB (about 2 % of a 100 × 100
+/// spectrum's samples, `perf record`). Every chunk but the last is full, so the hash does not
+/// depend on how the operating system splits the reads.
 fn executable_hash(path: &Path) -> std::io::Result<u64> {
     use std::hash::Hasher as _;
     use std::io::Read as _;

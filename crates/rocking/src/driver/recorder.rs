@@ -140,7 +140,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         }
     }
 
-    /// max |θ| and |u| within a rocking step, including turning points inside it.
+    /// max |θ| and (where tracked) |u| within a rocking step, including turning points inside it.
     pub(super) fn extremes_rocking(&mut self, step: &impl StepView<V::X>, t_old: f64, t_new: f64) {
         let (a, b) = (step.state(t_old), step.state(t_new));
         self.track_values(b.values()[0], self.top(&b, false));
@@ -152,7 +152,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
     }
 
     /// max |θ| (`TOP` false) or max |u| of the top (`TOP` true) at a turning point inside the
-    /// rocking step (t_old, t_new) whose end states are `ends`.
+    /// rocking step (t_old, t_new) whose end states are `a` and `b`.
     fn turning_point_extreme<const TOP: bool>(
         &mut self,
         step: &impl StepView<V::X>,
