@@ -74,21 +74,15 @@ pub fn program_digest() -> &'static str {
 fn executable_hash(path: &Path) -> std::io::Result<u64> {
     use std::hash::Hasher as _;
     use std::io::Read as _;
+    const CHUNK: usize = 1 << 20;
     let mut file = std::fs::File::open(path)?;
-    let mut buf = vec![0u8; 1 << 20];
+    let mut buf = Vec::with_capacity(CHUNK);
     let mut h = rustc_hash::FxHasher::default();
     loop {
-        let mut filled = 0;
-        while filled < buf.len() {
-            match file.read(&mut buf[filled..]) {
-                Ok(0) => break,
-                Ok(n) => filled += n,
-                Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
-                Err(e) => return Err(e),
-            }
-        }
-        h.write(&buf[..filled]);
-        if filled < buf.len() {
+        buf.clear();
+        let n = (&mut file).take(CHUNK as u64).read_to_end(&mut buf)?;
+        h.write(&buf);
+        if n < CHUNK {
             return Ok(h.finish());
         }
     }
