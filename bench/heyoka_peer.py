@@ -393,6 +393,39 @@ def simulate(case: Case, model: Model, motion: Motion, tol: float) -> dict:
     return answer
 
 
+def cells(case: dict, quick: bool = False) -> list:
+    """The cells of a case the peer runs: all, or on a spectrum slice the SciPy peer's."""
+    stride = (3 if quick else 4) if case.get("amplitudes") else 1
+    return list(range(0, len(case["motions"]), stride))
+
+
+def compile_point(model: Model, case: dict, idx: list, tol: float) -> tuple:
+    """Builds (compiles, outside any timed run) the integrators a case's cells `idx` need at
+    `tol`: one pair per excitation kind. Returns the compile time (s) and the compact modes."""
+    motions = case["motions"]
+    compile_s, compact = 0.0, None
+    for kind in sorted({"sine" if motions[i]["kind"] == "sine" else "linear" for i in idx}):
+        *_, dt, compact = model.integrators(kind, tol, case["overturn_angle"])
+        compile_s += dt
+    return compile_s, compact
+
+
+def time_point(model: Model, case: dict, idx: list, tol: float, repeats: int) -> tuple:
+    """Process CPU time per simulation of the cells `idx` at `tol`: the median of at least
+    `repeats` runs, repeated for at least 0.5 s (at most 50; one when a run exceeds 20 s).
+    Returns the median per simulation, the run times and the last run's answers."""
+    motions = case["motions"]
+    times, answers = [], None
+    t_all = time.process_time()
+    while len(times) < repeats or (time.process_time() - t_all < 0.5 and len(times) < 50):
+        t0 = time.process_time()
+        answers = [simulate(Case(case), model, Motion(motions[i]), tol) for i in idx]
+        times.append(time.process_time() - t0)
+        if times[0] > 20.0:
+            break
+    return float(np.median(times)) / len(idx), times, answers
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("cases")
@@ -417,36 +450,19 @@ def main():
         if case["variant"] not in built:
             built[case["variant"]] = Model(case["variant"])
         model = built[case["variant"]]
-        motions = case["motions"]
-        stride = 1
-        if case.get("amplitudes"):
-            stride = 3 if args.quick else 4  # the SciPy peer's cells of the slice
-        idx = list(range(0, len(motions), stride))
+        idx = cells(case, args.quick)
         entry = {"name": case["name"], "cells": idx, "points": []}
         for tol in tols:
             failed = None
             try:
-                # compile outside the timed runs (one integrator pair per excitation kind)
-                compile_s, compact = 0.0, None
-                for kind in sorted({"sine" if motions[i]["kind"] == "sine" else "linear" for i in idx}):
-                    *_, dt, compact = model.integrators(kind, tol, case["overturn_angle"])
-                    compile_s += dt
-                times, answers = [], None
-                t_all = time.process_time()
-                while len(times) < args.repeats or (time.process_time() - t_all < 0.5 and len(times) < 50):
-                    t0 = time.process_time()
-                    ans = [simulate(Case(case), model, Motion(motions[i]), tol) for i in idx]
-                    times.append(time.process_time() - t0)
-                    answers = ans
-                    if times[0] > 20.0:
-                        break
+                compile_s, compact = compile_point(model, case, idx, tol)
+                med, times, answers = time_point(model, case, idx, tol, args.repeats)
             except Exception as e:  # recorded, so the report shows it
                 failed = f"{type(e).__name__}: {e}"
             if failed:
                 entry["points"].append({"tol": tol, "failed": failed})
                 print(f"heyoka peer: {case['name']} tol {tol:g}: FAILED {failed}", file=sys.stderr)
                 continue
-            med = float(np.median(times)) / len(idx)
             entry["points"].append({"tol": tol, "seconds": med, "repeats": len(times),
                                     "compile_s": compile_s, "compact_mode": compact,
                                     "steps": float(np.mean([a["steps"] for a in answers])),

@@ -5,7 +5,8 @@
 //! 2. `rocking-bench run` (release build): both integrators × tolerances on every case, errors
 //!    against the reference, CPU times → `target/bench/{rust,cases}.json`;
 //! 3. the SciPy peer `bench/scipy_peer.py` → `target/bench/scipy.json`;
-//! 4. the heyoka peer `bench/heyoka_peer.py` → `target/bench/heyoka.json`;
+//! 4. the heyoka peer `bench/heyoka_peer.py` → `target/bench/heyoka.json`, then the targets'
+//!    matched points timed again in alternated rounds, `bench/paired.py` → `paired.json`;
 //! 5. the OpenSees peer `bench/opensees_rocking.py` → `target/bench/opensees.json`;
 //! 6. `rocking-bench report` → `docs/accuracy.md`, `docs/img/accuracy-*.{json,svg,png}` (with
 //!    `--quick`: `target/bench-quick/docs/`, so the full study's doc is never replaced).
@@ -102,7 +103,7 @@ pub fn run_bench(root: &Path, opts: &Options) -> Result<()> {
         study.arg("--quick");
     }
     run(&mut study)?;
-    for f in ["scipy.json", "heyoka.json", "opensees.json"] {
+    for f in ["scipy.json", "heyoka.json", "paired.json", "opensees.json"] {
         let _ = std::fs::remove_file(out.join(f));
     }
     if let Some(py) = &python {
@@ -128,8 +129,28 @@ pub fn run_bench(root: &Path, opts: &Options) -> Result<()> {
         if opts.quick {
             hy.arg("--quick");
         }
-        if let Err(e) = run(&mut hy) {
-            eprintln!("xtask: warning: the heyoka peer failed ({e}); the report leaves it out");
+        match run(&mut hy) {
+            Err(e) => {
+                eprintln!("xtask: warning: the heyoka peer failed ({e}); the report leaves it out")
+            }
+            Ok(()) => {
+                // The targets' matched points again, both tools timed in the same minutes.
+                let mut paired = Command::new(py);
+                paired
+                    .arg(root.join("bench").join("paired.py"))
+                    .arg("--dir")
+                    .arg(&out)
+                    .arg("--bin")
+                    .arg(&bin)
+                    .env("PYTHONPATH", root.join("derive"))
+                    .current_dir(root);
+                if opts.quick {
+                    paired.args(["--rounds", "3"]);
+                }
+                if let Err(e) = run(&mut paired) {
+                    eprintln!("xtask: warning: the paired rounds failed ({e}); the report leaves them out");
+                }
+            }
         }
         let mut os = Command::new(py);
         os.arg(root.join("bench").join("opensees_rocking.py"))

@@ -23,6 +23,7 @@ usage: rocking-bench run [--quick] [--out DIR]
        rocking-bench report [--dir DIR] [--docs DOCS]
        rocking-bench redraw [--docs DOCS]
        rocking-bench probe CASE METHOD TOL [SECONDS]
+       rocking-bench pairs [--dir DIR]
 
 run     the accuracy/cost study (dopri5, dop853, taylor; tolerances 1e-3..1e-12, taylor also 1e-13 and 1e-14,
         dop853 also 1e-13;
@@ -34,6 +35,9 @@ report  writes DOCS/accuracy.md and DOCS/img/accuracy-*.{json,svg,png} from
 redraw  draws DOCS/img/accuracy-*.{svg,png} again from DOCS/img/accuracy-*.json
 probe   one case of the study at one method and tolerance: CPU per simulation (median over
         SECONDS, default 1), steps, evaluations and the errors against the reference
+pairs   prints, as JSON, the study's matched points at the heyoka targets' error levels
+        (per case and level: heyoka's tolerance, the cheapest Rust configuration and preset),
+        from DIR/{rust,heyoka}.json; `bench/paired.py` times them in alternated rounds
 ";
 
 fn main() -> ExitCode {
@@ -89,6 +93,12 @@ fn main() -> ExitCode {
     let result = match cmd.as_str() {
         "run" => study::run(quick, &dir),
         "report" => report::run(&dir, &docs),
+        "pairs" => report::pairs(&dir).map(|rows| {
+            println!(
+                "{}",
+                serde_json::to_string_pretty(&rows).expect("JSON values serialize")
+            );
+        }),
         "redraw" => diagram::redraw(&docs).map(|files| {
             eprintln!(
                 "redrew {} files in {}",
