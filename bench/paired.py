@@ -123,8 +123,11 @@ def main():
                      f"ratio {np.median(ratio):.2f}x ({min(ratio):.2f}-{max(ratio):.2f})")
         print(line, file=sys.stderr)
         out["rows"].append(entry)
-    with open(args.out or os.path.join(args.dir, "paired.json"), "w") as f:
+    # Whole or not at all: the report skips a paired.json it cannot read.
+    path = args.out or os.path.join(args.dir, "paired.json")
+    with open(path + ".tmp", "w") as f:
         json.dump(out, f, indent=1)
+    os.replace(path + ".tmp", path)
 
 
 if __name__ == "__main__":
