@@ -122,6 +122,11 @@ fn cheapest(
         .map(|(q, e)| (q.clone(), e))
 }
 
+/// Whether a Rust study point ran configuration `a`.
+fn is_config(q: &Value, a: rocking::Accuracy) -> bool {
+    q["method"] == crate::study::method_name(a.method) && (f(&q["tol"]) / a.tol - 1.0).abs() < 1e-9
+}
+
 /// Every heyoka case at every level of [`LEVELS`], matched against the Rust study's `cases`.
 fn matches(hy: &Value, cases: &[Value]) -> Vec<Match> {
     let mut out = Vec::new();
@@ -143,12 +148,9 @@ fn matches(hy: &Value, cases: &[Value]) -> Vec<Match> {
             let preset = rocking::Preset::ALL
                 .into_iter()
                 .filter_map(|p| {
-                    let a = p.accuracy();
-                    let is = |q: &Value| {
-                        q["method"] == crate::study::method_name(a.method)
-                            && (f(&q["tol"]) / a.tol - 1.0).abs() < 1e-9
-                    };
-                    cheapest(&rc["points"], "cpu_s", level, check, is)
+                    cheapest(&rc["points"], "cpu_s", level, check, |q| {
+                        is_config(q, p.accuracy())
+                    })
                 })
                 .min_by(|a, b| f(&a.0["cpu_s"]).total_cmp(&f(&b.0["cpu_s"])));
             out.push(Match {
@@ -316,11 +318,7 @@ pub fn pairs(dir: &Path) -> Result<Value> {
                     // Every preset of that configuration (`fast` and `default` may share one).
                     let names: Vec<&str> = rocking::Preset::ALL
                         .into_iter()
-                        .filter(|p| {
-                            let a = p.accuracy();
-                            q["method"] == crate::study::method_name(a.method)
-                                && (f(&q["tol"]) / a.tol - 1.0).abs() < 1e-9
-                        })
+                        .filter(|p| is_config(&q, p.accuracy()))
                         .map(|p| p.name())
                         .collect();
                     let mut c = config(&q);
