@@ -12,6 +12,8 @@
 //! - a product of two combinations is expanded over their terms when that costs no more new
 //!   atoms than multiplying the two combinations as they stand, so later products can share;
 //! - a combination is evaluated (once) only where a nonlinear node or an output needs it.
+//! - a zero constant (the excitation of a `_free` twin) is folded through the factors and sums
+//!   it meets, so a term it multiplies vanishes, and so does a product only that term needed.
 //!
 //! The coefficients are scalar nodes (products and sums of parameters), computed once before
 //! the order loop by the renderer, like every other constant of the tape. The result is an
@@ -138,8 +140,37 @@ impl Builder {
         self.names.ids.get(&("mul".to_string(), args)).copied()
     }
 
+    /// Whether a node is the constant zero (the excitation of a `_free` twin, and what it
+    /// multiplies).
+    fn is_zero(&self, n: Node) -> bool {
+        matches!(self.tape[n], Instruction::Const { value, .. } if value == 0.0)
+    }
+
+    /// Whether a coefficient is zero, so that its term vanishes.
+    fn vanishes(&self, c: Coef) -> bool {
+        c.var.is_some_and(|v| self.is_zero(v))
+    }
+
+    /// `op(args)` when a zero argument decides it without an operation: `0·x`, `0 + x`, ...
+    fn fold_zero(&mut self, op: &str, args: &[Node]) -> Option<Node> {
+        let zero = |n: Node| self.is_zero(n);
+        match (op, args) {
+            ("mul", &[a, b]) if zero(a) || zero(b) => Some(if zero(a) { a } else { b }),
+            ("add", &[a, b]) if zero(a) => Some(b),
+            ("add" | "sub", &[a, b]) if zero(b) => Some(a),
+            ("sub", &[a, b]) if zero(a) => Some(self.op("neg", vec![b])),
+            ("div", &[a, _]) | ("neg" | "twice" | "sq" | "sqrt" | "sin", &[a]) if zero(a) => {
+                Some(a)
+            }
+            _ => None,
+        }
+    }
+
     /// The node of `op(args)`, shared with an earlier identical one.
     fn op(&mut self, op: &str, mut args: Vec<Node>) -> Node {
+        if let Some(n) = self.fold_zero(op, &args) {
+            return n;
+        }
         if commutes(op) {
             args.sort_unstable();
         }
@@ -235,15 +266,18 @@ impl Builder {
     fn add(&mut self, a: &Lin, b: &Lin) -> Lin {
         let mut sum = a.clone();
         for (&atom, &c) in &b.terms {
+            if self.vanishes(c) {
+                continue;
+            }
             match sum.terms.get(&atom).copied() {
                 None => {
                     sum.terms.insert(atom, c);
                 }
                 Some(old) => match self.coef_add(old, c) {
-                    Some(new) => {
+                    Some(new) if !self.vanishes(new) => {
                         sum.terms.insert(atom, new);
                     }
-                    None => {
+                    _ => {
                         sum.terms.remove(&atom);
                     }
                 },
@@ -253,15 +287,22 @@ impl Builder {
             (x, None) | (None, x) => x,
             (Some(x), Some(y)) => self.coef_add(x, y),
         };
+        sum.offset = sum.offset.filter(|&o| !self.vanishes(o));
         sum
     }
 
     fn scale(&mut self, a: &Lin, c: Coef) -> Lin {
         let mut out = Lin::default();
         for (&atom, &t) in &a.terms {
-            out.terms.insert(atom, self.coef_mul(t, c));
+            let t = self.coef_mul(t, c);
+            if !self.vanishes(t) {
+                out.terms.insert(atom, t);
+            }
         }
-        out.offset = a.offset.map(|o| self.coef_mul(o, c));
+        out.offset = a
+            .offset
+            .map(|o| self.coef_mul(o, c))
+            .filter(|&o| !self.vanishes(o));
         out
     }
 
@@ -939,6 +980,61 @@ mod tests {
         for (x, p) in [([0.3, -1.7], [2.5, 0.0]), ([-4.0, 0.01], [-0.3, 0.0])] {
             let (a, b) = (eval(&f, x, p), eval(&g, x, p));
             assert!((a - b).abs() <= 1e-14 * a.abs().max(1.0), "{a} vs {b}");
+        }
+    }
+
+    /// What a `_free` twin makes of the excitation: with the series input `g` replaced by the
+    /// constant 0, `(g x1)·sin x0 + (g x1 − p)·(g x0) + x0·x1` keeps only `x0 x1`. The zero is
+    /// folded through the constant factors, so every product that carried `g` vanishes, and the
+    /// sine with them: 1 series product where the forced tape has 5, and where keeping the zero
+    /// as a coefficient left `x1 sin x0` to compute. The value is the original tape's at g = 0,
+    /// to the bit (only exact zeros are dropped).
+    #[test]
+    fn products_with_a_zero_excitation_vanish() {
+        let input = |dest: usize, input: usize, element: usize| Instruction::Input {
+            dest,
+            input,
+            element,
+        };
+        let tape = |g: Instruction| {
+            vec![
+                input(0, 0, 0),
+                input(1, 0, 1),
+                input(2, 1, 0),
+                g,
+                op("mul", 4, &[3, 1]),
+                op("sin", 5, &[0]),
+                op("mul", 6, &[4, 5]),
+                op("sub", 7, &[4, 2]),
+                op("mul", 8, &[3, 0]),
+                op("mul", 9, &[7, 8]),
+                op("add", 10, &[6, 9]),
+                op("mul", 11, &[0, 1]),
+                op("add", 12, &[10, 11]),
+                Instruction::Output {
+                    element: 0,
+                    src: 12,
+                },
+            ]
+        };
+        // The forced tape reads g from a third input, a series (the excitation).
+        let mut forced = function(tape(input(3, 2, 0)));
+        let mut excitation = forced.inputs[0].clone();
+        excitation.name = "g".into();
+        excitation.scalar = true;
+        forced.inputs.push(excitation);
+        let forced = simplified(&forced);
+        let free = function(tape(Instruction::Const {
+            dest: 3,
+            value: 0.0,
+        }));
+        let g = simplified(&free);
+        assert_eq!(series_products(&forced, |j| j == 1).len(), 5);
+        assert_eq!(series_products(&g, |j| j == 1).len(), 1);
+        assert_eq!(series_costs(&g, |j| j == 1).len(), 1);
+        for (x, p) in [([0.3, -1.7], [2.5, 0.0]), ([-4.0, 0.01], [-0.3, 0.0])] {
+            let (a, b) = (eval(&free, x, p), eval(&g, x, p));
+            assert_eq!(a.to_bits(), b.to_bits(), "{a} vs {b}");
         }
     }
 

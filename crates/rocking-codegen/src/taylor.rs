@@ -129,9 +129,10 @@ pub fn render_taylor_mod(irs: &[Ir]) -> Result<String> {
 
 /// The twin of an ODE right-hand side for a step on which its excitation is identically zero
 /// (free vibration after a pulse or a record): `{name}_free`, without the scalar series inputs
-/// (the ground acceleration), which read as the constant 0. Every product with them becomes a
-/// product with a constant, a linear term, so the twin computes fewer series products (the
-/// full-mass rocking right-hand side: 8 instead of 10). `None` when there is no such input.
+/// (the ground acceleration), which read as the constant 0. [`simplify`] folds that zero through
+/// the constant factors, so every product that carried the excitation vanishes and the twin
+/// computes fewer series products (the full-mass rocking right-hand side: 7 instead of 10, the
+/// point-mass one 6 instead of 9). `None` when there is no such input.
 /// Also returns the doc line that says so.
 fn free_twin(f: &Function) -> Option<(Function, Option<String>)> {
     let zero: Vec<usize> = (0..f.inputs.len())
