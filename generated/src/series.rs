@@ -20,10 +20,8 @@ pub fn at0(k: usize, c: f64) -> f64 {
 #[inline(always)]
 #[must_use]
 pub fn mul<const N: usize>(a: &[f64; N], b: &[f64; N], k: usize) -> f64 {
-    if k == 0 {
-        return a[0] * b[0];
-    }
-    dot_rev(&a[1..k], &b[1..k]) + (a[0] * b[k] + a[k] * b[0])
+    let [d] = dots([(a, b)], k);
+    mul_d(d, a, b, k)
 }
 
 /// `Σ_j x[j] y[n − 1 − j]` (slices of one length), in two lanes: the terms of even j and of
@@ -120,11 +118,8 @@ pub fn sq<const N: usize>(a: &[f64; N], k: usize) -> f64 {
 #[inline(always)]
 #[must_use]
 pub fn div<const N: usize>(a_k: f64, b: &[f64; N], c: &[f64; N], inv_b0: f64, k: usize) -> f64 {
-    if k == 0 {
-        return a_k * inv_b0;
-    }
-    let old: f64 = dot_rev(&b[1..k], &c[1..k]);
-    (a_k - b[k] * c[0] - old) * inv_b0
+    let [d] = dots([(b, c)], k);
+    div_d(d, a_k, b, c, inv_b0, k)
 }
 
 /// Writes coefficient `k` of `c = √a` into `c[k]`, from `c[0..k]`: `c² = a`.
@@ -149,14 +144,114 @@ pub fn sin_cos<const N: usize>(
     c: &mut [f64; N],
     k: usize,
 ) {
+    // Σ_{j=1}^{k−1} j a[j] c[k − j] (and s), then j = k last (see `dot_rev`).
+    let [ds, dc] = dots([(&*da, &*c), (&*da, &*s)], k);
+    sin_cos_d(ds, dc, a, da, s, c, k);
+}
+
+/// The sums `Σ_{j=1}^{k−1} a[j] b[k−j]` of M pairs at once: the part of each product,
+/// quotient and sine recurrence of order k that reads only lower orders, so a kernel can sum all
+/// of them before it computes any node of the order. One loop for all pairs (each with its own
+/// lanes, summed exactly as [`dot_rev`] sums it, so the same bits) instead of one loop per pair.
+#[inline(always)]
+#[must_use]
+pub fn dots<const N: usize, const M: usize>(
+    pairs: [(&[f64; N], &[f64; N]); M],
+    k: usize,
+) -> [f64; M] {
+    if k < 2 {
+        return [0.0; M];
+    }
+    #[cfg(target_arch = "x86_64")]
+    {
+        dots_sse2(pairs, k)
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        pairs.map(|(a, b)| dot_rev_scalar(&a[1..k], &b[1..k]))
+    }
+}
+
+/// [`dots`] in SSE2 registers, one accumulator per pair.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn dots_sse2<const N: usize, const M: usize>(
+    pairs: [(&[f64; N], &[f64; N]); M],
+    k: usize,
+) -> [f64; M] {
+    use core::arch::x86_64::{
+        __m128d, _mm_add_pd, _mm_add_sd, _mm_cvtsd_f64, _mm_loadu_pd, _mm_mul_pd, _mm_setzero_pd,
+        _mm_shuffle_pd, _mm_unpackhi_pd,
+    };
+    assert!(k <= N, "order {k} beyond {N} coefficients");
+    let n = k - 1;
+    let mut i = 0;
+    // SAFETY: SSE2 is in the x86_64 baseline; each load reads a[1 + i..3 + i] or
+    // b[k − 2 − i..k − i], inside the arrays because i + 2 <= n = k − 1 and k <= N.
+    let mut out = unsafe {
+        let mut acc: [__m128d; M] = [_mm_setzero_pd(); M];
+        while i + 2 <= n {
+            for (m, (a, b)) in pairs.iter().enumerate() {
+                let x = _mm_loadu_pd(a.as_ptr().add(1 + i));
+                let y = _mm_loadu_pd(b.as_ptr().add(k - 2 - i));
+                acc[m] = _mm_add_pd(acc[m], _mm_mul_pd(x, _mm_shuffle_pd::<1>(y, y)));
+            }
+            i += 2;
+        }
+        acc.map(|v| _mm_cvtsd_f64(_mm_add_sd(v, _mm_unpackhi_pd(v, v))))
+    };
+    if i < n {
+        for (o, (a, b)) in out.iter_mut().zip(pairs) {
+            *o += a[1 + i] * b[1];
+        }
+    }
+    out
+}
+
+/// [`mul`] with its sum over lower orders `d` already taken by [`dots`].
+#[inline(always)]
+#[must_use]
+pub fn mul_d<const N: usize>(d: f64, a: &[f64; N], b: &[f64; N], k: usize) -> f64 {
+    if k == 0 {
+        return a[0] * b[0];
+    }
+    d + (a[0] * b[k] + a[k] * b[0])
+}
+
+/// [`div`] with its sum over lower orders `d` already taken by [`dots`] (pair `(b, c)`).
+#[inline(always)]
+#[must_use]
+pub fn div_d<const N: usize>(
+    d: f64,
+    a_k: f64,
+    b: &[f64; N],
+    c: &[f64; N],
+    inv_b0: f64,
+    k: usize,
+) -> f64 {
+    if k == 0 {
+        return a_k * inv_b0;
+    }
+    (a_k - b[k] * c[0] - d) * inv_b0
+}
+
+/// [`sin_cos`] with its two sums over lower orders, `ds` of `(da, c)` and `dc` of `(da, s)`,
+/// already taken by [`dots`].
+#[inline(always)]
+pub fn sin_cos_d<const N: usize>(
+    ds: f64,
+    dc: f64,
+    a: &[f64; N],
+    da: &mut [f64; N],
+    s: &mut [f64; N],
+    c: &mut [f64; N],
+    k: usize,
+) {
     if k == 0 {
         (s[0], c[0]) = a[0].sin_cos();
         return;
     }
     da[k] = k as f64 * a[k];
-    // Σ_{j=1}^{k−1} j a[j] c[k − j] (and s), then j = k last (see `dot_rev`).
-    let ds = dot_rev(&da[1..k], &c[1..k]);
-    let dc = dot_rev(&da[1..k], &s[1..k]);
     let inv_k = 1.0 / k as f64;
     s[k] = (ds + da[k] * c[0]) * inv_k;
     c[k] = -(dc + da[k] * s[0]) * inv_k;
@@ -165,6 +260,34 @@ pub fn sin_cos<const N: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The fused sums of [`dots`] are each pair's [`dot_rev`], bit for bit, at every order.
+    #[test]
+    fn dots_are_each_pairs_dot_rev() {
+        const N: usize = 21;
+        let series = |f: f64| -> [f64; N] {
+            std::array::from_fn(|i| (f * (i as f64 + 0.5)).sin() * 10f64.powi(i as i32 % 7 - 3))
+        };
+        let (a, b, c) = (series(0.7), series(1.3), series(-2.1));
+        for k in 0..N {
+            let got = dots([(&a, &b), (&b, &c), (&c, &a), (&a, &a)], k);
+            let want = [(&a, &b), (&b, &c), (&c, &a), (&a, &a)].map(|(x, y)| {
+                if k == 0 {
+                    0.0
+                } else {
+                    dot_rev(&x[1..k], &y[1..k])
+                }
+            });
+            for (g, w) in got.iter().zip(want) {
+                assert_eq!(g.to_bits(), w.to_bits(), "order {k}: {g:e} vs {w:e}");
+            }
+            if k >= 3 {
+                let direct: f64 = (1..k).map(|j| a[j] * b[k - j]).sum();
+                let scale: f64 = (1..k).map(|j| (a[j] * b[k - j]).abs()).sum();
+                assert!((got[0] - direct).abs() <= 1e-15 * scale, "order {k}");
+            }
+        }
+    }
 
     /// The vector lanes and the scalar fallback agree bit for bit, at every length a kernel uses.
     #[test]

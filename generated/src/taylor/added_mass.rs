@@ -198,22 +198,44 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
     let w237: f64 = w43 * w129;
     let mut w248 = [0.0f64; N];
     for k in 0..N - 1 {
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
-        let w58 = series::mul(&cos_x0, &x[1], k);
-        let w59 = series::mul(&cos_x0, &ug, k);
-        let w63 = series::mul(&x[1], &ug, k);
+        let [dot0, dot1, dot2, dot3, dot4, dot5] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&cos_x0, &x[1]),
+                (&cos_x0, &ug),
+                (&x[1], &ug),
+                (&sin_x0, &w82),
+            ],
+            k,
+        );
+        let [dot6, dot7, dot8, dot9, dot10, dot11] = series::dots(
+            [
+                (&x[2], &x[1]),
+                (&x[3], &w118),
+                (&x[2], &w84),
+                (&w217, &w218),
+                (&w223, &w234),
+                (&w217, &w248),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w58 = series::mul_d(dot2, &cos_x0, &x[1], k);
+        let w59 = series::mul_d(dot3, &cos_x0, &ug, k);
+        let w63 = series::mul_d(dot4, &x[1], &ug, k);
         let w79 = ug[k] * w72;
         let w80 = w63 * w70;
         let w81 = w79 - w80;
         w82[k] = w81 - at0(k, w78);
-        let w83 = series::mul(&sin_x0, &w82, k);
-        w84[k] = series::mul(&x[2], &x[1], k);
+        let w83 = series::mul_d(dot5, &sin_x0, &w82, k);
+        w84[k] = series::mul_d(dot6, &x[2], &x[1], k);
         let w116 = x[2][k] * w115;
         let w117 = w84[k] * w108;
         w118[k] = w117 - w116;
-        let w119 = series::mul(&x[3], &w118, k);
+        let w119 = series::mul_d(dot7, &x[3], &w118, k);
         let w137 = series::sq(&x[2], k);
-        let w138 = series::mul(&x[2], &w84, k);
+        let w138 = series::mul_d(dot8, &x[2], &w84, k);
         let w160 = series::sq(&x[1], k);
         let w195 = x[3][k] * w152;
         let w196 = cos_x0[k] * w120;
@@ -239,7 +261,7 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         let w216 = w214 + w215;
         w217[k] = at0(k, w194) + w216;
         if k == 0 { inv_w217 = 1.0 / w217[0]; }
-        w218[k] = series::div(w213, &w217, &w218, inv_w217, k);
+        w218[k] = series::div_d(dot9, w213, &w217, &w218, inv_w217, k);
         let w220 = x[1][k] * w185;
         let w221 = w142 * w160;
         let w222 = w220 + w221;
@@ -255,7 +277,7 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         let w232 = w231 - w224;
         let w233 = w232 - w226;
         w234[k] = w233 - w228;
-        let w235 = series::mul(&w223, &w234, k);
+        let w235 = series::mul_d(dot10, &w223, &w234, k);
         let w238 = cos_x0[k] * w236;
         let w239 = w58 * w155;
         let w240 = w59 * w237;
@@ -266,7 +288,7 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         let w245 = w242 + w244;
         let w246 = w235 + w245;
         let w247 = w246 - w239;
-        w248[k] = series::div(w247, &w217, &w248, inv_w217, k);
+        w248[k] = series::div_d(dot11, w247, &w217, &w248, inv_w217, k);
         let inv_k1 = 1.0 / (k + 1) as f64;
         x[0][k + 1] = x[2][k] * inv_k1;
         x[1][k + 1] = x[3][k] * inv_k1;
@@ -449,15 +471,29 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
     let w209: f64 = w60 * w107;
     let mut w218 = [0.0f64; N];
     for k in 0..N - 1 {
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
-        let w52 = series::mul(&cos_x0, &x[1], k);
-        w61[k] = series::mul(&x[2], &x[1], k);
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&cos_x0, &x[1]),
+                (&x[2], &x[1]),
+                (&x[3], &w95),
+                (&x[2], &w61),
+                (&w191, &w192),
+                (&w197, &w206),
+                (&w191, &w218),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w52 = series::mul_d(dot2, &cos_x0, &x[1], k);
+        w61[k] = series::mul_d(dot3, &x[2], &x[1], k);
         let w93 = x[2][k] * w92;
         let w94 = w61[k] * w85;
         w95[k] = w94 - w93;
-        let w96 = series::mul(&x[3], &w95, k);
+        let w96 = series::mul_d(dot4, &x[3], &w95, k);
         let w115 = series::sq(&x[2], k);
-        let w116 = series::mul(&x[2], &w61, k);
+        let w116 = series::mul_d(dot5, &x[2], &w61, k);
         let w137 = series::sq(&x[1], k);
         let w173 = x[3][k] * w130;
         let w174 = cos_x0[k] * w97;
@@ -479,7 +515,7 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
         let w190 = w188 + w189;
         w191[k] = at0(k, w172) + w190;
         if k == 0 { inv_w191 = 1.0 / w191[0]; }
-        w192[k] = series::div(w187, &w191, &w192, inv_w191, k);
+        w192[k] = series::div_d(dot6, w187, &w191, &w192, inv_w191, k);
         let w194 = x[1][k] * w162;
         let w195 = w120 * w137;
         let w196 = w194 + w195;
@@ -493,7 +529,7 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
         let w204 = w202 + w203;
         let w205 = w204 - w198;
         w206[k] = w205 - w201;
-        let w207 = series::mul(&w197, &w206, k);
+        let w207 = series::mul_d(dot7, &w197, &w206, k);
         let w210 = cos_x0[k] * w208;
         let w211 = w52 * w132;
         let w212 = sin_x0[k] * w209;
@@ -502,7 +538,7 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
         let w215 = w213 + w214;
         let w216 = w207 + w215;
         let w217 = w216 - w211;
-        w218[k] = series::div(w217, &w191, &w218, inv_w191, k);
+        w218[k] = series::div_d(dot8, w217, &w191, &w218, inv_w191, k);
         let inv_k1 = 1.0 / (k + 1) as f64;
         x[0][k + 1] = x[2][k] * inv_k1;
         x[1][k + 1] = x[3][k] * inv_k1;
@@ -859,12 +895,27 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
     let mut w142 = [0.0f64; N];
     let mut out = [[0.0f64; N]; 4];
     for k in 0..N {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8, dot9] = series::dots(
+            [
+                (&w6, &x[1]),
+                (&x[2], &x[3]),
+                (&x[2], &x[1]),
+                (&x[2], &w24),
+                (&x[1], &w25),
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&x[1], &sin_x0),
+                (&x[2], &w142),
+                (&x[3], &cos_x0),
+            ],
+            k,
+        );
         w6[k] = series::sq(&x[2], k);
-        let w11 = series::mul(&w6, &x[1], k);
-        let w21 = series::mul(&x[2], &x[3], k);
-        w24[k] = series::mul(&x[2], &x[1], k);
-        w25[k] = series::mul(&x[2], &w24, k);
-        let w26 = series::mul(&x[1], &w25, k);
+        let w11 = series::mul_d(dot0, &w6, &x[1], k);
+        let w21 = series::mul_d(dot1, &x[2], &x[3], k);
+        w24[k] = series::mul_d(dot2, &x[2], &x[1], k);
+        w25[k] = series::mul_d(dot3, &x[2], &w24, k);
+        let w26 = series::mul_d(dot4, &x[1], &w25, k);
         let w27 = series::sq(&x[3], k);
         let w35 = series::sq(&w24, k);
         let w81 = w6[k] * w80;
@@ -880,8 +931,8 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
         let w91 = w87 + w90;
         let w92 = w91 - w82;
         let w93 = w92 - w84;
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
-        let w101 = series::mul(&x[1], &sin_x0, k);
+        series::sin_cos_d(dot5, dot6, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w101 = series::mul_d(dot7, &x[1], &sin_x0, k);
         let w122 = sin_x0[k] * w119;
         let w123 = cos_x0[k] * w120;
         let w124 = w101 * w121;
@@ -894,8 +945,8 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
         let w140 = w101 * w118;
         let w141 = w138 + w139;
         w142[k] = w141 - w140;
-        let w143 = series::mul(&x[2], &w142, k);
-        let w144 = series::mul(&x[3], &cos_x0, k);
+        let w143 = series::mul_d(dot8, &x[2], &w142, k);
+        let w144 = series::mul_d(dot9, &x[3], &cos_x0, k);
         let w145 = w118 * w144;
         let w146 = w143 + w145;
         out[0][k] = w93;
@@ -973,18 +1024,29 @@ pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Param
     let w76: f64 = w72 * w75;
     let mut out = [[0.0f64; N]; 2];
     for k in 0..N {
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
-        let w13 = series::mul(&sin_x0, &x[1], k);
+        let [dot0, dot1, dot2, dot3, dot4, dot5] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&sin_x0, &x[1]),
+                (&x[2], &w47),
+                (&cos_x0, &x[3]),
+                (&ug, &w52),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w13 = series::mul_d(dot2, &sin_x0, &x[1], k);
         let w43 = cos_x0[k] * w39;
         let w44 = sin_x0[k] * w40;
         let w45 = w13 * w41;
         let w46 = w43 + w44;
         w47[k] = w46 - w45;
-        let w48 = series::mul(&x[2], &w47, k);
-        let w50 = series::mul(&cos_x0, &x[3], k);
+        let w48 = series::mul_d(dot3, &x[2], &w47, k);
+        let w50 = series::mul_d(dot4, &cos_x0, &x[3], k);
         let w51 = w41 * w50;
         w52[k] = w48 + w51;
-        let w53 = series::mul(&ug, &w52, k);
+        let w53 = series::mul_d(dot5, &ug, &w52, k);
         let w54 = -w53;
         let w77 = series::sq(&x[3], k);
         let w78 = w76 * w77;

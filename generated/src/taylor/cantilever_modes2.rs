@@ -169,39 +169,90 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 6], ug: &[f64; N], s: f64,
     let mut w243 = [0.0f64; N];
     let mut w245 = [0.0f64; N];
     for k in 0..N - 1 {
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&cos_x0, &w43),
+                (&x[1], &ug),
+                (&x[2], &ug),
+                (&sin_x0, &w66),
+                (&x[3], &x[1]),
+                (&x[3], &x[2]),
+            ],
+            k,
+        );
+        let [dot8, dot9, dot10, dot11, dot12, dot13, dot14, dot15] = series::dots(
+            [
+                (&x[4], &w95),
+                (&x[5], &w108),
+                (&x[1], &x[2]),
+                (&w154, &w155),
+                (&w154, &w161),
+                (&cos_x0, &ug),
+                (&x[3], &w68),
+                (&x[3], &w69),
+            ],
+            k,
+        );
+        let [dot16, dot17, dot18, dot19, dot20, dot21, dot22, dot23] = series::dots(
+            [
+                (&w144, &w161),
+                (&w154, &w181),
+                (&w199, &w200),
+                (&w154, &w206),
+                (&w161, &w206),
+                (&w154, &w207),
+                (&w199, &w210),
+                (&w144, &w206),
+            ],
+            k,
+        );
+        let [dot24, dot25, dot26, dot27, dot28, dot29, dot30] = series::dots(
+            [
+                (&w198, &w210),
+                (&w154, &w218),
+                (&w182, &w220),
+                (&w242, &w243),
+                (&w210, &w243),
+                (&w161, &w245),
+                (&w206, &w243),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
         let w38 = x[1][k] * w35;
         let w39 = x[2][k] * w32;
         let w40 = ug[k] * w24;
         let w41 = w38 + w39;
         let w42 = w41 - w40;
         w43[k] = w42 - at0(k, w37);
-        let w44 = series::mul(&cos_x0, &w43, k);
-        let w47 = series::mul(&x[1], &ug, k);
-        let w48 = series::mul(&x[2], &ug, k);
+        let w44 = series::mul_d(dot2, &cos_x0, &w43, k);
+        let w47 = series::mul_d(dot3, &x[1], &ug, k);
+        let w48 = series::mul_d(dot4, &x[2], &ug, k);
         let w61 = ug[k] * w56;
         let w62 = w47 * w54;
         let w63 = w48 * w52;
         let w64 = w61 - w62;
         let w65 = w64 - w63;
         w66[k] = w65 - at0(k, w60);
-        let w67 = series::mul(&sin_x0, &w66, k);
-        w68[k] = series::mul(&x[3], &x[1], k);
-        w69[k] = series::mul(&x[3], &x[2], k);
+        let w67 = series::mul_d(dot5, &sin_x0, &w66, k);
+        w68[k] = series::mul_d(dot6, &x[3], &x[1], k);
+        w69[k] = series::mul_d(dot7, &x[3], &x[2], k);
         let w91 = x[3][k] * w90;
         let w92 = w68[k] * w83;
         let w93 = w69[k] * w77;
         let w94 = w92 + w93;
         w95[k] = w94 - w91;
-        let w96 = series::mul(&x[4], &w95, k);
+        let w96 = series::mul_d(dot8, &x[4], &w95, k);
         let w104 = x[3][k] * w103;
         let w105 = w68[k] * w77;
         let w106 = w69[k] * w83;
         let w107 = w105 + w106;
         w108[k] = w107 - w104;
-        let w109 = series::mul(&x[5], &w108, k);
+        let w109 = series::mul_d(dot9, &x[5], &w108, k);
         let w111 = series::sq(&x[1], k);
-        let w112 = series::mul(&x[1], &x[2], k);
+        let w112 = series::mul_d(dot10, &x[1], &x[2], k);
         let w113 = series::sq(&x[2], k);
         let w142 = w44 - w67;
         let w143 = w142 - w96;
@@ -217,15 +268,15 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 6], ug: &[f64; N], s: f64,
         let w153 = w149 + w152;
         w154[k] = at0(k, w141) + w153;
         if k == 0 { inv_w154 = 1.0 / w154[0]; }
-        w155[k] = series::div(w144[k], &w154, &w155, inv_w154, k);
-        w161[k] = series::div(at0(k, w160), &w154, &w161, inv_w154, k);
-        let w169 = series::mul(&cos_x0, &ug, k);
+        w155[k] = series::div_d(dot11, w144[k], &w154, &w155, inv_w154, k);
+        w161[k] = series::div_d(dot12, at0(k, w160), &w154, &w161, inv_w154, k);
+        let w169 = series::mul_d(dot13, &cos_x0, &ug, k);
         let w170 = series::sq(&x[3], k);
-        let w171 = series::mul(&x[3], &w68, k);
-        let w172 = series::mul(&x[3], &w69, k);
-        let w176 = series::mul(&w144, &w161, k);
+        let w171 = series::mul_d(dot14, &x[3], &w68, k);
+        let w172 = series::mul_d(dot15, &x[3], &w69, k);
+        let w176 = series::mul_d(dot16, &w144, &w161, k);
         w181[k] = series::sq(&w161, k);
-        w182[k] = series::mul(&w154, &w181, k);
+        w182[k] = series::mul_d(dot17, &w154, &w181, k);
         let w183 = x[4][k] * w174;
         let w184 = x[5][k] * w175;
         let w185 = x[1][k] * w168;
@@ -244,18 +295,18 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 6], ug: &[f64; N], s: f64,
         w198[k] = w197 - w176;
         w199[k] = at0(k, w180) - w182[k];
         if k == 0 { inv_w199 = 1.0 / w199[0]; }
-        w200[k] = series::div(w198[k], &w199, &w200, inv_w199, k);
-        w206[k] = series::div(at0(k, w205), &w154, &w206, inv_w154, k);
-        w207[k] = series::mul(&w161, &w206, k);
-        let w208 = series::mul(&w154, &w207, k);
+        w200[k] = series::div_d(dot18, w198[k], &w199, &w200, inv_w199, k);
+        w206[k] = series::div_d(dot19, at0(k, w205), &w154, &w206, inv_w154, k);
+        w207[k] = series::mul_d(dot20, &w161, &w206, k);
+        let w208 = series::mul_d(dot21, &w154, &w207, k);
         let w209 = at0(k, w13) - w208;
-        w210[k] = series::div(w209, &w199, &w210, inv_w199, k);
-        let w216 = series::mul(&w144, &w206, k);
-        let w217 = series::mul(&w198, &w210, k);
+        w210[k] = series::div_d(dot22, w209, &w199, &w210, inv_w199, k);
+        let w216 = series::mul_d(dot23, &w144, &w206, k);
+        let w217 = series::mul_d(dot24, &w198, &w210, k);
         w218[k] = series::sq(&w206, k);
-        let w219 = series::mul(&w154, &w218, k);
+        let w219 = series::mul_d(dot25, &w154, &w218, k);
         w220[k] = series::sq(&w210, k);
-        let w221 = series::mul(&w182, &w220, k);
+        let w221 = series::mul_d(dot26, &w182, &w220, k);
         let w222 = x[4][k] * w175;
         let w223 = x[5][k] * w215;
         let w224 = x[2][k] * w213;
@@ -278,11 +329,11 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 6], ug: &[f64; N], s: f64,
         let w241 = w240 - w219;
         w242[k] = w241 - w239;
         if k == 0 { inv_w242 = 1.0 / w242[0]; }
-        w243[k] = series::div(w238, &w242, &w243, inv_w242, k);
-        let w244 = series::mul(&w210, &w243, k);
+        w243[k] = series::div_d(dot27, w238, &w242, &w243, inv_w242, k);
+        let w244 = series::mul_d(dot28, &w210, &w243, k);
         w245[k] = w200[k] - w244;
-        let w246 = series::mul(&w161, &w245, k);
-        let w247 = series::mul(&w206, &w243, k);
+        let w246 = series::mul_d(dot29, &w161, &w245, k);
+        let w247 = series::mul_d(dot30, &w206, &w243, k);
         let w248 = w155[k] - w246;
         let w249 = w248 - w247;
         let inv_k1 = 1.0 / (k + 1) as f64;
@@ -445,28 +496,70 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 6], s: f64, p: &Param
     let mut w218 = [0.0f64; N];
     let mut w220 = [0.0f64; N];
     for k in 0..N - 1 {
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&cos_x0, &w37),
+                (&x[3], &x[1]),
+                (&x[3], &x[2]),
+                (&x[4], &w72),
+                (&x[5], &w85),
+                (&x[1], &x[2]),
+                (&w133, &w134),
+            ],
+            k,
+        );
+        let [dot9, dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17] = series::dots(
+            [
+                (&w133, &w141),
+                (&x[3], &w45),
+                (&x[3], &w46),
+                (&w123, &w141),
+                (&w133, &w160),
+                (&w176, &w177),
+                (&w133, &w183),
+                (&w141, &w183),
+                (&w133, &w184),
+            ],
+            k,
+        );
+        let [dot18, dot19, dot20, dot21, dot22, dot23, dot24, dot25, dot26] = series::dots(
+            [
+                (&w176, &w187),
+                (&w123, &w183),
+                (&w175, &w187),
+                (&w133, &w195),
+                (&w161, &w197),
+                (&w217, &w218),
+                (&w187, &w218),
+                (&w141, &w220),
+                (&w183, &w218),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
         let w34 = x[1][k] * w31;
         let w35 = x[2][k] * w28;
         let w36 = w34 + w35;
         w37[k] = w36 - at0(k, w33);
-        let w38 = series::mul(&cos_x0, &w37, k);
-        w45[k] = series::mul(&x[3], &x[1], k);
-        w46[k] = series::mul(&x[3], &x[2], k);
+        let w38 = series::mul_d(dot2, &cos_x0, &w37, k);
+        w45[k] = series::mul_d(dot3, &x[3], &x[1], k);
+        w46[k] = series::mul_d(dot4, &x[3], &x[2], k);
         let w68 = x[3][k] * w67;
         let w69 = w45[k] * w60;
         let w70 = w46[k] * w54;
         let w71 = w69 + w70;
         w72[k] = w71 - w68;
-        let w73 = series::mul(&x[4], &w72, k);
+        let w73 = series::mul_d(dot5, &x[4], &w72, k);
         let w81 = x[3][k] * w80;
         let w82 = w45[k] * w54;
         let w83 = w46[k] * w60;
         let w84 = w82 + w83;
         w85[k] = w84 - w81;
-        let w86 = series::mul(&x[5], &w85, k);
+        let w86 = series::mul_d(dot6, &x[5], &w85, k);
         let w88 = series::sq(&x[1], k);
-        let w89 = series::mul(&x[1], &x[2], k);
+        let w89 = series::mul_d(dot7, &x[1], &x[2], k);
         let w90 = series::sq(&x[2], k);
         let w120 = sin_x0[k] * w44;
         let w121 = w38 - w120;
@@ -483,14 +576,14 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 6], s: f64, p: &Param
         let w132 = w128 + w131;
         w133[k] = at0(k, w119) + w132;
         if k == 0 { inv_w133 = 1.0 / w133[0]; }
-        w134[k] = series::div(w123[k], &w133, &w134, inv_w133, k);
-        w141[k] = series::div(at0(k, w140), &w133, &w141, inv_w133, k);
+        w134[k] = series::div_d(dot8, w123[k], &w133, &w134, inv_w133, k);
+        w141[k] = series::div_d(dot9, at0(k, w140), &w133, &w141, inv_w133, k);
         let w149 = series::sq(&x[3], k);
-        let w150 = series::mul(&x[3], &w45, k);
-        let w151 = series::mul(&x[3], &w46, k);
-        let w155 = series::mul(&w123, &w141, k);
+        let w150 = series::mul_d(dot10, &x[3], &w45, k);
+        let w151 = series::mul_d(dot11, &x[3], &w46, k);
+        let w155 = series::mul_d(dot12, &w123, &w141, k);
         w160[k] = series::sq(&w141, k);
-        w161[k] = series::mul(&w133, &w160, k);
+        w161[k] = series::mul_d(dot13, &w133, &w160, k);
         let w162 = x[4][k] * w153;
         let w163 = x[5][k] * w154;
         let w164 = x[1][k] * w148;
@@ -507,18 +600,18 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 6], s: f64, p: &Param
         w175[k] = w174 - w155;
         w176[k] = at0(k, w159) - w161[k];
         if k == 0 { inv_w176 = 1.0 / w176[0]; }
-        w177[k] = series::div(w175[k], &w176, &w177, inv_w176, k);
-        w183[k] = series::div(at0(k, w182), &w133, &w183, inv_w133, k);
-        w184[k] = series::mul(&w141, &w183, k);
-        let w185 = series::mul(&w133, &w184, k);
+        w177[k] = series::div_d(dot14, w175[k], &w176, &w177, inv_w176, k);
+        w183[k] = series::div_d(dot15, at0(k, w182), &w133, &w183, inv_w133, k);
+        w184[k] = series::mul_d(dot16, &w141, &w183, k);
+        let w185 = series::mul_d(dot17, &w133, &w184, k);
         let w186 = at0(k, w13) - w185;
-        w187[k] = series::div(w186, &w176, &w187, inv_w176, k);
-        let w193 = series::mul(&w123, &w183, k);
-        let w194 = series::mul(&w175, &w187, k);
+        w187[k] = series::div_d(dot18, w186, &w176, &w187, inv_w176, k);
+        let w193 = series::mul_d(dot19, &w123, &w183, k);
+        let w194 = series::mul_d(dot20, &w175, &w187, k);
         w195[k] = series::sq(&w183, k);
-        let w196 = series::mul(&w133, &w195, k);
+        let w196 = series::mul_d(dot21, &w133, &w195, k);
         w197[k] = series::sq(&w187, k);
-        let w198 = series::mul(&w161, &w197, k);
+        let w198 = series::mul_d(dot22, &w161, &w197, k);
         let w199 = x[4][k] * w154;
         let w200 = x[5][k] * w192;
         let w201 = x[2][k] * w190;
@@ -539,11 +632,11 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 6], s: f64, p: &Param
         let w216 = w215 - w196;
         w217[k] = w216 - w214;
         if k == 0 { inv_w217 = 1.0 / w217[0]; }
-        w218[k] = series::div(w213, &w217, &w218, inv_w217, k);
-        let w219 = series::mul(&w187, &w218, k);
+        w218[k] = series::div_d(dot23, w213, &w217, &w218, inv_w217, k);
+        let w219 = series::mul_d(dot24, &w187, &w218, k);
         w220[k] = w177[k] - w219;
-        let w221 = series::mul(&w141, &w220, k);
-        let w222 = series::mul(&w183, &w218, k);
+        let w221 = series::mul_d(dot25, &w141, &w220, k);
+        let w222 = series::mul_d(dot26, &w183, &w218, k);
         let w223 = w134[k] - w221;
         let w224 = w223 - w222;
         let inv_k1 = 1.0 / (k + 1) as f64;
@@ -972,20 +1065,48 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 6], s: f64, p: &Params) -> [[f64; N
     let mut w157 = [0.0f64; N];
     let mut out = [[0.0f64; N]; 4];
     for k in 0..N {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&w6, &x[1]),
+                (&w6, &x[2]),
+                (&x[3], &x[4]),
+                (&x[3], &x[5]),
+                (&x[3], &x[1]),
+                (&x[3], &w32),
+                (&x[1], &w33),
+                (&x[3], &x[2]),
+                (&x[3], &w37),
+            ],
+            k,
+        );
+        let [dot9, dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17] = series::dots(
+            [
+                (&x[2], &w38),
+                (&x[4], &x[5]),
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&x[1], &sin_x0),
+                (&x[2], &sin_x0),
+                (&x[3], &w157),
+                (&x[4], &cos_x0),
+                (&x[5], &cos_x0),
+            ],
+            k,
+        );
         w6[k] = series::sq(&x[3], k);
-        let w11 = series::mul(&w6, &x[1], k);
-        let w15 = series::mul(&w6, &x[2], k);
-        let w25 = series::mul(&x[3], &x[4], k);
-        let w29 = series::mul(&x[3], &x[5], k);
-        w32[k] = series::mul(&x[3], &x[1], k);
-        w33[k] = series::mul(&x[3], &w32, k);
-        let w34 = series::mul(&x[1], &w33, k);
+        let w11 = series::mul_d(dot0, &w6, &x[1], k);
+        let w15 = series::mul_d(dot1, &w6, &x[2], k);
+        let w25 = series::mul_d(dot2, &x[3], &x[4], k);
+        let w29 = series::mul_d(dot3, &x[3], &x[5], k);
+        w32[k] = series::mul_d(dot4, &x[3], &x[1], k);
+        w33[k] = series::mul_d(dot5, &x[3], &w32, k);
+        let w34 = series::mul_d(dot6, &x[1], &w33, k);
         let w35 = series::sq(&x[4], k);
-        w37[k] = series::mul(&x[3], &x[2], k);
-        w38[k] = series::mul(&x[3], &w37, k);
-        let w39 = series::mul(&x[2], &w38, k);
+        w37[k] = series::mul_d(dot7, &x[3], &x[2], k);
+        w38[k] = series::mul_d(dot8, &x[3], &w37, k);
+        let w39 = series::mul_d(dot9, &x[2], &w38, k);
         let w40 = series::sq(&x[5], k);
-        let w49 = series::mul(&x[4], &x[5], k);
+        let w49 = series::mul_d(dot10, &x[4], &x[5], k);
         let w50 = x[3][k] * w4;
         let w51 = w32[k] + w37[k];
         w52[k] = w51 - w50;
@@ -1011,9 +1132,9 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 6], s: f64, p: &Params) -> [[f64; N
         let w93 = w85 + w92;
         let w94 = w93 - w76;
         let w95 = w94 - w77;
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
-        let w103 = series::mul(&x[1], &sin_x0, k);
-        let w104 = series::mul(&x[2], &sin_x0, k);
+        series::sin_cos_d(dot11, dot12, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w103 = series::mul_d(dot13, &x[1], &sin_x0, k);
+        let w104 = series::mul_d(dot14, &x[2], &sin_x0, k);
         let w122 = sin_x0[k] * w118;
         let w123 = cos_x0[k] * w119;
         let w124 = w103 * w120;
@@ -1033,9 +1154,9 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 6], s: f64, p: &Params) -> [[f64; N
         let w155 = w151 + w152;
         let w156 = w155 - w153;
         w157[k] = w156 - w154;
-        let w158 = series::mul(&x[3], &w157, k);
-        let w159 = series::mul(&x[4], &cos_x0, k);
-        let w160 = series::mul(&x[5], &cos_x0, k);
+        let w158 = series::mul_d(dot15, &x[3], &w157, k);
+        let w159 = series::mul_d(dot16, &x[4], &cos_x0, k);
+        let w160 = series::mul_d(dot17, &x[5], &cos_x0, k);
         let w161 = w113 * w159;
         let w162 = w114 * w160;
         let w163 = w158 + w161;
@@ -1087,33 +1208,47 @@ pub fn power<const N: usize>(x: &[[f64; N]; 6], ug: &[f64; N], s: f64, p: &Param
     let mut w58 = [0.0f64; N];
     let mut out = [[0.0f64; N]; 2];
     for k in 0..N {
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&sin_x0, &w32),
+                (&x[3], &w36),
+                (&cos_x0, &x[4]),
+                (&cos_x0, &x[5]),
+                (&ug, &w45),
+                (&x[4], &w53),
+                (&x[5], &w58),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
         let w12 = x[1][k];
         let w13 = x[2][k];
         let w29 = w12 * w26;
         let w30 = w13 * w23;
         let w31 = w29 + w30;
         w32[k] = w31 - at0(k, w28);
-        let w33 = series::mul(&sin_x0, &w32, k);
+        let w33 = series::mul_d(dot2, &sin_x0, &w32, k);
         let w35 = cos_x0[k] * w10;
         w36[k] = w35 - w33;
-        let w37 = series::mul(&x[3], &w36, k);
-        let w39 = series::mul(&cos_x0, &x[4], k);
-        let w41 = series::mul(&cos_x0, &x[5], k);
+        let w37 = series::mul_d(dot3, &x[3], &w36, k);
+        let w39 = series::mul_d(dot4, &cos_x0, &x[4], k);
+        let w41 = series::mul_d(dot5, &cos_x0, &x[5], k);
         let w42 = w26 * w39;
         let w43 = w23 * w41;
         let w44 = w37 + w42;
         w45[k] = w43 + w44;
-        let w46 = series::mul(&ug, &w45, k);
+        let w46 = series::mul_d(dot6, &ug, &w45, k);
         let w47 = -w46;
         let w51 = x[4][k] * w49;
         let w52 = x[5][k] * w50;
         w53[k] = w51 + w52;
-        let w54 = series::mul(&x[4], &w53, k);
+        let w54 = series::mul_d(dot7, &x[4], &w53, k);
         let w56 = x[4][k] * w50;
         let w57 = x[5][k] * w55;
         w58[k] = w56 + w57;
-        let w59 = series::mul(&x[5], &w58, k);
+        let w59 = series::mul_d(dot8, &x[5], &w58, k);
         let w60 = w54 + w59;
         out[0][k] = w47;
         out[1][k] = w60;

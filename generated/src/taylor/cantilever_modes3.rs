@@ -214,7 +214,91 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 8], ug: &[f64; N], s: f64,
     let mut w361 = [0.0f64; N];
     let mut w365 = [0.0f64; N];
     for k in 0..N - 1 {
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&cos_x0, &w51),
+                (&x[1], &ug),
+                (&x[2], &ug),
+                (&x[3], &ug),
+                (&sin_x0, &w79),
+                (&x[4], &x[1]),
+                (&x[4], &x[2]),
+            ],
+            k,
+        );
+        let [dot9, dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17] = series::dots(
+            [
+                (&x[4], &x[3]),
+                (&x[5], &w114),
+                (&x[6], &w125),
+                (&x[7], &w135),
+                (&w140, &w146),
+                (&w196, &w197),
+                (&w196, &w203),
+                (&cos_x0, &ug),
+                (&x[4], &w91),
+            ],
+            k,
+        );
+        let [dot18, dot19, dot20, dot21, dot22, dot23, dot24, dot25, dot26] = series::dots(
+            [
+                (&x[4], &w97),
+                (&x[4], &w98),
+                (&w183, &w203),
+                (&w196, &w228),
+                (&w250, &w251),
+                (&w196, &w257),
+                (&w203, &w257),
+                (&w196, &w258),
+                (&w250, &w261),
+            ],
+            k,
+        );
+        let [dot27, dot28, dot29, dot30, dot31, dot32, dot33, dot34, dot35] = series::dots(
+            [
+                (&w183, &w257),
+                (&w249, &w261),
+                (&w196, &w271),
+                (&w229, &w273),
+                (&w298, &w299),
+                (&w196, &w305),
+                (&w257, &w305),
+                (&w196, &w306),
+                (&w203, &w305),
+            ],
+            k,
+        );
+        let [dot36, dot37, dot38, dot39, dot40, dot41, dot42, dot43, dot44] = series::dots(
+            [
+                (&w196, &w308),
+                (&w250, &w311),
+                (&w261, &w311),
+                (&w229, &w312),
+                (&w298, &w318),
+                (&w183, &w305),
+                (&w249, &w311),
+                (&w294, &w318),
+                (&w196, &w328),
+            ],
+            k,
+        );
+        let [dot45, dot46, dot47, dot48, dot49, dot50, dot51, dot52, dot53] = series::dots(
+            [
+                (&w229, &w330),
+                (&w298, &w332),
+                (&w358, &w359),
+                (&w318, &w359),
+                (&w261, &w361),
+                (&w311, &w359),
+                (&w203, &w365),
+                (&w257, &w361),
+                (&w305, &w359),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
         let w44 = x[1][k] * w41;
         let w45 = x[2][k] * w38;
         let w46 = x[3][k] * w35;
@@ -223,10 +307,10 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 8], ug: &[f64; N], s: f64,
         let w49 = w46 + w48;
         let w50 = w49 - w47;
         w51[k] = w50 - at0(k, w43);
-        let w52 = series::mul(&cos_x0, &w51, k);
-        let w55 = series::mul(&x[1], &ug, k);
-        let w56 = series::mul(&x[2], &ug, k);
-        let w57 = series::mul(&x[3], &ug, k);
+        let w52 = series::mul_d(dot2, &cos_x0, &w51, k);
+        let w55 = series::mul_d(dot3, &x[1], &ug, k);
+        let w56 = series::mul_d(dot4, &x[2], &ug, k);
+        let w57 = series::mul_d(dot5, &x[3], &ug, k);
         let w72 = ug[k] * w67;
         let w73 = w55 * w65;
         let w74 = w56 * w63;
@@ -235,10 +319,10 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 8], ug: &[f64; N], s: f64,
         let w77 = w76 - w74;
         let w78 = w77 - w75;
         w79[k] = w78 - at0(k, w71);
-        let w80 = series::mul(&sin_x0, &w79, k);
-        w91[k] = series::mul(&x[4], &x[1], k);
-        w97[k] = series::mul(&x[4], &x[2], k);
-        w98[k] = series::mul(&x[4], &x[3], k);
+        let w80 = series::mul_d(dot6, &sin_x0, &w79, k);
+        w91[k] = series::mul_d(dot7, &x[4], &x[1], k);
+        w97[k] = series::mul_d(dot8, &x[4], &x[2], k);
+        w98[k] = series::mul_d(dot9, &x[4], &x[3], k);
         let w108 = x[4][k] * w106;
         let w109 = w91[k] * w107;
         let w110 = w97[k] * w105;
@@ -246,20 +330,20 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 8], ug: &[f64; N], s: f64,
         let w112 = w108 + w109;
         let w113 = w110 + w112;
         w114[k] = w111 + w113;
-        let w115 = series::mul(&x[5], &w114, k);
+        let w115 = series::mul_d(dot10, &x[5], &w114, k);
         let w120 = x[4][k] * w119;
         let w121 = w91[k] * w105;
         let w122 = w97[k] * w107;
         let w123 = w120 + w121;
         let w124 = w122 + w123;
         w125[k] = w111 + w124;
-        let w126 = series::mul(&x[6], &w125, k);
+        let w126 = series::mul_d(dot11, &x[6], &w125, k);
         let w131 = x[4][k] * w130;
         let w132 = w98[k] * w107;
         let w133 = w121 + w131;
         let w134 = w110 + w133;
         w135[k] = w132 + w134;
-        let w136 = series::mul(&x[7], &w135, k);
+        let w136 = series::mul_d(dot12, &x[7], &w135, k);
         let w138 = x[1][k] + x[2][k];
         let w139 = x[3][k] + w138;
         w140[k] = w139 - at0(k, w15);
@@ -269,7 +353,7 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 8], ug: &[f64; N], s: f64,
         let w144 = w141 + w142;
         let w145 = w143 + w144;
         w146[k] = w145 - at0(k, w100);
-        let w147 = series::mul(&w140, &w146, k);
+        let w147 = series::mul_d(dot13, &w140, &w146, k);
         let w152 = series::sq(&x[3], k);
         let w154 = series::sq(&x[2], k);
         let w155 = series::sq(&x[1], k);
@@ -291,16 +375,16 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 8], ug: &[f64; N], s: f64,
         let w195 = w189 + w194;
         w196[k] = at0(k, w179) + w195;
         if k == 0 { inv_w196 = 1.0 / w196[0]; }
-        w197[k] = series::div(w183[k], &w196, &w197, inv_w196, k);
-        w203[k] = series::div(at0(k, w202), &w196, &w203, inv_w196, k);
-        let w211 = series::mul(&cos_x0, &ug, k);
+        w197[k] = series::div_d(dot14, w183[k], &w196, &w197, inv_w196, k);
+        w203[k] = series::div_d(dot15, at0(k, w202), &w196, &w203, inv_w196, k);
+        let w211 = series::mul_d(dot16, &cos_x0, &ug, k);
         let w212 = series::sq(&x[4], k);
-        let w213 = series::mul(&x[4], &w91, k);
-        let w214 = series::mul(&x[4], &w97, k);
-        let w215 = series::mul(&x[4], &w98, k);
-        let w223 = series::mul(&w183, &w203, k);
+        let w213 = series::mul_d(dot17, &x[4], &w91, k);
+        let w214 = series::mul_d(dot18, &x[4], &w97, k);
+        let w215 = series::mul_d(dot19, &x[4], &w98, k);
+        let w223 = series::mul_d(dot20, &w183, &w203, k);
         w228[k] = series::sq(&w203, k);
-        w229[k] = series::mul(&w196, &w228, k);
+        w229[k] = series::mul_d(dot21, &w196, &w228, k);
         let w230 = x[5][k] * w220;
         let w231 = x[6][k] * w221;
         let w232 = x[7][k] * w222;
@@ -323,18 +407,18 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 8], ug: &[f64; N], s: f64,
         w249[k] = w248 - w223;
         w250[k] = at0(k, w227) - w229[k];
         if k == 0 { inv_w250 = 1.0 / w250[0]; }
-        w251[k] = series::div(w249[k], &w250, &w251, inv_w250, k);
-        w257[k] = series::div(at0(k, w256), &w196, &w257, inv_w196, k);
-        w258[k] = series::mul(&w203, &w257, k);
-        let w259 = series::mul(&w196, &w258, k);
+        w251[k] = series::div_d(dot22, w249[k], &w250, &w251, inv_w250, k);
+        w257[k] = series::div_d(dot23, at0(k, w256), &w196, &w257, inv_w196, k);
+        w258[k] = series::mul_d(dot24, &w203, &w257, k);
+        let w259 = series::mul_d(dot25, &w196, &w258, k);
         let w260 = at0(k, w16) - w259;
-        w261[k] = series::div(w260, &w250, &w261, inv_w250, k);
-        let w269 = series::mul(&w183, &w257, k);
-        let w270 = series::mul(&w249, &w261, k);
+        w261[k] = series::div_d(dot26, w260, &w250, &w261, inv_w250, k);
+        let w269 = series::mul_d(dot27, &w183, &w257, k);
+        let w270 = series::mul_d(dot28, &w249, &w261, k);
         w271[k] = series::sq(&w257, k);
-        let w272 = series::mul(&w196, &w271, k);
+        let w272 = series::mul_d(dot29, &w196, &w271, k);
         w273[k] = series::sq(&w261, k);
-        let w274 = series::mul(&w229, &w273, k);
+        let w274 = series::mul_d(dot30, &w229, &w273, k);
         let w275 = x[5][k] * w221;
         let w276 = x[6][k] * w267;
         let w277 = x[7][k] * w268;
@@ -360,30 +444,30 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 8], ug: &[f64; N], s: f64,
         let w297 = w296 - w272;
         w298[k] = w297 - w295;
         if k == 0 { inv_w298 = 1.0 / w298[0]; }
-        w299[k] = series::div(w294[k], &w298, &w299, inv_w298, k);
-        w305[k] = series::div(at0(k, w304), &w196, &w305, inv_w196, k);
-        w306[k] = series::mul(&w257, &w305, k);
-        let w307 = series::mul(&w196, &w306, k);
-        w308[k] = series::mul(&w203, &w305, k);
-        let w309 = series::mul(&w196, &w308, k);
+        w299[k] = series::div_d(dot31, w294[k], &w298, &w299, inv_w298, k);
+        w305[k] = series::div_d(dot32, at0(k, w304), &w196, &w305, inv_w196, k);
+        w306[k] = series::mul_d(dot33, &w257, &w305, k);
+        let w307 = series::mul_d(dot34, &w196, &w306, k);
+        w308[k] = series::mul_d(dot35, &w203, &w305, k);
+        let w309 = series::mul_d(dot36, &w196, &w308, k);
         let w310 = at0(k, w16) - w309;
-        w311[k] = series::div(w310, &w250, &w311, inv_w250, k);
-        w312[k] = series::mul(&w261, &w311, k);
-        let w313 = series::mul(&w229, &w312, k);
+        w311[k] = series::div_d(dot37, w310, &w250, &w311, inv_w250, k);
+        w312[k] = series::mul_d(dot38, &w261, &w311, k);
+        let w313 = series::mul_d(dot39, &w229, &w312, k);
         let w314 = w227 * w312[k];
         let w315 = at0(k, w16) + w313;
         let w316 = w315 - w307;
         let w317 = w316 - w314;
-        w318[k] = series::div(w317, &w298, &w318, inv_w298, k);
-        let w325 = series::mul(&w183, &w305, k);
-        let w326 = series::mul(&w249, &w311, k);
-        let w327 = series::mul(&w294, &w318, k);
+        w318[k] = series::div_d(dot40, w317, &w298, &w318, inv_w298, k);
+        let w325 = series::mul_d(dot41, &w183, &w305, k);
+        let w326 = series::mul_d(dot42, &w249, &w311, k);
+        let w327 = series::mul_d(dot43, &w294, &w318, k);
         w328[k] = series::sq(&w305, k);
-        let w329 = series::mul(&w196, &w328, k);
+        let w329 = series::mul_d(dot44, &w196, &w328, k);
         w330[k] = series::sq(&w311, k);
-        let w331 = series::mul(&w229, &w330, k);
+        let w331 = series::mul_d(dot45, &w229, &w330, k);
         w332[k] = series::sq(&w318, k);
-        let w333 = series::mul(&w298, &w332, k);
+        let w333 = series::mul_d(dot46, &w298, &w332, k);
         let w334 = x[5][k] * w222;
         let w335 = x[6][k] * w268;
         let w336 = x[7][k] * w324;
@@ -410,16 +494,16 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 8], ug: &[f64; N], s: f64,
         let w357 = w356 - w354;
         w358[k] = w357 - w333;
         if k == 0 { inv_w358 = 1.0 / w358[0]; }
-        w359[k] = series::div(w353, &w358, &w359, inv_w358, k);
-        let w360 = series::mul(&w318, &w359, k);
+        w359[k] = series::div_d(dot47, w353, &w358, &w359, inv_w358, k);
+        let w360 = series::mul_d(dot48, &w318, &w359, k);
         w361[k] = w299[k] - w360;
-        let w362 = series::mul(&w261, &w361, k);
-        let w363 = series::mul(&w311, &w359, k);
+        let w362 = series::mul_d(dot49, &w261, &w361, k);
+        let w363 = series::mul_d(dot50, &w311, &w359, k);
         let w364 = w251[k] - w362;
         w365[k] = w364 - w363;
-        let w366 = series::mul(&w203, &w365, k);
-        let w367 = series::mul(&w257, &w361, k);
-        let w368 = series::mul(&w305, &w359, k);
+        let w366 = series::mul_d(dot51, &w203, &w365, k);
+        let w367 = series::mul_d(dot52, &w257, &w361, k);
+        let w368 = series::mul_d(dot53, &w305, &w359, k);
         let w369 = w197[k] - w366;
         let w370 = w369 - w367;
         let w371 = w370 - w368;
@@ -628,17 +712,91 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 8], s: f64, p: &Param
     let mut w329 = [0.0f64; N];
     let mut w333 = [0.0f64; N];
     for k in 0..N - 1 {
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8, dot9] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&cos_x0, &w45),
+                (&x[4], &x[1]),
+                (&x[4], &x[2]),
+                (&x[4], &x[3]),
+                (&x[5], &w86),
+                (&x[6], &w97),
+                (&x[7], &w107),
+                (&w112, &w118),
+            ],
+            k,
+        );
+        let [dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17, dot18, dot19] = series::dots(
+            [
+                (&w170, &w171),
+                (&w170, &w178),
+                (&x[4], &w63),
+                (&x[4], &w69),
+                (&x[4], &w70),
+                (&w157, &w178),
+                (&w170, &w202),
+                (&w222, &w223),
+                (&w170, &w229),
+                (&w178, &w229),
+            ],
+            k,
+        );
+        let [dot20, dot21, dot22, dot23, dot24, dot25, dot26, dot27, dot28, dot29] = series::dots(
+            [
+                (&w170, &w230),
+                (&w222, &w233),
+                (&w157, &w229),
+                (&w221, &w233),
+                (&w170, &w243),
+                (&w203, &w245),
+                (&w268, &w269),
+                (&w170, &w275),
+                (&w229, &w275),
+                (&w170, &w276),
+            ],
+            k,
+        );
+        let [dot30, dot31, dot32, dot33, dot34, dot35, dot36, dot37, dot38, dot39] = series::dots(
+            [
+                (&w178, &w275),
+                (&w170, &w278),
+                (&w222, &w281),
+                (&w233, &w281),
+                (&w203, &w282),
+                (&w268, &w288),
+                (&w157, &w275),
+                (&w221, &w281),
+                (&w264, &w288),
+                (&w170, &w298),
+            ],
+            k,
+        );
+        let [dot40, dot41, dot42, dot43, dot44, dot45, dot46, dot47, dot48] = series::dots(
+            [
+                (&w203, &w300),
+                (&w268, &w302),
+                (&w326, &w327),
+                (&w288, &w327),
+                (&w233, &w329),
+                (&w281, &w327),
+                (&w178, &w333),
+                (&w229, &w329),
+                (&w275, &w327),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
         let w40 = x[1][k] * w37;
         let w41 = x[2][k] * w34;
         let w42 = x[3][k] * w31;
         let w43 = w40 + w41;
         let w44 = w42 + w43;
         w45[k] = w44 - at0(k, w39);
-        let w46 = series::mul(&cos_x0, &w45, k);
-        w63[k] = series::mul(&x[4], &x[1], k);
-        w69[k] = series::mul(&x[4], &x[2], k);
-        w70[k] = series::mul(&x[4], &x[3], k);
+        let w46 = series::mul_d(dot2, &cos_x0, &w45, k);
+        w63[k] = series::mul_d(dot3, &x[4], &x[1], k);
+        w69[k] = series::mul_d(dot4, &x[4], &x[2], k);
+        w70[k] = series::mul_d(dot5, &x[4], &x[3], k);
         let w80 = x[4][k] * w78;
         let w81 = w63[k] * w79;
         let w82 = w69[k] * w77;
@@ -646,20 +804,20 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 8], s: f64, p: &Param
         let w84 = w80 + w81;
         let w85 = w82 + w84;
         w86[k] = w83 + w85;
-        let w87 = series::mul(&x[5], &w86, k);
+        let w87 = series::mul_d(dot6, &x[5], &w86, k);
         let w92 = x[4][k] * w91;
         let w93 = w63[k] * w77;
         let w94 = w69[k] * w79;
         let w95 = w92 + w93;
         let w96 = w94 + w95;
         w97[k] = w83 + w96;
-        let w98 = series::mul(&x[6], &w97, k);
+        let w98 = series::mul_d(dot7, &x[6], &w97, k);
         let w103 = x[4][k] * w102;
         let w104 = w70[k] * w79;
         let w105 = w93 + w103;
         let w106 = w82 + w105;
         w107[k] = w104 + w106;
-        let w108 = series::mul(&x[7], &w107, k);
+        let w108 = series::mul_d(dot8, &x[7], &w107, k);
         let w110 = x[1][k] + x[2][k];
         let w111 = x[3][k] + w110;
         w112[k] = w111 - at0(k, w15);
@@ -669,7 +827,7 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 8], s: f64, p: &Param
         let w116 = w113 + w114;
         let w117 = w115 + w116;
         w118[k] = w117 - at0(k, w72);
-        let w119 = series::mul(&w112, &w118, k);
+        let w119 = series::mul_d(dot9, &w112, &w118, k);
         let w124 = series::sq(&x[3], k);
         let w126 = series::sq(&x[2], k);
         let w127 = series::sq(&x[1], k);
@@ -692,15 +850,15 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 8], s: f64, p: &Param
         let w169 = w163 + w168;
         w170[k] = at0(k, w152) + w169;
         if k == 0 { inv_w170 = 1.0 / w170[0]; }
-        w171[k] = series::div(w157[k], &w170, &w171, inv_w170, k);
-        w178[k] = series::div(at0(k, w177), &w170, &w178, inv_w170, k);
+        w171[k] = series::div_d(dot10, w157[k], &w170, &w171, inv_w170, k);
+        w178[k] = series::div_d(dot11, at0(k, w177), &w170, &w178, inv_w170, k);
         let w186 = series::sq(&x[4], k);
-        let w187 = series::mul(&x[4], &w63, k);
-        let w188 = series::mul(&x[4], &w69, k);
-        let w189 = series::mul(&x[4], &w70, k);
-        let w197 = series::mul(&w157, &w178, k);
+        let w187 = series::mul_d(dot12, &x[4], &w63, k);
+        let w188 = series::mul_d(dot13, &x[4], &w69, k);
+        let w189 = series::mul_d(dot14, &x[4], &w70, k);
+        let w197 = series::mul_d(dot15, &w157, &w178, k);
         w202[k] = series::sq(&w178, k);
-        w203[k] = series::mul(&w170, &w202, k);
+        w203[k] = series::mul_d(dot16, &w170, &w202, k);
         let w204 = x[5][k] * w194;
         let w205 = x[6][k] * w195;
         let w206 = x[7][k] * w196;
@@ -721,18 +879,18 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 8], s: f64, p: &Param
         w221[k] = w220 - w197;
         w222[k] = at0(k, w201) - w203[k];
         if k == 0 { inv_w222 = 1.0 / w222[0]; }
-        w223[k] = series::div(w221[k], &w222, &w223, inv_w222, k);
-        w229[k] = series::div(at0(k, w228), &w170, &w229, inv_w170, k);
-        w230[k] = series::mul(&w178, &w229, k);
-        let w231 = series::mul(&w170, &w230, k);
+        w223[k] = series::div_d(dot17, w221[k], &w222, &w223, inv_w222, k);
+        w229[k] = series::div_d(dot18, at0(k, w228), &w170, &w229, inv_w170, k);
+        w230[k] = series::mul_d(dot19, &w178, &w229, k);
+        let w231 = series::mul_d(dot20, &w170, &w230, k);
         let w232 = at0(k, w16) - w231;
-        w233[k] = series::div(w232, &w222, &w233, inv_w222, k);
-        let w241 = series::mul(&w157, &w229, k);
-        let w242 = series::mul(&w221, &w233, k);
+        w233[k] = series::div_d(dot21, w232, &w222, &w233, inv_w222, k);
+        let w241 = series::mul_d(dot22, &w157, &w229, k);
+        let w242 = series::mul_d(dot23, &w221, &w233, k);
         w243[k] = series::sq(&w229, k);
-        let w244 = series::mul(&w170, &w243, k);
+        let w244 = series::mul_d(dot24, &w170, &w243, k);
         w245[k] = series::sq(&w233, k);
-        let w246 = series::mul(&w203, &w245, k);
+        let w246 = series::mul_d(dot25, &w203, &w245, k);
         let w247 = x[5][k] * w195;
         let w248 = x[6][k] * w239;
         let w249 = x[7][k] * w240;
@@ -756,30 +914,30 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 8], s: f64, p: &Param
         let w267 = w266 - w244;
         w268[k] = w267 - w265;
         if k == 0 { inv_w268 = 1.0 / w268[0]; }
-        w269[k] = series::div(w264[k], &w268, &w269, inv_w268, k);
-        w275[k] = series::div(at0(k, w274), &w170, &w275, inv_w170, k);
-        w276[k] = series::mul(&w229, &w275, k);
-        let w277 = series::mul(&w170, &w276, k);
-        w278[k] = series::mul(&w178, &w275, k);
-        let w279 = series::mul(&w170, &w278, k);
+        w269[k] = series::div_d(dot26, w264[k], &w268, &w269, inv_w268, k);
+        w275[k] = series::div_d(dot27, at0(k, w274), &w170, &w275, inv_w170, k);
+        w276[k] = series::mul_d(dot28, &w229, &w275, k);
+        let w277 = series::mul_d(dot29, &w170, &w276, k);
+        w278[k] = series::mul_d(dot30, &w178, &w275, k);
+        let w279 = series::mul_d(dot31, &w170, &w278, k);
         let w280 = at0(k, w16) - w279;
-        w281[k] = series::div(w280, &w222, &w281, inv_w222, k);
-        w282[k] = series::mul(&w233, &w281, k);
-        let w283 = series::mul(&w203, &w282, k);
+        w281[k] = series::div_d(dot32, w280, &w222, &w281, inv_w222, k);
+        w282[k] = series::mul_d(dot33, &w233, &w281, k);
+        let w283 = series::mul_d(dot34, &w203, &w282, k);
         let w284 = w201 * w282[k];
         let w285 = at0(k, w16) + w283;
         let w286 = w285 - w277;
         let w287 = w286 - w284;
-        w288[k] = series::div(w287, &w268, &w288, inv_w268, k);
-        let w295 = series::mul(&w157, &w275, k);
-        let w296 = series::mul(&w221, &w281, k);
-        let w297 = series::mul(&w264, &w288, k);
+        w288[k] = series::div_d(dot35, w287, &w268, &w288, inv_w268, k);
+        let w295 = series::mul_d(dot36, &w157, &w275, k);
+        let w296 = series::mul_d(dot37, &w221, &w281, k);
+        let w297 = series::mul_d(dot38, &w264, &w288, k);
         w298[k] = series::sq(&w275, k);
-        let w299 = series::mul(&w170, &w298, k);
+        let w299 = series::mul_d(dot39, &w170, &w298, k);
         w300[k] = series::sq(&w281, k);
-        let w301 = series::mul(&w203, &w300, k);
+        let w301 = series::mul_d(dot40, &w203, &w300, k);
         w302[k] = series::sq(&w288, k);
-        let w303 = series::mul(&w268, &w302, k);
+        let w303 = series::mul_d(dot41, &w268, &w302, k);
         let w304 = x[5][k] * w196;
         let w305 = x[6][k] * w240;
         let w306 = x[7][k] * w294;
@@ -804,16 +962,16 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 8], s: f64, p: &Param
         let w325 = w324 - w322;
         w326[k] = w325 - w303;
         if k == 0 { inv_w326 = 1.0 / w326[0]; }
-        w327[k] = series::div(w321, &w326, &w327, inv_w326, k);
-        let w328 = series::mul(&w288, &w327, k);
+        w327[k] = series::div_d(dot42, w321, &w326, &w327, inv_w326, k);
+        let w328 = series::mul_d(dot43, &w288, &w327, k);
         w329[k] = w269[k] - w328;
-        let w330 = series::mul(&w233, &w329, k);
-        let w331 = series::mul(&w281, &w327, k);
+        let w330 = series::mul_d(dot44, &w233, &w329, k);
+        let w331 = series::mul_d(dot45, &w281, &w327, k);
         let w332 = w223[k] - w330;
         w333[k] = w332 - w331;
-        let w334 = series::mul(&w178, &w333, k);
-        let w335 = series::mul(&w229, &w329, k);
-        let w336 = series::mul(&w275, &w327, k);
+        let w334 = series::mul_d(dot46, &w178, &w333, k);
+        let w335 = series::mul_d(dot47, &w229, &w329, k);
+        let w336 = series::mul_d(dot48, &w275, &w327, k);
         let w337 = w171[k] - w334;
         let w338 = w337 - w335;
         let w339 = w338 - w336;
@@ -1541,24 +1699,63 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 8], s: f64, p: &Params) -> [[f64; N
     let mut w190 = [0.0f64; N];
     let mut out = [[0.0f64; N]; 4];
     for k in 0..N {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7] = series::dots(
+            [
+                (&w6, &x[1]),
+                (&w6, &x[2]),
+                (&w6, &x[3]),
+                (&x[4], &x[5]),
+                (&x[4], &x[6]),
+                (&x[4], &x[7]),
+                (&x[4], &x[1]),
+                (&x[4], &w40),
+            ],
+            k,
+        );
+        let [dot8, dot9, dot10, dot11, dot12, dot13, dot14, dot15] = series::dots(
+            [
+                (&x[1], &w41),
+                (&x[4], &x[2]),
+                (&x[4], &w45),
+                (&x[2], &w46),
+                (&x[4], &x[3]),
+                (&x[4], &w49),
+                (&x[3], &w50),
+                (&d_x0, &cos_x0),
+            ],
+            k,
+        );
+        let [dot16, dot17, dot18, dot19, dot20, dot21, dot22, dot23] = series::dots(
+            [
+                (&d_x0, &sin_x0),
+                (&x[1], &sin_x0),
+                (&x[2], &sin_x0),
+                (&x[3], &sin_x0),
+                (&x[4], &w190),
+                (&x[5], &cos_x0),
+                (&x[6], &cos_x0),
+                (&x[7], &cos_x0),
+            ],
+            k,
+        );
         w6[k] = series::sq(&x[4], k);
-        let w11 = series::mul(&w6, &x[1], k);
-        let w15 = series::mul(&w6, &x[2], k);
-        let w19 = series::mul(&w6, &x[3], k);
-        let w29 = series::mul(&x[4], &x[5], k);
-        let w33 = series::mul(&x[4], &x[6], k);
-        let w37 = series::mul(&x[4], &x[7], k);
-        w40[k] = series::mul(&x[4], &x[1], k);
-        w41[k] = series::mul(&x[4], &w40, k);
-        let w42 = series::mul(&x[1], &w41, k);
+        let w11 = series::mul_d(dot0, &w6, &x[1], k);
+        let w15 = series::mul_d(dot1, &w6, &x[2], k);
+        let w19 = series::mul_d(dot2, &w6, &x[3], k);
+        let w29 = series::mul_d(dot3, &x[4], &x[5], k);
+        let w33 = series::mul_d(dot4, &x[4], &x[6], k);
+        let w37 = series::mul_d(dot5, &x[4], &x[7], k);
+        w40[k] = series::mul_d(dot6, &x[4], &x[1], k);
+        w41[k] = series::mul_d(dot7, &x[4], &w40, k);
+        let w42 = series::mul_d(dot8, &x[1], &w41, k);
         let w43 = series::sq(&x[5], k);
-        w45[k] = series::mul(&x[4], &x[2], k);
-        w46[k] = series::mul(&x[4], &w45, k);
-        let w47 = series::mul(&x[2], &w46, k);
+        w45[k] = series::mul_d(dot9, &x[4], &x[2], k);
+        w46[k] = series::mul_d(dot10, &x[4], &w45, k);
+        let w47 = series::mul_d(dot11, &x[2], &w46, k);
         let w48 = series::sq(&x[6], k);
-        w49[k] = series::mul(&x[4], &x[3], k);
-        w50[k] = series::mul(&x[4], &w49, k);
-        let w51 = series::mul(&x[3], &w50, k);
+        w49[k] = series::mul_d(dot12, &x[4], &x[3], k);
+        w50[k] = series::mul_d(dot13, &x[4], &w49, k);
+        let w51 = series::mul_d(dot14, &x[3], &w50, k);
         let w52 = series::sq(&x[7], k);
         let w62 = x[4][k] * w22;
         let w63 = x[5][k] + w62;
@@ -1599,10 +1796,10 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 8], s: f64, p: &Params) -> [[f64; N
         let w112 = w111 - w87;
         let w113 = w112 - w88;
         let w114 = w113 - w89;
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
-        let w122 = series::mul(&x[1], &sin_x0, k);
-        let w123 = series::mul(&x[2], &sin_x0, k);
-        let w124 = series::mul(&x[3], &sin_x0, k);
+        series::sin_cos_d(dot15, dot16, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w122 = series::mul_d(dot17, &x[1], &sin_x0, k);
+        let w123 = series::mul_d(dot18, &x[2], &sin_x0, k);
+        let w124 = series::mul_d(dot19, &x[3], &sin_x0, k);
         let w145 = sin_x0[k] * w140;
         let w146 = cos_x0[k] * w141;
         let w147 = w122 * w142;
@@ -1629,10 +1826,10 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 8], s: f64, p: &Params) -> [[f64; N
         let w188 = w187 - w184;
         let w189 = w188 - w185;
         w190[k] = w189 - w186;
-        let w191 = series::mul(&x[4], &w190, k);
-        let w192 = series::mul(&x[5], &cos_x0, k);
-        let w193 = series::mul(&x[6], &cos_x0, k);
-        let w194 = series::mul(&x[7], &cos_x0, k);
+        let w191 = series::mul_d(dot20, &x[4], &w190, k);
+        let w192 = series::mul_d(dot21, &x[5], &cos_x0, k);
+        let w193 = series::mul_d(dot22, &x[6], &cos_x0, k);
+        let w194 = series::mul_d(dot23, &x[7], &cos_x0, k);
         let w195 = w134 * w192;
         let w196 = w135 * w193;
         let w197 = w136 * w194;
@@ -1693,7 +1890,28 @@ pub fn power<const N: usize>(x: &[[f64; N]; 8], ug: &[f64; N], s: f64, p: &Param
     let mut w81 = [0.0f64; N];
     let mut out = [[0.0f64; N]; 2];
     for k in 0..N {
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let [dot0, dot1, dot2, dot3, dot4, dot5] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&sin_x0, &w38),
+                (&x[4], &w42),
+                (&cos_x0, &x[5]),
+                (&cos_x0, &x[6]),
+            ],
+            k,
+        );
+        let [dot6, dot7, dot8, dot9, dot10] = series::dots(
+            [
+                (&cos_x0, &x[7]),
+                (&ug, &w55),
+                (&x[5], &w66),
+                (&x[6], &w74),
+                (&x[7], &w81),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
         let w12 = x[1][k];
         let w13 = x[2][k];
         let w14 = x[3][k];
@@ -1703,39 +1921,39 @@ pub fn power<const N: usize>(x: &[[f64; N]; 8], ug: &[f64; N], s: f64, p: &Param
         let w36 = w33 + w34;
         let w37 = w35 + w36;
         w38[k] = w37 - at0(k, w32);
-        let w39 = series::mul(&sin_x0, &w38, k);
+        let w39 = series::mul_d(dot2, &sin_x0, &w38, k);
         let w41 = cos_x0[k] * w10;
         w42[k] = w41 - w39;
-        let w43 = series::mul(&x[4], &w42, k);
-        let w45 = series::mul(&cos_x0, &x[5], k);
-        let w47 = series::mul(&cos_x0, &x[6], k);
-        let w49 = series::mul(&cos_x0, &x[7], k);
+        let w43 = series::mul_d(dot3, &x[4], &w42, k);
+        let w45 = series::mul_d(dot4, &cos_x0, &x[5], k);
+        let w47 = series::mul_d(dot5, &cos_x0, &x[6], k);
+        let w49 = series::mul_d(dot6, &cos_x0, &x[7], k);
         let w50 = w30 * w45;
         let w51 = w27 * w47;
         let w52 = w24 * w49;
         let w53 = w43 + w50;
         let w54 = w51 + w53;
         w55[k] = w52 + w54;
-        let w56 = series::mul(&ug, &w55, k);
+        let w56 = series::mul_d(dot7, &ug, &w55, k);
         let w57 = -w56;
         let w62 = x[5][k] * w59;
         let w63 = x[6][k] * w60;
         let w64 = x[7][k] * w61;
         let w65 = w62 + w63;
         w66[k] = w64 + w65;
-        let w67 = series::mul(&x[5], &w66, k);
+        let w67 = series::mul_d(dot8, &x[5], &w66, k);
         let w70 = x[5][k] * w60;
         let w71 = x[6][k] * w68;
         let w72 = x[7][k] * w69;
         let w73 = w70 + w71;
         w74[k] = w72 + w73;
-        let w75 = series::mul(&x[6], &w74, k);
+        let w75 = series::mul_d(dot9, &x[6], &w74, k);
         let w77 = x[5][k] * w61;
         let w78 = x[6][k] * w69;
         let w79 = x[7][k] * w76;
         let w80 = w77 + w78;
         w81[k] = w79 + w80;
-        let w82 = series::mul(&x[7], &w81, k);
+        let w82 = series::mul_d(dot10, &x[7], &w81, k);
         let w83 = w67 + w75;
         let w84 = w82 + w83;
         out[0][k] = w57;

@@ -150,22 +150,44 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
     let w189: f64 = w25 * w89;
     let mut w200 = [0.0f64; N];
     for k in 0..N - 1 {
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
-        let w36 = series::mul(&cos_x0, &x[1], k);
-        let w37 = series::mul(&cos_x0, &ug, k);
-        let w40 = series::mul(&x[1], &ug, k);
+        let [dot0, dot1, dot2, dot3, dot4, dot5] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&cos_x0, &x[1]),
+                (&cos_x0, &ug),
+                (&x[1], &ug),
+                (&sin_x0, &w54),
+            ],
+            k,
+        );
+        let [dot6, dot7, dot8, dot9, dot10, dot11] = series::dots(
+            [
+                (&x[2], &x[1]),
+                (&x[3], &w80),
+                (&x[2], &w56),
+                (&w169, &w170),
+                (&w175, &w186),
+                (&w169, &w200),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w36 = series::mul_d(dot2, &cos_x0, &x[1], k);
+        let w37 = series::mul_d(dot3, &cos_x0, &ug, k);
+        let w40 = series::mul_d(dot4, &x[1], &ug, k);
         let w51 = ug[k] * w46;
         let w52 = w40 * w44;
         let w53 = w51 - w52;
         w54[k] = w53 - at0(k, w50);
-        let w55 = series::mul(&sin_x0, &w54, k);
-        w56[k] = series::mul(&x[2], &x[1], k);
+        let w55 = series::mul_d(dot5, &sin_x0, &w54, k);
+        w56[k] = series::mul_d(dot6, &x[2], &x[1], k);
         let w78 = x[2][k] * w77;
         let w79 = w56[k] * w70;
         w80[k] = w79 - w78;
-        let w81 = series::mul(&x[3], &w80, k);
+        let w81 = series::mul_d(dot7, &x[3], &w80, k);
         let w97 = series::sq(&x[2], k);
-        let w98 = series::mul(&x[2], &w56, k);
+        let w98 = series::mul_d(dot8, &x[2], &w56, k);
         let w118 = series::sq(&x[1], k);
         let w147 = x[3][k] * w110;
         let w148 = cos_x0[k] * w82;
@@ -191,7 +213,7 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         let w168 = w166 + w167;
         w169[k] = at0(k, w146) + w168;
         if k == 0 { inv_w169 = 1.0 / w169[0]; }
-        w170[k] = series::div(w165, &w169, &w170, inv_w169, k);
+        w170[k] = series::div_d(dot9, w165, &w169, &w170, inv_w169, k);
         let w172 = x[1][k] * w137;
         let w173 = w100 * w118;
         let w174 = w172 + w173;
@@ -207,7 +229,7 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         let w184 = w183 - w176;
         let w185 = w184 - w178;
         w186[k] = w185 - w180;
-        let w187 = series::mul(&w175, &w186, k);
+        let w187 = series::mul_d(dot10, &w175, &w186, k);
         let w190 = cos_x0[k] * w188;
         let w191 = w36 * w113;
         let w192 = w37 * w189;
@@ -218,7 +240,7 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         let w197 = w194 + w196;
         let w198 = w187 + w197;
         let w199 = w198 - w191;
-        w200[k] = series::div(w199, &w169, &w200, inv_w169, k);
+        w200[k] = series::div_d(dot11, w199, &w169, &w200, inv_w169, k);
         let inv_k1 = 1.0 / (k + 1) as f64;
         x[0][k + 1] = x[2][k] * inv_k1;
         x[1][k + 1] = x[3][k] * inv_k1;
@@ -359,15 +381,29 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
     let w167: f64 = w38 * w73;
     let mut w176 = [0.0f64; N];
     for k in 0..N - 1 {
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
-        let w32 = series::mul(&cos_x0, &x[1], k);
-        w39[k] = series::mul(&x[2], &x[1], k);
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&cos_x0, &x[1]),
+                (&x[2], &x[1]),
+                (&x[3], &w63),
+                (&x[2], &w39),
+                (&w149, &w150),
+                (&w155, &w164),
+                (&w149, &w176),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w32 = series::mul_d(dot2, &cos_x0, &x[1], k);
+        w39[k] = series::mul_d(dot3, &x[2], &x[1], k);
         let w61 = x[2][k] * w60;
         let w62 = w39[k] * w53;
         w63[k] = w62 - w61;
-        let w64 = series::mul(&x[3], &w63, k);
+        let w64 = series::mul_d(dot4, &x[3], &w63, k);
         let w81 = series::sq(&x[2], k);
-        let w82 = series::mul(&x[2], &w39, k);
+        let w82 = series::mul_d(dot5, &x[2], &w39, k);
         let w101 = series::sq(&x[1], k);
         let w131 = x[3][k] * w94;
         let w132 = cos_x0[k] * w65;
@@ -389,7 +425,7 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
         let w148 = w146 + w147;
         w149[k] = at0(k, w130) + w148;
         if k == 0 { inv_w149 = 1.0 / w149[0]; }
-        w150[k] = series::div(w145, &w149, &w150, inv_w149, k);
+        w150[k] = series::div_d(dot6, w145, &w149, &w150, inv_w149, k);
         let w152 = x[1][k] * w120;
         let w153 = w84 * w101;
         let w154 = w152 + w153;
@@ -403,7 +439,7 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
         let w162 = w160 + w161;
         let w163 = w162 - w156;
         w164[k] = w163 - w159;
-        let w165 = series::mul(&w155, &w164, k);
+        let w165 = series::mul_d(dot7, &w155, &w164, k);
         let w168 = cos_x0[k] * w166;
         let w169 = w32 * w96;
         let w170 = sin_x0[k] * w167;
@@ -412,7 +448,7 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
         let w173 = w171 + w172;
         let w174 = w165 + w173;
         let w175 = w174 - w169;
-        w176[k] = series::div(w175, &w149, &w176, inv_w149, k);
+        w176[k] = series::div_d(dot8, w175, &w149, &w176, inv_w149, k);
         let inv_k1 = 1.0 / (k + 1) as f64;
         x[0][k + 1] = x[2][k] * inv_k1;
         x[1][k + 1] = x[3][k] * inv_k1;
@@ -679,12 +715,27 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
     let mut w110 = [0.0f64; N];
     let mut out = [[0.0f64; N]; 4];
     for k in 0..N {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8, dot9] = series::dots(
+            [
+                (&w6, &x[1]),
+                (&x[2], &x[3]),
+                (&x[2], &x[1]),
+                (&x[2], &w24),
+                (&x[1], &w25),
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&x[1], &sin_x0),
+                (&x[2], &w110),
+                (&x[3], &cos_x0),
+            ],
+            k,
+        );
         w6[k] = series::sq(&x[2], k);
-        let w11 = series::mul(&w6, &x[1], k);
-        let w21 = series::mul(&x[2], &x[3], k);
-        w24[k] = series::mul(&x[2], &x[1], k);
-        w25[k] = series::mul(&x[2], &w24, k);
-        let w26 = series::mul(&x[1], &w25, k);
+        let w11 = series::mul_d(dot0, &w6, &x[1], k);
+        let w21 = series::mul_d(dot1, &x[2], &x[3], k);
+        w24[k] = series::mul_d(dot2, &x[2], &x[1], k);
+        w25[k] = series::mul_d(dot3, &x[2], &w24, k);
+        let w26 = series::mul_d(dot4, &x[1], &w25, k);
         let w27 = series::sq(&x[3], k);
         let w35 = series::sq(&w24, k);
         let w55 = w6[k] * w54;
@@ -700,8 +751,8 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
         let w65 = w61 + w64;
         let w66 = w65 - w56;
         let w67 = w66 - w58;
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
-        let w75 = series::mul(&x[1], &sin_x0, k);
+        series::sin_cos_d(dot5, dot6, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w75 = series::mul_d(dot7, &x[1], &sin_x0, k);
         let w90 = sin_x0[k] * w87;
         let w91 = cos_x0[k] * w88;
         let w92 = w75 * w89;
@@ -714,8 +765,8 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
         let w108 = w75 * w83;
         let w109 = w106 + w107;
         w110[k] = w109 - w108;
-        let w111 = series::mul(&x[2], &w110, k);
-        let w112 = series::mul(&x[3], &cos_x0, k);
+        let w111 = series::mul_d(dot8, &x[2], &w110, k);
+        let w112 = series::mul_d(dot9, &x[3], &cos_x0, k);
         let w113 = w83 * w112;
         let w114 = w111 + w113;
         out[0][k] = w67;
@@ -772,18 +823,29 @@ pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Param
     let w55: f64 = w51 * w54;
     let mut out = [[0.0f64; N]; 2];
     for k in 0..N {
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
-        let w13 = series::mul(&sin_x0, &x[1], k);
+        let [dot0, dot1, dot2, dot3, dot4, dot5] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&sin_x0, &x[1]),
+                (&x[2], &w31),
+                (&cos_x0, &x[3]),
+                (&ug, &w36),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w13 = series::mul_d(dot2, &sin_x0, &x[1], k);
         let w27 = cos_x0[k] * w20;
         let w28 = sin_x0[k] * w25;
         let w29 = w13 * w22;
         let w30 = w27 + w28;
         w31[k] = w30 - w29;
-        let w32 = series::mul(&x[2], &w31, k);
-        let w34 = series::mul(&cos_x0, &x[3], k);
+        let w32 = series::mul_d(dot3, &x[2], &w31, k);
+        let w34 = series::mul_d(dot4, &cos_x0, &x[3], k);
         let w35 = w22 * w34;
         w36[k] = w32 + w35;
-        let w37 = series::mul(&ug, &w36, k);
+        let w37 = series::mul_d(dot5, &ug, &w36, k);
         let w38 = -w37;
         let w56 = series::sq(&x[3], k);
         let w57 = w55 * w56;

@@ -195,53 +195,106 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 6], ug: &[f64; N], s: f64,
     let mut w281 = [0.0f64; N];
     let mut w283 = [0.0f64; N];
     for k in 0..N - 1 {
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&cos_x0, &w43),
+                (&x[1], &ug),
+                (&x[2], &ug),
+                (&sin_x0, &w66),
+                (&x[3], &x[1]),
+                (&x[3], &x[2]),
+                (&x[4], &w100),
+            ],
+            k,
+        );
+        let [dot9, dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17] = series::dots(
+            [
+                (&x[5], &w119),
+                (&w123, &w127),
+                (&w135, &w136),
+                (&x[2], &w140),
+                (&w172, &w173),
+                (&w172, &w179),
+                (&cos_x0, &ug),
+                (&x[3], &w68),
+                (&x[3], &w69),
+            ],
+            k,
+        );
+        let [dot18, dot19, dot20, dot21, dot22, dot23, dot24, dot25, dot26] = series::dots(
+            [
+                (&w163, &w179),
+                (&w172, &w206),
+                (&w226, &w227),
+                (&w172, &w236),
+                (&w179, &w236),
+                (&w172, &w237),
+                (&w226, &w240),
+                (&w163, &w236),
+                (&w225, &w240),
+            ],
+            k,
+        );
+        let [dot27, dot28, dot29, dot30, dot31, dot32] = series::dots(
+            [
+                (&w172, &w254),
+                (&w207, &w256),
+                (&w280, &w281),
+                (&w240, &w281),
+                (&w179, &w283),
+                (&w236, &w281),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
         let w38 = x[1][k] * w35;
         let w39 = x[2][k] * w32;
         let w40 = ug[k] * w24;
         let w41 = w38 + w39;
         let w42 = w41 - w40;
         w43[k] = w42 - at0(k, w37);
-        let w44 = series::mul(&cos_x0, &w43, k);
-        let w47 = series::mul(&x[1], &ug, k);
-        let w48 = series::mul(&x[2], &ug, k);
+        let w44 = series::mul_d(dot2, &cos_x0, &w43, k);
+        let w47 = series::mul_d(dot3, &x[1], &ug, k);
+        let w48 = series::mul_d(dot4, &x[2], &ug, k);
         let w61 = ug[k] * w56;
         let w62 = w47 * w54;
         let w63 = w48 * w52;
         let w64 = w61 - w62;
         let w65 = w64 - w63;
         w66[k] = w65 - at0(k, w60);
-        let w67 = series::mul(&sin_x0, &w66, k);
-        w68[k] = series::mul(&x[3], &x[1], k);
-        w69[k] = series::mul(&x[3], &x[2], k);
+        let w67 = series::mul_d(dot5, &sin_x0, &w66, k);
+        w68[k] = series::mul_d(dot6, &x[3], &x[1], k);
+        w69[k] = series::mul_d(dot7, &x[3], &x[2], k);
         let w96 = x[3][k] * w95;
         let w97 = w68[k] * w88;
         let w98 = w69[k] * w82;
         let w99 = w97 + w98;
         w100[k] = w99 - w96;
-        let w101 = series::mul(&x[4], &w100, k);
+        let w101 = series::mul_d(dot8, &x[4], &w100, k);
         let w115 = x[3][k] * w114;
         let w116 = w68[k] * w82;
         let w117 = w69[k] * w107;
         let w118 = w116 + w117;
         w119[k] = w118 - w115;
-        let w120 = series::mul(&x[5], &w119, k);
+        let w120 = series::mul_d(dot9, &x[5], &w119, k);
         let w122 = x[1][k] + x[2][k];
         w123[k] = w122 - at0(k, w12);
         let w124 = x[1][k] * w74;
         let w125 = x[2][k] * w74;
         let w126 = w124 + w125;
         w127[k] = w126 - at0(k, w73);
-        let w128 = series::mul(&w123, &w127, k);
+        let w128 = series::mul_d(dot10, &w123, &w127, k);
         let w133 = x[1][k] * w79;
         let w134 = x[2][k] * w103;
         w135[k] = w133 + w134;
         w136[k] = x[2][k] * w70;
-        let w137 = series::mul(&w135, &w136, k);
+        let w137 = series::mul_d(dot11, &w135, &w136, k);
         let w138 = x[1][k] * w80;
         let w139 = x[2][k] * w104;
         w140[k] = w138 + w139;
-        let w141 = series::mul(&x[2], &w140, k);
+        let w141 = series::mul_d(dot12, &x[2], &w140, k);
         let w142 = series::sq(&x[1], k);
         let w161 = w44 - w67;
         let w162 = w161 - w101;
@@ -256,15 +309,15 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 6], ug: &[f64; N], s: f64,
         let w171 = w166 + w170;
         w172[k] = at0(k, w160) + w171;
         if k == 0 { inv_w172 = 1.0 / w172[0]; }
-        w173[k] = series::div(w163[k], &w172, &w173, inv_w172, k);
-        w179[k] = series::div(at0(k, w178), &w172, &w179, inv_w172, k);
-        let w188 = series::mul(&cos_x0, &ug, k);
+        w173[k] = series::div_d(dot13, w163[k], &w172, &w173, inv_w172, k);
+        w179[k] = series::div_d(dot14, at0(k, w178), &w172, &w179, inv_w172, k);
+        let w188 = series::mul_d(dot15, &cos_x0, &ug, k);
         let w192 = series::sq(&x[3], k);
-        let w193 = series::mul(&x[3], &w68, k);
-        let w194 = series::mul(&x[3], &w69, k);
-        let w201 = series::mul(&w163, &w179, k);
+        let w193 = series::mul_d(dot16, &x[3], &w68, k);
+        let w194 = series::mul_d(dot17, &x[3], &w69, k);
+        let w201 = series::mul_d(dot18, &w163, &w179, k);
         w206[k] = series::sq(&w179, k);
-        w207[k] = series::mul(&w172, &w206, k);
+        w207[k] = series::mul_d(dot19, &w172, &w206, k);
         let w208 = x[4][k] * w199;
         let w209 = x[5][k] * w200;
         let w210 = x[1][k] * w191;
@@ -285,18 +338,18 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 6], ug: &[f64; N], s: f64,
         w225[k] = w224 - w201;
         w226[k] = at0(k, w205) - w207[k];
         if k == 0 { inv_w226 = 1.0 / w226[0]; }
-        w227[k] = series::div(w225[k], &w226, &w227, inv_w226, k);
-        w236[k] = series::div(at0(k, w235), &w172, &w236, inv_w172, k);
-        w237[k] = series::mul(&w179, &w236, k);
-        let w238 = series::mul(&w172, &w237, k);
+        w227[k] = series::div_d(dot20, w225[k], &w226, &w227, inv_w226, k);
+        w236[k] = series::div_d(dot21, at0(k, w235), &w172, &w236, inv_w172, k);
+        w237[k] = series::mul_d(dot22, &w179, &w236, k);
+        let w238 = series::mul_d(dot23, &w172, &w237, k);
         let w239 = at0(k, w230) - w238;
-        w240[k] = series::div(w239, &w226, &w240, inv_w226, k);
-        let w248 = series::mul(&w163, &w236, k);
-        let w249 = series::mul(&w225, &w240, k);
+        w240[k] = series::div_d(dot24, w239, &w226, &w240, inv_w226, k);
+        let w248 = series::mul_d(dot25, &w163, &w236, k);
+        let w249 = series::mul_d(dot26, &w225, &w240, k);
         w254[k] = series::sq(&w236, k);
-        let w255 = series::mul(&w172, &w254, k);
+        let w255 = series::mul_d(dot27, &w172, &w254, k);
         w256[k] = series::sq(&w240, k);
-        let w257 = series::mul(&w207, &w256, k);
+        let w257 = series::mul_d(dot28, &w207, &w256, k);
         let w258 = x[4][k] * w200;
         let w259 = x[5][k] * w247;
         let w260 = x[1][k] * w187;
@@ -321,11 +374,11 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 6], ug: &[f64; N], s: f64,
         let w279 = w278 - w255;
         w280[k] = w279 - w277;
         if k == 0 { inv_w280 = 1.0 / w280[0]; }
-        w281[k] = series::div(w276, &w280, &w281, inv_w280, k);
-        let w282 = series::mul(&w240, &w281, k);
+        w281[k] = series::div_d(dot29, w276, &w280, &w281, inv_w280, k);
+        let w282 = series::mul_d(dot30, &w240, &w281, k);
         w283[k] = w227[k] - w282;
-        let w284 = series::mul(&w179, &w283, k);
-        let w285 = series::mul(&w236, &w281, k);
+        let w284 = series::mul_d(dot31, &w179, &w283, k);
+        let w285 = series::mul_d(dot32, &w236, &w281, k);
         let w286 = w173[k] - w284;
         let w287 = w286 - w285;
         let inv_k1 = 1.0 / (k + 1) as f64;
@@ -514,42 +567,86 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 6], s: f64, p: &Param
     let mut w256 = [0.0f64; N];
     let mut w258 = [0.0f64; N];
     for k in 0..N - 1 {
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8, dot9] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&cos_x0, &w37),
+                (&x[3], &x[1]),
+                (&x[3], &x[2]),
+                (&x[4], &w77),
+                (&x[5], &w96),
+                (&w100, &w104),
+                (&w112, &w113),
+                (&x[2], &w117),
+            ],
+            k,
+        );
+        let [dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17, dot18, dot19] = series::dots(
+            [
+                (&w151, &w152),
+                (&w151, &w159),
+                (&x[3], &w45),
+                (&x[3], &w46),
+                (&w142, &w159),
+                (&w151, &w185),
+                (&w203, &w204),
+                (&w151, &w213),
+                (&w159, &w213),
+                (&w151, &w214),
+            ],
+            k,
+        );
+        let [dot20, dot21, dot22, dot23, dot24, dot25, dot26, dot27, dot28] = series::dots(
+            [
+                (&w203, &w217),
+                (&w142, &w213),
+                (&w202, &w217),
+                (&w151, &w231),
+                (&w186, &w233),
+                (&w255, &w256),
+                (&w217, &w256),
+                (&w159, &w258),
+                (&w213, &w256),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
         let w34 = x[1][k] * w31;
         let w35 = x[2][k] * w28;
         let w36 = w34 + w35;
         w37[k] = w36 - at0(k, w33);
-        let w38 = series::mul(&cos_x0, &w37, k);
-        w45[k] = series::mul(&x[3], &x[1], k);
-        w46[k] = series::mul(&x[3], &x[2], k);
+        let w38 = series::mul_d(dot2, &cos_x0, &w37, k);
+        w45[k] = series::mul_d(dot3, &x[3], &x[1], k);
+        w46[k] = series::mul_d(dot4, &x[3], &x[2], k);
         let w73 = x[3][k] * w72;
         let w74 = w45[k] * w65;
         let w75 = w46[k] * w59;
         let w76 = w74 + w75;
         w77[k] = w76 - w73;
-        let w78 = series::mul(&x[4], &w77, k);
+        let w78 = series::mul_d(dot5, &x[4], &w77, k);
         let w92 = x[3][k] * w91;
         let w93 = w45[k] * w59;
         let w94 = w46[k] * w84;
         let w95 = w93 + w94;
         w96[k] = w95 - w92;
-        let w97 = series::mul(&x[5], &w96, k);
+        let w97 = series::mul_d(dot6, &x[5], &w96, k);
         let w99 = x[1][k] + x[2][k];
         w100[k] = w99 - at0(k, w12);
         let w101 = x[1][k] * w51;
         let w102 = x[2][k] * w51;
         let w103 = w101 + w102;
         w104[k] = w103 - at0(k, w50);
-        let w105 = series::mul(&w100, &w104, k);
+        let w105 = series::mul_d(dot7, &w100, &w104, k);
         let w110 = x[1][k] * w56;
         let w111 = x[2][k] * w80;
         w112[k] = w110 + w111;
         w113[k] = x[2][k] * w47;
-        let w114 = series::mul(&w112, &w113, k);
+        let w114 = series::mul_d(dot8, &w112, &w113, k);
         let w115 = x[1][k] * w57;
         let w116 = x[2][k] * w81;
         w117[k] = w115 + w116;
-        let w118 = series::mul(&x[2], &w117, k);
+        let w118 = series::mul_d(dot9, &x[2], &w117, k);
         let w119 = series::sq(&x[1], k);
         let w139 = sin_x0[k] * w44;
         let w140 = w38 - w139;
@@ -565,14 +662,14 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 6], s: f64, p: &Param
         let w150 = w145 + w149;
         w151[k] = at0(k, w138) + w150;
         if k == 0 { inv_w151 = 1.0 / w151[0]; }
-        w152[k] = series::div(w142[k], &w151, &w152, inv_w151, k);
-        w159[k] = series::div(at0(k, w158), &w151, &w159, inv_w151, k);
+        w152[k] = series::div_d(dot10, w142[k], &w151, &w152, inv_w151, k);
+        w159[k] = series::div_d(dot11, at0(k, w158), &w151, &w159, inv_w151, k);
         let w171 = series::sq(&x[3], k);
-        let w172 = series::mul(&x[3], &w45, k);
-        let w173 = series::mul(&x[3], &w46, k);
-        let w180 = series::mul(&w142, &w159, k);
+        let w172 = series::mul_d(dot12, &x[3], &w45, k);
+        let w173 = series::mul_d(dot13, &x[3], &w46, k);
+        let w180 = series::mul_d(dot14, &w142, &w159, k);
         w185[k] = series::sq(&w159, k);
-        w186[k] = series::mul(&w151, &w185, k);
+        w186[k] = series::mul_d(dot15, &w151, &w185, k);
         let w187 = x[4][k] * w178;
         let w188 = x[5][k] * w179;
         let w189 = x[1][k] * w170;
@@ -591,18 +688,18 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 6], s: f64, p: &Param
         w202[k] = w201 - w180;
         w203[k] = at0(k, w184) - w186[k];
         if k == 0 { inv_w203 = 1.0 / w203[0]; }
-        w204[k] = series::div(w202[k], &w203, &w204, inv_w203, k);
-        w213[k] = series::div(at0(k, w212), &w151, &w213, inv_w151, k);
-        w214[k] = series::mul(&w159, &w213, k);
-        let w215 = series::mul(&w151, &w214, k);
+        w204[k] = series::div_d(dot16, w202[k], &w203, &w204, inv_w203, k);
+        w213[k] = series::div_d(dot17, at0(k, w212), &w151, &w213, inv_w151, k);
+        w214[k] = series::mul_d(dot18, &w159, &w213, k);
+        let w215 = series::mul_d(dot19, &w151, &w214, k);
         let w216 = at0(k, w207) - w215;
-        w217[k] = series::div(w216, &w203, &w217, inv_w203, k);
-        let w225 = series::mul(&w142, &w213, k);
-        let w226 = series::mul(&w202, &w217, k);
+        w217[k] = series::div_d(dot20, w216, &w203, &w217, inv_w203, k);
+        let w225 = series::mul_d(dot21, &w142, &w213, k);
+        let w226 = series::mul_d(dot22, &w202, &w217, k);
         w231[k] = series::sq(&w213, k);
-        let w232 = series::mul(&w151, &w231, k);
+        let w232 = series::mul_d(dot23, &w151, &w231, k);
         w233[k] = series::sq(&w217, k);
-        let w234 = series::mul(&w186, &w233, k);
+        let w234 = series::mul_d(dot24, &w186, &w233, k);
         let w235 = x[4][k] * w179;
         let w236 = x[5][k] * w224;
         let w237 = x[1][k] * w167;
@@ -625,11 +722,11 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 6], s: f64, p: &Param
         let w254 = w253 - w232;
         w255[k] = w254 - w252;
         if k == 0 { inv_w255 = 1.0 / w255[0]; }
-        w256[k] = series::div(w251, &w255, &w256, inv_w255, k);
-        let w257 = series::mul(&w217, &w256, k);
+        w256[k] = series::div_d(dot25, w251, &w255, &w256, inv_w255, k);
+        let w257 = series::mul_d(dot26, &w217, &w256, k);
         w258[k] = w204[k] - w257;
-        let w259 = series::mul(&w159, &w258, k);
-        let w260 = series::mul(&w213, &w256, k);
+        let w259 = series::mul_d(dot27, &w159, &w258, k);
+        let w260 = series::mul_d(dot28, &w213, &w256, k);
         let w261 = w152[k] - w259;
         let w262 = w261 - w260;
         let inv_k1 = 1.0 / (k + 1) as f64;
@@ -1120,20 +1217,50 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 6], s: f64, p: &Params) -> [[f64; N
     let mut w177 = [0.0f64; N];
     let mut out = [[0.0f64; N]; 4];
     for k in 0..N {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8, dot9] = series::dots(
+            [
+                (&w6, &x[1]),
+                (&w6, &x[2]),
+                (&x[3], &x[4]),
+                (&x[3], &x[5]),
+                (&x[3], &x[1]),
+                (&x[3], &w32),
+                (&x[1], &w33),
+                (&x[3], &x[2]),
+                (&x[3], &w38),
+                (&x[1], &w39),
+            ],
+            k,
+        );
+        let [dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17, dot18, dot19] = series::dots(
+            [
+                (&x[4], &x[5]),
+                (&x[2], &w39),
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&x[1], &sin_x0),
+                (&x[2], &sin_x0),
+                (&x[1], &x[2]),
+                (&x[3], &w177),
+                (&x[4], &cos_x0),
+                (&x[5], &cos_x0),
+            ],
+            k,
+        );
         w6[k] = series::sq(&x[3], k);
-        let w11 = series::mul(&w6, &x[1], k);
-        let w15 = series::mul(&w6, &x[2], k);
-        let w25 = series::mul(&x[3], &x[4], k);
-        let w29 = series::mul(&x[3], &x[5], k);
-        w32[k] = series::mul(&x[3], &x[1], k);
-        w33[k] = series::mul(&x[3], &w32, k);
-        let w34 = series::mul(&x[1], &w33, k);
+        let w11 = series::mul_d(dot0, &w6, &x[1], k);
+        let w15 = series::mul_d(dot1, &w6, &x[2], k);
+        let w25 = series::mul_d(dot2, &x[3], &x[4], k);
+        let w29 = series::mul_d(dot3, &x[3], &x[5], k);
+        w32[k] = series::mul_d(dot4, &x[3], &x[1], k);
+        w33[k] = series::mul_d(dot5, &x[3], &w32, k);
+        let w34 = series::mul_d(dot6, &x[1], &w33, k);
         let w35 = series::sq(&x[4], k);
-        w38[k] = series::mul(&x[3], &x[2], k);
-        w39[k] = series::mul(&x[3], &w38, k);
-        let w40 = series::mul(&x[1], &w39, k);
-        let w41 = series::mul(&x[4], &x[5], k);
-        let w44 = series::mul(&x[2], &w39, k);
+        w38[k] = series::mul_d(dot7, &x[3], &x[2], k);
+        w39[k] = series::mul_d(dot8, &x[3], &w38, k);
+        let w40 = series::mul_d(dot9, &x[1], &w39, k);
+        let w41 = series::mul_d(dot10, &x[4], &x[5], k);
+        let w44 = series::mul_d(dot11, &x[2], &w39, k);
         let w45 = series::sq(&x[5], k);
         let w57 = x[3][k] * w4;
         let w58 = w32[k] + w38[k];
@@ -1162,9 +1289,9 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 6], s: f64, p: &Params) -> [[f64; N
         let w107 = w98 + w106;
         let w108 = w107 - w88;
         let w109 = w108 - w89;
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
-        let w117 = series::mul(&x[1], &sin_x0, k);
-        let w118 = series::mul(&x[2], &sin_x0, k);
+        series::sin_cos_d(dot12, dot13, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w117 = series::mul_d(dot14, &x[1], &sin_x0, k);
+        let w118 = series::mul_d(dot15, &x[2], &sin_x0, k);
         let w136 = sin_x0[k] * w132;
         let w137 = cos_x0[k] * w133;
         let w138 = w117 * w134;
@@ -1174,7 +1301,7 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 6], s: f64, p: &Params) -> [[f64; N
         let w142 = w141 - w139;
         let w150 = series::sq(&x[1], k);
         let w153 = series::sq(&x[2], k);
-        let w156 = series::mul(&x[1], &x[2], k);
+        let w156 = series::mul_d(dot16, &x[1], &x[2], k);
         let w160 = w150 * w157;
         let w161 = w153 * w158;
         let w162 = w156 * w159;
@@ -1187,9 +1314,9 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 6], s: f64, p: &Params) -> [[f64; N
         let w175 = w171 + w172;
         let w176 = w175 - w173;
         w177[k] = w176 - w174;
-        let w178 = series::mul(&x[3], &w177, k);
-        let w179 = series::mul(&x[4], &cos_x0, k);
-        let w180 = series::mul(&x[5], &cos_x0, k);
+        let w178 = series::mul_d(dot17, &x[3], &w177, k);
+        let w179 = series::mul_d(dot18, &x[4], &cos_x0, k);
+        let w180 = series::mul_d(dot19, &x[5], &cos_x0, k);
         let w181 = w127 * w179;
         let w182 = w128 * w180;
         let w183 = w178 + w181;
@@ -1241,33 +1368,47 @@ pub fn power<const N: usize>(x: &[[f64; N]; 6], ug: &[f64; N], s: f64, p: &Param
     let mut w58 = [0.0f64; N];
     let mut out = [[0.0f64; N]; 2];
     for k in 0..N {
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&sin_x0, &w32),
+                (&x[3], &w36),
+                (&cos_x0, &x[4]),
+                (&cos_x0, &x[5]),
+                (&ug, &w45),
+                (&x[4], &w53),
+                (&x[5], &w58),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
         let w12 = x[1][k];
         let w13 = x[2][k];
         let w29 = w12 * w26;
         let w30 = w13 * w23;
         let w31 = w29 + w30;
         w32[k] = w31 - at0(k, w28);
-        let w33 = series::mul(&sin_x0, &w32, k);
+        let w33 = series::mul_d(dot2, &sin_x0, &w32, k);
         let w35 = cos_x0[k] * w10;
         w36[k] = w35 - w33;
-        let w37 = series::mul(&x[3], &w36, k);
-        let w39 = series::mul(&cos_x0, &x[4], k);
-        let w41 = series::mul(&cos_x0, &x[5], k);
+        let w37 = series::mul_d(dot3, &x[3], &w36, k);
+        let w39 = series::mul_d(dot4, &cos_x0, &x[4], k);
+        let w41 = series::mul_d(dot5, &cos_x0, &x[5], k);
         let w42 = w26 * w39;
         let w43 = w23 * w41;
         let w44 = w37 + w42;
         w45[k] = w43 + w44;
-        let w46 = series::mul(&ug, &w45, k);
+        let w46 = series::mul_d(dot6, &ug, &w45, k);
         let w47 = -w46;
         let w51 = x[4][k] * w49;
         let w52 = x[5][k] * w50;
         w53[k] = w51 + w52;
-        let w54 = series::mul(&x[4], &w53, k);
+        let w54 = series::mul_d(dot7, &x[4], &w53, k);
         let w56 = x[4][k] * w50;
         let w57 = x[5][k] * w55;
         w58[k] = w56 + w57;
-        let w59 = series::mul(&x[5], &w58, k);
+        let w59 = series::mul_d(dot8, &x[5], &w58, k);
         let w60 = w54 + w59;
         out[0][k] = w47;
         out[1][k] = w60;

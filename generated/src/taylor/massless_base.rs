@@ -142,22 +142,44 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
     let w181: f64 = w25 * w83;
     let mut w192 = [0.0f64; N];
     for k in 0..N - 1 {
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
-        let w32 = series::mul(&cos_x0, &x[1], k);
-        let w33 = series::mul(&cos_x0, &ug, k);
-        let w36 = series::mul(&x[1], &ug, k);
+        let [dot0, dot1, dot2, dot3, dot4, dot5] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&cos_x0, &x[1]),
+                (&cos_x0, &ug),
+                (&x[1], &ug),
+                (&sin_x0, &w48),
+            ],
+            k,
+        );
+        let [dot6, dot7, dot8, dot9, dot10, dot11] = series::dots(
+            [
+                (&x[2], &x[1]),
+                (&x[3], &w74),
+                (&x[2], &w50),
+                (&w161, &w162),
+                (&w167, &w178),
+                (&w161, &w192),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w32 = series::mul_d(dot2, &cos_x0, &x[1], k);
+        let w33 = series::mul_d(dot3, &cos_x0, &ug, k);
+        let w36 = series::mul_d(dot4, &x[1], &ug, k);
         let w45 = ug[k] * w40;
         let w46 = w36 * w39;
         let w47 = w45 - w46;
         w48[k] = w47 - at0(k, w44);
-        let w49 = series::mul(&sin_x0, &w48, k);
-        w50[k] = series::mul(&x[2], &x[1], k);
+        let w49 = series::mul_d(dot5, &sin_x0, &w48, k);
+        w50[k] = series::mul_d(dot6, &x[2], &x[1], k);
         let w72 = x[2][k] * w71;
         let w73 = w50[k] * w64;
         w74[k] = w73 - w72;
-        let w75 = series::mul(&x[3], &w74, k);
+        let w75 = series::mul_d(dot7, &x[3], &w74, k);
         let w91 = series::sq(&x[2], k);
-        let w92 = series::mul(&x[2], &w50, k);
+        let w92 = series::mul_d(dot8, &x[2], &w50, k);
         let w111 = series::sq(&x[1], k);
         let w139 = x[3][k] * w104;
         let w140 = cos_x0[k] * w76;
@@ -183,7 +205,7 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         let w160 = w158 + w159;
         w161[k] = at0(k, w138) + w160;
         if k == 0 { inv_w161 = 1.0 / w161[0]; }
-        w162[k] = series::div(w157, &w161, &w162, inv_w161, k);
+        w162[k] = series::div_d(dot9, w157, &w161, &w162, inv_w161, k);
         let w164 = x[1][k] * w129;
         let w165 = w94 * w111;
         let w166 = w164 + w165;
@@ -199,7 +221,7 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         let w176 = w175 - w168;
         let w177 = w176 - w170;
         w178[k] = w177 - w172;
-        let w179 = series::mul(&w167, &w178, k);
+        let w179 = series::mul_d(dot10, &w167, &w178, k);
         let w182 = cos_x0[k] * w180;
         let w183 = w32 * w107;
         let w184 = w33 * w181;
@@ -210,7 +232,7 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         let w189 = w186 + w188;
         let w190 = w179 + w189;
         let w191 = w190 - w183;
-        w192[k] = series::div(w191, &w161, &w192, inv_w161, k);
+        w192[k] = series::div_d(dot11, w191, &w161, &w192, inv_w161, k);
         let inv_k1 = 1.0 / (k + 1) as f64;
         x[0][k + 1] = x[2][k] * inv_k1;
         x[1][k + 1] = x[3][k] * inv_k1;
@@ -345,15 +367,29 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
     let w161: f64 = w34 * w69;
     let mut w170 = [0.0f64; N];
     for k in 0..N - 1 {
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
-        let w28 = series::mul(&cos_x0, &x[1], k);
-        w35[k] = series::mul(&x[2], &x[1], k);
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&cos_x0, &x[1]),
+                (&x[2], &x[1]),
+                (&x[3], &w59),
+                (&x[2], &w35),
+                (&w143, &w144),
+                (&w149, &w158),
+                (&w143, &w170),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w28 = series::mul_d(dot2, &cos_x0, &x[1], k);
+        w35[k] = series::mul_d(dot3, &x[2], &x[1], k);
         let w57 = x[2][k] * w56;
         let w58 = w35[k] * w49;
         w59[k] = w58 - w57;
-        let w60 = series::mul(&x[3], &w59, k);
+        let w60 = series::mul_d(dot4, &x[3], &w59, k);
         let w77 = series::sq(&x[2], k);
-        let w78 = series::mul(&x[2], &w35, k);
+        let w78 = series::mul_d(dot5, &x[2], &w35, k);
         let w96 = series::sq(&x[1], k);
         let w125 = x[3][k] * w90;
         let w126 = cos_x0[k] * w61;
@@ -375,7 +411,7 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
         let w142 = w140 + w141;
         w143[k] = at0(k, w124) + w142;
         if k == 0 { inv_w143 = 1.0 / w143[0]; }
-        w144[k] = series::div(w139, &w143, &w144, inv_w143, k);
+        w144[k] = series::div_d(dot6, w139, &w143, &w144, inv_w143, k);
         let w146 = x[1][k] * w114;
         let w147 = w80 * w96;
         let w148 = w146 + w147;
@@ -389,7 +425,7 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
         let w156 = w154 + w155;
         let w157 = w156 - w150;
         w158[k] = w157 - w153;
-        let w159 = series::mul(&w149, &w158, k);
+        let w159 = series::mul_d(dot7, &w149, &w158, k);
         let w162 = cos_x0[k] * w160;
         let w163 = w28 * w92;
         let w164 = sin_x0[k] * w161;
@@ -398,7 +434,7 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
         let w167 = w165 + w166;
         let w168 = w159 + w167;
         let w169 = w168 - w163;
-        w170[k] = series::div(w169, &w143, &w170, inv_w143, k);
+        w170[k] = series::div_d(dot8, w169, &w143, &w170, inv_w143, k);
         let inv_k1 = 1.0 / (k + 1) as f64;
         x[0][k + 1] = x[2][k] * inv_k1;
         x[1][k + 1] = x[3][k] * inv_k1;
@@ -655,12 +691,27 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
     let mut w104 = [0.0f64; N];
     let mut out = [[0.0f64; N]; 4];
     for k in 0..N {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8, dot9] = series::dots(
+            [
+                (&w6, &x[1]),
+                (&x[2], &x[3]),
+                (&x[2], &x[1]),
+                (&x[2], &w24),
+                (&x[1], &w25),
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&x[1], &sin_x0),
+                (&x[2], &w104),
+                (&x[3], &cos_x0),
+            ],
+            k,
+        );
         w6[k] = series::sq(&x[2], k);
-        let w11 = series::mul(&w6, &x[1], k);
-        let w21 = series::mul(&x[2], &x[3], k);
-        w24[k] = series::mul(&x[2], &x[1], k);
-        w25[k] = series::mul(&x[2], &w24, k);
-        let w26 = series::mul(&x[1], &w25, k);
+        let w11 = series::mul_d(dot0, &w6, &x[1], k);
+        let w21 = series::mul_d(dot1, &x[2], &x[3], k);
+        w24[k] = series::mul_d(dot2, &x[2], &x[1], k);
+        w25[k] = series::mul_d(dot3, &x[2], &w24, k);
+        let w26 = series::mul_d(dot4, &x[1], &w25, k);
         let w27 = series::sq(&x[3], k);
         let w35 = series::sq(&w24, k);
         let w52 = w6[k] * w45;
@@ -676,8 +727,8 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
         let w62 = w58 + w61;
         let w63 = w62 - w53;
         let w64 = w63 - w55;
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
-        let w72 = series::mul(&x[1], &sin_x0, k);
+        series::sin_cos_d(dot5, dot6, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w72 = series::mul_d(dot7, &x[1], &sin_x0, k);
         let w84 = sin_x0[k] * w81;
         let w85 = cos_x0[k] * w82;
         let w86 = w72 * w83;
@@ -690,8 +741,8 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
         let w102 = w72 * w80;
         let w103 = w100 + w101;
         w104[k] = w103 - w102;
-        let w105 = series::mul(&x[2], &w104, k);
-        let w106 = series::mul(&x[3], &cos_x0, k);
+        let w105 = series::mul_d(dot8, &x[2], &w104, k);
+        let w106 = series::mul_d(dot9, &x[3], &cos_x0, k);
         let w107 = w80 * w106;
         let w108 = w105 + w107;
         out[0][k] = w64;
@@ -745,18 +796,29 @@ pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Param
     let w52: f64 = w48 * w51;
     let mut out = [[0.0f64; N]; 2];
     for k in 0..N {
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
-        let w13 = series::mul(&sin_x0, &x[1], k);
+        let [dot0, dot1, dot2, dot3, dot4, dot5] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&sin_x0, &x[1]),
+                (&x[2], &w28),
+                (&cos_x0, &x[3]),
+                (&ug, &w33),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w13 = series::mul_d(dot2, &sin_x0, &x[1], k);
         let w24 = cos_x0[k] * w20;
         let w25 = sin_x0[k] * w21;
         let w26 = w13 * w22;
         let w27 = w24 + w25;
         w28[k] = w27 - w26;
-        let w29 = series::mul(&x[2], &w28, k);
-        let w31 = series::mul(&cos_x0, &x[3], k);
+        let w29 = series::mul_d(dot3, &x[2], &w28, k);
+        let w31 = series::mul_d(dot4, &cos_x0, &x[3], k);
         let w32 = w22 * w31;
         w33[k] = w29 + w32;
-        let w34 = series::mul(&ug, &w33, k);
+        let w34 = series::mul_d(dot5, &ug, &w33, k);
         let w35 = -w34;
         let w53 = series::sq(&x[3], k);
         let w54 = w52 * w53;

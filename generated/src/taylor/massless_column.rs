@@ -84,28 +84,50 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
     let mut w120 = [0.0f64; N];
     let mut w128 = [0.0f64; N];
     for k in 0..N - 1 {
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let [dot0, dot1, dot2, dot3, dot4, dot5] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&cos_x0, &w24),
+                (&x[1], &ug),
+                (&sin_x0, &w35),
+                (&x[2], &x[1]),
+            ],
+            k,
+        );
+        let [dot6, dot7, dot8, dot9, dot10, dot11] = series::dots(
+            [
+                (&x[3], &w49),
+                (&cos_x0, &ug),
+                (&x[2], &w61),
+                (&w106, &w107),
+                (&w112, &w120),
+                (&w106, &w128),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
         let w21 = x[1][k] * w12;
         let w22 = ug[k] * w16;
         let w23 = w21 - w22;
         w24[k] = w23 - at0(k, w20);
-        let w25 = series::mul(&cos_x0, &w24, k);
-        let w28 = series::mul(&x[1], &ug, k);
+        let w25 = series::mul_d(dot2, &cos_x0, &w24, k);
+        let w28 = series::mul_d(dot3, &x[1], &ug, k);
         let w32 = ug[k] * w30;
         let w33 = w4 * w28;
         let w34 = w32 - w33;
         w35[k] = w34 - at0(k, w31);
-        let w36 = series::mul(&sin_x0, &w35, k);
-        let w37 = series::mul(&x[2], &x[1], k);
+        let w36 = series::mul_d(dot4, &sin_x0, &w35, k);
+        let w37 = series::mul_d(dot5, &x[2], &x[1], k);
         let w47 = x[2][k] * w45;
         let w48 = w37 * w46;
         w49[k] = w48 - w47;
-        let w50 = series::mul(&x[3], &w49, k);
-        let w58 = series::mul(&cos_x0, &ug, k);
+        let w50 = series::mul_d(dot6, &x[3], &w49, k);
+        let w58 = series::mul_d(dot7, &cos_x0, &ug, k);
         let w59 = x[2][k] * w42;
         let w60 = w37 * w43;
         w61[k] = w60 - w59;
-        let w62 = series::mul(&x[2], &w61, k);
+        let w62 = series::mul_d(dot8, &x[2], &w61, k);
         let w76 = series::sq(&x[1], k);
         let w88 = x[3][k] * w71;
         let w89 = x[1][k] * w72;
@@ -127,7 +149,7 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         let w105 = at0(k, w87) + w104;
         w106[k] = w105 - w103;
         if k == 0 { inv_w106 = 1.0 / w106[0]; }
-        w107[k] = series::div(w102, &w106, &w107, inv_w106, k);
+        w107[k] = series::div_d(dot9, w102, &w106, &w107, inv_w106, k);
         let w109 = x[1][k] * w45;
         let w110 = w43 * w76;
         let w111 = at0(k, w82) + w110;
@@ -140,14 +162,14 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         let w118 = w62 + w117;
         let w119 = w118 - w113;
         w120[k] = w119 - w116;
-        let w121 = series::mul(&w112, &w120, k);
+        let w121 = series::mul_d(dot10, &w112, &w120, k);
         let w122 = w16 * w25;
         let w123 = w16 * w36;
         let w124 = w16 * w50;
         let w125 = w123 + w124;
         let w126 = w121 + w125;
         let w127 = w126 - w122;
-        w128[k] = series::div(w127, &w106, &w128, inv_w106, k);
+        w128[k] = series::div_d(dot11, w127, &w106, &w128, inv_w106, k);
         let inv_k1 = 1.0 / (k + 1) as f64;
         x[0][k + 1] = x[2][k] * inv_k1;
         x[1][k + 1] = x[3][k] * inv_k1;
@@ -233,17 +255,31 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
     let w109: f64 = w23 * w41;
     let mut w118 = [0.0f64; N];
     for k in 0..N - 1 {
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
-        let w20 = series::mul(&cos_x0, &x[1], k);
-        let w24 = series::mul(&x[2], &x[1], k);
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&cos_x0, &x[1]),
+                (&x[2], &x[1]),
+                (&x[3], &w36),
+                (&x[2], &w51),
+                (&w94, &w95),
+                (&w100, &w106),
+                (&w94, &w118),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w20 = series::mul_d(dot2, &cos_x0, &x[1], k);
+        let w24 = series::mul_d(dot3, &x[2], &x[1], k);
         let w34 = x[2][k] * w32;
         let w35 = w24 * w33;
         w36[k] = w35 - w34;
-        let w37 = series::mul(&x[3], &w36, k);
+        let w37 = series::mul_d(dot4, &x[3], &w36, k);
         let w49 = x[2][k] * w29;
         let w50 = w24 * w30;
         w51[k] = w50 - w49;
-        let w52 = series::mul(&x[2], &w51, k);
+        let w52 = series::mul_d(dot5, &x[2], &w51, k);
         let w66 = series::sq(&x[1], k);
         let w78 = x[3][k] * w61;
         let w79 = cos_x0[k] * w38;
@@ -263,7 +299,7 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
         let w93 = at0(k, w77) + w92;
         w94[k] = w93 - w91;
         if k == 0 { inv_w94 = 1.0 / w94[0]; }
-        w95[k] = series::div(w90, &w94, &w95, inv_w94, k);
+        w95[k] = series::div_d(dot6, w90, &w94, &w95, inv_w94, k);
         let w97 = x[1][k] * w32;
         let w98 = w30 * w66;
         let w99 = at0(k, w72) + w98;
@@ -274,7 +310,7 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
         let w104 = w102 + w103;
         let w105 = w52 + w104;
         w106[k] = w105 - w101;
-        let w107 = series::mul(&w100, &w106, k);
+        let w107 = series::mul_d(dot7, &w100, &w106, k);
         let w110 = cos_x0[k] * w108;
         let w111 = w20 * w63;
         let w112 = sin_x0[k] * w109;
@@ -283,7 +319,7 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
         let w115 = w113 + w114;
         let w116 = w107 + w115;
         let w117 = w116 - w111;
-        w118[k] = series::div(w117, &w94, &w118, inv_w94, k);
+        w118[k] = series::div_d(dot8, w117, &w94, &w118, inv_w94, k);
         let inv_k1 = 1.0 / (k + 1) as f64;
         x[0][k + 1] = x[2][k] * inv_k1;
         x[1][k + 1] = x[3][k] * inv_k1;
@@ -473,10 +509,21 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
     let mut w61 = [0.0f64; N];
     let mut out = [[0.0f64; N]; 4];
     for k in 0..N {
+        let [dot0, dot1, dot2, dot3, dot4, dot5] = series::dots(
+            [
+                (&x[2], &x[1]),
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&x[1], &sin_x0),
+                (&x[2], &w61),
+                (&x[3], &cos_x0),
+            ],
+            k,
+        );
         let w4 = x[2][k] * w3;
         w5[k] = x[3][k] + w4;
         let w6 = series::sq(&w5, k);
-        let w11 = series::mul(&x[2], &x[1], k);
+        let w11 = series::mul_d(dot0, &x[2], &x[1], k);
         let w12 = x[2][k] * w10;
         w13[k] = w11 - w12;
         let w14 = series::sq(&w13, k);
@@ -486,8 +533,8 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
         let w24 = w20 * w21;
         let w25 = w22 + w23;
         let w26 = w24 + w25;
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
-        let w32 = series::mul(&x[1], &sin_x0, k);
+        series::sin_cos_d(dot1, dot2, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w32 = series::mul_d(dot3, &x[1], &sin_x0, k);
         let w41 = cos_x0[k] * w38;
         let w42 = sin_x0[k] * w39;
         let w43 = w32 * w40;
@@ -500,8 +547,8 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
         let w59 = w0 * w32;
         let w60 = w57 + w58;
         w61[k] = w60 - w59;
-        let w62 = series::mul(&x[2], &w61, k);
-        let w63 = series::mul(&x[3], &cos_x0, k);
+        let w62 = series::mul_d(dot4, &x[2], &w61, k);
+        let w63 = series::mul_d(dot5, &x[3], &cos_x0, k);
         let w64 = w0 * w63;
         let w65 = w62 + w64;
         out[0][k] = w26;
@@ -544,18 +591,29 @@ pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Param
     let w41: f64 = w1 * w40;
     let mut out = [[0.0f64; N]; 2];
     for k in 0..N {
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
-        let w10 = series::mul(&x[1], &sin_x0, k);
+        let [dot0, dot1, dot2, dot3, dot4, dot5] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&x[1], &sin_x0),
+                (&x[2], &w21),
+                (&cos_x0, &x[3]),
+                (&ug, &w26),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w10 = series::mul_d(dot2, &x[1], &sin_x0, k);
         let w17 = cos_x0[k] * w11;
         let w18 = sin_x0[k] * w15;
         let w19 = w1 * w10;
         let w20 = w17 + w18;
         w21[k] = w20 - w19;
-        let w22 = series::mul(&x[2], &w21, k);
-        let w24 = series::mul(&cos_x0, &x[3], k);
+        let w22 = series::mul_d(dot3, &x[2], &w21, k);
+        let w24 = series::mul_d(dot4, &cos_x0, &x[3], k);
         let w25 = w1 * w24;
         w26[k] = w22 + w25;
-        let w27 = series::mul(&ug, &w26, k);
+        let w27 = series::mul_d(dot5, &ug, &w26, k);
         let w28 = -w27;
         let w42 = series::sq(&x[3], k);
         let w43 = w41 * w42;

@@ -76,28 +76,50 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
     let mut w112 = [0.0f64; N];
     let mut w120 = [0.0f64; N];
     for k in 0..N - 1 {
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let [dot0, dot1, dot2, dot3, dot4, dot5] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&cos_x0, &w20),
+                (&x[1], &ug),
+                (&sin_x0, &w29),
+                (&x[2], &x[1]),
+            ],
+            k,
+        );
+        let [dot6, dot7, dot8, dot9, dot10, dot11] = series::dots(
+            [
+                (&x[3], &w43),
+                (&cos_x0, &ug),
+                (&x[2], &w55),
+                (&w98, &w99),
+                (&w104, &w112),
+                (&w98, &w120),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
         let w17 = x[1][k] * w12;
         let w18 = ug[k] * w16;
         let w19 = w17 - w18;
         w20[k] = w19 - at0(k, w13);
-        let w21 = series::mul(&cos_x0, &w20, k);
-        let w23 = series::mul(&x[1], &ug, k);
+        let w21 = series::mul_d(dot2, &cos_x0, &w20, k);
+        let w23 = series::mul_d(dot3, &x[1], &ug, k);
         let w26 = ug[k] * w24;
         let w27 = w4 * w23;
         let w28 = at0(k, w25) + w27;
         w29[k] = w28 - w26;
-        let w30 = series::mul(&sin_x0, &w29, k);
-        let w31 = series::mul(&x[2], &x[1], k);
+        let w30 = series::mul_d(dot4, &sin_x0, &w29, k);
+        let w31 = series::mul_d(dot5, &x[2], &x[1], k);
         let w41 = x[2][k] * w39;
         let w42 = w31 * w40;
         w43[k] = w42 - w41;
-        let w44 = series::mul(&x[3], &w43, k);
-        let w52 = series::mul(&cos_x0, &ug, k);
+        let w44 = series::mul_d(dot6, &x[3], &w43, k);
+        let w52 = series::mul_d(dot7, &cos_x0, &ug, k);
         let w53 = x[2][k] * w36;
         let w54 = w31 * w37;
         w55[k] = w54 - w53;
-        let w56 = series::mul(&x[2], &w55, k);
+        let w56 = series::mul_d(dot8, &x[2], &w55, k);
         let w69 = series::sq(&x[1], k);
         let w80 = x[3][k] * w65;
         let w81 = x[1][k] * w66;
@@ -119,7 +141,7 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         let w97 = at0(k, w79) + w96;
         w98[k] = w97 - w95;
         if k == 0 { inv_w98 = 1.0 / w98[0]; }
-        w99[k] = series::div(w94, &w98, &w99, inv_w98, k);
+        w99[k] = series::div_d(dot9, w94, &w98, &w99, inv_w98, k);
         let w101 = x[1][k] * w39;
         let w102 = w37 * w69;
         let w103 = at0(k, w74) + w102;
@@ -132,14 +154,14 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         let w110 = w56 + w109;
         let w111 = w110 - w105;
         w112[k] = w111 - w108;
-        let w113 = series::mul(&w104, &w112, k);
+        let w113 = series::mul_d(dot10, &w104, &w112, k);
         let w114 = w16 * w21;
         let w115 = w16 * w30;
         let w116 = w16 * w44;
         let w117 = w113 + w116;
         let w118 = w117 - w114;
         let w119 = w118 - w115;
-        w120[k] = series::div(w119, &w98, &w120, inv_w98, k);
+        w120[k] = series::div_d(dot11, w119, &w98, &w120, inv_w98, k);
         let inv_k1 = 1.0 / (k + 1) as f64;
         x[0][k + 1] = x[2][k] * inv_k1;
         x[1][k + 1] = x[3][k] * inv_k1;
@@ -218,17 +240,31 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
     let w102: f64 = w18 * w36;
     let mut w111 = [0.0f64; N];
     for k in 0..N - 1 {
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
-        let w16 = series::mul(&cos_x0, &x[1], k);
-        let w19 = series::mul(&x[2], &x[1], k);
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&cos_x0, &x[1]),
+                (&x[2], &x[1]),
+                (&x[3], &w31),
+                (&x[2], &w46),
+                (&w87, &w88),
+                (&w93, &w99),
+                (&w87, &w111),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w16 = series::mul_d(dot2, &cos_x0, &x[1], k);
+        let w19 = series::mul_d(dot3, &x[2], &x[1], k);
         let w29 = x[2][k] * w27;
         let w30 = w19 * w28;
         w31[k] = w30 - w29;
-        let w32 = series::mul(&x[3], &w31, k);
+        let w32 = series::mul_d(dot4, &x[3], &w31, k);
         let w44 = x[2][k] * w24;
         let w45 = w19 * w25;
         w46[k] = w45 - w44;
-        let w47 = series::mul(&x[2], &w46, k);
+        let w47 = series::mul_d(dot5, &x[2], &w46, k);
         let w60 = series::sq(&x[1], k);
         let w71 = x[3][k] * w56;
         let w72 = cos_x0[k] * w33;
@@ -248,7 +284,7 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
         let w86 = at0(k, w70) + w85;
         w87[k] = w86 - w84;
         if k == 0 { inv_w87 = 1.0 / w87[0]; }
-        w88[k] = series::div(w83, &w87, &w88, inv_w87, k);
+        w88[k] = series::div_d(dot6, w83, &w87, &w88, inv_w87, k);
         let w90 = x[1][k] * w27;
         let w91 = w25 * w60;
         let w92 = at0(k, w65) + w91;
@@ -259,7 +295,7 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
         let w97 = w95 + w96;
         let w98 = w47 + w97;
         w99[k] = w98 - w94;
-        let w100 = series::mul(&w93, &w99, k);
+        let w100 = series::mul_d(dot7, &w93, &w99, k);
         let w103 = cos_x0[k] * w101;
         let w104 = w16 * w58;
         let w105 = sin_x0[k] * w102;
@@ -268,7 +304,7 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
         let w108 = w100 + w107;
         let w109 = w108 - w104;
         let w110 = w109 - w105;
-        w111[k] = series::div(w110, &w87, &w111, inv_w87, k);
+        w111[k] = series::div_d(dot8, w110, &w87, &w111, inv_w87, k);
         let inv_k1 = 1.0 / (k + 1) as f64;
         x[0][k + 1] = x[2][k] * inv_k1;
         x[1][k + 1] = x[3][k] * inv_k1;
@@ -449,18 +485,29 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
     let mut w53 = [0.0f64; N];
     let mut out = [[0.0f64; N]; 4];
     for k in 0..N {
+        let [dot0, dot1, dot2, dot3, dot4, dot5] = series::dots(
+            [
+                (&x[2], &x[1]),
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&x[1], &sin_x0),
+                (&x[2], &w53),
+                (&x[3], &cos_x0),
+            ],
+            k,
+        );
         let w4 = x[2][k] * w3;
         w5[k] = x[3][k] + w4;
         let w6 = series::sq(&w5, k);
-        let w11 = series::mul(&x[2], &x[1], k);
+        let w11 = series::mul_d(dot0, &x[2], &x[1], k);
         let w12 = x[2][k] * w10;
         w13[k] = w11 - w12;
         let w14 = series::sq(&w13, k);
         let w19 = w6 * w18;
         let w20 = w14 * w18;
         let w21 = w19 + w20;
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
-        let w27 = series::mul(&x[1], &sin_x0, k);
+        series::sin_cos_d(dot1, dot2, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w27 = series::mul_d(dot3, &x[1], &sin_x0, k);
         let w33 = cos_x0[k] * w30;
         let w34 = sin_x0[k] * w31;
         let w35 = w27 * w32;
@@ -473,8 +520,8 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
         let w51 = w0 * w27;
         let w52 = w49 + w50;
         w53[k] = w52 - w51;
-        let w54 = series::mul(&x[2], &w53, k);
-        let w55 = series::mul(&x[3], &cos_x0, k);
+        let w54 = series::mul_d(dot4, &x[2], &w53, k);
+        let w55 = series::mul_d(dot5, &x[3], &cos_x0, k);
         let w56 = w0 * w55;
         let w57 = w54 + w56;
         out[0][k] = w21;
@@ -514,18 +561,29 @@ pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Param
     let w38: f64 = w1 * w37;
     let mut out = [[0.0f64; N]; 2];
     for k in 0..N {
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
-        let w10 = series::mul(&x[1], &sin_x0, k);
+        let [dot0, dot1, dot2, dot3, dot4, dot5] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&x[1], &sin_x0),
+                (&x[2], &w18),
+                (&cos_x0, &x[3]),
+                (&ug, &w23),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w10 = series::mul_d(dot2, &x[1], &sin_x0, k);
         let w14 = cos_x0[k] * w11;
         let w15 = sin_x0[k] * w12;
         let w16 = w1 * w10;
         let w17 = w14 + w15;
         w18[k] = w17 - w16;
-        let w19 = series::mul(&x[2], &w18, k);
-        let w21 = series::mul(&cos_x0, &x[3], k);
+        let w19 = series::mul_d(dot3, &x[2], &w18, k);
+        let w21 = series::mul_d(dot4, &cos_x0, &x[3], k);
         let w22 = w1 * w21;
         w23[k] = w19 + w22;
-        let w24 = series::mul(&ug, &w23, k);
+        let w24 = series::mul_d(dot5, &ug, &w23, k);
         let w25 = -w24;
         let w39 = series::sq(&x[3], k);
         let w40 = w38 * w39;

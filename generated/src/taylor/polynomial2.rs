@@ -187,53 +187,106 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 6], ug: &[f64; N], s: f64,
     let mut w273 = [0.0f64; N];
     let mut w275 = [0.0f64; N];
     for k in 0..N - 1 {
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&cos_x0, &w43),
+                (&x[1], &ug),
+                (&x[2], &ug),
+                (&sin_x0, &w66),
+                (&x[3], &x[1]),
+                (&x[3], &x[2]),
+                (&x[4], &w100),
+            ],
+            k,
+        );
+        let [dot9, dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17] = series::dots(
+            [
+                (&x[5], &w119),
+                (&w123, &w127),
+                (&w135, &w136),
+                (&x[2], &w140),
+                (&w170, &w171),
+                (&w170, &w175),
+                (&cos_x0, &ug),
+                (&x[3], &w68),
+                (&x[3], &w69),
+            ],
+            k,
+        );
+        let [dot18, dot19, dot20, dot21, dot22, dot23, dot24, dot25, dot26] = series::dots(
+            [
+                (&w161, &w175),
+                (&w170, &w202),
+                (&w222, &w223),
+                (&w170, &w228),
+                (&w175, &w228),
+                (&w170, &w229),
+                (&w222, &w232),
+                (&w161, &w228),
+                (&w221, &w232),
+            ],
+            k,
+        );
+        let [dot27, dot28, dot29, dot30, dot31, dot32] = series::dots(
+            [
+                (&w170, &w246),
+                (&w203, &w248),
+                (&w272, &w273),
+                (&w232, &w273),
+                (&w175, &w275),
+                (&w228, &w273),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
         let w38 = x[1][k] * w35;
         let w39 = x[2][k] * w32;
         let w40 = ug[k] * w24;
         let w41 = w38 + w39;
         let w42 = w41 - w40;
         w43[k] = w42 - at0(k, w37);
-        let w44 = series::mul(&cos_x0, &w43, k);
-        let w47 = series::mul(&x[1], &ug, k);
-        let w48 = series::mul(&x[2], &ug, k);
+        let w44 = series::mul_d(dot2, &cos_x0, &w43, k);
+        let w47 = series::mul_d(dot3, &x[1], &ug, k);
+        let w48 = series::mul_d(dot4, &x[2], &ug, k);
         let w61 = ug[k] * w56;
         let w62 = w47 * w54;
         let w63 = w48 * w52;
         let w64 = w61 - w62;
         let w65 = w64 - w63;
         w66[k] = w65 - at0(k, w60);
-        let w67 = series::mul(&sin_x0, &w66, k);
-        w68[k] = series::mul(&x[3], &x[1], k);
-        w69[k] = series::mul(&x[3], &x[2], k);
+        let w67 = series::mul_d(dot5, &sin_x0, &w66, k);
+        w68[k] = series::mul_d(dot6, &x[3], &x[1], k);
+        w69[k] = series::mul_d(dot7, &x[3], &x[2], k);
         let w96 = x[3][k] * w95;
         let w97 = w68[k] * w88;
         let w98 = w69[k] * w82;
         let w99 = w97 + w98;
         w100[k] = w99 - w96;
-        let w101 = series::mul(&x[4], &w100, k);
+        let w101 = series::mul_d(dot8, &x[4], &w100, k);
         let w115 = x[3][k] * w114;
         let w116 = w68[k] * w82;
         let w117 = w69[k] * w107;
         let w118 = w116 + w117;
         w119[k] = w118 - w115;
-        let w120 = series::mul(&x[5], &w119, k);
+        let w120 = series::mul_d(dot9, &x[5], &w119, k);
         let w122 = x[1][k] + x[2][k];
         w123[k] = w122 - at0(k, w12);
         let w124 = x[1][k] * w74;
         let w125 = x[2][k] * w74;
         let w126 = w124 + w125;
         w127[k] = w126 - at0(k, w73);
-        let w128 = series::mul(&w123, &w127, k);
+        let w128 = series::mul_d(dot10, &w123, &w127, k);
         let w133 = x[1][k] * w79;
         let w134 = x[2][k] * w103;
         w135[k] = w133 + w134;
         w136[k] = x[2][k] * w70;
-        let w137 = series::mul(&w135, &w136, k);
+        let w137 = series::mul_d(dot11, &w135, &w136, k);
         let w138 = x[1][k] * w80;
         let w139 = x[2][k] * w104;
         w140[k] = w138 + w139;
-        let w141 = series::mul(&x[2], &w140, k);
+        let w141 = series::mul_d(dot12, &x[2], &w140, k);
         let w142 = series::sq(&x[1], k);
         let w159 = w44 - w67;
         let w160 = w159 - w101;
@@ -248,15 +301,15 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 6], ug: &[f64; N], s: f64,
         let w169 = w164 + w168;
         w170[k] = at0(k, w158) + w169;
         if k == 0 { inv_w170 = 1.0 / w170[0]; }
-        w171[k] = series::div(w161[k], &w170, &w171, inv_w170, k);
-        w175[k] = series::div(at0(k, w174), &w170, &w175, inv_w170, k);
-        let w184 = series::mul(&cos_x0, &ug, k);
+        w171[k] = series::div_d(dot13, w161[k], &w170, &w171, inv_w170, k);
+        w175[k] = series::div_d(dot14, at0(k, w174), &w170, &w175, inv_w170, k);
+        let w184 = series::mul_d(dot15, &cos_x0, &ug, k);
         let w188 = series::sq(&x[3], k);
-        let w189 = series::mul(&x[3], &w68, k);
-        let w190 = series::mul(&x[3], &w69, k);
-        let w197 = series::mul(&w161, &w175, k);
+        let w189 = series::mul_d(dot16, &x[3], &w68, k);
+        let w190 = series::mul_d(dot17, &x[3], &w69, k);
+        let w197 = series::mul_d(dot18, &w161, &w175, k);
         w202[k] = series::sq(&w175, k);
-        w203[k] = series::mul(&w170, &w202, k);
+        w203[k] = series::mul_d(dot19, &w170, &w202, k);
         let w204 = x[4][k] * w195;
         let w205 = x[5][k] * w196;
         let w206 = x[1][k] * w187;
@@ -277,18 +330,18 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 6], ug: &[f64; N], s: f64,
         w221[k] = w220 - w197;
         w222[k] = at0(k, w201) - w203[k];
         if k == 0 { inv_w222 = 1.0 / w222[0]; }
-        w223[k] = series::div(w221[k], &w222, &w223, inv_w222, k);
-        w228[k] = series::div(at0(k, w227), &w170, &w228, inv_w170, k);
-        w229[k] = series::mul(&w175, &w228, k);
-        let w230 = series::mul(&w170, &w229, k);
+        w223[k] = series::div_d(dot20, w221[k], &w222, &w223, inv_w222, k);
+        w228[k] = series::div_d(dot21, at0(k, w227), &w170, &w228, inv_w170, k);
+        w229[k] = series::mul_d(dot22, &w175, &w228, k);
+        let w230 = series::mul_d(dot23, &w170, &w229, k);
         let w231 = at0(k, w224) - w230;
-        w232[k] = series::div(w231, &w222, &w232, inv_w222, k);
-        let w240 = series::mul(&w161, &w228, k);
-        let w241 = series::mul(&w221, &w232, k);
+        w232[k] = series::div_d(dot24, w231, &w222, &w232, inv_w222, k);
+        let w240 = series::mul_d(dot25, &w161, &w228, k);
+        let w241 = series::mul_d(dot26, &w221, &w232, k);
         w246[k] = series::sq(&w228, k);
-        let w247 = series::mul(&w170, &w246, k);
+        let w247 = series::mul_d(dot27, &w170, &w246, k);
         w248[k] = series::sq(&w232, k);
-        let w249 = series::mul(&w203, &w248, k);
+        let w249 = series::mul_d(dot28, &w203, &w248, k);
         let w250 = x[4][k] * w196;
         let w251 = x[5][k] * w239;
         let w252 = x[1][k] * w183;
@@ -313,11 +366,11 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 6], ug: &[f64; N], s: f64,
         let w271 = w270 - w247;
         w272[k] = w271 - w269;
         if k == 0 { inv_w272 = 1.0 / w272[0]; }
-        w273[k] = series::div(w268, &w272, &w273, inv_w272, k);
-        let w274 = series::mul(&w232, &w273, k);
+        w273[k] = series::div_d(dot29, w268, &w272, &w273, inv_w272, k);
+        let w274 = series::mul_d(dot30, &w232, &w273, k);
         w275[k] = w223[k] - w274;
-        let w276 = series::mul(&w175, &w275, k);
-        let w277 = series::mul(&w228, &w273, k);
+        let w276 = series::mul_d(dot31, &w175, &w275, k);
+        let w277 = series::mul_d(dot32, &w228, &w273, k);
         let w278 = w171[k] - w276;
         let w279 = w278 - w277;
         let inv_k1 = 1.0 / (k + 1) as f64;
@@ -498,42 +551,86 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 6], s: f64, p: &Param
     let mut w248 = [0.0f64; N];
     let mut w250 = [0.0f64; N];
     for k in 0..N - 1 {
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8, dot9] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&cos_x0, &w37),
+                (&x[3], &x[1]),
+                (&x[3], &x[2]),
+                (&x[4], &w77),
+                (&x[5], &w96),
+                (&w100, &w104),
+                (&w112, &w113),
+                (&x[2], &w117),
+            ],
+            k,
+        );
+        let [dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17, dot18, dot19] = series::dots(
+            [
+                (&w149, &w150),
+                (&w149, &w155),
+                (&x[3], &w45),
+                (&x[3], &w46),
+                (&w140, &w155),
+                (&w149, &w181),
+                (&w199, &w200),
+                (&w149, &w205),
+                (&w155, &w205),
+                (&w149, &w206),
+            ],
+            k,
+        );
+        let [dot20, dot21, dot22, dot23, dot24, dot25, dot26, dot27, dot28] = series::dots(
+            [
+                (&w199, &w209),
+                (&w140, &w205),
+                (&w198, &w209),
+                (&w149, &w223),
+                (&w182, &w225),
+                (&w247, &w248),
+                (&w209, &w248),
+                (&w155, &w250),
+                (&w205, &w248),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
         let w34 = x[1][k] * w31;
         let w35 = x[2][k] * w28;
         let w36 = w34 + w35;
         w37[k] = w36 - at0(k, w33);
-        let w38 = series::mul(&cos_x0, &w37, k);
-        w45[k] = series::mul(&x[3], &x[1], k);
-        w46[k] = series::mul(&x[3], &x[2], k);
+        let w38 = series::mul_d(dot2, &cos_x0, &w37, k);
+        w45[k] = series::mul_d(dot3, &x[3], &x[1], k);
+        w46[k] = series::mul_d(dot4, &x[3], &x[2], k);
         let w73 = x[3][k] * w72;
         let w74 = w45[k] * w65;
         let w75 = w46[k] * w59;
         let w76 = w74 + w75;
         w77[k] = w76 - w73;
-        let w78 = series::mul(&x[4], &w77, k);
+        let w78 = series::mul_d(dot5, &x[4], &w77, k);
         let w92 = x[3][k] * w91;
         let w93 = w45[k] * w59;
         let w94 = w46[k] * w84;
         let w95 = w93 + w94;
         w96[k] = w95 - w92;
-        let w97 = series::mul(&x[5], &w96, k);
+        let w97 = series::mul_d(dot6, &x[5], &w96, k);
         let w99 = x[1][k] + x[2][k];
         w100[k] = w99 - at0(k, w12);
         let w101 = x[1][k] * w51;
         let w102 = x[2][k] * w51;
         let w103 = w101 + w102;
         w104[k] = w103 - at0(k, w50);
-        let w105 = series::mul(&w100, &w104, k);
+        let w105 = series::mul_d(dot7, &w100, &w104, k);
         let w110 = x[1][k] * w56;
         let w111 = x[2][k] * w80;
         w112[k] = w110 + w111;
         w113[k] = x[2][k] * w47;
-        let w114 = series::mul(&w112, &w113, k);
+        let w114 = series::mul_d(dot8, &w112, &w113, k);
         let w115 = x[1][k] * w57;
         let w116 = x[2][k] * w81;
         w117[k] = w115 + w116;
-        let w118 = series::mul(&x[2], &w117, k);
+        let w118 = series::mul_d(dot9, &x[2], &w117, k);
         let w119 = series::sq(&x[1], k);
         let w137 = sin_x0[k] * w44;
         let w138 = w38 - w137;
@@ -549,14 +646,14 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 6], s: f64, p: &Param
         let w148 = w143 + w147;
         w149[k] = at0(k, w136) + w148;
         if k == 0 { inv_w149 = 1.0 / w149[0]; }
-        w150[k] = series::div(w140[k], &w149, &w150, inv_w149, k);
-        w155[k] = series::div(at0(k, w154), &w149, &w155, inv_w149, k);
+        w150[k] = series::div_d(dot10, w140[k], &w149, &w150, inv_w149, k);
+        w155[k] = series::div_d(dot11, at0(k, w154), &w149, &w155, inv_w149, k);
         let w167 = series::sq(&x[3], k);
-        let w168 = series::mul(&x[3], &w45, k);
-        let w169 = series::mul(&x[3], &w46, k);
-        let w176 = series::mul(&w140, &w155, k);
+        let w168 = series::mul_d(dot12, &x[3], &w45, k);
+        let w169 = series::mul_d(dot13, &x[3], &w46, k);
+        let w176 = series::mul_d(dot14, &w140, &w155, k);
         w181[k] = series::sq(&w155, k);
-        w182[k] = series::mul(&w149, &w181, k);
+        w182[k] = series::mul_d(dot15, &w149, &w181, k);
         let w183 = x[4][k] * w174;
         let w184 = x[5][k] * w175;
         let w185 = x[1][k] * w166;
@@ -575,18 +672,18 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 6], s: f64, p: &Param
         w198[k] = w197 - w176;
         w199[k] = at0(k, w180) - w182[k];
         if k == 0 { inv_w199 = 1.0 / w199[0]; }
-        w200[k] = series::div(w198[k], &w199, &w200, inv_w199, k);
-        w205[k] = series::div(at0(k, w204), &w149, &w205, inv_w149, k);
-        w206[k] = series::mul(&w155, &w205, k);
-        let w207 = series::mul(&w149, &w206, k);
+        w200[k] = series::div_d(dot16, w198[k], &w199, &w200, inv_w199, k);
+        w205[k] = series::div_d(dot17, at0(k, w204), &w149, &w205, inv_w149, k);
+        w206[k] = series::mul_d(dot18, &w155, &w205, k);
+        let w207 = series::mul_d(dot19, &w149, &w206, k);
         let w208 = at0(k, w201) - w207;
-        w209[k] = series::div(w208, &w199, &w209, inv_w199, k);
-        let w217 = series::mul(&w140, &w205, k);
-        let w218 = series::mul(&w198, &w209, k);
+        w209[k] = series::div_d(dot20, w208, &w199, &w209, inv_w199, k);
+        let w217 = series::mul_d(dot21, &w140, &w205, k);
+        let w218 = series::mul_d(dot22, &w198, &w209, k);
         w223[k] = series::sq(&w205, k);
-        let w224 = series::mul(&w149, &w223, k);
+        let w224 = series::mul_d(dot23, &w149, &w223, k);
         w225[k] = series::sq(&w209, k);
-        let w226 = series::mul(&w182, &w225, k);
+        let w226 = series::mul_d(dot24, &w182, &w225, k);
         let w227 = x[4][k] * w175;
         let w228 = x[5][k] * w216;
         let w229 = x[1][k] * w163;
@@ -609,11 +706,11 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 6], s: f64, p: &Param
         let w246 = w245 - w224;
         w247[k] = w246 - w244;
         if k == 0 { inv_w247 = 1.0 / w247[0]; }
-        w248[k] = series::div(w243, &w247, &w248, inv_w247, k);
-        let w249 = series::mul(&w209, &w248, k);
+        w248[k] = series::div_d(dot25, w243, &w247, &w248, inv_w247, k);
+        let w249 = series::mul_d(dot26, &w209, &w248, k);
         w250[k] = w200[k] - w249;
-        let w251 = series::mul(&w155, &w250, k);
-        let w252 = series::mul(&w205, &w248, k);
+        let w251 = series::mul_d(dot27, &w155, &w250, k);
+        let w252 = series::mul_d(dot28, &w205, &w248, k);
         let w253 = w150[k] - w251;
         let w254 = w253 - w252;
         let inv_k1 = 1.0 / (k + 1) as f64;
@@ -1097,20 +1194,50 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 6], s: f64, p: &Params) -> [[f64; N
     let mut w172 = [0.0f64; N];
     let mut out = [[0.0f64; N]; 4];
     for k in 0..N {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8, dot9] = series::dots(
+            [
+                (&w6, &x[1]),
+                (&w6, &x[2]),
+                (&x[3], &x[4]),
+                (&x[3], &x[5]),
+                (&x[3], &x[1]),
+                (&x[3], &w31),
+                (&x[1], &w32),
+                (&x[3], &x[2]),
+                (&x[3], &w36),
+                (&x[1], &w37),
+            ],
+            k,
+        );
+        let [dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17, dot18, dot19] = series::dots(
+            [
+                (&x[4], &x[5]),
+                (&x[2], &w37),
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&x[1], &sin_x0),
+                (&x[2], &sin_x0),
+                (&x[1], &x[2]),
+                (&x[3], &w172),
+                (&x[4], &cos_x0),
+                (&x[5], &cos_x0),
+            ],
+            k,
+        );
         w6[k] = series::sq(&x[3], k);
-        let w11 = series::mul(&w6, &x[1], k);
-        let w15 = series::mul(&w6, &x[2], k);
-        let w24 = series::mul(&x[3], &x[4], k);
-        let w28 = series::mul(&x[3], &x[5], k);
-        w31[k] = series::mul(&x[3], &x[1], k);
-        w32[k] = series::mul(&x[3], &w31, k);
-        let w33 = series::mul(&x[1], &w32, k);
+        let w11 = series::mul_d(dot0, &w6, &x[1], k);
+        let w15 = series::mul_d(dot1, &w6, &x[2], k);
+        let w24 = series::mul_d(dot2, &x[3], &x[4], k);
+        let w28 = series::mul_d(dot3, &x[3], &x[5], k);
+        w31[k] = series::mul_d(dot4, &x[3], &x[1], k);
+        w32[k] = series::mul_d(dot5, &x[3], &w31, k);
+        let w33 = series::mul_d(dot6, &x[1], &w32, k);
         let w34 = series::sq(&x[4], k);
-        w36[k] = series::mul(&x[3], &x[2], k);
-        w37[k] = series::mul(&x[3], &w36, k);
-        let w38 = series::mul(&x[1], &w37, k);
-        let w39 = series::mul(&x[4], &x[5], k);
-        let w42 = series::mul(&x[2], &w37, k);
+        w36[k] = series::mul_d(dot7, &x[3], &x[2], k);
+        w37[k] = series::mul_d(dot8, &x[3], &w36, k);
+        let w38 = series::mul_d(dot9, &x[1], &w37, k);
+        let w39 = series::mul_d(dot10, &x[4], &x[5], k);
+        let w42 = series::mul_d(dot11, &x[2], &w37, k);
         let w43 = series::sq(&x[5], k);
         let w55 = x[3][k] * w4;
         let w56 = w31[k] + w36[k];
@@ -1139,9 +1266,9 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 6], s: f64, p: &Params) -> [[f64; N
         let w105 = w96 + w104;
         let w106 = w105 - w86;
         let w107 = w106 - w87;
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
-        let w115 = series::mul(&x[1], &sin_x0, k);
-        let w116 = series::mul(&x[2], &sin_x0, k);
+        series::sin_cos_d(dot12, dot13, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w115 = series::mul_d(dot14, &x[1], &sin_x0, k);
+        let w116 = series::mul_d(dot15, &x[2], &sin_x0, k);
         let w134 = sin_x0[k] * w130;
         let w135 = cos_x0[k] * w131;
         let w136 = w115 * w132;
@@ -1151,7 +1278,7 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 6], s: f64, p: &Params) -> [[f64; N
         let w140 = w139 - w137;
         let w148 = series::sq(&x[1], k);
         let w151 = series::sq(&x[2], k);
-        let w152 = series::mul(&x[1], &x[2], k);
+        let w152 = series::mul_d(dot16, &x[1], &x[2], k);
         let w155 = w148 * w153;
         let w156 = w151 * w154;
         let w157 = w152 * w154;
@@ -1164,9 +1291,9 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 6], s: f64, p: &Params) -> [[f64; N
         let w170 = w166 + w167;
         let w171 = w170 - w168;
         w172[k] = w171 - w169;
-        let w173 = series::mul(&x[3], &w172, k);
-        let w174 = series::mul(&x[4], &cos_x0, k);
-        let w175 = series::mul(&x[5], &cos_x0, k);
+        let w173 = series::mul_d(dot17, &x[3], &w172, k);
+        let w174 = series::mul_d(dot18, &x[4], &cos_x0, k);
+        let w175 = series::mul_d(dot19, &x[5], &cos_x0, k);
         let w176 = w125 * w174;
         let w177 = w126 * w175;
         let w178 = w173 + w176;
@@ -1218,33 +1345,47 @@ pub fn power<const N: usize>(x: &[[f64; N]; 6], ug: &[f64; N], s: f64, p: &Param
     let mut w58 = [0.0f64; N];
     let mut out = [[0.0f64; N]; 2];
     for k in 0..N {
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&sin_x0, &w32),
+                (&x[3], &w36),
+                (&cos_x0, &x[4]),
+                (&cos_x0, &x[5]),
+                (&ug, &w45),
+                (&x[4], &w53),
+                (&x[5], &w58),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
         let w12 = x[1][k];
         let w13 = x[2][k];
         let w29 = w12 * w26;
         let w30 = w13 * w23;
         let w31 = w29 + w30;
         w32[k] = w31 - at0(k, w28);
-        let w33 = series::mul(&sin_x0, &w32, k);
+        let w33 = series::mul_d(dot2, &sin_x0, &w32, k);
         let w35 = cos_x0[k] * w10;
         w36[k] = w35 - w33;
-        let w37 = series::mul(&x[3], &w36, k);
-        let w39 = series::mul(&cos_x0, &x[4], k);
-        let w41 = series::mul(&cos_x0, &x[5], k);
+        let w37 = series::mul_d(dot3, &x[3], &w36, k);
+        let w39 = series::mul_d(dot4, &cos_x0, &x[4], k);
+        let w41 = series::mul_d(dot5, &cos_x0, &x[5], k);
         let w42 = w26 * w39;
         let w43 = w23 * w41;
         let w44 = w37 + w42;
         w45[k] = w43 + w44;
-        let w46 = series::mul(&ug, &w45, k);
+        let w46 = series::mul_d(dot6, &ug, &w45, k);
         let w47 = -w46;
         let w51 = x[4][k] * w49;
         let w52 = x[5][k] * w50;
         w53[k] = w51 + w52;
-        let w54 = series::mul(&x[4], &w53, k);
+        let w54 = series::mul_d(dot7, &x[4], &w53, k);
         let w56 = x[4][k] * w50;
         let w57 = x[5][k] * w55;
         w58[k] = w56 + w57;
-        let w59 = series::mul(&x[5], &w58, k);
+        let w59 = series::mul_d(dot8, &x[5], &w58, k);
         let w60 = w54 + w59;
         out[0][k] = w47;
         out[1][k] = w60;

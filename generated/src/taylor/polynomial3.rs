@@ -271,7 +271,95 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 8], ug: &[f64; N], s: f64,
     let mut w450 = [0.0f64; N];
     let mut w454 = [0.0f64; N];
     for k in 0..N - 1 {
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8, dot9] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&cos_x0, &w51),
+                (&x[1], &ug),
+                (&x[2], &ug),
+                (&x[3], &ug),
+                (&sin_x0, &w79),
+                (&x[4], &x[1]),
+                (&x[4], &x[2]),
+                (&x[4], &x[3]),
+            ],
+            k,
+        );
+        let [dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17, dot18, dot19] = series::dots(
+            [
+                (&x[5], &w122),
+                (&x[6], &w148),
+                (&x[7], &w173),
+                (&w178, &w184),
+                (&w194, &w195),
+                (&x[3], &w201),
+                (&w205, &w206),
+                (&x[2], &w210),
+                (&w252, &w253),
+                (&w252, &w257),
+            ],
+            k,
+        );
+        let [dot20, dot21, dot22, dot23, dot24, dot25, dot26, dot27, dot28, dot29] = series::dots(
+            [
+                (&cos_x0, &ug),
+                (&x[4], &w91),
+                (&x[4], &w99),
+                (&x[4], &w103),
+                (&w239, &w257),
+                (&w252, &w289),
+                (&w315, &w316),
+                (&w252, &w321),
+                (&w257, &w321),
+                (&w252, &w322),
+            ],
+            k,
+        );
+        let [dot30, dot31, dot32, dot33, dot34, dot35, dot36, dot37, dot38, dot39] = series::dots(
+            [
+                (&w315, &w325),
+                (&w239, &w321),
+                (&w314, &w325),
+                (&w252, &w343),
+                (&w290, &w345),
+                (&w375, &w376),
+                (&w252, &w379),
+                (&w321, &w379),
+                (&w252, &w380),
+                (&w257, &w379),
+            ],
+            k,
+        );
+        let [dot40, dot41, dot42, dot43, dot44, dot45, dot46, dot47, dot48, dot49] = series::dots(
+            [
+                (&w252, &w385),
+                (&w315, &w388),
+                (&w325, &w388),
+                (&w290, &w389),
+                (&w375, &w395),
+                (&w239, &w379),
+                (&w314, &w388),
+                (&w371, &w395),
+                (&w252, &w411),
+                (&w290, &w413),
+            ],
+            k,
+        );
+        let [dot50, dot51, dot52, dot53, dot54, dot55, dot56, dot57] = series::dots(
+            [
+                (&w375, &w415),
+                (&w447, &w448),
+                (&w395, &w448),
+                (&w325, &w450),
+                (&w388, &w448),
+                (&w257, &w454),
+                (&w321, &w450),
+                (&w379, &w448),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
         let w44 = x[1][k] * w41;
         let w45 = x[2][k] * w38;
         let w46 = x[3][k] * w35;
@@ -280,10 +368,10 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 8], ug: &[f64; N], s: f64,
         let w49 = w46 + w48;
         let w50 = w49 - w47;
         w51[k] = w50 - at0(k, w43);
-        let w52 = series::mul(&cos_x0, &w51, k);
-        let w55 = series::mul(&x[1], &ug, k);
-        let w56 = series::mul(&x[2], &ug, k);
-        let w57 = series::mul(&x[3], &ug, k);
+        let w52 = series::mul_d(dot2, &cos_x0, &w51, k);
+        let w55 = series::mul_d(dot3, &x[1], &ug, k);
+        let w56 = series::mul_d(dot4, &x[2], &ug, k);
+        let w57 = series::mul_d(dot5, &x[3], &ug, k);
         let w72 = ug[k] * w67;
         let w73 = w55 * w65;
         let w74 = w56 * w63;
@@ -292,10 +380,10 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 8], ug: &[f64; N], s: f64,
         let w77 = w76 - w74;
         let w78 = w77 - w75;
         w79[k] = w78 - at0(k, w71);
-        let w80 = series::mul(&sin_x0, &w79, k);
-        w91[k] = series::mul(&x[4], &x[1], k);
-        w99[k] = series::mul(&x[4], &x[2], k);
-        w103[k] = series::mul(&x[4], &x[3], k);
+        let w80 = series::mul_d(dot6, &sin_x0, &w79, k);
+        w91[k] = series::mul_d(dot7, &x[4], &x[1], k);
+        w99[k] = series::mul_d(dot8, &x[4], &x[2], k);
+        w103[k] = series::mul_d(dot9, &x[4], &x[3], k);
         let w116 = x[4][k] * w112;
         let w117 = w91[k] * w113;
         let w118 = w99[k] * w114;
@@ -303,7 +391,7 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 8], ug: &[f64; N], s: f64,
         let w120 = w116 + w117;
         let w121 = w118 + w120;
         w122[k] = w119 + w121;
-        let w123 = series::mul(&x[5], &w122, k);
+        let w123 = series::mul_d(dot10, &x[5], &w122, k);
         let w142 = x[4][k] * w138;
         let w143 = w91[k] * w139;
         let w144 = w99[k] * w140;
@@ -311,7 +399,7 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 8], ug: &[f64; N], s: f64,
         let w146 = w142 + w143;
         let w147 = w144 + w146;
         w148[k] = w145 + w147;
-        let w149 = series::mul(&x[6], &w148, k);
+        let w149 = series::mul_d(dot11, &x[6], &w148, k);
         let w167 = x[4][k] * w163;
         let w168 = w91[k] * w164;
         let w169 = w99[k] * w165;
@@ -319,7 +407,7 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 8], ug: &[f64; N], s: f64,
         let w171 = w167 + w168;
         let w172 = w169 + w171;
         w173[k] = w170 + w172;
-        let w174 = series::mul(&x[7], &w173, k);
+        let w174 = series::mul_d(dot12, &x[7], &w173, k);
         let w176 = x[1][k] + x[2][k];
         let w177 = x[3][k] + w176;
         w178[k] = w177 - at0(k, w15);
@@ -329,29 +417,29 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 8], ug: &[f64; N], s: f64,
         let w182 = w179 + w180;
         let w183 = w181 + w182;
         w184[k] = w183 - at0(k, w106);
-        let w185 = series::mul(&w178, &w184, k);
+        let w185 = series::mul_d(dot13, &w178, &w184, k);
         let w190 = x[1][k] * w102;
         let w191 = x[2][k] * w136;
         let w192 = x[3][k] * w154;
         let w193 = w190 + w191;
         w194[k] = w192 + w193;
         w195[k] = x[3][k] * w85;
-        let w196 = series::mul(&w194, &w195, k);
+        let w196 = series::mul_d(dot14, &w194, &w195, k);
         let w197 = x[1][k] * w155;
         let w198 = x[2][k] * w156;
         let w199 = x[3][k] * w157;
         let w200 = w197 + w198;
         w201[k] = w199 + w200;
-        let w202 = series::mul(&x[3], &w201, k);
+        let w202 = series::mul_d(dot15, &x[3], &w201, k);
         let w203 = x[1][k] * w98;
         let w204 = x[2][k] * w128;
         w205[k] = w203 + w204;
         w206[k] = x[2][k] * w85;
-        let w207 = series::mul(&w205, &w206, k);
+        let w207 = series::mul_d(dot16, &w205, &w206, k);
         let w208 = x[1][k] * w129;
         let w209 = x[2][k] * w130;
         w210[k] = w208 + w209;
-        let w211 = series::mul(&x[2], &w210, k);
+        let w211 = series::mul_d(dot17, &x[2], &w210, k);
         let w212 = series::sq(&x[1], k);
         let w236 = w52 - w80;
         let w237 = w236 - w123;
@@ -371,16 +459,16 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 8], ug: &[f64; N], s: f64,
         let w251 = w243 + w250;
         w252[k] = at0(k, w235) + w251;
         if k == 0 { inv_w252 = 1.0 / w252[0]; }
-        w253[k] = series::div(w239[k], &w252, &w253, inv_w252, k);
-        w257[k] = series::div(at0(k, w256), &w252, &w257, inv_w252, k);
-        let w266 = series::mul(&cos_x0, &ug, k);
+        w253[k] = series::div_d(dot18, w239[k], &w252, &w253, inv_w252, k);
+        w257[k] = series::div_d(dot19, at0(k, w256), &w252, &w257, inv_w252, k);
+        let w266 = series::mul_d(dot20, &cos_x0, &ug, k);
         let w273 = series::sq(&x[4], k);
-        let w274 = series::mul(&x[4], &w91, k);
-        let w275 = series::mul(&x[4], &w99, k);
-        let w276 = series::mul(&x[4], &w103, k);
-        let w286 = series::mul(&w239, &w257, k);
+        let w274 = series::mul_d(dot21, &x[4], &w91, k);
+        let w275 = series::mul_d(dot22, &x[4], &w99, k);
+        let w276 = series::mul_d(dot23, &x[4], &w103, k);
+        let w286 = series::mul_d(dot24, &w239, &w257, k);
         w289[k] = series::sq(&w257, k);
-        w290[k] = series::mul(&w252, &w289, k);
+        w290[k] = series::mul_d(dot25, &w252, &w289, k);
         let w291 = x[5][k] * w283;
         let w292 = x[6][k] * w284;
         let w293 = x[7][k] * w285;
@@ -407,18 +495,18 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 8], ug: &[f64; N], s: f64,
         w314[k] = w313 - w286;
         w315[k] = at0(k, w288) - w290[k];
         if k == 0 { inv_w315 = 1.0 / w315[0]; }
-        w316[k] = series::div(w314[k], &w315, &w316, inv_w315, k);
-        w321[k] = series::div(at0(k, w320), &w252, &w321, inv_w252, k);
-        w322[k] = series::mul(&w257, &w321, k);
-        let w323 = series::mul(&w252, &w322, k);
+        w316[k] = series::div_d(dot26, w314[k], &w315, &w316, inv_w315, k);
+        w321[k] = series::div_d(dot27, at0(k, w320), &w252, &w321, inv_w252, k);
+        w322[k] = series::mul_d(dot28, &w257, &w321, k);
+        let w323 = series::mul_d(dot29, &w252, &w322, k);
         let w324 = at0(k, w317) - w323;
-        w325[k] = series::div(w324, &w315, &w325, inv_w315, k);
-        let w339 = series::mul(&w239, &w321, k);
-        let w340 = series::mul(&w314, &w325, k);
+        w325[k] = series::div_d(dot30, w324, &w315, &w325, inv_w315, k);
+        let w339 = series::mul_d(dot31, &w239, &w321, k);
+        let w340 = series::mul_d(dot32, &w314, &w325, k);
         w343[k] = series::sq(&w321, k);
-        let w344 = series::mul(&w252, &w343, k);
+        let w344 = series::mul_d(dot33, &w252, &w343, k);
         w345[k] = series::sq(&w325, k);
-        let w346 = series::mul(&w290, &w345, k);
+        let w346 = series::mul_d(dot34, &w290, &w345, k);
         let w347 = x[5][k] * w284;
         let w348 = x[6][k] * w337;
         let w349 = x[7][k] * w338;
@@ -449,30 +537,30 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 8], ug: &[f64; N], s: f64,
         let w374 = w373 - w344;
         w375[k] = w374 - w372;
         if k == 0 { inv_w375 = 1.0 / w375[0]; }
-        w376[k] = series::div(w371[k], &w375, &w376, inv_w375, k);
-        w379[k] = series::div(at0(k, w378), &w252, &w379, inv_w252, k);
-        w380[k] = series::mul(&w321, &w379, k);
-        let w381 = series::mul(&w252, &w380, k);
-        w385[k] = series::mul(&w257, &w379, k);
-        let w386 = series::mul(&w252, &w385, k);
+        w376[k] = series::div_d(dot35, w371[k], &w375, &w376, inv_w375, k);
+        w379[k] = series::div_d(dot36, at0(k, w378), &w252, &w379, inv_w252, k);
+        w380[k] = series::mul_d(dot37, &w321, &w379, k);
+        let w381 = series::mul_d(dot38, &w252, &w380, k);
+        w385[k] = series::mul_d(dot39, &w257, &w379, k);
+        let w386 = series::mul_d(dot40, &w252, &w385, k);
         let w387 = at0(k, w384) - w386;
-        w388[k] = series::div(w387, &w315, &w388, inv_w315, k);
-        w389[k] = series::mul(&w325, &w388, k);
-        let w390 = series::mul(&w290, &w389, k);
+        w388[k] = series::div_d(dot41, w387, &w315, &w388, inv_w315, k);
+        w389[k] = series::mul_d(dot42, &w325, &w388, k);
+        let w390 = series::mul_d(dot43, &w290, &w389, k);
         let w391 = w288 * w389[k];
         let w392 = at0(k, w377) + w390;
         let w393 = w392 - w381;
         let w394 = w393 - w391;
-        w395[k] = series::div(w394, &w375, &w395, inv_w375, k);
-        let w404 = series::mul(&w239, &w379, k);
-        let w405 = series::mul(&w314, &w388, k);
-        let w406 = series::mul(&w371, &w395, k);
+        w395[k] = series::div_d(dot44, w394, &w375, &w395, inv_w375, k);
+        let w404 = series::mul_d(dot45, &w239, &w379, k);
+        let w405 = series::mul_d(dot46, &w314, &w388, k);
+        let w406 = series::mul_d(dot47, &w371, &w395, k);
         w411[k] = series::sq(&w379, k);
-        let w412 = series::mul(&w252, &w411, k);
+        let w412 = series::mul_d(dot48, &w252, &w411, k);
         w413[k] = series::sq(&w388, k);
-        let w414 = series::mul(&w290, &w413, k);
+        let w414 = series::mul_d(dot49, &w290, &w413, k);
         w415[k] = series::sq(&w395, k);
-        let w416 = series::mul(&w375, &w415, k);
+        let w416 = series::mul_d(dot50, &w375, &w415, k);
         let w417 = x[5][k] * w285;
         let w418 = x[6][k] * w338;
         let w419 = x[7][k] * w403;
@@ -505,16 +593,16 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 8], ug: &[f64; N], s: f64,
         let w446 = w445 - w443;
         w447[k] = w446 - w416;
         if k == 0 { inv_w447 = 1.0 / w447[0]; }
-        w448[k] = series::div(w442, &w447, &w448, inv_w447, k);
-        let w449 = series::mul(&w395, &w448, k);
+        w448[k] = series::div_d(dot51, w442, &w447, &w448, inv_w447, k);
+        let w449 = series::mul_d(dot52, &w395, &w448, k);
         w450[k] = w376[k] - w449;
-        let w451 = series::mul(&w325, &w450, k);
-        let w452 = series::mul(&w388, &w448, k);
+        let w451 = series::mul_d(dot53, &w325, &w450, k);
+        let w452 = series::mul_d(dot54, &w388, &w448, k);
         let w453 = w316[k] - w451;
         w454[k] = w453 - w452;
-        let w455 = series::mul(&w257, &w454, k);
-        let w456 = series::mul(&w321, &w450, k);
-        let w457 = series::mul(&w379, &w448, k);
+        let w455 = series::mul_d(dot55, &w257, &w454, k);
+        let w456 = series::mul_d(dot56, &w321, &w450, k);
+        let w457 = series::mul_d(dot57, &w379, &w448, k);
         let w458 = w253[k] - w455;
         let w459 = w458 - w456;
         let w460 = w459 - w457;
@@ -780,17 +868,100 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 8], s: f64, p: &Param
     let mut w418 = [0.0f64; N];
     let mut w422 = [0.0f64; N];
     for k in 0..N - 1 {
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&cos_x0, &w45),
+                (&x[4], &x[1]),
+                (&x[4], &x[2]),
+                (&x[4], &x[3]),
+                (&x[5], &w94),
+                (&x[6], &w120),
+                (&x[7], &w145),
+            ],
+            k,
+        );
+        let [dot9, dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17] = series::dots(
+            [
+                (&w150, &w156),
+                (&w166, &w167),
+                (&x[3], &w173),
+                (&w177, &w178),
+                (&x[2], &w182),
+                (&w226, &w227),
+                (&w226, &w232),
+                (&x[4], &w63),
+                (&x[4], &w71),
+            ],
+            k,
+        );
+        let [dot18, dot19, dot20, dot21, dot22, dot23, dot24, dot25, dot26] = series::dots(
+            [
+                (&x[4], &w75),
+                (&w213, &w232),
+                (&w226, &w263),
+                (&w287, &w288),
+                (&w226, &w293),
+                (&w232, &w293),
+                (&w226, &w294),
+                (&w287, &w297),
+                (&w213, &w293),
+            ],
+            k,
+        );
+        let [dot27, dot28, dot29, dot30, dot31, dot32, dot33, dot34, dot35] = series::dots(
+            [
+                (&w286, &w297),
+                (&w226, &w315),
+                (&w264, &w317),
+                (&w345, &w346),
+                (&w226, &w349),
+                (&w293, &w349),
+                (&w226, &w350),
+                (&w232, &w349),
+                (&w226, &w355),
+            ],
+            k,
+        );
+        let [dot36, dot37, dot38, dot39, dot40, dot41, dot42, dot43, dot44] = series::dots(
+            [
+                (&w287, &w358),
+                (&w297, &w358),
+                (&w264, &w359),
+                (&w345, &w365),
+                (&w213, &w349),
+                (&w286, &w358),
+                (&w341, &w365),
+                (&w226, &w381),
+                (&w264, &w383),
+            ],
+            k,
+        );
+        let [dot45, dot46, dot47, dot48, dot49, dot50, dot51, dot52] = series::dots(
+            [
+                (&w345, &w385),
+                (&w415, &w416),
+                (&w365, &w416),
+                (&w297, &w418),
+                (&w358, &w416),
+                (&w232, &w422),
+                (&w293, &w418),
+                (&w349, &w416),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
         let w40 = x[1][k] * w37;
         let w41 = x[2][k] * w34;
         let w42 = x[3][k] * w31;
         let w43 = w40 + w41;
         let w44 = w42 + w43;
         w45[k] = w44 - at0(k, w39);
-        let w46 = series::mul(&cos_x0, &w45, k);
-        w63[k] = series::mul(&x[4], &x[1], k);
-        w71[k] = series::mul(&x[4], &x[2], k);
-        w75[k] = series::mul(&x[4], &x[3], k);
+        let w46 = series::mul_d(dot2, &cos_x0, &w45, k);
+        w63[k] = series::mul_d(dot3, &x[4], &x[1], k);
+        w71[k] = series::mul_d(dot4, &x[4], &x[2], k);
+        w75[k] = series::mul_d(dot5, &x[4], &x[3], k);
         let w88 = x[4][k] * w84;
         let w89 = w63[k] * w85;
         let w90 = w71[k] * w86;
@@ -798,7 +969,7 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 8], s: f64, p: &Param
         let w92 = w88 + w89;
         let w93 = w90 + w92;
         w94[k] = w91 + w93;
-        let w95 = series::mul(&x[5], &w94, k);
+        let w95 = series::mul_d(dot6, &x[5], &w94, k);
         let w114 = x[4][k] * w110;
         let w115 = w63[k] * w111;
         let w116 = w71[k] * w112;
@@ -806,7 +977,7 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 8], s: f64, p: &Param
         let w118 = w114 + w115;
         let w119 = w116 + w118;
         w120[k] = w117 + w119;
-        let w121 = series::mul(&x[6], &w120, k);
+        let w121 = series::mul_d(dot7, &x[6], &w120, k);
         let w139 = x[4][k] * w135;
         let w140 = w63[k] * w136;
         let w141 = w71[k] * w137;
@@ -814,7 +985,7 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 8], s: f64, p: &Param
         let w143 = w139 + w140;
         let w144 = w141 + w143;
         w145[k] = w142 + w144;
-        let w146 = series::mul(&x[7], &w145, k);
+        let w146 = series::mul_d(dot8, &x[7], &w145, k);
         let w148 = x[1][k] + x[2][k];
         let w149 = x[3][k] + w148;
         w150[k] = w149 - at0(k, w15);
@@ -824,29 +995,29 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 8], s: f64, p: &Param
         let w154 = w151 + w152;
         let w155 = w153 + w154;
         w156[k] = w155 - at0(k, w78);
-        let w157 = series::mul(&w150, &w156, k);
+        let w157 = series::mul_d(dot9, &w150, &w156, k);
         let w162 = x[1][k] * w74;
         let w163 = x[2][k] * w108;
         let w164 = x[3][k] * w126;
         let w165 = w162 + w163;
         w166[k] = w164 + w165;
         w167[k] = x[3][k] * w57;
-        let w168 = series::mul(&w166, &w167, k);
+        let w168 = series::mul_d(dot10, &w166, &w167, k);
         let w169 = x[1][k] * w127;
         let w170 = x[2][k] * w128;
         let w171 = x[3][k] * w129;
         let w172 = w169 + w170;
         w173[k] = w171 + w172;
-        let w174 = series::mul(&x[3], &w173, k);
+        let w174 = series::mul_d(dot11, &x[3], &w173, k);
         let w175 = x[1][k] * w70;
         let w176 = x[2][k] * w100;
         w177[k] = w175 + w176;
         w178[k] = x[2][k] * w57;
-        let w179 = series::mul(&w177, &w178, k);
+        let w179 = series::mul_d(dot12, &w177, &w178, k);
         let w180 = x[1][k] * w101;
         let w181 = x[2][k] * w102;
         w182[k] = w180 + w181;
-        let w183 = series::mul(&x[2], &w182, k);
+        let w183 = series::mul_d(dot13, &x[2], &w182, k);
         let w184 = series::sq(&x[1], k);
         let w209 = sin_x0[k] * w52;
         let w210 = w46 - w209;
@@ -867,15 +1038,15 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 8], s: f64, p: &Param
         let w225 = w217 + w224;
         w226[k] = at0(k, w208) + w225;
         if k == 0 { inv_w226 = 1.0 / w226[0]; }
-        w227[k] = series::div(w213[k], &w226, &w227, inv_w226, k);
-        w232[k] = series::div(at0(k, w231), &w226, &w232, inv_w226, k);
+        w227[k] = series::div_d(dot14, w213[k], &w226, &w227, inv_w226, k);
+        w232[k] = series::div_d(dot15, at0(k, w231), &w226, &w232, inv_w226, k);
         let w247 = series::sq(&x[4], k);
-        let w248 = series::mul(&x[4], &w63, k);
-        let w249 = series::mul(&x[4], &w71, k);
-        let w250 = series::mul(&x[4], &w75, k);
-        let w260 = series::mul(&w213, &w232, k);
+        let w248 = series::mul_d(dot16, &x[4], &w63, k);
+        let w249 = series::mul_d(dot17, &x[4], &w71, k);
+        let w250 = series::mul_d(dot18, &x[4], &w75, k);
+        let w260 = series::mul_d(dot19, &w213, &w232, k);
         w263[k] = series::sq(&w232, k);
-        w264[k] = series::mul(&w226, &w263, k);
+        w264[k] = series::mul_d(dot20, &w226, &w263, k);
         let w265 = x[5][k] * w257;
         let w266 = x[6][k] * w258;
         let w267 = x[7][k] * w259;
@@ -900,18 +1071,18 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 8], s: f64, p: &Param
         w286[k] = w285 - w260;
         w287[k] = at0(k, w262) - w264[k];
         if k == 0 { inv_w287 = 1.0 / w287[0]; }
-        w288[k] = series::div(w286[k], &w287, &w288, inv_w287, k);
-        w293[k] = series::div(at0(k, w292), &w226, &w293, inv_w226, k);
-        w294[k] = series::mul(&w232, &w293, k);
-        let w295 = series::mul(&w226, &w294, k);
+        w288[k] = series::div_d(dot21, w286[k], &w287, &w288, inv_w287, k);
+        w293[k] = series::div_d(dot22, at0(k, w292), &w226, &w293, inv_w226, k);
+        w294[k] = series::mul_d(dot23, &w232, &w293, k);
+        let w295 = series::mul_d(dot24, &w226, &w294, k);
         let w296 = at0(k, w289) - w295;
-        w297[k] = series::div(w296, &w287, &w297, inv_w287, k);
-        let w311 = series::mul(&w213, &w293, k);
-        let w312 = series::mul(&w286, &w297, k);
+        w297[k] = series::div_d(dot25, w296, &w287, &w297, inv_w287, k);
+        let w311 = series::mul_d(dot26, &w213, &w293, k);
+        let w312 = series::mul_d(dot27, &w286, &w297, k);
         w315[k] = series::sq(&w293, k);
-        let w316 = series::mul(&w226, &w315, k);
+        let w316 = series::mul_d(dot28, &w226, &w315, k);
         w317[k] = series::sq(&w297, k);
-        let w318 = series::mul(&w264, &w317, k);
+        let w318 = series::mul_d(dot29, &w264, &w317, k);
         let w319 = x[5][k] * w258;
         let w320 = x[6][k] * w309;
         let w321 = x[7][k] * w310;
@@ -940,30 +1111,30 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 8], s: f64, p: &Param
         let w344 = w343 - w316;
         w345[k] = w344 - w342;
         if k == 0 { inv_w345 = 1.0 / w345[0]; }
-        w346[k] = series::div(w341[k], &w345, &w346, inv_w345, k);
-        w349[k] = series::div(at0(k, w348), &w226, &w349, inv_w226, k);
-        w350[k] = series::mul(&w293, &w349, k);
-        let w351 = series::mul(&w226, &w350, k);
-        w355[k] = series::mul(&w232, &w349, k);
-        let w356 = series::mul(&w226, &w355, k);
+        w346[k] = series::div_d(dot30, w341[k], &w345, &w346, inv_w345, k);
+        w349[k] = series::div_d(dot31, at0(k, w348), &w226, &w349, inv_w226, k);
+        w350[k] = series::mul_d(dot32, &w293, &w349, k);
+        let w351 = series::mul_d(dot33, &w226, &w350, k);
+        w355[k] = series::mul_d(dot34, &w232, &w349, k);
+        let w356 = series::mul_d(dot35, &w226, &w355, k);
         let w357 = at0(k, w354) - w356;
-        w358[k] = series::div(w357, &w287, &w358, inv_w287, k);
-        w359[k] = series::mul(&w297, &w358, k);
-        let w360 = series::mul(&w264, &w359, k);
+        w358[k] = series::div_d(dot36, w357, &w287, &w358, inv_w287, k);
+        w359[k] = series::mul_d(dot37, &w297, &w358, k);
+        let w360 = series::mul_d(dot38, &w264, &w359, k);
         let w361 = w262 * w359[k];
         let w362 = at0(k, w347) + w360;
         let w363 = w362 - w351;
         let w364 = w363 - w361;
-        w365[k] = series::div(w364, &w345, &w365, inv_w345, k);
-        let w374 = series::mul(&w213, &w349, k);
-        let w375 = series::mul(&w286, &w358, k);
-        let w376 = series::mul(&w341, &w365, k);
+        w365[k] = series::div_d(dot39, w364, &w345, &w365, inv_w345, k);
+        let w374 = series::mul_d(dot40, &w213, &w349, k);
+        let w375 = series::mul_d(dot41, &w286, &w358, k);
+        let w376 = series::mul_d(dot42, &w341, &w365, k);
         w381[k] = series::sq(&w349, k);
-        let w382 = series::mul(&w226, &w381, k);
+        let w382 = series::mul_d(dot43, &w226, &w381, k);
         w383[k] = series::sq(&w358, k);
-        let w384 = series::mul(&w264, &w383, k);
+        let w384 = series::mul_d(dot44, &w264, &w383, k);
         w385[k] = series::sq(&w365, k);
-        let w386 = series::mul(&w345, &w385, k);
+        let w386 = series::mul_d(dot45, &w345, &w385, k);
         let w387 = x[5][k] * w259;
         let w388 = x[6][k] * w310;
         let w389 = x[7][k] * w373;
@@ -994,16 +1165,16 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 8], s: f64, p: &Param
         let w414 = w413 - w411;
         w415[k] = w414 - w386;
         if k == 0 { inv_w415 = 1.0 / w415[0]; }
-        w416[k] = series::div(w410, &w415, &w416, inv_w415, k);
-        let w417 = series::mul(&w365, &w416, k);
+        w416[k] = series::div_d(dot46, w410, &w415, &w416, inv_w415, k);
+        let w417 = series::mul_d(dot47, &w365, &w416, k);
         w418[k] = w346[k] - w417;
-        let w419 = series::mul(&w297, &w418, k);
-        let w420 = series::mul(&w358, &w416, k);
+        let w419 = series::mul_d(dot48, &w297, &w418, k);
+        let w420 = series::mul_d(dot49, &w358, &w416, k);
         let w421 = w288[k] - w419;
         w422[k] = w421 - w420;
-        let w423 = series::mul(&w232, &w422, k);
-        let w424 = series::mul(&w293, &w418, k);
-        let w425 = series::mul(&w349, &w416, k);
+        let w423 = series::mul_d(dot50, &w232, &w422, k);
+        let w424 = series::mul_d(dot51, &w293, &w418, k);
+        let w425 = series::mul_d(dot52, &w349, &w416, k);
         let w426 = w227[k] - w423;
         let w427 = w426 - w424;
         let w428 = w427 - w425;
@@ -1935,30 +2106,83 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 8], s: f64, p: &Params) -> [[f64; N
     let mut w252 = [0.0f64; N];
     let mut out = [[0.0f64; N]; 4];
     for k in 0..N {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&w6, &x[1]),
+                (&w6, &x[2]),
+                (&w6, &x[3]),
+                (&x[4], &x[5]),
+                (&x[4], &x[6]),
+                (&x[4], &x[7]),
+                (&x[4], &x[1]),
+                (&x[4], &w37),
+                (&x[1], &w38),
+            ],
+            k,
+        );
+        let [dot9, dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17] = series::dots(
+            [
+                (&x[4], &x[2]),
+                (&x[4], &w42),
+                (&x[1], &w43),
+                (&x[5], &x[6]),
+                (&x[4], &x[3]),
+                (&x[4], &w48),
+                (&x[1], &w49),
+                (&x[5], &x[7]),
+                (&x[2], &w43),
+            ],
+            k,
+        );
+        let [dot18, dot19, dot20, dot21, dot22, dot23, dot24, dot25, dot26] = series::dots(
+            [
+                (&x[2], &w49),
+                (&x[6], &x[7]),
+                (&x[3], &w49),
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&x[1], &sin_x0),
+                (&x[2], &sin_x0),
+                (&x[3], &sin_x0),
+                (&x[1], &x[2]),
+            ],
+            k,
+        );
+        let [dot27, dot28, dot29, dot30, dot31, dot32] = series::dots(
+            [
+                (&x[1], &x[3]),
+                (&x[2], &x[3]),
+                (&x[4], &w252),
+                (&x[5], &cos_x0),
+                (&x[6], &cos_x0),
+                (&x[7], &cos_x0),
+            ],
+            k,
+        );
         w6[k] = series::sq(&x[4], k);
-        let w11 = series::mul(&w6, &x[1], k);
-        let w15 = series::mul(&w6, &x[2], k);
-        let w19 = series::mul(&w6, &x[3], k);
-        let w28 = series::mul(&x[4], &x[5], k);
-        let w31 = series::mul(&x[4], &x[6], k);
-        let w34 = series::mul(&x[4], &x[7], k);
-        w37[k] = series::mul(&x[4], &x[1], k);
-        w38[k] = series::mul(&x[4], &w37, k);
-        let w39 = series::mul(&x[1], &w38, k);
+        let w11 = series::mul_d(dot0, &w6, &x[1], k);
+        let w15 = series::mul_d(dot1, &w6, &x[2], k);
+        let w19 = series::mul_d(dot2, &w6, &x[3], k);
+        let w28 = series::mul_d(dot3, &x[4], &x[5], k);
+        let w31 = series::mul_d(dot4, &x[4], &x[6], k);
+        let w34 = series::mul_d(dot5, &x[4], &x[7], k);
+        w37[k] = series::mul_d(dot6, &x[4], &x[1], k);
+        w38[k] = series::mul_d(dot7, &x[4], &w37, k);
+        let w39 = series::mul_d(dot8, &x[1], &w38, k);
         let w40 = series::sq(&x[5], k);
-        w42[k] = series::mul(&x[4], &x[2], k);
-        w43[k] = series::mul(&x[4], &w42, k);
-        let w44 = series::mul(&x[1], &w43, k);
-        let w45 = series::mul(&x[5], &x[6], k);
-        w48[k] = series::mul(&x[4], &x[3], k);
-        w49[k] = series::mul(&x[4], &w48, k);
-        let w50 = series::mul(&x[1], &w49, k);
-        let w51 = series::mul(&x[5], &x[7], k);
-        let w54 = series::mul(&x[2], &w43, k);
+        w42[k] = series::mul_d(dot9, &x[4], &x[2], k);
+        w43[k] = series::mul_d(dot10, &x[4], &w42, k);
+        let w44 = series::mul_d(dot11, &x[1], &w43, k);
+        let w45 = series::mul_d(dot12, &x[5], &x[6], k);
+        w48[k] = series::mul_d(dot13, &x[4], &x[3], k);
+        w49[k] = series::mul_d(dot14, &x[4], &w48, k);
+        let w50 = series::mul_d(dot15, &x[1], &w49, k);
+        let w51 = series::mul_d(dot16, &x[5], &x[7], k);
+        let w54 = series::mul_d(dot17, &x[2], &w43, k);
         let w55 = series::sq(&x[6], k);
-        let w58 = series::mul(&x[2], &w49, k);
-        let w59 = series::mul(&x[6], &x[7], k);
-        let w62 = series::mul(&x[3], &w49, k);
+        let w58 = series::mul_d(dot18, &x[2], &w49, k);
+        let w59 = series::mul_d(dot19, &x[6], &x[7], k);
+        let w62 = series::mul_d(dot20, &x[3], &w49, k);
         let w63 = series::sq(&x[7], k);
         let w80 = x[4][k] * w4;
         let w81 = w37[k] + w42[k];
@@ -2004,10 +2228,10 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 8], s: f64, p: &Params) -> [[f64; N
         let w159 = w158 - w124;
         let w160 = w159 - w125;
         let w161 = w160 - w126;
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
-        let w169 = series::mul(&x[1], &sin_x0, k);
-        let w170 = series::mul(&x[2], &sin_x0, k);
-        let w171 = series::mul(&x[3], &sin_x0, k);
+        series::sin_cos_d(dot21, dot22, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w169 = series::mul_d(dot23, &x[1], &sin_x0, k);
+        let w170 = series::mul_d(dot24, &x[2], &sin_x0, k);
+        let w171 = series::mul_d(dot25, &x[3], &sin_x0, k);
         let w192 = sin_x0[k] * w187;
         let w193 = cos_x0[k] * w188;
         let w194 = w169 * w189;
@@ -2020,9 +2244,9 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 8], s: f64, p: &Params) -> [[f64; N
         let w208 = series::sq(&x[1], k);
         let w211 = series::sq(&x[2], k);
         let w214 = series::sq(&x[3], k);
-        let w215 = series::mul(&x[1], &x[2], k);
-        let w218 = series::mul(&x[1], &x[3], k);
-        let w221 = series::mul(&x[2], &x[3], k);
+        let w215 = series::mul_d(dot26, &x[1], &x[2], k);
+        let w218 = series::mul_d(dot27, &x[1], &x[3], k);
+        let w221 = series::mul_d(dot28, &x[2], &x[3], k);
         let w227 = w208 * w222;
         let w228 = w211 * w223;
         let w229 = w214 * w224;
@@ -2043,10 +2267,10 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 8], s: f64, p: &Params) -> [[f64; N
         let w250 = w249 - w246;
         let w251 = w250 - w247;
         w252[k] = w251 - w248;
-        let w253 = series::mul(&x[4], &w252, k);
-        let w254 = series::mul(&x[5], &cos_x0, k);
-        let w255 = series::mul(&x[6], &cos_x0, k);
-        let w256 = series::mul(&x[7], &cos_x0, k);
+        let w253 = series::mul_d(dot29, &x[4], &w252, k);
+        let w254 = series::mul_d(dot30, &x[5], &cos_x0, k);
+        let w255 = series::mul_d(dot31, &x[6], &cos_x0, k);
+        let w256 = series::mul_d(dot32, &x[7], &cos_x0, k);
         let w257 = w181 * w254;
         let w258 = w182 * w255;
         let w259 = w183 * w256;
@@ -2107,7 +2331,28 @@ pub fn power<const N: usize>(x: &[[f64; N]; 8], ug: &[f64; N], s: f64, p: &Param
     let mut w81 = [0.0f64; N];
     let mut out = [[0.0f64; N]; 2];
     for k in 0..N {
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let [dot0, dot1, dot2, dot3, dot4, dot5] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&sin_x0, &w38),
+                (&x[4], &w42),
+                (&cos_x0, &x[5]),
+                (&cos_x0, &x[6]),
+            ],
+            k,
+        );
+        let [dot6, dot7, dot8, dot9, dot10] = series::dots(
+            [
+                (&cos_x0, &x[7]),
+                (&ug, &w55),
+                (&x[5], &w66),
+                (&x[6], &w74),
+                (&x[7], &w81),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
         let w12 = x[1][k];
         let w13 = x[2][k];
         let w14 = x[3][k];
@@ -2117,39 +2362,39 @@ pub fn power<const N: usize>(x: &[[f64; N]; 8], ug: &[f64; N], s: f64, p: &Param
         let w36 = w33 + w34;
         let w37 = w35 + w36;
         w38[k] = w37 - at0(k, w32);
-        let w39 = series::mul(&sin_x0, &w38, k);
+        let w39 = series::mul_d(dot2, &sin_x0, &w38, k);
         let w41 = cos_x0[k] * w10;
         w42[k] = w41 - w39;
-        let w43 = series::mul(&x[4], &w42, k);
-        let w45 = series::mul(&cos_x0, &x[5], k);
-        let w47 = series::mul(&cos_x0, &x[6], k);
-        let w49 = series::mul(&cos_x0, &x[7], k);
+        let w43 = series::mul_d(dot3, &x[4], &w42, k);
+        let w45 = series::mul_d(dot4, &cos_x0, &x[5], k);
+        let w47 = series::mul_d(dot5, &cos_x0, &x[6], k);
+        let w49 = series::mul_d(dot6, &cos_x0, &x[7], k);
         let w50 = w30 * w45;
         let w51 = w27 * w47;
         let w52 = w24 * w49;
         let w53 = w43 + w50;
         let w54 = w51 + w53;
         w55[k] = w52 + w54;
-        let w56 = series::mul(&ug, &w55, k);
+        let w56 = series::mul_d(dot7, &ug, &w55, k);
         let w57 = -w56;
         let w62 = x[5][k] * w59;
         let w63 = x[6][k] * w60;
         let w64 = x[7][k] * w61;
         let w65 = w62 + w63;
         w66[k] = w64 + w65;
-        let w67 = series::mul(&x[5], &w66, k);
+        let w67 = series::mul_d(dot8, &x[5], &w66, k);
         let w70 = x[5][k] * w60;
         let w71 = x[6][k] * w68;
         let w72 = x[7][k] * w69;
         let w73 = w70 + w71;
         w74[k] = w72 + w73;
-        let w75 = series::mul(&x[6], &w74, k);
+        let w75 = series::mul_d(dot9, &x[6], &w74, k);
         let w77 = x[5][k] * w61;
         let w78 = x[6][k] * w69;
         let w79 = x[7][k] * w76;
         let w80 = w77 + w78;
         w81[k] = w79 + w80;
-        let w82 = series::mul(&x[7], &w81, k);
+        let w82 = series::mul_d(dot10, &x[7], &w81, k);
         let w83 = w67 + w75;
         let w84 = w82 + w83;
         out[0][k] = w57;

@@ -75,10 +75,19 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
     let w65: f64 = w38 * w62;
     let w66: f64 = w32 * w62;
     for k in 0..N - 1 {
+        let [dot0, dot1, dot2, dot3] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&sin_x0, &ug),
+                (&ug, &cos_x0),
+            ],
+            k,
+        );
         let w0 = x[2][k];
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
-        let w27 = series::mul(&sin_x0, &ug, k);
-        let w39 = series::mul(&ug, &cos_x0, k);
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w27 = series::mul_d(dot2, &sin_x0, &ug, k);
+        let w39 = series::mul_d(dot3, &ug, &cos_x0, k);
         let w67 = sin_x0[k] * w63;
         let w68 = w27 * w64;
         let w69 = cos_x0[k] * w65;
@@ -152,8 +161,15 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
     let w53: f64 = w21 * w52;
     let w54: f64 = w28 * w52;
     for k in 0..N - 1 {
+        let [dot0, dot1] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+            ],
+            k,
+        );
         let w0 = x[2][k];
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
         let w55 = sin_x0[k] * w53;
         let w56 = cos_x0[k] * w54;
         let w57 = -w55;
@@ -276,16 +292,24 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
     let mut w53 = [0.0f64; N];
     let mut out = [[0.0f64; N]; 4];
     for k in 0..N {
+        let [dot0, dot1, dot2] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&x[2], &w53),
+            ],
+            k,
+        );
         let w6 = series::sq(&x[2], k);
         let w26 = w6 * w25;
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
         let w45 = sin_x0[k] * w43;
         let w46 = cos_x0[k] * w44;
         let w47 = w45 + w46;
         let w51 = sin_x0[k] * w42;
         let w52 = cos_x0[k] * w39;
         w53[k] = w51 + w52;
-        let w54 = series::mul(&x[2], &w53, k);
+        let w54 = series::mul_d(dot2, &x[2], &w53, k);
         out[0][k] = w26;
         out[1][k] = w47;
         out[2][k] = at0(k, w49);
@@ -322,12 +346,21 @@ pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Param
     let w29: f64 = 0.0;
     let mut out = [[0.0f64; N]; 2];
     for k in 0..N {
-        series::sin_cos(&x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let [dot0, dot1, dot2, dot3] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&x[2], &w24),
+                (&ug, &w25),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
         let w22 = cos_x0[k] * w16;
         let w23 = sin_x0[k] * w20;
         w24[k] = w22 + w23;
-        w25[k] = series::mul(&x[2], &w24, k);
-        let w26 = series::mul(&ug, &w25, k);
+        w25[k] = series::mul_d(dot2, &x[2], &w24, k);
+        let w26 = series::mul_d(dot3, &ug, &w25, k);
         let w27 = -w26;
         out[0][k] = w27;
         out[1][k] = at0(k, w29);

@@ -162,22 +162,36 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
     let w202: f64 = w56 * w89;
     let mut w212 = [0.0f64; N];
     for k in 0..N - 1 {
-        let w35 = series::mul(&x[1], &ug, k);
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&x[1], &ug),
+                (&w49, &w53),
+                (&x[2], &x[1]),
+                (&x[3], &w80),
+                (&ug, &w98),
+                (&x[2], &w57),
+                (&w180, &w181),
+                (&w186, &w199),
+                (&w180, &w212),
+            ],
+            k,
+        );
+        let w35 = series::mul_d(dot0, &x[1], &ug, k);
         w49[k] = x[0][k] * w33;
         let w50 = ug[k] * w46;
         let w51 = w35 * w47;
         let w52 = w50 - w51;
         w53[k] = w52 - at0(k, w48);
-        let w54 = series::mul(&w49, &w53, k);
-        w57[k] = series::mul(&x[2], &x[1], k);
+        let w54 = series::mul_d(dot1, &w49, &w53, k);
+        w57[k] = series::mul_d(dot2, &x[2], &x[1], k);
         let w78 = x[2][k] * w77;
         let w79 = w57[k] * w70;
         w80[k] = w79 - w78;
-        let w81 = series::mul(&x[3], &w80, k);
+        let w81 = series::mul_d(dot3, &x[3], &w80, k);
         w98[k] = series::sq(&x[0], k);
-        let w101 = series::mul(&ug, &w98, k);
+        let w101 = series::mul_d(dot4, &ug, &w98, k);
         let w107 = series::sq(&x[2], k);
-        let w108 = series::mul(&x[2], &w57, k);
+        let w108 = series::mul_d(dot5, &x[2], &w57, k);
         let w130 = series::sq(&x[1], k);
         let w159 = x[3][k] * w120;
         let w160 = x[1][k] * w127;
@@ -202,7 +216,7 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         let w179 = w177 + w178;
         w180[k] = at0(k, w158) + w179;
         if k == 0 { inv_w180 = 1.0 / w180[0]; }
-        w181[k] = series::div(w176, &w180, &w181, inv_w180, k);
+        w181[k] = series::div_d(dot6, w176, &w180, &w181, inv_w180, k);
         let w183 = x[1][k] * w149;
         let w184 = w110 * w130;
         let w185 = w183 + w184;
@@ -220,7 +234,7 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         let w197 = w196 - w187;
         let w198 = w197 - w189;
         w199[k] = w198 - w192;
-        let w200 = series::mul(&w186, &w199, k);
+        let w200 = series::mul_d(dot7, &w186, &w199, k);
         let w203 = x[1][k] * w123;
         let w204 = ug[k] * w201;
         let w205 = w54 * w89;
@@ -230,7 +244,7 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         let w209 = w200 + w208;
         let w210 = at0(k, w202) + w209;
         let w211 = w210 - w203;
-        w212[k] = series::div(w211, &w180, &w212, inv_w180, k);
+        w212[k] = series::div_d(dot8, w211, &w180, &w212, inv_w180, k);
         let inv_k1 = 1.0 / (k + 1) as f64;
         x[0][k + 1] = x[2][k] * inv_k1;
         x[1][k + 1] = x[3][k] * inv_k1;
@@ -371,14 +385,25 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
     let w167: f64 = w38 * w72;
     let mut w175 = [0.0f64; N];
     for k in 0..N - 1 {
+        let [dot0, dot1, dot2, dot3, dot4, dot5] = series::dots(
+            [
+                (&x[2], &x[1]),
+                (&x[3], &w62),
+                (&x[2], &w39),
+                (&w149, &w150),
+                (&w155, &w164),
+                (&w149, &w175),
+            ],
+            k,
+        );
         let w28 = x[0][k];
-        w39[k] = series::mul(&x[2], &x[1], k);
+        w39[k] = series::mul_d(dot0, &x[2], &x[1], k);
         let w60 = x[2][k] * w59;
         let w61 = w39[k] * w52;
         w62[k] = w61 - w60;
-        let w63 = series::mul(&x[3], &w62, k);
+        let w63 = series::mul_d(dot1, &x[3], &w62, k);
         let w83 = series::sq(&x[2], k);
-        let w84 = series::mul(&x[2], &w39, k);
+        let w84 = series::mul_d(dot2, &x[2], &w39, k);
         let w104 = series::sq(&x[1], k);
         let w134 = x[3][k] * w96;
         let w135 = x[1][k] * w101;
@@ -397,7 +422,7 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
         let w148 = w146 + w147;
         w149[k] = at0(k, w133) + w148;
         if k == 0 { inv_w149 = 1.0 / w149[0]; }
-        w150[k] = series::div(w145, &w149, &w150, inv_w149, k);
+        w150[k] = series::div_d(dot3, w145, &w149, &w150, inv_w149, k);
         let w152 = x[1][k] * w123;
         let w153 = w86 * w104;
         let w154 = w152 + w153;
@@ -411,7 +436,7 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
         let w162 = w160 + w161;
         let w163 = w162 - w156;
         w164[k] = w163 - w159;
-        let w165 = series::mul(&w155, &w164, k);
+        let w165 = series::mul_d(dot4, &w155, &w164, k);
         let w168 = x[1][k] * w98;
         let w169 = w28 * w166;
         let w170 = w63 * w72;
@@ -419,7 +444,7 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
         let w172 = w165 + w171;
         let w173 = at0(k, w167) + w172;
         let w174 = w173 - w168;
-        w175[k] = series::div(w174, &w149, &w175, inv_w149, k);
+        w175[k] = series::div_d(dot5, w174, &w149, &w175, inv_w149, k);
         let inv_k1 = 1.0 / (k + 1) as f64;
         x[0][k + 1] = x[2][k] * inv_k1;
         x[1][k + 1] = x[3][k] * inv_k1;
@@ -702,12 +727,25 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
     let w128: f64 = w125 + w126;
     let mut out = [[0.0f64; N]; 4];
     for k in 0..N {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7] = series::dots(
+            [
+                (&w6, &x[1]),
+                (&x[2], &x[3]),
+                (&x[2], &x[1]),
+                (&x[2], &w24),
+                (&x[1], &w25),
+                (&x[1], &x[0]),
+                (&x[2], &w120),
+                (&x[3], &w72),
+            ],
+            k,
+        );
         w6[k] = series::sq(&x[2], k);
-        let w11 = series::mul(&w6, &x[1], k);
-        let w21 = series::mul(&x[2], &x[3], k);
-        w24[k] = series::mul(&x[2], &x[1], k);
-        w25[k] = series::mul(&x[2], &w24, k);
-        let w26 = series::mul(&x[1], &w25, k);
+        let w11 = series::mul_d(dot0, &w6, &x[1], k);
+        let w21 = series::mul_d(dot1, &x[2], &x[3], k);
+        w24[k] = series::mul_d(dot2, &x[2], &x[1], k);
+        w25[k] = series::mul_d(dot3, &x[2], &w24, k);
+        let w26 = series::mul_d(dot4, &x[1], &w25, k);
         let w27 = series::sq(&x[3], k);
         let w35 = series::sq(&w24, k);
         let w55 = w6[k] * w54;
@@ -724,7 +762,7 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
         let w66 = w65 - w56;
         let w67 = w66 - w58;
         w72[k] = series::sq(&x[0], k);
-        let w77 = series::mul(&x[1], &x[0], k);
+        let w77 = series::mul_d(dot5, &x[1], &x[0], k);
         let w96 = x[0][k] * w92;
         let w97 = w72[k] * w93;
         let w98 = w77 * w94;
@@ -737,8 +775,8 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
         let w118 = w77 * w87;
         let w119 = at0(k, w116) + w117;
         w120[k] = w119 - w118;
-        let w121 = series::mul(&x[2], &w120, k);
-        let w129 = series::mul(&x[3], &w72, k);
+        let w121 = series::mul_d(dot6, &x[2], &w120, k);
+        let w129 = series::mul_d(dot7, &x[3], &w72, k);
         let w130 = x[3][k] * w128;
         let w131 = w127 * w129;
         let w132 = w121 + w130;
@@ -806,19 +844,28 @@ pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Param
     let w66: f64 = w62 * w65;
     let mut out = [[0.0f64; N]; 2];
     for k in 0..N {
-        let w11 = series::mul(&x[0], &x[1], k);
+        let [dot0, dot1, dot2, dot3] = series::dots(
+            [
+                (&x[0], &x[1]),
+                (&x[2], &w28),
+                (&w31, &x[3]),
+                (&ug, &w47),
+            ],
+            k,
+        );
+        let w11 = series::mul_d(dot0, &x[0], &x[1], k);
         let w25 = x[0][k] * w23;
         let w26 = w11 * w19;
         let w27 = at0(k, w20) + w25;
         w28[k] = w27 - w26;
-        let w29 = series::mul(&x[2], &w28, k);
+        let w29 = series::mul_d(dot1, &x[2], &w28, k);
         w31[k] = series::sq(&x[0], k);
-        let w43 = series::mul(&w31, &x[3], k);
+        let w43 = series::mul_d(dot2, &w31, &x[3], k);
         let w44 = w41 * x[3][k];
         let w45 = w40 * w43;
         let w46 = w29 + w44;
         w47[k] = w46 - w45;
-        let w48 = series::mul(&ug, &w47, k);
+        let w48 = series::mul_d(dot3, &ug, &w47, k);
         let w49 = -w48;
         let w67 = series::sq(&x[3], k);
         let w68 = w66 * w67;
