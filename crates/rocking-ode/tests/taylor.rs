@@ -810,3 +810,42 @@ fn grazing_uplift_at_one_plus_minus_1e9_of_the_threshold() {
         }
     }
 }
+
+/// The oscillator with one coefficient of order `k` of x poisoned (NaN or ∞).
+struct Poisoned {
+    k: usize,
+    value: f64,
+}
+impl TaylorSystem<2> for Poisoned {
+    fn coefficients<const N: usize>(&mut self, t0: f64, x: &mut [[f64; N]; 2]) {
+        Oscillator.coefficients(t0, x);
+        x[0][self.k] = self.value;
+    }
+}
+
+/// A non-finite coefficient anywhere in the series is reported as one, not as the step-size
+/// underflow or the non-finite end state it causes (the step looks for it only on the way to
+/// an error).
+#[test]
+fn a_non_finite_coefficient_is_reported_as_such_at_every_order() {
+    let p = order_from_tol(1e-10);
+    for k in 1..=p {
+        for value in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            let mut ode = Taylor::<2>::new(TaylorOptions::new(1e-10)).unwrap();
+            ode.reset(0.0, [1.0, 0.0]).unwrap();
+            let e = ode
+                .step(&mut Poisoned { k, value }, 10.0)
+                .expect_err("a non-finite coefficient must fail the step");
+            assert_eq!(
+                e.kind,
+                rocking_ode::OdeErrorKind::NonFinite,
+                "order {k}, {value}"
+            );
+            assert!(
+                e.message.contains("non-finite Taylor coefficient"),
+                "order {k}, {value}: {}",
+                e.message
+            );
+        }
+    }
+}

@@ -71,7 +71,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         loop {
             let t_stop = self.t_stop(ode.t());
             let info = ode.step(&mut rhs, t_stop)?;
-            self.guard_steps(ode.stats(), ode.t())?;
+            self.guard_steps(ode.stats().steps + ode.stats().rejected, ode.t())?;
             let (t_old, t_new) = (info.t_old, info.t_new);
             let g_new = g(t_new, ode.y());
             let located = if self.opts.uplift {
@@ -187,7 +187,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             let info = ode
                 .step(&mut rhs, t_stop)
                 .map_err(|e| self.explain_failure(e, ode.y().as_slice(), s))?;
-            self.guard_steps(ode.stats(), ode.t())?;
+            self.guard_steps(ode.stats().steps + ode.stats().rejected, ode.t())?;
             let (t_old, t_new) = (info.t_old, info.t_new);
             let g_new = g(t_new, ode.y());
             if let Some(ev) = locate(&mut ode, &mut g, &dirs, &g_old, &g_new) {

@@ -7,7 +7,7 @@ use nalgebra::{DMatrix, SVector};
 use rocking_kernels::kernels::index::energy as en;
 use rocking_kernels::{Array, Variant};
 use rocking_motion::GroundMotion;
-use rocking_ode::{Options as OdeOptions, Stats, Tolerances};
+use rocking_ode::{Options as OdeOptions, Tolerances};
 
 use super::forces::ForceRecord;
 use crate::error::SimError;
@@ -224,9 +224,10 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
     }
 
     /// The guard on the total number of step attempts of a run, given the running phase's
-    /// integrator counters at `t`.
-    pub(super) fn guard_steps(&self, st: Stats, t: f64) -> Result<(), SimError> {
-        let steps = self.stats.steps + self.stats.rejected_steps + st.steps + st.rejected;
+    /// attempts at `t` (a count, not the integrator's counters: read as a pair of just-stored
+    /// fields they cost a store-forwarding stall on every step).
+    pub(super) fn guard_steps(&self, attempts: u64, t: f64) -> Result<(), SimError> {
+        let steps = self.stats.steps + self.stats.rejected_steps + attempts;
         if steps > self.opts.max_steps {
             return Err(SimError::TooManySteps {
                 max_steps: self.opts.max_steps,

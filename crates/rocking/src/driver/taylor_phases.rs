@@ -70,7 +70,8 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
         loop {
             let t_stop = self.t_stop(ode.t());
             ode.step(&mut sys, t_stop)?;
-            self.guard_steps(ode.stats(), ode.t())?;
+            // A Taylor step is never rejected: its attempts are its steps.
+            self.guard_steps(ode.stats().steps, ode.t())?;
             let (t_old, t_new) = (ode.t_old(), ode.t());
             let dirs = [Direction::Rising, Direction::Rising];
             let rising = if self.opts.uplift {
@@ -174,7 +175,7 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
             let t_stop = self.t_stop(ode.t());
             ode.step(&mut sys, t_stop)
                 .map_err(|e| self.explain_failure(e, &unscale(*ode.y()), s))?;
-            self.guard_steps(ode.stats(), ode.t())?;
+            self.guard_steps(ode.stats().steps, ode.t())?;
             let (t_old, t_new) = (ode.t_old(), ode.t());
             let h = t_new - t_old;
             let order = ode.order();
