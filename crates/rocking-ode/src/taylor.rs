@@ -224,6 +224,31 @@ fn horner_all<const D: usize, const M: usize>(
     y
 }
 
+/// Every component's polynomial of orders `0..=p` at the step's end `tau`, in two halves, as the
+/// first level of Estrin's scheme: `lo(τ) + τ^m hi(τ)`, each half by Horner's rule and `τ^m`
+/// beside them. The end state is the one result the next step waits for (its kernel starts from
+/// it), and Horner's 16 dependent multiply-adds at order 16 were the longest wait of a step:
+/// the halves take 8 or 9 each, the CPU runs them side by side (`rocking-bench probe fig3-vvel
+/// taylor 1e-10`: 3-4 % per simulation). Within a few ulp of [`horner_all`]; the step's other
+/// points (dense output, events) are Horner's.
+fn end_state<const D: usize, const M: usize>(coef: &[[f64; M]; D], p: usize, tau: f64) -> [f64; D] {
+    let m = (p + 1) / 2;
+    // hi holds orders m..=p: p − m + 1 = m + 1 of them for an even p, whose highest starts it.
+    let mut hi: [f64; D] = std::array::from_fn(|i| if 2 * m <= p { coef[i][p] } else { 0.0 });
+    let mut lo = [0.0; D];
+    for k in (0..m).rev() {
+        for ((l, h), ci) in lo.iter_mut().zip(hi.iter_mut()).zip(coef) {
+            *l = *l * tau + ci[k];
+            *h = *h * tau + ci[k + m];
+        }
+    }
+    let mut tau_m = tau;
+    for _ in 1..m {
+        tau_m *= tau;
+    }
+    std::array::from_fn(|i| lo[i] + tau_m * hi[i])
+}
+
 /// `$f::<types.., N>(args)` with N = order + 1, for an order of [`ORDERS`].
 macro_rules! by_order {
     ($order:expr, $($f:ident)::+ ; $($g:ty),* ; $($arg:expr),*) => {
@@ -411,9 +436,11 @@ impl<const D: usize, const M: usize> Taylor<D, M> {
         self.stats.rhs_evals += 1;
         let p = N - 1;
         // A non-finite coefficient is reported as such, before any error it causes below. It is
-        // looked for only on the way to an error: every coefficient enters the end state by
-        // Horner's rule with a finite τ > 0, so a finite end state proves them all finite (and
-        // the scan, reading as vectors what the system has just stored, stalled every step).
+        // looked for only on the way to an error: every coefficient enters the end state through
+        // one of [`end_state`]'s Horner chains with a finite τ > 0, and a non-finite value stays
+        // non-finite along a chain and in `lo + τ^m hi`, so a finite end state proves them all
+        // finite (and the scan, reading as vectors what the system had just stored, stalled
+        // every step).
         let fail = |e: OdeError| -> Result<StepInfo, OdeError> {
             let non_finite = x.iter().flatten().any(|v| !v.is_finite());
             Err(if non_finite {
@@ -451,7 +478,7 @@ impl<const D: usize, const M: usize> Taylor<D, M> {
                 "infinite step (polynomial solution, no h_max and no finite t_stop)".into(),
             ));
         }
-        let y_new = horner_all(&x, p, h);
+        let y_new = end_state(&x, p, h);
         if !y_new.iter().all(|v| v.is_finite()) {
             return fail(err(
                 OdeErrorKind::NonFinite,
