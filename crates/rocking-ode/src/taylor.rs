@@ -232,7 +232,7 @@ fn horner_all<const D: usize, const M: usize>(
 /// taylor 1e-10`: 3-4 % per simulation). Within a few ulp of [`horner_all`]; the step's other
 /// points (dense output, events) are Horner's.
 fn end_state<const D: usize, const M: usize>(coef: &[[f64; M]; D], p: usize, tau: f64) -> [f64; D] {
-    let m = (p + 1) / 2;
+    let m = p.div_ceil(2);
     // hi holds orders m..=p: p − m + 1 = m + 1 of them for an even p, whose highest starts it.
     let mut hi: [f64; D] = std::array::from_fn(|i| if 2 * m <= p { coef[i][p] } else { 0.0 });
     let mut lo = [0.0; D];
