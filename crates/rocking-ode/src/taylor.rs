@@ -228,9 +228,9 @@ fn horner_all<const D: usize, const M: usize>(
 /// first level of Estrin's scheme: `lo(τ) + τ^m hi(τ)`, each half by Horner's rule and `τ^m`
 /// beside them. The end state is the one result the next step waits for (its kernel starts from
 /// it), and Horner's 16 dependent multiply-adds at order 16 were the longest wait of a step:
-/// the halves take 8 or 9 each, the CPU runs them side by side (`rocking-bench probe fig3-vvel
-/// taylor 1e-10`: 3-4 % per simulation). Within a few ulp of [`horner_all`]; the step's other
-/// points (dense output, events) are Horner's.
+/// the halves take 8 or 9 each, the CPU runs them side by side (`rocking-bench probe`: 2-4 % per
+/// simulation on Fig. 3 and the full-mass case). Within a few ulp of [`horner_all`]; the step's
+/// other points (dense output, events) are Horner's.
 fn end_state<const D: usize, const M: usize>(coef: &[[f64; M]; D], p: usize, tau: f64) -> [f64; D] {
     let m = p.div_ceil(2);
     // hi holds orders m..=p: p − m + 1 = m + 1 of them for an even p, whose highest starts it.
