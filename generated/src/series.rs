@@ -39,7 +39,7 @@ pub fn mul<const N: usize>(a: &[f64; N], b: &[f64; N], k: usize) -> f64 {
 fn dot_rev(x: &[f64], y: &[f64]) -> f64 {
     #[cfg(target_arch = "x86_64")]
     {
-        dot_rev_sse2(x, y)
+        dot_rev_sse2([(x, y)])[0]
     }
     #[cfg(not(target_arch = "x86_64"))]
     {
@@ -67,35 +67,45 @@ fn dot_rev_scalar(x: &[f64], y: &[f64]) -> f64 {
     r
 }
 
-/// [`dot_rev`] in an SSE2 register (part of every x86_64 CPU).
+/// [`dot_rev`] of M pairs of slices, all of one length, in SSE2 registers (part of every x86_64
+/// CPU): one register per pair, its two lanes the terms of even and of odd j. [`dot_rev`] is one
+/// pair; [`dots`] all the pairs of an order in one loop.
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
-fn dot_rev_sse2(x: &[f64], y: &[f64]) -> f64 {
+fn dot_rev_sse2<const M: usize>(pairs: [(&[f64], &[f64]); M]) -> [f64; M] {
     use core::arch::x86_64::{
-        _mm_add_pd, _mm_add_sd, _mm_cvtsd_f64, _mm_loadu_pd, _mm_mul_pd, _mm_setzero_pd,
+        __m128d, _mm_add_pd, _mm_add_sd, _mm_cvtsd_f64, _mm_loadu_pd, _mm_mul_pd, _mm_setzero_pd,
         _mm_shuffle_pd, _mm_unpackhi_pd,
     };
-    let n = x.len();
-    assert_eq!(n, y.len(), "dot_rev of slices of different lengths");
+    let n = pairs.first().map_or(0, |(x, _)| x.len());
+    for (x, y) in &pairs {
+        assert!(
+            x.len() == n && y.len() == n,
+            "dot_rev of slices of different lengths"
+        );
+    }
     let mut i = 0;
     // SAFETY: SSE2 is in the x86_64 baseline; each load reads two f64 at x[i..i + 2] or
     // y[n − 2 − i..n − i], inside the slices because i + 2 <= n.
-    let lanes = unsafe {
-        let mut acc = _mm_setzero_pd();
+    let mut out = unsafe {
+        let mut acc: [__m128d; M] = [_mm_setzero_pd(); M];
         while i + 2 <= n {
-            let a = _mm_loadu_pd(x.as_ptr().add(i));
-            let b = _mm_loadu_pd(y.as_ptr().add(n - 2 - i));
-            // [y[n − 2 − i], y[n − 1 − i]] swapped to pair with [x[i], x[i + 1]].
-            acc = _mm_add_pd(acc, _mm_mul_pd(a, _mm_shuffle_pd::<1>(b, b)));
+            for (acc, (x, y)) in acc.iter_mut().zip(&pairs) {
+                let a = _mm_loadu_pd(x.as_ptr().add(i));
+                let b = _mm_loadu_pd(y.as_ptr().add(n - 2 - i));
+                // [y[n − 2 − i], y[n − 1 − i]] swapped to pair with [x[i], x[i + 1]].
+                *acc = _mm_add_pd(*acc, _mm_mul_pd(a, _mm_shuffle_pd::<1>(b, b)));
+            }
             i += 2;
         }
-        _mm_cvtsd_f64(_mm_add_sd(acc, _mm_unpackhi_pd(acc, acc)))
+        acc.map(|v| _mm_cvtsd_f64(_mm_add_sd(v, _mm_unpackhi_pd(v, v))))
     };
     if i < n {
-        lanes + x[i] * y[0]
-    } else {
-        lanes
+        for (o, (x, y)) in out.iter_mut().zip(pairs) {
+            *o += x[i] * y[0];
+        }
     }
+    out
 }
 
 /// Coefficient `k` of `a²` (the Cauchy product with its symmetric half folded).
@@ -164,48 +174,12 @@ pub fn dots<const N: usize, const M: usize>(
     }
     #[cfg(target_arch = "x86_64")]
     {
-        dots_sse2(pairs, k)
+        dot_rev_sse2(pairs.map(|(a, b)| (&a[1..k], &b[1..k])))
     }
     #[cfg(not(target_arch = "x86_64"))]
     {
         pairs.map(|(a, b)| dot_rev_scalar(&a[1..k], &b[1..k]))
     }
-}
-
-/// [`dots`] in SSE2 registers, one accumulator per pair.
-#[cfg(target_arch = "x86_64")]
-#[inline(always)]
-fn dots_sse2<const N: usize, const M: usize>(
-    pairs: [(&[f64; N], &[f64; N]); M],
-    k: usize,
-) -> [f64; M] {
-    use core::arch::x86_64::{
-        __m128d, _mm_add_pd, _mm_add_sd, _mm_cvtsd_f64, _mm_loadu_pd, _mm_mul_pd, _mm_setzero_pd,
-        _mm_shuffle_pd, _mm_unpackhi_pd,
-    };
-    assert!(k <= N, "order {k} beyond {N} coefficients");
-    let n = k - 1;
-    let mut i = 0;
-    // SAFETY: SSE2 is in the x86_64 baseline; each load reads a[1 + i..3 + i] or
-    // b[k − 2 − i..k − i], inside the arrays because i + 2 <= n = k − 1 and k <= N.
-    let mut out = unsafe {
-        let mut acc: [__m128d; M] = [_mm_setzero_pd(); M];
-        while i + 2 <= n {
-            for (m, (a, b)) in pairs.iter().enumerate() {
-                let x = _mm_loadu_pd(a.as_ptr().add(1 + i));
-                let y = _mm_loadu_pd(b.as_ptr().add(k - 2 - i));
-                acc[m] = _mm_add_pd(acc[m], _mm_mul_pd(x, _mm_shuffle_pd::<1>(y, y)));
-            }
-            i += 2;
-        }
-        acc.map(|v| _mm_cvtsd_f64(_mm_add_sd(v, _mm_unpackhi_pd(v, v))))
-    };
-    if i < n {
-        for (o, (a, b)) in out.iter_mut().zip(pairs) {
-            *o += a[1 + i] * b[1];
-        }
-    }
-    out
 }
 
 /// [`mul`] with its sum over lower orders `d` already taken by [`dots`].
@@ -261,7 +235,8 @@ pub fn sin_cos_d<const N: usize>(
 mod tests {
     use super::*;
 
-    /// The fused sums of [`dots`] are each pair's [`dot_rev`], bit for bit, at every order.
+    /// The fused sums of [`dots`] are each pair's [`dot_rev`] on scalars, bit for bit, at every
+    /// order.
     #[test]
     fn dots_are_each_pairs_dot_rev() {
         const N: usize = 21;
@@ -275,7 +250,7 @@ mod tests {
                 if k == 0 {
                     0.0
                 } else {
-                    dot_rev(&x[1..k], &y[1..k])
+                    dot_rev_scalar(&x[1..k], &y[1..k])
                 }
             });
             for (g, w) in got.iter().zip(want) {
