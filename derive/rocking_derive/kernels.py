@@ -120,14 +120,6 @@ def kernels(variant: Variant) -> list[Kernel]:
         m_out = [mass[0, 0], ca.SX(0), ca.SX(1)]
         f_out = [force[0], ca.SX(0)]
         acc = [force[0] / mass[0, 0], ca.SX(0)]
-    elif n == 1:
-        m_out = [mass[0, 0], mass[0, 1], mass[1, 1]]
-        f_out = [force[0], force[1]]
-        det = mass[0, 0] * mass[1, 1] - mass[0, 1] ** 2
-        acc = [
-            (mass[1, 1] * force[0] - mass[0, 1] * force[1]) / det,
-            (mass[0, 0] * force[1] - mass[0, 1] * force[0]) / det,
-        ]
     else:
         m_out = [mass[i, j] for i in range(n + 1) for j in range(i, n + 1)]
         f_out = [force[i] for i in range(n + 1)]
@@ -212,7 +204,7 @@ def kernels(variant: Variant) -> list[Kernel]:
         K("forcing", "Right-hand side F of M q'' = F while rocking about corner s: gravity, ground "
           "acceleration, stiffness, damping and velocity terms (corrected eqs (8)-(9)).", [x, ug, s, p],
           Output("f", "generalised forces", ["f_theta", *expanded("f_u", n)], f_out)),
-        K("rocking_rhs", "State derivative while rocking about corner s (M q'' = F solved in closed form).",
+        K("rocking_rhs", "State derivative while rocking about corner s (M q'' = F solved by LDL^T, theta last).",
           [x, ug, s, p], Output("dx", "state derivative", ["theta_dot", *ud_, "theta_ddot", *expanded("u_ddot", n)],
                                 [mech.theta_dot, *mech.u_dots, *acc])),
         K("contact_rhs", "State derivative in full contact, eq (3): the fixed-base cantilever.", [xc, ug, p],

@@ -11,10 +11,11 @@ pivot has |v|^2 = (X' + theta' Y)^2 + (Y' - theta' X)^2: the kinetic energy then
 trigonometric function at all, as (A3)-(A4) do, and nothing has to be simplified.
 
 One coordinate keeps the one-coordinate derivation literally (the same CasADi expressions, so the
-same bytes of generated code): sums over the basis start from their first term, and the linear
-systems are solved in closed form there. With several coordinates the symmetric positive definite
-systems (mass matrices, stiffness) are solved by an LDL^T factorisation written out symbolically
-(``solve_spd``): straight-line, exact in rational operations, no square root, no pivoting.
+same bytes of generated code): sums over the basis start from their first term, and the contact
+and impact systems are solved in closed form there. The symmetric positive definite systems (mass
+matrices, stiffness; the rocking phase's for any number of coordinates) are solved by an LDL^T
+factorisation written out symbolically (``solve_spd``): straight-line, exact in rational
+operations, no square root, no pivoting.
 """
 
 from __future__ import annotations
@@ -97,15 +98,18 @@ def solve_linear(residual: ca.SX, x: ca.SX) -> ca.SX:
     return -ca.substitute(residual, x, ca.SX(0)) / a
 
 
-def solve_spd(a, b: list) -> list:
+def solve_spd(a, b: list, order: list[int] | None = None) -> list:
     """x with A x = b for a symmetric positive definite A (an SX matrix or nested lists, of which
     only the upper triangle is read), by A = L D L^T written out: straight-line, rational, no
-    pivoting (a mass or stiffness matrix needs none)."""
+    pivoting for stability (a mass or stiffness matrix needs none). ``order`` is the order in which
+    the unknowns are eliminated (default: as given); it changes the expressions, not the solution."""
     n = len(b)
+    idx = list(range(n)) if order is None else list(order)
+    if sorted(idx) != list(range(n)):
+        raise ValueError(f"solve_spd: {order} is not an order of {n} unknowns")
 
     def entry(i, j):
-        i, j = min(i, j), max(i, j)
-        return a[i, j] if isinstance(a, ca.SX) else a[i][j]
+        return a_entry(a, idx[i], idx[j])
 
     def minus(value, terms):
         return value - total(terms) if terms else value
@@ -118,11 +122,17 @@ def solve_spd(a, b: list) -> list:
             low[i][j] = minus(entry(i, j), [low[i][k] * low[j][k] * d[k] for k in range(j)]) / d[j]
     y = []
     for i in range(n):
-        y.append(minus(b[i], [low[i][k] * y[k] for k in range(i)]))
+        y.append(minus(b[idx[i]], [low[i][k] * y[k] for k in range(i)]))
     x = [None] * n
     for i in reversed(range(n)):
-        x[i] = minus(y[i] / d[i], [low[k][i] * x[k] for k in range(i + 1, n)])
+        x[idx[i]] = minus(y[i] / d[i], [low[k][i] * x[idx[k]] for k in range(i + 1, n)])
     return x
+
+
+def a_entry(a, i: int, j: int):
+    """Entry (i, j) of a symmetric matrix of which only the upper triangle is read."""
+    i, j = min(i, j), max(i, j)
+    return a[i, j] if isinstance(a, ca.SX) else a[i][j]
 
 
 def at(expr: ca.SX, pairs: list[tuple[ca.SX, object]]) -> ca.SX:
@@ -374,9 +384,23 @@ class Mechanics:
         return mass, force
 
     def accelerations(self) -> list[ca.SX]:
-        """[theta'', u_1''..u_n''] while rocking, several coordinates: M q'' = F by LDL^T."""
+        """[theta'', u_1''..u_n''] while rocking: M q'' = F by LDL^T.
+
+        The coordinates whose block of M is constant (the u_i: the column's mass distribution) are
+        eliminated first and theta last. Then their pivots and multipliers divide by constants,
+        and the only division by a function of the state is by theta's pivot, the Schur
+        complement m_tt - m_tu^T M_uu^-1 m_tu: in the Taylor kernels one series division per
+        order, instead of one per coordinate and the products that undo them."""
         mass, force = self.equations()
-        return solve_spd(mass, [force[i] for i in range(1 + self.n)])
+        dim = 1 + self.n
+
+        def constant(i, j):
+            return not ca.depends_on(a_entry(mass, i, j), self.q)
+
+        block = [i for i in range(dim) if constant(i, i)]
+        block = [i for i in block if all(constant(i, j) for j in block)]
+        order = block + [i for i in range(dim) if i not in block]
+        return solve_spd(mass, [force[i] for i in range(dim)], order)
 
     def uplift(self) -> ca.SX:
         """f_s of eq (24): the base starts to rock about corner s when f_s > 0.

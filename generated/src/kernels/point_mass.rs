@@ -245,7 +245,7 @@ pub mod forcing {
     }
 }
 
-/// State derivative while rocking about corner s (M q'' = F solved in closed form).
+/// State derivative while rocking about corner s (M q'' = F solved by LDL^T, theta last).
 ///
 /// # Inputs
 ///
@@ -258,7 +258,7 @@ pub mod forcing {
 ///
 /// `dx: [f64; 4]`: state derivative — `theta_dot`, `u_dot`, `theta_ddot`, `u_ddot`
 ///
-/// Operations: 64 (35 mul, 8 sub, 6 add, 6 twice, 4 div, 2 sq, 1 cos, 1 sin, 1 sqrt).
+/// Operations: 60 (32 mul, 8 sub, 6 add, 6 twice, 4 div, 1 cos, 1 sin, 1 sq, 1 sqrt).
 #[inline]
 #[must_use]
 pub fn rocking_rhs(x: &[f64; 4], ug: f64, s: f64, p: &Params) -> [f64; 4] {
@@ -266,85 +266,81 @@ pub fn rocking_rhs(x: &[f64; 4], ug: f64, s: f64, p: &Params) -> [f64; 4] {
     let o0 = w0; // theta_dot
     let w1 = x[3]; // u_dot
     let o1 = w1; // u_dot
-    let w2 = p[3]; // m
-    let w3 = x[0]; // theta
-    let w4 = w3.cos();
-    let w5 = x[1]; // u
-    let w6 = s; // s
-    let w7 = p[1]; // b
-    let w8 = w6 * w7;
-    let w9 = w5 - w8;
+    let w2 = x[0]; // theta
+    let w3 = w2.cos();
+    let w4 = x[1]; // u
+    let w5 = s; // s
+    let w6 = p[1]; // b
+    let w7 = w5 * w6;
+    let w8 = w4 - w7;
+    let w9 = p[3]; // m
     let w10 = p[8]; // g
-    let w11 = w2 * w10;
-    let w12 = w9 * w11;
+    let w11 = w9 * w10;
+    let w12 = w8 * w11;
     let w13 = p[0]; // h
     let w14 = ug; // ug
-    let w15 = w2 * w14;
+    let w15 = w9 * w14;
     let w16 = w13 * w15;
     let w17 = w12 - w16;
-    let w18 = w4 * w17;
-    let w19 = w3.sin();
-    let w20 = w9 * w15;
+    let w18 = w3 * w17;
+    let w19 = w2.sin();
+    let w20 = w8 * w15;
     let w21 = w13 * w11;
     let w22 = w20 + w21;
     let w23 = w19 * w22;
     let w24 = w18 + w23;
-    let w25 = w0 * w9;
+    let w25 = w0 * w8;
     let w26 = 2.0 * w25;
     let w27: f64 = 0.5;
-    let w28 = w27 * w2;
+    let w28 = w27 * w9;
     let w29 = w26 * w28;
     let w30 = 2.0 * w0;
     let w31 = w28 * w30;
-    let w32 = w9 * w31;
+    let w32 = w8 * w31;
     let w33 = w29 + w32;
     let w34 = w33 * w1;
     let w35 = w24 - w34;
-    let w36 = w2 * w35;
-    let w37 = w13 * w2;
-    let w38 = 2.0 * w5;
-    let w39: f64 = -1.5;
-    let w40 = p[2]; // ei
-    let w41 = w13 * w13;
-    let w42 = w13 * w41;
-    let w43 = w40 / w42;
-    let w44 = w39 * w43;
-    let w45 = w38 * w44;
-    let w46 = w4 * w15;
-    let w47 = w45 - w46;
-    let w48 = w19 * w11;
+    let w36 = 2.0 * w4;
+    let w37: f64 = -1.5;
+    let w38 = p[2]; // ei
+    let w39 = w13 * w13;
+    let w40 = w13 * w39;
+    let w41 = w38 / w40;
+    let w42 = w37 * w41;
+    let w43 = w36 * w42;
+    let w44 = w3 * w15;
+    let w45 = w43 - w44;
+    let w46 = w19 * w11;
+    let w47 = w45 + w46;
+    let w48 = w0 * w29;
     let w49 = w47 + w48;
-    let w50 = w0 * w29;
-    let w51 = w49 + w50;
-    let w52 = p[7]; // zeta
-    let w53 = 2.0 * w52;
-    let w54: f64 = 3.0;
-    let w55 = w54 * w43;
-    let w56 = w55 / w2;
-    let w57 = w56.sqrt();
-    let w58 = w53 * w57;
-    let w59 = w58 * w2;
-    let w60 = w59 * w1;
-    let w61 = w51 - w60;
-    let w62 = w37 * w61;
-    let w63 = w36 - w62;
-    let w64 = 2.0 * w9;
-    let w65 = w28 * w64;
-    let w66 = w9 * w65;
-    let w67 = 2.0 * w13;
-    let w68 = w28 * w67;
-    let w69 = w13 * w68;
-    let w70 = w66 + w69;
-    let w71 = w70 * w2;
-    let w72 = w37 * w37;
-    let w73 = w71 - w72;
-    let w74 = w63 / w73;
-    let o2 = w74; // theta_ddot
-    let w75 = w70 * w61;
-    let w76 = w37 * w35;
-    let w77 = w75 - w76;
-    let w78 = w77 / w73;
-    let o3 = w78; // u_ddot
+    let w50 = p[7]; // zeta
+    let w51 = 2.0 * w50;
+    let w52: f64 = 3.0;
+    let w53 = w52 * w41;
+    let w54 = w53 / w9;
+    let w55 = w54.sqrt();
+    let w56 = w51 * w55;
+    let w57 = w56 * w9;
+    let w58 = w57 * w1;
+    let w59 = w49 - w58;
+    let w60 = w13 * w59;
+    let w61 = w35 - w60;
+    let w62 = 2.0 * w8;
+    let w63 = w28 * w62;
+    let w64 = w8 * w63;
+    let w65 = 2.0 * w13;
+    let w66 = w28 * w65;
+    let w67 = w13 * w66;
+    let w68 = w64 + w67;
+    let w69 = w39 * w9;
+    let w70 = w68 - w69;
+    let w71 = w61 / w70;
+    let o2 = w71; // theta_ddot
+    let w72 = w59 / w9;
+    let w73 = w13 * w71;
+    let w74 = w72 - w73;
+    let o3 = w74; // u_ddot
     [o0, o1, o2, o3]
 }
 
@@ -1213,7 +1209,7 @@ pub mod forces_contact {
 ///
 /// `fr: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
 ///
-/// Operations: 97 (55 mul, 13 sub, 12 add, 6 twice, 5 div, 3 sq, 1 cos, 1 sin, 1 sqrt).
+/// Operations: 93 (52 mul, 13 sub, 12 add, 6 twice, 5 div, 2 sq, 1 cos, 1 sin, 1 sqrt).
 #[inline]
 #[must_use]
 pub fn forces_rocking(x: &[f64; 4], ug: f64, s: f64, p: &Params) -> [f64; 6] {
@@ -1254,87 +1250,83 @@ pub fn forces_rocking(x: &[f64; 4], ug: f64, s: f64, p: &Params) -> [f64; 6] {
     let w34 = x[3]; // u_dot
     let w35 = w33 * w34;
     let w36 = w23 - w35;
-    let w37 = w0 * w36;
-    let w38 = w14 * w0;
-    let w39 = 2.0 * w1;
-    let w40: f64 = -1.5;
-    let w41 = p[2]; // ei
-    let w42 = w14 * w14;
-    let w43 = w14 * w42;
-    let w44 = w41 / w43;
-    let w45 = w40 * w44;
-    let w46 = w39 * w45;
-    let w47 = w6 * w15;
-    let w48 = w46 - w47;
-    let w49 = w4 * w12;
+    let w37 = 2.0 * w1;
+    let w38: f64 = -1.5;
+    let w39 = p[2]; // ei
+    let w40 = w14 * w14;
+    let w41 = w14 * w40;
+    let w42 = w39 / w41;
+    let w43 = w38 * w42;
+    let w44 = w37 * w43;
+    let w45 = w6 * w15;
+    let w46 = w44 - w45;
+    let w47 = w4 * w12;
+    let w48 = w46 + w47;
+    let w49 = w24 * w29;
     let w50 = w48 + w49;
-    let w51 = w24 * w29;
-    let w52 = w50 + w51;
-    let w53 = p[7]; // zeta
-    let w54 = 2.0 * w53;
-    let w55: f64 = 3.0;
-    let w56 = w55 * w44;
-    let w57 = w56 / w0;
-    let w58 = w57.sqrt();
-    let w59 = w54 * w58;
-    let w60 = w59 * w0;
-    let w61 = w60 * w34;
-    let w62 = w52 - w61;
-    let w63 = w38 * w62;
-    let w64 = w37 - w63;
-    let w65 = 2.0 * w10;
-    let w66 = w28 * w65;
-    let w67 = w10 * w66;
-    let w68 = 2.0 * w14;
-    let w69 = w28 * w68;
-    let w70 = w14 * w69;
-    let w71 = w67 + w70;
-    let w72 = w71 * w0;
-    let w73 = w38 * w38;
-    let w74 = w72 - w73;
-    let w75 = w64 / w74;
-    let w76 = w75 * w10;
-    let w77 = w24 * w24;
-    let w78 = w77 * w14;
-    let w79 = w76 + w78;
-    let w80 = w30 * w34;
+    let w51 = p[7]; // zeta
+    let w52 = 2.0 * w51;
+    let w53: f64 = 3.0;
+    let w54 = w53 * w42;
+    let w55 = w54 / w0;
+    let w56 = w55.sqrt();
+    let w57 = w52 * w56;
+    let w58 = w57 * w0;
+    let w59 = w58 * w34;
+    let w60 = w50 - w59;
+    let w61 = w14 * w60;
+    let w62 = w36 - w61;
+    let w63 = 2.0 * w10;
+    let w64 = w28 * w63;
+    let w65 = w10 * w64;
+    let w66 = 2.0 * w14;
+    let w67 = w28 * w66;
+    let w68 = w14 * w67;
+    let w69 = w65 + w68;
+    let w70 = w40 * w0;
+    let w71 = w69 - w70;
+    let w72 = w62 / w71;
+    let w73 = w72 * w10;
+    let w74 = w24 * w24;
+    let w75 = w74 * w14;
+    let w76 = w73 + w75;
+    let w77 = w30 * w34;
+    let w78 = w76 + w77;
+    let w79 = w5 - w78;
+    let w80 = w11 * w6;
     let w81 = w79 + w80;
-    let w82 = w5 - w81;
-    let w83 = w11 * w6;
-    let w84 = w82 + w83;
-    let w85 = w1 * w84;
-    let w86 = w75 * w14;
-    let w87 = w77 * w10;
+    let w82 = w1 * w81;
+    let w83 = w72 * w14;
+    let w84 = w74 * w10;
+    let w85 = w83 - w84;
+    let w86 = w60 / w0;
+    let w87 = w14 * w72;
     let w88 = w86 - w87;
-    let w89 = w71 * w62;
-    let w90 = w38 * w36;
-    let w91 = w89 - w90;
-    let w92 = w91 / w74;
-    let w93 = w88 + w92;
-    let w94 = w2 * w6;
-    let w95 = w93 + w94;
-    let w96 = w11 * w4;
-    let w97 = w95 - w96;
-    let w98 = w14 * w97;
-    let w99 = w85 - w98;
-    let w100 = w0 * w99;
-    let o0 = w100; // moment
-    let w101 = w0 * w97;
-    let o1 = w101; // shear
-    let w102 = w0 * w84;
-    let o2 = w102; // axial
-    let w103 = w41 / w42;
-    let w104 = w55 * w103;
-    let w105 = w104 * w1;
-    let o3 = w105; // moment_elastic
-    let w106 = w6 * w101;
-    let w107 = w4 * w102;
-    let w108 = w106 + w107;
-    let o4 = w108; // reaction_h
-    let w109 = w6 * w102;
-    let w110 = w4 * w101;
-    let w111 = w109 - w110;
-    let o5 = w111; // reaction_v
+    let w89 = w85 + w88;
+    let w90 = w2 * w6;
+    let w91 = w89 + w90;
+    let w92 = w11 * w4;
+    let w93 = w91 - w92;
+    let w94 = w14 * w93;
+    let w95 = w82 - w94;
+    let w96 = w0 * w95;
+    let o0 = w96; // moment
+    let w97 = w0 * w93;
+    let o1 = w97; // shear
+    let w98 = w0 * w81;
+    let o2 = w98; // axial
+    let w99 = w39 / w40;
+    let w100 = w53 * w99;
+    let w101 = w100 * w1;
+    let o3 = w101; // moment_elastic
+    let w102 = w6 * w97;
+    let w103 = w4 * w98;
+    let w104 = w102 + w103;
+    let o4 = w104; // reaction_h
+    let w105 = w6 * w98;
+    let w106 = w4 * w97;
+    let w107 = w105 - w106;
+    let o5 = w107; // reaction_v
     [o0, o1, o2, o3, o4, o5]
 }
 

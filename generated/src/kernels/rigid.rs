@@ -243,7 +243,7 @@ pub mod forcing {
     }
 }
 
-/// State derivative while rocking about corner s (M q'' = F solved in closed form).
+/// State derivative while rocking about corner s (M q'' = F solved by LDL^T, theta last).
 ///
 /// # Inputs
 ///

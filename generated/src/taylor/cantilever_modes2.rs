@@ -90,84 +90,161 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 6], ug: &[f64; N], s: f64,
     let w102: f64 = w12 * w101;
     let w103: f64 = w100 + w102;
     let mut w108 = [0.0f64; N];
-    let w110: f64 = p[6];
-    let w114: f64 = w12 * w73;
-    let w115: f64 = w110 + w114;
-    let w116: f64 = 2.0 * w17;
-    let w117: f64 = w72 * w116;
-    let w118: f64 = w17 * w117;
-    let w119: f64 = w115 + w118;
-    let w120: f64 = w74 + w80;
-    let w121: f64 = w80 + w120;
-    let w122: f64 = 0.08333333333333333;
-    let w123: f64 = w21 * w122;
-    let w124: f64 = w17 * w123;
-    let w125: f64 = w116 * w124;
-    let w126: f64 = w119 + w125;
-    let w127: f64 = 2.0 * w124;
-    let w128: f64 = w17 * w127;
-    let w129: f64 = w126 + w128;
-    let w130: f64 = -w12;
-    let w131: f64 = 2.0 * w130;
-    let w132: f64 = w98 * w131;
-    let w133: f64 = w132 - w76;
-    let w134: f64 = w133 - w102;
-    let w135: f64 = w85 * w131;
-    let w136: f64 = w135 - w76;
-    let w137: f64 = w136 - w89;
-    let w138: f64 = 2.0 * w12;
-    let w139: f64 = w22 * w138;
-    let w140: f64 = w12 * w139;
-    let w141: f64 = w129 + w140;
-    let mut w144 = [0.0f64; N];
-    let mut w154 = [0.0f64; N];
-    let mut inv_w154 = 0.0f64;
-    let mut w155 = [0.0f64; N];
-    let w156: f64 = 0.1422064359274777;
-    let w157: f64 = w21 * w156;
-    let w158: f64 = w17 * w157;
-    let w159: f64 = 2.0 * w158;
-    let w160: f64 = w19 + w159;
-    let mut w161 = [0.0f64; N];
-    let w162: f64 = -1.5452954210407739;
-    let w163: f64 = p[2];
-    let w164: f64 = w17 * w17;
-    let w165: f64 = w17 * w164;
-    let w166: f64 = w163 / w165;
-    let w167: f64 = w162 * w166;
-    let w168: f64 = w70 * w167;
-    let w173: f64 = w73 + w86;
-    let w174: f64 = p[9];
-    let w175: f64 = p[10];
-    let w177: f64 = 0.125;
-    let w178: f64 = w21 * w177;
-    let w179: f64 = w13 + w178;
-    let w180: f64 = w178 + w179;
-    let mut w181 = [0.0f64; N];
-    let mut w182 = [0.0f64; N];
-    let mut w198 = [0.0f64; N];
-    let mut w199 = [0.0f64; N];
-    let mut inv_w199 = 0.0f64;
-    let mut w200 = [0.0f64; N];
-    let w201: f64 = -0.02269169672159674;
-    let w202: f64 = w21 * w201;
-    let w203: f64 = w17 * w202;
-    let w204: f64 = 2.0 * w203;
-    let w205: f64 = w19 + w204;
-    let mut w206 = [0.0f64; N];
-    let mut w207 = [0.0f64; N];
-    let mut w210 = [0.0f64; N];
-    let w211: f64 = -60.68985231417138;
-    let w212: f64 = w166 * w211;
-    let w213: f64 = w70 * w212;
-    let w214: f64 = w73 + w99;
-    let w215: f64 = p[11];
-    let mut w218 = [0.0f64; N];
-    let mut w220 = [0.0f64; N];
-    let mut w242 = [0.0f64; N];
-    let mut inv_w242 = 0.0f64;
-    let mut w243 = [0.0f64; N];
-    let mut w245 = [0.0f64; N];
+    let w110: f64 = 0.1422064359274777;
+    let w111: f64 = w21 * w110;
+    let w112: f64 = w17 * w111;
+    let w113: f64 = 2.0 * w112;
+    let w114: f64 = w19 + w113;
+    let w115: f64 = 0.125;
+    let w116: f64 = w21 * w115;
+    let w117: f64 = w13 + w116;
+    let w118: f64 = w116 + w117;
+    let w119: f64 = w114 / w118;
+    let w120: f64 = -1.5452954210407739;
+    let w121: f64 = p[2];
+    let w122: f64 = w17 * w17;
+    let w123: f64 = w17 * w122;
+    let w124: f64 = w121 / w123;
+    let w125: f64 = w120 * w124;
+    let w126: f64 = w70 * w125;
+    let w131: f64 = w74 + w80;
+    let w132: f64 = w80 + w131;
+    let w133: f64 = w73 + w86;
+    let w134: f64 = p[9];
+    let w135: f64 = p[10];
+    let w136: f64 = w119 * w134;
+    let w137: f64 = w119 * w135;
+    let w138: f64 = w119 * w126;
+    let w139: f64 = w35 * w119;
+    let w140: f64 = w54 * w119;
+    let w141: f64 = w119 * w133;
+    let w142: f64 = w119 * w132;
+    let w143: f64 = w74 * w119;
+    let w144: f64 = -0.02269169672159674;
+    let w145: f64 = w21 * w144;
+    let w146: f64 = w17 * w145;
+    let w147: f64 = 2.0 * w146;
+    let w148: f64 = w19 + w147;
+    let w149: f64 = w13 / w118;
+    let w150: f64 = w119 * w149;
+    let w151: f64 = w118 * w150;
+    let w152: f64 = w148 - w151;
+    let w153: f64 = w149 * w149;
+    let w154: f64 = w118 * w153;
+    let w155: f64 = w118 - w154;
+    let w156: f64 = w152 / w155;
+    let w157: f64 = -60.68985231417138;
+    let w158: f64 = w124 * w157;
+    let w159: f64 = w70 * w158;
+    let w160: f64 = w73 + w99;
+    let w161: f64 = p[11];
+    let w162: f64 = w134 * w149;
+    let w163: f64 = w135 * w149;
+    let w164: f64 = w126 * w149;
+    let w165: f64 = w35 * w149;
+    let w166: f64 = w54 * w149;
+    let w167: f64 = w133 * w149;
+    let w168: f64 = w132 * w149;
+    let w169: f64 = w74 * w149;
+    let w170: f64 = w162 - w135;
+    let w171: f64 = w163 - w161;
+    let w172: f64 = w32 - w165;
+    let w173: f64 = w166 - w52;
+    let w174: f64 = w167 - w160;
+    let w175: f64 = w74 - w168;
+    let w176: f64 = w132 - w169;
+    let w177: f64 = w156 * w170;
+    let w178: f64 = w156 * w171;
+    let w179: f64 = w156 * w164;
+    let w180: f64 = w156 * w159;
+    let w181: f64 = w156 * w172;
+    let w182: f64 = w156 * w173;
+    let w183: f64 = w156 * w174;
+    let w184: f64 = w156 * w175;
+    let w185: f64 = w156 * w176;
+    let w186: f64 = w177 - w136;
+    let w187: f64 = w178 - w137;
+    let w188: f64 = w138 - w179;
+    let w189: f64 = w139 + w181;
+    let w190: f64 = w182 - w140;
+    let w191: f64 = w183 - w141;
+    let w192: f64 = w142 + w184;
+    let w193: f64 = w143 + w185;
+    let w194: f64 = p[6];
+    let w198: f64 = w12 * w73;
+    let w199: f64 = w194 + w198;
+    let w200: f64 = 2.0 * w17;
+    let w201: f64 = w72 * w200;
+    let w202: f64 = w17 * w201;
+    let w203: f64 = w199 + w202;
+    let w204: f64 = 0.08333333333333333;
+    let w205: f64 = w21 * w204;
+    let w206: f64 = w17 * w205;
+    let w207: f64 = w200 * w206;
+    let w208: f64 = w203 + w207;
+    let w209: f64 = 2.0 * w206;
+    let w210: f64 = w17 * w209;
+    let w211: f64 = w208 + w210;
+    let w212: f64 = -w12;
+    let w213: f64 = 2.0 * w212;
+    let w214: f64 = w98 * w213;
+    let w215: f64 = w214 - w76;
+    let w216: f64 = w215 - w102;
+    let w217: f64 = w85 * w213;
+    let w218: f64 = w217 - w76;
+    let w219: f64 = w218 - w89;
+    let w220: f64 = 2.0 * w12;
+    let w221: f64 = w22 * w220;
+    let w222: f64 = w12 * w221;
+    let w223: f64 = w211 + w222;
+    let w224: f64 = w119 * w119;
+    let w225: f64 = w118 * w224;
+    let w226: f64 = w156 * w156;
+    let w227: f64 = w155 * w226;
+    let w228: f64 = w225 + w227;
+    let w229: f64 = w223 - w228;
+    let mut w260 = [0.0f64; N];
+    let mut inv_w260 = 0.0f64;
+    let mut w261 = [0.0f64; N];
+    let w263: f64 = 1.0;
+    let w264: f64 = w263 / w118;
+    let w265: f64 = w134 * w264;
+    let w266: f64 = w135 * w264;
+    let w267: f64 = w126 * w264;
+    let w268: f64 = w35 * w264;
+    let w269: f64 = w54 * w264;
+    let w270: f64 = w133 * w264;
+    let w271: f64 = w132 * w264;
+    let w272: f64 = w74 * w264;
+    let w273: f64 = w263 / w155;
+    let w274: f64 = w170 * w273;
+    let w275: f64 = w171 * w273;
+    let w276: f64 = w164 * w273;
+    let w277: f64 = w159 * w273;
+    let w278: f64 = w172 * w273;
+    let w279: f64 = w173 * w273;
+    let w280: f64 = w174 * w273;
+    let w281: f64 = w175 * w273;
+    let w282: f64 = w176 * w273;
+    let w283: f64 = w149 * w274;
+    let w284: f64 = w149 * w275;
+    let w285: f64 = w149 * w276;
+    let w286: f64 = w149 * w277;
+    let w287: f64 = w149 * w278;
+    let w288: f64 = w149 * w279;
+    let w289: f64 = w149 * w280;
+    let w290: f64 = w149 * w281;
+    let w291: f64 = w149 * w282;
+    let w292: f64 = w149 * w156;
+    let w293: f64 = w119 - w292;
+    let w294: f64 = w265 + w283;
+    let w295: f64 = w266 + w284;
+    let w296: f64 = w267 + w285;
+    let w297: f64 = w268 - w287;
+    let w298: f64 = w269 + w288;
+    let w299: f64 = w270 + w289;
+    let w300: f64 = w271 - w290;
+    let w301: f64 = w272 - w291;
     for k in 0..N - 1 {
         let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7] = series::dots(
             [
@@ -182,41 +259,15 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 6], ug: &[f64; N], s: f64,
             ],
             k,
         );
-        let [dot8, dot9, dot10, dot11, dot12, dot13, dot14, dot15] = series::dots(
+        let [dot8, dot9, dot10, dot11, dot12, dot13, dot14] = series::dots(
             [
                 (&x[4], &w95),
                 (&x[5], &w108),
-                (&x[1], &x[2]),
-                (&w154, &w155),
-                (&w154, &w161),
                 (&cos_x0, &ug),
                 (&x[3], &w68),
                 (&x[3], &w69),
-            ],
-            k,
-        );
-        let [dot16, dot17, dot18, dot19, dot20, dot21, dot22, dot23] = series::dots(
-            [
-                (&w144, &w161),
-                (&w154, &w181),
-                (&w199, &w200),
-                (&w154, &w206),
-                (&w161, &w206),
-                (&w154, &w207),
-                (&w199, &w210),
-                (&w144, &w206),
-            ],
-            k,
-        );
-        let [dot24, dot25, dot26, dot27, dot28, dot29, dot30] = series::dots(
-            [
-                (&w198, &w210),
-                (&w154, &w218),
-                (&w182, &w220),
-                (&w242, &w243),
-                (&w210, &w243),
-                (&w161, &w245),
-                (&w206, &w243),
+                (&x[1], &x[2]),
+                (&w260, &w261),
             ],
             k,
         );
@@ -251,98 +302,91 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 6], ug: &[f64; N], s: f64,
         let w107 = w105 + w106;
         w108[k] = w107 - w104;
         let w109 = series::mul_d(dot9, &x[5], &w108, k);
-        let w111 = series::sq(&x[1], k);
-        let w112 = series::mul_d(dot10, &x[1], &x[2], k);
-        let w113 = series::sq(&x[2], k);
-        let w142 = w44 - w67;
-        let w143 = w142 - w96;
-        w144[k] = w143 - w109;
-        let w145 = x[1][k] * w137;
-        let w146 = x[2][k] * w134;
-        let w147 = w111 * w121;
-        let w148 = w77 * w112;
-        let w149 = w113 * w121;
-        let w150 = w145 + w146;
-        let w151 = w147 + w150;
-        let w152 = w148 + w151;
-        let w153 = w149 + w152;
-        w154[k] = at0(k, w141) + w153;
-        if k == 0 { inv_w154 = 1.0 / w154[0]; }
-        w155[k] = series::div_d(dot11, w144[k], &w154, &w155, inv_w154, k);
-        w161[k] = series::div_d(dot12, at0(k, w160), &w154, &w161, inv_w154, k);
-        let w169 = series::mul_d(dot13, &cos_x0, &ug, k);
-        let w170 = series::sq(&x[3], k);
-        let w171 = series::mul_d(dot14, &x[3], &w68, k);
-        let w172 = series::mul_d(dot15, &x[3], &w69, k);
-        let w176 = series::mul_d(dot16, &w144, &w161, k);
-        w181[k] = series::sq(&w161, k);
-        w182[k] = series::mul_d(dot17, &w154, &w181, k);
-        let w183 = x[4][k] * w174;
-        let w184 = x[5][k] * w175;
-        let w185 = x[1][k] * w168;
-        let w186 = w35 * sin_x0[k];
-        let w187 = w54 * w169;
-        let w188 = w170 * w173;
-        let w189 = w121 * w171;
-        let w190 = w74 * w172;
-        let w191 = w185 + w186;
-        let w192 = w189 + w191;
-        let w193 = w190 + w192;
-        let w194 = w193 - w183;
-        let w195 = w194 - w184;
-        let w196 = w195 - w187;
-        let w197 = w196 - w188;
-        w198[k] = w197 - w176;
-        w199[k] = at0(k, w180) - w182[k];
-        if k == 0 { inv_w199 = 1.0 / w199[0]; }
-        w200[k] = series::div_d(dot18, w198[k], &w199, &w200, inv_w199, k);
-        w206[k] = series::div_d(dot19, at0(k, w205), &w154, &w206, inv_w154, k);
-        w207[k] = series::mul_d(dot20, &w161, &w206, k);
-        let w208 = series::mul_d(dot21, &w154, &w207, k);
-        let w209 = at0(k, w13) - w208;
-        w210[k] = series::div_d(dot22, w209, &w199, &w210, inv_w199, k);
-        let w216 = series::mul_d(dot23, &w144, &w206, k);
-        let w217 = series::mul_d(dot24, &w198, &w210, k);
-        w218[k] = series::sq(&w206, k);
-        let w219 = series::mul_d(dot25, &w154, &w218, k);
-        w220[k] = series::sq(&w210, k);
-        let w221 = series::mul_d(dot26, &w182, &w220, k);
-        let w222 = x[4][k] * w175;
-        let w223 = x[5][k] * w215;
-        let w224 = x[2][k] * w213;
-        let w225 = w32 * sin_x0[k];
-        let w226 = w52 * w169;
-        let w227 = w170 * w214;
-        let w228 = w74 * w171;
-        let w229 = w121 * w172;
-        let w230 = w224 + w225;
-        let w231 = w228 + w230;
-        let w232 = w229 + w231;
-        let w233 = w232 - w222;
-        let w234 = w233 - w223;
-        let w235 = w234 - w226;
-        let w236 = w235 - w227;
-        let w237 = w236 - w216;
-        let w238 = w237 - w217;
-        let w239 = w180 * w220[k];
-        let w240 = at0(k, w180) + w221;
-        let w241 = w240 - w219;
-        w242[k] = w241 - w239;
-        if k == 0 { inv_w242 = 1.0 / w242[0]; }
-        w243[k] = series::div_d(dot27, w238, &w242, &w243, inv_w242, k);
-        let w244 = series::mul_d(dot28, &w210, &w243, k);
-        w245[k] = w200[k] - w244;
-        let w246 = series::mul_d(dot29, &w161, &w245, k);
-        let w247 = series::mul_d(dot30, &w206, &w243, k);
-        let w248 = w155[k] - w246;
-        let w249 = w248 - w247;
+        let w127 = series::mul_d(dot10, &cos_x0, &ug, k);
+        let w128 = series::sq(&x[3], k);
+        let w129 = series::mul_d(dot11, &x[3], &w68, k);
+        let w130 = series::mul_d(dot12, &x[3], &w69, k);
+        let w195 = series::sq(&x[1], k);
+        let w196 = series::mul_d(dot13, &x[1], &x[2], k);
+        let w197 = series::sq(&x[2], k);
+        let w230 = x[4][k] * w186;
+        let w231 = x[5][k] * w187;
+        let w232 = x[1][k] * w188;
+        let w233 = x[2][k] * w180;
+        let w234 = sin_x0[k] * w189;
+        let w235 = w127 * w190;
+        let w236 = w128 * w191;
+        let w237 = w129 * w192;
+        let w238 = w130 * w193;
+        let w239 = w44 - w230;
+        let w240 = w239 - w231;
+        let w241 = w240 - w232;
+        let w242 = w241 - w233;
+        let w243 = w242 - w234;
+        let w244 = w243 - w67;
+        let w245 = w244 - w96;
+        let w246 = w245 - w109;
+        let w247 = w246 - w235;
+        let w248 = w247 - w236;
+        let w249 = w248 - w237;
+        let w250 = w249 - w238;
+        let w251 = x[1][k] * w219;
+        let w252 = x[2][k] * w216;
+        let w253 = w132 * w195;
+        let w254 = w77 * w196;
+        let w255 = w132 * w197;
+        let w256 = w251 + w252;
+        let w257 = w253 + w256;
+        let w258 = w254 + w257;
+        let w259 = w255 + w258;
+        w260[k] = at0(k, w229) + w259;
+        if k == 0 { inv_w260 = 1.0 / w260[0]; }
+        w261[k] = series::div_d(dot14, w250, &w260, &w261, inv_w260, k);
+        let w302 = x[4][k] * w294;
+        let w303 = x[5][k] * w295;
+        let w304 = x[1][k] * w296;
+        let w305 = x[2][k] * w286;
+        let w306 = sin_x0[k] * w297;
+        let w307 = w127 * w298;
+        let w308 = w128 * w299;
+        let w309 = w129 * w300;
+        let w310 = w130 * w301;
+        let w311 = w261[k] * w293;
+        let w312 = w304 + w306;
+        let w313 = w309 + w312;
+        let w314 = w310 + w313;
+        let w315 = w314 - w302;
+        let w316 = w315 - w303;
+        let w317 = w316 - w305;
+        let w318 = w317 - w307;
+        let w319 = w318 - w308;
+        let w320 = w319 - w311;
+        let w322 = x[4][k] * w274;
+        let w323 = x[5][k] * w275;
+        let w324 = x[1][k] * w276;
+        let w325 = x[2][k] * w277;
+        let w326 = sin_x0[k] * w278;
+        let w327 = w127 * w279;
+        let w328 = w128 * w280;
+        let w329 = w129 * w281;
+        let w330 = w130 * w282;
+        let w331 = w156 * w261[k];
+        let w332 = w322 + w323;
+        let w333 = w325 + w332;
+        let w334 = w326 + w333;
+        let w335 = w327 + w334;
+        let w336 = w328 + w335;
+        let w337 = w329 + w336;
+        let w338 = w330 + w337;
+        let w339 = w338 - w324;
+        let w340 = w339 - w331;
         let inv_k1 = 1.0 / (k + 1) as f64;
         x[0][k + 1] = x[3][k] * inv_k1;
         x[1][k + 1] = x[4][k] * inv_k1;
         x[2][k + 1] = x[5][k] * inv_k1;
-        x[3][k + 1] = w249 * inv_k1;
-        x[4][k + 1] = w245[k] * inv_k1;
-        x[5][k + 1] = w243[k] * inv_k1;
+        x[3][k + 1] = w261[k] * inv_k1;
+        x[4][k + 1] = w320 * inv_k1;
+        x[5][k + 1] = w340 * inv_k1;
     }
 }
 
@@ -415,88 +459,157 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 6], s: f64, p: &Param
     let w79: f64 = w12 * w78;
     let w80: f64 = w77 + w79;
     let mut w85 = [0.0f64; N];
-    let w87: f64 = p[6];
-    let w91: f64 = w12 * w50;
+    let w87: f64 = w13 * w17;
+    let w88: f64 = 0.1422064359274777;
+    let w89: f64 = w20 * w88;
+    let w90: f64 = w17 * w89;
+    let w91: f64 = 2.0 * w90;
     let w92: f64 = w87 + w91;
-    let w93: f64 = 2.0 * w17;
-    let w94: f64 = w49 * w93;
-    let w95: f64 = w17 * w94;
-    let w96: f64 = w92 + w95;
-    let w97: f64 = w51 + w57;
-    let w98: f64 = w57 + w97;
-    let w99: f64 = 0.08333333333333333;
-    let w100: f64 = w20 * w99;
+    let w93: f64 = 0.125;
+    let w94: f64 = w20 * w93;
+    let w95: f64 = w13 + w94;
+    let w96: f64 = w94 + w95;
+    let w97: f64 = w92 / w96;
+    let w98: f64 = -1.5452954210407739;
+    let w99: f64 = p[2];
+    let w100: f64 = w17 * w17;
     let w101: f64 = w17 * w100;
-    let w102: f64 = w93 * w101;
-    let w103: f64 = w96 + w102;
-    let w104: f64 = 2.0 * w101;
-    let w105: f64 = w17 * w104;
-    let w106: f64 = w103 + w105;
-    let w107: f64 = -w12;
-    let w108: f64 = 2.0 * w107;
-    let w109: f64 = w75 * w108;
-    let w110: f64 = w109 - w53;
-    let w111: f64 = w110 - w79;
-    let w112: f64 = w62 * w108;
-    let w113: f64 = w112 - w53;
-    let w114: f64 = w113 - w66;
-    let w115: f64 = w19 * w20;
-    let w116: f64 = 2.0 * w12;
-    let w117: f64 = w115 * w116;
-    let w118: f64 = w12 * w117;
-    let w119: f64 = w106 + w118;
-    let mut w123 = [0.0f64; N];
-    let mut w133 = [0.0f64; N];
-    let mut inv_w133 = 0.0f64;
-    let mut w134 = [0.0f64; N];
-    let w135: f64 = w13 * w17;
-    let w136: f64 = 0.1422064359274777;
-    let w137: f64 = w20 * w136;
-    let w138: f64 = w17 * w137;
-    let w139: f64 = 2.0 * w138;
-    let w140: f64 = w135 + w139;
-    let mut w141 = [0.0f64; N];
-    let w142: f64 = -1.5452954210407739;
-    let w143: f64 = p[2];
-    let w144: f64 = w17 * w17;
-    let w145: f64 = w17 * w144;
-    let w146: f64 = w143 / w145;
-    let w147: f64 = w142 * w146;
-    let w148: f64 = w47 * w147;
-    let w152: f64 = w50 + w63;
-    let w153: f64 = p[9];
-    let w154: f64 = p[10];
-    let w156: f64 = 0.125;
-    let w157: f64 = w20 * w156;
-    let w158: f64 = w13 + w157;
-    let w159: f64 = w157 + w158;
-    let mut w160 = [0.0f64; N];
-    let mut w161 = [0.0f64; N];
-    let mut w175 = [0.0f64; N];
-    let mut w176 = [0.0f64; N];
-    let mut inv_w176 = 0.0f64;
-    let mut w177 = [0.0f64; N];
-    let w178: f64 = -0.02269169672159674;
-    let w179: f64 = w20 * w178;
-    let w180: f64 = w17 * w179;
-    let w181: f64 = 2.0 * w180;
-    let w182: f64 = w135 + w181;
-    let mut w183 = [0.0f64; N];
-    let mut w184 = [0.0f64; N];
-    let mut w187 = [0.0f64; N];
-    let w188: f64 = -60.68985231417138;
-    let w189: f64 = w146 * w188;
-    let w190: f64 = w47 * w189;
-    let w191: f64 = w50 + w76;
-    let w192: f64 = p[11];
-    let mut w195 = [0.0f64; N];
-    let mut w197 = [0.0f64; N];
-    let mut w217 = [0.0f64; N];
-    let mut inv_w217 = 0.0f64;
-    let mut w218 = [0.0f64; N];
-    let mut w220 = [0.0f64; N];
+    let w102: f64 = w99 / w101;
+    let w103: f64 = w98 * w102;
+    let w104: f64 = w47 * w103;
+    let w108: f64 = w51 + w57;
+    let w109: f64 = w57 + w108;
+    let w110: f64 = w50 + w63;
+    let w111: f64 = p[9];
+    let w112: f64 = p[10];
+    let w113: f64 = w97 * w111;
+    let w114: f64 = w97 * w112;
+    let w115: f64 = w97 * w104;
+    let w116: f64 = w31 * w97;
+    let w117: f64 = w97 * w110;
+    let w118: f64 = w97 * w109;
+    let w119: f64 = w51 * w97;
+    let w120: f64 = -0.02269169672159674;
+    let w121: f64 = w20 * w120;
+    let w122: f64 = w17 * w121;
+    let w123: f64 = 2.0 * w122;
+    let w124: f64 = w87 + w123;
+    let w125: f64 = w13 / w96;
+    let w126: f64 = w97 * w125;
+    let w127: f64 = w96 * w126;
+    let w128: f64 = w124 - w127;
+    let w129: f64 = w125 * w125;
+    let w130: f64 = w96 * w129;
+    let w131: f64 = w96 - w130;
+    let w132: f64 = w128 / w131;
+    let w133: f64 = -60.68985231417138;
+    let w134: f64 = w102 * w133;
+    let w135: f64 = w47 * w134;
+    let w136: f64 = w50 + w76;
+    let w137: f64 = p[11];
+    let w138: f64 = w111 * w125;
+    let w139: f64 = w112 * w125;
+    let w140: f64 = w104 * w125;
+    let w141: f64 = w31 * w125;
+    let w142: f64 = w110 * w125;
+    let w143: f64 = w109 * w125;
+    let w144: f64 = w51 * w125;
+    let w145: f64 = w138 - w112;
+    let w146: f64 = w139 - w137;
+    let w147: f64 = w28 - w141;
+    let w148: f64 = w142 - w136;
+    let w149: f64 = w51 - w143;
+    let w150: f64 = w109 - w144;
+    let w151: f64 = w132 * w145;
+    let w152: f64 = w132 * w146;
+    let w153: f64 = w132 * w140;
+    let w154: f64 = w132 * w135;
+    let w155: f64 = w132 * w147;
+    let w156: f64 = w132 * w148;
+    let w157: f64 = w132 * w149;
+    let w158: f64 = w132 * w150;
+    let w159: f64 = w151 - w113;
+    let w160: f64 = w152 - w114;
+    let w161: f64 = w115 - w153;
+    let w162: f64 = w116 + w155;
+    let w163: f64 = w156 - w117;
+    let w164: f64 = w118 + w157;
+    let w165: f64 = w119 + w158;
+    let w166: f64 = w44 + w162;
+    let w167: f64 = p[6];
+    let w171: f64 = w12 * w50;
+    let w172: f64 = w167 + w171;
+    let w173: f64 = 2.0 * w17;
+    let w174: f64 = w49 * w173;
+    let w175: f64 = w17 * w174;
+    let w176: f64 = w172 + w175;
+    let w177: f64 = 0.08333333333333333;
+    let w178: f64 = w20 * w177;
+    let w179: f64 = w17 * w178;
+    let w180: f64 = w173 * w179;
+    let w181: f64 = w176 + w180;
+    let w182: f64 = 2.0 * w179;
+    let w183: f64 = w17 * w182;
+    let w184: f64 = w181 + w183;
+    let w185: f64 = -w12;
+    let w186: f64 = 2.0 * w185;
+    let w187: f64 = w75 * w186;
+    let w188: f64 = w187 - w53;
+    let w189: f64 = w188 - w79;
+    let w190: f64 = w62 * w186;
+    let w191: f64 = w190 - w53;
+    let w192: f64 = w191 - w66;
+    let w193: f64 = w19 * w20;
+    let w194: f64 = 2.0 * w12;
+    let w195: f64 = w193 * w194;
+    let w196: f64 = w12 * w195;
+    let w197: f64 = w184 + w196;
+    let w198: f64 = w97 * w97;
+    let w199: f64 = w96 * w198;
+    let w200: f64 = w132 * w132;
+    let w201: f64 = w131 * w200;
+    let w202: f64 = w199 + w201;
+    let w203: f64 = w197 - w202;
+    let mut w231 = [0.0f64; N];
+    let mut inv_w231 = 0.0f64;
+    let mut w232 = [0.0f64; N];
+    let w234: f64 = 1.0;
+    let w235: f64 = w234 / w96;
+    let w236: f64 = w111 * w235;
+    let w237: f64 = w112 * w235;
+    let w238: f64 = w104 * w235;
+    let w239: f64 = w31 * w235;
+    let w240: f64 = w110 * w235;
+    let w241: f64 = w109 * w235;
+    let w242: f64 = w51 * w235;
+    let w243: f64 = w234 / w131;
+    let w244: f64 = w145 * w243;
+    let w245: f64 = w146 * w243;
+    let w246: f64 = w140 * w243;
+    let w247: f64 = w135 * w243;
+    let w248: f64 = w147 * w243;
+    let w249: f64 = w148 * w243;
+    let w250: f64 = w149 * w243;
+    let w251: f64 = w150 * w243;
+    let w252: f64 = w125 * w244;
+    let w253: f64 = w125 * w245;
+    let w254: f64 = w125 * w246;
+    let w255: f64 = w125 * w247;
+    let w256: f64 = w125 * w248;
+    let w257: f64 = w125 * w249;
+    let w258: f64 = w125 * w250;
+    let w259: f64 = w125 * w251;
+    let w260: f64 = w125 * w132;
+    let w261: f64 = w97 - w260;
+    let w262: f64 = w236 + w252;
+    let w263: f64 = w237 + w253;
+    let w264: f64 = w238 + w254;
+    let w265: f64 = w239 - w256;
+    let w266: f64 = w240 + w257;
+    let w267: f64 = w241 - w258;
+    let w268: f64 = w242 - w259;
     for k in 0..N - 1 {
-        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+        let [dot0, dot1, dot2, dot3, dot4, dot5] = series::dots(
             [
                 (&d_x0, &cos_x0),
                 (&d_x0, &sin_x0),
@@ -504,37 +617,16 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 6], s: f64, p: &Param
                 (&x[3], &x[1]),
                 (&x[3], &x[2]),
                 (&x[4], &w72),
-                (&x[5], &w85),
-                (&x[1], &x[2]),
-                (&w133, &w134),
             ],
             k,
         );
-        let [dot9, dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17] = series::dots(
+        let [dot6, dot7, dot8, dot9, dot10] = series::dots(
             [
-                (&w133, &w141),
+                (&x[5], &w85),
                 (&x[3], &w45),
                 (&x[3], &w46),
-                (&w123, &w141),
-                (&w133, &w160),
-                (&w176, &w177),
-                (&w133, &w183),
-                (&w141, &w183),
-                (&w133, &w184),
-            ],
-            k,
-        );
-        let [dot18, dot19, dot20, dot21, dot22, dot23, dot24, dot25, dot26] = series::dots(
-            [
-                (&w176, &w187),
-                (&w123, &w183),
-                (&w175, &w187),
-                (&w133, &w195),
-                (&w161, &w197),
-                (&w217, &w218),
-                (&w187, &w218),
-                (&w141, &w220),
-                (&w183, &w218),
+                (&x[1], &x[2]),
+                (&w231, &w232),
             ],
             k,
         );
@@ -558,94 +650,83 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 6], s: f64, p: &Param
         let w84 = w82 + w83;
         w85[k] = w84 - w81;
         let w86 = series::mul_d(dot6, &x[5], &w85, k);
-        let w88 = series::sq(&x[1], k);
-        let w89 = series::mul_d(dot7, &x[1], &x[2], k);
-        let w90 = series::sq(&x[2], k);
-        let w120 = sin_x0[k] * w44;
-        let w121 = w38 - w120;
-        let w122 = w121 - w73;
-        w123[k] = w122 - w86;
-        let w124 = x[1][k] * w114;
-        let w125 = x[2][k] * w111;
-        let w126 = w88 * w98;
-        let w127 = w54 * w89;
-        let w128 = w90 * w98;
-        let w129 = w124 + w125;
-        let w130 = w126 + w129;
-        let w131 = w127 + w130;
-        let w132 = w128 + w131;
-        w133[k] = at0(k, w119) + w132;
-        if k == 0 { inv_w133 = 1.0 / w133[0]; }
-        w134[k] = series::div_d(dot8, w123[k], &w133, &w134, inv_w133, k);
-        w141[k] = series::div_d(dot9, at0(k, w140), &w133, &w141, inv_w133, k);
-        let w149 = series::sq(&x[3], k);
-        let w150 = series::mul_d(dot10, &x[3], &w45, k);
-        let w151 = series::mul_d(dot11, &x[3], &w46, k);
-        let w155 = series::mul_d(dot12, &w123, &w141, k);
-        w160[k] = series::sq(&w141, k);
-        w161[k] = series::mul_d(dot13, &w133, &w160, k);
-        let w162 = x[4][k] * w153;
-        let w163 = x[5][k] * w154;
-        let w164 = x[1][k] * w148;
-        let w165 = w31 * sin_x0[k];
-        let w166 = w149 * w152;
-        let w167 = w98 * w150;
-        let w168 = w51 * w151;
-        let w169 = w164 + w165;
-        let w170 = w167 + w169;
-        let w171 = w168 + w170;
-        let w172 = w171 - w162;
-        let w173 = w172 - w163;
-        let w174 = w173 - w166;
-        w175[k] = w174 - w155;
-        w176[k] = at0(k, w159) - w161[k];
-        if k == 0 { inv_w176 = 1.0 / w176[0]; }
-        w177[k] = series::div_d(dot14, w175[k], &w176, &w177, inv_w176, k);
-        w183[k] = series::div_d(dot15, at0(k, w182), &w133, &w183, inv_w133, k);
-        w184[k] = series::mul_d(dot16, &w141, &w183, k);
-        let w185 = series::mul_d(dot17, &w133, &w184, k);
-        let w186 = at0(k, w13) - w185;
-        w187[k] = series::div_d(dot18, w186, &w176, &w187, inv_w176, k);
-        let w193 = series::mul_d(dot19, &w123, &w183, k);
-        let w194 = series::mul_d(dot20, &w175, &w187, k);
-        w195[k] = series::sq(&w183, k);
-        let w196 = series::mul_d(dot21, &w133, &w195, k);
-        w197[k] = series::sq(&w187, k);
-        let w198 = series::mul_d(dot22, &w161, &w197, k);
-        let w199 = x[4][k] * w154;
-        let w200 = x[5][k] * w192;
-        let w201 = x[2][k] * w190;
-        let w202 = w28 * sin_x0[k];
-        let w203 = w149 * w191;
-        let w204 = w51 * w150;
-        let w205 = w98 * w151;
-        let w206 = w201 + w202;
-        let w207 = w204 + w206;
-        let w208 = w205 + w207;
-        let w209 = w208 - w199;
-        let w210 = w209 - w200;
-        let w211 = w210 - w203;
-        let w212 = w211 - w193;
-        let w213 = w212 - w194;
-        let w214 = w159 * w197[k];
-        let w215 = at0(k, w159) + w198;
-        let w216 = w215 - w196;
-        w217[k] = w216 - w214;
-        if k == 0 { inv_w217 = 1.0 / w217[0]; }
-        w218[k] = series::div_d(dot23, w213, &w217, &w218, inv_w217, k);
-        let w219 = series::mul_d(dot24, &w187, &w218, k);
-        w220[k] = w177[k] - w219;
-        let w221 = series::mul_d(dot25, &w141, &w220, k);
-        let w222 = series::mul_d(dot26, &w183, &w218, k);
-        let w223 = w134[k] - w221;
-        let w224 = w223 - w222;
+        let w105 = series::sq(&x[3], k);
+        let w106 = series::mul_d(dot7, &x[3], &w45, k);
+        let w107 = series::mul_d(dot8, &x[3], &w46, k);
+        let w168 = series::sq(&x[1], k);
+        let w169 = series::mul_d(dot9, &x[1], &x[2], k);
+        let w170 = series::sq(&x[2], k);
+        let w204 = x[4][k] * w159;
+        let w205 = x[5][k] * w160;
+        let w206 = x[1][k] * w161;
+        let w207 = x[2][k] * w154;
+        let w208 = sin_x0[k] * w166;
+        let w209 = w105 * w163;
+        let w210 = w106 * w164;
+        let w211 = w107 * w165;
+        let w212 = w38 - w204;
+        let w213 = w212 - w205;
+        let w214 = w213 - w206;
+        let w215 = w214 - w207;
+        let w216 = w215 - w208;
+        let w217 = w216 - w73;
+        let w218 = w217 - w86;
+        let w219 = w218 - w209;
+        let w220 = w219 - w210;
+        let w221 = w220 - w211;
+        let w222 = x[1][k] * w192;
+        let w223 = x[2][k] * w189;
+        let w224 = w109 * w168;
+        let w225 = w54 * w169;
+        let w226 = w109 * w170;
+        let w227 = w222 + w223;
+        let w228 = w224 + w227;
+        let w229 = w225 + w228;
+        let w230 = w226 + w229;
+        w231[k] = at0(k, w203) + w230;
+        if k == 0 { inv_w231 = 1.0 / w231[0]; }
+        w232[k] = series::div_d(dot10, w221, &w231, &w232, inv_w231, k);
+        let w269 = x[4][k] * w262;
+        let w270 = x[5][k] * w263;
+        let w271 = x[1][k] * w264;
+        let w272 = x[2][k] * w255;
+        let w273 = sin_x0[k] * w265;
+        let w274 = w105 * w266;
+        let w275 = w106 * w267;
+        let w276 = w107 * w268;
+        let w277 = w232[k] * w261;
+        let w278 = w271 + w273;
+        let w279 = w275 + w278;
+        let w280 = w276 + w279;
+        let w281 = w280 - w269;
+        let w282 = w281 - w270;
+        let w283 = w282 - w272;
+        let w284 = w283 - w274;
+        let w285 = w284 - w277;
+        let w287 = x[4][k] * w244;
+        let w288 = x[5][k] * w245;
+        let w289 = x[1][k] * w246;
+        let w290 = x[2][k] * w247;
+        let w291 = sin_x0[k] * w248;
+        let w292 = w105 * w249;
+        let w293 = w106 * w250;
+        let w294 = w107 * w251;
+        let w295 = w132 * w232[k];
+        let w296 = w287 + w288;
+        let w297 = w290 + w296;
+        let w298 = w291 + w297;
+        let w299 = w292 + w298;
+        let w300 = w293 + w299;
+        let w301 = w294 + w300;
+        let w302 = w301 - w289;
+        let w303 = w302 - w295;
         let inv_k1 = 1.0 / (k + 1) as f64;
         x[0][k + 1] = x[3][k] * inv_k1;
         x[1][k + 1] = x[4][k] * inv_k1;
         x[2][k + 1] = x[5][k] * inv_k1;
-        x[3][k + 1] = w224 * inv_k1;
-        x[4][k + 1] = w220[k] * inv_k1;
-        x[5][k + 1] = w218[k] * inv_k1;
+        x[3][k + 1] = w232[k] * inv_k1;
+        x[4][k + 1] = w285 * inv_k1;
+        x[5][k + 1] = w303 * inv_k1;
     }
 }
 

@@ -101,120 +101,330 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 8], ug: &[f64; N], s: f64,
     let w129: f64 = w87 * w128;
     let w130: f64 = w129 - w104;
     let mut w135 = [0.0f64; N];
-    let w137: f64 = p[6];
-    let mut w140 = [0.0f64; N];
-    let mut w146 = [0.0f64; N];
-    let w148: f64 = 2.0 * w20;
-    let w149: f64 = w99 * w148;
+    let w137: f64 = 0.1422064359274777;
+    let w138: f64 = w24 * w137;
+    let w139: f64 = w20 * w138;
+    let w140: f64 = 2.0 * w139;
+    let w141: f64 = w22 + w140;
+    let w142: f64 = 0.125;
+    let w143: f64 = w24 * w142;
+    let w144: f64 = w16 + w143;
+    let w145: f64 = w143 + w144;
+    let w146: f64 = w141 / w145;
+    let w147: f64 = -1.5452954210407739;
+    let w148: f64 = p[2];
+    let w149: f64 = w20 * w20;
     let w150: f64 = w20 * w149;
-    let w151: f64 = w137 + w150;
-    let w153: f64 = w85 * w92;
-    let w156: f64 = 0.08333333333333333;
-    let w157: f64 = w24 * w156;
-    let w158: f64 = w20 * w157;
-    let w159: f64 = w148 * w158;
-    let w160: f64 = w151 + w159;
-    let w161: f64 = 2.0 * w158;
-    let w162: f64 = w20 * w161;
-    let w163: f64 = w160 + w162;
-    let w164: f64 = w84 * w128;
-    let w165: f64 = w85 * w128;
-    let w166: f64 = w15 * w165;
-    let w167: f64 = w164 - w166;
-    let w168: f64 = w84 * w117;
-    let w169: f64 = w85 * w117;
-    let w170: f64 = w15 * w169;
-    let w171: f64 = w168 - w170;
-    let w172: f64 = w82 * w84;
-    let w173: f64 = w82 * w85;
-    let w174: f64 = w15 * w173;
-    let w175: f64 = w172 - w174;
-    let w176: f64 = 2.0 * w15;
-    let w177: f64 = w25 * w176;
-    let w178: f64 = w15 * w177;
-    let w179: f64 = w163 + w178;
-    let mut w183 = [0.0f64; N];
-    let mut w196 = [0.0f64; N];
-    let mut inv_w196 = 0.0f64;
-    let mut w197 = [0.0f64; N];
-    let w198: f64 = 0.1422064359274777;
-    let w199: f64 = w24 * w198;
-    let w200: f64 = w20 * w199;
-    let w201: f64 = 2.0 * w200;
-    let w202: f64 = w22 + w201;
-    let mut w203 = [0.0f64; N];
-    let w204: f64 = -1.5452954210407739;
-    let w205: f64 = p[2];
-    let w206: f64 = w20 * w20;
-    let w207: f64 = w20 * w206;
-    let w208: f64 = w205 / w207;
-    let w209: f64 = w204 * w208;
-    let w210: f64 = w85 * w209;
-    let w216: f64 = w92 + w101;
-    let w217: f64 = w92 + w216;
-    let w218: f64 = w82 * w86;
-    let w219: f64 = w100 + w218;
-    let w220: f64 = p[9];
-    let w221: f64 = p[10];
-    let w222: f64 = p[11];
-    let w224: f64 = 0.125;
-    let w225: f64 = w24 * w224;
-    let w226: f64 = w16 + w225;
-    let w227: f64 = w225 + w226;
-    let mut w228 = [0.0f64; N];
-    let mut w229 = [0.0f64; N];
-    let mut w249 = [0.0f64; N];
-    let mut w250 = [0.0f64; N];
-    let mut inv_w250 = 0.0f64;
-    let mut w251 = [0.0f64; N];
-    let w252: f64 = -0.02269169672159674;
-    let w253: f64 = w24 * w252;
-    let w254: f64 = w20 * w253;
-    let w255: f64 = 2.0 * w254;
-    let w256: f64 = w22 + w255;
-    let mut w257 = [0.0f64; N];
-    let mut w258 = [0.0f64; N];
-    let mut w261 = [0.0f64; N];
-    let w262: f64 = -60.68985231417138;
-    let w263: f64 = w208 * w262;
-    let w264: f64 = w85 * w263;
-    let w265: f64 = w86 * w117;
-    let w266: f64 = w100 + w265;
-    let w267: f64 = p[12];
-    let w268: f64 = p[13];
-    let mut w271 = [0.0f64; N];
-    let mut w273 = [0.0f64; N];
-    let mut w294 = [0.0f64; N];
-    let mut w298 = [0.0f64; N];
-    let mut inv_w298 = 0.0f64;
-    let mut w299 = [0.0f64; N];
-    let w300: f64 = 0.008104093592436109;
-    let w301: f64 = w24 * w300;
-    let w302: f64 = w20 * w301;
-    let w303: f64 = 2.0 * w302;
-    let w304: f64 = w22 + w303;
-    let mut w305 = [0.0f64; N];
-    let mut w306 = [0.0f64; N];
-    let mut w308 = [0.0f64; N];
-    let mut w311 = [0.0f64; N];
+    let w151: f64 = w148 / w150;
+    let w152: f64 = w147 * w151;
+    let w153: f64 = w85 * w152;
+    let w159: f64 = w92 + w101;
+    let w160: f64 = w92 + w159;
+    let w161: f64 = w82 * w86;
+    let w162: f64 = w100 + w161;
+    let w163: f64 = p[9];
+    let w164: f64 = p[10];
+    let w165: f64 = p[11];
+    let w166: f64 = w146 * w163;
+    let w167: f64 = w146 * w164;
+    let w168: f64 = w146 * w165;
+    let w169: f64 = w146 * w153;
+    let w170: f64 = w41 * w146;
+    let w171: f64 = w65 * w146;
+    let w172: f64 = w146 * w162;
+    let w173: f64 = w146 * w160;
+    let w174: f64 = w101 * w146;
+    let w175: f64 = -0.02269169672159674;
+    let w176: f64 = w24 * w175;
+    let w177: f64 = w20 * w176;
+    let w178: f64 = 2.0 * w177;
+    let w179: f64 = w22 + w178;
+    let w180: f64 = w16 / w145;
+    let w181: f64 = w146 * w180;
+    let w182: f64 = w145 * w181;
+    let w183: f64 = w179 - w182;
+    let w184: f64 = w180 * w180;
+    let w185: f64 = w145 * w184;
+    let w186: f64 = w145 - w185;
+    let w187: f64 = w183 / w186;
+    let w188: f64 = -60.68985231417138;
+    let w189: f64 = w151 * w188;
+    let w190: f64 = w85 * w189;
+    let w191: f64 = w86 * w117;
+    let w192: f64 = w100 + w191;
+    let w193: f64 = p[12];
+    let w194: f64 = p[13];
+    let w195: f64 = w163 * w180;
+    let w196: f64 = w164 * w180;
+    let w197: f64 = w165 * w180;
+    let w198: f64 = w153 * w180;
+    let w199: f64 = w41 * w180;
+    let w200: f64 = w65 * w180;
+    let w201: f64 = w162 * w180;
+    let w202: f64 = w160 * w180;
+    let w203: f64 = w101 * w180;
+    let w204: f64 = w195 - w164;
+    let w205: f64 = w196 - w193;
+    let w206: f64 = w197 - w194;
+    let w207: f64 = w38 - w199;
+    let w208: f64 = w200 - w63;
+    let w209: f64 = w201 - w192;
+    let w210: f64 = w101 - w202;
+    let w211: f64 = w160 - w203;
+    let w212: f64 = w101 - w203;
+    let w213: f64 = w187 * w204;
+    let w214: f64 = w187 * w205;
+    let w215: f64 = w187 * w206;
+    let w216: f64 = w187 * w198;
+    let w217: f64 = w187 * w190;
+    let w218: f64 = w187 * w207;
+    let w219: f64 = w187 * w208;
+    let w220: f64 = w187 * w209;
+    let w221: f64 = w187 * w210;
+    let w222: f64 = w187 * w211;
+    let w223: f64 = w187 * w212;
+    let w224: f64 = w213 - w166;
+    let w225: f64 = w214 - w167;
+    let w226: f64 = w215 - w168;
+    let w227: f64 = w169 - w216;
+    let w228: f64 = w170 + w218;
+    let w229: f64 = w219 - w171;
+    let w230: f64 = w220 - w172;
+    let w231: f64 = w173 + w221;
+    let w232: f64 = w174 + w222;
+    let w233: f64 = w174 + w223;
+    let w234: f64 = 0.008104093592436109;
+    let w235: f64 = w24 * w234;
+    let w236: f64 = w20 * w235;
+    let w237: f64 = 2.0 * w236;
+    let w238: f64 = w22 + w237;
+    let w239: f64 = w16 - w185;
+    let w240: f64 = w239 / w186;
+    let w241: f64 = w187 * w240;
+    let w242: f64 = w186 * w241;
+    let w243: f64 = w182 + w242;
+    let w244: f64 = w238 - w243;
+    let w245: f64 = w240 * w240;
+    let w246: f64 = w186 * w245;
+    let w247: f64 = w185 + w246;
+    let w248: f64 = w145 - w247;
+    let w249: f64 = w244 / w248;
+    let w250: f64 = -475.81828329893136;
+    let w251: f64 = w151 * w250;
+    let w252: f64 = w85 * w251;
+    let w253: f64 = w86 * w128;
+    let w254: f64 = w100 + w253;
+    let w255: f64 = p[14];
+    let w256: f64 = w204 * w240;
+    let w257: f64 = w205 * w240;
+    let w258: f64 = w206 * w240;
+    let w259: f64 = w198 * w240;
+    let w260: f64 = w190 * w240;
+    let w261: f64 = w207 * w240;
+    let w262: f64 = w208 * w240;
+    let w263: f64 = w209 * w240;
+    let w264: f64 = w210 * w240;
+    let w265: f64 = w211 * w240;
+    let w266: f64 = w212 * w240;
+    let w267: f64 = w256 - w195;
+    let w268: f64 = w257 - w196;
+    let w269: f64 = w258 - w197;
+    let w270: f64 = w198 - w259;
+    let w271: f64 = w199 + w261;
+    let w272: f64 = w262 - w200;
+    let w273: f64 = w263 - w201;
+    let w274: f64 = w202 + w264;
+    let w275: f64 = w203 + w265;
+    let w276: f64 = w203 + w266;
+    let w277: f64 = w165 + w267;
+    let w278: f64 = w194 + w268;
+    let w279: f64 = w255 + w269;
+    let w280: f64 = w35 - w271;
+    let w281: f64 = w61 + w272;
+    let w282: f64 = w254 + w273;
+    let w283: f64 = w101 - w274;
+    let w284: f64 = w101 - w275;
+    let w285: f64 = w160 - w276;
+    let w286: f64 = w249 * w277;
+    let w287: f64 = w249 * w278;
+    let w288: f64 = w249 * w279;
+    let w289: f64 = w249 * w270;
+    let w290: f64 = w249 * w260;
+    let w291: f64 = w249 * w252;
+    let w292: f64 = w249 * w280;
+    let w293: f64 = w249 * w281;
+    let w294: f64 = w249 * w282;
+    let w295: f64 = w249 * w283;
+    let w296: f64 = w249 * w284;
+    let w297: f64 = w249 * w285;
+    let w298: f64 = w224 - w286;
+    let w299: f64 = w225 - w287;
+    let w300: f64 = w226 - w288;
+    let w301: f64 = w227 - w289;
+    let w302: f64 = w217 - w290;
+    let w303: f64 = w228 + w292;
+    let w304: f64 = w229 - w293;
+    let w305: f64 = w230 - w294;
+    let w306: f64 = w231 + w295;
+    let w307: f64 = w232 + w296;
+    let w308: f64 = w233 + w297;
+    let w309: f64 = p[6];
     let mut w312 = [0.0f64; N];
     let mut w318 = [0.0f64; N];
-    let w319: f64 = -475.81828329893136;
-    let w320: f64 = w208 * w319;
-    let w321: f64 = w85 * w320;
-    let w322: f64 = w86 * w128;
-    let w323: f64 = w100 + w322;
-    let w324: f64 = p[14];
-    let mut w328 = [0.0f64; N];
-    let mut w330 = [0.0f64; N];
-    let mut w332 = [0.0f64; N];
-    let mut w358 = [0.0f64; N];
-    let mut inv_w358 = 0.0f64;
-    let mut w359 = [0.0f64; N];
-    let mut w361 = [0.0f64; N];
-    let mut w365 = [0.0f64; N];
+    let w320: f64 = 2.0 * w20;
+    let w321: f64 = w99 * w320;
+    let w322: f64 = w20 * w321;
+    let w323: f64 = w309 + w322;
+    let w325: f64 = w85 * w92;
+    let w328: f64 = 0.08333333333333333;
+    let w329: f64 = w24 * w328;
+    let w330: f64 = w20 * w329;
+    let w331: f64 = w320 * w330;
+    let w332: f64 = w323 + w331;
+    let w333: f64 = 2.0 * w330;
+    let w334: f64 = w20 * w333;
+    let w335: f64 = w332 + w334;
+    let w336: f64 = w84 * w128;
+    let w337: f64 = w85 * w128;
+    let w338: f64 = w15 * w337;
+    let w339: f64 = w336 - w338;
+    let w340: f64 = w84 * w117;
+    let w341: f64 = w85 * w117;
+    let w342: f64 = w15 * w341;
+    let w343: f64 = w340 - w342;
+    let w344: f64 = w82 * w84;
+    let w345: f64 = w82 * w85;
+    let w346: f64 = w15 * w345;
+    let w347: f64 = w344 - w346;
+    let w348: f64 = 2.0 * w15;
+    let w349: f64 = w25 * w348;
+    let w350: f64 = w15 * w349;
+    let w351: f64 = w335 + w350;
+    let w352: f64 = w146 * w146;
+    let w353: f64 = w145 * w352;
+    let w354: f64 = w187 * w187;
+    let w355: f64 = w186 * w354;
+    let w356: f64 = w353 + w355;
+    let w357: f64 = w249 * w249;
+    let w358: f64 = w248 * w357;
+    let w359: f64 = w356 + w358;
+    let w360: f64 = w351 - w359;
+    let mut w401 = [0.0f64; N];
+    let mut inv_w401 = 0.0f64;
+    let mut w402 = [0.0f64; N];
+    let w404: f64 = 1.0;
+    let w405: f64 = w404 / w145;
+    let w406: f64 = w163 * w405;
+    let w407: f64 = w164 * w405;
+    let w408: f64 = w165 * w405;
+    let w409: f64 = w153 * w405;
+    let w410: f64 = w41 * w405;
+    let w411: f64 = w65 * w405;
+    let w412: f64 = w162 * w405;
+    let w413: f64 = w160 * w405;
+    let w414: f64 = w101 * w405;
+    let w415: f64 = w404 / w186;
+    let w416: f64 = w204 * w415;
+    let w417: f64 = w205 * w415;
+    let w418: f64 = w206 * w415;
+    let w419: f64 = w198 * w415;
+    let w420: f64 = w190 * w415;
+    let w421: f64 = w207 * w415;
+    let w422: f64 = w208 * w415;
+    let w423: f64 = w209 * w415;
+    let w424: f64 = w210 * w415;
+    let w425: f64 = w211 * w415;
+    let w426: f64 = w212 * w415;
+    let w427: f64 = w404 / w248;
+    let w428: f64 = w277 * w427;
+    let w429: f64 = w278 * w427;
+    let w430: f64 = w279 * w427;
+    let w431: f64 = w270 * w427;
+    let w432: f64 = w260 * w427;
+    let w433: f64 = w252 * w427;
+    let w434: f64 = w280 * w427;
+    let w435: f64 = w281 * w427;
+    let w436: f64 = w282 * w427;
+    let w437: f64 = w283 * w427;
+    let w438: f64 = w284 * w427;
+    let w439: f64 = w285 * w427;
+    let w440: f64 = w240 * w428;
+    let w441: f64 = w240 * w429;
+    let w442: f64 = w240 * w430;
+    let w443: f64 = w240 * w431;
+    let w444: f64 = w240 * w432;
+    let w445: f64 = w240 * w433;
+    let w446: f64 = w240 * w434;
+    let w447: f64 = w240 * w435;
+    let w448: f64 = w240 * w436;
+    let w449: f64 = w240 * w437;
+    let w450: f64 = w240 * w438;
+    let w451: f64 = w240 * w439;
+    let w452: f64 = w240 * w249;
+    let w453: f64 = w187 - w452;
+    let w454: f64 = w416 + w440;
+    let w455: f64 = w417 + w441;
+    let w456: f64 = w418 + w442;
+    let w457: f64 = w443 - w419;
+    let w458: f64 = w420 + w444;
+    let w459: f64 = w421 - w446;
+    let w460: f64 = w422 + w447;
+    let w461: f64 = w423 + w448;
+    let w462: f64 = w424 - w449;
+    let w463: f64 = w425 - w450;
+    let w464: f64 = w426 - w451;
+    let w465: f64 = w180 * w454;
+    let w466: f64 = w180 * w455;
+    let w467: f64 = w180 * w456;
+    let w468: f64 = w180 * w457;
+    let w469: f64 = w180 * w458;
+    let w470: f64 = w180 * w445;
+    let w471: f64 = w180 * w459;
+    let w472: f64 = w180 * w460;
+    let w473: f64 = w180 * w461;
+    let w474: f64 = w180 * w462;
+    let w475: f64 = w180 * w463;
+    let w476: f64 = w180 * w464;
+    let w477: f64 = w180 * w453;
+    let w478: f64 = w180 * w428;
+    let w479: f64 = w180 * w429;
+    let w480: f64 = w180 * w430;
+    let w481: f64 = w180 * w431;
+    let w482: f64 = w180 * w432;
+    let w483: f64 = w180 * w433;
+    let w484: f64 = w180 * w434;
+    let w485: f64 = w180 * w435;
+    let w486: f64 = w180 * w436;
+    let w487: f64 = w180 * w437;
+    let w488: f64 = w180 * w438;
+    let w489: f64 = w180 * w439;
+    let w490: f64 = w180 * w249;
+    let w491: f64 = w465 - w478;
+    let w492: f64 = w466 - w479;
+    let w493: f64 = w467 - w480;
+    let w494: f64 = w468 - w481;
+    let w495: f64 = w469 - w482;
+    let w496: f64 = w483 - w470;
+    let w497: f64 = w471 + w484;
+    let w498: f64 = w472 - w485;
+    let w499: f64 = w473 - w486;
+    let w500: f64 = w474 + w487;
+    let w501: f64 = w475 + w488;
+    let w502: f64 = w476 + w489;
+    let w503: f64 = w477 + w490;
+    let w504: f64 = w146 - w503;
+    let w505: f64 = w406 + w491;
+    let w506: f64 = w407 + w492;
+    let w507: f64 = w408 + w493;
+    let w508: f64 = w409 - w494;
+    let w509: f64 = w410 - w497;
+    let w510: f64 = w411 + w498;
+    let w511: f64 = w412 + w499;
+    let w512: f64 = w413 - w500;
+    let w513: f64 = w414 - w501;
+    let w514: f64 = w414 - w502;
     for k in 0..N - 1 {
-        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8, dot9] = series::dots(
             [
                 (&d_x0, &cos_x0),
                 (&d_x0, &sin_x0),
@@ -225,76 +435,21 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 8], ug: &[f64; N], s: f64,
                 (&sin_x0, &w79),
                 (&x[4], &x[1]),
                 (&x[4], &x[2]),
+                (&x[4], &x[3]),
             ],
             k,
         );
-        let [dot9, dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17] = series::dots(
+        let [dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17, dot18] = series::dots(
             [
-                (&x[4], &x[3]),
                 (&x[5], &w114),
                 (&x[6], &w125),
                 (&x[7], &w135),
-                (&w140, &w146),
-                (&w196, &w197),
-                (&w196, &w203),
                 (&cos_x0, &ug),
                 (&x[4], &w91),
-            ],
-            k,
-        );
-        let [dot18, dot19, dot20, dot21, dot22, dot23, dot24, dot25, dot26] = series::dots(
-            [
                 (&x[4], &w97),
                 (&x[4], &w98),
-                (&w183, &w203),
-                (&w196, &w228),
-                (&w250, &w251),
-                (&w196, &w257),
-                (&w203, &w257),
-                (&w196, &w258),
-                (&w250, &w261),
-            ],
-            k,
-        );
-        let [dot27, dot28, dot29, dot30, dot31, dot32, dot33, dot34, dot35] = series::dots(
-            [
-                (&w183, &w257),
-                (&w249, &w261),
-                (&w196, &w271),
-                (&w229, &w273),
-                (&w298, &w299),
-                (&w196, &w305),
-                (&w257, &w305),
-                (&w196, &w306),
-                (&w203, &w305),
-            ],
-            k,
-        );
-        let [dot36, dot37, dot38, dot39, dot40, dot41, dot42, dot43, dot44] = series::dots(
-            [
-                (&w196, &w308),
-                (&w250, &w311),
-                (&w261, &w311),
-                (&w229, &w312),
-                (&w298, &w318),
-                (&w183, &w305),
-                (&w249, &w311),
-                (&w294, &w318),
-                (&w196, &w328),
-            ],
-            k,
-        );
-        let [dot45, dot46, dot47, dot48, dot49, dot50, dot51, dot52, dot53] = series::dots(
-            [
-                (&w229, &w330),
-                (&w298, &w332),
-                (&w358, &w359),
-                (&w318, &w359),
-                (&w261, &w361),
-                (&w311, &w359),
-                (&w203, &w365),
-                (&w257, &w361),
-                (&w305, &w359),
+                (&w312, &w318),
+                (&w401, &w402),
             ],
             k,
         );
@@ -344,178 +499,151 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 8], ug: &[f64; N], s: f64,
         let w134 = w110 + w133;
         w135[k] = w132 + w134;
         let w136 = series::mul_d(dot12, &x[7], &w135, k);
-        let w138 = x[1][k] + x[2][k];
-        let w139 = x[3][k] + w138;
-        w140[k] = w139 - at0(k, w15);
-        let w141 = x[1][k] * w101;
-        let w142 = x[2][k] * w101;
-        let w143 = x[3][k] * w101;
-        let w144 = w141 + w142;
-        let w145 = w143 + w144;
-        w146[k] = w145 - at0(k, w100);
-        let w147 = series::mul_d(dot13, &w140, &w146, k);
-        let w152 = series::sq(&x[3], k);
-        let w154 = series::sq(&x[2], k);
-        let w155 = series::sq(&x[1], k);
-        let w180 = w52 - w80;
-        let w181 = w180 - w115;
-        let w182 = w181 - w126;
-        w183[k] = w182 - w136;
-        let w184 = x[1][k] * w175;
-        let w185 = x[2][k] * w171;
-        let w186 = x[3][k] * w167;
-        let w187 = w152 * w153;
-        let w188 = w153 * w154;
-        let w189 = w153 * w155;
-        let w190 = w184 + w185;
-        let w191 = w186 + w190;
-        let w192 = w147 + w191;
-        let w193 = w187 + w192;
-        let w194 = w188 + w193;
-        let w195 = w189 + w194;
-        w196[k] = at0(k, w179) + w195;
-        if k == 0 { inv_w196 = 1.0 / w196[0]; }
-        w197[k] = series::div_d(dot14, w183[k], &w196, &w197, inv_w196, k);
-        w203[k] = series::div_d(dot15, at0(k, w202), &w196, &w203, inv_w196, k);
-        let w211 = series::mul_d(dot16, &cos_x0, &ug, k);
-        let w212 = series::sq(&x[4], k);
-        let w213 = series::mul_d(dot17, &x[4], &w91, k);
-        let w214 = series::mul_d(dot18, &x[4], &w97, k);
-        let w215 = series::mul_d(dot19, &x[4], &w98, k);
-        let w223 = series::mul_d(dot20, &w183, &w203, k);
-        w228[k] = series::sq(&w203, k);
-        w229[k] = series::mul_d(dot21, &w196, &w228, k);
-        let w230 = x[5][k] * w220;
-        let w231 = x[6][k] * w221;
-        let w232 = x[7][k] * w222;
-        let w233 = x[1][k] * w210;
-        let w234 = w41 * sin_x0[k];
-        let w235 = w65 * w211;
-        let w236 = w212 * w219;
-        let w237 = w213 * w217;
-        let w238 = w101 * w214;
-        let w239 = w101 * w215;
-        let w240 = w233 + w234;
-        let w241 = w237 + w240;
-        let w242 = w238 + w241;
-        let w243 = w239 + w242;
-        let w244 = w243 - w230;
-        let w245 = w244 - w231;
-        let w246 = w245 - w232;
-        let w247 = w246 - w235;
-        let w248 = w247 - w236;
-        w249[k] = w248 - w223;
-        w250[k] = at0(k, w227) - w229[k];
-        if k == 0 { inv_w250 = 1.0 / w250[0]; }
-        w251[k] = series::div_d(dot22, w249[k], &w250, &w251, inv_w250, k);
-        w257[k] = series::div_d(dot23, at0(k, w256), &w196, &w257, inv_w196, k);
-        w258[k] = series::mul_d(dot24, &w203, &w257, k);
-        let w259 = series::mul_d(dot25, &w196, &w258, k);
-        let w260 = at0(k, w16) - w259;
-        w261[k] = series::div_d(dot26, w260, &w250, &w261, inv_w250, k);
-        let w269 = series::mul_d(dot27, &w183, &w257, k);
-        let w270 = series::mul_d(dot28, &w249, &w261, k);
-        w271[k] = series::sq(&w257, k);
-        let w272 = series::mul_d(dot29, &w196, &w271, k);
-        w273[k] = series::sq(&w261, k);
-        let w274 = series::mul_d(dot30, &w229, &w273, k);
-        let w275 = x[5][k] * w221;
-        let w276 = x[6][k] * w267;
-        let w277 = x[7][k] * w268;
-        let w278 = x[2][k] * w264;
-        let w279 = w38 * sin_x0[k];
-        let w280 = w63 * w211;
-        let w281 = w212 * w266;
-        let w282 = w101 * w213;
-        let w283 = w214 * w217;
-        let w284 = w278 + w279;
-        let w285 = w282 + w284;
-        let w286 = w283 + w285;
-        let w287 = w239 + w286;
-        let w288 = w287 - w275;
-        let w289 = w288 - w276;
-        let w290 = w289 - w277;
-        let w291 = w290 - w280;
-        let w292 = w291 - w281;
-        let w293 = w292 - w269;
-        w294[k] = w293 - w270;
-        let w295 = w227 * w273[k];
-        let w296 = at0(k, w227) + w274;
-        let w297 = w296 - w272;
-        w298[k] = w297 - w295;
-        if k == 0 { inv_w298 = 1.0 / w298[0]; }
-        w299[k] = series::div_d(dot31, w294[k], &w298, &w299, inv_w298, k);
-        w305[k] = series::div_d(dot32, at0(k, w304), &w196, &w305, inv_w196, k);
-        w306[k] = series::mul_d(dot33, &w257, &w305, k);
-        let w307 = series::mul_d(dot34, &w196, &w306, k);
-        w308[k] = series::mul_d(dot35, &w203, &w305, k);
-        let w309 = series::mul_d(dot36, &w196, &w308, k);
-        let w310 = at0(k, w16) - w309;
-        w311[k] = series::div_d(dot37, w310, &w250, &w311, inv_w250, k);
-        w312[k] = series::mul_d(dot38, &w261, &w311, k);
-        let w313 = series::mul_d(dot39, &w229, &w312, k);
-        let w314 = w227 * w312[k];
-        let w315 = at0(k, w16) + w313;
-        let w316 = w315 - w307;
-        let w317 = w316 - w314;
-        w318[k] = series::div_d(dot40, w317, &w298, &w318, inv_w298, k);
-        let w325 = series::mul_d(dot41, &w183, &w305, k);
-        let w326 = series::mul_d(dot42, &w249, &w311, k);
-        let w327 = series::mul_d(dot43, &w294, &w318, k);
-        w328[k] = series::sq(&w305, k);
-        let w329 = series::mul_d(dot44, &w196, &w328, k);
-        w330[k] = series::sq(&w311, k);
-        let w331 = series::mul_d(dot45, &w229, &w330, k);
-        w332[k] = series::sq(&w318, k);
-        let w333 = series::mul_d(dot46, &w298, &w332, k);
-        let w334 = x[5][k] * w222;
-        let w335 = x[6][k] * w268;
-        let w336 = x[7][k] * w324;
-        let w337 = x[3][k] * w321;
-        let w338 = w35 * sin_x0[k];
-        let w339 = w61 * w211;
-        let w340 = w212 * w323;
-        let w341 = w215 * w217;
-        let w342 = w337 + w338;
-        let w343 = w282 + w342;
-        let w344 = w238 + w343;
-        let w345 = w341 + w344;
-        let w346 = w345 - w334;
-        let w347 = w346 - w335;
-        let w348 = w347 - w336;
-        let w349 = w348 - w339;
-        let w350 = w349 - w340;
-        let w351 = w350 - w325;
-        let w352 = w351 - w326;
-        let w353 = w352 - w327;
-        let w354 = w227 * w330[k];
-        let w355 = at0(k, w227) + w331;
-        let w356 = w355 - w329;
-        let w357 = w356 - w354;
-        w358[k] = w357 - w333;
-        if k == 0 { inv_w358 = 1.0 / w358[0]; }
-        w359[k] = series::div_d(dot47, w353, &w358, &w359, inv_w358, k);
-        let w360 = series::mul_d(dot48, &w318, &w359, k);
-        w361[k] = w299[k] - w360;
-        let w362 = series::mul_d(dot49, &w261, &w361, k);
-        let w363 = series::mul_d(dot50, &w311, &w359, k);
-        let w364 = w251[k] - w362;
-        w365[k] = w364 - w363;
-        let w366 = series::mul_d(dot51, &w203, &w365, k);
-        let w367 = series::mul_d(dot52, &w257, &w361, k);
-        let w368 = series::mul_d(dot53, &w305, &w359, k);
-        let w369 = w197[k] - w366;
-        let w370 = w369 - w367;
-        let w371 = w370 - w368;
+        let w154 = series::mul_d(dot13, &cos_x0, &ug, k);
+        let w155 = series::sq(&x[4], k);
+        let w156 = series::mul_d(dot14, &x[4], &w91, k);
+        let w157 = series::mul_d(dot15, &x[4], &w97, k);
+        let w158 = series::mul_d(dot16, &x[4], &w98, k);
+        let w310 = x[1][k] + x[2][k];
+        let w311 = x[3][k] + w310;
+        w312[k] = w311 - at0(k, w15);
+        let w313 = x[1][k] * w101;
+        let w314 = x[2][k] * w101;
+        let w315 = x[3][k] * w101;
+        let w316 = w313 + w314;
+        let w317 = w315 + w316;
+        w318[k] = w317 - at0(k, w100);
+        let w319 = series::mul_d(dot17, &w312, &w318, k);
+        let w324 = series::sq(&x[3], k);
+        let w326 = series::sq(&x[2], k);
+        let w327 = series::sq(&x[1], k);
+        let w361 = x[5][k] * w298;
+        let w362 = x[6][k] * w299;
+        let w363 = x[7][k] * w300;
+        let w364 = x[1][k] * w301;
+        let w365 = x[2][k] * w302;
+        let w366 = x[3][k] * w291;
+        let w367 = sin_x0[k] * w303;
+        let w368 = w154 * w304;
+        let w369 = w155 * w305;
+        let w370 = w156 * w306;
+        let w371 = w157 * w307;
+        let w372 = w158 * w308;
+        let w373 = w52 - w361;
+        let w374 = w373 - w362;
+        let w375 = w374 - w363;
+        let w376 = w375 - w364;
+        let w377 = w376 - w365;
+        let w378 = w377 - w366;
+        let w379 = w378 - w367;
+        let w380 = w379 - w80;
+        let w381 = w380 - w115;
+        let w382 = w381 - w126;
+        let w383 = w382 - w136;
+        let w384 = w383 - w368;
+        let w385 = w384 - w369;
+        let w386 = w385 - w370;
+        let w387 = w386 - w371;
+        let w388 = w387 - w372;
+        let w389 = x[1][k] * w347;
+        let w390 = x[2][k] * w343;
+        let w391 = x[3][k] * w339;
+        let w392 = w324 * w325;
+        let w393 = w325 * w326;
+        let w394 = w325 * w327;
+        let w395 = w389 + w390;
+        let w396 = w391 + w395;
+        let w397 = w319 + w396;
+        let w398 = w392 + w397;
+        let w399 = w393 + w398;
+        let w400 = w394 + w399;
+        w401[k] = at0(k, w360) + w400;
+        if k == 0 { inv_w401 = 1.0 / w401[0]; }
+        w402[k] = series::div_d(dot18, w388, &w401, &w402, inv_w401, k);
+        let w515 = x[5][k] * w505;
+        let w516 = x[6][k] * w506;
+        let w517 = x[7][k] * w507;
+        let w518 = x[1][k] * w508;
+        let w519 = x[2][k] * w495;
+        let w520 = x[3][k] * w496;
+        let w521 = sin_x0[k] * w509;
+        let w522 = w154 * w510;
+        let w523 = w155 * w511;
+        let w524 = w156 * w512;
+        let w525 = w157 * w513;
+        let w526 = w158 * w514;
+        let w527 = w402[k] * w504;
+        let w528 = w518 + w521;
+        let w529 = w524 + w528;
+        let w530 = w525 + w529;
+        let w531 = w526 + w530;
+        let w532 = w531 - w515;
+        let w533 = w532 - w516;
+        let w534 = w533 - w517;
+        let w535 = w534 - w519;
+        let w536 = w535 - w520;
+        let w537 = w536 - w522;
+        let w538 = w537 - w523;
+        let w539 = w538 - w527;
+        let w541 = x[5][k] * w454;
+        let w542 = x[6][k] * w455;
+        let w543 = x[7][k] * w456;
+        let w544 = x[1][k] * w457;
+        let w545 = x[2][k] * w458;
+        let w546 = x[3][k] * w445;
+        let w547 = sin_x0[k] * w459;
+        let w548 = w154 * w460;
+        let w549 = w155 * w461;
+        let w550 = w156 * w462;
+        let w551 = w157 * w463;
+        let w552 = w158 * w464;
+        let w553 = w402[k] * w453;
+        let w554 = w541 + w542;
+        let w555 = w543 + w554;
+        let w556 = w544 + w555;
+        let w557 = w545 + w556;
+        let w558 = w547 + w557;
+        let w559 = w548 + w558;
+        let w560 = w549 + w559;
+        let w561 = w550 + w560;
+        let w562 = w551 + w561;
+        let w563 = w552 + w562;
+        let w564 = w563 - w546;
+        let w565 = w564 - w553;
+        let w567 = x[5][k] * w428;
+        let w568 = x[6][k] * w429;
+        let w569 = x[7][k] * w430;
+        let w570 = x[1][k] * w431;
+        let w571 = x[2][k] * w432;
+        let w572 = x[3][k] * w433;
+        let w573 = sin_x0[k] * w434;
+        let w574 = w154 * w435;
+        let w575 = w155 * w436;
+        let w576 = w156 * w437;
+        let w577 = w157 * w438;
+        let w578 = w158 * w439;
+        let w579 = w249 * w402[k];
+        let w580 = w572 + w573;
+        let w581 = w576 + w580;
+        let w582 = w577 + w581;
+        let w583 = w578 + w582;
+        let w584 = w583 - w567;
+        let w585 = w584 - w568;
+        let w586 = w585 - w569;
+        let w587 = w586 - w570;
+        let w588 = w587 - w571;
+        let w589 = w588 - w574;
+        let w590 = w589 - w575;
+        let w591 = w590 - w579;
         let inv_k1 = 1.0 / (k + 1) as f64;
         x[0][k + 1] = x[4][k] * inv_k1;
         x[1][k + 1] = x[5][k] * inv_k1;
         x[2][k + 1] = x[6][k] * inv_k1;
         x[3][k + 1] = x[7][k] * inv_k1;
-        x[4][k + 1] = w371 * inv_k1;
-        x[5][k + 1] = w365[k] * inv_k1;
-        x[6][k + 1] = w361[k] * inv_k1;
-        x[7][k + 1] = w359[k] * inv_k1;
+        x[4][k + 1] = w402[k] * inv_k1;
+        x[5][k + 1] = w539 * inv_k1;
+        x[6][k + 1] = w565 * inv_k1;
+        x[7][k + 1] = w591 * inv_k1;
     }
 }
 
@@ -597,122 +725,314 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 8], s: f64, p: &Param
     let w101: f64 = w59 * w100;
     let w102: f64 = w101 - w76;
     let mut w107 = [0.0f64; N];
-    let w109: f64 = p[6];
-    let mut w112 = [0.0f64; N];
-    let mut w118 = [0.0f64; N];
-    let w120: f64 = 2.0 * w20;
-    let w121: f64 = w71 * w120;
-    let w122: f64 = w20 * w121;
-    let w123: f64 = w109 + w122;
-    let w125: f64 = w57 * w64;
-    let w128: f64 = 0.08333333333333333;
-    let w129: f64 = w23 * w128;
-    let w130: f64 = w20 * w129;
-    let w131: f64 = w120 * w130;
-    let w132: f64 = w123 + w131;
-    let w133: f64 = 2.0 * w130;
-    let w134: f64 = w20 * w133;
-    let w135: f64 = w132 + w134;
-    let w136: f64 = w56 * w100;
-    let w137: f64 = w57 * w100;
-    let w138: f64 = w15 * w137;
-    let w139: f64 = w136 - w138;
-    let w140: f64 = w56 * w89;
-    let w141: f64 = w57 * w89;
-    let w142: f64 = w15 * w141;
-    let w143: f64 = w140 - w142;
-    let w144: f64 = w54 * w56;
-    let w145: f64 = w54 * w57;
-    let w146: f64 = w15 * w145;
-    let w147: f64 = w144 - w146;
-    let w148: f64 = w22 * w23;
-    let w149: f64 = 2.0 * w15;
-    let w150: f64 = w148 * w149;
-    let w151: f64 = w15 * w150;
-    let w152: f64 = w135 + w151;
-    let mut w157 = [0.0f64; N];
-    let mut w170 = [0.0f64; N];
-    let mut inv_w170 = 0.0f64;
-    let mut w171 = [0.0f64; N];
-    let w172: f64 = w16 * w20;
-    let w173: f64 = 0.1422064359274777;
-    let w174: f64 = w23 * w173;
-    let w175: f64 = w20 * w174;
-    let w176: f64 = 2.0 * w175;
-    let w177: f64 = w172 + w176;
-    let mut w178 = [0.0f64; N];
-    let w179: f64 = -1.5452954210407739;
-    let w180: f64 = p[2];
-    let w181: f64 = w20 * w20;
-    let w182: f64 = w20 * w181;
-    let w183: f64 = w180 / w182;
-    let w184: f64 = w179 * w183;
-    let w185: f64 = w57 * w184;
-    let w190: f64 = w64 + w73;
-    let w191: f64 = w64 + w190;
-    let w192: f64 = w54 * w58;
-    let w193: f64 = w72 + w192;
-    let w194: f64 = p[9];
-    let w195: f64 = p[10];
-    let w196: f64 = p[11];
-    let w198: f64 = 0.125;
-    let w199: f64 = w23 * w198;
-    let w200: f64 = w16 + w199;
-    let w201: f64 = w199 + w200;
-    let mut w202 = [0.0f64; N];
-    let mut w203 = [0.0f64; N];
-    let mut w221 = [0.0f64; N];
-    let mut w222 = [0.0f64; N];
-    let mut inv_w222 = 0.0f64;
-    let mut w223 = [0.0f64; N];
-    let w224: f64 = -0.02269169672159674;
-    let w225: f64 = w23 * w224;
-    let w226: f64 = w20 * w225;
-    let w227: f64 = 2.0 * w226;
-    let w228: f64 = w172 + w227;
-    let mut w229 = [0.0f64; N];
-    let mut w230 = [0.0f64; N];
-    let mut w233 = [0.0f64; N];
-    let w234: f64 = -60.68985231417138;
-    let w235: f64 = w183 * w234;
-    let w236: f64 = w57 * w235;
-    let w237: f64 = w58 * w89;
-    let w238: f64 = w72 + w237;
-    let w239: f64 = p[12];
-    let w240: f64 = p[13];
-    let mut w243 = [0.0f64; N];
-    let mut w245 = [0.0f64; N];
-    let mut w264 = [0.0f64; N];
-    let mut w268 = [0.0f64; N];
-    let mut inv_w268 = 0.0f64;
-    let mut w269 = [0.0f64; N];
-    let w270: f64 = 0.008104093592436109;
-    let w271: f64 = w23 * w270;
-    let w272: f64 = w20 * w271;
-    let w273: f64 = 2.0 * w272;
-    let w274: f64 = w172 + w273;
+    let w109: f64 = w16 * w20;
+    let w110: f64 = 0.1422064359274777;
+    let w111: f64 = w23 * w110;
+    let w112: f64 = w20 * w111;
+    let w113: f64 = 2.0 * w112;
+    let w114: f64 = w109 + w113;
+    let w115: f64 = 0.125;
+    let w116: f64 = w23 * w115;
+    let w117: f64 = w16 + w116;
+    let w118: f64 = w116 + w117;
+    let w119: f64 = w114 / w118;
+    let w120: f64 = -1.5452954210407739;
+    let w121: f64 = p[2];
+    let w122: f64 = w20 * w20;
+    let w123: f64 = w20 * w122;
+    let w124: f64 = w121 / w123;
+    let w125: f64 = w120 * w124;
+    let w126: f64 = w57 * w125;
+    let w131: f64 = w64 + w73;
+    let w132: f64 = w64 + w131;
+    let w133: f64 = w54 * w58;
+    let w134: f64 = w72 + w133;
+    let w135: f64 = p[9];
+    let w136: f64 = p[10];
+    let w137: f64 = p[11];
+    let w138: f64 = w119 * w135;
+    let w139: f64 = w119 * w136;
+    let w140: f64 = w119 * w137;
+    let w141: f64 = w119 * w126;
+    let w142: f64 = w37 * w119;
+    let w143: f64 = w119 * w134;
+    let w144: f64 = w119 * w132;
+    let w145: f64 = w73 * w119;
+    let w146: f64 = -0.02269169672159674;
+    let w147: f64 = w23 * w146;
+    let w148: f64 = w20 * w147;
+    let w149: f64 = 2.0 * w148;
+    let w150: f64 = w109 + w149;
+    let w151: f64 = w16 / w118;
+    let w152: f64 = w119 * w151;
+    let w153: f64 = w118 * w152;
+    let w154: f64 = w150 - w153;
+    let w155: f64 = w151 * w151;
+    let w156: f64 = w118 * w155;
+    let w157: f64 = w118 - w156;
+    let w158: f64 = w154 / w157;
+    let w159: f64 = -60.68985231417138;
+    let w160: f64 = w124 * w159;
+    let w161: f64 = w57 * w160;
+    let w162: f64 = w58 * w89;
+    let w163: f64 = w72 + w162;
+    let w164: f64 = p[12];
+    let w165: f64 = p[13];
+    let w166: f64 = w135 * w151;
+    let w167: f64 = w136 * w151;
+    let w168: f64 = w137 * w151;
+    let w169: f64 = w126 * w151;
+    let w170: f64 = w37 * w151;
+    let w171: f64 = w134 * w151;
+    let w172: f64 = w132 * w151;
+    let w173: f64 = w73 * w151;
+    let w174: f64 = w166 - w136;
+    let w175: f64 = w167 - w164;
+    let w176: f64 = w168 - w165;
+    let w177: f64 = w34 - w170;
+    let w178: f64 = w171 - w163;
+    let w179: f64 = w73 - w172;
+    let w180: f64 = w132 - w173;
+    let w181: f64 = w73 - w173;
+    let w182: f64 = w158 * w174;
+    let w183: f64 = w158 * w175;
+    let w184: f64 = w158 * w176;
+    let w185: f64 = w158 * w169;
+    let w186: f64 = w158 * w161;
+    let w187: f64 = w158 * w177;
+    let w188: f64 = w158 * w178;
+    let w189: f64 = w158 * w179;
+    let w190: f64 = w158 * w180;
+    let w191: f64 = w158 * w181;
+    let w192: f64 = w182 - w138;
+    let w193: f64 = w183 - w139;
+    let w194: f64 = w184 - w140;
+    let w195: f64 = w141 - w185;
+    let w196: f64 = w142 + w187;
+    let w197: f64 = w188 - w143;
+    let w198: f64 = w144 + w189;
+    let w199: f64 = w145 + w190;
+    let w200: f64 = w145 + w191;
+    let w201: f64 = 0.008104093592436109;
+    let w202: f64 = w23 * w201;
+    let w203: f64 = w20 * w202;
+    let w204: f64 = 2.0 * w203;
+    let w205: f64 = w109 + w204;
+    let w206: f64 = w16 - w156;
+    let w207: f64 = w206 / w157;
+    let w208: f64 = w158 * w207;
+    let w209: f64 = w157 * w208;
+    let w210: f64 = w153 + w209;
+    let w211: f64 = w205 - w210;
+    let w212: f64 = w207 * w207;
+    let w213: f64 = w157 * w212;
+    let w214: f64 = w156 + w213;
+    let w215: f64 = w118 - w214;
+    let w216: f64 = w211 / w215;
+    let w217: f64 = -475.81828329893136;
+    let w218: f64 = w124 * w217;
+    let w219: f64 = w57 * w218;
+    let w220: f64 = w58 * w100;
+    let w221: f64 = w72 + w220;
+    let w222: f64 = p[14];
+    let w223: f64 = w174 * w207;
+    let w224: f64 = w175 * w207;
+    let w225: f64 = w176 * w207;
+    let w226: f64 = w169 * w207;
+    let w227: f64 = w161 * w207;
+    let w228: f64 = w177 * w207;
+    let w229: f64 = w178 * w207;
+    let w230: f64 = w179 * w207;
+    let w231: f64 = w180 * w207;
+    let w232: f64 = w181 * w207;
+    let w233: f64 = w223 - w166;
+    let w234: f64 = w224 - w167;
+    let w235: f64 = w225 - w168;
+    let w236: f64 = w169 - w226;
+    let w237: f64 = w170 + w228;
+    let w238: f64 = w229 - w171;
+    let w239: f64 = w172 + w230;
+    let w240: f64 = w173 + w231;
+    let w241: f64 = w173 + w232;
+    let w242: f64 = w137 + w233;
+    let w243: f64 = w165 + w234;
+    let w244: f64 = w222 + w235;
+    let w245: f64 = w31 - w237;
+    let w246: f64 = w221 + w238;
+    let w247: f64 = w73 - w239;
+    let w248: f64 = w73 - w240;
+    let w249: f64 = w132 - w241;
+    let w250: f64 = w216 * w242;
+    let w251: f64 = w216 * w243;
+    let w252: f64 = w216 * w244;
+    let w253: f64 = w216 * w236;
+    let w254: f64 = w216 * w227;
+    let w255: f64 = w216 * w219;
+    let w256: f64 = w216 * w245;
+    let w257: f64 = w216 * w246;
+    let w258: f64 = w216 * w247;
+    let w259: f64 = w216 * w248;
+    let w260: f64 = w216 * w249;
+    let w261: f64 = w192 - w250;
+    let w262: f64 = w193 - w251;
+    let w263: f64 = w194 - w252;
+    let w264: f64 = w195 - w253;
+    let w265: f64 = w186 - w254;
+    let w266: f64 = w196 + w256;
+    let w267: f64 = w197 - w257;
+    let w268: f64 = w198 + w258;
+    let w269: f64 = w199 + w259;
+    let w270: f64 = w200 + w260;
+    let w271: f64 = w52 + w266;
+    let w272: f64 = p[6];
     let mut w275 = [0.0f64; N];
-    let mut w276 = [0.0f64; N];
-    let mut w278 = [0.0f64; N];
     let mut w281 = [0.0f64; N];
-    let mut w282 = [0.0f64; N];
-    let mut w288 = [0.0f64; N];
-    let w289: f64 = -475.81828329893136;
-    let w290: f64 = w183 * w289;
-    let w291: f64 = w57 * w290;
-    let w292: f64 = w58 * w100;
-    let w293: f64 = w72 + w292;
-    let w294: f64 = p[14];
-    let mut w298 = [0.0f64; N];
-    let mut w300 = [0.0f64; N];
-    let mut w302 = [0.0f64; N];
-    let mut w326 = [0.0f64; N];
-    let mut inv_w326 = 0.0f64;
-    let mut w327 = [0.0f64; N];
-    let mut w329 = [0.0f64; N];
-    let mut w333 = [0.0f64; N];
+    let w283: f64 = 2.0 * w20;
+    let w284: f64 = w71 * w283;
+    let w285: f64 = w20 * w284;
+    let w286: f64 = w272 + w285;
+    let w288: f64 = w57 * w64;
+    let w291: f64 = 0.08333333333333333;
+    let w292: f64 = w23 * w291;
+    let w293: f64 = w20 * w292;
+    let w294: f64 = w283 * w293;
+    let w295: f64 = w286 + w294;
+    let w296: f64 = 2.0 * w293;
+    let w297: f64 = w20 * w296;
+    let w298: f64 = w295 + w297;
+    let w299: f64 = w56 * w100;
+    let w300: f64 = w57 * w100;
+    let w301: f64 = w15 * w300;
+    let w302: f64 = w299 - w301;
+    let w303: f64 = w56 * w89;
+    let w304: f64 = w57 * w89;
+    let w305: f64 = w15 * w304;
+    let w306: f64 = w303 - w305;
+    let w307: f64 = w54 * w56;
+    let w308: f64 = w54 * w57;
+    let w309: f64 = w15 * w308;
+    let w310: f64 = w307 - w309;
+    let w311: f64 = w22 * w23;
+    let w312: f64 = 2.0 * w15;
+    let w313: f64 = w311 * w312;
+    let w314: f64 = w15 * w313;
+    let w315: f64 = w298 + w314;
+    let w316: f64 = w119 * w119;
+    let w317: f64 = w118 * w316;
+    let w318: f64 = w158 * w158;
+    let w319: f64 = w157 * w318;
+    let w320: f64 = w317 + w319;
+    let w321: f64 = w216 * w216;
+    let w322: f64 = w215 * w321;
+    let w323: f64 = w320 + w322;
+    let w324: f64 = w315 - w323;
+    let mut w362 = [0.0f64; N];
+    let mut inv_w362 = 0.0f64;
+    let mut w363 = [0.0f64; N];
+    let w365: f64 = 1.0;
+    let w366: f64 = w365 / w118;
+    let w367: f64 = w135 * w366;
+    let w368: f64 = w136 * w366;
+    let w369: f64 = w137 * w366;
+    let w370: f64 = w126 * w366;
+    let w371: f64 = w37 * w366;
+    let w372: f64 = w134 * w366;
+    let w373: f64 = w132 * w366;
+    let w374: f64 = w73 * w366;
+    let w375: f64 = w365 / w157;
+    let w376: f64 = w174 * w375;
+    let w377: f64 = w175 * w375;
+    let w378: f64 = w176 * w375;
+    let w379: f64 = w169 * w375;
+    let w380: f64 = w161 * w375;
+    let w381: f64 = w177 * w375;
+    let w382: f64 = w178 * w375;
+    let w383: f64 = w179 * w375;
+    let w384: f64 = w180 * w375;
+    let w385: f64 = w181 * w375;
+    let w386: f64 = w365 / w215;
+    let w387: f64 = w242 * w386;
+    let w388: f64 = w243 * w386;
+    let w389: f64 = w244 * w386;
+    let w390: f64 = w236 * w386;
+    let w391: f64 = w227 * w386;
+    let w392: f64 = w219 * w386;
+    let w393: f64 = w245 * w386;
+    let w394: f64 = w246 * w386;
+    let w395: f64 = w247 * w386;
+    let w396: f64 = w248 * w386;
+    let w397: f64 = w249 * w386;
+    let w398: f64 = w207 * w387;
+    let w399: f64 = w207 * w388;
+    let w400: f64 = w207 * w389;
+    let w401: f64 = w207 * w390;
+    let w402: f64 = w207 * w391;
+    let w403: f64 = w207 * w392;
+    let w404: f64 = w207 * w393;
+    let w405: f64 = w207 * w394;
+    let w406: f64 = w207 * w395;
+    let w407: f64 = w207 * w396;
+    let w408: f64 = w207 * w397;
+    let w409: f64 = w207 * w216;
+    let w410: f64 = w158 - w409;
+    let w411: f64 = w376 + w398;
+    let w412: f64 = w377 + w399;
+    let w413: f64 = w378 + w400;
+    let w414: f64 = w401 - w379;
+    let w415: f64 = w380 + w402;
+    let w416: f64 = w381 - w404;
+    let w417: f64 = w382 + w405;
+    let w418: f64 = w383 - w406;
+    let w419: f64 = w384 - w407;
+    let w420: f64 = w385 - w408;
+    let w421: f64 = w151 * w411;
+    let w422: f64 = w151 * w412;
+    let w423: f64 = w151 * w413;
+    let w424: f64 = w151 * w414;
+    let w425: f64 = w151 * w415;
+    let w426: f64 = w151 * w403;
+    let w427: f64 = w151 * w416;
+    let w428: f64 = w151 * w417;
+    let w429: f64 = w151 * w418;
+    let w430: f64 = w151 * w419;
+    let w431: f64 = w151 * w420;
+    let w432: f64 = w151 * w410;
+    let w433: f64 = w151 * w387;
+    let w434: f64 = w151 * w388;
+    let w435: f64 = w151 * w389;
+    let w436: f64 = w151 * w390;
+    let w437: f64 = w151 * w391;
+    let w438: f64 = w151 * w392;
+    let w439: f64 = w151 * w393;
+    let w440: f64 = w151 * w394;
+    let w441: f64 = w151 * w395;
+    let w442: f64 = w151 * w396;
+    let w443: f64 = w151 * w397;
+    let w444: f64 = w151 * w216;
+    let w445: f64 = w421 - w433;
+    let w446: f64 = w422 - w434;
+    let w447: f64 = w423 - w435;
+    let w448: f64 = w424 - w436;
+    let w449: f64 = w425 - w437;
+    let w450: f64 = w438 - w426;
+    let w451: f64 = w427 + w439;
+    let w452: f64 = w428 - w440;
+    let w453: f64 = w429 + w441;
+    let w454: f64 = w430 + w442;
+    let w455: f64 = w431 + w443;
+    let w456: f64 = w432 + w444;
+    let w457: f64 = w119 - w456;
+    let w458: f64 = w367 + w445;
+    let w459: f64 = w368 + w446;
+    let w460: f64 = w369 + w447;
+    let w461: f64 = w370 - w448;
+    let w462: f64 = w371 - w451;
+    let w463: f64 = w372 + w452;
+    let w464: f64 = w373 - w453;
+    let w465: f64 = w374 - w454;
+    let w466: f64 = w374 - w455;
     for k in 0..N - 1 {
-        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8, dot9] = series::dots(
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6] = series::dots(
             [
                 (&d_x0, &cos_x0),
                 (&d_x0, &sin_x0),
@@ -721,68 +1041,18 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 8], s: f64, p: &Param
                 (&x[4], &x[2]),
                 (&x[4], &x[3]),
                 (&x[5], &w86),
-                (&x[6], &w97),
-                (&x[7], &w107),
-                (&w112, &w118),
             ],
             k,
         );
-        let [dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17, dot18, dot19] = series::dots(
+        let [dot7, dot8, dot9, dot10, dot11, dot12, dot13] = series::dots(
             [
-                (&w170, &w171),
-                (&w170, &w178),
+                (&x[6], &w97),
+                (&x[7], &w107),
                 (&x[4], &w63),
                 (&x[4], &w69),
                 (&x[4], &w70),
-                (&w157, &w178),
-                (&w170, &w202),
-                (&w222, &w223),
-                (&w170, &w229),
-                (&w178, &w229),
-            ],
-            k,
-        );
-        let [dot20, dot21, dot22, dot23, dot24, dot25, dot26, dot27, dot28, dot29] = series::dots(
-            [
-                (&w170, &w230),
-                (&w222, &w233),
-                (&w157, &w229),
-                (&w221, &w233),
-                (&w170, &w243),
-                (&w203, &w245),
-                (&w268, &w269),
-                (&w170, &w275),
-                (&w229, &w275),
-                (&w170, &w276),
-            ],
-            k,
-        );
-        let [dot30, dot31, dot32, dot33, dot34, dot35, dot36, dot37, dot38, dot39] = series::dots(
-            [
-                (&w178, &w275),
-                (&w170, &w278),
-                (&w222, &w281),
-                (&w233, &w281),
-                (&w203, &w282),
-                (&w268, &w288),
-                (&w157, &w275),
-                (&w221, &w281),
-                (&w264, &w288),
-                (&w170, &w298),
-            ],
-            k,
-        );
-        let [dot40, dot41, dot42, dot43, dot44, dot45, dot46, dot47, dot48] = series::dots(
-            [
-                (&w203, &w300),
-                (&w268, &w302),
-                (&w326, &w327),
-                (&w288, &w327),
-                (&w233, &w329),
-                (&w281, &w327),
-                (&w178, &w333),
-                (&w229, &w329),
-                (&w275, &w327),
+                (&w275, &w281),
+                (&w362, &w363),
             ],
             k,
         );
@@ -818,172 +1088,141 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 8], s: f64, p: &Param
         let w106 = w82 + w105;
         w107[k] = w104 + w106;
         let w108 = series::mul_d(dot8, &x[7], &w107, k);
-        let w110 = x[1][k] + x[2][k];
-        let w111 = x[3][k] + w110;
-        w112[k] = w111 - at0(k, w15);
-        let w113 = x[1][k] * w73;
-        let w114 = x[2][k] * w73;
-        let w115 = x[3][k] * w73;
-        let w116 = w113 + w114;
-        let w117 = w115 + w116;
-        w118[k] = w117 - at0(k, w72);
-        let w119 = series::mul_d(dot9, &w112, &w118, k);
-        let w124 = series::sq(&x[3], k);
-        let w126 = series::sq(&x[2], k);
-        let w127 = series::sq(&x[1], k);
-        let w153 = sin_x0[k] * w52;
-        let w154 = w46 - w153;
-        let w155 = w154 - w87;
-        let w156 = w155 - w98;
-        w157[k] = w156 - w108;
-        let w158 = x[1][k] * w147;
-        let w159 = x[2][k] * w143;
-        let w160 = x[3][k] * w139;
-        let w161 = w124 * w125;
-        let w162 = w125 * w126;
-        let w163 = w125 * w127;
-        let w164 = w158 + w159;
-        let w165 = w160 + w164;
-        let w166 = w119 + w165;
-        let w167 = w161 + w166;
-        let w168 = w162 + w167;
-        let w169 = w163 + w168;
-        w170[k] = at0(k, w152) + w169;
-        if k == 0 { inv_w170 = 1.0 / w170[0]; }
-        w171[k] = series::div_d(dot10, w157[k], &w170, &w171, inv_w170, k);
-        w178[k] = series::div_d(dot11, at0(k, w177), &w170, &w178, inv_w170, k);
-        let w186 = series::sq(&x[4], k);
-        let w187 = series::mul_d(dot12, &x[4], &w63, k);
-        let w188 = series::mul_d(dot13, &x[4], &w69, k);
-        let w189 = series::mul_d(dot14, &x[4], &w70, k);
-        let w197 = series::mul_d(dot15, &w157, &w178, k);
-        w202[k] = series::sq(&w178, k);
-        w203[k] = series::mul_d(dot16, &w170, &w202, k);
-        let w204 = x[5][k] * w194;
-        let w205 = x[6][k] * w195;
-        let w206 = x[7][k] * w196;
-        let w207 = x[1][k] * w185;
-        let w208 = w37 * sin_x0[k];
-        let w209 = w186 * w193;
-        let w210 = w187 * w191;
-        let w211 = w73 * w188;
-        let w212 = w73 * w189;
-        let w213 = w207 + w208;
-        let w214 = w210 + w213;
-        let w215 = w211 + w214;
-        let w216 = w212 + w215;
-        let w217 = w216 - w204;
-        let w218 = w217 - w205;
-        let w219 = w218 - w206;
-        let w220 = w219 - w209;
-        w221[k] = w220 - w197;
-        w222[k] = at0(k, w201) - w203[k];
-        if k == 0 { inv_w222 = 1.0 / w222[0]; }
-        w223[k] = series::div_d(dot17, w221[k], &w222, &w223, inv_w222, k);
-        w229[k] = series::div_d(dot18, at0(k, w228), &w170, &w229, inv_w170, k);
-        w230[k] = series::mul_d(dot19, &w178, &w229, k);
-        let w231 = series::mul_d(dot20, &w170, &w230, k);
-        let w232 = at0(k, w16) - w231;
-        w233[k] = series::div_d(dot21, w232, &w222, &w233, inv_w222, k);
-        let w241 = series::mul_d(dot22, &w157, &w229, k);
-        let w242 = series::mul_d(dot23, &w221, &w233, k);
-        w243[k] = series::sq(&w229, k);
-        let w244 = series::mul_d(dot24, &w170, &w243, k);
-        w245[k] = series::sq(&w233, k);
-        let w246 = series::mul_d(dot25, &w203, &w245, k);
-        let w247 = x[5][k] * w195;
-        let w248 = x[6][k] * w239;
-        let w249 = x[7][k] * w240;
-        let w250 = x[2][k] * w236;
-        let w251 = w34 * sin_x0[k];
-        let w252 = w186 * w238;
-        let w253 = w73 * w187;
-        let w254 = w188 * w191;
-        let w255 = w250 + w251;
-        let w256 = w253 + w255;
-        let w257 = w254 + w256;
-        let w258 = w212 + w257;
-        let w259 = w258 - w247;
-        let w260 = w259 - w248;
-        let w261 = w260 - w249;
-        let w262 = w261 - w252;
-        let w263 = w262 - w241;
-        w264[k] = w263 - w242;
-        let w265 = w201 * w245[k];
-        let w266 = at0(k, w201) + w246;
-        let w267 = w266 - w244;
-        w268[k] = w267 - w265;
-        if k == 0 { inv_w268 = 1.0 / w268[0]; }
-        w269[k] = series::div_d(dot26, w264[k], &w268, &w269, inv_w268, k);
-        w275[k] = series::div_d(dot27, at0(k, w274), &w170, &w275, inv_w170, k);
-        w276[k] = series::mul_d(dot28, &w229, &w275, k);
-        let w277 = series::mul_d(dot29, &w170, &w276, k);
-        w278[k] = series::mul_d(dot30, &w178, &w275, k);
-        let w279 = series::mul_d(dot31, &w170, &w278, k);
-        let w280 = at0(k, w16) - w279;
-        w281[k] = series::div_d(dot32, w280, &w222, &w281, inv_w222, k);
-        w282[k] = series::mul_d(dot33, &w233, &w281, k);
-        let w283 = series::mul_d(dot34, &w203, &w282, k);
-        let w284 = w201 * w282[k];
-        let w285 = at0(k, w16) + w283;
-        let w286 = w285 - w277;
-        let w287 = w286 - w284;
-        w288[k] = series::div_d(dot35, w287, &w268, &w288, inv_w268, k);
-        let w295 = series::mul_d(dot36, &w157, &w275, k);
-        let w296 = series::mul_d(dot37, &w221, &w281, k);
-        let w297 = series::mul_d(dot38, &w264, &w288, k);
-        w298[k] = series::sq(&w275, k);
-        let w299 = series::mul_d(dot39, &w170, &w298, k);
-        w300[k] = series::sq(&w281, k);
-        let w301 = series::mul_d(dot40, &w203, &w300, k);
-        w302[k] = series::sq(&w288, k);
-        let w303 = series::mul_d(dot41, &w268, &w302, k);
-        let w304 = x[5][k] * w196;
-        let w305 = x[6][k] * w240;
-        let w306 = x[7][k] * w294;
-        let w307 = x[3][k] * w291;
-        let w308 = w31 * sin_x0[k];
-        let w309 = w186 * w293;
-        let w310 = w189 * w191;
-        let w311 = w307 + w308;
-        let w312 = w253 + w311;
-        let w313 = w211 + w312;
-        let w314 = w310 + w313;
-        let w315 = w314 - w304;
-        let w316 = w315 - w305;
-        let w317 = w316 - w306;
-        let w318 = w317 - w309;
-        let w319 = w318 - w295;
-        let w320 = w319 - w296;
-        let w321 = w320 - w297;
-        let w322 = w201 * w300[k];
-        let w323 = at0(k, w201) + w301;
-        let w324 = w323 - w299;
-        let w325 = w324 - w322;
-        w326[k] = w325 - w303;
-        if k == 0 { inv_w326 = 1.0 / w326[0]; }
-        w327[k] = series::div_d(dot42, w321, &w326, &w327, inv_w326, k);
-        let w328 = series::mul_d(dot43, &w288, &w327, k);
-        w329[k] = w269[k] - w328;
-        let w330 = series::mul_d(dot44, &w233, &w329, k);
-        let w331 = series::mul_d(dot45, &w281, &w327, k);
-        let w332 = w223[k] - w330;
-        w333[k] = w332 - w331;
-        let w334 = series::mul_d(dot46, &w178, &w333, k);
-        let w335 = series::mul_d(dot47, &w229, &w329, k);
-        let w336 = series::mul_d(dot48, &w275, &w327, k);
-        let w337 = w171[k] - w334;
-        let w338 = w337 - w335;
-        let w339 = w338 - w336;
+        let w127 = series::sq(&x[4], k);
+        let w128 = series::mul_d(dot9, &x[4], &w63, k);
+        let w129 = series::mul_d(dot10, &x[4], &w69, k);
+        let w130 = series::mul_d(dot11, &x[4], &w70, k);
+        let w273 = x[1][k] + x[2][k];
+        let w274 = x[3][k] + w273;
+        w275[k] = w274 - at0(k, w15);
+        let w276 = x[1][k] * w73;
+        let w277 = x[2][k] * w73;
+        let w278 = x[3][k] * w73;
+        let w279 = w276 + w277;
+        let w280 = w278 + w279;
+        w281[k] = w280 - at0(k, w72);
+        let w282 = series::mul_d(dot12, &w275, &w281, k);
+        let w287 = series::sq(&x[3], k);
+        let w289 = series::sq(&x[2], k);
+        let w290 = series::sq(&x[1], k);
+        let w325 = x[5][k] * w261;
+        let w326 = x[6][k] * w262;
+        let w327 = x[7][k] * w263;
+        let w328 = x[1][k] * w264;
+        let w329 = x[2][k] * w265;
+        let w330 = x[3][k] * w255;
+        let w331 = sin_x0[k] * w271;
+        let w332 = w127 * w267;
+        let w333 = w128 * w268;
+        let w334 = w129 * w269;
+        let w335 = w130 * w270;
+        let w336 = w46 - w325;
+        let w337 = w336 - w326;
+        let w338 = w337 - w327;
+        let w339 = w338 - w328;
+        let w340 = w339 - w329;
+        let w341 = w340 - w330;
+        let w342 = w341 - w331;
+        let w343 = w342 - w87;
+        let w344 = w343 - w98;
+        let w345 = w344 - w108;
+        let w346 = w345 - w332;
+        let w347 = w346 - w333;
+        let w348 = w347 - w334;
+        let w349 = w348 - w335;
+        let w350 = x[1][k] * w310;
+        let w351 = x[2][k] * w306;
+        let w352 = x[3][k] * w302;
+        let w353 = w287 * w288;
+        let w354 = w288 * w289;
+        let w355 = w288 * w290;
+        let w356 = w350 + w351;
+        let w357 = w352 + w356;
+        let w358 = w282 + w357;
+        let w359 = w353 + w358;
+        let w360 = w354 + w359;
+        let w361 = w355 + w360;
+        w362[k] = at0(k, w324) + w361;
+        if k == 0 { inv_w362 = 1.0 / w362[0]; }
+        w363[k] = series::div_d(dot13, w349, &w362, &w363, inv_w362, k);
+        let w467 = x[5][k] * w458;
+        let w468 = x[6][k] * w459;
+        let w469 = x[7][k] * w460;
+        let w470 = x[1][k] * w461;
+        let w471 = x[2][k] * w449;
+        let w472 = x[3][k] * w450;
+        let w473 = sin_x0[k] * w462;
+        let w474 = w127 * w463;
+        let w475 = w128 * w464;
+        let w476 = w129 * w465;
+        let w477 = w130 * w466;
+        let w478 = w363[k] * w457;
+        let w479 = w470 + w473;
+        let w480 = w475 + w479;
+        let w481 = w476 + w480;
+        let w482 = w477 + w481;
+        let w483 = w482 - w467;
+        let w484 = w483 - w468;
+        let w485 = w484 - w469;
+        let w486 = w485 - w471;
+        let w487 = w486 - w472;
+        let w488 = w487 - w474;
+        let w489 = w488 - w478;
+        let w491 = x[5][k] * w411;
+        let w492 = x[6][k] * w412;
+        let w493 = x[7][k] * w413;
+        let w494 = x[1][k] * w414;
+        let w495 = x[2][k] * w415;
+        let w496 = x[3][k] * w403;
+        let w497 = sin_x0[k] * w416;
+        let w498 = w127 * w417;
+        let w499 = w128 * w418;
+        let w500 = w129 * w419;
+        let w501 = w130 * w420;
+        let w502 = w363[k] * w410;
+        let w503 = w491 + w492;
+        let w504 = w493 + w503;
+        let w505 = w494 + w504;
+        let w506 = w495 + w505;
+        let w507 = w497 + w506;
+        let w508 = w498 + w507;
+        let w509 = w499 + w508;
+        let w510 = w500 + w509;
+        let w511 = w501 + w510;
+        let w512 = w511 - w496;
+        let w513 = w512 - w502;
+        let w515 = x[5][k] * w387;
+        let w516 = x[6][k] * w388;
+        let w517 = x[7][k] * w389;
+        let w518 = x[1][k] * w390;
+        let w519 = x[2][k] * w391;
+        let w520 = x[3][k] * w392;
+        let w521 = sin_x0[k] * w393;
+        let w522 = w127 * w394;
+        let w523 = w128 * w395;
+        let w524 = w129 * w396;
+        let w525 = w130 * w397;
+        let w526 = w216 * w363[k];
+        let w527 = w520 + w521;
+        let w528 = w523 + w527;
+        let w529 = w524 + w528;
+        let w530 = w525 + w529;
+        let w531 = w530 - w515;
+        let w532 = w531 - w516;
+        let w533 = w532 - w517;
+        let w534 = w533 - w518;
+        let w535 = w534 - w519;
+        let w536 = w535 - w522;
+        let w537 = w536 - w526;
         let inv_k1 = 1.0 / (k + 1) as f64;
         x[0][k + 1] = x[4][k] * inv_k1;
         x[1][k + 1] = x[5][k] * inv_k1;
         x[2][k + 1] = x[6][k] * inv_k1;
         x[3][k + 1] = x[7][k] * inv_k1;
-        x[4][k + 1] = w339 * inv_k1;
-        x[5][k + 1] = w333[k] * inv_k1;
-        x[6][k + 1] = w329[k] * inv_k1;
-        x[7][k + 1] = w327[k] * inv_k1;
+        x[4][k + 1] = w363[k] * inv_k1;
+        x[5][k + 1] = w489 * inv_k1;
+        x[6][k + 1] = w513 * inv_k1;
+        x[7][k + 1] = w537 * inv_k1;
     }
 }
 

@@ -101,99 +101,183 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 6], ug: &[f64; N], s: f64,
     let w113: f64 = w12 * w112;
     let w114: f64 = w111 + w113;
     let mut w119 = [0.0f64; N];
-    let w121: f64 = p[6];
-    let mut w123 = [0.0f64; N];
-    let mut w127 = [0.0f64; N];
-    let w129: f64 = 2.0 * w17;
-    let w130: f64 = w72 * w129;
-    let w131: f64 = w17 * w130;
-    let w132: f64 = w121 + w131;
-    let mut w135 = [0.0f64; N];
-    let mut w136 = [0.0f64; N];
-    let mut w140 = [0.0f64; N];
-    let w143: f64 = 0.08333333333333333;
-    let w144: f64 = w21 * w143;
-    let w145: f64 = w17 * w144;
-    let w146: f64 = w129 * w145;
-    let w147: f64 = w132 + w146;
-    let w148: f64 = 2.0 * w145;
-    let w149: f64 = w17 * w148;
-    let w150: f64 = w147 + w149;
-    let w151: f64 = -w12;
-    let w152: f64 = 2.0 * w151;
-    let w153: f64 = w109 * w152;
-    let w154: f64 = w153 - w113;
-    let w155: f64 = w90 * w152;
-    let w156: f64 = w155 - w94;
-    let w157: f64 = 2.0 * w12;
-    let w158: f64 = w22 * w157;
-    let w159: f64 = w12 * w158;
-    let w160: f64 = w150 + w159;
-    let mut w163 = [0.0f64; N];
-    let mut w172 = [0.0f64; N];
-    let mut inv_w172 = 0.0f64;
-    let mut w173 = [0.0f64; N];
-    let w174: f64 = 0.1375;
-    let w175: f64 = w21 * w174;
-    let w176: f64 = w17 * w175;
-    let w177: f64 = 2.0 * w176;
-    let w178: f64 = w19 + w177;
-    let mut w179 = [0.0f64; N];
-    let w180: f64 = 6.0;
-    let w181: f64 = p[2];
-    let w182: f64 = w17 * w17;
-    let w183: f64 = w17 * w182;
-    let w184: f64 = w181 / w183;
-    let w185: f64 = w180 * w184;
-    let w186: f64 = -0.5;
-    let w187: f64 = w185 * w186;
-    let w189: f64 = -1.5;
-    let w190: f64 = w184 * w189;
-    let w191: f64 = w70 * w190;
-    let w195: f64 = w74 + w80;
-    let w196: f64 = w74 + w85;
-    let w197: f64 = w85 + w196;
-    let w198: f64 = w73 + w91;
-    let w199: f64 = p[9];
-    let w200: f64 = p[10];
-    let w202: f64 = 0.11785714285714285;
-    let w203: f64 = w21 * w202;
-    let w204: f64 = w13 + w203;
-    let w205: f64 = w203 + w204;
-    let mut w206 = [0.0f64; N];
-    let mut w207 = [0.0f64; N];
-    let mut w225 = [0.0f64; N];
+    let w121: f64 = 0.1375;
+    let w122: f64 = w21 * w121;
+    let w123: f64 = w17 * w122;
+    let w124: f64 = 2.0 * w123;
+    let w125: f64 = w19 + w124;
+    let w126: f64 = 0.11785714285714285;
+    let w127: f64 = w21 * w126;
+    let w128: f64 = w13 + w127;
+    let w129: f64 = w127 + w128;
+    let w130: f64 = w125 / w129;
+    let w131: f64 = 6.0;
+    let w132: f64 = p[2];
+    let w133: f64 = w17 * w17;
+    let w134: f64 = w17 * w133;
+    let w135: f64 = w132 / w134;
+    let w136: f64 = w131 * w135;
+    let w137: f64 = -0.5;
+    let w138: f64 = w136 * w137;
+    let w140: f64 = -1.5;
+    let w141: f64 = w135 * w140;
+    let w142: f64 = w70 * w141;
+    let w146: f64 = w74 + w80;
+    let w147: f64 = w74 + w85;
+    let w148: f64 = w85 + w147;
+    let w149: f64 = w73 + w91;
+    let w150: f64 = p[9];
+    let w151: f64 = p[10];
+    let w152: f64 = w130 * w150;
+    let w153: f64 = w130 * w151;
+    let w154: f64 = w130 * w142;
+    let w155: f64 = w130 * w138;
+    let w156: f64 = w35 * w130;
+    let w157: f64 = w54 * w130;
+    let w158: f64 = w130 * w149;
+    let w159: f64 = w130 * w148;
+    let w160: f64 = w130 * w146;
+    let w161: f64 = 0.125;
+    let w162: f64 = w21 * w161;
+    let w163: f64 = w17 * w162;
+    let w164: f64 = 2.0 * w163;
+    let w165: f64 = w19 + w164;
+    let w166: f64 = 0.21666666666666667;
+    let w167: f64 = w21 * w166;
+    let w168: f64 = w13 + w167;
+    let w169: f64 = w168 / w129;
+    let w170: f64 = w130 * w169;
+    let w171: f64 = w129 * w170;
+    let w172: f64 = w165 - w171;
+    let w173: f64 = 0.1;
+    let w174: f64 = w21 * w173;
+    let w175: f64 = w13 + w174;
+    let w176: f64 = w174 + w175;
+    let w177: f64 = w169 * w169;
+    let w178: f64 = w129 * w177;
+    let w179: f64 = w176 - w178;
+    let w180: f64 = w172 / w179;
+    let w181: f64 = -2.0;
+    let w182: f64 = w135 * w181;
+    let w183: f64 = w70 * w182;
+    let w184: f64 = w74 + w104;
+    let w185: f64 = w104 + w184;
+    let w186: f64 = w73 + w110;
+    let w187: f64 = p[11];
+    let w188: f64 = w150 * w169;
+    let w189: f64 = w151 * w169;
+    let w190: f64 = w142 * w169;
+    let w191: f64 = w138 * w169;
+    let w192: f64 = w35 * w169;
+    let w193: f64 = w54 * w169;
+    let w194: f64 = w149 * w169;
+    let w195: f64 = w148 * w169;
+    let w196: f64 = w146 * w169;
+    let w197: f64 = w188 - w151;
+    let w198: f64 = w189 - w187;
+    let w199: f64 = w138 - w190;
+    let w200: f64 = w183 - w191;
+    let w201: f64 = w32 - w192;
+    let w202: f64 = w193 - w52;
+    let w203: f64 = w194 - w186;
+    let w204: f64 = w146 - w195;
+    let w205: f64 = w185 - w196;
+    let w206: f64 = w180 * w197;
+    let w207: f64 = w180 * w198;
+    let w208: f64 = w180 * w199;
+    let w209: f64 = w180 * w200;
+    let w210: f64 = w180 * w201;
+    let w211: f64 = w180 * w202;
+    let w212: f64 = w180 * w203;
+    let w213: f64 = w180 * w204;
+    let w214: f64 = w180 * w205;
+    let w215: f64 = w206 - w152;
+    let w216: f64 = w207 - w153;
+    let w217: f64 = w154 + w208;
+    let w218: f64 = w155 + w209;
+    let w219: f64 = w156 + w210;
+    let w220: f64 = w211 - w157;
+    let w221: f64 = w212 - w158;
+    let w222: f64 = w159 + w213;
+    let w223: f64 = w160 + w214;
+    let w224: f64 = p[6];
     let mut w226 = [0.0f64; N];
-    let mut inv_w226 = 0.0f64;
-    let mut w227 = [0.0f64; N];
-    let w228: f64 = 0.21666666666666667;
-    let w229: f64 = w21 * w228;
-    let w230: f64 = w13 + w229;
-    let w231: f64 = 0.125;
-    let w232: f64 = w21 * w231;
-    let w233: f64 = w17 * w232;
-    let w234: f64 = 2.0 * w233;
-    let w235: f64 = w19 + w234;
-    let mut w236 = [0.0f64; N];
-    let mut w237 = [0.0f64; N];
-    let mut w240 = [0.0f64; N];
-    let w241: f64 = -2.0;
-    let w242: f64 = w184 * w241;
-    let w243: f64 = w70 * w242;
-    let w244: f64 = w74 + w104;
-    let w245: f64 = w104 + w244;
-    let w246: f64 = w73 + w110;
-    let w247: f64 = p[11];
-    let w250: f64 = 0.1;
-    let w251: f64 = w21 * w250;
-    let w252: f64 = w13 + w251;
-    let w253: f64 = w251 + w252;
-    let mut w254 = [0.0f64; N];
-    let mut w256 = [0.0f64; N];
-    let mut w280 = [0.0f64; N];
-    let mut inv_w280 = 0.0f64;
-    let mut w281 = [0.0f64; N];
-    let mut w283 = [0.0f64; N];
+    let mut w230 = [0.0f64; N];
+    let w232: f64 = 2.0 * w17;
+    let w233: f64 = w72 * w232;
+    let w234: f64 = w17 * w233;
+    let w235: f64 = w224 + w234;
+    let mut w238 = [0.0f64; N];
+    let mut w239 = [0.0f64; N];
+    let mut w243 = [0.0f64; N];
+    let w246: f64 = 0.08333333333333333;
+    let w247: f64 = w21 * w246;
+    let w248: f64 = w17 * w247;
+    let w249: f64 = w232 * w248;
+    let w250: f64 = w235 + w249;
+    let w251: f64 = 2.0 * w248;
+    let w252: f64 = w17 * w251;
+    let w253: f64 = w250 + w252;
+    let w254: f64 = -w12;
+    let w255: f64 = 2.0 * w254;
+    let w256: f64 = w109 * w255;
+    let w257: f64 = w256 - w113;
+    let w258: f64 = w90 * w255;
+    let w259: f64 = w258 - w94;
+    let w260: f64 = 2.0 * w12;
+    let w261: f64 = w22 * w260;
+    let w262: f64 = w12 * w261;
+    let w263: f64 = w253 + w262;
+    let w264: f64 = w130 * w130;
+    let w265: f64 = w129 * w264;
+    let w266: f64 = w180 * w180;
+    let w267: f64 = w179 * w266;
+    let w268: f64 = w265 + w267;
+    let w269: f64 = w263 - w268;
+    let mut w299 = [0.0f64; N];
+    let mut inv_w299 = 0.0f64;
+    let mut w300 = [0.0f64; N];
+    let w302: f64 = 1.0;
+    let w303: f64 = w302 / w129;
+    let w304: f64 = w150 * w303;
+    let w305: f64 = w151 * w303;
+    let w306: f64 = w142 * w303;
+    let w307: f64 = w138 * w303;
+    let w308: f64 = w35 * w303;
+    let w309: f64 = w54 * w303;
+    let w310: f64 = w149 * w303;
+    let w311: f64 = w148 * w303;
+    let w312: f64 = w146 * w303;
+    let w313: f64 = w302 / w179;
+    let w314: f64 = w197 * w313;
+    let w315: f64 = w198 * w313;
+    let w316: f64 = w199 * w313;
+    let w317: f64 = w200 * w313;
+    let w318: f64 = w201 * w313;
+    let w319: f64 = w202 * w313;
+    let w320: f64 = w203 * w313;
+    let w321: f64 = w204 * w313;
+    let w322: f64 = w205 * w313;
+    let w323: f64 = w169 * w314;
+    let w324: f64 = w169 * w315;
+    let w325: f64 = w169 * w316;
+    let w326: f64 = w169 * w317;
+    let w327: f64 = w169 * w318;
+    let w328: f64 = w169 * w319;
+    let w329: f64 = w169 * w320;
+    let w330: f64 = w169 * w321;
+    let w331: f64 = w169 * w322;
+    let w332: f64 = w169 * w180;
+    let w333: f64 = w130 - w332;
+    let w334: f64 = w304 + w323;
+    let w335: f64 = w305 + w324;
+    let w336: f64 = w306 - w325;
+    let w337: f64 = w307 - w326;
+    let w338: f64 = w308 - w327;
+    let w339: f64 = w309 + w328;
+    let w340: f64 = w310 + w329;
+    let w341: f64 = w311 - w330;
+    let w342: f64 = w312 - w331;
     for k in 0..N - 1 {
         let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
             [
@@ -209,42 +293,16 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 6], ug: &[f64; N], s: f64,
             ],
             k,
         );
-        let [dot9, dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17] = series::dots(
+        let [dot9, dot10, dot11, dot12, dot13, dot14, dot15, dot16] = series::dots(
             [
                 (&x[5], &w119),
-                (&w123, &w127),
-                (&w135, &w136),
-                (&x[2], &w140),
-                (&w172, &w173),
-                (&w172, &w179),
                 (&cos_x0, &ug),
                 (&x[3], &w68),
                 (&x[3], &w69),
-            ],
-            k,
-        );
-        let [dot18, dot19, dot20, dot21, dot22, dot23, dot24, dot25, dot26] = series::dots(
-            [
-                (&w163, &w179),
-                (&w172, &w206),
-                (&w226, &w227),
-                (&w172, &w236),
-                (&w179, &w236),
-                (&w172, &w237),
-                (&w226, &w240),
-                (&w163, &w236),
-                (&w225, &w240),
-            ],
-            k,
-        );
-        let [dot27, dot28, dot29, dot30, dot31, dot32] = series::dots(
-            [
-                (&w172, &w254),
-                (&w207, &w256),
-                (&w280, &w281),
-                (&w240, &w281),
-                (&w179, &w283),
-                (&w236, &w281),
+                (&w226, &w230),
+                (&w238, &w239),
+                (&x[2], &w243),
+                (&w299, &w300),
             ],
             k,
         );
@@ -279,115 +337,104 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 6], ug: &[f64; N], s: f64,
         let w118 = w116 + w117;
         w119[k] = w118 - w115;
         let w120 = series::mul_d(dot9, &x[5], &w119, k);
-        let w122 = x[1][k] + x[2][k];
-        w123[k] = w122 - at0(k, w12);
-        let w124 = x[1][k] * w74;
-        let w125 = x[2][k] * w74;
-        let w126 = w124 + w125;
-        w127[k] = w126 - at0(k, w73);
-        let w128 = series::mul_d(dot10, &w123, &w127, k);
-        let w133 = x[1][k] * w79;
-        let w134 = x[2][k] * w103;
-        w135[k] = w133 + w134;
-        w136[k] = x[2][k] * w70;
-        let w137 = series::mul_d(dot11, &w135, &w136, k);
-        let w138 = x[1][k] * w80;
-        let w139 = x[2][k] * w104;
-        w140[k] = w138 + w139;
-        let w141 = series::mul_d(dot12, &x[2], &w140, k);
-        let w142 = series::sq(&x[1], k);
-        let w161 = w44 - w67;
-        let w162 = w161 - w101;
-        w163[k] = w162 - w120;
-        let w164 = x[1][k] * w156;
-        let w165 = x[2][k] * w154;
-        let w166 = w86 * w142;
-        let w167 = w164 + w165;
-        let w168 = w128 + w167;
-        let w169 = w137 + w168;
-        let w170 = w141 + w169;
-        let w171 = w166 + w170;
-        w172[k] = at0(k, w160) + w171;
-        if k == 0 { inv_w172 = 1.0 / w172[0]; }
-        w173[k] = series::div_d(dot13, w163[k], &w172, &w173, inv_w172, k);
-        w179[k] = series::div_d(dot14, at0(k, w178), &w172, &w179, inv_w172, k);
-        let w188 = series::mul_d(dot15, &cos_x0, &ug, k);
-        let w192 = series::sq(&x[3], k);
-        let w193 = series::mul_d(dot16, &x[3], &w68, k);
-        let w194 = series::mul_d(dot17, &x[3], &w69, k);
-        let w201 = series::mul_d(dot18, &w163, &w179, k);
-        w206[k] = series::sq(&w179, k);
-        w207[k] = series::mul_d(dot19, &w172, &w206, k);
-        let w208 = x[4][k] * w199;
-        let w209 = x[5][k] * w200;
-        let w210 = x[1][k] * w191;
-        let w211 = x[2][k] * w187;
-        let w212 = w35 * sin_x0[k];
-        let w213 = w54 * w188;
-        let w214 = w192 * w198;
-        let w215 = w193 * w197;
-        let w216 = w194 * w195;
-        let w217 = w210 + w211;
-        let w218 = w212 + w217;
-        let w219 = w215 + w218;
-        let w220 = w216 + w219;
-        let w221 = w220 - w208;
-        let w222 = w221 - w209;
-        let w223 = w222 - w213;
-        let w224 = w223 - w214;
-        w225[k] = w224 - w201;
-        w226[k] = at0(k, w205) - w207[k];
-        if k == 0 { inv_w226 = 1.0 / w226[0]; }
-        w227[k] = series::div_d(dot20, w225[k], &w226, &w227, inv_w226, k);
-        w236[k] = series::div_d(dot21, at0(k, w235), &w172, &w236, inv_w172, k);
-        w237[k] = series::mul_d(dot22, &w179, &w236, k);
-        let w238 = series::mul_d(dot23, &w172, &w237, k);
-        let w239 = at0(k, w230) - w238;
-        w240[k] = series::div_d(dot24, w239, &w226, &w240, inv_w226, k);
-        let w248 = series::mul_d(dot25, &w163, &w236, k);
-        let w249 = series::mul_d(dot26, &w225, &w240, k);
-        w254[k] = series::sq(&w236, k);
-        let w255 = series::mul_d(dot27, &w172, &w254, k);
-        w256[k] = series::sq(&w240, k);
-        let w257 = series::mul_d(dot28, &w207, &w256, k);
-        let w258 = x[4][k] * w200;
-        let w259 = x[5][k] * w247;
-        let w260 = x[1][k] * w187;
-        let w261 = x[2][k] * w243;
-        let w262 = w32 * sin_x0[k];
-        let w263 = w52 * w188;
-        let w264 = w192 * w246;
-        let w265 = w193 * w195;
-        let w266 = w194 * w245;
-        let w267 = w260 + w261;
-        let w268 = w262 + w267;
-        let w269 = w265 + w268;
-        let w270 = w266 + w269;
-        let w271 = w270 - w258;
-        let w272 = w271 - w259;
-        let w273 = w272 - w263;
-        let w274 = w273 - w264;
-        let w275 = w274 - w248;
-        let w276 = w275 - w249;
-        let w277 = w205 * w256[k];
-        let w278 = at0(k, w253) + w257;
-        let w279 = w278 - w255;
-        w280[k] = w279 - w277;
-        if k == 0 { inv_w280 = 1.0 / w280[0]; }
-        w281[k] = series::div_d(dot29, w276, &w280, &w281, inv_w280, k);
-        let w282 = series::mul_d(dot30, &w240, &w281, k);
-        w283[k] = w227[k] - w282;
-        let w284 = series::mul_d(dot31, &w179, &w283, k);
-        let w285 = series::mul_d(dot32, &w236, &w281, k);
-        let w286 = w173[k] - w284;
-        let w287 = w286 - w285;
+        let w139 = series::mul_d(dot10, &cos_x0, &ug, k);
+        let w143 = series::sq(&x[3], k);
+        let w144 = series::mul_d(dot11, &x[3], &w68, k);
+        let w145 = series::mul_d(dot12, &x[3], &w69, k);
+        let w225 = x[1][k] + x[2][k];
+        w226[k] = w225 - at0(k, w12);
+        let w227 = x[1][k] * w74;
+        let w228 = x[2][k] * w74;
+        let w229 = w227 + w228;
+        w230[k] = w229 - at0(k, w73);
+        let w231 = series::mul_d(dot13, &w226, &w230, k);
+        let w236 = x[1][k] * w79;
+        let w237 = x[2][k] * w103;
+        w238[k] = w236 + w237;
+        w239[k] = x[2][k] * w70;
+        let w240 = series::mul_d(dot14, &w238, &w239, k);
+        let w241 = x[1][k] * w80;
+        let w242 = x[2][k] * w104;
+        w243[k] = w241 + w242;
+        let w244 = series::mul_d(dot15, &x[2], &w243, k);
+        let w245 = series::sq(&x[1], k);
+        let w270 = x[4][k] * w215;
+        let w271 = x[5][k] * w216;
+        let w272 = x[1][k] * w217;
+        let w273 = x[2][k] * w218;
+        let w274 = sin_x0[k] * w219;
+        let w275 = w139 * w220;
+        let w276 = w143 * w221;
+        let w277 = w144 * w222;
+        let w278 = w145 * w223;
+        let w279 = w44 - w270;
+        let w280 = w279 - w271;
+        let w281 = w280 - w272;
+        let w282 = w281 - w273;
+        let w283 = w282 - w274;
+        let w284 = w283 - w67;
+        let w285 = w284 - w101;
+        let w286 = w285 - w120;
+        let w287 = w286 - w275;
+        let w288 = w287 - w276;
+        let w289 = w288 - w277;
+        let w290 = w289 - w278;
+        let w291 = x[1][k] * w259;
+        let w292 = x[2][k] * w257;
+        let w293 = w86 * w245;
+        let w294 = w291 + w292;
+        let w295 = w231 + w294;
+        let w296 = w240 + w295;
+        let w297 = w244 + w296;
+        let w298 = w293 + w297;
+        w299[k] = at0(k, w269) + w298;
+        if k == 0 { inv_w299 = 1.0 / w299[0]; }
+        w300[k] = series::div_d(dot16, w290, &w299, &w300, inv_w299, k);
+        let w343 = x[4][k] * w334;
+        let w344 = x[5][k] * w335;
+        let w345 = x[1][k] * w336;
+        let w346 = x[2][k] * w337;
+        let w347 = sin_x0[k] * w338;
+        let w348 = w139 * w339;
+        let w349 = w143 * w340;
+        let w350 = w144 * w341;
+        let w351 = w145 * w342;
+        let w352 = w300[k] * w333;
+        let w353 = w345 + w346;
+        let w354 = w347 + w353;
+        let w355 = w350 + w354;
+        let w356 = w351 + w355;
+        let w357 = w356 - w343;
+        let w358 = w357 - w344;
+        let w359 = w358 - w348;
+        let w360 = w359 - w349;
+        let w361 = w360 - w352;
+        let w363 = x[4][k] * w314;
+        let w364 = x[5][k] * w315;
+        let w365 = x[1][k] * w316;
+        let w366 = x[2][k] * w317;
+        let w367 = sin_x0[k] * w318;
+        let w368 = w139 * w319;
+        let w369 = w143 * w320;
+        let w370 = w144 * w321;
+        let w371 = w145 * w322;
+        let w372 = w180 * w300[k];
+        let w373 = w363 + w364;
+        let w374 = w365 + w373;
+        let w375 = w366 + w374;
+        let w376 = w367 + w375;
+        let w377 = w368 + w376;
+        let w378 = w369 + w377;
+        let w379 = w370 + w378;
+        let w380 = w371 + w379;
+        let w381 = w380 - w372;
         let inv_k1 = 1.0 / (k + 1) as f64;
         x[0][k + 1] = x[3][k] * inv_k1;
         x[1][k + 1] = x[4][k] * inv_k1;
         x[2][k + 1] = x[5][k] * inv_k1;
-        x[3][k + 1] = w287 * inv_k1;
-        x[4][k + 1] = w283[k] * inv_k1;
-        x[5][k + 1] = w281[k] * inv_k1;
+        x[3][k + 1] = w300[k] * inv_k1;
+        x[4][k + 1] = w361 * inv_k1;
+        x[5][k + 1] = w381 * inv_k1;
     }
 }
 
@@ -471,103 +518,179 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 6], s: f64, p: &Param
     let w90: f64 = w12 * w89;
     let w91: f64 = w88 + w90;
     let mut w96 = [0.0f64; N];
-    let w98: f64 = p[6];
-    let mut w100 = [0.0f64; N];
-    let mut w104 = [0.0f64; N];
-    let w106: f64 = 2.0 * w17;
-    let w107: f64 = w49 * w106;
-    let w108: f64 = w17 * w107;
-    let w109: f64 = w98 + w108;
-    let mut w112 = [0.0f64; N];
-    let mut w113 = [0.0f64; N];
-    let mut w117 = [0.0f64; N];
-    let w120: f64 = 0.08333333333333333;
-    let w121: f64 = w20 * w120;
-    let w122: f64 = w17 * w121;
-    let w123: f64 = w106 * w122;
-    let w124: f64 = w109 + w123;
-    let w125: f64 = 2.0 * w122;
-    let w126: f64 = w17 * w125;
-    let w127: f64 = w124 + w126;
-    let w128: f64 = -w12;
-    let w129: f64 = 2.0 * w128;
-    let w130: f64 = w86 * w129;
-    let w131: f64 = w130 - w90;
-    let w132: f64 = w67 * w129;
-    let w133: f64 = w132 - w71;
-    let w134: f64 = w19 * w20;
-    let w135: f64 = 2.0 * w12;
-    let w136: f64 = w134 * w135;
-    let w137: f64 = w12 * w136;
-    let w138: f64 = w127 + w137;
-    let mut w142 = [0.0f64; N];
-    let mut w151 = [0.0f64; N];
-    let mut inv_w151 = 0.0f64;
-    let mut w152 = [0.0f64; N];
-    let w153: f64 = w13 * w17;
-    let w154: f64 = 0.1375;
-    let w155: f64 = w20 * w154;
-    let w156: f64 = w17 * w155;
-    let w157: f64 = 2.0 * w156;
-    let w158: f64 = w153 + w157;
-    let mut w159 = [0.0f64; N];
-    let w160: f64 = 6.0;
-    let w161: f64 = p[2];
-    let w162: f64 = w17 * w17;
-    let w163: f64 = w17 * w162;
-    let w164: f64 = w161 / w163;
-    let w165: f64 = w160 * w164;
-    let w166: f64 = -0.5;
-    let w167: f64 = w165 * w166;
-    let w168: f64 = -1.5;
-    let w169: f64 = w164 * w168;
-    let w170: f64 = w47 * w169;
-    let w174: f64 = w51 + w57;
-    let w175: f64 = w51 + w62;
-    let w176: f64 = w62 + w175;
-    let w177: f64 = w50 + w68;
-    let w178: f64 = p[9];
-    let w179: f64 = p[10];
-    let w181: f64 = 0.11785714285714285;
-    let w182: f64 = w20 * w181;
-    let w183: f64 = w13 + w182;
-    let w184: f64 = w182 + w183;
-    let mut w185 = [0.0f64; N];
-    let mut w186 = [0.0f64; N];
-    let mut w202 = [0.0f64; N];
+    let w98: f64 = w13 * w17;
+    let w99: f64 = 0.1375;
+    let w100: f64 = w20 * w99;
+    let w101: f64 = w17 * w100;
+    let w102: f64 = 2.0 * w101;
+    let w103: f64 = w98 + w102;
+    let w104: f64 = 0.11785714285714285;
+    let w105: f64 = w20 * w104;
+    let w106: f64 = w13 + w105;
+    let w107: f64 = w105 + w106;
+    let w108: f64 = w103 / w107;
+    let w109: f64 = 6.0;
+    let w110: f64 = p[2];
+    let w111: f64 = w17 * w17;
+    let w112: f64 = w17 * w111;
+    let w113: f64 = w110 / w112;
+    let w114: f64 = w109 * w113;
+    let w115: f64 = -0.5;
+    let w116: f64 = w114 * w115;
+    let w117: f64 = -1.5;
+    let w118: f64 = w113 * w117;
+    let w119: f64 = w47 * w118;
+    let w123: f64 = w51 + w57;
+    let w124: f64 = w51 + w62;
+    let w125: f64 = w62 + w124;
+    let w126: f64 = w50 + w68;
+    let w127: f64 = p[9];
+    let w128: f64 = p[10];
+    let w129: f64 = w108 * w127;
+    let w130: f64 = w108 * w128;
+    let w131: f64 = w108 * w119;
+    let w132: f64 = w108 * w116;
+    let w133: f64 = w31 * w108;
+    let w134: f64 = w108 * w126;
+    let w135: f64 = w108 * w125;
+    let w136: f64 = w108 * w123;
+    let w137: f64 = 0.125;
+    let w138: f64 = w20 * w137;
+    let w139: f64 = w17 * w138;
+    let w140: f64 = 2.0 * w139;
+    let w141: f64 = w98 + w140;
+    let w142: f64 = 0.21666666666666667;
+    let w143: f64 = w20 * w142;
+    let w144: f64 = w13 + w143;
+    let w145: f64 = w144 / w107;
+    let w146: f64 = w108 * w145;
+    let w147: f64 = w107 * w146;
+    let w148: f64 = w141 - w147;
+    let w149: f64 = 0.1;
+    let w150: f64 = w20 * w149;
+    let w151: f64 = w13 + w150;
+    let w152: f64 = w150 + w151;
+    let w153: f64 = w145 * w145;
+    let w154: f64 = w107 * w153;
+    let w155: f64 = w152 - w154;
+    let w156: f64 = w148 / w155;
+    let w157: f64 = -2.0;
+    let w158: f64 = w113 * w157;
+    let w159: f64 = w47 * w158;
+    let w160: f64 = w51 + w81;
+    let w161: f64 = w81 + w160;
+    let w162: f64 = w50 + w87;
+    let w163: f64 = p[11];
+    let w164: f64 = w127 * w145;
+    let w165: f64 = w128 * w145;
+    let w166: f64 = w119 * w145;
+    let w167: f64 = w116 * w145;
+    let w168: f64 = w31 * w145;
+    let w169: f64 = w126 * w145;
+    let w170: f64 = w125 * w145;
+    let w171: f64 = w123 * w145;
+    let w172: f64 = w164 - w128;
+    let w173: f64 = w165 - w163;
+    let w174: f64 = w116 - w166;
+    let w175: f64 = w159 - w167;
+    let w176: f64 = w28 - w168;
+    let w177: f64 = w169 - w162;
+    let w178: f64 = w123 - w170;
+    let w179: f64 = w161 - w171;
+    let w180: f64 = w156 * w172;
+    let w181: f64 = w156 * w173;
+    let w182: f64 = w156 * w174;
+    let w183: f64 = w156 * w175;
+    let w184: f64 = w156 * w176;
+    let w185: f64 = w156 * w177;
+    let w186: f64 = w156 * w178;
+    let w187: f64 = w156 * w179;
+    let w188: f64 = w180 - w129;
+    let w189: f64 = w181 - w130;
+    let w190: f64 = w131 + w182;
+    let w191: f64 = w132 + w183;
+    let w192: f64 = w133 + w184;
+    let w193: f64 = w185 - w134;
+    let w194: f64 = w135 + w186;
+    let w195: f64 = w136 + w187;
+    let w196: f64 = w44 + w192;
+    let w197: f64 = p[6];
+    let mut w199 = [0.0f64; N];
     let mut w203 = [0.0f64; N];
-    let mut inv_w203 = 0.0f64;
-    let mut w204 = [0.0f64; N];
-    let w205: f64 = 0.21666666666666667;
-    let w206: f64 = w20 * w205;
-    let w207: f64 = w13 + w206;
-    let w208: f64 = 0.125;
-    let w209: f64 = w20 * w208;
-    let w210: f64 = w17 * w209;
-    let w211: f64 = 2.0 * w210;
-    let w212: f64 = w153 + w211;
-    let mut w213 = [0.0f64; N];
-    let mut w214 = [0.0f64; N];
-    let mut w217 = [0.0f64; N];
-    let w218: f64 = -2.0;
-    let w219: f64 = w164 * w218;
-    let w220: f64 = w47 * w219;
-    let w221: f64 = w51 + w81;
-    let w222: f64 = w81 + w221;
-    let w223: f64 = w50 + w87;
-    let w224: f64 = p[11];
-    let w227: f64 = 0.1;
-    let w228: f64 = w20 * w227;
-    let w229: f64 = w13 + w228;
-    let w230: f64 = w228 + w229;
-    let mut w231 = [0.0f64; N];
-    let mut w233 = [0.0f64; N];
-    let mut w255 = [0.0f64; N];
-    let mut inv_w255 = 0.0f64;
-    let mut w256 = [0.0f64; N];
-    let mut w258 = [0.0f64; N];
+    let w205: f64 = 2.0 * w17;
+    let w206: f64 = w49 * w205;
+    let w207: f64 = w17 * w206;
+    let w208: f64 = w197 + w207;
+    let mut w211 = [0.0f64; N];
+    let mut w212 = [0.0f64; N];
+    let mut w216 = [0.0f64; N];
+    let w219: f64 = 0.08333333333333333;
+    let w220: f64 = w20 * w219;
+    let w221: f64 = w17 * w220;
+    let w222: f64 = w205 * w221;
+    let w223: f64 = w208 + w222;
+    let w224: f64 = 2.0 * w221;
+    let w225: f64 = w17 * w224;
+    let w226: f64 = w223 + w225;
+    let w227: f64 = -w12;
+    let w228: f64 = 2.0 * w227;
+    let w229: f64 = w86 * w228;
+    let w230: f64 = w229 - w90;
+    let w231: f64 = w67 * w228;
+    let w232: f64 = w231 - w71;
+    let w233: f64 = w19 * w20;
+    let w234: f64 = 2.0 * w12;
+    let w235: f64 = w233 * w234;
+    let w236: f64 = w12 * w235;
+    let w237: f64 = w226 + w236;
+    let w238: f64 = w108 * w108;
+    let w239: f64 = w107 * w238;
+    let w240: f64 = w156 * w156;
+    let w241: f64 = w155 * w240;
+    let w242: f64 = w239 + w241;
+    let w243: f64 = w237 - w242;
+    let mut w270 = [0.0f64; N];
+    let mut inv_w270 = 0.0f64;
+    let mut w271 = [0.0f64; N];
+    let w273: f64 = 1.0;
+    let w274: f64 = w273 / w107;
+    let w275: f64 = w127 * w274;
+    let w276: f64 = w128 * w274;
+    let w277: f64 = w119 * w274;
+    let w278: f64 = w116 * w274;
+    let w279: f64 = w31 * w274;
+    let w280: f64 = w126 * w274;
+    let w281: f64 = w125 * w274;
+    let w282: f64 = w123 * w274;
+    let w283: f64 = w273 / w155;
+    let w284: f64 = w172 * w283;
+    let w285: f64 = w173 * w283;
+    let w286: f64 = w174 * w283;
+    let w287: f64 = w175 * w283;
+    let w288: f64 = w176 * w283;
+    let w289: f64 = w177 * w283;
+    let w290: f64 = w178 * w283;
+    let w291: f64 = w179 * w283;
+    let w292: f64 = w145 * w284;
+    let w293: f64 = w145 * w285;
+    let w294: f64 = w145 * w286;
+    let w295: f64 = w145 * w287;
+    let w296: f64 = w145 * w288;
+    let w297: f64 = w145 * w289;
+    let w298: f64 = w145 * w290;
+    let w299: f64 = w145 * w291;
+    let w300: f64 = w145 * w156;
+    let w301: f64 = w108 - w300;
+    let w302: f64 = w275 + w292;
+    let w303: f64 = w276 + w293;
+    let w304: f64 = w277 - w294;
+    let w305: f64 = w278 - w295;
+    let w306: f64 = w279 - w296;
+    let w307: f64 = w280 + w297;
+    let w308: f64 = w281 - w298;
+    let w309: f64 = w282 - w299;
     for k in 0..N - 1 {
-        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8, dot9] = series::dots(
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6] = series::dots(
             [
                 (&d_x0, &cos_x0),
                 (&d_x0, &sin_x0),
@@ -576,38 +699,17 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 6], s: f64, p: &Param
                 (&x[3], &x[2]),
                 (&x[4], &w77),
                 (&x[5], &w96),
-                (&w100, &w104),
-                (&w112, &w113),
-                (&x[2], &w117),
             ],
             k,
         );
-        let [dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17, dot18, dot19] = series::dots(
+        let [dot7, dot8, dot9, dot10, dot11, dot12] = series::dots(
             [
-                (&w151, &w152),
-                (&w151, &w159),
                 (&x[3], &w45),
                 (&x[3], &w46),
-                (&w142, &w159),
-                (&w151, &w185),
-                (&w203, &w204),
-                (&w151, &w213),
-                (&w159, &w213),
-                (&w151, &w214),
-            ],
-            k,
-        );
-        let [dot20, dot21, dot22, dot23, dot24, dot25, dot26, dot27, dot28] = series::dots(
-            [
-                (&w203, &w217),
-                (&w142, &w213),
-                (&w202, &w217),
-                (&w151, &w231),
-                (&w186, &w233),
-                (&w255, &w256),
-                (&w217, &w256),
-                (&w159, &w258),
-                (&w213, &w256),
+                (&w199, &w203),
+                (&w211, &w212),
+                (&x[2], &w216),
+                (&w270, &w271),
             ],
             k,
         );
@@ -631,111 +733,96 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 6], s: f64, p: &Param
         let w95 = w93 + w94;
         w96[k] = w95 - w92;
         let w97 = series::mul_d(dot6, &x[5], &w96, k);
-        let w99 = x[1][k] + x[2][k];
-        w100[k] = w99 - at0(k, w12);
-        let w101 = x[1][k] * w51;
-        let w102 = x[2][k] * w51;
-        let w103 = w101 + w102;
-        w104[k] = w103 - at0(k, w50);
-        let w105 = series::mul_d(dot7, &w100, &w104, k);
-        let w110 = x[1][k] * w56;
-        let w111 = x[2][k] * w80;
-        w112[k] = w110 + w111;
-        w113[k] = x[2][k] * w47;
-        let w114 = series::mul_d(dot8, &w112, &w113, k);
-        let w115 = x[1][k] * w57;
-        let w116 = x[2][k] * w81;
-        w117[k] = w115 + w116;
-        let w118 = series::mul_d(dot9, &x[2], &w117, k);
-        let w119 = series::sq(&x[1], k);
-        let w139 = sin_x0[k] * w44;
-        let w140 = w38 - w139;
-        let w141 = w140 - w78;
-        w142[k] = w141 - w97;
-        let w143 = x[1][k] * w133;
-        let w144 = x[2][k] * w131;
-        let w145 = w63 * w119;
-        let w146 = w143 + w144;
-        let w147 = w105 + w146;
-        let w148 = w114 + w147;
-        let w149 = w118 + w148;
-        let w150 = w145 + w149;
-        w151[k] = at0(k, w138) + w150;
-        if k == 0 { inv_w151 = 1.0 / w151[0]; }
-        w152[k] = series::div_d(dot10, w142[k], &w151, &w152, inv_w151, k);
-        w159[k] = series::div_d(dot11, at0(k, w158), &w151, &w159, inv_w151, k);
-        let w171 = series::sq(&x[3], k);
-        let w172 = series::mul_d(dot12, &x[3], &w45, k);
-        let w173 = series::mul_d(dot13, &x[3], &w46, k);
-        let w180 = series::mul_d(dot14, &w142, &w159, k);
-        w185[k] = series::sq(&w159, k);
-        w186[k] = series::mul_d(dot15, &w151, &w185, k);
-        let w187 = x[4][k] * w178;
-        let w188 = x[5][k] * w179;
-        let w189 = x[1][k] * w170;
-        let w190 = x[2][k] * w167;
-        let w191 = w31 * sin_x0[k];
-        let w192 = w171 * w177;
-        let w193 = w172 * w176;
-        let w194 = w173 * w174;
-        let w195 = w189 + w190;
-        let w196 = w191 + w195;
-        let w197 = w193 + w196;
-        let w198 = w194 + w197;
-        let w199 = w198 - w187;
-        let w200 = w199 - w188;
-        let w201 = w200 - w192;
-        w202[k] = w201 - w180;
-        w203[k] = at0(k, w184) - w186[k];
-        if k == 0 { inv_w203 = 1.0 / w203[0]; }
-        w204[k] = series::div_d(dot16, w202[k], &w203, &w204, inv_w203, k);
-        w213[k] = series::div_d(dot17, at0(k, w212), &w151, &w213, inv_w151, k);
-        w214[k] = series::mul_d(dot18, &w159, &w213, k);
-        let w215 = series::mul_d(dot19, &w151, &w214, k);
-        let w216 = at0(k, w207) - w215;
-        w217[k] = series::div_d(dot20, w216, &w203, &w217, inv_w203, k);
-        let w225 = series::mul_d(dot21, &w142, &w213, k);
-        let w226 = series::mul_d(dot22, &w202, &w217, k);
-        w231[k] = series::sq(&w213, k);
-        let w232 = series::mul_d(dot23, &w151, &w231, k);
-        w233[k] = series::sq(&w217, k);
-        let w234 = series::mul_d(dot24, &w186, &w233, k);
-        let w235 = x[4][k] * w179;
-        let w236 = x[5][k] * w224;
-        let w237 = x[1][k] * w167;
-        let w238 = x[2][k] * w220;
-        let w239 = w28 * sin_x0[k];
-        let w240 = w171 * w223;
-        let w241 = w172 * w174;
-        let w242 = w173 * w222;
-        let w243 = w237 + w238;
-        let w244 = w239 + w243;
-        let w245 = w241 + w244;
-        let w246 = w242 + w245;
-        let w247 = w246 - w235;
-        let w248 = w247 - w236;
-        let w249 = w248 - w240;
-        let w250 = w249 - w225;
-        let w251 = w250 - w226;
-        let w252 = w184 * w233[k];
-        let w253 = at0(k, w230) + w234;
-        let w254 = w253 - w232;
-        w255[k] = w254 - w252;
-        if k == 0 { inv_w255 = 1.0 / w255[0]; }
-        w256[k] = series::div_d(dot25, w251, &w255, &w256, inv_w255, k);
-        let w257 = series::mul_d(dot26, &w217, &w256, k);
-        w258[k] = w204[k] - w257;
-        let w259 = series::mul_d(dot27, &w159, &w258, k);
-        let w260 = series::mul_d(dot28, &w213, &w256, k);
-        let w261 = w152[k] - w259;
-        let w262 = w261 - w260;
+        let w120 = series::sq(&x[3], k);
+        let w121 = series::mul_d(dot7, &x[3], &w45, k);
+        let w122 = series::mul_d(dot8, &x[3], &w46, k);
+        let w198 = x[1][k] + x[2][k];
+        w199[k] = w198 - at0(k, w12);
+        let w200 = x[1][k] * w51;
+        let w201 = x[2][k] * w51;
+        let w202 = w200 + w201;
+        w203[k] = w202 - at0(k, w50);
+        let w204 = series::mul_d(dot9, &w199, &w203, k);
+        let w209 = x[1][k] * w56;
+        let w210 = x[2][k] * w80;
+        w211[k] = w209 + w210;
+        w212[k] = x[2][k] * w47;
+        let w213 = series::mul_d(dot10, &w211, &w212, k);
+        let w214 = x[1][k] * w57;
+        let w215 = x[2][k] * w81;
+        w216[k] = w214 + w215;
+        let w217 = series::mul_d(dot11, &x[2], &w216, k);
+        let w218 = series::sq(&x[1], k);
+        let w244 = x[4][k] * w188;
+        let w245 = x[5][k] * w189;
+        let w246 = x[1][k] * w190;
+        let w247 = x[2][k] * w191;
+        let w248 = sin_x0[k] * w196;
+        let w249 = w120 * w193;
+        let w250 = w121 * w194;
+        let w251 = w122 * w195;
+        let w252 = w38 - w244;
+        let w253 = w252 - w245;
+        let w254 = w253 - w246;
+        let w255 = w254 - w247;
+        let w256 = w255 - w248;
+        let w257 = w256 - w78;
+        let w258 = w257 - w97;
+        let w259 = w258 - w249;
+        let w260 = w259 - w250;
+        let w261 = w260 - w251;
+        let w262 = x[1][k] * w232;
+        let w263 = x[2][k] * w230;
+        let w264 = w63 * w218;
+        let w265 = w262 + w263;
+        let w266 = w204 + w265;
+        let w267 = w213 + w266;
+        let w268 = w217 + w267;
+        let w269 = w264 + w268;
+        w270[k] = at0(k, w243) + w269;
+        if k == 0 { inv_w270 = 1.0 / w270[0]; }
+        w271[k] = series::div_d(dot12, w261, &w270, &w271, inv_w270, k);
+        let w310 = x[4][k] * w302;
+        let w311 = x[5][k] * w303;
+        let w312 = x[1][k] * w304;
+        let w313 = x[2][k] * w305;
+        let w314 = sin_x0[k] * w306;
+        let w315 = w120 * w307;
+        let w316 = w121 * w308;
+        let w317 = w122 * w309;
+        let w318 = w271[k] * w301;
+        let w319 = w312 + w313;
+        let w320 = w314 + w319;
+        let w321 = w316 + w320;
+        let w322 = w317 + w321;
+        let w323 = w322 - w310;
+        let w324 = w323 - w311;
+        let w325 = w324 - w315;
+        let w326 = w325 - w318;
+        let w328 = x[4][k] * w284;
+        let w329 = x[5][k] * w285;
+        let w330 = x[1][k] * w286;
+        let w331 = x[2][k] * w287;
+        let w332 = sin_x0[k] * w288;
+        let w333 = w120 * w289;
+        let w334 = w121 * w290;
+        let w335 = w122 * w291;
+        let w336 = w156 * w271[k];
+        let w337 = w328 + w329;
+        let w338 = w330 + w337;
+        let w339 = w331 + w338;
+        let w340 = w332 + w339;
+        let w341 = w333 + w340;
+        let w342 = w334 + w341;
+        let w343 = w335 + w342;
+        let w344 = w343 - w336;
         let inv_k1 = 1.0 / (k + 1) as f64;
         x[0][k + 1] = x[3][k] * inv_k1;
         x[1][k + 1] = x[4][k] * inv_k1;
         x[2][k + 1] = x[5][k] * inv_k1;
-        x[3][k + 1] = w262 * inv_k1;
-        x[4][k + 1] = w258[k] * inv_k1;
-        x[5][k + 1] = w256[k] * inv_k1;
+        x[3][k + 1] = w271[k] * inv_k1;
+        x[4][k + 1] = w326 * inv_k1;
+        x[5][k + 1] = w344 * inv_k1;
     }
 }
 

@@ -13,35 +13,35 @@ pub const NAME: &str = "massless_column";
 /// the state at the expansion point; on return `x[i][k]` is the k-th coefficient.
 /// Series inputs hold their first N coefficients.
 pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64, p: &Params) {
-    let w4: f64 = p[3];
     let mut d_x0 = [0.0f64; N];
     let mut sin_x0 = [0.0f64; N];
     let mut cos_x0 = [0.0f64; N];
-    let w8: f64 = s;
-    let w9: f64 = p[1];
-    let w10: f64 = w8 * w9;
+    let w7: f64 = s;
+    let w8: f64 = p[1];
+    let w9: f64 = w7 * w8;
+    let w10: f64 = p[3];
     let w11: f64 = p[8];
-    let w12: f64 = w4 * w11;
-    let w13: f64 = w10 * w12;
+    let w12: f64 = w10 * w11;
+    let w13: f64 = w9 * w12;
     let w14: f64 = p[0];
-    let w16: f64 = w4 * w14;
+    let w16: f64 = w10 * w14;
     let w17: f64 = p[5];
     let w18: f64 = w11 * w17;
-    let w19: f64 = w10 * w18;
+    let w19: f64 = w9 * w18;
     let w20: f64 = w13 + w19;
     let mut w24 = [0.0f64; N];
-    let w27: f64 = w10 * w17;
-    let w29: f64 = w4 * w10;
+    let w27: f64 = w9 * w17;
+    let w29: f64 = w9 * w10;
     let w30: f64 = w27 + w29;
     let w31: f64 = w12 * w14;
     let mut w35 = [0.0f64; N];
     let w38: f64 = 2.0;
-    let w39: f64 = w10 * w38;
+    let w39: f64 = w9 * w38;
     let w40: f64 = 0.5;
-    let w41: f64 = w4 * w40;
+    let w41: f64 = w10 * w40;
     let w42: f64 = w39 * w41;
     let w43: f64 = w38 * w41;
-    let w44: f64 = w10 * w43;
+    let w44: f64 = w9 * w43;
     let w45: f64 = w42 + w44;
     let w46: f64 = w38 * w43;
     let mut w49 = [0.0f64; N];
@@ -57,34 +57,32 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
     let w64: f64 = 2.0 * w63;
     let w65: f64 = 3.0;
     let w66: f64 = w55 * w65;
-    let w67: f64 = w66 / w4;
+    let w67: f64 = w66 / w10;
     let w68: f64 = w67.sqrt();
     let w69: f64 = w64 * w68;
-    let w70: f64 = w4 * w69;
-    let w71: f64 = w16 * w70;
-    let w72: f64 = w16 * w57;
-    let w73: f64 = w12 * w16;
-    let w74: f64 = w4 * w16;
-    let w75: f64 = p[6];
-    let w77: f64 = w10 * w42;
-    let w78: f64 = w75 + w77;
-    let w79: f64 = 2.0 * w14;
-    let w80: f64 = w41 * w79;
-    let w81: f64 = w14 * w80;
-    let w82: f64 = w78 + w81;
-    let w83: f64 = w4 * w45;
-    let w84: f64 = w4 * w43;
-    let w85: f64 = w4 * w82;
-    let w86: f64 = w16 * w16;
-    let w87: f64 = w85 - w86;
-    let mut w106 = [0.0f64; N];
-    let mut inv_w106 = 0.0f64;
-    let mut w107 = [0.0f64; N];
-    let mut w112 = [0.0f64; N];
-    let mut w120 = [0.0f64; N];
-    let mut w128 = [0.0f64; N];
+    let w70: f64 = w10 * w69;
+    let w71: f64 = w14 * w70;
+    let w72: f64 = w14 * w57;
+    let w73: f64 = p[6];
+    let w75: f64 = w9 * w42;
+    let w76: f64 = w73 + w75;
+    let w77: f64 = 2.0 * w14;
+    let w78: f64 = w41 * w77;
+    let w79: f64 = w14 * w78;
+    let w80: f64 = w76 + w79;
+    let w81: f64 = w10 * w53;
+    let w82: f64 = w80 - w81;
+    let mut w98 = [0.0f64; N];
+    let mut inv_w98 = 0.0f64;
+    let mut w99 = [0.0f64; N];
+    let w101: f64 = 1.0;
+    let w102: f64 = w101 / w10;
+    let w103: f64 = w70 * w102;
+    let w104: f64 = w57 * w102;
+    let w105: f64 = w12 * w102;
+    let w106: f64 = w10 * w102;
     for k in 0..N - 1 {
-        let [dot0, dot1, dot2, dot3, dot4, dot5] = series::dots(
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8, dot9] = series::dots(
             [
                 (&d_x0, &cos_x0),
                 (&d_x0, &sin_x0),
@@ -92,17 +90,10 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
                 (&x[1], &ug),
                 (&sin_x0, &w35),
                 (&x[2], &x[1]),
-            ],
-            k,
-        );
-        let [dot6, dot7, dot8, dot9, dot10, dot11] = series::dots(
-            [
                 (&x[3], &w49),
                 (&cos_x0, &ug),
                 (&x[2], &w61),
-                (&w106, &w107),
-                (&w112, &w120),
-                (&w106, &w128),
+                (&w98, &w99),
             ],
             k,
         );
@@ -114,7 +105,7 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         let w25 = series::mul_d(dot2, &cos_x0, &w24, k);
         let w28 = series::mul_d(dot3, &x[1], &ug, k);
         let w32 = ug[k] * w30;
-        let w33 = w4 * w28;
+        let w33 = w10 * w28;
         let w34 = w32 - w33;
         w35[k] = w34 - at0(k, w31);
         let w36 = series::mul_d(dot4, &sin_x0, &w35, k);
@@ -128,53 +119,41 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         let w60 = w37 * w43;
         w61[k] = w60 - w59;
         let w62 = series::mul_d(dot8, &x[2], &w61, k);
-        let w76 = series::sq(&x[1], k);
-        let w88 = x[3][k] * w71;
-        let w89 = x[1][k] * w72;
-        let w90 = w4 * w25;
-        let w91 = sin_x0[k] * w73;
-        let w92 = w4 * w36;
-        let w93 = w4 * w50;
-        let w94 = w58 * w74;
-        let w95 = w16 * w62;
-        let w96 = w88 + w90;
-        let w97 = w94 + w96;
-        let w98 = w97 - w89;
-        let w99 = w98 - w91;
-        let w100 = w99 - w92;
-        let w101 = w100 - w93;
-        let w102 = w101 - w95;
-        let w103 = x[1][k] * w83;
-        let w104 = w76 * w84;
-        let w105 = at0(k, w87) + w104;
-        w106[k] = w105 - w103;
-        if k == 0 { inv_w106 = 1.0 / w106[0]; }
-        w107[k] = series::div_d(dot9, w102, &w106, &w107, inv_w106, k);
-        let w109 = x[1][k] * w45;
-        let w110 = w43 * w76;
-        let w111 = at0(k, w82) + w110;
-        w112[k] = w111 - w109;
-        let w113 = x[3][k] * w70;
-        let w114 = x[1][k] * w57;
-        let w115 = w12 * sin_x0[k];
-        let w116 = w4 * w58;
-        let w117 = w114 + w115;
-        let w118 = w62 + w117;
-        let w119 = w118 - w113;
-        w120[k] = w119 - w116;
-        let w121 = series::mul_d(dot10, &w112, &w120, k);
-        let w122 = w16 * w25;
-        let w123 = w16 * w36;
-        let w124 = w16 * w50;
-        let w125 = w123 + w124;
-        let w126 = w121 + w125;
-        let w127 = w126 - w122;
-        w128[k] = series::div_d(dot11, w127, &w106, &w128, inv_w106, k);
+        let w74 = series::sq(&x[1], k);
+        let w83 = x[3][k] * w71;
+        let w84 = x[1][k] * w72;
+        let w85 = sin_x0[k] * w31;
+        let w86 = w16 * w58;
+        let w87 = w14 * w62;
+        let w88 = w25 + w83;
+        let w89 = w86 + w88;
+        let w90 = w89 - w84;
+        let w91 = w90 - w85;
+        let w92 = w91 - w36;
+        let w93 = w92 - w50;
+        let w94 = w93 - w87;
+        let w95 = x[1][k] * w45;
+        let w96 = w43 * w74;
+        let w97 = at0(k, w82) + w96;
+        w98[k] = w97 - w95;
+        if k == 0 { inv_w98 = 1.0 / w98[0]; }
+        w99[k] = series::div_d(dot9, w94, &w98, &w99, inv_w98, k);
+        let w107 = x[3][k] * w103;
+        let w108 = x[1][k] * w104;
+        let w109 = sin_x0[k] * w105;
+        let w110 = w58 * w106;
+        let w111 = w62 * w102;
+        let w112 = w14 * w99[k];
+        let w113 = w108 + w109;
+        let w114 = w111 + w113;
+        let w115 = w114 - w107;
+        let w116 = w115 - w110;
+        let w117 = w116 - w112;
         let inv_k1 = 1.0 / (k + 1) as f64;
         x[0][k + 1] = x[2][k] * inv_k1;
         x[1][k + 1] = x[3][k] * inv_k1;
-        x[2][k + 1] = w107[k] * inv_k1;
-        x[3][k + 1] = w128[k] * inv_k1;
+        x[2][k + 1] = w99[k] * inv_k1;
+        x[3][k + 1] = w117 * inv_k1;
     }
 }
 
@@ -183,89 +162,79 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
 /// Series inputs hold their first N coefficients.
 /// The twin of `rocking_rhs` with `ug` identically zero: for the steps after the excitation.
 pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Params) {
-    let w4: f64 = p[3];
     let mut d_x0 = [0.0f64; N];
     let mut sin_x0 = [0.0f64; N];
     let mut cos_x0 = [0.0f64; N];
-    let w8: f64 = s;
-    let w9: f64 = p[1];
-    let w10: f64 = w8 * w9;
+    let w7: f64 = s;
+    let w8: f64 = p[1];
+    let w9: f64 = w7 * w8;
+    let w10: f64 = p[3];
     let w11: f64 = p[8];
-    let w12: f64 = w4 * w11;
-    let w13: f64 = w10 * w12;
+    let w12: f64 = w10 * w11;
+    let w13: f64 = w9 * w12;
     let w14: f64 = p[0];
     let w16: f64 = p[5];
     let w17: f64 = w11 * w16;
-    let w18: f64 = w10 * w17;
+    let w18: f64 = w9 * w17;
     let w19: f64 = w13 + w18;
     let w22: f64 = w12 * w14;
     let w23: f64 = -w22;
     let w25: f64 = 2.0;
-    let w26: f64 = w10 * w25;
+    let w26: f64 = w9 * w25;
     let w27: f64 = 0.5;
-    let w28: f64 = w4 * w27;
+    let w28: f64 = w10 * w27;
     let w29: f64 = w26 * w28;
     let w30: f64 = w25 * w28;
-    let w31: f64 = w10 * w30;
+    let w31: f64 = w9 * w30;
     let w32: f64 = w29 + w31;
     let w33: f64 = w25 * w30;
     let mut w36 = [0.0f64; N];
-    let w38: f64 = w4 * w19;
-    let w39: f64 = w4 * w12;
-    let w40: f64 = w4 * w23;
-    let w41: f64 = w4 * w14;
-    let w42: f64 = -1.5;
-    let w43: f64 = p[2];
-    let w44: f64 = w14 * w14;
-    let w45: f64 = w14 * w44;
-    let w46: f64 = w43 / w45;
-    let w47: f64 = w42 * w46;
-    let w48: f64 = w25 * w47;
-    let mut w51 = [0.0f64; N];
-    let w53: f64 = p[7];
-    let w54: f64 = 2.0 * w53;
-    let w55: f64 = 3.0;
-    let w56: f64 = w46 * w55;
-    let w57: f64 = w56 / w4;
-    let w58: f64 = w57.sqrt();
-    let w59: f64 = w54 * w58;
-    let w60: f64 = w4 * w59;
-    let w61: f64 = w41 * w60;
-    let w62: f64 = w41 * w48;
-    let w63: f64 = w12 * w41;
-    let w64: f64 = w40 + w63;
-    let w65: f64 = p[6];
-    let w67: f64 = w10 * w29;
-    let w68: f64 = w65 + w67;
-    let w69: f64 = 2.0 * w14;
-    let w70: f64 = w28 * w69;
-    let w71: f64 = w14 * w70;
-    let w72: f64 = w68 + w71;
-    let w73: f64 = w4 * w32;
-    let w74: f64 = w4 * w30;
-    let w75: f64 = w4 * w72;
-    let w76: f64 = w41 * w41;
-    let w77: f64 = w75 - w76;
-    let mut w94 = [0.0f64; N];
-    let mut inv_w94 = 0.0f64;
-    let mut w95 = [0.0f64; N];
-    let mut w100 = [0.0f64; N];
-    let mut w106 = [0.0f64; N];
-    let w108: f64 = w19 * w41;
-    let w109: f64 = w23 * w41;
-    let mut w118 = [0.0f64; N];
+    let w38: f64 = -1.5;
+    let w39: f64 = p[2];
+    let w40: f64 = w14 * w14;
+    let w41: f64 = w14 * w40;
+    let w42: f64 = w39 / w41;
+    let w43: f64 = w38 * w42;
+    let w44: f64 = w25 * w43;
+    let mut w47 = [0.0f64; N];
+    let w49: f64 = p[7];
+    let w50: f64 = 2.0 * w49;
+    let w51: f64 = 3.0;
+    let w52: f64 = w42 * w51;
+    let w53: f64 = w52 / w10;
+    let w54: f64 = w53.sqrt();
+    let w55: f64 = w50 * w54;
+    let w56: f64 = w10 * w55;
+    let w57: f64 = w14 * w56;
+    let w58: f64 = w14 * w44;
+    let w59: f64 = w22 + w23;
+    let w60: f64 = p[6];
+    let w62: f64 = w9 * w29;
+    let w63: f64 = w60 + w62;
+    let w64: f64 = 2.0 * w14;
+    let w65: f64 = w28 * w64;
+    let w66: f64 = w14 * w65;
+    let w67: f64 = w63 + w66;
+    let w68: f64 = w10 * w40;
+    let w69: f64 = w67 - w68;
+    let mut w85 = [0.0f64; N];
+    let mut inv_w85 = 0.0f64;
+    let mut w86 = [0.0f64; N];
+    let w88: f64 = 1.0;
+    let w89: f64 = w88 / w10;
+    let w90: f64 = w56 * w89;
+    let w91: f64 = w44 * w89;
+    let w92: f64 = w12 * w89;
     for k in 0..N - 1 {
-        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6] = series::dots(
             [
                 (&d_x0, &cos_x0),
                 (&d_x0, &sin_x0),
                 (&cos_x0, &x[1]),
                 (&x[2], &x[1]),
                 (&x[3], &w36),
-                (&x[2], &w51),
-                (&w94, &w95),
-                (&w100, &w106),
-                (&w94, &w118),
+                (&x[2], &w47),
+                (&w85, &w86),
             ],
             k,
         );
@@ -276,55 +245,43 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
         let w35 = w24 * w33;
         w36[k] = w35 - w34;
         let w37 = series::mul_d(dot4, &x[3], &w36, k);
-        let w49 = x[2][k] * w29;
-        let w50 = w24 * w30;
-        w51[k] = w50 - w49;
-        let w52 = series::mul_d(dot5, &x[2], &w51, k);
-        let w66 = series::sq(&x[1], k);
-        let w78 = x[3][k] * w61;
-        let w79 = cos_x0[k] * w38;
-        let w80 = x[1][k] * w62;
-        let w81 = w20 * w39;
-        let w82 = sin_x0[k] * w64;
-        let w83 = w4 * w37;
-        let w84 = w41 * w52;
-        let w85 = w78 + w81;
-        let w86 = w85 - w79;
-        let w87 = w86 - w80;
-        let w88 = w87 - w82;
-        let w89 = w88 - w83;
-        let w90 = w89 - w84;
-        let w91 = x[1][k] * w73;
-        let w92 = w66 * w74;
-        let w93 = at0(k, w77) + w92;
-        w94[k] = w93 - w91;
-        if k == 0 { inv_w94 = 1.0 / w94[0]; }
-        w95[k] = series::div_d(dot6, w90, &w94, &w95, inv_w94, k);
-        let w97 = x[1][k] * w32;
-        let w98 = w30 * w66;
-        let w99 = at0(k, w72) + w98;
-        w100[k] = w99 - w97;
-        let w101 = x[3][k] * w60;
-        let w102 = x[1][k] * w48;
-        let w103 = w12 * sin_x0[k];
-        let w104 = w102 + w103;
-        let w105 = w52 + w104;
-        w106[k] = w105 - w101;
-        let w107 = series::mul_d(dot7, &w100, &w106, k);
-        let w110 = cos_x0[k] * w108;
-        let w111 = w20 * w63;
-        let w112 = sin_x0[k] * w109;
-        let w113 = w37 * w41;
-        let w114 = w110 + w112;
-        let w115 = w113 + w114;
-        let w116 = w107 + w115;
-        let w117 = w116 - w111;
-        w118[k] = series::div_d(dot8, w117, &w94, &w118, inv_w94, k);
+        let w45 = x[2][k] * w29;
+        let w46 = w24 * w30;
+        w47[k] = w46 - w45;
+        let w48 = series::mul_d(dot5, &x[2], &w47, k);
+        let w61 = series::sq(&x[1], k);
+        let w70 = x[3][k] * w57;
+        let w71 = cos_x0[k] * w19;
+        let w72 = x[1][k] * w58;
+        let w73 = w12 * w20;
+        let w74 = sin_x0[k] * w59;
+        let w75 = w14 * w48;
+        let w76 = w70 + w73;
+        let w77 = w76 - w71;
+        let w78 = w77 - w72;
+        let w79 = w78 - w74;
+        let w80 = w79 - w37;
+        let w81 = w80 - w75;
+        let w82 = x[1][k] * w32;
+        let w83 = w30 * w61;
+        let w84 = at0(k, w69) + w83;
+        w85[k] = w84 - w82;
+        if k == 0 { inv_w85 = 1.0 / w85[0]; }
+        w86[k] = series::div_d(dot6, w81, &w85, &w86, inv_w85, k);
+        let w93 = x[3][k] * w90;
+        let w94 = x[1][k] * w91;
+        let w95 = sin_x0[k] * w92;
+        let w96 = w48 * w89;
+        let w97 = w14 * w86[k];
+        let w98 = w94 + w95;
+        let w99 = w96 + w98;
+        let w100 = w99 - w93;
+        let w101 = w100 - w97;
         let inv_k1 = 1.0 / (k + 1) as f64;
         x[0][k + 1] = x[2][k] * inv_k1;
         x[1][k + 1] = x[3][k] * inv_k1;
-        x[2][k + 1] = w95[k] * inv_k1;
-        x[3][k + 1] = w118[k] * inv_k1;
+        x[2][k + 1] = w86[k] * inv_k1;
+        x[3][k + 1] = w101 * inv_k1;
     }
 }
 

@@ -13,29 +13,29 @@ pub const NAME: &str = "point_mass";
 /// the state at the expansion point; on return `x[i][k]` is the k-th coefficient.
 /// Series inputs hold their first N coefficients.
 pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64, p: &Params) {
-    let w4: f64 = p[3];
     let mut d_x0 = [0.0f64; N];
     let mut sin_x0 = [0.0f64; N];
     let mut cos_x0 = [0.0f64; N];
-    let w8: f64 = s;
-    let w9: f64 = p[1];
-    let w10: f64 = w8 * w9;
+    let w7: f64 = s;
+    let w8: f64 = p[1];
+    let w9: f64 = w7 * w8;
+    let w10: f64 = p[3];
     let w11: f64 = p[8];
-    let w12: f64 = w4 * w11;
-    let w13: f64 = w10 * w12;
+    let w12: f64 = w10 * w11;
+    let w13: f64 = w9 * w12;
     let w14: f64 = p[0];
-    let w16: f64 = w4 * w14;
+    let w16: f64 = w10 * w14;
     let mut w20 = [0.0f64; N];
-    let w24: f64 = w4 * w10;
+    let w24: f64 = w9 * w10;
     let w25: f64 = w12 * w14;
     let mut w29 = [0.0f64; N];
     let w32: f64 = 2.0;
-    let w33: f64 = w10 * w32;
+    let w33: f64 = w9 * w32;
     let w34: f64 = 0.5;
-    let w35: f64 = w4 * w34;
+    let w35: f64 = w10 * w34;
     let w36: f64 = w33 * w35;
     let w37: f64 = w32 * w35;
-    let w38: f64 = w10 * w37;
+    let w38: f64 = w9 * w37;
     let w39: f64 = w36 + w38;
     let w40: f64 = w32 * w37;
     let mut w43 = [0.0f64; N];
@@ -51,32 +51,30 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
     let w58: f64 = 2.0 * w57;
     let w59: f64 = 3.0;
     let w60: f64 = w49 * w59;
-    let w61: f64 = w60 / w4;
+    let w61: f64 = w60 / w10;
     let w62: f64 = w61.sqrt();
     let w63: f64 = w58 * w62;
-    let w64: f64 = w4 * w63;
-    let w65: f64 = w16 * w64;
-    let w66: f64 = w16 * w51;
-    let w67: f64 = w12 * w16;
-    let w68: f64 = w4 * w16;
-    let w70: f64 = w10 * w36;
-    let w71: f64 = 2.0 * w14;
-    let w72: f64 = w35 * w71;
-    let w73: f64 = w14 * w72;
-    let w74: f64 = w70 + w73;
-    let w75: f64 = w4 * w39;
-    let w76: f64 = w4 * w37;
-    let w77: f64 = w4 * w74;
-    let w78: f64 = w16 * w16;
-    let w79: f64 = w77 - w78;
-    let mut w98 = [0.0f64; N];
-    let mut inv_w98 = 0.0f64;
-    let mut w99 = [0.0f64; N];
-    let mut w104 = [0.0f64; N];
-    let mut w112 = [0.0f64; N];
-    let mut w120 = [0.0f64; N];
+    let w64: f64 = w10 * w63;
+    let w65: f64 = w14 * w64;
+    let w66: f64 = w14 * w51;
+    let w68: f64 = w9 * w36;
+    let w69: f64 = 2.0 * w14;
+    let w70: f64 = w35 * w69;
+    let w71: f64 = w14 * w70;
+    let w72: f64 = w68 + w71;
+    let w73: f64 = w10 * w47;
+    let w74: f64 = w72 - w73;
+    let mut w90 = [0.0f64; N];
+    let mut inv_w90 = 0.0f64;
+    let mut w91 = [0.0f64; N];
+    let w93: f64 = 1.0;
+    let w94: f64 = w93 / w10;
+    let w95: f64 = w64 * w94;
+    let w96: f64 = w51 * w94;
+    let w97: f64 = w12 * w94;
+    let w98: f64 = w10 * w94;
     for k in 0..N - 1 {
-        let [dot0, dot1, dot2, dot3, dot4, dot5] = series::dots(
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8, dot9] = series::dots(
             [
                 (&d_x0, &cos_x0),
                 (&d_x0, &sin_x0),
@@ -84,17 +82,10 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
                 (&x[1], &ug),
                 (&sin_x0, &w29),
                 (&x[2], &x[1]),
-            ],
-            k,
-        );
-        let [dot6, dot7, dot8, dot9, dot10, dot11] = series::dots(
-            [
                 (&x[3], &w43),
                 (&cos_x0, &ug),
                 (&x[2], &w55),
-                (&w98, &w99),
-                (&w104, &w112),
-                (&w98, &w120),
+                (&w90, &w91),
             ],
             k,
         );
@@ -106,7 +97,7 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         let w21 = series::mul_d(dot2, &cos_x0, &w20, k);
         let w23 = series::mul_d(dot3, &x[1], &ug, k);
         let w26 = ug[k] * w24;
-        let w27 = w4 * w23;
+        let w27 = w10 * w23;
         let w28 = at0(k, w25) + w27;
         w29[k] = w28 - w26;
         let w30 = series::mul_d(dot4, &sin_x0, &w29, k);
@@ -120,53 +111,41 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
         let w54 = w31 * w37;
         w55[k] = w54 - w53;
         let w56 = series::mul_d(dot8, &x[2], &w55, k);
-        let w69 = series::sq(&x[1], k);
-        let w80 = x[3][k] * w65;
-        let w81 = x[1][k] * w66;
-        let w82 = w4 * w21;
-        let w83 = sin_x0[k] * w67;
-        let w84 = w4 * w30;
-        let w85 = w4 * w44;
-        let w86 = w52 * w68;
-        let w87 = w16 * w56;
-        let w88 = w80 + w82;
-        let w89 = w84 + w88;
-        let w90 = w86 + w89;
-        let w91 = w90 - w81;
-        let w92 = w91 - w83;
-        let w93 = w92 - w85;
-        let w94 = w93 - w87;
-        let w95 = x[1][k] * w75;
-        let w96 = w69 * w76;
-        let w97 = at0(k, w79) + w96;
-        w98[k] = w97 - w95;
-        if k == 0 { inv_w98 = 1.0 / w98[0]; }
-        w99[k] = series::div_d(dot9, w94, &w98, &w99, inv_w98, k);
-        let w101 = x[1][k] * w39;
-        let w102 = w37 * w69;
-        let w103 = at0(k, w74) + w102;
-        w104[k] = w103 - w101;
-        let w105 = x[3][k] * w64;
-        let w106 = x[1][k] * w51;
-        let w107 = w12 * sin_x0[k];
-        let w108 = w4 * w52;
-        let w109 = w106 + w107;
-        let w110 = w56 + w109;
-        let w111 = w110 - w105;
-        w112[k] = w111 - w108;
-        let w113 = series::mul_d(dot10, &w104, &w112, k);
-        let w114 = w16 * w21;
-        let w115 = w16 * w30;
-        let w116 = w16 * w44;
-        let w117 = w113 + w116;
-        let w118 = w117 - w114;
-        let w119 = w118 - w115;
-        w120[k] = series::div_d(dot11, w119, &w98, &w120, inv_w98, k);
+        let w67 = series::sq(&x[1], k);
+        let w75 = x[3][k] * w65;
+        let w76 = x[1][k] * w66;
+        let w77 = sin_x0[k] * w25;
+        let w78 = w16 * w52;
+        let w79 = w14 * w56;
+        let w80 = w21 + w75;
+        let w81 = w30 + w80;
+        let w82 = w78 + w81;
+        let w83 = w82 - w76;
+        let w84 = w83 - w77;
+        let w85 = w84 - w44;
+        let w86 = w85 - w79;
+        let w87 = x[1][k] * w39;
+        let w88 = w37 * w67;
+        let w89 = at0(k, w74) + w88;
+        w90[k] = w89 - w87;
+        if k == 0 { inv_w90 = 1.0 / w90[0]; }
+        w91[k] = series::div_d(dot9, w86, &w90, &w91, inv_w90, k);
+        let w99 = x[3][k] * w95;
+        let w100 = x[1][k] * w96;
+        let w101 = sin_x0[k] * w97;
+        let w102 = w52 * w98;
+        let w103 = w56 * w94;
+        let w104 = w14 * w91[k];
+        let w105 = w100 + w101;
+        let w106 = w103 + w105;
+        let w107 = w106 - w99;
+        let w108 = w107 - w102;
+        let w109 = w108 - w104;
         let inv_k1 = 1.0 / (k + 1) as f64;
         x[0][k + 1] = x[2][k] * inv_k1;
         x[1][k + 1] = x[3][k] * inv_k1;
-        x[2][k + 1] = w99[k] * inv_k1;
-        x[3][k + 1] = w120[k] * inv_k1;
+        x[2][k + 1] = w91[k] * inv_k1;
+        x[3][k + 1] = w109 * inv_k1;
     }
 }
 
@@ -175,82 +154,70 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
 /// Series inputs hold their first N coefficients.
 /// The twin of `rocking_rhs` with `ug` identically zero: for the steps after the excitation.
 pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Params) {
-    let w4: f64 = p[3];
     let mut d_x0 = [0.0f64; N];
     let mut sin_x0 = [0.0f64; N];
     let mut cos_x0 = [0.0f64; N];
-    let w8: f64 = s;
-    let w9: f64 = p[1];
-    let w10: f64 = w8 * w9;
+    let w7: f64 = s;
+    let w8: f64 = p[1];
+    let w9: f64 = w7 * w8;
+    let w10: f64 = p[3];
     let w11: f64 = p[8];
-    let w12: f64 = w4 * w11;
-    let w13: f64 = w10 * w12;
+    let w12: f64 = w10 * w11;
+    let w13: f64 = w9 * w12;
     let w14: f64 = p[0];
-    let w18: f64 = w12 * w14;
     let w20: f64 = 2.0;
-    let w21: f64 = w10 * w20;
+    let w21: f64 = w9 * w20;
     let w22: f64 = 0.5;
-    let w23: f64 = w4 * w22;
+    let w23: f64 = w10 * w22;
     let w24: f64 = w21 * w23;
     let w25: f64 = w20 * w23;
-    let w26: f64 = w10 * w25;
+    let w26: f64 = w9 * w25;
     let w27: f64 = w24 + w26;
     let w28: f64 = w20 * w25;
     let mut w31 = [0.0f64; N];
-    let w33: f64 = w4 * w13;
-    let w34: f64 = w4 * w12;
-    let w35: f64 = w4 * w18;
-    let w36: f64 = w4 * w14;
-    let w37: f64 = -1.5;
-    let w38: f64 = p[2];
-    let w39: f64 = w14 * w14;
-    let w40: f64 = w14 * w39;
-    let w41: f64 = w38 / w40;
-    let w42: f64 = w37 * w41;
-    let w43: f64 = w20 * w42;
-    let mut w46 = [0.0f64; N];
-    let w48: f64 = p[7];
-    let w49: f64 = 2.0 * w48;
-    let w50: f64 = 3.0;
-    let w51: f64 = w41 * w50;
-    let w52: f64 = w51 / w4;
-    let w53: f64 = w52.sqrt();
-    let w54: f64 = w49 * w53;
-    let w55: f64 = w4 * w54;
-    let w56: f64 = w36 * w55;
-    let w57: f64 = w36 * w43;
-    let w58: f64 = w12 * w36;
-    let w59: f64 = w35 - w58;
-    let w61: f64 = w10 * w24;
-    let w62: f64 = 2.0 * w14;
-    let w63: f64 = w23 * w62;
-    let w64: f64 = w14 * w63;
-    let w65: f64 = w61 + w64;
-    let w66: f64 = w4 * w27;
-    let w67: f64 = w4 * w25;
-    let w68: f64 = w4 * w65;
-    let w69: f64 = w36 * w36;
-    let w70: f64 = w68 - w69;
-    let mut w87 = [0.0f64; N];
-    let mut inv_w87 = 0.0f64;
-    let mut w88 = [0.0f64; N];
-    let mut w93 = [0.0f64; N];
-    let mut w99 = [0.0f64; N];
-    let w101: f64 = w13 * w36;
-    let w102: f64 = w18 * w36;
-    let mut w111 = [0.0f64; N];
+    let w33: f64 = -1.5;
+    let w34: f64 = p[2];
+    let w35: f64 = w14 * w14;
+    let w36: f64 = w14 * w35;
+    let w37: f64 = w34 / w36;
+    let w38: f64 = w33 * w37;
+    let w39: f64 = w20 * w38;
+    let mut w42 = [0.0f64; N];
+    let w44: f64 = p[7];
+    let w45: f64 = 2.0 * w44;
+    let w46: f64 = 3.0;
+    let w47: f64 = w37 * w46;
+    let w48: f64 = w47 / w10;
+    let w49: f64 = w48.sqrt();
+    let w50: f64 = w45 * w49;
+    let w51: f64 = w10 * w50;
+    let w52: f64 = w14 * w51;
+    let w53: f64 = w14 * w39;
+    let w55: f64 = w9 * w24;
+    let w56: f64 = 2.0 * w14;
+    let w57: f64 = w23 * w56;
+    let w58: f64 = w14 * w57;
+    let w59: f64 = w55 + w58;
+    let w60: f64 = w10 * w35;
+    let w61: f64 = w59 - w60;
+    let mut w75 = [0.0f64; N];
+    let mut inv_w75 = 0.0f64;
+    let mut w76 = [0.0f64; N];
+    let w78: f64 = 1.0;
+    let w79: f64 = w78 / w10;
+    let w80: f64 = w51 * w79;
+    let w81: f64 = w39 * w79;
+    let w82: f64 = w12 * w79;
     for k in 0..N - 1 {
-        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6] = series::dots(
             [
                 (&d_x0, &cos_x0),
                 (&d_x0, &sin_x0),
                 (&cos_x0, &x[1]),
                 (&x[2], &x[1]),
                 (&x[3], &w31),
-                (&x[2], &w46),
-                (&w87, &w88),
-                (&w93, &w99),
-                (&w87, &w111),
+                (&x[2], &w42),
+                (&w75, &w76),
             ],
             k,
         );
@@ -261,55 +228,41 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
         let w30 = w19 * w28;
         w31[k] = w30 - w29;
         let w32 = series::mul_d(dot4, &x[3], &w31, k);
-        let w44 = x[2][k] * w24;
-        let w45 = w19 * w25;
-        w46[k] = w45 - w44;
-        let w47 = series::mul_d(dot5, &x[2], &w46, k);
-        let w60 = series::sq(&x[1], k);
-        let w71 = x[3][k] * w56;
-        let w72 = cos_x0[k] * w33;
-        let w73 = x[1][k] * w57;
-        let w74 = w16 * w34;
-        let w75 = sin_x0[k] * w59;
-        let w76 = w4 * w32;
-        let w77 = w36 * w47;
-        let w78 = w71 + w74;
-        let w79 = w75 + w78;
-        let w80 = w79 - w72;
-        let w81 = w80 - w73;
-        let w82 = w81 - w76;
-        let w83 = w82 - w77;
-        let w84 = x[1][k] * w66;
-        let w85 = w60 * w67;
-        let w86 = at0(k, w70) + w85;
-        w87[k] = w86 - w84;
-        if k == 0 { inv_w87 = 1.0 / w87[0]; }
-        w88[k] = series::div_d(dot6, w83, &w87, &w88, inv_w87, k);
-        let w90 = x[1][k] * w27;
-        let w91 = w25 * w60;
-        let w92 = at0(k, w65) + w91;
-        w93[k] = w92 - w90;
-        let w94 = x[3][k] * w55;
-        let w95 = x[1][k] * w43;
-        let w96 = w12 * sin_x0[k];
-        let w97 = w95 + w96;
-        let w98 = w47 + w97;
-        w99[k] = w98 - w94;
-        let w100 = series::mul_d(dot7, &w93, &w99, k);
-        let w103 = cos_x0[k] * w101;
-        let w104 = w16 * w58;
-        let w105 = sin_x0[k] * w102;
-        let w106 = w32 * w36;
-        let w107 = w103 + w106;
-        let w108 = w100 + w107;
-        let w109 = w108 - w104;
-        let w110 = w109 - w105;
-        w111[k] = series::div_d(dot8, w110, &w87, &w111, inv_w87, k);
+        let w40 = x[2][k] * w24;
+        let w41 = w19 * w25;
+        w42[k] = w41 - w40;
+        let w43 = series::mul_d(dot5, &x[2], &w42, k);
+        let w54 = series::sq(&x[1], k);
+        let w62 = x[3][k] * w52;
+        let w63 = cos_x0[k] * w13;
+        let w64 = x[1][k] * w53;
+        let w65 = w12 * w16;
+        let w66 = w14 * w43;
+        let w67 = w62 + w65;
+        let w68 = w67 - w63;
+        let w69 = w68 - w64;
+        let w70 = w69 - w32;
+        let w71 = w70 - w66;
+        let w72 = x[1][k] * w27;
+        let w73 = w25 * w54;
+        let w74 = at0(k, w61) + w73;
+        w75[k] = w74 - w72;
+        if k == 0 { inv_w75 = 1.0 / w75[0]; }
+        w76[k] = series::div_d(dot6, w71, &w75, &w76, inv_w75, k);
+        let w83 = x[3][k] * w80;
+        let w84 = x[1][k] * w81;
+        let w85 = sin_x0[k] * w82;
+        let w86 = w43 * w79;
+        let w87 = w14 * w76[k];
+        let w88 = w84 + w85;
+        let w89 = w86 + w88;
+        let w90 = w89 - w83;
+        let w91 = w90 - w87;
         let inv_k1 = 1.0 / (k + 1) as f64;
         x[0][k + 1] = x[2][k] * inv_k1;
         x[1][k + 1] = x[3][k] * inv_k1;
-        x[2][k + 1] = w88[k] * inv_k1;
-        x[3][k + 1] = w111[k] * inv_k1;
+        x[2][k + 1] = w76[k] * inv_k1;
+        x[3][k + 1] = w91 * inv_k1;
     }
 }
 

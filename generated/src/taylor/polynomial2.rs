@@ -101,91 +101,175 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 6], ug: &[f64; N], s: f64,
     let w113: f64 = w12 * w112;
     let w114: f64 = w111 + w113;
     let mut w119 = [0.0f64; N];
-    let w121: f64 = p[6];
-    let mut w123 = [0.0f64; N];
-    let mut w127 = [0.0f64; N];
-    let w129: f64 = 2.0 * w17;
-    let w130: f64 = w72 * w129;
-    let w131: f64 = w17 * w130;
-    let w132: f64 = w121 + w131;
-    let mut w135 = [0.0f64; N];
-    let mut w136 = [0.0f64; N];
-    let mut w140 = [0.0f64; N];
-    let w143: f64 = w17 * w79;
-    let w144: f64 = w129 * w143;
-    let w145: f64 = w132 + w144;
-    let w146: f64 = 2.0 * w143;
-    let w147: f64 = w17 * w146;
-    let w148: f64 = w145 + w147;
-    let w149: f64 = -w12;
-    let w150: f64 = 2.0 * w149;
-    let w151: f64 = w109 * w150;
-    let w152: f64 = w151 - w113;
-    let w153: f64 = w90 * w150;
-    let w154: f64 = w153 - w94;
-    let w155: f64 = 2.0 * w12;
-    let w156: f64 = w22 * w155;
-    let w157: f64 = w12 * w156;
-    let w158: f64 = w148 + w157;
-    let mut w161 = [0.0f64; N];
-    let mut w170 = [0.0f64; N];
-    let mut inv_w170 = 0.0f64;
-    let mut w171 = [0.0f64; N];
-    let w172: f64 = w17 * w109;
-    let w173: f64 = 2.0 * w172;
-    let w174: f64 = w19 + w173;
-    let mut w175 = [0.0f64; N];
-    let w176: f64 = 12.0;
-    let w177: f64 = p[2];
-    let w178: f64 = w17 * w17;
-    let w179: f64 = w17 * w178;
-    let w180: f64 = w177 / w179;
-    let w181: f64 = w176 * w180;
-    let w182: f64 = -0.5;
-    let w183: f64 = w181 * w182;
-    let w185: f64 = -2.0;
-    let w186: f64 = w180 * w185;
-    let w187: f64 = w70 * w186;
-    let w191: f64 = w74 + w80;
-    let w192: f64 = w74 + w85;
-    let w193: f64 = w85 + w192;
-    let w194: f64 = w73 + w91;
-    let w195: f64 = p[9];
-    let w196: f64 = p[10];
-    let w198: f64 = 0.1;
-    let w199: f64 = w21 * w198;
-    let w200: f64 = w13 + w199;
-    let w201: f64 = w199 + w200;
-    let mut w202 = [0.0f64; N];
-    let mut w203 = [0.0f64; N];
-    let mut w221 = [0.0f64; N];
-    let mut w222 = [0.0f64; N];
-    let mut inv_w222 = 0.0f64;
-    let mut w223 = [0.0f64; N];
-    let w224: f64 = w13 + w90;
-    let w225: f64 = w17 * w199;
-    let w226: f64 = 2.0 * w225;
-    let w227: f64 = w19 + w226;
-    let mut w228 = [0.0f64; N];
-    let mut w229 = [0.0f64; N];
+    let w121: f64 = w17 * w109;
+    let w122: f64 = 2.0 * w121;
+    let w123: f64 = w19 + w122;
+    let w124: f64 = 0.1;
+    let w125: f64 = w21 * w124;
+    let w126: f64 = w13 + w125;
+    let w127: f64 = w125 + w126;
+    let w128: f64 = w123 / w127;
+    let w129: f64 = 12.0;
+    let w130: f64 = p[2];
+    let w131: f64 = w17 * w17;
+    let w132: f64 = w17 * w131;
+    let w133: f64 = w130 / w132;
+    let w134: f64 = w129 * w133;
+    let w135: f64 = -0.5;
+    let w136: f64 = w134 * w135;
+    let w138: f64 = -2.0;
+    let w139: f64 = w133 * w138;
+    let w140: f64 = w70 * w139;
+    let w144: f64 = w74 + w80;
+    let w145: f64 = w74 + w85;
+    let w146: f64 = w85 + w145;
+    let w147: f64 = w73 + w91;
+    let w148: f64 = p[9];
+    let w149: f64 = p[10];
+    let w150: f64 = w128 * w148;
+    let w151: f64 = w128 * w149;
+    let w152: f64 = w128 * w140;
+    let w153: f64 = w128 * w136;
+    let w154: f64 = w35 * w128;
+    let w155: f64 = w54 * w128;
+    let w156: f64 = w128 * w147;
+    let w157: f64 = w128 * w146;
+    let w158: f64 = w128 * w144;
+    let w159: f64 = w17 * w125;
+    let w160: f64 = 2.0 * w159;
+    let w161: f64 = w19 + w160;
+    let w162: f64 = w13 + w90;
+    let w163: f64 = w162 / w127;
+    let w164: f64 = w128 * w163;
+    let w165: f64 = w127 * w164;
+    let w166: f64 = w161 - w165;
+    let w167: f64 = 0.07142857142857142;
+    let w168: f64 = w21 * w167;
+    let w169: f64 = w13 + w168;
+    let w170: f64 = w168 + w169;
+    let w171: f64 = w163 * w163;
+    let w172: f64 = w127 * w171;
+    let w173: f64 = w170 - w172;
+    let w174: f64 = w166 / w173;
+    let w175: f64 = -6.0;
+    let w176: f64 = w133 * w175;
+    let w177: f64 = w70 * w176;
+    let w178: f64 = w74 + w104;
+    let w179: f64 = w104 + w178;
+    let w180: f64 = w73 + w110;
+    let w181: f64 = p[11];
+    let w182: f64 = w148 * w163;
+    let w183: f64 = w149 * w163;
+    let w184: f64 = w140 * w163;
+    let w185: f64 = w136 * w163;
+    let w186: f64 = w35 * w163;
+    let w187: f64 = w54 * w163;
+    let w188: f64 = w147 * w163;
+    let w189: f64 = w146 * w163;
+    let w190: f64 = w144 * w163;
+    let w191: f64 = w182 - w149;
+    let w192: f64 = w183 - w181;
+    let w193: f64 = w136 - w184;
+    let w194: f64 = w177 - w185;
+    let w195: f64 = w32 - w186;
+    let w196: f64 = w187 - w52;
+    let w197: f64 = w188 - w180;
+    let w198: f64 = w144 - w189;
+    let w199: f64 = w179 - w190;
+    let w200: f64 = w174 * w191;
+    let w201: f64 = w174 * w192;
+    let w202: f64 = w174 * w193;
+    let w203: f64 = w174 * w194;
+    let w204: f64 = w174 * w195;
+    let w205: f64 = w174 * w196;
+    let w206: f64 = w174 * w197;
+    let w207: f64 = w174 * w198;
+    let w208: f64 = w174 * w199;
+    let w209: f64 = w200 - w150;
+    let w210: f64 = w201 - w151;
+    let w211: f64 = w152 + w202;
+    let w212: f64 = w153 + w203;
+    let w213: f64 = w154 + w204;
+    let w214: f64 = w205 - w155;
+    let w215: f64 = w206 - w156;
+    let w216: f64 = w157 + w207;
+    let w217: f64 = w158 + w208;
+    let w218: f64 = p[6];
+    let mut w220 = [0.0f64; N];
+    let mut w224 = [0.0f64; N];
+    let w226: f64 = 2.0 * w17;
+    let w227: f64 = w72 * w226;
+    let w228: f64 = w17 * w227;
+    let w229: f64 = w218 + w228;
     let mut w232 = [0.0f64; N];
-    let w233: f64 = -6.0;
-    let w234: f64 = w180 * w233;
-    let w235: f64 = w70 * w234;
-    let w236: f64 = w74 + w104;
-    let w237: f64 = w104 + w236;
-    let w238: f64 = w73 + w110;
-    let w239: f64 = p[11];
-    let w242: f64 = 0.07142857142857142;
-    let w243: f64 = w21 * w242;
-    let w244: f64 = w13 + w243;
-    let w245: f64 = w243 + w244;
-    let mut w246 = [0.0f64; N];
-    let mut w248 = [0.0f64; N];
-    let mut w272 = [0.0f64; N];
-    let mut inv_w272 = 0.0f64;
-    let mut w273 = [0.0f64; N];
-    let mut w275 = [0.0f64; N];
+    let mut w233 = [0.0f64; N];
+    let mut w237 = [0.0f64; N];
+    let w240: f64 = w17 * w79;
+    let w241: f64 = w226 * w240;
+    let w242: f64 = w229 + w241;
+    let w243: f64 = 2.0 * w240;
+    let w244: f64 = w17 * w243;
+    let w245: f64 = w242 + w244;
+    let w246: f64 = -w12;
+    let w247: f64 = 2.0 * w246;
+    let w248: f64 = w109 * w247;
+    let w249: f64 = w248 - w113;
+    let w250: f64 = w90 * w247;
+    let w251: f64 = w250 - w94;
+    let w252: f64 = 2.0 * w12;
+    let w253: f64 = w22 * w252;
+    let w254: f64 = w12 * w253;
+    let w255: f64 = w245 + w254;
+    let w256: f64 = w128 * w128;
+    let w257: f64 = w127 * w256;
+    let w258: f64 = w174 * w174;
+    let w259: f64 = w173 * w258;
+    let w260: f64 = w257 + w259;
+    let w261: f64 = w255 - w260;
+    let mut w291 = [0.0f64; N];
+    let mut inv_w291 = 0.0f64;
+    let mut w292 = [0.0f64; N];
+    let w294: f64 = 1.0;
+    let w295: f64 = w294 / w127;
+    let w296: f64 = w148 * w295;
+    let w297: f64 = w149 * w295;
+    let w298: f64 = w140 * w295;
+    let w299: f64 = w136 * w295;
+    let w300: f64 = w35 * w295;
+    let w301: f64 = w54 * w295;
+    let w302: f64 = w147 * w295;
+    let w303: f64 = w146 * w295;
+    let w304: f64 = w144 * w295;
+    let w305: f64 = w294 / w173;
+    let w306: f64 = w191 * w305;
+    let w307: f64 = w192 * w305;
+    let w308: f64 = w193 * w305;
+    let w309: f64 = w194 * w305;
+    let w310: f64 = w195 * w305;
+    let w311: f64 = w196 * w305;
+    let w312: f64 = w197 * w305;
+    let w313: f64 = w198 * w305;
+    let w314: f64 = w199 * w305;
+    let w315: f64 = w163 * w306;
+    let w316: f64 = w163 * w307;
+    let w317: f64 = w163 * w308;
+    let w318: f64 = w163 * w309;
+    let w319: f64 = w163 * w310;
+    let w320: f64 = w163 * w311;
+    let w321: f64 = w163 * w312;
+    let w322: f64 = w163 * w313;
+    let w323: f64 = w163 * w314;
+    let w324: f64 = w163 * w174;
+    let w325: f64 = w128 - w324;
+    let w326: f64 = w296 + w315;
+    let w327: f64 = w297 + w316;
+    let w328: f64 = w298 - w317;
+    let w329: f64 = w299 - w318;
+    let w330: f64 = w300 - w319;
+    let w331: f64 = w301 + w320;
+    let w332: f64 = w302 + w321;
+    let w333: f64 = w303 - w322;
+    let w334: f64 = w304 - w323;
     for k in 0..N - 1 {
         let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
             [
@@ -201,42 +285,16 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 6], ug: &[f64; N], s: f64,
             ],
             k,
         );
-        let [dot9, dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17] = series::dots(
+        let [dot9, dot10, dot11, dot12, dot13, dot14, dot15, dot16] = series::dots(
             [
                 (&x[5], &w119),
-                (&w123, &w127),
-                (&w135, &w136),
-                (&x[2], &w140),
-                (&w170, &w171),
-                (&w170, &w175),
                 (&cos_x0, &ug),
                 (&x[3], &w68),
                 (&x[3], &w69),
-            ],
-            k,
-        );
-        let [dot18, dot19, dot20, dot21, dot22, dot23, dot24, dot25, dot26] = series::dots(
-            [
-                (&w161, &w175),
-                (&w170, &w202),
-                (&w222, &w223),
-                (&w170, &w228),
-                (&w175, &w228),
-                (&w170, &w229),
-                (&w222, &w232),
-                (&w161, &w228),
-                (&w221, &w232),
-            ],
-            k,
-        );
-        let [dot27, dot28, dot29, dot30, dot31, dot32] = series::dots(
-            [
-                (&w170, &w246),
-                (&w203, &w248),
-                (&w272, &w273),
-                (&w232, &w273),
-                (&w175, &w275),
-                (&w228, &w273),
+                (&w220, &w224),
+                (&w232, &w233),
+                (&x[2], &w237),
+                (&w291, &w292),
             ],
             k,
         );
@@ -271,115 +329,104 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 6], ug: &[f64; N], s: f64,
         let w118 = w116 + w117;
         w119[k] = w118 - w115;
         let w120 = series::mul_d(dot9, &x[5], &w119, k);
-        let w122 = x[1][k] + x[2][k];
-        w123[k] = w122 - at0(k, w12);
-        let w124 = x[1][k] * w74;
-        let w125 = x[2][k] * w74;
-        let w126 = w124 + w125;
-        w127[k] = w126 - at0(k, w73);
-        let w128 = series::mul_d(dot10, &w123, &w127, k);
-        let w133 = x[1][k] * w79;
-        let w134 = x[2][k] * w103;
-        w135[k] = w133 + w134;
-        w136[k] = x[2][k] * w70;
-        let w137 = series::mul_d(dot11, &w135, &w136, k);
-        let w138 = x[1][k] * w80;
-        let w139 = x[2][k] * w104;
-        w140[k] = w138 + w139;
-        let w141 = series::mul_d(dot12, &x[2], &w140, k);
-        let w142 = series::sq(&x[1], k);
-        let w159 = w44 - w67;
-        let w160 = w159 - w101;
-        w161[k] = w160 - w120;
-        let w162 = x[1][k] * w154;
-        let w163 = x[2][k] * w152;
-        let w164 = w86 * w142;
-        let w165 = w162 + w163;
-        let w166 = w128 + w165;
-        let w167 = w137 + w166;
-        let w168 = w141 + w167;
-        let w169 = w164 + w168;
-        w170[k] = at0(k, w158) + w169;
-        if k == 0 { inv_w170 = 1.0 / w170[0]; }
-        w171[k] = series::div_d(dot13, w161[k], &w170, &w171, inv_w170, k);
-        w175[k] = series::div_d(dot14, at0(k, w174), &w170, &w175, inv_w170, k);
-        let w184 = series::mul_d(dot15, &cos_x0, &ug, k);
-        let w188 = series::sq(&x[3], k);
-        let w189 = series::mul_d(dot16, &x[3], &w68, k);
-        let w190 = series::mul_d(dot17, &x[3], &w69, k);
-        let w197 = series::mul_d(dot18, &w161, &w175, k);
-        w202[k] = series::sq(&w175, k);
-        w203[k] = series::mul_d(dot19, &w170, &w202, k);
-        let w204 = x[4][k] * w195;
-        let w205 = x[5][k] * w196;
-        let w206 = x[1][k] * w187;
-        let w207 = x[2][k] * w183;
-        let w208 = w35 * sin_x0[k];
-        let w209 = w54 * w184;
-        let w210 = w188 * w194;
-        let w211 = w189 * w193;
-        let w212 = w190 * w191;
-        let w213 = w206 + w207;
-        let w214 = w208 + w213;
-        let w215 = w211 + w214;
-        let w216 = w212 + w215;
-        let w217 = w216 - w204;
-        let w218 = w217 - w205;
-        let w219 = w218 - w209;
-        let w220 = w219 - w210;
-        w221[k] = w220 - w197;
-        w222[k] = at0(k, w201) - w203[k];
-        if k == 0 { inv_w222 = 1.0 / w222[0]; }
-        w223[k] = series::div_d(dot20, w221[k], &w222, &w223, inv_w222, k);
-        w228[k] = series::div_d(dot21, at0(k, w227), &w170, &w228, inv_w170, k);
-        w229[k] = series::mul_d(dot22, &w175, &w228, k);
-        let w230 = series::mul_d(dot23, &w170, &w229, k);
-        let w231 = at0(k, w224) - w230;
-        w232[k] = series::div_d(dot24, w231, &w222, &w232, inv_w222, k);
-        let w240 = series::mul_d(dot25, &w161, &w228, k);
-        let w241 = series::mul_d(dot26, &w221, &w232, k);
-        w246[k] = series::sq(&w228, k);
-        let w247 = series::mul_d(dot27, &w170, &w246, k);
-        w248[k] = series::sq(&w232, k);
-        let w249 = series::mul_d(dot28, &w203, &w248, k);
-        let w250 = x[4][k] * w196;
-        let w251 = x[5][k] * w239;
-        let w252 = x[1][k] * w183;
-        let w253 = x[2][k] * w235;
-        let w254 = w32 * sin_x0[k];
-        let w255 = w52 * w184;
-        let w256 = w188 * w238;
-        let w257 = w189 * w191;
-        let w258 = w190 * w237;
-        let w259 = w252 + w253;
-        let w260 = w254 + w259;
-        let w261 = w257 + w260;
-        let w262 = w258 + w261;
-        let w263 = w262 - w250;
-        let w264 = w263 - w251;
-        let w265 = w264 - w255;
-        let w266 = w265 - w256;
-        let w267 = w266 - w240;
-        let w268 = w267 - w241;
-        let w269 = w201 * w248[k];
-        let w270 = at0(k, w245) + w249;
-        let w271 = w270 - w247;
-        w272[k] = w271 - w269;
-        if k == 0 { inv_w272 = 1.0 / w272[0]; }
-        w273[k] = series::div_d(dot29, w268, &w272, &w273, inv_w272, k);
-        let w274 = series::mul_d(dot30, &w232, &w273, k);
-        w275[k] = w223[k] - w274;
-        let w276 = series::mul_d(dot31, &w175, &w275, k);
-        let w277 = series::mul_d(dot32, &w228, &w273, k);
-        let w278 = w171[k] - w276;
-        let w279 = w278 - w277;
+        let w137 = series::mul_d(dot10, &cos_x0, &ug, k);
+        let w141 = series::sq(&x[3], k);
+        let w142 = series::mul_d(dot11, &x[3], &w68, k);
+        let w143 = series::mul_d(dot12, &x[3], &w69, k);
+        let w219 = x[1][k] + x[2][k];
+        w220[k] = w219 - at0(k, w12);
+        let w221 = x[1][k] * w74;
+        let w222 = x[2][k] * w74;
+        let w223 = w221 + w222;
+        w224[k] = w223 - at0(k, w73);
+        let w225 = series::mul_d(dot13, &w220, &w224, k);
+        let w230 = x[1][k] * w79;
+        let w231 = x[2][k] * w103;
+        w232[k] = w230 + w231;
+        w233[k] = x[2][k] * w70;
+        let w234 = series::mul_d(dot14, &w232, &w233, k);
+        let w235 = x[1][k] * w80;
+        let w236 = x[2][k] * w104;
+        w237[k] = w235 + w236;
+        let w238 = series::mul_d(dot15, &x[2], &w237, k);
+        let w239 = series::sq(&x[1], k);
+        let w262 = x[4][k] * w209;
+        let w263 = x[5][k] * w210;
+        let w264 = x[1][k] * w211;
+        let w265 = x[2][k] * w212;
+        let w266 = sin_x0[k] * w213;
+        let w267 = w137 * w214;
+        let w268 = w141 * w215;
+        let w269 = w142 * w216;
+        let w270 = w143 * w217;
+        let w271 = w44 - w262;
+        let w272 = w271 - w263;
+        let w273 = w272 - w264;
+        let w274 = w273 - w265;
+        let w275 = w274 - w266;
+        let w276 = w275 - w67;
+        let w277 = w276 - w101;
+        let w278 = w277 - w120;
+        let w279 = w278 - w267;
+        let w280 = w279 - w268;
+        let w281 = w280 - w269;
+        let w282 = w281 - w270;
+        let w283 = x[1][k] * w251;
+        let w284 = x[2][k] * w249;
+        let w285 = w86 * w239;
+        let w286 = w283 + w284;
+        let w287 = w225 + w286;
+        let w288 = w234 + w287;
+        let w289 = w238 + w288;
+        let w290 = w285 + w289;
+        w291[k] = at0(k, w261) + w290;
+        if k == 0 { inv_w291 = 1.0 / w291[0]; }
+        w292[k] = series::div_d(dot16, w282, &w291, &w292, inv_w291, k);
+        let w335 = x[4][k] * w326;
+        let w336 = x[5][k] * w327;
+        let w337 = x[1][k] * w328;
+        let w338 = x[2][k] * w329;
+        let w339 = sin_x0[k] * w330;
+        let w340 = w137 * w331;
+        let w341 = w141 * w332;
+        let w342 = w142 * w333;
+        let w343 = w143 * w334;
+        let w344 = w292[k] * w325;
+        let w345 = w337 + w338;
+        let w346 = w339 + w345;
+        let w347 = w342 + w346;
+        let w348 = w343 + w347;
+        let w349 = w348 - w335;
+        let w350 = w349 - w336;
+        let w351 = w350 - w340;
+        let w352 = w351 - w341;
+        let w353 = w352 - w344;
+        let w355 = x[4][k] * w306;
+        let w356 = x[5][k] * w307;
+        let w357 = x[1][k] * w308;
+        let w358 = x[2][k] * w309;
+        let w359 = sin_x0[k] * w310;
+        let w360 = w137 * w311;
+        let w361 = w141 * w312;
+        let w362 = w142 * w313;
+        let w363 = w143 * w314;
+        let w364 = w174 * w292[k];
+        let w365 = w355 + w356;
+        let w366 = w357 + w365;
+        let w367 = w358 + w366;
+        let w368 = w359 + w367;
+        let w369 = w360 + w368;
+        let w370 = w361 + w369;
+        let w371 = w362 + w370;
+        let w372 = w363 + w371;
+        let w373 = w372 - w364;
         let inv_k1 = 1.0 / (k + 1) as f64;
         x[0][k + 1] = x[3][k] * inv_k1;
         x[1][k + 1] = x[4][k] * inv_k1;
         x[2][k + 1] = x[5][k] * inv_k1;
-        x[3][k + 1] = w279 * inv_k1;
-        x[4][k + 1] = w275[k] * inv_k1;
-        x[5][k + 1] = w273[k] * inv_k1;
+        x[3][k + 1] = w292[k] * inv_k1;
+        x[4][k + 1] = w353 * inv_k1;
+        x[5][k + 1] = w373 * inv_k1;
     }
 }
 
@@ -463,95 +510,171 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 6], s: f64, p: &Param
     let w90: f64 = w12 * w89;
     let w91: f64 = w88 + w90;
     let mut w96 = [0.0f64; N];
-    let w98: f64 = p[6];
-    let mut w100 = [0.0f64; N];
-    let mut w104 = [0.0f64; N];
-    let w106: f64 = 2.0 * w17;
-    let w107: f64 = w49 * w106;
-    let w108: f64 = w17 * w107;
-    let w109: f64 = w98 + w108;
-    let mut w112 = [0.0f64; N];
-    let mut w113 = [0.0f64; N];
-    let mut w117 = [0.0f64; N];
-    let w120: f64 = w17 * w56;
-    let w121: f64 = w106 * w120;
-    let w122: f64 = w109 + w121;
-    let w123: f64 = 2.0 * w120;
-    let w124: f64 = w17 * w123;
-    let w125: f64 = w122 + w124;
-    let w126: f64 = -w12;
-    let w127: f64 = 2.0 * w126;
-    let w128: f64 = w86 * w127;
-    let w129: f64 = w128 - w90;
-    let w130: f64 = w67 * w127;
-    let w131: f64 = w130 - w71;
-    let w132: f64 = w19 * w20;
-    let w133: f64 = 2.0 * w12;
-    let w134: f64 = w132 * w133;
-    let w135: f64 = w12 * w134;
-    let w136: f64 = w125 + w135;
-    let mut w140 = [0.0f64; N];
-    let mut w149 = [0.0f64; N];
-    let mut inv_w149 = 0.0f64;
-    let mut w150 = [0.0f64; N];
-    let w151: f64 = w13 * w17;
-    let w152: f64 = w17 * w86;
-    let w153: f64 = 2.0 * w152;
-    let w154: f64 = w151 + w153;
-    let mut w155 = [0.0f64; N];
-    let w156: f64 = 12.0;
-    let w157: f64 = p[2];
-    let w158: f64 = w17 * w17;
-    let w159: f64 = w17 * w158;
-    let w160: f64 = w157 / w159;
-    let w161: f64 = w156 * w160;
-    let w162: f64 = -0.5;
-    let w163: f64 = w161 * w162;
-    let w164: f64 = -2.0;
-    let w165: f64 = w160 * w164;
-    let w166: f64 = w47 * w165;
-    let w170: f64 = w51 + w57;
-    let w171: f64 = w51 + w62;
-    let w172: f64 = w62 + w171;
-    let w173: f64 = w50 + w68;
-    let w174: f64 = p[9];
-    let w175: f64 = p[10];
-    let w177: f64 = 0.1;
-    let w178: f64 = w20 * w177;
-    let w179: f64 = w13 + w178;
-    let w180: f64 = w178 + w179;
-    let mut w181 = [0.0f64; N];
-    let mut w182 = [0.0f64; N];
-    let mut w198 = [0.0f64; N];
-    let mut w199 = [0.0f64; N];
-    let mut inv_w199 = 0.0f64;
-    let mut w200 = [0.0f64; N];
-    let w201: f64 = w13 + w67;
-    let w202: f64 = w17 * w178;
-    let w203: f64 = 2.0 * w202;
-    let w204: f64 = w151 + w203;
+    let w98: f64 = w13 * w17;
+    let w99: f64 = w17 * w86;
+    let w100: f64 = 2.0 * w99;
+    let w101: f64 = w98 + w100;
+    let w102: f64 = 0.1;
+    let w103: f64 = w20 * w102;
+    let w104: f64 = w13 + w103;
+    let w105: f64 = w103 + w104;
+    let w106: f64 = w101 / w105;
+    let w107: f64 = 12.0;
+    let w108: f64 = p[2];
+    let w109: f64 = w17 * w17;
+    let w110: f64 = w17 * w109;
+    let w111: f64 = w108 / w110;
+    let w112: f64 = w107 * w111;
+    let w113: f64 = -0.5;
+    let w114: f64 = w112 * w113;
+    let w115: f64 = -2.0;
+    let w116: f64 = w111 * w115;
+    let w117: f64 = w47 * w116;
+    let w121: f64 = w51 + w57;
+    let w122: f64 = w51 + w62;
+    let w123: f64 = w62 + w122;
+    let w124: f64 = w50 + w68;
+    let w125: f64 = p[9];
+    let w126: f64 = p[10];
+    let w127: f64 = w106 * w125;
+    let w128: f64 = w106 * w126;
+    let w129: f64 = w106 * w117;
+    let w130: f64 = w106 * w114;
+    let w131: f64 = w31 * w106;
+    let w132: f64 = w106 * w124;
+    let w133: f64 = w106 * w123;
+    let w134: f64 = w106 * w121;
+    let w135: f64 = w17 * w103;
+    let w136: f64 = 2.0 * w135;
+    let w137: f64 = w98 + w136;
+    let w138: f64 = w13 + w67;
+    let w139: f64 = w138 / w105;
+    let w140: f64 = w106 * w139;
+    let w141: f64 = w105 * w140;
+    let w142: f64 = w137 - w141;
+    let w143: f64 = 0.07142857142857142;
+    let w144: f64 = w20 * w143;
+    let w145: f64 = w13 + w144;
+    let w146: f64 = w144 + w145;
+    let w147: f64 = w139 * w139;
+    let w148: f64 = w105 * w147;
+    let w149: f64 = w146 - w148;
+    let w150: f64 = w142 / w149;
+    let w151: f64 = -6.0;
+    let w152: f64 = w111 * w151;
+    let w153: f64 = w47 * w152;
+    let w154: f64 = w51 + w81;
+    let w155: f64 = w81 + w154;
+    let w156: f64 = w50 + w87;
+    let w157: f64 = p[11];
+    let w158: f64 = w125 * w139;
+    let w159: f64 = w126 * w139;
+    let w160: f64 = w117 * w139;
+    let w161: f64 = w114 * w139;
+    let w162: f64 = w31 * w139;
+    let w163: f64 = w124 * w139;
+    let w164: f64 = w123 * w139;
+    let w165: f64 = w121 * w139;
+    let w166: f64 = w158 - w126;
+    let w167: f64 = w159 - w157;
+    let w168: f64 = w114 - w160;
+    let w169: f64 = w153 - w161;
+    let w170: f64 = w28 - w162;
+    let w171: f64 = w163 - w156;
+    let w172: f64 = w121 - w164;
+    let w173: f64 = w155 - w165;
+    let w174: f64 = w150 * w166;
+    let w175: f64 = w150 * w167;
+    let w176: f64 = w150 * w168;
+    let w177: f64 = w150 * w169;
+    let w178: f64 = w150 * w170;
+    let w179: f64 = w150 * w171;
+    let w180: f64 = w150 * w172;
+    let w181: f64 = w150 * w173;
+    let w182: f64 = w174 - w127;
+    let w183: f64 = w175 - w128;
+    let w184: f64 = w129 + w176;
+    let w185: f64 = w130 + w177;
+    let w186: f64 = w131 + w178;
+    let w187: f64 = w179 - w132;
+    let w188: f64 = w133 + w180;
+    let w189: f64 = w134 + w181;
+    let w190: f64 = w44 + w186;
+    let w191: f64 = p[6];
+    let mut w193 = [0.0f64; N];
+    let mut w197 = [0.0f64; N];
+    let w199: f64 = 2.0 * w17;
+    let w200: f64 = w49 * w199;
+    let w201: f64 = w17 * w200;
+    let w202: f64 = w191 + w201;
     let mut w205 = [0.0f64; N];
     let mut w206 = [0.0f64; N];
-    let mut w209 = [0.0f64; N];
-    let w210: f64 = -6.0;
-    let w211: f64 = w160 * w210;
-    let w212: f64 = w47 * w211;
-    let w213: f64 = w51 + w81;
-    let w214: f64 = w81 + w213;
-    let w215: f64 = w50 + w87;
-    let w216: f64 = p[11];
-    let w219: f64 = 0.07142857142857142;
-    let w220: f64 = w20 * w219;
-    let w221: f64 = w13 + w220;
-    let w222: f64 = w220 + w221;
-    let mut w223 = [0.0f64; N];
-    let mut w225 = [0.0f64; N];
-    let mut w247 = [0.0f64; N];
-    let mut inv_w247 = 0.0f64;
-    let mut w248 = [0.0f64; N];
-    let mut w250 = [0.0f64; N];
+    let mut w210 = [0.0f64; N];
+    let w213: f64 = w17 * w56;
+    let w214: f64 = w199 * w213;
+    let w215: f64 = w202 + w214;
+    let w216: f64 = 2.0 * w213;
+    let w217: f64 = w17 * w216;
+    let w218: f64 = w215 + w217;
+    let w219: f64 = -w12;
+    let w220: f64 = 2.0 * w219;
+    let w221: f64 = w86 * w220;
+    let w222: f64 = w221 - w90;
+    let w223: f64 = w67 * w220;
+    let w224: f64 = w223 - w71;
+    let w225: f64 = w19 * w20;
+    let w226: f64 = 2.0 * w12;
+    let w227: f64 = w225 * w226;
+    let w228: f64 = w12 * w227;
+    let w229: f64 = w218 + w228;
+    let w230: f64 = w106 * w106;
+    let w231: f64 = w105 * w230;
+    let w232: f64 = w150 * w150;
+    let w233: f64 = w149 * w232;
+    let w234: f64 = w231 + w233;
+    let w235: f64 = w229 - w234;
+    let mut w262 = [0.0f64; N];
+    let mut inv_w262 = 0.0f64;
+    let mut w263 = [0.0f64; N];
+    let w265: f64 = 1.0;
+    let w266: f64 = w265 / w105;
+    let w267: f64 = w125 * w266;
+    let w268: f64 = w126 * w266;
+    let w269: f64 = w117 * w266;
+    let w270: f64 = w114 * w266;
+    let w271: f64 = w31 * w266;
+    let w272: f64 = w124 * w266;
+    let w273: f64 = w123 * w266;
+    let w274: f64 = w121 * w266;
+    let w275: f64 = w265 / w149;
+    let w276: f64 = w166 * w275;
+    let w277: f64 = w167 * w275;
+    let w278: f64 = w168 * w275;
+    let w279: f64 = w169 * w275;
+    let w280: f64 = w170 * w275;
+    let w281: f64 = w171 * w275;
+    let w282: f64 = w172 * w275;
+    let w283: f64 = w173 * w275;
+    let w284: f64 = w139 * w276;
+    let w285: f64 = w139 * w277;
+    let w286: f64 = w139 * w278;
+    let w287: f64 = w139 * w279;
+    let w288: f64 = w139 * w280;
+    let w289: f64 = w139 * w281;
+    let w290: f64 = w139 * w282;
+    let w291: f64 = w139 * w283;
+    let w292: f64 = w139 * w150;
+    let w293: f64 = w106 - w292;
+    let w294: f64 = w267 + w284;
+    let w295: f64 = w268 + w285;
+    let w296: f64 = w269 - w286;
+    let w297: f64 = w270 - w287;
+    let w298: f64 = w271 - w288;
+    let w299: f64 = w272 + w289;
+    let w300: f64 = w273 - w290;
+    let w301: f64 = w274 - w291;
     for k in 0..N - 1 {
-        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8, dot9] = series::dots(
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6] = series::dots(
             [
                 (&d_x0, &cos_x0),
                 (&d_x0, &sin_x0),
@@ -560,38 +683,17 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 6], s: f64, p: &Param
                 (&x[3], &x[2]),
                 (&x[4], &w77),
                 (&x[5], &w96),
-                (&w100, &w104),
-                (&w112, &w113),
-                (&x[2], &w117),
             ],
             k,
         );
-        let [dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17, dot18, dot19] = series::dots(
+        let [dot7, dot8, dot9, dot10, dot11, dot12] = series::dots(
             [
-                (&w149, &w150),
-                (&w149, &w155),
                 (&x[3], &w45),
                 (&x[3], &w46),
-                (&w140, &w155),
-                (&w149, &w181),
-                (&w199, &w200),
-                (&w149, &w205),
-                (&w155, &w205),
-                (&w149, &w206),
-            ],
-            k,
-        );
-        let [dot20, dot21, dot22, dot23, dot24, dot25, dot26, dot27, dot28] = series::dots(
-            [
-                (&w199, &w209),
-                (&w140, &w205),
-                (&w198, &w209),
-                (&w149, &w223),
-                (&w182, &w225),
-                (&w247, &w248),
-                (&w209, &w248),
-                (&w155, &w250),
-                (&w205, &w248),
+                (&w193, &w197),
+                (&w205, &w206),
+                (&x[2], &w210),
+                (&w262, &w263),
             ],
             k,
         );
@@ -615,111 +717,96 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 6], s: f64, p: &Param
         let w95 = w93 + w94;
         w96[k] = w95 - w92;
         let w97 = series::mul_d(dot6, &x[5], &w96, k);
-        let w99 = x[1][k] + x[2][k];
-        w100[k] = w99 - at0(k, w12);
-        let w101 = x[1][k] * w51;
-        let w102 = x[2][k] * w51;
-        let w103 = w101 + w102;
-        w104[k] = w103 - at0(k, w50);
-        let w105 = series::mul_d(dot7, &w100, &w104, k);
-        let w110 = x[1][k] * w56;
-        let w111 = x[2][k] * w80;
-        w112[k] = w110 + w111;
-        w113[k] = x[2][k] * w47;
-        let w114 = series::mul_d(dot8, &w112, &w113, k);
-        let w115 = x[1][k] * w57;
-        let w116 = x[2][k] * w81;
-        w117[k] = w115 + w116;
-        let w118 = series::mul_d(dot9, &x[2], &w117, k);
-        let w119 = series::sq(&x[1], k);
-        let w137 = sin_x0[k] * w44;
-        let w138 = w38 - w137;
-        let w139 = w138 - w78;
-        w140[k] = w139 - w97;
-        let w141 = x[1][k] * w131;
-        let w142 = x[2][k] * w129;
-        let w143 = w63 * w119;
-        let w144 = w141 + w142;
-        let w145 = w105 + w144;
-        let w146 = w114 + w145;
-        let w147 = w118 + w146;
-        let w148 = w143 + w147;
-        w149[k] = at0(k, w136) + w148;
-        if k == 0 { inv_w149 = 1.0 / w149[0]; }
-        w150[k] = series::div_d(dot10, w140[k], &w149, &w150, inv_w149, k);
-        w155[k] = series::div_d(dot11, at0(k, w154), &w149, &w155, inv_w149, k);
-        let w167 = series::sq(&x[3], k);
-        let w168 = series::mul_d(dot12, &x[3], &w45, k);
-        let w169 = series::mul_d(dot13, &x[3], &w46, k);
-        let w176 = series::mul_d(dot14, &w140, &w155, k);
-        w181[k] = series::sq(&w155, k);
-        w182[k] = series::mul_d(dot15, &w149, &w181, k);
-        let w183 = x[4][k] * w174;
-        let w184 = x[5][k] * w175;
-        let w185 = x[1][k] * w166;
-        let w186 = x[2][k] * w163;
-        let w187 = w31 * sin_x0[k];
-        let w188 = w167 * w173;
-        let w189 = w168 * w172;
-        let w190 = w169 * w170;
-        let w191 = w185 + w186;
-        let w192 = w187 + w191;
-        let w193 = w189 + w192;
-        let w194 = w190 + w193;
-        let w195 = w194 - w183;
-        let w196 = w195 - w184;
-        let w197 = w196 - w188;
-        w198[k] = w197 - w176;
-        w199[k] = at0(k, w180) - w182[k];
-        if k == 0 { inv_w199 = 1.0 / w199[0]; }
-        w200[k] = series::div_d(dot16, w198[k], &w199, &w200, inv_w199, k);
-        w205[k] = series::div_d(dot17, at0(k, w204), &w149, &w205, inv_w149, k);
-        w206[k] = series::mul_d(dot18, &w155, &w205, k);
-        let w207 = series::mul_d(dot19, &w149, &w206, k);
-        let w208 = at0(k, w201) - w207;
-        w209[k] = series::div_d(dot20, w208, &w199, &w209, inv_w199, k);
-        let w217 = series::mul_d(dot21, &w140, &w205, k);
-        let w218 = series::mul_d(dot22, &w198, &w209, k);
-        w223[k] = series::sq(&w205, k);
-        let w224 = series::mul_d(dot23, &w149, &w223, k);
-        w225[k] = series::sq(&w209, k);
-        let w226 = series::mul_d(dot24, &w182, &w225, k);
-        let w227 = x[4][k] * w175;
-        let w228 = x[5][k] * w216;
-        let w229 = x[1][k] * w163;
-        let w230 = x[2][k] * w212;
-        let w231 = w28 * sin_x0[k];
-        let w232 = w167 * w215;
-        let w233 = w168 * w170;
-        let w234 = w169 * w214;
-        let w235 = w229 + w230;
-        let w236 = w231 + w235;
-        let w237 = w233 + w236;
-        let w238 = w234 + w237;
-        let w239 = w238 - w227;
-        let w240 = w239 - w228;
-        let w241 = w240 - w232;
-        let w242 = w241 - w217;
-        let w243 = w242 - w218;
-        let w244 = w180 * w225[k];
-        let w245 = at0(k, w222) + w226;
-        let w246 = w245 - w224;
-        w247[k] = w246 - w244;
-        if k == 0 { inv_w247 = 1.0 / w247[0]; }
-        w248[k] = series::div_d(dot25, w243, &w247, &w248, inv_w247, k);
-        let w249 = series::mul_d(dot26, &w209, &w248, k);
-        w250[k] = w200[k] - w249;
-        let w251 = series::mul_d(dot27, &w155, &w250, k);
-        let w252 = series::mul_d(dot28, &w205, &w248, k);
-        let w253 = w150[k] - w251;
-        let w254 = w253 - w252;
+        let w118 = series::sq(&x[3], k);
+        let w119 = series::mul_d(dot7, &x[3], &w45, k);
+        let w120 = series::mul_d(dot8, &x[3], &w46, k);
+        let w192 = x[1][k] + x[2][k];
+        w193[k] = w192 - at0(k, w12);
+        let w194 = x[1][k] * w51;
+        let w195 = x[2][k] * w51;
+        let w196 = w194 + w195;
+        w197[k] = w196 - at0(k, w50);
+        let w198 = series::mul_d(dot9, &w193, &w197, k);
+        let w203 = x[1][k] * w56;
+        let w204 = x[2][k] * w80;
+        w205[k] = w203 + w204;
+        w206[k] = x[2][k] * w47;
+        let w207 = series::mul_d(dot10, &w205, &w206, k);
+        let w208 = x[1][k] * w57;
+        let w209 = x[2][k] * w81;
+        w210[k] = w208 + w209;
+        let w211 = series::mul_d(dot11, &x[2], &w210, k);
+        let w212 = series::sq(&x[1], k);
+        let w236 = x[4][k] * w182;
+        let w237 = x[5][k] * w183;
+        let w238 = x[1][k] * w184;
+        let w239 = x[2][k] * w185;
+        let w240 = sin_x0[k] * w190;
+        let w241 = w118 * w187;
+        let w242 = w119 * w188;
+        let w243 = w120 * w189;
+        let w244 = w38 - w236;
+        let w245 = w244 - w237;
+        let w246 = w245 - w238;
+        let w247 = w246 - w239;
+        let w248 = w247 - w240;
+        let w249 = w248 - w78;
+        let w250 = w249 - w97;
+        let w251 = w250 - w241;
+        let w252 = w251 - w242;
+        let w253 = w252 - w243;
+        let w254 = x[1][k] * w224;
+        let w255 = x[2][k] * w222;
+        let w256 = w63 * w212;
+        let w257 = w254 + w255;
+        let w258 = w198 + w257;
+        let w259 = w207 + w258;
+        let w260 = w211 + w259;
+        let w261 = w256 + w260;
+        w262[k] = at0(k, w235) + w261;
+        if k == 0 { inv_w262 = 1.0 / w262[0]; }
+        w263[k] = series::div_d(dot12, w253, &w262, &w263, inv_w262, k);
+        let w302 = x[4][k] * w294;
+        let w303 = x[5][k] * w295;
+        let w304 = x[1][k] * w296;
+        let w305 = x[2][k] * w297;
+        let w306 = sin_x0[k] * w298;
+        let w307 = w118 * w299;
+        let w308 = w119 * w300;
+        let w309 = w120 * w301;
+        let w310 = w263[k] * w293;
+        let w311 = w304 + w305;
+        let w312 = w306 + w311;
+        let w313 = w308 + w312;
+        let w314 = w309 + w313;
+        let w315 = w314 - w302;
+        let w316 = w315 - w303;
+        let w317 = w316 - w307;
+        let w318 = w317 - w310;
+        let w320 = x[4][k] * w276;
+        let w321 = x[5][k] * w277;
+        let w322 = x[1][k] * w278;
+        let w323 = x[2][k] * w279;
+        let w324 = sin_x0[k] * w280;
+        let w325 = w118 * w281;
+        let w326 = w119 * w282;
+        let w327 = w120 * w283;
+        let w328 = w150 * w263[k];
+        let w329 = w320 + w321;
+        let w330 = w322 + w329;
+        let w331 = w323 + w330;
+        let w332 = w324 + w331;
+        let w333 = w325 + w332;
+        let w334 = w326 + w333;
+        let w335 = w327 + w334;
+        let w336 = w335 - w328;
         let inv_k1 = 1.0 / (k + 1) as f64;
         x[0][k + 1] = x[3][k] * inv_k1;
         x[1][k + 1] = x[4][k] * inv_k1;
         x[2][k + 1] = x[5][k] * inv_k1;
-        x[3][k + 1] = w254 * inv_k1;
-        x[4][k + 1] = w250[k] * inv_k1;
-        x[5][k + 1] = w248[k] * inv_k1;
+        x[3][k + 1] = w263[k] * inv_k1;
+        x[4][k + 1] = w318 * inv_k1;
+        x[5][k + 1] = w336 * inv_k1;
     }
 }
 
