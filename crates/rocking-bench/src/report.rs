@@ -99,8 +99,27 @@ struct Match {
     preset: Met,
 }
 
-/// The cheapest point of `points` (by `key`) whose error meets `level`; the study's reference
+/// The points of `points` whose error meets `level`, with that error; the study's reference
 /// configuration is not a candidate. `keep` filters the candidates further.
+fn meeting<'a>(
+    points: &'a Value,
+    level: f64,
+    check: &'a Value,
+    keep: impl Fn(&Value) -> bool + 'a,
+) -> impl Iterator<Item = (&'a Value, f64)> + 'a {
+    points
+        .as_array()
+        .into_iter()
+        .flatten()
+        .filter(move |q| {
+            !(q["method"] == "dop853" && (f(&q["tol"]) / crate::study::REF_TOL - 1.0).abs() < 1e-9)
+                && keep(q)
+        })
+        .map(move |q| (q, combined(q, check, level)))
+        .filter(move |(_, e)| *e <= level)
+}
+
+/// The cheapest point of `points` (by `key`) whose error meets `level` ([`meeting`]).
 fn cheapest(
     points: &Value,
     key: &str,
@@ -108,16 +127,7 @@ fn cheapest(
     check: &Value,
     keep: impl Fn(&Value) -> bool,
 ) -> Met {
-    points
-        .as_array()
-        .into_iter()
-        .flatten()
-        .filter(|q| {
-            !(q["method"] == "dop853" && (f(&q["tol"]) / crate::study::REF_TOL - 1.0).abs() < 1e-9)
-                && keep(q)
-        })
-        .map(|q| (q, combined(q, check, level)))
-        .filter(|(_, e)| *e <= level)
+    meeting(points, level, check, keep)
         .min_by(|a, b| f(&a.0[key]).total_cmp(&f(&b.0[key])))
         .map(|(q, e)| (q.clone(), e))
 }
@@ -246,7 +256,7 @@ fn paired_table(w: &mut String, paired: &Value) -> Result<()> {
             f(&v["max"])
         )
     };
-    writeln!(w, "The same matched points for the targets of issue 31, timed again in {} alternated rounds by `bench/paired.py` (after the heyoka peer in `cargo xtask bench`; by hand: `PYTHONPATH=derive .venv/bin/python bench/paired.py`): each round times every heyoka point (median of ≥ 5 runs, in one process, as the peer does) and every Rust configuration (`rocking-bench probe`, {} s each), in reverse order every other round, so both tools run in the same minutes. Times: median over the rounds (smallest–largest); ratios: heyoka / Rust of each round, median (smallest–largest). *Preset*: the cheapest preset whose configuration meets the level.\n", paired["rounds"], f(&paired["rust_seconds"]))?;
+    writeln!(w, "The same matched points for the targets of issue 31, timed again in {} alternated rounds by `bench/paired.py` (after the heyoka peer in `cargo xtask bench`; by hand: `PYTHONPATH=derive .venv/bin/python bench/paired.py`): each round times every heyoka tolerance that meets the level (median of ≥ 5 runs, in one process, as the peer does) and takes the fastest of that round as heyoka's time (the table names the tolerance fastest in most rounds), and every Rust configuration (`rocking-bench probe`, {} s each), in reverse order every other round, so both tools run in the same minutes. Times: median over the rounds (smallest–largest); ratios: heyoka / Rust of each round, median (smallest–largest). *Preset*: the cheapest preset whose configuration meets the level.\n", paired["rounds"], f(&paired["rust_seconds"]))?;
     writeln!(w, "| case | error ≤ | heyoka | Rust, cheapest configuration | heyoka / Rust | cheapest preset | heyoka / preset |\n|---|---|---|---|---|---|---|")?;
     for r in paired["rows"].as_array().into_iter().flatten() {
         let config = |c: &Value| {
@@ -286,8 +296,10 @@ fn paired_table(w: &mut String, paired: &Value) -> Result<()> {
 }
 
 /// The matched points of the targets' levels as JSON, for `bench/paired.py`: per case and level
-/// resolved by the reference, heyoka's tolerance, the cheapest Rust configuration and the
-/// cheapest preset that meet it (either may be null).
+/// resolved by the reference, heyoka's cheapest tolerance and every heyoka tolerance that meets
+/// it (`candidates`: one draw of heyoka's time does not tell them apart, so the rounds time them
+/// all), the cheapest Rust configuration and the cheapest preset that meet it (either may be
+/// null).
 pub fn pairs(dir: &Path) -> Result<Value> {
     let read = |name: &str| -> Result<Value> {
         let path = dir.join(name);
@@ -309,10 +321,18 @@ pub fn pairs(dir: &Path) -> Result<Value> {
         .filter(|m| m.judged != Judged::Neither)
         .filter_map(|m| {
             let (h, _) = m.heyoka?;
+            let peer = hy["cases"]
+                .as_array()?
+                .iter()
+                .find(|c| c["name"] == m.case)?;
+            let check = &cases.iter().find(|r| r["name"] == m.case)?["check"];
+            let candidates: Vec<Value> = meeting(&peer["points"], m.level, check, |_| true)
+                .map(|(q, _)| q["tol"].clone())
+                .collect();
             Some(serde_json::json!({
                 "case": m.case,
                 "level": m.level,
-                "heyoka": {"tol": h["tol"], "seconds": h["seconds"]},
+                "heyoka": {"tol": h["tol"], "seconds": h["seconds"], "candidates": candidates},
                 "rust": m.rust.map(|(q, _)| config(&q)),
                 "preset": m.preset.map(|(q, _)| {
                     // Every preset of that configuration (`fast` and `default` may share one).
@@ -1082,5 +1102,15 @@ mod tests {
         assert_eq!(tol(&m12.heyoka), Some(1e-9));
         assert_eq!(tol(&m12.rust), Some(3.3e-9));
         assert_eq!(tol(&m12.preset), Some(accurate.tol));
+        // heyoka's candidates for the paired rounds: every tolerance that meets the level.
+        let check = json!({"errors": {"max_theta": 1e-16, "impact_time_rel": 1e-9}});
+        let tols = |level: f64| -> Vec<f64> {
+            meeting(&hy["cases"][0]["points"], level, &check, |_| true)
+                .map(|(q, _)| f(&q["tol"]))
+                .collect()
+        };
+        assert_eq!(tols(1e-9), vec![1e-7, 1e-9]);
+        assert_eq!(tols(1e-12), vec![1e-9]);
+        assert_eq!(tols(1e-14), Vec::<f64>::new());
     }
 }
