@@ -10,9 +10,9 @@ round every heyoka point (in this process, as `heyoka_peer.py` times it) and eve
 configuration (`rocking-bench probe`, process CPU time), the order reversed every other round.
 heyoka's time of a round is its fastest tolerance that meets the level, in that round: its cost
 is nearly flat in the tolerance (0.6-1.0 ms per simulation from 1e-5 to 1e-9 on Fig. 3 in the
-study's runs), so the study's one draw per tolerance does not tell which is its strongest. It writes per point the
-median time and range over the rounds, and per case and level the ratio heyoka / Rust of each
-round, median and range, to DIR/paired.json, which
+study's runs), so the study's one draw per tolerance does not tell which is its strongest. It
+writes per point the median time and range over the rounds, and per case and level the ratio
+heyoka / Rust of each round, median and range, to DIR/paired.json, which
 `rocking-bench report` turns into a table of docs/accuracy.md (`cargo xtask bench` runs this
 script after the heyoka peer).
 

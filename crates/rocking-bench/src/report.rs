@@ -94,6 +94,8 @@ struct Match {
     level: f64,
     judged: Judged,
     heyoka: Met,
+    /// Every heyoka tolerance that meets the level (the paired rounds time them all).
+    heyoka_tols: Vec<f64>,
     rust: Met,
     /// The cheapest preset's configuration.
     preset: Met,
@@ -168,6 +170,9 @@ fn matches(hy: &Value, cases: &[Value]) -> Vec<Match> {
                 level,
                 judged,
                 heyoka: cheapest(&c["points"], "seconds", level, check, |_| true),
+                heyoka_tols: meeting(&c["points"], level, check, |_| true)
+                    .map(|(q, _)| f(&q["tol"]))
+                    .collect(),
                 rust: cheapest(&rc["points"], "cpu_s", level, check, |_| true),
                 preset,
             });
@@ -321,18 +326,10 @@ pub fn pairs(dir: &Path) -> Result<Value> {
         .filter(|m| m.judged != Judged::Neither)
         .filter_map(|m| {
             let (h, _) = m.heyoka?;
-            let peer = hy["cases"]
-                .as_array()?
-                .iter()
-                .find(|c| c["name"] == m.case)?;
-            let check = &cases.iter().find(|r| r["name"] == m.case)?["check"];
-            let candidates: Vec<Value> = meeting(&peer["points"], m.level, check, |_| true)
-                .map(|(q, _)| q["tol"].clone())
-                .collect();
             Some(serde_json::json!({
                 "case": m.case,
                 "level": m.level,
-                "heyoka": {"tol": h["tol"], "seconds": h["seconds"], "candidates": candidates},
+                "heyoka": {"tol": h["tol"], "seconds": h["seconds"], "candidates": m.heyoka_tols},
                 "rust": m.rust.map(|(q, _)| config(&q)),
                 "preset": m.preset.map(|(q, _)| {
                     // Every preset of that configuration (`fast` and `default` may share one).
@@ -1103,14 +1100,12 @@ mod tests {
         assert_eq!(tol(&m12.rust), Some(3.3e-9));
         assert_eq!(tol(&m12.preset), Some(accurate.tol));
         // heyoka's candidates for the paired rounds: every tolerance that meets the level.
+        assert_eq!(m9.heyoka_tols, vec![1e-7, 1e-9]);
+        assert_eq!(m12.heyoka_tols, vec![1e-9]);
         let check = json!({"errors": {"max_theta": 1e-16, "impact_time_rel": 1e-9}});
-        let tols = |level: f64| -> Vec<f64> {
-            meeting(&hy["cases"][0]["points"], level, &check, |_| true)
-                .map(|(q, _)| f(&q["tol"]))
-                .collect()
-        };
-        assert_eq!(tols(1e-9), vec![1e-7, 1e-9]);
-        assert_eq!(tols(1e-12), vec![1e-9]);
-        assert_eq!(tols(1e-14), Vec::<f64>::new());
+        assert_eq!(
+            meeting(&hy["cases"][0]["points"], 1e-14, &check, |_| true).count(),
+            0
+        );
     }
 }
