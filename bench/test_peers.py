@@ -121,6 +121,15 @@ class TapeTranslations(unittest.TestCase):
             raise unittest.SkipTest(f"heyoka peer not importable: {e}")
         cls.hp = heyoka_peer
 
+    def test_the_tolerance_grid_has_one_tolerance_per_heyoka_order(self):
+        tols = self.hp.grid_tols(5, 12)
+        self.assertEqual(tols, [1e-5, 3e-6, 3e-7, 1e-7, 1e-8, 1e-9, 1e-10, 3e-11, 3e-12])
+        self.assertEqual([self.hp.heyoka_order(t) for t in tols], list(range(7, 16)))
+        x, v = self.hp.hy.make_vars("x", "v")
+        for tol in (3e-6, 1e-6, 3e-9, 1e-8):  # heyoka's own order, both ends of an order's range
+            ta = self.hp.hy.taylor_adaptive([(x, v), (v, -x)], [0.0, 1.0], tol=tol)
+            self.assertEqual(ta.order, self.hp.heyoka_order(tol), f"tol {tol:g}")
+
     def inputs(self, f, rng):
         """A plausible point: the full-mass case's structure (fig5-flexible), small states, s = +-1."""
         def one(name, n):

@@ -126,7 +126,7 @@ fn accurate_falls_back_to_dop853_without_a_taylor_series() {
             taylor,
             Accuracy {
                 method: Method::Taylor,
-                tol: 1e-11
+                tol: 3e-11
             }
         );
     }

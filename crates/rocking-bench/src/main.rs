@@ -25,9 +25,8 @@ usage: rocking-bench run [--quick] [--out DIR]
        rocking-bench probe CASE METHOD TOL [SECONDS]
        rocking-bench pairs [--dir DIR]
 
-run     the accuracy/cost study (dopri5, dop853, taylor; tolerances 1e-3..1e-12, taylor also 1e-13 and 1e-14,
-        dop853 also 1e-13;
-        reference DOP853 1e-14);
+run     the accuracy/cost study (dopri5, dop853, taylor; tolerances 1e-3, 3e-4, 1e-4, ..., 3e-12,
+        1e-12, taylor also 1e-13 and 1e-14, dop853 also 1e-13; reference DOP853 1e-14);
         writes DIR/rust.json and DIR/cases.json (default DIR: target/bench)
         --quick  fewer tolerances and cases (a minute or two)
 report  writes DOCS/accuracy.md and DOCS/img/accuracy-*.{json,svg,png} from

@@ -629,12 +629,28 @@ fn case_json(case: &Case, variant: &str, reduced: &Structure) -> Value {
     })
 }
 
+/// The study's tolerances from 1e-`loosest` to 1e-`tightest`: 1 and 3 in every decade
+/// (1e-3, 3e-4, 1e-4, ...). Decades alone left a factor of 10 between the cheapest
+/// configuration that meets a level and the next looser one, 7 % of a Taylor run's steps at
+/// order 16 on each side; the heyoka peer takes the same grid (`bench/heyoka_peer.py`).
+/// Parsed from their decimal form, so each is the double a user's `3e-11` is.
+pub fn grid(loosest: i32, tightest: i32) -> Vec<f64> {
+    (loosest..=tightest)
+        .flat_map(|k| {
+            let one = format!("1e-{k}");
+            let three = (k < tightest).then(|| format!("3e-{}", k + 1));
+            std::iter::once(one).chain(three)
+        })
+        .map(|t| t.parse().expect("a decimal tolerance parses"))
+        .collect()
+}
+
 pub fn run(quick: bool, dir: &Path) -> Result<()> {
     std::fs::create_dir_all(dir)?;
     let tols: Vec<f64> = if quick {
         vec![1e-3, 1e-5, 1e-7, 1e-9, 1e-11]
     } else {
-        (3..=12).map(|k| 10f64.powi(-k)).collect()
+        grid(3, 12)
     };
     let min_total = if quick { 0.05 } else { 0.2 };
     let cases = cases(quick)?;
@@ -938,4 +954,19 @@ pub fn probe(name: &str, method: &str, tol: f64, seconds: f64) -> Result<()> {
         e.branch_divergences
     );
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::grid;
+
+    #[test]
+    fn the_grid_is_one_and_three_per_decade_as_a_user_writes_them() {
+        assert_eq!(grid(3, 5), [1e-3, 3e-4, 1e-4, 3e-5, 1e-5]);
+        let full = grid(3, 12);
+        assert_eq!(full.len(), 19);
+        assert_eq!((full[0], full[18]), (1e-3, 1e-12));
+        assert!(full.contains(&3e-11) && full.contains(&1e-11));
+        assert!(full.windows(2).all(|w| w[0] > w[1]));
+    }
 }

@@ -140,11 +140,14 @@ impl Preset {
         // branches (max θ/α off by 0.09-0.33), and Taylor 1e-7 is the cheapest configuration
         // within 1e-3 there and on every other case; the cheapest DOP853 for 1e-3, 1e-5, costs
         // 1.32× more. DOP853 against the Taylor method for the other targets: 1.73-1.79×;
-        // `reference`'s independence costs 3.10×.
+        // `reference`'s independence costs 3.10×. `accurate` from the study of 2026-11-27
+        // 03:32 UTC (604 s), the first with 3e-k between the decades: Taylor 3e-11 meets 1e-9
+        // on every case (4.2e-11) and costs 8 % less than 1e-11 (545.6 against 591.1 µs in
+        // that run); Taylor 1e-10 and 3e-10 miss it on the spectrum slice (1.8e-9, 5.7e-9).
         match self {
             Preset::Fast => row(1e-3, None, taylor(1e-7), 1e-5, 7.6e-4, 380e-6),
             Preset::Default => row(1e-6, None, taylor(1e-7), 1e-7, 7.5e-7, 380e-6),
-            Preset::Accurate => row(1e-9, None, taylor(1e-11), 1e-10, 3.3e-11, 582e-6),
+            Preset::Accurate => row(1e-9, None, taylor(3e-11), 1e-10, 4.2e-11, 546e-6),
             Preset::Reference => row(
                 1e-11,
                 Some(Method::Dop853),
