@@ -103,6 +103,22 @@ pub fn horner(c: &[f64], tau: f64) -> f64 {
     c.iter().rev().fold(0.0, |acc, &ck| acc * tau + ck)
 }
 
+/// `Σ_{k≥1} |c_k| h^k`: how far a polynomial can move from `c[0]` over a step of `h` (the `tail`
+/// of [`far_from_zero`]). In two halves, `lo(h) + h^m hi(h)`, each by Horner's rule, that the
+/// CPU runs side by side: one chain of 16 dependent add-multiply pairs at order 16 held up the
+/// step that asks it.
+#[must_use]
+pub fn abs_tail(c: &[f64], h: f64) -> f64 {
+    let t = c.get(1..).unwrap_or_default();
+    let (lo, hi) = t.split_at(t.len().div_ceil(2));
+    let horner_abs = |s: &[f64]| s.iter().rev().fold(0.0, |acc, v| (acc + v.abs()) * h);
+    let mut h_m = 1.0;
+    for _ in 0..lo.len() {
+        h_m *= h;
+    }
+    horner_abs(lo) + h_m * horner_abs(hi)
+}
+
 /// Forward differences of Bernstein coefficients (the signs of g's derivative's coefficients).
 fn diffs(b: &[f64; MAX_DEGREE + 1], n: usize) -> [f64; MAX_DEGREE + 1] {
     let mut d = [0.0; MAX_DEGREE + 1];

@@ -1,7 +1,7 @@
 //! Root isolation on a step: every sign change is found, double roots and grazing included.
 
 use rocking_ode::events::Direction;
-use rocking_ode::poly::{first_root, horner};
+use rocking_ode::poly::{abs_tail, first_root, horner};
 
 const EPS: f64 = f64::EPSILON;
 
@@ -204,4 +204,26 @@ fn no_sign_change_is_missed_on_random_polynomials() {
     }
     println!("random polynomials: {checked} grid crossings matched");
     assert!(checked > 3000);
+}
+
+#[test]
+fn abs_tail_is_the_sum_of_the_terms_beyond_the_first() {
+    for n in 0..=21 {
+        let c: Vec<f64> = (0..n)
+            .map(|k| ((k as f64 * 1.7).sin() - 0.3) * 10f64.powi(k as i32 % 5 - 2))
+            .collect();
+        for h in [0.0f64, 1e-3, 0.37, 1.0, 2.5] {
+            let exact: f64 = c
+                .iter()
+                .enumerate()
+                .skip(1)
+                .map(|(k, v)| v.abs() * h.powi(k as i32))
+                .sum();
+            let got = abs_tail(&c, h);
+            assert!(
+                (got - exact).abs() <= 4.0 * n as f64 * EPS * exact,
+                "{n} coefficients, h = {h}: {got:e} against {exact:e}"
+            );
+        }
+    }
 }

@@ -190,10 +190,7 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
                     .is_some_and(|c| s * c < 0.0);
             // One bound of θ's change over the step rules out both events on most steps, before
             // their polynomials (s θ, s θ − θ_over) are formed.
-            let tail = theta[1..]
-                .iter()
-                .rev()
-                .fold(0.0, |acc, c| (acc + c.abs()) * h);
+            let tail = poly::abs_tail(theta, h);
             let root = |shift: f64, dir| {
                 let g0 = s * theta[0] - shift;
                 if poly::far_from_zero(g0, tail, order) {
