@@ -208,20 +208,20 @@ fn no_sign_change_is_missed_on_random_polynomials() {
 
 #[test]
 fn abs_tail_is_the_sum_of_the_terms_beyond_the_first() {
-    for n in 0..=21 {
+    for n in 0..=21i32 {
         let c: Vec<f64> = (0..n)
-            .map(|k| ((k as f64 * 1.7).sin() - 0.3) * 10f64.powi(k as i32 % 5 - 2))
+            .map(|k| ((f64::from(k) * 1.7).sin() - 0.3) * 10f64.powi(k % 5 - 2))
             .collect();
         for h in [0.0f64, 1e-3, 0.37, 1.0, 2.5] {
             let exact: f64 = c
                 .iter()
                 .enumerate()
                 .skip(1)
-                .map(|(k, v)| v.abs() * h.powi(k as i32))
+                .map(|(k, v)| v.abs() * h.powi(i32::try_from(k).unwrap()))
                 .sum();
             let got = abs_tail(&c, h);
             assert!(
-                (got - exact).abs() <= 4.0 * n as f64 * EPS * exact,
+                (got - exact).abs() <= 4.0 * f64::from(n) * EPS * exact,
                 "{n} coefficients, h = {h}: {got:e} against {exact:e}"
             );
         }
