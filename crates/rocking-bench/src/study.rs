@@ -630,9 +630,9 @@ fn case_json(case: &Case, variant: &str, reduced: &Structure) -> Value {
 }
 
 /// The study's tolerances from 1e-`loosest` to 1e-`tightest`: 1 and 3 in every decade
-/// (1e-3, 3e-4, 1e-4, ...). Decades alone left a factor of 10 between the cheapest
-/// configuration that meets a level and the next looser one, 7 % of a Taylor run's steps at
-/// order 16 on each side; the heyoka peer takes the same grid (`bench/heyoka_peer.py`).
+/// (1e-3, 3e-4, 1e-4, ...). With decades alone the cheapest configuration that meets a level
+/// could be up to 10 times tighter than it needs, and a decade is 15 % of a Taylor run's steps
+/// at order 16; the heyoka peer takes the same grid (`bench/heyoka_peer.py`).
 /// Parsed from their decimal form, so each is the double a user's `3e-11` is.
 pub fn grid(loosest: i32, tightest: i32) -> Vec<f64> {
     (loosest..=tightest)
