@@ -7,6 +7,7 @@
 //! is what the search of maxima inside a step spends most on.
 
 use rocking_kernels::Array;
+use rocking_ode::poly;
 use rocking_ode::taylor::Taylor;
 
 /// What the driver reads of a step's dense output, the rocking state `X` of its variant.
@@ -74,7 +75,7 @@ impl<X: Array, const D: usize> StepView<X> for TaylorStep<'_, D> {
         };
         let c = &self.ode.coefficients()[r][..=self.ode.order()];
         let h = self.ode.last_step_size();
-        let sum = c.iter().rev().fold(0.0, |acc, v| acc * h + v.abs());
+        let sum = c[0].abs() + poly::abs_tail(c, h);
         sum * self.scale[r].abs() * (1.0 + 1e-12)
     }
 }
