@@ -8,7 +8,7 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use rocking_kernels::kernels::{
     AddedMass, CosineShape, Full, MasslessBase, MasslessColumn, PointMass, Rigid, SmallAngle,
 };
-use rocking_kernels::{OneCoordinate, Physical, Variant};
+use rocking_kernels::{best_isa, isa, OneCoordinate, Physical, Variant};
 
 fn bench_variant<V: OneCoordinate>(c: &mut Criterion) {
     let p = V::params(&Physical::dimensionless(0.1, 5.0, 2.0, 2.0, 1.0, 0.01));
@@ -86,6 +86,18 @@ fn bench_taylor<const N: usize>(c: &mut Criterion) {
         b.iter(|| {
             let mut x = black_box(start());
             point_mass::rocking_rhs_free(&mut x, black_box(1.0), black_box(&p));
+            x
+        })
+    });
+    // The solver runs the kernels through `best_isa!` (AVX2 where the CPU has it, same bits).
+    group.bench_function(format!("{}_free/{}", PointMass::NAME, isa::best()), |b| {
+        b.iter(|| {
+            let mut x = black_box(start());
+            best_isa!(point_mass::rocking_rhs_free(
+                &mut x,
+                black_box(1.0),
+                black_box(&p)
+            ));
             x
         })
     });

@@ -4,7 +4,7 @@
 //! `derive/` (CasADi): the equations of motion, the uplift condition, energies, impact maps,
 //! section forces at the column base, ground reactions and reference quantities, as straight-line
 //! `f64` functions without allocation. This file is the
-//! only hand-written part with [`series`] and [`modes`]: the [`Physical`] parameter set, the
+//! only hand-written part with [`series`], [`isa`] and [`modes`]: the [`Physical`] parameter set, the
 //! [`Variant`] trait through which the solver runs any variant, monomorphised, its array types
 //! ([`Layout`]), and the types of the generated registry ([`kernels::MODELS`],
 //! [`kernels::VARIANT_INFO`]; [`with_variant!`] runs a variant by name).
@@ -51,6 +51,7 @@
 
 #![warn(missing_docs)]
 
+pub mod isa;
 pub mod kernels;
 pub mod modes;
 pub mod series;

@@ -7,7 +7,7 @@
 
 use rocking_kernels::kernels::{self, index::power as pwr};
 use rocking_kernels::taylor;
-use rocking_kernels::{Array, Variant};
+use rocking_kernels::{best_isa, Array, Variant};
 use rocking_motion::GroundMotion;
 use rocking_ode::taylor::{TaylorEvents, TaylorSystem};
 
@@ -17,7 +17,8 @@ const LEFT: f64 = -1.0;
 /// A kernel variant's Taylor-mode kernels (see the generated `rocking_kernels::taylor::<variant>`
 /// for the inputs; series hold their first N coefficients). The series are passed as slices of
 /// the variant's lengths (`V::X::LEN` rows for a rocking state, `V::Xc::LEN` for a contact one):
-/// each call checks the length once and hands the generated kernel its array.
+/// each call checks the length once and hands the generated kernel its array, run in the best
+/// instruction set of the CPU (`rocking_kernels::isa`: the same bits, 10–15 % faster with AVX2).
 ///
 /// # Panics
 ///
@@ -66,11 +67,13 @@ macro_rules! taylor_variant {
                 p: &Self::Params,
             ) {
                 use kernels::layout::$nq as l;
-                taylor::$module::rocking_rhs(rows!(x, l::X), ug, s, p);
+                let x = rows!(x, l::X);
+                best_isa!(taylor::$module::rocking_rhs(x, ug, s, p));
             }
             fn rocking_series_free<const N: usize>(x: &mut [[f64; N]], s: f64, p: &Self::Params) {
                 use kernels::layout::$nq as l;
-                taylor::$module::rocking_rhs_free(rows!(x, l::X), s, p);
+                let x = rows!(x, l::X);
+                best_isa!(taylor::$module::rocking_rhs_free(x, s, p));
             }
             fn contact_series<const N: usize>(
                 xc: &mut [[f64; N]],
@@ -78,11 +81,13 @@ macro_rules! taylor_variant {
                 p: &Self::Params,
             ) {
                 use kernels::layout::$nq as l;
-                taylor::$module::contact_rhs(rows!(xc, l::XC), ug, p);
+                let xc = rows!(xc, l::XC);
+                best_isa!(taylor::$module::contact_rhs(xc, ug, p));
             }
             fn contact_series_free<const N: usize>(xc: &mut [[f64; N]], p: &Self::Params) {
                 use kernels::layout::$nq as l;
-                taylor::$module::contact_rhs_free(rows!(xc, l::XC), p);
+                let xc = rows!(xc, l::XC);
+                best_isa!(taylor::$module::contact_rhs_free(xc, p));
             }
             fn uplift_series<const N: usize>(
                 xc: &[[f64; N]],
@@ -91,7 +96,8 @@ macro_rules! taylor_variant {
                 p: &Self::Params,
             ) -> [f64; N] {
                 use kernels::layout::$nq as l;
-                taylor::$module::uplift(rows!(xc, l::XC), ug, s, p)[0]
+                let xc = rows!(xc, l::XC);
+                best_isa!(taylor::$module::uplift(xc, ug, s, p))[0]
             }
             fn power_series<const N: usize>(
                 x: &[[f64; N]],
@@ -100,7 +106,8 @@ macro_rules! taylor_variant {
                 p: &Self::Params,
             ) -> [[f64; N]; 2] {
                 use kernels::layout::$nq as l;
-                taylor::$module::power(rows!(x, l::X), ug, s, p)
+                let x = rows!(x, l::X);
+                best_isa!(taylor::$module::power(x, ug, s, p))
             }
         }
     )*};

@@ -2,6 +2,8 @@
 //!
 //! Taylor-mode twins of the kernels of [`crate::kernels::cantilever_modes3`]: the same instruction tape
 //! evaluated on truncated power series of N coefficients (see `rocking_kernels::series`).
+//! Each is `#[inline(always)]`: its caller chooses the instruction set it is compiled for (the
+//! solver runs it as AVX2 code where the CPU has it, bit for bit the same results).
 
 use crate::kernels::cantilever_modes3::Params;
 use crate::series::{self, at0};
@@ -12,6 +14,7 @@ pub const NAME: &str = "cantilever_modes3";
 /// Taylor coefficients of the solution of `x' = rocking_rhs(..)`: on entry `x[i][0]` holds
 /// the state at the expansion point; on return `x[i][k]` is the k-th coefficient.
 /// Series inputs hold their first N coefficients.
+#[inline(always)]
 pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 8], ug: &[f64; N], s: f64, p: &Params) {
     let mut d_x0 = [0.0f64; N];
     let mut sin_x0 = [0.0f64; N];
@@ -651,6 +654,7 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 8], ug: &[f64; N], s: f64,
 /// the state at the expansion point; on return `x[i][k]` is the k-th coefficient.
 /// Series inputs hold their first N coefficients.
 /// The twin of `rocking_rhs` with `ug` identically zero: for the steps after the excitation.
+#[inline(always)]
 pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 8], s: f64, p: &Params) {
     let mut d_x0 = [0.0f64; N];
     let mut sin_x0 = [0.0f64; N];
@@ -1229,6 +1233,7 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 8], s: f64, p: &Param
 /// Taylor coefficients of the solution of `xc' = contact_rhs(..)`: on entry `xc[i][0]` holds
 /// the state at the expansion point; on return `xc[i][k]` is the k-th coefficient.
 /// Series inputs hold their first N coefficients.
+#[inline(always)]
 pub fn contact_rhs<const N: usize>(xc: &mut [[f64; N]; 6], ug: &[f64; N], p: &Params) {
     let w7: f64 = 2.0;
     let w8: f64 = -1.5452954210407739;
@@ -1422,6 +1427,7 @@ pub fn contact_rhs<const N: usize>(xc: &mut [[f64; N]; 6], ug: &[f64; N], p: &Pa
 /// the state at the expansion point; on return `xc[i][k]` is the k-th coefficient.
 /// Series inputs hold their first N coefficients.
 /// The twin of `contact_rhs` with `ug` identically zero: for the steps after the excitation.
+#[inline(always)]
 pub fn contact_rhs_free<const N: usize>(xc: &mut [[f64; N]; 6], p: &Params) {
     let w7: f64 = 2.0;
     let w8: f64 = -1.5452954210407739;
@@ -1583,6 +1589,7 @@ pub fn contact_rhs_free<const N: usize>(xc: &mut [[f64; N]; 6], p: &Params) {
 
 /// The first N Taylor coefficients of each output of `uplift` along series inputs.
 #[must_use]
+#[inline(always)]
 pub fn uplift<const N: usize>(xc: &[[f64; N]; 6], ug: &[f64; N], s: f64, p: &Params) -> [[f64; N]; 1] {
     let w0: f64 = s;
     let w4: f64 = p[1];
@@ -1831,6 +1838,7 @@ pub fn uplift<const N: usize>(xc: &[[f64; N]; 6], ug: &[f64; N], s: f64, p: &Par
 
 /// The first N Taylor coefficients of each output of `energy` along series inputs.
 #[must_use]
+#[inline(always)]
 pub fn energy<const N: usize>(x: &[[f64; N]; 8], s: f64, p: &Params) -> [[f64; N]; 4] {
     let w0: f64 = p[4];
     let w2: f64 = s;
@@ -2085,6 +2093,7 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 8], s: f64, p: &Params) -> [[f64; N
 
 /// The first N Taylor coefficients of each output of `power` along series inputs.
 #[must_use]
+#[inline(always)]
 pub fn power<const N: usize>(x: &[[f64; N]; 8], ug: &[f64; N], s: f64, p: &Params) -> [[f64; N]; 2] {
     let mut d_x0 = [0.0f64; N];
     let mut sin_x0 = [0.0f64; N];

@@ -2,6 +2,8 @@
 //!
 //! Taylor-mode twins of the kernels of [`crate::kernels::massless_base`]: the same instruction tape
 //! evaluated on truncated power series of N coefficients (see `rocking_kernels::series`).
+//! Each is `#[inline(always)]`: its caller chooses the instruction set it is compiled for (the
+//! solver runs it as AVX2 code where the CPU has it, bit for bit the same results).
 
 use crate::kernels::massless_base::Params;
 use crate::series::{self, at0};
@@ -12,6 +14,7 @@ pub const NAME: &str = "massless_base";
 /// Taylor coefficients of the solution of `x' = rocking_rhs(..)`: on entry `x[i][0]` holds
 /// the state at the expansion point; on return `x[i][k]` is the k-th coefficient.
 /// Series inputs hold their first N coefficients.
+#[inline(always)]
 pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64, p: &Params) {
     let mut d_x0 = [0.0f64; N];
     let mut sin_x0 = [0.0f64; N];
@@ -221,6 +224,7 @@ pub fn rocking_rhs<const N: usize>(x: &mut [[f64; N]; 4], ug: &[f64; N], s: f64,
 /// the state at the expansion point; on return `x[i][k]` is the k-th coefficient.
 /// Series inputs hold their first N coefficients.
 /// The twin of `rocking_rhs` with `ug` identically zero: for the steps after the excitation.
+#[inline(always)]
 pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Params) {
     let mut d_x0 = [0.0f64; N];
     let mut sin_x0 = [0.0f64; N];
@@ -405,6 +409,7 @@ pub fn rocking_rhs_free<const N: usize>(x: &mut [[f64; N]; 4], s: f64, p: &Param
 /// Taylor coefficients of the solution of `xc' = contact_rhs(..)`: on entry `xc[i][0]` holds
 /// the state at the expansion point; on return `xc[i][k]` is the k-th coefficient.
 /// Series inputs hold their first N coefficients.
+#[inline(always)]
 pub fn contact_rhs<const N: usize>(xc: &mut [[f64; N]; 2], ug: &[f64; N], p: &Params) {
     let w3: f64 = 2.0;
     let w4: f64 = -1.5;
@@ -456,6 +461,7 @@ pub fn contact_rhs<const N: usize>(xc: &mut [[f64; N]; 2], ug: &[f64; N], p: &Pa
 /// the state at the expansion point; on return `xc[i][k]` is the k-th coefficient.
 /// Series inputs hold their first N coefficients.
 /// The twin of `contact_rhs` with `ug` identically zero: for the steps after the excitation.
+#[inline(always)]
 pub fn contact_rhs_free<const N: usize>(xc: &mut [[f64; N]; 2], p: &Params) {
     let w3: f64 = 2.0;
     let w4: f64 = -1.5;
@@ -498,6 +504,7 @@ pub fn contact_rhs_free<const N: usize>(xc: &mut [[f64; N]; 2], p: &Params) {
 
 /// The first N Taylor coefficients of each output of `uplift` along series inputs.
 #[must_use]
+#[inline(always)]
 pub fn uplift<const N: usize>(xc: &[[f64; N]; 2], ug: &[f64; N], s: f64, p: &Params) -> [[f64; N]; 1] {
     let w0: f64 = s;
     let w2: f64 = p[1];
@@ -578,6 +585,7 @@ pub fn uplift<const N: usize>(xc: &[[f64; N]; 2], ug: &[f64; N], s: f64, p: &Par
 
 /// The first N Taylor coefficients of each output of `energy` along series inputs.
 #[must_use]
+#[inline(always)]
 pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N]; 4] {
     let w0: f64 = p[4];
     let w2: f64 = s;
@@ -714,6 +722,7 @@ pub fn energy<const N: usize>(x: &[[f64; N]; 4], s: f64, p: &Params) -> [[f64; N
 
 /// The first N Taylor coefficients of each output of `power` along series inputs.
 #[must_use]
+#[inline(always)]
 pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Params) -> [[f64; N]; 2] {
     let w1: f64 = p[4];
     let w2: f64 = 0.5;

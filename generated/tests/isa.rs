@@ -1,0 +1,119 @@
+//! The Taylor kernels give the same bits in the x86_64 baseline and in the instruction set
+//! `best_isa!` picks (AVX2 where the CPU has it), for every kernel of every variant at the
+//! orders the integrator runs: the solver's results do not depend on the CPU it runs on.
+
+use rocking_kernels::{best_isa, isa, kernels, taylor, Array, Physical};
+
+mod common;
+use common::Rng;
+
+/// Compares `a` and `b` row by row, coefficient by coefficient, bit for bit.
+fn assert_same<const N: usize>(what: &str, a: &[[f64; N]], b: &[[f64; N]]) -> usize {
+    assert_eq!(a.len(), b.len(), "{what}");
+    for (i, (ra, rb)) in a.iter().zip(b).enumerate() {
+        for (k, (va, vb)) in ra.iter().zip(rb).enumerate() {
+            assert!(
+                va.to_bits() == vb.to_bits(),
+                "{what}, N = {N}: row {i}, coefficient {k}: baseline {va:e}, {} {vb:e}",
+                isa::best()
+            );
+        }
+    }
+    a.len() * N
+}
+
+/// Defines `compare_at::<N>()`: every Taylor kernel of every variant on random inputs, both
+/// ways; returns the number of coefficients compared.
+macro_rules! define_compare_at {
+    ($($ty:ident => $m:ident : $nq:ident),* $(,)?) => {
+    fn compare_at<const N: usize>() -> usize {
+        let mut compared = 0;
+        $({
+            use kernels::layout::$nq as l;
+            type V = kernels::$ty;
+            let mut rng = Rng(0x15a0_0001 ^ stringify!($m).len() as u64);
+            for trial in 0..8 {
+                let phys: Physical = common::structure(&mut rng);
+                let p = common::params::<V>(&mut rng, &phys);
+                let x0 = common::state::<V>(&mut rng, &phys);
+                let s = if trial % 2 == 0 { 1.0 } else { -1.0 };
+                let mut ug = [0.0; N];
+                for c in ug.iter_mut().take(N.min(6)) {
+                    *c = rng.range(-3.0, 3.0);
+                }
+                let mut x = [[0.0; N]; l::X];
+                for (row, v) in x.iter_mut().zip(x0.values()) {
+                    row[0] = *v;
+                }
+                let mut xc = [[0.0; N]; l::XC];
+                for (i, row) in xc.iter_mut().enumerate() {
+                    // [u_1..u_n, u_1'..u_n']: x without θ and θ'.
+                    let from = if i < l::NQ { i + 1 } else { i + 2 };
+                    row[0] = x0.values()[from];
+                }
+                let what = |k: &str| format!("{}::{k}", stringify!($m));
+
+                let (mut a, mut b) = (x, x);
+                taylor::$m::rocking_rhs::<N>(&mut a, &ug, s, &p);
+                best_isa!(taylor::$m::rocking_rhs::<N>(&mut b, &ug, s, &p));
+                compared += assert_same(&what("rocking_rhs"), &a, &b);
+                let full = a;
+
+                let (mut a, mut b) = (x, x);
+                taylor::$m::rocking_rhs_free::<N>(&mut a, s, &p);
+                best_isa!(taylor::$m::rocking_rhs_free::<N>(&mut b, s, &p));
+                compared += assert_same(&what("rocking_rhs_free"), &a, &b);
+
+                let (mut a, mut b) = (xc, xc);
+                taylor::$m::contact_rhs::<N>(&mut a, &ug, &p);
+                best_isa!(taylor::$m::contact_rhs::<N>(&mut b, &ug, &p));
+                compared += assert_same(&what("contact_rhs"), &a, &b);
+                let contact = a;
+
+                let (mut a, mut b) = (xc, xc);
+                taylor::$m::contact_rhs_free::<N>(&mut a, &p);
+                best_isa!(taylor::$m::contact_rhs_free::<N>(&mut b, &p));
+                compared += assert_same(&what("contact_rhs_free"), &a, &b);
+
+                let a = taylor::$m::uplift::<N>(&contact, &ug, s, &p);
+                let b = best_isa!(taylor::$m::uplift::<N>(&contact, &ug, s, &p));
+                compared += assert_same(&what("uplift"), &a, &b);
+
+                let a = taylor::$m::energy::<N>(&full, s, &p);
+                let b = best_isa!(taylor::$m::energy::<N>(&full, s, &p));
+                compared += assert_same(&what("energy"), &a, &b);
+
+                let a = taylor::$m::power::<N>(&full, &ug, s, &p);
+                let b = best_isa!(taylor::$m::power::<N>(&full, &ug, s, &p));
+                compared += assert_same(&what("power"), &a, &b);
+
+                assert!(
+                    full.iter().flatten().chain(contact.iter().flatten()).all(|v| v.is_finite()),
+                    "{}: a non-finite coefficient (the inputs must be sound for the comparison \
+                     to mean something)",
+                    stringify!($m)
+                );
+            }
+        })*
+        compared
+    }
+    };
+}
+
+rocking_kernels::for_each_variant!(define_compare_at, layout);
+
+#[test]
+fn every_taylor_kernel_gives_the_same_bits_in_every_instruction_set() {
+    // Order 16 (N = order + 1), the order of the `accurate` preset: each N is compiled anew (a
+    // minute of CI's build per N); the digests of the example outputs (.ci/digests.sh) cover the
+    // other orders end to end.
+    let compared = compare_at::<17>();
+    eprintln!(
+        "{compared} Taylor coefficients: baseline and {} agree bit for bit",
+        isa::best()
+    );
+    if isa::best() == "baseline" {
+        eprintln!("this CPU has no AVX2: both sides ran the baseline code");
+    }
+    assert!(compared > 5_000, "only {compared} coefficients compared");
+}
