@@ -17,8 +17,11 @@ const LEFT: f64 = -1.0;
 /// A kernel variant's Taylor-mode kernels (see the generated `rocking_kernels::taylor::<variant>`
 /// for the inputs; series hold their first N coefficients). The series are passed as slices of
 /// the variant's lengths (`V::X::LEN` rows for a rocking state, `V::Xc::LEN` for a contact one):
-/// each call checks the length once and hands the generated kernel its array, run in the best
-/// instruction set of the CPU (`rocking_kernels::isa`: the same bits, 10–15 % faster with AVX2).
+/// each call checks the length once and hands the generated kernel its array. The rocking
+/// right-hand sides, where a Taylor step spends most of its time, run in the CPU's best
+/// instruction set (`rocking_kernels::best_isa!`: the same bits, 10 % off a Fig. 3 simulation
+/// with AVX2); the contact, uplift and power kernels are short, and the call into AVX2 code cost
+/// them more than it saved (a record case ran 4–12 % slower with them dispatched too).
 ///
 /// # Panics
 ///
@@ -82,12 +85,12 @@ macro_rules! taylor_variant {
             ) {
                 use kernels::layout::$nq as l;
                 let xc = rows!(xc, l::XC);
-                best_isa!(taylor::$module::contact_rhs(xc, ug, p));
+                taylor::$module::contact_rhs(xc, ug, p);
             }
             fn contact_series_free<const N: usize>(xc: &mut [[f64; N]], p: &Self::Params) {
                 use kernels::layout::$nq as l;
                 let xc = rows!(xc, l::XC);
-                best_isa!(taylor::$module::contact_rhs_free(xc, p));
+                taylor::$module::contact_rhs_free(xc, p);
             }
             fn uplift_series<const N: usize>(
                 xc: &[[f64; N]],
@@ -97,7 +100,7 @@ macro_rules! taylor_variant {
             ) -> [f64; N] {
                 use kernels::layout::$nq as l;
                 let xc = rows!(xc, l::XC);
-                best_isa!(taylor::$module::uplift(xc, ug, s, p))[0]
+                taylor::$module::uplift(xc, ug, s, p)[0]
             }
             fn power_series<const N: usize>(
                 x: &[[f64; N]],
@@ -107,7 +110,7 @@ macro_rules! taylor_variant {
             ) -> [[f64; N]; 2] {
                 use kernels::layout::$nq as l;
                 let x = rows!(x, l::X);
-                best_isa!(taylor::$module::power(x, ug, s, p))
+                taylor::$module::power(x, ug, s, p)
             }
         }
     )*};
