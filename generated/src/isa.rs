@@ -2,8 +2,9 @@
 //! baseline (SSE2). Hand-written.
 //!
 //! Why: compiled for AVX2 (three-operand VEX encoding: no register copies before each
-//! operation), a Taylor step of Fig. 3 costs 10–15 % less (docs/performance.md). A build for
-//! AVX2 alone would not start on older CPUs; one check per call (cached by std) picks the code.
+//! operation), the rocking right-hand sides cost 12–29 % less, a Fig. 3 simulation 8–10 %
+//! (docs/performance.md). A build for AVX2 alone would not start on older CPUs; one check per
+//! call (cached by std) picks the code.
 //!
 //! Why the results do not change: Rust never fuses a multiply and an add into an FMA, nor
 //! reorders a floating-point sum, so both instruction sets compute the same operations in the

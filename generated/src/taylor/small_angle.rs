@@ -3,7 +3,8 @@
 //! Taylor-mode twins of the kernels of [`crate::kernels::small_angle`]: the same instruction tape
 //! evaluated on truncated power series of N coefficients (see `rocking_kernels::series`).
 //! Each is `#[inline(always)]`: its caller chooses the instruction set it is compiled for (the
-//! solver runs it as AVX2 code where the CPU has it, bit for bit the same results).
+//! solver runs the rocking right-hand sides as AVX2 code where the CPU has it, with the same
+//! results bit for bit).
 
 use crate::kernels::small_angle::Params;
 use crate::series::{self, at0};
