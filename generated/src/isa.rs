@@ -8,7 +8,7 @@
 //!
 //! Why the results do not change: Rust never fuses a multiply and an add into an FMA, nor
 //! reorders a floating-point sum, so both instruction sets compute the same operations in the
-//! same order, rounded the same. `tests/isa.rs` compares every Taylor kernel of every variant
+//! same order, rounded the same. `tests/isa.rs` compares the rocking kernels of every variant
 //! both ways bit for bit, and the digests of the example outputs (`.ci/digests.sh`) do not move.
 
 /// `$call` (a call of an `#[inline(always)]` kernel of [`crate::taylor`]) compiled for the best

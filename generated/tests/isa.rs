@@ -1,6 +1,7 @@
-//! The Taylor kernels give the same bits in the x86_64 baseline and in the instruction set
-//! `best_isa!` picks (AVX2 where the CPU has it), for every kernel of every variant at the
-//! orders the integrator runs: the solver's results do not depend on the CPU it runs on.
+//! The Taylor kernels the solver runs through `best_isa!` (the rocking right-hand sides, with and
+//! without ground motion) give the same bits in the x86_64 baseline and in the instruction set it
+//! picks (AVX2 where the CPU has it), for every variant: the solver's results do not depend on the
+//! CPU it runs on.
 
 use rocking_kernels::{best_isa, isa, kernels, taylor, Array, Physical};
 
@@ -22,8 +23,8 @@ fn assert_same<const N: usize>(what: &str, a: &[[f64; N]], b: &[[f64; N]]) -> us
     a.len() * N
 }
 
-/// Defines `compare_at::<N>()`: every Taylor kernel of every variant on random inputs, both
-/// ways; returns the number of coefficients compared.
+/// Defines `compare_at::<N>()`: both rocking right-hand sides of every variant on random inputs,
+/// both ways; returns the number of coefficients compared.
 macro_rules! define_compare_at {
     ($($ty:ident => $m:ident : $nq:ident),* $(,)?) => {
     fn compare_at<const N: usize>() -> usize {
@@ -45,12 +46,6 @@ macro_rules! define_compare_at {
                 for (row, v) in x.iter_mut().zip(x0.values()) {
                     row[0] = *v;
                 }
-                let mut xc = [[0.0; N]; l::XC];
-                for (i, row) in xc.iter_mut().enumerate() {
-                    // [u_1..u_n, u_1'..u_n']: x without θ and θ'.
-                    let from = if i < l::NQ { i + 1 } else { i + 2 };
-                    row[0] = x0.values()[from];
-                }
                 let what = |k: &str| format!("{}::{k}", stringify!($m));
 
                 let (mut a, mut b) = (x, x);
@@ -64,31 +59,8 @@ macro_rules! define_compare_at {
                 best_isa!(taylor::$m::rocking_rhs_free::<N>(&mut b, s, &p));
                 compared += assert_same(&what("rocking_rhs_free"), &a, &b);
 
-                let (mut a, mut b) = (xc, xc);
-                taylor::$m::contact_rhs::<N>(&mut a, &ug, &p);
-                best_isa!(taylor::$m::contact_rhs::<N>(&mut b, &ug, &p));
-                compared += assert_same(&what("contact_rhs"), &a, &b);
-                let contact = a;
-
-                let (mut a, mut b) = (xc, xc);
-                taylor::$m::contact_rhs_free::<N>(&mut a, &p);
-                best_isa!(taylor::$m::contact_rhs_free::<N>(&mut b, &p));
-                compared += assert_same(&what("contact_rhs_free"), &a, &b);
-
-                let a = taylor::$m::uplift::<N>(&contact, &ug, s, &p);
-                let b = best_isa!(taylor::$m::uplift::<N>(&contact, &ug, s, &p));
-                compared += assert_same(&what("uplift"), &a, &b);
-
-                let a = taylor::$m::energy::<N>(&full, s, &p);
-                let b = best_isa!(taylor::$m::energy::<N>(&full, s, &p));
-                compared += assert_same(&what("energy"), &a, &b);
-
-                let a = taylor::$m::power::<N>(&full, &ug, s, &p);
-                let b = best_isa!(taylor::$m::power::<N>(&full, &ug, s, &p));
-                compared += assert_same(&what("power"), &a, &b);
-
                 assert!(
-                    full.iter().flatten().chain(contact.iter().flatten()).all(|v| v.is_finite()),
+                    full.iter().flatten().all(|v| v.is_finite()),
                     "{}: a non-finite coefficient (the inputs must be sound for the comparison \
                      to mean something)",
                     stringify!($m)
@@ -103,7 +75,7 @@ macro_rules! define_compare_at {
 rocking_kernels::for_each_variant!(define_compare_at, layout);
 
 #[test]
-fn every_taylor_kernel_gives_the_same_bits_in_every_instruction_set() {
+fn the_rocking_kernels_give_the_same_bits_in_every_instruction_set() {
     // Order 16 (N = order + 1), the order of the `accurate` preset: each N is compiled anew (a
     // minute of CI's build per N); the digests of the example outputs (.ci/digests.sh) cover the
     // other orders end to end.
@@ -115,5 +87,5 @@ fn every_taylor_kernel_gives_the_same_bits_in_every_instruction_set() {
     if isa::best() == "baseline" {
         eprintln!("this CPU has no AVX2: both sides ran the baseline code");
     }
-    assert!(compared > 5_000, "only {compared} coefficients compared");
+    assert!(compared > 2_000, "only {compared} coefficients compared");
 }
