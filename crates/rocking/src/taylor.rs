@@ -19,7 +19,7 @@ const LEFT: f64 = -1.0;
 /// the variant's lengths (`V::X::LEN` rows for a rocking state, `V::Xc::LEN` for a contact one):
 /// each call checks the length once and hands the generated kernel its array. The rocking
 /// right-hand sides, where a Taylor step spends most of its time, run in the CPU's best
-/// instruction set (`rocking_kernels::best_isa!`: the same bits, 10 % off a Fig. 3 simulation
+/// instruction set (`rocking_kernels::best_isa!`: the same bits, 8–10 % off a Fig. 3 simulation
 /// with AVX2); the contact, uplift and power kernels are short, and the call into AVX2 code cost
 /// them more than it saved (a record case ran 4–12 % slower with them dispatched too).
 ///
@@ -84,13 +84,11 @@ macro_rules! taylor_variant {
                 p: &Self::Params,
             ) {
                 use kernels::layout::$nq as l;
-                let xc = rows!(xc, l::XC);
-                taylor::$module::contact_rhs(xc, ug, p);
+                taylor::$module::contact_rhs(rows!(xc, l::XC), ug, p);
             }
             fn contact_series_free<const N: usize>(xc: &mut [[f64; N]], p: &Self::Params) {
                 use kernels::layout::$nq as l;
-                let xc = rows!(xc, l::XC);
-                taylor::$module::contact_rhs_free(xc, p);
+                taylor::$module::contact_rhs_free(rows!(xc, l::XC), p);
             }
             fn uplift_series<const N: usize>(
                 xc: &[[f64; N]],
@@ -99,8 +97,7 @@ macro_rules! taylor_variant {
                 p: &Self::Params,
             ) -> [f64; N] {
                 use kernels::layout::$nq as l;
-                let xc = rows!(xc, l::XC);
-                taylor::$module::uplift(xc, ug, s, p)[0]
+                taylor::$module::uplift(rows!(xc, l::XC), ug, s, p)[0]
             }
             fn power_series<const N: usize>(
                 x: &[[f64; N]],
@@ -109,8 +106,7 @@ macro_rules! taylor_variant {
                 p: &Self::Params,
             ) -> [[f64; N]; 2] {
                 use kernels::layout::$nq as l;
-                let x = rows!(x, l::X);
-                taylor::$module::power(x, ug, s, p)
+                taylor::$module::power(rows!(x, l::X), ug, s, p)
             }
         }
     )*};
