@@ -103,9 +103,7 @@ pub fn run_shard(
     write_atomic(&dir.join(MANIFEST), (text + "\n").as_bytes())?;
     let outcome = pool
         .install(|| {
-            rocking_spectra::run_shard(&plan.sweep, shard, dir, progress, |v| {
-                plan.run_cell(v).map_err(|e| e.to_string())
-            })
+            rocking_spectra::run_shard(&plan.sweep, shard, dir, progress, |v| plan.run_cell(v))
         })
         .map_err(sweep_error)?;
     out!(

@@ -63,11 +63,7 @@ pub fn spectrum(
         return shard::run_shard(&plan, shard::Kind::Spectrum, shard, &dir, progress, &pool);
     }
     let outcome = pool
-        .install(|| {
-            rocking_spectra::run(sweep, &dir, progress, |values| {
-                plan.run_cell(values).map_err(|e| e.to_string())
-            })
-        })
+        .install(|| rocking_spectra::run(sweep, &dir, progress, |values| plan.run_cell(values)))
         .map_err(sweep_error)?;
     let mut written = pool.install(|| write_outputs(&plan, &outcome, &dir))?;
     written.push(write_timing(&outcome, &dir, pool.current_num_threads())?);
@@ -140,10 +136,9 @@ pub(crate) fn write_outputs(
     written.push(cells);
     let reference = match plan.reference()? {
         Some(r) => {
-            let run = rocking_spectra::run_in_memory(&r.plan.sweep, |values| {
-                r.plan.run_cell(values).map_err(|e| e.to_string())
-            })
-            .map_err(sweep_error)?;
+            let run =
+                rocking_spectra::run_in_memory(&r.plan.sweep, |values| r.plan.run_cell(values))
+                    .map_err(sweep_error)?;
             let path = dir.join("reference.csv");
             write_atomic(&path, cells_csv(&r.plan.sweep, &run.cells).as_bytes())?;
             written.push(path);
@@ -173,6 +168,13 @@ pub(crate) fn write_outputs(
         }).collect::<Vec<_>>(),
         "versions": {"rocking": env!("CARGO_PKG_VERSION"), "kernels": "generated/ir (CasADi 3.8.2)"},
     });
+    if !outcome.beyond_model.is_empty() {
+        meta["beyond_model"] = outcome
+            .beyond_model
+            .iter()
+            .map(|(i, m)| json!({"cell": i, "values": sweep.values(*i), "message": m}))
+            .collect();
+    }
     if let Some((r, run)) = &reference {
         meta["reference"] = json!({
             "name": r.name,
@@ -256,15 +258,10 @@ pub fn batch(
         return shard::run_shard(&plan, shard::Kind::Batch, shard, &dir, progress, &pool);
     }
     let outcome = pool
-        .install(|| {
-            rocking_spectra::run(&plan.sweep, &dir, progress, |v| {
-                plan.run_cell(v).map_err(|e| e.to_string())
-            })
-        })
+        .install(|| rocking_spectra::run(&plan.sweep, &dir, progress, |v| plan.run_cell(v)))
         .map_err(sweep_error)?;
     let (mut written, tally) = write_batch_outputs(&plan, &outcome, &dir)?;
     written.push(write_timing(&outcome, &dir, pool.current_num_threads())?);
-    let fraction = |n: usize, f: usize, o: usize| (n > f).then(|| o as f64 / (n - f) as f64);
     out!(
         "{}: {} records x {} scales ({} runs computed now) in {:.2} s",
         scene_path.display(),
@@ -273,19 +270,26 @@ pub fn batch(
         outcome.computed,
         outcome.elapsed.as_secs_f64()
     );
-    for &(s, n, f, o) in &tally {
-        let failed = if f > 0 {
-            format!("; {f} of {n} runs failed")
-        } else {
-            String::new()
-        };
-        match fraction(n, f, o) {
+    for t in &tally {
+        let mut notes = String::new();
+        if t.failed > 0 {
+            notes.push_str(&format!("; {} of {} runs failed", t.failed, t.runs));
+        }
+        if t.beyond_model > 0 {
+            notes.push_str(&format!(
+                "; {} of {} runs beyond the model",
+                t.beyond_model, t.runs
+            ));
+        }
+        match t.fraction() {
             Some(x) => out!(
-                "  scale {s}: {o}/{} overturned ({:.1} %){failed}",
-                n - f,
+                "  scale {}: {}/{} overturned ({:.1} %){notes}",
+                t.scale,
+                t.overturned,
+                t.completed(),
                 100.0 * x
             ),
-            None => out!("  scale {s}: no run finished{failed}"),
+            None => out!("  scale {}: no run finished{notes}", t.scale),
         }
     }
     out!("  wrote:");
@@ -295,8 +299,32 @@ pub fn batch(
     failed_runs(&outcome, "runs", "runs.csv")
 }
 
-/// Per scale factor: the runs, the failed ones and the overturned ones.
-type Tally = Vec<(f64, usize, usize, usize)>;
+/// What the runs at one scale factor gave.
+pub(crate) struct ScaleTally {
+    scale: f64,
+    runs: usize,
+    /// Runs that failed (no result).
+    failed: usize,
+    /// Runs beyond the model's validity (no result; docs/spectra.md).
+    beyond_model: usize,
+    overturned: usize,
+}
+
+impl ScaleTally {
+    /// The runs with a result.
+    fn completed(&self) -> usize {
+        self.runs - self.failed - self.beyond_model
+    }
+
+    /// The fraction overturned of the runs with a result; none when no run has one.
+    fn fraction(&self) -> Option<f64> {
+        let n = self.completed();
+        (n > 0).then(|| self.overturned as f64 / n as f64)
+    }
+}
+
+/// Per scale factor, in the order of the scales.
+type Tally = Vec<ScaleTally>;
 
 /// runs.csv, fragility.csv, meta.json and the fragility plots of a record suite (also of a merge
 /// of its shards).
@@ -319,10 +347,20 @@ pub(crate) fn write_batch_outputs(
     let messages: BTreeMap<usize, &str> = outcome
         .failures
         .iter()
+        .chain(&outcome.beyond_model)
         .map(|(i, m)| (*i, m.as_str()))
         .collect();
     // Per scale: runs, failed, overturned (of the runs that finished).
-    let mut tally: Tally = scales.iter().map(|&s| (s, 0, 0, 0)).collect();
+    let mut tally: Tally = scales
+        .iter()
+        .map(|&scale| ScaleTally {
+            scale,
+            runs: 0,
+            failed: 0,
+            beyond_model: 0,
+            overturned: 0,
+        })
+        .collect();
     let mut runs = csv::Writer::from_writer(Vec::new());
     let csv_err = |e: csv::Error| SceneError::failure(format!("cannot write runs.csv: {e}"));
     runs.write_record([
@@ -339,10 +377,15 @@ pub(crate) fn write_batch_outputs(
         let v = sweep.values(c.index);
         let (r, k) = (v[0] as usize, c.index % scales.len());
         let t = &mut tally[k];
-        t.1 += 1;
-        let row = if c.class == CellClass::Failed {
-            t.2 += 1;
-            // A failed run has no result: its fields are empty, never a made-up "survived".
+        t.runs += 1;
+        let row = if !c.class.has_result() {
+            if c.class == CellClass::BeyondModel {
+                t.beyond_model += 1;
+            } else {
+                t.failed += 1;
+            }
+            // A failed run (or one beyond the model) has no result: its fields are empty, never
+            // a made-up "survived".
             let m = messages.get(&c.index).copied().unwrap_or("failed");
             [
                 names[r].clone(),
@@ -354,8 +397,8 @@ pub(crate) fn write_batch_outputs(
                 m.to_string(),
             ]
         } else {
-            let over = is_overturned(c.class);
-            t.3 += usize::from(over);
+            let over = c.class.overturned() == Some(true);
+            t.overturned += usize::from(over);
             [
                 names[r].clone(),
                 v[1].to_string(),
@@ -375,13 +418,22 @@ pub(crate) fn write_batch_outputs(
     let path = dir.join("runs.csv");
     write_atomic(&path, &rows)?;
     written.push(path);
-    // The fraction overturned is of the runs that finished; failed runs are counted apart, and a
-    // scale whose runs all failed has no fraction (an empty field, no plotted point).
-    let fraction = |n: usize, f: usize, o: usize| (n > f).then(|| o as f64 / (n - f) as f64);
-    let mut frag = String::from("scale,runs,failed,completed,overturned,fraction_overturned\n");
-    for &(s, n, f, o) in &tally {
-        let x = fraction(n, f, o).map_or(String::new(), |x| x.to_string());
-        frag.push_str(&format!("{s},{n},{f},{},{o},{x}\n", n - f));
+    // The fraction overturned is of the runs with a result; failed runs and runs beyond the
+    // model are counted apart, and a scale with no result has no fraction (an empty field, no
+    // plotted point).
+    let mut frag =
+        String::from("scale,runs,failed,beyond_model,completed,overturned,fraction_overturned\n");
+    for t in &tally {
+        let x = t.fraction().map_or(String::new(), |x| x.to_string());
+        frag.push_str(&format!(
+            "{},{},{},{},{},{},{x}\n",
+            t.scale,
+            t.runs,
+            t.failed,
+            t.beyond_model,
+            t.completed(),
+            t.overturned
+        ));
     }
     let path = dir.join("fragility.csv");
     write_atomic(&path, frag.as_bytes())?;
@@ -399,6 +451,10 @@ pub(crate) fn write_batch_outputs(
             let v = sweep.values(*i);
             json!({"run": i, "record": names[v[0] as usize], "scale": v[1], "message": m})
         }).collect::<Vec<_>>(),
+        "beyond_model": outcome.beyond_model.iter().map(|(i, m)| {
+            let v = sweep.values(*i);
+            json!({"run": i, "record": names[v[0] as usize], "scale": v[1], "message": m})
+        }).collect::<Vec<_>>(),
         "versions": {"rocking": env!("CARGO_PKG_VERSION"), "program": program_digest()},
     });
     let path = dir.join("meta.json");
@@ -409,18 +465,8 @@ pub(crate) fn write_batch_outputs(
     written.push(path);
     let points: Vec<(f64, f64)> = tally
         .iter()
-        .filter_map(|&(s, n, f, o)| fraction(n, f, o).map(|x| (s, x)))
+        .filter_map(|t| t.fraction().map(|x| (t.scale, x)))
         .collect();
     written.extend(plot::fragility_plots(&points, list.len(), dir)?);
     Ok((written, tally))
-}
-
-/// Whether a class is one of the overturned ones.
-fn is_overturned(class: CellClass) -> bool {
-    matches!(
-        class,
-        CellClass::OverturnedNoImpact
-            | CellClass::OverturnedOneImpact
-            | CellClass::OverturnedImpacts
-    )
 }

@@ -308,7 +308,8 @@ fn failed_runs_are_reported_as_failed_on_first_runs_and_resumes() {
     std::fs::write(
         &scene,
         "[structure]\nomega_n_over_p = 0.3\nalpha = 0.2\ngamma_mc = 0.0\ngamma_mb = 0.0\nr = 1.0\n\n\
-         [excitation]\nkind = \"record\"\npath = \"x.AT2\"\n\n[solver]\nafter_excitation = 5.0\n",
+         [excitation]\nkind = \"record\"\npath = \"x.AT2\"\n\n[solver]\nafter_excitation = 5.0\n\
+         max_events = 8\n",
     )
     .unwrap();
     std::fs::write(dir.join("x.AT2"), sine_record(0.1)).unwrap();
@@ -344,44 +345,60 @@ fn failed_runs_are_reported_as_failed_on_first_runs_and_resumes() {
         let mut rdr = csv_rows(&runs);
         let header = rdr.remove(0);
         assert_eq!(header[2], "class");
+        // Runs stopped by the event guard fail; runs whose mass matrix becomes singular (the
+        // massless column's top mass over the pivot) are beyond the model, not failures.
         let failed: Vec<&Vec<String>> = rdr.iter().filter(|r| r[2] == "failed").collect();
+        let beyond: Vec<&Vec<String>> = rdr.iter().filter(|r| r[2] == "beyond-model").collect();
         assert!(!failed.is_empty(), "{pass}: this case has failing runs");
-        for r in &failed {
-            assert!(
-                r[3].is_empty() && r[4].is_empty(),
-                "{pass}: a failed run has no result: {r:?}"
-            );
-            assert!(
-                r[6].contains("singular"),
-                "{pass}: the message is kept: {r:?}"
-            );
+        assert!(!beyond.is_empty(), "{pass}: and runs beyond the model");
+        for (rows, why) in [(&failed, "events"), (&beyond, "singular")] {
+            for r in rows {
+                assert!(
+                    r[3].is_empty() && r[4].is_empty(),
+                    "{pass}: a run without a result has no values: {r:?}"
+                );
+                assert!(r[6].contains(why), "{pass}: the message is kept: {r:?}");
+            }
         }
         let frag = std::fs::read_to_string(out.join("fragility.csv")).unwrap();
-        let mut total_failed = 0;
+        assert_eq!(
+            frag.lines().next().unwrap(),
+            "scale,runs,failed,beyond_model,completed,overturned,fraction_overturned"
+        );
+        let (mut total_failed, mut total_beyond) = (0, 0);
         for line in frag.lines().skip(1) {
-            let f: Vec<&str> = line.split(',').collect();
-            let (runs_n, failed_n, completed, over): (usize, usize, usize, usize) = (
-                f[1].parse().unwrap(),
-                f[2].parse().unwrap(),
-                f[3].parse().unwrap(),
-                f[4].parse().unwrap(),
-            );
+            let f: Vec<usize> = line
+                .split(',')
+                .skip(1)
+                .take(5)
+                .map(|v| v.parse().unwrap())
+                .collect();
+            let [runs_n, failed_n, beyond_n, completed, over] = f[..] else {
+                panic!("{line}")
+            };
             assert_eq!(runs_n, 61);
-            assert_eq!(completed, runs_n - failed_n, "{line}");
-            let frac: f64 = f[5].parse().unwrap();
+            assert_eq!(completed, runs_n - failed_n - beyond_n, "{line}");
+            let frac: f64 = line.rsplit(',').next().unwrap().parse().unwrap();
             assert!(
                 (frac - over as f64 / completed as f64).abs() < 1e-12,
                 "{line}"
             );
             total_failed += failed_n;
+            total_beyond += beyond_n;
         }
         assert_eq!(total_failed, failed.len(), "{pass}: {frag}");
+        assert_eq!(total_beyond, beyond.len(), "{pass}: {frag}");
         let meta: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(out.join("meta.json")).unwrap()).unwrap();
         assert_eq!(meta["failed"], failed.len(), "{pass}");
         assert_eq!(
             meta["failures"].as_array().unwrap().len(),
             failed.len(),
+            "{pass}"
+        );
+        assert_eq!(
+            meta["beyond_model"].as_array().unwrap().len(),
+            beyond.len(),
             "{pass}"
         );
         if let Some((r0, f0, m0)) = &previous {
@@ -392,6 +409,7 @@ fn failed_runs_are_reported_as_failed_on_first_runs_and_resumes() {
             assert_eq!(&runs, r0, "runs.csv the same on resume");
             assert_eq!(&frag, f0, "fragility.csv the same on resume");
             assert_eq!(meta["failures"], m0["failures"], "failures kept on resume");
+            assert_eq!(meta["beyond_model"], m0["beyond_model"], "kept on resume");
         }
         previous = Some((runs, frag, meta));
     }

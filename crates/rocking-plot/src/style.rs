@@ -30,6 +30,8 @@ pub enum Hatch {
     Falling,
     /// `×`
     Cross,
+    /// `|`
+    Vertical,
 }
 
 pub const NO_UPLIFT: ClassStyle = ClassStyle {
@@ -62,14 +64,25 @@ pub const FAILED: ClassStyle = ClassStyle {
     ink: [0xFF, 0xFF, 0xFF],
     label: "run failed (no result)",
 };
+/// The cells beyond the model (its mass matrix singular). No colour stays [`DISTINCT`] from the
+/// five fills above for every vision (a search of the RGB cube finds at most 9.1), so this one
+/// is the other cell without a result, [`FAILED`], told apart by its white vertical hatching
+/// (the fill differs from black only so that the hatching, keyed by fill, can find it).
+pub const BEYOND_MODEL: ClassStyle = ClassStyle {
+    fill: [0x10, 0x10, 0x10],
+    hatch: Some(Hatch::Vertical),
+    ink: [0xFF, 0xFF, 0xFF],
+    label: "beyond the model (M singular)",
+};
 
 /// Every class fill, for the test and the hatching patterns.
-pub const CLASSES: [ClassStyle; 5] = [
+pub const CLASSES: [ClassStyle; 6] = [
     NO_UPLIFT,
     OVERTURNED_NO_IMPACT,
     OVERTURNED_ONE_IMPACT,
     OVERTURNED_IMPACTS,
     FAILED,
+    BEYOND_MODEL,
 ];
 
 /// The shape drawn along a line (every few points) and in its legend entry.
@@ -165,6 +178,7 @@ pub fn hatch_svg(svg: &str) -> String {
         let (angle, cross) = match c.hatch {
             Some(Hatch::Rising) => (45, false),
             Some(Hatch::Falling) => (-45, false),
+            Some(Hatch::Vertical) => (0, false),
             _ => (45, true),
         };
         let (fill, ink) = (hex(c.fill), hex(c.ink));
@@ -235,9 +249,36 @@ mod tests {
 
     #[test]
     fn class_fills_stay_distinct_for_every_vision_and_in_greyscale() {
-        let colours: Vec<[u8; 3]> = CLASSES.iter().map(|c| c.fill).collect();
-        let names: Vec<&str> = CLASSES.iter().map(|c| c.label).collect();
+        // Every class but the one told apart by its hatching alone.
+        let coloured: Vec<&ClassStyle> = CLASSES
+            .iter()
+            .filter(|c| c.label != BEYOND_MODEL.label)
+            .collect();
+        let colours: Vec<[u8; 3]> = coloured.iter().map(|c| c.fill).collect();
+        let names: Vec<&str> = coloured.iter().map(|c| c.label).collect();
         assert_distinct("classes", &colours, &names);
+        // The hatched-only class: distinct by colour from all but the failed cells, and by a
+        // hatching no other class has from those.
+        let others: Vec<[u8; 3]> = CLASSES
+            .iter()
+            .filter(|c| c.label != BEYOND_MODEL.label && c.label != FAILED.label)
+            .map(|c| c.fill)
+            .collect();
+        for v in Vision::ALL {
+            for o in &others {
+                let d = crate::colour::difference(BEYOND_MODEL.fill, *o, v);
+                assert!(
+                    d >= DISTINCT,
+                    "{:?} vs {o:?}: {d:.1} for {v:?}",
+                    BEYOND_MODEL.fill
+                );
+            }
+        }
+        assert!(BEYOND_MODEL.hatch.is_some());
+        assert!(CLASSES
+            .iter()
+            .filter(|c| c.label != BEYOND_MODEL.label)
+            .all(|c| c.hatch != BEYOND_MODEL.hatch));
     }
 
     #[test]

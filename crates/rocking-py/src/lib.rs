@@ -256,18 +256,13 @@ fn pool(threads: Option<usize>) -> PyResult<rayon::ThreadPool> {
 /// Runs a planned sweep in memory on `threads` threads (default: all cores), GIL released.
 fn run_plan(py: Python<'_>, plan: &Plan, threads: Option<usize>) -> PyResult<Outcome> {
     let pool = pool(threads)?;
-    py.detach(|| {
-        pool.install(|| {
-            rocking_spectra::run_in_memory(&plan.sweep, |v| {
-                plan.run_cell(v).map_err(|e| e.to_string())
-            })
-        })
-    })
-    .map_err(|e| PyRuntimeError::new_err(e.to_string()))
+    py.detach(|| pool.install(|| rocking_spectra::run_in_memory(&plan.sweep, |v| plan.run_cell(v))))
+        .map_err(|e| PyRuntimeError::new_err(e.to_string()))
 }
 
 /// A sweep's outcome as plain Python values: axis keys and values, per cell (in sweep order, the
-/// last axis fastest) the class name, max θ/α (float64 bytes) and impacts, and the failures.
+/// last axis fastest) the class name, max θ/α (float64 bytes) and impacts, the failures and the
+/// cells beyond the model.
 fn outcome_dict<'py>(
     py: Python<'py>,
     sweep: &Sweep,
@@ -291,6 +286,7 @@ fn outcome_dict<'py>(
     let impacts: Vec<u64> = outcome.cells.iter().map(|c| c.impacts).collect();
     d.set_item("impacts", impacts)?;
     d.set_item("failures", outcome.failures.clone())?;
+    d.set_item("beyond_model", outcome.beyond_model.clone())?;
     Ok(d)
 }
 

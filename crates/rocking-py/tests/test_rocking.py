@@ -142,6 +142,29 @@ def test_spectrum_equals_the_commands_cells_csv(tmp_path):
     assert sp.failures == []
 
 
+def test_cells_beyond_the_model_are_their_own_class_as_in_the_command(tmp_path):
+    """The Fig. 6 panel whose mass matrix turns singular: class `beyond-model`, masked values,
+    listed apart from failures, the same cells as the command's cells.csv."""
+    fig6 = REPO / "scenes" / "spectra" / "fig6.toml"
+    axes = ["excitation.omega_p_over_p=3.5:4.3:5", "excitation.amplitude=17:21:5"]
+    sets = ["--set", "structure.omega_n_over_p=2.5", "--set", "structure.alpha=0.2"]
+    out = tmp_path / "fig6"
+    cli("spectrum", str(fig6), "--out", str(out), "--quiet", *sets,
+        "--axis", axes[0], "--axis", axes[1])
+    rows = read_csv(out / "cells.csv")
+    scene = rocking.load_scene(
+        str(fig6), set={"structure.omega_n_over_p": 2.5, "structure.alpha": 0.2}
+    )
+    sp = rocking.spectrum(scene, axes=axes, threads=2)
+    assert [r["class"] for r in rows] == sp.classes.ravel().tolist()
+    beyond = sp.classes == "beyond-model"
+    assert beyond.sum() >= 3 and sp.failures == []
+    assert len(sp.beyond_model) == beyond.sum()
+    assert (sp.without_result == beyond).all()
+    assert sp.max_theta_over_alpha.mask[beyond].all()
+    assert not sp.overturned[beyond].any()
+
+
 def test_batch_is_the_scene_run_per_record_and_scale(tmp_path):
     scene = REPO / "scenes" / "wind-turbine-elcentro.toml"
     record = REPO / "scenes" / "records" / "elCentro.AT2"

@@ -129,8 +129,13 @@ pub enum CellClass {
     OverturnedOneImpact,
     /// It overturned after two or more impacts.
     OverturnedImpacts,
-    /// The simulation failed (for example the model became singular); the message is in the
-    /// sweep's outcome. The other cells are unaffected.
+    /// The run left the model's validity: its mass matrix became singular, which happens when
+    /// the column's deflection carries a top mass over the pivot (a deflection of the order of
+    /// the base half-width, far beyond small deformations). The cell has no values; the message
+    /// (when, how far) is in the sweep's outcome.
+    BeyondModel,
+    /// The simulation failed for another reason; the message is in the sweep's outcome. The
+    /// other cells are unaffected.
     Failed,
 }
 
@@ -143,7 +148,25 @@ impl CellClass {
             CellClass::OverturnedNoImpact => "overturned-no-impact",
             CellClass::OverturnedOneImpact => "overturned-one-impact",
             CellClass::OverturnedImpacts => "overturned-impacts",
+            CellClass::BeyondModel => "beyond-model",
             CellClass::Failed => "failed",
+        }
+    }
+
+    /// Whether the cell has a result (class, max θ/α, impacts, reported values): every class
+    /// but [`CellClass::BeyondModel`] and [`CellClass::Failed`].
+    pub fn has_result(self) -> bool {
+        !matches!(self, CellClass::BeyondModel | CellClass::Failed)
+    }
+
+    /// Whether the structure overturned; `None` for a cell without a result (neither).
+    pub fn overturned(self) -> Option<bool> {
+        match self {
+            CellClass::OverturnedNoImpact
+            | CellClass::OverturnedOneImpact
+            | CellClass::OverturnedImpacts => Some(true),
+            CellClass::NoUplift | CellClass::Survived => Some(false),
+            CellClass::BeyondModel | CellClass::Failed => None,
         }
     }
 
@@ -155,6 +178,7 @@ impl CellClass {
             CellClass::OverturnedNoImpact,
             CellClass::OverturnedOneImpact,
             CellClass::OverturnedImpacts,
+            CellClass::BeyondModel,
             CellClass::Failed,
         ]
         .into_iter()
@@ -207,6 +231,25 @@ impl From<Summary> for CellRun {
         CellRun {
             summary,
             reported: Vec::new(),
+        }
+    }
+}
+
+/// A cell without a result: its class ([`CellClass::BeyondModel`] or [`CellClass::Failed`]) and
+/// the message the sweep keeps for it. A plain message is a failure.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CellFailure {
+    /// The class the cell gets.
+    pub class: CellClass,
+    /// Why (kept in the journal and the sweep's outcome).
+    pub message: String,
+}
+
+impl From<String> for CellFailure {
+    fn from(message: String) -> Self {
+        CellFailure {
+            class: CellClass::Failed,
+            message,
         }
     }
 }
@@ -420,7 +463,10 @@ pub struct Outcome {
     pub cells: Vec<Cell>,
     /// Every failed cell with its error message, whether it failed in this invocation or in an
     /// earlier one that this one resumed (failures are never dropped on resume).
-    pub failures: Vec<(usize, String)>,
+    pub failures: Messages,
+    /// Every cell beyond the model's validity ([`CellClass::BeyondModel`]) with its message,
+    /// kept on resume like the failures.
+    pub beyond_model: Messages,
     /// Cells computed in this invocation (the rest came from the journal).
     pub computed: usize,
     /// Wall time of this invocation.
@@ -429,15 +475,16 @@ pub struct Outcome {
 
 /// Runs (or resumes) a sweep in `out_dir`. `run_cell` gets the cell's axis values and returns
 /// the summary of its simulation. Finished cells are journaled as they complete.
-pub fn run<F, R>(
+pub fn run<F, R, E>(
     sweep: &Sweep,
     out_dir: &Path,
     progress: Progress,
     run_cell: F,
 ) -> Result<Outcome, SweepError>
 where
-    F: Fn(&[f64]) -> Result<R, String> + Sync,
+    F: Fn(&[f64]) -> Result<R, E> + Sync,
     R: Into<CellRun>,
+    E: Into<CellFailure>,
 {
     let header = format!("# rocking sweep {}\n", sweep.fingerprint);
     run_cells(sweep, &header, |_| true, out_dir, progress, run_cell)
@@ -445,7 +492,7 @@ where
 
 /// Runs (or resumes) one shard of a sweep in `out_dir`, with the shard's own journal: the
 /// outcome holds only the shard's cells. [`shard::merge`] joins the shards' journals.
-pub fn run_shard<F, R>(
+pub fn run_shard<F, R, E>(
     sweep: &Sweep,
     shard: Shard,
     out_dir: &Path,
@@ -453,8 +500,9 @@ pub fn run_shard<F, R>(
     run_cell: F,
 ) -> Result<Outcome, SweepError>
 where
-    F: Fn(&[f64]) -> Result<R, String> + Sync,
+    F: Fn(&[f64]) -> Result<R, E> + Sync,
     R: Into<CellRun>,
+    E: Into<CellFailure>,
 {
     let header = shard.header(sweep);
     run_cells(
@@ -468,7 +516,7 @@ where
 }
 
 /// Runs the cells that `owns` selects, journaled under `header`.
-fn run_cells<F, R>(
+fn run_cells<F, R, E>(
     sweep: &Sweep,
     header: &str,
     owns: impl Fn(usize) -> bool,
@@ -477,8 +525,9 @@ fn run_cells<F, R>(
     run_cell: F,
 ) -> Result<Outcome, SweepError>
 where
-    F: Fn(&[f64]) -> Result<R, String> + Sync,
+    F: Fn(&[f64]) -> Result<R, E> + Sync,
     R: Into<CellRun>,
+    E: Into<CellFailure>,
 {
     let start = Instant::now();
     Sweep::checked_len(&sweep.axes)
@@ -493,14 +542,14 @@ where
     for (c, m) in journaled.values() {
         text.push_str(&journal_line(c, m.as_deref()));
     }
-    let mut failures: Vec<(usize, String)> = journaled
+    let mut notes: Vec<(usize, CellClass, String)> = journaled
         .values()
-        .filter(|(c, _)| c.class == CellClass::Failed)
+        .filter(|(c, _)| !c.class.has_result())
         .map(|(c, m)| {
             let m = m
                 .clone()
                 .unwrap_or_else(|| "failed in an earlier run".into());
-            (c.index, m)
+            (c.index, c.class, m)
         })
         .collect();
     let mut done: BTreeMap<usize, Cell> = journaled.into_iter().map(|(i, (c, _))| (i, c)).collect();
@@ -530,7 +579,7 @@ where
             bar
         }
     };
-    let fresh_failures = Mutex::new(Vec::new());
+    let fresh_notes = Mutex::new(Vec::new());
     let fresh: Vec<Cell> = todo
         .par_iter()
         .map(|&index| {
@@ -539,10 +588,10 @@ where
             if let Some(m) = message {
                 // As the journal keeps it, so a resumed or merged sweep reports the same text.
                 let m = m.replace(['\n', '\r'], " ");
-                fresh_failures
+                fresh_notes
                     .lock()
                     .unwrap_or_else(|p| p.into_inner())
-                    .push((index, m));
+                    .push((index, cell.class, m));
             }
             let mut j = journal.lock().unwrap_or_else(|p| p.into_inner());
             j.write_all(line.as_bytes())
@@ -557,25 +606,38 @@ where
     for c in fresh {
         done.insert(c.index, c);
     }
-    failures.extend(
-        fresh_failures
-            .into_inner()
-            .unwrap_or_else(|p| p.into_inner()),
-    );
-    failures.sort_by_key(|f| f.0);
+    notes.extend(fresh_notes.into_inner().unwrap_or_else(|p| p.into_inner()));
+    let (failures, beyond_model) = split_notes(notes);
     Ok(Outcome {
         cells: done.into_values().collect(),
         failures,
+        beyond_model,
         computed,
         elapsed: start.elapsed(),
     })
 }
 
-/// Runs one cell: its class and numbers, or `Failed` with the error message.
-fn evaluate<F, R>(sweep: &Sweep, index: usize, run_cell: &F) -> (Cell, Option<String>)
+/// Cell indices with their messages, in cell order.
+pub type Messages = Vec<(usize, String)>;
+
+/// The messages of the cells without a result, in cell order: the failures' and the cells'
+/// beyond the model.
+pub(crate) fn split_notes(mut notes: Vec<(usize, CellClass, String)>) -> (Messages, Messages) {
+    notes.sort_by_key(|n| n.0);
+    let (beyond, failed): (Vec<_>, Vec<_>) = notes
+        .into_iter()
+        .partition(|n| n.1 == CellClass::BeyondModel);
+    let strip =
+        |v: Vec<(usize, CellClass, String)>| v.into_iter().map(|(i, _, m)| (i, m)).collect();
+    (strip(failed), strip(beyond))
+}
+
+/// Runs one cell: its class and numbers, or a class without a result and its message.
+fn evaluate<F, R, E>(sweep: &Sweep, index: usize, run_cell: &F) -> (Cell, Option<String>)
 where
-    F: Fn(&[f64]) -> Result<R, String>,
+    F: Fn(&[f64]) -> Result<R, E>,
     R: Into<CellRun>,
+    E: Into<CellFailure>,
 {
     match run_cell(&sweep.values(index)).map(Into::into) {
         Ok(CellRun { summary, reported }) if reported.len() == sweep.reported.len() => (
@@ -588,37 +650,45 @@ where
             },
             None,
         ),
-        Ok(run) => failed(
+        Ok(run) => without_result(
             index,
             format!(
                 "the cell gave {} reported values for the sweep's {}",
                 run.reported.len(),
                 sweep.reported.len()
-            ),
+            )
+            .into(),
         ),
-        Err(message) => failed(index, message),
+        Err(e) => without_result(index, e.into()),
     }
 }
 
-fn failed(index: usize, message: String) -> (Cell, Option<String>) {
+/// A cell without a result, of the failure's class (a class with a result is a failure).
+fn without_result(index: usize, f: CellFailure) -> (Cell, Option<String>) {
+    let class = if f.class.has_result() {
+        CellClass::Failed
+    } else {
+        f.class
+    };
     (
         Cell {
             index,
-            class: CellClass::Failed,
+            class,
             max_theta_over_alpha: 0.0,
             impacts: 0,
             reported: Vec::new(),
         },
-        Some(message),
+        Some(f.message),
     )
 }
 
 /// Runs every cell of a sweep in parallel, without a journal (nothing is written): for callers
 /// that keep the results in memory, such as the Python package.
-pub fn run_in_memory<F, R>(sweep: &Sweep, run_cell: F) -> Result<Outcome, SweepError>
+pub fn run_in_memory<F, R, E>(sweep: &Sweep, run_cell: F) -> Result<Outcome, SweepError>
 where
-    F: Fn(&[f64]) -> Result<R, String> + Sync,
+    F: Fn(&[f64]) -> Result<R, E> + Sync,
     R: Into<CellRun>,
+    E: Into<CellFailure>,
 {
     let start = Instant::now();
     Sweep::checked_len(&sweep.axes)
@@ -627,14 +697,17 @@ where
         .into_par_iter()
         .map(|index| evaluate(sweep, index, &run_cell))
         .collect();
-    let failures = results
-        .iter()
-        .filter_map(|(c, m)| m.clone().map(|m| (c.index, m)))
-        .collect();
+    let (failures, beyond_model) = split_notes(
+        results
+            .iter()
+            .filter_map(|(c, m)| m.clone().map(|m| (c.index, c.class, m)))
+            .collect(),
+    );
     Ok(Outcome {
         computed: results.len(),
         cells: results.into_iter().map(|(c, _)| c).collect(),
         failures,
+        beyond_model,
         elapsed: start.elapsed(),
     })
 }
@@ -676,9 +749,10 @@ pub fn cells_csv(sweep: &Sweep, cells: &[Cell]) -> String {
         for v in sweep.values(c.index) {
             out.push_str(&format!("{v},"));
         }
-        if c.class == CellClass::Failed {
+        if !c.class.has_result() {
             // A failed cell has no result: empty fields, not zeros that read as one.
-            out.push_str("failed,,");
+            out.push_str(c.class.as_str());
+            out.push_str(",,");
             out.push_str(&",".repeat(sweep.reported.len()));
             out.push('\n');
             continue;

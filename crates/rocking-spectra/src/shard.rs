@@ -12,7 +12,7 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
-use crate::{read_journal, CellClass, Outcome, Sweep, SweepError, JOURNAL};
+use crate::{read_journal, split_notes, Outcome, Sweep, SweepError, JOURNAL};
 
 /// The most shards a sweep may be split into (far more than a job array has tasks).
 pub const MAX_SHARDS: usize = 100_000;
@@ -139,7 +139,7 @@ pub fn merge(sweep: &Sweep, dirs: &[(PathBuf, Shard)]) -> Result<Outcome, MergeE
     }
     let len = sweep.len();
     let mut cells = BTreeMap::new();
-    let mut failures = Vec::new();
+    let mut notes = Vec::new();
     let mut missing: Vec<String> = Vec::new();
     for k in 0..n {
         let shard = Shard { k, n };
@@ -178,8 +178,8 @@ pub fn merge(sweep: &Sweep, dirs: &[(PathBuf, Shard)]) -> Result<Outcome, MergeE
             if !shard.owns(i) {
                 continue;
             }
-            if c.class == CellClass::Failed {
-                failures.push((i, m.unwrap_or_else(|| "failed".into())));
+            if !c.class.has_result() {
+                notes.push((i, c.class, m.unwrap_or_else(|| "failed".into())));
             }
             cells.insert(i, c);
         }
@@ -191,10 +191,11 @@ pub fn merge(sweep: &Sweep, dirs: &[(PathBuf, Shard)]) -> Result<Outcome, MergeE
             missing.join("\n  ")
         )));
     }
-    failures.sort_by_key(|f| f.0);
+    let (failures, beyond_model) = split_notes(notes);
     Ok(Outcome {
         cells: cells.into_values().collect(),
         failures,
+        beyond_model,
         computed: 0,
         elapsed: Duration::ZERO,
     })

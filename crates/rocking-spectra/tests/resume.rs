@@ -5,7 +5,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use rocking::{simulate, DampingConvention, Dimensionless, Effects, Options, Structure, Summary};
 use rocking_motion::SinePulse;
-use rocking_spectra::{run, Axis, CellClass, Progress, Sweep};
+use rocking_spectra::{run, Axis, CellClass, CellFailure, Progress, Sweep};
 
 /// A cell of the Fig-8 structure's spectrum (γ_mb = γ_mc = 2, ω_n/p = 5, α = 0.1, uplifted ζ = 0.01).
 fn cell(values: &[f64]) -> Result<Summary, String> {
@@ -228,4 +228,81 @@ fn an_in_memory_run_equals_the_journaled_one() {
         1,
         "only the journaled run writes"
     );
+}
+
+/// A cell beyond the model is a class of its own: not a failure, with its message kept apart,
+/// written as such in cells.csv with no values, and kept on resume and in memory alike.
+#[test]
+fn a_cell_beyond_the_model_is_its_own_class_through_resume_and_memory() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = sweep("beyond-model");
+    let singular = |v: &[f64]| -> Result<Summary, CellFailure> {
+        if v[1] == 20.0 {
+            Err(CellFailure {
+                class: CellClass::BeyondModel,
+                message: format!("M singular at ω_p/p = {}", v[0]),
+            })
+        } else if v[0] == 1.0 && v[1] == 0.5 {
+            Err("integration failed".to_string().into())
+        } else {
+            cell(v).map_err(CellFailure::from)
+        }
+    };
+    let first = run(&s, dir.path(), Progress::Quiet, singular).unwrap();
+    assert_eq!(
+        first.beyond_model.len(),
+        6,
+        "one per ω_p/p at the top amplitude"
+    );
+    assert_eq!(first.beyond_model[0].1, "M singular at ω_p/p = 1");
+    assert_eq!(
+        first.failures,
+        vec![(0, "integration failed".to_string())],
+        "a failure stays a failure"
+    );
+    for c in &first.cells {
+        let beyond = first.beyond_model.iter().any(|b| b.0 == c.index);
+        assert_eq!(
+            c.class == CellClass::BeyondModel,
+            beyond,
+            "cell {}",
+            c.index
+        );
+        assert_eq!(c.class.has_result(), c.index != 0 && !beyond);
+    }
+    let csv = rocking_spectra::cells_csv(&s, &first.cells);
+    assert_eq!(csv.matches(",beyond-model,,\n").count(), 6, "{csv}");
+    let calls = AtomicUsize::new(0);
+    let resumed = run(&s, dir.path(), Progress::Quiet, |v| {
+        calls.fetch_add(1, Ordering::SeqCst);
+        cell(v)
+    })
+    .unwrap();
+    assert_eq!(calls.load(Ordering::SeqCst), 0, "nothing recomputed");
+    assert_eq!(resumed.cells, first.cells);
+    assert_eq!(
+        resumed.beyond_model, first.beyond_model,
+        "kept with messages"
+    );
+    assert_eq!(resumed.failures, first.failures);
+    let memory = rocking_spectra::run_in_memory(&s, singular).unwrap();
+    assert_eq!(memory.cells, first.cells);
+    assert_eq!(memory.beyond_model, first.beyond_model);
+    assert_eq!(memory.failures, first.failures);
+}
+
+/// A run cannot claim a class with a result as its failure: such a cell is a failure.
+#[test]
+fn a_failure_with_a_class_that_has_a_result_is_a_failure() {
+    let s = sweep("claimed-class");
+    let out = rocking_spectra::run_in_memory(&s, |_: &[f64]| -> Result<Summary, CellFailure> {
+        Err(CellFailure {
+            class: CellClass::Survived,
+            message: "no summary".into(),
+        })
+    })
+    .unwrap();
+    assert!(out.cells.iter().all(|c| c.class == CellClass::Failed));
+    assert_eq!(out.failures.len(), 48);
+    assert!(out.beyond_model.is_empty());
 }

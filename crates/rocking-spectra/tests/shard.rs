@@ -5,14 +5,20 @@
 use rocking::{simulate, DampingConvention, Dimensionless, Effects, Options, Structure, Summary};
 use rocking_motion::SinePulse;
 use rocking_spectra::shard::{merge, MergeError, MAX_SHARDS};
-use rocking_spectra::{run, run_shard, Axis, CellClass, Progress, Shard, Sweep};
+use rocking_spectra::{run, run_shard, Axis, CellClass, CellFailure, Progress, Shard, Sweep};
 
 /// A cell of the Fig-8 structure's spectrum (γ_mb = γ_mc = 2, ω_n/p = 5, α = 0.1), failing on
 /// purpose at one cell so that failures travel through the shards too.
-fn cell(values: &[f64]) -> Result<Summary, String> {
+fn cell(values: &[f64]) -> Result<Summary, CellFailure> {
     let (wp, amp) = (values[0], values[1]);
     if wp == 1.0 && amp == 20.0 {
-        return Err("model singular\nat u = s B".into());
+        return Err("model singular\nat u = s B".to_string().into());
+    }
+    if wp == 10.0 && amp == 20.0 {
+        return Err(CellFailure {
+            class: CellClass::BeyondModel,
+            message: "beyond the model".into(),
+        });
     }
     let d = Dimensionless {
         omega_n_over_p: 5.0,
@@ -31,7 +37,7 @@ fn cell(values: &[f64]) -> Result<Summary, String> {
     let excitation = SinePulse::new(amp * d.alpha.tan(), wp);
     simulate(&s, &excitation, &Effects::default(), &opts)
         .map(|r| r.summary)
-        .map_err(|e| e.to_string())
+        .map_err(|e| e.to_string().into())
 }
 
 fn sweep() -> Sweep {
@@ -77,6 +83,10 @@ fn every_split_merges_to_the_whole_sweep() {
             merged.failures, whole.failures,
             "N = {n}: failures and messages"
         );
+        assert_eq!(
+            merged.beyond_model, whole.beyond_model,
+            "N = {n}: cells beyond the model and messages"
+        );
         // The order the directories are given in does not matter.
         let reversed: Vec<_> = shards.iter().rev().cloned().collect();
         assert_eq!(merge(&s, &reversed).unwrap().cells, whole.cells, "N = {n}");
@@ -90,6 +100,16 @@ fn every_split_merges_to_the_whole_sweep() {
         whole.failures[0],
         (failed.index, "model singular at u = s B".to_string()),
         "a fresh failure reads as the journal keeps it"
+    );
+    assert_eq!(whole.failures.len(), 1);
+    let beyond = whole
+        .cells
+        .iter()
+        .find(|c| c.class == CellClass::BeyondModel)
+        .unwrap();
+    assert_eq!(
+        whole.beyond_model,
+        vec![(beyond.index, "beyond the model".to_string())]
     );
 }
 

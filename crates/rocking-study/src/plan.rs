@@ -11,7 +11,8 @@ use rocking_scene::scene::{self, Scene};
 use rocking_scene::setup::{self, Setup};
 use rocking_scene::SceneError;
 
-use rocking_spectra::{fnv1a, Axis, CellRun, Sweep};
+use rocking::SimError;
+use rocking_spectra::{fnv1a, Axis, CellClass, CellFailure, CellRun, Sweep};
 
 use crate::run_report;
 
@@ -258,6 +259,16 @@ impl Base {
         self.simulate(self.model(extra)?)
     }
 
+    /// A sweep's cell with these knobs set ([`Base::run_knobs`]), or why it has no result.
+    fn knobs_cell(&self, cell: &[(&Knob, KnobValue)]) -> Result<CellRun, CellFailure> {
+        self.cell(knob::setup(&self.scene, cell).map_err(|e| e.to_string())?)
+    }
+
+    /// A sweep's cell with extra overrides ([`Base::run`]), or why it has no result.
+    fn sets_cell(&self, extra: &[String]) -> Result<CellRun, CellFailure> {
+        self.cell(self.model(extra).map_err(|e| e.to_string())?)
+    }
+
     /// The scene with the overrides and `extra` ones, built.
     pub fn model(&self, extra: &[String]) -> Result<Setup, SceneError> {
         let mut sets = self.sets.clone();
@@ -265,7 +276,13 @@ impl Base {
         setup::build(&self.parsed.load(&sets)?)
     }
 
-    fn simulate(&self, mut m: Setup) -> Result<CellRun, SceneError> {
+    fn simulate(&self, m: Setup) -> Result<CellRun, SceneError> {
+        self.cell(m).map_err(|f| SceneError::failure(f.message))
+    }
+
+    /// A cell's run, or why it has no result: a run whose mass matrix became singular left the
+    /// model's validity (its own class, [`CellClass::BeyondModel`]); any other error is a failure.
+    fn cell(&self, mut m: Setup) -> Result<CellRun, CellFailure> {
         m.options.history = History::None;
         m.options.event_log = false;
         m.options.energy = false;
@@ -275,9 +292,15 @@ impl Base {
         // A cell keeps its class, max θ/α and impacts, and the reported quantities: max |u| is
         // only needed for the latter.
         m.options.max_deflection = !self.report.is_empty();
+        let path = self.path.display();
         let run = |options: &rocking::Options| {
-            rocking::simulate(&m.structure, &m.excitation, &m.effects, options).map_err(|e| {
-                SceneError::failure(format!("{}: simulation failed: {e}", self.path.display()))
+            rocking::simulate(&m.structure, &m.excitation, &m.effects, options).map_err(|e| match e
+            {
+                SimError::SingularMassMatrix { .. } => CellFailure {
+                    class: CellClass::BeyondModel,
+                    message: format!("{path}: beyond the model: {e}"),
+                },
+                e => format!("{path}: simulation failed: {e}").into(),
             })
         };
         let summary = run(&m.options)?.summary;
@@ -293,17 +316,16 @@ impl Base {
         } else {
             None
         };
-        let q = run_report::quantities(&summary, twin.as_ref())?;
+        let q = run_report::quantities(&summary, twin.as_ref()).map_err(|e| e.to_string())?;
         let reported = self
             .report
             .iter()
             .map(|k| {
                 lookup(&q, k).ok_or_else(|| {
-                    SceneError::failure(format!(
-                        "{}: the run has no value of `{k}` (a ratio to a fixed-base twin that \
-                         carries no force has none)",
-                        self.path.display()
-                    ))
+                    format!(
+                        "{path}: the run has no value of `{k}` (a ratio to a fixed-base twin that \
+                         carries no force has none)"
+                    )
                 })
             })
             .collect::<Result<Vec<f64>, _>>()?;
@@ -641,8 +663,8 @@ impl Plan {
         }))
     }
 
-    /// Runs the cell with these axis values (summary only).
-    pub fn run_cell(&self, values: &[f64]) -> Result<CellRun, SceneError> {
+    /// Runs the cell with these axis values (summary only), or says why it has no result.
+    pub fn run_cell(&self, values: &[f64]) -> Result<CellRun, CellFailure> {
         match &self.cells {
             Cells::Knobs(knobs) => {
                 let cell: Vec<(&Knob, KnobValue)> = knobs
@@ -650,7 +672,7 @@ impl Plan {
                     .zip(values)
                     .map(|(k, &v)| (k, KnobValue::Number(v)))
                     .collect();
-                self.base.run_knobs(&cell)
+                self.base.knobs_cell(&cell)
             }
             Cells::Sets => {
                 let extra: Vec<String> = self
@@ -660,7 +682,7 @@ impl Plan {
                     .zip(values)
                     .map(|(a, &v)| set_arg(&a.key, v))
                     .collect();
-                self.base.run(&extra)
+                self.base.sets_cell(&extra)
             }
             Cells::Records { knobs, paths } => {
                 let cell = [
@@ -670,7 +692,7 @@ impl Plan {
                     ),
                     (&knobs[1], KnobValue::Number(values[1])),
                 ];
-                self.base.run_knobs(&cell)
+                self.base.knobs_cell(&cell)
             }
         }
     }

@@ -95,10 +95,8 @@ impl Loader {
             return Ok(s.clone());
         }
         let dir = self.cache.join(&plan.sweep.fingerprint);
-        let outcome = rocking_spectra::run(&plan.sweep, &dir, self.progress, |v| {
-            plan.run_cell(v).map_err(|e| e.to_string())
-        })
-        .map_err(rocking_study::plan::sweep_error)?;
+        let outcome = rocking_spectra::run(&plan.sweep, &dir, self.progress, |v| plan.run_cell(v))
+            .map_err(rocking_study::plan::sweep_error)?;
         if let Some((_, first)) = outcome.failures.first() {
             eprintln!(
                 "note: {} of {} cells of {} failed (drawn black); first: {first}",

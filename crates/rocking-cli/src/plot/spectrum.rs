@@ -25,20 +25,15 @@ fn class_style(class: CellClass) -> Option<ClassStyle> {
         CellClass::OverturnedNoImpact => Some(style::OVERTURNED_NO_IMPACT),
         CellClass::OverturnedOneImpact => Some(style::OVERTURNED_ONE_IMPACT),
         CellClass::OverturnedImpacts => Some(style::OVERTURNED_IMPACTS),
+        CellClass::BeyondModel => Some(style::BEYOND_MODEL),
         CellClass::Failed => Some(style::FAILED),
         CellClass::Survived => None,
     }
 }
 
-/// Whether a class is one of the overturned ones (`None` for a failed cell: neither).
+/// Whether a class is one of the overturned ones (`None` for a cell without a result: neither).
 pub fn overturned(class: CellClass) -> Option<bool> {
-    match class {
-        CellClass::Failed => None,
-        CellClass::OverturnedNoImpact
-        | CellClass::OverturnedOneImpact
-        | CellClass::OverturnedImpacts => Some(true),
-        CellClass::Survived | CellClass::NoUplift => Some(false),
-    }
+    class.overturned()
 }
 
 /// An axis of a panel: its scene key (for the label) and its values.
@@ -120,7 +115,7 @@ fn boundary_lines(g: &Grid, side: impl Fn(CellClass) -> Option<bool>) -> Lines {
 /// did.
 fn uplifted(class: CellClass) -> Option<bool> {
     match class {
-        CellClass::Failed => None,
+        CellClass::BeyondModel | CellClass::Failed => None,
         CellClass::NoUplift => Some(false),
         _ => Some(true),
     }
@@ -221,6 +216,7 @@ impl SpectrumPanel {
             CellClass::OverturnedNoImpact,
             CellClass::OverturnedOneImpact,
             CellClass::OverturnedImpacts,
+            CellClass::BeyondModel,
             CellClass::Failed,
         ]
         .into_iter()
@@ -612,6 +608,7 @@ impl LinePanel {
             CellClass::OverturnedNoImpact,
             CellClass::OverturnedOneImpact,
             CellClass::OverturnedImpacts,
+            CellClass::BeyondModel,
             CellClass::Failed,
         ] {
             if let (Some(s), true) = (class_style(class), self.cells.iter().any(|c| c.1 == class)) {
@@ -623,11 +620,7 @@ impl LinePanel {
             .iter()
             .filter(|c| overturned(c.1) == Some(true))
             .count();
-        let done = self
-            .cells
-            .iter()
-            .filter(|c| c.1 != CellClass::Failed)
-            .count();
+        let done = self.cells.iter().filter(|c| c.1.has_result()).count();
         items.push(LegendItem::Heading(format!(
             "{} = {over}/{done}",
             labels::FRACTION_OVERTURNED

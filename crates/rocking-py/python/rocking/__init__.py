@@ -265,15 +265,20 @@ class Spectrum:
         self.codes: np.ndarray = np.array([lookup[n] for n in names], dtype=np.int64).reshape(shape)
         #: Class name per cell.
         self.classes: np.ndarray = names.reshape(shape)
-        failed = self.classes == "failed"
-        #: max θ/α per cell (masked where the simulation failed).
+        #: True where a cell has no result: the simulation failed, or left the model's
+        #: validity (class ``beyond-model``: the mass matrix became singular).
+        self.without_result: np.ndarray = np.isin(self.classes, ["failed", "beyond-model"])
+        #: max θ/α per cell (masked where a cell has no result).
         self.max_theta_over_alpha: np.ma.MaskedArray = np.ma.masked_array(
-            np.frombuffer(raw["max_theta_over_alpha"], dtype=np.float64).reshape(shape), failed
+            np.frombuffer(raw["max_theta_over_alpha"], dtype=np.float64).reshape(shape),
+            self.without_result,
         )
         #: Impacts per cell.
         self.impacts: np.ndarray = np.asarray(raw["impacts"], dtype=np.int64).reshape(shape)
         #: Failed cells: (cell index, message).
         self.failures: List[Tuple[int, str]] = list(raw["failures"])
+        #: Cells beyond the model's validity: (cell index, message).
+        self.beyond_model: List[Tuple[int, str]] = list(raw["beyond_model"])
 
     @property
     def overturned(self) -> np.ndarray:
@@ -297,8 +302,9 @@ class Batch(Spectrum):
         self.scales: np.ndarray = np.asarray(raw["scales"], dtype=np.float64)
 
     def overturned_fraction(self) -> np.ndarray:
-        """Per scale factor, the fraction of records that overturned (failed runs excluded)."""
-        ok = self.classes != "failed"
+        """Per scale factor, the fraction of records that overturned (runs without a result
+        excluded)."""
+        ok = ~self.without_result
         return (self.overturned & ok).sum(axis=0) / np.maximum(ok.sum(axis=0), 1)
 
 
