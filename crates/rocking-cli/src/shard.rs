@@ -84,10 +84,7 @@ pub fn run_shard(
                 .sweep
                 .axes
                 .iter()
-                .map(|a| {
-                    let v: Vec<String> = a.values.iter().map(exact).collect();
-                    format!("{}={}", a.key, v.join(","))
-                })
+                .map(rocking_spectra::Axis::spec)
                 .collect(),
             Kind::Batch => Vec::new(),
         },

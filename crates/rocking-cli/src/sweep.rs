@@ -4,7 +4,7 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use rocking_spectra::{cells_csv, CellClass, Outcome, Progress, Shard};
+use rocking_spectra::{cells_csv, CellClass, Outcome, Progress, Shard, Sweep};
 use rocking_study::plan::{program_digest, sweep_error, Base, Plan, Records};
 use serde_json::json;
 
@@ -104,6 +104,19 @@ pub(crate) fn failed_runs(outcome: &Outcome, what: &str, table: &str) -> Result<
     }
 }
 
+/// A cell's axis values for meta.json: numbers, and the texts of text axes.
+fn cell_values(sweep: &Sweep, index: usize) -> Vec<serde_json::Value> {
+    sweep
+        .axes
+        .iter()
+        .zip(sweep.values(index))
+        .map(|(a, v)| match a.text(v) {
+            Some(t) => json!(t),
+            None => json!(v),
+        })
+        .collect()
+}
+
 /// What a run took: timing.json, apart from meta.json, which is a function of the study alone
 /// (the same bytes whether run at once, resumed, or sharded and merged).
 fn write_timing(outcome: &Outcome, dir: &Path, threads: usize) -> Result<PathBuf, SceneError> {
@@ -159,12 +172,15 @@ pub(crate) fn write_outputs(
         "scene": base.path().display().to_string(),
         "scene_text": base.text(),
         "set": base.sets(),
-        "axes": sweep.axes.iter().map(|a| json!({"key": a.key, "values": a.values})).collect::<Vec<_>>(),
+        "axes": sweep.axes.iter().map(|a| if a.is_text() {
+            json!({"key": a.key, "values": a.texts})
+        } else {
+            json!({"key": a.key, "values": a.values})
+        }).collect::<Vec<_>>(),
         "fingerprint": sweep.fingerprint,
         "cells": outcome.cells.len(),
         "failures": outcome.failures.iter().map(|(i, m)| {
-            let v = sweep.values(*i);
-            json!({"cell": i, "values": v, "message": m})
+            json!({"cell": i, "values": cell_values(sweep, *i), "message": m})
         }).collect::<Vec<_>>(),
         "versions": {"rocking": env!("CARGO_PKG_VERSION"), "kernels": "generated/ir (CasADi 3.8.2)"},
     });
@@ -172,7 +188,7 @@ pub(crate) fn write_outputs(
         meta["beyond_model"] = outcome
             .beyond_model
             .iter()
-            .map(|(i, m)| json!({"cell": i, "values": sweep.values(*i), "message": m}))
+            .map(|(i, m)| json!({"cell": i, "values": cell_values(sweep, *i), "message": m}))
             .collect();
     }
     if let Some((r, run)) = &reference {

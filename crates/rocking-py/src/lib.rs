@@ -275,8 +275,10 @@ fn outcome_dict<'py>(
         .iter()
         .map(|a| f64_bytes(py, a.values.iter().copied()))
         .collect();
+    let texts: Vec<&[String]> = sweep.axes.iter().map(|a| a.texts.as_slice()).collect();
     d.set_item("keys", keys)?;
     d.set_item("values", values)?;
+    d.set_item("texts", texts)?;
     let classes: Vec<&str> = outcome.cells.iter().map(|c| c.class.as_str()).collect();
     d.set_item("classes", classes)?;
     d.set_item(

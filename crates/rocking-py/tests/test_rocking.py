@@ -165,6 +165,22 @@ def test_cells_beyond_the_model_are_their_own_class_as_in_the_command(tmp_path):
     assert not sp.overturned[beyond].any()
 
 
+def test_a_text_axis_gives_its_texts_and_the_commands_cells(tmp_path):
+    scene = REPO / "scenes" / "fig5-flexible.toml"
+    axes = ["structure.model=cubic,cantilever_modes2", "effects.impact=vvel,adjex"]
+    out = tmp_path / "text"
+    cli("spectrum", str(scene), "--out", str(out), "--quiet", "--axis", axes[0], "--axis", axes[1])
+    rows = read_csv(out / "cells.csv")
+    sp = rocking.spectrum(scene, axes=axes, threads=2)
+    assert sp.axes[0].tolist() == ["cubic", "cantilever_modes2"]
+    assert sp.axes[1].tolist() == ["vvel", "adjex"]
+    got = [(m, i, float(x)) for (m, i), x in
+           zip(np.ndindex(2, 2), sp.max_theta_over_alpha.ravel())]
+    for (m, i, x), r in zip(got, rows):
+        assert sp.axes[0][m] == r["structure.model"] and sp.axes[1][i] == r["effects.impact"]
+        assert x == float(r["max_theta_over_alpha"])
+
+
 def test_batch_is_the_scene_run_per_record_and_scale(tmp_path):
     scene = REPO / "scenes" / "wind-turbine-elcentro.toml"
     record = REPO / "scenes" / "records" / "elCentro.AT2"

@@ -32,13 +32,17 @@ pub mod shard;
 
 pub use shard::Shard;
 
-/// One axis of a sweep: a scene key path and its values.
+/// One axis of a sweep: a scene key path and its values, numbers or texts (`structure.model =
+/// cubic, cantilever_modes2`). A text axis's cells carry the index of their text as their value,
+/// so that every cell is a list of numbers; tables write the text.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Axis {
     /// Key path in the scene, e.g. `excitation.omega_p_over_p`.
     pub key: String,
-    /// Values, in sweep order.
+    /// Values, in sweep order (for a text axis the indices 0, 1, … of its texts).
     pub values: Vec<f64>,
+    /// The texts of a text axis, in sweep order; empty for a numeric axis.
+    pub texts: Vec<String>,
 }
 
 /// The most values one axis may have (each is validated and run: far more than a plot shows).
@@ -48,7 +52,47 @@ pub const MAX_AXIS_VALUES: usize = 100_000;
 pub const MAX_CELLS: usize = 1_000_000;
 
 impl Axis {
-    /// `key=start:stop:count` (count points from start to stop inclusive) or `key=v1,v2,...`.
+    /// A numeric axis.
+    pub fn numbers(key: impl Into<String>, values: Vec<f64>) -> Axis {
+        Axis {
+            key: key.into(),
+            values,
+            texts: Vec::new(),
+        }
+    }
+
+    /// Whether the axis holds texts.
+    pub fn is_text(&self) -> bool {
+        !self.texts.is_empty()
+    }
+
+    /// The text of a text axis's cell value (its index); `None` on a numeric axis.
+    pub fn text(&self, value: f64) -> Option<&str> {
+        self.texts.get(value as usize).map(String::as_str)
+    }
+
+    /// A cell's value as tables write it: the text of a text axis, else the number.
+    pub fn display(&self, value: f64) -> String {
+        match self.text(value) {
+            Some(t) => t.to_string(),
+            None => value.to_string(),
+        }
+    }
+
+    /// The axis as a spec [`Axis::parse`] reads back to the same axis: its texts, or its
+    /// numbers written exactly (`{:?}` round-trips an f64).
+    pub fn spec(&self) -> String {
+        let values: Vec<String> = if self.is_text() {
+            self.texts.clone()
+        } else {
+            self.values.iter().map(|v| format!("{v:?}")).collect()
+        };
+        format!("{}={}", self.key, values.join(","))
+    }
+
+    /// `key=start:stop:count` (count points from start to stop inclusive) or `key=v1,v2,...`:
+    /// numbers, or texts (a list of which one is not a number: `structure.model=cubic,
+    /// cantilever_modes2`; distinct, without commas).
     pub fn parse(spec: &str) -> Result<Axis, String> {
         let (key, range) = spec.split_once('=').ok_or_else(|| {
             format!("axis `{spec}`: expected key=start:stop:count or key=v1,v2,...")
@@ -102,17 +146,37 @@ impl Axis {
                     .collect(),
             }
         } else {
-            let values = range.split(',').map(num).collect::<Result<Vec<_>, _>>()?;
-            if values.len() > MAX_AXIS_VALUES {
+            let items: Vec<&str> = range.split(',').map(str::trim).collect();
+            if items.len() > MAX_AXIS_VALUES {
                 return Err(format!(
                     "axis `{}`: {} values are too many: at most {MAX_AXIS_VALUES} values per axis",
                     key,
-                    values.len()
+                    items.len()
                 ));
             }
-            values
+            if items.iter().any(|t| t.parse::<f64>().is_err()) {
+                return Axis::texts(spec, key, &items);
+            }
+            items.into_iter().map(num).collect::<Result<Vec<_>, _>>()?
         };
-        Ok(Axis { key, values })
+        Ok(Axis::numbers(key, values))
+    }
+
+    /// A text axis of `items` (from `spec`): each non-empty and given once.
+    fn texts(spec: &str, key: String, items: &[&str]) -> Result<Axis, String> {
+        for (i, t) in items.iter().enumerate() {
+            if t.is_empty() {
+                return Err(format!("axis `{spec}`: value {} is empty", i + 1));
+            }
+            if items[..i].contains(t) {
+                return Err(format!("axis `{spec}`: `{t}` is given twice"));
+            }
+        }
+        Ok(Axis {
+            key,
+            values: (0..items.len()).map(|i| i as f64).collect(),
+            texts: items.iter().map(|t| t.to_string()).collect(),
+        })
     }
 }
 
@@ -731,6 +795,15 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     Ok(())
 }
 
+/// `text` as a CSV field: quoted when it holds a quote, a comma or a line break.
+fn csv_field(text: &str) -> String {
+    if text.contains(['"', ',', '\n', '\r']) {
+        format!("\"{}\"", text.replace('"', "\"\""))
+    } else {
+        text.to_string()
+    }
+}
+
 /// `cells.csv`: one row per cell with the axis values (columns named by their key paths),
 /// the class, max θ/α, the number of impacts and the reported quantities.
 pub fn cells_csv(sweep: &Sweep, cells: &[Cell]) -> String {
@@ -746,8 +819,9 @@ pub fn cells_csv(sweep: &Sweep, cells: &[Cell]) -> String {
     }
     out.push('\n');
     for c in cells {
-        for v in sweep.values(c.index) {
-            out.push_str(&format!("{v},"));
+        for (a, v) in sweep.axes.iter().zip(sweep.values(c.index)) {
+            out.push_str(&csv_field(&a.display(v)));
+            out.push(',');
         }
         if !c.class.has_result() {
             // A failed cell has no result: empty fields, not zeros that read as one.
@@ -808,17 +882,63 @@ mod tests {
     }
 
     #[test]
+    fn a_list_with_a_text_is_a_text_axis_written_back_as_given() {
+        let a = Axis::parse("structure.model= cubic, cantilever_modes2 ,x").unwrap();
+        assert!(a.is_text());
+        assert_eq!(a.texts, ["cubic", "cantilever_modes2", "x"]);
+        assert_eq!(a.values, [0.0, 1.0, 2.0]);
+        assert_eq!(a.text(1.0), Some("cantilever_modes2"));
+        assert_eq!(a.display(2.0), "x");
+        assert_eq!(a.spec(), "structure.model=cubic,cantilever_modes2,x");
+        assert_eq!(Axis::parse(&a.spec()).unwrap(), a);
+        // A number among texts is a text too (the scene says whether the key takes it).
+        assert_eq!(Axis::parse("k=1,a").unwrap().texts, ["1", "a"]);
+        let e = Axis::parse("k=a,,b").unwrap_err();
+        assert!(e.contains("value 2 is empty"), "{e}");
+        let e = Axis::parse("k=vvel,adjex,vvel").unwrap_err();
+        assert!(e.contains("`vvel` is given twice"), "{e}");
+        // Numeric axes are unchanged, and their spec reads back exactly.
+        let n = Axis::parse("k=0.1,1e-3,2").unwrap();
+        assert!(!n.is_text());
+        assert_eq!(n.values, [0.1, 1e-3, 2.0]);
+        assert_eq!(n.display(0.1), "0.1");
+        assert_eq!(Axis::parse(&n.spec()).unwrap(), n);
+        let r = Axis::parse("k=0.1:0.7:7").unwrap();
+        assert_eq!(Axis::parse(&r.spec()).unwrap(), r);
+    }
+
+    #[test]
+    fn cells_csv_writes_the_texts_of_a_text_axis() {
+        let s = Sweep {
+            axes: vec![
+                Axis::parse("structure.model=cubic,polynomial2").unwrap(),
+                Axis::numbers("b", vec![0.5]),
+            ],
+            fingerprint: "x".into(),
+            reported: Vec::new(),
+        };
+        let cells: Vec<Cell> = (0..2)
+            .map(|index| Cell {
+                index,
+                class: CellClass::Survived,
+                max_theta_over_alpha: 0.25,
+                impacts: 3,
+                reported: Vec::new(),
+            })
+            .collect();
+        assert_eq!(
+            cells_csv(&s, &cells),
+            "structure.model,b,class,max_theta_over_alpha,impacts\n\
+             cubic,0.5,survived,0.25,3\npolynomial2,0.5,survived,0.25,3\n"
+        );
+    }
+
+    #[test]
     fn cell_order_is_last_axis_fastest() {
         let s = Sweep {
             axes: vec![
-                Axis {
-                    key: "a".into(),
-                    values: vec![1.0, 2.0],
-                },
-                Axis {
-                    key: "b".into(),
-                    values: vec![10.0, 20.0, 30.0],
-                },
+                Axis::numbers("a", vec![1.0, 2.0]),
+                Axis::numbers("b", vec![10.0, 20.0, 30.0]),
             ],
             fingerprint: "x".into(),
             reported: Vec::new(),

@@ -344,7 +344,11 @@ impl Base {
             self.record_digest
         );
         for a in axes {
-            key.push_str(&format!("{}={:?}\n", a.key, a.values));
+            if a.is_text() {
+                key.push_str(&format!("{}={:?}\n", a.key, a.texts));
+            } else {
+                key.push_str(&format!("{}={:?}\n", a.key, a.values));
+            }
         }
         format!("{:016x}", fnv1a(key.as_bytes()))
     }
@@ -432,8 +436,12 @@ pub struct ReferencePlan {
 }
 
 /// An override `key=value` that reads back as the same f64.
-fn set_arg(key: &str, v: f64) -> String {
-    format!("{key}={v:?}")
+fn set_arg(axis: &Axis, v: f64) -> String {
+    match axis.text(v) {
+        // A JSON string is a TOML basic string (the same escapes).
+        Some(t) => format!("{}={}", axis.key, serde_json::Value::from(t)),
+        None => format!("{}={v:?}", axis.key),
+    }
 }
 
 /// How a cell's axis values reach its simulation.
@@ -509,7 +517,7 @@ impl Plan {
         }
         for a in &axes {
             for &v in &a.values {
-                base.model(&[set_arg(&a.key, v)])?;
+                base.model(&[set_arg(a, v)])?;
             }
         }
         reference_sets(&base)?;
@@ -581,14 +589,8 @@ impl Plan {
             base.model(&[record_set(i)])?;
         }
         let axes = vec![
-            Axis {
-                key: "record".into(),
-                values: (0..paths.len()).map(|i| i as f64).collect(),
-            },
-            Axis {
-                key: "excitation.scale".into(),
-                values: scales.clone(),
-            },
+            Axis::numbers("record", (0..paths.len()).map(|i| i as f64).collect()),
+            Axis::numbers("excitation.scale", scales.clone()),
         ];
         Sweep::checked_len(&axes)
             .map_err(|e| SceneError::input(format!("{}: records x scales: {e}", path.display())))?;
@@ -651,10 +653,7 @@ impl Plan {
         let n = self.sweep.axes.len();
         let specs: Vec<String> = self.sweep.axes[n.saturating_sub(2)..]
             .iter()
-            .map(|a| {
-                let values: Vec<String> = a.values.iter().map(|v| format!("{v:?}")).collect();
-                format!("{}={}", a.key, values.join(","))
-            })
+            .map(Axis::spec)
             .collect();
         Ok(Some(ReferencePlan {
             name,
@@ -669,8 +668,15 @@ impl Plan {
             Cells::Knobs(knobs) => {
                 let cell: Vec<(&Knob, KnobValue)> = knobs
                     .iter()
+                    .zip(&self.sweep.axes)
                     .zip(values)
-                    .map(|(k, &v)| (k, KnobValue::Number(v)))
+                    .map(|((k, a), &v)| {
+                        let value = match a.text(v) {
+                            Some(t) => KnobValue::Text(t.to_string()),
+                            None => KnobValue::Number(v),
+                        };
+                        (k, value)
+                    })
                     .collect();
                 self.base.knobs_cell(&cell)
             }
@@ -680,7 +686,7 @@ impl Plan {
                     .axes
                     .iter()
                     .zip(values)
-                    .map(|(a, &v)| set_arg(&a.key, v))
+                    .map(|(a, &v)| set_arg(a, v))
                     .collect();
                 self.base.sets_cell(&extra)
             }

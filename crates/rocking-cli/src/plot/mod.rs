@@ -314,7 +314,10 @@ pub fn sweep_figure(
                 let label = leading
                     .iter()
                     .zip(&values)
-                    .map(|(a, &v)| labels::axis_value(&a.key, v))
+                    .map(|(a, &v)| match a.text(v) {
+                        Some(t) => format!("{} = {t}", a.key),
+                        None => labels::axis_value(&a.key, v),
+                    })
                     .collect::<Vec<_>>()
                     .join(", ");
                 let style = style::LINES[s % style::LINES.len()];
@@ -388,14 +391,27 @@ pub fn is_sweep_figure(file: &str) -> bool {
     ours && is_figure_file(file, name)
 }
 
-/// Whether a sweep's figure can be drawn: plotters' tick search does not end on a range near the
-/// f64 limit, or one too narrow for its magnitude (x + step == x); such a sweep is not drawn (its
-/// cells are in cells.csv) and a note says so.
+/// Whether a sweep's figure can be drawn: its plotted axes (the last two) are numeric, and
+/// plotters' tick search does not end on a range near the f64 limit, or one too narrow for its
+/// magnitude (x + step == x); such a sweep is not drawn (its cells are in cells.csv) and a note
+/// says so. A text axis before them labels the structures of an overturning-boundaries figure.
 pub fn drawable(sweep: &Sweep) -> bool {
     if sweep.axes.is_empty() || sweep.is_empty() {
         return false;
     }
     let n = sweep.axes.len();
+    if let Some(a) = sweep.axes[n.saturating_sub(2)..]
+        .iter()
+        .find(|a| a.is_text())
+    {
+        eprintln!(
+            "note: the sweep plot is not drawn: `{}` is a text axis, and the plot's axes are the \
+             last two (give it first, before two numeric axes, for a figure of one boundary per \
+             text); the cells are in cells.csv",
+            a.key
+        );
+        return false;
+    }
     let ok = |v: &[f64]| {
         let (lo, hi) = v
             .iter()
@@ -439,14 +455,8 @@ mod tests {
     fn sweep() -> Sweep {
         Sweep {
             axes: vec![
-                rocking_spectra::Axis {
-                    key: "excitation.omega_p_over_p".into(),
-                    values: vec![1.0, 2.0],
-                },
-                rocking_spectra::Axis {
-                    key: "excitation.amplitude".into(),
-                    values: vec![1.0, 2.0],
-                },
+                rocking_spectra::Axis::numbers("excitation.omega_p_over_p", vec![1.0, 2.0]),
+                rocking_spectra::Axis::numbers("excitation.amplitude", vec![1.0, 2.0]),
             ],
             fingerprint: "test".into(),
             reported: Vec::new(),

@@ -254,8 +254,12 @@ class Spectrum:
     def __init__(self, raw: Dict[str, Any]) -> None:
         #: The axes' scene keys, e.g. ``["excitation.omega_p_over_p", "excitation.amplitude"]``.
         self.keys: List[str] = list(raw["keys"])
-        #: The axes' values (one array per axis).
-        self.axes: List[np.ndarray] = [np.frombuffer(v, dtype=np.float64) for v in raw["values"]]
+        #: The axes' values (one array per axis: float64, or str for a text axis such as
+        #: ``structure.model=cubic,cantilever_modes2``).
+        self.axes: List[np.ndarray] = [
+            np.asarray(t) if t else np.frombuffer(v, dtype=np.float64)
+            for v, t in zip(raw["values"], raw["texts"])
+        ]
         shape = tuple(len(a) for a in self.axes)
         names = np.asarray(raw["classes"])
         #: Class names (as in cells.csv), the index of ``codes``.
