@@ -26,6 +26,7 @@ macro_rules! out {
     }};
 }
 
+mod convergence;
 mod figure;
 mod ida;
 mod merge;
@@ -188,6 +189,33 @@ enum Command {
         /// No progress bar.
         #[arg(long)]
         quiet: bool,
+    },
+    /// How a scene's results converge with the number of deformation coordinates: the scene
+    /// run with each model of --models, in order (e.g. cubic,cantilever_modes2,cantilever_modes3),
+    /// and per quantity its value per model and the first model from which it changes by less
+    /// than --tolerance. Writes convergence.csv and convergence.json, prints the table.
+    Convergence {
+        /// The scene file (TOML).
+        scene: PathBuf,
+        /// The models to compare, comma separated, in order (`rocking models` lists them).
+        #[arg(long, value_delimiter = ',', required = true)]
+        models: Vec<String>,
+        /// Summary quantities, comma separated (default: max θ/α, impacts, max u/u_cr and the
+        /// base moment, shear and elastic moment).
+        #[arg(long, value_delimiter = ',')]
+        quantities: Vec<String>,
+        /// Relative change below which a quantity counts as converged.
+        #[arg(long, default_value_t = rocking_study::convergence::DEFAULT_TOLERANCE)]
+        tolerance: f64,
+        /// Override a scene value (repeatable).
+        #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
+        set: Vec<String>,
+        /// Output directory (default: out/<scene-stem>-convergence/).
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// Number of threads (default: all cores).
+        #[arg(long)]
+        threads: Option<usize>,
     },
     /// Incremental dynamic analysis of a record scene (settings in [ida]): per record its
     /// intensity measures and its overturning capacity by hunt-and-fill; the lognormal fragility
@@ -529,6 +557,23 @@ fn main() -> ExitCode {
             out,
             threads,
         } => ida::ida(&scene, &set, &records, out, threads),
+        Command::Convergence {
+            scene,
+            models,
+            quantities,
+            tolerance,
+            set,
+            out,
+            threads,
+        } => convergence::convergence(convergence::Args {
+            scene: &scene,
+            sets: &set,
+            models: &models,
+            quantities: &quantities,
+            tolerance,
+            out,
+            threads,
+        }),
     };
     // Buffered output reaches a closed or full stdout only here.
     let result = result.and_then(|()| {

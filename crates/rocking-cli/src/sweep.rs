@@ -16,7 +16,7 @@ use rocking_scene::SceneError;
 /// The most threads `--threads` may ask for: more than the cores only adds switching.
 const MAX_THREADS: usize = 1024;
 
-fn threads_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, SceneError> {
+pub(crate) fn threads_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, SceneError> {
     let mut b = rayon::ThreadPoolBuilder::new();
     if let Some(n) = threads {
         if !(1..=MAX_THREADS).contains(&n) {
@@ -30,7 +30,7 @@ fn threads_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, SceneError>
         .map_err(|e| SceneError::failure(format!("cannot start the thread pool: {e}")))
 }
 
-fn out_dir(scene: &Path, out: Option<PathBuf>, what: &str) -> PathBuf {
+pub(crate) fn out_dir(scene: &Path, out: Option<PathBuf>, what: &str) -> PathBuf {
     out.unwrap_or_else(|| {
         let stem = scene
             .file_stem()

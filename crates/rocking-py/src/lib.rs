@@ -360,6 +360,34 @@ fn ida(
     ))
 }
 
+/// How the scene's results converge over `models` (in order), as `rocking convergence` reports
+/// it: a JSON string, what convergence.json holds.
+#[pyfunction]
+#[pyo3(signature = (scene, models, quantities = Vec::new(), tolerance = rocking_study::convergence::DEFAULT_TOLERANCE, threads = None))]
+fn convergence(
+    py: Python<'_>,
+    scene: &Scene,
+    models: Vec<String>,
+    quantities: Vec<String>,
+    tolerance: f64,
+    threads: Option<usize>,
+) -> PyResult<String> {
+    let study = py
+        .detach(|| {
+            rocking_study::convergence::plan(
+                &scene.path,
+                scene.text.clone(),
+                &scene.sets,
+                &models,
+                &quantities,
+                tolerance,
+            )
+        })
+        .map_err(py_err)?;
+    let outcome = run_plan(py, &study.plan, threads)?;
+    Ok(study.report(&outcome).json().to_string())
+}
+
 /// The generated models, their variants and parameters, as `rocking models --json` prints them
 /// (a JSON string).
 #[pyfunction]
@@ -381,6 +409,7 @@ fn _rocking(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(spectrum, m)?)?;
     m.add_function(wrap_pyfunction!(batch, m)?)?;
     m.add_function(wrap_pyfunction!(ida, m)?)?;
+    m.add_function(wrap_pyfunction!(convergence, m)?)?;
     m.add_function(wrap_pyfunction!(models_json, m)?)?;
     m.add_function(wrap_pyfunction!(read_scene, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

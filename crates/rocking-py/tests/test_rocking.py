@@ -181,6 +181,20 @@ def test_a_text_axis_gives_its_texts_and_the_commands_cells(tmp_path):
         assert x == float(r["max_theta_over_alpha"])
 
 
+def test_convergence_equals_the_commands_report(tmp_path):
+    models = ["cubic", "cantilever_modes2", "cantilever_modes3"]
+    out = tmp_path / "convergence"
+    cli("convergence", str(FIG3), "--models", ",".join(models), "--set", "structure.gamma_mc=0.5",
+        "--out", str(out))
+    expected = json.loads((out / "convergence.json").read_text())
+    scene = rocking.load_scene(str(FIG3), set={"structure.gamma_mc": 0.5})
+    got = rocking.convergence(scene, models, threads=2)
+    assert got == expected
+    assert [m["n"] for m in got["models"]] == [1, 2, 3]
+    with pytest.raises(ValueError, match="from 2 to 64 models"):
+        rocking.convergence(scene, ["cubic"])
+
+
 def test_batch_is_the_scene_run_per_record_and_scale(tmp_path):
     scene = REPO / "scenes" / "wind-turbine-elcentro.toml"
     record = REPO / "scenes" / "records" / "elCentro.AT2"

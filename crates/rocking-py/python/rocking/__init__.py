@@ -377,6 +377,25 @@ def ida(
     return Fragility(json.loads(fragility), json.loads(per_record))
 
 
+def convergence(
+    scene: Union[Scene, PathLike],
+    models: Sequence[str],
+    quantities: Optional[Sequence[str]] = None,
+    tolerance: float = 0.01,
+    threads: Optional[int] = None,
+) -> Dict[str, Any]:
+    """How the scene's results converge with the number of deformation coordinates, as
+    ``rocking convergence`` reports it: the scene run with each of ``models`` (in order, e.g.
+    ``["cubic", "cantilever_modes2", "cantilever_modes3"]``); per quantity (default: max θ/α,
+    impacts, max u/u_cr, the base moment, shear and elastic moment) its ``values`` per model,
+    ``changes`` from the model before, and ``converged_n`` (``converged_model``): the first
+    model from which every change is below ``tolerance`` (``None``: not converged). The
+    dictionary is what convergence.json holds (GIL released)."""
+    s = _scene(scene)
+    raw = _rocking.convergence(s._inner, list(models), list(quantities or []), tolerance, threads)
+    return json.loads(raw)
+
+
 def models() -> List[Dict[str, Any]]:
     """The generated models with their variants, parameters and effect switches, as
     ``rocking models --json`` lists them."""
