@@ -8,7 +8,6 @@ use std::time::Instant;
 use rocking_fragility::ScalingIm;
 use rocking_motion::intensity::pga_over_uplift;
 use rocking_study::ida::RecordStudy;
-use rocking_study::plan::Base;
 use serde_json::json;
 
 use crate::out_dir::{write_atomic, OutDir};
@@ -112,7 +111,7 @@ pub fn ida(
     threads: Option<usize>,
 ) -> Result<(), SceneError> {
     let start = Instant::now();
-    let base = Base::load(scene_path, sets)?;
+    let base = crate::load_base(scene_path, sets)?;
     let model = base.model(&[])?;
     let (alpha, g_si) = (model.units.alpha, model.units.g_si);
     let mut pool = rayon::ThreadPoolBuilder::new();

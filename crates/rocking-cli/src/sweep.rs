@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use rocking_spectra::{cells_csv, CellClass, Outcome, Progress, Shard};
-use rocking_study::plan::{program_digest, sweep_error, Base, Plan, Records};
+use rocking_study::plan::{program_digest, sweep_error, Plan, Records};
 use serde_json::json;
 
 use crate::out_dir::write_atomic;
@@ -50,9 +50,10 @@ pub fn spectrum(
     threads: Option<usize>,
     shard: Option<Shard>,
 ) -> Result<(), SceneError> {
-    let plan = Plan::spectrum(Base::load(scene_path, sets)?, axis_args)?;
+    let plan = Plan::spectrum(crate::load_base(scene_path, sets)?, axis_args)?;
     let sweep = &plan.sweep;
     let dir = out_dir(scene_path, out, "spectrum");
+    crate::out_dir::refuse_a_file(&dir)?;
     let progress = if quiet {
         Progress::Quiet
     } else {
@@ -244,8 +245,9 @@ pub fn batch(
     threads: Option<usize>,
     shard: Option<Shard>,
 ) -> Result<(), SceneError> {
-    let plan = Plan::batch(Base::load(scene_path, sets)?, records, scales)?;
+    let plan = Plan::batch(crate::load_base(scene_path, sets)?, records, scales)?;
     let dir = out_dir(scene_path, out, "batch");
+    crate::out_dir::refuse_a_file(&dir)?;
     let progress = if quiet {
         Progress::Quiet
     } else {
