@@ -327,16 +327,21 @@ pub(crate) fn write_batch_outputs(
     let mut tally: Tally = scales.iter().map(|&s| (s, 0, 0, 0)).collect();
     let mut runs = csv::Writer::from_writer(Vec::new());
     let csv_err = |e: csv::Error| SceneError::failure(format!("cannot write runs.csv: {e}"));
-    runs.write_record([
+    // The quantities of `[sweep] report` after the run's own, as in a spectrum's cells.csv.
+    let head = [
         "record",
         "scale",
         "class",
         "overturned",
         "max_theta_over_alpha",
         "impacts",
-        "message",
-    ])
-    .map_err(csv_err)?;
+    ];
+    let head = head
+        .iter()
+        .copied()
+        .chain(sweep.reported.iter().map(String::as_str));
+    runs.write_record(head.chain(["message"]))
+        .map_err(csv_err)?;
     for c in &outcome.cells {
         let v = sweep.values(c.index);
         let (r, k) = (v[0] as usize, c.index % scales.len());
@@ -346,27 +351,24 @@ pub(crate) fn write_batch_outputs(
             t.2 += 1;
             // A failed run has no result: its fields are empty, never a made-up "survived".
             let m = messages.get(&c.index).copied().unwrap_or("failed");
-            [
-                names[r].clone(),
-                v[1].to_string(),
-                c.class.as_str().into(),
-                String::new(),
-                String::new(),
-                String::new(),
-                m.to_string(),
-            ]
+            let mut row = vec![names[r].clone(), v[1].to_string(), c.class.as_str().into()];
+            row.extend(std::iter::repeat_n(String::new(), 3 + sweep.reported.len()));
+            row.push(m.to_string());
+            row
         } else {
             let over = is_overturned(c.class);
             t.3 += usize::from(over);
-            [
+            let mut row = vec![
                 names[r].clone(),
                 v[1].to_string(),
                 c.class.as_str().into(),
                 over.to_string(),
                 c.max_theta_over_alpha.to_string(),
                 c.impacts.to_string(),
-                String::new(),
-            ]
+            ];
+            row.extend(c.reported.iter().map(f64::to_string));
+            row.push(String::new());
+            row
         };
         runs.write_record(&row).map_err(csv_err)?;
     }

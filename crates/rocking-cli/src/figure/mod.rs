@@ -502,6 +502,16 @@ fn build(
             }
         });
     }
+    let lines = traces.len().max(structure_count);
+    if lines > style::LINES.len() {
+        eprintln!(
+            "warning: {}: {lines} runs or structures share the {} line styles: the {}th looks \
+             like the first (give `style` to each, or split the figure)",
+            file.display(),
+            style::LINES.len(),
+            style::LINES.len() + 1
+        );
+    }
     let panel = spec.panel.map_or((560, 400), |[w, h]| (w, h));
     Ok(Figure {
         title: spec.title.clone(),
