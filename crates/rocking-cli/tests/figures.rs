@@ -519,7 +519,7 @@ fn a_bad_figure_file_is_refused_naming_the_file_and_the_field() {
     for (edit, field) in [
         (base.replace("columns = 2", "columns = 20"), "columns"),
         (
-            base.replace("style = \"red\"", "style = \"pink\""),
+            base.replace("style = \"red\"", "style = \"mauve\""),
             "runs.adjex.style",
         ),
         (
