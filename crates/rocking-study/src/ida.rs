@@ -219,9 +219,17 @@ impl Study {
 }
 
 /// Runs the study of the scene `base` (`[ida]`) over `records` (else the scene's), in the
-/// current rayon pool: [`plan`], then [`Planned::run`].
+/// current rayon pool: [`plan`], then [`Planned::run`]; a study without a fit is an error here
+/// (for callers that need the fit, as the Python package does; `rocking ida` writes it anyway).
 pub fn run(base: &Base, records: &[PathBuf]) -> Result<Study, SceneError> {
-    plan(base, records)?.run()
+    let study = plan(base, records)?.run()?;
+    if let Err(why) = &study.fit {
+        return Err(SceneError::input(format!(
+            "{}: {why}",
+            base.path().display()
+        )));
+    }
+    Ok(study)
 }
 
 /// A study checked before its first analysis: the scene, the settings, and every record read
