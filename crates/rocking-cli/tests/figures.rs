@@ -531,6 +531,8 @@ fn a_bad_figure_file_is_refused_naming_the_file_and_the_field() {
             base.replace("\"u_over_ucr\"", "\"u_over_u\""),
             "panels[1].quantity",
         ),
+        // A control character (issue 47, item 15): it failed when drawn, exit 1.
+        (base.replacen("title = \"", "title = \"\\u0007", 1), "title"),
     ] {
         let file = dir.join("bad.toml");
         std::fs::write(&file, edit).unwrap();
