@@ -25,12 +25,13 @@ pub struct Args<'a> {
 pub fn convergence(a: Args) -> Result<(), SceneError> {
     let text = rocking_scene::scene::read(a.scene)?;
     let study = convergence::plan(a.scene, text, a.sets, a.models, a.quantities, a.tolerance)?;
+    let dir = out_dir(a.scene, a.out, "convergence");
+    crate::out_dir::refuse_a_file(&dir)?;
     let pool = threads_pool(a.threads)?;
     let outcome = pool
         .install(|| rocking_spectra::run_in_memory(&study.plan.sweep, |v| study.plan.run_cell(v)))
         .map_err(sweep_error)?;
     let report = study.report(&outcome);
-    let dir = out_dir(a.scene, a.out, "convergence");
     std::fs::create_dir_all(&dir).map_err(|e| {
         SceneError::failure(format!(
             "{}: cannot create the directory: {e}",

@@ -8,7 +8,6 @@ use std::time::Instant;
 use rocking_fragility::ScalingIm;
 use rocking_motion::intensity::pga_over_uplift;
 use rocking_study::ida::RecordStudy;
-use rocking_study::plan::Base;
 use serde_json::json;
 
 use crate::out_dir::{write_atomic, OutDir};
@@ -72,26 +71,33 @@ fn records_csv(done: &[RecordStudy], alpha: f64, g_si: f64) -> Result<Vec<u8>, S
         .map_err(|e| SceneError::failure(e.to_string()))
 }
 
-fn ida_csv(done: &[RecordStudy]) -> Result<Vec<u8>, SceneError> {
+/// ida.csv or stripes.csv: one row per analysis, with the quantities of `[sweep] report`.
+fn ida_csv(done: &[RecordStudy], report: &[String]) -> Result<Vec<u8>, SceneError> {
     let mut w = csv::Writer::from_writer(Vec::new());
-    w.write_record([
+    let head = [
         "record",
         "im_m_s2",
         "scale",
         "collapsed",
         "max_theta_over_alpha",
-    ])
+    ];
+    w.write_record(
+        head.iter()
+            .copied()
+            .chain(report.iter().map(String::as_str)),
+    )
     .map_err(csv_err)?;
     for d in done {
-        for p in &d.points {
-            w.write_record([
+        for (p, values) in d.points.iter().zip(&d.reported) {
+            let mut row = vec![
                 d.name.clone(),
                 p.im.to_string(),
                 (p.im / d.im_unscaled).to_string(),
                 p.outcome.collapsed.to_string(),
                 p.outcome.response.to_string(),
-            ])
-            .map_err(csv_err)?;
+            ];
+            row.extend(values.iter().map(f64::to_string));
+            w.write_record(&row).map_err(csv_err)?;
         }
     }
     w.into_inner()
@@ -112,7 +118,7 @@ pub fn ida(
     threads: Option<usize>,
 ) -> Result<(), SceneError> {
     let start = Instant::now();
-    let base = Base::load(scene_path, sets)?;
+    let base = crate::load_base(scene_path, sets)?;
     let model = base.model(&[])?;
     let (alpha, g_si) = (model.units.alpha, model.units.g_si);
     let mut pool = rayon::ThreadPoolBuilder::new();
@@ -140,7 +146,7 @@ pub fn ida(
     let planned = pool.install(|| rocking_study::ida::plan(&base, records))?;
     let dir = OutDir::begin(&target, crate::out_dir::IDA_OUT)?;
     let st = pool.install(|| planned.run())?;
-    let (done, fit) = (&st.records, &st.fit);
+    let done = &st.records;
     let runs = st.analyses();
     let empirical = st.empirical();
     let mut json = json!({
@@ -150,8 +156,6 @@ pub fn ida(
     if let (Some(j), serde_json::Value::Object(f)) = (json.as_object_mut(), st.fragility_json()) {
         j.extend(f);
     }
-    let (tl, th) = fit.theta_interval();
-    let (bl, bh) = fit.beta_interval();
     let method = st.method();
     write_atomic(
         &dir.path().join("records.csv"),
@@ -162,7 +166,7 @@ pub fn ida(
     } else {
         "ida.csv"
     };
-    write_atomic(&dir.path().join(table), &ida_csv(done)?)?;
+    write_atomic(&dir.path().join(table), &ida_csv(done, base.report())?)?;
     let text = serde_json::to_string_pretty(&json)
         .map_err(|e| SceneError::failure(format!("cannot write fragility.json: {e}")))?;
     write_atomic(&dir.path().join("fragility.json"), (text + "\n").as_bytes())?;
@@ -199,31 +203,44 @@ pub fn ida(
             im_label: im_label.clone(),
             stripes: st.settings.stripes.is_some(),
         },
-        plot::FitPanel {
+        st.fit.as_ref().ok().map(|fit| plot::FitPanel {
             fit: fit.clone(),
             empirical,
             empirical_label: empirical_label.to_string(),
             im_label,
             unit: "m/s²".to_string(),
-        },
+        }),
         dir.path(),
     )?;
     dir.commit()?;
     if let Some(w) = st.band_warning() {
         eprintln!("warning: {w}");
     }
+    let fit = match &st.fit {
+        Ok(fit) => {
+            let (tl, th) = fit.theta_interval();
+            let (bl, bh) = fit.beta_interval();
+            format!(
+                "median capacity {:.4} m/s2 ({:.4} g), beta {:.3} (95 % band: median \
+                 {tl:.4}..{th:.4}, beta {bl:.3}..{bh:.3})",
+                fit.estimate.theta,
+                fit.estimate.theta / g_si,
+                fit.estimate.beta,
+            )
+        }
+        Err(why) => {
+            eprintln!(
+                "warning: {}: {why}; the analyses are written, fragility.json has no fit \
+                 (`no_fit` says why) and there is no fragility-fit plot",
+                scene_path.display()
+            );
+            "no fragility fitted".to_string()
+        }
+    };
     out!(
-        "{} records, {runs} analyses ({method}) in {:.2} s: median capacity {:.4} m/s2 ({:.4} g), \
-         beta {:.3} (95 % band: median {:.4}..{:.4}, beta {:.3}..{:.3}); outputs in {}",
+        "{} records, {runs} analyses ({method}) in {:.2} s: {fit}; outputs in {}",
         done.len(),
         start.elapsed().as_secs_f64(),
-        fit.estimate.theta,
-        fit.estimate.theta / g_si,
-        fit.estimate.beta,
-        tl,
-        th,
-        bl,
-        bh,
         target.display()
     );
     Ok(())

@@ -242,8 +242,34 @@ enum Command {
 
 fn load(scene: &Path, set: &[String]) -> Result<(scene::Scene, Setup), SceneError> {
     let sc = scene::load(scene, set)?;
+    check_title(&sc)?;
     let model = setup::build(&sc)?;
     Ok((sc, model))
+}
+
+/// A scene's `title` is drawn on its plots (SVG, which holds no control character): one is
+/// refused before the run, not after it when the plots are drawn.
+pub(crate) fn check_title(sc: &scene::Scene) -> Result<(), SceneError> {
+    match sc.spec.title.as_deref().and_then(plot::control_char) {
+        Some(c) => Err(sc.src.err(
+            "title",
+            format_args!(
+                "`title` holds the control character {c:?}, which a plot cannot show: \
+                 printable text only"
+            ),
+        )),
+        None => Ok(()),
+    }
+}
+
+/// A study's scene ([`rocking_study::plan::Base::load`]) with its title checked.
+pub(crate) fn load_base(
+    scene: &Path,
+    set: &[String],
+) -> Result<rocking_study::plan::Base, SceneError> {
+    let base = rocking_study::plan::Base::load(scene, set)?;
+    check_title(base.scene())?;
+    Ok(base)
 }
 
 /// `rocking models`: the generated registry, as text or JSON.
@@ -258,7 +284,7 @@ fn models_command(json: bool) -> Result<(), SceneError> {
 
 fn check(scene: &Path, set: &[String], json: bool) -> Result<(), SceneError> {
     // What `run`, `spectrum`, `batch` and `ida` refuse in the scene, by their own checks.
-    let base = rocking_study::plan::Base::load(scene, set)?;
+    let base = load_base(scene, set)?;
     rocking_study::plan::check_table(&base)?;
     rocking_study::ida::check_table(&base)?;
     let m = base.model(&[])?;

@@ -23,6 +23,10 @@ pub struct OutKind {
     pub writes: fn(&str) -> bool,
     /// The command, for messages.
     pub command: &'static str,
+    /// Whether the previous directory's files that this run does not rewrite stay (`figure`:
+    /// each run adds its figures to a folder of figures); otherwise the run's files replace the
+    /// directory's whole content.
+    pub keeps_others: bool,
 }
 
 /// The outputs of `rocking run` (with --animate, plots in every format).
@@ -32,6 +36,7 @@ pub const RUN_OUT: OutKind = OutKind {
             || plot::is_figure_file(n, "plot")
     },
     command: "rocking run",
+    keeps_others: false,
 };
 
 /// The outputs of `rocking ida` (IDA or stripes).
@@ -50,6 +55,7 @@ pub const IDA_OUT: OutKind = OutKind {
                 .any(|figure| plot::is_figure_file(n, figure))
     },
     command: "rocking ida",
+    keeps_others: false,
 };
 
 /// The outputs of `rocking merge`: a spectrum's (any number of axes, with its reference) or a
@@ -67,6 +73,18 @@ pub const MERGE_OUT: OutKind = OutKind {
             || plot::is_sweep_figure(n)
     },
     command: "rocking merge",
+    keeps_others: false,
+};
+
+/// The outputs of `rocking figure`: each figure file's SVG, PNG and PDF, named after the file.
+/// A run replaces the figures it draws, all three formats together, and keeps the others.
+pub const FIGURE_OUT: OutKind = OutKind {
+    writes: |n| {
+        n.rsplit_once('.')
+            .is_some_and(|(stem, _)| !stem.is_empty() && plot::is_figure_file(n, stem))
+    },
+    command: "rocking figure",
+    keeps_others: true,
 };
 
 /// The output directory of one command, built aside and swapped in whole: the directory always
@@ -83,8 +101,85 @@ pub struct OutDir {
     /// `--out` as given, for messages and the paths printed.
     shown: PathBuf,
     staging: tempfile::TempDir,
-    _lock: std::fs::File,
+    _lock: Lock,
     kind: OutKind,
+}
+
+/// The lock beside `--out`, held while a run stages and swaps, and removed when released: the
+/// file is deleted while still locked, and a run that locked a file no longer at its path
+/// (deleted by the run before it) opens the path again. So no lock file stays behind.
+struct Lock {
+    _file: std::fs::File,
+    path: PathBuf,
+}
+
+impl Lock {
+    fn acquire(path: &Path) -> Result<Lock, SceneError> {
+        use fs4::fs_std::FileExt as _;
+        loop {
+            let file = std::fs::OpenOptions::new()
+                .create(true)
+                .truncate(false)
+                .write(true)
+                .open(path)
+                .map_err(|e| io_error("open", path, e))?;
+            file.lock_exclusive()
+                .map_err(|e| io_error("lock", path, e))?;
+            if still_at(&file, path) {
+                return Ok(Lock {
+                    _file: file,
+                    path: path.to_path_buf(),
+                });
+            }
+        }
+    }
+}
+
+/// Whether the open `file` is still the one at `path` (a released lock's file is deleted).
+#[cfg(unix)]
+fn still_at(file: &std::fs::File, path: &Path) -> bool {
+    use std::os::unix::fs::MetadataExt as _;
+    match (file.metadata(), std::fs::metadata(path)) {
+        (Ok(a), Ok(b)) => (a.dev(), a.ino()) == (b.dev(), b.ino()),
+        _ => false,
+    }
+}
+
+/// Elsewhere a lock file is never deleted ([`Lock`]'s drop), so the one locked is the one there.
+#[cfg(not(unix))]
+fn still_at(_: &std::fs::File, _: &Path) -> bool {
+    true
+}
+
+impl Drop for Lock {
+    fn drop(&mut self) {
+        // `self._file` is closed (unlocked) after this, once the path is gone.
+        if cfg!(unix) {
+            let _ = std::fs::remove_file(&self.path);
+        }
+    }
+}
+
+/// The longest `--out` name used as is in the names of the lock and the staging directories
+/// beside it (`.NAME.rocking-old-XXXXXX` adds 21 bytes; a file name has at most 255).
+const KEY_BYTES: usize = 200;
+
+/// The part of the lock's and staging directories' names that stands for `name`: the name, or
+/// for a longer one its first bytes and a digest of the whole, so that they never grow past
+/// what the file system allows.
+fn sibling_key(name: &str) -> String {
+    if name.len() <= KEY_BYTES {
+        return name.to_string();
+    }
+    let mut end = KEY_BYTES - 17;
+    while !name.is_char_boundary(end) {
+        end -= 1;
+    }
+    format!(
+        "{}~{:016x}",
+        &name[..end],
+        rocking_spectra::fnv1a(name.as_bytes())
+    )
 }
 
 fn io_error(what: &str, p: &Path, e: std::io::Error) -> SceneError {
@@ -110,7 +205,7 @@ fn resolve(out: &Path) -> Result<PathBuf, SceneError> {
 
 /// `.NAME.rocking-`: the prefix of the staging and set-aside directories beside `NAME`.
 fn leftover_prefix(name: &str) -> String {
-    format!(".{name}.rocking-")
+    format!(".{}.rocking-", sibling_key(name))
 }
 
 /// The prefix of a previous directory set aside by a swap of two renames.
@@ -124,7 +219,6 @@ impl OutDir {
     /// `kind` writes. Called before the command's work, so that an `--out` it could not replace
     /// is refused before anything is computed.
     pub fn begin(out: &Path, kind: OutKind) -> Result<OutDir, SceneError> {
-        use fs4::fs_std::FileExt as _;
         let target = resolve(out)?;
         let name = target
             .file_name()
@@ -140,15 +234,7 @@ impl OutDir {
             check_is_run_dir(&target, out, kind)?;
         }
         std::fs::create_dir_all(&parent).map_err(|e| io_error("create", &parent, e))?;
-        let lock_path = parent.join(format!(".{name}.lock"));
-        let lock = std::fs::OpenOptions::new()
-            .create(true)
-            .truncate(false)
-            .write(true)
-            .open(&lock_path)
-            .map_err(|e| io_error("open", &lock_path, e))?;
-        lock.lock_exclusive()
-            .map_err(|e| io_error("lock", &lock_path, e))?;
+        let lock = Lock::acquire(&parent.join(format!(".{}.lock", sibling_key(&name))))?;
         // Under the lock no other run is staging or swapping: every directory beside `target`
         // with the prefix is a leftover of a killed run. A previous directory set aside by a
         // swap killed between its two renames is the only copy: it goes back first.
@@ -234,6 +320,9 @@ impl OutDir {
         let had_target = std::fs::symlink_metadata(&self.target).is_ok();
         if had_target {
             check_is_run_dir(&self.target, &self.shown, self.kind)?;
+            if self.kind.keeps_others {
+                self.carry_over().map_err(fail)?;
+            }
         }
         let staged = self.staging.keep();
         test_hook::crash_point("staged");
@@ -277,6 +366,40 @@ impl OutDir {
         let _ = std::fs::remove_dir_all(&old);
         Ok(())
     }
+}
+
+impl OutDir {
+    /// Copies (links, where it can) into the staging directory the previous directory's files
+    /// this run does not rewrite, so that the swap keeps them ([`OutKind::keeps_others`]).
+    fn carry_over(&self) -> std::io::Result<()> {
+        for e in std::fs::read_dir(&self.target)? {
+            let e = e?;
+            let n = e.file_name();
+            let to = self.staging.path().join(&n);
+            if !(self.kind.writes)(&n.to_string_lossy()) || to.exists() {
+                continue;
+            }
+            if std::fs::hard_link(e.path(), &to).is_err() {
+                std::fs::copy(e.path(), &to)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// `--out` named an existing file that is not a directory: the one message of every command.
+pub fn refuse_a_file(out: &Path) -> Result<(), SceneError> {
+    match std::fs::metadata(out) {
+        Ok(m) if !m.is_dir() => Err(not_a_directory(out)),
+        _ => Ok(()),
+    }
+}
+
+fn not_a_directory(shown: &Path) -> SceneError {
+    SceneError::input(format!(
+        "{}: --out exists and is not a directory",
+        shown.display()
+    ))
 }
 
 /// Exchanges two directories atomically; `Ok(false)` where the system or the filesystem cannot.
@@ -329,10 +452,7 @@ mod test_hook {
 /// An existing `--out` must be a directory of the command's outputs only (never a user's folder).
 fn check_is_run_dir(target: &Path, shown: &Path, kind: OutKind) -> Result<(), SceneError> {
     if !target.is_dir() {
-        return Err(SceneError::input(format!(
-            "{}: --out exists and is not a directory",
-            shown.display()
-        )));
+        return Err(not_a_directory(shown));
     }
     let entries = std::fs::read_dir(target)
         .map_err(|e| SceneError::failure(format!("{}: cannot read: {e}", shown.display())))?;

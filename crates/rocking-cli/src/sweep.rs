@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use rocking_spectra::{cells_csv, CellClass, Outcome, Progress, Shard, Sweep};
-use rocking_study::plan::{program_digest, sweep_error, Base, Plan, Records};
+use rocking_study::plan::{program_digest, sweep_error, Plan, Records};
 use serde_json::json;
 
 use crate::out_dir::write_atomic;
@@ -50,9 +50,10 @@ pub fn spectrum(
     threads: Option<usize>,
     shard: Option<Shard>,
 ) -> Result<(), SceneError> {
-    let plan = Plan::spectrum(Base::load(scene_path, sets)?, axis_args)?;
+    let plan = Plan::spectrum(crate::load_base(scene_path, sets)?, axis_args)?;
     let sweep = &plan.sweep;
     let dir = out_dir(scene_path, out, "spectrum");
+    crate::out_dir::refuse_a_file(&dir)?;
     let progress = if quiet {
         Progress::Quiet
     } else {
@@ -262,8 +263,9 @@ pub fn batch(
     threads: Option<usize>,
     shard: Option<Shard>,
 ) -> Result<(), SceneError> {
-    let plan = Plan::batch(Base::load(scene_path, sets)?, records, scales)?;
+    let plan = Plan::batch(crate::load_base(scene_path, sets)?, records, scales)?;
     let dir = out_dir(scene_path, out, "batch");
+    crate::out_dir::refuse_a_file(&dir)?;
     let progress = if quiet {
         Progress::Quiet
     } else {
@@ -379,16 +381,21 @@ pub(crate) fn write_batch_outputs(
         .collect();
     let mut runs = csv::Writer::from_writer(Vec::new());
     let csv_err = |e: csv::Error| SceneError::failure(format!("cannot write runs.csv: {e}"));
-    runs.write_record([
+    // The quantities of `[sweep] report` after the run's own, as in a spectrum's cells.csv.
+    let head = [
         "record",
         "scale",
         "class",
         "overturned",
         "max_theta_over_alpha",
         "impacts",
-        "message",
-    ])
-    .map_err(csv_err)?;
+    ];
+    let head = head
+        .iter()
+        .copied()
+        .chain(sweep.reported.iter().map(String::as_str));
+    runs.write_record(head.chain(["message"]))
+        .map_err(csv_err)?;
     for c in &outcome.cells {
         let v = sweep.values(c.index);
         let (r, k) = (v[0] as usize, c.index % scales.len());
@@ -403,27 +410,24 @@ pub(crate) fn write_batch_outputs(
             // A failed run (or one beyond the model) has no result: its fields are empty, never
             // a made-up "survived".
             let m = messages.get(&c.index).copied().unwrap_or("failed");
-            [
-                names[r].clone(),
-                v[1].to_string(),
-                c.class.as_str().into(),
-                String::new(),
-                String::new(),
-                String::new(),
-                m.to_string(),
-            ]
+            let mut row = vec![names[r].clone(), v[1].to_string(), c.class.as_str().into()];
+            row.extend(std::iter::repeat_n(String::new(), 3 + sweep.reported.len()));
+            row.push(m.to_string());
+            row
         } else {
             let over = c.class.overturned() == Some(true);
             t.overturned += usize::from(over);
-            [
+            let mut row = vec![
                 names[r].clone(),
                 v[1].to_string(),
                 c.class.as_str().into(),
                 over.to_string(),
                 c.max_theta_over_alpha.to_string(),
                 c.impacts.to_string(),
-                String::new(),
-            ]
+            ];
+            row.extend(c.reported.iter().map(f64::to_string));
+            row.push(String::new());
+            row
         };
         runs.write_record(&row).map_err(csv_err)?;
     }

@@ -585,6 +585,14 @@ const ROWS: &[Row] = &[
         None,
         &["`kind` = \"sine-pulse\" in [excitation]", "kind = \"record\""],
     ),
+    (
+        "title-control-char",
+        SCENE,
+        "",
+        "title = \"bell \\u0007\"\n",
+        None,
+        &["`title`", "'\\u{7}'", "printable text only"],
+    ),
 ];
 
 fn doc_ids() -> Vec<String> {

@@ -519,7 +519,7 @@ fn a_bad_figure_file_is_refused_naming_the_file_and_the_field() {
     for (edit, field) in [
         (base.replace("columns = 2", "columns = 20"), "columns"),
         (
-            base.replace("style = \"red\"", "style = \"pink\""),
+            base.replace("style = \"red\"", "style = \"mauve\""),
             "runs.adjex.style",
         ),
         (
@@ -531,6 +531,8 @@ fn a_bad_figure_file_is_refused_naming_the_file_and_the_field() {
             base.replace("\"u_over_ucr\"", "\"u_over_u\""),
             "panels[1].quantity",
         ),
+        // A control character (issue 47, item 15): it failed when drawn, exit 1.
+        (base.replacen("title = \"", "title = \"\\u0007", 1), "title"),
     ] {
         let file = dir.join("bad.toml");
         std::fs::write(&file, edit).unwrap();
@@ -549,5 +551,36 @@ fn a_bad_figure_file_is_refused_naming_the_file_and_the_field() {
         );
         assert!(!dir.join("out/bad.svg").exists());
     }
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// Two figure files of one name into one --out (issue 47, item 7: both were drawn as
+/// `fig.*`, the first lost, and both listed): refused before anything is drawn, naming both.
+#[test]
+fn two_figure_files_of_one_name_are_refused_before_drawing() {
+    let dir = tmp_path("same-name");
+    for sub in ["a", "b"] {
+        std::fs::create_dir_all(dir.join(sub)).unwrap();
+        std::fs::copy(
+            repo().join("scenes/paper/fig3.toml"),
+            dir.join(sub).join("fig.toml"),
+        )
+        .unwrap();
+    }
+    let o = bin()
+        .arg("figure")
+        .arg(dir.join("a/fig.toml"))
+        .arg(dir.join("b/fig.toml"))
+        .args(["--cells", "2", "--quiet", "--out"])
+        .arg(dir.join("out"))
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("a/fig.toml") && err.contains("b/fig.toml") && err.contains("fig.svg"),
+        "{err}"
+    );
+    assert!(!dir.join("out").exists(), "nothing drawn");
     let _ = std::fs::remove_dir_all(dir);
 }

@@ -507,3 +507,104 @@ fn fragility_json_is_the_same_on_every_run_and_timing_is_apart() {
         "fragility.json differs between two runs of one study"
     );
 }
+
+/// `[sweep] report` in a record suite (issue 47, item 9: validated, then written nowhere): the
+/// batch's runs.csv and the study's stripes.csv hold a column per reported quantity, a finite
+/// number in every row of a finished run.
+#[test]
+fn batch_and_ida_write_the_reported_columns() {
+    let tmp = tempfile::tempdir().unwrap();
+    let report = "sweep.report=[\"max_base_moment_over_wb\", \"impacts\"]";
+    let gm = repo().join("../shared/data/ground-motions");
+    let recs: Vec<String> = ["A-ELC180.AT2", "A-BEN360.AT2"]
+        .iter()
+        .map(|r| gm.join(r).canonicalize().unwrap().display().to_string())
+        .collect();
+    let columns = |file: &Path, rows: usize| {
+        let mut table = csv::Reader::from_path(file).unwrap();
+        let heads = table.headers().unwrap().clone();
+        let records: Vec<csv::StringRecord> = table.records().map(Result::unwrap).collect();
+        assert_eq!(records.len(), rows, "{}", file.display());
+        for q in ["max_base_moment_over_wb", "impacts"] {
+            let c = heads
+                .iter()
+                .position(|h| h == q)
+                .unwrap_or_else(|| panic!("{}: no column {q} in {heads:?}", file.display()));
+            for r in &records {
+                let v: f64 = r[c].parse().unwrap();
+                assert!(v.is_finite() && v >= 0.0, "{q} = {v}");
+            }
+        }
+    };
+    let out = tmp.path().join("batch");
+    let mut args = vec!["batch", "scenes/wind-turbine-ida.toml", "--records"];
+    args.extend(recs.iter().map(String::as_str));
+    let out_s = out.display().to_string();
+    args.extend([
+        "--scales", "0.5,1", "--quiet", "--set", report, "--out", &out_s,
+    ]);
+    let o = rocking(&args);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    columns(&out.join("runs.csv"), 4);
+    let out = tmp.path().join("msa");
+    let mut args = vec!["ida", "scenes/wind-turbine-msa.toml", "--records"];
+    args.extend(recs.iter().map(String::as_str));
+    let out_s = out.display().to_string();
+    args.extend([
+        "--set",
+        "ida.stripes=[5.0, 20.0]",
+        "--set",
+        report,
+        "--out",
+        &out_s,
+    ]);
+    let o = rocking(&args);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    columns(&out.join("stripes.csv"), 4);
+}
+
+/// An IDA whose capacities all coincide (one record under two names; issue 47, item 10: every
+/// analysis ran, then exit 2 and nothing written): the analyses are written, a warning says
+/// why there is no fit, and fragility.json has no fit fields (no null, no NaN) but `no_fit`.
+#[test]
+fn an_ida_with_coinciding_capacities_writes_its_analyses_without_a_fit() {
+    let tmp = tempfile::tempdir().unwrap();
+    let rec = repo().join("../shared/data/ground-motions/A-ELC180.AT2");
+    let (one, two) = (tmp.path().join("one.AT2"), tmp.path().join("two.AT2"));
+    std::fs::copy(&rec, &one).unwrap();
+    std::fs::copy(&rec, &two).unwrap();
+    let out = tmp.path().join("ida");
+    let o = rocking(&[
+        "ida",
+        "scenes/wind-turbine-ida.toml",
+        "--records",
+        one.to_str().unwrap(),
+        two.to_str().unwrap(),
+        "--set",
+        "ida.bootstrap=200",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(
+        err.contains("warning:") && err.contains("all capacities are equal"),
+        "{err}"
+    );
+    let json = std::fs::read_to_string(out.join("fragility.json")).unwrap();
+    assert!(!json.contains("null") && !json.contains("NaN"), "{json}");
+    let fit: Value = serde_json::from_str(&json).unwrap();
+    assert!(
+        fit.get("median_m_s2").is_none() && fit.get("beta").is_none(),
+        "{json}"
+    );
+    assert!(
+        fit["no_fit"].as_str().unwrap().contains("capacities"),
+        "{json}"
+    );
+    assert_eq!(fit["capacities_m_s2"].as_array().unwrap().len(), 2);
+    let rows = std::fs::read_to_string(out.join("records.csv")).unwrap();
+    assert_eq!(rows.lines().count(), 3, "{rows}");
+    assert!(out.join("ida.csv").is_file() && out.join("ida.svg").is_file());
+    assert!(!out.join("fragility-fit.svg").exists());
+}

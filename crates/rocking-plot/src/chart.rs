@@ -244,6 +244,22 @@ fn frame<'a, 'b>(
     Ok(chart)
 }
 
+/// A marker's polygon, filled or outlined.
+fn polygon<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    pts: Vec<(i32, i32)>,
+    style: ShapeStyle,
+    filled: bool,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    if filled {
+        area.draw(&Polygon::new(pts, style))
+    } else {
+        let mut closed = pts.clone();
+        closed.push(pts[0]);
+        area.draw(&PathElement::new(closed, style))
+    }
+}
+
 /// Draws `marker` of `size` pixels at `at` (filled or open).
 pub fn marker<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
@@ -268,24 +284,54 @@ pub fn marker<DB: DrawingBackend>(
             .map_err(e),
         Marker::Triangle => {
             let pts = vec![(x, y - s - 1), (x - s - 1, y + s), (x + s + 1, y + s)];
-            if filled {
-                area.draw(&Polygon::new(pts, style)).map_err(e)
-            } else {
-                let mut closed = pts.clone();
-                closed.push(pts[0]);
-                area.draw(&PathElement::new(closed, style)).map_err(e)
-            }
+            polygon(area, pts, style, filled).map_err(e)
+        }
+        Marker::TriangleDown => {
+            let pts = vec![(x, y + s + 1), (x - s - 1, y - s), (x + s + 1, y - s)];
+            polygon(area, pts, style, filled).map_err(e)
         }
         Marker::Diamond => {
             let s = s + 1;
             let pts = vec![(x, y - s), (x + s, y), (x, y + s), (x - s, y)];
-            if filled {
-                area.draw(&Polygon::new(pts, style)).map_err(e)
-            } else {
-                let mut closed = pts.clone();
-                closed.push(pts[0]);
-                area.draw(&PathElement::new(closed, style)).map_err(e)
+            polygon(area, pts, style, filled).map_err(e)
+        }
+        Marker::Pentagon => {
+            let r = f64::from(s) + 1.0;
+            let pts = (0..5)
+                .map(|k| {
+                    let a = std::f64::consts::TAU * f64::from(k) / 5.0;
+                    (
+                        x + (r * a.sin()).round() as i32,
+                        y - (r * a.cos()).round() as i32,
+                    )
+                })
+                .collect();
+            polygon(area, pts, style, filled).map_err(e)
+        }
+        Marker::Plus => {
+            let style = colour.stroke_width(2);
+            let s = s + 1;
+            area.draw(&PathElement::new(vec![(x - s, y), (x + s, y)], style))
+                .map_err(e)?;
+            area.draw(&PathElement::new(vec![(x, y - s), (x, y + s)], style))
+                .map_err(e)
+        }
+        Marker::Asterisk => {
+            let style = colour.stroke_width(1);
+            let s = s + 1;
+            for (dx, dy) in [
+                (s, 0),
+                (0, s),
+                (s * 2 / 3, s * 2 / 3),
+                (s * 2 / 3, -s * 2 / 3),
+            ] {
+                area.draw(&PathElement::new(
+                    vec![(x - dx, y - dy), (x + dx, y + dy)],
+                    style,
+                ))
+                .map_err(e)?;
             }
+            Ok(())
         }
         Marker::Cross => {
             let style = colour.stroke_width(2);

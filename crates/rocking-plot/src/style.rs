@@ -2,7 +2,8 @@
 //! the runs or structures a figure compares, each with its own colour, dash and marker so that
 //! no line is told apart by colour alone. Every pair of class fills and every pair of line
 //! colours stays at least [`DISTINCT`] apart (CIEDE2000) for normal vision, protanopia,
-//! deuteranopia, tritanopia and greyscale: the test below measures it. The paper calls the
+//! deuteranopia and tritanopia, and in greyscale (beyond four lines, [`DISTINCT_GREY`]): the
+//! tests below measure it. The paper calls the
 //! no-impact overturning area blue and the one-impact area brown; so do these.
 
 /// The least CIEDE2000 difference between two colours that must be told apart. A just
@@ -93,6 +94,10 @@ pub enum Marker {
     Triangle,
     Diamond,
     Cross,
+    TriangleDown,
+    Pentagon,
+    Plus,
+    Asterisk,
 }
 
 /// A line of a compared run or structure.
@@ -107,8 +112,11 @@ pub struct LineStyle {
 
 /// The lines a figure compares, in order of use (a figure file may name them: `style =
 /// "red"`). The paper's Fig. 10 draws the stiff column red and the flexible ones blue and
-/// green, and the ground motion black ([`BLACK`]).
-pub const LINES: [LineStyle; 4] = [
+/// green, and the ground motion black ([`BLACK`]). Eight, each with its own colour, dash and
+/// marker: the first four (and black) stay [`DISTINCT`] in greyscale too; all eight do for
+/// normal vision and the three dichromacies, and in greyscale at least [`DISTINCT_GREY`], where
+/// the dash and the marker tell them apart.
+pub const LINES: [LineStyle; 8] = [
     LineStyle {
         name: "blue",
         colour: [0x1B, 0x80, 0xC6],
@@ -133,7 +141,36 @@ pub const LINES: [LineStyle; 4] = [
         dash: Some((18, 5)),
         marker: Marker::Diamond,
     },
+    LineStyle {
+        name: "pink",
+        colour: [0xC3, 0x78, 0x96],
+        dash: Some((2, 4)),
+        marker: Marker::TriangleDown,
+    },
+    LineStyle {
+        name: "teal",
+        colour: [0x00, 0x78, 0x69],
+        dash: Some((24, 6)),
+        marker: Marker::Pentagon,
+    },
+    LineStyle {
+        name: "wine",
+        colour: [0x87, 0x0F, 0x4B],
+        dash: Some((6, 2)),
+        marker: Marker::Plus,
+    },
+    LineStyle {
+        name: "plum",
+        colour: [0x2D, 0x0F, 0x3C],
+        dash: Some((10, 10)),
+        marker: Marker::Asterisk,
+    },
 ];
+
+/// The least CIEDE2000 difference in greyscale between any two of the eight [`LINES`] and
+/// black: nine greys on a page cannot all be [`DISTINCT`] (lightness is one dimension); the
+/// dash and the marker carry the difference there.
+pub const DISTINCT_GREY: f64 = 6.0;
 
 /// The reference line (the rigid column) and the ground motion.
 pub const BLACK: LineStyle = LineStyle {
@@ -143,7 +180,8 @@ pub const BLACK: LineStyle = LineStyle {
     marker: Marker::Cross,
 };
 
-/// The line style named `name` (`blue`, `red`, `green`, `indigo`, `black`).
+/// The line style named `name` (`blue`, `red`, `green`, `indigo`, `pink`, `teal`, `wine`,
+/// `plum`, `black`).
 pub fn line_named(name: &str) -> Option<LineStyle> {
     LINES
         .iter()
@@ -283,10 +321,35 @@ mod tests {
 
     #[test]
     fn line_colours_stay_distinct_for_every_vision_and_in_greyscale() {
+        // The first four and black, for every vision and in greyscale.
+        let first: Vec<LineStyle> = LINES[..4].iter().copied().chain([BLACK]).collect();
+        let colours: Vec<[u8; 3]> = first.iter().map(|l| l.colour).collect();
+        let names: Vec<&str> = first.iter().map(|l| l.name).collect();
+        assert_distinct("lines 1-4", &colours, &names);
+        // All eight and black: a figure of eight runs (issue 47, item 21: the fifth run took
+        // the first one's style).
         let mut colours: Vec<[u8; 3]> = LINES.iter().map(|l| l.colour).collect();
         colours.push(BLACK.colour);
         let names = line_names();
-        assert_distinct("lines", &colours, &names);
+        assert!(LINES.len() >= 8, "at least eight runs apart");
+        for v in Vision::ALL {
+            let (d, i, j) = closest_pair(&colours, v);
+            println!(
+                "lines: {v:?}: min ΔE00 = {d:.1} ({} / {})",
+                names[i], names[j]
+            );
+            let least = if v == Vision::Greyscale {
+                DISTINCT_GREY
+            } else {
+                DISTINCT
+            };
+            assert!(
+                d >= least,
+                "{} and {} are {d:.1} apart for {v:?} (< {least})",
+                names[i],
+                names[j]
+            );
+        }
         // And every line stands out from the white page.
         for l in LINES {
             for v in Vision::ALL {

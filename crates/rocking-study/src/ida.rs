@@ -57,6 +57,8 @@ pub struct RecordStudy {
     pub points: Vec<IdaPoint>,
     /// The IDA capacity and the highest survivor below it (`None` for stripes).
     pub capacity: Option<(f64, f64)>,
+    /// Per analysis (in the order of `points`), the values of `[sweep] report`.
+    pub reported: Vec<Vec<f64>>,
 }
 
 /// What the fragility was fitted to.
@@ -73,8 +75,9 @@ pub struct Study {
     pub settings: Settings,
     /// Per record, in the order of the files.
     pub records: Vec<RecordStudy>,
-    /// The maximum-likelihood fit and its bootstrap band.
-    pub fit: Bootstrap,
+    /// The maximum-likelihood fit and its bootstrap band, or why there is none (e.g. every
+    /// capacity the same: no spread to fit a β to); the analyses stand either way.
+    pub fit: Result<Bootstrap, String>,
     /// What it was fitted to.
     pub evidence: Evidence,
 }
@@ -98,6 +101,7 @@ impl Study {
     /// records per stripe, with which a 95 % band covers the truth far less often (a point with
     /// two).
     pub fn band_warning(&self) -> Option<String> {
+        self.fit.as_ref().ok()?;
         let min = rocking_fragility::bootstrap::MIN_BAND_RECORDS;
         let (n, what) = match &self.evidence {
             Evidence::Capacities(c) => (c.len(), "capacities"),
@@ -122,8 +126,6 @@ impl Study {
             ScalingIm::Pga => ("pga", None, None),
             ScalingIm::Sa { period, damping } => ("sa", Some(period), Some(damping)),
         };
-        let (tl, th) = self.fit.theta_interval();
-        let (bl, bh) = self.fit.beta_interval();
         let mut v = json!({
             "method": self.method(),
             "im": { "kind": im_name, "period_s": period, "damping": damping, "unit": "m/s2" },
@@ -133,19 +135,27 @@ impl Study {
             },
             "records": self.records.len(),
             "analyses": self.analyses(),
-            "median_m_s2": self.fit.estimate.theta,
-            "beta": self.fit.estimate.beta,
-            "bootstrap": {
-                "resamples": s.bootstrap.resamples,
-                "seed": s.bootstrap.seed,
-                "level": s.bootstrap.level,
-                "failed_resamples": self.fit.failed,
-                "median_interval_m_s2": [tl, th],
-                "beta_interval": [bl, bh],
-            },
         });
-        if let Some(w) = self.band_warning() {
-            v["bootstrap"]["warning"] = json!(w);
+        // Without a fit its fields are absent (never null) and `no_fit` says why.
+        match &self.fit {
+            Ok(fit) => {
+                let (tl, th) = fit.theta_interval();
+                let (bl, bh) = fit.beta_interval();
+                v["median_m_s2"] = json!(fit.estimate.theta);
+                v["beta"] = json!(fit.estimate.beta);
+                v["bootstrap"] = json!({
+                    "resamples": s.bootstrap.resamples,
+                    "seed": s.bootstrap.seed,
+                    "level": s.bootstrap.level,
+                    "failed_resamples": fit.failed,
+                    "median_interval_m_s2": [tl, th],
+                    "beta_interval": [bl, bh],
+                });
+                if let Some(w) = self.band_warning() {
+                    v["bootstrap"]["warning"] = json!(w);
+                }
+            }
+            Err(why) => v["no_fit"] = json!(why),
         }
         match &self.evidence {
             Evidence::Capacities(c) => {
@@ -209,9 +219,17 @@ impl Study {
 }
 
 /// Runs the study of the scene `base` (`[ida]`) over `records` (else the scene's), in the
-/// current rayon pool: [`plan`], then [`Planned::run`].
+/// current rayon pool: [`plan`], then [`Planned::run`]; a study without a fit is an error here
+/// (for callers that need the fit, as the Python package does; `rocking ida` writes it anyway).
 pub fn run(base: &Base, records: &[PathBuf]) -> Result<Study, SceneError> {
-    plan(base, records)?.run()
+    let study = plan(base, records)?.run()?;
+    if let Err(why) = &study.fit {
+        return Err(SceneError::input(format!(
+            "{}: {why}",
+            base.path().display()
+        )));
+    }
+    Ok(study)
 }
 
 /// A study checked before its first analysis: the scene, the settings, and every record read
@@ -323,10 +341,7 @@ impl Planned<'_> {
             .map(|r| study(base, &settings, r))
             .collect::<Result<Vec<_>, _>>()?;
         let cannot_fit = |what: String, e: rocking_fragility::FragilityError| {
-            SceneError::input(format!(
-                "{}: cannot fit a lognormal to {what}: {e}",
-                base.path().display()
-            ))
+            format!("no lognormal fitted to {what}: {e}")
         };
         let (fit, evidence) = match &settings.stripes {
             None => {
@@ -336,7 +351,7 @@ impl Planned<'_> {
                     .map(|c| c.0)
                     .collect();
                 let fit = bootstrap_capacities(&capacities, &settings.bootstrap)
-                    .map_err(|e| cannot_fit(format!("the {} capacities", capacities.len()), e))?;
+                    .map_err(|e| cannot_fit(format!("the {} capacities", capacities.len()), e));
                 (fit, Evidence::Capacities(capacities))
             }
             Some(levels) => {
@@ -353,7 +368,7 @@ impl Planned<'_> {
                     })
                     .collect();
                 let fit = bootstrap_stripes(&stripes, &settings.bootstrap)
-                    .map_err(|e| cannot_fit(format!("the {} stripes", stripes.len()), e))?;
+                    .map_err(|e| cannot_fit(format!("the {} stripes", stripes.len()), e));
                 (fit, Evidence::Stripes(stripes))
             }
         };
@@ -657,6 +672,8 @@ fn study(base: &Base, s: &Settings, r: Prepared) -> Result<RecordStudy, SceneErr
         .knobs(&["excitation.path", "excitation.scale"])
         .ok_or_else(|| SceneError::failure("record path and scale are not knobs"))?;
     let im_name = s.im.name();
+    // The reported quantities of each analysis, by IM level, matched to the points after.
+    let reported = std::cell::RefCell::new(Vec::new());
     let run_at = |im: f64| -> Result<Outcome, SceneError> {
         let scale = im / r.im_unscaled;
         if im > r.im_max {
@@ -688,16 +705,15 @@ fn study(base: &Base, s: &Settings, r: Prepared) -> Result<RecordStudy, SceneErr
             (&knobs[0], KnobValue::Text(path.clone())),
             (&knobs[1], KnobValue::Number(scale)),
         ];
-        let sum = base
-            .run_knobs(&cell)
-            .map_err(|e| {
-                e.context(format_args!(
-                    "record {path}, the analysis at {im_name} = {} m/s² (scale {})",
-                    short(im),
-                    derived(scale)
-                ))
-            })?
-            .summary;
+        let run = base.run_knobs(&cell).map_err(|e| {
+            e.context(format_args!(
+                "record {path}, the analysis at {im_name} = {} m/s² (scale {})",
+                short(im),
+                derived(scale)
+            ))
+        })?;
+        reported.borrow_mut().push((im, run.reported));
+        let sum = run.summary;
         let resp = sum.max_theta_over_alpha;
         Ok(Outcome {
             collapsed: sum.overturned || s.limit.is_some_and(|l| resp >= l),
@@ -724,6 +740,17 @@ fn study(base: &Base, s: &Settings, r: Prepared) -> Result<RecordStudy, SceneErr
             (ida.points, Some((ida.capacity, ida.survived_below)))
         }
     };
+    let reported = reported.into_inner();
+    let reported = points
+        .iter()
+        .map(|p| {
+            reported
+                .iter()
+                .find(|(im, _)| *im == p.im)
+                .map(|(_, v)| v.clone())
+                .unwrap_or_default()
+        })
+        .collect();
     let name = r
         .file
         .file_name()
@@ -739,5 +766,6 @@ fn study(base: &Base, s: &Settings, r: Prepared) -> Result<RecordStudy, SceneErr
         im_unscaled: r.im_unscaled,
         points,
         capacity,
+        reported,
     })
 }

@@ -12,6 +12,7 @@ use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 
+use crate::out_dir::{OutDir, FIGURE_OUT};
 use crate::plot::{self, Figure, HistoryPanel, Panel, Quantity, SpectrumPanel, Structure};
 use load::Loader;
 use rocking_plot::style;
@@ -123,19 +124,48 @@ pub struct Options {
     pub quiet: bool,
 }
 
-/// `rocking figure`.
+/// The name of a figure file's outputs: its stem (`fig3.toml` draws `fig3.svg`, …).
+fn stem(file: &Path) -> String {
+    file.file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "figure".into())
+}
+
+/// `rocking figure`: every figure is drawn into a staging directory that replaces `--out` at
+/// the end, under its lock ([`OutDir`]), keeping the figures of other files already there; two
+/// files of one name would write the same outputs and are refused before anything is drawn.
 pub fn figure(files: &[PathBuf], opts: &Options) -> Result<(), SceneError> {
-    let mut loader = Loader::new(&opts.cache, opts.quiet);
-    std::fs::create_dir_all(&opts.out)
-        .map_err(|e| SceneError::failure(format!("{}: cannot create: {e}", opts.out.display())))?;
+    let mut seen: BTreeMap<String, &PathBuf> = BTreeMap::new();
     for file in files {
-        let spec = read(file)?;
-        let figure = build(file, &spec, &mut loader, opts.cells)?;
-        let stem = file
-            .file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_else(|| "figure".into());
-        let written = figure.write(&opts.out, &stem)?;
+        if let Some(first) = seen.insert(stem(file), file) {
+            return Err(SceneError::input(format!(
+                "{} and {}: both would be drawn as {}/{}.svg (.png, .pdf): draw them into \
+                 different --out directories, or rename one",
+                first.display(),
+                file.display(),
+                opts.out.display(),
+                stem(file)
+            )));
+        }
+    }
+    let specs = files
+        .iter()
+        .map(|f| read(f))
+        .collect::<Result<Vec<_>, _>>()?;
+    let dir = OutDir::begin(&opts.out, FIGURE_OUT)?;
+    let mut loader = Loader::new(&opts.cache, opts.quiet);
+    let mut listed = Vec::new();
+    for (file, spec) in files.iter().zip(&specs) {
+        let figure = build(file, spec, &mut loader, opts.cells)?;
+        let written = figure.write(dir.path(), &stem(file))?;
+        listed.push((file, written));
+    }
+    let listed: Vec<_> = listed
+        .into_iter()
+        .map(|(f, w)| (f, w.iter().map(|p| dir.final_path(p)).collect::<Vec<_>>()))
+        .collect();
+    dir.commit()?;
+    for (file, written) in listed {
         out!("{}:", file.display());
         for p in written {
             out!("  {}", p.display());
@@ -158,6 +188,19 @@ fn read(file: &Path) -> Result<FigureFile, SceneError> {
             e.inner().message()
         ))
     })?;
+    let texts = [
+        ("title", Some(&spec.title)),
+        ("caption", spec.caption.as_ref()),
+    ];
+    for (field, text) in texts {
+        if let Some(c) = text.and_then(|t| plot::control_char(t)) {
+            return bad(
+                file,
+                field,
+                format!("holds the control character {c:?}, which a figure cannot show"),
+            );
+        }
+    }
     if !(1..=MAX_COLUMNS).contains(&spec.columns) {
         return bad(
             file,
@@ -458,6 +501,16 @@ fn build(
                 Panel::Boundaries(panel)
             }
         });
+    }
+    let lines = traces.len().max(structure_count);
+    if lines > style::LINES.len() {
+        eprintln!(
+            "warning: {}: {lines} runs or structures share the {} line styles: the {}th looks \
+             like the first (give `style` to each, or split the figure)",
+            file.display(),
+            style::LINES.len(),
+            style::LINES.len() + 1
+        );
     }
     let panel = spec.panel.map_or((560, 400), |[w, h]| (w, h));
     Ok(Figure {

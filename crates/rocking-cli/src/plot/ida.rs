@@ -201,8 +201,13 @@ fn band_colour() -> [u8; 3] {
     c.map(|v| (255.0 - 0.22 * (255.0 - f64::from(v))).round() as u8)
 }
 
-/// `ida.svg`, `.png`, `.pdf` (the curves) and `fragility-fit.svg`, `.png`, `.pdf` (the fit).
-pub fn ida_plots(ida: IdaPanel, fit: FitPanel, dir: &Path) -> Result<Vec<PathBuf>, SceneError> {
+/// `ida.svg`, `.png`, `.pdf` (the curves) and `fragility-fit.svg`, `.png`, `.pdf` (the fit, when
+/// there is one).
+pub fn ida_plots(
+    ida: IdaPanel,
+    fit: Option<FitPanel>,
+    dir: &Path,
+) -> Result<Vec<PathBuf>, SceneError> {
     let records = ida.curves.len();
     let (title, scaled) = if ida.stripes {
         (
@@ -228,6 +233,9 @@ pub fn ida_plots(ida: IdaPanel, fit: FitPanel, dir: &Path) -> Result<Vec<PathBuf
         colour_top: None,
     };
     let mut written = curves.write(dir, "ida")?;
+    let Some(fit) = fit else {
+        return Ok(written);
+    };
     let fit = Figure {
         title: format!("Fragility: probability of overturning, {records} records"),
         caption: None,

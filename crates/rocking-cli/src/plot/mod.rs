@@ -56,6 +56,11 @@ pub struct Figure {
 /// The formats (file extensions) every figure is written in, by [`Figure::write`].
 pub const FORMATS: [&str; 3] = ["svg", "png", "pdf"];
 
+/// The first control character of a text drawn on a figure, if any: SVG cannot hold one.
+pub fn control_char(text: &str) -> Option<char> {
+    text.chars().find(|c| c.is_control())
+}
+
 /// Whether `file` is one of the files [`Figure::write`] writes for the figure `name`.
 pub fn is_figure_file(file: &str, name: &str) -> bool {
     file.strip_prefix(name)
