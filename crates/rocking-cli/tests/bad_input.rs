@@ -593,6 +593,14 @@ const ROWS: &[Row] = &[
         None,
         &["`title`", "'\\u{7}'", "printable text only"],
     ),
+    (
+        "uplift-false-tilted-start",
+        SCENE,
+        "",
+        "[effects]\nuplift = false\n\n[initial]\ntheta_over_alpha = 0.5\n",
+        None,
+        &["`theta_over_alpha` in [initial]", "`uplift = false`", "give 0"],
+    ),
 ];
 
 fn doc_ids() -> Vec<String> {

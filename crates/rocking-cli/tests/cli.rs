@@ -779,3 +779,25 @@ fn the_summary_names_the_model_its_parameters_and_the_overrides() {
     );
     assert_eq!(summary["model"], "cubic");
 }
+
+/// The fixed-base twin of a tilted start is the structure held upright from t = 0 (issue 47):
+/// the free-rocking block's twin carries its weight and nothing else, where it used to rock
+/// with the run (ratios of 1).
+#[test]
+fn the_twin_of_a_tilted_start_starts_upright() {
+    let s = run_json(
+        &scenes().join("housner-free.toml"),
+        &tmp("twin-tilted"),
+        &[
+            "--set",
+            "output.fixed_base_reference=true",
+            "--set",
+            "output.plots=false",
+        ],
+    );
+    assert!(s["impacts"].as_u64().unwrap() > 100, "{s}");
+    let fb = &s["fixed_base"];
+    assert_eq!(fb["max_base_moment_over_wb"], 0.0, "{fb}");
+    assert_eq!(fb["max_base_shear_over_w"], 0.0, "{fb}");
+    assert_eq!(fb["min_vertical_reaction_over_w"], 1.0, "{fb}");
+}

@@ -684,6 +684,24 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Setup, SceneError> {
         friction,
         ..Options::default()
     };
+    if !uplift {
+        let given = [
+            ("initial.theta_over_alpha", initial.theta),
+            ("initial.theta_dot_over_alpha_p", initial.theta_dot),
+        ];
+        if let Some((key, _)) = given.iter().find(|(_, v)| *v != 0.0) {
+            return Err(src.err(
+                key,
+                format!(
+                    "`{}` in [initial] starts the base tilted or rotating, and `uplift = false` \
+                     in [effects] holds it in full contact from t = 0: give 0, or let it uplift \
+                     (the fixed-base twin of a tilted start is `fixed_base_reference = true`, \
+                     which starts the twin upright)",
+                    key.trim_start_matches("initial.")
+                ),
+            ));
+        }
+    }
     let fixed_base_reference = out.and_then(|o| o.fixed_base_reference).unwrap_or(false);
     if fixed_base_reference && !uplift {
         return Err(src.err(

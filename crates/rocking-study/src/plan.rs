@@ -126,10 +126,7 @@ fn check_report(sc: &Scene, m: &Setup, report: &[String]) -> Result<(), SceneErr
             .map(|r| r.summary)
             .map_err(|e| SceneError::failure(format!("{}: {e}", sc.src.path.display())))
     };
-    let twin = run(&rocking::Options {
-        uplift: false,
-        ..probe
-    })?;
+    let twin = run(&probe.fixed_base_twin())?;
     let q = run_report::quantities(&run(&probe)?, Some(&twin))?;
     let mut allowed: Vec<String> = Vec::new();
     for (k, v) in &q {
@@ -308,11 +305,7 @@ impl Base {
             return Ok(summary.into());
         }
         let twin = if self.report.iter().any(|k| needs_twin(k)) {
-            let fixed = rocking::Options {
-                uplift: false,
-                ..m.options
-            };
-            Some(run(&fixed)?.summary)
+            Some(run(&m.options.fixed_base_twin())?.summary)
         } else {
             None
         };

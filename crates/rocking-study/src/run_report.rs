@@ -27,10 +27,9 @@ pub fn simulate(m: &Setup, scene: &Path) -> Result<Report, SceneError> {
     let run = simulate_with(m, &m.options, scene)?;
     let fixed_base = if m.fixed_base_reference {
         let twin = rocking::Options {
-            uplift: false,
             history: rocking::History::None,
             event_log: false,
-            ..m.options
+            ..m.options.fixed_base_twin()
         };
         Some(simulate_with(m, &twin, scene)?.summary)
     } else {

@@ -447,6 +447,75 @@ impl Options {
         check("initial.u", i.u, true, "a finite displacement")?;
         check("initial.theta_dot", i.theta_dot, true, "a finite rate")?;
         check("initial.u_dot", i.u_dot, true, "a finite rate")?;
+        // Held down, the base cannot start tilted or rotating: that run would rock until its
+        // first impact, which is not the fixed-base structure.
+        let held = "0 when uplift = false (the base is held in full contact from t = 0)";
+        check(
+            "initial.theta",
+            i.theta,
+            self.uplift || i.theta == 0.0,
+            held,
+        )?;
+        check(
+            "initial.theta_dot",
+            i.theta_dot,
+            self.uplift || i.theta_dot == 0.0,
+            held,
+        )?;
         Ok(())
+    }
+
+    /// The fixed-base twin of a run with these options: the same structure held in full contact
+    /// from t = 0, so without the run's initial θ and θ' (its initial u and u' are kept).
+    pub fn fixed_base_twin(&self) -> Options {
+        Options {
+            uplift: false,
+            initial: Initial {
+                theta: 0.0,
+                theta_dot: 0.0,
+                ..self.initial
+            },
+            ..*self
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Initial, Options};
+
+    #[test]
+    fn a_held_down_run_cannot_start_tilted_and_the_twin_starts_upright() {
+        let tilted = Options {
+            initial: Initial {
+                theta: 0.1,
+                u: 0.2,
+                theta_dot: 0.3,
+                u_dot: 0.4,
+            },
+            ..Options::default()
+        };
+        assert!(tilted.validate().is_ok());
+        let e = Options {
+            uplift: false,
+            ..tilted
+        }
+        .validate()
+        .unwrap_err();
+        assert_eq!(e.field, "initial.theta");
+        assert!(e.allowed.contains("uplift = false"), "{e}");
+        let twin = tilted.fixed_base_twin();
+        assert!(!twin.uplift);
+        assert_eq!(
+            (twin.initial.theta, twin.initial.theta_dot),
+            (0.0, 0.0),
+            "no tilt, no rotation"
+        );
+        assert_eq!(
+            (twin.initial.u, twin.initial.u_dot),
+            (0.2, 0.4),
+            "the column's start kept"
+        );
+        assert!(twin.validate().is_ok());
     }
 }
