@@ -601,6 +601,14 @@ const ROWS: &[Row] = &[
         None,
         &["`theta_over_alpha` in [initial]", "`uplift = false`", "give 0"],
     ),
+    (
+        "friction-without-forces",
+        SCENE,
+        "",
+        "[output]\nforces = false\n\n[effects]\nfriction = 0.2\n",
+        None,
+        &["`friction` in [effects]", "`forces = false` in [output]", "no friction"],
+    ),
 ];
 
 fn doc_ids() -> Vec<String> {

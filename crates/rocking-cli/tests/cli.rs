@@ -801,3 +801,38 @@ fn the_twin_of_a_tilted_start_starts_upright() {
     assert_eq!(fb["max_base_shear_over_w"], 0.0, "{fb}");
     assert_eq!(fb["min_vertical_reaction_over_w"], 1.0, "{fb}");
 }
+
+/// `[output] forces = false` drops the force columns from history.csv as it drops the force
+/// keys from the summary (issue 47: the history kept them, with values).
+#[test]
+fn without_forces_history_and_summary_agree() {
+    let scene = scenes().join("fig3-vvel.toml");
+    for (forces, present) in [("true", true), ("false", false)] {
+        let out = tmp(&format!("forces-{forces}"));
+        let set = format!("output.forces={forces}");
+        let s = run_json(
+            &scene,
+            &out,
+            &["--set", &set, "--set", "output.plots=false"],
+        );
+        let header = std::fs::read_to_string(out.join("history.csv"))
+            .unwrap()
+            .lines()
+            .next()
+            .unwrap()
+            .to_string();
+        for (column, key) in [
+            ("base_moment_over_wb", "max_base_moment_over_wb"),
+            ("base_shear_over_w", "max_base_shear_over_w"),
+            ("required_friction", "max_required_friction"),
+            ("vertical_reaction_over_w", "min_vertical_reaction_over_w"),
+        ] {
+            assert_eq!(
+                header.split(',').any(|c| c == column),
+                present,
+                "forces = {forces}: {header}"
+            );
+            assert_eq!(s.get(key).is_some(), present, "forces = {forces}: {key}");
+        }
+    }
+}

@@ -470,3 +470,43 @@ fn runs_csv_quotes_record_names() {
     assert_eq!(rows[1][2], "no-uplift", "{runs}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A sweep validates a ratio to the fixed-base twin as `run` validates `fixed_base_reference`
+/// (the same words), and a quantity named twice; it used to run them (ratio 1 in every cell with
+/// `uplift = false`, two identical columns).
+#[test]
+fn a_sweep_refuses_what_run_refuses_of_a_twin_and_a_quantity_twice() {
+    let scene = repo().join("scenes/spectra/fig8-forces.toml");
+    let axes = ["excitation.omega_p_over_p=2,4", "excitation.amplitude=3,6"];
+    for (set, says) in [
+        (
+            "effects.uplift=false",
+            "`base_moment_ratio` in [sweep] report compares the run with its fixed-base twin: it \
+             needs the run itself to uplift",
+        ),
+        (
+            "output.forces=false",
+            "`base_moment_ratio` in [sweep] report compares the forces of the run and of its \
+             fixed-base twin: it needs `forces = true` in [output]",
+        ),
+        (
+            "sweep.report=[\"impacts\", \"base_moment_ratio\", \"base_moment_ratio\"]",
+            "names `base_moment_ratio` twice",
+        ),
+    ] {
+        let out = tmp_path("twin-refused");
+        let mut c = bin();
+        c.arg("spectrum")
+            .arg(&scene)
+            .args(["--quiet", "--set", set, "--out"])
+            .arg(&out);
+        for a in axes {
+            c.arg("--axis").arg(a);
+        }
+        let o = c.output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{set}: {err}");
+        assert!(err.contains(says), "{set}: {err}");
+        assert!(!out.join("cells.csv").exists(), "{set}: nothing run");
+    }
+}

@@ -702,20 +702,21 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Setup, SceneError> {
             ));
         }
     }
-    let fixed_base_reference = out.and_then(|o| o.fixed_base_reference).unwrap_or(false);
-    if fixed_base_reference && !uplift {
+    if friction.is_some() && !options.forces {
         return Err(src.err(
-            "output.fixed_base_reference",
-            "`fixed_base_reference` in [output] compares the run with its fixed-base twin: it \
-             needs the run itself to uplift (`uplift = true` in [effects])",
+            "effects.friction",
+            "`friction` in [effects] is checked against the ground reactions R_h and R_v, which \
+             `forces = false` in [output] does not track: give `forces = true`, or no friction",
         ));
     }
-    if fixed_base_reference && !options.forces {
-        return Err(src.err(
+    let fixed_base_reference = out.and_then(|o| o.fixed_base_reference).unwrap_or(false);
+    if fixed_base_reference {
+        check_twin(
+            src,
             "output.fixed_base_reference",
-            "`fixed_base_reference` in [output] compares the forces of the run and of its \
-             fixed-base twin: it needs `forces = true` in [output]",
-        ));
+            "`fixed_base_reference` in [output]",
+            &options,
+        )?;
     }
     Ok(Setup {
         title: spec.title.clone(),
@@ -733,4 +734,35 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Setup, SceneError> {
         fixed_base_reference,
         animation,
     })
+}
+
+/// What a comparison with the fixed-base twin (`[output] fixed_base_reference`, a ratio in
+/// `[sweep] report`) needs of the run itself, for `run` and the sweeps alike: that it may
+/// uplift (else the twin is the run, and every ratio 1) and that it track the forces.
+/// `subject` names the setting (`key` is its path in the scene).
+pub fn check_twin(
+    src: &Source,
+    key: &str,
+    subject: &str,
+    options: &Options,
+) -> Result<(), SceneError> {
+    if !options.uplift {
+        return Err(src.err(
+            key,
+            format!(
+                "{subject} compares the run with its fixed-base twin: it needs the run itself to \
+                 uplift (`uplift = true` in [effects])"
+            ),
+        ));
+    }
+    if !options.forces {
+        return Err(src.err(
+            key,
+            format!(
+                "{subject} compares the forces of the run and of its fixed-base twin: it needs \
+                 `forces = true` in [output]"
+            ),
+        ));
+    }
+    Ok(())
 }

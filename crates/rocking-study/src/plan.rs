@@ -144,6 +144,21 @@ fn check_report(sc: &Scene, m: &Setup, report: &[String]) -> Result<(), SceneErr
     allowed.sort();
     allowed.dedup();
     for (i, key) in report.iter().enumerate() {
+        if report[..i].contains(key) {
+            return Err(sc.src.err(
+                &format!("sweep.report.{i}"),
+                format_args!("`report` in [sweep] names `{key}` twice: give each quantity once"),
+            ));
+        }
+        if needs_twin(key) {
+            // As `run` refuses `fixed_base_reference` (the same words).
+            setup::check_twin(
+                &sc.src,
+                &format!("sweep.report.{i}"),
+                &format!("`{key}` in [sweep] report"),
+                &m.options,
+            )?;
+        }
         if !allowed.contains(key) {
             let names: Vec<&str> = allowed.iter().map(String::as_str).collect();
             let hint = rocking_scene::scene::suggest(key, &names)

@@ -251,17 +251,24 @@ fn num(out: &mut String, x: f64) -> Result<(), SceneError> {
 }
 
 /// history.csv: τ, seconds (when known), normalised state, phase, energies, ground acceleration,
-/// the section forces at the column base and the ground reactions; with n > 1 deformation
-/// coordinates then u_1..u_n and u_1'..u_n' (`u_dot_i`) in the model's units.
+/// the section forces at the column base and the ground reactions (when the run tracks them,
+/// `[output] forces`, as the summary has them); with n > 1 deformation coordinates then
+/// u_1..u_n and u_1'..u_n' (`u_dot_i`) in the model's units.
 pub fn history_csv(model: &Setup, run: &Run) -> Result<String, SceneError> {
     let d = model.structure.derived();
     let u = &model.units;
     let ps = model.structure.p_per_second();
+    let forces = model.options.forces;
     let mut out = String::from(
         "tau,t_s,theta_over_alpha,u_over_ucr,theta_dot_over_alpha_p,u_dot_over_ucr_omega_n,\
-         phase,e_kin_over_eref,e_total_over_eref,ug_over_g_tan_alpha,base_moment_over_wb,\
-         base_shear_over_w,elastic_base_moment_over_wb,required_friction,vertical_reaction_over_w",
+         phase,e_kin_over_eref,e_total_over_eref,ug_over_g_tan_alpha",
     );
+    if forces {
+        out.push_str(
+            ",base_moment_over_wb,base_shear_over_w,elastic_base_moment_over_wb,\
+             required_friction,vertical_reaction_over_w",
+        );
+    }
     // Several deformation coordinates: u_1..u_n and their rates, in the model's units.
     let n = run.coordinate_count();
     for name in ["u", "u_dot"] {
@@ -285,15 +292,17 @@ pub fn history_csv(model: &Setup, run: &Run) -> Result<String, SceneError> {
         num(&mut out, r.e_kin)?;
         num(&mut out, r.e_total)?;
         num(&mut out, r.ug / u.accel_g_tan_alpha())?;
-        num(&mut out, r.base_moment_over_wb)?;
-        num(&mut out, r.base_shear_over_w)?;
-        num(&mut out, r.elastic_base_moment_over_wb)?;
-        // Where R_v <= 0 no friction holds the structure: "inf".
-        match r.required_friction() {
-            f if f.is_finite() => num(&mut out, f)?,
-            _ => out.push_str(",inf"),
+        if forces {
+            num(&mut out, r.base_moment_over_wb)?;
+            num(&mut out, r.base_shear_over_w)?;
+            num(&mut out, r.elastic_base_moment_over_wb)?;
+            // Where R_v <= 0 no friction holds the structure: "inf".
+            match r.required_friction() {
+                f if f.is_finite() => num(&mut out, f)?,
+                _ => out.push_str(",inf"),
+            }
+            num(&mut out, r.vertical_reaction_over_w)?;
         }
-        num(&mut out, r.vertical_reaction_over_w)?;
         for &c in run.coordinates_of(k) {
             num(&mut out, c)?;
         }
