@@ -257,6 +257,19 @@ pub fn parse_at2(text: impl AsRef<[u8]>, source_name: &str) -> Result<At2Record,
     })
 }
 
+/// The value at the start of `r` and what follows it: up to a space, or a comma that separates
+/// (one not followed by a digit: `0,02` stays one token, to be refused).
+fn token(r: &str) -> (&str, &str) {
+    let b = r.as_bytes();
+    let end = (0..b.len())
+        .find(|&i| {
+            b[i].is_ascii_whitespace()
+                || (b[i] == b',' && !b.get(i + 1).is_some_and(u8::is_ascii_digit))
+        })
+        .unwrap_or(b.len());
+    r.split_at(end)
+}
+
 /// Parse header line 4: `NPTS = n [,] DT = dt [unit] [anything]` (any case; the unit a time
 /// such as `SEC` or `MSEC`, seconds when absent), or the older `n dt NPTS, DT`. Returns `None`
 /// if it has neither form or names a unit of DT that is not a time.
@@ -264,23 +277,33 @@ fn parse_npts_dt(line: &str) -> Option<(usize, f64)> {
     let up = line.to_ascii_uppercase();
     let npts_at = up.find("NPTS")?;
     if let Some(r) = up[npts_at + 4..].trim_start().strip_prefix(['=', ':']) {
-        // NPTS= 1559, DT= .02000 SEC
+        // NPTS= 1559, DT= .02000 SEC. Each value is read whole, up to a space or a separating
+        // comma: `5.7`, `5/2`, `1/50`, `2*0.01`, `1_000` or a decimal comma `0,02` are refused,
+        // never read as their leading number.
         let r = r.trim_start();
-        let ndig = r.bytes().take_while(u8::is_ascii_digit).count();
-        let npts = r[..ndig].parse::<usize>().ok()?;
-        let r = &r[ndig..];
+        let (npts, r) = token(r);
+        let npts = npts.parse::<usize>().ok()?;
         let r = &r[r.find("DT")? + 2..];
         let r = r.trim_start().strip_prefix(['=', ':'])?.trim_start();
-        let len = r
+        let (dt, rest) = token(r);
+        // A unit may follow the number at once (`.02SEC`) or after a space.
+        let len = dt
             .bytes()
             .take_while(|b| b.is_ascii_digit() || b"+-.ED".contains(b))
             .count();
-        let dt = parse_number(&r[..len])?;
-        let unit: String = r[len..]
-            .trim_start()
-            .chars()
-            .take_while(char::is_ascii_alphabetic)
-            .collect();
+        let glued = &dt[len..];
+        if !glued.bytes().all(|b| b.is_ascii_alphabetic()) {
+            return None;
+        }
+        let dt = parse_number(&dt[..len])?;
+        let unit: String = if glued.is_empty() {
+            rest.trim_start()
+                .chars()
+                .take_while(char::is_ascii_alphabetic)
+                .collect()
+        } else {
+            glued.to_string()
+        };
         let seconds = match unit.as_str() {
             "" => 1.0,
             u => match unit_expression(u)? {
@@ -304,6 +327,23 @@ fn parse_npts_dt(line: &str) -> Option<(usize, f64)> {
 mod tests {
     use super::*;
 
+    /// CRLF and lone-CR line ends read as LF ones (a lone CR was one long line, reported as
+    /// "found end of file").
+    #[test]
+    fn every_line_end_reads_alike() {
+        let lf = "title\nevent\nIN UNITS OF G\nNPTS= 3, DT= .01 SEC\n0.1 0.2\n0.3\n";
+        let want = parse_at2(lf, "lf.AT2").unwrap();
+        for end in ["\r\n", "\r\r\n", "\r"] {
+            let text = lf.replace('\n', end);
+            let got = parse_at2(&text, "x.AT2").unwrap();
+            assert_eq!(
+                (got.npts, got.dt, &got.samples),
+                (want.npts, want.dt, &want.samples)
+            );
+            assert_eq!(got.units, want.units);
+        }
+    }
+
     #[test]
     fn header_spellings() {
         let cases = [
@@ -325,6 +365,13 @@ mod tests {
             assert_eq!(parse_npts_dt(line), Some(want), "{line}");
         }
         for bad in [
+            // A value is read whole or refused, never as its leading number (issue 47).
+            "NPTS= 5.7, DT= .01 SEC",
+            "NPTS= 5/2, DT= .01 SEC",
+            "NPTS= 10, DT= 1/50 SEC",
+            "NPTS= 10, DT= 2*0.01 SEC",
+            "NPTS= 10, DT= 1_000 MSEC",
+            "NPTS= 10, DT= 0,02 SEC",
             "",
             "NPTS=, DT=.01",
             "NPTS= 10",

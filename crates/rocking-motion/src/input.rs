@@ -37,10 +37,39 @@ pub(crate) fn decode<'a>(bytes: &'a [u8], file: &str) -> Result<Cow<'a, str>, Mo
     if let Some(i) = bytes.iter().position(|&b| b == 0) {
         return Err(not_text(i, "a NUL byte (a binary file)"));
     }
-    Ok(match std::str::from_utf8(bytes) {
+    let text = match std::str::from_utf8(bytes) {
         Ok(t) => Cow::Borrowed(t.strip_prefix('\u{feff}').unwrap_or(t)),
         Err(_) => Cow::Owned(bytes.iter().map(|&b| char::from(b)).collect()),
+    };
+    // Every line end as LF: CRs before an LF (CRLF, and the CR CR LF of many PEER files) are
+    // one line end, a CR alone (classic Mac OS) is one too, where `str::lines` would leave it
+    // inside one long line.
+    Ok(if text.contains('\r') {
+        Cow::Owned(unix_line_ends(&text))
+    } else {
+        text
     })
+}
+
+fn unix_line_ends(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut crs = 0;
+    for c in text.chars() {
+        match c {
+            '\r' => crs += 1,
+            '\n' => {
+                out.push('\n');
+                crs = 0;
+            }
+            c => {
+                out.extend(std::iter::repeat_n('\n', crs));
+                crs = 0;
+                out.push(c);
+            }
+        }
+    }
+    out.extend(std::iter::repeat_n('\n', crs));
+    out
 }
 
 /// Parse a number, accepting Fortran `D` exponents (`1.0D-03`).
