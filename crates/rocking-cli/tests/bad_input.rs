@@ -609,6 +609,14 @@ const ROWS: &[Row] = &[
         None,
         &["`friction` in [effects]", "`forces = false` in [output]", "no friction"],
     ),
+    (
+        "record-peak-too-high",
+        SCENE,
+        PULSE,
+        "kind = \"record\"\npath = \"rec.AT2\"",
+        Some("title\nevent\nIN UNITS OF G\nNPTS= 4, DT= .01\n0.1 20000 0.3 0.4\n"),
+        &["rec.AT2 peaks at 20000 g", "at most 10000 g", "unit line"],
+    ),
 ];
 
 fn doc_ids() -> Vec<String> {

@@ -294,7 +294,22 @@ fn record(src: &Source, e: &ExcitationSpec, u: &Units) -> Result<Built, SceneErr
         pga * per_unit * scale,
         "peak ground acceleration in model units",
     )?;
-    crate::limits::acceleration(src, "excitation.scale", scale, pga_model / u.g_model)?;
+    if e.scale.is_some() {
+        crate::limits::acceleration(src, "excitation.scale", scale, pga_model / u.g_model)?;
+    } else if (pga_model / u.g_model).abs() > crate::limits::MAX_ACCEL_G {
+        // No scale given: the record itself is out of range; name it and its peak.
+        return Err(src.err(
+            "excitation.path",
+            format_args!(
+                "the record {} peaks at {} {unit_name}, a peak ground acceleration of {} g; at \
+                 most {} g (is its unit line right?)",
+                at2.source,
+                crate::limits::short(pga),
+                crate::limits::short((pga_model / u.g_model).abs()),
+                crate::limits::short(crate::limits::MAX_ACCEL_G)
+            ),
+        ));
+    }
     let rec = Record::new(dt / spu, at2.samples)
         .map_err(|err| src.err("excitation.path", err))?
         .with_scale(scale * per_unit);
