@@ -223,10 +223,11 @@ pub(crate) fn declared_unit(line: &str) -> Declared {
         }
         let rest = &words[i + 1..];
         let introduced = rest.first().is_some_and(|n| filler.contains(&n.as_str()));
-        let unit = rest.iter().find(|w| !filler.contains(&w.as_str()));
-        match unit {
-            Some(u) if introduced => return Declared::of(unit_expression(u)),
-            Some(u) if unit_expression(u).is_some() => return Declared::of(unit_expression(u)),
+        let at = rest.iter().position(|w| !filler.contains(&w.as_str()));
+        match at.map(|j| (&rest[j], &rest[j + 1..])) {
+            Some((u, after)) if introduced || unit_expression(u).is_some() => {
+                return scaled(Declared::of(unit_expression(u)), after)
+            }
             _ => {}
         }
     }
@@ -240,15 +241,82 @@ pub(crate) fn declared_unit(line: &str) -> Declared {
                 Some(Quantity::Accel(_) | Quantity::OtherAccel(_) | Quantity::Velocity)
             )
         {
-            return Declared::of(q);
+            return scaled(Declared::of(q), &words[k + 1..]);
+        }
+        // `IN %G`, `IN MG`, `IN 0.001 G`, `IN FEET/SEC/SEC`, `IN MGAL`, `IN COUNTS`: a unit the
+        // readers do not know is refused, never read as g.
+        if after_in && q.is_none() && !matches!(w.as_str(), "UNITS" | "UNIT" | "THE") {
+            return Declared::Unknown(None);
+        }
+        // A bracketed unit-like word: `(MG)`, `(%G)`.
+        if matches!(
+            w.as_str(),
+            "MG" | "%G" | "MGAL" | "MILLIG" | "MILLI-G" | "COUNTS"
+        ) {
+            return Declared::Unknown(None);
         }
     }
     Declared::Nothing
 }
 
+/// A unit followed by a multiplier (`G X 10^-3`, `G x1000`, `G (SCALED BY 1000)`,
+/// `CM/SEC/SEC TIMES 10`, `m/s2 * 100`) is refused: applying it needs its direction, which
+/// the line does not say reliably, and dropping it is 10-1000x wrong.
+fn scaled(unit: Declared, after: &[String]) -> Declared {
+    let multiplier = after.iter().take(3).any(|w| {
+        matches!(
+            w.as_str(),
+            "X" | "TIMES" | "*" | "SCALED" | "MULTIPLIED" | "FACTOR"
+        ) || w.starts_with('*')
+            || (w.starts_with('X') && w[1..].starts_with(|c: char| c.is_ascii_digit()))
+    });
+    match unit {
+        Declared::Unit(_) | Declared::Unknown(Some(_)) if multiplier => Declared::Unknown(None),
+        u => u,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A unit line that names a unit the readers do not know, or a multiplier after a unit, is
+    /// refused, never read as g or as the bare unit (issue 47: 100x, 1000x or 32x too strong).
+    #[test]
+    fn unknown_units_and_multipliers_are_refused() {
+        for line in [
+            "ACCELERATION IN %G",
+            "ACCELERATION IN MG",
+            "ACCELERATION (MG)",
+            "ACCELERATION IN 0.001 G",
+            "ACCELERATION IN FEET/SEC/SEC",
+            "ACCELERATION IN MGAL",
+            "ACCELERATION IN COUNTS",
+            "ACCELERATION IN UNITS OF G X 10^-3",
+            "ACCELERATION IN UNITS OF G x1000",
+            "ACCELERATION IN UNITS OF G (SCALED BY 1000)",
+            "ACCELERATION IN CM/SEC/SEC TIMES 10",
+            "UNITS: m/s2 * 100",
+        ] {
+            assert!(
+                matches!(declared_unit(line), Declared::Unknown(_)),
+                "{line}: {:?}",
+                declared_unit(line)
+            );
+        }
+        for (line, unit) in [
+            ("ACCELERATION TIME SERIES IN UNITS OF G", AccelUnit::G),
+            ("UNITS: g (9.81 m/s/s)", AccelUnit::G),
+            ("ACCELERATION IN CM/SEC/SEC", AccelUnit::CmPerS2),
+            ("accel. in gal", AccelUnit::CmPerS2),
+        ] {
+            assert!(
+                matches!(declared_unit(line), Declared::Unit(u) if u == unit),
+                "{line}: {:?}",
+                declared_unit(line)
+            );
+        }
+    }
 
     #[test]
     fn expressions() {
