@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{repo, rocking, text, tmp_path};
+use common::{repo, rocking, summary, text, tmp_path};
 
 const MODELS: &str = "cubic,cantilever_modes2,cantilever_modes3";
 
@@ -41,25 +41,8 @@ fn the_report_is_the_separate_runs_and_where_they_stop_changing() {
         .collect();
     assert_eq!(ns, [1, 2, 3]);
     for (k, model) in models.iter().enumerate() {
-        let run_out = tmp_path("convergence-run");
         let set = format!("structure.model={model}");
-        let r = rocking(&[
-            "run",
-            &scene,
-            "--json",
-            "--out",
-            run_out.to_str().unwrap(),
-            "--set",
-            "output.plots=false",
-            "--set",
-            "structure.gamma_mc=0.5",
-            "--set",
-            &set,
-        ]);
-        assert!(r.status.success(), "{}", text(&r));
-        let stdout = String::from_utf8(r.stdout).unwrap();
-        let s: serde_json::Value =
-            serde_json::from_str(stdout.trim().lines().last().unwrap()).unwrap();
+        let s = summary(&scene, &["structure.gamma_mc=0.5", &set]);
         for q in report["quantities"].as_array().unwrap() {
             let name = q["name"].as_str().unwrap();
             assert_eq!(q["values"][k].as_f64(), s[name].as_f64(), "{model} {name}");

@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{repo, rocking, text, tmp_path};
+use common::{repo, rocking, summary, text, tmp_path};
 use std::path::Path;
 
 const AXES: [&str; 4] = [
@@ -59,25 +59,7 @@ fn a_text_axis_sweep_equals_the_separate_runs_cell_for_cell() {
             format!("structure.model={}", r[0]),
             format!("effects.impact={}", r[1]),
         );
-        let run_out = tmp_path("text-axes-run");
-        let args = [
-            "run",
-            &scene,
-            "--json",
-            "--out",
-            run_out.to_str().unwrap(),
-            "--set",
-            "output.plots=false",
-            "--set",
-            &model,
-            "--set",
-            &impact,
-        ];
-        let one = rocking(&args);
-        assert!(one.status.success(), "{}", text(&one));
-        let stdout = String::from_utf8(one.stdout).unwrap();
-        let s: serde_json::Value =
-            serde_json::from_str(stdout.trim().lines().last().unwrap()).unwrap();
+        let s = summary(&scene, &[&model, &impact]);
         assert_eq!(s["model"], r[0], "{r:?}");
         let max: f64 = r[3].parse().unwrap();
         assert_eq!(max, s["max_theta_over_alpha"].as_f64().unwrap(), "{r:?}");

@@ -59,3 +59,25 @@ pub fn text(o: &Output) -> String {
         String::from_utf8_lossy(&o.stderr)
     )
 }
+
+/// `rocking run SCENE --json` with `--set` overrides (plots off), in a scratch folder: the
+/// summary it prints (the test fails on a non-zero exit).
+pub fn summary(scene: &str, sets: &[&str]) -> serde_json::Value {
+    let out = tmp_path("summary-run");
+    let mut args = vec![
+        "run",
+        scene,
+        "--json",
+        "--out",
+        out.to_str().unwrap(),
+        "--set",
+        "output.plots=false",
+    ];
+    for s in sets {
+        args.extend(["--set", s]);
+    }
+    let o = rocking(&args);
+    assert!(o.status.success(), "{}", text(&o));
+    let stdout = String::from_utf8(o.stdout).unwrap();
+    serde_json::from_str(stdout.trim().lines().last().unwrap()).unwrap()
+}
