@@ -166,8 +166,11 @@ fn study_method<M: GroundMotion>(
     ];
     // Round-off floor of max θ/α (relative): the reference itself is good to ~1e-10.
     let floor = floor * rf.max_theta_over_alpha.abs().max(1.0);
+    // Converged: the tighter run is closer, or already within its own tolerance (the looser run
+    // can be closer by a cancellation: DOPRI5 on `zero masses`, 1.1e-9 at 1e-6 and 1.9e-9 at
+    // 1e-8, then 2e-11 at 1e-10).
     assert!(
-        err[1] < err[0] || err[1] <= floor,
+        err[1] < err[0] || err[1] <= floor.max(tols[1]),
         "{label}: no convergence: error {:.3e} at tol, {:.3e} at tol/100 (ref {})",
         err[0],
         err[1],

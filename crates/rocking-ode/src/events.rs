@@ -132,6 +132,57 @@ where
     })
 }
 
+/// An event located on the dense output, moved to the root of its component on states that
+/// the method's own steps from the last step's start give ([`Integrator::step_state`]): the
+/// continuous extension is one order less accurate than the steps, and where the run restarts
+/// from the event (an impact), a root of the extension carries its error into every later phase
+/// (a long record with hundreds of impacts drifts by 1e-5 at a tolerance of 1e-13 without this).
+///
+/// Newton's iteration, the slope from the dense output across the event, at most four steps; it
+/// keeps the root it converges to on either side of the crossing (the located one if it leaves
+/// the step or does not converge). `t_before` stays the dense bracket's start; `g` is evaluated
+/// at the returned state.
+pub fn refine<const N: usize, const M: usize, F, G>(
+    ode: &mut Integrator<N>,
+    rhs: &mut F,
+    g: &mut G,
+    ev: Event<N, M>,
+) -> Event<N, M>
+where
+    F: FnMut(f64, &SVector<f64, N>) -> SVector<f64, N>,
+    G: FnMut(f64, &SVector<f64, N>) -> SVector<f64, M>,
+{
+    let (t_lo, t_hi) = (ode.t_old(), ode.t());
+    let c = ev.index;
+    let delta = 1e-3 * (t_hi - t_lo);
+    let (a, b) = ((ev.t - delta).max(t_lo), (ev.t + delta).min(t_hi));
+    let slope = (g(b, &ode.dense(b))[c] - g(a, &ode.dense(a))[c]) / (b - a);
+    if !(slope.is_finite() && slope != 0.0 && b > a) {
+        return ev;
+    }
+    let mut t = ev.t;
+    for _ in 0..4 {
+        let y = ode.step_state(rhs, t);
+        let gv = g(t, &y);
+        let next = t - gv[c] / slope;
+        if !(next > t_lo && next <= t_hi) {
+            return ev;
+        }
+        if (next - t).abs() <= 2.0 * f64::EPSILON * t.abs().max(1.0) {
+            let y = ode.step_state(rhs, next);
+            let gv = g(next, &y);
+            return Event {
+                t: next,
+                y,
+                g: gv,
+                ..ev
+            };
+        }
+        t = next;
+    }
+    ev
+}
+
 /// Illinois iteration for component `c` on `[a, b]`, where `g_c(a)` is on the
 /// starting side (negative if `from_negative`) and `g_c(b)` has crossed.
 /// Returns the final bracket with the full event vectors at both ends.

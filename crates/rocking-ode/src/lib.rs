@@ -744,6 +744,39 @@ impl<const N: usize> Integrator<N> {
         }
     }
 
+    /// The state at `t` inside the last accepted step, by a step of the method itself from that
+    /// step's start: of the method's order (the continuous extension is one order lower) and, as
+    /// the step is no longer than the accepted one, within its error estimate. For a state that a
+    /// discontinuity (an impact) starts from, where the extension's error would be carried on.
+    /// Returns `y()` at the current time and the step's start state at its start.
+    pub fn step_state<F>(&mut self, rhs: &mut F, t: f64) -> SVector<f64, N>
+    where
+        F: FnMut(f64, &SVector<f64, N>) -> SVector<f64, N>,
+    {
+        let (t0, y0) = (self.t_old, self.cont[0]);
+        if !self.has_step || t == self.t {
+            return self.y;
+        }
+        if t == t0 {
+            return y0;
+        }
+        let h = t - t0;
+        // The stages of the accepted step are kept (its dense output needs them): a scratch set.
+        let mut k = [SVector::<f64, N>::zeros(); STAGES];
+        // k[0] is f at the step's start for both methods.
+        k[0] = self.k[0];
+        let (a, c, last) = match self.opts.method {
+            Method::Dopri5 => (&tableau::DP5_A[..], &tableau::DP5_C[..], 6),
+            Method::Dop853 => (&tableau::DOP853_A[..], &tableau::DOP853_C[..], 12),
+        };
+        for i in 1..last {
+            let ys = y0 + comb(&k, a[i]) * h;
+            k[i] = rhs(t0 + c[i] * h, &ys);
+        }
+        self.stats.rhs_evals += last as u64 - 1;
+        y0 + comb(&k, a[last]) * h
+    }
+
     /// Time derivative of the continuous extension of the last accepted step
     /// (one order lower accuracy than [`dense`](Self::dense)).
     pub fn dense_derivative(&self, t: f64) -> SVector<f64, N> {

@@ -4,7 +4,7 @@
 
 use rocking_kernels::kernels::index::power as pwr;
 use rocking_motion::GroundMotion;
-use rocking_ode::events::{locate, Direction};
+use rocking_ode::events::{locate, refine, Direction};
 use rocking_ode::roots::grazing;
 use rocking_ode::{Integrator, Options as OdeOptions};
 
@@ -75,7 +75,9 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             let (t_old, t_new) = (info.t_old, info.t_new);
             let g_new = g(t_new, ode.y());
             let located = if self.opts.uplift {
-                locate(&mut ode, &mut g, &dirs, &g_old, &g_new).map(|ev| (ev.t, ev.index, t_new))
+                locate(&mut ode, &mut g, &dirs, &g_old, &g_new)
+                    .map(|ev| refine(&mut ode, &mut rhs, &mut g, ev))
+                    .map(|ev| (ev.t, ev.index, t_new))
             } else {
                 None
             };
@@ -96,8 +98,8 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             if let Some((t_up, s)) = lift {
                 self.extremes_contact(&dense, t_old, t_up);
                 self.extremes_forces(&dense, true, RIGHT, t_old, f_prev, t_up);
-                let y = ode.dense(t_up);
                 self.step_history(t_old, t_up, dense, Phase::Contact, RIGHT);
+                let y = ode.step_state(&mut rhs, t_up);
                 self.stats.add(ode.take_stats());
                 let (w, d) = carried(y.as_slice(), nc);
                 return self.uplift(t_up, s, &contact_state::<V>(y.as_slice()), w, d);
@@ -191,6 +193,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             let (t_old, t_new) = (info.t_old, info.t_new);
             let g_new = g(t_new, ode.y());
             if let Some(ev) = locate(&mut ode, &mut g, &dirs, &g_old, &g_new) {
+                let ev = refine(&mut ode, &mut rhs, &mut g, ev);
                 let dense = |t| rocking_state::<V>(ode.dense(t).as_slice());
                 self.extremes_rocking(&dense, t_old, ev.t);
                 self.extremes_forces(&dense, false, s, t_old, f_prev, ev.t);
