@@ -554,8 +554,10 @@ const KNET_EXPECTED: [&str; 17] = [
 ];
 
 /// K-NET / KiK-net ASCII: 17 header lines (label in columns 1-18, value after), then integer
-/// counts, 8 per line. Acceleration (gal) = counts × `Scale Factor` (`3920(gal)/6182761`) with
-/// the record's mean removed; dt = 1 / `Sampling Freq(Hz)` (`100Hz`, `50 Hz`).
+/// counts, 8 per line. Acceleration = counts × `Scale Factor` (`3920(gal)/6182761`: the
+/// numerator is in the bracket's unit, `gal`, `cm/s2`, `cm/s^2`, `cm/s/s`, `m/s2`; a velocity or
+/// displacement unit is refused) with the record's mean removed; dt = 1 / `Sampling Freq(Hz)`
+/// (`100Hz`, `50 Hz`).
 ///
 /// `Max. Acc. (gal)` (also spelled `Max Acc. (gal)`) is the peak |a| in gal of the record with
 /// its mean removed, as NIED describes it ("this value is subtracted the average of whole data
@@ -603,16 +605,22 @@ pub fn parse_knet(text: &str, file: &str) -> Result<At2Record, MotionError> {
     let hz = number(hz, file, freq_line)?;
     let (scale, scale_line) = field("Scale Factor")?;
     let bad_scale = || malformed(file, scale_line, "\"Scale Factor <a>(gal)/<b>\"", scale);
-    let (num, den) = scale.split_once('/').ok_or_else(bad_scale)?;
-    let unit_start = num.find('(').ok_or_else(bad_scale)?;
+    // <a>(<unit>)/<b>: the unit may hold a `/` itself (`cm/s2`), so the bracket is found first
+    // and the fraction's bar after it.
+    let open = scale.find('(').ok_or_else(bad_scale)?;
+    let close = open + scale[open..].find(')').ok_or_else(bad_scale)?;
+    let den = scale[close + 1..]
+        .trim_start()
+        .strip_prefix('/')
+        .ok_or_else(bad_scale)?;
     let unit = stated_unit(
-        &format!("UNITS: {}", num[unit_start..].trim_matches(['(', ')', ' '])),
+        &format!("UNITS: {}", &scale[open + 1..close]),
         file,
         scale_line,
         lines[scale_line - 1],
     )?;
     let factor =
-        number(num[..unit_start].trim(), file, scale_line)? / number(den.trim(), file, scale_line)?;
+        number(scale[..open].trim(), file, scale_line)? / number(den.trim(), file, scale_line)?;
     if !(factor.is_finite() && factor != 0.0) {
         return Err(bad_scale());
     }
@@ -774,6 +782,61 @@ mod tests {
         );
     }
 
+    /// The bracket of `Scale Factor <a>(<unit>)/<b>` may hold a unit with a `/`: `cm/s2` is an
+    /// acceleration (it was split at its own `/` and read as `cm`, refused as a displacement),
+    /// and the numerator is in that unit. A velocity or displacement unit is still refused.
+    #[test]
+    fn knet_scale_factor_units() {
+        let counts = "  0  100000  200000";
+        let gal = parse_knet(&knet_text("3920(gal)/6182761", "", counts), "k.NS").unwrap();
+        for unit in [
+            "cm/s2",
+            "cm/s^2",
+            "cm/s/s",
+            "Gal",
+            "GAL",
+            "cm/sec/sec",
+            " cm/s2 ",
+        ] {
+            let text = knet_text(&format!("3920({unit})/6182761"), "", counts);
+            let r = parse_knet(&text, "k.NS").unwrap_or_else(|e| panic!("{unit}: {e}"));
+            assert_eq!(r.declared_unit, Some(AccelUnit::CmPerS2), "{unit}");
+            assert_eq!(r.samples, gal.samples, "{unit}");
+        }
+        // m/s2: the same numbers, in m/s²
+        for unit in ["m/s2", "M/S^2", "m/s/s"] {
+            let text = knet_text(&format!("3920({unit})/6182761"), "", counts);
+            let r = parse_knet(&text, "k.NS").unwrap_or_else(|e| panic!("{unit}: {e}"));
+            assert_eq!(r.declared_unit, Some(AccelUnit::MPerS2), "{unit}");
+            assert_eq!(r.samples, gal.samples, "{unit}");
+        }
+        for unit in ["cm/s", "kine", "cm", "m"] {
+            let text = knet_text(&format!("3920({unit})/6182761"), "", counts);
+            let e = parse_knet(&text, "k.NS").unwrap_err();
+            assert!(
+                matches!(e, MotionError::NotAcceleration { .. }),
+                "{unit}: {e}"
+            );
+            assert!(
+                e.to_string()
+                    .starts_with("k.NS:14: expected an acceleration"),
+                "{e}"
+            );
+        }
+        for scale in [
+            "3920(gal/6182761",
+            "3920(gal)6182761",
+            "3920 gal/6182761",
+            "(gal)/1",
+        ] {
+            let e = parse_knet(&knet_text(scale, "", counts), "k.NS").unwrap_err();
+            assert!(
+                e.to_string().starts_with("k.NS:14: expected"),
+                "{scale}: {e}"
+            );
+        }
+    }
+
     /// `Max. Acc. (gal)` is the peak |a| of the record with its mean removed; it must agree with
     /// the samples within its printed digits + 1 %, or the file is refused on its line (15).
     #[test]
@@ -785,6 +848,14 @@ mod tests {
         for ok in ["63.402", "63.40", "63.4", "63", "6.3402E+01", "63.9", ""] {
             assert!(read("3920(gal)/6182761", ok).is_ok(), "{ok}");
         }
+        // the header in gal, the samples in m/s²: compared in m/s² (6340.21 gal)
+        assert!(read("3920(m/s2)/6182761", "6340.21").is_ok());
+        let e = read("3920(m/s2)/6182761", "63.402").unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "k.NS:15: the header states Max. Acc. (gal) = 63.402 (= 0.63402 m/s²) but the \
+             samples peak at 63.4021 m/s² (a unit or scale the reader did not apply?)"
+        );
         for (bad, found) in [
             ("634.021", "63.4021 cm/s²"),
             ("6340.21", "63.4021 cm/s²"),

@@ -318,6 +318,47 @@ mod tests {
         }
     }
 
+    /// The spellings of K-NET's scale-factor bracket (`3920(cm/s2)/6182761`) are acceleration
+    /// units on every reader's unit line too: K-NET refused `cm/s2` because its reader split the
+    /// scale factor at the unit's own `/` (fixed there), not because of these rules.
+    #[test]
+    fn scale_factor_spellings_on_unit_lines() {
+        for u in [
+            "cm/s2", "cm/s^2", "cm/s/s", "gal", "Gal", "CM/S2", "cm/sec2",
+        ] {
+            for line in [
+                format!("UNITS: {u}"),
+                format!("ACCELERATION IN {u}"),
+                format!("ACCELERATION TIME SERIES IN UNITS OF {u}"),
+            ] {
+                assert_eq!(
+                    declared_unit(&line),
+                    Declared::Unit(AccelUnit::CmPerS2),
+                    "{line}"
+                );
+            }
+        }
+        for line in [
+            "UNITS: m/s2",
+            "ACCELERATION (M/S2)",
+            "ACCELERATION IN m/s^2",
+        ] {
+            assert_eq!(
+                declared_unit(line),
+                Declared::Unit(AccelUnit::MPerS2),
+                "{line}"
+            );
+        }
+        for line in [
+            "UNITS: cm/s",
+            "UNITS: kine",
+            "UNITS: cm",
+            "ACCELERATION IN CM/S",
+        ] {
+            assert_eq!(declared_unit(line), Declared::NotAcceleration, "{line}");
+        }
+    }
+
     #[test]
     fn expressions() {
         use Quantity::*;
