@@ -498,6 +498,17 @@ const ROWS: &[Row] = &[
         &["rec.AT2:4", "expected 4 samples (NDATA in the header), found 3"],
     ),
     (
+        "record-esm-peak-mismatch",
+        SCENE,
+        PULSE,
+        AS_ESM,
+        Some(esm!("ACCELERATION", "3", "100.0\n-300.0\n200.0\n")),
+        &[
+            "rec.AT2:6",
+            "the header states PGA_CM/S^2 = 3.0 but the samples peak at 300 cm/s²",
+        ],
+    ),
+    (
         "record-knet-short-header",
         SCENE,
         PULSE,

@@ -169,6 +169,21 @@ pub enum MotionError {
         /// The unit the user stated.
         stated: &'static str,
     },
+    /// The header states the record's peak acceleration (ESM `PGA_CM/S^2`, K-NET `Max. Acc.
+    /// (gal)`) and the samples, as read, peak elsewhere: a unit or scale factor not applied.
+    PeakMismatch {
+        /// Name of the input.
+        file: String,
+        /// Line of the header field.
+        line: usize,
+        /// The field as the header names it (`PGA_CM/S^2`, `Max. Acc. (gal)`).
+        key: String,
+        /// The stated peak as written, in the field's unit (and in the samples' unit when
+        /// that differs).
+        stated: String,
+        /// The samples' peak with their unit.
+        found: String,
+    },
     /// A text, ESM or K-NET file does not have the layout of its format.
     Malformed {
         /// Name of the input.
@@ -203,6 +218,7 @@ impl MotionError {
             | MotionError::NonFiniteSample { line, .. }
             | MotionError::Malformed { line, .. }
             | MotionError::UnknownUnits { line, .. }
+            | MotionError::PeakMismatch { line, .. }
             | MotionError::CountMismatch { line, .. } => Some(*line),
         }
     }
@@ -303,6 +319,17 @@ impl fmt::Display for MotionError {
                 f,
                 "{file}: the header declares the units {declared}, but the scene states \
                  `units` = \"{stated}\"; remove `units` or make it agree"
+            ),
+            MotionError::PeakMismatch {
+                file,
+                line,
+                key,
+                stated,
+                found,
+            } => write!(
+                f,
+                "{file}:{line}: the header states {key} = {stated} but the samples peak at \
+                 {found} (a unit or scale the reader did not apply?)"
             ),
             MotionError::Malformed {
                 file,

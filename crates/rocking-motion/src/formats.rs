@@ -5,10 +5,10 @@
 //! holds velocity, displacement or a response spectrum is refused. Also the one rule for which
 //! files of a folder are records ([`record_files_in`]).
 
-use crate::error::excerpt;
+use crate::error::{excerpt, short_number};
 use crate::input::{decode, number, read_bytes, time_step};
 use crate::units::{declared_unit, Declared};
-use crate::{parse_at2, read_at2, AccelUnit, At2Record, MotionError};
+use crate::{parse_at2, read_at2, AccelUnit, At2Record, MotionError, STANDARD_GRAVITY};
 use std::path::{Path, PathBuf};
 
 /// The layout of a record file.
@@ -215,6 +215,83 @@ fn stated_unit(field: &str, file: &str, line: usize, raw: &str) -> Result<AccelU
     }
 }
 
+/// The allowance on a stated peak beyond its printed precision, relative: 1 %. The headers print
+/// the peak of the very samples of the file (ESM: the signed sample of largest |a|; K-NET: the
+/// counts × scale factor with the mean removed), so a file read right matches to the last printed
+/// digit (54 NIED K-NET/KiK-net files and 6 ESM files checked: within half a unit in that digit);
+/// 1 % leaves room for a provider that computes its peak before rounding the samples or takes its
+/// g as 9.81 (0.03 %), while a unit or scale the reader did not apply is off by 9.8x (g and
+/// m/s²) or more, 100x (cm/s² and m/s²), 980x (g and cm/s²).
+pub const PEAK_TOL: f64 = 0.01;
+
+/// A unit as a peak message writes it.
+fn symbol(unit: AccelUnit) -> &'static str {
+    match unit {
+        AccelUnit::G => "g",
+        AccelUnit::CmPerS2 => "cm/s²",
+        AccelUnit::MPerS2 => "m/s²",
+    }
+}
+
+/// Half a unit in the last printed digit of a number as written (`350.2` → 0.05, `136.343` →
+/// 0.0005, `1.5E+02` → 5, `48` → 0.5): how far the printed value may be from the one it rounds.
+fn printed_half_unit(value: &str) -> f64 {
+    let v = value.trim().trim_start_matches(['+', '-']);
+    let (mantissa, exponent) = match v.find(['e', 'E', 'd', 'D']) {
+        Some(i) => (&v[..i], v[i + 1..].parse::<i32>().unwrap_or(0)),
+        None => (v, 0),
+    };
+    let decimals = mantissa.split_once('.').map_or(0, |(_, d)| d.len() as i32);
+    0.5 * 10f64.powi(exponent - decimals)
+}
+
+/// `x` to six significant digits, for a message.
+fn six_digits(x: f64) -> String {
+    short_number(format!("{x:.5e}").parse().unwrap_or(x))
+}
+
+/// The stated-peak check: a header field `key` (on `line`) that states the record's peak as
+/// `value` in `stated_unit` must agree with the peak |a| of `samples` (in `unit`), compared in the
+/// samples' unit within the printed precision of `value` plus [`PEAK_TOL`]. The sign of `value`
+/// is not read (ESM writes the signed sample). A blank value is no check; a value that is not a
+/// number is refused.
+fn check_stated_peak(
+    file: &str,
+    line: usize,
+    key: &str,
+    value: &str,
+    stated_unit: AccelUnit,
+    samples: &[f64],
+    unit: AccelUnit,
+) -> Result<(), MotionError> {
+    let value = value.trim();
+    if value.is_empty() {
+        return Ok(());
+    }
+    let stated = number(value, file, line)?;
+    // the stated unit in the samples' unit (g as standard gravity: within 0.03 % of any
+    // provider's)
+    let k = stated_unit.in_m_s2(STANDARD_GRAVITY) / unit.in_m_s2(STANDARD_GRAVITY);
+    let want = stated.abs() * k;
+    let tol = printed_half_unit(value) * k + PEAK_TOL * want;
+    let peak = samples.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    if (peak - want).abs() <= tol {
+        return Ok(());
+    }
+    let stated = if stated_unit == unit {
+        value.to_owned()
+    } else {
+        format!("{value} (= {} {})", six_digits(want), symbol(unit))
+    };
+    Err(MotionError::PeakMismatch {
+        file: file.to_owned(),
+        line,
+        key: key.to_owned(),
+        stated,
+        found: format!("{} {}", six_digits(peak), symbol(unit)),
+    })
+}
+
 /// Relative tolerance on the spacing of the times of a two-column text file.
 const SPACING_TOL: f64 = 1e-6;
 
@@ -327,6 +404,11 @@ fn esm_data_type(value: &str) -> &'static str {
 /// lines `KEY: value` until the samples, one per line. `DATA_TYPE` must be `ACCELERATION` (a
 /// velocity, displacement or response-spectrum file is refused as such), `UNITS` gives the unit
 /// (cm/s^2 in the database), `SAMPLING_INTERVAL_S` the time step and `NDATA` the count.
+///
+/// A `PGA_<unit>` field (`PGA_CM/S^2: 153.189930`, the signed sample of largest |a|) is the
+/// record's peak: the samples must peak there (see [`PEAK_TOL`]) or the file is refused
+/// ([`MotionError::PeakMismatch`]); a blank one, or one in a unit the readers do not know, is not
+/// checked.
 pub fn parse_esm(text: &str, file: &str) -> Result<At2Record, MotionError> {
     not_blank(text, file, "an ESM header (KEY: value lines)")?;
     // The header: `KEY: value` lines up to the first other non-blank line.
@@ -406,6 +488,12 @@ pub fn parse_esm(text: &str, file: &str) -> Result<At2Record, MotionError> {
             found: samples.len(),
         });
     }
+    for &(key, value, line, _) in &fields {
+        let stated_unit = key.strip_prefix("PGA_").and_then(AccelUnit::parse);
+        if let Some(stated_unit) = stated_unit {
+            check_stated_peak(file, line, key, value, stated_unit, &samples, unit)?;
+        }
+    }
     let value = |key: &str| field(key).map_or("", |f| f.1);
     let title = [value("EVENT_NAME"), value("EVENT_ID")]
         .into_iter()
@@ -466,8 +554,17 @@ const KNET_EXPECTED: [&str; 17] = [
 ];
 
 /// K-NET / KiK-net ASCII: 17 header lines (label in columns 1-18, value after), then integer
-/// counts, 8 per line. Acceleration (gal) = counts × `Scale Factor` (`3920(gal)/6182761`) with
-/// the record's mean removed; dt = 1 / `Sampling Freq(Hz)` (`100Hz`, `50 Hz`).
+/// counts, 8 per line. Acceleration = counts × `Scale Factor` (`3920(gal)/6182761`: the
+/// numerator is in the bracket's unit, `gal`, `cm/s2`, `cm/s^2`, `cm/s/s`, `m/s2`; a velocity or
+/// displacement unit is refused) with the record's mean removed; dt = 1 / `Sampling Freq(Hz)`
+/// (`100Hz`, `50 Hz`).
+///
+/// `Max. Acc. (gal)` (also spelled `Max Acc. (gal)`) is the peak |a| in gal of the record with
+/// its mean removed, as NIED describes it ("this value is subtracted the average of whole data
+/// from original value") and as the NIED files checked satisfy (54 K-NET/KiK-net files, all
+/// within the last printed digit; the peak of the raw counts misses every one of them, by 0.93x
+/// to 665x, the offset being most of a KiK-net borehole record). The samples must peak there (see [`PEAK_TOL`]) or
+/// the file is refused ([`MotionError::PeakMismatch`]); a blank value is not checked.
 pub fn parse_knet(text: &str, file: &str) -> Result<At2Record, MotionError> {
     not_blank(text, file, "a K-NET header (17 lines)")?;
     let lines: Vec<&str> = text.lines().collect();
@@ -508,16 +605,22 @@ pub fn parse_knet(text: &str, file: &str) -> Result<At2Record, MotionError> {
     let hz = number(hz, file, freq_line)?;
     let (scale, scale_line) = field("Scale Factor")?;
     let bad_scale = || malformed(file, scale_line, "\"Scale Factor <a>(gal)/<b>\"", scale);
-    let (num, den) = scale.split_once('/').ok_or_else(bad_scale)?;
-    let unit_start = num.find('(').ok_or_else(bad_scale)?;
+    // <a>(<unit>)/<b>: the unit may hold a `/` itself (`cm/s2`), so the bracket is found first
+    // and the fraction's bar after it.
+    let open = scale.find('(').ok_or_else(bad_scale)?;
+    let close = open + scale[open..].find(')').ok_or_else(bad_scale)?;
+    let den = scale[close + 1..]
+        .trim_start()
+        .strip_prefix('/')
+        .ok_or_else(bad_scale)?;
     let unit = stated_unit(
-        &format!("UNITS: {}", num[unit_start..].trim_matches(['(', ')', ' '])),
+        &format!("UNITS: {}", &scale[open + 1..close]),
         file,
         scale_line,
         lines[scale_line - 1],
     )?;
     let factor =
-        number(num[..unit_start].trim(), file, scale_line)? / number(den.trim(), file, scale_line)?;
+        number(scale[..open].trim(), file, scale_line)? / number(den.trim(), file, scale_line)?;
     if !(factor.is_finite() && factor != 0.0) {
         return Err(bad_scale());
     }
@@ -539,6 +642,15 @@ pub fn parse_knet(text: &str, file: &str) -> Result<At2Record, MotionError> {
     )?;
     let mean = samples.iter().sum::<f64>() / samples.len() as f64;
     samples.iter_mut().for_each(|a| *a -= mean);
+    let max_acc = lines[..header].iter().enumerate().find_map(|(i, l)| {
+        let l = l.trim_start();
+        ["Max. Acc. (gal)", "Max Acc. (gal)"]
+            .iter()
+            .find_map(|label| l.strip_prefix(label).map(|v| (*label, v, i + 1)))
+    });
+    if let Some((label, value, line)) = max_acc {
+        check_stated_peak(file, line, label, value, AccelUnit::CmPerS2, &samples, unit)?;
+    }
     let text_of = |label| field(label).map(|(s, _)| s.to_owned()).unwrap_or_default();
     let event = format!("{} {}", text_of("Origin Time"), text_of("Dir."));
     let mut r = record(file, &text_of("Station Code"), event.trim(), dt, samples);
@@ -617,8 +729,8 @@ mod tests {
         assert!(e.to_string().contains("UNITS"), "{e}");
     }
 
-    #[test]
-    fn knet_counts() {
+    /// A K-NET file of `counts` with the given scale factor and `Max. Acc. (gal)` value.
+    fn knet_text(scale: &str, max_acc: &str, counts: &str) -> String {
         let mut text = String::new();
         for label in [
             "Origin Time       2011/03/11 14:46:00",
@@ -634,15 +746,22 @@ mod tests {
             "Sampling Freq(Hz) 100Hz",
             "Duration Time(s)  300",
             "Dir.              N-S",
-            "Scale Factor      3920(gal)/6182761",
-            "Max. Acc. (gal)   2699.995",
+            &format!("Scale Factor      {scale}"),
+            &format!("Max. Acc. (gal)   {max_acc}"),
             "Last Correction   2011/03/11 14:46:42",
             "Memo.",
         ] {
             text.push_str(label);
             text.push('\n');
         }
-        text.push_str("  10  20  30\n");
+        text.push_str(counts);
+        text.push('\n');
+        text
+    }
+
+    #[test]
+    fn knet_counts() {
+        let text = knet_text("3920(gal)/6182761", "0.006", "  10  20  30");
         let r = parse_knet(&text, "k.NS").unwrap();
         let f = 3920.0 / 6182761.0;
         assert_eq!(r.dt, 0.01);
@@ -661,6 +780,166 @@ mod tests {
             "k.NS:3: expected the K-NET header line \"Long. …\" (header line 3 of 17), found \
              end of file"
         );
+    }
+
+    /// The bracket of `Scale Factor <a>(<unit>)/<b>` may hold a unit with a `/`: `cm/s2` is an
+    /// acceleration (it was split at its own `/` and read as `cm`, refused as a displacement),
+    /// and the numerator is in that unit. A velocity or displacement unit is still refused.
+    #[test]
+    fn knet_scale_factor_units() {
+        let counts = "  0  100000  200000";
+        let gal = parse_knet(&knet_text("3920(gal)/6182761", "", counts), "k.NS").unwrap();
+        for unit in [
+            "cm/s2",
+            "cm/s^2",
+            "cm/s/s",
+            "Gal",
+            "GAL",
+            "cm/sec/sec",
+            " cm/s2 ",
+        ] {
+            let text = knet_text(&format!("3920({unit})/6182761"), "", counts);
+            let r = parse_knet(&text, "k.NS").unwrap_or_else(|e| panic!("{unit}: {e}"));
+            assert_eq!(r.declared_unit, Some(AccelUnit::CmPerS2), "{unit}");
+            assert_eq!(r.samples, gal.samples, "{unit}");
+        }
+        // m/s2: the same numbers, in m/s²
+        for unit in ["m/s2", "M/S^2", "m/s/s"] {
+            let text = knet_text(&format!("3920({unit})/6182761"), "", counts);
+            let r = parse_knet(&text, "k.NS").unwrap_or_else(|e| panic!("{unit}: {e}"));
+            assert_eq!(r.declared_unit, Some(AccelUnit::MPerS2), "{unit}");
+            assert_eq!(r.samples, gal.samples, "{unit}");
+        }
+        for unit in ["cm/s", "kine", "cm", "m"] {
+            let text = knet_text(&format!("3920({unit})/6182761"), "", counts);
+            let e = parse_knet(&text, "k.NS").unwrap_err();
+            assert!(
+                matches!(e, MotionError::NotAcceleration { .. }),
+                "{unit}: {e}"
+            );
+            assert!(
+                e.to_string()
+                    .starts_with("k.NS:14: expected an acceleration"),
+                "{e}"
+            );
+        }
+        for scale in [
+            "3920(gal/6182761",
+            "3920(gal)6182761",
+            "3920 gal/6182761",
+            "(gal)/1",
+        ] {
+            let e = parse_knet(&knet_text(scale, "", counts), "k.NS").unwrap_err();
+            assert!(
+                e.to_string().starts_with("k.NS:14: expected"),
+                "{scale}: {e}"
+            );
+        }
+    }
+
+    /// `Max. Acc. (gal)` is the peak |a| of the record with its mean removed; it must agree with
+    /// the samples within its printed digits + 1 %, or the file is refused on its line (15).
+    #[test]
+    fn knet_stated_peak() {
+        // counts 0, 1e5, 2e5: the mean removed, ±1e5 counts = ±63.4021 gal; 126.804 raw.
+        let counts = "  0  100000  200000";
+        let read =
+            |scale: &str, max_acc: &str| parse_knet(&knet_text(scale, max_acc, counts), "k.NS");
+        for ok in ["63.402", "63.40", "63.4", "63", "6.3402E+01", "63.9", ""] {
+            assert!(read("3920(gal)/6182761", ok).is_ok(), "{ok}");
+        }
+        // the header in gal, the samples in m/s²: compared in m/s² (6340.21 gal)
+        assert!(read("3920(m/s2)/6182761", "6340.21").is_ok());
+        let e = read("3920(m/s2)/6182761", "63.402").unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "k.NS:15: the header states Max. Acc. (gal) = 63.402 (= 0.63402 m/s²) but the \
+             samples peak at 63.4021 m/s² (a unit or scale the reader did not apply?)"
+        );
+        for (bad, found) in [
+            ("634.021", "63.4021 cm/s²"),
+            ("6340.21", "63.4021 cm/s²"),
+            ("6.340", "63.4021 cm/s²"),
+            ("126.804", "63.4021 cm/s²"), // the peak of the raw counts, not NIED's
+            ("64.1", "63.4021 cm/s²"),
+        ] {
+            let e = read("3920(gal)/6182761", bad).unwrap_err();
+            assert!(
+                matches!(e, MotionError::PeakMismatch { line: 15, .. }),
+                "{bad}: {e}"
+            );
+            assert_eq!(
+                e.to_string(),
+                format!(
+                    "k.NS:15: the header states Max. Acc. (gal) = {bad} but the samples peak \
+                     at {found} (a unit or scale the reader did not apply?)"
+                )
+            );
+        }
+        let e = read("3920(gal)/6182761", "n/a").unwrap_err();
+        assert!(
+            e.to_string().starts_with("k.NS:15: expected a number"),
+            "{e}"
+        );
+        // NIED's own format page spells it `Max Acc. (gal)`
+        let text = knet_text("3920(gal)/6182761", "634.021", counts)
+            .replace("Max. Acc. (gal)", "Max Acc. (gal) ");
+        let e = parse_knet(&text, "k.NS").unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with("k.NS:15: the header states Max Acc. (gal)"),
+            "{e}"
+        );
+    }
+
+    /// `PGA_CM/S^2` (the signed sample of largest |a|) must agree with the samples, or the file
+    /// is refused on its line; blank or absent, nothing is checked.
+    #[test]
+    fn esm_stated_peak() {
+        let head = "EVENT_NAME: Test\nDATA_TYPE: ACCELERATION\nUNITS: cm/s^2\n\
+                    SAMPLING_INTERVAL_S: 0.010000\nNDATA: 3\nPGA_CM/S^2: PEAK\nUSER5:\n";
+        let read = |units: &str, pga: &str| {
+            let text = head.replace("cm/s^2", units).replace("PEAK", pga);
+            parse_esm(&format!("{text}1.0\n-3.502\n3.0\n"), "e.ASC")
+        };
+        for ok in ["-3.502000", "3.502000", "3.5", "3.52", ""] {
+            assert!(read("cm/s^2", ok).is_ok(), "{ok}");
+        }
+        assert!(parse_esm(
+            &format!(
+                "{}1.0\n-3.502\n3.0\n",
+                head.replace("PGA_CM/S^2: PEAK\n", "")
+            ),
+            "e.ASC"
+        )
+        .is_ok());
+        // samples in m/s², the peak in cm/s²: 350.2 cm/s² is 3.502 m/s²
+        assert!(read("m/s^2", "-350.200000").is_ok());
+        for (units, pga, stated) in [
+            ("cm/s^2", "35.020000", "35.020000"),
+            ("cm/s^2", "350.200000", "350.200000"),
+            ("cm/s^2", "0.350200", "0.350200"),
+            ("m/s^2", "3.502000", "3.502000 (= 0.03502 m/s²)"),
+            ("g", "3.434", "3.434 (= 0.00350171 g)"),
+        ] {
+            let e = read(units, pga).unwrap_err();
+            assert!(
+                matches!(e, MotionError::PeakMismatch { line: 6, .. }),
+                "{pga}: {e}"
+            );
+            let unit = match units {
+                "g" => "g",
+                "m/s^2" => "m/s²",
+                _ => "cm/s²",
+            };
+            assert_eq!(
+                e.to_string(),
+                format!(
+                    "e.ASC:6: the header states PGA_CM/S^2 = {stated} but the samples peak at \
+                     3.502 {unit} (a unit or scale the reader did not apply?)"
+                )
+            );
+        }
     }
 
     #[test]

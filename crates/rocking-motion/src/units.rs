@@ -235,7 +235,7 @@ pub(crate) fn declared_unit(line: &str) -> Declared {
         let after_in = k > 0 && words[k - 1] == "IN";
         let q = unit_expression(w);
         let named = w.contains('/') || matches!(w.as_str(), "GAL" | "GALS" | "KINE");
-        if (after_in || named)
+        if named
             && matches!(
                 q,
                 Some(Quantity::Accel(_) | Quantity::OtherAccel(_) | Quantity::Velocity)
@@ -243,10 +243,13 @@ pub(crate) fn declared_unit(line: &str) -> Declared {
         {
             return scaled(Declared::of(q), &words[k + 1..]);
         }
-        // `IN %G`, `IN MG`, `IN 0.001 G`, `IN FEET/SEC/SEC`, `IN MGAL`, `IN COUNTS`: a unit the
-        // readers do not know is refused, never read as g.
-        if after_in && q.is_none() && !matches!(w.as_str(), "UNITS" | "UNIT" | "THE") {
-            return Declared::Unknown(None);
+        // What follows `IN` is the unit: an acceleration is read; `IN %G`, `IN MG`, `IN 0.001 G`,
+        // `IN FEET/SEC/SEC`, `IN MGAL`, `IN COUNTS`, a time (`IN SEC`) are refused as units the
+        // readers do not know, and a velocity or length (`IN CM/SEC`, `IN CM`) as not an
+        // acceleration: never passed over and the samples read as g (`ACCELERATION IN CM`
+        // was).
+        if after_in && !matches!(w.as_str(), "UNITS" | "UNIT" | "THE") {
+            return scaled(Declared::of(q), &words[k + 1..]);
         }
         // A bracketed unit-like word: `(MG)`, `(%G)`.
         if matches!(
@@ -259,16 +262,17 @@ pub(crate) fn declared_unit(line: &str) -> Declared {
     Declared::Nothing
 }
 
-/// A unit followed by a multiplier (`G X 10^-3`, `G x1000`, `G (SCALED BY 1000)`,
+/// A unit followed by a multiplier (`G X 10^-3`, `G x1000`, `G ×1000`, `G (SCALED BY 1000)`,
 /// `CM/SEC/SEC TIMES 10`, `m/s2 * 100`) is refused: applying it needs its direction, which
 /// the line does not say reliably, and dropping it is 10-1000x wrong.
 fn scaled(unit: Declared, after: &[String]) -> Declared {
     let multiplier = after.iter().take(3).any(|w| {
         matches!(
             w.as_str(),
-            "X" | "TIMES" | "*" | "SCALED" | "MULTIPLIED" | "FACTOR"
+            "X" | "×" | "TIMES" | "*" | "SCALED" | "MULTIPLIED" | "FACTOR"
         ) || w.starts_with('*')
-            || (w.starts_with('X') && w[1..].starts_with(|c: char| c.is_ascii_digit()))
+            || w.strip_prefix(['X', '×'])
+                .is_some_and(|r| r.starts_with(|c: char| c.is_ascii_digit()))
     });
     match unit {
         Declared::Unit(_) | Declared::Unknown(Some(_)) if multiplier => Declared::Unknown(None),
@@ -297,6 +301,8 @@ mod tests {
             "ACCELERATION IN UNITS OF G (SCALED BY 1000)",
             "ACCELERATION IN CM/SEC/SEC TIMES 10",
             "UNITS: m/s2 * 100",
+            "ACCELERATION IN UNITS OF G ×1000",
+            "ACCELERATION IN UNITS OF G × 10^-3",
         ] {
             assert!(
                 matches!(declared_unit(line), Declared::Unknown(_)),
@@ -315,6 +321,47 @@ mod tests {
                 "{line}: {:?}",
                 declared_unit(line)
             );
+        }
+    }
+
+    /// The spellings of K-NET's scale-factor bracket (`3920(cm/s2)/6182761`) are acceleration
+    /// units on every reader's unit line too: K-NET refused `cm/s2` because its reader split the
+    /// scale factor at the unit's own `/` (fixed there), not because of these rules.
+    #[test]
+    fn scale_factor_spellings_on_unit_lines() {
+        for u in [
+            "cm/s2", "cm/s^2", "cm/s/s", "gal", "Gal", "CM/S2", "cm/sec2",
+        ] {
+            for line in [
+                format!("UNITS: {u}"),
+                format!("ACCELERATION IN {u}"),
+                format!("ACCELERATION TIME SERIES IN UNITS OF {u}"),
+            ] {
+                assert_eq!(
+                    declared_unit(&line),
+                    Declared::Unit(AccelUnit::CmPerS2),
+                    "{line}"
+                );
+            }
+        }
+        for line in [
+            "UNITS: m/s2",
+            "ACCELERATION (M/S2)",
+            "ACCELERATION IN m/s^2",
+        ] {
+            assert_eq!(
+                declared_unit(line),
+                Declared::Unit(AccelUnit::MPerS2),
+                "{line}"
+            );
+        }
+        for line in [
+            "UNITS: cm/s",
+            "UNITS: kine",
+            "UNITS: cm",
+            "ACCELERATION IN CM/S",
+        ] {
+            assert_eq!(declared_unit(line), Declared::NotAcceleration, "{line}");
         }
     }
 
@@ -393,6 +440,10 @@ mod tests {
             ("VELOCITY TIME HISTORY IN UNITS OF CM/SEC", NotAcceleration),
             ("DISPLACEMENT TIME HISTORY IN UNITS OF CM", NotAcceleration),
             ("UNITS: cm/s", NotAcceleration),
+            // after IN, a length or a time is no acceleration unit (was: no unit, read as g)
+            ("ACCELERATION IN CM", NotAcceleration),
+            ("ACCELERATION IN M", NotAcceleration),
+            ("ACCELERATION IN SEC", Unknown(None)),
         ] {
             assert_eq!(declared_unit(line), want, "{line}");
         }
