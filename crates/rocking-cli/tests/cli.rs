@@ -836,3 +836,32 @@ fn without_forces_history_and_summary_agree() {
         }
     }
 }
+
+/// A chattering run (restitution 1 on the flexible Fig. 5 column, 200 τ after the pulse: about
+/// 450,000 impacts) draws its plot: one impact marker per pixel. It used to fail after the whole
+/// run with exit 1, "SVG data parsing failed cause nodes limit reached".
+#[test]
+fn a_chattering_run_draws_its_plot() {
+    let out = tmp("chatter");
+    let o = rocking(&[
+        "run",
+        scenes().join("fig5-flexible.toml").to_str().unwrap(),
+        "--set",
+        "effects.impact={restitution=1.0}",
+        "--set",
+        "solver.after_excitation=200",
+        "--set",
+        "output.events=false",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert!(s["impacts"].as_u64().unwrap() > 100_000, "{}", s["impacts"]);
+    let svg = std::fs::read_to_string(out.join("plot.svg")).unwrap();
+    // Markers are drawn per pixel, not per impact: far fewer elements than impacts.
+    let elements = svg.matches('<').count();
+    assert!(elements < 100_000, "{elements} SVG elements");
+    assert!(out.join("plot.png").is_file());
+}

@@ -317,7 +317,9 @@ impl HistoryPanel {
             for piece in clip(&points, frame) {
                 styled_line(&mut chart, piece, &t.style, colour, width)?;
             }
-            // Impacts: the run's marker on its line.
+            // Impacts: the run's marker on its line, one per pixel (a chattering run has hundreds
+            // of thousands, which no SVG reader would hold, and they would draw one mark).
+            let mut drawn = std::collections::HashSet::new();
             for &tau in &t.impacts {
                 if tau < x.0 || tau > x.1 {
                     continue;
@@ -328,6 +330,9 @@ impl HistoryPanel {
                     t.at(self.quantity, tau)
                 };
                 if let Some(v) = v.filter(|v| (lo..=hi).contains(v)) {
+                    if !drawn.insert(pixel(&chart, (tau, v))) {
+                        continue;
+                    }
                     mark_at(&chart, t.style.marker, (tau, v), 4, colour, true)?;
                 }
             }
