@@ -317,8 +317,11 @@ impl HistoryPanel {
             for piece in clip(&points, frame) {
                 styled_line(&mut chart, piece, &t.style, colour, width)?;
             }
-            // Impacts: the run's marker on its line, one per pixel (a chattering run has hundreds
-            // of thousands, which no SVG reader would hold, and they would draw one mark).
+            // Impacts: the run's marker on its line; with more impacts than the panel has pixel
+            // columns (a chattering run has hundreds of thousands, which no SVG reader would
+            // hold), one per pixel: the same drawing.
+            let columns = chart.plotting_area().dim_in_pixel().0 as usize;
+            let thin = t.impacts.len() > columns;
             let mut drawn = std::collections::HashSet::new();
             for &tau in &t.impacts {
                 if tau < x.0 || tau > x.1 {
@@ -330,7 +333,7 @@ impl HistoryPanel {
                     t.at(self.quantity, tau)
                 };
                 if let Some(v) = v.filter(|v| (lo..=hi).contains(v)) {
-                    if !drawn.insert(pixel(&chart, (tau, v))) {
+                    if thin && !drawn.insert(pixel(&chart, (tau, v))) {
                         continue;
                     }
                     mark_at(&chart, t.style.marker, (tau, v), 4, colour, true)?;
