@@ -418,3 +418,74 @@ fn a_rigid_block_rocking_freely_has_the_reactions_of_its_rotating_mass() {
     eprintln!("rigid block: reactions against the closed form, worst {worst:.1e} W");
     assert!(worst <= 1e-10, "{worst}");
 }
+
+/// A scene of `scenes/` run at a preset (its accuracy for the scene's excitation), forces on.
+fn scene_at(file: &str, preset: Preset) -> Run {
+    let setup = scene(file, &[]);
+    let opts = Options {
+        accuracy: preset.accuracy_for(&setup.excitation),
+        forces: true,
+        ..setup.options
+    };
+    run_checked(
+        &setup.structure,
+        &setup.excitation,
+        &setup.effects,
+        &opts,
+        &format!("{file} at {}", preset.name()),
+    )
+}
+
+/// Issue 47 item 5: once R_v falls below zero the friction the base needs is unbounded. Fig. 3
+/// (VVEL) is such a run (R_v/W falls to −0.38): at two presets the summary's
+/// `max_required_friction` is +∞ (not the largest |R_h|/R_v sampled before the crossing, which
+/// grew with the preset's accuracy: 23.5, 37.3, 1020 for a Fig-8 cell), and the first lift-off,
+/// the time of the unbounded demand, is the same instant.
+#[test]
+fn a_run_whose_vertical_reaction_falls_below_zero_needs_unbounded_friction() {
+    let runs: Vec<Run> = [Preset::Default, Preset::Accurate]
+        .into_iter()
+        .map(|p| scene_at("fig3-vvel.toml", p))
+        .collect();
+    let mut times = Vec::new();
+    for (run, preset) in runs.iter().zip(["default", "accurate"]) {
+        let f = run.summary.forces.expect("forces tracked");
+        let t = f.first_lift_off_time.expect("R_v falls below zero").tau;
+        eprintln!(
+            "Fig. 3 at {preset}: max required friction {}, min R_v/W {:.6}, first lift-off τ = \
+             {t:.9}",
+            f.max_required_friction, f.min_vertical_reaction_over_w
+        );
+        assert_eq!(f.max_required_friction, f64::INFINITY, "{preset}");
+        assert!(f.min_vertical_reaction_over_w < -0.3, "{preset}");
+        times.push(t);
+    }
+    assert!(
+        (times[0] - times[1]).abs() <= 1e-7,
+        "first lift-off at τ = {} and {}",
+        times[0],
+        times[1]
+    );
+}
+
+/// A run whose R_v stays positive has a finite `max_required_friction`, the same at two
+/// presets to 1e-6 relative (1.3e-8 measured): the Fig-5 flexible column uplifts, rocks and impacts without
+/// lift-off.
+#[test]
+fn a_run_whose_vertical_reaction_stays_positive_needs_a_finite_friction() {
+    let [a, b] = [Preset::Default, Preset::Accurate].map(|p| {
+        let run = scene_at("fig5-flexible.toml", p);
+        assert!(run.summary.impacts > 0, "the run must rock and impact");
+        run.summary.forces.expect("forces tracked")
+    });
+    for f in [&a, &b] {
+        assert!(f.first_lift_off_time.is_none() && f.min_vertical_reaction_over_w > 0.0);
+        assert!(f.max_required_friction.is_finite() && f.max_required_friction > 0.0);
+    }
+    let e = (a.max_required_friction - b.max_required_friction).abs() / b.max_required_friction;
+    eprintln!(
+        "Fig. 5 flexible: max required friction {:.12} (default), {:.12} (accurate): {e:.1e}",
+        a.max_required_friction, b.max_required_friction
+    );
+    assert!(e <= 1e-6, "{e:e}");
+}

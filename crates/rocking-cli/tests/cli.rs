@@ -837,6 +837,151 @@ fn without_forces_history_and_summary_agree() {
     }
 }
 
+/// The rows of a CSV file as fields (no quoted commas in these tables).
+fn csv_table(path: &Path) -> Vec<Vec<String>> {
+    std::fs::read_to_string(path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        .lines()
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect()
+}
+
+/// The column `name` of a CSV table with a header row.
+fn column<'a>(rows: &'a [Vec<String>], name: &str) -> Vec<&'a str> {
+    let k = rows[0]
+        .iter()
+        .position(|c| c == name)
+        .unwrap_or_else(|| panic!("no column `{name}`: {:?}", rows[0]));
+    rows[1..].iter().map(|r| r[k].as_str()).collect()
+}
+
+/// Issue 47 item 5: once R_v falls below zero the friction the base needs is unbounded. Fig. 3
+/// (VVEL) falls to R_v/W = −0.38: its summary holds `"inf"` (JSON has no infinity; the history
+/// writes `inf` alike) with the time of the first lift-off, the warning says unbounded, and a
+/// sweep that reports the quantity writes `inf` in cells.csv, never an empty field or NaN.
+#[test]
+fn an_unbounded_required_friction_is_inf_in_the_summary_and_in_cells_csv() {
+    let fig3 = scenes().join("fig3-vvel.toml");
+    let s = common::summary(fig3.to_str().unwrap(), &[]);
+    assert_eq!(s["max_required_friction"], "inf", "{s}");
+    assert!(s["min_vertical_reaction_over_w"].as_f64().unwrap() < 0.0);
+    assert!(s["first_lift_off_time"].as_f64().unwrap() > 0.0);
+    let warnings = s["warnings"].to_string();
+    assert!(
+        warnings.contains("max required friction unbounded"),
+        "{warnings}"
+    );
+    // A one-axis spectrum over the amplitude: the paper's 1.30 lifts off, 0.3 never uplifts.
+    let out = tmp("friction-spectrum");
+    let o = rocking(&[
+        "spectrum",
+        fig3.to_str().unwrap(),
+        "--quiet",
+        "--axis",
+        "excitation.amplitude=0.3,1.3",
+        "--set",
+        "sweep.report=[\"max_required_friction\"]",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let rows = csv_table(&out.join("cells.csv"));
+    let friction = column(&rows, "max_required_friction");
+    let small: f64 = friction[0].parse().unwrap();
+    assert!(small.is_finite() && small > 0.0, "{rows:?}");
+    assert_eq!(friction[1], "inf", "{rows:?}");
+}
+
+/// A physical scene reports its force maxima in SI to a sweep, its own and its fixed-base
+/// twin's (issue 47 item 13), with the values of the single run's summary.json (and the
+/// required friction, finite here, as the summary has it).
+#[test]
+fn a_physical_batch_reports_the_si_maxima_of_the_run_and_of_its_twin() {
+    let turbine = scenes().join("wind-turbine-elcentro.toml");
+    let s = common::summary(
+        turbine.to_str().unwrap(),
+        &["output.fixed_base_reference=true"],
+    );
+    let fb = &s["fixed_base"];
+    for key in ["max_base_moment_nm", "max_base_shear_n"] {
+        let (run, twin) = (s[key].as_f64().unwrap(), fb[key].as_f64().unwrap());
+        assert!(run > 1e6 && twin > 1e6, "{key}: {run}, {twin}");
+    }
+    let wb =
+        s["max_base_moment_nm"].as_f64().unwrap() / s["max_base_moment_over_wb"].as_f64().unwrap();
+    let fixed = fb["max_base_moment_nm"].as_f64().unwrap()
+        / fb["max_base_moment_over_wb"].as_f64().unwrap();
+    assert!(
+        (wb / fixed - 1.0).abs() < 1e-12,
+        "the same W B: {wb}, {fixed}"
+    );
+    let out = tmp("si-batch");
+    let o = rocking(&[
+        "batch",
+        turbine.to_str().unwrap(),
+        "--quiet",
+        "--records",
+        scenes().join("records/elCentro.AT2").to_str().unwrap(),
+        "--scales",
+        "3",
+        "--set",
+        "sweep.report=[\"max_base_moment_nm\", \"fixed_base.max_base_moment_nm\", \
+         \"max_required_friction\"]",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let rows = csv_table(&out.join("runs.csv"));
+    let value = |name: &str| -> f64 { column(&rows, name)[0].parse().unwrap() };
+    assert_eq!(
+        value("max_base_moment_nm"),
+        s["max_base_moment_nm"].as_f64().unwrap()
+    );
+    assert_eq!(
+        value("fixed_base.max_base_moment_nm"),
+        fb["max_base_moment_nm"].as_f64().unwrap()
+    );
+    assert_eq!(
+        value("max_required_friction"),
+        s["max_required_friction"].as_f64().unwrap()
+    );
+}
+
+/// A dimensionless scene has no SI maxima: `report` naming one is refused before anything runs
+/// (exit 2, naming `report`), as any quantity a run does not report.
+#[test]
+fn a_dimensionless_sweep_refuses_the_si_maxima() {
+    let scene = scenes().join("spectra/fig8-forces.toml");
+    for key in ["max_base_moment_nm", "fixed_base.max_base_shear_n"] {
+        let out = tmp("si-refused");
+        let set = format!("sweep.report=[\"{key}\"]");
+        let o = rocking(&[
+            "spectrum",
+            scene.to_str().unwrap(),
+            "--quiet",
+            "--axis",
+            "excitation.omega_p_over_p=2,4",
+            "--axis",
+            "excitation.amplitude=3,6",
+            "--set",
+            &set,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{key}: {err}");
+        assert!(
+            err.contains(&format!("`report` in [sweep] names `{key}`")),
+            "{key}: {err}"
+        );
+        assert!(
+            err.contains("need a scene in physical units"),
+            "{key}: {err}"
+        );
+        assert!(!out.join("cells.csv").exists(), "{key}: nothing run");
+    }
+}
+
 /// A chattering run (restitution 1 on the flexible Fig. 5 column, 200 τ after the pulse: about
 /// 450,000 impacts) draws its plot: one impact marker per pixel. It used to fail after the whole
 /// run with exit 1, "SVG data parsing failed cause nodes limit reached".

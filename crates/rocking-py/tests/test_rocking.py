@@ -52,6 +52,15 @@ def test_summary_attributes_are_the_dicts_fields():
     assert s.derived["alpha"] == 0.2
 
 
+def test_an_unbounded_required_friction_is_infinity():
+    """Fig. 3 (VVEL): R_v falls below zero, so no friction holds the base there; the JSON's
+    "inf" is float('inf') as an attribute, and the dict keeps the command's "inf"."""
+    s = rocking.load_scene(FIG3).run().summary
+    assert s.max_required_friction == float("inf")
+    assert s.first_lift_off_time > 0.0
+    assert s.to_dict()["max_required_friction"] == "inf"
+
+
 def read_csv(path):
     with open(path, newline="") as f:
         return list(csv.DictReader(f))

@@ -52,7 +52,8 @@ pub struct Quantity {
     /// Its value per model (none where the run has no result).
     pub values: Vec<Option<f64>>,
     /// |v_k − v_{k−1}| / max(|v_k|, |v_{k−1}|) per model (none for the first, and next to a
-    /// missing value; 0 when both are 0).
+    /// missing value; 0 when both are equal, 0 or both unbounded; 1 when one of them is
+    /// unbounded and the other not).
     pub changes: Vec<Option<f64>>,
     /// The first model (its index) from which every later change is below the tolerance; none
     /// when the last change is not, or a value is missing after it.
@@ -196,8 +197,12 @@ pub fn converge(name: &str, values: Vec<Option<f64>>, tol: f64) -> Quantity {
         .map(|k| {
             let (a, b) = (values[k.checked_sub(1)?]?, values[k]?);
             let scale = a.abs().max(b.abs());
-            Some(if scale == 0.0 {
+            // Two unbounded values (an `inf` max_required_friction) are the same answer; one
+            // unbounded beside a finite one is the limit 1 of the relative change.
+            Some(if scale == 0.0 || a == b {
                 0.0
+            } else if !scale.is_finite() {
+                1.0
             } else {
                 (b - a).abs() / scale
             })
@@ -253,7 +258,11 @@ impl Report {
             "tolerance": self.tolerance,
             "quantities": self.quantities.iter().map(|q| serde_json::json!({
                 "name": q.name,
-                "values": q.values,
+                // JSON has no infinity: an unbounded value is "inf", as in the run's summary.
+                "values": q.values.iter().map(|v| match v {
+                    Some(x) if x.is_infinite() => serde_json::json!("inf"),
+                    v => serde_json::json!(v),
+                }).collect::<Vec<_>>(),
                 "changes": q.changes,
                 "converged_model": q.converged_at.map(|k| &self.models[k].0),
                 "converged_n": q.converged_at.map(|k| self.models[k].1),
@@ -328,5 +337,11 @@ mod tests {
         let q = converge("m", vec![Some(0.0), Some(0.0)], 0.01);
         assert_eq!(q.changes[1], Some(0.0));
         assert_eq!(q.converged_at, Some(0));
+        // An unbounded value (max_required_friction after a lift-off): the same as another
+        // unbounded one, a whole change from a finite one; never NaN.
+        let inf = f64::INFINITY;
+        let q = converge("f", vec![Some(0.5), Some(inf), Some(inf)], 0.01);
+        assert_eq!(q.changes[1..], [Some(1.0), Some(0.0)]);
+        assert_eq!(q.converged_at, Some(1));
     }
 }

@@ -94,7 +94,8 @@ fn needs_twin(key: &str) -> bool {
     key.starts_with("fixed_base.") || run_report::RATIOS.contains(&key)
 }
 
-/// The number at `key` (`a.b` for a nested entry) of a run's quantities.
+/// The number at `key` (`a.b` for a nested entry) of a run's quantities: +∞ for an unbounded
+/// one (`"inf"`, [`run_report::number`]), which cells.csv and runs.csv write as `inf`.
 fn lookup(q: &serde_json::Map<String, serde_json::Value>, key: &str) -> Option<f64> {
     let (head, tail) = match key.split_once('.') {
         Some((h, t)) => (h, Some(t)),
@@ -103,13 +104,14 @@ fn lookup(q: &serde_json::Map<String, serde_json::Value>, key: &str) -> Option<f
     let v = q.get(head)?;
     match tail {
         Some(t) => lookup(v.as_object()?, t),
-        None => v.as_f64().filter(|x| x.is_finite()),
+        None => run_report::number(v),
     }
 }
 
 /// Refuses a reported quantity that no run of the scene has: the allowed ones are the numeric
 /// entries of a run's quantities (found by a run of the scene that ends at once, forces on, with
-/// its fixed-base twin), and the ratios to the twin.
+/// its fixed-base twin; the force maxima in SI only for a physical scene), and the ratios to the
+/// twin.
 fn check_report(sc: &Scene, m: &Setup, report: &[String]) -> Result<(), SceneError> {
     if report.is_empty() {
         return Ok(());
@@ -127,16 +129,16 @@ fn check_report(sc: &Scene, m: &Setup, report: &[String]) -> Result<(), SceneErr
             .map_err(|e| SceneError::failure(format!("{}: {e}", sc.src.path.display())))
     };
     let twin = run(&probe.fixed_base_twin())?;
-    let q = run_report::quantities(&run(&probe)?, Some(&twin))?;
+    let q = run_report::quantities(&run(&probe)?, Some(&twin), run_report::si_scale(m))?;
     let mut allowed: Vec<String> = Vec::new();
     for (k, v) in &q {
         match v {
-            serde_json::Value::Number(_) => allowed.push(k.clone()),
             serde_json::Value::Object(o) => allowed.extend(
                 o.iter()
-                    .filter(|(_, x)| x.is_number())
+                    .filter(|(_, x)| run_report::number(x).is_some())
                     .map(|(j, _)| format!("{k}.{j}")),
             ),
+            v if run_report::number(v).is_some() => allowed.push(k.clone()),
             _ => {}
         }
     }
@@ -161,9 +163,17 @@ fn check_report(sc: &Scene, m: &Setup, report: &[String]) -> Result<(), SceneErr
         }
         if !allowed.contains(key) {
             let names: Vec<&str> = allowed.iter().map(String::as_str).collect();
-            let hint = rocking_scene::scene::suggest(key, &names)
-                .map(|s| format!("; did you mean `{s}`?"))
-                .unwrap_or_default();
+            let si = ["max_base_moment_nm", "max_base_shear_n"];
+            let hint = if si
+                .iter()
+                .any(|q| key.strip_prefix("fixed_base.").unwrap_or(key) == *q)
+            {
+                "; the maxima in SI need a scene in physical units".to_string()
+            } else {
+                rocking_scene::scene::suggest(key, &names)
+                    .map(|s| format!("; did you mean `{s}`?"))
+                    .unwrap_or_default()
+            };
             return Err(sc.src.err(
                 &format!("sweep.report.{i}"),
                 format_args!(
@@ -324,7 +334,8 @@ impl Base {
         } else {
             None
         };
-        let q = run_report::quantities(&summary, twin.as_ref()).map_err(|e| e.to_string())?;
+        let q = run_report::quantities(&summary, twin.as_ref(), run_report::si_scale(&m))
+            .map_err(|e| e.to_string())?;
         let reported = self
             .report
             .iter()

@@ -112,9 +112,9 @@ pub fn derived_json(model: &Setup) -> Result<Value, SceneError> {
 }
 
 /// The summary object printed by `--json` and written to summary.json: the run's
-/// [`quantities`], with what produced it (scene, model and its parameters, the `--set`
-/// overrides, title, variant and why, excitation), the derived quantities, the force maxima in
-/// SI (when the scene has units) and the warnings.
+/// [`quantities`] (with the force maxima in SI when the scene has units), with what produced it
+/// (scene, model and its parameters, the `--set` overrides, title, variant and why, excitation),
+/// the derived quantities and the warnings.
 pub fn summary_json(
     model: &Setup,
     scene: &Path,
@@ -122,7 +122,7 @@ pub fn summary_json(
     report: &Report,
 ) -> Result<Value, SceneError> {
     let run = &report.run;
-    let mut out = quantities(&run.summary, report.fixed_base.as_ref())?;
+    let mut out = quantities(&run.summary, report.fixed_base.as_ref(), si_scale(model))?;
     out.insert("scene".into(), json!(scene.display().to_string()));
     // What produced the result: the model, its whole parameter set, and the overrides.
     out.insert("model".into(), json!(model.structure.model().name));
@@ -136,17 +136,6 @@ pub fn summary_json(
     out.insert("excitation".into(), json!(model.excitation_description));
     out.insert("derived".into(), derived_json(model)?);
     if let Some(f) = &run.summary.forces {
-        let lift = model.structure.static_uplift();
-        if model.units.physical {
-            out.insert(
-                "max_base_moment_nm".into(),
-                json!(f.max_base_moment_over_wb * lift.moment),
-            );
-            out.insert(
-                "max_base_shear_n".into(),
-                json!(f.max_base_shear_over_w * lift.weight),
-            );
-        }
         out.insert("warnings".into(), json!(warnings(model, f)));
     }
     Ok(Value::Object(out))
@@ -155,13 +144,50 @@ pub fn summary_json(
 /// The ratios of a run's force maxima to its fixed-base twin's (rocking over fixed base).
 pub const RATIOS: [&str; 2] = ["base_moment_ratio", "base_shear_ratio"];
 
+/// The SI scale of a physical scene's forces: the uplift moment W B (N m) and the weight W (N);
+/// `None` for a dimensionless scene.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SiScale {
+    /// W B, N m.
+    pub moment: f64,
+    /// W, N.
+    pub weight: f64,
+}
+
+/// The SI scale of the scene's forces, when it has physical units.
+pub fn si_scale(model: &Setup) -> Option<SiScale> {
+    model.units.physical.then(|| {
+        let lift = model.structure.static_uplift();
+        SiScale {
+            moment: lift.moment,
+            weight: lift.weight,
+        }
+    })
+}
+
+/// The force maxima in SI, `max_base_moment_nm` and `max_base_shear_n`, added to `out`.
+fn insert_si(out: &mut serde_json::Map<String, Value>, f: &ForceSummary, si: SiScale) {
+    out.insert(
+        "max_base_moment_nm".into(),
+        json!(f.max_base_moment_over_wb * si.moment),
+    );
+    out.insert(
+        "max_base_shear_n".into(),
+        json!(f.max_base_shear_over_w * si.weight),
+    );
+}
+
 /// What a run reports about itself: its [`Summary`] as it serializes (a time `*_time` as τ, with
-/// `*_time_s` in seconds), and with its fixed-base twin's summary the twin's force maxima
-/// (`fixed_base`) and the ratios `base_moment_ratio`, `base_shear_ratio` (rocking over fixed
-/// base; absent where the twin carries no force). A sweep's cells report any numeric entry.
+/// `*_time_s` in seconds; an unbounded `max_required_friction` as the string `"inf"`), with
+/// `si` (a physical scene) the force maxima in SI `max_base_moment_nm` and `max_base_shear_n`,
+/// and with its fixed-base twin's summary the twin's force maxima (`fixed_base`, in SI too with
+/// `si`) and the ratios `base_moment_ratio`, `base_shear_ratio` (rocking over fixed base; absent
+/// where the twin carries no force). A sweep's cells report any numeric entry (and `"inf"`, as
+/// +∞: [`number`]).
 pub fn quantities(
     run: &Summary,
     twin: Option<&Summary>,
+    si: Option<SiScale>,
 ) -> Result<serde_json::Map<String, Value>, SceneError> {
     let mut out = serde_json::Map::new();
     for (key, value) in serialized(run)? {
@@ -176,11 +202,17 @@ pub fn quantities(
             out.insert(key, value);
         }
     }
+    if let (Some(f), Some(si)) = (&run.forces, si) {
+        insert_si(&mut out, f, si);
+    }
     if let (Some(f), Some(t)) = (&run.forces, twin) {
         if let Some(tf) = &t.forces {
             let mut fixed = serialized(tf)?;
             fixed.retain(|k, _| !k.ends_with("_time"));
             fixed.insert("max_u_over_ucr".into(), json!(t.max_u_over_ucr));
+            if let Some(si) = si {
+                insert_si(&mut fixed, tf, si);
+            }
             out.insert("fixed_base".into(), Value::Object(fixed));
             let ratios = [
                 (
@@ -199,6 +231,15 @@ pub fn quantities(
         }
     }
     Ok(out)
+}
+
+/// The number of a reported quantity's JSON value: a number, or +∞ for the string `"inf"` (an
+/// unbounded `max_required_friction`); `None` for anything else.
+pub fn number(v: &Value) -> Option<f64> {
+    match v {
+        Value::String(s) if s == "inf" => Some(f64::INFINITY),
+        v => v.as_f64().filter(|x| x.is_finite()),
+    }
 }
 
 /// A serializable value as a JSON object; a non-finite number is an error naming its field.
@@ -224,19 +265,24 @@ pub fn warnings(model: &Setup, f: &ForceSummary) -> Vec<String> {
     };
     let mut out = Vec::new();
     if let (Some(t), Some(mu)) = (f.first_slip_time, model.options.friction) {
+        // Unbounded once R_v < 0 (the lift-off warning below says when).
+        let max = if f.max_required_friction.is_finite() {
+            format!("{:.4}", f.max_required_friction)
+        } else {
+            "unbounded, as R_v falls below zero".to_string()
+        };
         out.push(format!(
             "the required friction |R_h|/R_v exceeds the ground's friction {mu} first at {}: \
              the structure would slide there, which the model does not include (max required \
-             friction {:.4})",
+             friction {max})",
             when(t),
-            f.max_required_friction
         ));
     }
     if let Some(t) = f.first_lift_off_time {
         out.push(format!(
             "the vertical reaction R_v falls below zero first at {} (min R_v/W = {:.4}): the \
              ground would have to pull, the structure would jump there, which the model does not \
-             include",
+             include; no friction holds it there (max required friction unbounded)",
             when(t),
             f.min_vertical_reaction_over_w
         ));

@@ -12,6 +12,16 @@ fn finite<S: Serializer>(x: &f64, s: S) -> Result<S::Ok, S::Error> {
     }
 }
 
+/// A float that is finite or +∞: +∞ is written as the string `"inf"` (JSON has no infinity; the
+/// history writes `inf` alike); a NaN or −∞ is an error naming the field, as in [`finite`].
+fn finite_or_inf<S: Serializer>(x: &f64, s: S) -> Result<S::Ok, S::Error> {
+    if *x == f64::INFINITY {
+        s.serialize_str("inf")
+    } else {
+        finite(x, s)
+    }
+}
+
 /// [`finite`] for an optional float (`None` is `null`).
 fn finite_opt<S: Serializer>(x: &Option<f64>, s: S) -> Result<S::Ok, S::Error> {
     match x {
@@ -144,9 +154,25 @@ pub struct ForceSummary {
     /// max |M_el| / (W B), M_el = EI Σ u_i ψ_i''(0) / H² (the moment from the curvature).
     #[serde(serialize_with = "finite")]
     pub max_elastic_base_moment_over_wb: f64,
-    /// max |R_h| / R_v over the instants where R_v > 0: the friction coefficient the no-sliding
-    /// assumption needs.
-    #[serde(serialize_with = "finite")]
+    /// max |R_h| / R_v: the friction coefficient the no-sliding assumption needs. Unbounded
+    /// (`f64::INFINITY`, written `"inf"` in the summary's JSON as `inf` in history.csv) once R_v
+    /// falls below zero: no friction holds a base the ground would have to pull. That happens
+    /// first at [`first_lift_off_time`](Self::first_lift_off_time), which is the time of the
+    /// unbounded demand (no key of its own). Otherwise the largest value over the run, all of
+    /// whose instants have R_v > 0, resolved inside steps like the other maxima.
+    ///
+    /// An instant with R_v = 0 exactly is not a lift-off: with R_h = 0 too it needs no friction
+    /// (0/0; at rest on a level ground nothing pushes sideways), and an R_v that only touches
+    /// zero without going below is a set of measure zero that a run does not resolve.
+    ///
+    /// There is no finite "largest over the instants where R_v > 0" beside it: where R_v falls
+    /// through zero continuously (the usual lift-off), |R_h| / R_v grows without bound as R_v
+    /// goes to 0⁺, so the largest value a run samples before the crossing is set by how close
+    /// its steps come to it (23.5, 37.3 and 1020 at the `default`, `accurate` and `reference`
+    /// presets for one Fig-8 cell, issue 47 item 5), not by the structure. It is finite and
+    /// step-independent only where R_v jumps below zero at an impact, which a summary cannot
+    /// tell apart from a continuous crossing.
+    #[serde(serialize_with = "finite_or_inf")]
     pub max_required_friction: f64,
     /// min R_v / W (below 0: the ground would have to pull, the no-jumping assumption fails).
     #[serde(serialize_with = "finite")]
@@ -154,7 +180,9 @@ pub struct ForceSummary {
     /// The first time |R_h| / R_v exceeded the ground's friction coefficient (`Options::friction`,
     /// when given; R_v > 0): the structure would slide.
     pub first_slip_time: Option<Time>,
-    /// The first time R_v fell below zero: the structure would jump.
+    /// The first time R_v fell below zero: the structure would jump, and from there the
+    /// required friction is unbounded ([`max_required_friction`](Self::max_required_friction)
+    /// is +∞ exactly when this is set).
     pub first_lift_off_time: Option<Time>,
 }
 

@@ -561,6 +561,37 @@ mod tests {
         );
     }
 
+    /// An unbounded value (`inf`: the required friction of a run whose R_v falls below zero) is
+    /// drawn in the top colour of a scale that the finite values set, and the legend says so.
+    #[test]
+    fn an_unbounded_reported_value_is_the_top_of_the_colour_bar_and_in_the_legend() {
+        let mut s = sweep();
+        s.reported = vec!["max_required_friction".into()];
+        let mut c = cells([0.2, 0.65, 1.3]);
+        for (cell, v) in c.iter_mut().zip([0.3, 0.6, f64::INFINITY, 2.0]) {
+            cell.reported = vec![v];
+        }
+        let svg = reported_figure("t", &s, &c, 0).0.svg().unwrap();
+        let hex = |c: RGBColor| format!("fill=\"#{:02X}{:02X}{:02X}\"", c.0, c.1, c.2);
+        // The scale runs 0 .. 0.6 (the overturned cell's 2.0 is not shaded): 0.3 is its middle.
+        let middle = hex(ViridisRGB.get_color_normalized(0.3, 0.0, 0.6));
+        let top = hex(ViridisRGB.get_color_normalized(1.0, 0.0, 1.0));
+        assert!(
+            svg.contains(&middle),
+            "{middle}: not on the finite values' scale"
+        );
+        // The top colour: the 0.6 cell, the unbounded cell and the legend's box.
+        assert!(svg.matches(&top).count() >= 3, "{top}");
+        // The legend wraps its text: its first words.
+        let entry = &spectrum::UNBOUNDED_LABEL[..16];
+        assert_eq!(entry, "unbounded (inf):");
+        assert!(svg.contains(entry), "legend entry");
+        // Without an unbounded cell, no such entry.
+        c[2].reported = vec![0.5];
+        let svg = reported_figure("t", &s, &c, 0).0.svg().unwrap();
+        assert!(!svg.contains(entry));
+    }
+
     fn rgb_of(c: [u8; 3]) -> RGBColor {
         RGBColor(c[0], c[1], c[2])
     }

@@ -127,6 +127,9 @@ const UPLIFT_LINE: LineStyle = LineStyle {
     ..style::BLACK
 };
 
+/// The legend's entry for the shaded cells whose value is unbounded.
+pub const UNBOUNDED_LABEL: &str = "unbounded (inf): top of the colour bar";
+
 /// A rocking spectrum panel.
 pub struct SpectrumPanel {
     pub title: Option<String>,
@@ -224,6 +227,20 @@ impl SpectrumPanel {
         .filter_map(class_style)
         .map(|s| LegendItem::Fill(s.fill, s.label.to_string()))
         .collect();
+        // An unbounded value (`inf` in cells.csv: the required friction once R_v < 0) is drawn
+        // in the colour of the bar's top, above every finite value.
+        if self
+            .grid
+            .2
+            .iter()
+            .any(|c| self.shade.shades(c.2) && c.3 == f64::INFINITY)
+        {
+            let top = ViridisRGB.get_color_normalized(1.0, 0.0, 1.0);
+            items.push(LegendItem::Fill(
+                [top.0, top.1, top.2],
+                UNBOUNDED_LABEL.to_string(),
+            ));
+        }
         if !self.boundary.is_empty() {
             items.push(LegendItem::Rule(
                 [0, 0, 0],

@@ -73,13 +73,31 @@ def _sets(set: Overrides) -> List[str]:
     return [str(s) for s in set]
 
 
+#: Summary keys whose value may be unbounded, written ``"inf"`` in the JSON (which has no
+#: infinity): ``max_required_friction`` once the vertical reaction falls below zero.
+_UNBOUNDED = ("max_required_friction",)
+
+
+def _numbers(data: Any) -> Any:
+    """A summary's values with ``"inf"`` read as ``float('inf')`` at the keys of
+    :data:`_UNBOUNDED` (also inside ``fixed_base``)."""
+    if isinstance(data, dict):
+        return {
+            k: float("inf") if k in _UNBOUNDED and v == "inf" else _numbers(v)
+            for k, v in data.items()
+        }
+    return data
+
+
 class Summary:
     """A run's summary: every field of ``rocking run --json`` as an attribute
-    (``max_theta_over_alpha``, ``overturned``, ``impacts``, ``derived``, ...)."""
+    (``max_theta_over_alpha``, ``overturned``, ``impacts``, ``derived``, ...). An unbounded
+    ``max_required_friction`` (the JSON's ``"inf"``: R_v fell below zero, first at
+    ``first_lift_off_time``) is ``float('inf')`` here; :meth:`to_dict` keeps the JSON's ``"inf"``."""
 
     def __init__(self, data: Dict[str, Any]) -> None:
         self._data = data
-        self.__dict__.update(data)
+        self.__dict__.update(_numbers(data))
 
     def to_dict(self) -> Dict[str, Any]:
         """The summary as a dict, equal to the JSON that ``rocking run --json`` prints."""

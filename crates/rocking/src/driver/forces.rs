@@ -32,8 +32,9 @@ const MEASURES: usize = 5;
 
 impl Forces {
     /// The quantities whose largest value is reported, in the order of [`ForceRecord::max`]:
-    /// |M_b|, |V_b|, |M_el|, the required friction |R_h| / R_v (−∞ where R_v <= 0: no friction
-    /// holds there, which is the lift-off warning instead), and −R_v (its largest is the smallest
+    /// |M_b|, |V_b|, |M_el|, the required friction |R_h| / R_v (−∞ where R_v <= 0, left out of
+    /// its largest value: where R_v < 0 no friction holds, which the summary reports as an
+    /// unbounded demand from the first lift-off, [`ForceRecord::first_lift_off`]), and −R_v (its largest is the smallest
     /// vertical reaction).
     fn measures(&self) -> [f64; MEASURES] {
         [
@@ -222,7 +223,13 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             max_base_moment_over_wb: r.max[0],
             max_base_shear_over_w: r.max[1],
             max_elastic_base_moment_over_wb: r.max[2],
-            max_required_friction: r.max[3].max(0.0),
+            // Unbounded from the first lift-off (R_v < 0): the largest |R_h| / R_v sampled
+            // before it depends on how close the steps come to R_v = 0 (ForceSummary's doc).
+            max_required_friction: if r.first_lift_off.is_some() {
+                f64::INFINITY
+            } else {
+                r.max[3].max(0.0)
+            },
             min_vertical_reaction_over_w: -r.max[4],
             first_slip_time: time(r.first_slip),
             first_lift_off_time: time(r.first_lift_off),
