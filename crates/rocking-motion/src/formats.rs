@@ -224,15 +224,6 @@ fn stated_unit(field: &str, file: &str, line: usize, raw: &str) -> Result<AccelU
 /// m/s²) or more, 100x (cm/s² and m/s²), 980x (g and cm/s²).
 pub const PEAK_TOL: f64 = 0.01;
 
-/// A unit as a peak message writes it.
-fn symbol(unit: AccelUnit) -> &'static str {
-    match unit {
-        AccelUnit::G => "g",
-        AccelUnit::CmPerS2 => "cm/s²",
-        AccelUnit::MPerS2 => "m/s²",
-    }
-}
-
 /// Half a unit in the last printed digit of a number as written (`350.2` → 0.05, `136.343` →
 /// 0.0005, `1.5E+02` → 5, `48` → 0.5): how far the printed value may be from the one it rounds.
 fn printed_half_unit(value: &str) -> f64 {
@@ -281,14 +272,14 @@ fn check_stated_peak(
     let stated = if stated_unit == unit {
         value.to_owned()
     } else {
-        format!("{value} (= {} {})", six_digits(want), symbol(unit))
+        format!("{value} (= {} {})", six_digits(want), unit.symbol())
     };
     Err(MotionError::PeakMismatch {
         file: file.to_owned(),
         line,
         key: key.to_owned(),
         stated,
-        found: format!("{} {}", six_digits(peak), symbol(unit)),
+        found: format!("{} {}", six_digits(peak), unit.symbol()),
     })
 }
 

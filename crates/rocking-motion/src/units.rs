@@ -53,6 +53,15 @@ impl AccelUnit {
         }
     }
 
+    /// The unit as a message prints it (`g`, `cm/s²`, `m/s²`).
+    pub fn symbol(self) -> &'static str {
+        match self {
+            AccelUnit::G => "g",
+            AccelUnit::CmPerS2 => "cm/s²",
+            AccelUnit::MPerS2 => "m/s²",
+        }
+    }
+
     /// A unit as a user writes it: `g`, `cm/s2` (`cm/s^2`, `cm/sec/sec`, `gal`, ...), `m/s2`
     /// (`m/s^2`, `m/s/s`, ...); case and spaces ignored. The same expressions the headers use.
     pub fn parse(s: &str) -> Option<AccelUnit> {

@@ -260,7 +260,7 @@ impl Report {
                 "name": q.name,
                 // JSON has no infinity: an unbounded value is "inf", as in the run's summary.
                 "values": q.values.iter().map(|v| match v {
-                    Some(x) if x.is_infinite() => serde_json::json!("inf"),
+                    Some(x) if x.is_infinite() => serde_json::json!(rocking::UNBOUNDED),
                     v => serde_json::json!(v),
                 }).collect::<Vec<_>>(),
                 "changes": q.changes,

@@ -163,8 +163,7 @@ fn check_report(sc: &Scene, m: &Setup, report: &[String]) -> Result<(), SceneErr
         }
         if !allowed.contains(key) {
             let names: Vec<&str> = allowed.iter().map(String::as_str).collect();
-            let si = ["max_base_moment_nm", "max_base_shear_n"];
-            let hint = if si
+            let hint = if run_report::SI_MAXIMA
                 .iter()
                 .any(|q| key.strip_prefix("fixed_base.").unwrap_or(key) == *q)
             {

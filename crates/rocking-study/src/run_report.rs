@@ -165,16 +165,18 @@ pub fn si_scale(model: &Setup) -> Option<SiScale> {
     })
 }
 
-/// The force maxima in SI, `max_base_moment_nm` and `max_base_shear_n`, added to `out`.
+/// The keys of the force maxima in SI, which only a physical scene reports.
+pub const SI_MAXIMA: [&str; 2] = ["max_base_moment_nm", "max_base_shear_n"];
+
+/// The force maxima in SI ([`SI_MAXIMA`]) added to `out`.
 fn insert_si(out: &mut serde_json::Map<String, Value>, f: &ForceSummary, si: SiScale) {
-    out.insert(
-        "max_base_moment_nm".into(),
-        json!(f.max_base_moment_over_wb * si.moment),
-    );
-    out.insert(
-        "max_base_shear_n".into(),
-        json!(f.max_base_shear_over_w * si.weight),
-    );
+    let values = [
+        f.max_base_moment_over_wb * si.moment,
+        f.max_base_shear_over_w * si.weight,
+    ];
+    for (key, v) in SI_MAXIMA.into_iter().zip(values) {
+        out.insert(key.into(), json!(v));
+    }
 }
 
 /// What a run reports about itself: its [`Summary`] as it serializes (a time `*_time` as τ, with
@@ -237,7 +239,7 @@ pub fn quantities(
 /// unbounded `max_required_friction`); `None` for anything else.
 pub fn number(v: &Value) -> Option<f64> {
     match v {
-        Value::String(s) if s == "inf" => Some(f64::INFINITY),
+        Value::String(s) if s == rocking::UNBOUNDED => Some(f64::INFINITY),
         v => v.as_f64().filter(|x| x.is_finite()),
     }
 }
@@ -345,7 +347,10 @@ pub fn history_csv(model: &Setup, run: &Run) -> Result<String, SceneError> {
             // Where R_v <= 0 no friction holds the structure: "inf".
             match r.required_friction() {
                 f if f.is_finite() => num(&mut out, f)?,
-                _ => out.push_str(",inf"),
+                _ => {
+                    out.push(',');
+                    out.push_str(rocking::UNBOUNDED);
+                }
             }
             num(&mut out, r.vertical_reaction_over_w)?;
         }

@@ -56,7 +56,7 @@ pub use options::{
 };
 pub use results::{
     EnergyBalance, EventKind, EventRecord, ForceSummary, HistoryRow, Phase, Run, SolverStats,
-    Summary, Time,
+    Summary, Time, UNBOUNDED,
 };
 pub use rocking_kernels::{ModelInfo, VariantInfo};
 pub use structure::{

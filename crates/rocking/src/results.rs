@@ -12,11 +12,15 @@ fn finite<S: Serializer>(x: &f64, s: S) -> Result<S::Ok, S::Error> {
     }
 }
 
-/// A float that is finite or +∞: +∞ is written as the string `"inf"` (JSON has no infinity; the
+/// How an unbounded value (+∞) is written where a format has no infinity: the summary's JSON
+/// (`max_required_friction` once R_v < 0) and history.csv.
+pub const UNBOUNDED: &str = "inf";
+
+/// A float that is finite or +∞: +∞ is written as the string [`UNBOUNDED`] (JSON has no infinity; the
 /// history writes `inf` alike); a NaN or −∞ is an error naming the field, as in [`finite`].
 fn finite_or_inf<S: Serializer>(x: &f64, s: S) -> Result<S::Ok, S::Error> {
     if *x == f64::INFINITY {
-        s.serialize_str("inf")
+        s.serialize_str(UNBOUNDED)
     } else {
         finite(x, s)
     }
