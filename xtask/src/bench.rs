@@ -8,7 +8,8 @@
 //! 4. the heyoka peer `bench/heyoka_peer.py` → `target/bench/heyoka.json`, then the targets'
 //!    matched points timed again in alternated rounds, `bench/paired.py` → `paired.json`;
 //! 5. the OpenSees peer `bench/opensees_rocking.py` → `target/bench/opensees.json`;
-//! 6. `rocking-bench report` → `docs/accuracy.md`, `docs/img/accuracy-*.{json,svg,png}` (with
+//! 6. `rocking-bench report` → `docs/accuracy.md`, `docs/reference/accuracy-study.md`,
+//!    `docs/img/accuracy-*.{json,svg,png}` (with
 //!    `--quick`: `target/bench-quick/docs/`, so the full study's doc is never replaced).
 //!
 //! A peer that fails is reported in the doc; the Rust study failing fails the command.

@@ -36,7 +36,8 @@ commands:
   bench [--quick] [--no-peers]
       The accuracy/cost study: both integrators x tolerances on every case against
       a reference, the SciPy, heyoka and OpenSees peers (installed into .venv from
-      bench/requirements.txt), written to docs/accuracy.md and docs/img/.
+      bench/requirements.txt), written to docs/accuracy.md (one page),
+      docs/reference/accuracy-study.md (every case) and docs/img/.
       --quick     fewer tolerances and cases (about two minutes); writes
                   target/bench-quick/docs/ instead of docs/
       --no-peers  Rust study and report only (no Python)

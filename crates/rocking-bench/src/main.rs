@@ -6,7 +6,8 @@
 //! `DIR/rust.json` (results) and `DIR/cases.json` (the cases, for the SciPy peer).
 //!
 //! `rocking-bench report --dir DIR --docs DOCS` reads `rust.json` and, when present, `scipy.json`
-//! and `opensees.json`, and writes `DOCS/accuracy.md` and the work-precision diagrams
+//! and `opensees.json`, and writes `DOCS/accuracy.md` (one page, `summary.rs`),
+//! `DOCS/reference/accuracy-study.md` (every case, `report.rs`) and the work-precision diagrams
 //! `DOCS/img/accuracy-*.{json,svg,png}` (each diagram's data and its images).
 //!
 //! `rocking-bench redraw --docs DOCS` draws the diagrams again from their data.
@@ -14,6 +15,7 @@
 mod diagram;
 mod report;
 mod study;
+mod summary;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -29,7 +31,8 @@ run     the accuracy/cost study (dopri5, dop853, taylor; tolerances 1e-3, 3e-4, 
         1e-12, taylor also 1e-13 and 1e-14, dop853 also 1e-13; reference DOP853 1e-14);
         writes DIR/rust.json and DIR/cases.json (default DIR: target/bench)
         --quick  fewer tolerances and cases (a minute or two)
-report  writes DOCS/accuracy.md and DOCS/img/accuracy-*.{json,svg,png} from
+report  writes DOCS/accuracy.md, DOCS/reference/accuracy-study.md and
+        DOCS/img/accuracy-*.{json,svg,png} from
         DIR/{rust,scipy,heyoka,opensees}.json (default DOCS: docs)
 redraw  draws DOCS/img/accuracy-*.{svg,png} again from DOCS/img/accuracy-*.json
 probe   one case of the study at one method and tolerance: CPU per simulation (median over

@@ -50,13 +50,14 @@ fn presets_help() -> String {
     format!(
         "Accuracy presets ([solver] accuracy in a scene; measured by `cargo xtask bench`, \
          docs/accuracy.md):\n{}Each is the cheapest configuration whose error, the worse of max \
-         θ/α and impact times over the study's cases, meets its target (`reference` among DOP853 \
+         θ/α and impact times over the study's standard cases, meets its target (`reference` among DOP853 \
          only: the independent check of the others); times: geometric means per simulation over \
-         its nine cases, one thread.\nOn long records with hundreds of impacts errors grow \
-         about 1e4 times larger (scenes/many-impacts.toml: `default` 1.8e-4, \
-         `accurate` 1.2e-7, `reference` 1.8e-8; the input's own rounding \
-         moves that answer by 2e-8): run such records at `accurate` (docs/accuracy.md, \"Long records with \
-         hundreds of impacts\").\nAn explicit method (\"dopri5\", \"dop853\" or \"taylor\") and \
+         its nine standard cases, one thread.\nOn long records with hundreds of impacts \
+         errors grow about 1e4 times larger (scenes/many-impacts.toml, the study's \
+         `many-impacts` case: `default` 1.8e-4, `accurate` 3.2e-7, `reference` 2.3e-7; the \
+         tight runs of the two methods differ by 2e-7 there, the answer is determined only that \
+         finely): run such records at `accurate` (docs/accuracy.md, \"Each case at each \
+         preset\").\nAn explicit method (\"dopri5\", \"dop853\" or \"taylor\") and \
          tol are allowed too.",
         rocking::Preset::table()
     )
