@@ -2,7 +2,8 @@
 # Rebuilds the figures of docs/gallery.md, docs/spectra.md and docs/design-forces.md: the paper's
 # Figs 3-10 from the figure files of scenes/paper (one `rocking figure` command: each spectrum is
 # computed once, journaled in out/figure-cache/ and shared by Figs 6-9), the one-axis line plot,
-# the design-force figures and the animation of the Fig. 3 run. The images are the same bytes on every machine.
+# the design-force figures and the animation of the Fig. 3 run. Figure files are drawn at their
+# printed width (PNG at the figure file's dpi: 300 for the committed images) with their captions beside them (NAME.caption.md). The images are the same bytes on every machine.
 # Usage: bash scenes/spectra/make-figures.sh           draw them into docs/img/
 #        bash scenes/spectra/make-figures.sh --check   draw them aside and compare with docs/img/
 #                                                      (exit 1 naming the files that differ)
@@ -33,7 +34,7 @@ spectrum() { "$rocking" spectrum "$@" || { s=$?; [ "$s" -eq 1 ] || exit "$s"; };
 # Each drawn file and where it is committed.
 "$rocking" figure scenes/paper/fig*.toml --out "$work/paper" --quiet >/dev/null
 pairs=()
-for f in "$work"/paper/*.svg "$work"/paper/*.png; do
+for f in "$work"/paper/*.svg "$work"/paper/*.png "$work"/paper/*.caption.md; do
     pairs+=("$f" "docs/img/paper/$(basename "$f")")
 done
 # A one-axis sweep (line plot): Fig. 8, α = 0.1, ω_n/p = 5, ω_p/p = 5, against the amplitude.
@@ -52,6 +53,7 @@ done
 "$rocking" figure scenes/forces/turbine-elcentro.toml --out "$work/forces" --quiet >/dev/null
 pairs+=("$work/forces/turbine-elcentro.png" docs/img/forces/turbine-elcentro.png)
 pairs+=("$work/forces/turbine-elcentro.svg" docs/img/forces/turbine-elcentro.svg)
+pairs+=("$work/forces/turbine-elcentro.caption.md" docs/img/forces/turbine-elcentro.caption.md)
 # The animation of the Fig. 3 scene (docs/img/fig3-vvel.gif).
 "$rocking" run scenes/fig3-vvel.toml --animate --out "$work/fig3-vvel-animation" | sed -n 2p
 pairs+=("$work/fig3-vvel-animation/animation.gif" docs/img/fig3-vvel.gif)

@@ -8,7 +8,7 @@
 //! rocking spectrum|batch ... --shard K/N --out SHARD_DIR    (one shard of a job array)
 //! rocking merge OUT SHARD_DIR...
 //! rocking ida SCENE [--records FILE|DIR ...] [--set ...] [--out DIR] [--threads N]
-//! rocking figure FIGURE.toml... [--out DIR] [--cells N] [--cache DIR] [--quiet]
+//! rocking figure FIGURE.toml... [--out DIR] [--cells N] [--cache DIR] [--draft] [--quiet]
 //! ```
 //!
 //! Exit codes: 0 ok, 2 invalid input (scene, record, arguments), 1 internal failure.
@@ -177,7 +177,8 @@ enum Command {
     },
     /// Draw figures from figure files (scenes/paper/: the paper's Figs 3-10): runs and sweeps
     /// of scenes as panels (quantities against τ overlaid, spectra on one colour scale,
-    /// overturning boundaries), written as SVG, PNG and PDF named after each file.
+    /// overturning boundaries), at the printed width the file states, written as SVG, PNG and
+    /// PDF named after each file, with its caption beside them (NAME.caption.md).
     Figure {
         /// The figure files (TOML).
         #[arg(required = true, num_args = 1..)]
@@ -191,6 +192,9 @@ enum Command {
         /// Where sweeps are journaled and reused (default: out/figure-cache/).
         #[arg(long, value_name = "DIR")]
         cache: Option<PathBuf>,
+        /// Keep the title and caption inside the image (for screens), no caption file.
+        #[arg(long)]
+        draft: bool,
         /// No progress bar.
         #[arg(long)]
         quiet: bool,
@@ -571,10 +575,12 @@ fn main() -> ExitCode {
             out,
             cells,
             cache,
+            draft,
             quiet,
         } => figure::figure(
             &files,
             &figure::Options {
+                draft,
                 out: out.unwrap_or_else(|| PathBuf::from("out/figures")),
                 cache: cache.unwrap_or_else(|| PathBuf::from("out/figure-cache")),
                 cells: cells.map(usize::from),

@@ -80,8 +80,10 @@ pub const MERGE_OUT: OutKind = OutKind {
 /// A run replaces the figures it draws, all three formats together, and keeps the others.
 pub const FIGURE_OUT: OutKind = OutKind {
     writes: |n| {
-        n.rsplit_once('.')
-            .is_some_and(|(stem, _)| !stem.is_empty() && plot::is_figure_file(n, stem))
+        let caption = format!(".{}", plot::CAPTION_EXT);
+        n.strip_suffix(caption.as_str())
+            .or_else(|| n.rsplit_once('.').map(|(stem, _)| stem))
+            .is_some_and(|stem| !stem.is_empty() && plot::is_figure_file(n, stem))
     },
     command: "rocking figure",
     keeps_others: true,

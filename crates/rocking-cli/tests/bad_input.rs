@@ -40,6 +40,22 @@ omega_p = 3.0
 amplitude_g = 0.3
 "#;
 
+/// A figure file (issue 46): its printed width and the PNG's resolution are checked before any
+/// run is loaded.
+const FIGURE: &str = r#"title = "t"
+width = "double"
+columns = 1
+
+[runs.a]
+scene = "a.toml"
+label = "a"
+
+[[panels]]
+kind = "history"
+quantity = "theta_over_alpha"
+runs = ["a"]
+"#;
+
 const RECORD: &str = "title\nevent\nunits\nNPTS= 4, DT= .01\n0.1 0.2 0.3 0.4\n";
 
 /// The record kind replacing the scene's pulse, and the same read as ESM or K-NET.
@@ -628,6 +644,30 @@ const ROWS: &[Row] = &[
         Some("title\nevent\nIN UNITS OF G\nNPTS= 4, DT= .01\n0.1 20000 0.3 0.4\n"),
         &["rec.AT2 peaks at 20000 g", "at most 10000 g", "unit line"],
     ),
+    (
+        "figure-width-unknown",
+        FIGURE,
+        "width = \"double\"",
+        "width = \"triple\"",
+        None,
+        &["`width`", "\"triple\"", "\"double\" (175 mm)", "40 <= width <= 250"],
+    ),
+    (
+        "figure-width-too-narrow",
+        FIGURE,
+        "width = \"double\"",
+        "width = 20",
+        None,
+        &["`width`", "20 is not allowed", "40 <= width <= 250"],
+    ),
+    (
+        "figure-dpi-too-low",
+        FIGURE,
+        "columns = 1",
+        "columns = 1\ndpi = 10",
+        None,
+        &["`dpi`", "10 is not allowed", "72 <= dpi <= 1200"],
+    ),
 ];
 
 fn doc_ids() -> Vec<String> {
@@ -669,7 +709,13 @@ fn every_bad_input_exits_2_with_one_clear_message() {
         if let Some(r) = record {
             std::fs::write(dir.join("rec.AT2"), r).unwrap();
         }
-        let command = if id.starts_with("ida-") { "ida" } else { "run" };
+        let command = if id.starts_with("ida-") {
+            "ida"
+        } else if id.starts_with("figure-") {
+            "figure"
+        } else {
+            "run"
+        };
         let out = Command::new(env!("CARGO_BIN_EXE_rocking"))
             .args([command, "--out"])
             .arg(dir.join("out"))
@@ -694,6 +740,16 @@ fn every_bad_input_exits_2_with_one_clear_message() {
         );
         for n in *needles {
             assert!(err.contains(n), "{id}: `{n}` not in: {err}");
+        }
+        // A figure file's message names the file and the key (a figure file is not a scene:
+        // `rocking check` does not read it).
+        if command == "figure" {
+            assert!(
+                err.contains("scene.toml: `"),
+                "{id}: the file and key: {err}"
+            );
+            assert!(!dir.join("out").exists(), "{id}: no output on bad input");
+            continue;
         }
         let text = base.replacen(from, to, 1);
         let anchor = if *id == "record-zero-scale" {

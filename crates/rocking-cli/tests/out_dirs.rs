@@ -405,21 +405,29 @@ fn a_figure_run_swaps_its_outputs_in_whole_and_keeps_other_figures() {
     let o = figure("scenes/paper/fig3.toml", "2", "");
     assert!(o.status.success(), "{}", text(&o));
     let all = [
-        "fig3.pdf", "fig3.png", "fig3.svg", "fig4.pdf", "fig4.png", "fig4.svg",
+        "fig3.caption.md",
+        "fig3.pdf",
+        "fig3.png",
+        "fig3.svg",
+        "fig4.caption.md",
+        "fig4.pdf",
+        "fig4.png",
+        "fig4.svg",
     ];
     assert_eq!(names(&out), all);
     let before: Vec<Vec<u8>> = all
         .iter()
         .map(|n| std::fs::read(out.join(n)).unwrap())
         .collect();
-    // fig3 drawn otherwise (a τ window), killed before its swap: nothing changed.
+    // fig3 drawn otherwise (another title and one column), killed before its swap: nothing changed.
     let edited = dir.join("fig3.toml");
     let text3 = std::fs::read_to_string(repo().join("scenes/paper/fig3.toml")).unwrap();
     std::fs::write(
         &edited,
         text3
             .replace("../fig3", &format!("{}/scenes/fig3", repo().display()))
-            .replacen("title = \"", "title = \"Edited: ", 1),
+            .replacen("title = \"", "title = \"Edited: ", 1)
+            .replacen("columns = 2", "columns = 1", 1),
     )
     .unwrap();
     let killed = figure(edited.to_str().unwrap(), "2", "abort-at=staged");
@@ -429,7 +437,7 @@ fn a_figure_run_swaps_its_outputs_in_whole_and_keeps_other_figures() {
         .map(|n| std::fs::read(out.join(n)).unwrap())
         .collect();
     assert!(before == after, "a killed figure run changed its --out");
-    // Drawn in full, all three formats of fig3 change together and fig4 stays.
+    // Drawn in full, all formats of fig3 and its caption change together and fig4 stays.
     let o = figure(edited.to_str().unwrap(), "2", "");
     assert!(o.status.success(), "{}", text(&o));
     assert_eq!(names(&out), all);

@@ -10,6 +10,7 @@ use plotters::coord::Shift;
 use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
+use plotters::style::FontTransform;
 
 use crate::style::{LineStyle, Marker};
 use crate::text::{power_of_ten, rich, tick, wrap_items};
@@ -28,6 +29,135 @@ pub const TICKS: u32 = 15;
 pub const LEGEND: u32 = 15;
 /// The width of the legend column.
 pub const LEGEND_WIDTH: u32 = 280;
+
+/// A figure at its printed size is drawn in units of 1/8 mm (the SVG's viewBox; its `width`
+/// and `height` are in mm), so that a 175 mm double column is 1400 units wide.
+pub const UNITS_PER_MM: f64 = 8.0;
+/// plotters writes a font of size s as `font-size` s / 1.24 in the SVG.
+const PLOTTERS_FONT: f64 = 1.24;
+
+/// The drawing units of `pt` points at the printed size.
+pub fn points(pt: f64) -> f64 {
+    pt * 25.4 / 72.0 * UNITS_PER_MM
+}
+
+/// Type sizes at the printed size, in points: tick labels and legends 7 pt, axis labels and
+/// column/row headers 8 pt, panel letters 9 pt; subscripts are never set below 6 pt.
+pub const PRINT_TICKS_PT: f64 = 7.0;
+pub const PRINT_LEGEND_PT: f64 = 7.0;
+pub const PRINT_AXIS_PT: f64 = 8.0;
+pub const PRINT_HEADER_PT: f64 = 8.0;
+pub const PRINT_LETTER_PT: f64 = 9.0;
+pub const PRINT_TITLE_PT: f64 = 9.0;
+pub const PRINT_MIN_PT: f64 = 6.0;
+
+/// The type sizes a figure is set in (plotters' sizes), and whether it is laid out for print.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Type {
+    pub title: f64,
+    pub panel_title: f64,
+    pub axis: f64,
+    pub ticks: f64,
+    pub legend: f64,
+    pub letter: f64,
+    pub print: bool,
+}
+
+impl Type {
+    /// The screen figures' sizes (pixels), as before print sizes existed.
+    pub const SCREEN: Type = Type {
+        title: TITLE as f64,
+        panel_title: PANEL_TITLE as f64,
+        axis: AXIS as f64,
+        ticks: TICKS as f64,
+        legend: LEGEND as f64,
+        letter: PANEL_TITLE as f64,
+        print: false,
+    };
+
+    /// The sizes at the printed width ([`UNITS_PER_MM`]): the `PRINT_*_PT` points, rounded up
+    /// to whole plotters sizes (its tick labels are drawn at a whole size).
+    pub fn print() -> Type {
+        let f = |pt: f64| (points(pt) * PLOTTERS_FONT).ceil();
+        Type {
+            title: f(PRINT_TITLE_PT),
+            panel_title: f(PRINT_HEADER_PT),
+            axis: f(PRINT_AXIS_PT),
+            ticks: f(PRINT_TICKS_PT),
+            legend: f(PRINT_LEGEND_PT),
+            letter: f(PRINT_LETTER_PT),
+            print: true,
+        }
+    }
+
+    /// The height of a line of text of plotters' size `size`, in this type's units.
+    pub fn line(&self, size: f64) -> u32 {
+        if self.print {
+            (size / PLOTTERS_FONT * 1.25).ceil() as u32
+        } else {
+            line_height(size as u32)
+        }
+    }
+}
+
+/// What the panel about to be drawn shows besides its data at print size: its letter, and
+/// whether it draws its own axis labels (not when its row or column shares one).
+#[derive(Clone, Debug, Default)]
+pub struct PanelText {
+    pub letter: Option<String>,
+    pub hide_x_label: bool,
+    pub hide_y_label: bool,
+    /// Its title is a column or row header of the figure.
+    pub hide_title: bool,
+}
+
+thread_local! {
+    static TYPE: std::cell::Cell<Type> = const { std::cell::Cell::new(Type::SCREEN) };
+    static PANEL: std::cell::RefCell<PanelText> = std::cell::RefCell::new(PanelText::default());
+}
+
+/// The type sizes of the figure being drawn on this thread ([`Page::svg`] sets them).
+pub fn current() -> Type {
+    TYPE.with(|t| t.get())
+}
+
+/// Sets what the next panel's [`axes`] draws besides its data (its letter, shared labels).
+pub fn set_panel(text: PanelText) {
+    PANEL.with(|p| *p.borrow_mut() = text);
+}
+
+/// Sets the type for the duration of a drawing, and the screen's back after it.
+struct TypeGuard;
+
+impl TypeGuard {
+    fn set(t: Type) -> TypeGuard {
+        TYPE.with(|c| c.set(t));
+        set_panel(PanelText::default());
+        TypeGuard
+    }
+}
+
+impl Drop for TypeGuard {
+    fn drop(&mut self) {
+        TYPE.with(|c| c.set(Type::SCREEN));
+        set_panel(PanelText::default());
+    }
+}
+
+/// A print layout: the printed width, whether the title and caption are drawn in the image
+/// (`--draft`), the height of the band above the panels that holds the legend and colour bar,
+/// column and row headers (a grid of spectra: its parameters instead of a title per panel), and
+/// the axis labels shared by a whole column (x) or row (y), drawn once beside the grid.
+#[derive(Clone, Debug, Default)]
+pub struct PrintLayout {
+    pub width_mm: f64,
+    pub draft: bool,
+    pub band: u32,
+    pub column_headers: Vec<String>,
+    pub row_headers: Vec<String>,
+    pub shared_x: Vec<Option<String>>,
+    pub shared_y: Vec<Option<String>>,
+}
 
 /// The layout of a figure: its title, `panels` panels in rows of `columns`, each `panel` pixels,
 /// a legend column on the right when `legend`, and a caption under the panels.
@@ -106,6 +236,213 @@ impl Page<'_> {
         }
         Ok(text)
     }
+}
+
+/// A print page's parts, in drawing units (top to bottom: the title when drafting, the legend
+/// band, the column headers, the rows of panels between the shared y labels (left) and the row
+/// headers (right), the shared x labels, the caption when drafting).
+#[derive(Clone, Copy, Debug)]
+pub struct PrintGeometry {
+    pub width: u32,
+    pub height: u32,
+    pub title: u32,
+    pub band: u32,
+    pub headers: u32,
+    pub left: u32,
+    pub right: u32,
+    pub panel: (u32, u32),
+    pub bottom: u32,
+    pub caption: u32,
+}
+
+/// A panel's margins at print size: the letter's line above, room for the last tick label on
+/// the right.
+const PRINT_MARGIN_RIGHT: u32 = 20;
+const PRINT_MARGIN: u32 = 4;
+
+/// A panel's label areas at print size (x: below, y: left): tick labels, and the axis label
+/// where the panel draws its own.
+fn print_label_areas(t: &Type, hide_x: bool, hide_y: bool) -> (u32, u32) {
+    let tick_h = t.line(t.ticks) + 6;
+    let tick_w = (4.6 * 0.6 * t.ticks / PLOTTERS_FONT).ceil() as u32 + 10;
+    let axis = t.line(t.axis) + 4;
+    (
+        tick_h + if hide_x { 0 } else { axis },
+        tick_w + if hide_y { 0 } else { axis },
+    )
+}
+
+impl Page<'_> {
+    fn print_title_lines(&self, p: &PrintLayout, t: &Type) -> Vec<String> {
+        if !p.draft {
+            return Vec::new();
+        }
+        let width = p.width_mm * UNITS_PER_MM;
+        let chars = (width / (0.56 * t.title / PLOTTERS_FONT)).max(10.0);
+        wrap_items(self.title, chars as usize)
+    }
+
+    fn print_caption_lines(&self, p: &PrintLayout, t: &Type) -> Vec<String> {
+        if !p.draft {
+            return Vec::new();
+        }
+        let width = p.width_mm * UNITS_PER_MM - 16.0;
+        let chars = (width / (0.55 * t.legend / PLOTTERS_FONT)).max(10.0);
+        self.caption
+            .map(|c| crate::wrap(c, chars as usize))
+            .unwrap_or_default()
+    }
+
+    /// The parts of the print page `p` (the panels share the width; their height follows
+    /// `panel`'s aspect ratio).
+    pub fn print_geometry(&self, p: &PrintLayout) -> PrintGeometry {
+        let t = Type::print();
+        let width = (p.width_mm * UNITS_PER_MM).round() as u32;
+        let lines = |n: usize, size: f64| match n {
+            0 => 0,
+            n => n as u32 * t.line(size) + 8,
+        };
+        let title = lines(self.print_title_lines(p, &t).len(), t.title);
+        let caption = lines(self.print_caption_lines(p, &t).len(), t.legend);
+        let strip = t.line(t.axis) + 6;
+        let left = if p.shared_y.iter().any(Option::is_some) {
+            strip
+        } else {
+            0
+        };
+        let right = if p.row_headers.is_empty() { 0 } else { strip };
+        let headers = if p.column_headers.is_empty() {
+            0
+        } else {
+            t.line(t.panel_title) + 4
+        };
+        let bottom = if p.shared_x.iter().any(Option::is_some) {
+            strip
+        } else {
+            0
+        };
+        let pw = width.saturating_sub(left + right) / self.columns() as u32;
+        let ph = (f64::from(pw) * f64::from(self.panel.1) / f64::from(self.panel.0.max(1))).round()
+            as u32;
+        PrintGeometry {
+            width,
+            height: title + p.band + headers + self.rows() as u32 * ph + bottom + caption,
+            title,
+            band: p.band,
+            headers,
+            left,
+            right,
+            panel: (pw, ph),
+            bottom,
+            caption,
+        }
+    }
+
+    /// [`Page::svg`] at the printed size `p` (`panel` is then the panels' aspect ratio, width
+    /// to height; the second area of `draw` is the legend band above the panels).
+    pub fn print_svg(
+        &self,
+        p: &PrintLayout,
+        draw: impl FnOnce(&[Area<'_>], &Area<'_>) -> Result<(), String>,
+    ) -> Result<String, String> {
+        crate::register();
+        let _type = TypeGuard::set(Type::print());
+        let t = current();
+        let g = self.print_geometry(p);
+        let (xa, ya) = print_label_areas(&t, true, true);
+        let mut text = String::new();
+        {
+            let root = SVGBackend::with_string(&mut text, (g.width, g.height)).into_drawing_area();
+            root.fill(&WHITE).map_err(fail)?;
+            let (top, rest) = root.split_vertically(g.title);
+            let title = self.print_title_lines(p, &t);
+            sized_lines(&top, &title, t.title, (g.width / 2) as i32, 4, HPos::Center)?;
+            let (band, rest) = rest.split_vertically(g.band);
+            let (heads, rest) = rest.split_vertically(g.headers);
+            let (grid, rest) = rest.split_vertically(self.rows() as u32 * g.panel.1);
+            let (strip, bottom) = rest.split_vertically(g.bottom);
+            let caption = self.print_caption_lines(p, &t);
+            sized_lines(&bottom, &caption, t.legend, 8, 4, HPos::Left)?;
+            let (pw, ph) = (g.panel.0 as i32, g.panel.1 as i32);
+            // The middle of a panel's plotting area, across and down.
+            let mid_x = |c: usize| {
+                let plot = pw - ya as i32 - (PRINT_MARGIN_RIGHT + PRINT_MARGIN) as i32;
+                g.left as i32 + c as i32 * pw + PRINT_MARGIN as i32 + ya as i32 + plot / 2
+            };
+            let mid_y = |r: usize| {
+                let top = t.line(t.letter) as i32;
+                let plot = ph - top - (xa + PRINT_MARGIN) as i32;
+                r as i32 * ph + top + plot / 2
+            };
+            let header = |size: f64, h: HPos, v: VPos, rotate: FontTransform| {
+                ("sans-serif", size)
+                    .into_font()
+                    .transform(rotate)
+                    .into_text_style(&root)
+                    .pos(Pos::new(h, v))
+            };
+            let across = header(t.panel_title, HPos::Center, VPos::Top, FontTransform::None);
+            for (c, h) in p.column_headers.iter().enumerate() {
+                heads
+                    .draw_text(&rich(h), &across, (mid_x(c), 2))
+                    .map_err(fail)?;
+            }
+            let labels = header(t.axis, HPos::Center, VPos::Top, FontTransform::None);
+            for (c, l) in p.shared_x.iter().enumerate() {
+                if let Some(l) = l {
+                    strip
+                        .draw_text(&rich(l), &labels, (mid_x(c), 2))
+                        .map_err(fail)?;
+                }
+            }
+            let (left, rest) = grid.split_horizontally(g.left);
+            let (panels, right) = rest.split_horizontally(self.columns() as u32 * g.panel.0);
+            let up = header(t.axis, HPos::Center, VPos::Center, FontTransform::Rotate270);
+            for (r, l) in p.shared_y.iter().enumerate() {
+                if let Some(l) = l {
+                    left.draw_text(&rich(l), &up, ((g.left / 2) as i32, mid_y(r)))
+                        .map_err(fail)?;
+                }
+            }
+            let down = header(
+                t.panel_title,
+                HPos::Center,
+                VPos::Center,
+                FontTransform::Rotate90,
+            );
+            for (r, h) in p.row_headers.iter().enumerate() {
+                right
+                    .draw_text(&rich(h), &down, ((g.right / 2) as i32, mid_y(r)))
+                    .map_err(fail)?;
+            }
+            let mut areas = panels.split_evenly((self.rows(), self.columns()));
+            areas.truncate(self.panels);
+            draw(&areas, &band)?;
+            root.present().map_err(fail)?;
+        }
+        Ok(text)
+    }
+}
+
+/// Lines of (rich) text of plotters' size `size` from `y`, anchored at `x`.
+fn sized_lines(
+    area: &Area<'_>,
+    lines: &[String],
+    size: f64,
+    x: i32,
+    y: i32,
+    h: HPos,
+) -> Result<(), String> {
+    let t = current();
+    let style = ("sans-serif", size)
+        .into_font()
+        .into_text_style(area)
+        .pos(Pos::new(h, VPos::Top));
+    for (i, line) in lines.iter().enumerate() {
+        let y = y + (i as u32 * t.line(size)) as i32;
+        area.draw_text(&rich(line), &style, (x, y)).map_err(fail)?;
+    }
+    Ok(())
 }
 
 /// Something the legend column shows.
@@ -211,6 +548,10 @@ fn frame<'a, 'b>(
     grid: bool,
     ticks: &dyn Fn(&f64) -> String,
 ) -> Result<Chart<'a, 'b>, String> {
+    let t = current();
+    if t.print {
+        return print_frame(area, title, x, y, labels, grid, ticks, &t);
+    }
     let mut builder = ChartBuilder::on(area);
     builder
         .margin(10)
@@ -239,6 +580,71 @@ fn frame<'a, 'b>(
         .y_label_formatter(ticks)
         .label_style(("sans-serif", TICKS))
         .axis_desc_style(("sans-serif", AXIS))
+        .draw()
+        .map_err(fail)?;
+    Ok(chart)
+}
+
+/// A panel's frame at print size: the letter above its top-left corner, tick labels and axis
+/// labels in points, axis labels only where no row or column shares them, no minor grid (a dense
+/// one prints as a grey tint), as many ticks as fit.
+#[allow(clippy::too_many_arguments)]
+fn print_frame<'a, 'b>(
+    area: &'a Area<'b>,
+    title: Option<&str>,
+    x: (f64, f64),
+    y: (f64, f64),
+    labels: (&str, &str),
+    grid: bool,
+    ticks: &dyn Fn(&f64) -> String,
+    t: &Type,
+) -> Result<Chart<'a, 'b>, String> {
+    let panel = PANEL.with(|p| p.borrow().clone());
+    let (xa, ya) = print_label_areas(t, panel.hide_x_label, panel.hide_y_label);
+    if let Some(letter) = &panel.letter {
+        let style = ("sans-serif", t.letter)
+            .into_font()
+            .into_text_style(area)
+            .pos(Pos::new(HPos::Left, VPos::Top));
+        area.draw_text(letter, &style, (0, 0)).map_err(fail)?;
+    }
+    let (w, h) = area.dim_in_pixel();
+    let mut builder = ChartBuilder::on(area);
+    builder
+        .margin(PRINT_MARGIN)
+        .margin_top(t.line(t.letter))
+        .margin_right(PRINT_MARGIN_RIGHT)
+        .x_label_area_size(xa)
+        .y_label_area_size(ya);
+    if let Some(title) = title.filter(|_| !panel.hide_title) {
+        builder.caption(rich(title), ("sans-serif", t.panel_title));
+    }
+    let mut chart = builder
+        .build_cartesian_2d(x.0..x.1, y.0..y.1)
+        .map_err(fail)?;
+    let mut mesh = chart.configure_mesh();
+    if grid {
+        mesh.max_light_lines(0)
+            .bold_line_style(RGBColor(226, 226, 226));
+    } else {
+        mesh.disable_mesh();
+    }
+    if !panel.hide_x_label {
+        mesh.x_desc(rich(labels.0));
+    }
+    if !panel.hide_y_label {
+        mesh.y_desc(rich(labels.1));
+    }
+    // A tick label every 12 mm across and 7 mm down at most.
+    let fit = |len: u32, per_mm: f64| {
+        ((f64::from(len) / (per_mm * UNITS_PER_MM)).floor() as usize).clamp(3, 7)
+    };
+    mesh.x_labels(fit(w.saturating_sub(ya), 12.0))
+        .y_labels(fit(h.saturating_sub(xa), 7.0))
+        .x_label_formatter(ticks)
+        .y_label_formatter(ticks)
+        .label_style(("sans-serif", t.ticks))
+        .axis_desc_style(("sans-serif", t.axis))
         .draw()
         .map_err(fail)?;
     Ok(chart)
@@ -463,6 +869,144 @@ pub fn legend(area: &Area<'_>, top: i32, items: &[LegendItem]) -> Result<(), Str
             .map_err(fail)?;
         }
         y += 8 + (line_height(LEGEND) * lines.len().max(1) as u32) as i32;
+    }
+    Ok(())
+}
+
+/// The sample of a legend entry at print size: 9 mm, long enough to show a dash pattern.
+const BAND_SAMPLE: u32 = 72;
+
+/// The legend above the panels at print size: the entries in reading order in as many columns
+/// as fit unwrapped (at most six), each entry's text wrapped to its column where none fit.
+/// Returns the column width and each row's entries' lines.
+fn band_layout(width: u32, items: &[LegendItem]) -> (u32, Vec<Vec<Vec<String>>>) {
+    let t = Type::print();
+    let char_w = 0.56 * t.legend / PLOTTERS_FONT;
+    let text = |item: &LegendItem| match item {
+        LegendItem::Heading(s)
+        | LegendItem::Line(_, s)
+        | LegendItem::Fill(_, s)
+        | LegendItem::Rule(_, _, s)
+        | LegendItem::Mark(_, _, _, s) => crate::text::plain(&rich(s)),
+    };
+    let need = |item: &LegendItem| {
+        let sample = match item {
+            LegendItem::Heading(_) => 0,
+            _ => BAND_SAMPLE,
+        };
+        sample + (text(item).chars().count() as f64 * char_w).ceil() as u32 + 16
+    };
+    let widest = items.iter().map(need).max().unwrap_or(0);
+    let columns = (1..=items.len().clamp(1, 6))
+        .rev()
+        .find(|&k| widest <= width / k as u32)
+        .unwrap_or(1);
+    let col_w = width / columns as u32;
+    let chars = ((col_w.saturating_sub(BAND_SAMPLE + 8)) as f64 / char_w).max(12.0) as usize;
+    let rows = items
+        .chunks(columns)
+        .map(|row| {
+            row.iter()
+                .map(|item| {
+                    let s = match item {
+                        LegendItem::Heading(s)
+                        | LegendItem::Line(_, s)
+                        | LegendItem::Fill(_, s)
+                        | LegendItem::Rule(_, _, s)
+                        | LegendItem::Mark(_, _, _, s) => s,
+                    };
+                    wrap_items(s, chars)
+                        .into_iter()
+                        .flat_map(|l| crate::wrap(&l, chars))
+                        .collect()
+                })
+                .collect()
+        })
+        .collect();
+    (col_w, rows)
+}
+
+/// The height of the legend band at print size for `items` in `width` units.
+pub fn legend_band_height(width: u32, items: &[LegendItem]) -> u32 {
+    if items.is_empty() {
+        return 0;
+    }
+    let t = Type::print();
+    let (_, rows) = band_layout(width, items);
+    rows.iter()
+        .map(|row| row.iter().map(Vec::len).max().unwrap_or(1) as u32 * t.line(t.legend) + 6)
+        .sum::<u32>()
+        + 8
+}
+
+/// Draws the legend band at print size ([`legend_band_height`] tall).
+pub fn legend_band(area: &Area<'_>, items: &[LegendItem]) -> Result<(), String> {
+    let t = Type::print();
+    let (width, _) = area.dim_in_pixel();
+    let (col_w, rows) = band_layout(width, items);
+    let line = t.line(t.legend) as i32;
+    let font = ("sans-serif", t.legend)
+        .into_font()
+        .into_text_style(area)
+        .pos(Pos::new(HPos::Left, VPos::Top));
+    let mut y = 4;
+    let mut k = 0;
+    for row in rows {
+        let mut tallest = 1;
+        for (c, lines) in row.iter().enumerate() {
+            let item = &items[k];
+            k += 1;
+            let x0 = c as i32 * col_w as i32;
+            let cy = y + line / 2;
+            let sample = vec![(x0 + 4, cy), (x0 + BAND_SAMPLE as i32 - 8, cy)];
+            let mid = (x0 + (BAND_SAMPLE as i32 - 4) / 2, cy);
+            let indent = match item {
+                LegendItem::Heading(_) => 4,
+                LegendItem::Line(s, _) => {
+                    let c = rgb(s.colour);
+                    match s.dash {
+                        None => area.draw(&PathElement::new(sample, c.stroke_width(2))),
+                        Some((a, b)) => {
+                            area.draw(&DashedPathElement::new(sample, a, b, c.stroke_width(2)))
+                        }
+                    }
+                    .map_err(fail)?;
+                    marker(area, s.marker, mid, 5, c, true)?;
+                    BAND_SAMPLE
+                }
+                LegendItem::Fill(c, _) => {
+                    let bx = [
+                        (x0 + 10, y + 1),
+                        (x0 + BAND_SAMPLE as i32 - 14, y + line - 2),
+                    ];
+                    area.draw(&Rectangle::new(bx, rgb(*c).filled()))
+                        .map_err(fail)?;
+                    area.draw(&Rectangle::new(bx, BLACK)).map_err(fail)?;
+                    BAND_SAMPLE
+                }
+                LegendItem::Rule(c, dash, _) => {
+                    let c = rgb(*c);
+                    match dash {
+                        None => area.draw(&PathElement::new(sample, c.stroke_width(2))),
+                        Some((a, b)) => {
+                            area.draw(&DashedPathElement::new(sample, *a, *b, c.stroke_width(2)))
+                        }
+                    }
+                    .map_err(fail)?;
+                    BAND_SAMPLE
+                }
+                LegendItem::Mark(m, c, filled, _) => {
+                    marker(area, *m, mid, 6, rgb(*c), *filled)?;
+                    BAND_SAMPLE
+                }
+            };
+            for (j, l) in lines.iter().enumerate() {
+                area.draw_text(&rich(l), &font, (x0 + indent as i32, y + j as i32 * line))
+                    .map_err(fail)?;
+            }
+            tallest = tallest.max(lines.len());
+        }
+        y += tallest as i32 * line + 6;
     }
     Ok(())
 }

@@ -42,6 +42,81 @@ pub fn finish(plotters_svg: &str) -> String {
     crate::style::hatch_svg(&crate::text::finish_svg(plotters_svg))
 }
 
+/// A figure at its printed size: `width_mm` wide (the SVG's and the PDF's width), the PNG at
+/// `dpi` pixels per inch.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Print {
+    pub width_mm: f64,
+    pub dpi: f64,
+}
+
+/// usvg's pixels per inch: a length in mm becomes mm / 25.4 × 96 of its pixels.
+const USVG_DPI: f64 = 96.0;
+
+/// The SVG, PNG and PDF of a figure that plotters drew at its printed size (in units of
+/// 1/[`crate::chart::UNITS_PER_MM`] mm): the SVG's `width` and `height` in mm over its
+/// viewBox, no subscript below [`crate::chart::PRINT_MIN_PT`], the PDF page of that size and
+/// the PNG at `print.dpi`.
+pub fn export_print(plotters_svg: &str, print: Print) -> Result<Exported, String> {
+    let min_sub = crate::chart::points(crate::chart::PRINT_MIN_PT);
+    let svg = crate::style::hatch_svg(&crate::text::finish_svg_min(plotters_svg, min_sub));
+    let svg = physical_size(&svg)?;
+    let options = usvg::Options {
+        font_family: FAMILY.to_string(),
+        fontdb: fonts(),
+        dpi: USVG_DPI as f32,
+        ..usvg::Options::default()
+    };
+    let tree = usvg::Tree::from_str(&svg, &options).map_err(|e| format!("SVG: {e}"))?;
+    let scale = (print.dpi / USVG_DPI) as f32;
+    let size = tree.size();
+    let (w, h) = (
+        (size.width() * scale).round() as u32,
+        (size.height() * scale).round() as u32,
+    );
+    let mut pixmap =
+        tiny_skia::Pixmap::new(w, h).ok_or_else(|| format!("PNG: a {w} × {h} image"))?;
+    pixmap.fill(tiny_skia::Color::WHITE);
+    resvg::render(
+        &tree,
+        tiny_skia::Transform::from_scale(scale, scale),
+        &mut pixmap.as_mut(),
+    );
+    let png = pixmap.encode_png().map_err(|e| format!("PNG: {e}"))?;
+    let pdf = svg2pdf::to_pdf(
+        &tree,
+        svg2pdf::ConversionOptions::default(),
+        svg2pdf::PageOptions {
+            dpi: USVG_DPI as f32,
+        },
+    )
+    .map_err(|e| format!("PDF: {e}"))?;
+    Ok(Exported {
+        svg,
+        png,
+        pdf: ordered_resources(&pdf),
+    })
+}
+
+/// The SVG with its root's `width` and `height` (plotters writes the viewBox's units) in mm.
+fn physical_size(svg: &str) -> Result<String, String> {
+    let start = svg.find("<svg").ok_or("SVG: no <svg> element")?;
+    let end = start + svg[start..].find('>').ok_or("SVG: an unclosed <svg>")?;
+    let tag = &svg[start..end];
+    let mut out = tag.to_string();
+    for name in ["width", "height"] {
+        let key = format!(" {name}=\"");
+        let from = out.find(&key).ok_or(format!("SVG: no {name}"))? + key.len();
+        let len = out[from..].find('"').ok_or(format!("SVG: {name}"))?;
+        let units: f64 = out[from..from + len]
+            .parse()
+            .map_err(|_| format!("SVG: {name}"))?;
+        let mm = units / crate::chart::UNITS_PER_MM;
+        out.replace_range(from..from + len, &format!("{}mm", crate::text::tick(mm)));
+    }
+    Ok(format!("{}{out}{}", &svg[..start], &svg[end..]))
+}
+
 /// The SVG, PNG and PDF of what plotters drew into `plotters_svg`.
 pub fn export(plotters_svg: &str) -> Result<Exported, String> {
     let svg = finish(plotters_svg);

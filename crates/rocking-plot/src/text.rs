@@ -59,6 +59,12 @@ pub fn plain(text: &str) -> String {
 /// `<tspan class="sub">` (smaller, `dy` below the baseline) and the text after it back on the
 /// baseline. Elements without marks are left byte for byte.
 pub fn finish_svg(svg: &str) -> String {
+    finish_svg_min(svg, 0.0)
+}
+
+/// [`finish_svg`] with no subscript smaller than `min_sub` (in the SVG's units), nor larger
+/// than its text: a figure at its printed size keeps its subscripts at 6 pt or more.
+pub fn finish_svg_min(svg: &str, min_sub: f64) -> String {
     if !svg.contains(SUB) {
         return svg.to_string();
     }
@@ -75,11 +81,23 @@ pub fn finish_svg(svg: &str) -> String {
         let size = attribute(&rest[start..open_end], "font-size")
             .and_then(|s| s.parse::<f64>().ok())
             .unwrap_or(12.0);
-        out.push_str(&tspans(&rest[open_end..close], size));
+        out.push_str(&tspans(&rest[open_end..close], size, min_sub));
         rest = &rest[close..];
     }
     out.push_str(rest);
     out
+}
+
+/// A subscript's size in a text of `size`: [`SUB_SIZE`] of it, at least `min_sub` (rounded up
+/// to the two decimals the SVG carries, so that it reads back at least `min_sub`), at most `size`.
+fn sub_size(size: f64, min_sub: f64) -> f64 {
+    if min_sub <= 0.0 {
+        return SUB_SIZE * size;
+    }
+    ((SUB_SIZE * size).max(min_sub) * 100.0)
+        .ceil()
+        .min(size * 100.0)
+        / 100.0
 }
 
 /// The value of `name="..."` in an element's opening tag.
@@ -91,7 +109,7 @@ fn attribute<'a>(tag: &'a str, name: &str) -> Option<&'a str> {
 }
 
 /// The content of one `<text>` element with its marks as tspans.
-fn tspans(content: &str, size: f64) -> String {
+fn tspans(content: &str, size: f64, min_sub: f64) -> String {
     if !content.contains(SUB) {
         return content.to_string();
     }
@@ -120,7 +138,7 @@ fn tspans(content: &str, size: f64) -> String {
             let dy = if lowered { 0.0 } else { drop };
             out.push_str(&format!(
                 "<tspan class=\"sub\" dy=\"{dy:.2}\" font-size=\"{:.2}\">{sub}</tspan>",
-                SUB_SIZE * size
+                sub_size(size, min_sub)
             ));
             lowered = true;
         } else {

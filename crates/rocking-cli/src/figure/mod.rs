@@ -26,7 +26,12 @@ struct FigureFile {
     caption: Option<String>,
     #[serde(default = "one")]
     columns: usize,
-    /// A panel's width and height in pixels.
+    /// The printed width: "double" (175 mm), "single" (85 mm) or a length in mm (default
+    /// "double").
+    width: Option<toml::Value>,
+    /// The PNG's resolution in pixels per inch (default 600).
+    dpi: Option<u32>,
+    /// A panel's width and height: their ratio is the panels' aspect at the printed width.
     panel: Option<[u32; 2]>,
     /// The top of the spectra's shared colour scale (default: their largest survivor).
     colour_top: Option<f64>,
@@ -112,6 +117,13 @@ struct Zoom {
 
 /// Bounds of the figure layout.
 const MAX_COLUMNS: usize = 8;
+/// A journal's double and single column, and the lengths a printed width may be, in mm.
+const DOUBLE_MM: f64 = 175.0;
+const SINGLE_MM: f64 = 85.0;
+const WIDTH_MM: (f64, f64) = (40.0, 250.0);
+/// The PNG's resolution: the default and the allowed range, pixels per inch.
+const DPI: u32 = 600;
+const DPI_RANGE: (u32, u32) = (72, 1200);
 const PANEL_PIXELS: (u32, u32) = (200, 2000);
 /// Bisection steps of a boundary point: the bracket (one cell) shrinks 1024-fold.
 const BISECTIONS: usize = 10;
@@ -119,6 +131,8 @@ const BISECTIONS: usize = 10;
 /// Options of the command.
 pub struct Options {
     pub out: PathBuf,
+    /// The title and caption drawn inside the image (for screens), no caption file.
+    pub draft: bool,
     pub cache: PathBuf,
     pub cells: Option<usize>,
     pub quiet: bool,
@@ -156,7 +170,10 @@ pub fn figure(files: &[PathBuf], opts: &Options) -> Result<(), SceneError> {
     let mut loader = Loader::new(&opts.cache, opts.quiet);
     let mut listed = Vec::new();
     for (file, spec) in files.iter().zip(&specs) {
-        let figure = build(file, spec, &mut loader, opts.cells)?;
+        let mut figure = build(file, spec, &mut loader, opts.cells)?;
+        if let Some(p) = &mut figure.print {
+            p.draft = opts.draft;
+        }
         let written = figure.write(dir.path(), &stem(file))?;
         listed.push((file, written));
     }
@@ -198,6 +215,19 @@ fn read(file: &Path) -> Result<FigureFile, SceneError> {
                 file,
                 field,
                 format!("holds the control character {c:?}, which a figure cannot show"),
+            );
+        }
+    }
+    width_mm(file, spec.width.as_ref())?;
+    if let Some(d) = spec.dpi {
+        if !(DPI_RANGE.0..=DPI_RANGE.1).contains(&d) {
+            return bad(
+                file,
+                "dpi",
+                format!(
+                    "{d} is not allowed: {} <= dpi <= {} pixels per inch",
+                    DPI_RANGE.0, DPI_RANGE.1
+                ),
             );
         }
     }
@@ -344,6 +374,28 @@ fn read(file: &Path) -> Result<FigureFile, SceneError> {
         }
     }
     Ok(spec)
+}
+
+/// The printed width a figure file states, in mm: "double", "single" or a length in mm.
+fn width_mm(file: &Path, width: Option<&toml::Value>) -> Result<f64, SceneError> {
+    let allowed = format!(
+        "\"double\" ({DOUBLE_MM} mm), \"single\" ({SINGLE_MM} mm) or a length in mm, {} <= width <= {}",
+        WIDTH_MM.0, WIDTH_MM.1
+    );
+    let mm = match width {
+        None => return Ok(DOUBLE_MM),
+        Some(toml::Value::String(s)) if s == "double" => return Ok(DOUBLE_MM),
+        Some(toml::Value::String(s)) if s == "single" => return Ok(SINGLE_MM),
+        Some(toml::Value::Float(v)) => *v,
+        Some(toml::Value::Integer(v)) => *v as f64,
+        Some(other) => {
+            return bad(file, "width", format!("{other} is not allowed: {allowed}"));
+        }
+    };
+    if !(mm.is_finite() && (WIDTH_MM.0..=WIDTH_MM.1).contains(&mm)) {
+        return bad(file, "width", format!("{mm} is not allowed: {allowed}"));
+    }
+    Ok(mm)
 }
 
 /// A refused value of a figure file: the file, the field and why.
@@ -520,5 +572,10 @@ fn build(
         panel,
         panels,
         colour_top: spec.colour_top,
+        print: Some(plot::Print {
+            width_mm: width_mm(file, spec.width.as_ref())?,
+            dpi: f64::from(spec.dpi.unwrap_or(DPI)),
+            draft: false,
+        }),
     })
 }

@@ -275,6 +275,11 @@ impl HistoryPanel {
         range
     }
 
+    /// The panel's axis labels (x, y).
+    pub(super) fn axis_labels(&self) -> (String, String) {
+        (labels::TAU.to_string(), self.quantity.label.to_string())
+    }
+
     /// The panel's legend entries: each labelled run's line.
     pub(super) fn legend(&self) -> Vec<LegendItem> {
         // A panel in black (the ground motion) is explained by the caption, not the legend.

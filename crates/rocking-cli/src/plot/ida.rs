@@ -231,6 +231,7 @@ pub fn ida_plots(
         panel: (760, 520),
         panels: vec![Panel::Ida(ida)],
         colour_top: None,
+        print: None,
     };
     let mut written = curves.write(dir, "ida")?;
     let Some(fit) = fit else {
@@ -243,6 +244,7 @@ pub fn ida_plots(
         panel: (760, 520),
         panels: vec![Panel::Fit(fit)],
         colour_top: None,
+        print: None,
     };
     written.extend(fit.write(dir, "fragility-fit")?);
     Ok(written)

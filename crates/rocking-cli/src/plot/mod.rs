@@ -20,7 +20,7 @@ pub use spectrum::{BoundaryPanel, CurvePanel, LinePanel, SpectrumPanel, Structur
 use std::path::{Path, PathBuf};
 
 use rocking::{EventKind, Run};
-use rocking_plot::chart::{legend, LegendItem, Page};
+use rocking_plot::chart::{self, legend, LegendItem, Page, PanelText, PrintLayout};
 use rocking_plot::style;
 use rocking_plot::text::tick;
 use rocking_scene::labels;
@@ -41,6 +41,30 @@ pub enum Panel {
     Fit(FitPanel),
 }
 
+impl Panel {
+    /// The panel's own title.
+    fn title(&self) -> Option<&str> {
+        match self {
+            Panel::History(h) => h.title.as_deref(),
+            Panel::Spectrum(s) => s.title.as_deref(),
+            Panel::Boundaries(b) => b.title.as_deref(),
+            Panel::Line(l) => l.title.as_deref(),
+            Panel::Curve(c) => c.title.as_deref(),
+            Panel::Ida(_) | Panel::Fit(_) => None,
+        }
+    }
+
+    /// The panel's axis labels (x, y), where a figure may share them between panels.
+    fn axis_labels(&self) -> Option<(String, String)> {
+        match self {
+            Panel::History(h) => Some(h.axis_labels()),
+            Panel::Spectrum(s) => Some(s.axis_labels()),
+            Panel::Boundaries(b) => Some(b.axis_labels()),
+            _ => None,
+        }
+    }
+}
+
 /// A figure: its title, panels in rows of `columns`, each `panel` pixels, and a caption.
 pub struct Figure {
     pub title: String,
@@ -51,10 +75,39 @@ pub struct Figure {
     /// Top of the shared colour scale of the spectrum panels (default: their largest shaded
     /// value).
     pub colour_top: Option<f64>,
+    /// At its printed size (a figure file's), else on a screen's pixels.
+    pub print: Option<Print>,
+}
+
+/// A figure at its printed size: its width in mm, its PNG's resolution, and whether the title
+/// and caption are drawn inside the image (`--draft`, for screens; else the caption is written
+/// beside it).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Print {
+    pub width_mm: f64,
+    pub dpi: f64,
+    pub draft: bool,
+}
+
+/// The letter of the `k`-th panel (from 0): (a), (b), ..., (z), (aa), ...
+pub fn letter(k: usize) -> String {
+    let mut k = k;
+    let mut s = String::new();
+    loop {
+        s.insert(0, (b'a' + (k % 26) as u8) as char);
+        if k < 26 {
+            break;
+        }
+        k = k / 26 - 1;
+    }
+    format!("({s})")
 }
 
 /// The formats (file extensions) every figure is written in, by [`Figure::write`].
 pub const FORMATS: [&str; 3] = ["svg", "png", "pdf"];
+
+/// The caption a print figure is written with, beside its image: `NAME.caption.md`.
+pub const CAPTION_EXT: &str = "caption.md";
 
 /// The first control character of a text drawn on a figure, if any: SVG cannot hold one.
 pub fn control_char(text: &str) -> Option<char> {
@@ -65,7 +118,7 @@ pub fn control_char(text: &str) -> Option<char> {
 pub fn is_figure_file(file: &str, name: &str) -> bool {
     file.strip_prefix(name)
         .and_then(|rest| rest.strip_prefix('.'))
-        .is_some_and(|ext| FORMATS.contains(&ext))
+        .is_some_and(|ext| FORMATS.contains(&ext) || ext == CAPTION_EXT)
 }
 
 impl Figure {
@@ -107,17 +160,157 @@ impl Figure {
             panels: self.panels.len(),
             panel: self.panel,
             // No legend column when there is nothing to explain.
-            legend: self.colour_top().is_some() || !self.legend().is_empty(),
+            legend: self.print.is_none()
+                && (self.colour_top().is_some() || !self.legend().is_empty()),
+        }
+    }
+
+    /// The rows of panels and their columns.
+    fn grid(&self) -> (usize, usize) {
+        let columns = self.columns.max(1);
+        (self.panels.len().div_ceil(columns), columns)
+    }
+
+    /// Column and row headers instead of a title per panel, where the panels' titles allow:
+    /// titles of items ("α = 0.1, ω_n/p = 2.5") whose every item is the same along each column
+    /// (a column header) or along each row (a row header) of a full grid; or titles on the first
+    /// row only (column headers).
+    pub fn headers(&self) -> Option<(Vec<String>, Vec<String>)> {
+        let (rows, columns) = self.grid();
+        let titles: Vec<Option<&str>> = self.panels.iter().map(Panel::title).collect();
+        if titles.iter().all(Option::is_none) || self.panels.len() < 2 {
+            return None;
+        }
+        let first_row_only = titles
+            .iter()
+            .enumerate()
+            .all(|(k, t)| t.is_some() == (k < columns));
+        if first_row_only && rows > 1 {
+            let heads = titles[..columns]
+                .iter()
+                .map(|t| t.unwrap_or("").to_string());
+            return Some((heads.collect(), Vec::new()));
+        }
+        if titles.len() != rows * columns || titles.iter().any(Option::is_none) {
+            return None;
+        }
+        let items: Vec<Vec<&str>> = titles
+            .iter()
+            .map(|t| t.unwrap_or("").split(", ").collect())
+            .collect();
+        let n = items[0].len();
+        if items.iter().any(|i| i.len() != n) {
+            return None;
+        }
+        let at = |r: usize, c: usize, i: usize| items[r * columns + c][i];
+        let (mut heads, mut sides) = (vec![Vec::new(); columns], vec![Vec::new(); rows]);
+        for i in 0..n {
+            let down = (0..columns).all(|c| (0..rows).all(|r| at(r, c, i) == at(0, c, i)));
+            let across = (0..rows).all(|r| (0..columns).all(|c| at(r, c, i) == at(r, 0, i)));
+            if down && (!across || rows == 1 || columns > 1) {
+                (0..columns).for_each(|c| heads[c].push(at(0, c, i)));
+            } else if across {
+                (0..rows).for_each(|r| sides[r].push(at(r, 0, i)));
+            } else {
+                return None;
+            }
+        }
+        let join = |v: Vec<Vec<&str>>| -> Vec<String> {
+            if v.iter().all(Vec::is_empty) {
+                Vec::new()
+            } else {
+                v.into_iter().map(|h| h.join(", ")).collect()
+            }
+        };
+        Some((join(heads), join(sides)))
+    }
+
+    /// The axis labels a whole column (x) or row (y) shares, drawn once beside the grid.
+    fn shared_labels(&self) -> (Vec<Option<String>>, Vec<Option<String>>) {
+        let (rows, columns) = self.grid();
+        let labels: Vec<Option<(String, String)>> =
+            self.panels.iter().map(Panel::axis_labels).collect();
+        let get = |r: usize, c: usize| labels.get(r * columns + c).cloned().flatten();
+        let shared = |cells: Vec<Option<(String, String)>>,
+                      pick: fn(&(String, String)) -> &String| {
+            let first = cells.first().cloned().flatten()?;
+            cells
+                .iter()
+                .all(|l| l.as_ref().is_some_and(|l| pick(l) == pick(&first)))
+                .then(|| pick(&first).clone())
+        };
+        let xs = (0..columns)
+            .map(|c| {
+                let cells: Vec<_> = (0..rows)
+                    .filter(|r| r * columns + c < self.panels.len())
+                    .map(|r| get(r, c))
+                    .collect();
+                shared(cells, |l| &l.0)
+            })
+            .collect();
+        let ys = (0..rows)
+            .map(|r| {
+                let cells: Vec<_> = (0..columns)
+                    .filter(|c| r * columns + c < self.panels.len())
+                    .map(|c| get(r, c))
+                    .collect();
+                shared(cells, |l| &l.1)
+            })
+            .collect();
+        (xs, ys)
+    }
+
+    /// The print layout: headers, shared labels, and the legend band's height.
+    fn print_layout(&self, p: Print) -> PrintLayout {
+        let (column_headers, row_headers) = self.headers().unwrap_or_default();
+        let (shared_x, shared_y) = self.shared_labels();
+        let width = (p.width_mm * chart::UNITS_PER_MM).round() as u32;
+        let bar = self.colour_top().is_some() && self.shade_label().is_some();
+        let (bar_h, legend_w) = if bar {
+            (
+                spectrum::colour_bar_band_height(self.colour_bar_marks().len()),
+                width.saturating_sub(spectrum::PRINT_BAR_WIDTH),
+            )
+        } else {
+            (0, width)
+        };
+        let band = bar_h.max(chart::legend_band_height(legend_w, &self.legend()));
+        PrintLayout {
+            width_mm: p.width_mm,
+            draft: p.draft,
+            band,
+            column_headers,
+            row_headers,
+            shared_x,
+            shared_y,
+        }
+    }
+
+    /// What panel `k` shows besides its data at print size.
+    fn panel_text(&self, k: usize, layout: &PrintLayout) -> PanelText {
+        let (_, columns) = self.grid();
+        let headed = !layout.column_headers.is_empty() || !layout.row_headers.is_empty();
+        PanelText {
+            letter: (self.panels.len() > 1).then(|| letter(k)),
+            hide_x_label: layout.shared_x[k % columns].is_some(),
+            hide_y_label: layout.shared_y[k / columns].is_some(),
+            hide_title: headed,
         }
     }
 
     /// Draws the figure into an SVG string (before `rocking_plot::export` finishes it).
     pub fn svg(&self) -> Result<String, String> {
-        self.page().svg(|areas, side| {
+        let page = self.page();
+        let layout = self.print.map(|p| self.print_layout(p));
+        let draw = |areas: &[rocking_plot::chart::Area<'_>],
+                    side: &rocking_plot::chart::Area<'_>| {
             let top = self.colour_top();
             let bottom = self.colour_bottom();
             let shared = history::shared_ranges(&self.panels);
             for (k, (p, area)) in self.panels.iter().zip(areas).enumerate() {
+                if let Some(l) = &layout {
+                    chart::set_panel(self.panel_text(k, l));
+                }
                 match p {
                     Panel::History(h) => h.draw(area, shared[k])?,
                     Panel::Spectrum(s) => s.draw(area, (bottom, top.unwrap_or(1.0)))?,
@@ -128,12 +321,68 @@ impl Figure {
                     Panel::Fit(f) => f.draw(area)?,
                 }
             }
+            if layout.is_some() {
+                let band = match (top, self.shade_label()) {
+                    (Some(top), Some(label)) => {
+                        let (bar, rest) = side.split_horizontally(spectrum::PRINT_BAR_WIDTH);
+                        spectrum::colour_bar_band(
+                            &bar,
+                            label,
+                            (bottom, top),
+                            &self.colour_bar_marks(),
+                        )?;
+                        rest
+                    }
+                    _ => side.clone(),
+                };
+                return chart::legend_band(&band, &self.legend());
+            }
             let mut y = 10;
             if let (Some(top), Some(label)) = (top, self.shade_label()) {
                 y = spectrum::colour_bar(side, label, (bottom, top), &self.colour_bar_marks(), y)?;
             }
             legend(side, y, &self.legend())
-        })
+        };
+        match &layout {
+            Some(l) => page.print_svg(l, draw),
+            None => page.svg(draw),
+        }
+    }
+
+    /// The caption written beside a print figure (`NAME.caption.md`): the title in bold, the
+    /// caption, and what each panel letter shows.
+    pub fn caption_text(&self) -> String {
+        let mut out = format!("**{}.**", self.title.trim_end_matches('.'));
+        if let Some(c) = &self.caption {
+            out.push(' ');
+            out.push_str(c);
+        }
+        if self.panels.len() > 1 {
+            let (rows, columns) = self.grid();
+            let headers = self.headers();
+            let parts: Vec<String> = (0..self.panels.len())
+                .map(|k| {
+                    let (r, c) = (k / columns, k % columns);
+                    let mut what: Vec<String> = Vec::new();
+                    if let Some((heads, sides)) = &headers {
+                        what.extend(heads.get(c).cloned());
+                        what.extend(sides.get(r).cloned());
+                    } else if let Some(t) = self.panels[k].title() {
+                        what.push(t.to_string());
+                    }
+                    if let Some((_, y)) = self.panels[k].axis_labels() {
+                        if !matches!(self.panels[k], Panel::Spectrum(_)) {
+                            what.push(y);
+                        }
+                    }
+                    format!("{} {}", letter(k), what.join(", "))
+                })
+                .collect();
+            let _ = rows;
+            out.push_str(&format!(" Panels: {}.", parts.join("; ")));
+        }
+        out.push('\n');
+        out
     }
 
     /// The title of the shared colour scale: what the first spectrum panel shades (the panels of
@@ -193,7 +442,17 @@ impl Figure {
         let failed =
             |m: String| SceneError::failure(format!("{}: cannot draw {name}: {m}", dir.display()));
         let svg = self.svg().map_err(failed)?;
-        let out = rocking_plot::export::export(&svg).map_err(failed)?;
+        let out = match self.print {
+            Some(p) => rocking_plot::export::export_print(
+                &svg,
+                rocking_plot::export::Print {
+                    width_mm: p.width_mm,
+                    dpi: p.dpi,
+                },
+            ),
+            None => rocking_plot::export::export(&svg),
+        }
+        .map_err(failed)?;
         let mut written = Vec::new();
         for (ext, bytes) in
             FORMATS
@@ -202,6 +461,11 @@ impl Figure {
         {
             let path = dir.join(format!("{name}.{ext}"));
             write_atomic(&path, bytes)?;
+            written.push(path);
+        }
+        if self.print.is_some_and(|p| !p.draft) {
+            let path = dir.join(format!("{name}.{CAPTION_EXT}"));
+            write_atomic(&path, self.caption_text().as_bytes())?;
             written.push(path);
         }
         Ok(written)
@@ -233,6 +497,7 @@ pub fn plots(model: &Setup, run: &Run, dir: &Path) -> Result<Vec<PathBuf>, Scene
         panel: (860, 270),
         panels,
         colour_top: None,
+        print: None,
     };
     figure.write(dir, "plot")
 }
@@ -259,6 +524,7 @@ pub fn fragility_plots(
             y: (0.0, 1.05),
         })],
         colour_top: None,
+        print: None,
     };
     figure.write(dir, "fragility")
 }
@@ -354,6 +620,7 @@ pub fn sweep_figure(
         panel: (760, 700),
         panels: vec![panel],
         colour_top: None,
+        print: None,
     };
     (figure, name)
 }
@@ -379,6 +646,7 @@ pub fn reported_figure(title: &str, sweep: &Sweep, cells: &[Cell], k: usize) -> 
         panel: (760, 700),
         panels: vec![Panel::Spectrum(panel)],
         colour_top: None,
+        print: None,
     };
     (figure, format!("{REPORTED_FIGURE}{key}"))
 }
@@ -505,6 +773,7 @@ mod tests {
                 Panel::Spectrum(SpectrumPanel::new(&s, &high)),
             ],
             colour_top: None,
+            print: None,
         };
         let svg = figure.svg().unwrap();
         assert_eq!(

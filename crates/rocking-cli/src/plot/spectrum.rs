@@ -15,7 +15,7 @@ use rocking_spectra::{Cell, CellClass, Sweep};
 
 use super::boundary::{cell_bounds, cell_edges, lowest_overturning, polylines, Lowest};
 use rocking_plot::chart::{
-    axes, fail, line_height, mark_at, rgb, styled_line, Area, LegendItem, LEGEND, TICKS,
+    axes, fail, line_height, mark_at, rgb, styled_line, Area, LegendItem, Type, LEGEND, TICKS,
 };
 
 /// The style of a class that is not a survivor's shade.
@@ -265,6 +265,14 @@ impl SpectrumPanel {
         items
     }
 
+    /// The panel's axis labels (x, y).
+    pub(super) fn axis_labels(&self) -> (String, String) {
+        (
+            labels::axis_label(&self.grid.0.key),
+            labels::axis_label(&self.grid.1.key),
+        )
+    }
+
     /// Draws the panel, shading on the colour scale `scale` (bottom, top).
     pub(super) fn draw(&self, area: &Area<'_>, scale: (f64, f64)) -> Result<(), String> {
         let (bottom, top) = scale;
@@ -412,6 +420,101 @@ pub(super) fn colour_bar(
     Ok(y + height)
 }
 
+/// The width of the colour bar's block at the left of a print figure's legend band (50 mm).
+pub(super) const PRINT_BAR_WIDTH: u32 = 400;
+
+/// The height of [`colour_bar_band`] with `marks` marks.
+pub(super) fn colour_bar_band_height(marks: usize) -> u32 {
+    let t = Type::print();
+    let line = t.line(t.legend);
+    4 + line + 4 + PRINT_BAR + 4 + t.line(t.ticks) + marks as u32 * line + 6
+}
+
+/// The bar's thickness at print size (3 mm).
+const PRINT_BAR: u32 = 24;
+
+/// The colour bar at print size, across the top-left of the legend band: its title, the bar,
+/// its ticks under it, and each mark (θ_cr/α) as a line across the bar, labelled under the
+/// ticks from the mark rightwards (one line per mark).
+pub(super) fn colour_bar_band(
+    area: &Area<'_>,
+    label: &str,
+    scale: (f64, f64),
+    marks: &[(f64, String)],
+) -> Result<(), String> {
+    let t = Type::print();
+    let (bottom, top) = scale;
+    let span = top - bottom;
+    let line = t.line(t.legend) as i32;
+    let (width, _) = area.dim_in_pixel();
+    let left = 12;
+    let right = width as i32 - 40;
+    let to_x = |v: f64| left + ((v - bottom) / span * f64::from(right - left)).round() as i32;
+    let text = |size: f64, h: HPos| {
+        ("sans-serif", size)
+            .into_font()
+            .into_text_style(area)
+            .pos(Pos::new(h, VPos::Top))
+    };
+    area.draw_text(&rich(label), &text(t.legend, HPos::Left), (left, 4))
+        .map_err(fail)?;
+    let y0 = 4 + line + 4;
+    let y1 = y0 + PRINT_BAR as i32;
+    let steps = 200;
+    for k in 0..steps {
+        let (a, b) = (
+            left + (right - left) * k / steps,
+            left + (right - left) * (k + 1) / steps,
+        );
+        let v = bottom + span * (f64::from(k) + 0.5) / f64::from(steps);
+        area.draw(&Rectangle::new(
+            [(a, y0), (b, y1)],
+            ViridisRGB.get_color_normalized(v, bottom, top).filled(),
+        ))
+        .map_err(fail)?;
+    }
+    area.draw(&Rectangle::new([(left, y0), (right, y1)], BLACK))
+        .map_err(fail)?;
+    let ticks = text(t.ticks, HPos::Center);
+    for v in nice_ticks(bottom, top) {
+        let px = to_x(v);
+        area.draw(&PathElement::new(vec![(px, y1), (px, y1 + 5)], BLACK))
+            .map_err(fail)?;
+        area.draw_text(&tick(v), &ticks, (px, y1 + 6))
+            .map_err(fail)?;
+    }
+    let mut shown: Vec<&(f64, String)> = marks
+        .iter()
+        .filter(|m| (bottom..=top).contains(&m.0))
+        .collect();
+    shown.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let labels = text(t.legend, HPos::Left);
+    let mut y = y1 + 6 + t.line(t.ticks) as i32;
+    let char_w = 0.56 * t.legend / 1.24;
+    for (v, label) in shown {
+        let px = to_x(*v);
+        area.draw(&PathElement::new(
+            vec![(px, y0 - 3), (px, y1 + 3)],
+            BLACK.stroke_width(3),
+        ))
+        .map_err(fail)?;
+        area.draw(&PathElement::new(
+            vec![(px, y0), (px, y1)],
+            WHITE.stroke_width(1),
+        ))
+        .map_err(fail)?;
+        let label = format!("↑ {label}");
+        let w = (rocking_plot::text::plain(&rich(&label)).chars().count() as f64 * char_w) as i32;
+        let x = (px - (char_w / 2.0) as i32)
+            .min(width as i32 - w - 4)
+            .max(0);
+        area.draw_text(&rich(&label), &labels, (x, y))
+            .map_err(fail)?;
+        y += line;
+    }
+    Ok(())
+}
+
 /// About five round tick values from `bottom` to `top`.
 fn nice_ticks(bottom: f64, top: f64) -> Vec<f64> {
     let raw = (top - bottom) / 5.0;
@@ -502,6 +605,14 @@ pub struct BoundaryPanel {
 }
 
 impl BoundaryPanel {
+    /// The panel's axis labels (x, y).
+    pub(super) fn axis_labels(&self) -> (String, String) {
+        (
+            labels::axis_label(&self.x.key),
+            labels::axis_label(&self.y.key),
+        )
+    }
+
     pub(super) fn legend(&self) -> Vec<LegendItem> {
         let mut items = vec![LegendItem::Heading(self.method.clone())];
         for s in &self.structures {

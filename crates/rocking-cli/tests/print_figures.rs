@@ -1,0 +1,284 @@
+//! Every figure file of scenes/paper and scenes/forces drawn at its printed size (issue 46), on a
+//! small grid: the SVG's physical width is the file's `width` (its viewBox in 1/8 mm), read back
+//! from the SVG every text is set at 7 pt or more (tick labels, legends, headers), every axis
+//! label at 8 pt or more, nothing (subscripts included) below 6 pt; a multi-panel figure carries
+//! its letters (a), (b), ... once each; the title is not in the image but in NAME.caption.md; the
+//! PNG is the file's resolution (600 dpi unless it says) of that width, the PDF page that width.
+//! `--draft` keeps the title in the image and writes no caption file.
+
+mod common;
+
+use common::{bin, repo, tmp_path};
+use std::path::{Path, PathBuf};
+
+/// Points per mm.
+const PT_PER_MM: f64 = 72.0 / 25.4;
+/// Below these a figure fails (a rounding's tolerance: plotters writes sizes as f64 / 1.24).
+const MIN_PT: f64 = 6.0 - 1e-6;
+const TEXT_PT: f64 = 7.0 - 1e-6;
+const AXIS_PT: f64 = 8.0 - 1e-6;
+
+fn ok(o: &std::process::Output) {
+    assert!(
+        o.status.success(),
+        "{}\n{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
+
+/// The value of `name="..."` in a tag.
+fn attr<'a>(tag: &'a str, name: &str) -> Option<&'a str> {
+    let key = format!(" {name}=\"");
+    let from = tag.find(&key)? + key.len();
+    let len = tag[from..].find('"')?;
+    Some(&tag[from..from + len])
+}
+
+/// One `<text>` element: its size, whether it is rotated (a y label or a row header), its text
+/// with subscripts marked `_`, and its subscripts' sizes.
+struct Text {
+    size: f64,
+    rotated: bool,
+    text: String,
+    subs: Vec<f64>,
+}
+
+fn texts(svg: &str) -> Vec<Text> {
+    svg.split("<text")
+        .skip(1)
+        .filter_map(|t| t.split_once('>'))
+        .filter_map(|(tag, rest)| rest.split_once("</text>").map(|(body, _)| (tag, body)))
+        .map(|(tag, body)| {
+            let size: f64 = attr(tag, "font-size").unwrap().parse().unwrap();
+            let mut text = String::new();
+            let mut subs = Vec::new();
+            for (k, part) in body.split("<tspan").enumerate() {
+                if k == 0 {
+                    text.push_str(part);
+                    continue;
+                }
+                let (tag, rest) = part.split_once('>').unwrap();
+                if tag.contains("class=\"sub\"") {
+                    subs.push(attr(tag, "font-size").unwrap().parse().unwrap());
+                    text.push('_');
+                }
+                text.push_str(&rest.replace("</tspan>", ""));
+            }
+            Text {
+                size,
+                rotated: tag.contains("rotate("),
+                text: text.trim().to_string(),
+                subs,
+            }
+        })
+        .collect()
+}
+
+/// The figure files the test draws.
+fn figure_files() -> Vec<PathBuf> {
+    let mut files = Vec::new();
+    for dir in ["scenes/paper", "scenes/forces"] {
+        for e in std::fs::read_dir(repo().join(dir)).unwrap() {
+            let p = e.unwrap().path();
+            if p.extension().is_some_and(|x| x == "toml") {
+                files.push(p);
+            }
+        }
+    }
+    files.sort();
+    files
+}
+
+/// The printed width a figure file states, in mm (default "double").
+fn stated_width(spec: &toml::Value) -> f64 {
+    match spec.get("width") {
+        None => 175.0,
+        Some(toml::Value::String(s)) if s == "double" => 175.0,
+        Some(toml::Value::String(s)) if s == "single" => 85.0,
+        Some(toml::Value::Float(v)) => *v,
+        Some(toml::Value::Integer(v)) => *v as f64,
+        Some(v) => panic!("width = {v}"),
+    }
+}
+
+/// The axis labels a figure may show (every quantity's, the spectra's axes).
+fn is_axis_label(t: &str) -> bool {
+    t == "τ = p t"
+        || t == "ω_p/p"
+        || t == "a_p/(g tan α)"
+        || (t.contains('/') && !t.contains('=') && !t.contains(':') && t.len() < 40)
+}
+
+fn check(name: &str, dir: &Path, spec: &toml::Value) {
+    let svg = std::fs::read_to_string(dir.join(format!("{name}.svg"))).unwrap();
+    let root = &svg[svg.find("<svg").unwrap()..];
+    let root = &root[..root.find('>').unwrap()];
+    let width_mm: f64 = attr(root, "width")
+        .and_then(|w| w.strip_suffix("mm"))
+        .unwrap_or_else(|| panic!("{name}: no width in mm: {root}"))
+        .parse()
+        .unwrap();
+    let height_mm: f64 = attr(root, "height")
+        .and_then(|w| w.strip_suffix("mm"))
+        .unwrap()
+        .parse()
+        .unwrap();
+    let stated = stated_width(spec);
+    assert!(
+        (width_mm - stated).abs() < 1e-9,
+        "{name}: {width_mm} mm wide, the file says {stated} mm"
+    );
+    let view: Vec<f64> = attr(root, "viewBox")
+        .unwrap()
+        .split(' ')
+        .map(|v| v.parse().unwrap())
+        .collect();
+    let mm_per_unit = width_mm / view[2];
+    assert!(
+        (view[3] * mm_per_unit - height_mm).abs() < 0.01,
+        "{name}: the viewBox's aspect is not the page's"
+    );
+    let pt = |size: f64| size * mm_per_unit * PT_PER_MM;
+    let all = texts(&svg);
+    assert!(!all.is_empty(), "{name}: no text");
+    let mut smallest = f64::INFINITY;
+    for t in &all {
+        let size = pt(t.size);
+        smallest = smallest.min(size);
+        assert!(
+            size >= TEXT_PT,
+            "{name}: `{}` at {size:.2} pt (< 7 pt)",
+            t.text
+        );
+        for &s in &t.subs {
+            smallest = smallest.min(pt(s));
+            assert!(
+                pt(s) >= MIN_PT,
+                "{name}: a subscript of `{}` at {:.2} pt (< 6 pt)",
+                t.text,
+                pt(s)
+            );
+        }
+        if t.rotated || is_axis_label(&t.text) {
+            assert!(
+                size >= AXIS_PT,
+                "{name}: the axis label `{}` at {size:.2} pt (< 8 pt)",
+                t.text
+            );
+        }
+    }
+    eprintln!("{name}: {width_mm} mm wide, smallest text {smallest:.2} pt");
+    // Letters: one per panel, in order, on a figure of more than one panel.
+    let panels = spec["panels"].as_array().unwrap().len();
+    let letters: Vec<&str> = all
+        .iter()
+        .map(|t| t.text.as_str())
+        .filter(|t| {
+            t.len() >= 3
+                && t.starts_with('(')
+                && t.ends_with(')')
+                && t[1..t.len() - 1].chars().all(|c| c.is_ascii_lowercase())
+        })
+        .collect();
+    if panels > 1 {
+        let expected: Vec<String> = (0..panels)
+            .map(|k| format!("({})", (b'a' + k as u8) as char))
+            .collect();
+        assert_eq!(letters, expected, "{name}: panel letters");
+    } else {
+        assert!(letters.is_empty(), "{name}: one panel has no letter");
+    }
+    // No title inside the image; the caption beside it starts with it.
+    let title = spec["title"].as_str().unwrap();
+    let head = title.split(':').next().unwrap();
+    for t in &all {
+        let plain = t.text.replace('_', "");
+        assert!(
+            !plain.contains(head) && !title.replace('_', "").contains(&plain) || plain.len() < 12,
+            "{name}: title text `{}` inside the image",
+            t.text
+        );
+    }
+    let caption = std::fs::read_to_string(dir.join(format!("{name}.caption.md"))).unwrap();
+    assert!(
+        caption.starts_with(&format!("**{}", title.trim_end_matches('.'))),
+        "{name}: {caption}"
+    );
+    if panels > 1 {
+        assert!(
+            caption.contains("(a) "),
+            "{name}: the letters in the caption"
+        );
+    }
+    // The PNG: the stated resolution (600 dpi) of the same width; the PDF page that width.
+    let dpi = spec
+        .get("dpi")
+        .and_then(toml::Value::as_integer)
+        .unwrap_or(600) as f64;
+    let png = std::fs::read(dir.join(format!("{name}.png"))).unwrap();
+    let be = |k: usize| u32::from_be_bytes(png[k..k + 4].try_into().unwrap());
+    let px = (width_mm / 25.4 * dpi).round() as u32;
+    assert!(
+        be(16).abs_diff(px) <= 1,
+        "{name}: PNG {} px wide, {px} at {dpi} dpi",
+        be(16)
+    );
+    let pdf = std::fs::read(dir.join(format!("{name}.pdf"))).unwrap();
+    let pdf = String::from_utf8_lossy(&pdf);
+    let media = pdf.split("/MediaBox [").nth(1).unwrap();
+    let media: Vec<f64> = media
+        .split(']')
+        .next()
+        .unwrap()
+        .split_whitespace()
+        .map(|v| v.parse().unwrap())
+        .collect();
+    assert!(
+        ((media[2] - media[0]) - width_mm * PT_PER_MM).abs() < 0.5,
+        "{name}: PDF page {media:?} pt, {} pt wide expected",
+        width_mm * PT_PER_MM
+    );
+}
+
+/// Each figure file at its printed size, on a 4 × 4 grid of each sweep (the whole test ~1 min on
+/// 2 cores).
+#[test]
+fn every_figure_file_is_drawn_at_its_printed_size_with_print_type_and_letters() {
+    let out = tmp_path("print");
+    let cache = tmp_path("print-cache");
+    let files = figure_files();
+    assert!(files.len() >= 9, "{files:?}");
+    ok(&bin()
+        .arg("figure")
+        .args(&files)
+        .args(["--cells", "4", "--quiet", "--out"])
+        .arg(&out)
+        .arg("--cache")
+        .arg(&cache)
+        .output()
+        .unwrap());
+    for f in &files {
+        let spec: toml::Value = toml::from_str(&std::fs::read_to_string(f).unwrap()).unwrap();
+        let name = f.file_stem().unwrap().to_string_lossy();
+        check(&name, &out, &spec);
+    }
+    // --draft: the title in the image, no caption file.
+    let draft = tmp_path("print-draft");
+    let fig3 = repo().join("scenes/paper/fig3.toml");
+    ok(&bin()
+        .arg("figure")
+        .arg(&fig3)
+        .args(["--draft", "--quiet", "--out"])
+        .arg(&draft)
+        .arg("--cache")
+        .arg(&cache)
+        .output()
+        .unwrap());
+    let svg = std::fs::read_to_string(draft.join("fig3.svg")).unwrap();
+    assert!(texts(&svg).iter().any(|t| t.text.starts_with("Fig. 3:")));
+    assert!(!draft.join("fig3.caption.md").exists());
+    for d in [out, cache, draft] {
+        let _ = std::fs::remove_dir_all(d);
+    }
+}
