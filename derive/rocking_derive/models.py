@@ -90,7 +90,8 @@ class Model:
     def __post_init__(self):
         basis = self.basis
         basis.check(f"model {self.name!r}")
-        if not isinstance(self.shape, tuple) and basis.functions[0].at_top() != 1:
+        # psi(1) exact, or at the working precision for a transcendental function (then 1 in f64).
+        if not isinstance(self.shape, tuple) and float(basis.functions[0].at_top()) != 1.0:
             raise ValueError(f"model {self.name!r}: psi(1) must be 1 (u is the top displacement)")
 
     @property
@@ -215,6 +216,24 @@ CANTILEVER_MODES3 = Model(
     masses=PAPER.masses,
 )
 
+#: Larger cantilever-mode bases, n = 4 .. 8 (issue 45): how many modes the base forces need.
+CARDINALS = {4: "four", 5: "five", 6: "six", 7: "seven", 8: "eight"}
+CANTILEVER_MODES1 = Model(
+    name="cantilever_modes1",
+    description="The paper's masses, one deformation coordinate: the first cantilever mode",
+    shape=cantilever_mode(1),
+    masses=PAPER.masses,
+)
+CANTILEVER_MODES = {1: CANTILEVER_MODES1, 2: CANTILEVER_MODES2, 3: CANTILEVER_MODES3}
+for _n in range(4, 9):
+    CANTILEVER_MODES[_n] = Model(
+        name=f"cantilever_modes{_n}",
+        description=f"The paper's masses, {CARDINALS[_n]} deformation coordinates: the first {CARDINALS[_n]} "
+                    "cantilever modes",
+        shape=CANTILEVER_MODES[_n - 1].shape + (cantilever_mode(_n),),
+        masses=PAPER.masses,
+    )
+
 VARIANTS = (
     Variant("full", "Full model: distributed column mass, top mass, base mass and inertia", "", PAPER),
     Variant(
@@ -268,4 +287,8 @@ VARIANTS = (
             "coordinates", "", CANTILEVER_MODES2),
     Variant("cantilever_modes3", "The full model on the first three cantilever modes: three deformation "
             "coordinates", "", CANTILEVER_MODES3),
+    Variant("cantilever_modes1", "The full model on the first cantilever mode: one deformation coordinate",
+            "", CANTILEVER_MODES1),
+    *(Variant(f"cantilever_modes{n}", f"The full model on the first {CARDINALS[n]} cantilever modes: "
+              f"{CARDINALS[n]} deformation coordinates", "", CANTILEVER_MODES[n]) for n in range(4, 9)),
 )

@@ -4,13 +4,29 @@
 //! towards them as functions are added (Rayleigh–Ritz).
 
 use rocking_kernels::kernels::{
-    CantileverModes2, CantileverModes3, Full, Polynomial2, Polynomial3,
+    CantileverModes1, CantileverModes2, CantileverModes3, CantileverModes4, CantileverModes5,
+    CantileverModes6, CantileverModes7, CantileverModes8, Full, Polynomial2, Polynomial3,
 };
 use rocking_kernels::modes::Matrices;
 use rocking_kernels::{Array, Physical, Variant};
 
-/// β_k of the clamped-free cantilever, 1 + cos β cosh β = 0 (the issue's digits).
+/// β_k of the clamped-free cantilever, 1 + cos β cosh β = 0 (the issue's digits; the higher roots
+/// come from [`tip_mass_roots`] and are checked against their asymptote (2k − 1) π / 2).
 const BETA: [f64; 3] = [1.8751040687, 4.6940911330, 7.8547574382];
+
+/// The fixed-base frequencies of `cantilever_modes1` .. `cantilever_modes8`, in order.
+fn cantilever_bases(phys: &Physical) -> Vec<Vec<f64>> {
+    vec![
+        fixed_base::<CantileverModes1>(phys),
+        fixed_base::<CantileverModes2>(phys),
+        fixed_base::<CantileverModes3>(phys),
+        fixed_base::<CantileverModes4>(phys),
+        fixed_base::<CantileverModes5>(phys),
+        fixed_base::<CantileverModes6>(phys),
+        fixed_base::<CantileverModes7>(phys),
+        fixed_base::<CantileverModes8>(phys),
+    ]
+}
 
 /// A uniform column in SI units: H = 40 m, EI = 2e11 N m², m_c = 3e5 kg, with a top mass `m`
 /// (kg) and the paper's base; no damping.
@@ -68,8 +84,103 @@ fn tip_mass_roots(r: f64, n: usize) -> Vec<f64> {
 
 #[test]
 fn the_bisection_finds_the_clamped_free_roots() {
-    for (got, want) in tip_mass_roots(0.0, 3).iter().zip(BETA) {
+    let roots = tip_mass_roots(0.0, 8);
+    for (got, want) in roots.iter().zip(BETA) {
         assert!((got - want).abs() < 1e-9, "{got} vs {want}");
+    }
+    // The higher roots approach (2k − 1) π / 2 from both sides, within e^-β.
+    for (k, got) in roots.iter().enumerate().skip(3) {
+        let asymptote = (2 * k + 1) as f64 * std::f64::consts::FRAC_PI_2;
+        assert!(
+            (got - asymptote).abs() < 2.0 * (-got).exp(),
+            "root {}: {got}",
+            k + 1
+        );
+    }
+}
+
+/// Without a top mass the first N cantilever modes are exact for N = 1 .. 8: the fixed-base
+/// frequencies of `cantilever_modesN` are β_k² √(EI / (m_c H³)), k = 1 .. N, with β_k the
+/// roots of 1 + cos β cosh β = 0 (bisection, [`tip_mass_roots`] with r = 0).
+#[test]
+fn cantilever_modes_1_to_8_give_the_euler_bernoulli_frequencies() {
+    let phys = column(0.0);
+    let beta = tip_mass_roots(0.0, 8);
+    let mut worst: f64 = 0.0;
+    for (n, omega) in cantilever_bases(&phys).iter().enumerate() {
+        assert_eq!(
+            omega.len(),
+            n + 1,
+            "cantilever_modes{} has {} modes",
+            n + 1,
+            n + 1
+        );
+        for (k, w) in omega.iter().enumerate() {
+            let exact = beta[k] * beta[k] * unit(&phys);
+            let err = (w - exact).abs() / exact;
+            worst = worst.max(err);
+            assert!(
+                err < 1e-10,
+                "cantilever_modes{}, mode {}: {w} vs Euler-Bernoulli {exact} ({err:.1e})",
+                n + 1,
+                k + 1
+            );
+        }
+    }
+    eprintln!("cantilever_modes1..8 without top mass: worst relative error {worst:.1e}");
+}
+
+/// With a top mass (m/m_c = 0.1, 0.5, 2) the cantilever modes are a Ritz basis: for N = 1 .. 8
+/// every frequency of `cantilever_modesN` is above the exact one (the roots of the tip-mass
+/// frequency equation), each basis's frequencies are at or below the smaller basis's (nested
+/// spaces), and the first frequency's excess falls with N (printed: the rate of convergence).
+#[test]
+fn cantilever_modes_1_to_8_converge_from_above_with_a_tip_mass() {
+    for ratio in [0.1, 0.5, 2.0] {
+        let phys = column(ratio * 3.0e5);
+        let exact: Vec<f64> = tip_mass_roots(ratio, 8)
+            .iter()
+            .map(|b| b * b * unit(&phys))
+            .collect();
+        let bases = cantilever_bases(&phys);
+        for (n, omega) in bases.iter().enumerate() {
+            for (k, (w, e)) in omega.iter().zip(&exact).enumerate() {
+                assert!(
+                    *w >= e * (1.0 - 1e-12),
+                    "m/m_c = {ratio}, cantilever_modes{}, mode {}: {w} below the exact {e}",
+                    n + 1,
+                    k + 1
+                );
+            }
+        }
+        for (n, pair) in bases.windows(2).enumerate() {
+            for (k, (a, b)) in pair[0].iter().zip(&pair[1]).enumerate() {
+                assert!(
+                    *b <= a * (1.0 + 1e-13),
+                    "m/m_c = {ratio}, mode {}: cantilever_modes{} gives {b} above {a} with one \
+                     function fewer",
+                    k + 1,
+                    n + 2
+                );
+            }
+        }
+        let first: Vec<f64> = bases.iter().map(|w| w[0] / exact[0] - 1.0).collect();
+        eprintln!(
+            "m/m_c = {ratio}: first frequency's relative excess, N = 1..8: {}",
+            first
+                .iter()
+                .map(|e| format!("{e:.2e}"))
+                .collect::<Vec<_>>()
+                .join(" ")
+        );
+        // The tip mass moves the modes: one cantilever mode is off by more than 1e-4; the
+        // excess falls at every N (slowly, about as N^-3: no cantilever mode has the tip mass's
+        // shear jump), eight modes by a factor above 50.
+        assert!(first[0] > 1e-4, "m/m_c = {ratio}: {first:?}");
+        assert!(first[7] < first[0] / 50.0, "m/m_c = {ratio}: {first:?}");
+        for pair in first.windows(2) {
+            assert!(pair[1] < pair[0], "m/m_c = {ratio}: {first:?}");
+        }
     }
 }
 
@@ -227,4 +338,5 @@ fn damping_ratios_given_per_mode_reach_the_kernels() {
     damping_per_mode::<CantileverModes2>(&[0.01, 0.04]);
     damping_per_mode::<Polynomial3>(&[0.02, 0.05, 0.003]);
     damping_per_mode::<CantileverModes3>(&[0.005, 0.02, 0.08]);
+    damping_per_mode::<CantileverModes8>(&[0.005, 0.01, 0.02, 0.03, 0.04, 0.05, 0.06, 0.08]);
 }

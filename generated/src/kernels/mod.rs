@@ -15,6 +15,19 @@
 )]
 pub mod added_mass;
 
+/// The full model on the first cantilever mode: one deformation coordinate
+#[rustfmt::skip]
+#[allow(
+    clippy::all,
+    clippy::pedantic,
+    clippy::nursery,
+    unused_parens,
+    unused_variables,
+    non_snake_case,
+    missing_docs,
+)]
+pub mod cantilever_modes1;
+
 /// The full model on the first two cantilever modes: two deformation coordinates
 #[rustfmt::skip]
 #[allow(
@@ -40,6 +53,71 @@ pub mod cantilever_modes2;
     missing_docs,
 )]
 pub mod cantilever_modes3;
+
+/// The full model on the first four cantilever modes: four deformation coordinates
+#[rustfmt::skip]
+#[allow(
+    clippy::all,
+    clippy::pedantic,
+    clippy::nursery,
+    unused_parens,
+    unused_variables,
+    non_snake_case,
+    missing_docs,
+)]
+pub mod cantilever_modes4;
+
+/// The full model on the first five cantilever modes: five deformation coordinates
+#[rustfmt::skip]
+#[allow(
+    clippy::all,
+    clippy::pedantic,
+    clippy::nursery,
+    unused_parens,
+    unused_variables,
+    non_snake_case,
+    missing_docs,
+)]
+pub mod cantilever_modes5;
+
+/// The full model on the first six cantilever modes: six deformation coordinates
+#[rustfmt::skip]
+#[allow(
+    clippy::all,
+    clippy::pedantic,
+    clippy::nursery,
+    unused_parens,
+    unused_variables,
+    non_snake_case,
+    missing_docs,
+)]
+pub mod cantilever_modes6;
+
+/// The full model on the first seven cantilever modes: seven deformation coordinates
+#[rustfmt::skip]
+#[allow(
+    clippy::all,
+    clippy::pedantic,
+    clippy::nursery,
+    unused_parens,
+    unused_variables,
+    non_snake_case,
+    missing_docs,
+)]
+pub mod cantilever_modes7;
+
+/// The full model on the first eight cantilever modes: eight deformation coordinates
+#[rustfmt::skip]
+#[allow(
+    clippy::all,
+    clippy::pedantic,
+    clippy::nursery,
+    unused_parens,
+    unused_variables,
+    non_snake_case,
+    missing_docs,
+)]
+pub mod cantilever_modes8;
 
 /// Example: the full model with the shape psi = 1 - cos(pi xi / 2H)
 #[rustfmt::skip]
@@ -172,8 +250,14 @@ pub mod rigid;
 pub mod small_angle;
 
 pub use added_mass::AddedMass;
+pub use cantilever_modes1::CantileverModes1;
 pub use cantilever_modes2::CantileverModes2;
 pub use cantilever_modes3::CantileverModes3;
+pub use cantilever_modes4::CantileverModes4;
+pub use cantilever_modes5::CantileverModes5;
+pub use cantilever_modes6::CantileverModes6;
+pub use cantilever_modes7::CantileverModes7;
+pub use cantilever_modes8::CantileverModes8;
 pub use cosine_shape::CosineShape;
 pub use cubic_quadratic::CubicQuadratic;
 pub use full::Full;
@@ -188,6 +272,24 @@ pub use small_angle::SmallAngle;
 /// The sizes of the kernel arrays of [`AddedMass`] (1 deformation coordinate).
 #[rustfmt::skip]
 impl crate::Layout for AddedMass {
+    const NQ: usize = 1;
+    const STRUCTURE: &'static [&'static str] = &["m_tilde", "k_tilde", "gamma_tilde", "omega_n", "damping_c", "modal_s", "omega_up", "zeta_up", "theta_cr", "u_cr", "e_ref", "r", "alpha", "p_freq", "i_bc_plate"];
+    type Q = [f64; 2];
+    type X = [f64; 4];
+    type Xc = [f64; 2];
+    type Xi = [f64; 3];
+    type MassMatrix = [f64; 3];
+    type Forcing = [f64; 2];
+    type ImpactVvel = [f64; 5];
+    type ImpactAdjex = [f64; 8];
+    type ImpactHousner = [f64; 4];
+    type Structure = [f64; 15];
+    type Shape = f64;
+    type StaticUplift = [f64; 5];
+}
+/// The sizes of the kernel arrays of [`CantileverModes1`] (1 deformation coordinate).
+#[rustfmt::skip]
+impl crate::Layout for CantileverModes1 {
     const NQ: usize = 1;
     const STRUCTURE: &'static [&'static str] = &["m_tilde", "k_tilde", "gamma_tilde", "omega_n", "damping_c", "modal_s", "omega_up", "zeta_up", "theta_cr", "u_cr", "e_ref", "r", "alpha", "p_freq", "i_bc_plate"];
     type Q = [f64; 2];
@@ -238,6 +340,96 @@ impl crate::Layout for CantileverModes3 {
     type Structure = [f64; 21];
     type Shape = [f64; 3];
     type StaticUplift = [f64; 7];
+}
+/// The sizes of the kernel arrays of [`CantileverModes4`] (4 deformation coordinates).
+#[rustfmt::skip]
+impl crate::Layout for CantileverModes4 {
+    const NQ: usize = 4;
+    const STRUCTURE: &'static [&'static str] = &["m_tilde_1_1", "m_tilde_1_2", "m_tilde_1_3", "m_tilde_1_4", "m_tilde_2_2", "m_tilde_2_3", "m_tilde_2_4", "m_tilde_3_3", "m_tilde_3_4", "m_tilde_4_4", "k_tilde_1_1", "k_tilde_1_2", "k_tilde_1_3", "k_tilde_1_4", "k_tilde_2_2", "k_tilde_2_3", "k_tilde_2_4", "k_tilde_3_3", "k_tilde_3_4", "k_tilde_4_4", "gamma_tilde_1", "gamma_tilde_2", "gamma_tilde_3", "gamma_tilde_4", "theta_cr", "e_ref", "r", "alpha", "p_freq", "i_bc_plate"];
+    type Q = [f64; 5];
+    type X = [f64; 10];
+    type Xc = [f64; 8];
+    type Xi = [f64; 9];
+    type MassMatrix = [f64; 15];
+    type Forcing = [f64; 5];
+    type ImpactVvel = [f64; 8];
+    type ImpactAdjex = [f64; 17];
+    type ImpactHousner = [f64; 7];
+    type Structure = [f64; 30];
+    type Shape = [f64; 4];
+    type StaticUplift = [f64; 8];
+}
+/// The sizes of the kernel arrays of [`CantileverModes5`] (5 deformation coordinates).
+#[rustfmt::skip]
+impl crate::Layout for CantileverModes5 {
+    const NQ: usize = 5;
+    const STRUCTURE: &'static [&'static str] = &["m_tilde_1_1", "m_tilde_1_2", "m_tilde_1_3", "m_tilde_1_4", "m_tilde_1_5", "m_tilde_2_2", "m_tilde_2_3", "m_tilde_2_4", "m_tilde_2_5", "m_tilde_3_3", "m_tilde_3_4", "m_tilde_3_5", "m_tilde_4_4", "m_tilde_4_5", "m_tilde_5_5", "k_tilde_1_1", "k_tilde_1_2", "k_tilde_1_3", "k_tilde_1_4", "k_tilde_1_5", "k_tilde_2_2", "k_tilde_2_3", "k_tilde_2_4", "k_tilde_2_5", "k_tilde_3_3", "k_tilde_3_4", "k_tilde_3_5", "k_tilde_4_4", "k_tilde_4_5", "k_tilde_5_5", "gamma_tilde_1", "gamma_tilde_2", "gamma_tilde_3", "gamma_tilde_4", "gamma_tilde_5", "theta_cr", "e_ref", "r", "alpha", "p_freq", "i_bc_plate"];
+    type Q = [f64; 6];
+    type X = [f64; 12];
+    type Xc = [f64; 10];
+    type Xi = [f64; 11];
+    type MassMatrix = [f64; 21];
+    type Forcing = [f64; 6];
+    type ImpactVvel = [f64; 9];
+    type ImpactAdjex = [f64; 20];
+    type ImpactHousner = [f64; 8];
+    type Structure = [f64; 41];
+    type Shape = [f64; 5];
+    type StaticUplift = [f64; 9];
+}
+/// The sizes of the kernel arrays of [`CantileverModes6`] (6 deformation coordinates).
+#[rustfmt::skip]
+impl crate::Layout for CantileverModes6 {
+    const NQ: usize = 6;
+    const STRUCTURE: &'static [&'static str] = &["m_tilde_1_1", "m_tilde_1_2", "m_tilde_1_3", "m_tilde_1_4", "m_tilde_1_5", "m_tilde_1_6", "m_tilde_2_2", "m_tilde_2_3", "m_tilde_2_4", "m_tilde_2_5", "m_tilde_2_6", "m_tilde_3_3", "m_tilde_3_4", "m_tilde_3_5", "m_tilde_3_6", "m_tilde_4_4", "m_tilde_4_5", "m_tilde_4_6", "m_tilde_5_5", "m_tilde_5_6", "m_tilde_6_6", "k_tilde_1_1", "k_tilde_1_2", "k_tilde_1_3", "k_tilde_1_4", "k_tilde_1_5", "k_tilde_1_6", "k_tilde_2_2", "k_tilde_2_3", "k_tilde_2_4", "k_tilde_2_5", "k_tilde_2_6", "k_tilde_3_3", "k_tilde_3_4", "k_tilde_3_5", "k_tilde_3_6", "k_tilde_4_4", "k_tilde_4_5", "k_tilde_4_6", "k_tilde_5_5", "k_tilde_5_6", "k_tilde_6_6", "gamma_tilde_1", "gamma_tilde_2", "gamma_tilde_3", "gamma_tilde_4", "gamma_tilde_5", "gamma_tilde_6", "theta_cr", "e_ref", "r", "alpha", "p_freq", "i_bc_plate"];
+    type Q = [f64; 7];
+    type X = [f64; 14];
+    type Xc = [f64; 12];
+    type Xi = [f64; 13];
+    type MassMatrix = [f64; 28];
+    type Forcing = [f64; 7];
+    type ImpactVvel = [f64; 10];
+    type ImpactAdjex = [f64; 23];
+    type ImpactHousner = [f64; 9];
+    type Structure = [f64; 54];
+    type Shape = [f64; 6];
+    type StaticUplift = [f64; 10];
+}
+/// The sizes of the kernel arrays of [`CantileverModes7`] (7 deformation coordinates).
+#[rustfmt::skip]
+impl crate::Layout for CantileverModes7 {
+    const NQ: usize = 7;
+    const STRUCTURE: &'static [&'static str] = &["m_tilde_1_1", "m_tilde_1_2", "m_tilde_1_3", "m_tilde_1_4", "m_tilde_1_5", "m_tilde_1_6", "m_tilde_1_7", "m_tilde_2_2", "m_tilde_2_3", "m_tilde_2_4", "m_tilde_2_5", "m_tilde_2_6", "m_tilde_2_7", "m_tilde_3_3", "m_tilde_3_4", "m_tilde_3_5", "m_tilde_3_6", "m_tilde_3_7", "m_tilde_4_4", "m_tilde_4_5", "m_tilde_4_6", "m_tilde_4_7", "m_tilde_5_5", "m_tilde_5_6", "m_tilde_5_7", "m_tilde_6_6", "m_tilde_6_7", "m_tilde_7_7", "k_tilde_1_1", "k_tilde_1_2", "k_tilde_1_3", "k_tilde_1_4", "k_tilde_1_5", "k_tilde_1_6", "k_tilde_1_7", "k_tilde_2_2", "k_tilde_2_3", "k_tilde_2_4", "k_tilde_2_5", "k_tilde_2_6", "k_tilde_2_7", "k_tilde_3_3", "k_tilde_3_4", "k_tilde_3_5", "k_tilde_3_6", "k_tilde_3_7", "k_tilde_4_4", "k_tilde_4_5", "k_tilde_4_6", "k_tilde_4_7", "k_tilde_5_5", "k_tilde_5_6", "k_tilde_5_7", "k_tilde_6_6", "k_tilde_6_7", "k_tilde_7_7", "gamma_tilde_1", "gamma_tilde_2", "gamma_tilde_3", "gamma_tilde_4", "gamma_tilde_5", "gamma_tilde_6", "gamma_tilde_7", "theta_cr", "e_ref", "r", "alpha", "p_freq", "i_bc_plate"];
+    type Q = [f64; 8];
+    type X = [f64; 16];
+    type Xc = [f64; 14];
+    type Xi = [f64; 15];
+    type MassMatrix = [f64; 36];
+    type Forcing = [f64; 8];
+    type ImpactVvel = [f64; 11];
+    type ImpactAdjex = [f64; 26];
+    type ImpactHousner = [f64; 10];
+    type Structure = [f64; 69];
+    type Shape = [f64; 7];
+    type StaticUplift = [f64; 11];
+}
+/// The sizes of the kernel arrays of [`CantileverModes8`] (8 deformation coordinates).
+#[rustfmt::skip]
+impl crate::Layout for CantileverModes8 {
+    const NQ: usize = 8;
+    const STRUCTURE: &'static [&'static str] = &["m_tilde_1_1", "m_tilde_1_2", "m_tilde_1_3", "m_tilde_1_4", "m_tilde_1_5", "m_tilde_1_6", "m_tilde_1_7", "m_tilde_1_8", "m_tilde_2_2", "m_tilde_2_3", "m_tilde_2_4", "m_tilde_2_5", "m_tilde_2_6", "m_tilde_2_7", "m_tilde_2_8", "m_tilde_3_3", "m_tilde_3_4", "m_tilde_3_5", "m_tilde_3_6", "m_tilde_3_7", "m_tilde_3_8", "m_tilde_4_4", "m_tilde_4_5", "m_tilde_4_6", "m_tilde_4_7", "m_tilde_4_8", "m_tilde_5_5", "m_tilde_5_6", "m_tilde_5_7", "m_tilde_5_8", "m_tilde_6_6", "m_tilde_6_7", "m_tilde_6_8", "m_tilde_7_7", "m_tilde_7_8", "m_tilde_8_8", "k_tilde_1_1", "k_tilde_1_2", "k_tilde_1_3", "k_tilde_1_4", "k_tilde_1_5", "k_tilde_1_6", "k_tilde_1_7", "k_tilde_1_8", "k_tilde_2_2", "k_tilde_2_3", "k_tilde_2_4", "k_tilde_2_5", "k_tilde_2_6", "k_tilde_2_7", "k_tilde_2_8", "k_tilde_3_3", "k_tilde_3_4", "k_tilde_3_5", "k_tilde_3_6", "k_tilde_3_7", "k_tilde_3_8", "k_tilde_4_4", "k_tilde_4_5", "k_tilde_4_6", "k_tilde_4_7", "k_tilde_4_8", "k_tilde_5_5", "k_tilde_5_6", "k_tilde_5_7", "k_tilde_5_8", "k_tilde_6_6", "k_tilde_6_7", "k_tilde_6_8", "k_tilde_7_7", "k_tilde_7_8", "k_tilde_8_8", "gamma_tilde_1", "gamma_tilde_2", "gamma_tilde_3", "gamma_tilde_4", "gamma_tilde_5", "gamma_tilde_6", "gamma_tilde_7", "gamma_tilde_8", "theta_cr", "e_ref", "r", "alpha", "p_freq", "i_bc_plate"];
+    type Q = [f64; 9];
+    type X = [f64; 18];
+    type Xc = [f64; 16];
+    type Xi = [f64; 17];
+    type MassMatrix = [f64; 45];
+    type Forcing = [f64; 9];
+    type ImpactVvel = [f64; 12];
+    type ImpactAdjex = [f64; 29];
+    type ImpactHousner = [f64; 11];
+    type Structure = [f64; 86];
+    type Shape = [f64; 8];
+    type StaticUplift = [f64; 12];
 }
 /// The sizes of the kernel arrays of [`CosineShape`] (1 deformation coordinate).
 #[rustfmt::skip]
@@ -423,8 +615,14 @@ impl crate::Layout for SmallAngle {
 /// Every variant as `(name, title)`, sorted by name.
 pub const VARIANTS: &[(&str, &str)] = &[
     (added_mass::NAME, added_mass::TITLE),
+    (cantilever_modes1::NAME, cantilever_modes1::TITLE),
     (cantilever_modes2::NAME, cantilever_modes2::TITLE),
     (cantilever_modes3::NAME, cantilever_modes3::TITLE),
+    (cantilever_modes4::NAME, cantilever_modes4::TITLE),
+    (cantilever_modes5::NAME, cantilever_modes5::TITLE),
+    (cantilever_modes6::NAME, cantilever_modes6::TITLE),
+    (cantilever_modes7::NAME, cantilever_modes7::TITLE),
+    (cantilever_modes8::NAME, cantilever_modes8::TITLE),
     (cosine_shape::NAME, cosine_shape::TITLE),
     (cubic_quadratic::NAME, cubic_quadratic::TITLE),
     (full::NAME, full::TITLE),
@@ -450,6 +648,14 @@ pub const VARIANT_INFO: &[crate::VariantInfo] = &[
         small_angle: false,
     },
     crate::VariantInfo {
+        name: "cantilever_modes1",
+        model: "cantilever_modes1",
+        title: "The full model on the first cantilever mode: one deformation coordinate",
+        removed: &[],
+        rigid: false,
+        small_angle: false,
+    },
+    crate::VariantInfo {
         name: "cantilever_modes2",
         model: "cantilever_modes2",
         title: "The full model on the first two cantilever modes: two deformation coordinates",
@@ -461,6 +667,46 @@ pub const VARIANT_INFO: &[crate::VariantInfo] = &[
         name: "cantilever_modes3",
         model: "cantilever_modes3",
         title: "The full model on the first three cantilever modes: three deformation coordinates",
+        removed: &[],
+        rigid: false,
+        small_angle: false,
+    },
+    crate::VariantInfo {
+        name: "cantilever_modes4",
+        model: "cantilever_modes4",
+        title: "The full model on the first four cantilever modes: four deformation coordinates",
+        removed: &[],
+        rigid: false,
+        small_angle: false,
+    },
+    crate::VariantInfo {
+        name: "cantilever_modes5",
+        model: "cantilever_modes5",
+        title: "The full model on the first five cantilever modes: five deformation coordinates",
+        removed: &[],
+        rigid: false,
+        small_angle: false,
+    },
+    crate::VariantInfo {
+        name: "cantilever_modes6",
+        model: "cantilever_modes6",
+        title: "The full model on the first six cantilever modes: six deformation coordinates",
+        removed: &[],
+        rigid: false,
+        small_angle: false,
+    },
+    crate::VariantInfo {
+        name: "cantilever_modes7",
+        model: "cantilever_modes7",
+        title: "The full model on the first seven cantilever modes: seven deformation coordinates",
+        removed: &[],
+        rigid: false,
+        small_angle: false,
+    },
+    crate::VariantInfo {
+        name: "cantilever_modes8",
+        model: "cantilever_modes8",
+        title: "The full model on the first eight cantilever modes: eight deformation coordinates",
         removed: &[],
         rigid: false,
         small_angle: false,
@@ -552,6 +798,70 @@ pub const VARIANT_INFO: &[crate::VariantInfo] = &[
 /// are the parameters the model adds to [`crate::Physical`]).
 #[rustfmt::skip]
 pub const MODELS: &[crate::ModelInfo] = &[
+    crate::ModelInfo {
+        name: "cantilever_modes1",
+        description: "The paper's masses, one deformation coordinate: the first cantilever mode",
+        shape: "cantilever mode 1 (beta = 1.87510406871)",
+        coordinates: 1,
+        full: "cantilever_modes1",
+        variants: &["cantilever_modes1"],
+        params: &[
+            crate::ParamInfo {
+                name: "h",
+                doc: "column height H",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "b",
+                doc: "half-width B of the base",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "ei",
+                doc: "bending stiffness EI of the column",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "m",
+                doc: "top mass m",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Lumped, removable: false },
+            },
+            crate::ParamInfo {
+                name: "m_c",
+                doc: "total column mass m_c",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Column, removable: true },
+            },
+            crate::ParamInfo {
+                name: "m_b",
+                doc: "base mass m_b",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Base, removable: true },
+            },
+            crate::ParamInfo {
+                name: "i_bc",
+                doc: "base inertia about a corner, I_bc = I_b + m_b B^2",
+                default: None,
+                role: crate::Role::InertiaOf("m_b"),
+            },
+            crate::ParamInfo {
+                name: "zeta",
+                doc: "fixed-base damping ratio",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "g",
+                doc: "gravitational acceleration",
+                default: None,
+                role: crate::Role::Other,
+            },
+        ],
+    },
     crate::ModelInfo {
         name: "cantilever_modes2",
         description: "The paper's masses, two deformation coordinates: the first two cantilever modes",
@@ -729,6 +1039,986 @@ pub const MODELS: &[crate::ModelInfo] = &[
             crate::ParamInfo {
                 name: "c_3_3",
                 doc: "modal damping matrix C, row 3, column 3 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+        ],
+    },
+    crate::ModelInfo {
+        name: "cantilever_modes4",
+        description: "The paper's masses, four deformation coordinates: the first four cantilever modes",
+        shape: "psi_1: cantilever mode 1 (beta = 1.87510406871); psi_2: cantilever mode 2 (beta = 4.69409113297); psi_3: cantilever mode 3 (beta = 7.85475743824); psi_4: cantilever mode 4 (beta = 10.9955407349)",
+        coordinates: 4,
+        full: "cantilever_modes4",
+        variants: &["cantilever_modes4"],
+        params: &[
+            crate::ParamInfo {
+                name: "h",
+                doc: "column height H",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "b",
+                doc: "half-width B of the base",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "ei",
+                doc: "bending stiffness EI of the column",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "m",
+                doc: "top mass m",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Lumped, removable: false },
+            },
+            crate::ParamInfo {
+                name: "m_c",
+                doc: "total column mass m_c",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Column, removable: true },
+            },
+            crate::ParamInfo {
+                name: "m_b",
+                doc: "base mass m_b",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Base, removable: true },
+            },
+            crate::ParamInfo {
+                name: "i_bc",
+                doc: "base inertia about a corner, I_bc = I_b + m_b B^2",
+                default: None,
+                role: crate::Role::InertiaOf("m_b"),
+            },
+            crate::ParamInfo {
+                name: "zeta",
+                doc: "fixed-base damping ratio",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "g",
+                doc: "gravitational acceleration",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "c_1_1",
+                doc: "modal damping matrix C, row 1, column 1 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_1_2",
+                doc: "modal damping matrix C, row 1, column 2 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_1_3",
+                doc: "modal damping matrix C, row 1, column 3 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_1_4",
+                doc: "modal damping matrix C, row 1, column 4 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_2_2",
+                doc: "modal damping matrix C, row 2, column 2 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_2_3",
+                doc: "modal damping matrix C, row 2, column 3 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_2_4",
+                doc: "modal damping matrix C, row 2, column 4 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_3_3",
+                doc: "modal damping matrix C, row 3, column 3 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_3_4",
+                doc: "modal damping matrix C, row 3, column 4 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_4_4",
+                doc: "modal damping matrix C, row 4, column 4 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+        ],
+    },
+    crate::ModelInfo {
+        name: "cantilever_modes5",
+        description: "The paper's masses, five deformation coordinates: the first five cantilever modes",
+        shape: "psi_1: cantilever mode 1 (beta = 1.87510406871); psi_2: cantilever mode 2 (beta = 4.69409113297); psi_3: cantilever mode 3 (beta = 7.85475743824); psi_4: cantilever mode 4 (beta = 10.9955407349); psi_5: cantilever mode 5 (beta = 14.137168391)",
+        coordinates: 5,
+        full: "cantilever_modes5",
+        variants: &["cantilever_modes5"],
+        params: &[
+            crate::ParamInfo {
+                name: "h",
+                doc: "column height H",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "b",
+                doc: "half-width B of the base",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "ei",
+                doc: "bending stiffness EI of the column",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "m",
+                doc: "top mass m",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Lumped, removable: false },
+            },
+            crate::ParamInfo {
+                name: "m_c",
+                doc: "total column mass m_c",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Column, removable: true },
+            },
+            crate::ParamInfo {
+                name: "m_b",
+                doc: "base mass m_b",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Base, removable: true },
+            },
+            crate::ParamInfo {
+                name: "i_bc",
+                doc: "base inertia about a corner, I_bc = I_b + m_b B^2",
+                default: None,
+                role: crate::Role::InertiaOf("m_b"),
+            },
+            crate::ParamInfo {
+                name: "zeta",
+                doc: "fixed-base damping ratio",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "g",
+                doc: "gravitational acceleration",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "c_1_1",
+                doc: "modal damping matrix C, row 1, column 1 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_1_2",
+                doc: "modal damping matrix C, row 1, column 2 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_1_3",
+                doc: "modal damping matrix C, row 1, column 3 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_1_4",
+                doc: "modal damping matrix C, row 1, column 4 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_1_5",
+                doc: "modal damping matrix C, row 1, column 5 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_2_2",
+                doc: "modal damping matrix C, row 2, column 2 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_2_3",
+                doc: "modal damping matrix C, row 2, column 3 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_2_4",
+                doc: "modal damping matrix C, row 2, column 4 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_2_5",
+                doc: "modal damping matrix C, row 2, column 5 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_3_3",
+                doc: "modal damping matrix C, row 3, column 3 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_3_4",
+                doc: "modal damping matrix C, row 3, column 4 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_3_5",
+                doc: "modal damping matrix C, row 3, column 5 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_4_4",
+                doc: "modal damping matrix C, row 4, column 4 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_4_5",
+                doc: "modal damping matrix C, row 4, column 5 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_5_5",
+                doc: "modal damping matrix C, row 5, column 5 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+        ],
+    },
+    crate::ModelInfo {
+        name: "cantilever_modes6",
+        description: "The paper's masses, six deformation coordinates: the first six cantilever modes",
+        shape: "psi_1: cantilever mode 1 (beta = 1.87510406871); psi_2: cantilever mode 2 (beta = 4.69409113297); psi_3: cantilever mode 3 (beta = 7.85475743824); psi_4: cantilever mode 4 (beta = 10.9955407349); psi_5: cantilever mode 5 (beta = 14.137168391); psi_6: cantilever mode 6 (beta = 17.2787595321)",
+        coordinates: 6,
+        full: "cantilever_modes6",
+        variants: &["cantilever_modes6"],
+        params: &[
+            crate::ParamInfo {
+                name: "h",
+                doc: "column height H",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "b",
+                doc: "half-width B of the base",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "ei",
+                doc: "bending stiffness EI of the column",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "m",
+                doc: "top mass m",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Lumped, removable: false },
+            },
+            crate::ParamInfo {
+                name: "m_c",
+                doc: "total column mass m_c",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Column, removable: true },
+            },
+            crate::ParamInfo {
+                name: "m_b",
+                doc: "base mass m_b",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Base, removable: true },
+            },
+            crate::ParamInfo {
+                name: "i_bc",
+                doc: "base inertia about a corner, I_bc = I_b + m_b B^2",
+                default: None,
+                role: crate::Role::InertiaOf("m_b"),
+            },
+            crate::ParamInfo {
+                name: "zeta",
+                doc: "fixed-base damping ratio",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "g",
+                doc: "gravitational acceleration",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "c_1_1",
+                doc: "modal damping matrix C, row 1, column 1 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_1_2",
+                doc: "modal damping matrix C, row 1, column 2 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_1_3",
+                doc: "modal damping matrix C, row 1, column 3 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_1_4",
+                doc: "modal damping matrix C, row 1, column 4 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_1_5",
+                doc: "modal damping matrix C, row 1, column 5 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_1_6",
+                doc: "modal damping matrix C, row 1, column 6 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_2_2",
+                doc: "modal damping matrix C, row 2, column 2 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_2_3",
+                doc: "modal damping matrix C, row 2, column 3 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_2_4",
+                doc: "modal damping matrix C, row 2, column 4 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_2_5",
+                doc: "modal damping matrix C, row 2, column 5 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_2_6",
+                doc: "modal damping matrix C, row 2, column 6 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_3_3",
+                doc: "modal damping matrix C, row 3, column 3 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_3_4",
+                doc: "modal damping matrix C, row 3, column 4 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_3_5",
+                doc: "modal damping matrix C, row 3, column 5 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_3_6",
+                doc: "modal damping matrix C, row 3, column 6 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_4_4",
+                doc: "modal damping matrix C, row 4, column 4 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_4_5",
+                doc: "modal damping matrix C, row 4, column 5 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_4_6",
+                doc: "modal damping matrix C, row 4, column 6 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_5_5",
+                doc: "modal damping matrix C, row 5, column 5 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_5_6",
+                doc: "modal damping matrix C, row 5, column 6 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_6_6",
+                doc: "modal damping matrix C, row 6, column 6 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+        ],
+    },
+    crate::ModelInfo {
+        name: "cantilever_modes7",
+        description: "The paper's masses, seven deformation coordinates: the first seven cantilever modes",
+        shape: "psi_1: cantilever mode 1 (beta = 1.87510406871); psi_2: cantilever mode 2 (beta = 4.69409113297); psi_3: cantilever mode 3 (beta = 7.85475743824); psi_4: cantilever mode 4 (beta = 10.9955407349); psi_5: cantilever mode 5 (beta = 14.137168391); psi_6: cantilever mode 6 (beta = 17.2787595321); psi_7: cantilever mode 7 (beta = 20.420352251)",
+        coordinates: 7,
+        full: "cantilever_modes7",
+        variants: &["cantilever_modes7"],
+        params: &[
+            crate::ParamInfo {
+                name: "h",
+                doc: "column height H",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "b",
+                doc: "half-width B of the base",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "ei",
+                doc: "bending stiffness EI of the column",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "m",
+                doc: "top mass m",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Lumped, removable: false },
+            },
+            crate::ParamInfo {
+                name: "m_c",
+                doc: "total column mass m_c",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Column, removable: true },
+            },
+            crate::ParamInfo {
+                name: "m_b",
+                doc: "base mass m_b",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Base, removable: true },
+            },
+            crate::ParamInfo {
+                name: "i_bc",
+                doc: "base inertia about a corner, I_bc = I_b + m_b B^2",
+                default: None,
+                role: crate::Role::InertiaOf("m_b"),
+            },
+            crate::ParamInfo {
+                name: "zeta",
+                doc: "fixed-base damping ratio",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "g",
+                doc: "gravitational acceleration",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "c_1_1",
+                doc: "modal damping matrix C, row 1, column 1 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_1_2",
+                doc: "modal damping matrix C, row 1, column 2 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_1_3",
+                doc: "modal damping matrix C, row 1, column 3 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_1_4",
+                doc: "modal damping matrix C, row 1, column 4 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_1_5",
+                doc: "modal damping matrix C, row 1, column 5 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_1_6",
+                doc: "modal damping matrix C, row 1, column 6 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_1_7",
+                doc: "modal damping matrix C, row 1, column 7 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_2_2",
+                doc: "modal damping matrix C, row 2, column 2 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_2_3",
+                doc: "modal damping matrix C, row 2, column 3 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_2_4",
+                doc: "modal damping matrix C, row 2, column 4 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_2_5",
+                doc: "modal damping matrix C, row 2, column 5 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_2_6",
+                doc: "modal damping matrix C, row 2, column 6 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_2_7",
+                doc: "modal damping matrix C, row 2, column 7 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_3_3",
+                doc: "modal damping matrix C, row 3, column 3 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_3_4",
+                doc: "modal damping matrix C, row 3, column 4 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_3_5",
+                doc: "modal damping matrix C, row 3, column 5 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_3_6",
+                doc: "modal damping matrix C, row 3, column 6 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_3_7",
+                doc: "modal damping matrix C, row 3, column 7 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_4_4",
+                doc: "modal damping matrix C, row 4, column 4 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_4_5",
+                doc: "modal damping matrix C, row 4, column 5 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_4_6",
+                doc: "modal damping matrix C, row 4, column 6 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_4_7",
+                doc: "modal damping matrix C, row 4, column 7 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_5_5",
+                doc: "modal damping matrix C, row 5, column 5 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_5_6",
+                doc: "modal damping matrix C, row 5, column 6 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_5_7",
+                doc: "modal damping matrix C, row 5, column 7 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_6_6",
+                doc: "modal damping matrix C, row 6, column 6 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_6_7",
+                doc: "modal damping matrix C, row 6, column 7 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_7_7",
+                doc: "modal damping matrix C, row 7, column 7 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+        ],
+    },
+    crate::ModelInfo {
+        name: "cantilever_modes8",
+        description: "The paper's masses, eight deformation coordinates: the first eight cantilever modes",
+        shape: "psi_1: cantilever mode 1 (beta = 1.87510406871); psi_2: cantilever mode 2 (beta = 4.69409113297); psi_3: cantilever mode 3 (beta = 7.85475743824); psi_4: cantilever mode 4 (beta = 10.9955407349); psi_5: cantilever mode 5 (beta = 14.137168391); psi_6: cantilever mode 6 (beta = 17.2787595321); psi_7: cantilever mode 7 (beta = 20.420352251); psi_8: cantilever mode 8 (beta = 23.5619449018)",
+        coordinates: 8,
+        full: "cantilever_modes8",
+        variants: &["cantilever_modes8"],
+        params: &[
+            crate::ParamInfo {
+                name: "h",
+                doc: "column height H",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "b",
+                doc: "half-width B of the base",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "ei",
+                doc: "bending stiffness EI of the column",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "m",
+                doc: "top mass m",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Lumped, removable: false },
+            },
+            crate::ParamInfo {
+                name: "m_c",
+                doc: "total column mass m_c",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Column, removable: true },
+            },
+            crate::ParamInfo {
+                name: "m_b",
+                doc: "base mass m_b",
+                default: None,
+                role: crate::Role::Mass { kind: crate::MassKind::Base, removable: true },
+            },
+            crate::ParamInfo {
+                name: "i_bc",
+                doc: "base inertia about a corner, I_bc = I_b + m_b B^2",
+                default: None,
+                role: crate::Role::InertiaOf("m_b"),
+            },
+            crate::ParamInfo {
+                name: "zeta",
+                doc: "fixed-base damping ratio",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "g",
+                doc: "gravitational acceleration",
+                default: None,
+                role: crate::Role::Other,
+            },
+            crate::ParamInfo {
+                name: "c_1_1",
+                doc: "modal damping matrix C, row 1, column 1 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_1_2",
+                doc: "modal damping matrix C, row 1, column 2 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_1_3",
+                doc: "modal damping matrix C, row 1, column 3 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_1_4",
+                doc: "modal damping matrix C, row 1, column 4 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_1_5",
+                doc: "modal damping matrix C, row 1, column 5 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_1_6",
+                doc: "modal damping matrix C, row 1, column 6 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_1_7",
+                doc: "modal damping matrix C, row 1, column 7 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_1_8",
+                doc: "modal damping matrix C, row 1, column 8 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_2_2",
+                doc: "modal damping matrix C, row 2, column 2 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_2_3",
+                doc: "modal damping matrix C, row 2, column 3 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_2_4",
+                doc: "modal damping matrix C, row 2, column 4 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_2_5",
+                doc: "modal damping matrix C, row 2, column 5 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_2_6",
+                doc: "modal damping matrix C, row 2, column 6 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_2_7",
+                doc: "modal damping matrix C, row 2, column 7 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_2_8",
+                doc: "modal damping matrix C, row 2, column 8 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_3_3",
+                doc: "modal damping matrix C, row 3, column 3 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_3_4",
+                doc: "modal damping matrix C, row 3, column 4 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_3_5",
+                doc: "modal damping matrix C, row 3, column 5 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_3_6",
+                doc: "modal damping matrix C, row 3, column 6 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_3_7",
+                doc: "modal damping matrix C, row 3, column 7 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_3_8",
+                doc: "modal damping matrix C, row 3, column 8 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_4_4",
+                doc: "modal damping matrix C, row 4, column 4 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_4_5",
+                doc: "modal damping matrix C, row 4, column 5 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_4_6",
+                doc: "modal damping matrix C, row 4, column 6 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_4_7",
+                doc: "modal damping matrix C, row 4, column 7 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_4_8",
+                doc: "modal damping matrix C, row 4, column 8 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_5_5",
+                doc: "modal damping matrix C, row 5, column 5 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_5_6",
+                doc: "modal damping matrix C, row 5, column 6 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_5_7",
+                doc: "modal damping matrix C, row 5, column 7 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_5_8",
+                doc: "modal damping matrix C, row 5, column 8 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_6_6",
+                doc: "modal damping matrix C, row 6, column 6 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_6_7",
+                doc: "modal damping matrix C, row 6, column 7 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_6_8",
+                doc: "modal damping matrix C, row 6, column 8 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_7_7",
+                doc: "modal damping matrix C, row 7, column 7 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_7_8",
+                doc: "modal damping matrix C, row 7, column 8 (from zeta and the fixed-base modes)",
+                default: None,
+                role: crate::Role::ModalDamping,
+            },
+            crate::ParamInfo {
+                name: "c_8_8",
+                doc: "modal damping matrix C, row 8, column 8 (from zeta and the fixed-base modes)",
                 default: None,
                 role: crate::Role::ModalDamping,
             },
@@ -1205,7 +2495,7 @@ pub const MODELS: &[crate::ModelInfo] = &[
 ];
 
 /// The length of the longest parameter vector of any model.
-pub const MAX_PARAMS: usize = 15;
+pub const MAX_PARAMS: usize = 45;
 
 /// Named indices of the inputs and outputs of the functions every variant of one deformation
 /// coordinate exports alike, for code that is generic over [`crate::OneCoordinate`] (the
@@ -2514,6 +3804,4191 @@ pub mod layout {
             }
         }
     }
+
+    /// 4 deformation coordinates.
+    pub mod nq4 {
+        /// The number of deformation coordinates.
+        pub const NQ: usize = 4;
+        /// The length of [`crate::Layout::Q`].
+        pub const Q: usize = 5;
+        /// The length of [`crate::Layout::X`].
+        pub const X: usize = 10;
+        /// The length of [`crate::Layout::Xc`].
+        pub const XC: usize = 8;
+        /// The length of [`crate::Layout::Xi`].
+        pub const XI: usize = 9;
+        /// The length of [`crate::Layout::MassMatrix`].
+        pub const MASS_MATRIX: usize = 15;
+        /// The length of [`crate::Layout::Forcing`].
+        pub const FORCING: usize = 5;
+        /// The length of [`crate::Layout::ImpactVvel`].
+        pub const IMPACT_VVEL: usize = 8;
+        /// The length of [`crate::Layout::ImpactAdjex`].
+        pub const IMPACT_ADJEX: usize = 17;
+        /// The length of [`crate::Layout::ImpactHousner`].
+        pub const IMPACT_HOUSNER: usize = 7;
+        /// The length of [`crate::Layout::Structure`].
+        pub const STRUCTURE: usize = 30;
+        /// The length of [`crate::Layout::Shape`].
+        pub const SHAPE: usize = 4;
+        /// The length of [`crate::Layout::StaticUplift`].
+        pub const STATIC_UPLIFT: usize = 8;
+
+        /// Named indices of the inputs and outputs of the functions every variant of 4
+        /// coordinates exports alike.
+        pub mod index {
+
+            /// Indices of the output `m` of `mass_matrix` (and of its inputs).
+            pub mod mass_matrix {
+                /// Index of `m_tt`.
+                pub const M_TT: usize = 0;
+                /// Index of `m_tu_1`.
+                pub const M_TU_1: usize = 1;
+                /// Index of `m_tu_2`.
+                pub const M_TU_2: usize = 2;
+                /// Index of `m_tu_3`.
+                pub const M_TU_3: usize = 3;
+                /// Index of `m_tu_4`.
+                pub const M_TU_4: usize = 4;
+                /// Index of `m_uu_1_1`.
+                pub const M_UU_1_1: usize = 5;
+                /// Index of `m_uu_1_2`.
+                pub const M_UU_1_2: usize = 6;
+                /// Index of `m_uu_1_3`.
+                pub const M_UU_1_3: usize = 7;
+                /// Index of `m_uu_1_4`.
+                pub const M_UU_1_4: usize = 8;
+                /// Index of `m_uu_2_2`.
+                pub const M_UU_2_2: usize = 9;
+                /// Index of `m_uu_2_3`.
+                pub const M_UU_2_3: usize = 10;
+                /// Index of `m_uu_2_4`.
+                pub const M_UU_2_4: usize = 11;
+                /// Index of `m_uu_3_3`.
+                pub const M_UU_3_3: usize = 12;
+                /// Index of `m_uu_3_4`.
+                pub const M_UU_3_4: usize = 13;
+                /// Index of `m_uu_4_4`.
+                pub const M_UU_4_4: usize = 14;
+
+                /// Indices of the elements of input `q`.
+                pub mod q {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                }
+            }
+
+            /// Indices of the output `f` of `forcing` (and of its inputs).
+            pub mod forcing {
+                /// Index of `f_theta`.
+                pub const F_THETA: usize = 0;
+                /// Index of `f_u_1`.
+                pub const F_U_1: usize = 1;
+                /// Index of `f_u_2`.
+                pub const F_U_2: usize = 2;
+                /// Index of `f_u_3`.
+                pub const F_U_3: usize = 3;
+                /// Index of `f_u_4`.
+                pub const F_U_4: usize = 4;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 5;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 6;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 7;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 8;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 9;
+                }
+            }
+
+            /// Indices of the output `dx` of `rocking_rhs` (and of its inputs).
+            pub mod rocking_rhs {
+                /// Index of `theta_dot`.
+                pub const THETA_DOT: usize = 0;
+                /// Index of `u_dot_1`.
+                pub const U_DOT_1: usize = 1;
+                /// Index of `u_dot_2`.
+                pub const U_DOT_2: usize = 2;
+                /// Index of `u_dot_3`.
+                pub const U_DOT_3: usize = 3;
+                /// Index of `u_dot_4`.
+                pub const U_DOT_4: usize = 4;
+                /// Index of `theta_ddot`.
+                pub const THETA_DDOT: usize = 5;
+                /// Index of `u_ddot_1`.
+                pub const U_DDOT_1: usize = 6;
+                /// Index of `u_ddot_2`.
+                pub const U_DDOT_2: usize = 7;
+                /// Index of `u_ddot_3`.
+                pub const U_DDOT_3: usize = 8;
+                /// Index of `u_ddot_4`.
+                pub const U_DDOT_4: usize = 9;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 5;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 6;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 7;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 8;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 9;
+                }
+            }
+
+            /// Indices of the output `dxc` of `contact_rhs` (and of its inputs).
+            pub mod contact_rhs {
+                /// Index of `u_dot_1`.
+                pub const U_DOT_1: usize = 0;
+                /// Index of `u_dot_2`.
+                pub const U_DOT_2: usize = 1;
+                /// Index of `u_dot_3`.
+                pub const U_DOT_3: usize = 2;
+                /// Index of `u_dot_4`.
+                pub const U_DOT_4: usize = 3;
+                /// Index of `u_ddot_1`.
+                pub const U_DDOT_1: usize = 4;
+                /// Index of `u_ddot_2`.
+                pub const U_DDOT_2: usize = 5;
+                /// Index of `u_ddot_3`.
+                pub const U_DDOT_3: usize = 6;
+                /// Index of `u_ddot_4`.
+                pub const U_DDOT_4: usize = 7;
+
+                /// Indices of the elements of input `xc`.
+                pub mod xc {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 3;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 4;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 5;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 6;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 7;
+                }
+            }
+
+            /// Indices of the output `f_s` of `uplift` (and of its inputs).
+            pub mod uplift {
+                /// Index of `f_s`.
+                pub const F_S: usize = 0;
+
+                /// Indices of the elements of input `xc`.
+                pub mod xc {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 3;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 4;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 5;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 6;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 7;
+                }
+            }
+
+            /// Indices of the output `e` of `energy` (and of its inputs).
+            pub mod energy {
+                /// Index of `kinetic`.
+                pub const KINETIC: usize = 0;
+                /// Index of `gravity`.
+                pub const GRAVITY: usize = 1;
+                /// Index of `strain`.
+                pub const STRAIN: usize = 2;
+                /// Index of `momentum_x`.
+                pub const MOMENTUM_X: usize = 3;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 5;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 6;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 7;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 8;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 9;
+                }
+            }
+
+            /// Indices of the output `w` of `power` (and of its inputs).
+            pub mod power {
+                /// Index of `ground`.
+                pub const GROUND: usize = 0;
+                /// Index of `damping`.
+                pub const DAMPING: usize = 1;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 5;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 6;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 7;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 8;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 9;
+                }
+            }
+
+            /// Indices of the output `vvel` of `impact_vvel` (and of its inputs).
+            pub mod impact_vvel {
+                /// Index of `rock`.
+                pub const ROCK: usize = 0;
+                /// Index of `theta_dot`.
+                pub const THETA_DOT: usize = 1;
+                /// Index of `u_dot_1`.
+                pub const U_DOT_1: usize = 2;
+                /// Index of `u_dot_2`.
+                pub const U_DOT_2: usize = 3;
+                /// Index of `u_dot_3`.
+                pub const U_DOT_3: usize = 4;
+                /// Index of `u_dot_4`.
+                pub const U_DOT_4: usize = 5;
+                /// Index of `energy_after`.
+                pub const ENERGY_AFTER: usize = 6;
+                /// Index of `energy_before`.
+                pub const ENERGY_BEFORE: usize = 7;
+
+                /// Indices of the elements of input `xi`.
+                pub mod xi {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 3;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 4;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 5;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 6;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 7;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 8;
+                }
+            }
+
+            /// Indices of the output `adjex` of `impact_adjex` (and of its inputs).
+            pub mod impact_adjex {
+                /// Index of `u_dot_contact_1`.
+                pub const U_DOT_CONTACT_1: usize = 0;
+                /// Index of `u_dot_contact_2`.
+                pub const U_DOT_CONTACT_2: usize = 1;
+                /// Index of `u_dot_contact_3`.
+                pub const U_DOT_CONTACT_3: usize = 2;
+                /// Index of `u_dot_contact_4`.
+                pub const U_DOT_CONTACT_4: usize = 3;
+                /// Index of `energy_contact`.
+                pub const ENERGY_CONTACT: usize = 4;
+                /// Index of `theta_dot_rocking`.
+                pub const THETA_DOT_ROCKING: usize = 5;
+                /// Index of `u_dot_rocking_1`.
+                pub const U_DOT_ROCKING_1: usize = 6;
+                /// Index of `u_dot_rocking_2`.
+                pub const U_DOT_ROCKING_2: usize = 7;
+                /// Index of `u_dot_rocking_3`.
+                pub const U_DOT_ROCKING_3: usize = 8;
+                /// Index of `u_dot_rocking_4`.
+                pub const U_DOT_ROCKING_4: usize = 9;
+                /// Index of `energy_rocking`.
+                pub const ENERGY_ROCKING: usize = 10;
+                /// Index of `energy_before`.
+                pub const ENERGY_BEFORE: usize = 11;
+                /// Index of `u_dot_momentum_1`.
+                pub const U_DOT_MOMENTUM_1: usize = 12;
+                /// Index of `u_dot_momentum_2`.
+                pub const U_DOT_MOMENTUM_2: usize = 13;
+                /// Index of `u_dot_momentum_3`.
+                pub const U_DOT_MOMENTUM_3: usize = 14;
+                /// Index of `u_dot_momentum_4`.
+                pub const U_DOT_MOMENTUM_4: usize = 15;
+                /// Index of `energy_momentum`.
+                pub const ENERGY_MOMENTUM: usize = 16;
+
+                /// Indices of the elements of input `xi`.
+                pub mod xi {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 3;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 4;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 5;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 6;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 7;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 8;
+                }
+            }
+
+            /// Indices of the output `housner` of `impact_housner` (and of its inputs).
+            pub mod impact_housner {
+                /// Index of `theta_dot`.
+                pub const THETA_DOT: usize = 0;
+                /// Index of `u_dot_1`.
+                pub const U_DOT_1: usize = 1;
+                /// Index of `u_dot_2`.
+                pub const U_DOT_2: usize = 2;
+                /// Index of `u_dot_3`.
+                pub const U_DOT_3: usize = 3;
+                /// Index of `u_dot_4`.
+                pub const U_DOT_4: usize = 4;
+                /// Index of `energy_after`.
+                pub const ENERGY_AFTER: usize = 5;
+                /// Index of `energy_before`.
+                pub const ENERGY_BEFORE: usize = 6;
+
+                /// Indices of the elements of input `xi`.
+                pub mod xi {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 3;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 4;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 5;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 6;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 7;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 8;
+                }
+            }
+
+            /// Indices of the output `st` of `structure` (and of its inputs).
+            pub mod structure {
+                /// Index of `m_tilde_1_1`.
+                pub const M_TILDE_1_1: usize = 0;
+                /// Index of `m_tilde_1_2`.
+                pub const M_TILDE_1_2: usize = 1;
+                /// Index of `m_tilde_1_3`.
+                pub const M_TILDE_1_3: usize = 2;
+                /// Index of `m_tilde_1_4`.
+                pub const M_TILDE_1_4: usize = 3;
+                /// Index of `m_tilde_2_2`.
+                pub const M_TILDE_2_2: usize = 4;
+                /// Index of `m_tilde_2_3`.
+                pub const M_TILDE_2_3: usize = 5;
+                /// Index of `m_tilde_2_4`.
+                pub const M_TILDE_2_4: usize = 6;
+                /// Index of `m_tilde_3_3`.
+                pub const M_TILDE_3_3: usize = 7;
+                /// Index of `m_tilde_3_4`.
+                pub const M_TILDE_3_4: usize = 8;
+                /// Index of `m_tilde_4_4`.
+                pub const M_TILDE_4_4: usize = 9;
+                /// Index of `k_tilde_1_1`.
+                pub const K_TILDE_1_1: usize = 10;
+                /// Index of `k_tilde_1_2`.
+                pub const K_TILDE_1_2: usize = 11;
+                /// Index of `k_tilde_1_3`.
+                pub const K_TILDE_1_3: usize = 12;
+                /// Index of `k_tilde_1_4`.
+                pub const K_TILDE_1_4: usize = 13;
+                /// Index of `k_tilde_2_2`.
+                pub const K_TILDE_2_2: usize = 14;
+                /// Index of `k_tilde_2_3`.
+                pub const K_TILDE_2_3: usize = 15;
+                /// Index of `k_tilde_2_4`.
+                pub const K_TILDE_2_4: usize = 16;
+                /// Index of `k_tilde_3_3`.
+                pub const K_TILDE_3_3: usize = 17;
+                /// Index of `k_tilde_3_4`.
+                pub const K_TILDE_3_4: usize = 18;
+                /// Index of `k_tilde_4_4`.
+                pub const K_TILDE_4_4: usize = 19;
+                /// Index of `gamma_tilde_1`.
+                pub const GAMMA_TILDE_1: usize = 20;
+                /// Index of `gamma_tilde_2`.
+                pub const GAMMA_TILDE_2: usize = 21;
+                /// Index of `gamma_tilde_3`.
+                pub const GAMMA_TILDE_3: usize = 22;
+                /// Index of `gamma_tilde_4`.
+                pub const GAMMA_TILDE_4: usize = 23;
+                /// Index of `theta_cr`.
+                pub const THETA_CR: usize = 24;
+                /// Index of `e_ref`.
+                pub const E_REF: usize = 25;
+                /// Index of `r`.
+                pub const R: usize = 26;
+                /// Index of `alpha`.
+                pub const ALPHA: usize = 27;
+                /// Index of `p_freq`.
+                pub const P_FREQ: usize = 28;
+                /// Index of `i_bc_plate`.
+                pub const I_BC_PLATE: usize = 29;
+            }
+
+            /// Indices of the output `psi` of `shape` (and of its inputs).
+            pub mod shape {
+                /// Index of `psi_1`.
+                pub const PSI_1: usize = 0;
+                /// Index of `psi_2`.
+                pub const PSI_2: usize = 1;
+                /// Index of `psi_3`.
+                pub const PSI_3: usize = 2;
+                /// Index of `psi_4`.
+                pub const PSI_4: usize = 3;
+            }
+
+            /// Indices of the output `fc` of `forces_contact` (and of its inputs).
+            pub mod forces_contact {
+                /// Index of `moment`.
+                pub const MOMENT: usize = 0;
+                /// Index of `shear`.
+                pub const SHEAR: usize = 1;
+                /// Index of `axial`.
+                pub const AXIAL: usize = 2;
+                /// Index of `moment_elastic`.
+                pub const MOMENT_ELASTIC: usize = 3;
+                /// Index of `reaction_h`.
+                pub const REACTION_H: usize = 4;
+                /// Index of `reaction_v`.
+                pub const REACTION_V: usize = 5;
+
+                /// Indices of the elements of input `xc`.
+                pub mod xc {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 3;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 4;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 5;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 6;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 7;
+                }
+            }
+
+            /// Indices of the output `fr` of `forces_rocking` (and of its inputs).
+            pub mod forces_rocking {
+                /// Index of `moment`.
+                pub const MOMENT: usize = 0;
+                /// Index of `shear`.
+                pub const SHEAR: usize = 1;
+                /// Index of `axial`.
+                pub const AXIAL: usize = 2;
+                /// Index of `moment_elastic`.
+                pub const MOMENT_ELASTIC: usize = 3;
+                /// Index of `reaction_h`.
+                pub const REACTION_H: usize = 4;
+                /// Index of `reaction_v`.
+                pub const REACTION_V: usize = 5;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 5;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 6;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 7;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 8;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 9;
+                }
+            }
+
+            /// Indices of the output `up` of `static_uplift` (and of its inputs).
+            pub mod static_uplift {
+                /// Index of `weight`.
+                pub const WEIGHT: usize = 0;
+                /// Index of `moment_uplift`.
+                pub const MOMENT_UPLIFT: usize = 1;
+                /// Index of `ug_uplift`.
+                pub const UG_UPLIFT: usize = 2;
+                /// Index of `u_uplift_1`.
+                pub const U_UPLIFT_1: usize = 3;
+                /// Index of `u_uplift_2`.
+                pub const U_UPLIFT_2: usize = 4;
+                /// Index of `u_uplift_3`.
+                pub const U_UPLIFT_3: usize = 5;
+                /// Index of `u_uplift_4`.
+                pub const U_UPLIFT_4: usize = 6;
+                /// Index of `moment_elastic_uplift`.
+                pub const MOMENT_ELASTIC_UPLIFT: usize = 7;
+            }
+        }
+    }
+
+    /// 5 deformation coordinates.
+    pub mod nq5 {
+        /// The number of deformation coordinates.
+        pub const NQ: usize = 5;
+        /// The length of [`crate::Layout::Q`].
+        pub const Q: usize = 6;
+        /// The length of [`crate::Layout::X`].
+        pub const X: usize = 12;
+        /// The length of [`crate::Layout::Xc`].
+        pub const XC: usize = 10;
+        /// The length of [`crate::Layout::Xi`].
+        pub const XI: usize = 11;
+        /// The length of [`crate::Layout::MassMatrix`].
+        pub const MASS_MATRIX: usize = 21;
+        /// The length of [`crate::Layout::Forcing`].
+        pub const FORCING: usize = 6;
+        /// The length of [`crate::Layout::ImpactVvel`].
+        pub const IMPACT_VVEL: usize = 9;
+        /// The length of [`crate::Layout::ImpactAdjex`].
+        pub const IMPACT_ADJEX: usize = 20;
+        /// The length of [`crate::Layout::ImpactHousner`].
+        pub const IMPACT_HOUSNER: usize = 8;
+        /// The length of [`crate::Layout::Structure`].
+        pub const STRUCTURE: usize = 41;
+        /// The length of [`crate::Layout::Shape`].
+        pub const SHAPE: usize = 5;
+        /// The length of [`crate::Layout::StaticUplift`].
+        pub const STATIC_UPLIFT: usize = 9;
+
+        /// Named indices of the inputs and outputs of the functions every variant of 5
+        /// coordinates exports alike.
+        pub mod index {
+
+            /// Indices of the output `m` of `mass_matrix` (and of its inputs).
+            pub mod mass_matrix {
+                /// Index of `m_tt`.
+                pub const M_TT: usize = 0;
+                /// Index of `m_tu_1`.
+                pub const M_TU_1: usize = 1;
+                /// Index of `m_tu_2`.
+                pub const M_TU_2: usize = 2;
+                /// Index of `m_tu_3`.
+                pub const M_TU_3: usize = 3;
+                /// Index of `m_tu_4`.
+                pub const M_TU_4: usize = 4;
+                /// Index of `m_tu_5`.
+                pub const M_TU_5: usize = 5;
+                /// Index of `m_uu_1_1`.
+                pub const M_UU_1_1: usize = 6;
+                /// Index of `m_uu_1_2`.
+                pub const M_UU_1_2: usize = 7;
+                /// Index of `m_uu_1_3`.
+                pub const M_UU_1_3: usize = 8;
+                /// Index of `m_uu_1_4`.
+                pub const M_UU_1_4: usize = 9;
+                /// Index of `m_uu_1_5`.
+                pub const M_UU_1_5: usize = 10;
+                /// Index of `m_uu_2_2`.
+                pub const M_UU_2_2: usize = 11;
+                /// Index of `m_uu_2_3`.
+                pub const M_UU_2_3: usize = 12;
+                /// Index of `m_uu_2_4`.
+                pub const M_UU_2_4: usize = 13;
+                /// Index of `m_uu_2_5`.
+                pub const M_UU_2_5: usize = 14;
+                /// Index of `m_uu_3_3`.
+                pub const M_UU_3_3: usize = 15;
+                /// Index of `m_uu_3_4`.
+                pub const M_UU_3_4: usize = 16;
+                /// Index of `m_uu_3_5`.
+                pub const M_UU_3_5: usize = 17;
+                /// Index of `m_uu_4_4`.
+                pub const M_UU_4_4: usize = 18;
+                /// Index of `m_uu_4_5`.
+                pub const M_UU_4_5: usize = 19;
+                /// Index of `m_uu_5_5`.
+                pub const M_UU_5_5: usize = 20;
+
+                /// Indices of the elements of input `q`.
+                pub mod q {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 5;
+                }
+            }
+
+            /// Indices of the output `f` of `forcing` (and of its inputs).
+            pub mod forcing {
+                /// Index of `f_theta`.
+                pub const F_THETA: usize = 0;
+                /// Index of `f_u_1`.
+                pub const F_U_1: usize = 1;
+                /// Index of `f_u_2`.
+                pub const F_U_2: usize = 2;
+                /// Index of `f_u_3`.
+                pub const F_U_3: usize = 3;
+                /// Index of `f_u_4`.
+                pub const F_U_4: usize = 4;
+                /// Index of `f_u_5`.
+                pub const F_U_5: usize = 5;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 5;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 6;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 7;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 8;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 9;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 10;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 11;
+                }
+            }
+
+            /// Indices of the output `dx` of `rocking_rhs` (and of its inputs).
+            pub mod rocking_rhs {
+                /// Index of `theta_dot`.
+                pub const THETA_DOT: usize = 0;
+                /// Index of `u_dot_1`.
+                pub const U_DOT_1: usize = 1;
+                /// Index of `u_dot_2`.
+                pub const U_DOT_2: usize = 2;
+                /// Index of `u_dot_3`.
+                pub const U_DOT_3: usize = 3;
+                /// Index of `u_dot_4`.
+                pub const U_DOT_4: usize = 4;
+                /// Index of `u_dot_5`.
+                pub const U_DOT_5: usize = 5;
+                /// Index of `theta_ddot`.
+                pub const THETA_DDOT: usize = 6;
+                /// Index of `u_ddot_1`.
+                pub const U_DDOT_1: usize = 7;
+                /// Index of `u_ddot_2`.
+                pub const U_DDOT_2: usize = 8;
+                /// Index of `u_ddot_3`.
+                pub const U_DDOT_3: usize = 9;
+                /// Index of `u_ddot_4`.
+                pub const U_DDOT_4: usize = 10;
+                /// Index of `u_ddot_5`.
+                pub const U_DDOT_5: usize = 11;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 5;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 6;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 7;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 8;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 9;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 10;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 11;
+                }
+            }
+
+            /// Indices of the output `dxc` of `contact_rhs` (and of its inputs).
+            pub mod contact_rhs {
+                /// Index of `u_dot_1`.
+                pub const U_DOT_1: usize = 0;
+                /// Index of `u_dot_2`.
+                pub const U_DOT_2: usize = 1;
+                /// Index of `u_dot_3`.
+                pub const U_DOT_3: usize = 2;
+                /// Index of `u_dot_4`.
+                pub const U_DOT_4: usize = 3;
+                /// Index of `u_dot_5`.
+                pub const U_DOT_5: usize = 4;
+                /// Index of `u_ddot_1`.
+                pub const U_DDOT_1: usize = 5;
+                /// Index of `u_ddot_2`.
+                pub const U_DDOT_2: usize = 6;
+                /// Index of `u_ddot_3`.
+                pub const U_DDOT_3: usize = 7;
+                /// Index of `u_ddot_4`.
+                pub const U_DDOT_4: usize = 8;
+                /// Index of `u_ddot_5`.
+                pub const U_DDOT_5: usize = 9;
+
+                /// Indices of the elements of input `xc`.
+                pub mod xc {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 3;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 4;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 5;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 6;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 7;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 8;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 9;
+                }
+            }
+
+            /// Indices of the output `f_s` of `uplift` (and of its inputs).
+            pub mod uplift {
+                /// Index of `f_s`.
+                pub const F_S: usize = 0;
+
+                /// Indices of the elements of input `xc`.
+                pub mod xc {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 3;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 4;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 5;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 6;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 7;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 8;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 9;
+                }
+            }
+
+            /// Indices of the output `e` of `energy` (and of its inputs).
+            pub mod energy {
+                /// Index of `kinetic`.
+                pub const KINETIC: usize = 0;
+                /// Index of `gravity`.
+                pub const GRAVITY: usize = 1;
+                /// Index of `strain`.
+                pub const STRAIN: usize = 2;
+                /// Index of `momentum_x`.
+                pub const MOMENTUM_X: usize = 3;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 5;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 6;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 7;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 8;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 9;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 10;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 11;
+                }
+            }
+
+            /// Indices of the output `w` of `power` (and of its inputs).
+            pub mod power {
+                /// Index of `ground`.
+                pub const GROUND: usize = 0;
+                /// Index of `damping`.
+                pub const DAMPING: usize = 1;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 5;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 6;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 7;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 8;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 9;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 10;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 11;
+                }
+            }
+
+            /// Indices of the output `vvel` of `impact_vvel` (and of its inputs).
+            pub mod impact_vvel {
+                /// Index of `rock`.
+                pub const ROCK: usize = 0;
+                /// Index of `theta_dot`.
+                pub const THETA_DOT: usize = 1;
+                /// Index of `u_dot_1`.
+                pub const U_DOT_1: usize = 2;
+                /// Index of `u_dot_2`.
+                pub const U_DOT_2: usize = 3;
+                /// Index of `u_dot_3`.
+                pub const U_DOT_3: usize = 4;
+                /// Index of `u_dot_4`.
+                pub const U_DOT_4: usize = 5;
+                /// Index of `u_dot_5`.
+                pub const U_DOT_5: usize = 6;
+                /// Index of `energy_after`.
+                pub const ENERGY_AFTER: usize = 7;
+                /// Index of `energy_before`.
+                pub const ENERGY_BEFORE: usize = 8;
+
+                /// Indices of the elements of input `xi`.
+                pub mod xi {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 3;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 4;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 5;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 6;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 7;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 8;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 9;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 10;
+                }
+            }
+
+            /// Indices of the output `adjex` of `impact_adjex` (and of its inputs).
+            pub mod impact_adjex {
+                /// Index of `u_dot_contact_1`.
+                pub const U_DOT_CONTACT_1: usize = 0;
+                /// Index of `u_dot_contact_2`.
+                pub const U_DOT_CONTACT_2: usize = 1;
+                /// Index of `u_dot_contact_3`.
+                pub const U_DOT_CONTACT_3: usize = 2;
+                /// Index of `u_dot_contact_4`.
+                pub const U_DOT_CONTACT_4: usize = 3;
+                /// Index of `u_dot_contact_5`.
+                pub const U_DOT_CONTACT_5: usize = 4;
+                /// Index of `energy_contact`.
+                pub const ENERGY_CONTACT: usize = 5;
+                /// Index of `theta_dot_rocking`.
+                pub const THETA_DOT_ROCKING: usize = 6;
+                /// Index of `u_dot_rocking_1`.
+                pub const U_DOT_ROCKING_1: usize = 7;
+                /// Index of `u_dot_rocking_2`.
+                pub const U_DOT_ROCKING_2: usize = 8;
+                /// Index of `u_dot_rocking_3`.
+                pub const U_DOT_ROCKING_3: usize = 9;
+                /// Index of `u_dot_rocking_4`.
+                pub const U_DOT_ROCKING_4: usize = 10;
+                /// Index of `u_dot_rocking_5`.
+                pub const U_DOT_ROCKING_5: usize = 11;
+                /// Index of `energy_rocking`.
+                pub const ENERGY_ROCKING: usize = 12;
+                /// Index of `energy_before`.
+                pub const ENERGY_BEFORE: usize = 13;
+                /// Index of `u_dot_momentum_1`.
+                pub const U_DOT_MOMENTUM_1: usize = 14;
+                /// Index of `u_dot_momentum_2`.
+                pub const U_DOT_MOMENTUM_2: usize = 15;
+                /// Index of `u_dot_momentum_3`.
+                pub const U_DOT_MOMENTUM_3: usize = 16;
+                /// Index of `u_dot_momentum_4`.
+                pub const U_DOT_MOMENTUM_4: usize = 17;
+                /// Index of `u_dot_momentum_5`.
+                pub const U_DOT_MOMENTUM_5: usize = 18;
+                /// Index of `energy_momentum`.
+                pub const ENERGY_MOMENTUM: usize = 19;
+
+                /// Indices of the elements of input `xi`.
+                pub mod xi {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 3;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 4;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 5;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 6;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 7;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 8;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 9;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 10;
+                }
+            }
+
+            /// Indices of the output `housner` of `impact_housner` (and of its inputs).
+            pub mod impact_housner {
+                /// Index of `theta_dot`.
+                pub const THETA_DOT: usize = 0;
+                /// Index of `u_dot_1`.
+                pub const U_DOT_1: usize = 1;
+                /// Index of `u_dot_2`.
+                pub const U_DOT_2: usize = 2;
+                /// Index of `u_dot_3`.
+                pub const U_DOT_3: usize = 3;
+                /// Index of `u_dot_4`.
+                pub const U_DOT_4: usize = 4;
+                /// Index of `u_dot_5`.
+                pub const U_DOT_5: usize = 5;
+                /// Index of `energy_after`.
+                pub const ENERGY_AFTER: usize = 6;
+                /// Index of `energy_before`.
+                pub const ENERGY_BEFORE: usize = 7;
+
+                /// Indices of the elements of input `xi`.
+                pub mod xi {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 3;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 4;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 5;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 6;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 7;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 8;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 9;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 10;
+                }
+            }
+
+            /// Indices of the output `st` of `structure` (and of its inputs).
+            pub mod structure {
+                /// Index of `m_tilde_1_1`.
+                pub const M_TILDE_1_1: usize = 0;
+                /// Index of `m_tilde_1_2`.
+                pub const M_TILDE_1_2: usize = 1;
+                /// Index of `m_tilde_1_3`.
+                pub const M_TILDE_1_3: usize = 2;
+                /// Index of `m_tilde_1_4`.
+                pub const M_TILDE_1_4: usize = 3;
+                /// Index of `m_tilde_1_5`.
+                pub const M_TILDE_1_5: usize = 4;
+                /// Index of `m_tilde_2_2`.
+                pub const M_TILDE_2_2: usize = 5;
+                /// Index of `m_tilde_2_3`.
+                pub const M_TILDE_2_3: usize = 6;
+                /// Index of `m_tilde_2_4`.
+                pub const M_TILDE_2_4: usize = 7;
+                /// Index of `m_tilde_2_5`.
+                pub const M_TILDE_2_5: usize = 8;
+                /// Index of `m_tilde_3_3`.
+                pub const M_TILDE_3_3: usize = 9;
+                /// Index of `m_tilde_3_4`.
+                pub const M_TILDE_3_4: usize = 10;
+                /// Index of `m_tilde_3_5`.
+                pub const M_TILDE_3_5: usize = 11;
+                /// Index of `m_tilde_4_4`.
+                pub const M_TILDE_4_4: usize = 12;
+                /// Index of `m_tilde_4_5`.
+                pub const M_TILDE_4_5: usize = 13;
+                /// Index of `m_tilde_5_5`.
+                pub const M_TILDE_5_5: usize = 14;
+                /// Index of `k_tilde_1_1`.
+                pub const K_TILDE_1_1: usize = 15;
+                /// Index of `k_tilde_1_2`.
+                pub const K_TILDE_1_2: usize = 16;
+                /// Index of `k_tilde_1_3`.
+                pub const K_TILDE_1_3: usize = 17;
+                /// Index of `k_tilde_1_4`.
+                pub const K_TILDE_1_4: usize = 18;
+                /// Index of `k_tilde_1_5`.
+                pub const K_TILDE_1_5: usize = 19;
+                /// Index of `k_tilde_2_2`.
+                pub const K_TILDE_2_2: usize = 20;
+                /// Index of `k_tilde_2_3`.
+                pub const K_TILDE_2_3: usize = 21;
+                /// Index of `k_tilde_2_4`.
+                pub const K_TILDE_2_4: usize = 22;
+                /// Index of `k_tilde_2_5`.
+                pub const K_TILDE_2_5: usize = 23;
+                /// Index of `k_tilde_3_3`.
+                pub const K_TILDE_3_3: usize = 24;
+                /// Index of `k_tilde_3_4`.
+                pub const K_TILDE_3_4: usize = 25;
+                /// Index of `k_tilde_3_5`.
+                pub const K_TILDE_3_5: usize = 26;
+                /// Index of `k_tilde_4_4`.
+                pub const K_TILDE_4_4: usize = 27;
+                /// Index of `k_tilde_4_5`.
+                pub const K_TILDE_4_5: usize = 28;
+                /// Index of `k_tilde_5_5`.
+                pub const K_TILDE_5_5: usize = 29;
+                /// Index of `gamma_tilde_1`.
+                pub const GAMMA_TILDE_1: usize = 30;
+                /// Index of `gamma_tilde_2`.
+                pub const GAMMA_TILDE_2: usize = 31;
+                /// Index of `gamma_tilde_3`.
+                pub const GAMMA_TILDE_3: usize = 32;
+                /// Index of `gamma_tilde_4`.
+                pub const GAMMA_TILDE_4: usize = 33;
+                /// Index of `gamma_tilde_5`.
+                pub const GAMMA_TILDE_5: usize = 34;
+                /// Index of `theta_cr`.
+                pub const THETA_CR: usize = 35;
+                /// Index of `e_ref`.
+                pub const E_REF: usize = 36;
+                /// Index of `r`.
+                pub const R: usize = 37;
+                /// Index of `alpha`.
+                pub const ALPHA: usize = 38;
+                /// Index of `p_freq`.
+                pub const P_FREQ: usize = 39;
+                /// Index of `i_bc_plate`.
+                pub const I_BC_PLATE: usize = 40;
+            }
+
+            /// Indices of the output `psi` of `shape` (and of its inputs).
+            pub mod shape {
+                /// Index of `psi_1`.
+                pub const PSI_1: usize = 0;
+                /// Index of `psi_2`.
+                pub const PSI_2: usize = 1;
+                /// Index of `psi_3`.
+                pub const PSI_3: usize = 2;
+                /// Index of `psi_4`.
+                pub const PSI_4: usize = 3;
+                /// Index of `psi_5`.
+                pub const PSI_5: usize = 4;
+            }
+
+            /// Indices of the output `fc` of `forces_contact` (and of its inputs).
+            pub mod forces_contact {
+                /// Index of `moment`.
+                pub const MOMENT: usize = 0;
+                /// Index of `shear`.
+                pub const SHEAR: usize = 1;
+                /// Index of `axial`.
+                pub const AXIAL: usize = 2;
+                /// Index of `moment_elastic`.
+                pub const MOMENT_ELASTIC: usize = 3;
+                /// Index of `reaction_h`.
+                pub const REACTION_H: usize = 4;
+                /// Index of `reaction_v`.
+                pub const REACTION_V: usize = 5;
+
+                /// Indices of the elements of input `xc`.
+                pub mod xc {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 3;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 4;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 5;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 6;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 7;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 8;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 9;
+                }
+            }
+
+            /// Indices of the output `fr` of `forces_rocking` (and of its inputs).
+            pub mod forces_rocking {
+                /// Index of `moment`.
+                pub const MOMENT: usize = 0;
+                /// Index of `shear`.
+                pub const SHEAR: usize = 1;
+                /// Index of `axial`.
+                pub const AXIAL: usize = 2;
+                /// Index of `moment_elastic`.
+                pub const MOMENT_ELASTIC: usize = 3;
+                /// Index of `reaction_h`.
+                pub const REACTION_H: usize = 4;
+                /// Index of `reaction_v`.
+                pub const REACTION_V: usize = 5;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 5;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 6;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 7;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 8;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 9;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 10;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 11;
+                }
+            }
+
+            /// Indices of the output `up` of `static_uplift` (and of its inputs).
+            pub mod static_uplift {
+                /// Index of `weight`.
+                pub const WEIGHT: usize = 0;
+                /// Index of `moment_uplift`.
+                pub const MOMENT_UPLIFT: usize = 1;
+                /// Index of `ug_uplift`.
+                pub const UG_UPLIFT: usize = 2;
+                /// Index of `u_uplift_1`.
+                pub const U_UPLIFT_1: usize = 3;
+                /// Index of `u_uplift_2`.
+                pub const U_UPLIFT_2: usize = 4;
+                /// Index of `u_uplift_3`.
+                pub const U_UPLIFT_3: usize = 5;
+                /// Index of `u_uplift_4`.
+                pub const U_UPLIFT_4: usize = 6;
+                /// Index of `u_uplift_5`.
+                pub const U_UPLIFT_5: usize = 7;
+                /// Index of `moment_elastic_uplift`.
+                pub const MOMENT_ELASTIC_UPLIFT: usize = 8;
+            }
+        }
+    }
+
+    /// 6 deformation coordinates.
+    pub mod nq6 {
+        /// The number of deformation coordinates.
+        pub const NQ: usize = 6;
+        /// The length of [`crate::Layout::Q`].
+        pub const Q: usize = 7;
+        /// The length of [`crate::Layout::X`].
+        pub const X: usize = 14;
+        /// The length of [`crate::Layout::Xc`].
+        pub const XC: usize = 12;
+        /// The length of [`crate::Layout::Xi`].
+        pub const XI: usize = 13;
+        /// The length of [`crate::Layout::MassMatrix`].
+        pub const MASS_MATRIX: usize = 28;
+        /// The length of [`crate::Layout::Forcing`].
+        pub const FORCING: usize = 7;
+        /// The length of [`crate::Layout::ImpactVvel`].
+        pub const IMPACT_VVEL: usize = 10;
+        /// The length of [`crate::Layout::ImpactAdjex`].
+        pub const IMPACT_ADJEX: usize = 23;
+        /// The length of [`crate::Layout::ImpactHousner`].
+        pub const IMPACT_HOUSNER: usize = 9;
+        /// The length of [`crate::Layout::Structure`].
+        pub const STRUCTURE: usize = 54;
+        /// The length of [`crate::Layout::Shape`].
+        pub const SHAPE: usize = 6;
+        /// The length of [`crate::Layout::StaticUplift`].
+        pub const STATIC_UPLIFT: usize = 10;
+
+        /// Named indices of the inputs and outputs of the functions every variant of 6
+        /// coordinates exports alike.
+        pub mod index {
+
+            /// Indices of the output `m` of `mass_matrix` (and of its inputs).
+            pub mod mass_matrix {
+                /// Index of `m_tt`.
+                pub const M_TT: usize = 0;
+                /// Index of `m_tu_1`.
+                pub const M_TU_1: usize = 1;
+                /// Index of `m_tu_2`.
+                pub const M_TU_2: usize = 2;
+                /// Index of `m_tu_3`.
+                pub const M_TU_3: usize = 3;
+                /// Index of `m_tu_4`.
+                pub const M_TU_4: usize = 4;
+                /// Index of `m_tu_5`.
+                pub const M_TU_5: usize = 5;
+                /// Index of `m_tu_6`.
+                pub const M_TU_6: usize = 6;
+                /// Index of `m_uu_1_1`.
+                pub const M_UU_1_1: usize = 7;
+                /// Index of `m_uu_1_2`.
+                pub const M_UU_1_2: usize = 8;
+                /// Index of `m_uu_1_3`.
+                pub const M_UU_1_3: usize = 9;
+                /// Index of `m_uu_1_4`.
+                pub const M_UU_1_4: usize = 10;
+                /// Index of `m_uu_1_5`.
+                pub const M_UU_1_5: usize = 11;
+                /// Index of `m_uu_1_6`.
+                pub const M_UU_1_6: usize = 12;
+                /// Index of `m_uu_2_2`.
+                pub const M_UU_2_2: usize = 13;
+                /// Index of `m_uu_2_3`.
+                pub const M_UU_2_3: usize = 14;
+                /// Index of `m_uu_2_4`.
+                pub const M_UU_2_4: usize = 15;
+                /// Index of `m_uu_2_5`.
+                pub const M_UU_2_5: usize = 16;
+                /// Index of `m_uu_2_6`.
+                pub const M_UU_2_6: usize = 17;
+                /// Index of `m_uu_3_3`.
+                pub const M_UU_3_3: usize = 18;
+                /// Index of `m_uu_3_4`.
+                pub const M_UU_3_4: usize = 19;
+                /// Index of `m_uu_3_5`.
+                pub const M_UU_3_5: usize = 20;
+                /// Index of `m_uu_3_6`.
+                pub const M_UU_3_6: usize = 21;
+                /// Index of `m_uu_4_4`.
+                pub const M_UU_4_4: usize = 22;
+                /// Index of `m_uu_4_5`.
+                pub const M_UU_4_5: usize = 23;
+                /// Index of `m_uu_4_6`.
+                pub const M_UU_4_6: usize = 24;
+                /// Index of `m_uu_5_5`.
+                pub const M_UU_5_5: usize = 25;
+                /// Index of `m_uu_5_6`.
+                pub const M_UU_5_6: usize = 26;
+                /// Index of `m_uu_6_6`.
+                pub const M_UU_6_6: usize = 27;
+
+                /// Indices of the elements of input `q`.
+                pub mod q {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 5;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 6;
+                }
+            }
+
+            /// Indices of the output `f` of `forcing` (and of its inputs).
+            pub mod forcing {
+                /// Index of `f_theta`.
+                pub const F_THETA: usize = 0;
+                /// Index of `f_u_1`.
+                pub const F_U_1: usize = 1;
+                /// Index of `f_u_2`.
+                pub const F_U_2: usize = 2;
+                /// Index of `f_u_3`.
+                pub const F_U_3: usize = 3;
+                /// Index of `f_u_4`.
+                pub const F_U_4: usize = 4;
+                /// Index of `f_u_5`.
+                pub const F_U_5: usize = 5;
+                /// Index of `f_u_6`.
+                pub const F_U_6: usize = 6;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 5;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 6;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 7;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 8;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 9;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 10;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 11;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 12;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 13;
+                }
+            }
+
+            /// Indices of the output `dx` of `rocking_rhs` (and of its inputs).
+            pub mod rocking_rhs {
+                /// Index of `theta_dot`.
+                pub const THETA_DOT: usize = 0;
+                /// Index of `u_dot_1`.
+                pub const U_DOT_1: usize = 1;
+                /// Index of `u_dot_2`.
+                pub const U_DOT_2: usize = 2;
+                /// Index of `u_dot_3`.
+                pub const U_DOT_3: usize = 3;
+                /// Index of `u_dot_4`.
+                pub const U_DOT_4: usize = 4;
+                /// Index of `u_dot_5`.
+                pub const U_DOT_5: usize = 5;
+                /// Index of `u_dot_6`.
+                pub const U_DOT_6: usize = 6;
+                /// Index of `theta_ddot`.
+                pub const THETA_DDOT: usize = 7;
+                /// Index of `u_ddot_1`.
+                pub const U_DDOT_1: usize = 8;
+                /// Index of `u_ddot_2`.
+                pub const U_DDOT_2: usize = 9;
+                /// Index of `u_ddot_3`.
+                pub const U_DDOT_3: usize = 10;
+                /// Index of `u_ddot_4`.
+                pub const U_DDOT_4: usize = 11;
+                /// Index of `u_ddot_5`.
+                pub const U_DDOT_5: usize = 12;
+                /// Index of `u_ddot_6`.
+                pub const U_DDOT_6: usize = 13;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 5;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 6;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 7;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 8;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 9;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 10;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 11;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 12;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 13;
+                }
+            }
+
+            /// Indices of the output `dxc` of `contact_rhs` (and of its inputs).
+            pub mod contact_rhs {
+                /// Index of `u_dot_1`.
+                pub const U_DOT_1: usize = 0;
+                /// Index of `u_dot_2`.
+                pub const U_DOT_2: usize = 1;
+                /// Index of `u_dot_3`.
+                pub const U_DOT_3: usize = 2;
+                /// Index of `u_dot_4`.
+                pub const U_DOT_4: usize = 3;
+                /// Index of `u_dot_5`.
+                pub const U_DOT_5: usize = 4;
+                /// Index of `u_dot_6`.
+                pub const U_DOT_6: usize = 5;
+                /// Index of `u_ddot_1`.
+                pub const U_DDOT_1: usize = 6;
+                /// Index of `u_ddot_2`.
+                pub const U_DDOT_2: usize = 7;
+                /// Index of `u_ddot_3`.
+                pub const U_DDOT_3: usize = 8;
+                /// Index of `u_ddot_4`.
+                pub const U_DDOT_4: usize = 9;
+                /// Index of `u_ddot_5`.
+                pub const U_DDOT_5: usize = 10;
+                /// Index of `u_ddot_6`.
+                pub const U_DDOT_6: usize = 11;
+
+                /// Indices of the elements of input `xc`.
+                pub mod xc {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 3;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 4;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 5;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 6;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 7;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 8;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 9;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 10;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 11;
+                }
+            }
+
+            /// Indices of the output `f_s` of `uplift` (and of its inputs).
+            pub mod uplift {
+                /// Index of `f_s`.
+                pub const F_S: usize = 0;
+
+                /// Indices of the elements of input `xc`.
+                pub mod xc {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 3;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 4;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 5;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 6;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 7;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 8;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 9;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 10;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 11;
+                }
+            }
+
+            /// Indices of the output `e` of `energy` (and of its inputs).
+            pub mod energy {
+                /// Index of `kinetic`.
+                pub const KINETIC: usize = 0;
+                /// Index of `gravity`.
+                pub const GRAVITY: usize = 1;
+                /// Index of `strain`.
+                pub const STRAIN: usize = 2;
+                /// Index of `momentum_x`.
+                pub const MOMENTUM_X: usize = 3;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 5;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 6;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 7;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 8;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 9;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 10;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 11;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 12;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 13;
+                }
+            }
+
+            /// Indices of the output `w` of `power` (and of its inputs).
+            pub mod power {
+                /// Index of `ground`.
+                pub const GROUND: usize = 0;
+                /// Index of `damping`.
+                pub const DAMPING: usize = 1;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 5;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 6;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 7;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 8;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 9;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 10;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 11;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 12;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 13;
+                }
+            }
+
+            /// Indices of the output `vvel` of `impact_vvel` (and of its inputs).
+            pub mod impact_vvel {
+                /// Index of `rock`.
+                pub const ROCK: usize = 0;
+                /// Index of `theta_dot`.
+                pub const THETA_DOT: usize = 1;
+                /// Index of `u_dot_1`.
+                pub const U_DOT_1: usize = 2;
+                /// Index of `u_dot_2`.
+                pub const U_DOT_2: usize = 3;
+                /// Index of `u_dot_3`.
+                pub const U_DOT_3: usize = 4;
+                /// Index of `u_dot_4`.
+                pub const U_DOT_4: usize = 5;
+                /// Index of `u_dot_5`.
+                pub const U_DOT_5: usize = 6;
+                /// Index of `u_dot_6`.
+                pub const U_DOT_6: usize = 7;
+                /// Index of `energy_after`.
+                pub const ENERGY_AFTER: usize = 8;
+                /// Index of `energy_before`.
+                pub const ENERGY_BEFORE: usize = 9;
+
+                /// Indices of the elements of input `xi`.
+                pub mod xi {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 3;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 4;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 5;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 6;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 7;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 8;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 9;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 10;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 11;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 12;
+                }
+            }
+
+            /// Indices of the output `adjex` of `impact_adjex` (and of its inputs).
+            pub mod impact_adjex {
+                /// Index of `u_dot_contact_1`.
+                pub const U_DOT_CONTACT_1: usize = 0;
+                /// Index of `u_dot_contact_2`.
+                pub const U_DOT_CONTACT_2: usize = 1;
+                /// Index of `u_dot_contact_3`.
+                pub const U_DOT_CONTACT_3: usize = 2;
+                /// Index of `u_dot_contact_4`.
+                pub const U_DOT_CONTACT_4: usize = 3;
+                /// Index of `u_dot_contact_5`.
+                pub const U_DOT_CONTACT_5: usize = 4;
+                /// Index of `u_dot_contact_6`.
+                pub const U_DOT_CONTACT_6: usize = 5;
+                /// Index of `energy_contact`.
+                pub const ENERGY_CONTACT: usize = 6;
+                /// Index of `theta_dot_rocking`.
+                pub const THETA_DOT_ROCKING: usize = 7;
+                /// Index of `u_dot_rocking_1`.
+                pub const U_DOT_ROCKING_1: usize = 8;
+                /// Index of `u_dot_rocking_2`.
+                pub const U_DOT_ROCKING_2: usize = 9;
+                /// Index of `u_dot_rocking_3`.
+                pub const U_DOT_ROCKING_3: usize = 10;
+                /// Index of `u_dot_rocking_4`.
+                pub const U_DOT_ROCKING_4: usize = 11;
+                /// Index of `u_dot_rocking_5`.
+                pub const U_DOT_ROCKING_5: usize = 12;
+                /// Index of `u_dot_rocking_6`.
+                pub const U_DOT_ROCKING_6: usize = 13;
+                /// Index of `energy_rocking`.
+                pub const ENERGY_ROCKING: usize = 14;
+                /// Index of `energy_before`.
+                pub const ENERGY_BEFORE: usize = 15;
+                /// Index of `u_dot_momentum_1`.
+                pub const U_DOT_MOMENTUM_1: usize = 16;
+                /// Index of `u_dot_momentum_2`.
+                pub const U_DOT_MOMENTUM_2: usize = 17;
+                /// Index of `u_dot_momentum_3`.
+                pub const U_DOT_MOMENTUM_3: usize = 18;
+                /// Index of `u_dot_momentum_4`.
+                pub const U_DOT_MOMENTUM_4: usize = 19;
+                /// Index of `u_dot_momentum_5`.
+                pub const U_DOT_MOMENTUM_5: usize = 20;
+                /// Index of `u_dot_momentum_6`.
+                pub const U_DOT_MOMENTUM_6: usize = 21;
+                /// Index of `energy_momentum`.
+                pub const ENERGY_MOMENTUM: usize = 22;
+
+                /// Indices of the elements of input `xi`.
+                pub mod xi {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 3;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 4;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 5;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 6;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 7;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 8;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 9;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 10;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 11;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 12;
+                }
+            }
+
+            /// Indices of the output `housner` of `impact_housner` (and of its inputs).
+            pub mod impact_housner {
+                /// Index of `theta_dot`.
+                pub const THETA_DOT: usize = 0;
+                /// Index of `u_dot_1`.
+                pub const U_DOT_1: usize = 1;
+                /// Index of `u_dot_2`.
+                pub const U_DOT_2: usize = 2;
+                /// Index of `u_dot_3`.
+                pub const U_DOT_3: usize = 3;
+                /// Index of `u_dot_4`.
+                pub const U_DOT_4: usize = 4;
+                /// Index of `u_dot_5`.
+                pub const U_DOT_5: usize = 5;
+                /// Index of `u_dot_6`.
+                pub const U_DOT_6: usize = 6;
+                /// Index of `energy_after`.
+                pub const ENERGY_AFTER: usize = 7;
+                /// Index of `energy_before`.
+                pub const ENERGY_BEFORE: usize = 8;
+
+                /// Indices of the elements of input `xi`.
+                pub mod xi {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 3;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 4;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 5;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 6;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 7;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 8;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 9;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 10;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 11;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 12;
+                }
+            }
+
+            /// Indices of the output `st` of `structure` (and of its inputs).
+            pub mod structure {
+                /// Index of `m_tilde_1_1`.
+                pub const M_TILDE_1_1: usize = 0;
+                /// Index of `m_tilde_1_2`.
+                pub const M_TILDE_1_2: usize = 1;
+                /// Index of `m_tilde_1_3`.
+                pub const M_TILDE_1_3: usize = 2;
+                /// Index of `m_tilde_1_4`.
+                pub const M_TILDE_1_4: usize = 3;
+                /// Index of `m_tilde_1_5`.
+                pub const M_TILDE_1_5: usize = 4;
+                /// Index of `m_tilde_1_6`.
+                pub const M_TILDE_1_6: usize = 5;
+                /// Index of `m_tilde_2_2`.
+                pub const M_TILDE_2_2: usize = 6;
+                /// Index of `m_tilde_2_3`.
+                pub const M_TILDE_2_3: usize = 7;
+                /// Index of `m_tilde_2_4`.
+                pub const M_TILDE_2_4: usize = 8;
+                /// Index of `m_tilde_2_5`.
+                pub const M_TILDE_2_5: usize = 9;
+                /// Index of `m_tilde_2_6`.
+                pub const M_TILDE_2_6: usize = 10;
+                /// Index of `m_tilde_3_3`.
+                pub const M_TILDE_3_3: usize = 11;
+                /// Index of `m_tilde_3_4`.
+                pub const M_TILDE_3_4: usize = 12;
+                /// Index of `m_tilde_3_5`.
+                pub const M_TILDE_3_5: usize = 13;
+                /// Index of `m_tilde_3_6`.
+                pub const M_TILDE_3_6: usize = 14;
+                /// Index of `m_tilde_4_4`.
+                pub const M_TILDE_4_4: usize = 15;
+                /// Index of `m_tilde_4_5`.
+                pub const M_TILDE_4_5: usize = 16;
+                /// Index of `m_tilde_4_6`.
+                pub const M_TILDE_4_6: usize = 17;
+                /// Index of `m_tilde_5_5`.
+                pub const M_TILDE_5_5: usize = 18;
+                /// Index of `m_tilde_5_6`.
+                pub const M_TILDE_5_6: usize = 19;
+                /// Index of `m_tilde_6_6`.
+                pub const M_TILDE_6_6: usize = 20;
+                /// Index of `k_tilde_1_1`.
+                pub const K_TILDE_1_1: usize = 21;
+                /// Index of `k_tilde_1_2`.
+                pub const K_TILDE_1_2: usize = 22;
+                /// Index of `k_tilde_1_3`.
+                pub const K_TILDE_1_3: usize = 23;
+                /// Index of `k_tilde_1_4`.
+                pub const K_TILDE_1_4: usize = 24;
+                /// Index of `k_tilde_1_5`.
+                pub const K_TILDE_1_5: usize = 25;
+                /// Index of `k_tilde_1_6`.
+                pub const K_TILDE_1_6: usize = 26;
+                /// Index of `k_tilde_2_2`.
+                pub const K_TILDE_2_2: usize = 27;
+                /// Index of `k_tilde_2_3`.
+                pub const K_TILDE_2_3: usize = 28;
+                /// Index of `k_tilde_2_4`.
+                pub const K_TILDE_2_4: usize = 29;
+                /// Index of `k_tilde_2_5`.
+                pub const K_TILDE_2_5: usize = 30;
+                /// Index of `k_tilde_2_6`.
+                pub const K_TILDE_2_6: usize = 31;
+                /// Index of `k_tilde_3_3`.
+                pub const K_TILDE_3_3: usize = 32;
+                /// Index of `k_tilde_3_4`.
+                pub const K_TILDE_3_4: usize = 33;
+                /// Index of `k_tilde_3_5`.
+                pub const K_TILDE_3_5: usize = 34;
+                /// Index of `k_tilde_3_6`.
+                pub const K_TILDE_3_6: usize = 35;
+                /// Index of `k_tilde_4_4`.
+                pub const K_TILDE_4_4: usize = 36;
+                /// Index of `k_tilde_4_5`.
+                pub const K_TILDE_4_5: usize = 37;
+                /// Index of `k_tilde_4_6`.
+                pub const K_TILDE_4_6: usize = 38;
+                /// Index of `k_tilde_5_5`.
+                pub const K_TILDE_5_5: usize = 39;
+                /// Index of `k_tilde_5_6`.
+                pub const K_TILDE_5_6: usize = 40;
+                /// Index of `k_tilde_6_6`.
+                pub const K_TILDE_6_6: usize = 41;
+                /// Index of `gamma_tilde_1`.
+                pub const GAMMA_TILDE_1: usize = 42;
+                /// Index of `gamma_tilde_2`.
+                pub const GAMMA_TILDE_2: usize = 43;
+                /// Index of `gamma_tilde_3`.
+                pub const GAMMA_TILDE_3: usize = 44;
+                /// Index of `gamma_tilde_4`.
+                pub const GAMMA_TILDE_4: usize = 45;
+                /// Index of `gamma_tilde_5`.
+                pub const GAMMA_TILDE_5: usize = 46;
+                /// Index of `gamma_tilde_6`.
+                pub const GAMMA_TILDE_6: usize = 47;
+                /// Index of `theta_cr`.
+                pub const THETA_CR: usize = 48;
+                /// Index of `e_ref`.
+                pub const E_REF: usize = 49;
+                /// Index of `r`.
+                pub const R: usize = 50;
+                /// Index of `alpha`.
+                pub const ALPHA: usize = 51;
+                /// Index of `p_freq`.
+                pub const P_FREQ: usize = 52;
+                /// Index of `i_bc_plate`.
+                pub const I_BC_PLATE: usize = 53;
+            }
+
+            /// Indices of the output `psi` of `shape` (and of its inputs).
+            pub mod shape {
+                /// Index of `psi_1`.
+                pub const PSI_1: usize = 0;
+                /// Index of `psi_2`.
+                pub const PSI_2: usize = 1;
+                /// Index of `psi_3`.
+                pub const PSI_3: usize = 2;
+                /// Index of `psi_4`.
+                pub const PSI_4: usize = 3;
+                /// Index of `psi_5`.
+                pub const PSI_5: usize = 4;
+                /// Index of `psi_6`.
+                pub const PSI_6: usize = 5;
+            }
+
+            /// Indices of the output `fc` of `forces_contact` (and of its inputs).
+            pub mod forces_contact {
+                /// Index of `moment`.
+                pub const MOMENT: usize = 0;
+                /// Index of `shear`.
+                pub const SHEAR: usize = 1;
+                /// Index of `axial`.
+                pub const AXIAL: usize = 2;
+                /// Index of `moment_elastic`.
+                pub const MOMENT_ELASTIC: usize = 3;
+                /// Index of `reaction_h`.
+                pub const REACTION_H: usize = 4;
+                /// Index of `reaction_v`.
+                pub const REACTION_V: usize = 5;
+
+                /// Indices of the elements of input `xc`.
+                pub mod xc {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 3;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 4;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 5;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 6;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 7;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 8;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 9;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 10;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 11;
+                }
+            }
+
+            /// Indices of the output `fr` of `forces_rocking` (and of its inputs).
+            pub mod forces_rocking {
+                /// Index of `moment`.
+                pub const MOMENT: usize = 0;
+                /// Index of `shear`.
+                pub const SHEAR: usize = 1;
+                /// Index of `axial`.
+                pub const AXIAL: usize = 2;
+                /// Index of `moment_elastic`.
+                pub const MOMENT_ELASTIC: usize = 3;
+                /// Index of `reaction_h`.
+                pub const REACTION_H: usize = 4;
+                /// Index of `reaction_v`.
+                pub const REACTION_V: usize = 5;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 5;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 6;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 7;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 8;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 9;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 10;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 11;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 12;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 13;
+                }
+            }
+
+            /// Indices of the output `up` of `static_uplift` (and of its inputs).
+            pub mod static_uplift {
+                /// Index of `weight`.
+                pub const WEIGHT: usize = 0;
+                /// Index of `moment_uplift`.
+                pub const MOMENT_UPLIFT: usize = 1;
+                /// Index of `ug_uplift`.
+                pub const UG_UPLIFT: usize = 2;
+                /// Index of `u_uplift_1`.
+                pub const U_UPLIFT_1: usize = 3;
+                /// Index of `u_uplift_2`.
+                pub const U_UPLIFT_2: usize = 4;
+                /// Index of `u_uplift_3`.
+                pub const U_UPLIFT_3: usize = 5;
+                /// Index of `u_uplift_4`.
+                pub const U_UPLIFT_4: usize = 6;
+                /// Index of `u_uplift_5`.
+                pub const U_UPLIFT_5: usize = 7;
+                /// Index of `u_uplift_6`.
+                pub const U_UPLIFT_6: usize = 8;
+                /// Index of `moment_elastic_uplift`.
+                pub const MOMENT_ELASTIC_UPLIFT: usize = 9;
+            }
+        }
+    }
+
+    /// 7 deformation coordinates.
+    pub mod nq7 {
+        /// The number of deformation coordinates.
+        pub const NQ: usize = 7;
+        /// The length of [`crate::Layout::Q`].
+        pub const Q: usize = 8;
+        /// The length of [`crate::Layout::X`].
+        pub const X: usize = 16;
+        /// The length of [`crate::Layout::Xc`].
+        pub const XC: usize = 14;
+        /// The length of [`crate::Layout::Xi`].
+        pub const XI: usize = 15;
+        /// The length of [`crate::Layout::MassMatrix`].
+        pub const MASS_MATRIX: usize = 36;
+        /// The length of [`crate::Layout::Forcing`].
+        pub const FORCING: usize = 8;
+        /// The length of [`crate::Layout::ImpactVvel`].
+        pub const IMPACT_VVEL: usize = 11;
+        /// The length of [`crate::Layout::ImpactAdjex`].
+        pub const IMPACT_ADJEX: usize = 26;
+        /// The length of [`crate::Layout::ImpactHousner`].
+        pub const IMPACT_HOUSNER: usize = 10;
+        /// The length of [`crate::Layout::Structure`].
+        pub const STRUCTURE: usize = 69;
+        /// The length of [`crate::Layout::Shape`].
+        pub const SHAPE: usize = 7;
+        /// The length of [`crate::Layout::StaticUplift`].
+        pub const STATIC_UPLIFT: usize = 11;
+
+        /// Named indices of the inputs and outputs of the functions every variant of 7
+        /// coordinates exports alike.
+        pub mod index {
+
+            /// Indices of the output `m` of `mass_matrix` (and of its inputs).
+            pub mod mass_matrix {
+                /// Index of `m_tt`.
+                pub const M_TT: usize = 0;
+                /// Index of `m_tu_1`.
+                pub const M_TU_1: usize = 1;
+                /// Index of `m_tu_2`.
+                pub const M_TU_2: usize = 2;
+                /// Index of `m_tu_3`.
+                pub const M_TU_3: usize = 3;
+                /// Index of `m_tu_4`.
+                pub const M_TU_4: usize = 4;
+                /// Index of `m_tu_5`.
+                pub const M_TU_5: usize = 5;
+                /// Index of `m_tu_6`.
+                pub const M_TU_6: usize = 6;
+                /// Index of `m_tu_7`.
+                pub const M_TU_7: usize = 7;
+                /// Index of `m_uu_1_1`.
+                pub const M_UU_1_1: usize = 8;
+                /// Index of `m_uu_1_2`.
+                pub const M_UU_1_2: usize = 9;
+                /// Index of `m_uu_1_3`.
+                pub const M_UU_1_3: usize = 10;
+                /// Index of `m_uu_1_4`.
+                pub const M_UU_1_4: usize = 11;
+                /// Index of `m_uu_1_5`.
+                pub const M_UU_1_5: usize = 12;
+                /// Index of `m_uu_1_6`.
+                pub const M_UU_1_6: usize = 13;
+                /// Index of `m_uu_1_7`.
+                pub const M_UU_1_7: usize = 14;
+                /// Index of `m_uu_2_2`.
+                pub const M_UU_2_2: usize = 15;
+                /// Index of `m_uu_2_3`.
+                pub const M_UU_2_3: usize = 16;
+                /// Index of `m_uu_2_4`.
+                pub const M_UU_2_4: usize = 17;
+                /// Index of `m_uu_2_5`.
+                pub const M_UU_2_5: usize = 18;
+                /// Index of `m_uu_2_6`.
+                pub const M_UU_2_6: usize = 19;
+                /// Index of `m_uu_2_7`.
+                pub const M_UU_2_7: usize = 20;
+                /// Index of `m_uu_3_3`.
+                pub const M_UU_3_3: usize = 21;
+                /// Index of `m_uu_3_4`.
+                pub const M_UU_3_4: usize = 22;
+                /// Index of `m_uu_3_5`.
+                pub const M_UU_3_5: usize = 23;
+                /// Index of `m_uu_3_6`.
+                pub const M_UU_3_6: usize = 24;
+                /// Index of `m_uu_3_7`.
+                pub const M_UU_3_7: usize = 25;
+                /// Index of `m_uu_4_4`.
+                pub const M_UU_4_4: usize = 26;
+                /// Index of `m_uu_4_5`.
+                pub const M_UU_4_5: usize = 27;
+                /// Index of `m_uu_4_6`.
+                pub const M_UU_4_6: usize = 28;
+                /// Index of `m_uu_4_7`.
+                pub const M_UU_4_7: usize = 29;
+                /// Index of `m_uu_5_5`.
+                pub const M_UU_5_5: usize = 30;
+                /// Index of `m_uu_5_6`.
+                pub const M_UU_5_6: usize = 31;
+                /// Index of `m_uu_5_7`.
+                pub const M_UU_5_7: usize = 32;
+                /// Index of `m_uu_6_6`.
+                pub const M_UU_6_6: usize = 33;
+                /// Index of `m_uu_6_7`.
+                pub const M_UU_6_7: usize = 34;
+                /// Index of `m_uu_7_7`.
+                pub const M_UU_7_7: usize = 35;
+
+                /// Indices of the elements of input `q`.
+                pub mod q {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 5;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 6;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 7;
+                }
+            }
+
+            /// Indices of the output `f` of `forcing` (and of its inputs).
+            pub mod forcing {
+                /// Index of `f_theta`.
+                pub const F_THETA: usize = 0;
+                /// Index of `f_u_1`.
+                pub const F_U_1: usize = 1;
+                /// Index of `f_u_2`.
+                pub const F_U_2: usize = 2;
+                /// Index of `f_u_3`.
+                pub const F_U_3: usize = 3;
+                /// Index of `f_u_4`.
+                pub const F_U_4: usize = 4;
+                /// Index of `f_u_5`.
+                pub const F_U_5: usize = 5;
+                /// Index of `f_u_6`.
+                pub const F_U_6: usize = 6;
+                /// Index of `f_u_7`.
+                pub const F_U_7: usize = 7;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 5;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 6;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 7;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 8;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 9;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 10;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 11;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 12;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 13;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 14;
+                    /// Index of `u_dot_7`.
+                    pub const U_DOT_7: usize = 15;
+                }
+            }
+
+            /// Indices of the output `dx` of `rocking_rhs` (and of its inputs).
+            pub mod rocking_rhs {
+                /// Index of `theta_dot`.
+                pub const THETA_DOT: usize = 0;
+                /// Index of `u_dot_1`.
+                pub const U_DOT_1: usize = 1;
+                /// Index of `u_dot_2`.
+                pub const U_DOT_2: usize = 2;
+                /// Index of `u_dot_3`.
+                pub const U_DOT_3: usize = 3;
+                /// Index of `u_dot_4`.
+                pub const U_DOT_4: usize = 4;
+                /// Index of `u_dot_5`.
+                pub const U_DOT_5: usize = 5;
+                /// Index of `u_dot_6`.
+                pub const U_DOT_6: usize = 6;
+                /// Index of `u_dot_7`.
+                pub const U_DOT_7: usize = 7;
+                /// Index of `theta_ddot`.
+                pub const THETA_DDOT: usize = 8;
+                /// Index of `u_ddot_1`.
+                pub const U_DDOT_1: usize = 9;
+                /// Index of `u_ddot_2`.
+                pub const U_DDOT_2: usize = 10;
+                /// Index of `u_ddot_3`.
+                pub const U_DDOT_3: usize = 11;
+                /// Index of `u_ddot_4`.
+                pub const U_DDOT_4: usize = 12;
+                /// Index of `u_ddot_5`.
+                pub const U_DDOT_5: usize = 13;
+                /// Index of `u_ddot_6`.
+                pub const U_DDOT_6: usize = 14;
+                /// Index of `u_ddot_7`.
+                pub const U_DDOT_7: usize = 15;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 5;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 6;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 7;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 8;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 9;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 10;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 11;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 12;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 13;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 14;
+                    /// Index of `u_dot_7`.
+                    pub const U_DOT_7: usize = 15;
+                }
+            }
+
+            /// Indices of the output `dxc` of `contact_rhs` (and of its inputs).
+            pub mod contact_rhs {
+                /// Index of `u_dot_1`.
+                pub const U_DOT_1: usize = 0;
+                /// Index of `u_dot_2`.
+                pub const U_DOT_2: usize = 1;
+                /// Index of `u_dot_3`.
+                pub const U_DOT_3: usize = 2;
+                /// Index of `u_dot_4`.
+                pub const U_DOT_4: usize = 3;
+                /// Index of `u_dot_5`.
+                pub const U_DOT_5: usize = 4;
+                /// Index of `u_dot_6`.
+                pub const U_DOT_6: usize = 5;
+                /// Index of `u_dot_7`.
+                pub const U_DOT_7: usize = 6;
+                /// Index of `u_ddot_1`.
+                pub const U_DDOT_1: usize = 7;
+                /// Index of `u_ddot_2`.
+                pub const U_DDOT_2: usize = 8;
+                /// Index of `u_ddot_3`.
+                pub const U_DDOT_3: usize = 9;
+                /// Index of `u_ddot_4`.
+                pub const U_DDOT_4: usize = 10;
+                /// Index of `u_ddot_5`.
+                pub const U_DDOT_5: usize = 11;
+                /// Index of `u_ddot_6`.
+                pub const U_DDOT_6: usize = 12;
+                /// Index of `u_ddot_7`.
+                pub const U_DDOT_7: usize = 13;
+
+                /// Indices of the elements of input `xc`.
+                pub mod xc {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 3;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 4;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 5;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 6;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 7;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 8;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 9;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 10;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 11;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 12;
+                    /// Index of `u_dot_7`.
+                    pub const U_DOT_7: usize = 13;
+                }
+            }
+
+            /// Indices of the output `f_s` of `uplift` (and of its inputs).
+            pub mod uplift {
+                /// Index of `f_s`.
+                pub const F_S: usize = 0;
+
+                /// Indices of the elements of input `xc`.
+                pub mod xc {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 3;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 4;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 5;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 6;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 7;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 8;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 9;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 10;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 11;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 12;
+                    /// Index of `u_dot_7`.
+                    pub const U_DOT_7: usize = 13;
+                }
+            }
+
+            /// Indices of the output `e` of `energy` (and of its inputs).
+            pub mod energy {
+                /// Index of `kinetic`.
+                pub const KINETIC: usize = 0;
+                /// Index of `gravity`.
+                pub const GRAVITY: usize = 1;
+                /// Index of `strain`.
+                pub const STRAIN: usize = 2;
+                /// Index of `momentum_x`.
+                pub const MOMENTUM_X: usize = 3;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 5;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 6;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 7;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 8;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 9;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 10;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 11;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 12;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 13;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 14;
+                    /// Index of `u_dot_7`.
+                    pub const U_DOT_7: usize = 15;
+                }
+            }
+
+            /// Indices of the output `w` of `power` (and of its inputs).
+            pub mod power {
+                /// Index of `ground`.
+                pub const GROUND: usize = 0;
+                /// Index of `damping`.
+                pub const DAMPING: usize = 1;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 5;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 6;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 7;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 8;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 9;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 10;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 11;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 12;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 13;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 14;
+                    /// Index of `u_dot_7`.
+                    pub const U_DOT_7: usize = 15;
+                }
+            }
+
+            /// Indices of the output `vvel` of `impact_vvel` (and of its inputs).
+            pub mod impact_vvel {
+                /// Index of `rock`.
+                pub const ROCK: usize = 0;
+                /// Index of `theta_dot`.
+                pub const THETA_DOT: usize = 1;
+                /// Index of `u_dot_1`.
+                pub const U_DOT_1: usize = 2;
+                /// Index of `u_dot_2`.
+                pub const U_DOT_2: usize = 3;
+                /// Index of `u_dot_3`.
+                pub const U_DOT_3: usize = 4;
+                /// Index of `u_dot_4`.
+                pub const U_DOT_4: usize = 5;
+                /// Index of `u_dot_5`.
+                pub const U_DOT_5: usize = 6;
+                /// Index of `u_dot_6`.
+                pub const U_DOT_6: usize = 7;
+                /// Index of `u_dot_7`.
+                pub const U_DOT_7: usize = 8;
+                /// Index of `energy_after`.
+                pub const ENERGY_AFTER: usize = 9;
+                /// Index of `energy_before`.
+                pub const ENERGY_BEFORE: usize = 10;
+
+                /// Indices of the elements of input `xi`.
+                pub mod xi {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 3;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 4;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 5;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 6;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 7;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 8;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 9;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 10;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 11;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 12;
+                    /// Index of `u_dot_7`.
+                    pub const U_DOT_7: usize = 13;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 14;
+                }
+            }
+
+            /// Indices of the output `adjex` of `impact_adjex` (and of its inputs).
+            pub mod impact_adjex {
+                /// Index of `u_dot_contact_1`.
+                pub const U_DOT_CONTACT_1: usize = 0;
+                /// Index of `u_dot_contact_2`.
+                pub const U_DOT_CONTACT_2: usize = 1;
+                /// Index of `u_dot_contact_3`.
+                pub const U_DOT_CONTACT_3: usize = 2;
+                /// Index of `u_dot_contact_4`.
+                pub const U_DOT_CONTACT_4: usize = 3;
+                /// Index of `u_dot_contact_5`.
+                pub const U_DOT_CONTACT_5: usize = 4;
+                /// Index of `u_dot_contact_6`.
+                pub const U_DOT_CONTACT_6: usize = 5;
+                /// Index of `u_dot_contact_7`.
+                pub const U_DOT_CONTACT_7: usize = 6;
+                /// Index of `energy_contact`.
+                pub const ENERGY_CONTACT: usize = 7;
+                /// Index of `theta_dot_rocking`.
+                pub const THETA_DOT_ROCKING: usize = 8;
+                /// Index of `u_dot_rocking_1`.
+                pub const U_DOT_ROCKING_1: usize = 9;
+                /// Index of `u_dot_rocking_2`.
+                pub const U_DOT_ROCKING_2: usize = 10;
+                /// Index of `u_dot_rocking_3`.
+                pub const U_DOT_ROCKING_3: usize = 11;
+                /// Index of `u_dot_rocking_4`.
+                pub const U_DOT_ROCKING_4: usize = 12;
+                /// Index of `u_dot_rocking_5`.
+                pub const U_DOT_ROCKING_5: usize = 13;
+                /// Index of `u_dot_rocking_6`.
+                pub const U_DOT_ROCKING_6: usize = 14;
+                /// Index of `u_dot_rocking_7`.
+                pub const U_DOT_ROCKING_7: usize = 15;
+                /// Index of `energy_rocking`.
+                pub const ENERGY_ROCKING: usize = 16;
+                /// Index of `energy_before`.
+                pub const ENERGY_BEFORE: usize = 17;
+                /// Index of `u_dot_momentum_1`.
+                pub const U_DOT_MOMENTUM_1: usize = 18;
+                /// Index of `u_dot_momentum_2`.
+                pub const U_DOT_MOMENTUM_2: usize = 19;
+                /// Index of `u_dot_momentum_3`.
+                pub const U_DOT_MOMENTUM_3: usize = 20;
+                /// Index of `u_dot_momentum_4`.
+                pub const U_DOT_MOMENTUM_4: usize = 21;
+                /// Index of `u_dot_momentum_5`.
+                pub const U_DOT_MOMENTUM_5: usize = 22;
+                /// Index of `u_dot_momentum_6`.
+                pub const U_DOT_MOMENTUM_6: usize = 23;
+                /// Index of `u_dot_momentum_7`.
+                pub const U_DOT_MOMENTUM_7: usize = 24;
+                /// Index of `energy_momentum`.
+                pub const ENERGY_MOMENTUM: usize = 25;
+
+                /// Indices of the elements of input `xi`.
+                pub mod xi {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 3;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 4;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 5;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 6;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 7;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 8;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 9;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 10;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 11;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 12;
+                    /// Index of `u_dot_7`.
+                    pub const U_DOT_7: usize = 13;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 14;
+                }
+            }
+
+            /// Indices of the output `housner` of `impact_housner` (and of its inputs).
+            pub mod impact_housner {
+                /// Index of `theta_dot`.
+                pub const THETA_DOT: usize = 0;
+                /// Index of `u_dot_1`.
+                pub const U_DOT_1: usize = 1;
+                /// Index of `u_dot_2`.
+                pub const U_DOT_2: usize = 2;
+                /// Index of `u_dot_3`.
+                pub const U_DOT_3: usize = 3;
+                /// Index of `u_dot_4`.
+                pub const U_DOT_4: usize = 4;
+                /// Index of `u_dot_5`.
+                pub const U_DOT_5: usize = 5;
+                /// Index of `u_dot_6`.
+                pub const U_DOT_6: usize = 6;
+                /// Index of `u_dot_7`.
+                pub const U_DOT_7: usize = 7;
+                /// Index of `energy_after`.
+                pub const ENERGY_AFTER: usize = 8;
+                /// Index of `energy_before`.
+                pub const ENERGY_BEFORE: usize = 9;
+
+                /// Indices of the elements of input `xi`.
+                pub mod xi {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 3;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 4;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 5;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 6;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 7;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 8;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 9;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 10;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 11;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 12;
+                    /// Index of `u_dot_7`.
+                    pub const U_DOT_7: usize = 13;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 14;
+                }
+            }
+
+            /// Indices of the output `st` of `structure` (and of its inputs).
+            pub mod structure {
+                /// Index of `m_tilde_1_1`.
+                pub const M_TILDE_1_1: usize = 0;
+                /// Index of `m_tilde_1_2`.
+                pub const M_TILDE_1_2: usize = 1;
+                /// Index of `m_tilde_1_3`.
+                pub const M_TILDE_1_3: usize = 2;
+                /// Index of `m_tilde_1_4`.
+                pub const M_TILDE_1_4: usize = 3;
+                /// Index of `m_tilde_1_5`.
+                pub const M_TILDE_1_5: usize = 4;
+                /// Index of `m_tilde_1_6`.
+                pub const M_TILDE_1_6: usize = 5;
+                /// Index of `m_tilde_1_7`.
+                pub const M_TILDE_1_7: usize = 6;
+                /// Index of `m_tilde_2_2`.
+                pub const M_TILDE_2_2: usize = 7;
+                /// Index of `m_tilde_2_3`.
+                pub const M_TILDE_2_3: usize = 8;
+                /// Index of `m_tilde_2_4`.
+                pub const M_TILDE_2_4: usize = 9;
+                /// Index of `m_tilde_2_5`.
+                pub const M_TILDE_2_5: usize = 10;
+                /// Index of `m_tilde_2_6`.
+                pub const M_TILDE_2_6: usize = 11;
+                /// Index of `m_tilde_2_7`.
+                pub const M_TILDE_2_7: usize = 12;
+                /// Index of `m_tilde_3_3`.
+                pub const M_TILDE_3_3: usize = 13;
+                /// Index of `m_tilde_3_4`.
+                pub const M_TILDE_3_4: usize = 14;
+                /// Index of `m_tilde_3_5`.
+                pub const M_TILDE_3_5: usize = 15;
+                /// Index of `m_tilde_3_6`.
+                pub const M_TILDE_3_6: usize = 16;
+                /// Index of `m_tilde_3_7`.
+                pub const M_TILDE_3_7: usize = 17;
+                /// Index of `m_tilde_4_4`.
+                pub const M_TILDE_4_4: usize = 18;
+                /// Index of `m_tilde_4_5`.
+                pub const M_TILDE_4_5: usize = 19;
+                /// Index of `m_tilde_4_6`.
+                pub const M_TILDE_4_6: usize = 20;
+                /// Index of `m_tilde_4_7`.
+                pub const M_TILDE_4_7: usize = 21;
+                /// Index of `m_tilde_5_5`.
+                pub const M_TILDE_5_5: usize = 22;
+                /// Index of `m_tilde_5_6`.
+                pub const M_TILDE_5_6: usize = 23;
+                /// Index of `m_tilde_5_7`.
+                pub const M_TILDE_5_7: usize = 24;
+                /// Index of `m_tilde_6_6`.
+                pub const M_TILDE_6_6: usize = 25;
+                /// Index of `m_tilde_6_7`.
+                pub const M_TILDE_6_7: usize = 26;
+                /// Index of `m_tilde_7_7`.
+                pub const M_TILDE_7_7: usize = 27;
+                /// Index of `k_tilde_1_1`.
+                pub const K_TILDE_1_1: usize = 28;
+                /// Index of `k_tilde_1_2`.
+                pub const K_TILDE_1_2: usize = 29;
+                /// Index of `k_tilde_1_3`.
+                pub const K_TILDE_1_3: usize = 30;
+                /// Index of `k_tilde_1_4`.
+                pub const K_TILDE_1_4: usize = 31;
+                /// Index of `k_tilde_1_5`.
+                pub const K_TILDE_1_5: usize = 32;
+                /// Index of `k_tilde_1_6`.
+                pub const K_TILDE_1_6: usize = 33;
+                /// Index of `k_tilde_1_7`.
+                pub const K_TILDE_1_7: usize = 34;
+                /// Index of `k_tilde_2_2`.
+                pub const K_TILDE_2_2: usize = 35;
+                /// Index of `k_tilde_2_3`.
+                pub const K_TILDE_2_3: usize = 36;
+                /// Index of `k_tilde_2_4`.
+                pub const K_TILDE_2_4: usize = 37;
+                /// Index of `k_tilde_2_5`.
+                pub const K_TILDE_2_5: usize = 38;
+                /// Index of `k_tilde_2_6`.
+                pub const K_TILDE_2_6: usize = 39;
+                /// Index of `k_tilde_2_7`.
+                pub const K_TILDE_2_7: usize = 40;
+                /// Index of `k_tilde_3_3`.
+                pub const K_TILDE_3_3: usize = 41;
+                /// Index of `k_tilde_3_4`.
+                pub const K_TILDE_3_4: usize = 42;
+                /// Index of `k_tilde_3_5`.
+                pub const K_TILDE_3_5: usize = 43;
+                /// Index of `k_tilde_3_6`.
+                pub const K_TILDE_3_6: usize = 44;
+                /// Index of `k_tilde_3_7`.
+                pub const K_TILDE_3_7: usize = 45;
+                /// Index of `k_tilde_4_4`.
+                pub const K_TILDE_4_4: usize = 46;
+                /// Index of `k_tilde_4_5`.
+                pub const K_TILDE_4_5: usize = 47;
+                /// Index of `k_tilde_4_6`.
+                pub const K_TILDE_4_6: usize = 48;
+                /// Index of `k_tilde_4_7`.
+                pub const K_TILDE_4_7: usize = 49;
+                /// Index of `k_tilde_5_5`.
+                pub const K_TILDE_5_5: usize = 50;
+                /// Index of `k_tilde_5_6`.
+                pub const K_TILDE_5_6: usize = 51;
+                /// Index of `k_tilde_5_7`.
+                pub const K_TILDE_5_7: usize = 52;
+                /// Index of `k_tilde_6_6`.
+                pub const K_TILDE_6_6: usize = 53;
+                /// Index of `k_tilde_6_7`.
+                pub const K_TILDE_6_7: usize = 54;
+                /// Index of `k_tilde_7_7`.
+                pub const K_TILDE_7_7: usize = 55;
+                /// Index of `gamma_tilde_1`.
+                pub const GAMMA_TILDE_1: usize = 56;
+                /// Index of `gamma_tilde_2`.
+                pub const GAMMA_TILDE_2: usize = 57;
+                /// Index of `gamma_tilde_3`.
+                pub const GAMMA_TILDE_3: usize = 58;
+                /// Index of `gamma_tilde_4`.
+                pub const GAMMA_TILDE_4: usize = 59;
+                /// Index of `gamma_tilde_5`.
+                pub const GAMMA_TILDE_5: usize = 60;
+                /// Index of `gamma_tilde_6`.
+                pub const GAMMA_TILDE_6: usize = 61;
+                /// Index of `gamma_tilde_7`.
+                pub const GAMMA_TILDE_7: usize = 62;
+                /// Index of `theta_cr`.
+                pub const THETA_CR: usize = 63;
+                /// Index of `e_ref`.
+                pub const E_REF: usize = 64;
+                /// Index of `r`.
+                pub const R: usize = 65;
+                /// Index of `alpha`.
+                pub const ALPHA: usize = 66;
+                /// Index of `p_freq`.
+                pub const P_FREQ: usize = 67;
+                /// Index of `i_bc_plate`.
+                pub const I_BC_PLATE: usize = 68;
+            }
+
+            /// Indices of the output `psi` of `shape` (and of its inputs).
+            pub mod shape {
+                /// Index of `psi_1`.
+                pub const PSI_1: usize = 0;
+                /// Index of `psi_2`.
+                pub const PSI_2: usize = 1;
+                /// Index of `psi_3`.
+                pub const PSI_3: usize = 2;
+                /// Index of `psi_4`.
+                pub const PSI_4: usize = 3;
+                /// Index of `psi_5`.
+                pub const PSI_5: usize = 4;
+                /// Index of `psi_6`.
+                pub const PSI_6: usize = 5;
+                /// Index of `psi_7`.
+                pub const PSI_7: usize = 6;
+            }
+
+            /// Indices of the output `fc` of `forces_contact` (and of its inputs).
+            pub mod forces_contact {
+                /// Index of `moment`.
+                pub const MOMENT: usize = 0;
+                /// Index of `shear`.
+                pub const SHEAR: usize = 1;
+                /// Index of `axial`.
+                pub const AXIAL: usize = 2;
+                /// Index of `moment_elastic`.
+                pub const MOMENT_ELASTIC: usize = 3;
+                /// Index of `reaction_h`.
+                pub const REACTION_H: usize = 4;
+                /// Index of `reaction_v`.
+                pub const REACTION_V: usize = 5;
+
+                /// Indices of the elements of input `xc`.
+                pub mod xc {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 3;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 4;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 5;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 6;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 7;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 8;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 9;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 10;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 11;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 12;
+                    /// Index of `u_dot_7`.
+                    pub const U_DOT_7: usize = 13;
+                }
+            }
+
+            /// Indices of the output `fr` of `forces_rocking` (and of its inputs).
+            pub mod forces_rocking {
+                /// Index of `moment`.
+                pub const MOMENT: usize = 0;
+                /// Index of `shear`.
+                pub const SHEAR: usize = 1;
+                /// Index of `axial`.
+                pub const AXIAL: usize = 2;
+                /// Index of `moment_elastic`.
+                pub const MOMENT_ELASTIC: usize = 3;
+                /// Index of `reaction_h`.
+                pub const REACTION_H: usize = 4;
+                /// Index of `reaction_v`.
+                pub const REACTION_V: usize = 5;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 5;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 6;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 7;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 8;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 9;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 10;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 11;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 12;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 13;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 14;
+                    /// Index of `u_dot_7`.
+                    pub const U_DOT_7: usize = 15;
+                }
+            }
+
+            /// Indices of the output `up` of `static_uplift` (and of its inputs).
+            pub mod static_uplift {
+                /// Index of `weight`.
+                pub const WEIGHT: usize = 0;
+                /// Index of `moment_uplift`.
+                pub const MOMENT_UPLIFT: usize = 1;
+                /// Index of `ug_uplift`.
+                pub const UG_UPLIFT: usize = 2;
+                /// Index of `u_uplift_1`.
+                pub const U_UPLIFT_1: usize = 3;
+                /// Index of `u_uplift_2`.
+                pub const U_UPLIFT_2: usize = 4;
+                /// Index of `u_uplift_3`.
+                pub const U_UPLIFT_3: usize = 5;
+                /// Index of `u_uplift_4`.
+                pub const U_UPLIFT_4: usize = 6;
+                /// Index of `u_uplift_5`.
+                pub const U_UPLIFT_5: usize = 7;
+                /// Index of `u_uplift_6`.
+                pub const U_UPLIFT_6: usize = 8;
+                /// Index of `u_uplift_7`.
+                pub const U_UPLIFT_7: usize = 9;
+                /// Index of `moment_elastic_uplift`.
+                pub const MOMENT_ELASTIC_UPLIFT: usize = 10;
+            }
+        }
+    }
+
+    /// 8 deformation coordinates.
+    pub mod nq8 {
+        /// The number of deformation coordinates.
+        pub const NQ: usize = 8;
+        /// The length of [`crate::Layout::Q`].
+        pub const Q: usize = 9;
+        /// The length of [`crate::Layout::X`].
+        pub const X: usize = 18;
+        /// The length of [`crate::Layout::Xc`].
+        pub const XC: usize = 16;
+        /// The length of [`crate::Layout::Xi`].
+        pub const XI: usize = 17;
+        /// The length of [`crate::Layout::MassMatrix`].
+        pub const MASS_MATRIX: usize = 45;
+        /// The length of [`crate::Layout::Forcing`].
+        pub const FORCING: usize = 9;
+        /// The length of [`crate::Layout::ImpactVvel`].
+        pub const IMPACT_VVEL: usize = 12;
+        /// The length of [`crate::Layout::ImpactAdjex`].
+        pub const IMPACT_ADJEX: usize = 29;
+        /// The length of [`crate::Layout::ImpactHousner`].
+        pub const IMPACT_HOUSNER: usize = 11;
+        /// The length of [`crate::Layout::Structure`].
+        pub const STRUCTURE: usize = 86;
+        /// The length of [`crate::Layout::Shape`].
+        pub const SHAPE: usize = 8;
+        /// The length of [`crate::Layout::StaticUplift`].
+        pub const STATIC_UPLIFT: usize = 12;
+
+        /// Named indices of the inputs and outputs of the functions every variant of 8
+        /// coordinates exports alike.
+        pub mod index {
+
+            /// Indices of the output `m` of `mass_matrix` (and of its inputs).
+            pub mod mass_matrix {
+                /// Index of `m_tt`.
+                pub const M_TT: usize = 0;
+                /// Index of `m_tu_1`.
+                pub const M_TU_1: usize = 1;
+                /// Index of `m_tu_2`.
+                pub const M_TU_2: usize = 2;
+                /// Index of `m_tu_3`.
+                pub const M_TU_3: usize = 3;
+                /// Index of `m_tu_4`.
+                pub const M_TU_4: usize = 4;
+                /// Index of `m_tu_5`.
+                pub const M_TU_5: usize = 5;
+                /// Index of `m_tu_6`.
+                pub const M_TU_6: usize = 6;
+                /// Index of `m_tu_7`.
+                pub const M_TU_7: usize = 7;
+                /// Index of `m_tu_8`.
+                pub const M_TU_8: usize = 8;
+                /// Index of `m_uu_1_1`.
+                pub const M_UU_1_1: usize = 9;
+                /// Index of `m_uu_1_2`.
+                pub const M_UU_1_2: usize = 10;
+                /// Index of `m_uu_1_3`.
+                pub const M_UU_1_3: usize = 11;
+                /// Index of `m_uu_1_4`.
+                pub const M_UU_1_4: usize = 12;
+                /// Index of `m_uu_1_5`.
+                pub const M_UU_1_5: usize = 13;
+                /// Index of `m_uu_1_6`.
+                pub const M_UU_1_6: usize = 14;
+                /// Index of `m_uu_1_7`.
+                pub const M_UU_1_7: usize = 15;
+                /// Index of `m_uu_1_8`.
+                pub const M_UU_1_8: usize = 16;
+                /// Index of `m_uu_2_2`.
+                pub const M_UU_2_2: usize = 17;
+                /// Index of `m_uu_2_3`.
+                pub const M_UU_2_3: usize = 18;
+                /// Index of `m_uu_2_4`.
+                pub const M_UU_2_4: usize = 19;
+                /// Index of `m_uu_2_5`.
+                pub const M_UU_2_5: usize = 20;
+                /// Index of `m_uu_2_6`.
+                pub const M_UU_2_6: usize = 21;
+                /// Index of `m_uu_2_7`.
+                pub const M_UU_2_7: usize = 22;
+                /// Index of `m_uu_2_8`.
+                pub const M_UU_2_8: usize = 23;
+                /// Index of `m_uu_3_3`.
+                pub const M_UU_3_3: usize = 24;
+                /// Index of `m_uu_3_4`.
+                pub const M_UU_3_4: usize = 25;
+                /// Index of `m_uu_3_5`.
+                pub const M_UU_3_5: usize = 26;
+                /// Index of `m_uu_3_6`.
+                pub const M_UU_3_6: usize = 27;
+                /// Index of `m_uu_3_7`.
+                pub const M_UU_3_7: usize = 28;
+                /// Index of `m_uu_3_8`.
+                pub const M_UU_3_8: usize = 29;
+                /// Index of `m_uu_4_4`.
+                pub const M_UU_4_4: usize = 30;
+                /// Index of `m_uu_4_5`.
+                pub const M_UU_4_5: usize = 31;
+                /// Index of `m_uu_4_6`.
+                pub const M_UU_4_6: usize = 32;
+                /// Index of `m_uu_4_7`.
+                pub const M_UU_4_7: usize = 33;
+                /// Index of `m_uu_4_8`.
+                pub const M_UU_4_8: usize = 34;
+                /// Index of `m_uu_5_5`.
+                pub const M_UU_5_5: usize = 35;
+                /// Index of `m_uu_5_6`.
+                pub const M_UU_5_6: usize = 36;
+                /// Index of `m_uu_5_7`.
+                pub const M_UU_5_7: usize = 37;
+                /// Index of `m_uu_5_8`.
+                pub const M_UU_5_8: usize = 38;
+                /// Index of `m_uu_6_6`.
+                pub const M_UU_6_6: usize = 39;
+                /// Index of `m_uu_6_7`.
+                pub const M_UU_6_7: usize = 40;
+                /// Index of `m_uu_6_8`.
+                pub const M_UU_6_8: usize = 41;
+                /// Index of `m_uu_7_7`.
+                pub const M_UU_7_7: usize = 42;
+                /// Index of `m_uu_7_8`.
+                pub const M_UU_7_8: usize = 43;
+                /// Index of `m_uu_8_8`.
+                pub const M_UU_8_8: usize = 44;
+
+                /// Indices of the elements of input `q`.
+                pub mod q {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 5;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 6;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 7;
+                    /// Index of `u_8`.
+                    pub const U_8: usize = 8;
+                }
+            }
+
+            /// Indices of the output `f` of `forcing` (and of its inputs).
+            pub mod forcing {
+                /// Index of `f_theta`.
+                pub const F_THETA: usize = 0;
+                /// Index of `f_u_1`.
+                pub const F_U_1: usize = 1;
+                /// Index of `f_u_2`.
+                pub const F_U_2: usize = 2;
+                /// Index of `f_u_3`.
+                pub const F_U_3: usize = 3;
+                /// Index of `f_u_4`.
+                pub const F_U_4: usize = 4;
+                /// Index of `f_u_5`.
+                pub const F_U_5: usize = 5;
+                /// Index of `f_u_6`.
+                pub const F_U_6: usize = 6;
+                /// Index of `f_u_7`.
+                pub const F_U_7: usize = 7;
+                /// Index of `f_u_8`.
+                pub const F_U_8: usize = 8;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 5;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 6;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 7;
+                    /// Index of `u_8`.
+                    pub const U_8: usize = 8;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 9;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 10;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 11;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 12;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 13;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 14;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 15;
+                    /// Index of `u_dot_7`.
+                    pub const U_DOT_7: usize = 16;
+                    /// Index of `u_dot_8`.
+                    pub const U_DOT_8: usize = 17;
+                }
+            }
+
+            /// Indices of the output `dx` of `rocking_rhs` (and of its inputs).
+            pub mod rocking_rhs {
+                /// Index of `theta_dot`.
+                pub const THETA_DOT: usize = 0;
+                /// Index of `u_dot_1`.
+                pub const U_DOT_1: usize = 1;
+                /// Index of `u_dot_2`.
+                pub const U_DOT_2: usize = 2;
+                /// Index of `u_dot_3`.
+                pub const U_DOT_3: usize = 3;
+                /// Index of `u_dot_4`.
+                pub const U_DOT_4: usize = 4;
+                /// Index of `u_dot_5`.
+                pub const U_DOT_5: usize = 5;
+                /// Index of `u_dot_6`.
+                pub const U_DOT_6: usize = 6;
+                /// Index of `u_dot_7`.
+                pub const U_DOT_7: usize = 7;
+                /// Index of `u_dot_8`.
+                pub const U_DOT_8: usize = 8;
+                /// Index of `theta_ddot`.
+                pub const THETA_DDOT: usize = 9;
+                /// Index of `u_ddot_1`.
+                pub const U_DDOT_1: usize = 10;
+                /// Index of `u_ddot_2`.
+                pub const U_DDOT_2: usize = 11;
+                /// Index of `u_ddot_3`.
+                pub const U_DDOT_3: usize = 12;
+                /// Index of `u_ddot_4`.
+                pub const U_DDOT_4: usize = 13;
+                /// Index of `u_ddot_5`.
+                pub const U_DDOT_5: usize = 14;
+                /// Index of `u_ddot_6`.
+                pub const U_DDOT_6: usize = 15;
+                /// Index of `u_ddot_7`.
+                pub const U_DDOT_7: usize = 16;
+                /// Index of `u_ddot_8`.
+                pub const U_DDOT_8: usize = 17;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 5;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 6;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 7;
+                    /// Index of `u_8`.
+                    pub const U_8: usize = 8;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 9;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 10;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 11;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 12;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 13;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 14;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 15;
+                    /// Index of `u_dot_7`.
+                    pub const U_DOT_7: usize = 16;
+                    /// Index of `u_dot_8`.
+                    pub const U_DOT_8: usize = 17;
+                }
+            }
+
+            /// Indices of the output `dxc` of `contact_rhs` (and of its inputs).
+            pub mod contact_rhs {
+                /// Index of `u_dot_1`.
+                pub const U_DOT_1: usize = 0;
+                /// Index of `u_dot_2`.
+                pub const U_DOT_2: usize = 1;
+                /// Index of `u_dot_3`.
+                pub const U_DOT_3: usize = 2;
+                /// Index of `u_dot_4`.
+                pub const U_DOT_4: usize = 3;
+                /// Index of `u_dot_5`.
+                pub const U_DOT_5: usize = 4;
+                /// Index of `u_dot_6`.
+                pub const U_DOT_6: usize = 5;
+                /// Index of `u_dot_7`.
+                pub const U_DOT_7: usize = 6;
+                /// Index of `u_dot_8`.
+                pub const U_DOT_8: usize = 7;
+                /// Index of `u_ddot_1`.
+                pub const U_DDOT_1: usize = 8;
+                /// Index of `u_ddot_2`.
+                pub const U_DDOT_2: usize = 9;
+                /// Index of `u_ddot_3`.
+                pub const U_DDOT_3: usize = 10;
+                /// Index of `u_ddot_4`.
+                pub const U_DDOT_4: usize = 11;
+                /// Index of `u_ddot_5`.
+                pub const U_DDOT_5: usize = 12;
+                /// Index of `u_ddot_6`.
+                pub const U_DDOT_6: usize = 13;
+                /// Index of `u_ddot_7`.
+                pub const U_DDOT_7: usize = 14;
+                /// Index of `u_ddot_8`.
+                pub const U_DDOT_8: usize = 15;
+
+                /// Indices of the elements of input `xc`.
+                pub mod xc {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 3;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 4;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 5;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 6;
+                    /// Index of `u_8`.
+                    pub const U_8: usize = 7;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 8;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 9;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 10;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 11;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 12;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 13;
+                    /// Index of `u_dot_7`.
+                    pub const U_DOT_7: usize = 14;
+                    /// Index of `u_dot_8`.
+                    pub const U_DOT_8: usize = 15;
+                }
+            }
+
+            /// Indices of the output `f_s` of `uplift` (and of its inputs).
+            pub mod uplift {
+                /// Index of `f_s`.
+                pub const F_S: usize = 0;
+
+                /// Indices of the elements of input `xc`.
+                pub mod xc {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 3;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 4;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 5;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 6;
+                    /// Index of `u_8`.
+                    pub const U_8: usize = 7;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 8;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 9;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 10;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 11;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 12;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 13;
+                    /// Index of `u_dot_7`.
+                    pub const U_DOT_7: usize = 14;
+                    /// Index of `u_dot_8`.
+                    pub const U_DOT_8: usize = 15;
+                }
+            }
+
+            /// Indices of the output `e` of `energy` (and of its inputs).
+            pub mod energy {
+                /// Index of `kinetic`.
+                pub const KINETIC: usize = 0;
+                /// Index of `gravity`.
+                pub const GRAVITY: usize = 1;
+                /// Index of `strain`.
+                pub const STRAIN: usize = 2;
+                /// Index of `momentum_x`.
+                pub const MOMENTUM_X: usize = 3;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 5;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 6;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 7;
+                    /// Index of `u_8`.
+                    pub const U_8: usize = 8;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 9;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 10;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 11;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 12;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 13;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 14;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 15;
+                    /// Index of `u_dot_7`.
+                    pub const U_DOT_7: usize = 16;
+                    /// Index of `u_dot_8`.
+                    pub const U_DOT_8: usize = 17;
+                }
+            }
+
+            /// Indices of the output `w` of `power` (and of its inputs).
+            pub mod power {
+                /// Index of `ground`.
+                pub const GROUND: usize = 0;
+                /// Index of `damping`.
+                pub const DAMPING: usize = 1;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 5;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 6;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 7;
+                    /// Index of `u_8`.
+                    pub const U_8: usize = 8;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 9;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 10;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 11;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 12;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 13;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 14;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 15;
+                    /// Index of `u_dot_7`.
+                    pub const U_DOT_7: usize = 16;
+                    /// Index of `u_dot_8`.
+                    pub const U_DOT_8: usize = 17;
+                }
+            }
+
+            /// Indices of the output `vvel` of `impact_vvel` (and of its inputs).
+            pub mod impact_vvel {
+                /// Index of `rock`.
+                pub const ROCK: usize = 0;
+                /// Index of `theta_dot`.
+                pub const THETA_DOT: usize = 1;
+                /// Index of `u_dot_1`.
+                pub const U_DOT_1: usize = 2;
+                /// Index of `u_dot_2`.
+                pub const U_DOT_2: usize = 3;
+                /// Index of `u_dot_3`.
+                pub const U_DOT_3: usize = 4;
+                /// Index of `u_dot_4`.
+                pub const U_DOT_4: usize = 5;
+                /// Index of `u_dot_5`.
+                pub const U_DOT_5: usize = 6;
+                /// Index of `u_dot_6`.
+                pub const U_DOT_6: usize = 7;
+                /// Index of `u_dot_7`.
+                pub const U_DOT_7: usize = 8;
+                /// Index of `u_dot_8`.
+                pub const U_DOT_8: usize = 9;
+                /// Index of `energy_after`.
+                pub const ENERGY_AFTER: usize = 10;
+                /// Index of `energy_before`.
+                pub const ENERGY_BEFORE: usize = 11;
+
+                /// Indices of the elements of input `xi`.
+                pub mod xi {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 3;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 4;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 5;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 6;
+                    /// Index of `u_8`.
+                    pub const U_8: usize = 7;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 8;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 9;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 10;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 11;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 12;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 13;
+                    /// Index of `u_dot_7`.
+                    pub const U_DOT_7: usize = 14;
+                    /// Index of `u_dot_8`.
+                    pub const U_DOT_8: usize = 15;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 16;
+                }
+            }
+
+            /// Indices of the output `adjex` of `impact_adjex` (and of its inputs).
+            pub mod impact_adjex {
+                /// Index of `u_dot_contact_1`.
+                pub const U_DOT_CONTACT_1: usize = 0;
+                /// Index of `u_dot_contact_2`.
+                pub const U_DOT_CONTACT_2: usize = 1;
+                /// Index of `u_dot_contact_3`.
+                pub const U_DOT_CONTACT_3: usize = 2;
+                /// Index of `u_dot_contact_4`.
+                pub const U_DOT_CONTACT_4: usize = 3;
+                /// Index of `u_dot_contact_5`.
+                pub const U_DOT_CONTACT_5: usize = 4;
+                /// Index of `u_dot_contact_6`.
+                pub const U_DOT_CONTACT_6: usize = 5;
+                /// Index of `u_dot_contact_7`.
+                pub const U_DOT_CONTACT_7: usize = 6;
+                /// Index of `u_dot_contact_8`.
+                pub const U_DOT_CONTACT_8: usize = 7;
+                /// Index of `energy_contact`.
+                pub const ENERGY_CONTACT: usize = 8;
+                /// Index of `theta_dot_rocking`.
+                pub const THETA_DOT_ROCKING: usize = 9;
+                /// Index of `u_dot_rocking_1`.
+                pub const U_DOT_ROCKING_1: usize = 10;
+                /// Index of `u_dot_rocking_2`.
+                pub const U_DOT_ROCKING_2: usize = 11;
+                /// Index of `u_dot_rocking_3`.
+                pub const U_DOT_ROCKING_3: usize = 12;
+                /// Index of `u_dot_rocking_4`.
+                pub const U_DOT_ROCKING_4: usize = 13;
+                /// Index of `u_dot_rocking_5`.
+                pub const U_DOT_ROCKING_5: usize = 14;
+                /// Index of `u_dot_rocking_6`.
+                pub const U_DOT_ROCKING_6: usize = 15;
+                /// Index of `u_dot_rocking_7`.
+                pub const U_DOT_ROCKING_7: usize = 16;
+                /// Index of `u_dot_rocking_8`.
+                pub const U_DOT_ROCKING_8: usize = 17;
+                /// Index of `energy_rocking`.
+                pub const ENERGY_ROCKING: usize = 18;
+                /// Index of `energy_before`.
+                pub const ENERGY_BEFORE: usize = 19;
+                /// Index of `u_dot_momentum_1`.
+                pub const U_DOT_MOMENTUM_1: usize = 20;
+                /// Index of `u_dot_momentum_2`.
+                pub const U_DOT_MOMENTUM_2: usize = 21;
+                /// Index of `u_dot_momentum_3`.
+                pub const U_DOT_MOMENTUM_3: usize = 22;
+                /// Index of `u_dot_momentum_4`.
+                pub const U_DOT_MOMENTUM_4: usize = 23;
+                /// Index of `u_dot_momentum_5`.
+                pub const U_DOT_MOMENTUM_5: usize = 24;
+                /// Index of `u_dot_momentum_6`.
+                pub const U_DOT_MOMENTUM_6: usize = 25;
+                /// Index of `u_dot_momentum_7`.
+                pub const U_DOT_MOMENTUM_7: usize = 26;
+                /// Index of `u_dot_momentum_8`.
+                pub const U_DOT_MOMENTUM_8: usize = 27;
+                /// Index of `energy_momentum`.
+                pub const ENERGY_MOMENTUM: usize = 28;
+
+                /// Indices of the elements of input `xi`.
+                pub mod xi {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 3;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 4;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 5;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 6;
+                    /// Index of `u_8`.
+                    pub const U_8: usize = 7;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 8;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 9;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 10;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 11;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 12;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 13;
+                    /// Index of `u_dot_7`.
+                    pub const U_DOT_7: usize = 14;
+                    /// Index of `u_dot_8`.
+                    pub const U_DOT_8: usize = 15;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 16;
+                }
+            }
+
+            /// Indices of the output `housner` of `impact_housner` (and of its inputs).
+            pub mod impact_housner {
+                /// Index of `theta_dot`.
+                pub const THETA_DOT: usize = 0;
+                /// Index of `u_dot_1`.
+                pub const U_DOT_1: usize = 1;
+                /// Index of `u_dot_2`.
+                pub const U_DOT_2: usize = 2;
+                /// Index of `u_dot_3`.
+                pub const U_DOT_3: usize = 3;
+                /// Index of `u_dot_4`.
+                pub const U_DOT_4: usize = 4;
+                /// Index of `u_dot_5`.
+                pub const U_DOT_5: usize = 5;
+                /// Index of `u_dot_6`.
+                pub const U_DOT_6: usize = 6;
+                /// Index of `u_dot_7`.
+                pub const U_DOT_7: usize = 7;
+                /// Index of `u_dot_8`.
+                pub const U_DOT_8: usize = 8;
+                /// Index of `energy_after`.
+                pub const ENERGY_AFTER: usize = 9;
+                /// Index of `energy_before`.
+                pub const ENERGY_BEFORE: usize = 10;
+
+                /// Indices of the elements of input `xi`.
+                pub mod xi {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 3;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 4;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 5;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 6;
+                    /// Index of `u_8`.
+                    pub const U_8: usize = 7;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 8;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 9;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 10;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 11;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 12;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 13;
+                    /// Index of `u_dot_7`.
+                    pub const U_DOT_7: usize = 14;
+                    /// Index of `u_dot_8`.
+                    pub const U_DOT_8: usize = 15;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 16;
+                }
+            }
+
+            /// Indices of the output `st` of `structure` (and of its inputs).
+            pub mod structure {
+                /// Index of `m_tilde_1_1`.
+                pub const M_TILDE_1_1: usize = 0;
+                /// Index of `m_tilde_1_2`.
+                pub const M_TILDE_1_2: usize = 1;
+                /// Index of `m_tilde_1_3`.
+                pub const M_TILDE_1_3: usize = 2;
+                /// Index of `m_tilde_1_4`.
+                pub const M_TILDE_1_4: usize = 3;
+                /// Index of `m_tilde_1_5`.
+                pub const M_TILDE_1_5: usize = 4;
+                /// Index of `m_tilde_1_6`.
+                pub const M_TILDE_1_6: usize = 5;
+                /// Index of `m_tilde_1_7`.
+                pub const M_TILDE_1_7: usize = 6;
+                /// Index of `m_tilde_1_8`.
+                pub const M_TILDE_1_8: usize = 7;
+                /// Index of `m_tilde_2_2`.
+                pub const M_TILDE_2_2: usize = 8;
+                /// Index of `m_tilde_2_3`.
+                pub const M_TILDE_2_3: usize = 9;
+                /// Index of `m_tilde_2_4`.
+                pub const M_TILDE_2_4: usize = 10;
+                /// Index of `m_tilde_2_5`.
+                pub const M_TILDE_2_5: usize = 11;
+                /// Index of `m_tilde_2_6`.
+                pub const M_TILDE_2_6: usize = 12;
+                /// Index of `m_tilde_2_7`.
+                pub const M_TILDE_2_7: usize = 13;
+                /// Index of `m_tilde_2_8`.
+                pub const M_TILDE_2_8: usize = 14;
+                /// Index of `m_tilde_3_3`.
+                pub const M_TILDE_3_3: usize = 15;
+                /// Index of `m_tilde_3_4`.
+                pub const M_TILDE_3_4: usize = 16;
+                /// Index of `m_tilde_3_5`.
+                pub const M_TILDE_3_5: usize = 17;
+                /// Index of `m_tilde_3_6`.
+                pub const M_TILDE_3_6: usize = 18;
+                /// Index of `m_tilde_3_7`.
+                pub const M_TILDE_3_7: usize = 19;
+                /// Index of `m_tilde_3_8`.
+                pub const M_TILDE_3_8: usize = 20;
+                /// Index of `m_tilde_4_4`.
+                pub const M_TILDE_4_4: usize = 21;
+                /// Index of `m_tilde_4_5`.
+                pub const M_TILDE_4_5: usize = 22;
+                /// Index of `m_tilde_4_6`.
+                pub const M_TILDE_4_6: usize = 23;
+                /// Index of `m_tilde_4_7`.
+                pub const M_TILDE_4_7: usize = 24;
+                /// Index of `m_tilde_4_8`.
+                pub const M_TILDE_4_8: usize = 25;
+                /// Index of `m_tilde_5_5`.
+                pub const M_TILDE_5_5: usize = 26;
+                /// Index of `m_tilde_5_6`.
+                pub const M_TILDE_5_6: usize = 27;
+                /// Index of `m_tilde_5_7`.
+                pub const M_TILDE_5_7: usize = 28;
+                /// Index of `m_tilde_5_8`.
+                pub const M_TILDE_5_8: usize = 29;
+                /// Index of `m_tilde_6_6`.
+                pub const M_TILDE_6_6: usize = 30;
+                /// Index of `m_tilde_6_7`.
+                pub const M_TILDE_6_7: usize = 31;
+                /// Index of `m_tilde_6_8`.
+                pub const M_TILDE_6_8: usize = 32;
+                /// Index of `m_tilde_7_7`.
+                pub const M_TILDE_7_7: usize = 33;
+                /// Index of `m_tilde_7_8`.
+                pub const M_TILDE_7_8: usize = 34;
+                /// Index of `m_tilde_8_8`.
+                pub const M_TILDE_8_8: usize = 35;
+                /// Index of `k_tilde_1_1`.
+                pub const K_TILDE_1_1: usize = 36;
+                /// Index of `k_tilde_1_2`.
+                pub const K_TILDE_1_2: usize = 37;
+                /// Index of `k_tilde_1_3`.
+                pub const K_TILDE_1_3: usize = 38;
+                /// Index of `k_tilde_1_4`.
+                pub const K_TILDE_1_4: usize = 39;
+                /// Index of `k_tilde_1_5`.
+                pub const K_TILDE_1_5: usize = 40;
+                /// Index of `k_tilde_1_6`.
+                pub const K_TILDE_1_6: usize = 41;
+                /// Index of `k_tilde_1_7`.
+                pub const K_TILDE_1_7: usize = 42;
+                /// Index of `k_tilde_1_8`.
+                pub const K_TILDE_1_8: usize = 43;
+                /// Index of `k_tilde_2_2`.
+                pub const K_TILDE_2_2: usize = 44;
+                /// Index of `k_tilde_2_3`.
+                pub const K_TILDE_2_3: usize = 45;
+                /// Index of `k_tilde_2_4`.
+                pub const K_TILDE_2_4: usize = 46;
+                /// Index of `k_tilde_2_5`.
+                pub const K_TILDE_2_5: usize = 47;
+                /// Index of `k_tilde_2_6`.
+                pub const K_TILDE_2_6: usize = 48;
+                /// Index of `k_tilde_2_7`.
+                pub const K_TILDE_2_7: usize = 49;
+                /// Index of `k_tilde_2_8`.
+                pub const K_TILDE_2_8: usize = 50;
+                /// Index of `k_tilde_3_3`.
+                pub const K_TILDE_3_3: usize = 51;
+                /// Index of `k_tilde_3_4`.
+                pub const K_TILDE_3_4: usize = 52;
+                /// Index of `k_tilde_3_5`.
+                pub const K_TILDE_3_5: usize = 53;
+                /// Index of `k_tilde_3_6`.
+                pub const K_TILDE_3_6: usize = 54;
+                /// Index of `k_tilde_3_7`.
+                pub const K_TILDE_3_7: usize = 55;
+                /// Index of `k_tilde_3_8`.
+                pub const K_TILDE_3_8: usize = 56;
+                /// Index of `k_tilde_4_4`.
+                pub const K_TILDE_4_4: usize = 57;
+                /// Index of `k_tilde_4_5`.
+                pub const K_TILDE_4_5: usize = 58;
+                /// Index of `k_tilde_4_6`.
+                pub const K_TILDE_4_6: usize = 59;
+                /// Index of `k_tilde_4_7`.
+                pub const K_TILDE_4_7: usize = 60;
+                /// Index of `k_tilde_4_8`.
+                pub const K_TILDE_4_8: usize = 61;
+                /// Index of `k_tilde_5_5`.
+                pub const K_TILDE_5_5: usize = 62;
+                /// Index of `k_tilde_5_6`.
+                pub const K_TILDE_5_6: usize = 63;
+                /// Index of `k_tilde_5_7`.
+                pub const K_TILDE_5_7: usize = 64;
+                /// Index of `k_tilde_5_8`.
+                pub const K_TILDE_5_8: usize = 65;
+                /// Index of `k_tilde_6_6`.
+                pub const K_TILDE_6_6: usize = 66;
+                /// Index of `k_tilde_6_7`.
+                pub const K_TILDE_6_7: usize = 67;
+                /// Index of `k_tilde_6_8`.
+                pub const K_TILDE_6_8: usize = 68;
+                /// Index of `k_tilde_7_7`.
+                pub const K_TILDE_7_7: usize = 69;
+                /// Index of `k_tilde_7_8`.
+                pub const K_TILDE_7_8: usize = 70;
+                /// Index of `k_tilde_8_8`.
+                pub const K_TILDE_8_8: usize = 71;
+                /// Index of `gamma_tilde_1`.
+                pub const GAMMA_TILDE_1: usize = 72;
+                /// Index of `gamma_tilde_2`.
+                pub const GAMMA_TILDE_2: usize = 73;
+                /// Index of `gamma_tilde_3`.
+                pub const GAMMA_TILDE_3: usize = 74;
+                /// Index of `gamma_tilde_4`.
+                pub const GAMMA_TILDE_4: usize = 75;
+                /// Index of `gamma_tilde_5`.
+                pub const GAMMA_TILDE_5: usize = 76;
+                /// Index of `gamma_tilde_6`.
+                pub const GAMMA_TILDE_6: usize = 77;
+                /// Index of `gamma_tilde_7`.
+                pub const GAMMA_TILDE_7: usize = 78;
+                /// Index of `gamma_tilde_8`.
+                pub const GAMMA_TILDE_8: usize = 79;
+                /// Index of `theta_cr`.
+                pub const THETA_CR: usize = 80;
+                /// Index of `e_ref`.
+                pub const E_REF: usize = 81;
+                /// Index of `r`.
+                pub const R: usize = 82;
+                /// Index of `alpha`.
+                pub const ALPHA: usize = 83;
+                /// Index of `p_freq`.
+                pub const P_FREQ: usize = 84;
+                /// Index of `i_bc_plate`.
+                pub const I_BC_PLATE: usize = 85;
+            }
+
+            /// Indices of the output `psi` of `shape` (and of its inputs).
+            pub mod shape {
+                /// Index of `psi_1`.
+                pub const PSI_1: usize = 0;
+                /// Index of `psi_2`.
+                pub const PSI_2: usize = 1;
+                /// Index of `psi_3`.
+                pub const PSI_3: usize = 2;
+                /// Index of `psi_4`.
+                pub const PSI_4: usize = 3;
+                /// Index of `psi_5`.
+                pub const PSI_5: usize = 4;
+                /// Index of `psi_6`.
+                pub const PSI_6: usize = 5;
+                /// Index of `psi_7`.
+                pub const PSI_7: usize = 6;
+                /// Index of `psi_8`.
+                pub const PSI_8: usize = 7;
+            }
+
+            /// Indices of the output `fc` of `forces_contact` (and of its inputs).
+            pub mod forces_contact {
+                /// Index of `moment`.
+                pub const MOMENT: usize = 0;
+                /// Index of `shear`.
+                pub const SHEAR: usize = 1;
+                /// Index of `axial`.
+                pub const AXIAL: usize = 2;
+                /// Index of `moment_elastic`.
+                pub const MOMENT_ELASTIC: usize = 3;
+                /// Index of `reaction_h`.
+                pub const REACTION_H: usize = 4;
+                /// Index of `reaction_v`.
+                pub const REACTION_V: usize = 5;
+
+                /// Indices of the elements of input `xc`.
+                pub mod xc {
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 0;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 1;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 2;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 3;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 4;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 5;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 6;
+                    /// Index of `u_8`.
+                    pub const U_8: usize = 7;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 8;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 9;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 10;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 11;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 12;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 13;
+                    /// Index of `u_dot_7`.
+                    pub const U_DOT_7: usize = 14;
+                    /// Index of `u_dot_8`.
+                    pub const U_DOT_8: usize = 15;
+                }
+            }
+
+            /// Indices of the output `fr` of `forces_rocking` (and of its inputs).
+            pub mod forces_rocking {
+                /// Index of `moment`.
+                pub const MOMENT: usize = 0;
+                /// Index of `shear`.
+                pub const SHEAR: usize = 1;
+                /// Index of `axial`.
+                pub const AXIAL: usize = 2;
+                /// Index of `moment_elastic`.
+                pub const MOMENT_ELASTIC: usize = 3;
+                /// Index of `reaction_h`.
+                pub const REACTION_H: usize = 4;
+                /// Index of `reaction_v`.
+                pub const REACTION_V: usize = 5;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 5;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 6;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 7;
+                    /// Index of `u_8`.
+                    pub const U_8: usize = 8;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 9;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 10;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 11;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 12;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 13;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 14;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 15;
+                    /// Index of `u_dot_7`.
+                    pub const U_DOT_7: usize = 16;
+                    /// Index of `u_dot_8`.
+                    pub const U_DOT_8: usize = 17;
+                }
+            }
+
+            /// Indices of the output `up` of `static_uplift` (and of its inputs).
+            pub mod static_uplift {
+                /// Index of `weight`.
+                pub const WEIGHT: usize = 0;
+                /// Index of `moment_uplift`.
+                pub const MOMENT_UPLIFT: usize = 1;
+                /// Index of `ug_uplift`.
+                pub const UG_UPLIFT: usize = 2;
+                /// Index of `u_uplift_1`.
+                pub const U_UPLIFT_1: usize = 3;
+                /// Index of `u_uplift_2`.
+                pub const U_UPLIFT_2: usize = 4;
+                /// Index of `u_uplift_3`.
+                pub const U_UPLIFT_3: usize = 5;
+                /// Index of `u_uplift_4`.
+                pub const U_UPLIFT_4: usize = 6;
+                /// Index of `u_uplift_5`.
+                pub const U_UPLIFT_5: usize = 7;
+                /// Index of `u_uplift_6`.
+                pub const U_UPLIFT_6: usize = 8;
+                /// Index of `u_uplift_7`.
+                pub const U_UPLIFT_7: usize = 9;
+                /// Index of `u_uplift_8`.
+                pub const U_UPLIFT_8: usize = 10;
+                /// Index of `moment_elastic_uplift`.
+                pub const MOMENT_ELASTIC_UPLIFT: usize = 11;
+            }
+        }
+    }
 }
 
 /// Evaluates `$body` with the type `$V` standing for the variant named `$name` (a `&str`),
@@ -2535,6 +8010,12 @@ macro_rules! with_variant {
                 use $crate::kernels::layout::nq1 as $L;
                 ::core::option::Option::Some($body)
             }
+            "cantilever_modes1" => {
+                type $V = $crate::kernels::CantileverModes1;
+                #[allow(unused_imports)]
+                use $crate::kernels::layout::nq1 as $L;
+                ::core::option::Option::Some($body)
+            }
             "cantilever_modes2" => {
                 type $V = $crate::kernels::CantileverModes2;
                 #[allow(unused_imports)]
@@ -2545,6 +8026,36 @@ macro_rules! with_variant {
                 type $V = $crate::kernels::CantileverModes3;
                 #[allow(unused_imports)]
                 use $crate::kernels::layout::nq3 as $L;
+                ::core::option::Option::Some($body)
+            }
+            "cantilever_modes4" => {
+                type $V = $crate::kernels::CantileverModes4;
+                #[allow(unused_imports)]
+                use $crate::kernels::layout::nq4 as $L;
+                ::core::option::Option::Some($body)
+            }
+            "cantilever_modes5" => {
+                type $V = $crate::kernels::CantileverModes5;
+                #[allow(unused_imports)]
+                use $crate::kernels::layout::nq5 as $L;
+                ::core::option::Option::Some($body)
+            }
+            "cantilever_modes6" => {
+                type $V = $crate::kernels::CantileverModes6;
+                #[allow(unused_imports)]
+                use $crate::kernels::layout::nq6 as $L;
+                ::core::option::Option::Some($body)
+            }
+            "cantilever_modes7" => {
+                type $V = $crate::kernels::CantileverModes7;
+                #[allow(unused_imports)]
+                use $crate::kernels::layout::nq7 as $L;
+                ::core::option::Option::Some($body)
+            }
+            "cantilever_modes8" => {
+                type $V = $crate::kernels::CantileverModes8;
+                #[allow(unused_imports)]
+                use $crate::kernels::layout::nq8 as $L;
                 ::core::option::Option::Some($body)
             }
             "cosine_shape" => {
@@ -2616,6 +8127,10 @@ macro_rules! with_variant {
                 type $V = $crate::kernels::AddedMass;
                 ::core::option::Option::Some($body)
             }
+            "cantilever_modes1" => {
+                type $V = $crate::kernels::CantileverModes1;
+                ::core::option::Option::Some($body)
+            }
             "cosine_shape" => {
                 type $V = $crate::kernels::CosineShape;
                 ::core::option::Option::Some($body)
@@ -2659,6 +8174,7 @@ macro_rules! for_each_variant {
     ($callback:ident) => {
         $callback!(
             AddedMass => added_mass,
+            CantileverModes1 => cantilever_modes1,
             CosineShape => cosine_shape,
             Full => full,
             MasslessBase => massless_base,
@@ -2671,8 +8187,14 @@ macro_rules! for_each_variant {
     ($callback:ident, layout) => {
         $callback!(
             AddedMass => added_mass: nq1,
+            CantileverModes1 => cantilever_modes1: nq1,
             CantileverModes2 => cantilever_modes2: nq2,
             CantileverModes3 => cantilever_modes3: nq3,
+            CantileverModes4 => cantilever_modes4: nq4,
+            CantileverModes5 => cantilever_modes5: nq5,
+            CantileverModes6 => cantilever_modes6: nq6,
+            CantileverModes7 => cantilever_modes7: nq7,
+            CantileverModes8 => cantilever_modes8: nq8,
             CosineShape => cosine_shape: nq1,
             CubicQuadratic => cubic_quadratic: nq2,
             Full => full: nq1,
@@ -2696,8 +8218,14 @@ macro_rules! for_each_variant {
 pub fn call(variant: &str, function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
     match variant {
         "added_mass" => added_mass::call(function, inputs),
+        "cantilever_modes1" => cantilever_modes1::call(function, inputs),
         "cantilever_modes2" => cantilever_modes2::call(function, inputs),
         "cantilever_modes3" => cantilever_modes3::call(function, inputs),
+        "cantilever_modes4" => cantilever_modes4::call(function, inputs),
+        "cantilever_modes5" => cantilever_modes5::call(function, inputs),
+        "cantilever_modes6" => cantilever_modes6::call(function, inputs),
+        "cantilever_modes7" => cantilever_modes7::call(function, inputs),
+        "cantilever_modes8" => cantilever_modes8::call(function, inputs),
         "cosine_shape" => cosine_shape::call(function, inputs),
         "cubic_quadratic" => cubic_quadratic::call(function, inputs),
         "full" => full::call(function, inputs),

@@ -26,6 +26,18 @@ pub mod added_mass;
     non_snake_case,
     missing_docs,
 )]
+pub mod cantilever_modes1;
+#[rustfmt::skip]
+#[allow(
+    clippy::all,
+    clippy::pedantic,
+    clippy::nursery,
+    unused_parens,
+    unused_variables,
+    unused_mut,
+    non_snake_case,
+    missing_docs,
+)]
 pub mod cantilever_modes2;
 #[rustfmt::skip]
 #[allow(
@@ -39,6 +51,66 @@ pub mod cantilever_modes2;
     missing_docs,
 )]
 pub mod cantilever_modes3;
+#[rustfmt::skip]
+#[allow(
+    clippy::all,
+    clippy::pedantic,
+    clippy::nursery,
+    unused_parens,
+    unused_variables,
+    unused_mut,
+    non_snake_case,
+    missing_docs,
+)]
+pub mod cantilever_modes4;
+#[rustfmt::skip]
+#[allow(
+    clippy::all,
+    clippy::pedantic,
+    clippy::nursery,
+    unused_parens,
+    unused_variables,
+    unused_mut,
+    non_snake_case,
+    missing_docs,
+)]
+pub mod cantilever_modes5;
+#[rustfmt::skip]
+#[allow(
+    clippy::all,
+    clippy::pedantic,
+    clippy::nursery,
+    unused_parens,
+    unused_variables,
+    unused_mut,
+    non_snake_case,
+    missing_docs,
+)]
+pub mod cantilever_modes6;
+#[rustfmt::skip]
+#[allow(
+    clippy::all,
+    clippy::pedantic,
+    clippy::nursery,
+    unused_parens,
+    unused_variables,
+    unused_mut,
+    non_snake_case,
+    missing_docs,
+)]
+pub mod cantilever_modes7;
+#[rustfmt::skip]
+#[allow(
+    clippy::all,
+    clippy::pedantic,
+    clippy::nursery,
+    unused_parens,
+    unused_variables,
+    unused_mut,
+    non_snake_case,
+    missing_docs,
+)]
+pub mod cantilever_modes8;
 #[rustfmt::skip]
 #[allow(
     clippy::all,
