@@ -22,6 +22,10 @@ def main(argv=None) -> int:
         text = ir.dumps(ir.variant_ir(variant))
         (args.out / "ir" / f"{variant.name}.json").write_text(text)
         print(f"derived {variant.name}", file=sys.stderr)
+    if not args.only or args.only == "ground":
+        (args.out / "ir" / "ground").mkdir(exist_ok=True)
+        (args.out / "ir" / "ground" / "ground.json").write_text(ir.dumps(ir.ground_ir()))
+        print("derived ground", file=sys.stderr)
     if not args.only:
         report, problems = errata.report()
         (args.out / "errata.md").write_text(report)

@@ -57,6 +57,8 @@ def number(v: float):
 SAMPLE_RANGES = {
     "theta": (-0.3, 0.3), "u": (-0.05, 0.05), "theta_dot": (-1.0, 1.0), "u_dot": (-0.5, 0.5),
     "ug": (-3.0, 3.0), "eta": (0.0, 1.0),
+    # the ground's kernels (ground.py): settlement, its rate, the load
+    "v": (-0.02, 0.05), "v_dot": (-0.5, 0.5), "w": (1.0, 1000.0),
 }
 
 
@@ -166,18 +168,19 @@ def _close(a: float, b: float) -> bool:
 
 
 def golden(k: Kernel, f: ca.Function, instructions: list[list], variant: Variant,
-           count: int = 3, seed: int = 20151122, ug_series: int = 0) -> list[dict]:
+           count: int = 3, seed: int = 20151122, ug_series: int = 0, sample=None) -> list[dict]:
     """Golden samples: the tape of ``f`` (the kernel ``k``'s inputs) replayed deterministically
     (``replay``) at pseudo-random inputs, checked here against CasADi's own evaluation of the
     function (which calls the machine's libm, so it is a check, never an output). With
-    ``ug_series`` > 0 the ground acceleration is that many Taylor coefficients instead of a value."""
+    ``ug_series`` > 0 the ground acceleration is that many Taylor coefficients instead of a value.
+    ``sample(rng)`` gives the parameters when there is no variant (the ground's kernels)."""
     rng = Sampler(seed + len(k.name))
     samples = []
     for j in range(count):
         args = []
         for inp in k.inputs:
             if inp.params:
-                args.append(sample_params(variant, rng))
+                args.append(sample(rng) if sample else sample_params(variant, rng))
             elif inp.name == "s":
                 args.append([1.0 if j % 2 == 0 else -1.0])
             elif inp.name == "ug" and ug_series:
@@ -188,7 +191,7 @@ def golden(k: Kernel, f: ca.Function, instructions: list[list], variant: Variant
         casadi_values = [float(v) for v in ca.DM(f(*args)).full().reshape(-1)]
         bad = [(i, a, b) for i, (a, b) in enumerate(zip(values, casadi_values)) if not _close(a, b)]
         if len(values) != len(casadi_values) or bad:
-            raise ValueError(f"{variant.name}::{f.name()}: replay differs from CasADi at {bad[:3]}")
+            raise ValueError(f"{variant.name if variant else 'ground'}::{f.name()}: replay differs from CasADi at {bad[:3]}")
         samples.append({"inputs": args, "output": [number(v) for v in values]})
     return samples
 
@@ -336,3 +339,44 @@ def dumps(ir: dict) -> str:
             lines.append(f'  "{key}": {json.dumps(ir[key])}{comma}')
     lines.append("}")
     return "\n".join(lines) + "\n"
+
+
+def sample_ground_params(rng: Sampler) -> list[float]:
+    """b, k, c of the ground's kernels (ground.PARAMS)."""
+    b = rng.uniform(0.5, 3.0)
+    return [b, rng.uniform(1e2, 1e5), rng.uniform(0.0, 1e3)]
+
+
+def ground_ir() -> dict:
+    """The IR of the ground's model-independent kernels (rendered into generated/src/ground.rs)."""
+    from . import ground
+
+    functions = []
+    for k in ground.kernels():
+        f = casadi_function(k)
+        instructions = tape(f)
+        functions.append({
+            "name": k.name,
+            "doc": k.doc,
+            "inputs": [
+                {"name": i.name, "doc": i.doc, "elements": i.elements,
+                 **({"scalar": True} if i.scalar else {}), **({"params": True} if i.params else {})}
+                for i in k.inputs
+            ],
+            "output": {"name": k.output.name, "doc": k.output.doc, "elements": k.output.elements,
+                       "scalar": k.output.scalar},
+            "instructions": instructions,
+            "golden": golden(k, f, instructions, None, sample=sample_ground_params),
+        })
+    return {
+        "schema": 1,
+        "generator": f"rocking_derive {__version__}",
+        "casadi": ca.__version__,
+        "source": "derive/rocking_derive/ground.py",
+        "model": "ground",
+        "variant": "ground",
+        "title": "The ground under the base: a tensionless Winkler bed and the two-spring foundation",
+        "doc": ground.__doc__.strip().split("\n\n")[0].replace("\n", " "),
+        "params": [{"name": name, "doc": doc} for name, doc in ground.PARAMS],
+        "functions": functions,
+    }

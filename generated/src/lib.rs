@@ -51,6 +51,19 @@
 
 #![warn(missing_docs)]
 
+/// The ground under the base (issue 44): a tensionless Winkler bed and the two-spring foundation,
+/// model-independent kernels per kind and contact state (generated from `derive/rocking_derive/ground.py`).
+#[rustfmt::skip]
+#[allow(
+    clippy::all,
+    clippy::pedantic,
+    clippy::nursery,
+    unused_parens,
+    unused_variables,
+    non_snake_case,
+    missing_docs,
+)]
+pub mod ground;
 pub mod isa;
 pub mod kernels;
 pub mod modes;

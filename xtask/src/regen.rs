@@ -6,7 +6,7 @@ use std::io::Write as _;
 use std::path::Path;
 use std::process::{Command, Stdio};
 
-use rocking_codegen::{render_all, IR_DIR, KERNELS_DIR, TAYLOR_DIR};
+use rocking_codegen::{render_all, GROUND_IR, IR_DIR, KERNELS_DIR, TAYLOR_DIR};
 
 use crate::Result;
 
@@ -267,6 +267,9 @@ pub fn desired_files(root: &Path, opts: &Options) -> Result<(Files, Owned)> {
             return Err(
                 format!("the derivation wrote no IR files to {}", fresh_ir.display()).into(),
             );
+        }
+        if let Some(ground) = read_opt(&fresh_ir.join("ground").join("ground.json"))? {
+            desired.insert(GROUND_IR.to_string(), ground);
         }
         if let Some(errata) = read_opt(&tmp.path().join("errata.md"))? {
             desired.insert(ERRATA.to_string(), errata);

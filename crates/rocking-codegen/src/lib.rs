@@ -23,19 +23,24 @@ use std::path::Path;
 
 pub use error::{Error, Result};
 pub use ir::{load_dir, Float, Function, Golden, Input, Instruction, Ir, Output, Param};
-pub use render::{camel_case, float_literal, render_mod, render_variant};
+pub use render::{camel_case, float_literal, render_ground, render_mod, render_variant};
 pub use taylor::{render_taylor, render_taylor_mod, TAYLOR_DIR};
 
 /// Directory of the IR files, relative to the repository root.
 pub const IR_DIR: &str = "generated/ir";
 /// Directory of the rendered kernel modules, relative to the repository root.
 pub const KERNELS_DIR: &str = "generated/src/kernels";
+/// The ground's IR (model-independent kernels, issue 44), relative to the repository root.
+pub const GROUND_IR: &str = "generated/ir/ground/ground.json";
+/// The ground's rendered module, relative to the repository root.
+pub const GROUND_RS: &str = "generated/src/ground.rs";
 
 /// Renders every `*.json` IR file of `ir_dir`.
 ///
 /// Returns the contents of every rendered file keyed by its path relative to the
 /// repository root, with `/` separators (`generated/src/kernels/<variant>.rs`,
-/// `generated/src/kernels/mod.rs` and their Taylor-mode twins in `generated/src/taylor/`).
+/// `generated/src/kernels/mod.rs` and their Taylor-mode twins in `generated/src/taylor/`, and
+/// `generated/src/ground.rs` from `ground/ground.json` when there is one).
 pub fn render_all(ir_dir: &Path) -> Result<BTreeMap<String, String>> {
     let irs = load_dir(ir_dir)?;
     let mut out = BTreeMap::new();
@@ -66,5 +71,10 @@ pub fn render_all(ir_dir: &Path) -> Result<BTreeMap<String, String>> {
         );
     }
     out.insert(format!("{TAYLOR_DIR}/mod.rs"), render_taylor_mod(&irs)?);
+    // The ground's kernels, when the IR directory has them (`ground/ground.json`).
+    let ground = ir_dir.join("ground").join("ground.json");
+    if ground.is_file() {
+        out.insert(GROUND_RS.to_string(), render_ground(&Ir::load(&ground)?)?);
+    }
     Ok(out)
 }

@@ -12,7 +12,7 @@ use rocking_motion::{Excitation, STANDARD_GRAVITY};
 use toml::Value;
 
 use crate::check::{finite, formed};
-use crate::scene::{OutputSpec, Scene, SceneSpec, Source, StructureSpec};
+use crate::scene::{GroundKindSpec, OutputSpec, Scene, SceneSpec, Source, StructureSpec};
 pub use crate::units::Units;
 use crate::SceneError;
 
@@ -39,6 +39,8 @@ pub struct Setup {
     pub animation: Option<Animation>,
     /// Run the fixed-base twin too (`[output] fixed_base_reference = true`).
     pub fixed_base_reference: bool,
+    /// A compliant ground (`[ground]`, issue 44); `None`: the rigid surface.
+    pub ground: Option<rocking::Ground>,
 }
 
 /// The frame count and size (pixels) of an animated GIF of a run: bounded so that a GIF stays a
@@ -459,6 +461,17 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Setup, SceneError> {
         end: excitation_end,
     } = crate::excitation::build(spec, src, &units)?;
 
+    let ground = ground(spec, src, &structure, physical, derived.p)?;
+    if ground.is_some() {
+        if let Some(key) = fx.and_then(|f| f.impact.as_ref().map(|_| "effects.impact")) {
+            return Err(src.err(
+                key,
+                "`impact` in [effects] chooses the rigid surface's impact map: a compliant \
+                 [ground] has no impacts (the contact is resolved in time): remove it, or give \
+                 [ground] kind = \"rigid\"",
+            ));
+        }
+    }
     let impact = impact_model(src, fx.and_then(|f| f.impact.as_ref()))?;
     let overturn = overturn_angle(src, fx.and_then(|f| f.overturn.as_ref()))?;
     let energy = fx.and_then(|f| f.energy).unwrap_or(false);
@@ -718,6 +731,16 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Setup, SceneError> {
             &options,
         )?;
     }
+    if let Some(g) = &ground {
+        return Err(src.err(
+            "ground.kind",
+            format!(
+                "[ground] kind = \"{}\" is checked and its statics derived, but the solver does \
+                 not run a compliant ground yet (issue 44, docs/ground.md): give kind = \"rigid\"",
+                g.kind.name()
+            ),
+        ));
+    }
     Ok(Setup {
         title: spec.title.clone(),
         structure,
@@ -733,7 +756,170 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Setup, SceneError> {
         history_csv,
         fixed_base_reference,
         animation,
+        ground,
     })
+}
+
+/// The compliant ground of `[ground]` in the structure's units, or `None` for the rigid surface:
+/// every key checked (its kind's keys only; SI keys only in an SI scene; one form, vertical
+/// frequency or the bed's own stiffness, not both). `p` is the structure's p in model units.
+pub fn ground(
+    spec: &SceneSpec,
+    src: &Source,
+    structure: &rocking::Structure,
+    physical: bool,
+    p: f64,
+) -> Result<Option<rocking::Ground>, SceneError> {
+    use rocking::{Ground, GroundKind};
+    let Some(g) = spec.ground.as_ref() else {
+        return Ok(None);
+    };
+    let kind = match g.kind.unwrap_or(GroundKindSpec::Rigid) {
+        GroundKindSpec::Rigid => GroundKind::Rigid,
+        GroundKindSpec::Winkler => GroundKind::Winkler,
+        GroundKindSpec::TwoSpring => GroundKind::TwoSpring,
+    };
+    let given = [
+        ("omega_v_over_p", g.omega_v_over_p),
+        ("zeta_v", g.zeta_v),
+        ("k", g.k),
+        ("c", g.c),
+        ("k_spring", g.k_spring),
+        ("c_spring", g.c_spring),
+    ];
+    let present: Vec<&str> = given.iter().filter_map(|(k, v)| v.map(|_| *k)).collect();
+    let (own, other): (&[&str], &str) = match kind {
+        GroundKind::Rigid => {
+            if let Some(key) = present.first() {
+                return Err(src.err(
+                    &format!("ground.{key}"),
+                    format!(
+                        "`{key}` in [ground] describes a compliant ground, and kind is \"rigid\" \
+                         (the default): give kind = \"winkler\" or \"two-spring\", or remove it"
+                    ),
+                ));
+            }
+            return Ok(None);
+        }
+        GroundKind::Winkler => (&["k", "c"], "two-spring"),
+        GroundKind::TwoSpring => (&["k_spring", "c_spring"], "winkler"),
+    };
+    let name = kind.name();
+    for key in &present {
+        let dimless = matches!(*key, "omega_v_over_p" | "zeta_v");
+        if !dimless && !own.contains(key) {
+            return Err(src.err(
+                &format!("ground.{key}"),
+                format!(
+                    "`{key}` in [ground] is a key of the {other} ground, and kind is \"{name}\": \
+                     give {} (SI), or omega_v_over_p and zeta_v",
+                    own.join(" and ")
+                ),
+            ));
+        }
+        if !dimless && !physical {
+            return Err(src.err(
+                &format!("ground.{key}"),
+                format!(
+                    "`{key}` in [ground] is in SI units, and [structure] is dimensionless: give \
+                     omega_v_over_p and zeta_v (or [structure] in SI)"
+                ),
+            ));
+        }
+    }
+    let dimless: Vec<&str> = present
+        .iter()
+        .copied()
+        .filter(|k| matches!(*k, "omega_v_over_p" | "zeta_v"))
+        .collect();
+    let si: Vec<&str> = present
+        .iter()
+        .copied()
+        .filter(|k| !matches!(*k, "omega_v_over_p" | "zeta_v"))
+        .collect();
+    if !dimless.is_empty() && !si.is_empty() {
+        return Err(src.err(
+            &format!("ground.{}", dimless[0]),
+            format!(
+                "[ground] mixes the vertical frequency (`{}`) and the {name} ground's own SI \
+                 parameters (`{}`): give either omega_v_over_p, zeta_v or {}",
+                dimless.join("`, `"),
+                si.join("`, `"),
+                own.join(", ")
+            ),
+        ));
+    }
+    let b = structure.physical().b;
+    let weight = structure.static_uplift().weight;
+    let mass = weight / structure.physical().g;
+    let ground = if si.is_empty() {
+        let Some(w) = g.omega_v_over_p else {
+            return Err(src.err(
+                "ground",
+                format!(
+                    "missing key `omega_v_over_p` in [ground] (kind = \"{name}\" needs its \
+                     stiffness: omega_v_over_p and zeta_v{})",
+                    if physical {
+                        format!(", or {} in SI", own.join(", "))
+                    } else {
+                        String::new()
+                    }
+                ),
+            ));
+        };
+        let w = finite(
+            src,
+            "ground.omega_v_over_p",
+            w,
+            w > 0.0 && w <= 1e6,
+            "0 < omega_v/p <= 1000000",
+        )?;
+        let zeta = g.zeta_v.unwrap_or(0.0);
+        let zeta = finite(
+            src,
+            "ground.zeta_v",
+            zeta,
+            (0.0..1.0).contains(&zeta),
+            "a damping ratio 0 <= zeta_v < 1",
+        )?;
+        let k_v = formed(
+            src,
+            "ground.omega_v_over_p",
+            w,
+            mass * (w * p).powi(2),
+            "vertical stiffness K_v",
+        )?;
+        Ground::from_vertical(kind, b, k_v, 2.0 * zeta * (k_v * mass).sqrt())
+    } else {
+        let (k_key, c_key) = (own[0], own[1]);
+        let (k, c) = match kind {
+            GroundKind::TwoSpring => (g.k_spring, g.c_spring),
+            _ => (g.k, g.c),
+        };
+        let Some(k) = k else {
+            return Err(src.err(
+                "ground",
+                format!("missing key `{k_key}` in [ground] (given: `{c_key}`)"),
+            ));
+        };
+        let k = finite(
+            src,
+            &format!("ground.{k_key}"),
+            k,
+            k > 0.0 && k <= 1e20,
+            "a stiffness 0 < k <= 1e20",
+        )?;
+        let c = c.unwrap_or(0.0);
+        let c = finite(
+            src,
+            &format!("ground.{c_key}"),
+            c,
+            (0.0..=1e20).contains(&c),
+            "a damping 0 <= c <= 1e20",
+        )?;
+        Ground { kind, b, k, c }
+    };
+    Ok(Some(ground))
 }
 
 /// What a comparison with the fixed-base twin (`[output] fixed_base_reference`, a ratio in
@@ -765,4 +951,57 @@ pub fn check_twin(
         ));
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `omega_v_over_p` and `zeta_v` give K_v = M (omega_v)^2 and C_v = 2 zeta_v sqrt(K_v M):
+    /// the settlement is g / omega_v^2 and the kernels' k, c are K_v / 2B, C_v / 2B (bed) or
+    /// K_v / 2, C_v / 2 (two springs); SI scenes give k, c as they are.
+    #[test]
+    fn ground_from_the_vertical_frequency_and_in_si() {
+        let base =
+            "[structure]\nomega_n_over_p = 11.9\nalpha = 0.2\ngamma_mc = 0.5\ngamma_mb = 1.0\n\
+                    gamma_ib = 1.0\nzeta = 0.005\n\n[excitation]\nkind = \"sine-pulse\"\n\
+                    omega_p_over_p = 5.1\namplitude = 1.3\n";
+        for (kind, per) in [("winkler", 2.0 * 0.2f64.sin()), ("two-spring", 2.0)] {
+            let text = format!(
+                "{base}\n[ground]\nkind = \"{kind}\"\nomega_v_over_p = 40.0\nzeta_v = 0.05\n"
+            );
+            let sc = crate::scene::load_text(std::path::Path::new("g.toml"), text, &[]).unwrap();
+            let model = scene_model(&sc.spec).unwrap();
+            let st = build_structure(&sc.src, sc.spec.structure.as_ref().unwrap(), false, model)
+                .unwrap();
+            let d = st.derived();
+            let g = ground(&sc.spec, &sc.src, &st, false, d.p).unwrap().unwrap();
+            let w = st.static_uplift().weight;
+            let m = w / st.physical().g;
+            let omega_v = 40.0 * d.p;
+            // R = 1: B = sin(alpha).
+            assert!((g.b - 0.2f64.sin()).abs() < 1e-15);
+            let k_v = m * omega_v * omega_v;
+            assert!((g.k * per - k_v).abs() < 1e-12 * k_v, "{kind}: {g:?}");
+            let c_v = 2.0 * 0.05 * (k_v * m).sqrt();
+            assert!((g.c * per - c_v).abs() < 1e-12 * c_v, "{kind}: {g:?}");
+            let settlement = g.statics(w).settlement;
+            let want = st.physical().g / (omega_v * omega_v);
+            assert!(
+                (settlement - want).abs() < 1e-14 * want,
+                "{kind}: {settlement}"
+            );
+        }
+        let si = "[structure]\nh = 30.0\nb = 3.0\nei = 2.0e10\nm = 1.0e5\nm_c = 5.0e4\nm_b = 1.0e5\n\
+                  zeta = 0.01\ng = 9.81\n\n[excitation]\nkind = \"sine-pulse\"\nomega_p = 3.0\n\
+                  amplitude_g = 0.3\n\n[ground]\nkind = \"two-spring\"\nk_spring = 2e9\nc_spring = 1e6\n";
+        let sc = crate::scene::load_text(std::path::Path::new("g.toml"), si.into(), &[]).unwrap();
+        let model = scene_model(&sc.spec).unwrap();
+        let st =
+            build_structure(&sc.src, sc.spec.structure.as_ref().unwrap(), false, model).unwrap();
+        let g = ground(&sc.spec, &sc.src, &st, true, st.derived().p)
+            .unwrap()
+            .unwrap();
+        assert_eq!((g.k, g.c, g.b), (2e9, 1e6, 3.0));
+    }
 }

@@ -44,6 +44,7 @@
 mod dense;
 mod driver;
 mod error;
+mod ground;
 mod options;
 mod results;
 mod structure;
@@ -51,6 +52,7 @@ mod taylor;
 
 pub use driver::simulate as simulate_variant;
 pub use error::{OptionError, SimError};
+pub use ground::{Ground, GroundKind, GroundStatics};
 pub use options::{
     Accuracy, History, ImpactModel, Initial, Measured, Method, Options, Preset, MAX_HISTORY_ROWS,
 };
