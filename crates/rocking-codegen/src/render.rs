@@ -506,6 +506,25 @@ fn operations_line(ops: &BTreeMap<String, usize>) -> String {
     }
 }
 
+/// Every function of `ir`, rendered (names must be unique), and whether any reads the sign.
+fn render_functions(origin: &str, ir: &Ir) -> Result<(Vec<FnView>, bool)> {
+    let mut functions = Vec::new();
+    let mut needs_sign = false;
+    let mut fn_names = BTreeSet::new();
+    for f in &ir.functions {
+        if !fn_names.insert(f.name.as_str()) {
+            return Err(Error::invalid(
+                origin,
+                format!("duplicate function name {:?}", f.name),
+            ));
+        }
+        let (view, sign) = render_function(origin, ir, f)?;
+        needs_sign |= sign;
+        functions.push(view);
+    }
+    Ok((functions, needs_sign))
+}
+
 fn render_function(origin: &str, ir: &Ir, f: &Function) -> Result<(FnView, bool)> {
     let err = |msg: String| Error::invalid(origin, format!("function {:?}: {msg}", f.name));
     if !is_ident(&f.name) || RESERVED_FN_NAMES.contains(&f.name.as_str()) {
@@ -851,20 +870,7 @@ pub fn render_variant(ir: &Ir) -> Result<String> {
         .collect();
     let param_consts = index_consts(&origin, "params", &names, &param_docs)?;
 
-    let mut functions = Vec::new();
-    let mut needs_sign = false;
-    let mut fn_names = BTreeSet::new();
-    for f in &ir.functions {
-        if !fn_names.insert(f.name.as_str()) {
-            return Err(Error::invalid(
-                &origin,
-                format!("duplicate function name {:?}", f.name),
-            ));
-        }
-        let (view, sign) = render_function(&origin, ir, f)?;
-        needs_sign |= sign;
-        functions.push(view);
-    }
+    let (functions, needs_sign) = render_functions(&origin, ir)?;
 
     let view = VariantView {
         header,
@@ -940,20 +946,7 @@ pub fn render_ground(ir: &Ir) -> Result<String> {
         .map(|p| format!("Index of `{}`: {}", p.name, one_line(&p.doc)))
         .collect();
     let param_consts = index_consts(&origin, "params", &names, &param_docs)?;
-    let mut functions = Vec::new();
-    let mut needs_sign = false;
-    let mut fn_names = BTreeSet::new();
-    for f in &ir.functions {
-        if !fn_names.insert(f.name.as_str()) {
-            return Err(Error::invalid(
-                &origin,
-                format!("duplicate function name {:?}", f.name),
-            ));
-        }
-        let (view, sign) = render_function(&origin, ir, f)?;
-        needs_sign |= sign;
-        functions.push(view);
-    }
+    let (functions, needs_sign) = render_functions(&origin, ir)?;
     let view = GroundView {
         header,
         np: ir.params.len(),
