@@ -957,7 +957,7 @@ pub fn run(dir: &Path, docs: &Path) -> Result<()> {
 
     // Overhead.
     writeln!(w, "## Time outside the kernels\n")?;
-    writeln!(w, "Kernel cost per call, timed in the bench binary (best of 5 loops of 2·10⁶ calls; criterion's numbers are in docs/performance.md):\n")?;
+    writeln!(w, "Kernel cost per call, timed in the bench binary (best of 5 loops of 2·10⁶ calls; criterion's command is in docs/performance.md):\n")?;
     writeln!(
         w,
         "| variant | rocking RHS (ns) | contact RHS (ns) |\n|---|---|---|"
