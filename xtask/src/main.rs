@@ -125,6 +125,9 @@ fn main() -> ExitCode {
 }
 
 #[cfg(test)]
+mod tidy;
+
+#[cfg(test)]
 mod tests {
     use super::workspace_root;
 

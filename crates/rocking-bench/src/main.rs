@@ -6,7 +6,7 @@
 //! `DIR/rust.json` (results) and `DIR/cases.json` (the cases, for the SciPy peer).
 //!
 //! `rocking-bench report --dir DIR --docs DOCS` reads `rust.json` and, when present, `scipy.json`
-//! and `opensees.json`, and writes `DOCS/accuracy.md` (one page, `summary.rs`),
+//! and `opensees.json`, and writes `DOCS/accuracy.md` (one page, `report/summary.rs`),
 //! `DOCS/reference/accuracy-study.md` (every case, `report.rs`) and the work-precision diagrams
 //! `DOCS/img/accuracy-*.{json,svg,png}` (each diagram's data and its images).
 //!
@@ -15,7 +15,6 @@
 mod diagram;
 mod report;
 mod study;
-mod summary;
 
 use std::path::PathBuf;
 use std::process::ExitCode;

@@ -255,7 +255,7 @@ pub fn pairs(dir: &Path) -> Result<Value> {
     let (rust, mut hy) = (read("rust.json")?, read("heyoka.json")?);
     let cases = rust["cases"].as_array().cloned().unwrap_or_default();
     // heyoka's errors against the Rust reference, as the report measures them.
-    super::peers::judge(&mut hy, &cases);
+    super::judge(&mut hy, &cases);
     let config = |q: &Value| serde_json::json!({"method": q["method"], "tol": q["tol"], "seconds": q["cpu_s"]});
     let rows: Vec<Value> = matches(&hy, &cases)
         .into_iter()

@@ -7,6 +7,7 @@ mod cases;
 mod heyoka;
 mod peers;
 mod presets;
+mod summary;
 
 pub(crate) use heyoka::paired_table;
 pub use heyoka::pairs;
@@ -102,7 +103,7 @@ impl Results {
         let (mut scipy, mut heyoka) = (optional("scipy.json"), optional("heyoka.json"));
         let cases = rust["cases"].as_array().cloned().unwrap_or_default();
         for peer in [scipy.as_mut(), heyoka.as_mut()].into_iter().flatten() {
-            peers::judge(peer, &cases);
+            judge(peer, &cases);
         }
         Ok(Results {
             rust,
@@ -139,7 +140,7 @@ pub fn run(dir: &Path, docs: &Path) -> Result<()> {
     peers::opensees(w, &r, dir)?;
     cases::overhead(w, &r)?;
     writeln!(w, "\nStudy wall time: {:.0} s.", f(&r.rust["study_wall_s"]))?;
-    let page = crate::summary::page(&r.rust, &r.cases, &standard, r.paired.as_ref())?;
+    let page = summary::page(&r.rust, &r.cases, &standard, r.paired.as_ref())?;
     let reference = docs.join("reference");
     std::fs::create_dir_all(&reference)?;
     std::fs::write(reference.join("accuracy-study.md"), md)?;
@@ -151,4 +152,78 @@ pub fn run(dir: &Path, docs: &Path) -> Result<()> {
         img.display()
     );
     Ok(())
+}
+
+/// A Python peer's answers judged against the Rust reference of each case it ran.
+fn judge(peer: &mut Value, cases: &[Value]) {
+    if let Some(list) = peer["cases"].as_array_mut() {
+        for c in list {
+            if let Some(rc) = cases.iter().find(|r| r["name"] == c["name"]) {
+                add_scipy_errors(rc, c);
+            }
+        }
+    }
+}
+
+/// A Python peer's answers (SciPy, heyoka) against the Rust reference and the Rust DOP853 run at
+/// the same tolerance.
+fn add_scipy_errors(rust_case: &Value, sp: &mut Value) {
+    let reference = &rust_case["reference"]["answers"];
+    let cells: Vec<usize> = sp["cells"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .filter_map(|c| c.as_u64())
+        .map(|c| c as usize)
+        .collect();
+    let pick =
+        |answers: &Value| -> Vec<Value> { cells.iter().map(|&i| answers[i].clone()).collect() };
+    let ref_cells = pick(reference);
+    let amps: Option<Vec<f64>> = rust_case["amplitudes"]
+        .as_array()
+        .map(|a| cells.iter().map(|&i| f(&a[i])).collect());
+    let to_answers = |v: &[Value]| -> Vec<crate::study::Answer> {
+        v.iter()
+            .map(|a| serde_json::from_value(fill(a)).expect("answer"))
+            .collect()
+    };
+    let r = to_answers(&ref_cells);
+    if let Some(points) = sp["points"].as_array_mut() {
+        for p in points {
+            let Some(ans) = p["answers"].as_array() else {
+                continue;
+            };
+            let a = to_answers(ans);
+            let e = crate::study::errors(&a, &r, amps.as_deref());
+            p["errors"] = serde_json::to_value(e).unwrap();
+            // agreement with the Rust DOP853 run at the same tolerance
+            let tol = f(&p["tol"]);
+            if let Some(rp) = rust_case["points"]
+                .as_array()
+                .into_iter()
+                .flatten()
+                .find(|q| q["method"] == "dop853" && (f(&q["tol"]) / tol - 1.0).abs() < 1e-9)
+            {
+                if let Some(ra) = rp["answers"].as_array() {
+                    let rr = to_answers(&pick(&Value::Array(ra.clone())));
+                    p["agreement"] =
+                        serde_json::to_value(crate::study::errors(&a, &rr, amps.as_deref()))
+                            .unwrap();
+                    p["rust_cpu_s"] = rp["cpu_s"].clone();
+                }
+            }
+        }
+    }
+}
+
+/// Fills fields the Python answers do not have (energy) so they deserialize as `Answer`.
+fn fill(a: &Value) -> Value {
+    let mut a = a.clone();
+    if a.get("energy_residual").is_none() {
+        a["energy_residual"] = Value::from(f64::NAN);
+    }
+    if a["energy_residual"].is_null() {
+        a["energy_residual"] = Value::from(0.0);
+    }
+    a
 }

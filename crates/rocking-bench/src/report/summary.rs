@@ -7,7 +7,7 @@ use std::path::Path;
 
 use serde_json::Value;
 
-use crate::report::{class_of, combined, point_of, presets_measured, resolves, sci};
+use super::{class_of, combined, point_of, presets_measured, resolves, sci};
 use crate::Result;
 
 /// The hand-written standing caveats shown on the page (short; the dated findings stay in
@@ -119,7 +119,7 @@ pub fn page(
 
     if let Some(paired) = paired {
         writeln!(w, "## Against heyoka\n")?;
-        crate::report::paired_table(w, paired)?;
+        super::paired_table(w, paired)?;
     }
 
     writeln!(w, "## Standing caveats\n")?;
