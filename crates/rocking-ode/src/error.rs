@@ -9,11 +9,11 @@ pub enum OdeErrorKind {
     StepSizeUnderflow,
     /// The right-hand side or the state became NaN or infinite.
     NonFinite,
-    /// More than [`Options::max_steps`] attempts since the last reset.
+    /// More than [`Options::max_steps`](crate::Options::max_steps) attempts since the last reset.
     MaxSteps,
     /// Invalid options, tolerances or arguments.
     InvalidInput,
-    /// [`Integrator::step`] was called before [`Integrator::reset`].
+    /// [`Integrator::step`](crate::Integrator::step) was called before [`Integrator::reset`](crate::Integrator::reset).
     NotInitialised,
 }
 
