@@ -39,7 +39,6 @@ const PENDING_SPLITS: &[(&str, usize)] = &[
     ("crates/rocking-codegen/src/simplify.rs", 766),
     ("crates/rocking-study/src/plan.rs", 724),
     ("crates/rocking-cli/src/plot/mod.rs", 720),
-    ("crates/rocking-motion/src/formats.rs", 652),
     ("crates/rocking-cli/src/main.rs", 627),
 ];
 
