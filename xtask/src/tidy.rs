@@ -36,7 +36,6 @@ const PENDING_SPLITS: &[(&str, usize)] = &[
     ("crates/rocking/src/structure.rs", 793),
     ("crates/rocking-scene/src/scene.rs", 777),
     ("crates/rocking-study/src/ida.rs", 771),
-    ("crates/rocking-codegen/src/simplify.rs", 766),
     ("crates/rocking-study/src/plan.rs", 724),
     ("crates/rocking-cli/src/plot/mod.rs", 720),
     ("crates/rocking-cli/src/main.rs", 627),
