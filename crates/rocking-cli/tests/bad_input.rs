@@ -669,6 +669,14 @@ const ROWS: &[Row] = &[
         &["`dpi`", "10 is not allowed", "72 <= dpi <= 1200"],
     ),
     (
+        "figure-time-unknown",
+        FIGURE,
+        "runs = [\"a\"]",
+        "runs = [\"a\"]\ntime = \"seconds\"",
+        None,
+        &["`panels[0].time`", "`seconds` is not allowed", "tau or s"],
+    ),
+    (
         "ground-zero-stiffness",
         SCENE,
         "",

@@ -377,7 +377,8 @@ fn every_paper_figure_is_drawn_and_shows_what_it_compares() {
         .filter(|p| p.extension().is_some_and(|x| x == "toml"))
         .collect();
     files.sort();
-    assert_eq!(files.len(), 8, "Figs 3-10: {files:?}");
+    // Figs 3-10 and Fig. 10's zoom.
+    assert_eq!(files.len(), 9, "Figs 3-10: {files:?}");
     ok(&bin()
         .arg("figure")
         .args(&files)
@@ -415,8 +416,9 @@ fn every_paper_figure_is_drawn_and_shows_what_it_compares() {
     ] {
         assert!(t3.contains(label), "fig3: `{label}` missing: {t3}");
     }
-    // Both runs are drawn in the three overlaid panels: each impact of each run is marked in
-    // each of them with the run's marker in its colour (VVEL circles, ADJex squares), plus one
+    // Both runs are drawn in the three overlaid panels: each impact of VVEL is marked in each of
+    // them with its marker in its colour (circles), plus one in the legend; ADJex's, more than
+    // 12, are ticks along each panel's bottom edge (a rug) in its colour, and its square is only
     // in the legend.
     let impacts = |scene: &str| {
         let o = bin()
@@ -445,16 +447,36 @@ fn every_paper_figure_is_drawn_and_shows_what_it_compares() {
         impacts("scenes/fig3-vvel.toml"),
         impacts("scenes/fig3-adjex.toml"),
     );
-    assert!(vvel > 0 && adjex > vvel, "{vvel} and {adjex} impacts");
+    assert!(
+        vvel > 0 && vvel <= 12 && adjex > 12,
+        "{vvel} and {adjex} impacts"
+    );
     assert_eq!(
         marks("<circle", "#1B80C6"),
         1 + 3 * vvel,
         "fig3: VVEL's impacts"
     );
-    assert_eq!(
-        marks("<rect", "#AC2000"),
-        1 + 3 * adjex,
-        "fig3: ADJex's impacts"
+    assert_eq!(marks("<rect", "#AC2000"), 1, "fig3: ADJex's square");
+    // A rug tick: a thin vertical two-point polyline in ADJex's colour (one per pixel column: two
+    // impacts of ADJex's double impact may share one).
+    let ticks = fig3
+        .split("<polyline")
+        .skip(1)
+        .map(|e| e.split('>').next().unwrap())
+        .filter(|e| e.contains("stroke=\"#AC2000\" stroke-width=\"1\""))
+        .filter(|e| {
+            let points: Vec<&str> = e
+                .split("points=\"")
+                .nth(1)
+                .map_or("", |p| p.split('"').next().unwrap())
+                .split_whitespace()
+                .collect();
+            points.len() == 2 && points[0].split(',').next() == points[1].split(',').next()
+        })
+        .count();
+    assert!(
+        (3 * (adjex - 3)..=3 * adjex).contains(&ticks),
+        "fig3: {ticks} rug ticks for ADJex's {adjex} impacts in 3 panels"
     );
     // Figs 6-8: ten panels on one colour scale, θ_cr/α marked once per slenderness.
     // (Mass only on top: θ_cr = α whatever α, one mark.)

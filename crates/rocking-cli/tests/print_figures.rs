@@ -105,6 +105,7 @@ fn stated_width(spec: &toml::Value) -> f64 {
 /// The axis labels a figure may show (every quantity's, the spectra's axes).
 fn is_axis_label(t: &str) -> bool {
     t == "τ = p t"
+        || t == "t (s)"
         || t == "ω_p/p"
         || t == "a_p/(g tan α)"
         || (t.contains('/') && !t.contains('=') && !t.contains(':') && t.len() < 40)
@@ -263,6 +264,31 @@ fn every_figure_file_is_drawn_at_its_printed_size_with_print_type_and_letters() 
         let name = f.file_stem().unwrap().to_string_lossy();
         check(&name, &out, &spec);
     }
+    // The content each figure's argument needs (issue 46): the wind turbine in seconds with
+    // the uplift moment ±W B marked; Fig. 5 with the fixed-base twins; Figs 6-8 with the rigid
+    // column's boundary dashed on the flexible panels.
+    let read = |name: &str| std::fs::read_to_string(out.join(format!("{name}.svg"))).unwrap();
+    let turbine = texts(&read("turbine-elcentro"));
+    assert!(
+        turbine.iter().any(|t| t.text == "t (s)"),
+        "turbine: no time in s"
+    );
+    assert!(
+        !turbine.iter().any(|t| t.text == "τ = p t"),
+        "turbine: τ left"
+    );
+    let fig5 = texts(&read("fig5"));
+    assert!(
+        fig5.iter().any(|t| t.text == "fixed-base twin"),
+        "fig5: no twin"
+    );
+    for name in ["fig6", "fig7", "fig8"] {
+        let svg = texts(&read(name));
+        assert!(
+            svg.iter().any(|t| t.text == "overturned | upright, rigid"),
+            "{name}: no rigid boundary in the legend"
+        );
+    }
     // --draft: the title in the image, no caption file.
     let draft = tmp_path("print-draft");
     let fig3 = repo().join("scenes/paper/fig3.toml");
@@ -281,4 +307,89 @@ fn every_figure_file_is_drawn_at_its_printed_size_with_print_type_and_letters() 
     for d in [out, cache, draft] {
         let _ = std::fs::remove_dir_all(d);
     }
+}
+
+/// Figs 6-8 compare the γ families on one colour scale: the three files state the same
+/// `colour_top`, draw the scenes' 100 × 100 cells (no `cells` cap), and overlay on every flexible
+/// panel the rigid column of the same α (its `reference`).
+#[test]
+fn figs_6_to_8_share_one_colour_scale_at_100_cells_with_the_rigid_boundary() {
+    let mut tops = Vec::new();
+    for name in ["fig6", "fig7", "fig8"] {
+        let path = repo().join(format!("scenes/paper/{name}.toml"));
+        let spec: toml::Value = toml::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+        tops.push(
+            spec.get("colour_top")
+                .and_then(toml::Value::as_float)
+                .unwrap_or_else(|| panic!("{name}: no colour_top")),
+        );
+        assert!(spec.get("cells").is_none(), "{name}: a cells cap");
+        let sweeps = spec["sweeps"].as_table().unwrap();
+        for (name_s, s) in sweeps {
+            let axes = s.get("axes").map(|a| a.to_string()).unwrap_or_default();
+            assert!(axes.is_empty(), "{name}.{name_s}: own axes {axes}");
+        }
+        let panels = spec["panels"].as_array().unwrap();
+        assert_eq!(panels.len(), 10, "{name}");
+        for p in panels {
+            let sweep = p["sweep"].as_str().unwrap();
+            let reference = p.get("reference").and_then(toml::Value::as_str);
+            if sweep.ends_with("rigid") {
+                assert_eq!(reference, None, "{name}: {sweep}");
+            } else {
+                let alpha = &sweep[..3];
+                assert_eq!(
+                    reference,
+                    Some(format!("{alpha}_wnrigid").as_str()),
+                    "{name}: {sweep}"
+                );
+            }
+        }
+    }
+    assert!(
+        tops.windows(2).all(|w| w[0] == w[1]),
+        "colour_top: {tops:?}"
+    );
+    // The scenes' own axes: 100 × 100 cells.
+    for family in ["fig6", "fig7", "fig8"] {
+        let path = repo().join(format!("scenes/spectra/{family}.toml"));
+        let text = std::fs::read_to_string(&path).unwrap();
+        assert!(
+            text.contains(
+                "\"excitation.omega_p_over_p=1:10:100\", \"excitation.amplitude=1:20:100\""
+            ),
+            "{family}: not 100 x 100"
+        );
+    }
+}
+
+/// A figure whose survivors exceed its stated `colour_top` says how many (drawn in its colour).
+#[test]
+fn survivors_above_colour_top_are_noted() {
+    let dir = tmp_path("colour-top");
+    std::fs::create_dir_all(&dir).unwrap();
+    let fig = std::fs::read_to_string(repo().join("scenes/paper/fig8.toml"))
+        .unwrap()
+        .replace("colour_top = ", "colour_top = 0.01 # was ")
+        .replace(
+            "../spectra/",
+            &format!("{}/", repo().join("scenes/spectra").display()),
+        );
+    std::fs::write(dir.join("low.toml"), fig).unwrap();
+    let o = bin()
+        .arg("figure")
+        .arg(dir.join("low.toml"))
+        .args(["--cells", "3", "--quiet", "--out"])
+        .arg(dir.join("out"))
+        .arg("--cache")
+        .arg(dir.join("cache"))
+        .output()
+        .unwrap();
+    ok(&o);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("shaded cells lie above colour_top = 0.01"),
+        "{err}"
+    );
+    let _ = std::fs::remove_dir_all(dir);
 }

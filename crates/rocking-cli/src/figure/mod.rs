@@ -86,6 +86,15 @@ enum PanelSpec {
         /// Every run in black (the ground motion).
         #[serde(default)]
         black: bool,
+        /// The time axis: "tau" (τ = p t, default) or "s" (seconds; every run's scene must
+        /// know its time in seconds).
+        time: Option<String>,
+        /// Values of the quantity marked by a dashed grey line across the panel.
+        #[serde(default)]
+        lines: Vec<f64>,
+        /// Runs drawn over the others as a thin solid dark grey line (a fixed-base twin).
+        #[serde(default)]
+        twins: Vec<String>,
     },
     Spectrum {
         sweep: String,
@@ -114,6 +123,9 @@ struct Zoom {
     impact: usize,
     half_width: f64,
 }
+
+/// The time axes of a history panel: τ, or seconds.
+const TIMES: [&str; 2] = ["tau", "s"];
 
 /// Bounds of the figure layout.
 const MAX_COLUMNS: usize = 8;
@@ -173,6 +185,13 @@ pub fn figure(files: &[PathBuf], opts: &Options) -> Result<(), SceneError> {
         let mut figure = build(file, spec, &mut loader, opts.cells)?;
         if let Some(p) = &mut figure.print {
             p.draft = opts.draft;
+        }
+        if let Some((top, n)) = figure.above_colour_top() {
+            eprintln!(
+                "note: {}: {n} shaded cells lie above colour_top = {top} and are drawn in its \
+                 colour (raise colour_top to tell them apart)",
+                file.display()
+            );
         }
         let written = figure.write(dir.path(), &stem(file))?;
         listed.push((file, written));
@@ -303,6 +322,9 @@ fn read(file: &Path) -> Result<FigureFile, SceneError> {
                 runs,
                 tau,
                 zoom,
+                time,
+                lines,
+                twins,
                 ..
             } => {
                 if Quantity::parse(quantity).is_none() {
@@ -325,6 +347,23 @@ fn read(file: &Path) -> Result<FigureFile, SceneError> {
                 }
                 for r in runs {
                     run(r, "runs")?;
+                }
+                for r in twins {
+                    run(r, "twins")?;
+                }
+                if let Some(t) = time.as_deref().filter(|t| !TIMES.contains(t)) {
+                    return bad(
+                        file,
+                        &field("time"),
+                        format!("`{t}` is not allowed: {}", TIMES.join(" or ")),
+                    );
+                }
+                if let Some(v) = lines.iter().find(|v| !v.is_finite()) {
+                    return bad(
+                        file,
+                        &field("lines"),
+                        format!("{v} is not allowed: finite values"),
+                    );
                 }
                 if let Some([a, b]) = tau {
                     if !(a.is_finite() && b.is_finite() && a < b) {
@@ -406,6 +445,40 @@ fn bad<T>(file: &Path, field: &str, why: String) -> Result<T, SceneError> {
     )))
 }
 
+/// The seconds per unit of τ that the runs of a panel drawn in seconds share: each run's scene
+/// must know its time in seconds, and all the same.
+fn seconds_per_tau(
+    file: &Path,
+    runs: &[String],
+    traces: &BTreeMap<String, plot::Trace>,
+) -> Result<f64, SceneError> {
+    let mut shared: Option<f64> = None;
+    for r in runs {
+        let Some(s) = traces[r].seconds_per_tau else {
+            return bad(
+                file,
+                "time",
+                format!(
+                    "\"s\": run `{r}` has no time in seconds (a dimensionless scene without a                      length scale): draw it against \"tau\""
+                ),
+            );
+        };
+        match shared {
+            Some(v) if (v - s).abs() > 1e-12 * v.abs() => {
+                return bad(
+                    file,
+                    "time",
+                    format!(
+                        "\"s\": the runs of one panel have different time scales ({v} and {s}                          s per τ): one τ axis cannot show them in seconds"
+                    ),
+                );
+            }
+            _ => shared = Some(s),
+        }
+    }
+    shared.ok_or_else(|| SceneError::input(format!("{}: a panel without runs", file.display())))
+}
+
 /// The line style of the `k`-th run or sweep, or the one it names.
 fn line_style(named: &Option<String>, k: usize) -> style::LineStyle {
     named
@@ -430,7 +503,7 @@ fn build(
     let mut sweep_names: Vec<&String> = Vec::new();
     for p in &spec.panels {
         match p {
-            PanelSpec::History { runs, .. } => run_names.extend(runs),
+            PanelSpec::History { runs, twins, .. } => run_names.extend(runs.iter().chain(twins)),
             PanelSpec::Spectrum {
                 sweep, reference, ..
             } => sweep_names.extend(std::iter::once(sweep).chain(reference)),
@@ -467,12 +540,20 @@ fn build(
                 tau,
                 zoom,
                 black,
+                time,
+                lines,
+                twins,
             } => {
                 let q = Quantity::parse(quantity).unwrap_or(plot::THETA_OVER_ALPHA);
                 let mut panel =
                     HistoryPanel::new(q, runs.iter().map(|r| traces[r].clone()).collect());
                 panel.title = title.clone();
                 panel.black = *black;
+                panel.rules = lines.clone();
+                panel.twins = twins.iter().map(|r| traces[r].clone()).collect();
+                if time.as_deref() == Some("s") {
+                    panel.seconds_per_tau = Some(seconds_per_tau(file, runs, &traces)?);
+                }
                 panel.window = tau.map(|[a, b]| (a, b));
                 if let Some(z) = zoom {
                     let t = &traces[&z.run];
@@ -496,13 +577,20 @@ fn build(
             } => {
                 let s = &sweeps[sweep];
                 let mut panel = SpectrumPanel::new(&s.plan.sweep, &s.cells);
-                if let Some(r) = reference {
-                    let r = &sweeps[r];
-                    panel = panel.with_reference(
-                        &spec.sweeps[reference.as_ref().unwrap()].label,
-                        &r.plan.sweep,
-                        &r.cells,
-                    );
+                if let Some(name) = reference {
+                    let r = &sweeps[name];
+                    // The legend names the reference by what differs from the panel's own
+                    // sweep ("rigid" beside "α = 0.1, ω_n/p = 5"): one entry for every row.
+                    let own: Vec<&str> = spec.sweeps[sweep].label.split(", ").collect();
+                    let label = &spec.sweeps[name].label;
+                    let differs: Vec<&str> =
+                        label.split(", ").filter(|i| !own.contains(i)).collect();
+                    let label = if differs.is_empty() {
+                        label.clone()
+                    } else {
+                        differs.join(", ")
+                    };
+                    panel = panel.with_reference(&label, &r.plan.sweep, &r.cells);
                 }
                 panel.title = Some(
                     title

@@ -20,7 +20,10 @@ use super::Panel;
 pub fn caption(impacts: bool, overturned: bool) -> Option<String> {
     let mut parts = Vec::new();
     if impacts {
-        parts.push("Markers on a line: the run's impacts.");
+        parts.push(
+            "Markers on a line: the run's impacts (ticks along a panel's bottom edge where a run \
+             has more than 12 in it).",
+        );
     }
     if overturned {
         parts.push(
@@ -147,6 +150,9 @@ pub struct Trace {
     pub overturned: bool,
     /// θ_cr/α of its structure.
     pub theta_cr_over_alpha: f64,
+    /// Seconds per unit of τ, where the scene knows its time in seconds (physical units, or a
+    /// dimensionless structure with a length scale).
+    pub seconds_per_tau: Option<f64>,
 }
 
 impl Trace {
@@ -172,6 +178,7 @@ impl Trace {
                 .collect(),
             overturned: run.summary.overturned,
             theta_cr_over_alpha: d.theta_cr / d.alpha,
+            seconds_per_tau: u.sec_per_unit.map(|s| s / u.p_model),
         }
     }
 
@@ -216,7 +223,29 @@ pub struct HistoryPanel {
     pub title: Option<String>,
     /// Every run drawn in black in its own dash (the ground motion, as the paper's Fig. 10).
     pub black: bool,
+    /// Time drawn in seconds (this many per unit of τ), else in τ.
+    pub seconds_per_tau: Option<f64>,
+    /// Values of the quantity marked by a dashed grey line across the panel (M_b/(W B) = ±1:
+    /// the moment that uplifts the base); the panel's range includes them.
+    pub rules: Vec<f64>,
+    /// Runs drawn over the others as a thin solid grey line, without impact marks (the
+    /// fixed-base twin of a rocking run, as the paper's Fig. 5 compares them); the panel's range
+    /// includes them.
+    pub twins: Vec<Trace>,
 }
+
+/// The grey of a twin's line.
+pub const TWIN_GREY: [u8; 3] = [70, 70, 70];
+/// A run with more impacts than this in a panel's window marks them as ticks along the panel's
+/// bottom edge (a rug), not as markers on its line, where they would merge into a bar.
+pub const RUG_ABOVE: usize = 12;
+/// A rug tick's length and the rows' spacing, in pixels (1/8 mm at print size).
+const RUG_TICK: i32 = 10;
+
+/// The label of time in seconds.
+pub const TIME_S: &str = "t (s)";
+/// The dash of a rule across a history panel.
+const RULE_DASH: (u32, u32) = (10, 6);
 
 impl HistoryPanel {
     pub fn new(quantity: Quantity, traces: Vec<Trace>) -> HistoryPanel {
@@ -226,6 +255,31 @@ impl HistoryPanel {
             window: None,
             title: None,
             black: false,
+            seconds_per_tau: None,
+            rules: Vec::new(),
+            twins: Vec::new(),
+        }
+    }
+
+    /// The style a run is drawn in: solid where it is the panel's only run (a dash on a fast
+    /// oscillation prints as a bar code), else its own.
+    fn drawn_style(&self, t: &Trace) -> LineStyle {
+        if self.traces.len() == 1 && !self.black {
+            LineStyle {
+                dash: None,
+                ..t.style
+            }
+        } else {
+            t.style
+        }
+    }
+
+    /// The label of the time axis.
+    fn time_label(&self) -> &'static str {
+        if self.seconds_per_tau.is_some() {
+            TIME_S
+        } else {
+            labels::TAU
         }
     }
 
@@ -258,7 +312,7 @@ impl HistoryPanel {
         let (x0, x1) = self.x_range();
         let limit = (self.quantity == THETA_OVER_ALPHA).then(|| self.theta_limit());
         let mut range: Option<(f64, f64)> = None;
-        for t in &self.traces {
+        for t in self.traces.iter().chain(&self.twins) {
             for (x, y) in t.points(self.quantity) {
                 if x < x0 || x > x1 || !y.is_finite() {
                     continue;
@@ -272,35 +326,62 @@ impl HistoryPanel {
                 });
             }
         }
+        for &y in &self.rules {
+            range = range.map(|(a, b)| (a.min(y), b.max(y)));
+        }
         range
     }
 
     /// The panel's axis labels (x, y).
     pub(super) fn axis_labels(&self) -> (String, String) {
-        (labels::TAU.to_string(), self.quantity.label.to_string())
+        (
+            self.time_label().to_string(),
+            self.quantity.label.to_string(),
+        )
     }
 
     /// The panel's legend entries: each labelled run's line.
     pub(super) fn legend(&self) -> Vec<LegendItem> {
         // A panel in black (the ground motion) is explained by the caption, not the legend.
+        let twins = self
+            .twins
+            .iter()
+            .filter(|t| !t.label.is_empty())
+            .map(|t| LegendItem::Rule(TWIN_GREY, None, t.label.clone()));
         self.traces
             .iter()
             .filter(|t| !t.label.is_empty() && !self.black)
-            .map(|t| LegendItem::Line(t.style, t.label.clone()))
+            .map(|t| LegendItem::Line(self.drawn_style(t), t.label.clone()))
+            .chain(twins)
             .collect()
     }
 
     pub(super) fn draw(&self, area: &Area<'_>, y: Option<(f64, f64)>) -> Result<(), String> {
+        // Time in τ, or in seconds: every abscissa times `k`.
+        let k = self.seconds_per_tau.unwrap_or(1.0);
         let x = self.x_range();
+        let x = (x.0 * k, x.1 * k);
         let (lo, hi) = padded(y.or_else(|| self.data_range()).unwrap_or((-1.0, 1.0)));
         let mut chart = axes(
             area,
             self.title.as_deref(),
             x,
             (lo, hi),
-            (labels::TAU, self.quantity.label),
+            (self.time_label(), self.quantity.label),
             true,
         )?;
+        for &v in &self.rules {
+            styled_line(
+                &mut chart,
+                vec![(x.0, v), (x.1, v)],
+                &LineStyle {
+                    dash: Some(RULE_DASH),
+                    ..rocking_plot::style::BLACK
+                },
+                RGBColor(90, 90, 90),
+                1,
+            )?;
+        }
         if lo < 0.0 && hi > 0.0 {
             chart
                 .draw_series(std::iter::once(PathElement::new(
@@ -310,17 +391,46 @@ impl HistoryPanel {
                 .map_err(fail)?;
         }
         let frame = (x, (lo, hi));
+        let mut rug_rows = 0;
         for t in &self.traces {
+            let style = self.drawn_style(t);
             let colour = if self.black {
                 BLACK
             } else {
                 rgb(t.style.colour)
             };
-            let points = t.points(self.quantity);
+            let mut points = t.points(self.quantity);
+            if k != 1.0 {
+                points.iter_mut().for_each(|p| p.0 *= k);
+            }
             // Many short segments (a record) draw thinner.
             let width = if points.len() > 5000 { 1 } else { 2 };
             for piece in clip(&points, frame) {
-                styled_line(&mut chart, piece, &t.style, colour, width)?;
+                styled_line(&mut chart, piece, &style, colour, width)?;
+            }
+            let shown: Vec<f64> = t
+                .impacts
+                .iter()
+                .map(|tau| tau * k)
+                .filter(|at| (x.0..=x.1).contains(at))
+                .collect();
+            let rug = shown.len() > RUG_ABOVE;
+            if rug {
+                // A rug: one tick per impact along the bottom edge, a row per such run.
+                let area = chart.plotting_area().strip_coord_spec();
+                let bottom = area.dim_in_pixel().1 as i32 - 1 - rug_rows * (RUG_TICK + 2);
+                rug_rows += 1;
+                let mut drawn = std::collections::HashSet::new();
+                for at in shown {
+                    let (px, _) = pixel(&chart, (at, lo));
+                    if drawn.insert(px) {
+                        area.draw(&PathElement::new(
+                            vec![(px, bottom), (px, bottom - RUG_TICK)],
+                            colour.stroke_width(1),
+                        ))
+                        .map_err(fail)?;
+                    }
+                }
             }
             // Impacts: the run's marker on its line; with more impacts than the panel has pixel
             // columns (a chattering run has hundreds of thousands, which no SVG reader would
@@ -328,8 +438,9 @@ impl HistoryPanel {
             let columns = chart.plotting_area().dim_in_pixel().0 as usize;
             let thin = t.impacts.len() > columns;
             let mut drawn = std::collections::HashSet::new();
-            for &tau in &t.impacts {
-                if tau < x.0 || tau > x.1 {
+            for &tau in t.impacts.iter().filter(|_| !rug) {
+                let at = tau * k;
+                if at < x.0 || at > x.1 {
                     continue;
                 }
                 let v = if self.quantity == THETA_OVER_ALPHA {
@@ -337,6 +448,7 @@ impl HistoryPanel {
                 } else {
                     t.at(self.quantity, tau)
                 };
+                let tau = at;
                 if let Some(v) = v.filter(|v| (lo..=hi).contains(v)) {
                     if thin && !drawn.insert(pixel(&chart, (tau, v))) {
                         continue;
@@ -361,6 +473,18 @@ impl HistoryPanel {
                     ))
                     .map_err(fail)?;
                 }
+            }
+        }
+        // The twins over the runs (a stiff run's fast oscillation would hide them).
+        for t in &self.twins {
+            let mut points = t.points(self.quantity);
+            points.iter_mut().for_each(|p| p.0 *= k);
+            let solid = LineStyle {
+                dash: None,
+                ..t.style
+            };
+            for piece in clip(&points, frame) {
+                styled_line(&mut chart, piece, &solid, rgb(TWIN_GREY), 1)?;
             }
         }
         Ok(())

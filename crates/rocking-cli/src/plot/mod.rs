@@ -141,6 +141,21 @@ impl Figure {
         )
     }
 
+    /// The stated top of the shared colour scale (`colour_top`) and how many shaded cells of the
+    /// figure lie above it (each drawn in the top colour), if any do.
+    pub fn above_colour_top(&self) -> Option<(f64, usize)> {
+        let top = self.colour_top?;
+        let n: usize = self
+            .panels
+            .iter()
+            .map(|p| match p {
+                Panel::Spectrum(s) => s.count_above(top),
+                _ => 0,
+            })
+            .sum();
+        (n > 0).then_some((top, n))
+    }
+
     /// The shared colour scale's bottom: 0, or the lowest shaded value where it is negative.
     fn colour_bottom(&self) -> f64 {
         self.panels
@@ -635,13 +650,25 @@ pub fn reported_figure(title: &str, sweep: &Sweep, cells: &[Cell], k: usize) -> 
     if rocking_study::run_report::RATIOS.contains(&key.as_str()) {
         panel.mark = Some((1.0, "fixed base".to_string()));
     }
+    let mut caption =
+        "Upright cells shaded by the quantity, overturned cells filled by class; the \
+                       dotted line surrounds the cells that never uplift."
+            .to_string();
+    if key == REQUIRED_FRICTION {
+        for mu in FRICTION_CONTOURS {
+            panel = panel.with_contour(mu, &format!("{label} = {}", tick(mu)));
+        }
+        caption.push_str(&format!(
+            " Dashed on white: the contours of the required friction at μ = {} (long dashes) and \
+             {} (short), the friction a footing can count on: the cells on the higher side need more, and there \
+             the no-sliding assumption of the model fails.",
+            tick(FRICTION_CONTOURS[0]),
+            tick(FRICTION_CONTOURS[1])
+        ));
+    }
     let figure = Figure {
         title: format!("{title}: {label}"),
-        caption: Some(
-            "Upright cells shaded by the quantity, overturned cells filled by class; the dotted \
-             line surrounds the cells that never uplift."
-                .to_string(),
-        ),
+        caption: Some(caption),
         columns: 1,
         panel: (760, 700),
         panels: vec![Panel::Spectrum(panel)],
@@ -650,6 +677,12 @@ pub fn reported_figure(title: &str, sweep: &Sweep, cells: &[Cell], k: usize) -> 
     };
     (figure, format!("{REPORTED_FIGURE}{key}"))
 }
+
+/// The reported quantity whose map carries the friction contours.
+pub const REQUIRED_FRICTION: &str = "max_required_friction";
+/// The friction coefficients a footing can count on (soil or concrete on soil, about 0.5-0.7):
+/// the contours of the required-friction map.
+pub const FRICTION_CONTOURS: [f64; 2] = [0.5, 0.7];
 
 /// The start of the name of a reported quantity's figure.
 const REPORTED_FIGURE: &str = "spectrum-";
@@ -859,6 +892,143 @@ mod tests {
         c[2].reported = vec![0.5];
         let svg = reported_figure("t", &s, &c, 0).0.svg().unwrap();
         assert!(!svg.contains(entry));
+    }
+
+    /// The friction map carries the contours at μ = 0.5 and 0.7 along the cell edges between
+    /// upright cells below and at or above each level (an unbounded value is above both; an
+    /// overturned cell borders neither), each in the legend and the caption.
+    #[test]
+    fn the_required_friction_map_has_contours_at_the_friction_a_footing_can_count_on() {
+        let mut s = sweep();
+        s.reported = vec![REQUIRED_FRICTION.into()];
+        // Cells (ω_p/p, amplitude): (1, 1) 0.3, (1, 2) 0.6, (2, 1) inf, (2, 2) overturned.
+        let mut c = cells([0.2, 0.65, 1.3]);
+        for (cell, v) in c.iter_mut().zip([0.3, 0.6, f64::INFINITY, 5.0]) {
+            cell.reported = vec![v];
+        }
+        let (figure, _) = reported_figure("t", &s, &c, 0);
+        let Panel::Spectrum(panel) = &figure.panels[0] else {
+            panic!("a spectrum panel")
+        };
+        // μ = 0.5: between 0.3 and both its neighbours (0.6 above, inf to the right).
+        assert_eq!(
+            panel.contour(0.5).unwrap(),
+            &vec![vec![(1.5, 0.5), (1.5, 1.5), (0.5, 1.5)]]
+        );
+        // μ = 0.7: between 0.3 and inf only; 0.6 borders the overturned cell, not a contour.
+        assert_eq!(
+            panel.contour(0.7).unwrap(),
+            &vec![vec![(1.5, 0.5), (1.5, 1.5)]]
+        );
+        let legend: Vec<String> = panel.legend().iter().map(LegendItem::key).collect();
+        for (mu, dash) in [
+            ("0.5", spectrum::CONTOUR_DASHES[0]),
+            ("0.7", spectrum::CONTOUR_DASHES[1]),
+        ] {
+            let entry = format!("rule [0, 0, 0] Some({dash:?}) max |R_h|/R_v = {mu}");
+            assert!(legend.contains(&entry), "{entry} not in {legend:?}");
+        }
+        figure.svg().unwrap();
+        assert!(figure.caption.as_deref().unwrap().contains("μ = 0.5"));
+        // Another quantity has none.
+        s.reported = vec!["base_moment_ratio".into()];
+        let (figure, _) = reported_figure("t", &s, &c, 0);
+        let Panel::Spectrum(panel) = &figure.panels[0] else {
+            panic!("a spectrum panel")
+        };
+        assert!(panel.contour(0.5).is_none());
+    }
+
+    /// A stated colour_top shades every panel on it even where the panels' values stay below it,
+    /// and the survivors above it are counted (the command notes them).
+    #[test]
+    fn a_stated_colour_top_is_the_scale_of_every_panel_and_cells_above_it_are_counted() {
+        let s = sweep();
+        let low = cells([0.2, 0.65, 1.3]);
+        let figure = |top: f64| Figure {
+            title: "t".into(),
+            caption: None,
+            columns: 1,
+            panel: (300, 300),
+            panels: vec![Panel::Spectrum(SpectrumPanel::new(&s, &low))],
+            colour_top: Some(top),
+            print: None,
+        };
+        let hex = |c: RGBColor| format!("fill=\"#{:02X}{:02X}{:02X}\"", c.0, c.1, c.2);
+        let svg = figure(4.0).svg().unwrap();
+        let shared = hex(ViridisRGB.get_color_normalized(0.65, 0.0, 4.0));
+        assert!(svg.contains(&shared), "{shared}: not on the stated scale");
+        assert_eq!(figure(4.0).above_colour_top(), None);
+        assert_eq!(figure(0.5).above_colour_top(), Some((0.5, 2)));
+    }
+
+    /// Fig. 9's safe band: per ω_p/p, from the lowest to the highest upright cell above the
+    /// lowest overturning amplitude, each border refined between the upright cell and its
+    /// overturned neighbour; a column without an upright cell above its line has none.
+    #[test]
+    fn the_safe_band_runs_between_its_overturned_neighbours() {
+        let sweep = Sweep {
+            axes: vec![
+                rocking_spectra::Axis::numbers("excitation.omega_p_over_p", vec![1.0, 2.0]),
+                rocking_spectra::Axis::numbers(
+                    "excitation.amplitude",
+                    vec![1.0, 2.0, 3.0, 4.0, 5.0, 6.0],
+                ),
+            ],
+            fingerprint: "band".into(),
+            reported: Vec::new(),
+        };
+        use CellClass::*;
+        let first = [
+            Survived,
+            OverturnedOneImpact,
+            Survived,
+            Survived,
+            OverturnedNoImpact,
+            OverturnedNoImpact,
+        ];
+        let second = [
+            Survived,
+            OverturnedOneImpact,
+            OverturnedOneImpact,
+            OverturnedNoImpact,
+            OverturnedNoImpact,
+            OverturnedNoImpact,
+        ];
+        let cells: Vec<Cell> = first
+            .iter()
+            .chain(&second)
+            .enumerate()
+            .map(|(index, &class)| Cell {
+                index,
+                class,
+                max_theta_over_alpha: 0.5,
+                impacts: 1,
+                reported: Vec::new(),
+            })
+            .collect();
+        let mut asked = Vec::new();
+        let s = Structure::new("s".into(), style::LINES[0], &sweep, &cells, |x, a, b| {
+            asked.push((x, a, b));
+            (a + b) / 2.0
+        });
+        assert_eq!(s.line, vec![vec![(1.0, 1.5), (2.0, 1.5)]]);
+        assert_eq!(s.band, vec![vec![(1.0, 2.5, 4.5)]]);
+        // The line's bracket, the band's bottom (upright 3 over overturned 2) and top (4, 5).
+        assert_eq!(
+            asked,
+            vec![
+                (1.0, 1.0, 2.0),
+                (1.0, 3.0, 2.0),
+                (1.0, 4.0, 5.0),
+                (2.0, 1.0, 2.0)
+            ]
+        );
+        let panel = BoundaryPanel::over(&sweep, vec![s], BOUNDARY_HEADING.into());
+        assert!(panel
+            .legend()
+            .iter()
+            .any(|i| i.key().contains("the safe band")));
     }
 
     fn rgb_of(c: [u8; 3]) -> RGBColor {

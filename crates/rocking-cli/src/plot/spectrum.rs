@@ -143,7 +143,14 @@ pub struct SpectrumPanel {
     /// A value marked on the colour bar, with its text: θ_cr/α of the structure, or 1 for a
     /// ratio to the fixed base.
     pub mark: Option<(f64, String)>,
+    /// Contours of the shaded value: the level, its legend text, its dash, and the cell edges
+    /// between shaded cells below the level and those at or above it.
+    contours: Vec<(f64, String, (u32, u32), Lines)>,
 }
+
+/// The dashes of a spectrum's contours, in order (the overturning boundary is solid, the
+/// no-uplift line dotted 3/4): long dashes, then short.
+pub const CONTOUR_DASHES: [(u32, u32); 2] = [(14, 6), (6, 4)];
 
 impl SpectrumPanel {
     /// The panel of a sweep's cells over its last two axes, survivors shaded by max θ/α.
@@ -176,7 +183,32 @@ impl SpectrumPanel {
             shade,
             reference: None,
             mark: None,
+            contours: Vec::new(),
         }
+    }
+
+    /// Adds the contour of the shaded value at `level` (`label` in the legend): the cell edges
+    /// between shaded cells whose value is below it and those at or above it (an unbounded value
+    /// is above every level; a cell not shaded or without a value borders nothing). The `k`-th
+    /// contour takes the `k`-th of [`CONTOUR_DASHES`].
+    pub fn with_contour(mut self, level: f64, label: &str) -> SpectrumPanel {
+        let (x, y, cells) = &self.grid;
+        let mut sides = vec![vec![None; y.values.len()]; x.values.len()];
+        for &(i, j, class, value) in cells {
+            if self.shade.shades(class) && !value.is_nan() {
+                sides[i][j] = Some(value >= level);
+            }
+        }
+        let lines = polylines(&cell_edges(&sides, &x.values, &y.values));
+        let dash = CONTOUR_DASHES[self.contours.len() % CONTOUR_DASHES.len()];
+        self.contours.push((level, label.to_string(), dash, lines));
+        self
+    }
+
+    /// The contour lines at `level`, if the panel has that contour.
+    #[cfg(test)]
+    pub fn contour(&self, level: f64) -> Option<&Lines> {
+        self.contours.iter().find(|c| c.0 == level).map(|c| &c.3)
     }
 
     /// Draws a reference structure's overturning boundary over it, dashed.
@@ -198,6 +230,11 @@ impl SpectrumPanel {
     /// The largest finite value of the shaded cells.
     pub(super) fn top_of_shaded(&self) -> f64 {
         self.shaded_values().fold(1e-9, f64::max)
+    }
+
+    /// How many shaded cells lie above `top` (drawn in the top colour of a scale set below them).
+    pub(super) fn count_above(&self, top: f64) -> usize {
+        self.shaded_values().filter(|&v| v > top).count()
     }
 
     /// The bottom of the colour scale: 0, or the lowest shaded value where it is negative.
@@ -261,6 +298,11 @@ impl SpectrumPanel {
                 style::BLACK.dash,
                 format!("overturned | upright, {label}"),
             ));
+        }
+        for (_, label, dash, lines) in &self.contours {
+            if !lines.is_empty() {
+                items.push(LegendItem::Rule([0, 0, 0], Some(*dash), label.clone()));
+            }
         }
         items
     }
@@ -327,6 +369,17 @@ impl SpectrumPanel {
         if let Some((_, lines)) = &self.reference {
             for line in lines {
                 styled_line(&mut chart, line.clone(), &style::BLACK, BLACK, 2)?;
+            }
+        }
+        // Contours: black dashes on a white halo, to read on every shade.
+        for (_, _, dash, lines) in &self.contours {
+            for line in lines {
+                styled_line(&mut chart, line.clone(), &solid(), WHITE, 4)?;
+                let dashed = LineStyle {
+                    dash: Some(*dash),
+                    ..style::BLACK
+                };
+                styled_line(&mut chart, line.clone(), &dashed, BLACK, 2)?;
             }
         }
         Ok(())
@@ -539,8 +592,13 @@ pub struct Structure {
     /// (ω_p/p, lowest overturning amplitude) by increasing ω_p/p, in pieces between the columns
     /// where nothing overturned.
     pub line: Vec<Vec<(f64, f64)>>,
-    /// Upright cells above the line (survival islands).
-    pub islands: Vec<(f64, f64)>,
+    /// The band of upright cells above the line (the safe band, which in the paper's spectra
+    /// lies between overturning after impacts below it and overturning without impact above):
+    /// per ω_p/p where the column has an upright cell above the line, (ω_p/p, the band's bottom,
+    /// its top), in pieces of neighbouring columns. The bottom is `refine`d between the lowest
+    /// upright cell above the line and the overturned cell below it, the top between the highest
+    /// upright cell and the overturned one above it (or that cell, at the grid's top).
+    pub band: Vec<Vec<(f64, f64, f64)>>,
 }
 
 impl Structure {
@@ -556,7 +614,7 @@ impl Structure {
     ) -> Structure {
         let (x, y, grid) = grid(sweep, cells, |c| c.max_theta_over_alpha);
         let mut line = vec![Vec::new()];
-        let mut islands = Vec::new();
+        let mut band = vec![Vec::new()];
         for (i, &xv) in x.values.iter().enumerate() {
             let mut column: Vec<(f64, bool)> = grid
                 .iter()
@@ -569,6 +627,9 @@ impl Structure {
                     if line.last().is_some_and(|l| !l.is_empty()) {
                         line.push(Vec::new());
                     }
+                    if band.last().is_some_and(|b| !b.is_empty()) {
+                        band.push(Vec::new());
+                    }
                     continue;
                 }
                 Lowest::AtOrBelow(a) => a,
@@ -577,22 +638,47 @@ impl Structure {
             if let Some(l) = line.last_mut() {
                 l.push((xv, lowest));
             }
-            islands.extend(
-                column
-                    .iter()
-                    .filter(|c| !c.1 && c.0 > lowest)
-                    .map(|c| (xv, c.0)),
-            );
+            // The lowest and the highest upright cell above the line, each with its overturned
+            // neighbour (below the lowest: the line's own cell or one above it; above the
+            // highest: none at the grid's top).
+            let first = column.iter().position(|c| !c.1 && c.0 > lowest);
+            let last = column.iter().rposition(|c| !c.1 && c.0 > lowest);
+            match (first, last) {
+                (Some(a), Some(k)) => {
+                    let lower = match a.checked_sub(1).map(|b| column[b]) {
+                        Some(below) if below.1 => refine(xv, column[a].0, below.0),
+                        _ => column[a].0,
+                    };
+                    let upper = match column.get(k + 1) {
+                        Some(next) => refine(xv, column[k].0, next.0),
+                        None => column[k].0,
+                    };
+                    if let Some(b) = band.last_mut() {
+                        b.push((xv, lower, upper));
+                    }
+                }
+                _ => {
+                    if band.last().is_some_and(|b| !b.is_empty()) {
+                        band.push(Vec::new());
+                    }
+                }
+            }
         }
         line.retain(|l| !l.is_empty());
+        band.retain(|b| !b.is_empty());
         Structure {
             label,
             style,
             line,
-            islands,
+            band,
         }
     }
 }
+
+/// The opacity of a structure's safe band over the white panel.
+const BAND_OPACITY: f64 = 0.28;
+/// The band's legend box: a mid grey at that opacity over white.
+const BAND_LEGEND: [u8; 3] = [200, 200, 200];
 
 /// Overturning boundaries of several structures on shared axes.
 pub struct BoundaryPanel {
@@ -618,13 +704,10 @@ impl BoundaryPanel {
         for s in &self.structures {
             items.push(LegendItem::Line(s.style, s.label.clone()));
         }
-        if self.structures.iter().any(|s| !s.islands.is_empty()) {
-            items.push(LegendItem::Mark(
-                style::LINES[0].marker,
-                [90, 90, 90],
-                false,
-                "open markers: upright cells above their structure's line (survival islands)"
-                    .to_string(),
+        if self.structures.iter().any(|s| !s.band.is_empty()) {
+            items.push(LegendItem::Fill(
+                BAND_LEGEND,
+                "tinted band: upright above the line (the safe band)".to_string(),
             ));
         }
         items
@@ -643,11 +726,59 @@ impl BoundaryPanel {
             true,
         )?;
         let n = self.structures.len().max(1);
+        for s in &self.structures {
+            let colour = rgb(s.style.colour);
+            for piece in &s.band {
+                // One column alone is a band half a cell wide either side.
+                let half = if piece.len() == 1 {
+                    let v = &self.x.values;
+                    let (a, b) =
+                        cell_bounds(v, v.iter().position(|&x| x == piece[0].0).unwrap_or(0));
+                    (b - a) / 2.0
+                } else {
+                    0.0
+                };
+                let mut outline: Vec<(f64, f64)> = Vec::new();
+                if half > 0.0 {
+                    let (x, lo, hi) = piece[0];
+                    outline.extend([
+                        (x - half, lo),
+                        (x + half, lo),
+                        (x + half, hi),
+                        (x - half, hi),
+                    ]);
+                } else {
+                    outline.extend(piece.iter().map(|p| (p.0, p.1)));
+                    outline.extend(piece.iter().rev().map(|p| (p.0, p.2)));
+                }
+                chart
+                    .draw_series(std::iter::once(Polygon::new(
+                        outline,
+                        colour.mix(BAND_OPACITY).filled(),
+                    )))
+                    .map_err(fail)?;
+                // Its borders: thin solid lines in the structure's colour.
+                let thin = LineStyle {
+                    dash: None,
+                    ..s.style
+                };
+                for k in [1, 2] {
+                    let edge: Vec<(f64, f64)> = if half > 0.0 {
+                        let p = piece[0];
+                        let v = if k == 1 { p.1 } else { p.2 };
+                        vec![(p.0 - half, v), (p.0 + half, v)]
+                    } else {
+                        piece
+                            .iter()
+                            .map(|p| (p.0, if k == 1 { p.1 } else { p.2 }))
+                            .collect()
+                    };
+                    styled_line(&mut chart, edge, &thin, colour, 1)?;
+                }
+            }
+        }
         for (k, s) in self.structures.iter().enumerate() {
             let colour = rgb(s.style.colour);
-            for &(x, y) in &s.islands {
-                mark_at(&chart, s.style.marker, (x, y), 3, colour, false)?;
-            }
             for piece in &s.line {
                 styled_line(&mut chart, piece.clone(), &s.style, colour, 2)?;
             }
