@@ -4,7 +4,7 @@
 //! rocking run SCENE [--set key.path=value ...] [--out DIR] [--json] [--animate]
 //! rocking check SCENE [--set key.path=value ...] [--json]
 //! rocking spectrum SCENE [--axis key.path=start:stop:count ...] [--set ...] [--out DIR] [--quiet]
-//! rocking batch SCENE [--records FILE|DIR ...] [--scales 0.5,1,2] [--set ...] [--out DIR] [--quiet]
+//! rocking batch SCENE [--records FILE|DIR ...] [--scales 0.5,1,2] [--axis key.path=v1,v2,...] [--set ...] [--out DIR] [--quiet]
 //! rocking spectrum|batch ... --shard K/N --out SHARD_DIR    (one shard of a job array)
 //! rocking merge OUT SHARD_DIR...
 //! rocking ida SCENE [--records FILE|DIR ...] [--set ...] [--out DIR] [--threads N]
@@ -137,8 +137,9 @@ enum Command {
         #[arg(long, value_name = "K/N", value_parser = rocking_spectra::Shard::parse)]
         shard: Option<rocking_spectra::Shard>,
     },
-    /// Run a record scene for every record and scale factor: per run the summary, per scale the
-    /// fraction that overturned (fragility-style curve).
+    /// Run a record scene for every record and scale factor (and every cell of the --axis
+    /// axes): per run the summary, per scale (and axis cell) the fraction that overturned
+    /// (fragility-style curve).
     Batch {
         /// The scene file (TOML), with `kind = "record"` in [excitation].
         scene: PathBuf,
@@ -148,6 +149,12 @@ enum Command {
         /// Scale factors, comma separated (default: `scales` in [sweep], or 1).
         #[arg(long, value_delimiter = ',')]
         scales: Vec<f64>,
+        /// An axis of the batch's own, as spectrum's: `key.path=v1,v2,...` (numbers or texts,
+        /// e.g. `structure.model=cubic,cantilever_modes2`) or `key.path=start:stop:count`
+        /// (repeatable; runs records x scales x the axes' cells, at most 1e6; one column per axis
+        /// in runs.csv and fragility.csv).
+        #[arg(long = "axis", value_name = "KEY.PATH=V1,V2,...")]
+        axes: Vec<String>,
         /// Override a scene value (repeatable).
         #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
         set: Vec<String>,
@@ -563,12 +570,15 @@ fn main() -> ExitCode {
             scene,
             records,
             scales,
+            axes,
             set,
             out,
             quiet,
             threads,
             shard,
-        } => sweep::batch(&scene, &set, &records, &scales, out, quiet, threads, shard),
+        } => sweep::batch(
+            &scene, &set, &records, &scales, &axes, out, quiet, threads, shard,
+        ),
         Command::Merge { out, shards } => merge::merge(&out, &shards),
         Command::Figure {
             files,

@@ -92,7 +92,7 @@ pub fn merge(out: &Path, dirs: &[PathBuf]) -> Result<(), SceneError> {
                 .map_err(|e| {
                     SceneError::input(format!("{}: {MANIFEST}: scales: {e}", dir0.display()))
                 })?;
-            Plan::batch(base, &records, &scales)?
+            Plan::batch(base, &records, &scales, &m.axes)?
         }
     };
     if plan.sweep.fingerprint != m.fingerprint {

@@ -34,7 +34,8 @@ pub struct Manifest {
     pub scene_text: String,
     pub set: Vec<String>,
     /// `key=v1,v2,...`, each value printed to read back as the same f64 (a JSON number need
-    /// not: serde_json's default parser is not correctly rounded).
+    /// not: serde_json's default parser is not correctly rounded); a text axis's texts. For a
+    /// batch, its own axes (`--axis`), after which its records and scales vary slowest.
     pub axes: Vec<String>,
     pub records: Vec<String>,
     /// The same for the scale factors.
@@ -79,15 +80,14 @@ pub fn run_shard(
         directory: cwd.display().to_string(),
         scene_text: base.text().to_string(),
         set: base.sets().to_vec(),
+        // A batch's own axes follow its record and scale axes (none: an empty list, as before).
         axes: match kind {
-            Kind::Spectrum => plan
-                .sweep
-                .axes
-                .iter()
-                .map(rocking_spectra::Axis::spec)
-                .collect(),
-            Kind::Batch => Vec::new(),
-        },
+            Kind::Spectrum => &plan.sweep.axes[..],
+            Kind::Batch => &plan.sweep.axes[2..],
+        }
+        .iter()
+        .map(rocking_spectra::Axis::spec)
+        .collect(),
         records,
         scales,
     };

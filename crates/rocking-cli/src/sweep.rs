@@ -251,19 +251,21 @@ pub(crate) fn theta_cr_over_alpha(plan: &Plan) -> Result<Option<f64>, SceneError
     Ok(Some(d.theta_cr / d.alpha))
 }
 
-/// `rocking batch`: every record at every scale factor; per scale, the fraction that overturned.
+/// `rocking batch`: every record at every scale factor (and every cell of the `--axis` axes);
+/// per scale (and axis cell), the fraction that overturned.
 #[allow(clippy::too_many_arguments)] // the command's arguments, one to one
 pub fn batch(
     scene_path: &Path,
     sets: &[String],
     records: &[PathBuf],
     scales: &[f64],
+    axes: &[String],
     out: Option<PathBuf>,
     quiet: bool,
     threads: Option<usize>,
     shard: Option<Shard>,
 ) -> Result<(), SceneError> {
-    let plan = Plan::batch(crate::load_base(scene_path, sets)?, records, scales)?;
+    let plan = Plan::batch(crate::load_base(scene_path, sets)?, records, scales, axes)?;
     let dir = out_dir(scene_path, out, "batch");
     crate::out_dir::refuse_a_file(&dir)?;
     let progress = if quiet {
@@ -280,11 +282,16 @@ pub fn batch(
         .map_err(sweep_error)?;
     let (mut written, tally) = write_batch_outputs(&plan, &outcome, &dir)?;
     written.push(write_timing(&outcome, &dir, pool.current_num_threads())?);
+    let own = &plan.sweep.axes[2..];
+    let axis_cells: String = own
+        .iter()
+        .map(|a| format!(" x {} {}", a.values.len(), a.key))
+        .collect();
     out!(
-        "{}: {} records x {} scales ({} runs computed now) in {:.2} s",
+        "{}: {} records x {} scales{axis_cells} ({} runs computed now) in {:.2} s",
         scene_path.display(),
         plan.records.as_ref().map_or(0, |r| r.files.len()),
-        tally.len(),
+        plan.records.as_ref().map_or(0, |r| r.scales.len()),
         outcome.computed,
         outcome.elapsed.as_secs_f64()
     );
@@ -299,15 +306,16 @@ pub fn batch(
                 t.beyond_model, t.runs
             ));
         }
+        let at: String = t.axes.iter().map(|v| format!("{v} ")).collect();
         match t.fraction() {
             Some(x) => out!(
-                "  scale {}: {}/{} overturned ({:.1} %){notes}",
+                "  {at}scale {}: {}/{} overturned ({:.1} %){notes}",
                 t.scale,
                 t.overturned,
                 t.completed(),
                 100.0 * x
             ),
-            None => out!("  scale {}: no run finished{notes}", t.scale),
+            None => out!("  {at}scale {}: no run finished{notes}", t.scale),
         }
     }
     out!("  wrote:");
@@ -317,8 +325,10 @@ pub fn batch(
     failed_runs(&outcome, "runs", "runs.csv")
 }
 
-/// What the runs at one scale factor gave.
+/// What the runs at one scale factor (and one cell of the batch's axes) gave.
 pub(crate) struct ScaleTally {
+    /// The cell of the batch's own axes as `key=value` (empty without axes).
+    axes: Vec<String>,
     scale: f64,
     runs: usize,
     /// Runs that failed (no result).
@@ -341,11 +351,22 @@ impl ScaleTally {
     }
 }
 
-/// Per scale factor, in the order of the scales.
+/// Per cell of the batch's own axes (in cell order) and, within it, per scale factor (in the
+/// order of the scales); per scale factor alone without axes.
 type Tally = Vec<ScaleTally>;
+/// A CSV field: quoted (quotes doubled) when it holds a comma, a quote or a line break.
+fn csv_field(s: &str) -> String {
+    if s.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
+    }
+}
 
 /// runs.csv, fragility.csv, meta.json and the fragility plots of a record suite (also of a merge
-/// of its shards).
+/// of its shards). The batch's own axes (`--axis`, the sweep's axes after record and scale) add
+/// one column each to runs.csv and fragility.csv (the text of a text axis), and fragility.csv
+/// then has one row per axis cell and scale; without them every output is as before.
 pub(crate) fn write_batch_outputs(
     plan: &Plan,
     outcome: &Outcome,
@@ -362,46 +383,61 @@ pub(crate) fn write_batch_outputs(
     else {
         return Err(SceneError::failure("a batch plan without records"));
     };
+    let own = &sweep.axes[2..];
+    // The cells of the batch's own axes (1 without them): the fastest-varying part of an index.
+    let own_cells: usize = own.iter().map(|a| a.values.len()).product();
+    let own_values = |mut a: usize| -> Vec<String> {
+        let mut out = vec![String::new(); own.len()];
+        for (k, axis) in own.iter().enumerate().rev() {
+            let n = axis.values.len();
+            out[k] = axis.display(axis.values[a % n]);
+            a /= n;
+        }
+        out
+    };
     let messages: BTreeMap<usize, &str> = outcome
         .failures
         .iter()
         .chain(&outcome.beyond_model)
         .map(|(i, m)| (*i, m.as_str()))
         .collect();
-    // Per scale: runs, failed, overturned (of the runs that finished).
-    let mut tally: Tally = scales
-        .iter()
-        .map(|&scale| ScaleTally {
-            scale,
-            runs: 0,
-            failed: 0,
-            beyond_model: 0,
-            overturned: 0,
+    // Per axis cell and scale: runs, failed, overturned (of the runs that finished).
+    let mut tally: Tally = (0..own_cells)
+        .flat_map(|a| {
+            let values = own_values(a);
+            scales.iter().map(move |&scale| ScaleTally {
+                axes: own
+                    .iter()
+                    .zip(&values)
+                    .map(|(ax, v)| format!("{}={v}", ax.key))
+                    .collect(),
+                scale,
+                runs: 0,
+                failed: 0,
+                beyond_model: 0,
+                overturned: 0,
+            })
         })
         .collect();
     let mut runs = csv::Writer::from_writer(Vec::new());
     let csv_err = |e: csv::Error| SceneError::failure(format!("cannot write runs.csv: {e}"));
     // The quantities of `[sweep] report` after the run's own, as in a spectrum's cells.csv.
-    let head = [
-        "record",
-        "scale",
-        "class",
-        "overturned",
-        "max_theta_over_alpha",
-        "impacts",
-    ];
-    let head = head
-        .iter()
-        .copied()
+    let head = ["record", "scale"]
+        .into_iter()
+        .chain(own.iter().map(|a| a.key.as_str()))
+        .chain(["class", "overturned", "max_theta_over_alpha", "impacts"])
         .chain(sweep.reported.iter().map(String::as_str));
     runs.write_record(head.chain(["message"]))
         .map_err(csv_err)?;
     for c in &outcome.cells {
         let v = sweep.values(c.index);
-        let (r, k) = (v[0] as usize, c.index % scales.len());
-        let t = &mut tally[k];
+        let r = v[0] as usize;
+        let (a, k) = (c.index % own_cells, (c.index / own_cells) % scales.len());
+        let t = &mut tally[a * scales.len() + k];
         t.runs += 1;
-        let row = if !c.class.has_result() {
+        let mut row = vec![names[r].clone(), v[1].to_string()];
+        row.extend(own_values(a));
+        if !c.class.has_result() {
             if c.class == CellClass::BeyondModel {
                 t.beyond_model += 1;
             } else {
@@ -410,25 +446,21 @@ pub(crate) fn write_batch_outputs(
             // A failed run (or one beyond the model) has no result: its fields are empty, never
             // a made-up "survived".
             let m = messages.get(&c.index).copied().unwrap_or("failed");
-            let mut row = vec![names[r].clone(), v[1].to_string(), c.class.as_str().into()];
+            row.push(c.class.as_str().into());
             row.extend(std::iter::repeat_n(String::new(), 3 + sweep.reported.len()));
             row.push(m.to_string());
-            row
         } else {
             let over = c.class.overturned() == Some(true);
             t.overturned += usize::from(over);
-            let mut row = vec![
-                names[r].clone(),
-                v[1].to_string(),
+            row.extend([
                 c.class.as_str().into(),
                 over.to_string(),
                 c.max_theta_over_alpha.to_string(),
                 c.impacts.to_string(),
-            ];
+            ]);
             row.extend(c.reported.iter().map(f64::to_string));
             row.push(String::new());
-            row
-        };
+        }
         runs.write_record(&row).map_err(csv_err)?;
     }
     let rows = runs
@@ -441,10 +473,14 @@ pub(crate) fn write_batch_outputs(
     // The fraction overturned is of the runs with a result; failed runs and runs beyond the
     // model are counted apart, and a scale with no result has no fraction (an empty field, no
     // plotted point).
-    let mut frag =
-        String::from("scale,runs,failed,beyond_model,completed,overturned,fraction_overturned\n");
-    for t in &tally {
+    let mut frag: String = own.iter().map(|a| csv_field(&a.key) + ",").collect();
+    frag.push_str("scale,runs,failed,beyond_model,completed,overturned,fraction_overturned\n");
+    for (i, t) in tally.iter().enumerate() {
         let x = t.fraction().map_or(String::new(), |x| x.to_string());
+        for v in own_values(i / scales.len()) {
+            frag.push_str(&csv_field(&v));
+            frag.push(',');
+        }
         frag.push_str(&format!(
             "{},{},{},{},{},{},{x}\n",
             t.scale,
@@ -458,7 +494,16 @@ pub(crate) fn write_batch_outputs(
     let path = dir.join("fragility.csv");
     write_atomic(&path, frag.as_bytes())?;
     written.push(path);
-    let meta = json!({
+    // A run's entry in meta.json: with axes, also its cell of them (texts for text axes).
+    let entry = |i: usize, m: &str| {
+        let v = sweep.values(i);
+        let mut e = json!({"run": i, "record": names[v[0] as usize], "scale": v[1], "message": m});
+        if !own.is_empty() {
+            e["axes"] = cell_values(sweep, i)[2..].to_vec().into();
+        }
+        e
+    };
+    let mut meta = json!({
         "scene": base.path().display().to_string(),
         "scene_text": base.text(),
         "set": base.sets(),
@@ -467,26 +512,36 @@ pub(crate) fn write_batch_outputs(
         "fingerprint": sweep.fingerprint,
         "runs": outcome.cells.len(),
         "failed": outcome.failures.len(),
-        "failures": outcome.failures.iter().map(|(i, m)| {
-            let v = sweep.values(*i);
-            json!({"run": i, "record": names[v[0] as usize], "scale": v[1], "message": m})
-        }).collect::<Vec<_>>(),
-        "beyond_model": outcome.beyond_model.iter().map(|(i, m)| {
-            let v = sweep.values(*i);
-            json!({"run": i, "record": names[v[0] as usize], "scale": v[1], "message": m})
-        }).collect::<Vec<_>>(),
+        "failures": outcome.failures.iter().map(|(i, m)| entry(*i, m)).collect::<Vec<_>>(),
+        "beyond_model": outcome.beyond_model.iter().map(|(i, m)| entry(*i, m)).collect::<Vec<_>>(),
         "versions": {"rocking": env!("CARGO_PKG_VERSION"), "program": program_digest()},
     });
+    if !own.is_empty() {
+        meta["axes"] = own
+            .iter()
+            .map(|a| {
+                if a.is_text() {
+                    json!({"key": a.key, "values": a.texts})
+                } else {
+                    json!({"key": a.key, "values": a.values})
+                }
+            })
+            .collect();
+    }
     let path = dir.join("meta.json");
     write_atomic(
         &path,
         (serde_json::to_string_pretty(&meta).unwrap_or_default() + "\n").as_bytes(),
     )?;
     written.push(path);
-    let points: Vec<(f64, f64)> = tally
-        .iter()
-        .filter_map(|t| t.fraction().map(|x| (t.scale, x)))
-        .collect();
-    written.extend(plot::fragility_plots(&points, list.len(), dir)?);
+    // One curve of the fraction against the scale: without axes only (with axes, the curves per
+    // axis cell are the rows of fragility.csv).
+    if own.is_empty() {
+        let points: Vec<(f64, f64)> = tally
+            .iter()
+            .filter_map(|t| t.fraction().map(|x| (t.scale, x)))
+            .collect();
+        written.extend(plot::fragility_plots(&points, list.len(), dir)?);
+    }
     Ok((written, tally))
 }

@@ -748,6 +748,83 @@ const ROWS: &[Row] = &[
         None,
         &["[ground] kind = \"winkler\"", "does not run a compliant ground yet", "kind = \"rigid\""],
     ),
+    (
+        "batch-axis-on-scale",
+        SCENE,
+        PULSE,
+        BATCH_SCENE,
+        Some(RECORD),
+        &["--axis `excitation.scale=1,2`", "from --scales", "any other numeric or text key"],
+    ),
+    (
+        "batch-axis-twice",
+        SCENE,
+        PULSE,
+        BATCH_SCENE,
+        Some(RECORD),
+        &["--axis `structure.model=cantilever_modes2`", "two axes on `structure.model`", "one axis"],
+    ),
+    (
+        "batch-axis-too-many-values",
+        SCENE,
+        PULSE,
+        BATCH_SCENE,
+        Some(RECORD),
+        &["structure.zeta=0:0.5:200000", "count 200000 is too large", "at most 100000 values per axis"],
+    ),
+    (
+        "batch-axis-too-many-runs",
+        SCENE,
+        PULSE,
+        BATCH_SCENE,
+        Some(RECORD),
+        &["records x scales x axes", "1001000 cells (1 x 1 x 1001 x 1000)", "at most 1000000 cells"],
+    ),
+    (
+        "batch-axis-unknown-model",
+        SCENE,
+        PULSE,
+        BATCH_SCENE,
+        Some(RECORD),
+        &["cantilever_modes9"],
+    ),
+    (
+        "batch-axis-value-out-of-range",
+        SCENE,
+        PULSE,
+        BATCH_SCENE,
+        Some(RECORD),
+        &["1.5", "0 <= zeta < 1"],
+    ),
+];
+
+/// The record scene of the `batch-axis-` rows: its record is also its batch's (`[sweep] records`).
+const BATCH_SCENE: &str =
+    "kind = \"record\"\npath = \"rec.AT2\"\n\n[sweep]\nrecords = [\"rec.AT2\"]";
+
+/// The `--axis` flags of the `batch-axis-` rows (run by `rocking batch` on their record scene).
+const BATCH_AXES: &[(&str, &[&str])] = &[
+    ("batch-axis-on-scale", &["excitation.scale=1,2"]),
+    (
+        "batch-axis-twice",
+        &["structure.model=cubic", "structure.model=cantilever_modes2"],
+    ),
+    (
+        "batch-axis-too-many-values",
+        &["structure.zeta=0:0.5:200000"],
+    ),
+    (
+        "batch-axis-too-many-runs",
+        &["structure.zeta=0:0.5:1001", "structure.alpha=0.1:0.3:1000"],
+    ),
+    (
+        "batch-axis-unknown-model",
+        &["structure.model=cubic,cantilever_modes9"],
+    ),
+    (
+        "batch-axis-value-out-of-range",
+        &["structure.zeta=0.01,1.5"],
+    ),
 ];
 
 fn doc_ids() -> Vec<String> {
@@ -793,13 +870,25 @@ fn every_bad_input_exits_2_with_one_clear_message() {
             "ida"
         } else if id.starts_with("figure-") {
             "figure"
+        } else if id.starts_with("batch-axis-") {
+            "batch"
         } else {
             "run"
         };
+        let axes: &[&str] = BATCH_AXES
+            .iter()
+            .find(|(i, _)| i == id)
+            .map_or(&[], |(_, a)| a);
+        assert_eq!(
+            command == "batch",
+            !axes.is_empty(),
+            "{id}: its --axis flags"
+        );
         let out = Command::new(env!("CARGO_BIN_EXE_rocking"))
             .args([command, "--out"])
             .arg(dir.join("out"))
             .arg(dir.join("scene.toml"))
+            .args(axes.iter().flat_map(|a| ["--axis", a]))
             .output()
             .unwrap();
         let err = String::from_utf8_lossy(&out.stderr);
@@ -820,6 +909,13 @@ fn every_bad_input_exits_2_with_one_clear_message() {
         );
         for n in *needles {
             assert!(err.contains(n), "{id}: `{n}` not in: {err}");
+        }
+        // A bad --axis of a batch is named with the scene it was given for (it is a flag, not a
+        // line of the scene; `rocking check` takes no axes).
+        if command == "batch" {
+            assert!(err.contains("scene.toml: "), "{id}: the scene: {err}");
+            assert!(!dir.join("out").exists(), "{id}: no output on bad input");
+            continue;
         }
         // A figure file's message names the file and the key (a figure file is not a scene:
         // `rocking check` does not read it).

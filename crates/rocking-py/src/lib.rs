@@ -314,18 +314,20 @@ fn spectrum<'py>(
 }
 
 /// Every record (AT2 files or folders of them; default: the scene's `[sweep] records`) at every
-/// scale factor (default: `[sweep] scales`, else 1), as `rocking batch` plans it.
+/// scale factor (default: `[sweep] scales`, else 1) and every cell of `axes` (`--axis`), as
+/// `rocking batch` plans it.
 #[pyfunction]
-#[pyo3(signature = (scene, records = Vec::new(), scales = Vec::new(), threads = None))]
+#[pyo3(signature = (scene, records = Vec::new(), scales = Vec::new(), threads = None, axes = Vec::new()))]
 fn batch<'py>(
     py: Python<'py>,
     scene: &Scene,
     records: Vec<PathBuf>,
     scales: Vec<f64>,
     threads: Option<usize>,
+    axes: Vec<String>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let plan = py
-        .detach(|| Plan::batch(base(scene)?, &records, &scales))
+        .detach(|| Plan::batch(base(scene)?, &records, &scales, &axes))
         .map_err(py_err)?;
     let outcome = run_plan(py, &plan, threads)?;
     let d = outcome_dict(py, &plan.sweep, &outcome)?;

@@ -462,15 +462,53 @@ fn set_arg(axis: &Axis, v: f64) -> String {
     }
 }
 
+/// The keys a batch sets itself, from its records and scale factors: not axes of its own.
+const BATCH_KEYS: [(&str, &str); 3] = [
+    ("record", "--records"),
+    ("excitation.path", "--records"),
+    ("excitation.scale", "--scales"),
+];
+
+/// The axes of a batch's own (`--axis`), parsed as a spectrum's, one per key and none on a key
+/// the batch sets from its records and scales.
+fn batch_axes(path: &Path, specs: &[String]) -> Result<Vec<Axis>, SceneError> {
+    let mut axes: Vec<Axis> = Vec::new();
+    for s in specs {
+        let a =
+            Axis::parse(s).map_err(|e| SceneError::input(format!("{}: --{e}", path.display())))?;
+        if let Some((_, flag)) = BATCH_KEYS.iter().find(|(k, _)| *k == a.key) {
+            return Err(SceneError::input(format!(
+                "{}: --axis `{s}`: a batch sets `{}` itself from {flag}: give its values there \
+                 (an axis may be any other numeric or text key of the scene)",
+                path.display(),
+                a.key
+            )));
+        }
+        if axes.iter().any(|b| b.key == a.key) {
+            return Err(SceneError::input(format!(
+                "{}: --axis `{s}`: two axes on `{}`: each key may have one axis (list its values \
+                 in one --axis)",
+                path.display(),
+                a.key
+            )));
+        }
+        axes.push(a);
+    }
+    Ok(axes)
+}
+
 /// How a cell's axis values reach its simulation.
 enum Cells {
     /// Knobs resolved once (the fast path).
     Knobs(Vec<Knob>),
     /// Overrides re-parsed per cell (keys that are not knobs).
     Sets,
-    /// A record suite: the record's index and the scale factor.
+    /// A record suite: the record's index, the scale factor and the values of the batch's own
+    /// axes (`--axis`), set through knobs resolved once (`knobs`: path, scale, then one per
+    /// axis), or, when an axis's key is not a knob (`structure.model`), through overrides
+    /// re-parsed per cell (`knobs` is `None`).
     Records {
-        knobs: Vec<Knob>,
+        knobs: Option<Vec<Knob>>,
         paths: Vec<String>,
     },
 }
@@ -557,9 +595,18 @@ impl Plan {
     }
 
     /// A record suite: every record (files, or directories of .AT2 files; else the scene's
-    /// `[sweep] records`) at every scale factor (else the scene's `[sweep] scales`, else 1). Every
-    /// record is read and validated before anything runs.
-    pub fn batch(base: Base, records: &[PathBuf], scales: &[f64]) -> Result<Plan, SceneError> {
+    /// `[sweep] records`) at every scale factor (else the scene's `[sweep] scales`, else 1), and
+    /// at every cell of the axes `axis_specs` (`--axis`, as [`Plan::spectrum`] reads them:
+    /// numbers or texts, e.g. `structure.model=cubic,cantilever_modes2`). The cells are records
+    /// x scales x the axes' cells (the last axis fastest). Every record and every axis value is
+    /// read and validated before anything runs; the number of runs is bounded as a spectrum's
+    /// cells ([`rocking_spectra::MAX_CELLS`]).
+    pub fn batch(
+        base: Base,
+        records: &[PathBuf],
+        scales: &[f64],
+        axis_specs: &[String],
+    ) -> Result<Plan, SceneError> {
         let path = base.path.clone();
         let sweep_spec = base.scene.spec.sweep.as_ref();
         let mut given: Vec<PathBuf> = records.to_vec();
@@ -606,12 +653,24 @@ impl Plan {
         for i in 0..paths.len() {
             base.model(&[record_set(i)])?;
         }
-        let axes = vec![
+        let own = batch_axes(&path, axis_specs)?;
+        let mut axes = vec![
             Axis::numbers("record", (0..paths.len()).map(|i| i as f64).collect()),
             Axis::numbers("excitation.scale", scales.clone()),
         ];
+        axes.extend(own.iter().cloned());
+        let what = if own.is_empty() {
+            "records x scales"
+        } else {
+            "records x scales x axes"
+        };
         Sweep::checked_len(&axes)
-            .map_err(|e| SceneError::input(format!("{}: records x scales: {e}", path.display())))?;
+            .map_err(|e| SceneError::input(format!("{}: {what}: {e}", path.display())))?;
+        for a in &own {
+            for &v in &a.values {
+                base.model(&[set_arg(a, v)])?;
+            }
+        }
         let digests = files
             .iter()
             .map(|p| file_digest(p))
@@ -621,9 +680,13 @@ impl Plan {
             .zip(&digests)
             .map(|(a, d)| format!("{a} {d}"))
             .collect();
-        let knobs = base
-            .knobs(&["excitation.path", "excitation.scale"])
-            .ok_or_else(|| SceneError::failure("record path and scale are not knobs"))?;
+        let mut keys = vec!["excitation.path", "excitation.scale"];
+        keys.extend(own.iter().map(|a| a.key.as_str()));
+        // Without axes, the record path and scale are always knobs (as before the axes).
+        let knobs = base.knobs(&keys);
+        if own.is_empty() && knobs.is_none() {
+            return Err(SceneError::failure("record path and scale are not knobs"));
+        }
         let names = files
             .iter()
             .map(|p| {
@@ -708,15 +771,42 @@ impl Plan {
                     .collect();
                 self.base.sets_cell(&extra)
             }
-            Cells::Records { knobs, paths } => {
-                let cell = [
+            Cells::Records {
+                knobs: Some(knobs),
+                paths,
+            } => {
+                let mut cell = vec![
                     (
                         &knobs[0],
                         KnobValue::Text(paths[values[0] as usize].clone()),
                     ),
                     (&knobs[1], KnobValue::Number(values[1])),
                 ];
+                for ((k, a), &v) in knobs[2..]
+                    .iter()
+                    .zip(&self.sweep.axes[2..])
+                    .zip(&values[2..])
+                {
+                    let value = match a.text(v) {
+                        Some(t) => KnobValue::Text(t.to_string()),
+                        None => KnobValue::Number(v),
+                    };
+                    cell.push((k, value));
+                }
                 self.base.knobs_cell(&cell)
+            }
+            Cells::Records { knobs: None, paths } => {
+                let mut extra = vec![
+                    format!("excitation.path={:?}", paths[values[0] as usize]),
+                    format!("excitation.scale={:?}", values[1]),
+                ];
+                extra.extend(
+                    self.sweep.axes[2..]
+                        .iter()
+                        .zip(&values[2..])
+                        .map(|(a, &v)| set_arg(a, v)),
+                );
+                self.base.sets_cell(&extra)
             }
         }
     }

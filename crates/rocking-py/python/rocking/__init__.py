@@ -312,7 +312,8 @@ class Spectrum:
 
 
 class Batch(Spectrum):
-    """Every record at every scale factor: grids of shape (records, scales)."""
+    """Every record at every scale factor: grids of shape (records, scales), or (records,
+    scales, *axes) with the batch's own axes."""
 
     def __init__(self, raw: Dict[str, Any]) -> None:
         super().__init__(raw)
@@ -324,8 +325,8 @@ class Batch(Spectrum):
         self.scales: np.ndarray = np.asarray(raw["scales"], dtype=np.float64)
 
     def overturned_fraction(self) -> np.ndarray:
-        """Per scale factor, the fraction of records that overturned (runs without a result
-        excluded)."""
+        """Per scale factor (and cell of the batch's own axes: shape (scales, *axes)), the
+        fraction of records that overturned (runs without a result excluded)."""
         ok = ~self.without_result
         return (self.overturned & ok).sum(axis=0) / np.maximum(ok.sum(axis=0), 1)
 
@@ -347,12 +348,16 @@ def batch(
     records: Optional[Iterable[PathLike]] = None,
     scales: Optional[Iterable[float]] = None,
     threads: Optional[int] = None,
+    axes: Optional[Sequence[str]] = None,
 ) -> Batch:
     """Runs a record scene for every record (AT2 files or folders of them; default: the scene's
-    ``[sweep] records``) at every scale factor (default: ``[sweep] scales``, else 1)."""
+    ``[sweep] records``) at every scale factor (default: ``[sweep] scales``, else 1) and every
+    cell of ``axes`` (as ``rocking batch --axis``: ``"structure.model=cubic,cantilever_modes2"``,
+    numbers or texts); grids of shape (records, scales, *axes)."""
     s = _scene(scene)
     recs = [os.fspath(r) for r in (records or [])]
-    return Batch(_rocking.batch(s._inner, recs, [float(x) for x in (scales or [])], threads))
+    sc = [float(x) for x in (scales or [])]
+    return Batch(_rocking.batch(s._inner, recs, sc, threads, list(axes or [])))
 
 
 class Fragility:

@@ -46,6 +46,7 @@ def batch(
     records: Sequence[str] = ...,
     scales: Sequence[float] = ...,
     threads: Optional[int] = None,
+    axes: Sequence[str] = ...,
 ) -> Dict[str, Any]: ...
 def ida(
     scene: Scene, records: Sequence[str] = ..., threads: Optional[int] = None
