@@ -5,6 +5,8 @@
 //! (R_v = −Q_v: Newton's law for the whole body against Lagrange's equation for v), and the
 //! energy is conserved along an integration on an undamped bed with no structural damping.
 
+#![allow(clippy::needless_range_loop)] // dense matrices by index, as written in the maths
+
 use rocking_kernels::ground as gk;
 use rocking_kernels::kernels::index::static_uplift as su;
 use rocking_kernels::{Array, Physical, Variant};
@@ -30,7 +32,7 @@ fn solve(upper: &[f64], b: &[f64]) -> Option<Vec<f64>> {
     let mut d = vec![0.0; n];
     for j in 0..n {
         d[j] = a[j][j] - (0..j).map(|k| low[j][k] * low[j][k] * d[k]).sum::<f64>();
-        if !(d[j] > 1e-12 * a[j][j]) {
+        if d[j].is_nan() || d[j] <= 1e-12 * a[j][j] {
             return None;
         }
         for i in j + 1..n {
