@@ -59,6 +59,8 @@ SAMPLE_RANGES = {
     "ug": (-3.0, 3.0), "eta": (0.0, 1.0),
     # the ground's kernels (ground.py): settlement, its rate, the load
     "v": (-0.02, 0.05), "v_dot": (-0.5, 0.5), "w": (1.0, 1000.0),
+    # the accelerations of the free-base forces (free_base.py)
+    "theta_ddot": (-1.0, 1.0), "v_ddot": (-1.0, 1.0), "u_ddot": (-1.0, 1.0),
 }
 
 

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import casadi as ca
 
+from .free_base import FreeBase
 from .mechanics import Mechanics, Symbols, at, flexible_twin, solve_spd
 from .models import Variant
 
@@ -198,7 +199,7 @@ def kernels(variant: Variant) -> list[Kernel]:
         return text + " " + SEVERAL[name] if n > 1 and name in SEVERAL else text
 
     K = Kernel
-    return [
+    found = [
         K("mass_matrix", doc("mass_matrix", "Mass matrix M(q) of the rocking phase about corner s (symmetric)."),
           [q, s, p], Output("m", "upper triangle of M", m_names, m_out)),
         K("forcing", "Right-hand side F of M q'' = F while rocking about corner s: gravity, ground "
@@ -264,4 +265,57 @@ def kernels(variant: Variant) -> list[Kernel]:
           "moment EI psi''(0) u / H^2 at the column base then, which differs from W B by the P-Delta "
           "moment and the shape function's error (docs/design-forces.md)."),
           [p], Output("up", "static uplift", list(uplift_static), list(uplift_static.values()))),
+    ]
+    return found + free_base_kernels(mech, sym, p, ug, s)
+
+
+def free_base_kernels(mech: Mechanics, sym: Symbols, p: Input, ug: Input, s: Input) -> list[Kernel]:
+    """The structure on compliant ground (free_base.py): q = [theta, v, u_1..u_n]. The ground's own
+    generalised forces [Q_theta, Q_v] (ground.py) are added to F at run time."""
+    free = FreeBase(mech)
+    n = mech.n
+    u_, ud_, udd_ = expanded("u", n), expanded("u_dot", n), expanded("u_ddot", n)
+    qf = Input("qf", "configuration on compliant ground: rotation, settlement of the base centre "
+               "(positive into the ground), deformation", ["theta", "v", *u_], [sym.theta, free.v, *sym.us])
+    y = Input("y", "state on compliant ground", ["theta", "v", *u_, "theta_dot", "v_dot", *ud_],
+              [sym.theta, free.v, *sym.us, sym.theta_dot, free.v_dot, *sym.u_dots])
+    acc_syms = [ca.SX.sym(e) for e in ["theta_ddot", "v_ddot", *udd_]]
+    qdd = Input("qdd", "accelerations [theta'', v'', u''] (from M q'' = F + Q_ground)",
+                ["theta_ddot", "v_ddot", *udd_], acc_syms)
+    mass, force = free.equations()
+    dim = 3 if mech.rigid else n + 2
+    if mech.rigid:
+        # u is frozen: its row reads u'' = 0 (one interface for every variant).
+        full_m = [[mass[0, 0], mass[0, 1], ca.SX(0)], [None, mass[1, 1], ca.SX(0)], [None, None, ca.SX(1)]]
+        f_out = [force[0], force[1], ca.SX(0)]
+    else:
+        full_m = [[mass[i, j] if j >= i else None for j in range(dim)] for i in range(dim)]
+        f_out = [force[i] for i in range(dim)]
+    labels = ["t", "v", *(["u"] if n == 1 else [f"u{i + 1}" for i in range(n)])]
+    m_names = [f"m_{labels[i]}_{labels[j]}" for i in range(dim) for j in range(i, dim)]
+    m_out = [full_m[i][j] for i in range(dim) for j in range(i, dim)]
+    forces = list(FORCES)
+    f_values = free.forces(acc_syms[0], acc_syms[1], [ca.SX(0)] if mech.rigid else acc_syms[2:])
+    ground_note = (" On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics "
+                   "about the leaning corner s = sgn(theta) plus a vertical translation by that corner's "
+                   "depth w = v + s B sin(theta).")
+    K = Kernel
+    return [
+        K("free_mass_matrix", "Mass matrix M(q) over q = [theta, v, u_1..u_n], upper triangle row by row "
+          "(symmetric positive definite; a rigid column's u row is the identity)." + ground_note,
+          [qf, s, p], Output("m", "upper triangle of M", m_names, m_out)),
+        K("free_forcing", "Right-hand side F of M q'' = F + Q_ground without the ground: gravity, ground "
+          "acceleration, stiffness, damping and velocity terms; Q_ground = [Q_theta, Q_v, 0..] from the "
+          "ground's kernels." + ground_note, [y, ug, s, p],
+          Output("f", "generalised forces", ["f_theta", "f_v", *expanded("f_u", n)], f_out)),
+        K("free_energy", "Kinetic energy, gravity (heights over the rest position of the leaning corner, "
+          "the ground's surface) and strain potentials and horizontal momentum." + ground_note, [y, s, p],
+          Output("e", "energies and momentum", ["kinetic", "gravity", "strain", "momentum_x"], free.energy())),
+        K("free_power", "Power terms: dE/dt = ground - damping + Q_theta theta' + Q_v v', with ground = "
+          "-ug P_x and damping u'^T C u'." + ground_note, [y, ug, s, p],
+          Output("w", "power terms", ["ground", "damping"], free.power())),
+        K("free_forces", "Section forces at the column base and the ground's force on the body (the bed's "
+          "resultant and the horizontal force that keeps the leaning corner in place), for the "
+          "accelerations qdd." + ground_note + FORCES_DOC, [y, qdd, ug, s, p],
+          Output("ff", "section forces and ground reaction", forces, [f_values[k] for k in forces])),
     ]

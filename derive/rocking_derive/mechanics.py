@@ -420,7 +420,7 @@ class Mechanics:
 
     # --- section forces at the column base and the ground reaction -----------------------------
 
-    def base_forces(self, theta_ddot, u_ddots) -> dict[str, ca.SX]:
+    def base_forces(self, theta_ddot, u_ddots, w_ddot=None) -> dict[str, ca.SX]:
         """The section forces at the column base and the ground reaction, by Newton's law for every
         mass, for a motion with the accelerations theta'' and u_i''.
 
@@ -440,6 +440,10 @@ class Mechanics:
 
         The rotation is exact even in a small-angle variant: its forces are those of the motion
         its equations predict (the linearisation enters only through theta'' and u'').
+
+        ``w_ddot``: on compliant ground (free_base.py) the pivot sinks with the acceleration w''
+        (world frame (0, -w'')), which adds (w'' sin, -w'' cos) to every point's acceleration in
+        body components (None: the rigid surface, the expressions as they were).
         """
         sin, cos = ca.sin(self.theta), ca.cos(self.theta)
         b, g, ug, thd = self.b, self.g, self.ug, self.theta_dot
@@ -450,6 +454,8 @@ class Mechanics:
             coriolis = total(2 * thd * ud * p for ud, p in zip(self.u_dots, psis, strict=True))
             f_x = theta_ddot * y - thd**2 * (x - b) + dot(u_ddots, psis) + ug * cos - g * sin
             f_y = -theta_ddot * (x - b) - thd**2 * y - coriolis + ug * sin + g * cos
+            if w_ddot is not None:
+                f_x, f_y = f_x + w_ddot * sin, f_y - w_ddot * cos
             return f_x, f_y
 
         def column(f):

@@ -367,6 +367,14 @@ pub trait Layout {
     type Shape: Array;
     /// The quasi-static uplift.
     type StaticUplift: Array;
+    /// `qf = [θ, v, u_1..u_n]` on compliant ground (v: settlement of the base centre), and the
+    /// free-base forcing `[f_θ, f_v, f_u_1..f_u_n]` and accelerations; a rigid column keeps its
+    /// frozen `u` (n = 1).
+    type Qf: Array;
+    /// `y = [θ, v, u_1..u_n, θ', v', u_1'..u_n']`, the state on compliant ground.
+    type Y: Array;
+    /// The free-base mass matrix's upper triangle, row by row over qf.
+    type FreeMassMatrix: Array;
 
     /// The `structure` output called `name`.
     ///
@@ -446,6 +454,18 @@ pub trait Variant: Layout + Copy + Default + Send + Sync + 'static {
     /// Quasi-static uplift about the right corner:
     /// `[weight, moment_uplift, ug_uplift, u_uplift, moment_elastic_uplift]`.
     fn static_uplift(p: &Self::Params) -> Self::StaticUplift;
+    /// Mass matrix over `qf = [θ, v, u]` on compliant ground (upper triangle; the rigid column's
+    /// `u` row is the identity).
+    fn free_mass_matrix(qf: &Self::Qf, s: f64, p: &Self::Params) -> Self::FreeMassMatrix;
+    /// `[f_θ, f_v, f_u]` of M q'' = F + Q_ground on compliant ground, without the ground.
+    fn free_forcing(y: &Self::Y, ug: f64, s: f64, p: &Self::Params) -> Self::Qf;
+    /// `[kinetic, gravity, strain, momentum_x]` on compliant ground.
+    fn free_energy(y: &Self::Y, s: f64, p: &Self::Params) -> [f64; 4];
+    /// `[ground, damping]` power on compliant ground (the ground's own power is Q·(θ', v')).
+    fn free_power(y: &Self::Y, ug: f64, s: f64, p: &Self::Params) -> [f64; 2];
+    /// Section forces and the ground's force on the body for the accelerations `qdd`:
+    /// `[moment, shear, axial, moment_elastic, reaction_h, reaction_v]`.
+    fn free_forces(y: &Self::Y, qdd: &Self::Qf, ug: f64, s: f64, p: &Self::Params) -> [f64; 6];
 }
 
 /// The variants of one deformation coordinate, with their fixed arrays (`[θ, u, θ', u']`…), for

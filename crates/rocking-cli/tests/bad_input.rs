@@ -741,12 +741,12 @@ const ROWS: &[Row] = &[
         &["`omega_v_over_p` in [ground]", "kind is \"rigid\"", "\"two-spring\""],
     ),
     (
-        "ground-not-run-yet",
+        "ground-fixed-base-reference",
         SCENE,
         "",
-        "[ground]\nomega_v_over_p = 40.0\nzeta_v = 0.05\nkind = \"winkler\"\n",
+        "[ground]\nomega_v_over_p = 40.0\nzeta_v = 0.05\nkind = \"winkler\"\n\n[output]\nfixed_base_reference = true\n",
         None,
-        &["[ground] kind = \"winkler\"", "does not run a compliant ground yet", "kind = \"rigid\""],
+        &["`fixed_base_reference` in [output] with [ground] kind = \"winkler\"", "remove it"],
     ),
     (
         "batch-axis-on-scale",

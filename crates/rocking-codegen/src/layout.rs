@@ -43,6 +43,13 @@ const TYPES: &[(&str, &str, Part)] = &[
         "STATIC_UPLIFT",
         Part::Output("static_uplift"),
     ),
+    ("Qf", "QF", Part::Input("qf")),
+    ("Y", "Y", Part::Input("y")),
+    (
+        "FreeMassMatrix",
+        "FREE_MASS_MATRIX",
+        Part::Output("free_mass_matrix"),
+    ),
 ];
 
 /// The function whose output names `Layout::STRUCTURE` lists (for code generic over the number

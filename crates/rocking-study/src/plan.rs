@@ -31,6 +31,8 @@ pub struct Base {
     title: Option<String>,
     /// The scene with the overrides, loaded once: cells apply knobs to it.
     scene: Scene,
+    /// The scene has a compliant ground (which the sweeps refuse, [`Base::refuse_ground`]).
+    ground: bool,
     /// Digest of the scene's record file (contents), when it has one.
     record_digest: Option<String>,
     /// What every cell reports besides its class, max θ/α and impacts (`[sweep] report`).
@@ -227,7 +229,18 @@ impl Base {
             record_digest,
             scene: sc,
             report,
+            ground: m.ground.is_some(),
         })
+    }
+
+    /// Refuses a compliant ground (issue 44): the sweeps do not run one yet (exit 2 naming
+    /// `ground.kind`; `rocking run` and `check` take the scene).
+    pub fn refuse_ground(&self) -> Result<(), SceneError> {
+        if !self.ground {
+            return Ok(());
+        }
+        let m = setup::build(&self.scene)?;
+        setup::refuse_ground(&self.scene.src, &m, "sweeps (spectrum, batch, ida)")
     }
 
     /// The quantities every cell reports (`[sweep] report`).
@@ -543,6 +556,7 @@ impl Plan {
     /// scene's `[sweep] axes`, else the paper's. Every axis value is validated against the scene
     /// before anything runs.
     pub fn spectrum(base: Base, axis_specs: &[String]) -> Result<Plan, SceneError> {
+        base.refuse_ground()?;
         let path = base.path.clone();
         let specs: Vec<String> = if !axis_specs.is_empty() {
             axis_specs.to_vec()
@@ -607,6 +621,7 @@ impl Plan {
         scales: &[f64],
         axis_specs: &[String],
     ) -> Result<Plan, SceneError> {
+        base.refuse_ground()?;
         let path = base.path.clone();
         let sweep_spec = base.scene.spec.sweep.as_ref();
         let mut given: Vec<PathBuf> = records.to_vec();

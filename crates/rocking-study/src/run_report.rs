@@ -39,7 +39,11 @@ pub fn simulate(m: &Setup, scene: &Path) -> Result<Report, SceneError> {
 }
 
 fn simulate_with(m: &Setup, options: &rocking::Options, scene: &Path) -> Result<Run, SceneError> {
-    rocking::simulate(&m.structure, &m.excitation, &m.effects, options).map_err(|e| {
+    let run = match &m.ground {
+        Some(g) => rocking::simulate_on_ground(&m.structure, g, &m.excitation, &m.effects, options),
+        None => rocking::simulate(&m.structure, &m.excitation, &m.effects, options),
+    };
+    run.map_err(|e| {
         if e.is_invalid_input() {
             SceneError::input(format!("{}: {e}", scene.display()))
         } else if e.is_guard() {
@@ -300,7 +304,9 @@ fn num(out: &mut String, x: f64) -> Result<(), SceneError> {
 
 /// history.csv: τ, seconds (when known), normalised state, phase, energies, ground acceleration,
 /// the section forces at the column base and the ground reactions (when the run tracks them,
-/// `[output] forces`, as the summary has them); with n > 1 deformation coordinates then
+/// `[output] forces`, as the summary has them); on compliant ground the settlement over the static
+/// one, the contact fraction and the largest ground pressure over the mean; with n > 1
+/// deformation coordinates then
 /// u_1..u_n and u_1'..u_n' (`u_dot_i`) in the model's units.
 pub fn history_csv(model: &Setup, run: &Run) -> Result<String, SceneError> {
     let d = model.structure.derived();
@@ -316,6 +322,10 @@ pub fn history_csv(model: &Setup, run: &Run) -> Result<String, SceneError> {
             ",base_moment_over_wb,base_shear_over_w,elastic_base_moment_over_wb,\
              required_friction,vertical_reaction_over_w",
         );
+    }
+    let ground = model.ground.is_some();
+    if ground {
+        out.push_str(",settlement_over_static,contact_fraction,ground_pressure_over_mean");
     }
     // Several deformation coordinates: u_1..u_n and their rates, in the model's units.
     let n = run.coordinate_count();
@@ -353,6 +363,14 @@ pub fn history_csv(model: &Setup, run: &Run) -> Result<String, SceneError> {
                 }
             }
             num(&mut out, r.vertical_reaction_over_w)?;
+        }
+        if ground {
+            let g = r.ground.ok_or_else(|| {
+                SceneError::failure("a run on compliant ground without its ground columns")
+            })?;
+            num(&mut out, g.settlement_over_static)?;
+            num(&mut out, g.contact_fraction)?;
+            num(&mut out, g.ground_pressure_over_mean)?;
         }
         for &c in run.coordinates_of(k) {
             num(&mut out, c)?;

@@ -4,8 +4,8 @@
 //! the ground is given by the whole structure's vertical stiffness K_v and damping C_v (or by the
 //! bed's own k, c), and the kernels say how K_v and C_v follow from k and c.
 //!
-//! The solver does not run a compliant ground yet: a scene with one is parsed, checked and
-//! described (`rocking check` prints its statics), and refused by the commands that run it.
+//! The solver runs a compliant ground through [`crate::simulate_on_ground`] (the driver's
+//! `ground_phases`); the sweeps do not take one yet (docs/ground.md).
 
 use rocking_kernels::ground as kernels;
 

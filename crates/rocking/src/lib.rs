@@ -47,6 +47,7 @@ mod error;
 mod ground;
 mod options;
 mod results;
+mod spd;
 mod structure;
 mod taylor;
 
@@ -57,8 +58,8 @@ pub use options::{
     Accuracy, History, ImpactModel, Initial, Measured, Method, Options, Preset, MAX_HISTORY_ROWS,
 };
 pub use results::{
-    EnergyBalance, EventKind, EventRecord, ForceSummary, HistoryRow, Phase, Run, SolverStats,
-    Summary, Time, UNBOUNDED,
+    EnergyBalance, EventKind, EventRecord, ForceSummary, GroundRow, GroundSummary, HistoryRow,
+    Phase, Run, SolverStats, Summary, Time, UNBOUNDED,
 };
 pub use rocking_kernels::{ModelInfo, VariantInfo};
 pub use structure::{
@@ -268,6 +269,29 @@ pub fn simulate(
 ) -> Result<Run, SimError> {
     let sel = select_variant(structure, effects).map_err(|e| SimError::NoVariant(e.to_string()))?;
     run_variant(sel.variant.name, &sel.structure, motion, options)
+}
+
+/// Runs a simulation on compliant ground (issue 44, docs/ground.md) with the most specialised
+/// kernel variant for `structure` and `effects`: the free-base equations of the variant and the
+/// ground's kernels, integrated by the options' Runge–Kutta method (DOP853 when the options ask
+/// for the Taylor method, whose compliant-ground kernels do not exist yet: the caller gives the
+/// tolerance, e.g. [`Preset::dop853_tol`]). The energy integrals are always carried; the
+/// summary's energy balance is reported when `options.energy` is set.
+pub fn simulate_on_ground(
+    structure: &Structure,
+    ground: &Ground,
+    motion: &dyn GroundMotion,
+    effects: &Effects,
+    options: &Options,
+) -> Result<Run, SimError> {
+    let sel = select_variant(structure, effects).map_err(|e| SimError::NoVariant(e.to_string()))?;
+    let name = sel.variant.name;
+    with_variant!(name, V, L => {
+        driver::simulate_ground::<V, dyn GroundMotion, { L::Y + 3 }>(
+            &sel.structure, ground, motion, options,
+        )
+    })
+    .unwrap_or_else(|| Err(SimError::NoVariant(format!("no kernel variant `{name}`"))))
 }
 
 /// Runs the generated variant called `name` (monomorphised through the generated dispatch) on a

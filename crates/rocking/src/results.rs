@@ -57,6 +57,8 @@ pub enum Phase {
     RockingLeft,
     /// Overturned (terminal).
     Overturned,
+    /// On compliant ground: no point of the base presses (flight).
+    Flight,
 }
 
 impl Phase {
@@ -140,6 +142,31 @@ pub struct Summary {
     /// Section forces at the column base and ground reactions, when tracked (`Options::forces`).
     #[serde(flatten, skip_serializing_if = "Option::is_none")]
     pub forces: Option<ForceSummary>,
+    /// On compliant ground (issue 44, docs/ground.md): pressure, contact, lift-offs, settlement
+    /// and the ground's dissipation; absent on the rigid surface.
+    #[serde(flatten, skip_serializing_if = "Option::is_none")]
+    pub ground: Option<GroundSummary>,
+}
+
+/// What a run on compliant ground reports of the ground (W the total weight, B the half-width,
+/// v0 = W / K_v the static settlement), from every accepted step's end and every event.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct GroundSummary {
+    /// The largest pressure under the base over the mean W / (2B) (two springs: the larger
+    /// corner force over W / 2).
+    #[serde(serialize_with = "finite")]
+    pub max_ground_pressure_over_mean: f64,
+    /// The smallest contact length over 2B (two springs: corners pressing over 2; 0 in flight).
+    #[serde(serialize_with = "finite")]
+    pub min_contact_fraction: f64,
+    /// Edge (corner) lift-off events.
+    pub lift_offs: u64,
+    /// max v / v0, v the settlement of the base centre.
+    #[serde(serialize_with = "finite")]
+    pub max_settlement_over_static: f64,
+    /// The energy the ground's dashpots took, ∫ D dt, over E_ref.
+    #[serde(serialize_with = "finite")]
+    pub ground_energy_dissipated: f64,
 }
 
 /// The largest section forces at the column base and the extremes of the ground reactions over
@@ -208,6 +235,10 @@ pub struct EnergyBalance {
     /// Kinetic energy lost in impacts.
     #[serde(serialize_with = "finite")]
     pub impact_losses: f64,
+    /// On compliant ground: the energy its dashpots took (`last` includes the springs' strain
+    /// energy); absent on the rigid surface.
+    #[serde(serialize_with = "finite_opt", skip_serializing_if = "Option::is_none")]
+    pub ground_dissipation: Option<f64>,
 }
 
 /// What happened at an event.
@@ -222,6 +253,12 @@ pub enum EventKind {
     Overturn,
     /// The rest rule ended a vanishing rocking motion.
     Rest,
+    /// On compliant ground: a corner stopped pressing (its depth fell through zero).
+    LiftOff,
+    /// On compliant ground: a corner pressed again (its depth rose through zero).
+    Landing,
+    /// On compliant ground: θ passed through zero and the leaning corner changed (no impact).
+    PivotSwitch,
 }
 
 /// One entry of the event log.
@@ -278,6 +315,20 @@ pub struct HistoryRow {
     pub horizontal_reaction_over_w: f64,
     /// R_v / W.
     pub vertical_reaction_over_w: f64,
+    /// On compliant ground: settlement, contact and pressure (absent on the rigid surface).
+    #[serde(flatten, skip_serializing_if = "Option::is_none")]
+    pub ground: Option<GroundRow>,
+}
+
+/// A history row's ground columns (compliant ground).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct GroundRow {
+    /// v / v0.
+    pub settlement_over_static: f64,
+    /// Contact length over 2B (two springs: corners pressing over 2).
+    pub contact_fraction: f64,
+    /// The largest pressure under the base over W / (2B) (two springs: corner force over W / 2).
+    pub ground_pressure_over_mean: f64,
 }
 
 impl HistoryRow {

@@ -2869,6 +2869,1152 @@ pub mod static_uplift {
     pub const MOMENT_ELASTIC_UPLIFT: usize = 4;
 }
 
+/// Mass matrix M(q) over q = [theta, v, u_1..u_n], upper triangle row by row (symmetric positive definite; a rigid column's u row is the identity). On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `qf: &[f64; 3]`: configuration on compliant ground: rotation, settlement of the base centre (positive into the ground), deformation — `theta`, `v`, `u`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `m_a`, `eta_a`
+///
+/// # Output
+///
+/// `m: [f64; 6]`: upper triangle of M — `m_t_t`, `m_t_v`, `m_t_u`, `m_v_v`, `m_v_u`, `m_u_u`
+///
+/// Operations: 114 (61 mul, 26 add, 13 twice, 10 sub, 1 cos, 1 neg, 1 sin, 1 sq).
+#[inline]
+#[must_use]
+pub fn free_mass_matrix(qf: &[f64; 3], s: f64, p: &Params) -> [f64; 6] {
+    let w0 = s; // s
+    let w1 = p[1]; // b
+    let w2 = w0 * w1;
+    let w3 = qf[0]; // theta
+    let w4 = w3.cos();
+    let w5 = w2 * w4;
+    let w6: f64 = 0.5;
+    let w7 = p[4]; // m_c
+    let w8 = p[3]; // m
+    let w9 = w7 + w8;
+    let w10 = p[5]; // m_b
+    let w11 = w9 + w10;
+    let w12 = p[9]; // m_a
+    let w13 = w11 + w12;
+    let w14 = w6 * w13;
+    let w15 = 2.0 * w5;
+    let w16 = w14 * w15;
+    let w17 = p[0]; // h
+    let w18 = w3.sin();
+    let w19 = w17 * w18;
+    let w20 = w6 * w19;
+    let w21 = w5 - w20;
+    let w22: f64 = 0.375;
+    let w23 = qf[2]; // u
+    let w24 = w23 * w4;
+    let w25 = w22 * w24;
+    let w26 = w21 - w25;
+    let w27 = w7 * w26;
+    let w28 = w23 - w2;
+    let w29 = w28 * w4;
+    let w30 = w19 + w29;
+    let w31 = w8 * w30;
+    let w32 = w27 - w31;
+    let w33 = w10 * w5;
+    let w34 = w32 + w33;
+    let w35 = p[10]; // eta_a
+    let w36 = w35 * w17;
+    let w37 = w36 * w18;
+    let w38: f64 = 1.5;
+    let w39 = w35 * w35;
+    let w40 = w38 * w39;
+    let w41: f64 = -0.5;
+    let w42 = w35 * w39;
+    let w43 = w41 * w42;
+    let w44 = w40 + w43;
+    let w45 = w23 * w44;
+    let w46 = w45 - w2;
+    let w47 = w46 * w4;
+    let w48 = w37 + w47;
+    let w49 = w12 * w48;
+    let w50 = w34 - w49;
+    let w51 = w16 - w50;
+    let w52 = w5 * w51;
+    let w53 = w50 * w5;
+    let w54 = w52 - w53;
+    let w55 = p[6]; // i_bc
+    let w56 = w54 + w55;
+    let w57 = w6 * w12;
+    let w58 = 2.0 * w46;
+    let w59 = w57 * w58;
+    let w60 = w46 * w59;
+    let w61 = w56 + w60;
+    let w62 = 2.0 * w36;
+    let w63 = w57 * w62;
+    let w64 = w36 * w63;
+    let w65 = w61 + w64;
+    let w66 = w6 * w8;
+    let w67 = 2.0 * w28;
+    let w68 = w66 * w67;
+    let w69 = w28 * w68;
+    let w70 = w65 + w69;
+    let w71 = 2.0 * w17;
+    let w72 = w66 * w71;
+    let w73 = w17 * w72;
+    let w74 = w70 + w73;
+    let w75: f64 = 0.05892857142857143;
+    let w76 = w75 * w7;
+    let w77 = w23 * w76;
+    let w78 = 2.0 * w23;
+    let w79 = w77 * w78;
+    let w80 = w74 + w79;
+    let w81 = 2.0 * w77;
+    let w82 = w23 * w81;
+    let w83 = w80 + w82;
+    let w84: f64 = 0.08333333333333333;
+    let w85 = w84 * w7;
+    let w86 = w17 * w85;
+    let w87 = w86 * w71;
+    let w88 = w83 + w87;
+    let w89 = 2.0 * w86;
+    let w90 = w17 * w89;
+    let w91 = w88 + w90;
+    let w92: f64 = 0.1875;
+    let w93 = w92 * w7;
+    let w94 = w23 * w93;
+    let w95 = -w2;
+    let w96 = 2.0 * w95;
+    let w97 = w94 * w96;
+    let w98 = w91 + w97;
+    let w99 = 2.0 * w94;
+    let w100 = w2 * w99;
+    let w101 = w98 - w100;
+    let w102 = w6 * w7;
+    let w103 = 2.0 * w2;
+    let w104 = w102 * w103;
+    let w105 = w2 * w104;
+    let w106 = w101 + w105;
+    let o0 = w106; // m_t_t
+    let w107 = w5 * w13;
+    let w108 = w107 - w50;
+    let o1 = w108; // m_t_v
+    let w109 = w22 * w18;
+    let w110 = w7 * w109;
+    let w111 = w8 * w18;
+    let w112 = w110 + w111;
+    let w113 = w18 * w44;
+    let w114 = w12 * w113;
+    let w115 = w112 + w114;
+    let w116 = w5 * w115;
+    let w117 = 2.0 * w44;
+    let w118 = w57 * w117;
+    let w119 = w36 * w118;
+    let w120 = w116 + w119;
+    let w121 = w17 * w8;
+    let w122 = w120 + w121;
+    let w123: f64 = 0.1375;
+    let w124 = w123 * w7;
+    let w125 = w17 * w124;
+    let w126 = 2.0 * w125;
+    let w127 = w122 + w126;
+    let o2 = w127; // m_t_u
+    let o3 = w13; // m_v_v
+    let o4 = w115; // m_v_u
+    let w128 = w44 * w118;
+    let w129 = w128 + w8;
+    let w130: f64 = 0.11785714285714285;
+    let w131 = w130 * w7;
+    let w132 = w129 + w131;
+    let w133 = w132 + w131;
+    let o5 = w133; // m_u_u
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `m` of [`free_mass_matrix()`].
+pub mod free_mass_matrix {
+    /// Index of `m_t_t`.
+    pub const M_T_T: usize = 0;
+    /// Index of `m_t_v`.
+    pub const M_T_V: usize = 1;
+    /// Index of `m_t_u`.
+    pub const M_T_U: usize = 2;
+    /// Index of `m_v_v`.
+    pub const M_V_V: usize = 3;
+    /// Index of `m_v_u`.
+    pub const M_V_U: usize = 4;
+    /// Index of `m_u_u`.
+    pub const M_U_U: usize = 5;
+
+    /// Indices of the elements of input `qf` of [`free_mass_matrix()`](super::free_mass_matrix()).
+    pub mod qf {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u`.
+        pub const U: usize = 2;
+    }
+}
+
+/// Right-hand side F of M q'' = F + Q_ground without the ground: gravity, ground acceleration, stiffness, damping and velocity terms; Q_ground = [Q_theta, Q_v, 0..] from the ground's kernels. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 6]`: state on compliant ground — `theta`, `v`, `u`, `theta_dot`, `v_dot`, `u_dot`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `m_a`, `eta_a`
+///
+/// # Output
+///
+/// `f: [f64; 3]`: generalised forces — `f_theta`, `f_v`, `f_u`
+///
+/// Operations: 297 (178 mul, 56 add, 40 sub, 14 twice, 2 div, 2 neg, 2 sq, 1 cos, 1 sin, 1 sqrt).
+#[inline]
+#[must_use]
+pub fn free_forcing(y: &[f64; 6], ug: f64, s: f64, p: &Params) -> [f64; 3] {
+    let w0 = y[0]; // theta
+    let w1 = w0.cos();
+    let w2 = s; // s
+    let w3 = p[1]; // b
+    let w4 = w2 * w3;
+    let w5 = p[4]; // m_c
+    let w6 = p[3]; // m
+    let w7 = w5 + w6;
+    let w8 = p[5]; // m_b
+    let w9 = w7 + w8;
+    let w10 = p[9]; // m_a
+    let w11 = w9 + w10;
+    let w12 = p[8]; // g
+    let w13 = w11 * w12;
+    let w14 = w4 * w13;
+    let w15 = w1 * w14;
+    let w16 = w0.sin();
+    let w17 = ug; // ug
+    let w18 = w8 * w17;
+    let w19 = w4 * w18;
+    let w20 = y[2]; // u
+    let w21: f64 = 1.5;
+    let w22 = p[10]; // eta_a
+    let w23 = w22 * w22;
+    let w24 = w21 * w23;
+    let w25: f64 = -0.5;
+    let w26 = w22 * w23;
+    let w27 = w25 * w26;
+    let w28 = w24 + w27;
+    let w29 = w20 * w28;
+    let w30 = w29 - w4;
+    let w31 = w10 * w17;
+    let w32 = w30 * w31;
+    let w33 = w19 - w32;
+    let w34 = w20 - w4;
+    let w35 = w6 * w17;
+    let w36 = w34 * w35;
+    let w37 = w33 - w36;
+    let w38: f64 = 0.375;
+    let w39 = w5 * w17;
+    let w40 = w38 * w39;
+    let w41 = w20 * w40;
+    let w42 = w37 - w41;
+    let w43 = w4 * w39;
+    let w44 = w42 + w43;
+    let w45 = p[0]; // h
+    let w46 = w22 * w45;
+    let w47 = w10 * w12;
+    let w48 = w46 * w47;
+    let w49 = w44 - w48;
+    let w50 = w6 * w12;
+    let w51 = w45 * w50;
+    let w52 = w49 - w51;
+    let w53: f64 = 0.5;
+    let w54 = w5 * w12;
+    let w55 = w53 * w54;
+    let w56 = w45 * w55;
+    let w57 = w52 - w56;
+    let w58 = w16 * w57;
+    let w59 = w15 - w58;
+    let w60 = w30 * w47;
+    let w61 = w46 * w31;
+    let w62 = w45 * w35;
+    let w63 = w61 + w62;
+    let w64 = w53 * w39;
+    let w65 = w45 * w64;
+    let w66 = w63 + w65;
+    let w67 = w60 - w66;
+    let w68 = w8 * w12;
+    let w69 = w4 * w68;
+    let w70 = w67 - w69;
+    let w71 = w34 * w50;
+    let w72 = w70 + w71;
+    let w73 = w38 * w54;
+    let w74 = w20 * w73;
+    let w75 = w72 + w74;
+    let w76 = w4 * w54;
+    let w77 = w75 - w76;
+    let w78 = y[5]; // u_dot
+    let w79 = y[4]; // v_dot
+    let w80 = w4 * w1;
+    let w81 = y[3]; // theta_dot
+    let w82 = w80 * w81;
+    let w83 = w79 + w82;
+    let w84 = w78 * w83;
+    let w85 = w10 * w84;
+    let w86 = w28 * w85;
+    let w87 = w77 + w86;
+    let w88 = w6 * w84;
+    let w89 = w87 + w88;
+    let w90 = w5 * w84;
+    let w91 = w38 * w90;
+    let w92 = w89 + w91;
+    let w93 = w1 * w92;
+    let w94 = w59 + w93;
+    let w95 = w81 * w83;
+    let w96 = w10 * w95;
+    let w97 = w46 * w96;
+    let w98 = w6 * w95;
+    let w99 = w45 * w98;
+    let w100 = w97 + w99;
+    let w101 = w5 * w95;
+    let w102 = w53 * w101;
+    let w103 = w45 * w102;
+    let w104 = w100 + w103;
+    let w105 = w1 * w104;
+    let w106 = w94 + w105;
+    let w107 = w30 * w96;
+    let w108 = w8 * w95;
+    let w109 = w4 * w108;
+    let w110 = w107 - w109;
+    let w111 = w34 * w98;
+    let w112 = w110 + w111;
+    let w113 = w38 * w101;
+    let w114 = w20 * w113;
+    let w115 = w112 + w114;
+    let w116 = w4 * w101;
+    let w117 = w115 - w116;
+    let w118 = w16 * w117;
+    let w119 = w106 - w118;
+    let w120 = 2.0 * w83;
+    let w121 = w53 * w11;
+    let w122 = w120 * w121;
+    let w123 = w45 * w16;
+    let w124 = w53 * w123;
+    let w125 = w80 - w124;
+    let w126 = w20 * w1;
+    let w127 = w38 * w126;
+    let w128 = w125 - w127;
+    let w129 = w5 * w128;
+    let w130 = w34 * w1;
+    let w131 = w123 + w130;
+    let w132 = w6 * w131;
+    let w133 = w129 - w132;
+    let w134 = w8 * w80;
+    let w135 = w133 + w134;
+    let w136 = w46 * w16;
+    let w137 = w30 * w1;
+    let w138 = w136 + w137;
+    let w139 = w10 * w138;
+    let w140 = w135 - w139;
+    let w141 = w140 * w81;
+    let w142 = w38 * w16;
+    let w143 = w5 * w142;
+    let w144 = w6 * w16;
+    let w145 = w143 + w144;
+    let w146 = w16 * w28;
+    let w147 = w10 * w146;
+    let w148 = w145 + w147;
+    let w149 = w148 * w78;
+    let w150 = w141 - w149;
+    let w151 = w122 - w150;
+    let w152 = w81 * w151;
+    let w153 = w4 * w152;
+    let w154 = w16 * w153;
+    let w155 = w119 - w154;
+    let w156 = w4 * w16;
+    let w157 = w81 * w156;
+    let w158 = -w157;
+    let w159 = 2.0 * w158;
+    let w160 = w121 * w159;
+    let w161 = w20 * w16;
+    let w162 = w38 * w161;
+    let w163 = w45 * w1;
+    let w164 = w53 * w163;
+    let w165 = w156 + w164;
+    let w166 = w162 - w165;
+    let w167 = w5 * w166;
+    let w168 = w34 * w16;
+    let w169 = w163 - w168;
+    let w170 = w6 * w169;
+    let w171 = w167 - w170;
+    let w172 = w8 * w156;
+    let w173 = w171 - w172;
+    let w174 = w46 * w1;
+    let w175 = w30 * w16;
+    let w176 = w174 - w175;
+    let w177 = w10 * w176;
+    let w178 = w173 - w177;
+    let w179 = w81 * w178;
+    let w180 = w38 * w1;
+    let w181 = w5 * w180;
+    let w182 = w6 * w1;
+    let w183 = w181 + w182;
+    let w184 = w28 * w1;
+    let w185 = w10 * w184;
+    let w186 = w183 + w185;
+    let w187 = w78 * w186;
+    let w188 = w179 - w187;
+    let w189 = w160 - w188;
+    let w190 = w80 * w189;
+    let w191 = w151 * w156;
+    let w192 = w190 - w191;
+    let w193 = w83 * w178;
+    let w194 = w140 * w157;
+    let w195 = w193 - w194;
+    let w196 = w192 - w195;
+    let w197 = w196 * w81;
+    let w198 = w1 * w28;
+    let w199 = w10 * w198;
+    let w200 = w183 + w199;
+    let w201 = w81 * w200;
+    let w202 = w80 * w201;
+    let w203 = w83 * w200;
+    let w204 = w202 + w203;
+    let w205 = w81 * w30;
+    let w206 = 2.0 * w205;
+    let w207 = w53 * w10;
+    let w208 = w206 * w207;
+    let w209 = w208 * w28;
+    let w210 = w81 * w28;
+    let w211 = 2.0 * w210;
+    let w212 = w207 * w211;
+    let w213 = w30 * w212;
+    let w214 = w209 + w213;
+    let w215 = w204 + w214;
+    let w216 = w81 * w34;
+    let w217 = 2.0 * w216;
+    let w218 = w53 * w6;
+    let w219 = w217 * w218;
+    let w220 = 2.0 * w81;
+    let w221 = w218 * w220;
+    let w222 = w34 * w221;
+    let w223 = w219 + w222;
+    let w224 = w215 + w223;
+    let w225: f64 = 0.05892857142857143;
+    let w226 = w225 * w5;
+    let w227 = w20 * w226;
+    let w228 = w227 * w220;
+    let w229 = w81 * w20;
+    let w230 = 2.0 * w229;
+    let w231 = w230 * w226;
+    let w232 = w228 + w231;
+    let w233 = w224 + w232;
+    let w234 = w81 * w227;
+    let w235 = 2.0 * w234;
+    let w236 = w81 * w226;
+    let w237 = 2.0 * w236;
+    let w238 = w20 * w237;
+    let w239 = w235 + w238;
+    let w240 = w233 + w239;
+    let w241 = w81 * w4;
+    let w242 = -w241;
+    let w243 = 2.0 * w242;
+    let w244: f64 = 0.1875;
+    let w245 = w244 * w5;
+    let w246 = w243 * w245;
+    let w247 = w240 + w246;
+    let w248 = w81 * w245;
+    let w249 = 2.0 * w248;
+    let w250 = w4 * w249;
+    let w251 = w247 - w250;
+    let w252 = w251 * w78;
+    let w253 = w197 + w252;
+    let w254 = w155 - w253;
+    let o0 = w254; // f_theta
+    let w255 = w189 * w81;
+    let w256 = w201 * w78;
+    let w257 = w255 + w256;
+    let w258 = w13 - w257;
+    let o1 = w258; // f_v
+    let w259 = 2.0 * w20;
+    let w260: f64 = -1.5;
+    let w261 = p[2]; // ei
+    let w262 = w45 * w45;
+    let w263 = w45 * w262;
+    let w264 = w261 / w263;
+    let w265 = w260 * w264;
+    let w266 = w259 * w265;
+    let w267 = w1 * w31;
+    let w268 = w28 * w267;
+    let w269 = w1 * w35;
+    let w270 = w268 + w269;
+    let w271 = w1 * w40;
+    let w272 = w270 + w271;
+    let w273 = w266 - w272;
+    let w274 = w16 * w73;
+    let w275 = w273 + w274;
+    let w276 = w16 * w47;
+    let w277 = w1 * w96;
+    let w278 = w276 + w277;
+    let w279 = w28 * w278;
+    let w280 = w275 + w279;
+    let w281 = w16 * w50;
+    let w282 = w1 * w98;
+    let w283 = w281 + w282;
+    let w284 = w280 + w283;
+    let w285 = w1 * w113;
+    let w286 = w284 + w285;
+    let w287 = w81 * w208;
+    let w288 = w28 * w287;
+    let w289 = w286 + w288;
+    let w290 = w81 * w219;
+    let w291 = w289 + w290;
+    let w292 = w81 * w230;
+    let w293 = w292 * w226;
+    let w294 = w291 + w293;
+    let w295 = w81 * w235;
+    let w296 = w294 + w295;
+    let w297 = w81 * w243;
+    let w298 = w297 * w245;
+    let w299 = w296 + w298;
+    let w300 = w83 * w186;
+    let w301 = w148 * w157;
+    let w302 = w300 - w301;
+    let w303 = w302 * w81;
+    let w304 = w299 - w303;
+    let w305 = p[7]; // zeta
+    let w306 = 2.0 * w305;
+    let w307: f64 = 3.0;
+    let w308 = w307 * w264;
+    let w309 = 2.0 * w28;
+    let w310 = w207 * w309;
+    let w311 = w28 * w310;
+    let w312 = w311 + w6;
+    let w313: f64 = 0.11785714285714285;
+    let w314 = w313 * w5;
+    let w315 = w312 + w314;
+    let w316 = w315 + w314;
+    let w317 = w308 / w316;
+    let w318 = w317.sqrt();
+    let w319 = w306 * w318;
+    let w320 = w319 * w316;
+    let w321 = w320 * w78;
+    let w322 = w304 - w321;
+    let o2 = w322; // f_u
+    [o0, o1, o2]
+}
+
+/// Indices of the elements of the output `f` of [`free_forcing()`].
+pub mod free_forcing {
+    /// Index of `f_theta`.
+    pub const F_THETA: usize = 0;
+    /// Index of `f_v`.
+    pub const F_V: usize = 1;
+    /// Index of `f_u`.
+    pub const F_U: usize = 2;
+
+    /// Indices of the elements of input `y` of [`free_forcing()`](super::free_forcing()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u`.
+        pub const U: usize = 2;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 3;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 4;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 5;
+    }
+}
+
+/// Kinetic energy, gravity (heights over the rest position of the leaning corner, the ground's surface) and strain potentials and horizontal momentum. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 6]`: state on compliant ground — `theta`, `v`, `u`, `theta_dot`, `v_dot`, `u_dot`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `m_a`, `eta_a`
+///
+/// # Output
+///
+/// `e: [f64; 4]`: energies and momentum — `kinetic`, `gravity`, `strain`, `momentum_x`
+///
+/// Operations: 147 (77 mul, 35 add, 13 sub, 10 sq, 5 div, 4 twice, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_energy(y: &[f64; 6], s: f64, p: &Params) -> [f64; 4] {
+    let w0 = p[4]; // m_c
+    let w1 = y[3]; // theta_dot
+    let w2 = s; // s
+    let w3 = p[1]; // b
+    let w4 = w2 * w3;
+    let w5 = w1 * w4;
+    let w6 = w5 * w5;
+    let w7: f64 = 0.375;
+    let w8 = y[2]; // u
+    let w9 = -w5;
+    let w10 = 2.0 * w9;
+    let w11 = w1 * w10;
+    let w12 = w8 * w11;
+    let w13 = w7 * w12;
+    let w14 = w6 + w13;
+    let w15: f64 = 0.16666666666666666;
+    let w16 = p[0]; // h
+    let w17 = w1 * w16;
+    let w18 = 2.0 * w17;
+    let w19 = w1 * w18;
+    let w20 = w16 * w19;
+    let w21 = w15 * w20;
+    let w22 = w14 + w21;
+    let w23: f64 = 0.275;
+    let w24 = y[5]; // u_dot
+    let w25 = 2.0 * w24;
+    let w26 = w1 * w25;
+    let w27 = w16 * w26;
+    let w28 = w23 * w27;
+    let w29 = w22 + w28;
+    let w30: f64 = 0.11785714285714285;
+    let w31 = w1 * w8;
+    let w32 = 2.0 * w31;
+    let w33 = w1 * w32;
+    let w34 = w8 * w33;
+    let w35 = w24 * w25;
+    let w36 = w34 + w35;
+    let w37 = w30 * w36;
+    let w38 = w29 + w37;
+    let w39 = w0 * w38;
+    let w40 = p[3]; // m
+    let w41 = w24 + w17;
+    let w42 = w41 * w41;
+    let w43 = w8 - w4;
+    let w44 = w1 * w43;
+    let w45 = w44 * w44;
+    let w46 = w42 + w45;
+    let w47 = w40 * w46;
+    let w48 = w39 + w47;
+    let w49 = p[9]; // m_a
+    let w50: f64 = 1.5;
+    let w51 = p[10]; // eta_a
+    let w52 = w51 * w51;
+    let w53 = w50 * w52;
+    let w54: f64 = -0.5;
+    let w55 = w51 * w52;
+    let w56 = w54 * w55;
+    let w57 = w53 + w56;
+    let w58 = w24 * w57;
+    let w59 = w51 * w16;
+    let w60 = w1 * w59;
+    let w61 = w58 + w60;
+    let w62 = w61 * w61;
+    let w63 = w8 * w57;
+    let w64 = w63 - w4;
+    let w65 = w1 * w64;
+    let w66 = w65 * w65;
+    let w67 = w62 + w66;
+    let w68 = w49 * w67;
+    let w69 = w48 + w68;
+    let w70: f64 = 2.0;
+    let w71 = w69 / w70;
+    let w72 = p[6]; // i_bc
+    let w73 = w1 * w1;
+    let w74 = w72 * w73;
+    let w75 = w74 / w70;
+    let w76 = w71 + w75;
+    let w77 = w0 + w40;
+    let w78 = p[5]; // m_b
+    let w79 = w77 + w78;
+    let w80 = w79 + w49;
+    let w81 = y[4]; // v_dot
+    let w82 = y[0]; // theta
+    let w83 = w82.cos();
+    let w84 = w4 * w83;
+    let w85 = w84 * w1;
+    let w86 = w81 + w85;
+    let w87 = w86 * w86;
+    let w88 = w80 * w87;
+    let w89 = w88 / w70;
+    let w90 = w76 + w89;
+    let w91: f64 = 0.5;
+    let w92 = w82.sin();
+    let w93 = w16 * w92;
+    let w94 = w91 * w93;
+    let w95 = w84 - w94;
+    let w96 = w8 * w83;
+    let w97 = w7 * w96;
+    let w98 = w95 - w97;
+    let w99 = w0 * w98;
+    let w100 = w43 * w83;
+    let w101 = w93 + w100;
+    let w102 = w40 * w101;
+    let w103 = w99 - w102;
+    let w104 = w78 * w84;
+    let w105 = w103 + w104;
+    let w106 = w59 * w92;
+    let w107 = w64 * w83;
+    let w108 = w106 + w107;
+    let w109 = w49 * w108;
+    let w110 = w105 - w109;
+    let w111 = w110 * w1;
+    let w112 = w7 * w92;
+    let w113 = w0 * w112;
+    let w114 = w40 * w92;
+    let w115 = w113 + w114;
+    let w116 = w92 * w57;
+    let w117 = w49 * w116;
+    let w118 = w115 + w117;
+    let w119 = w118 * w24;
+    let w120 = w111 - w119;
+    let w121 = w86 * w120;
+    let w122 = w90 - w121;
+    let o0 = w122; // kinetic
+    let w123 = p[8]; // g
+    let w124 = w4 * w92;
+    let w125 = w16 * w83;
+    let w126 = w91 * w125;
+    let w127 = w124 + w126;
+    let w128 = w8 * w92;
+    let w129 = w7 * w128;
+    let w130 = w127 - w129;
+    let w131 = w0 * w130;
+    let w132 = w43 * w92;
+    let w133 = w125 - w132;
+    let w134 = w40 * w133;
+    let w135 = w131 + w134;
+    let w136 = w78 * w124;
+    let w137 = w135 + w136;
+    let w138 = w59 * w83;
+    let w139 = w64 * w92;
+    let w140 = w138 - w139;
+    let w141 = w49 * w140;
+    let w142 = w137 + w141;
+    let w143 = y[1]; // v
+    let w144 = w143 + w124;
+    let w145 = w80 * w144;
+    let w146 = w142 - w145;
+    let w147 = w123 * w146;
+    let o1 = w147; // gravity
+    let w148: f64 = 3.0;
+    let w149 = p[2]; // ei
+    let w150 = w16 * w16;
+    let w151 = w16 * w150;
+    let w152 = w149 / w151;
+    let w153 = w148 * w152;
+    let w154 = w8 * w8;
+    let w155 = w153 * w154;
+    let w156 = w155 / w70;
+    let o2 = w156; // strain
+    let w157 = w126 + w124;
+    let w158 = w157 - w129;
+    let w159 = w0 * w158;
+    let w160 = w159 + w134;
+    let w161 = w160 + w136;
+    let w162 = w161 + w141;
+    let w163 = w162 * w1;
+    let w164 = w7 * w83;
+    let w165 = w0 * w164;
+    let w166 = w40 * w83;
+    let w167 = w165 + w166;
+    let w168 = w83 * w57;
+    let w169 = w49 * w168;
+    let w170 = w167 + w169;
+    let w171 = w170 * w24;
+    let w172 = w163 + w171;
+    let o3 = w172; // momentum_x
+    [o0, o1, o2, o3]
+}
+
+/// Indices of the elements of the output `e` of [`free_energy()`].
+pub mod free_energy {
+    /// Index of `kinetic`.
+    pub const KINETIC: usize = 0;
+    /// Index of `gravity`.
+    pub const GRAVITY: usize = 1;
+    /// Index of `strain`.
+    pub const STRAIN: usize = 2;
+    /// Index of `momentum_x`.
+    pub const MOMENTUM_X: usize = 3;
+
+    /// Indices of the elements of input `y` of [`free_energy()`](super::free_energy()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u`.
+        pub const U: usize = 2;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 3;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 4;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 5;
+    }
+}
+
+/// Power terms: dE/dt = ground - damping + Q_theta theta' + Q_v v', with ground = -ug P_x and damping u'^T C u'. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 6]`: state on compliant ground — `theta`, `v`, `u`, `theta_dot`, `v_dot`, `u_dot`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `m_a`, `eta_a`
+///
+/// # Output
+///
+/// `w: [f64; 2]`: power terms — `ground`, `damping`
+///
+/// Operations: 62 (35 mul, 11 add, 5 sub, 3 sq, 2 div, 2 twice, 1 cos, 1 neg, 1 sin, 1 sqrt).
+#[inline]
+#[must_use]
+pub fn free_power(y: &[f64; 6], ug: f64, s: f64, p: &Params) -> [f64; 2] {
+    let w0 = ug; // ug
+    let w1 = p[4]; // m_c
+    let w2: f64 = 0.5;
+    let w3 = p[0]; // h
+    let w4 = y[0]; // theta
+    let w5 = w4.cos();
+    let w6 = w3 * w5;
+    let w7 = w2 * w6;
+    let w8 = s; // s
+    let w9 = p[1]; // b
+    let w10 = w8 * w9;
+    let w11 = w4.sin();
+    let w12 = w10 * w11;
+    let w13 = w7 + w12;
+    let w14: f64 = 0.375;
+    let w15 = y[2]; // u
+    let w16 = w15 * w11;
+    let w17 = w14 * w16;
+    let w18 = w13 - w17;
+    let w19 = w1 * w18;
+    let w20 = p[3]; // m
+    let w21 = w15 - w10;
+    let w22 = w21 * w11;
+    let w23 = w6 - w22;
+    let w24 = w20 * w23;
+    let w25 = w19 + w24;
+    let w26 = p[5]; // m_b
+    let w27 = w26 * w12;
+    let w28 = w25 + w27;
+    let w29 = p[9]; // m_a
+    let w30 = p[10]; // eta_a
+    let w31 = w30 * w3;
+    let w32 = w31 * w5;
+    let w33: f64 = 1.5;
+    let w34 = w30 * w30;
+    let w35 = w33 * w34;
+    let w36: f64 = -0.5;
+    let w37 = w30 * w34;
+    let w38 = w36 * w37;
+    let w39 = w35 + w38;
+    let w40 = w15 * w39;
+    let w41 = w40 - w10;
+    let w42 = w41 * w11;
+    let w43 = w32 - w42;
+    let w44 = w29 * w43;
+    let w45 = w28 + w44;
+    let w46 = y[3]; // theta_dot
+    let w47 = w45 * w46;
+    let w48 = w14 * w5;
+    let w49 = w1 * w48;
+    let w50 = w20 * w5;
+    let w51 = w49 + w50;
+    let w52 = w5 * w39;
+    let w53 = w29 * w52;
+    let w54 = w51 + w53;
+    let w55 = y[5]; // u_dot
+    let w56 = w54 * w55;
+    let w57 = w47 + w56;
+    let w58 = w0 * w57;
+    let w59 = -w58;
+    let o0 = w59; // ground
+    let w60 = p[7]; // zeta
+    let w61 = 2.0 * w60;
+    let w62: f64 = 3.0;
+    let w63 = p[2]; // ei
+    let w64 = w3 * w3;
+    let w65 = w3 * w64;
+    let w66 = w63 / w65;
+    let w67 = w62 * w66;
+    let w68 = w2 * w29;
+    let w69 = 2.0 * w39;
+    let w70 = w68 * w69;
+    let w71 = w39 * w70;
+    let w72 = w71 + w20;
+    let w73: f64 = 0.11785714285714285;
+    let w74 = w73 * w1;
+    let w75 = w72 + w74;
+    let w76 = w75 + w74;
+    let w77 = w67 / w76;
+    let w78 = w77.sqrt();
+    let w79 = w61 * w78;
+    let w80 = w79 * w76;
+    let w81 = w55 * w55;
+    let w82 = w80 * w81;
+    let o1 = w82; // damping
+    [o0, o1]
+}
+
+/// Indices of the elements of the output `w` of [`free_power()`].
+pub mod free_power {
+    /// Index of `ground`.
+    pub const GROUND: usize = 0;
+    /// Index of `damping`.
+    pub const DAMPING: usize = 1;
+
+    /// Indices of the elements of input `y` of [`free_power()`](super::free_power()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u`.
+        pub const U: usize = 2;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 3;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 4;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 5;
+    }
+}
+
+/// Section forces at the column base and the ground's force on the body (the bed's resultant and the horizontal force that keeps the leaning corner in place), for the accelerations qdd. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded.
+///
+/// # Inputs
+///
+/// - `y: &[f64; 6]`: state on compliant ground — `theta`, `v`, `u`, `theta_dot`, `v_dot`, `u_dot`
+/// - `qdd: &[f64; 3]`: accelerations [theta'', v'', u''] (from M q'' = F + Q_ground) — `theta_ddot`, `v_ddot`, `u_ddot`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `m_a`, `eta_a`
+///
+/// # Output
+///
+/// `ff: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 139 (70 mul, 37 add, 24 sub, 3 sq, 2 twice, 1 cos, 1 div, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_forces(y: &[f64; 6], qdd: &[f64; 3], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[4]; // m_c
+    let w1: f64 = 0.375;
+    let w2 = y[2]; // u
+    let w3 = ug; // ug
+    let w4 = y[0]; // theta
+    let w5 = w4.sin();
+    let w6 = w3 * w5;
+    let w7 = qdd[0]; // theta_ddot
+    let w8 = s; // s
+    let w9 = p[1]; // b
+    let w10 = w8 * w9;
+    let w11 = w7 * w10;
+    let w12 = w6 + w11;
+    let w13 = p[8]; // g
+    let w14 = w4.cos();
+    let w15 = w13 * w14;
+    let w16 = w12 + w15;
+    let w17 = qdd[1]; // v_ddot
+    let w18 = w14 * w7;
+    let w19 = y[3]; // theta_dot
+    let w20 = w19 * w19;
+    let w21 = w5 * w20;
+    let w22 = w18 - w21;
+    let w23 = w10 * w22;
+    let w24 = w17 + w23;
+    let w25 = w24 * w14;
+    let w26 = w16 - w25;
+    let w27 = w2 * w26;
+    let w28 = w1 * w27;
+    let w29: f64 = 0.5;
+    let w30 = p[0]; // h
+    let w31 = w20 * w10;
+    let w32 = w3 * w14;
+    let w33 = w31 + w32;
+    let w34 = w13 * w5;
+    let w35 = w33 - w34;
+    let w36 = w24 * w5;
+    let w37 = w35 + w36;
+    let w38 = w30 * w37;
+    let w39 = w29 * w38;
+    let w40 = w28 - w39;
+    let w41: f64 = 0.16666666666666666;
+    let w42 = w7 * w30;
+    let w43 = 2.0 * w42;
+    let w44 = w30 * w43;
+    let w45 = w41 * w44;
+    let w46 = w40 - w45;
+    let w47: f64 = 0.275;
+    let w48 = qdd[2]; // u_ddot
+    let w49 = w30 * w48;
+    let w50 = w47 * w49;
+    let w51 = w46 - w50;
+    let w52: f64 = 0.11785714285714285;
+    let w53 = 2.0 * w19;
+    let w54 = y[5]; // u_dot
+    let w55 = w53 * w54;
+    let w56 = w55 * w2;
+    let w57 = w7 * w2;
+    let w58 = w2 * w57;
+    let w59 = w56 + w58;
+    let w60 = w57 + w55;
+    let w61 = w2 * w60;
+    let w62 = w59 + w61;
+    let w63 = w52 * w62;
+    let w64 = w51 - w63;
+    let w65 = w0 * w64;
+    let w66 = p[3]; // m
+    let w67 = w2 - w10;
+    let w68 = w7 * w67;
+    let w69 = w20 * w30;
+    let w70 = w68 + w69;
+    let w71 = w70 + w55;
+    let w72 = w6 - w71;
+    let w73 = w72 + w15;
+    let w74 = w73 - w25;
+    let w75 = w2 * w74;
+    let w76 = w20 * w67;
+    let w77 = w42 - w76;
+    let w78 = w77 + w48;
+    let w79 = w78 + w32;
+    let w80 = w79 - w34;
+    let w81 = w80 + w36;
+    let w82 = w30 * w81;
+    let w83 = w75 - w82;
+    let w84 = w66 * w83;
+    let w85 = w65 + w84;
+    let w86 = p[9]; // m_a
+    let w87: f64 = 1.5;
+    let w88 = p[10]; // eta_a
+    let w89 = w88 * w88;
+    let w90 = w87 * w89;
+    let w91: f64 = -0.5;
+    let w92 = w88 * w89;
+    let w93 = w91 * w92;
+    let w94 = w90 + w93;
+    let w95 = w2 * w94;
+    let w96 = w95 - w10;
+    let w97 = w7 * w96;
+    let w98 = w88 * w30;
+    let w99 = w20 * w98;
+    let w100 = w97 + w99;
+    let w101 = w55 * w94;
+    let w102 = w100 + w101;
+    let w103 = w6 - w102;
+    let w104 = w103 + w15;
+    let w105 = w104 - w25;
+    let w106 = w95 * w105;
+    let w107 = w7 * w98;
+    let w108 = w20 * w96;
+    let w109 = w107 - w108;
+    let w110 = w48 * w94;
+    let w111 = w109 + w110;
+    let w112 = w111 + w32;
+    let w113 = w112 - w34;
+    let w114 = w113 + w36;
+    let w115 = w98 * w114;
+    let w116 = w106 - w115;
+    let w117 = w86 * w116;
+    let w118 = w85 + w117;
+    let o0 = w118; // moment
+    let w119 = w30 * w7;
+    let w120 = w29 * w119;
+    let w121 = w37 + w120;
+    let w122 = w2 * w20;
+    let w123 = w48 - w122;
+    let w124 = w1 * w123;
+    let w125 = w121 + w124;
+    let w126 = w0 * w125;
+    let w127 = w66 * w81;
+    let w128 = w126 + w127;
+    let w129 = w86 * w114;
+    let w130 = w128 + w129;
+    let o1 = w130; // shear
+    let w131 = w30 * w20;
+    let w132 = w29 * w131;
+    let w133 = w26 - w132;
+    let w134 = w2 * w7;
+    let w135 = w55 + w134;
+    let w136 = w1 * w135;
+    let w137 = w133 - w136;
+    let w138 = w0 * w137;
+    let w139 = w66 * w74;
+    let w140 = w138 + w139;
+    let w141 = w86 * w105;
+    let w142 = w140 + w141;
+    let o2 = w142; // axial
+    let w143: f64 = 3.0;
+    let w144 = p[2]; // ei
+    let w145 = w30 * w30;
+    let w146 = w144 / w145;
+    let w147 = w143 * w146;
+    let w148 = w147 * w2;
+    let o3 = w148; // moment_elastic
+    let w149 = p[5]; // m_b
+    let w150 = w149 * w37;
+    let w151 = w128 + w150;
+    let w152 = w151 + w129;
+    let w153 = w14 * w152;
+    let w154 = w11 + w6;
+    let w155 = w154 + w15;
+    let w156 = w155 - w25;
+    let w157 = w149 * w156;
+    let w158 = w140 + w157;
+    let w159 = w158 + w141;
+    let w160 = w5 * w159;
+    let w161 = w153 + w160;
+    let o4 = w161; // reaction_h
+    let w162 = w14 * w159;
+    let w163 = w5 * w152;
+    let w164 = w162 - w163;
+    let o5 = w164; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `ff` of [`free_forces()`].
+pub mod free_forces {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `y` of [`free_forces()`](super::free_forces()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u`.
+        pub const U: usize = 2;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 3;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 4;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 5;
+    }
+
+    /// Indices of the elements of input `qdd` of [`free_forces()`](super::free_forces()).
+    pub mod qdd {
+        /// Index of `theta_ddot`.
+        pub const THETA_DDOT: usize = 0;
+        /// Index of `v_ddot`.
+        pub const V_DDOT: usize = 1;
+        /// Index of `u_ddot`.
+        pub const U_DDOT: usize = 2;
+    }
+}
+
 /// Example: the full model plus a lumped mass m_a at height eta_a H
 ///
 /// Type-level handle of this variant, implementing [`crate::Variant`].
@@ -2968,6 +4114,31 @@ impl crate::Variant for AddedMass {
     #[inline]
     fn static_uplift(p: &Params) -> [f64; 5] {
         static_uplift(p)
+    }
+
+    #[inline]
+    fn free_mass_matrix(qf: &[f64; 3], s: f64, p: &Params) -> [f64; 6] {
+        free_mass_matrix(qf, s, p)
+    }
+
+    #[inline]
+    fn free_forcing(y: &[f64; 6], ug: f64, s: f64, p: &Params) -> [f64; 3] {
+        free_forcing(y, ug, s, p)
+    }
+
+    #[inline]
+    fn free_energy(y: &[f64; 6], s: f64, p: &Params) -> [f64; 4] {
+        free_energy(y, s, p)
+    }
+
+    #[inline]
+    fn free_power(y: &[f64; 6], ug: f64, s: f64, p: &Params) -> [f64; 2] {
+        free_power(y, ug, s, p)
+    }
+
+    #[inline]
+    fn free_forces(y: &[f64; 6], qdd: &[f64; 3], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+        free_forces(y, qdd, ug, s, p)
     }
 }
 
@@ -3111,6 +4282,55 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             };
             let p: &Params = (*p).try_into().ok()?;
             Some(static_uplift(p).to_vec())
+        }
+        "free_mass_matrix" => {
+            let [qf, s, p] = inputs else {
+                return None;
+            };
+            let qf: &[f64; 3] = (*qf).try_into().ok()?;
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_mass_matrix(qf, s, p).to_vec())
+        }
+        "free_forcing" => {
+            let [y, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 6] = (*y).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_forcing(y, ug, s, p).to_vec())
+        }
+        "free_energy" => {
+            let [y, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 6] = (*y).try_into().ok()?;
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_energy(y, s, p).to_vec())
+        }
+        "free_power" => {
+            let [y, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 6] = (*y).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_power(y, ug, s, p).to_vec())
+        }
+        "free_forces" => {
+            let [y, qdd, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 6] = (*y).try_into().ok()?;
+            let qdd: &[f64; 3] = (*qdd).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_forces(y, qdd, ug, s, p).to_vec())
         }
         _ => None,
     }

@@ -2334,6 +2334,936 @@ pub mod static_uplift {
     pub const MOMENT_ELASTIC_UPLIFT: usize = 4;
 }
 
+/// Mass matrix M(q) over q = [theta, v, u_1..u_n], upper triangle row by row (symmetric positive definite; a rigid column's u row is the identity). On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `qf: &[f64; 3]`: configuration on compliant ground: rotation, settlement of the base centre (positive into the ground), deformation — `theta`, `v`, `u`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `m: [f64; 6]`: upper triangle of M — `m_t_t`, `m_t_v`, `m_t_u`, `m_v_v`, `m_v_u`, `m_u_u`
+///
+/// Operations: 82 (43 mul, 18 add, 10 twice, 8 sub, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_mass_matrix(qf: &[f64; 3], s: f64, p: &Params) -> [f64; 6] {
+    let w0 = s; // s
+    let w1 = p[1]; // b
+    let w2 = w0 * w1;
+    let w3 = qf[0]; // theta
+    let w4 = w3.cos();
+    let w5 = w2 * w4;
+    let w6: f64 = 0.5;
+    let w7 = p[4]; // m_c
+    let w8 = p[3]; // m
+    let w9 = w7 + w8;
+    let w10 = p[5]; // m_b
+    let w11 = w9 + w10;
+    let w12 = w6 * w11;
+    let w13 = 2.0 * w5;
+    let w14 = w12 * w13;
+    let w15 = p[0]; // h
+    let w16 = w3.sin();
+    let w17 = w15 * w16;
+    let w18 = w6 * w17;
+    let w19 = w5 - w18;
+    let w20: f64 = 0.3914958780198129;
+    let w21 = qf[2]; // u
+    let w22 = w21 * w4;
+    let w23 = w20 * w22;
+    let w24 = w19 - w23;
+    let w25 = w7 * w24;
+    let w26 = w21 - w2;
+    let w27 = w26 * w4;
+    let w28 = w17 + w27;
+    let w29 = w8 * w28;
+    let w30 = w25 - w29;
+    let w31 = w10 * w5;
+    let w32 = w30 + w31;
+    let w33 = w14 - w32;
+    let w34 = w5 * w33;
+    let w35 = w32 * w5;
+    let w36 = w34 - w35;
+    let w37 = p[6]; // i_bc
+    let w38 = w36 + w37;
+    let w39 = w6 * w8;
+    let w40 = 2.0 * w26;
+    let w41 = w39 * w40;
+    let w42 = w26 * w41;
+    let w43 = w38 + w42;
+    let w44 = 2.0 * w15;
+    let w45 = w39 * w44;
+    let w46 = w15 * w45;
+    let w47 = w43 + w46;
+    let w48: f64 = 0.0625;
+    let w49 = w48 * w7;
+    let w50 = w21 * w49;
+    let w51 = 2.0 * w21;
+    let w52 = w50 * w51;
+    let w53 = w47 + w52;
+    let w54 = 2.0 * w50;
+    let w55 = w21 * w54;
+    let w56 = w53 + w55;
+    let w57: f64 = 0.08333333333333333;
+    let w58 = w57 * w7;
+    let w59 = w15 * w58;
+    let w60 = w59 * w44;
+    let w61 = w56 + w60;
+    let w62 = 2.0 * w59;
+    let w63 = w15 * w62;
+    let w64 = w61 + w63;
+    let w65: f64 = 0.19574793900990645;
+    let w66 = w65 * w7;
+    let w67 = w21 * w66;
+    let w68 = -w2;
+    let w69 = 2.0 * w68;
+    let w70 = w67 * w69;
+    let w71 = w64 + w70;
+    let w72 = 2.0 * w67;
+    let w73 = w2 * w72;
+    let w74 = w71 - w73;
+    let w75 = w6 * w7;
+    let w76 = 2.0 * w2;
+    let w77 = w75 * w76;
+    let w78 = w2 * w77;
+    let w79 = w74 + w78;
+    let o0 = w79; // m_t_t
+    let w80 = w5 * w11;
+    let w81 = w80 - w32;
+    let o1 = w81; // m_t_v
+    let w82 = w20 * w16;
+    let w83 = w7 * w82;
+    let w84 = w8 * w16;
+    let w85 = w83 + w84;
+    let w86 = w5 * w85;
+    let w87 = w15 * w8;
+    let w88 = w86 + w87;
+    let w89: f64 = 0.1422064359274777;
+    let w90 = w89 * w7;
+    let w91 = w15 * w90;
+    let w92 = 2.0 * w91;
+    let w93 = w88 + w92;
+    let o2 = w93; // m_t_u
+    let o3 = w11; // m_v_v
+    let o4 = w85; // m_v_u
+    let w94: f64 = 0.125;
+    let w95 = w94 * w7;
+    let w96 = w8 + w95;
+    let w97 = w96 + w95;
+    let o5 = w97; // m_u_u
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `m` of [`free_mass_matrix()`].
+pub mod free_mass_matrix {
+    /// Index of `m_t_t`.
+    pub const M_T_T: usize = 0;
+    /// Index of `m_t_v`.
+    pub const M_T_V: usize = 1;
+    /// Index of `m_t_u`.
+    pub const M_T_U: usize = 2;
+    /// Index of `m_v_v`.
+    pub const M_V_V: usize = 3;
+    /// Index of `m_v_u`.
+    pub const M_V_U: usize = 4;
+    /// Index of `m_u_u`.
+    pub const M_U_U: usize = 5;
+
+    /// Indices of the elements of input `qf` of [`free_mass_matrix()`](super::free_mass_matrix()).
+    pub mod qf {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u`.
+        pub const U: usize = 2;
+    }
+}
+
+/// Right-hand side F of M q'' = F + Q_ground without the ground: gravity, ground acceleration, stiffness, damping and velocity terms; Q_ground = [Q_theta, Q_v, 0..] from the ground's kernels. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 6]`: state on compliant ground — `theta`, `v`, `u`, `theta_dot`, `v_dot`, `u_dot`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `f: [f64; 3]`: generalised forces — `f_theta`, `f_v`, `f_u`
+///
+/// Operations: 224 (133 mul, 39 add, 33 sub, 11 twice, 2 div, 2 neg, 1 cos, 1 sin, 1 sq, 1 sqrt).
+#[inline]
+#[must_use]
+pub fn free_forcing(y: &[f64; 6], ug: f64, s: f64, p: &Params) -> [f64; 3] {
+    let w0 = y[0]; // theta
+    let w1 = w0.cos();
+    let w2 = s; // s
+    let w3 = p[1]; // b
+    let w4 = w2 * w3;
+    let w5 = p[4]; // m_c
+    let w6 = p[3]; // m
+    let w7 = w5 + w6;
+    let w8 = p[5]; // m_b
+    let w9 = w7 + w8;
+    let w10 = p[8]; // g
+    let w11 = w9 * w10;
+    let w12 = w4 * w11;
+    let w13 = w1 * w12;
+    let w14 = w0.sin();
+    let w15 = ug; // ug
+    let w16 = w8 * w15;
+    let w17 = w4 * w16;
+    let w18 = y[2]; // u
+    let w19 = w18 - w4;
+    let w20 = w6 * w15;
+    let w21 = w19 * w20;
+    let w22 = w17 - w21;
+    let w23: f64 = 0.3914958780198129;
+    let w24 = w5 * w15;
+    let w25 = w23 * w24;
+    let w26 = w18 * w25;
+    let w27 = w22 - w26;
+    let w28 = w4 * w24;
+    let w29 = w27 + w28;
+    let w30 = p[0]; // h
+    let w31 = w6 * w10;
+    let w32 = w30 * w31;
+    let w33 = w29 - w32;
+    let w34: f64 = 0.5;
+    let w35 = w5 * w10;
+    let w36 = w34 * w35;
+    let w37 = w30 * w36;
+    let w38 = w33 - w37;
+    let w39 = w14 * w38;
+    let w40 = w13 - w39;
+    let w41 = w19 * w31;
+    let w42 = w30 * w20;
+    let w43 = w34 * w24;
+    let w44 = w30 * w43;
+    let w45 = w42 + w44;
+    let w46 = w8 * w10;
+    let w47 = w4 * w46;
+    let w48 = w45 + w47;
+    let w49 = w41 - w48;
+    let w50 = w23 * w35;
+    let w51 = w18 * w50;
+    let w52 = w49 + w51;
+    let w53 = w4 * w35;
+    let w54 = w52 - w53;
+    let w55 = y[5]; // u_dot
+    let w56 = y[4]; // v_dot
+    let w57 = w4 * w1;
+    let w58 = y[3]; // theta_dot
+    let w59 = w57 * w58;
+    let w60 = w56 + w59;
+    let w61 = w55 * w60;
+    let w62 = w6 * w61;
+    let w63 = w54 + w62;
+    let w64 = w5 * w61;
+    let w65 = w23 * w64;
+    let w66 = w63 + w65;
+    let w67 = w1 * w66;
+    let w68 = w40 + w67;
+    let w69 = w58 * w60;
+    let w70 = w6 * w69;
+    let w71 = w30 * w70;
+    let w72 = w5 * w69;
+    let w73 = w34 * w72;
+    let w74 = w30 * w73;
+    let w75 = w71 + w74;
+    let w76 = w1 * w75;
+    let w77 = w68 + w76;
+    let w78 = w19 * w70;
+    let w79 = w8 * w69;
+    let w80 = w4 * w79;
+    let w81 = w78 - w80;
+    let w82 = w23 * w72;
+    let w83 = w18 * w82;
+    let w84 = w81 + w83;
+    let w85 = w4 * w72;
+    let w86 = w84 - w85;
+    let w87 = w14 * w86;
+    let w88 = w77 - w87;
+    let w89 = 2.0 * w60;
+    let w90 = w34 * w9;
+    let w91 = w89 * w90;
+    let w92 = w30 * w14;
+    let w93 = w34 * w92;
+    let w94 = w57 - w93;
+    let w95 = w18 * w1;
+    let w96 = w23 * w95;
+    let w97 = w94 - w96;
+    let w98 = w5 * w97;
+    let w99 = w19 * w1;
+    let w100 = w92 + w99;
+    let w101 = w6 * w100;
+    let w102 = w98 - w101;
+    let w103 = w8 * w57;
+    let w104 = w102 + w103;
+    let w105 = w104 * w58;
+    let w106 = w23 * w14;
+    let w107 = w5 * w106;
+    let w108 = w6 * w14;
+    let w109 = w107 + w108;
+    let w110 = w109 * w55;
+    let w111 = w105 - w110;
+    let w112 = w91 - w111;
+    let w113 = w58 * w112;
+    let w114 = w4 * w113;
+    let w115 = w14 * w114;
+    let w116 = w88 - w115;
+    let w117 = w4 * w14;
+    let w118 = w58 * w117;
+    let w119 = -w118;
+    let w120 = 2.0 * w119;
+    let w121 = w90 * w120;
+    let w122 = w18 * w14;
+    let w123 = w23 * w122;
+    let w124 = w30 * w1;
+    let w125 = w34 * w124;
+    let w126 = w117 + w125;
+    let w127 = w123 - w126;
+    let w128 = w5 * w127;
+    let w129 = w19 * w14;
+    let w130 = w124 - w129;
+    let w131 = w6 * w130;
+    let w132 = w128 - w131;
+    let w133 = w8 * w117;
+    let w134 = w132 - w133;
+    let w135 = w58 * w134;
+    let w136 = w23 * w1;
+    let w137 = w5 * w136;
+    let w138 = w6 * w1;
+    let w139 = w137 + w138;
+    let w140 = w55 * w139;
+    let w141 = w135 - w140;
+    let w142 = w121 - w141;
+    let w143 = w57 * w142;
+    let w144 = w112 * w117;
+    let w145 = w143 - w144;
+    let w146 = w60 * w134;
+    let w147 = w104 * w118;
+    let w148 = w146 - w147;
+    let w149 = w145 - w148;
+    let w150 = w149 * w58;
+    let w151 = w58 * w139;
+    let w152 = w57 * w151;
+    let w153 = w60 * w139;
+    let w154 = w152 + w153;
+    let w155 = w58 * w19;
+    let w156 = 2.0 * w155;
+    let w157 = w34 * w6;
+    let w158 = w156 * w157;
+    let w159 = 2.0 * w58;
+    let w160 = w157 * w159;
+    let w161 = w19 * w160;
+    let w162 = w158 + w161;
+    let w163 = w154 + w162;
+    let w164: f64 = 0.0625;
+    let w165 = w164 * w5;
+    let w166 = w18 * w165;
+    let w167 = w166 * w159;
+    let w168 = w58 * w18;
+    let w169 = 2.0 * w168;
+    let w170 = w169 * w165;
+    let w171 = w167 + w170;
+    let w172 = w163 + w171;
+    let w173 = w58 * w166;
+    let w174 = 2.0 * w173;
+    let w175 = w58 * w165;
+    let w176 = 2.0 * w175;
+    let w177 = w18 * w176;
+    let w178 = w174 + w177;
+    let w179 = w172 + w178;
+    let w180 = w58 * w4;
+    let w181 = -w180;
+    let w182 = 2.0 * w181;
+    let w183: f64 = 0.19574793900990645;
+    let w184 = w183 * w5;
+    let w185 = w182 * w184;
+    let w186 = w179 + w185;
+    let w187 = w58 * w184;
+    let w188 = 2.0 * w187;
+    let w189 = w4 * w188;
+    let w190 = w186 - w189;
+    let w191 = w190 * w55;
+    let w192 = w150 + w191;
+    let w193 = w116 - w192;
+    let o0 = w193; // f_theta
+    let w194 = w142 * w58;
+    let w195 = w151 * w55;
+    let w196 = w194 + w195;
+    let w197 = w11 - w196;
+    let o1 = w197; // f_v
+    let w198 = 2.0 * w18;
+    let w199: f64 = -1.5452954210407739;
+    let w200 = p[2]; // ei
+    let w201 = w30 * w30;
+    let w202 = w30 * w201;
+    let w203 = w200 / w202;
+    let w204 = w199 * w203;
+    let w205 = w198 * w204;
+    let w206 = w1 * w20;
+    let w207 = w1 * w25;
+    let w208 = w206 + w207;
+    let w209 = w205 - w208;
+    let w210 = w14 * w50;
+    let w211 = w209 + w210;
+    let w212 = w14 * w31;
+    let w213 = w1 * w70;
+    let w214 = w212 + w213;
+    let w215 = w211 + w214;
+    let w216 = w1 * w82;
+    let w217 = w215 + w216;
+    let w218 = w58 * w158;
+    let w219 = w217 + w218;
+    let w220 = w58 * w169;
+    let w221 = w220 * w165;
+    let w222 = w219 + w221;
+    let w223 = w58 * w174;
+    let w224 = w222 + w223;
+    let w225 = w58 * w182;
+    let w226 = w225 * w184;
+    let w227 = w224 + w226;
+    let w228 = w109 * w118;
+    let w229 = w153 - w228;
+    let w230 = w229 * w58;
+    let w231 = w227 - w230;
+    let w232 = p[7]; // zeta
+    let w233 = 2.0 * w232;
+    let w234: f64 = 3.0905908420815478;
+    let w235 = w234 * w203;
+    let w236: f64 = 0.125;
+    let w237 = w236 * w5;
+    let w238 = w6 + w237;
+    let w239 = w238 + w237;
+    let w240 = w235 / w239;
+    let w241 = w240.sqrt();
+    let w242 = w233 * w241;
+    let w243 = w242 * w239;
+    let w244 = w243 * w55;
+    let w245 = w231 - w244;
+    let o2 = w245; // f_u
+    [o0, o1, o2]
+}
+
+/// Indices of the elements of the output `f` of [`free_forcing()`].
+pub mod free_forcing {
+    /// Index of `f_theta`.
+    pub const F_THETA: usize = 0;
+    /// Index of `f_v`.
+    pub const F_V: usize = 1;
+    /// Index of `f_u`.
+    pub const F_U: usize = 2;
+
+    /// Indices of the elements of input `y` of [`free_forcing()`](super::free_forcing()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u`.
+        pub const U: usize = 2;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 3;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 4;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 5;
+    }
+}
+
+/// Kinetic energy, gravity (heights over the rest position of the leaning corner, the ground's surface) and strain potentials and horizontal momentum. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 6]`: state on compliant ground — `theta`, `v`, `u`, `theta_dot`, `v_dot`, `u_dot`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `e: [f64; 4]`: energies and momentum — `kinetic`, `gravity`, `strain`, `momentum_x`
+///
+/// Operations: 112 (58 mul, 25 add, 10 sub, 7 sq, 5 div, 4 twice, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_energy(y: &[f64; 6], s: f64, p: &Params) -> [f64; 4] {
+    let w0 = p[4]; // m_c
+    let w1 = y[3]; // theta_dot
+    let w2 = s; // s
+    let w3 = p[1]; // b
+    let w4 = w2 * w3;
+    let w5 = w1 * w4;
+    let w6 = w5 * w5;
+    let w7: f64 = 0.3914958780198129;
+    let w8 = y[2]; // u
+    let w9 = -w5;
+    let w10 = 2.0 * w9;
+    let w11 = w1 * w10;
+    let w12 = w8 * w11;
+    let w13 = w7 * w12;
+    let w14 = w6 + w13;
+    let w15: f64 = 0.16666666666666666;
+    let w16 = p[0]; // h
+    let w17 = w1 * w16;
+    let w18 = 2.0 * w17;
+    let w19 = w1 * w18;
+    let w20 = w16 * w19;
+    let w21 = w15 * w20;
+    let w22 = w14 + w21;
+    let w23: f64 = 0.2844128718549554;
+    let w24 = y[5]; // u_dot
+    let w25 = 2.0 * w24;
+    let w26 = w1 * w25;
+    let w27 = w16 * w26;
+    let w28 = w23 * w27;
+    let w29 = w22 + w28;
+    let w30: f64 = 0.125;
+    let w31 = w1 * w8;
+    let w32 = 2.0 * w31;
+    let w33 = w1 * w32;
+    let w34 = w8 * w33;
+    let w35 = w24 * w25;
+    let w36 = w34 + w35;
+    let w37 = w30 * w36;
+    let w38 = w29 + w37;
+    let w39 = w0 * w38;
+    let w40 = p[3]; // m
+    let w41 = w24 + w17;
+    let w42 = w41 * w41;
+    let w43 = w8 - w4;
+    let w44 = w1 * w43;
+    let w45 = w44 * w44;
+    let w46 = w42 + w45;
+    let w47 = w40 * w46;
+    let w48 = w39 + w47;
+    let w49: f64 = 2.0;
+    let w50 = w48 / w49;
+    let w51 = p[6]; // i_bc
+    let w52 = w1 * w1;
+    let w53 = w51 * w52;
+    let w54 = w53 / w49;
+    let w55 = w50 + w54;
+    let w56 = w0 + w40;
+    let w57 = p[5]; // m_b
+    let w58 = w56 + w57;
+    let w59 = y[4]; // v_dot
+    let w60 = y[0]; // theta
+    let w61 = w60.cos();
+    let w62 = w4 * w61;
+    let w63 = w62 * w1;
+    let w64 = w59 + w63;
+    let w65 = w64 * w64;
+    let w66 = w58 * w65;
+    let w67 = w66 / w49;
+    let w68 = w55 + w67;
+    let w69: f64 = 0.5;
+    let w70 = w60.sin();
+    let w71 = w16 * w70;
+    let w72 = w69 * w71;
+    let w73 = w62 - w72;
+    let w74 = w8 * w61;
+    let w75 = w7 * w74;
+    let w76 = w73 - w75;
+    let w77 = w0 * w76;
+    let w78 = w43 * w61;
+    let w79 = w71 + w78;
+    let w80 = w40 * w79;
+    let w81 = w77 - w80;
+    let w82 = w57 * w62;
+    let w83 = w81 + w82;
+    let w84 = w83 * w1;
+    let w85 = w7 * w70;
+    let w86 = w0 * w85;
+    let w87 = w40 * w70;
+    let w88 = w86 + w87;
+    let w89 = w88 * w24;
+    let w90 = w84 - w89;
+    let w91 = w64 * w90;
+    let w92 = w68 - w91;
+    let o0 = w92; // kinetic
+    let w93 = p[8]; // g
+    let w94 = w4 * w70;
+    let w95 = w16 * w61;
+    let w96 = w69 * w95;
+    let w97 = w94 + w96;
+    let w98 = w8 * w70;
+    let w99 = w7 * w98;
+    let w100 = w97 - w99;
+    let w101 = w0 * w100;
+    let w102 = w43 * w70;
+    let w103 = w95 - w102;
+    let w104 = w40 * w103;
+    let w105 = w101 + w104;
+    let w106 = w57 * w94;
+    let w107 = w105 + w106;
+    let w108 = y[1]; // v
+    let w109 = w108 + w94;
+    let w110 = w58 * w109;
+    let w111 = w107 - w110;
+    let w112 = w93 * w111;
+    let o1 = w112; // gravity
+    let w113: f64 = 3.0905908420815478;
+    let w114 = p[2]; // ei
+    let w115 = w16 * w16;
+    let w116 = w16 * w115;
+    let w117 = w114 / w116;
+    let w118 = w113 * w117;
+    let w119 = w8 * w8;
+    let w120 = w118 * w119;
+    let w121 = w120 / w49;
+    let o2 = w121; // strain
+    let w122 = w96 + w94;
+    let w123 = w122 - w99;
+    let w124 = w0 * w123;
+    let w125 = w124 + w104;
+    let w126 = w125 + w106;
+    let w127 = w126 * w1;
+    let w128 = w7 * w61;
+    let w129 = w0 * w128;
+    let w130 = w40 * w61;
+    let w131 = w129 + w130;
+    let w132 = w131 * w24;
+    let w133 = w127 + w132;
+    let o3 = w133; // momentum_x
+    [o0, o1, o2, o3]
+}
+
+/// Indices of the elements of the output `e` of [`free_energy()`].
+pub mod free_energy {
+    /// Index of `kinetic`.
+    pub const KINETIC: usize = 0;
+    /// Index of `gravity`.
+    pub const GRAVITY: usize = 1;
+    /// Index of `strain`.
+    pub const STRAIN: usize = 2;
+    /// Index of `momentum_x`.
+    pub const MOMENTUM_X: usize = 3;
+
+    /// Indices of the elements of input `y` of [`free_energy()`](super::free_energy()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u`.
+        pub const U: usize = 2;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 3;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 4;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 5;
+    }
+}
+
+/// Power terms: dE/dt = ground - damping + Q_theta theta' + Q_v v', with ground = -ug P_x and damping u'^T C u'. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 6]`: state on compliant ground — `theta`, `v`, `u`, `theta_dot`, `v_dot`, `u_dot`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `w: [f64; 2]`: power terms — `ground`, `damping`
+///
+/// Operations: 41 (22 mul, 7 add, 3 sub, 2 div, 2 sq, 1 cos, 1 neg, 1 sin, 1 sqrt, 1 twice).
+#[inline]
+#[must_use]
+pub fn free_power(y: &[f64; 6], ug: f64, s: f64, p: &Params) -> [f64; 2] {
+    let w0 = ug; // ug
+    let w1 = p[4]; // m_c
+    let w2: f64 = 0.5;
+    let w3 = p[0]; // h
+    let w4 = y[0]; // theta
+    let w5 = w4.cos();
+    let w6 = w3 * w5;
+    let w7 = w2 * w6;
+    let w8 = s; // s
+    let w9 = p[1]; // b
+    let w10 = w8 * w9;
+    let w11 = w4.sin();
+    let w12 = w10 * w11;
+    let w13 = w7 + w12;
+    let w14: f64 = 0.3914958780198129;
+    let w15 = y[2]; // u
+    let w16 = w15 * w11;
+    let w17 = w14 * w16;
+    let w18 = w13 - w17;
+    let w19 = w1 * w18;
+    let w20 = p[3]; // m
+    let w21 = w15 - w10;
+    let w22 = w21 * w11;
+    let w23 = w6 - w22;
+    let w24 = w20 * w23;
+    let w25 = w19 + w24;
+    let w26 = p[5]; // m_b
+    let w27 = w26 * w12;
+    let w28 = w25 + w27;
+    let w29 = y[3]; // theta_dot
+    let w30 = w28 * w29;
+    let w31 = w14 * w5;
+    let w32 = w1 * w31;
+    let w33 = w20 * w5;
+    let w34 = w32 + w33;
+    let w35 = y[5]; // u_dot
+    let w36 = w34 * w35;
+    let w37 = w30 + w36;
+    let w38 = w0 * w37;
+    let w39 = -w38;
+    let o0 = w39; // ground
+    let w40 = p[7]; // zeta
+    let w41 = 2.0 * w40;
+    let w42: f64 = 3.0905908420815478;
+    let w43 = p[2]; // ei
+    let w44 = w3 * w3;
+    let w45 = w3 * w44;
+    let w46 = w43 / w45;
+    let w47 = w42 * w46;
+    let w48: f64 = 0.125;
+    let w49 = w48 * w1;
+    let w50 = w20 + w49;
+    let w51 = w50 + w49;
+    let w52 = w47 / w51;
+    let w53 = w52.sqrt();
+    let w54 = w41 * w53;
+    let w55 = w54 * w51;
+    let w56 = w35 * w35;
+    let w57 = w55 * w56;
+    let o1 = w57; // damping
+    [o0, o1]
+}
+
+/// Indices of the elements of the output `w` of [`free_power()`].
+pub mod free_power {
+    /// Index of `ground`.
+    pub const GROUND: usize = 0;
+    /// Index of `damping`.
+    pub const DAMPING: usize = 1;
+
+    /// Indices of the elements of input `y` of [`free_power()`](super::free_power()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u`.
+        pub const U: usize = 2;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 3;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 4;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 5;
+    }
+}
+
+/// Section forces at the column base and the ground's force on the body (the bed's resultant and the horizontal force that keeps the leaning corner in place), for the accelerations qdd. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded.
+///
+/// # Inputs
+///
+/// - `y: &[f64; 6]`: state on compliant ground — `theta`, `v`, `u`, `theta_dot`, `v_dot`, `u_dot`
+/// - `qdd: &[f64; 3]`: accelerations [theta'', v'', u''] (from M q'' = F + Q_ground) — `theta_ddot`, `v_ddot`, `u_ddot`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `ff: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 104 (54 mul, 25 add, 18 sub, 2 sq, 2 twice, 1 cos, 1 div, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_forces(y: &[f64; 6], qdd: &[f64; 3], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[4]; // m_c
+    let w1: f64 = 0.3914958780198129;
+    let w2 = y[2]; // u
+    let w3 = ug; // ug
+    let w4 = y[0]; // theta
+    let w5 = w4.sin();
+    let w6 = w3 * w5;
+    let w7 = qdd[0]; // theta_ddot
+    let w8 = s; // s
+    let w9 = p[1]; // b
+    let w10 = w8 * w9;
+    let w11 = w7 * w10;
+    let w12 = w6 + w11;
+    let w13 = p[8]; // g
+    let w14 = w4.cos();
+    let w15 = w13 * w14;
+    let w16 = w12 + w15;
+    let w17 = qdd[1]; // v_ddot
+    let w18 = w14 * w7;
+    let w19 = y[3]; // theta_dot
+    let w20 = w19 * w19;
+    let w21 = w5 * w20;
+    let w22 = w18 - w21;
+    let w23 = w10 * w22;
+    let w24 = w17 + w23;
+    let w25 = w24 * w14;
+    let w26 = w16 - w25;
+    let w27 = w2 * w26;
+    let w28 = w1 * w27;
+    let w29: f64 = 0.5;
+    let w30 = p[0]; // h
+    let w31 = w20 * w10;
+    let w32 = w3 * w14;
+    let w33 = w31 + w32;
+    let w34 = w13 * w5;
+    let w35 = w33 - w34;
+    let w36 = w24 * w5;
+    let w37 = w35 + w36;
+    let w38 = w30 * w37;
+    let w39 = w29 * w38;
+    let w40 = w28 - w39;
+    let w41: f64 = 0.16666666666666666;
+    let w42 = w7 * w30;
+    let w43 = 2.0 * w42;
+    let w44 = w30 * w43;
+    let w45 = w41 * w44;
+    let w46 = w40 - w45;
+    let w47: f64 = 0.2844128718549554;
+    let w48 = qdd[2]; // u_ddot
+    let w49 = w30 * w48;
+    let w50 = w47 * w49;
+    let w51 = w46 - w50;
+    let w52: f64 = 0.125;
+    let w53 = 2.0 * w19;
+    let w54 = y[5]; // u_dot
+    let w55 = w53 * w54;
+    let w56 = w55 * w2;
+    let w57 = w7 * w2;
+    let w58 = w2 * w57;
+    let w59 = w56 + w58;
+    let w60 = w57 + w55;
+    let w61 = w2 * w60;
+    let w62 = w59 + w61;
+    let w63 = w52 * w62;
+    let w64 = w51 - w63;
+    let w65 = w0 * w64;
+    let w66 = p[3]; // m
+    let w67 = w2 - w10;
+    let w68 = w7 * w67;
+    let w69 = w20 * w30;
+    let w70 = w68 + w69;
+    let w71 = w70 + w55;
+    let w72 = w6 - w71;
+    let w73 = w72 + w15;
+    let w74 = w73 - w25;
+    let w75 = w2 * w74;
+    let w76 = w20 * w67;
+    let w77 = w42 - w76;
+    let w78 = w77 + w48;
+    let w79 = w78 + w32;
+    let w80 = w79 - w34;
+    let w81 = w80 + w36;
+    let w82 = w30 * w81;
+    let w83 = w75 - w82;
+    let w84 = w66 * w83;
+    let w85 = w65 + w84;
+    let o0 = w85; // moment
+    let w86 = w30 * w7;
+    let w87 = w29 * w86;
+    let w88 = w37 + w87;
+    let w89 = w2 * w20;
+    let w90 = w48 - w89;
+    let w91 = w1 * w90;
+    let w92 = w88 + w91;
+    let w93 = w0 * w92;
+    let w94 = w66 * w81;
+    let w95 = w93 + w94;
+    let o1 = w95; // shear
+    let w96 = w30 * w20;
+    let w97 = w29 * w96;
+    let w98 = w26 - w97;
+    let w99 = w2 * w7;
+    let w100 = w55 + w99;
+    let w101 = w1 * w100;
+    let w102 = w98 - w101;
+    let w103 = w0 * w102;
+    let w104 = w66 * w74;
+    let w105 = w103 + w104;
+    let o2 = w105; // axial
+    let w106: f64 = 3.5160152685001513;
+    let w107 = p[2]; // ei
+    let w108 = w30 * w30;
+    let w109 = w107 / w108;
+    let w110 = w106 * w109;
+    let w111 = w110 * w2;
+    let o3 = w111; // moment_elastic
+    let w112 = p[5]; // m_b
+    let w113 = w112 * w37;
+    let w114 = w95 + w113;
+    let w115 = w14 * w114;
+    let w116 = w11 + w6;
+    let w117 = w116 + w15;
+    let w118 = w117 - w25;
+    let w119 = w112 * w118;
+    let w120 = w105 + w119;
+    let w121 = w5 * w120;
+    let w122 = w115 + w121;
+    let o4 = w122; // reaction_h
+    let w123 = w14 * w120;
+    let w124 = w5 * w114;
+    let w125 = w123 - w124;
+    let o5 = w125; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `ff` of [`free_forces()`].
+pub mod free_forces {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `y` of [`free_forces()`](super::free_forces()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u`.
+        pub const U: usize = 2;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 3;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 4;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 5;
+    }
+
+    /// Indices of the elements of input `qdd` of [`free_forces()`](super::free_forces()).
+    pub mod qdd {
+        /// Index of `theta_ddot`.
+        pub const THETA_DDOT: usize = 0;
+        /// Index of `v_ddot`.
+        pub const V_DDOT: usize = 1;
+        /// Index of `u_ddot`.
+        pub const U_DDOT: usize = 2;
+    }
+}
+
 /// The full model on the first cantilever mode: one deformation coordinate
 ///
 /// Type-level handle of this variant, implementing [`crate::Variant`].
@@ -2433,6 +3363,31 @@ impl crate::Variant for CantileverModes1 {
     #[inline]
     fn static_uplift(p: &Params) -> [f64; 5] {
         static_uplift(p)
+    }
+
+    #[inline]
+    fn free_mass_matrix(qf: &[f64; 3], s: f64, p: &Params) -> [f64; 6] {
+        free_mass_matrix(qf, s, p)
+    }
+
+    #[inline]
+    fn free_forcing(y: &[f64; 6], ug: f64, s: f64, p: &Params) -> [f64; 3] {
+        free_forcing(y, ug, s, p)
+    }
+
+    #[inline]
+    fn free_energy(y: &[f64; 6], s: f64, p: &Params) -> [f64; 4] {
+        free_energy(y, s, p)
+    }
+
+    #[inline]
+    fn free_power(y: &[f64; 6], ug: f64, s: f64, p: &Params) -> [f64; 2] {
+        free_power(y, ug, s, p)
+    }
+
+    #[inline]
+    fn free_forces(y: &[f64; 6], qdd: &[f64; 3], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+        free_forces(y, qdd, ug, s, p)
     }
 }
 
@@ -2576,6 +3531,55 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             };
             let p: &Params = (*p).try_into().ok()?;
             Some(static_uplift(p).to_vec())
+        }
+        "free_mass_matrix" => {
+            let [qf, s, p] = inputs else {
+                return None;
+            };
+            let qf: &[f64; 3] = (*qf).try_into().ok()?;
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_mass_matrix(qf, s, p).to_vec())
+        }
+        "free_forcing" => {
+            let [y, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 6] = (*y).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_forcing(y, ug, s, p).to_vec())
+        }
+        "free_energy" => {
+            let [y, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 6] = (*y).try_into().ok()?;
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_energy(y, s, p).to_vec())
+        }
+        "free_power" => {
+            let [y, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 6] = (*y).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_power(y, ug, s, p).to_vec())
+        }
+        "free_forces" => {
+            let [y, qdd, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 6] = (*y).try_into().ok()?;
+            let qdd: &[f64; 3] = (*qdd).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_forces(y, qdd, ug, s, p).to_vec())
         }
         _ => None,
     }

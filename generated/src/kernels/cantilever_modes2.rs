@@ -3058,6 +3058,1142 @@ pub mod static_uplift {
     pub const MOMENT_ELASTIC_UPLIFT: usize = 5;
 }
 
+/// Mass matrix M(q) over q = [theta, v, u_1..u_n], upper triangle row by row (symmetric positive definite; a rigid column's u row is the identity). On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `qf: &[f64; 4]`: configuration on compliant ground: rotation, settlement of the base centre (positive into the ground), deformation — `theta`, `v`, `u_1`, `u_2`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_2_2`
+///
+/// # Output
+///
+/// `m: [f64; 10]`: upper triangle of M — `m_t_t`, `m_t_v`, `m_t_u1`, `m_t_u2`, `m_v_v`, `m_v_u1`, `m_v_u2`, `m_u1_u1`, `m_u1_u2`, `m_u2_u2`
+///
+/// Operations: 107 (55 mul, 25 add, 14 twice, 10 sub, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_mass_matrix(qf: &[f64; 4], s: f64, p: &Params) -> [f64; 10] {
+    let w0 = s; // s
+    let w1 = p[1]; // b
+    let w2 = w0 * w1;
+    let w3 = qf[0]; // theta
+    let w4 = w3.cos();
+    let w5 = w2 * w4;
+    let w6: f64 = 0.5;
+    let w7 = p[4]; // m_c
+    let w8 = p[3]; // m
+    let w9 = w7 + w8;
+    let w10 = p[5]; // m_b
+    let w11 = w9 + w10;
+    let w12 = w6 * w11;
+    let w13 = 2.0 * w5;
+    let w14 = w12 * w13;
+    let w15 = w2 * w10;
+    let w16 = qf[2]; // u_1
+    let w17 = qf[3]; // u_2
+    let w18 = w16 + w17;
+    let w19 = w18 - w2;
+    let w20 = w19 * w8;
+    let w21 = w15 - w20;
+    let w22: f64 = -0.21696794755535964;
+    let w23 = w22 * w7;
+    let w24 = w17 * w23;
+    let w25 = w21 - w24;
+    let w26: f64 = 0.3914958780198129;
+    let w27 = w26 * w7;
+    let w28 = w16 * w27;
+    let w29 = w25 - w28;
+    let w30 = w2 * w7;
+    let w31 = w29 + w30;
+    let w32 = w4 * w31;
+    let w33 = w3.sin();
+    let w34 = p[0]; // h
+    let w35 = w34 * w8;
+    let w36 = w6 * w7;
+    let w37 = w34 * w36;
+    let w38 = w35 + w37;
+    let w39 = w33 * w38;
+    let w40 = w32 - w39;
+    let w41 = w14 - w40;
+    let w42 = w5 * w41;
+    let w43 = w40 * w5;
+    let w44 = w42 - w43;
+    let w45 = p[6]; // i_bc
+    let w46 = w44 + w45;
+    let w47 = w6 * w8;
+    let w48 = 2.0 * w19;
+    let w49 = w47 * w48;
+    let w50 = w19 * w49;
+    let w51 = w46 + w50;
+    let w52 = 2.0 * w34;
+    let w53 = w47 * w52;
+    let w54 = w34 * w53;
+    let w55 = w51 + w54;
+    let w56: f64 = 0.0625;
+    let w57 = w56 * w7;
+    let w58 = w17 * w57;
+    let w59 = 2.0 * w17;
+    let w60 = w58 * w59;
+    let w61 = w55 + w60;
+    let w62 = 2.0 * w58;
+    let w63 = w17 * w62;
+    let w64 = w61 + w63;
+    let w65 = w16 * w57;
+    let w66 = 2.0 * w16;
+    let w67 = w65 * w66;
+    let w68 = w64 + w67;
+    let w69 = 2.0 * w65;
+    let w70 = w16 * w69;
+    let w71 = w68 + w70;
+    let w72: f64 = 0.08333333333333333;
+    let w73 = w72 * w7;
+    let w74 = w34 * w73;
+    let w75 = w74 * w52;
+    let w76 = w71 + w75;
+    let w77 = 2.0 * w74;
+    let w78 = w34 * w77;
+    let w79 = w76 + w78;
+    let w80: f64 = -0.10848397377767982;
+    let w81 = w80 * w7;
+    let w82 = w17 * w81;
+    let w83 = -w2;
+    let w84 = 2.0 * w83;
+    let w85 = w82 * w84;
+    let w86 = w79 + w85;
+    let w87 = 2.0 * w82;
+    let w88 = w2 * w87;
+    let w89 = w86 - w88;
+    let w90: f64 = 0.19574793900990645;
+    let w91 = w90 * w7;
+    let w92 = w16 * w91;
+    let w93 = w92 * w84;
+    let w94 = w89 + w93;
+    let w95 = 2.0 * w92;
+    let w96 = w2 * w95;
+    let w97 = w94 - w96;
+    let w98 = 2.0 * w2;
+    let w99 = w36 * w98;
+    let w100 = w2 * w99;
+    let w101 = w97 + w100;
+    let o0 = w101; // m_t_t
+    let w102 = w5 * w11;
+    let w103 = w102 - w40;
+    let o1 = w103; // m_t_v
+    let w104 = w33 * w8;
+    let w105 = w33 * w27;
+    let w106 = w104 + w105;
+    let w107 = w5 * w106;
+    let w108 = w107 + w35;
+    let w109: f64 = 0.1422064359274777;
+    let w110 = w109 * w7;
+    let w111 = w34 * w110;
+    let w112 = 2.0 * w111;
+    let w113 = w108 + w112;
+    let o2 = w113; // m_t_u1
+    let w114 = w33 * w23;
+    let w115 = w104 + w114;
+    let w116 = w5 * w115;
+    let w117 = w116 + w35;
+    let w118: f64 = -0.02269169672159674;
+    let w119 = w118 * w7;
+    let w120 = w34 * w119;
+    let w121 = 2.0 * w120;
+    let w122 = w117 + w121;
+    let o3 = w122; // m_t_u2
+    let o4 = w11; // m_v_v
+    let o5 = w106; // m_v_u1
+    let o6 = w115; // m_v_u2
+    let w123: f64 = 0.125;
+    let w124 = w123 * w7;
+    let w125 = w8 + w124;
+    let w126 = w125 + w124;
+    let o7 = w126; // m_u1_u1
+    let o8 = w8; // m_u1_u2
+    let o9 = w126; // m_u2_u2
+    [o0, o1, o2, o3, o4, o5, o6, o7, o8, o9]
+}
+
+/// Indices of the elements of the output `m` of [`free_mass_matrix()`].
+pub mod free_mass_matrix {
+    /// Index of `m_t_t`.
+    pub const M_T_T: usize = 0;
+    /// Index of `m_t_v`.
+    pub const M_T_V: usize = 1;
+    /// Index of `m_t_u1`.
+    pub const M_T_U1: usize = 2;
+    /// Index of `m_t_u2`.
+    pub const M_T_U2: usize = 3;
+    /// Index of `m_v_v`.
+    pub const M_V_V: usize = 4;
+    /// Index of `m_v_u1`.
+    pub const M_V_U1: usize = 5;
+    /// Index of `m_v_u2`.
+    pub const M_V_U2: usize = 6;
+    /// Index of `m_u1_u1`.
+    pub const M_U1_U1: usize = 7;
+    /// Index of `m_u1_u2`.
+    pub const M_U1_U2: usize = 8;
+    /// Index of `m_u2_u2`.
+    pub const M_U2_U2: usize = 9;
+
+    /// Indices of the elements of input `qf` of [`free_mass_matrix()`](super::free_mass_matrix()).
+    pub mod qf {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+    }
+}
+
+/// Right-hand side F of M q'' = F + Q_ground without the ground: gravity, ground acceleration, stiffness, damping and velocity terms; Q_ground = [Q_theta, Q_v, 0..] from the ground's kernels. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 8]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_2_2`
+///
+/// # Output
+///
+/// `f: [f64; 4]`: generalised forces — `f_theta`, `f_v`, `f_u_1`, `f_u_2`
+///
+/// Operations: 277 (159 mul, 68 add, 30 sub, 14 twice, 2 neg, 1 cos, 1 div, 1 sin, 1 sq).
+#[inline]
+#[must_use]
+pub fn free_forcing(y: &[f64; 8], ug: f64, s: f64, p: &Params) -> [f64; 4] {
+    let w0 = y[0]; // theta
+    let w1 = w0.cos();
+    let w2 = s; // s
+    let w3 = p[1]; // b
+    let w4 = w2 * w3;
+    let w5 = p[4]; // m_c
+    let w6 = p[3]; // m
+    let w7 = w5 + w6;
+    let w8 = p[5]; // m_b
+    let w9 = w7 + w8;
+    let w10 = p[8]; // g
+    let w11 = w9 * w10;
+    let w12 = w4 * w11;
+    let w13 = w1 * w12;
+    let w14 = w0.sin();
+    let w15 = ug; // ug
+    let w16 = w8 * w15;
+    let w17 = w4 * w16;
+    let w18 = y[2]; // u_1
+    let w19 = y[3]; // u_2
+    let w20 = w18 + w19;
+    let w21 = w20 - w4;
+    let w22 = w6 * w15;
+    let w23 = w21 * w22;
+    let w24 = w17 - w23;
+    let w25: f64 = -0.21696794755535964;
+    let w26 = w5 * w15;
+    let w27 = w25 * w26;
+    let w28 = w19 * w27;
+    let w29 = w24 - w28;
+    let w30: f64 = 0.3914958780198129;
+    let w31 = w30 * w26;
+    let w32 = w18 * w31;
+    let w33 = w29 - w32;
+    let w34 = w4 * w26;
+    let w35 = w33 + w34;
+    let w36 = p[0]; // h
+    let w37 = w6 * w10;
+    let w38 = w36 * w37;
+    let w39 = w35 - w38;
+    let w40: f64 = 0.5;
+    let w41 = w5 * w10;
+    let w42 = w40 * w41;
+    let w43 = w36 * w42;
+    let w44 = w39 - w43;
+    let w45 = w14 * w44;
+    let w46 = w13 - w45;
+    let w47 = w21 * w37;
+    let w48 = w36 * w22;
+    let w49 = w40 * w26;
+    let w50 = w36 * w49;
+    let w51 = w48 + w50;
+    let w52 = w8 * w10;
+    let w53 = w4 * w52;
+    let w54 = w51 + w53;
+    let w55 = w47 - w54;
+    let w56 = w25 * w41;
+    let w57 = w19 * w56;
+    let w58 = w55 + w57;
+    let w59 = w30 * w41;
+    let w60 = w18 * w59;
+    let w61 = w58 + w60;
+    let w62 = w4 * w41;
+    let w63 = w61 - w62;
+    let w64 = w25 * w5;
+    let w65 = y[7]; // u_dot_2
+    let w66 = y[5]; // v_dot
+    let w67 = w4 * w1;
+    let w68 = y[4]; // theta_dot
+    let w69 = w67 * w68;
+    let w70 = w66 + w69;
+    let w71 = w65 * w70;
+    let w72 = w64 * w71;
+    let w73 = w63 + w72;
+    let w74 = w30 * w5;
+    let w75 = y[6]; // u_dot_1
+    let w76 = w75 * w70;
+    let w77 = w74 * w76;
+    let w78 = w73 + w77;
+    let w79 = w71 + w76;
+    let w80 = w6 * w79;
+    let w81 = w78 + w80;
+    let w82 = w1 * w81;
+    let w83 = w46 + w82;
+    let w84 = w36 * w6;
+    let w85 = w40 * w5;
+    let w86 = w36 * w85;
+    let w87 = w84 + w86;
+    let w88 = w68 * w70;
+    let w89 = w87 * w88;
+    let w90 = w1 * w89;
+    let w91 = w83 + w90;
+    let w92 = w4 * w8;
+    let w93 = w21 * w6;
+    let w94 = w92 - w93;
+    let w95 = w19 * w64;
+    let w96 = w94 - w95;
+    let w97 = w18 * w74;
+    let w98 = w96 - w97;
+    let w99 = w4 * w5;
+    let w100 = w98 + w99;
+    let w101 = w100 * w88;
+    let w102 = w14 * w101;
+    let w103 = w91 + w102;
+    let w104 = 2.0 * w70;
+    let w105 = w40 * w9;
+    let w106 = w104 * w105;
+    let w107 = w1 * w100;
+    let w108 = w14 * w87;
+    let w109 = w107 - w108;
+    let w110 = w109 * w68;
+    let w111 = w14 * w6;
+    let w112 = w14 * w74;
+    let w113 = w111 + w112;
+    let w114 = w113 * w75;
+    let w115 = w110 - w114;
+    let w116 = w14 * w64;
+    let w117 = w111 + w116;
+    let w118 = w117 * w65;
+    let w119 = w115 - w118;
+    let w120 = w106 - w119;
+    let w121 = w68 * w120;
+    let w122 = w4 * w121;
+    let w123 = w14 * w122;
+    let w124 = w103 - w123;
+    let w125 = w4 * w14;
+    let w126 = w68 * w125;
+    let w127 = -w126;
+    let w128 = 2.0 * w127;
+    let w129 = w105 * w128;
+    let w130 = w100 * w14;
+    let w131 = w87 * w1;
+    let w132 = w130 + w131;
+    let w133 = w68 * w132;
+    let w134 = w6 * w1;
+    let w135 = w74 * w1;
+    let w136 = w134 + w135;
+    let w137 = w75 * w136;
+    let w138 = w133 + w137;
+    let w139 = w64 * w1;
+    let w140 = w134 + w139;
+    let w141 = w65 * w140;
+    let w142 = w138 + w141;
+    let w143 = w129 + w142;
+    let w144 = w67 * w143;
+    let w145 = w120 * w125;
+    let w146 = w144 - w145;
+    let w147 = w70 * w132;
+    let w148 = w109 * w126;
+    let w149 = w147 + w148;
+    let w150 = w146 + w149;
+    let w151 = w150 * w68;
+    let w152 = w6 + w74;
+    let w153 = w1 * w152;
+    let w154 = w68 * w153;
+    let w155 = w67 * w154;
+    let w156 = w70 * w153;
+    let w157 = w155 + w156;
+    let w158 = w68 * w21;
+    let w159 = 2.0 * w158;
+    let w160 = w40 * w6;
+    let w161 = w159 * w160;
+    let w162 = 2.0 * w68;
+    let w163 = w160 * w162;
+    let w164 = w21 * w163;
+    let w165 = w161 + w164;
+    let w166 = w157 + w165;
+    let w167: f64 = 0.0625;
+    let w168 = w167 * w5;
+    let w169 = w18 * w168;
+    let w170 = w169 * w162;
+    let w171 = w68 * w18;
+    let w172 = 2.0 * w171;
+    let w173 = w172 * w168;
+    let w174 = w170 + w173;
+    let w175 = w166 + w174;
+    let w176 = w68 * w169;
+    let w177 = 2.0 * w176;
+    let w178 = w68 * w168;
+    let w179 = 2.0 * w178;
+    let w180 = w18 * w179;
+    let w181 = w177 + w180;
+    let w182 = w175 + w181;
+    let w183 = w68 * w4;
+    let w184 = -w183;
+    let w185 = 2.0 * w184;
+    let w186: f64 = 0.19574793900990645;
+    let w187 = w186 * w5;
+    let w188 = w185 * w187;
+    let w189 = w182 + w188;
+    let w190 = w68 * w187;
+    let w191 = 2.0 * w190;
+    let w192 = w4 * w191;
+    let w193 = w189 - w192;
+    let w194 = w193 * w75;
+    let w195 = w151 + w194;
+    let w196 = w6 + w64;
+    let w197 = w1 * w196;
+    let w198 = w68 * w197;
+    let w199 = w67 * w198;
+    let w200 = w70 * w197;
+    let w201 = w199 + w200;
+    let w202 = w201 + w165;
+    let w203 = w19 * w168;
+    let w204 = w203 * w162;
+    let w205 = w68 * w19;
+    let w206 = 2.0 * w205;
+    let w207 = w206 * w168;
+    let w208 = w204 + w207;
+    let w209 = w202 + w208;
+    let w210 = w68 * w203;
+    let w211 = 2.0 * w210;
+    let w212 = w19 * w179;
+    let w213 = w211 + w212;
+    let w214 = w209 + w213;
+    let w215: f64 = -0.10848397377767982;
+    let w216 = w215 * w5;
+    let w217 = w185 * w216;
+    let w218 = w214 + w217;
+    let w219 = w68 * w216;
+    let w220 = 2.0 * w219;
+    let w221 = w4 * w220;
+    let w222 = w218 - w221;
+    let w223 = w222 * w65;
+    let w224 = w195 + w223;
+    let w225 = w124 - w224;
+    let o0 = w225; // f_theta
+    let w226 = w143 * w68;
+    let w227 = w154 * w75;
+    let w228 = w226 + w227;
+    let w229 = w198 * w65;
+    let w230 = w228 + w229;
+    let w231 = w11 - w230;
+    let o1 = w231; // f_v
+    let w232 = 2.0 * w18;
+    let w233: f64 = -1.5452954210407739;
+    let w234 = p[2]; // ei
+    let w235 = w36 * w36;
+    let w236 = w36 * w235;
+    let w237 = w234 / w236;
+    let w238 = w233 * w237;
+    let w239 = w232 * w238;
+    let w240 = w1 * w22;
+    let w241 = w1 * w31;
+    let w242 = w240 + w241;
+    let w243 = w239 - w242;
+    let w244 = w14 * w59;
+    let w245 = w243 + w244;
+    let w246 = w1 * w88;
+    let w247 = w74 * w246;
+    let w248 = w245 + w247;
+    let w249 = w14 * w37;
+    let w250 = w6 * w246;
+    let w251 = w249 + w250;
+    let w252 = w248 + w251;
+    let w253 = w68 * w161;
+    let w254 = w252 + w253;
+    let w255 = w68 * w172;
+    let w256 = w255 * w168;
+    let w257 = w254 + w256;
+    let w258 = w68 * w177;
+    let w259 = w257 + w258;
+    let w260 = w68 * w185;
+    let w261 = w260 * w187;
+    let w262 = w259 + w261;
+    let w263 = w70 * w136;
+    let w264 = w113 * w126;
+    let w265 = w263 - w264;
+    let w266 = w265 * w68;
+    let w267 = w262 - w266;
+    let w268 = p[9]; // c_1_1
+    let w269 = w268 * w75;
+    let w270 = p[10]; // c_1_2
+    let w271 = w270 * w65;
+    let w272 = w269 + w271;
+    let w273 = w267 - w272;
+    let o2 = w273; // f_u_1
+    let w274 = 2.0 * w19;
+    let w275: f64 = -60.68985231417138;
+    let w276 = w275 * w237;
+    let w277 = w274 * w276;
+    let w278 = w1 * w27;
+    let w279 = w240 + w278;
+    let w280 = w277 - w279;
+    let w281 = w14 * w56;
+    let w282 = w280 + w281;
+    let w283 = w64 * w246;
+    let w284 = w282 + w283;
+    let w285 = w284 + w251;
+    let w286 = w285 + w253;
+    let w287 = w68 * w206;
+    let w288 = w287 * w168;
+    let w289 = w286 + w288;
+    let w290 = w68 * w211;
+    let w291 = w289 + w290;
+    let w292 = w260 * w216;
+    let w293 = w291 + w292;
+    let w294 = w70 * w140;
+    let w295 = w117 * w126;
+    let w296 = w294 - w295;
+    let w297 = w296 * w68;
+    let w298 = w293 - w297;
+    let w299 = w270 * w75;
+    let w300 = p[11]; // c_2_2
+    let w301 = w300 * w65;
+    let w302 = w299 + w301;
+    let w303 = w298 - w302;
+    let o3 = w303; // f_u_2
+    [o0, o1, o2, o3]
+}
+
+/// Indices of the elements of the output `f` of [`free_forcing()`].
+pub mod free_forcing {
+    /// Index of `f_theta`.
+    pub const F_THETA: usize = 0;
+    /// Index of `f_v`.
+    pub const F_V: usize = 1;
+    /// Index of `f_u_1`.
+    pub const F_U_1: usize = 2;
+    /// Index of `f_u_2`.
+    pub const F_U_2: usize = 3;
+
+    /// Indices of the elements of input `y` of [`free_forcing()`](super::free_forcing()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 4;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 5;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 6;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 7;
+    }
+}
+
+/// Kinetic energy, gravity (heights over the rest position of the leaning corner, the ground's surface) and strain potentials and horizontal momentum. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 8]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_2_2`
+///
+/// # Output
+///
+/// `e: [f64; 4]`: energies and momentum — `kinetic`, `gravity`, `strain`, `momentum_x`
+///
+/// Operations: 150 (79 mul, 34 add, 15 sub, 8 sq, 6 twice, 5 div, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_energy(y: &[f64; 8], s: f64, p: &Params) -> [f64; 4] {
+    let w0 = p[4]; // m_c
+    let w1 = y[4]; // theta_dot
+    let w2 = s; // s
+    let w3 = p[1]; // b
+    let w4 = w2 * w3;
+    let w5 = w1 * w4;
+    let w6 = w5 * w5;
+    let w7: f64 = 0.3914958780198129;
+    let w8 = y[2]; // u_1
+    let w9 = -w5;
+    let w10 = 2.0 * w9;
+    let w11 = w1 * w10;
+    let w12 = w8 * w11;
+    let w13 = w7 * w12;
+    let w14 = w6 + w13;
+    let w15: f64 = -0.21696794755535964;
+    let w16 = y[3]; // u_2
+    let w17 = w16 * w11;
+    let w18 = w15 * w17;
+    let w19 = w14 + w18;
+    let w20: f64 = 0.16666666666666666;
+    let w21 = p[0]; // h
+    let w22 = w1 * w21;
+    let w23 = 2.0 * w22;
+    let w24 = w1 * w23;
+    let w25 = w21 * w24;
+    let w26 = w20 * w25;
+    let w27 = w19 + w26;
+    let w28: f64 = 0.2844128718549554;
+    let w29 = y[6]; // u_dot_1
+    let w30 = 2.0 * w29;
+    let w31 = w1 * w30;
+    let w32 = w21 * w31;
+    let w33 = w28 * w32;
+    let w34 = w27 + w33;
+    let w35: f64 = -0.04538339344319348;
+    let w36 = y[7]; // u_dot_2
+    let w37 = 2.0 * w36;
+    let w38 = w1 * w37;
+    let w39 = w21 * w38;
+    let w40 = w35 * w39;
+    let w41 = w34 + w40;
+    let w42: f64 = 0.125;
+    let w43 = w1 * w8;
+    let w44 = 2.0 * w43;
+    let w45 = w1 * w44;
+    let w46 = w8 * w45;
+    let w47 = w29 * w30;
+    let w48 = w46 + w47;
+    let w49 = w42 * w48;
+    let w50 = w41 + w49;
+    let w51 = w1 * w16;
+    let w52 = 2.0 * w51;
+    let w53 = w1 * w52;
+    let w54 = w16 * w53;
+    let w55 = w36 * w37;
+    let w56 = w54 + w55;
+    let w57 = w42 * w56;
+    let w58 = w50 + w57;
+    let w59 = w0 * w58;
+    let w60 = p[3]; // m
+    let w61 = w29 + w36;
+    let w62 = w61 + w22;
+    let w63 = w62 * w62;
+    let w64 = w8 + w16;
+    let w65 = w64 - w4;
+    let w66 = w1 * w65;
+    let w67 = w66 * w66;
+    let w68 = w63 + w67;
+    let w69 = w60 * w68;
+    let w70 = w59 + w69;
+    let w71: f64 = 2.0;
+    let w72 = w70 / w71;
+    let w73 = p[6]; // i_bc
+    let w74 = w1 * w1;
+    let w75 = w73 * w74;
+    let w76 = w75 / w71;
+    let w77 = w72 + w76;
+    let w78 = w0 + w60;
+    let w79 = p[5]; // m_b
+    let w80 = w78 + w79;
+    let w81 = y[5]; // v_dot
+    let w82 = y[0]; // theta
+    let w83 = w82.cos();
+    let w84 = w4 * w83;
+    let w85 = w84 * w1;
+    let w86 = w81 + w85;
+    let w87 = w86 * w86;
+    let w88 = w80 * w87;
+    let w89 = w88 / w71;
+    let w90 = w77 + w89;
+    let w91 = w4 * w79;
+    let w92 = w65 * w60;
+    let w93 = w91 - w92;
+    let w94 = w15 * w0;
+    let w95 = w16 * w94;
+    let w96 = w93 - w95;
+    let w97 = w7 * w0;
+    let w98 = w8 * w97;
+    let w99 = w96 - w98;
+    let w100 = w4 * w0;
+    let w101 = w99 + w100;
+    let w102 = w83 * w101;
+    let w103 = w82.sin();
+    let w104 = w21 * w60;
+    let w105: f64 = 0.5;
+    let w106 = w105 * w0;
+    let w107 = w21 * w106;
+    let w108 = w104 + w107;
+    let w109 = w103 * w108;
+    let w110 = w102 - w109;
+    let w111 = w110 * w1;
+    let w112 = w103 * w60;
+    let w113 = w103 * w97;
+    let w114 = w112 + w113;
+    let w115 = w114 * w29;
+    let w116 = w111 - w115;
+    let w117 = w103 * w94;
+    let w118 = w112 + w117;
+    let w119 = w118 * w36;
+    let w120 = w116 - w119;
+    let w121 = w86 * w120;
+    let w122 = w90 - w121;
+    let o0 = w122; // kinetic
+    let w123 = p[8]; // g
+    let w124 = w4 * w103;
+    let w125 = w21 * w83;
+    let w126 = w105 * w125;
+    let w127 = w124 + w126;
+    let w128 = w8 * w103;
+    let w129 = w7 * w128;
+    let w130 = w127 - w129;
+    let w131 = w16 * w103;
+    let w132 = w15 * w131;
+    let w133 = w130 - w132;
+    let w134 = w0 * w133;
+    let w135 = w65 * w103;
+    let w136 = w125 - w135;
+    let w137 = w60 * w136;
+    let w138 = w134 + w137;
+    let w139 = w79 * w124;
+    let w140 = w138 + w139;
+    let w141 = y[1]; // v
+    let w142 = w141 + w124;
+    let w143 = w80 * w142;
+    let w144 = w140 - w143;
+    let w145 = w123 * w144;
+    let o1 = w145; // gravity
+    let w146: f64 = 3.0905908420815478;
+    let w147 = p[2]; // ei
+    let w148 = w21 * w21;
+    let w149 = w21 * w148;
+    let w150 = w147 / w149;
+    let w151 = w146 * w150;
+    let w152 = w8 * w8;
+    let w153 = w151 * w152;
+    let w154: f64 = 121.37970462834276;
+    let w155 = w154 * w150;
+    let w156 = w16 * w16;
+    let w157 = w155 * w156;
+    let w158 = w153 + w157;
+    let w159 = w158 / w71;
+    let o2 = w159; // strain
+    let w160 = w83 * w108;
+    let w161 = w92 - w91;
+    let w162 = w161 + w95;
+    let w163 = w162 + w98;
+    let w164 = w163 - w100;
+    let w165 = w103 * w164;
+    let w166 = w160 - w165;
+    let w167 = w166 * w1;
+    let w168 = w83 * w60;
+    let w169 = w83 * w97;
+    let w170 = w168 + w169;
+    let w171 = w170 * w29;
+    let w172 = w167 + w171;
+    let w173 = w83 * w94;
+    let w174 = w168 + w173;
+    let w175 = w174 * w36;
+    let w176 = w172 + w175;
+    let o3 = w176; // momentum_x
+    [o0, o1, o2, o3]
+}
+
+/// Indices of the elements of the output `e` of [`free_energy()`].
+pub mod free_energy {
+    /// Index of `kinetic`.
+    pub const KINETIC: usize = 0;
+    /// Index of `gravity`.
+    pub const GRAVITY: usize = 1;
+    /// Index of `strain`.
+    pub const STRAIN: usize = 2;
+    /// Index of `momentum_x`.
+    pub const MOMENTUM_X: usize = 3;
+
+    /// Indices of the elements of input `y` of [`free_energy()`](super::free_energy()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 4;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 5;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 6;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 7;
+    }
+}
+
+/// Power terms: dE/dt = ground - damping + Q_theta theta' + Q_v v', with ground = -ug P_x and damping u'^T C u'. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 8]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_2_2`
+///
+/// # Output
+///
+/// `w: [f64; 2]`: power terms — `ground`, `damping`
+///
+/// Operations: 44 (26 mul, 11 add, 4 sub, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_power(y: &[f64; 8], ug: f64, s: f64, p: &Params) -> [f64; 2] {
+    let w0 = ug; // ug
+    let w1 = y[0]; // theta
+    let w2 = w1.cos();
+    let w3 = p[0]; // h
+    let w4 = p[3]; // m
+    let w5 = w3 * w4;
+    let w6: f64 = 0.5;
+    let w7 = p[4]; // m_c
+    let w8 = w6 * w7;
+    let w9 = w3 * w8;
+    let w10 = w5 + w9;
+    let w11 = w2 * w10;
+    let w12 = w1.sin();
+    let w13 = y[2]; // u_1
+    let w14 = y[3]; // u_2
+    let w15 = w13 + w14;
+    let w16 = s; // s
+    let w17 = p[1]; // b
+    let w18 = w16 * w17;
+    let w19 = w15 - w18;
+    let w20 = w19 * w4;
+    let w21 = p[5]; // m_b
+    let w22 = w18 * w21;
+    let w23 = w20 - w22;
+    let w24: f64 = -0.21696794755535964;
+    let w25 = w24 * w7;
+    let w26 = w14 * w25;
+    let w27 = w23 + w26;
+    let w28: f64 = 0.3914958780198129;
+    let w29 = w28 * w7;
+    let w30 = w13 * w29;
+    let w31 = w27 + w30;
+    let w32 = w18 * w7;
+    let w33 = w31 - w32;
+    let w34 = w12 * w33;
+    let w35 = w11 - w34;
+    let w36 = y[4]; // theta_dot
+    let w37 = w35 * w36;
+    let w38 = w2 * w4;
+    let w39 = w2 * w29;
+    let w40 = w38 + w39;
+    let w41 = y[6]; // u_dot_1
+    let w42 = w40 * w41;
+    let w43 = w37 + w42;
+    let w44 = w2 * w25;
+    let w45 = w38 + w44;
+    let w46 = y[7]; // u_dot_2
+    let w47 = w45 * w46;
+    let w48 = w43 + w47;
+    let w49 = w0 * w48;
+    let w50 = -w49;
+    let o0 = w50; // ground
+    let w51 = p[9]; // c_1_1
+    let w52 = w51 * w41;
+    let w53 = p[10]; // c_1_2
+    let w54 = w53 * w46;
+    let w55 = w52 + w54;
+    let w56 = w55 * w41;
+    let w57 = w53 * w41;
+    let w58 = p[11]; // c_2_2
+    let w59 = w58 * w46;
+    let w60 = w57 + w59;
+    let w61 = w60 * w46;
+    let w62 = w56 + w61;
+    let o1 = w62; // damping
+    [o0, o1]
+}
+
+/// Indices of the elements of the output `w` of [`free_power()`].
+pub mod free_power {
+    /// Index of `ground`.
+    pub const GROUND: usize = 0;
+    /// Index of `damping`.
+    pub const DAMPING: usize = 1;
+
+    /// Indices of the elements of input `y` of [`free_power()`](super::free_power()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 4;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 5;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 6;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 7;
+    }
+}
+
+/// Section forces at the column base and the ground's force on the body (the bed's resultant and the horizontal force that keeps the leaning corner in place), for the accelerations qdd. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded.
+///
+/// # Inputs
+///
+/// - `y: &[f64; 8]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`
+/// - `qdd: &[f64; 4]`: accelerations [theta'', v'', u''] (from M q'' = F + Q_ground) — `theta_ddot`, `v_ddot`, `u_ddot_1`, `u_ddot_2`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_2_2`
+///
+/// # Output
+///
+/// `ff: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 134 (70 mul, 35 add, 22 sub, 2 sq, 2 twice, 1 cos, 1 div, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_forces(y: &[f64; 8], qdd: &[f64; 4], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[4]; // m_c
+    let w1: f64 = 0.3914958780198129;
+    let w2 = y[2]; // u_1
+    let w3 = ug; // ug
+    let w4 = y[0]; // theta
+    let w5 = w4.sin();
+    let w6 = w3 * w5;
+    let w7 = qdd[0]; // theta_ddot
+    let w8 = s; // s
+    let w9 = p[1]; // b
+    let w10 = w8 * w9;
+    let w11 = w7 * w10;
+    let w12 = w6 + w11;
+    let w13 = p[8]; // g
+    let w14 = w4.cos();
+    let w15 = w13 * w14;
+    let w16 = w12 + w15;
+    let w17 = qdd[1]; // v_ddot
+    let w18 = w14 * w7;
+    let w19 = y[4]; // theta_dot
+    let w20 = w19 * w19;
+    let w21 = w5 * w20;
+    let w22 = w18 - w21;
+    let w23 = w10 * w22;
+    let w24 = w17 + w23;
+    let w25 = w24 * w14;
+    let w26 = w16 - w25;
+    let w27 = w2 * w26;
+    let w28 = w1 * w27;
+    let w29: f64 = 0.5;
+    let w30 = p[0]; // h
+    let w31 = w20 * w10;
+    let w32 = w3 * w14;
+    let w33 = w31 + w32;
+    let w34 = w13 * w5;
+    let w35 = w33 - w34;
+    let w36 = w24 * w5;
+    let w37 = w35 + w36;
+    let w38 = w30 * w37;
+    let w39 = w29 * w38;
+    let w40 = w28 - w39;
+    let w41: f64 = -0.21696794755535964;
+    let w42 = y[3]; // u_2
+    let w43 = w42 * w26;
+    let w44 = w41 * w43;
+    let w45 = w40 + w44;
+    let w46: f64 = 0.16666666666666666;
+    let w47 = w7 * w30;
+    let w48 = 2.0 * w47;
+    let w49 = w30 * w48;
+    let w50 = w46 * w49;
+    let w51 = w45 - w50;
+    let w52: f64 = 0.2844128718549554;
+    let w53 = qdd[2]; // u_ddot_1
+    let w54 = w30 * w53;
+    let w55 = w52 * w54;
+    let w56 = w51 - w55;
+    let w57: f64 = -0.04538339344319348;
+    let w58 = qdd[3]; // u_ddot_2
+    let w59 = w30 * w58;
+    let w60 = w57 * w59;
+    let w61 = w56 - w60;
+    let w62: f64 = 0.125;
+    let w63 = 2.0 * w19;
+    let w64 = y[6]; // u_dot_1
+    let w65 = w63 * w64;
+    let w66 = w65 * w2;
+    let w67 = w7 * w2;
+    let w68 = w2 * w67;
+    let w69 = w66 + w68;
+    let w70 = w67 + w65;
+    let w71 = w2 * w70;
+    let w72 = w69 + w71;
+    let w73 = w62 * w72;
+    let w74 = w61 - w73;
+    let w75 = y[7]; // u_dot_2
+    let w76 = w63 * w75;
+    let w77 = w76 * w42;
+    let w78 = w7 * w42;
+    let w79 = w42 * w78;
+    let w80 = w77 + w79;
+    let w81 = w78 + w76;
+    let w82 = w42 * w81;
+    let w83 = w80 + w82;
+    let w84 = w62 * w83;
+    let w85 = w74 - w84;
+    let w86 = w0 * w85;
+    let w87 = p[3]; // m
+    let w88 = w2 + w42;
+    let w89 = w88 - w10;
+    let w90 = w7 * w89;
+    let w91 = w20 * w30;
+    let w92 = w90 + w91;
+    let w93 = w65 + w76;
+    let w94 = w92 + w93;
+    let w95 = w6 - w94;
+    let w96 = w95 + w15;
+    let w97 = w96 - w25;
+    let w98 = w88 * w97;
+    let w99 = w20 * w89;
+    let w100 = w47 - w99;
+    let w101 = w53 + w58;
+    let w102 = w100 + w101;
+    let w103 = w102 + w32;
+    let w104 = w103 - w34;
+    let w105 = w104 + w36;
+    let w106 = w30 * w105;
+    let w107 = w98 - w106;
+    let w108 = w87 * w107;
+    let w109 = w86 + w108;
+    let o0 = w109; // moment
+    let w110 = w30 * w7;
+    let w111 = w29 * w110;
+    let w112 = w37 + w111;
+    let w113 = w2 * w20;
+    let w114 = w53 - w113;
+    let w115 = w1 * w114;
+    let w116 = w112 + w115;
+    let w117 = w42 * w20;
+    let w118 = w58 - w117;
+    let w119 = w41 * w118;
+    let w120 = w116 + w119;
+    let w121 = w0 * w120;
+    let w122 = w87 * w105;
+    let w123 = w121 + w122;
+    let o1 = w123; // shear
+    let w124 = w30 * w20;
+    let w125 = w29 * w124;
+    let w126 = w26 - w125;
+    let w127 = w2 * w7;
+    let w128 = w65 + w127;
+    let w129 = w1 * w128;
+    let w130 = w126 - w129;
+    let w131 = w42 * w7;
+    let w132 = w76 + w131;
+    let w133 = w41 * w132;
+    let w134 = w130 - w133;
+    let w135 = w0 * w134;
+    let w136 = w87 * w97;
+    let w137 = w135 + w136;
+    let o2 = w137; // axial
+    let w138: f64 = 3.5160152685001513;
+    let w139 = p[2]; // ei
+    let w140 = w30 * w30;
+    let w141 = w139 / w140;
+    let w142 = w138 * w141;
+    let w143 = w142 * w2;
+    let w144: f64 = -22.03449156466677;
+    let w145 = w144 * w141;
+    let w146 = w145 * w42;
+    let w147 = w143 + w146;
+    let o3 = w147; // moment_elastic
+    let w148 = p[5]; // m_b
+    let w149 = w148 * w37;
+    let w150 = w123 + w149;
+    let w151 = w14 * w150;
+    let w152 = w11 + w6;
+    let w153 = w152 + w15;
+    let w154 = w153 - w25;
+    let w155 = w148 * w154;
+    let w156 = w137 + w155;
+    let w157 = w5 * w156;
+    let w158 = w151 + w157;
+    let o4 = w158; // reaction_h
+    let w159 = w14 * w156;
+    let w160 = w5 * w150;
+    let w161 = w159 - w160;
+    let o5 = w161; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `ff` of [`free_forces()`].
+pub mod free_forces {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `y` of [`free_forces()`](super::free_forces()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 4;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 5;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 6;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 7;
+    }
+
+    /// Indices of the elements of input `qdd` of [`free_forces()`](super::free_forces()).
+    pub mod qdd {
+        /// Index of `theta_ddot`.
+        pub const THETA_DDOT: usize = 0;
+        /// Index of `v_ddot`.
+        pub const V_DDOT: usize = 1;
+        /// Index of `u_ddot_1`.
+        pub const U_DDOT_1: usize = 2;
+        /// Index of `u_ddot_2`.
+        pub const U_DDOT_2: usize = 3;
+    }
+}
+
 /// The full model on the first two cantilever modes: two deformation coordinates
 ///
 /// Type-level handle of this variant, implementing [`crate::Variant`].
@@ -3157,6 +4293,31 @@ impl crate::Variant for CantileverModes2 {
     #[inline]
     fn static_uplift(p: &Params) -> [f64; 6] {
         static_uplift(p)
+    }
+
+    #[inline]
+    fn free_mass_matrix(qf: &[f64; 4], s: f64, p: &Params) -> [f64; 10] {
+        free_mass_matrix(qf, s, p)
+    }
+
+    #[inline]
+    fn free_forcing(y: &[f64; 8], ug: f64, s: f64, p: &Params) -> [f64; 4] {
+        free_forcing(y, ug, s, p)
+    }
+
+    #[inline]
+    fn free_energy(y: &[f64; 8], s: f64, p: &Params) -> [f64; 4] {
+        free_energy(y, s, p)
+    }
+
+    #[inline]
+    fn free_power(y: &[f64; 8], ug: f64, s: f64, p: &Params) -> [f64; 2] {
+        free_power(y, ug, s, p)
+    }
+
+    #[inline]
+    fn free_forces(y: &[f64; 8], qdd: &[f64; 4], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+        free_forces(y, qdd, ug, s, p)
     }
 }
 
@@ -3300,6 +4461,55 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             };
             let p: &Params = (*p).try_into().ok()?;
             Some(static_uplift(p).to_vec())
+        }
+        "free_mass_matrix" => {
+            let [qf, s, p] = inputs else {
+                return None;
+            };
+            let qf: &[f64; 4] = (*qf).try_into().ok()?;
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_mass_matrix(qf, s, p).to_vec())
+        }
+        "free_forcing" => {
+            let [y, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 8] = (*y).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_forcing(y, ug, s, p).to_vec())
+        }
+        "free_energy" => {
+            let [y, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 8] = (*y).try_into().ok()?;
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_energy(y, s, p).to_vec())
+        }
+        "free_power" => {
+            let [y, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 8] = (*y).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_power(y, ug, s, p).to_vec())
+        }
+        "free_forces" => {
+            let [y, qdd, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 8] = (*y).try_into().ok()?;
+            let qdd: &[f64; 4] = (*qdd).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_forces(y, qdd, ug, s, p).to_vec())
         }
         _ => None,
     }

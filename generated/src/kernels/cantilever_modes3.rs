@@ -3977,6 +3977,1423 @@ pub mod static_uplift {
     pub const MOMENT_ELASTIC_UPLIFT: usize = 6;
 }
 
+/// Mass matrix M(q) over q = [theta, v, u_1..u_n], upper triangle row by row (symmetric positive definite; a rigid column's u row is the identity). On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `qf: &[f64; 5]`: configuration on compliant ground: rotation, settlement of the base centre (positive into the ground), deformation — `theta`, `v`, `u_1`, `u_2`, `u_3`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_2_2`, `c_2_3`, `c_3_3`
+///
+/// # Output
+///
+/// `m: [f64; 15]`: upper triangle of M — `m_t_t`, `m_t_v`, `m_t_u1`, `m_t_u2`, `m_t_u3`, `m_v_v`, `m_v_u1`, `m_v_u2`, `m_v_u3`, `m_u1_u1`, `m_u1_u2`, `m_u1_u3`, `m_u2_u2`, `m_u2_u3`, `m_u3_u3`
+///
+/// Operations: 133 (68 mul, 32 add, 18 twice, 12 sub, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_mass_matrix(qf: &[f64; 5], s: f64, p: &Params) -> [f64; 15] {
+    let w0 = s; // s
+    let w1 = p[1]; // b
+    let w2 = w0 * w1;
+    let w3 = qf[0]; // theta
+    let w4 = w3.cos();
+    let w5 = w2 * w4;
+    let w6: f64 = 0.5;
+    let w7 = p[4]; // m_c
+    let w8 = p[3]; // m
+    let w9 = w7 + w8;
+    let w10 = p[5]; // m_b
+    let w11 = w9 + w10;
+    let w12 = w6 * w11;
+    let w13 = 2.0 * w5;
+    let w14 = w12 * w13;
+    let w15 = w2 * w10;
+    let w16 = qf[2]; // u_1
+    let w17 = qf[3]; // u_2
+    let w18 = w16 + w17;
+    let w19 = qf[4]; // u_3
+    let w20 = w18 + w19;
+    let w21 = w20 - w2;
+    let w22 = w21 * w8;
+    let w23 = w15 - w22;
+    let w24: f64 = 0.12721264843305286;
+    let w25 = w24 * w7;
+    let w26 = w19 * w25;
+    let w27 = w23 - w26;
+    let w28: f64 = -0.21696794755535964;
+    let w29 = w28 * w7;
+    let w30 = w17 * w29;
+    let w31 = w27 - w30;
+    let w32: f64 = 0.3914958780198129;
+    let w33 = w32 * w7;
+    let w34 = w16 * w33;
+    let w35 = w31 - w34;
+    let w36 = w2 * w7;
+    let w37 = w35 + w36;
+    let w38 = w4 * w37;
+    let w39 = w3.sin();
+    let w40 = p[0]; // h
+    let w41 = w40 * w8;
+    let w42 = w6 * w7;
+    let w43 = w40 * w42;
+    let w44 = w41 + w43;
+    let w45 = w39 * w44;
+    let w46 = w38 - w45;
+    let w47 = w14 - w46;
+    let w48 = w5 * w47;
+    let w49 = w46 * w5;
+    let w50 = w48 - w49;
+    let w51 = p[6]; // i_bc
+    let w52 = w50 + w51;
+    let w53 = w6 * w8;
+    let w54 = 2.0 * w21;
+    let w55 = w53 * w54;
+    let w56 = w21 * w55;
+    let w57 = w52 + w56;
+    let w58 = 2.0 * w40;
+    let w59 = w53 * w58;
+    let w60 = w40 * w59;
+    let w61 = w57 + w60;
+    let w62: f64 = 0.0625;
+    let w63 = w62 * w7;
+    let w64 = w19 * w63;
+    let w65 = 2.0 * w19;
+    let w66 = w64 * w65;
+    let w67 = w61 + w66;
+    let w68 = 2.0 * w64;
+    let w69 = w19 * w68;
+    let w70 = w67 + w69;
+    let w71 = w17 * w63;
+    let w72 = 2.0 * w17;
+    let w73 = w71 * w72;
+    let w74 = w70 + w73;
+    let w75 = 2.0 * w71;
+    let w76 = w17 * w75;
+    let w77 = w74 + w76;
+    let w78 = w16 * w63;
+    let w79 = 2.0 * w16;
+    let w80 = w78 * w79;
+    let w81 = w77 + w80;
+    let w82 = 2.0 * w78;
+    let w83 = w16 * w82;
+    let w84 = w81 + w83;
+    let w85: f64 = 0.08333333333333333;
+    let w86 = w85 * w7;
+    let w87 = w40 * w86;
+    let w88 = w87 * w58;
+    let w89 = w84 + w88;
+    let w90 = 2.0 * w87;
+    let w91 = w40 * w90;
+    let w92 = w89 + w91;
+    let w93: f64 = 0.06360632421652643;
+    let w94 = w93 * w7;
+    let w95 = w19 * w94;
+    let w96 = -w2;
+    let w97 = 2.0 * w96;
+    let w98 = w95 * w97;
+    let w99 = w92 + w98;
+    let w100 = 2.0 * w95;
+    let w101 = w2 * w100;
+    let w102 = w99 - w101;
+    let w103: f64 = -0.10848397377767982;
+    let w104 = w103 * w7;
+    let w105 = w17 * w104;
+    let w106 = w105 * w97;
+    let w107 = w102 + w106;
+    let w108 = 2.0 * w105;
+    let w109 = w2 * w108;
+    let w110 = w107 - w109;
+    let w111: f64 = 0.19574793900990645;
+    let w112 = w111 * w7;
+    let w113 = w16 * w112;
+    let w114 = w113 * w97;
+    let w115 = w110 + w114;
+    let w116 = 2.0 * w113;
+    let w117 = w2 * w116;
+    let w118 = w115 - w117;
+    let w119 = 2.0 * w2;
+    let w120 = w42 * w119;
+    let w121 = w2 * w120;
+    let w122 = w118 + w121;
+    let o0 = w122; // m_t_t
+    let w123 = w5 * w11;
+    let w124 = w123 - w46;
+    let o1 = w124; // m_t_v
+    let w125 = w39 * w8;
+    let w126 = w39 * w33;
+    let w127 = w125 + w126;
+    let w128 = w5 * w127;
+    let w129 = w128 + w41;
+    let w130: f64 = 0.1422064359274777;
+    let w131 = w130 * w7;
+    let w132 = w40 * w131;
+    let w133 = 2.0 * w132;
+    let w134 = w129 + w133;
+    let o2 = w134; // m_t_u1
+    let w135 = w39 * w29;
+    let w136 = w125 + w135;
+    let w137 = w5 * w136;
+    let w138 = w137 + w41;
+    let w139: f64 = -0.02269169672159674;
+    let w140 = w139 * w7;
+    let w141 = w40 * w140;
+    let w142 = 2.0 * w141;
+    let w143 = w138 + w142;
+    let o3 = w143; // m_t_u2
+    let w144 = w39 * w25;
+    let w145 = w125 + w144;
+    let w146 = w5 * w145;
+    let w147 = w146 + w41;
+    let w148: f64 = 0.008104093592436109;
+    let w149 = w148 * w7;
+    let w150 = w40 * w149;
+    let w151 = 2.0 * w150;
+    let w152 = w147 + w151;
+    let o4 = w152; // m_t_u3
+    let o5 = w11; // m_v_v
+    let o6 = w127; // m_v_u1
+    let o7 = w136; // m_v_u2
+    let o8 = w145; // m_v_u3
+    let w153: f64 = 0.125;
+    let w154 = w153 * w7;
+    let w155 = w8 + w154;
+    let w156 = w155 + w154;
+    let o9 = w156; // m_u1_u1
+    let o10 = w8; // m_u1_u2
+    let o11 = w8; // m_u1_u3
+    let o12 = w156; // m_u2_u2
+    let o13 = w8; // m_u2_u3
+    let o14 = w156; // m_u3_u3
+    [
+        o0,
+        o1,
+        o2,
+        o3,
+        o4,
+        o5,
+        o6,
+        o7,
+        o8,
+        o9,
+        o10,
+        o11,
+        o12,
+        o13,
+        o14,
+    ]
+}
+
+/// Indices of the elements of the output `m` of [`free_mass_matrix()`].
+pub mod free_mass_matrix {
+    /// Index of `m_t_t`.
+    pub const M_T_T: usize = 0;
+    /// Index of `m_t_v`.
+    pub const M_T_V: usize = 1;
+    /// Index of `m_t_u1`.
+    pub const M_T_U1: usize = 2;
+    /// Index of `m_t_u2`.
+    pub const M_T_U2: usize = 3;
+    /// Index of `m_t_u3`.
+    pub const M_T_U3: usize = 4;
+    /// Index of `m_v_v`.
+    pub const M_V_V: usize = 5;
+    /// Index of `m_v_u1`.
+    pub const M_V_U1: usize = 6;
+    /// Index of `m_v_u2`.
+    pub const M_V_U2: usize = 7;
+    /// Index of `m_v_u3`.
+    pub const M_V_U3: usize = 8;
+    /// Index of `m_u1_u1`.
+    pub const M_U1_U1: usize = 9;
+    /// Index of `m_u1_u2`.
+    pub const M_U1_U2: usize = 10;
+    /// Index of `m_u1_u3`.
+    pub const M_U1_U3: usize = 11;
+    /// Index of `m_u2_u2`.
+    pub const M_U2_U2: usize = 12;
+    /// Index of `m_u2_u3`.
+    pub const M_U2_U3: usize = 13;
+    /// Index of `m_u3_u3`.
+    pub const M_U3_U3: usize = 14;
+
+    /// Indices of the elements of input `qf` of [`free_mass_matrix()`](super::free_mass_matrix()).
+    pub mod qf {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+    }
+}
+
+/// Right-hand side F of M q'' = F + Q_ground without the ground: gravity, ground acceleration, stiffness, damping and velocity terms; Q_ground = [Q_theta, Q_v, 0..] from the ground's kernels. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 10]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `u_3`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_2_2`, `c_2_3`, `c_3_3`
+///
+/// # Output
+///
+/// `f: [f64; 5]`: generalised forces — `f_theta`, `f_v`, `f_u_1`, `f_u_2`, `f_u_3`
+///
+/// Operations: 363 (204 mul, 97 add, 38 sub, 18 twice, 2 neg, 1 cos, 1 div, 1 sin, 1 sq).
+#[inline]
+#[must_use]
+pub fn free_forcing(y: &[f64; 10], ug: f64, s: f64, p: &Params) -> [f64; 5] {
+    let w0 = y[0]; // theta
+    let w1 = w0.cos();
+    let w2 = s; // s
+    let w3 = p[1]; // b
+    let w4 = w2 * w3;
+    let w5 = p[4]; // m_c
+    let w6 = p[3]; // m
+    let w7 = w5 + w6;
+    let w8 = p[5]; // m_b
+    let w9 = w7 + w8;
+    let w10 = p[8]; // g
+    let w11 = w9 * w10;
+    let w12 = w4 * w11;
+    let w13 = w1 * w12;
+    let w14 = w0.sin();
+    let w15 = ug; // ug
+    let w16 = w8 * w15;
+    let w17 = w4 * w16;
+    let w18 = y[2]; // u_1
+    let w19 = y[3]; // u_2
+    let w20 = w18 + w19;
+    let w21 = y[4]; // u_3
+    let w22 = w20 + w21;
+    let w23 = w22 - w4;
+    let w24 = w6 * w15;
+    let w25 = w23 * w24;
+    let w26 = w17 - w25;
+    let w27: f64 = 0.12721264843305286;
+    let w28 = w5 * w15;
+    let w29 = w27 * w28;
+    let w30 = w21 * w29;
+    let w31 = w26 - w30;
+    let w32: f64 = -0.21696794755535964;
+    let w33 = w32 * w28;
+    let w34 = w19 * w33;
+    let w35 = w31 - w34;
+    let w36: f64 = 0.3914958780198129;
+    let w37 = w36 * w28;
+    let w38 = w18 * w37;
+    let w39 = w35 - w38;
+    let w40 = w4 * w28;
+    let w41 = w39 + w40;
+    let w42 = p[0]; // h
+    let w43 = w6 * w10;
+    let w44 = w42 * w43;
+    let w45 = w41 - w44;
+    let w46: f64 = 0.5;
+    let w47 = w5 * w10;
+    let w48 = w46 * w47;
+    let w49 = w42 * w48;
+    let w50 = w45 - w49;
+    let w51 = w14 * w50;
+    let w52 = w13 - w51;
+    let w53 = w23 * w43;
+    let w54 = w42 * w24;
+    let w55 = w46 * w28;
+    let w56 = w42 * w55;
+    let w57 = w54 + w56;
+    let w58 = w8 * w10;
+    let w59 = w4 * w58;
+    let w60 = w57 + w59;
+    let w61 = w53 - w60;
+    let w62 = w27 * w47;
+    let w63 = w21 * w62;
+    let w64 = w61 + w63;
+    let w65 = w32 * w47;
+    let w66 = w19 * w65;
+    let w67 = w64 + w66;
+    let w68 = w36 * w47;
+    let w69 = w18 * w68;
+    let w70 = w67 + w69;
+    let w71 = w4 * w47;
+    let w72 = w70 - w71;
+    let w73 = w27 * w5;
+    let w74 = y[9]; // u_dot_3
+    let w75 = y[6]; // v_dot
+    let w76 = w4 * w1;
+    let w77 = y[5]; // theta_dot
+    let w78 = w76 * w77;
+    let w79 = w75 + w78;
+    let w80 = w74 * w79;
+    let w81 = w73 * w80;
+    let w82 = w72 + w81;
+    let w83 = w32 * w5;
+    let w84 = y[8]; // u_dot_2
+    let w85 = w84 * w79;
+    let w86 = w83 * w85;
+    let w87 = w82 + w86;
+    let w88 = w36 * w5;
+    let w89 = y[7]; // u_dot_1
+    let w90 = w89 * w79;
+    let w91 = w88 * w90;
+    let w92 = w87 + w91;
+    let w93 = w80 + w85;
+    let w94 = w93 + w90;
+    let w95 = w6 * w94;
+    let w96 = w92 + w95;
+    let w97 = w1 * w96;
+    let w98 = w52 + w97;
+    let w99 = w42 * w6;
+    let w100 = w46 * w5;
+    let w101 = w42 * w100;
+    let w102 = w99 + w101;
+    let w103 = w77 * w79;
+    let w104 = w102 * w103;
+    let w105 = w1 * w104;
+    let w106 = w98 + w105;
+    let w107 = w4 * w8;
+    let w108 = w23 * w6;
+    let w109 = w107 - w108;
+    let w110 = w21 * w73;
+    let w111 = w109 - w110;
+    let w112 = w19 * w83;
+    let w113 = w111 - w112;
+    let w114 = w18 * w88;
+    let w115 = w113 - w114;
+    let w116 = w4 * w5;
+    let w117 = w115 + w116;
+    let w118 = w117 * w103;
+    let w119 = w14 * w118;
+    let w120 = w106 + w119;
+    let w121 = 2.0 * w79;
+    let w122 = w46 * w9;
+    let w123 = w121 * w122;
+    let w124 = w1 * w117;
+    let w125 = w14 * w102;
+    let w126 = w124 - w125;
+    let w127 = w126 * w77;
+    let w128 = w14 * w6;
+    let w129 = w14 * w88;
+    let w130 = w128 + w129;
+    let w131 = w130 * w89;
+    let w132 = w127 - w131;
+    let w133 = w14 * w83;
+    let w134 = w128 + w133;
+    let w135 = w134 * w84;
+    let w136 = w132 - w135;
+    let w137 = w14 * w73;
+    let w138 = w128 + w137;
+    let w139 = w138 * w74;
+    let w140 = w136 - w139;
+    let w141 = w123 - w140;
+    let w142 = w77 * w141;
+    let w143 = w4 * w142;
+    let w144 = w14 * w143;
+    let w145 = w120 - w144;
+    let w146 = w4 * w14;
+    let w147 = w77 * w146;
+    let w148 = -w147;
+    let w149 = 2.0 * w148;
+    let w150 = w122 * w149;
+    let w151 = w117 * w14;
+    let w152 = w102 * w1;
+    let w153 = w151 + w152;
+    let w154 = w77 * w153;
+    let w155 = w6 * w1;
+    let w156 = w88 * w1;
+    let w157 = w155 + w156;
+    let w158 = w89 * w157;
+    let w159 = w154 + w158;
+    let w160 = w83 * w1;
+    let w161 = w155 + w160;
+    let w162 = w84 * w161;
+    let w163 = w159 + w162;
+    let w164 = w73 * w1;
+    let w165 = w155 + w164;
+    let w166 = w74 * w165;
+    let w167 = w163 + w166;
+    let w168 = w150 + w167;
+    let w169 = w76 * w168;
+    let w170 = w141 * w146;
+    let w171 = w169 - w170;
+    let w172 = w79 * w153;
+    let w173 = w126 * w147;
+    let w174 = w172 + w173;
+    let w175 = w171 + w174;
+    let w176 = w175 * w77;
+    let w177 = w6 + w88;
+    let w178 = w1 * w177;
+    let w179 = w77 * w178;
+    let w180 = w76 * w179;
+    let w181 = w79 * w178;
+    let w182 = w180 + w181;
+    let w183 = w77 * w23;
+    let w184 = 2.0 * w183;
+    let w185 = w46 * w6;
+    let w186 = w184 * w185;
+    let w187 = 2.0 * w77;
+    let w188 = w185 * w187;
+    let w189 = w23 * w188;
+    let w190 = w186 + w189;
+    let w191 = w182 + w190;
+    let w192: f64 = 0.0625;
+    let w193 = w192 * w5;
+    let w194 = w18 * w193;
+    let w195 = w194 * w187;
+    let w196 = w77 * w18;
+    let w197 = 2.0 * w196;
+    let w198 = w197 * w193;
+    let w199 = w195 + w198;
+    let w200 = w191 + w199;
+    let w201 = w77 * w194;
+    let w202 = 2.0 * w201;
+    let w203 = w77 * w193;
+    let w204 = 2.0 * w203;
+    let w205 = w18 * w204;
+    let w206 = w202 + w205;
+    let w207 = w200 + w206;
+    let w208 = w77 * w4;
+    let w209 = -w208;
+    let w210 = 2.0 * w209;
+    let w211: f64 = 0.19574793900990645;
+    let w212 = w211 * w5;
+    let w213 = w210 * w212;
+    let w214 = w207 + w213;
+    let w215 = w77 * w212;
+    let w216 = 2.0 * w215;
+    let w217 = w4 * w216;
+    let w218 = w214 - w217;
+    let w219 = w218 * w89;
+    let w220 = w176 + w219;
+    let w221 = w6 + w83;
+    let w222 = w1 * w221;
+    let w223 = w77 * w222;
+    let w224 = w76 * w223;
+    let w225 = w79 * w222;
+    let w226 = w224 + w225;
+    let w227 = w226 + w190;
+    let w228 = w19 * w193;
+    let w229 = w228 * w187;
+    let w230 = w77 * w19;
+    let w231 = 2.0 * w230;
+    let w232 = w231 * w193;
+    let w233 = w229 + w232;
+    let w234 = w227 + w233;
+    let w235 = w77 * w228;
+    let w236 = 2.0 * w235;
+    let w237 = w19 * w204;
+    let w238 = w236 + w237;
+    let w239 = w234 + w238;
+    let w240: f64 = -0.10848397377767982;
+    let w241 = w240 * w5;
+    let w242 = w210 * w241;
+    let w243 = w239 + w242;
+    let w244 = w77 * w241;
+    let w245 = 2.0 * w244;
+    let w246 = w4 * w245;
+    let w247 = w243 - w246;
+    let w248 = w247 * w84;
+    let w249 = w220 + w248;
+    let w250 = w6 + w73;
+    let w251 = w1 * w250;
+    let w252 = w77 * w251;
+    let w253 = w76 * w252;
+    let w254 = w79 * w251;
+    let w255 = w253 + w254;
+    let w256 = w255 + w190;
+    let w257 = w21 * w193;
+    let w258 = w257 * w187;
+    let w259 = w77 * w21;
+    let w260 = 2.0 * w259;
+    let w261 = w260 * w193;
+    let w262 = w258 + w261;
+    let w263 = w256 + w262;
+    let w264 = w77 * w257;
+    let w265 = 2.0 * w264;
+    let w266 = w21 * w204;
+    let w267 = w265 + w266;
+    let w268 = w263 + w267;
+    let w269: f64 = 0.06360632421652643;
+    let w270 = w269 * w5;
+    let w271 = w210 * w270;
+    let w272 = w268 + w271;
+    let w273 = w77 * w270;
+    let w274 = 2.0 * w273;
+    let w275 = w4 * w274;
+    let w276 = w272 - w275;
+    let w277 = w276 * w74;
+    let w278 = w249 + w277;
+    let w279 = w145 - w278;
+    let o0 = w279; // f_theta
+    let w280 = w168 * w77;
+    let w281 = w179 * w89;
+    let w282 = w280 + w281;
+    let w283 = w223 * w84;
+    let w284 = w282 + w283;
+    let w285 = w252 * w74;
+    let w286 = w284 + w285;
+    let w287 = w11 - w286;
+    let o1 = w287; // f_v
+    let w288 = 2.0 * w18;
+    let w289: f64 = -1.5452954210407739;
+    let w290 = p[2]; // ei
+    let w291 = w42 * w42;
+    let w292 = w42 * w291;
+    let w293 = w290 / w292;
+    let w294 = w289 * w293;
+    let w295 = w288 * w294;
+    let w296 = w1 * w24;
+    let w297 = w1 * w37;
+    let w298 = w296 + w297;
+    let w299 = w295 - w298;
+    let w300 = w14 * w68;
+    let w301 = w299 + w300;
+    let w302 = w1 * w103;
+    let w303 = w88 * w302;
+    let w304 = w301 + w303;
+    let w305 = w14 * w43;
+    let w306 = w6 * w302;
+    let w307 = w305 + w306;
+    let w308 = w304 + w307;
+    let w309 = w77 * w186;
+    let w310 = w308 + w309;
+    let w311 = w77 * w197;
+    let w312 = w311 * w193;
+    let w313 = w310 + w312;
+    let w314 = w77 * w202;
+    let w315 = w313 + w314;
+    let w316 = w77 * w210;
+    let w317 = w316 * w212;
+    let w318 = w315 + w317;
+    let w319 = w79 * w157;
+    let w320 = w130 * w147;
+    let w321 = w319 - w320;
+    let w322 = w321 * w77;
+    let w323 = w318 - w322;
+    let w324 = p[9]; // c_1_1
+    let w325 = w324 * w89;
+    let w326 = p[10]; // c_1_2
+    let w327 = w326 * w84;
+    let w328 = w325 + w327;
+    let w329 = p[11]; // c_1_3
+    let w330 = w329 * w74;
+    let w331 = w328 + w330;
+    let w332 = w323 - w331;
+    let o2 = w332; // f_u_1
+    let w333 = 2.0 * w19;
+    let w334: f64 = -60.68985231417138;
+    let w335 = w334 * w293;
+    let w336 = w333 * w335;
+    let w337 = w1 * w33;
+    let w338 = w296 + w337;
+    let w339 = w336 - w338;
+    let w340 = w14 * w65;
+    let w341 = w339 + w340;
+    let w342 = w83 * w302;
+    let w343 = w341 + w342;
+    let w344 = w343 + w307;
+    let w345 = w344 + w309;
+    let w346 = w77 * w231;
+    let w347 = w346 * w193;
+    let w348 = w345 + w347;
+    let w349 = w77 * w236;
+    let w350 = w348 + w349;
+    let w351 = w316 * w241;
+    let w352 = w350 + w351;
+    let w353 = w79 * w161;
+    let w354 = w134 * w147;
+    let w355 = w353 - w354;
+    let w356 = w355 * w77;
+    let w357 = w352 - w356;
+    let w358 = w326 * w89;
+    let w359 = p[12]; // c_2_2
+    let w360 = w359 * w84;
+    let w361 = w358 + w360;
+    let w362 = p[13]; // c_2_3
+    let w363 = w362 * w74;
+    let w364 = w361 + w363;
+    let w365 = w357 - w364;
+    let o3 = w365; // f_u_2
+    let w366 = 2.0 * w21;
+    let w367: f64 = -475.81828329893136;
+    let w368 = w367 * w293;
+    let w369 = w366 * w368;
+    let w370 = w1 * w29;
+    let w371 = w296 + w370;
+    let w372 = w369 - w371;
+    let w373 = w14 * w62;
+    let w374 = w372 + w373;
+    let w375 = w73 * w302;
+    let w376 = w374 + w375;
+    let w377 = w376 + w307;
+    let w378 = w377 + w309;
+    let w379 = w77 * w260;
+    let w380 = w379 * w193;
+    let w381 = w378 + w380;
+    let w382 = w77 * w265;
+    let w383 = w381 + w382;
+    let w384 = w316 * w270;
+    let w385 = w383 + w384;
+    let w386 = w79 * w165;
+    let w387 = w138 * w147;
+    let w388 = w386 - w387;
+    let w389 = w388 * w77;
+    let w390 = w385 - w389;
+    let w391 = w329 * w89;
+    let w392 = w362 * w84;
+    let w393 = w391 + w392;
+    let w394 = p[14]; // c_3_3
+    let w395 = w394 * w74;
+    let w396 = w393 + w395;
+    let w397 = w390 - w396;
+    let o4 = w397; // f_u_3
+    [o0, o1, o2, o3, o4]
+}
+
+/// Indices of the elements of the output `f` of [`free_forcing()`].
+pub mod free_forcing {
+    /// Index of `f_theta`.
+    pub const F_THETA: usize = 0;
+    /// Index of `f_v`.
+    pub const F_V: usize = 1;
+    /// Index of `f_u_1`.
+    pub const F_U_1: usize = 2;
+    /// Index of `f_u_2`.
+    pub const F_U_2: usize = 3;
+    /// Index of `f_u_3`.
+    pub const F_U_3: usize = 4;
+
+    /// Indices of the elements of input `y` of [`free_forcing()`](super::free_forcing()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 5;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 6;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 7;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 8;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 9;
+    }
+}
+
+/// Kinetic energy, gravity (heights over the rest position of the leaning corner, the ground's surface) and strain potentials and horizontal momentum. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 10]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `u_3`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_2_2`, `c_2_3`, `c_3_3`
+///
+/// # Output
+///
+/// `e: [f64; 4]`: energies and momentum — `kinetic`, `gravity`, `strain`, `momentum_x`
+///
+/// Operations: 187 (99 mul, 45 add, 18 sub, 9 sq, 8 twice, 5 div, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_energy(y: &[f64; 10], s: f64, p: &Params) -> [f64; 4] {
+    let w0 = p[4]; // m_c
+    let w1 = y[5]; // theta_dot
+    let w2 = s; // s
+    let w3 = p[1]; // b
+    let w4 = w2 * w3;
+    let w5 = w1 * w4;
+    let w6 = w5 * w5;
+    let w7: f64 = 0.3914958780198129;
+    let w8 = y[2]; // u_1
+    let w9 = -w5;
+    let w10 = 2.0 * w9;
+    let w11 = w1 * w10;
+    let w12 = w8 * w11;
+    let w13 = w7 * w12;
+    let w14 = w6 + w13;
+    let w15: f64 = -0.21696794755535964;
+    let w16 = y[3]; // u_2
+    let w17 = w16 * w11;
+    let w18 = w15 * w17;
+    let w19 = w14 + w18;
+    let w20: f64 = 0.12721264843305286;
+    let w21 = y[4]; // u_3
+    let w22 = w21 * w11;
+    let w23 = w20 * w22;
+    let w24 = w19 + w23;
+    let w25: f64 = 0.16666666666666666;
+    let w26 = p[0]; // h
+    let w27 = w1 * w26;
+    let w28 = 2.0 * w27;
+    let w29 = w1 * w28;
+    let w30 = w26 * w29;
+    let w31 = w25 * w30;
+    let w32 = w24 + w31;
+    let w33: f64 = 0.2844128718549554;
+    let w34 = y[7]; // u_dot_1
+    let w35 = 2.0 * w34;
+    let w36 = w1 * w35;
+    let w37 = w26 * w36;
+    let w38 = w33 * w37;
+    let w39 = w32 + w38;
+    let w40: f64 = -0.04538339344319348;
+    let w41 = y[8]; // u_dot_2
+    let w42 = 2.0 * w41;
+    let w43 = w1 * w42;
+    let w44 = w26 * w43;
+    let w45 = w40 * w44;
+    let w46 = w39 + w45;
+    let w47: f64 = 0.016208187184872217;
+    let w48 = y[9]; // u_dot_3
+    let w49 = 2.0 * w48;
+    let w50 = w1 * w49;
+    let w51 = w26 * w50;
+    let w52 = w47 * w51;
+    let w53 = w46 + w52;
+    let w54: f64 = 0.125;
+    let w55 = w1 * w8;
+    let w56 = 2.0 * w55;
+    let w57 = w1 * w56;
+    let w58 = w8 * w57;
+    let w59 = w34 * w35;
+    let w60 = w58 + w59;
+    let w61 = w54 * w60;
+    let w62 = w53 + w61;
+    let w63 = w1 * w16;
+    let w64 = 2.0 * w63;
+    let w65 = w1 * w64;
+    let w66 = w16 * w65;
+    let w67 = w41 * w42;
+    let w68 = w66 + w67;
+    let w69 = w54 * w68;
+    let w70 = w62 + w69;
+    let w71 = w1 * w21;
+    let w72 = 2.0 * w71;
+    let w73 = w1 * w72;
+    let w74 = w21 * w73;
+    let w75 = w48 * w49;
+    let w76 = w74 + w75;
+    let w77 = w54 * w76;
+    let w78 = w70 + w77;
+    let w79 = w0 * w78;
+    let w80 = p[3]; // m
+    let w81 = w34 + w41;
+    let w82 = w81 + w48;
+    let w83 = w82 + w27;
+    let w84 = w83 * w83;
+    let w85 = w8 + w16;
+    let w86 = w85 + w21;
+    let w87 = w86 - w4;
+    let w88 = w1 * w87;
+    let w89 = w88 * w88;
+    let w90 = w84 + w89;
+    let w91 = w80 * w90;
+    let w92 = w79 + w91;
+    let w93: f64 = 2.0;
+    let w94 = w92 / w93;
+    let w95 = p[6]; // i_bc
+    let w96 = w1 * w1;
+    let w97 = w95 * w96;
+    let w98 = w97 / w93;
+    let w99 = w94 + w98;
+    let w100 = w0 + w80;
+    let w101 = p[5]; // m_b
+    let w102 = w100 + w101;
+    let w103 = y[6]; // v_dot
+    let w104 = y[0]; // theta
+    let w105 = w104.cos();
+    let w106 = w4 * w105;
+    let w107 = w106 * w1;
+    let w108 = w103 + w107;
+    let w109 = w108 * w108;
+    let w110 = w102 * w109;
+    let w111 = w110 / w93;
+    let w112 = w99 + w111;
+    let w113 = w4 * w101;
+    let w114 = w87 * w80;
+    let w115 = w113 - w114;
+    let w116 = w20 * w0;
+    let w117 = w21 * w116;
+    let w118 = w115 - w117;
+    let w119 = w15 * w0;
+    let w120 = w16 * w119;
+    let w121 = w118 - w120;
+    let w122 = w7 * w0;
+    let w123 = w8 * w122;
+    let w124 = w121 - w123;
+    let w125 = w4 * w0;
+    let w126 = w124 + w125;
+    let w127 = w105 * w126;
+    let w128 = w104.sin();
+    let w129 = w26 * w80;
+    let w130: f64 = 0.5;
+    let w131 = w130 * w0;
+    let w132 = w26 * w131;
+    let w133 = w129 + w132;
+    let w134 = w128 * w133;
+    let w135 = w127 - w134;
+    let w136 = w135 * w1;
+    let w137 = w128 * w80;
+    let w138 = w128 * w122;
+    let w139 = w137 + w138;
+    let w140 = w139 * w34;
+    let w141 = w136 - w140;
+    let w142 = w128 * w119;
+    let w143 = w137 + w142;
+    let w144 = w143 * w41;
+    let w145 = w141 - w144;
+    let w146 = w128 * w116;
+    let w147 = w137 + w146;
+    let w148 = w147 * w48;
+    let w149 = w145 - w148;
+    let w150 = w108 * w149;
+    let w151 = w112 - w150;
+    let o0 = w151; // kinetic
+    let w152 = p[8]; // g
+    let w153 = w4 * w128;
+    let w154 = w26 * w105;
+    let w155 = w130 * w154;
+    let w156 = w153 + w155;
+    let w157 = w8 * w128;
+    let w158 = w7 * w157;
+    let w159 = w156 - w158;
+    let w160 = w16 * w128;
+    let w161 = w15 * w160;
+    let w162 = w159 - w161;
+    let w163 = w21 * w128;
+    let w164 = w20 * w163;
+    let w165 = w162 - w164;
+    let w166 = w0 * w165;
+    let w167 = w87 * w128;
+    let w168 = w154 - w167;
+    let w169 = w80 * w168;
+    let w170 = w166 + w169;
+    let w171 = w101 * w153;
+    let w172 = w170 + w171;
+    let w173 = y[1]; // v
+    let w174 = w173 + w153;
+    let w175 = w102 * w174;
+    let w176 = w172 - w175;
+    let w177 = w152 * w176;
+    let o1 = w177; // gravity
+    let w178: f64 = 3.0905908420815478;
+    let w179 = p[2]; // ei
+    let w180 = w26 * w26;
+    let w181 = w26 * w180;
+    let w182 = w179 / w181;
+    let w183 = w178 * w182;
+    let w184 = w8 * w8;
+    let w185 = w183 * w184;
+    let w186: f64 = 121.37970462834276;
+    let w187 = w186 * w182;
+    let w188 = w16 * w16;
+    let w189 = w187 * w188;
+    let w190 = w185 + w189;
+    let w191: f64 = 951.6365665978627;
+    let w192 = w191 * w182;
+    let w193 = w21 * w21;
+    let w194 = w192 * w193;
+    let w195 = w190 + w194;
+    let w196 = w195 / w93;
+    let o2 = w196; // strain
+    let w197 = w105 * w133;
+    let w198 = w114 - w113;
+    let w199 = w198 + w117;
+    let w200 = w199 + w120;
+    let w201 = w200 + w123;
+    let w202 = w201 - w125;
+    let w203 = w128 * w202;
+    let w204 = w197 - w203;
+    let w205 = w204 * w1;
+    let w206 = w105 * w80;
+    let w207 = w105 * w122;
+    let w208 = w206 + w207;
+    let w209 = w208 * w34;
+    let w210 = w205 + w209;
+    let w211 = w105 * w119;
+    let w212 = w206 + w211;
+    let w213 = w212 * w41;
+    let w214 = w210 + w213;
+    let w215 = w105 * w116;
+    let w216 = w206 + w215;
+    let w217 = w216 * w48;
+    let w218 = w214 + w217;
+    let o3 = w218; // momentum_x
+    [o0, o1, o2, o3]
+}
+
+/// Indices of the elements of the output `e` of [`free_energy()`].
+pub mod free_energy {
+    /// Index of `kinetic`.
+    pub const KINETIC: usize = 0;
+    /// Index of `gravity`.
+    pub const GRAVITY: usize = 1;
+    /// Index of `strain`.
+    pub const STRAIN: usize = 2;
+    /// Index of `momentum_x`.
+    pub const MOMENTUM_X: usize = 3;
+
+    /// Indices of the elements of input `y` of [`free_energy()`](super::free_energy()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 5;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 6;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 7;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 8;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 9;
+    }
+}
+
+/// Power terms: dE/dt = ground - damping + Q_theta theta' + Q_v v', with ground = -ug P_x and damping u'^T C u'. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 10]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `u_3`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_2_2`, `c_2_3`, `c_3_3`
+///
+/// # Output
+///
+/// `w: [f64; 2]`: power terms — `ground`, `damping`
+///
+/// Operations: 63 (36 mul, 20 add, 4 sub, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_power(y: &[f64; 10], ug: f64, s: f64, p: &Params) -> [f64; 2] {
+    let w0 = ug; // ug
+    let w1 = y[0]; // theta
+    let w2 = w1.cos();
+    let w3 = p[0]; // h
+    let w4 = p[3]; // m
+    let w5 = w3 * w4;
+    let w6: f64 = 0.5;
+    let w7 = p[4]; // m_c
+    let w8 = w6 * w7;
+    let w9 = w3 * w8;
+    let w10 = w5 + w9;
+    let w11 = w2 * w10;
+    let w12 = w1.sin();
+    let w13 = y[2]; // u_1
+    let w14 = y[3]; // u_2
+    let w15 = w13 + w14;
+    let w16 = y[4]; // u_3
+    let w17 = w15 + w16;
+    let w18 = s; // s
+    let w19 = p[1]; // b
+    let w20 = w18 * w19;
+    let w21 = w17 - w20;
+    let w22 = w21 * w4;
+    let w23 = p[5]; // m_b
+    let w24 = w20 * w23;
+    let w25 = w22 - w24;
+    let w26: f64 = 0.12721264843305286;
+    let w27 = w26 * w7;
+    let w28 = w16 * w27;
+    let w29 = w25 + w28;
+    let w30: f64 = -0.21696794755535964;
+    let w31 = w30 * w7;
+    let w32 = w14 * w31;
+    let w33 = w29 + w32;
+    let w34: f64 = 0.3914958780198129;
+    let w35 = w34 * w7;
+    let w36 = w13 * w35;
+    let w37 = w33 + w36;
+    let w38 = w20 * w7;
+    let w39 = w37 - w38;
+    let w40 = w12 * w39;
+    let w41 = w11 - w40;
+    let w42 = y[5]; // theta_dot
+    let w43 = w41 * w42;
+    let w44 = w2 * w4;
+    let w45 = w2 * w35;
+    let w46 = w44 + w45;
+    let w47 = y[7]; // u_dot_1
+    let w48 = w46 * w47;
+    let w49 = w43 + w48;
+    let w50 = w2 * w31;
+    let w51 = w44 + w50;
+    let w52 = y[8]; // u_dot_2
+    let w53 = w51 * w52;
+    let w54 = w49 + w53;
+    let w55 = w2 * w27;
+    let w56 = w44 + w55;
+    let w57 = y[9]; // u_dot_3
+    let w58 = w56 * w57;
+    let w59 = w54 + w58;
+    let w60 = w0 * w59;
+    let w61 = -w60;
+    let o0 = w61; // ground
+    let w62 = p[9]; // c_1_1
+    let w63 = w62 * w47;
+    let w64 = p[10]; // c_1_2
+    let w65 = w64 * w52;
+    let w66 = w63 + w65;
+    let w67 = p[11]; // c_1_3
+    let w68 = w67 * w57;
+    let w69 = w66 + w68;
+    let w70 = w69 * w47;
+    let w71 = w64 * w47;
+    let w72 = p[12]; // c_2_2
+    let w73 = w72 * w52;
+    let w74 = w71 + w73;
+    let w75 = p[13]; // c_2_3
+    let w76 = w75 * w57;
+    let w77 = w74 + w76;
+    let w78 = w77 * w52;
+    let w79 = w70 + w78;
+    let w80 = w67 * w47;
+    let w81 = w75 * w52;
+    let w82 = w80 + w81;
+    let w83 = p[14]; // c_3_3
+    let w84 = w83 * w57;
+    let w85 = w82 + w84;
+    let w86 = w85 * w57;
+    let w87 = w79 + w86;
+    let o1 = w87; // damping
+    [o0, o1]
+}
+
+/// Indices of the elements of the output `w` of [`free_power()`].
+pub mod free_power {
+    /// Index of `ground`.
+    pub const GROUND: usize = 0;
+    /// Index of `damping`.
+    pub const DAMPING: usize = 1;
+
+    /// Indices of the elements of input `y` of [`free_power()`](super::free_power()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 5;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 6;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 7;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 8;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 9;
+    }
+}
+
+/// Section forces at the column base and the ground's force on the body (the bed's resultant and the horizontal force that keeps the leaning corner in place), for the accelerations qdd. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded.
+///
+/// # Inputs
+///
+/// - `y: &[f64; 10]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `u_3`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`
+/// - `qdd: &[f64; 5]`: accelerations [theta'', v'', u''] (from M q'' = F + Q_ground) — `theta_ddot`, `v_ddot`, `u_ddot_1`, `u_ddot_2`, `u_ddot_3`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_2_2`, `c_2_3`, `c_3_3`
+///
+/// # Output
+///
+/// `ff: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 164 (86 mul, 45 add, 26 sub, 2 sq, 2 twice, 1 cos, 1 div, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_forces(y: &[f64; 10], qdd: &[f64; 5], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[4]; // m_c
+    let w1: f64 = 0.3914958780198129;
+    let w2 = y[2]; // u_1
+    let w3 = ug; // ug
+    let w4 = y[0]; // theta
+    let w5 = w4.sin();
+    let w6 = w3 * w5;
+    let w7 = qdd[0]; // theta_ddot
+    let w8 = s; // s
+    let w9 = p[1]; // b
+    let w10 = w8 * w9;
+    let w11 = w7 * w10;
+    let w12 = w6 + w11;
+    let w13 = p[8]; // g
+    let w14 = w4.cos();
+    let w15 = w13 * w14;
+    let w16 = w12 + w15;
+    let w17 = qdd[1]; // v_ddot
+    let w18 = w14 * w7;
+    let w19 = y[5]; // theta_dot
+    let w20 = w19 * w19;
+    let w21 = w5 * w20;
+    let w22 = w18 - w21;
+    let w23 = w10 * w22;
+    let w24 = w17 + w23;
+    let w25 = w24 * w14;
+    let w26 = w16 - w25;
+    let w27 = w2 * w26;
+    let w28 = w1 * w27;
+    let w29: f64 = 0.5;
+    let w30 = p[0]; // h
+    let w31 = w20 * w10;
+    let w32 = w3 * w14;
+    let w33 = w31 + w32;
+    let w34 = w13 * w5;
+    let w35 = w33 - w34;
+    let w36 = w24 * w5;
+    let w37 = w35 + w36;
+    let w38 = w30 * w37;
+    let w39 = w29 * w38;
+    let w40 = w28 - w39;
+    let w41: f64 = -0.21696794755535964;
+    let w42 = y[3]; // u_2
+    let w43 = w42 * w26;
+    let w44 = w41 * w43;
+    let w45 = w40 + w44;
+    let w46: f64 = 0.12721264843305286;
+    let w47 = y[4]; // u_3
+    let w48 = w47 * w26;
+    let w49 = w46 * w48;
+    let w50 = w45 + w49;
+    let w51: f64 = 0.16666666666666666;
+    let w52 = w7 * w30;
+    let w53 = 2.0 * w52;
+    let w54 = w30 * w53;
+    let w55 = w51 * w54;
+    let w56 = w50 - w55;
+    let w57: f64 = 0.2844128718549554;
+    let w58 = qdd[2]; // u_ddot_1
+    let w59 = w30 * w58;
+    let w60 = w57 * w59;
+    let w61 = w56 - w60;
+    let w62: f64 = -0.04538339344319348;
+    let w63 = qdd[3]; // u_ddot_2
+    let w64 = w30 * w63;
+    let w65 = w62 * w64;
+    let w66 = w61 - w65;
+    let w67: f64 = 0.016208187184872217;
+    let w68 = qdd[4]; // u_ddot_3
+    let w69 = w30 * w68;
+    let w70 = w67 * w69;
+    let w71 = w66 - w70;
+    let w72: f64 = 0.125;
+    let w73 = 2.0 * w19;
+    let w74 = y[7]; // u_dot_1
+    let w75 = w73 * w74;
+    let w76 = w75 * w2;
+    let w77 = w7 * w2;
+    let w78 = w2 * w77;
+    let w79 = w76 + w78;
+    let w80 = w77 + w75;
+    let w81 = w2 * w80;
+    let w82 = w79 + w81;
+    let w83 = w72 * w82;
+    let w84 = w71 - w83;
+    let w85 = y[8]; // u_dot_2
+    let w86 = w73 * w85;
+    let w87 = w86 * w42;
+    let w88 = w7 * w42;
+    let w89 = w42 * w88;
+    let w90 = w87 + w89;
+    let w91 = w88 + w86;
+    let w92 = w42 * w91;
+    let w93 = w90 + w92;
+    let w94 = w72 * w93;
+    let w95 = w84 - w94;
+    let w96 = y[9]; // u_dot_3
+    let w97 = w73 * w96;
+    let w98 = w97 * w47;
+    let w99 = w7 * w47;
+    let w100 = w47 * w99;
+    let w101 = w98 + w100;
+    let w102 = w99 + w97;
+    let w103 = w47 * w102;
+    let w104 = w101 + w103;
+    let w105 = w72 * w104;
+    let w106 = w95 - w105;
+    let w107 = w0 * w106;
+    let w108 = p[3]; // m
+    let w109 = w2 + w42;
+    let w110 = w109 + w47;
+    let w111 = w110 - w10;
+    let w112 = w7 * w111;
+    let w113 = w20 * w30;
+    let w114 = w112 + w113;
+    let w115 = w75 + w86;
+    let w116 = w115 + w97;
+    let w117 = w114 + w116;
+    let w118 = w6 - w117;
+    let w119 = w118 + w15;
+    let w120 = w119 - w25;
+    let w121 = w110 * w120;
+    let w122 = w20 * w111;
+    let w123 = w52 - w122;
+    let w124 = w58 + w63;
+    let w125 = w124 + w68;
+    let w126 = w123 + w125;
+    let w127 = w126 + w32;
+    let w128 = w127 - w34;
+    let w129 = w128 + w36;
+    let w130 = w30 * w129;
+    let w131 = w121 - w130;
+    let w132 = w108 * w131;
+    let w133 = w107 + w132;
+    let o0 = w133; // moment
+    let w134 = w30 * w7;
+    let w135 = w29 * w134;
+    let w136 = w37 + w135;
+    let w137 = w2 * w20;
+    let w138 = w58 - w137;
+    let w139 = w1 * w138;
+    let w140 = w136 + w139;
+    let w141 = w42 * w20;
+    let w142 = w63 - w141;
+    let w143 = w41 * w142;
+    let w144 = w140 + w143;
+    let w145 = w47 * w20;
+    let w146 = w68 - w145;
+    let w147 = w46 * w146;
+    let w148 = w144 + w147;
+    let w149 = w0 * w148;
+    let w150 = w108 * w129;
+    let w151 = w149 + w150;
+    let o1 = w151; // shear
+    let w152 = w30 * w20;
+    let w153 = w29 * w152;
+    let w154 = w26 - w153;
+    let w155 = w2 * w7;
+    let w156 = w75 + w155;
+    let w157 = w1 * w156;
+    let w158 = w154 - w157;
+    let w159 = w42 * w7;
+    let w160 = w86 + w159;
+    let w161 = w41 * w160;
+    let w162 = w158 - w161;
+    let w163 = w47 * w7;
+    let w164 = w97 + w163;
+    let w165 = w46 * w164;
+    let w166 = w162 - w165;
+    let w167 = w0 * w166;
+    let w168 = w108 * w120;
+    let w169 = w167 + w168;
+    let o2 = w169; // axial
+    let w170: f64 = 3.5160152685001513;
+    let w171 = p[2]; // ei
+    let w172 = w30 * w30;
+    let w173 = w171 / w172;
+    let w174 = w170 * w173;
+    let w175 = w174 * w2;
+    let w176: f64 = -22.03449156466677;
+    let w177 = w176 * w173;
+    let w178 = w177 * w42;
+    let w179 = w175 + w178;
+    let w180: f64 = 61.697214413549105;
+    let w181 = w180 * w173;
+    let w182 = w181 * w47;
+    let w183 = w179 + w182;
+    let o3 = w183; // moment_elastic
+    let w184 = p[5]; // m_b
+    let w185 = w184 * w37;
+    let w186 = w151 + w185;
+    let w187 = w14 * w186;
+    let w188 = w11 + w6;
+    let w189 = w188 + w15;
+    let w190 = w189 - w25;
+    let w191 = w184 * w190;
+    let w192 = w169 + w191;
+    let w193 = w5 * w192;
+    let w194 = w187 + w193;
+    let o4 = w194; // reaction_h
+    let w195 = w14 * w192;
+    let w196 = w5 * w186;
+    let w197 = w195 - w196;
+    let o5 = w197; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `ff` of [`free_forces()`].
+pub mod free_forces {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `y` of [`free_forces()`](super::free_forces()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 5;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 6;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 7;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 8;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 9;
+    }
+
+    /// Indices of the elements of input `qdd` of [`free_forces()`](super::free_forces()).
+    pub mod qdd {
+        /// Index of `theta_ddot`.
+        pub const THETA_DDOT: usize = 0;
+        /// Index of `v_ddot`.
+        pub const V_DDOT: usize = 1;
+        /// Index of `u_ddot_1`.
+        pub const U_DDOT_1: usize = 2;
+        /// Index of `u_ddot_2`.
+        pub const U_DDOT_2: usize = 3;
+        /// Index of `u_ddot_3`.
+        pub const U_DDOT_3: usize = 4;
+    }
+}
+
 /// The full model on the first three cantilever modes: three deformation coordinates
 ///
 /// Type-level handle of this variant, implementing [`crate::Variant`].
@@ -4076,6 +5493,31 @@ impl crate::Variant for CantileverModes3 {
     #[inline]
     fn static_uplift(p: &Params) -> [f64; 7] {
         static_uplift(p)
+    }
+
+    #[inline]
+    fn free_mass_matrix(qf: &[f64; 5], s: f64, p: &Params) -> [f64; 15] {
+        free_mass_matrix(qf, s, p)
+    }
+
+    #[inline]
+    fn free_forcing(y: &[f64; 10], ug: f64, s: f64, p: &Params) -> [f64; 5] {
+        free_forcing(y, ug, s, p)
+    }
+
+    #[inline]
+    fn free_energy(y: &[f64; 10], s: f64, p: &Params) -> [f64; 4] {
+        free_energy(y, s, p)
+    }
+
+    #[inline]
+    fn free_power(y: &[f64; 10], ug: f64, s: f64, p: &Params) -> [f64; 2] {
+        free_power(y, ug, s, p)
+    }
+
+    #[inline]
+    fn free_forces(y: &[f64; 10], qdd: &[f64; 5], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+        free_forces(y, qdd, ug, s, p)
     }
 }
 
@@ -4219,6 +5661,55 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             };
             let p: &Params = (*p).try_into().ok()?;
             Some(static_uplift(p).to_vec())
+        }
+        "free_mass_matrix" => {
+            let [qf, s, p] = inputs else {
+                return None;
+            };
+            let qf: &[f64; 5] = (*qf).try_into().ok()?;
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_mass_matrix(qf, s, p).to_vec())
+        }
+        "free_forcing" => {
+            let [y, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 10] = (*y).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_forcing(y, ug, s, p).to_vec())
+        }
+        "free_energy" => {
+            let [y, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 10] = (*y).try_into().ok()?;
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_energy(y, s, p).to_vec())
+        }
+        "free_power" => {
+            let [y, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 10] = (*y).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_power(y, ug, s, p).to_vec())
+        }
+        "free_forces" => {
+            let [y, qdd, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 10] = (*y).try_into().ok()?;
+            let qdd: &[f64; 5] = (*qdd).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_forces(y, qdd, ug, s, p).to_vec())
         }
         _ => None,
     }

@@ -5005,6 +5005,1707 @@ pub mod static_uplift {
     pub const MOMENT_ELASTIC_UPLIFT: usize = 7;
 }
 
+/// Mass matrix M(q) over q = [theta, v, u_1..u_n], upper triangle row by row (symmetric positive definite; a rigid column's u row is the identity). On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `qf: &[f64; 6]`: configuration on compliant ground: rotation, settlement of the base centre (positive into the ground), deformation — `theta`, `v`, `u_1`, `u_2`, `u_3`, `u_4`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_1_4`, `c_2_2`, `c_2_3`, `c_2_4`, `c_3_3`, `c_3_4`, `c_4_4`
+///
+/// # Output
+///
+/// `m: [f64; 21]`: upper triangle of M — `m_t_t`, `m_t_v`, `m_t_u1`, `m_t_u2`, `m_t_u3`, `m_t_u4`, `m_v_v`, `m_v_u1`, `m_v_u2`, `m_v_u3`, `m_v_u4`, `m_u1_u1`, `m_u1_u2`, `m_u1_u3`, `m_u1_u4`, `m_u2_u2`, `m_u2_u3`, `m_u2_u4`, `m_u3_u3`, `m_u3_u4`, `m_u4_u4`
+///
+/// Operations: 159 (81 mul, 39 add, 22 twice, 14 sub, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_mass_matrix(qf: &[f64; 6], s: f64, p: &Params) -> [f64; 21] {
+    let w0 = s; // s
+    let w1 = p[1]; // b
+    let w2 = w0 * w1;
+    let w3 = qf[0]; // theta
+    let w4 = w3.cos();
+    let w5 = w2 * w4;
+    let w6: f64 = 0.5;
+    let w7 = p[4]; // m_c
+    let w8 = p[3]; // m
+    let w9 = w7 + w8;
+    let w10 = p[5]; // m_b
+    let w11 = w9 + w10;
+    let w12 = w6 * w11;
+    let w13 = 2.0 * w5;
+    let w14 = w12 * w13;
+    let w15 = w2 * w10;
+    let w16 = qf[2]; // u_1
+    let w17 = qf[3]; // u_2
+    let w18 = w16 + w17;
+    let w19 = qf[4]; // u_3
+    let w20 = w18 + w19;
+    let w21 = qf[5]; // u_4
+    let w22 = w20 + w21;
+    let w23 = w22 - w2;
+    let w24 = w23 * w8;
+    let w25 = w15 - w24;
+    let w26: f64 = -0.09094901081852429;
+    let w27 = w26 * w7;
+    let w28 = w21 * w27;
+    let w29 = w25 - w28;
+    let w30: f64 = 0.12721264843305286;
+    let w31 = w30 * w7;
+    let w32 = w19 * w31;
+    let w33 = w29 - w32;
+    let w34: f64 = -0.21696794755535964;
+    let w35 = w34 * w7;
+    let w36 = w17 * w35;
+    let w37 = w33 - w36;
+    let w38: f64 = 0.3914958780198129;
+    let w39 = w38 * w7;
+    let w40 = w16 * w39;
+    let w41 = w37 - w40;
+    let w42 = w2 * w7;
+    let w43 = w41 + w42;
+    let w44 = w4 * w43;
+    let w45 = w3.sin();
+    let w46 = p[0]; // h
+    let w47 = w46 * w8;
+    let w48 = w6 * w7;
+    let w49 = w46 * w48;
+    let w50 = w47 + w49;
+    let w51 = w45 * w50;
+    let w52 = w44 - w51;
+    let w53 = w14 - w52;
+    let w54 = w5 * w53;
+    let w55 = w52 * w5;
+    let w56 = w54 - w55;
+    let w57 = p[6]; // i_bc
+    let w58 = w56 + w57;
+    let w59 = w6 * w8;
+    let w60 = 2.0 * w23;
+    let w61 = w59 * w60;
+    let w62 = w23 * w61;
+    let w63 = w58 + w62;
+    let w64 = 2.0 * w46;
+    let w65 = w59 * w64;
+    let w66 = w46 * w65;
+    let w67 = w63 + w66;
+    let w68: f64 = 0.0625;
+    let w69 = w68 * w7;
+    let w70 = w21 * w69;
+    let w71 = 2.0 * w21;
+    let w72 = w70 * w71;
+    let w73 = w67 + w72;
+    let w74 = 2.0 * w70;
+    let w75 = w21 * w74;
+    let w76 = w73 + w75;
+    let w77 = w19 * w69;
+    let w78 = 2.0 * w19;
+    let w79 = w77 * w78;
+    let w80 = w76 + w79;
+    let w81 = 2.0 * w77;
+    let w82 = w19 * w81;
+    let w83 = w80 + w82;
+    let w84 = w17 * w69;
+    let w85 = 2.0 * w17;
+    let w86 = w84 * w85;
+    let w87 = w83 + w86;
+    let w88 = 2.0 * w84;
+    let w89 = w17 * w88;
+    let w90 = w87 + w89;
+    let w91 = w16 * w69;
+    let w92 = 2.0 * w16;
+    let w93 = w91 * w92;
+    let w94 = w90 + w93;
+    let w95 = 2.0 * w91;
+    let w96 = w16 * w95;
+    let w97 = w94 + w96;
+    let w98: f64 = 0.08333333333333333;
+    let w99 = w98 * w7;
+    let w100 = w46 * w99;
+    let w101 = w100 * w64;
+    let w102 = w97 + w101;
+    let w103 = 2.0 * w100;
+    let w104 = w46 * w103;
+    let w105 = w102 + w104;
+    let w106: f64 = -0.04547450540926214;
+    let w107 = w106 * w7;
+    let w108 = w21 * w107;
+    let w109 = -w2;
+    let w110 = 2.0 * w109;
+    let w111 = w108 * w110;
+    let w112 = w105 + w111;
+    let w113 = 2.0 * w108;
+    let w114 = w2 * w113;
+    let w115 = w112 - w114;
+    let w116: f64 = 0.06360632421652643;
+    let w117 = w116 * w7;
+    let w118 = w19 * w117;
+    let w119 = w118 * w110;
+    let w120 = w115 + w119;
+    let w121 = 2.0 * w118;
+    let w122 = w2 * w121;
+    let w123 = w120 - w122;
+    let w124: f64 = -0.10848397377767982;
+    let w125 = w124 * w7;
+    let w126 = w17 * w125;
+    let w127 = w126 * w110;
+    let w128 = w123 + w127;
+    let w129 = 2.0 * w126;
+    let w130 = w2 * w129;
+    let w131 = w128 - w130;
+    let w132: f64 = 0.19574793900990645;
+    let w133 = w132 * w7;
+    let w134 = w16 * w133;
+    let w135 = w134 * w110;
+    let w136 = w131 + w135;
+    let w137 = 2.0 * w134;
+    let w138 = w2 * w137;
+    let w139 = w136 - w138;
+    let w140 = 2.0 * w2;
+    let w141 = w48 * w140;
+    let w142 = w2 * w141;
+    let w143 = w139 + w142;
+    let o0 = w143; // m_t_t
+    let w144 = w5 * w11;
+    let w145 = w144 - w52;
+    let o1 = w145; // m_t_v
+    let w146 = w45 * w8;
+    let w147 = w45 * w39;
+    let w148 = w146 + w147;
+    let w149 = w5 * w148;
+    let w150 = w149 + w47;
+    let w151: f64 = 0.1422064359274777;
+    let w152 = w151 * w7;
+    let w153 = w46 * w152;
+    let w154 = 2.0 * w153;
+    let w155 = w150 + w154;
+    let o2 = w155; // m_t_u1
+    let w156 = w45 * w35;
+    let w157 = w146 + w156;
+    let w158 = w5 * w157;
+    let w159 = w158 + w47;
+    let w160: f64 = -0.02269169672159674;
+    let w161 = w160 * w7;
+    let w162 = w46 * w161;
+    let w163 = 2.0 * w162;
+    let w164 = w159 + w163;
+    let o3 = w164; // m_t_u2
+    let w165 = w45 * w31;
+    let w166 = w146 + w165;
+    let w167 = w5 * w166;
+    let w168 = w167 + w47;
+    let w169: f64 = 0.008104093592436109;
+    let w170 = w169 * w7;
+    let w171 = w46 * w170;
+    let w172 = 2.0 * w171;
+    let w173 = w168 + w172;
+    let o4 = w173; // m_t_u3
+    let w174 = w45 * w27;
+    let w175 = w146 + w174;
+    let w176 = w5 * w175;
+    let w177 = w176 + w47;
+    let w178: f64 = -0.004135583755212658;
+    let w179 = w178 * w7;
+    let w180 = w46 * w179;
+    let w181 = 2.0 * w180;
+    let w182 = w177 + w181;
+    let o5 = w182; // m_t_u4
+    let o6 = w11; // m_v_v
+    let o7 = w148; // m_v_u1
+    let o8 = w157; // m_v_u2
+    let o9 = w166; // m_v_u3
+    let o10 = w175; // m_v_u4
+    let w183: f64 = 0.125;
+    let w184 = w183 * w7;
+    let w185 = w8 + w184;
+    let w186 = w185 + w184;
+    let o11 = w186; // m_u1_u1
+    let o12 = w8; // m_u1_u2
+    let o13 = w8; // m_u1_u3
+    let o14 = w8; // m_u1_u4
+    let o15 = w186; // m_u2_u2
+    let o16 = w8; // m_u2_u3
+    let o17 = w8; // m_u2_u4
+    let o18 = w186; // m_u3_u3
+    let o19 = w8; // m_u3_u4
+    let o20 = w186; // m_u4_u4
+    [
+        o0,
+        o1,
+        o2,
+        o3,
+        o4,
+        o5,
+        o6,
+        o7,
+        o8,
+        o9,
+        o10,
+        o11,
+        o12,
+        o13,
+        o14,
+        o15,
+        o16,
+        o17,
+        o18,
+        o19,
+        o20,
+    ]
+}
+
+/// Indices of the elements of the output `m` of [`free_mass_matrix()`].
+pub mod free_mass_matrix {
+    /// Index of `m_t_t`.
+    pub const M_T_T: usize = 0;
+    /// Index of `m_t_v`.
+    pub const M_T_V: usize = 1;
+    /// Index of `m_t_u1`.
+    pub const M_T_U1: usize = 2;
+    /// Index of `m_t_u2`.
+    pub const M_T_U2: usize = 3;
+    /// Index of `m_t_u3`.
+    pub const M_T_U3: usize = 4;
+    /// Index of `m_t_u4`.
+    pub const M_T_U4: usize = 5;
+    /// Index of `m_v_v`.
+    pub const M_V_V: usize = 6;
+    /// Index of `m_v_u1`.
+    pub const M_V_U1: usize = 7;
+    /// Index of `m_v_u2`.
+    pub const M_V_U2: usize = 8;
+    /// Index of `m_v_u3`.
+    pub const M_V_U3: usize = 9;
+    /// Index of `m_v_u4`.
+    pub const M_V_U4: usize = 10;
+    /// Index of `m_u1_u1`.
+    pub const M_U1_U1: usize = 11;
+    /// Index of `m_u1_u2`.
+    pub const M_U1_U2: usize = 12;
+    /// Index of `m_u1_u3`.
+    pub const M_U1_U3: usize = 13;
+    /// Index of `m_u1_u4`.
+    pub const M_U1_U4: usize = 14;
+    /// Index of `m_u2_u2`.
+    pub const M_U2_U2: usize = 15;
+    /// Index of `m_u2_u3`.
+    pub const M_U2_U3: usize = 16;
+    /// Index of `m_u2_u4`.
+    pub const M_U2_U4: usize = 17;
+    /// Index of `m_u3_u3`.
+    pub const M_U3_U3: usize = 18;
+    /// Index of `m_u3_u4`.
+    pub const M_U3_U4: usize = 19;
+    /// Index of `m_u4_u4`.
+    pub const M_U4_U4: usize = 20;
+
+    /// Indices of the elements of input `qf` of [`free_mass_matrix()`](super::free_mass_matrix()).
+    pub mod qf {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+        /// Index of `u_4`.
+        pub const U_4: usize = 5;
+    }
+}
+
+/// Right-hand side F of M q'' = F + Q_ground without the ground: gravity, ground acceleration, stiffness, damping and velocity terms; Q_ground = [Q_theta, Q_v, 0..] from the ground's kernels. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 12]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `u_3`, `u_4`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`, `u_dot_4`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_1_4`, `c_2_2`, `c_2_3`, `c_2_4`, `c_3_3`, `c_3_4`, `c_4_4`
+///
+/// # Output
+///
+/// `f: [f64; 6]`: generalised forces — `f_theta`, `f_v`, `f_u_1`, `f_u_2`, `f_u_3`, `f_u_4`
+///
+/// Operations: 453 (251 mul, 128 add, 46 sub, 22 twice, 2 neg, 1 cos, 1 div, 1 sin, 1 sq).
+#[inline]
+#[must_use]
+pub fn free_forcing(y: &[f64; 12], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+    let w0 = y[0]; // theta
+    let w1 = w0.cos();
+    let w2 = s; // s
+    let w3 = p[1]; // b
+    let w4 = w2 * w3;
+    let w5 = p[4]; // m_c
+    let w6 = p[3]; // m
+    let w7 = w5 + w6;
+    let w8 = p[5]; // m_b
+    let w9 = w7 + w8;
+    let w10 = p[8]; // g
+    let w11 = w9 * w10;
+    let w12 = w4 * w11;
+    let w13 = w1 * w12;
+    let w14 = w0.sin();
+    let w15 = ug; // ug
+    let w16 = w8 * w15;
+    let w17 = w4 * w16;
+    let w18 = y[2]; // u_1
+    let w19 = y[3]; // u_2
+    let w20 = w18 + w19;
+    let w21 = y[4]; // u_3
+    let w22 = w20 + w21;
+    let w23 = y[5]; // u_4
+    let w24 = w22 + w23;
+    let w25 = w24 - w4;
+    let w26 = w6 * w15;
+    let w27 = w25 * w26;
+    let w28 = w17 - w27;
+    let w29: f64 = -0.09094901081852429;
+    let w30 = w5 * w15;
+    let w31 = w29 * w30;
+    let w32 = w23 * w31;
+    let w33 = w28 - w32;
+    let w34: f64 = 0.12721264843305286;
+    let w35 = w34 * w30;
+    let w36 = w21 * w35;
+    let w37 = w33 - w36;
+    let w38: f64 = -0.21696794755535964;
+    let w39 = w38 * w30;
+    let w40 = w19 * w39;
+    let w41 = w37 - w40;
+    let w42: f64 = 0.3914958780198129;
+    let w43 = w42 * w30;
+    let w44 = w18 * w43;
+    let w45 = w41 - w44;
+    let w46 = w4 * w30;
+    let w47 = w45 + w46;
+    let w48 = p[0]; // h
+    let w49 = w6 * w10;
+    let w50 = w48 * w49;
+    let w51 = w47 - w50;
+    let w52: f64 = 0.5;
+    let w53 = w5 * w10;
+    let w54 = w52 * w53;
+    let w55 = w48 * w54;
+    let w56 = w51 - w55;
+    let w57 = w14 * w56;
+    let w58 = w13 - w57;
+    let w59 = w25 * w49;
+    let w60 = w48 * w26;
+    let w61 = w52 * w30;
+    let w62 = w48 * w61;
+    let w63 = w60 + w62;
+    let w64 = w8 * w10;
+    let w65 = w4 * w64;
+    let w66 = w63 + w65;
+    let w67 = w59 - w66;
+    let w68 = w29 * w53;
+    let w69 = w23 * w68;
+    let w70 = w67 + w69;
+    let w71 = w34 * w53;
+    let w72 = w21 * w71;
+    let w73 = w70 + w72;
+    let w74 = w38 * w53;
+    let w75 = w19 * w74;
+    let w76 = w73 + w75;
+    let w77 = w42 * w53;
+    let w78 = w18 * w77;
+    let w79 = w76 + w78;
+    let w80 = w4 * w53;
+    let w81 = w79 - w80;
+    let w82 = w29 * w5;
+    let w83 = y[11]; // u_dot_4
+    let w84 = y[7]; // v_dot
+    let w85 = w4 * w1;
+    let w86 = y[6]; // theta_dot
+    let w87 = w85 * w86;
+    let w88 = w84 + w87;
+    let w89 = w83 * w88;
+    let w90 = w82 * w89;
+    let w91 = w81 + w90;
+    let w92 = w34 * w5;
+    let w93 = y[10]; // u_dot_3
+    let w94 = w93 * w88;
+    let w95 = w92 * w94;
+    let w96 = w91 + w95;
+    let w97 = w38 * w5;
+    let w98 = y[9]; // u_dot_2
+    let w99 = w98 * w88;
+    let w100 = w97 * w99;
+    let w101 = w96 + w100;
+    let w102 = w42 * w5;
+    let w103 = y[8]; // u_dot_1
+    let w104 = w103 * w88;
+    let w105 = w102 * w104;
+    let w106 = w101 + w105;
+    let w107 = w89 + w94;
+    let w108 = w107 + w99;
+    let w109 = w108 + w104;
+    let w110 = w6 * w109;
+    let w111 = w106 + w110;
+    let w112 = w1 * w111;
+    let w113 = w58 + w112;
+    let w114 = w48 * w6;
+    let w115 = w52 * w5;
+    let w116 = w48 * w115;
+    let w117 = w114 + w116;
+    let w118 = w86 * w88;
+    let w119 = w117 * w118;
+    let w120 = w1 * w119;
+    let w121 = w113 + w120;
+    let w122 = w4 * w8;
+    let w123 = w25 * w6;
+    let w124 = w122 - w123;
+    let w125 = w23 * w82;
+    let w126 = w124 - w125;
+    let w127 = w21 * w92;
+    let w128 = w126 - w127;
+    let w129 = w19 * w97;
+    let w130 = w128 - w129;
+    let w131 = w18 * w102;
+    let w132 = w130 - w131;
+    let w133 = w4 * w5;
+    let w134 = w132 + w133;
+    let w135 = w134 * w118;
+    let w136 = w14 * w135;
+    let w137 = w121 + w136;
+    let w138 = 2.0 * w88;
+    let w139 = w52 * w9;
+    let w140 = w138 * w139;
+    let w141 = w1 * w134;
+    let w142 = w14 * w117;
+    let w143 = w141 - w142;
+    let w144 = w143 * w86;
+    let w145 = w14 * w6;
+    let w146 = w14 * w102;
+    let w147 = w145 + w146;
+    let w148 = w147 * w103;
+    let w149 = w144 - w148;
+    let w150 = w14 * w97;
+    let w151 = w145 + w150;
+    let w152 = w151 * w98;
+    let w153 = w149 - w152;
+    let w154 = w14 * w92;
+    let w155 = w145 + w154;
+    let w156 = w155 * w93;
+    let w157 = w153 - w156;
+    let w158 = w14 * w82;
+    let w159 = w145 + w158;
+    let w160 = w159 * w83;
+    let w161 = w157 - w160;
+    let w162 = w140 - w161;
+    let w163 = w86 * w162;
+    let w164 = w4 * w163;
+    let w165 = w14 * w164;
+    let w166 = w137 - w165;
+    let w167 = w4 * w14;
+    let w168 = w86 * w167;
+    let w169 = -w168;
+    let w170 = 2.0 * w169;
+    let w171 = w139 * w170;
+    let w172 = w134 * w14;
+    let w173 = w117 * w1;
+    let w174 = w172 + w173;
+    let w175 = w86 * w174;
+    let w176 = w6 * w1;
+    let w177 = w102 * w1;
+    let w178 = w176 + w177;
+    let w179 = w103 * w178;
+    let w180 = w175 + w179;
+    let w181 = w97 * w1;
+    let w182 = w176 + w181;
+    let w183 = w98 * w182;
+    let w184 = w180 + w183;
+    let w185 = w92 * w1;
+    let w186 = w176 + w185;
+    let w187 = w93 * w186;
+    let w188 = w184 + w187;
+    let w189 = w82 * w1;
+    let w190 = w176 + w189;
+    let w191 = w83 * w190;
+    let w192 = w188 + w191;
+    let w193 = w171 + w192;
+    let w194 = w85 * w193;
+    let w195 = w162 * w167;
+    let w196 = w194 - w195;
+    let w197 = w88 * w174;
+    let w198 = w143 * w168;
+    let w199 = w197 + w198;
+    let w200 = w196 + w199;
+    let w201 = w200 * w86;
+    let w202 = w6 + w102;
+    let w203 = w1 * w202;
+    let w204 = w86 * w203;
+    let w205 = w85 * w204;
+    let w206 = w88 * w203;
+    let w207 = w205 + w206;
+    let w208 = w86 * w25;
+    let w209 = 2.0 * w208;
+    let w210 = w52 * w6;
+    let w211 = w209 * w210;
+    let w212 = 2.0 * w86;
+    let w213 = w210 * w212;
+    let w214 = w25 * w213;
+    let w215 = w211 + w214;
+    let w216 = w207 + w215;
+    let w217: f64 = 0.0625;
+    let w218 = w217 * w5;
+    let w219 = w18 * w218;
+    let w220 = w219 * w212;
+    let w221 = w86 * w18;
+    let w222 = 2.0 * w221;
+    let w223 = w222 * w218;
+    let w224 = w220 + w223;
+    let w225 = w216 + w224;
+    let w226 = w86 * w219;
+    let w227 = 2.0 * w226;
+    let w228 = w86 * w218;
+    let w229 = 2.0 * w228;
+    let w230 = w18 * w229;
+    let w231 = w227 + w230;
+    let w232 = w225 + w231;
+    let w233 = w86 * w4;
+    let w234 = -w233;
+    let w235 = 2.0 * w234;
+    let w236: f64 = 0.19574793900990645;
+    let w237 = w236 * w5;
+    let w238 = w235 * w237;
+    let w239 = w232 + w238;
+    let w240 = w86 * w237;
+    let w241 = 2.0 * w240;
+    let w242 = w4 * w241;
+    let w243 = w239 - w242;
+    let w244 = w243 * w103;
+    let w245 = w201 + w244;
+    let w246 = w6 + w97;
+    let w247 = w1 * w246;
+    let w248 = w86 * w247;
+    let w249 = w85 * w248;
+    let w250 = w88 * w247;
+    let w251 = w249 + w250;
+    let w252 = w251 + w215;
+    let w253 = w19 * w218;
+    let w254 = w253 * w212;
+    let w255 = w86 * w19;
+    let w256 = 2.0 * w255;
+    let w257 = w256 * w218;
+    let w258 = w254 + w257;
+    let w259 = w252 + w258;
+    let w260 = w86 * w253;
+    let w261 = 2.0 * w260;
+    let w262 = w19 * w229;
+    let w263 = w261 + w262;
+    let w264 = w259 + w263;
+    let w265: f64 = -0.10848397377767982;
+    let w266 = w265 * w5;
+    let w267 = w235 * w266;
+    let w268 = w264 + w267;
+    let w269 = w86 * w266;
+    let w270 = 2.0 * w269;
+    let w271 = w4 * w270;
+    let w272 = w268 - w271;
+    let w273 = w272 * w98;
+    let w274 = w245 + w273;
+    let w275 = w6 + w92;
+    let w276 = w1 * w275;
+    let w277 = w86 * w276;
+    let w278 = w85 * w277;
+    let w279 = w88 * w276;
+    let w280 = w278 + w279;
+    let w281 = w280 + w215;
+    let w282 = w21 * w218;
+    let w283 = w282 * w212;
+    let w284 = w86 * w21;
+    let w285 = 2.0 * w284;
+    let w286 = w285 * w218;
+    let w287 = w283 + w286;
+    let w288 = w281 + w287;
+    let w289 = w86 * w282;
+    let w290 = 2.0 * w289;
+    let w291 = w21 * w229;
+    let w292 = w290 + w291;
+    let w293 = w288 + w292;
+    let w294: f64 = 0.06360632421652643;
+    let w295 = w294 * w5;
+    let w296 = w235 * w295;
+    let w297 = w293 + w296;
+    let w298 = w86 * w295;
+    let w299 = 2.0 * w298;
+    let w300 = w4 * w299;
+    let w301 = w297 - w300;
+    let w302 = w301 * w93;
+    let w303 = w274 + w302;
+    let w304 = w6 + w82;
+    let w305 = w1 * w304;
+    let w306 = w86 * w305;
+    let w307 = w85 * w306;
+    let w308 = w88 * w305;
+    let w309 = w307 + w308;
+    let w310 = w309 + w215;
+    let w311 = w23 * w218;
+    let w312 = w311 * w212;
+    let w313 = w86 * w23;
+    let w314 = 2.0 * w313;
+    let w315 = w314 * w218;
+    let w316 = w312 + w315;
+    let w317 = w310 + w316;
+    let w318 = w86 * w311;
+    let w319 = 2.0 * w318;
+    let w320 = w23 * w229;
+    let w321 = w319 + w320;
+    let w322 = w317 + w321;
+    let w323: f64 = -0.04547450540926214;
+    let w324 = w323 * w5;
+    let w325 = w235 * w324;
+    let w326 = w322 + w325;
+    let w327 = w86 * w324;
+    let w328 = 2.0 * w327;
+    let w329 = w4 * w328;
+    let w330 = w326 - w329;
+    let w331 = w330 * w83;
+    let w332 = w303 + w331;
+    let w333 = w166 - w332;
+    let o0 = w333; // f_theta
+    let w334 = w193 * w86;
+    let w335 = w204 * w103;
+    let w336 = w334 + w335;
+    let w337 = w248 * w98;
+    let w338 = w336 + w337;
+    let w339 = w277 * w93;
+    let w340 = w338 + w339;
+    let w341 = w306 * w83;
+    let w342 = w340 + w341;
+    let w343 = w11 - w342;
+    let o1 = w343; // f_v
+    let w344 = 2.0 * w18;
+    let w345: f64 = -1.5452954210407739;
+    let w346 = p[2]; // ei
+    let w347 = w48 * w48;
+    let w348 = w48 * w347;
+    let w349 = w346 / w348;
+    let w350 = w345 * w349;
+    let w351 = w344 * w350;
+    let w352 = w1 * w26;
+    let w353 = w1 * w43;
+    let w354 = w352 + w353;
+    let w355 = w351 - w354;
+    let w356 = w14 * w77;
+    let w357 = w355 + w356;
+    let w358 = w1 * w118;
+    let w359 = w102 * w358;
+    let w360 = w357 + w359;
+    let w361 = w14 * w49;
+    let w362 = w6 * w358;
+    let w363 = w361 + w362;
+    let w364 = w360 + w363;
+    let w365 = w86 * w211;
+    let w366 = w364 + w365;
+    let w367 = w86 * w222;
+    let w368 = w367 * w218;
+    let w369 = w366 + w368;
+    let w370 = w86 * w227;
+    let w371 = w369 + w370;
+    let w372 = w86 * w235;
+    let w373 = w372 * w237;
+    let w374 = w371 + w373;
+    let w375 = w88 * w178;
+    let w376 = w147 * w168;
+    let w377 = w375 - w376;
+    let w378 = w377 * w86;
+    let w379 = w374 - w378;
+    let w380 = p[9]; // c_1_1
+    let w381 = w380 * w103;
+    let w382 = p[10]; // c_1_2
+    let w383 = w382 * w98;
+    let w384 = w381 + w383;
+    let w385 = p[11]; // c_1_3
+    let w386 = w385 * w93;
+    let w387 = w384 + w386;
+    let w388 = p[12]; // c_1_4
+    let w389 = w388 * w83;
+    let w390 = w387 + w389;
+    let w391 = w379 - w390;
+    let o2 = w391; // f_u_1
+    let w392 = 2.0 * w19;
+    let w393: f64 = -60.68985231417138;
+    let w394 = w393 * w349;
+    let w395 = w392 * w394;
+    let w396 = w1 * w39;
+    let w397 = w352 + w396;
+    let w398 = w395 - w397;
+    let w399 = w14 * w74;
+    let w400 = w398 + w399;
+    let w401 = w97 * w358;
+    let w402 = w400 + w401;
+    let w403 = w402 + w363;
+    let w404 = w403 + w365;
+    let w405 = w86 * w256;
+    let w406 = w405 * w218;
+    let w407 = w404 + w406;
+    let w408 = w86 * w261;
+    let w409 = w407 + w408;
+    let w410 = w372 * w266;
+    let w411 = w409 + w410;
+    let w412 = w88 * w182;
+    let w413 = w151 * w168;
+    let w414 = w412 - w413;
+    let w415 = w414 * w86;
+    let w416 = w411 - w415;
+    let w417 = w382 * w103;
+    let w418 = p[13]; // c_2_2
+    let w419 = w418 * w98;
+    let w420 = w417 + w419;
+    let w421 = p[14]; // c_2_3
+    let w422 = w421 * w93;
+    let w423 = w420 + w422;
+    let w424 = p[15]; // c_2_4
+    let w425 = w424 * w83;
+    let w426 = w423 + w425;
+    let w427 = w416 - w426;
+    let o3 = w427; // f_u_2
+    let w428 = 2.0 * w21;
+    let w429: f64 = -475.81828329893136;
+    let w430 = w429 * w349;
+    let w431 = w428 * w430;
+    let w432 = w1 * w35;
+    let w433 = w352 + w432;
+    let w434 = w431 - w433;
+    let w435 = w14 * w71;
+    let w436 = w434 + w435;
+    let w437 = w92 * w358;
+    let w438 = w436 + w437;
+    let w439 = w438 + w363;
+    let w440 = w439 + w365;
+    let w441 = w86 * w285;
+    let w442 = w441 * w218;
+    let w443 = w440 + w442;
+    let w444 = w86 * w290;
+    let w445 = w443 + w444;
+    let w446 = w372 * w295;
+    let w447 = w445 + w446;
+    let w448 = w88 * w186;
+    let w449 = w155 * w168;
+    let w450 = w448 - w449;
+    let w451 = w450 * w86;
+    let w452 = w447 - w451;
+    let w453 = w385 * w103;
+    let w454 = w421 * w98;
+    let w455 = w453 + w454;
+    let w456 = p[16]; // c_3_3
+    let w457 = w456 * w93;
+    let w458 = w455 + w457;
+    let w459 = p[17]; // c_3_4
+    let w460 = w459 * w83;
+    let w461 = w458 + w460;
+    let w462 = w452 - w461;
+    let o4 = w462; // f_u_3
+    let w463 = 2.0 * w23;
+    let w464: f64 = -1827.1591631398476;
+    let w465 = w464 * w349;
+    let w466 = w463 * w465;
+    let w467 = w1 * w31;
+    let w468 = w352 + w467;
+    let w469 = w466 - w468;
+    let w470 = w14 * w68;
+    let w471 = w469 + w470;
+    let w472 = w82 * w358;
+    let w473 = w471 + w472;
+    let w474 = w473 + w363;
+    let w475 = w474 + w365;
+    let w476 = w86 * w314;
+    let w477 = w476 * w218;
+    let w478 = w475 + w477;
+    let w479 = w86 * w319;
+    let w480 = w478 + w479;
+    let w481 = w372 * w324;
+    let w482 = w480 + w481;
+    let w483 = w88 * w190;
+    let w484 = w159 * w168;
+    let w485 = w483 - w484;
+    let w486 = w485 * w86;
+    let w487 = w482 - w486;
+    let w488 = w388 * w103;
+    let w489 = w424 * w98;
+    let w490 = w488 + w489;
+    let w491 = w459 * w93;
+    let w492 = w490 + w491;
+    let w493 = p[18]; // c_4_4
+    let w494 = w493 * w83;
+    let w495 = w492 + w494;
+    let w496 = w487 - w495;
+    let o5 = w496; // f_u_4
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `f` of [`free_forcing()`].
+pub mod free_forcing {
+    /// Index of `f_theta`.
+    pub const F_THETA: usize = 0;
+    /// Index of `f_v`.
+    pub const F_V: usize = 1;
+    /// Index of `f_u_1`.
+    pub const F_U_1: usize = 2;
+    /// Index of `f_u_2`.
+    pub const F_U_2: usize = 3;
+    /// Index of `f_u_3`.
+    pub const F_U_3: usize = 4;
+    /// Index of `f_u_4`.
+    pub const F_U_4: usize = 5;
+
+    /// Indices of the elements of input `y` of [`free_forcing()`](super::free_forcing()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+        /// Index of `u_4`.
+        pub const U_4: usize = 5;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 6;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 7;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 8;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 9;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 10;
+        /// Index of `u_dot_4`.
+        pub const U_DOT_4: usize = 11;
+    }
+}
+
+/// Kinetic energy, gravity (heights over the rest position of the leaning corner, the ground's surface) and strain potentials and horizontal momentum. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 12]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `u_3`, `u_4`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`, `u_dot_4`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_1_4`, `c_2_2`, `c_2_3`, `c_2_4`, `c_3_3`, `c_3_4`, `c_4_4`
+///
+/// # Output
+///
+/// `e: [f64; 4]`: energies and momentum — `kinetic`, `gravity`, `strain`, `momentum_x`
+///
+/// Operations: 224 (119 mul, 56 add, 21 sub, 10 sq, 10 twice, 5 div, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_energy(y: &[f64; 12], s: f64, p: &Params) -> [f64; 4] {
+    let w0 = p[4]; // m_c
+    let w1 = y[6]; // theta_dot
+    let w2 = s; // s
+    let w3 = p[1]; // b
+    let w4 = w2 * w3;
+    let w5 = w1 * w4;
+    let w6 = w5 * w5;
+    let w7: f64 = 0.3914958780198129;
+    let w8 = y[2]; // u_1
+    let w9 = -w5;
+    let w10 = 2.0 * w9;
+    let w11 = w1 * w10;
+    let w12 = w8 * w11;
+    let w13 = w7 * w12;
+    let w14 = w6 + w13;
+    let w15: f64 = -0.21696794755535964;
+    let w16 = y[3]; // u_2
+    let w17 = w16 * w11;
+    let w18 = w15 * w17;
+    let w19 = w14 + w18;
+    let w20: f64 = 0.12721264843305286;
+    let w21 = y[4]; // u_3
+    let w22 = w21 * w11;
+    let w23 = w20 * w22;
+    let w24 = w19 + w23;
+    let w25: f64 = -0.09094901081852429;
+    let w26 = y[5]; // u_4
+    let w27 = w26 * w11;
+    let w28 = w25 * w27;
+    let w29 = w24 + w28;
+    let w30: f64 = 0.16666666666666666;
+    let w31 = p[0]; // h
+    let w32 = w1 * w31;
+    let w33 = 2.0 * w32;
+    let w34 = w1 * w33;
+    let w35 = w31 * w34;
+    let w36 = w30 * w35;
+    let w37 = w29 + w36;
+    let w38: f64 = 0.2844128718549554;
+    let w39 = y[8]; // u_dot_1
+    let w40 = 2.0 * w39;
+    let w41 = w1 * w40;
+    let w42 = w31 * w41;
+    let w43 = w38 * w42;
+    let w44 = w37 + w43;
+    let w45: f64 = -0.04538339344319348;
+    let w46 = y[9]; // u_dot_2
+    let w47 = 2.0 * w46;
+    let w48 = w1 * w47;
+    let w49 = w31 * w48;
+    let w50 = w45 * w49;
+    let w51 = w44 + w50;
+    let w52: f64 = 0.016208187184872217;
+    let w53 = y[10]; // u_dot_3
+    let w54 = 2.0 * w53;
+    let w55 = w1 * w54;
+    let w56 = w31 * w55;
+    let w57 = w52 * w56;
+    let w58 = w51 + w57;
+    let w59: f64 = -0.008271167510425316;
+    let w60 = y[11]; // u_dot_4
+    let w61 = 2.0 * w60;
+    let w62 = w1 * w61;
+    let w63 = w31 * w62;
+    let w64 = w59 * w63;
+    let w65 = w58 + w64;
+    let w66: f64 = 0.125;
+    let w67 = w1 * w8;
+    let w68 = 2.0 * w67;
+    let w69 = w1 * w68;
+    let w70 = w8 * w69;
+    let w71 = w39 * w40;
+    let w72 = w70 + w71;
+    let w73 = w66 * w72;
+    let w74 = w65 + w73;
+    let w75 = w1 * w16;
+    let w76 = 2.0 * w75;
+    let w77 = w1 * w76;
+    let w78 = w16 * w77;
+    let w79 = w46 * w47;
+    let w80 = w78 + w79;
+    let w81 = w66 * w80;
+    let w82 = w74 + w81;
+    let w83 = w1 * w21;
+    let w84 = 2.0 * w83;
+    let w85 = w1 * w84;
+    let w86 = w21 * w85;
+    let w87 = w53 * w54;
+    let w88 = w86 + w87;
+    let w89 = w66 * w88;
+    let w90 = w82 + w89;
+    let w91 = w1 * w26;
+    let w92 = 2.0 * w91;
+    let w93 = w1 * w92;
+    let w94 = w26 * w93;
+    let w95 = w60 * w61;
+    let w96 = w94 + w95;
+    let w97 = w66 * w96;
+    let w98 = w90 + w97;
+    let w99 = w0 * w98;
+    let w100 = p[3]; // m
+    let w101 = w39 + w46;
+    let w102 = w101 + w53;
+    let w103 = w102 + w60;
+    let w104 = w103 + w32;
+    let w105 = w104 * w104;
+    let w106 = w8 + w16;
+    let w107 = w106 + w21;
+    let w108 = w107 + w26;
+    let w109 = w108 - w4;
+    let w110 = w1 * w109;
+    let w111 = w110 * w110;
+    let w112 = w105 + w111;
+    let w113 = w100 * w112;
+    let w114 = w99 + w113;
+    let w115: f64 = 2.0;
+    let w116 = w114 / w115;
+    let w117 = p[6]; // i_bc
+    let w118 = w1 * w1;
+    let w119 = w117 * w118;
+    let w120 = w119 / w115;
+    let w121 = w116 + w120;
+    let w122 = w0 + w100;
+    let w123 = p[5]; // m_b
+    let w124 = w122 + w123;
+    let w125 = y[7]; // v_dot
+    let w126 = y[0]; // theta
+    let w127 = w126.cos();
+    let w128 = w4 * w127;
+    let w129 = w128 * w1;
+    let w130 = w125 + w129;
+    let w131 = w130 * w130;
+    let w132 = w124 * w131;
+    let w133 = w132 / w115;
+    let w134 = w121 + w133;
+    let w135 = w4 * w123;
+    let w136 = w109 * w100;
+    let w137 = w135 - w136;
+    let w138 = w25 * w0;
+    let w139 = w26 * w138;
+    let w140 = w137 - w139;
+    let w141 = w20 * w0;
+    let w142 = w21 * w141;
+    let w143 = w140 - w142;
+    let w144 = w15 * w0;
+    let w145 = w16 * w144;
+    let w146 = w143 - w145;
+    let w147 = w7 * w0;
+    let w148 = w8 * w147;
+    let w149 = w146 - w148;
+    let w150 = w4 * w0;
+    let w151 = w149 + w150;
+    let w152 = w127 * w151;
+    let w153 = w126.sin();
+    let w154 = w31 * w100;
+    let w155: f64 = 0.5;
+    let w156 = w155 * w0;
+    let w157 = w31 * w156;
+    let w158 = w154 + w157;
+    let w159 = w153 * w158;
+    let w160 = w152 - w159;
+    let w161 = w160 * w1;
+    let w162 = w153 * w100;
+    let w163 = w153 * w147;
+    let w164 = w162 + w163;
+    let w165 = w164 * w39;
+    let w166 = w161 - w165;
+    let w167 = w153 * w144;
+    let w168 = w162 + w167;
+    let w169 = w168 * w46;
+    let w170 = w166 - w169;
+    let w171 = w153 * w141;
+    let w172 = w162 + w171;
+    let w173 = w172 * w53;
+    let w174 = w170 - w173;
+    let w175 = w153 * w138;
+    let w176 = w162 + w175;
+    let w177 = w176 * w60;
+    let w178 = w174 - w177;
+    let w179 = w130 * w178;
+    let w180 = w134 - w179;
+    let o0 = w180; // kinetic
+    let w181 = p[8]; // g
+    let w182 = w4 * w153;
+    let w183 = w31 * w127;
+    let w184 = w155 * w183;
+    let w185 = w182 + w184;
+    let w186 = w8 * w153;
+    let w187 = w7 * w186;
+    let w188 = w185 - w187;
+    let w189 = w16 * w153;
+    let w190 = w15 * w189;
+    let w191 = w188 - w190;
+    let w192 = w21 * w153;
+    let w193 = w20 * w192;
+    let w194 = w191 - w193;
+    let w195 = w26 * w153;
+    let w196 = w25 * w195;
+    let w197 = w194 - w196;
+    let w198 = w0 * w197;
+    let w199 = w109 * w153;
+    let w200 = w183 - w199;
+    let w201 = w100 * w200;
+    let w202 = w198 + w201;
+    let w203 = w123 * w182;
+    let w204 = w202 + w203;
+    let w205 = y[1]; // v
+    let w206 = w205 + w182;
+    let w207 = w124 * w206;
+    let w208 = w204 - w207;
+    let w209 = w181 * w208;
+    let o1 = w209; // gravity
+    let w210: f64 = 3.0905908420815478;
+    let w211 = p[2]; // ei
+    let w212 = w31 * w31;
+    let w213 = w31 * w212;
+    let w214 = w211 / w213;
+    let w215 = w210 * w214;
+    let w216 = w8 * w8;
+    let w217 = w215 * w216;
+    let w218: f64 = 121.37970462834276;
+    let w219 = w218 * w214;
+    let w220 = w16 * w16;
+    let w221 = w219 * w220;
+    let w222 = w217 + w221;
+    let w223: f64 = 951.6365665978627;
+    let w224 = w223 * w214;
+    let w225 = w21 * w21;
+    let w226 = w224 * w225;
+    let w227 = w222 + w226;
+    let w228: f64 = 3654.318326279695;
+    let w229 = w228 * w214;
+    let w230 = w26 * w26;
+    let w231 = w229 * w230;
+    let w232 = w227 + w231;
+    let w233 = w232 / w115;
+    let o2 = w233; // strain
+    let w234 = w127 * w158;
+    let w235 = w136 - w135;
+    let w236 = w235 + w139;
+    let w237 = w236 + w142;
+    let w238 = w237 + w145;
+    let w239 = w238 + w148;
+    let w240 = w239 - w150;
+    let w241 = w153 * w240;
+    let w242 = w234 - w241;
+    let w243 = w242 * w1;
+    let w244 = w127 * w100;
+    let w245 = w127 * w147;
+    let w246 = w244 + w245;
+    let w247 = w246 * w39;
+    let w248 = w243 + w247;
+    let w249 = w127 * w144;
+    let w250 = w244 + w249;
+    let w251 = w250 * w46;
+    let w252 = w248 + w251;
+    let w253 = w127 * w141;
+    let w254 = w244 + w253;
+    let w255 = w254 * w53;
+    let w256 = w252 + w255;
+    let w257 = w127 * w138;
+    let w258 = w244 + w257;
+    let w259 = w258 * w60;
+    let w260 = w256 + w259;
+    let o3 = w260; // momentum_x
+    [o0, o1, o2, o3]
+}
+
+/// Indices of the elements of the output `e` of [`free_energy()`].
+pub mod free_energy {
+    /// Index of `kinetic`.
+    pub const KINETIC: usize = 0;
+    /// Index of `gravity`.
+    pub const GRAVITY: usize = 1;
+    /// Index of `strain`.
+    pub const STRAIN: usize = 2;
+    /// Index of `momentum_x`.
+    pub const MOMENTUM_X: usize = 3;
+
+    /// Indices of the elements of input `y` of [`free_energy()`](super::free_energy()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+        /// Index of `u_4`.
+        pub const U_4: usize = 5;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 6;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 7;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 8;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 9;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 10;
+        /// Index of `u_dot_4`.
+        pub const U_DOT_4: usize = 11;
+    }
+}
+
+/// Power terms: dE/dt = ground - damping + Q_theta theta' + Q_v v', with ground = -ug P_x and damping u'^T C u'. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 12]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `u_3`, `u_4`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`, `u_dot_4`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_1_4`, `c_2_2`, `c_2_3`, `c_2_4`, `c_3_3`, `c_3_4`, `c_4_4`
+///
+/// # Output
+///
+/// `w: [f64; 2]`: power terms — `ground`, `damping`
+///
+/// Operations: 86 (48 mul, 31 add, 4 sub, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_power(y: &[f64; 12], ug: f64, s: f64, p: &Params) -> [f64; 2] {
+    let w0 = ug; // ug
+    let w1 = y[0]; // theta
+    let w2 = w1.cos();
+    let w3 = p[0]; // h
+    let w4 = p[3]; // m
+    let w5 = w3 * w4;
+    let w6: f64 = 0.5;
+    let w7 = p[4]; // m_c
+    let w8 = w6 * w7;
+    let w9 = w3 * w8;
+    let w10 = w5 + w9;
+    let w11 = w2 * w10;
+    let w12 = w1.sin();
+    let w13 = y[2]; // u_1
+    let w14 = y[3]; // u_2
+    let w15 = w13 + w14;
+    let w16 = y[4]; // u_3
+    let w17 = w15 + w16;
+    let w18 = y[5]; // u_4
+    let w19 = w17 + w18;
+    let w20 = s; // s
+    let w21 = p[1]; // b
+    let w22 = w20 * w21;
+    let w23 = w19 - w22;
+    let w24 = w23 * w4;
+    let w25 = p[5]; // m_b
+    let w26 = w22 * w25;
+    let w27 = w24 - w26;
+    let w28: f64 = -0.09094901081852429;
+    let w29 = w28 * w7;
+    let w30 = w18 * w29;
+    let w31 = w27 + w30;
+    let w32: f64 = 0.12721264843305286;
+    let w33 = w32 * w7;
+    let w34 = w16 * w33;
+    let w35 = w31 + w34;
+    let w36: f64 = -0.21696794755535964;
+    let w37 = w36 * w7;
+    let w38 = w14 * w37;
+    let w39 = w35 + w38;
+    let w40: f64 = 0.3914958780198129;
+    let w41 = w40 * w7;
+    let w42 = w13 * w41;
+    let w43 = w39 + w42;
+    let w44 = w22 * w7;
+    let w45 = w43 - w44;
+    let w46 = w12 * w45;
+    let w47 = w11 - w46;
+    let w48 = y[6]; // theta_dot
+    let w49 = w47 * w48;
+    let w50 = w2 * w4;
+    let w51 = w2 * w41;
+    let w52 = w50 + w51;
+    let w53 = y[8]; // u_dot_1
+    let w54 = w52 * w53;
+    let w55 = w49 + w54;
+    let w56 = w2 * w37;
+    let w57 = w50 + w56;
+    let w58 = y[9]; // u_dot_2
+    let w59 = w57 * w58;
+    let w60 = w55 + w59;
+    let w61 = w2 * w33;
+    let w62 = w50 + w61;
+    let w63 = y[10]; // u_dot_3
+    let w64 = w62 * w63;
+    let w65 = w60 + w64;
+    let w66 = w2 * w29;
+    let w67 = w50 + w66;
+    let w68 = y[11]; // u_dot_4
+    let w69 = w67 * w68;
+    let w70 = w65 + w69;
+    let w71 = w0 * w70;
+    let w72 = -w71;
+    let o0 = w72; // ground
+    let w73 = p[9]; // c_1_1
+    let w74 = w73 * w53;
+    let w75 = p[10]; // c_1_2
+    let w76 = w75 * w58;
+    let w77 = w74 + w76;
+    let w78 = p[11]; // c_1_3
+    let w79 = w78 * w63;
+    let w80 = w77 + w79;
+    let w81 = p[12]; // c_1_4
+    let w82 = w81 * w68;
+    let w83 = w80 + w82;
+    let w84 = w83 * w53;
+    let w85 = w75 * w53;
+    let w86 = p[13]; // c_2_2
+    let w87 = w86 * w58;
+    let w88 = w85 + w87;
+    let w89 = p[14]; // c_2_3
+    let w90 = w89 * w63;
+    let w91 = w88 + w90;
+    let w92 = p[15]; // c_2_4
+    let w93 = w92 * w68;
+    let w94 = w91 + w93;
+    let w95 = w94 * w58;
+    let w96 = w84 + w95;
+    let w97 = w78 * w53;
+    let w98 = w89 * w58;
+    let w99 = w97 + w98;
+    let w100 = p[16]; // c_3_3
+    let w101 = w100 * w63;
+    let w102 = w99 + w101;
+    let w103 = p[17]; // c_3_4
+    let w104 = w103 * w68;
+    let w105 = w102 + w104;
+    let w106 = w105 * w63;
+    let w107 = w96 + w106;
+    let w108 = w81 * w53;
+    let w109 = w92 * w58;
+    let w110 = w108 + w109;
+    let w111 = w103 * w63;
+    let w112 = w110 + w111;
+    let w113 = p[18]; // c_4_4
+    let w114 = w113 * w68;
+    let w115 = w112 + w114;
+    let w116 = w115 * w68;
+    let w117 = w107 + w116;
+    let o1 = w117; // damping
+    [o0, o1]
+}
+
+/// Indices of the elements of the output `w` of [`free_power()`].
+pub mod free_power {
+    /// Index of `ground`.
+    pub const GROUND: usize = 0;
+    /// Index of `damping`.
+    pub const DAMPING: usize = 1;
+
+    /// Indices of the elements of input `y` of [`free_power()`](super::free_power()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+        /// Index of `u_4`.
+        pub const U_4: usize = 5;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 6;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 7;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 8;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 9;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 10;
+        /// Index of `u_dot_4`.
+        pub const U_DOT_4: usize = 11;
+    }
+}
+
+/// Section forces at the column base and the ground's force on the body (the bed's resultant and the horizontal force that keeps the leaning corner in place), for the accelerations qdd. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded.
+///
+/// # Inputs
+///
+/// - `y: &[f64; 12]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `u_3`, `u_4`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`, `u_dot_4`
+/// - `qdd: &[f64; 6]`: accelerations [theta'', v'', u''] (from M q'' = F + Q_ground) — `theta_ddot`, `v_ddot`, `u_ddot_1`, `u_ddot_2`, `u_ddot_3`, `u_ddot_4`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_1_4`, `c_2_2`, `c_2_3`, `c_2_4`, `c_3_3`, `c_3_4`, `c_4_4`
+///
+/// # Output
+///
+/// `ff: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 194 (102 mul, 55 add, 30 sub, 2 sq, 2 twice, 1 cos, 1 div, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_forces(y: &[f64; 12], qdd: &[f64; 6], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[4]; // m_c
+    let w1: f64 = 0.3914958780198129;
+    let w2 = y[2]; // u_1
+    let w3 = ug; // ug
+    let w4 = y[0]; // theta
+    let w5 = w4.sin();
+    let w6 = w3 * w5;
+    let w7 = qdd[0]; // theta_ddot
+    let w8 = s; // s
+    let w9 = p[1]; // b
+    let w10 = w8 * w9;
+    let w11 = w7 * w10;
+    let w12 = w6 + w11;
+    let w13 = p[8]; // g
+    let w14 = w4.cos();
+    let w15 = w13 * w14;
+    let w16 = w12 + w15;
+    let w17 = qdd[1]; // v_ddot
+    let w18 = w14 * w7;
+    let w19 = y[6]; // theta_dot
+    let w20 = w19 * w19;
+    let w21 = w5 * w20;
+    let w22 = w18 - w21;
+    let w23 = w10 * w22;
+    let w24 = w17 + w23;
+    let w25 = w24 * w14;
+    let w26 = w16 - w25;
+    let w27 = w2 * w26;
+    let w28 = w1 * w27;
+    let w29: f64 = 0.5;
+    let w30 = p[0]; // h
+    let w31 = w20 * w10;
+    let w32 = w3 * w14;
+    let w33 = w31 + w32;
+    let w34 = w13 * w5;
+    let w35 = w33 - w34;
+    let w36 = w24 * w5;
+    let w37 = w35 + w36;
+    let w38 = w30 * w37;
+    let w39 = w29 * w38;
+    let w40 = w28 - w39;
+    let w41: f64 = -0.21696794755535964;
+    let w42 = y[3]; // u_2
+    let w43 = w42 * w26;
+    let w44 = w41 * w43;
+    let w45 = w40 + w44;
+    let w46: f64 = 0.12721264843305286;
+    let w47 = y[4]; // u_3
+    let w48 = w47 * w26;
+    let w49 = w46 * w48;
+    let w50 = w45 + w49;
+    let w51: f64 = -0.09094901081852429;
+    let w52 = y[5]; // u_4
+    let w53 = w52 * w26;
+    let w54 = w51 * w53;
+    let w55 = w50 + w54;
+    let w56: f64 = 0.16666666666666666;
+    let w57 = w7 * w30;
+    let w58 = 2.0 * w57;
+    let w59 = w30 * w58;
+    let w60 = w56 * w59;
+    let w61 = w55 - w60;
+    let w62: f64 = 0.2844128718549554;
+    let w63 = qdd[2]; // u_ddot_1
+    let w64 = w30 * w63;
+    let w65 = w62 * w64;
+    let w66 = w61 - w65;
+    let w67: f64 = -0.04538339344319348;
+    let w68 = qdd[3]; // u_ddot_2
+    let w69 = w30 * w68;
+    let w70 = w67 * w69;
+    let w71 = w66 - w70;
+    let w72: f64 = 0.016208187184872217;
+    let w73 = qdd[4]; // u_ddot_3
+    let w74 = w30 * w73;
+    let w75 = w72 * w74;
+    let w76 = w71 - w75;
+    let w77: f64 = -0.008271167510425316;
+    let w78 = qdd[5]; // u_ddot_4
+    let w79 = w30 * w78;
+    let w80 = w77 * w79;
+    let w81 = w76 - w80;
+    let w82: f64 = 0.125;
+    let w83 = 2.0 * w19;
+    let w84 = y[8]; // u_dot_1
+    let w85 = w83 * w84;
+    let w86 = w85 * w2;
+    let w87 = w7 * w2;
+    let w88 = w2 * w87;
+    let w89 = w86 + w88;
+    let w90 = w87 + w85;
+    let w91 = w2 * w90;
+    let w92 = w89 + w91;
+    let w93 = w82 * w92;
+    let w94 = w81 - w93;
+    let w95 = y[9]; // u_dot_2
+    let w96 = w83 * w95;
+    let w97 = w96 * w42;
+    let w98 = w7 * w42;
+    let w99 = w42 * w98;
+    let w100 = w97 + w99;
+    let w101 = w98 + w96;
+    let w102 = w42 * w101;
+    let w103 = w100 + w102;
+    let w104 = w82 * w103;
+    let w105 = w94 - w104;
+    let w106 = y[10]; // u_dot_3
+    let w107 = w83 * w106;
+    let w108 = w107 * w47;
+    let w109 = w7 * w47;
+    let w110 = w47 * w109;
+    let w111 = w108 + w110;
+    let w112 = w109 + w107;
+    let w113 = w47 * w112;
+    let w114 = w111 + w113;
+    let w115 = w82 * w114;
+    let w116 = w105 - w115;
+    let w117 = y[11]; // u_dot_4
+    let w118 = w83 * w117;
+    let w119 = w118 * w52;
+    let w120 = w7 * w52;
+    let w121 = w52 * w120;
+    let w122 = w119 + w121;
+    let w123 = w120 + w118;
+    let w124 = w52 * w123;
+    let w125 = w122 + w124;
+    let w126 = w82 * w125;
+    let w127 = w116 - w126;
+    let w128 = w0 * w127;
+    let w129 = p[3]; // m
+    let w130 = w2 + w42;
+    let w131 = w130 + w47;
+    let w132 = w131 + w52;
+    let w133 = w132 - w10;
+    let w134 = w7 * w133;
+    let w135 = w20 * w30;
+    let w136 = w134 + w135;
+    let w137 = w85 + w96;
+    let w138 = w137 + w107;
+    let w139 = w138 + w118;
+    let w140 = w136 + w139;
+    let w141 = w6 - w140;
+    let w142 = w141 + w15;
+    let w143 = w142 - w25;
+    let w144 = w132 * w143;
+    let w145 = w20 * w133;
+    let w146 = w57 - w145;
+    let w147 = w63 + w68;
+    let w148 = w147 + w73;
+    let w149 = w148 + w78;
+    let w150 = w146 + w149;
+    let w151 = w150 + w32;
+    let w152 = w151 - w34;
+    let w153 = w152 + w36;
+    let w154 = w30 * w153;
+    let w155 = w144 - w154;
+    let w156 = w129 * w155;
+    let w157 = w128 + w156;
+    let o0 = w157; // moment
+    let w158 = w30 * w7;
+    let w159 = w29 * w158;
+    let w160 = w37 + w159;
+    let w161 = w2 * w20;
+    let w162 = w63 - w161;
+    let w163 = w1 * w162;
+    let w164 = w160 + w163;
+    let w165 = w42 * w20;
+    let w166 = w68 - w165;
+    let w167 = w41 * w166;
+    let w168 = w164 + w167;
+    let w169 = w47 * w20;
+    let w170 = w73 - w169;
+    let w171 = w46 * w170;
+    let w172 = w168 + w171;
+    let w173 = w52 * w20;
+    let w174 = w78 - w173;
+    let w175 = w51 * w174;
+    let w176 = w172 + w175;
+    let w177 = w0 * w176;
+    let w178 = w129 * w153;
+    let w179 = w177 + w178;
+    let o1 = w179; // shear
+    let w180 = w30 * w20;
+    let w181 = w29 * w180;
+    let w182 = w26 - w181;
+    let w183 = w2 * w7;
+    let w184 = w85 + w183;
+    let w185 = w1 * w184;
+    let w186 = w182 - w185;
+    let w187 = w42 * w7;
+    let w188 = w96 + w187;
+    let w189 = w41 * w188;
+    let w190 = w186 - w189;
+    let w191 = w47 * w7;
+    let w192 = w107 + w191;
+    let w193 = w46 * w192;
+    let w194 = w190 - w193;
+    let w195 = w52 * w7;
+    let w196 = w118 + w195;
+    let w197 = w51 * w196;
+    let w198 = w194 - w197;
+    let w199 = w0 * w198;
+    let w200 = w129 * w143;
+    let w201 = w199 + w200;
+    let o2 = w201; // axial
+    let w202: f64 = 3.5160152685001513;
+    let w203 = p[2]; // ei
+    let w204 = w30 * w30;
+    let w205 = w203 / w204;
+    let w206 = w202 * w205;
+    let w207 = w206 * w2;
+    let w208: f64 = -22.03449156466677;
+    let w209 = w208 * w205;
+    let w210 = w209 * w42;
+    let w211 = w207 + w210;
+    let w212: f64 = 61.697214413549105;
+    let w213 = w212 * w205;
+    let w214 = w213 * w47;
+    let w215 = w211 + w214;
+    let w216: f64 = -120.90191605230572;
+    let w217 = w216 * w205;
+    let w218 = w217 * w52;
+    let w219 = w215 + w218;
+    let o3 = w219; // moment_elastic
+    let w220 = p[5]; // m_b
+    let w221 = w220 * w37;
+    let w222 = w179 + w221;
+    let w223 = w14 * w222;
+    let w224 = w11 + w6;
+    let w225 = w224 + w15;
+    let w226 = w225 - w25;
+    let w227 = w220 * w226;
+    let w228 = w201 + w227;
+    let w229 = w5 * w228;
+    let w230 = w223 + w229;
+    let o4 = w230; // reaction_h
+    let w231 = w14 * w228;
+    let w232 = w5 * w222;
+    let w233 = w231 - w232;
+    let o5 = w233; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `ff` of [`free_forces()`].
+pub mod free_forces {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `y` of [`free_forces()`](super::free_forces()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+        /// Index of `u_4`.
+        pub const U_4: usize = 5;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 6;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 7;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 8;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 9;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 10;
+        /// Index of `u_dot_4`.
+        pub const U_DOT_4: usize = 11;
+    }
+
+    /// Indices of the elements of input `qdd` of [`free_forces()`](super::free_forces()).
+    pub mod qdd {
+        /// Index of `theta_ddot`.
+        pub const THETA_DDOT: usize = 0;
+        /// Index of `v_ddot`.
+        pub const V_DDOT: usize = 1;
+        /// Index of `u_ddot_1`.
+        pub const U_DDOT_1: usize = 2;
+        /// Index of `u_ddot_2`.
+        pub const U_DDOT_2: usize = 3;
+        /// Index of `u_ddot_3`.
+        pub const U_DDOT_3: usize = 4;
+        /// Index of `u_ddot_4`.
+        pub const U_DDOT_4: usize = 5;
+    }
+}
+
 /// The full model on the first four cantilever modes: four deformation coordinates
 ///
 /// Type-level handle of this variant, implementing [`crate::Variant`].
@@ -5104,6 +6805,31 @@ impl crate::Variant for CantileverModes4 {
     #[inline]
     fn static_uplift(p: &Params) -> [f64; 8] {
         static_uplift(p)
+    }
+
+    #[inline]
+    fn free_mass_matrix(qf: &[f64; 6], s: f64, p: &Params) -> [f64; 21] {
+        free_mass_matrix(qf, s, p)
+    }
+
+    #[inline]
+    fn free_forcing(y: &[f64; 12], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+        free_forcing(y, ug, s, p)
+    }
+
+    #[inline]
+    fn free_energy(y: &[f64; 12], s: f64, p: &Params) -> [f64; 4] {
+        free_energy(y, s, p)
+    }
+
+    #[inline]
+    fn free_power(y: &[f64; 12], ug: f64, s: f64, p: &Params) -> [f64; 2] {
+        free_power(y, ug, s, p)
+    }
+
+    #[inline]
+    fn free_forces(y: &[f64; 12], qdd: &[f64; 6], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+        free_forces(y, qdd, ug, s, p)
     }
 }
 
@@ -5247,6 +6973,55 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             };
             let p: &Params = (*p).try_into().ok()?;
             Some(static_uplift(p).to_vec())
+        }
+        "free_mass_matrix" => {
+            let [qf, s, p] = inputs else {
+                return None;
+            };
+            let qf: &[f64; 6] = (*qf).try_into().ok()?;
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_mass_matrix(qf, s, p).to_vec())
+        }
+        "free_forcing" => {
+            let [y, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 12] = (*y).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_forcing(y, ug, s, p).to_vec())
+        }
+        "free_energy" => {
+            let [y, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 12] = (*y).try_into().ok()?;
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_energy(y, s, p).to_vec())
+        }
+        "free_power" => {
+            let [y, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 12] = (*y).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_power(y, ug, s, p).to_vec())
+        }
+        "free_forces" => {
+            let [y, qdd, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 12] = (*y).try_into().ok()?;
+            let qdd: &[f64; 6] = (*qdd).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_forces(y, qdd, ug, s, p).to_vec())
         }
         _ => None,
     }

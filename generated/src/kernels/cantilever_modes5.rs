@@ -6077,6 +6077,2005 @@ pub mod static_uplift {
     pub const MOMENT_ELASTIC_UPLIFT: usize = 8;
 }
 
+/// Mass matrix M(q) over q = [theta, v, u_1..u_n], upper triangle row by row (symmetric positive definite; a rigid column's u row is the identity). On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `qf: &[f64; 7]`: configuration on compliant ground: rotation, settlement of the base centre (positive into the ground), deformation — `theta`, `v`, `u_1`, `u_2`, `u_3`, `u_4`, `u_5`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_1_4`, `c_1_5`, `c_2_2`, `c_2_3`, `c_2_4`, `c_2_5`, `c_3_3`, `c_3_4`, `c_3_5`, `c_4_4`, `c_4_5`, `c_5_5`
+///
+/// # Output
+///
+/// `m: [f64; 28]`: upper triangle of M — `m_t_t`, `m_t_v`, `m_t_u1`, `m_t_u2`, `m_t_u3`, `m_t_u4`, `m_t_u5`, `m_v_v`, `m_v_u1`, `m_v_u2`, `m_v_u3`, `m_v_u4`, `m_v_u5`, `m_u1_u1`, `m_u1_u2`, `m_u1_u3`, `m_u1_u4`, `m_u1_u5`, `m_u2_u2`, `m_u2_u3`, `m_u2_u4`, `m_u2_u5`, `m_u3_u3`, `m_u3_u4`, `m_u3_u5`, `m_u4_u4`, `m_u4_u5`, `m_u5_u5`
+///
+/// Operations: 185 (94 mul, 46 add, 26 twice, 16 sub, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_mass_matrix(qf: &[f64; 7], s: f64, p: &Params) -> [f64; 28] {
+    let w0 = s; // s
+    let w1 = p[1]; // b
+    let w2 = w0 * w1;
+    let w3 = qf[0]; // theta
+    let w4 = w3.cos();
+    let w5 = w2 * w4;
+    let w6: f64 = 0.5;
+    let w7 = p[4]; // m_c
+    let w8 = p[3]; // m
+    let w9 = w7 + w8;
+    let w10 = p[5]; // m_b
+    let w11 = w9 + w10;
+    let w12 = w6 * w11;
+    let w13 = 2.0 * w5;
+    let w14 = w12 * w13;
+    let w15 = w2 * w10;
+    let w16 = qf[2]; // u_1
+    let w17 = qf[3]; // u_2
+    let w18 = w16 + w17;
+    let w19 = qf[4]; // u_3
+    let w20 = w18 + w19;
+    let w21 = qf[5]; // u_4
+    let w22 = w20 + w21;
+    let w23 = qf[6]; // u_5
+    let w24 = w22 + w23;
+    let w25 = w24 - w2;
+    let w26 = w25 * w8;
+    let w27 = w15 - w26;
+    let w28: f64 = 0.07073542044968367;
+    let w29 = w28 * w7;
+    let w30 = w23 * w29;
+    let w31 = w27 - w30;
+    let w32: f64 = -0.09094901081852429;
+    let w33 = w32 * w7;
+    let w34 = w21 * w33;
+    let w35 = w31 - w34;
+    let w36: f64 = 0.12721264843305286;
+    let w37 = w36 * w7;
+    let w38 = w19 * w37;
+    let w39 = w35 - w38;
+    let w40: f64 = -0.21696794755535964;
+    let w41 = w40 * w7;
+    let w42 = w17 * w41;
+    let w43 = w39 - w42;
+    let w44: f64 = 0.3914958780198129;
+    let w45 = w44 * w7;
+    let w46 = w16 * w45;
+    let w47 = w43 - w46;
+    let w48 = w2 * w7;
+    let w49 = w47 + w48;
+    let w50 = w4 * w49;
+    let w51 = w3.sin();
+    let w52 = p[0]; // h
+    let w53 = w52 * w8;
+    let w54 = w6 * w7;
+    let w55 = w52 * w54;
+    let w56 = w53 + w55;
+    let w57 = w51 * w56;
+    let w58 = w50 - w57;
+    let w59 = w14 - w58;
+    let w60 = w5 * w59;
+    let w61 = w58 * w5;
+    let w62 = w60 - w61;
+    let w63 = p[6]; // i_bc
+    let w64 = w62 + w63;
+    let w65 = w6 * w8;
+    let w66 = 2.0 * w25;
+    let w67 = w65 * w66;
+    let w68 = w25 * w67;
+    let w69 = w64 + w68;
+    let w70 = 2.0 * w52;
+    let w71 = w65 * w70;
+    let w72 = w52 * w71;
+    let w73 = w69 + w72;
+    let w74: f64 = 0.0625;
+    let w75 = w74 * w7;
+    let w76 = w23 * w75;
+    let w77 = 2.0 * w23;
+    let w78 = w76 * w77;
+    let w79 = w73 + w78;
+    let w80 = 2.0 * w76;
+    let w81 = w23 * w80;
+    let w82 = w79 + w81;
+    let w83 = w21 * w75;
+    let w84 = 2.0 * w21;
+    let w85 = w83 * w84;
+    let w86 = w82 + w85;
+    let w87 = 2.0 * w83;
+    let w88 = w21 * w87;
+    let w89 = w86 + w88;
+    let w90 = w19 * w75;
+    let w91 = 2.0 * w19;
+    let w92 = w90 * w91;
+    let w93 = w89 + w92;
+    let w94 = 2.0 * w90;
+    let w95 = w19 * w94;
+    let w96 = w93 + w95;
+    let w97 = w17 * w75;
+    let w98 = 2.0 * w17;
+    let w99 = w97 * w98;
+    let w100 = w96 + w99;
+    let w101 = 2.0 * w97;
+    let w102 = w17 * w101;
+    let w103 = w100 + w102;
+    let w104 = w16 * w75;
+    let w105 = 2.0 * w16;
+    let w106 = w104 * w105;
+    let w107 = w103 + w106;
+    let w108 = 2.0 * w104;
+    let w109 = w16 * w108;
+    let w110 = w107 + w109;
+    let w111: f64 = 0.08333333333333333;
+    let w112 = w111 * w7;
+    let w113 = w52 * w112;
+    let w114 = w113 * w70;
+    let w115 = w110 + w114;
+    let w116 = 2.0 * w113;
+    let w117 = w52 * w116;
+    let w118 = w115 + w117;
+    let w119: f64 = 0.035367710224841836;
+    let w120 = w119 * w7;
+    let w121 = w23 * w120;
+    let w122 = -w2;
+    let w123 = 2.0 * w122;
+    let w124 = w121 * w123;
+    let w125 = w118 + w124;
+    let w126 = 2.0 * w121;
+    let w127 = w2 * w126;
+    let w128 = w125 - w127;
+    let w129: f64 = -0.04547450540926214;
+    let w130 = w129 * w7;
+    let w131 = w21 * w130;
+    let w132 = w131 * w123;
+    let w133 = w128 + w132;
+    let w134 = 2.0 * w131;
+    let w135 = w2 * w134;
+    let w136 = w133 - w135;
+    let w137: f64 = 0.06360632421652643;
+    let w138 = w137 * w7;
+    let w139 = w19 * w138;
+    let w140 = w139 * w123;
+    let w141 = w136 + w140;
+    let w142 = 2.0 * w139;
+    let w143 = w2 * w142;
+    let w144 = w141 - w143;
+    let w145: f64 = -0.10848397377767982;
+    let w146 = w145 * w7;
+    let w147 = w17 * w146;
+    let w148 = w147 * w123;
+    let w149 = w144 + w148;
+    let w150 = 2.0 * w147;
+    let w151 = w2 * w150;
+    let w152 = w149 - w151;
+    let w153: f64 = 0.19574793900990645;
+    let w154 = w153 * w7;
+    let w155 = w16 * w154;
+    let w156 = w155 * w123;
+    let w157 = w152 + w156;
+    let w158 = 2.0 * w155;
+    let w159 = w2 * w158;
+    let w160 = w157 - w159;
+    let w161 = 2.0 * w2;
+    let w162 = w54 * w161;
+    let w163 = w2 * w162;
+    let w164 = w160 + w163;
+    let o0 = w164; // m_t_t
+    let w165 = w5 * w11;
+    let w166 = w165 - w58;
+    let o1 = w166; // m_t_v
+    let w167 = w51 * w8;
+    let w168 = w51 * w45;
+    let w169 = w167 + w168;
+    let w170 = w5 * w169;
+    let w171 = w170 + w53;
+    let w172: f64 = 0.1422064359274777;
+    let w173 = w172 * w7;
+    let w174 = w52 * w173;
+    let w175 = 2.0 * w174;
+    let w176 = w171 + w175;
+    let o2 = w176; // m_t_u1
+    let w177 = w51 * w41;
+    let w178 = w167 + w177;
+    let w179 = w5 * w178;
+    let w180 = w179 + w53;
+    let w181: f64 = -0.02269169672159674;
+    let w182 = w181 * w7;
+    let w183 = w52 * w182;
+    let w184 = 2.0 * w183;
+    let w185 = w180 + w184;
+    let o3 = w185; // m_t_u2
+    let w186 = w51 * w37;
+    let w187 = w167 + w186;
+    let w188 = w5 * w187;
+    let w189 = w188 + w53;
+    let w190: f64 = 0.008104093592436109;
+    let w191 = w190 * w7;
+    let w192 = w52 * w191;
+    let w193 = 2.0 * w192;
+    let w194 = w189 + w193;
+    let o4 = w194; // m_t_u3
+    let w195 = w51 * w33;
+    let w196 = w167 + w195;
+    let w197 = w5 * w196;
+    let w198 = w197 + w53;
+    let w199: f64 = -0.004135583755212658;
+    let w200 = w199 * w7;
+    let w201 = w52 * w200;
+    let w202 = 2.0 * w201;
+    let w203 = w198 + w202;
+    let o5 = w203; // m_t_u4
+    let w204 = w51 * w29;
+    let w205 = w167 + w204;
+    let w206 = w5 * w205;
+    let w207 = w206 + w53;
+    let w208: f64 = 0.0025017571076434843;
+    let w209 = w208 * w7;
+    let w210 = w52 * w209;
+    let w211 = 2.0 * w210;
+    let w212 = w207 + w211;
+    let o6 = w212; // m_t_u5
+    let o7 = w11; // m_v_v
+    let o8 = w169; // m_v_u1
+    let o9 = w178; // m_v_u2
+    let o10 = w187; // m_v_u3
+    let o11 = w196; // m_v_u4
+    let o12 = w205; // m_v_u5
+    let w213: f64 = 0.125;
+    let w214 = w213 * w7;
+    let w215 = w8 + w214;
+    let w216 = w215 + w214;
+    let o13 = w216; // m_u1_u1
+    let o14 = w8; // m_u1_u2
+    let o15 = w8; // m_u1_u3
+    let o16 = w8; // m_u1_u4
+    let o17 = w8; // m_u1_u5
+    let o18 = w216; // m_u2_u2
+    let o19 = w8; // m_u2_u3
+    let o20 = w8; // m_u2_u4
+    let o21 = w8; // m_u2_u5
+    let o22 = w216; // m_u3_u3
+    let o23 = w8; // m_u3_u4
+    let o24 = w8; // m_u3_u5
+    let o25 = w216; // m_u4_u4
+    let o26 = w8; // m_u4_u5
+    let o27 = w216; // m_u5_u5
+    [
+        o0,
+        o1,
+        o2,
+        o3,
+        o4,
+        o5,
+        o6,
+        o7,
+        o8,
+        o9,
+        o10,
+        o11,
+        o12,
+        o13,
+        o14,
+        o15,
+        o16,
+        o17,
+        o18,
+        o19,
+        o20,
+        o21,
+        o22,
+        o23,
+        o24,
+        o25,
+        o26,
+        o27,
+    ]
+}
+
+/// Indices of the elements of the output `m` of [`free_mass_matrix()`].
+pub mod free_mass_matrix {
+    /// Index of `m_t_t`.
+    pub const M_T_T: usize = 0;
+    /// Index of `m_t_v`.
+    pub const M_T_V: usize = 1;
+    /// Index of `m_t_u1`.
+    pub const M_T_U1: usize = 2;
+    /// Index of `m_t_u2`.
+    pub const M_T_U2: usize = 3;
+    /// Index of `m_t_u3`.
+    pub const M_T_U3: usize = 4;
+    /// Index of `m_t_u4`.
+    pub const M_T_U4: usize = 5;
+    /// Index of `m_t_u5`.
+    pub const M_T_U5: usize = 6;
+    /// Index of `m_v_v`.
+    pub const M_V_V: usize = 7;
+    /// Index of `m_v_u1`.
+    pub const M_V_U1: usize = 8;
+    /// Index of `m_v_u2`.
+    pub const M_V_U2: usize = 9;
+    /// Index of `m_v_u3`.
+    pub const M_V_U3: usize = 10;
+    /// Index of `m_v_u4`.
+    pub const M_V_U4: usize = 11;
+    /// Index of `m_v_u5`.
+    pub const M_V_U5: usize = 12;
+    /// Index of `m_u1_u1`.
+    pub const M_U1_U1: usize = 13;
+    /// Index of `m_u1_u2`.
+    pub const M_U1_U2: usize = 14;
+    /// Index of `m_u1_u3`.
+    pub const M_U1_U3: usize = 15;
+    /// Index of `m_u1_u4`.
+    pub const M_U1_U4: usize = 16;
+    /// Index of `m_u1_u5`.
+    pub const M_U1_U5: usize = 17;
+    /// Index of `m_u2_u2`.
+    pub const M_U2_U2: usize = 18;
+    /// Index of `m_u2_u3`.
+    pub const M_U2_U3: usize = 19;
+    /// Index of `m_u2_u4`.
+    pub const M_U2_U4: usize = 20;
+    /// Index of `m_u2_u5`.
+    pub const M_U2_U5: usize = 21;
+    /// Index of `m_u3_u3`.
+    pub const M_U3_U3: usize = 22;
+    /// Index of `m_u3_u4`.
+    pub const M_U3_U4: usize = 23;
+    /// Index of `m_u3_u5`.
+    pub const M_U3_U5: usize = 24;
+    /// Index of `m_u4_u4`.
+    pub const M_U4_U4: usize = 25;
+    /// Index of `m_u4_u5`.
+    pub const M_U4_U5: usize = 26;
+    /// Index of `m_u5_u5`.
+    pub const M_U5_U5: usize = 27;
+
+    /// Indices of the elements of input `qf` of [`free_mass_matrix()`](super::free_mass_matrix()).
+    pub mod qf {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+        /// Index of `u_4`.
+        pub const U_4: usize = 5;
+        /// Index of `u_5`.
+        pub const U_5: usize = 6;
+    }
+}
+
+/// Right-hand side F of M q'' = F + Q_ground without the ground: gravity, ground acceleration, stiffness, damping and velocity terms; Q_ground = [Q_theta, Q_v, 0..] from the ground's kernels. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 14]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `u_3`, `u_4`, `u_5`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`, `u_dot_4`, `u_dot_5`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_1_4`, `c_1_5`, `c_2_2`, `c_2_3`, `c_2_4`, `c_2_5`, `c_3_3`, `c_3_4`, `c_3_5`, `c_4_4`, `c_4_5`, `c_5_5`
+///
+/// # Output
+///
+/// `f: [f64; 7]`: generalised forces — `f_theta`, `f_v`, `f_u_1`, `f_u_2`, `f_u_3`, `f_u_4`, `f_u_5`
+///
+/// Operations: 547 (300 mul, 161 add, 54 sub, 26 twice, 2 neg, 1 cos, 1 div, 1 sin, 1 sq).
+#[inline]
+#[must_use]
+pub fn free_forcing(y: &[f64; 14], ug: f64, s: f64, p: &Params) -> [f64; 7] {
+    let w0 = y[0]; // theta
+    let w1 = w0.cos();
+    let w2 = s; // s
+    let w3 = p[1]; // b
+    let w4 = w2 * w3;
+    let w5 = p[4]; // m_c
+    let w6 = p[3]; // m
+    let w7 = w5 + w6;
+    let w8 = p[5]; // m_b
+    let w9 = w7 + w8;
+    let w10 = p[8]; // g
+    let w11 = w9 * w10;
+    let w12 = w4 * w11;
+    let w13 = w1 * w12;
+    let w14 = w0.sin();
+    let w15 = ug; // ug
+    let w16 = w8 * w15;
+    let w17 = w4 * w16;
+    let w18 = y[2]; // u_1
+    let w19 = y[3]; // u_2
+    let w20 = w18 + w19;
+    let w21 = y[4]; // u_3
+    let w22 = w20 + w21;
+    let w23 = y[5]; // u_4
+    let w24 = w22 + w23;
+    let w25 = y[6]; // u_5
+    let w26 = w24 + w25;
+    let w27 = w26 - w4;
+    let w28 = w6 * w15;
+    let w29 = w27 * w28;
+    let w30 = w17 - w29;
+    let w31: f64 = 0.07073542044968367;
+    let w32 = w5 * w15;
+    let w33 = w31 * w32;
+    let w34 = w25 * w33;
+    let w35 = w30 - w34;
+    let w36: f64 = -0.09094901081852429;
+    let w37 = w36 * w32;
+    let w38 = w23 * w37;
+    let w39 = w35 - w38;
+    let w40: f64 = 0.12721264843305286;
+    let w41 = w40 * w32;
+    let w42 = w21 * w41;
+    let w43 = w39 - w42;
+    let w44: f64 = -0.21696794755535964;
+    let w45 = w44 * w32;
+    let w46 = w19 * w45;
+    let w47 = w43 - w46;
+    let w48: f64 = 0.3914958780198129;
+    let w49 = w48 * w32;
+    let w50 = w18 * w49;
+    let w51 = w47 - w50;
+    let w52 = w4 * w32;
+    let w53 = w51 + w52;
+    let w54 = p[0]; // h
+    let w55 = w6 * w10;
+    let w56 = w54 * w55;
+    let w57 = w53 - w56;
+    let w58: f64 = 0.5;
+    let w59 = w5 * w10;
+    let w60 = w58 * w59;
+    let w61 = w54 * w60;
+    let w62 = w57 - w61;
+    let w63 = w14 * w62;
+    let w64 = w13 - w63;
+    let w65 = w27 * w55;
+    let w66 = w54 * w28;
+    let w67 = w58 * w32;
+    let w68 = w54 * w67;
+    let w69 = w66 + w68;
+    let w70 = w8 * w10;
+    let w71 = w4 * w70;
+    let w72 = w69 + w71;
+    let w73 = w65 - w72;
+    let w74 = w31 * w59;
+    let w75 = w25 * w74;
+    let w76 = w73 + w75;
+    let w77 = w36 * w59;
+    let w78 = w23 * w77;
+    let w79 = w76 + w78;
+    let w80 = w40 * w59;
+    let w81 = w21 * w80;
+    let w82 = w79 + w81;
+    let w83 = w44 * w59;
+    let w84 = w19 * w83;
+    let w85 = w82 + w84;
+    let w86 = w48 * w59;
+    let w87 = w18 * w86;
+    let w88 = w85 + w87;
+    let w89 = w4 * w59;
+    let w90 = w88 - w89;
+    let w91 = w31 * w5;
+    let w92 = y[13]; // u_dot_5
+    let w93 = y[8]; // v_dot
+    let w94 = w4 * w1;
+    let w95 = y[7]; // theta_dot
+    let w96 = w94 * w95;
+    let w97 = w93 + w96;
+    let w98 = w92 * w97;
+    let w99 = w91 * w98;
+    let w100 = w90 + w99;
+    let w101 = w36 * w5;
+    let w102 = y[12]; // u_dot_4
+    let w103 = w102 * w97;
+    let w104 = w101 * w103;
+    let w105 = w100 + w104;
+    let w106 = w40 * w5;
+    let w107 = y[11]; // u_dot_3
+    let w108 = w107 * w97;
+    let w109 = w106 * w108;
+    let w110 = w105 + w109;
+    let w111 = w44 * w5;
+    let w112 = y[10]; // u_dot_2
+    let w113 = w112 * w97;
+    let w114 = w111 * w113;
+    let w115 = w110 + w114;
+    let w116 = w48 * w5;
+    let w117 = y[9]; // u_dot_1
+    let w118 = w117 * w97;
+    let w119 = w116 * w118;
+    let w120 = w115 + w119;
+    let w121 = w98 + w103;
+    let w122 = w121 + w108;
+    let w123 = w122 + w113;
+    let w124 = w123 + w118;
+    let w125 = w6 * w124;
+    let w126 = w120 + w125;
+    let w127 = w1 * w126;
+    let w128 = w64 + w127;
+    let w129 = w54 * w6;
+    let w130 = w58 * w5;
+    let w131 = w54 * w130;
+    let w132 = w129 + w131;
+    let w133 = w95 * w97;
+    let w134 = w132 * w133;
+    let w135 = w1 * w134;
+    let w136 = w128 + w135;
+    let w137 = w4 * w8;
+    let w138 = w27 * w6;
+    let w139 = w137 - w138;
+    let w140 = w25 * w91;
+    let w141 = w139 - w140;
+    let w142 = w23 * w101;
+    let w143 = w141 - w142;
+    let w144 = w21 * w106;
+    let w145 = w143 - w144;
+    let w146 = w19 * w111;
+    let w147 = w145 - w146;
+    let w148 = w18 * w116;
+    let w149 = w147 - w148;
+    let w150 = w4 * w5;
+    let w151 = w149 + w150;
+    let w152 = w151 * w133;
+    let w153 = w14 * w152;
+    let w154 = w136 + w153;
+    let w155 = 2.0 * w97;
+    let w156 = w58 * w9;
+    let w157 = w155 * w156;
+    let w158 = w1 * w151;
+    let w159 = w14 * w132;
+    let w160 = w158 - w159;
+    let w161 = w160 * w95;
+    let w162 = w14 * w6;
+    let w163 = w14 * w116;
+    let w164 = w162 + w163;
+    let w165 = w164 * w117;
+    let w166 = w161 - w165;
+    let w167 = w14 * w111;
+    let w168 = w162 + w167;
+    let w169 = w168 * w112;
+    let w170 = w166 - w169;
+    let w171 = w14 * w106;
+    let w172 = w162 + w171;
+    let w173 = w172 * w107;
+    let w174 = w170 - w173;
+    let w175 = w14 * w101;
+    let w176 = w162 + w175;
+    let w177 = w176 * w102;
+    let w178 = w174 - w177;
+    let w179 = w14 * w91;
+    let w180 = w162 + w179;
+    let w181 = w180 * w92;
+    let w182 = w178 - w181;
+    let w183 = w157 - w182;
+    let w184 = w95 * w183;
+    let w185 = w4 * w184;
+    let w186 = w14 * w185;
+    let w187 = w154 - w186;
+    let w188 = w4 * w14;
+    let w189 = w95 * w188;
+    let w190 = -w189;
+    let w191 = 2.0 * w190;
+    let w192 = w156 * w191;
+    let w193 = w151 * w14;
+    let w194 = w132 * w1;
+    let w195 = w193 + w194;
+    let w196 = w95 * w195;
+    let w197 = w6 * w1;
+    let w198 = w116 * w1;
+    let w199 = w197 + w198;
+    let w200 = w117 * w199;
+    let w201 = w196 + w200;
+    let w202 = w111 * w1;
+    let w203 = w197 + w202;
+    let w204 = w112 * w203;
+    let w205 = w201 + w204;
+    let w206 = w106 * w1;
+    let w207 = w197 + w206;
+    let w208 = w107 * w207;
+    let w209 = w205 + w208;
+    let w210 = w101 * w1;
+    let w211 = w197 + w210;
+    let w212 = w102 * w211;
+    let w213 = w209 + w212;
+    let w214 = w91 * w1;
+    let w215 = w197 + w214;
+    let w216 = w92 * w215;
+    let w217 = w213 + w216;
+    let w218 = w192 + w217;
+    let w219 = w94 * w218;
+    let w220 = w183 * w188;
+    let w221 = w219 - w220;
+    let w222 = w97 * w195;
+    let w223 = w160 * w189;
+    let w224 = w222 + w223;
+    let w225 = w221 + w224;
+    let w226 = w225 * w95;
+    let w227 = w6 + w116;
+    let w228 = w1 * w227;
+    let w229 = w95 * w228;
+    let w230 = w94 * w229;
+    let w231 = w97 * w228;
+    let w232 = w230 + w231;
+    let w233 = w95 * w27;
+    let w234 = 2.0 * w233;
+    let w235 = w58 * w6;
+    let w236 = w234 * w235;
+    let w237 = 2.0 * w95;
+    let w238 = w235 * w237;
+    let w239 = w27 * w238;
+    let w240 = w236 + w239;
+    let w241 = w232 + w240;
+    let w242: f64 = 0.0625;
+    let w243 = w242 * w5;
+    let w244 = w18 * w243;
+    let w245 = w244 * w237;
+    let w246 = w95 * w18;
+    let w247 = 2.0 * w246;
+    let w248 = w247 * w243;
+    let w249 = w245 + w248;
+    let w250 = w241 + w249;
+    let w251 = w95 * w244;
+    let w252 = 2.0 * w251;
+    let w253 = w95 * w243;
+    let w254 = 2.0 * w253;
+    let w255 = w18 * w254;
+    let w256 = w252 + w255;
+    let w257 = w250 + w256;
+    let w258 = w95 * w4;
+    let w259 = -w258;
+    let w260 = 2.0 * w259;
+    let w261: f64 = 0.19574793900990645;
+    let w262 = w261 * w5;
+    let w263 = w260 * w262;
+    let w264 = w257 + w263;
+    let w265 = w95 * w262;
+    let w266 = 2.0 * w265;
+    let w267 = w4 * w266;
+    let w268 = w264 - w267;
+    let w269 = w268 * w117;
+    let w270 = w226 + w269;
+    let w271 = w6 + w111;
+    let w272 = w1 * w271;
+    let w273 = w95 * w272;
+    let w274 = w94 * w273;
+    let w275 = w97 * w272;
+    let w276 = w274 + w275;
+    let w277 = w276 + w240;
+    let w278 = w19 * w243;
+    let w279 = w278 * w237;
+    let w280 = w95 * w19;
+    let w281 = 2.0 * w280;
+    let w282 = w281 * w243;
+    let w283 = w279 + w282;
+    let w284 = w277 + w283;
+    let w285 = w95 * w278;
+    let w286 = 2.0 * w285;
+    let w287 = w19 * w254;
+    let w288 = w286 + w287;
+    let w289 = w284 + w288;
+    let w290: f64 = -0.10848397377767982;
+    let w291 = w290 * w5;
+    let w292 = w260 * w291;
+    let w293 = w289 + w292;
+    let w294 = w95 * w291;
+    let w295 = 2.0 * w294;
+    let w296 = w4 * w295;
+    let w297 = w293 - w296;
+    let w298 = w297 * w112;
+    let w299 = w270 + w298;
+    let w300 = w6 + w106;
+    let w301 = w1 * w300;
+    let w302 = w95 * w301;
+    let w303 = w94 * w302;
+    let w304 = w97 * w301;
+    let w305 = w303 + w304;
+    let w306 = w305 + w240;
+    let w307 = w21 * w243;
+    let w308 = w307 * w237;
+    let w309 = w95 * w21;
+    let w310 = 2.0 * w309;
+    let w311 = w310 * w243;
+    let w312 = w308 + w311;
+    let w313 = w306 + w312;
+    let w314 = w95 * w307;
+    let w315 = 2.0 * w314;
+    let w316 = w21 * w254;
+    let w317 = w315 + w316;
+    let w318 = w313 + w317;
+    let w319: f64 = 0.06360632421652643;
+    let w320 = w319 * w5;
+    let w321 = w260 * w320;
+    let w322 = w318 + w321;
+    let w323 = w95 * w320;
+    let w324 = 2.0 * w323;
+    let w325 = w4 * w324;
+    let w326 = w322 - w325;
+    let w327 = w326 * w107;
+    let w328 = w299 + w327;
+    let w329 = w6 + w101;
+    let w330 = w1 * w329;
+    let w331 = w95 * w330;
+    let w332 = w94 * w331;
+    let w333 = w97 * w330;
+    let w334 = w332 + w333;
+    let w335 = w334 + w240;
+    let w336 = w23 * w243;
+    let w337 = w336 * w237;
+    let w338 = w95 * w23;
+    let w339 = 2.0 * w338;
+    let w340 = w339 * w243;
+    let w341 = w337 + w340;
+    let w342 = w335 + w341;
+    let w343 = w95 * w336;
+    let w344 = 2.0 * w343;
+    let w345 = w23 * w254;
+    let w346 = w344 + w345;
+    let w347 = w342 + w346;
+    let w348: f64 = -0.04547450540926214;
+    let w349 = w348 * w5;
+    let w350 = w260 * w349;
+    let w351 = w347 + w350;
+    let w352 = w95 * w349;
+    let w353 = 2.0 * w352;
+    let w354 = w4 * w353;
+    let w355 = w351 - w354;
+    let w356 = w355 * w102;
+    let w357 = w328 + w356;
+    let w358 = w6 + w91;
+    let w359 = w1 * w358;
+    let w360 = w95 * w359;
+    let w361 = w94 * w360;
+    let w362 = w97 * w359;
+    let w363 = w361 + w362;
+    let w364 = w363 + w240;
+    let w365 = w25 * w243;
+    let w366 = w365 * w237;
+    let w367 = w95 * w25;
+    let w368 = 2.0 * w367;
+    let w369 = w368 * w243;
+    let w370 = w366 + w369;
+    let w371 = w364 + w370;
+    let w372 = w95 * w365;
+    let w373 = 2.0 * w372;
+    let w374 = w25 * w254;
+    let w375 = w373 + w374;
+    let w376 = w371 + w375;
+    let w377: f64 = 0.035367710224841836;
+    let w378 = w377 * w5;
+    let w379 = w260 * w378;
+    let w380 = w376 + w379;
+    let w381 = w95 * w378;
+    let w382 = 2.0 * w381;
+    let w383 = w4 * w382;
+    let w384 = w380 - w383;
+    let w385 = w384 * w92;
+    let w386 = w357 + w385;
+    let w387 = w187 - w386;
+    let o0 = w387; // f_theta
+    let w388 = w218 * w95;
+    let w389 = w229 * w117;
+    let w390 = w388 + w389;
+    let w391 = w273 * w112;
+    let w392 = w390 + w391;
+    let w393 = w302 * w107;
+    let w394 = w392 + w393;
+    let w395 = w331 * w102;
+    let w396 = w394 + w395;
+    let w397 = w360 * w92;
+    let w398 = w396 + w397;
+    let w399 = w11 - w398;
+    let o1 = w399; // f_v
+    let w400 = 2.0 * w18;
+    let w401: f64 = -1.5452954210407739;
+    let w402 = p[2]; // ei
+    let w403 = w54 * w54;
+    let w404 = w54 * w403;
+    let w405 = w402 / w404;
+    let w406 = w401 * w405;
+    let w407 = w400 * w406;
+    let w408 = w1 * w28;
+    let w409 = w1 * w49;
+    let w410 = w408 + w409;
+    let w411 = w407 - w410;
+    let w412 = w14 * w86;
+    let w413 = w411 + w412;
+    let w414 = w1 * w133;
+    let w415 = w116 * w414;
+    let w416 = w413 + w415;
+    let w417 = w14 * w55;
+    let w418 = w6 * w414;
+    let w419 = w417 + w418;
+    let w420 = w416 + w419;
+    let w421 = w95 * w236;
+    let w422 = w420 + w421;
+    let w423 = w95 * w247;
+    let w424 = w423 * w243;
+    let w425 = w422 + w424;
+    let w426 = w95 * w252;
+    let w427 = w425 + w426;
+    let w428 = w95 * w260;
+    let w429 = w428 * w262;
+    let w430 = w427 + w429;
+    let w431 = w97 * w199;
+    let w432 = w164 * w189;
+    let w433 = w431 - w432;
+    let w434 = w433 * w95;
+    let w435 = w430 - w434;
+    let w436 = p[9]; // c_1_1
+    let w437 = w436 * w117;
+    let w438 = p[10]; // c_1_2
+    let w439 = w438 * w112;
+    let w440 = w437 + w439;
+    let w441 = p[11]; // c_1_3
+    let w442 = w441 * w107;
+    let w443 = w440 + w442;
+    let w444 = p[12]; // c_1_4
+    let w445 = w444 * w102;
+    let w446 = w443 + w445;
+    let w447 = p[13]; // c_1_5
+    let w448 = w447 * w92;
+    let w449 = w446 + w448;
+    let w450 = w435 - w449;
+    let o2 = w450; // f_u_1
+    let w451 = 2.0 * w19;
+    let w452: f64 = -60.68985231417138;
+    let w453 = w452 * w405;
+    let w454 = w451 * w453;
+    let w455 = w1 * w45;
+    let w456 = w408 + w455;
+    let w457 = w454 - w456;
+    let w458 = w14 * w83;
+    let w459 = w457 + w458;
+    let w460 = w111 * w414;
+    let w461 = w459 + w460;
+    let w462 = w461 + w419;
+    let w463 = w462 + w421;
+    let w464 = w95 * w281;
+    let w465 = w464 * w243;
+    let w466 = w463 + w465;
+    let w467 = w95 * w286;
+    let w468 = w466 + w467;
+    let w469 = w428 * w291;
+    let w470 = w468 + w469;
+    let w471 = w97 * w203;
+    let w472 = w168 * w189;
+    let w473 = w471 - w472;
+    let w474 = w473 * w95;
+    let w475 = w470 - w474;
+    let w476 = w438 * w117;
+    let w477 = p[14]; // c_2_2
+    let w478 = w477 * w112;
+    let w479 = w476 + w478;
+    let w480 = p[15]; // c_2_3
+    let w481 = w480 * w107;
+    let w482 = w479 + w481;
+    let w483 = p[16]; // c_2_4
+    let w484 = w483 * w102;
+    let w485 = w482 + w484;
+    let w486 = p[17]; // c_2_5
+    let w487 = w486 * w92;
+    let w488 = w485 + w487;
+    let w489 = w475 - w488;
+    let o3 = w489; // f_u_2
+    let w490 = 2.0 * w21;
+    let w491: f64 = -475.81828329893136;
+    let w492 = w491 * w405;
+    let w493 = w490 * w492;
+    let w494 = w1 * w41;
+    let w495 = w408 + w494;
+    let w496 = w493 - w495;
+    let w497 = w14 * w80;
+    let w498 = w496 + w497;
+    let w499 = w106 * w414;
+    let w500 = w498 + w499;
+    let w501 = w500 + w419;
+    let w502 = w501 + w421;
+    let w503 = w95 * w310;
+    let w504 = w503 * w243;
+    let w505 = w502 + w504;
+    let w506 = w95 * w315;
+    let w507 = w505 + w506;
+    let w508 = w428 * w320;
+    let w509 = w507 + w508;
+    let w510 = w97 * w207;
+    let w511 = w172 * w189;
+    let w512 = w510 - w511;
+    let w513 = w512 * w95;
+    let w514 = w509 - w513;
+    let w515 = w441 * w117;
+    let w516 = w480 * w112;
+    let w517 = w515 + w516;
+    let w518 = p[18]; // c_3_3
+    let w519 = w518 * w107;
+    let w520 = w517 + w519;
+    let w521 = p[19]; // c_3_4
+    let w522 = w521 * w102;
+    let w523 = w520 + w522;
+    let w524 = p[20]; // c_3_5
+    let w525 = w524 * w92;
+    let w526 = w523 + w525;
+    let w527 = w514 - w526;
+    let o4 = w527; // f_u_3
+    let w528 = 2.0 * w23;
+    let w529: f64 = -1827.1591631398476;
+    let w530 = w529 * w405;
+    let w531 = w528 * w530;
+    let w532 = w1 * w37;
+    let w533 = w408 + w532;
+    let w534 = w531 - w533;
+    let w535 = w14 * w77;
+    let w536 = w534 + w535;
+    let w537 = w101 * w414;
+    let w538 = w536 + w537;
+    let w539 = w538 + w419;
+    let w540 = w539 + w421;
+    let w541 = w95 * w339;
+    let w542 = w541 * w243;
+    let w543 = w540 + w542;
+    let w544 = w95 * w344;
+    let w545 = w543 + w544;
+    let w546 = w428 * w349;
+    let w547 = w545 + w546;
+    let w548 = w97 * w211;
+    let w549 = w176 * w189;
+    let w550 = w548 - w549;
+    let w551 = w550 * w95;
+    let w552 = w547 - w551;
+    let w553 = w444 * w117;
+    let w554 = w483 * w112;
+    let w555 = w553 + w554;
+    let w556 = w521 * w107;
+    let w557 = w555 + w556;
+    let w558 = p[21]; // c_4_4
+    let w559 = w558 * w102;
+    let w560 = w557 + w559;
+    let w561 = p[22]; // c_4_5
+    let w562 = w561 * w92;
+    let w563 = w560 + w562;
+    let w564 = w552 - w563;
+    let o5 = w564; // f_u_4
+    let w565 = 2.0 * w25;
+    let w566: f64 = -4992.978972313684;
+    let w567 = w566 * w405;
+    let w568 = w565 * w567;
+    let w569 = w1 * w33;
+    let w570 = w408 + w569;
+    let w571 = w568 - w570;
+    let w572 = w14 * w74;
+    let w573 = w571 + w572;
+    let w574 = w91 * w414;
+    let w575 = w573 + w574;
+    let w576 = w575 + w419;
+    let w577 = w576 + w421;
+    let w578 = w95 * w368;
+    let w579 = w578 * w243;
+    let w580 = w577 + w579;
+    let w581 = w95 * w373;
+    let w582 = w580 + w581;
+    let w583 = w428 * w378;
+    let w584 = w582 + w583;
+    let w585 = w97 * w215;
+    let w586 = w180 * w189;
+    let w587 = w585 - w586;
+    let w588 = w587 * w95;
+    let w589 = w584 - w588;
+    let w590 = w447 * w117;
+    let w591 = w486 * w112;
+    let w592 = w590 + w591;
+    let w593 = w524 * w107;
+    let w594 = w592 + w593;
+    let w595 = w561 * w102;
+    let w596 = w594 + w595;
+    let w597 = p[23]; // c_5_5
+    let w598 = w597 * w92;
+    let w599 = w596 + w598;
+    let w600 = w589 - w599;
+    let o6 = w600; // f_u_5
+    [o0, o1, o2, o3, o4, o5, o6]
+}
+
+/// Indices of the elements of the output `f` of [`free_forcing()`].
+pub mod free_forcing {
+    /// Index of `f_theta`.
+    pub const F_THETA: usize = 0;
+    /// Index of `f_v`.
+    pub const F_V: usize = 1;
+    /// Index of `f_u_1`.
+    pub const F_U_1: usize = 2;
+    /// Index of `f_u_2`.
+    pub const F_U_2: usize = 3;
+    /// Index of `f_u_3`.
+    pub const F_U_3: usize = 4;
+    /// Index of `f_u_4`.
+    pub const F_U_4: usize = 5;
+    /// Index of `f_u_5`.
+    pub const F_U_5: usize = 6;
+
+    /// Indices of the elements of input `y` of [`free_forcing()`](super::free_forcing()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+        /// Index of `u_4`.
+        pub const U_4: usize = 5;
+        /// Index of `u_5`.
+        pub const U_5: usize = 6;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 7;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 8;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 9;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 10;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 11;
+        /// Index of `u_dot_4`.
+        pub const U_DOT_4: usize = 12;
+        /// Index of `u_dot_5`.
+        pub const U_DOT_5: usize = 13;
+    }
+}
+
+/// Kinetic energy, gravity (heights over the rest position of the leaning corner, the ground's surface) and strain potentials and horizontal momentum. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 14]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `u_3`, `u_4`, `u_5`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`, `u_dot_4`, `u_dot_5`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_1_4`, `c_1_5`, `c_2_2`, `c_2_3`, `c_2_4`, `c_2_5`, `c_3_3`, `c_3_4`, `c_3_5`, `c_4_4`, `c_4_5`, `c_5_5`
+///
+/// # Output
+///
+/// `e: [f64; 4]`: energies and momentum — `kinetic`, `gravity`, `strain`, `momentum_x`
+///
+/// Operations: 261 (139 mul, 67 add, 24 sub, 12 twice, 11 sq, 5 div, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_energy(y: &[f64; 14], s: f64, p: &Params) -> [f64; 4] {
+    let w0 = p[4]; // m_c
+    let w1 = y[7]; // theta_dot
+    let w2 = s; // s
+    let w3 = p[1]; // b
+    let w4 = w2 * w3;
+    let w5 = w1 * w4;
+    let w6 = w5 * w5;
+    let w7: f64 = 0.3914958780198129;
+    let w8 = y[2]; // u_1
+    let w9 = -w5;
+    let w10 = 2.0 * w9;
+    let w11 = w1 * w10;
+    let w12 = w8 * w11;
+    let w13 = w7 * w12;
+    let w14 = w6 + w13;
+    let w15: f64 = -0.21696794755535964;
+    let w16 = y[3]; // u_2
+    let w17 = w16 * w11;
+    let w18 = w15 * w17;
+    let w19 = w14 + w18;
+    let w20: f64 = 0.12721264843305286;
+    let w21 = y[4]; // u_3
+    let w22 = w21 * w11;
+    let w23 = w20 * w22;
+    let w24 = w19 + w23;
+    let w25: f64 = -0.09094901081852429;
+    let w26 = y[5]; // u_4
+    let w27 = w26 * w11;
+    let w28 = w25 * w27;
+    let w29 = w24 + w28;
+    let w30: f64 = 0.07073542044968367;
+    let w31 = y[6]; // u_5
+    let w32 = w31 * w11;
+    let w33 = w30 * w32;
+    let w34 = w29 + w33;
+    let w35: f64 = 0.16666666666666666;
+    let w36 = p[0]; // h
+    let w37 = w1 * w36;
+    let w38 = 2.0 * w37;
+    let w39 = w1 * w38;
+    let w40 = w36 * w39;
+    let w41 = w35 * w40;
+    let w42 = w34 + w41;
+    let w43: f64 = 0.2844128718549554;
+    let w44 = y[9]; // u_dot_1
+    let w45 = 2.0 * w44;
+    let w46 = w1 * w45;
+    let w47 = w36 * w46;
+    let w48 = w43 * w47;
+    let w49 = w42 + w48;
+    let w50: f64 = -0.04538339344319348;
+    let w51 = y[10]; // u_dot_2
+    let w52 = 2.0 * w51;
+    let w53 = w1 * w52;
+    let w54 = w36 * w53;
+    let w55 = w50 * w54;
+    let w56 = w49 + w55;
+    let w57: f64 = 0.016208187184872217;
+    let w58 = y[11]; // u_dot_3
+    let w59 = 2.0 * w58;
+    let w60 = w1 * w59;
+    let w61 = w36 * w60;
+    let w62 = w57 * w61;
+    let w63 = w56 + w62;
+    let w64: f64 = -0.008271167510425316;
+    let w65 = y[12]; // u_dot_4
+    let w66 = 2.0 * w65;
+    let w67 = w1 * w66;
+    let w68 = w36 * w67;
+    let w69 = w64 * w68;
+    let w70 = w63 + w69;
+    let w71: f64 = 0.0050035142152869685;
+    let w72 = y[13]; // u_dot_5
+    let w73 = 2.0 * w72;
+    let w74 = w1 * w73;
+    let w75 = w36 * w74;
+    let w76 = w71 * w75;
+    let w77 = w70 + w76;
+    let w78: f64 = 0.125;
+    let w79 = w1 * w8;
+    let w80 = 2.0 * w79;
+    let w81 = w1 * w80;
+    let w82 = w8 * w81;
+    let w83 = w44 * w45;
+    let w84 = w82 + w83;
+    let w85 = w78 * w84;
+    let w86 = w77 + w85;
+    let w87 = w1 * w16;
+    let w88 = 2.0 * w87;
+    let w89 = w1 * w88;
+    let w90 = w16 * w89;
+    let w91 = w51 * w52;
+    let w92 = w90 + w91;
+    let w93 = w78 * w92;
+    let w94 = w86 + w93;
+    let w95 = w1 * w21;
+    let w96 = 2.0 * w95;
+    let w97 = w1 * w96;
+    let w98 = w21 * w97;
+    let w99 = w58 * w59;
+    let w100 = w98 + w99;
+    let w101 = w78 * w100;
+    let w102 = w94 + w101;
+    let w103 = w1 * w26;
+    let w104 = 2.0 * w103;
+    let w105 = w1 * w104;
+    let w106 = w26 * w105;
+    let w107 = w65 * w66;
+    let w108 = w106 + w107;
+    let w109 = w78 * w108;
+    let w110 = w102 + w109;
+    let w111 = w1 * w31;
+    let w112 = 2.0 * w111;
+    let w113 = w1 * w112;
+    let w114 = w31 * w113;
+    let w115 = w72 * w73;
+    let w116 = w114 + w115;
+    let w117 = w78 * w116;
+    let w118 = w110 + w117;
+    let w119 = w0 * w118;
+    let w120 = p[3]; // m
+    let w121 = w44 + w51;
+    let w122 = w121 + w58;
+    let w123 = w122 + w65;
+    let w124 = w123 + w72;
+    let w125 = w124 + w37;
+    let w126 = w125 * w125;
+    let w127 = w8 + w16;
+    let w128 = w127 + w21;
+    let w129 = w128 + w26;
+    let w130 = w129 + w31;
+    let w131 = w130 - w4;
+    let w132 = w1 * w131;
+    let w133 = w132 * w132;
+    let w134 = w126 + w133;
+    let w135 = w120 * w134;
+    let w136 = w119 + w135;
+    let w137: f64 = 2.0;
+    let w138 = w136 / w137;
+    let w139 = p[6]; // i_bc
+    let w140 = w1 * w1;
+    let w141 = w139 * w140;
+    let w142 = w141 / w137;
+    let w143 = w138 + w142;
+    let w144 = w0 + w120;
+    let w145 = p[5]; // m_b
+    let w146 = w144 + w145;
+    let w147 = y[8]; // v_dot
+    let w148 = y[0]; // theta
+    let w149 = w148.cos();
+    let w150 = w4 * w149;
+    let w151 = w150 * w1;
+    let w152 = w147 + w151;
+    let w153 = w152 * w152;
+    let w154 = w146 * w153;
+    let w155 = w154 / w137;
+    let w156 = w143 + w155;
+    let w157 = w4 * w145;
+    let w158 = w131 * w120;
+    let w159 = w157 - w158;
+    let w160 = w30 * w0;
+    let w161 = w31 * w160;
+    let w162 = w159 - w161;
+    let w163 = w25 * w0;
+    let w164 = w26 * w163;
+    let w165 = w162 - w164;
+    let w166 = w20 * w0;
+    let w167 = w21 * w166;
+    let w168 = w165 - w167;
+    let w169 = w15 * w0;
+    let w170 = w16 * w169;
+    let w171 = w168 - w170;
+    let w172 = w7 * w0;
+    let w173 = w8 * w172;
+    let w174 = w171 - w173;
+    let w175 = w4 * w0;
+    let w176 = w174 + w175;
+    let w177 = w149 * w176;
+    let w178 = w148.sin();
+    let w179 = w36 * w120;
+    let w180: f64 = 0.5;
+    let w181 = w180 * w0;
+    let w182 = w36 * w181;
+    let w183 = w179 + w182;
+    let w184 = w178 * w183;
+    let w185 = w177 - w184;
+    let w186 = w185 * w1;
+    let w187 = w178 * w120;
+    let w188 = w178 * w172;
+    let w189 = w187 + w188;
+    let w190 = w189 * w44;
+    let w191 = w186 - w190;
+    let w192 = w178 * w169;
+    let w193 = w187 + w192;
+    let w194 = w193 * w51;
+    let w195 = w191 - w194;
+    let w196 = w178 * w166;
+    let w197 = w187 + w196;
+    let w198 = w197 * w58;
+    let w199 = w195 - w198;
+    let w200 = w178 * w163;
+    let w201 = w187 + w200;
+    let w202 = w201 * w65;
+    let w203 = w199 - w202;
+    let w204 = w178 * w160;
+    let w205 = w187 + w204;
+    let w206 = w205 * w72;
+    let w207 = w203 - w206;
+    let w208 = w152 * w207;
+    let w209 = w156 - w208;
+    let o0 = w209; // kinetic
+    let w210 = p[8]; // g
+    let w211 = w4 * w178;
+    let w212 = w36 * w149;
+    let w213 = w180 * w212;
+    let w214 = w211 + w213;
+    let w215 = w8 * w178;
+    let w216 = w7 * w215;
+    let w217 = w214 - w216;
+    let w218 = w16 * w178;
+    let w219 = w15 * w218;
+    let w220 = w217 - w219;
+    let w221 = w21 * w178;
+    let w222 = w20 * w221;
+    let w223 = w220 - w222;
+    let w224 = w26 * w178;
+    let w225 = w25 * w224;
+    let w226 = w223 - w225;
+    let w227 = w31 * w178;
+    let w228 = w30 * w227;
+    let w229 = w226 - w228;
+    let w230 = w0 * w229;
+    let w231 = w131 * w178;
+    let w232 = w212 - w231;
+    let w233 = w120 * w232;
+    let w234 = w230 + w233;
+    let w235 = w145 * w211;
+    let w236 = w234 + w235;
+    let w237 = y[1]; // v
+    let w238 = w237 + w211;
+    let w239 = w146 * w238;
+    let w240 = w236 - w239;
+    let w241 = w210 * w240;
+    let o1 = w241; // gravity
+    let w242: f64 = 3.0905908420815478;
+    let w243 = p[2]; // ei
+    let w244 = w36 * w36;
+    let w245 = w36 * w244;
+    let w246 = w243 / w245;
+    let w247 = w242 * w246;
+    let w248 = w8 * w8;
+    let w249 = w247 * w248;
+    let w250: f64 = 121.37970462834276;
+    let w251 = w250 * w246;
+    let w252 = w16 * w16;
+    let w253 = w251 * w252;
+    let w254 = w249 + w253;
+    let w255: f64 = 951.6365665978627;
+    let w256 = w255 * w246;
+    let w257 = w21 * w21;
+    let w258 = w256 * w257;
+    let w259 = w254 + w258;
+    let w260: f64 = 3654.318326279695;
+    let w261 = w260 * w246;
+    let w262 = w26 * w26;
+    let w263 = w261 * w262;
+    let w264 = w259 + w263;
+    let w265: f64 = 9985.957944627367;
+    let w266 = w265 * w246;
+    let w267 = w31 * w31;
+    let w268 = w266 * w267;
+    let w269 = w264 + w268;
+    let w270 = w269 / w137;
+    let o2 = w270; // strain
+    let w271 = w149 * w183;
+    let w272 = w158 - w157;
+    let w273 = w272 + w161;
+    let w274 = w273 + w164;
+    let w275 = w274 + w167;
+    let w276 = w275 + w170;
+    let w277 = w276 + w173;
+    let w278 = w277 - w175;
+    let w279 = w178 * w278;
+    let w280 = w271 - w279;
+    let w281 = w280 * w1;
+    let w282 = w149 * w120;
+    let w283 = w149 * w172;
+    let w284 = w282 + w283;
+    let w285 = w284 * w44;
+    let w286 = w281 + w285;
+    let w287 = w149 * w169;
+    let w288 = w282 + w287;
+    let w289 = w288 * w51;
+    let w290 = w286 + w289;
+    let w291 = w149 * w166;
+    let w292 = w282 + w291;
+    let w293 = w292 * w58;
+    let w294 = w290 + w293;
+    let w295 = w149 * w163;
+    let w296 = w282 + w295;
+    let w297 = w296 * w65;
+    let w298 = w294 + w297;
+    let w299 = w149 * w160;
+    let w300 = w282 + w299;
+    let w301 = w300 * w72;
+    let w302 = w298 + w301;
+    let o3 = w302; // momentum_x
+    [o0, o1, o2, o3]
+}
+
+/// Indices of the elements of the output `e` of [`free_energy()`].
+pub mod free_energy {
+    /// Index of `kinetic`.
+    pub const KINETIC: usize = 0;
+    /// Index of `gravity`.
+    pub const GRAVITY: usize = 1;
+    /// Index of `strain`.
+    pub const STRAIN: usize = 2;
+    /// Index of `momentum_x`.
+    pub const MOMENTUM_X: usize = 3;
+
+    /// Indices of the elements of input `y` of [`free_energy()`](super::free_energy()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+        /// Index of `u_4`.
+        pub const U_4: usize = 5;
+        /// Index of `u_5`.
+        pub const U_5: usize = 6;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 7;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 8;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 9;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 10;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 11;
+        /// Index of `u_dot_4`.
+        pub const U_DOT_4: usize = 12;
+        /// Index of `u_dot_5`.
+        pub const U_DOT_5: usize = 13;
+    }
+}
+
+/// Power terms: dE/dt = ground - damping + Q_theta theta' + Q_v v', with ground = -ug P_x and damping u'^T C u'. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 14]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `u_3`, `u_4`, `u_5`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`, `u_dot_4`, `u_dot_5`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_1_4`, `c_1_5`, `c_2_2`, `c_2_3`, `c_2_4`, `c_2_5`, `c_3_3`, `c_3_4`, `c_3_5`, `c_4_4`, `c_4_5`, `c_5_5`
+///
+/// # Output
+///
+/// `w: [f64; 2]`: power terms — `ground`, `damping`
+///
+/// Operations: 113 (62 mul, 44 add, 4 sub, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_power(y: &[f64; 14], ug: f64, s: f64, p: &Params) -> [f64; 2] {
+    let w0 = ug; // ug
+    let w1 = y[0]; // theta
+    let w2 = w1.cos();
+    let w3 = p[0]; // h
+    let w4 = p[3]; // m
+    let w5 = w3 * w4;
+    let w6: f64 = 0.5;
+    let w7 = p[4]; // m_c
+    let w8 = w6 * w7;
+    let w9 = w3 * w8;
+    let w10 = w5 + w9;
+    let w11 = w2 * w10;
+    let w12 = w1.sin();
+    let w13 = y[2]; // u_1
+    let w14 = y[3]; // u_2
+    let w15 = w13 + w14;
+    let w16 = y[4]; // u_3
+    let w17 = w15 + w16;
+    let w18 = y[5]; // u_4
+    let w19 = w17 + w18;
+    let w20 = y[6]; // u_5
+    let w21 = w19 + w20;
+    let w22 = s; // s
+    let w23 = p[1]; // b
+    let w24 = w22 * w23;
+    let w25 = w21 - w24;
+    let w26 = w25 * w4;
+    let w27 = p[5]; // m_b
+    let w28 = w24 * w27;
+    let w29 = w26 - w28;
+    let w30: f64 = 0.07073542044968367;
+    let w31 = w30 * w7;
+    let w32 = w20 * w31;
+    let w33 = w29 + w32;
+    let w34: f64 = -0.09094901081852429;
+    let w35 = w34 * w7;
+    let w36 = w18 * w35;
+    let w37 = w33 + w36;
+    let w38: f64 = 0.12721264843305286;
+    let w39 = w38 * w7;
+    let w40 = w16 * w39;
+    let w41 = w37 + w40;
+    let w42: f64 = -0.21696794755535964;
+    let w43 = w42 * w7;
+    let w44 = w14 * w43;
+    let w45 = w41 + w44;
+    let w46: f64 = 0.3914958780198129;
+    let w47 = w46 * w7;
+    let w48 = w13 * w47;
+    let w49 = w45 + w48;
+    let w50 = w24 * w7;
+    let w51 = w49 - w50;
+    let w52 = w12 * w51;
+    let w53 = w11 - w52;
+    let w54 = y[7]; // theta_dot
+    let w55 = w53 * w54;
+    let w56 = w2 * w4;
+    let w57 = w2 * w47;
+    let w58 = w56 + w57;
+    let w59 = y[9]; // u_dot_1
+    let w60 = w58 * w59;
+    let w61 = w55 + w60;
+    let w62 = w2 * w43;
+    let w63 = w56 + w62;
+    let w64 = y[10]; // u_dot_2
+    let w65 = w63 * w64;
+    let w66 = w61 + w65;
+    let w67 = w2 * w39;
+    let w68 = w56 + w67;
+    let w69 = y[11]; // u_dot_3
+    let w70 = w68 * w69;
+    let w71 = w66 + w70;
+    let w72 = w2 * w35;
+    let w73 = w56 + w72;
+    let w74 = y[12]; // u_dot_4
+    let w75 = w73 * w74;
+    let w76 = w71 + w75;
+    let w77 = w2 * w31;
+    let w78 = w56 + w77;
+    let w79 = y[13]; // u_dot_5
+    let w80 = w78 * w79;
+    let w81 = w76 + w80;
+    let w82 = w0 * w81;
+    let w83 = -w82;
+    let o0 = w83; // ground
+    let w84 = p[9]; // c_1_1
+    let w85 = w84 * w59;
+    let w86 = p[10]; // c_1_2
+    let w87 = w86 * w64;
+    let w88 = w85 + w87;
+    let w89 = p[11]; // c_1_3
+    let w90 = w89 * w69;
+    let w91 = w88 + w90;
+    let w92 = p[12]; // c_1_4
+    let w93 = w92 * w74;
+    let w94 = w91 + w93;
+    let w95 = p[13]; // c_1_5
+    let w96 = w95 * w79;
+    let w97 = w94 + w96;
+    let w98 = w97 * w59;
+    let w99 = w86 * w59;
+    let w100 = p[14]; // c_2_2
+    let w101 = w100 * w64;
+    let w102 = w99 + w101;
+    let w103 = p[15]; // c_2_3
+    let w104 = w103 * w69;
+    let w105 = w102 + w104;
+    let w106 = p[16]; // c_2_4
+    let w107 = w106 * w74;
+    let w108 = w105 + w107;
+    let w109 = p[17]; // c_2_5
+    let w110 = w109 * w79;
+    let w111 = w108 + w110;
+    let w112 = w111 * w64;
+    let w113 = w98 + w112;
+    let w114 = w89 * w59;
+    let w115 = w103 * w64;
+    let w116 = w114 + w115;
+    let w117 = p[18]; // c_3_3
+    let w118 = w117 * w69;
+    let w119 = w116 + w118;
+    let w120 = p[19]; // c_3_4
+    let w121 = w120 * w74;
+    let w122 = w119 + w121;
+    let w123 = p[20]; // c_3_5
+    let w124 = w123 * w79;
+    let w125 = w122 + w124;
+    let w126 = w125 * w69;
+    let w127 = w113 + w126;
+    let w128 = w92 * w59;
+    let w129 = w106 * w64;
+    let w130 = w128 + w129;
+    let w131 = w120 * w69;
+    let w132 = w130 + w131;
+    let w133 = p[21]; // c_4_4
+    let w134 = w133 * w74;
+    let w135 = w132 + w134;
+    let w136 = p[22]; // c_4_5
+    let w137 = w136 * w79;
+    let w138 = w135 + w137;
+    let w139 = w138 * w74;
+    let w140 = w127 + w139;
+    let w141 = w95 * w59;
+    let w142 = w109 * w64;
+    let w143 = w141 + w142;
+    let w144 = w123 * w69;
+    let w145 = w143 + w144;
+    let w146 = w136 * w74;
+    let w147 = w145 + w146;
+    let w148 = p[23]; // c_5_5
+    let w149 = w148 * w79;
+    let w150 = w147 + w149;
+    let w151 = w150 * w79;
+    let w152 = w140 + w151;
+    let o1 = w152; // damping
+    [o0, o1]
+}
+
+/// Indices of the elements of the output `w` of [`free_power()`].
+pub mod free_power {
+    /// Index of `ground`.
+    pub const GROUND: usize = 0;
+    /// Index of `damping`.
+    pub const DAMPING: usize = 1;
+
+    /// Indices of the elements of input `y` of [`free_power()`](super::free_power()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+        /// Index of `u_4`.
+        pub const U_4: usize = 5;
+        /// Index of `u_5`.
+        pub const U_5: usize = 6;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 7;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 8;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 9;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 10;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 11;
+        /// Index of `u_dot_4`.
+        pub const U_DOT_4: usize = 12;
+        /// Index of `u_dot_5`.
+        pub const U_DOT_5: usize = 13;
+    }
+}
+
+/// Section forces at the column base and the ground's force on the body (the bed's resultant and the horizontal force that keeps the leaning corner in place), for the accelerations qdd. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded.
+///
+/// # Inputs
+///
+/// - `y: &[f64; 14]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `u_3`, `u_4`, `u_5`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`, `u_dot_4`, `u_dot_5`
+/// - `qdd: &[f64; 7]`: accelerations [theta'', v'', u''] (from M q'' = F + Q_ground) — `theta_ddot`, `v_ddot`, `u_ddot_1`, `u_ddot_2`, `u_ddot_3`, `u_ddot_4`, `u_ddot_5`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_1_4`, `c_1_5`, `c_2_2`, `c_2_3`, `c_2_4`, `c_2_5`, `c_3_3`, `c_3_4`, `c_3_5`, `c_4_4`, `c_4_5`, `c_5_5`
+///
+/// # Output
+///
+/// `ff: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 224 (118 mul, 65 add, 34 sub, 2 sq, 2 twice, 1 cos, 1 div, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_forces(y: &[f64; 14], qdd: &[f64; 7], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[4]; // m_c
+    let w1: f64 = 0.3914958780198129;
+    let w2 = y[2]; // u_1
+    let w3 = ug; // ug
+    let w4 = y[0]; // theta
+    let w5 = w4.sin();
+    let w6 = w3 * w5;
+    let w7 = qdd[0]; // theta_ddot
+    let w8 = s; // s
+    let w9 = p[1]; // b
+    let w10 = w8 * w9;
+    let w11 = w7 * w10;
+    let w12 = w6 + w11;
+    let w13 = p[8]; // g
+    let w14 = w4.cos();
+    let w15 = w13 * w14;
+    let w16 = w12 + w15;
+    let w17 = qdd[1]; // v_ddot
+    let w18 = w14 * w7;
+    let w19 = y[7]; // theta_dot
+    let w20 = w19 * w19;
+    let w21 = w5 * w20;
+    let w22 = w18 - w21;
+    let w23 = w10 * w22;
+    let w24 = w17 + w23;
+    let w25 = w24 * w14;
+    let w26 = w16 - w25;
+    let w27 = w2 * w26;
+    let w28 = w1 * w27;
+    let w29: f64 = 0.5;
+    let w30 = p[0]; // h
+    let w31 = w20 * w10;
+    let w32 = w3 * w14;
+    let w33 = w31 + w32;
+    let w34 = w13 * w5;
+    let w35 = w33 - w34;
+    let w36 = w24 * w5;
+    let w37 = w35 + w36;
+    let w38 = w30 * w37;
+    let w39 = w29 * w38;
+    let w40 = w28 - w39;
+    let w41: f64 = -0.21696794755535964;
+    let w42 = y[3]; // u_2
+    let w43 = w42 * w26;
+    let w44 = w41 * w43;
+    let w45 = w40 + w44;
+    let w46: f64 = 0.12721264843305286;
+    let w47 = y[4]; // u_3
+    let w48 = w47 * w26;
+    let w49 = w46 * w48;
+    let w50 = w45 + w49;
+    let w51: f64 = -0.09094901081852429;
+    let w52 = y[5]; // u_4
+    let w53 = w52 * w26;
+    let w54 = w51 * w53;
+    let w55 = w50 + w54;
+    let w56: f64 = 0.07073542044968367;
+    let w57 = y[6]; // u_5
+    let w58 = w57 * w26;
+    let w59 = w56 * w58;
+    let w60 = w55 + w59;
+    let w61: f64 = 0.16666666666666666;
+    let w62 = w7 * w30;
+    let w63 = 2.0 * w62;
+    let w64 = w30 * w63;
+    let w65 = w61 * w64;
+    let w66 = w60 - w65;
+    let w67: f64 = 0.2844128718549554;
+    let w68 = qdd[2]; // u_ddot_1
+    let w69 = w30 * w68;
+    let w70 = w67 * w69;
+    let w71 = w66 - w70;
+    let w72: f64 = -0.04538339344319348;
+    let w73 = qdd[3]; // u_ddot_2
+    let w74 = w30 * w73;
+    let w75 = w72 * w74;
+    let w76 = w71 - w75;
+    let w77: f64 = 0.016208187184872217;
+    let w78 = qdd[4]; // u_ddot_3
+    let w79 = w30 * w78;
+    let w80 = w77 * w79;
+    let w81 = w76 - w80;
+    let w82: f64 = -0.008271167510425316;
+    let w83 = qdd[5]; // u_ddot_4
+    let w84 = w30 * w83;
+    let w85 = w82 * w84;
+    let w86 = w81 - w85;
+    let w87: f64 = 0.0050035142152869685;
+    let w88 = qdd[6]; // u_ddot_5
+    let w89 = w30 * w88;
+    let w90 = w87 * w89;
+    let w91 = w86 - w90;
+    let w92: f64 = 0.125;
+    let w93 = 2.0 * w19;
+    let w94 = y[9]; // u_dot_1
+    let w95 = w93 * w94;
+    let w96 = w95 * w2;
+    let w97 = w7 * w2;
+    let w98 = w2 * w97;
+    let w99 = w96 + w98;
+    let w100 = w97 + w95;
+    let w101 = w2 * w100;
+    let w102 = w99 + w101;
+    let w103 = w92 * w102;
+    let w104 = w91 - w103;
+    let w105 = y[10]; // u_dot_2
+    let w106 = w93 * w105;
+    let w107 = w106 * w42;
+    let w108 = w7 * w42;
+    let w109 = w42 * w108;
+    let w110 = w107 + w109;
+    let w111 = w108 + w106;
+    let w112 = w42 * w111;
+    let w113 = w110 + w112;
+    let w114 = w92 * w113;
+    let w115 = w104 - w114;
+    let w116 = y[11]; // u_dot_3
+    let w117 = w93 * w116;
+    let w118 = w117 * w47;
+    let w119 = w7 * w47;
+    let w120 = w47 * w119;
+    let w121 = w118 + w120;
+    let w122 = w119 + w117;
+    let w123 = w47 * w122;
+    let w124 = w121 + w123;
+    let w125 = w92 * w124;
+    let w126 = w115 - w125;
+    let w127 = y[12]; // u_dot_4
+    let w128 = w93 * w127;
+    let w129 = w128 * w52;
+    let w130 = w7 * w52;
+    let w131 = w52 * w130;
+    let w132 = w129 + w131;
+    let w133 = w130 + w128;
+    let w134 = w52 * w133;
+    let w135 = w132 + w134;
+    let w136 = w92 * w135;
+    let w137 = w126 - w136;
+    let w138 = y[13]; // u_dot_5
+    let w139 = w93 * w138;
+    let w140 = w139 * w57;
+    let w141 = w7 * w57;
+    let w142 = w57 * w141;
+    let w143 = w140 + w142;
+    let w144 = w141 + w139;
+    let w145 = w57 * w144;
+    let w146 = w143 + w145;
+    let w147 = w92 * w146;
+    let w148 = w137 - w147;
+    let w149 = w0 * w148;
+    let w150 = p[3]; // m
+    let w151 = w2 + w42;
+    let w152 = w151 + w47;
+    let w153 = w152 + w52;
+    let w154 = w153 + w57;
+    let w155 = w154 - w10;
+    let w156 = w7 * w155;
+    let w157 = w20 * w30;
+    let w158 = w156 + w157;
+    let w159 = w95 + w106;
+    let w160 = w159 + w117;
+    let w161 = w160 + w128;
+    let w162 = w161 + w139;
+    let w163 = w158 + w162;
+    let w164 = w6 - w163;
+    let w165 = w164 + w15;
+    let w166 = w165 - w25;
+    let w167 = w154 * w166;
+    let w168 = w20 * w155;
+    let w169 = w62 - w168;
+    let w170 = w68 + w73;
+    let w171 = w170 + w78;
+    let w172 = w171 + w83;
+    let w173 = w172 + w88;
+    let w174 = w169 + w173;
+    let w175 = w174 + w32;
+    let w176 = w175 - w34;
+    let w177 = w176 + w36;
+    let w178 = w30 * w177;
+    let w179 = w167 - w178;
+    let w180 = w150 * w179;
+    let w181 = w149 + w180;
+    let o0 = w181; // moment
+    let w182 = w30 * w7;
+    let w183 = w29 * w182;
+    let w184 = w37 + w183;
+    let w185 = w2 * w20;
+    let w186 = w68 - w185;
+    let w187 = w1 * w186;
+    let w188 = w184 + w187;
+    let w189 = w42 * w20;
+    let w190 = w73 - w189;
+    let w191 = w41 * w190;
+    let w192 = w188 + w191;
+    let w193 = w47 * w20;
+    let w194 = w78 - w193;
+    let w195 = w46 * w194;
+    let w196 = w192 + w195;
+    let w197 = w52 * w20;
+    let w198 = w83 - w197;
+    let w199 = w51 * w198;
+    let w200 = w196 + w199;
+    let w201 = w57 * w20;
+    let w202 = w88 - w201;
+    let w203 = w56 * w202;
+    let w204 = w200 + w203;
+    let w205 = w0 * w204;
+    let w206 = w150 * w177;
+    let w207 = w205 + w206;
+    let o1 = w207; // shear
+    let w208 = w30 * w20;
+    let w209 = w29 * w208;
+    let w210 = w26 - w209;
+    let w211 = w2 * w7;
+    let w212 = w95 + w211;
+    let w213 = w1 * w212;
+    let w214 = w210 - w213;
+    let w215 = w42 * w7;
+    let w216 = w106 + w215;
+    let w217 = w41 * w216;
+    let w218 = w214 - w217;
+    let w219 = w47 * w7;
+    let w220 = w117 + w219;
+    let w221 = w46 * w220;
+    let w222 = w218 - w221;
+    let w223 = w52 * w7;
+    let w224 = w128 + w223;
+    let w225 = w51 * w224;
+    let w226 = w222 - w225;
+    let w227 = w57 * w7;
+    let w228 = w139 + w227;
+    let w229 = w56 * w228;
+    let w230 = w226 - w229;
+    let w231 = w0 * w230;
+    let w232 = w150 * w166;
+    let w233 = w231 + w232;
+    let o2 = w233; // axial
+    let w234: f64 = 3.5160152685001513;
+    let w235 = p[2]; // ei
+    let w236 = w30 * w30;
+    let w237 = w235 / w236;
+    let w238 = w234 * w237;
+    let w239 = w238 * w2;
+    let w240: f64 = -22.03449156466677;
+    let w241 = w240 * w237;
+    let w242 = w241 * w42;
+    let w243 = w239 + w242;
+    let w244: f64 = 61.697214413549105;
+    let w245 = w244 * w237;
+    let w246 = w245 * w47;
+    let w247 = w243 + w246;
+    let w248: f64 = -120.90191605230572;
+    let w249 = w248 * w237;
+    let w250 = w249 * w52;
+    let w251 = w247 + w250;
+    let w252: f64 = 199.85953011680346;
+    let w253 = w252 * w237;
+    let w254 = w253 * w57;
+    let w255 = w251 + w254;
+    let o3 = w255; // moment_elastic
+    let w256 = p[5]; // m_b
+    let w257 = w256 * w37;
+    let w258 = w207 + w257;
+    let w259 = w14 * w258;
+    let w260 = w11 + w6;
+    let w261 = w260 + w15;
+    let w262 = w261 - w25;
+    let w263 = w256 * w262;
+    let w264 = w233 + w263;
+    let w265 = w5 * w264;
+    let w266 = w259 + w265;
+    let o4 = w266; // reaction_h
+    let w267 = w14 * w264;
+    let w268 = w5 * w258;
+    let w269 = w267 - w268;
+    let o5 = w269; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `ff` of [`free_forces()`].
+pub mod free_forces {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `y` of [`free_forces()`](super::free_forces()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+        /// Index of `u_4`.
+        pub const U_4: usize = 5;
+        /// Index of `u_5`.
+        pub const U_5: usize = 6;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 7;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 8;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 9;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 10;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 11;
+        /// Index of `u_dot_4`.
+        pub const U_DOT_4: usize = 12;
+        /// Index of `u_dot_5`.
+        pub const U_DOT_5: usize = 13;
+    }
+
+    /// Indices of the elements of input `qdd` of [`free_forces()`](super::free_forces()).
+    pub mod qdd {
+        /// Index of `theta_ddot`.
+        pub const THETA_DDOT: usize = 0;
+        /// Index of `v_ddot`.
+        pub const V_DDOT: usize = 1;
+        /// Index of `u_ddot_1`.
+        pub const U_DDOT_1: usize = 2;
+        /// Index of `u_ddot_2`.
+        pub const U_DDOT_2: usize = 3;
+        /// Index of `u_ddot_3`.
+        pub const U_DDOT_3: usize = 4;
+        /// Index of `u_ddot_4`.
+        pub const U_DDOT_4: usize = 5;
+        /// Index of `u_ddot_5`.
+        pub const U_DDOT_5: usize = 6;
+    }
+}
+
 /// The full model on the first five cantilever modes: five deformation coordinates
 ///
 /// Type-level handle of this variant, implementing [`crate::Variant`].
@@ -6176,6 +8175,31 @@ impl crate::Variant for CantileverModes5 {
     #[inline]
     fn static_uplift(p: &Params) -> [f64; 9] {
         static_uplift(p)
+    }
+
+    #[inline]
+    fn free_mass_matrix(qf: &[f64; 7], s: f64, p: &Params) -> [f64; 28] {
+        free_mass_matrix(qf, s, p)
+    }
+
+    #[inline]
+    fn free_forcing(y: &[f64; 14], ug: f64, s: f64, p: &Params) -> [f64; 7] {
+        free_forcing(y, ug, s, p)
+    }
+
+    #[inline]
+    fn free_energy(y: &[f64; 14], s: f64, p: &Params) -> [f64; 4] {
+        free_energy(y, s, p)
+    }
+
+    #[inline]
+    fn free_power(y: &[f64; 14], ug: f64, s: f64, p: &Params) -> [f64; 2] {
+        free_power(y, ug, s, p)
+    }
+
+    #[inline]
+    fn free_forces(y: &[f64; 14], qdd: &[f64; 7], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+        free_forces(y, qdd, ug, s, p)
     }
 }
 
@@ -6319,6 +8343,55 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             };
             let p: &Params = (*p).try_into().ok()?;
             Some(static_uplift(p).to_vec())
+        }
+        "free_mass_matrix" => {
+            let [qf, s, p] = inputs else {
+                return None;
+            };
+            let qf: &[f64; 7] = (*qf).try_into().ok()?;
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_mass_matrix(qf, s, p).to_vec())
+        }
+        "free_forcing" => {
+            let [y, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 14] = (*y).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_forcing(y, ug, s, p).to_vec())
+        }
+        "free_energy" => {
+            let [y, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 14] = (*y).try_into().ok()?;
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_energy(y, s, p).to_vec())
+        }
+        "free_power" => {
+            let [y, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 14] = (*y).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_power(y, ug, s, p).to_vec())
+        }
+        "free_forces" => {
+            let [y, qdd, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 14] = (*y).try_into().ok()?;
+            let qdd: &[f64; 7] = (*qdd).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_forces(y, qdd, ug, s, p).to_vec())
         }
         _ => None,
     }

@@ -7221,6 +7221,2317 @@ pub mod static_uplift {
     pub const MOMENT_ELASTIC_UPLIFT: usize = 9;
 }
 
+/// Mass matrix M(q) over q = [theta, v, u_1..u_n], upper triangle row by row (symmetric positive definite; a rigid column's u row is the identity). On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `qf: &[f64; 8]`: configuration on compliant ground: rotation, settlement of the base centre (positive into the ground), deformation — `theta`, `v`, `u_1`, `u_2`, `u_3`, `u_4`, `u_5`, `u_6`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_1_4`, `c_1_5`, `c_1_6`, `c_2_2`, `c_2_3`, `c_2_4`, `c_2_5`, `c_2_6`, `c_3_3`, `c_3_4`, `c_3_5`, `c_3_6`, `c_4_4`, `c_4_5`, `c_4_6`, `c_5_5`, `c_5_6`, `c_6_6`
+///
+/// # Output
+///
+/// `m: [f64; 36]`: upper triangle of M — `m_t_t`, `m_t_v`, `m_t_u1`, `m_t_u2`, `m_t_u3`, `m_t_u4`, `m_t_u5`, `m_t_u6`, `m_v_v`, `m_v_u1`, `m_v_u2`, `m_v_u3`, `m_v_u4`, `m_v_u5`, `m_v_u6`, `m_u1_u1`, `m_u1_u2`, `m_u1_u3`, `m_u1_u4`, `m_u1_u5`, `m_u1_u6`, `m_u2_u2`, `m_u2_u3`, `m_u2_u4`, `m_u2_u5`, `m_u2_u6`, `m_u3_u3`, `m_u3_u4`, `m_u3_u5`, `m_u3_u6`, `m_u4_u4`, `m_u4_u5`, `m_u4_u6`, `m_u5_u5`, `m_u5_u6`, `m_u6_u6`
+///
+/// Operations: 211 (107 mul, 53 add, 30 twice, 18 sub, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_mass_matrix(qf: &[f64; 8], s: f64, p: &Params) -> [f64; 36] {
+    let w0 = s; // s
+    let w1 = p[1]; // b
+    let w2 = w0 * w1;
+    let w3 = qf[0]; // theta
+    let w4 = w3.cos();
+    let w5 = w2 * w4;
+    let w6: f64 = 0.5;
+    let w7 = p[4]; // m_c
+    let w8 = p[3]; // m
+    let w9 = w7 + w8;
+    let w10 = p[5]; // m_b
+    let w11 = w9 + w10;
+    let w12 = w6 * w11;
+    let w13 = 2.0 * w5;
+    let w14 = w12 * w13;
+    let w15 = w2 * w10;
+    let w16 = qf[2]; // u_1
+    let w17 = qf[3]; // u_2
+    let w18 = w16 + w17;
+    let w19 = qf[4]; // u_3
+    let w20 = w18 + w19;
+    let w21 = qf[5]; // u_4
+    let w22 = w20 + w21;
+    let w23 = qf[6]; // u_5
+    let w24 = w22 + w23;
+    let w25 = qf[7]; // u_6
+    let w26 = w24 + w25;
+    let w27 = w26 - w2;
+    let w28 = w27 * w8;
+    let w29 = w15 - w28;
+    let w30: f64 = -0.0578745285967165;
+    let w31 = w30 * w7;
+    let w32 = w25 * w31;
+    let w33 = w29 - w32;
+    let w34: f64 = 0.07073542044968367;
+    let w35 = w34 * w7;
+    let w36 = w23 * w35;
+    let w37 = w33 - w36;
+    let w38: f64 = -0.09094901081852429;
+    let w39 = w38 * w7;
+    let w40 = w21 * w39;
+    let w41 = w37 - w40;
+    let w42: f64 = 0.12721264843305286;
+    let w43 = w42 * w7;
+    let w44 = w19 * w43;
+    let w45 = w41 - w44;
+    let w46: f64 = -0.21696794755535964;
+    let w47 = w46 * w7;
+    let w48 = w17 * w47;
+    let w49 = w45 - w48;
+    let w50: f64 = 0.3914958780198129;
+    let w51 = w50 * w7;
+    let w52 = w16 * w51;
+    let w53 = w49 - w52;
+    let w54 = w2 * w7;
+    let w55 = w53 + w54;
+    let w56 = w4 * w55;
+    let w57 = w3.sin();
+    let w58 = p[0]; // h
+    let w59 = w58 * w8;
+    let w60 = w6 * w7;
+    let w61 = w58 * w60;
+    let w62 = w59 + w61;
+    let w63 = w57 * w62;
+    let w64 = w56 - w63;
+    let w65 = w14 - w64;
+    let w66 = w5 * w65;
+    let w67 = w64 * w5;
+    let w68 = w66 - w67;
+    let w69 = p[6]; // i_bc
+    let w70 = w68 + w69;
+    let w71 = w6 * w8;
+    let w72 = 2.0 * w27;
+    let w73 = w71 * w72;
+    let w74 = w27 * w73;
+    let w75 = w70 + w74;
+    let w76 = 2.0 * w58;
+    let w77 = w71 * w76;
+    let w78 = w58 * w77;
+    let w79 = w75 + w78;
+    let w80: f64 = 0.0625;
+    let w81 = w80 * w7;
+    let w82 = w25 * w81;
+    let w83 = 2.0 * w25;
+    let w84 = w82 * w83;
+    let w85 = w79 + w84;
+    let w86 = 2.0 * w82;
+    let w87 = w25 * w86;
+    let w88 = w85 + w87;
+    let w89 = w23 * w81;
+    let w90 = 2.0 * w23;
+    let w91 = w89 * w90;
+    let w92 = w88 + w91;
+    let w93 = 2.0 * w89;
+    let w94 = w23 * w93;
+    let w95 = w92 + w94;
+    let w96 = w21 * w81;
+    let w97 = 2.0 * w21;
+    let w98 = w96 * w97;
+    let w99 = w95 + w98;
+    let w100 = 2.0 * w96;
+    let w101 = w21 * w100;
+    let w102 = w99 + w101;
+    let w103 = w19 * w81;
+    let w104 = 2.0 * w19;
+    let w105 = w103 * w104;
+    let w106 = w102 + w105;
+    let w107 = 2.0 * w103;
+    let w108 = w19 * w107;
+    let w109 = w106 + w108;
+    let w110 = w17 * w81;
+    let w111 = 2.0 * w17;
+    let w112 = w110 * w111;
+    let w113 = w109 + w112;
+    let w114 = 2.0 * w110;
+    let w115 = w17 * w114;
+    let w116 = w113 + w115;
+    let w117 = w16 * w81;
+    let w118 = 2.0 * w16;
+    let w119 = w117 * w118;
+    let w120 = w116 + w119;
+    let w121 = 2.0 * w117;
+    let w122 = w16 * w121;
+    let w123 = w120 + w122;
+    let w124: f64 = 0.08333333333333333;
+    let w125 = w124 * w7;
+    let w126 = w58 * w125;
+    let w127 = w126 * w76;
+    let w128 = w123 + w127;
+    let w129 = 2.0 * w126;
+    let w130 = w58 * w129;
+    let w131 = w128 + w130;
+    let w132: f64 = -0.02893726429835825;
+    let w133 = w132 * w7;
+    let w134 = w25 * w133;
+    let w135 = -w2;
+    let w136 = 2.0 * w135;
+    let w137 = w134 * w136;
+    let w138 = w131 + w137;
+    let w139 = 2.0 * w134;
+    let w140 = w2 * w139;
+    let w141 = w138 - w140;
+    let w142: f64 = 0.035367710224841836;
+    let w143 = w142 * w7;
+    let w144 = w23 * w143;
+    let w145 = w144 * w136;
+    let w146 = w141 + w145;
+    let w147 = 2.0 * w144;
+    let w148 = w2 * w147;
+    let w149 = w146 - w148;
+    let w150: f64 = -0.04547450540926214;
+    let w151 = w150 * w7;
+    let w152 = w21 * w151;
+    let w153 = w152 * w136;
+    let w154 = w149 + w153;
+    let w155 = 2.0 * w152;
+    let w156 = w2 * w155;
+    let w157 = w154 - w156;
+    let w158: f64 = 0.06360632421652643;
+    let w159 = w158 * w7;
+    let w160 = w19 * w159;
+    let w161 = w160 * w136;
+    let w162 = w157 + w161;
+    let w163 = 2.0 * w160;
+    let w164 = w2 * w163;
+    let w165 = w162 - w164;
+    let w166: f64 = -0.10848397377767982;
+    let w167 = w166 * w7;
+    let w168 = w17 * w167;
+    let w169 = w168 * w136;
+    let w170 = w165 + w169;
+    let w171 = 2.0 * w168;
+    let w172 = w2 * w171;
+    let w173 = w170 - w172;
+    let w174: f64 = 0.19574793900990645;
+    let w175 = w174 * w7;
+    let w176 = w16 * w175;
+    let w177 = w176 * w136;
+    let w178 = w173 + w177;
+    let w179 = 2.0 * w176;
+    let w180 = w2 * w179;
+    let w181 = w178 - w180;
+    let w182 = 2.0 * w2;
+    let w183 = w60 * w182;
+    let w184 = w2 * w183;
+    let w185 = w181 + w184;
+    let o0 = w185; // m_t_t
+    let w186 = w5 * w11;
+    let w187 = w186 - w64;
+    let o1 = w187; // m_t_v
+    let w188 = w57 * w8;
+    let w189 = w57 * w51;
+    let w190 = w188 + w189;
+    let w191 = w5 * w190;
+    let w192 = w191 + w59;
+    let w193: f64 = 0.1422064359274777;
+    let w194 = w193 * w7;
+    let w195 = w58 * w194;
+    let w196 = 2.0 * w195;
+    let w197 = w192 + w196;
+    let o2 = w197; // m_t_u1
+    let w198 = w57 * w47;
+    let w199 = w188 + w198;
+    let w200 = w5 * w199;
+    let w201 = w200 + w59;
+    let w202: f64 = -0.02269169672159674;
+    let w203 = w202 * w7;
+    let w204 = w58 * w203;
+    let w205 = 2.0 * w204;
+    let w206 = w201 + w205;
+    let o3 = w206; // m_t_u2
+    let w207 = w57 * w43;
+    let w208 = w188 + w207;
+    let w209 = w5 * w208;
+    let w210 = w209 + w59;
+    let w211: f64 = 0.008104093592436109;
+    let w212 = w211 * w7;
+    let w213 = w58 * w212;
+    let w214 = 2.0 * w213;
+    let w215 = w210 + w214;
+    let o4 = w215; // m_t_u3
+    let w216 = w57 * w39;
+    let w217 = w188 + w216;
+    let w218 = w5 * w217;
+    let w219 = w218 + w59;
+    let w220: f64 = -0.004135583755212658;
+    let w221 = w220 * w7;
+    let w222 = w58 * w221;
+    let w223 = 2.0 * w222;
+    let w224 = w219 + w223;
+    let o5 = w224; // m_t_u4
+    let w225 = w57 * w35;
+    let w226 = w188 + w225;
+    let w227 = w5 * w226;
+    let w228 = w227 + w59;
+    let w229: f64 = 0.0025017571076434843;
+    let w230 = w229 * w7;
+    let w231 = w58 * w230;
+    let w232 = 2.0 * w231;
+    let w233 = w228 + w232;
+    let o6 = w233; // m_t_u5
+    let w234 = w57 * w31;
+    let w235 = w188 + w234;
+    let w236 = w5 * w235;
+    let w237 = w236 + w59;
+    let w238: f64 = -0.00167473032028351;
+    let w239 = w238 * w7;
+    let w240 = w58 * w239;
+    let w241 = 2.0 * w240;
+    let w242 = w237 + w241;
+    let o7 = w242; // m_t_u6
+    let o8 = w11; // m_v_v
+    let o9 = w190; // m_v_u1
+    let o10 = w199; // m_v_u2
+    let o11 = w208; // m_v_u3
+    let o12 = w217; // m_v_u4
+    let o13 = w226; // m_v_u5
+    let o14 = w235; // m_v_u6
+    let w243: f64 = 0.125;
+    let w244 = w243 * w7;
+    let w245 = w8 + w244;
+    let w246 = w245 + w244;
+    let o15 = w246; // m_u1_u1
+    let o16 = w8; // m_u1_u2
+    let o17 = w8; // m_u1_u3
+    let o18 = w8; // m_u1_u4
+    let o19 = w8; // m_u1_u5
+    let o20 = w8; // m_u1_u6
+    let o21 = w246; // m_u2_u2
+    let o22 = w8; // m_u2_u3
+    let o23 = w8; // m_u2_u4
+    let o24 = w8; // m_u2_u5
+    let o25 = w8; // m_u2_u6
+    let o26 = w246; // m_u3_u3
+    let o27 = w8; // m_u3_u4
+    let o28 = w8; // m_u3_u5
+    let o29 = w8; // m_u3_u6
+    let o30 = w246; // m_u4_u4
+    let o31 = w8; // m_u4_u5
+    let o32 = w8; // m_u4_u6
+    let o33 = w246; // m_u5_u5
+    let o34 = w8; // m_u5_u6
+    let o35 = w246; // m_u6_u6
+    [
+        o0,
+        o1,
+        o2,
+        o3,
+        o4,
+        o5,
+        o6,
+        o7,
+        o8,
+        o9,
+        o10,
+        o11,
+        o12,
+        o13,
+        o14,
+        o15,
+        o16,
+        o17,
+        o18,
+        o19,
+        o20,
+        o21,
+        o22,
+        o23,
+        o24,
+        o25,
+        o26,
+        o27,
+        o28,
+        o29,
+        o30,
+        o31,
+        o32,
+        o33,
+        o34,
+        o35,
+    ]
+}
+
+/// Indices of the elements of the output `m` of [`free_mass_matrix()`].
+pub mod free_mass_matrix {
+    /// Index of `m_t_t`.
+    pub const M_T_T: usize = 0;
+    /// Index of `m_t_v`.
+    pub const M_T_V: usize = 1;
+    /// Index of `m_t_u1`.
+    pub const M_T_U1: usize = 2;
+    /// Index of `m_t_u2`.
+    pub const M_T_U2: usize = 3;
+    /// Index of `m_t_u3`.
+    pub const M_T_U3: usize = 4;
+    /// Index of `m_t_u4`.
+    pub const M_T_U4: usize = 5;
+    /// Index of `m_t_u5`.
+    pub const M_T_U5: usize = 6;
+    /// Index of `m_t_u6`.
+    pub const M_T_U6: usize = 7;
+    /// Index of `m_v_v`.
+    pub const M_V_V: usize = 8;
+    /// Index of `m_v_u1`.
+    pub const M_V_U1: usize = 9;
+    /// Index of `m_v_u2`.
+    pub const M_V_U2: usize = 10;
+    /// Index of `m_v_u3`.
+    pub const M_V_U3: usize = 11;
+    /// Index of `m_v_u4`.
+    pub const M_V_U4: usize = 12;
+    /// Index of `m_v_u5`.
+    pub const M_V_U5: usize = 13;
+    /// Index of `m_v_u6`.
+    pub const M_V_U6: usize = 14;
+    /// Index of `m_u1_u1`.
+    pub const M_U1_U1: usize = 15;
+    /// Index of `m_u1_u2`.
+    pub const M_U1_U2: usize = 16;
+    /// Index of `m_u1_u3`.
+    pub const M_U1_U3: usize = 17;
+    /// Index of `m_u1_u4`.
+    pub const M_U1_U4: usize = 18;
+    /// Index of `m_u1_u5`.
+    pub const M_U1_U5: usize = 19;
+    /// Index of `m_u1_u6`.
+    pub const M_U1_U6: usize = 20;
+    /// Index of `m_u2_u2`.
+    pub const M_U2_U2: usize = 21;
+    /// Index of `m_u2_u3`.
+    pub const M_U2_U3: usize = 22;
+    /// Index of `m_u2_u4`.
+    pub const M_U2_U4: usize = 23;
+    /// Index of `m_u2_u5`.
+    pub const M_U2_U5: usize = 24;
+    /// Index of `m_u2_u6`.
+    pub const M_U2_U6: usize = 25;
+    /// Index of `m_u3_u3`.
+    pub const M_U3_U3: usize = 26;
+    /// Index of `m_u3_u4`.
+    pub const M_U3_U4: usize = 27;
+    /// Index of `m_u3_u5`.
+    pub const M_U3_U5: usize = 28;
+    /// Index of `m_u3_u6`.
+    pub const M_U3_U6: usize = 29;
+    /// Index of `m_u4_u4`.
+    pub const M_U4_U4: usize = 30;
+    /// Index of `m_u4_u5`.
+    pub const M_U4_U5: usize = 31;
+    /// Index of `m_u4_u6`.
+    pub const M_U4_U6: usize = 32;
+    /// Index of `m_u5_u5`.
+    pub const M_U5_U5: usize = 33;
+    /// Index of `m_u5_u6`.
+    pub const M_U5_U6: usize = 34;
+    /// Index of `m_u6_u6`.
+    pub const M_U6_U6: usize = 35;
+
+    /// Indices of the elements of input `qf` of [`free_mass_matrix()`](super::free_mass_matrix()).
+    pub mod qf {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+        /// Index of `u_4`.
+        pub const U_4: usize = 5;
+        /// Index of `u_5`.
+        pub const U_5: usize = 6;
+        /// Index of `u_6`.
+        pub const U_6: usize = 7;
+    }
+}
+
+/// Right-hand side F of M q'' = F + Q_ground without the ground: gravity, ground acceleration, stiffness, damping and velocity terms; Q_ground = [Q_theta, Q_v, 0..] from the ground's kernels. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 16]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `u_3`, `u_4`, `u_5`, `u_6`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`, `u_dot_4`, `u_dot_5`, `u_dot_6`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_1_4`, `c_1_5`, `c_1_6`, `c_2_2`, `c_2_3`, `c_2_4`, `c_2_5`, `c_2_6`, `c_3_3`, `c_3_4`, `c_3_5`, `c_3_6`, `c_4_4`, `c_4_5`, `c_4_6`, `c_5_5`, `c_5_6`, `c_6_6`
+///
+/// # Output
+///
+/// `f: [f64; 8]`: generalised forces — `f_theta`, `f_v`, `f_u_1`, `f_u_2`, `f_u_3`, `f_u_4`, `f_u_5`, `f_u_6`
+///
+/// Operations: 645 (351 mul, 196 add, 62 sub, 30 twice, 2 neg, 1 cos, 1 div, 1 sin, 1 sq).
+#[inline]
+#[must_use]
+pub fn free_forcing(y: &[f64; 16], ug: f64, s: f64, p: &Params) -> [f64; 8] {
+    let w0 = y[0]; // theta
+    let w1 = w0.cos();
+    let w2 = s; // s
+    let w3 = p[1]; // b
+    let w4 = w2 * w3;
+    let w5 = p[4]; // m_c
+    let w6 = p[3]; // m
+    let w7 = w5 + w6;
+    let w8 = p[5]; // m_b
+    let w9 = w7 + w8;
+    let w10 = p[8]; // g
+    let w11 = w9 * w10;
+    let w12 = w4 * w11;
+    let w13 = w1 * w12;
+    let w14 = w0.sin();
+    let w15 = ug; // ug
+    let w16 = w8 * w15;
+    let w17 = w4 * w16;
+    let w18 = y[2]; // u_1
+    let w19 = y[3]; // u_2
+    let w20 = w18 + w19;
+    let w21 = y[4]; // u_3
+    let w22 = w20 + w21;
+    let w23 = y[5]; // u_4
+    let w24 = w22 + w23;
+    let w25 = y[6]; // u_5
+    let w26 = w24 + w25;
+    let w27 = y[7]; // u_6
+    let w28 = w26 + w27;
+    let w29 = w28 - w4;
+    let w30 = w6 * w15;
+    let w31 = w29 * w30;
+    let w32 = w17 - w31;
+    let w33: f64 = -0.0578745285967165;
+    let w34 = w5 * w15;
+    let w35 = w33 * w34;
+    let w36 = w27 * w35;
+    let w37 = w32 - w36;
+    let w38: f64 = 0.07073542044968367;
+    let w39 = w38 * w34;
+    let w40 = w25 * w39;
+    let w41 = w37 - w40;
+    let w42: f64 = -0.09094901081852429;
+    let w43 = w42 * w34;
+    let w44 = w23 * w43;
+    let w45 = w41 - w44;
+    let w46: f64 = 0.12721264843305286;
+    let w47 = w46 * w34;
+    let w48 = w21 * w47;
+    let w49 = w45 - w48;
+    let w50: f64 = -0.21696794755535964;
+    let w51 = w50 * w34;
+    let w52 = w19 * w51;
+    let w53 = w49 - w52;
+    let w54: f64 = 0.3914958780198129;
+    let w55 = w54 * w34;
+    let w56 = w18 * w55;
+    let w57 = w53 - w56;
+    let w58 = w4 * w34;
+    let w59 = w57 + w58;
+    let w60 = p[0]; // h
+    let w61 = w6 * w10;
+    let w62 = w60 * w61;
+    let w63 = w59 - w62;
+    let w64: f64 = 0.5;
+    let w65 = w5 * w10;
+    let w66 = w64 * w65;
+    let w67 = w60 * w66;
+    let w68 = w63 - w67;
+    let w69 = w14 * w68;
+    let w70 = w13 - w69;
+    let w71 = w29 * w61;
+    let w72 = w60 * w30;
+    let w73 = w64 * w34;
+    let w74 = w60 * w73;
+    let w75 = w72 + w74;
+    let w76 = w8 * w10;
+    let w77 = w4 * w76;
+    let w78 = w75 + w77;
+    let w79 = w71 - w78;
+    let w80 = w33 * w65;
+    let w81 = w27 * w80;
+    let w82 = w79 + w81;
+    let w83 = w38 * w65;
+    let w84 = w25 * w83;
+    let w85 = w82 + w84;
+    let w86 = w42 * w65;
+    let w87 = w23 * w86;
+    let w88 = w85 + w87;
+    let w89 = w46 * w65;
+    let w90 = w21 * w89;
+    let w91 = w88 + w90;
+    let w92 = w50 * w65;
+    let w93 = w19 * w92;
+    let w94 = w91 + w93;
+    let w95 = w54 * w65;
+    let w96 = w18 * w95;
+    let w97 = w94 + w96;
+    let w98 = w4 * w65;
+    let w99 = w97 - w98;
+    let w100 = w33 * w5;
+    let w101 = y[15]; // u_dot_6
+    let w102 = y[9]; // v_dot
+    let w103 = w4 * w1;
+    let w104 = y[8]; // theta_dot
+    let w105 = w103 * w104;
+    let w106 = w102 + w105;
+    let w107 = w101 * w106;
+    let w108 = w100 * w107;
+    let w109 = w99 + w108;
+    let w110 = w38 * w5;
+    let w111 = y[14]; // u_dot_5
+    let w112 = w111 * w106;
+    let w113 = w110 * w112;
+    let w114 = w109 + w113;
+    let w115 = w42 * w5;
+    let w116 = y[13]; // u_dot_4
+    let w117 = w116 * w106;
+    let w118 = w115 * w117;
+    let w119 = w114 + w118;
+    let w120 = w46 * w5;
+    let w121 = y[12]; // u_dot_3
+    let w122 = w121 * w106;
+    let w123 = w120 * w122;
+    let w124 = w119 + w123;
+    let w125 = w50 * w5;
+    let w126 = y[11]; // u_dot_2
+    let w127 = w126 * w106;
+    let w128 = w125 * w127;
+    let w129 = w124 + w128;
+    let w130 = w54 * w5;
+    let w131 = y[10]; // u_dot_1
+    let w132 = w131 * w106;
+    let w133 = w130 * w132;
+    let w134 = w129 + w133;
+    let w135 = w107 + w112;
+    let w136 = w135 + w117;
+    let w137 = w136 + w122;
+    let w138 = w137 + w127;
+    let w139 = w138 + w132;
+    let w140 = w6 * w139;
+    let w141 = w134 + w140;
+    let w142 = w1 * w141;
+    let w143 = w70 + w142;
+    let w144 = w60 * w6;
+    let w145 = w64 * w5;
+    let w146 = w60 * w145;
+    let w147 = w144 + w146;
+    let w148 = w104 * w106;
+    let w149 = w147 * w148;
+    let w150 = w1 * w149;
+    let w151 = w143 + w150;
+    let w152 = w4 * w8;
+    let w153 = w29 * w6;
+    let w154 = w152 - w153;
+    let w155 = w27 * w100;
+    let w156 = w154 - w155;
+    let w157 = w25 * w110;
+    let w158 = w156 - w157;
+    let w159 = w23 * w115;
+    let w160 = w158 - w159;
+    let w161 = w21 * w120;
+    let w162 = w160 - w161;
+    let w163 = w19 * w125;
+    let w164 = w162 - w163;
+    let w165 = w18 * w130;
+    let w166 = w164 - w165;
+    let w167 = w4 * w5;
+    let w168 = w166 + w167;
+    let w169 = w168 * w148;
+    let w170 = w14 * w169;
+    let w171 = w151 + w170;
+    let w172 = 2.0 * w106;
+    let w173 = w64 * w9;
+    let w174 = w172 * w173;
+    let w175 = w1 * w168;
+    let w176 = w14 * w147;
+    let w177 = w175 - w176;
+    let w178 = w177 * w104;
+    let w179 = w14 * w6;
+    let w180 = w14 * w130;
+    let w181 = w179 + w180;
+    let w182 = w181 * w131;
+    let w183 = w178 - w182;
+    let w184 = w14 * w125;
+    let w185 = w179 + w184;
+    let w186 = w185 * w126;
+    let w187 = w183 - w186;
+    let w188 = w14 * w120;
+    let w189 = w179 + w188;
+    let w190 = w189 * w121;
+    let w191 = w187 - w190;
+    let w192 = w14 * w115;
+    let w193 = w179 + w192;
+    let w194 = w193 * w116;
+    let w195 = w191 - w194;
+    let w196 = w14 * w110;
+    let w197 = w179 + w196;
+    let w198 = w197 * w111;
+    let w199 = w195 - w198;
+    let w200 = w14 * w100;
+    let w201 = w179 + w200;
+    let w202 = w201 * w101;
+    let w203 = w199 - w202;
+    let w204 = w174 - w203;
+    let w205 = w104 * w204;
+    let w206 = w4 * w205;
+    let w207 = w14 * w206;
+    let w208 = w171 - w207;
+    let w209 = w4 * w14;
+    let w210 = w104 * w209;
+    let w211 = -w210;
+    let w212 = 2.0 * w211;
+    let w213 = w173 * w212;
+    let w214 = w168 * w14;
+    let w215 = w147 * w1;
+    let w216 = w214 + w215;
+    let w217 = w104 * w216;
+    let w218 = w6 * w1;
+    let w219 = w130 * w1;
+    let w220 = w218 + w219;
+    let w221 = w131 * w220;
+    let w222 = w217 + w221;
+    let w223 = w125 * w1;
+    let w224 = w218 + w223;
+    let w225 = w126 * w224;
+    let w226 = w222 + w225;
+    let w227 = w120 * w1;
+    let w228 = w218 + w227;
+    let w229 = w121 * w228;
+    let w230 = w226 + w229;
+    let w231 = w115 * w1;
+    let w232 = w218 + w231;
+    let w233 = w116 * w232;
+    let w234 = w230 + w233;
+    let w235 = w110 * w1;
+    let w236 = w218 + w235;
+    let w237 = w111 * w236;
+    let w238 = w234 + w237;
+    let w239 = w100 * w1;
+    let w240 = w218 + w239;
+    let w241 = w101 * w240;
+    let w242 = w238 + w241;
+    let w243 = w213 + w242;
+    let w244 = w103 * w243;
+    let w245 = w204 * w209;
+    let w246 = w244 - w245;
+    let w247 = w106 * w216;
+    let w248 = w177 * w210;
+    let w249 = w247 + w248;
+    let w250 = w246 + w249;
+    let w251 = w250 * w104;
+    let w252 = w6 + w130;
+    let w253 = w1 * w252;
+    let w254 = w104 * w253;
+    let w255 = w103 * w254;
+    let w256 = w106 * w253;
+    let w257 = w255 + w256;
+    let w258 = w104 * w29;
+    let w259 = 2.0 * w258;
+    let w260 = w64 * w6;
+    let w261 = w259 * w260;
+    let w262 = 2.0 * w104;
+    let w263 = w260 * w262;
+    let w264 = w29 * w263;
+    let w265 = w261 + w264;
+    let w266 = w257 + w265;
+    let w267: f64 = 0.0625;
+    let w268 = w267 * w5;
+    let w269 = w18 * w268;
+    let w270 = w269 * w262;
+    let w271 = w104 * w18;
+    let w272 = 2.0 * w271;
+    let w273 = w272 * w268;
+    let w274 = w270 + w273;
+    let w275 = w266 + w274;
+    let w276 = w104 * w269;
+    let w277 = 2.0 * w276;
+    let w278 = w104 * w268;
+    let w279 = 2.0 * w278;
+    let w280 = w18 * w279;
+    let w281 = w277 + w280;
+    let w282 = w275 + w281;
+    let w283 = w104 * w4;
+    let w284 = -w283;
+    let w285 = 2.0 * w284;
+    let w286: f64 = 0.19574793900990645;
+    let w287 = w286 * w5;
+    let w288 = w285 * w287;
+    let w289 = w282 + w288;
+    let w290 = w104 * w287;
+    let w291 = 2.0 * w290;
+    let w292 = w4 * w291;
+    let w293 = w289 - w292;
+    let w294 = w293 * w131;
+    let w295 = w251 + w294;
+    let w296 = w6 + w125;
+    let w297 = w1 * w296;
+    let w298 = w104 * w297;
+    let w299 = w103 * w298;
+    let w300 = w106 * w297;
+    let w301 = w299 + w300;
+    let w302 = w301 + w265;
+    let w303 = w19 * w268;
+    let w304 = w303 * w262;
+    let w305 = w104 * w19;
+    let w306 = 2.0 * w305;
+    let w307 = w306 * w268;
+    let w308 = w304 + w307;
+    let w309 = w302 + w308;
+    let w310 = w104 * w303;
+    let w311 = 2.0 * w310;
+    let w312 = w19 * w279;
+    let w313 = w311 + w312;
+    let w314 = w309 + w313;
+    let w315: f64 = -0.10848397377767982;
+    let w316 = w315 * w5;
+    let w317 = w285 * w316;
+    let w318 = w314 + w317;
+    let w319 = w104 * w316;
+    let w320 = 2.0 * w319;
+    let w321 = w4 * w320;
+    let w322 = w318 - w321;
+    let w323 = w322 * w126;
+    let w324 = w295 + w323;
+    let w325 = w6 + w120;
+    let w326 = w1 * w325;
+    let w327 = w104 * w326;
+    let w328 = w103 * w327;
+    let w329 = w106 * w326;
+    let w330 = w328 + w329;
+    let w331 = w330 + w265;
+    let w332 = w21 * w268;
+    let w333 = w332 * w262;
+    let w334 = w104 * w21;
+    let w335 = 2.0 * w334;
+    let w336 = w335 * w268;
+    let w337 = w333 + w336;
+    let w338 = w331 + w337;
+    let w339 = w104 * w332;
+    let w340 = 2.0 * w339;
+    let w341 = w21 * w279;
+    let w342 = w340 + w341;
+    let w343 = w338 + w342;
+    let w344: f64 = 0.06360632421652643;
+    let w345 = w344 * w5;
+    let w346 = w285 * w345;
+    let w347 = w343 + w346;
+    let w348 = w104 * w345;
+    let w349 = 2.0 * w348;
+    let w350 = w4 * w349;
+    let w351 = w347 - w350;
+    let w352 = w351 * w121;
+    let w353 = w324 + w352;
+    let w354 = w6 + w115;
+    let w355 = w1 * w354;
+    let w356 = w104 * w355;
+    let w357 = w103 * w356;
+    let w358 = w106 * w355;
+    let w359 = w357 + w358;
+    let w360 = w359 + w265;
+    let w361 = w23 * w268;
+    let w362 = w361 * w262;
+    let w363 = w104 * w23;
+    let w364 = 2.0 * w363;
+    let w365 = w364 * w268;
+    let w366 = w362 + w365;
+    let w367 = w360 + w366;
+    let w368 = w104 * w361;
+    let w369 = 2.0 * w368;
+    let w370 = w23 * w279;
+    let w371 = w369 + w370;
+    let w372 = w367 + w371;
+    let w373: f64 = -0.04547450540926214;
+    let w374 = w373 * w5;
+    let w375 = w285 * w374;
+    let w376 = w372 + w375;
+    let w377 = w104 * w374;
+    let w378 = 2.0 * w377;
+    let w379 = w4 * w378;
+    let w380 = w376 - w379;
+    let w381 = w380 * w116;
+    let w382 = w353 + w381;
+    let w383 = w6 + w110;
+    let w384 = w1 * w383;
+    let w385 = w104 * w384;
+    let w386 = w103 * w385;
+    let w387 = w106 * w384;
+    let w388 = w386 + w387;
+    let w389 = w388 + w265;
+    let w390 = w25 * w268;
+    let w391 = w390 * w262;
+    let w392 = w104 * w25;
+    let w393 = 2.0 * w392;
+    let w394 = w393 * w268;
+    let w395 = w391 + w394;
+    let w396 = w389 + w395;
+    let w397 = w104 * w390;
+    let w398 = 2.0 * w397;
+    let w399 = w25 * w279;
+    let w400 = w398 + w399;
+    let w401 = w396 + w400;
+    let w402: f64 = 0.035367710224841836;
+    let w403 = w402 * w5;
+    let w404 = w285 * w403;
+    let w405 = w401 + w404;
+    let w406 = w104 * w403;
+    let w407 = 2.0 * w406;
+    let w408 = w4 * w407;
+    let w409 = w405 - w408;
+    let w410 = w409 * w111;
+    let w411 = w382 + w410;
+    let w412 = w6 + w100;
+    let w413 = w1 * w412;
+    let w414 = w104 * w413;
+    let w415 = w103 * w414;
+    let w416 = w106 * w413;
+    let w417 = w415 + w416;
+    let w418 = w417 + w265;
+    let w419 = w27 * w268;
+    let w420 = w419 * w262;
+    let w421 = w104 * w27;
+    let w422 = 2.0 * w421;
+    let w423 = w422 * w268;
+    let w424 = w420 + w423;
+    let w425 = w418 + w424;
+    let w426 = w104 * w419;
+    let w427 = 2.0 * w426;
+    let w428 = w27 * w279;
+    let w429 = w427 + w428;
+    let w430 = w425 + w429;
+    let w431: f64 = -0.02893726429835825;
+    let w432 = w431 * w5;
+    let w433 = w285 * w432;
+    let w434 = w430 + w433;
+    let w435 = w104 * w432;
+    let w436 = 2.0 * w435;
+    let w437 = w4 * w436;
+    let w438 = w434 - w437;
+    let w439 = w438 * w101;
+    let w440 = w411 + w439;
+    let w441 = w208 - w440;
+    let o0 = w441; // f_theta
+    let w442 = w243 * w104;
+    let w443 = w254 * w131;
+    let w444 = w442 + w443;
+    let w445 = w298 * w126;
+    let w446 = w444 + w445;
+    let w447 = w327 * w121;
+    let w448 = w446 + w447;
+    let w449 = w356 * w116;
+    let w450 = w448 + w449;
+    let w451 = w385 * w111;
+    let w452 = w450 + w451;
+    let w453 = w414 * w101;
+    let w454 = w452 + w453;
+    let w455 = w11 - w454;
+    let o1 = w455; // f_v
+    let w456 = 2.0 * w18;
+    let w457: f64 = -1.5452954210407739;
+    let w458 = p[2]; // ei
+    let w459 = w60 * w60;
+    let w460 = w60 * w459;
+    let w461 = w458 / w460;
+    let w462 = w457 * w461;
+    let w463 = w456 * w462;
+    let w464 = w1 * w30;
+    let w465 = w1 * w55;
+    let w466 = w464 + w465;
+    let w467 = w463 - w466;
+    let w468 = w14 * w95;
+    let w469 = w467 + w468;
+    let w470 = w1 * w148;
+    let w471 = w130 * w470;
+    let w472 = w469 + w471;
+    let w473 = w14 * w61;
+    let w474 = w6 * w470;
+    let w475 = w473 + w474;
+    let w476 = w472 + w475;
+    let w477 = w104 * w261;
+    let w478 = w476 + w477;
+    let w479 = w104 * w272;
+    let w480 = w479 * w268;
+    let w481 = w478 + w480;
+    let w482 = w104 * w277;
+    let w483 = w481 + w482;
+    let w484 = w104 * w285;
+    let w485 = w484 * w287;
+    let w486 = w483 + w485;
+    let w487 = w106 * w220;
+    let w488 = w181 * w210;
+    let w489 = w487 - w488;
+    let w490 = w489 * w104;
+    let w491 = w486 - w490;
+    let w492 = p[9]; // c_1_1
+    let w493 = w492 * w131;
+    let w494 = p[10]; // c_1_2
+    let w495 = w494 * w126;
+    let w496 = w493 + w495;
+    let w497 = p[11]; // c_1_3
+    let w498 = w497 * w121;
+    let w499 = w496 + w498;
+    let w500 = p[12]; // c_1_4
+    let w501 = w500 * w116;
+    let w502 = w499 + w501;
+    let w503 = p[13]; // c_1_5
+    let w504 = w503 * w111;
+    let w505 = w502 + w504;
+    let w506 = p[14]; // c_1_6
+    let w507 = w506 * w101;
+    let w508 = w505 + w507;
+    let w509 = w491 - w508;
+    let o2 = w509; // f_u_1
+    let w510 = 2.0 * w19;
+    let w511: f64 = -60.68985231417138;
+    let w512 = w511 * w461;
+    let w513 = w510 * w512;
+    let w514 = w1 * w51;
+    let w515 = w464 + w514;
+    let w516 = w513 - w515;
+    let w517 = w14 * w92;
+    let w518 = w516 + w517;
+    let w519 = w125 * w470;
+    let w520 = w518 + w519;
+    let w521 = w520 + w475;
+    let w522 = w521 + w477;
+    let w523 = w104 * w306;
+    let w524 = w523 * w268;
+    let w525 = w522 + w524;
+    let w526 = w104 * w311;
+    let w527 = w525 + w526;
+    let w528 = w484 * w316;
+    let w529 = w527 + w528;
+    let w530 = w106 * w224;
+    let w531 = w185 * w210;
+    let w532 = w530 - w531;
+    let w533 = w532 * w104;
+    let w534 = w529 - w533;
+    let w535 = w494 * w131;
+    let w536 = p[15]; // c_2_2
+    let w537 = w536 * w126;
+    let w538 = w535 + w537;
+    let w539 = p[16]; // c_2_3
+    let w540 = w539 * w121;
+    let w541 = w538 + w540;
+    let w542 = p[17]; // c_2_4
+    let w543 = w542 * w116;
+    let w544 = w541 + w543;
+    let w545 = p[18]; // c_2_5
+    let w546 = w545 * w111;
+    let w547 = w544 + w546;
+    let w548 = p[19]; // c_2_6
+    let w549 = w548 * w101;
+    let w550 = w547 + w549;
+    let w551 = w534 - w550;
+    let o3 = w551; // f_u_2
+    let w552 = 2.0 * w21;
+    let w553: f64 = -475.81828329893136;
+    let w554 = w553 * w461;
+    let w555 = w552 * w554;
+    let w556 = w1 * w47;
+    let w557 = w464 + w556;
+    let w558 = w555 - w557;
+    let w559 = w14 * w89;
+    let w560 = w558 + w559;
+    let w561 = w120 * w470;
+    let w562 = w560 + w561;
+    let w563 = w562 + w475;
+    let w564 = w563 + w477;
+    let w565 = w104 * w335;
+    let w566 = w565 * w268;
+    let w567 = w564 + w566;
+    let w568 = w104 * w340;
+    let w569 = w567 + w568;
+    let w570 = w484 * w345;
+    let w571 = w569 + w570;
+    let w572 = w106 * w228;
+    let w573 = w189 * w210;
+    let w574 = w572 - w573;
+    let w575 = w574 * w104;
+    let w576 = w571 - w575;
+    let w577 = w497 * w131;
+    let w578 = w539 * w126;
+    let w579 = w577 + w578;
+    let w580 = p[20]; // c_3_3
+    let w581 = w580 * w121;
+    let w582 = w579 + w581;
+    let w583 = p[21]; // c_3_4
+    let w584 = w583 * w116;
+    let w585 = w582 + w584;
+    let w586 = p[22]; // c_3_5
+    let w587 = w586 * w111;
+    let w588 = w585 + w587;
+    let w589 = p[23]; // c_3_6
+    let w590 = w589 * w101;
+    let w591 = w588 + w590;
+    let w592 = w576 - w591;
+    let o4 = w592; // f_u_3
+    let w593 = 2.0 * w23;
+    let w594: f64 = -1827.1591631398476;
+    let w595 = w594 * w461;
+    let w596 = w593 * w595;
+    let w597 = w1 * w43;
+    let w598 = w464 + w597;
+    let w599 = w596 - w598;
+    let w600 = w14 * w86;
+    let w601 = w599 + w600;
+    let w602 = w115 * w470;
+    let w603 = w601 + w602;
+    let w604 = w603 + w475;
+    let w605 = w604 + w477;
+    let w606 = w104 * w364;
+    let w607 = w606 * w268;
+    let w608 = w605 + w607;
+    let w609 = w104 * w369;
+    let w610 = w608 + w609;
+    let w611 = w484 * w374;
+    let w612 = w610 + w611;
+    let w613 = w106 * w232;
+    let w614 = w193 * w210;
+    let w615 = w613 - w614;
+    let w616 = w615 * w104;
+    let w617 = w612 - w616;
+    let w618 = w500 * w131;
+    let w619 = w542 * w126;
+    let w620 = w618 + w619;
+    let w621 = w583 * w121;
+    let w622 = w620 + w621;
+    let w623 = p[24]; // c_4_4
+    let w624 = w623 * w116;
+    let w625 = w622 + w624;
+    let w626 = p[25]; // c_4_5
+    let w627 = w626 * w111;
+    let w628 = w625 + w627;
+    let w629 = p[26]; // c_4_6
+    let w630 = w629 * w101;
+    let w631 = w628 + w630;
+    let w632 = w617 - w631;
+    let o5 = w632; // f_u_4
+    let w633 = 2.0 * w25;
+    let w634: f64 = -4992.978972313684;
+    let w635 = w634 * w461;
+    let w636 = w633 * w635;
+    let w637 = w1 * w39;
+    let w638 = w464 + w637;
+    let w639 = w636 - w638;
+    let w640 = w14 * w83;
+    let w641 = w639 + w640;
+    let w642 = w110 * w470;
+    let w643 = w641 + w642;
+    let w644 = w643 + w475;
+    let w645 = w644 + w477;
+    let w646 = w104 * w393;
+    let w647 = w646 * w268;
+    let w648 = w645 + w647;
+    let w649 = w104 * w398;
+    let w650 = w648 + w649;
+    let w651 = w484 * w403;
+    let w652 = w650 + w651;
+    let w653 = w106 * w236;
+    let w654 = w197 * w210;
+    let w655 = w653 - w654;
+    let w656 = w655 * w104;
+    let w657 = w652 - w656;
+    let w658 = w503 * w131;
+    let w659 = w545 * w126;
+    let w660 = w658 + w659;
+    let w661 = w586 * w121;
+    let w662 = w660 + w661;
+    let w663 = w626 * w116;
+    let w664 = w662 + w663;
+    let w665 = p[27]; // c_5_5
+    let w666 = w665 * w111;
+    let w667 = w664 + w666;
+    let w668 = p[28]; // c_5_6
+    let w669 = w668 * w101;
+    let w670 = w667 + w669;
+    let w671 = w657 - w670;
+    let o6 = w671; // f_u_5
+    let w672 = 2.0 * w27;
+    let w673: f64 = -11141.925633927905;
+    let w674 = w673 * w461;
+    let w675 = w672 * w674;
+    let w676 = w1 * w35;
+    let w677 = w464 + w676;
+    let w678 = w675 - w677;
+    let w679 = w14 * w80;
+    let w680 = w678 + w679;
+    let w681 = w100 * w470;
+    let w682 = w680 + w681;
+    let w683 = w682 + w475;
+    let w684 = w683 + w477;
+    let w685 = w104 * w422;
+    let w686 = w685 * w268;
+    let w687 = w684 + w686;
+    let w688 = w104 * w427;
+    let w689 = w687 + w688;
+    let w690 = w484 * w432;
+    let w691 = w689 + w690;
+    let w692 = w106 * w240;
+    let w693 = w201 * w210;
+    let w694 = w692 - w693;
+    let w695 = w694 * w104;
+    let w696 = w691 - w695;
+    let w697 = w506 * w131;
+    let w698 = w548 * w126;
+    let w699 = w697 + w698;
+    let w700 = w589 * w121;
+    let w701 = w699 + w700;
+    let w702 = w629 * w116;
+    let w703 = w701 + w702;
+    let w704 = w668 * w111;
+    let w705 = w703 + w704;
+    let w706 = p[29]; // c_6_6
+    let w707 = w706 * w101;
+    let w708 = w705 + w707;
+    let w709 = w696 - w708;
+    let o7 = w709; // f_u_6
+    [o0, o1, o2, o3, o4, o5, o6, o7]
+}
+
+/// Indices of the elements of the output `f` of [`free_forcing()`].
+pub mod free_forcing {
+    /// Index of `f_theta`.
+    pub const F_THETA: usize = 0;
+    /// Index of `f_v`.
+    pub const F_V: usize = 1;
+    /// Index of `f_u_1`.
+    pub const F_U_1: usize = 2;
+    /// Index of `f_u_2`.
+    pub const F_U_2: usize = 3;
+    /// Index of `f_u_3`.
+    pub const F_U_3: usize = 4;
+    /// Index of `f_u_4`.
+    pub const F_U_4: usize = 5;
+    /// Index of `f_u_5`.
+    pub const F_U_5: usize = 6;
+    /// Index of `f_u_6`.
+    pub const F_U_6: usize = 7;
+
+    /// Indices of the elements of input `y` of [`free_forcing()`](super::free_forcing()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+        /// Index of `u_4`.
+        pub const U_4: usize = 5;
+        /// Index of `u_5`.
+        pub const U_5: usize = 6;
+        /// Index of `u_6`.
+        pub const U_6: usize = 7;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 8;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 9;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 10;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 11;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 12;
+        /// Index of `u_dot_4`.
+        pub const U_DOT_4: usize = 13;
+        /// Index of `u_dot_5`.
+        pub const U_DOT_5: usize = 14;
+        /// Index of `u_dot_6`.
+        pub const U_DOT_6: usize = 15;
+    }
+}
+
+/// Kinetic energy, gravity (heights over the rest position of the leaning corner, the ground's surface) and strain potentials and horizontal momentum. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 16]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `u_3`, `u_4`, `u_5`, `u_6`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`, `u_dot_4`, `u_dot_5`, `u_dot_6`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_1_4`, `c_1_5`, `c_1_6`, `c_2_2`, `c_2_3`, `c_2_4`, `c_2_5`, `c_2_6`, `c_3_3`, `c_3_4`, `c_3_5`, `c_3_6`, `c_4_4`, `c_4_5`, `c_4_6`, `c_5_5`, `c_5_6`, `c_6_6`
+///
+/// # Output
+///
+/// `e: [f64; 4]`: energies and momentum — `kinetic`, `gravity`, `strain`, `momentum_x`
+///
+/// Operations: 298 (159 mul, 78 add, 27 sub, 14 twice, 12 sq, 5 div, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_energy(y: &[f64; 16], s: f64, p: &Params) -> [f64; 4] {
+    let w0 = p[4]; // m_c
+    let w1 = y[8]; // theta_dot
+    let w2 = s; // s
+    let w3 = p[1]; // b
+    let w4 = w2 * w3;
+    let w5 = w1 * w4;
+    let w6 = w5 * w5;
+    let w7: f64 = 0.3914958780198129;
+    let w8 = y[2]; // u_1
+    let w9 = -w5;
+    let w10 = 2.0 * w9;
+    let w11 = w1 * w10;
+    let w12 = w8 * w11;
+    let w13 = w7 * w12;
+    let w14 = w6 + w13;
+    let w15: f64 = -0.21696794755535964;
+    let w16 = y[3]; // u_2
+    let w17 = w16 * w11;
+    let w18 = w15 * w17;
+    let w19 = w14 + w18;
+    let w20: f64 = 0.12721264843305286;
+    let w21 = y[4]; // u_3
+    let w22 = w21 * w11;
+    let w23 = w20 * w22;
+    let w24 = w19 + w23;
+    let w25: f64 = -0.09094901081852429;
+    let w26 = y[5]; // u_4
+    let w27 = w26 * w11;
+    let w28 = w25 * w27;
+    let w29 = w24 + w28;
+    let w30: f64 = 0.07073542044968367;
+    let w31 = y[6]; // u_5
+    let w32 = w31 * w11;
+    let w33 = w30 * w32;
+    let w34 = w29 + w33;
+    let w35: f64 = -0.0578745285967165;
+    let w36 = y[7]; // u_6
+    let w37 = w36 * w11;
+    let w38 = w35 * w37;
+    let w39 = w34 + w38;
+    let w40: f64 = 0.16666666666666666;
+    let w41 = p[0]; // h
+    let w42 = w1 * w41;
+    let w43 = 2.0 * w42;
+    let w44 = w1 * w43;
+    let w45 = w41 * w44;
+    let w46 = w40 * w45;
+    let w47 = w39 + w46;
+    let w48: f64 = 0.2844128718549554;
+    let w49 = y[10]; // u_dot_1
+    let w50 = 2.0 * w49;
+    let w51 = w1 * w50;
+    let w52 = w41 * w51;
+    let w53 = w48 * w52;
+    let w54 = w47 + w53;
+    let w55: f64 = -0.04538339344319348;
+    let w56 = y[11]; // u_dot_2
+    let w57 = 2.0 * w56;
+    let w58 = w1 * w57;
+    let w59 = w41 * w58;
+    let w60 = w55 * w59;
+    let w61 = w54 + w60;
+    let w62: f64 = 0.016208187184872217;
+    let w63 = y[12]; // u_dot_3
+    let w64 = 2.0 * w63;
+    let w65 = w1 * w64;
+    let w66 = w41 * w65;
+    let w67 = w62 * w66;
+    let w68 = w61 + w67;
+    let w69: f64 = -0.008271167510425316;
+    let w70 = y[13]; // u_dot_4
+    let w71 = 2.0 * w70;
+    let w72 = w1 * w71;
+    let w73 = w41 * w72;
+    let w74 = w69 * w73;
+    let w75 = w68 + w74;
+    let w76: f64 = 0.0050035142152869685;
+    let w77 = y[14]; // u_dot_5
+    let w78 = 2.0 * w77;
+    let w79 = w1 * w78;
+    let w80 = w41 * w79;
+    let w81 = w76 * w80;
+    let w82 = w75 + w81;
+    let w83: f64 = -0.00334946064056702;
+    let w84 = y[15]; // u_dot_6
+    let w85 = 2.0 * w84;
+    let w86 = w1 * w85;
+    let w87 = w41 * w86;
+    let w88 = w83 * w87;
+    let w89 = w82 + w88;
+    let w90: f64 = 0.125;
+    let w91 = w1 * w8;
+    let w92 = 2.0 * w91;
+    let w93 = w1 * w92;
+    let w94 = w8 * w93;
+    let w95 = w49 * w50;
+    let w96 = w94 + w95;
+    let w97 = w90 * w96;
+    let w98 = w89 + w97;
+    let w99 = w1 * w16;
+    let w100 = 2.0 * w99;
+    let w101 = w1 * w100;
+    let w102 = w16 * w101;
+    let w103 = w56 * w57;
+    let w104 = w102 + w103;
+    let w105 = w90 * w104;
+    let w106 = w98 + w105;
+    let w107 = w1 * w21;
+    let w108 = 2.0 * w107;
+    let w109 = w1 * w108;
+    let w110 = w21 * w109;
+    let w111 = w63 * w64;
+    let w112 = w110 + w111;
+    let w113 = w90 * w112;
+    let w114 = w106 + w113;
+    let w115 = w1 * w26;
+    let w116 = 2.0 * w115;
+    let w117 = w1 * w116;
+    let w118 = w26 * w117;
+    let w119 = w70 * w71;
+    let w120 = w118 + w119;
+    let w121 = w90 * w120;
+    let w122 = w114 + w121;
+    let w123 = w1 * w31;
+    let w124 = 2.0 * w123;
+    let w125 = w1 * w124;
+    let w126 = w31 * w125;
+    let w127 = w77 * w78;
+    let w128 = w126 + w127;
+    let w129 = w90 * w128;
+    let w130 = w122 + w129;
+    let w131 = w1 * w36;
+    let w132 = 2.0 * w131;
+    let w133 = w1 * w132;
+    let w134 = w36 * w133;
+    let w135 = w84 * w85;
+    let w136 = w134 + w135;
+    let w137 = w90 * w136;
+    let w138 = w130 + w137;
+    let w139 = w0 * w138;
+    let w140 = p[3]; // m
+    let w141 = w49 + w56;
+    let w142 = w141 + w63;
+    let w143 = w142 + w70;
+    let w144 = w143 + w77;
+    let w145 = w144 + w84;
+    let w146 = w145 + w42;
+    let w147 = w146 * w146;
+    let w148 = w8 + w16;
+    let w149 = w148 + w21;
+    let w150 = w149 + w26;
+    let w151 = w150 + w31;
+    let w152 = w151 + w36;
+    let w153 = w152 - w4;
+    let w154 = w1 * w153;
+    let w155 = w154 * w154;
+    let w156 = w147 + w155;
+    let w157 = w140 * w156;
+    let w158 = w139 + w157;
+    let w159: f64 = 2.0;
+    let w160 = w158 / w159;
+    let w161 = p[6]; // i_bc
+    let w162 = w1 * w1;
+    let w163 = w161 * w162;
+    let w164 = w163 / w159;
+    let w165 = w160 + w164;
+    let w166 = w0 + w140;
+    let w167 = p[5]; // m_b
+    let w168 = w166 + w167;
+    let w169 = y[9]; // v_dot
+    let w170 = y[0]; // theta
+    let w171 = w170.cos();
+    let w172 = w4 * w171;
+    let w173 = w172 * w1;
+    let w174 = w169 + w173;
+    let w175 = w174 * w174;
+    let w176 = w168 * w175;
+    let w177 = w176 / w159;
+    let w178 = w165 + w177;
+    let w179 = w4 * w167;
+    let w180 = w153 * w140;
+    let w181 = w179 - w180;
+    let w182 = w35 * w0;
+    let w183 = w36 * w182;
+    let w184 = w181 - w183;
+    let w185 = w30 * w0;
+    let w186 = w31 * w185;
+    let w187 = w184 - w186;
+    let w188 = w25 * w0;
+    let w189 = w26 * w188;
+    let w190 = w187 - w189;
+    let w191 = w20 * w0;
+    let w192 = w21 * w191;
+    let w193 = w190 - w192;
+    let w194 = w15 * w0;
+    let w195 = w16 * w194;
+    let w196 = w193 - w195;
+    let w197 = w7 * w0;
+    let w198 = w8 * w197;
+    let w199 = w196 - w198;
+    let w200 = w4 * w0;
+    let w201 = w199 + w200;
+    let w202 = w171 * w201;
+    let w203 = w170.sin();
+    let w204 = w41 * w140;
+    let w205: f64 = 0.5;
+    let w206 = w205 * w0;
+    let w207 = w41 * w206;
+    let w208 = w204 + w207;
+    let w209 = w203 * w208;
+    let w210 = w202 - w209;
+    let w211 = w210 * w1;
+    let w212 = w203 * w140;
+    let w213 = w203 * w197;
+    let w214 = w212 + w213;
+    let w215 = w214 * w49;
+    let w216 = w211 - w215;
+    let w217 = w203 * w194;
+    let w218 = w212 + w217;
+    let w219 = w218 * w56;
+    let w220 = w216 - w219;
+    let w221 = w203 * w191;
+    let w222 = w212 + w221;
+    let w223 = w222 * w63;
+    let w224 = w220 - w223;
+    let w225 = w203 * w188;
+    let w226 = w212 + w225;
+    let w227 = w226 * w70;
+    let w228 = w224 - w227;
+    let w229 = w203 * w185;
+    let w230 = w212 + w229;
+    let w231 = w230 * w77;
+    let w232 = w228 - w231;
+    let w233 = w203 * w182;
+    let w234 = w212 + w233;
+    let w235 = w234 * w84;
+    let w236 = w232 - w235;
+    let w237 = w174 * w236;
+    let w238 = w178 - w237;
+    let o0 = w238; // kinetic
+    let w239 = p[8]; // g
+    let w240 = w4 * w203;
+    let w241 = w41 * w171;
+    let w242 = w205 * w241;
+    let w243 = w240 + w242;
+    let w244 = w8 * w203;
+    let w245 = w7 * w244;
+    let w246 = w243 - w245;
+    let w247 = w16 * w203;
+    let w248 = w15 * w247;
+    let w249 = w246 - w248;
+    let w250 = w21 * w203;
+    let w251 = w20 * w250;
+    let w252 = w249 - w251;
+    let w253 = w26 * w203;
+    let w254 = w25 * w253;
+    let w255 = w252 - w254;
+    let w256 = w31 * w203;
+    let w257 = w30 * w256;
+    let w258 = w255 - w257;
+    let w259 = w36 * w203;
+    let w260 = w35 * w259;
+    let w261 = w258 - w260;
+    let w262 = w0 * w261;
+    let w263 = w153 * w203;
+    let w264 = w241 - w263;
+    let w265 = w140 * w264;
+    let w266 = w262 + w265;
+    let w267 = w167 * w240;
+    let w268 = w266 + w267;
+    let w269 = y[1]; // v
+    let w270 = w269 + w240;
+    let w271 = w168 * w270;
+    let w272 = w268 - w271;
+    let w273 = w239 * w272;
+    let o1 = w273; // gravity
+    let w274: f64 = 3.0905908420815478;
+    let w275 = p[2]; // ei
+    let w276 = w41 * w41;
+    let w277 = w41 * w276;
+    let w278 = w275 / w277;
+    let w279 = w274 * w278;
+    let w280 = w8 * w8;
+    let w281 = w279 * w280;
+    let w282: f64 = 121.37970462834276;
+    let w283 = w282 * w278;
+    let w284 = w16 * w16;
+    let w285 = w283 * w284;
+    let w286 = w281 + w285;
+    let w287: f64 = 951.6365665978627;
+    let w288 = w287 * w278;
+    let w289 = w21 * w21;
+    let w290 = w288 * w289;
+    let w291 = w286 + w290;
+    let w292: f64 = 3654.318326279695;
+    let w293 = w292 * w278;
+    let w294 = w26 * w26;
+    let w295 = w293 * w294;
+    let w296 = w291 + w295;
+    let w297: f64 = 9985.957944627367;
+    let w298 = w297 * w278;
+    let w299 = w31 * w31;
+    let w300 = w298 * w299;
+    let w301 = w296 + w300;
+    let w302: f64 = 22283.85126785581;
+    let w303 = w302 * w278;
+    let w304 = w36 * w36;
+    let w305 = w303 * w304;
+    let w306 = w301 + w305;
+    let w307 = w306 / w159;
+    let o2 = w307; // strain
+    let w308 = w171 * w208;
+    let w309 = w180 - w179;
+    let w310 = w309 + w183;
+    let w311 = w310 + w186;
+    let w312 = w311 + w189;
+    let w313 = w312 + w192;
+    let w314 = w313 + w195;
+    let w315 = w314 + w198;
+    let w316 = w315 - w200;
+    let w317 = w203 * w316;
+    let w318 = w308 - w317;
+    let w319 = w318 * w1;
+    let w320 = w171 * w140;
+    let w321 = w171 * w197;
+    let w322 = w320 + w321;
+    let w323 = w322 * w49;
+    let w324 = w319 + w323;
+    let w325 = w171 * w194;
+    let w326 = w320 + w325;
+    let w327 = w326 * w56;
+    let w328 = w324 + w327;
+    let w329 = w171 * w191;
+    let w330 = w320 + w329;
+    let w331 = w330 * w63;
+    let w332 = w328 + w331;
+    let w333 = w171 * w188;
+    let w334 = w320 + w333;
+    let w335 = w334 * w70;
+    let w336 = w332 + w335;
+    let w337 = w171 * w185;
+    let w338 = w320 + w337;
+    let w339 = w338 * w77;
+    let w340 = w336 + w339;
+    let w341 = w171 * w182;
+    let w342 = w320 + w341;
+    let w343 = w342 * w84;
+    let w344 = w340 + w343;
+    let o3 = w344; // momentum_x
+    [o0, o1, o2, o3]
+}
+
+/// Indices of the elements of the output `e` of [`free_energy()`].
+pub mod free_energy {
+    /// Index of `kinetic`.
+    pub const KINETIC: usize = 0;
+    /// Index of `gravity`.
+    pub const GRAVITY: usize = 1;
+    /// Index of `strain`.
+    pub const STRAIN: usize = 2;
+    /// Index of `momentum_x`.
+    pub const MOMENTUM_X: usize = 3;
+
+    /// Indices of the elements of input `y` of [`free_energy()`](super::free_energy()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+        /// Index of `u_4`.
+        pub const U_4: usize = 5;
+        /// Index of `u_5`.
+        pub const U_5: usize = 6;
+        /// Index of `u_6`.
+        pub const U_6: usize = 7;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 8;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 9;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 10;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 11;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 12;
+        /// Index of `u_dot_4`.
+        pub const U_DOT_4: usize = 13;
+        /// Index of `u_dot_5`.
+        pub const U_DOT_5: usize = 14;
+        /// Index of `u_dot_6`.
+        pub const U_DOT_6: usize = 15;
+    }
+}
+
+/// Power terms: dE/dt = ground - damping + Q_theta theta' + Q_v v', with ground = -ug P_x and damping u'^T C u'. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 16]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `u_3`, `u_4`, `u_5`, `u_6`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`, `u_dot_4`, `u_dot_5`, `u_dot_6`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_1_4`, `c_1_5`, `c_1_6`, `c_2_2`, `c_2_3`, `c_2_4`, `c_2_5`, `c_2_6`, `c_3_3`, `c_3_4`, `c_3_5`, `c_3_6`, `c_4_4`, `c_4_5`, `c_4_6`, `c_5_5`, `c_5_6`, `c_6_6`
+///
+/// # Output
+///
+/// `w: [f64; 2]`: power terms — `ground`, `damping`
+///
+/// Operations: 144 (78 mul, 59 add, 4 sub, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_power(y: &[f64; 16], ug: f64, s: f64, p: &Params) -> [f64; 2] {
+    let w0 = ug; // ug
+    let w1 = y[0]; // theta
+    let w2 = w1.cos();
+    let w3 = p[0]; // h
+    let w4 = p[3]; // m
+    let w5 = w3 * w4;
+    let w6: f64 = 0.5;
+    let w7 = p[4]; // m_c
+    let w8 = w6 * w7;
+    let w9 = w3 * w8;
+    let w10 = w5 + w9;
+    let w11 = w2 * w10;
+    let w12 = w1.sin();
+    let w13 = y[2]; // u_1
+    let w14 = y[3]; // u_2
+    let w15 = w13 + w14;
+    let w16 = y[4]; // u_3
+    let w17 = w15 + w16;
+    let w18 = y[5]; // u_4
+    let w19 = w17 + w18;
+    let w20 = y[6]; // u_5
+    let w21 = w19 + w20;
+    let w22 = y[7]; // u_6
+    let w23 = w21 + w22;
+    let w24 = s; // s
+    let w25 = p[1]; // b
+    let w26 = w24 * w25;
+    let w27 = w23 - w26;
+    let w28 = w27 * w4;
+    let w29 = p[5]; // m_b
+    let w30 = w26 * w29;
+    let w31 = w28 - w30;
+    let w32: f64 = -0.0578745285967165;
+    let w33 = w32 * w7;
+    let w34 = w22 * w33;
+    let w35 = w31 + w34;
+    let w36: f64 = 0.07073542044968367;
+    let w37 = w36 * w7;
+    let w38 = w20 * w37;
+    let w39 = w35 + w38;
+    let w40: f64 = -0.09094901081852429;
+    let w41 = w40 * w7;
+    let w42 = w18 * w41;
+    let w43 = w39 + w42;
+    let w44: f64 = 0.12721264843305286;
+    let w45 = w44 * w7;
+    let w46 = w16 * w45;
+    let w47 = w43 + w46;
+    let w48: f64 = -0.21696794755535964;
+    let w49 = w48 * w7;
+    let w50 = w14 * w49;
+    let w51 = w47 + w50;
+    let w52: f64 = 0.3914958780198129;
+    let w53 = w52 * w7;
+    let w54 = w13 * w53;
+    let w55 = w51 + w54;
+    let w56 = w26 * w7;
+    let w57 = w55 - w56;
+    let w58 = w12 * w57;
+    let w59 = w11 - w58;
+    let w60 = y[8]; // theta_dot
+    let w61 = w59 * w60;
+    let w62 = w2 * w4;
+    let w63 = w2 * w53;
+    let w64 = w62 + w63;
+    let w65 = y[10]; // u_dot_1
+    let w66 = w64 * w65;
+    let w67 = w61 + w66;
+    let w68 = w2 * w49;
+    let w69 = w62 + w68;
+    let w70 = y[11]; // u_dot_2
+    let w71 = w69 * w70;
+    let w72 = w67 + w71;
+    let w73 = w2 * w45;
+    let w74 = w62 + w73;
+    let w75 = y[12]; // u_dot_3
+    let w76 = w74 * w75;
+    let w77 = w72 + w76;
+    let w78 = w2 * w41;
+    let w79 = w62 + w78;
+    let w80 = y[13]; // u_dot_4
+    let w81 = w79 * w80;
+    let w82 = w77 + w81;
+    let w83 = w2 * w37;
+    let w84 = w62 + w83;
+    let w85 = y[14]; // u_dot_5
+    let w86 = w84 * w85;
+    let w87 = w82 + w86;
+    let w88 = w2 * w33;
+    let w89 = w62 + w88;
+    let w90 = y[15]; // u_dot_6
+    let w91 = w89 * w90;
+    let w92 = w87 + w91;
+    let w93 = w0 * w92;
+    let w94 = -w93;
+    let o0 = w94; // ground
+    let w95 = p[9]; // c_1_1
+    let w96 = w95 * w65;
+    let w97 = p[10]; // c_1_2
+    let w98 = w97 * w70;
+    let w99 = w96 + w98;
+    let w100 = p[11]; // c_1_3
+    let w101 = w100 * w75;
+    let w102 = w99 + w101;
+    let w103 = p[12]; // c_1_4
+    let w104 = w103 * w80;
+    let w105 = w102 + w104;
+    let w106 = p[13]; // c_1_5
+    let w107 = w106 * w85;
+    let w108 = w105 + w107;
+    let w109 = p[14]; // c_1_6
+    let w110 = w109 * w90;
+    let w111 = w108 + w110;
+    let w112 = w111 * w65;
+    let w113 = w97 * w65;
+    let w114 = p[15]; // c_2_2
+    let w115 = w114 * w70;
+    let w116 = w113 + w115;
+    let w117 = p[16]; // c_2_3
+    let w118 = w117 * w75;
+    let w119 = w116 + w118;
+    let w120 = p[17]; // c_2_4
+    let w121 = w120 * w80;
+    let w122 = w119 + w121;
+    let w123 = p[18]; // c_2_5
+    let w124 = w123 * w85;
+    let w125 = w122 + w124;
+    let w126 = p[19]; // c_2_6
+    let w127 = w126 * w90;
+    let w128 = w125 + w127;
+    let w129 = w128 * w70;
+    let w130 = w112 + w129;
+    let w131 = w100 * w65;
+    let w132 = w117 * w70;
+    let w133 = w131 + w132;
+    let w134 = p[20]; // c_3_3
+    let w135 = w134 * w75;
+    let w136 = w133 + w135;
+    let w137 = p[21]; // c_3_4
+    let w138 = w137 * w80;
+    let w139 = w136 + w138;
+    let w140 = p[22]; // c_3_5
+    let w141 = w140 * w85;
+    let w142 = w139 + w141;
+    let w143 = p[23]; // c_3_6
+    let w144 = w143 * w90;
+    let w145 = w142 + w144;
+    let w146 = w145 * w75;
+    let w147 = w130 + w146;
+    let w148 = w103 * w65;
+    let w149 = w120 * w70;
+    let w150 = w148 + w149;
+    let w151 = w137 * w75;
+    let w152 = w150 + w151;
+    let w153 = p[24]; // c_4_4
+    let w154 = w153 * w80;
+    let w155 = w152 + w154;
+    let w156 = p[25]; // c_4_5
+    let w157 = w156 * w85;
+    let w158 = w155 + w157;
+    let w159 = p[26]; // c_4_6
+    let w160 = w159 * w90;
+    let w161 = w158 + w160;
+    let w162 = w161 * w80;
+    let w163 = w147 + w162;
+    let w164 = w106 * w65;
+    let w165 = w123 * w70;
+    let w166 = w164 + w165;
+    let w167 = w140 * w75;
+    let w168 = w166 + w167;
+    let w169 = w156 * w80;
+    let w170 = w168 + w169;
+    let w171 = p[27]; // c_5_5
+    let w172 = w171 * w85;
+    let w173 = w170 + w172;
+    let w174 = p[28]; // c_5_6
+    let w175 = w174 * w90;
+    let w176 = w173 + w175;
+    let w177 = w176 * w85;
+    let w178 = w163 + w177;
+    let w179 = w109 * w65;
+    let w180 = w126 * w70;
+    let w181 = w179 + w180;
+    let w182 = w143 * w75;
+    let w183 = w181 + w182;
+    let w184 = w159 * w80;
+    let w185 = w183 + w184;
+    let w186 = w174 * w85;
+    let w187 = w185 + w186;
+    let w188 = p[29]; // c_6_6
+    let w189 = w188 * w90;
+    let w190 = w187 + w189;
+    let w191 = w190 * w90;
+    let w192 = w178 + w191;
+    let o1 = w192; // damping
+    [o0, o1]
+}
+
+/// Indices of the elements of the output `w` of [`free_power()`].
+pub mod free_power {
+    /// Index of `ground`.
+    pub const GROUND: usize = 0;
+    /// Index of `damping`.
+    pub const DAMPING: usize = 1;
+
+    /// Indices of the elements of input `y` of [`free_power()`](super::free_power()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+        /// Index of `u_4`.
+        pub const U_4: usize = 5;
+        /// Index of `u_5`.
+        pub const U_5: usize = 6;
+        /// Index of `u_6`.
+        pub const U_6: usize = 7;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 8;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 9;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 10;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 11;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 12;
+        /// Index of `u_dot_4`.
+        pub const U_DOT_4: usize = 13;
+        /// Index of `u_dot_5`.
+        pub const U_DOT_5: usize = 14;
+        /// Index of `u_dot_6`.
+        pub const U_DOT_6: usize = 15;
+    }
+}
+
+/// Section forces at the column base and the ground's force on the body (the bed's resultant and the horizontal force that keeps the leaning corner in place), for the accelerations qdd. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded.
+///
+/// # Inputs
+///
+/// - `y: &[f64; 16]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `u_3`, `u_4`, `u_5`, `u_6`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`, `u_dot_4`, `u_dot_5`, `u_dot_6`
+/// - `qdd: &[f64; 8]`: accelerations [theta'', v'', u''] (from M q'' = F + Q_ground) — `theta_ddot`, `v_ddot`, `u_ddot_1`, `u_ddot_2`, `u_ddot_3`, `u_ddot_4`, `u_ddot_5`, `u_ddot_6`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_1_4`, `c_1_5`, `c_1_6`, `c_2_2`, `c_2_3`, `c_2_4`, `c_2_5`, `c_2_6`, `c_3_3`, `c_3_4`, `c_3_5`, `c_3_6`, `c_4_4`, `c_4_5`, `c_4_6`, `c_5_5`, `c_5_6`, `c_6_6`
+///
+/// # Output
+///
+/// `ff: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 254 (134 mul, 75 add, 38 sub, 2 sq, 2 twice, 1 cos, 1 div, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_forces(y: &[f64; 16], qdd: &[f64; 8], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[4]; // m_c
+    let w1: f64 = 0.3914958780198129;
+    let w2 = y[2]; // u_1
+    let w3 = ug; // ug
+    let w4 = y[0]; // theta
+    let w5 = w4.sin();
+    let w6 = w3 * w5;
+    let w7 = qdd[0]; // theta_ddot
+    let w8 = s; // s
+    let w9 = p[1]; // b
+    let w10 = w8 * w9;
+    let w11 = w7 * w10;
+    let w12 = w6 + w11;
+    let w13 = p[8]; // g
+    let w14 = w4.cos();
+    let w15 = w13 * w14;
+    let w16 = w12 + w15;
+    let w17 = qdd[1]; // v_ddot
+    let w18 = w14 * w7;
+    let w19 = y[8]; // theta_dot
+    let w20 = w19 * w19;
+    let w21 = w5 * w20;
+    let w22 = w18 - w21;
+    let w23 = w10 * w22;
+    let w24 = w17 + w23;
+    let w25 = w24 * w14;
+    let w26 = w16 - w25;
+    let w27 = w2 * w26;
+    let w28 = w1 * w27;
+    let w29: f64 = 0.5;
+    let w30 = p[0]; // h
+    let w31 = w20 * w10;
+    let w32 = w3 * w14;
+    let w33 = w31 + w32;
+    let w34 = w13 * w5;
+    let w35 = w33 - w34;
+    let w36 = w24 * w5;
+    let w37 = w35 + w36;
+    let w38 = w30 * w37;
+    let w39 = w29 * w38;
+    let w40 = w28 - w39;
+    let w41: f64 = -0.21696794755535964;
+    let w42 = y[3]; // u_2
+    let w43 = w42 * w26;
+    let w44 = w41 * w43;
+    let w45 = w40 + w44;
+    let w46: f64 = 0.12721264843305286;
+    let w47 = y[4]; // u_3
+    let w48 = w47 * w26;
+    let w49 = w46 * w48;
+    let w50 = w45 + w49;
+    let w51: f64 = -0.09094901081852429;
+    let w52 = y[5]; // u_4
+    let w53 = w52 * w26;
+    let w54 = w51 * w53;
+    let w55 = w50 + w54;
+    let w56: f64 = 0.07073542044968367;
+    let w57 = y[6]; // u_5
+    let w58 = w57 * w26;
+    let w59 = w56 * w58;
+    let w60 = w55 + w59;
+    let w61: f64 = -0.0578745285967165;
+    let w62 = y[7]; // u_6
+    let w63 = w62 * w26;
+    let w64 = w61 * w63;
+    let w65 = w60 + w64;
+    let w66: f64 = 0.16666666666666666;
+    let w67 = w7 * w30;
+    let w68 = 2.0 * w67;
+    let w69 = w30 * w68;
+    let w70 = w66 * w69;
+    let w71 = w65 - w70;
+    let w72: f64 = 0.2844128718549554;
+    let w73 = qdd[2]; // u_ddot_1
+    let w74 = w30 * w73;
+    let w75 = w72 * w74;
+    let w76 = w71 - w75;
+    let w77: f64 = -0.04538339344319348;
+    let w78 = qdd[3]; // u_ddot_2
+    let w79 = w30 * w78;
+    let w80 = w77 * w79;
+    let w81 = w76 - w80;
+    let w82: f64 = 0.016208187184872217;
+    let w83 = qdd[4]; // u_ddot_3
+    let w84 = w30 * w83;
+    let w85 = w82 * w84;
+    let w86 = w81 - w85;
+    let w87: f64 = -0.008271167510425316;
+    let w88 = qdd[5]; // u_ddot_4
+    let w89 = w30 * w88;
+    let w90 = w87 * w89;
+    let w91 = w86 - w90;
+    let w92: f64 = 0.0050035142152869685;
+    let w93 = qdd[6]; // u_ddot_5
+    let w94 = w30 * w93;
+    let w95 = w92 * w94;
+    let w96 = w91 - w95;
+    let w97: f64 = -0.00334946064056702;
+    let w98 = qdd[7]; // u_ddot_6
+    let w99 = w30 * w98;
+    let w100 = w97 * w99;
+    let w101 = w96 - w100;
+    let w102: f64 = 0.125;
+    let w103 = 2.0 * w19;
+    let w104 = y[10]; // u_dot_1
+    let w105 = w103 * w104;
+    let w106 = w105 * w2;
+    let w107 = w7 * w2;
+    let w108 = w2 * w107;
+    let w109 = w106 + w108;
+    let w110 = w107 + w105;
+    let w111 = w2 * w110;
+    let w112 = w109 + w111;
+    let w113 = w102 * w112;
+    let w114 = w101 - w113;
+    let w115 = y[11]; // u_dot_2
+    let w116 = w103 * w115;
+    let w117 = w116 * w42;
+    let w118 = w7 * w42;
+    let w119 = w42 * w118;
+    let w120 = w117 + w119;
+    let w121 = w118 + w116;
+    let w122 = w42 * w121;
+    let w123 = w120 + w122;
+    let w124 = w102 * w123;
+    let w125 = w114 - w124;
+    let w126 = y[12]; // u_dot_3
+    let w127 = w103 * w126;
+    let w128 = w127 * w47;
+    let w129 = w7 * w47;
+    let w130 = w47 * w129;
+    let w131 = w128 + w130;
+    let w132 = w129 + w127;
+    let w133 = w47 * w132;
+    let w134 = w131 + w133;
+    let w135 = w102 * w134;
+    let w136 = w125 - w135;
+    let w137 = y[13]; // u_dot_4
+    let w138 = w103 * w137;
+    let w139 = w138 * w52;
+    let w140 = w7 * w52;
+    let w141 = w52 * w140;
+    let w142 = w139 + w141;
+    let w143 = w140 + w138;
+    let w144 = w52 * w143;
+    let w145 = w142 + w144;
+    let w146 = w102 * w145;
+    let w147 = w136 - w146;
+    let w148 = y[14]; // u_dot_5
+    let w149 = w103 * w148;
+    let w150 = w149 * w57;
+    let w151 = w7 * w57;
+    let w152 = w57 * w151;
+    let w153 = w150 + w152;
+    let w154 = w151 + w149;
+    let w155 = w57 * w154;
+    let w156 = w153 + w155;
+    let w157 = w102 * w156;
+    let w158 = w147 - w157;
+    let w159 = y[15]; // u_dot_6
+    let w160 = w103 * w159;
+    let w161 = w160 * w62;
+    let w162 = w7 * w62;
+    let w163 = w62 * w162;
+    let w164 = w161 + w163;
+    let w165 = w162 + w160;
+    let w166 = w62 * w165;
+    let w167 = w164 + w166;
+    let w168 = w102 * w167;
+    let w169 = w158 - w168;
+    let w170 = w0 * w169;
+    let w171 = p[3]; // m
+    let w172 = w2 + w42;
+    let w173 = w172 + w47;
+    let w174 = w173 + w52;
+    let w175 = w174 + w57;
+    let w176 = w175 + w62;
+    let w177 = w176 - w10;
+    let w178 = w7 * w177;
+    let w179 = w20 * w30;
+    let w180 = w178 + w179;
+    let w181 = w105 + w116;
+    let w182 = w181 + w127;
+    let w183 = w182 + w138;
+    let w184 = w183 + w149;
+    let w185 = w184 + w160;
+    let w186 = w180 + w185;
+    let w187 = w6 - w186;
+    let w188 = w187 + w15;
+    let w189 = w188 - w25;
+    let w190 = w176 * w189;
+    let w191 = w20 * w177;
+    let w192 = w67 - w191;
+    let w193 = w73 + w78;
+    let w194 = w193 + w83;
+    let w195 = w194 + w88;
+    let w196 = w195 + w93;
+    let w197 = w196 + w98;
+    let w198 = w192 + w197;
+    let w199 = w198 + w32;
+    let w200 = w199 - w34;
+    let w201 = w200 + w36;
+    let w202 = w30 * w201;
+    let w203 = w190 - w202;
+    let w204 = w171 * w203;
+    let w205 = w170 + w204;
+    let o0 = w205; // moment
+    let w206 = w30 * w7;
+    let w207 = w29 * w206;
+    let w208 = w37 + w207;
+    let w209 = w2 * w20;
+    let w210 = w73 - w209;
+    let w211 = w1 * w210;
+    let w212 = w208 + w211;
+    let w213 = w42 * w20;
+    let w214 = w78 - w213;
+    let w215 = w41 * w214;
+    let w216 = w212 + w215;
+    let w217 = w47 * w20;
+    let w218 = w83 - w217;
+    let w219 = w46 * w218;
+    let w220 = w216 + w219;
+    let w221 = w52 * w20;
+    let w222 = w88 - w221;
+    let w223 = w51 * w222;
+    let w224 = w220 + w223;
+    let w225 = w57 * w20;
+    let w226 = w93 - w225;
+    let w227 = w56 * w226;
+    let w228 = w224 + w227;
+    let w229 = w62 * w20;
+    let w230 = w98 - w229;
+    let w231 = w61 * w230;
+    let w232 = w228 + w231;
+    let w233 = w0 * w232;
+    let w234 = w171 * w201;
+    let w235 = w233 + w234;
+    let o1 = w235; // shear
+    let w236 = w30 * w20;
+    let w237 = w29 * w236;
+    let w238 = w26 - w237;
+    let w239 = w2 * w7;
+    let w240 = w105 + w239;
+    let w241 = w1 * w240;
+    let w242 = w238 - w241;
+    let w243 = w42 * w7;
+    let w244 = w116 + w243;
+    let w245 = w41 * w244;
+    let w246 = w242 - w245;
+    let w247 = w47 * w7;
+    let w248 = w127 + w247;
+    let w249 = w46 * w248;
+    let w250 = w246 - w249;
+    let w251 = w52 * w7;
+    let w252 = w138 + w251;
+    let w253 = w51 * w252;
+    let w254 = w250 - w253;
+    let w255 = w57 * w7;
+    let w256 = w149 + w255;
+    let w257 = w56 * w256;
+    let w258 = w254 - w257;
+    let w259 = w62 * w7;
+    let w260 = w160 + w259;
+    let w261 = w61 * w260;
+    let w262 = w258 - w261;
+    let w263 = w0 * w262;
+    let w264 = w171 * w189;
+    let w265 = w263 + w264;
+    let o2 = w265; // axial
+    let w266: f64 = 3.5160152685001513;
+    let w267 = p[2]; // ei
+    let w268 = w30 * w30;
+    let w269 = w267 / w268;
+    let w270 = w266 * w269;
+    let w271 = w270 * w2;
+    let w272: f64 = -22.03449156466677;
+    let w273 = w272 * w269;
+    let w274 = w273 * w42;
+    let w275 = w271 + w274;
+    let w276: f64 = 61.697214413549105;
+    let w277 = w276 * w269;
+    let w278 = w277 * w47;
+    let w279 = w275 + w278;
+    let w280: f64 = -120.90191605230572;
+    let w281 = w280 * w269;
+    let w282 = w281 * w52;
+    let w283 = w279 + w282;
+    let w284: f64 = 199.85953011680346;
+    let w285 = w284 * w269;
+    let w286 = w285 * w57;
+    let w287 = w283 + w286;
+    let w288: f64 = -298.5555309677301;
+    let w289 = w288 * w269;
+    let w290 = w289 * w62;
+    let w291 = w287 + w290;
+    let o3 = w291; // moment_elastic
+    let w292 = p[5]; // m_b
+    let w293 = w292 * w37;
+    let w294 = w235 + w293;
+    let w295 = w14 * w294;
+    let w296 = w11 + w6;
+    let w297 = w296 + w15;
+    let w298 = w297 - w25;
+    let w299 = w292 * w298;
+    let w300 = w265 + w299;
+    let w301 = w5 * w300;
+    let w302 = w295 + w301;
+    let o4 = w302; // reaction_h
+    let w303 = w14 * w300;
+    let w304 = w5 * w294;
+    let w305 = w303 - w304;
+    let o5 = w305; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `ff` of [`free_forces()`].
+pub mod free_forces {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `y` of [`free_forces()`](super::free_forces()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+        /// Index of `u_4`.
+        pub const U_4: usize = 5;
+        /// Index of `u_5`.
+        pub const U_5: usize = 6;
+        /// Index of `u_6`.
+        pub const U_6: usize = 7;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 8;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 9;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 10;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 11;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 12;
+        /// Index of `u_dot_4`.
+        pub const U_DOT_4: usize = 13;
+        /// Index of `u_dot_5`.
+        pub const U_DOT_5: usize = 14;
+        /// Index of `u_dot_6`.
+        pub const U_DOT_6: usize = 15;
+    }
+
+    /// Indices of the elements of input `qdd` of [`free_forces()`](super::free_forces()).
+    pub mod qdd {
+        /// Index of `theta_ddot`.
+        pub const THETA_DDOT: usize = 0;
+        /// Index of `v_ddot`.
+        pub const V_DDOT: usize = 1;
+        /// Index of `u_ddot_1`.
+        pub const U_DDOT_1: usize = 2;
+        /// Index of `u_ddot_2`.
+        pub const U_DDOT_2: usize = 3;
+        /// Index of `u_ddot_3`.
+        pub const U_DDOT_3: usize = 4;
+        /// Index of `u_ddot_4`.
+        pub const U_DDOT_4: usize = 5;
+        /// Index of `u_ddot_5`.
+        pub const U_DDOT_5: usize = 6;
+        /// Index of `u_ddot_6`.
+        pub const U_DDOT_6: usize = 7;
+    }
+}
+
 /// The full model on the first six cantilever modes: six deformation coordinates
 ///
 /// Type-level handle of this variant, implementing [`crate::Variant`].
@@ -7320,6 +9631,31 @@ impl crate::Variant for CantileverModes6 {
     #[inline]
     fn static_uplift(p: &Params) -> [f64; 10] {
         static_uplift(p)
+    }
+
+    #[inline]
+    fn free_mass_matrix(qf: &[f64; 8], s: f64, p: &Params) -> [f64; 36] {
+        free_mass_matrix(qf, s, p)
+    }
+
+    #[inline]
+    fn free_forcing(y: &[f64; 16], ug: f64, s: f64, p: &Params) -> [f64; 8] {
+        free_forcing(y, ug, s, p)
+    }
+
+    #[inline]
+    fn free_energy(y: &[f64; 16], s: f64, p: &Params) -> [f64; 4] {
+        free_energy(y, s, p)
+    }
+
+    #[inline]
+    fn free_power(y: &[f64; 16], ug: f64, s: f64, p: &Params) -> [f64; 2] {
+        free_power(y, ug, s, p)
+    }
+
+    #[inline]
+    fn free_forces(y: &[f64; 16], qdd: &[f64; 8], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+        free_forces(y, qdd, ug, s, p)
     }
 }
 
@@ -7463,6 +9799,55 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             };
             let p: &Params = (*p).try_into().ok()?;
             Some(static_uplift(p).to_vec())
+        }
+        "free_mass_matrix" => {
+            let [qf, s, p] = inputs else {
+                return None;
+            };
+            let qf: &[f64; 8] = (*qf).try_into().ok()?;
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_mass_matrix(qf, s, p).to_vec())
+        }
+        "free_forcing" => {
+            let [y, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 16] = (*y).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_forcing(y, ug, s, p).to_vec())
+        }
+        "free_energy" => {
+            let [y, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 16] = (*y).try_into().ok()?;
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_energy(y, s, p).to_vec())
+        }
+        "free_power" => {
+            let [y, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 16] = (*y).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_power(y, ug, s, p).to_vec())
+        }
+        "free_forces" => {
+            let [y, qdd, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 16] = (*y).try_into().ok()?;
+            let qdd: &[f64; 8] = (*qdd).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_forces(y, qdd, ug, s, p).to_vec())
         }
         _ => None,
     }

@@ -8452,6 +8452,2643 @@ pub mod static_uplift {
     pub const MOMENT_ELASTIC_UPLIFT: usize = 10;
 }
 
+/// Mass matrix M(q) over q = [theta, v, u_1..u_n], upper triangle row by row (symmetric positive definite; a rigid column's u row is the identity). On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `qf: &[f64; 9]`: configuration on compliant ground: rotation, settlement of the base centre (positive into the ground), deformation — `theta`, `v`, `u_1`, `u_2`, `u_3`, `u_4`, `u_5`, `u_6`, `u_7`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_1_4`, `c_1_5`, `c_1_6`, `c_1_7`, `c_2_2`, `c_2_3`, `c_2_4`, `c_2_5`, `c_2_6`, `c_2_7`, `c_3_3`, `c_3_4`, `c_3_5`, `c_3_6`, `c_3_7`, `c_4_4`, `c_4_5`, `c_4_6`, `c_4_7`, `c_5_5`, `c_5_6`, `c_5_7`, `c_6_6`, `c_6_7`, `c_7_7`
+///
+/// # Output
+///
+/// `m: [f64; 45]`: upper triangle of M — `m_t_t`, `m_t_v`, `m_t_u1`, `m_t_u2`, `m_t_u3`, `m_t_u4`, `m_t_u5`, `m_t_u6`, `m_t_u7`, `m_v_v`, `m_v_u1`, `m_v_u2`, `m_v_u3`, `m_v_u4`, `m_v_u5`, `m_v_u6`, `m_v_u7`, `m_u1_u1`, `m_u1_u2`, `m_u1_u3`, `m_u1_u4`, `m_u1_u5`, `m_u1_u6`, `m_u1_u7`, `m_u2_u2`, `m_u2_u3`, `m_u2_u4`, `m_u2_u5`, `m_u2_u6`, `m_u2_u7`, `m_u3_u3`, `m_u3_u4`, `m_u3_u5`, `m_u3_u6`, `m_u3_u7`, `m_u4_u4`, `m_u4_u5`, `m_u4_u6`, `m_u4_u7`, `m_u5_u5`, `m_u5_u6`, `m_u5_u7`, `m_u6_u6`, `m_u6_u7`, `m_u7_u7`
+///
+/// Operations: 237 (120 mul, 60 add, 34 twice, 20 sub, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_mass_matrix(qf: &[f64; 9], s: f64, p: &Params) -> [f64; 45] {
+    let w0 = s; // s
+    let w1 = p[1]; // b
+    let w2 = w0 * w1;
+    let w3 = qf[0]; // theta
+    let w4 = w3.cos();
+    let w5 = w2 * w4;
+    let w6: f64 = 0.5;
+    let w7 = p[4]; // m_c
+    let w8 = p[3]; // m
+    let w9 = w7 + w8;
+    let w10 = p[5]; // m_b
+    let w11 = w9 + w10;
+    let w12 = w6 * w11;
+    let w13 = 2.0 * w5;
+    let w14 = w12 * w13;
+    let w15 = w2 * w10;
+    let w16 = qf[2]; // u_1
+    let w17 = qf[3]; // u_2
+    let w18 = w16 + w17;
+    let w19 = qf[4]; // u_3
+    let w20 = w18 + w19;
+    let w21 = qf[5]; // u_4
+    let w22 = w20 + w21;
+    let w23 = qf[6]; // u_5
+    let w24 = w22 + w23;
+    let w25 = qf[7]; // u_6
+    let w26 = w24 + w25;
+    let w27 = qf[8]; // u_7
+    let w28 = w26 + w27;
+    let w29 = w28 - w2;
+    let w30 = w29 * w8;
+    let w31 = w15 - w30;
+    let w32: f64 = 0.048970751581497045;
+    let w33 = w32 * w7;
+    let w34 = w27 * w33;
+    let w35 = w31 - w34;
+    let w36: f64 = -0.0578745285967165;
+    let w37 = w36 * w7;
+    let w38 = w25 * w37;
+    let w39 = w35 - w38;
+    let w40: f64 = 0.07073542044968367;
+    let w41 = w40 * w7;
+    let w42 = w23 * w41;
+    let w43 = w39 - w42;
+    let w44: f64 = -0.09094901081852429;
+    let w45 = w44 * w7;
+    let w46 = w21 * w45;
+    let w47 = w43 - w46;
+    let w48: f64 = 0.12721264843305286;
+    let w49 = w48 * w7;
+    let w50 = w19 * w49;
+    let w51 = w47 - w50;
+    let w52: f64 = -0.21696794755535964;
+    let w53 = w52 * w7;
+    let w54 = w17 * w53;
+    let w55 = w51 - w54;
+    let w56: f64 = 0.3914958780198129;
+    let w57 = w56 * w7;
+    let w58 = w16 * w57;
+    let w59 = w55 - w58;
+    let w60 = w2 * w7;
+    let w61 = w59 + w60;
+    let w62 = w4 * w61;
+    let w63 = w3.sin();
+    let w64 = p[0]; // h
+    let w65 = w64 * w8;
+    let w66 = w6 * w7;
+    let w67 = w64 * w66;
+    let w68 = w65 + w67;
+    let w69 = w63 * w68;
+    let w70 = w62 - w69;
+    let w71 = w14 - w70;
+    let w72 = w5 * w71;
+    let w73 = w70 * w5;
+    let w74 = w72 - w73;
+    let w75 = p[6]; // i_bc
+    let w76 = w74 + w75;
+    let w77 = w6 * w8;
+    let w78 = 2.0 * w29;
+    let w79 = w77 * w78;
+    let w80 = w29 * w79;
+    let w81 = w76 + w80;
+    let w82 = 2.0 * w64;
+    let w83 = w77 * w82;
+    let w84 = w64 * w83;
+    let w85 = w81 + w84;
+    let w86: f64 = 0.0625;
+    let w87 = w86 * w7;
+    let w88 = w27 * w87;
+    let w89 = 2.0 * w27;
+    let w90 = w88 * w89;
+    let w91 = w85 + w90;
+    let w92 = 2.0 * w88;
+    let w93 = w27 * w92;
+    let w94 = w91 + w93;
+    let w95 = w25 * w87;
+    let w96 = 2.0 * w25;
+    let w97 = w95 * w96;
+    let w98 = w94 + w97;
+    let w99 = 2.0 * w95;
+    let w100 = w25 * w99;
+    let w101 = w98 + w100;
+    let w102 = w23 * w87;
+    let w103 = 2.0 * w23;
+    let w104 = w102 * w103;
+    let w105 = w101 + w104;
+    let w106 = 2.0 * w102;
+    let w107 = w23 * w106;
+    let w108 = w105 + w107;
+    let w109 = w21 * w87;
+    let w110 = 2.0 * w21;
+    let w111 = w109 * w110;
+    let w112 = w108 + w111;
+    let w113 = 2.0 * w109;
+    let w114 = w21 * w113;
+    let w115 = w112 + w114;
+    let w116 = w19 * w87;
+    let w117 = 2.0 * w19;
+    let w118 = w116 * w117;
+    let w119 = w115 + w118;
+    let w120 = 2.0 * w116;
+    let w121 = w19 * w120;
+    let w122 = w119 + w121;
+    let w123 = w17 * w87;
+    let w124 = 2.0 * w17;
+    let w125 = w123 * w124;
+    let w126 = w122 + w125;
+    let w127 = 2.0 * w123;
+    let w128 = w17 * w127;
+    let w129 = w126 + w128;
+    let w130 = w16 * w87;
+    let w131 = 2.0 * w16;
+    let w132 = w130 * w131;
+    let w133 = w129 + w132;
+    let w134 = 2.0 * w130;
+    let w135 = w16 * w134;
+    let w136 = w133 + w135;
+    let w137: f64 = 0.08333333333333333;
+    let w138 = w137 * w7;
+    let w139 = w64 * w138;
+    let w140 = w139 * w82;
+    let w141 = w136 + w140;
+    let w142 = 2.0 * w139;
+    let w143 = w64 * w142;
+    let w144 = w141 + w143;
+    let w145: f64 = 0.024485375790748522;
+    let w146 = w145 * w7;
+    let w147 = w27 * w146;
+    let w148 = -w2;
+    let w149 = 2.0 * w148;
+    let w150 = w147 * w149;
+    let w151 = w144 + w150;
+    let w152 = 2.0 * w147;
+    let w153 = w2 * w152;
+    let w154 = w151 - w153;
+    let w155: f64 = -0.02893726429835825;
+    let w156 = w155 * w7;
+    let w157 = w25 * w156;
+    let w158 = w157 * w149;
+    let w159 = w154 + w158;
+    let w160 = 2.0 * w157;
+    let w161 = w2 * w160;
+    let w162 = w159 - w161;
+    let w163: f64 = 0.035367710224841836;
+    let w164 = w163 * w7;
+    let w165 = w23 * w164;
+    let w166 = w165 * w149;
+    let w167 = w162 + w166;
+    let w168 = 2.0 * w165;
+    let w169 = w2 * w168;
+    let w170 = w167 - w169;
+    let w171: f64 = -0.04547450540926214;
+    let w172 = w171 * w7;
+    let w173 = w21 * w172;
+    let w174 = w173 * w149;
+    let w175 = w170 + w174;
+    let w176 = 2.0 * w173;
+    let w177 = w2 * w176;
+    let w178 = w175 - w177;
+    let w179: f64 = 0.06360632421652643;
+    let w180 = w179 * w7;
+    let w181 = w19 * w180;
+    let w182 = w181 * w149;
+    let w183 = w178 + w182;
+    let w184 = 2.0 * w181;
+    let w185 = w2 * w184;
+    let w186 = w183 - w185;
+    let w187: f64 = -0.10848397377767982;
+    let w188 = w187 * w7;
+    let w189 = w17 * w188;
+    let w190 = w189 * w149;
+    let w191 = w186 + w190;
+    let w192 = 2.0 * w189;
+    let w193 = w2 * w192;
+    let w194 = w191 - w193;
+    let w195: f64 = 0.19574793900990645;
+    let w196 = w195 * w7;
+    let w197 = w16 * w196;
+    let w198 = w197 * w149;
+    let w199 = w194 + w198;
+    let w200 = 2.0 * w197;
+    let w201 = w2 * w200;
+    let w202 = w199 - w201;
+    let w203 = 2.0 * w2;
+    let w204 = w66 * w203;
+    let w205 = w2 * w204;
+    let w206 = w202 + w205;
+    let o0 = w206; // m_t_t
+    let w207 = w5 * w11;
+    let w208 = w207 - w70;
+    let o1 = w208; // m_t_v
+    let w209 = w63 * w8;
+    let w210 = w63 * w57;
+    let w211 = w209 + w210;
+    let w212 = w5 * w211;
+    let w213 = w212 + w65;
+    let w214: f64 = 0.1422064359274777;
+    let w215 = w214 * w7;
+    let w216 = w64 * w215;
+    let w217 = 2.0 * w216;
+    let w218 = w213 + w217;
+    let o2 = w218; // m_t_u1
+    let w219 = w63 * w53;
+    let w220 = w209 + w219;
+    let w221 = w5 * w220;
+    let w222 = w221 + w65;
+    let w223: f64 = -0.02269169672159674;
+    let w224 = w223 * w7;
+    let w225 = w64 * w224;
+    let w226 = 2.0 * w225;
+    let w227 = w222 + w226;
+    let o3 = w227; // m_t_u2
+    let w228 = w63 * w49;
+    let w229 = w209 + w228;
+    let w230 = w5 * w229;
+    let w231 = w230 + w65;
+    let w232: f64 = 0.008104093592436109;
+    let w233 = w232 * w7;
+    let w234 = w64 * w233;
+    let w235 = 2.0 * w234;
+    let w236 = w231 + w235;
+    let o4 = w236; // m_t_u3
+    let w237 = w63 * w45;
+    let w238 = w209 + w237;
+    let w239 = w5 * w238;
+    let w240 = w239 + w65;
+    let w241: f64 = -0.004135583755212658;
+    let w242 = w241 * w7;
+    let w243 = w64 * w242;
+    let w244 = 2.0 * w243;
+    let w245 = w240 + w244;
+    let o5 = w245; // m_t_u4
+    let w246 = w63 * w41;
+    let w247 = w209 + w246;
+    let w248 = w5 * w247;
+    let w249 = w248 + w65;
+    let w250: f64 = 0.0025017571076434843;
+    let w251 = w250 * w7;
+    let w252 = w64 * w251;
+    let w253 = 2.0 * w252;
+    let w254 = w249 + w253;
+    let o6 = w254; // m_t_u5
+    let w255 = w63 * w37;
+    let w256 = w209 + w255;
+    let w257 = w5 * w256;
+    let w258 = w257 + w65;
+    let w259: f64 = -0.00167473032028351;
+    let w260 = w259 * w7;
+    let w261 = w64 * w260;
+    let w262 = 2.0 * w261;
+    let w263 = w258 + w262;
+    let o7 = w263; // m_t_u6
+    let w264 = w63 * w33;
+    let w265 = w209 + w264;
+    let w266 = w5 * w265;
+    let w267 = w266 + w65;
+    let w268: f64 = 0.0011990672617215245;
+    let w269 = w268 * w7;
+    let w270 = w64 * w269;
+    let w271 = 2.0 * w270;
+    let w272 = w267 + w271;
+    let o8 = w272; // m_t_u7
+    let o9 = w11; // m_v_v
+    let o10 = w211; // m_v_u1
+    let o11 = w220; // m_v_u2
+    let o12 = w229; // m_v_u3
+    let o13 = w238; // m_v_u4
+    let o14 = w247; // m_v_u5
+    let o15 = w256; // m_v_u6
+    let o16 = w265; // m_v_u7
+    let w273: f64 = 0.125;
+    let w274 = w273 * w7;
+    let w275 = w8 + w274;
+    let w276 = w275 + w274;
+    let o17 = w276; // m_u1_u1
+    let o18 = w8; // m_u1_u2
+    let o19 = w8; // m_u1_u3
+    let o20 = w8; // m_u1_u4
+    let o21 = w8; // m_u1_u5
+    let o22 = w8; // m_u1_u6
+    let o23 = w8; // m_u1_u7
+    let o24 = w276; // m_u2_u2
+    let o25 = w8; // m_u2_u3
+    let o26 = w8; // m_u2_u4
+    let o27 = w8; // m_u2_u5
+    let o28 = w8; // m_u2_u6
+    let o29 = w8; // m_u2_u7
+    let o30 = w276; // m_u3_u3
+    let o31 = w8; // m_u3_u4
+    let o32 = w8; // m_u3_u5
+    let o33 = w8; // m_u3_u6
+    let o34 = w8; // m_u3_u7
+    let o35 = w276; // m_u4_u4
+    let o36 = w8; // m_u4_u5
+    let o37 = w8; // m_u4_u6
+    let o38 = w8; // m_u4_u7
+    let o39 = w276; // m_u5_u5
+    let o40 = w8; // m_u5_u6
+    let o41 = w8; // m_u5_u7
+    let o42 = w276; // m_u6_u6
+    let o43 = w8; // m_u6_u7
+    let o44 = w276; // m_u7_u7
+    [
+        o0,
+        o1,
+        o2,
+        o3,
+        o4,
+        o5,
+        o6,
+        o7,
+        o8,
+        o9,
+        o10,
+        o11,
+        o12,
+        o13,
+        o14,
+        o15,
+        o16,
+        o17,
+        o18,
+        o19,
+        o20,
+        o21,
+        o22,
+        o23,
+        o24,
+        o25,
+        o26,
+        o27,
+        o28,
+        o29,
+        o30,
+        o31,
+        o32,
+        o33,
+        o34,
+        o35,
+        o36,
+        o37,
+        o38,
+        o39,
+        o40,
+        o41,
+        o42,
+        o43,
+        o44,
+    ]
+}
+
+/// Indices of the elements of the output `m` of [`free_mass_matrix()`].
+pub mod free_mass_matrix {
+    /// Index of `m_t_t`.
+    pub const M_T_T: usize = 0;
+    /// Index of `m_t_v`.
+    pub const M_T_V: usize = 1;
+    /// Index of `m_t_u1`.
+    pub const M_T_U1: usize = 2;
+    /// Index of `m_t_u2`.
+    pub const M_T_U2: usize = 3;
+    /// Index of `m_t_u3`.
+    pub const M_T_U3: usize = 4;
+    /// Index of `m_t_u4`.
+    pub const M_T_U4: usize = 5;
+    /// Index of `m_t_u5`.
+    pub const M_T_U5: usize = 6;
+    /// Index of `m_t_u6`.
+    pub const M_T_U6: usize = 7;
+    /// Index of `m_t_u7`.
+    pub const M_T_U7: usize = 8;
+    /// Index of `m_v_v`.
+    pub const M_V_V: usize = 9;
+    /// Index of `m_v_u1`.
+    pub const M_V_U1: usize = 10;
+    /// Index of `m_v_u2`.
+    pub const M_V_U2: usize = 11;
+    /// Index of `m_v_u3`.
+    pub const M_V_U3: usize = 12;
+    /// Index of `m_v_u4`.
+    pub const M_V_U4: usize = 13;
+    /// Index of `m_v_u5`.
+    pub const M_V_U5: usize = 14;
+    /// Index of `m_v_u6`.
+    pub const M_V_U6: usize = 15;
+    /// Index of `m_v_u7`.
+    pub const M_V_U7: usize = 16;
+    /// Index of `m_u1_u1`.
+    pub const M_U1_U1: usize = 17;
+    /// Index of `m_u1_u2`.
+    pub const M_U1_U2: usize = 18;
+    /// Index of `m_u1_u3`.
+    pub const M_U1_U3: usize = 19;
+    /// Index of `m_u1_u4`.
+    pub const M_U1_U4: usize = 20;
+    /// Index of `m_u1_u5`.
+    pub const M_U1_U5: usize = 21;
+    /// Index of `m_u1_u6`.
+    pub const M_U1_U6: usize = 22;
+    /// Index of `m_u1_u7`.
+    pub const M_U1_U7: usize = 23;
+    /// Index of `m_u2_u2`.
+    pub const M_U2_U2: usize = 24;
+    /// Index of `m_u2_u3`.
+    pub const M_U2_U3: usize = 25;
+    /// Index of `m_u2_u4`.
+    pub const M_U2_U4: usize = 26;
+    /// Index of `m_u2_u5`.
+    pub const M_U2_U5: usize = 27;
+    /// Index of `m_u2_u6`.
+    pub const M_U2_U6: usize = 28;
+    /// Index of `m_u2_u7`.
+    pub const M_U2_U7: usize = 29;
+    /// Index of `m_u3_u3`.
+    pub const M_U3_U3: usize = 30;
+    /// Index of `m_u3_u4`.
+    pub const M_U3_U4: usize = 31;
+    /// Index of `m_u3_u5`.
+    pub const M_U3_U5: usize = 32;
+    /// Index of `m_u3_u6`.
+    pub const M_U3_U6: usize = 33;
+    /// Index of `m_u3_u7`.
+    pub const M_U3_U7: usize = 34;
+    /// Index of `m_u4_u4`.
+    pub const M_U4_U4: usize = 35;
+    /// Index of `m_u4_u5`.
+    pub const M_U4_U5: usize = 36;
+    /// Index of `m_u4_u6`.
+    pub const M_U4_U6: usize = 37;
+    /// Index of `m_u4_u7`.
+    pub const M_U4_U7: usize = 38;
+    /// Index of `m_u5_u5`.
+    pub const M_U5_U5: usize = 39;
+    /// Index of `m_u5_u6`.
+    pub const M_U5_U6: usize = 40;
+    /// Index of `m_u5_u7`.
+    pub const M_U5_U7: usize = 41;
+    /// Index of `m_u6_u6`.
+    pub const M_U6_U6: usize = 42;
+    /// Index of `m_u6_u7`.
+    pub const M_U6_U7: usize = 43;
+    /// Index of `m_u7_u7`.
+    pub const M_U7_U7: usize = 44;
+
+    /// Indices of the elements of input `qf` of [`free_mass_matrix()`](super::free_mass_matrix()).
+    pub mod qf {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+        /// Index of `u_4`.
+        pub const U_4: usize = 5;
+        /// Index of `u_5`.
+        pub const U_5: usize = 6;
+        /// Index of `u_6`.
+        pub const U_6: usize = 7;
+        /// Index of `u_7`.
+        pub const U_7: usize = 8;
+    }
+}
+
+/// Right-hand side F of M q'' = F + Q_ground without the ground: gravity, ground acceleration, stiffness, damping and velocity terms; Q_ground = [Q_theta, Q_v, 0..] from the ground's kernels. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 18]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `u_3`, `u_4`, `u_5`, `u_6`, `u_7`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`, `u_dot_4`, `u_dot_5`, `u_dot_6`, `u_dot_7`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_1_4`, `c_1_5`, `c_1_6`, `c_1_7`, `c_2_2`, `c_2_3`, `c_2_4`, `c_2_5`, `c_2_6`, `c_2_7`, `c_3_3`, `c_3_4`, `c_3_5`, `c_3_6`, `c_3_7`, `c_4_4`, `c_4_5`, `c_4_6`, `c_4_7`, `c_5_5`, `c_5_6`, `c_5_7`, `c_6_6`, `c_6_7`, `c_7_7`
+///
+/// # Output
+///
+/// `f: [f64; 9]`: generalised forces — `f_theta`, `f_v`, `f_u_1`, `f_u_2`, `f_u_3`, `f_u_4`, `f_u_5`, `f_u_6`, `f_u_7`
+///
+/// Operations: 747 (404 mul, 233 add, 70 sub, 34 twice, 2 neg, 1 cos, 1 div, 1 sin, 1 sq).
+#[inline]
+#[must_use]
+pub fn free_forcing(y: &[f64; 18], ug: f64, s: f64, p: &Params) -> [f64; 9] {
+    let w0 = y[0]; // theta
+    let w1 = w0.cos();
+    let w2 = s; // s
+    let w3 = p[1]; // b
+    let w4 = w2 * w3;
+    let w5 = p[4]; // m_c
+    let w6 = p[3]; // m
+    let w7 = w5 + w6;
+    let w8 = p[5]; // m_b
+    let w9 = w7 + w8;
+    let w10 = p[8]; // g
+    let w11 = w9 * w10;
+    let w12 = w4 * w11;
+    let w13 = w1 * w12;
+    let w14 = w0.sin();
+    let w15 = ug; // ug
+    let w16 = w8 * w15;
+    let w17 = w4 * w16;
+    let w18 = y[2]; // u_1
+    let w19 = y[3]; // u_2
+    let w20 = w18 + w19;
+    let w21 = y[4]; // u_3
+    let w22 = w20 + w21;
+    let w23 = y[5]; // u_4
+    let w24 = w22 + w23;
+    let w25 = y[6]; // u_5
+    let w26 = w24 + w25;
+    let w27 = y[7]; // u_6
+    let w28 = w26 + w27;
+    let w29 = y[8]; // u_7
+    let w30 = w28 + w29;
+    let w31 = w30 - w4;
+    let w32 = w6 * w15;
+    let w33 = w31 * w32;
+    let w34 = w17 - w33;
+    let w35: f64 = 0.048970751581497045;
+    let w36 = w5 * w15;
+    let w37 = w35 * w36;
+    let w38 = w29 * w37;
+    let w39 = w34 - w38;
+    let w40: f64 = -0.0578745285967165;
+    let w41 = w40 * w36;
+    let w42 = w27 * w41;
+    let w43 = w39 - w42;
+    let w44: f64 = 0.07073542044968367;
+    let w45 = w44 * w36;
+    let w46 = w25 * w45;
+    let w47 = w43 - w46;
+    let w48: f64 = -0.09094901081852429;
+    let w49 = w48 * w36;
+    let w50 = w23 * w49;
+    let w51 = w47 - w50;
+    let w52: f64 = 0.12721264843305286;
+    let w53 = w52 * w36;
+    let w54 = w21 * w53;
+    let w55 = w51 - w54;
+    let w56: f64 = -0.21696794755535964;
+    let w57 = w56 * w36;
+    let w58 = w19 * w57;
+    let w59 = w55 - w58;
+    let w60: f64 = 0.3914958780198129;
+    let w61 = w60 * w36;
+    let w62 = w18 * w61;
+    let w63 = w59 - w62;
+    let w64 = w4 * w36;
+    let w65 = w63 + w64;
+    let w66 = p[0]; // h
+    let w67 = w6 * w10;
+    let w68 = w66 * w67;
+    let w69 = w65 - w68;
+    let w70: f64 = 0.5;
+    let w71 = w5 * w10;
+    let w72 = w70 * w71;
+    let w73 = w66 * w72;
+    let w74 = w69 - w73;
+    let w75 = w14 * w74;
+    let w76 = w13 - w75;
+    let w77 = w31 * w67;
+    let w78 = w66 * w32;
+    let w79 = w70 * w36;
+    let w80 = w66 * w79;
+    let w81 = w78 + w80;
+    let w82 = w8 * w10;
+    let w83 = w4 * w82;
+    let w84 = w81 + w83;
+    let w85 = w77 - w84;
+    let w86 = w35 * w71;
+    let w87 = w29 * w86;
+    let w88 = w85 + w87;
+    let w89 = w40 * w71;
+    let w90 = w27 * w89;
+    let w91 = w88 + w90;
+    let w92 = w44 * w71;
+    let w93 = w25 * w92;
+    let w94 = w91 + w93;
+    let w95 = w48 * w71;
+    let w96 = w23 * w95;
+    let w97 = w94 + w96;
+    let w98 = w52 * w71;
+    let w99 = w21 * w98;
+    let w100 = w97 + w99;
+    let w101 = w56 * w71;
+    let w102 = w19 * w101;
+    let w103 = w100 + w102;
+    let w104 = w60 * w71;
+    let w105 = w18 * w104;
+    let w106 = w103 + w105;
+    let w107 = w4 * w71;
+    let w108 = w106 - w107;
+    let w109 = w35 * w5;
+    let w110 = y[17]; // u_dot_7
+    let w111 = y[10]; // v_dot
+    let w112 = w4 * w1;
+    let w113 = y[9]; // theta_dot
+    let w114 = w112 * w113;
+    let w115 = w111 + w114;
+    let w116 = w110 * w115;
+    let w117 = w109 * w116;
+    let w118 = w108 + w117;
+    let w119 = w40 * w5;
+    let w120 = y[16]; // u_dot_6
+    let w121 = w120 * w115;
+    let w122 = w119 * w121;
+    let w123 = w118 + w122;
+    let w124 = w44 * w5;
+    let w125 = y[15]; // u_dot_5
+    let w126 = w125 * w115;
+    let w127 = w124 * w126;
+    let w128 = w123 + w127;
+    let w129 = w48 * w5;
+    let w130 = y[14]; // u_dot_4
+    let w131 = w130 * w115;
+    let w132 = w129 * w131;
+    let w133 = w128 + w132;
+    let w134 = w52 * w5;
+    let w135 = y[13]; // u_dot_3
+    let w136 = w135 * w115;
+    let w137 = w134 * w136;
+    let w138 = w133 + w137;
+    let w139 = w56 * w5;
+    let w140 = y[12]; // u_dot_2
+    let w141 = w140 * w115;
+    let w142 = w139 * w141;
+    let w143 = w138 + w142;
+    let w144 = w60 * w5;
+    let w145 = y[11]; // u_dot_1
+    let w146 = w145 * w115;
+    let w147 = w144 * w146;
+    let w148 = w143 + w147;
+    let w149 = w116 + w121;
+    let w150 = w149 + w126;
+    let w151 = w150 + w131;
+    let w152 = w151 + w136;
+    let w153 = w152 + w141;
+    let w154 = w153 + w146;
+    let w155 = w6 * w154;
+    let w156 = w148 + w155;
+    let w157 = w1 * w156;
+    let w158 = w76 + w157;
+    let w159 = w66 * w6;
+    let w160 = w70 * w5;
+    let w161 = w66 * w160;
+    let w162 = w159 + w161;
+    let w163 = w113 * w115;
+    let w164 = w162 * w163;
+    let w165 = w1 * w164;
+    let w166 = w158 + w165;
+    let w167 = w4 * w8;
+    let w168 = w31 * w6;
+    let w169 = w167 - w168;
+    let w170 = w29 * w109;
+    let w171 = w169 - w170;
+    let w172 = w27 * w119;
+    let w173 = w171 - w172;
+    let w174 = w25 * w124;
+    let w175 = w173 - w174;
+    let w176 = w23 * w129;
+    let w177 = w175 - w176;
+    let w178 = w21 * w134;
+    let w179 = w177 - w178;
+    let w180 = w19 * w139;
+    let w181 = w179 - w180;
+    let w182 = w18 * w144;
+    let w183 = w181 - w182;
+    let w184 = w4 * w5;
+    let w185 = w183 + w184;
+    let w186 = w185 * w163;
+    let w187 = w14 * w186;
+    let w188 = w166 + w187;
+    let w189 = 2.0 * w115;
+    let w190 = w70 * w9;
+    let w191 = w189 * w190;
+    let w192 = w1 * w185;
+    let w193 = w14 * w162;
+    let w194 = w192 - w193;
+    let w195 = w194 * w113;
+    let w196 = w14 * w6;
+    let w197 = w14 * w144;
+    let w198 = w196 + w197;
+    let w199 = w198 * w145;
+    let w200 = w195 - w199;
+    let w201 = w14 * w139;
+    let w202 = w196 + w201;
+    let w203 = w202 * w140;
+    let w204 = w200 - w203;
+    let w205 = w14 * w134;
+    let w206 = w196 + w205;
+    let w207 = w206 * w135;
+    let w208 = w204 - w207;
+    let w209 = w14 * w129;
+    let w210 = w196 + w209;
+    let w211 = w210 * w130;
+    let w212 = w208 - w211;
+    let w213 = w14 * w124;
+    let w214 = w196 + w213;
+    let w215 = w214 * w125;
+    let w216 = w212 - w215;
+    let w217 = w14 * w119;
+    let w218 = w196 + w217;
+    let w219 = w218 * w120;
+    let w220 = w216 - w219;
+    let w221 = w14 * w109;
+    let w222 = w196 + w221;
+    let w223 = w222 * w110;
+    let w224 = w220 - w223;
+    let w225 = w191 - w224;
+    let w226 = w113 * w225;
+    let w227 = w4 * w226;
+    let w228 = w14 * w227;
+    let w229 = w188 - w228;
+    let w230 = w4 * w14;
+    let w231 = w113 * w230;
+    let w232 = -w231;
+    let w233 = 2.0 * w232;
+    let w234 = w190 * w233;
+    let w235 = w185 * w14;
+    let w236 = w162 * w1;
+    let w237 = w235 + w236;
+    let w238 = w113 * w237;
+    let w239 = w6 * w1;
+    let w240 = w144 * w1;
+    let w241 = w239 + w240;
+    let w242 = w145 * w241;
+    let w243 = w238 + w242;
+    let w244 = w139 * w1;
+    let w245 = w239 + w244;
+    let w246 = w140 * w245;
+    let w247 = w243 + w246;
+    let w248 = w134 * w1;
+    let w249 = w239 + w248;
+    let w250 = w135 * w249;
+    let w251 = w247 + w250;
+    let w252 = w129 * w1;
+    let w253 = w239 + w252;
+    let w254 = w130 * w253;
+    let w255 = w251 + w254;
+    let w256 = w124 * w1;
+    let w257 = w239 + w256;
+    let w258 = w125 * w257;
+    let w259 = w255 + w258;
+    let w260 = w119 * w1;
+    let w261 = w239 + w260;
+    let w262 = w120 * w261;
+    let w263 = w259 + w262;
+    let w264 = w109 * w1;
+    let w265 = w239 + w264;
+    let w266 = w110 * w265;
+    let w267 = w263 + w266;
+    let w268 = w234 + w267;
+    let w269 = w112 * w268;
+    let w270 = w225 * w230;
+    let w271 = w269 - w270;
+    let w272 = w115 * w237;
+    let w273 = w194 * w231;
+    let w274 = w272 + w273;
+    let w275 = w271 + w274;
+    let w276 = w275 * w113;
+    let w277 = w6 + w144;
+    let w278 = w1 * w277;
+    let w279 = w113 * w278;
+    let w280 = w112 * w279;
+    let w281 = w115 * w278;
+    let w282 = w280 + w281;
+    let w283 = w113 * w31;
+    let w284 = 2.0 * w283;
+    let w285 = w70 * w6;
+    let w286 = w284 * w285;
+    let w287 = 2.0 * w113;
+    let w288 = w285 * w287;
+    let w289 = w31 * w288;
+    let w290 = w286 + w289;
+    let w291 = w282 + w290;
+    let w292: f64 = 0.0625;
+    let w293 = w292 * w5;
+    let w294 = w18 * w293;
+    let w295 = w294 * w287;
+    let w296 = w113 * w18;
+    let w297 = 2.0 * w296;
+    let w298 = w297 * w293;
+    let w299 = w295 + w298;
+    let w300 = w291 + w299;
+    let w301 = w113 * w294;
+    let w302 = 2.0 * w301;
+    let w303 = w113 * w293;
+    let w304 = 2.0 * w303;
+    let w305 = w18 * w304;
+    let w306 = w302 + w305;
+    let w307 = w300 + w306;
+    let w308 = w113 * w4;
+    let w309 = -w308;
+    let w310 = 2.0 * w309;
+    let w311: f64 = 0.19574793900990645;
+    let w312 = w311 * w5;
+    let w313 = w310 * w312;
+    let w314 = w307 + w313;
+    let w315 = w113 * w312;
+    let w316 = 2.0 * w315;
+    let w317 = w4 * w316;
+    let w318 = w314 - w317;
+    let w319 = w318 * w145;
+    let w320 = w276 + w319;
+    let w321 = w6 + w139;
+    let w322 = w1 * w321;
+    let w323 = w113 * w322;
+    let w324 = w112 * w323;
+    let w325 = w115 * w322;
+    let w326 = w324 + w325;
+    let w327 = w326 + w290;
+    let w328 = w19 * w293;
+    let w329 = w328 * w287;
+    let w330 = w113 * w19;
+    let w331 = 2.0 * w330;
+    let w332 = w331 * w293;
+    let w333 = w329 + w332;
+    let w334 = w327 + w333;
+    let w335 = w113 * w328;
+    let w336 = 2.0 * w335;
+    let w337 = w19 * w304;
+    let w338 = w336 + w337;
+    let w339 = w334 + w338;
+    let w340: f64 = -0.10848397377767982;
+    let w341 = w340 * w5;
+    let w342 = w310 * w341;
+    let w343 = w339 + w342;
+    let w344 = w113 * w341;
+    let w345 = 2.0 * w344;
+    let w346 = w4 * w345;
+    let w347 = w343 - w346;
+    let w348 = w347 * w140;
+    let w349 = w320 + w348;
+    let w350 = w6 + w134;
+    let w351 = w1 * w350;
+    let w352 = w113 * w351;
+    let w353 = w112 * w352;
+    let w354 = w115 * w351;
+    let w355 = w353 + w354;
+    let w356 = w355 + w290;
+    let w357 = w21 * w293;
+    let w358 = w357 * w287;
+    let w359 = w113 * w21;
+    let w360 = 2.0 * w359;
+    let w361 = w360 * w293;
+    let w362 = w358 + w361;
+    let w363 = w356 + w362;
+    let w364 = w113 * w357;
+    let w365 = 2.0 * w364;
+    let w366 = w21 * w304;
+    let w367 = w365 + w366;
+    let w368 = w363 + w367;
+    let w369: f64 = 0.06360632421652643;
+    let w370 = w369 * w5;
+    let w371 = w310 * w370;
+    let w372 = w368 + w371;
+    let w373 = w113 * w370;
+    let w374 = 2.0 * w373;
+    let w375 = w4 * w374;
+    let w376 = w372 - w375;
+    let w377 = w376 * w135;
+    let w378 = w349 + w377;
+    let w379 = w6 + w129;
+    let w380 = w1 * w379;
+    let w381 = w113 * w380;
+    let w382 = w112 * w381;
+    let w383 = w115 * w380;
+    let w384 = w382 + w383;
+    let w385 = w384 + w290;
+    let w386 = w23 * w293;
+    let w387 = w386 * w287;
+    let w388 = w113 * w23;
+    let w389 = 2.0 * w388;
+    let w390 = w389 * w293;
+    let w391 = w387 + w390;
+    let w392 = w385 + w391;
+    let w393 = w113 * w386;
+    let w394 = 2.0 * w393;
+    let w395 = w23 * w304;
+    let w396 = w394 + w395;
+    let w397 = w392 + w396;
+    let w398: f64 = -0.04547450540926214;
+    let w399 = w398 * w5;
+    let w400 = w310 * w399;
+    let w401 = w397 + w400;
+    let w402 = w113 * w399;
+    let w403 = 2.0 * w402;
+    let w404 = w4 * w403;
+    let w405 = w401 - w404;
+    let w406 = w405 * w130;
+    let w407 = w378 + w406;
+    let w408 = w6 + w124;
+    let w409 = w1 * w408;
+    let w410 = w113 * w409;
+    let w411 = w112 * w410;
+    let w412 = w115 * w409;
+    let w413 = w411 + w412;
+    let w414 = w413 + w290;
+    let w415 = w25 * w293;
+    let w416 = w415 * w287;
+    let w417 = w113 * w25;
+    let w418 = 2.0 * w417;
+    let w419 = w418 * w293;
+    let w420 = w416 + w419;
+    let w421 = w414 + w420;
+    let w422 = w113 * w415;
+    let w423 = 2.0 * w422;
+    let w424 = w25 * w304;
+    let w425 = w423 + w424;
+    let w426 = w421 + w425;
+    let w427: f64 = 0.035367710224841836;
+    let w428 = w427 * w5;
+    let w429 = w310 * w428;
+    let w430 = w426 + w429;
+    let w431 = w113 * w428;
+    let w432 = 2.0 * w431;
+    let w433 = w4 * w432;
+    let w434 = w430 - w433;
+    let w435 = w434 * w125;
+    let w436 = w407 + w435;
+    let w437 = w6 + w119;
+    let w438 = w1 * w437;
+    let w439 = w113 * w438;
+    let w440 = w112 * w439;
+    let w441 = w115 * w438;
+    let w442 = w440 + w441;
+    let w443 = w442 + w290;
+    let w444 = w27 * w293;
+    let w445 = w444 * w287;
+    let w446 = w113 * w27;
+    let w447 = 2.0 * w446;
+    let w448 = w447 * w293;
+    let w449 = w445 + w448;
+    let w450 = w443 + w449;
+    let w451 = w113 * w444;
+    let w452 = 2.0 * w451;
+    let w453 = w27 * w304;
+    let w454 = w452 + w453;
+    let w455 = w450 + w454;
+    let w456: f64 = -0.02893726429835825;
+    let w457 = w456 * w5;
+    let w458 = w310 * w457;
+    let w459 = w455 + w458;
+    let w460 = w113 * w457;
+    let w461 = 2.0 * w460;
+    let w462 = w4 * w461;
+    let w463 = w459 - w462;
+    let w464 = w463 * w120;
+    let w465 = w436 + w464;
+    let w466 = w6 + w109;
+    let w467 = w1 * w466;
+    let w468 = w113 * w467;
+    let w469 = w112 * w468;
+    let w470 = w115 * w467;
+    let w471 = w469 + w470;
+    let w472 = w471 + w290;
+    let w473 = w29 * w293;
+    let w474 = w473 * w287;
+    let w475 = w113 * w29;
+    let w476 = 2.0 * w475;
+    let w477 = w476 * w293;
+    let w478 = w474 + w477;
+    let w479 = w472 + w478;
+    let w480 = w113 * w473;
+    let w481 = 2.0 * w480;
+    let w482 = w29 * w304;
+    let w483 = w481 + w482;
+    let w484 = w479 + w483;
+    let w485: f64 = 0.024485375790748522;
+    let w486 = w485 * w5;
+    let w487 = w310 * w486;
+    let w488 = w484 + w487;
+    let w489 = w113 * w486;
+    let w490 = 2.0 * w489;
+    let w491 = w4 * w490;
+    let w492 = w488 - w491;
+    let w493 = w492 * w110;
+    let w494 = w465 + w493;
+    let w495 = w229 - w494;
+    let o0 = w495; // f_theta
+    let w496 = w268 * w113;
+    let w497 = w279 * w145;
+    let w498 = w496 + w497;
+    let w499 = w323 * w140;
+    let w500 = w498 + w499;
+    let w501 = w352 * w135;
+    let w502 = w500 + w501;
+    let w503 = w381 * w130;
+    let w504 = w502 + w503;
+    let w505 = w410 * w125;
+    let w506 = w504 + w505;
+    let w507 = w439 * w120;
+    let w508 = w506 + w507;
+    let w509 = w468 * w110;
+    let w510 = w508 + w509;
+    let w511 = w11 - w510;
+    let o1 = w511; // f_v
+    let w512 = 2.0 * w18;
+    let w513: f64 = -1.5452954210407739;
+    let w514 = p[2]; // ei
+    let w515 = w66 * w66;
+    let w516 = w66 * w515;
+    let w517 = w514 / w516;
+    let w518 = w513 * w517;
+    let w519 = w512 * w518;
+    let w520 = w1 * w32;
+    let w521 = w1 * w61;
+    let w522 = w520 + w521;
+    let w523 = w519 - w522;
+    let w524 = w14 * w104;
+    let w525 = w523 + w524;
+    let w526 = w1 * w163;
+    let w527 = w144 * w526;
+    let w528 = w525 + w527;
+    let w529 = w14 * w67;
+    let w530 = w6 * w526;
+    let w531 = w529 + w530;
+    let w532 = w528 + w531;
+    let w533 = w113 * w286;
+    let w534 = w532 + w533;
+    let w535 = w113 * w297;
+    let w536 = w535 * w293;
+    let w537 = w534 + w536;
+    let w538 = w113 * w302;
+    let w539 = w537 + w538;
+    let w540 = w113 * w310;
+    let w541 = w540 * w312;
+    let w542 = w539 + w541;
+    let w543 = w115 * w241;
+    let w544 = w198 * w231;
+    let w545 = w543 - w544;
+    let w546 = w545 * w113;
+    let w547 = w542 - w546;
+    let w548 = p[9]; // c_1_1
+    let w549 = w548 * w145;
+    let w550 = p[10]; // c_1_2
+    let w551 = w550 * w140;
+    let w552 = w549 + w551;
+    let w553 = p[11]; // c_1_3
+    let w554 = w553 * w135;
+    let w555 = w552 + w554;
+    let w556 = p[12]; // c_1_4
+    let w557 = w556 * w130;
+    let w558 = w555 + w557;
+    let w559 = p[13]; // c_1_5
+    let w560 = w559 * w125;
+    let w561 = w558 + w560;
+    let w562 = p[14]; // c_1_6
+    let w563 = w562 * w120;
+    let w564 = w561 + w563;
+    let w565 = p[15]; // c_1_7
+    let w566 = w565 * w110;
+    let w567 = w564 + w566;
+    let w568 = w547 - w567;
+    let o2 = w568; // f_u_1
+    let w569 = 2.0 * w19;
+    let w570: f64 = -60.68985231417138;
+    let w571 = w570 * w517;
+    let w572 = w569 * w571;
+    let w573 = w1 * w57;
+    let w574 = w520 + w573;
+    let w575 = w572 - w574;
+    let w576 = w14 * w101;
+    let w577 = w575 + w576;
+    let w578 = w139 * w526;
+    let w579 = w577 + w578;
+    let w580 = w579 + w531;
+    let w581 = w580 + w533;
+    let w582 = w113 * w331;
+    let w583 = w582 * w293;
+    let w584 = w581 + w583;
+    let w585 = w113 * w336;
+    let w586 = w584 + w585;
+    let w587 = w540 * w341;
+    let w588 = w586 + w587;
+    let w589 = w115 * w245;
+    let w590 = w202 * w231;
+    let w591 = w589 - w590;
+    let w592 = w591 * w113;
+    let w593 = w588 - w592;
+    let w594 = w550 * w145;
+    let w595 = p[16]; // c_2_2
+    let w596 = w595 * w140;
+    let w597 = w594 + w596;
+    let w598 = p[17]; // c_2_3
+    let w599 = w598 * w135;
+    let w600 = w597 + w599;
+    let w601 = p[18]; // c_2_4
+    let w602 = w601 * w130;
+    let w603 = w600 + w602;
+    let w604 = p[19]; // c_2_5
+    let w605 = w604 * w125;
+    let w606 = w603 + w605;
+    let w607 = p[20]; // c_2_6
+    let w608 = w607 * w120;
+    let w609 = w606 + w608;
+    let w610 = p[21]; // c_2_7
+    let w611 = w610 * w110;
+    let w612 = w609 + w611;
+    let w613 = w593 - w612;
+    let o3 = w613; // f_u_2
+    let w614 = 2.0 * w21;
+    let w615: f64 = -475.81828329893136;
+    let w616 = w615 * w517;
+    let w617 = w614 * w616;
+    let w618 = w1 * w53;
+    let w619 = w520 + w618;
+    let w620 = w617 - w619;
+    let w621 = w14 * w98;
+    let w622 = w620 + w621;
+    let w623 = w134 * w526;
+    let w624 = w622 + w623;
+    let w625 = w624 + w531;
+    let w626 = w625 + w533;
+    let w627 = w113 * w360;
+    let w628 = w627 * w293;
+    let w629 = w626 + w628;
+    let w630 = w113 * w365;
+    let w631 = w629 + w630;
+    let w632 = w540 * w370;
+    let w633 = w631 + w632;
+    let w634 = w115 * w249;
+    let w635 = w206 * w231;
+    let w636 = w634 - w635;
+    let w637 = w636 * w113;
+    let w638 = w633 - w637;
+    let w639 = w553 * w145;
+    let w640 = w598 * w140;
+    let w641 = w639 + w640;
+    let w642 = p[22]; // c_3_3
+    let w643 = w642 * w135;
+    let w644 = w641 + w643;
+    let w645 = p[23]; // c_3_4
+    let w646 = w645 * w130;
+    let w647 = w644 + w646;
+    let w648 = p[24]; // c_3_5
+    let w649 = w648 * w125;
+    let w650 = w647 + w649;
+    let w651 = p[25]; // c_3_6
+    let w652 = w651 * w120;
+    let w653 = w650 + w652;
+    let w654 = p[26]; // c_3_7
+    let w655 = w654 * w110;
+    let w656 = w653 + w655;
+    let w657 = w638 - w656;
+    let o4 = w657; // f_u_3
+    let w658 = 2.0 * w23;
+    let w659: f64 = -1827.1591631398476;
+    let w660 = w659 * w517;
+    let w661 = w658 * w660;
+    let w662 = w1 * w49;
+    let w663 = w520 + w662;
+    let w664 = w661 - w663;
+    let w665 = w14 * w95;
+    let w666 = w664 + w665;
+    let w667 = w129 * w526;
+    let w668 = w666 + w667;
+    let w669 = w668 + w531;
+    let w670 = w669 + w533;
+    let w671 = w113 * w389;
+    let w672 = w671 * w293;
+    let w673 = w670 + w672;
+    let w674 = w113 * w394;
+    let w675 = w673 + w674;
+    let w676 = w540 * w399;
+    let w677 = w675 + w676;
+    let w678 = w115 * w253;
+    let w679 = w210 * w231;
+    let w680 = w678 - w679;
+    let w681 = w680 * w113;
+    let w682 = w677 - w681;
+    let w683 = w556 * w145;
+    let w684 = w601 * w140;
+    let w685 = w683 + w684;
+    let w686 = w645 * w135;
+    let w687 = w685 + w686;
+    let w688 = p[27]; // c_4_4
+    let w689 = w688 * w130;
+    let w690 = w687 + w689;
+    let w691 = p[28]; // c_4_5
+    let w692 = w691 * w125;
+    let w693 = w690 + w692;
+    let w694 = p[29]; // c_4_6
+    let w695 = w694 * w120;
+    let w696 = w693 + w695;
+    let w697 = p[30]; // c_4_7
+    let w698 = w697 * w110;
+    let w699 = w696 + w698;
+    let w700 = w682 - w699;
+    let o5 = w700; // f_u_4
+    let w701 = 2.0 * w25;
+    let w702: f64 = -4992.978972313684;
+    let w703 = w702 * w517;
+    let w704 = w701 * w703;
+    let w705 = w1 * w45;
+    let w706 = w520 + w705;
+    let w707 = w704 - w706;
+    let w708 = w14 * w92;
+    let w709 = w707 + w708;
+    let w710 = w124 * w526;
+    let w711 = w709 + w710;
+    let w712 = w711 + w531;
+    let w713 = w712 + w533;
+    let w714 = w113 * w418;
+    let w715 = w714 * w293;
+    let w716 = w713 + w715;
+    let w717 = w113 * w423;
+    let w718 = w716 + w717;
+    let w719 = w540 * w428;
+    let w720 = w718 + w719;
+    let w721 = w115 * w257;
+    let w722 = w214 * w231;
+    let w723 = w721 - w722;
+    let w724 = w723 * w113;
+    let w725 = w720 - w724;
+    let w726 = w559 * w145;
+    let w727 = w604 * w140;
+    let w728 = w726 + w727;
+    let w729 = w648 * w135;
+    let w730 = w728 + w729;
+    let w731 = w691 * w130;
+    let w732 = w730 + w731;
+    let w733 = p[31]; // c_5_5
+    let w734 = w733 * w125;
+    let w735 = w732 + w734;
+    let w736 = p[32]; // c_5_6
+    let w737 = w736 * w120;
+    let w738 = w735 + w737;
+    let w739 = p[33]; // c_5_7
+    let w740 = w739 * w110;
+    let w741 = w738 + w740;
+    let w742 = w725 - w741;
+    let o6 = w742; // f_u_5
+    let w743 = 2.0 * w27;
+    let w744: f64 = -11141.925633927905;
+    let w745 = w744 * w517;
+    let w746 = w743 * w745;
+    let w747 = w1 * w41;
+    let w748 = w520 + w747;
+    let w749 = w746 - w748;
+    let w750 = w14 * w89;
+    let w751 = w749 + w750;
+    let w752 = w119 * w526;
+    let w753 = w751 + w752;
+    let w754 = w753 + w531;
+    let w755 = w754 + w533;
+    let w756 = w113 * w447;
+    let w757 = w756 * w293;
+    let w758 = w755 + w757;
+    let w759 = w113 * w452;
+    let w760 = w758 + w759;
+    let w761 = w540 * w457;
+    let w762 = w760 + w761;
+    let w763 = w115 * w261;
+    let w764 = w218 * w231;
+    let w765 = w763 - w764;
+    let w766 = w765 * w113;
+    let w767 = w762 - w766;
+    let w768 = w562 * w145;
+    let w769 = w607 * w140;
+    let w770 = w768 + w769;
+    let w771 = w651 * w135;
+    let w772 = w770 + w771;
+    let w773 = w694 * w130;
+    let w774 = w772 + w773;
+    let w775 = w736 * w125;
+    let w776 = w774 + w775;
+    let w777 = p[34]; // c_6_6
+    let w778 = w777 * w120;
+    let w779 = w776 + w778;
+    let w780 = p[35]; // c_6_7
+    let w781 = w780 * w110;
+    let w782 = w779 + w781;
+    let w783 = w767 - w782;
+    let o7 = w783; // f_u_6
+    let w784 = 2.0 * w29;
+    let w785: f64 = -21735.164457013216;
+    let w786 = w785 * w517;
+    let w787 = w784 * w786;
+    let w788 = w1 * w37;
+    let w789 = w520 + w788;
+    let w790 = w787 - w789;
+    let w791 = w14 * w86;
+    let w792 = w790 + w791;
+    let w793 = w109 * w526;
+    let w794 = w792 + w793;
+    let w795 = w794 + w531;
+    let w796 = w795 + w533;
+    let w797 = w113 * w476;
+    let w798 = w797 * w293;
+    let w799 = w796 + w798;
+    let w800 = w113 * w481;
+    let w801 = w799 + w800;
+    let w802 = w540 * w486;
+    let w803 = w801 + w802;
+    let w804 = w115 * w265;
+    let w805 = w222 * w231;
+    let w806 = w804 - w805;
+    let w807 = w806 * w113;
+    let w808 = w803 - w807;
+    let w809 = w565 * w145;
+    let w810 = w610 * w140;
+    let w811 = w809 + w810;
+    let w812 = w654 * w135;
+    let w813 = w811 + w812;
+    let w814 = w697 * w130;
+    let w815 = w813 + w814;
+    let w816 = w739 * w125;
+    let w817 = w815 + w816;
+    let w818 = w780 * w120;
+    let w819 = w817 + w818;
+    let w820 = p[36]; // c_7_7
+    let w821 = w820 * w110;
+    let w822 = w819 + w821;
+    let w823 = w808 - w822;
+    let o8 = w823; // f_u_7
+    [o0, o1, o2, o3, o4, o5, o6, o7, o8]
+}
+
+/// Indices of the elements of the output `f` of [`free_forcing()`].
+pub mod free_forcing {
+    /// Index of `f_theta`.
+    pub const F_THETA: usize = 0;
+    /// Index of `f_v`.
+    pub const F_V: usize = 1;
+    /// Index of `f_u_1`.
+    pub const F_U_1: usize = 2;
+    /// Index of `f_u_2`.
+    pub const F_U_2: usize = 3;
+    /// Index of `f_u_3`.
+    pub const F_U_3: usize = 4;
+    /// Index of `f_u_4`.
+    pub const F_U_4: usize = 5;
+    /// Index of `f_u_5`.
+    pub const F_U_5: usize = 6;
+    /// Index of `f_u_6`.
+    pub const F_U_6: usize = 7;
+    /// Index of `f_u_7`.
+    pub const F_U_7: usize = 8;
+
+    /// Indices of the elements of input `y` of [`free_forcing()`](super::free_forcing()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+        /// Index of `u_4`.
+        pub const U_4: usize = 5;
+        /// Index of `u_5`.
+        pub const U_5: usize = 6;
+        /// Index of `u_6`.
+        pub const U_6: usize = 7;
+        /// Index of `u_7`.
+        pub const U_7: usize = 8;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 9;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 10;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 11;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 12;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 13;
+        /// Index of `u_dot_4`.
+        pub const U_DOT_4: usize = 14;
+        /// Index of `u_dot_5`.
+        pub const U_DOT_5: usize = 15;
+        /// Index of `u_dot_6`.
+        pub const U_DOT_6: usize = 16;
+        /// Index of `u_dot_7`.
+        pub const U_DOT_7: usize = 17;
+    }
+}
+
+/// Kinetic energy, gravity (heights over the rest position of the leaning corner, the ground's surface) and strain potentials and horizontal momentum. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 18]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `u_3`, `u_4`, `u_5`, `u_6`, `u_7`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`, `u_dot_4`, `u_dot_5`, `u_dot_6`, `u_dot_7`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_1_4`, `c_1_5`, `c_1_6`, `c_1_7`, `c_2_2`, `c_2_3`, `c_2_4`, `c_2_5`, `c_2_6`, `c_2_7`, `c_3_3`, `c_3_4`, `c_3_5`, `c_3_6`, `c_3_7`, `c_4_4`, `c_4_5`, `c_4_6`, `c_4_7`, `c_5_5`, `c_5_6`, `c_5_7`, `c_6_6`, `c_6_7`, `c_7_7`
+///
+/// # Output
+///
+/// `e: [f64; 4]`: energies and momentum — `kinetic`, `gravity`, `strain`, `momentum_x`
+///
+/// Operations: 335 (179 mul, 89 add, 30 sub, 16 twice, 13 sq, 5 div, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_energy(y: &[f64; 18], s: f64, p: &Params) -> [f64; 4] {
+    let w0 = p[4]; // m_c
+    let w1 = y[9]; // theta_dot
+    let w2 = s; // s
+    let w3 = p[1]; // b
+    let w4 = w2 * w3;
+    let w5 = w1 * w4;
+    let w6 = w5 * w5;
+    let w7: f64 = 0.3914958780198129;
+    let w8 = y[2]; // u_1
+    let w9 = -w5;
+    let w10 = 2.0 * w9;
+    let w11 = w1 * w10;
+    let w12 = w8 * w11;
+    let w13 = w7 * w12;
+    let w14 = w6 + w13;
+    let w15: f64 = -0.21696794755535964;
+    let w16 = y[3]; // u_2
+    let w17 = w16 * w11;
+    let w18 = w15 * w17;
+    let w19 = w14 + w18;
+    let w20: f64 = 0.12721264843305286;
+    let w21 = y[4]; // u_3
+    let w22 = w21 * w11;
+    let w23 = w20 * w22;
+    let w24 = w19 + w23;
+    let w25: f64 = -0.09094901081852429;
+    let w26 = y[5]; // u_4
+    let w27 = w26 * w11;
+    let w28 = w25 * w27;
+    let w29 = w24 + w28;
+    let w30: f64 = 0.07073542044968367;
+    let w31 = y[6]; // u_5
+    let w32 = w31 * w11;
+    let w33 = w30 * w32;
+    let w34 = w29 + w33;
+    let w35: f64 = -0.0578745285967165;
+    let w36 = y[7]; // u_6
+    let w37 = w36 * w11;
+    let w38 = w35 * w37;
+    let w39 = w34 + w38;
+    let w40: f64 = 0.048970751581497045;
+    let w41 = y[8]; // u_7
+    let w42 = w41 * w11;
+    let w43 = w40 * w42;
+    let w44 = w39 + w43;
+    let w45: f64 = 0.16666666666666666;
+    let w46 = p[0]; // h
+    let w47 = w1 * w46;
+    let w48 = 2.0 * w47;
+    let w49 = w1 * w48;
+    let w50 = w46 * w49;
+    let w51 = w45 * w50;
+    let w52 = w44 + w51;
+    let w53: f64 = 0.2844128718549554;
+    let w54 = y[11]; // u_dot_1
+    let w55 = 2.0 * w54;
+    let w56 = w1 * w55;
+    let w57 = w46 * w56;
+    let w58 = w53 * w57;
+    let w59 = w52 + w58;
+    let w60: f64 = -0.04538339344319348;
+    let w61 = y[12]; // u_dot_2
+    let w62 = 2.0 * w61;
+    let w63 = w1 * w62;
+    let w64 = w46 * w63;
+    let w65 = w60 * w64;
+    let w66 = w59 + w65;
+    let w67: f64 = 0.016208187184872217;
+    let w68 = y[13]; // u_dot_3
+    let w69 = 2.0 * w68;
+    let w70 = w1 * w69;
+    let w71 = w46 * w70;
+    let w72 = w67 * w71;
+    let w73 = w66 + w72;
+    let w74: f64 = -0.008271167510425316;
+    let w75 = y[14]; // u_dot_4
+    let w76 = 2.0 * w75;
+    let w77 = w1 * w76;
+    let w78 = w46 * w77;
+    let w79 = w74 * w78;
+    let w80 = w73 + w79;
+    let w81: f64 = 0.0050035142152869685;
+    let w82 = y[15]; // u_dot_5
+    let w83 = 2.0 * w82;
+    let w84 = w1 * w83;
+    let w85 = w46 * w84;
+    let w86 = w81 * w85;
+    let w87 = w80 + w86;
+    let w88: f64 = -0.00334946064056702;
+    let w89 = y[16]; // u_dot_6
+    let w90 = 2.0 * w89;
+    let w91 = w1 * w90;
+    let w92 = w46 * w91;
+    let w93 = w88 * w92;
+    let w94 = w87 + w93;
+    let w95: f64 = 0.002398134523443049;
+    let w96 = y[17]; // u_dot_7
+    let w97 = 2.0 * w96;
+    let w98 = w1 * w97;
+    let w99 = w46 * w98;
+    let w100 = w95 * w99;
+    let w101 = w94 + w100;
+    let w102: f64 = 0.125;
+    let w103 = w1 * w8;
+    let w104 = 2.0 * w103;
+    let w105 = w1 * w104;
+    let w106 = w8 * w105;
+    let w107 = w54 * w55;
+    let w108 = w106 + w107;
+    let w109 = w102 * w108;
+    let w110 = w101 + w109;
+    let w111 = w1 * w16;
+    let w112 = 2.0 * w111;
+    let w113 = w1 * w112;
+    let w114 = w16 * w113;
+    let w115 = w61 * w62;
+    let w116 = w114 + w115;
+    let w117 = w102 * w116;
+    let w118 = w110 + w117;
+    let w119 = w1 * w21;
+    let w120 = 2.0 * w119;
+    let w121 = w1 * w120;
+    let w122 = w21 * w121;
+    let w123 = w68 * w69;
+    let w124 = w122 + w123;
+    let w125 = w102 * w124;
+    let w126 = w118 + w125;
+    let w127 = w1 * w26;
+    let w128 = 2.0 * w127;
+    let w129 = w1 * w128;
+    let w130 = w26 * w129;
+    let w131 = w75 * w76;
+    let w132 = w130 + w131;
+    let w133 = w102 * w132;
+    let w134 = w126 + w133;
+    let w135 = w1 * w31;
+    let w136 = 2.0 * w135;
+    let w137 = w1 * w136;
+    let w138 = w31 * w137;
+    let w139 = w82 * w83;
+    let w140 = w138 + w139;
+    let w141 = w102 * w140;
+    let w142 = w134 + w141;
+    let w143 = w1 * w36;
+    let w144 = 2.0 * w143;
+    let w145 = w1 * w144;
+    let w146 = w36 * w145;
+    let w147 = w89 * w90;
+    let w148 = w146 + w147;
+    let w149 = w102 * w148;
+    let w150 = w142 + w149;
+    let w151 = w1 * w41;
+    let w152 = 2.0 * w151;
+    let w153 = w1 * w152;
+    let w154 = w41 * w153;
+    let w155 = w96 * w97;
+    let w156 = w154 + w155;
+    let w157 = w102 * w156;
+    let w158 = w150 + w157;
+    let w159 = w0 * w158;
+    let w160 = p[3]; // m
+    let w161 = w54 + w61;
+    let w162 = w161 + w68;
+    let w163 = w162 + w75;
+    let w164 = w163 + w82;
+    let w165 = w164 + w89;
+    let w166 = w165 + w96;
+    let w167 = w166 + w47;
+    let w168 = w167 * w167;
+    let w169 = w8 + w16;
+    let w170 = w169 + w21;
+    let w171 = w170 + w26;
+    let w172 = w171 + w31;
+    let w173 = w172 + w36;
+    let w174 = w173 + w41;
+    let w175 = w174 - w4;
+    let w176 = w1 * w175;
+    let w177 = w176 * w176;
+    let w178 = w168 + w177;
+    let w179 = w160 * w178;
+    let w180 = w159 + w179;
+    let w181: f64 = 2.0;
+    let w182 = w180 / w181;
+    let w183 = p[6]; // i_bc
+    let w184 = w1 * w1;
+    let w185 = w183 * w184;
+    let w186 = w185 / w181;
+    let w187 = w182 + w186;
+    let w188 = w0 + w160;
+    let w189 = p[5]; // m_b
+    let w190 = w188 + w189;
+    let w191 = y[10]; // v_dot
+    let w192 = y[0]; // theta
+    let w193 = w192.cos();
+    let w194 = w4 * w193;
+    let w195 = w194 * w1;
+    let w196 = w191 + w195;
+    let w197 = w196 * w196;
+    let w198 = w190 * w197;
+    let w199 = w198 / w181;
+    let w200 = w187 + w199;
+    let w201 = w4 * w189;
+    let w202 = w175 * w160;
+    let w203 = w201 - w202;
+    let w204 = w40 * w0;
+    let w205 = w41 * w204;
+    let w206 = w203 - w205;
+    let w207 = w35 * w0;
+    let w208 = w36 * w207;
+    let w209 = w206 - w208;
+    let w210 = w30 * w0;
+    let w211 = w31 * w210;
+    let w212 = w209 - w211;
+    let w213 = w25 * w0;
+    let w214 = w26 * w213;
+    let w215 = w212 - w214;
+    let w216 = w20 * w0;
+    let w217 = w21 * w216;
+    let w218 = w215 - w217;
+    let w219 = w15 * w0;
+    let w220 = w16 * w219;
+    let w221 = w218 - w220;
+    let w222 = w7 * w0;
+    let w223 = w8 * w222;
+    let w224 = w221 - w223;
+    let w225 = w4 * w0;
+    let w226 = w224 + w225;
+    let w227 = w193 * w226;
+    let w228 = w192.sin();
+    let w229 = w46 * w160;
+    let w230: f64 = 0.5;
+    let w231 = w230 * w0;
+    let w232 = w46 * w231;
+    let w233 = w229 + w232;
+    let w234 = w228 * w233;
+    let w235 = w227 - w234;
+    let w236 = w235 * w1;
+    let w237 = w228 * w160;
+    let w238 = w228 * w222;
+    let w239 = w237 + w238;
+    let w240 = w239 * w54;
+    let w241 = w236 - w240;
+    let w242 = w228 * w219;
+    let w243 = w237 + w242;
+    let w244 = w243 * w61;
+    let w245 = w241 - w244;
+    let w246 = w228 * w216;
+    let w247 = w237 + w246;
+    let w248 = w247 * w68;
+    let w249 = w245 - w248;
+    let w250 = w228 * w213;
+    let w251 = w237 + w250;
+    let w252 = w251 * w75;
+    let w253 = w249 - w252;
+    let w254 = w228 * w210;
+    let w255 = w237 + w254;
+    let w256 = w255 * w82;
+    let w257 = w253 - w256;
+    let w258 = w228 * w207;
+    let w259 = w237 + w258;
+    let w260 = w259 * w89;
+    let w261 = w257 - w260;
+    let w262 = w228 * w204;
+    let w263 = w237 + w262;
+    let w264 = w263 * w96;
+    let w265 = w261 - w264;
+    let w266 = w196 * w265;
+    let w267 = w200 - w266;
+    let o0 = w267; // kinetic
+    let w268 = p[8]; // g
+    let w269 = w4 * w228;
+    let w270 = w46 * w193;
+    let w271 = w230 * w270;
+    let w272 = w269 + w271;
+    let w273 = w8 * w228;
+    let w274 = w7 * w273;
+    let w275 = w272 - w274;
+    let w276 = w16 * w228;
+    let w277 = w15 * w276;
+    let w278 = w275 - w277;
+    let w279 = w21 * w228;
+    let w280 = w20 * w279;
+    let w281 = w278 - w280;
+    let w282 = w26 * w228;
+    let w283 = w25 * w282;
+    let w284 = w281 - w283;
+    let w285 = w31 * w228;
+    let w286 = w30 * w285;
+    let w287 = w284 - w286;
+    let w288 = w36 * w228;
+    let w289 = w35 * w288;
+    let w290 = w287 - w289;
+    let w291 = w41 * w228;
+    let w292 = w40 * w291;
+    let w293 = w290 - w292;
+    let w294 = w0 * w293;
+    let w295 = w175 * w228;
+    let w296 = w270 - w295;
+    let w297 = w160 * w296;
+    let w298 = w294 + w297;
+    let w299 = w189 * w269;
+    let w300 = w298 + w299;
+    let w301 = y[1]; // v
+    let w302 = w301 + w269;
+    let w303 = w190 * w302;
+    let w304 = w300 - w303;
+    let w305 = w268 * w304;
+    let o1 = w305; // gravity
+    let w306: f64 = 3.0905908420815478;
+    let w307 = p[2]; // ei
+    let w308 = w46 * w46;
+    let w309 = w46 * w308;
+    let w310 = w307 / w309;
+    let w311 = w306 * w310;
+    let w312 = w8 * w8;
+    let w313 = w311 * w312;
+    let w314: f64 = 121.37970462834276;
+    let w315 = w314 * w310;
+    let w316 = w16 * w16;
+    let w317 = w315 * w316;
+    let w318 = w313 + w317;
+    let w319: f64 = 951.6365665978627;
+    let w320 = w319 * w310;
+    let w321 = w21 * w21;
+    let w322 = w320 * w321;
+    let w323 = w318 + w322;
+    let w324: f64 = 3654.318326279695;
+    let w325 = w324 * w310;
+    let w326 = w26 * w26;
+    let w327 = w325 * w326;
+    let w328 = w323 + w327;
+    let w329: f64 = 9985.957944627367;
+    let w330 = w329 * w310;
+    let w331 = w31 * w31;
+    let w332 = w330 * w331;
+    let w333 = w328 + w332;
+    let w334: f64 = 22283.85126785581;
+    let w335 = w334 * w310;
+    let w336 = w36 * w36;
+    let w337 = w335 * w336;
+    let w338 = w333 + w337;
+    let w339: f64 = 43470.32891402643;
+    let w340 = w339 * w310;
+    let w341 = w41 * w41;
+    let w342 = w340 * w341;
+    let w343 = w338 + w342;
+    let w344 = w343 / w181;
+    let o2 = w344; // strain
+    let w345 = w193 * w233;
+    let w346 = w202 - w201;
+    let w347 = w346 + w205;
+    let w348 = w347 + w208;
+    let w349 = w348 + w211;
+    let w350 = w349 + w214;
+    let w351 = w350 + w217;
+    let w352 = w351 + w220;
+    let w353 = w352 + w223;
+    let w354 = w353 - w225;
+    let w355 = w228 * w354;
+    let w356 = w345 - w355;
+    let w357 = w356 * w1;
+    let w358 = w193 * w160;
+    let w359 = w193 * w222;
+    let w360 = w358 + w359;
+    let w361 = w360 * w54;
+    let w362 = w357 + w361;
+    let w363 = w193 * w219;
+    let w364 = w358 + w363;
+    let w365 = w364 * w61;
+    let w366 = w362 + w365;
+    let w367 = w193 * w216;
+    let w368 = w358 + w367;
+    let w369 = w368 * w68;
+    let w370 = w366 + w369;
+    let w371 = w193 * w213;
+    let w372 = w358 + w371;
+    let w373 = w372 * w75;
+    let w374 = w370 + w373;
+    let w375 = w193 * w210;
+    let w376 = w358 + w375;
+    let w377 = w376 * w82;
+    let w378 = w374 + w377;
+    let w379 = w193 * w207;
+    let w380 = w358 + w379;
+    let w381 = w380 * w89;
+    let w382 = w378 + w381;
+    let w383 = w193 * w204;
+    let w384 = w358 + w383;
+    let w385 = w384 * w96;
+    let w386 = w382 + w385;
+    let o3 = w386; // momentum_x
+    [o0, o1, o2, o3]
+}
+
+/// Indices of the elements of the output `e` of [`free_energy()`].
+pub mod free_energy {
+    /// Index of `kinetic`.
+    pub const KINETIC: usize = 0;
+    /// Index of `gravity`.
+    pub const GRAVITY: usize = 1;
+    /// Index of `strain`.
+    pub const STRAIN: usize = 2;
+    /// Index of `momentum_x`.
+    pub const MOMENTUM_X: usize = 3;
+
+    /// Indices of the elements of input `y` of [`free_energy()`](super::free_energy()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+        /// Index of `u_4`.
+        pub const U_4: usize = 5;
+        /// Index of `u_5`.
+        pub const U_5: usize = 6;
+        /// Index of `u_6`.
+        pub const U_6: usize = 7;
+        /// Index of `u_7`.
+        pub const U_7: usize = 8;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 9;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 10;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 11;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 12;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 13;
+        /// Index of `u_dot_4`.
+        pub const U_DOT_4: usize = 14;
+        /// Index of `u_dot_5`.
+        pub const U_DOT_5: usize = 15;
+        /// Index of `u_dot_6`.
+        pub const U_DOT_6: usize = 16;
+        /// Index of `u_dot_7`.
+        pub const U_DOT_7: usize = 17;
+    }
+}
+
+/// Power terms: dE/dt = ground - damping + Q_theta theta' + Q_v v', with ground = -ug P_x and damping u'^T C u'. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 18]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `u_3`, `u_4`, `u_5`, `u_6`, `u_7`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`, `u_dot_4`, `u_dot_5`, `u_dot_6`, `u_dot_7`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_1_4`, `c_1_5`, `c_1_6`, `c_1_7`, `c_2_2`, `c_2_3`, `c_2_4`, `c_2_5`, `c_2_6`, `c_2_7`, `c_3_3`, `c_3_4`, `c_3_5`, `c_3_6`, `c_3_7`, `c_4_4`, `c_4_5`, `c_4_6`, `c_4_7`, `c_5_5`, `c_5_6`, `c_5_7`, `c_6_6`, `c_6_7`, `c_7_7`
+///
+/// # Output
+///
+/// `w: [f64; 2]`: power terms — `ground`, `damping`
+///
+/// Operations: 179 (96 mul, 76 add, 4 sub, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_power(y: &[f64; 18], ug: f64, s: f64, p: &Params) -> [f64; 2] {
+    let w0 = ug; // ug
+    let w1 = y[0]; // theta
+    let w2 = w1.cos();
+    let w3 = p[0]; // h
+    let w4 = p[3]; // m
+    let w5 = w3 * w4;
+    let w6: f64 = 0.5;
+    let w7 = p[4]; // m_c
+    let w8 = w6 * w7;
+    let w9 = w3 * w8;
+    let w10 = w5 + w9;
+    let w11 = w2 * w10;
+    let w12 = w1.sin();
+    let w13 = y[2]; // u_1
+    let w14 = y[3]; // u_2
+    let w15 = w13 + w14;
+    let w16 = y[4]; // u_3
+    let w17 = w15 + w16;
+    let w18 = y[5]; // u_4
+    let w19 = w17 + w18;
+    let w20 = y[6]; // u_5
+    let w21 = w19 + w20;
+    let w22 = y[7]; // u_6
+    let w23 = w21 + w22;
+    let w24 = y[8]; // u_7
+    let w25 = w23 + w24;
+    let w26 = s; // s
+    let w27 = p[1]; // b
+    let w28 = w26 * w27;
+    let w29 = w25 - w28;
+    let w30 = w29 * w4;
+    let w31 = p[5]; // m_b
+    let w32 = w28 * w31;
+    let w33 = w30 - w32;
+    let w34: f64 = 0.048970751581497045;
+    let w35 = w34 * w7;
+    let w36 = w24 * w35;
+    let w37 = w33 + w36;
+    let w38: f64 = -0.0578745285967165;
+    let w39 = w38 * w7;
+    let w40 = w22 * w39;
+    let w41 = w37 + w40;
+    let w42: f64 = 0.07073542044968367;
+    let w43 = w42 * w7;
+    let w44 = w20 * w43;
+    let w45 = w41 + w44;
+    let w46: f64 = -0.09094901081852429;
+    let w47 = w46 * w7;
+    let w48 = w18 * w47;
+    let w49 = w45 + w48;
+    let w50: f64 = 0.12721264843305286;
+    let w51 = w50 * w7;
+    let w52 = w16 * w51;
+    let w53 = w49 + w52;
+    let w54: f64 = -0.21696794755535964;
+    let w55 = w54 * w7;
+    let w56 = w14 * w55;
+    let w57 = w53 + w56;
+    let w58: f64 = 0.3914958780198129;
+    let w59 = w58 * w7;
+    let w60 = w13 * w59;
+    let w61 = w57 + w60;
+    let w62 = w28 * w7;
+    let w63 = w61 - w62;
+    let w64 = w12 * w63;
+    let w65 = w11 - w64;
+    let w66 = y[9]; // theta_dot
+    let w67 = w65 * w66;
+    let w68 = w2 * w4;
+    let w69 = w2 * w59;
+    let w70 = w68 + w69;
+    let w71 = y[11]; // u_dot_1
+    let w72 = w70 * w71;
+    let w73 = w67 + w72;
+    let w74 = w2 * w55;
+    let w75 = w68 + w74;
+    let w76 = y[12]; // u_dot_2
+    let w77 = w75 * w76;
+    let w78 = w73 + w77;
+    let w79 = w2 * w51;
+    let w80 = w68 + w79;
+    let w81 = y[13]; // u_dot_3
+    let w82 = w80 * w81;
+    let w83 = w78 + w82;
+    let w84 = w2 * w47;
+    let w85 = w68 + w84;
+    let w86 = y[14]; // u_dot_4
+    let w87 = w85 * w86;
+    let w88 = w83 + w87;
+    let w89 = w2 * w43;
+    let w90 = w68 + w89;
+    let w91 = y[15]; // u_dot_5
+    let w92 = w90 * w91;
+    let w93 = w88 + w92;
+    let w94 = w2 * w39;
+    let w95 = w68 + w94;
+    let w96 = y[16]; // u_dot_6
+    let w97 = w95 * w96;
+    let w98 = w93 + w97;
+    let w99 = w2 * w35;
+    let w100 = w68 + w99;
+    let w101 = y[17]; // u_dot_7
+    let w102 = w100 * w101;
+    let w103 = w98 + w102;
+    let w104 = w0 * w103;
+    let w105 = -w104;
+    let o0 = w105; // ground
+    let w106 = p[9]; // c_1_1
+    let w107 = w106 * w71;
+    let w108 = p[10]; // c_1_2
+    let w109 = w108 * w76;
+    let w110 = w107 + w109;
+    let w111 = p[11]; // c_1_3
+    let w112 = w111 * w81;
+    let w113 = w110 + w112;
+    let w114 = p[12]; // c_1_4
+    let w115 = w114 * w86;
+    let w116 = w113 + w115;
+    let w117 = p[13]; // c_1_5
+    let w118 = w117 * w91;
+    let w119 = w116 + w118;
+    let w120 = p[14]; // c_1_6
+    let w121 = w120 * w96;
+    let w122 = w119 + w121;
+    let w123 = p[15]; // c_1_7
+    let w124 = w123 * w101;
+    let w125 = w122 + w124;
+    let w126 = w125 * w71;
+    let w127 = w108 * w71;
+    let w128 = p[16]; // c_2_2
+    let w129 = w128 * w76;
+    let w130 = w127 + w129;
+    let w131 = p[17]; // c_2_3
+    let w132 = w131 * w81;
+    let w133 = w130 + w132;
+    let w134 = p[18]; // c_2_4
+    let w135 = w134 * w86;
+    let w136 = w133 + w135;
+    let w137 = p[19]; // c_2_5
+    let w138 = w137 * w91;
+    let w139 = w136 + w138;
+    let w140 = p[20]; // c_2_6
+    let w141 = w140 * w96;
+    let w142 = w139 + w141;
+    let w143 = p[21]; // c_2_7
+    let w144 = w143 * w101;
+    let w145 = w142 + w144;
+    let w146 = w145 * w76;
+    let w147 = w126 + w146;
+    let w148 = w111 * w71;
+    let w149 = w131 * w76;
+    let w150 = w148 + w149;
+    let w151 = p[22]; // c_3_3
+    let w152 = w151 * w81;
+    let w153 = w150 + w152;
+    let w154 = p[23]; // c_3_4
+    let w155 = w154 * w86;
+    let w156 = w153 + w155;
+    let w157 = p[24]; // c_3_5
+    let w158 = w157 * w91;
+    let w159 = w156 + w158;
+    let w160 = p[25]; // c_3_6
+    let w161 = w160 * w96;
+    let w162 = w159 + w161;
+    let w163 = p[26]; // c_3_7
+    let w164 = w163 * w101;
+    let w165 = w162 + w164;
+    let w166 = w165 * w81;
+    let w167 = w147 + w166;
+    let w168 = w114 * w71;
+    let w169 = w134 * w76;
+    let w170 = w168 + w169;
+    let w171 = w154 * w81;
+    let w172 = w170 + w171;
+    let w173 = p[27]; // c_4_4
+    let w174 = w173 * w86;
+    let w175 = w172 + w174;
+    let w176 = p[28]; // c_4_5
+    let w177 = w176 * w91;
+    let w178 = w175 + w177;
+    let w179 = p[29]; // c_4_6
+    let w180 = w179 * w96;
+    let w181 = w178 + w180;
+    let w182 = p[30]; // c_4_7
+    let w183 = w182 * w101;
+    let w184 = w181 + w183;
+    let w185 = w184 * w86;
+    let w186 = w167 + w185;
+    let w187 = w117 * w71;
+    let w188 = w137 * w76;
+    let w189 = w187 + w188;
+    let w190 = w157 * w81;
+    let w191 = w189 + w190;
+    let w192 = w176 * w86;
+    let w193 = w191 + w192;
+    let w194 = p[31]; // c_5_5
+    let w195 = w194 * w91;
+    let w196 = w193 + w195;
+    let w197 = p[32]; // c_5_6
+    let w198 = w197 * w96;
+    let w199 = w196 + w198;
+    let w200 = p[33]; // c_5_7
+    let w201 = w200 * w101;
+    let w202 = w199 + w201;
+    let w203 = w202 * w91;
+    let w204 = w186 + w203;
+    let w205 = w120 * w71;
+    let w206 = w140 * w76;
+    let w207 = w205 + w206;
+    let w208 = w160 * w81;
+    let w209 = w207 + w208;
+    let w210 = w179 * w86;
+    let w211 = w209 + w210;
+    let w212 = w197 * w91;
+    let w213 = w211 + w212;
+    let w214 = p[34]; // c_6_6
+    let w215 = w214 * w96;
+    let w216 = w213 + w215;
+    let w217 = p[35]; // c_6_7
+    let w218 = w217 * w101;
+    let w219 = w216 + w218;
+    let w220 = w219 * w96;
+    let w221 = w204 + w220;
+    let w222 = w123 * w71;
+    let w223 = w143 * w76;
+    let w224 = w222 + w223;
+    let w225 = w163 * w81;
+    let w226 = w224 + w225;
+    let w227 = w182 * w86;
+    let w228 = w226 + w227;
+    let w229 = w200 * w91;
+    let w230 = w228 + w229;
+    let w231 = w217 * w96;
+    let w232 = w230 + w231;
+    let w233 = p[36]; // c_7_7
+    let w234 = w233 * w101;
+    let w235 = w232 + w234;
+    let w236 = w235 * w101;
+    let w237 = w221 + w236;
+    let o1 = w237; // damping
+    [o0, o1]
+}
+
+/// Indices of the elements of the output `w` of [`free_power()`].
+pub mod free_power {
+    /// Index of `ground`.
+    pub const GROUND: usize = 0;
+    /// Index of `damping`.
+    pub const DAMPING: usize = 1;
+
+    /// Indices of the elements of input `y` of [`free_power()`](super::free_power()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+        /// Index of `u_4`.
+        pub const U_4: usize = 5;
+        /// Index of `u_5`.
+        pub const U_5: usize = 6;
+        /// Index of `u_6`.
+        pub const U_6: usize = 7;
+        /// Index of `u_7`.
+        pub const U_7: usize = 8;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 9;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 10;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 11;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 12;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 13;
+        /// Index of `u_dot_4`.
+        pub const U_DOT_4: usize = 14;
+        /// Index of `u_dot_5`.
+        pub const U_DOT_5: usize = 15;
+        /// Index of `u_dot_6`.
+        pub const U_DOT_6: usize = 16;
+        /// Index of `u_dot_7`.
+        pub const U_DOT_7: usize = 17;
+    }
+}
+
+/// Section forces at the column base and the ground's force on the body (the bed's resultant and the horizontal force that keeps the leaning corner in place), for the accelerations qdd. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded.
+///
+/// # Inputs
+///
+/// - `y: &[f64; 18]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `u_3`, `u_4`, `u_5`, `u_6`, `u_7`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`, `u_dot_4`, `u_dot_5`, `u_dot_6`, `u_dot_7`
+/// - `qdd: &[f64; 9]`: accelerations [theta'', v'', u''] (from M q'' = F + Q_ground) — `theta_ddot`, `v_ddot`, `u_ddot_1`, `u_ddot_2`, `u_ddot_3`, `u_ddot_4`, `u_ddot_5`, `u_ddot_6`, `u_ddot_7`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_1_4`, `c_1_5`, `c_1_6`, `c_1_7`, `c_2_2`, `c_2_3`, `c_2_4`, `c_2_5`, `c_2_6`, `c_2_7`, `c_3_3`, `c_3_4`, `c_3_5`, `c_3_6`, `c_3_7`, `c_4_4`, `c_4_5`, `c_4_6`, `c_4_7`, `c_5_5`, `c_5_6`, `c_5_7`, `c_6_6`, `c_6_7`, `c_7_7`
+///
+/// # Output
+///
+/// `ff: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 284 (150 mul, 85 add, 42 sub, 2 sq, 2 twice, 1 cos, 1 div, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_forces(y: &[f64; 18], qdd: &[f64; 9], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[4]; // m_c
+    let w1: f64 = 0.3914958780198129;
+    let w2 = y[2]; // u_1
+    let w3 = ug; // ug
+    let w4 = y[0]; // theta
+    let w5 = w4.sin();
+    let w6 = w3 * w5;
+    let w7 = qdd[0]; // theta_ddot
+    let w8 = s; // s
+    let w9 = p[1]; // b
+    let w10 = w8 * w9;
+    let w11 = w7 * w10;
+    let w12 = w6 + w11;
+    let w13 = p[8]; // g
+    let w14 = w4.cos();
+    let w15 = w13 * w14;
+    let w16 = w12 + w15;
+    let w17 = qdd[1]; // v_ddot
+    let w18 = w14 * w7;
+    let w19 = y[9]; // theta_dot
+    let w20 = w19 * w19;
+    let w21 = w5 * w20;
+    let w22 = w18 - w21;
+    let w23 = w10 * w22;
+    let w24 = w17 + w23;
+    let w25 = w24 * w14;
+    let w26 = w16 - w25;
+    let w27 = w2 * w26;
+    let w28 = w1 * w27;
+    let w29: f64 = 0.5;
+    let w30 = p[0]; // h
+    let w31 = w20 * w10;
+    let w32 = w3 * w14;
+    let w33 = w31 + w32;
+    let w34 = w13 * w5;
+    let w35 = w33 - w34;
+    let w36 = w24 * w5;
+    let w37 = w35 + w36;
+    let w38 = w30 * w37;
+    let w39 = w29 * w38;
+    let w40 = w28 - w39;
+    let w41: f64 = -0.21696794755535964;
+    let w42 = y[3]; // u_2
+    let w43 = w42 * w26;
+    let w44 = w41 * w43;
+    let w45 = w40 + w44;
+    let w46: f64 = 0.12721264843305286;
+    let w47 = y[4]; // u_3
+    let w48 = w47 * w26;
+    let w49 = w46 * w48;
+    let w50 = w45 + w49;
+    let w51: f64 = -0.09094901081852429;
+    let w52 = y[5]; // u_4
+    let w53 = w52 * w26;
+    let w54 = w51 * w53;
+    let w55 = w50 + w54;
+    let w56: f64 = 0.07073542044968367;
+    let w57 = y[6]; // u_5
+    let w58 = w57 * w26;
+    let w59 = w56 * w58;
+    let w60 = w55 + w59;
+    let w61: f64 = -0.0578745285967165;
+    let w62 = y[7]; // u_6
+    let w63 = w62 * w26;
+    let w64 = w61 * w63;
+    let w65 = w60 + w64;
+    let w66: f64 = 0.048970751581497045;
+    let w67 = y[8]; // u_7
+    let w68 = w67 * w26;
+    let w69 = w66 * w68;
+    let w70 = w65 + w69;
+    let w71: f64 = 0.16666666666666666;
+    let w72 = w7 * w30;
+    let w73 = 2.0 * w72;
+    let w74 = w30 * w73;
+    let w75 = w71 * w74;
+    let w76 = w70 - w75;
+    let w77: f64 = 0.2844128718549554;
+    let w78 = qdd[2]; // u_ddot_1
+    let w79 = w30 * w78;
+    let w80 = w77 * w79;
+    let w81 = w76 - w80;
+    let w82: f64 = -0.04538339344319348;
+    let w83 = qdd[3]; // u_ddot_2
+    let w84 = w30 * w83;
+    let w85 = w82 * w84;
+    let w86 = w81 - w85;
+    let w87: f64 = 0.016208187184872217;
+    let w88 = qdd[4]; // u_ddot_3
+    let w89 = w30 * w88;
+    let w90 = w87 * w89;
+    let w91 = w86 - w90;
+    let w92: f64 = -0.008271167510425316;
+    let w93 = qdd[5]; // u_ddot_4
+    let w94 = w30 * w93;
+    let w95 = w92 * w94;
+    let w96 = w91 - w95;
+    let w97: f64 = 0.0050035142152869685;
+    let w98 = qdd[6]; // u_ddot_5
+    let w99 = w30 * w98;
+    let w100 = w97 * w99;
+    let w101 = w96 - w100;
+    let w102: f64 = -0.00334946064056702;
+    let w103 = qdd[7]; // u_ddot_6
+    let w104 = w30 * w103;
+    let w105 = w102 * w104;
+    let w106 = w101 - w105;
+    let w107: f64 = 0.002398134523443049;
+    let w108 = qdd[8]; // u_ddot_7
+    let w109 = w30 * w108;
+    let w110 = w107 * w109;
+    let w111 = w106 - w110;
+    let w112: f64 = 0.125;
+    let w113 = 2.0 * w19;
+    let w114 = y[11]; // u_dot_1
+    let w115 = w113 * w114;
+    let w116 = w115 * w2;
+    let w117 = w7 * w2;
+    let w118 = w2 * w117;
+    let w119 = w116 + w118;
+    let w120 = w117 + w115;
+    let w121 = w2 * w120;
+    let w122 = w119 + w121;
+    let w123 = w112 * w122;
+    let w124 = w111 - w123;
+    let w125 = y[12]; // u_dot_2
+    let w126 = w113 * w125;
+    let w127 = w126 * w42;
+    let w128 = w7 * w42;
+    let w129 = w42 * w128;
+    let w130 = w127 + w129;
+    let w131 = w128 + w126;
+    let w132 = w42 * w131;
+    let w133 = w130 + w132;
+    let w134 = w112 * w133;
+    let w135 = w124 - w134;
+    let w136 = y[13]; // u_dot_3
+    let w137 = w113 * w136;
+    let w138 = w137 * w47;
+    let w139 = w7 * w47;
+    let w140 = w47 * w139;
+    let w141 = w138 + w140;
+    let w142 = w139 + w137;
+    let w143 = w47 * w142;
+    let w144 = w141 + w143;
+    let w145 = w112 * w144;
+    let w146 = w135 - w145;
+    let w147 = y[14]; // u_dot_4
+    let w148 = w113 * w147;
+    let w149 = w148 * w52;
+    let w150 = w7 * w52;
+    let w151 = w52 * w150;
+    let w152 = w149 + w151;
+    let w153 = w150 + w148;
+    let w154 = w52 * w153;
+    let w155 = w152 + w154;
+    let w156 = w112 * w155;
+    let w157 = w146 - w156;
+    let w158 = y[15]; // u_dot_5
+    let w159 = w113 * w158;
+    let w160 = w159 * w57;
+    let w161 = w7 * w57;
+    let w162 = w57 * w161;
+    let w163 = w160 + w162;
+    let w164 = w161 + w159;
+    let w165 = w57 * w164;
+    let w166 = w163 + w165;
+    let w167 = w112 * w166;
+    let w168 = w157 - w167;
+    let w169 = y[16]; // u_dot_6
+    let w170 = w113 * w169;
+    let w171 = w170 * w62;
+    let w172 = w7 * w62;
+    let w173 = w62 * w172;
+    let w174 = w171 + w173;
+    let w175 = w172 + w170;
+    let w176 = w62 * w175;
+    let w177 = w174 + w176;
+    let w178 = w112 * w177;
+    let w179 = w168 - w178;
+    let w180 = y[17]; // u_dot_7
+    let w181 = w113 * w180;
+    let w182 = w181 * w67;
+    let w183 = w7 * w67;
+    let w184 = w67 * w183;
+    let w185 = w182 + w184;
+    let w186 = w183 + w181;
+    let w187 = w67 * w186;
+    let w188 = w185 + w187;
+    let w189 = w112 * w188;
+    let w190 = w179 - w189;
+    let w191 = w0 * w190;
+    let w192 = p[3]; // m
+    let w193 = w2 + w42;
+    let w194 = w193 + w47;
+    let w195 = w194 + w52;
+    let w196 = w195 + w57;
+    let w197 = w196 + w62;
+    let w198 = w197 + w67;
+    let w199 = w198 - w10;
+    let w200 = w7 * w199;
+    let w201 = w20 * w30;
+    let w202 = w200 + w201;
+    let w203 = w115 + w126;
+    let w204 = w203 + w137;
+    let w205 = w204 + w148;
+    let w206 = w205 + w159;
+    let w207 = w206 + w170;
+    let w208 = w207 + w181;
+    let w209 = w202 + w208;
+    let w210 = w6 - w209;
+    let w211 = w210 + w15;
+    let w212 = w211 - w25;
+    let w213 = w198 * w212;
+    let w214 = w20 * w199;
+    let w215 = w72 - w214;
+    let w216 = w78 + w83;
+    let w217 = w216 + w88;
+    let w218 = w217 + w93;
+    let w219 = w218 + w98;
+    let w220 = w219 + w103;
+    let w221 = w220 + w108;
+    let w222 = w215 + w221;
+    let w223 = w222 + w32;
+    let w224 = w223 - w34;
+    let w225 = w224 + w36;
+    let w226 = w30 * w225;
+    let w227 = w213 - w226;
+    let w228 = w192 * w227;
+    let w229 = w191 + w228;
+    let o0 = w229; // moment
+    let w230 = w30 * w7;
+    let w231 = w29 * w230;
+    let w232 = w37 + w231;
+    let w233 = w2 * w20;
+    let w234 = w78 - w233;
+    let w235 = w1 * w234;
+    let w236 = w232 + w235;
+    let w237 = w42 * w20;
+    let w238 = w83 - w237;
+    let w239 = w41 * w238;
+    let w240 = w236 + w239;
+    let w241 = w47 * w20;
+    let w242 = w88 - w241;
+    let w243 = w46 * w242;
+    let w244 = w240 + w243;
+    let w245 = w52 * w20;
+    let w246 = w93 - w245;
+    let w247 = w51 * w246;
+    let w248 = w244 + w247;
+    let w249 = w57 * w20;
+    let w250 = w98 - w249;
+    let w251 = w56 * w250;
+    let w252 = w248 + w251;
+    let w253 = w62 * w20;
+    let w254 = w103 - w253;
+    let w255 = w61 * w254;
+    let w256 = w252 + w255;
+    let w257 = w67 * w20;
+    let w258 = w108 - w257;
+    let w259 = w66 * w258;
+    let w260 = w256 + w259;
+    let w261 = w0 * w260;
+    let w262 = w192 * w225;
+    let w263 = w261 + w262;
+    let o1 = w263; // shear
+    let w264 = w30 * w20;
+    let w265 = w29 * w264;
+    let w266 = w26 - w265;
+    let w267 = w2 * w7;
+    let w268 = w115 + w267;
+    let w269 = w1 * w268;
+    let w270 = w266 - w269;
+    let w271 = w42 * w7;
+    let w272 = w126 + w271;
+    let w273 = w41 * w272;
+    let w274 = w270 - w273;
+    let w275 = w47 * w7;
+    let w276 = w137 + w275;
+    let w277 = w46 * w276;
+    let w278 = w274 - w277;
+    let w279 = w52 * w7;
+    let w280 = w148 + w279;
+    let w281 = w51 * w280;
+    let w282 = w278 - w281;
+    let w283 = w57 * w7;
+    let w284 = w159 + w283;
+    let w285 = w56 * w284;
+    let w286 = w282 - w285;
+    let w287 = w62 * w7;
+    let w288 = w170 + w287;
+    let w289 = w61 * w288;
+    let w290 = w286 - w289;
+    let w291 = w67 * w7;
+    let w292 = w181 + w291;
+    let w293 = w66 * w292;
+    let w294 = w290 - w293;
+    let w295 = w0 * w294;
+    let w296 = w192 * w212;
+    let w297 = w295 + w296;
+    let o2 = w297; // axial
+    let w298: f64 = 3.5160152685001513;
+    let w299 = p[2]; // ei
+    let w300 = w30 * w30;
+    let w301 = w299 / w300;
+    let w302 = w298 * w301;
+    let w303 = w302 * w2;
+    let w304: f64 = -22.03449156466677;
+    let w305 = w304 * w301;
+    let w306 = w305 * w42;
+    let w307 = w303 + w306;
+    let w308: f64 = 61.697214413549105;
+    let w309 = w308 * w301;
+    let w310 = w309 * w47;
+    let w311 = w307 + w310;
+    let w312: f64 = -120.90191605230572;
+    let w313 = w312 * w301;
+    let w314 = w313 * w52;
+    let w315 = w311 + w314;
+    let w316: f64 = 199.85953011680346;
+    let w317 = w316 * w301;
+    let w318 = w317 * w57;
+    let w319 = w315 + w318;
+    let w320: f64 = -298.5555309677301;
+    let w321 = w320 * w301;
+    let w322 = w321 * w62;
+    let w323 = w319 + w322;
+    let w324: f64 = 416.9907860566055;
+    let w325 = w324 * w301;
+    let w326 = w325 * w67;
+    let w327 = w323 + w326;
+    let o3 = w327; // moment_elastic
+    let w328 = p[5]; // m_b
+    let w329 = w328 * w37;
+    let w330 = w263 + w329;
+    let w331 = w14 * w330;
+    let w332 = w11 + w6;
+    let w333 = w332 + w15;
+    let w334 = w333 - w25;
+    let w335 = w328 * w334;
+    let w336 = w297 + w335;
+    let w337 = w5 * w336;
+    let w338 = w331 + w337;
+    let o4 = w338; // reaction_h
+    let w339 = w14 * w336;
+    let w340 = w5 * w330;
+    let w341 = w339 - w340;
+    let o5 = w341; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `ff` of [`free_forces()`].
+pub mod free_forces {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `y` of [`free_forces()`](super::free_forces()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+        /// Index of `u_4`.
+        pub const U_4: usize = 5;
+        /// Index of `u_5`.
+        pub const U_5: usize = 6;
+        /// Index of `u_6`.
+        pub const U_6: usize = 7;
+        /// Index of `u_7`.
+        pub const U_7: usize = 8;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 9;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 10;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 11;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 12;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 13;
+        /// Index of `u_dot_4`.
+        pub const U_DOT_4: usize = 14;
+        /// Index of `u_dot_5`.
+        pub const U_DOT_5: usize = 15;
+        /// Index of `u_dot_6`.
+        pub const U_DOT_6: usize = 16;
+        /// Index of `u_dot_7`.
+        pub const U_DOT_7: usize = 17;
+    }
+
+    /// Indices of the elements of input `qdd` of [`free_forces()`](super::free_forces()).
+    pub mod qdd {
+        /// Index of `theta_ddot`.
+        pub const THETA_DDOT: usize = 0;
+        /// Index of `v_ddot`.
+        pub const V_DDOT: usize = 1;
+        /// Index of `u_ddot_1`.
+        pub const U_DDOT_1: usize = 2;
+        /// Index of `u_ddot_2`.
+        pub const U_DDOT_2: usize = 3;
+        /// Index of `u_ddot_3`.
+        pub const U_DDOT_3: usize = 4;
+        /// Index of `u_ddot_4`.
+        pub const U_DDOT_4: usize = 5;
+        /// Index of `u_ddot_5`.
+        pub const U_DDOT_5: usize = 6;
+        /// Index of `u_ddot_6`.
+        pub const U_DDOT_6: usize = 7;
+        /// Index of `u_ddot_7`.
+        pub const U_DDOT_7: usize = 8;
+    }
+}
+
 /// The full model on the first seven cantilever modes: seven deformation coordinates
 ///
 /// Type-level handle of this variant, implementing [`crate::Variant`].
@@ -8551,6 +11188,31 @@ impl crate::Variant for CantileverModes7 {
     #[inline]
     fn static_uplift(p: &Params) -> [f64; 11] {
         static_uplift(p)
+    }
+
+    #[inline]
+    fn free_mass_matrix(qf: &[f64; 9], s: f64, p: &Params) -> [f64; 45] {
+        free_mass_matrix(qf, s, p)
+    }
+
+    #[inline]
+    fn free_forcing(y: &[f64; 18], ug: f64, s: f64, p: &Params) -> [f64; 9] {
+        free_forcing(y, ug, s, p)
+    }
+
+    #[inline]
+    fn free_energy(y: &[f64; 18], s: f64, p: &Params) -> [f64; 4] {
+        free_energy(y, s, p)
+    }
+
+    #[inline]
+    fn free_power(y: &[f64; 18], ug: f64, s: f64, p: &Params) -> [f64; 2] {
+        free_power(y, ug, s, p)
+    }
+
+    #[inline]
+    fn free_forces(y: &[f64; 18], qdd: &[f64; 9], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+        free_forces(y, qdd, ug, s, p)
     }
 }
 
@@ -8694,6 +11356,55 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             };
             let p: &Params = (*p).try_into().ok()?;
             Some(static_uplift(p).to_vec())
+        }
+        "free_mass_matrix" => {
+            let [qf, s, p] = inputs else {
+                return None;
+            };
+            let qf: &[f64; 9] = (*qf).try_into().ok()?;
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_mass_matrix(qf, s, p).to_vec())
+        }
+        "free_forcing" => {
+            let [y, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 18] = (*y).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_forcing(y, ug, s, p).to_vec())
+        }
+        "free_energy" => {
+            let [y, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 18] = (*y).try_into().ok()?;
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_energy(y, s, p).to_vec())
+        }
+        "free_power" => {
+            let [y, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 18] = (*y).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_power(y, ug, s, p).to_vec())
+        }
+        "free_forces" => {
+            let [y, qdd, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 18] = (*y).try_into().ok()?;
+            let qdd: &[f64; 9] = (*qdd).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_forces(y, qdd, ug, s, p).to_vec())
         }
         _ => None,
     }

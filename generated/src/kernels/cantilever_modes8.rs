@@ -9757,6 +9757,2983 @@ pub mod static_uplift {
     pub const MOMENT_ELASTIC_UPLIFT: usize = 11;
 }
 
+/// Mass matrix M(q) over q = [theta, v, u_1..u_n], upper triangle row by row (symmetric positive definite; a rigid column's u row is the identity). On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `qf: &[f64; 10]`: configuration on compliant ground: rotation, settlement of the base centre (positive into the ground), deformation — `theta`, `v`, `u_1`, `u_2`, `u_3`, `u_4`, `u_5`, `u_6`, `u_7`, `u_8`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_1_4`, `c_1_5`, `c_1_6`, `c_1_7`, `c_1_8`, `c_2_2`, `c_2_3`, `c_2_4`, `c_2_5`, `c_2_6`, `c_2_7`, `c_2_8`, `c_3_3`, `c_3_4`, `c_3_5`, `c_3_6`, `c_3_7`, `c_3_8`, `c_4_4`, `c_4_5`, `c_4_6`, `c_4_7`, `c_4_8`, `c_5_5`, `c_5_6`, `c_5_7`, `c_5_8`, `c_6_6`, `c_6_7`, `c_6_8`, `c_7_7`, `c_7_8`, `c_8_8`
+///
+/// # Output
+///
+/// `m: [f64; 55]`: upper triangle of M — `m_t_t`, `m_t_v`, `m_t_u1`, `m_t_u2`, `m_t_u3`, `m_t_u4`, `m_t_u5`, `m_t_u6`, `m_t_u7`, `m_t_u8`, `m_v_v`, `m_v_u1`, `m_v_u2`, `m_v_u3`, `m_v_u4`, `m_v_u5`, `m_v_u6`, `m_v_u7`, `m_v_u8`, `m_u1_u1`, `m_u1_u2`, `m_u1_u3`, `m_u1_u4`, `m_u1_u5`, `m_u1_u6`, `m_u1_u7`, `m_u1_u8`, `m_u2_u2`, `m_u2_u3`, `m_u2_u4`, `m_u2_u5`, `m_u2_u6`, `m_u2_u7`, `m_u2_u8`, `m_u3_u3`, `m_u3_u4`, `m_u3_u5`, `m_u3_u6`, `m_u3_u7`, `m_u3_u8`, `m_u4_u4`, `m_u4_u5`, `m_u4_u6`, `m_u4_u7`, `m_u4_u8`, `m_u5_u5`, `m_u5_u6`, `m_u5_u7`, `m_u5_u8`, `m_u6_u6`, `m_u6_u7`, `m_u6_u8`, `m_u7_u7`, `m_u7_u8`, `m_u8_u8`
+///
+/// Operations: 263 (133 mul, 67 add, 38 twice, 22 sub, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_mass_matrix(qf: &[f64; 10], s: f64, p: &Params) -> [f64; 55] {
+    let w0 = s; // s
+    let w1 = p[1]; // b
+    let w2 = w0 * w1;
+    let w3 = qf[0]; // theta
+    let w4 = w3.cos();
+    let w5 = w2 * w4;
+    let w6: f64 = 0.5;
+    let w7 = p[4]; // m_c
+    let w8 = p[3]; // m
+    let w9 = w7 + w8;
+    let w10 = p[5]; // m_b
+    let w11 = w9 + w10;
+    let w12 = w6 * w11;
+    let w13 = 2.0 * w5;
+    let w14 = w12 * w13;
+    let w15 = w2 * w10;
+    let w16 = qf[2]; // u_1
+    let w17 = qf[3]; // u_2
+    let w18 = w16 + w17;
+    let w19 = qf[4]; // u_3
+    let w20 = w18 + w19;
+    let w21 = qf[5]; // u_4
+    let w22 = w20 + w21;
+    let w23 = qf[6]; // u_5
+    let w24 = w22 + w23;
+    let w25 = qf[7]; // u_6
+    let w26 = w24 + w25;
+    let w27 = qf[8]; // u_7
+    let w28 = w26 + w27;
+    let w29 = qf[9]; // u_8
+    let w30 = w28 + w29;
+    let w31 = w30 - w2;
+    let w32 = w31 * w8;
+    let w33 = w15 - w32;
+    let w34: f64 = -0.04244131816301539;
+    let w35 = w34 * w7;
+    let w36 = w29 * w35;
+    let w37 = w33 - w36;
+    let w38: f64 = 0.048970751581497045;
+    let w39 = w38 * w7;
+    let w40 = w27 * w39;
+    let w41 = w37 - w40;
+    let w42: f64 = -0.0578745285967165;
+    let w43 = w42 * w7;
+    let w44 = w25 * w43;
+    let w45 = w41 - w44;
+    let w46: f64 = 0.07073542044968367;
+    let w47 = w46 * w7;
+    let w48 = w23 * w47;
+    let w49 = w45 - w48;
+    let w50: f64 = -0.09094901081852429;
+    let w51 = w50 * w7;
+    let w52 = w21 * w51;
+    let w53 = w49 - w52;
+    let w54: f64 = 0.12721264843305286;
+    let w55 = w54 * w7;
+    let w56 = w19 * w55;
+    let w57 = w53 - w56;
+    let w58: f64 = -0.21696794755535964;
+    let w59 = w58 * w7;
+    let w60 = w17 * w59;
+    let w61 = w57 - w60;
+    let w62: f64 = 0.3914958780198129;
+    let w63 = w62 * w7;
+    let w64 = w16 * w63;
+    let w65 = w61 - w64;
+    let w66 = w2 * w7;
+    let w67 = w65 + w66;
+    let w68 = w4 * w67;
+    let w69 = w3.sin();
+    let w70 = p[0]; // h
+    let w71 = w70 * w8;
+    let w72 = w6 * w7;
+    let w73 = w70 * w72;
+    let w74 = w71 + w73;
+    let w75 = w69 * w74;
+    let w76 = w68 - w75;
+    let w77 = w14 - w76;
+    let w78 = w5 * w77;
+    let w79 = w76 * w5;
+    let w80 = w78 - w79;
+    let w81 = p[6]; // i_bc
+    let w82 = w80 + w81;
+    let w83 = w6 * w8;
+    let w84 = 2.0 * w31;
+    let w85 = w83 * w84;
+    let w86 = w31 * w85;
+    let w87 = w82 + w86;
+    let w88 = 2.0 * w70;
+    let w89 = w83 * w88;
+    let w90 = w70 * w89;
+    let w91 = w87 + w90;
+    let w92: f64 = 0.0625;
+    let w93 = w92 * w7;
+    let w94 = w29 * w93;
+    let w95 = 2.0 * w29;
+    let w96 = w94 * w95;
+    let w97 = w91 + w96;
+    let w98 = 2.0 * w94;
+    let w99 = w29 * w98;
+    let w100 = w97 + w99;
+    let w101 = w27 * w93;
+    let w102 = 2.0 * w27;
+    let w103 = w101 * w102;
+    let w104 = w100 + w103;
+    let w105 = 2.0 * w101;
+    let w106 = w27 * w105;
+    let w107 = w104 + w106;
+    let w108 = w25 * w93;
+    let w109 = 2.0 * w25;
+    let w110 = w108 * w109;
+    let w111 = w107 + w110;
+    let w112 = 2.0 * w108;
+    let w113 = w25 * w112;
+    let w114 = w111 + w113;
+    let w115 = w23 * w93;
+    let w116 = 2.0 * w23;
+    let w117 = w115 * w116;
+    let w118 = w114 + w117;
+    let w119 = 2.0 * w115;
+    let w120 = w23 * w119;
+    let w121 = w118 + w120;
+    let w122 = w21 * w93;
+    let w123 = 2.0 * w21;
+    let w124 = w122 * w123;
+    let w125 = w121 + w124;
+    let w126 = 2.0 * w122;
+    let w127 = w21 * w126;
+    let w128 = w125 + w127;
+    let w129 = w19 * w93;
+    let w130 = 2.0 * w19;
+    let w131 = w129 * w130;
+    let w132 = w128 + w131;
+    let w133 = 2.0 * w129;
+    let w134 = w19 * w133;
+    let w135 = w132 + w134;
+    let w136 = w17 * w93;
+    let w137 = 2.0 * w17;
+    let w138 = w136 * w137;
+    let w139 = w135 + w138;
+    let w140 = 2.0 * w136;
+    let w141 = w17 * w140;
+    let w142 = w139 + w141;
+    let w143 = w16 * w93;
+    let w144 = 2.0 * w16;
+    let w145 = w143 * w144;
+    let w146 = w142 + w145;
+    let w147 = 2.0 * w143;
+    let w148 = w16 * w147;
+    let w149 = w146 + w148;
+    let w150: f64 = 0.08333333333333333;
+    let w151 = w150 * w7;
+    let w152 = w70 * w151;
+    let w153 = w152 * w88;
+    let w154 = w149 + w153;
+    let w155 = 2.0 * w152;
+    let w156 = w70 * w155;
+    let w157 = w154 + w156;
+    let w158: f64 = -0.021220659081507696;
+    let w159 = w158 * w7;
+    let w160 = w29 * w159;
+    let w161 = -w2;
+    let w162 = 2.0 * w161;
+    let w163 = w160 * w162;
+    let w164 = w157 + w163;
+    let w165 = 2.0 * w160;
+    let w166 = w2 * w165;
+    let w167 = w164 - w166;
+    let w168: f64 = 0.024485375790748522;
+    let w169 = w168 * w7;
+    let w170 = w27 * w169;
+    let w171 = w170 * w162;
+    let w172 = w167 + w171;
+    let w173 = 2.0 * w170;
+    let w174 = w2 * w173;
+    let w175 = w172 - w174;
+    let w176: f64 = -0.02893726429835825;
+    let w177 = w176 * w7;
+    let w178 = w25 * w177;
+    let w179 = w178 * w162;
+    let w180 = w175 + w179;
+    let w181 = 2.0 * w178;
+    let w182 = w2 * w181;
+    let w183 = w180 - w182;
+    let w184: f64 = 0.035367710224841836;
+    let w185 = w184 * w7;
+    let w186 = w23 * w185;
+    let w187 = w186 * w162;
+    let w188 = w183 + w187;
+    let w189 = 2.0 * w186;
+    let w190 = w2 * w189;
+    let w191 = w188 - w190;
+    let w192: f64 = -0.04547450540926214;
+    let w193 = w192 * w7;
+    let w194 = w21 * w193;
+    let w195 = w194 * w162;
+    let w196 = w191 + w195;
+    let w197 = 2.0 * w194;
+    let w198 = w2 * w197;
+    let w199 = w196 - w198;
+    let w200: f64 = 0.06360632421652643;
+    let w201 = w200 * w7;
+    let w202 = w19 * w201;
+    let w203 = w202 * w162;
+    let w204 = w199 + w203;
+    let w205 = 2.0 * w202;
+    let w206 = w2 * w205;
+    let w207 = w204 - w206;
+    let w208: f64 = -0.10848397377767982;
+    let w209 = w208 * w7;
+    let w210 = w17 * w209;
+    let w211 = w210 * w162;
+    let w212 = w207 + w211;
+    let w213 = 2.0 * w210;
+    let w214 = w2 * w213;
+    let w215 = w212 - w214;
+    let w216: f64 = 0.19574793900990645;
+    let w217 = w216 * w7;
+    let w218 = w16 * w217;
+    let w219 = w218 * w162;
+    let w220 = w215 + w219;
+    let w221 = 2.0 * w218;
+    let w222 = w2 * w221;
+    let w223 = w220 - w222;
+    let w224 = 2.0 * w2;
+    let w225 = w72 * w224;
+    let w226 = w2 * w225;
+    let w227 = w223 + w226;
+    let o0 = w227; // m_t_t
+    let w228 = w5 * w11;
+    let w229 = w228 - w76;
+    let o1 = w229; // m_t_v
+    let w230 = w69 * w8;
+    let w231 = w69 * w63;
+    let w232 = w230 + w231;
+    let w233 = w5 * w232;
+    let w234 = w233 + w71;
+    let w235: f64 = 0.1422064359274777;
+    let w236 = w235 * w7;
+    let w237 = w70 * w236;
+    let w238 = 2.0 * w237;
+    let w239 = w234 + w238;
+    let o2 = w239; // m_t_u1
+    let w240 = w69 * w59;
+    let w241 = w230 + w240;
+    let w242 = w5 * w241;
+    let w243 = w242 + w71;
+    let w244: f64 = -0.02269169672159674;
+    let w245 = w244 * w7;
+    let w246 = w70 * w245;
+    let w247 = 2.0 * w246;
+    let w248 = w243 + w247;
+    let o3 = w248; // m_t_u2
+    let w249 = w69 * w55;
+    let w250 = w230 + w249;
+    let w251 = w5 * w250;
+    let w252 = w251 + w71;
+    let w253: f64 = 0.008104093592436109;
+    let w254 = w253 * w7;
+    let w255 = w70 * w254;
+    let w256 = 2.0 * w255;
+    let w257 = w252 + w256;
+    let o4 = w257; // m_t_u3
+    let w258 = w69 * w51;
+    let w259 = w230 + w258;
+    let w260 = w5 * w259;
+    let w261 = w260 + w71;
+    let w262: f64 = -0.004135583755212658;
+    let w263 = w262 * w7;
+    let w264 = w70 * w263;
+    let w265 = 2.0 * w264;
+    let w266 = w261 + w265;
+    let o5 = w266; // m_t_u4
+    let w267 = w69 * w47;
+    let w268 = w230 + w267;
+    let w269 = w5 * w268;
+    let w270 = w269 + w71;
+    let w271: f64 = 0.0025017571076434843;
+    let w272 = w271 * w7;
+    let w273 = w70 * w272;
+    let w274 = 2.0 * w273;
+    let w275 = w270 + w274;
+    let o6 = w275; // m_t_u5
+    let w276 = w69 * w43;
+    let w277 = w230 + w276;
+    let w278 = w5 * w277;
+    let w279 = w278 + w71;
+    let w280: f64 = -0.00167473032028351;
+    let w281 = w280 * w7;
+    let w282 = w70 * w281;
+    let w283 = 2.0 * w282;
+    let w284 = w279 + w283;
+    let o7 = w284; // m_t_u6
+    let w285 = w69 * w39;
+    let w286 = w230 + w285;
+    let w287 = w5 * w286;
+    let w288 = w287 + w71;
+    let w289: f64 = 0.0011990672617215245;
+    let w290 = w289 * w7;
+    let w291 = w70 * w290;
+    let w292 = 2.0 * w291;
+    let w293 = w288 + w292;
+    let o8 = w293; // m_t_u7
+    let w294 = w69 * w35;
+    let w295 = w230 + w294;
+    let w296 = w5 * w295;
+    let w297 = w296 + w71;
+    let w298: f64 = -0.0009006327434963917;
+    let w299 = w298 * w7;
+    let w300 = w70 * w299;
+    let w301 = 2.0 * w300;
+    let w302 = w297 + w301;
+    let o9 = w302; // m_t_u8
+    let o10 = w11; // m_v_v
+    let o11 = w232; // m_v_u1
+    let o12 = w241; // m_v_u2
+    let o13 = w250; // m_v_u3
+    let o14 = w259; // m_v_u4
+    let o15 = w268; // m_v_u5
+    let o16 = w277; // m_v_u6
+    let o17 = w286; // m_v_u7
+    let o18 = w295; // m_v_u8
+    let w303: f64 = 0.125;
+    let w304 = w303 * w7;
+    let w305 = w8 + w304;
+    let w306 = w305 + w304;
+    let o19 = w306; // m_u1_u1
+    let o20 = w8; // m_u1_u2
+    let o21 = w8; // m_u1_u3
+    let o22 = w8; // m_u1_u4
+    let o23 = w8; // m_u1_u5
+    let o24 = w8; // m_u1_u6
+    let o25 = w8; // m_u1_u7
+    let o26 = w8; // m_u1_u8
+    let o27 = w306; // m_u2_u2
+    let o28 = w8; // m_u2_u3
+    let o29 = w8; // m_u2_u4
+    let o30 = w8; // m_u2_u5
+    let o31 = w8; // m_u2_u6
+    let o32 = w8; // m_u2_u7
+    let o33 = w8; // m_u2_u8
+    let o34 = w306; // m_u3_u3
+    let o35 = w8; // m_u3_u4
+    let o36 = w8; // m_u3_u5
+    let o37 = w8; // m_u3_u6
+    let o38 = w8; // m_u3_u7
+    let o39 = w8; // m_u3_u8
+    let o40 = w306; // m_u4_u4
+    let o41 = w8; // m_u4_u5
+    let o42 = w8; // m_u4_u6
+    let o43 = w8; // m_u4_u7
+    let o44 = w8; // m_u4_u8
+    let o45 = w306; // m_u5_u5
+    let o46 = w8; // m_u5_u6
+    let o47 = w8; // m_u5_u7
+    let o48 = w8; // m_u5_u8
+    let o49 = w306; // m_u6_u6
+    let o50 = w8; // m_u6_u7
+    let o51 = w8; // m_u6_u8
+    let o52 = w306; // m_u7_u7
+    let o53 = w8; // m_u7_u8
+    let o54 = w306; // m_u8_u8
+    [
+        o0,
+        o1,
+        o2,
+        o3,
+        o4,
+        o5,
+        o6,
+        o7,
+        o8,
+        o9,
+        o10,
+        o11,
+        o12,
+        o13,
+        o14,
+        o15,
+        o16,
+        o17,
+        o18,
+        o19,
+        o20,
+        o21,
+        o22,
+        o23,
+        o24,
+        o25,
+        o26,
+        o27,
+        o28,
+        o29,
+        o30,
+        o31,
+        o32,
+        o33,
+        o34,
+        o35,
+        o36,
+        o37,
+        o38,
+        o39,
+        o40,
+        o41,
+        o42,
+        o43,
+        o44,
+        o45,
+        o46,
+        o47,
+        o48,
+        o49,
+        o50,
+        o51,
+        o52,
+        o53,
+        o54,
+    ]
+}
+
+/// Indices of the elements of the output `m` of [`free_mass_matrix()`].
+pub mod free_mass_matrix {
+    /// Index of `m_t_t`.
+    pub const M_T_T: usize = 0;
+    /// Index of `m_t_v`.
+    pub const M_T_V: usize = 1;
+    /// Index of `m_t_u1`.
+    pub const M_T_U1: usize = 2;
+    /// Index of `m_t_u2`.
+    pub const M_T_U2: usize = 3;
+    /// Index of `m_t_u3`.
+    pub const M_T_U3: usize = 4;
+    /// Index of `m_t_u4`.
+    pub const M_T_U4: usize = 5;
+    /// Index of `m_t_u5`.
+    pub const M_T_U5: usize = 6;
+    /// Index of `m_t_u6`.
+    pub const M_T_U6: usize = 7;
+    /// Index of `m_t_u7`.
+    pub const M_T_U7: usize = 8;
+    /// Index of `m_t_u8`.
+    pub const M_T_U8: usize = 9;
+    /// Index of `m_v_v`.
+    pub const M_V_V: usize = 10;
+    /// Index of `m_v_u1`.
+    pub const M_V_U1: usize = 11;
+    /// Index of `m_v_u2`.
+    pub const M_V_U2: usize = 12;
+    /// Index of `m_v_u3`.
+    pub const M_V_U3: usize = 13;
+    /// Index of `m_v_u4`.
+    pub const M_V_U4: usize = 14;
+    /// Index of `m_v_u5`.
+    pub const M_V_U5: usize = 15;
+    /// Index of `m_v_u6`.
+    pub const M_V_U6: usize = 16;
+    /// Index of `m_v_u7`.
+    pub const M_V_U7: usize = 17;
+    /// Index of `m_v_u8`.
+    pub const M_V_U8: usize = 18;
+    /// Index of `m_u1_u1`.
+    pub const M_U1_U1: usize = 19;
+    /// Index of `m_u1_u2`.
+    pub const M_U1_U2: usize = 20;
+    /// Index of `m_u1_u3`.
+    pub const M_U1_U3: usize = 21;
+    /// Index of `m_u1_u4`.
+    pub const M_U1_U4: usize = 22;
+    /// Index of `m_u1_u5`.
+    pub const M_U1_U5: usize = 23;
+    /// Index of `m_u1_u6`.
+    pub const M_U1_U6: usize = 24;
+    /// Index of `m_u1_u7`.
+    pub const M_U1_U7: usize = 25;
+    /// Index of `m_u1_u8`.
+    pub const M_U1_U8: usize = 26;
+    /// Index of `m_u2_u2`.
+    pub const M_U2_U2: usize = 27;
+    /// Index of `m_u2_u3`.
+    pub const M_U2_U3: usize = 28;
+    /// Index of `m_u2_u4`.
+    pub const M_U2_U4: usize = 29;
+    /// Index of `m_u2_u5`.
+    pub const M_U2_U5: usize = 30;
+    /// Index of `m_u2_u6`.
+    pub const M_U2_U6: usize = 31;
+    /// Index of `m_u2_u7`.
+    pub const M_U2_U7: usize = 32;
+    /// Index of `m_u2_u8`.
+    pub const M_U2_U8: usize = 33;
+    /// Index of `m_u3_u3`.
+    pub const M_U3_U3: usize = 34;
+    /// Index of `m_u3_u4`.
+    pub const M_U3_U4: usize = 35;
+    /// Index of `m_u3_u5`.
+    pub const M_U3_U5: usize = 36;
+    /// Index of `m_u3_u6`.
+    pub const M_U3_U6: usize = 37;
+    /// Index of `m_u3_u7`.
+    pub const M_U3_U7: usize = 38;
+    /// Index of `m_u3_u8`.
+    pub const M_U3_U8: usize = 39;
+    /// Index of `m_u4_u4`.
+    pub const M_U4_U4: usize = 40;
+    /// Index of `m_u4_u5`.
+    pub const M_U4_U5: usize = 41;
+    /// Index of `m_u4_u6`.
+    pub const M_U4_U6: usize = 42;
+    /// Index of `m_u4_u7`.
+    pub const M_U4_U7: usize = 43;
+    /// Index of `m_u4_u8`.
+    pub const M_U4_U8: usize = 44;
+    /// Index of `m_u5_u5`.
+    pub const M_U5_U5: usize = 45;
+    /// Index of `m_u5_u6`.
+    pub const M_U5_U6: usize = 46;
+    /// Index of `m_u5_u7`.
+    pub const M_U5_U7: usize = 47;
+    /// Index of `m_u5_u8`.
+    pub const M_U5_U8: usize = 48;
+    /// Index of `m_u6_u6`.
+    pub const M_U6_U6: usize = 49;
+    /// Index of `m_u6_u7`.
+    pub const M_U6_U7: usize = 50;
+    /// Index of `m_u6_u8`.
+    pub const M_U6_U8: usize = 51;
+    /// Index of `m_u7_u7`.
+    pub const M_U7_U7: usize = 52;
+    /// Index of `m_u7_u8`.
+    pub const M_U7_U8: usize = 53;
+    /// Index of `m_u8_u8`.
+    pub const M_U8_U8: usize = 54;
+
+    /// Indices of the elements of input `qf` of [`free_mass_matrix()`](super::free_mass_matrix()).
+    pub mod qf {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+        /// Index of `u_4`.
+        pub const U_4: usize = 5;
+        /// Index of `u_5`.
+        pub const U_5: usize = 6;
+        /// Index of `u_6`.
+        pub const U_6: usize = 7;
+        /// Index of `u_7`.
+        pub const U_7: usize = 8;
+        /// Index of `u_8`.
+        pub const U_8: usize = 9;
+    }
+}
+
+/// Right-hand side F of M q'' = F + Q_ground without the ground: gravity, ground acceleration, stiffness, damping and velocity terms; Q_ground = [Q_theta, Q_v, 0..] from the ground's kernels. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 20]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `u_3`, `u_4`, `u_5`, `u_6`, `u_7`, `u_8`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`, `u_dot_4`, `u_dot_5`, `u_dot_6`, `u_dot_7`, `u_dot_8`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_1_4`, `c_1_5`, `c_1_6`, `c_1_7`, `c_1_8`, `c_2_2`, `c_2_3`, `c_2_4`, `c_2_5`, `c_2_6`, `c_2_7`, `c_2_8`, `c_3_3`, `c_3_4`, `c_3_5`, `c_3_6`, `c_3_7`, `c_3_8`, `c_4_4`, `c_4_5`, `c_4_6`, `c_4_7`, `c_4_8`, `c_5_5`, `c_5_6`, `c_5_7`, `c_5_8`, `c_6_6`, `c_6_7`, `c_6_8`, `c_7_7`, `c_7_8`, `c_8_8`
+///
+/// # Output
+///
+/// `f: [f64; 10]`: generalised forces — `f_theta`, `f_v`, `f_u_1`, `f_u_2`, `f_u_3`, `f_u_4`, `f_u_5`, `f_u_6`, `f_u_7`, `f_u_8`
+///
+/// Operations: 853 (459 mul, 272 add, 78 sub, 38 twice, 2 neg, 1 cos, 1 div, 1 sin, 1 sq).
+#[inline]
+#[must_use]
+pub fn free_forcing(y: &[f64; 20], ug: f64, s: f64, p: &Params) -> [f64; 10] {
+    let w0 = y[0]; // theta
+    let w1 = w0.cos();
+    let w2 = s; // s
+    let w3 = p[1]; // b
+    let w4 = w2 * w3;
+    let w5 = p[4]; // m_c
+    let w6 = p[3]; // m
+    let w7 = w5 + w6;
+    let w8 = p[5]; // m_b
+    let w9 = w7 + w8;
+    let w10 = p[8]; // g
+    let w11 = w9 * w10;
+    let w12 = w4 * w11;
+    let w13 = w1 * w12;
+    let w14 = w0.sin();
+    let w15 = ug; // ug
+    let w16 = w8 * w15;
+    let w17 = w4 * w16;
+    let w18 = y[2]; // u_1
+    let w19 = y[3]; // u_2
+    let w20 = w18 + w19;
+    let w21 = y[4]; // u_3
+    let w22 = w20 + w21;
+    let w23 = y[5]; // u_4
+    let w24 = w22 + w23;
+    let w25 = y[6]; // u_5
+    let w26 = w24 + w25;
+    let w27 = y[7]; // u_6
+    let w28 = w26 + w27;
+    let w29 = y[8]; // u_7
+    let w30 = w28 + w29;
+    let w31 = y[9]; // u_8
+    let w32 = w30 + w31;
+    let w33 = w32 - w4;
+    let w34 = w6 * w15;
+    let w35 = w33 * w34;
+    let w36 = w17 - w35;
+    let w37: f64 = -0.04244131816301539;
+    let w38 = w5 * w15;
+    let w39 = w37 * w38;
+    let w40 = w31 * w39;
+    let w41 = w36 - w40;
+    let w42: f64 = 0.048970751581497045;
+    let w43 = w42 * w38;
+    let w44 = w29 * w43;
+    let w45 = w41 - w44;
+    let w46: f64 = -0.0578745285967165;
+    let w47 = w46 * w38;
+    let w48 = w27 * w47;
+    let w49 = w45 - w48;
+    let w50: f64 = 0.07073542044968367;
+    let w51 = w50 * w38;
+    let w52 = w25 * w51;
+    let w53 = w49 - w52;
+    let w54: f64 = -0.09094901081852429;
+    let w55 = w54 * w38;
+    let w56 = w23 * w55;
+    let w57 = w53 - w56;
+    let w58: f64 = 0.12721264843305286;
+    let w59 = w58 * w38;
+    let w60 = w21 * w59;
+    let w61 = w57 - w60;
+    let w62: f64 = -0.21696794755535964;
+    let w63 = w62 * w38;
+    let w64 = w19 * w63;
+    let w65 = w61 - w64;
+    let w66: f64 = 0.3914958780198129;
+    let w67 = w66 * w38;
+    let w68 = w18 * w67;
+    let w69 = w65 - w68;
+    let w70 = w4 * w38;
+    let w71 = w69 + w70;
+    let w72 = p[0]; // h
+    let w73 = w6 * w10;
+    let w74 = w72 * w73;
+    let w75 = w71 - w74;
+    let w76: f64 = 0.5;
+    let w77 = w5 * w10;
+    let w78 = w76 * w77;
+    let w79 = w72 * w78;
+    let w80 = w75 - w79;
+    let w81 = w14 * w80;
+    let w82 = w13 - w81;
+    let w83 = w33 * w73;
+    let w84 = w72 * w34;
+    let w85 = w76 * w38;
+    let w86 = w72 * w85;
+    let w87 = w84 + w86;
+    let w88 = w8 * w10;
+    let w89 = w4 * w88;
+    let w90 = w87 + w89;
+    let w91 = w83 - w90;
+    let w92 = w37 * w77;
+    let w93 = w31 * w92;
+    let w94 = w91 + w93;
+    let w95 = w42 * w77;
+    let w96 = w29 * w95;
+    let w97 = w94 + w96;
+    let w98 = w46 * w77;
+    let w99 = w27 * w98;
+    let w100 = w97 + w99;
+    let w101 = w50 * w77;
+    let w102 = w25 * w101;
+    let w103 = w100 + w102;
+    let w104 = w54 * w77;
+    let w105 = w23 * w104;
+    let w106 = w103 + w105;
+    let w107 = w58 * w77;
+    let w108 = w21 * w107;
+    let w109 = w106 + w108;
+    let w110 = w62 * w77;
+    let w111 = w19 * w110;
+    let w112 = w109 + w111;
+    let w113 = w66 * w77;
+    let w114 = w18 * w113;
+    let w115 = w112 + w114;
+    let w116 = w4 * w77;
+    let w117 = w115 - w116;
+    let w118 = w37 * w5;
+    let w119 = y[19]; // u_dot_8
+    let w120 = y[11]; // v_dot
+    let w121 = w4 * w1;
+    let w122 = y[10]; // theta_dot
+    let w123 = w121 * w122;
+    let w124 = w120 + w123;
+    let w125 = w119 * w124;
+    let w126 = w118 * w125;
+    let w127 = w117 + w126;
+    let w128 = w42 * w5;
+    let w129 = y[18]; // u_dot_7
+    let w130 = w129 * w124;
+    let w131 = w128 * w130;
+    let w132 = w127 + w131;
+    let w133 = w46 * w5;
+    let w134 = y[17]; // u_dot_6
+    let w135 = w134 * w124;
+    let w136 = w133 * w135;
+    let w137 = w132 + w136;
+    let w138 = w50 * w5;
+    let w139 = y[16]; // u_dot_5
+    let w140 = w139 * w124;
+    let w141 = w138 * w140;
+    let w142 = w137 + w141;
+    let w143 = w54 * w5;
+    let w144 = y[15]; // u_dot_4
+    let w145 = w144 * w124;
+    let w146 = w143 * w145;
+    let w147 = w142 + w146;
+    let w148 = w58 * w5;
+    let w149 = y[14]; // u_dot_3
+    let w150 = w149 * w124;
+    let w151 = w148 * w150;
+    let w152 = w147 + w151;
+    let w153 = w62 * w5;
+    let w154 = y[13]; // u_dot_2
+    let w155 = w154 * w124;
+    let w156 = w153 * w155;
+    let w157 = w152 + w156;
+    let w158 = w66 * w5;
+    let w159 = y[12]; // u_dot_1
+    let w160 = w159 * w124;
+    let w161 = w158 * w160;
+    let w162 = w157 + w161;
+    let w163 = w125 + w130;
+    let w164 = w163 + w135;
+    let w165 = w164 + w140;
+    let w166 = w165 + w145;
+    let w167 = w166 + w150;
+    let w168 = w167 + w155;
+    let w169 = w168 + w160;
+    let w170 = w6 * w169;
+    let w171 = w162 + w170;
+    let w172 = w1 * w171;
+    let w173 = w82 + w172;
+    let w174 = w72 * w6;
+    let w175 = w76 * w5;
+    let w176 = w72 * w175;
+    let w177 = w174 + w176;
+    let w178 = w122 * w124;
+    let w179 = w177 * w178;
+    let w180 = w1 * w179;
+    let w181 = w173 + w180;
+    let w182 = w4 * w8;
+    let w183 = w33 * w6;
+    let w184 = w182 - w183;
+    let w185 = w31 * w118;
+    let w186 = w184 - w185;
+    let w187 = w29 * w128;
+    let w188 = w186 - w187;
+    let w189 = w27 * w133;
+    let w190 = w188 - w189;
+    let w191 = w25 * w138;
+    let w192 = w190 - w191;
+    let w193 = w23 * w143;
+    let w194 = w192 - w193;
+    let w195 = w21 * w148;
+    let w196 = w194 - w195;
+    let w197 = w19 * w153;
+    let w198 = w196 - w197;
+    let w199 = w18 * w158;
+    let w200 = w198 - w199;
+    let w201 = w4 * w5;
+    let w202 = w200 + w201;
+    let w203 = w202 * w178;
+    let w204 = w14 * w203;
+    let w205 = w181 + w204;
+    let w206 = 2.0 * w124;
+    let w207 = w76 * w9;
+    let w208 = w206 * w207;
+    let w209 = w1 * w202;
+    let w210 = w14 * w177;
+    let w211 = w209 - w210;
+    let w212 = w211 * w122;
+    let w213 = w14 * w6;
+    let w214 = w14 * w158;
+    let w215 = w213 + w214;
+    let w216 = w215 * w159;
+    let w217 = w212 - w216;
+    let w218 = w14 * w153;
+    let w219 = w213 + w218;
+    let w220 = w219 * w154;
+    let w221 = w217 - w220;
+    let w222 = w14 * w148;
+    let w223 = w213 + w222;
+    let w224 = w223 * w149;
+    let w225 = w221 - w224;
+    let w226 = w14 * w143;
+    let w227 = w213 + w226;
+    let w228 = w227 * w144;
+    let w229 = w225 - w228;
+    let w230 = w14 * w138;
+    let w231 = w213 + w230;
+    let w232 = w231 * w139;
+    let w233 = w229 - w232;
+    let w234 = w14 * w133;
+    let w235 = w213 + w234;
+    let w236 = w235 * w134;
+    let w237 = w233 - w236;
+    let w238 = w14 * w128;
+    let w239 = w213 + w238;
+    let w240 = w239 * w129;
+    let w241 = w237 - w240;
+    let w242 = w14 * w118;
+    let w243 = w213 + w242;
+    let w244 = w243 * w119;
+    let w245 = w241 - w244;
+    let w246 = w208 - w245;
+    let w247 = w122 * w246;
+    let w248 = w4 * w247;
+    let w249 = w14 * w248;
+    let w250 = w205 - w249;
+    let w251 = w4 * w14;
+    let w252 = w122 * w251;
+    let w253 = -w252;
+    let w254 = 2.0 * w253;
+    let w255 = w207 * w254;
+    let w256 = w202 * w14;
+    let w257 = w177 * w1;
+    let w258 = w256 + w257;
+    let w259 = w122 * w258;
+    let w260 = w6 * w1;
+    let w261 = w158 * w1;
+    let w262 = w260 + w261;
+    let w263 = w159 * w262;
+    let w264 = w259 + w263;
+    let w265 = w153 * w1;
+    let w266 = w260 + w265;
+    let w267 = w154 * w266;
+    let w268 = w264 + w267;
+    let w269 = w148 * w1;
+    let w270 = w260 + w269;
+    let w271 = w149 * w270;
+    let w272 = w268 + w271;
+    let w273 = w143 * w1;
+    let w274 = w260 + w273;
+    let w275 = w144 * w274;
+    let w276 = w272 + w275;
+    let w277 = w138 * w1;
+    let w278 = w260 + w277;
+    let w279 = w139 * w278;
+    let w280 = w276 + w279;
+    let w281 = w133 * w1;
+    let w282 = w260 + w281;
+    let w283 = w134 * w282;
+    let w284 = w280 + w283;
+    let w285 = w128 * w1;
+    let w286 = w260 + w285;
+    let w287 = w129 * w286;
+    let w288 = w284 + w287;
+    let w289 = w118 * w1;
+    let w290 = w260 + w289;
+    let w291 = w119 * w290;
+    let w292 = w288 + w291;
+    let w293 = w255 + w292;
+    let w294 = w121 * w293;
+    let w295 = w246 * w251;
+    let w296 = w294 - w295;
+    let w297 = w124 * w258;
+    let w298 = w211 * w252;
+    let w299 = w297 + w298;
+    let w300 = w296 + w299;
+    let w301 = w300 * w122;
+    let w302 = w6 + w158;
+    let w303 = w1 * w302;
+    let w304 = w122 * w303;
+    let w305 = w121 * w304;
+    let w306 = w124 * w303;
+    let w307 = w305 + w306;
+    let w308 = w122 * w33;
+    let w309 = 2.0 * w308;
+    let w310 = w76 * w6;
+    let w311 = w309 * w310;
+    let w312 = 2.0 * w122;
+    let w313 = w310 * w312;
+    let w314 = w33 * w313;
+    let w315 = w311 + w314;
+    let w316 = w307 + w315;
+    let w317: f64 = 0.0625;
+    let w318 = w317 * w5;
+    let w319 = w18 * w318;
+    let w320 = w319 * w312;
+    let w321 = w122 * w18;
+    let w322 = 2.0 * w321;
+    let w323 = w322 * w318;
+    let w324 = w320 + w323;
+    let w325 = w316 + w324;
+    let w326 = w122 * w319;
+    let w327 = 2.0 * w326;
+    let w328 = w122 * w318;
+    let w329 = 2.0 * w328;
+    let w330 = w18 * w329;
+    let w331 = w327 + w330;
+    let w332 = w325 + w331;
+    let w333 = w122 * w4;
+    let w334 = -w333;
+    let w335 = 2.0 * w334;
+    let w336: f64 = 0.19574793900990645;
+    let w337 = w336 * w5;
+    let w338 = w335 * w337;
+    let w339 = w332 + w338;
+    let w340 = w122 * w337;
+    let w341 = 2.0 * w340;
+    let w342 = w4 * w341;
+    let w343 = w339 - w342;
+    let w344 = w343 * w159;
+    let w345 = w301 + w344;
+    let w346 = w6 + w153;
+    let w347 = w1 * w346;
+    let w348 = w122 * w347;
+    let w349 = w121 * w348;
+    let w350 = w124 * w347;
+    let w351 = w349 + w350;
+    let w352 = w351 + w315;
+    let w353 = w19 * w318;
+    let w354 = w353 * w312;
+    let w355 = w122 * w19;
+    let w356 = 2.0 * w355;
+    let w357 = w356 * w318;
+    let w358 = w354 + w357;
+    let w359 = w352 + w358;
+    let w360 = w122 * w353;
+    let w361 = 2.0 * w360;
+    let w362 = w19 * w329;
+    let w363 = w361 + w362;
+    let w364 = w359 + w363;
+    let w365: f64 = -0.10848397377767982;
+    let w366 = w365 * w5;
+    let w367 = w335 * w366;
+    let w368 = w364 + w367;
+    let w369 = w122 * w366;
+    let w370 = 2.0 * w369;
+    let w371 = w4 * w370;
+    let w372 = w368 - w371;
+    let w373 = w372 * w154;
+    let w374 = w345 + w373;
+    let w375 = w6 + w148;
+    let w376 = w1 * w375;
+    let w377 = w122 * w376;
+    let w378 = w121 * w377;
+    let w379 = w124 * w376;
+    let w380 = w378 + w379;
+    let w381 = w380 + w315;
+    let w382 = w21 * w318;
+    let w383 = w382 * w312;
+    let w384 = w122 * w21;
+    let w385 = 2.0 * w384;
+    let w386 = w385 * w318;
+    let w387 = w383 + w386;
+    let w388 = w381 + w387;
+    let w389 = w122 * w382;
+    let w390 = 2.0 * w389;
+    let w391 = w21 * w329;
+    let w392 = w390 + w391;
+    let w393 = w388 + w392;
+    let w394: f64 = 0.06360632421652643;
+    let w395 = w394 * w5;
+    let w396 = w335 * w395;
+    let w397 = w393 + w396;
+    let w398 = w122 * w395;
+    let w399 = 2.0 * w398;
+    let w400 = w4 * w399;
+    let w401 = w397 - w400;
+    let w402 = w401 * w149;
+    let w403 = w374 + w402;
+    let w404 = w6 + w143;
+    let w405 = w1 * w404;
+    let w406 = w122 * w405;
+    let w407 = w121 * w406;
+    let w408 = w124 * w405;
+    let w409 = w407 + w408;
+    let w410 = w409 + w315;
+    let w411 = w23 * w318;
+    let w412 = w411 * w312;
+    let w413 = w122 * w23;
+    let w414 = 2.0 * w413;
+    let w415 = w414 * w318;
+    let w416 = w412 + w415;
+    let w417 = w410 + w416;
+    let w418 = w122 * w411;
+    let w419 = 2.0 * w418;
+    let w420 = w23 * w329;
+    let w421 = w419 + w420;
+    let w422 = w417 + w421;
+    let w423: f64 = -0.04547450540926214;
+    let w424 = w423 * w5;
+    let w425 = w335 * w424;
+    let w426 = w422 + w425;
+    let w427 = w122 * w424;
+    let w428 = 2.0 * w427;
+    let w429 = w4 * w428;
+    let w430 = w426 - w429;
+    let w431 = w430 * w144;
+    let w432 = w403 + w431;
+    let w433 = w6 + w138;
+    let w434 = w1 * w433;
+    let w435 = w122 * w434;
+    let w436 = w121 * w435;
+    let w437 = w124 * w434;
+    let w438 = w436 + w437;
+    let w439 = w438 + w315;
+    let w440 = w25 * w318;
+    let w441 = w440 * w312;
+    let w442 = w122 * w25;
+    let w443 = 2.0 * w442;
+    let w444 = w443 * w318;
+    let w445 = w441 + w444;
+    let w446 = w439 + w445;
+    let w447 = w122 * w440;
+    let w448 = 2.0 * w447;
+    let w449 = w25 * w329;
+    let w450 = w448 + w449;
+    let w451 = w446 + w450;
+    let w452: f64 = 0.035367710224841836;
+    let w453 = w452 * w5;
+    let w454 = w335 * w453;
+    let w455 = w451 + w454;
+    let w456 = w122 * w453;
+    let w457 = 2.0 * w456;
+    let w458 = w4 * w457;
+    let w459 = w455 - w458;
+    let w460 = w459 * w139;
+    let w461 = w432 + w460;
+    let w462 = w6 + w133;
+    let w463 = w1 * w462;
+    let w464 = w122 * w463;
+    let w465 = w121 * w464;
+    let w466 = w124 * w463;
+    let w467 = w465 + w466;
+    let w468 = w467 + w315;
+    let w469 = w27 * w318;
+    let w470 = w469 * w312;
+    let w471 = w122 * w27;
+    let w472 = 2.0 * w471;
+    let w473 = w472 * w318;
+    let w474 = w470 + w473;
+    let w475 = w468 + w474;
+    let w476 = w122 * w469;
+    let w477 = 2.0 * w476;
+    let w478 = w27 * w329;
+    let w479 = w477 + w478;
+    let w480 = w475 + w479;
+    let w481: f64 = -0.02893726429835825;
+    let w482 = w481 * w5;
+    let w483 = w335 * w482;
+    let w484 = w480 + w483;
+    let w485 = w122 * w482;
+    let w486 = 2.0 * w485;
+    let w487 = w4 * w486;
+    let w488 = w484 - w487;
+    let w489 = w488 * w134;
+    let w490 = w461 + w489;
+    let w491 = w6 + w128;
+    let w492 = w1 * w491;
+    let w493 = w122 * w492;
+    let w494 = w121 * w493;
+    let w495 = w124 * w492;
+    let w496 = w494 + w495;
+    let w497 = w496 + w315;
+    let w498 = w29 * w318;
+    let w499 = w498 * w312;
+    let w500 = w122 * w29;
+    let w501 = 2.0 * w500;
+    let w502 = w501 * w318;
+    let w503 = w499 + w502;
+    let w504 = w497 + w503;
+    let w505 = w122 * w498;
+    let w506 = 2.0 * w505;
+    let w507 = w29 * w329;
+    let w508 = w506 + w507;
+    let w509 = w504 + w508;
+    let w510: f64 = 0.024485375790748522;
+    let w511 = w510 * w5;
+    let w512 = w335 * w511;
+    let w513 = w509 + w512;
+    let w514 = w122 * w511;
+    let w515 = 2.0 * w514;
+    let w516 = w4 * w515;
+    let w517 = w513 - w516;
+    let w518 = w517 * w129;
+    let w519 = w490 + w518;
+    let w520 = w6 + w118;
+    let w521 = w1 * w520;
+    let w522 = w122 * w521;
+    let w523 = w121 * w522;
+    let w524 = w124 * w521;
+    let w525 = w523 + w524;
+    let w526 = w525 + w315;
+    let w527 = w31 * w318;
+    let w528 = w527 * w312;
+    let w529 = w122 * w31;
+    let w530 = 2.0 * w529;
+    let w531 = w530 * w318;
+    let w532 = w528 + w531;
+    let w533 = w526 + w532;
+    let w534 = w122 * w527;
+    let w535 = 2.0 * w534;
+    let w536 = w31 * w329;
+    let w537 = w535 + w536;
+    let w538 = w533 + w537;
+    let w539: f64 = -0.021220659081507696;
+    let w540 = w539 * w5;
+    let w541 = w335 * w540;
+    let w542 = w538 + w541;
+    let w543 = w122 * w540;
+    let w544 = 2.0 * w543;
+    let w545 = w4 * w544;
+    let w546 = w542 - w545;
+    let w547 = w546 * w119;
+    let w548 = w519 + w547;
+    let w549 = w250 - w548;
+    let o0 = w549; // f_theta
+    let w550 = w293 * w122;
+    let w551 = w304 * w159;
+    let w552 = w550 + w551;
+    let w553 = w348 * w154;
+    let w554 = w552 + w553;
+    let w555 = w377 * w149;
+    let w556 = w554 + w555;
+    let w557 = w406 * w144;
+    let w558 = w556 + w557;
+    let w559 = w435 * w139;
+    let w560 = w558 + w559;
+    let w561 = w464 * w134;
+    let w562 = w560 + w561;
+    let w563 = w493 * w129;
+    let w564 = w562 + w563;
+    let w565 = w522 * w119;
+    let w566 = w564 + w565;
+    let w567 = w11 - w566;
+    let o1 = w567; // f_v
+    let w568 = 2.0 * w18;
+    let w569: f64 = -1.5452954210407739;
+    let w570 = p[2]; // ei
+    let w571 = w72 * w72;
+    let w572 = w72 * w571;
+    let w573 = w570 / w572;
+    let w574 = w569 * w573;
+    let w575 = w568 * w574;
+    let w576 = w1 * w34;
+    let w577 = w1 * w67;
+    let w578 = w576 + w577;
+    let w579 = w575 - w578;
+    let w580 = w14 * w113;
+    let w581 = w579 + w580;
+    let w582 = w1 * w178;
+    let w583 = w158 * w582;
+    let w584 = w581 + w583;
+    let w585 = w14 * w73;
+    let w586 = w6 * w582;
+    let w587 = w585 + w586;
+    let w588 = w584 + w587;
+    let w589 = w122 * w311;
+    let w590 = w588 + w589;
+    let w591 = w122 * w322;
+    let w592 = w591 * w318;
+    let w593 = w590 + w592;
+    let w594 = w122 * w327;
+    let w595 = w593 + w594;
+    let w596 = w122 * w335;
+    let w597 = w596 * w337;
+    let w598 = w595 + w597;
+    let w599 = w124 * w262;
+    let w600 = w215 * w252;
+    let w601 = w599 - w600;
+    let w602 = w601 * w122;
+    let w603 = w598 - w602;
+    let w604 = p[9]; // c_1_1
+    let w605 = w604 * w159;
+    let w606 = p[10]; // c_1_2
+    let w607 = w606 * w154;
+    let w608 = w605 + w607;
+    let w609 = p[11]; // c_1_3
+    let w610 = w609 * w149;
+    let w611 = w608 + w610;
+    let w612 = p[12]; // c_1_4
+    let w613 = w612 * w144;
+    let w614 = w611 + w613;
+    let w615 = p[13]; // c_1_5
+    let w616 = w615 * w139;
+    let w617 = w614 + w616;
+    let w618 = p[14]; // c_1_6
+    let w619 = w618 * w134;
+    let w620 = w617 + w619;
+    let w621 = p[15]; // c_1_7
+    let w622 = w621 * w129;
+    let w623 = w620 + w622;
+    let w624 = p[16]; // c_1_8
+    let w625 = w624 * w119;
+    let w626 = w623 + w625;
+    let w627 = w603 - w626;
+    let o2 = w627; // f_u_1
+    let w628 = 2.0 * w19;
+    let w629: f64 = -60.68985231417138;
+    let w630 = w629 * w573;
+    let w631 = w628 * w630;
+    let w632 = w1 * w63;
+    let w633 = w576 + w632;
+    let w634 = w631 - w633;
+    let w635 = w14 * w110;
+    let w636 = w634 + w635;
+    let w637 = w153 * w582;
+    let w638 = w636 + w637;
+    let w639 = w638 + w587;
+    let w640 = w639 + w589;
+    let w641 = w122 * w356;
+    let w642 = w641 * w318;
+    let w643 = w640 + w642;
+    let w644 = w122 * w361;
+    let w645 = w643 + w644;
+    let w646 = w596 * w366;
+    let w647 = w645 + w646;
+    let w648 = w124 * w266;
+    let w649 = w219 * w252;
+    let w650 = w648 - w649;
+    let w651 = w650 * w122;
+    let w652 = w647 - w651;
+    let w653 = w606 * w159;
+    let w654 = p[17]; // c_2_2
+    let w655 = w654 * w154;
+    let w656 = w653 + w655;
+    let w657 = p[18]; // c_2_3
+    let w658 = w657 * w149;
+    let w659 = w656 + w658;
+    let w660 = p[19]; // c_2_4
+    let w661 = w660 * w144;
+    let w662 = w659 + w661;
+    let w663 = p[20]; // c_2_5
+    let w664 = w663 * w139;
+    let w665 = w662 + w664;
+    let w666 = p[21]; // c_2_6
+    let w667 = w666 * w134;
+    let w668 = w665 + w667;
+    let w669 = p[22]; // c_2_7
+    let w670 = w669 * w129;
+    let w671 = w668 + w670;
+    let w672 = p[23]; // c_2_8
+    let w673 = w672 * w119;
+    let w674 = w671 + w673;
+    let w675 = w652 - w674;
+    let o3 = w675; // f_u_2
+    let w676 = 2.0 * w21;
+    let w677: f64 = -475.81828329893136;
+    let w678 = w677 * w573;
+    let w679 = w676 * w678;
+    let w680 = w1 * w59;
+    let w681 = w576 + w680;
+    let w682 = w679 - w681;
+    let w683 = w14 * w107;
+    let w684 = w682 + w683;
+    let w685 = w148 * w582;
+    let w686 = w684 + w685;
+    let w687 = w686 + w587;
+    let w688 = w687 + w589;
+    let w689 = w122 * w385;
+    let w690 = w689 * w318;
+    let w691 = w688 + w690;
+    let w692 = w122 * w390;
+    let w693 = w691 + w692;
+    let w694 = w596 * w395;
+    let w695 = w693 + w694;
+    let w696 = w124 * w270;
+    let w697 = w223 * w252;
+    let w698 = w696 - w697;
+    let w699 = w698 * w122;
+    let w700 = w695 - w699;
+    let w701 = w609 * w159;
+    let w702 = w657 * w154;
+    let w703 = w701 + w702;
+    let w704 = p[24]; // c_3_3
+    let w705 = w704 * w149;
+    let w706 = w703 + w705;
+    let w707 = p[25]; // c_3_4
+    let w708 = w707 * w144;
+    let w709 = w706 + w708;
+    let w710 = p[26]; // c_3_5
+    let w711 = w710 * w139;
+    let w712 = w709 + w711;
+    let w713 = p[27]; // c_3_6
+    let w714 = w713 * w134;
+    let w715 = w712 + w714;
+    let w716 = p[28]; // c_3_7
+    let w717 = w716 * w129;
+    let w718 = w715 + w717;
+    let w719 = p[29]; // c_3_8
+    let w720 = w719 * w119;
+    let w721 = w718 + w720;
+    let w722 = w700 - w721;
+    let o4 = w722; // f_u_3
+    let w723 = 2.0 * w23;
+    let w724: f64 = -1827.1591631398476;
+    let w725 = w724 * w573;
+    let w726 = w723 * w725;
+    let w727 = w1 * w55;
+    let w728 = w576 + w727;
+    let w729 = w726 - w728;
+    let w730 = w14 * w104;
+    let w731 = w729 + w730;
+    let w732 = w143 * w582;
+    let w733 = w731 + w732;
+    let w734 = w733 + w587;
+    let w735 = w734 + w589;
+    let w736 = w122 * w414;
+    let w737 = w736 * w318;
+    let w738 = w735 + w737;
+    let w739 = w122 * w419;
+    let w740 = w738 + w739;
+    let w741 = w596 * w424;
+    let w742 = w740 + w741;
+    let w743 = w124 * w274;
+    let w744 = w227 * w252;
+    let w745 = w743 - w744;
+    let w746 = w745 * w122;
+    let w747 = w742 - w746;
+    let w748 = w612 * w159;
+    let w749 = w660 * w154;
+    let w750 = w748 + w749;
+    let w751 = w707 * w149;
+    let w752 = w750 + w751;
+    let w753 = p[30]; // c_4_4
+    let w754 = w753 * w144;
+    let w755 = w752 + w754;
+    let w756 = p[31]; // c_4_5
+    let w757 = w756 * w139;
+    let w758 = w755 + w757;
+    let w759 = p[32]; // c_4_6
+    let w760 = w759 * w134;
+    let w761 = w758 + w760;
+    let w762 = p[33]; // c_4_7
+    let w763 = w762 * w129;
+    let w764 = w761 + w763;
+    let w765 = p[34]; // c_4_8
+    let w766 = w765 * w119;
+    let w767 = w764 + w766;
+    let w768 = w747 - w767;
+    let o5 = w768; // f_u_4
+    let w769 = 2.0 * w25;
+    let w770: f64 = -4992.978972313684;
+    let w771 = w770 * w573;
+    let w772 = w769 * w771;
+    let w773 = w1 * w51;
+    let w774 = w576 + w773;
+    let w775 = w772 - w774;
+    let w776 = w14 * w101;
+    let w777 = w775 + w776;
+    let w778 = w138 * w582;
+    let w779 = w777 + w778;
+    let w780 = w779 + w587;
+    let w781 = w780 + w589;
+    let w782 = w122 * w443;
+    let w783 = w782 * w318;
+    let w784 = w781 + w783;
+    let w785 = w122 * w448;
+    let w786 = w784 + w785;
+    let w787 = w596 * w453;
+    let w788 = w786 + w787;
+    let w789 = w124 * w278;
+    let w790 = w231 * w252;
+    let w791 = w789 - w790;
+    let w792 = w791 * w122;
+    let w793 = w788 - w792;
+    let w794 = w615 * w159;
+    let w795 = w663 * w154;
+    let w796 = w794 + w795;
+    let w797 = w710 * w149;
+    let w798 = w796 + w797;
+    let w799 = w756 * w144;
+    let w800 = w798 + w799;
+    let w801 = p[35]; // c_5_5
+    let w802 = w801 * w139;
+    let w803 = w800 + w802;
+    let w804 = p[36]; // c_5_6
+    let w805 = w804 * w134;
+    let w806 = w803 + w805;
+    let w807 = p[37]; // c_5_7
+    let w808 = w807 * w129;
+    let w809 = w806 + w808;
+    let w810 = p[38]; // c_5_8
+    let w811 = w810 * w119;
+    let w812 = w809 + w811;
+    let w813 = w793 - w812;
+    let o6 = w813; // f_u_5
+    let w814 = 2.0 * w27;
+    let w815: f64 = -11141.925633927905;
+    let w816 = w815 * w573;
+    let w817 = w814 * w816;
+    let w818 = w1 * w47;
+    let w819 = w576 + w818;
+    let w820 = w817 - w819;
+    let w821 = w14 * w98;
+    let w822 = w820 + w821;
+    let w823 = w133 * w582;
+    let w824 = w822 + w823;
+    let w825 = w824 + w587;
+    let w826 = w825 + w589;
+    let w827 = w122 * w472;
+    let w828 = w827 * w318;
+    let w829 = w826 + w828;
+    let w830 = w122 * w477;
+    let w831 = w829 + w830;
+    let w832 = w596 * w482;
+    let w833 = w831 + w832;
+    let w834 = w124 * w282;
+    let w835 = w235 * w252;
+    let w836 = w834 - w835;
+    let w837 = w836 * w122;
+    let w838 = w833 - w837;
+    let w839 = w618 * w159;
+    let w840 = w666 * w154;
+    let w841 = w839 + w840;
+    let w842 = w713 * w149;
+    let w843 = w841 + w842;
+    let w844 = w759 * w144;
+    let w845 = w843 + w844;
+    let w846 = w804 * w139;
+    let w847 = w845 + w846;
+    let w848 = p[39]; // c_6_6
+    let w849 = w848 * w134;
+    let w850 = w847 + w849;
+    let w851 = p[40]; // c_6_7
+    let w852 = w851 * w129;
+    let w853 = w850 + w852;
+    let w854 = p[41]; // c_6_8
+    let w855 = w854 * w119;
+    let w856 = w853 + w855;
+    let w857 = w838 - w856;
+    let o7 = w857; // f_u_6
+    let w858 = 2.0 * w29;
+    let w859: f64 = -21735.164457013216;
+    let w860 = w859 * w573;
+    let w861 = w858 * w860;
+    let w862 = w1 * w43;
+    let w863 = w576 + w862;
+    let w864 = w861 - w863;
+    let w865 = w14 * w95;
+    let w866 = w864 + w865;
+    let w867 = w128 * w582;
+    let w868 = w866 + w867;
+    let w869 = w868 + w587;
+    let w870 = w869 + w589;
+    let w871 = w122 * w501;
+    let w872 = w871 * w318;
+    let w873 = w870 + w872;
+    let w874 = w122 * w506;
+    let w875 = w873 + w874;
+    let w876 = w596 * w511;
+    let w877 = w875 + w876;
+    let w878 = w124 * w286;
+    let w879 = w239 * w252;
+    let w880 = w878 - w879;
+    let w881 = w880 * w122;
+    let w882 = w877 - w881;
+    let w883 = w621 * w159;
+    let w884 = w669 * w154;
+    let w885 = w883 + w884;
+    let w886 = w716 * w149;
+    let w887 = w885 + w886;
+    let w888 = w762 * w144;
+    let w889 = w887 + w888;
+    let w890 = w807 * w139;
+    let w891 = w889 + w890;
+    let w892 = w851 * w134;
+    let w893 = w891 + w892;
+    let w894 = p[42]; // c_7_7
+    let w895 = w894 * w129;
+    let w896 = w893 + w895;
+    let w897 = p[43]; // c_7_8
+    let w898 = w897 * w119;
+    let w899 = w896 + w898;
+    let w900 = w882 - w899;
+    let o8 = w900; // f_u_7
+    let w901 = 2.0 * w31;
+    let w902: f64 = -38526.0565117064;
+    let w903 = w902 * w573;
+    let w904 = w901 * w903;
+    let w905 = w1 * w39;
+    let w906 = w576 + w905;
+    let w907 = w904 - w906;
+    let w908 = w14 * w92;
+    let w909 = w907 + w908;
+    let w910 = w118 * w582;
+    let w911 = w909 + w910;
+    let w912 = w911 + w587;
+    let w913 = w912 + w589;
+    let w914 = w122 * w530;
+    let w915 = w914 * w318;
+    let w916 = w913 + w915;
+    let w917 = w122 * w535;
+    let w918 = w916 + w917;
+    let w919 = w596 * w540;
+    let w920 = w918 + w919;
+    let w921 = w124 * w290;
+    let w922 = w243 * w252;
+    let w923 = w921 - w922;
+    let w924 = w923 * w122;
+    let w925 = w920 - w924;
+    let w926 = w624 * w159;
+    let w927 = w672 * w154;
+    let w928 = w926 + w927;
+    let w929 = w719 * w149;
+    let w930 = w928 + w929;
+    let w931 = w765 * w144;
+    let w932 = w930 + w931;
+    let w933 = w810 * w139;
+    let w934 = w932 + w933;
+    let w935 = w854 * w134;
+    let w936 = w934 + w935;
+    let w937 = w897 * w129;
+    let w938 = w936 + w937;
+    let w939 = p[44]; // c_8_8
+    let w940 = w939 * w119;
+    let w941 = w938 + w940;
+    let w942 = w925 - w941;
+    let o9 = w942; // f_u_8
+    [o0, o1, o2, o3, o4, o5, o6, o7, o8, o9]
+}
+
+/// Indices of the elements of the output `f` of [`free_forcing()`].
+pub mod free_forcing {
+    /// Index of `f_theta`.
+    pub const F_THETA: usize = 0;
+    /// Index of `f_v`.
+    pub const F_V: usize = 1;
+    /// Index of `f_u_1`.
+    pub const F_U_1: usize = 2;
+    /// Index of `f_u_2`.
+    pub const F_U_2: usize = 3;
+    /// Index of `f_u_3`.
+    pub const F_U_3: usize = 4;
+    /// Index of `f_u_4`.
+    pub const F_U_4: usize = 5;
+    /// Index of `f_u_5`.
+    pub const F_U_5: usize = 6;
+    /// Index of `f_u_6`.
+    pub const F_U_6: usize = 7;
+    /// Index of `f_u_7`.
+    pub const F_U_7: usize = 8;
+    /// Index of `f_u_8`.
+    pub const F_U_8: usize = 9;
+
+    /// Indices of the elements of input `y` of [`free_forcing()`](super::free_forcing()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+        /// Index of `u_4`.
+        pub const U_4: usize = 5;
+        /// Index of `u_5`.
+        pub const U_5: usize = 6;
+        /// Index of `u_6`.
+        pub const U_6: usize = 7;
+        /// Index of `u_7`.
+        pub const U_7: usize = 8;
+        /// Index of `u_8`.
+        pub const U_8: usize = 9;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 10;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 11;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 12;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 13;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 14;
+        /// Index of `u_dot_4`.
+        pub const U_DOT_4: usize = 15;
+        /// Index of `u_dot_5`.
+        pub const U_DOT_5: usize = 16;
+        /// Index of `u_dot_6`.
+        pub const U_DOT_6: usize = 17;
+        /// Index of `u_dot_7`.
+        pub const U_DOT_7: usize = 18;
+        /// Index of `u_dot_8`.
+        pub const U_DOT_8: usize = 19;
+    }
+}
+
+/// Kinetic energy, gravity (heights over the rest position of the leaning corner, the ground's surface) and strain potentials and horizontal momentum. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 20]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `u_3`, `u_4`, `u_5`, `u_6`, `u_7`, `u_8`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`, `u_dot_4`, `u_dot_5`, `u_dot_6`, `u_dot_7`, `u_dot_8`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_1_4`, `c_1_5`, `c_1_6`, `c_1_7`, `c_1_8`, `c_2_2`, `c_2_3`, `c_2_4`, `c_2_5`, `c_2_6`, `c_2_7`, `c_2_8`, `c_3_3`, `c_3_4`, `c_3_5`, `c_3_6`, `c_3_7`, `c_3_8`, `c_4_4`, `c_4_5`, `c_4_6`, `c_4_7`, `c_4_8`, `c_5_5`, `c_5_6`, `c_5_7`, `c_5_8`, `c_6_6`, `c_6_7`, `c_6_8`, `c_7_7`, `c_7_8`, `c_8_8`
+///
+/// # Output
+///
+/// `e: [f64; 4]`: energies and momentum — `kinetic`, `gravity`, `strain`, `momentum_x`
+///
+/// Operations: 372 (199 mul, 100 add, 33 sub, 18 twice, 14 sq, 5 div, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_energy(y: &[f64; 20], s: f64, p: &Params) -> [f64; 4] {
+    let w0 = p[4]; // m_c
+    let w1 = y[10]; // theta_dot
+    let w2 = s; // s
+    let w3 = p[1]; // b
+    let w4 = w2 * w3;
+    let w5 = w1 * w4;
+    let w6 = w5 * w5;
+    let w7: f64 = 0.3914958780198129;
+    let w8 = y[2]; // u_1
+    let w9 = -w5;
+    let w10 = 2.0 * w9;
+    let w11 = w1 * w10;
+    let w12 = w8 * w11;
+    let w13 = w7 * w12;
+    let w14 = w6 + w13;
+    let w15: f64 = -0.21696794755535964;
+    let w16 = y[3]; // u_2
+    let w17 = w16 * w11;
+    let w18 = w15 * w17;
+    let w19 = w14 + w18;
+    let w20: f64 = 0.12721264843305286;
+    let w21 = y[4]; // u_3
+    let w22 = w21 * w11;
+    let w23 = w20 * w22;
+    let w24 = w19 + w23;
+    let w25: f64 = -0.09094901081852429;
+    let w26 = y[5]; // u_4
+    let w27 = w26 * w11;
+    let w28 = w25 * w27;
+    let w29 = w24 + w28;
+    let w30: f64 = 0.07073542044968367;
+    let w31 = y[6]; // u_5
+    let w32 = w31 * w11;
+    let w33 = w30 * w32;
+    let w34 = w29 + w33;
+    let w35: f64 = -0.0578745285967165;
+    let w36 = y[7]; // u_6
+    let w37 = w36 * w11;
+    let w38 = w35 * w37;
+    let w39 = w34 + w38;
+    let w40: f64 = 0.048970751581497045;
+    let w41 = y[8]; // u_7
+    let w42 = w41 * w11;
+    let w43 = w40 * w42;
+    let w44 = w39 + w43;
+    let w45: f64 = -0.04244131816301539;
+    let w46 = y[9]; // u_8
+    let w47 = w46 * w11;
+    let w48 = w45 * w47;
+    let w49 = w44 + w48;
+    let w50: f64 = 0.16666666666666666;
+    let w51 = p[0]; // h
+    let w52 = w1 * w51;
+    let w53 = 2.0 * w52;
+    let w54 = w1 * w53;
+    let w55 = w51 * w54;
+    let w56 = w50 * w55;
+    let w57 = w49 + w56;
+    let w58: f64 = 0.2844128718549554;
+    let w59 = y[12]; // u_dot_1
+    let w60 = 2.0 * w59;
+    let w61 = w1 * w60;
+    let w62 = w51 * w61;
+    let w63 = w58 * w62;
+    let w64 = w57 + w63;
+    let w65: f64 = -0.04538339344319348;
+    let w66 = y[13]; // u_dot_2
+    let w67 = 2.0 * w66;
+    let w68 = w1 * w67;
+    let w69 = w51 * w68;
+    let w70 = w65 * w69;
+    let w71 = w64 + w70;
+    let w72: f64 = 0.016208187184872217;
+    let w73 = y[14]; // u_dot_3
+    let w74 = 2.0 * w73;
+    let w75 = w1 * w74;
+    let w76 = w51 * w75;
+    let w77 = w72 * w76;
+    let w78 = w71 + w77;
+    let w79: f64 = -0.008271167510425316;
+    let w80 = y[15]; // u_dot_4
+    let w81 = 2.0 * w80;
+    let w82 = w1 * w81;
+    let w83 = w51 * w82;
+    let w84 = w79 * w83;
+    let w85 = w78 + w84;
+    let w86: f64 = 0.0050035142152869685;
+    let w87 = y[16]; // u_dot_5
+    let w88 = 2.0 * w87;
+    let w89 = w1 * w88;
+    let w90 = w51 * w89;
+    let w91 = w86 * w90;
+    let w92 = w85 + w91;
+    let w93: f64 = -0.00334946064056702;
+    let w94 = y[17]; // u_dot_6
+    let w95 = 2.0 * w94;
+    let w96 = w1 * w95;
+    let w97 = w51 * w96;
+    let w98 = w93 * w97;
+    let w99 = w92 + w98;
+    let w100: f64 = 0.002398134523443049;
+    let w101 = y[18]; // u_dot_7
+    let w102 = 2.0 * w101;
+    let w103 = w1 * w102;
+    let w104 = w51 * w103;
+    let w105 = w100 * w104;
+    let w106 = w99 + w105;
+    let w107: f64 = -0.0018012654869927834;
+    let w108 = y[19]; // u_dot_8
+    let w109 = 2.0 * w108;
+    let w110 = w1 * w109;
+    let w111 = w51 * w110;
+    let w112 = w107 * w111;
+    let w113 = w106 + w112;
+    let w114: f64 = 0.125;
+    let w115 = w1 * w8;
+    let w116 = 2.0 * w115;
+    let w117 = w1 * w116;
+    let w118 = w8 * w117;
+    let w119 = w59 * w60;
+    let w120 = w118 + w119;
+    let w121 = w114 * w120;
+    let w122 = w113 + w121;
+    let w123 = w1 * w16;
+    let w124 = 2.0 * w123;
+    let w125 = w1 * w124;
+    let w126 = w16 * w125;
+    let w127 = w66 * w67;
+    let w128 = w126 + w127;
+    let w129 = w114 * w128;
+    let w130 = w122 + w129;
+    let w131 = w1 * w21;
+    let w132 = 2.0 * w131;
+    let w133 = w1 * w132;
+    let w134 = w21 * w133;
+    let w135 = w73 * w74;
+    let w136 = w134 + w135;
+    let w137 = w114 * w136;
+    let w138 = w130 + w137;
+    let w139 = w1 * w26;
+    let w140 = 2.0 * w139;
+    let w141 = w1 * w140;
+    let w142 = w26 * w141;
+    let w143 = w80 * w81;
+    let w144 = w142 + w143;
+    let w145 = w114 * w144;
+    let w146 = w138 + w145;
+    let w147 = w1 * w31;
+    let w148 = 2.0 * w147;
+    let w149 = w1 * w148;
+    let w150 = w31 * w149;
+    let w151 = w87 * w88;
+    let w152 = w150 + w151;
+    let w153 = w114 * w152;
+    let w154 = w146 + w153;
+    let w155 = w1 * w36;
+    let w156 = 2.0 * w155;
+    let w157 = w1 * w156;
+    let w158 = w36 * w157;
+    let w159 = w94 * w95;
+    let w160 = w158 + w159;
+    let w161 = w114 * w160;
+    let w162 = w154 + w161;
+    let w163 = w1 * w41;
+    let w164 = 2.0 * w163;
+    let w165 = w1 * w164;
+    let w166 = w41 * w165;
+    let w167 = w101 * w102;
+    let w168 = w166 + w167;
+    let w169 = w114 * w168;
+    let w170 = w162 + w169;
+    let w171 = w1 * w46;
+    let w172 = 2.0 * w171;
+    let w173 = w1 * w172;
+    let w174 = w46 * w173;
+    let w175 = w108 * w109;
+    let w176 = w174 + w175;
+    let w177 = w114 * w176;
+    let w178 = w170 + w177;
+    let w179 = w0 * w178;
+    let w180 = p[3]; // m
+    let w181 = w59 + w66;
+    let w182 = w181 + w73;
+    let w183 = w182 + w80;
+    let w184 = w183 + w87;
+    let w185 = w184 + w94;
+    let w186 = w185 + w101;
+    let w187 = w186 + w108;
+    let w188 = w187 + w52;
+    let w189 = w188 * w188;
+    let w190 = w8 + w16;
+    let w191 = w190 + w21;
+    let w192 = w191 + w26;
+    let w193 = w192 + w31;
+    let w194 = w193 + w36;
+    let w195 = w194 + w41;
+    let w196 = w195 + w46;
+    let w197 = w196 - w4;
+    let w198 = w1 * w197;
+    let w199 = w198 * w198;
+    let w200 = w189 + w199;
+    let w201 = w180 * w200;
+    let w202 = w179 + w201;
+    let w203: f64 = 2.0;
+    let w204 = w202 / w203;
+    let w205 = p[6]; // i_bc
+    let w206 = w1 * w1;
+    let w207 = w205 * w206;
+    let w208 = w207 / w203;
+    let w209 = w204 + w208;
+    let w210 = w0 + w180;
+    let w211 = p[5]; // m_b
+    let w212 = w210 + w211;
+    let w213 = y[11]; // v_dot
+    let w214 = y[0]; // theta
+    let w215 = w214.cos();
+    let w216 = w4 * w215;
+    let w217 = w216 * w1;
+    let w218 = w213 + w217;
+    let w219 = w218 * w218;
+    let w220 = w212 * w219;
+    let w221 = w220 / w203;
+    let w222 = w209 + w221;
+    let w223 = w4 * w211;
+    let w224 = w197 * w180;
+    let w225 = w223 - w224;
+    let w226 = w45 * w0;
+    let w227 = w46 * w226;
+    let w228 = w225 - w227;
+    let w229 = w40 * w0;
+    let w230 = w41 * w229;
+    let w231 = w228 - w230;
+    let w232 = w35 * w0;
+    let w233 = w36 * w232;
+    let w234 = w231 - w233;
+    let w235 = w30 * w0;
+    let w236 = w31 * w235;
+    let w237 = w234 - w236;
+    let w238 = w25 * w0;
+    let w239 = w26 * w238;
+    let w240 = w237 - w239;
+    let w241 = w20 * w0;
+    let w242 = w21 * w241;
+    let w243 = w240 - w242;
+    let w244 = w15 * w0;
+    let w245 = w16 * w244;
+    let w246 = w243 - w245;
+    let w247 = w7 * w0;
+    let w248 = w8 * w247;
+    let w249 = w246 - w248;
+    let w250 = w4 * w0;
+    let w251 = w249 + w250;
+    let w252 = w215 * w251;
+    let w253 = w214.sin();
+    let w254 = w51 * w180;
+    let w255: f64 = 0.5;
+    let w256 = w255 * w0;
+    let w257 = w51 * w256;
+    let w258 = w254 + w257;
+    let w259 = w253 * w258;
+    let w260 = w252 - w259;
+    let w261 = w260 * w1;
+    let w262 = w253 * w180;
+    let w263 = w253 * w247;
+    let w264 = w262 + w263;
+    let w265 = w264 * w59;
+    let w266 = w261 - w265;
+    let w267 = w253 * w244;
+    let w268 = w262 + w267;
+    let w269 = w268 * w66;
+    let w270 = w266 - w269;
+    let w271 = w253 * w241;
+    let w272 = w262 + w271;
+    let w273 = w272 * w73;
+    let w274 = w270 - w273;
+    let w275 = w253 * w238;
+    let w276 = w262 + w275;
+    let w277 = w276 * w80;
+    let w278 = w274 - w277;
+    let w279 = w253 * w235;
+    let w280 = w262 + w279;
+    let w281 = w280 * w87;
+    let w282 = w278 - w281;
+    let w283 = w253 * w232;
+    let w284 = w262 + w283;
+    let w285 = w284 * w94;
+    let w286 = w282 - w285;
+    let w287 = w253 * w229;
+    let w288 = w262 + w287;
+    let w289 = w288 * w101;
+    let w290 = w286 - w289;
+    let w291 = w253 * w226;
+    let w292 = w262 + w291;
+    let w293 = w292 * w108;
+    let w294 = w290 - w293;
+    let w295 = w218 * w294;
+    let w296 = w222 - w295;
+    let o0 = w296; // kinetic
+    let w297 = p[8]; // g
+    let w298 = w4 * w253;
+    let w299 = w51 * w215;
+    let w300 = w255 * w299;
+    let w301 = w298 + w300;
+    let w302 = w8 * w253;
+    let w303 = w7 * w302;
+    let w304 = w301 - w303;
+    let w305 = w16 * w253;
+    let w306 = w15 * w305;
+    let w307 = w304 - w306;
+    let w308 = w21 * w253;
+    let w309 = w20 * w308;
+    let w310 = w307 - w309;
+    let w311 = w26 * w253;
+    let w312 = w25 * w311;
+    let w313 = w310 - w312;
+    let w314 = w31 * w253;
+    let w315 = w30 * w314;
+    let w316 = w313 - w315;
+    let w317 = w36 * w253;
+    let w318 = w35 * w317;
+    let w319 = w316 - w318;
+    let w320 = w41 * w253;
+    let w321 = w40 * w320;
+    let w322 = w319 - w321;
+    let w323 = w46 * w253;
+    let w324 = w45 * w323;
+    let w325 = w322 - w324;
+    let w326 = w0 * w325;
+    let w327 = w197 * w253;
+    let w328 = w299 - w327;
+    let w329 = w180 * w328;
+    let w330 = w326 + w329;
+    let w331 = w211 * w298;
+    let w332 = w330 + w331;
+    let w333 = y[1]; // v
+    let w334 = w333 + w298;
+    let w335 = w212 * w334;
+    let w336 = w332 - w335;
+    let w337 = w297 * w336;
+    let o1 = w337; // gravity
+    let w338: f64 = 3.0905908420815478;
+    let w339 = p[2]; // ei
+    let w340 = w51 * w51;
+    let w341 = w51 * w340;
+    let w342 = w339 / w341;
+    let w343 = w338 * w342;
+    let w344 = w8 * w8;
+    let w345 = w343 * w344;
+    let w346: f64 = 121.37970462834276;
+    let w347 = w346 * w342;
+    let w348 = w16 * w16;
+    let w349 = w347 * w348;
+    let w350 = w345 + w349;
+    let w351: f64 = 951.6365665978627;
+    let w352 = w351 * w342;
+    let w353 = w21 * w21;
+    let w354 = w352 * w353;
+    let w355 = w350 + w354;
+    let w356: f64 = 3654.318326279695;
+    let w357 = w356 * w342;
+    let w358 = w26 * w26;
+    let w359 = w357 * w358;
+    let w360 = w355 + w359;
+    let w361: f64 = 9985.957944627367;
+    let w362 = w361 * w342;
+    let w363 = w31 * w31;
+    let w364 = w362 * w363;
+    let w365 = w360 + w364;
+    let w366: f64 = 22283.85126785581;
+    let w367 = w366 * w342;
+    let w368 = w36 * w36;
+    let w369 = w367 * w368;
+    let w370 = w365 + w369;
+    let w371: f64 = 43470.32891402643;
+    let w372 = w371 * w342;
+    let w373 = w41 * w41;
+    let w374 = w372 * w373;
+    let w375 = w370 + w374;
+    let w376: f64 = 77052.1130234128;
+    let w377 = w376 * w342;
+    let w378 = w46 * w46;
+    let w379 = w377 * w378;
+    let w380 = w375 + w379;
+    let w381 = w380 / w203;
+    let o2 = w381; // strain
+    let w382 = w215 * w258;
+    let w383 = w224 - w223;
+    let w384 = w383 + w227;
+    let w385 = w384 + w230;
+    let w386 = w385 + w233;
+    let w387 = w386 + w236;
+    let w388 = w387 + w239;
+    let w389 = w388 + w242;
+    let w390 = w389 + w245;
+    let w391 = w390 + w248;
+    let w392 = w391 - w250;
+    let w393 = w253 * w392;
+    let w394 = w382 - w393;
+    let w395 = w394 * w1;
+    let w396 = w215 * w180;
+    let w397 = w215 * w247;
+    let w398 = w396 + w397;
+    let w399 = w398 * w59;
+    let w400 = w395 + w399;
+    let w401 = w215 * w244;
+    let w402 = w396 + w401;
+    let w403 = w402 * w66;
+    let w404 = w400 + w403;
+    let w405 = w215 * w241;
+    let w406 = w396 + w405;
+    let w407 = w406 * w73;
+    let w408 = w404 + w407;
+    let w409 = w215 * w238;
+    let w410 = w396 + w409;
+    let w411 = w410 * w80;
+    let w412 = w408 + w411;
+    let w413 = w215 * w235;
+    let w414 = w396 + w413;
+    let w415 = w414 * w87;
+    let w416 = w412 + w415;
+    let w417 = w215 * w232;
+    let w418 = w396 + w417;
+    let w419 = w418 * w94;
+    let w420 = w416 + w419;
+    let w421 = w215 * w229;
+    let w422 = w396 + w421;
+    let w423 = w422 * w101;
+    let w424 = w420 + w423;
+    let w425 = w215 * w226;
+    let w426 = w396 + w425;
+    let w427 = w426 * w108;
+    let w428 = w424 + w427;
+    let o3 = w428; // momentum_x
+    [o0, o1, o2, o3]
+}
+
+/// Indices of the elements of the output `e` of [`free_energy()`].
+pub mod free_energy {
+    /// Index of `kinetic`.
+    pub const KINETIC: usize = 0;
+    /// Index of `gravity`.
+    pub const GRAVITY: usize = 1;
+    /// Index of `strain`.
+    pub const STRAIN: usize = 2;
+    /// Index of `momentum_x`.
+    pub const MOMENTUM_X: usize = 3;
+
+    /// Indices of the elements of input `y` of [`free_energy()`](super::free_energy()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+        /// Index of `u_4`.
+        pub const U_4: usize = 5;
+        /// Index of `u_5`.
+        pub const U_5: usize = 6;
+        /// Index of `u_6`.
+        pub const U_6: usize = 7;
+        /// Index of `u_7`.
+        pub const U_7: usize = 8;
+        /// Index of `u_8`.
+        pub const U_8: usize = 9;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 10;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 11;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 12;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 13;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 14;
+        /// Index of `u_dot_4`.
+        pub const U_DOT_4: usize = 15;
+        /// Index of `u_dot_5`.
+        pub const U_DOT_5: usize = 16;
+        /// Index of `u_dot_6`.
+        pub const U_DOT_6: usize = 17;
+        /// Index of `u_dot_7`.
+        pub const U_DOT_7: usize = 18;
+        /// Index of `u_dot_8`.
+        pub const U_DOT_8: usize = 19;
+    }
+}
+
+/// Power terms: dE/dt = ground - damping + Q_theta theta' + Q_v v', with ground = -ug P_x and damping u'^T C u'. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 20]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `u_3`, `u_4`, `u_5`, `u_6`, `u_7`, `u_8`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`, `u_dot_4`, `u_dot_5`, `u_dot_6`, `u_dot_7`, `u_dot_8`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_1_4`, `c_1_5`, `c_1_6`, `c_1_7`, `c_1_8`, `c_2_2`, `c_2_3`, `c_2_4`, `c_2_5`, `c_2_6`, `c_2_7`, `c_2_8`, `c_3_3`, `c_3_4`, `c_3_5`, `c_3_6`, `c_3_7`, `c_3_8`, `c_4_4`, `c_4_5`, `c_4_6`, `c_4_7`, `c_4_8`, `c_5_5`, `c_5_6`, `c_5_7`, `c_5_8`, `c_6_6`, `c_6_7`, `c_6_8`, `c_7_7`, `c_7_8`, `c_8_8`
+///
+/// # Output
+///
+/// `w: [f64; 2]`: power terms — `ground`, `damping`
+///
+/// Operations: 218 (116 mul, 95 add, 4 sub, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_power(y: &[f64; 20], ug: f64, s: f64, p: &Params) -> [f64; 2] {
+    let w0 = ug; // ug
+    let w1 = y[0]; // theta
+    let w2 = w1.cos();
+    let w3 = p[0]; // h
+    let w4 = p[3]; // m
+    let w5 = w3 * w4;
+    let w6: f64 = 0.5;
+    let w7 = p[4]; // m_c
+    let w8 = w6 * w7;
+    let w9 = w3 * w8;
+    let w10 = w5 + w9;
+    let w11 = w2 * w10;
+    let w12 = w1.sin();
+    let w13 = y[2]; // u_1
+    let w14 = y[3]; // u_2
+    let w15 = w13 + w14;
+    let w16 = y[4]; // u_3
+    let w17 = w15 + w16;
+    let w18 = y[5]; // u_4
+    let w19 = w17 + w18;
+    let w20 = y[6]; // u_5
+    let w21 = w19 + w20;
+    let w22 = y[7]; // u_6
+    let w23 = w21 + w22;
+    let w24 = y[8]; // u_7
+    let w25 = w23 + w24;
+    let w26 = y[9]; // u_8
+    let w27 = w25 + w26;
+    let w28 = s; // s
+    let w29 = p[1]; // b
+    let w30 = w28 * w29;
+    let w31 = w27 - w30;
+    let w32 = w31 * w4;
+    let w33 = p[5]; // m_b
+    let w34 = w30 * w33;
+    let w35 = w32 - w34;
+    let w36: f64 = -0.04244131816301539;
+    let w37 = w36 * w7;
+    let w38 = w26 * w37;
+    let w39 = w35 + w38;
+    let w40: f64 = 0.048970751581497045;
+    let w41 = w40 * w7;
+    let w42 = w24 * w41;
+    let w43 = w39 + w42;
+    let w44: f64 = -0.0578745285967165;
+    let w45 = w44 * w7;
+    let w46 = w22 * w45;
+    let w47 = w43 + w46;
+    let w48: f64 = 0.07073542044968367;
+    let w49 = w48 * w7;
+    let w50 = w20 * w49;
+    let w51 = w47 + w50;
+    let w52: f64 = -0.09094901081852429;
+    let w53 = w52 * w7;
+    let w54 = w18 * w53;
+    let w55 = w51 + w54;
+    let w56: f64 = 0.12721264843305286;
+    let w57 = w56 * w7;
+    let w58 = w16 * w57;
+    let w59 = w55 + w58;
+    let w60: f64 = -0.21696794755535964;
+    let w61 = w60 * w7;
+    let w62 = w14 * w61;
+    let w63 = w59 + w62;
+    let w64: f64 = 0.3914958780198129;
+    let w65 = w64 * w7;
+    let w66 = w13 * w65;
+    let w67 = w63 + w66;
+    let w68 = w30 * w7;
+    let w69 = w67 - w68;
+    let w70 = w12 * w69;
+    let w71 = w11 - w70;
+    let w72 = y[10]; // theta_dot
+    let w73 = w71 * w72;
+    let w74 = w2 * w4;
+    let w75 = w2 * w65;
+    let w76 = w74 + w75;
+    let w77 = y[12]; // u_dot_1
+    let w78 = w76 * w77;
+    let w79 = w73 + w78;
+    let w80 = w2 * w61;
+    let w81 = w74 + w80;
+    let w82 = y[13]; // u_dot_2
+    let w83 = w81 * w82;
+    let w84 = w79 + w83;
+    let w85 = w2 * w57;
+    let w86 = w74 + w85;
+    let w87 = y[14]; // u_dot_3
+    let w88 = w86 * w87;
+    let w89 = w84 + w88;
+    let w90 = w2 * w53;
+    let w91 = w74 + w90;
+    let w92 = y[15]; // u_dot_4
+    let w93 = w91 * w92;
+    let w94 = w89 + w93;
+    let w95 = w2 * w49;
+    let w96 = w74 + w95;
+    let w97 = y[16]; // u_dot_5
+    let w98 = w96 * w97;
+    let w99 = w94 + w98;
+    let w100 = w2 * w45;
+    let w101 = w74 + w100;
+    let w102 = y[17]; // u_dot_6
+    let w103 = w101 * w102;
+    let w104 = w99 + w103;
+    let w105 = w2 * w41;
+    let w106 = w74 + w105;
+    let w107 = y[18]; // u_dot_7
+    let w108 = w106 * w107;
+    let w109 = w104 + w108;
+    let w110 = w2 * w37;
+    let w111 = w74 + w110;
+    let w112 = y[19]; // u_dot_8
+    let w113 = w111 * w112;
+    let w114 = w109 + w113;
+    let w115 = w0 * w114;
+    let w116 = -w115;
+    let o0 = w116; // ground
+    let w117 = p[9]; // c_1_1
+    let w118 = w117 * w77;
+    let w119 = p[10]; // c_1_2
+    let w120 = w119 * w82;
+    let w121 = w118 + w120;
+    let w122 = p[11]; // c_1_3
+    let w123 = w122 * w87;
+    let w124 = w121 + w123;
+    let w125 = p[12]; // c_1_4
+    let w126 = w125 * w92;
+    let w127 = w124 + w126;
+    let w128 = p[13]; // c_1_5
+    let w129 = w128 * w97;
+    let w130 = w127 + w129;
+    let w131 = p[14]; // c_1_6
+    let w132 = w131 * w102;
+    let w133 = w130 + w132;
+    let w134 = p[15]; // c_1_7
+    let w135 = w134 * w107;
+    let w136 = w133 + w135;
+    let w137 = p[16]; // c_1_8
+    let w138 = w137 * w112;
+    let w139 = w136 + w138;
+    let w140 = w139 * w77;
+    let w141 = w119 * w77;
+    let w142 = p[17]; // c_2_2
+    let w143 = w142 * w82;
+    let w144 = w141 + w143;
+    let w145 = p[18]; // c_2_3
+    let w146 = w145 * w87;
+    let w147 = w144 + w146;
+    let w148 = p[19]; // c_2_4
+    let w149 = w148 * w92;
+    let w150 = w147 + w149;
+    let w151 = p[20]; // c_2_5
+    let w152 = w151 * w97;
+    let w153 = w150 + w152;
+    let w154 = p[21]; // c_2_6
+    let w155 = w154 * w102;
+    let w156 = w153 + w155;
+    let w157 = p[22]; // c_2_7
+    let w158 = w157 * w107;
+    let w159 = w156 + w158;
+    let w160 = p[23]; // c_2_8
+    let w161 = w160 * w112;
+    let w162 = w159 + w161;
+    let w163 = w162 * w82;
+    let w164 = w140 + w163;
+    let w165 = w122 * w77;
+    let w166 = w145 * w82;
+    let w167 = w165 + w166;
+    let w168 = p[24]; // c_3_3
+    let w169 = w168 * w87;
+    let w170 = w167 + w169;
+    let w171 = p[25]; // c_3_4
+    let w172 = w171 * w92;
+    let w173 = w170 + w172;
+    let w174 = p[26]; // c_3_5
+    let w175 = w174 * w97;
+    let w176 = w173 + w175;
+    let w177 = p[27]; // c_3_6
+    let w178 = w177 * w102;
+    let w179 = w176 + w178;
+    let w180 = p[28]; // c_3_7
+    let w181 = w180 * w107;
+    let w182 = w179 + w181;
+    let w183 = p[29]; // c_3_8
+    let w184 = w183 * w112;
+    let w185 = w182 + w184;
+    let w186 = w185 * w87;
+    let w187 = w164 + w186;
+    let w188 = w125 * w77;
+    let w189 = w148 * w82;
+    let w190 = w188 + w189;
+    let w191 = w171 * w87;
+    let w192 = w190 + w191;
+    let w193 = p[30]; // c_4_4
+    let w194 = w193 * w92;
+    let w195 = w192 + w194;
+    let w196 = p[31]; // c_4_5
+    let w197 = w196 * w97;
+    let w198 = w195 + w197;
+    let w199 = p[32]; // c_4_6
+    let w200 = w199 * w102;
+    let w201 = w198 + w200;
+    let w202 = p[33]; // c_4_7
+    let w203 = w202 * w107;
+    let w204 = w201 + w203;
+    let w205 = p[34]; // c_4_8
+    let w206 = w205 * w112;
+    let w207 = w204 + w206;
+    let w208 = w207 * w92;
+    let w209 = w187 + w208;
+    let w210 = w128 * w77;
+    let w211 = w151 * w82;
+    let w212 = w210 + w211;
+    let w213 = w174 * w87;
+    let w214 = w212 + w213;
+    let w215 = w196 * w92;
+    let w216 = w214 + w215;
+    let w217 = p[35]; // c_5_5
+    let w218 = w217 * w97;
+    let w219 = w216 + w218;
+    let w220 = p[36]; // c_5_6
+    let w221 = w220 * w102;
+    let w222 = w219 + w221;
+    let w223 = p[37]; // c_5_7
+    let w224 = w223 * w107;
+    let w225 = w222 + w224;
+    let w226 = p[38]; // c_5_8
+    let w227 = w226 * w112;
+    let w228 = w225 + w227;
+    let w229 = w228 * w97;
+    let w230 = w209 + w229;
+    let w231 = w131 * w77;
+    let w232 = w154 * w82;
+    let w233 = w231 + w232;
+    let w234 = w177 * w87;
+    let w235 = w233 + w234;
+    let w236 = w199 * w92;
+    let w237 = w235 + w236;
+    let w238 = w220 * w97;
+    let w239 = w237 + w238;
+    let w240 = p[39]; // c_6_6
+    let w241 = w240 * w102;
+    let w242 = w239 + w241;
+    let w243 = p[40]; // c_6_7
+    let w244 = w243 * w107;
+    let w245 = w242 + w244;
+    let w246 = p[41]; // c_6_8
+    let w247 = w246 * w112;
+    let w248 = w245 + w247;
+    let w249 = w248 * w102;
+    let w250 = w230 + w249;
+    let w251 = w134 * w77;
+    let w252 = w157 * w82;
+    let w253 = w251 + w252;
+    let w254 = w180 * w87;
+    let w255 = w253 + w254;
+    let w256 = w202 * w92;
+    let w257 = w255 + w256;
+    let w258 = w223 * w97;
+    let w259 = w257 + w258;
+    let w260 = w243 * w102;
+    let w261 = w259 + w260;
+    let w262 = p[42]; // c_7_7
+    let w263 = w262 * w107;
+    let w264 = w261 + w263;
+    let w265 = p[43]; // c_7_8
+    let w266 = w265 * w112;
+    let w267 = w264 + w266;
+    let w268 = w267 * w107;
+    let w269 = w250 + w268;
+    let w270 = w137 * w77;
+    let w271 = w160 * w82;
+    let w272 = w270 + w271;
+    let w273 = w183 * w87;
+    let w274 = w272 + w273;
+    let w275 = w205 * w92;
+    let w276 = w274 + w275;
+    let w277 = w226 * w97;
+    let w278 = w276 + w277;
+    let w279 = w246 * w102;
+    let w280 = w278 + w279;
+    let w281 = w265 * w107;
+    let w282 = w280 + w281;
+    let w283 = p[44]; // c_8_8
+    let w284 = w283 * w112;
+    let w285 = w282 + w284;
+    let w286 = w285 * w112;
+    let w287 = w269 + w286;
+    let o1 = w287; // damping
+    [o0, o1]
+}
+
+/// Indices of the elements of the output `w` of [`free_power()`].
+pub mod free_power {
+    /// Index of `ground`.
+    pub const GROUND: usize = 0;
+    /// Index of `damping`.
+    pub const DAMPING: usize = 1;
+
+    /// Indices of the elements of input `y` of [`free_power()`](super::free_power()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+        /// Index of `u_4`.
+        pub const U_4: usize = 5;
+        /// Index of `u_5`.
+        pub const U_5: usize = 6;
+        /// Index of `u_6`.
+        pub const U_6: usize = 7;
+        /// Index of `u_7`.
+        pub const U_7: usize = 8;
+        /// Index of `u_8`.
+        pub const U_8: usize = 9;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 10;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 11;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 12;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 13;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 14;
+        /// Index of `u_dot_4`.
+        pub const U_DOT_4: usize = 15;
+        /// Index of `u_dot_5`.
+        pub const U_DOT_5: usize = 16;
+        /// Index of `u_dot_6`.
+        pub const U_DOT_6: usize = 17;
+        /// Index of `u_dot_7`.
+        pub const U_DOT_7: usize = 18;
+        /// Index of `u_dot_8`.
+        pub const U_DOT_8: usize = 19;
+    }
+}
+
+/// Section forces at the column base and the ground's force on the body (the bed's resultant and the horizontal force that keeps the leaning corner in place), for the accelerations qdd. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded.
+///
+/// # Inputs
+///
+/// - `y: &[f64; 20]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `u_3`, `u_4`, `u_5`, `u_6`, `u_7`, `u_8`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`, `u_dot_4`, `u_dot_5`, `u_dot_6`, `u_dot_7`, `u_dot_8`
+/// - `qdd: &[f64; 10]`: accelerations [theta'', v'', u''] (from M q'' = F + Q_ground) — `theta_ddot`, `v_ddot`, `u_ddot_1`, `u_ddot_2`, `u_ddot_3`, `u_ddot_4`, `u_ddot_5`, `u_ddot_6`, `u_ddot_7`, `u_ddot_8`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_1_4`, `c_1_5`, `c_1_6`, `c_1_7`, `c_1_8`, `c_2_2`, `c_2_3`, `c_2_4`, `c_2_5`, `c_2_6`, `c_2_7`, `c_2_8`, `c_3_3`, `c_3_4`, `c_3_5`, `c_3_6`, `c_3_7`, `c_3_8`, `c_4_4`, `c_4_5`, `c_4_6`, `c_4_7`, `c_4_8`, `c_5_5`, `c_5_6`, `c_5_7`, `c_5_8`, `c_6_6`, `c_6_7`, `c_6_8`, `c_7_7`, `c_7_8`, `c_8_8`
+///
+/// # Output
+///
+/// `ff: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 314 (166 mul, 95 add, 46 sub, 2 sq, 2 twice, 1 cos, 1 div, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_forces(y: &[f64; 20], qdd: &[f64; 10], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[4]; // m_c
+    let w1: f64 = 0.3914958780198129;
+    let w2 = y[2]; // u_1
+    let w3 = ug; // ug
+    let w4 = y[0]; // theta
+    let w5 = w4.sin();
+    let w6 = w3 * w5;
+    let w7 = qdd[0]; // theta_ddot
+    let w8 = s; // s
+    let w9 = p[1]; // b
+    let w10 = w8 * w9;
+    let w11 = w7 * w10;
+    let w12 = w6 + w11;
+    let w13 = p[8]; // g
+    let w14 = w4.cos();
+    let w15 = w13 * w14;
+    let w16 = w12 + w15;
+    let w17 = qdd[1]; // v_ddot
+    let w18 = w14 * w7;
+    let w19 = y[10]; // theta_dot
+    let w20 = w19 * w19;
+    let w21 = w5 * w20;
+    let w22 = w18 - w21;
+    let w23 = w10 * w22;
+    let w24 = w17 + w23;
+    let w25 = w24 * w14;
+    let w26 = w16 - w25;
+    let w27 = w2 * w26;
+    let w28 = w1 * w27;
+    let w29: f64 = 0.5;
+    let w30 = p[0]; // h
+    let w31 = w20 * w10;
+    let w32 = w3 * w14;
+    let w33 = w31 + w32;
+    let w34 = w13 * w5;
+    let w35 = w33 - w34;
+    let w36 = w24 * w5;
+    let w37 = w35 + w36;
+    let w38 = w30 * w37;
+    let w39 = w29 * w38;
+    let w40 = w28 - w39;
+    let w41: f64 = -0.21696794755535964;
+    let w42 = y[3]; // u_2
+    let w43 = w42 * w26;
+    let w44 = w41 * w43;
+    let w45 = w40 + w44;
+    let w46: f64 = 0.12721264843305286;
+    let w47 = y[4]; // u_3
+    let w48 = w47 * w26;
+    let w49 = w46 * w48;
+    let w50 = w45 + w49;
+    let w51: f64 = -0.09094901081852429;
+    let w52 = y[5]; // u_4
+    let w53 = w52 * w26;
+    let w54 = w51 * w53;
+    let w55 = w50 + w54;
+    let w56: f64 = 0.07073542044968367;
+    let w57 = y[6]; // u_5
+    let w58 = w57 * w26;
+    let w59 = w56 * w58;
+    let w60 = w55 + w59;
+    let w61: f64 = -0.0578745285967165;
+    let w62 = y[7]; // u_6
+    let w63 = w62 * w26;
+    let w64 = w61 * w63;
+    let w65 = w60 + w64;
+    let w66: f64 = 0.048970751581497045;
+    let w67 = y[8]; // u_7
+    let w68 = w67 * w26;
+    let w69 = w66 * w68;
+    let w70 = w65 + w69;
+    let w71: f64 = -0.04244131816301539;
+    let w72 = y[9]; // u_8
+    let w73 = w72 * w26;
+    let w74 = w71 * w73;
+    let w75 = w70 + w74;
+    let w76: f64 = 0.16666666666666666;
+    let w77 = w7 * w30;
+    let w78 = 2.0 * w77;
+    let w79 = w30 * w78;
+    let w80 = w76 * w79;
+    let w81 = w75 - w80;
+    let w82: f64 = 0.2844128718549554;
+    let w83 = qdd[2]; // u_ddot_1
+    let w84 = w30 * w83;
+    let w85 = w82 * w84;
+    let w86 = w81 - w85;
+    let w87: f64 = -0.04538339344319348;
+    let w88 = qdd[3]; // u_ddot_2
+    let w89 = w30 * w88;
+    let w90 = w87 * w89;
+    let w91 = w86 - w90;
+    let w92: f64 = 0.016208187184872217;
+    let w93 = qdd[4]; // u_ddot_3
+    let w94 = w30 * w93;
+    let w95 = w92 * w94;
+    let w96 = w91 - w95;
+    let w97: f64 = -0.008271167510425316;
+    let w98 = qdd[5]; // u_ddot_4
+    let w99 = w30 * w98;
+    let w100 = w97 * w99;
+    let w101 = w96 - w100;
+    let w102: f64 = 0.0050035142152869685;
+    let w103 = qdd[6]; // u_ddot_5
+    let w104 = w30 * w103;
+    let w105 = w102 * w104;
+    let w106 = w101 - w105;
+    let w107: f64 = -0.00334946064056702;
+    let w108 = qdd[7]; // u_ddot_6
+    let w109 = w30 * w108;
+    let w110 = w107 * w109;
+    let w111 = w106 - w110;
+    let w112: f64 = 0.002398134523443049;
+    let w113 = qdd[8]; // u_ddot_7
+    let w114 = w30 * w113;
+    let w115 = w112 * w114;
+    let w116 = w111 - w115;
+    let w117: f64 = -0.0018012654869927834;
+    let w118 = qdd[9]; // u_ddot_8
+    let w119 = w30 * w118;
+    let w120 = w117 * w119;
+    let w121 = w116 - w120;
+    let w122: f64 = 0.125;
+    let w123 = 2.0 * w19;
+    let w124 = y[12]; // u_dot_1
+    let w125 = w123 * w124;
+    let w126 = w125 * w2;
+    let w127 = w7 * w2;
+    let w128 = w2 * w127;
+    let w129 = w126 + w128;
+    let w130 = w127 + w125;
+    let w131 = w2 * w130;
+    let w132 = w129 + w131;
+    let w133 = w122 * w132;
+    let w134 = w121 - w133;
+    let w135 = y[13]; // u_dot_2
+    let w136 = w123 * w135;
+    let w137 = w136 * w42;
+    let w138 = w7 * w42;
+    let w139 = w42 * w138;
+    let w140 = w137 + w139;
+    let w141 = w138 + w136;
+    let w142 = w42 * w141;
+    let w143 = w140 + w142;
+    let w144 = w122 * w143;
+    let w145 = w134 - w144;
+    let w146 = y[14]; // u_dot_3
+    let w147 = w123 * w146;
+    let w148 = w147 * w47;
+    let w149 = w7 * w47;
+    let w150 = w47 * w149;
+    let w151 = w148 + w150;
+    let w152 = w149 + w147;
+    let w153 = w47 * w152;
+    let w154 = w151 + w153;
+    let w155 = w122 * w154;
+    let w156 = w145 - w155;
+    let w157 = y[15]; // u_dot_4
+    let w158 = w123 * w157;
+    let w159 = w158 * w52;
+    let w160 = w7 * w52;
+    let w161 = w52 * w160;
+    let w162 = w159 + w161;
+    let w163 = w160 + w158;
+    let w164 = w52 * w163;
+    let w165 = w162 + w164;
+    let w166 = w122 * w165;
+    let w167 = w156 - w166;
+    let w168 = y[16]; // u_dot_5
+    let w169 = w123 * w168;
+    let w170 = w169 * w57;
+    let w171 = w7 * w57;
+    let w172 = w57 * w171;
+    let w173 = w170 + w172;
+    let w174 = w171 + w169;
+    let w175 = w57 * w174;
+    let w176 = w173 + w175;
+    let w177 = w122 * w176;
+    let w178 = w167 - w177;
+    let w179 = y[17]; // u_dot_6
+    let w180 = w123 * w179;
+    let w181 = w180 * w62;
+    let w182 = w7 * w62;
+    let w183 = w62 * w182;
+    let w184 = w181 + w183;
+    let w185 = w182 + w180;
+    let w186 = w62 * w185;
+    let w187 = w184 + w186;
+    let w188 = w122 * w187;
+    let w189 = w178 - w188;
+    let w190 = y[18]; // u_dot_7
+    let w191 = w123 * w190;
+    let w192 = w191 * w67;
+    let w193 = w7 * w67;
+    let w194 = w67 * w193;
+    let w195 = w192 + w194;
+    let w196 = w193 + w191;
+    let w197 = w67 * w196;
+    let w198 = w195 + w197;
+    let w199 = w122 * w198;
+    let w200 = w189 - w199;
+    let w201 = y[19]; // u_dot_8
+    let w202 = w123 * w201;
+    let w203 = w202 * w72;
+    let w204 = w7 * w72;
+    let w205 = w72 * w204;
+    let w206 = w203 + w205;
+    let w207 = w204 + w202;
+    let w208 = w72 * w207;
+    let w209 = w206 + w208;
+    let w210 = w122 * w209;
+    let w211 = w200 - w210;
+    let w212 = w0 * w211;
+    let w213 = p[3]; // m
+    let w214 = w2 + w42;
+    let w215 = w214 + w47;
+    let w216 = w215 + w52;
+    let w217 = w216 + w57;
+    let w218 = w217 + w62;
+    let w219 = w218 + w67;
+    let w220 = w219 + w72;
+    let w221 = w220 - w10;
+    let w222 = w7 * w221;
+    let w223 = w20 * w30;
+    let w224 = w222 + w223;
+    let w225 = w125 + w136;
+    let w226 = w225 + w147;
+    let w227 = w226 + w158;
+    let w228 = w227 + w169;
+    let w229 = w228 + w180;
+    let w230 = w229 + w191;
+    let w231 = w230 + w202;
+    let w232 = w224 + w231;
+    let w233 = w6 - w232;
+    let w234 = w233 + w15;
+    let w235 = w234 - w25;
+    let w236 = w220 * w235;
+    let w237 = w20 * w221;
+    let w238 = w77 - w237;
+    let w239 = w83 + w88;
+    let w240 = w239 + w93;
+    let w241 = w240 + w98;
+    let w242 = w241 + w103;
+    let w243 = w242 + w108;
+    let w244 = w243 + w113;
+    let w245 = w244 + w118;
+    let w246 = w238 + w245;
+    let w247 = w246 + w32;
+    let w248 = w247 - w34;
+    let w249 = w248 + w36;
+    let w250 = w30 * w249;
+    let w251 = w236 - w250;
+    let w252 = w213 * w251;
+    let w253 = w212 + w252;
+    let o0 = w253; // moment
+    let w254 = w30 * w7;
+    let w255 = w29 * w254;
+    let w256 = w37 + w255;
+    let w257 = w2 * w20;
+    let w258 = w83 - w257;
+    let w259 = w1 * w258;
+    let w260 = w256 + w259;
+    let w261 = w42 * w20;
+    let w262 = w88 - w261;
+    let w263 = w41 * w262;
+    let w264 = w260 + w263;
+    let w265 = w47 * w20;
+    let w266 = w93 - w265;
+    let w267 = w46 * w266;
+    let w268 = w264 + w267;
+    let w269 = w52 * w20;
+    let w270 = w98 - w269;
+    let w271 = w51 * w270;
+    let w272 = w268 + w271;
+    let w273 = w57 * w20;
+    let w274 = w103 - w273;
+    let w275 = w56 * w274;
+    let w276 = w272 + w275;
+    let w277 = w62 * w20;
+    let w278 = w108 - w277;
+    let w279 = w61 * w278;
+    let w280 = w276 + w279;
+    let w281 = w67 * w20;
+    let w282 = w113 - w281;
+    let w283 = w66 * w282;
+    let w284 = w280 + w283;
+    let w285 = w72 * w20;
+    let w286 = w118 - w285;
+    let w287 = w71 * w286;
+    let w288 = w284 + w287;
+    let w289 = w0 * w288;
+    let w290 = w213 * w249;
+    let w291 = w289 + w290;
+    let o1 = w291; // shear
+    let w292 = w30 * w20;
+    let w293 = w29 * w292;
+    let w294 = w26 - w293;
+    let w295 = w2 * w7;
+    let w296 = w125 + w295;
+    let w297 = w1 * w296;
+    let w298 = w294 - w297;
+    let w299 = w42 * w7;
+    let w300 = w136 + w299;
+    let w301 = w41 * w300;
+    let w302 = w298 - w301;
+    let w303 = w47 * w7;
+    let w304 = w147 + w303;
+    let w305 = w46 * w304;
+    let w306 = w302 - w305;
+    let w307 = w52 * w7;
+    let w308 = w158 + w307;
+    let w309 = w51 * w308;
+    let w310 = w306 - w309;
+    let w311 = w57 * w7;
+    let w312 = w169 + w311;
+    let w313 = w56 * w312;
+    let w314 = w310 - w313;
+    let w315 = w62 * w7;
+    let w316 = w180 + w315;
+    let w317 = w61 * w316;
+    let w318 = w314 - w317;
+    let w319 = w67 * w7;
+    let w320 = w191 + w319;
+    let w321 = w66 * w320;
+    let w322 = w318 - w321;
+    let w323 = w72 * w7;
+    let w324 = w202 + w323;
+    let w325 = w71 * w324;
+    let w326 = w322 - w325;
+    let w327 = w0 * w326;
+    let w328 = w213 * w235;
+    let w329 = w327 + w328;
+    let o2 = w329; // axial
+    let w330: f64 = 3.5160152685001513;
+    let w331 = p[2]; // ei
+    let w332 = w30 * w30;
+    let w333 = w331 / w332;
+    let w334 = w330 * w333;
+    let w335 = w334 * w2;
+    let w336: f64 = -22.03449156466677;
+    let w337 = w336 * w333;
+    let w338 = w337 * w42;
+    let w339 = w335 + w338;
+    let w340: f64 = 61.697214413549105;
+    let w341 = w340 * w333;
+    let w342 = w341 * w47;
+    let w343 = w339 + w342;
+    let w344: f64 = -120.90191605230572;
+    let w345 = w344 * w333;
+    let w346 = w345 * w52;
+    let w347 = w343 + w346;
+    let w348: f64 = 199.85953011680346;
+    let w349 = w348 * w333;
+    let w350 = w349 * w57;
+    let w351 = w347 + w350;
+    let w352: f64 = -298.5555309677301;
+    let w353 = w352 * w333;
+    let w354 = w353 * w62;
+    let w355 = w351 + w354;
+    let w356: f64 = 416.9907860566055;
+    let w357 = w356 * w333;
+    let w358 = w357 * w67;
+    let w359 = w355 + w358;
+    let w360: f64 = -555.1652475557627;
+    let w361 = w360 * w333;
+    let w362 = w361 * w72;
+    let w363 = w359 + w362;
+    let o3 = w363; // moment_elastic
+    let w364 = p[5]; // m_b
+    let w365 = w364 * w37;
+    let w366 = w291 + w365;
+    let w367 = w14 * w366;
+    let w368 = w11 + w6;
+    let w369 = w368 + w15;
+    let w370 = w369 - w25;
+    let w371 = w364 * w370;
+    let w372 = w329 + w371;
+    let w373 = w5 * w372;
+    let w374 = w367 + w373;
+    let o4 = w374; // reaction_h
+    let w375 = w14 * w372;
+    let w376 = w5 * w366;
+    let w377 = w375 - w376;
+    let o5 = w377; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `ff` of [`free_forces()`].
+pub mod free_forces {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `y` of [`free_forces()`](super::free_forces()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+        /// Index of `u_4`.
+        pub const U_4: usize = 5;
+        /// Index of `u_5`.
+        pub const U_5: usize = 6;
+        /// Index of `u_6`.
+        pub const U_6: usize = 7;
+        /// Index of `u_7`.
+        pub const U_7: usize = 8;
+        /// Index of `u_8`.
+        pub const U_8: usize = 9;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 10;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 11;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 12;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 13;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 14;
+        /// Index of `u_dot_4`.
+        pub const U_DOT_4: usize = 15;
+        /// Index of `u_dot_5`.
+        pub const U_DOT_5: usize = 16;
+        /// Index of `u_dot_6`.
+        pub const U_DOT_6: usize = 17;
+        /// Index of `u_dot_7`.
+        pub const U_DOT_7: usize = 18;
+        /// Index of `u_dot_8`.
+        pub const U_DOT_8: usize = 19;
+    }
+
+    /// Indices of the elements of input `qdd` of [`free_forces()`](super::free_forces()).
+    pub mod qdd {
+        /// Index of `theta_ddot`.
+        pub const THETA_DDOT: usize = 0;
+        /// Index of `v_ddot`.
+        pub const V_DDOT: usize = 1;
+        /// Index of `u_ddot_1`.
+        pub const U_DDOT_1: usize = 2;
+        /// Index of `u_ddot_2`.
+        pub const U_DDOT_2: usize = 3;
+        /// Index of `u_ddot_3`.
+        pub const U_DDOT_3: usize = 4;
+        /// Index of `u_ddot_4`.
+        pub const U_DDOT_4: usize = 5;
+        /// Index of `u_ddot_5`.
+        pub const U_DDOT_5: usize = 6;
+        /// Index of `u_ddot_6`.
+        pub const U_DDOT_6: usize = 7;
+        /// Index of `u_ddot_7`.
+        pub const U_DDOT_7: usize = 8;
+        /// Index of `u_ddot_8`.
+        pub const U_DDOT_8: usize = 9;
+    }
+}
+
 /// The full model on the first eight cantilever modes: eight deformation coordinates
 ///
 /// Type-level handle of this variant, implementing [`crate::Variant`].
@@ -9856,6 +12833,31 @@ impl crate::Variant for CantileverModes8 {
     #[inline]
     fn static_uplift(p: &Params) -> [f64; 12] {
         static_uplift(p)
+    }
+
+    #[inline]
+    fn free_mass_matrix(qf: &[f64; 10], s: f64, p: &Params) -> [f64; 55] {
+        free_mass_matrix(qf, s, p)
+    }
+
+    #[inline]
+    fn free_forcing(y: &[f64; 20], ug: f64, s: f64, p: &Params) -> [f64; 10] {
+        free_forcing(y, ug, s, p)
+    }
+
+    #[inline]
+    fn free_energy(y: &[f64; 20], s: f64, p: &Params) -> [f64; 4] {
+        free_energy(y, s, p)
+    }
+
+    #[inline]
+    fn free_power(y: &[f64; 20], ug: f64, s: f64, p: &Params) -> [f64; 2] {
+        free_power(y, ug, s, p)
+    }
+
+    #[inline]
+    fn free_forces(y: &[f64; 20], qdd: &[f64; 10], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+        free_forces(y, qdd, ug, s, p)
     }
 }
 
@@ -9999,6 +13001,55 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             };
             let p: &Params = (*p).try_into().ok()?;
             Some(static_uplift(p).to_vec())
+        }
+        "free_mass_matrix" => {
+            let [qf, s, p] = inputs else {
+                return None;
+            };
+            let qf: &[f64; 10] = (*qf).try_into().ok()?;
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_mass_matrix(qf, s, p).to_vec())
+        }
+        "free_forcing" => {
+            let [y, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 20] = (*y).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_forcing(y, ug, s, p).to_vec())
+        }
+        "free_energy" => {
+            let [y, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 20] = (*y).try_into().ok()?;
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_energy(y, s, p).to_vec())
+        }
+        "free_power" => {
+            let [y, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 20] = (*y).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_power(y, ug, s, p).to_vec())
+        }
+        "free_forces" => {
+            let [y, qdd, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 20] = (*y).try_into().ok()?;
+            let qdd: &[f64; 10] = (*qdd).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_forces(y, qdd, ug, s, p).to_vec())
         }
         _ => None,
     }

@@ -3285,6 +3285,1200 @@ pub mod static_uplift {
     pub const MOMENT_ELASTIC_UPLIFT: usize = 5;
 }
 
+/// Mass matrix M(q) over q = [theta, v, u_1..u_n], upper triangle row by row (symmetric positive definite; a rigid column's u row is the identity). On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `qf: &[f64; 4]`: configuration on compliant ground: rotation, settlement of the base centre (positive into the ground), deformation — `theta`, `v`, `u_1`, `u_2`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_2_2`
+///
+/// # Output
+///
+/// `m: [f64; 10]`: upper triangle of M — `m_t_t`, `m_t_v`, `m_t_u1`, `m_t_u2`, `m_v_v`, `m_v_u1`, `m_v_u2`, `m_u1_u1`, `m_u1_u2`, `m_u2_u2`
+///
+/// Operations: 116 (60 mul, 29 add, 14 twice, 10 sub, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_mass_matrix(qf: &[f64; 4], s: f64, p: &Params) -> [f64; 10] {
+    let w0 = s; // s
+    let w1 = p[1]; // b
+    let w2 = w0 * w1;
+    let w3 = qf[0]; // theta
+    let w4 = w3.cos();
+    let w5 = w2 * w4;
+    let w6: f64 = 0.5;
+    let w7 = p[4]; // m_c
+    let w8 = p[3]; // m
+    let w9 = w7 + w8;
+    let w10 = p[5]; // m_b
+    let w11 = w9 + w10;
+    let w12 = w6 * w11;
+    let w13 = 2.0 * w5;
+    let w14 = w12 * w13;
+    let w15 = w2 * w10;
+    let w16 = qf[2]; // u_1
+    let w17 = qf[3]; // u_2
+    let w18 = w16 + w17;
+    let w19 = w18 - w2;
+    let w20 = w19 * w8;
+    let w21 = w15 - w20;
+    let w22: f64 = 0.3333333333333333;
+    let w23 = w22 * w7;
+    let w24 = w17 * w23;
+    let w25 = w21 - w24;
+    let w26: f64 = 0.375;
+    let w27 = w26 * w7;
+    let w28 = w16 * w27;
+    let w29 = w25 - w28;
+    let w30 = w2 * w7;
+    let w31 = w29 + w30;
+    let w32 = w4 * w31;
+    let w33 = w3.sin();
+    let w34 = p[0]; // h
+    let w35 = w34 * w8;
+    let w36 = w6 * w7;
+    let w37 = w34 * w36;
+    let w38 = w35 + w37;
+    let w39 = w33 * w38;
+    let w40 = w32 - w39;
+    let w41 = w14 - w40;
+    let w42 = w5 * w41;
+    let w43 = w40 * w5;
+    let w44 = w42 - w43;
+    let w45 = p[6]; // i_bc
+    let w46 = w44 + w45;
+    let w47 = w6 * w8;
+    let w48 = 2.0 * w19;
+    let w49 = w47 * w48;
+    let w50 = w19 * w49;
+    let w51 = w46 + w50;
+    let w52 = 2.0 * w34;
+    let w53 = w47 * w52;
+    let w54 = w34 * w53;
+    let w55 = w51 + w54;
+    let w56: f64 = 0.05;
+    let w57 = w56 * w7;
+    let w58 = w17 * w57;
+    let w59: f64 = 0.10833333333333334;
+    let w60 = w59 * w7;
+    let w61 = w16 * w60;
+    let w62 = w58 + w61;
+    let w63 = 2.0 * w17;
+    let w64 = w62 * w63;
+    let w65 = w55 + w64;
+    let w66 = 2.0 * w62;
+    let w67 = w17 * w66;
+    let w68 = w65 + w67;
+    let w69: f64 = 0.05892857142857143;
+    let w70 = w69 * w7;
+    let w71 = w16 * w70;
+    let w72 = 2.0 * w16;
+    let w73 = w71 * w72;
+    let w74 = w68 + w73;
+    let w75 = 2.0 * w71;
+    let w76 = w16 * w75;
+    let w77 = w74 + w76;
+    let w78: f64 = 0.08333333333333333;
+    let w79 = w78 * w7;
+    let w80 = w34 * w79;
+    let w81 = w80 * w52;
+    let w82 = w77 + w81;
+    let w83 = 2.0 * w80;
+    let w84 = w34 * w83;
+    let w85 = w82 + w84;
+    let w86: f64 = 0.16666666666666666;
+    let w87 = w86 * w7;
+    let w88 = w17 * w87;
+    let w89 = -w2;
+    let w90 = 2.0 * w89;
+    let w91 = w88 * w90;
+    let w92 = w85 + w91;
+    let w93 = 2.0 * w88;
+    let w94 = w2 * w93;
+    let w95 = w92 - w94;
+    let w96: f64 = 0.1875;
+    let w97 = w96 * w7;
+    let w98 = w16 * w97;
+    let w99 = w98 * w90;
+    let w100 = w95 + w99;
+    let w101 = 2.0 * w98;
+    let w102 = w2 * w101;
+    let w103 = w100 - w102;
+    let w104 = 2.0 * w2;
+    let w105 = w36 * w104;
+    let w106 = w2 * w105;
+    let w107 = w103 + w106;
+    let o0 = w107; // m_t_t
+    let w108 = w5 * w11;
+    let w109 = w108 - w40;
+    let o1 = w109; // m_t_v
+    let w110 = w33 * w8;
+    let w111 = w33 * w27;
+    let w112 = w110 + w111;
+    let w113 = w5 * w112;
+    let w114 = w113 + w35;
+    let w115: f64 = 0.1375;
+    let w116 = w115 * w7;
+    let w117 = w34 * w116;
+    let w118 = 2.0 * w117;
+    let w119 = w114 + w118;
+    let o2 = w119; // m_t_u1
+    let w120 = w33 * w23;
+    let w121 = w110 + w120;
+    let w122 = w5 * w121;
+    let w123 = w122 + w35;
+    let w124: f64 = 0.125;
+    let w125 = w124 * w7;
+    let w126 = w34 * w125;
+    let w127 = 2.0 * w126;
+    let w128 = w123 + w127;
+    let o3 = w128; // m_t_u2
+    let o4 = w11; // m_v_v
+    let o5 = w112; // m_v_u1
+    let o6 = w121; // m_v_u2
+    let w129: f64 = 0.11785714285714285;
+    let w130 = w129 * w7;
+    let w131 = w8 + w130;
+    let w132 = w131 + w130;
+    let o7 = w132; // m_u1_u1
+    let w133: f64 = 0.21666666666666667;
+    let w134 = w133 * w7;
+    let w135 = w8 + w134;
+    let o8 = w135; // m_u1_u2
+    let w136: f64 = 0.1;
+    let w137 = w136 * w7;
+    let w138 = w8 + w137;
+    let w139 = w138 + w137;
+    let o9 = w139; // m_u2_u2
+    [o0, o1, o2, o3, o4, o5, o6, o7, o8, o9]
+}
+
+/// Indices of the elements of the output `m` of [`free_mass_matrix()`].
+pub mod free_mass_matrix {
+    /// Index of `m_t_t`.
+    pub const M_T_T: usize = 0;
+    /// Index of `m_t_v`.
+    pub const M_T_V: usize = 1;
+    /// Index of `m_t_u1`.
+    pub const M_T_U1: usize = 2;
+    /// Index of `m_t_u2`.
+    pub const M_T_U2: usize = 3;
+    /// Index of `m_v_v`.
+    pub const M_V_V: usize = 4;
+    /// Index of `m_v_u1`.
+    pub const M_V_U1: usize = 5;
+    /// Index of `m_v_u2`.
+    pub const M_V_U2: usize = 6;
+    /// Index of `m_u1_u1`.
+    pub const M_U1_U1: usize = 7;
+    /// Index of `m_u1_u2`.
+    pub const M_U1_U2: usize = 8;
+    /// Index of `m_u2_u2`.
+    pub const M_U2_U2: usize = 9;
+
+    /// Indices of the elements of input `qf` of [`free_mass_matrix()`](super::free_mass_matrix()).
+    pub mod qf {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+    }
+}
+
+/// Right-hand side F of M q'' = F + Q_ground without the ground: gravity, ground acceleration, stiffness, damping and velocity terms; Q_ground = [Q_theta, Q_v, 0..] from the ground's kernels. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 8]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_2_2`
+///
+/// # Output
+///
+/// `f: [f64; 4]`: generalised forces — `f_theta`, `f_v`, `f_u_1`, `f_u_2`
+///
+/// Operations: 298 (172 mul, 74 add, 30 sub, 16 twice, 2 neg, 1 cos, 1 div, 1 sin, 1 sq).
+#[inline]
+#[must_use]
+pub fn free_forcing(y: &[f64; 8], ug: f64, s: f64, p: &Params) -> [f64; 4] {
+    let w0 = y[0]; // theta
+    let w1 = w0.cos();
+    let w2 = s; // s
+    let w3 = p[1]; // b
+    let w4 = w2 * w3;
+    let w5 = p[4]; // m_c
+    let w6 = p[3]; // m
+    let w7 = w5 + w6;
+    let w8 = p[5]; // m_b
+    let w9 = w7 + w8;
+    let w10 = p[8]; // g
+    let w11 = w9 * w10;
+    let w12 = w4 * w11;
+    let w13 = w1 * w12;
+    let w14 = w0.sin();
+    let w15 = ug; // ug
+    let w16 = w8 * w15;
+    let w17 = w4 * w16;
+    let w18 = y[2]; // u_1
+    let w19 = y[3]; // u_2
+    let w20 = w18 + w19;
+    let w21 = w20 - w4;
+    let w22 = w6 * w15;
+    let w23 = w21 * w22;
+    let w24 = w17 - w23;
+    let w25: f64 = 0.3333333333333333;
+    let w26 = w5 * w15;
+    let w27 = w25 * w26;
+    let w28 = w19 * w27;
+    let w29 = w24 - w28;
+    let w30: f64 = 0.375;
+    let w31 = w30 * w26;
+    let w32 = w18 * w31;
+    let w33 = w29 - w32;
+    let w34 = w4 * w26;
+    let w35 = w33 + w34;
+    let w36 = p[0]; // h
+    let w37 = w6 * w10;
+    let w38 = w36 * w37;
+    let w39 = w35 - w38;
+    let w40: f64 = 0.5;
+    let w41 = w5 * w10;
+    let w42 = w40 * w41;
+    let w43 = w36 * w42;
+    let w44 = w39 - w43;
+    let w45 = w14 * w44;
+    let w46 = w13 - w45;
+    let w47 = w21 * w37;
+    let w48 = w36 * w22;
+    let w49 = w40 * w26;
+    let w50 = w36 * w49;
+    let w51 = w48 + w50;
+    let w52 = w8 * w10;
+    let w53 = w4 * w52;
+    let w54 = w51 + w53;
+    let w55 = w47 - w54;
+    let w56 = w25 * w41;
+    let w57 = w19 * w56;
+    let w58 = w55 + w57;
+    let w59 = w30 * w41;
+    let w60 = w18 * w59;
+    let w61 = w58 + w60;
+    let w62 = w4 * w41;
+    let w63 = w61 - w62;
+    let w64 = w25 * w5;
+    let w65 = y[7]; // u_dot_2
+    let w66 = y[5]; // v_dot
+    let w67 = w4 * w1;
+    let w68 = y[4]; // theta_dot
+    let w69 = w67 * w68;
+    let w70 = w66 + w69;
+    let w71 = w65 * w70;
+    let w72 = w64 * w71;
+    let w73 = w63 + w72;
+    let w74 = w30 * w5;
+    let w75 = y[6]; // u_dot_1
+    let w76 = w75 * w70;
+    let w77 = w74 * w76;
+    let w78 = w73 + w77;
+    let w79 = w71 + w76;
+    let w80 = w6 * w79;
+    let w81 = w78 + w80;
+    let w82 = w1 * w81;
+    let w83 = w46 + w82;
+    let w84 = w36 * w6;
+    let w85 = w40 * w5;
+    let w86 = w36 * w85;
+    let w87 = w84 + w86;
+    let w88 = w68 * w70;
+    let w89 = w87 * w88;
+    let w90 = w1 * w89;
+    let w91 = w83 + w90;
+    let w92 = w4 * w8;
+    let w93 = w21 * w6;
+    let w94 = w92 - w93;
+    let w95 = w19 * w64;
+    let w96 = w94 - w95;
+    let w97 = w18 * w74;
+    let w98 = w96 - w97;
+    let w99 = w4 * w5;
+    let w100 = w98 + w99;
+    let w101 = w100 * w88;
+    let w102 = w14 * w101;
+    let w103 = w91 + w102;
+    let w104 = 2.0 * w70;
+    let w105 = w40 * w9;
+    let w106 = w104 * w105;
+    let w107 = w1 * w100;
+    let w108 = w14 * w87;
+    let w109 = w107 - w108;
+    let w110 = w109 * w68;
+    let w111 = w14 * w6;
+    let w112 = w14 * w74;
+    let w113 = w111 + w112;
+    let w114 = w113 * w75;
+    let w115 = w110 - w114;
+    let w116 = w14 * w64;
+    let w117 = w111 + w116;
+    let w118 = w117 * w65;
+    let w119 = w115 - w118;
+    let w120 = w106 - w119;
+    let w121 = w68 * w120;
+    let w122 = w4 * w121;
+    let w123 = w14 * w122;
+    let w124 = w103 - w123;
+    let w125 = w4 * w14;
+    let w126 = w68 * w125;
+    let w127 = -w126;
+    let w128 = 2.0 * w127;
+    let w129 = w105 * w128;
+    let w130 = w100 * w14;
+    let w131 = w87 * w1;
+    let w132 = w130 + w131;
+    let w133 = w68 * w132;
+    let w134 = w6 * w1;
+    let w135 = w74 * w1;
+    let w136 = w134 + w135;
+    let w137 = w75 * w136;
+    let w138 = w133 + w137;
+    let w139 = w64 * w1;
+    let w140 = w134 + w139;
+    let w141 = w65 * w140;
+    let w142 = w138 + w141;
+    let w143 = w129 + w142;
+    let w144 = w67 * w143;
+    let w145 = w120 * w125;
+    let w146 = w144 - w145;
+    let w147 = w70 * w132;
+    let w148 = w109 * w126;
+    let w149 = w147 + w148;
+    let w150 = w146 + w149;
+    let w151 = w150 * w68;
+    let w152 = w6 + w74;
+    let w153 = w1 * w152;
+    let w154 = w68 * w153;
+    let w155 = w67 * w154;
+    let w156 = w70 * w153;
+    let w157 = w155 + w156;
+    let w158 = w68 * w21;
+    let w159 = 2.0 * w158;
+    let w160 = w40 * w6;
+    let w161 = w159 * w160;
+    let w162 = 2.0 * w68;
+    let w163 = w160 * w162;
+    let w164 = w21 * w163;
+    let w165 = w161 + w164;
+    let w166 = w157 + w165;
+    let w167 = w68 * w19;
+    let w168 = 2.0 * w167;
+    let w169: f64 = 0.10833333333333334;
+    let w170 = w169 * w5;
+    let w171 = w168 * w170;
+    let w172 = w166 + w171;
+    let w173 = w68 * w170;
+    let w174 = 2.0 * w173;
+    let w175 = w19 * w174;
+    let w176 = w172 + w175;
+    let w177: f64 = 0.05892857142857143;
+    let w178 = w177 * w5;
+    let w179 = w18 * w178;
+    let w180 = w179 * w162;
+    let w181 = w68 * w18;
+    let w182 = 2.0 * w181;
+    let w183 = w182 * w178;
+    let w184 = w180 + w183;
+    let w185 = w176 + w184;
+    let w186 = w68 * w179;
+    let w187 = 2.0 * w186;
+    let w188 = w68 * w178;
+    let w189 = 2.0 * w188;
+    let w190 = w18 * w189;
+    let w191 = w187 + w190;
+    let w192 = w185 + w191;
+    let w193 = w68 * w4;
+    let w194 = -w193;
+    let w195 = 2.0 * w194;
+    let w196: f64 = 0.1875;
+    let w197 = w196 * w5;
+    let w198 = w195 * w197;
+    let w199 = w192 + w198;
+    let w200 = w68 * w197;
+    let w201 = 2.0 * w200;
+    let w202 = w4 * w201;
+    let w203 = w199 - w202;
+    let w204 = w203 * w75;
+    let w205 = w151 + w204;
+    let w206 = w6 + w64;
+    let w207 = w1 * w206;
+    let w208 = w68 * w207;
+    let w209 = w67 * w208;
+    let w210 = w70 * w207;
+    let w211 = w209 + w210;
+    let w212 = w211 + w165;
+    let w213: f64 = 0.05;
+    let w214 = w213 * w5;
+    let w215 = w19 * w214;
+    let w216 = w18 * w170;
+    let w217 = w215 + w216;
+    let w218 = w217 * w162;
+    let w219 = w168 * w214;
+    let w220 = w218 + w219;
+    let w221 = w212 + w220;
+    let w222 = w68 * w217;
+    let w223 = 2.0 * w222;
+    let w224 = w68 * w214;
+    let w225 = 2.0 * w224;
+    let w226 = w19 * w225;
+    let w227 = w223 + w226;
+    let w228 = w221 + w227;
+    let w229: f64 = 0.16666666666666666;
+    let w230 = w229 * w5;
+    let w231 = w195 * w230;
+    let w232 = w228 + w231;
+    let w233 = w68 * w230;
+    let w234 = 2.0 * w233;
+    let w235 = w4 * w234;
+    let w236 = w232 - w235;
+    let w237 = w236 * w65;
+    let w238 = w205 + w237;
+    let w239 = w124 - w238;
+    let o0 = w239; // f_theta
+    let w240 = w143 * w68;
+    let w241 = w154 * w75;
+    let w242 = w240 + w241;
+    let w243 = w208 * w65;
+    let w244 = w242 + w243;
+    let w245 = w11 - w244;
+    let o1 = w245; // f_v
+    let w246: f64 = 6.0;
+    let w247 = p[2]; // ei
+    let w248 = w36 * w36;
+    let w249 = w36 * w248;
+    let w250 = w247 / w249;
+    let w251 = w246 * w250;
+    let w252: f64 = -0.5;
+    let w253 = w252 * w19;
+    let w254 = w251 * w253;
+    let w255 = w1 * w22;
+    let w256 = w1 * w31;
+    let w257 = w255 + w256;
+    let w258 = w254 - w257;
+    let w259 = 2.0 * w18;
+    let w260: f64 = -1.5;
+    let w261 = w260 * w250;
+    let w262 = w259 * w261;
+    let w263 = w258 + w262;
+    let w264 = w14 * w59;
+    let w265 = w263 + w264;
+    let w266 = w1 * w88;
+    let w267 = w74 * w266;
+    let w268 = w265 + w267;
+    let w269 = w14 * w37;
+    let w270 = w6 * w266;
+    let w271 = w269 + w270;
+    let w272 = w268 + w271;
+    let w273 = w68 * w161;
+    let w274 = w272 + w273;
+    let w275 = w68 * w168;
+    let w276 = w275 * w170;
+    let w277 = w274 + w276;
+    let w278 = w68 * w182;
+    let w279 = w278 * w178;
+    let w280 = w277 + w279;
+    let w281 = w68 * w187;
+    let w282 = w280 + w281;
+    let w283 = w68 * w195;
+    let w284 = w283 * w197;
+    let w285 = w282 + w284;
+    let w286 = w70 * w136;
+    let w287 = w113 * w126;
+    let w288 = w286 - w287;
+    let w289 = w288 * w68;
+    let w290 = w285 - w289;
+    let w291 = p[9]; // c_1_1
+    let w292 = w291 * w75;
+    let w293 = p[10]; // c_1_2
+    let w294 = w293 * w65;
+    let w295 = w292 + w294;
+    let w296 = w290 - w295;
+    let o2 = w296; // f_u_1
+    let w297 = w251 * w18;
+    let w298 = w252 * w297;
+    let w299 = w1 * w27;
+    let w300 = w255 + w299;
+    let w301 = w298 - w300;
+    let w302 = 2.0 * w19;
+    let w303: f64 = -2.0;
+    let w304 = w303 * w250;
+    let w305 = w302 * w304;
+    let w306 = w301 + w305;
+    let w307 = w14 * w56;
+    let w308 = w306 + w307;
+    let w309 = w64 * w266;
+    let w310 = w308 + w309;
+    let w311 = w310 + w271;
+    let w312 = w311 + w273;
+    let w313 = w275 * w214;
+    let w314 = w312 + w313;
+    let w315 = w68 * w223;
+    let w316 = w314 + w315;
+    let w317 = w283 * w230;
+    let w318 = w316 + w317;
+    let w319 = w70 * w140;
+    let w320 = w117 * w126;
+    let w321 = w319 - w320;
+    let w322 = w321 * w68;
+    let w323 = w318 - w322;
+    let w324 = w293 * w75;
+    let w325 = p[11]; // c_2_2
+    let w326 = w325 * w65;
+    let w327 = w324 + w326;
+    let w328 = w323 - w327;
+    let o3 = w328; // f_u_2
+    [o0, o1, o2, o3]
+}
+
+/// Indices of the elements of the output `f` of [`free_forcing()`].
+pub mod free_forcing {
+    /// Index of `f_theta`.
+    pub const F_THETA: usize = 0;
+    /// Index of `f_v`.
+    pub const F_V: usize = 1;
+    /// Index of `f_u_1`.
+    pub const F_U_1: usize = 2;
+    /// Index of `f_u_2`.
+    pub const F_U_2: usize = 3;
+
+    /// Indices of the elements of input `y` of [`free_forcing()`](super::free_forcing()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 4;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 5;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 6;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 7;
+    }
+}
+
+/// Kinetic energy, gravity (heights over the rest position of the leaning corner, the ground's surface) and strain potentials and horizontal momentum. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 8]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_2_2`
+///
+/// # Output
+///
+/// `e: [f64; 4]`: energies and momentum — `kinetic`, `gravity`, `strain`, `momentum_x`
+///
+/// Operations: 159 (85 mul, 37 add, 15 sub, 8 sq, 6 twice, 5 div, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_energy(y: &[f64; 8], s: f64, p: &Params) -> [f64; 4] {
+    let w0 = p[4]; // m_c
+    let w1 = y[4]; // theta_dot
+    let w2 = s; // s
+    let w3 = p[1]; // b
+    let w4 = w2 * w3;
+    let w5 = w1 * w4;
+    let w6 = w5 * w5;
+    let w7: f64 = 0.375;
+    let w8 = y[2]; // u_1
+    let w9 = -w5;
+    let w10 = 2.0 * w9;
+    let w11 = w1 * w10;
+    let w12 = w8 * w11;
+    let w13 = w7 * w12;
+    let w14 = w6 + w13;
+    let w15: f64 = 0.3333333333333333;
+    let w16 = y[3]; // u_2
+    let w17 = w16 * w11;
+    let w18 = w15 * w17;
+    let w19 = w14 + w18;
+    let w20: f64 = 0.16666666666666666;
+    let w21 = p[0]; // h
+    let w22 = w1 * w21;
+    let w23 = 2.0 * w22;
+    let w24 = w1 * w23;
+    let w25 = w21 * w24;
+    let w26 = w20 * w25;
+    let w27 = w19 + w26;
+    let w28: f64 = 0.275;
+    let w29 = y[6]; // u_dot_1
+    let w30 = 2.0 * w29;
+    let w31 = w1 * w30;
+    let w32 = w21 * w31;
+    let w33 = w28 * w32;
+    let w34 = w27 + w33;
+    let w35: f64 = 0.25;
+    let w36 = y[7]; // u_dot_2
+    let w37 = 2.0 * w36;
+    let w38 = w1 * w37;
+    let w39 = w21 * w38;
+    let w40 = w35 * w39;
+    let w41 = w34 + w40;
+    let w42: f64 = 0.11785714285714285;
+    let w43 = w1 * w8;
+    let w44 = 2.0 * w43;
+    let w45 = w1 * w44;
+    let w46 = w8 * w45;
+    let w47 = w29 * w30;
+    let w48 = w46 + w47;
+    let w49 = w42 * w48;
+    let w50 = w41 + w49;
+    let w51: f64 = 0.21666666666666667;
+    let w52 = w1 * w16;
+    let w53 = 2.0 * w52;
+    let w54 = w1 * w53;
+    let w55 = w8 * w54;
+    let w56 = w29 * w37;
+    let w57 = w55 + w56;
+    let w58 = w51 * w57;
+    let w59 = w50 + w58;
+    let w60: f64 = 0.1;
+    let w61 = w16 * w54;
+    let w62 = w36 * w37;
+    let w63 = w61 + w62;
+    let w64 = w60 * w63;
+    let w65 = w59 + w64;
+    let w66 = w0 * w65;
+    let w67 = p[3]; // m
+    let w68 = w29 + w36;
+    let w69 = w68 + w22;
+    let w70 = w69 * w69;
+    let w71 = w8 + w16;
+    let w72 = w71 - w4;
+    let w73 = w1 * w72;
+    let w74 = w73 * w73;
+    let w75 = w70 + w74;
+    let w76 = w67 * w75;
+    let w77 = w66 + w76;
+    let w78: f64 = 2.0;
+    let w79 = w77 / w78;
+    let w80 = p[6]; // i_bc
+    let w81 = w1 * w1;
+    let w82 = w80 * w81;
+    let w83 = w82 / w78;
+    let w84 = w79 + w83;
+    let w85 = w0 + w67;
+    let w86 = p[5]; // m_b
+    let w87 = w85 + w86;
+    let w88 = y[5]; // v_dot
+    let w89 = y[0]; // theta
+    let w90 = w89.cos();
+    let w91 = w4 * w90;
+    let w92 = w91 * w1;
+    let w93 = w88 + w92;
+    let w94 = w93 * w93;
+    let w95 = w87 * w94;
+    let w96 = w95 / w78;
+    let w97 = w84 + w96;
+    let w98 = w4 * w86;
+    let w99 = w72 * w67;
+    let w100 = w98 - w99;
+    let w101 = w15 * w0;
+    let w102 = w16 * w101;
+    let w103 = w100 - w102;
+    let w104 = w7 * w0;
+    let w105 = w8 * w104;
+    let w106 = w103 - w105;
+    let w107 = w4 * w0;
+    let w108 = w106 + w107;
+    let w109 = w90 * w108;
+    let w110 = w89.sin();
+    let w111 = w21 * w67;
+    let w112: f64 = 0.5;
+    let w113 = w112 * w0;
+    let w114 = w21 * w113;
+    let w115 = w111 + w114;
+    let w116 = w110 * w115;
+    let w117 = w109 - w116;
+    let w118 = w117 * w1;
+    let w119 = w110 * w67;
+    let w120 = w110 * w104;
+    let w121 = w119 + w120;
+    let w122 = w121 * w29;
+    let w123 = w118 - w122;
+    let w124 = w110 * w101;
+    let w125 = w119 + w124;
+    let w126 = w125 * w36;
+    let w127 = w123 - w126;
+    let w128 = w93 * w127;
+    let w129 = w97 - w128;
+    let o0 = w129; // kinetic
+    let w130 = p[8]; // g
+    let w131 = w4 * w110;
+    let w132 = w21 * w90;
+    let w133 = w112 * w132;
+    let w134 = w131 + w133;
+    let w135 = w8 * w110;
+    let w136 = w7 * w135;
+    let w137 = w134 - w136;
+    let w138 = w16 * w110;
+    let w139 = w15 * w138;
+    let w140 = w137 - w139;
+    let w141 = w0 * w140;
+    let w142 = w72 * w110;
+    let w143 = w132 - w142;
+    let w144 = w67 * w143;
+    let w145 = w141 + w144;
+    let w146 = w86 * w131;
+    let w147 = w145 + w146;
+    let w148 = y[1]; // v
+    let w149 = w148 + w131;
+    let w150 = w87 * w149;
+    let w151 = w147 - w150;
+    let w152 = w130 * w151;
+    let o1 = w152; // gravity
+    let w153: f64 = 3.0;
+    let w154 = p[2]; // ei
+    let w155 = w21 * w21;
+    let w156 = w21 * w155;
+    let w157 = w154 / w156;
+    let w158 = w153 * w157;
+    let w159 = w8 * w8;
+    let w160 = w158 * w159;
+    let w161: f64 = 4.0;
+    let w162 = w161 * w157;
+    let w163 = w16 * w16;
+    let w164 = w162 * w163;
+    let w165 = w160 + w164;
+    let w166: f64 = 6.0;
+    let w167 = w166 * w157;
+    let w168 = w167 * w8;
+    let w169 = w168 * w16;
+    let w170 = w165 + w169;
+    let w171 = w170 / w78;
+    let o2 = w171; // strain
+    let w172 = w90 * w115;
+    let w173 = w99 - w98;
+    let w174 = w173 + w102;
+    let w175 = w174 + w105;
+    let w176 = w175 - w107;
+    let w177 = w110 * w176;
+    let w178 = w172 - w177;
+    let w179 = w178 * w1;
+    let w180 = w90 * w67;
+    let w181 = w90 * w104;
+    let w182 = w180 + w181;
+    let w183 = w182 * w29;
+    let w184 = w179 + w183;
+    let w185 = w90 * w101;
+    let w186 = w180 + w185;
+    let w187 = w186 * w36;
+    let w188 = w184 + w187;
+    let o3 = w188; // momentum_x
+    [o0, o1, o2, o3]
+}
+
+/// Indices of the elements of the output `e` of [`free_energy()`].
+pub mod free_energy {
+    /// Index of `kinetic`.
+    pub const KINETIC: usize = 0;
+    /// Index of `gravity`.
+    pub const GRAVITY: usize = 1;
+    /// Index of `strain`.
+    pub const STRAIN: usize = 2;
+    /// Index of `momentum_x`.
+    pub const MOMENTUM_X: usize = 3;
+
+    /// Indices of the elements of input `y` of [`free_energy()`](super::free_energy()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 4;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 5;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 6;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 7;
+    }
+}
+
+/// Power terms: dE/dt = ground - damping + Q_theta theta' + Q_v v', with ground = -ug P_x and damping u'^T C u'. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 8]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_2_2`
+///
+/// # Output
+///
+/// `w: [f64; 2]`: power terms — `ground`, `damping`
+///
+/// Operations: 44 (26 mul, 11 add, 4 sub, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_power(y: &[f64; 8], ug: f64, s: f64, p: &Params) -> [f64; 2] {
+    let w0 = ug; // ug
+    let w1 = y[0]; // theta
+    let w2 = w1.cos();
+    let w3 = p[0]; // h
+    let w4 = p[3]; // m
+    let w5 = w3 * w4;
+    let w6: f64 = 0.5;
+    let w7 = p[4]; // m_c
+    let w8 = w6 * w7;
+    let w9 = w3 * w8;
+    let w10 = w5 + w9;
+    let w11 = w2 * w10;
+    let w12 = w1.sin();
+    let w13 = y[2]; // u_1
+    let w14 = y[3]; // u_2
+    let w15 = w13 + w14;
+    let w16 = s; // s
+    let w17 = p[1]; // b
+    let w18 = w16 * w17;
+    let w19 = w15 - w18;
+    let w20 = w19 * w4;
+    let w21 = p[5]; // m_b
+    let w22 = w18 * w21;
+    let w23 = w20 - w22;
+    let w24: f64 = 0.3333333333333333;
+    let w25 = w24 * w7;
+    let w26 = w14 * w25;
+    let w27 = w23 + w26;
+    let w28: f64 = 0.375;
+    let w29 = w28 * w7;
+    let w30 = w13 * w29;
+    let w31 = w27 + w30;
+    let w32 = w18 * w7;
+    let w33 = w31 - w32;
+    let w34 = w12 * w33;
+    let w35 = w11 - w34;
+    let w36 = y[4]; // theta_dot
+    let w37 = w35 * w36;
+    let w38 = w2 * w4;
+    let w39 = w2 * w29;
+    let w40 = w38 + w39;
+    let w41 = y[6]; // u_dot_1
+    let w42 = w40 * w41;
+    let w43 = w37 + w42;
+    let w44 = w2 * w25;
+    let w45 = w38 + w44;
+    let w46 = y[7]; // u_dot_2
+    let w47 = w45 * w46;
+    let w48 = w43 + w47;
+    let w49 = w0 * w48;
+    let w50 = -w49;
+    let o0 = w50; // ground
+    let w51 = p[9]; // c_1_1
+    let w52 = w51 * w41;
+    let w53 = p[10]; // c_1_2
+    let w54 = w53 * w46;
+    let w55 = w52 + w54;
+    let w56 = w55 * w41;
+    let w57 = w53 * w41;
+    let w58 = p[11]; // c_2_2
+    let w59 = w58 * w46;
+    let w60 = w57 + w59;
+    let w61 = w60 * w46;
+    let w62 = w56 + w61;
+    let o1 = w62; // damping
+    [o0, o1]
+}
+
+/// Indices of the elements of the output `w` of [`free_power()`].
+pub mod free_power {
+    /// Index of `ground`.
+    pub const GROUND: usize = 0;
+    /// Index of `damping`.
+    pub const DAMPING: usize = 1;
+
+    /// Indices of the elements of input `y` of [`free_power()`](super::free_power()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 4;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 5;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 6;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 7;
+    }
+}
+
+/// Section forces at the column base and the ground's force on the body (the bed's resultant and the horizontal force that keeps the leaning corner in place), for the accelerations qdd. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded.
+///
+/// # Inputs
+///
+/// - `y: &[f64; 8]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`
+/// - `qdd: &[f64; 4]`: accelerations [theta'', v'', u''] (from M q'' = F + Q_ground) — `theta_ddot`, `v_ddot`, `u_ddot_1`, `u_ddot_2`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_2_2`
+///
+/// # Output
+///
+/// `ff: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 141 (73 mul, 37 add, 23 sub, 3 twice, 2 sq, 1 cos, 1 div, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_forces(y: &[f64; 8], qdd: &[f64; 4], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[4]; // m_c
+    let w1: f64 = 0.375;
+    let w2 = y[2]; // u_1
+    let w3 = ug; // ug
+    let w4 = y[0]; // theta
+    let w5 = w4.sin();
+    let w6 = w3 * w5;
+    let w7 = qdd[0]; // theta_ddot
+    let w8 = s; // s
+    let w9 = p[1]; // b
+    let w10 = w8 * w9;
+    let w11 = w7 * w10;
+    let w12 = w6 + w11;
+    let w13 = p[8]; // g
+    let w14 = w4.cos();
+    let w15 = w13 * w14;
+    let w16 = w12 + w15;
+    let w17 = qdd[1]; // v_ddot
+    let w18 = w14 * w7;
+    let w19 = y[4]; // theta_dot
+    let w20 = w19 * w19;
+    let w21 = w5 * w20;
+    let w22 = w18 - w21;
+    let w23 = w10 * w22;
+    let w24 = w17 + w23;
+    let w25 = w24 * w14;
+    let w26 = w16 - w25;
+    let w27 = w2 * w26;
+    let w28 = w1 * w27;
+    let w29: f64 = 0.5;
+    let w30 = p[0]; // h
+    let w31 = w20 * w10;
+    let w32 = w3 * w14;
+    let w33 = w31 + w32;
+    let w34 = w13 * w5;
+    let w35 = w33 - w34;
+    let w36 = w24 * w5;
+    let w37 = w35 + w36;
+    let w38 = w30 * w37;
+    let w39 = w29 * w38;
+    let w40 = w28 - w39;
+    let w41: f64 = 0.3333333333333333;
+    let w42 = y[3]; // u_2
+    let w43 = w42 * w26;
+    let w44 = w41 * w43;
+    let w45 = w40 + w44;
+    let w46: f64 = 0.16666666666666666;
+    let w47 = w7 * w30;
+    let w48 = 2.0 * w47;
+    let w49 = w30 * w48;
+    let w50 = w46 * w49;
+    let w51 = w45 - w50;
+    let w52: f64 = 0.275;
+    let w53 = qdd[2]; // u_ddot_1
+    let w54 = w30 * w53;
+    let w55 = w52 * w54;
+    let w56 = w51 - w55;
+    let w57: f64 = 0.25;
+    let w58 = qdd[3]; // u_ddot_2
+    let w59 = w30 * w58;
+    let w60 = w57 * w59;
+    let w61 = w56 - w60;
+    let w62: f64 = 0.11785714285714285;
+    let w63 = 2.0 * w19;
+    let w64 = y[6]; // u_dot_1
+    let w65 = w63 * w64;
+    let w66 = w65 * w2;
+    let w67 = w7 * w2;
+    let w68 = w2 * w67;
+    let w69 = w66 + w68;
+    let w70 = w67 + w65;
+    let w71 = w2 * w70;
+    let w72 = w69 + w71;
+    let w73 = w62 * w72;
+    let w74 = w61 - w73;
+    let w75: f64 = 0.21666666666666667;
+    let w76 = w65 * w42;
+    let w77 = w7 * w42;
+    let w78 = w2 * w77;
+    let w79 = w76 + w78;
+    let w80 = y[7]; // u_dot_2
+    let w81 = w63 * w80;
+    let w82 = w77 + w81;
+    let w83 = w2 * w82;
+    let w84 = w79 + w83;
+    let w85 = w75 * w84;
+    let w86 = w74 - w85;
+    let w87: f64 = 0.1;
+    let w88 = w81 * w42;
+    let w89 = w42 * w77;
+    let w90 = w88 + w89;
+    let w91 = w42 * w82;
+    let w92 = w90 + w91;
+    let w93 = w87 * w92;
+    let w94 = w86 - w93;
+    let w95 = w0 * w94;
+    let w96 = p[3]; // m
+    let w97 = w2 + w42;
+    let w98 = w97 - w10;
+    let w99 = w7 * w98;
+    let w100 = w20 * w30;
+    let w101 = w99 + w100;
+    let w102 = w65 + w81;
+    let w103 = w101 + w102;
+    let w104 = w6 - w103;
+    let w105 = w104 + w15;
+    let w106 = w105 - w25;
+    let w107 = w97 * w106;
+    let w108 = w20 * w98;
+    let w109 = w47 - w108;
+    let w110 = w53 + w58;
+    let w111 = w109 + w110;
+    let w112 = w111 + w32;
+    let w113 = w112 - w34;
+    let w114 = w113 + w36;
+    let w115 = w30 * w114;
+    let w116 = w107 - w115;
+    let w117 = w96 * w116;
+    let w118 = w95 + w117;
+    let o0 = w118; // moment
+    let w119 = w30 * w7;
+    let w120 = w29 * w119;
+    let w121 = w37 + w120;
+    let w122 = w2 * w20;
+    let w123 = w53 - w122;
+    let w124 = w1 * w123;
+    let w125 = w121 + w124;
+    let w126 = w42 * w20;
+    let w127 = w58 - w126;
+    let w128 = w41 * w127;
+    let w129 = w125 + w128;
+    let w130 = w0 * w129;
+    let w131 = w96 * w114;
+    let w132 = w130 + w131;
+    let o1 = w132; // shear
+    let w133 = w30 * w20;
+    let w134 = w29 * w133;
+    let w135 = w26 - w134;
+    let w136 = w2 * w7;
+    let w137 = w65 + w136;
+    let w138 = w1 * w137;
+    let w139 = w135 - w138;
+    let w140 = w42 * w7;
+    let w141 = w81 + w140;
+    let w142 = w41 * w141;
+    let w143 = w139 - w142;
+    let w144 = w0 * w143;
+    let w145 = w96 * w106;
+    let w146 = w144 + w145;
+    let o2 = w146; // axial
+    let w147: f64 = 3.0;
+    let w148 = p[2]; // ei
+    let w149 = w30 * w30;
+    let w150 = w148 / w149;
+    let w151 = w147 * w150;
+    let w152 = w151 * w2;
+    let w153 = 2.0 * w150;
+    let w154 = w153 * w42;
+    let w155 = w152 + w154;
+    let o3 = w155; // moment_elastic
+    let w156 = p[5]; // m_b
+    let w157 = w156 * w37;
+    let w158 = w132 + w157;
+    let w159 = w14 * w158;
+    let w160 = w11 + w6;
+    let w161 = w160 + w15;
+    let w162 = w161 - w25;
+    let w163 = w156 * w162;
+    let w164 = w146 + w163;
+    let w165 = w5 * w164;
+    let w166 = w159 + w165;
+    let o4 = w166; // reaction_h
+    let w167 = w14 * w164;
+    let w168 = w5 * w158;
+    let w169 = w167 - w168;
+    let o5 = w169; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `ff` of [`free_forces()`].
+pub mod free_forces {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `y` of [`free_forces()`](super::free_forces()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 4;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 5;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 6;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 7;
+    }
+
+    /// Indices of the elements of input `qdd` of [`free_forces()`](super::free_forces()).
+    pub mod qdd {
+        /// Index of `theta_ddot`.
+        pub const THETA_DDOT: usize = 0;
+        /// Index of `v_ddot`.
+        pub const V_DDOT: usize = 1;
+        /// Index of `u_ddot_1`.
+        pub const U_DDOT_1: usize = 2;
+        /// Index of `u_ddot_2`.
+        pub const U_DDOT_2: usize = 3;
+    }
+}
+
 /// The full model on the basis psi_cubic, eta^2: two deformation coordinates (the span of polynomial2)
 ///
 /// Type-level handle of this variant, implementing [`crate::Variant`].
@@ -3384,6 +4578,31 @@ impl crate::Variant for CubicQuadratic {
     #[inline]
     fn static_uplift(p: &Params) -> [f64; 6] {
         static_uplift(p)
+    }
+
+    #[inline]
+    fn free_mass_matrix(qf: &[f64; 4], s: f64, p: &Params) -> [f64; 10] {
+        free_mass_matrix(qf, s, p)
+    }
+
+    #[inline]
+    fn free_forcing(y: &[f64; 8], ug: f64, s: f64, p: &Params) -> [f64; 4] {
+        free_forcing(y, ug, s, p)
+    }
+
+    #[inline]
+    fn free_energy(y: &[f64; 8], s: f64, p: &Params) -> [f64; 4] {
+        free_energy(y, s, p)
+    }
+
+    #[inline]
+    fn free_power(y: &[f64; 8], ug: f64, s: f64, p: &Params) -> [f64; 2] {
+        free_power(y, ug, s, p)
+    }
+
+    #[inline]
+    fn free_forces(y: &[f64; 8], qdd: &[f64; 4], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+        free_forces(y, qdd, ug, s, p)
     }
 }
 
@@ -3527,6 +4746,55 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             };
             let p: &Params = (*p).try_into().ok()?;
             Some(static_uplift(p).to_vec())
+        }
+        "free_mass_matrix" => {
+            let [qf, s, p] = inputs else {
+                return None;
+            };
+            let qf: &[f64; 4] = (*qf).try_into().ok()?;
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_mass_matrix(qf, s, p).to_vec())
+        }
+        "free_forcing" => {
+            let [y, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 8] = (*y).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_forcing(y, ug, s, p).to_vec())
+        }
+        "free_energy" => {
+            let [y, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 8] = (*y).try_into().ok()?;
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_energy(y, s, p).to_vec())
+        }
+        "free_power" => {
+            let [y, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 8] = (*y).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_power(y, ug, s, p).to_vec())
+        }
+        "free_forces" => {
+            let [y, qdd, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 8] = (*y).try_into().ok()?;
+            let qdd: &[f64; 4] = (*qdd).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_forces(y, qdd, ug, s, p).to_vec())
         }
         _ => None,
     }

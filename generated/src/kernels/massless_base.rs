@@ -2208,6 +2208,892 @@ pub mod static_uplift {
     pub const MOMENT_ELASTIC_UPLIFT: usize = 4;
 }
 
+/// Mass matrix M(q) over q = [theta, v, u_1..u_n], upper triangle row by row (symmetric positive definite; a rigid column's u row is the identity). On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `qf: &[f64; 3]`: configuration on compliant ground: rotation, settlement of the base centre (positive into the ground), deformation — `theta`, `v`, `u`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `m: [f64; 6]`: upper triangle of M — `m_t_t`, `m_t_v`, `m_t_u`, `m_v_v`, `m_v_u`, `m_u_u`
+///
+/// Operations: 78 (42 mul, 15 add, 10 twice, 8 sub, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_mass_matrix(qf: &[f64; 3], s: f64, p: &Params) -> [f64; 6] {
+    let w0 = s; // s
+    let w1 = p[1]; // b
+    let w2 = w0 * w1;
+    let w3 = qf[0]; // theta
+    let w4 = w3.cos();
+    let w5 = w2 * w4;
+    let w6: f64 = 0.5;
+    let w7 = p[4]; // m_c
+    let w8 = p[3]; // m
+    let w9 = w7 + w8;
+    let w10 = w6 * w9;
+    let w11 = 2.0 * w5;
+    let w12 = w10 * w11;
+    let w13 = p[0]; // h
+    let w14 = w3.sin();
+    let w15 = w13 * w14;
+    let w16 = w6 * w15;
+    let w17 = w5 - w16;
+    let w18: f64 = 0.375;
+    let w19 = qf[2]; // u
+    let w20 = w19 * w4;
+    let w21 = w18 * w20;
+    let w22 = w17 - w21;
+    let w23 = w7 * w22;
+    let w24 = w19 - w2;
+    let w25 = w24 * w4;
+    let w26 = w15 + w25;
+    let w27 = w8 * w26;
+    let w28 = w23 - w27;
+    let w29 = w12 - w28;
+    let w30 = w5 * w29;
+    let w31 = w28 * w5;
+    let w32 = w30 - w31;
+    let w33 = w6 * w8;
+    let w34 = 2.0 * w24;
+    let w35 = w33 * w34;
+    let w36 = w24 * w35;
+    let w37 = w32 + w36;
+    let w38 = 2.0 * w13;
+    let w39 = w33 * w38;
+    let w40 = w13 * w39;
+    let w41 = w37 + w40;
+    let w42: f64 = 0.05892857142857143;
+    let w43 = w42 * w7;
+    let w44 = w19 * w43;
+    let w45 = 2.0 * w19;
+    let w46 = w44 * w45;
+    let w47 = w41 + w46;
+    let w48 = 2.0 * w44;
+    let w49 = w19 * w48;
+    let w50 = w47 + w49;
+    let w51: f64 = 0.08333333333333333;
+    let w52 = w51 * w7;
+    let w53 = w13 * w52;
+    let w54 = w53 * w38;
+    let w55 = w50 + w54;
+    let w56 = 2.0 * w53;
+    let w57 = w13 * w56;
+    let w58 = w55 + w57;
+    let w59: f64 = 0.1875;
+    let w60 = w59 * w7;
+    let w61 = w19 * w60;
+    let w62 = -w2;
+    let w63 = 2.0 * w62;
+    let w64 = w61 * w63;
+    let w65 = w58 + w64;
+    let w66 = 2.0 * w61;
+    let w67 = w2 * w66;
+    let w68 = w65 - w67;
+    let w69 = w6 * w7;
+    let w70 = 2.0 * w2;
+    let w71 = w69 * w70;
+    let w72 = w2 * w71;
+    let w73 = w68 + w72;
+    let o0 = w73; // m_t_t
+    let w74 = w5 * w9;
+    let w75 = w74 - w28;
+    let o1 = w75; // m_t_v
+    let w76 = w18 * w14;
+    let w77 = w7 * w76;
+    let w78 = w8 * w14;
+    let w79 = w77 + w78;
+    let w80 = w5 * w79;
+    let w81 = w13 * w8;
+    let w82 = w80 + w81;
+    let w83: f64 = 0.1375;
+    let w84 = w83 * w7;
+    let w85 = w13 * w84;
+    let w86 = 2.0 * w85;
+    let w87 = w82 + w86;
+    let o2 = w87; // m_t_u
+    let o3 = w9; // m_v_v
+    let o4 = w79; // m_v_u
+    let w88: f64 = 0.11785714285714285;
+    let w89 = w88 * w7;
+    let w90 = w8 + w89;
+    let w91 = w90 + w89;
+    let o5 = w91; // m_u_u
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `m` of [`free_mass_matrix()`].
+pub mod free_mass_matrix {
+    /// Index of `m_t_t`.
+    pub const M_T_T: usize = 0;
+    /// Index of `m_t_v`.
+    pub const M_T_V: usize = 1;
+    /// Index of `m_t_u`.
+    pub const M_T_U: usize = 2;
+    /// Index of `m_v_v`.
+    pub const M_V_V: usize = 3;
+    /// Index of `m_v_u`.
+    pub const M_V_U: usize = 4;
+    /// Index of `m_u_u`.
+    pub const M_U_U: usize = 5;
+
+    /// Indices of the elements of input `qf` of [`free_mass_matrix()`](super::free_mass_matrix()).
+    pub mod qf {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u`.
+        pub const U: usize = 2;
+    }
+}
+
+/// Right-hand side F of M q'' = F + Q_ground without the ground: gravity, ground acceleration, stiffness, damping and velocity terms; Q_ground = [Q_theta, Q_v, 0..] from the ground's kernels. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 6]`: state on compliant ground — `theta`, `v`, `u`, `theta_dot`, `v_dot`, `u_dot`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `f: [f64; 3]`: generalised forces — `f_theta`, `f_v`, `f_u`
+///
+/// Operations: 210 (125 mul, 36 add, 30 sub, 11 twice, 2 div, 2 neg, 1 cos, 1 sin, 1 sq, 1 sqrt).
+#[inline]
+#[must_use]
+pub fn free_forcing(y: &[f64; 6], ug: f64, s: f64, p: &Params) -> [f64; 3] {
+    let w0 = y[0]; // theta
+    let w1 = w0.cos();
+    let w2 = s; // s
+    let w3 = p[1]; // b
+    let w4 = w2 * w3;
+    let w5 = p[4]; // m_c
+    let w6 = p[3]; // m
+    let w7 = w5 + w6;
+    let w8 = p[8]; // g
+    let w9 = w7 * w8;
+    let w10 = w4 * w9;
+    let w11 = w1 * w10;
+    let w12 = w0.sin();
+    let w13 = ug; // ug
+    let w14 = w5 * w13;
+    let w15 = w4 * w14;
+    let w16 = y[2]; // u
+    let w17 = w16 - w4;
+    let w18 = w6 * w13;
+    let w19 = w17 * w18;
+    let w20: f64 = 0.375;
+    let w21 = w20 * w14;
+    let w22 = w16 * w21;
+    let w23 = w19 + w22;
+    let w24 = w15 - w23;
+    let w25 = p[0]; // h
+    let w26 = w6 * w8;
+    let w27 = w25 * w26;
+    let w28 = w24 - w27;
+    let w29: f64 = 0.5;
+    let w30 = w5 * w8;
+    let w31 = w29 * w30;
+    let w32 = w25 * w31;
+    let w33 = w28 - w32;
+    let w34 = w12 * w33;
+    let w35 = w11 - w34;
+    let w36 = w17 * w26;
+    let w37 = w25 * w18;
+    let w38 = w29 * w14;
+    let w39 = w25 * w38;
+    let w40 = w37 + w39;
+    let w41 = w36 - w40;
+    let w42 = w20 * w30;
+    let w43 = w16 * w42;
+    let w44 = w41 + w43;
+    let w45 = w4 * w30;
+    let w46 = w44 - w45;
+    let w47 = y[5]; // u_dot
+    let w48 = y[4]; // v_dot
+    let w49 = w4 * w1;
+    let w50 = y[3]; // theta_dot
+    let w51 = w49 * w50;
+    let w52 = w48 + w51;
+    let w53 = w47 * w52;
+    let w54 = w6 * w53;
+    let w55 = w46 + w54;
+    let w56 = w5 * w53;
+    let w57 = w20 * w56;
+    let w58 = w55 + w57;
+    let w59 = w1 * w58;
+    let w60 = w35 + w59;
+    let w61 = w50 * w52;
+    let w62 = w6 * w61;
+    let w63 = w25 * w62;
+    let w64 = w5 * w61;
+    let w65 = w29 * w64;
+    let w66 = w25 * w65;
+    let w67 = w63 + w66;
+    let w68 = w1 * w67;
+    let w69 = w60 + w68;
+    let w70 = w17 * w62;
+    let w71 = w20 * w64;
+    let w72 = w16 * w71;
+    let w73 = w70 + w72;
+    let w74 = w4 * w64;
+    let w75 = w73 - w74;
+    let w76 = w12 * w75;
+    let w77 = w69 - w76;
+    let w78 = 2.0 * w52;
+    let w79 = w29 * w7;
+    let w80 = w78 * w79;
+    let w81 = w25 * w12;
+    let w82 = w29 * w81;
+    let w83 = w49 - w82;
+    let w84 = w16 * w1;
+    let w85 = w20 * w84;
+    let w86 = w83 - w85;
+    let w87 = w5 * w86;
+    let w88 = w17 * w1;
+    let w89 = w81 + w88;
+    let w90 = w6 * w89;
+    let w91 = w87 - w90;
+    let w92 = w91 * w50;
+    let w93 = w20 * w12;
+    let w94 = w5 * w93;
+    let w95 = w6 * w12;
+    let w96 = w94 + w95;
+    let w97 = w96 * w47;
+    let w98 = w92 - w97;
+    let w99 = w80 - w98;
+    let w100 = w50 * w99;
+    let w101 = w4 * w100;
+    let w102 = w12 * w101;
+    let w103 = w77 - w102;
+    let w104 = w4 * w12;
+    let w105 = w50 * w104;
+    let w106 = -w105;
+    let w107 = 2.0 * w106;
+    let w108 = w79 * w107;
+    let w109 = w16 * w12;
+    let w110 = w20 * w109;
+    let w111 = w25 * w1;
+    let w112 = w29 * w111;
+    let w113 = w104 + w112;
+    let w114 = w110 - w113;
+    let w115 = w5 * w114;
+    let w116 = w17 * w12;
+    let w117 = w111 - w116;
+    let w118 = w6 * w117;
+    let w119 = w115 - w118;
+    let w120 = w50 * w119;
+    let w121 = w20 * w1;
+    let w122 = w5 * w121;
+    let w123 = w6 * w1;
+    let w124 = w122 + w123;
+    let w125 = w47 * w124;
+    let w126 = w120 - w125;
+    let w127 = w108 - w126;
+    let w128 = w49 * w127;
+    let w129 = w99 * w104;
+    let w130 = w128 - w129;
+    let w131 = w52 * w119;
+    let w132 = w91 * w105;
+    let w133 = w131 - w132;
+    let w134 = w130 - w133;
+    let w135 = w134 * w50;
+    let w136 = w50 * w124;
+    let w137 = w49 * w136;
+    let w138 = w52 * w124;
+    let w139 = w137 + w138;
+    let w140 = w50 * w17;
+    let w141 = 2.0 * w140;
+    let w142 = w29 * w6;
+    let w143 = w141 * w142;
+    let w144 = 2.0 * w50;
+    let w145 = w142 * w144;
+    let w146 = w17 * w145;
+    let w147 = w143 + w146;
+    let w148 = w139 + w147;
+    let w149: f64 = 0.05892857142857143;
+    let w150 = w149 * w5;
+    let w151 = w16 * w150;
+    let w152 = w151 * w144;
+    let w153 = w50 * w16;
+    let w154 = 2.0 * w153;
+    let w155 = w154 * w150;
+    let w156 = w152 + w155;
+    let w157 = w148 + w156;
+    let w158 = w50 * w151;
+    let w159 = 2.0 * w158;
+    let w160 = w50 * w150;
+    let w161 = 2.0 * w160;
+    let w162 = w16 * w161;
+    let w163 = w159 + w162;
+    let w164 = w157 + w163;
+    let w165 = w50 * w4;
+    let w166 = -w165;
+    let w167 = 2.0 * w166;
+    let w168: f64 = 0.1875;
+    let w169 = w168 * w5;
+    let w170 = w167 * w169;
+    let w171 = w164 + w170;
+    let w172 = w50 * w169;
+    let w173 = 2.0 * w172;
+    let w174 = w4 * w173;
+    let w175 = w171 - w174;
+    let w176 = w175 * w47;
+    let w177 = w135 + w176;
+    let w178 = w103 - w177;
+    let o0 = w178; // f_theta
+    let w179 = w127 * w50;
+    let w180 = w136 * w47;
+    let w181 = w179 + w180;
+    let w182 = w9 - w181;
+    let o1 = w182; // f_v
+    let w183 = 2.0 * w16;
+    let w184: f64 = -1.5;
+    let w185 = p[2]; // ei
+    let w186 = w25 * w25;
+    let w187 = w25 * w186;
+    let w188 = w185 / w187;
+    let w189 = w184 * w188;
+    let w190 = w183 * w189;
+    let w191 = w1 * w18;
+    let w192 = w1 * w21;
+    let w193 = w191 + w192;
+    let w194 = w190 - w193;
+    let w195 = w12 * w42;
+    let w196 = w194 + w195;
+    let w197 = w12 * w26;
+    let w198 = w1 * w62;
+    let w199 = w197 + w198;
+    let w200 = w196 + w199;
+    let w201 = w1 * w71;
+    let w202 = w200 + w201;
+    let w203 = w50 * w143;
+    let w204 = w202 + w203;
+    let w205 = w50 * w154;
+    let w206 = w205 * w150;
+    let w207 = w204 + w206;
+    let w208 = w50 * w159;
+    let w209 = w207 + w208;
+    let w210 = w50 * w167;
+    let w211 = w210 * w169;
+    let w212 = w209 + w211;
+    let w213 = w96 * w105;
+    let w214 = w138 - w213;
+    let w215 = w214 * w50;
+    let w216 = w212 - w215;
+    let w217 = p[7]; // zeta
+    let w218 = 2.0 * w217;
+    let w219: f64 = 3.0;
+    let w220 = w219 * w188;
+    let w221: f64 = 0.11785714285714285;
+    let w222 = w221 * w5;
+    let w223 = w6 + w222;
+    let w224 = w223 + w222;
+    let w225 = w220 / w224;
+    let w226 = w225.sqrt();
+    let w227 = w218 * w226;
+    let w228 = w227 * w224;
+    let w229 = w228 * w47;
+    let w230 = w216 - w229;
+    let o2 = w230; // f_u
+    [o0, o1, o2]
+}
+
+/// Indices of the elements of the output `f` of [`free_forcing()`].
+pub mod free_forcing {
+    /// Index of `f_theta`.
+    pub const F_THETA: usize = 0;
+    /// Index of `f_v`.
+    pub const F_V: usize = 1;
+    /// Index of `f_u`.
+    pub const F_U: usize = 2;
+
+    /// Indices of the elements of input `y` of [`free_forcing()`](super::free_forcing()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u`.
+        pub const U: usize = 2;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 3;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 4;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 5;
+    }
+}
+
+/// Kinetic energy, gravity (heights over the rest position of the leaning corner, the ground's surface) and strain potentials and horizontal momentum. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 6]`: state on compliant ground — `theta`, `v`, `u`, `theta_dot`, `v_dot`, `u_dot`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `e: [f64; 4]`: energies and momentum — `kinetic`, `gravity`, `strain`, `momentum_x`
+///
+/// Operations: 102 (55 mul, 20 add, 10 sub, 6 sq, 4 div, 4 twice, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_energy(y: &[f64; 6], s: f64, p: &Params) -> [f64; 4] {
+    let w0 = p[4]; // m_c
+    let w1 = y[3]; // theta_dot
+    let w2 = s; // s
+    let w3 = p[1]; // b
+    let w4 = w2 * w3;
+    let w5 = w1 * w4;
+    let w6 = w5 * w5;
+    let w7: f64 = 0.375;
+    let w8 = y[2]; // u
+    let w9 = -w5;
+    let w10 = 2.0 * w9;
+    let w11 = w1 * w10;
+    let w12 = w8 * w11;
+    let w13 = w7 * w12;
+    let w14 = w6 + w13;
+    let w15: f64 = 0.16666666666666666;
+    let w16 = p[0]; // h
+    let w17 = w1 * w16;
+    let w18 = 2.0 * w17;
+    let w19 = w1 * w18;
+    let w20 = w16 * w19;
+    let w21 = w15 * w20;
+    let w22 = w14 + w21;
+    let w23: f64 = 0.275;
+    let w24 = y[5]; // u_dot
+    let w25 = 2.0 * w24;
+    let w26 = w1 * w25;
+    let w27 = w16 * w26;
+    let w28 = w23 * w27;
+    let w29 = w22 + w28;
+    let w30: f64 = 0.11785714285714285;
+    let w31 = w1 * w8;
+    let w32 = 2.0 * w31;
+    let w33 = w1 * w32;
+    let w34 = w8 * w33;
+    let w35 = w24 * w25;
+    let w36 = w34 + w35;
+    let w37 = w30 * w36;
+    let w38 = w29 + w37;
+    let w39 = w0 * w38;
+    let w40 = p[3]; // m
+    let w41 = w24 + w17;
+    let w42 = w41 * w41;
+    let w43 = w8 - w4;
+    let w44 = w1 * w43;
+    let w45 = w44 * w44;
+    let w46 = w42 + w45;
+    let w47 = w40 * w46;
+    let w48 = w39 + w47;
+    let w49: f64 = 2.0;
+    let w50 = w48 / w49;
+    let w51 = w0 + w40;
+    let w52 = y[4]; // v_dot
+    let w53 = y[0]; // theta
+    let w54 = w53.cos();
+    let w55 = w4 * w54;
+    let w56 = w55 * w1;
+    let w57 = w52 + w56;
+    let w58 = w57 * w57;
+    let w59 = w51 * w58;
+    let w60 = w59 / w49;
+    let w61 = w50 + w60;
+    let w62: f64 = 0.5;
+    let w63 = w53.sin();
+    let w64 = w16 * w63;
+    let w65 = w62 * w64;
+    let w66 = w55 - w65;
+    let w67 = w8 * w54;
+    let w68 = w7 * w67;
+    let w69 = w66 - w68;
+    let w70 = w0 * w69;
+    let w71 = w43 * w54;
+    let w72 = w64 + w71;
+    let w73 = w40 * w72;
+    let w74 = w70 - w73;
+    let w75 = w74 * w1;
+    let w76 = w7 * w63;
+    let w77 = w0 * w76;
+    let w78 = w40 * w63;
+    let w79 = w77 + w78;
+    let w80 = w79 * w24;
+    let w81 = w75 - w80;
+    let w82 = w57 * w81;
+    let w83 = w61 - w82;
+    let o0 = w83; // kinetic
+    let w84 = p[8]; // g
+    let w85 = w4 * w63;
+    let w86 = w16 * w54;
+    let w87 = w62 * w86;
+    let w88 = w85 + w87;
+    let w89 = w8 * w63;
+    let w90 = w7 * w89;
+    let w91 = w88 - w90;
+    let w92 = w0 * w91;
+    let w93 = w43 * w63;
+    let w94 = w86 - w93;
+    let w95 = w40 * w94;
+    let w96 = w92 + w95;
+    let w97 = y[1]; // v
+    let w98 = w97 + w85;
+    let w99 = w51 * w98;
+    let w100 = w96 - w99;
+    let w101 = w84 * w100;
+    let o1 = w101; // gravity
+    let w102: f64 = 3.0;
+    let w103 = p[2]; // ei
+    let w104 = w16 * w16;
+    let w105 = w16 * w104;
+    let w106 = w103 / w105;
+    let w107 = w102 * w106;
+    let w108 = w8 * w8;
+    let w109 = w107 * w108;
+    let w110 = w109 / w49;
+    let o2 = w110; // strain
+    let w111 = w87 + w85;
+    let w112 = w111 - w90;
+    let w113 = w0 * w112;
+    let w114 = w113 + w95;
+    let w115 = w114 * w1;
+    let w116 = w7 * w54;
+    let w117 = w0 * w116;
+    let w118 = w40 * w54;
+    let w119 = w117 + w118;
+    let w120 = w119 * w24;
+    let w121 = w115 + w120;
+    let o3 = w121; // momentum_x
+    [o0, o1, o2, o3]
+}
+
+/// Indices of the elements of the output `e` of [`free_energy()`].
+pub mod free_energy {
+    /// Index of `kinetic`.
+    pub const KINETIC: usize = 0;
+    /// Index of `gravity`.
+    pub const GRAVITY: usize = 1;
+    /// Index of `strain`.
+    pub const STRAIN: usize = 2;
+    /// Index of `momentum_x`.
+    pub const MOMENTUM_X: usize = 3;
+
+    /// Indices of the elements of input `y` of [`free_energy()`](super::free_energy()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u`.
+        pub const U: usize = 2;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 3;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 4;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 5;
+    }
+}
+
+/// Power terms: dE/dt = ground - damping + Q_theta theta' + Q_v v', with ground = -ug P_x and damping u'^T C u'. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 6]`: state on compliant ground — `theta`, `v`, `u`, `theta_dot`, `v_dot`, `u_dot`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `w: [f64; 2]`: power terms — `ground`, `damping`
+///
+/// Operations: 39 (21 mul, 6 add, 3 sub, 2 div, 2 sq, 1 cos, 1 neg, 1 sin, 1 sqrt, 1 twice).
+#[inline]
+#[must_use]
+pub fn free_power(y: &[f64; 6], ug: f64, s: f64, p: &Params) -> [f64; 2] {
+    let w0 = ug; // ug
+    let w1 = p[4]; // m_c
+    let w2: f64 = 0.5;
+    let w3 = p[0]; // h
+    let w4 = y[0]; // theta
+    let w5 = w4.cos();
+    let w6 = w3 * w5;
+    let w7 = w2 * w6;
+    let w8 = s; // s
+    let w9 = p[1]; // b
+    let w10 = w8 * w9;
+    let w11 = w4.sin();
+    let w12 = w10 * w11;
+    let w13 = w7 + w12;
+    let w14: f64 = 0.375;
+    let w15 = y[2]; // u
+    let w16 = w15 * w11;
+    let w17 = w14 * w16;
+    let w18 = w13 - w17;
+    let w19 = w1 * w18;
+    let w20 = p[3]; // m
+    let w21 = w15 - w10;
+    let w22 = w21 * w11;
+    let w23 = w6 - w22;
+    let w24 = w20 * w23;
+    let w25 = w19 + w24;
+    let w26 = y[3]; // theta_dot
+    let w27 = w25 * w26;
+    let w28 = w14 * w5;
+    let w29 = w1 * w28;
+    let w30 = w20 * w5;
+    let w31 = w29 + w30;
+    let w32 = y[5]; // u_dot
+    let w33 = w31 * w32;
+    let w34 = w27 + w33;
+    let w35 = w0 * w34;
+    let w36 = -w35;
+    let o0 = w36; // ground
+    let w37 = p[7]; // zeta
+    let w38 = 2.0 * w37;
+    let w39: f64 = 3.0;
+    let w40 = p[2]; // ei
+    let w41 = w3 * w3;
+    let w42 = w3 * w41;
+    let w43 = w40 / w42;
+    let w44 = w39 * w43;
+    let w45: f64 = 0.11785714285714285;
+    let w46 = w45 * w1;
+    let w47 = w20 + w46;
+    let w48 = w47 + w46;
+    let w49 = w44 / w48;
+    let w50 = w49.sqrt();
+    let w51 = w38 * w50;
+    let w52 = w51 * w48;
+    let w53 = w32 * w32;
+    let w54 = w52 * w53;
+    let o1 = w54; // damping
+    [o0, o1]
+}
+
+/// Indices of the elements of the output `w` of [`free_power()`].
+pub mod free_power {
+    /// Index of `ground`.
+    pub const GROUND: usize = 0;
+    /// Index of `damping`.
+    pub const DAMPING: usize = 1;
+
+    /// Indices of the elements of input `y` of [`free_power()`](super::free_power()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u`.
+        pub const U: usize = 2;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 3;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 4;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 5;
+    }
+}
+
+/// Section forces at the column base and the ground's force on the body (the bed's resultant and the horizontal force that keeps the leaning corner in place), for the accelerations qdd. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded.
+///
+/// # Inputs
+///
+/// - `y: &[f64; 6]`: state on compliant ground — `theta`, `v`, `u`, `theta_dot`, `v_dot`, `u_dot`
+/// - `qdd: &[f64; 3]`: accelerations [theta'', v'', u''] (from M q'' = F + Q_ground) — `theta_ddot`, `v_ddot`, `u_ddot`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `ff: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 97 (52 mul, 21 add, 17 sub, 2 sq, 2 twice, 1 cos, 1 div, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_forces(y: &[f64; 6], qdd: &[f64; 3], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[4]; // m_c
+    let w1: f64 = 0.375;
+    let w2 = y[2]; // u
+    let w3 = ug; // ug
+    let w4 = y[0]; // theta
+    let w5 = w4.sin();
+    let w6 = w3 * w5;
+    let w7 = qdd[0]; // theta_ddot
+    let w8 = s; // s
+    let w9 = p[1]; // b
+    let w10 = w8 * w9;
+    let w11 = w7 * w10;
+    let w12 = w6 + w11;
+    let w13 = p[8]; // g
+    let w14 = w4.cos();
+    let w15 = w13 * w14;
+    let w16 = w12 + w15;
+    let w17 = qdd[1]; // v_ddot
+    let w18 = w14 * w7;
+    let w19 = y[3]; // theta_dot
+    let w20 = w19 * w19;
+    let w21 = w5 * w20;
+    let w22 = w18 - w21;
+    let w23 = w10 * w22;
+    let w24 = w17 + w23;
+    let w25 = w24 * w14;
+    let w26 = w16 - w25;
+    let w27 = w2 * w26;
+    let w28 = w1 * w27;
+    let w29: f64 = 0.5;
+    let w30 = p[0]; // h
+    let w31 = w20 * w10;
+    let w32 = w3 * w14;
+    let w33 = w31 + w32;
+    let w34 = w13 * w5;
+    let w35 = w33 - w34;
+    let w36 = w24 * w5;
+    let w37 = w35 + w36;
+    let w38 = w30 * w37;
+    let w39 = w29 * w38;
+    let w40 = w28 - w39;
+    let w41: f64 = 0.16666666666666666;
+    let w42 = w7 * w30;
+    let w43 = 2.0 * w42;
+    let w44 = w30 * w43;
+    let w45 = w41 * w44;
+    let w46 = w40 - w45;
+    let w47: f64 = 0.275;
+    let w48 = qdd[2]; // u_ddot
+    let w49 = w30 * w48;
+    let w50 = w47 * w49;
+    let w51 = w46 - w50;
+    let w52: f64 = 0.11785714285714285;
+    let w53 = 2.0 * w19;
+    let w54 = y[5]; // u_dot
+    let w55 = w53 * w54;
+    let w56 = w55 * w2;
+    let w57 = w7 * w2;
+    let w58 = w2 * w57;
+    let w59 = w56 + w58;
+    let w60 = w57 + w55;
+    let w61 = w2 * w60;
+    let w62 = w59 + w61;
+    let w63 = w52 * w62;
+    let w64 = w51 - w63;
+    let w65 = w0 * w64;
+    let w66 = p[3]; // m
+    let w67 = w2 - w10;
+    let w68 = w7 * w67;
+    let w69 = w20 * w30;
+    let w70 = w68 + w69;
+    let w71 = w70 + w55;
+    let w72 = w6 - w71;
+    let w73 = w72 + w15;
+    let w74 = w73 - w25;
+    let w75 = w2 * w74;
+    let w76 = w20 * w67;
+    let w77 = w42 - w76;
+    let w78 = w77 + w48;
+    let w79 = w78 + w32;
+    let w80 = w79 - w34;
+    let w81 = w80 + w36;
+    let w82 = w30 * w81;
+    let w83 = w75 - w82;
+    let w84 = w66 * w83;
+    let w85 = w65 + w84;
+    let o0 = w85; // moment
+    let w86 = w30 * w7;
+    let w87 = w29 * w86;
+    let w88 = w37 + w87;
+    let w89 = w2 * w20;
+    let w90 = w48 - w89;
+    let w91 = w1 * w90;
+    let w92 = w88 + w91;
+    let w93 = w0 * w92;
+    let w94 = w66 * w81;
+    let w95 = w93 + w94;
+    let o1 = w95; // shear
+    let w96 = w30 * w20;
+    let w97 = w29 * w96;
+    let w98 = w26 - w97;
+    let w99 = w2 * w7;
+    let w100 = w55 + w99;
+    let w101 = w1 * w100;
+    let w102 = w98 - w101;
+    let w103 = w0 * w102;
+    let w104 = w66 * w74;
+    let w105 = w103 + w104;
+    let o2 = w105; // axial
+    let w106: f64 = 3.0;
+    let w107 = p[2]; // ei
+    let w108 = w30 * w30;
+    let w109 = w107 / w108;
+    let w110 = w106 * w109;
+    let w111 = w110 * w2;
+    let o3 = w111; // moment_elastic
+    let w112 = w14 * w95;
+    let w113 = w5 * w105;
+    let w114 = w112 + w113;
+    let o4 = w114; // reaction_h
+    let w115 = w14 * w105;
+    let w116 = w5 * w95;
+    let w117 = w115 - w116;
+    let o5 = w117; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `ff` of [`free_forces()`].
+pub mod free_forces {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `y` of [`free_forces()`](super::free_forces()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u`.
+        pub const U: usize = 2;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 3;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 4;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 5;
+    }
+
+    /// Indices of the elements of input `qdd` of [`free_forces()`](super::free_forces()).
+    pub mod qdd {
+        /// Index of `theta_ddot`.
+        pub const THETA_DDOT: usize = 0;
+        /// Index of `v_ddot`.
+        pub const V_DDOT: usize = 1;
+        /// Index of `u_ddot`.
+        pub const U_DDOT: usize = 2;
+    }
+}
+
 /// Massless base (m_b = I_bc = 0): distributed column mass and top mass
 ///
 /// Type-level handle of this variant, implementing [`crate::Variant`].
@@ -2307,6 +3193,31 @@ impl crate::Variant for MasslessBase {
     #[inline]
     fn static_uplift(p: &Params) -> [f64; 5] {
         static_uplift(p)
+    }
+
+    #[inline]
+    fn free_mass_matrix(qf: &[f64; 3], s: f64, p: &Params) -> [f64; 6] {
+        free_mass_matrix(qf, s, p)
+    }
+
+    #[inline]
+    fn free_forcing(y: &[f64; 6], ug: f64, s: f64, p: &Params) -> [f64; 3] {
+        free_forcing(y, ug, s, p)
+    }
+
+    #[inline]
+    fn free_energy(y: &[f64; 6], s: f64, p: &Params) -> [f64; 4] {
+        free_energy(y, s, p)
+    }
+
+    #[inline]
+    fn free_power(y: &[f64; 6], ug: f64, s: f64, p: &Params) -> [f64; 2] {
+        free_power(y, ug, s, p)
+    }
+
+    #[inline]
+    fn free_forces(y: &[f64; 6], qdd: &[f64; 3], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+        free_forces(y, qdd, ug, s, p)
     }
 }
 
@@ -2450,6 +3361,55 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             };
             let p: &Params = (*p).try_into().ok()?;
             Some(static_uplift(p).to_vec())
+        }
+        "free_mass_matrix" => {
+            let [qf, s, p] = inputs else {
+                return None;
+            };
+            let qf: &[f64; 3] = (*qf).try_into().ok()?;
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_mass_matrix(qf, s, p).to_vec())
+        }
+        "free_forcing" => {
+            let [y, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 6] = (*y).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_forcing(y, ug, s, p).to_vec())
+        }
+        "free_energy" => {
+            let [y, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 6] = (*y).try_into().ok()?;
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_energy(y, s, p).to_vec())
+        }
+        "free_power" => {
+            let [y, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 6] = (*y).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_power(y, ug, s, p).to_vec())
+        }
+        "free_forces" => {
+            let [y, qdd, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 6] = (*y).try_into().ok()?;
+            let qdd: &[f64; 3] = (*qdd).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_forces(y, qdd, ug, s, p).to_vec())
         }
         _ => None,
     }

@@ -1553,6 +1553,657 @@ pub mod static_uplift {
     pub const MOMENT_ELASTIC_UPLIFT: usize = 4;
 }
 
+/// Mass matrix M(q) over q = [theta, v, u_1..u_n], upper triangle row by row (symmetric positive definite; a rigid column's u row is the identity). On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `qf: &[f64; 3]`: configuration on compliant ground: rotation, settlement of the base centre (positive into the ground), deformation — `theta`, `v`, `u`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `m: [f64; 6]`: upper triangle of M — `m_t_t`, `m_t_v`, `m_t_u`, `m_v_v`, `m_v_u`, `m_u_u`
+///
+/// Operations: 35 (19 mul, 6 add, 5 sub, 3 twice, 1 cos, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_mass_matrix(qf: &[f64; 3], s: f64, p: &Params) -> [f64; 6] {
+    let w0 = s; // s
+    let w1 = p[1]; // b
+    let w2 = w0 * w1;
+    let w3 = qf[0]; // theta
+    let w4 = w3.cos();
+    let w5 = w2 * w4;
+    let w6: f64 = 0.5;
+    let w7 = p[3]; // m
+    let w8 = p[5]; // m_b
+    let w9 = w7 + w8;
+    let w10 = w6 * w9;
+    let w11 = 2.0 * w5;
+    let w12 = w10 * w11;
+    let w13 = w8 * w5;
+    let w14 = p[0]; // h
+    let w15 = w3.sin();
+    let w16 = w14 * w15;
+    let w17 = qf[2]; // u
+    let w18 = w17 - w2;
+    let w19 = w18 * w4;
+    let w20 = w16 + w19;
+    let w21 = w7 * w20;
+    let w22 = w13 - w21;
+    let w23 = w12 - w22;
+    let w24 = w5 * w23;
+    let w25 = w22 * w5;
+    let w26 = w24 - w25;
+    let w27 = p[6]; // i_bc
+    let w28 = w26 + w27;
+    let w29 = w6 * w7;
+    let w30 = 2.0 * w18;
+    let w31 = w29 * w30;
+    let w32 = w18 * w31;
+    let w33 = w28 + w32;
+    let w34 = 2.0 * w14;
+    let w35 = w29 * w34;
+    let w36 = w14 * w35;
+    let w37 = w33 + w36;
+    let o0 = w37; // m_t_t
+    let w38 = w5 * w9;
+    let w39 = w38 - w22;
+    let o1 = w39; // m_t_v
+    let w40 = w7 * w15;
+    let w41 = w5 * w40;
+    let w42 = w14 * w7;
+    let w43 = w41 + w42;
+    let o2 = w43; // m_t_u
+    let o3 = w9; // m_v_v
+    let o4 = w40; // m_v_u
+    let o5 = w7; // m_u_u
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `m` of [`free_mass_matrix()`].
+pub mod free_mass_matrix {
+    /// Index of `m_t_t`.
+    pub const M_T_T: usize = 0;
+    /// Index of `m_t_v`.
+    pub const M_T_V: usize = 1;
+    /// Index of `m_t_u`.
+    pub const M_T_U: usize = 2;
+    /// Index of `m_v_v`.
+    pub const M_V_V: usize = 3;
+    /// Index of `m_v_u`.
+    pub const M_V_U: usize = 4;
+    /// Index of `m_u_u`.
+    pub const M_U_U: usize = 5;
+
+    /// Indices of the elements of input `qf` of [`free_mass_matrix()`](super::free_mass_matrix()).
+    pub mod qf {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u`.
+        pub const U: usize = 2;
+    }
+}
+
+/// Right-hand side F of M q'' = F + Q_ground without the ground: gravity, ground acceleration, stiffness, damping and velocity terms; Q_ground = [Q_theta, Q_v, 0..] from the ground's kernels. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 6]`: state on compliant ground — `theta`, `v`, `u`, `theta_dot`, `v_dot`, `u_dot`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `f: [f64; 3]`: generalised forces — `f_theta`, `f_v`, `f_u`
+///
+/// Operations: 131 (79 mul, 20 add, 19 sub, 6 twice, 2 div, 1 cos, 1 neg, 1 sin, 1 sq, 1 sqrt).
+#[inline]
+#[must_use]
+pub fn free_forcing(y: &[f64; 6], ug: f64, s: f64, p: &Params) -> [f64; 3] {
+    let w0 = y[0]; // theta
+    let w1 = w0.cos();
+    let w2 = s; // s
+    let w3 = p[1]; // b
+    let w4 = w2 * w3;
+    let w5 = p[3]; // m
+    let w6 = p[5]; // m_b
+    let w7 = w5 + w6;
+    let w8 = p[8]; // g
+    let w9 = w7 * w8;
+    let w10 = w4 * w9;
+    let w11 = w1 * w10;
+    let w12 = w0.sin();
+    let w13 = ug; // ug
+    let w14 = w6 * w13;
+    let w15 = w4 * w14;
+    let w16 = y[2]; // u
+    let w17 = w16 - w4;
+    let w18 = w5 * w13;
+    let w19 = w17 * w18;
+    let w20 = w15 - w19;
+    let w21 = p[0]; // h
+    let w22 = w5 * w8;
+    let w23 = w21 * w22;
+    let w24 = w20 - w23;
+    let w25 = w12 * w24;
+    let w26 = w11 - w25;
+    let w27 = w17 * w22;
+    let w28 = w21 * w18;
+    let w29 = w6 * w8;
+    let w30 = w4 * w29;
+    let w31 = w28 + w30;
+    let w32 = w27 - w31;
+    let w33 = y[5]; // u_dot
+    let w34 = y[4]; // v_dot
+    let w35 = w4 * w1;
+    let w36 = y[3]; // theta_dot
+    let w37 = w35 * w36;
+    let w38 = w34 + w37;
+    let w39 = w33 * w38;
+    let w40 = w5 * w39;
+    let w41 = w32 + w40;
+    let w42 = w1 * w41;
+    let w43 = w26 + w42;
+    let w44 = w36 * w38;
+    let w45 = w5 * w44;
+    let w46 = w21 * w45;
+    let w47 = w1 * w46;
+    let w48 = w43 + w47;
+    let w49 = w17 * w45;
+    let w50 = w6 * w44;
+    let w51 = w4 * w50;
+    let w52 = w49 - w51;
+    let w53 = w12 * w52;
+    let w54 = w48 - w53;
+    let w55 = 2.0 * w38;
+    let w56: f64 = 0.5;
+    let w57 = w56 * w7;
+    let w58 = w55 * w57;
+    let w59 = w6 * w35;
+    let w60 = w21 * w12;
+    let w61 = w17 * w1;
+    let w62 = w60 + w61;
+    let w63 = w5 * w62;
+    let w64 = w59 - w63;
+    let w65 = w64 * w36;
+    let w66 = w5 * w12;
+    let w67 = w66 * w33;
+    let w68 = w65 - w67;
+    let w69 = w58 - w68;
+    let w70 = w36 * w69;
+    let w71 = w4 * w70;
+    let w72 = w12 * w71;
+    let w73 = w54 - w72;
+    let w74 = w4 * w12;
+    let w75 = w36 * w74;
+    let w76 = -w75;
+    let w77 = 2.0 * w76;
+    let w78 = w57 * w77;
+    let w79 = w6 * w74;
+    let w80 = w21 * w1;
+    let w81 = w17 * w12;
+    let w82 = w80 - w81;
+    let w83 = w5 * w82;
+    let w84 = w79 + w83;
+    let w85 = w36 * w84;
+    let w86 = w5 * w1;
+    let w87 = w33 * w86;
+    let w88 = w85 + w87;
+    let w89 = w78 + w88;
+    let w90 = w35 * w89;
+    let w91 = w69 * w74;
+    let w92 = w90 - w91;
+    let w93 = w38 * w84;
+    let w94 = w64 * w75;
+    let w95 = w93 + w94;
+    let w96 = w92 + w95;
+    let w97 = w96 * w36;
+    let w98 = w36 * w86;
+    let w99 = w35 * w98;
+    let w100 = w38 * w86;
+    let w101 = w99 + w100;
+    let w102 = w36 * w17;
+    let w103 = 2.0 * w102;
+    let w104 = w56 * w5;
+    let w105 = w103 * w104;
+    let w106 = 2.0 * w36;
+    let w107 = w104 * w106;
+    let w108 = w17 * w107;
+    let w109 = w105 + w108;
+    let w110 = w101 + w109;
+    let w111 = w110 * w33;
+    let w112 = w97 + w111;
+    let w113 = w73 - w112;
+    let o0 = w113; // f_theta
+    let w114 = w89 * w36;
+    let w115 = w98 * w33;
+    let w116 = w114 + w115;
+    let w117 = w9 - w116;
+    let o1 = w117; // f_v
+    let w118 = 2.0 * w16;
+    let w119: f64 = -1.5;
+    let w120 = p[2]; // ei
+    let w121 = w21 * w21;
+    let w122 = w21 * w121;
+    let w123 = w120 / w122;
+    let w124 = w119 * w123;
+    let w125 = w118 * w124;
+    let w126 = w1 * w18;
+    let w127 = w125 - w126;
+    let w128 = w12 * w22;
+    let w129 = w1 * w45;
+    let w130 = w128 + w129;
+    let w131 = w127 + w130;
+    let w132 = w36 * w105;
+    let w133 = w131 + w132;
+    let w134 = w66 * w75;
+    let w135 = w100 - w134;
+    let w136 = w135 * w36;
+    let w137 = w133 - w136;
+    let w138 = p[7]; // zeta
+    let w139 = 2.0 * w138;
+    let w140: f64 = 3.0;
+    let w141 = w140 * w123;
+    let w142 = w141 / w5;
+    let w143 = w142.sqrt();
+    let w144 = w139 * w143;
+    let w145 = w144 * w5;
+    let w146 = w145 * w33;
+    let w147 = w137 - w146;
+    let o2 = w147; // f_u
+    [o0, o1, o2]
+}
+
+/// Indices of the elements of the output `f` of [`free_forcing()`].
+pub mod free_forcing {
+    /// Index of `f_theta`.
+    pub const F_THETA: usize = 0;
+    /// Index of `f_v`.
+    pub const F_V: usize = 1;
+    /// Index of `f_u`.
+    pub const F_U: usize = 2;
+
+    /// Indices of the elements of input `y` of [`free_forcing()`](super::free_forcing()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u`.
+        pub const U: usize = 2;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 3;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 4;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 5;
+    }
+}
+
+/// Kinetic energy, gravity (heights over the rest position of the leaning corner, the ground's surface) and strain potentials and horizontal momentum. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 6]`: state on compliant ground — `theta`, `v`, `u`, `theta_dot`, `v_dot`, `u_dot`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `e: [f64; 4]`: energies and momentum — `kinetic`, `gravity`, `strain`, `momentum_x`
+///
+/// Operations: 58 (29 mul, 10 add, 6 sq, 6 sub, 5 div, 1 cos, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_energy(y: &[f64; 6], s: f64, p: &Params) -> [f64; 4] {
+    let w0 = p[3]; // m
+    let w1 = y[5]; // u_dot
+    let w2 = y[3]; // theta_dot
+    let w3 = p[0]; // h
+    let w4 = w2 * w3;
+    let w5 = w1 + w4;
+    let w6 = w5 * w5;
+    let w7 = y[2]; // u
+    let w8 = s; // s
+    let w9 = p[1]; // b
+    let w10 = w8 * w9;
+    let w11 = w7 - w10;
+    let w12 = w2 * w11;
+    let w13 = w12 * w12;
+    let w14 = w6 + w13;
+    let w15 = w0 * w14;
+    let w16: f64 = 2.0;
+    let w17 = w15 / w16;
+    let w18 = p[6]; // i_bc
+    let w19 = w2 * w2;
+    let w20 = w18 * w19;
+    let w21 = w20 / w16;
+    let w22 = w17 + w21;
+    let w23 = p[5]; // m_b
+    let w24 = w0 + w23;
+    let w25 = y[4]; // v_dot
+    let w26 = y[0]; // theta
+    let w27 = w26.cos();
+    let w28 = w10 * w27;
+    let w29 = w28 * w2;
+    let w30 = w25 + w29;
+    let w31 = w30 * w30;
+    let w32 = w24 * w31;
+    let w33 = w32 / w16;
+    let w34 = w22 + w33;
+    let w35 = w23 * w28;
+    let w36 = w26.sin();
+    let w37 = w3 * w36;
+    let w38 = w11 * w27;
+    let w39 = w37 + w38;
+    let w40 = w0 * w39;
+    let w41 = w35 - w40;
+    let w42 = w41 * w2;
+    let w43 = w0 * w36;
+    let w44 = w43 * w1;
+    let w45 = w42 - w44;
+    let w46 = w30 * w45;
+    let w47 = w34 - w46;
+    let o0 = w47; // kinetic
+    let w48 = p[8]; // g
+    let w49 = w3 * w27;
+    let w50 = w11 * w36;
+    let w51 = w49 - w50;
+    let w52 = w0 * w51;
+    let w53 = w10 * w36;
+    let w54 = w23 * w53;
+    let w55 = w52 + w54;
+    let w56 = y[1]; // v
+    let w57 = w56 + w53;
+    let w58 = w24 * w57;
+    let w59 = w55 - w58;
+    let w60 = w48 * w59;
+    let o1 = w60; // gravity
+    let w61: f64 = 3.0;
+    let w62 = p[2]; // ei
+    let w63 = w3 * w3;
+    let w64 = w3 * w63;
+    let w65 = w62 / w64;
+    let w66 = w61 * w65;
+    let w67 = w7 * w7;
+    let w68 = w66 * w67;
+    let w69 = w68 / w16;
+    let o2 = w69; // strain
+    let w70 = w55 * w2;
+    let w71 = w0 * w27;
+    let w72 = w71 * w1;
+    let w73 = w70 + w72;
+    let o3 = w73; // momentum_x
+    [o0, o1, o2, o3]
+}
+
+/// Indices of the elements of the output `e` of [`free_energy()`].
+pub mod free_energy {
+    /// Index of `kinetic`.
+    pub const KINETIC: usize = 0;
+    /// Index of `gravity`.
+    pub const GRAVITY: usize = 1;
+    /// Index of `strain`.
+    pub const STRAIN: usize = 2;
+    /// Index of `momentum_x`.
+    pub const MOMENTUM_X: usize = 3;
+
+    /// Indices of the elements of input `y` of [`free_energy()`](super::free_energy()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u`.
+        pub const U: usize = 2;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 3;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 4;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 5;
+    }
+}
+
+/// Power terms: dE/dt = ground - damping + Q_theta theta' + Q_v v', with ground = -ug P_x and damping u'^T C u'. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 6]`: state on compliant ground — `theta`, `v`, `u`, `theta_dot`, `v_dot`, `u_dot`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `w: [f64; 2]`: power terms — `ground`, `damping`
+///
+/// Operations: 28 (15 mul, 2 add, 2 div, 2 sq, 2 sub, 1 cos, 1 neg, 1 sin, 1 sqrt, 1 twice).
+#[inline]
+#[must_use]
+pub fn free_power(y: &[f64; 6], ug: f64, s: f64, p: &Params) -> [f64; 2] {
+    let w0 = ug; // ug
+    let w1 = p[3]; // m
+    let w2 = p[0]; // h
+    let w3 = y[0]; // theta
+    let w4 = w3.cos();
+    let w5 = w2 * w4;
+    let w6 = y[2]; // u
+    let w7 = s; // s
+    let w8 = p[1]; // b
+    let w9 = w7 * w8;
+    let w10 = w6 - w9;
+    let w11 = w3.sin();
+    let w12 = w10 * w11;
+    let w13 = w5 - w12;
+    let w14 = w1 * w13;
+    let w15 = p[5]; // m_b
+    let w16 = w9 * w11;
+    let w17 = w15 * w16;
+    let w18 = w14 + w17;
+    let w19 = y[3]; // theta_dot
+    let w20 = w18 * w19;
+    let w21 = w1 * w4;
+    let w22 = y[5]; // u_dot
+    let w23 = w21 * w22;
+    let w24 = w20 + w23;
+    let w25 = w0 * w24;
+    let w26 = -w25;
+    let o0 = w26; // ground
+    let w27 = p[7]; // zeta
+    let w28 = 2.0 * w27;
+    let w29: f64 = 3.0;
+    let w30 = p[2]; // ei
+    let w31 = w2 * w2;
+    let w32 = w2 * w31;
+    let w33 = w30 / w32;
+    let w34 = w29 * w33;
+    let w35 = w34 / w1;
+    let w36 = w35.sqrt();
+    let w37 = w28 * w36;
+    let w38 = w37 * w1;
+    let w39 = w22 * w22;
+    let w40 = w38 * w39;
+    let o1 = w40; // damping
+    [o0, o1]
+}
+
+/// Indices of the elements of the output `w` of [`free_power()`].
+pub mod free_power {
+    /// Index of `ground`.
+    pub const GROUND: usize = 0;
+    /// Index of `damping`.
+    pub const DAMPING: usize = 1;
+
+    /// Indices of the elements of input `y` of [`free_power()`](super::free_power()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u`.
+        pub const U: usize = 2;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 3;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 4;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 5;
+    }
+}
+
+/// Section forces at the column base and the ground's force on the body (the bed's resultant and the horizontal force that keeps the leaning corner in place), for the accelerations qdd. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded.
+///
+/// # Inputs
+///
+/// - `y: &[f64; 6]`: state on compliant ground — `theta`, `v`, `u`, `theta_dot`, `v_dot`, `u_dot`
+/// - `qdd: &[f64; 3]`: accelerations [theta'', v'', u''] (from M q'' = F + Q_ground) — `theta_ddot`, `v_ddot`, `u_ddot`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `ff: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 60 (30 mul, 14 add, 10 sub, 2 sq, 1 cos, 1 div, 1 sin, 1 twice).
+#[inline]
+#[must_use]
+pub fn free_forces(y: &[f64; 6], qdd: &[f64; 3], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[3]; // m
+    let w1 = y[2]; // u
+    let w2 = ug; // ug
+    let w3 = y[0]; // theta
+    let w4 = w3.sin();
+    let w5 = w2 * w4;
+    let w6 = qdd[0]; // theta_ddot
+    let w7 = s; // s
+    let w8 = p[1]; // b
+    let w9 = w7 * w8;
+    let w10 = w1 - w9;
+    let w11 = w6 * w10;
+    let w12 = y[3]; // theta_dot
+    let w13 = w12 * w12;
+    let w14 = p[0]; // h
+    let w15 = w13 * w14;
+    let w16 = w11 + w15;
+    let w17 = 2.0 * w12;
+    let w18 = y[5]; // u_dot
+    let w19 = w17 * w18;
+    let w20 = w16 + w19;
+    let w21 = w5 - w20;
+    let w22 = p[8]; // g
+    let w23 = w3.cos();
+    let w24 = w22 * w23;
+    let w25 = w21 + w24;
+    let w26 = qdd[1]; // v_ddot
+    let w27 = w23 * w6;
+    let w28 = w4 * w13;
+    let w29 = w27 - w28;
+    let w30 = w9 * w29;
+    let w31 = w26 + w30;
+    let w32 = w31 * w23;
+    let w33 = w25 - w32;
+    let w34 = w1 * w33;
+    let w35 = w6 * w14;
+    let w36 = w13 * w10;
+    let w37 = w35 - w36;
+    let w38 = qdd[2]; // u_ddot
+    let w39 = w37 + w38;
+    let w40 = w2 * w23;
+    let w41 = w39 + w40;
+    let w42 = w22 * w4;
+    let w43 = w41 - w42;
+    let w44 = w31 * w4;
+    let w45 = w43 + w44;
+    let w46 = w14 * w45;
+    let w47 = w34 - w46;
+    let w48 = w0 * w47;
+    let o0 = w48; // moment
+    let w49 = w0 * w45;
+    let o1 = w49; // shear
+    let w50 = w0 * w33;
+    let o2 = w50; // axial
+    let w51: f64 = 3.0;
+    let w52 = p[2]; // ei
+    let w53 = w14 * w14;
+    let w54 = w52 / w53;
+    let w55 = w51 * w54;
+    let w56 = w55 * w1;
+    let o3 = w56; // moment_elastic
+    let w57 = p[5]; // m_b
+    let w58 = w13 * w9;
+    let w59 = w58 + w40;
+    let w60 = w59 - w42;
+    let w61 = w60 + w44;
+    let w62 = w57 * w61;
+    let w63 = w49 + w62;
+    let w64 = w23 * w63;
+    let w65 = w6 * w9;
+    let w66 = w65 + w5;
+    let w67 = w66 + w24;
+    let w68 = w67 - w32;
+    let w69 = w57 * w68;
+    let w70 = w50 + w69;
+    let w71 = w4 * w70;
+    let w72 = w64 + w71;
+    let o4 = w72; // reaction_h
+    let w73 = w23 * w70;
+    let w74 = w4 * w63;
+    let w75 = w73 - w74;
+    let o5 = w75; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `ff` of [`free_forces()`].
+pub mod free_forces {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `y` of [`free_forces()`](super::free_forces()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u`.
+        pub const U: usize = 2;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 3;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 4;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 5;
+    }
+
+    /// Indices of the elements of input `qdd` of [`free_forces()`](super::free_forces()).
+    pub mod qdd {
+        /// Index of `theta_ddot`.
+        pub const THETA_DDOT: usize = 0;
+        /// Index of `v_ddot`.
+        pub const V_DDOT: usize = 1;
+        /// Index of `u_ddot`.
+        pub const U_DDOT: usize = 2;
+    }
+}
+
 /// Massless column (m_c = 0): top mass, base mass and inertia
 ///
 /// Type-level handle of this variant, implementing [`crate::Variant`].
@@ -1652,6 +2303,31 @@ impl crate::Variant for MasslessColumn {
     #[inline]
     fn static_uplift(p: &Params) -> [f64; 5] {
         static_uplift(p)
+    }
+
+    #[inline]
+    fn free_mass_matrix(qf: &[f64; 3], s: f64, p: &Params) -> [f64; 6] {
+        free_mass_matrix(qf, s, p)
+    }
+
+    #[inline]
+    fn free_forcing(y: &[f64; 6], ug: f64, s: f64, p: &Params) -> [f64; 3] {
+        free_forcing(y, ug, s, p)
+    }
+
+    #[inline]
+    fn free_energy(y: &[f64; 6], s: f64, p: &Params) -> [f64; 4] {
+        free_energy(y, s, p)
+    }
+
+    #[inline]
+    fn free_power(y: &[f64; 6], ug: f64, s: f64, p: &Params) -> [f64; 2] {
+        free_power(y, ug, s, p)
+    }
+
+    #[inline]
+    fn free_forces(y: &[f64; 6], qdd: &[f64; 3], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+        free_forces(y, qdd, ug, s, p)
     }
 }
 
@@ -1795,6 +2471,55 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             };
             let p: &Params = (*p).try_into().ok()?;
             Some(static_uplift(p).to_vec())
+        }
+        "free_mass_matrix" => {
+            let [qf, s, p] = inputs else {
+                return None;
+            };
+            let qf: &[f64; 3] = (*qf).try_into().ok()?;
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_mass_matrix(qf, s, p).to_vec())
+        }
+        "free_forcing" => {
+            let [y, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 6] = (*y).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_forcing(y, ug, s, p).to_vec())
+        }
+        "free_energy" => {
+            let [y, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 6] = (*y).try_into().ok()?;
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_energy(y, s, p).to_vec())
+        }
+        "free_power" => {
+            let [y, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 6] = (*y).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_power(y, ug, s, p).to_vec())
+        }
+        "free_forces" => {
+            let [y, qdd, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 6] = (*y).try_into().ok()?;
+            let qdd: &[f64; 3] = (*qdd).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_forces(y, qdd, ug, s, p).to_vec())
         }
         _ => None,
     }

@@ -286,6 +286,9 @@ impl crate::Layout for AddedMass {
     type Structure = [f64; 15];
     type Shape = f64;
     type StaticUplift = [f64; 5];
+    type Qf = [f64; 3];
+    type Y = [f64; 6];
+    type FreeMassMatrix = [f64; 6];
 }
 /// The sizes of the kernel arrays of [`CantileverModes1`] (1 deformation coordinate).
 #[rustfmt::skip]
@@ -304,6 +307,9 @@ impl crate::Layout for CantileverModes1 {
     type Structure = [f64; 15];
     type Shape = f64;
     type StaticUplift = [f64; 5];
+    type Qf = [f64; 3];
+    type Y = [f64; 6];
+    type FreeMassMatrix = [f64; 6];
 }
 /// The sizes of the kernel arrays of [`CantileverModes2`] (2 deformation coordinates).
 #[rustfmt::skip]
@@ -322,6 +328,9 @@ impl crate::Layout for CantileverModes2 {
     type Structure = [f64; 14];
     type Shape = [f64; 2];
     type StaticUplift = [f64; 6];
+    type Qf = [f64; 4];
+    type Y = [f64; 8];
+    type FreeMassMatrix = [f64; 10];
 }
 /// The sizes of the kernel arrays of [`CantileverModes3`] (3 deformation coordinates).
 #[rustfmt::skip]
@@ -340,6 +349,9 @@ impl crate::Layout for CantileverModes3 {
     type Structure = [f64; 21];
     type Shape = [f64; 3];
     type StaticUplift = [f64; 7];
+    type Qf = [f64; 5];
+    type Y = [f64; 10];
+    type FreeMassMatrix = [f64; 15];
 }
 /// The sizes of the kernel arrays of [`CantileverModes4`] (4 deformation coordinates).
 #[rustfmt::skip]
@@ -358,6 +370,9 @@ impl crate::Layout for CantileverModes4 {
     type Structure = [f64; 30];
     type Shape = [f64; 4];
     type StaticUplift = [f64; 8];
+    type Qf = [f64; 6];
+    type Y = [f64; 12];
+    type FreeMassMatrix = [f64; 21];
 }
 /// The sizes of the kernel arrays of [`CantileverModes5`] (5 deformation coordinates).
 #[rustfmt::skip]
@@ -376,6 +391,9 @@ impl crate::Layout for CantileverModes5 {
     type Structure = [f64; 41];
     type Shape = [f64; 5];
     type StaticUplift = [f64; 9];
+    type Qf = [f64; 7];
+    type Y = [f64; 14];
+    type FreeMassMatrix = [f64; 28];
 }
 /// The sizes of the kernel arrays of [`CantileverModes6`] (6 deformation coordinates).
 #[rustfmt::skip]
@@ -394,6 +412,9 @@ impl crate::Layout for CantileverModes6 {
     type Structure = [f64; 54];
     type Shape = [f64; 6];
     type StaticUplift = [f64; 10];
+    type Qf = [f64; 8];
+    type Y = [f64; 16];
+    type FreeMassMatrix = [f64; 36];
 }
 /// The sizes of the kernel arrays of [`CantileverModes7`] (7 deformation coordinates).
 #[rustfmt::skip]
@@ -412,6 +433,9 @@ impl crate::Layout for CantileverModes7 {
     type Structure = [f64; 69];
     type Shape = [f64; 7];
     type StaticUplift = [f64; 11];
+    type Qf = [f64; 9];
+    type Y = [f64; 18];
+    type FreeMassMatrix = [f64; 45];
 }
 /// The sizes of the kernel arrays of [`CantileverModes8`] (8 deformation coordinates).
 #[rustfmt::skip]
@@ -430,6 +454,9 @@ impl crate::Layout for CantileverModes8 {
     type Structure = [f64; 86];
     type Shape = [f64; 8];
     type StaticUplift = [f64; 12];
+    type Qf = [f64; 10];
+    type Y = [f64; 20];
+    type FreeMassMatrix = [f64; 55];
 }
 /// The sizes of the kernel arrays of [`CosineShape`] (1 deformation coordinate).
 #[rustfmt::skip]
@@ -448,6 +475,9 @@ impl crate::Layout for CosineShape {
     type Structure = [f64; 15];
     type Shape = f64;
     type StaticUplift = [f64; 5];
+    type Qf = [f64; 3];
+    type Y = [f64; 6];
+    type FreeMassMatrix = [f64; 6];
 }
 /// The sizes of the kernel arrays of [`CubicQuadratic`] (2 deformation coordinates).
 #[rustfmt::skip]
@@ -466,6 +496,9 @@ impl crate::Layout for CubicQuadratic {
     type Structure = [f64; 14];
     type Shape = [f64; 2];
     type StaticUplift = [f64; 6];
+    type Qf = [f64; 4];
+    type Y = [f64; 8];
+    type FreeMassMatrix = [f64; 10];
 }
 /// The sizes of the kernel arrays of [`Full`] (1 deformation coordinate).
 #[rustfmt::skip]
@@ -484,6 +517,9 @@ impl crate::Layout for Full {
     type Structure = [f64; 15];
     type Shape = f64;
     type StaticUplift = [f64; 5];
+    type Qf = [f64; 3];
+    type Y = [f64; 6];
+    type FreeMassMatrix = [f64; 6];
 }
 /// The sizes of the kernel arrays of [`MasslessBase`] (1 deformation coordinate).
 #[rustfmt::skip]
@@ -502,6 +538,9 @@ impl crate::Layout for MasslessBase {
     type Structure = [f64; 15];
     type Shape = f64;
     type StaticUplift = [f64; 5];
+    type Qf = [f64; 3];
+    type Y = [f64; 6];
+    type FreeMassMatrix = [f64; 6];
 }
 /// The sizes of the kernel arrays of [`MasslessColumn`] (1 deformation coordinate).
 #[rustfmt::skip]
@@ -520,6 +559,9 @@ impl crate::Layout for MasslessColumn {
     type Structure = [f64; 15];
     type Shape = f64;
     type StaticUplift = [f64; 5];
+    type Qf = [f64; 3];
+    type Y = [f64; 6];
+    type FreeMassMatrix = [f64; 6];
 }
 /// The sizes of the kernel arrays of [`PointMass`] (1 deformation coordinate).
 #[rustfmt::skip]
@@ -538,6 +580,9 @@ impl crate::Layout for PointMass {
     type Structure = [f64; 15];
     type Shape = f64;
     type StaticUplift = [f64; 5];
+    type Qf = [f64; 3];
+    type Y = [f64; 6];
+    type FreeMassMatrix = [f64; 6];
 }
 /// The sizes of the kernel arrays of [`Polynomial2`] (2 deformation coordinates).
 #[rustfmt::skip]
@@ -556,6 +601,9 @@ impl crate::Layout for Polynomial2 {
     type Structure = [f64; 14];
     type Shape = [f64; 2];
     type StaticUplift = [f64; 6];
+    type Qf = [f64; 4];
+    type Y = [f64; 8];
+    type FreeMassMatrix = [f64; 10];
 }
 /// The sizes of the kernel arrays of [`Polynomial3`] (3 deformation coordinates).
 #[rustfmt::skip]
@@ -574,6 +622,9 @@ impl crate::Layout for Polynomial3 {
     type Structure = [f64; 21];
     type Shape = [f64; 3];
     type StaticUplift = [f64; 7];
+    type Qf = [f64; 5];
+    type Y = [f64; 10];
+    type FreeMassMatrix = [f64; 15];
 }
 /// The sizes of the kernel arrays of [`Rigid`] (1 deformation coordinate).
 #[rustfmt::skip]
@@ -592,6 +643,9 @@ impl crate::Layout for Rigid {
     type Structure = [f64; 15];
     type Shape = f64;
     type StaticUplift = [f64; 5];
+    type Qf = [f64; 3];
+    type Y = [f64; 6];
+    type FreeMassMatrix = [f64; 6];
 }
 /// The sizes of the kernel arrays of [`SmallAngle`] (1 deformation coordinate).
 #[rustfmt::skip]
@@ -610,6 +664,9 @@ impl crate::Layout for SmallAngle {
     type Structure = [f64; 15];
     type Shape = f64;
     type StaticUplift = [f64; 5];
+    type Qf = [f64; 3];
+    type Y = [f64; 6];
+    type FreeMassMatrix = [f64; 6];
 }
 
 /// Every variant as `(name, title)`, sorted by name.
@@ -2820,6 +2877,152 @@ pub mod index {
         /// Index of `moment_elastic_uplift`.
         pub const MOMENT_ELASTIC_UPLIFT: usize = 4;
     }
+
+    /// Indices of the output `m` of `free_mass_matrix` (and of its inputs).
+    pub mod free_mass_matrix {
+        /// Index of `m_t_t`.
+        pub const M_T_T: usize = 0;
+        /// Index of `m_t_v`.
+        pub const M_T_V: usize = 1;
+        /// Index of `m_t_u`.
+        pub const M_T_U: usize = 2;
+        /// Index of `m_v_v`.
+        pub const M_V_V: usize = 3;
+        /// Index of `m_v_u`.
+        pub const M_V_U: usize = 4;
+        /// Index of `m_u_u`.
+        pub const M_U_U: usize = 5;
+
+        /// Indices of the elements of input `qf`.
+        pub mod qf {
+            /// Index of `theta`.
+            pub const THETA: usize = 0;
+            /// Index of `v`.
+            pub const V: usize = 1;
+            /// Index of `u`.
+            pub const U: usize = 2;
+        }
+    }
+
+    /// Indices of the output `f` of `free_forcing` (and of its inputs).
+    pub mod free_forcing {
+        /// Index of `f_theta`.
+        pub const F_THETA: usize = 0;
+        /// Index of `f_v`.
+        pub const F_V: usize = 1;
+        /// Index of `f_u`.
+        pub const F_U: usize = 2;
+
+        /// Indices of the elements of input `y`.
+        pub mod y {
+            /// Index of `theta`.
+            pub const THETA: usize = 0;
+            /// Index of `v`.
+            pub const V: usize = 1;
+            /// Index of `u`.
+            pub const U: usize = 2;
+            /// Index of `theta_dot`.
+            pub const THETA_DOT: usize = 3;
+            /// Index of `v_dot`.
+            pub const V_DOT: usize = 4;
+            /// Index of `u_dot`.
+            pub const U_DOT: usize = 5;
+        }
+    }
+
+    /// Indices of the output `e` of `free_energy` (and of its inputs).
+    pub mod free_energy {
+        /// Index of `kinetic`.
+        pub const KINETIC: usize = 0;
+        /// Index of `gravity`.
+        pub const GRAVITY: usize = 1;
+        /// Index of `strain`.
+        pub const STRAIN: usize = 2;
+        /// Index of `momentum_x`.
+        pub const MOMENTUM_X: usize = 3;
+
+        /// Indices of the elements of input `y`.
+        pub mod y {
+            /// Index of `theta`.
+            pub const THETA: usize = 0;
+            /// Index of `v`.
+            pub const V: usize = 1;
+            /// Index of `u`.
+            pub const U: usize = 2;
+            /// Index of `theta_dot`.
+            pub const THETA_DOT: usize = 3;
+            /// Index of `v_dot`.
+            pub const V_DOT: usize = 4;
+            /// Index of `u_dot`.
+            pub const U_DOT: usize = 5;
+        }
+    }
+
+    /// Indices of the output `w` of `free_power` (and of its inputs).
+    pub mod free_power {
+        /// Index of `ground`.
+        pub const GROUND: usize = 0;
+        /// Index of `damping`.
+        pub const DAMPING: usize = 1;
+
+        /// Indices of the elements of input `y`.
+        pub mod y {
+            /// Index of `theta`.
+            pub const THETA: usize = 0;
+            /// Index of `v`.
+            pub const V: usize = 1;
+            /// Index of `u`.
+            pub const U: usize = 2;
+            /// Index of `theta_dot`.
+            pub const THETA_DOT: usize = 3;
+            /// Index of `v_dot`.
+            pub const V_DOT: usize = 4;
+            /// Index of `u_dot`.
+            pub const U_DOT: usize = 5;
+        }
+    }
+
+    /// Indices of the output `ff` of `free_forces` (and of its inputs).
+    pub mod free_forces {
+        /// Index of `moment`.
+        pub const MOMENT: usize = 0;
+        /// Index of `shear`.
+        pub const SHEAR: usize = 1;
+        /// Index of `axial`.
+        pub const AXIAL: usize = 2;
+        /// Index of `moment_elastic`.
+        pub const MOMENT_ELASTIC: usize = 3;
+        /// Index of `reaction_h`.
+        pub const REACTION_H: usize = 4;
+        /// Index of `reaction_v`.
+        pub const REACTION_V: usize = 5;
+
+        /// Indices of the elements of input `y`.
+        pub mod y {
+            /// Index of `theta`.
+            pub const THETA: usize = 0;
+            /// Index of `v`.
+            pub const V: usize = 1;
+            /// Index of `u`.
+            pub const U: usize = 2;
+            /// Index of `theta_dot`.
+            pub const THETA_DOT: usize = 3;
+            /// Index of `v_dot`.
+            pub const V_DOT: usize = 4;
+            /// Index of `u_dot`.
+            pub const U_DOT: usize = 5;
+        }
+
+        /// Indices of the elements of input `qdd`.
+        pub mod qdd {
+            /// Index of `theta_ddot`.
+            pub const THETA_DDOT: usize = 0;
+            /// Index of `v_ddot`.
+            pub const V_DDOT: usize = 1;
+            /// Index of `u_ddot`.
+            pub const U_DDOT: usize = 2;
+        }
+    }
 }
 
 /// The sizes of the kernels' arrays for each number n of deformation coordinates a variant has
@@ -2856,6 +3059,12 @@ pub mod layout {
         pub const SHAPE: usize = 1;
         /// The length of [`crate::Layout::StaticUplift`].
         pub const STATIC_UPLIFT: usize = 5;
+        /// The length of [`crate::Layout::Qf`].
+        pub const QF: usize = 3;
+        /// The length of [`crate::Layout::Y`].
+        pub const Y: usize = 6;
+        /// The length of [`crate::Layout::FreeMassMatrix`].
+        pub const FREE_MASS_MATRIX: usize = 6;
         pub use crate::kernels::index;
     }
 
@@ -2887,6 +3096,12 @@ pub mod layout {
         pub const SHAPE: usize = 2;
         /// The length of [`crate::Layout::StaticUplift`].
         pub const STATIC_UPLIFT: usize = 6;
+        /// The length of [`crate::Layout::Qf`].
+        pub const QF: usize = 4;
+        /// The length of [`crate::Layout::Y`].
+        pub const Y: usize = 8;
+        /// The length of [`crate::Layout::FreeMassMatrix`].
+        pub const FREE_MASS_MATRIX: usize = 10;
 
         /// Named indices of the inputs and outputs of the functions every variant of 2
         /// coordinates exports alike.
@@ -3283,6 +3498,182 @@ pub mod layout {
                 /// Index of `moment_elastic_uplift`.
                 pub const MOMENT_ELASTIC_UPLIFT: usize = 5;
             }
+
+            /// Indices of the output `m` of `free_mass_matrix` (and of its inputs).
+            pub mod free_mass_matrix {
+                /// Index of `m_t_t`.
+                pub const M_T_T: usize = 0;
+                /// Index of `m_t_v`.
+                pub const M_T_V: usize = 1;
+                /// Index of `m_t_u1`.
+                pub const M_T_U1: usize = 2;
+                /// Index of `m_t_u2`.
+                pub const M_T_U2: usize = 3;
+                /// Index of `m_v_v`.
+                pub const M_V_V: usize = 4;
+                /// Index of `m_v_u1`.
+                pub const M_V_U1: usize = 5;
+                /// Index of `m_v_u2`.
+                pub const M_V_U2: usize = 6;
+                /// Index of `m_u1_u1`.
+                pub const M_U1_U1: usize = 7;
+                /// Index of `m_u1_u2`.
+                pub const M_U1_U2: usize = 8;
+                /// Index of `m_u2_u2`.
+                pub const M_U2_U2: usize = 9;
+
+                /// Indices of the elements of input `qf`.
+                pub mod qf {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                }
+            }
+
+            /// Indices of the output `f` of `free_forcing` (and of its inputs).
+            pub mod free_forcing {
+                /// Index of `f_theta`.
+                pub const F_THETA: usize = 0;
+                /// Index of `f_v`.
+                pub const F_V: usize = 1;
+                /// Index of `f_u_1`.
+                pub const F_U_1: usize = 2;
+                /// Index of `f_u_2`.
+                pub const F_U_2: usize = 3;
+
+                /// Indices of the elements of input `y`.
+                pub mod y {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 4;
+                    /// Index of `v_dot`.
+                    pub const V_DOT: usize = 5;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 6;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 7;
+                }
+            }
+
+            /// Indices of the output `e` of `free_energy` (and of its inputs).
+            pub mod free_energy {
+                /// Index of `kinetic`.
+                pub const KINETIC: usize = 0;
+                /// Index of `gravity`.
+                pub const GRAVITY: usize = 1;
+                /// Index of `strain`.
+                pub const STRAIN: usize = 2;
+                /// Index of `momentum_x`.
+                pub const MOMENTUM_X: usize = 3;
+
+                /// Indices of the elements of input `y`.
+                pub mod y {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 4;
+                    /// Index of `v_dot`.
+                    pub const V_DOT: usize = 5;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 6;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 7;
+                }
+            }
+
+            /// Indices of the output `w` of `free_power` (and of its inputs).
+            pub mod free_power {
+                /// Index of `ground`.
+                pub const GROUND: usize = 0;
+                /// Index of `damping`.
+                pub const DAMPING: usize = 1;
+
+                /// Indices of the elements of input `y`.
+                pub mod y {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 4;
+                    /// Index of `v_dot`.
+                    pub const V_DOT: usize = 5;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 6;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 7;
+                }
+            }
+
+            /// Indices of the output `ff` of `free_forces` (and of its inputs).
+            pub mod free_forces {
+                /// Index of `moment`.
+                pub const MOMENT: usize = 0;
+                /// Index of `shear`.
+                pub const SHEAR: usize = 1;
+                /// Index of `axial`.
+                pub const AXIAL: usize = 2;
+                /// Index of `moment_elastic`.
+                pub const MOMENT_ELASTIC: usize = 3;
+                /// Index of `reaction_h`.
+                pub const REACTION_H: usize = 4;
+                /// Index of `reaction_v`.
+                pub const REACTION_V: usize = 5;
+
+                /// Indices of the elements of input `y`.
+                pub mod y {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 4;
+                    /// Index of `v_dot`.
+                    pub const V_DOT: usize = 5;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 6;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 7;
+                }
+
+                /// Indices of the elements of input `qdd`.
+                pub mod qdd {
+                    /// Index of `theta_ddot`.
+                    pub const THETA_DDOT: usize = 0;
+                    /// Index of `v_ddot`.
+                    pub const V_DDOT: usize = 1;
+                    /// Index of `u_ddot_1`.
+                    pub const U_DDOT_1: usize = 2;
+                    /// Index of `u_ddot_2`.
+                    pub const U_DDOT_2: usize = 3;
+                }
+            }
         }
     }
 
@@ -3314,6 +3705,12 @@ pub mod layout {
         pub const SHAPE: usize = 3;
         /// The length of [`crate::Layout::StaticUplift`].
         pub const STATIC_UPLIFT: usize = 7;
+        /// The length of [`crate::Layout::Qf`].
+        pub const QF: usize = 5;
+        /// The length of [`crate::Layout::Y`].
+        pub const Y: usize = 10;
+        /// The length of [`crate::Layout::FreeMassMatrix`].
+        pub const FREE_MASS_MATRIX: usize = 15;
 
         /// Named indices of the inputs and outputs of the functions every variant of 3
         /// coordinates exports alike.
@@ -3802,6 +4199,214 @@ pub mod layout {
                 /// Index of `moment_elastic_uplift`.
                 pub const MOMENT_ELASTIC_UPLIFT: usize = 6;
             }
+
+            /// Indices of the output `m` of `free_mass_matrix` (and of its inputs).
+            pub mod free_mass_matrix {
+                /// Index of `m_t_t`.
+                pub const M_T_T: usize = 0;
+                /// Index of `m_t_v`.
+                pub const M_T_V: usize = 1;
+                /// Index of `m_t_u1`.
+                pub const M_T_U1: usize = 2;
+                /// Index of `m_t_u2`.
+                pub const M_T_U2: usize = 3;
+                /// Index of `m_t_u3`.
+                pub const M_T_U3: usize = 4;
+                /// Index of `m_v_v`.
+                pub const M_V_V: usize = 5;
+                /// Index of `m_v_u1`.
+                pub const M_V_U1: usize = 6;
+                /// Index of `m_v_u2`.
+                pub const M_V_U2: usize = 7;
+                /// Index of `m_v_u3`.
+                pub const M_V_U3: usize = 8;
+                /// Index of `m_u1_u1`.
+                pub const M_U1_U1: usize = 9;
+                /// Index of `m_u1_u2`.
+                pub const M_U1_U2: usize = 10;
+                /// Index of `m_u1_u3`.
+                pub const M_U1_U3: usize = 11;
+                /// Index of `m_u2_u2`.
+                pub const M_U2_U2: usize = 12;
+                /// Index of `m_u2_u3`.
+                pub const M_U2_U3: usize = 13;
+                /// Index of `m_u3_u3`.
+                pub const M_U3_U3: usize = 14;
+
+                /// Indices of the elements of input `qf`.
+                pub mod qf {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 4;
+                }
+            }
+
+            /// Indices of the output `f` of `free_forcing` (and of its inputs).
+            pub mod free_forcing {
+                /// Index of `f_theta`.
+                pub const F_THETA: usize = 0;
+                /// Index of `f_v`.
+                pub const F_V: usize = 1;
+                /// Index of `f_u_1`.
+                pub const F_U_1: usize = 2;
+                /// Index of `f_u_2`.
+                pub const F_U_2: usize = 3;
+                /// Index of `f_u_3`.
+                pub const F_U_3: usize = 4;
+
+                /// Indices of the elements of input `y`.
+                pub mod y {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 4;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 5;
+                    /// Index of `v_dot`.
+                    pub const V_DOT: usize = 6;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 7;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 8;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 9;
+                }
+            }
+
+            /// Indices of the output `e` of `free_energy` (and of its inputs).
+            pub mod free_energy {
+                /// Index of `kinetic`.
+                pub const KINETIC: usize = 0;
+                /// Index of `gravity`.
+                pub const GRAVITY: usize = 1;
+                /// Index of `strain`.
+                pub const STRAIN: usize = 2;
+                /// Index of `momentum_x`.
+                pub const MOMENTUM_X: usize = 3;
+
+                /// Indices of the elements of input `y`.
+                pub mod y {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 4;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 5;
+                    /// Index of `v_dot`.
+                    pub const V_DOT: usize = 6;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 7;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 8;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 9;
+                }
+            }
+
+            /// Indices of the output `w` of `free_power` (and of its inputs).
+            pub mod free_power {
+                /// Index of `ground`.
+                pub const GROUND: usize = 0;
+                /// Index of `damping`.
+                pub const DAMPING: usize = 1;
+
+                /// Indices of the elements of input `y`.
+                pub mod y {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 4;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 5;
+                    /// Index of `v_dot`.
+                    pub const V_DOT: usize = 6;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 7;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 8;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 9;
+                }
+            }
+
+            /// Indices of the output `ff` of `free_forces` (and of its inputs).
+            pub mod free_forces {
+                /// Index of `moment`.
+                pub const MOMENT: usize = 0;
+                /// Index of `shear`.
+                pub const SHEAR: usize = 1;
+                /// Index of `axial`.
+                pub const AXIAL: usize = 2;
+                /// Index of `moment_elastic`.
+                pub const MOMENT_ELASTIC: usize = 3;
+                /// Index of `reaction_h`.
+                pub const REACTION_H: usize = 4;
+                /// Index of `reaction_v`.
+                pub const REACTION_V: usize = 5;
+
+                /// Indices of the elements of input `y`.
+                pub mod y {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 4;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 5;
+                    /// Index of `v_dot`.
+                    pub const V_DOT: usize = 6;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 7;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 8;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 9;
+                }
+
+                /// Indices of the elements of input `qdd`.
+                pub mod qdd {
+                    /// Index of `theta_ddot`.
+                    pub const THETA_DDOT: usize = 0;
+                    /// Index of `v_ddot`.
+                    pub const V_DDOT: usize = 1;
+                    /// Index of `u_ddot_1`.
+                    pub const U_DDOT_1: usize = 2;
+                    /// Index of `u_ddot_2`.
+                    pub const U_DDOT_2: usize = 3;
+                    /// Index of `u_ddot_3`.
+                    pub const U_DDOT_3: usize = 4;
+                }
+            }
         }
     }
 
@@ -3833,6 +4438,12 @@ pub mod layout {
         pub const SHAPE: usize = 4;
         /// The length of [`crate::Layout::StaticUplift`].
         pub const STATIC_UPLIFT: usize = 8;
+        /// The length of [`crate::Layout::Qf`].
+        pub const QF: usize = 6;
+        /// The length of [`crate::Layout::Y`].
+        pub const Y: usize = 12;
+        /// The length of [`crate::Layout::FreeMassMatrix`].
+        pub const FREE_MASS_MATRIX: usize = 21;
 
         /// Named indices of the inputs and outputs of the functions every variant of 4
         /// coordinates exports alike.
@@ -4419,6 +5030,248 @@ pub mod layout {
                 /// Index of `moment_elastic_uplift`.
                 pub const MOMENT_ELASTIC_UPLIFT: usize = 7;
             }
+
+            /// Indices of the output `m` of `free_mass_matrix` (and of its inputs).
+            pub mod free_mass_matrix {
+                /// Index of `m_t_t`.
+                pub const M_T_T: usize = 0;
+                /// Index of `m_t_v`.
+                pub const M_T_V: usize = 1;
+                /// Index of `m_t_u1`.
+                pub const M_T_U1: usize = 2;
+                /// Index of `m_t_u2`.
+                pub const M_T_U2: usize = 3;
+                /// Index of `m_t_u3`.
+                pub const M_T_U3: usize = 4;
+                /// Index of `m_t_u4`.
+                pub const M_T_U4: usize = 5;
+                /// Index of `m_v_v`.
+                pub const M_V_V: usize = 6;
+                /// Index of `m_v_u1`.
+                pub const M_V_U1: usize = 7;
+                /// Index of `m_v_u2`.
+                pub const M_V_U2: usize = 8;
+                /// Index of `m_v_u3`.
+                pub const M_V_U3: usize = 9;
+                /// Index of `m_v_u4`.
+                pub const M_V_U4: usize = 10;
+                /// Index of `m_u1_u1`.
+                pub const M_U1_U1: usize = 11;
+                /// Index of `m_u1_u2`.
+                pub const M_U1_U2: usize = 12;
+                /// Index of `m_u1_u3`.
+                pub const M_U1_U3: usize = 13;
+                /// Index of `m_u1_u4`.
+                pub const M_U1_U4: usize = 14;
+                /// Index of `m_u2_u2`.
+                pub const M_U2_U2: usize = 15;
+                /// Index of `m_u2_u3`.
+                pub const M_U2_U3: usize = 16;
+                /// Index of `m_u2_u4`.
+                pub const M_U2_U4: usize = 17;
+                /// Index of `m_u3_u3`.
+                pub const M_U3_U3: usize = 18;
+                /// Index of `m_u3_u4`.
+                pub const M_U3_U4: usize = 19;
+                /// Index of `m_u4_u4`.
+                pub const M_U4_U4: usize = 20;
+
+                /// Indices of the elements of input `qf`.
+                pub mod qf {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 4;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 5;
+                }
+            }
+
+            /// Indices of the output `f` of `free_forcing` (and of its inputs).
+            pub mod free_forcing {
+                /// Index of `f_theta`.
+                pub const F_THETA: usize = 0;
+                /// Index of `f_v`.
+                pub const F_V: usize = 1;
+                /// Index of `f_u_1`.
+                pub const F_U_1: usize = 2;
+                /// Index of `f_u_2`.
+                pub const F_U_2: usize = 3;
+                /// Index of `f_u_3`.
+                pub const F_U_3: usize = 4;
+                /// Index of `f_u_4`.
+                pub const F_U_4: usize = 5;
+
+                /// Indices of the elements of input `y`.
+                pub mod y {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 4;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 5;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 6;
+                    /// Index of `v_dot`.
+                    pub const V_DOT: usize = 7;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 8;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 9;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 10;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 11;
+                }
+            }
+
+            /// Indices of the output `e` of `free_energy` (and of its inputs).
+            pub mod free_energy {
+                /// Index of `kinetic`.
+                pub const KINETIC: usize = 0;
+                /// Index of `gravity`.
+                pub const GRAVITY: usize = 1;
+                /// Index of `strain`.
+                pub const STRAIN: usize = 2;
+                /// Index of `momentum_x`.
+                pub const MOMENTUM_X: usize = 3;
+
+                /// Indices of the elements of input `y`.
+                pub mod y {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 4;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 5;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 6;
+                    /// Index of `v_dot`.
+                    pub const V_DOT: usize = 7;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 8;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 9;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 10;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 11;
+                }
+            }
+
+            /// Indices of the output `w` of `free_power` (and of its inputs).
+            pub mod free_power {
+                /// Index of `ground`.
+                pub const GROUND: usize = 0;
+                /// Index of `damping`.
+                pub const DAMPING: usize = 1;
+
+                /// Indices of the elements of input `y`.
+                pub mod y {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 4;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 5;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 6;
+                    /// Index of `v_dot`.
+                    pub const V_DOT: usize = 7;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 8;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 9;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 10;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 11;
+                }
+            }
+
+            /// Indices of the output `ff` of `free_forces` (and of its inputs).
+            pub mod free_forces {
+                /// Index of `moment`.
+                pub const MOMENT: usize = 0;
+                /// Index of `shear`.
+                pub const SHEAR: usize = 1;
+                /// Index of `axial`.
+                pub const AXIAL: usize = 2;
+                /// Index of `moment_elastic`.
+                pub const MOMENT_ELASTIC: usize = 3;
+                /// Index of `reaction_h`.
+                pub const REACTION_H: usize = 4;
+                /// Index of `reaction_v`.
+                pub const REACTION_V: usize = 5;
+
+                /// Indices of the elements of input `y`.
+                pub mod y {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 4;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 5;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 6;
+                    /// Index of `v_dot`.
+                    pub const V_DOT: usize = 7;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 8;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 9;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 10;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 11;
+                }
+
+                /// Indices of the elements of input `qdd`.
+                pub mod qdd {
+                    /// Index of `theta_ddot`.
+                    pub const THETA_DDOT: usize = 0;
+                    /// Index of `v_ddot`.
+                    pub const V_DDOT: usize = 1;
+                    /// Index of `u_ddot_1`.
+                    pub const U_DDOT_1: usize = 2;
+                    /// Index of `u_ddot_2`.
+                    pub const U_DDOT_2: usize = 3;
+                    /// Index of `u_ddot_3`.
+                    pub const U_DDOT_3: usize = 4;
+                    /// Index of `u_ddot_4`.
+                    pub const U_DDOT_4: usize = 5;
+                }
+            }
         }
     }
 
@@ -4450,6 +5303,12 @@ pub mod layout {
         pub const SHAPE: usize = 5;
         /// The length of [`crate::Layout::StaticUplift`].
         pub const STATIC_UPLIFT: usize = 9;
+        /// The length of [`crate::Layout::Qf`].
+        pub const QF: usize = 7;
+        /// The length of [`crate::Layout::Y`].
+        pub const Y: usize = 14;
+        /// The length of [`crate::Layout::FreeMassMatrix`].
+        pub const FREE_MASS_MATRIX: usize = 28;
 
         /// Named indices of the inputs and outputs of the functions every variant of 5
         /// coordinates exports alike.
@@ -5140,6 +5999,284 @@ pub mod layout {
                 /// Index of `moment_elastic_uplift`.
                 pub const MOMENT_ELASTIC_UPLIFT: usize = 8;
             }
+
+            /// Indices of the output `m` of `free_mass_matrix` (and of its inputs).
+            pub mod free_mass_matrix {
+                /// Index of `m_t_t`.
+                pub const M_T_T: usize = 0;
+                /// Index of `m_t_v`.
+                pub const M_T_V: usize = 1;
+                /// Index of `m_t_u1`.
+                pub const M_T_U1: usize = 2;
+                /// Index of `m_t_u2`.
+                pub const M_T_U2: usize = 3;
+                /// Index of `m_t_u3`.
+                pub const M_T_U3: usize = 4;
+                /// Index of `m_t_u4`.
+                pub const M_T_U4: usize = 5;
+                /// Index of `m_t_u5`.
+                pub const M_T_U5: usize = 6;
+                /// Index of `m_v_v`.
+                pub const M_V_V: usize = 7;
+                /// Index of `m_v_u1`.
+                pub const M_V_U1: usize = 8;
+                /// Index of `m_v_u2`.
+                pub const M_V_U2: usize = 9;
+                /// Index of `m_v_u3`.
+                pub const M_V_U3: usize = 10;
+                /// Index of `m_v_u4`.
+                pub const M_V_U4: usize = 11;
+                /// Index of `m_v_u5`.
+                pub const M_V_U5: usize = 12;
+                /// Index of `m_u1_u1`.
+                pub const M_U1_U1: usize = 13;
+                /// Index of `m_u1_u2`.
+                pub const M_U1_U2: usize = 14;
+                /// Index of `m_u1_u3`.
+                pub const M_U1_U3: usize = 15;
+                /// Index of `m_u1_u4`.
+                pub const M_U1_U4: usize = 16;
+                /// Index of `m_u1_u5`.
+                pub const M_U1_U5: usize = 17;
+                /// Index of `m_u2_u2`.
+                pub const M_U2_U2: usize = 18;
+                /// Index of `m_u2_u3`.
+                pub const M_U2_U3: usize = 19;
+                /// Index of `m_u2_u4`.
+                pub const M_U2_U4: usize = 20;
+                /// Index of `m_u2_u5`.
+                pub const M_U2_U5: usize = 21;
+                /// Index of `m_u3_u3`.
+                pub const M_U3_U3: usize = 22;
+                /// Index of `m_u3_u4`.
+                pub const M_U3_U4: usize = 23;
+                /// Index of `m_u3_u5`.
+                pub const M_U3_U5: usize = 24;
+                /// Index of `m_u4_u4`.
+                pub const M_U4_U4: usize = 25;
+                /// Index of `m_u4_u5`.
+                pub const M_U4_U5: usize = 26;
+                /// Index of `m_u5_u5`.
+                pub const M_U5_U5: usize = 27;
+
+                /// Indices of the elements of input `qf`.
+                pub mod qf {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 4;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 5;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 6;
+                }
+            }
+
+            /// Indices of the output `f` of `free_forcing` (and of its inputs).
+            pub mod free_forcing {
+                /// Index of `f_theta`.
+                pub const F_THETA: usize = 0;
+                /// Index of `f_v`.
+                pub const F_V: usize = 1;
+                /// Index of `f_u_1`.
+                pub const F_U_1: usize = 2;
+                /// Index of `f_u_2`.
+                pub const F_U_2: usize = 3;
+                /// Index of `f_u_3`.
+                pub const F_U_3: usize = 4;
+                /// Index of `f_u_4`.
+                pub const F_U_4: usize = 5;
+                /// Index of `f_u_5`.
+                pub const F_U_5: usize = 6;
+
+                /// Indices of the elements of input `y`.
+                pub mod y {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 4;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 5;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 6;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 7;
+                    /// Index of `v_dot`.
+                    pub const V_DOT: usize = 8;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 9;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 10;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 11;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 12;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 13;
+                }
+            }
+
+            /// Indices of the output `e` of `free_energy` (and of its inputs).
+            pub mod free_energy {
+                /// Index of `kinetic`.
+                pub const KINETIC: usize = 0;
+                /// Index of `gravity`.
+                pub const GRAVITY: usize = 1;
+                /// Index of `strain`.
+                pub const STRAIN: usize = 2;
+                /// Index of `momentum_x`.
+                pub const MOMENTUM_X: usize = 3;
+
+                /// Indices of the elements of input `y`.
+                pub mod y {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 4;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 5;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 6;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 7;
+                    /// Index of `v_dot`.
+                    pub const V_DOT: usize = 8;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 9;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 10;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 11;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 12;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 13;
+                }
+            }
+
+            /// Indices of the output `w` of `free_power` (and of its inputs).
+            pub mod free_power {
+                /// Index of `ground`.
+                pub const GROUND: usize = 0;
+                /// Index of `damping`.
+                pub const DAMPING: usize = 1;
+
+                /// Indices of the elements of input `y`.
+                pub mod y {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 4;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 5;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 6;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 7;
+                    /// Index of `v_dot`.
+                    pub const V_DOT: usize = 8;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 9;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 10;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 11;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 12;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 13;
+                }
+            }
+
+            /// Indices of the output `ff` of `free_forces` (and of its inputs).
+            pub mod free_forces {
+                /// Index of `moment`.
+                pub const MOMENT: usize = 0;
+                /// Index of `shear`.
+                pub const SHEAR: usize = 1;
+                /// Index of `axial`.
+                pub const AXIAL: usize = 2;
+                /// Index of `moment_elastic`.
+                pub const MOMENT_ELASTIC: usize = 3;
+                /// Index of `reaction_h`.
+                pub const REACTION_H: usize = 4;
+                /// Index of `reaction_v`.
+                pub const REACTION_V: usize = 5;
+
+                /// Indices of the elements of input `y`.
+                pub mod y {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 4;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 5;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 6;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 7;
+                    /// Index of `v_dot`.
+                    pub const V_DOT: usize = 8;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 9;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 10;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 11;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 12;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 13;
+                }
+
+                /// Indices of the elements of input `qdd`.
+                pub mod qdd {
+                    /// Index of `theta_ddot`.
+                    pub const THETA_DDOT: usize = 0;
+                    /// Index of `v_ddot`.
+                    pub const V_DDOT: usize = 1;
+                    /// Index of `u_ddot_1`.
+                    pub const U_DDOT_1: usize = 2;
+                    /// Index of `u_ddot_2`.
+                    pub const U_DDOT_2: usize = 3;
+                    /// Index of `u_ddot_3`.
+                    pub const U_DDOT_3: usize = 4;
+                    /// Index of `u_ddot_4`.
+                    pub const U_DDOT_4: usize = 5;
+                    /// Index of `u_ddot_5`.
+                    pub const U_DDOT_5: usize = 6;
+                }
+            }
         }
     }
 
@@ -5171,6 +6308,12 @@ pub mod layout {
         pub const SHAPE: usize = 6;
         /// The length of [`crate::Layout::StaticUplift`].
         pub const STATIC_UPLIFT: usize = 10;
+        /// The length of [`crate::Layout::Qf`].
+        pub const QF: usize = 8;
+        /// The length of [`crate::Layout::Y`].
+        pub const Y: usize = 16;
+        /// The length of [`crate::Layout::FreeMassMatrix`].
+        pub const FREE_MASS_MATRIX: usize = 36;
 
         /// Named indices of the inputs and outputs of the functions every variant of 6
         /// coordinates exports alike.
@@ -5971,6 +7114,322 @@ pub mod layout {
                 /// Index of `moment_elastic_uplift`.
                 pub const MOMENT_ELASTIC_UPLIFT: usize = 9;
             }
+
+            /// Indices of the output `m` of `free_mass_matrix` (and of its inputs).
+            pub mod free_mass_matrix {
+                /// Index of `m_t_t`.
+                pub const M_T_T: usize = 0;
+                /// Index of `m_t_v`.
+                pub const M_T_V: usize = 1;
+                /// Index of `m_t_u1`.
+                pub const M_T_U1: usize = 2;
+                /// Index of `m_t_u2`.
+                pub const M_T_U2: usize = 3;
+                /// Index of `m_t_u3`.
+                pub const M_T_U3: usize = 4;
+                /// Index of `m_t_u4`.
+                pub const M_T_U4: usize = 5;
+                /// Index of `m_t_u5`.
+                pub const M_T_U5: usize = 6;
+                /// Index of `m_t_u6`.
+                pub const M_T_U6: usize = 7;
+                /// Index of `m_v_v`.
+                pub const M_V_V: usize = 8;
+                /// Index of `m_v_u1`.
+                pub const M_V_U1: usize = 9;
+                /// Index of `m_v_u2`.
+                pub const M_V_U2: usize = 10;
+                /// Index of `m_v_u3`.
+                pub const M_V_U3: usize = 11;
+                /// Index of `m_v_u4`.
+                pub const M_V_U4: usize = 12;
+                /// Index of `m_v_u5`.
+                pub const M_V_U5: usize = 13;
+                /// Index of `m_v_u6`.
+                pub const M_V_U6: usize = 14;
+                /// Index of `m_u1_u1`.
+                pub const M_U1_U1: usize = 15;
+                /// Index of `m_u1_u2`.
+                pub const M_U1_U2: usize = 16;
+                /// Index of `m_u1_u3`.
+                pub const M_U1_U3: usize = 17;
+                /// Index of `m_u1_u4`.
+                pub const M_U1_U4: usize = 18;
+                /// Index of `m_u1_u5`.
+                pub const M_U1_U5: usize = 19;
+                /// Index of `m_u1_u6`.
+                pub const M_U1_U6: usize = 20;
+                /// Index of `m_u2_u2`.
+                pub const M_U2_U2: usize = 21;
+                /// Index of `m_u2_u3`.
+                pub const M_U2_U3: usize = 22;
+                /// Index of `m_u2_u4`.
+                pub const M_U2_U4: usize = 23;
+                /// Index of `m_u2_u5`.
+                pub const M_U2_U5: usize = 24;
+                /// Index of `m_u2_u6`.
+                pub const M_U2_U6: usize = 25;
+                /// Index of `m_u3_u3`.
+                pub const M_U3_U3: usize = 26;
+                /// Index of `m_u3_u4`.
+                pub const M_U3_U4: usize = 27;
+                /// Index of `m_u3_u5`.
+                pub const M_U3_U5: usize = 28;
+                /// Index of `m_u3_u6`.
+                pub const M_U3_U6: usize = 29;
+                /// Index of `m_u4_u4`.
+                pub const M_U4_U4: usize = 30;
+                /// Index of `m_u4_u5`.
+                pub const M_U4_U5: usize = 31;
+                /// Index of `m_u4_u6`.
+                pub const M_U4_U6: usize = 32;
+                /// Index of `m_u5_u5`.
+                pub const M_U5_U5: usize = 33;
+                /// Index of `m_u5_u6`.
+                pub const M_U5_U6: usize = 34;
+                /// Index of `m_u6_u6`.
+                pub const M_U6_U6: usize = 35;
+
+                /// Indices of the elements of input `qf`.
+                pub mod qf {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 4;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 5;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 6;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 7;
+                }
+            }
+
+            /// Indices of the output `f` of `free_forcing` (and of its inputs).
+            pub mod free_forcing {
+                /// Index of `f_theta`.
+                pub const F_THETA: usize = 0;
+                /// Index of `f_v`.
+                pub const F_V: usize = 1;
+                /// Index of `f_u_1`.
+                pub const F_U_1: usize = 2;
+                /// Index of `f_u_2`.
+                pub const F_U_2: usize = 3;
+                /// Index of `f_u_3`.
+                pub const F_U_3: usize = 4;
+                /// Index of `f_u_4`.
+                pub const F_U_4: usize = 5;
+                /// Index of `f_u_5`.
+                pub const F_U_5: usize = 6;
+                /// Index of `f_u_6`.
+                pub const F_U_6: usize = 7;
+
+                /// Indices of the elements of input `y`.
+                pub mod y {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 4;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 5;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 6;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 7;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 8;
+                    /// Index of `v_dot`.
+                    pub const V_DOT: usize = 9;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 10;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 11;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 12;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 13;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 14;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 15;
+                }
+            }
+
+            /// Indices of the output `e` of `free_energy` (and of its inputs).
+            pub mod free_energy {
+                /// Index of `kinetic`.
+                pub const KINETIC: usize = 0;
+                /// Index of `gravity`.
+                pub const GRAVITY: usize = 1;
+                /// Index of `strain`.
+                pub const STRAIN: usize = 2;
+                /// Index of `momentum_x`.
+                pub const MOMENTUM_X: usize = 3;
+
+                /// Indices of the elements of input `y`.
+                pub mod y {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 4;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 5;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 6;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 7;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 8;
+                    /// Index of `v_dot`.
+                    pub const V_DOT: usize = 9;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 10;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 11;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 12;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 13;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 14;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 15;
+                }
+            }
+
+            /// Indices of the output `w` of `free_power` (and of its inputs).
+            pub mod free_power {
+                /// Index of `ground`.
+                pub const GROUND: usize = 0;
+                /// Index of `damping`.
+                pub const DAMPING: usize = 1;
+
+                /// Indices of the elements of input `y`.
+                pub mod y {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 4;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 5;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 6;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 7;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 8;
+                    /// Index of `v_dot`.
+                    pub const V_DOT: usize = 9;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 10;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 11;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 12;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 13;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 14;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 15;
+                }
+            }
+
+            /// Indices of the output `ff` of `free_forces` (and of its inputs).
+            pub mod free_forces {
+                /// Index of `moment`.
+                pub const MOMENT: usize = 0;
+                /// Index of `shear`.
+                pub const SHEAR: usize = 1;
+                /// Index of `axial`.
+                pub const AXIAL: usize = 2;
+                /// Index of `moment_elastic`.
+                pub const MOMENT_ELASTIC: usize = 3;
+                /// Index of `reaction_h`.
+                pub const REACTION_H: usize = 4;
+                /// Index of `reaction_v`.
+                pub const REACTION_V: usize = 5;
+
+                /// Indices of the elements of input `y`.
+                pub mod y {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 4;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 5;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 6;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 7;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 8;
+                    /// Index of `v_dot`.
+                    pub const V_DOT: usize = 9;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 10;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 11;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 12;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 13;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 14;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 15;
+                }
+
+                /// Indices of the elements of input `qdd`.
+                pub mod qdd {
+                    /// Index of `theta_ddot`.
+                    pub const THETA_DDOT: usize = 0;
+                    /// Index of `v_ddot`.
+                    pub const V_DDOT: usize = 1;
+                    /// Index of `u_ddot_1`.
+                    pub const U_DDOT_1: usize = 2;
+                    /// Index of `u_ddot_2`.
+                    pub const U_DDOT_2: usize = 3;
+                    /// Index of `u_ddot_3`.
+                    pub const U_DDOT_3: usize = 4;
+                    /// Index of `u_ddot_4`.
+                    pub const U_DDOT_4: usize = 5;
+                    /// Index of `u_ddot_5`.
+                    pub const U_DDOT_5: usize = 6;
+                    /// Index of `u_ddot_6`.
+                    pub const U_DDOT_6: usize = 7;
+                }
+            }
         }
     }
 
@@ -6002,6 +7461,12 @@ pub mod layout {
         pub const SHAPE: usize = 7;
         /// The length of [`crate::Layout::StaticUplift`].
         pub const STATIC_UPLIFT: usize = 11;
+        /// The length of [`crate::Layout::Qf`].
+        pub const QF: usize = 9;
+        /// The length of [`crate::Layout::Y`].
+        pub const Y: usize = 18;
+        /// The length of [`crate::Layout::FreeMassMatrix`].
+        pub const FREE_MASS_MATRIX: usize = 45;
 
         /// Named indices of the inputs and outputs of the functions every variant of 7
         /// coordinates exports alike.
@@ -6918,6 +8383,362 @@ pub mod layout {
                 /// Index of `moment_elastic_uplift`.
                 pub const MOMENT_ELASTIC_UPLIFT: usize = 10;
             }
+
+            /// Indices of the output `m` of `free_mass_matrix` (and of its inputs).
+            pub mod free_mass_matrix {
+                /// Index of `m_t_t`.
+                pub const M_T_T: usize = 0;
+                /// Index of `m_t_v`.
+                pub const M_T_V: usize = 1;
+                /// Index of `m_t_u1`.
+                pub const M_T_U1: usize = 2;
+                /// Index of `m_t_u2`.
+                pub const M_T_U2: usize = 3;
+                /// Index of `m_t_u3`.
+                pub const M_T_U3: usize = 4;
+                /// Index of `m_t_u4`.
+                pub const M_T_U4: usize = 5;
+                /// Index of `m_t_u5`.
+                pub const M_T_U5: usize = 6;
+                /// Index of `m_t_u6`.
+                pub const M_T_U6: usize = 7;
+                /// Index of `m_t_u7`.
+                pub const M_T_U7: usize = 8;
+                /// Index of `m_v_v`.
+                pub const M_V_V: usize = 9;
+                /// Index of `m_v_u1`.
+                pub const M_V_U1: usize = 10;
+                /// Index of `m_v_u2`.
+                pub const M_V_U2: usize = 11;
+                /// Index of `m_v_u3`.
+                pub const M_V_U3: usize = 12;
+                /// Index of `m_v_u4`.
+                pub const M_V_U4: usize = 13;
+                /// Index of `m_v_u5`.
+                pub const M_V_U5: usize = 14;
+                /// Index of `m_v_u6`.
+                pub const M_V_U6: usize = 15;
+                /// Index of `m_v_u7`.
+                pub const M_V_U7: usize = 16;
+                /// Index of `m_u1_u1`.
+                pub const M_U1_U1: usize = 17;
+                /// Index of `m_u1_u2`.
+                pub const M_U1_U2: usize = 18;
+                /// Index of `m_u1_u3`.
+                pub const M_U1_U3: usize = 19;
+                /// Index of `m_u1_u4`.
+                pub const M_U1_U4: usize = 20;
+                /// Index of `m_u1_u5`.
+                pub const M_U1_U5: usize = 21;
+                /// Index of `m_u1_u6`.
+                pub const M_U1_U6: usize = 22;
+                /// Index of `m_u1_u7`.
+                pub const M_U1_U7: usize = 23;
+                /// Index of `m_u2_u2`.
+                pub const M_U2_U2: usize = 24;
+                /// Index of `m_u2_u3`.
+                pub const M_U2_U3: usize = 25;
+                /// Index of `m_u2_u4`.
+                pub const M_U2_U4: usize = 26;
+                /// Index of `m_u2_u5`.
+                pub const M_U2_U5: usize = 27;
+                /// Index of `m_u2_u6`.
+                pub const M_U2_U6: usize = 28;
+                /// Index of `m_u2_u7`.
+                pub const M_U2_U7: usize = 29;
+                /// Index of `m_u3_u3`.
+                pub const M_U3_U3: usize = 30;
+                /// Index of `m_u3_u4`.
+                pub const M_U3_U4: usize = 31;
+                /// Index of `m_u3_u5`.
+                pub const M_U3_U5: usize = 32;
+                /// Index of `m_u3_u6`.
+                pub const M_U3_U6: usize = 33;
+                /// Index of `m_u3_u7`.
+                pub const M_U3_U7: usize = 34;
+                /// Index of `m_u4_u4`.
+                pub const M_U4_U4: usize = 35;
+                /// Index of `m_u4_u5`.
+                pub const M_U4_U5: usize = 36;
+                /// Index of `m_u4_u6`.
+                pub const M_U4_U6: usize = 37;
+                /// Index of `m_u4_u7`.
+                pub const M_U4_U7: usize = 38;
+                /// Index of `m_u5_u5`.
+                pub const M_U5_U5: usize = 39;
+                /// Index of `m_u5_u6`.
+                pub const M_U5_U6: usize = 40;
+                /// Index of `m_u5_u7`.
+                pub const M_U5_U7: usize = 41;
+                /// Index of `m_u6_u6`.
+                pub const M_U6_U6: usize = 42;
+                /// Index of `m_u6_u7`.
+                pub const M_U6_U7: usize = 43;
+                /// Index of `m_u7_u7`.
+                pub const M_U7_U7: usize = 44;
+
+                /// Indices of the elements of input `qf`.
+                pub mod qf {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 4;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 5;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 6;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 7;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 8;
+                }
+            }
+
+            /// Indices of the output `f` of `free_forcing` (and of its inputs).
+            pub mod free_forcing {
+                /// Index of `f_theta`.
+                pub const F_THETA: usize = 0;
+                /// Index of `f_v`.
+                pub const F_V: usize = 1;
+                /// Index of `f_u_1`.
+                pub const F_U_1: usize = 2;
+                /// Index of `f_u_2`.
+                pub const F_U_2: usize = 3;
+                /// Index of `f_u_3`.
+                pub const F_U_3: usize = 4;
+                /// Index of `f_u_4`.
+                pub const F_U_4: usize = 5;
+                /// Index of `f_u_5`.
+                pub const F_U_5: usize = 6;
+                /// Index of `f_u_6`.
+                pub const F_U_6: usize = 7;
+                /// Index of `f_u_7`.
+                pub const F_U_7: usize = 8;
+
+                /// Indices of the elements of input `y`.
+                pub mod y {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 4;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 5;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 6;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 7;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 8;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 9;
+                    /// Index of `v_dot`.
+                    pub const V_DOT: usize = 10;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 11;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 12;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 13;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 14;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 15;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 16;
+                    /// Index of `u_dot_7`.
+                    pub const U_DOT_7: usize = 17;
+                }
+            }
+
+            /// Indices of the output `e` of `free_energy` (and of its inputs).
+            pub mod free_energy {
+                /// Index of `kinetic`.
+                pub const KINETIC: usize = 0;
+                /// Index of `gravity`.
+                pub const GRAVITY: usize = 1;
+                /// Index of `strain`.
+                pub const STRAIN: usize = 2;
+                /// Index of `momentum_x`.
+                pub const MOMENTUM_X: usize = 3;
+
+                /// Indices of the elements of input `y`.
+                pub mod y {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 4;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 5;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 6;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 7;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 8;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 9;
+                    /// Index of `v_dot`.
+                    pub const V_DOT: usize = 10;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 11;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 12;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 13;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 14;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 15;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 16;
+                    /// Index of `u_dot_7`.
+                    pub const U_DOT_7: usize = 17;
+                }
+            }
+
+            /// Indices of the output `w` of `free_power` (and of its inputs).
+            pub mod free_power {
+                /// Index of `ground`.
+                pub const GROUND: usize = 0;
+                /// Index of `damping`.
+                pub const DAMPING: usize = 1;
+
+                /// Indices of the elements of input `y`.
+                pub mod y {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 4;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 5;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 6;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 7;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 8;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 9;
+                    /// Index of `v_dot`.
+                    pub const V_DOT: usize = 10;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 11;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 12;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 13;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 14;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 15;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 16;
+                    /// Index of `u_dot_7`.
+                    pub const U_DOT_7: usize = 17;
+                }
+            }
+
+            /// Indices of the output `ff` of `free_forces` (and of its inputs).
+            pub mod free_forces {
+                /// Index of `moment`.
+                pub const MOMENT: usize = 0;
+                /// Index of `shear`.
+                pub const SHEAR: usize = 1;
+                /// Index of `axial`.
+                pub const AXIAL: usize = 2;
+                /// Index of `moment_elastic`.
+                pub const MOMENT_ELASTIC: usize = 3;
+                /// Index of `reaction_h`.
+                pub const REACTION_H: usize = 4;
+                /// Index of `reaction_v`.
+                pub const REACTION_V: usize = 5;
+
+                /// Indices of the elements of input `y`.
+                pub mod y {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 4;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 5;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 6;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 7;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 8;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 9;
+                    /// Index of `v_dot`.
+                    pub const V_DOT: usize = 10;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 11;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 12;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 13;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 14;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 15;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 16;
+                    /// Index of `u_dot_7`.
+                    pub const U_DOT_7: usize = 17;
+                }
+
+                /// Indices of the elements of input `qdd`.
+                pub mod qdd {
+                    /// Index of `theta_ddot`.
+                    pub const THETA_DDOT: usize = 0;
+                    /// Index of `v_ddot`.
+                    pub const V_DDOT: usize = 1;
+                    /// Index of `u_ddot_1`.
+                    pub const U_DDOT_1: usize = 2;
+                    /// Index of `u_ddot_2`.
+                    pub const U_DDOT_2: usize = 3;
+                    /// Index of `u_ddot_3`.
+                    pub const U_DDOT_3: usize = 4;
+                    /// Index of `u_ddot_4`.
+                    pub const U_DDOT_4: usize = 5;
+                    /// Index of `u_ddot_5`.
+                    pub const U_DDOT_5: usize = 6;
+                    /// Index of `u_ddot_6`.
+                    pub const U_DDOT_6: usize = 7;
+                    /// Index of `u_ddot_7`.
+                    pub const U_DDOT_7: usize = 8;
+                }
+            }
         }
     }
 
@@ -6949,6 +8770,12 @@ pub mod layout {
         pub const SHAPE: usize = 8;
         /// The length of [`crate::Layout::StaticUplift`].
         pub const STATIC_UPLIFT: usize = 12;
+        /// The length of [`crate::Layout::Qf`].
+        pub const QF: usize = 10;
+        /// The length of [`crate::Layout::Y`].
+        pub const Y: usize = 20;
+        /// The length of [`crate::Layout::FreeMassMatrix`].
+        pub const FREE_MASS_MATRIX: usize = 55;
 
         /// Named indices of the inputs and outputs of the functions every variant of 8
         /// coordinates exports alike.
@@ -7986,6 +9813,404 @@ pub mod layout {
                 pub const U_UPLIFT_8: usize = 10;
                 /// Index of `moment_elastic_uplift`.
                 pub const MOMENT_ELASTIC_UPLIFT: usize = 11;
+            }
+
+            /// Indices of the output `m` of `free_mass_matrix` (and of its inputs).
+            pub mod free_mass_matrix {
+                /// Index of `m_t_t`.
+                pub const M_T_T: usize = 0;
+                /// Index of `m_t_v`.
+                pub const M_T_V: usize = 1;
+                /// Index of `m_t_u1`.
+                pub const M_T_U1: usize = 2;
+                /// Index of `m_t_u2`.
+                pub const M_T_U2: usize = 3;
+                /// Index of `m_t_u3`.
+                pub const M_T_U3: usize = 4;
+                /// Index of `m_t_u4`.
+                pub const M_T_U4: usize = 5;
+                /// Index of `m_t_u5`.
+                pub const M_T_U5: usize = 6;
+                /// Index of `m_t_u6`.
+                pub const M_T_U6: usize = 7;
+                /// Index of `m_t_u7`.
+                pub const M_T_U7: usize = 8;
+                /// Index of `m_t_u8`.
+                pub const M_T_U8: usize = 9;
+                /// Index of `m_v_v`.
+                pub const M_V_V: usize = 10;
+                /// Index of `m_v_u1`.
+                pub const M_V_U1: usize = 11;
+                /// Index of `m_v_u2`.
+                pub const M_V_U2: usize = 12;
+                /// Index of `m_v_u3`.
+                pub const M_V_U3: usize = 13;
+                /// Index of `m_v_u4`.
+                pub const M_V_U4: usize = 14;
+                /// Index of `m_v_u5`.
+                pub const M_V_U5: usize = 15;
+                /// Index of `m_v_u6`.
+                pub const M_V_U6: usize = 16;
+                /// Index of `m_v_u7`.
+                pub const M_V_U7: usize = 17;
+                /// Index of `m_v_u8`.
+                pub const M_V_U8: usize = 18;
+                /// Index of `m_u1_u1`.
+                pub const M_U1_U1: usize = 19;
+                /// Index of `m_u1_u2`.
+                pub const M_U1_U2: usize = 20;
+                /// Index of `m_u1_u3`.
+                pub const M_U1_U3: usize = 21;
+                /// Index of `m_u1_u4`.
+                pub const M_U1_U4: usize = 22;
+                /// Index of `m_u1_u5`.
+                pub const M_U1_U5: usize = 23;
+                /// Index of `m_u1_u6`.
+                pub const M_U1_U6: usize = 24;
+                /// Index of `m_u1_u7`.
+                pub const M_U1_U7: usize = 25;
+                /// Index of `m_u1_u8`.
+                pub const M_U1_U8: usize = 26;
+                /// Index of `m_u2_u2`.
+                pub const M_U2_U2: usize = 27;
+                /// Index of `m_u2_u3`.
+                pub const M_U2_U3: usize = 28;
+                /// Index of `m_u2_u4`.
+                pub const M_U2_U4: usize = 29;
+                /// Index of `m_u2_u5`.
+                pub const M_U2_U5: usize = 30;
+                /// Index of `m_u2_u6`.
+                pub const M_U2_U6: usize = 31;
+                /// Index of `m_u2_u7`.
+                pub const M_U2_U7: usize = 32;
+                /// Index of `m_u2_u8`.
+                pub const M_U2_U8: usize = 33;
+                /// Index of `m_u3_u3`.
+                pub const M_U3_U3: usize = 34;
+                /// Index of `m_u3_u4`.
+                pub const M_U3_U4: usize = 35;
+                /// Index of `m_u3_u5`.
+                pub const M_U3_U5: usize = 36;
+                /// Index of `m_u3_u6`.
+                pub const M_U3_U6: usize = 37;
+                /// Index of `m_u3_u7`.
+                pub const M_U3_U7: usize = 38;
+                /// Index of `m_u3_u8`.
+                pub const M_U3_U8: usize = 39;
+                /// Index of `m_u4_u4`.
+                pub const M_U4_U4: usize = 40;
+                /// Index of `m_u4_u5`.
+                pub const M_U4_U5: usize = 41;
+                /// Index of `m_u4_u6`.
+                pub const M_U4_U6: usize = 42;
+                /// Index of `m_u4_u7`.
+                pub const M_U4_U7: usize = 43;
+                /// Index of `m_u4_u8`.
+                pub const M_U4_U8: usize = 44;
+                /// Index of `m_u5_u5`.
+                pub const M_U5_U5: usize = 45;
+                /// Index of `m_u5_u6`.
+                pub const M_U5_U6: usize = 46;
+                /// Index of `m_u5_u7`.
+                pub const M_U5_U7: usize = 47;
+                /// Index of `m_u5_u8`.
+                pub const M_U5_U8: usize = 48;
+                /// Index of `m_u6_u6`.
+                pub const M_U6_U6: usize = 49;
+                /// Index of `m_u6_u7`.
+                pub const M_U6_U7: usize = 50;
+                /// Index of `m_u6_u8`.
+                pub const M_U6_U8: usize = 51;
+                /// Index of `m_u7_u7`.
+                pub const M_U7_U7: usize = 52;
+                /// Index of `m_u7_u8`.
+                pub const M_U7_U8: usize = 53;
+                /// Index of `m_u8_u8`.
+                pub const M_U8_U8: usize = 54;
+
+                /// Indices of the elements of input `qf`.
+                pub mod qf {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 4;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 5;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 6;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 7;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 8;
+                    /// Index of `u_8`.
+                    pub const U_8: usize = 9;
+                }
+            }
+
+            /// Indices of the output `f` of `free_forcing` (and of its inputs).
+            pub mod free_forcing {
+                /// Index of `f_theta`.
+                pub const F_THETA: usize = 0;
+                /// Index of `f_v`.
+                pub const F_V: usize = 1;
+                /// Index of `f_u_1`.
+                pub const F_U_1: usize = 2;
+                /// Index of `f_u_2`.
+                pub const F_U_2: usize = 3;
+                /// Index of `f_u_3`.
+                pub const F_U_3: usize = 4;
+                /// Index of `f_u_4`.
+                pub const F_U_4: usize = 5;
+                /// Index of `f_u_5`.
+                pub const F_U_5: usize = 6;
+                /// Index of `f_u_6`.
+                pub const F_U_6: usize = 7;
+                /// Index of `f_u_7`.
+                pub const F_U_7: usize = 8;
+                /// Index of `f_u_8`.
+                pub const F_U_8: usize = 9;
+
+                /// Indices of the elements of input `y`.
+                pub mod y {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 4;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 5;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 6;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 7;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 8;
+                    /// Index of `u_8`.
+                    pub const U_8: usize = 9;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 10;
+                    /// Index of `v_dot`.
+                    pub const V_DOT: usize = 11;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 12;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 13;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 14;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 15;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 16;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 17;
+                    /// Index of `u_dot_7`.
+                    pub const U_DOT_7: usize = 18;
+                    /// Index of `u_dot_8`.
+                    pub const U_DOT_8: usize = 19;
+                }
+            }
+
+            /// Indices of the output `e` of `free_energy` (and of its inputs).
+            pub mod free_energy {
+                /// Index of `kinetic`.
+                pub const KINETIC: usize = 0;
+                /// Index of `gravity`.
+                pub const GRAVITY: usize = 1;
+                /// Index of `strain`.
+                pub const STRAIN: usize = 2;
+                /// Index of `momentum_x`.
+                pub const MOMENTUM_X: usize = 3;
+
+                /// Indices of the elements of input `y`.
+                pub mod y {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 4;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 5;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 6;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 7;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 8;
+                    /// Index of `u_8`.
+                    pub const U_8: usize = 9;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 10;
+                    /// Index of `v_dot`.
+                    pub const V_DOT: usize = 11;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 12;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 13;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 14;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 15;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 16;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 17;
+                    /// Index of `u_dot_7`.
+                    pub const U_DOT_7: usize = 18;
+                    /// Index of `u_dot_8`.
+                    pub const U_DOT_8: usize = 19;
+                }
+            }
+
+            /// Indices of the output `w` of `free_power` (and of its inputs).
+            pub mod free_power {
+                /// Index of `ground`.
+                pub const GROUND: usize = 0;
+                /// Index of `damping`.
+                pub const DAMPING: usize = 1;
+
+                /// Indices of the elements of input `y`.
+                pub mod y {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 4;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 5;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 6;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 7;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 8;
+                    /// Index of `u_8`.
+                    pub const U_8: usize = 9;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 10;
+                    /// Index of `v_dot`.
+                    pub const V_DOT: usize = 11;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 12;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 13;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 14;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 15;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 16;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 17;
+                    /// Index of `u_dot_7`.
+                    pub const U_DOT_7: usize = 18;
+                    /// Index of `u_dot_8`.
+                    pub const U_DOT_8: usize = 19;
+                }
+            }
+
+            /// Indices of the output `ff` of `free_forces` (and of its inputs).
+            pub mod free_forces {
+                /// Index of `moment`.
+                pub const MOMENT: usize = 0;
+                /// Index of `shear`.
+                pub const SHEAR: usize = 1;
+                /// Index of `axial`.
+                pub const AXIAL: usize = 2;
+                /// Index of `moment_elastic`.
+                pub const MOMENT_ELASTIC: usize = 3;
+                /// Index of `reaction_h`.
+                pub const REACTION_H: usize = 4;
+                /// Index of `reaction_v`.
+                pub const REACTION_V: usize = 5;
+
+                /// Indices of the elements of input `y`.
+                pub mod y {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `v`.
+                    pub const V: usize = 1;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 2;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 3;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 4;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 5;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 6;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 7;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 8;
+                    /// Index of `u_8`.
+                    pub const U_8: usize = 9;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 10;
+                    /// Index of `v_dot`.
+                    pub const V_DOT: usize = 11;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 12;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 13;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 14;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 15;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 16;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 17;
+                    /// Index of `u_dot_7`.
+                    pub const U_DOT_7: usize = 18;
+                    /// Index of `u_dot_8`.
+                    pub const U_DOT_8: usize = 19;
+                }
+
+                /// Indices of the elements of input `qdd`.
+                pub mod qdd {
+                    /// Index of `theta_ddot`.
+                    pub const THETA_DDOT: usize = 0;
+                    /// Index of `v_ddot`.
+                    pub const V_DDOT: usize = 1;
+                    /// Index of `u_ddot_1`.
+                    pub const U_DDOT_1: usize = 2;
+                    /// Index of `u_ddot_2`.
+                    pub const U_DDOT_2: usize = 3;
+                    /// Index of `u_ddot_3`.
+                    pub const U_DDOT_3: usize = 4;
+                    /// Index of `u_ddot_4`.
+                    pub const U_DDOT_4: usize = 5;
+                    /// Index of `u_ddot_5`.
+                    pub const U_DDOT_5: usize = 6;
+                    /// Index of `u_ddot_6`.
+                    pub const U_DDOT_6: usize = 7;
+                    /// Index of `u_ddot_7`.
+                    pub const U_DDOT_7: usize = 8;
+                    /// Index of `u_ddot_8`.
+                    pub const U_DDOT_8: usize = 9;
+                }
             }
         }
     }

@@ -3240,6 +3240,1182 @@ pub mod static_uplift {
     pub const MOMENT_ELASTIC_UPLIFT: usize = 5;
 }
 
+/// Mass matrix M(q) over q = [theta, v, u_1..u_n], upper triangle row by row (symmetric positive definite; a rigid column's u row is the identity). On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `qf: &[f64; 4]`: configuration on compliant ground: rotation, settlement of the base centre (positive into the ground), deformation — `theta`, `v`, `u_1`, `u_2`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_2_2`
+///
+/// # Output
+///
+/// `m: [f64; 10]`: upper triangle of M — `m_t_t`, `m_t_v`, `m_t_u1`, `m_t_u2`, `m_v_v`, `m_v_u1`, `m_v_u2`, `m_u1_u1`, `m_u1_u2`, `m_u2_u2`
+///
+/// Operations: 112 (56 mul, 29 add, 14 twice, 10 sub, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_mass_matrix(qf: &[f64; 4], s: f64, p: &Params) -> [f64; 10] {
+    let w0 = s; // s
+    let w1 = p[1]; // b
+    let w2 = w0 * w1;
+    let w3 = qf[0]; // theta
+    let w4 = w3.cos();
+    let w5 = w2 * w4;
+    let w6: f64 = 0.5;
+    let w7 = p[4]; // m_c
+    let w8 = p[3]; // m
+    let w9 = w7 + w8;
+    let w10 = p[5]; // m_b
+    let w11 = w9 + w10;
+    let w12 = w6 * w11;
+    let w13 = 2.0 * w5;
+    let w14 = w12 * w13;
+    let w15 = w2 * w10;
+    let w16 = qf[2]; // u_1
+    let w17 = qf[3]; // u_2
+    let w18 = w16 + w17;
+    let w19 = w18 - w2;
+    let w20 = w19 * w8;
+    let w21 = w15 - w20;
+    let w22: f64 = 0.25;
+    let w23 = w22 * w7;
+    let w24 = w17 * w23;
+    let w25 = w21 - w24;
+    let w26: f64 = 0.3333333333333333;
+    let w27 = w26 * w7;
+    let w28 = w16 * w27;
+    let w29 = w25 - w28;
+    let w30 = w2 * w7;
+    let w31 = w29 + w30;
+    let w32 = w4 * w31;
+    let w33 = w3.sin();
+    let w34 = p[0]; // h
+    let w35 = w34 * w8;
+    let w36 = w6 * w7;
+    let w37 = w34 * w36;
+    let w38 = w35 + w37;
+    let w39 = w33 * w38;
+    let w40 = w32 - w39;
+    let w41 = w14 - w40;
+    let w42 = w5 * w41;
+    let w43 = w40 * w5;
+    let w44 = w42 - w43;
+    let w45 = p[6]; // i_bc
+    let w46 = w44 + w45;
+    let w47 = w6 * w8;
+    let w48 = 2.0 * w19;
+    let w49 = w47 * w48;
+    let w50 = w19 * w49;
+    let w51 = w46 + w50;
+    let w52 = 2.0 * w34;
+    let w53 = w47 * w52;
+    let w54 = w34 * w53;
+    let w55 = w51 + w54;
+    let w56: f64 = 0.03571428571428571;
+    let w57 = w56 * w7;
+    let w58 = w17 * w57;
+    let w59: f64 = 0.08333333333333333;
+    let w60 = w59 * w7;
+    let w61 = w16 * w60;
+    let w62 = w58 + w61;
+    let w63 = 2.0 * w17;
+    let w64 = w62 * w63;
+    let w65 = w55 + w64;
+    let w66 = 2.0 * w62;
+    let w67 = w17 * w66;
+    let w68 = w65 + w67;
+    let w69: f64 = 0.05;
+    let w70 = w69 * w7;
+    let w71 = w16 * w70;
+    let w72 = 2.0 * w16;
+    let w73 = w71 * w72;
+    let w74 = w68 + w73;
+    let w75 = 2.0 * w71;
+    let w76 = w16 * w75;
+    let w77 = w74 + w76;
+    let w78 = w34 * w60;
+    let w79 = w78 * w52;
+    let w80 = w77 + w79;
+    let w81 = 2.0 * w78;
+    let w82 = w34 * w81;
+    let w83 = w80 + w82;
+    let w84: f64 = 0.125;
+    let w85 = w84 * w7;
+    let w86 = w17 * w85;
+    let w87 = -w2;
+    let w88 = 2.0 * w87;
+    let w89 = w86 * w88;
+    let w90 = w83 + w89;
+    let w91 = 2.0 * w86;
+    let w92 = w2 * w91;
+    let w93 = w90 - w92;
+    let w94: f64 = 0.16666666666666666;
+    let w95 = w94 * w7;
+    let w96 = w16 * w95;
+    let w97 = w96 * w88;
+    let w98 = w93 + w97;
+    let w99 = 2.0 * w96;
+    let w100 = w2 * w99;
+    let w101 = w98 - w100;
+    let w102 = 2.0 * w2;
+    let w103 = w36 * w102;
+    let w104 = w2 * w103;
+    let w105 = w101 + w104;
+    let o0 = w105; // m_t_t
+    let w106 = w5 * w11;
+    let w107 = w106 - w40;
+    let o1 = w107; // m_t_v
+    let w108 = w33 * w8;
+    let w109 = w33 * w27;
+    let w110 = w108 + w109;
+    let w111 = w5 * w110;
+    let w112 = w111 + w35;
+    let w113 = w34 * w85;
+    let w114 = 2.0 * w113;
+    let w115 = w112 + w114;
+    let o2 = w115; // m_t_u1
+    let w116 = w33 * w23;
+    let w117 = w108 + w116;
+    let w118 = w5 * w117;
+    let w119 = w118 + w35;
+    let w120: f64 = 0.1;
+    let w121 = w120 * w7;
+    let w122 = w34 * w121;
+    let w123 = 2.0 * w122;
+    let w124 = w119 + w123;
+    let o3 = w124; // m_t_u2
+    let o4 = w11; // m_v_v
+    let o5 = w110; // m_v_u1
+    let o6 = w117; // m_v_u2
+    let w125 = w8 + w121;
+    let w126 = w125 + w121;
+    let o7 = w126; // m_u1_u1
+    let w127 = w8 + w95;
+    let o8 = w127; // m_u1_u2
+    let w128: f64 = 0.07142857142857142;
+    let w129 = w128 * w7;
+    let w130 = w8 + w129;
+    let w131 = w130 + w129;
+    let o9 = w131; // m_u2_u2
+    [o0, o1, o2, o3, o4, o5, o6, o7, o8, o9]
+}
+
+/// Indices of the elements of the output `m` of [`free_mass_matrix()`].
+pub mod free_mass_matrix {
+    /// Index of `m_t_t`.
+    pub const M_T_T: usize = 0;
+    /// Index of `m_t_v`.
+    pub const M_T_V: usize = 1;
+    /// Index of `m_t_u1`.
+    pub const M_T_U1: usize = 2;
+    /// Index of `m_t_u2`.
+    pub const M_T_U2: usize = 3;
+    /// Index of `m_v_v`.
+    pub const M_V_V: usize = 4;
+    /// Index of `m_v_u1`.
+    pub const M_V_U1: usize = 5;
+    /// Index of `m_v_u2`.
+    pub const M_V_U2: usize = 6;
+    /// Index of `m_u1_u1`.
+    pub const M_U1_U1: usize = 7;
+    /// Index of `m_u1_u2`.
+    pub const M_U1_U2: usize = 8;
+    /// Index of `m_u2_u2`.
+    pub const M_U2_U2: usize = 9;
+
+    /// Indices of the elements of input `qf` of [`free_mass_matrix()`](super::free_mass_matrix()).
+    pub mod qf {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+    }
+}
+
+/// Right-hand side F of M q'' = F + Q_ground without the ground: gravity, ground acceleration, stiffness, damping and velocity terms; Q_ground = [Q_theta, Q_v, 0..] from the ground's kernels. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 8]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_2_2`
+///
+/// # Output
+///
+/// `f: [f64; 4]`: generalised forces — `f_theta`, `f_v`, `f_u_1`, `f_u_2`
+///
+/// Operations: 298 (172 mul, 74 add, 30 sub, 16 twice, 2 neg, 1 cos, 1 div, 1 sin, 1 sq).
+#[inline]
+#[must_use]
+pub fn free_forcing(y: &[f64; 8], ug: f64, s: f64, p: &Params) -> [f64; 4] {
+    let w0 = y[0]; // theta
+    let w1 = w0.cos();
+    let w2 = s; // s
+    let w3 = p[1]; // b
+    let w4 = w2 * w3;
+    let w5 = p[4]; // m_c
+    let w6 = p[3]; // m
+    let w7 = w5 + w6;
+    let w8 = p[5]; // m_b
+    let w9 = w7 + w8;
+    let w10 = p[8]; // g
+    let w11 = w9 * w10;
+    let w12 = w4 * w11;
+    let w13 = w1 * w12;
+    let w14 = w0.sin();
+    let w15 = ug; // ug
+    let w16 = w8 * w15;
+    let w17 = w4 * w16;
+    let w18 = y[2]; // u_1
+    let w19 = y[3]; // u_2
+    let w20 = w18 + w19;
+    let w21 = w20 - w4;
+    let w22 = w6 * w15;
+    let w23 = w21 * w22;
+    let w24 = w17 - w23;
+    let w25: f64 = 0.25;
+    let w26 = w5 * w15;
+    let w27 = w25 * w26;
+    let w28 = w19 * w27;
+    let w29 = w24 - w28;
+    let w30: f64 = 0.3333333333333333;
+    let w31 = w30 * w26;
+    let w32 = w18 * w31;
+    let w33 = w29 - w32;
+    let w34 = w4 * w26;
+    let w35 = w33 + w34;
+    let w36 = p[0]; // h
+    let w37 = w6 * w10;
+    let w38 = w36 * w37;
+    let w39 = w35 - w38;
+    let w40: f64 = 0.5;
+    let w41 = w5 * w10;
+    let w42 = w40 * w41;
+    let w43 = w36 * w42;
+    let w44 = w39 - w43;
+    let w45 = w14 * w44;
+    let w46 = w13 - w45;
+    let w47 = w21 * w37;
+    let w48 = w36 * w22;
+    let w49 = w40 * w26;
+    let w50 = w36 * w49;
+    let w51 = w48 + w50;
+    let w52 = w8 * w10;
+    let w53 = w4 * w52;
+    let w54 = w51 + w53;
+    let w55 = w47 - w54;
+    let w56 = w25 * w41;
+    let w57 = w19 * w56;
+    let w58 = w55 + w57;
+    let w59 = w30 * w41;
+    let w60 = w18 * w59;
+    let w61 = w58 + w60;
+    let w62 = w4 * w41;
+    let w63 = w61 - w62;
+    let w64 = w25 * w5;
+    let w65 = y[7]; // u_dot_2
+    let w66 = y[5]; // v_dot
+    let w67 = w4 * w1;
+    let w68 = y[4]; // theta_dot
+    let w69 = w67 * w68;
+    let w70 = w66 + w69;
+    let w71 = w65 * w70;
+    let w72 = w64 * w71;
+    let w73 = w63 + w72;
+    let w74 = w30 * w5;
+    let w75 = y[6]; // u_dot_1
+    let w76 = w75 * w70;
+    let w77 = w74 * w76;
+    let w78 = w73 + w77;
+    let w79 = w71 + w76;
+    let w80 = w6 * w79;
+    let w81 = w78 + w80;
+    let w82 = w1 * w81;
+    let w83 = w46 + w82;
+    let w84 = w36 * w6;
+    let w85 = w40 * w5;
+    let w86 = w36 * w85;
+    let w87 = w84 + w86;
+    let w88 = w68 * w70;
+    let w89 = w87 * w88;
+    let w90 = w1 * w89;
+    let w91 = w83 + w90;
+    let w92 = w4 * w8;
+    let w93 = w21 * w6;
+    let w94 = w92 - w93;
+    let w95 = w19 * w64;
+    let w96 = w94 - w95;
+    let w97 = w18 * w74;
+    let w98 = w96 - w97;
+    let w99 = w4 * w5;
+    let w100 = w98 + w99;
+    let w101 = w100 * w88;
+    let w102 = w14 * w101;
+    let w103 = w91 + w102;
+    let w104 = 2.0 * w70;
+    let w105 = w40 * w9;
+    let w106 = w104 * w105;
+    let w107 = w1 * w100;
+    let w108 = w14 * w87;
+    let w109 = w107 - w108;
+    let w110 = w109 * w68;
+    let w111 = w14 * w6;
+    let w112 = w14 * w74;
+    let w113 = w111 + w112;
+    let w114 = w113 * w75;
+    let w115 = w110 - w114;
+    let w116 = w14 * w64;
+    let w117 = w111 + w116;
+    let w118 = w117 * w65;
+    let w119 = w115 - w118;
+    let w120 = w106 - w119;
+    let w121 = w68 * w120;
+    let w122 = w4 * w121;
+    let w123 = w14 * w122;
+    let w124 = w103 - w123;
+    let w125 = w4 * w14;
+    let w126 = w68 * w125;
+    let w127 = -w126;
+    let w128 = 2.0 * w127;
+    let w129 = w105 * w128;
+    let w130 = w100 * w14;
+    let w131 = w87 * w1;
+    let w132 = w130 + w131;
+    let w133 = w68 * w132;
+    let w134 = w6 * w1;
+    let w135 = w74 * w1;
+    let w136 = w134 + w135;
+    let w137 = w75 * w136;
+    let w138 = w133 + w137;
+    let w139 = w64 * w1;
+    let w140 = w134 + w139;
+    let w141 = w65 * w140;
+    let w142 = w138 + w141;
+    let w143 = w129 + w142;
+    let w144 = w67 * w143;
+    let w145 = w120 * w125;
+    let w146 = w144 - w145;
+    let w147 = w70 * w132;
+    let w148 = w109 * w126;
+    let w149 = w147 + w148;
+    let w150 = w146 + w149;
+    let w151 = w150 * w68;
+    let w152 = w6 + w74;
+    let w153 = w1 * w152;
+    let w154 = w68 * w153;
+    let w155 = w67 * w154;
+    let w156 = w70 * w153;
+    let w157 = w155 + w156;
+    let w158 = w68 * w21;
+    let w159 = 2.0 * w158;
+    let w160 = w40 * w6;
+    let w161 = w159 * w160;
+    let w162 = 2.0 * w68;
+    let w163 = w160 * w162;
+    let w164 = w21 * w163;
+    let w165 = w161 + w164;
+    let w166 = w157 + w165;
+    let w167 = w68 * w19;
+    let w168 = 2.0 * w167;
+    let w169: f64 = 0.08333333333333333;
+    let w170 = w169 * w5;
+    let w171 = w168 * w170;
+    let w172 = w166 + w171;
+    let w173 = w68 * w170;
+    let w174 = 2.0 * w173;
+    let w175 = w19 * w174;
+    let w176 = w172 + w175;
+    let w177: f64 = 0.05;
+    let w178 = w177 * w5;
+    let w179 = w18 * w178;
+    let w180 = w179 * w162;
+    let w181 = w68 * w18;
+    let w182 = 2.0 * w181;
+    let w183 = w182 * w178;
+    let w184 = w180 + w183;
+    let w185 = w176 + w184;
+    let w186 = w68 * w179;
+    let w187 = 2.0 * w186;
+    let w188 = w68 * w178;
+    let w189 = 2.0 * w188;
+    let w190 = w18 * w189;
+    let w191 = w187 + w190;
+    let w192 = w185 + w191;
+    let w193 = w68 * w4;
+    let w194 = -w193;
+    let w195 = 2.0 * w194;
+    let w196: f64 = 0.16666666666666666;
+    let w197 = w196 * w5;
+    let w198 = w195 * w197;
+    let w199 = w192 + w198;
+    let w200 = w68 * w197;
+    let w201 = 2.0 * w200;
+    let w202 = w4 * w201;
+    let w203 = w199 - w202;
+    let w204 = w203 * w75;
+    let w205 = w151 + w204;
+    let w206 = w6 + w64;
+    let w207 = w1 * w206;
+    let w208 = w68 * w207;
+    let w209 = w67 * w208;
+    let w210 = w70 * w207;
+    let w211 = w209 + w210;
+    let w212 = w211 + w165;
+    let w213: f64 = 0.03571428571428571;
+    let w214 = w213 * w5;
+    let w215 = w19 * w214;
+    let w216 = w18 * w170;
+    let w217 = w215 + w216;
+    let w218 = w217 * w162;
+    let w219 = w168 * w214;
+    let w220 = w218 + w219;
+    let w221 = w212 + w220;
+    let w222 = w68 * w217;
+    let w223 = 2.0 * w222;
+    let w224 = w68 * w214;
+    let w225 = 2.0 * w224;
+    let w226 = w19 * w225;
+    let w227 = w223 + w226;
+    let w228 = w221 + w227;
+    let w229: f64 = 0.125;
+    let w230 = w229 * w5;
+    let w231 = w195 * w230;
+    let w232 = w228 + w231;
+    let w233 = w68 * w230;
+    let w234 = 2.0 * w233;
+    let w235 = w4 * w234;
+    let w236 = w232 - w235;
+    let w237 = w236 * w65;
+    let w238 = w205 + w237;
+    let w239 = w124 - w238;
+    let o0 = w239; // f_theta
+    let w240 = w143 * w68;
+    let w241 = w154 * w75;
+    let w242 = w240 + w241;
+    let w243 = w208 * w65;
+    let w244 = w242 + w243;
+    let w245 = w11 - w244;
+    let o1 = w245; // f_v
+    let w246: f64 = 12.0;
+    let w247 = p[2]; // ei
+    let w248 = w36 * w36;
+    let w249 = w36 * w248;
+    let w250 = w247 / w249;
+    let w251 = w246 * w250;
+    let w252: f64 = -0.5;
+    let w253 = w252 * w19;
+    let w254 = w251 * w253;
+    let w255 = w1 * w22;
+    let w256 = w1 * w31;
+    let w257 = w255 + w256;
+    let w258 = w254 - w257;
+    let w259 = 2.0 * w18;
+    let w260: f64 = -2.0;
+    let w261 = w260 * w250;
+    let w262 = w259 * w261;
+    let w263 = w258 + w262;
+    let w264 = w14 * w59;
+    let w265 = w263 + w264;
+    let w266 = w1 * w88;
+    let w267 = w74 * w266;
+    let w268 = w265 + w267;
+    let w269 = w14 * w37;
+    let w270 = w6 * w266;
+    let w271 = w269 + w270;
+    let w272 = w268 + w271;
+    let w273 = w68 * w161;
+    let w274 = w272 + w273;
+    let w275 = w68 * w168;
+    let w276 = w275 * w170;
+    let w277 = w274 + w276;
+    let w278 = w68 * w182;
+    let w279 = w278 * w178;
+    let w280 = w277 + w279;
+    let w281 = w68 * w187;
+    let w282 = w280 + w281;
+    let w283 = w68 * w195;
+    let w284 = w283 * w197;
+    let w285 = w282 + w284;
+    let w286 = w70 * w136;
+    let w287 = w113 * w126;
+    let w288 = w286 - w287;
+    let w289 = w288 * w68;
+    let w290 = w285 - w289;
+    let w291 = p[9]; // c_1_1
+    let w292 = w291 * w75;
+    let w293 = p[10]; // c_1_2
+    let w294 = w293 * w65;
+    let w295 = w292 + w294;
+    let w296 = w290 - w295;
+    let o2 = w296; // f_u_1
+    let w297 = w251 * w18;
+    let w298 = w252 * w297;
+    let w299 = w1 * w27;
+    let w300 = w255 + w299;
+    let w301 = w298 - w300;
+    let w302 = 2.0 * w19;
+    let w303: f64 = -6.0;
+    let w304 = w303 * w250;
+    let w305 = w302 * w304;
+    let w306 = w301 + w305;
+    let w307 = w14 * w56;
+    let w308 = w306 + w307;
+    let w309 = w64 * w266;
+    let w310 = w308 + w309;
+    let w311 = w310 + w271;
+    let w312 = w311 + w273;
+    let w313 = w275 * w214;
+    let w314 = w312 + w313;
+    let w315 = w68 * w223;
+    let w316 = w314 + w315;
+    let w317 = w283 * w230;
+    let w318 = w316 + w317;
+    let w319 = w70 * w140;
+    let w320 = w117 * w126;
+    let w321 = w319 - w320;
+    let w322 = w321 * w68;
+    let w323 = w318 - w322;
+    let w324 = w293 * w75;
+    let w325 = p[11]; // c_2_2
+    let w326 = w325 * w65;
+    let w327 = w324 + w326;
+    let w328 = w323 - w327;
+    let o3 = w328; // f_u_2
+    [o0, o1, o2, o3]
+}
+
+/// Indices of the elements of the output `f` of [`free_forcing()`].
+pub mod free_forcing {
+    /// Index of `f_theta`.
+    pub const F_THETA: usize = 0;
+    /// Index of `f_v`.
+    pub const F_V: usize = 1;
+    /// Index of `f_u_1`.
+    pub const F_U_1: usize = 2;
+    /// Index of `f_u_2`.
+    pub const F_U_2: usize = 3;
+
+    /// Indices of the elements of input `y` of [`free_forcing()`](super::free_forcing()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 4;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 5;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 6;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 7;
+    }
+}
+
+/// Kinetic energy, gravity (heights over the rest position of the leaning corner, the ground's surface) and strain potentials and horizontal momentum. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 8]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_2_2`
+///
+/// # Output
+///
+/// `e: [f64; 4]`: energies and momentum — `kinetic`, `gravity`, `strain`, `momentum_x`
+///
+/// Operations: 158 (84 mul, 37 add, 15 sub, 8 sq, 6 twice, 5 div, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_energy(y: &[f64; 8], s: f64, p: &Params) -> [f64; 4] {
+    let w0 = p[4]; // m_c
+    let w1 = y[4]; // theta_dot
+    let w2 = s; // s
+    let w3 = p[1]; // b
+    let w4 = w2 * w3;
+    let w5 = w1 * w4;
+    let w6 = w5 * w5;
+    let w7: f64 = 0.3333333333333333;
+    let w8 = y[2]; // u_1
+    let w9 = -w5;
+    let w10 = 2.0 * w9;
+    let w11 = w1 * w10;
+    let w12 = w8 * w11;
+    let w13 = w7 * w12;
+    let w14 = w6 + w13;
+    let w15: f64 = 0.25;
+    let w16 = y[3]; // u_2
+    let w17 = w16 * w11;
+    let w18 = w15 * w17;
+    let w19 = w14 + w18;
+    let w20: f64 = 0.16666666666666666;
+    let w21 = p[0]; // h
+    let w22 = w1 * w21;
+    let w23 = 2.0 * w22;
+    let w24 = w1 * w23;
+    let w25 = w21 * w24;
+    let w26 = w20 * w25;
+    let w27 = w19 + w26;
+    let w28 = y[6]; // u_dot_1
+    let w29 = 2.0 * w28;
+    let w30 = w1 * w29;
+    let w31 = w21 * w30;
+    let w32 = w15 * w31;
+    let w33 = w27 + w32;
+    let w34: f64 = 0.2;
+    let w35 = y[7]; // u_dot_2
+    let w36 = 2.0 * w35;
+    let w37 = w1 * w36;
+    let w38 = w21 * w37;
+    let w39 = w34 * w38;
+    let w40 = w33 + w39;
+    let w41: f64 = 0.1;
+    let w42 = w1 * w8;
+    let w43 = 2.0 * w42;
+    let w44 = w1 * w43;
+    let w45 = w8 * w44;
+    let w46 = w28 * w29;
+    let w47 = w45 + w46;
+    let w48 = w41 * w47;
+    let w49 = w40 + w48;
+    let w50 = w1 * w16;
+    let w51 = 2.0 * w50;
+    let w52 = w1 * w51;
+    let w53 = w8 * w52;
+    let w54 = w28 * w36;
+    let w55 = w53 + w54;
+    let w56 = w20 * w55;
+    let w57 = w49 + w56;
+    let w58: f64 = 0.07142857142857142;
+    let w59 = w16 * w52;
+    let w60 = w35 * w36;
+    let w61 = w59 + w60;
+    let w62 = w58 * w61;
+    let w63 = w57 + w62;
+    let w64 = w0 * w63;
+    let w65 = p[3]; // m
+    let w66 = w28 + w35;
+    let w67 = w66 + w22;
+    let w68 = w67 * w67;
+    let w69 = w8 + w16;
+    let w70 = w69 - w4;
+    let w71 = w1 * w70;
+    let w72 = w71 * w71;
+    let w73 = w68 + w72;
+    let w74 = w65 * w73;
+    let w75 = w64 + w74;
+    let w76: f64 = 2.0;
+    let w77 = w75 / w76;
+    let w78 = p[6]; // i_bc
+    let w79 = w1 * w1;
+    let w80 = w78 * w79;
+    let w81 = w80 / w76;
+    let w82 = w77 + w81;
+    let w83 = w0 + w65;
+    let w84 = p[5]; // m_b
+    let w85 = w83 + w84;
+    let w86 = y[5]; // v_dot
+    let w87 = y[0]; // theta
+    let w88 = w87.cos();
+    let w89 = w4 * w88;
+    let w90 = w89 * w1;
+    let w91 = w86 + w90;
+    let w92 = w91 * w91;
+    let w93 = w85 * w92;
+    let w94 = w93 / w76;
+    let w95 = w82 + w94;
+    let w96 = w4 * w84;
+    let w97 = w70 * w65;
+    let w98 = w96 - w97;
+    let w99 = w15 * w0;
+    let w100 = w16 * w99;
+    let w101 = w98 - w100;
+    let w102 = w7 * w0;
+    let w103 = w8 * w102;
+    let w104 = w101 - w103;
+    let w105 = w4 * w0;
+    let w106 = w104 + w105;
+    let w107 = w88 * w106;
+    let w108 = w87.sin();
+    let w109 = w21 * w65;
+    let w110: f64 = 0.5;
+    let w111 = w110 * w0;
+    let w112 = w21 * w111;
+    let w113 = w109 + w112;
+    let w114 = w108 * w113;
+    let w115 = w107 - w114;
+    let w116 = w115 * w1;
+    let w117 = w108 * w65;
+    let w118 = w108 * w102;
+    let w119 = w117 + w118;
+    let w120 = w119 * w28;
+    let w121 = w116 - w120;
+    let w122 = w108 * w99;
+    let w123 = w117 + w122;
+    let w124 = w123 * w35;
+    let w125 = w121 - w124;
+    let w126 = w91 * w125;
+    let w127 = w95 - w126;
+    let o0 = w127; // kinetic
+    let w128 = p[8]; // g
+    let w129 = w4 * w108;
+    let w130 = w21 * w88;
+    let w131 = w110 * w130;
+    let w132 = w129 + w131;
+    let w133 = w8 * w108;
+    let w134 = w7 * w133;
+    let w135 = w132 - w134;
+    let w136 = w16 * w108;
+    let w137 = w15 * w136;
+    let w138 = w135 - w137;
+    let w139 = w0 * w138;
+    let w140 = w70 * w108;
+    let w141 = w130 - w140;
+    let w142 = w65 * w141;
+    let w143 = w139 + w142;
+    let w144 = w84 * w129;
+    let w145 = w143 + w144;
+    let w146 = y[1]; // v
+    let w147 = w146 + w129;
+    let w148 = w85 * w147;
+    let w149 = w145 - w148;
+    let w150 = w128 * w149;
+    let o1 = w150; // gravity
+    let w151: f64 = 4.0;
+    let w152 = p[2]; // ei
+    let w153 = w21 * w21;
+    let w154 = w21 * w153;
+    let w155 = w152 / w154;
+    let w156 = w151 * w155;
+    let w157 = w8 * w8;
+    let w158 = w156 * w157;
+    let w159: f64 = 12.0;
+    let w160 = w159 * w155;
+    let w161 = w16 * w16;
+    let w162 = w160 * w161;
+    let w163 = w158 + w162;
+    let w164 = w160 * w8;
+    let w165 = w164 * w16;
+    let w166 = w163 + w165;
+    let w167 = w166 / w76;
+    let o2 = w167; // strain
+    let w168 = w88 * w113;
+    let w169 = w97 - w96;
+    let w170 = w169 + w100;
+    let w171 = w170 + w103;
+    let w172 = w171 - w105;
+    let w173 = w108 * w172;
+    let w174 = w168 - w173;
+    let w175 = w174 * w1;
+    let w176 = w88 * w65;
+    let w177 = w88 * w102;
+    let w178 = w176 + w177;
+    let w179 = w178 * w28;
+    let w180 = w175 + w179;
+    let w181 = w88 * w99;
+    let w182 = w176 + w181;
+    let w183 = w182 * w35;
+    let w184 = w180 + w183;
+    let o3 = w184; // momentum_x
+    [o0, o1, o2, o3]
+}
+
+/// Indices of the elements of the output `e` of [`free_energy()`].
+pub mod free_energy {
+    /// Index of `kinetic`.
+    pub const KINETIC: usize = 0;
+    /// Index of `gravity`.
+    pub const GRAVITY: usize = 1;
+    /// Index of `strain`.
+    pub const STRAIN: usize = 2;
+    /// Index of `momentum_x`.
+    pub const MOMENTUM_X: usize = 3;
+
+    /// Indices of the elements of input `y` of [`free_energy()`](super::free_energy()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 4;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 5;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 6;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 7;
+    }
+}
+
+/// Power terms: dE/dt = ground - damping + Q_theta theta' + Q_v v', with ground = -ug P_x and damping u'^T C u'. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 8]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_2_2`
+///
+/// # Output
+///
+/// `w: [f64; 2]`: power terms — `ground`, `damping`
+///
+/// Operations: 44 (26 mul, 11 add, 4 sub, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_power(y: &[f64; 8], ug: f64, s: f64, p: &Params) -> [f64; 2] {
+    let w0 = ug; // ug
+    let w1 = y[0]; // theta
+    let w2 = w1.cos();
+    let w3 = p[0]; // h
+    let w4 = p[3]; // m
+    let w5 = w3 * w4;
+    let w6: f64 = 0.5;
+    let w7 = p[4]; // m_c
+    let w8 = w6 * w7;
+    let w9 = w3 * w8;
+    let w10 = w5 + w9;
+    let w11 = w2 * w10;
+    let w12 = w1.sin();
+    let w13 = y[2]; // u_1
+    let w14 = y[3]; // u_2
+    let w15 = w13 + w14;
+    let w16 = s; // s
+    let w17 = p[1]; // b
+    let w18 = w16 * w17;
+    let w19 = w15 - w18;
+    let w20 = w19 * w4;
+    let w21 = p[5]; // m_b
+    let w22 = w18 * w21;
+    let w23 = w20 - w22;
+    let w24: f64 = 0.25;
+    let w25 = w24 * w7;
+    let w26 = w14 * w25;
+    let w27 = w23 + w26;
+    let w28: f64 = 0.3333333333333333;
+    let w29 = w28 * w7;
+    let w30 = w13 * w29;
+    let w31 = w27 + w30;
+    let w32 = w18 * w7;
+    let w33 = w31 - w32;
+    let w34 = w12 * w33;
+    let w35 = w11 - w34;
+    let w36 = y[4]; // theta_dot
+    let w37 = w35 * w36;
+    let w38 = w2 * w4;
+    let w39 = w2 * w29;
+    let w40 = w38 + w39;
+    let w41 = y[6]; // u_dot_1
+    let w42 = w40 * w41;
+    let w43 = w37 + w42;
+    let w44 = w2 * w25;
+    let w45 = w38 + w44;
+    let w46 = y[7]; // u_dot_2
+    let w47 = w45 * w46;
+    let w48 = w43 + w47;
+    let w49 = w0 * w48;
+    let w50 = -w49;
+    let o0 = w50; // ground
+    let w51 = p[9]; // c_1_1
+    let w52 = w51 * w41;
+    let w53 = p[10]; // c_1_2
+    let w54 = w53 * w46;
+    let w55 = w52 + w54;
+    let w56 = w55 * w41;
+    let w57 = w53 * w41;
+    let w58 = p[11]; // c_2_2
+    let w59 = w58 * w46;
+    let w60 = w57 + w59;
+    let w61 = w60 * w46;
+    let w62 = w56 + w61;
+    let o1 = w62; // damping
+    [o0, o1]
+}
+
+/// Indices of the elements of the output `w` of [`free_power()`].
+pub mod free_power {
+    /// Index of `ground`.
+    pub const GROUND: usize = 0;
+    /// Index of `damping`.
+    pub const DAMPING: usize = 1;
+
+    /// Indices of the elements of input `y` of [`free_power()`](super::free_power()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 4;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 5;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 6;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 7;
+    }
+}
+
+/// Section forces at the column base and the ground's force on the body (the bed's resultant and the horizontal force that keeps the leaning corner in place), for the accelerations qdd. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded.
+///
+/// # Inputs
+///
+/// - `y: &[f64; 8]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`
+/// - `qdd: &[f64; 4]`: accelerations [theta'', v'', u''] (from M q'' = F + Q_ground) — `theta_ddot`, `v_ddot`, `u_ddot_1`, `u_ddot_2`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_2_2`
+///
+/// # Output
+///
+/// `ff: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 138 (71 mul, 36 add, 23 sub, 3 twice, 2 sq, 1 cos, 1 div, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_forces(y: &[f64; 8], qdd: &[f64; 4], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[4]; // m_c
+    let w1: f64 = 0.3333333333333333;
+    let w2 = y[2]; // u_1
+    let w3 = ug; // ug
+    let w4 = y[0]; // theta
+    let w5 = w4.sin();
+    let w6 = w3 * w5;
+    let w7 = qdd[0]; // theta_ddot
+    let w8 = s; // s
+    let w9 = p[1]; // b
+    let w10 = w8 * w9;
+    let w11 = w7 * w10;
+    let w12 = w6 + w11;
+    let w13 = p[8]; // g
+    let w14 = w4.cos();
+    let w15 = w13 * w14;
+    let w16 = w12 + w15;
+    let w17 = qdd[1]; // v_ddot
+    let w18 = w14 * w7;
+    let w19 = y[4]; // theta_dot
+    let w20 = w19 * w19;
+    let w21 = w5 * w20;
+    let w22 = w18 - w21;
+    let w23 = w10 * w22;
+    let w24 = w17 + w23;
+    let w25 = w24 * w14;
+    let w26 = w16 - w25;
+    let w27 = w2 * w26;
+    let w28 = w1 * w27;
+    let w29: f64 = 0.5;
+    let w30 = p[0]; // h
+    let w31 = w20 * w10;
+    let w32 = w3 * w14;
+    let w33 = w31 + w32;
+    let w34 = w13 * w5;
+    let w35 = w33 - w34;
+    let w36 = w24 * w5;
+    let w37 = w35 + w36;
+    let w38 = w30 * w37;
+    let w39 = w29 * w38;
+    let w40 = w28 - w39;
+    let w41: f64 = 0.25;
+    let w42 = y[3]; // u_2
+    let w43 = w42 * w26;
+    let w44 = w41 * w43;
+    let w45 = w40 + w44;
+    let w46: f64 = 0.16666666666666666;
+    let w47 = w7 * w30;
+    let w48 = 2.0 * w47;
+    let w49 = w30 * w48;
+    let w50 = w46 * w49;
+    let w51 = w45 - w50;
+    let w52 = qdd[2]; // u_ddot_1
+    let w53 = w30 * w52;
+    let w54 = w41 * w53;
+    let w55 = w51 - w54;
+    let w56: f64 = 0.2;
+    let w57 = qdd[3]; // u_ddot_2
+    let w58 = w30 * w57;
+    let w59 = w56 * w58;
+    let w60 = w55 - w59;
+    let w61: f64 = 0.1;
+    let w62 = 2.0 * w19;
+    let w63 = y[6]; // u_dot_1
+    let w64 = w62 * w63;
+    let w65 = w64 * w2;
+    let w66 = w7 * w2;
+    let w67 = w2 * w66;
+    let w68 = w65 + w67;
+    let w69 = w66 + w64;
+    let w70 = w2 * w69;
+    let w71 = w68 + w70;
+    let w72 = w61 * w71;
+    let w73 = w60 - w72;
+    let w74 = w64 * w42;
+    let w75 = w7 * w42;
+    let w76 = w2 * w75;
+    let w77 = w74 + w76;
+    let w78 = y[7]; // u_dot_2
+    let w79 = w62 * w78;
+    let w80 = w75 + w79;
+    let w81 = w2 * w80;
+    let w82 = w77 + w81;
+    let w83 = w46 * w82;
+    let w84 = w73 - w83;
+    let w85: f64 = 0.07142857142857142;
+    let w86 = w79 * w42;
+    let w87 = w42 * w75;
+    let w88 = w86 + w87;
+    let w89 = w42 * w80;
+    let w90 = w88 + w89;
+    let w91 = w85 * w90;
+    let w92 = w84 - w91;
+    let w93 = w0 * w92;
+    let w94 = p[3]; // m
+    let w95 = w2 + w42;
+    let w96 = w95 - w10;
+    let w97 = w7 * w96;
+    let w98 = w20 * w30;
+    let w99 = w97 + w98;
+    let w100 = w64 + w79;
+    let w101 = w99 + w100;
+    let w102 = w6 - w101;
+    let w103 = w102 + w15;
+    let w104 = w103 - w25;
+    let w105 = w95 * w104;
+    let w106 = w20 * w96;
+    let w107 = w47 - w106;
+    let w108 = w52 + w57;
+    let w109 = w107 + w108;
+    let w110 = w109 + w32;
+    let w111 = w110 - w34;
+    let w112 = w111 + w36;
+    let w113 = w30 * w112;
+    let w114 = w105 - w113;
+    let w115 = w94 * w114;
+    let w116 = w93 + w115;
+    let o0 = w116; // moment
+    let w117 = w30 * w7;
+    let w118 = w29 * w117;
+    let w119 = w37 + w118;
+    let w120 = w2 * w20;
+    let w121 = w52 - w120;
+    let w122 = w1 * w121;
+    let w123 = w119 + w122;
+    let w124 = w42 * w20;
+    let w125 = w57 - w124;
+    let w126 = w41 * w125;
+    let w127 = w123 + w126;
+    let w128 = w0 * w127;
+    let w129 = w94 * w112;
+    let w130 = w128 + w129;
+    let o1 = w130; // shear
+    let w131 = w30 * w20;
+    let w132 = w29 * w131;
+    let w133 = w26 - w132;
+    let w134 = w2 * w7;
+    let w135 = w64 + w134;
+    let w136 = w1 * w135;
+    let w137 = w133 - w136;
+    let w138 = w42 * w7;
+    let w139 = w79 + w138;
+    let w140 = w41 * w139;
+    let w141 = w137 - w140;
+    let w142 = w0 * w141;
+    let w143 = w94 * w104;
+    let w144 = w142 + w143;
+    let o2 = w144; // axial
+    let w145 = p[2]; // ei
+    let w146 = w30 * w30;
+    let w147 = w145 / w146;
+    let w148 = 2.0 * w147;
+    let w149 = w148 * w2;
+    let o3 = w149; // moment_elastic
+    let w150 = p[5]; // m_b
+    let w151 = w150 * w37;
+    let w152 = w130 + w151;
+    let w153 = w14 * w152;
+    let w154 = w11 + w6;
+    let w155 = w154 + w15;
+    let w156 = w155 - w25;
+    let w157 = w150 * w156;
+    let w158 = w144 + w157;
+    let w159 = w5 * w158;
+    let w160 = w153 + w159;
+    let o4 = w160; // reaction_h
+    let w161 = w14 * w158;
+    let w162 = w5 * w152;
+    let w163 = w161 - w162;
+    let o5 = w163; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `ff` of [`free_forces()`].
+pub mod free_forces {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `y` of [`free_forces()`](super::free_forces()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 4;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 5;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 6;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 7;
+    }
+
+    /// Indices of the elements of input `qdd` of [`free_forces()`](super::free_forces()).
+    pub mod qdd {
+        /// Index of `theta_ddot`.
+        pub const THETA_DDOT: usize = 0;
+        /// Index of `v_ddot`.
+        pub const V_DDOT: usize = 1;
+        /// Index of `u_ddot_1`.
+        pub const U_DDOT_1: usize = 2;
+        /// Index of `u_ddot_2`.
+        pub const U_DDOT_2: usize = 3;
+    }
+}
+
 /// The full model on the basis eta^2, eta^3: two deformation coordinates
 ///
 /// Type-level handle of this variant, implementing [`crate::Variant`].
@@ -3339,6 +4515,31 @@ impl crate::Variant for Polynomial2 {
     #[inline]
     fn static_uplift(p: &Params) -> [f64; 6] {
         static_uplift(p)
+    }
+
+    #[inline]
+    fn free_mass_matrix(qf: &[f64; 4], s: f64, p: &Params) -> [f64; 10] {
+        free_mass_matrix(qf, s, p)
+    }
+
+    #[inline]
+    fn free_forcing(y: &[f64; 8], ug: f64, s: f64, p: &Params) -> [f64; 4] {
+        free_forcing(y, ug, s, p)
+    }
+
+    #[inline]
+    fn free_energy(y: &[f64; 8], s: f64, p: &Params) -> [f64; 4] {
+        free_energy(y, s, p)
+    }
+
+    #[inline]
+    fn free_power(y: &[f64; 8], ug: f64, s: f64, p: &Params) -> [f64; 2] {
+        free_power(y, ug, s, p)
+    }
+
+    #[inline]
+    fn free_forces(y: &[f64; 8], qdd: &[f64; 4], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+        free_forces(y, qdd, ug, s, p)
     }
 }
 
@@ -3482,6 +4683,55 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             };
             let p: &Params = (*p).try_into().ok()?;
             Some(static_uplift(p).to_vec())
+        }
+        "free_mass_matrix" => {
+            let [qf, s, p] = inputs else {
+                return None;
+            };
+            let qf: &[f64; 4] = (*qf).try_into().ok()?;
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_mass_matrix(qf, s, p).to_vec())
+        }
+        "free_forcing" => {
+            let [y, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 8] = (*y).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_forcing(y, ug, s, p).to_vec())
+        }
+        "free_energy" => {
+            let [y, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 8] = (*y).try_into().ok()?;
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_energy(y, s, p).to_vec())
+        }
+        "free_power" => {
+            let [y, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 8] = (*y).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_power(y, ug, s, p).to_vec())
+        }
+        "free_forces" => {
+            let [y, qdd, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 8] = (*y).try_into().ok()?;
+            let qdd: &[f64; 4] = (*qdd).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_forces(y, qdd, ug, s, p).to_vec())
         }
         _ => None,
     }

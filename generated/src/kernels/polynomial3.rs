@@ -4565,6 +4565,1548 @@ pub mod static_uplift {
     pub const MOMENT_ELASTIC_UPLIFT: usize = 6;
 }
 
+/// Mass matrix M(q) over q = [theta, v, u_1..u_n], upper triangle row by row (symmetric positive definite; a rigid column's u row is the identity). On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `qf: &[f64; 5]`: configuration on compliant ground: rotation, settlement of the base centre (positive into the ground), deformation — `theta`, `v`, `u_1`, `u_2`, `u_3`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_2_2`, `c_2_3`, `c_3_3`
+///
+/// # Output
+///
+/// `m: [f64; 15]`: upper triangle of M — `m_t_t`, `m_t_v`, `m_t_u1`, `m_t_u2`, `m_t_u3`, `m_v_v`, `m_v_u1`, `m_v_u2`, `m_v_u3`, `m_u1_u1`, `m_u1_u2`, `m_u1_u3`, `m_u2_u2`, `m_u2_u3`, `m_u3_u3`
+///
+/// Operations: 146 (72 mul, 42 add, 17 twice, 12 sub, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_mass_matrix(qf: &[f64; 5], s: f64, p: &Params) -> [f64; 15] {
+    let w0 = s; // s
+    let w1 = p[1]; // b
+    let w2 = w0 * w1;
+    let w3 = qf[0]; // theta
+    let w4 = w3.cos();
+    let w5 = w2 * w4;
+    let w6: f64 = 0.5;
+    let w7 = p[4]; // m_c
+    let w8 = p[3]; // m
+    let w9 = w7 + w8;
+    let w10 = p[5]; // m_b
+    let w11 = w9 + w10;
+    let w12 = w6 * w11;
+    let w13 = 2.0 * w5;
+    let w14 = w12 * w13;
+    let w15 = w2 * w10;
+    let w16 = qf[2]; // u_1
+    let w17 = qf[3]; // u_2
+    let w18 = w16 + w17;
+    let w19 = qf[4]; // u_3
+    let w20 = w18 + w19;
+    let w21 = w20 - w2;
+    let w22 = w21 * w8;
+    let w23 = w15 - w22;
+    let w24: f64 = 0.2;
+    let w25 = w24 * w7;
+    let w26 = w19 * w25;
+    let w27 = w23 - w26;
+    let w28: f64 = 0.25;
+    let w29 = w28 * w7;
+    let w30 = w17 * w29;
+    let w31 = w27 - w30;
+    let w32: f64 = 0.3333333333333333;
+    let w33 = w32 * w7;
+    let w34 = w16 * w33;
+    let w35 = w31 - w34;
+    let w36 = w2 * w7;
+    let w37 = w35 + w36;
+    let w38 = w4 * w37;
+    let w39 = w3.sin();
+    let w40 = p[0]; // h
+    let w41 = w40 * w8;
+    let w42 = w6 * w7;
+    let w43 = w40 * w42;
+    let w44 = w41 + w43;
+    let w45 = w39 * w44;
+    let w46 = w38 - w45;
+    let w47 = w14 - w46;
+    let w48 = w5 * w47;
+    let w49 = w46 * w5;
+    let w50 = w48 - w49;
+    let w51 = p[6]; // i_bc
+    let w52 = w50 + w51;
+    let w53 = w6 * w8;
+    let w54 = 2.0 * w21;
+    let w55 = w53 * w54;
+    let w56 = w21 * w55;
+    let w57 = w52 + w56;
+    let w58 = 2.0 * w40;
+    let w59 = w53 * w58;
+    let w60 = w40 * w59;
+    let w61 = w57 + w60;
+    let w62: f64 = 0.027777777777777776;
+    let w63 = w62 * w7;
+    let w64 = w19 * w63;
+    let w65: f64 = 0.0625;
+    let w66 = w65 * w7;
+    let w67 = w17 * w66;
+    let w68 = w64 + w67;
+    let w69: f64 = 0.07142857142857142;
+    let w70 = w69 * w7;
+    let w71 = w16 * w70;
+    let w72 = w68 + w71;
+    let w73 = 2.0 * w19;
+    let w74 = w72 * w73;
+    let w75 = w61 + w74;
+    let w76 = 2.0 * w72;
+    let w77 = w19 * w76;
+    let w78 = w75 + w77;
+    let w79: f64 = 0.03571428571428571;
+    let w80 = w79 * w7;
+    let w81 = w17 * w80;
+    let w82: f64 = 0.08333333333333333;
+    let w83 = w82 * w7;
+    let w84 = w16 * w83;
+    let w85 = w81 + w84;
+    let w86 = 2.0 * w17;
+    let w87 = w85 * w86;
+    let w88 = w78 + w87;
+    let w89 = 2.0 * w85;
+    let w90 = w17 * w89;
+    let w91 = w88 + w90;
+    let w92: f64 = 0.05;
+    let w93 = w92 * w7;
+    let w94 = w16 * w93;
+    let w95 = 2.0 * w16;
+    let w96 = w94 * w95;
+    let w97 = w91 + w96;
+    let w98 = 2.0 * w94;
+    let w99 = w16 * w98;
+    let w100 = w97 + w99;
+    let w101 = w40 * w83;
+    let w102 = w101 * w58;
+    let w103 = w100 + w102;
+    let w104 = 2.0 * w101;
+    let w105 = w40 * w104;
+    let w106 = w103 + w105;
+    let w107: f64 = 0.1;
+    let w108 = w107 * w7;
+    let w109 = w19 * w108;
+    let w110 = -w2;
+    let w111 = 2.0 * w110;
+    let w112 = w109 * w111;
+    let w113 = w106 + w112;
+    let w114 = 2.0 * w109;
+    let w115 = w2 * w114;
+    let w116 = w113 - w115;
+    let w117: f64 = 0.125;
+    let w118 = w117 * w7;
+    let w119 = w17 * w118;
+    let w120 = w119 * w111;
+    let w121 = w116 + w120;
+    let w122 = 2.0 * w119;
+    let w123 = w2 * w122;
+    let w124 = w121 - w123;
+    let w125: f64 = 0.16666666666666666;
+    let w126 = w125 * w7;
+    let w127 = w16 * w126;
+    let w128 = w127 * w111;
+    let w129 = w124 + w128;
+    let w130 = 2.0 * w127;
+    let w131 = w2 * w130;
+    let w132 = w129 - w131;
+    let w133 = 2.0 * w2;
+    let w134 = w42 * w133;
+    let w135 = w2 * w134;
+    let w136 = w132 + w135;
+    let o0 = w136; // m_t_t
+    let w137 = w5 * w11;
+    let w138 = w137 - w46;
+    let o1 = w138; // m_t_v
+    let w139 = w39 * w8;
+    let w140 = w39 * w33;
+    let w141 = w139 + w140;
+    let w142 = w5 * w141;
+    let w143 = w142 + w41;
+    let w144 = w40 * w118;
+    let w145 = 2.0 * w144;
+    let w146 = w143 + w145;
+    let o2 = w146; // m_t_u1
+    let w147 = w39 * w29;
+    let w148 = w139 + w147;
+    let w149 = w5 * w148;
+    let w150 = w149 + w41;
+    let w151 = w40 * w108;
+    let w152 = 2.0 * w151;
+    let w153 = w150 + w152;
+    let o3 = w153; // m_t_u2
+    let w154 = w39 * w25;
+    let w155 = w139 + w154;
+    let w156 = w5 * w155;
+    let w157 = w156 + w41;
+    let w158 = w157 + w104;
+    let o4 = w158; // m_t_u3
+    let o5 = w11; // m_v_v
+    let o6 = w141; // m_v_u1
+    let o7 = w148; // m_v_u2
+    let o8 = w155; // m_v_u3
+    let w159 = w8 + w108;
+    let w160 = w159 + w108;
+    let o9 = w160; // m_u1_u1
+    let w161 = w8 + w126;
+    let o10 = w161; // m_u1_u2
+    let w162: f64 = 0.14285714285714285;
+    let w163 = w162 * w7;
+    let w164 = w8 + w163;
+    let o11 = w164; // m_u1_u3
+    let w165 = w8 + w70;
+    let w166 = w165 + w70;
+    let o12 = w166; // m_u2_u2
+    let w167 = w8 + w118;
+    let o13 = w167; // m_u2_u3
+    let w168: f64 = 0.05555555555555555;
+    let w169 = w168 * w7;
+    let w170 = w8 + w169;
+    let w171 = w170 + w169;
+    let o14 = w171; // m_u3_u3
+    [
+        o0,
+        o1,
+        o2,
+        o3,
+        o4,
+        o5,
+        o6,
+        o7,
+        o8,
+        o9,
+        o10,
+        o11,
+        o12,
+        o13,
+        o14,
+    ]
+}
+
+/// Indices of the elements of the output `m` of [`free_mass_matrix()`].
+pub mod free_mass_matrix {
+    /// Index of `m_t_t`.
+    pub const M_T_T: usize = 0;
+    /// Index of `m_t_v`.
+    pub const M_T_V: usize = 1;
+    /// Index of `m_t_u1`.
+    pub const M_T_U1: usize = 2;
+    /// Index of `m_t_u2`.
+    pub const M_T_U2: usize = 3;
+    /// Index of `m_t_u3`.
+    pub const M_T_U3: usize = 4;
+    /// Index of `m_v_v`.
+    pub const M_V_V: usize = 5;
+    /// Index of `m_v_u1`.
+    pub const M_V_U1: usize = 6;
+    /// Index of `m_v_u2`.
+    pub const M_V_U2: usize = 7;
+    /// Index of `m_v_u3`.
+    pub const M_V_U3: usize = 8;
+    /// Index of `m_u1_u1`.
+    pub const M_U1_U1: usize = 9;
+    /// Index of `m_u1_u2`.
+    pub const M_U1_U2: usize = 10;
+    /// Index of `m_u1_u3`.
+    pub const M_U1_U3: usize = 11;
+    /// Index of `m_u2_u2`.
+    pub const M_U2_U2: usize = 12;
+    /// Index of `m_u2_u3`.
+    pub const M_U2_U3: usize = 13;
+    /// Index of `m_u3_u3`.
+    pub const M_U3_U3: usize = 14;
+
+    /// Indices of the elements of input `qf` of [`free_mass_matrix()`](super::free_mass_matrix()).
+    pub mod qf {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+    }
+}
+
+/// Right-hand side F of M q'' = F + Q_ground without the ground: gravity, ground acceleration, stiffness, damping and velocity terms; Q_ground = [Q_theta, Q_v, 0..] from the ground's kernels. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 10]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `u_3`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_2_2`, `c_2_3`, `c_3_3`
+///
+/// # Output
+///
+/// `f: [f64; 5]`: generalised forces — `f_theta`, `f_v`, `f_u_1`, `f_u_2`, `f_u_3`
+///
+/// Operations: 422 (240 mul, 115 add, 38 sub, 23 twice, 2 neg, 1 cos, 1 div, 1 sin, 1 sq).
+#[inline]
+#[must_use]
+pub fn free_forcing(y: &[f64; 10], ug: f64, s: f64, p: &Params) -> [f64; 5] {
+    let w0 = y[0]; // theta
+    let w1 = w0.cos();
+    let w2 = s; // s
+    let w3 = p[1]; // b
+    let w4 = w2 * w3;
+    let w5 = p[4]; // m_c
+    let w6 = p[3]; // m
+    let w7 = w5 + w6;
+    let w8 = p[5]; // m_b
+    let w9 = w7 + w8;
+    let w10 = p[8]; // g
+    let w11 = w9 * w10;
+    let w12 = w4 * w11;
+    let w13 = w1 * w12;
+    let w14 = w0.sin();
+    let w15 = ug; // ug
+    let w16 = w8 * w15;
+    let w17 = w4 * w16;
+    let w18 = y[2]; // u_1
+    let w19 = y[3]; // u_2
+    let w20 = w18 + w19;
+    let w21 = y[4]; // u_3
+    let w22 = w20 + w21;
+    let w23 = w22 - w4;
+    let w24 = w6 * w15;
+    let w25 = w23 * w24;
+    let w26 = w17 - w25;
+    let w27: f64 = 0.2;
+    let w28 = w5 * w15;
+    let w29 = w27 * w28;
+    let w30 = w21 * w29;
+    let w31 = w26 - w30;
+    let w32: f64 = 0.25;
+    let w33 = w32 * w28;
+    let w34 = w19 * w33;
+    let w35 = w31 - w34;
+    let w36: f64 = 0.3333333333333333;
+    let w37 = w36 * w28;
+    let w38 = w18 * w37;
+    let w39 = w35 - w38;
+    let w40 = w4 * w28;
+    let w41 = w39 + w40;
+    let w42 = p[0]; // h
+    let w43 = w6 * w10;
+    let w44 = w42 * w43;
+    let w45 = w41 - w44;
+    let w46: f64 = 0.5;
+    let w47 = w5 * w10;
+    let w48 = w46 * w47;
+    let w49 = w42 * w48;
+    let w50 = w45 - w49;
+    let w51 = w14 * w50;
+    let w52 = w13 - w51;
+    let w53 = w23 * w43;
+    let w54 = w42 * w24;
+    let w55 = w46 * w28;
+    let w56 = w42 * w55;
+    let w57 = w54 + w56;
+    let w58 = w8 * w10;
+    let w59 = w4 * w58;
+    let w60 = w57 + w59;
+    let w61 = w53 - w60;
+    let w62 = w27 * w47;
+    let w63 = w21 * w62;
+    let w64 = w61 + w63;
+    let w65 = w32 * w47;
+    let w66 = w19 * w65;
+    let w67 = w64 + w66;
+    let w68 = w36 * w47;
+    let w69 = w18 * w68;
+    let w70 = w67 + w69;
+    let w71 = w4 * w47;
+    let w72 = w70 - w71;
+    let w73 = w27 * w5;
+    let w74 = y[9]; // u_dot_3
+    let w75 = y[6]; // v_dot
+    let w76 = w4 * w1;
+    let w77 = y[5]; // theta_dot
+    let w78 = w76 * w77;
+    let w79 = w75 + w78;
+    let w80 = w74 * w79;
+    let w81 = w73 * w80;
+    let w82 = w72 + w81;
+    let w83 = w32 * w5;
+    let w84 = y[8]; // u_dot_2
+    let w85 = w84 * w79;
+    let w86 = w83 * w85;
+    let w87 = w82 + w86;
+    let w88 = w36 * w5;
+    let w89 = y[7]; // u_dot_1
+    let w90 = w89 * w79;
+    let w91 = w88 * w90;
+    let w92 = w87 + w91;
+    let w93 = w80 + w85;
+    let w94 = w93 + w90;
+    let w95 = w6 * w94;
+    let w96 = w92 + w95;
+    let w97 = w1 * w96;
+    let w98 = w52 + w97;
+    let w99 = w42 * w6;
+    let w100 = w46 * w5;
+    let w101 = w42 * w100;
+    let w102 = w99 + w101;
+    let w103 = w77 * w79;
+    let w104 = w102 * w103;
+    let w105 = w1 * w104;
+    let w106 = w98 + w105;
+    let w107 = w4 * w8;
+    let w108 = w23 * w6;
+    let w109 = w107 - w108;
+    let w110 = w21 * w73;
+    let w111 = w109 - w110;
+    let w112 = w19 * w83;
+    let w113 = w111 - w112;
+    let w114 = w18 * w88;
+    let w115 = w113 - w114;
+    let w116 = w4 * w5;
+    let w117 = w115 + w116;
+    let w118 = w117 * w103;
+    let w119 = w14 * w118;
+    let w120 = w106 + w119;
+    let w121 = 2.0 * w79;
+    let w122 = w46 * w9;
+    let w123 = w121 * w122;
+    let w124 = w1 * w117;
+    let w125 = w14 * w102;
+    let w126 = w124 - w125;
+    let w127 = w126 * w77;
+    let w128 = w14 * w6;
+    let w129 = w14 * w88;
+    let w130 = w128 + w129;
+    let w131 = w130 * w89;
+    let w132 = w127 - w131;
+    let w133 = w14 * w83;
+    let w134 = w128 + w133;
+    let w135 = w134 * w84;
+    let w136 = w132 - w135;
+    let w137 = w14 * w73;
+    let w138 = w128 + w137;
+    let w139 = w138 * w74;
+    let w140 = w136 - w139;
+    let w141 = w123 - w140;
+    let w142 = w77 * w141;
+    let w143 = w4 * w142;
+    let w144 = w14 * w143;
+    let w145 = w120 - w144;
+    let w146 = w4 * w14;
+    let w147 = w77 * w146;
+    let w148 = -w147;
+    let w149 = 2.0 * w148;
+    let w150 = w122 * w149;
+    let w151 = w117 * w14;
+    let w152 = w102 * w1;
+    let w153 = w151 + w152;
+    let w154 = w77 * w153;
+    let w155 = w6 * w1;
+    let w156 = w88 * w1;
+    let w157 = w155 + w156;
+    let w158 = w89 * w157;
+    let w159 = w154 + w158;
+    let w160 = w83 * w1;
+    let w161 = w155 + w160;
+    let w162 = w84 * w161;
+    let w163 = w159 + w162;
+    let w164 = w73 * w1;
+    let w165 = w155 + w164;
+    let w166 = w74 * w165;
+    let w167 = w163 + w166;
+    let w168 = w150 + w167;
+    let w169 = w76 * w168;
+    let w170 = w141 * w146;
+    let w171 = w169 - w170;
+    let w172 = w79 * w153;
+    let w173 = w126 * w147;
+    let w174 = w172 + w173;
+    let w175 = w171 + w174;
+    let w176 = w175 * w77;
+    let w177 = w6 + w88;
+    let w178 = w1 * w177;
+    let w179 = w77 * w178;
+    let w180 = w76 * w179;
+    let w181 = w79 * w178;
+    let w182 = w180 + w181;
+    let w183 = w77 * w23;
+    let w184 = 2.0 * w183;
+    let w185 = w46 * w6;
+    let w186 = w184 * w185;
+    let w187 = 2.0 * w77;
+    let w188 = w185 * w187;
+    let w189 = w23 * w188;
+    let w190 = w186 + w189;
+    let w191 = w182 + w190;
+    let w192 = w77 * w21;
+    let w193 = 2.0 * w192;
+    let w194: f64 = 0.07142857142857142;
+    let w195 = w194 * w5;
+    let w196 = w193 * w195;
+    let w197 = w191 + w196;
+    let w198 = w77 * w195;
+    let w199 = 2.0 * w198;
+    let w200 = w21 * w199;
+    let w201 = w197 + w200;
+    let w202 = w77 * w19;
+    let w203 = 2.0 * w202;
+    let w204: f64 = 0.08333333333333333;
+    let w205 = w204 * w5;
+    let w206 = w203 * w205;
+    let w207 = w201 + w206;
+    let w208 = w77 * w205;
+    let w209 = 2.0 * w208;
+    let w210 = w19 * w209;
+    let w211 = w207 + w210;
+    let w212: f64 = 0.05;
+    let w213 = w212 * w5;
+    let w214 = w18 * w213;
+    let w215 = w214 * w187;
+    let w216 = w77 * w18;
+    let w217 = 2.0 * w216;
+    let w218 = w217 * w213;
+    let w219 = w215 + w218;
+    let w220 = w211 + w219;
+    let w221 = w77 * w214;
+    let w222 = 2.0 * w221;
+    let w223 = w77 * w213;
+    let w224 = 2.0 * w223;
+    let w225 = w18 * w224;
+    let w226 = w222 + w225;
+    let w227 = w220 + w226;
+    let w228 = w77 * w4;
+    let w229 = -w228;
+    let w230 = 2.0 * w229;
+    let w231: f64 = 0.16666666666666666;
+    let w232 = w231 * w5;
+    let w233 = w230 * w232;
+    let w234 = w227 + w233;
+    let w235 = w77 * w232;
+    let w236 = 2.0 * w235;
+    let w237 = w4 * w236;
+    let w238 = w234 - w237;
+    let w239 = w238 * w89;
+    let w240 = w176 + w239;
+    let w241 = w6 + w83;
+    let w242 = w1 * w241;
+    let w243 = w77 * w242;
+    let w244 = w76 * w243;
+    let w245 = w79 * w242;
+    let w246 = w244 + w245;
+    let w247 = w246 + w190;
+    let w248: f64 = 0.0625;
+    let w249 = w248 * w5;
+    let w250 = w193 * w249;
+    let w251 = w247 + w250;
+    let w252 = w77 * w249;
+    let w253 = 2.0 * w252;
+    let w254 = w21 * w253;
+    let w255 = w251 + w254;
+    let w256: f64 = 0.03571428571428571;
+    let w257 = w256 * w5;
+    let w258 = w19 * w257;
+    let w259 = w18 * w205;
+    let w260 = w258 + w259;
+    let w261 = w260 * w187;
+    let w262 = w203 * w257;
+    let w263 = w261 + w262;
+    let w264 = w255 + w263;
+    let w265 = w77 * w260;
+    let w266 = 2.0 * w265;
+    let w267 = w77 * w257;
+    let w268 = 2.0 * w267;
+    let w269 = w19 * w268;
+    let w270 = w266 + w269;
+    let w271 = w264 + w270;
+    let w272: f64 = 0.125;
+    let w273 = w272 * w5;
+    let w274 = w230 * w273;
+    let w275 = w271 + w274;
+    let w276 = w77 * w273;
+    let w277 = 2.0 * w276;
+    let w278 = w4 * w277;
+    let w279 = w275 - w278;
+    let w280 = w279 * w84;
+    let w281 = w240 + w280;
+    let w282 = w6 + w73;
+    let w283 = w1 * w282;
+    let w284 = w77 * w283;
+    let w285 = w76 * w284;
+    let w286 = w79 * w283;
+    let w287 = w285 + w286;
+    let w288 = w287 + w190;
+    let w289: f64 = 0.027777777777777776;
+    let w290 = w289 * w5;
+    let w291 = w21 * w290;
+    let w292 = w19 * w249;
+    let w293 = w291 + w292;
+    let w294 = w18 * w195;
+    let w295 = w293 + w294;
+    let w296 = w295 * w187;
+    let w297 = w193 * w290;
+    let w298 = w296 + w297;
+    let w299 = w288 + w298;
+    let w300 = w77 * w295;
+    let w301 = 2.0 * w300;
+    let w302 = w77 * w290;
+    let w303 = 2.0 * w302;
+    let w304 = w21 * w303;
+    let w305 = w301 + w304;
+    let w306 = w299 + w305;
+    let w307: f64 = 0.1;
+    let w308 = w307 * w5;
+    let w309 = w230 * w308;
+    let w310 = w306 + w309;
+    let w311 = w77 * w308;
+    let w312 = 2.0 * w311;
+    let w313 = w4 * w312;
+    let w314 = w310 - w313;
+    let w315 = w314 * w74;
+    let w316 = w281 + w315;
+    let w317 = w145 - w316;
+    let o0 = w317; // f_theta
+    let w318 = w168 * w77;
+    let w319 = w179 * w89;
+    let w320 = w318 + w319;
+    let w321 = w243 * w84;
+    let w322 = w320 + w321;
+    let w323 = w284 * w74;
+    let w324 = w322 + w323;
+    let w325 = w11 - w324;
+    let o1 = w325; // f_v
+    let w326: f64 = 16.0;
+    let w327 = p[2]; // ei
+    let w328 = w42 * w42;
+    let w329 = w42 * w328;
+    let w330 = w327 / w329;
+    let w331 = w326 * w330;
+    let w332: f64 = -0.5;
+    let w333 = w332 * w21;
+    let w334 = w331 * w333;
+    let w335 = w1 * w24;
+    let w336 = w1 * w37;
+    let w337 = w335 + w336;
+    let w338 = w334 - w337;
+    let w339: f64 = 12.0;
+    let w340 = w339 * w330;
+    let w341 = w332 * w19;
+    let w342 = w340 * w341;
+    let w343 = w338 + w342;
+    let w344 = 2.0 * w18;
+    let w345: f64 = -2.0;
+    let w346 = w345 * w330;
+    let w347 = w344 * w346;
+    let w348 = w343 + w347;
+    let w349 = w14 * w68;
+    let w350 = w348 + w349;
+    let w351 = w1 * w103;
+    let w352 = w88 * w351;
+    let w353 = w350 + w352;
+    let w354 = w14 * w43;
+    let w355 = w6 * w351;
+    let w356 = w354 + w355;
+    let w357 = w353 + w356;
+    let w358 = w77 * w186;
+    let w359 = w357 + w358;
+    let w360 = w77 * w193;
+    let w361 = w360 * w195;
+    let w362 = w359 + w361;
+    let w363 = w77 * w203;
+    let w364 = w363 * w205;
+    let w365 = w362 + w364;
+    let w366 = w77 * w217;
+    let w367 = w366 * w213;
+    let w368 = w365 + w367;
+    let w369 = w77 * w222;
+    let w370 = w368 + w369;
+    let w371 = w77 * w230;
+    let w372 = w371 * w232;
+    let w373 = w370 + w372;
+    let w374 = w79 * w157;
+    let w375 = w130 * w147;
+    let w376 = w374 - w375;
+    let w377 = w376 * w77;
+    let w378 = w373 - w377;
+    let w379 = p[9]; // c_1_1
+    let w380 = w379 * w89;
+    let w381 = p[10]; // c_1_2
+    let w382 = w381 * w84;
+    let w383 = w380 + w382;
+    let w384 = p[11]; // c_1_3
+    let w385 = w384 * w74;
+    let w386 = w383 + w385;
+    let w387 = w378 - w386;
+    let o2 = w387; // f_u_1
+    let w388: f64 = 36.0;
+    let w389 = w388 * w330;
+    let w390 = w389 * w333;
+    let w391 = w1 * w33;
+    let w392 = w335 + w391;
+    let w393 = w390 - w392;
+    let w394 = w340 * w18;
+    let w395 = w332 * w394;
+    let w396 = w393 + w395;
+    let w397 = 2.0 * w19;
+    let w398: f64 = -6.0;
+    let w399 = w398 * w330;
+    let w400 = w397 * w399;
+    let w401 = w396 + w400;
+    let w402 = w14 * w65;
+    let w403 = w401 + w402;
+    let w404 = w83 * w351;
+    let w405 = w403 + w404;
+    let w406 = w405 + w356;
+    let w407 = w406 + w358;
+    let w408 = w360 * w249;
+    let w409 = w407 + w408;
+    let w410 = w363 * w257;
+    let w411 = w409 + w410;
+    let w412 = w77 * w266;
+    let w413 = w411 + w412;
+    let w414 = w371 * w273;
+    let w415 = w413 + w414;
+    let w416 = w79 * w161;
+    let w417 = w134 * w147;
+    let w418 = w416 - w417;
+    let w419 = w418 * w77;
+    let w420 = w415 - w419;
+    let w421 = w381 * w89;
+    let w422 = p[12]; // c_2_2
+    let w423 = w422 * w84;
+    let w424 = w421 + w423;
+    let w425 = p[13]; // c_2_3
+    let w426 = w425 * w74;
+    let w427 = w424 + w426;
+    let w428 = w420 - w427;
+    let o3 = w428; // f_u_2
+    let w429 = w389 * w19;
+    let w430 = w332 * w429;
+    let w431 = w1 * w29;
+    let w432 = w335 + w431;
+    let w433 = w430 - w432;
+    let w434 = w331 * w18;
+    let w435 = w332 * w434;
+    let w436 = w433 + w435;
+    let w437 = 2.0 * w21;
+    let w438: f64 = -14.4;
+    let w439 = w438 * w330;
+    let w440 = w437 * w439;
+    let w441 = w436 + w440;
+    let w442 = w14 * w62;
+    let w443 = w441 + w442;
+    let w444 = w73 * w351;
+    let w445 = w443 + w444;
+    let w446 = w445 + w356;
+    let w447 = w446 + w358;
+    let w448 = w360 * w290;
+    let w449 = w447 + w448;
+    let w450 = w77 * w301;
+    let w451 = w449 + w450;
+    let w452 = w371 * w308;
+    let w453 = w451 + w452;
+    let w454 = w79 * w165;
+    let w455 = w138 * w147;
+    let w456 = w454 - w455;
+    let w457 = w456 * w77;
+    let w458 = w453 - w457;
+    let w459 = w384 * w89;
+    let w460 = w425 * w84;
+    let w461 = w459 + w460;
+    let w462 = p[14]; // c_3_3
+    let w463 = w462 * w74;
+    let w464 = w461 + w463;
+    let w465 = w458 - w464;
+    let o4 = w465; // f_u_3
+    [o0, o1, o2, o3, o4]
+}
+
+/// Indices of the elements of the output `f` of [`free_forcing()`].
+pub mod free_forcing {
+    /// Index of `f_theta`.
+    pub const F_THETA: usize = 0;
+    /// Index of `f_v`.
+    pub const F_V: usize = 1;
+    /// Index of `f_u_1`.
+    pub const F_U_1: usize = 2;
+    /// Index of `f_u_2`.
+    pub const F_U_2: usize = 3;
+    /// Index of `f_u_3`.
+    pub const F_U_3: usize = 4;
+
+    /// Indices of the elements of input `y` of [`free_forcing()`](super::free_forcing()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 5;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 6;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 7;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 8;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 9;
+    }
+}
+
+/// Kinetic energy, gravity (heights over the rest position of the leaning corner, the ground's surface) and strain potentials and horizontal momentum. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 10]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `u_3`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_2_2`, `c_2_3`, `c_3_3`
+///
+/// # Output
+///
+/// `e: [f64; 4]`: energies and momentum — `kinetic`, `gravity`, `strain`, `momentum_x`
+///
+/// Operations: 213 (116 mul, 54 add, 18 sub, 9 sq, 8 twice, 5 div, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_energy(y: &[f64; 10], s: f64, p: &Params) -> [f64; 4] {
+    let w0 = p[4]; // m_c
+    let w1 = y[5]; // theta_dot
+    let w2 = s; // s
+    let w3 = p[1]; // b
+    let w4 = w2 * w3;
+    let w5 = w1 * w4;
+    let w6 = w5 * w5;
+    let w7: f64 = 0.3333333333333333;
+    let w8 = y[2]; // u_1
+    let w9 = -w5;
+    let w10 = 2.0 * w9;
+    let w11 = w1 * w10;
+    let w12 = w8 * w11;
+    let w13 = w7 * w12;
+    let w14 = w6 + w13;
+    let w15: f64 = 0.25;
+    let w16 = y[3]; // u_2
+    let w17 = w16 * w11;
+    let w18 = w15 * w17;
+    let w19 = w14 + w18;
+    let w20: f64 = 0.2;
+    let w21 = y[4]; // u_3
+    let w22 = w21 * w11;
+    let w23 = w20 * w22;
+    let w24 = w19 + w23;
+    let w25: f64 = 0.16666666666666666;
+    let w26 = p[0]; // h
+    let w27 = w1 * w26;
+    let w28 = 2.0 * w27;
+    let w29 = w1 * w28;
+    let w30 = w26 * w29;
+    let w31 = w25 * w30;
+    let w32 = w24 + w31;
+    let w33 = y[7]; // u_dot_1
+    let w34 = 2.0 * w33;
+    let w35 = w1 * w34;
+    let w36 = w26 * w35;
+    let w37 = w15 * w36;
+    let w38 = w32 + w37;
+    let w39 = y[8]; // u_dot_2
+    let w40 = 2.0 * w39;
+    let w41 = w1 * w40;
+    let w42 = w26 * w41;
+    let w43 = w20 * w42;
+    let w44 = w38 + w43;
+    let w45 = y[9]; // u_dot_3
+    let w46 = 2.0 * w45;
+    let w47 = w1 * w46;
+    let w48 = w26 * w47;
+    let w49 = w25 * w48;
+    let w50 = w44 + w49;
+    let w51: f64 = 0.1;
+    let w52 = w1 * w8;
+    let w53 = 2.0 * w52;
+    let w54 = w1 * w53;
+    let w55 = w8 * w54;
+    let w56 = w33 * w34;
+    let w57 = w55 + w56;
+    let w58 = w51 * w57;
+    let w59 = w50 + w58;
+    let w60 = w1 * w16;
+    let w61 = 2.0 * w60;
+    let w62 = w1 * w61;
+    let w63 = w8 * w62;
+    let w64 = w33 * w40;
+    let w65 = w63 + w64;
+    let w66 = w25 * w65;
+    let w67 = w59 + w66;
+    let w68: f64 = 0.14285714285714285;
+    let w69 = w1 * w21;
+    let w70 = 2.0 * w69;
+    let w71 = w1 * w70;
+    let w72 = w8 * w71;
+    let w73 = w33 * w46;
+    let w74 = w72 + w73;
+    let w75 = w68 * w74;
+    let w76 = w67 + w75;
+    let w77: f64 = 0.07142857142857142;
+    let w78 = w16 * w62;
+    let w79 = w39 * w40;
+    let w80 = w78 + w79;
+    let w81 = w77 * w80;
+    let w82 = w76 + w81;
+    let w83: f64 = 0.125;
+    let w84 = w16 * w71;
+    let w85 = w39 * w46;
+    let w86 = w84 + w85;
+    let w87 = w83 * w86;
+    let w88 = w82 + w87;
+    let w89: f64 = 0.05555555555555555;
+    let w90 = w21 * w71;
+    let w91 = w45 * w46;
+    let w92 = w90 + w91;
+    let w93 = w89 * w92;
+    let w94 = w88 + w93;
+    let w95 = w0 * w94;
+    let w96 = p[3]; // m
+    let w97 = w33 + w39;
+    let w98 = w97 + w45;
+    let w99 = w98 + w27;
+    let w100 = w99 * w99;
+    let w101 = w8 + w16;
+    let w102 = w101 + w21;
+    let w103 = w102 - w4;
+    let w104 = w1 * w103;
+    let w105 = w104 * w104;
+    let w106 = w100 + w105;
+    let w107 = w96 * w106;
+    let w108 = w95 + w107;
+    let w109: f64 = 2.0;
+    let w110 = w108 / w109;
+    let w111 = p[6]; // i_bc
+    let w112 = w1 * w1;
+    let w113 = w111 * w112;
+    let w114 = w113 / w109;
+    let w115 = w110 + w114;
+    let w116 = w0 + w96;
+    let w117 = p[5]; // m_b
+    let w118 = w116 + w117;
+    let w119 = y[6]; // v_dot
+    let w120 = y[0]; // theta
+    let w121 = w120.cos();
+    let w122 = w4 * w121;
+    let w123 = w122 * w1;
+    let w124 = w119 + w123;
+    let w125 = w124 * w124;
+    let w126 = w118 * w125;
+    let w127 = w126 / w109;
+    let w128 = w115 + w127;
+    let w129 = w4 * w117;
+    let w130 = w103 * w96;
+    let w131 = w129 - w130;
+    let w132 = w20 * w0;
+    let w133 = w21 * w132;
+    let w134 = w131 - w133;
+    let w135 = w15 * w0;
+    let w136 = w16 * w135;
+    let w137 = w134 - w136;
+    let w138 = w7 * w0;
+    let w139 = w8 * w138;
+    let w140 = w137 - w139;
+    let w141 = w4 * w0;
+    let w142 = w140 + w141;
+    let w143 = w121 * w142;
+    let w144 = w120.sin();
+    let w145 = w26 * w96;
+    let w146: f64 = 0.5;
+    let w147 = w146 * w0;
+    let w148 = w26 * w147;
+    let w149 = w145 + w148;
+    let w150 = w144 * w149;
+    let w151 = w143 - w150;
+    let w152 = w151 * w1;
+    let w153 = w144 * w96;
+    let w154 = w144 * w138;
+    let w155 = w153 + w154;
+    let w156 = w155 * w33;
+    let w157 = w152 - w156;
+    let w158 = w144 * w135;
+    let w159 = w153 + w158;
+    let w160 = w159 * w39;
+    let w161 = w157 - w160;
+    let w162 = w144 * w132;
+    let w163 = w153 + w162;
+    let w164 = w163 * w45;
+    let w165 = w161 - w164;
+    let w166 = w124 * w165;
+    let w167 = w128 - w166;
+    let o0 = w167; // kinetic
+    let w168 = p[8]; // g
+    let w169 = w4 * w144;
+    let w170 = w26 * w121;
+    let w171 = w146 * w170;
+    let w172 = w169 + w171;
+    let w173 = w8 * w144;
+    let w174 = w7 * w173;
+    let w175 = w172 - w174;
+    let w176 = w16 * w144;
+    let w177 = w15 * w176;
+    let w178 = w175 - w177;
+    let w179 = w21 * w144;
+    let w180 = w20 * w179;
+    let w181 = w178 - w180;
+    let w182 = w0 * w181;
+    let w183 = w103 * w144;
+    let w184 = w170 - w183;
+    let w185 = w96 * w184;
+    let w186 = w182 + w185;
+    let w187 = w117 * w169;
+    let w188 = w186 + w187;
+    let w189 = y[1]; // v
+    let w190 = w189 + w169;
+    let w191 = w118 * w190;
+    let w192 = w188 - w191;
+    let w193 = w168 * w192;
+    let o1 = w193; // gravity
+    let w194: f64 = 4.0;
+    let w195 = p[2]; // ei
+    let w196 = w26 * w26;
+    let w197 = w26 * w196;
+    let w198 = w195 / w197;
+    let w199 = w194 * w198;
+    let w200 = w8 * w8;
+    let w201 = w199 * w200;
+    let w202: f64 = 12.0;
+    let w203 = w202 * w198;
+    let w204 = w16 * w16;
+    let w205 = w203 * w204;
+    let w206 = w201 + w205;
+    let w207: f64 = 28.8;
+    let w208 = w207 * w198;
+    let w209 = w21 * w21;
+    let w210 = w208 * w209;
+    let w211 = w206 + w210;
+    let w212 = w203 * w8;
+    let w213 = w212 * w16;
+    let w214 = w211 + w213;
+    let w215: f64 = 16.0;
+    let w216 = w215 * w198;
+    let w217 = w216 * w8;
+    let w218 = w217 * w21;
+    let w219 = w214 + w218;
+    let w220: f64 = 36.0;
+    let w221 = w220 * w198;
+    let w222 = w221 * w16;
+    let w223 = w222 * w21;
+    let w224 = w219 + w223;
+    let w225 = w224 / w109;
+    let o2 = w225; // strain
+    let w226 = w121 * w149;
+    let w227 = w130 - w129;
+    let w228 = w227 + w133;
+    let w229 = w228 + w136;
+    let w230 = w229 + w139;
+    let w231 = w230 - w141;
+    let w232 = w144 * w231;
+    let w233 = w226 - w232;
+    let w234 = w233 * w1;
+    let w235 = w121 * w96;
+    let w236 = w121 * w138;
+    let w237 = w235 + w236;
+    let w238 = w237 * w33;
+    let w239 = w234 + w238;
+    let w240 = w121 * w135;
+    let w241 = w235 + w240;
+    let w242 = w241 * w39;
+    let w243 = w239 + w242;
+    let w244 = w121 * w132;
+    let w245 = w235 + w244;
+    let w246 = w245 * w45;
+    let w247 = w243 + w246;
+    let o3 = w247; // momentum_x
+    [o0, o1, o2, o3]
+}
+
+/// Indices of the elements of the output `e` of [`free_energy()`].
+pub mod free_energy {
+    /// Index of `kinetic`.
+    pub const KINETIC: usize = 0;
+    /// Index of `gravity`.
+    pub const GRAVITY: usize = 1;
+    /// Index of `strain`.
+    pub const STRAIN: usize = 2;
+    /// Index of `momentum_x`.
+    pub const MOMENTUM_X: usize = 3;
+
+    /// Indices of the elements of input `y` of [`free_energy()`](super::free_energy()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 5;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 6;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 7;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 8;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 9;
+    }
+}
+
+/// Power terms: dE/dt = ground - damping + Q_theta theta' + Q_v v', with ground = -ug P_x and damping u'^T C u'. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 10]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `u_3`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_2_2`, `c_2_3`, `c_3_3`
+///
+/// # Output
+///
+/// `w: [f64; 2]`: power terms — `ground`, `damping`
+///
+/// Operations: 63 (36 mul, 20 add, 4 sub, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_power(y: &[f64; 10], ug: f64, s: f64, p: &Params) -> [f64; 2] {
+    let w0 = ug; // ug
+    let w1 = y[0]; // theta
+    let w2 = w1.cos();
+    let w3 = p[0]; // h
+    let w4 = p[3]; // m
+    let w5 = w3 * w4;
+    let w6: f64 = 0.5;
+    let w7 = p[4]; // m_c
+    let w8 = w6 * w7;
+    let w9 = w3 * w8;
+    let w10 = w5 + w9;
+    let w11 = w2 * w10;
+    let w12 = w1.sin();
+    let w13 = y[2]; // u_1
+    let w14 = y[3]; // u_2
+    let w15 = w13 + w14;
+    let w16 = y[4]; // u_3
+    let w17 = w15 + w16;
+    let w18 = s; // s
+    let w19 = p[1]; // b
+    let w20 = w18 * w19;
+    let w21 = w17 - w20;
+    let w22 = w21 * w4;
+    let w23 = p[5]; // m_b
+    let w24 = w20 * w23;
+    let w25 = w22 - w24;
+    let w26: f64 = 0.2;
+    let w27 = w26 * w7;
+    let w28 = w16 * w27;
+    let w29 = w25 + w28;
+    let w30: f64 = 0.25;
+    let w31 = w30 * w7;
+    let w32 = w14 * w31;
+    let w33 = w29 + w32;
+    let w34: f64 = 0.3333333333333333;
+    let w35 = w34 * w7;
+    let w36 = w13 * w35;
+    let w37 = w33 + w36;
+    let w38 = w20 * w7;
+    let w39 = w37 - w38;
+    let w40 = w12 * w39;
+    let w41 = w11 - w40;
+    let w42 = y[5]; // theta_dot
+    let w43 = w41 * w42;
+    let w44 = w2 * w4;
+    let w45 = w2 * w35;
+    let w46 = w44 + w45;
+    let w47 = y[7]; // u_dot_1
+    let w48 = w46 * w47;
+    let w49 = w43 + w48;
+    let w50 = w2 * w31;
+    let w51 = w44 + w50;
+    let w52 = y[8]; // u_dot_2
+    let w53 = w51 * w52;
+    let w54 = w49 + w53;
+    let w55 = w2 * w27;
+    let w56 = w44 + w55;
+    let w57 = y[9]; // u_dot_3
+    let w58 = w56 * w57;
+    let w59 = w54 + w58;
+    let w60 = w0 * w59;
+    let w61 = -w60;
+    let o0 = w61; // ground
+    let w62 = p[9]; // c_1_1
+    let w63 = w62 * w47;
+    let w64 = p[10]; // c_1_2
+    let w65 = w64 * w52;
+    let w66 = w63 + w65;
+    let w67 = p[11]; // c_1_3
+    let w68 = w67 * w57;
+    let w69 = w66 + w68;
+    let w70 = w69 * w47;
+    let w71 = w64 * w47;
+    let w72 = p[12]; // c_2_2
+    let w73 = w72 * w52;
+    let w74 = w71 + w73;
+    let w75 = p[13]; // c_2_3
+    let w76 = w75 * w57;
+    let w77 = w74 + w76;
+    let w78 = w77 * w52;
+    let w79 = w70 + w78;
+    let w80 = w67 * w47;
+    let w81 = w75 * w52;
+    let w82 = w80 + w81;
+    let w83 = p[14]; // c_3_3
+    let w84 = w83 * w57;
+    let w85 = w82 + w84;
+    let w86 = w85 * w57;
+    let w87 = w79 + w86;
+    let o1 = w87; // damping
+    [o0, o1]
+}
+
+/// Indices of the elements of the output `w` of [`free_power()`].
+pub mod free_power {
+    /// Index of `ground`.
+    pub const GROUND: usize = 0;
+    /// Index of `damping`.
+    pub const DAMPING: usize = 1;
+
+    /// Indices of the elements of input `y` of [`free_power()`](super::free_power()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 5;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 6;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 7;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 8;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 9;
+    }
+}
+
+/// Section forces at the column base and the ground's force on the body (the bed's resultant and the horizontal force that keeps the leaning corner in place), for the accelerations qdd. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded.
+///
+/// # Inputs
+///
+/// - `y: &[f64; 10]`: state on compliant ground — `theta`, `v`, `u_1`, `u_2`, `u_3`, `theta_dot`, `v_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`
+/// - `qdd: &[f64; 5]`: accelerations [theta'', v'', u''] (from M q'' = F + Q_ground) — `theta_ddot`, `v_ddot`, `u_ddot_1`, `u_ddot_2`, `u_ddot_3`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_2_2`, `c_2_3`, `c_3_3`
+///
+/// # Output
+///
+/// `ff: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 179 (93 mul, 49 add, 29 sub, 3 twice, 2 sq, 1 cos, 1 div, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_forces(y: &[f64; 10], qdd: &[f64; 5], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[4]; // m_c
+    let w1: f64 = 0.3333333333333333;
+    let w2 = y[2]; // u_1
+    let w3 = ug; // ug
+    let w4 = y[0]; // theta
+    let w5 = w4.sin();
+    let w6 = w3 * w5;
+    let w7 = qdd[0]; // theta_ddot
+    let w8 = s; // s
+    let w9 = p[1]; // b
+    let w10 = w8 * w9;
+    let w11 = w7 * w10;
+    let w12 = w6 + w11;
+    let w13 = p[8]; // g
+    let w14 = w4.cos();
+    let w15 = w13 * w14;
+    let w16 = w12 + w15;
+    let w17 = qdd[1]; // v_ddot
+    let w18 = w14 * w7;
+    let w19 = y[5]; // theta_dot
+    let w20 = w19 * w19;
+    let w21 = w5 * w20;
+    let w22 = w18 - w21;
+    let w23 = w10 * w22;
+    let w24 = w17 + w23;
+    let w25 = w24 * w14;
+    let w26 = w16 - w25;
+    let w27 = w2 * w26;
+    let w28 = w1 * w27;
+    let w29: f64 = 0.5;
+    let w30 = p[0]; // h
+    let w31 = w20 * w10;
+    let w32 = w3 * w14;
+    let w33 = w31 + w32;
+    let w34 = w13 * w5;
+    let w35 = w33 - w34;
+    let w36 = w24 * w5;
+    let w37 = w35 + w36;
+    let w38 = w30 * w37;
+    let w39 = w29 * w38;
+    let w40 = w28 - w39;
+    let w41: f64 = 0.25;
+    let w42 = y[3]; // u_2
+    let w43 = w42 * w26;
+    let w44 = w41 * w43;
+    let w45 = w40 + w44;
+    let w46: f64 = 0.2;
+    let w47 = y[4]; // u_3
+    let w48 = w47 * w26;
+    let w49 = w46 * w48;
+    let w50 = w45 + w49;
+    let w51: f64 = 0.16666666666666666;
+    let w52 = w7 * w30;
+    let w53 = 2.0 * w52;
+    let w54 = w30 * w53;
+    let w55 = w51 * w54;
+    let w56 = w50 - w55;
+    let w57 = qdd[2]; // u_ddot_1
+    let w58 = w30 * w57;
+    let w59 = w41 * w58;
+    let w60 = w56 - w59;
+    let w61 = qdd[3]; // u_ddot_2
+    let w62 = w30 * w61;
+    let w63 = w46 * w62;
+    let w64 = w60 - w63;
+    let w65 = qdd[4]; // u_ddot_3
+    let w66 = w30 * w65;
+    let w67 = w51 * w66;
+    let w68 = w64 - w67;
+    let w69: f64 = 0.1;
+    let w70 = 2.0 * w19;
+    let w71 = y[7]; // u_dot_1
+    let w72 = w70 * w71;
+    let w73 = w72 * w2;
+    let w74 = w7 * w2;
+    let w75 = w2 * w74;
+    let w76 = w73 + w75;
+    let w77 = w74 + w72;
+    let w78 = w2 * w77;
+    let w79 = w76 + w78;
+    let w80 = w69 * w79;
+    let w81 = w68 - w80;
+    let w82 = w72 * w42;
+    let w83 = w7 * w42;
+    let w84 = w2 * w83;
+    let w85 = w82 + w84;
+    let w86 = y[8]; // u_dot_2
+    let w87 = w70 * w86;
+    let w88 = w83 + w87;
+    let w89 = w2 * w88;
+    let w90 = w85 + w89;
+    let w91 = w51 * w90;
+    let w92 = w81 - w91;
+    let w93: f64 = 0.14285714285714285;
+    let w94 = w72 * w47;
+    let w95 = w7 * w47;
+    let w96 = w2 * w95;
+    let w97 = w94 + w96;
+    let w98 = y[9]; // u_dot_3
+    let w99 = w70 * w98;
+    let w100 = w95 + w99;
+    let w101 = w2 * w100;
+    let w102 = w97 + w101;
+    let w103 = w93 * w102;
+    let w104 = w92 - w103;
+    let w105: f64 = 0.07142857142857142;
+    let w106 = w87 * w42;
+    let w107 = w42 * w83;
+    let w108 = w106 + w107;
+    let w109 = w42 * w88;
+    let w110 = w108 + w109;
+    let w111 = w105 * w110;
+    let w112 = w104 - w111;
+    let w113: f64 = 0.125;
+    let w114 = w87 * w47;
+    let w115 = w42 * w95;
+    let w116 = w114 + w115;
+    let w117 = w42 * w100;
+    let w118 = w116 + w117;
+    let w119 = w113 * w118;
+    let w120 = w112 - w119;
+    let w121: f64 = 0.05555555555555555;
+    let w122 = w99 * w47;
+    let w123 = w47 * w95;
+    let w124 = w122 + w123;
+    let w125 = w47 * w100;
+    let w126 = w124 + w125;
+    let w127 = w121 * w126;
+    let w128 = w120 - w127;
+    let w129 = w0 * w128;
+    let w130 = p[3]; // m
+    let w131 = w2 + w42;
+    let w132 = w131 + w47;
+    let w133 = w132 - w10;
+    let w134 = w7 * w133;
+    let w135 = w20 * w30;
+    let w136 = w134 + w135;
+    let w137 = w72 + w87;
+    let w138 = w137 + w99;
+    let w139 = w136 + w138;
+    let w140 = w6 - w139;
+    let w141 = w140 + w15;
+    let w142 = w141 - w25;
+    let w143 = w132 * w142;
+    let w144 = w20 * w133;
+    let w145 = w52 - w144;
+    let w146 = w57 + w61;
+    let w147 = w146 + w65;
+    let w148 = w145 + w147;
+    let w149 = w148 + w32;
+    let w150 = w149 - w34;
+    let w151 = w150 + w36;
+    let w152 = w30 * w151;
+    let w153 = w143 - w152;
+    let w154 = w130 * w153;
+    let w155 = w129 + w154;
+    let o0 = w155; // moment
+    let w156 = w30 * w7;
+    let w157 = w29 * w156;
+    let w158 = w37 + w157;
+    let w159 = w2 * w20;
+    let w160 = w57 - w159;
+    let w161 = w1 * w160;
+    let w162 = w158 + w161;
+    let w163 = w42 * w20;
+    let w164 = w61 - w163;
+    let w165 = w41 * w164;
+    let w166 = w162 + w165;
+    let w167 = w47 * w20;
+    let w168 = w65 - w167;
+    let w169 = w46 * w168;
+    let w170 = w166 + w169;
+    let w171 = w0 * w170;
+    let w172 = w130 * w151;
+    let w173 = w171 + w172;
+    let o1 = w173; // shear
+    let w174 = w30 * w20;
+    let w175 = w29 * w174;
+    let w176 = w26 - w175;
+    let w177 = w2 * w7;
+    let w178 = w72 + w177;
+    let w179 = w1 * w178;
+    let w180 = w176 - w179;
+    let w181 = w42 * w7;
+    let w182 = w87 + w181;
+    let w183 = w41 * w182;
+    let w184 = w180 - w183;
+    let w185 = w47 * w7;
+    let w186 = w99 + w185;
+    let w187 = w46 * w186;
+    let w188 = w184 - w187;
+    let w189 = w0 * w188;
+    let w190 = w130 * w142;
+    let w191 = w189 + w190;
+    let o2 = w191; // axial
+    let w192 = p[2]; // ei
+    let w193 = w30 * w30;
+    let w194 = w192 / w193;
+    let w195 = 2.0 * w194;
+    let w196 = w195 * w2;
+    let o3 = w196; // moment_elastic
+    let w197 = p[5]; // m_b
+    let w198 = w197 * w37;
+    let w199 = w173 + w198;
+    let w200 = w14 * w199;
+    let w201 = w11 + w6;
+    let w202 = w201 + w15;
+    let w203 = w202 - w25;
+    let w204 = w197 * w203;
+    let w205 = w191 + w204;
+    let w206 = w5 * w205;
+    let w207 = w200 + w206;
+    let o4 = w207; // reaction_h
+    let w208 = w14 * w205;
+    let w209 = w5 * w199;
+    let w210 = w208 - w209;
+    let o5 = w210; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `ff` of [`free_forces()`].
+pub mod free_forces {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `y` of [`free_forces()`](super::free_forces()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u_1`.
+        pub const U_1: usize = 2;
+        /// Index of `u_2`.
+        pub const U_2: usize = 3;
+        /// Index of `u_3`.
+        pub const U_3: usize = 4;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 5;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 6;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 7;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 8;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 9;
+    }
+
+    /// Indices of the elements of input `qdd` of [`free_forces()`](super::free_forces()).
+    pub mod qdd {
+        /// Index of `theta_ddot`.
+        pub const THETA_DDOT: usize = 0;
+        /// Index of `v_ddot`.
+        pub const V_DDOT: usize = 1;
+        /// Index of `u_ddot_1`.
+        pub const U_DDOT_1: usize = 2;
+        /// Index of `u_ddot_2`.
+        pub const U_DDOT_2: usize = 3;
+        /// Index of `u_ddot_3`.
+        pub const U_DDOT_3: usize = 4;
+    }
+}
+
 /// The full model on the basis eta^2, eta^3, eta^4: three deformation coordinates
 ///
 /// Type-level handle of this variant, implementing [`crate::Variant`].
@@ -4664,6 +6206,31 @@ impl crate::Variant for Polynomial3 {
     #[inline]
     fn static_uplift(p: &Params) -> [f64; 7] {
         static_uplift(p)
+    }
+
+    #[inline]
+    fn free_mass_matrix(qf: &[f64; 5], s: f64, p: &Params) -> [f64; 15] {
+        free_mass_matrix(qf, s, p)
+    }
+
+    #[inline]
+    fn free_forcing(y: &[f64; 10], ug: f64, s: f64, p: &Params) -> [f64; 5] {
+        free_forcing(y, ug, s, p)
+    }
+
+    #[inline]
+    fn free_energy(y: &[f64; 10], s: f64, p: &Params) -> [f64; 4] {
+        free_energy(y, s, p)
+    }
+
+    #[inline]
+    fn free_power(y: &[f64; 10], ug: f64, s: f64, p: &Params) -> [f64; 2] {
+        free_power(y, ug, s, p)
+    }
+
+    #[inline]
+    fn free_forces(y: &[f64; 10], qdd: &[f64; 5], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+        free_forces(y, qdd, ug, s, p)
     }
 }
 
@@ -4807,6 +6374,55 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             };
             let p: &Params = (*p).try_into().ok()?;
             Some(static_uplift(p).to_vec())
+        }
+        "free_mass_matrix" => {
+            let [qf, s, p] = inputs else {
+                return None;
+            };
+            let qf: &[f64; 5] = (*qf).try_into().ok()?;
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_mass_matrix(qf, s, p).to_vec())
+        }
+        "free_forcing" => {
+            let [y, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 10] = (*y).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_forcing(y, ug, s, p).to_vec())
+        }
+        "free_energy" => {
+            let [y, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 10] = (*y).try_into().ok()?;
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_energy(y, s, p).to_vec())
+        }
+        "free_power" => {
+            let [y, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 10] = (*y).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_power(y, ug, s, p).to_vec())
+        }
+        "free_forces" => {
+            let [y, qdd, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 10] = (*y).try_into().ok()?;
+            let qdd: &[f64; 5] = (*qdd).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_forces(y, qdd, ug, s, p).to_vec())
         }
         _ => None,
     }

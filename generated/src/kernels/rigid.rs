@@ -1767,6 +1767,633 @@ pub mod static_uplift {
     pub const MOMENT_ELASTIC_UPLIFT: usize = 4;
 }
 
+/// Mass matrix M(q) over q = [theta, v, u_1..u_n], upper triangle row by row (symmetric positive definite; a rigid column's u row is the identity). On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `qf: &[f64; 3]`: configuration on compliant ground: rotation, settlement of the base centre (positive into the ground), deformation — `theta`, `v`, `u`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `m: [f64; 6]`: upper triangle of M — `m_t_t`, `m_t_v`, `m_t_u`, `m_v_v`, `m_v_u`, `m_u_u`
+///
+/// Operations: 45 (24 mul, 10 add, 5 sub, 4 twice, 1 cos, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_mass_matrix(qf: &[f64; 3], s: f64, p: &Params) -> [f64; 6] {
+    let w0 = s; // s
+    let w1 = p[1]; // b
+    let w2 = w0 * w1;
+    let w3 = qf[0]; // theta
+    let w4 = w3.cos();
+    let w5 = w2 * w4;
+    let w6: f64 = 0.5;
+    let w7 = p[4]; // m_c
+    let w8 = p[3]; // m
+    let w9 = w7 + w8;
+    let w10 = p[5]; // m_b
+    let w11 = w9 + w10;
+    let w12 = w6 * w11;
+    let w13 = 2.0 * w5;
+    let w14 = w12 * w13;
+    let w15 = p[0]; // h
+    let w16 = w3.sin();
+    let w17 = w15 * w16;
+    let w18 = w6 * w17;
+    let w19 = w5 - w18;
+    let w20 = w7 * w19;
+    let w21 = w5 - w17;
+    let w22 = w8 * w21;
+    let w23 = w20 + w22;
+    let w24 = w10 * w5;
+    let w25 = w23 + w24;
+    let w26 = w14 - w25;
+    let w27 = w5 * w26;
+    let w28 = w25 * w5;
+    let w29 = w27 - w28;
+    let w30 = p[6]; // i_bc
+    let w31 = w29 + w30;
+    let w32 = w6 * w8;
+    let w33 = 2.0 * w2;
+    let w34 = w32 * w33;
+    let w35 = w2 * w34;
+    let w36 = w31 + w35;
+    let w37 = 2.0 * w15;
+    let w38 = w32 * w37;
+    let w39 = w15 * w38;
+    let w40 = w36 + w39;
+    let w41: f64 = 0.08333333333333333;
+    let w42 = w41 * w7;
+    let w43 = w15 * w42;
+    let w44 = w43 * w37;
+    let w45 = w40 + w44;
+    let w46 = 2.0 * w43;
+    let w47 = w15 * w46;
+    let w48 = w45 + w47;
+    let w49 = w6 * w7;
+    let w50 = w49 * w33;
+    let w51 = w2 * w50;
+    let w52 = w48 + w51;
+    let o0 = w52; // m_t_t
+    let w53 = w5 * w11;
+    let w54 = w53 - w25;
+    let o1 = w54; // m_t_v
+    let w55: f64 = 0.0;
+    let o2 = w55; // m_t_u
+    let o3 = w11; // m_v_v
+    let o4 = w55; // m_v_u
+    let w56: f64 = 1.0;
+    let o5 = w56; // m_u_u
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `m` of [`free_mass_matrix()`].
+pub mod free_mass_matrix {
+    /// Index of `m_t_t`.
+    pub const M_T_T: usize = 0;
+    /// Index of `m_t_v`.
+    pub const M_T_V: usize = 1;
+    /// Index of `m_t_u`.
+    pub const M_T_U: usize = 2;
+    /// Index of `m_v_v`.
+    pub const M_V_V: usize = 3;
+    /// Index of `m_v_u`.
+    pub const M_V_U: usize = 4;
+    /// Index of `m_u_u`.
+    pub const M_U_U: usize = 5;
+
+    /// Indices of the elements of input `qf` of [`free_mass_matrix()`](super::free_mass_matrix()).
+    pub mod qf {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u`.
+        pub const U: usize = 2;
+    }
+}
+
+/// Right-hand side F of M q'' = F + Q_ground without the ground: gravity, ground acceleration, stiffness, damping and velocity terms; Q_ground = [Q_theta, Q_v, 0..] from the ground's kernels. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 6]`: state on compliant ground — `theta`, `v`, `u`, `theta_dot`, `v_dot`, `u_dot`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `f: [f64; 3]`: generalised forces — `f_theta`, `f_v`, `f_u`
+///
+/// Operations: 103 (64 mul, 23 add, 11 sub, 2 twice, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_forcing(y: &[f64; 6], ug: f64, s: f64, p: &Params) -> [f64; 3] {
+    let w0 = y[0]; // theta
+    let w1 = w0.cos();
+    let w2 = s; // s
+    let w3 = p[1]; // b
+    let w4 = w2 * w3;
+    let w5 = p[4]; // m_c
+    let w6 = p[3]; // m
+    let w7 = w5 + w6;
+    let w8 = p[5]; // m_b
+    let w9 = w7 + w8;
+    let w10 = p[8]; // g
+    let w11 = w9 * w10;
+    let w12 = w4 * w11;
+    let w13 = w1 * w12;
+    let w14 = w0.sin();
+    let w15 = ug; // ug
+    let w16 = w8 * w15;
+    let w17 = w4 * w16;
+    let w18 = w6 * w15;
+    let w19 = w4 * w18;
+    let w20 = w17 + w19;
+    let w21 = w5 * w15;
+    let w22 = w4 * w21;
+    let w23 = w20 + w22;
+    let w24 = p[0]; // h
+    let w25 = w6 * w10;
+    let w26 = w24 * w25;
+    let w27 = w23 - w26;
+    let w28: f64 = 0.5;
+    let w29 = w5 * w10;
+    let w30 = w28 * w29;
+    let w31 = w24 * w30;
+    let w32 = w27 - w31;
+    let w33 = w14 * w32;
+    let w34 = w13 - w33;
+    let w35 = w24 * w18;
+    let w36 = w28 * w21;
+    let w37 = w24 * w36;
+    let w38 = w35 + w37;
+    let w39 = w8 * w10;
+    let w40 = w4 * w39;
+    let w41 = w38 + w40;
+    let w42 = w4 * w25;
+    let w43 = w41 + w42;
+    let w44 = w4 * w29;
+    let w45 = w43 + w44;
+    let w46 = w1 * w45;
+    let w47 = w34 - w46;
+    let w48 = y[3]; // theta_dot
+    let w49 = y[4]; // v_dot
+    let w50 = w4 * w1;
+    let w51 = w50 * w48;
+    let w52 = w49 + w51;
+    let w53 = w48 * w52;
+    let w54 = w6 * w53;
+    let w55 = w24 * w54;
+    let w56 = w5 * w53;
+    let w57 = w28 * w56;
+    let w58 = w24 * w57;
+    let w59 = w55 + w58;
+    let w60 = w1 * w59;
+    let w61 = w47 + w60;
+    let w62 = w8 * w53;
+    let w63 = w4 * w62;
+    let w64 = w4 * w54;
+    let w65 = w63 + w64;
+    let w66 = w4 * w56;
+    let w67 = w65 + w66;
+    let w68 = w14 * w67;
+    let w69 = w61 + w68;
+    let w70 = 2.0 * w52;
+    let w71 = w28 * w9;
+    let w72 = w70 * w71;
+    let w73 = w24 * w14;
+    let w74 = w28 * w73;
+    let w75 = w50 - w74;
+    let w76 = w5 * w75;
+    let w77 = w50 - w73;
+    let w78 = w6 * w77;
+    let w79 = w76 + w78;
+    let w80 = w8 * w50;
+    let w81 = w79 + w80;
+    let w82 = w81 * w48;
+    let w83 = w72 - w82;
+    let w84 = w48 * w83;
+    let w85 = w4 * w84;
+    let w86 = w14 * w85;
+    let w87 = w69 - w86;
+    let w88 = w4 * w14;
+    let w89 = w48 * w88;
+    let w90 = -w89;
+    let w91 = 2.0 * w90;
+    let w92 = w71 * w91;
+    let w93 = w24 * w1;
+    let w94 = w28 * w93;
+    let w95 = w88 + w94;
+    let w96 = w5 * w95;
+    let w97 = w88 + w93;
+    let w98 = w6 * w97;
+    let w99 = w96 + w98;
+    let w100 = w8 * w88;
+    let w101 = w99 + w100;
+    let w102 = w48 * w101;
+    let w103 = w92 + w102;
+    let w104 = w50 * w103;
+    let w105 = w83 * w88;
+    let w106 = w104 - w105;
+    let w107 = w52 * w101;
+    let w108 = w81 * w89;
+    let w109 = w107 + w108;
+    let w110 = w106 + w109;
+    let w111 = w110 * w48;
+    let w112 = w87 - w111;
+    let o0 = w112; // f_theta
+    let w113 = w103 * w48;
+    let w114 = w11 - w113;
+    let o1 = w114; // f_v
+    let w115: f64 = 0.0;
+    let o2 = w115; // f_u
+    [o0, o1, o2]
+}
+
+/// Indices of the elements of the output `f` of [`free_forcing()`].
+pub mod free_forcing {
+    /// Index of `f_theta`.
+    pub const F_THETA: usize = 0;
+    /// Index of `f_v`.
+    pub const F_V: usize = 1;
+    /// Index of `f_u`.
+    pub const F_U: usize = 2;
+
+    /// Indices of the elements of input `y` of [`free_forcing()`](super::free_forcing()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u`.
+        pub const U: usize = 2;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 3;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 4;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 5;
+    }
+}
+
+/// Kinetic energy, gravity (heights over the rest position of the leaning corner, the ground's surface) and strain potentials and horizontal momentum. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 6]`: state on compliant ground — `theta`, `v`, `u`, `theta_dot`, `v_dot`, `u_dot`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `e: [f64; 4]`: energies and momentum — `kinetic`, `gravity`, `strain`, `momentum_x`
+///
+/// Operations: 63 (30 mul, 19 add, 4 sq, 4 sub, 3 div, 1 cos, 1 sin, 1 twice).
+#[inline]
+#[must_use]
+pub fn free_energy(y: &[f64; 6], s: f64, p: &Params) -> [f64; 4] {
+    let w0 = p[4]; // m_c
+    let w1 = y[3]; // theta_dot
+    let w2 = s; // s
+    let w3 = p[1]; // b
+    let w4 = w2 * w3;
+    let w5 = w1 * w4;
+    let w6 = w5 * w5;
+    let w7: f64 = 0.16666666666666666;
+    let w8 = p[0]; // h
+    let w9 = w1 * w8;
+    let w10 = 2.0 * w9;
+    let w11 = w1 * w10;
+    let w12 = w8 * w11;
+    let w13 = w7 * w12;
+    let w14 = w6 + w13;
+    let w15 = w0 * w14;
+    let w16 = p[3]; // m
+    let w17 = w9 * w9;
+    let w18 = w17 + w6;
+    let w19 = w16 * w18;
+    let w20 = w15 + w19;
+    let w21: f64 = 2.0;
+    let w22 = w20 / w21;
+    let w23 = p[6]; // i_bc
+    let w24 = w1 * w1;
+    let w25 = w23 * w24;
+    let w26 = w25 / w21;
+    let w27 = w22 + w26;
+    let w28 = w0 + w16;
+    let w29 = p[5]; // m_b
+    let w30 = w28 + w29;
+    let w31 = y[4]; // v_dot
+    let w32 = y[0]; // theta
+    let w33 = w32.cos();
+    let w34 = w4 * w33;
+    let w35 = w34 * w1;
+    let w36 = w31 + w35;
+    let w37 = w36 * w36;
+    let w38 = w30 * w37;
+    let w39 = w38 / w21;
+    let w40 = w27 + w39;
+    let w41: f64 = 0.5;
+    let w42 = w32.sin();
+    let w43 = w8 * w42;
+    let w44 = w41 * w43;
+    let w45 = w34 - w44;
+    let w46 = w0 * w45;
+    let w47 = w34 - w43;
+    let w48 = w16 * w47;
+    let w49 = w46 + w48;
+    let w50 = w29 * w34;
+    let w51 = w49 + w50;
+    let w52 = w51 * w1;
+    let w53 = w36 * w52;
+    let w54 = w40 - w53;
+    let o0 = w54; // kinetic
+    let w55 = p[8]; // g
+    let w56 = w4 * w42;
+    let w57 = w8 * w33;
+    let w58 = w41 * w57;
+    let w59 = w56 + w58;
+    let w60 = w0 * w59;
+    let w61 = w56 + w57;
+    let w62 = w16 * w61;
+    let w63 = w60 + w62;
+    let w64 = w29 * w56;
+    let w65 = w63 + w64;
+    let w66 = y[1]; // v
+    let w67 = w66 + w56;
+    let w68 = w30 * w67;
+    let w69 = w65 - w68;
+    let w70 = w55 * w69;
+    let o1 = w70; // gravity
+    let w71: f64 = 0.0;
+    let o2 = w71; // strain
+    let w72 = w58 + w56;
+    let w73 = w0 * w72;
+    let w74 = w57 + w56;
+    let w75 = w16 * w74;
+    let w76 = w73 + w75;
+    let w77 = w76 + w64;
+    let w78 = w77 * w1;
+    let o3 = w78; // momentum_x
+    [o0, o1, o2, o3]
+}
+
+/// Indices of the elements of the output `e` of [`free_energy()`].
+pub mod free_energy {
+    /// Index of `kinetic`.
+    pub const KINETIC: usize = 0;
+    /// Index of `gravity`.
+    pub const GRAVITY: usize = 1;
+    /// Index of `strain`.
+    pub const STRAIN: usize = 2;
+    /// Index of `momentum_x`.
+    pub const MOMENTUM_X: usize = 3;
+
+    /// Indices of the elements of input `y` of [`free_energy()`](super::free_energy()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u`.
+        pub const U: usize = 2;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 3;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 4;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 5;
+    }
+}
+
+/// Power terms: dE/dt = ground - damping + Q_theta theta' + Q_v v', with ground = -ug P_x and damping u'^T C u'. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// # Inputs
+///
+/// - `y: &[f64; 6]`: state on compliant ground — `theta`, `v`, `u`, `theta_dot`, `v_dot`, `u_dot`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `w: [f64; 2]`: power terms — `ground`, `damping`
+///
+/// Operations: 16 (9 mul, 4 add, 1 cos, 1 neg, 1 sin).
+#[inline]
+#[must_use]
+pub fn free_power(y: &[f64; 6], ug: f64, s: f64, p: &Params) -> [f64; 2] {
+    let w0 = ug; // ug
+    let w1 = p[4]; // m_c
+    let w2: f64 = 0.5;
+    let w3 = p[0]; // h
+    let w4 = y[0]; // theta
+    let w5 = w4.cos();
+    let w6 = w3 * w5;
+    let w7 = w2 * w6;
+    let w8 = s; // s
+    let w9 = p[1]; // b
+    let w10 = w8 * w9;
+    let w11 = w4.sin();
+    let w12 = w10 * w11;
+    let w13 = w7 + w12;
+    let w14 = w1 * w13;
+    let w15 = p[3]; // m
+    let w16 = w6 + w12;
+    let w17 = w15 * w16;
+    let w18 = w14 + w17;
+    let w19 = p[5]; // m_b
+    let w20 = w19 * w12;
+    let w21 = w18 + w20;
+    let w22 = y[3]; // theta_dot
+    let w23 = w21 * w22;
+    let w24 = w0 * w23;
+    let w25 = -w24;
+    let o0 = w25; // ground
+    let w26: f64 = 0.0;
+    let o1 = w26; // damping
+    [o0, o1]
+}
+
+/// Indices of the elements of the output `w` of [`free_power()`].
+pub mod free_power {
+    /// Index of `ground`.
+    pub const GROUND: usize = 0;
+    /// Index of `damping`.
+    pub const DAMPING: usize = 1;
+
+    /// Indices of the elements of input `y` of [`free_power()`](super::free_power()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u`.
+        pub const U: usize = 2;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 3;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 4;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 5;
+    }
+}
+
+/// Section forces at the column base and the ground's force on the body (the bed's resultant and the horizontal force that keeps the leaning corner in place), for the accelerations qdd. On compliant ground (derive/rocking_derive/free_base.py): the rigid-rocking kinematics about the leaning corner s = sgn(theta) plus a vertical translation by that corner's depth w = v + s B sin(theta).
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded.
+///
+/// # Inputs
+///
+/// - `y: &[f64; 6]`: state on compliant ground — `theta`, `v`, `u`, `theta_dot`, `v_dot`, `u_dot`
+/// - `qdd: &[f64; 3]`: accelerations [theta'', v'', u''] (from M q'' = F + Q_ground) — `theta_ddot`, `v_ddot`, `u_ddot`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `ff: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 66 (35 mul, 18 add, 8 sub, 1 cos, 1 neg, 1 sin, 1 sq, 1 twice).
+#[inline]
+#[must_use]
+pub fn free_forces(y: &[f64; 6], qdd: &[f64; 3], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[4]; // m_c
+    let w1: f64 = 0.5;
+    let w2 = p[0]; // h
+    let w3 = y[3]; // theta_dot
+    let w4 = w3 * w3;
+    let w5 = s; // s
+    let w6 = p[1]; // b
+    let w7 = w5 * w6;
+    let w8 = w4 * w7;
+    let w9 = ug; // ug
+    let w10 = y[0]; // theta
+    let w11 = w10.cos();
+    let w12 = w9 * w11;
+    let w13 = w8 + w12;
+    let w14 = p[8]; // g
+    let w15 = w10.sin();
+    let w16 = w14 * w15;
+    let w17 = w13 - w16;
+    let w18 = qdd[1]; // v_ddot
+    let w19 = qdd[0]; // theta_ddot
+    let w20 = w11 * w19;
+    let w21 = w15 * w4;
+    let w22 = w20 - w21;
+    let w23 = w7 * w22;
+    let w24 = w18 + w23;
+    let w25 = w24 * w15;
+    let w26 = w17 + w25;
+    let w27 = w2 * w26;
+    let w28 = w1 * w27;
+    let w29: f64 = 0.16666666666666666;
+    let w30 = w19 * w2;
+    let w31 = 2.0 * w30;
+    let w32 = w2 * w31;
+    let w33 = w29 * w32;
+    let w34 = w28 + w33;
+    let w35 = w0 * w34;
+    let w36 = p[3]; // m
+    let w37 = w30 + w8;
+    let w38 = w37 + w12;
+    let w39 = w38 - w16;
+    let w40 = w39 + w25;
+    let w41 = w2 * w40;
+    let w42 = w36 * w41;
+    let w43 = w35 + w42;
+    let w44 = -w43;
+    let o0 = w44; // moment
+    let w45 = w2 * w19;
+    let w46 = w1 * w45;
+    let w47 = w26 + w46;
+    let w48 = w0 * w47;
+    let w49 = w36 * w40;
+    let w50 = w48 + w49;
+    let o1 = w50; // shear
+    let w51 = w19 * w7;
+    let w52 = w9 * w15;
+    let w53 = w51 + w52;
+    let w54 = w14 * w11;
+    let w55 = w53 + w54;
+    let w56 = w24 * w11;
+    let w57 = w55 - w56;
+    let w58 = w2 * w4;
+    let w59 = w1 * w58;
+    let w60 = w57 - w59;
+    let w61 = w0 * w60;
+    let w62 = w4 * w2;
+    let w63 = w51 - w62;
+    let w64 = w63 + w52;
+    let w65 = w64 + w54;
+    let w66 = w65 - w56;
+    let w67 = w36 * w66;
+    let w68 = w61 + w67;
+    let o2 = w68; // axial
+    let o3 = w44; // moment_elastic
+    let w69 = p[5]; // m_b
+    let w70 = w69 * w26;
+    let w71 = w50 + w70;
+    let w72 = w11 * w71;
+    let w73 = w69 * w57;
+    let w74 = w68 + w73;
+    let w75 = w15 * w74;
+    let w76 = w72 + w75;
+    let o4 = w76; // reaction_h
+    let w77 = w11 * w74;
+    let w78 = w15 * w71;
+    let w79 = w77 - w78;
+    let o5 = w79; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `ff` of [`free_forces()`].
+pub mod free_forces {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `y` of [`free_forces()`](super::free_forces()).
+    pub mod y {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `v`.
+        pub const V: usize = 1;
+        /// Index of `u`.
+        pub const U: usize = 2;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 3;
+        /// Index of `v_dot`.
+        pub const V_DOT: usize = 4;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 5;
+    }
+
+    /// Indices of the elements of input `qdd` of [`free_forces()`](super::free_forces()).
+    pub mod qdd {
+        /// Index of `theta_ddot`.
+        pub const THETA_DDOT: usize = 0;
+        /// Index of `v_ddot`.
+        pub const V_DDOT: usize = 1;
+        /// Index of `u_ddot`.
+        pub const U_DDOT: usize = 2;
+    }
+}
+
 /// Rigid column (u = 0): one degree of freedom, Housner's rocking block with these masses
 ///
 /// Type-level handle of this variant, implementing [`crate::Variant`].
@@ -1866,6 +2493,31 @@ impl crate::Variant for Rigid {
     #[inline]
     fn static_uplift(p: &Params) -> [f64; 5] {
         static_uplift(p)
+    }
+
+    #[inline]
+    fn free_mass_matrix(qf: &[f64; 3], s: f64, p: &Params) -> [f64; 6] {
+        free_mass_matrix(qf, s, p)
+    }
+
+    #[inline]
+    fn free_forcing(y: &[f64; 6], ug: f64, s: f64, p: &Params) -> [f64; 3] {
+        free_forcing(y, ug, s, p)
+    }
+
+    #[inline]
+    fn free_energy(y: &[f64; 6], s: f64, p: &Params) -> [f64; 4] {
+        free_energy(y, s, p)
+    }
+
+    #[inline]
+    fn free_power(y: &[f64; 6], ug: f64, s: f64, p: &Params) -> [f64; 2] {
+        free_power(y, ug, s, p)
+    }
+
+    #[inline]
+    fn free_forces(y: &[f64; 6], qdd: &[f64; 3], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+        free_forces(y, qdd, ug, s, p)
     }
 }
 
@@ -2009,6 +2661,55 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             };
             let p: &Params = (*p).try_into().ok()?;
             Some(static_uplift(p).to_vec())
+        }
+        "free_mass_matrix" => {
+            let [qf, s, p] = inputs else {
+                return None;
+            };
+            let qf: &[f64; 3] = (*qf).try_into().ok()?;
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_mass_matrix(qf, s, p).to_vec())
+        }
+        "free_forcing" => {
+            let [y, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 6] = (*y).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_forcing(y, ug, s, p).to_vec())
+        }
+        "free_energy" => {
+            let [y, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 6] = (*y).try_into().ok()?;
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_energy(y, s, p).to_vec())
+        }
+        "free_power" => {
+            let [y, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 6] = (*y).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_power(y, ug, s, p).to_vec())
+        }
+        "free_forces" => {
+            let [y, qdd, ug, s, p] = inputs else {
+                return None;
+            };
+            let y: &[f64; 6] = (*y).try_into().ok()?;
+            let qdd: &[f64; 3] = (*qdd).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(free_forces(y, qdd, ug, s, p).to_vec())
         }
         _ => None,
     }

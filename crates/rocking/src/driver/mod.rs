@@ -22,6 +22,7 @@
 //! history, events, summary).
 
 mod forces;
+mod ground_phases;
 mod impact;
 mod recorder;
 mod rk_phases;
@@ -43,6 +44,8 @@ use rocking_kernels::modes::Matrices;
 use rocking_kernels::{Array, Variant};
 use state::{contact_of, Metric, Next, Record, Sim, LEFT, RIGHT, Y};
 use transitions::ContactStart;
+
+pub use ground_phases::simulate_ground;
 
 /// Runs one simulation with kernel variant `V`, whose rocking and contact states have `NR` and
 /// `NC` components: `V::X::LEN` and `V::Xc::LEN`, or two more each to carry the ground work and

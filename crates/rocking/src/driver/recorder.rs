@@ -44,6 +44,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             elastic_base_moment_over_wb: f.elastic,
             horizontal_reaction_over_w: f.horizontal,
             vertical_reaction_over_w: f.vertical,
+            ground: None,
         };
         self.rec.history.push(row);
         if V::NQ > 1 {
@@ -240,6 +241,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
                 ground_work: w / e_ref,
                 damping: d / e_ref,
                 impact_losses: losses / e_ref,
+                ground_dissipation: None,
             };
             (Some(balance), Some(residual))
         } else {
@@ -270,6 +272,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             energy,
             solver_stats: self.stats,
             forces: self.force_summary(),
+            ground: None,
         }
     }
 }

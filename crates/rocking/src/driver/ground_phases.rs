@@ -1,0 +1,803 @@
+//! The structure on compliant ground (issue 44, docs/ground.md): one Runge–Kutta phase per
+//! contact state, to its first event.
+//!
+//! State `y = [θ, v, u_1..u_n, θ', v', u_1'..u_n']` (v the settlement of the base centre,
+//! positive into the ground) and three carried integrals outside the error control: the ground
+//! acceleration's work, the column's damping and the ground's dissipation. The structure's
+//! M(q) and F (the variant's `free_*` kernels, `derive/rocking_derive/free_base.py`) about the
+//! leaning corner s = sgn θ, plus the ground's Q_θ, Q_v of the contact state (the ground's
+//! kernels), solved at run time by L D Lᵀ ([`crate::spd`]).
+//!
+//! The contact state is which corners press (their depths d(∓B) > 0, kernel outputs): both
+//! (full contact), one (one edge lifted) or none (flight). Events, located on the dense output
+//! and refined as on the rigid surface: a corner's depth crossing zero either way (a lift-off or
+//! a landing), θ crossing zero (s switches; position and velocity are continuous, no impact map),
+//! and overturning at s θ = θ_over. No impact maps: the contact is resolved in time.
+
+use rocking_kernels::ground as gk;
+use rocking_kernels::modes::Matrices;
+use rocking_kernels::{Array, Variant};
+use rocking_motion::GroundMotion;
+use rocking_ode::events::{locate, refine, Direction};
+use rocking_ode::{Integrator, Options as OdeOptions, Tolerances};
+
+use nalgebra::SVector;
+
+use crate::error::SimError;
+use crate::ground::{Ground, GroundKind};
+use crate::options::{History, Options};
+use crate::results::{
+    EnergyBalance, EventKind, EventRecord, ForceSummary, GroundRow, GroundSummary, HistoryRow,
+    Phase, Run, SolverStats, Summary, Time,
+};
+use crate::spd::solve_upper;
+use crate::structure::{Derived, Structure};
+
+/// Indices of the ground kernels' output (the same in every kind and state).
+use gk::winkler_full as go;
+
+/// The structure's energies, power terms and forces: the `free_*` kernels' outputs, in order.
+const KINETIC: usize = 0;
+const GRAVITY: usize = 1;
+const STRAIN: usize = 2;
+const POWER_GROUND: usize = 0;
+const POWER_DAMPING: usize = 1;
+
+/// Which corners press.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Contact {
+    left: bool,
+    right: bool,
+}
+
+impl Contact {
+    fn phase(self, overturned: bool) -> Phase {
+        match (overturned, self.left, self.right) {
+            (true, _, _) => Phase::Overturned,
+            (false, true, true) => Phase::Contact,
+            (false, false, true) => Phase::RockingRight,
+            (false, true, false) => Phase::RockingLeft,
+            (false, false, false) => Phase::Flight,
+        }
+    }
+}
+
+/// What the run keeps track of.
+#[derive(Default)]
+struct Track {
+    max_theta: f64,
+    max_u: f64,
+    max_settlement: f64,
+    max_pressure: f64,
+    min_contact: f64,
+    lift_offs: u64,
+    landings: u64,
+    significant_landings: u64,
+    first_lift_off: Option<f64>,
+    first_landing: Option<f64>,
+    overturn: Option<f64>,
+    events: u64,
+    max_moment: f64,
+    max_shear: f64,
+    max_elastic: f64,
+    max_friction: f64,
+    min_rv: f64,
+    first_slip: Option<f64>,
+    first_pull: Option<f64>,
+    next_grid: f64,
+    history: Vec<HistoryRow>,
+    coordinates: Vec<f64>,
+    log: Vec<EventRecord>,
+    stats: SolverStats,
+}
+
+/// The kernels' parameters: the structure's and the ground's (Copy, for the right-hand side).
+#[derive(Clone, Copy)]
+struct Kin<V: Variant> {
+    p: V::Params,
+    gp: gk::Params,
+    kind: GroundKind,
+}
+
+/// A run on compliant ground with variant `V`; `N` = `V::Y::LEN + 3`.
+struct GroundSim<'a, V: Variant, M: GroundMotion + ?Sized, const N: usize> {
+    k: Kin<V>,
+    p: V::Params,
+    motion: &'a M,
+    opts: &'a Options,
+    derived: Derived,
+    p_seconds: Option<f64>,
+    weight: f64,
+    wb: f64,
+    /// The static settlement v0 = W / K_v.
+    v0: f64,
+    /// The mean pressure W / (2B) (two springs: the corner force W / 2).
+    mean_pressure: f64,
+    /// T + V_g + V_s + V_ground at rest at θ = 0, v = v0 (the energies' zero).
+    e_rest: f64,
+    top: V::Shape,
+    tol: Tolerances<N>,
+    ode_options: OdeOptions,
+    rec: Track,
+}
+
+/// The number of q coordinates on compliant ground: `V::Qf::LEN` (θ, v, u_1..u_n).
+fn nq<V: Variant>() -> usize {
+    V::Qf::LEN
+}
+
+/// Runs `structure` on `ground` under `motion` with variant `V` (Runge–Kutta: the options'
+/// method when it is one, DOP853 otherwise; see [`crate::simulate_on_ground`]).
+///
+/// # Panics
+///
+/// When `N` is not `V::Y::LEN + 3`.
+pub fn simulate_ground<V: Variant, M: GroundMotion + ?Sized, const N: usize>(
+    structure: &Structure,
+    ground: &Ground,
+    motion: &M,
+    opts: &Options,
+) -> Result<Run, SimError> {
+    assert_eq!(N, V::Y::LEN + 3, "state size for variant {}", V::NAME);
+    opts.validate()?;
+    let p = structure.params::<V>();
+    let derived = structure.derived_by::<V>();
+    let uplift = V::static_uplift(&p);
+    let weight = uplift.values()[rocking_kernels::kernels::index::static_uplift::WEIGHT];
+    let wb = uplift.values()[rocking_kernels::kernels::index::static_uplift::MOMENT_UPLIFT];
+    let statics = ground.statics(weight);
+    let v0 = statics.settlement;
+    let g = structure.param("g").unwrap_or(1.0);
+    let omega_v = (statics.k_v * g / weight).sqrt();
+    let mean_pressure = match ground.kind {
+        GroundKind::TwoSpring => weight / 2.0,
+        _ => weight / (2.0 * ground.b),
+    };
+    let method = opts
+        .accuracy
+        .method
+        .runge_kutta()
+        .unwrap_or(rocking_ode::Method::Dop853);
+    let ode_options = OdeOptions {
+        max_steps: opts.max_steps,
+        ..OdeOptions::new(method)
+    };
+    let tol_value = opts.accuracy.tol;
+    let (a, pf) = (derived.alpha, derived.p);
+    let nqf = nq::<V>();
+    let u_scale = if V::RIGID { 1.0 } else { derived.u_cr };
+    let scale = |i: usize| -> f64 {
+        if i == 0 {
+            a
+        } else if i == 1 {
+            v0
+        } else if i < nqf {
+            u_scale
+        } else if i == nqf {
+            a * pf
+        } else if i == nqf + 1 {
+            v0 * omega_v
+        } else {
+            u_scale * derived.omega_n.max(pf)
+        }
+    };
+    let ny = V::Y::LEN;
+    let tol = Tolerances {
+        rtol: tol_value,
+        atol: SVector::<f64, N>::from_fn(|i, _| {
+            if i < ny {
+                scale(i) * tol_value
+            } else {
+                f64::INFINITY
+            }
+        }),
+    };
+    let mut sim = GroundSim::<V, M, N> {
+        k: Kin {
+            p,
+            gp: ground.params(),
+            kind: ground.kind,
+        },
+        p,
+        motion,
+        opts,
+        derived,
+        p_seconds: structure.p_per_second(),
+        weight,
+        wb,
+        v0,
+        mean_pressure,
+        e_rest: 0.0,
+        top: V::shape(1.0),
+        tol,
+        ode_options,
+        rec: Track {
+            min_contact: f64::INFINITY,
+            min_rv: f64::INFINITY,
+            ..Track::default()
+        },
+    };
+    // Point masses on the column axis alone (no column or base mass) have no rotational
+    // inertia once the base may sink: M is singular (docs/ground.md).
+    let q0 = V::Qf::from_fn(|i| if i == 1 { v0 } else { 0.0 });
+    let mut probe = [1.0; crate::spd::MAX];
+    let pivot = solve_upper(
+        V::free_mass_matrix(&q0, 1.0, &p).values(),
+        &mut probe[..nq::<V>()],
+    );
+    if pivot.is_nan() || pivot <= 1e-12 {
+        return Err(SimError::NoVariant(format!(
+            "variant `{}` on compliant ground: its mass matrix over (θ, v, u) is singular (point \
+             masses on the column axis have no rotational inertia once the base may sink): give \
+             the base or the column a mass (gamma_mb > 0 or gamma_mc > 0)",
+            V::NAME
+        )));
+    }
+    let rest = sim.y_of(0.0, v0, &[0.0; 0]);
+    sim.e_rest = sim.total_energy(&rest, 1.0, sim.k.contact_of(&rest));
+    sim.run()
+}
+
+impl<V: Variant> Kin<V> {
+    /// `[θ, v, θ', v']` of the ground's kernels.
+    fn base(&self, y: &V::Y) -> [f64; 4] {
+        let (n, y) = (nq::<V>(), y.values());
+        [y[0], y[1], y[n], y[n + 1]]
+    }
+
+    /// The ground's outputs in contact state `c`.
+    fn ground(&self, y: &V::Y, c: Contact) -> [f64; 9] {
+        let b = self.base(y);
+        let two = self.kind == GroundKind::TwoSpring;
+        match (c.left, c.right) {
+            (true, true) if two => gk::two_spring_full(&b, 1.0, &self.gp),
+            (true, true) => gk::winkler_full(&b, 1.0, &self.gp),
+            (false, false) => gk::flight(&b, &self.gp),
+            (left, _) => {
+                let s = if left { -1.0 } else { 1.0 };
+                if two {
+                    gk::two_spring_edge(&b, s, &self.gp)
+                } else {
+                    gk::winkler_edge(&b, s, &self.gp)
+                }
+            }
+        }
+    }
+
+    /// The corners' depths `[d(−B), d(B)]`.
+    fn depths(&self, y: &V::Y) -> [f64; 2] {
+        let g = gk::flight(&self.base(y), &self.gp);
+        [g[go::DEPTH_LEFT], g[go::DEPTH_RIGHT]]
+    }
+
+    /// The contact state from the depths (a corner at depth 0 does not press).
+    fn contact_of(&self, y: &V::Y) -> Contact {
+        let [l, r] = self.depths(y);
+        Contact {
+            left: l > 0.0,
+            right: r > 0.0,
+        }
+    }
+
+    /// The accelerations `[θ'', v'', u'']` and the ground's outputs.
+    fn accelerations(&self, y: &V::Y, ug: f64, s: f64, c: Contact) -> (V::Qf, [f64; 9]) {
+        let n = nq::<V>();
+        let q = V::Qf::from_fn(|i| y.values()[i]);
+        let m = V::free_mass_matrix(&q, s, &self.p);
+        let mut f = V::free_forcing(y, ug, s, &self.p);
+        let g = self.ground(y, c);
+        f.values_mut()[0] += g[go::Q_THETA];
+        f.values_mut()[1] += g[go::Q_V];
+        let _ = solve_upper(m.values(), &mut f.values_mut()[..n]);
+        (f, g)
+    }
+}
+
+impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N> {
+    /// The state at rest with rotation `theta`, settlement `v` and deformation `us` (missing
+    /// entries 0).
+    fn y_of(&self, theta: f64, v: f64, us: &[f64]) -> V::Y {
+        let n = nq::<V>();
+        V::Y::from_fn(|i| match i {
+            0 => theta,
+            1 => v,
+            i if i < n => us.get(i - 2).copied().unwrap_or(0.0),
+            _ => 0.0,
+        })
+    }
+
+    /// T + V_g + V_s + V_ground (from zero at rest on the ground).
+    fn total_energy(&self, y: &V::Y, s: f64, c: Contact) -> f64 {
+        let e = V::free_energy(y, s, &self.p);
+        e[KINETIC] + e[GRAVITY] + e[STRAIN] + self.k.ground(y, c)[go::STRAIN] - self.e_rest
+    }
+
+    fn time(&self, t: f64) -> Time {
+        let tau = t * self.derived.p;
+        Time {
+            tau,
+            seconds: self.p_seconds.map(|ps| tau / ps),
+        }
+    }
+
+    /// The top deflection Σ u_i ψ_i(1) (`rate`: its rate).
+    fn top(&self, y: &V::Y, rate: bool) -> f64 {
+        if V::RIGID {
+            return 0.0;
+        }
+        let n = nq::<V>();
+        let first = if rate { n + 2 } else { 2 };
+        let psi = self.top.values();
+        (0..V::NQ).map(|i| psi[i] * y.values()[first + i]).sum()
+    }
+
+    /// The settlement at which the structure at rest with rotation `theta` is in vertical
+    /// equilibrium, −Q_v = W (bisection on the ground's kernels: −Q_v grows with v).
+    fn vertical_equilibrium(&self, theta: f64) -> f64 {
+        if theta == 0.0 {
+            return self.v0;
+        }
+        let rv = |v: f64| {
+            let y = self.y_of(theta, v, &[]);
+            -self.k.ground(&y, self.k.contact_of(&y))[go::Q_V] - self.weight
+        };
+        let b = self.k.gp[gk::param::B];
+        let (mut lo, mut hi) = (-b * theta.sin().abs(), self.v0 + b * theta.sin().abs());
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                break;
+            }
+            if rv(mid) < 0.0 {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        hi
+    }
+
+    fn initial_state(&self) -> V::Y {
+        let i = self.opts.initial;
+        let n = nq::<V>();
+        let v = self.vertical_equilibrium(i.theta);
+        // Several coordinates: the initial u and u' are top deflections along the first mode.
+        let phi: Vec<f64> = if V::RIGID {
+            vec![0.0]
+        } else if n == 3 {
+            vec![1.0]
+        } else {
+            Matrices::of::<V>(&self.p)
+                .fixed_base()
+                .map_or(vec![f64::NAN; n - 2], |m| {
+                    m.shapes[0].iter().copied().collect()
+                })
+        };
+        V::Y::from_fn(|k| match k {
+            0 => i.theta,
+            1 => v,
+            k if k < n => i.u * phi[k - 2],
+            k if k == n => i.theta_dot,
+            k if k == n + 1 => 0.0,
+            k => i.u_dot * phi[k - n - 2],
+        })
+    }
+
+    fn run(mut self) -> Result<Run, SimError> {
+        let y0 = self.initial_state();
+        let i = self.opts.initial;
+        let mut s = if i.theta > 0.0 || (i.theta == 0.0 && i.theta_dot >= 0.0) {
+            1.0
+        } else {
+            -1.0
+        };
+        let mut c = self.k.contact_of(&y0);
+        let e_initial = self.total_energy(&y0, s, c);
+        let mut t = 0.0;
+        let mut y = y0;
+        let mut carried = [0.0; 3];
+        let mut fired: Option<usize> = None;
+        self.observe(t, &y, s, c);
+        if !matches!(self.opts.history, History::None) {
+            self.record(t, &y, s, c);
+            if let History::Grid(dt) = self.opts.history {
+                self.rec.next_grid = dt;
+            }
+        }
+        let (phase, t_end, y_end, s_end, c_end) = loop {
+            let end = self.phase(t, y, s, c, carried, fired)?;
+            t = end.t;
+            y = end.y;
+            carried = end.carried;
+            match end.event {
+                None => break (c.phase(false), t, y, s, c),
+                Some(0) => {
+                    // θ through zero: the leaning corner changes.
+                    s = -s;
+                    let after = c.phase(false);
+                    self.log(t, EventKind::PivotSwitch, corner(s < 0.0), after, &y);
+                    fired = Some(0);
+                }
+                Some(3) => {
+                    self.rec.overturn = Some(t);
+                    self.log(t, EventKind::Overturn, "overturn", Phase::Overturned, &y);
+                    break (Phase::Overturned, t, y, s, c);
+                }
+                Some(k) => {
+                    let left = k == 1;
+                    let pressing = if left { &mut c.left } else { &mut c.right };
+                    let was = *pressing;
+                    *pressing = !was;
+                    let after = c.phase(false);
+                    let n = nq::<V>();
+                    if was {
+                        self.rec.lift_offs += 1;
+                        self.rec.first_lift_off.get_or_insert(t);
+                        self.log(t, EventKind::LiftOff, corner(left), after, &y);
+                    } else {
+                        self.rec.landings += 1;
+                        self.rec.first_landing.get_or_insert(t);
+                        if y.values()[n].abs() >= 0.01 * self.derived.alpha * self.derived.p {
+                            self.rec.significant_landings += 1;
+                        }
+                        self.log(t, EventKind::Landing, corner(left), after, &y);
+                    }
+                    fired = Some(k);
+                }
+            }
+            self.rec.events += 1;
+            if self.rec.events > self.opts.max_events {
+                return Err(SimError::TooManyEvents {
+                    max_events: self.opts.max_events,
+                    tau: t * self.derived.p,
+                });
+            }
+        };
+        let summary = self.finish(phase, t_end, &y_end, s_end, c_end, carried, e_initial);
+        Ok(self.into_run(summary))
+    }
+
+    /// One phase from `t0`: to its first event (`Some(index)`: 0 θ through zero, 1 or 2 the
+    /// left or right corner's depth through zero, 3 overturning) or the end of the run.
+    #[allow(clippy::too_many_arguments)]
+    fn phase(
+        &mut self,
+        t0: f64,
+        y0: V::Y,
+        s: f64,
+        c: Contact,
+        carried: [f64; 3],
+        fired: Option<usize>,
+    ) -> Result<PhaseEnd<V>, SimError> {
+        let ny = V::Y::LEN;
+        let n = nq::<V>();
+        let motion = self.motion;
+        let over = self.opts.overturn_angle;
+        let k = self.k;
+        let mut rhs = |t: f64, z: &SVector<f64, N>| -> SVector<f64, N> {
+            let ug = motion.accel(t);
+            let y = V::Y::from_fn(|i| z[i]);
+            let (acc, g) = k.accelerations(&y, ug, s, c);
+            let pw = V::free_power(&y, ug, s, &k.p);
+            let mut out = SVector::<f64, N>::zeros();
+            for i in 0..n {
+                out[i] = z[n + i];
+                out[n + i] = acc.values()[i];
+            }
+            out[ny] = pw[POWER_GROUND];
+            out[ny + 1] = pw[POWER_DAMPING];
+            out[ny + 2] = g[go::DISSIPATION];
+            out
+        };
+        let mut g = |_t: f64, z: &SVector<f64, N>| -> SVector<f64, 4> {
+            let y = V::Y::from_fn(|i| z[i]);
+            let [l, r] = k.depths(&y);
+            SVector::<f64, 4>::new(s * z[0], l, r, s * z[0] - over)
+        };
+        let falls = |pressing: bool| {
+            if pressing {
+                Direction::Falling
+            } else {
+                Direction::Rising
+            }
+        };
+        let dirs = [
+            Direction::Falling,
+            falls(c.left),
+            falls(c.right),
+            Direction::Rising,
+        ];
+        let z0 = SVector::<f64, N>::from_fn(|i, _| {
+            if i < ny {
+                y0.values()[i]
+            } else {
+                carried[i - ny]
+            }
+        });
+        let mut ode = Integrator::new(self.ode_options, self.tol)?;
+        ode.reset(t0, z0, &mut rhs)?;
+        let mut g_old = g(t0, &z0);
+        // The event that started this phase sits on its surface: it must not fire again at once.
+        if let Some(i) = fired {
+            g_old[i] = 0.0;
+        }
+        let mut first_on_zero = fired != Some(0) && y0.values()[0] == 0.0;
+        let (t, z, event) = loop {
+            let t_stop = motion
+                .next_kink(ode.t())
+                .map_or(self.opts.t_end, |k| k.min(self.opts.t_end));
+            let info = ode.step(&mut rhs, t_stop)?;
+            let st = ode.stats();
+            if st.steps + st.rejected > self.opts.max_steps {
+                return Err(SimError::TooManySteps {
+                    max_steps: self.opts.max_steps,
+                    tau: ode.t() * self.derived.p,
+                });
+            }
+            let g_new = g(info.t_new, ode.y());
+            if first_on_zero && s * ode.y()[0] < 0.0 {
+                // Started at θ = 0 (not from a switch) and leaning the other way: the other
+                // corner leads from the start.
+                self.rec.stats.add(ode.take_stats());
+                return Ok(PhaseEnd {
+                    t: t0,
+                    y: y0,
+                    carried,
+                    event: Some(0),
+                });
+            }
+            first_on_zero = false;
+            if let Some(ev) = locate(&mut ode, &mut g, &dirs, &g_old, &g_new) {
+                let ev = refine(&mut ode, &mut rhs, &mut g, ev);
+                self.step_rows(|t| ode.dense(t), info.t_old, ev.t, s, c);
+                break (ev.t, ev.y, Some(ev.index));
+            }
+            self.step_rows(|t| ode.dense(t), info.t_old, info.t_new, s, c);
+            self.observe(info.t_new, &V::Y::from_fn(|i| ode.y()[i]), s, c);
+            g_old = g_new;
+            if info.t_new >= self.opts.t_end {
+                break (info.t_new, *ode.y(), None);
+            }
+        };
+        self.rec.stats.add(ode.take_stats());
+        let y = V::Y::from_fn(|i| z[i]);
+        self.observe(t, &y, s, c);
+        Ok(PhaseEnd {
+            t,
+            y,
+            carried: [z[ny], z[ny + 1], z[ny + 2]],
+            event,
+        })
+    }
+
+    /// History rows of the step (t_old, t_new] from its dense output.
+    fn step_rows(
+        &mut self,
+        dense: impl Fn(f64) -> SVector<f64, N>,
+        t_old: f64,
+        t_new: f64,
+        s: f64,
+        c: Contact,
+    ) {
+        let at = |t: f64| {
+            let z = dense(t);
+            V::Y::from_fn(|i| z[i])
+        };
+        match self.opts.history {
+            History::None => {}
+            History::Steps => self.record(t_new, &at(t_new), s, c),
+            History::Grid(dt) => {
+                while self.rec.next_grid <= t_new {
+                    if self.rec.next_grid >= t_old {
+                        let tg = self.rec.next_grid;
+                        self.record(tg, &at(tg), s, c);
+                    }
+                    self.rec.next_grid += dt;
+                }
+            }
+        }
+    }
+
+    /// The maxima at one state.
+    fn observe(&mut self, t: f64, y: &V::Y, s: f64, c: Contact) {
+        let ug = self.motion.accel(t);
+        let (acc, g) = self.k.accelerations(y, ug, s, c);
+        let r = &mut self.rec;
+        r.max_theta = r.max_theta.max(y.values()[0].abs());
+        let top = self.top(y, false);
+        let r = &mut self.rec;
+        r.max_u = r.max_u.max(top.abs());
+        r.max_settlement = r.max_settlement.max(y.values()[1] / self.v0);
+        let pressure = g[go::PRESSURE_LO].max(g[go::PRESSURE_HI]) / self.mean_pressure;
+        r.max_pressure = r.max_pressure.max(pressure);
+        r.min_contact = r.min_contact.min(g[go::CONTACT_FRACTION]);
+        if self.opts.forces {
+            let f = V::free_forces(y, &acc, ug, s, &self.p);
+            let (w, wb) = (self.weight, self.wb);
+            let r = &mut self.rec;
+            r.max_moment = r.max_moment.max(f[0].abs() / wb);
+            r.max_shear = r.max_shear.max(f[1].abs() / w);
+            r.max_elastic = r.max_elastic.max(f[3].abs() / wb);
+            let (rh, rv) = (f[4] / w, f[5] / w);
+            r.min_rv = r.min_rv.min(rv);
+            let friction = required_friction(rh, rv);
+            r.max_friction = r.max_friction.max(friction);
+            if rv < 0.0 {
+                r.first_pull.get_or_insert(t);
+            }
+            if let Some(mu) = self.opts.friction {
+                if rv > 0.0 && friction > mu {
+                    r.first_slip.get_or_insert(t);
+                }
+            }
+        }
+    }
+
+    /// A history row at `t`.
+    fn record(&mut self, t: f64, y: &V::Y, s: f64, c: Contact) {
+        let n = nq::<V>();
+        let ug = self.motion.accel(t);
+        let (acc, g) = self.k.accelerations(y, ug, s, c);
+        let f = V::free_forces(y, &acc, ug, s, &self.p);
+        let e = V::free_energy(y, s, &self.p);
+        let e_ref = self.derived.e_ref;
+        let row = HistoryRow {
+            tau: t * self.derived.p,
+            theta: y.values()[0],
+            u: self.top(y, false),
+            theta_dot: y.values()[n],
+            u_dot: self.top(y, true),
+            phase: c.phase(false),
+            e_kin: e[KINETIC] / e_ref,
+            e_total: self.total_energy(y, s, c) / e_ref,
+            ug,
+            base_moment_over_wb: f[0] / self.wb,
+            base_shear_over_w: f[1] / self.weight,
+            elastic_base_moment_over_wb: f[3] / self.wb,
+            horizontal_reaction_over_w: f[4] / self.weight,
+            vertical_reaction_over_w: f[5] / self.weight,
+            ground: Some(GroundRow {
+                settlement_over_static: y.values()[1] / self.v0,
+                contact_fraction: g[go::CONTACT_FRACTION],
+                ground_pressure_over_mean: g[go::PRESSURE_LO].max(g[go::PRESSURE_HI])
+                    / self.mean_pressure,
+            }),
+        };
+        self.rec.history.push(row);
+        if V::NQ > 1 {
+            let y = y.values();
+            self.rec.coordinates.extend_from_slice(&y[2..n]);
+            self.rec.coordinates.extend_from_slice(&y[n + 2..]);
+        }
+    }
+
+    fn log(&mut self, t: f64, kind: EventKind, branch: &'static str, after: Phase, y: &V::Y) {
+        if !self.opts.event_log {
+            return;
+        }
+        let n = nq::<V>();
+        let e = V::free_energy(y, 1.0, &self.p)[KINETIC] / self.derived.e_ref;
+        let record = EventRecord {
+            time: self.time(t),
+            kind,
+            branch,
+            phase_after: after,
+            theta_dot: y.values()[n],
+            u: self.top(y, false),
+            u_dot: self.top(y, true),
+            energy_before: e,
+            energy_after: e,
+        };
+        self.rec.log.push(record);
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn finish(
+        &self,
+        phase: Phase,
+        t: f64,
+        y: &V::Y,
+        s: f64,
+        c: Contact,
+        [w, d, dg]: [f64; 3],
+        e_initial: f64,
+    ) -> Summary {
+        let e_ref = self.derived.e_ref;
+        let last = self.total_energy(y, s, c);
+        let (energy, residual) = if self.opts.energy {
+            let balance = EnergyBalance {
+                initial: e_initial / e_ref,
+                last: last / e_ref,
+                ground_work: w / e_ref,
+                damping: d / e_ref,
+                impact_losses: 0.0,
+                ground_dissipation: Some(dg / e_ref),
+            };
+            (Some(balance), Some((last - e_initial - w + d + dg) / e_ref))
+        } else {
+            (None, None)
+        };
+        let r = &self.rec;
+        let forces = self.opts.forces.then(|| ForceSummary {
+            max_base_moment_over_wb: r.max_moment,
+            max_base_shear_over_w: r.max_shear,
+            max_elastic_base_moment_over_wb: r.max_elastic,
+            max_required_friction: r.max_friction,
+            min_vertical_reaction_over_w: r.min_rv,
+            first_slip_time: r.first_slip.map(|t| self.time(t)),
+            first_lift_off_time: r.first_pull.map(|t| self.time(t)),
+        });
+        Summary {
+            kernel_variant: V::NAME,
+            max_theta_over_alpha: r.max_theta / self.derived.alpha,
+            max_theta_over_theta_cr: r.max_theta / self.derived.theta_cr,
+            max_u_over_ucr: if V::RIGID {
+                0.0
+            } else if !self.opts.max_deflection {
+                f64::NAN
+            } else {
+                r.max_u / self.derived.u_cr
+            },
+            overturned: r.overturn.is_some(),
+            overturn_time: r.overturn.map(|t| self.time(t)),
+            impacts: r.landings,
+            significant_impacts: r.significant_landings,
+            energy_capped_impacts: 0,
+            first_uplift_time: r.first_lift_off.map(|t| self.time(t)),
+            first_impact_time: r.first_landing.map(|t| self.time(t)),
+            final_phase: phase,
+            end_time: self.time(t),
+            energy_balance_residual: residual,
+            energy,
+            solver_stats: SolverStats {
+                events: r.events,
+                ..r.stats
+            },
+            forces,
+            ground: Some(GroundSummary {
+                max_ground_pressure_over_mean: r.max_pressure,
+                min_contact_fraction: r.min_contact,
+                lift_offs: r.lift_offs,
+                max_settlement_over_static: r.max_settlement,
+                ground_energy_dissipated: dg / e_ref,
+            }),
+        }
+    }
+
+    /// The run's answer.
+    fn into_run(self, summary: Summary) -> Run {
+        Run {
+            summary,
+            events: self.rec.log,
+            history: self.rec.history,
+            coordinates: self.rec.coordinates,
+        }
+    }
+}
+
+/// |R_h| / R_v; where R_v <= 0 unbounded unless R_h = 0 too.
+fn required_friction(rh: f64, rv: f64) -> f64 {
+    if rv > 0.0 {
+        rh.abs() / rv
+    } else if rh == 0.0 {
+        0.0
+    } else {
+        f64::INFINITY
+    }
+}
+
+fn corner(left: bool) -> &'static str {
+    if left {
+        "left-corner"
+    } else {
+        "right-corner"
+    }
+}
+
+/// The end of one phase.
+struct PhaseEnd<V: Variant> {
+    t: f64,
+    y: V::Y,
+    carried: [f64; 3],
+    event: Option<usize>,
+}

@@ -1,0 +1,257 @@
+//! Runs on compliant ground (issue 44, docs/ground.md): rest, energy, symmetry, the rigid limit
+//! and the small-amplitude rocking frequency on a Winkler bed.
+
+use rocking::{
+    simulate, simulate_on_ground, DampingConvention, Dimensionless, Effects, EventKind, Ground,
+    GroundKind, History, Options, Run, Structure,
+};
+use rocking_motion::{GroundMotion, NoMotion, SinePulse};
+
+/// A dimensionless structure (R = g = m = 1, α = 0.2).
+fn structure(omega_n_over_p: f64, gamma_mb: f64, zeta: f64) -> Structure {
+    let d = Dimensionless {
+        omega_n_over_p,
+        alpha: 0.2,
+        gamma_mc: 0.0,
+        gamma_mb,
+        gamma_ib: 1.0,
+        zeta,
+        damping: DampingConvention::FixedBase,
+    };
+    Structure::from_dimensionless(&d, None).unwrap()
+}
+
+/// The Winkler bed with ω_v = `ratio` p and damping ratio `zeta_v` for `s`.
+fn bed(s: &Structure, kind: GroundKind, ratio: f64, zeta_v: f64) -> Ground {
+    let w = s.static_uplift().weight;
+    let mass = w; // g = 1
+    let k_v = mass * (ratio * s.derived().p).powi(2);
+    let c_v = 2.0 * zeta_v * (k_v * mass).sqrt();
+    Ground::from_vertical(kind, s.param("b").unwrap(), k_v, c_v)
+}
+
+fn options(t_end: f64, tol: f64, theta0: f64) -> Options {
+    let mut o = Options {
+        t_end,
+        energy: true,
+        event_log: true,
+        forces: true,
+        history: History::Grid(0.01),
+        ..Options::default()
+    };
+    o.accuracy.method = rocking::Method::Dop853;
+    o.accuracy.tol = tol;
+    o.initial.theta = theta0;
+    o
+}
+
+fn run(s: &Structure, g: &Ground, m: &dyn GroundMotion, fx: &Effects, o: &Options) -> Run {
+    let r = simulate_on_ground(s, g, m, fx, o).unwrap_or_else(|e| panic!("run failed: {e}"));
+    assert!(r.summary.ground.is_some());
+    r
+}
+
+fn rigid() -> Effects {
+    Effects {
+        flexibility: false,
+        ..Effects::default()
+    }
+}
+
+/// At rest at θ = 0 on the static settlement, nothing moves: v stays v0 (measured: within
+/// 6.4e-9 v0 on the bed over τ = 20; the brief's 1e-10 is not met, see docs/ground.md).
+#[test]
+fn at_rest_stays_at_the_static_settlement() {
+    let s = structure(10.0, 0.5, 0.0);
+    for kind in [GroundKind::Winkler, GroundKind::TwoSpring] {
+        let g = bed(&s, kind, 30.0, 0.0);
+        let r = run(
+            &s,
+            &g,
+            &NoMotion,
+            &Effects::default(),
+            &options(20.0, 1e-10, 0.0),
+        );
+        let worst = r
+            .history
+            .iter()
+            .map(|h| (h.ground.unwrap().settlement_over_static - 1.0).abs())
+            .fold(0.0, f64::max);
+        println!("{kind:?}: |v/v0 - 1| <= {worst:e}");
+        assert!(worst <= 1e-8, "{kind:?}: |v/v0 - 1| = {worst:e}");
+        assert!(r.history.iter().all(|h| h.theta == 0.0 && h.u == 0.0));
+        assert_eq!(r.summary.ground.unwrap().lift_offs, 0);
+    }
+}
+
+/// No damping anywhere, released from θ0 = α/2 with a deflected column: the base lifts off and
+/// lands again and again, and T + V_g + V_s + V_ground stays put to 1e-9 E_ref.
+#[test]
+fn energy_is_conserved_through_lift_offs_and_landings() {
+    for kind in [GroundKind::Winkler, GroundKind::TwoSpring] {
+        let s = structure(10.0, 0.5, 0.0);
+        let g = bed(&s, kind, 30.0, 0.0);
+        let mut o = options(10.0, 1e-12, 0.1);
+        o.initial.u = 0.2 * s.derived().u_cr;
+        let r = run(&s, &g, &NoMotion, &Effects::default(), &o);
+        let gs = r.summary.ground.unwrap();
+        let landings = r
+            .events
+            .iter()
+            .filter(|e| e.kind == EventKind::Landing)
+            .count();
+        assert!(gs.lift_offs >= 2 && landings >= 2, "{kind:?}: {gs:?}");
+        assert_eq!(gs.ground_energy_dissipated, 0.0);
+        let e0 = r.history[0].e_total;
+        let drift = r
+            .history
+            .iter()
+            .map(|h| (h.e_total - e0).abs())
+            .fold(0.0, f64::max);
+        let residual = r.summary.energy_balance_residual.unwrap().abs();
+        println!(
+            "{kind:?}: {} lift-offs, {landings} landings, energy drift {drift:e} E_ref, residual {residual:e}",
+            gs.lift_offs
+        );
+        assert!(
+            drift <= 1e-9 && residual <= 1e-9,
+            "{kind:?}: {drift:e} {residual:e}"
+        );
+    }
+}
+
+/// With the bed's dashpots, the column's damping and a ground motion the balance closes:
+/// E_last = E_initial + W_ground − D − D_ground to 1e-9 E_ref.
+#[test]
+fn with_damping_the_energy_balance_closes() {
+    for kind in [GroundKind::Winkler, GroundKind::TwoSpring] {
+        let s = structure(10.0, 0.5, 0.05);
+        let g = bed(&s, kind, 30.0, 0.1);
+        let pulse = SinePulse::new(1.3 * 0.2f64.tan(), 4.0);
+        let r = run(
+            &s,
+            &g,
+            &pulse,
+            &Effects::default(),
+            &options(8.0, 1e-12, 0.0),
+        );
+        let gs = r.summary.ground.unwrap();
+        let residual = r.summary.energy_balance_residual.unwrap().abs();
+        println!(
+            "{kind:?}: {} lift-offs, ground dissipated {:.4} E_ref, residual {residual:e}",
+            gs.lift_offs, gs.ground_energy_dissipated
+        );
+        assert!(gs.lift_offs >= 1 && gs.ground_energy_dissipated > 0.0);
+        assert!(residual <= 1e-9, "{kind:?}: residual {residual:e}");
+    }
+}
+
+/// (θ, u, ü_g) → (−θ, −u, −ü_g) maps runs onto runs: the history under −ü_g is the mirror, v
+/// and the ground's columns the same.
+#[test]
+fn mirror_symmetry() {
+    let s = structure(10.0, 0.5, 0.02);
+    let g = bed(&s, GroundKind::Winkler, 30.0, 0.05);
+    let a = 1.3 * 0.2f64.tan();
+    let o = options(8.0, 1e-11, 0.0);
+    let plus = run(&s, &g, &SinePulse::new(a, 4.0), &Effects::default(), &o);
+    let minus = run(&s, &g, &SinePulse::new(-a, 4.0), &Effects::default(), &o);
+    assert_eq!(plus.history.len(), minus.history.len());
+    let (alpha, ucr) = (0.2, s.derived().u_cr);
+    let mut worst = 0.0f64;
+    for (p, m) in plus.history.iter().zip(&minus.history) {
+        let (gp, gm) = (p.ground.unwrap(), m.ground.unwrap());
+        worst = worst
+            .max((p.theta + m.theta).abs() / alpha)
+            .max((p.u + m.u).abs() / ucr)
+            .max((gp.settlement_over_static - gm.settlement_over_static).abs())
+            .max((gp.contact_fraction - gm.contact_fraction).abs());
+    }
+    println!("worst mirror mismatch {worst:e}");
+    assert!(plus.summary.ground.unwrap().lift_offs >= 1);
+    assert!(worst <= 1e-8, "mirror mismatch {worst:e}");
+}
+
+/// The time from release at θ0 = α/2 (rest) to θ = 0 on compliant ground, and on the rigid
+/// surface by the rigid-surface solver.
+fn quarter_periods(ratios: &[f64]) -> (f64, Vec<f64>) {
+    let s = structure(10.0, 0.5, 0.0);
+    let theta0 = 0.1;
+    let mut o = options(5.0, 1e-12, theta0);
+    o.history = History::None;
+    let rigid_run = simulate(&s, &NoMotion, &rigid(), &o).unwrap();
+    let t_rigid = rigid_run.summary.first_impact_time.unwrap().tau;
+    let times = ratios
+        .iter()
+        .map(|&ratio| {
+            let g = bed(&s, GroundKind::Winkler, ratio, 0.0);
+            let mut o = o;
+            o.t_end = 1.2 * t_rigid;
+            let r = run(&s, &g, &NoMotion, &rigid(), &o);
+            r.events
+                .iter()
+                .find(|e| e.kind == EventKind::PivotSwitch)
+                .unwrap_or_else(|| panic!("ω_v/p = {ratio}: θ never reached 0"))
+                .time
+                .tau
+        })
+        .collect();
+    (t_rigid, times)
+}
+
+/// The rigid limit: the time to θ = 0 converges, as ω_v/p grows, to the rigid block's quarter
+/// period about its corner, first order in p/ω_v.
+#[test]
+fn rigid_limit_of_the_quarter_period_is_first_order() {
+    let ratios = [50.0, 100.0, 200.0, 400.0, 800.0];
+    let (t_rigid, times) = quarter_periods(&ratios);
+    // The slender closed form (1/p) acosh(1/(1 - θ0/α)) for comparison (α = 0.2 is not slender).
+    println!(
+        "rigid surface: {t_rigid:.6} (slender closed form {:.6})",
+        2.0f64.acosh()
+    );
+    let errors: Vec<f64> = times.iter().map(|t| (t - t_rigid) / t_rigid).collect();
+    for ((r, t), e) in ratios.iter().zip(&times).zip(&errors) {
+        println!(
+            "ω_v/p = {r}: {t:.6}, relative error {e:+.3e}, error × ω_v/p {:.4}",
+            e * r
+        );
+    }
+    for k in 1..ratios.len() {
+        let rate = (errors[k - 1] / errors[k]).abs().ln() / (ratios[k] / ratios[k - 1]).ln();
+        println!("rate {} → {}: {rate:.3}", ratios[k - 1], ratios[k]);
+        assert!((0.85..=1.15).contains(&rate), "rate {rate}");
+    }
+    assert!(errors.last().unwrap().abs() < 5e-3, "{errors:?}");
+}
+
+/// Small-amplitude rocking of a point mass at height H on the bed, in full contact: ω² =
+/// (ω_v² B²/3 − g H)/H² (a base of mass 1e-4 m, needed for a free base, shifts it by about that).
+#[test]
+fn small_amplitude_rocking_frequency_on_the_bed() {
+    let s = structure(10.0, 1e-4, 0.0);
+    let ratio = 30.0;
+    let g = bed(&s, GroundKind::Winkler, ratio, 0.0);
+    let st = g.statics(s.static_uplift().weight);
+    let theta0 = 0.01 * st.theta_lift_off;
+    let mut o = options(10.0, 1e-12, theta0);
+    o.history = History::None;
+    let r = run(&s, &g, &NoMotion, &rigid(), &o);
+    assert_eq!(r.summary.ground.unwrap().lift_offs, 0);
+    let crossings: Vec<f64> = r
+        .events
+        .iter()
+        .filter(|e| e.kind == EventKind::PivotSwitch)
+        .map(|e| e.time.tau)
+        .collect();
+    assert!(crossings.len() >= 4, "{crossings:?}");
+    let n = crossings.len() - 1;
+    let period = 2.0 * (crossings[n] - crossings[0]) / n as f64;
+    let (h, b) = (s.param("h").unwrap(), s.param("b").unwrap());
+    let omega_v = ratio * s.derived().p;
+    let omega = ((omega_v * omega_v * b * b / 3.0 - h) / (h * h)).sqrt();
+    let expected = 2.0 * std::f64::consts::PI / omega;
+    let err = (period - expected).abs() / expected;
+    println!("period {period:.8}, closed form {expected:.8}, relative {err:.2e}");
+    assert!(err < 1e-3, "{err:e}");
+}
