@@ -754,7 +754,7 @@ const ROWS: &[Row] = &[
         PULSE,
         BATCH_SCENE,
         Some(RECORD),
-        &["--axis `excitation.scale=1,2`", "from --scales", "any other numeric or text key"],
+        &["--axis `excitation.scale=1,2`", "from its scale factors", "any other numeric or text key"],
     ),
     (
         "batch-axis-twice",

@@ -5,16 +5,10 @@
 
 use std::path::{Path, PathBuf};
 
-use rocking::History;
-use rocking_scene::knob::{self, Knob, KnobValue};
-use rocking_scene::scene::{self, Scene};
-use rocking_scene::setup::{self, Setup};
+use rocking_scene::knob::{Knob, KnobValue};
 use rocking_scene::SceneError;
 
-use rocking::SimError;
-use rocking_spectra::{fnv1a, Axis, CellClass, CellFailure, CellRun, Sweep};
-
-use crate::run_report;
+use rocking_spectra::{Axis, CellFailure, CellRun, Sweep};
 
 /// The paper's spectrum axes (Figs 6-8), used when neither the command nor the scene names any.
 pub const DEFAULT_AXES: [&str; 2] = [
@@ -22,22 +16,11 @@ pub const DEFAULT_AXES: [&str; 2] = [
     "excitation.amplitude=1:20:40",
 ];
 
-/// A scene that every cell of a sweep starts from.
-pub struct Base {
-    path: PathBuf,
-    text: String,
-    parsed: scene::Parsed,
-    sets: Vec<String>,
-    title: Option<String>,
-    /// The scene with the overrides, loaded once: cells apply knobs to it.
-    scene: Scene,
-    /// The scene has a compliant ground (which the sweeps refuse, [`Base::refuse_ground`]).
-    ground: bool,
-    /// Digest of the scene's record file (contents), when it has one.
-    record_digest: Option<String>,
-    /// What every cell reports besides its class, max θ/α and impacts (`[sweep] report`).
-    report: Vec<String>,
-}
+mod base;
+mod digest;
+
+pub use base::Base;
+pub use digest::{file_digest, program_digest};
 
 /// A sweep engine's error as a study reports it: a journal of another sweep in the output
 /// directory is the user's to fix (input), anything else a failure.
@@ -47,341 +30,6 @@ pub fn sweep_error(e: rocking_spectra::SweepError) -> SceneError {
             SceneError::input(e.to_string())
         }
         other => SceneError::failure(other.to_string()),
-    }
-}
-
-/// A digest of a file's contents: results computed from a record are reused only while the
-/// record's bytes are the same.
-pub fn file_digest(path: &Path) -> Result<String, SceneError> {
-    let bytes = std::fs::read(path)
-        .map_err(|e| SceneError::input(format!("{}: cannot read: {e}", path.display())))?;
-    Ok(format!("{:016x}", fnv1a(&bytes)))
-}
-
-/// A digest of the running program (its executable), so that a journal written by another build
-/// is not reused; the package version when the executable cannot be read.
-pub fn program_digest() -> &'static str {
-    static DIGEST: std::sync::OnceLock<String> = std::sync::OnceLock::new();
-    DIGEST.get_or_init(
-        || match std::env::current_exe().and_then(|exe| executable_hash(&exe)) {
-            Ok(hash) => format!("{} {hash:016x}", env!("CARGO_PKG_VERSION")),
-            Err(_) => env!("CARGO_PKG_VERSION").to_string(),
-        },
-    )
-}
-
-/// FxHash of a file's bytes, read through one reused 1 MiB buffer: reading the ~20 MB executable
-/// whole into a fresh allocation cost a page fault per 4 KiB (about 2 % of a 100 × 100
-/// spectrum's samples, `perf record`). Every chunk but the last is full, so the hash does not
-/// depend on how the operating system splits the reads.
-fn executable_hash(path: &Path) -> std::io::Result<u64> {
-    use std::hash::Hasher as _;
-    use std::io::Read as _;
-    const CHUNK: usize = 1 << 20;
-    let mut file = std::fs::File::open(path)?;
-    let mut buf = Vec::with_capacity(CHUNK);
-    let mut h = rustc_hash::FxHasher::default();
-    loop {
-        buf.clear();
-        let n = (&mut file).take(CHUNK as u64).read_to_end(&mut buf)?;
-        h.write(&buf);
-        if n < CHUNK {
-            return Ok(h.finish());
-        }
-    }
-}
-
-/// Whether the reported quantity `key` needs the cell's fixed-base twin.
-fn needs_twin(key: &str) -> bool {
-    key.starts_with("fixed_base.") || run_report::RATIOS.contains(&key)
-}
-
-/// The number at `key` (`a.b` for a nested entry) of a run's quantities: +∞ for an unbounded
-/// one (`"inf"`, [`run_report::number`]), which cells.csv and runs.csv write as `inf`.
-fn lookup(q: &serde_json::Map<String, serde_json::Value>, key: &str) -> Option<f64> {
-    let (head, tail) = match key.split_once('.') {
-        Some((h, t)) => (h, Some(t)),
-        None => (key, None),
-    };
-    let v = q.get(head)?;
-    match tail {
-        Some(t) => lookup(v.as_object()?, t),
-        None => run_report::number(v),
-    }
-}
-
-/// Refuses a reported quantity that no run of the scene has: the allowed ones are the numeric
-/// entries of a run's quantities (found by a run of the scene that ends at once, forces on, with
-/// its fixed-base twin; the force maxima in SI only for a physical scene), and the ratios to the
-/// twin.
-fn check_report(sc: &Scene, m: &Setup, report: &[String]) -> Result<(), SceneError> {
-    if report.is_empty() {
-        return Ok(());
-    }
-    let probe = rocking::Options {
-        t_end: 1e-9,
-        forces: true,
-        history: History::None,
-        event_log: false,
-        ..m.options
-    };
-    let run = |o: &rocking::Options| {
-        rocking::simulate(&m.structure, &m.excitation, &m.effects, o)
-            .map(|r| r.summary)
-            .map_err(|e| SceneError::failure(format!("{}: {e}", sc.src.path.display())))
-    };
-    let twin = run(&probe.fixed_base_twin())?;
-    let q = run_report::quantities(&run(&probe)?, Some(&twin), run_report::si_scale(m))?;
-    let mut allowed: Vec<String> = Vec::new();
-    for (k, v) in &q {
-        match v {
-            serde_json::Value::Object(o) => allowed.extend(
-                o.iter()
-                    .filter(|(_, x)| run_report::number(x).is_some())
-                    .map(|(j, _)| format!("{k}.{j}")),
-            ),
-            v if run_report::number(v).is_some() => allowed.push(k.clone()),
-            _ => {}
-        }
-    }
-    allowed.extend(run_report::RATIOS.iter().map(|r| r.to_string()));
-    allowed.sort();
-    allowed.dedup();
-    for (i, key) in report.iter().enumerate() {
-        if report[..i].contains(key) {
-            return Err(sc.src.err(
-                &format!("sweep.report.{i}"),
-                format_args!("`report` in [sweep] names `{key}` twice: give each quantity once"),
-            ));
-        }
-        if needs_twin(key) {
-            // As `run` refuses `fixed_base_reference` (the same words).
-            setup::check_twin(
-                &sc.src,
-                &format!("sweep.report.{i}"),
-                &format!("`{key}` in [sweep] report"),
-                &m.options,
-            )?;
-        }
-        if !allowed.contains(key) {
-            let names: Vec<&str> = allowed.iter().map(String::as_str).collect();
-            let hint = if run_report::SI_MAXIMA
-                .iter()
-                .any(|q| key.strip_prefix("fixed_base.").unwrap_or(key) == *q)
-            {
-                "; the maxima in SI need a scene in physical units".to_string()
-            } else {
-                rocking_scene::scene::suggest(key, &names)
-                    .map(|s| format!("; did you mean `{s}`?"))
-                    .unwrap_or_default()
-            };
-            return Err(sc.src.err(
-                &format!("sweep.report.{i}"),
-                format_args!(
-                    "`report` in [sweep] names `{key}`, which a run does not report as a number \
-                     (allowed: {}){hint}",
-                    allowed.join(", ")
-                ),
-            ));
-        }
-    }
-    Ok(())
-}
-
-impl Base {
-    /// Reads and validates the scene file with the overrides `sets`.
-    pub fn load(path: &Path, sets: &[String]) -> Result<Base, SceneError> {
-        Base::from_text(path, scene::read(path)?, sets)
-    }
-
-    /// The same from the scene's text; `path` names it in messages and resolves relative paths.
-    pub fn from_text(path: &Path, text: String, sets: &[String]) -> Result<Base, SceneError> {
-        let parsed = scene::parse_text(path, text.clone())?;
-        let sc = parsed.load(sets)?;
-        let m = setup::build(&sc)?;
-        let title = m.title.clone().map(|t| {
-            if sets.is_empty() {
-                t
-            } else {
-                let shown: Vec<String> = sets.iter().map(|s| labelled(s)).collect();
-                format!("{t} [{}]", shown.join(", "))
-            }
-        });
-        let record = sc.spec.excitation.as_ref().and_then(|e| {
-            (e.kind.as_deref() == Some("record"))
-                .then(|| e.path.as_ref().map(|p| sc.src.dir().join(p)))
-                .flatten()
-        });
-        let record_digest = record.as_deref().map(file_digest).transpose()?;
-        let report = sc
-            .spec
-            .sweep
-            .as_ref()
-            .and_then(|s| s.report.clone())
-            .unwrap_or_default();
-        check_report(&sc, &m, &report)?;
-        Ok(Base {
-            path: path.to_path_buf(),
-            text,
-            parsed,
-            sets: sets.to_vec(),
-            title,
-            record_digest,
-            scene: sc,
-            report,
-            ground: m.ground.is_some(),
-        })
-    }
-
-    /// Refuses a compliant ground (issue 44): the sweeps do not run one yet (exit 2 naming
-    /// `ground.kind`; `rocking run` and `check` take the scene).
-    pub fn refuse_ground(&self) -> Result<(), SceneError> {
-        if !self.ground {
-            return Ok(());
-        }
-        let m = setup::build(&self.scene)?;
-        setup::refuse_ground(&self.scene.src, &m, "sweeps (spectrum, batch, ida)")
-    }
-
-    /// The quantities every cell reports (`[sweep] report`).
-    pub fn report(&self) -> &[String] {
-        &self.report
-    }
-
-    /// The scene file's path.
-    pub fn path(&self) -> &Path {
-        &self.path
-    }
-
-    /// The scene file's text.
-    pub fn text(&self) -> &str {
-        &self.text
-    }
-
-    /// The overrides (`key.path=value`).
-    pub fn sets(&self) -> &[String] {
-        &self.sets
-    }
-
-    /// The scene's title with the overrides, when it has one.
-    pub fn title(&self) -> Option<&str> {
-        self.title.as_deref()
-    }
-
-    /// The scene with the overrides.
-    pub fn scene(&self) -> &Scene {
-        &self.scene
-    }
-
-    /// Resolves the keys of the axes once; `None` when one is not a knob (then cells go through
-    /// `--set` overrides).
-    pub fn knobs(&self, keys: &[&str]) -> Option<Vec<Knob>> {
-        keys.iter()
-            .map(|k| Knob::resolve(&self.scene, k).ok())
-            .collect()
-    }
-
-    /// Runs a cell: the scene with its knobs set, summary and reported quantities only.
-    pub fn run_knobs(&self, cell: &[(&Knob, KnobValue)]) -> Result<CellRun, SceneError> {
-        let m = knob::setup(&self.scene, cell)?;
-        self.simulate(m)
-    }
-
-    /// Runs the scene with extra overrides, summary and reported quantities only (no history,
-    /// events or energy).
-    pub fn run(&self, extra: &[String]) -> Result<CellRun, SceneError> {
-        self.simulate(self.model(extra)?)
-    }
-
-    /// A sweep's cell with these knobs set ([`Base::run_knobs`]), or why it has no result.
-    fn knobs_cell(&self, cell: &[(&Knob, KnobValue)]) -> Result<CellRun, CellFailure> {
-        self.cell(knob::setup(&self.scene, cell).map_err(|e| e.to_string())?)
-    }
-
-    /// A sweep's cell with extra overrides ([`Base::run`]), or why it has no result.
-    fn sets_cell(&self, extra: &[String]) -> Result<CellRun, CellFailure> {
-        self.cell(self.model(extra).map_err(|e| e.to_string())?)
-    }
-
-    /// The scene with the overrides and `extra` ones, built.
-    pub fn model(&self, extra: &[String]) -> Result<Setup, SceneError> {
-        let mut sets = self.sets.clone();
-        sets.extend_from_slice(extra);
-        setup::build(&self.parsed.load(&sets)?)
-    }
-
-    fn simulate(&self, m: Setup) -> Result<CellRun, SceneError> {
-        self.cell(m).map_err(|f| SceneError::failure(f.message))
-    }
-
-    /// A cell's run, or why it has no result: a run whose mass matrix became singular left the
-    /// model's validity (its own class, [`CellClass::BeyondModel`]); any other error is a failure.
-    fn cell(&self, mut m: Setup) -> Result<CellRun, CellFailure> {
-        m.options.history = History::None;
-        m.options.event_log = false;
-        m.options.energy = false;
-        m.options.stop_when_known = true;
-        // The forces cost a kernel per step: only a sweep that reports some pays for them.
-        m.options.forces = !self.report.is_empty();
-        // A cell keeps its class, max θ/α and impacts, and the reported quantities: max |u| is
-        // only needed for the latter.
-        m.options.max_deflection = !self.report.is_empty();
-        let path = self.path.display();
-        let run = |options: &rocking::Options| {
-            rocking::simulate(&m.structure, &m.excitation, &m.effects, options).map_err(|e| match e
-            {
-                SimError::SingularMassMatrix { .. } => CellFailure {
-                    class: CellClass::BeyondModel,
-                    message: format!("{path}: beyond the model: {e}"),
-                },
-                e => format!("{path}: simulation failed: {e}").into(),
-            })
-        };
-        let summary = run(&m.options)?.summary;
-        if self.report.is_empty() {
-            return Ok(summary.into());
-        }
-        let twin = if self.report.iter().any(|k| needs_twin(k)) {
-            Some(run(&m.options.fixed_base_twin())?.summary)
-        } else {
-            None
-        };
-        let q = run_report::quantities(&summary, twin.as_ref(), run_report::si_scale(&m))
-            .map_err(|e| e.to_string())?;
-        let reported = self
-            .report
-            .iter()
-            .map(|k| {
-                lookup(&q, k).ok_or_else(|| {
-                    format!(
-                        "{path}: the run has no value of `{k}` (a ratio to a fixed-base twin that \
-                         carries no force has none)"
-                    )
-                })
-            })
-            .collect::<Result<Vec<f64>, _>>()?;
-        Ok(CellRun { summary, reported })
-    }
-
-    /// Identifies everything a cell's result depends on: the program, the scene text, the
-    /// overrides, the record contents, the axes and `extra` (for batch, the records and their
-    /// digests).
-    pub fn fingerprint(&self, axes: &[Axis], extra: &str) -> String {
-        let mut key = format!(
-            "{}\n{}\n{:?}\n{:?}\n{extra}\n",
-            program_digest(),
-            self.text,
-            self.sets,
-            self.record_digest
-        );
-        for a in axes {
-            if a.is_text() {
-                key.push_str(&format!("{}={:?}\n", a.key, a.texts));
-            } else {
-                key.push_str(&format!("{}={:?}\n", a.key, a.values));
-            }
-        }
-        format!("{:016x}", fnv1a(key.as_bytes()))
     }
 }
 
@@ -477,9 +125,9 @@ fn set_arg(axis: &Axis, v: f64) -> String {
 
 /// The keys a batch sets itself, from its records and scale factors: not axes of its own.
 const BATCH_KEYS: [(&str, &str); 3] = [
-    ("record", "--records"),
-    ("excitation.path", "--records"),
-    ("excitation.scale", "--scales"),
+    ("record", "its records"),
+    ("excitation.path", "its records"),
+    ("excitation.scale", "its scale factors"),
 ];
 
 /// The axes of a batch's own (`--axis`), parsed as a spectrum's, one per key and none on a key
@@ -489,9 +137,9 @@ fn batch_axes(path: &Path, specs: &[String]) -> Result<Vec<Axis>, SceneError> {
     for s in specs {
         let a =
             Axis::parse(s).map_err(|e| SceneError::input(format!("{}: --{e}", path.display())))?;
-        if let Some((_, flag)) = BATCH_KEYS.iter().find(|(k, _)| *k == a.key) {
+        if let Some((_, source)) = BATCH_KEYS.iter().find(|(k, _)| *k == a.key) {
             return Err(SceneError::input(format!(
-                "{}: --axis `{s}`: a batch sets `{}` itself from {flag}: give its values there \
+                "{}: --axis `{s}`: a batch sets `{}` itself from {source}: give its values there \
                  (an axis may be any other numeric or text key of the scene)",
                 path.display(),
                 a.key
@@ -824,42 +472,5 @@ impl Plan {
                 self.base.sets_cell(&extra)
             }
         }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::executable_hash;
-
-    /// The hash follows every byte of a file of several chunks, the last one partial, and
-    /// nothing else: the same bytes in another file give the same hash.
-    #[test]
-    fn executable_hash_follows_the_bytes_across_chunks() {
-        let dir = tempfile::tempdir().unwrap();
-        let bytes: Vec<u8> = (0..(5 << 19) + 123)
-            .map(|i: u32| (i * 7 % 251) as u8)
-            .collect();
-        let write = |name: &str, b: &[u8]| {
-            let p = dir.path().join(name);
-            std::fs::write(&p, b).unwrap();
-            executable_hash(&p).unwrap()
-        };
-        let base = write("a", &bytes);
-        assert_eq!(write("b", &bytes), base, "same bytes, another file");
-        for at in [0, (1 << 20) - 1, 1 << 20, bytes.len() - 1] {
-            let mut changed = bytes.clone();
-            changed[at] ^= 1;
-            assert_ne!(write("c", &changed), base, "byte {at} flipped");
-        }
-        assert_ne!(
-            write("d", &bytes[..bytes.len() - 1]),
-            base,
-            "one byte shorter"
-        );
-        assert_ne!(
-            write("e", &bytes[..1 << 20]),
-            base,
-            "cut at a chunk boundary"
-        );
     }
 }

@@ -1,0 +1,328 @@
+//! The scene every cell of a sweep starts from ([`Base`]): loaded once with its overrides, its
+//! reported quantities checked, and a cell's run from knobs or overrides.
+
+use std::path::{Path, PathBuf};
+
+use rocking::History;
+use rocking_scene::knob::{self, Knob, KnobValue};
+use rocking_scene::scene::{self, Scene};
+use rocking_scene::setup::{self, Setup};
+use rocking_scene::SceneError;
+
+use rocking::SimError;
+use rocking_spectra::{fnv1a, Axis, CellClass, CellFailure, CellRun};
+
+use crate::run_report;
+
+use super::{file_digest, labelled, program_digest};
+
+/// A scene that every cell of a sweep starts from.
+pub struct Base {
+    pub(super) path: PathBuf,
+    pub(super) text: String,
+    pub(super) parsed: scene::Parsed,
+    pub(super) sets: Vec<String>,
+    pub(super) title: Option<String>,
+    /// The scene with the overrides, loaded once: cells apply knobs to it.
+    pub(super) scene: Scene,
+    /// The scene has a compliant ground (which the sweeps refuse, [`Base::refuse_ground`]).
+    pub(super) ground: bool,
+    /// Digest of the scene's record file (contents), when it has one.
+    pub(super) record_digest: Option<String>,
+    /// What every cell reports besides its class, max θ/α and impacts (`[sweep] report`).
+    pub(super) report: Vec<String>,
+}
+
+/// Whether the reported quantity `key` needs the cell's fixed-base twin.
+fn needs_twin(key: &str) -> bool {
+    key.starts_with("fixed_base.") || run_report::RATIOS.contains(&key)
+}
+
+/// The number at `key` (`a.b` for a nested entry) of a run's quantities: +∞ for an unbounded
+/// one (`"inf"`, [`run_report::number`]), which cells.csv and runs.csv write as `inf`.
+fn lookup(q: &serde_json::Map<String, serde_json::Value>, key: &str) -> Option<f64> {
+    let (head, tail) = match key.split_once('.') {
+        Some((h, t)) => (h, Some(t)),
+        None => (key, None),
+    };
+    let v = q.get(head)?;
+    match tail {
+        Some(t) => lookup(v.as_object()?, t),
+        None => run_report::number(v),
+    }
+}
+
+/// Refuses a reported quantity that no run of the scene has: the allowed ones are the numeric
+/// entries of a run's quantities (found by a run of the scene that ends at once, forces on, with
+/// its fixed-base twin; the force maxima in SI only for a physical scene), and the ratios to the
+/// twin.
+fn check_report(sc: &Scene, m: &Setup, report: &[String]) -> Result<(), SceneError> {
+    if report.is_empty() {
+        return Ok(());
+    }
+    let probe = rocking::Options {
+        t_end: 1e-9,
+        forces: true,
+        history: History::None,
+        event_log: false,
+        ..m.options
+    };
+    let run = |o: &rocking::Options| {
+        rocking::simulate(&m.structure, &m.excitation, &m.effects, o)
+            .map(|r| r.summary)
+            .map_err(|e| SceneError::failure(format!("{}: {e}", sc.src.path.display())))
+    };
+    let twin = run(&probe.fixed_base_twin())?;
+    let q = run_report::quantities(&run(&probe)?, Some(&twin), run_report::si_scale(m))?;
+    let mut allowed: Vec<String> = Vec::new();
+    for (k, v) in &q {
+        match v {
+            serde_json::Value::Object(o) => allowed.extend(
+                o.iter()
+                    .filter(|(_, x)| run_report::number(x).is_some())
+                    .map(|(j, _)| format!("{k}.{j}")),
+            ),
+            v if run_report::number(v).is_some() => allowed.push(k.clone()),
+            _ => {}
+        }
+    }
+    allowed.extend(run_report::RATIOS.iter().map(|r| r.to_string()));
+    allowed.sort();
+    allowed.dedup();
+    for (i, key) in report.iter().enumerate() {
+        if report[..i].contains(key) {
+            return Err(sc.src.err(
+                &format!("sweep.report.{i}"),
+                format_args!("`report` in [sweep] names `{key}` twice: give each quantity once"),
+            ));
+        }
+        if needs_twin(key) {
+            // As `run` refuses `fixed_base_reference` (the same words).
+            setup::check_twin(
+                &sc.src,
+                &format!("sweep.report.{i}"),
+                &format!("`{key}` in [sweep] report"),
+                &m.options,
+            )?;
+        }
+        if !allowed.contains(key) {
+            let names: Vec<&str> = allowed.iter().map(String::as_str).collect();
+            let hint = if run_report::SI_MAXIMA
+                .iter()
+                .any(|q| key.strip_prefix("fixed_base.").unwrap_or(key) == *q)
+            {
+                "; the maxima in SI need a scene in physical units".to_string()
+            } else {
+                rocking_scene::scene::suggest(key, &names)
+                    .map(|s| format!("; did you mean `{s}`?"))
+                    .unwrap_or_default()
+            };
+            return Err(sc.src.err(
+                &format!("sweep.report.{i}"),
+                format_args!(
+                    "`report` in [sweep] names `{key}`, which a run does not report as a number \
+                     (allowed: {}){hint}",
+                    allowed.join(", ")
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+impl Base {
+    /// Reads and validates the scene file with the overrides `sets`.
+    pub fn load(path: &Path, sets: &[String]) -> Result<Base, SceneError> {
+        Base::from_text(path, scene::read(path)?, sets)
+    }
+
+    /// The same from the scene's text; `path` names it in messages and resolves relative paths.
+    pub fn from_text(path: &Path, text: String, sets: &[String]) -> Result<Base, SceneError> {
+        let parsed = scene::parse_text(path, text.clone())?;
+        let sc = parsed.load(sets)?;
+        let m = setup::build(&sc)?;
+        let title = m.title.clone().map(|t| {
+            if sets.is_empty() {
+                t
+            } else {
+                let shown: Vec<String> = sets.iter().map(|s| labelled(s)).collect();
+                format!("{t} [{}]", shown.join(", "))
+            }
+        });
+        let record = sc.spec.excitation.as_ref().and_then(|e| {
+            (e.kind.as_deref() == Some("record"))
+                .then(|| e.path.as_ref().map(|p| sc.src.dir().join(p)))
+                .flatten()
+        });
+        let record_digest = record.as_deref().map(file_digest).transpose()?;
+        let report = sc
+            .spec
+            .sweep
+            .as_ref()
+            .and_then(|s| s.report.clone())
+            .unwrap_or_default();
+        check_report(&sc, &m, &report)?;
+        Ok(Base {
+            path: path.to_path_buf(),
+            text,
+            parsed,
+            sets: sets.to_vec(),
+            title,
+            record_digest,
+            scene: sc,
+            report,
+            ground: m.ground.is_some(),
+        })
+    }
+
+    /// Refuses a compliant ground (issue 44): the sweeps do not run one yet (exit 2 naming
+    /// `ground.kind`; `rocking run` and `check` take the scene).
+    pub fn refuse_ground(&self) -> Result<(), SceneError> {
+        if !self.ground {
+            return Ok(());
+        }
+        let m = setup::build(&self.scene)?;
+        setup::refuse_ground(&self.scene.src, &m, "sweeps (spectrum, batch, ida)")
+    }
+
+    /// The quantities every cell reports (`[sweep] report`).
+    pub fn report(&self) -> &[String] {
+        &self.report
+    }
+
+    /// The scene file's path.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// The scene file's text.
+    pub fn text(&self) -> &str {
+        &self.text
+    }
+
+    /// The overrides (`key.path=value`).
+    pub fn sets(&self) -> &[String] {
+        &self.sets
+    }
+
+    /// The scene's title with the overrides, when it has one.
+    pub fn title(&self) -> Option<&str> {
+        self.title.as_deref()
+    }
+
+    /// The scene with the overrides.
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// Resolves the keys of the axes once; `None` when one is not a knob (then cells go through
+    /// `--set` overrides).
+    pub fn knobs(&self, keys: &[&str]) -> Option<Vec<Knob>> {
+        keys.iter()
+            .map(|k| Knob::resolve(&self.scene, k).ok())
+            .collect()
+    }
+
+    /// Runs a cell: the scene with its knobs set, summary and reported quantities only.
+    pub fn run_knobs(&self, cell: &[(&Knob, KnobValue)]) -> Result<CellRun, SceneError> {
+        let m = knob::setup(&self.scene, cell)?;
+        self.simulate(m)
+    }
+
+    /// Runs the scene with extra overrides, summary and reported quantities only (no history,
+    /// events or energy).
+    pub fn run(&self, extra: &[String]) -> Result<CellRun, SceneError> {
+        self.simulate(self.model(extra)?)
+    }
+
+    /// A sweep's cell with these knobs set ([`Base::run_knobs`]), or why it has no result.
+    pub(super) fn knobs_cell(&self, cell: &[(&Knob, KnobValue)]) -> Result<CellRun, CellFailure> {
+        self.cell(knob::setup(&self.scene, cell).map_err(|e| e.to_string())?)
+    }
+
+    /// A sweep's cell with extra overrides ([`Base::run`]), or why it has no result.
+    pub(super) fn sets_cell(&self, extra: &[String]) -> Result<CellRun, CellFailure> {
+        self.cell(self.model(extra).map_err(|e| e.to_string())?)
+    }
+
+    /// The scene with the overrides and `extra` ones, built.
+    pub fn model(&self, extra: &[String]) -> Result<Setup, SceneError> {
+        let mut sets = self.sets.clone();
+        sets.extend_from_slice(extra);
+        setup::build(&self.parsed.load(&sets)?)
+    }
+
+    pub(super) fn simulate(&self, m: Setup) -> Result<CellRun, SceneError> {
+        self.cell(m).map_err(|f| SceneError::failure(f.message))
+    }
+
+    /// A cell's run, or why it has no result: a run whose mass matrix became singular left the
+    /// model's validity (its own class, [`CellClass::BeyondModel`]); any other error is a failure.
+    pub(super) fn cell(&self, mut m: Setup) -> Result<CellRun, CellFailure> {
+        m.options.history = History::None;
+        m.options.event_log = false;
+        m.options.energy = false;
+        m.options.stop_when_known = true;
+        // The forces cost a kernel per step: only a sweep that reports some pays for them.
+        m.options.forces = !self.report.is_empty();
+        // A cell keeps its class, max θ/α and impacts, and the reported quantities: max |u| is
+        // only needed for the latter.
+        m.options.max_deflection = !self.report.is_empty();
+        let path = self.path.display();
+        let run = |options: &rocking::Options| {
+            rocking::simulate(&m.structure, &m.excitation, &m.effects, options).map_err(|e| match e
+            {
+                SimError::SingularMassMatrix { .. } => CellFailure {
+                    class: CellClass::BeyondModel,
+                    message: format!("{path}: beyond the model: {e}"),
+                },
+                e => format!("{path}: simulation failed: {e}").into(),
+            })
+        };
+        let summary = run(&m.options)?.summary;
+        if self.report.is_empty() {
+            return Ok(summary.into());
+        }
+        let twin = if self.report.iter().any(|k| needs_twin(k)) {
+            Some(run(&m.options.fixed_base_twin())?.summary)
+        } else {
+            None
+        };
+        let q = run_report::quantities(&summary, twin.as_ref(), run_report::si_scale(&m))
+            .map_err(|e| e.to_string())?;
+        let reported = self
+            .report
+            .iter()
+            .map(|k| {
+                lookup(&q, k).ok_or_else(|| {
+                    format!(
+                        "{path}: the run has no value of `{k}` (a ratio to a fixed-base twin that \
+                         carries no force has none)"
+                    )
+                })
+            })
+            .collect::<Result<Vec<f64>, _>>()?;
+        Ok(CellRun { summary, reported })
+    }
+
+    /// Identifies everything a cell's result depends on: the program, the scene text, the
+    /// overrides, the record contents, the axes and `extra` (for batch, the records and their
+    /// digests).
+    pub fn fingerprint(&self, axes: &[Axis], extra: &str) -> String {
+        let mut key = format!(
+            "{}\n{}\n{:?}\n{:?}\n{extra}\n",
+            program_digest(),
+            self.text,
+            self.sets,
+            self.record_digest
+        );
+        for a in axes {
+            if a.is_text() {
+                key.push_str(&format!("{}={:?}\n", a.key, a.texts));
+            } else {
+                key.push_str(&format!("{}={:?}\n", a.key, a.values));
+            }
+        }
+        format!("{:016x}", fnv1a(key.as_bytes()))
+    }
+}
