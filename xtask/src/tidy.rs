@@ -52,14 +52,6 @@ const PENDING_CIRCLES: &[&[&str]] = &[
         "crates/rocking-codegen/src/render.rs",
     ],
     &[
-        "crates/rocking-scene/src/knob.rs",
-        "crates/rocking-scene/src/labels.rs",
-    ],
-    &[
-        "crates/rocking-scene/src/limits.rs",
-        "crates/rocking-scene/src/scene.rs",
-    ],
-    &[
         "crates/rocking/src/driver/forces.rs",
         "crates/rocking/src/driver/state.rs",
     ],

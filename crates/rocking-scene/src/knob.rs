@@ -18,6 +18,9 @@ macro_rules! fields {
     };
 }
 
+/// A record's scale factor (a batch's axis).
+pub const SCALE_FACTOR: &str = "scale factor";
+
 /// The numeric keys of the scene format, each with its label in the paper's notation and its
 /// field: the one list the knobs, the axis labels and the sweeps read.
 const NUMBERS: &[(&str, &str, Number)] = fields!(f64;
@@ -46,7 +49,7 @@ const NUMBERS: &[(&str, &str, Number)] = fields!(f64;
     excitation.v_p => "v_p (m/s)",
     excitation.gamma => "γ (pulse)",
     excitation.nu => "ν (pulse phase)",
-    excitation.scale => crate::labels::SCALE_FACTOR,
+    excitation.scale => SCALE_FACTOR,
     initial.theta_over_alpha => "θ₀/α",
     initial.u_over_ucr => "u₀/u_cr",
     initial.theta_dot_over_alpha_p => "θ'₀/(α p)",
@@ -174,13 +177,6 @@ pub fn label(key: &str) -> Option<&'static str> {
         .chain(texts)
         .find(|(k, _)| *k == key)
         .map(|(_, l)| l)
-}
-
-impl Knob {
-    /// The knob's label in the paper's notation (`crate::labels`).
-    pub fn label(&self) -> String {
-        crate::labels::axis_label(&self.key)
-    }
 }
 
 /// The setup of `scene` with the knobs set to `values` (a sweep cell).

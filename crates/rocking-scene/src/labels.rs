@@ -19,7 +19,7 @@ pub const UG_OVER_G_TAN_ALPHA: &str = "ü_g/(g tan α)";
 /// The fraction of the runs that overturned (a batch, a one-axis sweep).
 pub const FRACTION_OVERTURNED: &str = "fraction overturned";
 /// A record's scale factor.
-pub const SCALE_FACTOR: &str = "scale factor";
+pub use crate::knob::SCALE_FACTOR;
 
 /// What a run reports about its forces and its fixed-base twin, in the paper's notation (M_b,
 /// V_b the moment and shear at the column base, M_el the elastic moment, R_h and R_v the ground

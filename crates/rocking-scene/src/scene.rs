@@ -351,7 +351,7 @@ impl Source {
 
     /// The value `v` of the key at `path` is outside what is `allowed`.
     pub fn not_allowed(&self, path: &str, v: f64, allowed: &str) -> SceneError {
-        let value = crate::limits::short(v);
+        let value = rocking_motion::short_number(v);
         self.err(
             path,
             format_args!("{} = {value} is not allowed: {allowed}", describe(path)),
