@@ -182,7 +182,7 @@ fn column_block_singular(upper: &[f64], n: usize) -> bool {
     let mut block = Vec::new();
     let mut k = 0;
     for i in 0..n {
-        for j in i..n {
+        for _ in i..n {
             if i >= 2 {
                 block.push(upper[k]);
             }
