@@ -11,7 +11,7 @@ use rocking_study::ida::RecordStudy;
 use serde_json::json;
 
 use crate::out_dir::{write_atomic, OutDir};
-use crate::plot;
+use rocking_plot::figure as plot;
 use rocking_scene::SceneError;
 
 fn csv_err(e: csv::Error) -> SceneError {

@@ -31,7 +31,6 @@ mod figure;
 mod ida;
 mod merge;
 mod out_dir;
-mod plot;
 mod shard;
 mod sweep;
 
@@ -42,6 +41,7 @@ use clap::{Parser, Subcommand};
 use rocking_scene::{models, scene, setup};
 use rocking_study::run_report as report;
 
+use rocking_plot::figure as plot;
 use rocking_scene::setup::Setup;
 use rocking_scene::SceneError;
 

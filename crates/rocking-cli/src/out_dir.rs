@@ -4,15 +4,11 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::plot;
+use rocking_plot::figure as plot;
 
 use rocking_scene::SceneError;
 
-/// Writes `bytes` to `path` atomically ([`rocking_spectra::write_atomic`]).
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), SceneError> {
-    rocking_spectra::write_atomic(path, bytes)
-        .map_err(|e| SceneError::failure(format!("{}: cannot write: {e}", path.display())))
-}
+pub use rocking_plot::figure::write_atomic;
 
 /// What an output directory holds: the files its command writes, and the command's name. An
 /// existing directory holding anything else is not replaced (it is not this command's).

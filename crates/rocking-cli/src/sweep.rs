@@ -9,8 +9,8 @@ use rocking_study::plan::{program_digest, sweep_error, Plan, Records};
 use serde_json::json;
 
 use crate::out_dir::write_atomic;
-use crate::plot;
 use crate::shard;
+use rocking_plot::figure as plot;
 use rocking_scene::SceneError;
 
 /// The most threads `--threads` may ask for: more than the cores only adds switching.

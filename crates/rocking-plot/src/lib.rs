@@ -3,7 +3,8 @@
 //! [`chart`] (a figure's page, axes, lines, markers and legend), [`text`]
 //! (subscripts, tick labels, titles wrapped between items), [`colour`] and [`style`] (a palette
 //! that stays distinct for colour-blind readers and in greyscale, measured), [`export`] (one SVG
-//! turned into PNG and PDF) and [`animation`], the animated GIF of a run.
+//! turned into PNG and PDF), [`animation`], the animated GIF of a run, and [`figure`], every
+//! figure the command and Python draw (runs against τ, spectra, boundaries, IDA and fragility).
 //!
 //! It owns how things look; it must not compute results (it draws what a run or a study gives).
 
@@ -11,6 +12,7 @@ pub mod animation;
 pub mod chart;
 pub mod colour;
 pub mod export;
+pub mod figure;
 pub mod style;
 pub mod text;
 

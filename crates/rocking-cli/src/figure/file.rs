@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 
-use crate::plot::{self, Quantity};
+use rocking_plot::figure::{self as plot, Quantity};
 use rocking_plot::style;
 use rocking_scene::SceneError;
 

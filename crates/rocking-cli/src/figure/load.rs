@@ -11,7 +11,7 @@ use rocking_plot::style::LineStyle;
 use rocking_spectra::{Cell, CellClass, Progress};
 use rocking_study::plan::{Base, Plan, DEFAULT_AXES};
 
-use crate::plot::Trace;
+use rocking_plot::figure::Trace;
 use rocking_scene::SceneError;
 
 /// A sweep's plan and cells, and θ_cr/α of its structure.

@@ -14,8 +14,10 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use crate::out_dir::{OutDir, FIGURE_OUT};
-use crate::plot::{self, Figure, HistoryPanel, Panel, Quantity, SpectrumPanel, Structure};
 use load::Loader;
+use rocking_plot::figure::{
+    self as plot, Figure, HistoryPanel, Panel, Quantity, SpectrumPanel, Structure,
+};
 use rocking_plot::style;
 use rocking_scene::SceneError;
 
@@ -279,8 +281,7 @@ fn build(
                 } else {
                     plot::BOUNDARY_HEADING.to_string()
                 };
-                let mut panel =
-                    crate::plot::BoundaryPanel::over(&first.plan.sweep, structures, method);
+                let mut panel = plot::BoundaryPanel::over(&first.plan.sweep, structures, method);
                 panel.title = title.clone();
                 Panel::Boundaries(panel)
             }

@@ -6,10 +6,10 @@
 
 use std::sync::Arc;
 
+use crate::chart::{axes, fail, mark_at, pixel, rgb, styled_line, Area, LegendItem};
+use crate::style::LineStyle;
 use plotters::prelude::*;
 use rocking::{EventKind, HistoryRow, Run};
-use rocking_plot::chart::{axes, fail, mark_at, pixel, rgb, styled_line, Area, LegendItem};
-use rocking_plot::style::LineStyle;
 use rocking_scene::labels;
 use rocking_scene::setup::Setup;
 
@@ -376,7 +376,7 @@ impl HistoryPanel {
                 vec![(x.0, v), (x.1, v)],
                 &LineStyle {
                     dash: Some(RULE_DASH),
-                    ..rocking_plot::style::BLACK
+                    ..crate::style::BLACK
                 },
                 RGBColor(90, 90, 90),
                 1,

@@ -5,16 +5,16 @@
 //! and marker, the survival islands above it marked apart) and the line plot of a one-axis
 //! sweep; the colour bar of the survivors with θ_cr/α marked on it.
 
+use crate::style::{self, ClassStyle, LineStyle};
+use crate::text::{rich, tick};
 use plotters::prelude::*;
 use plotters::style::colors::colormaps::ViridisRGB;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
-use rocking_plot::style::{self, ClassStyle, LineStyle};
-use rocking_plot::text::{rich, tick};
 use rocking_scene::labels;
 use rocking_spectra::{Cell, CellClass, Sweep};
 
 use super::boundary::{cell_bounds, cell_edges, lowest_overturning, polylines, Lowest};
-use rocking_plot::chart::{
+use crate::chart::{
     axes, fail, line_height, mark_at, rgb, styled_line, Area, LegendItem, Type, LEGEND, TICKS,
 };
 
@@ -557,7 +557,7 @@ pub(super) fn colour_bar_band(
         ))
         .map_err(fail)?;
         let label = format!("↑ {label}");
-        let w = (rocking_plot::text::plain(&rich(&label)).chars().count() as f64 * char_w) as i32;
+        let w = (crate::text::plain(&rich(&label)).chars().count() as f64 * char_w) as i32;
         let x = (px - (char_w / 2.0) as i32)
             .min(width as i32 - w - 4)
             .max(0);

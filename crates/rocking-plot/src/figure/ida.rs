@@ -4,11 +4,11 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::chart::{axes, fail, mark_at, rgb, styled_line, Area, LegendItem};
+use crate::style::{self, LineStyle};
+use crate::text::tick;
 use plotters::prelude::*;
 use rocking_fragility::Bootstrap;
-use rocking_plot::chart::{axes, fail, mark_at, rgb, styled_line, Area, LegendItem};
-use rocking_plot::style::{self, LineStyle};
-use rocking_plot::text::tick;
 use rocking_scene::labels;
 use rocking_scene::SceneError;
 
