@@ -223,7 +223,7 @@ pub(crate) fn write_outputs(
         sweep: &r.plan.sweep,
         cells: &run.cells,
     });
-    let theta_cr = theta_cr_over_alpha(plan)?;
+    let theta_cr = rocking_plot::figure_file::theta_cr_over_alpha(plan)?;
     if plot::drawable(sweep) {
         let (figure, name) =
             plot::sweep_figure(&title, sweep, &outcome.cells, shown.as_ref(), theta_cr);
@@ -236,19 +236,6 @@ pub(crate) fn write_outputs(
         }
     }
     Ok(written)
-}
-
-/// θ_cr/α of a sweep's structure, when no axis changes it (the axes of the figure's grid are
-/// the pulse's, or the structure's stiffness or damping).
-pub(crate) fn theta_cr_over_alpha(plan: &Plan) -> Result<Option<f64>, SceneError> {
-    let keeps = |k: &str| {
-        !k.starts_with("structure.") || k == "structure.omega_n_over_p" || k == "structure.zeta"
-    };
-    if !plan.sweep.axes.iter().all(|a| keeps(&a.key)) {
-        return Ok(None);
-    }
-    let d = plan.base.model(&[])?.structure.derived();
-    Ok(Some(d.theta_cr / d.alpha))
 }
 
 /// `rocking batch`: every record at every scale factor (and every cell of the `--axis` axes);

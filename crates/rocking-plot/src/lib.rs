@@ -4,15 +4,18 @@
 //! (subscripts, tick labels, titles wrapped between items), [`colour`] and [`style`] (a palette
 //! that stays distinct for colour-blind readers and in greyscale, measured), [`export`] (one SVG
 //! turned into PNG and PDF), [`animation`], the animated GIF of a run, and [`figure`], every
-//! figure the command and Python draw (runs against τ, spectra, boundaries, IDA and fragility).
+//! figure the command and Python draw (runs against τ, spectra, boundaries, IDA and fragility),
+//! with [`figure_file`], the figure files that gather their runs and sweeps.
 //!
-//! It owns how things look; it must not compute results (it draws what a run or a study gives).
+//! It owns how things look; it must not compute results: it draws what a run or a study gives
+//! (a figure file loads its runs and sweeps through `rocking-study`).
 
 pub mod animation;
 pub mod chart;
 pub mod colour;
 pub mod export;
 pub mod figure;
+pub mod figure_file;
 pub mod style;
 pub mod text;
 

@@ -9,6 +9,8 @@
 //! It owns the Python API; it must not compute or format anything the library crates do (a
 //! result from Python is the command's).
 
+mod figure;
+
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -414,6 +416,7 @@ fn _rocking(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(convergence, m)?)?;
     m.add_function(wrap_pyfunction!(models_json, m)?)?;
     m.add_function(wrap_pyfunction!(read_scene, m)?)?;
+    m.add_function(wrap_pyfunction!(figure::figure, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -457,11 +457,10 @@ impl Figure {
         items
     }
 
-    /// Writes `<name>.svg`, `.png` and `.pdf` into `dir`, each atomically; returns their paths.
-    pub fn write(&self, dir: &Path, name: &str) -> Result<Vec<PathBuf>, SceneError> {
-        let failed =
-            |m: String| SceneError::failure(format!("{}: cannot draw {name}: {m}", dir.display()));
-        let svg = self.svg().map_err(failed)?;
+    /// The figure's files as bytes, each with its extension: SVG, PNG and PDF (one SVG exported),
+    /// and at print size (not a draft) the caption as Markdown.
+    pub fn files(&self) -> Result<Vec<(&'static str, Vec<u8>)>, String> {
+        let svg = self.svg()?;
         let out = match self.print {
             Some(p) => crate::export::export_print(
                 &svg,
@@ -471,21 +470,27 @@ impl Figure {
                 },
             ),
             None => crate::export::export(&svg),
-        }
-        .map_err(failed)?;
-        let mut written = Vec::new();
-        for (ext, bytes) in
-            FORMATS
-                .into_iter()
-                .zip([out.svg.as_bytes(), &out.png[..], &out.pdf[..]])
-        {
-            let path = dir.join(format!("{name}.{ext}"));
-            write_atomic(&path, bytes)?;
-            written.push(path);
-        }
+        }?;
+        let mut files: Vec<(&'static str, Vec<u8>)> = FORMATS
+            .into_iter()
+            .zip([out.svg.into_bytes(), out.png, out.pdf])
+            .collect();
         if self.print.is_some_and(|p| !p.draft) {
-            let path = dir.join(format!("{name}.{CAPTION_EXT}"));
-            write_atomic(&path, self.caption_text().as_bytes())?;
+            files.push((CAPTION_EXT, self.caption_text().into_bytes()));
+        }
+        Ok(files)
+    }
+
+    /// Writes [`Figure::files`] into `dir` as `<name>.<extension>`, each atomically; returns
+    /// their paths.
+    pub fn write(&self, dir: &Path, name: &str) -> Result<Vec<PathBuf>, SceneError> {
+        let files = self.files().map_err(|m| {
+            SceneError::failure(format!("{}: cannot draw {name}: {m}", dir.display()))
+        })?;
+        let mut written = Vec::new();
+        for (ext, bytes) in files {
+            let path = dir.join(format!("{name}.{ext}"));
+            write_atomic(&path, &bytes)?;
             written.push(path);
         }
         Ok(written)

@@ -38,6 +38,7 @@ __all__ = [
     "Structure",
     "Summary",
     "batch",
+    "figure",
     "ida",
     "load_scene",
     "models",
@@ -417,6 +418,23 @@ def convergence(
     s = _scene(scene)
     raw = _rocking.convergence(s._inner, list(models), list(quantities or []), tolerance, threads)
     return json.loads(raw)
+
+
+def figure(
+    path: PathLike,
+    cache: Optional[PathLike] = None,
+    cells: Optional[int] = None,
+    draft: bool = False,
+    quiet: bool = True,
+) -> Dict[str, bytes]:
+    """The figure of a figure file (scenes/paper/fig8.toml and the like), drawn as
+    ``rocking figure`` draws it: ``{"svg": ..., "png": ..., "pdf": ..., "caption.md": ...}``,
+    each the bytes the command writes (no caption for a ``draft``, which keeps the title and
+    caption inside the image). Its sweeps are journaled in ``cache`` (default: a folder
+    ``out/figure-cache`` beside the working directory, as the command's ``--cache``), so a second
+    call reads them back; ``cells`` caps each ranged axis for a quick look (``--cells``)."""
+    cache = cache if cache is not None else os.path.join("out", "figure-cache")
+    return dict(_rocking.figure(os.fspath(path), os.fspath(cache), cells, draft, quiet))
 
 
 def models() -> List[Dict[str, Any]]:

@@ -6,14 +6,14 @@ use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 
-use rocking_plot::figure::{self as plot, Quantity};
-use rocking_plot::style;
+use crate::figure::{self as plot, Quantity};
+use crate::style;
 use rocking_scene::SceneError;
 
 /// A figure file.
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct FigureFile {
+pub struct FigureFile {
     pub(super) title: String,
     pub(super) caption: Option<String>,
     #[serde(default = "one")]
@@ -133,7 +133,7 @@ pub(super) const PANEL_PIXELS: (u32, u32) = (200, 2000);
 pub(super) const BISECTIONS: usize = 10;
 
 /// Reads and checks a figure file: TOML errors name the file, the line and the field.
-pub(super) fn read(file: &Path) -> Result<FigureFile, SceneError> {
+pub fn read(file: &Path) -> Result<FigureFile, SceneError> {
     let text = std::fs::read_to_string(file)
         .map_err(|e| SceneError::input(format!("{}: cannot read: {e}", file.display())))?;
     let de = toml::Deserializer::parse(&text)

@@ -1,94 +1,57 @@
-//! `rocking figure FIGURE.toml... [--out DIR]`: one figure from several runs or sweeps (scenes
-//! with overrides), as panels in a grid: a quantity against τ with runs overlaid (a zoom on an
-//! impact), a rocking spectrum (all of a figure's spectra on one colour scale), or overturning
-//! boundaries of several structures. The file format is in scenes/paper/README.md; the paper's
-//! Figs 3-10 are such files. Sweeps are journaled in a cache directory named by their
-//! fingerprint, so figures that share a spectrum compute it once, and a rerun reads it back.
+//! Figure files: one figure from several runs or sweeps (scenes with overrides), as panels in a
+//! grid: a quantity against τ with runs overlaid (a zoom on an impact), a rocking spectrum (all of
+//! a figure's spectra on one colour scale), or overturning boundaries of several structures. The
+//! file format is in scenes/paper/README.md; the paper's Figs 3-10 are such files. Sweeps are
+//! journaled in a cache directory named by their fingerprint ([`Loader`]), so figures that share
+//! a spectrum compute it once, and a rerun reads it back. `rocking figure` and Python's
+//! `rocking.figure` draw through [`draw`].
 
 mod file;
 mod load;
 
-use file::{bad, read, width_mm, FigureFile, PanelSpec, BISECTIONS, DPI};
+pub use file::{read, FigureFile};
+pub use load::{theta_cr_over_alpha, Loader};
+
+use file::{bad, width_mm, PanelSpec, BISECTIONS, DPI};
 
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use crate::out_dir::{OutDir, FIGURE_OUT};
-use load::Loader;
-use rocking_plot::figure::{
+use crate::figure::{
     self as plot, Figure, HistoryPanel, Panel, Quantity, SpectrumPanel, Structure,
 };
-use rocking_plot::style;
+use crate::style;
 use rocking_scene::SceneError;
 
-/// Options of the command.
-pub struct Options {
-    pub out: PathBuf,
-    /// The title and caption drawn inside the image (for screens), no caption file.
-    pub draft: bool,
-    pub cache: PathBuf,
-    pub cells: Option<usize>,
-    pub quiet: bool,
-}
-
 /// The name of a figure file's outputs: its stem (`fig3.toml` draws `fig3.svg`, …).
-fn stem(file: &Path) -> String {
+pub fn stem(file: &Path) -> String {
     file.file_stem()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "figure".into())
 }
 
-/// `rocking figure`: every figure is drawn into a staging directory that replaces `--out` at
-/// the end, under its lock ([`OutDir`]), keeping the figures of other files already there; two
-/// files of one name would write the same outputs and are refused before anything is drawn.
-pub fn figure(files: &[PathBuf], opts: &Options) -> Result<(), SceneError> {
-    let mut seen: BTreeMap<String, &PathBuf> = BTreeMap::new();
-    for file in files {
-        if let Some(first) = seen.insert(stem(file), file) {
-            return Err(SceneError::input(format!(
-                "{} and {}: both would be drawn as {}/{}.svg (.png, .pdf): draw them into \
-                 different --out directories, or rename one",
-                first.display(),
-                file.display(),
-                opts.out.display(),
-                stem(file)
-            )));
-        }
+/// The figure of a figure file read with [`read`]: its runs and sweeps loaded through `loader`,
+/// each sweep at most `cells` cells per ranged axis (a quick draft of a large grid), its title
+/// and caption inside the image when `draft`. Notes a colour scale that clips cells on stderr.
+pub fn draw(
+    file: &Path,
+    spec: &FigureFile,
+    loader: &mut Loader,
+    cells: Option<usize>,
+    draft: bool,
+) -> Result<Figure, SceneError> {
+    let mut figure = build(file, spec, loader, cells)?;
+    if let Some(p) = &mut figure.print {
+        p.draft = draft;
     }
-    let specs = files
-        .iter()
-        .map(|f| read(f))
-        .collect::<Result<Vec<_>, _>>()?;
-    let dir = OutDir::begin(&opts.out, FIGURE_OUT)?;
-    let mut loader = Loader::new(&opts.cache, opts.quiet);
-    let mut listed = Vec::new();
-    for (file, spec) in files.iter().zip(&specs) {
-        let mut figure = build(file, spec, &mut loader, opts.cells)?;
-        if let Some(p) = &mut figure.print {
-            p.draft = opts.draft;
-        }
-        if let Some((top, n)) = figure.above_colour_top() {
-            eprintln!(
-                "note: {}: {n} shaded cells lie above colour_top = {top} and are drawn in its \
-                 colour (raise colour_top to tell them apart)",
-                file.display()
-            );
-        }
-        let written = figure.write(dir.path(), &stem(file))?;
-        listed.push((file, written));
+    if let Some((top, n)) = figure.above_colour_top() {
+        eprintln!(
+            "note: {}: {n} shaded cells lie above colour_top = {top} and are drawn in its \
+             colour (raise colour_top to tell them apart)",
+            file.display()
+        );
     }
-    let listed: Vec<_> = listed
-        .into_iter()
-        .map(|(f, w)| (f, w.iter().map(|p| dir.final_path(p)).collect::<Vec<_>>()))
-        .collect();
-    dir.commit()?;
-    for (file, written) in listed {
-        out!("{}:", file.display());
-        for p in written {
-            out!("  {}", p.display());
-        }
-    }
-    Ok(())
+    Ok(figure)
 }
 
 /// The seconds per unit of τ that the runs of a panel drawn in seconds share: each run's scene
@@ -243,9 +206,9 @@ fn build(
                         .clone()
                         .unwrap_or_else(|| spec.sweeps[sweep].label.clone()),
                 );
-                let alpha = rocking_plot::text::tick(s.alpha);
+                let alpha = crate::text::tick(s.alpha);
                 panel.mark = s.theta_cr.map(|v| {
-                    let v2 = rocking_plot::text::tick((v * 100.0).round() / 100.0);
+                    let v2 = crate::text::tick((v * 100.0).round() / 100.0);
                     (v, format!("θ_cr/α = {v2} (α = {alpha})"))
                 });
                 Panel::Spectrum(panel)

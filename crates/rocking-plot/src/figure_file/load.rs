@@ -7,11 +7,11 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
-use rocking_plot::style::LineStyle;
+use crate::style::LineStyle;
 use rocking_spectra::{Cell, CellClass, Progress};
 use rocking_study::plan::{Base, Plan, DEFAULT_AXES};
 
-use rocking_plot::figure::Trace;
+use crate::figure::Trace;
 use rocking_scene::SceneError;
 
 /// A sweep's plan and cells, and θ_cr/α of its structure.
@@ -105,7 +105,7 @@ impl Loader {
                 scene.display()
             );
         }
-        let theta_cr = crate::sweep::theta_cr_over_alpha(&plan)?;
+        let theta_cr = theta_cr_over_alpha(&plan)?;
         let alpha = plan.base.model(&[])?.structure.derived().alpha;
         let swept = Rc::new(Swept {
             alpha,
@@ -151,6 +151,19 @@ pub fn bisect(plan: &Plan, x: f64, upright: f64, overturned: f64, steps: usize) 
         }
     }
     0.5 * (lo + hi)
+}
+
+/// θ_cr/α of a sweep's structure, when no axis changes it (the axes of the figure's grid are
+/// the pulse's, or the structure's stiffness or damping).
+pub fn theta_cr_over_alpha(plan: &Plan) -> Result<Option<f64>, SceneError> {
+    let keeps = |k: &str| {
+        !k.starts_with("structure.") || k == "structure.omega_n_over_p" || k == "structure.zeta"
+    };
+    if !plan.sweep.axes.iter().all(|a| keeps(&a.key)) {
+        return Ok(None);
+    }
+    let d = plan.base.model(&[])?.structure.derived();
+    Ok(Some(d.theta_cr / d.alpha))
 }
 
 #[cfg(test)]
