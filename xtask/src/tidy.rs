@@ -32,7 +32,6 @@ const PENDING_SPLITS: &[(&str, usize)] = &[
     ("crates/rocking-codegen/src/render.rs", 1267),
     ("crates/rocking-plot/src/chart.rs", 1012),
     ("crates/rocking-scene/src/setup.rs", 994),
-    ("crates/rocking-plot/src/figure/spectrum.rs", 991),
     ("crates/rocking/src/structure.rs", 793),
     ("crates/rocking-scene/src/scene.rs", 777),
     ("crates/rocking-study/src/ida.rs", 772),

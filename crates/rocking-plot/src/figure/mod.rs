@@ -9,14 +9,19 @@
 //! subscripts.
 
 mod boundary;
+mod boundary_panel;
+mod colour_bar;
 mod history;
 mod ida;
+mod line_panel;
 mod spectrum;
 mod standard;
 
+pub use boundary_panel::{BoundaryPanel, Structure};
 pub use history::{HistoryPanel, Quantity, Trace, QUANTITIES, THETA_OVER_ALPHA};
 pub use ida::{ida_plots, FitPanel, IdaPanel, Points};
-pub use spectrum::{BoundaryPanel, CurvePanel, LinePanel, SpectrumPanel, Structure};
+pub use line_panel::{CurvePanel, LinePanel};
+pub use spectrum::SpectrumPanel;
 pub use standard::*;
 
 use std::path::{Path, PathBuf};
@@ -289,8 +294,8 @@ impl Figure {
         let bar = self.colour_top().is_some() && self.shade_label().is_some();
         let (bar_h, legend_w) = if bar {
             (
-                spectrum::colour_bar_band_height(self.colour_bar_marks().len()),
-                width.saturating_sub(spectrum::PRINT_BAR_WIDTH),
+                colour_bar::colour_bar_band_height(self.colour_bar_marks().len()),
+                width.saturating_sub(colour_bar::PRINT_BAR_WIDTH),
             )
         } else {
             (0, width)
@@ -344,8 +349,8 @@ impl Figure {
             if layout.is_some() {
                 let band = match (top, self.shade_label()) {
                     (Some(top), Some(label)) => {
-                        let (bar, rest) = side.split_horizontally(spectrum::PRINT_BAR_WIDTH);
-                        spectrum::colour_bar_band(
+                        let (bar, rest) = side.split_horizontally(colour_bar::PRINT_BAR_WIDTH);
+                        colour_bar::colour_bar_band(
                             &bar,
                             label,
                             (bottom, top),
@@ -359,7 +364,13 @@ impl Figure {
             }
             let mut y = 10;
             if let (Some(top), Some(label)) = (top, self.shade_label()) {
-                y = spectrum::colour_bar(side, label, (bottom, top), &self.colour_bar_marks(), y)?;
+                y = colour_bar::colour_bar(
+                    side,
+                    label,
+                    (bottom, top),
+                    &self.colour_bar_marks(),
+                    y,
+                )?;
             }
             legend(side, y, &self.legend())
         };
