@@ -3,8 +3,10 @@
 //! no line is told apart by colour alone. Every pair of class fills and every pair of line
 //! colours stays at least [`DISTINCT`] apart (CIEDE2000) for normal vision, protanopia,
 //! deuteranopia and tritanopia, and in greyscale (beyond four lines, [`DISTINCT_GREY`]): the
-//! tests below measure it. The paper calls the
-//! no-impact overturning area blue and the one-impact area brown; so do these.
+//! tests below measure it, and each overturned class's fill against every colour of the
+//! survivors' scale (viridis) too. The paper calls the no-impact overturning area blue and the
+//! one-impact area brown; so do these (a blue-violet, found with the several-impacts ochre by a
+//! search of the RGB cube for the largest least difference from the scale and the other fills).
 
 /// The least CIEDE2000 difference between two colours that must be told apart. A just
 /// noticeable difference is about 1-2.3 ΔE₀₀ side by side (Sharma 2003); areas and thin lines of
@@ -42,7 +44,7 @@ pub const NO_UPLIFT: ClassStyle = ClassStyle {
     label: "no uplift",
 };
 pub const OVERTURNED_NO_IMPACT: ClassStyle = ClassStyle {
-    fill: [0x1A, 0xB5, 0xEA],
+    fill: [0xA8, 0xA0, 0xE8],
     hatch: Some(Hatch::Falling),
     ink: [0x0B, 0x35, 0x50],
     label: "overturned, no impact",
@@ -54,7 +56,7 @@ pub const OVERTURNED_ONE_IMPACT: ClassStyle = ClassStyle {
     label: "overturned after one impact",
 };
 pub const OVERTURNED_IMPACTS: ClassStyle = ClassStyle {
-    fill: [0xDD, 0x0E, 0x85],
+    fill: [0xA0, 0x68, 0x00],
     hatch: Some(Hatch::Cross),
     ink: [0xFF, 0xFF, 0xFF],
     label: "overturned after impacts",
@@ -317,6 +319,63 @@ mod tests {
             .iter()
             .filter(|c| c.label != BEYOND_MODEL.label)
             .all(|c| c.hatch != BEYOND_MODEL.hatch));
+    }
+
+    /// The survivors' colour scale (viridis, as figure/spectrum.rs shades it), 256 samples.
+    fn survivor_scale() -> Vec<[u8; 3]> {
+        use plotters::style::colors::colormaps::{ColorMap, ViridisRGB};
+        (0..256)
+            .map(|k| {
+                let c = ViridisRGB.get_color_normalized(f64::from(k) / 255.0, 0.0, 1.0);
+                [c.0, c.1, c.2]
+            })
+            .collect()
+    }
+
+    #[test]
+    fn class_fills_stay_distinct_from_the_survivor_scale() {
+        // A spectrum puts the classes beside survivors of any shade: every filled class stays
+        // DISTINCT from every colour of the scale for normal vision and the three dichromacies.
+        let scale = survivor_scale();
+        for c in CLASSES {
+            for v in [
+                Vision::Normal,
+                Vision::Protanopia,
+                Vision::Deuteranopia,
+                Vision::Tritanopia,
+            ] {
+                let d = scale
+                    .iter()
+                    .map(|s| crate::colour::difference(c.fill, *s, v))
+                    .fold(f64::INFINITY, f64::min);
+                println!(
+                    "{} against the survivors, {v:?}: min ΔE00 = {d:.1}",
+                    c.label
+                );
+                assert!(
+                    d >= DISTINCT,
+                    "{}: {d:.1} from the scale for {v:?}",
+                    c.label
+                );
+            }
+            // In greyscale the scale runs through every lightness, so no fill can stay apart:
+            // the overturned classes are told by their hatching there, the no-uplift cells by
+            // the uplift line drawn between them and the survivors, the failed ones by their
+            // black (the darkest viridis is still 9 ΔE00 lighter).
+            let grey = scale
+                .iter()
+                .map(|s| crate::colour::difference(c.fill, *s, Vision::Greyscale))
+                .fold(f64::INFINITY, f64::min);
+            println!("{} against the survivors, greyscale: {grey:.1}", c.label);
+            assert!(
+                grey >= DISTINCT - 1.0
+                    || c.hatch.is_some()
+                    || c.label == NO_UPLIFT.label
+                    || c.label == FAILED.label,
+                "{}: {grey:.1} from the scale in greyscale and nothing else tells it apart",
+                c.label
+            );
+        }
     }
 
     #[test]
