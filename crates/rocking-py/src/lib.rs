@@ -289,6 +289,20 @@ fn outcome_dict<'py>(
     )?;
     let impacts: Vec<u64> = outcome.cells.iter().map(|c| c.impacts).collect();
     d.set_item("impacts", impacts)?;
+    // The quantities of `[sweep] report` (the ground's keys on compliant ground), one float64
+    // array per quantity, NaN where a cell has no result (cells.csv leaves those fields empty).
+    let reported = PyDict::new(py);
+    for (j, name) in sweep.reported.iter().enumerate() {
+        let values = outcome.cells.iter().map(|c| {
+            if c.class.has_result() {
+                c.reported.get(j).copied().unwrap_or(f64::NAN)
+            } else {
+                f64::NAN
+            }
+        });
+        reported.set_item(name, f64_bytes(py, values))?;
+    }
+    d.set_item("reported", reported)?;
     d.set_item("failures", outcome.failures.clone())?;
     d.set_item("beyond_model", outcome.beyond_model.clone())?;
     Ok(d)

@@ -58,6 +58,12 @@ const NUMBERS: &[(&str, &str, Number)] = fields!(f64;
     solver.after_excitation => "τ after the excitation",
     output.history_dt => "Δτ",
     effects.friction => "μ (ground friction)",
+    ground.omega_v_over_p => "ω_v/p",
+    ground.zeta_v => "ζ_v",
+    ground.k => "k (N/m²)",
+    ground.c => "c (N s/m²)",
+    ground.k_spring => "k_spring (N/m)",
+    ground.c_spring => "c_spring (N s/m)",
 );
 
 /// The text keys a sweep may vary (a batch sweeps records), with their labels.

@@ -23,8 +23,9 @@ pub use crate::knob::SCALE_FACTOR;
 
 /// What a run reports about its forces and its fixed-base twin, in the paper's notation (M_b,
 /// V_b the moment and shear at the column base, M_el the elastic moment, R_h and R_v the ground
-/// reactions, W the total weight, B the half-width); the other quantities by their key.
-const QUANTITIES: [(&str, &str); 9] = [
+/// reactions, W the total weight, B the half-width; on compliant ground p the pressure under the
+/// base, v its settlement and v₀ the static one); the other quantities by their key.
+const QUANTITIES: [(&str, &str); 14] = [
     ("max_theta_over_alpha", MAX_THETA_OVER_ALPHA),
     ("max_u_over_ucr", "max |u|/u_cr"),
     ("max_base_moment_over_wb", "max |M_b|/(W B)"),
@@ -34,6 +35,11 @@ const QUANTITIES: [(&str, &str); 9] = [
     ("min_vertical_reaction_over_w", "min R_v/W"),
     ("base_moment_ratio", "max |M_b|, rocking / fixed base"),
     ("base_shear_ratio", "max |V_b|, rocking / fixed base"),
+    ("max_ground_pressure_over_mean", "max p/(W/2B)"),
+    ("min_contact_fraction", "min contact length/2B"),
+    ("lift_offs", "edge lift-offs"),
+    ("max_settlement_over_static", "max v/v₀"),
+    ("ground_energy_dissipated", "ground dissipation/E_ref"),
 ];
 
 /// The label of a quantity a run reports (a key of its summary, as a sweep's `report` names

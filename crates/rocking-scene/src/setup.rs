@@ -783,22 +783,6 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Setup, SceneError> {
     })
 }
 
-/// Refuses a scene with a compliant ground in `what` (the sweeps: spectrum, batch, IDA), which do
-/// not run one yet (issue 44, docs/ground.md): exit 2 naming `ground.kind`.
-pub fn refuse_ground(src: &Source, m: &Setup, what: &str) -> Result<(), SceneError> {
-    match &m.ground {
-        None => Ok(()),
-        Some(g) => Err(src.err(
-            "ground.kind",
-            format!(
-                "[ground] kind = \"{}\" runs with `rocking run`, but {what} do not run a \
-                 compliant ground yet (issue 44, docs/ground.md): give kind = \"rigid\"",
-                g.kind.name()
-            ),
-        )),
-    }
-}
-
 /// The compliant ground of `[ground]` in the structure's units, or `None` for the rigid surface:
 /// every key checked (its kind's keys only; SI keys only in an SI scene; one form, vertical
 /// frequency or the bed's own stiffness, not both). `p` is the structure's p in model units.

@@ -266,7 +266,6 @@ fn derived(v: f64) -> String {
 /// cannot be scaled to), so that a command refuses it before writing or running anything. Reads
 /// the records in the current rayon pool.
 pub fn plan<'a>(base: &'a Base, records: &[PathBuf]) -> Result<Planned<'a>, SceneError> {
-    base.refuse_ground()?;
     let sc = base.scene();
     let kind = sc
         .spec

@@ -38,12 +38,18 @@ pub fn simulate(m: &Setup, scene: &Path) -> Result<Report, SceneError> {
     Ok(Report { run, fixed_base })
 }
 
-fn simulate_with(m: &Setup, options: &rocking::Options, scene: &Path) -> Result<Run, SceneError> {
-    let run = match &m.ground {
+/// Runs a built scene with `options`: on its compliant ground ([`rocking::simulate_on_ground`])
+/// when it has one, else on the rigid surface ([`rocking::simulate`]). The one dispatch of every
+/// run: `rocking run`, a sweep's cell, an IDA analysis, Python.
+pub fn run_setup(m: &Setup, options: &rocking::Options) -> Result<Run, rocking::SimError> {
+    match &m.ground {
         Some(g) => rocking::simulate_on_ground(&m.structure, g, &m.excitation, &m.effects, options),
         None => rocking::simulate(&m.structure, &m.excitation, &m.effects, options),
-    };
-    run.map_err(|e| {
+    }
+}
+
+fn simulate_with(m: &Setup, options: &rocking::Options, scene: &Path) -> Result<Run, SceneError> {
+    run_setup(m, options).map_err(|e| {
         if e.is_invalid_input() {
             SceneError::input(format!("{}: {e}", scene.display()))
         } else if e.is_guard() {

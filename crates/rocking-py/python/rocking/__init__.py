@@ -296,8 +296,16 @@ class Spectrum:
             np.frombuffer(raw["max_theta_over_alpha"], dtype=np.float64).reshape(shape),
             self.without_result,
         )
-        #: Impacts per cell.
+        #: Impacts per cell (on compliant ground: landings, a corner pressing again).
         self.impacts: np.ndarray = np.asarray(raw["impacts"], dtype=np.int64).reshape(shape)
+        #: The quantities of the scene's ``[sweep] report`` (e.g. the ground's
+        #: ``max_ground_pressure_over_mean``), one grid per name, masked where a cell has no
+        #: result: the columns of cells.csv (runs.csv) after ``impacts``.
+        self.reported: Dict[str, np.ma.MaskedArray] = {
+            k: np.ma.masked_array(np.frombuffer(v, dtype=np.float64).reshape(shape),
+                                  self.without_result)
+            for k, v in raw["reported"].items()
+        }
         #: Failed cells: (cell index, message).
         self.failures: List[Tuple[int, str]] = list(raw["failures"])
         #: Cells beyond the model's validity: (cell index, message).

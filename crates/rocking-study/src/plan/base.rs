@@ -25,8 +25,6 @@ pub struct Base {
     pub(super) title: Option<String>,
     /// The scene with the overrides, loaded once: cells apply knobs to it.
     pub(super) scene: Scene,
-    /// The scene has a compliant ground (which the sweeps refuse, [`Base::refuse_ground`]).
-    pub(super) ground: bool,
     /// Digest of the scene's record file (contents), when it has one.
     pub(super) record_digest: Option<String>,
     /// What every cell reports besides its class, max θ/α and impacts (`[sweep] report`).
@@ -68,12 +66,16 @@ fn check_report(sc: &Scene, m: &Setup, report: &[String]) -> Result<(), SceneErr
         ..m.options
     };
     let run = |o: &rocking::Options| {
-        rocking::simulate(&m.structure, &m.excitation, &m.effects, o)
+        run_report::run_setup(m, o)
             .map(|r| r.summary)
             .map_err(|e| SceneError::failure(format!("{}: {e}", sc.src.path.display())))
     };
-    let twin = run(&probe.fixed_base_twin())?;
-    let q = run_report::quantities(&run(&probe)?, Some(&twin), run_report::si_scale(m))?;
+    // On compliant ground there is no twin yet (as `run` refuses `fixed_base_reference`).
+    let twin = match &m.ground {
+        None => Some(run(&probe.fixed_base_twin())?),
+        Some(_) => None,
+    };
+    let q = run_report::quantities(&run(&probe)?, twin.as_ref(), run_report::si_scale(m))?;
     let mut allowed: Vec<String> = Vec::new();
     for (k, v) in &q {
         match v {
@@ -86,7 +88,9 @@ fn check_report(sc: &Scene, m: &Setup, report: &[String]) -> Result<(), SceneErr
             _ => {}
         }
     }
-    allowed.extend(run_report::RATIOS.iter().map(|r| r.to_string()));
+    if m.ground.is_none() {
+        allowed.extend(run_report::RATIOS.iter().map(|r| r.to_string()));
+    }
     allowed.sort();
     allowed.dedup();
     for (i, key) in report.iter().enumerate() {
@@ -94,6 +98,18 @@ fn check_report(sc: &Scene, m: &Setup, report: &[String]) -> Result<(), SceneErr
             return Err(sc.src.err(
                 &format!("sweep.report.{i}"),
                 format_args!("`report` in [sweep] names `{key}` twice: give each quantity once"),
+            ));
+        }
+        if let (true, Some(g)) = (needs_twin(key), &m.ground) {
+            // As `run` refuses `fixed_base_reference` on compliant ground (docs/ground.md).
+            return Err(sc.src.err(
+                &format!("sweep.report.{i}"),
+                format_args!(
+                    "`{key}` in [sweep] report compares with the fixed-base twin, and [ground] \
+                     kind = \"{}\": the twin on compliant ground (the same bed with springs that \
+                     also pull) is not built yet (docs/ground.md): remove it",
+                    g.kind.name()
+                ),
             ));
         }
         if needs_twin(key) {
@@ -171,18 +187,7 @@ impl Base {
             record_digest,
             scene: sc,
             report,
-            ground: m.ground.is_some(),
         })
-    }
-
-    /// Refuses a compliant ground (issue 44): the sweeps do not run one yet (exit 2 naming
-    /// `ground.kind`; `rocking run` and `check` take the scene).
-    pub fn refuse_ground(&self) -> Result<(), SceneError> {
-        if !self.ground {
-            return Ok(());
-        }
-        let m = setup::build(&self.scene)?;
-        setup::refuse_ground(&self.scene.src, &m, "sweeps (spectrum, batch, ida)")
     }
 
     /// The quantities every cell reports (`[sweep] report`).
@@ -270,8 +275,7 @@ impl Base {
         m.options.max_deflection = !self.report.is_empty();
         let path = self.path.display();
         let run = |options: &rocking::Options| {
-            rocking::simulate(&m.structure, &m.excitation, &m.effects, options).map_err(|e| match e
-            {
+            run_report::run_setup(&m, options).map_err(|e| match e {
                 SimError::SingularMassMatrix { .. } => CellFailure {
                     class: CellClass::BeyondModel,
                     message: format!("{path}: beyond the model: {e}"),

@@ -204,7 +204,6 @@ impl Plan {
     /// scene's `[sweep] axes`, else the paper's. Every axis value is validated against the scene
     /// before anything runs.
     pub fn spectrum(base: Base, axis_specs: &[String]) -> Result<Plan, SceneError> {
-        base.refuse_ground()?;
         let path = base.path.clone();
         let specs: Vec<String> = if !axis_specs.is_empty() {
             axis_specs.to_vec()
@@ -269,7 +268,6 @@ impl Plan {
         scales: &[f64],
         axis_specs: &[String],
     ) -> Result<Plan, SceneError> {
-        base.refuse_ground()?;
         let path = base.path.clone();
         let sweep_spec = base.scene.spec.sweep.as_ref();
         let mut given: Vec<PathBuf> = records.to_vec();
