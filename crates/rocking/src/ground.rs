@@ -103,6 +103,59 @@ impl Ground {
         }
     }
 
+    /// The kernel outputs (indices of [`kernels::winkler_full`], the same in every kind and
+    /// state) at `y` = [θ, v, θ', v'] in the contact state where the left and right corners
+    /// press as given: both (full contact), one (one edge lifted) or none (flight).
+    #[must_use]
+    pub fn state(&self, y: &[f64; 4], left: bool, right: bool) -> [f64; 9] {
+        let p = self.params();
+        let two = self.kind == GroundKind::TwoSpring;
+        match (left, right) {
+            (true, true) if two => kernels::two_spring_full(y, 1.0, &p),
+            (true, true) => kernels::winkler_full(y, 1.0, &p),
+            (false, false) => kernels::flight(y, &p),
+            (left, _) => {
+                let s = if left { -1.0 } else { 1.0 };
+                if two {
+                    kernels::two_spring_edge(y, s, &p)
+                } else {
+                    kernels::winkler_edge(y, s, &p)
+                }
+            }
+        }
+    }
+
+    /// The corners' depths `[d(−B), d(B)]` at `y` (> 0: the corner presses).
+    #[must_use]
+    pub fn depths(&self, y: &[f64; 4]) -> [f64; 2] {
+        let g = kernels::flight(y, &self.params());
+        [
+            g[kernels::flight::DEPTH_LEFT],
+            g[kernels::flight::DEPTH_RIGHT],
+        ]
+    }
+
+    /// The kernel outputs at `y` in the contact state its depths give (a corner at depth 0 does
+    /// not press).
+    #[must_use]
+    pub fn at(&self, y: &[f64; 4]) -> [f64; 9] {
+        let [l, r] = self.depths(y);
+        self.state(y, l > 0.0, r > 0.0)
+    }
+
+    /// The mean pressure under the vertical load `weight`: W / 2B on the bed, each corner's
+    /// force W / 2 on two springs (the scale of `max_ground_pressure_over_mean` and of
+    /// `bearing_over_mean`). It is the full-contact kernel's pressure at rest (θ = 0, v = v0)
+    /// up to rounding (`tests/tests/ground_statics.rs`); written as the quotient so that the
+    /// outputs keep their bits.
+    #[must_use]
+    pub fn mean_pressure(&self, weight: f64) -> f64 {
+        match self.kind {
+            GroundKind::TwoSpring => weight / 2.0,
+            _ => weight / (2.0 * self.b),
+        }
+    }
+
     /// The statics under the vertical load `weight`.
     #[must_use]
     pub fn statics(&self, weight: f64) -> GroundStatics {

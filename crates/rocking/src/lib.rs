@@ -45,6 +45,8 @@ mod dense;
 mod driver;
 mod error;
 mod ground;
+pub mod ground_modes;
+pub mod ground_statics;
 mod options;
 mod results;
 mod spd;

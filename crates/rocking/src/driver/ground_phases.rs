@@ -24,7 +24,7 @@ use rocking_ode::{Integrator, Options as OdeOptions, Tolerances};
 use nalgebra::SVector;
 
 use crate::error::SimError;
-use crate::ground::{Ground, GroundKind};
+use crate::ground::Ground;
 use crate::options::{History, Options};
 use crate::results::{
     EnergyBalance, EventKind, EventRecord, ForceSummary, GroundRow, GroundSummary, HistoryRow,
@@ -91,12 +91,11 @@ struct Track {
     stats: SolverStats,
 }
 
-/// The kernels' parameters: the structure's and the ground's (Copy, for the right-hand side).
+/// The kernels' parameters: the structure's and the ground (Copy, for the right-hand side).
 #[derive(Clone, Copy)]
 struct Kin<V: Variant> {
     p: V::Params,
-    gp: gk::Params,
-    kind: GroundKind,
+    ground: Ground,
 }
 
 /// A run on compliant ground with variant `V`; `N` = `V::Y::LEN + 3`.
@@ -149,10 +148,7 @@ pub fn simulate_ground<V: Variant, M: GroundMotion + ?Sized, const N: usize>(
     let v0 = statics.settlement;
     let g = structure.param("g").unwrap_or(1.0);
     let omega_v = (statics.k_v * g / weight).sqrt();
-    let mean_pressure = match ground.kind {
-        GroundKind::TwoSpring => weight / 2.0,
-        _ => weight / (2.0 * ground.b),
-    };
+    let mean_pressure = ground.mean_pressure(weight);
     let method = opts
         .accuracy
         .method
@@ -193,11 +189,7 @@ pub fn simulate_ground<V: Variant, M: GroundMotion + ?Sized, const N: usize>(
         }),
     };
     let mut sim = GroundSim::<V, M, N> {
-        k: Kin {
-            p,
-            gp: ground.params(),
-            kind: ground.kind,
-        },
+        k: Kin { p, ground: *ground },
         p,
         motion,
         opts,
@@ -247,27 +239,12 @@ impl<V: Variant> Kin<V> {
 
     /// The ground's outputs in contact state `c`.
     fn ground(&self, y: &V::Y, c: Contact) -> [f64; 9] {
-        let b = self.base(y);
-        let two = self.kind == GroundKind::TwoSpring;
-        match (c.left, c.right) {
-            (true, true) if two => gk::two_spring_full(&b, 1.0, &self.gp),
-            (true, true) => gk::winkler_full(&b, 1.0, &self.gp),
-            (false, false) => gk::flight(&b, &self.gp),
-            (left, _) => {
-                let s = if left { -1.0 } else { 1.0 };
-                if two {
-                    gk::two_spring_edge(&b, s, &self.gp)
-                } else {
-                    gk::winkler_edge(&b, s, &self.gp)
-                }
-            }
-        }
+        self.ground.state(&self.base(y), c.left, c.right)
     }
 
     /// The corners' depths `[d(−B), d(B)]`.
     fn depths(&self, y: &V::Y) -> [f64; 2] {
-        let g = gk::flight(&self.base(y), &self.gp);
-        [g[go::DEPTH_LEFT], g[go::DEPTH_RIGHT]]
+        self.ground.depths(&self.base(y))
     }
 
     /// The contact state from the depths (a corner at depth 0 does not press).
@@ -331,36 +308,10 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
         (0..V::NQ).map(|i| psi[i] * y.values()[first + i]).sum()
     }
 
-    /// The settlement at which the structure at rest with rotation `theta` is in vertical
-    /// equilibrium, −Q_v = W (bisection on the ground's kernels: −Q_v grows with v).
-    fn vertical_equilibrium(&self, theta: f64) -> f64 {
-        if theta == 0.0 {
-            return self.v0;
-        }
-        let rv = |v: f64| {
-            let y = self.y_of(theta, v, &[]);
-            -self.k.ground(&y, self.k.contact_of(&y))[go::Q_V] - self.weight
-        };
-        let b = self.k.gp[gk::param::B];
-        let (mut lo, mut hi) = (-b * theta.sin().abs(), self.v0 + b * theta.sin().abs());
-        for _ in 0..200 {
-            let mid = 0.5 * (lo + hi);
-            if mid <= lo || mid >= hi {
-                break;
-            }
-            if rv(mid) < 0.0 {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        hi
-    }
-
     fn initial_state(&self) -> V::Y {
         let i = self.opts.initial;
         let n = nq::<V>();
-        let v = self.vertical_equilibrium(i.theta);
+        let v = crate::ground_statics::equilibrium_settlement(&self.k.ground, self.weight, i.theta);
         // Several coordinates: the initial u and u' are top deflections along the first mode.
         let phi: Vec<f64> = if V::RIGID {
             vec![0.0]
