@@ -9,7 +9,8 @@ use std::collections::BTreeMap;
 use serde::Serialize;
 
 use crate::ir::Ir;
-use crate::render::{index_entries, str_lit, IndexFn};
+use crate::render::indices::{index_entries, IndexFn};
+use crate::render::text::str_lit;
 use crate::{Error, Result};
 
 /// Where an associated type of `Layout` takes its size.

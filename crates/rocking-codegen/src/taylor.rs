@@ -37,7 +37,8 @@ use std::collections::{BTreeMap, BTreeSet};
 use serde::Serialize;
 
 use crate::ir::{Function, Input, Instruction, Ir};
-use crate::render::{float_literal, render_template, str_lit};
+use crate::render::render_template;
+use crate::render::text::{float_literal, str_lit};
 use crate::simplify::{check_series_op, simplify};
 use crate::{Error, Result};
 
