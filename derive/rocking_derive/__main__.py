@@ -1,13 +1,27 @@
-"""python -m rocking_derive --out DIR: writes DIR/ir/<variant>.json and DIR/errata.md."""
+"""python -m rocking_derive --out DIR: writes DIR/ir/<variant>.json, DIR/ir/ground/ground.json and
+DIR/errata.md, in ROCKING_DERIVE_JOBS worker processes (default: the CPUs it may use)."""
 
 from __future__ import annotations
 
 import argparse
+import multiprocessing
+import os
 import pathlib
 import sys
+from concurrent.futures import ProcessPoolExecutor
 
 from . import errata, ir
 from .models import VARIANTS
+
+
+def _jobs() -> int:
+    """Worker processes: ROCKING_DERIVE_JOBS, else the CPUs this process may use."""
+    text = os.environ.get("ROCKING_DERIVE_JOBS")
+    if text is None:
+        return max(1, len(os.sched_getaffinity(0)))
+    if not text.isdigit() or int(text) < 1:
+        raise SystemExit(f"ROCKING_DERIVE_JOBS = {text!r}: expected a whole number >= 1")
+    return int(text)
 
 
 def main(argv=None) -> int:
@@ -16,23 +30,28 @@ def main(argv=None) -> int:
     ap.add_argument("--only", help="derive only this variant (for quick experiments)")
     args = ap.parse_args(argv)
     (args.out / "ir").mkdir(parents=True, exist_ok=True)
-    for variant in VARIANTS:
-        if args.only and variant.name != args.only:
-            continue
-        text = ir.dumps(ir.variant_ir(variant))
-        (args.out / "ir" / f"{variant.name}.json").write_text(text)
-        print(f"derived {variant.name}", file=sys.stderr)
-    if not args.only or args.only == "ground":
-        (args.out / "ir" / "ground").mkdir(exist_ok=True)
-        (args.out / "ir" / "ground" / "ground.json").write_text(ir.dumps(ir.ground_ir()))
-        print("derived ground", file=sys.stderr)
-    if not args.only:
-        report, problems = errata.report()
-        (args.out / "errata.md").write_text(report)
-        if problems:
-            for p in problems:
-                print(f"errata self-check failed: {p}", file=sys.stderr)
-            return 1
+    # Each variant is derived in a fresh process (spawned, one task per process), so its IR
+    # cannot depend on which variants a process derived before, nor on the worker count:
+    # `cargo xtask regen --check` compares the bytes. The largest bases (most coordinates) go
+    # first, so that the workers finish together.
+    names = [v.name for v in sorted(VARIANTS, key=lambda v: -v.model.coordinates)]
+    names = [n for n in names if not args.only or n == args.only]
+    context = multiprocessing.get_context("spawn")
+    with ProcessPoolExecutor(_jobs(), mp_context=context, max_tasks_per_child=1) as pool:
+        jobs = [pool.submit(ir.write_variant, name, args.out) for name in names]
+        if not args.only or args.only == "ground":
+            (args.out / "ir" / "ground").mkdir(exist_ok=True)
+            jobs.append(pool.submit(ir.write_ground, args.out))
+        report = None if args.only else pool.submit(errata.report)
+        for job in jobs:
+            print(f"derived {job.result()}", file=sys.stderr)
+        if report is not None:
+            text, problems = report.result()
+            (args.out / "errata.md").write_text(text)
+            if problems:
+                for p in problems:
+                    print(f"errata self-check failed: {p}", file=sys.stderr)
+                return 1
     return 0
 
 

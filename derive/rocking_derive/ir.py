@@ -11,7 +11,7 @@ import mpmath
 
 from . import __version__
 from .kernels import Kernel, kernels
-from .models import BaseMass, ColumnMass, LumpedMass, Variant
+from .models import VARIANTS, BaseMass, ColumnMass, LumpedMass, Variant
 
 OP_NAMES = {}
 for _name in dir(ca):
@@ -252,6 +252,20 @@ def mass_roles(model) -> dict[str, dict]:
             roles[mass.mass] = {"mass": "base", "removable": True}
             roles[mass.inertia] = {"inertia_of": mass.mass}
     return roles
+
+
+def write_variant(name: str, out) -> str:
+    """Derives the variant NAME and writes its IR to OUT/ir/NAME.json; returns NAME. A worker
+    process's task in `python -m rocking_derive` (a module function, so that it pickles)."""
+    variant = next(v for v in VARIANTS if v.name == name)
+    (out / "ir" / f"{name}.json").write_text(dumps(variant_ir(variant)))
+    return name
+
+
+def write_ground(out) -> str:
+    """The ground's IR, written to OUT/ir/ground/ground.json; returns "ground" (a worker's task)."""
+    (out / "ir" / "ground" / "ground.json").write_text(dumps(ground_ir()))
+    return "ground"
 
 
 def variant_ir(variant: Variant) -> dict:
