@@ -1,78 +1,18 @@
 //! The section forces at the column base and the ground reactions along a run: evaluated by the
 //! generated force kernels at every step's end and, where a new extreme may lie inside a step, at
-//! that extreme (golden-section search on the step's dense output); their extremes, and the first
-//! instants at which the model's no-sliding and no-jumping assumptions fail.
+//! that extreme (golden-section search on the step's dense output), and the first instants at
+//! which the model's no-sliding and no-jumping assumptions fail; recorded in a
+//! [`ForceRecord`](super::force_record::ForceRecord).
 
 use rocking_kernels::kernels::index::forces_rocking as fk;
 use rocking_motion::GroundMotion;
 use rocking_ode::roots::{first_true, golden_max};
 
+use super::force_record::{Forces, MEASURES};
 use super::state::{contact_of, contact_x, Ellipse, Sim};
 use crate::dense::StepView;
 use crate::results::ForceSummary;
 use crate::taylor::TaylorVariant;
-
-/// The forces at one instant, normalised by the total weight W and the uplift moment W B.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) struct Forces {
-    /// M_b / (W B).
-    pub(super) moment: f64,
-    /// V_b / W.
-    pub(super) shear: f64,
-    /// M_el / (W B).
-    pub(super) elastic: f64,
-    /// R_h / W.
-    pub(super) horizontal: f64,
-    /// R_v / W.
-    pub(super) vertical: f64,
-}
-
-/// The number of quantities whose extremes a run reports.
-const MEASURES: usize = 5;
-
-impl Forces {
-    /// The quantities whose largest value is reported, in the order of [`ForceRecord::max`]:
-    /// |M_b|, |V_b|, |M_el|, the required friction |R_h| / R_v (−∞ where R_v <= 0, left out of
-    /// its largest value: where R_v < 0 no friction holds, which the summary reports as an
-    /// unbounded demand from the first lift-off, [`ForceRecord::first_lift_off`]), and −R_v (its largest is the smallest
-    /// vertical reaction).
-    fn measures(&self) -> [f64; MEASURES] {
-        [
-            self.moment.abs(),
-            self.shear.abs(),
-            self.elastic.abs(),
-            self.required_friction(),
-            -self.vertical,
-        ]
-    }
-
-    fn required_friction(&self) -> f64 {
-        if self.vertical > 0.0 {
-            self.horizontal.abs() / self.vertical
-        } else {
-            f64::NEG_INFINITY
-        }
-    }
-}
-
-/// The extremes of the forces so far.
-#[derive(Clone, Copy, Debug)]
-pub(super) struct ForceRecord {
-    /// The largest of each of [`Forces::measures`].
-    max: [f64; MEASURES],
-    first_slip: Option<f64>,
-    first_lift_off: Option<f64>,
-}
-
-impl Default for ForceRecord {
-    fn default() -> Self {
-        ForceRecord {
-            max: [f64::NEG_INFINITY; MEASURES],
-            first_slip: None,
-            first_lift_off: None,
-        }
-    }
-}
 
 impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usize>
     Sim<'_, V, M, NR, NC>
@@ -104,7 +44,9 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
     pub(super) fn forces_start(&mut self, contact: bool, s: f64, t: f64, x: &V::X) -> Forces {
         let f = self.forces_at(contact, s, t, x);
         if self.opts.forces {
-            self.record_forces(&f.measures(), [t; MEASURES]);
+            self.rec
+                .forces
+                .record(&f.measures(), [t; MEASURES], self.opts.friction);
         }
         f
     }
@@ -178,24 +120,8 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         let rec = &mut self.rec.forces;
         rec.first_slip = rec.first_slip.or(slip);
         rec.first_lift_off = rec.first_lift_off.or(lift_off);
-        self.record_forces(&peak, when);
+        self.rec.forces.record(&peak, when, self.opts.friction);
         f_new
-    }
-
-    /// Records the largest values `peak` of the reported quantities, reached at the times
-    /// `when`, and an assumption's failure among them at its time in `when` (where none is
-    /// recorded yet: a step refines it to the first instant before).
-    fn record_forces(&mut self, peak: &[f64; MEASURES], when: [f64; MEASURES]) {
-        let rec = &mut self.rec.forces;
-        for (max, v) in rec.max.iter_mut().zip(peak) {
-            *max = max.max(*v);
-        }
-        if rec.first_slip.is_none() && self.opts.friction.is_some_and(|mu| peak[3] > mu) {
-            rec.first_slip = Some(when[3]);
-        }
-        if rec.first_lift_off.is_none() && peak[4] > 0.0 {
-            rec.first_lift_off = Some(when[4]);
-        }
     }
 
     /// After the excitation in full contact: can no force extreme grow any more? Each force is
@@ -214,26 +140,9 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
 
     /// The force extremes of the run, as the summary reports them.
     pub(super) fn force_summary(&self) -> Option<ForceSummary> {
-        if !self.opts.forces {
-            return None;
-        }
-        let r = &self.rec.forces;
-        let time = |t: Option<f64>| t.map(|t| self.time(t));
-        Some(ForceSummary {
-            max_base_moment_over_wb: r.max[0],
-            max_base_shear_over_w: r.max[1],
-            max_elastic_base_moment_over_wb: r.max[2],
-            // Unbounded from the first lift-off (R_v < 0): the largest |R_h| / R_v sampled
-            // before it depends on how close the steps come to R_v = 0 (ForceSummary's doc).
-            max_required_friction: if r.first_lift_off.is_some() {
-                f64::INFINITY
-            } else {
-                r.max[3].max(0.0)
-            },
-            min_vertical_reaction_over_w: -r.max[4],
-            first_slip_time: time(r.first_slip),
-            first_lift_off_time: time(r.first_lift_off),
-        })
+        self.opts
+            .forces
+            .then(|| self.rec.forces.summary(|t| self.time(t)))
     }
 }
 

@@ -21,6 +21,7 @@
 //! `taylor_phases` (one integrator each, they never call each other), `recorder` (maxima,
 //! history, events, summary).
 
+mod force_record;
 mod forces;
 mod ground_phases;
 mod impact;

@@ -9,7 +9,7 @@ use rocking_kernels::{Array, Variant};
 use rocking_motion::GroundMotion;
 use rocking_ode::{Options as OdeOptions, Tolerances};
 
-use super::forces::ForceRecord;
+use super::force_record::ForceRecord;
 use crate::error::SimError;
 use crate::options::Options;
 use crate::results::{EventRecord, HistoryRow, Phase, SolverStats, Time};
