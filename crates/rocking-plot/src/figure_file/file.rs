@@ -88,7 +88,7 @@ pub(super) enum PanelSpec {
         #[serde(default)]
         twins: Vec<String>,
         /// A smaller chart in a corner of the panel: a window of τ on its own y range.
-        inset: Option<InsetSpec>,
+        inset: Option<Box<InsetSpec>>,
     },
     Spectrum {
         sweep: String,
