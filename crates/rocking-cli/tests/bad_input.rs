@@ -677,6 +677,18 @@ const ROWS: &[Row] = &[
         &["`panels[0].time`", "`seconds` is not allowed", "tau or s"],
     ),
     (
+        "figure-inset-too-large",
+        FIGURE,
+        "runs = [\"a\"]",
+        "runs = [\"a\"]\ninset = { size = [0.9, 0.4] }",
+        None,
+        &[
+            "`panels[0].inset.size`",
+            "0.9 is not allowed",
+            "0.25 <= width, height <= 0.8",
+        ],
+    ),
+    (
         "ground-zero-stiffness",
         SCENE,
         "",

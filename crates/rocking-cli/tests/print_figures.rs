@@ -4,7 +4,9 @@
 //! label at 8 pt or more, nothing (subscripts included) below 6 pt; a multi-panel figure carries
 //! its letters (a), (b), ... once each; the title is not in the image but in NAME.caption.md; the
 //! PNG is the file's resolution (600 dpi unless it says) of that width, the PDF page that width.
-//! `--draft` keeps the title in the image and writes no caption file.
+//! `--draft` keeps the title in the image and writes no caption file. Every panel's plotting
+//! area, measured between its axis lines in the SVG, is at least 35 mm wide in print, and an inset
+//! a figure file asks for is drawn with its own axes inside its panel's.
 
 mod common;
 
@@ -17,6 +19,54 @@ const PT_PER_MM: f64 = 72.0 / 25.4;
 const MIN_PT: f64 = 6.0 - 1e-6;
 const TEXT_PT: f64 = 7.0 - 1e-6;
 const AXIS_PT: f64 = 8.0 - 1e-6;
+/// The narrowest a panel's plotting area may print (issue 46).
+const MIN_PANEL_MM: f64 = 35.0;
+
+/// A plotting area in the SVG's units: left, right, top, bottom.
+type Rect = (f64, f64, f64, f64);
+
+/// The plotting areas of an SVG: each y axis (a black vertical line) with the x axis (a black
+/// horizontal line) that starts at its foot, as plotters draws every chart's axes.
+fn plot_areas(svg: &str) -> Vec<Rect> {
+    let lead =
+        "<polyline fill=\"none\" opacity=\"1\" stroke=\"#000000\" stroke-width=\"1\" points=\"";
+    let segments: Vec<[f64; 4]> = svg
+        .split(lead)
+        .skip(1)
+        .filter_map(|rest| {
+            let pts: Vec<f64> = rest
+                .split('"')
+                .next()?
+                .split([' ', ','])
+                .filter(|v| !v.is_empty())
+                .map(|v| v.parse().ok())
+                .collect::<Option<_>>()?;
+            (pts.len() == 4).then(|| [pts[0], pts[1], pts[2], pts[3]])
+        })
+        .collect();
+    let mut areas = Vec::new();
+    for &[x, y0, x1, y1] in &segments {
+        if x != x1 || (y1 - y0).abs() < 20.0 {
+            continue;
+        }
+        let foot = y0.max(y1);
+        for &[a, b, c, d] in &segments {
+            if b == d && c - a > 20.0 && (a - x).abs() <= 2.0 && (b - foot).abs() <= 2.0 {
+                areas.push((a, c + 1.0, y0.min(y1), foot));
+            }
+        }
+    }
+    areas
+}
+
+/// Whether `inner` lies inside `outer`.
+fn inside(inner: &Rect, outer: &Rect) -> bool {
+    inner != outer
+        && inner.0 >= outer.0
+        && inner.1 <= outer.1
+        && inner.2 >= outer.2
+        && inner.3 <= outer.3
+}
 
 fn ok(o: &std::process::Output) {
     assert!(
@@ -169,9 +219,33 @@ fn check(name: &str, dir: &Path, spec: &toml::Value) {
             );
         }
     }
-    eprintln!("{name}: {width_mm} mm wide, smallest text {smallest:.2} pt");
+    // Panels at least 35 mm wide; insets inside their panels.
+    let panels = spec["panels"].as_array().unwrap();
+    let areas = plot_areas(&svg);
+    let (insets, outer): (Vec<Rect>, Vec<Rect>) = areas
+        .iter()
+        .partition(|a| areas.iter().any(|o| inside(a, o)));
+    assert_eq!(
+        outer.len(),
+        panels.len(),
+        "{name}: plotting areas {areas:?}"
+    );
+    let narrowest = outer
+        .iter()
+        .map(|a| (a.1 - a.0) * mm_per_unit)
+        .fold(f64::INFINITY, f64::min);
+    assert!(
+        narrowest >= MIN_PANEL_MM,
+        "{name}: a panel plots {narrowest:.1} mm wide (< {MIN_PANEL_MM} mm)"
+    );
+    let asked = panels.iter().filter(|p| p.get("inset").is_some()).count();
+    assert_eq!(insets.len(), asked, "{name}: insets {insets:?}");
+    eprintln!(
+        "{name}: {width_mm} mm wide, smallest text {smallest:.2} pt, narrowest panel \
+         {narrowest:.1} mm, {asked} insets"
+    );
     // Letters: one per panel, in order, on a figure of more than one panel.
-    let panels = spec["panels"].as_array().unwrap().len();
+    let panels = panels.len();
     let letters: Vec<&str> = all
         .iter()
         .map(|t| t.text.as_str())
@@ -282,7 +356,19 @@ fn every_figure_file_is_drawn_at_its_printed_size_with_print_type_and_letters() 
         fig5.iter().any(|t| t.text == "fixed-base twin"),
         "fig5: no twin"
     );
-    for name in ["fig6", "fig7", "fig8"] {
+    // Fig. 5's inset lies in panel (b), the stiff column's rotation (top right).
+    let areas = plot_areas(&read("fig5"));
+    let (insets, outer): (Vec<Rect>, Vec<Rect>) = areas
+        .iter()
+        .partition(|a| areas.iter().any(|o| inside(a, o)));
+    let top = outer.iter().map(|a| a.2).fold(f64::INFINITY, f64::min);
+    let right = outer.iter().map(|a| a.0).fold(0.0, f64::max);
+    let b = outer.iter().find(|a| a.2 == top && a.0 == right).unwrap();
+    assert!(
+        insets.len() == 1 && inside(&insets[0], b),
+        "fig5: inset {insets:?} not in (b) {b:?}"
+    );
+    for name in FIGS_6_TO_8 {
         let svg = texts(&read(name));
         assert!(
             svg.iter().any(|t| t.text == "overturned | upright, rigid"),
@@ -309,13 +395,26 @@ fn every_figure_file_is_drawn_at_its_printed_size_with_print_type_and_letters() 
     }
 }
 
-/// Figs 6-8 compare the γ families on one colour scale: the three files state the same
+/// Figs 6-8, each as two figure files (α = 0.1 and 0.2, 3 + 2 panels, so that a panel prints
+/// at least 35 mm wide).
+const FIGS_6_TO_8: [&str; 6] = [
+    "fig6-alpha01",
+    "fig6-alpha02",
+    "fig7-alpha01",
+    "fig7-alpha02",
+    "fig8-alpha01",
+    "fig8-alpha02",
+];
+
+/// Figs 6-8 compare the γ families on one colour scale: the six files state the same
 /// `colour_top`, draw the scenes' 100 × 100 cells (no `cells` cap), and overlay on every flexible
-/// panel the rigid column of the same α (its `reference`).
+/// panel the rigid column of the same α (its `reference`); Fig. 9's small multiples use the
+/// same sweeps (scene and overrides), so that the cache computes each once.
 #[test]
 fn figs_6_to_8_share_one_colour_scale_at_100_cells_with_the_rigid_boundary() {
     let mut tops = Vec::new();
-    for name in ["fig6", "fig7", "fig8"] {
+    let mut sweeps_6_to_8 = std::collections::BTreeSet::new();
+    for name in FIGS_6_TO_8 {
         let path = repo().join(format!("scenes/paper/{name}.toml"));
         let spec: toml::Value = toml::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
         tops.push(
@@ -328,9 +427,10 @@ fn figs_6_to_8_share_one_colour_scale_at_100_cells_with_the_rigid_boundary() {
         for (name_s, s) in sweeps {
             let axes = s.get("axes").map(|a| a.to_string()).unwrap_or_default();
             assert!(axes.is_empty(), "{name}.{name_s}: own axes {axes}");
+            sweeps_6_to_8.insert((s["scene"].to_string(), s["set"].to_string()));
         }
         let panels = spec["panels"].as_array().unwrap();
-        assert_eq!(panels.len(), 10, "{name}");
+        assert_eq!(panels.len(), 5, "{name}");
         for p in panels {
             let sweep = p["sweep"].as_str().unwrap();
             let reference = p.get("reference").and_then(toml::Value::as_str);
@@ -350,6 +450,17 @@ fn figs_6_to_8_share_one_colour_scale_at_100_cells_with_the_rigid_boundary() {
         tops.windows(2).all(|w| w[0] == w[1]),
         "colour_top: {tops:?}"
     );
+    assert_eq!(sweeps_6_to_8.len(), 30);
+    let fig9: toml::Value =
+        toml::from_str(&std::fs::read_to_string(repo().join("scenes/paper/fig9.toml")).unwrap())
+            .unwrap();
+    let fig9: std::collections::BTreeSet<_> = fig9["sweeps"]
+        .as_table()
+        .unwrap()
+        .values()
+        .map(|s| (s["scene"].to_string(), s["set"].to_string()))
+        .collect();
+    assert_eq!(fig9, sweeps_6_to_8, "fig9: not the sweeps of Figs 6-8");
     // The scenes' own axes: 100 × 100 cells.
     for family in ["fig6", "fig7", "fig8"] {
         let path = repo().join(format!("scenes/spectra/{family}.toml"));
@@ -368,7 +479,7 @@ fn figs_6_to_8_share_one_colour_scale_at_100_cells_with_the_rigid_boundary() {
 fn survivors_above_colour_top_are_noted() {
     let dir = tmp_path("colour-top");
     std::fs::create_dir_all(&dir).unwrap();
-    let fig = std::fs::read_to_string(repo().join("scenes/paper/fig8.toml"))
+    let fig = std::fs::read_to_string(repo().join("scenes/paper/fig8-alpha01.toml"))
         .unwrap()
         .replace("colour_top = ", "colour_top = 0.01 # was ")
         .replace(

@@ -262,7 +262,7 @@ const PRINT_MARGIN: u32 = 4;
 
 /// A panel's label areas at print size (x: below, y: left): tick labels, and the axis label
 /// where the panel draws its own.
-fn print_label_areas(t: &Type, hide_x: bool, hide_y: bool) -> (u32, u32) {
+pub(crate) fn print_label_areas(t: &Type, hide_x: bool, hide_y: bool) -> (u32, u32) {
     let tick_h = t.line(t.ticks) + 6;
     let tick_w = (4.6 * 0.6 * t.ticks / PLOTTERS_FONT).ceil() as u32 + 10;
     let axis = t.line(t.axis) + 4;

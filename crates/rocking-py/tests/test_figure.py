@@ -18,7 +18,7 @@ PAPER = REPO / "scenes" / "paper"
 
 @pytest.mark.parametrize(
     "name, cells",
-    [("fig3", None), ("fig8", 4)],
+    [("fig3", None), ("fig8-alpha01", 4)],
     ids=["runs", "spectra-4-cells"],
 )
 def test_a_figure_from_python_is_the_command_s_figure_byte_for_byte(tmp_path, name, cells):

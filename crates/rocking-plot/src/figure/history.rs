@@ -13,6 +13,8 @@ use rocking::{EventKind, HistoryRow, Run};
 use rocking_scene::labels;
 use rocking_scene::setup::Setup;
 
+use super::clip::clip;
+use super::inset::{self, Inset};
 use super::Panel;
 
 /// What a figure's caption says about the marks it shows: the impact markers, the arrow of an
@@ -81,7 +83,7 @@ pub const QUANTITIES: [Quantity; 10] = [
     },
     Quantity {
         name: "u_dot_over_ucr_omega_n",
-        label: "u'/(u_cr ω_n)",
+        label: "u\u{307}/(u_cr ω_n)",
         value: |r, s| r.u_dot / (s.u_cr * s.omega_n),
         run_panel: false,
     },
@@ -232,6 +234,9 @@ pub struct HistoryPanel {
     /// fixed-base twin of a rocking run, as the paper's Fig. 5 compares them); the panel's range
     /// includes them.
     pub twins: Vec<Trace>,
+    /// A smaller chart inside the panel: a window of τ on its own y range, where the panel's
+    /// range (shared with its row) flattens a run's curve.
+    pub inset: Option<Inset>,
 }
 
 /// The grey of a twin's line.
@@ -258,6 +263,7 @@ impl HistoryPanel {
             seconds_per_tau: None,
             rules: Vec::new(),
             twins: Vec::new(),
+            inset: None,
         }
     }
 
@@ -309,7 +315,11 @@ impl HistoryPanel {
 
     /// The lowest and highest value in the panel's window (θ/α bounded by [`Self::theta_limit`]).
     fn data_range(&self) -> Option<(f64, f64)> {
-        let (x0, x1) = self.x_range();
+        self.range_in(self.x_range())
+    }
+
+    /// The lowest and highest value in the τ window `(x0, x1)`, as [`Self::data_range`].
+    fn range_in(&self, (x0, x1): (f64, f64)) -> Option<(f64, f64)> {
         let limit = (self.quantity == THETA_OVER_ALPHA).then(|| self.theta_limit());
         let mut range: Option<(f64, f64)> = None;
         for t in self.traces.iter().chain(&self.twins) {
@@ -393,18 +403,7 @@ impl HistoryPanel {
         let frame = (x, (lo, hi));
         let mut rug_rows = 0;
         for t in &self.traces {
-            let style = self.drawn_style(t);
-            let colour = if self.black {
-                BLACK
-            } else {
-                rgb(t.style.colour)
-            };
-            let mut points = t.points(self.quantity);
-            if k != 1.0 {
-                points.iter_mut().for_each(|p| p.0 *= k);
-            }
-            // Many short segments (a record) draw thinner.
-            let width = if points.len() > 5000 { 1 } else { 2 };
+            let (points, style, colour, width) = self.line_of(t, k);
             for piece in clip(&points, frame) {
                 styled_line(&mut chart, piece, &style, colour, width)?;
             }
@@ -476,18 +475,50 @@ impl HistoryPanel {
             }
         }
         // The twins over the runs (a stiff run's fast oscillation would hide them).
-        for t in &self.twins {
-            let mut points = t.points(self.quantity);
-            points.iter_mut().for_each(|p| p.0 *= k);
-            let solid = LineStyle {
-                dash: None,
-                ..t.style
-            };
-            for piece in clip(&points, frame) {
-                styled_line(&mut chart, piece, &solid, rgb(TWIN_GREY), 1)?;
+        let twins: Vec<_> = self.twins.iter().map(|t| self.twin_line(t, k)).collect();
+        for (points, solid, colour, width) in &twins {
+            for piece in clip(points, frame) {
+                styled_line(&mut chart, piece, solid, *colour, *width)?;
             }
         }
+        if let Some(i) = &self.inset {
+            let window = i.window.unwrap_or(self.x_range());
+            let range = i.range.or_else(|| self.range_in(window));
+            let range = padded(range.unwrap_or((-1.0, 1.0)));
+            let mut lines: Vec<_> = self.traces.iter().map(|t| self.line_of(t, k)).collect();
+            lines.extend(twins);
+            inset::draw(i, &mut chart, (window.0 * k, window.1 * k), range, &lines)?;
+        }
         Ok(())
+    }
+
+    /// A run's line as drawn: its points (time in the panel's unit, `k` per τ), style, colour
+    /// and width.
+    fn line_of(&self, t: &Trace, k: f64) -> inset::Line {
+        let style = self.drawn_style(t);
+        let colour = if self.black {
+            BLACK
+        } else {
+            rgb(t.style.colour)
+        };
+        let mut points = t.points(self.quantity);
+        if k != 1.0 {
+            points.iter_mut().for_each(|p| p.0 *= k);
+        }
+        // Many short segments (a record) draw thinner.
+        let width = if points.len() > 5000 { 1 } else { 2 };
+        (points, style, colour, width)
+    }
+
+    /// A twin's line: thin, solid, dark grey.
+    fn twin_line(&self, t: &Trace, k: f64) -> inset::Line {
+        let mut points = t.points(self.quantity);
+        points.iter_mut().for_each(|p| p.0 *= k);
+        let solid = LineStyle {
+            dash: None,
+            ..t.style
+        };
+        (points, solid, rgb(TWIN_GREY), 1)
     }
 }
 
@@ -521,80 +552,4 @@ pub(super) fn shared_ranges(panels: &[Panel]) -> Vec<Option<(f64, f64)>> {
                 .reduce(|a, b| (a.0.min(b.0), a.1.max(b.1)))
         })
         .collect()
-}
-
-/// The parts of a polyline inside the rectangle `((x0, x1), (y0, y1))`, cut where it crosses the
-/// edges (Liang–Barsky on each segment).
-pub fn clip(
-    points: &[(f64, f64)],
-    ((x0, x1), (y0, y1)): ((f64, f64), (f64, f64)),
-) -> Vec<Vec<(f64, f64)>> {
-    let mut pieces: Vec<Vec<(f64, f64)>> = Vec::new();
-    let mut current: Vec<(f64, f64)> = Vec::new();
-    for w in points.windows(2) {
-        let (a, b) = (w[0], w[1]);
-        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-        let (mut t0, mut t1) = (0.0f64, 1.0f64);
-        let mut inside = true;
-        for (p, q) in [
-            (-dx, a.0 - x0),
-            (dx, x1 - a.0),
-            (-dy, a.1 - y0),
-            (dy, y1 - a.1),
-        ] {
-            if p == 0.0 {
-                if q < 0.0 {
-                    inside = false;
-                }
-            } else {
-                let r = q / p;
-                if p < 0.0 {
-                    t0 = t0.max(r);
-                } else {
-                    t1 = t1.min(r);
-                }
-            }
-        }
-        if !inside || t0 > t1 || !(a.1.is_finite() && b.1.is_finite()) {
-            if current.len() > 1 {
-                pieces.push(std::mem::take(&mut current));
-            }
-            current.clear();
-            continue;
-        }
-        let start = (a.0 + t0 * dx, a.1 + t0 * dy);
-        let end = (a.0 + t1 * dx, a.1 + t1 * dy);
-        if current.last() != Some(&start) {
-            if current.len() > 1 {
-                pieces.push(std::mem::take(&mut current));
-            }
-            current.clear();
-            current.push(start);
-        }
-        current.push(end);
-        if t1 < 1.0 {
-            pieces.push(std::mem::take(&mut current));
-        }
-    }
-    if current.len() > 1 {
-        pieces.push(current);
-    }
-    pieces
-}
-
-#[cfg(test)]
-mod tests {
-    use super::clip;
-
-    #[test]
-    fn a_line_leaving_the_panel_is_cut_at_its_edge() {
-        let pts = [(0.0, 0.0), (1.0, 1.0), (2.0, 3.0), (3.0, 1.0), (4.0, 0.5)];
-        let pieces = clip(&pts, ((0.0, 4.0), (-1.0, 2.0)));
-        assert_eq!(pieces.len(), 2, "{pieces:?}");
-        assert_eq!(pieces[0], vec![(0.0, 0.0), (1.0, 1.0), (1.5, 2.0)]);
-        assert_eq!(pieces[1], vec![(2.5, 2.0), (3.0, 1.0), (4.0, 0.5)]);
-        // A window of x: the ends are interpolated.
-        let pieces = clip(&pts, ((0.5, 1.25), (-1.0, 2.0)));
-        assert_eq!(pieces, vec![vec![(0.5, 0.5), (1.0, 1.0), (1.25, 1.5)]]);
-    }
 }

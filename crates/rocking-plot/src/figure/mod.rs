@@ -10,9 +10,11 @@
 
 mod boundary;
 mod boundary_panel;
+mod clip;
 mod colour_bar;
 mod history;
 mod ida;
+mod inset;
 mod line_panel;
 mod spectrum;
 mod standard;
@@ -20,6 +22,7 @@ mod standard;
 pub use boundary_panel::{BoundaryPanel, Structure};
 pub use history::{HistoryPanel, Quantity, Trace, QUANTITIES, THETA_OVER_ALPHA};
 pub use ida::{ida_plots, FitPanel, IdaPanel, Points};
+pub use inset::{Corner, Inset, CORNERS, INSET_SIZE};
 pub use line_panel::{CurvePanel, LinePanel};
 pub use spectrum::SpectrumPanel;
 pub use standard::*;
@@ -265,8 +268,13 @@ impl Figure {
                 .all(|l| l.as_ref().is_some_and(|l| pick(l) == pick(&first)))
                 .then(|| pick(&first).clone())
         };
+        // A column that stops short of the last row (5 panels in 2 rows of 3) keeps its own x
+        // label: a shared one would sit under the empty slot.
         let xs = (0..columns)
             .map(|c| {
+                if (rows - 1) * columns + c >= self.panels.len() {
+                    return None;
+                }
                 let cells: Vec<_> = (0..rows)
                     .filter(|r| r * columns + c < self.panels.len())
                     .map(|r| get(r, c))

@@ -87,6 +87,8 @@ pub(super) enum PanelSpec {
         /// Runs drawn over the others as a thin solid dark grey line (a fixed-base twin).
         #[serde(default)]
         twins: Vec<String>,
+        /// A smaller chart in a corner of the panel: a window of τ on its own y range.
+        inset: Option<Box<InsetSpec>>,
     },
     Spectrum {
         sweep: String,
@@ -106,6 +108,23 @@ pub(super) enum PanelSpec {
 pub(super) fn yes() -> bool {
     true
 }
+
+/// An inset of a history panel (scenes/paper/README.md).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct InsetSpec {
+    /// Its window of τ (default: the panel's).
+    pub(super) tau: Option<[f64; 2]>,
+    /// Its y range (default: the runs' values in the window).
+    pub(super) range: Option<[f64; 2]>,
+    /// One of [`plot::CORNERS`] (default "top right").
+    pub(super) corner: Option<String>,
+    /// Width and height as fractions of the plotting area (default [`INSET_DEFAULT`]).
+    pub(super) size: Option<[f64; 2]>,
+}
+
+/// An inset's size when the file gives none: half the plotting area's width, 0.45 of its height.
+pub(super) const INSET_DEFAULT: [f64; 2] = [0.5, 0.45];
 
 /// A τ window around the `impact`-th impact (from 1) of `run`.
 #[derive(Deserialize)]
@@ -247,8 +266,12 @@ pub fn read(file: &Path) -> Result<FigureFile, SceneError> {
                 time,
                 lines,
                 twins,
+                inset,
                 ..
             } => {
+                if let Some(i) = inset {
+                    check_inset(file, &field("inset"), i)?;
+                }
                 if Quantity::parse(quantity).is_none() {
                     let names: Vec<&str> = plot::QUANTITIES.iter().map(|q| q.name).collect();
                     return bad(
@@ -335,6 +358,41 @@ pub fn read(file: &Path) -> Result<FigureFile, SceneError> {
         }
     }
     Ok(spec)
+}
+
+/// An inset's window, range, corner and size, each named in the message that refuses it.
+fn check_inset(file: &Path, field: &str, i: &InsetSpec) -> Result<(), SceneError> {
+    for (key, pair) in [("tau", i.tau), ("range", i.range)] {
+        if let Some([a, b]) = pair {
+            if !(a.is_finite() && b.is_finite() && a < b) {
+                return bad(
+                    file,
+                    &format!("{field}.{key}"),
+                    format!("[{a}, {b}] is not allowed: finite a < b"),
+                );
+            }
+        }
+    }
+    if let Some(c) = i
+        .corner
+        .as_deref()
+        .filter(|c| plot::Corner::parse(c).is_none())
+    {
+        return bad(
+            file,
+            &format!("{field}.corner"),
+            format!("`{c}` is not allowed: {}", plot::CORNERS.join(", ")),
+        );
+    }
+    let (lo, hi) = plot::INSET_SIZE;
+    if let Some(v) = i.size.iter().flatten().find(|v| !(lo..=hi).contains(*v)) {
+        return bad(
+            file,
+            &format!("{field}.size"),
+            format!("{v} is not allowed: {lo} <= width, height <= {hi} (fractions of the plotting area)"),
+        );
+    }
+    Ok(())
 }
 
 /// The printed width a figure file states, in mm: "double", "single" or a length in mm.

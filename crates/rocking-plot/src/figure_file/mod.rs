@@ -12,7 +12,7 @@ mod load;
 pub use file::{read, FigureFile};
 pub use load::{theta_cr_over_alpha, Loader};
 
-use file::{bad, width_mm, PanelSpec, BISECTIONS, DPI};
+use file::{bad, width_mm, PanelSpec, BISECTIONS, DPI, INSET_DEFAULT};
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -139,7 +139,9 @@ fn build(
         sweeps.insert(name.clone(), swept);
     }
     let mut panels = Vec::new();
-    let mut structure_count = 0;
+    // Structures by label: one of the same label in several panels (small multiples) keeps its
+    // line style, so the legend holds it once.
+    let mut structure_labels: Vec<&str> = Vec::new();
     for p in &spec.panels {
         panels.push(match p {
             PanelSpec::History {
@@ -152,6 +154,7 @@ fn build(
                 time,
                 lines,
                 twins,
+                inset,
             } => {
                 let q = Quantity::parse(quantity).unwrap_or(plot::THETA_OVER_ALPHA);
                 let mut panel =
@@ -160,6 +163,19 @@ fn build(
                 panel.black = *black;
                 panel.rules = lines.clone();
                 panel.twins = twins.iter().map(|r| traces[r].clone()).collect();
+                panel.inset = inset.as_ref().map(|i| {
+                    let [w, h] = i.size.unwrap_or(INSET_DEFAULT);
+                    plot::Inset {
+                        window: i.tau.map(|[a, b]| (a, b)),
+                        range: i.range.map(|[a, b]| (a, b)),
+                        corner: i
+                            .corner
+                            .as_deref()
+                            .and_then(plot::Corner::parse)
+                            .unwrap_or(plot::Corner::TopRight),
+                        size: (w, h),
+                    }
+                });
                 if time.as_deref() == Some("s") {
                     panel.seconds_per_tau = Some(seconds_per_tau(file, runs, &traces)?);
                 }
@@ -222,8 +238,14 @@ fn build(
                 for name in names {
                     let s = &sweeps[name];
                     let sspec = &spec.sweeps[name];
-                    let style = line_style(&sspec.style, structure_count);
-                    structure_count += 1;
+                    let k = match structure_labels.iter().position(|l| *l == sspec.label) {
+                        Some(k) => k,
+                        None => {
+                            structure_labels.push(&sspec.label);
+                            structure_labels.len() - 1
+                        }
+                    };
+                    let style = line_style(&sspec.style, k);
                     structures.push(Structure::new(
                         sspec.label.clone(),
                         style,
@@ -250,7 +272,7 @@ fn build(
             }
         });
     }
-    let lines = traces.len().max(structure_count);
+    let lines = traces.len().max(structure_labels.len());
     if lines > style::LINES.len() {
         eprintln!(
             "warning: {}: {lines} runs or structures share the {} line styles: the {}th looks \

@@ -435,7 +435,7 @@ def figure(
     draft: bool = False,
     quiet: bool = True,
 ) -> Dict[str, bytes]:
-    """The figure of a figure file (scenes/paper/fig8.toml and the like), drawn as
+    """The figure of a figure file (scenes/paper/fig8-alpha01.toml and the like), drawn as
     ``rocking figure`` draws it: ``{"svg": ..., "png": ..., "pdf": ..., "caption.md": ...}``,
     each the bytes the command writes (no caption for a ``draft``, which keeps the title and
     caption inside the image). Its sweeps are journaled in ``cache`` (default: a folder
