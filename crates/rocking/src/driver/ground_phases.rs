@@ -468,9 +468,21 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
         let mut ode = Integrator::new(self.ode_options, self.tol)?;
         ode.reset(t0, z0, &mut rhs)?;
         let mut g_old = g(t0, &z0);
-        // The event that started this phase sits on its surface: it must not fire again at once.
+        // The event that started this phase sits on its surface, its component within rounding
+        // of 0 on either side (`refine` keeps the root on the side it converges to). Start it on
+        // the side the new state says, by the least margin: then it does not fire again at
+        // once, but a return across the surface in the first step (a grazing touch: a corner's
+        // depth reaching 0 and turning back) is a crossing. With g_old = 0 it never triggered
+        // (a crossing needs a strict sign at the step start), and a corner that turned back into
+        // the bed stayed pressing under a state that said lifted: the one-edge kernel's
+        // x0 = −v / sin θ then left the base, its forces grew as 1/sin³ θ toward θ = 0, and
+        // the run ended in a step-size underflow (issue 44, docs/ground.md).
         if let Some(i) = fired {
-            g_old[i] = 0.0;
+            g_old[i] = match dirs[i] {
+                Direction::Rising => -f64::MIN_POSITIVE,
+                Direction::Falling => f64::MIN_POSITIVE,
+                Direction::Either => 0.0,
+            };
         }
         let mut first_on_zero = fired != Some(0) && y0.values()[0] == 0.0;
         let (t, z, event) = loop {
