@@ -317,10 +317,7 @@ fn run(scene: &Path, set: &[String], out: Option<PathBuf>, json: bool) -> Result
     let out_dir = out_dir::OutDir::begin(&dir, out_dir::RUN_OUT)?;
     let report = report::simulate(&m, scene)?;
     let summary = report::summary_json(&m, scene, set, &report)?;
-    let warnings = match &report.run.summary.forces {
-        Some(f) => report::warnings(&m, f),
-        None => Vec::new(),
-    };
+    let warnings = report::warnings(&m, &report.run.summary);
     let run = report.run;
     let history = if m.history_csv {
         Some(report::history_csv(&m, &run)?)
