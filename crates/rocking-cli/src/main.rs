@@ -26,6 +26,7 @@ macro_rules! out {
     }};
 }
 
+mod check;
 mod convergence;
 mod figure;
 mod ida;
@@ -298,105 +299,6 @@ fn models_command(json: bool) -> Result<(), SceneError> {
     Ok(())
 }
 
-fn check(scene: &Path, set: &[String], json: bool) -> Result<(), SceneError> {
-    // What `run`, `spectrum`, `batch` and `ida` refuse in the scene, by their own checks.
-    let base = load_base(scene, set)?;
-    rocking_study::plan::check_table(&base)?;
-    rocking_study::ida::check_table(&base)?;
-    let m = base.model(&[])?;
-    let mut derived = report::derived_json(&m)?;
-    if json {
-        // The column's natural frequencies (rad per unit of model time, ascending), here and
-        // not in a run's summary (whose bytes the digests pin).
-        let f = m.structure.frequencies();
-        derived["fixed_base_frequencies"] = serde_json::json!(f.fixed_base);
-        derived["uplifted_frequencies"] = serde_json::json!(f.uplifted);
-        derived["fixed_base_damping_ratios"] = serde_json::json!(f.fixed_base_damping);
-        derived["uplifted_damping_ratios"] = serde_json::json!(f.uplifted_damping);
-        let v = serde_json::json!({
-            "scene": scene.display().to_string(),
-            "model": m.structure.model().name,
-            "params": models::params_json(&m.structure),
-            "overrides": set,
-            "kernel_variant": m.variant.name,
-            "variant_reasons": m.reasons,
-            "excitation": m.excitation_description,
-            "t_end": m.options.t_end * m.units.p_model,
-            "excitation_end": m.excitation_end * m.units.p_model,
-            "derived": derived,
-        });
-        out!("{v}");
-        return Ok(());
-    }
-    let d = m.structure.derived();
-    let u = &m.units;
-    out!("scene: {}", scene.display());
-    if let Some(t) = &m.title {
-        out!("title: {t}");
-    }
-    let model = m.structure.model();
-    out!("model: {} ({})", model.name, model.description);
-    out!(
-        "parameters (model units): {}",
-        models::params_line(&m.structure)
-    );
-    out!("kernel variant: {}", m.variant.name);
-    for r in &m.reasons {
-        out!("  because {r}");
-    }
-    out!("excitation: {}", m.excitation_description);
-    let secs = |tau: f64| match m.structure.p_per_second() {
-        Some(p) => format!(" ({:.4} s)", tau / p),
-        None => String::new(),
-    };
-    let ex_end = m.excitation_end * u.p_model;
-    out!("excitation ends at τ = {ex_end:.4}{}", secs(ex_end));
-    out!(
-        "simulated: τ = 0 .. {:.4}{}",
-        m.options.t_end * u.p_model,
-        secs(m.options.t_end * u.p_model)
-    );
-    out!(
-        "derived quantities ({}):",
-        derived["units"].as_str().unwrap_or("")
-    );
-    if let Some(ps) = m.structure.p_per_second() {
-        out!("  p          = {:.6} (= {ps:.6} 1/s)", d.p);
-    } else {
-        out!("  p          = {:.6}", d.p);
-    }
-    out!(
-        "  ω_n        = {:.6} (ω_n/p = {:.4})",
-        d.omega_n,
-        d.omega_n / d.p
-    );
-    out!("  ω_up       = {:.6}", d.omega_up);
-    out!("  S          = {:.6}", d.modal_s);
-    out!("  α          = {:.6} rad", d.alpha);
-    out!("  u_cr       = {:.6e}", d.u_cr);
-    out!(
-        "  θ_cr       = {:.6} rad (θ_cr/α = {:.4})",
-        d.theta_cr,
-        d.theta_cr / d.alpha
-    );
-    out!("  E_ref      = {:.6e}", d.e_ref);
-    let number = |key: &str| derived[key].as_f64().unwrap_or(f64::NAN);
-    out!(
-        "  static uplift threshold = {:.6} g tan α",
-        number("static_uplift_over_g_tan_alpha")
-    );
-    out!(
-        "  W          = {:.6e}, W B = {:.6e} (the base moment at uplift)",
-        number("weight"),
-        number("uplift_moment")
-    );
-    out!(
-        "  M_el       = {:.6} W B at static uplift (the elastic moment; P-Δ and the shape make up the rest)",
-        number("elastic_moment_at_uplift_over_wb")
-    );
-    Ok(())
-}
-
 fn run(scene: &Path, set: &[String], out: Option<PathBuf>, json: bool) -> Result<(), SceneError> {
     let (_, mut m) = load(scene, set)?;
     let events_csv = m.options.event_log;
@@ -415,10 +317,7 @@ fn run(scene: &Path, set: &[String], out: Option<PathBuf>, json: bool) -> Result
     let out_dir = out_dir::OutDir::begin(&dir, out_dir::RUN_OUT)?;
     let report = report::simulate(&m, scene)?;
     let summary = report::summary_json(&m, scene, set, &report)?;
-    let warnings = match &report.run.summary.forces {
-        Some(f) => report::warnings(&m, f),
-        None => Vec::new(),
-    };
+    let warnings = report::warnings(&m, &report.run.summary);
     let run = report.run;
     let history = if m.history_csv {
         Some(report::history_csv(&m, &run)?)
@@ -555,7 +454,7 @@ fn main() -> ExitCode {
             }
             run(&scene, &set, out, json)
         }
-        Command::Check { scene, set, json } => check(&scene, &set, json),
+        Command::Check { scene, set, json } => check::check(&scene, &set, json),
         Command::Models { json } => models_command(json),
         Command::Spectrum {
             scene,

@@ -334,12 +334,14 @@ fn a_ground_batch_and_ida_equal_their_separate_runs() {
     check(&table);
 }
 
-/// A ratio to the fixed-base twin in `[sweep] report` on compliant ground is refused by name,
-/// as `run` refuses `fixed_base_reference` there (the linear-foundation twin is not built).
+/// On compliant ground the twin is the linear foundation (the same bed with springs that also
+/// pull): a ratio to it in `[sweep] report` and the twin's ground keys are a cell's, bit for bit
+/// those of `rocking run` with `fixed_base_reference`, which reports them under `fixed_base`.
 #[test]
-fn a_twin_ratio_on_ground_is_refused_naming_the_key() {
+fn a_twin_ratio_on_ground_is_the_runs_ratio_to_its_linear_foundation() {
     let out = tmp_path("ground-twin");
     let scene = ground_scene().display().to_string();
+    let report = "sweep.report=[\"base_moment_ratio\", \"fixed_base.max_ground_pressure_over_mean\", \"fixed_base.lift_offs\"]";
     let o = rocking(&[
         "spectrum",
         &scene,
@@ -347,15 +349,38 @@ fn a_twin_ratio_on_ground_is_refused_naming_the_key() {
         "--out",
         out.to_str().unwrap(),
         "--set",
-        "sweep.report=[\"base_moment_ratio\"]",
+        report,
         "--axis",
         "excitation.amplitude=1.3",
     ]);
-    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    let e = text(&o);
-    assert!(
-        e.contains("sweep.report") || e.contains("`base_moment_ratio` in [sweep] report"),
-        "{e}"
+    assert!(o.status.success(), "{}", text(&o));
+    let table = rows(&out.join("cells.csv"));
+    assert_eq!(table.len(), 1);
+    let s = run_json(
+        &ground_scene(),
+        &["output.fixed_base_reference=true".to_string()],
+        &tmp_path("ground-twin-run"),
     );
-    assert!(e.contains("not built yet"), "{e}");
+    same_number(
+        &s,
+        "base_moment_ratio",
+        col(&table[0], "base_moment_ratio"),
+        "ratio",
+    );
+    let twin = &s.value["fixed_base"];
+    let pressure = twin["max_ground_pressure_over_mean"].as_f64().unwrap();
+    let cell: f64 = col(&table[0], "fixed_base.max_ground_pressure_over_mean")
+        .parse()
+        .unwrap();
+    assert!(
+        (cell - pressure).abs() <= 4.0 * f64::EPSILON * pressure,
+        "{cell} {pressure}"
+    );
+    assert_eq!(col(&table[0], "fixed_base.lift_offs"), "0");
+    assert_eq!(twin["lift_offs"], 0, "{twin}");
+    assert_eq!(twin["min_contact_fraction"], 1.0, "{twin}");
+    assert!(
+        s.value["lift_offs"].as_u64().unwrap() > 0,
+        "the run itself lifts off"
+    );
 }

@@ -9,6 +9,8 @@
 mod check;
 mod error;
 pub mod excitation;
+pub mod ground;
+pub mod ground_spec;
 pub mod knob;
 pub mod labels;
 pub mod limits;

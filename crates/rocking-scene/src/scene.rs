@@ -11,6 +11,7 @@ use rocking_motion::{read_record, At2Record, RecordFormat};
 use serde::{Deserialize, Serialize};
 use toml::{Table, Value};
 
+pub use crate::ground_spec::{GroundKindSpec, GroundSpec};
 use crate::{InputError, SceneError};
 
 /// `[structure]`: physical (SI) or dimensionless. All optional here; the combination is checked
@@ -100,33 +101,12 @@ pub struct EffectsSpec {
     pub uplift: Option<bool>,
     /// The ground's coefficient of friction: a warning when the run needs more.
     pub friction: Option<f64>,
-}
-
-/// `[ground]` (issue 44): the rigid surface (default), a tensionless Winkler bed or two springs.
-/// Checked when the setup is built (`setup::ground`).
-#[derive(Clone, Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct GroundSpec {
-    pub kind: Option<GroundKindSpec>,
-    /// omega_v / p, omega_v = sqrt(K_v / M): the whole structure's vertical frequency.
-    pub omega_v_over_p: Option<f64>,
-    /// The damping ratio of that vertical mode: C_v = 2 zeta_v sqrt(K_v M).
-    pub zeta_v: Option<f64>,
-    /// SI scenes, winkler: the bed's stiffness (N/m^2) and damping (N s/m^2) per unit base width.
-    pub k: Option<f64>,
-    pub c: Option<f64>,
-    /// SI scenes, two-spring: each corner's spring (N/m) and dashpot (N s/m).
-    pub k_spring: Option<f64>,
-    pub c_spring: Option<f64>,
-}
-
-/// `[ground] kind`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum GroundKindSpec {
-    Rigid,
-    Winkler,
-    TwoSpring,
+    /// Compliant ground: the bearing pressure (SI, Pa) over a footing `footing_length` (m) long
+    /// out of the plane, or `bearing_over_mean` against max_ground_pressure_over_mean: a
+    /// warning when the pressure under the base exceeds it (`ground::bearing`).
+    pub bearing: Option<f64>,
+    pub footing_length: Option<f64>,
+    pub bearing_over_mean: Option<f64>,
 }
 
 /// `[solver]`.

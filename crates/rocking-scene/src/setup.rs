@@ -12,7 +12,8 @@ use rocking_motion::{Excitation, STANDARD_GRAVITY};
 use toml::Value;
 
 use crate::check::{finite, formed};
-use crate::scene::{GroundKindSpec, OutputSpec, Scene, SceneSpec, Source, StructureSpec};
+pub use crate::ground::ground;
+use crate::scene::{OutputSpec, Scene, SceneSpec, Source, StructureSpec};
 pub use crate::units::Units;
 use crate::SceneError;
 
@@ -695,6 +696,7 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Setup, SceneError> {
         uplift,
         forces: out.and_then(|o| o.forces).unwrap_or(true),
         friction,
+        bearing_over_mean: crate::ground::bearing(src, fx, ground.as_ref(), &structure, physical)?,
         ..Options::default()
     };
     if !uplift {
@@ -733,17 +735,6 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Setup, SceneError> {
     }
     if let Some(g) = &ground {
         // What a compliant ground does not run yet (issue 44, docs/ground.md), refused by name.
-        if fixed_base_reference {
-            return Err(src.err(
-                "output.fixed_base_reference",
-                format!(
-                    "`fixed_base_reference` in [output] with [ground] kind = \"{}\": the twin on \
-                     compliant ground (the same bed with springs that also pull) is not built yet \
-                     (docs/ground.md): remove it",
-                    g.kind.name()
-                ),
-            ));
-        }
         if animation.is_some() {
             return Err(src.err(
                 "output.animation",
@@ -781,168 +772,6 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Setup, SceneError> {
         animation,
         ground,
     })
-}
-
-/// The compliant ground of `[ground]` in the structure's units, or `None` for the rigid surface:
-/// every key checked (its kind's keys only; SI keys only in an SI scene; one form, vertical
-/// frequency or the bed's own stiffness, not both). `p` is the structure's p in model units.
-pub fn ground(
-    spec: &SceneSpec,
-    src: &Source,
-    structure: &rocking::Structure,
-    physical: bool,
-    p: f64,
-) -> Result<Option<rocking::Ground>, SceneError> {
-    use rocking::{Ground, GroundKind};
-    let Some(g) = spec.ground.as_ref() else {
-        return Ok(None);
-    };
-    let kind = match g.kind.unwrap_or(GroundKindSpec::Rigid) {
-        GroundKindSpec::Rigid => GroundKind::Rigid,
-        GroundKindSpec::Winkler => GroundKind::Winkler,
-        GroundKindSpec::TwoSpring => GroundKind::TwoSpring,
-    };
-    let given = [
-        ("omega_v_over_p", g.omega_v_over_p),
-        ("zeta_v", g.zeta_v),
-        ("k", g.k),
-        ("c", g.c),
-        ("k_spring", g.k_spring),
-        ("c_spring", g.c_spring),
-    ];
-    let present: Vec<&str> = given.iter().filter_map(|(k, v)| v.map(|_| *k)).collect();
-    let (own, other): (&[&str], &str) = match kind {
-        GroundKind::Rigid => {
-            if let Some(key) = present.first() {
-                return Err(src.err(
-                    &format!("ground.{key}"),
-                    format!(
-                        "`{key}` in [ground] describes a compliant ground, and kind is \"rigid\" \
-                         (the default): give kind = \"winkler\" or \"two-spring\", or remove it"
-                    ),
-                ));
-            }
-            return Ok(None);
-        }
-        GroundKind::Winkler => (&["k", "c"], "two-spring"),
-        GroundKind::TwoSpring => (&["k_spring", "c_spring"], "winkler"),
-    };
-    let name = kind.name();
-    for key in &present {
-        let dimless = matches!(*key, "omega_v_over_p" | "zeta_v");
-        if !dimless && !own.contains(key) {
-            return Err(src.err(
-                &format!("ground.{key}"),
-                format!(
-                    "`{key}` in [ground] is a key of the {other} ground, and kind is \"{name}\": \
-                     give {} (SI), or omega_v_over_p and zeta_v",
-                    own.join(" and ")
-                ),
-            ));
-        }
-        if !dimless && !physical {
-            return Err(src.err(
-                &format!("ground.{key}"),
-                format!(
-                    "`{key}` in [ground] is in SI units, and [structure] is dimensionless: give \
-                     omega_v_over_p and zeta_v (or [structure] in SI)"
-                ),
-            ));
-        }
-    }
-    let dimless: Vec<&str> = present
-        .iter()
-        .copied()
-        .filter(|k| matches!(*k, "omega_v_over_p" | "zeta_v"))
-        .collect();
-    let si: Vec<&str> = present
-        .iter()
-        .copied()
-        .filter(|k| !matches!(*k, "omega_v_over_p" | "zeta_v"))
-        .collect();
-    if !dimless.is_empty() && !si.is_empty() {
-        return Err(src.err(
-            &format!("ground.{}", dimless[0]),
-            format!(
-                "[ground] mixes the vertical frequency (`{}`) and the {name} ground's own SI \
-                 parameters (`{}`): give either omega_v_over_p, zeta_v or {}",
-                dimless.join("`, `"),
-                si.join("`, `"),
-                own.join(", ")
-            ),
-        ));
-    }
-    let b = structure.physical().b;
-    let weight = structure.static_uplift().weight;
-    let mass = weight / structure.physical().g;
-    let ground = if si.is_empty() {
-        let Some(w) = g.omega_v_over_p else {
-            return Err(src.err(
-                "ground",
-                format!(
-                    "missing key `omega_v_over_p` in [ground] (kind = \"{name}\" needs its \
-                     stiffness: omega_v_over_p and zeta_v{})",
-                    if physical {
-                        format!(", or {} in SI", own.join(", "))
-                    } else {
-                        String::new()
-                    }
-                ),
-            ));
-        };
-        let w = finite(
-            src,
-            "ground.omega_v_over_p",
-            w,
-            w > 0.0 && w <= 1e6,
-            "0 < omega_v/p <= 1000000",
-        )?;
-        let zeta = g.zeta_v.unwrap_or(0.0);
-        let zeta = finite(
-            src,
-            "ground.zeta_v",
-            zeta,
-            (0.0..1.0).contains(&zeta),
-            "a damping ratio 0 <= zeta_v < 1",
-        )?;
-        let k_v = formed(
-            src,
-            "ground.omega_v_over_p",
-            w,
-            mass * (w * p).powi(2),
-            "vertical stiffness K_v",
-        )?;
-        Ground::from_vertical(kind, b, k_v, 2.0 * zeta * (k_v * mass).sqrt())
-    } else {
-        let (k_key, c_key) = (own[0], own[1]);
-        let (k, c) = match kind {
-            GroundKind::TwoSpring => (g.k_spring, g.c_spring),
-            _ => (g.k, g.c),
-        };
-        let Some(k) = k else {
-            return Err(src.err(
-                "ground",
-                format!("missing key `{k_key}` in [ground] (given: `{c_key}`)"),
-            ));
-        };
-        let k = finite(
-            src,
-            &format!("ground.{k_key}"),
-            k,
-            k > 0.0 && k <= 1e20,
-            "a stiffness 0 < k <= 1e20",
-        )?;
-        let c = c.unwrap_or(0.0);
-        let c = finite(
-            src,
-            &format!("ground.{c_key}"),
-            c,
-            (0.0..=1e20).contains(&c),
-            "a damping 0 <= c <= 1e20",
-        )?;
-        Ground { kind, b, k, c }
-    };
-    Ok(Some(ground))
 }
 
 /// What a comparison with the fixed-base twin (`[output] fixed_base_reference`, a ratio in

@@ -145,8 +145,9 @@ pub fn summary_json(
     out.insert("variant_reasons".into(), json!(model.reasons));
     out.insert("excitation".into(), json!(model.excitation_description));
     out.insert("derived".into(), derived_json(model)?);
-    if let Some(f) = &run.summary.forces {
-        out.insert("warnings".into(), json!(warnings(model, f)));
+    let w = warnings(model, &run.summary);
+    if run.summary.forces.is_some() || !w.is_empty() {
+        out.insert("warnings".into(), json!(w));
     }
     Ok(Value::Object(out))
 }
@@ -222,6 +223,11 @@ pub fn quantities(
             let mut fixed = serialized(tf)?;
             fixed.retain(|k, _| !k.ends_with("_time"));
             fixed.insert("max_u_over_ucr".into(), json!(t.max_u_over_ucr));
+            // On compliant ground the twin is the linear foundation: its ground keys too.
+            if let Some(g) = &t.ground {
+                let ground = serialized(g)?.into_iter();
+                fixed.extend(ground.filter(|(k, _)| !k.ends_with("_time")));
+            }
             if let Some(si) = si {
                 insert_si(&mut fixed, tf, si);
             }
@@ -269,13 +275,33 @@ fn serialized(v: &impl serde::Serialize) -> Result<serde_json::Map<String, Value
     }
 }
 
-/// The model's assumptions that a run breaks, with the first time it does.
-pub fn warnings(model: &Setup, f: &ForceSummary) -> Vec<String> {
+/// The model's assumptions that a run breaks, with the first time it does: friction and the
+/// ground's pull (with the forces tracked), the bearing pressure (compliant ground).
+pub fn warnings(model: &Setup, summary: &Summary) -> Vec<String> {
     let when = |t: Time| match t.seconds {
         Some(s) => format!("τ = {:.6} (t = {s:.6} s)", t.tau),
         None => format!("τ = {:.6}", t.tau),
     };
     let mut out = Vec::new();
+    let bearing = summary.ground.as_ref().and_then(|g| {
+        let q = model.options.bearing_over_mean?;
+        Some((
+            g.first_bearing_exceeded_time??,
+            q,
+            g.max_ground_pressure_over_mean,
+        ))
+    });
+    if let Some((t, q, max)) = bearing {
+        out.push(format!(
+            "the pressure under the base exceeds the bearing pressure ({q:.4} times the mean) \
+             first at {}: the ground would yield there, which the model does not include (max \
+             pressure {max:.4} times the mean)",
+            when(t),
+        ));
+    }
+    let Some(f) = &summary.forces else {
+        return out;
+    };
     if let (Some(t), Some(mu)) = (f.first_slip_time, model.options.friction) {
         // Unbounded once R_v < 0 (the lift-off warning below says when).
         let max = if f.max_required_friction.is_finite() {

@@ -344,6 +344,11 @@ pub struct Options {
     /// Coefficient of friction of the ground: the first time the required friction |R_h|/R_v
     /// exceeds it is reported (the model assumes no sliding). `None`: not checked.
     pub friction: Option<f64>,
+    /// The ground's bearing pressure over the mean pressure W / (2B) (two springs: a corner's
+    /// force over W / 2), on compliant ground: the first time the largest pressure under the base
+    /// exceeds it is reported (`GroundSummary::first_bearing_exceeded_time`; the bed does not
+    /// yield). `None`: not checked. The rigid surface has no pressure distribution: ignored there.
+    pub bearing_over_mean: Option<f64>,
 }
 
 impl Default for Options {
@@ -365,6 +370,7 @@ impl Default for Options {
             forces: true,
             max_deflection: true,
             friction: None,
+            bearing_over_mean: None,
         }
     }
 }
@@ -446,6 +452,9 @@ impl Options {
         }
         if let Some(mu) = self.friction {
             check("friction", mu, mu >= 0.0, "a coefficient of friction >= 0")?;
+        }
+        if let Some(q) = self.bearing_over_mean {
+            check("bearing_over_mean", q, q > 0.0, "a bearing pressure > 0")?;
         }
         let i = &self.initial;
         check(

@@ -167,6 +167,11 @@ pub struct GroundSummary {
     /// The energy the ground's dashpots took, ∫ D dt, over E_ref.
     #[serde(serialize_with = "finite")]
     pub ground_energy_dissipated: f64,
+    /// The first time the largest pressure under the base exceeded the bearing pressure
+    /// (`Options::bearing_over_mean`; checked at every accepted step's end and event, as the
+    /// maxima are). Absent from the summary unless a bearing pressure is given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub first_bearing_exceeded_time: Option<Option<Time>>,
 }
 
 /// The largest section forces at the column base and the extremes of the ground reactions over

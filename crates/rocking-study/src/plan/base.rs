@@ -70,12 +70,9 @@ fn check_report(sc: &Scene, m: &Setup, report: &[String]) -> Result<(), SceneErr
             .map(|r| r.summary)
             .map_err(|e| SceneError::failure(format!("{}: {e}", sc.src.path.display())))
     };
-    // On compliant ground there is no twin yet (as `run` refuses `fixed_base_reference`).
-    let twin = match &m.ground {
-        None => Some(run(&probe.fixed_base_twin())?),
-        Some(_) => None,
-    };
-    let q = run_report::quantities(&run(&probe)?, twin.as_ref(), run_report::si_scale(m))?;
+    // On compliant ground the twin is the linear foundation (docs/ground.md).
+    let twin = run(&probe.fixed_base_twin())?;
+    let q = run_report::quantities(&run(&probe)?, Some(&twin), run_report::si_scale(m))?;
     let mut allowed: Vec<String> = Vec::new();
     for (k, v) in &q {
         match v {
@@ -88,9 +85,7 @@ fn check_report(sc: &Scene, m: &Setup, report: &[String]) -> Result<(), SceneErr
             _ => {}
         }
     }
-    if m.ground.is_none() {
-        allowed.extend(run_report::RATIOS.iter().map(|r| r.to_string()));
-    }
+    allowed.extend(run_report::RATIOS.iter().map(|r| r.to_string()));
     allowed.sort();
     allowed.dedup();
     for (i, key) in report.iter().enumerate() {
@@ -98,18 +93,6 @@ fn check_report(sc: &Scene, m: &Setup, report: &[String]) -> Result<(), SceneErr
             return Err(sc.src.err(
                 &format!("sweep.report.{i}"),
                 format_args!("`report` in [sweep] names `{key}` twice: give each quantity once"),
-            ));
-        }
-        if let (true, Some(g)) = (needs_twin(key), &m.ground) {
-            // As `run` refuses `fixed_base_reference` on compliant ground (docs/ground.md).
-            return Err(sc.src.err(
-                &format!("sweep.report.{i}"),
-                format_args!(
-                    "`{key}` in [sweep] report compares with the fixed-base twin, and [ground] \
-                     kind = \"{}\": the twin on compliant ground (the same bed with springs that \
-                     also pull) is not built yet (docs/ground.md): remove it",
-                    g.kind.name()
-                ),
             ));
         }
         if needs_twin(key) {

@@ -84,6 +84,7 @@ struct Track {
     min_rv: f64,
     first_slip: Option<f64>,
     first_pull: Option<f64>,
+    first_bearing: Option<f64>,
     next_grid: f64,
     history: Vec<HistoryRow>,
     coordinates: Vec<f64>,
@@ -96,6 +97,9 @@ struct Track {
 struct Kin<V: Variant> {
     p: V::Params,
     ground: Ground,
+    /// The linear-foundation twin (`Options::uplift` false): springs that also pull, the
+    /// full-contact kernels at every state, no contact events (docs/ground.md).
+    bilateral: bool,
 }
 
 /// A run on compliant ground with variant `V`; `N` = `V::Y::LEN + 3`.
@@ -189,7 +193,11 @@ pub fn simulate_ground<V: Variant, M: GroundMotion + ?Sized, const N: usize>(
         }),
     };
     let mut sim = GroundSim::<V, M, N> {
-        k: Kin { p, ground: *ground },
+        k: Kin {
+            p,
+            ground: *ground,
+            bilateral: !opts.uplift,
+        },
         p,
         motion,
         opts,
@@ -242,8 +250,11 @@ impl<V: Variant> Kin<V> {
         self.ground.state(&self.base(y), c.left, c.right)
     }
 
-    /// The corners' depths `[d(−B), d(B)]`.
+    /// The corners' depths `[d(−B), d(B)]`; on the bilateral twin 1 (both press, always).
     fn depths(&self, y: &V::Y) -> [f64; 2] {
+        if self.bilateral {
+            return [1.0; 2];
+        }
         self.ground.depths(&self.base(y))
     }
 
@@ -573,6 +584,9 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
         r.max_settlement = r.max_settlement.max(y.values()[1] / self.v0);
         let pressure = g[go::PRESSURE_LO].max(g[go::PRESSURE_HI]) / self.mean_pressure;
         r.max_pressure = r.max_pressure.max(pressure);
+        if self.opts.bearing_over_mean.is_some_and(|q| pressure > q) {
+            r.first_bearing.get_or_insert(t);
+        }
         r.min_contact = r.min_contact.min(g[go::CONTACT_FRACTION]);
         if self.opts.forces {
             let f = V::free_forces(y, &acc, ug, s, &self.p);
@@ -723,6 +737,8 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
                 lift_offs: r.lift_offs,
                 max_settlement_over_static: r.max_settlement,
                 ground_energy_dissipated: dg / e_ref,
+                first_bearing_exceeded_time: (self.opts.bearing_over_mean)
+                    .map(|_| r.first_bearing.map(|t| self.time(t))),
             }),
         }
     }
