@@ -377,8 +377,8 @@ fn every_paper_figure_is_drawn_and_shows_what_it_compares() {
         .filter(|p| p.extension().is_some_and(|x| x == "toml"))
         .collect();
     files.sort();
-    // Figs 3-10 and Fig. 10's zoom.
-    assert_eq!(files.len(), 9, "Figs 3-10: {files:?}");
+    // Figs 3-10, Figs 6-8 one file per slenderness α (issue 46), and Fig. 10's zoom.
+    assert_eq!(files.len(), 12, "Figs 3-10: {files:?}");
     ok(&bin()
         .arg("figure")
         .args(&files)
@@ -478,28 +478,31 @@ fn every_paper_figure_is_drawn_and_shows_what_it_compares() {
         (3 * (adjex - 3)..=3 * adjex).contains(&ticks),
         "fig3: {ticks} rug ticks for ADJex's {adjex} impacts in 3 panels"
     );
-    // Figs 6-8: ten panels on one colour scale, θ_cr/α marked once per slenderness.
-    // (Mass only on top: θ_cr = α whatever α, one mark.)
-    for (stem, marks) in [("fig6", 1), ("fig7", 2), ("fig8", 2)] {
+    // Figs 6-8, one file per slenderness: five panels (four stiffnesses and the rigid column) on
+    // one colour scale, θ_cr/α marked once (one α per file).
+    for stem in [
+        "fig6-alpha01",
+        "fig6-alpha02",
+        "fig7-alpha01",
+        "fig7-alpha02",
+        "fig8-alpha01",
+        "fig8-alpha02",
+    ] {
         let t = text(stem);
         assert_eq!(
             t.matches("survived: max |θ|/α").count(),
             1,
             "{stem}: one colour bar"
         );
-        assert_eq!(
-            t.matches("θ_cr/α =").count(),
-            marks,
-            "{stem}: θ_cr/α marks: {t}"
-        );
-        // Ten panels (letters (a)-(j)); their shared x label once per column (five).
+        assert_eq!(t.matches("θ_cr/α =").count(), 1, "{stem}: θ_cr/α mark: {t}");
+        // Five panels (letters (a)-(e)) in rows of three; the shared x label once per column.
         assert!(
-            t.contains("(j)") && !t.contains("(k)"),
-            "{stem}: ten panels"
+            t.contains("(e)") && !t.contains("(f)"),
+            "{stem}: five panels"
         );
         assert_eq!(
             t.matches("ω_p/p").count(),
-            5,
+            3,
             "{stem}: one x label per column"
         );
     }
