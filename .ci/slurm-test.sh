@@ -5,8 +5,8 @@
 #  2. the same with one array task killed mid-run and requeued by `scontrol requeue`: the task
 #     resumes from its journal and the merge is still identical.
 # ROCKING names a built binary (default: built here with the test profile).
-# Installs the packages with apt-get when missing (as root, or through sudo); the daemons' state
-# lives in a temporary directory and they are stopped on exit.
+# Installs the packages with apt-get when missing (as root, or through sudo; `--install` does only
+# that); the daemons' state lives in a temporary directory and they are stopped on exit.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 repo=$PWD
@@ -19,6 +19,8 @@ if ! command -v slurmctld >/dev/null || ! command -v munged >/dev/null; then
     $SUDO apt-get update -qq
     $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq slurm-wlm munge >/dev/null
 fi
+# `--install`: only the packages (.ci/run starts this in the background while Rust compiles).
+[ "${1:-}" = --install ] && exit 0
 
 if [ -z "${ROCKING:-}" ]; then
     echo "== build rocking (test profile, as cargo test builds it)"
