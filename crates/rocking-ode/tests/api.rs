@@ -205,3 +205,30 @@ fn integrator_is_plain_data() {
     // 16 stages + 8 dense coefficients + a few vectors of 4 f64.
     assert!(size < 1200, "{size}");
 }
+
+/// A first step far beyond the stability region overflows (here y' = -1e60 y from h = 1: the
+/// stages grow as (λh)^k to inf): that attempt is rejected and retried smaller, not an error.
+/// The step taken is then stable and accurate.
+#[test]
+fn an_overflowing_attempt_is_rejected_and_retried_smaller() {
+    let lambda = 1e60;
+    for m in [Method::Dopri5, Method::Dop853] {
+        let opts = Options {
+            h_init: Some(1.0),
+            ..Options::new(m)
+        };
+        let mut ode = Integrator::new(opts, Tolerances::uniform(1e-10, 1e-10)).unwrap();
+        let mut f = |_t: f64, y: &SVector<f64, 1>| Vector1::new(-lambda * y[0]);
+        ode.reset(0.0, Vector1::new(1.0), &mut f).unwrap();
+        let info = ode.step(&mut f, 1.0).unwrap();
+        let h = info.t_new - info.t_old;
+        assert!(h > 0.0 && h * lambda < 10.0, "{m:?}: h = {h:e}");
+        assert!(ode.stats().rejected > 0, "{m:?}");
+        let exact = (-lambda * ode.t()).exp();
+        assert!(
+            (ode.y()[0] - exact).abs() < 1e-8,
+            "{m:?}: {} against {exact}",
+            ode.y()[0]
+        );
+    }
+}

@@ -53,10 +53,16 @@ impl<const N: usize> Integrator<N> {
     /// (or end within 1 % of a step before it) is set to land on `t_stop`
     /// exactly. Integration is forward only: `t_stop` must exceed `t()`.
     ///
-    /// Errors: step-size underflow (`h <= 10 eps |t|`), non-finite stage,
-    /// state or error estimate (returned immediately, the step is not
-    /// retried), `max_steps` attempts since the last reset, `t_stop <= t`.
-    /// On error the current point is unchanged.
+    /// An attempt whose stages, state or error estimate are not finite (a
+    /// step far beyond the method's stability region overflows) is rejected
+    /// and retried at `facmin` times its size, as scipy's and Julia's
+    /// integrators do.
+    ///
+    /// Errors: step-size underflow (`h <= 10 eps |t|`; reported as non-finite
+    /// when the attempts that shrank the step were), a non-finite right-hand
+    /// side at the step's start or an accepted step's end, `max_steps`
+    /// attempts since the last reset, `t_stop <= t`. On error the current
+    /// point is unchanged.
     pub fn step<F>(&mut self, rhs: &mut F, t_stop: f64) -> Result<StepInfo, OdeError>
     where
         F: FnMut(f64, &SVector<f64, N>) -> SVector<f64, N>,
@@ -93,6 +99,8 @@ impl<const N: usize> Integrator<N> {
             Method::Dop853 => &DOP853_CTRL,
         };
         let mut rejected = false;
+        // The last attempt's overflow, while no finite attempt has followed it.
+        let mut non_finite: Option<String> = None;
         loop {
             if self.attempts >= self.opts.max_steps {
                 return Err(OdeError::new(
@@ -103,11 +111,18 @@ impl<const N: usize> Integrator<N> {
             }
             let h_ctrl = self.h_next.min(self.opts.h_max);
             if h_ctrl.is_nan() || h_ctrl <= 10.0 * f64::EPSILON * self.t.abs() || h_ctrl < 1e-300 {
-                return Err(OdeError::new(
-                    OdeErrorKind::StepSizeUnderflow,
-                    self.t,
-                    format!("step size underflow (h = {h_ctrl:e})"),
-                ));
+                return Err(match non_finite {
+                    Some(attempt) => OdeError::new(
+                        OdeErrorKind::NonFinite,
+                        self.t,
+                        format!("{attempt}, and still at the step size underflow (h = {h_ctrl:e})"),
+                    ),
+                    None => OdeError::new(
+                        OdeErrorKind::StepSizeUnderflow,
+                        self.t,
+                        format!("step size underflow (h = {h_ctrl:e})"),
+                    ),
+                });
             }
             let mut h = h_ctrl;
             let reaches = self.t + 1.01 * h >= t_stop;
@@ -120,15 +135,16 @@ impl<const N: usize> Integrator<N> {
                 Method::Dop853 => self.attempt_dop853(rhs, h),
             };
             if !all_finite(&y_new) || !err.is_finite() {
-                return Err(OdeError::new(
-                    OdeErrorKind::NonFinite,
-                    self.t,
-                    format!(
-                        "non-finite stage, state or error estimate in a step of size {h:e} \
-                         (y_new = {y_new:?})"
-                    ),
+                self.stats.rejected += 1;
+                rejected = true;
+                self.h_next = h * ctrl.facmin;
+                non_finite = Some(format!(
+                    "non-finite stage, state or error estimate in a step of size {h:e} \
+                     (y_new = {y_new:?})"
                 ));
+                continue;
             }
+            non_finite = None;
             let fac11 = err.powf(ctrl.expo1);
             if err <= 1.0 {
                 // Accepted.

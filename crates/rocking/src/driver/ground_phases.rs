@@ -587,7 +587,7 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
         if self.opts.bearing_over_mean.is_some_and(|q| pressure > q) {
             r.first_bearing.get_or_insert(t);
         }
-        r.min_contact = r.min_contact.min(g[go::CONTACT_FRACTION]);
+        r.min_contact = r.min_contact.min(contact_fraction(&g));
         if self.opts.forces {
             let f = V::free_forces(y, &acc, ug, s, &self.p);
             let (w, wb) = (self.weight, self.wb);
@@ -635,7 +635,7 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
             vertical_reaction_over_w: f[5] / self.weight,
             ground: Some(GroundRow {
                 settlement_over_static: y.values()[1] / self.v0,
-                contact_fraction: g[go::CONTACT_FRACTION],
+                contact_fraction: contact_fraction(&g),
                 ground_pressure_over_mean: g[go::PRESSURE_LO].max(g[go::PRESSURE_HI])
                     / self.mean_pressure,
             }),
@@ -779,4 +779,12 @@ struct PhaseEnd<V: Variant> {
     y: V::Y,
     carried: [f64; 3],
     event: Option<usize>,
+}
+
+/// The kernels' contact length over 2B, reported in [0, 1]: a lift-off is located to the event
+/// tolerance, so the one-edge state can hold a step end or event slightly past it, where its
+/// length is below zero (down to -1.0e-8 on Study 1's spectra, docs/ground.md) or -0 (the edge's
+/// sign times 0); `+ 0.0` turns -0 into 0.
+fn contact_fraction(g: &[f64]) -> f64 {
+    g[go::CONTACT_FRACTION].clamp(0.0, 1.0) + 0.0
 }
