@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::{bin, repo, tmp_path};
+use common::{bin, repo, tmp_path, FIGS_6_TO_8};
 use std::path::{Path, PathBuf};
 
 fn ok(o: &std::process::Output) {
@@ -480,14 +480,7 @@ fn every_paper_figure_is_drawn_and_shows_what_it_compares() {
     );
     // Figs 6-8, one file per slenderness: five panels (four stiffnesses and the rigid column) on
     // one colour scale, θ_cr/α marked once (one α per file).
-    for stem in [
-        "fig6-alpha01",
-        "fig6-alpha02",
-        "fig7-alpha01",
-        "fig7-alpha02",
-        "fig8-alpha01",
-        "fig8-alpha02",
-    ] {
+    for stem in FIGS_6_TO_8 {
         let t = text(stem);
         assert_eq!(
             t.matches("survived: max |θ|/α").count(),

@@ -10,7 +10,7 @@
 
 mod common;
 
-use common::{bin, repo, tmp_path};
+use common::{bin, repo, tmp_path, FIGS_6_TO_8};
 use std::path::{Path, PathBuf};
 
 /// Points per mm.
@@ -394,17 +394,6 @@ fn every_figure_file_is_drawn_at_its_printed_size_with_print_type_and_letters() 
         let _ = std::fs::remove_dir_all(d);
     }
 }
-
-/// Figs 6-8, each as two figure files (α = 0.1 and 0.2, 3 + 2 panels, so that a panel prints
-/// at least 35 mm wide).
-const FIGS_6_TO_8: [&str; 6] = [
-    "fig6-alpha01",
-    "fig6-alpha02",
-    "fig7-alpha01",
-    "fig7-alpha02",
-    "fig8-alpha01",
-    "fig8-alpha02",
-];
 
 /// Figs 6-8 compare the γ families on one colour scale: the six files state the same
 /// `colour_top`, draw the scenes' 100 × 100 cells (no `cells` cap), and overlay on every flexible

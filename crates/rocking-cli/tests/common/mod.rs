@@ -81,3 +81,14 @@ pub fn summary(scene: &str, sets: &[&str]) -> serde_json::Value {
     let stdout = String::from_utf8(o.stdout).unwrap();
     serde_json::from_str(stdout.trim().lines().last().unwrap()).unwrap()
 }
+
+/// Figs 6-8, each as two figure files (α = 0.1 and 0.2, 3 + 2 panels, so that a panel prints
+/// at least 35 mm wide).
+pub const FIGS_6_TO_8: [&str; 6] = [
+    "fig6-alpha01",
+    "fig6-alpha02",
+    "fig7-alpha01",
+    "fig7-alpha02",
+    "fig8-alpha01",
+    "fig8-alpha02",
+];
