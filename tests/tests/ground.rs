@@ -225,37 +225,6 @@ fn rigid_limit_of_the_quarter_period_is_first_order() {
     assert!(errors.last().unwrap().abs() < 5e-3, "{errors:?}");
 }
 
-/// Small-amplitude rocking of a point mass at height H on the bed, in full contact: ω² =
-/// (ω_v² B²/3 − g H)/H² (a base of mass 1e-4 m, needed for a free base, shifts it by about that).
-#[test]
-fn small_amplitude_rocking_frequency_on_the_bed() {
-    let s = structure(10.0, 1e-4, 0.0);
-    let ratio = 30.0;
-    let g = bed(&s, GroundKind::Winkler, ratio, 0.0);
-    let st = g.statics(s.static_uplift().weight);
-    let theta0 = 0.01 * st.theta_lift_off;
-    let mut o = options(10.0, 1e-12, theta0);
-    o.history = History::None;
-    let r = run(&s, &g, &NoMotion, &rigid(), &o);
-    assert_eq!(r.summary.ground.unwrap().lift_offs, 0);
-    let crossings: Vec<f64> = r
-        .events
-        .iter()
-        .filter(|e| e.kind == EventKind::PivotSwitch)
-        .map(|e| e.time.tau)
-        .collect();
-    assert!(crossings.len() >= 4, "{crossings:?}");
-    let n = crossings.len() - 1;
-    let period = 2.0 * (crossings[n] - crossings[0]) / n as f64;
-    let (h, b) = (s.param("h").unwrap(), s.param("b").unwrap());
-    let omega_v = ratio * s.derived().p;
-    let omega = ((omega_v * omega_v * b * b / 3.0 - h) / (h * h)).sqrt();
-    let expected = 2.0 * std::f64::consts::PI / omega;
-    let err = (period - expected).abs() / expected;
-    println!("period {period:.8}, closed form {expected:.8}, relative {err:.2e}");
-    assert!(err < 1e-3, "{err:e}");
-}
-
 /// Issue 44's reproducer of the step-size underflow on a stiff bed (Study 1, ω_v/p = 200):
 /// `scenes/spectra/fig8-winkler.toml` at ω_p/p = 6, a_p = 3.111… g tan α stopped at τ = 1.020
 /// (a grazing lift-off's return into the bed went unseen: docs/ground.md). It must run to its
