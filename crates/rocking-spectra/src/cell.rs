@@ -26,6 +26,17 @@ pub enum CellClass {
 }
 
 impl CellClass {
+    /// Every class, in the order of the enum (the order of legends and counts).
+    pub const ALL: [CellClass; 7] = [
+        CellClass::NoUplift,
+        CellClass::Survived,
+        CellClass::OverturnedNoImpact,
+        CellClass::OverturnedOneImpact,
+        CellClass::OverturnedImpacts,
+        CellClass::BeyondModel,
+        CellClass::Failed,
+    ];
+
     /// The name used in `cells.csv`.
     pub fn as_str(self) -> &'static str {
         match self {
@@ -58,17 +69,7 @@ impl CellClass {
 
     /// Inverse of [`CellClass::as_str`].
     pub fn parse(s: &str) -> Option<CellClass> {
-        [
-            CellClass::NoUplift,
-            CellClass::Survived,
-            CellClass::OverturnedNoImpact,
-            CellClass::OverturnedOneImpact,
-            CellClass::OverturnedImpacts,
-            CellClass::BeyondModel,
-            CellClass::Failed,
-        ]
-        .into_iter()
-        .find(|c| c.as_str() == s)
+        CellClass::ALL.into_iter().find(|c| c.as_str() == s)
     }
 
     /// The class of a finished run.

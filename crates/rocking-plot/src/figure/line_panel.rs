@@ -59,13 +59,11 @@ impl LinePanel {
                 format!("{label}: {}", labels::MAX_THETA_OVER_ALPHA),
             ));
         }
-        for class in [
-            CellClass::OverturnedNoImpact,
-            CellClass::OverturnedOneImpact,
-            CellClass::OverturnedImpacts,
-            CellClass::BeyondModel,
-            CellClass::Failed,
-        ] {
+        // Every class but the upright ones (the line is their max θ/α).
+        for class in CellClass::ALL
+            .into_iter()
+            .filter(|c| c.overturned() != Some(false))
+        {
             if let (Some(s), true) = (class_style(class), self.cells.iter().any(|c| c.1 == class)) {
                 items.push(LegendItem::Fill(s.fill, format!("{} (top row)", s.label)));
             }

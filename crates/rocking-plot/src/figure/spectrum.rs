@@ -245,19 +245,14 @@ impl SpectrumPanel {
     }
 
     pub(super) fn legend(&self) -> Vec<LegendItem> {
-        let mut items: Vec<LegendItem> = [
-            CellClass::NoUplift,
-            CellClass::OverturnedNoImpact,
-            CellClass::OverturnedOneImpact,
-            CellClass::OverturnedImpacts,
-            CellClass::BeyondModel,
-            CellClass::Failed,
-        ]
-        .into_iter()
-        .filter(|k| !self.shade.shades(*k) && self.grid.2.iter().any(|c| c.2 == *k))
-        .filter_map(class_style)
-        .map(|s| LegendItem::Fill(s.fill, s.label.to_string()))
-        .collect();
+        // Survivors are on the colour bar.
+        let mut items: Vec<LegendItem> = CellClass::ALL
+            .into_iter()
+            .filter(|k| *k != CellClass::Survived)
+            .filter(|k| !self.shade.shades(*k) && self.grid.2.iter().any(|c| c.2 == *k))
+            .filter_map(class_style)
+            .map(|s| LegendItem::Fill(s.fill, s.label.to_string()))
+            .collect();
         // An unbounded value (`inf` in cells.csv: the required friction once R_v < 0) is drawn
         // in the colour of the bar's top, above every finite value.
         if self

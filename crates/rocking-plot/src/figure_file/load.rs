@@ -141,10 +141,8 @@ pub fn bisect(plan: &Plan, x: f64, upright: f64, overturned: f64, steps: usize) 
     for _ in 0..steps {
         let mid = 0.5 * (lo + hi);
         match plan.run_cell(&[x, mid]) {
-            Ok(cell) => match CellClass::of(&cell.summary) {
-                CellClass::OverturnedNoImpact
-                | CellClass::OverturnedOneImpact
-                | CellClass::OverturnedImpacts => hi = mid,
+            Ok(cell) => match CellClass::of(&cell.summary).overturned() {
+                Some(true) => hi = mid,
                 _ => lo = mid,
             },
             Err(_) => break,
