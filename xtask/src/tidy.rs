@@ -33,7 +33,6 @@ const PENDING_SPLITS: &[(&str, usize)] = &[
     ("crates/rocking-scene/src/setup.rs", 808),
     ("crates/rocking/src/structure.rs", 793),
     ("crates/rocking-scene/src/scene.rs", 758),
-    ("crates/rocking-study/src/ida.rs", 772),
     ("crates/rocking/src/driver/ground_phases.rs", 803),
 ];
 
@@ -45,7 +44,6 @@ const PENDING_STRING_ERRORS: &[(&str, &str)] = &[
     ("crates/rocking-fragility/src/lib.rs", "InvalidParameter"),
     ("crates/rocking-fragility/src/lib.rs", "NoEstimate"),
     ("crates/rocking-motion/src/error.rs", "InvalidParameter"),
-    ("crates/rocking-scene/src/error.rs", "Failure"),
     ("crates/rocking-spectra/src/shard.rs", "Shards"),
     ("crates/rocking/src/error.rs", "NoVariant"),
 ];
@@ -55,8 +53,8 @@ const PENDING_FLAGS: &[(&str, &str)] = &[
     ("crates/rocking-scene/src/scene.rs", "--set"),
     ("crates/rocking-spectra/src/lib.rs", "--out"),
     ("crates/rocking-spectra/src/shard.rs", "--shard"),
-    ("crates/rocking-study/src/ida.rs", "--records"),
-    ("crates/rocking-study/src/ida.rs", "--set"),
+    ("crates/rocking-study/src/ida/mod.rs", "--records"),
+    ("crates/rocking-study/src/ida/mod.rs", "--set"),
     ("crates/rocking-study/src/plan/mod.rs", "--axis"),
     ("crates/rocking-study/src/plan/mod.rs", "--records"),
 ];

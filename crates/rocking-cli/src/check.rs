@@ -11,9 +11,10 @@ use rocking_scene::setup::Setup;
 use rocking_scene::SceneError;
 use rocking_study::run_report as report;
 
+use crate::error::CliError;
 use crate::load_base;
 
-pub(crate) fn check(scene: &Path, set: &[String], json: bool) -> Result<(), SceneError> {
+pub(crate) fn check(scene: &Path, set: &[String], json: bool) -> Result<(), CliError> {
     // What `run`, `spectrum`, `batch` and `ida` refuse in the scene, by their own checks.
     let base = load_base(scene, set)?;
     rocking_study::plan::check_table(&base)?;
@@ -177,7 +178,7 @@ pub(crate) fn check(scene: &Path, set: &[String], json: bool) -> Result<(), Scen
 
 /// The ground's statics and the small-amplitude frequencies on it, as JSON (`None`: the rigid
 /// surface). Frequencies in the structure's time unit and over p.
-fn ground(m: &Setup) -> Result<Option<serde_json::Value>, SceneError> {
+fn ground(m: &Setup) -> Result<Option<serde_json::Value>, CliError> {
     let Some(g) = m.ground.as_ref() else {
         return Ok(None);
     };

@@ -4,10 +4,9 @@
 
 use std::path::{Path, PathBuf};
 
-use rocking_scene::SceneError;
 use rocking_study::convergence;
-use rocking_study::plan::sweep_error;
 
+use crate::error::CliError;
 use crate::out_dir::write_atomic;
 use crate::sweep::{failed_runs, out_dir, threads_pool};
 
@@ -22,7 +21,7 @@ pub struct Args<'a> {
     pub threads: Option<usize>,
 }
 
-pub fn convergence(a: Args) -> Result<(), SceneError> {
+pub fn convergence(a: Args) -> Result<(), CliError> {
     let text = rocking_scene::scene::read(a.scene)?;
     let study = convergence::plan(a.scene, text, a.sets, a.models, a.quantities, a.tolerance)?;
     let dir = out_dir(a.scene, a.out, "convergence");
@@ -30,14 +29,9 @@ pub fn convergence(a: Args) -> Result<(), SceneError> {
     let pool = threads_pool(a.threads)?;
     let outcome = pool
         .install(|| rocking_spectra::run_in_memory(&study.plan.sweep, |v| study.plan.run_cell(v)))
-        .map_err(sweep_error)?;
+        .map_err(CliError::from)?;
     let report = study.report(&outcome);
-    std::fs::create_dir_all(&dir).map_err(|e| {
-        SceneError::failure(format!(
-            "{}: cannot create the directory: {e}",
-            dir.display()
-        ))
-    })?;
+    std::fs::create_dir_all(&dir).map_err(|e| CliError::io("create the directory", &dir, e))?;
     let csv = dir.join("convergence.csv");
     write_atomic(&csv, report.csv().as_bytes())?;
     let json = dir.join("convergence.json");

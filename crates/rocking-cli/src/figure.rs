@@ -4,6 +4,7 @@
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
+use crate::error::CliError;
 use crate::out_dir::{OutDir, FIGURE_OUT};
 use rocking_plot::figure_file::{self, stem};
 use rocking_scene::SceneError;
@@ -21,7 +22,7 @@ pub struct Options {
 /// `rocking figure`: every figure is drawn into a staging directory that replaces `--out` at
 /// the end, under its lock ([`OutDir`]), keeping the figures of other files already there; two
 /// files of one name would write the same outputs and are refused before anything is drawn.
-pub fn figure(files: &[PathBuf], opts: &Options) -> Result<(), SceneError> {
+pub fn figure(files: &[PathBuf], opts: &Options) -> Result<(), CliError> {
     let mut seen: BTreeMap<String, &PathBuf> = BTreeMap::new();
     for file in files {
         if let Some(first) = seen.insert(stem(file), file) {
@@ -32,7 +33,8 @@ pub fn figure(files: &[PathBuf], opts: &Options) -> Result<(), SceneError> {
                 file.display(),
                 opts.out.display(),
                 stem(file)
-            )));
+            ))
+            .into());
         }
     }
     let specs = files

@@ -10,15 +10,19 @@ use rocking_motion::intensity::pga_over_uplift;
 use rocking_study::ida::RecordStudy;
 use serde_json::json;
 
+use crate::error::CliError;
 use crate::out_dir::{write_atomic, OutDir};
 use rocking_plot::figure as plot;
 use rocking_scene::SceneError;
 
-fn csv_err(e: csv::Error) -> SceneError {
-    SceneError::failure(format!("cannot write a table: {e}"))
+fn csv_err(source: csv::Error) -> CliError {
+    CliError::Table {
+        name: "a table",
+        source,
+    }
 }
 
-fn records_csv(done: &[RecordStudy], alpha: f64, g_si: f64) -> Result<Vec<u8>, SceneError> {
+fn records_csv(done: &[RecordStudy], alpha: f64, g_si: f64) -> Result<Vec<u8>, CliError> {
     let mut w = csv::Writer::from_writer(Vec::new());
     w.write_record([
         "record",
@@ -42,7 +46,7 @@ fn records_csv(done: &[RecordStudy], alpha: f64, g_si: f64) -> Result<Vec<u8>, S
     for d in done {
         let m = &d.ims;
         let norm = pga_over_uplift(m.pga_m_s2 / g_si * rocking_motion::STANDARD_GRAVITY, alpha)
-            .map_err(|e| SceneError::failure(e.to_string()))?;
+            .map_err(CliError::Intensity)?;
         let mut row = vec![d.name.clone(), d.path.clone(), d.unit.to_string()];
         row.extend(
             [
@@ -67,12 +71,11 @@ fn records_csv(done: &[RecordStudy], alpha: f64, g_si: f64) -> Result<Vec<u8>, S
         row.extend([capacity, below, d.points.len().to_string()]);
         w.write_record(&row).map_err(csv_err)?;
     }
-    w.into_inner()
-        .map_err(|e| SceneError::failure(e.to_string()))
+    w.into_inner().map_err(|e| csv_err(e.into_error().into()))
 }
 
 /// ida.csv or stripes.csv: one row per analysis, with the quantities of `[sweep] report`.
-fn ida_csv(done: &[RecordStudy], report: &[String]) -> Result<Vec<u8>, SceneError> {
+fn ida_csv(done: &[RecordStudy], report: &[String]) -> Result<Vec<u8>, CliError> {
     let mut w = csv::Writer::from_writer(Vec::new());
     let head = [
         "record",
@@ -100,8 +103,7 @@ fn ida_csv(done: &[RecordStudy], report: &[String]) -> Result<Vec<u8>, SceneErro
             w.write_record(&row).map_err(csv_err)?;
         }
     }
-    w.into_inner()
-        .map_err(|e| SceneError::failure(e.to_string()))
+    w.into_inner().map_err(|e| csv_err(e.into_error().into()))
 }
 
 /// The intensity measure's axis label, e.g. "Sa(T = 4.5 s, ζ = 5 %) (m/s²)".
@@ -116,7 +118,7 @@ pub fn ida(
     records: &[PathBuf],
     out: Option<PathBuf>,
     threads: Option<usize>,
-) -> Result<(), SceneError> {
+) -> Result<(), CliError> {
     let start = Instant::now();
     let base = crate::load_base(scene_path, sets)?;
     let model = base.model(&[])?;
@@ -126,13 +128,12 @@ pub fn ida(
         if !(1..=1024).contains(&n) {
             return Err(SceneError::input(format!(
                 "--threads {n} is not allowed: 1 <= threads <= 1024"
-            )));
+            ))
+            .into());
         }
         pool = pool.num_threads(n);
     }
-    let pool = pool
-        .build()
-        .map_err(|e| SceneError::failure(format!("cannot start the thread pool: {e}")))?;
+    let pool = pool.build().map_err(CliError::ThreadPool)?;
     let target = out.unwrap_or_else(|| {
         let stem = scene_path
             .file_stem()
@@ -167,8 +168,10 @@ pub fn ida(
         "ida.csv"
     };
     write_atomic(&dir.path().join(table), &ida_csv(done, base.report())?)?;
-    let text = serde_json::to_string_pretty(&json)
-        .map_err(|e| SceneError::failure(format!("cannot write fragility.json: {e}")))?;
+    let text = serde_json::to_string_pretty(&json).map_err(|source| CliError::Json {
+        name: "fragility.json",
+        source,
+    })?;
     write_atomic(&dir.path().join("fragility.json"), (text + "\n").as_bytes())?;
     // What the study took, apart: fragility.json is a function of the study alone (the same
     // bytes on every run), as a spectrum's meta.json is.

@@ -28,6 +28,7 @@ macro_rules! out {
 
 mod check;
 mod convergence;
+mod error;
 mod figure;
 mod ida;
 mod merge;
@@ -42,9 +43,9 @@ use clap::{Parser, Subcommand};
 use rocking_scene::{models, scene, setup};
 use rocking_study::run_report as report;
 
+use error::CliError;
 use rocking_plot::figure as plot;
 use rocking_scene::setup::Setup;
-use rocking_scene::SceneError;
 
 /// Shown by `--help`: what each accuracy preset costs (`rocking::Preset::measured`).
 fn presets_help() -> String {
@@ -257,7 +258,7 @@ enum Command {
     },
 }
 
-fn load(scene: &Path, set: &[String]) -> Result<(scene::Scene, Setup), SceneError> {
+fn load(scene: &Path, set: &[String]) -> Result<(scene::Scene, Setup), CliError> {
     let sc = scene::load(scene, set)?;
     check_title(&sc)?;
     let model = setup::build(&sc)?;
@@ -266,15 +267,18 @@ fn load(scene: &Path, set: &[String]) -> Result<(scene::Scene, Setup), SceneErro
 
 /// A scene's `title` is drawn on its plots (SVG, which holds no control character): one is
 /// refused before the run, not after it when the plots are drawn.
-pub(crate) fn check_title(sc: &scene::Scene) -> Result<(), SceneError> {
+pub(crate) fn check_title(sc: &scene::Scene) -> Result<(), CliError> {
     match sc.spec.title.as_deref().and_then(plot::control_char) {
-        Some(c) => Err(sc.src.err(
-            "title",
-            format_args!(
-                "`title` holds the control character {c:?}, which a plot cannot show: \
+        Some(c) => Err(sc
+            .src
+            .err(
+                "title",
+                format_args!(
+                    "`title` holds the control character {c:?}, which a plot cannot show: \
                  printable text only"
-            ),
-        )),
+                ),
+            )
+            .into()),
         None => Ok(()),
     }
 }
@@ -283,14 +287,14 @@ pub(crate) fn check_title(sc: &scene::Scene) -> Result<(), SceneError> {
 pub(crate) fn load_base(
     scene: &Path,
     set: &[String],
-) -> Result<rocking_study::plan::Base, SceneError> {
+) -> Result<rocking_study::plan::Base, CliError> {
     let base = rocking_study::plan::Base::load(scene, set)?;
     check_title(base.scene())?;
     Ok(base)
 }
 
 /// `rocking models`: the generated registry, as text or JSON.
-fn models_command(json: bool) -> Result<(), SceneError> {
+fn models_command(json: bool) -> Result<(), CliError> {
     if json {
         out!("{}", models::json());
     } else {
@@ -299,7 +303,7 @@ fn models_command(json: bool) -> Result<(), SceneError> {
     Ok(())
 }
 
-fn run(scene: &Path, set: &[String], out: Option<PathBuf>, json: bool) -> Result<(), SceneError> {
+fn run(scene: &Path, set: &[String], out: Option<PathBuf>, json: bool) -> Result<(), CliError> {
     let (_, mut m) = load(scene, set)?;
     let events_csv = m.options.event_log;
     if m.plots {
@@ -331,14 +335,14 @@ fn run(scene: &Path, set: &[String], out: Option<PathBuf>, json: bool) -> Result
     };
     let stage = out_dir.path().to_path_buf();
     let mut written = Vec::new();
-    let text = serde_json::to_string_pretty(&summary)
-        .map_err(|e| SceneError::failure(format!("cannot serialise the summary: {e}")))?;
+    let text = serde_json::to_string_pretty(&summary).map_err(|source| CliError::Json {
+        name: "summary.json",
+        source,
+    })?;
     let write = |name: &str, bytes: &[u8]| {
         let path = stage.join(name);
         std::fs::write(&path, bytes)
-            .map_err(|e| {
-                SceneError::failure(format!("{}: cannot write: {e}", dir.join(name).display()))
-            })
+            .map_err(|e| CliError::io("write", dir.join(name), e))
             .map(|()| path)
     };
     written.push(write("summary.json", (text + "\n").as_bytes())?);
@@ -354,12 +358,11 @@ fn run(scene: &Path, set: &[String], out: Option<PathBuf>, json: bool) -> Result
     let mut animation_note = None;
     if let Some(spec) = &m.animation {
         let path = stage.join("animation.gif");
-        let (gif, frames) = rocking_plot::animation::render(&m, &run, spec).map_err(|e| {
-            SceneError::failure(format!(
-                "{}: cannot draw the animation: {e}",
-                path.display()
-            ))
-        })?;
+        let (gif, frames) =
+            rocking_plot::animation::render(&m, &run, spec).map_err(|e| CliError::Animation {
+                path: path.clone(),
+                detail: e.to_string(),
+            })?;
         out_dir::write_atomic(&path, &gif)?;
         let bytes = gif.len();
         animation_note = Some(format!(
@@ -433,8 +436,8 @@ fn run(scene: &Path, set: &[String], out: Option<PathBuf>, json: bool) -> Result
 }
 
 /// A failed write to standard output.
-pub(crate) fn stdout_error(e: std::io::Error) -> SceneError {
-    SceneError::failure(format!("cannot write to standard output: {e}"))
+pub(crate) fn stdout_error(e: std::io::Error) -> CliError {
+    CliError::Stdout(e)
 }
 
 fn main() -> ExitCode {

@@ -11,6 +11,7 @@ use rocking_spectra::shard::MergeError;
 use rocking_spectra::{Outcome, Shard, SweepError};
 use rocking_study::plan::{program_digest, Base, Plan};
 
+use crate::error::CliError;
 use crate::out_dir::{OutDir, MERGE_OUT};
 use crate::shard::{io, read_manifest, Kind, Manifest, MANIFEST};
 use crate::sweep;
@@ -34,7 +35,7 @@ const SAME: [(&str, &str); 10] = [
 /// of another study, a duplicate, a missing shard or a shard that lacks cells are refused with
 /// exit status 2 and nothing is written; failed cells are reported as by an unsharded run
 /// (exit status 1, their messages in meta.json).
-pub fn merge(out: &Path, dirs: &[PathBuf]) -> Result<(), SceneError> {
+pub fn merge(out: &Path, dirs: &[PathBuf]) -> Result<(), CliError> {
     let mut shards = Vec::new();
     let mut first: Option<(&Path, serde_json::Value, Manifest)> = None;
     for dir in dirs {
@@ -50,13 +51,14 @@ pub fn merge(out: &Path, dirs: &[PathBuf]) -> Result<(), SceneError> {
                         "{}: a shard of another study than {}: {what} differ",
                         dir.display(),
                         d0.display()
-                    )));
+                    ))
+                    .into());
                 }
             }
         }
     }
     let Some((dir0, _, m)) = first else {
-        return Err(SceneError::input("rocking merge: no shard directory given"));
+        return Err(SceneError::input("rocking merge: no shard directory given").into());
     };
     if m.program != program_digest() {
         return Err(SceneError::input(format!(
@@ -65,7 +67,8 @@ pub fn merge(out: &Path, dirs: &[PathBuf]) -> Result<(), SceneError> {
             dir0.display(),
             m.program,
             program_digest()
-        )));
+        ))
+        .into());
     }
     let scene = PathBuf::from(&m.scene);
     let cwd = std::env::current_dir().map_err(|e| io(Path::new("."), "read", e))?;
@@ -75,7 +78,8 @@ pub fn merge(out: &Path, dirs: &[PathBuf]) -> Result<(), SceneError> {
             dir0.display(),
             m.scene,
             m.directory
-        )));
+        ))
+        .into());
     }
     // The study planned again as the shards planned it: the same cells, the same fingerprint
     // (unless a record's contents changed since), and outputs from the same writers.
@@ -102,7 +106,8 @@ pub fn merge(out: &Path, dirs: &[PathBuf]) -> Result<(), SceneError> {
             dir0.display(),
             plan.sweep.fingerprint,
             m.fingerprint
-        )));
+        ))
+        .into());
     }
     let outcome = rocking_spectra::shard::merge(&plan.sweep, &shards).map_err(|e| match e {
         MergeError::Shards(_) => SceneError::input(e.to_string()),
@@ -133,12 +138,7 @@ pub fn merge(out: &Path, dirs: &[PathBuf]) -> Result<(), SceneError> {
     }
 }
 
-fn write(
-    plan: &Plan,
-    kind: Kind,
-    outcome: &Outcome,
-    dir: &Path,
-) -> Result<Vec<PathBuf>, SceneError> {
+fn write(plan: &Plan, kind: Kind, outcome: &Outcome, dir: &Path) -> Result<Vec<PathBuf>, CliError> {
     match kind {
         Kind::Spectrum => sweep::write_outputs(plan, outcome, dir),
         Kind::Batch => sweep::write_batch_outputs(plan, outcome, dir).map(|(w, _)| w),

@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 
 use rocking_plot::figure as plot;
 
+use crate::error::CliError;
 use rocking_scene::SceneError;
 
 pub use rocking_plot::figure::write_atomic;
@@ -112,7 +113,7 @@ struct Lock {
 }
 
 impl Lock {
-    fn acquire(path: &Path) -> Result<Lock, SceneError> {
+    fn acquire(path: &Path) -> Result<Lock, CliError> {
         use fs4::fs_std::FileExt as _;
         loop {
             let file = std::fs::OpenOptions::new()
@@ -180,13 +181,13 @@ fn sibling_key(name: &str) -> String {
     )
 }
 
-fn io_error(what: &str, p: &Path, e: std::io::Error) -> SceneError {
-    SceneError::failure(format!("{}: cannot {what}: {e}", p.display()))
+fn io_error(what: &'static str, p: &Path, e: std::io::Error) -> CliError {
+    CliError::io(what, p, e)
 }
 
 /// The directory `--out` names: itself, or where it links to. A link to nowhere is refused
 /// (there is no directory to replace, and creating one through the link is not what was asked).
-fn resolve(out: &Path) -> Result<PathBuf, SceneError> {
+fn resolve(out: &Path) -> Result<PathBuf, CliError> {
     match std::fs::symlink_metadata(out) {
         Ok(m) if m.file_type().is_symlink() => std::fs::canonicalize(out).map_err(|e| {
             let to = std::fs::read_link(out).unwrap_or_default();
@@ -196,6 +197,7 @@ fn resolve(out: &Path) -> Result<PathBuf, SceneError> {
                 out.display(),
                 to.display()
             ))
+            .into()
         }),
         _ => Ok(out.to_path_buf()),
     }
@@ -216,7 +218,7 @@ impl OutDir {
     /// runs left, and creates the staging directory; an existing `out` may hold only files that
     /// `kind` writes. Called before the command's work, so that an `--out` it could not replace
     /// is refused before anything is computed.
-    pub fn begin(out: &Path, kind: OutKind) -> Result<OutDir, SceneError> {
+    pub fn begin(out: &Path, kind: OutKind) -> Result<OutDir, CliError> {
         let target = resolve(out)?;
         let name = target
             .file_name()
@@ -299,10 +301,8 @@ impl OutDir {
     /// the exchange, the old directory is first renamed aside (`.NAME.rocking-old-*`) and the new
     /// one into place; a kill between the two renames leaves the old one aside, and the next run
     /// puts it back before anything else ([`OutDir::begin`]).
-    pub fn commit(self) -> Result<(), SceneError> {
-        let fail = |e: std::io::Error| {
-            SceneError::failure(format!("{}: cannot replace: {e}", self.shown.display()))
-        };
+    pub fn commit(self) -> Result<(), CliError> {
+        let fail = |e: std::io::Error| CliError::io("replace", &self.shown, e);
         if cfg!(debug_assertions) {
             for e in std::fs::read_dir(self.staging.path()).into_iter().flatten() {
                 let n = e.map(|e| e.file_name().to_string_lossy().into_owned());
@@ -386,9 +386,9 @@ impl OutDir {
 }
 
 /// `--out` named an existing file that is not a directory: the one message of every command.
-pub fn refuse_a_file(out: &Path) -> Result<(), SceneError> {
+pub fn refuse_a_file(out: &Path) -> Result<(), CliError> {
     match std::fs::metadata(out) {
-        Ok(m) if !m.is_dir() => Err(not_a_directory(out)),
+        Ok(m) if !m.is_dir() => Err(not_a_directory(out).into()),
         _ => Ok(()),
     }
 }
@@ -448,12 +448,11 @@ mod test_hook {
 }
 
 /// An existing `--out` must be a directory of the command's outputs only (never a user's folder).
-fn check_is_run_dir(target: &Path, shown: &Path, kind: OutKind) -> Result<(), SceneError> {
+fn check_is_run_dir(target: &Path, shown: &Path, kind: OutKind) -> Result<(), CliError> {
     if !target.is_dir() {
-        return Err(not_a_directory(shown));
+        return Err(not_a_directory(shown).into());
     }
-    let entries = std::fs::read_dir(target)
-        .map_err(|e| SceneError::failure(format!("{}: cannot read: {e}", shown.display())))?;
+    let entries = std::fs::read_dir(target).map_err(|e| CliError::io("read", shown, e))?;
     for e in entries.flatten() {
         let n = e.file_name().to_string_lossy().into_owned();
         // `.summary.json.tmp123`: a temporary file an older version left when killed.
@@ -467,7 +466,8 @@ fn check_is_run_dir(target: &Path, shown: &Path, kind: OutKind) -> Result<(), Sc
                  whole directory, so give an --out that holds only a previous run's outputs",
                 shown.display(),
                 kind.command
-            )));
+            ))
+            .into());
         }
     }
     Ok(())

@@ -6,9 +6,10 @@ use std::path::Path;
 
 use rocking_scene::SceneError;
 use rocking_spectra::{Progress, Shard};
-use rocking_study::plan::{program_digest, sweep_error, Plan};
+use rocking_study::plan::{program_digest, Plan};
 use serde::{Deserialize, Serialize};
 
+use crate::error::CliError;
 use crate::out_dir::write_atomic;
 
 /// The kind of study a shard belongs to.
@@ -49,8 +50,8 @@ fn exact(v: &f64) -> String {
 
 pub const MANIFEST: &str = "shard.json";
 
-pub fn io(path: &Path, what: &str, e: impl std::fmt::Display) -> SceneError {
-    SceneError::failure(format!("{}: cannot {what}: {e}", path.display()))
+pub fn io(path: &Path, what: &'static str, e: std::io::Error) -> CliError {
+    CliError::io(what, path, e)
 }
 
 /// Runs (or resumes) shard `shard` of `plan` into `dir`: `shard.json` first (so that a shard
@@ -64,7 +65,7 @@ pub fn run_shard(
     dir: &Path,
     progress: Progress,
     pool: &rayon::ThreadPool,
-) -> Result<(), SceneError> {
+) -> Result<(), CliError> {
     let base = &plan.base;
     let cwd = std::env::current_dir().map_err(|e| io(Path::new("."), "read", e))?;
     let (records, scales) = match &plan.records {
@@ -93,16 +94,18 @@ pub fn run_shard(
     };
     // A directory of another study or shard is refused before shard.json is touched: a refused
     // run changes nothing (a finished shard stays mergeable).
-    rocking_spectra::shard::check_dir(&plan.sweep, shard, dir).map_err(sweep_error)?;
+    rocking_spectra::shard::check_dir(&plan.sweep, shard, dir).map_err(CliError::from)?;
     std::fs::create_dir_all(dir).map_err(|e| io(dir, "create", e))?;
-    let text = serde_json::to_string_pretty(&manifest)
-        .map_err(|e| SceneError::failure(format!("cannot serialise {MANIFEST}: {e}")))?;
+    let text = serde_json::to_string_pretty(&manifest).map_err(|source| CliError::Json {
+        name: MANIFEST,
+        source,
+    })?;
     write_atomic(&dir.join(MANIFEST), (text + "\n").as_bytes())?;
     let outcome = pool
         .install(|| {
             rocking_spectra::run_shard(&plan.sweep, shard, dir, progress, |v| plan.run_cell(v))
         })
-        .map_err(sweep_error)?;
+        .map_err(CliError::from)?;
     out!(
         "{}: shard {shard}: {} of {} cells ({} computed now, {} resumed, {} failed) in {:.2} s on {} threads",
         base.path().display(),
@@ -123,7 +126,7 @@ pub fn run_shard(
 }
 
 /// `shard.json` of the shard directory `dir`, as JSON and as read.
-pub fn read_manifest(dir: &Path) -> Result<(serde_json::Value, Manifest), SceneError> {
+pub fn read_manifest(dir: &Path) -> Result<(serde_json::Value, Manifest), CliError> {
     let path = dir.join(MANIFEST);
     let text = std::fs::read_to_string(&path).map_err(|e| {
         SceneError::input(format!(

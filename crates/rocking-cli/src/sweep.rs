@@ -5,9 +5,10 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use rocking_spectra::{cells_csv, CellClass, Outcome, Progress, Shard, Sweep};
-use rocking_study::plan::{program_digest, sweep_error, Plan, Records};
+use rocking_study::plan::{program_digest, Plan, Records};
 use serde_json::json;
 
+use crate::error::CliError;
 use crate::out_dir::write_atomic;
 use crate::shard;
 use rocking_plot::figure as plot;
@@ -16,18 +17,18 @@ use rocking_scene::SceneError;
 /// The most threads `--threads` may ask for: more than the cores only adds switching.
 const MAX_THREADS: usize = 1024;
 
-pub(crate) fn threads_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, SceneError> {
+pub(crate) fn threads_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, CliError> {
     let mut b = rayon::ThreadPoolBuilder::new();
     if let Some(n) = threads {
         if !(1..=MAX_THREADS).contains(&n) {
             return Err(SceneError::input(format!(
                 "--threads {n} is not allowed: 1 <= threads <= {MAX_THREADS}"
-            )));
+            ))
+            .into());
         }
         b = b.num_threads(n);
     }
-    b.build()
-        .map_err(|e| SceneError::failure(format!("cannot start the thread pool: {e}")))
+    b.build().map_err(CliError::ThreadPool)
 }
 
 pub(crate) fn out_dir(scene: &Path, out: Option<PathBuf>, what: &str) -> PathBuf {
@@ -49,7 +50,7 @@ pub fn spectrum(
     quiet: bool,
     threads: Option<usize>,
     shard: Option<Shard>,
-) -> Result<(), SceneError> {
+) -> Result<(), CliError> {
     let plan = Plan::spectrum(crate::load_base(scene_path, sets)?, axis_args)?;
     let sweep = &plan.sweep;
     let dir = out_dir(scene_path, out, "spectrum");
@@ -65,7 +66,7 @@ pub fn spectrum(
     }
     let outcome = pool
         .install(|| rocking_spectra::run(sweep, &dir, progress, |values| plan.run_cell(values)))
-        .map_err(sweep_error)?;
+        .map_err(CliError::from)?;
     let mut written = pool.install(|| write_outputs(&plan, &outcome, &dir))?;
     written.push(write_timing(&outcome, &dir, pool.current_num_threads())?);
     let mut counts: BTreeMap<&str, usize> = BTreeMap::new();
@@ -94,14 +95,20 @@ pub fn spectrum(
 
 /// Exit status 1 when any cell failed (on a first run and on a resume alike): its results are
 /// written, marked `failed`, with the messages in meta.json.
-pub(crate) fn failed_runs(outcome: &Outcome, what: &str, table: &str) -> Result<(), SceneError> {
+pub(crate) fn failed_runs(
+    outcome: &Outcome,
+    what: &'static str,
+    table: &'static str,
+) -> Result<(), CliError> {
     match outcome.failures.first() {
         None => Ok(()),
-        Some((_, first)) => Err(SceneError::failure(format!(
-            "{} of {} {what} failed (marked `failed` in {table}, messages in meta.json); first: {first}",
-            outcome.failures.len(),
-            outcome.cells.len()
-        ))),
+        Some((_, first)) => Err(CliError::FailedCells {
+            failed: outcome.failures.len(),
+            total: outcome.cells.len(),
+            what,
+            table,
+            first: first.clone(),
+        }),
     }
 }
 
@@ -120,7 +127,7 @@ fn cell_values(sweep: &Sweep, index: usize) -> Vec<serde_json::Value> {
 
 /// What a run took: timing.json, apart from meta.json, which is a function of the study alone
 /// (the same bytes whether run at once, resumed, or sharded and merged).
-fn write_timing(outcome: &Outcome, dir: &Path, threads: usize) -> Result<PathBuf, SceneError> {
+fn write_timing(outcome: &Outcome, dir: &Path, threads: usize) -> Result<PathBuf, CliError> {
     let timing = json!({
         "cells": outcome.cells.len(),
         "computed_now": outcome.computed,
@@ -142,7 +149,7 @@ pub(crate) fn write_outputs(
     plan: &Plan,
     outcome: &Outcome,
     dir: &Path,
-) -> Result<Vec<PathBuf>, SceneError> {
+) -> Result<Vec<PathBuf>, CliError> {
     let (base, sweep) = (&plan.base, &plan.sweep);
     let mut written = Vec::new();
     let cells = dir.join("cells.csv");
@@ -152,7 +159,7 @@ pub(crate) fn write_outputs(
         Some(r) => {
             let run =
                 rocking_spectra::run_in_memory(&r.plan.sweep, |values| r.plan.run_cell(values))
-                    .map_err(sweep_error)?;
+                    .map_err(CliError::from)?;
             let path = dir.join("reference.csv");
             write_atomic(&path, cells_csv(&r.plan.sweep, &run.cells).as_bytes())?;
             written.push(path);
@@ -251,7 +258,7 @@ pub fn batch(
     quiet: bool,
     threads: Option<usize>,
     shard: Option<Shard>,
-) -> Result<(), SceneError> {
+) -> Result<(), CliError> {
     let plan = Plan::batch(crate::load_base(scene_path, sets)?, records, scales, axes)?;
     let dir = out_dir(scene_path, out, "batch");
     crate::out_dir::refuse_a_file(&dir)?;
@@ -266,7 +273,7 @@ pub fn batch(
     }
     let outcome = pool
         .install(|| rocking_spectra::run(&plan.sweep, &dir, progress, |v| plan.run_cell(v)))
-        .map_err(sweep_error)?;
+        .map_err(CliError::from)?;
     let (mut written, tally) = write_batch_outputs(&plan, &outcome, &dir)?;
     written.push(write_timing(&outcome, &dir, pool.current_num_threads())?);
     let own = &plan.sweep.axes[2..];
@@ -358,7 +365,7 @@ pub(crate) fn write_batch_outputs(
     plan: &Plan,
     outcome: &Outcome,
     dir: &Path,
-) -> Result<(Vec<PathBuf>, Tally), SceneError> {
+) -> Result<(Vec<PathBuf>, Tally), CliError> {
     let (base, sweep) = (&plan.base, &plan.sweep);
     let Some(Records {
         files: list,
@@ -368,7 +375,7 @@ pub(crate) fn write_batch_outputs(
         scales,
     }) = &plan.records
     else {
-        return Err(SceneError::failure("a batch plan without records"));
+        unreachable!("Plan::batch always gives its records");
     };
     let own = &sweep.axes[2..];
     // The cells of the batch's own axes (1 without them): the fastest-varying part of an index.
@@ -407,7 +414,10 @@ pub(crate) fn write_batch_outputs(
         })
         .collect();
     let mut runs = csv::Writer::from_writer(Vec::new());
-    let csv_err = |e: csv::Error| SceneError::failure(format!("cannot write runs.csv: {e}"));
+    let csv_err = |source| CliError::Table {
+        name: "runs.csv",
+        source,
+    };
     // The quantities of `[sweep] report` after the run's own, as in a spectrum's cells.csv.
     let head = ["record", "scale"]
         .into_iter()
@@ -452,7 +462,7 @@ pub(crate) fn write_batch_outputs(
     }
     let rows = runs
         .into_inner()
-        .map_err(|e| SceneError::failure(format!("cannot write runs.csv: {e}")))?;
+        .map_err(|e| csv_err(e.into_error().into()))?;
     let mut written = Vec::new();
     let path = dir.join("runs.csv");
     write_atomic(&path, &rows)?;

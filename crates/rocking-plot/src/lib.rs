@@ -13,11 +13,14 @@
 pub mod animation;
 pub mod chart;
 pub mod colour;
+mod error;
 pub mod export;
 pub mod figure;
 pub mod figure_file;
 pub mod style;
 pub mod text;
+
+pub use error::FigureError;
 
 use std::sync::Once;
 

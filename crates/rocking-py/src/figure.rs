@@ -7,7 +7,9 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
 use rocking_plot::figure_file::{self, Loader};
 
-use crate::py_err;
+use rocking_plot::FigureError;
+
+use crate::error::py_err;
 
 /// The figure of the figure file `path`: `{extension: bytes}` for "svg", "png", "pdf" and (at
 /// print size, not a `draft`) "caption.md", byte for byte what `rocking figure` writes. Sweeps
@@ -27,8 +29,10 @@ pub fn figure<'py>(
             let spec = figure_file::read(&path)?;
             let mut loader = Loader::new(&cache, quiet);
             let figure = figure_file::draw(&path, &spec, &mut loader, cells, draft)?;
-            figure.files().map_err(|m| {
-                rocking_scene::SceneError::failure(format!("{}: cannot draw: {m}", path.display()))
+            figure.files().map_err(|detail| FigureError::Draw {
+                dir: path.clone(),
+                name: "the figure".to_string(),
+                detail,
             })
         })
         .map_err(py_err)?;

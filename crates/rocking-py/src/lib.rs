@@ -9,6 +9,7 @@
 //! It owns the Python API; it must not compute or format anything the library crates do (a
 //! result from Python is the command's).
 
+mod error;
 mod figure;
 
 use std::path::{Path, PathBuf};
@@ -24,15 +25,9 @@ use rocking_scene::SceneError;
 use rocking_spectra::{Outcome, Sweep};
 use rocking_study::plan::{Base, Plan};
 use rocking_study::run_report as report;
+use rocking_study::StudyError;
 
-/// The command's errors as Python exceptions: bad input is a `ValueError`, anything else a
-/// `RuntimeError`, with the command's message.
-fn py_err(e: SceneError) -> PyErr {
-    match e {
-        SceneError::Input(e) => PyValueError::new_err(e.message),
-        SceneError::Failure(m) => PyRuntimeError::new_err(m),
-    }
-}
+use crate::error::py_err;
 
 /// f64 values as native-endian bytes, for `numpy.frombuffer` (one copy, exact).
 fn f64_bytes<'py>(py: Python<'py>, values: impl Iterator<Item = f64>) -> Bound<'py, PyBytes> {
@@ -126,7 +121,7 @@ impl Scene {
             let report = report::simulate(&model, &path)?;
             let summary = report::summary_json(&model, &path, &sets, &report)?.to_string();
             let run = report.run;
-            Ok(RunOutput {
+            Ok::<_, StudyError>(RunOutput {
                 model,
                 run,
                 summary,
@@ -259,7 +254,7 @@ fn pool(threads: Option<usize>) -> PyResult<rayon::ThreadPool> {
 fn run_plan(py: Python<'_>, plan: &Plan, threads: Option<usize>) -> PyResult<Outcome> {
     let pool = pool(threads)?;
     py.detach(|| pool.install(|| rocking_spectra::run_in_memory(&plan.sweep, |v| plan.run_cell(v))))
-        .map_err(|e| PyRuntimeError::new_err(e.to_string()))
+        .map_err(|e| py_err(StudyError::from(e)))
 }
 
 /// A sweep's outcome as plain Python values: axis keys and values, per cell (in sweep order, the
@@ -308,7 +303,7 @@ fn outcome_dict<'py>(
     Ok(d)
 }
 
-fn base(scene: &Scene) -> Result<Base, SceneError> {
+fn base(scene: &Scene) -> Result<Base, StudyError> {
     Base::from_text(&scene.path, scene.text.clone(), &scene.sets)
 }
 
@@ -431,6 +426,10 @@ fn _rocking(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(models_json, m)?)?;
     m.add_function(wrap_pyfunction!(read_scene, m)?)?;
     m.add_function(wrap_pyfunction!(figure::figure, m)?)?;
+    m.add(
+        "SimulationError",
+        m.py().get_type::<error::SimulationError>(),
+    )?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

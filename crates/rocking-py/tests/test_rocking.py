@@ -247,6 +247,30 @@ def test_bad_input_messages_are_the_commands(tmp_path):
     assert done.stderr.strip() == f"error: {e.value}"
 
 
+def test_a_run_that_fails_on_valid_input_raises_simulation_error(tmp_path):
+    # Too few steps allowed: the guard stops the run. The input is valid, so the command exits 1
+    # (not 2) and Python raises SimulationError, a RuntimeError, with the command's message.
+    sets = ["solver.max_steps=50"]
+    done = subprocess.run(
+        [CLI, "run", str(FIG3), "--set", sets[0], "--out", str(tmp_path / "o")],
+        capture_output=True, text=True,
+    )
+    assert done.returncode == 1
+    scene = rocking.load_scene(str(FIG3), set=sets)
+    with pytest.raises(rocking.SimulationError) as e:
+        scene.run()
+    assert isinstance(e.value, RuntimeError) and not isinstance(e.value, ValueError)
+    assert "simulation stopped" in str(e.value) and "max_steps" in str(e.value)
+    assert done.stderr.strip() == f"error: {e.value}"
+
+
+def test_an_unwritable_cache_raises_os_error(tmp_path):
+    not_a_dir = tmp_path / "file"
+    not_a_dir.write_text("")
+    with pytest.raises(OSError, match="Not a directory"):
+        rocking.figure(REPO / "scenes" / "paper" / "fig6-alpha01.toml", cache=not_a_dir, cells=4)
+
+
 def test_other_bad_inputs():
     with pytest.raises(ValueError, match="cannot read scene file"):
         rocking.load_scene(REPO / "scenes" / "no-such-scene.toml")

@@ -1,6 +1,6 @@
-//! Why a scene could not be loaded, built, run or reported: invalid input, with where it is and
-//! what is allowed as fields (the message is what the user reads), or a failure that is not the
-//! input's fault.
+//! Why a scene could not be loaded or built: invalid input, with where it is and what is allowed
+//! as fields (the message is what the user reads). Failures that are not the input's fault
+//! belong to the crates that run and write (`rocking_study::StudyError`).
 
 use std::fmt;
 use std::path::PathBuf;
@@ -27,71 +27,53 @@ pub struct InputError {
     pub message: String,
 }
 
-/// Why a scene could not be loaded, built, run or reported.
-#[derive(Debug)]
-pub enum SceneError {
-    /// Invalid input (a scene, a record, an argument): the user can fix it (exit code 2).
-    Input(Box<InputError>),
-    /// Not the input's fault: a run that failed, an output that could not be written (exit
-    /// code 1).
-    Failure(String),
-}
+/// Why a scene could not be loaded or built: always invalid input, which the user can fix.
+/// What goes wrong later (a run, a write) is the error of the crate that does it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SceneError(Box<InputError>);
 
 impl SceneError {
     /// Invalid input known only by its message.
     pub fn input(message: impl Into<String>) -> Self {
-        SceneError::Input(Box::new(InputError {
+        SceneError(Box::new(InputError {
             message: message.into(),
             ..InputError::default()
         }))
     }
 
-    /// A failure that is not the input's fault.
-    pub fn failure(message: impl Into<String>) -> Self {
-        SceneError::Failure(message.into())
-    }
-
-    /// The value given and what is allowed, for an input error (a failure is returned as is).
+    /// The value given and what is allowed.
     pub fn with_value(mut self, value: impl fmt::Display, allowed: impl Into<String>) -> Self {
-        if let SceneError::Input(e) = &mut self {
-            e.value = Some(value.to_string());
-            e.allowed = Some(allowed.into());
-        }
+        self.0.value = Some(value.to_string());
+        self.0.allowed = Some(allowed.into());
         self
     }
 
     /// The same error with `what` it happened in before its message ("WHAT: MESSAGE"), its
-    /// kind and fields kept.
+    /// fields kept.
     pub fn context(mut self, what: impl fmt::Display) -> Self {
-        match &mut self {
-            SceneError::Input(e) => e.message = format!("{what}: {}", e.message),
-            SceneError::Failure(m) => *m = format!("{what}: {m}"),
-        }
+        self.0.message = format!("{what}: {}", self.0.message);
         self
     }
 
-    /// The input error, if it is one.
-    pub fn as_input(&self) -> Option<&InputError> {
-        match self {
-            SceneError::Input(e) => Some(e),
-            SceneError::Failure(_) => None,
-        }
+    /// Its parts: file, place, key, value, allowed range and the whole message.
+    pub fn fields(&self) -> &InputError {
+        &self.0
+    }
+
+    /// Its parts, to be reworded by a caller that knows more (a study naming its record).
+    pub fn fields_mut(&mut self) -> &mut InputError {
+        &mut self.0
     }
 
     /// The message.
     pub fn message(&self) -> &str {
-        match self {
-            SceneError::Input(e) => &e.message,
-            SceneError::Failure(m) => m,
-        }
+        &self.0.message
     }
+}
 
-    /// The process exit code of a command that stops on this error: 2 for invalid input, 1 else.
-    pub fn exit_code(&self) -> u8 {
-        match self {
-            SceneError::Input(_) => 2,
-            SceneError::Failure(_) => 1,
-        }
+impl From<InputError> for SceneError {
+    fn from(e: InputError) -> Self {
+        SceneError(Box::new(e))
     }
 }
 

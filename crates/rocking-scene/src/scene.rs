@@ -326,7 +326,7 @@ impl Source {
             Some(Place::At(l, c)) => (e.line, e.column) = (Some(l), Some(c)),
             None => {}
         }
-        SceneError::Input(Box::new(e))
+        SceneError::from(e)
     }
 
     /// The value `v` of the key at `path` is outside what is `allowed`.
@@ -791,7 +791,7 @@ mod tests {
         let err = crate::setup::build(&sc)
             .err()
             .expect("alpha = 2 is refused");
-        let e = err.as_input().expect("an input error");
+        let e = err.fields();
         assert_eq!(e.file.as_deref(), Some(Path::new("dir/s.toml")));
         assert_eq!((e.line, e.column), (Some(3), Some(1)));
         assert_eq!(e.key.as_deref(), Some("structure.alpha"));
@@ -800,7 +800,6 @@ mod tests {
             e.allowed.as_deref(),
             Some("a slenderness 0 < alpha < pi/2 rad")
         );
-        assert_eq!(err.exit_code(), 2);
         assert_eq!(
             err.to_string(),
             "dir/s.toml:3:1: [structure] `alpha` = 2 is not allowed: a slenderness 0 < alpha < \
@@ -816,7 +815,7 @@ mod tests {
         let err = crate::setup::build(&sc)
             .err()
             .expect("alpha = 3 is refused");
-        let e = err.as_input().expect("an input error");
+        let e = err.fields();
         assert_eq!(
             (e.set.as_deref(), e.line),
             (Some("structure.alpha=3"), None)

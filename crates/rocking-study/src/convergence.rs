@@ -8,6 +8,8 @@ use std::path::Path;
 
 use rocking::ModelInfo;
 use rocking_scene::SceneError;
+
+use crate::StudyError;
 use rocking_spectra::{Axis, Outcome};
 
 use crate::plan::{Base, Plan};
@@ -83,7 +85,7 @@ pub fn plan(
     models: &[String],
     quantities: &[String],
     tolerance: f64,
-) -> Result<Study, SceneError> {
+) -> Result<Study, StudyError> {
     let bad = |what: &str, value: String, allowed: &str| {
         SceneError::input(format!(
             "{}: {what} = {value} is not allowed: {allowed}",
@@ -95,14 +97,16 @@ pub fn plan(
             "the tolerance",
             tolerance.to_string(),
             "a relative change 0 < tolerance < 1 (0.01 is 1 %)",
-        ));
+        )
+        .into());
     }
     if models.len() < 2 || models.len() > MAX_MODELS {
         return Err(bad(
             "the models",
             models.join(","),
             &format!("from 2 to {MAX_MODELS} models, in the order to compare"),
-        ));
+        )
+        .into());
     }
     let quantities: Vec<String> = if quantities.is_empty() {
         DEFAULT_QUANTITIES.iter().map(|q| q.to_string()).collect()
@@ -118,7 +122,8 @@ pub fn plan(
             &format!("quantity {}", i + 1),
             q.clone(),
             "each quantity once",
-        ));
+        )
+        .into());
     }
     // The quantities beyond the cell's own are the sweep's report, checked by the plan.
     let report: Vec<&String> = quantities

@@ -9,6 +9,9 @@
 //! engine `rocking-spectra`), nor how results are drawn or written (the command and Python).
 
 pub mod convergence;
+mod error;
 pub mod ida;
 pub mod plan;
 pub mod run_report;
+
+pub use error::{Invariant, StudyError};

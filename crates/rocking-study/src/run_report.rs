@@ -11,6 +11,8 @@ use serde_json::{json, Value};
 use rocking_scene::setup::Setup;
 use rocking_scene::SceneError;
 
+use crate::{Invariant, StudyError};
+
 /// A run and, when the scene asks for it (`[output] fixed_base_reference`), the summary of its
 /// fixed-base twin: the same structure under the same excitation, held in full contact.
 pub struct Report {
@@ -23,7 +25,7 @@ pub struct Report {
 /// Runs a built scene (and its fixed-base twin when asked for) with the command's error
 /// messages: bad options are input errors, a guard that stops a run names the scene settings
 /// that bound it.
-pub fn simulate(m: &Setup, scene: &Path) -> Result<Report, SceneError> {
+pub fn simulate(m: &Setup, scene: &Path) -> Result<Report, StudyError> {
     let run = simulate_with(m, &m.options, scene)?;
     let fixed_base = if m.fixed_base_reference {
         let twin = rocking::Options {
@@ -48,31 +50,27 @@ pub fn run_setup(m: &Setup, options: &rocking::Options) -> Result<Run, rocking::
     }
 }
 
-fn simulate_with(m: &Setup, options: &rocking::Options, scene: &Path) -> Result<Run, SceneError> {
+fn simulate_with(m: &Setup, options: &rocking::Options, scene: &Path) -> Result<Run, StudyError> {
     run_setup(m, options).map_err(|e| {
         if e.is_invalid_input() {
-            SceneError::input(format!("{}: {e}", scene.display()))
-        } else if e.is_guard() {
-            SceneError::failure(format!(
-                "{}: simulation stopped: {e}; both limits are scene settings: `max_steps` and \
-                 `max_events` in [solver] (defaults {} and {})",
-                scene.display(),
-                rocking_scene::limits::short(rocking::Options::default().max_steps as f64),
-                rocking_scene::limits::short(rocking::Options::default().max_events as f64)
-            ))
+            SceneError::input(format!("{}: {e}", scene.display())).into()
         } else {
-            SceneError::failure(format!("{}: simulation failed: {e}", scene.display()))
+            StudyError::Simulation {
+                scene: scene.to_path_buf(),
+                source: e,
+            }
         }
     })
 }
 
-fn finite(name: &str, x: f64) -> Result<f64, SceneError> {
+fn finite(name: &str, x: f64) -> Result<f64, StudyError> {
     if x.is_finite() {
         Ok(x)
     } else {
-        Err(SceneError::failure(format!(
-            "the run produced a non-finite {name} ({x}); no results written"
-        )))
+        Err(StudyError::NonFinite {
+            quantity: name.to_string(),
+            detail: x.to_string(),
+        })
     }
 }
 
@@ -130,7 +128,7 @@ pub fn summary_json(
     scene: &Path,
     overrides: &[String],
     report: &Report,
-) -> Result<Value, SceneError> {
+) -> Result<Value, StudyError> {
     let run = &report.run;
     let mut out = quantities(&run.summary, report.fixed_base.as_ref(), si_scale(model))?;
     out.insert("scene".into(), json!(scene.display().to_string()));
@@ -201,7 +199,7 @@ pub fn quantities(
     run: &Summary,
     twin: Option<&Summary>,
     si: Option<SiScale>,
-) -> Result<serde_json::Map<String, Value>, SceneError> {
+) -> Result<serde_json::Map<String, Value>, StudyError> {
     let mut out = serde_json::Map::new();
     for (key, value) in serialized(run)? {
         if key.ends_with("_time") {
@@ -261,13 +259,12 @@ pub fn number(v: &Value) -> Option<f64> {
 }
 
 /// A serializable value as a JSON object; a non-finite number is an error naming its field.
-fn serialized(v: &impl serde::Serialize) -> Result<serde_json::Map<String, Value>, SceneError> {
+fn serialized(v: &impl serde::Serialize) -> Result<serde_json::Map<String, Value>, StudyError> {
     let value = serde_path_to_error::serialize(v, serde_json::value::Serializer).map_err(|e| {
-        SceneError::failure(format!(
-            "the run produced a non-finite {}: {}; no results written",
-            e.path(),
-            e.inner()
-        ))
+        StudyError::NonFinite {
+            quantity: e.path().to_string(),
+            detail: e.inner().to_string(),
+        }
     })?;
     match value {
         Value::Object(map) => Ok(map),
@@ -328,7 +325,7 @@ pub fn warnings(model: &Setup, summary: &Summary) -> Vec<String> {
     out
 }
 
-fn num(out: &mut String, x: f64) -> Result<(), SceneError> {
+fn num(out: &mut String, x: f64) -> Result<(), StudyError> {
     let x = finite("history value", x)?;
     let _ = write!(out, ",{x}");
     Ok(())
@@ -340,7 +337,7 @@ fn num(out: &mut String, x: f64) -> Result<(), SceneError> {
 /// one, the contact fraction and the largest ground pressure over the mean; with n > 1
 /// deformation coordinates then
 /// u_1..u_n and u_1'..u_n' (`u_dot_i`) in the model's units.
-pub fn history_csv(model: &Setup, run: &Run) -> Result<String, SceneError> {
+pub fn history_csv(model: &Setup, run: &Run) -> Result<String, StudyError> {
     let d = model.structure.derived();
     let u = &model.units;
     let ps = model.structure.p_per_second();
@@ -397,9 +394,9 @@ pub fn history_csv(model: &Setup, run: &Run) -> Result<String, SceneError> {
             num(&mut out, r.vertical_reaction_over_w)?;
         }
         if ground {
-            let g = r.ground.ok_or_else(|| {
-                SceneError::failure("a run on compliant ground without its ground columns")
-            })?;
+            let g = r
+                .ground
+                .ok_or(StudyError::Internal(Invariant::GroundColumns))?;
             num(&mut out, g.settlement_over_static)?;
             num(&mut out, g.contact_fraction)?;
             num(&mut out, g.ground_pressure_over_mean)?;
@@ -413,7 +410,7 @@ pub fn history_csv(model: &Setup, run: &Run) -> Result<String, SceneError> {
 }
 
 /// events.csv: one row per uplift, impact, rest or overturning.
-pub fn events_csv(model: &Setup, run: &Run) -> Result<String, SceneError> {
+pub fn events_csv(model: &Setup, run: &Run) -> Result<String, StudyError> {
     let d = model.structure.derived();
     let u = &model.units;
     let mut out = String::from(

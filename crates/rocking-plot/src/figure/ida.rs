@@ -7,10 +7,10 @@ use std::path::{Path, PathBuf};
 use crate::chart::{axes, fail, mark_at, rgb, styled_line, Area, LegendItem};
 use crate::style::{self, LineStyle};
 use crate::text::tick;
+use crate::FigureError;
 use plotters::prelude::*;
 use rocking_fragility::Bootstrap;
 use rocking_scene::labels;
-use rocking_scene::SceneError;
 
 use super::{Figure, Panel};
 
@@ -207,7 +207,7 @@ pub fn ida_plots(
     ida: IdaPanel,
     fit: Option<FitPanel>,
     dir: &Path,
-) -> Result<Vec<PathBuf>, SceneError> {
+) -> Result<Vec<PathBuf>, FigureError> {
     let records = ida.curves.len();
     let (title, scaled) = if ida.stripes {
         (

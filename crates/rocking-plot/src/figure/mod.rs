@@ -35,13 +35,15 @@ use crate::text::tick;
 use rocking::EventKind;
 use rocking_scene::labels;
 
-use rocking_scene::SceneError;
+use crate::FigureError;
 
 /// Writes `bytes` to `path` atomically ([`rocking_spectra::write_atomic`]): a figure is never
 /// left half-written.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), SceneError> {
-    rocking_spectra::write_atomic(path, bytes)
-        .map_err(|e| SceneError::failure(format!("{}: cannot write: {e}", path.display())))
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), FigureError> {
+    rocking_spectra::write_atomic(path, bytes).map_err(|source| FigureError::Write {
+        path: path.to_path_buf(),
+        source,
+    })
 }
 
 /// One panel of a figure.
@@ -502,9 +504,11 @@ impl Figure {
 
     /// Writes [`Figure::files`] into `dir` as `<name>.<extension>`, each atomically; returns
     /// their paths.
-    pub fn write(&self, dir: &Path, name: &str) -> Result<Vec<PathBuf>, SceneError> {
-        let files = self.files().map_err(|m| {
-            SceneError::failure(format!("{}: cannot draw {name}: {m}", dir.display()))
+    pub fn write(&self, dir: &Path, name: &str) -> Result<Vec<PathBuf>, FigureError> {
+        let files = self.files().map_err(|detail| FigureError::Draw {
+            dir: dir.to_path_buf(),
+            name: name.to_string(),
+            detail,
         })?;
         let mut written = Vec::new();
         for (ext, bytes) in files {

@@ -4,15 +4,15 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::FigureError;
 use rocking::Run;
 use rocking_scene::setup::Setup;
-use rocking_scene::SceneError;
 use rocking_spectra::{Cell, Sweep};
 
 use super::*;
 /// `rocking run`'s figure: θ/α, u/u_cr, E/E_ref and ü_g/(g tan α) against τ, stacked, impacts
 /// marked (the paper's Figs 3, 5 and 10 style), written as plot.svg, plot.png and plot.pdf.
-pub fn plots(model: &Setup, run: &Run, dir: &Path) -> Result<Vec<PathBuf>, SceneError> {
+pub fn plots(model: &Setup, run: &Run, dir: &Path) -> Result<Vec<PathBuf>, FigureError> {
     let trace = Trace::of(model, run, String::new(), style::LINES[0]);
     let panels = QUANTITIES
         .into_iter()
@@ -46,7 +46,7 @@ pub fn fragility_plots(
     points: &[(f64, f64)],
     records: usize,
     dir: &Path,
-) -> Result<Vec<PathBuf>, SceneError> {
+) -> Result<Vec<PathBuf>, FigureError> {
     let figure = Figure {
         title: format!("Fraction of {records} records that overturn"),
         caption: None,

@@ -13,6 +13,7 @@ use rocking_study::plan::{Base, Plan, DEFAULT_AXES};
 
 use crate::figure::Trace;
 use rocking_scene::SceneError;
+use rocking_study::StudyError;
 
 /// A sweep's plan and cells, and θ_cr/α of its structure.
 pub struct Swept {
@@ -51,7 +52,7 @@ impl Loader {
         set: &[String],
         label: String,
         style: LineStyle,
-    ) -> Result<Trace, SceneError> {
+    ) -> Result<Trace, StudyError> {
         let mut sets = set.to_vec();
         sets.push("output.plots=true".into());
         let sc = rocking_scene::scene::load(scene, &sets)?;
@@ -70,7 +71,7 @@ impl Loader {
         set: &[String],
         axes: Option<&[String]>,
         cells: Option<usize>,
-    ) -> Result<Rc<Swept>, SceneError> {
+    ) -> Result<Rc<Swept>, StudyError> {
         let base = Base::load(scene, set)?;
         let specs: Vec<String> = match axes {
             Some(a) => a.to_vec(),
@@ -89,14 +90,14 @@ impl Loader {
                 "{}: a figure's sweep has two axes (the panel's x and y), not {}",
                 scene.display(),
                 plan.sweep.axes.len()
-            )));
+            ))
+            .into());
         }
         if let Some(s) = self.swept.get(&plan.sweep.fingerprint) {
             return Ok(s.clone());
         }
         let dir = self.cache.join(&plan.sweep.fingerprint);
-        let outcome = rocking_spectra::run(&plan.sweep, &dir, self.progress, |v| plan.run_cell(v))
-            .map_err(rocking_study::plan::sweep_error)?;
+        let outcome = rocking_spectra::run(&plan.sweep, &dir, self.progress, |v| plan.run_cell(v))?;
         if let Some((_, first)) = outcome.failures.first() {
             eprintln!(
                 "note: {} of {} cells of {} failed (drawn black); first: {first}",

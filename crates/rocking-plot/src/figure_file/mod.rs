@@ -22,6 +22,7 @@ use crate::figure::{
 };
 use crate::style;
 use rocking_scene::SceneError;
+use rocking_study::StudyError;
 
 /// The name of a figure file's outputs: its stem (`fig3.toml` draws `fig3.svg`, …).
 pub fn stem(file: &Path) -> String {
@@ -39,7 +40,7 @@ pub fn draw(
     loader: &mut Loader,
     cells: Option<usize>,
     draft: bool,
-) -> Result<Figure, SceneError> {
+) -> Result<Figure, StudyError> {
     let mut figure = build(file, spec, loader, cells)?;
     if let Some(p) = &mut figure.print {
         p.draft = draft;
@@ -101,7 +102,7 @@ fn build(
     spec: &FigureFile,
     loader: &mut Loader,
     cells: Option<usize>,
-) -> Result<Figure, SceneError> {
+) -> Result<Figure, StudyError> {
     let dir = file.parent().unwrap_or(Path::new("."));
     let cells = match (spec.cells, cells) {
         (Some(a), Some(b)) => Some(a.min(b)),

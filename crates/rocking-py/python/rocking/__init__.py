@@ -6,8 +6,11 @@ validated with the same messages, ``Scene.run().summary`` is what ``rocking run 
 and ``spectrum``/``batch`` plan their cells as ``rocking spectrum``/``rocking batch`` do.
 Simulations and sweeps release the GIL; sweeps use all cores (or ``threads``).
 
-Bad input raises :class:`ValueError` with the command's message (it names the file and the key);
-an internal failure raises :class:`RuntimeError`.
+Errors carry the command's message. Bad input (a scene, a record, an argument) raises
+:class:`ValueError` (the message names the file and the key); a run that failed though its input
+was valid raises :class:`SimulationError` (a :class:`RuntimeError`: the integrator, a guard such as
+``max_steps``, a non-finite result); a file that cannot be read or written raises :class:`OSError`;
+anything else is a defect and raises :class:`RuntimeError`.
 
 >>> import rocking
 >>> scene = rocking.load_scene("scenes/fig3-vvel.toml", set={"excitation.amplitude": 1.2})
@@ -28,12 +31,16 @@ from . import _rocking
 
 __version__: str = _rocking.__version__
 
+#: A run that failed though its input was valid (a :class:`RuntimeError`).
+SimulationError = _rocking.SimulationError
+
 __all__ = [
     "Batch",
     "Excitation",
     "Fragility",
     "Result",
     "Scene",
+    "SimulationError",
     "Spectrum",
     "Structure",
     "Summary",

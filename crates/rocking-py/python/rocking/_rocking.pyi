@@ -5,6 +5,9 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 __version__: str
 
+class SimulationError(RuntimeError):
+    """A run failed though its input was valid."""
+
 class Scene:
     """A scene loaded and validated with its overrides."""
 

@@ -12,7 +12,7 @@ use rocking_scene::SceneError;
 use rocking::SimError;
 use rocking_spectra::{fnv1a, Axis, CellClass, CellFailure, CellRun};
 
-use crate::run_report;
+use crate::{run_report, StudyError};
 
 use super::{file_digest, labelled, program_digest};
 
@@ -54,7 +54,7 @@ fn lookup(q: &serde_json::Map<String, serde_json::Value>, key: &str) -> Option<f
 /// entries of a run's quantities (found by a run of the scene that ends at once, forces on, with
 /// its fixed-base twin; the force maxima in SI only for a physical scene), and the ratios to the
 /// twin.
-fn check_report(sc: &Scene, m: &Setup, report: &[String]) -> Result<(), SceneError> {
+fn check_report(sc: &Scene, m: &Setup, report: &[String]) -> Result<(), StudyError> {
     if report.is_empty() {
         return Ok(());
     }
@@ -68,7 +68,10 @@ fn check_report(sc: &Scene, m: &Setup, report: &[String]) -> Result<(), SceneErr
     let run = |o: &rocking::Options| {
         run_report::run_setup(m, o)
             .map(|r| r.summary)
-            .map_err(|e| SceneError::failure(format!("{}: {e}", sc.src.path.display())))
+            .map_err(|source| StudyError::Simulation {
+                scene: sc.src.path.clone(),
+                source,
+            })
     };
     // On compliant ground the twin is the linear foundation (docs/ground.md).
     let twin = run(&probe.fixed_base_twin())?;
@@ -90,10 +93,15 @@ fn check_report(sc: &Scene, m: &Setup, report: &[String]) -> Result<(), SceneErr
     allowed.dedup();
     for (i, key) in report.iter().enumerate() {
         if report[..i].contains(key) {
-            return Err(sc.src.err(
-                &format!("sweep.report.{i}"),
-                format_args!("`report` in [sweep] names `{key}` twice: give each quantity once"),
-            ));
+            return Err(sc
+                .src
+                .err(
+                    &format!("sweep.report.{i}"),
+                    format_args!(
+                        "`report` in [sweep] names `{key}` twice: give each quantity once"
+                    ),
+                )
+                .into());
         }
         if needs_twin(key) {
             // As `run` refuses `fixed_base_reference` (the same words).
@@ -116,14 +124,17 @@ fn check_report(sc: &Scene, m: &Setup, report: &[String]) -> Result<(), SceneErr
                     .map(|s| format!("; did you mean `{s}`?"))
                     .unwrap_or_default()
             };
-            return Err(sc.src.err(
-                &format!("sweep.report.{i}"),
-                format_args!(
+            return Err(sc
+                .src
+                .err(
+                    &format!("sweep.report.{i}"),
+                    format_args!(
                     "`report` in [sweep] names `{key}`, which a run does not report as a number \
                      (allowed: {}){hint}",
                     allowed.join(", ")
                 ),
-            ));
+                )
+                .into());
         }
     }
     Ok(())
@@ -131,12 +142,12 @@ fn check_report(sc: &Scene, m: &Setup, report: &[String]) -> Result<(), SceneErr
 
 impl Base {
     /// Reads and validates the scene file with the overrides `sets`.
-    pub fn load(path: &Path, sets: &[String]) -> Result<Base, SceneError> {
+    pub fn load(path: &Path, sets: &[String]) -> Result<Base, StudyError> {
         Base::from_text(path, scene::read(path)?, sets)
     }
 
     /// The same from the scene's text; `path` names it in messages and resolves relative paths.
-    pub fn from_text(path: &Path, text: String, sets: &[String]) -> Result<Base, SceneError> {
+    pub fn from_text(path: &Path, text: String, sets: &[String]) -> Result<Base, StudyError> {
         let parsed = scene::parse_text(path, text.clone())?;
         let sc = parsed.load(sets)?;
         let m = setup::build(&sc)?;
@@ -212,14 +223,14 @@ impl Base {
     }
 
     /// Runs a cell: the scene with its knobs set, summary and reported quantities only.
-    pub fn run_knobs(&self, cell: &[(&Knob, KnobValue)]) -> Result<CellRun, SceneError> {
+    pub fn run_knobs(&self, cell: &[(&Knob, KnobValue)]) -> Result<CellRun, StudyError> {
         let m = knob::setup(&self.scene, cell)?;
         self.simulate(m)
     }
 
     /// Runs the scene with extra overrides, summary and reported quantities only (no history,
     /// events or energy).
-    pub fn run(&self, extra: &[String]) -> Result<CellRun, SceneError> {
+    pub fn run(&self, extra: &[String]) -> Result<CellRun, StudyError> {
         self.simulate(self.model(extra)?)
     }
 
@@ -240,8 +251,8 @@ impl Base {
         setup::build(&self.parsed.load(&sets)?)
     }
 
-    pub(super) fn simulate(&self, m: Setup) -> Result<CellRun, SceneError> {
-        self.cell(m).map_err(|f| SceneError::failure(f.message))
+    pub(super) fn simulate(&self, m: Setup) -> Result<CellRun, StudyError> {
+        self.cell(m).map_err(StudyError::Cell)
     }
 
     /// A cell's run, or why it has no result: a run whose mass matrix became singular left the

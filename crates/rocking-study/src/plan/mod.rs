@@ -8,6 +8,8 @@ use std::path::{Path, PathBuf};
 use rocking_scene::knob::{Knob, KnobValue};
 use rocking_scene::SceneError;
 
+use crate::{Invariant, StudyError};
+
 use rocking_spectra::{Axis, CellFailure, CellRun, Sweep};
 
 /// The paper's spectrum axes (Figs 6-8), used when neither the command nor the scene names any.
@@ -21,17 +23,6 @@ mod digest;
 
 pub use base::Base;
 pub use digest::{file_digest, program_digest};
-
-/// A sweep engine's error as a study reports it: a journal of another sweep in the output
-/// directory is the user's to fix (input), anything else a failure.
-pub fn sweep_error(e: rocking_spectra::SweepError) -> SceneError {
-    match e {
-        rocking_spectra::SweepError::Mismatch(_) | rocking_spectra::SweepError::NotJournal(..) => {
-            SceneError::input(e.to_string())
-        }
-        other => SceneError::failure(other.to_string()),
-    }
-}
 
 /// The reference `[sweep] reference` names and its override, checked against [`REFERENCES`].
 type ReferenceKind = (&'static str, &'static str, &'static str);
@@ -203,7 +194,7 @@ impl Plan {
     /// A spectrum: `axis_specs` (`key.path=start:stop:count` or `key.path=v1,v2,...`), else the
     /// scene's `[sweep] axes`, else the paper's. Every axis value is validated against the scene
     /// before anything runs.
-    pub fn spectrum(base: Base, axis_specs: &[String]) -> Result<Plan, SceneError> {
+    pub fn spectrum(base: Base, axis_specs: &[String]) -> Result<Plan, StudyError> {
         let path = base.path.clone();
         let specs: Vec<String> = if !axis_specs.is_empty() {
             axis_specs.to_vec()
@@ -230,7 +221,8 @@ impl Plan {
             return Err(SceneError::input(format!(
                 "{}: two axes on `{k}`: each key may have one axis (list its values in one --axis)",
                 path.display()
-            )));
+            ))
+            .into());
         }
         for a in &axes {
             for &v in &a.values {
@@ -267,7 +259,7 @@ impl Plan {
         records: &[PathBuf],
         scales: &[f64],
         axis_specs: &[String],
-    ) -> Result<Plan, SceneError> {
+    ) -> Result<Plan, StudyError> {
         let path = base.path.clone();
         let sweep_spec = base.scene.spec.sweep.as_ref();
         let mut given: Vec<PathBuf> = records.to_vec();
@@ -287,7 +279,8 @@ impl Plan {
                 "{}: no records: give --records FILE|DIR or `records = [...]` in [sweep] ({})",
                 path.display(),
                 rocking_motion::formats::FOLDER_RULE
-            )));
+            ))
+            .into());
         }
         let scales: Vec<f64> = if scales.is_empty() {
             sweep_spec
@@ -299,7 +292,8 @@ impl Plan {
         if let Some(bad) = scales.iter().find(|s| !(s.is_finite() && **s > 0.0)) {
             return Err(SceneError::input(format!(
                 "scale factor {bad} is not allowed: scales must be > 0"
-            )));
+            ))
+            .into());
         }
         let paths: Vec<String> = files
             .iter()
@@ -346,7 +340,7 @@ impl Plan {
         // Without axes, the record path and scale are always knobs (as before the axes).
         let knobs = base.knobs(&keys);
         if own.is_empty() && knobs.is_none() {
-            return Err(SceneError::failure("record path and scale are not knobs"));
+            return Err(StudyError::Internal(Invariant::RecordKnobs));
         }
         let names = files
             .iter()
@@ -382,7 +376,7 @@ impl Plan {
     /// scene with `effects.flexibility = false`) over the axes the figure shows (the last two),
     /// or `None`. Its cells are cheap beside the sweep's (one structure, the rigid model) and are
     /// run where the figure is drawn, so a sharded sweep's merge draws the same figure.
-    pub fn reference(&self) -> Result<Option<ReferencePlan>, SceneError> {
+    pub fn reference(&self) -> Result<Option<ReferencePlan>, StudyError> {
         if self.records.is_some() {
             return Ok(None);
         }

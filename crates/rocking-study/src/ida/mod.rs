@@ -9,33 +9,23 @@ use std::path::{Path, PathBuf};
 
 use rayon::prelude::*;
 use rocking_fragility::{
-    bootstrap_capacities, bootstrap_stripes, Bootstrap, BootstrapOptions, HuntFill, IdaError,
-    IdaPoint, Outcome, ScalingIm, Stripe,
+    bootstrap_capacities, bootstrap_stripes, Bootstrap, IdaError, IdaPoint, Outcome, ScalingIm,
+    Stripe,
 };
 use rocking_motion::intensity::IntensityMeasures;
 use rocking_motion::AccelUnit;
 use rocking_scene::knob::KnobValue;
 use rocking_scene::limits::{short, MAX_ACCEL_G};
-use rocking_scene::scene::{ExcitationSpec, IdaSpec, Source};
+use rocking_scene::scene::ExcitationSpec;
 use rocking_scene::SceneError;
 
 use serde_json::json;
 
 use crate::plan::Base;
 
-/// The settings of a study, from `[ida]`, checked.
-pub struct Settings {
-    /// The intensity measure the records are scaled to.
-    pub im: ScalingIm,
-    /// Hunt-and-fill (IDA).
-    pub hunt: HuntFill,
-    /// The IM levels of a multiple-stripe analysis, sorted (`None`: IDA by hunt-and-fill).
-    pub stripes: Option<Vec<f64>>,
-    /// Collapse is overturning, or max θ/α reaching this.
-    pub limit: Option<f64>,
-    /// The confidence band's resampling.
-    pub bootstrap: BootstrapOptions,
-}
+mod settings;
+use crate::{Invariant, StudyError};
+pub use settings::{check_table, settings, Settings, PERIODS};
 
 /// One record of the suite: where it is, what it is, its IMs and its analyses.
 pub struct RecordStudy {
@@ -221,13 +211,10 @@ impl Study {
 /// Runs the study of the scene `base` (`[ida]`) over `records` (else the scene's), in the
 /// current rayon pool: [`plan`], then [`Planned::run`]; a study without a fit is an error here
 /// (for callers that need the fit, as the Python package does; `rocking ida` writes it anyway).
-pub fn run(base: &Base, records: &[PathBuf]) -> Result<Study, SceneError> {
+pub fn run(base: &Base, records: &[PathBuf]) -> Result<Study, StudyError> {
     let study = plan(base, records)?.run()?;
     if let Err(why) = &study.fit {
-        return Err(SceneError::input(format!(
-            "{}: {why}",
-            base.path().display()
-        )));
+        return Err(SceneError::input(format!("{}: {why}", base.path().display())).into());
     }
     Ok(study)
 }
@@ -265,7 +252,7 @@ fn derived(v: f64) -> String {
 /// `[ida]` settings, the record files, each record's intensity measures, stripe levels a record
 /// cannot be scaled to), so that a command refuses it before writing or running anything. Reads
 /// the records in the current rayon pool.
-pub fn plan<'a>(base: &'a Base, records: &[PathBuf]) -> Result<Planned<'a>, SceneError> {
+pub fn plan<'a>(base: &'a Base, records: &[PathBuf]) -> Result<Planned<'a>, StudyError> {
     let sc = base.scene();
     let kind = sc
         .spec
@@ -274,14 +261,17 @@ pub fn plan<'a>(base: &'a Base, records: &[PathBuf]) -> Result<Planned<'a>, Scen
         .and_then(|e| e.kind.as_deref())
         .unwrap_or("none");
     if kind != "record" {
-        return Err(sc.src.err(
-            "excitation.kind",
-            format_args!(
-                "`kind` = \"{kind}\" in [excitation]: a record-suite study scales records, so \
+        return Err(sc
+            .src
+            .err(
+                "excitation.kind",
+                format_args!(
+                    "`kind` = \"{kind}\" in [excitation]: a record-suite study scales records, so \
                  the scene needs kind = \"record\" (with a `path`, which each record of the study \
                  replaces)"
-            ),
-        ));
+                ),
+            )
+            .into());
     }
     let spec = sc.spec.ida.clone().unwrap_or_default();
     let settings = settings(&spec, &sc.src)?;
@@ -293,9 +283,11 @@ pub fn plan<'a>(base: &'a Base, records: &[PathBuf]) -> Result<Planned<'a>, Scen
     if let Some(levels) = &settings.stripes {
         let top = levels.last().copied().unwrap_or(0.0);
         if let Some(r) = records.iter().find(|r| r.im_max < top) {
-            return Err(sc.src.err(
-                "ida.stripes",
-                format_args!(
+            return Err(sc
+                .src
+                .err(
+                    "ida.stripes",
+                    format_args!(
                     "`stripes` in [ida] reaches {} = {} m/s², which needs {} scaled by {}: a PGA \
                      of {} g; at most {} g, that is {} = {} m/s² for this record: lower the \
                      highest level",
@@ -308,7 +300,8 @@ pub fn plan<'a>(base: &'a Base, records: &[PathBuf]) -> Result<Planned<'a>, Scen
                     settings.im.name(),
                     derived(r.im_max)
                 ),
-            ));
+                )
+                .into());
         }
     }
     Ok(Planned {
@@ -330,7 +323,7 @@ impl Planned<'_> {
     }
 
     /// Runs every record's analyses (one record per task of the current rayon pool) and fits.
-    pub fn run(self) -> Result<Study, SceneError> {
+    pub fn run(self) -> Result<Study, StudyError> {
         let Planned {
             base,
             settings,
@@ -379,195 +372,6 @@ impl Planned<'_> {
             evidence,
         })
     }
-}
-
-/// Everything a study would refuse in the scene's `[ida]` table, checked without one: `rocking
-/// check` refuses what `rocking ida` refuses.
-pub fn check_table(base: &Base) -> Result<(), SceneError> {
-    match &base.scene().spec.ida {
-        Some(spec) => settings(spec, &base.scene().src).map(|_| ()),
-        None => Ok(()),
-    }
-}
-
-/// The most IM levels `[ida] stripes` may list.
-const MAX_STRIPES: usize = 1000;
-
-/// The spectral periods `[ida] period` may name (s): Sa(T) is published and used from about
-/// 0.01 s, where it is the PGA, to 10-20 s; far outside, it is the PGA or the ground displacement
-/// times (2π/T)² (the 1e300 s of a typo gave "intensity measure is 0").
-pub const PERIODS: (f64, f64) = (1e-3, 100.0);
-
-fn check(
-    src: &Source,
-    key: &str,
-    ok: bool,
-    value: impl std::fmt::Display,
-    allowed: &str,
-) -> Result<(), SceneError> {
-    if ok {
-        Ok(())
-    } else {
-        Err(src.err(
-            &format!("ida.{key}"),
-            format_args!("`{key}` = {value} in [ida] is not allowed: {allowed}"),
-        ))
-    }
-}
-
-/// `[ida]` checked: a bad value is an input error naming the file, the key and the allowed range.
-pub fn settings(spec: &IdaSpec, src: &Source) -> Result<Settings, SceneError> {
-    let im = match spec.im.as_deref().unwrap_or("sa") {
-        "pga" => ScalingIm::Pga,
-        "sa" => {
-            let period = spec.period.ok_or_else(|| {
-                src.err(
-                    "ida",
-                    "missing key `period` in [ida] (im = \"sa\" needs T in s, > 0)",
-                )
-            })?;
-            let (lo, hi) = PERIODS;
-            check(
-                src,
-                "period",
-                (lo..=hi).contains(&period),
-                short(period),
-                &format!(
-                    "a spectral period {} s <= period <= {} s (beyond, Sa is the PGA or the \
-                     ground displacement times (2π/T)², not an intensity measure to scale to)",
-                    short(lo),
-                    short(hi)
-                ),
-            )?;
-            let damping = spec.damping.unwrap_or(0.05);
-            check(
-                src,
-                "damping",
-                (0.0..1.0).contains(&damping),
-                damping,
-                "0 <= damping < 1",
-            )?;
-            ScalingIm::Sa { period, damping }
-        }
-        other => {
-            return Err(src.err(
-                "ida.im",
-                format_args!("`im` = \"{other}\" in [ida] is not allowed: one of \"sa\", \"pga\""),
-            ))
-        }
-    };
-    let positive = |key: &str, v: Option<f64>, default: f64| -> Result<f64, SceneError> {
-        let v = v.unwrap_or(default);
-        check(
-            src,
-            key,
-            v.is_finite() && v > 0.0,
-            v,
-            "a finite value > 0 (m/s^2)",
-        )?;
-        Ok(v)
-    };
-    let first = positive("first", spec.first, 0.1)?;
-    let step = positive("step", spec.step, 0.2)?;
-    let step_increment = spec.step_increment.unwrap_or(0.1);
-    check(
-        src,
-        "step_increment",
-        step_increment.is_finite() && step_increment >= 0.0,
-        step_increment,
-        "a finite value >= 0 (m/s^2)",
-    )?;
-    let tolerance = spec.tolerance.unwrap_or(0.01);
-    check(
-        src,
-        "tolerance",
-        tolerance > 0.0 && tolerance < 1.0,
-        tolerance,
-        "0 < tolerance < 1",
-    )?;
-    let max_gap = spec.max_gap.unwrap_or(0.25_f64.max(tolerance));
-    check(
-        src,
-        "max_gap",
-        max_gap >= tolerance && max_gap < 1.0,
-        max_gap,
-        "tolerance <= max_gap < 1",
-    )?;
-    let max_runs = spec.max_runs.unwrap_or(80);
-    check(
-        src,
-        "max_runs",
-        (1..=10_000).contains(&max_runs),
-        max_runs,
-        "1 <= max_runs <= 10000",
-    )?;
-    if let Some(l) = spec.theta_over_alpha_limit {
-        check(
-            src,
-            "theta_over_alpha_limit",
-            l.is_finite() && l > 0.0,
-            l,
-            "a finite value > 0 (collapse when max θ/α reaches it)",
-        )?;
-    }
-    // Sorted, each level once (a repeated level would count its records twice).
-    let stripes = spec.stripes.clone().map(|mut v| {
-        v.sort_by(f64::total_cmp);
-        v.dedup();
-        v
-    });
-    if let Some(levels) = &stripes {
-        if let Some(bad) = levels.iter().find(|v| !(v.is_finite() && **v > 0.0)) {
-            check(
-                src,
-                "stripes",
-                false,
-                format_args!("[..., {bad}, ...]"),
-                "IM levels finite and > 0 (m/s^2)",
-            )?;
-        }
-        // A lognormal has two parameters: the counts at one level cannot fix both.
-        check(
-            src,
-            "stripes",
-            (2..=MAX_STRIPES).contains(&levels.len()),
-            format_args!("a list of {} different levels", levels.len()),
-            &format!("2 to {MAX_STRIPES} different IM levels (a median and a β need two)"),
-        )?;
-    }
-    let resamples = spec.bootstrap.unwrap_or(2000);
-    let (min, max) = (
-        rocking_fragility::bootstrap::MIN_RESAMPLES,
-        rocking_fragility::bootstrap::MAX_RESAMPLES,
-    );
-    check(
-        src,
-        "bootstrap",
-        (min..=max).contains(&resamples),
-        resamples,
-        &format!(
-            "{min} <= bootstrap <= {max} (the band's ends are its 2.5 % and 97.5 % percentiles: \
-             fewer resamples move them by chance)"
-        ),
-    )?;
-    Ok(Settings {
-        im,
-        hunt: HuntFill {
-            first,
-            step,
-            step_increment,
-            tolerance,
-            max_gap,
-            max_runs,
-        },
-        stripes,
-        limit: spec.theta_over_alpha_limit,
-        bootstrap: BootstrapOptions {
-            resamples,
-            seed: spec.seed.unwrap_or(14),
-            level: 0.95,
-        },
-    })
 }
 
 /// The record files: the arguments, else `[ida] records`, else `[sweep] records`; a folder
@@ -647,34 +451,29 @@ fn prepare(base: &Base, s: &Settings, file: &Path) -> Result<Prepared, SceneErro
 
 /// An error about a value the study set (a record's path or scale), as the user reads it: about
 /// the record, not about a `--set` the user never typed.
-fn on_the_record(e: SceneError, base: &Base, injected: &[String], record: &str) -> SceneError {
-    match e {
-        SceneError::Input(mut input) => {
-            let Some(arg) = input.set.take_if(|a| injected.contains(a)) else {
-                return SceneError::Input(input);
-            };
-            let placed = format!("{}: --set {arg}: ", base.path().display());
-            let text = input
-                .message
-                .strip_prefix(&placed)
-                .unwrap_or(&input.message);
-            input.message = format!("record {record} of the study: {text}");
-            SceneError::Input(input)
-        }
-        failure => failure,
+fn on_the_record(mut e: SceneError, base: &Base, injected: &[String], record: &str) -> SceneError {
+    let input = e.fields_mut();
+    if let Some(arg) = input.set.take_if(|a| injected.contains(a)) {
+        let placed = format!("{}: --set {arg}: ", base.path().display());
+        let text = input
+            .message
+            .strip_prefix(&placed)
+            .unwrap_or(&input.message);
+        input.message = format!("record {record} of the study: {text}");
     }
+    e
 }
 
 /// Runs one record's IDA, or its stripes.
-fn study(base: &Base, s: &Settings, r: Prepared) -> Result<RecordStudy, SceneError> {
+fn study(base: &Base, s: &Settings, r: Prepared) -> Result<RecordStudy, StudyError> {
     let path = r.path.clone();
     let knobs = base
         .knobs(&["excitation.path", "excitation.scale"])
-        .ok_or_else(|| SceneError::failure("record path and scale are not knobs"))?;
+        .ok_or(StudyError::Internal(Invariant::RecordKnobs))?;
     let im_name = s.im.name();
     // The reported quantities of each analysis, by IM level, matched to the points after.
     let reported = std::cell::RefCell::new(Vec::new());
-    let run_at = |im: f64| -> Result<Outcome, SceneError> {
+    let run_at = |im: f64| -> Result<Outcome, StudyError> {
         let scale = im / r.im_unscaled;
         if im > r.im_max {
             // Only a hunt gets here (stripes are checked when planned): the structure stood
@@ -688,9 +487,12 @@ fn study(base: &Base, s: &Settings, r: Prepared) -> Result<RecordStudy, SceneErr
                 ),
                 ScalingIm::Pga => String::new(),
             };
-            return Err(base.scene().src.err(
-                "ida",
-                format_args!(
+            return Err(base
+                .scene()
+                .src
+                .err(
+                    "ida",
+                    format_args!(
                     "record {path}: the hunt for its capacity reached {im_name} = {} m/s², which \
                      needs a scale factor of {}, a PGA of {} g; at most {} g: the structure \
                      stands up to the strongest version of this record a scene allows{hint}",
@@ -699,7 +501,8 @@ fn study(base: &Base, s: &Settings, r: Prepared) -> Result<RecordStudy, SceneErr
                     derived(im / r.im_max * MAX_ACCEL_G),
                     short(MAX_ACCEL_G)
                 ),
-            ));
+                )
+                .into());
         }
         let cell = [
             (&knobs[0], KnobValue::Text(path.clone())),
@@ -732,10 +535,12 @@ fn study(base: &Base, s: &Settings, r: Prepared) -> Result<RecordStudy, SceneErr
         None => {
             let ida = s.hunt.run(run_at).map_err(|e| match e {
                 IdaError::Analysis { source, .. } => source,
-                IdaError::InvalidParameter(m) => SceneError::failure(m),
-                budget => SceneError::input(format!(
+                budget @ IdaError::RunBudget { .. } => SceneError::input(format!(
                     "{path}: {budget}; raise `max_runs` in [ida] (1 <= max_runs <= 10000) or `step`"
-                )),
+                ))
+                .into(),
+                // `settings` checked what the hunt checks.
+                _ => StudyError::Internal(Invariant::HuntSettings),
             })?;
             (ida.points, Some((ida.capacity, ida.survived_below)))
         }
