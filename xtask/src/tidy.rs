@@ -53,10 +53,7 @@ const PENDING_FLAGS: &[(&str, &str)] = &[
     ("crates/rocking-scene/src/scene.rs", "--set"),
     ("crates/rocking-spectra/src/lib.rs", "--out"),
     ("crates/rocking-spectra/src/shard.rs", "--shard"),
-    ("crates/rocking-study/src/ida/mod.rs", "--records"),
     ("crates/rocking-study/src/ida/mod.rs", "--set"),
-    ("crates/rocking-study/src/plan/mod.rs", "--axis"),
-    ("crates/rocking-study/src/plan/mod.rs", "--records"),
 ];
 
 /// A hand-written source file: its path from the root, its text before the test module, and

@@ -9,7 +9,7 @@ use std::path::PathBuf;
 use rocking_plot::FigureError;
 use rocking_scene::SceneError;
 use rocking_spectra::SweepError;
-use rocking_study::StudyError;
+use rocking_study::{Argument, StudyError};
 
 /// Why a command stopped.
 #[derive(Debug)]
@@ -94,6 +94,14 @@ impl CliError {
     }
 }
 
+/// A study's arguments as this command's flags.
+fn flag(a: Argument) -> &'static str {
+    match a {
+        Argument::Records => "--records FILE|DIR",
+        Argument::Axis => "--axis",
+    }
+}
+
 impl From<StudyError> for CliError {
     fn from(e: StudyError) -> Self {
         CliError::Study(e)
@@ -124,7 +132,7 @@ impl From<FigureError> for CliError {
 impl fmt::Display for CliError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            CliError::Study(e) => e.fmt(f),
+            CliError::Study(e) => f.write_str(&e.describe(flag)),
             CliError::Figure(e) => e.fmt(f),
             CliError::Io {
                 path,

@@ -9,7 +9,7 @@ use pyo3::PyErr;
 use rocking_plot::FigureError;
 use rocking_scene::SceneError;
 use rocking_spectra::SweepError;
-use rocking_study::StudyError;
+use rocking_study::{Argument, StudyError};
 
 create_exception!(
     rocking,
@@ -35,9 +35,17 @@ impl ToPyErr for SceneError {
     }
 }
 
+/// A study's arguments as this package's parameters.
+fn parameter(a: Argument) -> &'static str {
+    match a {
+        Argument::Records => "records=[FILE|DIR, ...]",
+        Argument::Axis => "axes entry",
+    }
+}
+
 impl ToPyErr for StudyError {
     fn to_py_err(self) -> PyErr {
-        let message = self.to_string();
+        let message = self.describe(parameter);
         if self.is_input() {
             return PyValueError::new_err(message);
         }

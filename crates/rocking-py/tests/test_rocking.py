@@ -247,6 +247,23 @@ def test_bad_input_messages_are_the_commands(tmp_path):
     assert done.stderr.strip() == f"error: {e.value}"
 
 
+def test_a_study_without_records_names_the_parameter_not_the_flag(tmp_path):
+    # The library's error carries the data; each front end names its own argument.
+    scene = REPO / "scenes" / "wind-turbine-elcentro.toml"
+    empty = tmp_path / "no-records"
+    empty.mkdir()
+    done = subprocess.run(
+        [CLI, "batch", str(scene), "--records", str(empty), "--out", str(tmp_path / "o")],
+        capture_output=True, text=True,
+    )
+    assert done.returncode == 2
+    assert "no records: give --records FILE|DIR or `records = [...]` in [sweep]" in done.stderr
+    with pytest.raises(ValueError) as e:
+        rocking.batch(scene, records=[empty])
+    assert "no records: give records=[FILE|DIR, ...] or `records = [...]` in [sweep]" in str(e.value)
+    assert "--records" not in str(e.value)
+
+
 def test_a_run_that_fails_on_valid_input_raises_simulation_error(tmp_path):
     # Too few steps allowed: the guard stops the run. The input is valid, so the command exits 1
     # (not 2) and Python raises SimulationError, a RuntimeError, with the command's message.

@@ -32,6 +32,22 @@ pub enum StudyError {
     Cell(CellFailure),
     /// The sweep engine could not read or write its journal.
     Sweep(SweepError),
+    /// No record was given, nor listed in the scene's `[table]`.
+    NoRecords {
+        /// The scene.
+        scene: PathBuf,
+        /// The table that may list them (`sweep`, `ida`).
+        table: &'static str,
+    },
+    /// An axis a caller gave cannot be swept.
+    Axis {
+        /// The scene.
+        scene: PathBuf,
+        /// The axis as given, when one alone is refused.
+        given: Option<String>,
+        /// Why not.
+        refusal: AxisRefusal,
+    },
     /// A study's own invariant does not hold: a defect of the program, not of the input.
     Internal(Invariant),
     /// What a failure happened in (a record, an intensity level), before it.
@@ -41,6 +57,48 @@ pub enum StudyError {
         /// The failure.
         source: Box<StudyError>,
     },
+}
+
+/// Why an axis a caller gave cannot be swept.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum AxisRefusal {
+    /// It does not parse: the parser's words after "axis" (`` `SPEC`: why``).
+    Syntax {
+        /// Why.
+        why: String,
+    },
+    /// A batch sets `key` itself from `source` (its records, its scale factors).
+    SetByBatch {
+        /// The key.
+        key: String,
+        /// Where the batch takes its values from.
+        source: &'static str,
+    },
+    /// Another axis is on `key`.
+    Twice {
+        /// The key.
+        key: String,
+    },
+}
+
+/// An argument a caller gives a study: the command names it as a flag, Python as a parameter.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Argument {
+    /// Record files or folders.
+    Records,
+    /// One axis of a sweep.
+    Axis,
+}
+
+/// How a caller names its [`Argument`]s in messages (`--records FILE|DIR`, `records=[...]`).
+pub type ArgumentNames = fn(Argument) -> &'static str;
+
+/// The names this crate's own `Display` uses.
+fn plain(a: Argument) -> &'static str {
+    match a {
+        Argument::Records => "record files",
+        Argument::Axis => "axis",
+    }
 }
 
 /// Invariants a study relies on; one failing is a defect to report.
@@ -59,7 +117,7 @@ impl StudyError {
     /// output directory that holds another study's journal).
     pub fn is_input(&self) -> bool {
         match self {
-            StudyError::Input(_) => true,
+            StudyError::Input(_) | StudyError::NoRecords { .. } | StudyError::Axis { .. } => true,
             StudyError::Sweep(e) => {
                 matches!(e, SweepError::Mismatch(_) | SweepError::NotJournal(..))
             }
@@ -93,9 +151,63 @@ impl From<SweepError> for StudyError {
     }
 }
 
+impl StudyError {
+    /// The message, with the caller's names for its arguments.
+    pub fn describe(&self, names: ArgumentNames) -> String {
+        Described(self, names).to_string()
+    }
+}
+
 impl fmt::Display for StudyError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
+        Described(self, plain).fmt(f)
+    }
+}
+
+/// An error written with a caller's names for its arguments.
+struct Described<'a>(&'a StudyError, ArgumentNames);
+
+impl fmt::Display for Described<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let names = self.1;
+        match self.0 {
+            StudyError::NoRecords { scene, table } => write!(
+                f,
+                "{}: no records: give {} or `records = [...]` in [{table}] ({})",
+                scene.display(),
+                names(Argument::Records),
+                rocking_motion::formats::FOLDER_RULE
+            ),
+            StudyError::Axis {
+                scene,
+                given,
+                refusal,
+            } => {
+                let axis = names(Argument::Axis);
+                write!(f, "{}: ", scene.display())?;
+                if let AxisRefusal::Syntax { why } = refusal {
+                    return write!(f, "{axis} {why}");
+                }
+                if let Some(given) = given {
+                    write!(f, "{axis} `{given}`: ")?;
+                }
+                match refusal {
+                    AxisRefusal::Syntax { .. } => Ok(()),
+                    AxisRefusal::SetByBatch { key, source } => write!(
+                        f,
+                        "a batch sets `{key}` itself from {source}: give its values there (an \
+                         axis may be any other numeric or text key of the scene)"
+                    ),
+                    AxisRefusal::Twice { key } => write!(
+                        f,
+                        "two axes on `{key}`: each key may have one axis (list its values in one \
+                         {axis})"
+                    ),
+                }
+            }
+            StudyError::Context { what, source } => {
+                write!(f, "{what}: {}", Described(source, names))
+            }
             StudyError::Input(e) => e.fmt(f),
             StudyError::Simulation { scene, source } if source.is_guard() => {
                 let d = rocking::Options::default();
@@ -123,7 +235,6 @@ impl fmt::Display for StudyError {
             StudyError::Internal(Invariant::GroundColumns) => {
                 f.write_str("a run on compliant ground without its ground columns")
             }
-            StudyError::Context { what, source } => write!(f, "{what}: {source}"),
             StudyError::Internal(Invariant::HuntSettings) => {
                 f.write_str("the [ida] settings passed their checks but the hunt refused them")
             }

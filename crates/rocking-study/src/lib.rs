@@ -14,4 +14,4 @@ pub mod ida;
 pub mod plan;
 pub mod run_report;
 
-pub use error::{Invariant, StudyError};
+pub use error::{Argument, ArgumentNames, AxisRefusal, Invariant, StudyError};

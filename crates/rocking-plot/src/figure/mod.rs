@@ -401,6 +401,14 @@ impl Figure {
         if self.panels.len() > 1 {
             let (rows, columns) = self.grid();
             let headers = self.headers();
+            // A y label every panel shares is the axes' and said once (the figure's own
+            // caption says so); only labels that differ tell the panels apart.
+            let y_labels: Vec<Option<String>> = self
+                .panels
+                .iter()
+                .map(|p| p.axis_labels().map(|(_, y)| y))
+                .collect();
+            let shared_y = y_labels.windows(2).all(|w| w[0] == w[1]);
             let parts: Vec<String> = (0..self.panels.len())
                 .map(|k| {
                     let (r, c) = (k / columns, k % columns);
@@ -411,9 +419,9 @@ impl Figure {
                     } else if let Some(t) = self.panels[k].title() {
                         what.push(t.to_string());
                     }
-                    if let Some((_, y)) = self.panels[k].axis_labels() {
-                        if !matches!(self.panels[k], Panel::Spectrum(_)) {
-                            what.push(y);
+                    if let Some(y) = &y_labels[k] {
+                        if !shared_y && !matches!(self.panels[k], Panel::Spectrum(_)) {
+                            what.push(y.clone());
                         }
                     }
                     format!("{} {}", letter(k), what.join(", "))

@@ -376,7 +376,7 @@ impl Planned<'_> {
 
 /// The record files: the arguments, else `[ida] records`, else `[sweep] records`; a folder
 /// stands for its files of a known record format, sorted.
-pub fn record_files(base: &Base, given: &[PathBuf]) -> Result<Vec<PathBuf>, SceneError> {
+pub fn record_files(base: &Base, given: &[PathBuf]) -> Result<Vec<PathBuf>, StudyError> {
     let spec = &base.scene().spec;
     let dir = base.scene().src.dir();
     let listed = spec
@@ -392,11 +392,10 @@ pub fn record_files(base: &Base, given: &[PathBuf]) -> Result<Vec<PathBuf>, Scen
     };
     let files = crate::plan::expand_records(given)?;
     if files.is_empty() {
-        return Err(SceneError::input(format!(
-            "{}: no records: give --records FILE|DIR or `records = [...]` in [ida] ({})",
-            base.path().display(),
-            rocking_motion::formats::FOLDER_RULE
-        )));
+        return Err(StudyError::NoRecords {
+            scene: base.path().to_path_buf(),
+            table: "ida",
+        });
     }
     Ok(files)
 }

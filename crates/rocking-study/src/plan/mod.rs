@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use rocking_scene::knob::{Knob, KnobValue};
 use rocking_scene::SceneError;
 
-use crate::{Invariant, StudyError};
+use crate::{AxisRefusal, Invariant, StudyError};
 
 use rocking_spectra::{Axis, CellFailure, CellRun, Sweep};
 
@@ -121,28 +121,26 @@ const BATCH_KEYS: [(&str, &str); 3] = [
     ("excitation.scale", "its scale factors"),
 ];
 
-/// The axes of a batch's own (`--axis`), parsed as a spectrum's, one per key and none on a key
+/// The axes of a batch's own (given by its caller), parsed as a spectrum's, one per key and none on a key
 /// the batch sets from its records and scales.
-fn batch_axes(path: &Path, specs: &[String]) -> Result<Vec<Axis>, SceneError> {
+fn batch_axes(path: &Path, specs: &[String]) -> Result<Vec<Axis>, StudyError> {
     let mut axes: Vec<Axis> = Vec::new();
     for s in specs {
-        let a =
-            Axis::parse(s).map_err(|e| SceneError::input(format!("{}: --{e}", path.display())))?;
-        if let Some((_, source)) = BATCH_KEYS.iter().find(|(k, _)| *k == a.key) {
-            return Err(SceneError::input(format!(
-                "{}: --axis `{s}`: a batch sets `{}` itself from {source}: give its values there \
-                 (an axis may be any other numeric or text key of the scene)",
-                path.display(),
-                a.key
-            )));
+        let refused = |refusal| StudyError::Axis {
+            scene: path.to_path_buf(),
+            given: Some(s.clone()),
+            refusal,
+        };
+        let a = Axis::parse(s).map_err(|e| {
+            let why = e.strip_prefix("axis ").unwrap_or(&e).to_string();
+            refused(AxisRefusal::Syntax { why })
+        })?;
+        if let Some(&(_, source)) = BATCH_KEYS.iter().find(|(k, _)| *k == a.key) {
+            let key = a.key;
+            return Err(refused(AxisRefusal::SetByBatch { key, source }));
         }
         if axes.iter().any(|b| b.key == a.key) {
-            return Err(SceneError::input(format!(
-                "{}: --axis `{s}`: two axes on `{}`: each key may have one axis (list its values \
-                 in one --axis)",
-                path.display(),
-                a.key
-            )));
+            return Err(refused(AxisRefusal::Twice { key: a.key }));
         }
         axes.push(a);
     }
@@ -218,11 +216,11 @@ impl Plan {
             .enumerate()
             .find_map(|(i, k)| keys[..i].contains(k).then_some(k))
         {
-            return Err(SceneError::input(format!(
-                "{}: two axes on `{k}`: each key may have one axis (list its values in one --axis)",
-                path.display()
-            ))
-            .into());
+            return Err(StudyError::Axis {
+                scene: path,
+                given: None,
+                refusal: AxisRefusal::Twice { key: k.to_string() },
+            });
         }
         for a in &axes {
             for &v in &a.values {
@@ -275,12 +273,10 @@ impl Plan {
         // A directory stands for all the .AT2 files in it.
         let files = expand_records(given)?;
         if files.is_empty() {
-            return Err(SceneError::input(format!(
-                "{}: no records: give --records FILE|DIR or `records = [...]` in [sweep] ({})",
-                path.display(),
-                rocking_motion::formats::FOLDER_RULE
-            ))
-            .into());
+            return Err(StudyError::NoRecords {
+                scene: path,
+                table: "sweep",
+            });
         }
         let scales: Vec<f64> = if scales.is_empty() {
             sweep_spec
