@@ -1,6 +1,8 @@
 //! The checks every numeric key goes through: finite and in its range, and finite once formed
 //! into model units (an accepted input times a large scale can overflow).
 
+use rocking::ParamError;
+
 use crate::scene::{describe, Source};
 use crate::SceneError;
 
@@ -40,4 +42,18 @@ pub(crate) fn formed(
             ),
         ))
     }
+}
+
+/// A model parameter the solver refused, as an input error at its key.
+pub(crate) fn param_err(src: &Source, table: &str, e: ParamError) -> SceneError {
+    // ParamError's own Display prints 1e308 with 309 digits: the value in short form here.
+    let value = crate::limits::short(e.value);
+    src.err(
+        &format!("{table}.{}", e.parameter),
+        format_args!(
+            "[{table}] `{}` = {value} is not allowed: {}",
+            e.parameter, e.allowed
+        ),
+    )
+    .with_value(value, e.allowed)
 }

@@ -7,6 +7,7 @@
 //! run is reported, or how anything is drawn or written.
 
 mod check;
+mod effects;
 mod error;
 pub mod excitation;
 pub mod ground;
@@ -17,6 +18,7 @@ pub mod limits;
 pub mod models;
 pub mod scene;
 pub mod setup;
+mod structure;
 pub mod units;
 
 pub use error::{InputError, SceneError};
