@@ -18,6 +18,7 @@ pub mod limits;
 pub mod models;
 pub mod scene;
 pub mod setup;
+mod spec;
 mod structure;
 pub mod units;
 
