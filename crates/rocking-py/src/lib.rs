@@ -278,6 +278,16 @@ fn outcome_dict<'py>(
     d.set_item("texts", texts)?;
     let classes: Vec<&str> = outcome.cells.iter().map(|c| c.class.as_str()).collect();
     d.set_item("classes", classes)?;
+    // What a class means is the library's ([`rocking_spectra::CellClass`]): Python does not
+    // re-derive it from the names.
+    let has_result: Vec<bool> = outcome.cells.iter().map(|c| c.class.has_result()).collect();
+    d.set_item("has_result", has_result)?;
+    let overturned: Vec<bool> = outcome
+        .cells
+        .iter()
+        .map(|c| c.class.overturned() == Some(true))
+        .collect();
+    d.set_item("overturned", overturned)?;
     d.set_item(
         "max_theta_over_alpha",
         f64_bytes(py, outcome.cells.iter().map(|c| c.max_theta_over_alpha)),

@@ -217,6 +217,31 @@ def test_batch_is_the_scene_run_per_record_and_scale(tmp_path):
             assert b.max_theta_over_alpha[0, j] == one.max_theta_over_alpha
 
 
+@pytest.mark.parametrize("sets", [[], ["solver.max_steps=50"]])
+def test_overturned_fraction_is_the_commands_fragility_csv(tmp_path, sets):
+    # With max_steps = 50 every run fails: fragility.csv leaves the fraction empty, Python NaN.
+    scene = REPO / "scenes" / "wind-turbine-elcentro.toml"
+    record = REPO / "scenes" / "records" / "elCentro.AT2"
+    out = tmp_path / "b"
+    args = [CLI, "batch", str(scene), "--records", str(record), "--scales", "0.5,2.0",
+            "--out", str(out)]
+    for s in sets:
+        args += ["--set", s]
+    done = subprocess.run(args, capture_output=True, text=True)
+    assert done.returncode == (1 if sets else 0), done.stderr
+    with open(out / "fragility.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    b = rocking.batch(rocking.load_scene(scene, set=sets), records=[record], scales=[0.5, 2.0])
+    got = b.overturned_fraction()
+    assert len(rows) == len(got) == 2
+    for row, x in zip(rows, got):
+        if row["fraction_overturned"] == "":
+            assert np.isnan(x) and row["completed"] == "0"
+        else:
+            assert x == float(row["fraction_overturned"])
+    assert np.isnan(got).all() == bool(sets)
+
+
 def test_models_equal_the_commands_list():
     assert rocking.models() == json.loads(cli("models", "--json"))["models"]
 

@@ -297,7 +297,8 @@ class Spectrum:
         self.classes: np.ndarray = names.reshape(shape)
         #: True where a cell has no result: the simulation failed, or left the model's
         #: validity (class ``beyond-model``: the mass matrix became singular).
-        self.without_result: np.ndarray = np.isin(self.classes, ["failed", "beyond-model"])
+        self.without_result: np.ndarray = ~np.asarray(raw["has_result"], dtype=bool).reshape(shape)
+        self._overturned = np.asarray(raw["overturned"], dtype=bool).reshape(shape)
         #: max θ/α per cell (masked where a cell has no result).
         self.max_theta_over_alpha: np.ma.MaskedArray = np.ma.masked_array(
             np.frombuffer(raw["max_theta_over_alpha"], dtype=np.float64).reshape(shape),
@@ -320,8 +321,8 @@ class Spectrum:
 
     @property
     def overturned(self) -> np.ndarray:
-        """True where the structure overturned."""
-        return np.char.startswith(self.classes.astype(str), "overturned")
+        """True where the structure overturned (False where a cell has no result)."""
+        return self._overturned
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}(keys={self.keys}, shape={self.classes.shape})"
@@ -342,9 +343,12 @@ class Batch(Spectrum):
 
     def overturned_fraction(self) -> np.ndarray:
         """Per scale factor (and cell of the batch's own axes: shape (scales, *axes)), the
-        fraction of records that overturned (runs without a result excluded)."""
+        fraction of records that overturned, of the runs with a result; NaN where no run has a
+        result (fragility.csv leaves that field empty)."""
         ok = ~self.without_result
-        return (self.overturned & ok).sum(axis=0) / np.maximum(ok.sum(axis=0), 1)
+        completed = ok.sum(axis=0)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return np.where(completed > 0, (self.overturned & ok).sum(axis=0) / completed, np.nan)
 
 
 def spectrum(
