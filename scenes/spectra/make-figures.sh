@@ -42,18 +42,13 @@ spectrum scenes/spectra/fig8.toml --quiet --out "$work/fig8-line" --set structur
     --axis "excitation.amplitude=1:20:40" | sed -n 1p
 pairs+=("$work/fig8-line/line.png" docs/img/spectra/fig8-line.png)
 pairs+=("$work/fig8-line/line.svg" docs/img/spectra/fig8-line.svg)
-# The design forces (docs/design-forces.md): the Fig-8 structure's spectra of the base moment over
-# its fixed-base twin's and of the friction it needs, and the wind turbine rocking against fixed.
-spectrum scenes/spectra/fig8-forces.toml --quiet --out "$work/fig8-forces" | sed -n 1p
-for q in base_moment_ratio max_required_friction; do
-    for ext in png svg; do
-        pairs+=("$work/fig8-forces/spectrum-$q.$ext" "docs/img/forces/fig8-$q.$ext")
-    done
+# The design forces (docs/design-forces.md), at print size: the Fig-8 structure's spectra of the
+# base moment over its fixed-base twin's and of the friction it needs (the sweep of
+# scenes/spectra/fig8-forces.toml), and the wind turbine rocking against fixed.
+"$rocking" figure scenes/forces/*.toml --out "$work/forces" --quiet >/dev/null
+for f in "$work"/forces/*.svg "$work"/forces/*.png "$work"/forces/*.caption.md; do
+    pairs+=("$f" "docs/img/forces/$(basename "$f")")
 done
-"$rocking" figure scenes/forces/turbine-elcentro.toml --out "$work/forces" --quiet >/dev/null
-pairs+=("$work/forces/turbine-elcentro.png" docs/img/forces/turbine-elcentro.png)
-pairs+=("$work/forces/turbine-elcentro.svg" docs/img/forces/turbine-elcentro.svg)
-pairs+=("$work/forces/turbine-elcentro.caption.md" docs/img/forces/turbine-elcentro.caption.md)
 # The animation of the Fig. 3 scene (docs/img/fig3-vvel.gif).
 "$rocking" run scenes/fig3-vvel.toml --animate --out "$work/fig3-vvel-animation" | sed -n 2p
 pairs+=("$work/fig3-vvel-animation/animation.gif" docs/img/fig3-vvel.gif)

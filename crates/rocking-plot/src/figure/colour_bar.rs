@@ -94,13 +94,14 @@ pub(super) const PRINT_BAR_WIDTH: u32 = 400;
 pub(super) fn colour_bar_band_height(marks: usize) -> u32 {
     let t = Type::print();
     let line = t.line(t.legend);
-    4 + line + 4 + PRINT_BAR + 4 + t.line(t.ticks) + marks as u32 * line + 6
+    4 + t.line(t.axis) + 4 + PRINT_BAR + 4 + t.line(t.ticks) + marks as u32 * line + 6
 }
 
 /// The bar's thickness at print size (3 mm).
 const PRINT_BAR: u32 = 24;
 
-/// The colour bar at print size, across the top-left of the legend band: its title, the bar,
+/// The colour bar at print size, across the top-left of the legend band: its title (in axis-label
+/// type), the bar,
 /// its ticks under it, and each mark (θ_cr/α) as a line across the bar, labelled under the
 /// ticks from the mark rightwards (one line per mark).
 pub(super) fn colour_bar_band(
@@ -123,9 +124,10 @@ pub(super) fn colour_bar_band(
             .into_text_style(area)
             .pos(Pos::new(h, VPos::Top))
     };
-    area.draw_text(&rich(label), &text(t.legend, HPos::Left), (left, 4))
+    // The title labels the colour axis: axis-label type.
+    area.draw_text(&rich(label), &text(t.axis, HPos::Left), (left, 4))
         .map_err(fail)?;
-    let y0 = 4 + line + 4;
+    let y0 = 4 + t.line(t.axis) as i32 + 4;
     let y1 = y0 + PRINT_BAR as i32;
     let steps = 200;
     for k in 0..steps {

@@ -24,7 +24,7 @@ pub use history::{HistoryPanel, Quantity, Trace, QUANTITIES, THETA_OVER_ALPHA};
 pub use ida::{ida_plots, FitPanel, IdaPanel, Points};
 pub use inset::{Corner, Inset, CORNERS, INSET_SIZE};
 pub use line_panel::{CurvePanel, LinePanel};
-pub use spectrum::SpectrumPanel;
+pub use spectrum::{SpectrumPanel, CONTOUR_DASHES};
 pub use standard::*;
 
 use std::path::{Path, PathBuf};

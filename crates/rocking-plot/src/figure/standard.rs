@@ -169,18 +169,14 @@ pub fn sweep_figure(
 pub fn reported_figure(title: &str, sweep: &Sweep, cells: &[Cell], k: usize) -> (Figure, String) {
     let key = &sweep.reported[k];
     let label = labels::quantity_label(key);
-    let mut panel = SpectrumPanel::reported(sweep, cells, k, label);
-    if rocking_study::run_report::RATIOS.contains(&key.as_str()) {
-        panel.mark = Some((1.0, "fixed base".to_string()));
-    }
+    let friction = key == REQUIRED_FRICTION;
+    let contours: &[f64] = if friction { &FRICTION_CONTOURS } else { &[] };
+    let panel = reported_panel(sweep, cells, k, contours);
     let mut caption =
         "Upright cells shaded by the quantity, overturned cells filled by class; the \
                        dotted line surrounds the cells that never uplift."
             .to_string();
-    if key == REQUIRED_FRICTION {
-        for mu in FRICTION_CONTOURS {
-            panel = panel.with_contour(mu, &format!("{label} = {}", tick(mu)));
-        }
+    if friction {
         caption.push_str(&format!(
             " Dashed on white: the contours of the required friction at μ = {} (long dashes) and \
              {} (short), the friction a footing can count on: the cells on the higher side need more, and there \
@@ -199,6 +195,21 @@ pub fn reported_figure(title: &str, sweep: &Sweep, cells: &[Cell], k: usize) -> 
         print: None,
     };
     (figure, format!("{REPORTED_FIGURE}{key}"))
+}
+
+/// The panel of a sweep's reported quantity `k`: upright cells shaded by it, a ratio to the
+/// fixed-base twin marked at 1 on the colour bar, and its contours at `levels`.
+pub fn reported_panel(sweep: &Sweep, cells: &[Cell], k: usize, levels: &[f64]) -> SpectrumPanel {
+    let key = &sweep.reported[k];
+    let label = labels::quantity_label(key);
+    let mut panel = SpectrumPanel::reported(sweep, cells, k, label);
+    if rocking_study::run_report::RATIOS.contains(&key.as_str()) {
+        panel.mark = Some((1.0, "fixed base".to_string()));
+    }
+    for &level in levels {
+        panel = panel.with_contour(level, &format!("{label} = {}", tick(level)));
+    }
+    panel
 }
 
 /// The reported quantity whose map carries the friction contours.

@@ -95,6 +95,12 @@ pub(super) enum PanelSpec {
         title: Option<String>,
         /// A reference sweep whose boundary is drawn dashed.
         reference: Option<String>,
+        /// A quantity of the sweep's `[sweep] report` shading the upright cells (default:
+        /// max θ/α).
+        quantity: Option<String>,
+        /// Levels of that quantity drawn as contours (long dashes, then short).
+        #[serde(default)]
+        contours: Vec<f64>,
     },
     Boundaries {
         sweeps: Vec<String>,
@@ -104,6 +110,10 @@ pub(super) enum PanelSpec {
         refine: bool,
     },
 }
+
+/// The most contours a spectrum panel draws: one per dash of
+/// [`crate::figure::CONTOUR_DASHES`].
+const MAX_CONTOURS: usize = crate::figure::CONTOUR_DASHES.len();
 
 pub(super) fn yes() -> bool {
     true
@@ -336,11 +346,30 @@ pub fn read(file: &Path) -> Result<FigureFile, SceneError> {
             PanelSpec::Spectrum {
                 sweep: s,
                 reference,
+                quantity,
+                contours,
                 ..
             } => {
                 sweep(s, "sweep")?;
                 if let Some(r) = reference {
                     sweep(r, "reference")?;
+                }
+                if !contours.is_empty() && quantity.is_none() {
+                    return bad(
+                        file,
+                        &field("contours"),
+                        "contours are levels of a reported quantity: give `quantity`".into(),
+                    );
+                }
+                if contours.len() > MAX_CONTOURS || contours.iter().any(|c| !c.is_finite()) {
+                    return bad(
+                        file,
+                        &field("contours"),
+                        format!(
+                            "{contours:?} is not allowed: at most {MAX_CONTOURS} finite levels \
+                             (long and short dashes)"
+                        ),
+                    );
                 }
             }
             PanelSpec::Boundaries { sweeps, .. } => {

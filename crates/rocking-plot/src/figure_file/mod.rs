@@ -18,7 +18,7 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 use crate::figure::{
-    self as plot, Figure, HistoryPanel, Panel, Quantity, SpectrumPanel, Structure,
+    self as plot, reported_panel, Figure, HistoryPanel, Panel, Quantity, SpectrumPanel, Structure,
 };
 use crate::style;
 use rocking_scene::SceneError;
@@ -200,9 +200,18 @@ fn build(
                 sweep,
                 title,
                 reference,
+                quantity,
+                contours,
             } => {
                 let s = &sweeps[sweep];
-                let mut panel = SpectrumPanel::new(&s.plan.sweep, &s.cells);
+                let reported = match quantity {
+                    Some(q) => Some(reported_index(file, sweep, &s.plan.sweep, q)?),
+                    None => None,
+                };
+                let mut panel = match reported {
+                    Some(k) => reported_panel(&s.plan.sweep, &s.cells, k, contours),
+                    None => SpectrumPanel::new(&s.plan.sweep, &s.cells),
+                };
                 if let Some(name) = reference {
                     let r = &sweeps[name];
                     // The legend names the reference by what differs from the panel's own
@@ -223,11 +232,14 @@ fn build(
                         .clone()
                         .unwrap_or_else(|| spec.sweeps[sweep].label.clone()),
                 );
-                let alpha = crate::text::tick(s.alpha);
-                panel.mark = s.theta_cr.map(|v| {
-                    let v2 = crate::text::tick((v * 100.0).round() / 100.0);
-                    (v, format!("θ_cr/α = {v2} (α = {alpha})"))
-                });
+                // θ_cr/α marks the colour bar of max θ/α; a reported quantity keeps its own.
+                if reported.is_none() {
+                    let alpha = crate::text::tick(s.alpha);
+                    panel.mark = s.theta_cr.map(|v| {
+                        let v2 = crate::text::tick((v * 100.0).round() / 100.0);
+                        (v, format!("θ_cr/α = {v2} (α = {alpha})"))
+                    });
+                }
                 Panel::Spectrum(panel)
             }
             PanelSpec::Boundaries {
@@ -297,4 +309,31 @@ fn build(
             draft: false,
         }),
     })
+}
+
+/// The index of `quantity` among the quantities sweep `name` reports, or an input error naming
+/// the panel's field and what the sweep's scene reports.
+fn reported_index(
+    file: &Path,
+    name: &str,
+    sweep: &rocking_spectra::Sweep,
+    quantity: &str,
+) -> Result<usize, StudyError> {
+    sweep
+        .reported
+        .iter()
+        .position(|r| r == quantity)
+        .ok_or_else(|| {
+            SceneError::input(format!(
+                "{}: `quantity` = \"{quantity}\" in a spectrum panel is not reported by sweep \
+                 `{name}`: its scene's [sweep] report lists {}",
+                file.display(),
+                if sweep.reported.is_empty() {
+                    "nothing".to_string()
+                } else {
+                    sweep.reported.join(", ")
+                }
+            ))
+            .into()
+        })
 }
