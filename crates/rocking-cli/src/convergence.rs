@@ -6,9 +6,8 @@ use std::path::{Path, PathBuf};
 
 use rocking_scene::SceneError;
 use rocking_study::convergence;
-use rocking_study::plan::sweep_error;
 
-use crate::out_dir::write_atomic;
+use crate::out_dir::{sweep_error, write_atomic};
 use crate::sweep::{failed_runs, out_dir, threads_pool};
 
 /// What the command was asked.

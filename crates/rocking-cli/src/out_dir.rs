@@ -7,8 +7,30 @@ use std::path::{Path, PathBuf};
 use rocking_plot::figure as plot;
 
 use rocking_scene::SceneError;
+use rocking_spectra::SweepError;
 
 pub use rocking_plot::figure::write_atomic;
+
+/// A sweep engine's error in the command's words: a directory holding another sweep or no
+/// journal gets the advice about `--out` (the engine names no flag).
+pub fn sweep_message(e: &SweepError) -> String {
+    match e {
+        SweepError::Mismatch(_) => format!("{e}; use another --out directory or delete it"),
+        SweepError::NotJournal(..) => format!("{e}; delete it or use another --out directory"),
+        SweepError::Io(..) => e.to_string(),
+    }
+}
+
+/// A sweep engine's error as the command reports it: [`sweep_message`] for a directory that is
+/// the user's to fix (input, exit status 2), the study's classification otherwise.
+pub fn sweep_error(e: SweepError) -> SceneError {
+    match e {
+        SweepError::Mismatch(_) | SweepError::NotJournal(..) => {
+            SceneError::input(sweep_message(&e))
+        }
+        other => rocking_study::plan::sweep_error(other),
+    }
+}
 
 /// What an output directory holds: the files its command writes, and the command's name. An
 /// existing directory holding anything else is not replaced (it is not this command's).

@@ -6,10 +6,16 @@ use std::path::Path;
 
 use rocking_scene::SceneError;
 use rocking_spectra::{Progress, Shard};
-use rocking_study::plan::{program_digest, sweep_error, Plan};
+use rocking_study::plan::{program_digest, Plan};
 use serde::{Deserialize, Serialize};
 
-use crate::out_dir::write_atomic;
+use crate::out_dir::{sweep_error, write_atomic};
+
+/// `--shard K/N` as the command reads it (clap's value parser): the library's check, the flag
+/// named in the message.
+pub fn parse_flag(text: &str) -> Result<Shard, String> {
+    Shard::parse(text).map_err(|e| format!("--shard `{}`: {}", e.text, e.problem))
+}
 
 /// The kind of study a shard belongs to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]

@@ -5,10 +5,10 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use rocking_spectra::{cells_csv, CellClass, Outcome, Progress, Shard, Sweep};
-use rocking_study::plan::{program_digest, sweep_error, Plan, Records};
+use rocking_study::plan::{program_digest, Plan, Records};
 use serde_json::json;
 
-use crate::out_dir::write_atomic;
+use crate::out_dir::{sweep_error, write_atomic};
 use crate::shard;
 use rocking_plot::figure as plot;
 use rocking_scene::SceneError;

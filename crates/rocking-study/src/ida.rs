@@ -732,7 +732,7 @@ fn study(base: &Base, s: &Settings, r: Prepared) -> Result<RecordStudy, SceneErr
         None => {
             let ida = s.hunt.run(run_at).map_err(|e| match e {
                 IdaError::Analysis { source, .. } => source,
-                IdaError::InvalidParameter(m) => SceneError::failure(m),
+                IdaError::InvalidParameter(m) => SceneError::failure(m.to_string()),
                 budget => SceneError::input(format!(
                     "{path}: {budget}; raise `max_runs` in [ida] (1 <= max_runs <= 10000) or `step`"
                 )),
