@@ -34,19 +34,11 @@ const PENDING_SPLITS: &[(&str, usize)] = &[];
 const PENDING_CIRCLES: &[&[&str]] = &[];
 
 /// String-only error variants still to be typed: (file, variant).
-const PENDING_STRING_ERRORS: &[(&str, &str)] = &[
-    ("crates/rocking-fragility/src/lib.rs", "InvalidParameter"),
-    ("crates/rocking-fragility/src/lib.rs", "NoEstimate"),
-    ("crates/rocking-motion/src/error.rs", "InvalidParameter"),
-    ("crates/rocking-spectra/src/shard.rs", "Shards"),
-    ("crates/rocking/src/error.rs", "NoVariant"),
-];
+const PENDING_STRING_ERRORS: &[(&str, &str)] = &[];
 
 /// Library files whose messages still name a CLI flag: (file, flag).
 const PENDING_FLAGS: &[(&str, &str)] = &[
     ("crates/rocking-scene/src/scene.rs", "--set"),
-    ("crates/rocking-spectra/src/lib.rs", "--out"),
-    ("crates/rocking-spectra/src/shard.rs", "--shard"),
     ("crates/rocking-study/src/ida/mod.rs", "--set"),
 ];
 

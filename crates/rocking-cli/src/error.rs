@@ -102,6 +102,16 @@ fn flag(a: Argument) -> &'static str {
     }
 }
 
+/// A sweep engine's error in the command's words: a directory holding another sweep or no
+/// journal gets the advice about `--out` (the engine names no flag).
+pub fn sweep_message(e: &SweepError) -> String {
+    match e {
+        SweepError::Mismatch(_) => format!("{e}; use another --out directory or delete it"),
+        SweepError::NotJournal(..) => format!("{e}; delete it or use another --out directory"),
+        SweepError::Io(..) => e.to_string(),
+    }
+}
+
 impl From<StudyError> for CliError {
     fn from(e: StudyError) -> Self {
         CliError::Study(e)
@@ -132,6 +142,7 @@ impl From<FigureError> for CliError {
 impl fmt::Display for CliError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
+            CliError::Study(StudyError::Sweep(e)) => f.write_str(&sweep_message(e)),
             CliError::Study(e) => f.write_str(&e.describe(flag)),
             CliError::Figure(e) => e.fmt(f),
             CliError::Io {

@@ -46,7 +46,7 @@ fn records_csv(done: &[RecordStudy], alpha: f64, g_si: f64) -> Result<Vec<u8>, C
     for d in done {
         let m = &d.ims;
         let norm = pga_over_uplift(m.pga_m_s2 / g_si * rocking_motion::STANDARD_GRAVITY, alpha)
-            .map_err(CliError::Intensity)?;
+            .map_err(|e| CliError::Intensity(e.into()))?;
         let mut row = vec![d.name.clone(), d.path.clone(), d.unit.to_string()];
         row.extend(
             [

@@ -136,7 +136,7 @@ enum Command {
         threads: Option<usize>,
         /// Run only shard K of N (cells whose index is K modulo N, 0 <= K < N) into --out, for
         /// `rocking merge`.
-        #[arg(long, value_name = "K/N", value_parser = rocking_spectra::Shard::parse)]
+        #[arg(long, value_name = "K/N", value_parser = shard::parse_flag)]
         shard: Option<rocking_spectra::Shard>,
     },
     /// Run a record scene for every record and scale factor (and every cell of the --axis
@@ -171,7 +171,7 @@ enum Command {
         threads: Option<usize>,
         /// Run only shard K of N (cells whose index is K modulo N, 0 <= K < N) into --out, for
         /// `rocking merge`.
-        #[arg(long, value_name = "K/N", value_parser = rocking_spectra::Shard::parse)]
+        #[arg(long, value_name = "K/N", value_parser = shard::parse_flag)]
         shard: Option<rocking_spectra::Shard>,
     },
     /// Join the shards of a spectrum or batch (`--shard K/N`) into OUT: the same cells.csv

@@ -11,7 +11,7 @@ use rocking_spectra::shard::MergeError;
 use rocking_spectra::{Outcome, Shard, SweepError};
 use rocking_study::plan::{program_digest, Base, Plan};
 
-use crate::error::CliError;
+use crate::error::{sweep_message, CliError};
 use crate::out_dir::{OutDir, MERGE_OUT};
 use crate::shard::{io, read_manifest, Kind, Manifest, MANIFEST};
 use crate::sweep;
@@ -110,13 +110,13 @@ pub fn merge(out: &Path, dirs: &[PathBuf]) -> Result<(), CliError> {
         .into());
     }
     let outcome = rocking_spectra::shard::merge(&plan.sweep, &shards).map_err(|e| match e {
-        MergeError::Shards(_) => SceneError::input(e.to_string()),
         MergeError::Journal(e @ (SweepError::Mismatch(_) | SweepError::NotJournal(..))) => {
             SceneError::input(format!(
-                "{e} (the journal does not belong to the shard its {MANIFEST} describes)"
+                "{} (the journal does not belong to the shard its {MANIFEST} describes)",
+                sweep_message(&e)
             ))
         }
-        MergeError::Journal(e) => SceneError::input(e.to_string()),
+        e => SceneError::input(e.to_string()),
     })?;
     let staged = OutDir::begin(out, MERGE_OUT)?;
     let written = write(&plan, m.kind, &outcome, staged.path())?;

@@ -12,6 +12,12 @@ use serde::{Deserialize, Serialize};
 use crate::error::CliError;
 use crate::out_dir::write_atomic;
 
+/// `--shard K/N` as the command reads it (clap's value parser): the library's check, the flag
+/// named in the message.
+pub fn parse_flag(text: &str) -> Result<Shard, String> {
+    Shard::parse(text).map_err(|e| format!("--shard `{}`: {}", e.text, e.problem))
+}
+
 /// The kind of study a shard belongs to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]

@@ -3,7 +3,7 @@
 //! on every machine and every run.
 
 use crate::fit::{fit_capacities, fit_stripes, Lognormal, Stripe};
-use crate::FragilityError;
+use crate::{ArgumentError, FragilityError, NoFit};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -113,16 +113,24 @@ impl Bootstrap {
 
 fn check(options: &BootstrapOptions) -> Result<ChaCha8Rng, FragilityError> {
     if !(1..=MAX_RESAMPLES).contains(&options.resamples) {
-        return Err(FragilityError::InvalidParameter(format!(
-            "bootstrap: expected 1 <= resamples <= {MAX_RESAMPLES}, found resamples = {}",
-            options.resamples
-        )));
+        return Err(ArgumentError::OutOfRange {
+            function: "bootstrap",
+            parameter: "resamples",
+            index: None,
+            value: options.resamples as f64,
+            allowed: format!("1 <= resamples <= {MAX_RESAMPLES}"),
+        }
+        .into());
     }
     if !(options.level > 0.0 && options.level < 1.0) {
-        return Err(FragilityError::InvalidParameter(format!(
-            "bootstrap: expected level in (0, 1), found level = {}",
-            options.level
-        )));
+        return Err(ArgumentError::OutOfRange {
+            function: "bootstrap",
+            parameter: "level",
+            index: None,
+            value: options.level,
+            allowed: "level in (0, 1)".to_string(),
+        }
+        .into());
     }
     Ok(ChaCha8Rng::seed_from_u64(options.seed))
 }
@@ -134,9 +142,7 @@ fn finish(
     options: &BootstrapOptions,
 ) -> Result<Bootstrap, FragilityError> {
     if fits.is_empty() {
-        return Err(FragilityError::NoEstimate(format!(
-            "bootstrap: none of the {failed} resamples had a finite fit"
-        )));
+        return Err(NoFit::NoResample { resamples: failed }.into());
     }
     Ok(Bootstrap {
         estimate,

@@ -1,7 +1,7 @@
 //! Lognormal fragility curves P(collapse | IM = x) = Φ(ln(x/θ)/β) fitted by
 //! maximum likelihood, from IDA capacities or from multiple-stripe counts.
 
-use crate::{normal, FragilityError};
+use crate::{normal, ArgumentError, FragilityError, NoFit};
 
 /// A lognormal fragility curve: median θ (in the IM's units) and dispersion β.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -35,10 +35,6 @@ pub struct Stripe {
     pub collapsed: u32,
 }
 
-fn invalid(msg: String) -> FragilityError {
-    FragilityError::InvalidParameter(msg)
-}
-
 /// Maximum-likelihood lognormal fit of collapse capacities (one per record,
 /// the IM at which it collapses, e.g. from IDA): the closed form
 /// ln θ = mean(ln c), β² = mean((ln c − ln θ)²) (the MLE's 1/n, not 1/(n−1)).
@@ -48,19 +44,27 @@ fn invalid(msg: String) -> FragilityError {
 /// capacities equal (β = 0).
 pub fn fit_capacities(capacities: &[f64]) -> Result<Lognormal, FragilityError> {
     if capacities.len() < 2 {
-        return Err(invalid(format!(
-            "fit_capacities: expected at least 2 capacities, found {}",
-            capacities.len()
-        )));
+        return Err(ArgumentError::TooFew {
+            function: "fit_capacities",
+            what: "capacities",
+            needed: 2,
+            found: capacities.len(),
+        }
+        .into());
     }
     if let Some((i, c)) = capacities
         .iter()
         .enumerate()
         .find(|(_, c)| !(c.is_finite() && **c > 0.0))
     {
-        return Err(invalid(format!(
-            "fit_capacities: expected capacities > 0 and finite, found capacities[{i}] = {c}"
-        )));
+        return Err(ArgumentError::OutOfRange {
+            function: "fit_capacities",
+            parameter: "capacities",
+            index: Some(i),
+            value: *c,
+            allowed: "capacities > 0 and finite".to_string(),
+        }
+        .into());
     }
     let n = capacities.len() as f64;
     let mean = capacities.iter().map(|c| c.ln()).sum::<f64>() / n;
@@ -70,9 +74,10 @@ pub fn fit_capacities(capacities: &[f64]) -> Result<Lognormal, FragilityError> {
         .sum::<f64>()
         / n;
     if var <= 0.0 {
-        return Err(FragilityError::NoEstimate(
-            "fit_capacities: all capacities are equal, so beta = 0".into(),
-        ));
+        return Err(NoFit::EqualCapacities {
+            capacity: capacities[0],
+        }
+        .into());
     }
     Ok(Lognormal {
         theta: mean.exp(),
@@ -83,24 +88,25 @@ pub fn fit_capacities(capacities: &[f64]) -> Result<Lognormal, FragilityError> {
 /// Validate stripes; the first bad one is named by its index.
 fn check_stripes(stripes: &[Stripe]) -> Result<(), FragilityError> {
     if stripes.len() < 2 {
-        return Err(invalid(format!(
-            "fit_stripes: expected at least 2 stripes, found {}",
-            stripes.len()
-        )));
+        return Err(ArgumentError::TooFew {
+            function: "fit_stripes",
+            what: "stripes",
+            needed: 2,
+            found: stripes.len(),
+        }
+        .into());
     }
     for (i, s) in stripes.iter().enumerate() {
         if !(s.im.is_finite() && s.im > 0.0) {
-            return Err(invalid(format!(
-                "fit_stripes: expected stripes[{i}].im > 0 and finite, found {}",
-                s.im
-            )));
+            return Err(ArgumentError::StripeIm { index: i, im: s.im }.into());
         }
         if s.n == 0 || s.collapsed > s.n {
-            return Err(invalid(format!(
-                "fit_stripes: expected 0 <= stripes[{i}].collapsed <= stripes[{i}].n, n >= 1, \
-                 found collapsed = {}, n = {}",
-                s.collapsed, s.n
-            )));
+            return Err(ArgumentError::StripeCounts {
+                index: i,
+                collapsed: s.collapsed,
+                n: s.n,
+            }
+            .into());
         }
     }
     Ok(())
@@ -123,9 +129,11 @@ pub fn fit_stripes(stripes: &[Stripe]) -> Result<Lognormal, FragilityError> {
     let total: u32 = stripes.iter().map(|s| s.collapsed).sum();
     let runs: u32 = stripes.iter().map(|s| s.n).sum();
     if total == 0 || total == runs {
-        return Err(FragilityError::NoEstimate(format!(
-            "fit_stripes: {total} of {runs} runs collapsed: no finite maximum-likelihood fit"
-        )));
+        return Err(NoFit::AllOrNone {
+            collapsed: total,
+            runs,
+        }
+        .into());
     }
     let max_survived = stripes
         .iter()
@@ -138,19 +146,18 @@ pub fn fit_stripes(stripes: &[Stripe]) -> Result<Lognormal, FragilityError> {
         .map(|s| s.im)
         .fold(f64::INFINITY, f64::min);
     if max_survived < min_collapsed {
-        return Err(FragilityError::NoEstimate(format!(
-            "fit_stripes: every run up to IM {max_survived} survived and every run from \
-             {min_collapsed} collapsed: beta -> 0, no finite maximum-likelihood fit"
-        )));
+        return Err(NoFit::Separated {
+            max_survived,
+            min_collapsed,
+        }
+        .into());
     }
     // standardised log-IM for conditioning: x = (ln im − m)/s
     let logs: Vec<f64> = stripes.iter().map(|s| s.im.ln()).collect();
     let m = logs.iter().sum::<f64>() / logs.len() as f64;
     let s = (logs.iter().map(|l| (l - m).powi(2)).sum::<f64>() / logs.len() as f64).sqrt();
     if s <= 0.0 {
-        return Err(FragilityError::NoEstimate(
-            "fit_stripes: every stripe is at the same IM: beta is undetermined".into(),
-        ));
+        return Err(NoFit::SameIm { im: stripes[0].im }.into());
     }
     let x: Vec<f64> = logs.iter().map(|l| (l - m) / s).collect();
     let loglik = |a: f64, b: f64| -> f64 {
@@ -220,15 +227,10 @@ pub fn fit_stripes(stripes: &[Stripe]) -> Result<Lognormal, FragilityError> {
         }
     }
     if !converged {
-        return Err(FragilityError::NoEstimate(
-            "fit_stripes: Newton iteration did not converge".into(),
-        ));
+        return Err(NoFit::NotConverged.into());
     }
     if b.is_nan() || b <= 0.0 {
-        return Err(FragilityError::NoEstimate(format!(
-            "fit_stripes: the fitted probability of collapse falls as the IM grows \
-             (slope {b}): not a fragility curve"
-        )));
+        return Err(NoFit::Falling { slope: b }.into());
     }
     Ok(Lognormal {
         theta: (m - a * s / b).exp(),

@@ -71,11 +71,34 @@ impl Ida {
     }
 }
 
+/// A setting of [`HuntFill`] outside its range.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HuntFillError {
+    /// The field of [`HuntFill`].
+    pub field: &'static str,
+    /// The value given.
+    pub value: f64,
+    /// What is allowed, with the field's name (`tolerance in (0, 1)`).
+    pub allowed: &'static str,
+}
+
+impl fmt::Display for HuntFillError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "HuntFill: expected {}, found {}",
+            self.allowed, self.value
+        )
+    }
+}
+
+impl std::error::Error for HuntFillError {}
+
 /// Why an IDA did not finish.
 #[derive(Debug)]
 pub enum IdaError<E> {
-    /// A setting of [`HuntFill`] is invalid (named in the message).
-    InvalidParameter(String),
+    /// A setting of [`HuntFill`] is invalid.
+    InvalidParameter(HuntFillError),
     /// The analysis at `im` failed.
     Analysis {
         /// The intensity level of the failed run.
@@ -115,38 +138,52 @@ impl<E: fmt::Debug + fmt::Display> std::error::Error for IdaError<E> {}
 
 impl HuntFill {
     fn check<E>(&self) -> Result<(), IdaError<E>> {
-        let bad = |m: String| Err(IdaError::InvalidParameter(format!("HuntFill: {m}")));
-        if !(self.first.is_finite() && self.first > 0.0) {
-            return bad(format!(
-                "expected first > 0 and finite, found {}",
-                self.first
-            ));
+        let checks = [
+            (
+                "first",
+                self.first,
+                self.first.is_finite() && self.first > 0.0,
+                "first > 0 and finite",
+            ),
+            (
+                "step",
+                self.step,
+                self.step.is_finite() && self.step > 0.0,
+                "step > 0 and finite",
+            ),
+            (
+                "step_increment",
+                self.step_increment,
+                self.step_increment.is_finite() && self.step_increment >= 0.0,
+                "step_increment >= 0 and finite",
+            ),
+            (
+                "tolerance",
+                self.tolerance,
+                self.tolerance > 0.0 && self.tolerance < 1.0,
+                "tolerance in (0, 1)",
+            ),
+            (
+                "max_gap",
+                self.max_gap,
+                self.max_gap >= self.tolerance && self.max_gap < 1.0,
+                "max_gap in [tolerance, 1)",
+            ),
+            (
+                "max_runs",
+                self.max_runs as f64,
+                self.max_runs >= 1,
+                "max_runs >= 1",
+            ),
+        ];
+        match checks.into_iter().find(|&(_, _, ok, _)| !ok) {
+            Some((field, value, _, allowed)) => Err(IdaError::InvalidParameter(HuntFillError {
+                field,
+                value,
+                allowed,
+            })),
+            None => Ok(()),
         }
-        if !(self.step.is_finite() && self.step > 0.0) {
-            return bad(format!("expected step > 0 and finite, found {}", self.step));
-        }
-        if !(self.step_increment.is_finite() && self.step_increment >= 0.0) {
-            return bad(format!(
-                "expected step_increment >= 0 and finite, found {}",
-                self.step_increment
-            ));
-        }
-        if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
-            return bad(format!(
-                "expected tolerance in (0, 1), found {}",
-                self.tolerance
-            ));
-        }
-        if !(self.max_gap >= self.tolerance && self.max_gap < 1.0) {
-            return bad(format!(
-                "expected max_gap in [tolerance, 1), found {}",
-                self.max_gap
-            ));
-        }
-        if self.max_runs == 0 {
-            return bad("expected max_runs >= 1, found 0".into());
-        }
-        Ok(())
     }
 
     /// Trace the IDA curve of one record: `analyse(im)` runs the record

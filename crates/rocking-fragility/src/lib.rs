@@ -49,36 +49,14 @@
 #![forbid(unsafe_code)]
 
 pub mod bootstrap;
+mod error;
 pub mod fit;
 pub mod ida;
 mod normal;
 pub mod scaling;
 
 pub use bootstrap::{bootstrap_capacities, bootstrap_stripes, Bootstrap, BootstrapOptions};
+pub use error::{ArgumentError, FragilityError, NoFit};
 pub use fit::{fit_capacities, fit_stripes, Lognormal, Stripe};
-pub use ida::{HuntFill, Ida, IdaError, IdaPoint, Outcome};
+pub use ida::{HuntFill, HuntFillError, Ida, IdaError, IdaPoint, Outcome};
 pub use scaling::ScalingIm;
-
-use std::fmt;
-
-/// Why a fit, a bootstrap or a scaling could not be done.
-#[derive(Debug, Clone, PartialEq)]
-#[non_exhaustive]
-pub enum FragilityError {
-    /// An argument is invalid; the message names it.
-    InvalidParameter(String),
-    /// The data have no finite maximum-likelihood estimate (no collapse,
-    /// only collapses, complete separation, ...); the message says which.
-    NoEstimate(String),
-}
-
-impl fmt::Display for FragilityError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            FragilityError::InvalidParameter(m) => write!(f, "invalid parameter: {m}"),
-            FragilityError::NoEstimate(m) => write!(f, "no estimate: {m}"),
-        }
-    }
-}
-
-impl std::error::Error for FragilityError {}

@@ -1,9 +1,9 @@
 //! Scaling a record to a target intensity: every IM used here is linear in
 //! the acceleration, so the factor is target / IM(record).
 
-use crate::FragilityError;
+use crate::{ArgumentError, FragilityError};
 use rocking_motion::intensity::{pga, spectral_response};
-use rocking_motion::{MotionError, Record};
+use rocking_motion::Record;
 
 /// The intensity measure a record is scaled by.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -39,10 +39,7 @@ impl ScalingIm {
             ScalingIm::Pga => Ok(pga(record)),
             ScalingIm::Sa { period, damping } => spectral_response(record, period, damping)
                 .map(|r| r.psa_m_s2)
-                .map_err(|e| match e {
-                    MotionError::InvalidParameter(m) => FragilityError::InvalidParameter(m),
-                    other => FragilityError::InvalidParameter(other.to_string()),
-                }),
+                .map_err(|e| ArgumentError::Intensity(e).into()),
         }
     }
 
@@ -54,15 +51,23 @@ impl ScalingIm {
     /// record whose IM is 0 (nothing to scale).
     pub fn scale_factor(&self, record: &Record, target: f64) -> Result<f64, FragilityError> {
         if !(target.is_finite() && target > 0.0) {
-            return Err(FragilityError::InvalidParameter(format!(
-                "scale_factor: expected target > 0 and finite (m/s^2), found target = {target}"
-            )));
+            return Err(ArgumentError::OutOfRange {
+                function: "scale_factor",
+                parameter: "target",
+                index: None,
+                value: target,
+                allowed: "target > 0 and finite (m/s^2)".to_string(),
+            }
+            .into());
         }
         let im = self.of(record)?;
         if im <= 0.0 {
-            return Err(FragilityError::InvalidParameter(format!(
-                "scale_factor: the record's {self:?} is {im}: it cannot be scaled to {target}"
-            )));
+            return Err(ArgumentError::Unscalable {
+                im: *self,
+                value: im,
+                target,
+            }
+            .into());
         }
         Ok(target / im)
     }

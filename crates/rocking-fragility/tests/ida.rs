@@ -197,7 +197,29 @@ fn budget_and_errors() {
             "max_runs",
         ),
     ] {
-        let e = hf.run(never).unwrap_err().to_string();
-        assert!(e.contains(word), "{e}");
+        let e = hf.run(never).unwrap_err();
+        let text = e.to_string();
+        assert!(
+            text.starts_with("invalid parameter: HuntFill: expected "),
+            "{text}"
+        );
+        match e {
+            IdaError::InvalidParameter(p) => {
+                assert_eq!(p.field, word, "{text}");
+                assert!(p.allowed.starts_with(word), "{text}");
+                let value = match word {
+                    "first" => hf.first,
+                    "step" => hf.step,
+                    "tolerance" => hf.tolerance,
+                    "max_gap" => hf.max_gap,
+                    _ => hf.max_runs as f64,
+                };
+                assert!(
+                    p.value == value || (p.value.is_nan() && value.is_nan()),
+                    "{text}"
+                );
+            }
+            other => panic!("{word}: {other}"),
+        }
     }
 }

@@ -195,9 +195,163 @@ pub enum MotionError {
         /// What was found (possibly shortened).
         found: String,
     },
-    /// Parameters of a programmatically built motion are invalid
-    /// (e.g. a [`Record`](crate::Record) with `dt <= 0` or no samples).
-    InvalidParameter(String),
+    /// Parameters of a programmatically built motion, a record's stated time step or an
+    /// intensity measure's arguments are invalid (e.g. a [`Record`](crate::Record) with
+    /// `dt <= 0` or no samples).
+    InvalidParameter(ParameterError),
+}
+
+/// An invalid parameter: what was wrong, with the value given and what is allowed.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum ParameterError {
+    /// [`Record::new`](crate::Record::new): `dt` not positive and finite.
+    RecordDt {
+        /// The time step given (s).
+        dt: f64,
+    },
+    /// [`Record::new`](crate::Record::new): no samples.
+    RecordEmpty,
+    /// [`Record::new`](crate::Record::new): the duration (n − 1)·dt overflows.
+    RecordDuration {
+        /// The number of samples.
+        samples: usize,
+        /// The time step (s).
+        dt: f64,
+    },
+    /// [`Record::new`](crate::Record::new): a sample is not finite.
+    RecordSample {
+        /// Its index.
+        index: usize,
+        /// Its value.
+        value: f64,
+    },
+    /// A one-column text record without a stated time step.
+    TextNeedsDt {
+        /// Name of the input.
+        file: String,
+    },
+    /// The stated time step contradicts a text file's time column.
+    DtContradicts {
+        /// Name of the input.
+        file: String,
+        /// The stated `dt` (s).
+        stated: f64,
+        /// The time column's mean step (s).
+        dt: f64,
+    },
+    /// A time step stated for a format that states its own.
+    DtNotTaken {
+        /// Name of the input.
+        file: String,
+        /// The format (`at2`, `esm`, `knet`).
+        format: &'static str,
+    },
+    /// An argument of an intensity measure outside its range.
+    OutOfRange {
+        /// The function (`spectral_response`, `pga_over_uplift`, ...).
+        function: &'static str,
+        /// The argument.
+        parameter: &'static str,
+        /// The value given.
+        value: f64,
+        /// What is allowed, with the argument's name (`period > 0 and finite (s)`).
+        allowed: &'static str,
+    },
+    /// [`significant_duration`](crate::intensity::significant_duration): not
+    /// 0 ≤ from < to ≤ 1.
+    DurationFractions {
+        /// The lower fraction given.
+        from: f64,
+        /// The upper fraction given.
+        to: f64,
+    },
+    /// [`significant_duration`](crate::intensity::significant_duration) of a record with zero
+    /// Arias intensity.
+    NoMotion,
+    /// [`mean_period`](crate::intensity::mean_period): no Fourier amplitude in the band.
+    NoFourierAmplitude {
+        /// The band's lower frequency (Hz).
+        lo_hz: f64,
+        /// The band's upper frequency (Hz).
+        hi_hz: f64,
+        /// The number of samples.
+        samples: usize,
+        /// The time step (s).
+        dt: f64,
+    },
+}
+
+impl fmt::Display for ParameterError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ParameterError::RecordDt { dt } => {
+                write!(f, "Record: expected dt > 0 and finite, found {dt}")
+            }
+            ParameterError::RecordEmpty => {
+                f.write_str("Record: expected at least one sample, found none")
+            }
+            ParameterError::RecordDuration { samples, dt } => write!(
+                f,
+                "Record: expected a finite duration (n - 1) dt, found {samples} samples of \
+                 dt = {dt}"
+            ),
+            ParameterError::RecordSample { index, value } => write!(
+                f,
+                "Record: expected finite samples, found {value} at index {index}"
+            ),
+            ParameterError::TextNeedsDt { file } => write!(
+                f,
+                "{file}: a one-column text record needs its time step: give `dt` (s) in \
+                 [excitation]"
+            ),
+            ParameterError::DtContradicts { file, stated, dt } => write!(
+                f,
+                "{file}: the stated `dt` = {stated} s contradicts the file's time column \
+                 (dt = {dt} s)"
+            ),
+            ParameterError::DtNotTaken { file, format } => write!(
+                f,
+                "{file}: a {format} file states its own time step; `dt` is for one-column text \
+                 files"
+            ),
+            ParameterError::OutOfRange {
+                function,
+                parameter,
+                value,
+                allowed,
+            } => write!(
+                f,
+                "{function}: expected {allowed}, found {parameter} = {value}"
+            ),
+            ParameterError::DurationFractions { from, to } => write!(
+                f,
+                "significant_duration: expected 0 <= from < to <= 1, found from = {from}, \
+                 to = {to}"
+            ),
+            ParameterError::NoMotion => {
+                f.write_str("significant_duration: record has zero Arias intensity (no motion)")
+            }
+            ParameterError::NoFourierAmplitude {
+                lo_hz,
+                hi_hz,
+                samples,
+                dt,
+            } => write!(
+                f,
+                "mean_period: record has no Fourier amplitude in {lo_hz}-{hi_hz} Hz \
+                 (n = {samples}, dt = {dt} s)"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for ParameterError {}
+
+impl From<ParameterError> for MotionError {
+    fn from(e: ParameterError) -> Self {
+        MotionError::InvalidParameter(e)
+    }
 }
 
 impl MotionError {
@@ -337,7 +491,7 @@ impl fmt::Display for MotionError {
                 expected,
                 found,
             } => write!(f, "{file}:{line}: expected {expected}, found {found}"),
-            MotionError::InvalidParameter(msg) => write!(f, "invalid parameter: {msg}"),
+            MotionError::InvalidParameter(e) => write!(f, "invalid parameter: {e}"),
         }
     }
 }

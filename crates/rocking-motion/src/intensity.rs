@@ -25,15 +25,26 @@
 //!   the exact recurrence for piecewise-linear excitation (Nigam & Jennings
 //!   1969); peaks over the sample times of the record's duration.
 
-use crate::{MotionError, Record, STANDARD_GRAVITY};
+use crate::{ParameterError, Record, STANDARD_GRAVITY};
 use rustfft::{num_complex::Complex, FftPlanner};
 use std::f64::consts::PI;
 
 /// The band of the mean period (Rathje et al. 1998), Hz.
 pub const MEAN_PERIOD_BAND_HZ: (f64, f64) = (0.25, 20.0);
 
-fn invalid(msg: String) -> MotionError {
-    MotionError::InvalidParameter(msg)
+/// An argument of `function` outside its range.
+fn out_of_range(
+    function: &'static str,
+    parameter: &'static str,
+    value: f64,
+    allowed: &'static str,
+) -> ParameterError {
+    ParameterError::OutOfRange {
+        function,
+        parameter,
+        value,
+        allowed,
+    }
 }
 
 /// The record's accelerations (samples × scale), m/s² by this module's contract.
@@ -65,7 +76,7 @@ impl IntensityMeasures {
     /// # Errors
     /// A record without motion (I_A = 0) has no significant duration, and
     /// one without Fourier amplitude in 0.25-20 Hz no mean period.
-    pub fn of(record: &Record) -> Result<Self, MotionError> {
+    pub fn of(record: &Record) -> Result<Self, ParameterError> {
         let (pgv_m_s, pgd_m) = peak_velocity_displacement(record);
         Ok(IntensityMeasures {
             pga_m_s2: pga(record),
@@ -160,18 +171,14 @@ pub fn arias_intensity(record: &Record) -> f64 {
 ///
 /// # Errors
 /// `from`/`to` not with 0 ≤ from < to ≤ 1, or a record with I_A = 0.
-pub fn significant_duration(record: &Record, from: f64, to: f64) -> Result<f64, MotionError> {
+pub fn significant_duration(record: &Record, from: f64, to: f64) -> Result<f64, ParameterError> {
     if !(from >= 0.0 && from < to && to <= 1.0) {
-        return Err(invalid(format!(
-            "significant_duration: expected 0 <= from < to <= 1, found from = {from}, to = {to}"
-        )));
+        return Err(ParameterError::DurationFractions { from, to });
     }
     let cum = squared_integrals(record);
     let total = *cum.last().expect("a record has a sample");
     if total <= 0.0 {
-        return Err(invalid(
-            "significant_duration: record has zero Arias intensity (no motion)".into(),
-        ));
+        return Err(ParameterError::NoMotion);
     }
     let a: Vec<f64> = accel(record).collect();
     let h = record.dt();
@@ -211,7 +218,7 @@ pub fn significant_duration(record: &Record, from: f64, to: f64) -> Result<f64, 
 ///
 /// # Errors
 /// No Fourier amplitude in the band (too short a record, or no motion).
-pub fn mean_period(record: &Record) -> Result<f64, MotionError> {
+pub fn mean_period(record: &Record) -> Result<f64, ParameterError> {
     let n = record.len();
     let mut x: Vec<Complex<f64>> = accel(record).map(|a| Complex::new(a, 0.0)).collect();
     FftPlanner::new().plan_fft_forward(n).process(&mut x);
@@ -227,11 +234,12 @@ pub fn mean_period(record: &Record) -> Result<f64, MotionError> {
         }
     }
     if den <= 0.0 {
-        return Err(invalid(format!(
-            "mean_period: record has no Fourier amplitude in {lo}-{hi} Hz \
-             (n = {n}, dt = {} s)",
-            record.dt()
-        )));
+        return Err(ParameterError::NoFourierAmplitude {
+            lo_hz: lo,
+            hi_hz: hi,
+            samples: n,
+            dt: record.dt(),
+        });
     }
     Ok(num / den)
 }
@@ -264,16 +272,22 @@ pub fn spectral_response(
     record: &Record,
     period: f64,
     damping: f64,
-) -> Result<SpectralResponse, MotionError> {
+) -> Result<SpectralResponse, ParameterError> {
     if !(period.is_finite() && period > 0.0) {
-        return Err(invalid(format!(
-            "spectral_response: expected period > 0 and finite (s), found period = {period}"
-        )));
+        return Err(out_of_range(
+            "spectral_response",
+            "period",
+            period,
+            "period > 0 and finite (s)",
+        ));
     }
     if !(0.0..1.0).contains(&damping) {
-        return Err(invalid(format!(
-            "spectral_response: expected damping in [0, 1), found damping = {damping}"
-        )));
+        return Err(out_of_range(
+            "spectral_response",
+            "damping",
+            damping,
+            "damping in [0, 1)",
+        ));
     }
     let (w, z, h) = (2.0 * PI / period, damping, record.dt());
     let r = (1.0 - z * z).sqrt();
@@ -318,11 +332,14 @@ pub fn spectral_response(
     })
 }
 
-fn check_alpha(alpha: f64, what: &str) -> Result<f64, MotionError> {
+fn check_alpha(alpha: f64, what: &'static str) -> Result<f64, ParameterError> {
     if !(alpha > 0.0 && alpha < 0.5 * PI) {
-        return Err(invalid(format!(
-            "{what}: expected slenderness alpha in (0, pi/2) rad, found alpha = {alpha}"
-        )));
+        return Err(out_of_range(
+            what,
+            "alpha",
+            alpha,
+            "slenderness alpha in (0, pi/2) rad",
+        ));
     }
     Ok(STANDARD_GRAVITY * alpha.tan())
 }
@@ -333,12 +350,15 @@ fn check_alpha(alpha: f64, what: &str) -> Result<f64, MotionError> {
 ///
 /// # Errors
 /// `alpha` outside (0, π/2), or `pga_m_s2` negative or not finite.
-pub fn pga_over_uplift(pga_m_s2: f64, alpha: f64) -> Result<f64, MotionError> {
+pub fn pga_over_uplift(pga_m_s2: f64, alpha: f64) -> Result<f64, ParameterError> {
     let ga = check_alpha(alpha, "pga_over_uplift")?;
     if !(pga_m_s2.is_finite() && pga_m_s2 >= 0.0) {
-        return Err(invalid(format!(
-            "pga_over_uplift: expected pga_m_s2 >= 0 and finite, found {pga_m_s2}"
-        )));
+        return Err(out_of_range(
+            "pga_over_uplift",
+            "pga_m_s2",
+            pga_m_s2,
+            "pga_m_s2 >= 0 and finite",
+        ));
     }
     Ok(pga_m_s2 / ga)
 }
@@ -350,17 +370,23 @@ pub fn pga_over_uplift(pga_m_s2: f64, alpha: f64) -> Result<f64, MotionError> {
 /// # Errors
 /// `alpha` outside (0, π/2), `p` not positive and finite, or `pgv_m_s`
 /// negative or not finite.
-pub fn pgv_over_uplift(pgv_m_s: f64, p: f64, alpha: f64) -> Result<f64, MotionError> {
+pub fn pgv_over_uplift(pgv_m_s: f64, p: f64, alpha: f64) -> Result<f64, ParameterError> {
     let ga = check_alpha(alpha, "pgv_over_uplift")?;
     if !(p.is_finite() && p > 0.0) {
-        return Err(invalid(format!(
-            "pgv_over_uplift: expected frequency parameter p > 0 and finite (rad/s), found p = {p}"
-        )));
+        return Err(out_of_range(
+            "pgv_over_uplift",
+            "p",
+            p,
+            "frequency parameter p > 0 and finite (rad/s)",
+        ));
     }
     if !(pgv_m_s.is_finite() && pgv_m_s >= 0.0) {
-        return Err(invalid(format!(
-            "pgv_over_uplift: expected pgv_m_s >= 0 and finite, found {pgv_m_s}"
-        )));
+        return Err(out_of_range(
+            "pgv_over_uplift",
+            "pgv_m_s",
+            pgv_m_s,
+            "pgv_m_s >= 0 and finite",
+        ));
     }
     Ok(pgv_m_s * p / ga)
 }

@@ -107,7 +107,7 @@ mod record;
 mod units;
 
 pub use at2::{parse_at2, read_at2, At2Record};
-pub use error::{short_number, MotionError};
+pub use error::{short_number, MotionError, ParameterError};
 pub use formats::{parse_record, read_record, record_files_in, RecordFormat};
 pub use input::MIN_DT;
 pub use pulses::{

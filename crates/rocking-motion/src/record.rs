@@ -1,6 +1,6 @@
 //! Piecewise-linear sampled records.
 
-use crate::{GroundMotion, MotionError};
+use crate::{GroundMotion, MotionError, ParameterError};
 
 /// A sampled acceleration history: piecewise-linear interpolation between
 /// equally spaced samples `samples[k]` at t_k = k·dt, multiplied by `scale`.
@@ -33,26 +33,24 @@ impl Record {
     /// `samples` is empty, the duration (n − 1)·dt overflows, or a sample is not finite.
     pub fn new(dt: f64, samples: Vec<f64>) -> Result<Self, MotionError> {
         if !(dt.is_finite() && dt > 0.0) {
-            return Err(MotionError::InvalidParameter(format!(
-                "Record: expected dt > 0 and finite, found {dt}"
-            )));
+            return Err(ParameterError::RecordDt { dt }.into());
         }
         if samples.is_empty() {
-            return Err(MotionError::InvalidParameter(
-                "Record: expected at least one sample, found none".into(),
-            ));
+            return Err(ParameterError::RecordEmpty.into());
         }
         if !((samples.len() - 1) as f64 * dt).is_finite() {
-            return Err(MotionError::InvalidParameter(format!(
-                "Record: expected a finite duration (n - 1) dt, found {} samples of dt = {dt}",
-                samples.len()
-            )));
+            return Err(ParameterError::RecordDuration {
+                samples: samples.len(),
+                dt,
+            }
+            .into());
         }
         if let Some(k) = samples.iter().position(|x| !x.is_finite()) {
-            return Err(MotionError::InvalidParameter(format!(
-                "Record: expected finite samples, found {} at index {k}",
-                samples[k]
-            )));
+            return Err(ParameterError::RecordSample {
+                index: k,
+                value: samples[k],
+            }
+            .into());
         }
         Ok(Record {
             dt,

@@ -38,7 +38,8 @@ pub use journal::fnv1a;
 pub(crate) use journal::{journal_line, parse_journal_line, JOURNAL};
 pub use shard::Shard;
 
-/// Why a sweep failed.
+/// Why a sweep failed. The messages state what is wrong with the directory; what to do about it
+/// (another output directory, or deleting it) is the caller's to say, in its own words.
 #[derive(Debug)]
 pub enum SweepError {
     /// Reading or writing the output directory failed.
@@ -55,16 +56,17 @@ impl fmt::Display for SweepError {
             SweepError::Io(p, e) => write!(f, "{}: {e}", p.display()),
             SweepError::Mismatch(p) => write!(
                 f,
-                "{}: this output directory holds the cells of a different sweep (scene, record contents, axes or program changed); \
-                 use another --out directory or delete it",
+                "{}: this output directory holds the cells of a different sweep (scene, record \
+                 contents, axes or program changed)",
                 p.display()
             ),
-            SweepError::NotJournal(p, why) => write!(
-                f,
-                "{}: not a journal of rocking sweeps ({why}); delete it or use another --out \
-                 directory",
-                p.display()
-            ),
+            SweepError::NotJournal(p, why) => {
+                write!(
+                    f,
+                    "{}: not a journal of rocking sweeps ({why})",
+                    p.display()
+                )
+            }
         }
     }
 }

@@ -28,22 +28,28 @@ pub struct Shard {
 
 impl Shard {
     /// `K/N` with 0 ≤ K < N ≤ [`MAX_SHARDS`].
-    pub fn parse(text: &str) -> Result<Shard, String> {
-        let bad = |why: String| format!("--shard `{text}`: {why}");
+    pub fn parse(text: &str) -> Result<Shard, ShardSpecError> {
+        let bad = |problem| ShardSpecError {
+            text: text.to_string(),
+            problem,
+        };
         let (k, n) = text
             .split_once('/')
-            .ok_or_else(|| bad("expected K/N, e.g. 0/4 (shard K of N, counted from 0)".into()))?;
-        let int = |s: &str, name: &str| {
-            s.trim()
-                .parse::<usize>()
-                .map_err(|_| bad(format!("{name} `{s}` is not a whole number ≥ 0")))
+            .ok_or_else(|| bad(ShardSpecProblem::NotKOverN))?;
+        let int = |s: &str, part: &'static str| {
+            s.trim().parse::<usize>().map_err(|_| {
+                bad(ShardSpecProblem::NotWhole {
+                    part,
+                    found: s.to_string(),
+                })
+            })
         };
         let (k, n) = (int(k, "K")?, int(n, "N")?);
         if !(1..=MAX_SHARDS).contains(&n) {
-            return Err(bad(format!("N = {n} is not allowed: 1 ≤ N ≤ {MAX_SHARDS}")));
+            return Err(bad(ShardSpecProblem::Count { n }));
         }
         if k >= n {
-            return Err(bad(format!("K = {k} is not allowed: 0 ≤ K < N = {n}")));
+            return Err(bad(ShardSpecProblem::Number { k, n }));
         }
         Ok(Shard { k, n })
     }
@@ -80,6 +86,70 @@ impl fmt::Display for Shard {
     }
 }
 
+/// A shard specification that is not `K/N` with 0 ≤ K < N ≤ [`MAX_SHARDS`]: the text given and
+/// what is wrong with it. Its [`Display`](fmt::Display) is `shard `TEXT`: WHY`; a caller that took
+/// the text from a flag names the flag with `text` and `problem`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ShardSpecError {
+    /// The text given.
+    pub text: String,
+    /// What is wrong with it.
+    pub problem: ShardSpecProblem,
+}
+
+/// What is wrong with a shard specification.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum ShardSpecProblem {
+    /// No `/` between K and N.
+    NotKOverN,
+    /// K or N is not a whole number ≥ 0.
+    NotWhole {
+        /// `K` or `N`.
+        part: &'static str,
+        /// The text found there.
+        found: String,
+    },
+    /// N is not 1 ≤ N ≤ [`MAX_SHARDS`].
+    Count {
+        /// The N given.
+        n: usize,
+    },
+    /// K is not 0 ≤ K < N.
+    Number {
+        /// The K given.
+        k: usize,
+        /// The N given.
+        n: usize,
+    },
+}
+
+impl fmt::Display for ShardSpecProblem {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ShardSpecProblem::NotKOverN => {
+                f.write_str("expected K/N, e.g. 0/4 (shard K of N, counted from 0)")
+            }
+            ShardSpecProblem::NotWhole { part, found } => {
+                write!(f, "{part} `{found}` is not a whole number ≥ 0")
+            }
+            ShardSpecProblem::Count { n } => {
+                write!(f, "N = {n} is not allowed: 1 ≤ N ≤ {MAX_SHARDS}")
+            }
+            ShardSpecProblem::Number { k, n } => {
+                write!(f, "K = {k} is not allowed: 0 ≤ K < N = {n}")
+            }
+        }
+    }
+}
+
+impl fmt::Display for ShardSpecError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "shard `{}`: {}", self.text, self.problem)
+    }
+}
+
+impl std::error::Error for ShardSpecError {}
+
 /// Whether `dir` may run (or resume) shard `shard` of `sweep`: it holds no journal, an empty
 /// one, or this shard's. [`crate::run_shard`] starts with the same check; a caller that writes
 /// anything beside the journal (a description of the shard) checks first, so that a refused run
@@ -93,76 +163,189 @@ pub fn check_dir(sweep: &Sweep, shard: Shard, dir: &Path) -> Result<(), SweepErr
 pub enum MergeError {
     /// A shard's journal could not be read, or belongs to another sweep or shard.
     Journal(SweepError),
-    /// The set of shards is not one whole sweep (wrong count, duplicate, missing, incomplete).
-    Shards(String),
+    /// No shard directory was given.
+    NoShards,
+    /// The shards are of splits into different numbers of shards.
+    MixedSplits {
+        /// The directory of the shard that differs.
+        dir: PathBuf,
+        /// Its shard.
+        shard: Shard,
+        /// The first directory given.
+        first_dir: PathBuf,
+        /// Its shard.
+        first: Shard,
+    },
+    /// A shard is given twice.
+    Duplicate {
+        /// The second directory of the shard.
+        dir: PathBuf,
+        /// The shard.
+        shard: Shard,
+        /// The first directory of the shard.
+        other: PathBuf,
+    },
+    /// A shard with cells has no journal (it never ran in the directory given).
+    NoJournal {
+        /// The shard.
+        shard: Shard,
+        /// The journal looked for.
+        path: PathBuf,
+    },
+    /// The shards do not hold every cell: shards not given (missing) or whose journals lack
+    /// cells (incomplete), in shard order. Nothing is merged.
+    Incomplete {
+        /// Each shard with missing cells.
+        gaps: Vec<Gap>,
+    },
+}
+
+/// A shard's missing cells.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Gap {
+    /// The shard.
+    pub shard: Shard,
+    /// Its directory, or `None` when the shard was not given.
+    pub dir: Option<PathBuf>,
+    /// How many of its cells are missing.
+    pub missing: usize,
+    /// How many cells it has.
+    pub cells: usize,
+    /// The first missing cells (at most [`LISTED`]), with their axis values.
+    pub first: Vec<MissingCell>,
+}
+
+/// A missing cell: its index and its axis values.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MissingCell {
+    /// The cell's index in the sweep.
+    pub index: usize,
+    /// (axis key, value) of each axis (a text axis: the text's index).
+    pub values: Vec<(String, f64)>,
 }
 
 impl fmt::Display for MergeError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             MergeError::Journal(e) => e.fmt(f),
-            MergeError::Shards(m) => f.write_str(m),
+            MergeError::NoShards => f.write_str("no shard directory given"),
+            MergeError::MixedSplits {
+                dir,
+                shard,
+                first_dir,
+                first,
+            } => write!(
+                f,
+                "{}: shard {shard} is of a split into {} shards, but {} is shard {first} of {}",
+                dir.display(),
+                shard.n,
+                first_dir.display(),
+                first.n
+            ),
+            MergeError::Duplicate { dir, shard, other } => write!(
+                f,
+                "{}: shard {shard} is given twice (also {})",
+                dir.display(),
+                other.display()
+            ),
+            MergeError::NoJournal { shard, path } => write!(
+                f,
+                "{}: shard {shard} has no journal (it never ran here)",
+                path.display()
+            ),
+            MergeError::Incomplete { gaps } => {
+                f.write_str(
+                    "the shards do not hold every cell of the sweep, nothing merged (run or \
+                     resume the shards named, then merge again):",
+                )?;
+                for g in gaps {
+                    write!(f, "\n  {g}")?;
+                }
+                Ok(())
+            }
         }
     }
 }
 
-impl std::error::Error for MergeError {}
+impl fmt::Display for Gap {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let dir = match &self.dir {
+            Some(d) => d.display().to_string(),
+            None => "not given".to_string(),
+        };
+        write!(
+            f,
+            "shard {} ({dir}): {} of its {} cells missing: ",
+            self.shard, self.missing, self.cells
+        )?;
+        for (k, c) in self.first.iter().enumerate() {
+            if k > 0 {
+                f.write_str("; ")?;
+            }
+            let values: Vec<String> = c.values.iter().map(|(a, v)| format!("{a}={v}")).collect();
+            write!(f, "{} ({})", c.index, values.join(", "))?;
+        }
+        let more = self.missing.saturating_sub(self.first.len());
+        if more > 0 {
+            write!(f, ", and {more} more")?;
+        }
+        Ok(())
+    }
+}
+
+impl std::error::Error for MergeError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            MergeError::Journal(e) => Some(e),
+            _ => None,
+        }
+    }
+}
 
 /// The most missing cells listed per shard in an error (the count is always given).
-const LISTED: usize = 10;
+pub const LISTED: usize = 10;
 
 /// Reads the journals of the shards in `dirs` (each with the shard it ran) into the outcome of
 /// the whole `sweep`, as if it had run on one machine: every shard of one `N` exactly once, and
 /// every cell journaled by the shard that owns it. Missing cells are listed with their owner.
 pub fn merge(sweep: &Sweep, dirs: &[(PathBuf, Shard)]) -> Result<Outcome, MergeError> {
     let Some(&(ref first_dir, first)) = dirs.first() else {
-        return Err(MergeError::Shards("no shard directory given".into()));
+        return Err(MergeError::NoShards);
     };
     let n = first.n;
     let mut by_k: BTreeMap<usize, &Path> = BTreeMap::new();
     for (dir, s) in dirs {
         if s.n != n {
-            return Err(MergeError::Shards(format!(
-                "{}: shard {s} is of a split into {} shards, but {} is shard {first} of {n}",
-                dir.display(),
-                s.n,
-                first_dir.display()
-            )));
+            return Err(MergeError::MixedSplits {
+                dir: dir.clone(),
+                shard: *s,
+                first_dir: first_dir.clone(),
+                first,
+            });
         }
         if let Some(other) = by_k.insert(s.k, dir) {
-            return Err(MergeError::Shards(format!(
-                "{}: shard {s} is given twice (also {})",
-                dir.display(),
-                other.display()
-            )));
+            return Err(MergeError::Duplicate {
+                dir: dir.clone(),
+                shard: *s,
+                other: other.to_path_buf(),
+            });
         }
     }
     let len = sweep.len();
     let mut cells = BTreeMap::new();
     let mut notes = Vec::new();
-    let mut missing: Vec<String> = Vec::new();
+    let mut gaps: Vec<Gap> = Vec::new();
     for k in 0..n {
         let shard = Shard { k, n };
         let Some(dir) = by_k.get(&k) else {
             if !shard.is_empty(len) {
-                missing.push(describe_missing(
-                    sweep,
-                    shard,
-                    "not given",
-                    (k..len).step_by(n).collect(),
-                ));
+                gaps.push(gap(sweep, shard, None, (k..len).step_by(n).collect()));
             }
             continue;
         };
         let path = dir.join(JOURNAL);
         if !path.exists() && !shard.is_empty(len) {
-            return Err(MergeError::Journal(SweepError::Io(
-                path,
-                std::io::Error::new(
-                    std::io::ErrorKind::NotFound,
-                    format!("shard {shard} has no journal (it never ran here)"),
-                ),
-            )));
+            return Err(MergeError::NoJournal { shard, path });
         }
         let journaled =
             read_journal(&path, &shard.header(sweep), len).map_err(MergeError::Journal)?;
@@ -171,8 +354,7 @@ pub fn merge(sweep: &Sweep, dirs: &[(PathBuf, Shard)]) -> Result<Outcome, MergeE
             .filter(|i| !journaled.contains_key(i))
             .collect();
         if !lacking.is_empty() {
-            let d = dir.display().to_string();
-            missing.push(describe_missing(sweep, shard, &d, lacking));
+            gaps.push(gap(sweep, shard, Some(dir.to_path_buf()), lacking));
         }
         for (i, (c, m)) in journaled {
             if !shard.owns(i) {
@@ -184,12 +366,8 @@ pub fn merge(sweep: &Sweep, dirs: &[(PathBuf, Shard)]) -> Result<Outcome, MergeE
             cells.insert(i, c);
         }
     }
-    if !missing.is_empty() {
-        return Err(MergeError::Shards(format!(
-            "the shards do not hold every cell of the sweep, nothing merged (run or resume the \
-             shards named, then merge again):\n  {}",
-            missing.join("\n  ")
-        )));
+    if !gaps.is_empty() {
+        return Err(MergeError::Incomplete { gaps });
     }
     let (failures, beyond_model) = split_notes(notes);
     Ok(Outcome {
@@ -201,32 +379,26 @@ pub fn merge(sweep: &Sweep, dirs: &[(PathBuf, Shard)]) -> Result<Outcome, MergeE
     })
 }
 
-/// One line of a missing-cells error: the owner, where it was looked for, and the first cells
-/// with their axis values.
-fn describe_missing(sweep: &Sweep, shard: Shard, dir: &str, lacking: Vec<usize>) -> String {
-    let listed: Vec<String> = lacking
+/// A shard's missing cells (`lacking`, in order), the first with their axis values.
+fn gap(sweep: &Sweep, shard: Shard, dir: Option<PathBuf>, lacking: Vec<usize>) -> Gap {
+    let first = lacking
         .iter()
         .take(LISTED)
-        .map(|&i| {
-            let values: Vec<String> = sweep
+        .map(|&index| MissingCell {
+            index,
+            values: sweep
                 .axes
                 .iter()
-                .zip(sweep.values(i))
-                .map(|(a, v)| format!("{}={v}", a.key))
-                .collect();
-            format!("{i} ({})", values.join(", "))
+                .zip(sweep.values(index))
+                .map(|(a, v)| (a.key.clone(), v))
+                .collect(),
         })
         .collect();
-    let more = lacking.len().saturating_sub(LISTED);
-    let more = if more > 0 {
-        format!(", and {more} more")
-    } else {
-        String::new()
-    };
-    format!(
-        "shard {shard} ({dir}): {} of its {} cells missing: {}{more}",
-        lacking.len(),
-        shard.len(sweep.len()),
-        listed.join("; ")
-    )
+    Gap {
+        shard,
+        dir,
+        missing: lacking.len(),
+        cells: shard.len(sweep.len()),
+        first,
+    }
 }

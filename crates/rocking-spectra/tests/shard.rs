@@ -4,7 +4,9 @@
 
 use rocking::{simulate, DampingConvention, Dimensionless, Effects, Options, Structure, Summary};
 use rocking_motion::SinePulse;
-use rocking_spectra::shard::{merge, MergeError, MAX_SHARDS};
+use rocking_spectra::shard::{
+    merge, MergeError, ShardSpecError, ShardSpecProblem, LISTED, MAX_SHARDS,
+};
 use rocking_spectra::{run, run_shard, Axis, CellClass, CellFailure, Progress, Shard, Sweep};
 
 /// A cell of the Fig-8 structure's spectrum (γ_mb = γ_mc = 2, ω_n/p = 5, α = 0.1), failing on
@@ -147,15 +149,32 @@ fn shard_specs_are_parsed_with_their_bounds() {
         ("", "expected K/N"),
     ] {
         let e = Shard::parse(bad).unwrap_err();
+        assert_eq!(e.text, bad);
+        let e = e.to_string();
         assert!(e.contains(says) && e.contains(bad), "{bad}: {e}");
+        assert!(!e.contains("--"), "the library names no flag: {e}");
     }
     assert!(Shard::parse(&format!("0/{MAX_SHARDS}")).is_ok());
+    let problem = |text: &str| Shard::parse(text).unwrap_err().problem;
+    assert_eq!(problem("5/4"), ShardSpecProblem::Number { k: 5, n: 4 });
+    assert_eq!(problem("0/100001"), ShardSpecProblem::Count { n: 100_001 });
+    assert_eq!(problem("1"), ShardSpecProblem::NotKOverN);
+    assert_eq!(
+        Shard::parse("1/2/3"),
+        Err(ShardSpecError {
+            text: "1/2/3".into(),
+            problem: ShardSpecProblem::NotWhole {
+                part: "N",
+                found: "2/3".into()
+            }
+        })
+    );
 }
 
-fn shards_error(r: Result<rocking_spectra::Outcome, MergeError>) -> String {
+fn shards_error(r: Result<rocking_spectra::Outcome, MergeError>) -> MergeError {
     match r {
-        Err(MergeError::Shards(m)) => m,
-        Err(e) => panic!("expected a shard-set error, got {e}"),
+        Err(MergeError::Journal(e)) => panic!("expected a shard-set error, got {e}"),
+        Err(e) => e,
         Ok(_) => panic!("expected an error, the merge succeeded"),
     }
 }
@@ -166,11 +185,33 @@ fn incomplete_or_inconsistent_shard_sets_are_refused() {
     let s = sweep();
     let shards = run_all_shards(&s, dir.path(), 4);
 
+    // None given.
+    let e = shards_error(merge(&s, &[]));
+    assert!(matches!(e, MergeError::NoShards), "{e}");
+    assert_eq!(e.to_string(), "no shard directory given");
     // A missing shard: its cells are listed with their owner and axis values.
     let e = shards_error(merge(
         &s,
         &[shards[0].clone(), shards[1].clone(), shards[3].clone()],
     ));
+    let MergeError::Incomplete { gaps } = &e else {
+        panic!("expected missing cells, got {e}");
+    };
+    assert_eq!(gaps.len(), 1, "{e}");
+    let g = &gaps[0];
+    assert_eq!(
+        (g.shard, &g.dir, g.missing, g.cells),
+        (Shard { k: 2, n: 4 }, &None, 9, 9)
+    );
+    let indices: Vec<usize> = g.first.iter().map(|c| c.index).collect();
+    assert_eq!(indices, (2..35).step_by(4).collect::<Vec<_>>());
+    assert_eq!(g.first[0].values.len(), 2);
+    assert_eq!(
+        g.first[0].values[0],
+        ("excitation.omega_p_over_p".to_string(), 1.0)
+    );
+    assert_eq!(g.first[0].values[1].1, s.values(2)[1]);
+    let e = e.to_string();
     assert!(
         e.contains("shard 2/4 (not given): 9 of its 9 cells missing"),
         "{e}"
@@ -185,11 +226,64 @@ fn incomplete_or_inconsistent_shard_sets_are_refused() {
         &s,
         &[shards[0].clone(), shards[1].clone(), shards[1].clone()],
     ));
-    assert!(e.contains("shard 1/4 is given twice"), "{e}");
+    match &e {
+        MergeError::Duplicate { dir, shard, other } => {
+            assert_eq!(
+                (dir, *shard, other),
+                (&shards[1].0, shards[1].1, &shards[1].0)
+            );
+        }
+        other => panic!("expected a duplicate, got {other}"),
+    }
+    assert!(e.to_string().contains("shard 1/4 is given twice"), "{e}");
     // Shards of different splits.
     let three = run_all_shards(&s, dir.path(), 3);
     let e = shards_error(merge(&s, &[shards[0].clone(), three[1].clone()]));
-    assert!(e.contains("split into 3 shards"), "{e}");
+    match &e {
+        MergeError::MixedSplits {
+            dir,
+            shard,
+            first_dir,
+            first,
+        } => assert_eq!(
+            (dir, *shard, first_dir, *first),
+            (
+                &three[1].0,
+                Shard { k: 1, n: 3 },
+                &shards[0].0,
+                Shard { k: 0, n: 4 }
+            )
+        ),
+        other => panic!("expected mixed splits, got {other}"),
+    }
+    assert!(e.to_string().contains("split into 3 shards"), "{e}");
+    // A shard given with a directory where it never ran.
+    let never = dir.path().join("never-ran");
+    let e = shards_error(merge(
+        &s,
+        &[
+            shards[0].clone(),
+            shards[1].clone(),
+            (never.clone(), Shard { k: 2, n: 4 }),
+            shards[3].clone(),
+        ],
+    ));
+    match &e {
+        MergeError::NoJournal { shard, path } => {
+            assert_eq!(
+                (*shard, path),
+                (Shard { k: 2, n: 4 }, &never.join("cells.journal"))
+            );
+        }
+        other => panic!("expected no journal, got {other}"),
+    }
+    assert_eq!(
+        e.to_string(),
+        format!(
+            "{}: shard 2/4 has no journal (it never ran here)",
+            never.join("cells.journal").display()
+        )
+    );
     // A journal of shard 1 presented as shard 2 (its header names the shard).
     let e = merge(
         &s,
@@ -232,6 +326,18 @@ fn a_killed_shard_is_refused_then_resumes_to_the_same_merge() {
     std::fs::write(&journal, kept).unwrap();
     let e = shards_error(merge(&s, &shards));
     let owned = Shard { k: 1, n: 3 }.len(s.len());
+    let MergeError::Incomplete { gaps } = &e else {
+        panic!("expected missing cells, got {e}");
+    };
+    assert_eq!(gaps.len(), 1, "{e}");
+    let g = &gaps[0];
+    assert_eq!(
+        (g.shard, g.dir.as_ref(), g.missing, g.cells),
+        (shards[1].1, Some(&shards[1].0), owned - 4, owned)
+    );
+    assert_eq!(g.first.len(), (owned - 4).min(LISTED));
+    assert!(g.first.iter().all(|c| shards[1].1.owns(c.index)));
+    let e = e.to_string();
     assert!(
         e.contains(&format!(
             "shard 1/3 ({}): {} of its {owned} cells missing",

@@ -73,10 +73,14 @@ pub fn small_vibrations(
     effects: &Effects,
     ground: &Ground,
 ) -> Result<GroundModes, SimError> {
-    let sel = select_variant(structure, effects).map_err(|e| SimError::NoVariant(e.to_string()))?;
+    let sel = select_variant(structure, effects).map_err(SimError::NoVariant)?;
     let name = sel.variant.name;
-    with_variant!(name, V, L => modes_of::<V>(&sel.structure, ground))
-        .unwrap_or_else(|| Err(SimError::NoVariant(format!("no kernel variant `{name}`"))))
+    with_variant!(name, V, L => modes_of::<V>(&sel.structure, ground)).unwrap_or_else(|| {
+        Err(SimError::UnknownVariant {
+            name: name.to_string(),
+            model: None,
+        })
+    })
 }
 
 fn modes_of<V: Variant>(structure: &Structure, ground: &Ground) -> Result<GroundModes, SimError> {
@@ -131,13 +135,9 @@ fn modes_of<V: Variant>(structure: &Structure, ground: &Ground) -> Result<Ground
     let qf = V::Qf::from_fn(|i| q0[i]);
     let m_all = symmetric(V::free_mass_matrix(&qf, 1.0, &p).values(), nf);
     let m = m_all.view((0, 0), (n, n)).into_owned();
-    let singular = || {
-        SimError::NoVariant(format!(
-            "variant `{}` on compliant ground: its mass matrix over (θ, v, u) is not positive \
-             definite (point masses on the column axis have no rotational inertia once the base \
-             may sink): give the base or the column a mass",
-            V::NAME
-        ))
+    let singular = || SimError::SingularOnGround {
+        variant: V::NAME,
+        pivot: None,
     };
     let l = m.clone().cholesky().ok_or_else(singular)?.l();
     let l_inv = l.try_inverse().ok_or_else(singular)?;

@@ -269,7 +269,7 @@ pub fn simulate(
     effects: &Effects,
     options: &Options,
 ) -> Result<Run, SimError> {
-    let sel = select_variant(structure, effects).map_err(|e| SimError::NoVariant(e.to_string()))?;
+    let sel = select_variant(structure, effects).map_err(SimError::NoVariant)?;
     run_variant(sel.variant.name, &sel.structure, motion, options)
 }
 
@@ -286,14 +286,19 @@ pub fn simulate_on_ground(
     effects: &Effects,
     options: &Options,
 ) -> Result<Run, SimError> {
-    let sel = select_variant(structure, effects).map_err(|e| SimError::NoVariant(e.to_string()))?;
+    let sel = select_variant(structure, effects).map_err(SimError::NoVariant)?;
     let name = sel.variant.name;
     with_variant!(name, V, L => {
         driver::simulate_ground::<V, dyn GroundMotion, { L::Y + 3 }>(
             &sel.structure, ground, motion, options,
         )
     })
-    .unwrap_or_else(|| Err(SimError::NoVariant(format!("no kernel variant `{name}`"))))
+    .unwrap_or_else(|| {
+        Err(SimError::UnknownVariant {
+            name: name.to_string(),
+            model: None,
+        })
+    })
 }
 
 /// Runs the generated variant called `name` (monomorphised through the generated dispatch) on a
@@ -307,10 +312,10 @@ pub fn run_variant(
     match VariantInfo::find(name) {
         Some(v) if v.model == structure.model().name => {}
         _ => {
-            return Err(SimError::NoVariant(format!(
-                "no kernel variant `{name}` of model `{}`",
-                structure.model().name
-            )))
+            return Err(SimError::UnknownVariant {
+                name: name.to_string(),
+                model: Some(structure.model().name),
+            })
         }
     }
     with_variant!(name, V, L => {
@@ -322,5 +327,10 @@ pub fn run_variant(
             driver::simulate::<V, dyn GroundMotion, { L::X }, { L::XC }>(structure, motion, options)
         }
     })
-    .unwrap_or_else(|| Err(SimError::NoVariant(format!("no kernel variant `{name}`"))))
+    .unwrap_or_else(|| {
+        Err(SimError::UnknownVariant {
+            name: name.to_string(),
+            model: None,
+        })
+    })
 }

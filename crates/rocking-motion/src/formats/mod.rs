@@ -8,7 +8,9 @@
 use crate::error::{excerpt, short_number};
 use crate::input::{decode, number, read_bytes};
 use crate::units::{declared_unit, Declared};
-use crate::{parse_at2, read_at2, AccelUnit, At2Record, MotionError, STANDARD_GRAVITY};
+use crate::{
+    parse_at2, read_at2, AccelUnit, At2Record, MotionError, ParameterError, STANDARD_GRAVITY,
+};
 use std::path::{Path, PathBuf};
 
 mod esm;
@@ -156,10 +158,11 @@ pub fn parse_record(
 /// A time step stated for a format that states its own is an error.
 fn refuse_dt(format: RecordFormat, dt: Option<f64>, name: &str) -> Result<(), MotionError> {
     if format != RecordFormat::Text && dt.is_some() {
-        return Err(MotionError::InvalidParameter(format!(
-            "{name}: a {} file states its own time step; `dt` is for one-column text files",
-            format.name()
-        )));
+        return Err(ParameterError::DtNotTaken {
+            file: name.to_string(),
+            format: format.name(),
+        }
+        .into());
     }
     Ok(())
 }

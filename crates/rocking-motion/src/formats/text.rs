@@ -3,7 +3,7 @@
 use super::{malformed, not_blank, record};
 use crate::error::excerpt;
 use crate::input::{number, time_step};
-use crate::{At2Record, MotionError};
+use crate::{At2Record, MotionError, ParameterError};
 
 /// Relative tolerance on the spacing of the times of a two-column text file.
 const SPACING_TOL: f64 = 1e-6;
@@ -50,10 +50,10 @@ pub fn parse_text(text: &str, file: &str, dt: Option<f64>) -> Result<At2Record, 
     let dt = match (columns, dt) {
         (None, _) => return Err(malformed(file, 1, "samples", "only comments")),
         (Some(1), None) => {
-            return Err(MotionError::InvalidParameter(format!(
-                "{file}: a one-column text record needs its time step: give `dt` (s) in \
-                 [excitation]"
-            )))
+            return Err(ParameterError::TextNeedsDt {
+                file: file.to_string(),
+            }
+            .into())
         }
         (Some(1), Some(dt)) => time_step(dt, n, file, first_line, "dt")?,
         (Some(_), stated) => {
@@ -78,10 +78,12 @@ pub fn parse_text(text: &str, file: &str, dt: Option<f64>) -> Result<At2Record, 
             let dt = (times[times.len() - 1].0 - t0) / (times.len() - 1) as f64;
             if let Some(s) = stated {
                 if (s - dt).abs() > SPACING_TOL * dt {
-                    return Err(MotionError::InvalidParameter(format!(
-                        "{file}: the stated `dt` = {s} s contradicts the file's time column \
-                         (dt = {dt} s)"
-                    )));
+                    return Err(ParameterError::DtContradicts {
+                        file: file.to_string(),
+                        stated: s,
+                        dt,
+                    }
+                    .into());
                 }
             }
             time_step(dt, n, file, times[1].1, "t1 - t0")?

@@ -202,12 +202,10 @@ pub fn simulate_ground<V: Variant, M: GroundMotion + ?Sized, const N: usize>(
         &mut probe[..nq::<V>()],
     );
     if pivot.is_nan() || pivot <= 1e-12 {
-        return Err(SimError::NoVariant(format!(
-            "variant `{}` on compliant ground: its mass matrix over (θ, v, u) is singular (point \
-             masses on the column axis have no rotational inertia once the base may sink): give \
-             the base or the column a mass (gamma_mb > 0 or gamma_mc > 0)",
-            V::NAME
-        )));
+        return Err(SimError::SingularOnGround {
+            variant: V::NAME,
+            pivot: Some(pivot),
+        });
     }
     let rest = sim.y_of(0.0, v0, &[0.0; 0]);
     sim.e_rest = sim.total_energy(&rest, 1.0, sim.k.contact_of(&rest));
