@@ -689,6 +689,14 @@ const ROWS: &[Row] = &[
         ],
     ),
     (
+        "figure-contours-without-quantity",
+        FIGURE,
+        "kind = \"history\"\nquantity = \"theta_over_alpha\"\nruns = [\"a\"]",
+        "kind = \"spectrum\"\nsweep = \"s\"\ncontours = [0.5]\n\n[sweeps.s]\nscene = \"a.toml\"\nlabel = \"s\"",
+        None,
+        &["`panels[0].contours`", "levels of a reported quantity", "give `quantity`"],
+    ),
+    (
         "ground-zero-stiffness",
         SCENE,
         "",
