@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 
 use rocking_spectra::{cells_csv, CellClass, Outcome, Progress, Shard, Sweep};
 use rocking_study::plan::{program_digest, Plan, Records};
+use rocking_study::{Invariant, StudyError};
 use serde_json::json;
 
 use crate::error::CliError;
@@ -375,7 +376,7 @@ pub(crate) fn write_batch_outputs(
         scales,
     }) = &plan.records
     else {
-        unreachable!("Plan::batch always gives its records");
+        return Err(StudyError::Internal(Invariant::BatchRecords).into());
     };
     let own = &sweep.axes[2..];
     // The cells of the batch's own axes (1 without them): the fastest-varying part of an index.

@@ -110,6 +110,8 @@ pub enum Invariant {
     GroundColumns,
     /// The `[ida]` settings that passed the study's checks pass the hunt's.
     HuntSettings,
+    /// A batch's plan carries its records.
+    BatchRecords,
 }
 
 impl StudyError {
@@ -234,6 +236,9 @@ impl fmt::Display for Described<'_> {
             }
             StudyError::Internal(Invariant::GroundColumns) => {
                 f.write_str("a run on compliant ground without its ground columns")
+            }
+            StudyError::Internal(Invariant::BatchRecords) => {
+                f.write_str("a batch plan without records")
             }
             StudyError::Internal(Invariant::HuntSettings) => {
                 f.write_str("the [ida] settings passed their checks but the hunt refused them")
