@@ -9,7 +9,7 @@ use rocking::ground_statics::statics;
 use rocking_scene::models;
 use rocking_scene::setup::Setup;
 use rocking_scene::SceneError;
-use rocking_study::run_report as report;
+use rocking_study::report;
 
 use crate::error::CliError;
 use crate::load_base;

@@ -41,7 +41,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use rocking_scene::{models, scene, setup};
-use rocking_study::run_report as report;
+use rocking_study::report;
 
 use error::CliError;
 use rocking_plot::figure as plot;

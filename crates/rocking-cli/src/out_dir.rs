@@ -1,5 +1,5 @@
 //! Outputs: atomic file writes and a command's output directory, built aside and swapped in
-//! whole; the summary, history and event tables themselves come from `rocking_study::run_report`
+//! whole; the summary, history and event tables themselves come from `rocking_study::report`
 //! (shared with the Python package).
 
 use std::path::{Path, PathBuf};

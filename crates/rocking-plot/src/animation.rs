@@ -8,6 +8,7 @@ use plotters::prelude::*;
 use rocking::{HistoryRow, Run};
 use rocking_scene::labels;
 use rocking_scene::setup::{Animation, Setup};
+use rocking_study::report;
 
 use crate::{register, wrap};
 
@@ -182,7 +183,7 @@ pub fn geometry(model: &Setup, run: &Run, spec: &Animation) -> Result<Vec<Frame>
             let last = ((wpx / 2.0 / scale - ug[k]) / tick).ceil() as i64;
             Frame {
                 tau: h[k].tau,
-                theta_over_alpha: h[k].theta / model.units.alpha,
+                theta_over_alpha: report::THETA_OVER_ALPHA.number(&h[k], &model.scales),
                 base: w.base.map(to_px),
                 column: w.column.iter().map(|&p| to_px(p)).collect(),
                 mass: (to_px(w.mass), radius * scale),

@@ -1,6 +1,6 @@
 //! The Rust side of the Python overhead benchmark: the Fig. 3 scene loaded once, then simulated
 //! and summarised N times through the same calls as `rocking run --json` and `Scene.run()`
-//! (`rocking_study::run_report::simulate` and `summary_json`). Prints the mean time per run of the
+//! (`rocking_study::report::simulate` and `summary_json`). Prints the mean time per run of the
 //! fastest of 20 batches (the least disturbed on a shared machine).
 //!
 //! `cargo run --release -p rocking-py --example overhead -- scenes/fig3-vvel.toml 2000`
@@ -9,7 +9,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use rocking_scene::{scene, setup};
-use rocking_study::run_report as report;
+use rocking_study::report;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);

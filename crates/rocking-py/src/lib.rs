@@ -1,5 +1,5 @@
 //! `rocking._rocking`: the compiled half of the Python package `rocking`. It exposes the same
-//! library code paths as the `rocking` command (scene loading, `rocking_study::run_report` for the
+//! library code paths as the `rocking` command (scene loading, `rocking_study::report` for the
 //! summary, history and events, `rocking_study::plan` for sweeps), so that a result from
 //! Python is the command's result. The pure-Python wrapper (`python/rocking/__init__.py`) turns
 //! what this module returns into numpy arrays and friendly objects.
@@ -24,7 +24,7 @@ use rocking_scene::setup::{self, Animation, Setup};
 use rocking_scene::SceneError;
 use rocking_spectra::{Outcome, Sweep};
 use rocking_study::plan::{Base, Plan};
-use rocking_study::run_report as report;
+use rocking_study::report;
 use rocking_study::StudyError;
 
 use crate::error::py_err;
@@ -418,6 +418,13 @@ fn models_json() -> String {
     models::json().to_string()
 }
 
+/// The columns of history.csv and events.csv and the reportable summary quantities, with their
+/// labels and units (`rocking_study::report::catalogue`, a JSON string).
+#[pyfunction]
+fn columns_json() -> String {
+    report::catalogue().to_string()
+}
+
 /// Reads a scene file's text (the command's message when it cannot).
 #[pyfunction]
 fn read_scene(path: PathBuf) -> PyResult<String> {
@@ -434,6 +441,7 @@ fn _rocking(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(ida, m)?)?;
     m.add_function(wrap_pyfunction!(convergence, m)?)?;
     m.add_function(wrap_pyfunction!(models_json, m)?)?;
+    m.add_function(wrap_pyfunction!(columns_json, m)?)?;
     m.add_function(wrap_pyfunction!(read_scene, m)?)?;
     m.add_function(wrap_pyfunction!(figure::figure, m)?)?;
     m.add(

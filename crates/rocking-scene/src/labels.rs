@@ -1,6 +1,7 @@
-//! Labels in the paper's notation for every quantity a figure shows: the output quantities of a
-//! run or a sweep, and each scene key a sweep may vary (one place: a new knob or model parameter
-//! gets its label here, or from the registry's parameter doc).
+//! Labels in the paper's notation for the quantities figures share (the reported quantities and
+//! the history columns have theirs in `rocking_study::report`'s lists), and for each scene key a
+//! sweep may vary (one place: a new knob or model parameter gets its label here, or from the
+//! registry's parameter doc).
 
 use rocking_kernels::kernels::MODELS;
 
@@ -20,36 +21,6 @@ pub const UG_OVER_G_TAN_ALPHA: &str = "ü_g/(g tan α)";
 pub const FRACTION_OVERTURNED: &str = "fraction overturned";
 /// A record's scale factor.
 pub use crate::knob::SCALE_FACTOR;
-
-/// What a run reports about its forces and its fixed-base twin, in the paper's notation (M_b,
-/// V_b the moment and shear at the column base, M_el the elastic moment, R_h and R_v the ground
-/// reactions, W the total weight, B the half-width; on compliant ground p the pressure under the
-/// base, v its settlement and v₀ the static one); the other quantities by their key.
-const QUANTITIES: [(&str, &str); 14] = [
-    ("max_theta_over_alpha", MAX_THETA_OVER_ALPHA),
-    ("max_u_over_ucr", "max |u|/u_cr"),
-    ("max_base_moment_over_wb", "max |M_b|/(W B)"),
-    ("max_base_shear_over_w", "max |V_b|/W"),
-    ("max_elastic_base_moment_over_wb", "max |M_el|/(W B)"),
-    ("max_required_friction", "max |R_h|/R_v"),
-    ("min_vertical_reaction_over_w", "min R_v/W"),
-    ("base_moment_ratio", "max |M_b|, rocking / fixed base"),
-    ("base_shear_ratio", "max |V_b|, rocking / fixed base"),
-    ("max_ground_pressure_over_mean", "max p/(W/2B)"),
-    ("min_contact_fraction", "min contact length/2B"),
-    ("lift_offs", "edge lift-offs"),
-    ("max_settlement_over_static", "max v/v₀"),
-    ("ground_energy_dissipated", "ground dissipation/E_ref"),
-];
-
-/// The label of a quantity a run reports (a key of its summary, as a sweep's `report` names
-/// it).
-pub fn quantity_label(key: &str) -> &str {
-    QUANTITIES
-        .iter()
-        .find(|(k, _)| *k == key)
-        .map_or(key, |(_, label)| label)
-}
 
 /// The label of a scene key a sweep varies: the paper's notation for the keys of the format; for
 /// a parameter a model adds (`structure.m_a`), its name and the registry's doc; else the key.
@@ -98,12 +69,6 @@ mod tests {
         assert_eq!(axis_label("excitation.omega_p_over_p"), "ω_p/p");
         assert_eq!(axis_label("excitation.amplitude"), "a_p/(g tan α)");
         assert_eq!(axis_value("structure.omega_n_over_p", 2.5), "ω_n/p = 2.5");
-    }
-
-    #[test]
-    fn reported_quantities_are_labelled_in_the_papers_notation() {
-        assert_eq!(quantity_label("max_base_moment_over_wb"), "max |M_b|/(W B)");
-        assert_eq!(quantity_label("impacts"), "impacts");
     }
 
     #[test]

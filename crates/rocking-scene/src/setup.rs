@@ -11,7 +11,7 @@ use crate::effects::{impact_model, overturn_angle};
 pub use crate::ground::ground;
 use crate::scene::{OutputSpec, Scene, SceneSpec, Source};
 use crate::structure::build_structure;
-pub use crate::units::Units;
+pub use crate::units::{Scales, Units};
 use crate::SceneError;
 
 /// The most history rows a run may ask for (about 80 bytes each in memory and in history.csv).
@@ -30,6 +30,8 @@ pub struct Setup {
     pub variant: &'static VariantInfo,
     pub reasons: Vec<String>,
     pub units: Units,
+    /// What the run's quantities are normalised by (computed once here).
+    pub scales: Scales,
     pub plots: bool,
     /// History rows were asked for in the scene (written to history.csv).
     pub history_csv: bool,
@@ -169,6 +171,7 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Setup, SceneError> {
         tan_alpha: derived.alpha.tan(),
         alpha: derived.alpha,
     };
+    let scales = Scales::of(&structure, &units);
     let crate::excitation::Built {
         motion: excitation,
         description: excitation_description,
@@ -479,6 +482,7 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Setup, SceneError> {
         variant,
         reasons,
         units,
+        scales,
         plots,
         history_csv,
         fixed_base_reference,

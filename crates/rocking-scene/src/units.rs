@@ -26,3 +26,58 @@ impl Units {
         self.g_model * self.tan_alpha
     }
 }
+
+/// What a run's quantities are normalised by: computed once when the scene is built, so that
+/// every table, figure and the animation divide by the same numbers (the report's column list,
+/// `rocking_study::report`, says which quantity uses which).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Scales {
+    /// The slenderness α (rad).
+    pub alpha: f64,
+    /// The frequency parameter p = sqrt(g/R), model units.
+    pub p: f64,
+    /// The column's top deflection at static uplift.
+    pub u_cr: f64,
+    /// The fixed-base frequency ω_n, model units.
+    pub omega_n: f64,
+    /// The critical angle θ_cr of the rigid structure.
+    pub theta_cr: f64,
+    /// The reference energy E_ref.
+    pub e_ref: f64,
+    /// The total weight W.
+    pub weight: f64,
+    /// W B, the base moment at which the base uplifts.
+    pub uplift_moment: f64,
+    /// g tan α, the rigid block's uplift acceleration, model units.
+    pub g_tan_alpha: f64,
+    /// p in 1/s, when the scene has a time scale.
+    pub p_per_second: Option<f64>,
+    /// Seconds per model time unit, when known ([`Units::sec_per_unit`]).
+    sec_per_unit: Option<f64>,
+}
+
+impl Scales {
+    /// The scales of `structure` measured in `units`.
+    pub fn of(structure: &rocking::Structure, units: &Units) -> Scales {
+        let d = structure.derived();
+        let lift = structure.static_uplift();
+        Scales {
+            alpha: units.alpha,
+            p: d.p,
+            u_cr: d.u_cr,
+            omega_n: d.omega_n,
+            theta_cr: d.theta_cr,
+            e_ref: d.e_ref,
+            weight: lift.weight,
+            uplift_moment: lift.moment,
+            g_tan_alpha: units.accel_g_tan_alpha(),
+            p_per_second: structure.p_per_second(),
+            sec_per_unit: units.sec_per_unit,
+        }
+    }
+
+    /// Seconds per unit of τ, when the scene knows its time in seconds.
+    pub fn seconds_per_tau(&self) -> Option<f64> {
+        self.sec_per_unit.map(|s| s / self.p)
+    }
+}

@@ -1,4 +1,4 @@
-//! Studies of scenes: what one run reports ([`run_report`]: the summary, history and event
+//! Studies of scenes: what one run reports ([`report`]: the summary, history and event
 //! tables, as the command prints them and Python returns them), a scene's spectrum or record
 //! batch planned once ([`plan`]), record-suite fragility studies ([`ida`]: IDA or multiple
 //! stripes), and how a result converges with the number of deformation coordinates
@@ -12,6 +12,6 @@ pub mod convergence;
 mod error;
 pub mod ida;
 pub mod plan;
-pub mod run_report;
+pub mod report;
 
 pub use error::{Argument, ArgumentNames, AxisRefusal, Invariant, StudyError};

@@ -12,6 +12,8 @@ use plotters::prelude::*;
 use rocking::{EventKind, HistoryRow, Run};
 use rocking_scene::labels;
 use rocking_scene::setup::Setup;
+use rocking_scene::units::Scales;
+use rocking_study::report::{self, Column, Kind};
 
 use super::clip::clip;
 use super::inset::{self, Inset};
@@ -36,105 +38,52 @@ pub fn caption(impacts: bool, overturned: bool) -> Option<String> {
     (!parts.is_empty()).then(|| parts.join(" "))
 }
 
-/// A quantity of a run's history that a panel can show: its name (as in history.csv and
-/// figure files), its axis label, its value in a history row, and whether `rocking run`'s
-/// figure shows it.
-#[derive(Clone, Copy, Debug)]
-pub struct Quantity {
-    pub name: &'static str,
-    pub label: &'static str,
-    value: fn(&HistoryRow, &Scales) -> f64,
-    /// A panel of `rocking run`'s figure (in the order of [`QUANTITIES`]).
-    pub run_panel: bool,
-}
-
-impl PartialEq for Quantity {
-    fn eq(&self, other: &Quantity) -> bool {
-        self.name == other.name
-    }
-}
-
-/// What a run's quantities are normalised by.
-#[derive(Clone, Copy, Debug)]
-struct Scales {
-    alpha: f64,
-    u_cr: f64,
-    omega_n: f64,
-    g_tan_alpha: f64,
-}
+/// A quantity of a run's history that a panel can show: a numeric column of history.csv
+/// (`rocking_study::report::HISTORY`: its name, label and value come from there).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Quantity(&'static Column<HistoryRow>);
 
 /// θ/α: never scaled by an overturning run (see [`HistoryPanel`]).
-pub const THETA_OVER_ALPHA: Quantity = Quantity {
-    name: "theta_over_alpha",
-    label: labels::THETA_OVER_ALPHA,
-    value: |r, s| r.theta / s.alpha,
-    run_panel: true,
-};
+pub const THETA_OVER_ALPHA: Quantity = Quantity(&report::THETA_OVER_ALPHA);
 
-/// Every quantity a panel can show; those with `run_panel` make `rocking run`'s figure, top to
-/// bottom (the paper's Figs 3, 5 and 10). A new quantity or panel is one entry here.
-pub const QUANTITIES: [Quantity; 10] = [
-    THETA_OVER_ALPHA,
-    Quantity {
-        name: "u_over_ucr",
-        label: labels::U_OVER_UCR,
-        value: |r, s| r.u / s.u_cr,
-        run_panel: true,
-    },
-    Quantity {
-        name: "u_dot_over_ucr_omega_n",
-        label: "u\u{307}/(u_cr ω_n)",
-        value: |r, s| r.u_dot / (s.u_cr * s.omega_n),
-        run_panel: false,
-    },
-    Quantity {
-        name: "e_kin_over_eref",
-        label: "E_kin/E_ref",
-        value: |r, _| r.e_kin,
-        run_panel: false,
-    },
-    Quantity {
-        name: "e_total_over_eref",
-        label: labels::E_OVER_EREF,
-        value: |r, _| r.e_total,
-        run_panel: true,
-    },
-    Quantity {
-        name: "base_moment_over_wb",
-        label: "M_b/(W B)",
-        value: |r, _| r.base_moment_over_wb,
-        run_panel: true,
-    },
-    Quantity {
-        name: "base_shear_over_w",
-        label: "V_b/W",
-        value: |r, _| r.base_shear_over_w,
-        run_panel: false,
-    },
-    Quantity {
-        name: "elastic_base_moment_over_wb",
-        label: "M_el/(W B)",
-        value: |r, _| r.elastic_base_moment_over_wb,
-        run_panel: false,
-    },
-    Quantity {
-        name: "vertical_reaction_over_w",
-        label: "R_v/W",
-        value: |r, _| r.vertical_reaction_over_w,
-        run_panel: false,
-    },
-    Quantity {
-        name: "ug_over_g_tan_alpha",
-        label: labels::UG_OVER_G_TAN_ALPHA,
-        value: |r, s| r.ug / s.g_tan_alpha,
-        run_panel: true,
-    },
+/// The panels of `rocking run`'s figure, top to bottom (the paper's Figs 3, 5 and 10): history
+/// columns by name.
+pub const RUN_PANELS: [&str; 5] = [
+    "theta_over_alpha",
+    "u_over_ucr",
+    "e_total_over_eref",
+    "base_moment_over_wb",
+    "ug_over_g_tan_alpha",
 ];
 
 impl Quantity {
-    /// The quantity named `name` (a history.csv column name).
+    /// The quantity named `name` (a numeric history.csv column).
     pub fn parse(name: &str) -> Option<Quantity> {
-        QUANTITIES.iter().find(|q| q.name == name).copied()
+        report::history_column(name)
+            .filter(|c| c.kind == Kind::Number)
+            .map(Quantity)
+    }
+
+    /// Every quantity a panel can show, in history.csv's order.
+    pub fn all() -> impl Iterator<Item = Quantity> {
+        report::HISTORY
+            .iter()
+            .filter(|c| c.kind == Kind::Number)
+            .map(Quantity)
+    }
+
+    /// Its name in history.csv and figure files.
+    pub fn name(self) -> &'static str {
+        self.0.name
+    }
+
+    /// Its axis label.
+    pub fn label(self) -> &'static str {
+        self.0.label
+    }
+
+    fn value(self, r: &HistoryRow, s: &Scales) -> f64 {
+        self.0.number(r, s)
     }
 }
 
@@ -160,18 +109,12 @@ pub struct Trace {
 impl Trace {
     /// The trace of a run of `model`.
     pub fn of(model: &Setup, run: &Run, label: String, style: LineStyle) -> Trace {
-        let d = model.structure.derived();
-        let u = &model.units;
+        let s = model.scales;
         Trace {
             label,
             style,
             rows: Arc::new(run.history.clone()),
-            scales: Scales {
-                alpha: u.alpha,
-                u_cr: d.u_cr,
-                omega_n: d.omega_n,
-                g_tan_alpha: u.accel_g_tan_alpha(),
-            },
+            scales: s,
             impacts: run
                 .events
                 .iter()
@@ -179,8 +122,8 @@ impl Trace {
                 .map(|e| e.time.tau)
                 .collect(),
             overturned: run.summary.overturned,
-            theta_cr_over_alpha: d.theta_cr / d.alpha,
-            seconds_per_tau: u.sec_per_unit.map(|s| s / u.p_model),
+            theta_cr_over_alpha: s.theta_cr / s.alpha,
+            seconds_per_tau: s.seconds_per_tau(),
         }
     }
 
@@ -188,7 +131,7 @@ impl Trace {
     pub fn points(&self, q: Quantity) -> Vec<(f64, f64)> {
         self.rows
             .iter()
-            .map(|r| (r.tau, (q.value)(r, &self.scales)))
+            .map(|r| (r.tau, q.value(r, &self.scales)))
             .collect()
     }
 
@@ -201,12 +144,12 @@ impl Trace {
     fn at(&self, q: Quantity, tau: f64) -> Option<f64> {
         let i = self.rows.partition_point(|r| r.tau < tau);
         let b = self.rows.get(i)?;
-        let vb = (q.value)(b, &self.scales);
+        let vb = q.value(b, &self.scales);
         if i == 0 {
             return Some(vb);
         }
         let a = &self.rows[i - 1];
-        let va = (q.value)(a, &self.scales);
+        let va = q.value(a, &self.scales);
         let w = if b.tau > a.tau {
             (tau - a.tau) / (b.tau - a.tau)
         } else {
@@ -346,7 +289,7 @@ impl HistoryPanel {
     pub(super) fn axis_labels(&self) -> (String, String) {
         (
             self.time_label().to_string(),
-            self.quantity.label.to_string(),
+            self.quantity.label().to_string(),
         )
     }
 
@@ -377,7 +320,7 @@ impl HistoryPanel {
             self.title.as_deref(),
             x,
             (lo, hi),
-            (self.time_label(), self.quantity.label),
+            (self.time_label(), self.quantity.label()),
             true,
         )?;
         for &v in &self.rules {
@@ -552,4 +495,22 @@ pub(super) fn shared_ranges(panels: &[Panel]) -> Vec<Option<(f64, f64)>> {
                 .reduce(|a, b| (a.0.min(b.0), a.1.max(b.1)))
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_run_figures_panels_are_drawable_history_columns() {
+        for name in RUN_PANELS {
+            let q = Quantity::parse(name).expect("a numeric history column");
+            assert_eq!(q.name(), name);
+        }
+        assert_eq!(Quantity::parse("theta_over_alpha"), Some(THETA_OVER_ALPHA));
+        // Time and text columns are not quantities a panel draws against τ.
+        for name in ["tau", "t_s", "phase", "required_friction", "nope"] {
+            assert!(Quantity::parse(name).is_none(), "{name}");
+        }
+    }
 }

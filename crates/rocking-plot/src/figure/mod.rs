@@ -20,7 +20,7 @@ mod spectrum;
 mod standard;
 
 pub use boundary_panel::{BoundaryPanel, Structure};
-pub use history::{HistoryPanel, Quantity, Trace, QUANTITIES, THETA_OVER_ALPHA};
+pub use history::{HistoryPanel, Quantity, Trace, RUN_PANELS, THETA_OVER_ALPHA};
 pub use ida::{ida_plots, FitPanel, IdaPanel, Points};
 pub use inset::{Corner, Inset, CORNERS, INSET_SIZE};
 pub use line_panel::{CurvePanel, LinePanel};

@@ -14,9 +14,9 @@ use super::*;
 /// marked (the paper's Figs 3, 5 and 10 style), written as plot.svg, plot.png and plot.pdf.
 pub fn plots(model: &Setup, run: &Run, dir: &Path) -> Result<Vec<PathBuf>, FigureError> {
     let trace = Trace::of(model, run, String::new(), style::LINES[0]);
-    let panels = QUANTITIES
+    let panels = RUN_PANELS
         .into_iter()
-        .filter(|q| q.run_panel)
+        .filter_map(Quantity::parse)
         .map(|q| Panel::History(HistoryPanel::new(q, vec![trace.clone()])))
         .collect();
     let title = model
@@ -168,7 +168,7 @@ pub fn sweep_figure(
 /// marks 1 on the colour bar. Returns the figure and its file name, `spectrum-<quantity>`.
 pub fn reported_figure(title: &str, sweep: &Sweep, cells: &[Cell], k: usize) -> (Figure, String) {
     let key = &sweep.reported[k];
-    let label = labels::quantity_label(key);
+    let label = rocking_study::report::quantity_label(key);
     let friction = key == REQUIRED_FRICTION;
     let contours: &[f64] = if friction { &FRICTION_CONTOURS } else { &[] };
     let panel = reported_panel(sweep, cells, k, contours);
@@ -201,9 +201,9 @@ pub fn reported_figure(title: &str, sweep: &Sweep, cells: &[Cell], k: usize) -> 
 /// fixed-base twin marked at 1 on the colour bar, and its contours at `levels`.
 pub fn reported_panel(sweep: &Sweep, cells: &[Cell], k: usize, levels: &[f64]) -> SpectrumPanel {
     let key = &sweep.reported[k];
-    let label = labels::quantity_label(key);
+    let label = rocking_study::report::quantity_label(key);
     let mut panel = SpectrumPanel::reported(sweep, cells, k, label);
-    if rocking_study::run_report::RATIOS.contains(&key.as_str()) {
+    if rocking_study::report::RATIOS.contains(&key.as_str()) {
         panel.mark = Some((1.0, "fixed base".to_string()));
     }
     for &level in levels {

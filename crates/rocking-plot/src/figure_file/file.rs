@@ -283,7 +283,7 @@ pub fn read(file: &Path) -> Result<FigureFile, SceneError> {
                     check_inset(file, &field("inset"), i)?;
                 }
                 if Quantity::parse(quantity).is_none() {
-                    let names: Vec<&str> = plot::QUANTITIES.iter().map(|q| q.name).collect();
+                    let names: Vec<&str> = Quantity::all().map(Quantity::name).collect();
                     return bad(
                         file,
                         &field("quantity"),

@@ -59,7 +59,7 @@ impl Loader {
         let mut m = rocking_scene::setup::build(&sc)?;
         m.options.event_log = true;
         m.options.energy = true;
-        let run = rocking_study::run_report::simulate(&m, scene)?.run;
+        let run = rocking_study::report::simulate(&m, scene)?.run;
         Ok(Trace::of(&m, &run, label, style))
     }
 

@@ -45,6 +45,7 @@ __all__ = [
     "Structure",
     "Summary",
     "batch",
+    "columns",
     "figure",
     "ida",
     "load_scene",
@@ -460,6 +461,16 @@ def models() -> List[Dict[str, Any]]:
     """The generated models with their variants, parameters and effect switches, as
     ``rocking models --json`` lists them."""
     return json.loads(_rocking.models_json())["models"]
+
+
+def columns() -> Dict[str, List[Dict[str, Any]]]:
+    """What the results hold, declared once in the library: ``history`` and ``events``, the
+    columns of ``Result.history`` / history.csv and ``Result.events`` / events.csv in order, each
+    ``{name, label, unit, group, kind}`` (``label`` in the paper's notation, as the figures print
+    it; ``unit`` what the raw quantity is divided by; ``group`` which runs have it: ``always``,
+    ``forces``, ``ground``); ``reportable``, the summary quantities a sweep may report, each
+    ``{key, label, needs, twin}``."""
+    return json.loads(_rocking.columns_json())
 
 
 class _Table:

@@ -12,7 +12,7 @@ use rocking_scene::SceneError;
 use rocking::SimError;
 use rocking_spectra::{fnv1a, Axis, CellClass, CellFailure, CellRun};
 
-use crate::{run_report, StudyError};
+use crate::{report, StudyError};
 
 use super::{file_digest, labelled, program_digest};
 
@@ -33,11 +33,11 @@ pub struct Base {
 
 /// Whether the reported quantity `key` needs the cell's fixed-base twin.
 fn needs_twin(key: &str) -> bool {
-    key.starts_with("fixed_base.") || run_report::RATIOS.contains(&key)
+    key.starts_with("fixed_base.") || report::RATIOS.contains(&key)
 }
 
 /// The number at `key` (`a.b` for a nested entry) of a run's quantities: +∞ for an unbounded
-/// one (`"inf"`, [`run_report::number`]), which cells.csv and runs.csv write as `inf`.
+/// one (`"inf"`, [`report::number`]), which cells.csv and runs.csv write as `inf`.
 fn lookup(q: &serde_json::Map<String, serde_json::Value>, key: &str) -> Option<f64> {
     let (head, tail) = match key.split_once('.') {
         Some((h, t)) => (h, Some(t)),
@@ -46,51 +46,18 @@ fn lookup(q: &serde_json::Map<String, serde_json::Value>, key: &str) -> Option<f
     let v = q.get(head)?;
     match tail {
         Some(t) => lookup(v.as_object()?, t),
-        None => run_report::number(v),
+        None => report::number(v),
     }
 }
 
-/// Refuses a reported quantity that no run of the scene has: the allowed ones are the numeric
-/// entries of a run's quantities (found by a run of the scene that ends at once, forces on, with
-/// its fixed-base twin; the force maxima in SI only for a physical scene), and the ratios to the
-/// twin.
+/// Refuses a reported quantity that no run of the scene has: the allowed ones are
+/// [`report::reportable_keys`] (the numbers a run of the scene reports, the twin's and the ratios
+/// to it; the force maxima in SI only for a physical scene).
 fn check_report(sc: &Scene, m: &Setup, report: &[String]) -> Result<(), StudyError> {
     if report.is_empty() {
         return Ok(());
     }
-    let probe = rocking::Options {
-        t_end: 1e-9,
-        forces: true,
-        history: History::None,
-        event_log: false,
-        ..m.options
-    };
-    let run = |o: &rocking::Options| {
-        run_report::run_setup(m, o)
-            .map(|r| r.summary)
-            .map_err(|source| StudyError::Simulation {
-                scene: sc.src.path.clone(),
-                source,
-            })
-    };
-    // On compliant ground the twin is the linear foundation (docs/ground.md).
-    let twin = run(&probe.fixed_base_twin())?;
-    let q = run_report::quantities(&run(&probe)?, Some(&twin), run_report::si_scale(m))?;
-    let mut allowed: Vec<String> = Vec::new();
-    for (k, v) in &q {
-        match v {
-            serde_json::Value::Object(o) => allowed.extend(
-                o.iter()
-                    .filter(|(_, x)| run_report::number(x).is_some())
-                    .map(|(j, _)| format!("{k}.{j}")),
-            ),
-            v if run_report::number(v).is_some() => allowed.push(k.clone()),
-            _ => {}
-        }
-    }
-    allowed.extend(run_report::RATIOS.iter().map(|r| r.to_string()));
-    allowed.sort();
-    allowed.dedup();
+    let allowed = report::reportable_keys(m);
     for (i, key) in report.iter().enumerate() {
         if report[..i].contains(key) {
             return Err(sc
@@ -114,7 +81,7 @@ fn check_report(sc: &Scene, m: &Setup, report: &[String]) -> Result<(), StudyErr
         }
         if !allowed.contains(key) {
             let names: Vec<&str> = allowed.iter().map(String::as_str).collect();
-            let hint = if run_report::SI_MAXIMA
+            let hint = if report::SI_MAXIMA
                 .iter()
                 .any(|q| key.strip_prefix("fixed_base.").unwrap_or(key) == *q)
             {
@@ -269,7 +236,7 @@ impl Base {
         m.options.max_deflection = !self.report.is_empty();
         let path = self.path.display();
         let run = |options: &rocking::Options| {
-            run_report::run_setup(&m, options).map_err(|e| match e {
+            report::run_setup(&m, options).map_err(|e| match e {
                 SimError::SingularMassMatrix { .. } => CellFailure {
                     class: CellClass::BeyondModel,
                     message: format!("{path}: beyond the model: {e}"),
@@ -286,7 +253,7 @@ impl Base {
         } else {
             None
         };
-        let q = run_report::quantities(&summary, twin.as_ref(), run_report::si_scale(&m))
+        let q = report::quantities(&summary, twin.as_ref(), report::si_scale(&m))
             .map_err(|e| e.to_string())?;
         let reported = self
             .report

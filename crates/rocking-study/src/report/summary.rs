@@ -1,78 +1,18 @@
-//! What a run reports, as the `rocking` command writes it and the Python package returns it:
-//! the summary object (`--json`, summary.json), the derived quantities, history.csv and
-//! events.csv. One implementation, so that both print the same numbers.
+//! The summary object of a run (`--json`, summary.json, Python's `summary`): its quantities as
+//! they serialize, the force maxima in SI, the ratios to the fixed-base twin, the derived
+//! quantities of the structure, and the warnings of the assumptions a run breaks.
 
-use std::fmt::Write as _;
 use std::path::Path;
 
-use rocking::{ForceSummary, Run, Summary, Time};
+use rocking::{ForceSummary, Summary, Time};
 use serde_json::{json, Value};
 
 use rocking_scene::setup::Setup;
 use rocking_scene::SceneError;
 
-use crate::{Invariant, StudyError};
+use crate::StudyError;
 
-/// A run and, when the scene asks for it (`[output] fixed_base_reference`), the summary of its
-/// fixed-base twin: the same structure under the same excitation, held in full contact.
-pub struct Report {
-    /// The run.
-    pub run: Run,
-    /// The fixed-base twin's summary.
-    pub fixed_base: Option<Summary>,
-}
-
-/// Runs a built scene (and its fixed-base twin when asked for) with the command's error
-/// messages: bad options are input errors, a guard that stops a run names the scene settings
-/// that bound it.
-pub fn simulate(m: &Setup, scene: &Path) -> Result<Report, StudyError> {
-    let run = simulate_with(m, &m.options, scene)?;
-    let fixed_base = if m.fixed_base_reference {
-        let twin = rocking::Options {
-            history: rocking::History::None,
-            event_log: false,
-            ..m.options.fixed_base_twin()
-        };
-        Some(simulate_with(m, &twin, scene)?.summary)
-    } else {
-        None
-    };
-    Ok(Report { run, fixed_base })
-}
-
-/// Runs a built scene with `options`: on its compliant ground ([`rocking::simulate_on_ground`])
-/// when it has one, else on the rigid surface ([`rocking::simulate`]). The one dispatch of every
-/// run: `rocking run`, a sweep's cell, an IDA analysis, Python.
-pub fn run_setup(m: &Setup, options: &rocking::Options) -> Result<Run, rocking::SimError> {
-    match &m.ground {
-        Some(g) => rocking::simulate_on_ground(&m.structure, g, &m.excitation, &m.effects, options),
-        None => rocking::simulate(&m.structure, &m.excitation, &m.effects, options),
-    }
-}
-
-fn simulate_with(m: &Setup, options: &rocking::Options, scene: &Path) -> Result<Run, StudyError> {
-    run_setup(m, options).map_err(|e| {
-        if e.is_invalid_input() {
-            SceneError::input(format!("{}: {e}", scene.display())).into()
-        } else {
-            StudyError::Simulation {
-                scene: scene.to_path_buf(),
-                source: e,
-            }
-        }
-    })
-}
-
-fn finite(name: &str, x: f64) -> Result<f64, StudyError> {
-    if x.is_finite() {
-        Ok(x)
-    } else {
-        Err(StudyError::NonFinite {
-            quantity: name.to_string(),
-            detail: x.to_string(),
-        })
-    }
-}
+use super::Report;
 
 /// Derived quantities of the structure, for `check` and the summary. A non-finite value would be
 /// written as `null`: it is an error instead (the model checks them when it is built).
@@ -323,121 +263,4 @@ pub fn warnings(model: &Setup, summary: &Summary) -> Vec<String> {
         ));
     }
     out
-}
-
-fn num(out: &mut String, x: f64) -> Result<(), StudyError> {
-    let x = finite("history value", x)?;
-    let _ = write!(out, ",{x}");
-    Ok(())
-}
-
-/// history.csv: τ, seconds (when known), normalised state, phase, energies, ground acceleration,
-/// the section forces at the column base and the ground reactions (when the run tracks them,
-/// `[output] forces`, as the summary has them); on compliant ground the settlement over the static
-/// one, the contact fraction and the largest ground pressure over the mean; with n > 1
-/// deformation coordinates then
-/// u_1..u_n and u_1'..u_n' (`u_dot_i`) in the model's units.
-pub fn history_csv(model: &Setup, run: &Run) -> Result<String, StudyError> {
-    let d = model.structure.derived();
-    let u = &model.units;
-    let ps = model.structure.p_per_second();
-    let forces = model.options.forces;
-    let mut out = String::from(
-        "tau,t_s,theta_over_alpha,u_over_ucr,theta_dot_over_alpha_p,u_dot_over_ucr_omega_n,\
-         phase,e_kin_over_eref,e_total_over_eref,ug_over_g_tan_alpha",
-    );
-    if forces {
-        out.push_str(
-            ",base_moment_over_wb,base_shear_over_w,elastic_base_moment_over_wb,\
-             required_friction,vertical_reaction_over_w",
-        );
-    }
-    let ground = model.ground.is_some();
-    if ground {
-        out.push_str(",settlement_over_static,contact_fraction,ground_pressure_over_mean");
-    }
-    // Several deformation coordinates: u_1..u_n and their rates, in the model's units.
-    let n = run.coordinate_count();
-    for name in ["u", "u_dot"] {
-        for i in 1..=n {
-            let _ = write!(out, ",{name}_{i}");
-        }
-    }
-    out.push('\n');
-    for (k, r) in run.history.iter().enumerate() {
-        let _ = write!(out, "{}", finite("τ", r.tau)?);
-        match ps {
-            Some(p) => num(&mut out, r.tau / p)?,
-            None => out.push(','),
-        }
-        num(&mut out, r.theta / u.alpha)?;
-        num(&mut out, r.u / d.u_cr)?;
-        num(&mut out, r.theta_dot / (u.alpha * d.p))?;
-        num(&mut out, r.u_dot / (d.u_cr * d.omega_n))?;
-        let phase = serde_json::to_value(r.phase).unwrap_or(Value::Null);
-        let _ = write!(out, ",{}", phase.as_str().unwrap_or("?"));
-        num(&mut out, r.e_kin)?;
-        num(&mut out, r.e_total)?;
-        num(&mut out, r.ug / u.accel_g_tan_alpha())?;
-        if forces {
-            num(&mut out, r.base_moment_over_wb)?;
-            num(&mut out, r.base_shear_over_w)?;
-            num(&mut out, r.elastic_base_moment_over_wb)?;
-            // Where R_v <= 0 no friction holds the structure: "inf".
-            match r.required_friction() {
-                f if f.is_finite() => num(&mut out, f)?,
-                _ => {
-                    out.push(',');
-                    out.push_str(rocking::UNBOUNDED);
-                }
-            }
-            num(&mut out, r.vertical_reaction_over_w)?;
-        }
-        if ground {
-            let g = r
-                .ground
-                .ok_or(StudyError::Internal(Invariant::GroundColumns))?;
-            num(&mut out, g.settlement_over_static)?;
-            num(&mut out, g.contact_fraction)?;
-            num(&mut out, g.ground_pressure_over_mean)?;
-        }
-        for &c in run.coordinates_of(k) {
-            num(&mut out, c)?;
-        }
-        out.push('\n');
-    }
-    Ok(out)
-}
-
-/// events.csv: one row per uplift, impact, rest or overturning.
-pub fn events_csv(model: &Setup, run: &Run) -> Result<String, StudyError> {
-    let d = model.structure.derived();
-    let u = &model.units;
-    let mut out = String::from(
-        "tau,t_s,kind,branch,phase_after,theta_dot_over_alpha_p,u_over_ucr,\
-         u_dot_over_ucr_omega_n,e_kin_before_over_eref,e_kin_after_over_eref\n",
-    );
-    for e in &run.events {
-        let _ = write!(out, "{}", finite("τ", e.time.tau)?);
-        match e.time.seconds {
-            Some(s) => num(&mut out, s)?,
-            None => out.push(','),
-        }
-        let kind = serde_json::to_value(e.kind).unwrap_or(Value::Null);
-        let phase = serde_json::to_value(e.phase_after).unwrap_or(Value::Null);
-        let _ = write!(
-            out,
-            ",{},{},{}",
-            kind.as_str().unwrap_or("?"),
-            e.branch,
-            phase.as_str().unwrap_or("?")
-        );
-        num(&mut out, e.theta_dot / (u.alpha * d.p))?;
-        num(&mut out, e.u / d.u_cr)?;
-        num(&mut out, e.u_dot / (d.u_cr * d.omega_n))?;
-        num(&mut out, e.energy_before)?;
-        num(&mut out, e.energy_after)?;
-        out.push('\n');
-    }
-    Ok(out)
 }

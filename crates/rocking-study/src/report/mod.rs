@@ -1,0 +1,56 @@
+//! What a run reports, as the `rocking` command writes it and the Python package returns it:
+//! the summary object (`--json`, summary.json) and the derived quantities ([`summary`]),
+//! history.csv and events.csv from one column list each ([`tables`]), and which summary
+//! quantities a sweep may report ([`reportable`]). One implementation, so that both print the
+//! same numbers.
+
+mod reportable;
+mod run;
+mod summary;
+mod tables;
+
+pub use reportable::{quantity_label, reportable_keys, Needs, Reportable, REPORTABLE};
+pub use run::{run_setup, simulate, Report};
+pub use summary::{
+    derived_json, number, quantities, si_scale, summary_json, warnings, SiScale, RATIOS, SI_MAXIMA,
+};
+pub use tables::{
+    events_csv, history_column, history_columns, history_csv, Column, Entry, Group, Kind, EVENTS,
+    HISTORY, THETA_OVER_ALPHA,
+};
+
+/// The tables' columns and the reportable summary quantities with their labels and units, as
+/// Python's `rocking.columns()` returns them: `{"history": [..], "events": [..], "reportable":
+/// [..]}`, each column `{name, label, unit, group, kind}`, each quantity `{key, label, needs,
+/// twin}`.
+pub fn catalogue() -> serde_json::Value {
+    fn columns<R>(cols: &[Column<R>]) -> Vec<serde_json::Value> {
+        cols.iter()
+            .map(|c| {
+                serde_json::json!({
+                    "name": c.name,
+                    "label": c.label,
+                    "unit": c.unit,
+                    "group": format!("{:?}", c.group).to_lowercase(),
+                    "kind": format!("{:?}", c.kind).to_lowercase(),
+                })
+            })
+            .collect()
+    }
+    let reportable: Vec<_> = REPORTABLE
+        .iter()
+        .map(|r| {
+            serde_json::json!({
+                "key": r.key,
+                "label": r.label,
+                "needs": format!("{:?}", r.needs).to_lowercase(),
+                "twin": r.twin,
+            })
+        })
+        .collect();
+    serde_json::json!({
+        "history": columns(&HISTORY),
+        "events": columns(&EVENTS),
+        "reportable": reportable,
+    })
+}
