@@ -45,8 +45,6 @@ pub enum CliError {
         /// Why.
         source: serde_json::Error,
     },
-    /// A record's intensity could not be normalised.
-    Intensity(rocking_motion::MotionError),
     /// The animation of a run could not be drawn.
     Animation {
         /// The file it was to be.
@@ -154,7 +152,6 @@ impl fmt::Display for CliError {
             CliError::ThreadPool(e) => write!(f, "cannot start the thread pool: {e}"),
             CliError::Table { name, source } => write!(f, "cannot write {name}: {source}"),
             CliError::Json { name, source } => write!(f, "cannot write {name}: {source}"),
-            CliError::Intensity(e) => e.fmt(f),
             CliError::Animation { path, detail } => {
                 write!(f, "{}: cannot draw the animation: {detail}", path.display())
             }

@@ -6,8 +6,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use rocking_fragility::ScalingIm;
-use rocking_motion::intensity::pga_over_uplift;
-use rocking_study::ida::RecordStudy;
+use rocking_study::report::Table;
 use serde_json::json;
 
 use crate::error::CliError;
@@ -22,86 +21,13 @@ fn csv_err(source: csv::Error) -> CliError {
     }
 }
 
-fn records_csv(done: &[RecordStudy], alpha: f64, g_si: f64) -> Result<Vec<u8>, CliError> {
+/// A study's table as CSV (records.csv, ida.csv, stripes.csv: `rocking_study::ida`'s tables).
+fn table_csv(table: &Table) -> Result<Vec<u8>, CliError> {
     let mut w = csv::Writer::from_writer(Vec::new());
-    w.write_record([
-        "record",
-        "path",
-        "units",
-        "dt_s",
-        "npts",
-        "pga_m_s2",
-        "pgv_m_s",
-        "pgd_m",
-        "arias_m_s",
-        "d5_95_s",
-        "mean_period_s",
-        "im_m_s2",
-        "pga_over_g_tan_alpha",
-        "capacity_im_m_s2",
-        "survived_below_im_m_s2",
-        "runs",
-    ])
-    .map_err(csv_err)?;
-    for d in done {
-        let m = &d.ims;
-        let norm = pga_over_uplift(m.pga_m_s2 / g_si * rocking_motion::STANDARD_GRAVITY, alpha)
-            .map_err(|e| CliError::Intensity(e.into()))?;
-        let mut row = vec![d.name.clone(), d.path.clone(), d.unit.to_string()];
-        row.extend(
-            [
-                d.dt,
-                d.npts as f64,
-                m.pga_m_s2,
-                m.pgv_m_s,
-                m.pgd_m,
-                m.arias_m_s,
-                m.d5_95_s,
-                m.mean_period_s,
-                d.im_unscaled,
-                norm,
-            ]
-            .iter()
-            .map(|x| x.to_string()),
-        );
-        // A stripe study has no capacity per record: those fields stay empty.
-        let (capacity, below) = d.capacity.map_or((String::new(), String::new()), |(c, b)| {
-            (c.to_string(), b.to_string())
-        });
-        row.extend([capacity, below, d.points.len().to_string()]);
-        w.write_record(&row).map_err(csv_err)?;
-    }
-    w.into_inner().map_err(|e| csv_err(e.into_error().into()))
-}
-
-/// ida.csv or stripes.csv: one row per analysis, with the quantities of `[sweep] report`.
-fn ida_csv(done: &[RecordStudy], report: &[String]) -> Result<Vec<u8>, CliError> {
-    let mut w = csv::Writer::from_writer(Vec::new());
-    let head = [
-        "record",
-        "im_m_s2",
-        "scale",
-        "collapsed",
-        "max_theta_over_alpha",
-    ];
-    w.write_record(
-        head.iter()
-            .copied()
-            .chain(report.iter().map(String::as_str)),
-    )
-    .map_err(csv_err)?;
-    for d in done {
-        for (p, values) in d.points.iter().zip(&d.reported) {
-            let mut row = vec![
-                d.name.clone(),
-                p.im.to_string(),
-                (p.im / d.im_unscaled).to_string(),
-                p.outcome.collapsed.to_string(),
-                p.outcome.response.to_string(),
-            ];
-            row.extend(values.iter().map(f64::to_string));
-            w.write_record(&row).map_err(csv_err)?;
-        }
+    w.write_record(&table.columns).map_err(csv_err)?;
+    for row in &table.rows {
+        w.write_record(row.iter().map(|e| e.text()))
+            .map_err(csv_err)?;
     }
     w.into_inner().map_err(|e| csv_err(e.into_error().into()))
 }
@@ -122,7 +48,7 @@ pub fn ida(
     let start = Instant::now();
     let base = crate::load_base(scene_path, sets)?;
     let model = base.model(&[])?;
-    let (alpha, g_si) = (model.units.alpha, model.units.g_si);
+    let g_si = model.units.g_si;
     let mut pool = rayon::ThreadPoolBuilder::new();
     if let Some(n) = threads {
         if !(1..=1024).contains(&n) {
@@ -160,14 +86,17 @@ pub fn ida(
     let method = st.method();
     write_atomic(
         &dir.path().join("records.csv"),
-        &records_csv(done, alpha, g_si)?,
+        &table_csv(&st.records_table())?,
     )?;
     let table = if st.settings.stripes.is_some() {
         "stripes.csv"
     } else {
         "ida.csv"
     };
-    write_atomic(&dir.path().join(table), &ida_csv(done, base.report())?)?;
+    write_atomic(
+        &dir.path().join(table),
+        &table_csv(&st.analyses_table(base.report()))?,
+    )?;
     let text = serde_json::to_string_pretty(&json).map_err(|source| CliError::Json {
         name: "fragility.json",
         source,

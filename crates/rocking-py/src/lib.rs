@@ -379,7 +379,7 @@ fn ida(
         .map_err(py_err)?;
     Ok((
         study.fragility_json().to_string(),
-        study.records_json().to_string(),
+        study.records_json(base.report()).to_string(),
     ))
 }
 

@@ -385,7 +385,9 @@ class Fragility:
     """A record-suite fragility study (:func:`ida`): ``fragility`` (what ``fragility.json`` of
     ``rocking ida`` holds: ``method`` "ida" or "multiple-stripe", ``median_m_s2``, ``beta``, the
     bootstrap intervals, and the ``capacities_m_s2`` or the ``stripes``) and ``records`` (per
-    record its intensity measures, ``im_m_s2`` at scale 1, its capacity and its ``analyses``)."""
+    record its row of records.csv, keyed by its columns: ``record`` (the file name), ``path``,
+    ``units``, the intensity measures, ``im_m_s2`` at scale 1, the capacity; and ``analyses``,
+    its rows of ida.csv or stripes.csv)."""
 
     def __init__(self, fragility: Dict[str, Any], records: List[Dict[str, Any]]) -> None:
         self.fragility = fragility

@@ -12,7 +12,7 @@ use rocking_fragility::{
     bootstrap_capacities, bootstrap_stripes, Bootstrap, IdaError, IdaPoint, Outcome, ScalingIm,
     Stripe,
 };
-use rocking_motion::intensity::IntensityMeasures;
+use rocking_motion::intensity::{pga_over_uplift, IntensityMeasures};
 use rocking_motion::AccelUnit;
 use rocking_scene::knob::KnobValue;
 use rocking_scene::limits::{short, MAX_ACCEL_G};
@@ -24,6 +24,7 @@ use serde_json::json;
 use crate::plan::Base;
 
 mod settings;
+mod tables;
 use crate::{Invariant, StudyError};
 pub use settings::{check_table, settings, Settings, PERIODS};
 
@@ -43,6 +44,8 @@ pub struct RecordStudy {
     pub ims: IntensityMeasures,
     /// The scaling IM at scale 1 (m/s²).
     pub im_unscaled: f64,
+    /// Its PGA over the structure's uplift acceleration g tan α.
+    pub pga_over_g_tan_alpha: f64,
     /// Every analysis of the record, sorted by IM.
     pub points: Vec<IdaPoint>,
     /// The IDA capacity and the highest survivor below it (`None` for stripes).
@@ -162,30 +165,6 @@ impl Study {
         v
     }
 
-    /// Per record: name, path, units, dt, npts, intensity measures, the scaling IM at scale 1,
-    /// the capacity (IDA) and every analysis (IM, scale, collapsed, max θ/α).
-    pub fn records_json(&self) -> serde_json::Value {
-        self.records
-            .iter()
-            .map(|r| {
-                let m = &r.ims;
-                json!({
-                    "name": r.name, "path": r.path, "units": r.unit, "dt_s": r.dt, "npts": r.npts,
-                    "pga_m_s2": m.pga_m_s2, "pgv_m_s": m.pgv_m_s, "pgd_m": m.pgd_m,
-                    "arias_m_s": m.arias_m_s, "d5_95_s": m.d5_95_s,
-                    "mean_period_s": m.mean_period_s, "im_m_s2": r.im_unscaled,
-                    "capacity_im_m_s2": r.capacity.map(|c| c.0),
-                    "survived_below_im_m_s2": r.capacity.map(|c| c.1),
-                    "analyses": r.points.iter().map(|p| json!({
-                        "im_m_s2": p.im, "scale": p.im / r.im_unscaled,
-                        "collapsed": p.outcome.collapsed,
-                        "max_theta_over_alpha": p.outcome.response,
-                    })).collect::<Vec<_>>(),
-                })
-            })
-            .collect()
-    }
-
     /// The empirical points beside the fit: the capacities' plotting positions (i + ½)/n, or the
     /// fraction collapsed per stripe.
     pub fn empirical(&self) -> Vec<(f64, f64)> {
@@ -236,6 +215,7 @@ struct Prepared {
     unit: &'static str,
     ims: IntensityMeasures,
     im_unscaled: f64,
+    pga_over_g_tan_alpha: f64,
     /// The highest IM the record may be scaled to: where its PGA reaches the most a scene
     /// allows ([`MAX_ACCEL_G`] in the structure's g).
     im_max: f64,
@@ -436,6 +416,11 @@ fn prepare(base: &Base, s: &Settings, file: &Path) -> Result<Prepared, SceneErro
             derived(im_unscaled)
         )));
     }
+    let pga_over_g_tan_alpha = pga_over_uplift(
+        ims.pga_m_s2 / g_si * rocking_motion::STANDARD_GRAVITY,
+        model.units.alpha,
+    )
+    .map_err(|e| bad(&e))?;
     Ok(Prepared {
         file: file.to_path_buf(),
         path,
@@ -443,6 +428,7 @@ fn prepare(base: &Base, s: &Settings, file: &Path) -> Result<Prepared, SceneErro
         npts,
         unit,
         im_max: im_unscaled * MAX_ACCEL_G * g_si / ims.pga_m_s2,
+        pga_over_g_tan_alpha,
         ims,
         im_unscaled,
     })
@@ -568,6 +554,7 @@ fn study(base: &Base, s: &Settings, r: Prepared) -> Result<RecordStudy, StudyErr
         unit: r.unit,
         ims: r.ims,
         im_unscaled: r.im_unscaled,
+        pga_over_g_tan_alpha: r.pga_over_g_tan_alpha,
         points,
         capacity,
         reported,

@@ -15,8 +15,8 @@ pub use summary::{
     derived_json, number, quantities, si_scale, summary_json, warnings, SiScale, RATIOS, SI_MAXIMA,
 };
 pub use tables::{
-    events_csv, history_column, history_columns, history_csv, Column, Entry, Group, Kind, EVENTS,
-    HISTORY, THETA_OVER_ALPHA,
+    events_csv, history_column, history_columns, history_csv, Column, Entry, Group, Kind, Table,
+    EVENTS, HISTORY, THETA_OVER_ALPHA,
 };
 
 /// The tables' columns and the reportable summary quantities with their labels and units, as

@@ -46,9 +46,13 @@ pub enum Entry {
     Number(f64),
     /// +∞ (written `inf`).
     Unbounded,
+    /// A count.
+    Count(u64),
+    /// Yes or no.
+    Flag(bool),
     /// Text.
     Text(String),
-    /// Nothing: an unknown time in seconds.
+    /// Nothing: an unknown time in seconds, a field that does not apply.
     Empty,
     /// The row lacks what the column needs (a defect: the column's group says which runs have it).
     Missing,
@@ -357,6 +361,12 @@ fn write_row<'a, R: 'static>(
         match c.entry(row, scales) {
             Entry::Number(x) => write_number(out, c.name, x)?,
             Entry::Unbounded => out.push_str(rocking::UNBOUNDED),
+            Entry::Count(n) => {
+                let _ = write!(out, "{n}");
+            }
+            Entry::Flag(b) => {
+                let _ = write!(out, "{b}");
+            }
             Entry::Text(t) => out.push_str(&t),
             Entry::Empty => {}
             Entry::Missing => return Err(StudyError::Internal(Invariant::GroundColumns)),
@@ -414,6 +424,68 @@ pub fn events_csv(model: &Setup, run: &Run) -> Result<String, StudyError> {
         out.push('\n');
     }
     Ok(out)
+}
+
+/// A study's table (records.csv, ida.csv, stripes.csv): named columns and rows of entries,
+/// built once by the study; the command writes it as CSV ([`Entry::text`]) and Python reads
+/// the same rows as objects ([`Table::objects`]).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Table {
+    /// The column names (the CSV header, Python's keys).
+    pub columns: Vec<String>,
+    /// The rows, one entry per column.
+    pub rows: Vec<Vec<Entry>>,
+}
+
+impl Entry {
+    /// The entry as a CSV field: a number as Rust prints it (`inf`, `NaN` included), empty for
+    /// nothing.
+    pub fn text(&self) -> String {
+        match self {
+            Entry::Number(x) => x.to_string(),
+            Entry::Unbounded => rocking::UNBOUNDED.to_string(),
+            Entry::Count(n) => n.to_string(),
+            Entry::Flag(b) => b.to_string(),
+            Entry::Text(t) => t.clone(),
+            Entry::Empty | Entry::Missing => String::new(),
+        }
+    }
+
+    /// The entry as JSON: `null` for nothing and for a number that JSON cannot hold.
+    pub fn json(&self) -> Value {
+        match self {
+            Entry::Number(x) => serde_json::json!(x),
+            Entry::Unbounded => Value::String(rocking::UNBOUNDED.to_string()),
+            Entry::Count(n) => serde_json::json!(n),
+            Entry::Flag(b) => Value::Bool(*b),
+            Entry::Text(t) => Value::String(t.clone()),
+            Entry::Empty | Entry::Missing => Value::Null,
+        }
+    }
+}
+
+impl Table {
+    /// An empty table with these columns.
+    pub fn new(columns: impl IntoIterator<Item = impl Into<String>>) -> Table {
+        Table {
+            columns: columns.into_iter().map(Into::into).collect(),
+            rows: Vec::new(),
+        }
+    }
+
+    /// Each row as a JSON object keyed by the column names, in the columns' order.
+    pub fn objects(&self) -> Vec<serde_json::Map<String, Value>> {
+        self.rows
+            .iter()
+            .map(|row| {
+                self.columns
+                    .iter()
+                    .zip(row)
+                    .map(|(c, e)| (c.clone(), e.json()))
+                    .collect()
+            })
+            .collect()
+    }
 }
 
 #[cfg(test)]
