@@ -4,8 +4,9 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use rocking_spectra::{cells_csv, CellClass, Outcome, Progress, Shard, Sweep};
-use rocking_study::plan::{program_digest, Plan, Records};
+use rocking_spectra::{cells_csv, Outcome, Progress, Shard, Sweep};
+use rocking_study::plan::{program_digest, BatchTables, Plan, Records, ScaleTally};
+use rocking_study::report::Table;
 use rocking_study::{Invariant, StudyError};
 use serde_json::json;
 
@@ -320,42 +321,16 @@ pub fn batch(
     failed_runs(&outcome, "runs", "runs.csv")
 }
 
-/// What the runs at one scale factor (and one cell of the batch's axes) gave.
-pub(crate) struct ScaleTally {
-    /// The cell of the batch's own axes as `key=value` (empty without axes).
-    axes: Vec<String>,
-    scale: f64,
-    runs: usize,
-    /// Runs that failed (no result).
-    failed: usize,
-    /// Runs beyond the model's validity (no result; docs/spectra.md).
-    beyond_model: usize,
-    overturned: usize,
-}
-
-impl ScaleTally {
-    /// The runs with a result.
-    fn completed(&self) -> usize {
-        self.runs - self.failed - self.beyond_model
+/// A study's table as CSV (runs.csv, fragility.csv: `rocking_study`'s tables).
+pub(crate) fn table_csv(table: &Table, name: &'static str) -> Result<Vec<u8>, CliError> {
+    let csv_err = |source| CliError::Table { name, source };
+    let mut w = csv::Writer::from_writer(Vec::new());
+    w.write_record(&table.columns).map_err(csv_err)?;
+    for row in &table.rows {
+        w.write_record(row.iter().map(|e| e.text()))
+            .map_err(csv_err)?;
     }
-
-    /// The fraction overturned of the runs with a result; none when no run has one.
-    fn fraction(&self) -> Option<f64> {
-        let n = self.completed();
-        (n > 0).then(|| self.overturned as f64 / n as f64)
-    }
-}
-
-/// Per cell of the batch's own axes (in cell order) and, within it, per scale factor (in the
-/// order of the scales); per scale factor alone without axes.
-type Tally = Vec<ScaleTally>;
-/// A CSV field: quoted (quotes doubled) when it holds a comma, a quote or a line break.
-fn csv_field(s: &str) -> String {
-    if s.contains([',', '"', '\n', '\r']) {
-        format!("\"{}\"", s.replace('"', "\"\""))
-    } else {
-        s.to_string()
-    }
+    w.into_inner().map_err(|e| csv_err(e.into_error().into()))
 }
 
 /// runs.csv, fragility.csv, meta.json and the fragility plots of a record suite (also of a merge
@@ -366,7 +341,7 @@ pub(crate) fn write_batch_outputs(
     plan: &Plan,
     outcome: &Outcome,
     dir: &Path,
-) -> Result<(Vec<PathBuf>, Tally), CliError> {
+) -> Result<(Vec<PathBuf>, Vec<ScaleTally>), CliError> {
     let (base, sweep) = (&plan.base, &plan.sweep);
     let Some(Records {
         files: list,
@@ -379,119 +354,17 @@ pub(crate) fn write_batch_outputs(
         return Err(StudyError::Internal(Invariant::BatchRecords).into());
     };
     let own = &sweep.axes[2..];
-    // The cells of the batch's own axes (1 without them): the fastest-varying part of an index.
-    let own_cells: usize = own.iter().map(|a| a.values.len()).product();
-    let own_values = |mut a: usize| -> Vec<String> {
-        let mut out = vec![String::new(); own.len()];
-        for (k, axis) in own.iter().enumerate().rev() {
-            let n = axis.values.len();
-            out[k] = axis.display(axis.values[a % n]);
-            a /= n;
-        }
-        out
-    };
-    let messages: BTreeMap<usize, &str> = outcome
-        .failures
-        .iter()
-        .chain(&outcome.beyond_model)
-        .map(|(i, m)| (*i, m.as_str()))
-        .collect();
-    // Per axis cell and scale: runs, failed, overturned (of the runs that finished).
-    let mut tally: Tally = (0..own_cells)
-        .flat_map(|a| {
-            let values = own_values(a);
-            scales.iter().map(move |&scale| ScaleTally {
-                axes: own
-                    .iter()
-                    .zip(&values)
-                    .map(|(ax, v)| format!("{}={v}", ax.key))
-                    .collect(),
-                scale,
-                runs: 0,
-                failed: 0,
-                beyond_model: 0,
-                overturned: 0,
-            })
-        })
-        .collect();
-    let mut runs = csv::Writer::from_writer(Vec::new());
-    let csv_err = |source| CliError::Table {
-        name: "runs.csv",
-        source,
-    };
-    // The quantities of `[sweep] report` after the run's own, as in a spectrum's cells.csv.
-    let head = ["record", "scale"]
-        .into_iter()
-        .chain(own.iter().map(|a| a.key.as_str()))
-        .chain(["class", "overturned", "max_theta_over_alpha", "impacts"])
-        .chain(sweep.reported.iter().map(String::as_str));
-    runs.write_record(head.chain(["message"]))
-        .map_err(csv_err)?;
-    for c in &outcome.cells {
-        let v = sweep.values(c.index);
-        let r = v[0] as usize;
-        let (a, k) = (c.index % own_cells, (c.index / own_cells) % scales.len());
-        let t = &mut tally[a * scales.len() + k];
-        t.runs += 1;
-        let mut row = vec![names[r].clone(), v[1].to_string()];
-        row.extend(own_values(a));
-        if !c.class.has_result() {
-            if c.class == CellClass::BeyondModel {
-                t.beyond_model += 1;
-            } else {
-                t.failed += 1;
-            }
-            // A failed run (or one beyond the model) has no result: its fields are empty, never
-            // a made-up "survived".
-            let m = messages.get(&c.index).copied().unwrap_or("failed");
-            row.push(c.class.as_str().into());
-            row.extend(std::iter::repeat_n(String::new(), 3 + sweep.reported.len()));
-            row.push(m.to_string());
-        } else {
-            let over = c.class.overturned() == Some(true);
-            t.overturned += usize::from(over);
-            row.extend([
-                c.class.as_str().into(),
-                over.to_string(),
-                c.max_theta_over_alpha.to_string(),
-                c.impacts.to_string(),
-            ]);
-            row.extend(c.reported.iter().map(f64::to_string));
-            row.push(String::new());
-        }
-        runs.write_record(&row).map_err(csv_err)?;
-    }
-    let rows = runs
-        .into_inner()
-        .map_err(|e| csv_err(e.into_error().into()))?;
+    let BatchTables {
+        runs,
+        fragility,
+        tally,
+    } = plan.batch_tables(outcome)?;
     let mut written = Vec::new();
-    let path = dir.join("runs.csv");
-    write_atomic(&path, &rows)?;
-    written.push(path);
-    // The fraction overturned is of the runs with a result; failed runs and runs beyond the
-    // model are counted apart, and a scale with no result has no fraction (an empty field, no
-    // plotted point).
-    let mut frag: String = own.iter().map(|a| csv_field(&a.key) + ",").collect();
-    frag.push_str("scale,runs,failed,beyond_model,completed,overturned,fraction_overturned\n");
-    for (i, t) in tally.iter().enumerate() {
-        let x = t.fraction().map_or(String::new(), |x| x.to_string());
-        for v in own_values(i / scales.len()) {
-            frag.push_str(&csv_field(&v));
-            frag.push(',');
-        }
-        frag.push_str(&format!(
-            "{},{},{},{},{},{},{x}\n",
-            t.scale,
-            t.runs,
-            t.failed,
-            t.beyond_model,
-            t.completed(),
-            t.overturned
-        ));
+    for (name, table) in [("runs.csv", &runs), ("fragility.csv", &fragility)] {
+        let path = dir.join(name);
+        write_atomic(&path, &table_csv(table, name)?)?;
+        written.push(path);
     }
-    let path = dir.join("fragility.csv");
-    write_atomic(&path, frag.as_bytes())?;
-    written.push(path);
     // A run's entry in meta.json: with axes, also its cell of them (texts for text axes).
     let entry = |i: usize, m: &str| {
         let v = sweep.values(i);

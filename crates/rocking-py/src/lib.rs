@@ -357,6 +357,15 @@ fn batch<'py>(
         d.set_item("record_paths", r.paths.clone())?;
         d.set_item("scales", r.scales.clone())?;
     }
+    // fragility.csv's rows, from the study's table as the command writes it.
+    let tables = plan.batch_tables(&outcome).map_err(py_err)?;
+    let rows: Vec<serde_json::Value> = tables
+        .fragility
+        .objects()
+        .into_iter()
+        .map(serde_json::Value::Object)
+        .collect();
+    d.set_item("fragility", serde_json::Value::Array(rows).to_string())?;
     Ok(d)
 }
 

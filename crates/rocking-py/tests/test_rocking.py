@@ -254,10 +254,12 @@ def test_overturned_fraction_is_the_commands_fragility_csv(tmp_path):
     assert done.returncode == 0, done.stderr
     with open(out / "fragility.csv", newline="") as f:
         rows = list(csv.DictReader(f))
-    got = rocking.batch(scene, records=[record], scales=[0.5, 2.0]).overturned_fraction()
-    assert len(rows) == len(got) == 2
-    for row, x in zip(rows, got):
+    b = rocking.batch(scene, records=[record], scales=[0.5, 2.0])
+    got = b.overturned_fraction()
+    assert len(rows) == len(got) == len(b.fragility) == 2
+    for row, x, r in zip(rows, got, b.fragility):
         assert x == float(row["fraction_overturned"])
+        assert set(r) == set(row) and all(same_field(r[k], v) for k, v in row.items()), (r, row)
 
 
 def test_a_scale_without_a_result_has_no_overturned_fraction():
@@ -280,9 +282,16 @@ def test_a_scale_without_a_result_has_no_overturned_fraction():
         "record_names": ["a", "b"],
         "record_paths": ["a", "b"],
         "scales": [0.5, 2.0],
+        # fragility.csv's rows as the library's table gives them.
+        "fragility": json.dumps([
+            {"scale": 0.5, "runs": 2, "failed": 2, "beyond_model": 0, "completed": 0,
+             "overturned": 0, "fraction_overturned": None},
+            {"scale": 2.0, "runs": 2, "failed": 0, "beyond_model": 0, "completed": 2,
+             "overturned": 1, "fraction_overturned": 0.5},
+        ]),
     }
     got = rocking.Batch(raw).overturned_fraction()
-    assert np.isnan(got[0]) and got[1] == 0.5
+    assert got.shape == (2,) and np.isnan(got[0]) and got[1] == 0.5
 
 
 def test_models_equal_the_commands_list():

@@ -341,15 +341,21 @@ class Batch(Spectrum):
         self.record_paths: List[str] = list(raw["record_paths"])
         #: The scale factors.
         self.scales: np.ndarray = np.asarray(raw["scales"], dtype=np.float64)
+        #: fragility.csv's rows as ``rocking batch`` writes them (the library's table), keyed by
+        #: its columns: per cell of the batch's own axes (their keys first), then per scale
+        #: factor, ``scale``, ``runs``, ``failed``, ``beyond_model``, ``completed``,
+        #: ``overturned`` and ``fraction_overturned`` (None where no run has a result).
+        self.fragility: List[Dict[str, Any]] = json.loads(raw["fragility"])
 
     def overturned_fraction(self) -> np.ndarray:
         """Per scale factor (and cell of the batch's own axes: shape (scales, *axes)), the
         fraction of records that overturned, of the runs with a result; NaN where no run has a
-        result (fragility.csv leaves that field empty)."""
-        ok = ~self.without_result
-        completed = ok.sum(axis=0)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            return np.where(completed > 0, (self.overturned & ok).sum(axis=0) / completed, np.nan)
+        result (fragility.csv leaves that field empty). Read from :attr:`fragility`."""
+        f = np.array(
+            [np.nan if r["fraction_overturned"] is None else r["fraction_overturned"] for r in self.fragility],
+            dtype=np.float64,
+        )
+        return np.moveaxis(f.reshape(*self.classes.shape[2:], len(self.scales)), -1, 0)
 
 
 def spectrum(

@@ -19,9 +19,11 @@ pub const DEFAULT_AXES: [&str; 2] = [
 ];
 
 mod base;
+mod batch_tables;
 mod digest;
 
 pub use base::Base;
+pub use batch_tables::{BatchTables, ScaleTally};
 pub use digest::{file_digest, program_digest};
 
 /// The reference `[sweep] reference` names and its override, checked against [`REFERENCES`].
