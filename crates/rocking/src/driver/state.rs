@@ -4,13 +4,14 @@
 //! The lowest room of the driver: every other file imports from here, this one from none of them.
 
 use nalgebra::{DMatrix, SVector};
-use rocking_kernels::kernels::index::energy as en;
+use rocking_kernels::kernels::index::{energy as en, mass_matrix as mm};
 use rocking_kernels::{Array, Variant};
 use rocking_motion::GroundMotion;
 use rocking_ode::{Options as OdeOptions, Tolerances};
 
 use super::force_record::ForceRecord;
 use crate::error::SimError;
+use crate::layout::{Contact, PreImpact, Rocking};
 use crate::options::Options;
 use crate::results::{EventRecord, HistoryRow, Phase, SolverStats, Time};
 use crate::structure::Derived;
@@ -33,8 +34,7 @@ pub(super) enum Next<V: Variant> {
         t: f64,
         /// `[u_1..u_n, u_1'..u_n']`.
         xc: V::Xc,
-        w: f64,
-        d: f64,
+        carried: Integrals,
         /// Just come to rest: no uplift before one step has been taken (see
         /// [`Sim::contact_start`](super::Sim::contact_start)).
         settle: bool,
@@ -46,61 +46,66 @@ pub(super) enum Next<V: Variant> {
         x: V::X,
         /// The impact event is s θ / (t − t0)^n (see the rocking phases).
         n: i32,
-        w: f64,
-        d: f64,
+        carried: Integrals,
     },
     Done {
         t: f64,
         phase: Phase,
         s: f64,
         state: V::X,
-        w: f64,
-        d: f64,
+        carried: Integrals,
     },
+}
+
+/// The integrals a run carries from phase to phase when the energy bookkeeping is on (zeros
+/// otherwise): W, the ground acceleration's work, and D, the damping's dissipation.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(super) struct Integrals {
+    pub(super) w: f64,
+    pub(super) d: f64,
+}
+
+impl Integrals {
+    /// The integrals of a phase's integrator state `y` from component `first` on (the
+    /// mechanical state's length: the layout's `INTEGRALS`), or zeros when they are not carried.
+    pub(super) fn of(y: &[f64], first: usize) -> Self {
+        if y.len() >= first + 2 {
+            Integrals {
+                w: y[first],
+                d: y[first + 1],
+            }
+        } else {
+            Integrals::default()
+        }
+    }
+
+    /// Component `i` of a phase's integrator state: the mechanical state `x`, then W and D.
+    pub(super) fn after(self, x: &[f64], i: usize) -> f64 {
+        match i.checked_sub(x.len()) {
+            None => x[i],
+            Some(0) => self.w,
+            Some(_) => self.d,
+        }
+    }
 }
 
 /// The rocking state `[θ, u, θ', u']` of full contact at the contact state `xc = [u, u']`
 /// (θ = θ' = 0); each `u` is u_1..u_n.
 pub(super) fn contact_x<V: Variant>(xc: &V::Xc) -> V::X {
-    let (n, xc) = (V::NQ, xc.values());
-    V::X::from_fn(|i| {
-        if i == 0 || i == n + 1 {
-            0.0
-        } else if i <= n {
-            xc[i - 1]
-        } else {
-            xc[i - 2]
-        }
-    })
+    let xc = xc.values();
+    V::X::from_fn(|i| Contact::<V>::of_rocking(i).map_or(0.0, |j| xc[j]))
 }
 
 /// The contact state `[u, u']` of the rocking state `x`.
 pub(super) fn contact_of<V: Variant>(x: &V::X) -> V::Xc {
-    let (n, x) = (V::NQ, x.values());
-    V::Xc::from_fn(|i| if i < n { x[1 + i] } else { x[2 + i] })
+    let x = x.values();
+    V::Xc::from_fn(|i| x[Contact::<V>::in_rocking(i)])
 }
 
 /// The pre-impact state `xi = [u, u', θ']` of the rocking state `x` (θ = 0).
 pub(super) fn impact_state<V: Variant>(x: &V::X) -> V::Xi {
-    let (n, x) = (V::NQ, x.values());
-    V::Xi::from_fn(|i| {
-        if i < n {
-            x[1 + i]
-        } else if i < 2 * n {
-            x[2 + i]
-        } else {
-            x[n + 1]
-        }
-    })
-}
-
-/// Component `i` of a phase's integrator state: the mechanical state `x`, then W and D.
-pub(super) fn with_integrals(x: &[f64], w: f64, d: f64, i: usize) -> f64 {
-    match i.checked_sub(x.len()) {
-        None => x[i],
-        Some(0) => w,
-        Some(_) => d,
-    }
+    let x = x.values();
+    V::Xi::from_fn(|i| x[PreImpact::<V>::in_rocking(i)])
 }
 
 /// The rocking state of a phase's integrator state `y` (its first `V::X::LEN` components).
@@ -258,12 +263,11 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
     /// The column's top deflection Σ u_i ψ_i(1) of the rocking state `x` (`rate`: of its rate,
     /// from the u_i'); u itself for one coordinate.
     pub(super) fn top(&self, x: &V::X, rate: bool) -> f64 {
-        let first = if rate { V::NQ + 2 } else { 1 };
-        self.top_by(|i| x.values()[i], first)
+        self.top_by(|i| x.values()[i], Rocking::<V>::us(rate).start)
     }
 
-    /// Σ ψ_i(1) c(first + i): the top deflection (first = 1) or its rate (first = n + 2) from
-    /// the components `c` of a rocking state.
+    /// Σ ψ_i(1) c(first + i): the top deflection (`first` u_1's component) or its rate (u_1''s)
+    /// from the components `c` of a state.
     pub(super) fn top_by(&self, c: impl Fn(usize) -> f64, first: usize) -> f64 {
         if V::NQ == 1 {
             return c(first);
@@ -279,7 +283,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         let q = V::Q::from_fn(|i| y[i]);
         let m = V::mass_matrix(&q, s, &self.p);
         let conditioning = if V::NQ == 1 {
-            let [mtt, mtu, muu] = [0, 1, 2].map(|k| m.values()[k]);
+            let [mtt, mtu, muu] = [mm::M_TT, mm::M_TU, mm::M_UU].map(|k| m.values()[k]);
             (mtt * muu - mtu * mtu) / (mtt * muu)
         } else {
             smallest_pivot_ratio(m.values(), V::Q::LEN)
@@ -324,16 +328,6 @@ fn smallest_pivot_ratio(upper: &[f64], n: usize) -> f64 {
     ratio
 }
 
-/// The energy integrals (W, D) of a phase's state from component `first` on, or zeros when they
-/// are not carried.
-pub(super) fn carried(y: &[f64], first: usize) -> (f64, f64) {
-    if y.len() >= first + 2 {
-        (y[first], y[first + 1])
-    } else {
-        (0.0, 0.0)
-    }
-}
-
 /// The free vibration of the column in full contact with no ground motion: it stays inside the
 /// ellipsoid of its energy `vib` (kinetic + strain), ½ u'ᵀ M u' + ½ uᵀ K u <= vib.
 pub(super) struct Ellipse<'a> {
@@ -350,11 +344,14 @@ impl Ellipse<'_> {
         let unit = |j: usize| g(&V::Xc::from_fn(|i| if i == j { 1.0 } else { 0.0 })) - c;
         let Metric { k, m, .. } = *self.metric;
         let norm = if n == 1 {
-            let (a, b) = (unit(0), unit(1));
+            let (a, b) = (unit(Contact::<V>::u(0)), unit(Contact::<V>::u_dot(0)));
             a * a / k + b * b / m
         } else {
             let ab = V::Xc::from_fn(unit);
-            let (a, b) = ab.values().split_at(n);
+            let (a, b) = (
+                &ab.values()[Contact::<V>::us(false)],
+                &ab.values()[Contact::<V>::us(true)],
+            );
             quadratic(&self.metric.k_inv, a) + quadratic(&self.metric.m_inv, b)
         };
         (c, (2.0 * self.vib * norm).sqrt())
