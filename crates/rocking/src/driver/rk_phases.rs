@@ -2,7 +2,6 @@
 //! contact (state [u, u'] and the carried integrals) and rocking about a corner (state
 //! [θ, u, θ', u'] and the integrals), each to its first event.
 
-use rocking_kernels::kernels::index::power as pwr;
 use rocking_kernels::Array;
 use rocking_motion::GroundMotion;
 use rocking_ode::events::{locate, refine, Direction};
@@ -46,7 +45,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             out.as_mut_slice()[..nc].copy_from_slice(dx.values());
             if Self::ENERGY {
                 let pw = V::power(&contact_x::<V>(&xc), ug, RIGHT, &p);
-                (out[nc], out[nc + 1]) = (pw[pwr::GROUND], pw[pwr::DAMPING]);
+                Integrals::of_power(&pw).put(out.as_mut_slice(), nc);
             }
             out
         };
@@ -145,7 +144,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             out.as_mut_slice()[..nx].copy_from_slice(dx.values());
             if Self::ENERGY {
                 let pw = V::power(&x, ug, s, &p);
-                (out[nx], out[nx + 1]) = (pw[pwr::GROUND], pw[pwr::DAMPING]);
+                Integrals::of_power(&pw).put(out.as_mut_slice(), nx);
             }
             out
         };

@@ -4,7 +4,7 @@
 //! The lowest room of the driver: every other file imports from here, this one from none of them.
 
 use nalgebra::{DMatrix, SVector};
-use rocking_kernels::kernels::index::{energy as en, mass_matrix as mm};
+use rocking_kernels::kernels::index::{energy as en, mass_matrix as mm, power as pwr};
 use rocking_kernels::{Array, Variant};
 use rocking_motion::GroundMotion;
 use rocking_ode::{Options as OdeOptions, Tolerances};
@@ -77,6 +77,20 @@ impl Integrals {
         } else {
             Integrals::default()
         }
+    }
+
+    /// The rates W' and D' of the `power` kernel's output.
+    pub(super) fn of_power(power: &[f64]) -> Self {
+        Integrals {
+            w: power[pwr::GROUND],
+            d: power[pwr::DAMPING],
+        }
+    }
+
+    /// Puts W and D into a phase's integrator state (or its rate) `y` from component `first` on.
+    pub(super) fn put(self, y: &mut [f64], first: usize) {
+        y[first] = self.w;
+        y[first + 1] = self.d;
     }
 
     /// Component `i` of a phase's integrator state: the mechanical state `x`, then W and D.

@@ -71,12 +71,11 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
         loop {
             ode.step(&mut sys, t_stop)?;
             let (t_old, t_new) = (ode.t_old(), ode.t());
-            // A Taylor step is never rejected: its attempts are its steps.
-            let attempts = ode.stats().steps;
             let step_span = Step {
                 t_old,
                 t_new,
-                attempts,
+                // A Taylor step is never rejected: its attempts are its steps.
+                attempts: ode.stats().steps,
             };
             let dirs = [Direction::Rising, Direction::Rising];
             let rising = if self.opts.uplift {

@@ -224,9 +224,9 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
         if V::RIGID {
             return 0.0;
         }
-        let first = Free::<V>::us(rate).start;
         let psi = self.top.values();
-        (0..V::NQ).map(|i| psi[i] * y.values()[first + i]).sum()
+        let us = &y.values()[Free::<V>::us(rate)];
+        psi.iter().zip(us).map(|(p, u)| p * u).sum()
     }
 
     fn initial_state(&self) -> V::Y {
