@@ -77,12 +77,8 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
 
     /// Tracks |θ| and the top deflection |u| of the rocking state `x`.
     pub(super) fn track(&mut self, x: &V::X) {
-        self.track_values(x.values()[Rocking::<V>::THETA], self.top(x, false));
-    }
-
-    fn track_values(&mut self, theta: f64, u: f64) {
-        self.rec.max_theta = self.rec.max_theta.max(theta.abs());
-        self.rec.max_u = self.rec.max_u.max(u.abs());
+        self.rec
+            .track(x.values()[Rocking::<V>::THETA], self.top(x, false));
     }
 
     fn record_history(&mut self, t: f64, x: &V::X, phase: Phase, s: f64) {
@@ -208,7 +204,8 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
     /// max |θ| and (where tracked) |u| within a rocking step, including turning points inside it.
     fn extremes_rocking(&mut self, step: &impl StepView<V::X>, t_old: f64, t_new: f64) {
         let (a, b) = (step.state(t_old), step.state(t_new));
-        self.track_values(b.values()[Rocking::<V>::THETA], self.top(&b, false));
+        self.rec
+            .track(b.values()[Rocking::<V>::THETA], self.top(&b, false));
         // θ from its rate θ', then the top deflection from its rate (if tracked).
         self.turning_point_extreme::<false>(step, (&a, &b), t_old, t_new);
         if self.opts.max_deflection {

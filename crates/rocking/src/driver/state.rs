@@ -9,11 +9,11 @@ use rocking_kernels::{Array, Variant};
 use rocking_motion::GroundMotion;
 use rocking_ode::{Options as OdeOptions, Tolerances};
 
-use super::force_record::ForceRecord;
+use super::record::Record;
 use crate::error::SimError;
 use crate::layout::{Contact, PreImpact, Rocking};
 use crate::options::Options;
-use crate::results::{EventRecord, HistoryRow, Phase, SolverStats, Time};
+use crate::results::{Phase, SolverStats, Time};
 use crate::structure::Derived;
 use crate::taylor::TaylorVariant;
 
@@ -185,29 +185,6 @@ pub(super) struct Metric {
     pub(super) m: f64,
     pub(super) k_inv: DMatrix<f64>,
     pub(super) m_inv: DMatrix<f64>,
-}
-
-/// What the run has recorded so far (written by the recorder, read into the summary).
-#[derive(Default)]
-pub(super) struct Record {
-    pub(super) max_theta: f64,
-    pub(super) max_u: f64,
-    pub(super) impacts: u64,
-    pub(super) significant: u64,
-    pub(super) energy_capped: u64,
-    pub(super) first_uplift: Option<f64>,
-    pub(super) first_impact: Option<f64>,
-    pub(super) overturn: Option<f64>,
-    /// Kinetic energy lost at impacts (the energy balance's third term).
-    pub(super) losses: f64,
-    pub(super) log: Vec<EventRecord>,
-    pub(super) history: Vec<HistoryRow>,
-    /// u_1..u_n, u_1'..u_n' of each history row, for n > 1.
-    pub(super) coordinates: Vec<f64>,
-    /// The next time of the history grid.
-    pub(super) next_grid: f64,
-    /// The extremes of the section forces and reactions.
-    pub(super) forces: ForceRecord,
 }
 
 impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usize>

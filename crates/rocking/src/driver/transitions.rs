@@ -152,7 +152,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         carried: Integrals,
     ) -> Result<Next<V>, SimError> {
         self.count_event(t)?;
-        self.rec.first_uplift.get_or_insert(t);
+        self.rec.uplift(t);
         let x = contact_x::<V>(xc);
         let e = V::energy(&x, s, &self.p)[en::KINETIC];
         self.log_event(t, EventKind::Uplift, "", Phase::rocking(s), &x, (e, e));
@@ -178,8 +178,8 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             return self.impact(t, s, &x, carried);
         }
         self.count_event(t)?;
-        self.rec.overturn = Some(t);
-        self.track(&x);
+        let (theta, u) = (x.values()[Rocking::<V>::THETA], self.top(&x, false));
+        self.rec.overturn(t, theta, u);
         let e = V::energy(&x, s, &self.p)[en::KINETIC];
         self.log_event(t, EventKind::Overturn, "", Phase::Overturned, &x, (e, e));
         Ok(Next::Done {
@@ -201,21 +201,11 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         carried: Integrals,
     ) -> Result<Next<V>, SimError> {
         self.count_event(t)?;
-        let theta_dot = x.values()[Rocking::<V>::THETA_DOT];
-        if theta_dot.abs() >= self.significant_rate {
-            self.rec.significant += 1;
-        }
+        let significant = x.values()[Rocking::<V>::THETA_DOT].abs() >= self.significant_rate;
         let xi = impact_state::<V>(x);
         let out = impact::resolve::<V>(self.opts.impact, &xi, s, &self.p, self.rest_rate);
-        if out.counted {
-            self.rec.impacts += 1;
-            self.rec.first_impact.get_or_insert(t);
-        }
-        if out.capped {
-            self.rec.energy_capped += 1;
-        }
+        self.rec.impact(t, significant, &out);
         let (e_before, e_after) = (out.energy_before, out.energy_after());
-        self.rec.losses += e_before - e_after;
         match out.after {
             After::Contact { x: after, .. } => {
                 self.log_event(
