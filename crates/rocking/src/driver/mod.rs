@@ -16,10 +16,11 @@
 //! when the energy bookkeeping is asked for (`ENERGY`);
 //! they are excluded from the error control so that trajectories do not depend on it.
 //!
-//! Rooms: `state` (the run's state and guards, the lowest file), `transitions` (uplift, rocking
+//! Rooms: `state` (the run's state, carried integrals and guards), `transitions` (uplift, rocking
 //! events, impacts), `impact` (the impact policy, a pure function), `rk_phases` and
-//! `taylor_phases` (one integrator each, they never call each other), `recorder` (maxima,
-//! history, events, summary).
+//! `taylor_phases` (one integrator each, they never call each other), `record` (what a run
+//! records, values only), `recorder` (each step's bookkeeping, the event log's entries, the
+//! summary). Where each component sits in the states: [`crate::layout`].
 
 mod force_record;
 mod forces;

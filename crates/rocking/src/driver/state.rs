@@ -1,7 +1,9 @@
 //! What one run carries between its phases: the simulation [`Sim`], where the hybrid system goes
-//! [`Next`], and the guards that turn a run that would not end into an error.
+//! [`Next`], the integrals it carries ([`Integrals`]), and the guards that turn a run that would
+//! not end into an error.
 //!
-//! The lowest room of the driver: every other file imports from here, this one from none of them.
+//! The lowest room of the driver with behaviour: the rooms with methods on [`Sim`] import from
+//! here; of the driver this one imports only the values-only [`Record`].
 
 use nalgebra::{DMatrix, SVector};
 use rocking_kernels::kernels::index::{energy as en, mass_matrix as mm, power as pwr};
