@@ -6,9 +6,13 @@
 //! step's polynomial evaluates one component for a D-th of the cost and bounds it for free, which
 //! is what the search of maxima inside a step spends most on.
 
-use rocking_kernels::Array;
+use std::marker::PhantomData;
+
+use rocking_kernels::{Array, Layout};
 use rocking_ode::poly;
 use rocking_ode::taylor::Taylor;
+
+use crate::layout::Contact;
 
 /// What the driver reads of a step's dense output, the rocking state `X` of its variant.
 pub(crate) trait StepView<X: Array> {
@@ -31,46 +35,42 @@ impl<X: Array, F: Fn(f64) -> X> StepView<X> for F {
     }
 }
 
-/// A Taylor step of a phase whose (scaled) state rows are the rocking state's (`contact`: false)
-/// or the contact state's `[u_1..u_n, u_1'..u_n']` (θ and θ' identically 0 in full contact).
-pub(crate) struct TaylorStep<'a, const D: usize> {
+/// A Taylor step of a phase of variant `V` whose (scaled) state rows are the rocking state's
+/// (`contact`: false) or the contact state's `[u_1..u_n, u_1'..u_n']` (θ and θ' identically 0 in
+/// full contact).
+pub(crate) struct TaylorStep<'a, V, const D: usize> {
     pub ode: &'a Taylor<D>,
     pub scale: [f64; D],
     pub contact: bool,
+    pub variant: PhantomData<V>,
 }
 
-impl<const D: usize> TaylorStep<'_, D> {
-    /// The row of the step's state that holds component `i` of the rocking state of `n`
-    /// coordinates (`None`: identically 0 in the phase).
-    fn row(&self, i: usize, n: usize) -> Option<usize> {
-        if !self.contact {
-            Some(i)
-        } else if i == 0 || i == n + 1 {
-            None
-        } else if i <= n {
-            Some(i - 1)
+impl<V: Layout, const D: usize> TaylorStep<'_, V, D> {
+    /// The row of the step's state that holds component `i` of the rocking state (`None`:
+    /// identically 0 in the phase).
+    fn row(&self, i: usize) -> Option<usize> {
+        if self.contact {
+            Contact::<V>::of_rocking(i)
         } else {
-            Some(i - 2)
+            Some(i)
         }
     }
 }
 
-impl<X: Array, const D: usize> StepView<X> for TaylorStep<'_, D> {
-    fn state(&self, t: f64) -> X {
+impl<V: Layout, const D: usize> StepView<V::X> for TaylorStep<'_, V, D> {
+    fn state(&self, t: f64) -> V::X {
         let y = self.ode.dense(t);
-        let n = (X::LEN - 2) / 2;
-        X::from_fn(|i| self.row(i, n).map_or(0.0, |r| y[r] * self.scale[r]))
+        V::X::from_fn(|i| self.row(i).map_or(0.0, |r| y[r] * self.scale[r]))
     }
 
     fn component(&self, i: usize, t: f64) -> f64 {
-        let n = (X::LEN - 2) / 2;
-        self.row(i, n)
+        self.row(i)
             .map_or(0.0, |r| self.ode.dense_component(r, t) * self.scale[r])
     }
 
     /// Σ |c_k| h^k over the step's polynomial, with a margin for its rounding.
     fn bound(&self, i: usize) -> f64 {
-        let Some(r) = self.row(i, (X::LEN - 2) / 2) else {
+        let Some(r) = self.row(i) else {
             return 0.0;
         };
         let c = &self.ode.coefficients()[r][..=self.ode.order()];

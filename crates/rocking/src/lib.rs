@@ -47,6 +47,7 @@ mod error;
 mod ground;
 pub mod ground_modes;
 pub mod ground_statics;
+mod layout;
 mod options;
 mod results;
 mod spd;

@@ -11,6 +11,8 @@ use rocking_kernels::{best_isa, Array, Variant};
 use rocking_motion::GroundMotion;
 use rocking_ode::taylor::{TaylorEvents, TaylorSystem};
 
+use crate::layout::Contact;
+
 const RIGHT: f64 = 1.0;
 const LEFT: f64 = -1.0;
 
@@ -202,12 +204,10 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const D: usize> TaylorSystem<D>
         }
         if D > nc {
             // The rocking state of full contact: θ ≡ θ' ≡ 0.
-            let n = V::NQ;
             let mut full = [[[0.0; N]; D]; 2];
             let full = &mut full.as_flattened_mut()[..V::X::LEN];
-            for i in 0..n {
-                full[1 + i] = q[i];
-                full[n + 2 + i] = q[n + i];
+            for (i, qi) in q[..nc].iter().enumerate() {
+                full[Contact::<V>::in_rocking(i)] = *qi;
             }
             let pw = V::power_series(full, &ug, RIGHT, &self.p);
             integrate_power(x, nc, &pw, &self.scale);

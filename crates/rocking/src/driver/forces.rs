@@ -54,7 +54,6 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
     /// The forces over the step (t_old, t_new] of a phase, `f_old` those at t_old: the end's,
     /// and, for each reported quantity whose ends come within the step's possible overshoot of
     /// its largest so far, the extreme inside the step. Returns the forces at t_new.
-    #[allow(clippy::too_many_arguments)]
     pub(super) fn extremes_forces(
         &mut self,
         step: &impl StepView<V::X>,

@@ -12,6 +12,7 @@ use rocking_kernels::kernels::index::{
 };
 use rocking_kernels::{Array, Variant};
 
+use crate::layout::{Part, PreImpact, Rocking};
 use crate::options::ImpactModel;
 use crate::results::EventKind;
 
@@ -78,17 +79,11 @@ const HOUSNER_U: &[usize] = &[ho::U_DOT];
 
 /// The rocking state [0, u, θ', u'] of `V` (θ = 0 at an impact).
 fn state<V: Variant>(u: &[f64], theta_dot: f64, u_dot: &[f64]) -> V::X {
-    let n = V::NQ;
-    V::X::from_fn(|i| {
-        if i == 0 {
-            0.0
-        } else if i <= n {
-            u[i - 1]
-        } else if i == n + 1 {
-            theta_dot
-        } else {
-            u_dot[i - n - 2]
-        }
+    V::X::from_fn(|i| match Rocking::<V>::part(i) {
+        Part::U(k) => u[k],
+        Part::ThetaDot => theta_dot,
+        Part::UDot(k) => u_dot[k],
+        Part::Theta | Part::Integral(_) => 0.0,
     })
 }
 
@@ -104,8 +99,12 @@ pub(super) fn resolve<V: Variant>(
     rest_rate: f64,
 ) -> Outcome<V::X> {
     let n = V::NQ;
-    let (u, rest) = xi.values().split_at(n);
-    let (u_dot, theta_dot) = (&rest[..n], rest[n]);
+    let pre = xi.values();
+    let (u, u_dot) = (
+        &pre[PreImpact::<V>::us(false)],
+        &pre[PreImpact::<V>::us(true)],
+    );
+    let theta_dot = pre[PreImpact::<V>::THETA_DOT];
     let s2 = -s;
     let kinetic = |x: &V::X, s: f64| V::energy(x, s, p)[en::KINETIC];
     let contact = |ud: &[f64]| {
@@ -181,9 +180,10 @@ pub(super) fn resolve<V: Variant>(
     };
     // A rocking phase that would start too slowly ends in full contact at once.
     let (after, kind) = match after {
-        After::Rocking { x, .. } if x.values()[n + 1].abs() < rest_rate => {
-            (contact(&x.values()[n + 2..]), EventKind::Rest)
-        }
+        After::Rocking { x, .. } if x.values()[Rocking::<V>::THETA_DOT].abs() < rest_rate => (
+            contact(&x.values()[Rocking::<V>::us(true)]),
+            EventKind::Rest,
+        ),
         other => (other, EventKind::Impact),
     };
     let (after, capped) = without_energy_gain::<V>(after, e_before, s2, p);
@@ -272,11 +272,10 @@ fn without_energy_gain<V: Variant>(
         return (after, false);
     }
     let k = (e_before.max(0.0) / e_after).sqrt();
-    let n = V::NQ;
-    // The velocities θ', u_1'..u_n' (from n + 1 on) scaled by k.
+    // The velocities θ', u_1'..u_n' scaled by k.
     let scaled = |x: V::X| {
         let x = V::X::from_fn(|i| {
-            if i > n {
+            if Rocking::<V>::is_rate(i) {
                 k * x.values()[i]
             } else {
                 x.values()[i]

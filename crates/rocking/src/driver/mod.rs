@@ -16,15 +16,17 @@
 //! when the energy bookkeeping is asked for (`ENERGY`);
 //! they are excluded from the error control so that trajectories do not depend on it.
 //!
-//! Rooms: `state` (the run's state and guards, the lowest file), `transitions` (uplift, rocking
+//! Rooms: `state` (the run's state, carried integrals and guards), `transitions` (uplift, rocking
 //! events, impacts), `impact` (the impact policy, a pure function), `rk_phases` and
-//! `taylor_phases` (one integrator each, they never call each other), `recorder` (maxima,
-//! history, events, summary).
+//! `taylor_phases` (one integrator each, they never call each other), `record` (what a run
+//! records, values only), `recorder` (each step's bookkeeping, the event log's entries, the
+//! summary). Where each component sits in the states: [`crate::layout`].
 
 mod force_record;
 mod forces;
 mod ground_phases;
 mod impact;
+mod record;
 mod recorder;
 mod rk_phases;
 mod state;
@@ -36,14 +38,16 @@ use rocking_motion::GroundMotion;
 use rocking_ode::{Options as OdeOptions, Tolerances};
 
 use crate::error::SimError;
+use crate::layout::{Contact, Part, Rocking};
 use crate::options::{Method, Options};
 use crate::results::{Run, SolverStats};
 use crate::structure::{Derived, Structure};
 use crate::taylor::TaylorVariant;
 use nalgebra::DMatrix;
+use record::Record;
 use rocking_kernels::modes::Matrices;
 use rocking_kernels::{Array, Variant};
-use state::{contact_of, Metric, Next, Record, Sim, LEFT, RIGHT, Y};
+use state::{contact_of, Integrals, Metric, Next, Sim, LEFT, RIGHT, Y};
 use transitions::ContactStart;
 
 pub use ground_phases::simulate_ground;
@@ -119,35 +123,31 @@ fn set_up<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const
                 .unwrap_or(rocking_ode::Method::Dop853),
         )
     };
-    let contact_scale: [f64; NC] = std::array::from_fn(|i| {
-        if i < n {
-            u_scale(i)
-        } else if i < 2 * n {
-            ud_scale(i - n)
-        } else {
-            1.0
-        }
+    let contact_scale: [f64; NC] = std::array::from_fn(|i| match Contact::<V>::part(i) {
+        Part::U(k) => u_scale(k),
+        Part::UDot(k) => ud_scale(k),
+        _ => 1.0,
     });
-    let rocking_scale: [f64; NR] = std::array::from_fn(|i| {
-        if i == 0 {
-            a
-        } else if i <= n {
-            u_scale(i - 1)
-        } else if i == n + 1 {
-            a * pf
-        } else if i < nx {
-            ud_scale(i - n - 2)
-        } else {
-            1.0
-        }
+    let rocking_scale: [f64; NR] = std::array::from_fn(|i| match Rocking::<V>::part(i) {
+        Part::Theta => a,
+        Part::U(k) => u_scale(k),
+        Part::ThetaDot => a * pf,
+        Part::UDot(k) => ud_scale(k),
+        Part::Integral(_) => 1.0,
     });
     let contact_tol = Tolerances {
         rtol: tol,
-        atol: Y::<NC>::from_fn(|i, _| if i < nc { contact_scale[i] * tol } else { off }),
+        atol: Y::<NC>::from_fn(|i, _| match Contact::<V>::part(i) {
+            Part::Integral(_) => off,
+            _ => contact_scale[i] * tol,
+        }),
     };
     let rocking_tol = Tolerances {
         rtol: tol,
-        atol: Y::<NR>::from_fn(|i, _| if i < nx { rocking_scale[i] * tol } else { off }),
+        atol: Y::<NR>::from_fn(|i, _| match Rocking::<V>::part(i) {
+            Part::Integral(_) => off,
+            _ => rocking_scale[i] * tol,
+        }),
     };
     let e0 = V::energy(&V::X::from_fn(|_| 0.0), RIGHT, &p);
     let uplift = V::static_uplift(&p);
@@ -235,16 +235,12 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         let phi = self.first_mode.values();
         // One coordinate: its u is the top deflection (φ_1 = 1 is not multiplied in).
         let along = |v: f64, k: usize| if n == 1 { v } else { v * phi[k] };
-        V::X::from_fn(|k| {
-            if k == 0 {
-                i.theta
-            } else if k <= n {
-                along(i.u, k - 1)
-            } else if k == n + 1 {
-                i.theta_dot
-            } else {
-                along(i.u_dot, k - n - 2)
-            }
+        V::X::from_fn(|k| match Rocking::<V>::part(k) {
+            Part::Theta => i.theta,
+            Part::U(k) => along(i.u, k),
+            Part::ThetaDot => i.theta_dot,
+            Part::UDot(k) => along(i.u_dot, k),
+            Part::Integral(_) => 0.0,
         })
     }
 
@@ -266,15 +262,13 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
                 s: s0,
                 x: x0,
                 n: if i.theta != 0.0 { 0 } else { 1 },
-                w: 0.0,
-                d: 0.0,
+                carried: Integrals::default(),
             }
         } else {
             Next::Contact {
                 t: 0.0,
                 xc: contact_of::<V>(&x0),
-                w: 0.0,
-                d: 0.0,
+                carried: Integrals::default(),
                 settle: false,
             }
         };
@@ -284,31 +278,39 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
                 Next::Contact {
                     t,
                     xc,
-                    w,
-                    d,
+                    carried,
                     settle,
-                } => match self.contact_start(t, xc, w, d, settle)? {
+                } => match self.contact_start(t, xc, carried, settle)? {
                     ContactStart::Lifted(next) => next,
                     ContactStart::Contact { settling, .. } if taylor => {
-                        self.contact_taylor(t, xc, w, d, settling)?
+                        self.contact_taylor(t, xc, carried, settling)?
                     }
                     ContactStart::Contact { settling, f0 } => {
-                        self.contact_rk(t, xc, w, d, settling, f0)?
+                        self.contact_rk(t, xc, carried, settling, f0)?
                     }
                 },
-                Next::Rocking { t, s, x, n, w, d } if taylor => {
-                    self.rocking_taylor(t, s, x, n, w, d)?
-                }
-                Next::Rocking { t, s, x, n, w, d } => self.rocking_rk(t, s, x, n, w, d)?,
+                Next::Rocking {
+                    t,
+                    s,
+                    x,
+                    n,
+                    carried,
+                } if taylor => self.rocking_taylor(t, s, x, n, carried)?,
+                Next::Rocking {
+                    t,
+                    s,
+                    x,
+                    n,
+                    carried,
+                } => self.rocking_rk(t, s, x, n, carried)?,
                 Next::Done {
                     t,
                     phase,
                     s,
                     state,
-                    w,
-                    d,
+                    carried,
                 } => {
-                    let summary = self.summary(t, phase, s, &state, (w, d), e_initial);
+                    let summary = self.summary(t, phase, s, &state, carried, e_initial);
                     return Ok(Run {
                         summary,
                         events: self.rec.log,

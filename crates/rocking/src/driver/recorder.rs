@@ -1,28 +1,84 @@
-//! What a run records as it goes: the maxima of θ and u (turning points inside steps included),
-//! the time history, the event log, and at the end the summary.
+//! What a run records as it goes: each step's bookkeeping (the guard on steps, the maxima of θ
+//! and u with turning points inside steps, the forces' extremes, the history rows: one function
+//! for every phase and integrator, [`Sim::record_step`]), the event log, and at the end the
+//! summary.
 
 use rocking_kernels::kernels::index::energy as en;
 use rocking_kernels::Array;
 use rocking_motion::GroundMotion;
 use rocking_ode::roots::turning_point;
 
-use super::state::Sim;
+use super::force_record::Forces;
+use super::state::{Integrals, Sim};
 use crate::dense::StepView;
+use crate::error::SimError;
+use crate::layout::Rocking;
 use crate::options::History;
 use crate::results::{EnergyBalance, EventKind, EventRecord, HistoryRow, Phase, Summary};
 use crate::taylor::TaylorVariant;
 
+/// What a phase's bookkeeping carries from step to step: the phase (full contact, or rocking
+/// about `s`) and the forces at the end of its last step.
+pub(super) struct PhaseRecord {
+    contact: bool,
+    s: f64,
+    phase: Phase,
+    forces: Forces,
+}
+
+/// A step a phase's integrator took, from `t_old` to `t_new`, the phase's step attempts
+/// (accepted and rejected) so far counted.
+#[derive(Clone, Copy)]
+pub(super) struct Step {
+    pub(super) t_old: f64,
+    pub(super) t_new: f64,
+    pub(super) attempts: u64,
+}
+
 impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usize>
     Sim<'_, V, M, NR, NC>
 {
-    /// Tracks |θ| and the top deflection |u| of the rocking state `x`.
-    pub(super) fn track(&mut self, x: &V::X) {
-        self.track_values(x.values()[0], self.top(x, false));
+    /// The bookkeeping of a phase (full contact about [`RIGHT`](super::state::RIGHT), or
+    /// rocking about `s`) that starts at `t0` with the rocking state `x0`: the forces at its
+    /// start, recorded.
+    pub(super) fn start_phase(&mut self, phase: Phase, s: f64, t0: f64, x0: &V::X) -> PhaseRecord {
+        let contact = phase == Phase::Contact;
+        let forces = self.forces_start(contact, s, t0, x0);
+        PhaseRecord {
+            contact,
+            s,
+            phase,
+            forces,
+        }
     }
 
-    fn track_values(&mut self, theta: f64, u: f64) {
-        self.rec.max_theta = self.rec.max_theta.max(theta.abs());
-        self.rec.max_u = self.rec.max_u.max(u.abs());
+    /// The bookkeeping of every step of every phase, whichever integrator took it: the guard
+    /// on the run's steps, then over (t_old, t_end] of `step` (t_end its end, or its event;
+    /// `view` its dense output) the maxima of θ (rocking) and u, the forces' extremes, and the
+    /// history rows. Returns where the next step must end.
+    pub(super) fn record_step(
+        &mut self,
+        rec: &mut PhaseRecord,
+        view: &impl StepView<V::X>,
+        step: Step,
+        t_end: f64,
+    ) -> Result<f64, SimError> {
+        self.guard_steps(step.attempts, step.t_new)?;
+        let t_old = step.t_old;
+        if rec.contact {
+            self.extremes_contact(view, t_old, t_end);
+        } else {
+            self.extremes_rocking(view, t_old, t_end);
+        }
+        rec.forces = self.extremes_forces(view, rec.contact, rec.s, t_old, rec.forces, t_end);
+        self.step_history(t_old, t_end, |t| view.state(t), rec.phase, rec.s);
+        Ok(self.t_stop(step.t_new))
+    }
+
+    /// Tracks |θ| and the top deflection |u| of the rocking state `x`.
+    pub(super) fn track(&mut self, x: &V::X) {
+        self.rec
+            .track(x.values()[Rocking::<V>::THETA], self.top(x, false));
     }
 
     fn record_history(&mut self, t: f64, x: &V::X, phase: Phase, s: f64) {
@@ -30,9 +86,9 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         let f = self.forces_at(phase == Phase::Contact, s, t, x);
         let row = HistoryRow {
             tau: t * self.derived.p,
-            theta: x.values()[0],
+            theta: x.values()[Rocking::<V>::THETA],
             u: self.top(x, false),
-            theta_dot: x.values()[V::NQ + 1],
+            theta_dot: x.values()[Rocking::<V>::THETA_DOT],
             u_dot: self.top(x, true),
             phase,
             e_kin: e[en::KINETIC] / self.derived.e_ref,
@@ -48,15 +104,18 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         };
         self.rec.history.push(row);
         if V::NQ > 1 {
-            let n = V::NQ;
             let x = x.values();
-            self.rec.coordinates.extend_from_slice(&x[1..=n]);
-            self.rec.coordinates.extend_from_slice(&x[n + 2..]);
+            self.rec
+                .coordinates
+                .extend_from_slice(&x[Rocking::<V>::us(false)]);
+            self.rec
+                .coordinates
+                .extend_from_slice(&x[Rocking::<V>::us(true)]);
         }
     }
 
     /// History rows for the step (t_old, t_new] of a phase, from the dense output.
-    pub(super) fn step_history(
+    fn step_history(
         &mut self,
         t_old: f64,
         t_new: f64,
@@ -92,7 +151,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
     ) {
         if self.opts.event_log {
             let (theta_dot, u, u_dot) = (
-                pre.values()[V::NQ + 1],
+                pre.values()[Rocking::<V>::THETA_DOT],
                 self.top(pre, false),
                 self.top(pre, true),
             );
@@ -114,21 +173,22 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
 
     /// The top deflection (`rate`: its rate) at `t` in a step, from the step's components.
     fn top_at(&self, step: &impl StepView<V::X>, rate: bool, t: f64) -> f64 {
-        let first = if rate { V::NQ + 2 } else { 1 };
-        self.top_by(|i| step.component(i, t), first)
+        self.top_by(|i| step.component(i, t), Rocking::<V>::us(rate).start)
     }
 
     /// A bound of the top deflection's size over a step.
     fn top_bound(&self, step: &impl StepView<V::X>) -> f64 {
         if V::NQ == 1 {
-            return step.bound(1);
+            return step.bound(Rocking::<V>::u(0));
         }
         let psi = self.top.values();
-        (0..V::NQ).map(|i| psi[i].abs() * step.bound(1 + i)).sum()
+        (0..V::NQ)
+            .map(|i| psi[i].abs() * step.bound(Rocking::<V>::u(i)))
+            .sum()
     }
 
     /// max |u| within a contact step, including a turning point inside it.
-    pub(super) fn extremes_contact(&mut self, step: &impl StepView<V::X>, t_old: f64, t_new: f64) {
+    fn extremes_contact(&mut self, step: &impl StepView<V::X>, t_old: f64, t_new: f64) {
         if !self.opts.max_deflection {
             return;
         }
@@ -142,9 +202,10 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
     }
 
     /// max |θ| and (where tracked) |u| within a rocking step, including turning points inside it.
-    pub(super) fn extremes_rocking(&mut self, step: &impl StepView<V::X>, t_old: f64, t_new: f64) {
+    fn extremes_rocking(&mut self, step: &impl StepView<V::X>, t_old: f64, t_new: f64) {
         let (a, b) = (step.state(t_old), step.state(t_new));
-        self.track_values(b.values()[0], self.top(&b, false));
+        self.rec
+            .track(b.values()[Rocking::<V>::THETA], self.top(&b, false));
         // θ from its rate θ', then the top deflection from its rate (if tracked).
         self.turning_point_extreme::<false>(step, (&a, &b), t_old, t_new);
         if self.opts.max_deflection {
@@ -162,25 +223,25 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         t_new: f64,
     ) {
         const SAMPLES: u32 = 32;
-        let n = V::NQ;
+        let (theta, theta_dot) = (Rocking::<V>::THETA, Rocking::<V>::THETA_DOT);
         let value = |t: f64| {
             if TOP {
                 self.top_at(step, false, t)
             } else {
-                step.component(0, t)
+                step.component(theta, t)
             }
         };
         let rate_at = |t: f64| {
             if TOP {
                 self.top_at(step, true, t)
             } else {
-                step.component(n + 1, t)
+                step.component(theta_dot, t)
             }
         };
         let (ra, rb) = if TOP {
             (self.top(a, true), self.top(b, true))
         } else {
-            (a.values()[n + 1], b.values()[n + 1])
+            (a.values()[theta_dot], b.values()[theta_dot])
         };
         // Without a sign change of the rate at the ends, or a start from rest, the search
         // below finds nothing: skip the bound too (most steps).
@@ -191,7 +252,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         let (max, bound) = if TOP {
             (self.rec.max_u, self.top_bound(step))
         } else {
-            (self.rec.max_theta, step.bound(0))
+            (self.rec.max_theta, step.bound(theta))
         };
         if bound <= max {
             return;
@@ -219,17 +280,17 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
     }
 
     /// The summary of a run that ended at `t_end` in `phase` about `s` with `state` and the
-    /// energy integrals (w, d), having started with the energy `e_initial`.
-    #[allow(clippy::too_many_arguments)]
+    /// energy integrals `carried`, having started with the energy `e_initial`.
     pub(super) fn summary(
         &self,
         t_end: f64,
         phase: Phase,
         s: f64,
         state: &V::X,
-        (w, d): (f64, f64),
+        carried: Integrals,
         e_initial: f64,
     ) -> Summary {
+        let Integrals { w, d } = carried;
         let e_ref = self.derived.e_ref;
         let losses = self.rec.losses;
         let (energy, residual) = if Self::ENERGY {

@@ -2,18 +2,17 @@
 //! contact (state [u, u'] and the carried integrals) and rocking about a corner (state
 //! [θ, u, θ', u'] and the integrals), each to its first event.
 
-use rocking_kernels::kernels::index::power as pwr;
+use rocking_kernels::Array;
 use rocking_motion::GroundMotion;
 use rocking_ode::events::{locate, refine, Direction};
 use rocking_ode::roots::grazing;
 use rocking_ode::{Integrator, Options as OdeOptions};
 
-use rocking_kernels::Array;
-
+use super::recorder::Step;
 use super::state::{
-    carried, contact_state, contact_x, rocking_state, with_integrals, Next, Sim, G2, LEFT, RIGHT, Y,
+    contact_state, contact_x, rocking_state, Integrals, Next, Sim, G2, LEFT, RIGHT, Y,
 };
-use super::transitions::theta_ddot;
+use crate::layout::{Contact, Rocking};
 use crate::options::History;
 use crate::results::Phase;
 use crate::taylor::TaylorVariant;
@@ -29,8 +28,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         &mut self,
         t0: f64,
         xc0: V::Xc,
-        w: f64,
-        d: f64,
+        carried: Integrals,
         settling: bool,
         f0: G2,
     ) -> Result<Next<V>, SimError> {
@@ -38,7 +36,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         let full_history = !matches!(self.opts.history, History::None);
         let may_stop = self.opts.stop_when_known && !full_history;
         let (p, motion) = (self.p, self.motion);
-        let nc = V::Xc::LEN;
+        let nc = Contact::<V>::INTEGRALS;
         let mut rhs = |t: f64, y: &Y<NC>| -> Y<NC> {
             let ug = motion.accel(t);
             let xc = contact_state::<V>(y.as_slice());
@@ -47,8 +45,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             out.as_mut_slice()[..nc].copy_from_slice(dx.values());
             if Self::ENERGY {
                 let pw = V::power(&contact_x::<V>(&xc), ug, RIGHT, &p);
-                out[nc] = pw[pwr::GROUND];
-                out[nc + 1] = pw[pwr::DAMPING];
+                Integrals::of_power(&pw).put(out.as_mut_slice(), nc);
             }
             out
         };
@@ -62,16 +59,20 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             ..self.ode_options
         };
         let mut ode = Integrator::new(options, self.contact_tol)?;
-        let y0 = Y::<NC>::from_fn(|i, _| with_integrals(xc0.values(), w, d, i));
+        let y0 = Y::<NC>::from_fn(|i, _| carried.after(xc0.values(), i));
         ode.reset(t0, y0, &mut rhs)?;
         let mut g_old = f0;
         let dirs = [Direction::Rising, Direction::Rising];
         let excitation_end = motion.end();
-        let mut f_prev = self.forces_start(true, RIGHT, t0, &contact_x::<V>(&xc0));
+        let mut rec = self.start_phase(Phase::Contact, RIGHT, t0, &contact_x::<V>(&xc0));
+        let mut t_stop = self.t_stop(t0);
         loop {
-            let t_stop = self.t_stop(ode.t());
             let info = ode.step(&mut rhs, t_stop)?;
-            self.guard_steps(ode.stats().steps + ode.stats().rejected, ode.t())?;
+            let step = Step {
+                t_old: info.t_old,
+                t_new: info.t_new,
+                attempts: ode.stats().steps + ode.stats().rejected,
+            };
             let (t_old, t_new) = (info.t_old, info.t_new);
             let g_new = g(t_new, ode.y());
             let located = if self.opts.uplift {
@@ -96,17 +97,13 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
                 self.first_lift(dense, s, t_up, t_far).map(|t| (t, s))
             });
             if let Some((t_up, s)) = lift {
-                self.extremes_contact(&dense, t_old, t_up);
-                self.extremes_forces(&dense, true, RIGHT, t_old, f_prev, t_up);
-                self.step_history(t_old, t_up, dense, Phase::Contact, RIGHT);
+                self.record_step(&mut rec, &dense, step, t_up)?;
                 let y = ode.step_state(&mut rhs, t_up);
                 self.stats.add(ode.take_stats());
-                let (w, d) = carried(y.as_slice(), nc);
-                return self.uplift(t_up, s, &contact_state::<V>(y.as_slice()), w, d);
+                let carried = Integrals::of(y.as_slice(), nc);
+                return self.uplift(t_up, s, &contact_state::<V>(y.as_slice()), carried);
             }
-            self.extremes_contact(&dense, t_old, t_new);
-            f_prev = self.extremes_forces(&dense, true, RIGHT, t_old, f_prev, t_new);
-            self.step_history(t_old, t_new, dense, Phase::Contact, RIGHT);
+            t_stop = self.record_step(&mut rec, &dense, step, t_new)?;
             g_old = g_new;
             let y = *ode.y();
             let xc = contact_state::<V>(y.as_slice());
@@ -114,14 +111,12 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
                 || (may_stop && t_new >= excitation_end && self.settled(&xc));
             if done {
                 self.stats.add(ode.take_stats());
-                let (w, d) = carried(y.as_slice(), nc);
                 return Ok(Next::Done {
                     t: t_new,
                     phase: Phase::Contact,
                     s: RIGHT,
                     state: contact_x::<V>(&xc),
-                    w,
-                    d,
+                    carried: Integrals::of(y.as_slice(), nc),
                 });
             }
         }
@@ -130,19 +125,17 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
     /// Rocking about `s` from `t0` at `x0` = [θ, u, θ', u']: to the impact (s θ / (t − t0)^n
     /// falling through zero, regularised so that it cannot fire at t0), the overturning
     /// (s θ = θ_over), or the end of the run.
-    #[allow(clippy::too_many_arguments)]
     pub(super) fn rocking_rk(
         &mut self,
         t0: f64,
         s: f64,
         x0: V::X,
         n: i32,
-        w: f64,
-        d: f64,
+        carried: Integrals,
     ) -> Result<Next<V>, SimError> {
         let (p, motion) = (self.p, self.motion);
         let over = self.opts.overturn_angle;
-        let nx = V::X::LEN;
+        let nx = Rocking::<V>::INTEGRALS;
         let mut rhs = |t: f64, y: &Y<NR>| -> Y<NR> {
             let ug = motion.accel(t);
             let x = rocking_state::<V>(y.as_slice());
@@ -151,75 +144,74 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             out.as_mut_slice()[..nx].copy_from_slice(dx.values());
             if Self::ENERGY {
                 let pw = V::power(&x, ug, s, &p);
-                out[nx] = pw[pwr::GROUND];
-                out[nx + 1] = pw[pwr::DAMPING];
+                Integrals::of_power(&pw).put(out.as_mut_slice(), nx);
             }
             out
         };
         let x0v = x0.values();
         // The impact event s θ / (t − t0)^n, with its limit at t0 (equations.md §5, note 4).
         let start_limit = if n == 0 {
-            s * x0v[0]
+            s * x0v[Rocking::<V>::THETA]
         } else if n == 1 {
-            s * x0v[V::NQ + 1]
+            s * x0v[Rocking::<V>::THETA_DOT]
         } else {
-            s * V::rocking_rhs(&x0, motion.accel_right(t0), s, &p).values()[theta_ddot::<V>()] / 2.0
+            let rate = V::rocking_rhs(&x0, motion.accel_right(t0), s, &p);
+            s * rate.values()[Rocking::<V>::THETA_DDOT] / 2.0
         };
         // An uplift exactly at f_s = 0 has θ'' = 0: keep the event armed (it fires at once if θ
         // turns back, which ends the zero-length rocking phase with an impact).
         let start_limit = start_limit.max(f64::MIN_POSITIVE);
+        let theta = Rocking::<V>::THETA;
         let mut g = |t: f64, y: &Y<NR>| -> G2 {
             let dt = t - t0;
             let impact = if dt > 0.0 {
-                s * y[0] / dt.powi(n)
+                s * y[theta] / dt.powi(n)
             } else {
                 start_limit
             };
-            G2::new(impact, s * y[0] - over)
+            G2::new(impact, s * y[theta] - over)
         };
-        let y0 = Y::<NR>::from_fn(|i, _| with_integrals(x0v, w, d, i));
+        let y0 = Y::<NR>::from_fn(|i, _| carried.after(x0v, i));
         let mut ode = Integrator::new(self.ode_options, self.rocking_tol)?;
         ode.reset(t0, y0, &mut rhs)?;
         let mut g_old = g(t0, &y0);
         let dirs = [Direction::Falling, Direction::Rising];
         let phase = Phase::rocking(s);
-        let mut f_prev = self.forces_start(false, s, t0, &x0);
+        let mut rec = self.start_phase(phase, s, t0, &x0);
+        let mut t_stop = self.t_stop(t0);
         loop {
-            let t_stop = self.t_stop(ode.t());
             let info = ode
                 .step(&mut rhs, t_stop)
                 .map_err(|e| self.explain_failure(e, ode.y().as_slice(), s))?;
-            self.guard_steps(ode.stats().steps + ode.stats().rejected, ode.t())?;
-            let (t_old, t_new) = (info.t_old, info.t_new);
+            let step = Step {
+                t_old: info.t_old,
+                t_new: info.t_new,
+                attempts: ode.stats().steps + ode.stats().rejected,
+            };
+            let t_new = info.t_new;
             let g_new = g(t_new, ode.y());
             if let Some(ev) = locate(&mut ode, &mut g, &dirs, &g_old, &g_new) {
                 let ev = refine(&mut ode, &mut rhs, &mut g, ev);
                 let dense = |t| rocking_state::<V>(ode.dense(t).as_slice());
-                self.extremes_rocking(&dense, t_old, ev.t);
-                self.extremes_forces(&dense, false, s, t_old, f_prev, ev.t);
-                self.step_history(t_old, ev.t, dense, phase, s);
+                self.record_step(&mut rec, &dense, step, ev.t)?;
                 self.stats.add(ode.take_stats());
                 let y = ev.y;
-                let (w, d) = carried(y.as_slice(), nx);
+                let carried = Integrals::of(y.as_slice(), nx);
                 let x = rocking_state::<V>(y.as_slice());
-                return self.rocking_event(ev.index, ev.t, s, x, w, d);
+                return self.rocking_event(ev.index, ev.t, s, x, carried);
             }
             let dense = |t| rocking_state::<V>(ode.dense(t).as_slice());
-            self.extremes_rocking(&dense, t_old, t_new);
-            f_prev = self.extremes_forces(&dense, false, s, t_old, f_prev, t_new);
-            self.step_history(t_old, t_new, dense, phase, s);
+            t_stop = self.record_step(&mut rec, &dense, step, t_new)?;
             g_old = g_new;
             if t_new >= self.opts.t_end {
                 let y = *ode.y();
                 self.stats.add(ode.take_stats());
-                let (w, d) = carried(y.as_slice(), nx);
                 return Ok(Next::Done {
                     t: t_new,
                     phase,
                     s,
                     state: rocking_state::<V>(y.as_slice()),
-                    w,
-                    d,
+                    carried: Integrals::of(y.as_slice(), nx),
                 });
             }
         }

@@ -1,18 +1,21 @@
 //! What one run carries between its phases: the simulation [`Sim`], where the hybrid system goes
-//! [`Next`], and the guards that turn a run that would not end into an error.
+//! [`Next`], the integrals it carries ([`Integrals`]), and the guards that turn a run that would
+//! not end into an error.
 //!
-//! The lowest room of the driver: every other file imports from here, this one from none of them.
+//! The lowest room of the driver with behaviour: the rooms with methods on [`Sim`] import from
+//! here; of the driver this one imports only the values-only [`Record`].
 
 use nalgebra::{DMatrix, SVector};
-use rocking_kernels::kernels::index::energy as en;
+use rocking_kernels::kernels::index::{energy as en, mass_matrix as mm, power as pwr};
 use rocking_kernels::{Array, Variant};
 use rocking_motion::GroundMotion;
 use rocking_ode::{Options as OdeOptions, Tolerances};
 
-use super::force_record::ForceRecord;
+use super::record::Record;
 use crate::error::SimError;
+use crate::layout::{Contact, PreImpact, Rocking};
 use crate::options::Options;
-use crate::results::{EventRecord, HistoryRow, Phase, SolverStats, Time};
+use crate::results::{Phase, SolverStats, Time};
 use crate::structure::Derived;
 use crate::taylor::TaylorVariant;
 
@@ -33,8 +36,7 @@ pub(super) enum Next<V: Variant> {
         t: f64,
         /// `[u_1..u_n, u_1'..u_n']`.
         xc: V::Xc,
-        w: f64,
-        d: f64,
+        carried: Integrals,
         /// Just come to rest: no uplift before one step has been taken (see
         /// [`Sim::contact_start`](super::Sim::contact_start)).
         settle: bool,
@@ -46,61 +48,80 @@ pub(super) enum Next<V: Variant> {
         x: V::X,
         /// The impact event is s θ / (t − t0)^n (see the rocking phases).
         n: i32,
-        w: f64,
-        d: f64,
+        carried: Integrals,
     },
     Done {
         t: f64,
         phase: Phase,
         s: f64,
         state: V::X,
-        w: f64,
-        d: f64,
+        carried: Integrals,
     },
+}
+
+/// The integrals a run carries from phase to phase when the energy bookkeeping is on (zeros
+/// otherwise): W, the ground acceleration's work, and D, the damping's dissipation.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(super) struct Integrals {
+    pub(super) w: f64,
+    pub(super) d: f64,
+}
+
+impl Integrals {
+    /// The integrals of a phase's integrator state `y` from component `first` on (the
+    /// mechanical state's length: the layout's `INTEGRALS`), or zeros when they are not carried.
+    pub(super) fn of(y: &[f64], first: usize) -> Self {
+        if y.len() >= first + 2 {
+            Integrals {
+                w: y[first],
+                d: y[first + 1],
+            }
+        } else {
+            Integrals::default()
+        }
+    }
+
+    /// The rates W' and D' of the `power` kernel's output.
+    pub(super) fn of_power(power: &[f64]) -> Self {
+        Integrals {
+            w: power[pwr::GROUND],
+            d: power[pwr::DAMPING],
+        }
+    }
+
+    /// Puts W and D into a phase's integrator state (or its rate) `y` from component `first` on.
+    pub(super) fn put(self, y: &mut [f64], first: usize) {
+        y[first] = self.w;
+        y[first + 1] = self.d;
+    }
+
+    /// Component `i` of a phase's integrator state: the mechanical state `x`, then W and D.
+    pub(super) fn after(self, x: &[f64], i: usize) -> f64 {
+        match i.checked_sub(x.len()) {
+            None => x[i],
+            Some(0) => self.w,
+            Some(_) => self.d,
+        }
+    }
 }
 
 /// The rocking state `[θ, u, θ', u']` of full contact at the contact state `xc = [u, u']`
 /// (θ = θ' = 0); each `u` is u_1..u_n.
 pub(super) fn contact_x<V: Variant>(xc: &V::Xc) -> V::X {
-    let (n, xc) = (V::NQ, xc.values());
-    V::X::from_fn(|i| {
-        if i == 0 || i == n + 1 {
-            0.0
-        } else if i <= n {
-            xc[i - 1]
-        } else {
-            xc[i - 2]
-        }
-    })
+    let xc = xc.values();
+    V::X::from_fn(|i| Contact::<V>::of_rocking(i).map_or(0.0, |j| xc[j]))
 }
 
 /// The contact state `[u, u']` of the rocking state `x`.
 pub(super) fn contact_of<V: Variant>(x: &V::X) -> V::Xc {
-    let (n, x) = (V::NQ, x.values());
-    V::Xc::from_fn(|i| if i < n { x[1 + i] } else { x[2 + i] })
+    let x = x.values();
+    V::Xc::from_fn(|i| x[Contact::<V>::in_rocking(i)])
 }
 
 /// The pre-impact state `xi = [u, u', θ']` of the rocking state `x` (θ = 0).
 pub(super) fn impact_state<V: Variant>(x: &V::X) -> V::Xi {
-    let (n, x) = (V::NQ, x.values());
-    V::Xi::from_fn(|i| {
-        if i < n {
-            x[1 + i]
-        } else if i < 2 * n {
-            x[2 + i]
-        } else {
-            x[n + 1]
-        }
-    })
-}
-
-/// Component `i` of a phase's integrator state: the mechanical state `x`, then W and D.
-pub(super) fn with_integrals(x: &[f64], w: f64, d: f64, i: usize) -> f64 {
-    match i.checked_sub(x.len()) {
-        None => x[i],
-        Some(0) => w,
-        Some(_) => d,
-    }
+    let x = x.values();
+    V::Xi::from_fn(|i| x[PreImpact::<V>::in_rocking(i)])
 }
 
 /// The rocking state of a phase's integrator state `y` (its first `V::X::LEN` components).
@@ -166,29 +187,6 @@ pub(super) struct Metric {
     pub(super) m: f64,
     pub(super) k_inv: DMatrix<f64>,
     pub(super) m_inv: DMatrix<f64>,
-}
-
-/// What the run has recorded so far (written by the recorder, read into the summary).
-#[derive(Default)]
-pub(super) struct Record {
-    pub(super) max_theta: f64,
-    pub(super) max_u: f64,
-    pub(super) impacts: u64,
-    pub(super) significant: u64,
-    pub(super) energy_capped: u64,
-    pub(super) first_uplift: Option<f64>,
-    pub(super) first_impact: Option<f64>,
-    pub(super) overturn: Option<f64>,
-    /// Kinetic energy lost at impacts (the energy balance's third term).
-    pub(super) losses: f64,
-    pub(super) log: Vec<EventRecord>,
-    pub(super) history: Vec<HistoryRow>,
-    /// u_1..u_n, u_1'..u_n' of each history row, for n > 1.
-    pub(super) coordinates: Vec<f64>,
-    /// The next time of the history grid.
-    pub(super) next_grid: f64,
-    /// The extremes of the section forces and reactions.
-    pub(super) forces: ForceRecord,
 }
 
 impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usize>
@@ -258,12 +256,11 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
     /// The column's top deflection Σ u_i ψ_i(1) of the rocking state `x` (`rate`: of its rate,
     /// from the u_i'); u itself for one coordinate.
     pub(super) fn top(&self, x: &V::X, rate: bool) -> f64 {
-        let first = if rate { V::NQ + 2 } else { 1 };
-        self.top_by(|i| x.values()[i], first)
+        self.top_by(|i| x.values()[i], Rocking::<V>::us(rate).start)
     }
 
-    /// Σ ψ_i(1) c(first + i): the top deflection (first = 1) or its rate (first = n + 2) from
-    /// the components `c` of a rocking state.
+    /// Σ ψ_i(1) c(first + i): the top deflection (`first` u_1's component) or its rate (u_1''s)
+    /// from the components `c` of a state.
     pub(super) fn top_by(&self, c: impl Fn(usize) -> f64, first: usize) -> f64 {
         if V::NQ == 1 {
             return c(first);
@@ -279,7 +276,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         let q = V::Q::from_fn(|i| y[i]);
         let m = V::mass_matrix(&q, s, &self.p);
         let conditioning = if V::NQ == 1 {
-            let [mtt, mtu, muu] = [0, 1, 2].map(|k| m.values()[k]);
+            let [mtt, mtu, muu] = [mm::M_TT, mm::M_TU, mm::M_UU].map(|k| m.values()[k]);
             (mtt * muu - mtu * mtu) / (mtt * muu)
         } else {
             smallest_pivot_ratio(m.values(), V::Q::LEN)
@@ -324,16 +321,6 @@ fn smallest_pivot_ratio(upper: &[f64], n: usize) -> f64 {
     ratio
 }
 
-/// The energy integrals (W, D) of a phase's state from component `first` on, or zeros when they
-/// are not carried.
-pub(super) fn carried(y: &[f64], first: usize) -> (f64, f64) {
-    if y.len() >= first + 2 {
-        (y[first], y[first + 1])
-    } else {
-        (0.0, 0.0)
-    }
-}
-
 /// The free vibration of the column in full contact with no ground motion: it stays inside the
 /// ellipsoid of its energy `vib` (kinetic + strain), ½ u'ᵀ M u' + ½ uᵀ K u <= vib.
 pub(super) struct Ellipse<'a> {
@@ -350,11 +337,14 @@ impl Ellipse<'_> {
         let unit = |j: usize| g(&V::Xc::from_fn(|i| if i == j { 1.0 } else { 0.0 })) - c;
         let Metric { k, m, .. } = *self.metric;
         let norm = if n == 1 {
-            let (a, b) = (unit(0), unit(1));
+            let (a, b) = (unit(Contact::<V>::u(0)), unit(Contact::<V>::u_dot(0)));
             a * a / k + b * b / m
         } else {
             let ab = V::Xc::from_fn(unit);
-            let (a, b) = ab.values().split_at(n);
+            let (a, b) = (
+                &ab.values()[Contact::<V>::us(false)],
+                &ab.values()[Contact::<V>::us(true)],
+            );
             quadratic(&self.metric.k_inv, a) + quadratic(&self.metric.m_inv, b)
         };
         (c, (2.0 * self.vib * norm).sqrt())

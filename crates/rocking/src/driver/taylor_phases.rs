@@ -3,6 +3,8 @@
 //! polynomial (the uplift functions' series in contact, θ's series while rocking), so none inside
 //! a step is missed.
 
+use std::marker::PhantomData;
+
 use rocking_motion::GroundMotion;
 use rocking_ode::events::Direction;
 use rocking_ode::poly;
@@ -10,10 +12,10 @@ use rocking_ode::taylor::{Taylor, TaylorOptions};
 
 use rocking_kernels::Array;
 
-use super::state::{
-    carried, contact_state, contact_x, rocking_state, with_integrals, Next, Sim, LEFT, RIGHT,
-};
+use super::recorder::Step;
+use super::state::{contact_state, contact_x, rocking_state, Integrals, Next, Sim, LEFT, RIGHT};
 use crate::dense::{StepView, TaylorStep};
+use crate::layout::{Contact, Rocking};
 use crate::options::History;
 use crate::results::Phase;
 use crate::taylor::{ContactSystem, RockingSystem, TaylorVariant};
@@ -48,15 +50,13 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
         &mut self,
         t0: f64,
         xc0: V::Xc,
-        w: f64,
-        d: f64,
+        carried: Integrals,
         settling: bool,
     ) -> Result<Next<V>, SimError> {
         let mut settling = settling;
         let scale = self.contact_scale;
-        let nc = V::Xc::LEN;
-        let y0: [f64; NC] =
-            std::array::from_fn(|i| with_integrals(xc0.values(), w, d, i) / scale[i]);
+        let nc = Contact::<V>::INTEGRALS;
+        let y0: [f64; NC] = std::array::from_fn(|i| carried.after(xc0.values(), i) / scale[i]);
         let mut ode = self.taylor(self.contact_h_max(t0), t0, y0, nc)?;
         let mut sys = ContactSystem::<V, M, NC> {
             p: self.p,
@@ -66,13 +66,17 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
         let unscale = |y: [f64; NC]| -> [f64; NC] { std::array::from_fn(|i| y[i] * scale[i]) };
         let may_stop = self.opts.stop_when_known && matches!(self.opts.history, History::None);
         let excitation_end = self.motion.end();
-        let mut f_prev = self.forces_start(true, RIGHT, t0, &contact_x::<V>(&xc0));
+        let mut rec = self.start_phase(Phase::Contact, RIGHT, t0, &contact_x::<V>(&xc0));
+        let mut t_stop = self.t_stop(t0);
         loop {
-            let t_stop = self.t_stop(ode.t());
             ode.step(&mut sys, t_stop)?;
-            // A Taylor step is never rejected: its attempts are its steps.
-            self.guard_steps(ode.stats().steps, ode.t())?;
             let (t_old, t_new) = (ode.t_old(), ode.t());
+            let step_span = Step {
+                t_old,
+                t_new,
+                // A Taylor step is never rejected: its attempts are its steps.
+                attempts: ode.stats().steps,
+            };
             let dirs = [Direction::Rising, Direction::Rising];
             let rising = if self.opts.uplift {
                 ode.locate(&mut sys, &dirs).map(|ev| (ev.t, ev.index))
@@ -95,6 +99,7 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
                 ode: &ode,
                 scale,
                 contact: true,
+                variant: PhantomData::<V>,
             };
             let dense = |t: f64| -> V::X { step.state(t) };
             let lift = crossing.and_then(|(t_up, index)| {
@@ -102,31 +107,25 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
                 self.first_lift(dense, s, t_up, t_new).map(|t| (t, s))
             });
             if let Some((t_up, s)) = lift {
-                self.extremes_contact(&step, t_old, t_up);
-                self.extremes_forces(&step, true, RIGHT, t_old, f_prev, t_up);
-                self.step_history(t_old, t_up, dense, Phase::Contact, RIGHT);
+                self.record_step(&mut rec, &step, step_span, t_up)?;
                 self.stats.add(ode.take_stats());
                 let y = unscale(ode.dense(t_up));
-                let (w, d) = carried(&y, nc);
-                return self.uplift(t_up, s, &contact_state::<V>(&y), w, d);
+                let carried = Integrals::of(&y, nc);
+                return self.uplift(t_up, s, &contact_state::<V>(&y), carried);
             }
-            self.extremes_contact(&step, t_old, t_new);
-            f_prev = self.extremes_forces(&step, true, RIGHT, t_old, f_prev, t_new);
-            self.step_history(t_old, t_new, dense, Phase::Contact, RIGHT);
+            t_stop = self.record_step(&mut rec, &step, step_span, t_new)?;
             let y = unscale(*ode.y());
             let xc = contact_state::<V>(&y);
             let done = t_new >= self.opts.t_end
                 || (may_stop && t_new >= excitation_end && self.settled(&xc));
             if done {
                 self.stats.add(ode.take_stats());
-                let (w, d) = carried(&y, nc);
                 return Ok(Next::Done {
                     t: t_new,
                     phase: Phase::Contact,
                     s: RIGHT,
                     state: contact_x::<V>(&xc),
-                    w,
-                    d,
+                    carried: Integrals::of(&y, nc),
                 });
             }
         }
@@ -142,9 +141,9 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
         }
     }
 
-    /// The scaled Taylor state of `[θ, u, θ', u']` and the carried integrals `W`, `D`.
-    pub(super) fn rocking_start(&self, x: &V::X, w: f64, d: f64) -> [f64; NR] {
-        std::array::from_fn(|i| with_integrals(x.values(), w, d, i) / self.rocking_scale[i])
+    /// The scaled Taylor state of `[θ, u, θ', u']` and the carried integrals.
+    pub(super) fn rocking_start(&self, x: &V::X, carried: Integrals) -> [f64; NR] {
+        std::array::from_fn(|i| carried.after(x.values(), i) / self.rocking_scale[i])
     }
 
     /// Rocking about `s` from `t0` with the Taylor method (see [`Sim::rocking_rk`]). The impact is
@@ -152,34 +151,37 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
     /// of s θ − θ_over's. The start guard of the RK path is exact here: at the phase start θ and,
     /// after an uplift, θ' are exactly 0, so the polynomial's factor τ^n is exact and
     /// [`poly::first_root`] divides it out before it looks for a root.
-    #[allow(clippy::too_many_arguments)]
     pub(super) fn rocking_taylor(
         &mut self,
         t0: f64,
         s: f64,
         x0: V::X,
         n: i32,
-        w: f64,
-        d: f64,
+        carried: Integrals,
     ) -> Result<Next<V>, SimError> {
         let scale = self.rocking_scale;
-        let nx = V::X::LEN;
-        let y0 = self.rocking_start(&x0, w, d);
+        let nx = Rocking::<V>::INTEGRALS;
+        let theta_row = Rocking::<V>::THETA;
+        let y0 = self.rocking_start(&x0, carried);
         let mut ode = self.taylor(f64::INFINITY, t0, y0, nx)?;
         let mut sys = self.rocking_system(s);
         let unscale = |y: [f64; NR]| -> [f64; NR] { std::array::from_fn(|i| y[i] * scale[i]) };
-        let over = self.opts.overturn_angle / scale[0];
+        let over = self.opts.overturn_angle / scale[theta_row];
         let phase = Phase::rocking(s);
-        let mut f_prev = self.forces_start(false, s, t0, &x0);
+        let mut rec = self.start_phase(phase, s, t0, &x0);
+        let mut t_stop = self.t_stop(t0);
         loop {
-            let t_stop = self.t_stop(ode.t());
             ode.step(&mut sys, t_stop)
                 .map_err(|e| self.explain_failure(e, &unscale(*ode.y()), s))?;
-            self.guard_steps(ode.stats().steps, ode.t())?;
             let (t_old, t_new) = (ode.t_old(), ode.t());
+            let step_span = Step {
+                t_old,
+                t_new,
+                attempts: ode.stats().steps,
+            };
             let h = t_new - t_old;
             let order = ode.order();
-            let theta = &ode.coefficients()[0][..=order];
+            let theta = &ode.coefficients()[theta_row][..=order];
             // An uplift exactly at f_s = 0 (θ'' = 0) that turns back at once: an impact at t0,
             // as the RK path's armed event fires at its first step.
             let first = t_old == t0 && n > 0;
@@ -218,8 +220,8 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
                 ode: &ode,
                 scale,
                 contact: false,
+                variant: PhantomData::<V>,
             };
-            let dense = |t: f64| -> V::X { step.state(t) };
             if let Some((index, tau)) = event {
                 // Strictly after t_old for a root inside the step, even below t_old's ulp.
                 let t = if tau >= h {
@@ -229,29 +231,23 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
                 } else {
                     (t_old + tau).max(after(t_old)).min(t_new)
                 };
-                self.extremes_rocking(&step, t_old, t);
-                self.extremes_forces(&step, false, s, t_old, f_prev, t);
-                self.step_history(t_old, t, dense, phase, s);
+                self.record_step(&mut rec, &step, step_span, t)?;
                 self.stats.add(ode.take_stats());
                 self.stats.events += 1;
                 let y = unscale(ode.dense(t));
-                let (w, d) = carried(&y, nx);
-                return self.rocking_event(index, t, s, rocking_state::<V>(&y), w, d);
+                let carried = Integrals::of(&y, nx);
+                return self.rocking_event(index, t, s, rocking_state::<V>(&y), carried);
             }
-            self.extremes_rocking(&step, t_old, t_new);
-            f_prev = self.extremes_forces(&step, false, s, t_old, f_prev, t_new);
-            self.step_history(t_old, t_new, dense, phase, s);
+            t_stop = self.record_step(&mut rec, &step, step_span, t_new)?;
             if t_new >= self.opts.t_end {
                 let y = unscale(*ode.y());
                 self.stats.add(ode.take_stats());
-                let (w, d) = carried(&y, nx);
                 return Ok(Next::Done {
                     t: t_new,
                     phase,
                     s,
                     state: rocking_state::<V>(&y),
-                    w,
-                    d,
+                    carried: Integrals::of(&y, nx),
                 });
             }
         }

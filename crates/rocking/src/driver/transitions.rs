@@ -1,7 +1,7 @@
 //! The transitions between phases: uplift from full contact (and the test that decides it),
 //! the rocking phase's events (impact, overturning), and the impact as the policy decides it.
 
-use rocking_kernels::kernels::index::{energy as en, rocking_rhs as rr};
+use rocking_kernels::kernels::index::energy as en;
 use rocking_motion::GroundMotion;
 use rocking_ode::roots::first_true;
 use rocking_ode::taylor::TaylorSystem;
@@ -9,8 +9,11 @@ use rocking_ode::taylor::TaylorSystem;
 use rocking_kernels::{Array, Variant};
 
 use super::impact::{self, After};
-use super::state::{contact_of, contact_x, impact_state, Ellipse, Next, Sim, G2, LEFT, RIGHT};
+use super::state::{
+    contact_of, contact_x, impact_state, Ellipse, Integrals, Next, Sim, G2, LEFT, RIGHT,
+};
 use crate::error::SimError;
+use crate::layout::{Contact, Rocking};
 use crate::options::Method;
 use crate::results::{EventKind, Phase};
 use crate::taylor::TaylorVariant;
@@ -46,15 +49,14 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         &mut self,
         t0: f64,
         xc: V::Xc,
-        w: f64,
-        d: f64,
+        carried: Integrals,
         settle: bool,
     ) -> Result<ContactStart<V>, SimError> {
         let ug0 = self.motion.accel_right(t0);
         let f0 = self.uplift_functions(&xc, ug0);
         for (k, s) in [(0, RIGHT), (1, LEFT)] {
             if self.opts.uplift && !settle && f0[k] > 0.0 && self.lifts(s, t0, &xc, ug0) {
-                return self.uplift(t0, s, &xc, w, d).map(ContactStart::Lifted);
+                return self.uplift(t0, s, &xc, carried).map(ContactStart::Lifted);
             }
         }
         Ok(ContactStart::Contact {
@@ -83,7 +85,8 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         }
         // The top deflection Σ u_i ψ_i(1), where its maximum is tracked.
         if !V::RIGID && self.opts.max_deflection {
-            let (_, r_u) = ellipse.reach::<V>(|xc| self.top_by(|i| xc.values()[i - 1], 1));
+            let first = Contact::<V>::us(false).start;
+            let (_, r_u) = ellipse.reach::<V>(|xc| self.top_by(|i| xc.values()[i], first));
             if r_u > self.rec.max_u {
                 return false;
             }
@@ -101,12 +104,12 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
     fn lifts(&self, s: f64, t: f64, xc: &V::Xc, ug: f64) -> bool {
         let x = contact_x::<V>(xc);
         if self.opts.accuracy.method == Method::Taylor {
-            let y0 = self.rocking_start(&x, 0.0, 0.0);
+            let y0 = self.rocking_start(&x, Integrals::default());
             let mut x: [[f64; 2]; NR] = std::array::from_fn(|i| [y0[i], 0.0]);
             self.rocking_system(s).coefficients::<2>(t, &mut x);
-            return s * x[V::NQ + 1][1] > 0.0;
+            return s * x[Rocking::<V>::THETA_DOT][1] > 0.0;
         }
-        s * V::rocking_rhs(&x, ug, s, &self.p).values()[theta_ddot::<V>()] > 0.0
+        s * V::rocking_rhs(&x, ug, s, &self.p).values()[Rocking::<V>::THETA_DDOT] > 0.0
     }
 
     /// The first time in [t_a, t_b] at which the base lifts about `s`, given that f_s rises
@@ -146,11 +149,10 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         t: f64,
         s: f64,
         xc: &V::Xc,
-        w: f64,
-        d: f64,
+        carried: Integrals,
     ) -> Result<Next<V>, SimError> {
         self.count_event(t)?;
-        self.rec.first_uplift.get_or_insert(t);
+        self.rec.uplift(t);
         let x = contact_x::<V>(xc);
         let e = V::energy(&x, s, &self.p)[en::KINETIC];
         self.log_event(t, EventKind::Uplift, "", Phase::rocking(s), &x, (e, e));
@@ -159,8 +161,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             s,
             x,
             n: 2,
-            w,
-            d,
+            carried,
         })
     }
 
@@ -171,15 +172,14 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         t: f64,
         s: f64,
         x: V::X,
-        w: f64,
-        d: f64,
+        carried: Integrals,
     ) -> Result<Next<V>, SimError> {
         if index == 0 {
-            return self.impact(t, s, &x, w, d);
+            return self.impact(t, s, &x, carried);
         }
         self.count_event(t)?;
-        self.rec.overturn = Some(t);
-        self.track(&x);
+        let (theta, u) = (x.values()[Rocking::<V>::THETA], self.top(&x, false));
+        self.rec.overturn(t, theta, u);
         let e = V::energy(&x, s, &self.p)[en::KINETIC];
         self.log_event(t, EventKind::Overturn, "", Phase::Overturned, &x, (e, e));
         Ok(Next::Done {
@@ -187,30 +187,25 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             phase: Phase::Overturned,
             s,
             state: x,
-            w,
-            d,
+            carried,
         })
     }
 
     /// The impact at θ = 0 while rocking about `s` (pre-impact rocking state `x`): the policy
     /// ([`impact::resolve`]) decides, the run records it and goes on from its choice.
-    fn impact(&mut self, t: f64, s: f64, x: &V::X, w: f64, d: f64) -> Result<Next<V>, SimError> {
+    fn impact(
+        &mut self,
+        t: f64,
+        s: f64,
+        x: &V::X,
+        carried: Integrals,
+    ) -> Result<Next<V>, SimError> {
         self.count_event(t)?;
-        let theta_dot = x.values()[V::NQ + 1];
-        if theta_dot.abs() >= self.significant_rate {
-            self.rec.significant += 1;
-        }
+        let significant = x.values()[Rocking::<V>::THETA_DOT].abs() >= self.significant_rate;
         let xi = impact_state::<V>(x);
         let out = impact::resolve::<V>(self.opts.impact, &xi, s, &self.p, self.rest_rate);
-        if out.counted {
-            self.rec.impacts += 1;
-            self.rec.first_impact.get_or_insert(t);
-        }
-        if out.capped {
-            self.rec.energy_capped += 1;
-        }
+        self.rec.impact(t, significant, &out);
         let (e_before, e_after) = (out.energy_before, out.energy_after());
-        self.rec.losses += e_before - e_after;
         match out.after {
             After::Contact { x: after, .. } => {
                 self.log_event(
@@ -224,8 +219,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
                 Ok(Next::Contact {
                     t,
                     xc: contact_of::<V>(&after),
-                    w,
-                    d,
+                    carried,
                     settle: out.kind == EventKind::Rest,
                 })
             }
@@ -244,16 +238,9 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
                     s: s2,
                     x: after,
                     n: 1,
-                    w,
-                    d,
+                    carried,
                 })
             }
         }
     }
-}
-
-/// The index of θ'' in the output of `rocking_rhs` (θ' is at n + 1 in x, and the output is x's
-/// rate: `index::rocking_rhs::THETA_DDOT` for one coordinate).
-pub(super) const fn theta_ddot<V: Variant>() -> usize {
-    rr::THETA_DDOT + (V::NQ - 1)
 }

@@ -36,8 +36,14 @@ pub(super) struct Kin<V: Variant> {
 impl<V: Variant> Kin<V> {
     /// `[θ, v, θ', v']` of the ground's kernels.
     pub(super) fn base(&self, y: &V::Y) -> [f64; 4] {
-        let (n, y) = (nq::<V>(), y.values());
-        [y[0], y[1], y[n], y[n + 1]]
+        let y = y.values();
+        [
+            Free::<V>::THETA,
+            Free::<V>::V,
+            Free::<V>::THETA_DOT,
+            Free::<V>::V_DOT,
+        ]
+        .map(|i| y[i])
     }
 
     /// The ground's outputs in contact state `c`.
@@ -64,14 +70,13 @@ impl<V: Variant> Kin<V> {
 
     /// The accelerations `[θ'', v'', u'']` and the ground's outputs.
     pub(super) fn accelerations(&self, y: &V::Y, ug: f64, s: f64, c: Contact) -> (V::Qf, [f64; 9]) {
-        let n = nq::<V>();
         let q = V::Qf::from_fn(|i| y.values()[i]);
         let m = V::free_mass_matrix(&q, s, &self.p);
         let mut f = V::free_forcing(y, ug, s, &self.p);
         let g = self.ground(y, c);
-        f.values_mut()[0] += g[go::Q_THETA];
-        f.values_mut()[1] += g[go::Q_V];
-        let _ = solve_upper(m.values(), &mut f.values_mut()[..n]);
+        f.values_mut()[Free::<V>::THETA] += g[go::Q_THETA];
+        f.values_mut()[Free::<V>::V] += g[go::Q_V];
+        let _ = solve_upper(m.values(), &mut f.values_mut()[..Free::<V>::NQ]);
         (f, g)
     }
 }

@@ -25,6 +25,7 @@ use nalgebra::SVector;
 
 use crate::error::SimError;
 use crate::ground::Ground;
+use crate::layout::{Free, FreePart};
 use crate::options::{History, Options};
 use crate::results::{
     EnergyBalance, EventKind, EventRecord, ForceSummary, GroundRow, GroundSummary, HistoryRow,
@@ -100,11 +101,6 @@ struct GroundSim<'a, V: Variant, M: GroundMotion + ?Sized, const N: usize> {
     rec: Track,
 }
 
-/// The number of q coordinates on compliant ground: `V::Qf::LEN` (θ, v, u_1..u_n).
-fn nq<V: Variant>() -> usize {
-    V::Qf::LEN
-}
-
 /// Runs `structure` on `ground` under `motion` with variant `V` (Runge–Kutta: the options'
 /// method when it is one, DOP853 otherwise; see [`crate::simulate_on_ground`]).
 ///
@@ -140,32 +136,17 @@ pub fn simulate_ground<V: Variant, M: GroundMotion + ?Sized, const N: usize>(
     };
     let tol_value = opts.accuracy.tol;
     let (a, pf) = (derived.alpha, derived.p);
-    let nqf = nq::<V>();
     let u_scale = if V::RIGID { 1.0 } else { derived.u_cr };
-    let scale = |i: usize| -> f64 {
-        if i == 0 {
-            a
-        } else if i == 1 {
-            v0
-        } else if i < nqf {
-            u_scale
-        } else if i == nqf {
-            a * pf
-        } else if i == nqf + 1 {
-            v0 * omega_v
-        } else {
-            u_scale * derived.omega_n.max(pf)
-        }
-    };
-    let ny = V::Y::LEN;
     let tol = Tolerances {
         rtol: tol_value,
-        atol: SVector::<f64, N>::from_fn(|i, _| {
-            if i < ny {
-                scale(i) * tol_value
-            } else {
-                f64::INFINITY
-            }
+        atol: SVector::<f64, N>::from_fn(|i, _| match Free::<V>::part(i) {
+            FreePart::Theta => a * tol_value,
+            FreePart::V => v0 * tol_value,
+            FreePart::U(_) => u_scale * tol_value,
+            FreePart::ThetaDot => a * pf * tol_value,
+            FreePart::VDot => v0 * omega_v * tol_value,
+            FreePart::UDot(_) => u_scale * derived.omega_n.max(pf) * tol_value,
+            FreePart::Integral(_) => f64::INFINITY,
         }),
     };
     let mut sim = GroundSim::<V, M, N> {
@@ -195,11 +176,11 @@ pub fn simulate_ground<V: Variant, M: GroundMotion + ?Sized, const N: usize>(
     };
     // Point masses on the column axis alone (no column or base mass) have no rotational
     // inertia once the base may sink: M is singular (docs/ground.md).
-    let q0 = V::Qf::from_fn(|i| if i == 1 { v0 } else { 0.0 });
+    let q0 = V::Qf::from_fn(|i| if i == Free::<V>::V { v0 } else { 0.0 });
     let mut probe = [1.0; crate::spd::MAX];
     let pivot = solve_upper(
         V::free_mass_matrix(&q0, 1.0, &p).values(),
-        &mut probe[..nq::<V>()],
+        &mut probe[..Free::<V>::NQ],
     );
     if pivot.is_nan() || pivot <= 1e-12 {
         return Err(SimError::SingularOnGround {
@@ -216,11 +197,10 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
     /// The state at rest with rotation `theta`, settlement `v` and deformation `us` (missing
     /// entries 0).
     fn y_of(&self, theta: f64, v: f64, us: &[f64]) -> V::Y {
-        let n = nq::<V>();
-        V::Y::from_fn(|i| match i {
-            0 => theta,
-            1 => v,
-            i if i < n => us.get(i - 2).copied().unwrap_or(0.0),
+        V::Y::from_fn(|i| match Free::<V>::part(i) {
+            FreePart::Theta => theta,
+            FreePart::V => v,
+            FreePart::U(k) => us.get(k).copied().unwrap_or(0.0),
             _ => 0.0,
         })
     }
@@ -244,15 +224,14 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
         if V::RIGID {
             return 0.0;
         }
-        let n = nq::<V>();
-        let first = if rate { n + 2 } else { 2 };
         let psi = self.top.values();
-        (0..V::NQ).map(|i| psi[i] * y.values()[first + i]).sum()
+        let us = &y.values()[Free::<V>::us(rate)];
+        psi.iter().zip(us).map(|(p, u)| p * u).sum()
     }
 
     fn initial_state(&self) -> V::Y {
         let i = self.opts.initial;
-        let n = nq::<V>();
+        let n = Free::<V>::NQ;
         let v = crate::ground_statics::equilibrium_settlement(&self.k.ground, self.weight, i.theta);
         // Several coordinates: the initial u and u' are top deflections along the first mode.
         let phi: Vec<f64> = if V::RIGID {
@@ -266,13 +245,13 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
                     m.shapes[0].iter().copied().collect()
                 })
         };
-        V::Y::from_fn(|k| match k {
-            0 => i.theta,
-            1 => v,
-            k if k < n => i.u * phi[k - 2],
-            k if k == n => i.theta_dot,
-            k if k == n + 1 => 0.0,
-            k => i.u_dot * phi[k - n - 2],
+        V::Y::from_fn(|k| match Free::<V>::part(k) {
+            FreePart::Theta => i.theta,
+            FreePart::V => v,
+            FreePart::U(k) => i.u * phi[k],
+            FreePart::ThetaDot => i.theta_dot,
+            FreePart::UDot(k) => i.u_dot * phi[k],
+            FreePart::VDot | FreePart::Integral(_) => 0.0,
         })
     }
 
@@ -297,13 +276,16 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
                 self.rec.next_grid = dt;
             }
         }
-        let (phase, t_end, y_end, s_end, c_end) = loop {
+        let end = loop {
             let end = self.phase(t, y, s, c, carried, fired)?;
             t = end.t;
             y = end.y;
             carried = end.carried;
             match end.event {
-                None => break (c.phase(false), t, y, s, c),
+                None => {
+                    let phase = c.phase(false);
+                    break End { phase, t, y, s, c };
+                }
                 Some(0) => {
                     // θ through zero: the leaning corner changes.
                     s = -s;
@@ -314,7 +296,8 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
                 Some(3) => {
                     self.rec.overturn = Some(t);
                     self.log(t, EventKind::Overturn, "overturn", Phase::Overturned, &y);
-                    break (Phase::Overturned, t, y, s, c);
+                    let phase = Phase::Overturned;
+                    break End { phase, t, y, s, c };
                 }
                 Some(k) => {
                     let left = k == 1;
@@ -322,7 +305,6 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
                     let was = *pressing;
                     *pressing = !was;
                     let after = c.phase(false);
-                    let n = nq::<V>();
                     if was {
                         self.rec.lift_offs += 1;
                         self.rec.first_lift_off.get_or_insert(t);
@@ -330,7 +312,8 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
                     } else {
                         self.rec.landings += 1;
                         self.rec.first_landing.get_or_insert(t);
-                        if y.values()[n].abs() >= 0.01 * self.derived.alpha * self.derived.p {
+                        let theta_dot = y.values()[Free::<V>::THETA_DOT];
+                        if theta_dot.abs() >= 0.01 * self.derived.alpha * self.derived.p {
                             self.rec.significant_landings += 1;
                         }
                         self.log(t, EventKind::Landing, corner(left), after, &y);
@@ -346,13 +329,12 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
                 });
             }
         };
-        let summary = self.finish(phase, t_end, &y_end, s_end, c_end, carried, e_initial);
+        let summary = self.finish(&end, carried, e_initial);
         Ok(self.into_run(summary))
     }
 
     /// One phase from `t0`: to its first event (`Some(index)`: 0 θ through zero, 1 or 2 the
     /// left or right corner's depth through zero, 3 overturning) or the end of the run.
-    #[allow(clippy::too_many_arguments)]
     fn phase(
         &mut self,
         t0: f64,
@@ -362,8 +344,8 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
         carried: [f64; 3],
         fired: Option<usize>,
     ) -> Result<PhaseEnd<V>, SimError> {
-        let ny = V::Y::LEN;
-        let n = nq::<V>();
+        let (nqf, integrals) = (Free::<V>::NQ, Free::<V>::INTEGRALS);
+        let theta = Free::<V>::THETA;
         let motion = self.motion;
         let over = self.opts.overturn_angle;
         let k = self.k;
@@ -373,19 +355,20 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
             let (acc, g) = k.accelerations(&y, ug, s, c);
             let pw = V::free_power(&y, ug, s, &k.p);
             let mut out = SVector::<f64, N>::zeros();
-            for i in 0..n {
-                out[i] = z[n + i];
-                out[n + i] = acc.values()[i];
+            for i in 0..nqf {
+                out[i] = z[Free::<V>::rate(i)];
+                out[Free::<V>::rate(i)] = acc.values()[i];
             }
-            out[ny] = pw[POWER_GROUND];
-            out[ny + 1] = pw[POWER_DAMPING];
-            out[ny + 2] = g[go::DISSIPATION];
+            let rates = [pw[POWER_GROUND], pw[POWER_DAMPING], g[go::DISSIPATION]];
+            for (k, rate) in rates.into_iter().enumerate() {
+                out[integrals + k] = rate;
+            }
             out
         };
         let mut g = |_t: f64, z: &SVector<f64, N>| -> SVector<f64, 4> {
             let y = V::Y::from_fn(|i| z[i]);
             let [l, r] = k.depths(&y);
-            SVector::<f64, 4>::new(s * z[0], l, r, s * z[0] - over)
+            SVector::<f64, 4>::new(s * z[theta], l, r, s * z[theta] - over)
         };
         let falls = |pressing: bool| {
             if pressing {
@@ -400,12 +383,9 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
             falls(c.right),
             Direction::Rising,
         ];
-        let z0 = SVector::<f64, N>::from_fn(|i, _| {
-            if i < ny {
-                y0.values()[i]
-            } else {
-                carried[i - ny]
-            }
+        let z0 = SVector::<f64, N>::from_fn(|i, _| match Free::<V>::part(i) {
+            FreePart::Integral(k) => carried[k],
+            _ => y0.values()[i],
         });
         let mut ode = Integrator::new(self.ode_options, self.tol)?;
         ode.reset(t0, z0, &mut rhs)?;
@@ -426,7 +406,7 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
                 Direction::Either => 0.0,
             };
         }
-        let mut first_on_zero = fired != Some(0) && y0.values()[0] == 0.0;
+        let mut first_on_zero = fired != Some(0) && y0.values()[theta] == 0.0;
         let (t, z, event) = loop {
             let t_stop = motion
                 .next_kink(ode.t())
@@ -440,7 +420,7 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
                 });
             }
             let g_new = g(info.t_new, ode.y());
-            if first_on_zero && s * ode.y()[0] < 0.0 {
+            if first_on_zero && s * ode.y()[theta] < 0.0 {
                 // Started at θ = 0 (not from a switch) and leaning the other way: the other
                 // corner leads from the start.
                 self.rec.stats.add(ode.take_stats());
@@ -470,7 +450,7 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
         Ok(PhaseEnd {
             t,
             y,
-            carried: [z[ny], z[ny + 1], z[ny + 2]],
+            carried: std::array::from_fn(|k| z[integrals + k]),
             event,
         })
     }
@@ -510,6 +490,15 @@ fn corner(left: bool) -> &'static str {
     } else {
         "right-corner"
     }
+}
+
+/// The end of a run: its last phase, time, state, leaning corner and contact state.
+struct End<V: Variant> {
+    phase: Phase,
+    t: f64,
+    y: V::Y,
+    s: f64,
+    c: Contact,
 }
 
 /// The end of one phase.

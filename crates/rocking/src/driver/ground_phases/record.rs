@@ -2,6 +2,7 @@
 //! log, and the summary at its end.
 
 use super::*;
+use rocking_kernels::kernels::index::free_forces as ff;
 
 impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N> {
     /// The maxima at one state.
@@ -9,11 +10,11 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
         let ug = self.motion.accel(t);
         let (acc, g) = self.k.accelerations(y, ug, s, c);
         let r = &mut self.rec;
-        r.max_theta = r.max_theta.max(y.values()[0].abs());
+        r.max_theta = r.max_theta.max(y.values()[Free::<V>::THETA].abs());
         let top = self.top(y, false);
         let r = &mut self.rec;
         r.max_u = r.max_u.max(top.abs());
-        r.max_settlement = r.max_settlement.max(y.values()[1] / self.v0);
+        r.max_settlement = r.max_settlement.max(y.values()[Free::<V>::V] / self.v0);
         let pressure = g[go::PRESSURE_LO].max(g[go::PRESSURE_HI]) / self.mean_pressure;
         r.max_pressure = r.max_pressure.max(pressure);
         if self.opts.bearing_over_mean.is_some_and(|q| pressure > q) {
@@ -24,10 +25,10 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
             let f = V::free_forces(y, &acc, ug, s, &self.p);
             let (w, wb) = (self.weight, self.wb);
             let r = &mut self.rec;
-            r.max_moment = r.max_moment.max(f[0].abs() / wb);
-            r.max_shear = r.max_shear.max(f[1].abs() / w);
-            r.max_elastic = r.max_elastic.max(f[3].abs() / wb);
-            let (rh, rv) = (f[4] / w, f[5] / w);
+            r.max_moment = r.max_moment.max(f[ff::MOMENT].abs() / wb);
+            r.max_shear = r.max_shear.max(f[ff::SHEAR].abs() / w);
+            r.max_elastic = r.max_elastic.max(f[ff::MOMENT_ELASTIC].abs() / wb);
+            let (rh, rv) = (f[ff::REACTION_H] / w, f[ff::REACTION_V] / w);
             r.min_rv = r.min_rv.min(rv);
             let friction = required_friction(rh, rv);
             r.max_friction = r.max_friction.max(friction);
@@ -44,7 +45,6 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
 
     /// A history row at `t`.
     pub(super) fn record(&mut self, t: f64, y: &V::Y, s: f64, c: Contact) {
-        let n = nq::<V>();
         let ug = self.motion.accel(t);
         let (acc, g) = self.k.accelerations(y, ug, s, c);
         let f = V::free_forces(y, &acc, ug, s, &self.p);
@@ -52,21 +52,21 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
         let e_ref = self.derived.e_ref;
         let row = HistoryRow {
             tau: t * self.derived.p,
-            theta: y.values()[0],
+            theta: y.values()[Free::<V>::THETA],
             u: self.top(y, false),
-            theta_dot: y.values()[n],
+            theta_dot: y.values()[Free::<V>::THETA_DOT],
             u_dot: self.top(y, true),
             phase: c.phase(false),
             e_kin: e[KINETIC] / e_ref,
             e_total: self.total_energy(y, s, c) / e_ref,
             ug,
-            base_moment_over_wb: f[0] / self.wb,
-            base_shear_over_w: f[1] / self.weight,
-            elastic_base_moment_over_wb: f[3] / self.wb,
-            horizontal_reaction_over_w: f[4] / self.weight,
-            vertical_reaction_over_w: f[5] / self.weight,
+            base_moment_over_wb: f[ff::MOMENT] / self.wb,
+            base_shear_over_w: f[ff::SHEAR] / self.weight,
+            elastic_base_moment_over_wb: f[ff::MOMENT_ELASTIC] / self.wb,
+            horizontal_reaction_over_w: f[ff::REACTION_H] / self.weight,
+            vertical_reaction_over_w: f[ff::REACTION_V] / self.weight,
             ground: Some(GroundRow {
-                settlement_over_static: y.values()[1] / self.v0,
+                settlement_over_static: y.values()[Free::<V>::V] / self.v0,
                 contact_fraction: contact_fraction(&g),
                 ground_pressure_over_mean: g[go::PRESSURE_LO].max(g[go::PRESSURE_HI])
                     / self.mean_pressure,
@@ -75,8 +75,12 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
         self.rec.history.push(row);
         if V::NQ > 1 {
             let y = y.values();
-            self.rec.coordinates.extend_from_slice(&y[2..n]);
-            self.rec.coordinates.extend_from_slice(&y[n + 2..]);
+            self.rec
+                .coordinates
+                .extend_from_slice(&y[Free::<V>::us(false)]);
+            self.rec
+                .coordinates
+                .extend_from_slice(&y[Free::<V>::us(true)]);
         }
     }
 
@@ -91,14 +95,13 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
         if !self.opts.event_log {
             return;
         }
-        let n = nq::<V>();
         let e = V::free_energy(y, 1.0, &self.p)[KINETIC] / self.derived.e_ref;
         let record = EventRecord {
             time: self.time(t),
             kind,
             branch,
             phase_after: after,
-            theta_dot: y.values()[n],
+            theta_dot: y.values()[Free::<V>::THETA_DOT],
             u: self.top(y, false),
             u_dot: self.top(y, true),
             energy_before: e,
@@ -107,17 +110,16 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
         self.rec.log.push(record);
     }
 
-    #[allow(clippy::too_many_arguments)]
-    pub(super) fn finish(
-        &self,
-        phase: Phase,
-        t: f64,
-        y: &V::Y,
-        s: f64,
-        c: Contact,
-        [w, d, dg]: [f64; 3],
-        e_initial: f64,
-    ) -> Summary {
+    /// The summary of a run that ended at `end` with the integrals `[w, d, dg]` (ground work,
+    /// damping, the ground's dissipation), having started with the energy `e_initial`.
+    pub(super) fn finish(&self, end: &End<V>, [w, d, dg]: [f64; 3], e_initial: f64) -> Summary {
+        let End {
+            phase,
+            t,
+            ref y,
+            s,
+            c,
+        } = *end;
         let e_ref = self.derived.e_ref;
         let last = self.total_energy(y, s, c);
         let (energy, residual) = if self.opts.energy {
