@@ -5,32 +5,14 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use crate::sweep::table_csv;
 use rocking_fragility::ScalingIm;
-use rocking_study::report::Table;
 use serde_json::json;
 
 use crate::error::CliError;
 use crate::out_dir::{write_atomic, OutDir};
 use rocking_plot::figure as plot;
 use rocking_scene::SceneError;
-
-fn csv_err(source: csv::Error) -> CliError {
-    CliError::Table {
-        name: "a table",
-        source,
-    }
-}
-
-/// A study's table as CSV (records.csv, ida.csv, stripes.csv: `rocking_study::ida`'s tables).
-fn table_csv(table: &Table) -> Result<Vec<u8>, CliError> {
-    let mut w = csv::Writer::from_writer(Vec::new());
-    w.write_record(&table.columns).map_err(csv_err)?;
-    for row in &table.rows {
-        w.write_record(row.iter().map(|e| e.text()))
-            .map_err(csv_err)?;
-    }
-    w.into_inner().map_err(|e| csv_err(e.into_error().into()))
-}
 
 /// The intensity measure's axis label, e.g. "Sa(T = 4.5 s, ζ = 5 %) (m/s²)".
 fn im_label(im: &ScalingIm) -> String {
@@ -86,7 +68,7 @@ pub fn ida(
     let method = st.method();
     write_atomic(
         &dir.path().join("records.csv"),
-        &table_csv(&st.records_table())?,
+        &table_csv(&st.records_table(), "records.csv")?,
     )?;
     let table = if st.settings.stripes.is_some() {
         "stripes.csv"
@@ -95,7 +77,7 @@ pub fn ida(
     };
     write_atomic(
         &dir.path().join(table),
-        &table_csv(&st.analyses_table(base.report()))?,
+        &table_csv(&st.analyses_table(base.report()), table)?,
     )?;
     let text = serde_json::to_string_pretty(&json).map_err(|source| CliError::Json {
         name: "fragility.json",

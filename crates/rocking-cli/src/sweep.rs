@@ -321,7 +321,8 @@ pub fn batch(
     failed_runs(&outcome, "runs", "runs.csv")
 }
 
-/// A study's table as CSV (runs.csv, fragility.csv: `rocking_study`'s tables).
+/// A study's table as CSV (runs.csv, fragility.csv, records.csv, ida.csv, stripes.csv: the
+/// tables `rocking_study` builds), `name` its file for an error.
 pub(crate) fn table_csv(table: &Table, name: &'static str) -> Result<Vec<u8>, CliError> {
     let csv_err = |source| CliError::Table { name, source };
     let mut w = csv::Writer::from_writer(Vec::new());

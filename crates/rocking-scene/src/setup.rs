@@ -171,7 +171,7 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Setup, SceneError> {
         tan_alpha: derived.alpha.tan(),
         alpha: derived.alpha,
     };
-    let scales = Scales::of(&structure, &units);
+    let scales = Scales::of(&structure, &derived, &units);
     let crate::excitation::Built {
         motion: excitation,
         description: excitation_description,

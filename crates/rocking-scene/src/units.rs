@@ -57,9 +57,8 @@ pub struct Scales {
 }
 
 impl Scales {
-    /// The scales of `structure` measured in `units`.
-    pub fn of(structure: &rocking::Structure, units: &Units) -> Scales {
-        let d = structure.derived();
+    /// The scales of `structure` (its derived quantities `d`) measured in `units`.
+    pub fn of(structure: &rocking::Structure, d: &rocking::Derived, units: &Units) -> Scales {
         let lift = structure.static_uplift();
         Scales {
             alpha: units.alpha,

@@ -132,6 +132,8 @@ impl Trace {
         self.rows
             .iter()
             .map(|r| (r.tau, q.value(r, &self.scales)))
+            // A column the run does not have (the ground's on the rigid surface) draws nothing.
+            .filter(|(_, v)| v.is_finite())
             .collect()
     }
 
