@@ -98,7 +98,7 @@ pub fn check_run(run: &Run, label: &str) {
     );
     for (i, r) in run.history.iter().enumerate() {
         let v = [
-            r.tau,
+            r.t,
             r.theta,
             r.u,
             r.theta_dot,
@@ -306,4 +306,18 @@ pub fn uplifted_frequency_linearised(
     let c = k_uu * k_tt - k_ut * k_ut;
     let w2 = (-bq + (bq * bq - 4.0 * a * c).sqrt()) / (2.0 * a);
     w2.sqrt()
+}
+
+/// A history row's forces as the tables write them: [M_b/(W B), V_b/W, M_el/(W B), R_h/W, R_v/W]
+/// (the row holds them in the model's units).
+pub fn forces_over_weight(s: &Structure, r: &rocking::HistoryRow) -> [f64; 5] {
+    let lift = s.static_uplift();
+    let (w, wb) = (lift.weight, lift.moment);
+    [
+        r.base_moment / wb,
+        r.base_shear / w,
+        r.elastic_base_moment / wb,
+        r.horizontal_reaction / w,
+        r.vertical_reaction / w,
+    ]
 }

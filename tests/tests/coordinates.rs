@@ -130,7 +130,7 @@ fn negated_ground_motion_mirrors_the_response() {
             for (x, y) in a.history.iter().zip(&b.history) {
                 let d = (x.theta + y.theta).abs() / 0.1 + (x.u + y.u).abs();
                 worst = worst.max(d);
-                assert!(d <= 1e-9, "{model} {impact:?} τ {}: {x:?} vs {y:?}", x.tau);
+                assert!(d <= 1e-9, "{model} {impact:?} t {}: {x:?} vs {y:?}", x.t);
             }
         }
     }

@@ -10,7 +10,8 @@ use rocking_verification::*;
 
 /// Max spread of e_total (in E_ref) over the history rows strictly between consecutive impacts,
 /// and the number of such intervals with at least two rows.
-fn spread_between_impacts(run: &Run) -> (f64, usize) {
+fn spread_between_impacts(s: &Structure, run: &Run) -> (f64, usize) {
+    let d = s.derived();
     let mut cuts: Vec<f64> = impacts(run).iter().map(|e| e.time.tau).collect();
     cuts.insert(0, f64::NEG_INFINITY);
     cuts.push(f64::INFINITY);
@@ -20,8 +21,8 @@ fn spread_between_impacts(run: &Run) -> (f64, usize) {
         let rows: Vec<f64> = run
             .history
             .iter()
-            .filter(|r| r.tau > w[0] + 1e-9 && r.tau < w[1] - 1e-9)
-            .map(|r| r.e_total)
+            .filter(|r| r.t * d.p > w[0] + 1e-9 && r.t * d.p < w[1] - 1e-9)
+            .map(|r| r.e_total / d.e_ref)
             .collect();
         if rows.len() < 2 {
             continue;
@@ -65,7 +66,7 @@ fn free_rocking_energy_constant_between_impacts() {
         let run = run_checked(&s, &NoMotion, &Effects::default(), &opts, "free rocking");
         assert_eq!(run.summary.kernel_variant, "full");
         let n_imp = impacts(&run).len();
-        let (spread, intervals) = spread_between_impacts(&run);
+        let (spread, intervals) = spread_between_impacts(&s, &run);
         let res = run.summary.energy_balance_residual.unwrap();
         let e = run.summary.energy.unwrap();
         eprintln!(

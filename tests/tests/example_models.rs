@@ -67,12 +67,12 @@ fn measure(s: &Structure, t_end: f64, label: &str) -> (f64, f64, f64, f64) {
         }
         prev = r.phase;
     }
-    let span = |p: &Vec<&rocking::HistoryRow>| p.last().unwrap().tau - p[0].tau;
+    let span = |p: &Vec<&rocking::HistoryRow>| p.last().unwrap().t - p[0].t;
     let longest = phases
         .iter()
         .max_by(|a, b| span(a).partial_cmp(&span(b)).unwrap())
         .expect("a rocking phase");
-    let t: Vec<f64> = longest.iter().map(|r| r.tau).collect();
+    let t: Vec<f64> = longest.iter().map(|r| r.t * d.p).collect();
     let ud: Vec<f64> = longest.iter().map(|r| r.u_dot).collect();
     let z = zero_crossings(&t, &ud);
     assert!(z.len() >= 8, "{label}: only {} crossings of u'", z.len());
@@ -85,7 +85,7 @@ fn measure(s: &Structure, t_end: f64, label: &str) -> (f64, f64, f64, f64) {
     };
     let win: Vec<_> = longest
         .iter()
-        .filter(|r| r.tau >= a && r.tau <= b)
+        .filter(|r| r.t * d.p >= a && r.t * d.p <= b)
         .collect();
     let n = win.len() as f64;
     let mean_u = win.iter().map(|r| r.u).sum::<f64>() / n;

@@ -131,16 +131,20 @@ fn the_bearing_pressure_is_reported_when_first_exceeded() {
         .expect("given")
         .expect("exceeded")
         .tau;
+    // Dimensionless: t = τ. The rows hold the pressure in the model's units.
+    let s = structure();
+    let mean = bed(&s).mean_pressure(s.static_uplift().weight);
+    let over_mean = |h: &rocking::HistoryRow| h.ground.unwrap().ground_pressure / mean;
     let earlier = run
         .history
         .iter()
-        .filter(|h| h.tau < t)
-        .map(|h| h.ground.unwrap().ground_pressure_over_mean)
+        .filter(|h| h.t < t)
+        .map(over_mean)
         .fold(0.0, f64::max);
-    let at = run.history.iter().find(|h| h.tau == t).unwrap();
+    let at = run.history.iter().find(|h| h.t == t).unwrap();
     println!("max pressure {max:.4} × mean; q = {q:.4}: first exceeded at τ = {t:.6}, largest earlier history row {earlier:.4}");
     assert!(earlier <= q, "{earlier} > {q} before τ = {t}");
-    assert!(at.ground.unwrap().ground_pressure_over_mean > q, "{at:?}");
+    assert!(over_mean(at) > q, "{at:?}");
     o.bearing_over_mean = Some(1.01 * max);
     let (never, _) = pair(2.0, &o);
     assert_eq!(

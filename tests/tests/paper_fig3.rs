@@ -100,7 +100,7 @@ fn fig3_impact_times_double_impact_and_dissipation() {
     let (hv, ha) = (vvel.history.last().unwrap(), adjex.history.last().unwrap());
     eprintln!(
         "e_total at the last grid row τ = {:.2}: VVEL {:.5}, ADJex {:.5}",
-        hv.tau, hv.e_total, ha.e_total
+        hv.t, hv.e_total, ha.e_total
     );
     assert!(hv.e_total > ha.e_total);
 }

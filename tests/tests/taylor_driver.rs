@@ -250,11 +250,11 @@ fn mirror_symmetry() {
     assert!(a.summary.impacts >= 1);
     let scale = s.derived().alpha;
     for (p, q) in a.history.iter().zip(&b.history) {
-        assert_eq!(p.tau, q.tau);
+        assert_eq!(p.t, q.t);
         assert!(
             (p.theta + q.theta).abs() <= 1e-12 * scale,
-            "θ at τ = {}",
-            p.tau
+            "θ at t = {}",
+            p.t
         );
         assert!((p.u + q.u).abs() <= 1e-12 * s.derived().u_cr.max(1e-300) + 1e-300);
     }

@@ -54,12 +54,12 @@ fn measure(s: &Structure, t_end: f64, label: &str) -> Measured {
     let longest = phases
         .iter()
         .max_by(|a, b| {
-            let la = a.last().unwrap().tau - a[0].tau;
-            let lb = b.last().unwrap().tau - b[0].tau;
+            let la = a.last().unwrap().t - a[0].t;
+            let lb = b.last().unwrap().t - b[0].t;
             la.partial_cmp(&lb).unwrap()
         })
         .expect("a rocking phase");
-    let t: Vec<f64> = longest.iter().map(|r| r.tau).collect();
+    let t: Vec<f64> = longest.iter().map(|r| r.t * d.p).collect();
     let ud: Vec<f64> = longest.iter().map(|r| r.u_dot).collect();
     let z = zero_crossings(&t, &ud);
     assert!(z.len() >= 12, "{label}: only {} crossings of u'", z.len());
@@ -74,7 +74,7 @@ fn measure(s: &Structure, t_end: f64, label: &str) -> Measured {
     };
     let win: Vec<_> = longest
         .iter()
-        .filter(|r| r.tau >= a && r.tau <= b)
+        .filter(|r| r.t * d.p >= a && r.t * d.p <= b)
         .collect();
     let n = win.len() as f64;
     let mean_u_s = win.iter().map(|r| sign * r.u).sum::<f64>() / n;

@@ -8,6 +8,7 @@ use plotters::prelude::*;
 use rocking::{HistoryRow, Run};
 use rocking_scene::labels;
 use rocking_scene::setup::{Animation, Setup};
+use rocking_scene::units::Scales;
 use rocking_study::report;
 
 use crate::{register, wrap};
@@ -49,13 +50,14 @@ const COLUMN_POINTS: usize = 24;
 
 /// Ground displacement at each history row, from ü_g by the trapezoidal rule twice (the ground
 /// starts at rest at 0); in model units.
-fn ground_displacement(history: &[HistoryRow], p_model: f64) -> Vec<f64> {
+fn ground_displacement(history: &[HistoryRow], scales: &Scales) -> Vec<f64> {
+    let tau = |r: &HistoryRow| report::TAU.number(r, scales);
     let mut out = Vec::with_capacity(history.len());
     let (mut v, mut x) = (0.0, 0.0);
     for (k, r) in history.iter().enumerate() {
         if k > 0 {
             let prev = &history[k - 1];
-            let dt = (r.tau - prev.tau) / p_model;
+            let dt = (tau(r) - tau(prev)) / scales.p;
             let v_new = v + 0.5 * (prev.ug + r.ug) * dt;
             x += 0.5 * (v + v_new) * dt;
             v = v_new;
@@ -66,14 +68,15 @@ fn ground_displacement(history: &[HistoryRow], p_model: f64) -> Vec<f64> {
 }
 
 /// The rows shown: `frames` rows evenly spaced in τ, the first and the last row included.
-fn frame_rows(history: &[HistoryRow], frames: usize) -> Vec<usize> {
-    let (t0, t1) = (history[0].tau, history[history.len() - 1].tau);
+fn frame_rows(history: &[HistoryRow], scales: &Scales, frames: usize) -> Vec<usize> {
+    let tau = |r: &HistoryRow| report::TAU.number(r, scales);
+    let (t0, t1) = (tau(&history[0]), tau(&history[history.len() - 1]));
     let mut k = 0;
     (0..frames)
         .map(|f| {
             let t = t0 + (t1 - t0) * f as f64 / (frames - 1).max(1) as f64;
             while k + 1 < history.len()
-                && (history[k + 1].tau - t).abs() <= (history[k].tau - t).abs()
+                && (tau(&history[k + 1]) - t).abs() <= (tau(&history[k]) - t).abs()
             {
                 k += 1;
             }
@@ -147,8 +150,8 @@ pub fn geometry(model: &Setup, run: &Run, spec: &Animation) -> Result<Vec<Frame>
             shape.name
         ));
     }
-    let ug = ground_displacement(h, model.units.p_model);
-    let rows = frame_rows(h, spec.frames);
+    let ug = ground_displacement(h, &model.scales);
+    let rows = frame_rows(h, &model.scales, spec.frames);
     let worlds: Vec<World> = rows
         .iter()
         .map(|&k| {
@@ -182,7 +185,7 @@ pub fn geometry(model: &Setup, run: &Run, spec: &Animation) -> Result<Vec<Frame>
             let first = ((-wpx / 2.0 / scale - ug[k]) / tick).floor() as i64;
             let last = ((wpx / 2.0 / scale - ug[k]) / tick).ceil() as i64;
             Frame {
-                tau: h[k].tau,
+                tau: report::TAU.number(&h[k], &model.scales),
                 theta_over_alpha: report::THETA_OVER_ALPHA.number(&h[k], &model.scales),
                 base: w.base.map(to_px),
                 column: w.column.iter().map(|&p| to_px(p)).collect(),
@@ -427,7 +430,7 @@ mod tests {
             ],
             &spec,
         );
-        let rows = frame_rows(&run.history, spec.frames);
+        let rows = frame_rows(&run.history, &m.scales, spec.frames);
         let phys = m.structure.physical();
         let psi: Vec<Vec<f64>> = (0..=COLUMN_POINTS)
             .map(|k| shape_functions(m.structure.model(), k as f64 / COLUMN_POINTS as f64))
@@ -479,8 +482,9 @@ mod tests {
         };
         let (m, run, frames) = animate("fig10-overturns.toml", &["output.history_dt=0.01"], &spec);
         assert_eq!(frames.len(), 25);
-        assert_eq!(frames[0].tau, run.history[0].tau);
-        assert_eq!(frames[24].tau, run.history.last().unwrap().tau);
+        let tau = |r: &HistoryRow| report::TAU.number(r, &m.scales);
+        assert_eq!(frames[0].tau, tau(&run.history[0]));
+        assert_eq!(frames[24].tau, tau(run.history.last().unwrap()));
         let phys = m.structure.physical();
         for f in &frames {
             // θ read back from the plate's bottom edge (y down on the screen: clockwise > 0).

@@ -74,10 +74,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             writeln!(
                 f,
                 "{},{},{},{},{}",
-                r.tau,
+                r.t * derived.p,
                 r.theta / alpha,
                 r.u / derived.u_cr,
-                r.e_total,
+                r.e_total / derived.e_ref,
                 r.ug / alpha.tan()
             )?;
         }

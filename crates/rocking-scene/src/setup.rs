@@ -171,7 +171,6 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Setup, SceneError> {
         tan_alpha: derived.alpha.tan(),
         alpha: derived.alpha,
     };
-    let scales = Scales::of(&structure, &derived, &units);
     let crate::excitation::Built {
         motion: excitation,
         description: excitation_description,
@@ -179,6 +178,7 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Setup, SceneError> {
     } = crate::excitation::build(spec, src, &units)?;
 
     let ground = ground(spec, src, &structure, physical, derived.p)?;
+    let scales = Scales::of(&structure, &derived, &units, ground.as_ref());
     if ground.is_some() {
         if let Some(key) = fx.and_then(|f| f.impact.as_ref().map(|_| "effects.impact")) {
             return Err(src.err(

@@ -54,11 +54,28 @@ pub struct Scales {
     pub p_per_second: Option<f64>,
     /// Seconds per model time unit, when known ([`Units::sec_per_unit`]).
     sec_per_unit: Option<f64>,
+    /// On compliant ground, its settlement and pressure scales.
+    pub ground: Option<GroundScales>,
+}
+
+/// What a compliant ground's history columns are normalised by.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GroundScales {
+    /// The static settlement v₀ = W / K_v.
+    pub settlement: f64,
+    /// The mean pressure W / (2B) (two springs: the corner force W / 2).
+    pub mean_pressure: f64,
 }
 
 impl Scales {
-    /// The scales of `structure` (its derived quantities `d`) measured in `units`.
-    pub fn of(structure: &rocking::Structure, d: &rocking::Derived, units: &Units) -> Scales {
+    /// The scales of `structure` (its derived quantities `d`) measured in `units`, on `ground`
+    /// (`None`: the rigid surface).
+    pub fn of(
+        structure: &rocking::Structure,
+        d: &rocking::Derived,
+        units: &Units,
+        ground: Option<&rocking::Ground>,
+    ) -> Scales {
         let lift = structure.static_uplift();
         Scales {
             alpha: units.alpha,
@@ -72,6 +89,10 @@ impl Scales {
             g_tan_alpha: units.accel_g_tan_alpha(),
             p_per_second: structure.p_per_second(),
             sec_per_unit: units.sec_per_unit,
+            ground: ground.map(|g| GroundScales {
+                settlement: g.statics(lift.weight).settlement,
+                mean_pressure: g.mean_pressure(lift.weight),
+            }),
         }
     }
 

@@ -61,8 +61,8 @@ pub use options::{
     Accuracy, History, ImpactModel, Initial, Measured, Method, Options, Preset, MAX_HISTORY_ROWS,
 };
 pub use results::{
-    EnergyBalance, EventKind, EventRecord, ForceSummary, GroundRow, GroundSummary, HistoryRow,
-    Phase, Run, SolverStats, Summary, Time, UNBOUNDED,
+    required_friction, EnergyBalance, EventKind, EventRecord, ForceSummary, GroundRow,
+    GroundSummary, HistoryRow, Phase, Run, SolverStats, Summary, Time, UNBOUNDED,
 };
 pub use rocking_kernels::{ModelInfo, VariantInfo};
 pub use structure::{

@@ -289,11 +289,12 @@ pub struct EventRecord {
     pub energy_after: f64,
 }
 
-/// One row of the time history.
+/// One row of the time history, in the model's units: the report's column list
+/// (`rocking_study::report::tables`) normalises it for the tables, figures and Python.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct HistoryRow {
-    /// τ = p t.
-    pub tau: f64,
+    /// t, model time (τ = p t).
+    pub t: f64,
     /// θ (rad).
     pub theta: f64,
     /// u.
@@ -304,47 +305,45 @@ pub struct HistoryRow {
     pub u_dot: f64,
     /// Phase.
     pub phase: Phase,
-    /// Kinetic energy / E_ref.
+    /// Kinetic energy.
     pub e_kin: f64,
-    /// Total energy (relative to rest) / E_ref.
+    /// Total energy, relative to rest.
     pub e_total: f64,
     /// Ground acceleration.
     pub ug: f64,
-    /// M_b / (W B): the equilibrium moment at the column base.
-    pub base_moment_over_wb: f64,
-    /// V_b / W.
-    pub base_shear_over_w: f64,
-    /// M_el / (W B): the moment from the curvature.
-    pub elastic_base_moment_over_wb: f64,
-    /// R_h / W.
-    pub horizontal_reaction_over_w: f64,
-    /// R_v / W.
-    pub vertical_reaction_over_w: f64,
+    /// M_b: the equilibrium moment at the column base.
+    pub base_moment: f64,
+    /// V_b.
+    pub base_shear: f64,
+    /// M_el: the moment from the curvature.
+    pub elastic_base_moment: f64,
+    /// R_h.
+    pub horizontal_reaction: f64,
+    /// R_v.
+    pub vertical_reaction: f64,
     /// On compliant ground: settlement, contact and pressure (absent on the rigid surface).
     #[serde(flatten, skip_serializing_if = "Option::is_none")]
     pub ground: Option<GroundRow>,
 }
 
-/// A history row's ground columns (compliant ground).
+/// A history row's ground columns (compliant ground), in the model's units.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct GroundRow {
-    /// v / v0.
-    pub settlement_over_static: f64,
+    /// v, the settlement of the base centre.
+    pub settlement: f64,
     /// Contact length over 2B (two springs: corners pressing over 2).
     pub contact_fraction: f64,
-    /// The largest pressure under the base over W / (2B) (two springs: corner force over W / 2).
-    pub ground_pressure_over_mean: f64,
+    /// The largest pressure under the base (two springs: the larger corner force).
+    pub ground_pressure: f64,
 }
 
-impl HistoryRow {
-    /// |R_h| / R_v, the friction coefficient the instant needs; infinite where R_v <= 0 (no
-    /// friction holds a structure the ground would have to pull).
-    pub fn required_friction(&self) -> f64 {
-        if self.vertical_reaction_over_w > 0.0 {
-            self.horizontal_reaction_over_w.abs() / self.vertical_reaction_over_w
-        } else {
-            f64::INFINITY
-        }
+/// |R_h| / R_v, the friction coefficient an instant needs; infinite where R_v <= 0 (no friction
+/// holds a structure the ground would have to pull).
+pub fn required_friction(horizontal: f64, vertical: f64) -> f64 {
+    if vertical > 0.0 {
+        horizontal.abs() / vertical
+    } else {
+        f64::INFINITY
     }
 }
 

@@ -62,7 +62,7 @@ pub(super) fn answer(run: &Run, st: &Structure, rigid: bool) -> Answer {
             last.theta_dot / (d.alpha * d.p),
             last.u_dot / uds,
         ],
-        final_tau: last.tau,
+        final_tau: last.t * d.p,
         energy_residual: s.energy_balance_residual.unwrap_or(f64::NAN),
         rocking_fraction: {
             let rows = run

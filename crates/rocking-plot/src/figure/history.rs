@@ -131,7 +131,7 @@ impl Trace {
     pub fn points(&self, q: Quantity) -> Vec<(f64, f64)> {
         self.rows
             .iter()
-            .map(|r| (r.tau, q.value(r, &self.scales)))
+            .map(|r| (self.tau(r), q.value(r, &self.scales)))
             // A column the run does not have (the ground's on the rigid surface) draws nothing.
             .filter(|(_, v)| v.is_finite())
             .collect()
@@ -139,12 +139,17 @@ impl Trace {
 
     /// The last τ of the history.
     pub fn end(&self) -> f64 {
-        self.rows.last().map_or(0.0, |r| r.tau)
+        self.rows.last().map_or(0.0, |r| self.tau(r))
+    }
+
+    /// τ of a history row.
+    fn tau(&self, r: &HistoryRow) -> f64 {
+        report::TAU.number(r, &self.scales)
     }
 
     /// The value of `q` at τ, interpolated between history rows.
     fn at(&self, q: Quantity, tau: f64) -> Option<f64> {
-        let i = self.rows.partition_point(|r| r.tau < tau);
+        let i = self.rows.partition_point(|r| self.tau(r) < tau);
         let b = self.rows.get(i)?;
         let vb = q.value(b, &self.scales);
         if i == 0 {
@@ -152,11 +157,8 @@ impl Trace {
         }
         let a = &self.rows[i - 1];
         let va = q.value(a, &self.scales);
-        let w = if b.tau > a.tau {
-            (tau - a.tau) / (b.tau - a.tau)
-        } else {
-            0.0
-        };
+        let (ta, tb) = (self.tau(a), self.tau(b));
+        let w = if tb > ta { (tau - ta) / (tb - ta) } else { 0.0 };
         Some(va + w * (vb - va))
     }
 }

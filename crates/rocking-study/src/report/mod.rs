@@ -16,7 +16,7 @@ pub use summary::{
 };
 pub use tables::{
     events_csv, history_column, history_columns, history_csv, Column, Entry, Group, Kind, Table,
-    EVENTS, HISTORY, THETA_OVER_ALPHA,
+    EVENTS, HISTORY, TAU, THETA_OVER_ALPHA,
 };
 
 /// The tables' columns and the reportable summary quantities with their labels and units, as

@@ -7,10 +7,10 @@
 
 use std::fmt::Write as _;
 
-use rocking::{EventRecord, HistoryRow, Run};
+use rocking::{EventRecord, GroundRow, HistoryRow, Run};
 use rocking_scene::labels;
 use rocking_scene::setup::Setup;
-use rocking_scene::units::Scales;
+use rocking_scene::units::{GroundScales, Scales};
 use serde_json::Value;
 
 use crate::{Invariant, StudyError};
@@ -121,7 +121,21 @@ const fn column<R>(
 }
 
 use Group::{Always, Forces, Ground};
+
+/// A ground column's value: `value` of the row's ground columns and the ground's scales, missing
+/// where the run has no compliant ground.
+fn ground(r: &HistoryRow, s: &Scales, value: fn(&GroundRow, &GroundScales) -> f64) -> Entry {
+    match (&r.ground, &s.ground) {
+        (Some(g), Some(gs)) => Entry::Number(value(g, gs)),
+        _ => Entry::Missing,
+    }
+}
 use Kind::{Number, Text, Time};
+
+/// τ = p t of a history row.
+pub const TAU: Column<HistoryRow> = column("tau", labels::TAU, "1/p", Always, Time, |r, s| {
+    Entry::Number(r.t * s.p)
+});
 
 /// θ/α of a history row.
 pub const THETA_OVER_ALPHA: Column<HistoryRow> = column(
@@ -136,12 +150,11 @@ pub const THETA_OVER_ALPHA: Column<HistoryRow> = column(
 /// history.csv's columns in order (then, with n > 1 deformation coordinates, u_1..u_n and
 /// u_dot_1..u_dot_n in the model's units: [`history_csv`]).
 pub const HISTORY: [Column<HistoryRow>; 18] = [
-    column("tau", labels::TAU, "1/p", Always, Time, |r, _| {
-        Entry::Number(r.tau)
-    }),
+    TAU,
+    // From τ, as the events' seconds are.
     column("t_s", "t (s)", "s", Always, Time, |r, s| {
         match s.p_per_second {
-            Some(p) => Entry::Number(r.tau / p),
+            Some(p) => Entry::Number(r.t * s.p / p),
             None => Entry::Empty,
         }
     }),
@@ -179,7 +192,7 @@ pub const HISTORY: [Column<HistoryRow>; 18] = [
         "E_ref",
         Always,
         Number,
-        |r, _| Entry::Number(r.e_kin),
+        |r, s| Entry::Number(r.e_kin / s.e_ref),
     ),
     column(
         "e_total_over_eref",
@@ -187,7 +200,7 @@ pub const HISTORY: [Column<HistoryRow>; 18] = [
         "E_ref",
         Always,
         Number,
-        |r, _| Entry::Number(r.e_total),
+        |r, s| Entry::Number(r.e_total / s.e_ref),
     ),
     column(
         "ug_over_g_tan_alpha",
@@ -203,10 +216,10 @@ pub const HISTORY: [Column<HistoryRow>; 18] = [
         "W B",
         Forces,
         Number,
-        |r, _| Entry::Number(r.base_moment_over_wb),
+        |r, s| Entry::Number(r.base_moment / s.uplift_moment),
     ),
-    column("base_shear_over_w", "V_b/W", "W", Forces, Number, |r, _| {
-        Entry::Number(r.base_shear_over_w)
+    column("base_shear_over_w", "V_b/W", "W", Forces, Number, |r, s| {
+        Entry::Number(r.base_shear / s.weight)
     }),
     column(
         "elastic_base_moment_over_wb",
@@ -214,16 +227,20 @@ pub const HISTORY: [Column<HistoryRow>; 18] = [
         "W B",
         Forces,
         Number,
-        |r, _| Entry::Number(r.elastic_base_moment_over_wb),
+        |r, s| Entry::Number(r.elastic_base_moment / s.uplift_moment),
     ),
-    // Where R_v <= 0 no friction holds the structure: unbounded.
+    // Where R_v <= 0 no friction holds the structure: unbounded. Of the reactions over W, as
+    // the summary's largest demand is.
     column(
         "required_friction",
         "|R_h|/R_v",
         "1",
         Forces,
         Kind::Unbounded,
-        |r, _| match r.required_friction() {
+        |r, s| match rocking::required_friction(
+            r.horizontal_reaction / s.weight,
+            r.vertical_reaction / s.weight,
+        ) {
             f if f.is_finite() => Entry::Number(f),
             _ => Entry::Unbounded,
         },
@@ -234,7 +251,7 @@ pub const HISTORY: [Column<HistoryRow>; 18] = [
         "W",
         Forces,
         Number,
-        |r, _| Entry::Number(r.vertical_reaction_over_w),
+        |r, s| Entry::Number(r.vertical_reaction / s.weight),
     ),
     column(
         "settlement_over_static",
@@ -242,10 +259,7 @@ pub const HISTORY: [Column<HistoryRow>; 18] = [
         "v₀",
         Ground,
         Number,
-        |r, _| {
-            r.ground
-                .map_or(Entry::Missing, |g| Entry::Number(g.settlement_over_static))
-        },
+        |r, s| ground(r, s, |g, gs| g.settlement / gs.settlement),
     ),
     column(
         "contact_fraction",
@@ -253,10 +267,7 @@ pub const HISTORY: [Column<HistoryRow>; 18] = [
         "2B",
         Ground,
         Number,
-        |r, _| {
-            r.ground
-                .map_or(Entry::Missing, |g| Entry::Number(g.contact_fraction))
-        },
+        |r, s| ground(r, s, |g, _| g.contact_fraction),
     ),
     column(
         "ground_pressure_over_mean",
@@ -264,11 +275,7 @@ pub const HISTORY: [Column<HistoryRow>; 18] = [
         "W/(2B)",
         Ground,
         Number,
-        |r, _| {
-            r.ground.map_or(Entry::Missing, |g| {
-                Entry::Number(g.ground_pressure_over_mean)
-            })
-        },
+        |r, s| ground(r, s, |g, gs| g.ground_pressure / gs.mean_pressure),
     ),
 ];
 

@@ -3,18 +3,19 @@
 
 use crate::results::{ForceSummary, Time};
 
-/// The forces at one instant, normalised by the total weight W and the uplift moment W B.
+/// The forces at one instant: in the model's units (a history row), or normalised by the total
+/// weight W and the uplift moment W B (the extremes the summary reports).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) struct Forces {
-    /// M_b / (W B).
+    /// M_b, or M_b / (W B).
     pub(super) moment: f64,
-    /// V_b / W.
+    /// V_b, or V_b / W.
     pub(super) shear: f64,
-    /// M_el / (W B).
+    /// M_el, or M_el / (W B).
     pub(super) elastic: f64,
-    /// R_h / W.
+    /// R_h, or R_h / W.
     pub(super) horizontal: f64,
-    /// R_v / W.
+    /// R_v, or R_v / W.
     pub(super) vertical: f64,
 }
 
@@ -22,6 +23,17 @@ pub(super) struct Forces {
 pub(super) const MEASURES: usize = 5;
 
 impl Forces {
+    /// The forces in the model's units normalised by the weight `w` and the moment `wb` = W B.
+    pub(super) fn per_weight(self, w: f64, wb: f64) -> Forces {
+        Forces {
+            moment: self.moment / wb,
+            shear: self.shear / w,
+            elastic: self.elastic / wb,
+            horizontal: self.horizontal / w,
+            vertical: self.vertical / w,
+        }
+    }
+
     /// The quantities whose largest value is reported, in the order of [`ForceRecord::max`]:
     /// |M_b|, |V_b|, |M_el|, the required friction |R_h| / R_v (−∞ where R_v <= 0, left out of
     /// its largest value: where R_v < 0 no friction holds, which the summary reports as an

@@ -23,8 +23,14 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         self.forces_of(contact, s, self.motion.accel(t), x)
     }
 
-    /// The forces of the state `x` under the ground acceleration `ug`.
+    /// The forces of the state `x` under the ground acceleration `ug`, normalised by W and W B.
     fn forces_of(&self, contact: bool, s: f64, ug: f64, x: &V::X) -> Forces {
+        self.model_forces(contact, s, ug, x)
+            .per_weight(self.weight, self.wb)
+    }
+
+    /// The forces of the state `x` under the ground acceleration `ug`, in the model's units.
+    pub(super) fn model_forces(&self, contact: bool, s: f64, ug: f64, x: &V::X) -> Forces {
         // Both kernels name their outputs alike (index::forces_contact has the same order).
         let f = if contact {
             V::forces_contact(&contact_of::<V>(x), ug, &self.p)
@@ -32,11 +38,11 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             V::forces_rocking(x, ug, s, &self.p)
         };
         Forces {
-            moment: f[fk::MOMENT] / self.wb,
-            shear: f[fk::SHEAR] / self.weight,
-            elastic: f[fk::MOMENT_ELASTIC] / self.wb,
-            horizontal: f[fk::REACTION_H] / self.weight,
-            vertical: f[fk::REACTION_V] / self.weight,
+            moment: f[fk::MOMENT],
+            shear: f[fk::SHEAR],
+            elastic: f[fk::MOMENT_ELASTIC],
+            horizontal: f[fk::REACTION_H],
+            vertical: f[fk::REACTION_V],
         }
     }
 

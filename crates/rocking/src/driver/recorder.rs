@@ -83,23 +83,23 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
 
     fn record_history(&mut self, t: f64, x: &V::X, phase: Phase, s: f64) {
         let e = V::energy(x, s, &self.p);
-        let f = self.forces_at(phase == Phase::Contact, s, t, x);
+        let ug = self.motion.accel(t);
+        let f = self.model_forces(phase == Phase::Contact, s, ug, x);
         let row = HistoryRow {
-            tau: t * self.derived.p,
+            t,
             theta: x.values()[Rocking::<V>::THETA],
             u: self.top(x, false),
             theta_dot: x.values()[Rocking::<V>::THETA_DOT],
             u_dot: self.top(x, true),
             phase,
-            e_kin: e[en::KINETIC] / self.derived.e_ref,
-            e_total: (e[en::KINETIC] + e[en::GRAVITY] + e[en::STRAIN] - self.v_rest)
-                / self.derived.e_ref,
-            ug: self.motion.accel(t),
-            base_moment_over_wb: f.moment,
-            base_shear_over_w: f.shear,
-            elastic_base_moment_over_wb: f.elastic,
-            horizontal_reaction_over_w: f.horizontal,
-            vertical_reaction_over_w: f.vertical,
+            e_kin: e[en::KINETIC],
+            e_total: e[en::KINETIC] + e[en::GRAVITY] + e[en::STRAIN] - self.v_rest,
+            ug,
+            base_moment: f.moment,
+            base_shear: f.shear,
+            elastic_base_moment: f.elastic,
+            horizontal_reaction: f.horizontal,
+            vertical_reaction: f.vertical,
             ground: None,
         };
         self.rec.history.push(row);

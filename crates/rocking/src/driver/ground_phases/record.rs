@@ -49,27 +49,25 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
         let (acc, g) = self.k.accelerations(y, ug, s, c);
         let f = V::free_forces(y, &acc, ug, s, &self.p);
         let e = V::free_energy(y, s, &self.p);
-        let e_ref = self.derived.e_ref;
         let row = HistoryRow {
-            tau: t * self.derived.p,
+            t,
             theta: y.values()[Free::<V>::THETA],
             u: self.top(y, false),
             theta_dot: y.values()[Free::<V>::THETA_DOT],
             u_dot: self.top(y, true),
             phase: c.phase(false),
-            e_kin: e[KINETIC] / e_ref,
-            e_total: self.total_energy(y, s, c) / e_ref,
+            e_kin: e[KINETIC],
+            e_total: self.total_energy(y, s, c),
             ug,
-            base_moment_over_wb: f[ff::MOMENT] / self.wb,
-            base_shear_over_w: f[ff::SHEAR] / self.weight,
-            elastic_base_moment_over_wb: f[ff::MOMENT_ELASTIC] / self.wb,
-            horizontal_reaction_over_w: f[ff::REACTION_H] / self.weight,
-            vertical_reaction_over_w: f[ff::REACTION_V] / self.weight,
+            base_moment: f[ff::MOMENT],
+            base_shear: f[ff::SHEAR],
+            elastic_base_moment: f[ff::MOMENT_ELASTIC],
+            horizontal_reaction: f[ff::REACTION_H],
+            vertical_reaction: f[ff::REACTION_V],
             ground: Some(GroundRow {
-                settlement_over_static: y.values()[Free::<V>::V] / self.v0,
+                settlement: y.values()[Free::<V>::V],
                 contact_fraction: contact_fraction(&g),
-                ground_pressure_over_mean: g[go::PRESSURE_LO].max(g[go::PRESSURE_HI])
-                    / self.mean_pressure,
+                ground_pressure: g[go::PRESSURE_LO].max(g[go::PRESSURE_HI]),
             }),
         };
         self.rec.history.push(row);
