@@ -121,6 +121,7 @@ const fn column<R>(
 }
 
 use Group::{Always, Forces, Ground};
+use Kind::{Number, Text, Time};
 
 /// A ground column's value: `value` of the row's ground columns and the ground's scales, missing
 /// where the run has no compliant ground.
@@ -130,7 +131,6 @@ fn ground(r: &HistoryRow, s: &Scales, value: fn(&GroundRow, &GroundScales) -> f6
         _ => Entry::Missing,
     }
 }
-use Kind::{Number, Text, Time};
 
 /// τ = p t of a history row.
 pub const TAU: Column<HistoryRow> = column("tau", labels::TAU, "1/p", Always, Time, |r, s| {
