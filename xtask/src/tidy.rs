@@ -37,10 +37,7 @@ const PENDING_CIRCLES: &[&[&str]] = &[];
 const PENDING_STRING_ERRORS: &[(&str, &str)] = &[];
 
 /// Library files whose messages still name a CLI flag: (file, flag).
-const PENDING_FLAGS: &[(&str, &str)] = &[
-    ("crates/rocking-scene/src/scene.rs", "--set"),
-    ("crates/rocking-study/src/ida/mod.rs", "--set"),
-];
+const PENDING_FLAGS: &[(&str, &str)] = &[];
 
 /// A hand-written source file: its path from the root, its text before the test module, and
 /// whether it belongs to a library crate.

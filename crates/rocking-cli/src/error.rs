@@ -97,6 +97,7 @@ fn flag(a: Argument) -> &'static str {
     match a {
         Argument::Records => "--records FILE|DIR",
         Argument::Axis => "--axis",
+        Argument::Set => "--set",
     }
 }
 

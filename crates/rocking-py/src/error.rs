@@ -31,7 +31,7 @@ pub(crate) fn py_err(e: impl ToPyErr) -> PyErr {
 
 impl ToPyErr for SceneError {
     fn to_py_err(self) -> PyErr {
-        PyValueError::new_err(self.to_string())
+        PyValueError::new_err(self.describe(parameter(Argument::Set)))
     }
 }
 
@@ -40,6 +40,7 @@ fn parameter(a: Argument) -> &'static str {
     match a {
         Argument::Records => "records=[FILE|DIR, ...]",
         Argument::Axis => "axes entry",
+        Argument::Set => "set entry",
     }
 }
 

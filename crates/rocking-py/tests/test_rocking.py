@@ -314,14 +314,18 @@ def test_bad_input_raises_value_error_naming_the_key(set_, key):
 
 
 def test_bad_input_messages_are_the_commands(tmp_path):
+    # The same message; each front end names the override its own way (`--set`, `set=`).
     done = subprocess.run(
         [CLI, "run", str(FIG3), "--set", "structure.alpha=-1", "--out", str(tmp_path / "o")],
         capture_output=True, text=True,
     )
     assert done.returncode == 2
+    assert f"{FIG3}: --set structure.alpha=-1: " in done.stderr
     with pytest.raises(ValueError) as e:
         rocking.load_scene(str(FIG3), set=["structure.alpha=-1"])
-    assert done.stderr.strip() == f"error: {e.value}"
+    assert f"{FIG3}: set entry structure.alpha=-1: " in str(e.value)
+    assert "--set" not in str(e.value)
+    assert done.stderr.strip() == f"error: {e.value}".replace("set entry", "--set", 1)
 
 
 def test_a_study_without_records_names_the_parameter_not_the_flag(tmp_path):

@@ -5,8 +5,9 @@
 use std::fmt;
 use std::path::PathBuf;
 
-/// Invalid input: the message the user reads, and the parts of it a caller may want alone.
-/// Each part is there when the place that refused the input knew it.
+/// Invalid input: the parts of the message the user reads, each there when the place that
+/// refused the input knew it. The message is "CONTEXT: PLACE: DETAIL"; the place names an
+/// override in the caller's words ([`SceneError::describe`]), so no flag is spelled here.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct InputError {
     /// The file (a scene, a record, a record folder).
@@ -15,7 +16,7 @@ pub struct InputError {
     pub line: Option<usize>,
     /// Column (1-based; characters) of the key in the file.
     pub column: Option<usize>,
-    /// The `--set KEY=VALUE` argument the value came from, when it came from the command line.
+    /// The override `KEY=VALUE` the value came from, when it was given on top of the file.
     pub set: Option<String>,
     /// The key, as a dotted path (`structure.alpha`).
     pub key: Option<String>,
@@ -23,9 +24,32 @@ pub struct InputError {
     pub value: Option<String>,
     /// What is allowed.
     pub allowed: Option<String>,
-    /// The whole message.
-    pub message: String,
+    /// What is wrong: the message after its place.
+    pub detail: String,
+    /// What it happened in, outermost first (a record, an intensity level).
+    pub context: Vec<String>,
 }
+
+impl InputError {
+    /// The message, with `set` as the caller's name for an override (`--set` on the command
+    /// line): "CONTEXT: FILE:LINE:COL: DETAIL", "FILE: SET KEY=VALUE: DETAIL", ...
+    pub fn describe(&self, set: &str) -> String {
+        let mut parts: Vec<String> = self.context.clone();
+        let file = self.file.as_ref().map(|f| f.display().to_string());
+        match (file, &self.set, self.line, self.column) {
+            (Some(f), Some(arg), ..) => parts.push(format!("{f}: {set} {arg}")),
+            (Some(f), None, Some(l), Some(c)) => parts.push(format!("{f}:{l}:{c}")),
+            (Some(f), None, ..) => parts.push(f),
+            (None, Some(arg), ..) => parts.push(format!("{set} {arg}")),
+            (None, None, ..) => {}
+        }
+        parts.push(self.detail.clone());
+        parts.join(": ")
+    }
+}
+
+/// How this crate's own `Display` names an override.
+const OVERRIDE: &str = "override";
 
 /// Why a scene could not be loaded or built: always invalid input, which the user can fix.
 /// What goes wrong later (a run, a write) is the error of the crate that does it.
@@ -36,7 +60,7 @@ impl SceneError {
     /// Invalid input known only by its message.
     pub fn input(message: impl Into<String>) -> Self {
         SceneError(Box::new(InputError {
-            message: message.into(),
+            detail: message.into(),
             ..InputError::default()
         }))
     }
@@ -51,11 +75,11 @@ impl SceneError {
     /// The same error with `what` it happened in before its message ("WHAT: MESSAGE"), its
     /// fields kept.
     pub fn context(mut self, what: impl fmt::Display) -> Self {
-        self.0.message = format!("{what}: {}", self.0.message);
+        self.0.context.insert(0, what.to_string());
         self
     }
 
-    /// Its parts: file, place, key, value, allowed range and the whole message.
+    /// Its parts: file, place, key, value, allowed range, context and what is wrong.
     pub fn fields(&self) -> &InputError {
         &self.0
     }
@@ -65,9 +89,10 @@ impl SceneError {
         &mut self.0
     }
 
-    /// The message.
-    pub fn message(&self) -> &str {
-        &self.0.message
+    /// The message, with `set` as the caller's name for an override (see
+    /// [`InputError::describe`]).
+    pub fn describe(&self, set: &str) -> String {
+        self.0.describe(set)
     }
 }
 
@@ -79,7 +104,7 @@ impl From<InputError> for SceneError {
 
 impl fmt::Display for SceneError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.message())
+        f.write_str(&self.describe(OVERRIDE))
     }
 }
 

@@ -81,7 +81,7 @@ impl Source {
     }
 
     /// Where the key at `path` (or its closest ancestor present in the file) is: its line and
-    /// column, or the `--set` argument that gave it; `None` when it is nowhere in the file.
+    /// column, or the override that gave it; `None` when it is nowhere in the file.
     fn place(&self, path: &str) -> Option<Place> {
         let mut p = path.to_string();
         loop {
@@ -99,23 +99,13 @@ impl Source {
         }
     }
 
-    /// "FILE:LINE:COL" for the key at `path` (or its closest ancestor present in the file),
-    /// or "FILE: --set k=v" when the value came from the command line.
-    pub fn locate(&self, path: &str) -> String {
-        let file = self.path.display();
-        match self.place(path) {
-            Some(Place::Set(arg)) => format!("{file}: --set {arg}"),
-            Some(Place::At(l, c)) => format!("{file}:{l}:{c}"),
-            None => format!("{file}"),
-        }
-    }
-
-    /// An input error about the key at `path`: the message is "LOCATION: msg".
+    /// An input error about the key at `path`, placed at its line and column in the file or
+    /// at the override that gave it.
     pub fn err(&self, path: &str, msg: impl fmt::Display) -> SceneError {
         let mut e = InputError {
             file: Some(self.path.clone()),
             key: Some(path.to_string()),
-            message: format!("{}: {msg}", self.locate(path)),
+            detail: msg.to_string(),
             ..InputError::default()
         };
         match self.place(path) {
@@ -141,7 +131,7 @@ impl Source {
 enum Place {
     /// Line and column in the file.
     At(usize, usize),
-    /// A `--set` argument.
+    /// An override `KEY=VALUE`.
     Set(String),
 }
 
@@ -169,13 +159,15 @@ pub fn suggest<'a>(key: &str, allowed: &[&'a str]) -> Option<&'a str> {
     (d <= limit).then_some(best)
 }
 
-/// Parses one `--set key.path=value` argument: the value as TOML (number, bool, string, inline
+/// Parses one override `key.path=value`: the value as TOML (number, bool, string, inline
 /// table, array), a bare word as a string.
 pub fn parse_override(arg: &str) -> Result<(Vec<String>, Value), SceneError> {
     let bad = |why: &str| {
-        SceneError::input(format!(
-            "--set {arg}: {why} (expected KEY.PATH=VALUE, e.g. structure.alpha=0.2)"
-        ))
+        SceneError::from(InputError {
+            set: Some(arg.to_string()),
+            detail: format!("{why} (expected KEY.PATH=VALUE, e.g. structure.alpha=0.2)"),
+            ..InputError::default()
+        })
     };
     let (key, raw) = arg.split_once('=').ok_or_else(|| bad("no `=`"))?;
     let path: Vec<String> = key
@@ -283,7 +275,7 @@ pub fn parse_text(path: &Path, text: String) -> Result<Parsed, SceneError> {
 }
 
 impl Parsed {
-    /// Applies `--set` overrides and deserializes the scene.
+    /// Applies the overrides `KEY=VALUE` and deserializes the scene.
     pub fn load(&self, sets: &[String]) -> Result<Scene, SceneError> {
         let path = self.path.as_path();
         let mut table = self.table.clone();
@@ -316,11 +308,12 @@ fn finish(
             t = match entry {
                 Value::Table(t) => t,
                 _ => {
-                    return Err(SceneError::input(format!(
-                        "{}: --set {arg}: `{}` is a value, not a table",
-                        path.display(),
-                        keys[..=i].join(".")
-                    )))
+                    return Err(SceneError::from(InputError {
+                        file: Some(path.to_path_buf()),
+                        set: Some(arg.clone()),
+                        detail: format!("`{}` is a value, not a table", keys[..=i].join(".")),
+                        ..InputError::default()
+                    }))
                 }
             };
         }
@@ -597,7 +590,7 @@ mod tests {
             "dir/s.toml:3:1: [structure] `alpha` = 2 is not allowed: a slenderness 0 < alpha < \
              pi/2 rad"
         );
-        // The same value from the command line names the --set argument instead of a line.
+        // The same value given as an override names the override instead of a line.
         let sc = load_text(
             Path::new("dir/s.toml"),
             text.replace("alpha = 2.0", "alpha = 0.2"),
@@ -614,6 +607,12 @@ mod tests {
         );
         assert!(
             err.to_string()
+                .starts_with("dir/s.toml: override structure.alpha=3: "),
+            "{err}"
+        );
+        // A caller names the override its own way (the command: `--set`).
+        assert!(
+            err.describe("--set")
                 .starts_with("dir/s.toml: --set structure.alpha=3: "),
             "{err}"
         );

@@ -88,6 +88,8 @@ pub enum Argument {
     Records,
     /// One axis of a sweep.
     Axis,
+    /// A value `KEY=VALUE` set on top of the scene file.
+    Set,
 }
 
 /// How a caller names its [`Argument`]s in messages (`--records FILE|DIR`, `records=[...]`).
@@ -98,6 +100,7 @@ fn plain(a: Argument) -> &'static str {
     match a {
         Argument::Records => "record files",
         Argument::Axis => "axis",
+        Argument::Set => "override",
     }
 }
 
@@ -210,7 +213,7 @@ impl fmt::Display for Described<'_> {
             StudyError::Context { what, source } => {
                 write!(f, "{what}: {}", Described(source, names))
             }
-            StudyError::Input(e) => e.fmt(f),
+            StudyError::Input(e) => f.write_str(&e.describe(names(Argument::Set))),
             StudyError::Simulation { scene, source } if source.is_guard() => {
                 let d = rocking::Options::default();
                 write!(

@@ -394,7 +394,7 @@ fn prepare(base: &Base, s: &Settings, file: &Path) -> Result<Prepared, SceneErro
     ];
     let model = base
         .model(&injected)
-        .map_err(|e| on_the_record(e, base, &injected, &path))?;
+        .map_err(|e| on_the_record(e, &injected, &path))?;
     let sc = base.scene();
     let exc = ExcitationSpec {
         path: Some(path.clone()),
@@ -435,16 +435,12 @@ fn prepare(base: &Base, s: &Settings, file: &Path) -> Result<Prepared, SceneErro
 }
 
 /// An error about a value the study set (a record's path or scale), as the user reads it: about
-/// the record, not about a `--set` the user never typed.
-fn on_the_record(mut e: SceneError, base: &Base, injected: &[String], record: &str) -> SceneError {
+/// the record, not about an override the user never gave.
+fn on_the_record(mut e: SceneError, injected: &[String], record: &str) -> SceneError {
     let input = e.fields_mut();
-    if let Some(arg) = input.set.take_if(|a| injected.contains(a)) {
-        let placed = format!("{}: --set {arg}: ", base.path().display());
-        let text = input
-            .message
-            .strip_prefix(&placed)
-            .unwrap_or(&input.message);
-        input.message = format!("record {record} of the study: {text}");
+    if input.set.take_if(|a| injected.contains(a)).is_some() {
+        input.file = None;
+        input.context.push(format!("record {record} of the study"));
     }
     e
 }
