@@ -202,6 +202,37 @@ fn text_record_without_units_and_velocity_files_are_refused() {
     assert!(e.contains("`format`") && e.contains("\"knet\""), "{e}");
 }
 
+/// A record an IDA refuses is named as the study's record: the override the study set for it
+/// is not the user's `--set`.
+#[test]
+fn a_refused_record_of_an_ida_is_named_as_the_studys() {
+    let tmp = tempfile::tempdir().unwrap();
+    let text = tmp.path().join("bad.AT2");
+    std::fs::write(&text, "not a PEER record\n").unwrap();
+    let o = rocking(&[
+        "ida",
+        "scenes/wind-turbine-ida.toml",
+        "--records",
+        text.to_str().unwrap(),
+        "--out",
+        tmp.path().join("out").to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = String::from_utf8_lossy(&o.stderr);
+    let record = std::fs::canonicalize(&text).unwrap();
+    assert!(
+        e.starts_with(&format!(
+            "error: record {} of the study: ",
+            record.display()
+        )),
+        "{e}"
+    );
+    assert!(
+        e.contains("cannot use the record") && !e.contains("--set"),
+        "{e}"
+    );
+}
+
 /// Overturns at this Sa level (m/s²)? `sa1`: the record's Sa at scale 1.
 fn overturns(record: &str, sa: f64, sa1: f64, out: &Path) -> bool {
     let o = rocking(&[
