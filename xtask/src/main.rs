@@ -1,5 +1,5 @@
-//! Project automation: `cargo xtask regen [--check] [--skip-derive]`, `cargo xtask bench [--quick]`,
-//! `cargo xtask try-model`.
+//! Project automation: `cargo xtask regen [--check] [--skip-derive | --only NAME[,NAME...]]`,
+//! `cargo xtask bench [--quick]`, `cargo xtask try-model`.
 //!
 //! `regen` re-derives the kernel IR with the pinned Python environment
 //! (`derive/requirements.txt`, installed into `<repo>/.venv`), renders it with
@@ -11,7 +11,9 @@
 //!
 //! With `--check` nothing is written: every difference is printed as a unified diff
 //! and the command fails. With `--skip-derive` the checked-in `generated/ir/` is
-//! rendered instead of a fresh derivation (no Python needed).
+//! rendered instead of a fresh derivation (no Python needed). With `--only a,b` only the
+//! variants `a` and `b` are derived, and every file is rendered from their fresh IR and the
+//! checked-in IR of all others (kept as it is, as is `docs/errata.md`).
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -28,11 +30,14 @@ const USAGE: &str = "\
 usage: cargo xtask <command>
 
 commands:
-  regen [--check] [--skip-derive]
+  regen [--check] [--skip-derive | --only NAME[,NAME...]]
       Re-derive the kernels (Python/CasADi in .venv), render them and update
       generated/ir, generated/src/kernels and docs/errata.md.
       --check        write nothing; print diffs and fail if anything is stale
       --skip-derive  render the checked-in generated/ir (no Python needed)
+      --only NAMES   derive only these variants of derive/rocking_derive/models.py
+                     (`ground`: the ground's IR) and render everything from them and
+                     the checked-in IR of the others; docs/errata.md is kept
   bench [--quick] [--no-peers]
       The accuracy/cost study: both integrators x tolerances on every case against
       a reference, the SciPy, heyoka and OpenSees peers (installed into .venv from

@@ -19,27 +19,60 @@ pub const STALE_MESSAGE: &str =
     "generated code is stale: run `cargo xtask regen` and commit the result";
 
 /// Command-line options of `regen`.
-#[derive(Debug, Default, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Default, Clone, PartialEq, Eq)]
 pub struct Options {
     /// Write nothing; report differences and fail if there are any.
     pub check: bool,
     /// Render the checked-in `generated/ir` instead of deriving afresh.
     pub skip_derive: bool,
+    /// Derive only these variants (`--only a,b`; `ground` is the ground's IR) and render them
+    /// with the checked-in IR of all others, which is kept, as is `docs/errata.md`.
+    pub only: Option<Vec<String>>,
 }
 
 impl Options {
     /// Parses the arguments following `regen`.
     pub fn parse(args: &[String]) -> Result<Options, String> {
         let mut opts = Options::default();
-        for arg in args {
+        let mut args = args.iter();
+        while let Some(arg) = args.next() {
             match arg.as_str() {
                 "--check" => opts.check = true,
                 "--skip-derive" => opts.skip_derive = true,
+                "--only" => {
+                    let value = args.next().filter(|v| !v.starts_with('-')).ok_or(
+                        "--only needs a comma-separated list of variant names (--only full,rigid)",
+                    )?;
+                    if opts.only.is_some() {
+                        return Err("--only given twice: name all variants in one list".into());
+                    }
+                    opts.only = Some(parse_names(value)?);
+                }
                 other => return Err(format!("unknown argument {other:?} for regen")),
             }
         }
+        if opts.skip_derive && opts.only.is_some() {
+            let why = "--only derives the named variants, --skip-derive derives none";
+            return Err(format!(
+                "--only cannot be combined with --skip-derive: {why}"
+            ));
+        }
         Ok(opts)
     }
+}
+
+/// The names of `--only a,b`, without repeats, in their order.
+fn parse_names(value: &str) -> Result<Vec<String>, String> {
+    let mut names: Vec<String> = Vec::new();
+    for name in value.split(',') {
+        if name.trim().is_empty() {
+            return Err(format!("--only {value:?}: empty variant name"));
+        }
+        if !names.iter().any(|n| n == name) {
+            names.push(name.to_string());
+        }
+    }
+    Ok(names)
 }
 
 /// Wanted file contents keyed by repository-relative path.
@@ -68,21 +101,27 @@ impl Change {
     }
 }
 
-/// Runs the derivation into `out` (which receives `ir/*.json` and `errata.md`).
-fn derive(root: &Path, python: &Path, out: &Path) -> Result<()> {
+/// Runs the derivation into `out` (which receives `ir/*.json` and, unless `only` names the
+/// variants to derive, `errata.md`).
+fn derive(root: &Path, python: &Path, out: &Path, only: Option<&[String]>) -> Result<()> {
     let mut cmd = Command::new(python);
-    cmd.args(["-m", "rocking_derive", "--out"])
-        .arg(out)
-        .current_dir(root)
+    cmd.args(["-m", "rocking_derive", "--out"]).arg(out);
+    let mut shown = format!(
+        "{} -m rocking_derive --out {}",
+        python.display(),
+        out.display()
+    );
+    if let Some(only) = only {
+        let list = only.join(",");
+        let _ = write!(shown, " --only {list}");
+        cmd.args(["--only", &list]);
+    }
+    cmd.current_dir(root)
         .env("PYTHONPATH", root.join("derive"))
         .stdin(Stdio::null())
         .stdout(Stdio::inherit())
         .stderr(Stdio::piped());
-    println!(
-        "xtask: deriving: {} -m rocking_derive --out {}",
-        python.display(),
-        out.display()
-    );
+    println!("xtask: deriving: {shown}");
     let output = cmd
         .output()
         .map_err(|e| format!("cannot run {}: {e}", python.display()))?;
@@ -243,51 +282,109 @@ pub fn apply(root: &Path, changes: &[Change]) -> Result<()> {
 
 /// The wanted contents of the owned files, and the owned directories.
 pub fn desired_files(root: &Path, opts: &Options) -> Result<(Files, Owned)> {
-    let mut desired = BTreeMap::new();
     let mut owned = vec![(KERNELS_DIR, "rs"), (TAYLOR_DIR, "rs")];
-    // Keeps the derivation output alive until rendering is done.
-    let tmp;
-    let ir_dir = if opts.skip_derive {
-        root.join(IR_DIR)
+    let desired = if opts.skip_derive {
+        let ir_dir = root.join(IR_DIR);
+        if !ir_dir.is_dir() {
+            return Err(format!(
+                "{} does not exist: run `cargo xtask regen` without --skip-derive",
+                ir_dir.display()
+            )
+            .into());
+        }
+        rendered(&ir_dir)?
     } else {
         let python = crate::venv::ensure(root)?;
-        tmp = tempfile::Builder::new()
+        let tmp = tempfile::Builder::new()
             .prefix("rocking-derive-")
             .tempdir()?;
-        derive(root, &python, tmp.path())?;
-        let fresh_ir = tmp.path().join("ir");
-        let mut n = 0;
-        for path in list_owned(tmp.path(), "ir", "json")? {
-            let name = path.trim_start_matches("ir/");
-            let bytes = std::fs::read(tmp.path().join(&path))?;
-            desired.insert(format!("{IR_DIR}/{name}"), bytes);
-            n += 1;
-        }
-        if n == 0 {
-            return Err(
-                format!("the derivation wrote no IR files to {}", fresh_ir.display()).into(),
-            );
-        }
-        if let Some(ground) = read_opt(&fresh_ir.join("ground").join("ground.json"))? {
-            desired.insert(GROUND_IR.to_string(), ground);
-        }
-        if let Some(errata) = read_opt(&tmp.path().join("errata.md"))? {
+        derive(root, &python, tmp.path(), opts.only.as_deref())?;
+        owned.push((IR_DIR, "json"));
+        derived_files(root, tmp.path(), opts.only.as_deref())?
+    };
+    Ok((desired, owned))
+}
+
+/// Every file rendered from the IR of `ir_dir`.
+fn rendered(ir_dir: &Path) -> Result<Files> {
+    Ok(render_all(ir_dir)?
+        .into_iter()
+        .map(|(path, text)| (path, text.into_bytes()))
+        .collect())
+}
+
+/// The wanted files of a derivation into `out`: its IR, its errata and everything rendered from
+/// the IR. With `only` (the variants it derived), the IR of `out` is first completed with the
+/// checked-in IR of `root` ([`add_checked_in_ir`]), and the errata are not wanted (the
+/// checked-in `docs/errata.md` stays).
+fn derived_files(root: &Path, out: &Path, only: Option<&[String]>) -> Result<Files> {
+    let ir_dir = out.join("ir");
+    if let Some(only) = only {
+        add_checked_in_ir(root, &ir_dir, only)?;
+    }
+    let mut desired = Files::new();
+    for path in list_owned(out, "ir", "json")? {
+        let name = path.trim_start_matches("ir/");
+        let bytes = std::fs::read(out.join(&path))?;
+        desired.insert(format!("{IR_DIR}/{name}"), bytes);
+    }
+    if desired.is_empty() {
+        return Err(format!("the derivation wrote no IR files to {}", ir_dir.display()).into());
+    }
+    if let Some(ground) = read_opt(&ir_dir.join("ground").join("ground.json"))? {
+        desired.insert(GROUND_IR.to_string(), ground);
+    }
+    if only.is_none() {
+        if let Some(errata) = read_opt(&out.join("errata.md"))? {
             desired.insert(ERRATA.to_string(), errata);
         }
-        owned.push((IR_DIR, "json"));
-        fresh_ir
-    };
-    if !ir_dir.is_dir() {
-        return Err(format!(
-            "{} does not exist: run `cargo xtask regen` without --skip-derive",
-            ir_dir.display()
-        )
-        .into());
     }
-    for (path, text) in render_all(&ir_dir)? {
-        desired.insert(path, text.into_bytes());
+    desired.extend(rendered(&ir_dir)?);
+    Ok(desired)
+}
+
+/// Completes `ir_dir`, where the derivation wrote the IR of the variants `only` (`ground`: the
+/// ground's), with the checked-in IR under `root` of every other variant and of the ground, so
+/// that everything is rendered and no checked-in IR file looks stale. Fails when the IR of a
+/// named variant is missing.
+fn add_checked_in_ir(root: &Path, ir_dir: &Path, only: &[String]) -> Result<()> {
+    let named = |name: &str| only.iter().any(|n| n == name);
+    for name in only {
+        let path = if name == "ground" {
+            ir_dir.join("ground").join("ground.json")
+        } else {
+            ir_dir.join(format!("{name}.json"))
+        };
+        if !path.is_file() {
+            return Err(format!(
+                "the derivation wrote no IR for `{name}` ({})",
+                path.display()
+            )
+            .into());
+        }
     }
-    Ok((desired, owned))
+    let mut kept = 0;
+    for path in list_owned(root, IR_DIR, "json")? {
+        let file = &path[IR_DIR.len() + 1..];
+        if !named(file.trim_end_matches(".json")) {
+            let to = ir_dir.join(file);
+            std::fs::copy(root.join(&path), &to).map_err(|e| format!("{}: {e}", to.display()))?;
+            kept += 1;
+        }
+    }
+    if !named("ground") {
+        if let Some(ground) = read_opt(&root.join(GROUND_IR))? {
+            let dir = ir_dir.join("ground");
+            std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+            std::fs::write(dir.join("ground.json"), ground)?;
+            kept += 1;
+        }
+    }
+    println!(
+        "xtask: derived {}; rendering every file with the checked-in IR of {kept} other(s)",
+        only.join(", ")
+    );
+    Ok(())
 }
 
 /// What `regen` would change: the number of generated files and their differences from the
@@ -365,6 +462,7 @@ mod tests {
         let opts = Options {
             check: true,
             skip_derive: true,
+            ..Options::default()
         };
         let fresh = freshness(&root, &opts).unwrap();
         assert!(fresh.files > 2, "no generated files found under {IR_DIR}");
@@ -391,6 +489,7 @@ mod tests {
         let opts = Options {
             check: false,
             skip_derive: true,
+            ..Options::default()
         };
         let (desired, owned) = desired_files(root, &opts).unwrap();
         let first = changes(root, &desired, &owned).unwrap();
@@ -428,16 +527,75 @@ mod tests {
         assert!(!root.join(KERNELS_DIR).join("old.rs").exists());
     }
 
+    /// `--only`: a derivation of `ops` alone (here its checked-in IR with one byte more) is
+    /// rendered with the checked-in IR of `rigid_block`, which is neither stale nor rewritten, and
+    /// its errata are not wanted; a named variant the derivation did not write is an error.
+    #[test]
+    fn only_renders_the_derived_variants_with_the_checked_in_ir_of_the_others() {
+        let tmp = fixture_root();
+        let root = tmp.path();
+        let skip = Options {
+            skip_derive: true,
+            ..Options::default()
+        };
+        let (desired, owned) = desired_files(root, &skip).unwrap();
+        apply(root, &changes(root, &desired, &owned).unwrap()).unwrap();
+
+        let out = tempfile::tempdir().unwrap();
+        std::fs::create_dir_all(out.path().join("ir")).unwrap();
+        let mut ops = std::fs::read(root.join(IR_DIR).join("ops.json")).unwrap();
+        ops.push(b'\n');
+        std::fs::write(out.path().join("ir/ops.json"), &ops).unwrap();
+        std::fs::write(out.path().join("errata.md"), "not wanted").unwrap();
+        let only = ["ops".to_string()];
+        let desired = derived_files(root, out.path(), Some(&only)).unwrap();
+        assert!(!desired.contains_key(ERRATA));
+        let owned = [(KERNELS_DIR, "rs"), (TAYLOR_DIR, "rs"), (IR_DIR, "json")];
+        let found = changes(root, &desired, &owned).unwrap();
+        let kinds: Vec<(&str, &str)> = found.iter().map(|c| (c.path.as_str(), c.kind())).collect();
+        assert_eq!(kinds, [("generated/ir/ops.json", "changed")]);
+        assert_eq!(found[0].new.as_deref(), Some(ops.as_slice()));
+        assert!(desired.contains_key("generated/src/kernels/rigid_block.rs"));
+
+        let out = tempfile::tempdir().unwrap();
+        std::fs::create_dir_all(out.path().join("ir")).unwrap();
+        let only = ["nosuch".to_string()];
+        let err = derived_files(root, out.path(), Some(&only)).unwrap_err();
+        assert!(err.to_string().contains("`nosuch`"), "{err}");
+    }
+
     #[test]
     fn options() {
         let args = |v: &[&str]| v.iter().map(ToString::to_string).collect::<Vec<_>>();
+        let parse = |v: &[&str]| Options::parse(&args(v));
         assert_eq!(
-            Options::parse(&args(&["--check", "--skip-derive"])).unwrap(),
+            parse(&["--check", "--skip-derive"]).unwrap(),
             Options {
                 check: true,
-                skip_derive: true
+                skip_derive: true,
+                only: None,
             }
         );
-        assert!(Options::parse(&args(&["--frobnicate"])).is_err());
+        assert_eq!(
+            parse(&["--only", "a,b,a", "--check"]).unwrap(),
+            Options {
+                check: true,
+                skip_derive: false,
+                only: Some(args(&["a", "b"])),
+            }
+        );
+        assert!(parse(&["--frobnicate"]).is_err());
+        for wrong in [
+            &["--only"][..],
+            &["--only", "--check"],
+            &["--only", ""],
+            &["--only", "a,,b"],
+            &["--only", "a,"],
+            &["--only", "a", "--only", "b"],
+        ] {
+            assert!(parse(wrong).is_err(), "{wrong:?}");
+        }
+        let err = parse(&["--only", "a", "--skip-derive"]).unwrap_err();
+        assert!(err.contains("--skip-derive"), "{err}");
     }
 }
