@@ -2,7 +2,7 @@
 //! overflow, and derived quantities that must be finite. Kept apart from model.rs so that the
 //! checks are listed in one place; each error names the key the user wrote and its range.
 
-use rocking::Structure;
+use rocking::{Derived, Structure};
 
 use crate::scene::{Source, StructureSpec};
 use crate::SceneError;
@@ -109,9 +109,9 @@ pub fn structure_magnitudes(src: &Source, s: &StructureSpec) -> Result<(), Scene
 pub fn derived_quantities(
     src: &Source,
     structure: &Structure,
+    d: &Derived,
     physical: bool,
 ) -> Result<(), SceneError> {
-    let d = structure.derived();
     let threshold = structure.static_uplift_acceleration();
     let quantities = [
         ("p", d.p, true),

@@ -159,8 +159,8 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Setup, SceneError> {
         param_err(src, if switch { "effects" } else { "structure" }, e)
     })?;
     let physical = st.h.is_some();
-    crate::limits::derived_quantities(src, &structure, physical)?;
     let derived = structure.derived();
+    crate::limits::derived_quantities(src, &structure, &derived, physical)?;
     let ph = structure.physical();
     let units = Units {
         physical,

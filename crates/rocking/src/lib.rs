@@ -271,7 +271,7 @@ pub fn simulate(
     options: &Options,
 ) -> Result<Run, SimError> {
     let sel = select_variant(structure, effects).map_err(SimError::NoVariant)?;
-    run_variant(sel.variant.name, &sel.structure, motion, options)
+    run_selected(sel.variant, &sel.structure, None, motion, options)
 }
 
 /// Runs a simulation on compliant ground (issue 44, docs/ground.md) with the most specialised
@@ -288,18 +288,7 @@ pub fn simulate_on_ground(
     options: &Options,
 ) -> Result<Run, SimError> {
     let sel = select_variant(structure, effects).map_err(SimError::NoVariant)?;
-    let name = sel.variant.name;
-    with_variant!(name, V, L => {
-        driver::simulate_ground::<V, dyn GroundMotion, { L::Y + 3 }>(
-            &sel.structure, ground, motion, options,
-        )
-    })
-    .unwrap_or_else(|| {
-        Err(SimError::UnknownVariant {
-            name: name.to_string(),
-            model: None,
-        })
-    })
+    run_selected(sel.variant, &sel.structure, Some(ground), motion, options)
 }
 
 /// Runs the generated variant called `name` (monomorphised through the generated dispatch) on a
@@ -311,22 +300,40 @@ pub fn run_variant(
     options: &Options,
 ) -> Result<Run, SimError> {
     match VariantInfo::find(name) {
-        Some(v) if v.model == structure.model().name => {}
-        _ => {
-            return Err(SimError::UnknownVariant {
-                name: name.to_string(),
-                model: Some(structure.model().name),
-            })
-        }
+        Some(v) => run_selected(v, structure, None, motion, options),
+        None => Err(SimError::UnknownVariant {
+            name: name.to_string(),
+            model: Some(structure.model().name),
+        }),
     }
-    with_variant!(name, V, L => {
-        if options.energy {
+}
+
+/// Runs `variant` on `structure` (a [`Selection`]'s pair, chosen once when a scene is built):
+/// on `ground` when given one, else on the rigid surface.
+pub fn run_selected(
+    variant: &'static VariantInfo,
+    structure: &Structure,
+    ground: Option<&Ground>,
+    motion: &dyn GroundMotion,
+    options: &Options,
+) -> Result<Run, SimError> {
+    let name = variant.name;
+    if variant.model != structure.model().name {
+        return Err(SimError::UnknownVariant {
+            name: name.to_string(),
+            model: Some(structure.model().name),
+        });
+    }
+    with_variant!(name, V, L => match ground {
+        Some(g) => driver::simulate_ground::<V, dyn GroundMotion, { L::Y + 3 }>(
+            structure, g, motion, options,
+        ),
+        None if options.energy => {
             driver::simulate::<V, dyn GroundMotion, { L::X + 2 }, { L::XC + 2 }>(
                 structure, motion, options,
             )
-        } else {
-            driver::simulate::<V, dyn GroundMotion, { L::X }, { L::XC }>(structure, motion, options)
         }
+        None => driver::simulate::<V, dyn GroundMotion, { L::X }, { L::XC }>(structure, motion, options),
     })
     .unwrap_or_else(|| {
         Err(SimError::UnknownVariant {

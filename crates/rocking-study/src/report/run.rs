@@ -36,14 +36,17 @@ pub fn simulate(m: &Setup, scene: &Path) -> Result<Report, StudyError> {
     Ok(Report { run, fixed_base })
 }
 
-/// Runs a built scene with `options`: on its compliant ground ([`rocking::simulate_on_ground`])
-/// when it has one, else on the rigid surface ([`rocking::simulate`]). The one dispatch of every
-/// run: `rocking run`, a sweep's cell, an IDA analysis, Python.
+/// Runs a built scene with `options`: its variant (selected once, when the scene was built) on
+/// its compliant ground when it has one, else on the rigid surface ([`rocking::run_selected`]).
+/// The one dispatch of every run: `rocking run`, a sweep's cell, an IDA analysis, Python.
 pub fn run_setup(m: &Setup, options: &rocking::Options) -> Result<Run, rocking::SimError> {
-    match &m.ground {
-        Some(g) => rocking::simulate_on_ground(&m.structure, g, &m.excitation, &m.effects, options),
-        None => rocking::simulate(&m.structure, &m.excitation, &m.effects, options),
-    }
+    rocking::run_selected(
+        m.variant,
+        &m.structure,
+        m.ground.as_ref(),
+        &m.excitation,
+        options,
+    )
 }
 
 fn simulate_with(m: &Setup, options: &rocking::Options, scene: &Path) -> Result<Run, StudyError> {

@@ -407,7 +407,7 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
             };
         }
         let mut first_on_zero = fired != Some(0) && y0.values()[theta] == 0.0;
-        let (t, z, event) = loop {
+        let (t_old, t, z, event) = loop {
             let t_stop = motion
                 .next_kink(ode.t())
                 .map_or(self.opts.t_end, |k| k.min(self.opts.t_end));
@@ -434,25 +434,40 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
             first_on_zero = false;
             if let Some(ev) = locate(&mut ode, &mut g, &dirs, &g_old, &g_new) {
                 let ev = refine(&mut ode, &mut rhs, &mut g, ev);
-                self.step_rows(|t| ode.dense(t), info.t_old, ev.t, s, c);
-                break (ev.t, ev.y, Some(ev.index));
+                break (info.t_old, ev.t, ev.y, Some(ev.index));
             }
-            self.step_rows(|t| ode.dense(t), info.t_old, info.t_new, s, c);
-            self.observe(info.t_new, &V::Y::from_fn(|i| ode.y()[i]), s, c);
-            g_old = g_new;
             if info.t_new >= self.opts.t_end {
-                break (info.t_new, *ode.y(), None);
+                break (info.t_old, info.t_new, *ode.y(), None);
             }
+            let y = V::Y::from_fn(|i| ode.y()[i]);
+            self.record_step(|t| ode.dense(t), info.t_old, info.t_new, &y, s, c);
+            g_old = g_new;
         };
-        self.rec.stats.add(ode.take_stats());
         let y = V::Y::from_fn(|i| z[i]);
-        self.observe(t, &y, s, c);
+        self.record_step(|t| ode.dense(t), t_old, t, &y, s, c);
+        self.rec.stats.add(ode.take_stats());
         Ok(PhaseEnd {
             t,
             y,
             carried: std::array::from_fn(|k| z[integrals + k]),
             event,
         })
+    }
+
+    /// The bookkeeping of every step of every phase: the history rows of (t_old, t_end]
+    /// (`dense` its dense output; t_end the step's end or its event), then the maxima at its end
+    /// state `y`.
+    fn record_step(
+        &mut self,
+        dense: impl Fn(f64) -> SVector<f64, N>,
+        t_old: f64,
+        t_end: f64,
+        y: &V::Y,
+        s: f64,
+        c: Contact,
+    ) {
+        self.step_rows(dense, t_old, t_end, s, c);
+        self.observe(t_end, y, s, c);
     }
 
     /// History rows of the step (t_old, t_new] from its dense output.
