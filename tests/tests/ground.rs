@@ -85,6 +85,41 @@ fn at_rest_stays_at_the_static_settlement() {
     }
 }
 
+/// Released at rest at θ = 0 from the settlement v = 1.5 v0 on an undamped bed, the structure
+/// heaves about the static settlement as one mass on the vertical spring K_v:
+/// v = v0 (1 + 0.5 cos ω_v t), ω_v = sqrt(K_v / M); the base never lifts (v >= 0.5 v0) and the
+/// column stays upright.
+#[test]
+fn an_initial_settlement_heaves_about_the_static_one() {
+    let s = structure(10.0, 0.5, 0.0);
+    let omega_v = 30.0 * s.derived().p;
+    for kind in [GroundKind::Winkler, GroundKind::TwoSpring] {
+        let g = bed(&s, kind, 30.0, 0.0);
+        let v0 = g.statics(s.static_uplift().weight).settlement;
+        let mut o = options(1.0, 1e-12, 0.0);
+        o.initial.v = Some(1.5 * v0);
+        let r = run(&s, &g, &NoMotion, &Effects::default(), &o);
+        let worst = r
+            .history
+            .iter()
+            .map(|h| {
+                let want = 1.0 + 0.5 * (omega_v * h.t).cos();
+                (h.ground.unwrap().settlement / v0 - want).abs()
+            })
+            .fold(0.0, f64::max);
+        println!(
+            "{kind:?}: |v/v0 - (1 + cos(ω_v t)/2)| <= {worst:e} over {} rows",
+            r.history.len()
+        );
+        assert!(r.history.len() > 90);
+        assert!(worst <= 1e-10, "{kind:?}: {worst:e}");
+        assert!(r.history.iter().all(|h| h.theta == 0.0 && h.u == 0.0));
+        let summary = r.summary.ground.unwrap();
+        assert_eq!(summary.lift_offs, 0);
+        assert!((summary.max_settlement_over_static - 1.5).abs() <= 1e-12);
+    }
+}
+
 /// No damping anywhere, released from θ0 = α/2 with a deflected column: the base lifts off and
 /// lands again and again, and T + V_g + V_s + V_ground stays put to 1e-9 E_ref.
 #[test]

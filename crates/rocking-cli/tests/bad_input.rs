@@ -737,6 +737,22 @@ const ROWS: &[Row] = &[
         &["[ground] mixes", "`omega_v_over_p`", "`k`", "either omega_v_over_p, zeta_v or k, c"],
     ),
     (
+        "initial-settlement-on-rigid",
+        SCENE,
+        "",
+        "[initial]\nv_over_static = 1.5\n",
+        None,
+        &["`v_over_static` in [initial]", "the rigid surface has none", "[ground]"],
+    ),
+    (
+        "initial-settlement-too-large",
+        SCENE,
+        "",
+        "[ground]\nkind = \"winkler\"\nomega_v_over_p = 40.0\n\n[initial]\nv_over_static = 1e4\n",
+        None,
+        &["`v_over_static` in [initial] = 10000", "|v/v₀| <= 1000"],
+    ),
+    (
         "ground-si-key-dimensionless",
         SCENE,
         "",

@@ -54,6 +54,7 @@ const NUMBERS: &[(&str, &str, Number)] = fields!(f64;
     initial.u_over_ucr => "u₀/u_cr",
     initial.theta_dot_over_alpha_p => "θ'₀/(α p)",
     initial.u_dot_over_ucr_omega_n => "u̇₀/(u_cr ω_n)",
+    initial.v_over_static => "v(0)/v₀",
     solver.tol => "tolerance",
     solver.after_excitation => "τ after the excitation",
     output.history_dt => "Δτ",

@@ -306,6 +306,24 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Setup, SceneError> {
             )?;
             initial.u_dot = x * derived.u_cr * derived.omega_n;
         }
+        if let Some(x) = i.v_over_static {
+            let Some(g) = scales.ground.as_ref() else {
+                return Err(src.err(
+                    "initial.v_over_static",
+                    "`v_over_static` in [initial] is the base's settlement on a compliant \
+                     [ground]: the rigid surface has none (give [ground] kind = \"winkler\" or \
+                     \"two-spring\", or remove it)",
+                ));
+            };
+            finite(
+                src,
+                "initial.v_over_static",
+                x,
+                x.abs() <= 1e3,
+                "|v/v₀| <= 1000",
+            )?;
+            initial.v = Some(x * g.settlement);
+        }
     }
 
     let out = spec.output.as_ref();

@@ -128,6 +128,9 @@ pub struct InitialSpec {
     pub u_over_ucr: Option<f64>,
     pub theta_dot_over_alpha_p: Option<f64>,
     pub u_dot_over_ucr_omega_n: Option<f64>,
+    /// The base's settlement over the static settlement v₀ (compliant ground only; default: at
+    /// rest in vertical equilibrium at the initial θ).
+    pub v_over_static: Option<f64>,
 }
 
 /// `[output]`.

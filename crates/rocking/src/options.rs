@@ -294,6 +294,9 @@ pub struct Initial {
     pub theta_dot: f64,
     /// Initial column velocity u'.
     pub u_dot: f64,
+    /// Initial settlement v of the base centre on compliant ground (model units; `None`: at
+    /// rest in vertical equilibrium at θ). The rigid surface has no v.
+    pub v: Option<f64>,
 }
 
 /// Everything that controls a run besides the structure and the excitation.
@@ -511,6 +514,7 @@ mod tests {
                 u: 0.2,
                 theta_dot: 0.3,
                 u_dot: 0.4,
+                v: None,
             },
             ..Options::default()
         };

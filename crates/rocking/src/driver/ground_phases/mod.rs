@@ -232,7 +232,9 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
     fn initial_state(&self) -> V::Y {
         let i = self.opts.initial;
         let n = Free::<V>::NQ;
-        let v = crate::ground_statics::equilibrium_settlement(&self.k.ground, self.weight, i.theta);
+        let v = i.v.unwrap_or_else(|| {
+            crate::ground_statics::equilibrium_settlement(&self.k.ground, self.weight, i.theta)
+        });
         // Several coordinates: the initial u and u' are top deflections along the first mode.
         let phi: Vec<f64> = if V::RIGID {
             vec![0.0]
