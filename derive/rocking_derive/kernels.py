@@ -89,6 +89,7 @@ SEVERAL = {
     "shape": "Several coordinates: the functions psi_1..psi_n; the deflection is sum u_i psi_i(eta).",
     "forces_contact": "Several coordinates: M_el = EI sum psi_i''(0) u_i / H^2.",
     "forces_rocking": "Several coordinates: M_el = EI sum psi_i''(0) u_i / H^2.",
+    "section_forces": "Several coordinates: M_el = EI sum psi_i''(0) u_i / H^2.",
     "static_uplift": "Several coordinates: u_uplift_i, the static deflection K u = -Gamma ug then.",
 }
 
@@ -191,6 +192,10 @@ def kernels(variant: Variant) -> list[Kernel]:
     # Section forces and ground reactions, with the accelerations of the phase's own equations.
     forces = list(FORCES)
     rocking = mech.base_forces(acc[0], acc[1:])
+    qdd_syms = [ca.SX.sym(e) for e in ["theta_ddot", *expanded("u_ddot", n)]]
+    qdd = Input("qdd", "accelerations [theta'', u''] (the rigid column's u'' is 0)",
+                ["theta_ddot", *expanded("u_ddot", n)], qdd_syms)
+    given = mech.base_forces(qdd_syms[0], [ca.SX(0)] if mech.rigid else qdd_syms[1:])
     in_contact = mech.contact_forces()
     uplift_static = twin.static_uplift()
     shapes = list(mech.basis.values(eta_sym))
@@ -258,6 +263,12 @@ def kernels(variant: Variant) -> list[Kernel]:
           "small-angle variant's forces are those of the motion its equations predict." + FORCES_DOC),
           [x, ug, s, p], Output("fr", "section forces and ground reaction", forces,
                                 [rocking[k] for k in forces])),
+        K("section_forces", doc("section_forces", "The outputs of forces_rocking for the accelerations "
+          "qdd = [theta'', u''] the integrator already has (the state derivative it evaluated at x), "
+          "without solving M q'' = F again; in full contact x has theta = theta' = 0 and qdd theta'' = 0 "
+          "(any s), and the outputs are those of forces_contact." + FORCES_DOC),
+          [x, qdd, ug, s, p], Output("fs", "section forces and ground reaction", forces,
+                                     [given[k] for k in forces])),
         K("static_uplift", doc("static_uplift", "Quasi-static uplift about the right corner (s = +1; the left corner is its "
           "mirror), from the flexible exact-angle twin: the total weight W, the base moment W B at "
           "which the base uplifts (f_s = s M_b - W B), the ground acceleration ug (< 0) that lifts "

@@ -451,6 +451,9 @@ pub trait Variant: Layout + Copy + Default + Send + Sync + 'static {
     fn forces_contact(xc: &Self::Xc, ug: f64, p: &Self::Params) -> [f64; 6];
     /// The same while rocking about corner `s` (accelerations from the rocking equations).
     fn forces_rocking(x: &Self::X, ug: f64, s: f64, p: &Self::Params) -> [f64; 6];
+    /// The same for the accelerations `qdd = [θ'', u'']` an integrator already has (no solve of
+    /// M q'' = F); in full contact, θ = θ' = θ'' = 0 in `x` and `qdd` and any `s`.
+    fn section_forces(x: &Self::X, qdd: &Self::Q, ug: f64, s: f64, p: &Self::Params) -> [f64; 6];
     /// Quasi-static uplift about the right corner:
     /// `[weight, moment_uplift, ug_uplift, u_uplift, moment_elastic_uplift]`.
     fn static_uplift(p: &Self::Params) -> Self::StaticUplift;

@@ -385,6 +385,59 @@ fn forces_satisfy_the_equilibrium_identities_on_every_variant() {
     for_each_variant!(identities, any_coordinates);
 }
 
+/// `section_forces` with the accelerations of `rocking_rhs` (and of `contact_rhs` at θ = θ' = 0)
+/// gives what `forces_rocking` (`forces_contact`) gives: the same equilibrium, without the solve.
+/// Both sides solve M q'' = F on their own tapes, so the error is relative to the forces' size
+/// times κ, as for the identities.
+fn given_accelerations<V: Variant>() {
+    let mut rng = Rng(0x5eed_acce);
+    let mut worst = Worst::default();
+    for _ in 0..SAMPLES {
+        let phys = structure(&mut rng);
+        let p = params::<V>(&mut rng, &phys);
+        let x = state::<V>(&mut rng, &phys);
+        let ug = rng.range(-2.0, 2.0) * phys.g;
+        let s = if rng.next() < 0.5 { 1.0 } else { -1.0 };
+        let at = || format!("{} x = {x:?}, ug = {ug}, s = {s}", V::NAME);
+        let n = V::NQ;
+        let dx = V::rocking_rhs(&x, ug, s, &p);
+        let qdd = V::Q::from_fn(|i| dx.values()[n + 1 + i]);
+        let (a, b) = (
+            V::forces_rocking(&x, ug, s, &p),
+            V::section_forces(&x, &qdd, ug, s, &p),
+        );
+        let kappa_rocking = kappa(&rocking_mass::<V>(&x, s, &p));
+        let scale = a.iter().map(|f| f.abs()).fold(0.0, f64::max);
+        for k in 0..6 {
+            worst.check("rocking", a[k], b[k], scale, kappa_rocking, &at);
+        }
+        // Full contact: θ = θ' = θ'' = 0, u'' from the contact equations.
+        let xc = contact::<V>(&x);
+        let dxc = V::contact_rhs(&xc, ug, &p);
+        let x0 = V::X::from_fn(|i| match i {
+            0 => 0.0,
+            i if i == n + 1 => 0.0,
+            i => x.values()[i],
+        });
+        let qdd = V::Q::from_fn(|i| if i == 0 { 0.0 } else { dxc.values()[n + i - 1] });
+        let (a, b) = (
+            V::forces_contact(&xc, ug, &p),
+            V::section_forces(&x0, &qdd, ug, s, &p),
+        );
+        let kappa_contact = kappa(&Matrices::of::<V>(&p).mass);
+        let scale = a.iter().map(|f| f.abs()).fold(0.0, f64::max);
+        for k in 0..6 {
+            worst.check("contact", a[k], b[k], scale, kappa_contact, &at);
+        }
+    }
+    worst.report(V::NAME);
+}
+
+#[test]
+fn section_forces_from_the_integrators_accelerations_are_the_solved_ones() {
+    for_each_variant!(given_accelerations, any_coordinates);
+}
+
 fn at_rest<V: Variant>() {
     let mut rng = Rng(0x5eed_0e57);
     for _ in 0..50 {

@@ -138,17 +138,38 @@ fn max_abs(f: impl Fn(f64) -> f64, t_end: f64, samples: usize) -> f64 {
     let values: Vec<f64> = (0..=samples).map(|i| f(i as f64 * dt).abs()).collect();
     for i in 1..samples {
         if values[i] >= values[i - 1] && values[i] >= values[i + 1] && values[i] > best.1 * 0.999 {
-            let (t, v) = rocking_ode::roots::golden_max(
-                |t| f(t).abs(),
-                (i - 1) as f64 * dt,
-                (i + 1) as f64 * dt,
-            );
+            let (t, v) = golden_max(|t| f(t).abs(), (i - 1) as f64 * dt, (i + 1) as f64 * dt);
             if v > best.1 {
                 best = (t, v);
             }
         }
     }
     best.1.max(values[samples]).max(values[0])
+}
+
+/// The largest value of a unimodal `f` on [a, b] by golden sections, to 1e-13 relative in t:
+/// the reference's own search, independent of the solver's (Brent's method in `rocking-ode`).
+fn golden_max(f: impl Fn(f64) -> f64, a: f64, b: f64) -> (f64, f64) {
+    let r = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut a, mut b) = (a, b);
+    let (mut c, mut d) = (b - r * (b - a), a + r * (b - a));
+    let (mut fc, mut fd) = (f(c), f(d));
+    while b - a > 1e-13 * b.abs().max(1.0) {
+        if fc > fd {
+            (b, d, fd) = (d, c, fc);
+            c = b - r * (b - a);
+            fc = f(c);
+        } else {
+            (a, c, fc) = (c, d, fd);
+            d = a + r * (b - a);
+            fd = f(d);
+        }
+    }
+    if fc > fd {
+        (c, fc)
+    } else {
+        (d, fd)
+    }
 }
 
 /// The fixed-base twin of a structure under a sine pulse at the reference preset, against the

@@ -102,29 +102,84 @@ pub fn first_true(mut holds: impl FnMut(f64) -> bool, a: f64, b: f64) -> f64 {
     hi
 }
 
-/// The largest value of `f` on [a, b] where it is unimodal (golden-section search, to 1e-10
-/// relative in t): the time and the value. Outside unimodality it finds a local maximum.
-pub fn golden_max(mut f: impl FnMut(f64) -> f64, a: f64, b: f64) -> (f64, f64) {
-    let r = 0.5 * (5f64.sqrt() - 1.0);
+/// The largest value of `f` on [a, b] where it is unimodal, the time to `xtol` (plus √ε of
+/// its size: a flat maximum is not located more finely by its values): the time and the value.
+/// Brent's method (Brent 1973, *Algorithms for minimization without derivatives*, ch. 5):
+/// parabolic interpolation through the three best points, a golden-section step where the
+/// parabola does not shrink the bracket fast enough. On a smooth maximum it converges
+/// superlinearly: about 10 evaluations where golden sections alone take 35 to 40 (a step of a
+/// force's dense output is evaluated at every one). Outside unimodality it finds a local maximum.
+pub fn brent_max(mut f: impl FnMut(f64) -> f64, a: f64, b: f64, xtol: f64) -> (f64, f64) {
+    // (3 − √5) / 2: the golden section's smaller part.
+    const GOLDEN: f64 = 0.381_966_011_250_105_1;
     let (mut a, mut b) = (a, b);
-    let (mut c, mut d) = (b - r * (b - a), a + r * (b - a));
-    let (mut fc, mut fd) = (f(c), f(d));
-    while b - a > 1e-10 * b.abs().max(1.0) {
-        if fc > fd {
-            (b, d, fd) = (d, c, fc);
-            c = b - r * (b - a);
-            fc = f(c);
+    // The best point x, the second best w, the previous w in v; minimises g = −f.
+    let mut x = a + GOLDEN * (b - a);
+    let mut gx = -f(x);
+    let (mut w, mut gw, mut v, mut gv) = (x, gx, x, gx);
+    // The step taken last (d) and the one before (e).
+    let (mut d, mut e) = (0.0_f64, 0.0_f64);
+    for _ in 0..200 {
+        let m = 0.5 * (a + b);
+        let tol = f64::EPSILON.sqrt() * x.abs() + xtol / 3.0;
+        if (x - m).abs() <= 2.0 * tol - 0.5 * (b - a) {
+            break;
+        }
+        let mut parabolic = false;
+        if e.abs() > tol {
+            let r = (x - w) * (gx - gv);
+            let q = (x - v) * (gx - gw);
+            let mut p = (x - v) * q - (x - w) * r;
+            let mut q = 2.0 * (q - r);
+            if q > 0.0 {
+                p = -p;
+            } else {
+                q = -q;
+            }
+            let e_before = e;
+            e = d;
+            // The parabola's vertex, if it lies inside the bracket and the step is less than
+            // half the one before last.
+            if p.abs() < (0.5 * q * e_before).abs() && p > q * (a - x) && p < q * (b - x) {
+                d = p / q;
+                let u = x + d;
+                if u - a < 2.0 * tol || b - u < 2.0 * tol {
+                    d = if x < m { tol } else { -tol };
+                }
+                parabolic = true;
+            }
+        }
+        if !parabolic {
+            e = if x < m { b - x } else { a - x };
+            d = GOLDEN * e;
+        }
+        let u = if d.abs() >= tol {
+            x + d
         } else {
-            (a, c, fc) = (c, d, fd);
-            d = a + r * (b - a);
-            fd = f(d);
+            x + tol.copysign(d)
+        };
+        let gu = -f(u);
+        if gu <= gx {
+            if u < x {
+                b = x;
+            } else {
+                a = x;
+            }
+            (v, gv, w, gw, x, gx) = (w, gw, x, gx, u, gu);
+        } else {
+            if u < x {
+                a = u;
+            } else {
+                b = u;
+            }
+            if gu <= gw || w == x {
+                (v, gv, w, gw) = (w, gw, u, gu);
+            } else if gu <= gv || v == x || v == w {
+                (v, gv) = (u, gu);
+            }
         }
     }
-    if fc > fd {
-        (c, fc)
-    } else {
-        (d, fd)
-    }
+    (x, -gx)
 }
 
 #[cfg(test)]
@@ -157,10 +212,38 @@ mod tests {
     }
 
     #[test]
-    fn golden_max_finds_the_peak_of_a_cosine() {
+    fn brent_max_finds_the_peak_of_a_cosine_in_few_evaluations() {
         // The value is found to rounding; the time to where cos stops changing (~1e-8 from it).
-        let (t, v) = golden_max(|t| (t - 0.3).cos(), 0.0, 1.0);
+        let mut calls = 0;
+        let (t, v) = brent_max(
+            |t| {
+                calls += 1;
+                (t - 0.3).cos()
+            },
+            0.0,
+            1.0,
+            1e-8,
+        );
         assert!((t - 0.3).abs() < 1e-7 && (v - 1.0).abs() < 1e-16, "{t} {v}");
+        assert!(calls <= 15, "{calls} evaluations");
+        // A peak at an end of the interval: the search closes in on it.
+        let (t, v) = brent_max(|t| t.sin(), 0.0, 1.0, 1e-10);
+        assert!(1.0 - t < 1e-7 && (v - 1f64.sin()).abs() < 1e-7, "{t} {v}");
+    }
+
+    #[test]
+    fn brent_max_locates_a_sharp_peak_to_the_tolerance() {
+        // A quartic peak (flat to fourth order) and a skewed one, at 0.7 of [0, 1].
+        for f in [
+            (|t: f64| 1.0 - (t - 0.7).powi(4)) as fn(f64) -> f64,
+            |t: f64| (t - 0.7) * (-(t - 0.7) * 3.0).exp() - (t - 0.7).abs().powi(3),
+        ] {
+            let (t, v) = brent_max(f, 0.0, 1.0, 1e-9);
+            let best = (0..=100_000)
+                .map(|i| f(i as f64 * 1e-5))
+                .fold(f64::NEG_INFINITY, f64::max);
+            assert!(v >= best - 1e-15, "{t} {v} against {best}");
+        }
     }
 
     #[test]

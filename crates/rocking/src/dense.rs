@@ -27,11 +27,34 @@ pub(crate) trait StepView<X: Array> {
     fn bound(&self, _i: usize) -> f64 {
         f64::INFINITY
     }
+    /// The rate of [`state`](Self::state) at `t`, `[θ', u', θ'', u'']`, where the integrator
+    /// evaluated it from the equations there (a Runge–Kutta step's end): `None` elsewhere.
+    fn exact_rate(&self, _t: f64) -> Option<X> {
+        None
+    }
 }
 
 impl<X: Array, F: Fn(f64) -> X> StepView<X> for F {
     fn state(&self, t: f64) -> X {
         self(t)
+    }
+}
+
+/// A Runge–Kutta step's dense output `dense`, with the rate the integrator evaluated at the
+/// step's end `t_new` (its last stage: the first of the next step).
+pub(crate) struct RkStep<F, X> {
+    pub dense: F,
+    pub t_new: f64,
+    pub rate: X,
+}
+
+impl<X: Array, F: Fn(f64) -> X> StepView<X> for RkStep<F, X> {
+    fn state(&self, t: f64) -> X {
+        (self.dense)(t)
+    }
+
+    fn exact_rate(&self, t: f64) -> Option<X> {
+        (t == self.t_new).then_some(self.rate)
     }
 }
 

@@ -3789,6 +3789,268 @@ pub mod forces_rocking {
     }
 }
 
+/// The outputs of forces_rocking for the accelerations qdd = [theta'', u''] the integrator already has (the state derivative it evaluated at x), without solving M q'' = F again; in full contact x has theta = theta' = 0 and qdd theta'' = 0 (any s), and the outputs are those of forces_contact.
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded. Several coordinates: M_el = EI sum psi_i''(0) u_i / H^2.
+///
+/// # Inputs
+///
+/// - `x: &[f64; 8]`: state while rocking — `theta`, `u_1`, `u_2`, `u_3`, `theta_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`
+/// - `qdd: &[f64; 4]`: accelerations [theta'', u''] (the rigid column's u'' is 0) — `theta_ddot`, `u_ddot_1`, `u_ddot_2`, `u_ddot_3`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_2_2`, `c_2_3`, `c_3_3`
+///
+/// # Output
+///
+/// `fs: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 152 (81 mul, 42 add, 22 sub, 2 sq, 2 twice, 1 cos, 1 div, 1 sin).
+#[inline]
+#[must_use]
+pub fn section_forces(x: &[f64; 8], qdd: &[f64; 4], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[4]; // m_c
+    let w1: f64 = 0.3914958780198129;
+    let w2 = x[1]; // u_1
+    let w3 = ug; // ug
+    let w4 = x[0]; // theta
+    let w5 = w4.sin();
+    let w6 = w3 * w5;
+    let w7 = qdd[0]; // theta_ddot
+    let w8 = s; // s
+    let w9 = p[1]; // b
+    let w10 = w8 * w9;
+    let w11 = w7 * w10;
+    let w12 = w6 + w11;
+    let w13 = p[8]; // g
+    let w14 = w4.cos();
+    let w15 = w13 * w14;
+    let w16 = w12 + w15;
+    let w17 = w2 * w16;
+    let w18 = w1 * w17;
+    let w19: f64 = 0.5;
+    let w20 = p[0]; // h
+    let w21 = x[4]; // theta_dot
+    let w22 = w21 * w21;
+    let w23 = w22 * w10;
+    let w24 = w3 * w14;
+    let w25 = w23 + w24;
+    let w26 = w13 * w5;
+    let w27 = w25 - w26;
+    let w28 = w20 * w27;
+    let w29 = w19 * w28;
+    let w30 = w18 - w29;
+    let w31: f64 = -0.21696794755535964;
+    let w32 = x[2]; // u_2
+    let w33 = w32 * w16;
+    let w34 = w31 * w33;
+    let w35 = w30 + w34;
+    let w36: f64 = 0.12721264843305286;
+    let w37 = x[3]; // u_3
+    let w38 = w37 * w16;
+    let w39 = w36 * w38;
+    let w40 = w35 + w39;
+    let w41: f64 = 0.16666666666666666;
+    let w42 = w7 * w20;
+    let w43 = 2.0 * w42;
+    let w44 = w20 * w43;
+    let w45 = w41 * w44;
+    let w46 = w40 - w45;
+    let w47: f64 = 0.2844128718549554;
+    let w48 = qdd[1]; // u_ddot_1
+    let w49 = w20 * w48;
+    let w50 = w47 * w49;
+    let w51 = w46 - w50;
+    let w52: f64 = -0.04538339344319348;
+    let w53 = qdd[2]; // u_ddot_2
+    let w54 = w20 * w53;
+    let w55 = w52 * w54;
+    let w56 = w51 - w55;
+    let w57: f64 = 0.016208187184872217;
+    let w58 = qdd[3]; // u_ddot_3
+    let w59 = w20 * w58;
+    let w60 = w57 * w59;
+    let w61 = w56 - w60;
+    let w62: f64 = 0.125;
+    let w63 = 2.0 * w21;
+    let w64 = x[5]; // u_dot_1
+    let w65 = w63 * w64;
+    let w66 = w65 * w2;
+    let w67 = w7 * w2;
+    let w68 = w2 * w67;
+    let w69 = w66 + w68;
+    let w70 = w67 + w65;
+    let w71 = w2 * w70;
+    let w72 = w69 + w71;
+    let w73 = w62 * w72;
+    let w74 = w61 - w73;
+    let w75 = x[6]; // u_dot_2
+    let w76 = w63 * w75;
+    let w77 = w76 * w32;
+    let w78 = w7 * w32;
+    let w79 = w32 * w78;
+    let w80 = w77 + w79;
+    let w81 = w78 + w76;
+    let w82 = w32 * w81;
+    let w83 = w80 + w82;
+    let w84 = w62 * w83;
+    let w85 = w74 - w84;
+    let w86 = x[7]; // u_dot_3
+    let w87 = w63 * w86;
+    let w88 = w87 * w37;
+    let w89 = w7 * w37;
+    let w90 = w37 * w89;
+    let w91 = w88 + w90;
+    let w92 = w89 + w87;
+    let w93 = w37 * w92;
+    let w94 = w91 + w93;
+    let w95 = w62 * w94;
+    let w96 = w85 - w95;
+    let w97 = w0 * w96;
+    let w98 = p[3]; // m
+    let w99 = w2 + w32;
+    let w100 = w99 + w37;
+    let w101 = w100 - w10;
+    let w102 = w7 * w101;
+    let w103 = w22 * w20;
+    let w104 = w102 + w103;
+    let w105 = w65 + w76;
+    let w106 = w105 + w87;
+    let w107 = w104 + w106;
+    let w108 = w6 - w107;
+    let w109 = w108 + w15;
+    let w110 = w100 * w109;
+    let w111 = w22 * w101;
+    let w112 = w42 - w111;
+    let w113 = w48 + w53;
+    let w114 = w113 + w58;
+    let w115 = w112 + w114;
+    let w116 = w115 + w24;
+    let w117 = w116 - w26;
+    let w118 = w20 * w117;
+    let w119 = w110 - w118;
+    let w120 = w98 * w119;
+    let w121 = w97 + w120;
+    let o0 = w121; // moment
+    let w122 = w20 * w7;
+    let w123 = w19 * w122;
+    let w124 = w27 + w123;
+    let w125 = w2 * w22;
+    let w126 = w48 - w125;
+    let w127 = w1 * w126;
+    let w128 = w124 + w127;
+    let w129 = w32 * w22;
+    let w130 = w53 - w129;
+    let w131 = w31 * w130;
+    let w132 = w128 + w131;
+    let w133 = w37 * w22;
+    let w134 = w58 - w133;
+    let w135 = w36 * w134;
+    let w136 = w132 + w135;
+    let w137 = w0 * w136;
+    let w138 = w98 * w117;
+    let w139 = w137 + w138;
+    let o1 = w139; // shear
+    let w140 = w20 * w22;
+    let w141 = w19 * w140;
+    let w142 = w16 - w141;
+    let w143 = w2 * w7;
+    let w144 = w65 + w143;
+    let w145 = w1 * w144;
+    let w146 = w142 - w145;
+    let w147 = w32 * w7;
+    let w148 = w76 + w147;
+    let w149 = w31 * w148;
+    let w150 = w146 - w149;
+    let w151 = w37 * w7;
+    let w152 = w87 + w151;
+    let w153 = w36 * w152;
+    let w154 = w150 - w153;
+    let w155 = w0 * w154;
+    let w156 = w98 * w109;
+    let w157 = w155 + w156;
+    let o2 = w157; // axial
+    let w158: f64 = 3.5160152685001513;
+    let w159 = p[2]; // ei
+    let w160 = w20 * w20;
+    let w161 = w159 / w160;
+    let w162 = w158 * w161;
+    let w163 = w162 * w2;
+    let w164: f64 = -22.03449156466677;
+    let w165 = w164 * w161;
+    let w166 = w165 * w32;
+    let w167 = w163 + w166;
+    let w168: f64 = 61.697214413549105;
+    let w169 = w168 * w161;
+    let w170 = w169 * w37;
+    let w171 = w167 + w170;
+    let o3 = w171; // moment_elastic
+    let w172 = p[5]; // m_b
+    let w173 = w172 * w27;
+    let w174 = w139 + w173;
+    let w175 = w14 * w174;
+    let w176 = w11 + w6;
+    let w177 = w176 + w15;
+    let w178 = w172 * w177;
+    let w179 = w157 + w178;
+    let w180 = w5 * w179;
+    let w181 = w175 + w180;
+    let o4 = w181; // reaction_h
+    let w182 = w14 * w179;
+    let w183 = w5 * w174;
+    let w184 = w182 - w183;
+    let o5 = w184; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `fs` of [`section_forces()`].
+pub mod section_forces {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `x` of [`section_forces()`](super::section_forces()).
+    pub mod x {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `u_1`.
+        pub const U_1: usize = 1;
+        /// Index of `u_2`.
+        pub const U_2: usize = 2;
+        /// Index of `u_3`.
+        pub const U_3: usize = 3;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 4;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 5;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 6;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 7;
+    }
+
+    /// Indices of the elements of input `qdd` of [`section_forces()`](super::section_forces()).
+    pub mod qdd {
+        /// Index of `theta_ddot`.
+        pub const THETA_DDOT: usize = 0;
+        /// Index of `u_ddot_1`.
+        pub const U_DDOT_1: usize = 1;
+        /// Index of `u_ddot_2`.
+        pub const U_DDOT_2: usize = 2;
+        /// Index of `u_ddot_3`.
+        pub const U_DDOT_3: usize = 3;
+    }
+}
+
 /// Quasi-static uplift about the right corner (s = +1; the left corner is its mirror), from the flexible exact-angle twin: the total weight W, the base moment W B at which the base uplifts (f_s = s M_b - W B), the ground acceleration ug (< 0) that lifts the base when applied so slowly that u' = u'' = 0, the deflection u then, and the elastic moment EI psi''(0) u / H^2 at the column base then, which differs from W B by the P-Delta moment and the shape function's error (docs/design-forces.md). Several coordinates: u_uplift_i, the static deflection K u = -Gamma ug then.
 ///
 /// # Inputs
@@ -5491,6 +5753,11 @@ impl crate::Variant for CantileverModes3 {
     }
 
     #[inline]
+    fn section_forces(x: &[f64; 8], qdd: &[f64; 4], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+        section_forces(x, qdd, ug, s, p)
+    }
+
+    #[inline]
     fn static_uplift(p: &Params) -> [f64; 7] {
         static_uplift(p)
     }
@@ -5654,6 +5921,17 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             let s: f64 = match s { [v] => *v, _ => return None };
             let p: &Params = (*p).try_into().ok()?;
             Some(forces_rocking(x, ug, s, p).to_vec())
+        }
+        "section_forces" => {
+            let [x, qdd, ug, s, p] = inputs else {
+                return None;
+            };
+            let x: &[f64; 8] = (*x).try_into().ok()?;
+            let qdd: &[f64; 4] = (*qdd).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(section_forces(x, qdd, ug, s, p).to_vec())
         }
         "static_uplift" => {
             let [p] = inputs else {

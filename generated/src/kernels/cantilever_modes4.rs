@@ -4769,6 +4769,310 @@ pub mod forces_rocking {
     }
 }
 
+/// The outputs of forces_rocking for the accelerations qdd = [theta'', u''] the integrator already has (the state derivative it evaluated at x), without solving M q'' = F again; in full contact x has theta = theta' = 0 and qdd theta'' = 0 (any s), and the outputs are those of forces_contact.
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded. Several coordinates: M_el = EI sum psi_i''(0) u_i / H^2.
+///
+/// # Inputs
+///
+/// - `x: &[f64; 10]`: state while rocking — `theta`, `u_1`, `u_2`, `u_3`, `u_4`, `theta_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`, `u_dot_4`
+/// - `qdd: &[f64; 5]`: accelerations [theta'', u''] (the rigid column's u'' is 0) — `theta_ddot`, `u_ddot_1`, `u_ddot_2`, `u_ddot_3`, `u_ddot_4`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_1_4`, `c_2_2`, `c_2_3`, `c_2_4`, `c_3_3`, `c_3_4`, `c_4_4`
+///
+/// # Output
+///
+/// `fs: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 182 (97 mul, 52 add, 26 sub, 2 sq, 2 twice, 1 cos, 1 div, 1 sin).
+#[inline]
+#[must_use]
+pub fn section_forces(x: &[f64; 10], qdd: &[f64; 5], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[4]; // m_c
+    let w1: f64 = 0.3914958780198129;
+    let w2 = x[1]; // u_1
+    let w3 = ug; // ug
+    let w4 = x[0]; // theta
+    let w5 = w4.sin();
+    let w6 = w3 * w5;
+    let w7 = qdd[0]; // theta_ddot
+    let w8 = s; // s
+    let w9 = p[1]; // b
+    let w10 = w8 * w9;
+    let w11 = w7 * w10;
+    let w12 = w6 + w11;
+    let w13 = p[8]; // g
+    let w14 = w4.cos();
+    let w15 = w13 * w14;
+    let w16 = w12 + w15;
+    let w17 = w2 * w16;
+    let w18 = w1 * w17;
+    let w19: f64 = 0.5;
+    let w20 = p[0]; // h
+    let w21 = x[5]; // theta_dot
+    let w22 = w21 * w21;
+    let w23 = w22 * w10;
+    let w24 = w3 * w14;
+    let w25 = w23 + w24;
+    let w26 = w13 * w5;
+    let w27 = w25 - w26;
+    let w28 = w20 * w27;
+    let w29 = w19 * w28;
+    let w30 = w18 - w29;
+    let w31: f64 = -0.21696794755535964;
+    let w32 = x[2]; // u_2
+    let w33 = w32 * w16;
+    let w34 = w31 * w33;
+    let w35 = w30 + w34;
+    let w36: f64 = 0.12721264843305286;
+    let w37 = x[3]; // u_3
+    let w38 = w37 * w16;
+    let w39 = w36 * w38;
+    let w40 = w35 + w39;
+    let w41: f64 = -0.09094901081852429;
+    let w42 = x[4]; // u_4
+    let w43 = w42 * w16;
+    let w44 = w41 * w43;
+    let w45 = w40 + w44;
+    let w46: f64 = 0.16666666666666666;
+    let w47 = w7 * w20;
+    let w48 = 2.0 * w47;
+    let w49 = w20 * w48;
+    let w50 = w46 * w49;
+    let w51 = w45 - w50;
+    let w52: f64 = 0.2844128718549554;
+    let w53 = qdd[1]; // u_ddot_1
+    let w54 = w20 * w53;
+    let w55 = w52 * w54;
+    let w56 = w51 - w55;
+    let w57: f64 = -0.04538339344319348;
+    let w58 = qdd[2]; // u_ddot_2
+    let w59 = w20 * w58;
+    let w60 = w57 * w59;
+    let w61 = w56 - w60;
+    let w62: f64 = 0.016208187184872217;
+    let w63 = qdd[3]; // u_ddot_3
+    let w64 = w20 * w63;
+    let w65 = w62 * w64;
+    let w66 = w61 - w65;
+    let w67: f64 = -0.008271167510425316;
+    let w68 = qdd[4]; // u_ddot_4
+    let w69 = w20 * w68;
+    let w70 = w67 * w69;
+    let w71 = w66 - w70;
+    let w72: f64 = 0.125;
+    let w73 = 2.0 * w21;
+    let w74 = x[6]; // u_dot_1
+    let w75 = w73 * w74;
+    let w76 = w75 * w2;
+    let w77 = w7 * w2;
+    let w78 = w2 * w77;
+    let w79 = w76 + w78;
+    let w80 = w77 + w75;
+    let w81 = w2 * w80;
+    let w82 = w79 + w81;
+    let w83 = w72 * w82;
+    let w84 = w71 - w83;
+    let w85 = x[7]; // u_dot_2
+    let w86 = w73 * w85;
+    let w87 = w86 * w32;
+    let w88 = w7 * w32;
+    let w89 = w32 * w88;
+    let w90 = w87 + w89;
+    let w91 = w88 + w86;
+    let w92 = w32 * w91;
+    let w93 = w90 + w92;
+    let w94 = w72 * w93;
+    let w95 = w84 - w94;
+    let w96 = x[8]; // u_dot_3
+    let w97 = w73 * w96;
+    let w98 = w97 * w37;
+    let w99 = w7 * w37;
+    let w100 = w37 * w99;
+    let w101 = w98 + w100;
+    let w102 = w99 + w97;
+    let w103 = w37 * w102;
+    let w104 = w101 + w103;
+    let w105 = w72 * w104;
+    let w106 = w95 - w105;
+    let w107 = x[9]; // u_dot_4
+    let w108 = w73 * w107;
+    let w109 = w108 * w42;
+    let w110 = w7 * w42;
+    let w111 = w42 * w110;
+    let w112 = w109 + w111;
+    let w113 = w110 + w108;
+    let w114 = w42 * w113;
+    let w115 = w112 + w114;
+    let w116 = w72 * w115;
+    let w117 = w106 - w116;
+    let w118 = w0 * w117;
+    let w119 = p[3]; // m
+    let w120 = w2 + w32;
+    let w121 = w120 + w37;
+    let w122 = w121 + w42;
+    let w123 = w122 - w10;
+    let w124 = w7 * w123;
+    let w125 = w22 * w20;
+    let w126 = w124 + w125;
+    let w127 = w75 + w86;
+    let w128 = w127 + w97;
+    let w129 = w128 + w108;
+    let w130 = w126 + w129;
+    let w131 = w6 - w130;
+    let w132 = w131 + w15;
+    let w133 = w122 * w132;
+    let w134 = w22 * w123;
+    let w135 = w47 - w134;
+    let w136 = w53 + w58;
+    let w137 = w136 + w63;
+    let w138 = w137 + w68;
+    let w139 = w135 + w138;
+    let w140 = w139 + w24;
+    let w141 = w140 - w26;
+    let w142 = w20 * w141;
+    let w143 = w133 - w142;
+    let w144 = w119 * w143;
+    let w145 = w118 + w144;
+    let o0 = w145; // moment
+    let w146 = w20 * w7;
+    let w147 = w19 * w146;
+    let w148 = w27 + w147;
+    let w149 = w2 * w22;
+    let w150 = w53 - w149;
+    let w151 = w1 * w150;
+    let w152 = w148 + w151;
+    let w153 = w32 * w22;
+    let w154 = w58 - w153;
+    let w155 = w31 * w154;
+    let w156 = w152 + w155;
+    let w157 = w37 * w22;
+    let w158 = w63 - w157;
+    let w159 = w36 * w158;
+    let w160 = w156 + w159;
+    let w161 = w42 * w22;
+    let w162 = w68 - w161;
+    let w163 = w41 * w162;
+    let w164 = w160 + w163;
+    let w165 = w0 * w164;
+    let w166 = w119 * w141;
+    let w167 = w165 + w166;
+    let o1 = w167; // shear
+    let w168 = w20 * w22;
+    let w169 = w19 * w168;
+    let w170 = w16 - w169;
+    let w171 = w2 * w7;
+    let w172 = w75 + w171;
+    let w173 = w1 * w172;
+    let w174 = w170 - w173;
+    let w175 = w32 * w7;
+    let w176 = w86 + w175;
+    let w177 = w31 * w176;
+    let w178 = w174 - w177;
+    let w179 = w37 * w7;
+    let w180 = w97 + w179;
+    let w181 = w36 * w180;
+    let w182 = w178 - w181;
+    let w183 = w42 * w7;
+    let w184 = w108 + w183;
+    let w185 = w41 * w184;
+    let w186 = w182 - w185;
+    let w187 = w0 * w186;
+    let w188 = w119 * w132;
+    let w189 = w187 + w188;
+    let o2 = w189; // axial
+    let w190: f64 = 3.5160152685001513;
+    let w191 = p[2]; // ei
+    let w192 = w20 * w20;
+    let w193 = w191 / w192;
+    let w194 = w190 * w193;
+    let w195 = w194 * w2;
+    let w196: f64 = -22.03449156466677;
+    let w197 = w196 * w193;
+    let w198 = w197 * w32;
+    let w199 = w195 + w198;
+    let w200: f64 = 61.697214413549105;
+    let w201 = w200 * w193;
+    let w202 = w201 * w37;
+    let w203 = w199 + w202;
+    let w204: f64 = -120.90191605230572;
+    let w205 = w204 * w193;
+    let w206 = w205 * w42;
+    let w207 = w203 + w206;
+    let o3 = w207; // moment_elastic
+    let w208 = p[5]; // m_b
+    let w209 = w208 * w27;
+    let w210 = w167 + w209;
+    let w211 = w14 * w210;
+    let w212 = w11 + w6;
+    let w213 = w212 + w15;
+    let w214 = w208 * w213;
+    let w215 = w189 + w214;
+    let w216 = w5 * w215;
+    let w217 = w211 + w216;
+    let o4 = w217; // reaction_h
+    let w218 = w14 * w215;
+    let w219 = w5 * w210;
+    let w220 = w218 - w219;
+    let o5 = w220; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `fs` of [`section_forces()`].
+pub mod section_forces {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `x` of [`section_forces()`](super::section_forces()).
+    pub mod x {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `u_1`.
+        pub const U_1: usize = 1;
+        /// Index of `u_2`.
+        pub const U_2: usize = 2;
+        /// Index of `u_3`.
+        pub const U_3: usize = 3;
+        /// Index of `u_4`.
+        pub const U_4: usize = 4;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 5;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 6;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 7;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 8;
+        /// Index of `u_dot_4`.
+        pub const U_DOT_4: usize = 9;
+    }
+
+    /// Indices of the elements of input `qdd` of [`section_forces()`](super::section_forces()).
+    pub mod qdd {
+        /// Index of `theta_ddot`.
+        pub const THETA_DDOT: usize = 0;
+        /// Index of `u_ddot_1`.
+        pub const U_DDOT_1: usize = 1;
+        /// Index of `u_ddot_2`.
+        pub const U_DDOT_2: usize = 2;
+        /// Index of `u_ddot_3`.
+        pub const U_DDOT_3: usize = 3;
+        /// Index of `u_ddot_4`.
+        pub const U_DDOT_4: usize = 4;
+    }
+}
+
 /// Quasi-static uplift about the right corner (s = +1; the left corner is its mirror), from the flexible exact-angle twin: the total weight W, the base moment W B at which the base uplifts (f_s = s M_b - W B), the ground acceleration ug (< 0) that lifts the base when applied so slowly that u' = u'' = 0, the deflection u then, and the elastic moment EI psi''(0) u / H^2 at the column base then, which differs from W B by the P-Delta moment and the shape function's error (docs/design-forces.md). Several coordinates: u_uplift_i, the static deflection K u = -Gamma ug then.
 ///
 /// # Inputs
@@ -6803,6 +7107,11 @@ impl crate::Variant for CantileverModes4 {
     }
 
     #[inline]
+    fn section_forces(x: &[f64; 10], qdd: &[f64; 5], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+        section_forces(x, qdd, ug, s, p)
+    }
+
+    #[inline]
     fn static_uplift(p: &Params) -> [f64; 8] {
         static_uplift(p)
     }
@@ -6966,6 +7275,17 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             let s: f64 = match s { [v] => *v, _ => return None };
             let p: &Params = (*p).try_into().ok()?;
             Some(forces_rocking(x, ug, s, p).to_vec())
+        }
+        "section_forces" => {
+            let [x, qdd, ug, s, p] = inputs else {
+                return None;
+            };
+            let x: &[f64; 10] = (*x).try_into().ok()?;
+            let qdd: &[f64; 5] = (*qdd).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(section_forces(x, qdd, ug, s, p).to_vec())
         }
         "static_uplift" => {
             let [p] = inputs else {

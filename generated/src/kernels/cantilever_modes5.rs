@@ -5791,6 +5791,352 @@ pub mod forces_rocking {
     }
 }
 
+/// The outputs of forces_rocking for the accelerations qdd = [theta'', u''] the integrator already has (the state derivative it evaluated at x), without solving M q'' = F again; in full contact x has theta = theta' = 0 and qdd theta'' = 0 (any s), and the outputs are those of forces_contact.
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded. Several coordinates: M_el = EI sum psi_i''(0) u_i / H^2.
+///
+/// # Inputs
+///
+/// - `x: &[f64; 12]`: state while rocking — `theta`, `u_1`, `u_2`, `u_3`, `u_4`, `u_5`, `theta_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`, `u_dot_4`, `u_dot_5`
+/// - `qdd: &[f64; 6]`: accelerations [theta'', u''] (the rigid column's u'' is 0) — `theta_ddot`, `u_ddot_1`, `u_ddot_2`, `u_ddot_3`, `u_ddot_4`, `u_ddot_5`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_1_4`, `c_1_5`, `c_2_2`, `c_2_3`, `c_2_4`, `c_2_5`, `c_3_3`, `c_3_4`, `c_3_5`, `c_4_4`, `c_4_5`, `c_5_5`
+///
+/// # Output
+///
+/// `fs: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 212 (113 mul, 62 add, 30 sub, 2 sq, 2 twice, 1 cos, 1 div, 1 sin).
+#[inline]
+#[must_use]
+pub fn section_forces(x: &[f64; 12], qdd: &[f64; 6], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[4]; // m_c
+    let w1: f64 = 0.3914958780198129;
+    let w2 = x[1]; // u_1
+    let w3 = ug; // ug
+    let w4 = x[0]; // theta
+    let w5 = w4.sin();
+    let w6 = w3 * w5;
+    let w7 = qdd[0]; // theta_ddot
+    let w8 = s; // s
+    let w9 = p[1]; // b
+    let w10 = w8 * w9;
+    let w11 = w7 * w10;
+    let w12 = w6 + w11;
+    let w13 = p[8]; // g
+    let w14 = w4.cos();
+    let w15 = w13 * w14;
+    let w16 = w12 + w15;
+    let w17 = w2 * w16;
+    let w18 = w1 * w17;
+    let w19: f64 = 0.5;
+    let w20 = p[0]; // h
+    let w21 = x[6]; // theta_dot
+    let w22 = w21 * w21;
+    let w23 = w22 * w10;
+    let w24 = w3 * w14;
+    let w25 = w23 + w24;
+    let w26 = w13 * w5;
+    let w27 = w25 - w26;
+    let w28 = w20 * w27;
+    let w29 = w19 * w28;
+    let w30 = w18 - w29;
+    let w31: f64 = -0.21696794755535964;
+    let w32 = x[2]; // u_2
+    let w33 = w32 * w16;
+    let w34 = w31 * w33;
+    let w35 = w30 + w34;
+    let w36: f64 = 0.12721264843305286;
+    let w37 = x[3]; // u_3
+    let w38 = w37 * w16;
+    let w39 = w36 * w38;
+    let w40 = w35 + w39;
+    let w41: f64 = -0.09094901081852429;
+    let w42 = x[4]; // u_4
+    let w43 = w42 * w16;
+    let w44 = w41 * w43;
+    let w45 = w40 + w44;
+    let w46: f64 = 0.07073542044968367;
+    let w47 = x[5]; // u_5
+    let w48 = w47 * w16;
+    let w49 = w46 * w48;
+    let w50 = w45 + w49;
+    let w51: f64 = 0.16666666666666666;
+    let w52 = w7 * w20;
+    let w53 = 2.0 * w52;
+    let w54 = w20 * w53;
+    let w55 = w51 * w54;
+    let w56 = w50 - w55;
+    let w57: f64 = 0.2844128718549554;
+    let w58 = qdd[1]; // u_ddot_1
+    let w59 = w20 * w58;
+    let w60 = w57 * w59;
+    let w61 = w56 - w60;
+    let w62: f64 = -0.04538339344319348;
+    let w63 = qdd[2]; // u_ddot_2
+    let w64 = w20 * w63;
+    let w65 = w62 * w64;
+    let w66 = w61 - w65;
+    let w67: f64 = 0.016208187184872217;
+    let w68 = qdd[3]; // u_ddot_3
+    let w69 = w20 * w68;
+    let w70 = w67 * w69;
+    let w71 = w66 - w70;
+    let w72: f64 = -0.008271167510425316;
+    let w73 = qdd[4]; // u_ddot_4
+    let w74 = w20 * w73;
+    let w75 = w72 * w74;
+    let w76 = w71 - w75;
+    let w77: f64 = 0.0050035142152869685;
+    let w78 = qdd[5]; // u_ddot_5
+    let w79 = w20 * w78;
+    let w80 = w77 * w79;
+    let w81 = w76 - w80;
+    let w82: f64 = 0.125;
+    let w83 = 2.0 * w21;
+    let w84 = x[7]; // u_dot_1
+    let w85 = w83 * w84;
+    let w86 = w85 * w2;
+    let w87 = w7 * w2;
+    let w88 = w2 * w87;
+    let w89 = w86 + w88;
+    let w90 = w87 + w85;
+    let w91 = w2 * w90;
+    let w92 = w89 + w91;
+    let w93 = w82 * w92;
+    let w94 = w81 - w93;
+    let w95 = x[8]; // u_dot_2
+    let w96 = w83 * w95;
+    let w97 = w96 * w32;
+    let w98 = w7 * w32;
+    let w99 = w32 * w98;
+    let w100 = w97 + w99;
+    let w101 = w98 + w96;
+    let w102 = w32 * w101;
+    let w103 = w100 + w102;
+    let w104 = w82 * w103;
+    let w105 = w94 - w104;
+    let w106 = x[9]; // u_dot_3
+    let w107 = w83 * w106;
+    let w108 = w107 * w37;
+    let w109 = w7 * w37;
+    let w110 = w37 * w109;
+    let w111 = w108 + w110;
+    let w112 = w109 + w107;
+    let w113 = w37 * w112;
+    let w114 = w111 + w113;
+    let w115 = w82 * w114;
+    let w116 = w105 - w115;
+    let w117 = x[10]; // u_dot_4
+    let w118 = w83 * w117;
+    let w119 = w118 * w42;
+    let w120 = w7 * w42;
+    let w121 = w42 * w120;
+    let w122 = w119 + w121;
+    let w123 = w120 + w118;
+    let w124 = w42 * w123;
+    let w125 = w122 + w124;
+    let w126 = w82 * w125;
+    let w127 = w116 - w126;
+    let w128 = x[11]; // u_dot_5
+    let w129 = w83 * w128;
+    let w130 = w129 * w47;
+    let w131 = w7 * w47;
+    let w132 = w47 * w131;
+    let w133 = w130 + w132;
+    let w134 = w131 + w129;
+    let w135 = w47 * w134;
+    let w136 = w133 + w135;
+    let w137 = w82 * w136;
+    let w138 = w127 - w137;
+    let w139 = w0 * w138;
+    let w140 = p[3]; // m
+    let w141 = w2 + w32;
+    let w142 = w141 + w37;
+    let w143 = w142 + w42;
+    let w144 = w143 + w47;
+    let w145 = w144 - w10;
+    let w146 = w7 * w145;
+    let w147 = w22 * w20;
+    let w148 = w146 + w147;
+    let w149 = w85 + w96;
+    let w150 = w149 + w107;
+    let w151 = w150 + w118;
+    let w152 = w151 + w129;
+    let w153 = w148 + w152;
+    let w154 = w6 - w153;
+    let w155 = w154 + w15;
+    let w156 = w144 * w155;
+    let w157 = w22 * w145;
+    let w158 = w52 - w157;
+    let w159 = w58 + w63;
+    let w160 = w159 + w68;
+    let w161 = w160 + w73;
+    let w162 = w161 + w78;
+    let w163 = w158 + w162;
+    let w164 = w163 + w24;
+    let w165 = w164 - w26;
+    let w166 = w20 * w165;
+    let w167 = w156 - w166;
+    let w168 = w140 * w167;
+    let w169 = w139 + w168;
+    let o0 = w169; // moment
+    let w170 = w20 * w7;
+    let w171 = w19 * w170;
+    let w172 = w27 + w171;
+    let w173 = w2 * w22;
+    let w174 = w58 - w173;
+    let w175 = w1 * w174;
+    let w176 = w172 + w175;
+    let w177 = w32 * w22;
+    let w178 = w63 - w177;
+    let w179 = w31 * w178;
+    let w180 = w176 + w179;
+    let w181 = w37 * w22;
+    let w182 = w68 - w181;
+    let w183 = w36 * w182;
+    let w184 = w180 + w183;
+    let w185 = w42 * w22;
+    let w186 = w73 - w185;
+    let w187 = w41 * w186;
+    let w188 = w184 + w187;
+    let w189 = w47 * w22;
+    let w190 = w78 - w189;
+    let w191 = w46 * w190;
+    let w192 = w188 + w191;
+    let w193 = w0 * w192;
+    let w194 = w140 * w165;
+    let w195 = w193 + w194;
+    let o1 = w195; // shear
+    let w196 = w20 * w22;
+    let w197 = w19 * w196;
+    let w198 = w16 - w197;
+    let w199 = w2 * w7;
+    let w200 = w85 + w199;
+    let w201 = w1 * w200;
+    let w202 = w198 - w201;
+    let w203 = w32 * w7;
+    let w204 = w96 + w203;
+    let w205 = w31 * w204;
+    let w206 = w202 - w205;
+    let w207 = w37 * w7;
+    let w208 = w107 + w207;
+    let w209 = w36 * w208;
+    let w210 = w206 - w209;
+    let w211 = w42 * w7;
+    let w212 = w118 + w211;
+    let w213 = w41 * w212;
+    let w214 = w210 - w213;
+    let w215 = w47 * w7;
+    let w216 = w129 + w215;
+    let w217 = w46 * w216;
+    let w218 = w214 - w217;
+    let w219 = w0 * w218;
+    let w220 = w140 * w155;
+    let w221 = w219 + w220;
+    let o2 = w221; // axial
+    let w222: f64 = 3.5160152685001513;
+    let w223 = p[2]; // ei
+    let w224 = w20 * w20;
+    let w225 = w223 / w224;
+    let w226 = w222 * w225;
+    let w227 = w226 * w2;
+    let w228: f64 = -22.03449156466677;
+    let w229 = w228 * w225;
+    let w230 = w229 * w32;
+    let w231 = w227 + w230;
+    let w232: f64 = 61.697214413549105;
+    let w233 = w232 * w225;
+    let w234 = w233 * w37;
+    let w235 = w231 + w234;
+    let w236: f64 = -120.90191605230572;
+    let w237 = w236 * w225;
+    let w238 = w237 * w42;
+    let w239 = w235 + w238;
+    let w240: f64 = 199.85953011680346;
+    let w241 = w240 * w225;
+    let w242 = w241 * w47;
+    let w243 = w239 + w242;
+    let o3 = w243; // moment_elastic
+    let w244 = p[5]; // m_b
+    let w245 = w244 * w27;
+    let w246 = w195 + w245;
+    let w247 = w14 * w246;
+    let w248 = w11 + w6;
+    let w249 = w248 + w15;
+    let w250 = w244 * w249;
+    let w251 = w221 + w250;
+    let w252 = w5 * w251;
+    let w253 = w247 + w252;
+    let o4 = w253; // reaction_h
+    let w254 = w14 * w251;
+    let w255 = w5 * w246;
+    let w256 = w254 - w255;
+    let o5 = w256; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `fs` of [`section_forces()`].
+pub mod section_forces {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `x` of [`section_forces()`](super::section_forces()).
+    pub mod x {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `u_1`.
+        pub const U_1: usize = 1;
+        /// Index of `u_2`.
+        pub const U_2: usize = 2;
+        /// Index of `u_3`.
+        pub const U_3: usize = 3;
+        /// Index of `u_4`.
+        pub const U_4: usize = 4;
+        /// Index of `u_5`.
+        pub const U_5: usize = 5;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 6;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 7;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 8;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 9;
+        /// Index of `u_dot_4`.
+        pub const U_DOT_4: usize = 10;
+        /// Index of `u_dot_5`.
+        pub const U_DOT_5: usize = 11;
+    }
+
+    /// Indices of the elements of input `qdd` of [`section_forces()`](super::section_forces()).
+    pub mod qdd {
+        /// Index of `theta_ddot`.
+        pub const THETA_DDOT: usize = 0;
+        /// Index of `u_ddot_1`.
+        pub const U_DDOT_1: usize = 1;
+        /// Index of `u_ddot_2`.
+        pub const U_DDOT_2: usize = 2;
+        /// Index of `u_ddot_3`.
+        pub const U_DDOT_3: usize = 3;
+        /// Index of `u_ddot_4`.
+        pub const U_DDOT_4: usize = 4;
+        /// Index of `u_ddot_5`.
+        pub const U_DDOT_5: usize = 5;
+    }
+}
+
 /// Quasi-static uplift about the right corner (s = +1; the left corner is its mirror), from the flexible exact-angle twin: the total weight W, the base moment W B at which the base uplifts (f_s = s M_b - W B), the ground acceleration ug (< 0) that lifts the base when applied so slowly that u' = u'' = 0, the deflection u then, and the elastic moment EI psi''(0) u / H^2 at the column base then, which differs from W B by the P-Delta moment and the shape function's error (docs/design-forces.md). Several coordinates: u_uplift_i, the static deflection K u = -Gamma ug then.
 ///
 /// # Inputs
@@ -8173,6 +8519,11 @@ impl crate::Variant for CantileverModes5 {
     }
 
     #[inline]
+    fn section_forces(x: &[f64; 12], qdd: &[f64; 6], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+        section_forces(x, qdd, ug, s, p)
+    }
+
+    #[inline]
     fn static_uplift(p: &Params) -> [f64; 9] {
         static_uplift(p)
     }
@@ -8336,6 +8687,17 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             let s: f64 = match s { [v] => *v, _ => return None };
             let p: &Params = (*p).try_into().ok()?;
             Some(forces_rocking(x, ug, s, p).to_vec())
+        }
+        "section_forces" => {
+            let [x, qdd, ug, s, p] = inputs else {
+                return None;
+            };
+            let x: &[f64; 12] = (*x).try_into().ok()?;
+            let qdd: &[f64; 6] = (*qdd).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(section_forces(x, qdd, ug, s, p).to_vec())
         }
         "static_uplift" => {
             let [p] = inputs else {

@@ -6883,6 +6883,394 @@ pub mod forces_rocking {
     }
 }
 
+/// The outputs of forces_rocking for the accelerations qdd = [theta'', u''] the integrator already has (the state derivative it evaluated at x), without solving M q'' = F again; in full contact x has theta = theta' = 0 and qdd theta'' = 0 (any s), and the outputs are those of forces_contact.
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded. Several coordinates: M_el = EI sum psi_i''(0) u_i / H^2.
+///
+/// # Inputs
+///
+/// - `x: &[f64; 14]`: state while rocking — `theta`, `u_1`, `u_2`, `u_3`, `u_4`, `u_5`, `u_6`, `theta_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`, `u_dot_4`, `u_dot_5`, `u_dot_6`
+/// - `qdd: &[f64; 7]`: accelerations [theta'', u''] (the rigid column's u'' is 0) — `theta_ddot`, `u_ddot_1`, `u_ddot_2`, `u_ddot_3`, `u_ddot_4`, `u_ddot_5`, `u_ddot_6`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_1_4`, `c_1_5`, `c_1_6`, `c_2_2`, `c_2_3`, `c_2_4`, `c_2_5`, `c_2_6`, `c_3_3`, `c_3_4`, `c_3_5`, `c_3_6`, `c_4_4`, `c_4_5`, `c_4_6`, `c_5_5`, `c_5_6`, `c_6_6`
+///
+/// # Output
+///
+/// `fs: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 242 (129 mul, 72 add, 34 sub, 2 sq, 2 twice, 1 cos, 1 div, 1 sin).
+#[inline]
+#[must_use]
+pub fn section_forces(x: &[f64; 14], qdd: &[f64; 7], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[4]; // m_c
+    let w1: f64 = 0.3914958780198129;
+    let w2 = x[1]; // u_1
+    let w3 = ug; // ug
+    let w4 = x[0]; // theta
+    let w5 = w4.sin();
+    let w6 = w3 * w5;
+    let w7 = qdd[0]; // theta_ddot
+    let w8 = s; // s
+    let w9 = p[1]; // b
+    let w10 = w8 * w9;
+    let w11 = w7 * w10;
+    let w12 = w6 + w11;
+    let w13 = p[8]; // g
+    let w14 = w4.cos();
+    let w15 = w13 * w14;
+    let w16 = w12 + w15;
+    let w17 = w2 * w16;
+    let w18 = w1 * w17;
+    let w19: f64 = 0.5;
+    let w20 = p[0]; // h
+    let w21 = x[7]; // theta_dot
+    let w22 = w21 * w21;
+    let w23 = w22 * w10;
+    let w24 = w3 * w14;
+    let w25 = w23 + w24;
+    let w26 = w13 * w5;
+    let w27 = w25 - w26;
+    let w28 = w20 * w27;
+    let w29 = w19 * w28;
+    let w30 = w18 - w29;
+    let w31: f64 = -0.21696794755535964;
+    let w32 = x[2]; // u_2
+    let w33 = w32 * w16;
+    let w34 = w31 * w33;
+    let w35 = w30 + w34;
+    let w36: f64 = 0.12721264843305286;
+    let w37 = x[3]; // u_3
+    let w38 = w37 * w16;
+    let w39 = w36 * w38;
+    let w40 = w35 + w39;
+    let w41: f64 = -0.09094901081852429;
+    let w42 = x[4]; // u_4
+    let w43 = w42 * w16;
+    let w44 = w41 * w43;
+    let w45 = w40 + w44;
+    let w46: f64 = 0.07073542044968367;
+    let w47 = x[5]; // u_5
+    let w48 = w47 * w16;
+    let w49 = w46 * w48;
+    let w50 = w45 + w49;
+    let w51: f64 = -0.0578745285967165;
+    let w52 = x[6]; // u_6
+    let w53 = w52 * w16;
+    let w54 = w51 * w53;
+    let w55 = w50 + w54;
+    let w56: f64 = 0.16666666666666666;
+    let w57 = w7 * w20;
+    let w58 = 2.0 * w57;
+    let w59 = w20 * w58;
+    let w60 = w56 * w59;
+    let w61 = w55 - w60;
+    let w62: f64 = 0.2844128718549554;
+    let w63 = qdd[1]; // u_ddot_1
+    let w64 = w20 * w63;
+    let w65 = w62 * w64;
+    let w66 = w61 - w65;
+    let w67: f64 = -0.04538339344319348;
+    let w68 = qdd[2]; // u_ddot_2
+    let w69 = w20 * w68;
+    let w70 = w67 * w69;
+    let w71 = w66 - w70;
+    let w72: f64 = 0.016208187184872217;
+    let w73 = qdd[3]; // u_ddot_3
+    let w74 = w20 * w73;
+    let w75 = w72 * w74;
+    let w76 = w71 - w75;
+    let w77: f64 = -0.008271167510425316;
+    let w78 = qdd[4]; // u_ddot_4
+    let w79 = w20 * w78;
+    let w80 = w77 * w79;
+    let w81 = w76 - w80;
+    let w82: f64 = 0.0050035142152869685;
+    let w83 = qdd[5]; // u_ddot_5
+    let w84 = w20 * w83;
+    let w85 = w82 * w84;
+    let w86 = w81 - w85;
+    let w87: f64 = -0.00334946064056702;
+    let w88 = qdd[6]; // u_ddot_6
+    let w89 = w20 * w88;
+    let w90 = w87 * w89;
+    let w91 = w86 - w90;
+    let w92: f64 = 0.125;
+    let w93 = 2.0 * w21;
+    let w94 = x[8]; // u_dot_1
+    let w95 = w93 * w94;
+    let w96 = w95 * w2;
+    let w97 = w7 * w2;
+    let w98 = w2 * w97;
+    let w99 = w96 + w98;
+    let w100 = w97 + w95;
+    let w101 = w2 * w100;
+    let w102 = w99 + w101;
+    let w103 = w92 * w102;
+    let w104 = w91 - w103;
+    let w105 = x[9]; // u_dot_2
+    let w106 = w93 * w105;
+    let w107 = w106 * w32;
+    let w108 = w7 * w32;
+    let w109 = w32 * w108;
+    let w110 = w107 + w109;
+    let w111 = w108 + w106;
+    let w112 = w32 * w111;
+    let w113 = w110 + w112;
+    let w114 = w92 * w113;
+    let w115 = w104 - w114;
+    let w116 = x[10]; // u_dot_3
+    let w117 = w93 * w116;
+    let w118 = w117 * w37;
+    let w119 = w7 * w37;
+    let w120 = w37 * w119;
+    let w121 = w118 + w120;
+    let w122 = w119 + w117;
+    let w123 = w37 * w122;
+    let w124 = w121 + w123;
+    let w125 = w92 * w124;
+    let w126 = w115 - w125;
+    let w127 = x[11]; // u_dot_4
+    let w128 = w93 * w127;
+    let w129 = w128 * w42;
+    let w130 = w7 * w42;
+    let w131 = w42 * w130;
+    let w132 = w129 + w131;
+    let w133 = w130 + w128;
+    let w134 = w42 * w133;
+    let w135 = w132 + w134;
+    let w136 = w92 * w135;
+    let w137 = w126 - w136;
+    let w138 = x[12]; // u_dot_5
+    let w139 = w93 * w138;
+    let w140 = w139 * w47;
+    let w141 = w7 * w47;
+    let w142 = w47 * w141;
+    let w143 = w140 + w142;
+    let w144 = w141 + w139;
+    let w145 = w47 * w144;
+    let w146 = w143 + w145;
+    let w147 = w92 * w146;
+    let w148 = w137 - w147;
+    let w149 = x[13]; // u_dot_6
+    let w150 = w93 * w149;
+    let w151 = w150 * w52;
+    let w152 = w7 * w52;
+    let w153 = w52 * w152;
+    let w154 = w151 + w153;
+    let w155 = w152 + w150;
+    let w156 = w52 * w155;
+    let w157 = w154 + w156;
+    let w158 = w92 * w157;
+    let w159 = w148 - w158;
+    let w160 = w0 * w159;
+    let w161 = p[3]; // m
+    let w162 = w2 + w32;
+    let w163 = w162 + w37;
+    let w164 = w163 + w42;
+    let w165 = w164 + w47;
+    let w166 = w165 + w52;
+    let w167 = w166 - w10;
+    let w168 = w7 * w167;
+    let w169 = w22 * w20;
+    let w170 = w168 + w169;
+    let w171 = w95 + w106;
+    let w172 = w171 + w117;
+    let w173 = w172 + w128;
+    let w174 = w173 + w139;
+    let w175 = w174 + w150;
+    let w176 = w170 + w175;
+    let w177 = w6 - w176;
+    let w178 = w177 + w15;
+    let w179 = w166 * w178;
+    let w180 = w22 * w167;
+    let w181 = w57 - w180;
+    let w182 = w63 + w68;
+    let w183 = w182 + w73;
+    let w184 = w183 + w78;
+    let w185 = w184 + w83;
+    let w186 = w185 + w88;
+    let w187 = w181 + w186;
+    let w188 = w187 + w24;
+    let w189 = w188 - w26;
+    let w190 = w20 * w189;
+    let w191 = w179 - w190;
+    let w192 = w161 * w191;
+    let w193 = w160 + w192;
+    let o0 = w193; // moment
+    let w194 = w20 * w7;
+    let w195 = w19 * w194;
+    let w196 = w27 + w195;
+    let w197 = w2 * w22;
+    let w198 = w63 - w197;
+    let w199 = w1 * w198;
+    let w200 = w196 + w199;
+    let w201 = w32 * w22;
+    let w202 = w68 - w201;
+    let w203 = w31 * w202;
+    let w204 = w200 + w203;
+    let w205 = w37 * w22;
+    let w206 = w73 - w205;
+    let w207 = w36 * w206;
+    let w208 = w204 + w207;
+    let w209 = w42 * w22;
+    let w210 = w78 - w209;
+    let w211 = w41 * w210;
+    let w212 = w208 + w211;
+    let w213 = w47 * w22;
+    let w214 = w83 - w213;
+    let w215 = w46 * w214;
+    let w216 = w212 + w215;
+    let w217 = w52 * w22;
+    let w218 = w88 - w217;
+    let w219 = w51 * w218;
+    let w220 = w216 + w219;
+    let w221 = w0 * w220;
+    let w222 = w161 * w189;
+    let w223 = w221 + w222;
+    let o1 = w223; // shear
+    let w224 = w20 * w22;
+    let w225 = w19 * w224;
+    let w226 = w16 - w225;
+    let w227 = w2 * w7;
+    let w228 = w95 + w227;
+    let w229 = w1 * w228;
+    let w230 = w226 - w229;
+    let w231 = w32 * w7;
+    let w232 = w106 + w231;
+    let w233 = w31 * w232;
+    let w234 = w230 - w233;
+    let w235 = w37 * w7;
+    let w236 = w117 + w235;
+    let w237 = w36 * w236;
+    let w238 = w234 - w237;
+    let w239 = w42 * w7;
+    let w240 = w128 + w239;
+    let w241 = w41 * w240;
+    let w242 = w238 - w241;
+    let w243 = w47 * w7;
+    let w244 = w139 + w243;
+    let w245 = w46 * w244;
+    let w246 = w242 - w245;
+    let w247 = w52 * w7;
+    let w248 = w150 + w247;
+    let w249 = w51 * w248;
+    let w250 = w246 - w249;
+    let w251 = w0 * w250;
+    let w252 = w161 * w178;
+    let w253 = w251 + w252;
+    let o2 = w253; // axial
+    let w254: f64 = 3.5160152685001513;
+    let w255 = p[2]; // ei
+    let w256 = w20 * w20;
+    let w257 = w255 / w256;
+    let w258 = w254 * w257;
+    let w259 = w258 * w2;
+    let w260: f64 = -22.03449156466677;
+    let w261 = w260 * w257;
+    let w262 = w261 * w32;
+    let w263 = w259 + w262;
+    let w264: f64 = 61.697214413549105;
+    let w265 = w264 * w257;
+    let w266 = w265 * w37;
+    let w267 = w263 + w266;
+    let w268: f64 = -120.90191605230572;
+    let w269 = w268 * w257;
+    let w270 = w269 * w42;
+    let w271 = w267 + w270;
+    let w272: f64 = 199.85953011680346;
+    let w273 = w272 * w257;
+    let w274 = w273 * w47;
+    let w275 = w271 + w274;
+    let w276: f64 = -298.5555309677301;
+    let w277 = w276 * w257;
+    let w278 = w277 * w52;
+    let w279 = w275 + w278;
+    let o3 = w279; // moment_elastic
+    let w280 = p[5]; // m_b
+    let w281 = w280 * w27;
+    let w282 = w223 + w281;
+    let w283 = w14 * w282;
+    let w284 = w11 + w6;
+    let w285 = w284 + w15;
+    let w286 = w280 * w285;
+    let w287 = w253 + w286;
+    let w288 = w5 * w287;
+    let w289 = w283 + w288;
+    let o4 = w289; // reaction_h
+    let w290 = w14 * w287;
+    let w291 = w5 * w282;
+    let w292 = w290 - w291;
+    let o5 = w292; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `fs` of [`section_forces()`].
+pub mod section_forces {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `x` of [`section_forces()`](super::section_forces()).
+    pub mod x {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `u_1`.
+        pub const U_1: usize = 1;
+        /// Index of `u_2`.
+        pub const U_2: usize = 2;
+        /// Index of `u_3`.
+        pub const U_3: usize = 3;
+        /// Index of `u_4`.
+        pub const U_4: usize = 4;
+        /// Index of `u_5`.
+        pub const U_5: usize = 5;
+        /// Index of `u_6`.
+        pub const U_6: usize = 6;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 7;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 8;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 9;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 10;
+        /// Index of `u_dot_4`.
+        pub const U_DOT_4: usize = 11;
+        /// Index of `u_dot_5`.
+        pub const U_DOT_5: usize = 12;
+        /// Index of `u_dot_6`.
+        pub const U_DOT_6: usize = 13;
+    }
+
+    /// Indices of the elements of input `qdd` of [`section_forces()`](super::section_forces()).
+    pub mod qdd {
+        /// Index of `theta_ddot`.
+        pub const THETA_DDOT: usize = 0;
+        /// Index of `u_ddot_1`.
+        pub const U_DDOT_1: usize = 1;
+        /// Index of `u_ddot_2`.
+        pub const U_DDOT_2: usize = 2;
+        /// Index of `u_ddot_3`.
+        pub const U_DDOT_3: usize = 3;
+        /// Index of `u_ddot_4`.
+        pub const U_DDOT_4: usize = 4;
+        /// Index of `u_ddot_5`.
+        pub const U_DDOT_5: usize = 5;
+        /// Index of `u_ddot_6`.
+        pub const U_DDOT_6: usize = 6;
+    }
+}
+
 /// Quasi-static uplift about the right corner (s = +1; the left corner is its mirror), from the flexible exact-angle twin: the total weight W, the base moment W B at which the base uplifts (f_s = s M_b - W B), the ground acceleration ug (< 0) that lifts the base when applied so slowly that u' = u'' = 0, the deflection u then, and the elastic moment EI psi''(0) u / H^2 at the column base then, which differs from W B by the P-Delta moment and the shape function's error (docs/design-forces.md). Several coordinates: u_uplift_i, the static deflection K u = -Gamma ug then.
 ///
 /// # Inputs
@@ -9629,6 +10017,11 @@ impl crate::Variant for CantileverModes6 {
     }
 
     #[inline]
+    fn section_forces(x: &[f64; 14], qdd: &[f64; 7], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+        section_forces(x, qdd, ug, s, p)
+    }
+
+    #[inline]
     fn static_uplift(p: &Params) -> [f64; 10] {
         static_uplift(p)
     }
@@ -9792,6 +10185,17 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             let s: f64 = match s { [v] => *v, _ => return None };
             let p: &Params = (*p).try_into().ok()?;
             Some(forces_rocking(x, ug, s, p).to_vec())
+        }
+        "section_forces" => {
+            let [x, qdd, ug, s, p] = inputs else {
+                return None;
+            };
+            let x: &[f64; 14] = (*x).try_into().ok()?;
+            let qdd: &[f64; 7] = (*qdd).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(section_forces(x, qdd, ug, s, p).to_vec())
         }
         "static_uplift" => {
             let [p] = inputs else {

@@ -8060,6 +8060,436 @@ pub mod forces_rocking {
     }
 }
 
+/// The outputs of forces_rocking for the accelerations qdd = [theta'', u''] the integrator already has (the state derivative it evaluated at x), without solving M q'' = F again; in full contact x has theta = theta' = 0 and qdd theta'' = 0 (any s), and the outputs are those of forces_contact.
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded. Several coordinates: M_el = EI sum psi_i''(0) u_i / H^2.
+///
+/// # Inputs
+///
+/// - `x: &[f64; 16]`: state while rocking — `theta`, `u_1`, `u_2`, `u_3`, `u_4`, `u_5`, `u_6`, `u_7`, `theta_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`, `u_dot_4`, `u_dot_5`, `u_dot_6`, `u_dot_7`
+/// - `qdd: &[f64; 8]`: accelerations [theta'', u''] (the rigid column's u'' is 0) — `theta_ddot`, `u_ddot_1`, `u_ddot_2`, `u_ddot_3`, `u_ddot_4`, `u_ddot_5`, `u_ddot_6`, `u_ddot_7`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_1_4`, `c_1_5`, `c_1_6`, `c_1_7`, `c_2_2`, `c_2_3`, `c_2_4`, `c_2_5`, `c_2_6`, `c_2_7`, `c_3_3`, `c_3_4`, `c_3_5`, `c_3_6`, `c_3_7`, `c_4_4`, `c_4_5`, `c_4_6`, `c_4_7`, `c_5_5`, `c_5_6`, `c_5_7`, `c_6_6`, `c_6_7`, `c_7_7`
+///
+/// # Output
+///
+/// `fs: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 272 (145 mul, 82 add, 38 sub, 2 sq, 2 twice, 1 cos, 1 div, 1 sin).
+#[inline]
+#[must_use]
+pub fn section_forces(x: &[f64; 16], qdd: &[f64; 8], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[4]; // m_c
+    let w1: f64 = 0.3914958780198129;
+    let w2 = x[1]; // u_1
+    let w3 = ug; // ug
+    let w4 = x[0]; // theta
+    let w5 = w4.sin();
+    let w6 = w3 * w5;
+    let w7 = qdd[0]; // theta_ddot
+    let w8 = s; // s
+    let w9 = p[1]; // b
+    let w10 = w8 * w9;
+    let w11 = w7 * w10;
+    let w12 = w6 + w11;
+    let w13 = p[8]; // g
+    let w14 = w4.cos();
+    let w15 = w13 * w14;
+    let w16 = w12 + w15;
+    let w17 = w2 * w16;
+    let w18 = w1 * w17;
+    let w19: f64 = 0.5;
+    let w20 = p[0]; // h
+    let w21 = x[8]; // theta_dot
+    let w22 = w21 * w21;
+    let w23 = w22 * w10;
+    let w24 = w3 * w14;
+    let w25 = w23 + w24;
+    let w26 = w13 * w5;
+    let w27 = w25 - w26;
+    let w28 = w20 * w27;
+    let w29 = w19 * w28;
+    let w30 = w18 - w29;
+    let w31: f64 = -0.21696794755535964;
+    let w32 = x[2]; // u_2
+    let w33 = w32 * w16;
+    let w34 = w31 * w33;
+    let w35 = w30 + w34;
+    let w36: f64 = 0.12721264843305286;
+    let w37 = x[3]; // u_3
+    let w38 = w37 * w16;
+    let w39 = w36 * w38;
+    let w40 = w35 + w39;
+    let w41: f64 = -0.09094901081852429;
+    let w42 = x[4]; // u_4
+    let w43 = w42 * w16;
+    let w44 = w41 * w43;
+    let w45 = w40 + w44;
+    let w46: f64 = 0.07073542044968367;
+    let w47 = x[5]; // u_5
+    let w48 = w47 * w16;
+    let w49 = w46 * w48;
+    let w50 = w45 + w49;
+    let w51: f64 = -0.0578745285967165;
+    let w52 = x[6]; // u_6
+    let w53 = w52 * w16;
+    let w54 = w51 * w53;
+    let w55 = w50 + w54;
+    let w56: f64 = 0.048970751581497045;
+    let w57 = x[7]; // u_7
+    let w58 = w57 * w16;
+    let w59 = w56 * w58;
+    let w60 = w55 + w59;
+    let w61: f64 = 0.16666666666666666;
+    let w62 = w7 * w20;
+    let w63 = 2.0 * w62;
+    let w64 = w20 * w63;
+    let w65 = w61 * w64;
+    let w66 = w60 - w65;
+    let w67: f64 = 0.2844128718549554;
+    let w68 = qdd[1]; // u_ddot_1
+    let w69 = w20 * w68;
+    let w70 = w67 * w69;
+    let w71 = w66 - w70;
+    let w72: f64 = -0.04538339344319348;
+    let w73 = qdd[2]; // u_ddot_2
+    let w74 = w20 * w73;
+    let w75 = w72 * w74;
+    let w76 = w71 - w75;
+    let w77: f64 = 0.016208187184872217;
+    let w78 = qdd[3]; // u_ddot_3
+    let w79 = w20 * w78;
+    let w80 = w77 * w79;
+    let w81 = w76 - w80;
+    let w82: f64 = -0.008271167510425316;
+    let w83 = qdd[4]; // u_ddot_4
+    let w84 = w20 * w83;
+    let w85 = w82 * w84;
+    let w86 = w81 - w85;
+    let w87: f64 = 0.0050035142152869685;
+    let w88 = qdd[5]; // u_ddot_5
+    let w89 = w20 * w88;
+    let w90 = w87 * w89;
+    let w91 = w86 - w90;
+    let w92: f64 = -0.00334946064056702;
+    let w93 = qdd[6]; // u_ddot_6
+    let w94 = w20 * w93;
+    let w95 = w92 * w94;
+    let w96 = w91 - w95;
+    let w97: f64 = 0.002398134523443049;
+    let w98 = qdd[7]; // u_ddot_7
+    let w99 = w20 * w98;
+    let w100 = w97 * w99;
+    let w101 = w96 - w100;
+    let w102: f64 = 0.125;
+    let w103 = 2.0 * w21;
+    let w104 = x[9]; // u_dot_1
+    let w105 = w103 * w104;
+    let w106 = w105 * w2;
+    let w107 = w7 * w2;
+    let w108 = w2 * w107;
+    let w109 = w106 + w108;
+    let w110 = w107 + w105;
+    let w111 = w2 * w110;
+    let w112 = w109 + w111;
+    let w113 = w102 * w112;
+    let w114 = w101 - w113;
+    let w115 = x[10]; // u_dot_2
+    let w116 = w103 * w115;
+    let w117 = w116 * w32;
+    let w118 = w7 * w32;
+    let w119 = w32 * w118;
+    let w120 = w117 + w119;
+    let w121 = w118 + w116;
+    let w122 = w32 * w121;
+    let w123 = w120 + w122;
+    let w124 = w102 * w123;
+    let w125 = w114 - w124;
+    let w126 = x[11]; // u_dot_3
+    let w127 = w103 * w126;
+    let w128 = w127 * w37;
+    let w129 = w7 * w37;
+    let w130 = w37 * w129;
+    let w131 = w128 + w130;
+    let w132 = w129 + w127;
+    let w133 = w37 * w132;
+    let w134 = w131 + w133;
+    let w135 = w102 * w134;
+    let w136 = w125 - w135;
+    let w137 = x[12]; // u_dot_4
+    let w138 = w103 * w137;
+    let w139 = w138 * w42;
+    let w140 = w7 * w42;
+    let w141 = w42 * w140;
+    let w142 = w139 + w141;
+    let w143 = w140 + w138;
+    let w144 = w42 * w143;
+    let w145 = w142 + w144;
+    let w146 = w102 * w145;
+    let w147 = w136 - w146;
+    let w148 = x[13]; // u_dot_5
+    let w149 = w103 * w148;
+    let w150 = w149 * w47;
+    let w151 = w7 * w47;
+    let w152 = w47 * w151;
+    let w153 = w150 + w152;
+    let w154 = w151 + w149;
+    let w155 = w47 * w154;
+    let w156 = w153 + w155;
+    let w157 = w102 * w156;
+    let w158 = w147 - w157;
+    let w159 = x[14]; // u_dot_6
+    let w160 = w103 * w159;
+    let w161 = w160 * w52;
+    let w162 = w7 * w52;
+    let w163 = w52 * w162;
+    let w164 = w161 + w163;
+    let w165 = w162 + w160;
+    let w166 = w52 * w165;
+    let w167 = w164 + w166;
+    let w168 = w102 * w167;
+    let w169 = w158 - w168;
+    let w170 = x[15]; // u_dot_7
+    let w171 = w103 * w170;
+    let w172 = w171 * w57;
+    let w173 = w7 * w57;
+    let w174 = w57 * w173;
+    let w175 = w172 + w174;
+    let w176 = w173 + w171;
+    let w177 = w57 * w176;
+    let w178 = w175 + w177;
+    let w179 = w102 * w178;
+    let w180 = w169 - w179;
+    let w181 = w0 * w180;
+    let w182 = p[3]; // m
+    let w183 = w2 + w32;
+    let w184 = w183 + w37;
+    let w185 = w184 + w42;
+    let w186 = w185 + w47;
+    let w187 = w186 + w52;
+    let w188 = w187 + w57;
+    let w189 = w188 - w10;
+    let w190 = w7 * w189;
+    let w191 = w22 * w20;
+    let w192 = w190 + w191;
+    let w193 = w105 + w116;
+    let w194 = w193 + w127;
+    let w195 = w194 + w138;
+    let w196 = w195 + w149;
+    let w197 = w196 + w160;
+    let w198 = w197 + w171;
+    let w199 = w192 + w198;
+    let w200 = w6 - w199;
+    let w201 = w200 + w15;
+    let w202 = w188 * w201;
+    let w203 = w22 * w189;
+    let w204 = w62 - w203;
+    let w205 = w68 + w73;
+    let w206 = w205 + w78;
+    let w207 = w206 + w83;
+    let w208 = w207 + w88;
+    let w209 = w208 + w93;
+    let w210 = w209 + w98;
+    let w211 = w204 + w210;
+    let w212 = w211 + w24;
+    let w213 = w212 - w26;
+    let w214 = w20 * w213;
+    let w215 = w202 - w214;
+    let w216 = w182 * w215;
+    let w217 = w181 + w216;
+    let o0 = w217; // moment
+    let w218 = w20 * w7;
+    let w219 = w19 * w218;
+    let w220 = w27 + w219;
+    let w221 = w2 * w22;
+    let w222 = w68 - w221;
+    let w223 = w1 * w222;
+    let w224 = w220 + w223;
+    let w225 = w32 * w22;
+    let w226 = w73 - w225;
+    let w227 = w31 * w226;
+    let w228 = w224 + w227;
+    let w229 = w37 * w22;
+    let w230 = w78 - w229;
+    let w231 = w36 * w230;
+    let w232 = w228 + w231;
+    let w233 = w42 * w22;
+    let w234 = w83 - w233;
+    let w235 = w41 * w234;
+    let w236 = w232 + w235;
+    let w237 = w47 * w22;
+    let w238 = w88 - w237;
+    let w239 = w46 * w238;
+    let w240 = w236 + w239;
+    let w241 = w52 * w22;
+    let w242 = w93 - w241;
+    let w243 = w51 * w242;
+    let w244 = w240 + w243;
+    let w245 = w57 * w22;
+    let w246 = w98 - w245;
+    let w247 = w56 * w246;
+    let w248 = w244 + w247;
+    let w249 = w0 * w248;
+    let w250 = w182 * w213;
+    let w251 = w249 + w250;
+    let o1 = w251; // shear
+    let w252 = w20 * w22;
+    let w253 = w19 * w252;
+    let w254 = w16 - w253;
+    let w255 = w2 * w7;
+    let w256 = w105 + w255;
+    let w257 = w1 * w256;
+    let w258 = w254 - w257;
+    let w259 = w32 * w7;
+    let w260 = w116 + w259;
+    let w261 = w31 * w260;
+    let w262 = w258 - w261;
+    let w263 = w37 * w7;
+    let w264 = w127 + w263;
+    let w265 = w36 * w264;
+    let w266 = w262 - w265;
+    let w267 = w42 * w7;
+    let w268 = w138 + w267;
+    let w269 = w41 * w268;
+    let w270 = w266 - w269;
+    let w271 = w47 * w7;
+    let w272 = w149 + w271;
+    let w273 = w46 * w272;
+    let w274 = w270 - w273;
+    let w275 = w52 * w7;
+    let w276 = w160 + w275;
+    let w277 = w51 * w276;
+    let w278 = w274 - w277;
+    let w279 = w57 * w7;
+    let w280 = w171 + w279;
+    let w281 = w56 * w280;
+    let w282 = w278 - w281;
+    let w283 = w0 * w282;
+    let w284 = w182 * w201;
+    let w285 = w283 + w284;
+    let o2 = w285; // axial
+    let w286: f64 = 3.5160152685001513;
+    let w287 = p[2]; // ei
+    let w288 = w20 * w20;
+    let w289 = w287 / w288;
+    let w290 = w286 * w289;
+    let w291 = w290 * w2;
+    let w292: f64 = -22.03449156466677;
+    let w293 = w292 * w289;
+    let w294 = w293 * w32;
+    let w295 = w291 + w294;
+    let w296: f64 = 61.697214413549105;
+    let w297 = w296 * w289;
+    let w298 = w297 * w37;
+    let w299 = w295 + w298;
+    let w300: f64 = -120.90191605230572;
+    let w301 = w300 * w289;
+    let w302 = w301 * w42;
+    let w303 = w299 + w302;
+    let w304: f64 = 199.85953011680346;
+    let w305 = w304 * w289;
+    let w306 = w305 * w47;
+    let w307 = w303 + w306;
+    let w308: f64 = -298.5555309677301;
+    let w309 = w308 * w289;
+    let w310 = w309 * w52;
+    let w311 = w307 + w310;
+    let w312: f64 = 416.9907860566055;
+    let w313 = w312 * w289;
+    let w314 = w313 * w57;
+    let w315 = w311 + w314;
+    let o3 = w315; // moment_elastic
+    let w316 = p[5]; // m_b
+    let w317 = w316 * w27;
+    let w318 = w251 + w317;
+    let w319 = w14 * w318;
+    let w320 = w11 + w6;
+    let w321 = w320 + w15;
+    let w322 = w316 * w321;
+    let w323 = w285 + w322;
+    let w324 = w5 * w323;
+    let w325 = w319 + w324;
+    let o4 = w325; // reaction_h
+    let w326 = w14 * w323;
+    let w327 = w5 * w318;
+    let w328 = w326 - w327;
+    let o5 = w328; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `fs` of [`section_forces()`].
+pub mod section_forces {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `x` of [`section_forces()`](super::section_forces()).
+    pub mod x {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `u_1`.
+        pub const U_1: usize = 1;
+        /// Index of `u_2`.
+        pub const U_2: usize = 2;
+        /// Index of `u_3`.
+        pub const U_3: usize = 3;
+        /// Index of `u_4`.
+        pub const U_4: usize = 4;
+        /// Index of `u_5`.
+        pub const U_5: usize = 5;
+        /// Index of `u_6`.
+        pub const U_6: usize = 6;
+        /// Index of `u_7`.
+        pub const U_7: usize = 7;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 8;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 9;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 10;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 11;
+        /// Index of `u_dot_4`.
+        pub const U_DOT_4: usize = 12;
+        /// Index of `u_dot_5`.
+        pub const U_DOT_5: usize = 13;
+        /// Index of `u_dot_6`.
+        pub const U_DOT_6: usize = 14;
+        /// Index of `u_dot_7`.
+        pub const U_DOT_7: usize = 15;
+    }
+
+    /// Indices of the elements of input `qdd` of [`section_forces()`](super::section_forces()).
+    pub mod qdd {
+        /// Index of `theta_ddot`.
+        pub const THETA_DDOT: usize = 0;
+        /// Index of `u_ddot_1`.
+        pub const U_DDOT_1: usize = 1;
+        /// Index of `u_ddot_2`.
+        pub const U_DDOT_2: usize = 2;
+        /// Index of `u_ddot_3`.
+        pub const U_DDOT_3: usize = 3;
+        /// Index of `u_ddot_4`.
+        pub const U_DDOT_4: usize = 4;
+        /// Index of `u_ddot_5`.
+        pub const U_DDOT_5: usize = 5;
+        /// Index of `u_ddot_6`.
+        pub const U_DDOT_6: usize = 6;
+        /// Index of `u_ddot_7`.
+        pub const U_DDOT_7: usize = 7;
+    }
+}
+
 /// Quasi-static uplift about the right corner (s = +1; the left corner is its mirror), from the flexible exact-angle twin: the total weight W, the base moment W B at which the base uplifts (f_s = s M_b - W B), the ground acceleration ug (< 0) that lifts the base when applied so slowly that u' = u'' = 0, the deflection u then, and the elastic moment EI psi''(0) u / H^2 at the column base then, which differs from W B by the P-Delta moment and the shape function's error (docs/design-forces.md). Several coordinates: u_uplift_i, the static deflection K u = -Gamma ug then.
 ///
 /// # Inputs
@@ -11186,6 +11616,11 @@ impl crate::Variant for CantileverModes7 {
     }
 
     #[inline]
+    fn section_forces(x: &[f64; 16], qdd: &[f64; 8], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+        section_forces(x, qdd, ug, s, p)
+    }
+
+    #[inline]
     fn static_uplift(p: &Params) -> [f64; 11] {
         static_uplift(p)
     }
@@ -11349,6 +11784,17 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             let s: f64 = match s { [v] => *v, _ => return None };
             let p: &Params = (*p).try_into().ok()?;
             Some(forces_rocking(x, ug, s, p).to_vec())
+        }
+        "section_forces" => {
+            let [x, qdd, ug, s, p] = inputs else {
+                return None;
+            };
+            let x: &[f64; 16] = (*x).try_into().ok()?;
+            let qdd: &[f64; 8] = (*qdd).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(section_forces(x, qdd, ug, s, p).to_vec())
         }
         "static_uplift" => {
             let [p] = inputs else {

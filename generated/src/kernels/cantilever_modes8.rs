@@ -9309,6 +9309,478 @@ pub mod forces_rocking {
     }
 }
 
+/// The outputs of forces_rocking for the accelerations qdd = [theta'', u''] the integrator already has (the state derivative it evaluated at x), without solving M q'' = F again; in full contact x has theta = theta' = 0 and qdd theta'' = 0 (any s), and the outputs are those of forces_contact.
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded. Several coordinates: M_el = EI sum psi_i''(0) u_i / H^2.
+///
+/// # Inputs
+///
+/// - `x: &[f64; 18]`: state while rocking — `theta`, `u_1`, `u_2`, `u_3`, `u_4`, `u_5`, `u_6`, `u_7`, `u_8`, `theta_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`, `u_dot_4`, `u_dot_5`, `u_dot_6`, `u_dot_7`, `u_dot_8`
+/// - `qdd: &[f64; 9]`: accelerations [theta'', u''] (the rigid column's u'' is 0) — `theta_ddot`, `u_ddot_1`, `u_ddot_2`, `u_ddot_3`, `u_ddot_4`, `u_ddot_5`, `u_ddot_6`, `u_ddot_7`, `u_ddot_8`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_1_4`, `c_1_5`, `c_1_6`, `c_1_7`, `c_1_8`, `c_2_2`, `c_2_3`, `c_2_4`, `c_2_5`, `c_2_6`, `c_2_7`, `c_2_8`, `c_3_3`, `c_3_4`, `c_3_5`, `c_3_6`, `c_3_7`, `c_3_8`, `c_4_4`, `c_4_5`, `c_4_6`, `c_4_7`, `c_4_8`, `c_5_5`, `c_5_6`, `c_5_7`, `c_5_8`, `c_6_6`, `c_6_7`, `c_6_8`, `c_7_7`, `c_7_8`, `c_8_8`
+///
+/// # Output
+///
+/// `fs: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 302 (161 mul, 92 add, 42 sub, 2 sq, 2 twice, 1 cos, 1 div, 1 sin).
+#[inline]
+#[must_use]
+pub fn section_forces(x: &[f64; 18], qdd: &[f64; 9], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[4]; // m_c
+    let w1: f64 = 0.3914958780198129;
+    let w2 = x[1]; // u_1
+    let w3 = ug; // ug
+    let w4 = x[0]; // theta
+    let w5 = w4.sin();
+    let w6 = w3 * w5;
+    let w7 = qdd[0]; // theta_ddot
+    let w8 = s; // s
+    let w9 = p[1]; // b
+    let w10 = w8 * w9;
+    let w11 = w7 * w10;
+    let w12 = w6 + w11;
+    let w13 = p[8]; // g
+    let w14 = w4.cos();
+    let w15 = w13 * w14;
+    let w16 = w12 + w15;
+    let w17 = w2 * w16;
+    let w18 = w1 * w17;
+    let w19: f64 = 0.5;
+    let w20 = p[0]; // h
+    let w21 = x[9]; // theta_dot
+    let w22 = w21 * w21;
+    let w23 = w22 * w10;
+    let w24 = w3 * w14;
+    let w25 = w23 + w24;
+    let w26 = w13 * w5;
+    let w27 = w25 - w26;
+    let w28 = w20 * w27;
+    let w29 = w19 * w28;
+    let w30 = w18 - w29;
+    let w31: f64 = -0.21696794755535964;
+    let w32 = x[2]; // u_2
+    let w33 = w32 * w16;
+    let w34 = w31 * w33;
+    let w35 = w30 + w34;
+    let w36: f64 = 0.12721264843305286;
+    let w37 = x[3]; // u_3
+    let w38 = w37 * w16;
+    let w39 = w36 * w38;
+    let w40 = w35 + w39;
+    let w41: f64 = -0.09094901081852429;
+    let w42 = x[4]; // u_4
+    let w43 = w42 * w16;
+    let w44 = w41 * w43;
+    let w45 = w40 + w44;
+    let w46: f64 = 0.07073542044968367;
+    let w47 = x[5]; // u_5
+    let w48 = w47 * w16;
+    let w49 = w46 * w48;
+    let w50 = w45 + w49;
+    let w51: f64 = -0.0578745285967165;
+    let w52 = x[6]; // u_6
+    let w53 = w52 * w16;
+    let w54 = w51 * w53;
+    let w55 = w50 + w54;
+    let w56: f64 = 0.048970751581497045;
+    let w57 = x[7]; // u_7
+    let w58 = w57 * w16;
+    let w59 = w56 * w58;
+    let w60 = w55 + w59;
+    let w61: f64 = -0.04244131816301539;
+    let w62 = x[8]; // u_8
+    let w63 = w62 * w16;
+    let w64 = w61 * w63;
+    let w65 = w60 + w64;
+    let w66: f64 = 0.16666666666666666;
+    let w67 = w7 * w20;
+    let w68 = 2.0 * w67;
+    let w69 = w20 * w68;
+    let w70 = w66 * w69;
+    let w71 = w65 - w70;
+    let w72: f64 = 0.2844128718549554;
+    let w73 = qdd[1]; // u_ddot_1
+    let w74 = w20 * w73;
+    let w75 = w72 * w74;
+    let w76 = w71 - w75;
+    let w77: f64 = -0.04538339344319348;
+    let w78 = qdd[2]; // u_ddot_2
+    let w79 = w20 * w78;
+    let w80 = w77 * w79;
+    let w81 = w76 - w80;
+    let w82: f64 = 0.016208187184872217;
+    let w83 = qdd[3]; // u_ddot_3
+    let w84 = w20 * w83;
+    let w85 = w82 * w84;
+    let w86 = w81 - w85;
+    let w87: f64 = -0.008271167510425316;
+    let w88 = qdd[4]; // u_ddot_4
+    let w89 = w20 * w88;
+    let w90 = w87 * w89;
+    let w91 = w86 - w90;
+    let w92: f64 = 0.0050035142152869685;
+    let w93 = qdd[5]; // u_ddot_5
+    let w94 = w20 * w93;
+    let w95 = w92 * w94;
+    let w96 = w91 - w95;
+    let w97: f64 = -0.00334946064056702;
+    let w98 = qdd[6]; // u_ddot_6
+    let w99 = w20 * w98;
+    let w100 = w97 * w99;
+    let w101 = w96 - w100;
+    let w102: f64 = 0.002398134523443049;
+    let w103 = qdd[7]; // u_ddot_7
+    let w104 = w20 * w103;
+    let w105 = w102 * w104;
+    let w106 = w101 - w105;
+    let w107: f64 = -0.0018012654869927834;
+    let w108 = qdd[8]; // u_ddot_8
+    let w109 = w20 * w108;
+    let w110 = w107 * w109;
+    let w111 = w106 - w110;
+    let w112: f64 = 0.125;
+    let w113 = 2.0 * w21;
+    let w114 = x[10]; // u_dot_1
+    let w115 = w113 * w114;
+    let w116 = w115 * w2;
+    let w117 = w7 * w2;
+    let w118 = w2 * w117;
+    let w119 = w116 + w118;
+    let w120 = w117 + w115;
+    let w121 = w2 * w120;
+    let w122 = w119 + w121;
+    let w123 = w112 * w122;
+    let w124 = w111 - w123;
+    let w125 = x[11]; // u_dot_2
+    let w126 = w113 * w125;
+    let w127 = w126 * w32;
+    let w128 = w7 * w32;
+    let w129 = w32 * w128;
+    let w130 = w127 + w129;
+    let w131 = w128 + w126;
+    let w132 = w32 * w131;
+    let w133 = w130 + w132;
+    let w134 = w112 * w133;
+    let w135 = w124 - w134;
+    let w136 = x[12]; // u_dot_3
+    let w137 = w113 * w136;
+    let w138 = w137 * w37;
+    let w139 = w7 * w37;
+    let w140 = w37 * w139;
+    let w141 = w138 + w140;
+    let w142 = w139 + w137;
+    let w143 = w37 * w142;
+    let w144 = w141 + w143;
+    let w145 = w112 * w144;
+    let w146 = w135 - w145;
+    let w147 = x[13]; // u_dot_4
+    let w148 = w113 * w147;
+    let w149 = w148 * w42;
+    let w150 = w7 * w42;
+    let w151 = w42 * w150;
+    let w152 = w149 + w151;
+    let w153 = w150 + w148;
+    let w154 = w42 * w153;
+    let w155 = w152 + w154;
+    let w156 = w112 * w155;
+    let w157 = w146 - w156;
+    let w158 = x[14]; // u_dot_5
+    let w159 = w113 * w158;
+    let w160 = w159 * w47;
+    let w161 = w7 * w47;
+    let w162 = w47 * w161;
+    let w163 = w160 + w162;
+    let w164 = w161 + w159;
+    let w165 = w47 * w164;
+    let w166 = w163 + w165;
+    let w167 = w112 * w166;
+    let w168 = w157 - w167;
+    let w169 = x[15]; // u_dot_6
+    let w170 = w113 * w169;
+    let w171 = w170 * w52;
+    let w172 = w7 * w52;
+    let w173 = w52 * w172;
+    let w174 = w171 + w173;
+    let w175 = w172 + w170;
+    let w176 = w52 * w175;
+    let w177 = w174 + w176;
+    let w178 = w112 * w177;
+    let w179 = w168 - w178;
+    let w180 = x[16]; // u_dot_7
+    let w181 = w113 * w180;
+    let w182 = w181 * w57;
+    let w183 = w7 * w57;
+    let w184 = w57 * w183;
+    let w185 = w182 + w184;
+    let w186 = w183 + w181;
+    let w187 = w57 * w186;
+    let w188 = w185 + w187;
+    let w189 = w112 * w188;
+    let w190 = w179 - w189;
+    let w191 = x[17]; // u_dot_8
+    let w192 = w113 * w191;
+    let w193 = w192 * w62;
+    let w194 = w7 * w62;
+    let w195 = w62 * w194;
+    let w196 = w193 + w195;
+    let w197 = w194 + w192;
+    let w198 = w62 * w197;
+    let w199 = w196 + w198;
+    let w200 = w112 * w199;
+    let w201 = w190 - w200;
+    let w202 = w0 * w201;
+    let w203 = p[3]; // m
+    let w204 = w2 + w32;
+    let w205 = w204 + w37;
+    let w206 = w205 + w42;
+    let w207 = w206 + w47;
+    let w208 = w207 + w52;
+    let w209 = w208 + w57;
+    let w210 = w209 + w62;
+    let w211 = w210 - w10;
+    let w212 = w7 * w211;
+    let w213 = w22 * w20;
+    let w214 = w212 + w213;
+    let w215 = w115 + w126;
+    let w216 = w215 + w137;
+    let w217 = w216 + w148;
+    let w218 = w217 + w159;
+    let w219 = w218 + w170;
+    let w220 = w219 + w181;
+    let w221 = w220 + w192;
+    let w222 = w214 + w221;
+    let w223 = w6 - w222;
+    let w224 = w223 + w15;
+    let w225 = w210 * w224;
+    let w226 = w22 * w211;
+    let w227 = w67 - w226;
+    let w228 = w73 + w78;
+    let w229 = w228 + w83;
+    let w230 = w229 + w88;
+    let w231 = w230 + w93;
+    let w232 = w231 + w98;
+    let w233 = w232 + w103;
+    let w234 = w233 + w108;
+    let w235 = w227 + w234;
+    let w236 = w235 + w24;
+    let w237 = w236 - w26;
+    let w238 = w20 * w237;
+    let w239 = w225 - w238;
+    let w240 = w203 * w239;
+    let w241 = w202 + w240;
+    let o0 = w241; // moment
+    let w242 = w20 * w7;
+    let w243 = w19 * w242;
+    let w244 = w27 + w243;
+    let w245 = w2 * w22;
+    let w246 = w73 - w245;
+    let w247 = w1 * w246;
+    let w248 = w244 + w247;
+    let w249 = w32 * w22;
+    let w250 = w78 - w249;
+    let w251 = w31 * w250;
+    let w252 = w248 + w251;
+    let w253 = w37 * w22;
+    let w254 = w83 - w253;
+    let w255 = w36 * w254;
+    let w256 = w252 + w255;
+    let w257 = w42 * w22;
+    let w258 = w88 - w257;
+    let w259 = w41 * w258;
+    let w260 = w256 + w259;
+    let w261 = w47 * w22;
+    let w262 = w93 - w261;
+    let w263 = w46 * w262;
+    let w264 = w260 + w263;
+    let w265 = w52 * w22;
+    let w266 = w98 - w265;
+    let w267 = w51 * w266;
+    let w268 = w264 + w267;
+    let w269 = w57 * w22;
+    let w270 = w103 - w269;
+    let w271 = w56 * w270;
+    let w272 = w268 + w271;
+    let w273 = w62 * w22;
+    let w274 = w108 - w273;
+    let w275 = w61 * w274;
+    let w276 = w272 + w275;
+    let w277 = w0 * w276;
+    let w278 = w203 * w237;
+    let w279 = w277 + w278;
+    let o1 = w279; // shear
+    let w280 = w20 * w22;
+    let w281 = w19 * w280;
+    let w282 = w16 - w281;
+    let w283 = w2 * w7;
+    let w284 = w115 + w283;
+    let w285 = w1 * w284;
+    let w286 = w282 - w285;
+    let w287 = w32 * w7;
+    let w288 = w126 + w287;
+    let w289 = w31 * w288;
+    let w290 = w286 - w289;
+    let w291 = w37 * w7;
+    let w292 = w137 + w291;
+    let w293 = w36 * w292;
+    let w294 = w290 - w293;
+    let w295 = w42 * w7;
+    let w296 = w148 + w295;
+    let w297 = w41 * w296;
+    let w298 = w294 - w297;
+    let w299 = w47 * w7;
+    let w300 = w159 + w299;
+    let w301 = w46 * w300;
+    let w302 = w298 - w301;
+    let w303 = w52 * w7;
+    let w304 = w170 + w303;
+    let w305 = w51 * w304;
+    let w306 = w302 - w305;
+    let w307 = w57 * w7;
+    let w308 = w181 + w307;
+    let w309 = w56 * w308;
+    let w310 = w306 - w309;
+    let w311 = w62 * w7;
+    let w312 = w192 + w311;
+    let w313 = w61 * w312;
+    let w314 = w310 - w313;
+    let w315 = w0 * w314;
+    let w316 = w203 * w224;
+    let w317 = w315 + w316;
+    let o2 = w317; // axial
+    let w318: f64 = 3.5160152685001513;
+    let w319 = p[2]; // ei
+    let w320 = w20 * w20;
+    let w321 = w319 / w320;
+    let w322 = w318 * w321;
+    let w323 = w322 * w2;
+    let w324: f64 = -22.03449156466677;
+    let w325 = w324 * w321;
+    let w326 = w325 * w32;
+    let w327 = w323 + w326;
+    let w328: f64 = 61.697214413549105;
+    let w329 = w328 * w321;
+    let w330 = w329 * w37;
+    let w331 = w327 + w330;
+    let w332: f64 = -120.90191605230572;
+    let w333 = w332 * w321;
+    let w334 = w333 * w42;
+    let w335 = w331 + w334;
+    let w336: f64 = 199.85953011680346;
+    let w337 = w336 * w321;
+    let w338 = w337 * w47;
+    let w339 = w335 + w338;
+    let w340: f64 = -298.5555309677301;
+    let w341 = w340 * w321;
+    let w342 = w341 * w52;
+    let w343 = w339 + w342;
+    let w344: f64 = 416.9907860566055;
+    let w345 = w344 * w321;
+    let w346 = w345 * w57;
+    let w347 = w343 + w346;
+    let w348: f64 = -555.1652475557627;
+    let w349 = w348 * w321;
+    let w350 = w349 * w62;
+    let w351 = w347 + w350;
+    let o3 = w351; // moment_elastic
+    let w352 = p[5]; // m_b
+    let w353 = w352 * w27;
+    let w354 = w279 + w353;
+    let w355 = w14 * w354;
+    let w356 = w11 + w6;
+    let w357 = w356 + w15;
+    let w358 = w352 * w357;
+    let w359 = w317 + w358;
+    let w360 = w5 * w359;
+    let w361 = w355 + w360;
+    let o4 = w361; // reaction_h
+    let w362 = w14 * w359;
+    let w363 = w5 * w354;
+    let w364 = w362 - w363;
+    let o5 = w364; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `fs` of [`section_forces()`].
+pub mod section_forces {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `x` of [`section_forces()`](super::section_forces()).
+    pub mod x {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `u_1`.
+        pub const U_1: usize = 1;
+        /// Index of `u_2`.
+        pub const U_2: usize = 2;
+        /// Index of `u_3`.
+        pub const U_3: usize = 3;
+        /// Index of `u_4`.
+        pub const U_4: usize = 4;
+        /// Index of `u_5`.
+        pub const U_5: usize = 5;
+        /// Index of `u_6`.
+        pub const U_6: usize = 6;
+        /// Index of `u_7`.
+        pub const U_7: usize = 7;
+        /// Index of `u_8`.
+        pub const U_8: usize = 8;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 9;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 10;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 11;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 12;
+        /// Index of `u_dot_4`.
+        pub const U_DOT_4: usize = 13;
+        /// Index of `u_dot_5`.
+        pub const U_DOT_5: usize = 14;
+        /// Index of `u_dot_6`.
+        pub const U_DOT_6: usize = 15;
+        /// Index of `u_dot_7`.
+        pub const U_DOT_7: usize = 16;
+        /// Index of `u_dot_8`.
+        pub const U_DOT_8: usize = 17;
+    }
+
+    /// Indices of the elements of input `qdd` of [`section_forces()`](super::section_forces()).
+    pub mod qdd {
+        /// Index of `theta_ddot`.
+        pub const THETA_DDOT: usize = 0;
+        /// Index of `u_ddot_1`.
+        pub const U_DDOT_1: usize = 1;
+        /// Index of `u_ddot_2`.
+        pub const U_DDOT_2: usize = 2;
+        /// Index of `u_ddot_3`.
+        pub const U_DDOT_3: usize = 3;
+        /// Index of `u_ddot_4`.
+        pub const U_DDOT_4: usize = 4;
+        /// Index of `u_ddot_5`.
+        pub const U_DDOT_5: usize = 5;
+        /// Index of `u_ddot_6`.
+        pub const U_DDOT_6: usize = 6;
+        /// Index of `u_ddot_7`.
+        pub const U_DDOT_7: usize = 7;
+        /// Index of `u_ddot_8`.
+        pub const U_DDOT_8: usize = 8;
+    }
+}
+
 /// Quasi-static uplift about the right corner (s = +1; the left corner is its mirror), from the flexible exact-angle twin: the total weight W, the base moment W B at which the base uplifts (f_s = s M_b - W B), the ground acceleration ug (< 0) that lifts the base when applied so slowly that u' = u'' = 0, the deflection u then, and the elastic moment EI psi''(0) u / H^2 at the column base then, which differs from W B by the P-Delta moment and the shape function's error (docs/design-forces.md). Several coordinates: u_uplift_i, the static deflection K u = -Gamma ug then.
 ///
 /// # Inputs
@@ -12831,6 +13303,11 @@ impl crate::Variant for CantileverModes8 {
     }
 
     #[inline]
+    fn section_forces(x: &[f64; 18], qdd: &[f64; 9], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+        section_forces(x, qdd, ug, s, p)
+    }
+
+    #[inline]
     fn static_uplift(p: &Params) -> [f64; 12] {
         static_uplift(p)
     }
@@ -12994,6 +13471,17 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             let s: f64 = match s { [v] => *v, _ => return None };
             let p: &Params = (*p).try_into().ok()?;
             Some(forces_rocking(x, ug, s, p).to_vec())
+        }
+        "section_forces" => {
+            let [x, qdd, ug, s, p] = inputs else {
+                return None;
+            };
+            let x: &[f64; 18] = (*x).try_into().ok()?;
+            let qdd: &[f64; 9] = (*qdd).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(section_forces(x, qdd, ug, s, p).to_vec())
         }
         "static_uplift" => {
             let [p] = inputs else {

@@ -3127,6 +3127,234 @@ pub mod forces_rocking {
     }
 }
 
+/// The outputs of forces_rocking for the accelerations qdd = [theta'', u''] the integrator already has (the state derivative it evaluated at x), without solving M q'' = F again; in full contact x has theta = theta' = 0 and qdd theta'' = 0 (any s), and the outputs are those of forces_contact.
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded. Several coordinates: M_el = EI sum psi_i''(0) u_i / H^2.
+///
+/// # Inputs
+///
+/// - `x: &[f64; 6]`: state while rocking — `theta`, `u_1`, `u_2`, `theta_dot`, `u_dot_1`, `u_dot_2`
+/// - `qdd: &[f64; 3]`: accelerations [theta'', u''] (the rigid column's u'' is 0) — `theta_ddot`, `u_ddot_1`, `u_ddot_2`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_2_2`
+///
+/// # Output
+///
+/// `fs: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 129 (68 mul, 34 add, 19 sub, 3 twice, 2 sq, 1 cos, 1 div, 1 sin).
+#[inline]
+#[must_use]
+pub fn section_forces(x: &[f64; 6], qdd: &[f64; 3], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[4]; // m_c
+    let w1: f64 = 0.375;
+    let w2 = x[1]; // u_1
+    let w3 = ug; // ug
+    let w4 = x[0]; // theta
+    let w5 = w4.sin();
+    let w6 = w3 * w5;
+    let w7 = qdd[0]; // theta_ddot
+    let w8 = s; // s
+    let w9 = p[1]; // b
+    let w10 = w8 * w9;
+    let w11 = w7 * w10;
+    let w12 = w6 + w11;
+    let w13 = p[8]; // g
+    let w14 = w4.cos();
+    let w15 = w13 * w14;
+    let w16 = w12 + w15;
+    let w17 = w2 * w16;
+    let w18 = w1 * w17;
+    let w19: f64 = 0.5;
+    let w20 = p[0]; // h
+    let w21 = x[3]; // theta_dot
+    let w22 = w21 * w21;
+    let w23 = w22 * w10;
+    let w24 = w3 * w14;
+    let w25 = w23 + w24;
+    let w26 = w13 * w5;
+    let w27 = w25 - w26;
+    let w28 = w20 * w27;
+    let w29 = w19 * w28;
+    let w30 = w18 - w29;
+    let w31: f64 = 0.3333333333333333;
+    let w32 = x[2]; // u_2
+    let w33 = w32 * w16;
+    let w34 = w31 * w33;
+    let w35 = w30 + w34;
+    let w36: f64 = 0.16666666666666666;
+    let w37 = w7 * w20;
+    let w38 = 2.0 * w37;
+    let w39 = w20 * w38;
+    let w40 = w36 * w39;
+    let w41 = w35 - w40;
+    let w42: f64 = 0.275;
+    let w43 = qdd[1]; // u_ddot_1
+    let w44 = w20 * w43;
+    let w45 = w42 * w44;
+    let w46 = w41 - w45;
+    let w47: f64 = 0.25;
+    let w48 = qdd[2]; // u_ddot_2
+    let w49 = w20 * w48;
+    let w50 = w47 * w49;
+    let w51 = w46 - w50;
+    let w52: f64 = 0.11785714285714285;
+    let w53 = 2.0 * w21;
+    let w54 = x[4]; // u_dot_1
+    let w55 = w53 * w54;
+    let w56 = w55 * w2;
+    let w57 = w7 * w2;
+    let w58 = w2 * w57;
+    let w59 = w56 + w58;
+    let w60 = w57 + w55;
+    let w61 = w2 * w60;
+    let w62 = w59 + w61;
+    let w63 = w52 * w62;
+    let w64 = w51 - w63;
+    let w65: f64 = 0.21666666666666667;
+    let w66 = w55 * w32;
+    let w67 = w7 * w32;
+    let w68 = w2 * w67;
+    let w69 = w66 + w68;
+    let w70 = x[5]; // u_dot_2
+    let w71 = w53 * w70;
+    let w72 = w67 + w71;
+    let w73 = w2 * w72;
+    let w74 = w69 + w73;
+    let w75 = w65 * w74;
+    let w76 = w64 - w75;
+    let w77: f64 = 0.1;
+    let w78 = w71 * w32;
+    let w79 = w32 * w67;
+    let w80 = w78 + w79;
+    let w81 = w32 * w72;
+    let w82 = w80 + w81;
+    let w83 = w77 * w82;
+    let w84 = w76 - w83;
+    let w85 = w0 * w84;
+    let w86 = p[3]; // m
+    let w87 = w2 + w32;
+    let w88 = w87 - w10;
+    let w89 = w7 * w88;
+    let w90 = w22 * w20;
+    let w91 = w89 + w90;
+    let w92 = w55 + w71;
+    let w93 = w91 + w92;
+    let w94 = w6 - w93;
+    let w95 = w94 + w15;
+    let w96 = w87 * w95;
+    let w97 = w22 * w88;
+    let w98 = w37 - w97;
+    let w99 = w43 + w48;
+    let w100 = w98 + w99;
+    let w101 = w100 + w24;
+    let w102 = w101 - w26;
+    let w103 = w20 * w102;
+    let w104 = w96 - w103;
+    let w105 = w86 * w104;
+    let w106 = w85 + w105;
+    let o0 = w106; // moment
+    let w107 = w20 * w7;
+    let w108 = w19 * w107;
+    let w109 = w27 + w108;
+    let w110 = w2 * w22;
+    let w111 = w43 - w110;
+    let w112 = w1 * w111;
+    let w113 = w109 + w112;
+    let w114 = w32 * w22;
+    let w115 = w48 - w114;
+    let w116 = w31 * w115;
+    let w117 = w113 + w116;
+    let w118 = w0 * w117;
+    let w119 = w86 * w102;
+    let w120 = w118 + w119;
+    let o1 = w120; // shear
+    let w121 = w20 * w22;
+    let w122 = w19 * w121;
+    let w123 = w16 - w122;
+    let w124 = w2 * w7;
+    let w125 = w55 + w124;
+    let w126 = w1 * w125;
+    let w127 = w123 - w126;
+    let w128 = w32 * w7;
+    let w129 = w71 + w128;
+    let w130 = w31 * w129;
+    let w131 = w127 - w130;
+    let w132 = w0 * w131;
+    let w133 = w86 * w95;
+    let w134 = w132 + w133;
+    let o2 = w134; // axial
+    let w135: f64 = 3.0;
+    let w136 = p[2]; // ei
+    let w137 = w20 * w20;
+    let w138 = w136 / w137;
+    let w139 = w135 * w138;
+    let w140 = w139 * w2;
+    let w141 = 2.0 * w138;
+    let w142 = w141 * w32;
+    let w143 = w140 + w142;
+    let o3 = w143; // moment_elastic
+    let w144 = p[5]; // m_b
+    let w145 = w144 * w27;
+    let w146 = w120 + w145;
+    let w147 = w14 * w146;
+    let w148 = w11 + w6;
+    let w149 = w148 + w15;
+    let w150 = w144 * w149;
+    let w151 = w134 + w150;
+    let w152 = w5 * w151;
+    let w153 = w147 + w152;
+    let o4 = w153; // reaction_h
+    let w154 = w14 * w151;
+    let w155 = w5 * w146;
+    let w156 = w154 - w155;
+    let o5 = w156; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `fs` of [`section_forces()`].
+pub mod section_forces {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `x` of [`section_forces()`](super::section_forces()).
+    pub mod x {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `u_1`.
+        pub const U_1: usize = 1;
+        /// Index of `u_2`.
+        pub const U_2: usize = 2;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 3;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 4;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 5;
+    }
+
+    /// Indices of the elements of input `qdd` of [`section_forces()`](super::section_forces()).
+    pub mod qdd {
+        /// Index of `theta_ddot`.
+        pub const THETA_DDOT: usize = 0;
+        /// Index of `u_ddot_1`.
+        pub const U_DDOT_1: usize = 1;
+        /// Index of `u_ddot_2`.
+        pub const U_DDOT_2: usize = 2;
+    }
+}
+
 /// Quasi-static uplift about the right corner (s = +1; the left corner is its mirror), from the flexible exact-angle twin: the total weight W, the base moment W B at which the base uplifts (f_s = s M_b - W B), the ground acceleration ug (< 0) that lifts the base when applied so slowly that u' = u'' = 0, the deflection u then, and the elastic moment EI psi''(0) u / H^2 at the column base then, which differs from W B by the P-Delta moment and the shape function's error (docs/design-forces.md). Several coordinates: u_uplift_i, the static deflection K u = -Gamma ug then.
 ///
 /// # Inputs
@@ -4576,6 +4804,11 @@ impl crate::Variant for CubicQuadratic {
     }
 
     #[inline]
+    fn section_forces(x: &[f64; 6], qdd: &[f64; 3], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+        section_forces(x, qdd, ug, s, p)
+    }
+
+    #[inline]
     fn static_uplift(p: &Params) -> [f64; 6] {
         static_uplift(p)
     }
@@ -4739,6 +4972,17 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             let s: f64 = match s { [v] => *v, _ => return None };
             let p: &Params = (*p).try_into().ok()?;
             Some(forces_rocking(x, ug, s, p).to_vec())
+        }
+        "section_forces" => {
+            let [x, qdd, ug, s, p] = inputs else {
+                return None;
+            };
+            let x: &[f64; 6] = (*x).try_into().ok()?;
+            let qdd: &[f64; 3] = (*qdd).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(section_forces(x, qdd, ug, s, p).to_vec())
         }
         "static_uplift" => {
             let [p] = inputs else {

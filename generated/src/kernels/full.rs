@@ -2219,6 +2219,184 @@ pub mod forces_rocking {
     }
 }
 
+/// The outputs of forces_rocking for the accelerations qdd = [theta'', u''] the integrator already has (the state derivative it evaluated at x), without solving M q'' = F again; in full contact x has theta = theta' = 0 and qdd theta'' = 0 (any s), and the outputs are those of forces_contact.
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded.
+///
+/// # Inputs
+///
+/// - `x: &[f64; 4]`: state while rocking — `theta`, `u`, `theta_dot`, `u_dot`
+/// - `qdd: &[f64; 2]`: accelerations [theta'', u''] (the rigid column's u'' is 0) — `theta_ddot`, `u_ddot`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `fs: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 92 (49 mul, 22 add, 14 sub, 2 sq, 2 twice, 1 cos, 1 div, 1 sin).
+#[inline]
+#[must_use]
+pub fn section_forces(x: &[f64; 4], qdd: &[f64; 2], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[4]; // m_c
+    let w1: f64 = 0.375;
+    let w2 = x[1]; // u
+    let w3 = ug; // ug
+    let w4 = x[0]; // theta
+    let w5 = w4.sin();
+    let w6 = w3 * w5;
+    let w7 = qdd[0]; // theta_ddot
+    let w8 = s; // s
+    let w9 = p[1]; // b
+    let w10 = w8 * w9;
+    let w11 = w7 * w10;
+    let w12 = w6 + w11;
+    let w13 = p[8]; // g
+    let w14 = w4.cos();
+    let w15 = w13 * w14;
+    let w16 = w12 + w15;
+    let w17 = w2 * w16;
+    let w18 = w1 * w17;
+    let w19: f64 = 0.5;
+    let w20 = p[0]; // h
+    let w21 = x[2]; // theta_dot
+    let w22 = w21 * w21;
+    let w23 = w22 * w10;
+    let w24 = w3 * w14;
+    let w25 = w23 + w24;
+    let w26 = w13 * w5;
+    let w27 = w25 - w26;
+    let w28 = w20 * w27;
+    let w29 = w19 * w28;
+    let w30 = w18 - w29;
+    let w31: f64 = 0.16666666666666666;
+    let w32 = w7 * w20;
+    let w33 = 2.0 * w32;
+    let w34 = w20 * w33;
+    let w35 = w31 * w34;
+    let w36 = w30 - w35;
+    let w37: f64 = 0.275;
+    let w38 = qdd[1]; // u_ddot
+    let w39 = w20 * w38;
+    let w40 = w37 * w39;
+    let w41 = w36 - w40;
+    let w42: f64 = 0.11785714285714285;
+    let w43 = 2.0 * w21;
+    let w44 = x[3]; // u_dot
+    let w45 = w43 * w44;
+    let w46 = w45 * w2;
+    let w47 = w7 * w2;
+    let w48 = w2 * w47;
+    let w49 = w46 + w48;
+    let w50 = w47 + w45;
+    let w51 = w2 * w50;
+    let w52 = w49 + w51;
+    let w53 = w42 * w52;
+    let w54 = w41 - w53;
+    let w55 = w0 * w54;
+    let w56 = p[3]; // m
+    let w57 = w2 - w10;
+    let w58 = w7 * w57;
+    let w59 = w22 * w20;
+    let w60 = w58 + w59;
+    let w61 = w60 + w45;
+    let w62 = w6 - w61;
+    let w63 = w62 + w15;
+    let w64 = w2 * w63;
+    let w65 = w22 * w57;
+    let w66 = w32 - w65;
+    let w67 = w66 + w38;
+    let w68 = w67 + w24;
+    let w69 = w68 - w26;
+    let w70 = w20 * w69;
+    let w71 = w64 - w70;
+    let w72 = w56 * w71;
+    let w73 = w55 + w72;
+    let o0 = w73; // moment
+    let w74 = w20 * w7;
+    let w75 = w19 * w74;
+    let w76 = w27 + w75;
+    let w77 = w2 * w22;
+    let w78 = w38 - w77;
+    let w79 = w1 * w78;
+    let w80 = w76 + w79;
+    let w81 = w0 * w80;
+    let w82 = w56 * w69;
+    let w83 = w81 + w82;
+    let o1 = w83; // shear
+    let w84 = w20 * w22;
+    let w85 = w19 * w84;
+    let w86 = w16 - w85;
+    let w87 = w2 * w7;
+    let w88 = w45 + w87;
+    let w89 = w1 * w88;
+    let w90 = w86 - w89;
+    let w91 = w0 * w90;
+    let w92 = w56 * w63;
+    let w93 = w91 + w92;
+    let o2 = w93; // axial
+    let w94: f64 = 3.0;
+    let w95 = p[2]; // ei
+    let w96 = w20 * w20;
+    let w97 = w95 / w96;
+    let w98 = w94 * w97;
+    let w99 = w98 * w2;
+    let o3 = w99; // moment_elastic
+    let w100 = p[5]; // m_b
+    let w101 = w100 * w27;
+    let w102 = w83 + w101;
+    let w103 = w14 * w102;
+    let w104 = w11 + w6;
+    let w105 = w104 + w15;
+    let w106 = w100 * w105;
+    let w107 = w93 + w106;
+    let w108 = w5 * w107;
+    let w109 = w103 + w108;
+    let o4 = w109; // reaction_h
+    let w110 = w14 * w107;
+    let w111 = w5 * w102;
+    let w112 = w110 - w111;
+    let o5 = w112; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `fs` of [`section_forces()`].
+pub mod section_forces {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `x` of [`section_forces()`](super::section_forces()).
+    pub mod x {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `u`.
+        pub const U: usize = 1;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 2;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 3;
+    }
+
+    /// Indices of the elements of input `qdd` of [`section_forces()`](super::section_forces()).
+    pub mod qdd {
+        /// Index of `theta_ddot`.
+        pub const THETA_DDOT: usize = 0;
+        /// Index of `u_ddot`.
+        pub const U_DDOT: usize = 1;
+    }
+}
+
 /// Quasi-static uplift about the right corner (s = +1; the left corner is its mirror), from the flexible exact-angle twin: the total weight W, the base moment W B at which the base uplifts (f_s = s M_b - W B), the ground acceleration ug (< 0) that lifts the base when applied so slowly that u' = u'' = 0, the deflection u then, and the elastic moment EI psi''(0) u / H^2 at the column base then, which differs from W B by the P-Delta moment and the shape function's error (docs/design-forces.md).
 ///
 /// # Inputs
@@ -3350,6 +3528,11 @@ impl crate::Variant for Full {
     }
 
     #[inline]
+    fn section_forces(x: &[f64; 4], qdd: &[f64; 2], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+        section_forces(x, qdd, ug, s, p)
+    }
+
+    #[inline]
     fn static_uplift(p: &Params) -> [f64; 5] {
         static_uplift(p)
     }
@@ -3513,6 +3696,17 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             let s: f64 = match s { [v] => *v, _ => return None };
             let p: &Params = (*p).try_into().ok()?;
             Some(forces_rocking(x, ug, s, p).to_vec())
+        }
+        "section_forces" => {
+            let [x, qdd, ug, s, p] = inputs else {
+                return None;
+            };
+            let x: &[f64; 4] = (*x).try_into().ok()?;
+            let qdd: &[f64; 2] = (*qdd).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(section_forces(x, qdd, ug, s, p).to_vec())
         }
         "static_uplift" => {
             let [p] = inputs else {

@@ -2864,6 +2864,42 @@ pub mod index {
         }
     }
 
+    /// Indices of the output `fs` of `section_forces` (and of its inputs).
+    pub mod section_forces {
+        /// Index of `moment`.
+        pub const MOMENT: usize = 0;
+        /// Index of `shear`.
+        pub const SHEAR: usize = 1;
+        /// Index of `axial`.
+        pub const AXIAL: usize = 2;
+        /// Index of `moment_elastic`.
+        pub const MOMENT_ELASTIC: usize = 3;
+        /// Index of `reaction_h`.
+        pub const REACTION_H: usize = 4;
+        /// Index of `reaction_v`.
+        pub const REACTION_V: usize = 5;
+
+        /// Indices of the elements of input `x`.
+        pub mod x {
+            /// Index of `theta`.
+            pub const THETA: usize = 0;
+            /// Index of `u`.
+            pub const U: usize = 1;
+            /// Index of `theta_dot`.
+            pub const THETA_DOT: usize = 2;
+            /// Index of `u_dot`.
+            pub const U_DOT: usize = 3;
+        }
+
+        /// Indices of the elements of input `qdd`.
+        pub mod qdd {
+            /// Index of `theta_ddot`.
+            pub const THETA_DDOT: usize = 0;
+            /// Index of `u_ddot`.
+            pub const U_DDOT: usize = 1;
+        }
+    }
+
     /// Indices of the output `up` of `static_uplift` (and of its inputs).
     pub mod static_uplift {
         /// Index of `weight`.
@@ -3480,6 +3516,48 @@ pub mod layout {
                     pub const U_DOT_1: usize = 4;
                     /// Index of `u_dot_2`.
                     pub const U_DOT_2: usize = 5;
+                }
+            }
+
+            /// Indices of the output `fs` of `section_forces` (and of its inputs).
+            pub mod section_forces {
+                /// Index of `moment`.
+                pub const MOMENT: usize = 0;
+                /// Index of `shear`.
+                pub const SHEAR: usize = 1;
+                /// Index of `axial`.
+                pub const AXIAL: usize = 2;
+                /// Index of `moment_elastic`.
+                pub const MOMENT_ELASTIC: usize = 3;
+                /// Index of `reaction_h`.
+                pub const REACTION_H: usize = 4;
+                /// Index of `reaction_v`.
+                pub const REACTION_V: usize = 5;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 3;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 4;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 5;
+                }
+
+                /// Indices of the elements of input `qdd`.
+                pub mod qdd {
+                    /// Index of `theta_ddot`.
+                    pub const THETA_DDOT: usize = 0;
+                    /// Index of `u_ddot_1`.
+                    pub const U_DDOT_1: usize = 1;
+                    /// Index of `u_ddot_2`.
+                    pub const U_DDOT_2: usize = 2;
                 }
             }
 
@@ -4179,6 +4257,54 @@ pub mod layout {
                     pub const U_DOT_2: usize = 6;
                     /// Index of `u_dot_3`.
                     pub const U_DOT_3: usize = 7;
+                }
+            }
+
+            /// Indices of the output `fs` of `section_forces` (and of its inputs).
+            pub mod section_forces {
+                /// Index of `moment`.
+                pub const MOMENT: usize = 0;
+                /// Index of `shear`.
+                pub const SHEAR: usize = 1;
+                /// Index of `axial`.
+                pub const AXIAL: usize = 2;
+                /// Index of `moment_elastic`.
+                pub const MOMENT_ELASTIC: usize = 3;
+                /// Index of `reaction_h`.
+                pub const REACTION_H: usize = 4;
+                /// Index of `reaction_v`.
+                pub const REACTION_V: usize = 5;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 4;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 5;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 6;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 7;
+                }
+
+                /// Indices of the elements of input `qdd`.
+                pub mod qdd {
+                    /// Index of `theta_ddot`.
+                    pub const THETA_DDOT: usize = 0;
+                    /// Index of `u_ddot_1`.
+                    pub const U_DDOT_1: usize = 1;
+                    /// Index of `u_ddot_2`.
+                    pub const U_DDOT_2: usize = 2;
+                    /// Index of `u_ddot_3`.
+                    pub const U_DDOT_3: usize = 3;
                 }
             }
 
@@ -5008,6 +5134,60 @@ pub mod layout {
                     pub const U_DOT_3: usize = 8;
                     /// Index of `u_dot_4`.
                     pub const U_DOT_4: usize = 9;
+                }
+            }
+
+            /// Indices of the output `fs` of `section_forces` (and of its inputs).
+            pub mod section_forces {
+                /// Index of `moment`.
+                pub const MOMENT: usize = 0;
+                /// Index of `shear`.
+                pub const SHEAR: usize = 1;
+                /// Index of `axial`.
+                pub const AXIAL: usize = 2;
+                /// Index of `moment_elastic`.
+                pub const MOMENT_ELASTIC: usize = 3;
+                /// Index of `reaction_h`.
+                pub const REACTION_H: usize = 4;
+                /// Index of `reaction_v`.
+                pub const REACTION_V: usize = 5;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 5;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 6;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 7;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 8;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 9;
+                }
+
+                /// Indices of the elements of input `qdd`.
+                pub mod qdd {
+                    /// Index of `theta_ddot`.
+                    pub const THETA_DDOT: usize = 0;
+                    /// Index of `u_ddot_1`.
+                    pub const U_DDOT_1: usize = 1;
+                    /// Index of `u_ddot_2`.
+                    pub const U_DDOT_2: usize = 2;
+                    /// Index of `u_ddot_3`.
+                    pub const U_DDOT_3: usize = 3;
+                    /// Index of `u_ddot_4`.
+                    pub const U_DDOT_4: usize = 4;
                 }
             }
 
@@ -5975,6 +6155,66 @@ pub mod layout {
                     pub const U_DOT_4: usize = 10;
                     /// Index of `u_dot_5`.
                     pub const U_DOT_5: usize = 11;
+                }
+            }
+
+            /// Indices of the output `fs` of `section_forces` (and of its inputs).
+            pub mod section_forces {
+                /// Index of `moment`.
+                pub const MOMENT: usize = 0;
+                /// Index of `shear`.
+                pub const SHEAR: usize = 1;
+                /// Index of `axial`.
+                pub const AXIAL: usize = 2;
+                /// Index of `moment_elastic`.
+                pub const MOMENT_ELASTIC: usize = 3;
+                /// Index of `reaction_h`.
+                pub const REACTION_H: usize = 4;
+                /// Index of `reaction_v`.
+                pub const REACTION_V: usize = 5;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 5;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 6;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 7;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 8;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 9;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 10;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 11;
+                }
+
+                /// Indices of the elements of input `qdd`.
+                pub mod qdd {
+                    /// Index of `theta_ddot`.
+                    pub const THETA_DDOT: usize = 0;
+                    /// Index of `u_ddot_1`.
+                    pub const U_DDOT_1: usize = 1;
+                    /// Index of `u_ddot_2`.
+                    pub const U_DDOT_2: usize = 2;
+                    /// Index of `u_ddot_3`.
+                    pub const U_DDOT_3: usize = 3;
+                    /// Index of `u_ddot_4`.
+                    pub const U_DDOT_4: usize = 4;
+                    /// Index of `u_ddot_5`.
+                    pub const U_DDOT_5: usize = 5;
                 }
             }
 
@@ -7088,6 +7328,72 @@ pub mod layout {
                     pub const U_DOT_5: usize = 12;
                     /// Index of `u_dot_6`.
                     pub const U_DOT_6: usize = 13;
+                }
+            }
+
+            /// Indices of the output `fs` of `section_forces` (and of its inputs).
+            pub mod section_forces {
+                /// Index of `moment`.
+                pub const MOMENT: usize = 0;
+                /// Index of `shear`.
+                pub const SHEAR: usize = 1;
+                /// Index of `axial`.
+                pub const AXIAL: usize = 2;
+                /// Index of `moment_elastic`.
+                pub const MOMENT_ELASTIC: usize = 3;
+                /// Index of `reaction_h`.
+                pub const REACTION_H: usize = 4;
+                /// Index of `reaction_v`.
+                pub const REACTION_V: usize = 5;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 5;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 6;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 7;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 8;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 9;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 10;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 11;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 12;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 13;
+                }
+
+                /// Indices of the elements of input `qdd`.
+                pub mod qdd {
+                    /// Index of `theta_ddot`.
+                    pub const THETA_DDOT: usize = 0;
+                    /// Index of `u_ddot_1`.
+                    pub const U_DDOT_1: usize = 1;
+                    /// Index of `u_ddot_2`.
+                    pub const U_DDOT_2: usize = 2;
+                    /// Index of `u_ddot_3`.
+                    pub const U_DDOT_3: usize = 3;
+                    /// Index of `u_ddot_4`.
+                    pub const U_DDOT_4: usize = 4;
+                    /// Index of `u_ddot_5`.
+                    pub const U_DDOT_5: usize = 5;
+                    /// Index of `u_ddot_6`.
+                    pub const U_DDOT_6: usize = 6;
                 }
             }
 
@@ -8355,6 +8661,78 @@ pub mod layout {
                     pub const U_DOT_6: usize = 14;
                     /// Index of `u_dot_7`.
                     pub const U_DOT_7: usize = 15;
+                }
+            }
+
+            /// Indices of the output `fs` of `section_forces` (and of its inputs).
+            pub mod section_forces {
+                /// Index of `moment`.
+                pub const MOMENT: usize = 0;
+                /// Index of `shear`.
+                pub const SHEAR: usize = 1;
+                /// Index of `axial`.
+                pub const AXIAL: usize = 2;
+                /// Index of `moment_elastic`.
+                pub const MOMENT_ELASTIC: usize = 3;
+                /// Index of `reaction_h`.
+                pub const REACTION_H: usize = 4;
+                /// Index of `reaction_v`.
+                pub const REACTION_V: usize = 5;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 5;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 6;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 7;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 8;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 9;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 10;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 11;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 12;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 13;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 14;
+                    /// Index of `u_dot_7`.
+                    pub const U_DOT_7: usize = 15;
+                }
+
+                /// Indices of the elements of input `qdd`.
+                pub mod qdd {
+                    /// Index of `theta_ddot`.
+                    pub const THETA_DDOT: usize = 0;
+                    /// Index of `u_ddot_1`.
+                    pub const U_DDOT_1: usize = 1;
+                    /// Index of `u_ddot_2`.
+                    pub const U_DDOT_2: usize = 2;
+                    /// Index of `u_ddot_3`.
+                    pub const U_DDOT_3: usize = 3;
+                    /// Index of `u_ddot_4`.
+                    pub const U_DDOT_4: usize = 4;
+                    /// Index of `u_ddot_5`.
+                    pub const U_DDOT_5: usize = 5;
+                    /// Index of `u_ddot_6`.
+                    pub const U_DDOT_6: usize = 6;
+                    /// Index of `u_ddot_7`.
+                    pub const U_DDOT_7: usize = 7;
                 }
             }
 
@@ -9784,6 +10162,84 @@ pub mod layout {
                     pub const U_DOT_7: usize = 16;
                     /// Index of `u_dot_8`.
                     pub const U_DOT_8: usize = 17;
+                }
+            }
+
+            /// Indices of the output `fs` of `section_forces` (and of its inputs).
+            pub mod section_forces {
+                /// Index of `moment`.
+                pub const MOMENT: usize = 0;
+                /// Index of `shear`.
+                pub const SHEAR: usize = 1;
+                /// Index of `axial`.
+                pub const AXIAL: usize = 2;
+                /// Index of `moment_elastic`.
+                pub const MOMENT_ELASTIC: usize = 3;
+                /// Index of `reaction_h`.
+                pub const REACTION_H: usize = 4;
+                /// Index of `reaction_v`.
+                pub const REACTION_V: usize = 5;
+
+                /// Indices of the elements of input `x`.
+                pub mod x {
+                    /// Index of `theta`.
+                    pub const THETA: usize = 0;
+                    /// Index of `u_1`.
+                    pub const U_1: usize = 1;
+                    /// Index of `u_2`.
+                    pub const U_2: usize = 2;
+                    /// Index of `u_3`.
+                    pub const U_3: usize = 3;
+                    /// Index of `u_4`.
+                    pub const U_4: usize = 4;
+                    /// Index of `u_5`.
+                    pub const U_5: usize = 5;
+                    /// Index of `u_6`.
+                    pub const U_6: usize = 6;
+                    /// Index of `u_7`.
+                    pub const U_7: usize = 7;
+                    /// Index of `u_8`.
+                    pub const U_8: usize = 8;
+                    /// Index of `theta_dot`.
+                    pub const THETA_DOT: usize = 9;
+                    /// Index of `u_dot_1`.
+                    pub const U_DOT_1: usize = 10;
+                    /// Index of `u_dot_2`.
+                    pub const U_DOT_2: usize = 11;
+                    /// Index of `u_dot_3`.
+                    pub const U_DOT_3: usize = 12;
+                    /// Index of `u_dot_4`.
+                    pub const U_DOT_4: usize = 13;
+                    /// Index of `u_dot_5`.
+                    pub const U_DOT_5: usize = 14;
+                    /// Index of `u_dot_6`.
+                    pub const U_DOT_6: usize = 15;
+                    /// Index of `u_dot_7`.
+                    pub const U_DOT_7: usize = 16;
+                    /// Index of `u_dot_8`.
+                    pub const U_DOT_8: usize = 17;
+                }
+
+                /// Indices of the elements of input `qdd`.
+                pub mod qdd {
+                    /// Index of `theta_ddot`.
+                    pub const THETA_DDOT: usize = 0;
+                    /// Index of `u_ddot_1`.
+                    pub const U_DDOT_1: usize = 1;
+                    /// Index of `u_ddot_2`.
+                    pub const U_DDOT_2: usize = 2;
+                    /// Index of `u_ddot_3`.
+                    pub const U_DDOT_3: usize = 3;
+                    /// Index of `u_ddot_4`.
+                    pub const U_DDOT_4: usize = 4;
+                    /// Index of `u_ddot_5`.
+                    pub const U_DDOT_5: usize = 5;
+                    /// Index of `u_ddot_6`.
+                    pub const U_DDOT_6: usize = 6;
+                    /// Index of `u_ddot_7`.
+                    pub const U_DDOT_7: usize = 7;
+                    /// Index of `u_ddot_8`.
+                    pub const U_DDOT_8: usize = 8;
                 }
             }
 

@@ -1358,6 +1358,124 @@ pub mod forces_rocking {
     }
 }
 
+/// The outputs of forces_rocking for the accelerations qdd = [theta'', u''] the integrator already has (the state derivative it evaluated at x), without solving M q'' = F again; in full contact x has theta = theta' = 0 and qdd theta'' = 0 (any s), and the outputs are those of forces_contact.
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded.
+///
+/// # Inputs
+///
+/// - `x: &[f64; 4]`: state while rocking — `theta`, `u`, `theta_dot`, `u_dot`
+/// - `qdd: &[f64; 2]`: accelerations [theta'', u''] (the rigid column's u'' is 0) — `theta_ddot`, `u_ddot`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `fs: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 39 (21 mul, 6 add, 6 sub, 2 sq, 1 cos, 1 div, 1 sin, 1 twice).
+#[inline]
+#[must_use]
+pub fn section_forces(x: &[f64; 4], qdd: &[f64; 2], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[3]; // m
+    let w1 = x[1]; // u
+    let w2 = ug; // ug
+    let w3 = x[0]; // theta
+    let w4 = w3.sin();
+    let w5 = w2 * w4;
+    let w6 = qdd[0]; // theta_ddot
+    let w7 = s; // s
+    let w8 = p[1]; // b
+    let w9 = w7 * w8;
+    let w10 = w1 - w9;
+    let w11 = w6 * w10;
+    let w12 = x[2]; // theta_dot
+    let w13 = w12 * w12;
+    let w14 = p[0]; // h
+    let w15 = w13 * w14;
+    let w16 = w11 + w15;
+    let w17 = 2.0 * w12;
+    let w18 = x[3]; // u_dot
+    let w19 = w17 * w18;
+    let w20 = w16 + w19;
+    let w21 = w5 - w20;
+    let w22 = p[8]; // g
+    let w23 = w3.cos();
+    let w24 = w22 * w23;
+    let w25 = w21 + w24;
+    let w26 = w1 * w25;
+    let w27 = w6 * w14;
+    let w28 = w13 * w10;
+    let w29 = w27 - w28;
+    let w30 = qdd[1]; // u_ddot
+    let w31 = w29 + w30;
+    let w32 = w2 * w23;
+    let w33 = w31 + w32;
+    let w34 = w22 * w4;
+    let w35 = w33 - w34;
+    let w36 = w14 * w35;
+    let w37 = w26 - w36;
+    let w38 = w0 * w37;
+    let o0 = w38; // moment
+    let w39 = w0 * w35;
+    let o1 = w39; // shear
+    let w40 = w0 * w25;
+    let o2 = w40; // axial
+    let w41: f64 = 3.0;
+    let w42 = p[2]; // ei
+    let w43 = w14 * w14;
+    let w44 = w42 / w43;
+    let w45 = w41 * w44;
+    let w46 = w45 * w1;
+    let o3 = w46; // moment_elastic
+    let w47 = w23 * w39;
+    let w48 = w4 * w40;
+    let w49 = w47 + w48;
+    let o4 = w49; // reaction_h
+    let w50 = w23 * w40;
+    let w51 = w4 * w39;
+    let w52 = w50 - w51;
+    let o5 = w52; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `fs` of [`section_forces()`].
+pub mod section_forces {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `x` of [`section_forces()`](super::section_forces()).
+    pub mod x {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `u`.
+        pub const U: usize = 1;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 2;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 3;
+    }
+
+    /// Indices of the elements of input `qdd` of [`section_forces()`](super::section_forces()).
+    pub mod qdd {
+        /// Index of `theta_ddot`.
+        pub const THETA_DDOT: usize = 0;
+        /// Index of `u_ddot`.
+        pub const U_DDOT: usize = 1;
+    }
+}
+
 /// Quasi-static uplift about the right corner (s = +1; the left corner is its mirror), from the flexible exact-angle twin: the total weight W, the base moment W B at which the base uplifts (f_s = s M_b - W B), the ground acceleration ug (< 0) that lifts the base when applied so slowly that u' = u'' = 0, the deflection u then, and the elastic moment EI psi''(0) u / H^2 at the column base then, which differs from W B by the P-Delta moment and the shape function's error (docs/design-forces.md).
 ///
 /// # Inputs
@@ -2123,6 +2241,11 @@ impl crate::Variant for PointMass {
     }
 
     #[inline]
+    fn section_forces(x: &[f64; 4], qdd: &[f64; 2], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+        section_forces(x, qdd, ug, s, p)
+    }
+
+    #[inline]
     fn static_uplift(p: &Params) -> [f64; 5] {
         static_uplift(p)
     }
@@ -2286,6 +2409,17 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             let s: f64 = match s { [v] => *v, _ => return None };
             let p: &Params = (*p).try_into().ok()?;
             Some(forces_rocking(x, ug, s, p).to_vec())
+        }
+        "section_forces" => {
+            let [x, qdd, ug, s, p] = inputs else {
+                return None;
+            };
+            let x: &[f64; 4] = (*x).try_into().ok()?;
+            let qdd: &[f64; 2] = (*qdd).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(section_forces(x, qdd, ug, s, p).to_vec())
         }
         "static_uplift" => {
             let [p] = inputs else {

@@ -3077,6 +3077,228 @@ pub mod forces_rocking {
     }
 }
 
+/// The outputs of forces_rocking for the accelerations qdd = [theta'', u''] the integrator already has (the state derivative it evaluated at x), without solving M q'' = F again; in full contact x has theta = theta' = 0 and qdd theta'' = 0 (any s), and the outputs are those of forces_contact.
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded. Several coordinates: M_el = EI sum psi_i''(0) u_i / H^2.
+///
+/// # Inputs
+///
+/// - `x: &[f64; 6]`: state while rocking — `theta`, `u_1`, `u_2`, `theta_dot`, `u_dot_1`, `u_dot_2`
+/// - `qdd: &[f64; 3]`: accelerations [theta'', u''] (the rigid column's u'' is 0) — `theta_ddot`, `u_ddot_1`, `u_ddot_2`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_2_2`
+///
+/// # Output
+///
+/// `fs: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 126 (66 mul, 33 add, 19 sub, 3 twice, 2 sq, 1 cos, 1 div, 1 sin).
+#[inline]
+#[must_use]
+pub fn section_forces(x: &[f64; 6], qdd: &[f64; 3], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[4]; // m_c
+    let w1: f64 = 0.3333333333333333;
+    let w2 = x[1]; // u_1
+    let w3 = ug; // ug
+    let w4 = x[0]; // theta
+    let w5 = w4.sin();
+    let w6 = w3 * w5;
+    let w7 = qdd[0]; // theta_ddot
+    let w8 = s; // s
+    let w9 = p[1]; // b
+    let w10 = w8 * w9;
+    let w11 = w7 * w10;
+    let w12 = w6 + w11;
+    let w13 = p[8]; // g
+    let w14 = w4.cos();
+    let w15 = w13 * w14;
+    let w16 = w12 + w15;
+    let w17 = w2 * w16;
+    let w18 = w1 * w17;
+    let w19: f64 = 0.5;
+    let w20 = p[0]; // h
+    let w21 = x[3]; // theta_dot
+    let w22 = w21 * w21;
+    let w23 = w22 * w10;
+    let w24 = w3 * w14;
+    let w25 = w23 + w24;
+    let w26 = w13 * w5;
+    let w27 = w25 - w26;
+    let w28 = w20 * w27;
+    let w29 = w19 * w28;
+    let w30 = w18 - w29;
+    let w31: f64 = 0.25;
+    let w32 = x[2]; // u_2
+    let w33 = w32 * w16;
+    let w34 = w31 * w33;
+    let w35 = w30 + w34;
+    let w36: f64 = 0.16666666666666666;
+    let w37 = w7 * w20;
+    let w38 = 2.0 * w37;
+    let w39 = w20 * w38;
+    let w40 = w36 * w39;
+    let w41 = w35 - w40;
+    let w42 = qdd[1]; // u_ddot_1
+    let w43 = w20 * w42;
+    let w44 = w31 * w43;
+    let w45 = w41 - w44;
+    let w46: f64 = 0.2;
+    let w47 = qdd[2]; // u_ddot_2
+    let w48 = w20 * w47;
+    let w49 = w46 * w48;
+    let w50 = w45 - w49;
+    let w51: f64 = 0.1;
+    let w52 = 2.0 * w21;
+    let w53 = x[4]; // u_dot_1
+    let w54 = w52 * w53;
+    let w55 = w54 * w2;
+    let w56 = w7 * w2;
+    let w57 = w2 * w56;
+    let w58 = w55 + w57;
+    let w59 = w56 + w54;
+    let w60 = w2 * w59;
+    let w61 = w58 + w60;
+    let w62 = w51 * w61;
+    let w63 = w50 - w62;
+    let w64 = w54 * w32;
+    let w65 = w7 * w32;
+    let w66 = w2 * w65;
+    let w67 = w64 + w66;
+    let w68 = x[5]; // u_dot_2
+    let w69 = w52 * w68;
+    let w70 = w65 + w69;
+    let w71 = w2 * w70;
+    let w72 = w67 + w71;
+    let w73 = w36 * w72;
+    let w74 = w63 - w73;
+    let w75: f64 = 0.07142857142857142;
+    let w76 = w69 * w32;
+    let w77 = w32 * w65;
+    let w78 = w76 + w77;
+    let w79 = w32 * w70;
+    let w80 = w78 + w79;
+    let w81 = w75 * w80;
+    let w82 = w74 - w81;
+    let w83 = w0 * w82;
+    let w84 = p[3]; // m
+    let w85 = w2 + w32;
+    let w86 = w85 - w10;
+    let w87 = w7 * w86;
+    let w88 = w22 * w20;
+    let w89 = w87 + w88;
+    let w90 = w54 + w69;
+    let w91 = w89 + w90;
+    let w92 = w6 - w91;
+    let w93 = w92 + w15;
+    let w94 = w85 * w93;
+    let w95 = w22 * w86;
+    let w96 = w37 - w95;
+    let w97 = w42 + w47;
+    let w98 = w96 + w97;
+    let w99 = w98 + w24;
+    let w100 = w99 - w26;
+    let w101 = w20 * w100;
+    let w102 = w94 - w101;
+    let w103 = w84 * w102;
+    let w104 = w83 + w103;
+    let o0 = w104; // moment
+    let w105 = w20 * w7;
+    let w106 = w19 * w105;
+    let w107 = w27 + w106;
+    let w108 = w2 * w22;
+    let w109 = w42 - w108;
+    let w110 = w1 * w109;
+    let w111 = w107 + w110;
+    let w112 = w32 * w22;
+    let w113 = w47 - w112;
+    let w114 = w31 * w113;
+    let w115 = w111 + w114;
+    let w116 = w0 * w115;
+    let w117 = w84 * w100;
+    let w118 = w116 + w117;
+    let o1 = w118; // shear
+    let w119 = w20 * w22;
+    let w120 = w19 * w119;
+    let w121 = w16 - w120;
+    let w122 = w2 * w7;
+    let w123 = w54 + w122;
+    let w124 = w1 * w123;
+    let w125 = w121 - w124;
+    let w126 = w32 * w7;
+    let w127 = w69 + w126;
+    let w128 = w31 * w127;
+    let w129 = w125 - w128;
+    let w130 = w0 * w129;
+    let w131 = w84 * w93;
+    let w132 = w130 + w131;
+    let o2 = w132; // axial
+    let w133 = p[2]; // ei
+    let w134 = w20 * w20;
+    let w135 = w133 / w134;
+    let w136 = 2.0 * w135;
+    let w137 = w136 * w2;
+    let o3 = w137; // moment_elastic
+    let w138 = p[5]; // m_b
+    let w139 = w138 * w27;
+    let w140 = w118 + w139;
+    let w141 = w14 * w140;
+    let w142 = w11 + w6;
+    let w143 = w142 + w15;
+    let w144 = w138 * w143;
+    let w145 = w132 + w144;
+    let w146 = w5 * w145;
+    let w147 = w141 + w146;
+    let o4 = w147; // reaction_h
+    let w148 = w14 * w145;
+    let w149 = w5 * w140;
+    let w150 = w148 - w149;
+    let o5 = w150; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `fs` of [`section_forces()`].
+pub mod section_forces {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `x` of [`section_forces()`](super::section_forces()).
+    pub mod x {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `u_1`.
+        pub const U_1: usize = 1;
+        /// Index of `u_2`.
+        pub const U_2: usize = 2;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 3;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 4;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 5;
+    }
+
+    /// Indices of the elements of input `qdd` of [`section_forces()`](super::section_forces()).
+    pub mod qdd {
+        /// Index of `theta_ddot`.
+        pub const THETA_DDOT: usize = 0;
+        /// Index of `u_ddot_1`.
+        pub const U_DDOT_1: usize = 1;
+        /// Index of `u_ddot_2`.
+        pub const U_DDOT_2: usize = 2;
+    }
+}
+
 /// Quasi-static uplift about the right corner (s = +1; the left corner is its mirror), from the flexible exact-angle twin: the total weight W, the base moment W B at which the base uplifts (f_s = s M_b - W B), the ground acceleration ug (< 0) that lifts the base when applied so slowly that u' = u'' = 0, the deflection u then, and the elastic moment EI psi''(0) u / H^2 at the column base then, which differs from W B by the P-Delta moment and the shape function's error (docs/design-forces.md). Several coordinates: u_uplift_i, the static deflection K u = -Gamma ug then.
 ///
 /// # Inputs
@@ -4513,6 +4735,11 @@ impl crate::Variant for Polynomial2 {
     }
 
     #[inline]
+    fn section_forces(x: &[f64; 6], qdd: &[f64; 3], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+        section_forces(x, qdd, ug, s, p)
+    }
+
+    #[inline]
     fn static_uplift(p: &Params) -> [f64; 6] {
         static_uplift(p)
     }
@@ -4676,6 +4903,17 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             let s: f64 = match s { [v] => *v, _ => return None };
             let p: &Params = (*p).try_into().ok()?;
             Some(forces_rocking(x, ug, s, p).to_vec())
+        }
+        "section_forces" => {
+            let [x, qdd, ug, s, p] = inputs else {
+                return None;
+            };
+            let x: &[f64; 6] = (*x).try_into().ok()?;
+            let qdd: &[f64; 3] = (*qdd).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(section_forces(x, qdd, ug, s, p).to_vec())
         }
         "static_uplift" => {
             let [p] = inputs else {

@@ -4300,6 +4300,281 @@ pub mod forces_rocking {
     }
 }
 
+/// The outputs of forces_rocking for the accelerations qdd = [theta'', u''] the integrator already has (the state derivative it evaluated at x), without solving M q'' = F again; in full contact x has theta = theta' = 0 and qdd theta'' = 0 (any s), and the outputs are those of forces_contact.
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded. Several coordinates: M_el = EI sum psi_i''(0) u_i / H^2.
+///
+/// # Inputs
+///
+/// - `x: &[f64; 8]`: state while rocking — `theta`, `u_1`, `u_2`, `u_3`, `theta_dot`, `u_dot_1`, `u_dot_2`, `u_dot_3`
+/// - `qdd: &[f64; 4]`: accelerations [theta'', u''] (the rigid column's u'' is 0) — `theta_ddot`, `u_ddot_1`, `u_ddot_2`, `u_ddot_3`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`, `c_1_1`, `c_1_2`, `c_1_3`, `c_2_2`, `c_2_3`, `c_3_3`
+///
+/// # Output
+///
+/// `fs: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 167 (88 mul, 46 add, 25 sub, 3 twice, 2 sq, 1 cos, 1 div, 1 sin).
+#[inline]
+#[must_use]
+pub fn section_forces(x: &[f64; 8], qdd: &[f64; 4], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[4]; // m_c
+    let w1: f64 = 0.3333333333333333;
+    let w2 = x[1]; // u_1
+    let w3 = ug; // ug
+    let w4 = x[0]; // theta
+    let w5 = w4.sin();
+    let w6 = w3 * w5;
+    let w7 = qdd[0]; // theta_ddot
+    let w8 = s; // s
+    let w9 = p[1]; // b
+    let w10 = w8 * w9;
+    let w11 = w7 * w10;
+    let w12 = w6 + w11;
+    let w13 = p[8]; // g
+    let w14 = w4.cos();
+    let w15 = w13 * w14;
+    let w16 = w12 + w15;
+    let w17 = w2 * w16;
+    let w18 = w1 * w17;
+    let w19: f64 = 0.5;
+    let w20 = p[0]; // h
+    let w21 = x[4]; // theta_dot
+    let w22 = w21 * w21;
+    let w23 = w22 * w10;
+    let w24 = w3 * w14;
+    let w25 = w23 + w24;
+    let w26 = w13 * w5;
+    let w27 = w25 - w26;
+    let w28 = w20 * w27;
+    let w29 = w19 * w28;
+    let w30 = w18 - w29;
+    let w31: f64 = 0.25;
+    let w32 = x[2]; // u_2
+    let w33 = w32 * w16;
+    let w34 = w31 * w33;
+    let w35 = w30 + w34;
+    let w36: f64 = 0.2;
+    let w37 = x[3]; // u_3
+    let w38 = w37 * w16;
+    let w39 = w36 * w38;
+    let w40 = w35 + w39;
+    let w41: f64 = 0.16666666666666666;
+    let w42 = w7 * w20;
+    let w43 = 2.0 * w42;
+    let w44 = w20 * w43;
+    let w45 = w41 * w44;
+    let w46 = w40 - w45;
+    let w47 = qdd[1]; // u_ddot_1
+    let w48 = w20 * w47;
+    let w49 = w31 * w48;
+    let w50 = w46 - w49;
+    let w51 = qdd[2]; // u_ddot_2
+    let w52 = w20 * w51;
+    let w53 = w36 * w52;
+    let w54 = w50 - w53;
+    let w55 = qdd[3]; // u_ddot_3
+    let w56 = w20 * w55;
+    let w57 = w41 * w56;
+    let w58 = w54 - w57;
+    let w59: f64 = 0.1;
+    let w60 = 2.0 * w21;
+    let w61 = x[5]; // u_dot_1
+    let w62 = w60 * w61;
+    let w63 = w62 * w2;
+    let w64 = w7 * w2;
+    let w65 = w2 * w64;
+    let w66 = w63 + w65;
+    let w67 = w64 + w62;
+    let w68 = w2 * w67;
+    let w69 = w66 + w68;
+    let w70 = w59 * w69;
+    let w71 = w58 - w70;
+    let w72 = w62 * w32;
+    let w73 = w7 * w32;
+    let w74 = w2 * w73;
+    let w75 = w72 + w74;
+    let w76 = x[6]; // u_dot_2
+    let w77 = w60 * w76;
+    let w78 = w73 + w77;
+    let w79 = w2 * w78;
+    let w80 = w75 + w79;
+    let w81 = w41 * w80;
+    let w82 = w71 - w81;
+    let w83: f64 = 0.14285714285714285;
+    let w84 = w62 * w37;
+    let w85 = w7 * w37;
+    let w86 = w2 * w85;
+    let w87 = w84 + w86;
+    let w88 = x[7]; // u_dot_3
+    let w89 = w60 * w88;
+    let w90 = w85 + w89;
+    let w91 = w2 * w90;
+    let w92 = w87 + w91;
+    let w93 = w83 * w92;
+    let w94 = w82 - w93;
+    let w95: f64 = 0.07142857142857142;
+    let w96 = w77 * w32;
+    let w97 = w32 * w73;
+    let w98 = w96 + w97;
+    let w99 = w32 * w78;
+    let w100 = w98 + w99;
+    let w101 = w95 * w100;
+    let w102 = w94 - w101;
+    let w103: f64 = 0.125;
+    let w104 = w77 * w37;
+    let w105 = w32 * w85;
+    let w106 = w104 + w105;
+    let w107 = w32 * w90;
+    let w108 = w106 + w107;
+    let w109 = w103 * w108;
+    let w110 = w102 - w109;
+    let w111: f64 = 0.05555555555555555;
+    let w112 = w89 * w37;
+    let w113 = w37 * w85;
+    let w114 = w112 + w113;
+    let w115 = w37 * w90;
+    let w116 = w114 + w115;
+    let w117 = w111 * w116;
+    let w118 = w110 - w117;
+    let w119 = w0 * w118;
+    let w120 = p[3]; // m
+    let w121 = w2 + w32;
+    let w122 = w121 + w37;
+    let w123 = w122 - w10;
+    let w124 = w7 * w123;
+    let w125 = w22 * w20;
+    let w126 = w124 + w125;
+    let w127 = w62 + w77;
+    let w128 = w127 + w89;
+    let w129 = w126 + w128;
+    let w130 = w6 - w129;
+    let w131 = w130 + w15;
+    let w132 = w122 * w131;
+    let w133 = w22 * w123;
+    let w134 = w42 - w133;
+    let w135 = w47 + w51;
+    let w136 = w135 + w55;
+    let w137 = w134 + w136;
+    let w138 = w137 + w24;
+    let w139 = w138 - w26;
+    let w140 = w20 * w139;
+    let w141 = w132 - w140;
+    let w142 = w120 * w141;
+    let w143 = w119 + w142;
+    let o0 = w143; // moment
+    let w144 = w20 * w7;
+    let w145 = w19 * w144;
+    let w146 = w27 + w145;
+    let w147 = w2 * w22;
+    let w148 = w47 - w147;
+    let w149 = w1 * w148;
+    let w150 = w146 + w149;
+    let w151 = w32 * w22;
+    let w152 = w51 - w151;
+    let w153 = w31 * w152;
+    let w154 = w150 + w153;
+    let w155 = w37 * w22;
+    let w156 = w55 - w155;
+    let w157 = w36 * w156;
+    let w158 = w154 + w157;
+    let w159 = w0 * w158;
+    let w160 = w120 * w139;
+    let w161 = w159 + w160;
+    let o1 = w161; // shear
+    let w162 = w20 * w22;
+    let w163 = w19 * w162;
+    let w164 = w16 - w163;
+    let w165 = w2 * w7;
+    let w166 = w62 + w165;
+    let w167 = w1 * w166;
+    let w168 = w164 - w167;
+    let w169 = w32 * w7;
+    let w170 = w77 + w169;
+    let w171 = w31 * w170;
+    let w172 = w168 - w171;
+    let w173 = w37 * w7;
+    let w174 = w89 + w173;
+    let w175 = w36 * w174;
+    let w176 = w172 - w175;
+    let w177 = w0 * w176;
+    let w178 = w120 * w131;
+    let w179 = w177 + w178;
+    let o2 = w179; // axial
+    let w180 = p[2]; // ei
+    let w181 = w20 * w20;
+    let w182 = w180 / w181;
+    let w183 = 2.0 * w182;
+    let w184 = w183 * w2;
+    let o3 = w184; // moment_elastic
+    let w185 = p[5]; // m_b
+    let w186 = w185 * w27;
+    let w187 = w161 + w186;
+    let w188 = w14 * w187;
+    let w189 = w11 + w6;
+    let w190 = w189 + w15;
+    let w191 = w185 * w190;
+    let w192 = w179 + w191;
+    let w193 = w5 * w192;
+    let w194 = w188 + w193;
+    let o4 = w194; // reaction_h
+    let w195 = w14 * w192;
+    let w196 = w5 * w187;
+    let w197 = w195 - w196;
+    let o5 = w197; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `fs` of [`section_forces()`].
+pub mod section_forces {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `x` of [`section_forces()`](super::section_forces()).
+    pub mod x {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `u_1`.
+        pub const U_1: usize = 1;
+        /// Index of `u_2`.
+        pub const U_2: usize = 2;
+        /// Index of `u_3`.
+        pub const U_3: usize = 3;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 4;
+        /// Index of `u_dot_1`.
+        pub const U_DOT_1: usize = 5;
+        /// Index of `u_dot_2`.
+        pub const U_DOT_2: usize = 6;
+        /// Index of `u_dot_3`.
+        pub const U_DOT_3: usize = 7;
+    }
+
+    /// Indices of the elements of input `qdd` of [`section_forces()`](super::section_forces()).
+    pub mod qdd {
+        /// Index of `theta_ddot`.
+        pub const THETA_DDOT: usize = 0;
+        /// Index of `u_ddot_1`.
+        pub const U_DDOT_1: usize = 1;
+        /// Index of `u_ddot_2`.
+        pub const U_DDOT_2: usize = 2;
+        /// Index of `u_ddot_3`.
+        pub const U_DDOT_3: usize = 3;
+    }
+}
+
 /// Quasi-static uplift about the right corner (s = +1; the left corner is its mirror), from the flexible exact-angle twin: the total weight W, the base moment W B at which the base uplifts (f_s = s M_b - W B), the ground acceleration ug (< 0) that lifts the base when applied so slowly that u' = u'' = 0, the deflection u then, and the elastic moment EI psi''(0) u / H^2 at the column base then, which differs from W B by the P-Delta moment and the shape function's error (docs/design-forces.md). Several coordinates: u_uplift_i, the static deflection K u = -Gamma ug then.
 ///
 /// # Inputs
@@ -6204,6 +6479,11 @@ impl crate::Variant for Polynomial3 {
     }
 
     #[inline]
+    fn section_forces(x: &[f64; 8], qdd: &[f64; 4], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+        section_forces(x, qdd, ug, s, p)
+    }
+
+    #[inline]
     fn static_uplift(p: &Params) -> [f64; 7] {
         static_uplift(p)
     }
@@ -6367,6 +6647,17 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             let s: f64 = match s { [v] => *v, _ => return None };
             let p: &Params = (*p).try_into().ok()?;
             Some(forces_rocking(x, ug, s, p).to_vec())
+        }
+        "section_forces" => {
+            let [x, qdd, ug, s, p] = inputs else {
+                return None;
+            };
+            let x: &[f64; 8] = (*x).try_into().ok()?;
+            let qdd: &[f64; 4] = (*qdd).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(section_forces(x, qdd, ug, s, p).to_vec())
         }
         "static_uplift" => {
             let [p] = inputs else {

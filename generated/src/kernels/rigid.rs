@@ -1663,6 +1663,139 @@ pub mod forces_rocking {
     }
 }
 
+/// The outputs of forces_rocking for the accelerations qdd = [theta'', u''] the integrator already has (the state derivative it evaluated at x), without solving M q'' = F again; in full contact x has theta = theta' = 0 and qdd theta'' = 0 (any s), and the outputs are those of forces_contact.
+///
+/// The section is the column's foot, at the base centre on the line of the pivots. The column, its top mass and every mass on it are in equilibrium under gravity acting on the deflected masses, their inertia from absolute accelerations (ground motion included) and the plate's actions. Body components (equations.md section 0): X along the plate, positive towards positive u; Y up the column axis. `moment` M_b: the moment of the column on the plate, positive in the sense of theta > 0 (clockwise), which is the sign of the curvature at the base; `shear` V_b and `axial` N_b: the force of the plate on the column along X and Y (N_b > 0: compression); `moment_elastic` M_el = EI psi''(0) u / H^2, the moment of the curvature (a rigid column has none: M_b); `reaction_h`, `reaction_v`: the force of the ground on the whole body (column, masses, base) at the pivot, in the world frame (x towards +x, y up), impact impulses excluded.
+///
+/// # Inputs
+///
+/// - `x: &[f64; 4]`: state while rocking — `theta`, `u`, `theta_dot`, `u_dot`
+/// - `qdd: &[f64; 2]`: accelerations [theta'', u''] (the rigid column's u'' is 0) — `theta_ddot`, `u_ddot`
+/// - `ug: f64`: horizontal ground acceleration (positive towards +x) — `ug`
+/// - `s: f64`: active pivot: +1 right corner (theta > 0), -1 left corner — `s`
+/// - `p: &Params`: parameters — `h`, `b`, `ei`, `m`, `m_c`, `m_b`, `i_bc`, `zeta`, `g`
+///
+/// # Output
+///
+/// `fs: [f64; 6]`: section forces and ground reaction — `moment`, `shear`, `axial`, `moment_elastic`, `reaction_h`, `reaction_v`
+///
+/// Operations: 55 (30 mul, 15 add, 5 sub, 1 cos, 1 neg, 1 sin, 1 sq, 1 twice).
+#[inline]
+#[must_use]
+pub fn section_forces(x: &[f64; 4], qdd: &[f64; 2], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+    let w0 = p[4]; // m_c
+    let w1: f64 = 0.5;
+    let w2 = p[0]; // h
+    let w3 = x[2]; // theta_dot
+    let w4 = w3 * w3;
+    let w5 = s; // s
+    let w6 = p[1]; // b
+    let w7 = w5 * w6;
+    let w8 = w4 * w7;
+    let w9 = ug; // ug
+    let w10 = x[0]; // theta
+    let w11 = w10.cos();
+    let w12 = w9 * w11;
+    let w13 = w8 + w12;
+    let w14 = p[8]; // g
+    let w15 = w10.sin();
+    let w16 = w14 * w15;
+    let w17 = w13 - w16;
+    let w18 = w2 * w17;
+    let w19 = w1 * w18;
+    let w20: f64 = 0.16666666666666666;
+    let w21 = qdd[0]; // theta_ddot
+    let w22 = w21 * w2;
+    let w23 = 2.0 * w22;
+    let w24 = w2 * w23;
+    let w25 = w20 * w24;
+    let w26 = w19 + w25;
+    let w27 = w0 * w26;
+    let w28 = p[3]; // m
+    let w29 = w22 + w8;
+    let w30 = w29 + w12;
+    let w31 = w30 - w16;
+    let w32 = w2 * w31;
+    let w33 = w28 * w32;
+    let w34 = w27 + w33;
+    let w35 = -w34;
+    let o0 = w35; // moment
+    let w36 = w2 * w21;
+    let w37 = w1 * w36;
+    let w38 = w17 + w37;
+    let w39 = w0 * w38;
+    let w40 = w28 * w31;
+    let w41 = w39 + w40;
+    let o1 = w41; // shear
+    let w42 = w21 * w7;
+    let w43 = w9 * w15;
+    let w44 = w42 + w43;
+    let w45 = w14 * w11;
+    let w46 = w44 + w45;
+    let w47 = w2 * w4;
+    let w48 = w1 * w47;
+    let w49 = w46 - w48;
+    let w50 = w0 * w49;
+    let w51 = w4 * w2;
+    let w52 = w42 - w51;
+    let w53 = w52 + w43;
+    let w54 = w53 + w45;
+    let w55 = w28 * w54;
+    let w56 = w50 + w55;
+    let o2 = w56; // axial
+    let o3 = w35; // moment_elastic
+    let w57 = p[5]; // m_b
+    let w58 = w57 * w17;
+    let w59 = w41 + w58;
+    let w60 = w11 * w59;
+    let w61 = w57 * w46;
+    let w62 = w56 + w61;
+    let w63 = w15 * w62;
+    let w64 = w60 + w63;
+    let o4 = w64; // reaction_h
+    let w65 = w11 * w62;
+    let w66 = w15 * w59;
+    let w67 = w65 - w66;
+    let o5 = w67; // reaction_v
+    [o0, o1, o2, o3, o4, o5]
+}
+
+/// Indices of the elements of the output `fs` of [`section_forces()`].
+pub mod section_forces {
+    /// Index of `moment`.
+    pub const MOMENT: usize = 0;
+    /// Index of `shear`.
+    pub const SHEAR: usize = 1;
+    /// Index of `axial`.
+    pub const AXIAL: usize = 2;
+    /// Index of `moment_elastic`.
+    pub const MOMENT_ELASTIC: usize = 3;
+    /// Index of `reaction_h`.
+    pub const REACTION_H: usize = 4;
+    /// Index of `reaction_v`.
+    pub const REACTION_V: usize = 5;
+
+    /// Indices of the elements of input `x` of [`section_forces()`](super::section_forces()).
+    pub mod x {
+        /// Index of `theta`.
+        pub const THETA: usize = 0;
+        /// Index of `u`.
+        pub const U: usize = 1;
+        /// Index of `theta_dot`.
+        pub const THETA_DOT: usize = 2;
+        /// Index of `u_dot`.
+        pub const U_DOT: usize = 3;
+    }
+
+    /// Indices of the elements of input `qdd` of [`section_forces()`](super::section_forces()).
+    pub mod qdd {
+        /// Index of `theta_ddot`.
+        pub const THETA_DDOT: usize = 0;
+        /// Index of `u_ddot`.
+        pub const U_DDOT: usize = 1;
+    }
+}
+
 /// Quasi-static uplift about the right corner (s = +1; the left corner is its mirror), from the flexible exact-angle twin: the total weight W, the base moment W B at which the base uplifts (f_s = s M_b - W B), the ground acceleration ug (< 0) that lifts the base when applied so slowly that u' = u'' = 0, the deflection u then, and the elastic moment EI psi''(0) u / H^2 at the column base then, which differs from W B by the P-Delta moment and the shape function's error (docs/design-forces.md).
 ///
 /// # Inputs
@@ -2491,6 +2624,11 @@ impl crate::Variant for Rigid {
     }
 
     #[inline]
+    fn section_forces(x: &[f64; 4], qdd: &[f64; 2], ug: f64, s: f64, p: &Params) -> [f64; 6] {
+        section_forces(x, qdd, ug, s, p)
+    }
+
+    #[inline]
     fn static_uplift(p: &Params) -> [f64; 5] {
         static_uplift(p)
     }
@@ -2654,6 +2792,17 @@ pub fn call(function: &str, inputs: &[&[f64]]) -> Option<Vec<f64>> {
             let s: f64 = match s { [v] => *v, _ => return None };
             let p: &Params = (*p).try_into().ok()?;
             Some(forces_rocking(x, ug, s, p).to_vec())
+        }
+        "section_forces" => {
+            let [x, qdd, ug, s, p] = inputs else {
+                return None;
+            };
+            let x: &[f64; 4] = (*x).try_into().ok()?;
+            let qdd: &[f64; 2] = (*qdd).try_into().ok()?;
+            let ug: f64 = match ug { [v] => *v, _ => return None };
+            let s: f64 = match s { [v] => *v, _ => return None };
+            let p: &Params = (*p).try_into().ok()?;
+            Some(section_forces(x, qdd, ug, s, p).to_vec())
         }
         "static_uplift" => {
             let [p] = inputs else {

@@ -477,7 +477,7 @@ def columns() -> Dict[str, List[Dict[str, Any]]]:
     ``{name, label, unit, group, kind}`` (``label`` in the paper's notation, as the figures print
     it; ``unit`` what the raw quantity is divided by; ``group`` which runs have it: ``always``,
     ``forces``, ``ground``); ``reportable``, the summary quantities a sweep may report, each
-    ``{key, label, needs, twin}``."""
+    ``{key, label, needs, twin, forces}`` (forces: a run tracks the section forces for it)."""
     return json.loads(_rocking.columns_json())
 
 

@@ -229,10 +229,10 @@ impl Base {
         m.options.event_log = false;
         m.options.energy = false;
         m.options.stop_when_known = true;
-        // The forces cost a kernel per step: only a sweep that reports some pays for them.
-        m.options.forces = !self.report.is_empty();
-        // A cell keeps its class, max θ/α and impacts, and the reported quantities: max |u| is
-        // only needed for the latter.
+        // A cell keeps its class, max θ/α and impacts, and the reported quantities: it tracks
+        // the forces (a kernel per step and searches inside steps) only for a quantity that
+        // needs them, and max |u| for any (every quantity of a run is then a number).
+        m.options.forces = self.report.iter().any(|k| report::needs_forces(k));
         m.options.max_deflection = !self.report.is_empty();
         let path = self.path.display();
         let run = |options: &rocking::Options| {

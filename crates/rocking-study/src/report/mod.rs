@@ -9,7 +9,9 @@ mod run;
 mod summary;
 mod tables;
 
-pub use reportable::{quantity_label, reportable_keys, Needs, Reportable, REPORTABLE};
+pub use reportable::{
+    needs_forces, quantity_label, reportable_keys, Needs, Reportable, REPORTABLE,
+};
 pub use run::{run_setup, simulate, Report};
 pub use summary::{
     derived_json, number, quantities, si_scale, summary_json, warnings, SiScale, RATIOS, SI_MAXIMA,
@@ -22,7 +24,7 @@ pub use tables::{
 /// The tables' columns and the reportable summary quantities with their labels and units, as
 /// Python's `rocking.columns()` returns them: `{"history": [..], "events": [..], "reportable":
 /// [..]}`, each column `{name, label, unit, group, kind}`, each quantity `{key, label, needs,
-/// twin}`.
+/// twin, forces}`.
 pub fn catalogue() -> serde_json::Value {
     fn columns<R>(cols: &[Column<R>]) -> Vec<serde_json::Value> {
         cols.iter()
@@ -45,6 +47,7 @@ pub fn catalogue() -> serde_json::Value {
                 "label": r.label,
                 "needs": format!("{:?}", r.needs).to_lowercase(),
                 "twin": r.twin,
+                "forces": r.forces,
             })
         })
         .collect();

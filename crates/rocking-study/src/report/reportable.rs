@@ -34,14 +34,31 @@ pub struct Reportable {
     pub needs: Needs,
     /// The fixed-base twin reports it too, as `fixed_base.KEY`.
     pub twin: bool,
+    /// A run tracks the section forces for it ([`rocking::Options::forces`]: a force kernel per
+    /// step and searches inside steps), which a sweep's cells do only when they report such a
+    /// quantity ([`needs_forces`]).
+    pub forces: bool,
 }
 
-const fn q(key: &'static str, label: &'static str, needs: Needs, twin: bool) -> Reportable {
+/// Whether a run must track the forces for the reported quantity `key`: a force quantity, or
+/// any of the fixed-base twin's (`fixed_base.KEY`, which a run reports only with the forces).
+pub fn needs_forces(key: &str) -> bool {
+    key.starts_with("fixed_base.") || REPORTABLE.iter().any(|r| r.key == key && r.forces)
+}
+
+const fn q(
+    key: &'static str,
+    label: &'static str,
+    needs: Needs,
+    twin: bool,
+    forces: bool,
+) -> Reportable {
     Reportable {
         key,
         label,
         needs,
         twin,
+        forces,
     }
 }
 
@@ -57,29 +74,45 @@ pub const REPORTABLE: [Reportable; 33] = [
         labels::MAX_THETA_OVER_ALPHA,
         Always,
         false,
+        false,
     ),
     q(
         "max_theta_over_theta_cr",
         "max_theta_over_theta_cr",
         Always,
         false,
+        false,
     ),
-    q("max_u_over_ucr", "max |u|/u_cr", Always, true),
-    q("impacts", "impacts", Always, false),
-    q("significant_impacts", "significant_impacts", Always, false),
+    q("max_u_over_ucr", "max |u|/u_cr", Always, true, false),
+    q("impacts", "impacts", Always, false, false),
+    q(
+        "significant_impacts",
+        "significant_impacts",
+        Always,
+        false,
+        false,
+    ),
     q(
         "energy_capped_impacts",
         "energy_capped_impacts",
         Always,
         false,
+        false,
     ),
-    q("end_time", "end_time", Always, false),
-    q("end_time_s", "end_time_s", Seconds, false),
-    q("solver_stats.steps", "solver_stats.steps", Always, false),
+    q("end_time", "end_time", Always, false, false),
+    q("end_time_s", "end_time_s", Seconds, false, false),
+    q(
+        "solver_stats.steps",
+        "solver_stats.steps",
+        Always,
+        false,
+        false,
+    ),
     q(
         "solver_stats.rejected_steps",
         "solver_stats.rejected_steps",
         Always,
+        false,
         false,
     ),
     q(
@@ -87,72 +120,118 @@ pub const REPORTABLE: [Reportable; 33] = [
         "solver_stats.rhs_evaluations",
         Always,
         false,
+        false,
     ),
-    q("solver_stats.events", "solver_stats.events", Always, false),
-    q("max_base_moment_over_wb", "max |M_b|/(W B)", Always, true),
-    q("max_base_shear_over_w", "max |V_b|/W", Always, true),
+    q(
+        "solver_stats.events",
+        "solver_stats.events",
+        Always,
+        false,
+        false,
+    ),
+    q(
+        "max_base_moment_over_wb",
+        "max |M_b|/(W B)",
+        Always,
+        true,
+        true,
+    ),
+    q("max_base_shear_over_w", "max |V_b|/W", Always, true, true),
     q(
         "max_elastic_base_moment_over_wb",
         "max |M_el|/(W B)",
         Always,
         true,
+        true,
     ),
-    q("max_required_friction", "max |R_h|/R_v", Always, true),
-    q("min_vertical_reaction_over_w", "min R_v/W", Always, true),
+    q("max_required_friction", "max |R_h|/R_v", Always, true, true),
+    q(
+        "min_vertical_reaction_over_w",
+        "min R_v/W",
+        Always,
+        true,
+        true,
+    ),
     q(
         "base_moment_ratio",
         "max |M_b|, rocking / fixed base",
         Always,
         false,
+        true,
     ),
     q(
         "base_shear_ratio",
         "max |V_b|, rocking / fixed base",
         Always,
         false,
+        true,
     ),
-    q("max_base_moment_nm", "max |M_b| (N m)", Physical, true),
-    q("max_base_shear_n", "max |V_b| (N)", Physical, true),
+    q(
+        "max_base_moment_nm",
+        "max |M_b| (N m)",
+        Physical,
+        true,
+        true,
+    ),
+    q("max_base_shear_n", "max |V_b| (N)", Physical, true, true),
     q(
         "max_ground_pressure_over_mean",
         "max p/(W/2B)",
         Ground,
         true,
+        false,
     ),
     q(
         "min_contact_fraction",
         "min contact length/2B",
         Ground,
         true,
+        false,
     ),
-    q("lift_offs", "edge lift-offs", Ground, true),
-    q("max_settlement_over_static", "max v/v₀", Ground, true),
+    q("lift_offs", "edge lift-offs", Ground, true, false),
+    q(
+        "max_settlement_over_static",
+        "max v/v₀",
+        Ground,
+        true,
+        false,
+    ),
     q(
         "ground_energy_dissipated",
         "ground dissipation/E_ref",
         Ground,
         true,
+        false,
     ),
     q(
         "energy_balance_residual",
         "energy_balance_residual",
         Energy,
         false,
+        false,
     ),
-    q("energy.initial", "energy.initial", Energy, false),
-    q("energy.last", "energy.last", Energy, false),
-    q("energy.ground_work", "energy.ground_work", Energy, false),
-    q("energy.damping", "energy.damping", Energy, false),
+    q("energy.initial", "energy.initial", Energy, false, false),
+    q("energy.last", "energy.last", Energy, false, false),
+    q(
+        "energy.ground_work",
+        "energy.ground_work",
+        Energy,
+        false,
+        false,
+    ),
+    q("energy.damping", "energy.damping", Energy, false, false),
     q(
         "energy.impact_losses",
         "energy.impact_losses",
         Energy,
+        false,
         false,
     ),
     q(
         "energy.ground_dissipation",
         "energy.ground_dissipation",
         EnergyOnGround,
+        false,
         false,
     ),
 ];
@@ -208,11 +287,11 @@ mod tests {
     use crate::report::{number, quantities, run_setup, si_scale, RATIOS};
 
     /// The numeric keys a run of `m` and its twin serialize: a run that ends at once with the
-    /// forces tracked, as a sweep that reports a force runs.
-    fn serialized_numbers(m: &Setup) -> Vec<String> {
+    /// forces tracked or not (`forces`), as a sweep's cell runs.
+    fn serialized_numbers(m: &Setup, forces: bool) -> Vec<String> {
         let probe = rocking::Options {
             t_end: 1e-9,
-            forces: true,
+            forces,
             history: History::None,
             event_log: false,
             ..m.options
@@ -232,7 +311,9 @@ mod tests {
                 _ => {}
             }
         }
-        keys.extend(RATIOS.iter().map(|r| r.to_string()));
+        if forces {
+            keys.extend(RATIOS.iter().map(|r| r.to_string()));
+        }
         keys.sort();
         keys.dedup();
         keys
@@ -269,11 +350,39 @@ mod tests {
             ));
             assert_eq!(
                 reportable_keys(&m),
-                serialized_numbers(&m),
+                serialized_numbers(&m, true),
                 "{file} {sets:?}: the static list differs from what a run reports"
             );
         }
         assert!(kinds.len() >= 5, "the cases cover too few kinds: {kinds:?}");
+    }
+
+    /// The quantities marked as needing the forces are exactly those a run reports only when it
+    /// tracks them, so a cell that skips the forces can still report everything else.
+    #[test]
+    fn a_cell_tracks_the_forces_for_exactly_the_quantities_that_need_them() {
+        for file in [
+            "scenes/spectra/fig8.toml",
+            "scenes/wind-turbine-elcentro.toml",
+            "scenes/spectra/fig8-winkler.toml",
+        ] {
+            let sc = scene::load(&scene_file(file), &[]).expect("the scene loads");
+            let m = setup::build(&sc).expect("the scene builds");
+            let without = serialized_numbers(&m, false);
+            for key in serialized_numbers(&m, true) {
+                assert_eq!(
+                    needs_forces(&key),
+                    !without.contains(&key),
+                    "{file}: {key} is reported {} the forces",
+                    if without.contains(&key) {
+                        "without"
+                    } else {
+                        "only with"
+                    }
+                );
+            }
+        }
+        assert!(!needs_forces("no_such_key"));
     }
 
     #[test]

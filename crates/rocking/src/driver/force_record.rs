@@ -1,6 +1,8 @@
 //! The forces at one instant and the record of their extremes along a run: values, not the
 //! evaluation (that is [`super::forces`]), so that the run's state can hold the record.
 
+use rocking_kernels::kernels::index::forces_rocking as fk;
+
 use crate::results::{ForceSummary, Time};
 
 /// The forces at one instant: in the model's units (a history row), or normalised by the total
@@ -23,6 +25,18 @@ pub(super) struct Forces {
 pub(super) const MEASURES: usize = 5;
 
 impl Forces {
+    /// The forces a force kernel returns (`forces_contact`, `forces_rocking` and
+    /// `section_forces` name their outputs alike), in the model's units.
+    pub(super) fn of_kernel(f: &[f64; 6]) -> Forces {
+        Forces {
+            moment: f[fk::MOMENT],
+            shear: f[fk::SHEAR],
+            elastic: f[fk::MOMENT_ELASTIC],
+            horizontal: f[fk::REACTION_H],
+            vertical: f[fk::REACTION_V],
+        }
+    }
+
     /// The forces in the model's units normalised by the weight `w` and the moment `wb` = W B.
     pub(super) fn per_weight(self, w: f64, wb: f64) -> Forces {
         Forces {

@@ -4,13 +4,14 @@
 //! which the model's no-sliding and no-jumping assumptions fail; recorded in a
 //! [`ForceRecord`](super::force_record::ForceRecord).
 
-use rocking_kernels::kernels::index::forces_rocking as fk;
+use rocking_kernels::Array;
 use rocking_motion::GroundMotion;
-use rocking_ode::roots::{first_true, golden_max};
+use rocking_ode::roots::{brent_max, first_true};
 
 use super::force_record::{Forces, MEASURES};
 use super::state::{contact_of, contact_x, Ellipse, Sim};
 use crate::dense::StepView;
+use crate::layout::Rocking;
 use crate::results::ForceSummary;
 use crate::taylor::TaylorVariant;
 
@@ -37,12 +38,24 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         } else {
             V::forces_rocking(x, ug, s, &self.p)
         };
-        Forces {
-            moment: f[fk::MOMENT],
-            shear: f[fk::SHEAR],
-            elastic: f[fk::MOMENT_ELASTIC],
-            horizontal: f[fk::REACTION_H],
-            vertical: f[fk::REACTION_V],
+        Forces::of_kernel(&f)
+    }
+
+    /// The forces at `t` of the state `x` whose rate `rate` = [θ', u', θ'', u''] the caller
+    /// has (in full contact θ, θ' and their rates are 0): the accelerations are not solved
+    /// again. Normalised by W and W B.
+    fn forces_with_rate(&self, s: f64, t: f64, x: &V::X, rate: &V::X) -> Forces {
+        let qdd = V::Q::from_fn(|i| rate.values()[Rocking::<V>::THETA_DOT + i]);
+        let f = V::section_forces(x, &qdd, self.motion.accel(t), s, &self.p);
+        Forces::of_kernel(&f).per_weight(self.weight, self.wb)
+    }
+
+    /// The forces at `t` of a step's state: from the rate the integrator has there, else solved.
+    fn forces_on_step(&self, step: &impl StepView<V::X>, contact: bool, s: f64, t: f64) -> Forces {
+        let x = step.state(t);
+        match step.exact_rate(t) {
+            Some(rate) => self.forces_with_rate(s, t, &x, &rate),
+            None => self.forces_at(contact, s, t, &x),
         }
     }
 
@@ -57,30 +70,32 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         f
     }
 
-    /// The forces over the step (t_old, t_new] of a phase, `f_old` those at t_old: the end's,
-    /// and, for each reported quantity whose ends come within the step's possible overshoot of
-    /// its largest so far, the extreme inside the step. Returns the forces at t_new.
+    /// The forces over the step (t_old, t_new] of a phase, `old` those at t_old and, where the
+    /// step before took them, the measures' rates there: the end's forces, and, for each
+    /// quantity whose ends come within the step's possible overshoot of its largest so far, the
+    /// extreme inside the step. Returns the forces at t_new and, where this step took them,
+    /// their rates there.
     pub(super) fn extremes_forces(
         &mut self,
         step: &impl StepView<V::X>,
         contact: bool,
         s: f64,
         t_old: f64,
-        f_old: Forces,
+        old: ForcesAt,
         t_new: f64,
-    ) -> Forces {
+    ) -> ForcesAt {
         if !self.opts.forces {
-            return f_old;
+            return old;
         }
         let at = |t: f64| self.forces_at(contact, s, t, &step.state(t));
-        let f_new = at(t_new);
+        let f_new = self.forces_on_step(step, contact, s, t_new);
         let h = t_new - t_old;
         // A quantity oscillating at ω rises above its values at both ends of a step of length h
         // by at most (ω h)²/8 of its amplitude: only a step whose ends come within twice that of
         // the largest so far can hold a new largest value.
         let omega_h = self.fastest_rate * h;
         let margin = (0.25 * omega_h * omega_h).min(1.0);
-        let (m_old, m_new) = (f_old.measures(), f_new.measures());
+        let (m_old, m_new) = (old.forces.measures(), f_new.measures());
         let (mut peak, mut when) = (m_new, [t_new; MEASURES]);
         let max = self.rec.forces.max;
         let scale = |k: usize| m_old[k].abs().max(m_new[k].abs()).max(max[k].abs());
@@ -90,25 +105,37 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
                 ends.is_finite() && ends >= max[k] - margin * scale(k)
             })
             .collect();
+        let mut rates_new = None;
         if !near.is_empty() && h > 0.0 {
-            // Slopes at both ends (one-sided differences on the step's dense output): a maximum
-            // inside the step rises from its start and falls to its end; the cubic through the
-            // ends' values and slopes tells, to O((ω h)⁴), whether it can beat the record.
+            // Slopes at both ends: a maximum inside the step rises from its start and falls to
+            // its end; the cubic through the ends' values and slopes tells, to O((ω h)⁴),
+            // whether it can beat the record. The end's is a one-sided difference on the step's
+            // dense output; the start's is the step before's at its end where it took one (the
+            // forces are smooth across a step boundary of a phase that is no kink of the
+            // excitation), else a difference on this step.
             let delta = 1e-6 * h;
-            let (m_a, m_b) = (at(t_old + delta).measures(), at(t_new - delta).measures());
+            let m_b = at(t_new - delta).measures();
+            let rate_new: [f64; MEASURES] = std::array::from_fn(|k| (m_new[k] - m_b[k]) / delta);
+            let rate_old = old.rates.unwrap_or_else(|| {
+                let m_a = at(t_old + delta).measures();
+                std::array::from_fn(|k| (m_a[k] - m_old[k]) / delta)
+            });
+            // Kept for the next step if the ground acceleration has no kink at t_new.
+            rates_new = (self.t_stop(t_old) > t_new).then_some(rate_new);
             let tolerance = (omega_h * omega_h).powi(2) / 192.0;
             for k in near {
-                let d0 = (m_a[k] - m_old[k]) / delta * h;
-                let d1 = (m_new[k] - m_b[k]) / delta * h;
+                let (d0, d1) = (rate_old[k] * h, rate_new[k] * h);
                 if !(d0 > 0.0 && d1 < 0.0) {
                     continue;
                 }
                 if hermite_max(m_old[k], d0, m_new[k], d1) < max[k] - tolerance * scale(k) {
                     continue;
                 }
-                let (t, v) = golden_max(|t| at(t).measures()[k], t_old, t_new);
+                // Exact values, on the step's own time τ = t − t_old (the search resolves τ to
+                // √ε of its size; a force changes by (ω δτ)² of its size within δτ of its peak).
+                let (tau, v) = brent_max(|tau| at(t_old + tau).measures()[k], 0.0, h, 1e-9 * h);
                 if v > peak[k] {
-                    (peak[k], when[k]) = (v, t);
+                    (peak[k], when[k]) = (v, t_old + tau);
                 }
             }
         }
@@ -126,7 +153,10 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         rec.first_slip = rec.first_slip.or(slip);
         rec.first_lift_off = rec.first_lift_off.or(lift_off);
         self.rec.forces.record(&peak, when, self.opts.friction);
-        f_new
+        ForcesAt {
+            forces: f_new,
+            rates: rates_new,
+        }
     }
 
     /// After the excitation in full contact: can no force extreme grow any more? Each force is
@@ -149,6 +179,14 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             .forces
             .then(|| self.rec.forces.summary(|t| self.time(t)))
     }
+}
+
+/// The forces at a step boundary of a phase and, where a step took them, the rates of their
+/// measures there ([`Forces::measures`], per unit time).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct ForcesAt {
+    pub(super) forces: Forces,
+    pub(super) rates: Option<[f64; MEASURES]>,
 }
 
 /// The largest value on [0, 1] of the cubic with values `p0`, `p1` and slopes `d0`, `d1` at its

@@ -8,7 +8,7 @@ use rocking_kernels::Array;
 use rocking_motion::GroundMotion;
 use rocking_ode::roots::turning_point;
 
-use super::force_record::Forces;
+use super::forces::ForcesAt;
 use super::state::{Integrals, Sim};
 use crate::dense::StepView;
 use crate::error::SimError;
@@ -18,12 +18,12 @@ use crate::results::{EnergyBalance, EventKind, EventRecord, HistoryRow, Phase, S
 use crate::taylor::TaylorVariant;
 
 /// What a phase's bookkeeping carries from step to step: the phase (full contact, or rocking
-/// about `s`) and the forces at the end of its last step.
+/// about `s`) and the forces at the end of its last step (with their rates, where it took them).
 pub(super) struct PhaseRecord {
     contact: bool,
     s: f64,
     phase: Phase,
-    forces: Forces,
+    forces: ForcesAt,
 }
 
 /// A step a phase's integrator took, from `t_old` to `t_new`, the phase's step attempts
@@ -43,7 +43,10 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
     /// start, recorded.
     pub(super) fn start_phase(&mut self, phase: Phase, s: f64, t0: f64, x0: &V::X) -> PhaseRecord {
         let contact = phase == Phase::Contact;
-        let forces = self.forces_start(contact, s, t0, x0);
+        let forces = ForcesAt {
+            forces: self.forces_start(contact, s, t0, x0),
+            rates: None,
+        };
         PhaseRecord {
             contact,
             s,

@@ -12,6 +12,7 @@ use super::recorder::Step;
 use super::state::{
     contact_state, contact_x, rocking_state, Integrals, Next, Sim, G2, LEFT, RIGHT, Y,
 };
+use crate::dense::RkStep;
 use crate::layout::{Contact, Rocking};
 use crate::options::History;
 use crate::results::Phase;
@@ -103,7 +104,14 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
                 let carried = Integrals::of(y.as_slice(), nc);
                 return self.uplift(t_up, s, &contact_state::<V>(y.as_slice()), carried);
             }
-            t_stop = self.record_step(&mut rec, &dense, step, t_new)?;
+            // The end's rate is the derivative the integrator evaluated there.
+            let contact_rate = |y: &Y<NC>| contact_x::<V>(&contact_state::<V>(y.as_slice()));
+            let view = RkStep {
+                dense,
+                t_new,
+                rate: contact_rate(ode.dy()),
+            };
+            t_stop = self.record_step(&mut rec, &view, step, t_new)?;
             g_old = g_new;
             let y = *ode.y();
             let xc = contact_state::<V>(y.as_slice());
@@ -200,8 +208,12 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
                 let x = rocking_state::<V>(y.as_slice());
                 return self.rocking_event(ev.index, ev.t, s, x, carried);
             }
-            let dense = |t| rocking_state::<V>(ode.dense(t).as_slice());
-            t_stop = self.record_step(&mut rec, &dense, step, t_new)?;
+            let view = RkStep {
+                dense: |t| rocking_state::<V>(ode.dense(t).as_slice()),
+                t_new,
+                rate: rocking_state::<V>(ode.dy().as_slice()),
+            };
+            t_stop = self.record_step(&mut rec, &view, step, t_new)?;
             g_old = g_new;
             if t_new >= self.opts.t_end {
                 let y = *ode.y();
