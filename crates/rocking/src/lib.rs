@@ -58,7 +58,8 @@ pub use driver::simulate as simulate_variant;
 pub use error::{OptionError, SimError};
 pub use ground::{Ground, GroundKind, GroundStatics};
 pub use options::{
-    Accuracy, History, ImpactModel, Initial, Measured, Method, Options, Preset, MAX_HISTORY_ROWS,
+    Accuracy, ForceExtreme, ForceExtremes, History, ImpactModel, Initial, Measured, Method,
+    Options, Preset, MAX_HISTORY_ROWS,
 };
 pub use results::{
     required_friction, EnergyBalance, EventKind, EventRecord, ForceSummary, GroundRow,

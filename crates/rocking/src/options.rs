@@ -337,6 +337,11 @@ pub struct Options {
     ///
     /// [`ForceSummary`]: crate::ForceSummary
     pub forces: bool,
+    /// The force extremes whose peaks inside steps the run searches for, with
+    /// [`forces`](Self::forces) on: all of them by default. The others are only recorded at each
+    /// step's end and event, a lower bound of their extremes: a sweep that reports one force
+    /// searches for that one alone.
+    pub force_extremes: ForceExtremes,
     /// Track the largest top deflection |u| ([`Summary::max_u_over_ucr`]; NaN when off): a
     /// turning-point search on the steps where the top's rate changes sign, and a rest that
     /// waits until u can no longer exceed it. A sweep whose cells keep only the class, max θ/α
@@ -352,6 +357,51 @@ pub struct Options {
     /// exceeds it is reported (`GroundSummary::first_bearing_exceeded_time`; the bed does not
     /// yield). `None`: not checked. The rigid surface has no pressure distribution: ignored there.
     pub bearing_over_mean: Option<f64>,
+}
+
+/// One of the force extremes a run tracks, in the order of [`ForceSummary`](crate::ForceSummary)'s
+/// maxima.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ForceExtreme {
+    /// max |M_b|.
+    BaseMoment,
+    /// max |V_b|.
+    BaseShear,
+    /// max |M_el|.
+    ElasticMoment,
+    /// max |R_h| / R_v.
+    RequiredFriction,
+    /// min R_v.
+    VerticalReaction,
+}
+
+/// A set of [`ForceExtreme`]s ([`Options::force_extremes`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ForceExtremes([bool; 5]);
+
+impl ForceExtremes {
+    /// Every extreme.
+    pub const ALL: ForceExtremes = ForceExtremes([true; 5]);
+    /// None.
+    pub const NONE: ForceExtremes = ForceExtremes([false; 5]);
+
+    /// This set and `extreme`.
+    #[must_use]
+    pub fn with(self, extreme: ForceExtreme) -> ForceExtremes {
+        let mut set = self.0;
+        set[extreme as usize] = true;
+        ForceExtremes(set)
+    }
+
+    /// Whether the set holds `extreme`.
+    pub fn contains(self, extreme: ForceExtreme) -> bool {
+        self.0[extreme as usize]
+    }
+
+    /// Whether the set holds the extreme of index `k` (the order of [`ForceExtreme`]).
+    pub(crate) fn holds(self, k: usize) -> bool {
+        self.0[k]
+    }
 }
 
 impl Default for Options {
@@ -371,6 +421,7 @@ impl Default for Options {
             initial: Initial::default(),
             uplift: true,
             forces: true,
+            force_extremes: ForceExtremes::ALL,
             max_deflection: true,
             friction: None,
             bearing_over_mean: None,

@@ -10,7 +10,7 @@ mod summary;
 mod tables;
 
 pub use reportable::{
-    needs_forces, quantity_label, reportable_keys, Needs, Reportable, REPORTABLE,
+    force_extremes, needs_forces, quantity_label, reportable_keys, Needs, Reportable, REPORTABLE,
 };
 pub use run::{run_setup, simulate, Report};
 pub use summary::{
@@ -47,7 +47,7 @@ pub fn catalogue() -> serde_json::Value {
                 "label": r.label,
                 "needs": format!("{:?}", r.needs).to_lowercase(),
                 "twin": r.twin,
-                "forces": r.forces,
+                "forces": r.extreme.is_some(),
             })
         })
         .collect();

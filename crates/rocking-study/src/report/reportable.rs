@@ -34,16 +34,30 @@ pub struct Reportable {
     pub needs: Needs,
     /// The fixed-base twin reports it too, as `fixed_base.KEY`.
     pub twin: bool,
-    /// A run tracks the section forces for it ([`rocking::Options::forces`]: a force kernel per
-    /// step and searches inside steps), which a sweep's cells do only when they report such a
-    /// quantity ([`needs_forces`]).
-    pub forces: bool,
+    /// The force extreme it is (its own or the fixed-base twin's): a run tracks the forces
+    /// for it ([`rocking::Options::forces`]: a force kernel per step) and searches for that
+    /// extreme inside steps ([`rocking::Options::force_extremes`]), which a sweep's cells do only
+    /// for the quantities they report ([`needs_forces`], [`force_extremes`]).
+    pub extreme: Option<ForceExtreme>,
+}
+
+/// The entry of a reported quantity `key` (`fixed_base.KEY`: `KEY`'s).
+fn entry(key: &str) -> Option<&'static Reportable> {
+    let key = key.strip_prefix("fixed_base.").unwrap_or(key);
+    REPORTABLE.iter().find(|r| r.key == key)
 }
 
 /// Whether a run must track the forces for the reported quantity `key`: a force quantity, or
 /// any of the fixed-base twin's (`fixed_base.KEY`, which a run reports only with the forces).
 pub fn needs_forces(key: &str) -> bool {
-    key.starts_with("fixed_base.") || REPORTABLE.iter().any(|r| r.key == key && r.forces)
+    key.starts_with("fixed_base.") || entry(key).is_some_and(|r| r.extreme.is_some())
+}
+
+/// The force extremes a run must search for to report the quantities `keys`.
+pub fn force_extremes<S: AsRef<str>>(keys: &[S]) -> ForceExtremes {
+    keys.iter()
+        .filter_map(|k| entry(k.as_ref()).and_then(|r| r.extreme))
+        .fold(ForceExtremes::NONE, ForceExtremes::with)
 }
 
 const fn q(
@@ -51,17 +65,19 @@ const fn q(
     label: &'static str,
     needs: Needs,
     twin: bool,
-    forces: bool,
+    extreme: Option<ForceExtreme>,
 ) -> Reportable {
     Reportable {
         key,
         label,
         needs,
         twin,
-        forces,
+        extreme,
     }
 }
 
+use rocking::{ForceExtreme, ForceExtremes};
+use ForceExtreme::{BaseMoment, BaseShear, ElasticMoment, RequiredFriction, VerticalReaction};
 use Needs::{Always, Energy, EnergyOnGround, Ground, Physical, Seconds};
 
 /// Every summary quantity a sweep may report. The ratios to the fixed-base twin are
@@ -74,165 +90,177 @@ pub const REPORTABLE: [Reportable; 33] = [
         labels::MAX_THETA_OVER_ALPHA,
         Always,
         false,
-        false,
+        None,
     ),
     q(
         "max_theta_over_theta_cr",
         "max_theta_over_theta_cr",
         Always,
         false,
-        false,
+        None,
     ),
-    q("max_u_over_ucr", "max |u|/u_cr", Always, true, false),
-    q("impacts", "impacts", Always, false, false),
+    q("max_u_over_ucr", "max |u|/u_cr", Always, true, None),
+    q("impacts", "impacts", Always, false, None),
     q(
         "significant_impacts",
         "significant_impacts",
         Always,
         false,
-        false,
+        None,
     ),
     q(
         "energy_capped_impacts",
         "energy_capped_impacts",
         Always,
         false,
-        false,
+        None,
     ),
-    q("end_time", "end_time", Always, false, false),
-    q("end_time_s", "end_time_s", Seconds, false, false),
+    q("end_time", "end_time", Always, false, None),
+    q("end_time_s", "end_time_s", Seconds, false, None),
     q(
         "solver_stats.steps",
         "solver_stats.steps",
         Always,
         false,
-        false,
+        None,
     ),
     q(
         "solver_stats.rejected_steps",
         "solver_stats.rejected_steps",
         Always,
         false,
-        false,
+        None,
     ),
     q(
         "solver_stats.rhs_evaluations",
         "solver_stats.rhs_evaluations",
         Always,
         false,
-        false,
+        None,
     ),
     q(
         "solver_stats.events",
         "solver_stats.events",
         Always,
         false,
-        false,
+        None,
     ),
     q(
         "max_base_moment_over_wb",
         "max |M_b|/(W B)",
         Always,
         true,
-        true,
+        Some(BaseMoment),
     ),
-    q("max_base_shear_over_w", "max |V_b|/W", Always, true, true),
+    q(
+        "max_base_shear_over_w",
+        "max |V_b|/W",
+        Always,
+        true,
+        Some(BaseShear),
+    ),
     q(
         "max_elastic_base_moment_over_wb",
         "max |M_el|/(W B)",
         Always,
         true,
-        true,
+        Some(ElasticMoment),
     ),
-    q("max_required_friction", "max |R_h|/R_v", Always, true, true),
+    q(
+        "max_required_friction",
+        "max |R_h|/R_v",
+        Always,
+        true,
+        Some(RequiredFriction),
+    ),
     q(
         "min_vertical_reaction_over_w",
         "min R_v/W",
         Always,
         true,
-        true,
+        Some(VerticalReaction),
     ),
     q(
         "base_moment_ratio",
         "max |M_b|, rocking / fixed base",
         Always,
         false,
-        true,
+        Some(BaseMoment),
     ),
     q(
         "base_shear_ratio",
         "max |V_b|, rocking / fixed base",
         Always,
         false,
-        true,
+        Some(BaseShear),
     ),
     q(
         "max_base_moment_nm",
         "max |M_b| (N m)",
         Physical,
         true,
-        true,
+        Some(BaseMoment),
     ),
-    q("max_base_shear_n", "max |V_b| (N)", Physical, true, true),
+    q(
+        "max_base_shear_n",
+        "max |V_b| (N)",
+        Physical,
+        true,
+        Some(BaseShear),
+    ),
     q(
         "max_ground_pressure_over_mean",
         "max p/(W/2B)",
         Ground,
         true,
-        false,
+        None,
     ),
     q(
         "min_contact_fraction",
         "min contact length/2B",
         Ground,
         true,
-        false,
+        None,
     ),
-    q("lift_offs", "edge lift-offs", Ground, true, false),
-    q(
-        "max_settlement_over_static",
-        "max v/v₀",
-        Ground,
-        true,
-        false,
-    ),
+    q("lift_offs", "edge lift-offs", Ground, true, None),
+    q("max_settlement_over_static", "max v/v₀", Ground, true, None),
     q(
         "ground_energy_dissipated",
         "ground dissipation/E_ref",
         Ground,
         true,
-        false,
+        None,
     ),
     q(
         "energy_balance_residual",
         "energy_balance_residual",
         Energy,
         false,
-        false,
+        None,
     ),
-    q("energy.initial", "energy.initial", Energy, false, false),
-    q("energy.last", "energy.last", Energy, false, false),
+    q("energy.initial", "energy.initial", Energy, false, None),
+    q("energy.last", "energy.last", Energy, false, None),
     q(
         "energy.ground_work",
         "energy.ground_work",
         Energy,
         false,
-        false,
+        None,
     ),
-    q("energy.damping", "energy.damping", Energy, false, false),
+    q("energy.damping", "energy.damping", Energy, false, None),
     q(
         "energy.impact_losses",
         "energy.impact_losses",
         Energy,
         false,
-        false,
+        None,
     ),
     q(
         "energy.ground_dissipation",
         "energy.ground_dissipation",
         EnergyOnGround,
         false,
-        false,
+        None,
     ),
 ];
 
@@ -383,6 +411,32 @@ mod tests {
             }
         }
         assert!(!needs_forces("no_such_key"));
+    }
+
+    #[test]
+    fn a_cell_searches_for_the_force_extremes_it_reports() {
+        use rocking::ForceExtreme::{BaseMoment, BaseShear, VerticalReaction};
+        let keys = [
+            "max_base_moment_over_wb",
+            "fixed_base.max_base_shear_over_w",
+            "min_vertical_reaction_over_w",
+            "impacts",
+        ];
+        let want = ForceExtremes::NONE
+            .with(BaseMoment)
+            .with(BaseShear)
+            .with(VerticalReaction);
+        assert_eq!(force_extremes(&keys), want);
+        assert_eq!(
+            force_extremes(&["base_moment_ratio"]),
+            ForceExtremes::NONE.with(BaseMoment)
+        );
+        // The twin's deflection needs the forces (the twin runs only with them), no extreme.
+        assert!(needs_forces("fixed_base.max_u_over_ucr"));
+        assert_eq!(
+            force_extremes(&["fixed_base.max_u_over_ucr"]),
+            ForceExtremes::NONE
+        );
     }
 
     #[test]

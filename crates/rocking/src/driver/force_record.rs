@@ -48,7 +48,8 @@ impl Forces {
         }
     }
 
-    /// The quantities whose largest value is reported, in the order of [`ForceRecord::max`]:
+    /// The quantities whose largest value is reported, in the order of [`ForceRecord::max`] and
+    /// of [`ForceExtreme`](crate::ForceExtreme):
     /// |M_b|, |V_b|, |M_el|, the required friction |R_h| / R_v (−∞ where R_v <= 0, left out of
     /// its largest value: where R_v < 0 no friction holds, which the summary reports as an
     /// unbounded demand from the first lift-off, [`ForceRecord::first_lift_off`]), and −R_v (its largest is the smallest

@@ -99,7 +99,9 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         let (mut peak, mut when) = (m_new, [t_new; MEASURES]);
         let max = self.rec.forces.max;
         let scale = |k: usize| m_old[k].abs().max(m_new[k].abs()).max(max[k].abs());
+        let searched = self.opts.force_extremes;
         let near: Vec<usize> = (0..MEASURES)
+            .filter(|&k| searched.holds(k))
             .filter(|&k| {
                 let ends = m_old[k].max(m_new[k]);
                 ends.is_finite() && ends >= max[k] - margin * scale(k)
@@ -163,8 +165,10 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
     /// affine in (u, u') there, and the vibration stays inside `ellipse`.
     pub(super) fn forces_settled(&self, ellipse: &Ellipse) -> bool {
         let max = self.rec.forces.max;
-        // |M_b|, |V_b|, |M_el| and, as R_v = W in contact, the required friction |R_h| / W.
-        (0..4).all(|k| {
+        // |M_b|, |V_b|, |M_el| and, as R_v = W in contact, the required friction |R_h| / W: those
+        // the run searches for (the others are lower bounds anyway).
+        let searched = self.opts.force_extremes;
+        (0..4).filter(|&k| searched.holds(k)).all(|k| {
             let (c, r) = ellipse.reach::<V>(|xc| {
                 let f = self.forces_of(true, 1.0, 0.0, &contact_x::<V>(xc));
                 [f.moment, f.shear, f.elastic, f.horizontal][k]
