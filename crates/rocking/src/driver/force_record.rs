@@ -24,6 +24,10 @@ pub(super) struct Forces {
 /// The number of quantities whose extremes a run reports.
 pub(super) const MEASURES: usize = 5;
 
+// [`Forces::measures`] and the public [`ForceExtreme`](crate::ForceExtreme) (whose set,
+// `ForceExtremes`, holds one flag per measure) name the same quantities in the same order.
+const _: () = assert!(crate::ForceExtreme::VerticalReaction as usize + 1 == MEASURES);
+
 impl Forces {
     /// The forces a force kernel returns (`forces_contact`, `forces_rocking` and
     /// `section_forces` name their outputs alike), in the model's units.
