@@ -975,7 +975,7 @@ fn a_dimensionless_sweep_refuses_the_si_maxima() {
             "{key}: {err}"
         );
         assert!(
-            err.contains("need a scene in physical units"),
+            err.contains(&format!("; `{key}` needs physical units")),
             "{key}: {err}"
         );
         assert!(!out.join("cells.csv").exists(), "{key}: nothing run");

@@ -233,6 +233,104 @@ fn the_ground_kind_is_a_text_axis() {
     );
 }
 
+/// The bearing pressure as an axis, with the times of events reported: a cell whose pressure
+/// never exceeds the bearing (or that never uplifts) leaves that time empty, every other cell
+/// holds its run's time to the last bit, the empty fields survive the journal (shards merge to
+/// the same bytes), and Python masks them.
+#[test]
+fn a_bearing_axis_reports_the_first_exceedance_empty_where_there_is_none() {
+    let times = ["first_bearing_exceeded_time", "first_uplift_time"];
+    let report = format!(
+        "sweep.report=[\"{}\", \"{}\", \"max_ground_pressure_over_mean\"]",
+        times[0], times[1]
+    );
+    let axes = [
+        "effects.bearing_over_mean=2,50",
+        "excitation.amplitude=0.3,1.3",
+    ];
+    let scene = ground_scene().display().to_string();
+    let sweep = |out: &Path, extra: &[&str]| {
+        let out = out.display().to_string();
+        let mut args = vec![
+            "spectrum",
+            &scene,
+            "--quiet",
+            "--out",
+            &out,
+            "--set",
+            &report,
+            "--set",
+            "effects.bearing_over_mean=3",
+        ];
+        for a in &axes {
+            args.extend(["--axis", a]);
+        }
+        args.extend_from_slice(extra);
+        let o = rocking(&args);
+        assert!(o.status.success(), "{}", text(&o));
+    };
+    let out = tmp_path("bearing-axis");
+    sweep(&out, &[]);
+    let table = rows(&out.join("cells.csv"));
+    assert_eq!(table.len(), 4);
+    let scratch = tmp_path("bearing-axis-run");
+    let (mut empty, mut numbers) = (0, 0);
+    for r in &table {
+        let sets = vec![
+            format!(
+                "effects.bearing_over_mean={}",
+                col(r, "effects.bearing_over_mean")
+            ),
+            format!("excitation.amplitude={}", col(r, "excitation.amplitude")),
+        ];
+        let s = run_json(&ground_scene(), &sets, &scratch);
+        let what = format!("{sets:?}");
+        for k in times {
+            if s.value[k].is_null() {
+                assert_eq!(col(r, k), "", "{what}: {k}");
+                empty += 1;
+            } else {
+                same_number(&s, k, col(r, k), &what);
+                numbers += 1;
+            }
+        }
+        // The bearing is first exceeded exactly where the largest pressure is above it.
+        let bearing: f64 = col(r, "effects.bearing_over_mean").parse().unwrap();
+        let max: f64 = col(r, "max_ground_pressure_over_mean").parse().unwrap();
+        assert_eq!(col(r, times[0]).is_empty(), max <= bearing, "{what}");
+    }
+    assert!(
+        empty >= 2 && numbers >= 2,
+        "{empty} empty, {numbers} numbers"
+    );
+
+    let (s0, s1, merged) = (
+        tmp_path("bearing-s0"),
+        tmp_path("bearing-s1"),
+        tmp_path("bearing-merged"),
+    );
+    sweep(&s0, &["--shard", "0/2"]);
+    sweep(&s1, &["--shard", "1/2"]);
+    let m = rocking(&[
+        "merge",
+        merged.to_str().unwrap(),
+        s0.to_str().unwrap(),
+        s1.to_str().unwrap(),
+    ]);
+    assert!(m.status.success(), "{}", text(&m));
+    assert_eq!(
+        std::fs::read(merged.join("cells.csv")).unwrap(),
+        std::fs::read(out.join("cells.csv")).unwrap()
+    );
+    // A resumed sweep reads the empty fields back from its journal.
+    sweep(&out, &[]);
+    assert_eq!(
+        rows(&out.join("cells.csv")),
+        table,
+        "resumed from the journal"
+    );
+}
+
 /// The wind turbine's record scene on a Winkler bed (no rigid-surface impact map), written
 /// beside its record.
 fn turbine_on_ground(dir: &Path) -> PathBuf {

@@ -493,6 +493,16 @@ fn a_sweep_refuses_what_run_refuses_of_a_twin_and_a_quantity_twice() {
             "sweep.report=[\"impacts\", \"base_moment_ratio\", \"base_moment_ratio\"]",
             "names `base_moment_ratio` twice",
         ),
+        // The time of the first slip needs a friction coefficient to compare with.
+        (
+            "sweep.report=[\"first_slip_time\"]",
+            "`report` in [sweep] names `first_slip_time`, which a run of this scene does not \
+             report (allowed: ",
+        ),
+        (
+            "sweep.report=[\"first_slip_time\"]",
+            "; `first_slip_time` needs a friction coefficient ([effects] friction)",
+        ),
     ] {
         let out = tmp_path("twin-refused");
         let mut c = bin();

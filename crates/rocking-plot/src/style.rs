@@ -78,6 +78,16 @@ pub const BEYOND_MODEL: ClassStyle = ClassStyle {
     label: "beyond the model (M singular)",
 };
 
+/// A shaded cell whose run has no value of the quantity (the time of an event that did not
+/// happen): white, crossed in grey so that greyscale tells it from the scale's light end (the
+/// fill differs from the page's white only so that the hatching, keyed by fill, finds it).
+pub const NO_VALUE: ClassStyle = ClassStyle {
+    fill: [0xFF, 0xFF, 0xFD],
+    hatch: Some(Hatch::Cross),
+    ink: [0x90, 0x90, 0x90],
+    label: "no value (no such event)",
+};
+
 /// Every class fill, for the test and the hatching patterns.
 pub const CLASSES: [ClassStyle; 6] = [
     NO_UPLIFT,
@@ -205,7 +215,11 @@ fn hex(c: [u8; 3]) -> String {
 /// cells and their legend swatches) filled with that class's hatching pattern instead. The
 /// patterns are in user space, so neighbouring cells continue each other's lines.
 pub fn hatch_svg(svg: &str) -> String {
-    let hatched: Vec<&ClassStyle> = CLASSES.iter().filter(|c| c.hatch.is_some()).collect();
+    let hatched: Vec<&ClassStyle> = CLASSES
+        .iter()
+        .chain([&NO_VALUE])
+        .filter(|c| c.hatch.is_some())
+        .collect();
     let fills: Vec<String> = hatched
         .iter()
         .map(|c| format!("fill=\"{}\"", hex(c.fill)))
@@ -330,6 +344,36 @@ mod tests {
                 [c.0, c.1, c.2]
             })
             .collect()
+    }
+
+    #[test]
+    fn a_cell_without_a_value_stays_distinct_from_the_scale_and_the_overturned_classes() {
+        // It is shaded among survivors and beside overturned cells; the no-uplift cells are
+        // shaded too on such a panel, and the failed ones are black.
+        let scale = survivor_scale();
+        let overturned = [
+            OVERTURNED_NO_IMPACT,
+            OVERTURNED_ONE_IMPACT,
+            OVERTURNED_IMPACTS,
+        ];
+        for v in Vision::ALL {
+            let d = scale
+                .iter()
+                .chain(overturned.iter().map(|c| &c.fill))
+                .map(|s| crate::colour::difference(NO_VALUE.fill, *s, v))
+                .fold(f64::INFINITY, f64::min);
+            println!("no value, {v:?}: min ΔE00 = {d:.1}");
+            // In greyscale the scale's light end is near white: the grey crosses tell it.
+            if v != Vision::Greyscale {
+                assert!(d >= DISTINCT, "no value: {d:.1} for {v:?}");
+            }
+        }
+        assert!(NO_VALUE.hatch.is_some());
+        let svg = hatch_svg("<svg>\n<rect fill=\"#FFFFFD\"/>\n</svg>\n");
+        assert!(svg.contains("<rect fill=\"url(#hatch-FFFFFD)\"/>"), "{svg}");
+        for c in CLASSES {
+            assert_ne!(c.fill, NO_VALUE.fill, "{}", c.label);
+        }
     }
 
     #[test]

@@ -295,12 +295,13 @@ fn outcome_dict<'py>(
     let impacts: Vec<u64> = outcome.cells.iter().map(|c| c.impacts).collect();
     d.set_item("impacts", impacts)?;
     // The quantities of `[sweep] report` (the ground's keys on compliant ground), one float64
-    // array per quantity, NaN where a cell has no result (cells.csv leaves those fields empty).
+    // array per quantity, NaN where a cell has no result or its run no value of the quantity (a
+    // time of an event that did not happen; cells.csv leaves those fields empty).
     let reported = PyDict::new(py);
     for (j, name) in sweep.reported.iter().enumerate() {
         let values = outcome.cells.iter().map(|c| {
             if c.class.has_result() {
-                c.reported.get(j).copied().unwrap_or(f64::NAN)
+                c.reported.get(j).copied().flatten().unwrap_or(f64::NAN)
             } else {
                 f64::NAN
             }

@@ -79,6 +79,36 @@ def test_a_ground_spectrum_reports_the_ground_keys_as_the_command(tmp_path):
     assert not np.array_equal(p[0], p[1])
 
 
+def test_a_time_of_an_event_that_did_not_happen_is_masked_as_the_command_leaves_it_empty(tmp_path):
+    sets = ['sweep.report=["first_bearing_exceeded_time", "first_uplift_time"]',
+            "effects.bearing_over_mean=3"]
+    axes = ["effects.bearing_over_mean=2,50", "excitation.amplitude=0.3,1.3"]
+    out = tmp_path / "bearing"
+    args = ["spectrum", str(GROUND), "--quiet", "--out", str(out)]
+    for s in sets:
+        args += ["--set", s]
+    for a in axes:
+        args += ["--axis", a]
+    cli(*args)
+    rows = read_csv(out / "cells.csv")
+    sp = rocking.spectrum(rocking.load_scene(GROUND, set=sets), axes=axes, threads=1)
+    masked = 0
+    for k in ["first_bearing_exceeded_time", "first_uplift_time"]:
+        flat = sp.reported[k].ravel()
+        for i, r in enumerate(rows):
+            if r[k] == "":
+                assert flat.mask[i], (i, k)
+                masked += 1
+            else:
+                assert not flat.mask[i] and flat[i] == float(r[k]), (i, k)
+    # The bearing of 50 mean pressures is never exceeded at either amplitude.
+    assert masked == 2
+    kinds = {q["key"]: q for q in rocking.columns()["reportable"]}
+    assert kinds["first_bearing_exceeded_time"]["nullable"]
+    assert kinds["first_bearing_exceeded_time"]["needs"] == ["ground", "bearing"]
+    assert kinds["impacts"]["needs"] == [] and not kinds["impacts"]["nullable"]
+
+
 def turbine_on_ground(directory: Path) -> Path:
     """The wind turbine's record scene on a Winkler bed (no rigid-surface impact map)."""
     text = (REPO / "scenes" / "wind-turbine-msa.toml").read_text()

@@ -99,8 +99,9 @@ pub struct Cell {
     pub max_theta_over_alpha: f64,
     /// Number of impacts.
     pub impacts: u64,
-    /// The values of the sweep's reported quantities ([`Sweep::reported`]), in order.
-    pub reported: Vec<f64>,
+    /// The values of the sweep's reported quantities ([`Sweep::reported`]), in order: `None`
+    /// where the cell's run has none (a time of an event that did not happen).
+    pub reported: Vec<Option<f64>>,
 }
 
 /// What the run of one cell gives the sweep: its summary (for the class, max θ/α and impacts)
@@ -109,8 +110,8 @@ pub struct Cell {
 pub struct CellRun {
     /// The run's summary.
     pub summary: Summary,
-    /// The values of [`Sweep::reported`], in order.
-    pub reported: Vec<f64>,
+    /// The values of [`Sweep::reported`], in order (`None`: the run has no value).
+    pub reported: Vec<Option<f64>>,
 }
 
 impl From<Summary> for CellRun {

@@ -14,10 +14,18 @@ pub fn fnv1a(bytes: &[u8]) -> u64 {
 
 pub(crate) const JOURNAL: &str = "cells.journal";
 
+/// A reported quantity without a value in a journal line (an empty field would read as no
+/// quantities at all).
+const NO_VALUE: &str = "none";
+
 /// A journal line: the cell, for a failed cell its error message (so that a resumed sweep still
 /// reports it), and a checksum that rejects a torn line.
 pub(crate) fn journal_line(c: &Cell, message: Option<&str>) -> String {
-    let reported: Vec<String> = c.reported.iter().map(|v| format!("{v:e}")).collect();
+    let reported: Vec<String> = c
+        .reported
+        .iter()
+        .map(|v| v.map_or_else(|| NO_VALUE.to_string(), |v| format!("{v:e}")))
+        .collect();
     let mut body = format!(
         "{},{},{:e},{},{}",
         c.index,
@@ -46,8 +54,11 @@ pub(crate) fn parse_journal_line(line: &str) -> Option<(Cell, Option<String>)> {
         Vec::new()
     } else {
         f[4].split(';')
-            .map(|v| v.parse().ok())
-            .collect::<Option<Vec<f64>>>()?
+            .map(|v| match v {
+                NO_VALUE => Some(None),
+                v => v.parse().ok().map(Some),
+            })
+            .collect::<Option<Vec<Option<f64>>>>()?
     };
     let cell = Cell {
         index: f[0].parse().ok()?,

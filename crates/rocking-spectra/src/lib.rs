@@ -504,7 +504,11 @@ pub fn cells_csv(sweep: &Sweep, cells: &[Cell]) -> String {
             c.impacts
         ));
         for v in &c.reported {
-            out.push_str(&format!(",{v}"));
+            // A quantity the cell's run has no value of (an event that did not happen): empty.
+            match v {
+                Some(v) => out.push_str(&format!(",{v}")),
+                None => out.push(','),
+            }
         }
         out.push('\n');
     }
@@ -600,6 +604,31 @@ mod tests {
     }
 
     #[test]
+    fn cells_csv_leaves_a_quantity_without_a_value_empty() {
+        let s = Sweep {
+            axes: vec![Axis::numbers("a", vec![1.0, 2.0])],
+            fingerprint: "x".into(),
+            reported: vec!["first_uplift_time".into(), "max_u_over_ucr".into()],
+        };
+        let cell = |index, class, reported| Cell {
+            index,
+            class,
+            max_theta_over_alpha: 0.5,
+            impacts: 0,
+            reported,
+        };
+        let cells = [
+            cell(0, CellClass::NoUplift, vec![None, Some(0.0)]),
+            cell(1, CellClass::Survived, vec![Some(1.5), Some(2.0)]),
+        ];
+        assert_eq!(
+            cells_csv(&s, &cells),
+            "a,class,max_theta_over_alpha,impacts,first_uplift_time,max_u_over_ucr\n\
+             1,no-uplift,0.5,0,,0\n2,survived,0.5,0,1.5,2\n"
+        );
+    }
+
+    #[test]
     fn cell_order_is_last_axis_fastest() {
         let s = Sweep {
             axes: vec![
@@ -622,7 +651,7 @@ mod tests {
             class: CellClass::OverturnedOneImpact,
             max_theta_over_alpha: 15.707,
             impacts: 1,
-            reported: vec![1.25, -3e-17],
+            reported: vec![Some(1.25), None, Some(-3e-17)],
         };
         let line = journal_line(&c, None);
         assert_eq!(parse_journal_line(line.trim_end()), Some((c.clone(), None)));

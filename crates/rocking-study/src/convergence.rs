@@ -170,7 +170,7 @@ impl Study {
                 _ => reported
                     .iter()
                     .position(|r| r == q)
-                    .and_then(|i| c.reported.get(i).copied()),
+                    .and_then(|i| c.reported.get(i).copied().flatten()),
             }
         };
         let quantities = self

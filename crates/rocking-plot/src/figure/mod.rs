@@ -616,7 +616,7 @@ mod tests {
         let mut c = cells([0.2, 0.65, 1.3]);
         c[0].class = CellClass::NoUplift;
         for (cell, v) in c.iter_mut().zip([1.0, 0.4, -0.3, 0.1]) {
-            cell.reported = vec![v];
+            cell.reported = vec![Some(v)];
         }
         let (figure, name) = reported_figure("t", &s, &c, 0);
         assert_eq!(name, "spectrum-min_vertical_reaction_over_w");
@@ -649,7 +649,7 @@ mod tests {
         s.reported = vec!["max_required_friction".into()];
         let mut c = cells([0.2, 0.65, 1.3]);
         for (cell, v) in c.iter_mut().zip([0.3, 0.6, f64::INFINITY, 2.0]) {
-            cell.reported = vec![v];
+            cell.reported = vec![Some(v)];
         }
         let svg = reported_figure("t", &s, &c, 0).0.svg().unwrap();
         let hex = |c: RGBColor| format!("fill=\"#{:02X}{:02X}{:02X}\"", c.0, c.1, c.2);
@@ -667,9 +667,36 @@ mod tests {
         assert_eq!(entry, "unbounded (inf):");
         assert!(svg.contains(entry), "legend entry");
         // Without an unbounded cell, no such entry.
-        c[2].reported = vec![0.5];
+        c[2].reported = vec![Some(0.5)];
         let svg = reported_figure("t", &s, &c, 0).0.svg().unwrap();
         assert!(!svg.contains(entry));
+    }
+
+    /// A shaded cell whose run has no value (the time of an event that did not happen) is drawn
+    /// crossed, off the colour scale, and the legend names it; the scale is the values'.
+    #[test]
+    fn a_cell_without_a_value_is_crossed_and_in_the_legend() {
+        let mut s = sweep();
+        s.reported = vec!["first_uplift_time".into()];
+        let mut c = cells([0.2, 0.65, 1.3]);
+        for (cell, v) in c.iter_mut().zip([Some(0.3), Some(0.6), None, Some(2.0)]) {
+            cell.reported = vec![v];
+        }
+        let svg = reported_figure("t", &s, &c, 0).0.svg().unwrap();
+        let hex = |c: RGBColor| format!("fill=\"#{:02X}{:02X}{:02X}\"", c.0, c.1, c.2);
+        let middle = hex(ViridisRGB.get_color_normalized(0.3, 0.0, 0.6));
+        assert!(svg.contains(&middle), "{middle}: the values' scale");
+        // The cell and the legend's box, in the fill the hatching finds (style::hatch_svg).
+        let no_value = "fill=\"#FFFFFD\"";
+        assert_eq!(style::NO_VALUE.fill, [0xFF, 0xFF, 0xFD]);
+        assert_eq!(svg.matches(no_value).count(), 2, "{svg}");
+        let entry = &style::NO_VALUE.label[..9];
+        assert_eq!(entry, "no value ");
+        assert!(svg.contains(entry), "legend entry");
+        c[2].reported = vec![Some(0.5)];
+        let svg = reported_figure("t", &s, &c, 0).0.svg().unwrap();
+        assert!(!svg.contains(entry));
+        assert!(!svg.contains(no_value));
     }
 
     /// The friction map carries the contours at μ = 0.5 and 0.7 along the cell edges between
@@ -682,7 +709,7 @@ mod tests {
         // Cells (ω_p/p, amplitude): (1, 1) 0.3, (1, 2) 0.6, (2, 1) inf, (2, 2) overturned.
         let mut c = cells([0.2, 0.65, 1.3]);
         for (cell, v) in c.iter_mut().zip([0.3, 0.6, f64::INFINITY, 5.0]) {
-            cell.reported = vec![v];
+            cell.reported = vec![Some(v)];
         }
         let (figure, _) = reported_figure("t", &s, &c, 0);
         let Panel::Spectrum(panel) = &figure.panels[0] else {

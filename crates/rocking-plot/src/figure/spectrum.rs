@@ -158,7 +158,7 @@ impl SpectrumPanel {
     /// The panel of a sweep's reported quantity `k` (of [`Sweep::reported`], labelled `label`):
     /// every upright cell shaded by its value, a dotted line around those that never uplift.
     pub fn reported(sweep: &Sweep, cells: &[Cell], k: usize, label: &str) -> SpectrumPanel {
-        let value = |c: &Cell| c.reported.get(k).copied().unwrap_or(f64::NAN);
+        let value = |c: &Cell| c.reported.get(k).copied().flatten().unwrap_or(f64::NAN);
         let shade = Shade {
             label: label.to_string(),
             no_uplift: true,
@@ -267,6 +267,17 @@ impl SpectrumPanel {
                 UNBOUNDED_LABEL.to_string(),
             ));
         }
+        if self
+            .grid
+            .2
+            .iter()
+            .any(|c| self.shade.shades(c.2) && c.3.is_nan())
+        {
+            items.push(LegendItem::Fill(
+                style::NO_VALUE.fill,
+                style::NO_VALUE.label.to_string(),
+            ));
+        }
         if !self.boundary.is_empty() {
             items.push(LegendItem::Rule(
                 [0, 0, 0],
@@ -336,6 +347,8 @@ impl SpectrumPanel {
             }
             let fill = match class_style(class) {
                 Some(s) if !shaded => rgb(s.fill),
+                // A shaded cell whose run has no value (an event that did not happen).
+                _ if value.is_nan() => rgb(style::NO_VALUE.fill),
                 _ => ViridisRGB.get_color_normalized(value.clamp(bottom, top), bottom, top),
             };
             let (x0, x1) = cell_bounds(&x.values, i);

@@ -309,12 +309,12 @@ class Spectrum:
         self.impacts: np.ndarray = np.asarray(raw["impacts"], dtype=np.int64).reshape(shape)
         #: The quantities of the scene's ``[sweep] report`` (e.g. the ground's
         #: ``max_ground_pressure_over_mean``), one grid per name, masked where a cell has no
-        #: result: the columns of cells.csv (runs.csv) after ``impacts``.
-        self.reported: Dict[str, np.ma.MaskedArray] = {
-            k: np.ma.masked_array(np.frombuffer(v, dtype=np.float64).reshape(shape),
-                                  self.without_result)
-            for k, v in raw["reported"].items()
-        }
+        #: result or its run no value (a time such as ``first_uplift_time`` of an event that did
+        #: not happen): the columns of cells.csv (runs.csv) after ``impacts``, empty there.
+        self.reported: Dict[str, np.ma.MaskedArray] = {}
+        for k, v in raw["reported"].items():
+            values = np.frombuffer(v, dtype=np.float64).reshape(shape)
+            self.reported[k] = np.ma.masked_array(values, self.without_result | np.isnan(values))
         #: Failed cells: (cell index, message).
         self.failures: List[Tuple[int, str]] = list(raw["failures"])
         #: Cells beyond the model's validity: (cell index, message).
@@ -477,7 +477,10 @@ def columns() -> Dict[str, List[Dict[str, Any]]]:
     ``{name, label, unit, group, kind}`` (``label`` in the paper's notation, as the figures print
     it; ``unit`` what the raw quantity is divided by; ``group`` which runs have it: ``always``,
     ``forces``, ``ground``); ``reportable``, the summary quantities a sweep may report, each
-    ``{key, label, needs, twin, forces}`` (forces: a run tracks the section forces for it)."""
+    ``{key, label, needs, twin, forces, nullable}`` (needs: the conditions a run must meet to
+    report it, such as ``ground`` or ``friction``, none for every run; forces: a run tracks the
+    section forces for it; nullable: a run may have no value, the time of an event that did not
+    happen)."""
     return json.loads(_rocking.columns_json())
 
 

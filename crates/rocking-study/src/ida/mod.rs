@@ -51,7 +51,7 @@ pub struct RecordStudy {
     /// The IDA capacity and the highest survivor below it (`None` for stripes).
     pub capacity: Option<(f64, f64)>,
     /// Per analysis (in the order of `points`), the values of `[sweep] report`.
-    pub reported: Vec<Vec<f64>>,
+    pub reported: Vec<Vec<Option<f64>>>,
 }
 
 /// What the fragility was fitted to.

@@ -95,7 +95,7 @@ impl Study {
                     Entry::Flag(p.outcome.collapsed),
                     Entry::Number(p.outcome.response),
                 ];
-                row.extend(values.iter().copied().map(Entry::Number));
+                row.extend(values.iter().copied().map(Entry::of));
                 t.rows.push(row);
             }
         }

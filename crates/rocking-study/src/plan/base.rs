@@ -36,17 +36,23 @@ fn needs_twin(key: &str) -> bool {
     key.starts_with("fixed_base.") || report::RATIOS.contains(&key)
 }
 
-/// The number at `key` (`a.b` for a nested entry) of a run's quantities: +∞ for an unbounded
-/// one (`"inf"`, [`report::number`]), which cells.csv and runs.csv write as `inf`.
-fn lookup(q: &serde_json::Map<String, serde_json::Value>, key: &str) -> Option<f64> {
-    let (head, tail) = match key.split_once('.') {
-        Some((h, t)) => (h, Some(t)),
-        None => (key, None),
-    };
-    let v = q.get(head)?;
-    match tail {
-        Some(t) => lookup(v.as_object()?, t),
-        None => report::number(v),
+/// The value of the reported quantity `key` (`a.b` for a nested entry) of a run's quantities:
+/// its number (+∞ for an unbounded one, `"inf"`, [`report::number`], which cells.csv and
+/// runs.csv write as `inf`), `Some(None)` for the `null` of a time of an event that did not
+/// happen ([`report::nullable`]), `None` where the run has no value.
+fn lookup(q: &serde_json::Map<String, serde_json::Value>, key: &str) -> Option<Option<f64>> {
+    fn at<'a>(
+        q: &'a serde_json::Map<String, serde_json::Value>,
+        key: &str,
+    ) -> Option<&'a serde_json::Value> {
+        match key.split_once('.') {
+            Some((head, tail)) => at(q.get(head)?.as_object()?, tail),
+            None => q.get(key),
+        }
+    }
+    match at(q, key)? {
+        serde_json::Value::Null if report::nullable(key) => Some(None),
+        v => report::number(v).map(Some),
     }
 }
 
@@ -81,11 +87,8 @@ fn check_report(sc: &Scene, m: &Setup, report: &[String]) -> Result<(), StudyErr
         }
         if !allowed.contains(key) {
             let names: Vec<&str> = allowed.iter().map(String::as_str).collect();
-            let hint = if report::SI_MAXIMA
-                .iter()
-                .any(|q| key.strip_prefix("fixed_base.").unwrap_or(key) == *q)
-            {
-                "; the maxima in SI need a scene in physical units".to_string()
+            let hint = if let Some(wanted) = report::unmet_needs(key, m) {
+                format!("; `{key}` needs {wanted}")
             } else {
                 rocking_scene::scene::suggest(key, &names)
                     .map(|s| format!("; did you mean `{s}`?"))
@@ -96,7 +99,7 @@ fn check_report(sc: &Scene, m: &Setup, report: &[String]) -> Result<(), StudyErr
                 .err(
                     &format!("sweep.report.{i}"),
                     format_args!(
-                    "`report` in [sweep] names `{key}`, which a run does not report as a number \
+                    "`report` in [sweep] names `{key}`, which a run of this scene does not report \
                      (allowed: {}){hint}",
                     allowed.join(", ")
                 ),
@@ -268,7 +271,7 @@ impl Base {
                     )
                 })
             })
-            .collect::<Result<Vec<f64>, _>>()?;
+            .collect::<Result<Vec<Option<f64>>, _>>()?;
         Ok(CellRun { summary, reported })
     }
 

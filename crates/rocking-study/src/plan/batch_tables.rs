@@ -128,7 +128,7 @@ impl Plan {
                     Entry::Number(c.max_theta_over_alpha),
                     Entry::Count(c.impacts),
                 ]);
-                row.extend(c.reported.iter().copied().map(Entry::Number));
+                row.extend(c.reported.iter().copied().map(Entry::of));
                 row.push(Entry::Empty);
             } else {
                 if c.class == CellClass::BeyondModel {

@@ -10,7 +10,8 @@ mod summary;
 mod tables;
 
 pub use reportable::{
-    force_extremes, needs_forces, quantity_label, reportable_keys, Needs, Reportable, REPORTABLE,
+    force_extremes, needs_forces, nullable, quantity_label, reportable_keys, unmet_needs, Need,
+    Reportable, REPORTABLE,
 };
 pub use run::{run_setup, simulate, Report};
 pub use summary::{
@@ -24,7 +25,8 @@ pub use tables::{
 /// The tables' columns and the reportable summary quantities with their labels and units, as
 /// Python's `rocking.columns()` returns them: `{"history": [..], "events": [..], "reportable":
 /// [..]}`, each column `{name, label, unit, group, kind}`, each quantity `{key, label, needs,
-/// twin, forces}`.
+/// twin, forces, nullable}` (`needs`: the conditions a run must meet to report it, none for
+/// every run).
 pub fn catalogue() -> serde_json::Value {
     fn columns<R>(cols: &[Column<R>]) -> Vec<serde_json::Value> {
         cols.iter()
@@ -45,9 +47,10 @@ pub fn catalogue() -> serde_json::Value {
             serde_json::json!({
                 "key": r.key,
                 "label": r.label,
-                "needs": format!("{:?}", r.needs).to_lowercase(),
+                "needs": r.needs.iter().map(|n| format!("{n:?}").to_lowercase()).collect::<Vec<_>>(),
                 "twin": r.twin,
                 "forces": r.extreme.is_some(),
+                "nullable": r.nullable,
             })
         })
         .collect();

@@ -6,11 +6,10 @@
 use rocking_scene::labels;
 use rocking_scene::setup::Setup;
 
-/// Which runs report a quantity as a number.
+/// A condition under which a run reports a quantity: a quantity's conditions must all hold
+/// (none: every run).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Needs {
-    /// Every run (the force maxima too: a sweep that reports one tracks the forces).
-    Always,
+pub enum Need {
     /// A scene whose time is known in seconds (physical units, or a length scale).
     Seconds,
     /// A scene in physical units (the force maxima in SI).
@@ -19,8 +18,10 @@ pub enum Needs {
     Ground,
     /// A run with the energy bookkeeping (`[effects] energy`).
     Energy,
-    /// A run on compliant ground with the energy bookkeeping.
-    EnergyOnGround,
+    /// A friction coefficient to check (`[effects] friction`).
+    Friction,
+    /// A bearing pressure to check (`[effects] bearing` or `bearing_over_mean`).
+    Bearing,
 }
 
 /// A summary quantity a sweep may report.
@@ -30,8 +31,8 @@ pub struct Reportable {
     pub key: &'static str,
     /// Its label in the paper's notation (the key where it has none).
     pub label: &'static str,
-    /// Which runs report it.
-    pub needs: Needs,
+    /// Which runs report it (all of these hold).
+    pub needs: &'static [Need],
     /// The fixed-base twin reports it too, as `fixed_base.KEY`.
     pub twin: bool,
     /// The force extreme it is (its own or the fixed-base twin's): a run tracks the forces
@@ -39,6 +40,9 @@ pub struct Reportable {
     /// extreme inside steps ([`rocking::Options::force_extremes`]), which a sweep's cells do only
     /// for the quantities they report ([`needs_forces`], [`force_extremes`]).
     pub extreme: Option<ForceExtreme>,
+    /// A run may have no value of it: the time of an event that did not happen (`null` in the
+    /// summary, an empty field in cells.csv, NaN and masked in Python).
+    pub nullable: bool,
 }
 
 /// The entry of a reported quantity `key` (`fixed_base.KEY`: `KEY`'s).
@@ -60,10 +64,11 @@ pub fn force_extremes<S: AsRef<str>>(keys: &[S]) -> ForceExtremes {
         .fold(ForceExtremes::NONE, ForceExtremes::with)
 }
 
+/// A number every run of `needs` has.
 const fn q(
     key: &'static str,
     label: &'static str,
-    needs: Needs,
+    needs: &'static [Need],
     twin: bool,
     extreme: Option<ForceExtreme>,
 ) -> Reportable {
@@ -73,218 +78,335 @@ const fn q(
         needs,
         twin,
         extreme,
+        nullable: false,
+    }
+}
+
+/// The time of an event, which a run of `needs` reports (`null` where it did not happen).
+const fn time(
+    key: &'static str,
+    label: &'static str,
+    needs: &'static [Need],
+    extreme: Option<ForceExtreme>,
+) -> Reportable {
+    Reportable {
+        key,
+        label,
+        needs,
+        twin: false,
+        extreme,
+        nullable: true,
     }
 }
 
 use rocking::{ForceExtreme, ForceExtremes};
 use ForceExtreme::{BaseMoment, BaseShear, ElasticMoment, RequiredFriction, VerticalReaction};
-use Needs::{Always, Energy, EnergyOnGround, Ground, Physical, Seconds};
+use Need::{Bearing, Energy, Friction, Ground, Physical, Seconds};
+
+/// Every run.
+const ALWAYS: &[Need] = &[];
+const SECONDS: &[Need] = &[Seconds];
+const PHYSICAL: &[Need] = &[Physical];
+const GROUND: &[Need] = &[Ground];
+const ENERGY: &[Need] = &[Energy];
 
 /// Every summary quantity a sweep may report. The ratios to the fixed-base twin are
 /// [`super::RATIOS`]; M_b, V_b the moment and shear at the column base, M_el the elastic moment,
 /// R_h and R_v the ground reactions, W the total weight, B the half-width; on compliant ground p
 /// the pressure under the base, v its settlement and v₀ the static one.
-pub const REPORTABLE: [Reportable; 33] = [
+pub const REPORTABLE: [Reportable; 45] = [
     q(
         "max_theta_over_alpha",
         labels::MAX_THETA_OVER_ALPHA,
-        Always,
+        ALWAYS,
         false,
         None,
     ),
     q(
         "max_theta_over_theta_cr",
         "max_theta_over_theta_cr",
-        Always,
+        ALWAYS,
         false,
         None,
     ),
-    q("max_u_over_ucr", "max |u|/u_cr", Always, true, None),
-    q("impacts", "impacts", Always, false, None),
+    q("max_u_over_ucr", "max |u|/u_cr", ALWAYS, true, None),
+    q("impacts", "impacts", ALWAYS, false, None),
     q(
         "significant_impacts",
         "significant_impacts",
-        Always,
+        ALWAYS,
         false,
         None,
     ),
     q(
         "energy_capped_impacts",
         "energy_capped_impacts",
-        Always,
+        ALWAYS,
         false,
         None,
     ),
-    q("end_time", "end_time", Always, false, None),
-    q("end_time_s", "end_time_s", Seconds, false, None),
+    q("end_time", "end_time", ALWAYS, false, None),
+    q("end_time_s", "end_time_s", SECONDS, false, None),
     q(
         "solver_stats.steps",
         "solver_stats.steps",
-        Always,
+        ALWAYS,
         false,
         None,
     ),
     q(
         "solver_stats.rejected_steps",
         "solver_stats.rejected_steps",
-        Always,
+        ALWAYS,
         false,
         None,
     ),
     q(
         "solver_stats.rhs_evaluations",
         "solver_stats.rhs_evaluations",
-        Always,
+        ALWAYS,
         false,
         None,
     ),
     q(
         "solver_stats.events",
         "solver_stats.events",
-        Always,
+        ALWAYS,
         false,
         None,
     ),
     q(
         "max_base_moment_over_wb",
         "max |M_b|/(W B)",
-        Always,
+        ALWAYS,
         true,
         Some(BaseMoment),
     ),
     q(
         "max_base_shear_over_w",
         "max |V_b|/W",
-        Always,
+        ALWAYS,
         true,
         Some(BaseShear),
     ),
     q(
         "max_elastic_base_moment_over_wb",
         "max |M_el|/(W B)",
-        Always,
+        ALWAYS,
         true,
         Some(ElasticMoment),
     ),
     q(
         "max_required_friction",
         "max |R_h|/R_v",
-        Always,
+        ALWAYS,
         true,
         Some(RequiredFriction),
     ),
     q(
         "min_vertical_reaction_over_w",
         "min R_v/W",
-        Always,
+        ALWAYS,
         true,
         Some(VerticalReaction),
     ),
     q(
         "base_moment_ratio",
         "max |M_b|, rocking / fixed base",
-        Always,
+        ALWAYS,
         false,
         Some(BaseMoment),
     ),
     q(
         "base_shear_ratio",
         "max |V_b|, rocking / fixed base",
-        Always,
+        ALWAYS,
         false,
         Some(BaseShear),
     ),
     q(
         "max_base_moment_nm",
         "max |M_b| (N m)",
-        Physical,
+        PHYSICAL,
         true,
         Some(BaseMoment),
     ),
     q(
         "max_base_shear_n",
         "max |V_b| (N)",
-        Physical,
+        PHYSICAL,
         true,
         Some(BaseShear),
     ),
     q(
         "max_ground_pressure_over_mean",
         "max p/(W/2B)",
-        Ground,
+        GROUND,
         true,
         None,
     ),
     q(
         "min_contact_fraction",
         "min contact length/2B",
-        Ground,
+        GROUND,
         true,
         None,
     ),
-    q("lift_offs", "edge lift-offs", Ground, true, None),
-    q("max_settlement_over_static", "max v/v₀", Ground, true, None),
+    q("lift_offs", "edge lift-offs", GROUND, true, None),
+    q("max_settlement_over_static", "max v/v₀", GROUND, true, None),
     q(
         "ground_energy_dissipated",
         "ground dissipation/E_ref",
-        Ground,
+        GROUND,
         true,
         None,
     ),
     q(
         "energy_balance_residual",
         "energy_balance_residual",
-        Energy,
+        ENERGY,
         false,
         None,
     ),
-    q("energy.initial", "energy.initial", Energy, false, None),
-    q("energy.last", "energy.last", Energy, false, None),
+    q("energy.initial", "energy.initial", ENERGY, false, None),
+    q("energy.last", "energy.last", ENERGY, false, None),
     q(
         "energy.ground_work",
         "energy.ground_work",
-        Energy,
+        ENERGY,
         false,
         None,
     ),
-    q("energy.damping", "energy.damping", Energy, false, None),
+    q("energy.damping", "energy.damping", ENERGY, false, None),
     q(
         "energy.impact_losses",
         "energy.impact_losses",
-        Energy,
+        ENERGY,
         false,
         None,
     ),
     q(
         "energy.ground_dissipation",
         "energy.ground_dissipation",
-        EnergyOnGround,
+        &[Energy, Ground],
         false,
+        None,
+    ),
+    // The times of events, in τ and (`_s`) in seconds.
+    time("first_uplift_time", "τ at first uplift", ALWAYS, None),
+    time(
+        "first_uplift_time_s",
+        "t at first uplift (s)",
+        SECONDS,
+        None,
+    ),
+    time("first_impact_time", "τ at first impact", ALWAYS, None),
+    time(
+        "first_impact_time_s",
+        "t at first impact (s)",
+        SECONDS,
+        None,
+    ),
+    time("overturn_time", "τ at overturning", ALWAYS, None),
+    time("overturn_time_s", "t at overturning (s)", SECONDS, None),
+    time(
+        "first_slip_time",
+        "τ at first slip (|R_h|/R_v > μ)",
+        &[Friction],
+        Some(RequiredFriction),
+    ),
+    time(
+        "first_slip_time_s",
+        "t at first slip (s)",
+        &[Friction, Seconds],
+        Some(RequiredFriction),
+    ),
+    time(
+        "first_lift_off_time",
+        "τ at first lift-off (R_v < 0)",
+        ALWAYS,
+        Some(VerticalReaction),
+    ),
+    time(
+        "first_lift_off_time_s",
+        "t at first lift-off (s)",
+        SECONDS,
+        Some(VerticalReaction),
+    ),
+    time(
+        "first_bearing_exceeded_time",
+        "τ when p first exceeds the bearing",
+        &[Ground, Bearing],
+        None,
+    ),
+    time(
+        "first_bearing_exceeded_time_s",
+        "t when p first exceeds the bearing (s)",
+        &[Ground, Bearing, Seconds],
         None,
     ),
 ];
 
-impl Needs {
-    /// Whether runs of `model` report what needs this.
+impl Need {
+    /// Whether runs of `model` meet this condition.
     fn met_by(self, model: &Setup) -> bool {
-        let (ground, energy) = (model.ground.is_some(), model.options.energy);
+        let o = &model.options;
         match self {
-            Always => true,
             Seconds => model.structure.p_per_second().is_some(),
             Physical => model.units.physical,
-            Ground => ground,
-            Energy => energy,
-            EnergyOnGround => energy && ground,
+            Ground => model.ground.is_some(),
+            Energy => o.energy,
+            Friction => o.friction.is_some(),
+            Bearing => o.bearing_over_mean.is_some(),
         }
     }
 }
 
-/// The keys a sweep of `model` may report, sorted: the quantities its runs report as numbers,
-/// and the fixed-base twin's (`fixed_base.KEY`).
+impl Need {
+    /// What a scene must have to meet it, in its own words.
+    fn wanted(self) -> &'static str {
+        match self {
+            Seconds => "a time in seconds (physical units, or `r` or `p` in [structure])",
+            Physical => "physical units",
+            Ground => "compliant ground ([ground] kind)",
+            Energy => "the energy bookkeeping ([effects] energy = true)",
+            Friction => "a friction coefficient ([effects] friction)",
+            Bearing => "a bearing pressure ([effects] bearing or bearing_over_mean)",
+        }
+    }
+}
+
+impl Reportable {
+    /// Whether runs of `model` report it.
+    pub fn reported_by(&self, model: &Setup) -> bool {
+        self.needs.iter().all(|n| n.met_by(model))
+    }
+}
+
+/// What the scene of `model` lacks for its runs to report `key` (`fixed_base.KEY`: `KEY`), in
+/// words; `None` for a key no run reports or one they do.
+pub fn unmet_needs(key: &str, model: &Setup) -> Option<String> {
+    let wanted: Vec<&str> = entry(key)?
+        .needs
+        .iter()
+        .filter(|n| !n.met_by(model))
+        .map(|n| n.wanted())
+        .collect();
+    (!wanted.is_empty()).then(|| wanted.join(" and "))
+}
+
+/// Whether a run may have no value of the reported quantity `key` (the time of an event).
+pub fn nullable(key: &str) -> bool {
+    entry(key).is_some_and(|r| r.nullable)
+}
+
+/// The keys a sweep of `model` may report, sorted: the quantities its runs report as numbers
+/// (or, for the times of events, as numbers or `null`), and the fixed-base twin's
+/// (`fixed_base.KEY`).
 pub fn reportable_keys(model: &Setup) -> Vec<String> {
     let mut keys: Vec<String> = REPORTABLE
         .iter()
-        .filter(|r| r.needs.met_by(model))
+        .filter(|r| r.reported_by(model))
         .flat_map(|r| {
             let twin = r.twin.then(|| format!("fixed_base.{}", r.key));
             std::iter::once(r.key.to_string()).chain(twin)
@@ -314,9 +436,10 @@ mod tests {
     use super::*;
     use crate::report::{number, quantities, run_setup, si_scale, RATIOS};
 
-    /// The numeric keys a run of `m` and its twin serialize: a run that ends at once with the
-    /// forces tracked or not (`forces`), as a sweep's cell runs.
-    fn serialized_numbers(m: &Setup, forces: bool) -> Vec<String> {
+    /// The keys a run of `m` and its twin serialize as numbers, and the times they serialize as
+    /// `null` (`*_time`, `*_time_s`; a `null` object such as `energy` is an absent group): a run that ends at once with the forces tracked or not (`forces`), as a sweep's
+    /// cell runs.
+    fn serialized_keys(m: &Setup, forces: bool) -> (Vec<String>, Vec<String>) {
         let probe = rocking::Options {
             t_end: 1e-9,
             forces,
@@ -327,24 +450,35 @@ mod tests {
         let run = |o: &rocking::Options| run_setup(m, o).expect("the probe runs").summary;
         let twin = run(&probe.fixed_base_twin());
         let q = quantities(&run(&probe), Some(&twin), si_scale(m)).expect("finite quantities");
-        let mut keys: Vec<String> = Vec::new();
+        let (mut numbers, mut nulls) = (Vec::new(), Vec::new());
+        let mut sort = |key: String, v: &serde_json::Value| {
+            if number(v).is_some() {
+                numbers.push(key);
+            } else if v.is_null() && (key.ends_with("_time") || key.ends_with("_time_s")) {
+                nulls.push(key);
+            }
+        };
         for (k, v) in &q {
             match v {
-                serde_json::Value::Object(o) => keys.extend(
-                    o.iter()
-                        .filter(|(_, x)| number(x).is_some())
-                        .map(|(j, _)| format!("{k}.{j}")),
-                ),
-                v if number(v).is_some() => keys.push(k.clone()),
-                _ => {}
+                serde_json::Value::Object(o) => {
+                    o.iter().for_each(|(j, x)| sort(format!("{k}.{j}"), x));
+                }
+                v => sort(k.clone(), v),
             }
         }
         if forces {
-            keys.extend(RATIOS.iter().map(|r| r.to_string()));
+            numbers.extend(RATIOS.iter().map(|r| r.to_string()));
         }
-        keys.sort();
-        keys.dedup();
-        keys
+        for keys in [&mut numbers, &mut nulls] {
+            keys.sort();
+            keys.dedup();
+        }
+        (numbers, nulls)
+    }
+
+    /// The numeric keys a run of `m` and its twin serialize.
+    fn serialized_numbers(m: &Setup, forces: bool) -> Vec<String> {
+        serialized_keys(m, forces).0
     }
 
     fn scene_file(rel: &str) -> PathBuf {
@@ -354,14 +488,21 @@ mod tests {
     }
 
     /// Rigid and compliant ground, with and without the energy bookkeeping, dimensionless with
-    /// and without seconds, and physical: the static list is what the runs serialize.
+    /// and without seconds, and physical, with and without friction and a bearing pressure: the
+    /// static list is what the runs serialize, the numbers and the times of the events (`null`
+    /// in these runs, which end at once), and every `null` a run writes is a time the list has.
     #[test]
     fn the_static_list_is_what_runs_of_every_kind_report() {
-        let cases: [(&str, &[&str]); 6] = [
+        let cases: [(&str, &[&str]); 8] = [
             ("scenes/spectra/fig8.toml", &[]),
             ("scenes/spectra/fig8.toml", &["effects.energy=true"]),
+            ("scenes/spectra/fig8.toml", &["effects.friction=0.5"]),
             ("scenes/spectra/fig8-winkler.toml", &[]),
             ("scenes/spectra/fig8-winkler.toml", &["effects.energy=true"]),
+            (
+                "scenes/spectra/fig8-winkler.toml",
+                &["effects.bearing_over_mean=3.0", "effects.friction=0.6"],
+            ),
             ("scenes/wind-turbine-elcentro.toml", &[]),
             ("scenes/ground-winkler.toml", &["effects.energy=true"]),
         ];
@@ -375,14 +516,30 @@ mod tests {
                 m.options.energy,
                 m.units.physical,
                 m.structure.p_per_second().is_some(),
+                m.options.friction.is_some(),
+                m.options.bearing_over_mean.is_some(),
             ));
+            let (numbers, nulls) = serialized_keys(&m, true);
+            for key in &nulls {
+                assert!(
+                    entry(key).is_some_and(|r| r.nullable || !r.reported_by(&m)),
+                    "{file} {sets:?}: a run writes `{key}` as null, which the list does not \
+                     have as a time of an event"
+                );
+            }
+            let mut want: Vec<String> = numbers
+                .into_iter()
+                .chain(nulls.into_iter().filter(|k| nullable(k)))
+                .filter(|k| entry(k).is_none_or(|r| r.reported_by(&m)))
+                .collect();
+            want.sort();
             assert_eq!(
                 reportable_keys(&m),
-                serialized_numbers(&m, true),
+                want,
                 "{file} {sets:?}: the static list differs from what a run reports"
             );
         }
-        assert!(kinds.len() >= 5, "the cases cover too few kinds: {kinds:?}");
+        assert!(kinds.len() >= 7, "the cases cover too few kinds: {kinds:?}");
     }
 
     /// The quantities marked as needing the forces are exactly those a run reports only when it

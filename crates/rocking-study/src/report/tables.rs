@@ -58,6 +58,13 @@ pub enum Entry {
     Missing,
 }
 
+impl Entry {
+    /// A reported quantity: its number, or nothing where the run has no value.
+    pub fn of(value: Option<f64>) -> Entry {
+        value.map_or(Entry::Empty, Entry::Number)
+    }
+}
+
 /// One column of a table of rows `R`.
 #[derive(Clone, Copy, Debug)]
 pub struct Column<R: 'static> {
