@@ -319,3 +319,137 @@ fn stiff_bed_reproducer_runs_to_its_end_with_the_balance_closed() {
         );
     }
 }
+
+/// The least pressure at an end of the contact (`min_ground_pressure_over_mean`): the mean at
+/// rest; never below zero on an undamped tensionless bed or its two springs (a spring only
+/// pushes: at most the lift-off's event tolerance); below zero on the linear-foundation twin
+/// (bilateral springs, `uplift = false`) under a pulse that lifts the tensionless base's edge.
+#[test]
+fn the_least_pressure_is_the_tension_only_bilateral_springs_carry() {
+    let s = structure(10.0, 0.5, 0.0);
+    let pulse = SinePulse::new(1.3 * 0.2f64.tan(), 4.0);
+    for kind in [GroundKind::Winkler, GroundKind::TwoSpring] {
+        let least = |zeta_v: f64, motion: &dyn GroundMotion, uplift: bool| {
+            let g = bed(&s, kind, 30.0, zeta_v);
+            let o = Options {
+                uplift,
+                ..options(8.0, 1e-10, 0.0)
+            };
+            let gs = run(&s, &g, motion, &Effects::default(), &o)
+                .summary
+                .ground
+                .unwrap();
+            (gs.min_ground_pressure_over_mean, gs.lift_offs)
+        };
+        let (rest, _) = least(0.05, &NoMotion, true);
+        let (undamped, lifts) = least(0.0, &pulse, true);
+        let (bilateral, none) = least(0.05, &pulse, false);
+        println!("{kind:?}: rest {rest}, undamped {undamped} ({lifts} lift-offs), linear foundation {bilateral}");
+        assert!((rest - 1.0).abs() <= 1e-7, "{kind:?}: at rest {rest}");
+        assert!(lifts >= 1, "{kind:?}: the pulse lifts an edge");
+        assert!((-1e-6..1.0).contains(&undamped), "{kind:?}: {undamped}");
+        assert_eq!(none, 0, "{kind:?}: the linear foundation never lifts");
+        assert!(bilateral < -0.5, "{kind:?}: {bilateral}");
+    }
+}
+
+/// The peak rotation after the first crossing of θ = 0 of a rigid body released at rest from
+/// `theta0` (no ground motion), and the restitution a rigid-surface analysis would need for it:
+/// the body's height above rest at the two peaks, h(θ) = cos(α − |θ|) − cos α (per R), falls by
+/// r² across an impact, so r = sqrt(h(θ₂)/h(θ₁)).
+fn effective_restitution(r: &Run, alpha: f64, theta0: f64) -> f64 {
+    let switch = r
+        .events
+        .iter()
+        .find(|e| matches!(e.kind, EventKind::PivotSwitch | EventKind::Impact))
+        .expect("θ reaches 0")
+        .time
+        .tau;
+    // The first turning point after the crossing: the largest |θ| before θ' changes sign.
+    let after: Vec<_> = r.history.iter().filter(|h| h.t > switch).collect();
+    let mut peak = 0.0f64;
+    for w in after.windows(2) {
+        peak = peak.max(w[0].theta.abs());
+        if w[1].theta.abs() < w[0].theta.abs() && w[0].theta.abs() > 0.1 * theta0 {
+            break;
+        }
+    }
+    let h = |t: f64| (alpha - t.abs()).cos() - alpha.cos();
+    (h(peak) / h(theta0)).sqrt()
+}
+
+/// The restitution of the structure's rigid twin released from θ₀ = α/2 at rest: on the rigid
+/// surface under `impact`, and on the Winkler bed of ω_v/p = `ratio` with damping ratio `zeta_v`.
+fn restitution(impact: Option<rocking::ImpactModel>, ratio: f64, zeta_v: f64) -> f64 {
+    let s = structure(10.0, 0.5, 0.0);
+    let (alpha, theta0) = (0.2, 0.1);
+    let o = Options {
+        history: History::Grid(2e-4),
+        forces: false,
+        energy: false,
+        ..options(6.0, 1e-11, theta0)
+    };
+    let r = match impact {
+        Some(impact) => simulate(&s, &NoMotion, &rigid(), &Options { impact, ..o }).unwrap(),
+        None => run(
+            &s,
+            &bed(&s, GroundKind::Winkler, ratio, zeta_v),
+            &NoMotion,
+            &rigid(),
+            &o,
+        ),
+    };
+    effective_restitution(&r, alpha, theta0)
+}
+
+/// What a damped bed does to an impact, measured as the restitution a rigid-surface analysis
+/// would need (docs/ground.md, "Effective restitution"): it falls as ζ_v grows, stays above
+/// Housner's angular-momentum rule (the rigid surface's most dissipative map) and below 1, and,
+/// with damping, falls as the bed stiffens.
+#[test]
+fn a_damped_bed_restitutes_less_as_zeta_v_grows_and_more_than_housners_rule() {
+    let housner = restitution(Some(rocking::ImpactModel::Housner), 0.0, 0.0);
+    let vvel = restitution(Some(rocking::ImpactModel::Vvel), 0.0, 0.0);
+    println!("rigid surface: Housner {housner:.5}, VVEL {vvel:.5}");
+    let zetas = [0.0, 0.1, 0.3, 0.7];
+    let table: Vec<[f64; 2]> = zetas
+        .iter()
+        .map(|&z| [100.0, 400.0].map(|ratio| restitution(None, ratio, z)))
+        .collect();
+    for (z, r) in zetas.iter().zip(&table) {
+        println!("zeta_v {z}: ω_v/p = 100: {:.5}, 400: {:.5}", r[0], r[1]);
+    }
+    // The measured values (this body: a top mass, a base plate of half its mass, α = 0.2).
+    assert!((0.8985..0.8987).contains(&housner), "{housner}");
+    assert!((0.9447..0.9449).contains(&vvel), "{vvel}");
+    for k in 0..2 {
+        for w in table.windows(2) {
+            assert!(w[1][k] < w[0][k] - 1e-3, "not falling with ζ_v: {table:?}");
+        }
+        for r in &table {
+            assert!(housner < r[k] && r[k] < 1.0, "{table:?}");
+        }
+    }
+    for r in &table[1..3] {
+        assert!(
+            r[1] < r[0] - 1e-3,
+            "with damping a stiffer bed restitutes less: {table:?}"
+        );
+    }
+}
+
+/// The table of docs/ground.md ("Effective restitution"): `cargo test --release -p
+/// rocking-verification --test ground restitution_table -- --ignored --nocapture`.
+#[test]
+#[ignore]
+fn restitution_table() {
+    let ratios = [100.0, 200.0, 400.0, 800.0, 1600.0, 3200.0, 6400.0];
+    println!(
+        "| ζ_v | {} |",
+        ratios.map(|r| format!("ω_v/p = {r}")).join(" | ")
+    );
+    for z in [0.0, 0.1, 0.3, 0.5, 0.7, 0.9] {
+        let row = ratios.map(|r| format!("{:.4}", restitution(None, r, z)));
+        println!("| {z} | {} |", row.join(" | "));
+    }
+}

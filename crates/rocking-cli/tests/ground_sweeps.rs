@@ -11,8 +11,9 @@ use std::path::{Path, PathBuf};
 use serde_json::Value;
 
 /// The ground's summary keys, reported by every cell.
-const GROUND_KEYS: [&str; 5] = [
+const GROUND_KEYS: [&str; 6] = [
     "max_ground_pressure_over_mean",
+    "min_ground_pressure_over_mean",
     "min_contact_fraction",
     "lift_offs",
     "max_settlement_over_static",

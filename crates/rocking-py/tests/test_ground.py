@@ -19,6 +19,7 @@ CLI = os.environ.get("ROCKING_CLI", str(REPO / "target" / "debug" / "rocking"))
 GROUND = REPO / "scenes" / "ground-winkler.toml"
 GROUND_KEYS = [
     "max_ground_pressure_over_mean",
+    "min_ground_pressure_over_mean",
     "min_contact_fraction",
     "lift_offs",
     "max_settlement_over_static",

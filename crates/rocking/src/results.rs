@@ -156,6 +156,12 @@ pub struct GroundSummary {
     /// corner force over W / 2).
     #[serde(serialize_with = "finite")]
     pub max_ground_pressure_over_mean: f64,
+    /// The least pressure at an end of the contact over the mean (two springs: the smaller
+    /// corner force over W / 2; 0 where a corner is lifted): below zero the ground pulls, which
+    /// only the linear-foundation twin's bilateral springs can (how far, is what it tells), or a
+    /// dashpot at the end of a contact that is unloading.
+    #[serde(serialize_with = "finite")]
+    pub min_ground_pressure_over_mean: f64,
     /// The smallest contact length over 2B (two springs: corners pressing over 2; 0 in flight).
     #[serde(serialize_with = "finite")]
     pub min_contact_fraction: f64,

@@ -114,7 +114,7 @@ const ENERGY: &[Need] = &[Energy];
 /// [`super::RATIOS`]; M_b, V_b the moment and shear at the column base, M_el the elastic moment,
 /// R_h and R_v the ground reactions, W the total weight, B the half-width; on compliant ground p
 /// the pressure under the base, v its settlement and v₀ the static one.
-pub const REPORTABLE: [Reportable; 45] = [
+pub const REPORTABLE: [Reportable; 46] = [
     q(
         "max_theta_over_alpha",
         labels::MAX_THETA_OVER_ALPHA,
@@ -241,6 +241,13 @@ pub const REPORTABLE: [Reportable; 45] = [
     q(
         "max_ground_pressure_over_mean",
         "max p/(W/2B)",
+        GROUND,
+        true,
+        None,
+    ),
+    q(
+        "min_ground_pressure_over_mean",
+        "min p/(W/2B)",
         GROUND,
         true,
         None,

@@ -56,6 +56,7 @@ struct Track {
     max_u: f64,
     max_settlement: f64,
     max_pressure: f64,
+    min_pressure: f64,
     min_contact: f64,
     lift_offs: u64,
     landings: u64,
@@ -170,6 +171,7 @@ pub fn simulate_ground<V: Variant, M: GroundMotion + ?Sized, const N: usize>(
         ode_options,
         rec: Track {
             min_contact: f64::INFINITY,
+            min_pressure: f64::INFINITY,
             min_rv: f64::INFINITY,
             ..Track::default()
         },

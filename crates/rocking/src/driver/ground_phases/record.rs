@@ -17,6 +17,8 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
         r.max_settlement = r.max_settlement.max(y.values()[Free::<V>::V] / self.v0);
         let pressure = g[go::PRESSURE_LO].max(g[go::PRESSURE_HI]) / self.mean_pressure;
         r.max_pressure = r.max_pressure.max(pressure);
+        let least = g[go::PRESSURE_LO].min(g[go::PRESSURE_HI]) / self.mean_pressure;
+        r.min_pressure = r.min_pressure.min(least);
         if self.opts.bearing_over_mean.is_some_and(|q| pressure > q) {
             r.first_bearing.get_or_insert(t);
         }
@@ -172,6 +174,7 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
             forces,
             ground: Some(GroundSummary {
                 max_ground_pressure_over_mean: r.max_pressure,
+                min_ground_pressure_over_mean: r.min_pressure,
                 min_contact_fraction: r.min_contact,
                 lift_offs: r.lift_offs,
                 max_settlement_over_static: r.max_settlement,
