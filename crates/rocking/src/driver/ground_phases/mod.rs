@@ -18,7 +18,7 @@ use rocking_kernels::ground as gk;
 use rocking_kernels::modes::Matrices;
 use rocking_kernels::{Array, Variant};
 use rocking_motion::GroundMotion;
-use rocking_ode::events::{locate, refine, Direction};
+use rocking_ode::events::{locate, refine, Direction, Event};
 use rocking_ode::{Integrator, Options as OdeOptions, Tolerances};
 
 use nalgebra::SVector;
@@ -350,6 +350,7 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
     ) -> Result<PhaseEnd<V>, SimError> {
         let (nqf, integrals) = (Free::<V>::NQ, Free::<V>::INTEGRALS);
         let theta = Free::<V>::THETA;
+        let (a, b) = (self.derived.alpha, self.k.ground.b);
         let motion = self.motion;
         let over = self.opts.overturn_angle;
         let k = self.k;
@@ -393,22 +394,30 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
         });
         let mut ode = Integrator::new(self.ode_options, self.tol)?;
         ode.reset(t0, z0, &mut rhs)?;
+        // The event that started this phase is strictly past its surface ([`past`]): its
+        // component starts on this phase's side, so a return across the surface in the first
+        // step (a grazing touch) is a crossing, and the root search cannot find one at t0.
+        // Where `past` could not get there (the component within rounding of 0 for longer than
+        // it may move), the component starts at the least margin on this phase's side: it does
+        // not fire again at once, and a return is still a crossing. (Started at 0, a return was
+        // never one, since a crossing needs a strict sign at the step start: a corner that turned
+        // back into the bed stayed pressing under a state that said lifted, and the run ended in
+        // a step-size underflow; docs/ground.md.)
         let mut g_old = g(t0, &z0);
-        // The event that started this phase sits on its surface, its component within rounding
-        // of 0 on either side (`refine` keeps the root on the side it converges to). Start it on
-        // the side the new state says, by the least margin: then it does not fire again at
-        // once, but a return across the surface in the first step (a grazing touch: a corner's
-        // depth reaching 0 and turning back) is a crossing. With g_old = 0 it never triggered
-        // (a crossing needs a strict sign at the step start), and a corner that turned back into
-        // the bed stayed pressing under a state that said lifted: the one-edge kernel's
-        // x0 = −v / sin θ then left the base, its forces grew as 1/sin³ θ toward θ = 0, and
-        // the run ended in a step-size underflow (issue 44, docs/ground.md).
         if let Some(i) = fired {
-            g_old[i] = match dirs[i] {
+            let margin = match dirs[i] {
                 Direction::Rising => -f64::MIN_POSITIVE,
                 Direction::Falling => f64::MIN_POSITIVE,
                 Direction::Either => 0.0,
             };
+            let on_this_side = match dirs[i] {
+                Direction::Rising => g_old[i] < 0.0,
+                Direction::Falling => g_old[i] > 0.0,
+                Direction::Either => true,
+            };
+            if !on_this_side {
+                g_old[i] = margin;
+            }
         }
         let mut first_on_zero = fired != Some(0) && y0.values()[theta] == 0.0;
         let (t_old, t, z, event) = loop {
@@ -438,6 +447,10 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
             first_on_zero = false;
             if let Some(ev) = locate(&mut ode, &mut g, &dirs, &g_old, &g_new) {
                 let ev = refine(&mut ode, &mut rhs, &mut g, ev);
+                // A depth v + x sin θ rounds at the size of its terms.
+                let depth = b + ev.y[Free::<V>::V].abs();
+                let noise = 64.0 * f64::EPSILON * [a, depth, depth, a][ev.index];
+                let ev = past(&mut ode, &mut rhs, &mut g, dirs[ev.index], noise, ev);
                 break (info.t_old, ev.t, ev.y, Some(ev.index));
             }
             if info.t_new >= self.opts.t_end {
@@ -501,6 +514,62 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
             }
         }
     }
+}
+
+/// The event moved past its surface by more than the `noise` of its component (64 ulps of its
+/// scale: α for θ, B + |v| for a depth). `refine` keeps the root on the side it converges to, and a
+/// phase that started on the old side or within rounding of 0 (a depth of +1e-18 or exactly 0
+/// on the dense output one ulp later, after a lift-off) found the same surface again at once,
+/// the root search's first point after t0 being still there: a long first step (a flight) ended
+/// in a landing one ulp after its lift-off, that landing in a lift-off one ulp later, and so on,
+/// more than 20 000 events at one instant (issue 44, docs/ground.md, "Chattering"). Moves by 1,
+/// 2, 4, … ulps of t (the step's own states, as `refine`) until the component is past the noise;
+/// at most 2^24 ulps (4e-9 of t), lest the move pass another component's crossing: beyond, the
+/// event stays where `refine` put it.
+fn past<const N: usize, F, G>(
+    ode: &mut Integrator<N>,
+    rhs: &mut F,
+    g: &mut G,
+    dir: Direction,
+    noise: f64,
+    ev: Event<N, 4>,
+) -> Event<N, 4>
+where
+    F: FnMut(f64, &SVector<f64, N>) -> SVector<f64, N>,
+    G: FnMut(f64, &SVector<f64, N>) -> SVector<f64, 4>,
+{
+    let crossed = |gv: f64| match dir {
+        Direction::Rising => gv > noise,
+        Direction::Falling => gv < -noise,
+        Direction::Either => gv.abs() > noise,
+    };
+    if crossed(ev.g[ev.index]) {
+        return ev;
+    }
+    // The search on the line y + Δ f(t, y) (its error Δ² ÿ / 2 is below rounding for the
+    // shifts it takes), checked on the step's own state there.
+    let slope = rhs(ev.t, &ev.y);
+    let ulp = f64::EPSILON * ev.t.abs().max(1.0);
+    for k in 0..=24 {
+        let shift = ulp * f64::from(1u32 << k);
+        let t = ev.t + shift;
+        if t > ode.t() {
+            break;
+        }
+        if crossed(g(t, &(ev.y + slope * shift))[ev.index]) {
+            let y = ode.step_state(rhs, t);
+            let moved = Event {
+                t,
+                g: g(t, &y),
+                y,
+                ..ev
+            };
+            if crossed(moved.g[ev.index]) {
+                return moved;
+            }
+        }
+    }
+    ev
 }
 
 fn corner(left: bool) -> &'static str {
