@@ -58,30 +58,38 @@ fn rigid() -> Effects {
     }
 }
 
-/// At rest at θ = 0 on the static settlement, nothing moves: v stays v0 (measured: within
-/// 6.4e-9 v0 on the bed over τ = 20; the brief's 1e-10 is not met, see docs/ground.md).
+/// At rest at θ = 0 on the static settlement, nothing moves: v stays v0 to the integrator's
+/// tolerance at every step's end, scaling with it (measured on the bed: 2.3e-10 v0 at tol 1e-10,
+/// 1.3e-12 at 1e-12; the two springs 0). The forces balance to rounding; at rest the steps grow
+/// to DOP853's stability limit (about one vertical period), where rounding grows until the
+/// error estimate holds it at the tolerance. Between the steps the dense output is less
+/// accurate (6.4e-9 v0 on a 0.01 τ grid at 1e-10, 3.6e-11 at 1e-12; docs/ground.md).
 #[test]
 fn at_rest_stays_at_the_static_settlement() {
     let s = structure(10.0, 0.5, 0.0);
     for kind in [GroundKind::Winkler, GroundKind::TwoSpring] {
         let g = bed(&s, kind, 30.0, 0.0);
-        let r = run(
-            &s,
-            &g,
-            &NoMotion,
-            &Effects::default(),
-            &options(20.0, 1e-10, 0.0),
-        );
-        let v0 = g.statics(s.static_uplift().weight).settlement;
-        let worst = r
-            .history
-            .iter()
-            .map(|h| (h.ground.unwrap().settlement / v0 - 1.0).abs())
-            .fold(0.0, f64::max);
-        println!("{kind:?}: |v/v0 - 1| <= {worst:e}");
-        assert!(worst <= 1e-8, "{kind:?}: |v/v0 - 1| = {worst:e}");
-        assert!(r.history.iter().all(|h| h.theta == 0.0 && h.u == 0.0));
-        assert_eq!(r.summary.ground.unwrap().lift_offs, 0);
+        for tol in [1e-10, 1e-12] {
+            let o = Options {
+                history: History::Steps,
+                ..options(20.0, tol, 0.0)
+            };
+            let r = run(&s, &g, &NoMotion, &Effects::default(), &o);
+            let v0 = g.statics(s.static_uplift().weight).settlement;
+            let worst = r
+                .history
+                .iter()
+                .map(|h| (h.ground.unwrap().settlement / v0 - 1.0).abs())
+                .fold(0.0, f64::max);
+            println!(
+                "{kind:?}, tol {tol:e}: |v/v0 - 1| <= {worst:e} at {} step ends",
+                r.history.len()
+            );
+            assert!(r.history.len() >= 10);
+            assert!(worst <= 5.0 * tol, "{kind:?}: |v/v0 - 1| = {worst:e}");
+            assert!(r.history.iter().all(|h| h.theta == 0.0 && h.u == 0.0));
+            assert_eq!(r.summary.ground.unwrap().lift_offs, 0);
+        }
     }
 }
 
