@@ -124,7 +124,10 @@ fn an_initial_settlement_heaves_about_the_static_one() {
         assert!(r.history.iter().all(|h| h.theta == 0.0 && h.u == 0.0));
         let summary = r.summary.ground.unwrap();
         assert_eq!(summary.lift_offs, 0);
-        assert!((summary.max_settlement_over_static - 1.5).abs() <= 1e-12);
+        // The start, and the later tops found inside steps on the dense output (within its
+        // error against the closed form, as the rows above).
+        let top = summary.max_settlement_over_static;
+        assert!((top - 1.5).abs() <= 1e-10, "{kind:?}: max settlement {top}");
     }
 }
 
@@ -324,6 +327,78 @@ fn stiff_bed_reproducer_runs_to_its_end_with_the_balance_closed() {
         assert!(
             residual <= tol,
             "energy balance residual {residual:e} at tol {tol:e}"
+        );
+    }
+}
+
+/// The maxima are found inside the steps, not only at their ends: on a stiff bed (ω_v/p = 200,
+/// about 4 steps per vertical period at the preset) each summary maximum lies at or above the
+/// largest row of a 2e-4 τ history grid from the same dense output, and above it by no more than
+/// that grid can miss (a peak falls by (ω δ)²/8 within δ = 1e-4 τ of it: 2e-4 at ω = 200 p).
+/// Sampled at the steps' ends they were low by 3.8 % (settlement) and 1.1 % (base moment).
+#[test]
+fn maxima_inside_steps_are_those_of_a_fine_grid() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../scenes/spectra/fig8-winkler.toml");
+    let sets = [
+        "ground.omega_v_over_p=200".to_string(),
+        "excitation.omega_p_over_p=6.0".to_string(),
+        "excitation.amplitude=3.111111111111111".to_string(),
+    ];
+    let sc = rocking_scene::scene::load(&path, &sets).unwrap();
+    let m = rocking_scene::setup::build(&sc).unwrap();
+    let g = m.ground.expect("a compliant ground");
+    let p = m.structure.derived().p;
+    let o = Options {
+        forces: true,
+        history: History::Grid(2e-4 / p),
+        ..m.options
+    };
+    let r = run(&m.structure, &g, &m.excitation, &m.effects, &o);
+    let st = m.structure.static_uplift();
+    let (v0, mean) = (g.statics(st.weight).settlement, g.mean_pressure(st.weight));
+    let grid = |f: &dyn Fn(&rocking::HistoryRow) -> f64| {
+        r.history.iter().map(f).fold(f64::NEG_INFINITY, f64::max)
+    };
+    let (gs, fs) = (r.summary.ground.unwrap(), r.summary.forces.unwrap());
+    let pairs = [
+        (
+            "settlement",
+            gs.max_settlement_over_static,
+            grid(&|h| h.ground.unwrap().settlement / v0),
+        ),
+        (
+            "pressure",
+            gs.max_ground_pressure_over_mean,
+            grid(&|h| h.ground.unwrap().ground_pressure / mean),
+        ),
+        (
+            "base moment",
+            fs.max_base_moment_over_wb,
+            grid(&|h| h.base_moment.abs() / st.moment),
+        ),
+        (
+            "base shear",
+            fs.max_base_shear_over_w,
+            grid(&|h| h.base_shear.abs() / st.weight),
+        ),
+        (
+            "θ",
+            r.summary.max_theta_over_alpha,
+            grid(&|h| h.theta.abs() / m.structure.derived().alpha),
+        ),
+        (
+            "u",
+            r.summary.max_u_over_ucr,
+            grid(&|h| h.u.abs() / m.structure.derived().u_cr),
+        ),
+    ];
+    for (name, summary, on_grid) in pairs {
+        let above = summary / on_grid - 1.0;
+        println!("{name}: summary {summary:.6}, grid {on_grid:.6}, above by {above:e}");
+        assert!(
+            (-1e-12..=4e-4).contains(&above),
+            "{name}: {summary} against the grid's {on_grid}"
         );
     }
 }

@@ -18,7 +18,7 @@ use rocking_kernels::ground as gk;
 use rocking_kernels::modes::Matrices;
 use rocking_kernels::{Array, Variant};
 use rocking_motion::GroundMotion;
-use rocking_ode::events::{locate, refine, Direction, Event};
+use rocking_ode::events::{locate, refine, Direction};
 use rocking_ode::{Integrator, Options as OdeOptions, Tolerances};
 
 use nalgebra::SVector;
@@ -38,9 +38,12 @@ use crate::structure::{Derived, Structure};
 use gk::winkler_full as go;
 
 mod contact;
+mod past;
+mod peaks;
 mod record;
 
 use contact::{contact_fraction, Contact, Kin};
+use past::past;
 
 /// The structure's energies, power terms and forces: the `free_*` kernels' outputs, in order.
 const KINETIC: usize = 0;
@@ -74,6 +77,8 @@ struct Track {
     first_pull: Option<f64>,
     first_bearing: Option<f64>,
     next_grid: f64,
+    /// The measures searched for peaks at the last step's end, its time and contact state.
+    last_peaked: Option<(f64, Contact, peaks::Peaked)>,
     history: Vec<HistoryRow>,
     coordinates: Vec<f64>,
     log: Vec<EventRecord>,
@@ -96,6 +101,9 @@ struct GroundSim<'a, V: Variant, M: GroundMotion + ?Sized, const N: usize> {
     mean_pressure: f64,
     /// T + V_g + V_s + V_ground at rest at θ = 0, v = v0 (the energies' zero).
     e_rest: f64,
+    /// The fastest rate of the run: ω_v, the column's highest frequency, p, the excitation's
+    /// (the margin of the search for peaks inside a step).
+    fastest_rate: f64,
     top: V::Shape,
     tol: Tolerances<N>,
     ode_options: OdeOptions,
@@ -166,6 +174,7 @@ pub fn simulate_ground<V: Variant, M: GroundMotion + ?Sized, const N: usize>(
         v0,
         mean_pressure,
         e_rest: 0.0,
+        fastest_rate: peaks::fastest_rate::<V, M>(&p, &derived, omega_v, motion),
         top: V::shape(1.0),
         tol,
         ode_options,
@@ -483,14 +492,15 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
         s: f64,
         c: Contact,
     ) {
-        self.step_rows(dense, t_old, t_end, s, c);
+        self.step_rows(&dense, t_old, t_end, s, c);
+        self.peaks_inside(&dense, t_old, t_end, s, c);
         self.observe(t_end, y, s, c);
     }
 
     /// History rows of the step (t_old, t_new] from its dense output.
     fn step_rows(
         &mut self,
-        dense: impl Fn(f64) -> SVector<f64, N>,
+        dense: &impl Fn(f64) -> SVector<f64, N>,
         t_old: f64,
         t_new: f64,
         s: f64,
@@ -514,62 +524,6 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
             }
         }
     }
-}
-
-/// The event moved past its surface by more than the `noise` of its component (64 ulps of its
-/// scale: α for θ, B + |v| for a depth). `refine` keeps the root on the side it converges to, and a
-/// phase that started on the old side or within rounding of 0 (a depth of +1e-18 or exactly 0
-/// on the dense output one ulp later, after a lift-off) found the same surface again at once,
-/// the root search's first point after t0 being still there: a long first step (a flight) ended
-/// in a landing one ulp after its lift-off, that landing in a lift-off one ulp later, and so on,
-/// more than 20 000 events at one instant (issue 44, docs/ground.md, "Chattering"). Moves by 1,
-/// 2, 4, … ulps of t (the step's own states, as `refine`) until the component is past the noise;
-/// at most 2^24 ulps (4e-9 of t), lest the move pass another component's crossing: beyond, the
-/// event stays where `refine` put it.
-fn past<const N: usize, F, G>(
-    ode: &mut Integrator<N>,
-    rhs: &mut F,
-    g: &mut G,
-    dir: Direction,
-    noise: f64,
-    ev: Event<N, 4>,
-) -> Event<N, 4>
-where
-    F: FnMut(f64, &SVector<f64, N>) -> SVector<f64, N>,
-    G: FnMut(f64, &SVector<f64, N>) -> SVector<f64, 4>,
-{
-    let crossed = |gv: f64| match dir {
-        Direction::Rising => gv > noise,
-        Direction::Falling => gv < -noise,
-        Direction::Either => gv.abs() > noise,
-    };
-    if crossed(ev.g[ev.index]) {
-        return ev;
-    }
-    // The search on the line y + Δ f(t, y) (its error Δ² ÿ / 2 is below rounding for the
-    // shifts it takes), checked on the step's own state there.
-    let slope = rhs(ev.t, &ev.y);
-    let ulp = f64::EPSILON * ev.t.abs().max(1.0);
-    for k in 0..=24 {
-        let shift = ulp * f64::from(1u32 << k);
-        let t = ev.t + shift;
-        if t > ode.t() {
-            break;
-        }
-        if crossed(g(t, &(ev.y + slope * shift))[ev.index]) {
-            let y = ode.step_state(rhs, t);
-            let moved = Event {
-                t,
-                g: g(t, &y),
-                y,
-                ..ev
-            };
-            if crossed(moved.g[ev.index]) {
-                return moved;
-            }
-        }
-    }
-    ev
 }
 
 fn corner(left: bool) -> &'static str {
