@@ -273,14 +273,9 @@ fn rigid_limit_of_the_quarter_period_is_first_order() {
     assert!(errors.last().unwrap().abs() < 5e-3, "{errors:?}");
 }
 
-/// Issue 44's reproducer of the step-size underflow on a stiff bed (Study 1, ω_v/p = 200):
-/// `scenes/spectra/fig8-winkler.toml` at ω_p/p = 6, a_p = 3.111… g tan α stopped at τ = 1.020
-/// (a grazing lift-off's return into the bed went unseen: docs/ground.md). It must run to its
-/// end (τ = pulse + 20) with the base never sinking through the bed (a missed landing leaves a
-/// corner below the surface with no force), and its energy balance must close to the integrator's
-/// tolerance, at the scene's preset and at 1e-12.
-#[test]
-fn stiff_bed_reproducer_runs_to_its_end_with_the_balance_closed() {
+/// The cell of Study 1's Fig-8 spectrum on the bed of ω_v/p = 200 that first failed
+/// (ω_p/p = 6, a_p = 3.11 g tan α; docs/ground.md): its scene and its ground.
+fn stiff_bed_cell() -> (rocking_scene::setup::Setup, Ground) {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../scenes/spectra/fig8-winkler.toml");
     let sets = [
@@ -291,6 +286,18 @@ fn stiff_bed_reproducer_runs_to_its_end_with_the_balance_closed() {
     let sc = rocking_scene::scene::load(&path, &sets).unwrap();
     let m = rocking_scene::setup::build(&sc).unwrap();
     let g = m.ground.expect("a compliant ground");
+    (m, g)
+}
+
+/// Issue 44's reproducer of the step-size underflow on a stiff bed (Study 1, ω_v/p = 200):
+/// `scenes/spectra/fig8-winkler.toml` at ω_p/p = 6, a_p = 3.111… g tan α stopped at τ = 1.020
+/// (a grazing lift-off's return into the bed went unseen: docs/ground.md). It must run to its
+/// end (τ = pulse + 20) with the base never sinking through the bed (a missed landing leaves a
+/// corner below the surface with no force), and its energy balance must close to the integrator's
+/// tolerance, at the scene's preset and at 1e-12.
+#[test]
+fn stiff_bed_reproducer_runs_to_its_end_with_the_balance_closed() {
+    let (m, g) = stiff_bed_cell();
     let t_end = m.options.t_end * m.structure.derived().p;
     for tol in [m.options.accuracy.tol, 1e-12] {
         let mut o = Options {
@@ -338,16 +345,7 @@ fn stiff_bed_reproducer_runs_to_its_end_with_the_balance_closed() {
 /// Sampled at the steps' ends they were low by 3.8 % (settlement) and 1.1 % (base moment).
 #[test]
 fn maxima_inside_steps_are_those_of_a_fine_grid() {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../scenes/spectra/fig8-winkler.toml");
-    let sets = [
-        "ground.omega_v_over_p=200".to_string(),
-        "excitation.omega_p_over_p=6.0".to_string(),
-        "excitation.amplitude=3.111111111111111".to_string(),
-    ];
-    let sc = rocking_scene::scene::load(&path, &sets).unwrap();
-    let m = rocking_scene::setup::build(&sc).unwrap();
-    let g = m.ground.expect("a compliant ground");
+    let (m, g) = stiff_bed_cell();
     let p = m.structure.derived().p;
     let o = Options {
         forces: true,
