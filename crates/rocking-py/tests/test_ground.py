@@ -50,7 +50,8 @@ def test_a_ground_run_has_the_commands_ground_columns_and_keys(tmp_path):
     history = result.history
     rows = read_csv(out / "history.csv")
     assert len(rows) == len(history["tau"]) > 100
-    for col in ["settlement_over_static", "contact_fraction", "ground_pressure_over_mean"]:
+    for col in ["settlement_over_static", "contact_fraction", "ground_pressure_over_mean",
+                "least_ground_pressure_over_mean"]:
         want = np.array([float(r[col]) for r in rows])
         assert np.array_equal(history[col], want), col
     # The run lifted off the bed: some rows have part of the base in the air.

@@ -44,6 +44,7 @@
 mod dense;
 mod driver;
 mod error;
+mod extremes;
 mod ground;
 pub mod ground_modes;
 pub mod ground_statics;
@@ -56,10 +57,10 @@ mod taylor;
 
 pub use driver::simulate as simulate_variant;
 pub use error::{OptionError, SimError};
+pub use extremes::{Extreme, Extremes, ForceExtreme, ForceExtremes, GroundExtreme, GroundExtremes};
 pub use ground::{Ground, GroundKind, GroundStatics};
 pub use options::{
-    Accuracy, ForceExtreme, ForceExtremes, History, ImpactModel, Initial, Measured, Method,
-    Options, Preset, MAX_HISTORY_ROWS,
+    Accuracy, History, ImpactModel, Initial, Measured, Method, Options, Preset, MAX_HISTORY_ROWS,
 };
 pub use results::{
     required_friction, EnergyBalance, EventKind, EventRecord, ForceSummary, GroundRow,

@@ -5,6 +5,7 @@ use std::f64::consts::FRAC_PI_2;
 use serde::{Deserialize, Serialize};
 
 use crate::error::OptionError;
+use crate::extremes::{ForceExtremes, GroundExtremes};
 
 /// The integration method of every phase.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -342,6 +343,10 @@ pub struct Options {
     /// step's end and event, a lower bound of their extremes: a sweep that reports one force
     /// searches for that one alone.
     pub force_extremes: ForceExtremes,
+    /// The ground's extremes whose peaks inside steps a run on compliant ground searches for: all
+    /// of them by default; the others are recorded at each step's end, event and the points the
+    /// other searches find (a bound of their extremes).
+    pub ground_extremes: GroundExtremes,
     /// Track the largest top deflection |u| ([`Summary::max_u_over_ucr`]; NaN when off): a
     /// turning-point search on the steps where the top's rate changes sign, and a rest that
     /// waits until u can no longer exceed it. A sweep whose cells keep only the class, max θ/α
@@ -357,51 +362,6 @@ pub struct Options {
     /// exceeds it is reported (`GroundSummary::first_bearing_exceeded_time`; the bed does not
     /// yield). `None`: not checked. The rigid surface has no pressure distribution: ignored there.
     pub bearing_over_mean: Option<f64>,
-}
-
-/// One of the force extremes a run tracks, in the order of [`ForceSummary`](crate::ForceSummary)'s
-/// maxima.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ForceExtreme {
-    /// max |M_b|.
-    BaseMoment,
-    /// max |V_b|.
-    BaseShear,
-    /// max |M_el|.
-    ElasticMoment,
-    /// max |R_h| / R_v.
-    RequiredFriction,
-    /// min R_v.
-    VerticalReaction,
-}
-
-/// A set of [`ForceExtreme`]s ([`Options::force_extremes`]).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct ForceExtremes([bool; 5]);
-
-impl ForceExtremes {
-    /// Every extreme.
-    pub const ALL: ForceExtremes = ForceExtremes([true; 5]);
-    /// None.
-    pub const NONE: ForceExtremes = ForceExtremes([false; 5]);
-
-    /// This set and `extreme`.
-    #[must_use]
-    pub fn with(self, extreme: ForceExtreme) -> ForceExtremes {
-        let mut set = self.0;
-        set[extreme as usize] = true;
-        ForceExtremes(set)
-    }
-
-    /// Whether the set holds `extreme`.
-    pub fn contains(self, extreme: ForceExtreme) -> bool {
-        self.0[extreme as usize]
-    }
-
-    /// Whether the set holds the extreme of index `k` (the order of [`ForceExtreme`]).
-    pub(crate) fn holds(self, k: usize) -> bool {
-        self.0[k]
-    }
 }
 
 impl Default for Options {
@@ -422,6 +382,7 @@ impl Default for Options {
             uplift: true,
             forces: true,
             force_extremes: ForceExtremes::ALL,
+            ground_extremes: GroundExtremes::ALL,
             max_deflection: true,
             friction: None,
             bearing_over_mean: None,

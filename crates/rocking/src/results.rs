@@ -341,6 +341,10 @@ pub struct GroundRow {
     pub contact_fraction: f64,
     /// The largest pressure under the base (two springs: the larger corner force).
     pub ground_pressure: f64,
+    /// The least pressure at an end of the contact (two springs: the smaller corner force; 0 in
+    /// flight): below zero where a dashpot pulls at an unloading edge, or the bilateral springs
+    /// of the linear-foundation twin pull.
+    pub least_pressure: f64,
 }
 
 /// |R_h| / R_v, the friction coefficient an instant needs; infinite where R_v <= 0 (no friction

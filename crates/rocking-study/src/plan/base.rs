@@ -238,6 +238,7 @@ impl Base {
         // a run is then a number).
         m.options.forces = self.report.iter().any(|k| report::needs_forces(k));
         m.options.force_extremes = report::force_extremes(&self.report);
+        m.options.ground_extremes = report::ground_extremes(&self.report);
         m.options.max_deflection = !self.report.is_empty();
         let path = self.path.display();
         let run = |options: &rocking::Options| {

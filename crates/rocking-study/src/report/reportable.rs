@@ -40,6 +40,9 @@ pub struct Reportable {
     /// extreme inside steps ([`rocking::Options::force_extremes`]), which a sweep's cells do only
     /// for the quantities they report ([`needs_forces`], [`force_extremes`]).
     pub extreme: Option<ForceExtreme>,
+    /// The ground's extreme it is, which a run on compliant ground searches for inside steps
+    /// ([`rocking::Options::ground_extremes`]) only when reported ([`ground_extremes`]).
+    pub ground_extreme: Option<GroundExtreme>,
     /// A run may have no value of it: the time of an event that did not happen (`null` in the
     /// summary, an empty field in cells.csv, NaN and masked in Python).
     pub nullable: bool,
@@ -64,6 +67,13 @@ pub fn force_extremes<S: AsRef<str>>(keys: &[S]) -> ForceExtremes {
         .fold(ForceExtremes::NONE, ForceExtremes::with)
 }
 
+/// The ground's extremes a run must search for to report the quantities `keys`.
+pub fn ground_extremes<S: AsRef<str>>(keys: &[S]) -> GroundExtremes {
+    keys.iter()
+        .filter_map(|k| entry(k.as_ref()).and_then(|r| r.ground_extreme))
+        .fold(GroundExtremes::NONE, GroundExtremes::with)
+}
+
 /// A number every run of `needs` has.
 const fn q(
     key: &'static str,
@@ -78,7 +88,18 @@ const fn q(
         needs,
         twin,
         extreme,
+        ground_extreme: None,
         nullable: false,
+    }
+}
+
+impl Reportable {
+    /// This quantity, the ground's extreme `e`.
+    const fn searching(self, e: GroundExtreme) -> Reportable {
+        Reportable {
+            ground_extreme: Some(e),
+            ..self
+        }
     }
 }
 
@@ -95,11 +116,12 @@ const fn time(
         needs,
         twin: false,
         extreme,
+        ground_extreme: None,
         nullable: true,
     }
 }
 
-use rocking::{ForceExtreme, ForceExtremes};
+use rocking::{ForceExtreme, ForceExtremes, GroundExtreme, GroundExtremes};
 use ForceExtreme::{BaseMoment, BaseShear, ElasticMoment, RequiredFriction, VerticalReaction};
 use Need::{Bearing, Energy, Friction, Ground, Physical, Seconds};
 
@@ -244,21 +266,24 @@ pub const REPORTABLE: [Reportable; 46] = [
         GROUND,
         true,
         None,
-    ),
+    )
+    .searching(GroundExtreme::MaxPressure),
     q(
         "min_ground_pressure_over_mean",
         "min p/(W/2B)",
         GROUND,
         true,
         None,
-    ),
+    )
+    .searching(GroundExtreme::LeastPressure),
     q(
         "min_contact_fraction",
         "min contact length/2B",
         GROUND,
         true,
         None,
-    ),
+    )
+    .searching(GroundExtreme::ContactFraction),
     q("lift_offs", "edge lift-offs", GROUND, true, None),
     q("max_settlement_over_static", "max v/v₀", GROUND, true, None),
     q(
@@ -600,6 +625,29 @@ mod tests {
         assert_eq!(
             force_extremes(&["fixed_base.max_u_over_ucr"]),
             ForceExtremes::NONE
+        );
+    }
+
+    #[test]
+    fn a_cell_on_the_ground_searches_for_the_ground_extremes_it_reports() {
+        use rocking::GroundExtreme::{ContactFraction, LeastPressure, MaxPressure};
+        let keys = [
+            "min_contact_fraction",
+            "fixed_base.min_ground_pressure_over_mean",
+        ];
+        let want = GroundExtremes::NONE
+            .with(ContactFraction)
+            .with(LeastPressure);
+        assert_eq!(ground_extremes(&keys), want);
+        assert!(!want.contains(MaxPressure));
+        // Settlement maxima are turning points of v, found whatever is reported.
+        let keys = ["max_settlement_over_static", "lift_offs", "impacts"];
+        assert_eq!(ground_extremes(&keys), GroundExtremes::NONE);
+        // Every searched measure of the driver is some quantity's.
+        let all = REPORTABLE.iter().filter_map(|r| r.ground_extreme);
+        assert_eq!(
+            all.fold(GroundExtremes::NONE, GroundExtremes::with),
+            GroundExtremes::ALL
         );
     }
 

@@ -156,7 +156,7 @@ pub const THETA_OVER_ALPHA: Column<HistoryRow> = column(
 
 /// history.csv's columns in order (then, with n > 1 deformation coordinates, u_1..u_n and
 /// u_dot_1..u_dot_n in the model's units: [`history_csv`]).
-pub const HISTORY: [Column<HistoryRow>; 18] = [
+pub const HISTORY: [Column<HistoryRow>; 19] = [
     TAU,
     // From τ, as the events' seconds are.
     column("t_s", "t (s)", "s", Always, Time, |r, s| {
@@ -283,6 +283,14 @@ pub const HISTORY: [Column<HistoryRow>; 18] = [
         Ground,
         Number,
         |r, s| ground(r, s, |g, gs| g.ground_pressure / gs.mean_pressure),
+    ),
+    column(
+        "least_ground_pressure_over_mean",
+        "p_min/(W/2B)",
+        "W/(2B)",
+        Ground,
+        Number,
+        |r, s| ground(r, s, |g, gs| g.least_pressure / gs.mean_pressure),
     ),
 ];
 

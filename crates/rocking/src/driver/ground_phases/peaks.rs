@@ -1,36 +1,77 @@
-//! The maxima inside a step that its ends do not show, as the rigid surface's recorder finds
+//! The extremes inside a step that its ends do not show, as the rigid surface's recorder finds
 //! them: the turning points of θ, v and the top deflection (where their rates change sign), and
-//! the peaks of the ground pressure and the section forces (where their slopes rise at the
-//! step's start and fall at its end, and the ends come near the largest so far). Each point
-//! found is observed as a state of its own, so every maximum and minimum of the run takes it;
-//! the bearing pressure's first exceedance is the crossing before the first point over it.
-//! Minima (the contact fraction, the least pressure, R_v) are not searched for.
+//! the peaks of the ground pressure, the section forces, and the dips of the contact length, the
+//! least pressure and R_v (where their slopes turn inside the step and its ends come near the
+//! record so far). Each point found is observed as a state of its own, so every maximum and
+//! minimum of the run takes it; the bearing pressure's first exceedance is the crossing before the
+//! first point over it.
 //! Sampled at the steps' ends alone, a bed's maxima came out low by up to 3.8 % (the settlement)
 //! and 1.1 % (the base moment) at ω_v/p = 200 (docs/ground.md).
 
 use super::*;
+use crate::{ForceExtreme, GroundExtreme, GroundKind};
 use rocking_kernels::kernels::index::free_forces as ff;
 use rocking_ode::roots::{brent_max, first_true, turning_point};
 
-/// The larger end pressure, |M_b|, |V_b| and |M_el|, each over its summary's scale.
-pub(super) type Peaked = [f64; 4];
+/// The measures searched for extremes at one state, each signed so that its record is a maximum
+/// and over its summary's scale: the larger end pressure, |M_b|, |V_b|, |M_el|, and the negated
+/// contact fraction, least end pressure and R_v.
+pub(super) type Peaked = [f64; 7];
+
+/// Positions in [`Peaked`].
+const PRESSURE: usize = 0;
+const MOMENT: usize = 1;
+const SHEAR: usize = 2;
+const ELASTIC: usize = 3;
+const CONTACT: usize = 4;
+const LEAST: usize = 5;
+const REACTION_V: usize = 6;
 
 impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N> {
-    /// The measures searched for peaks at one state (the forces 0 where the run records none).
+    /// The measures searched for extremes at one state (the forces 0 where the run records none).
     fn peaked(&self, t: f64, y: &V::Y, s: f64, c: Contact) -> Peaked {
         let ug = self.motion.accel(t);
         let (acc, g) = self.k.accelerations(y, ug, s, c);
-        let pressure = g[go::PRESSURE_LO].max(g[go::PRESSURE_HI]) / self.mean_pressure;
-        if !self.opts.forces {
-            return [pressure, 0.0, 0.0, 0.0];
+        let mean = self.mean_pressure;
+        let mut m = [0.0; 7];
+        m[PRESSURE] = g[go::PRESSURE_LO].max(g[go::PRESSURE_HI]) / mean;
+        m[CONTACT] = -contact_fraction(&g);
+        m[LEAST] = -g[go::PRESSURE_LO].min(g[go::PRESSURE_HI]) / mean;
+        if self.opts.forces {
+            let f = V::free_forces(y, &acc, ug, s, &self.p);
+            m[MOMENT] = f[ff::MOMENT].abs() / self.wb;
+            m[SHEAR] = f[ff::SHEAR].abs() / self.weight;
+            m[ELASTIC] = f[ff::MOMENT_ELASTIC].abs() / self.wb;
+            m[REACTION_V] = -f[ff::REACTION_V] / self.weight;
         }
-        let f = V::free_forces(y, &acc, ug, s, &self.p);
-        [
-            pressure,
-            f[ff::MOMENT].abs() / self.wb,
-            f[ff::SHEAR].abs() / self.weight,
-            f[ff::MOMENT_ELASTIC].abs() / self.wb,
-        ]
+        m
+    }
+
+    /// Whether measure `k` is searched for inside a step of contact state `c`: those the run
+    /// asks for ([`Options::force_extremes`], [`Options::ground_extremes`]; the largest pressure
+    /// also for the bearing check), the pressures and R_v not in flight, the contact length only
+    /// while one edge of a bed is lifted and above its least so far (it can fall no lower than 0).
+    fn searched(&self, k: usize, c: Contact) -> bool {
+        let (o, pressed) = (self.opts, c.left || c.right);
+        let force = |e: ForceExtreme| o.forces && o.force_extremes.contains(e);
+        let ground = |e: GroundExtreme| o.ground_extremes.contains(e);
+        match k {
+            PRESSURE => {
+                pressed && (ground(GroundExtreme::MaxPressure) || o.bearing_over_mean.is_some())
+            }
+            LEAST => pressed && ground(GroundExtreme::LeastPressure),
+            CONTACT => {
+                c.left != c.right
+                    && self.k.ground.kind == GroundKind::Winkler
+                    && !self.k.bilateral
+                    && self.rec.min_contact > 0.0
+                    && ground(GroundExtreme::ContactFraction)
+            }
+            MOMENT => force(ForceExtreme::BaseMoment),
+            SHEAR => force(ForceExtreme::BaseShear),
+            ELASTIC => force(ForceExtreme::ElasticMoment),
+            _ => pressed && force(ForceExtreme::VerticalReaction),
+        }
     }
 
     /// Observes the points inside the step (t_old, t_new) of one phase (`dense` its dense
@@ -78,12 +119,32 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
         let m_new = self.peaked(t_new, &b, s, c);
         self.rec.last_peaked = Some((t_new, c, m_new));
         let r = &self.rec;
-        let max = [r.max_pressure, r.max_moment, r.max_shear, r.max_elastic];
+        let record = [
+            r.max_pressure,
+            r.max_moment,
+            r.max_shear,
+            r.max_elastic,
+            -r.min_contact,
+            -r.min_pressure,
+            -r.min_rv,
+        ];
         let delta = 1e-6 * h;
         let mut slopes: Option<(Peaked, Peaked)> = None;
-        for k in 0..if self.opts.forces { 4 } else { 1 } {
+        for k in (0..record.len()).filter(|&k| self.searched(k, c)) {
             let ends = m_old[k].max(m_new[k]);
-            if !ends.is_finite() || ends < max[k] - margin * ends.max(max[k]) {
+            // The quantity's amplitude: for the maxima (of measures >= 0) their largest value;
+            // the contact fraction's is at most 1; the least pressure and R_v / W swing with the
+            // largest pressure over the mean (R_v <= 2B p_max = W p_max / mean).
+            let scale = match k {
+                CONTACT => 1.0,
+                LEAST | REACTION_V => ends
+                    .abs()
+                    .max(record[k].abs())
+                    .max(record[PRESSURE])
+                    .max(1.0),
+                _ => ends.max(record[k]),
+            };
+            if !ends.is_finite() || ends < record[k] - margin * scale {
                 continue;
             }
             let (d0, d1) = *slopes.get_or_insert_with(|| {
@@ -103,7 +164,7 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
         // The bearing pressure's first exceedance: the crossing before the first point over it.
         let bearing = self.opts.bearing_over_mean;
         if let Some(q) = bearing.filter(|_| self.rec.first_bearing.is_none()) {
-            let over = |t: f64| self.peaked(t, &at(t), s, c)[0] > q;
+            let over = |t: f64| self.peaked(t, &at(t), s, c)[PRESSURE] > q;
             if let Some(t_hi) = found.iter().copied().chain([t_new]).find(|&t| over(t)) {
                 self.rec.first_bearing = Some(first_true(over, t_old, t_hi));
             }

@@ -70,6 +70,7 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
                 settlement: y.values()[Free::<V>::V],
                 contact_fraction: contact_fraction(&g),
                 ground_pressure: g[go::PRESSURE_LO].max(g[go::PRESSURE_HI]),
+                least_pressure: g[go::PRESSURE_LO].min(g[go::PRESSURE_HI]),
             }),
         };
         self.rec.history.push(row);
