@@ -20,15 +20,8 @@ models=cubic
 for n in 1 2 3 4 5 6 7 8; do models+=",cantilever_modes$n"; done
 quantities=max_theta_over_alpha,impacts,max_base_moment_over_wb,max_base_shear_over_w
 
-# A rigid-surface scene on a bed: the same file without its impact map, with a [ground] table.
-on_bed() { # SCENE OMEGA_V_OVER_P OUT
-    sed '/^impact *=/d' "$1" >"$3"
-    printf '\n[ground]\nkind = "winkler"\nomega_v_over_p = %s\nzeta_v = 0.05\n' "$2" >>"$3"
-}
-on_bed scenes/fig5-flexible.toml 50 "$work/fig5-flexible-50.toml"
-on_bed scenes/fig5-flexible.toml 200 "$work/fig5-flexible-200.toml"
-on_bed scenes/fig5-stiff.toml 50 "$work/fig5-stiff-50.toml"
-on_bed scenes/fig5-stiff.toml 200 "$work/fig5-stiff-200.toml"
+# A rigid-surface scene goes on a bed by overrides: without its impact map, with a [ground] table.
+bed="effects.impact=null ground.kind=winkler ground.zeta_v=0.05 ground.omega_v_over_p"
 
 # case | ground | scene | overrides (space-separated --set values)
 runs=(
@@ -36,11 +29,11 @@ runs=(
     "Fig. 3, γ_mc = γ_mb = 0.5|bed ω_v/p = 50|scenes/ground-winkler.toml|structure.gamma_mc=0.5 ground.omega_v_over_p=50"
     "Fig. 3, γ_mc = γ_mb = 0.5|bed ω_v/p = 200|scenes/ground-winkler.toml|structure.gamma_mc=0.5 ground.omega_v_over_p=200"
     "Fig. 5 flexible (ω_n/p = 5)|rigid (VVEL)|scenes/fig5-flexible.toml|"
-    "Fig. 5 flexible (ω_n/p = 5)|bed ω_v/p = 50|$work/fig5-flexible-50.toml|"
-    "Fig. 5 flexible (ω_n/p = 5)|bed ω_v/p = 200|$work/fig5-flexible-200.toml|"
+    "Fig. 5 flexible (ω_n/p = 5)|bed ω_v/p = 50|scenes/fig5-flexible.toml|$bed=50"
+    "Fig. 5 flexible (ω_n/p = 5)|bed ω_v/p = 200|scenes/fig5-flexible.toml|$bed=200"
     "Fig. 5 stiff (ω_n/p = 20)|rigid (VVEL)|scenes/fig5-stiff.toml|"
-    "Fig. 5 stiff (ω_n/p = 20)|bed ω_v/p = 50|$work/fig5-stiff-50.toml|"
-    "Fig. 5 stiff (ω_n/p = 20)|bed ω_v/p = 200|$work/fig5-stiff-200.toml|"
+    "Fig. 5 stiff (ω_n/p = 20)|bed ω_v/p = 50|scenes/fig5-stiff.toml|$bed=50"
+    "Fig. 5 stiff (ω_n/p = 20)|bed ω_v/p = 200|scenes/fig5-stiff.toml|$bed=200"
     "Wind turbine, El Centro × 3|rigid (VVEL)|scenes/wind-turbine-elcentro.toml|output.fixed_base_reference=true"
     "Wind turbine, El Centro × 3|bed G = 60 MPa (ω_v/p = 231)|scenes/ground/turbine-elcentro.toml|"
 )

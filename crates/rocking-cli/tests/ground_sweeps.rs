@@ -513,3 +513,58 @@ fn the_turbine_on_its_footing_rocks_below_its_linear_foundations_moment() {
     assert!(residual < 1e-6, "{residual:e}");
     let _ = std::fs::remove_dir_all(out);
 }
+
+/// A rigid-surface scene goes on a bed by overrides alone: `effects.impact=null` removes its
+/// impact map (refused on a bed), and the run is the same, bit for bit, as that of a copy of the
+/// file without the line and with the `[ground]` table. Removing a key the scene lacks exits 2.
+#[test]
+fn a_rigid_scene_goes_on_a_bed_by_overrides() {
+    let scene = repo().join("scenes/fig5-flexible.toml");
+    let bed: Vec<String> = [
+        "ground.kind=winkler",
+        "ground.omega_v_over_p=50",
+        "ground.zeta_v=0.05",
+    ]
+    .map(String::from)
+    .to_vec();
+    let with = |extra: &str| {
+        let mut sets = bed.clone();
+        sets.push(extra.to_string());
+        sets
+    };
+    let by_overrides = run_json(
+        &scene,
+        &with("effects.impact=null"),
+        &tmp_path("bed-overrides"),
+    );
+    let copy = tmp_path("bed-copy.toml");
+    let text_of = std::fs::read_to_string(&scene).unwrap();
+    assert!(text_of.lines().any(|l| l.starts_with("impact")));
+    let kept: Vec<&str> = text_of
+        .lines()
+        .filter(|l| !l.starts_with("impact"))
+        .collect();
+    std::fs::write(
+        &copy,
+        kept.join("\n") + "\n\n[ground]\nkind = \"winkler\"\nomega_v_over_p = 50\nzeta_v = 0.05\n",
+    )
+    .unwrap();
+    let by_copy = run_json(&copy, &[], &tmp_path("bed-copy"));
+    assert!(by_overrides.value["lift_offs"].as_u64().unwrap() > 0);
+    // The same run: every field but the scene's path and the overrides it lists.
+    let strip = |p: &Printed| {
+        let mut v = p.value.clone();
+        let map = v.as_object_mut().unwrap();
+        assert!(map.remove("scene").is_some() && map.remove("overrides").is_some());
+        v
+    };
+    assert_eq!(strip(&by_overrides), strip(&by_copy));
+    let s = scene.display().to_string();
+    let o = rocking(&["check", &s, "--set", "effects.impcat=null"]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(
+        text(&o).contains("`effects.impcat` is not in the scene"),
+        "{}",
+        text(&o)
+    );
+}

@@ -160,8 +160,10 @@ pub fn suggest<'a>(key: &str, allowed: &[&'a str]) -> Option<&'a str> {
 }
 
 /// Parses one override `key.path=value`: the value as TOML (number, bool, string, inline
-/// table, array), a bare word as a string.
-pub fn parse_override(arg: &str) -> Result<(Vec<String>, Value), SceneError> {
+/// table, array), a bare word as a string, and the bare word `null` (which TOML lacks) as
+/// `None`: remove the key from the scene (as Helm's `--set key=null`), e.g. a rigid-surface
+/// scene's `effects.impact` to put it on a compliant ground.
+pub fn parse_override(arg: &str) -> Result<(Vec<String>, Option<Value>), SceneError> {
     let bad = |why: &str| {
         SceneError::from(InputError {
             set: Some(arg.to_string()),
@@ -182,11 +184,14 @@ pub fn parse_override(arg: &str) -> Result<(Vec<String>, Value), SceneError> {
     if raw.is_empty() {
         return Err(bad("empty value"));
     }
+    if raw == "null" {
+        return Ok((path, None));
+    }
     let value = match toml::from_str::<Table>(&format!("v = {raw}")) {
         Ok(mut t) => t.remove("v").unwrap_or(Value::String(raw.to_string())),
         Err(_) => Value::String(raw.to_string()),
     };
-    Ok((path, value))
+    Ok((path, Some(value)))
 }
 
 fn collect_spans(prefix: &str, table: &toml::de::DeTable<'_>, out: &mut HashMap<String, usize>) {
@@ -300,6 +305,10 @@ fn finish(
 ) -> Result<(), SceneError> {
     for arg in sets {
         let (keys, value) = parse_override(arg)?;
+        let Some(value) = value else {
+            remove(path, table, &keys, arg)?;
+            continue;
+        };
         let mut t = &mut *table;
         for (i, k) in keys[..keys.len() - 1].iter().enumerate() {
             let entry = t
@@ -321,6 +330,30 @@ fn finish(
         src.overridden.insert(keys.join("."), arg.clone());
     }
     Ok(())
+}
+
+/// Removes the key `keys` from the scene (`key.path=null`); a key the scene does not have is
+/// refused, so that a misspelt one does not pass unnoticed.
+fn remove(path: &Path, table: &mut Table, keys: &[String], arg: &str) -> Result<(), SceneError> {
+    let (last, parents) = keys.split_last().expect("a key path is never empty");
+    let parent = parents
+        .iter()
+        .try_fold(&mut *table, |t, k| match t.get_mut(k) {
+            Some(Value::Table(t)) => Some(t),
+            _ => None,
+        });
+    match parent.and_then(|t| t.remove(last)) {
+        Some(_) => Ok(()),
+        None => Err(SceneError::from(InputError {
+            file: Some(path.to_path_buf()),
+            set: Some(arg.to_string()),
+            detail: format!(
+                "`{}` is not in the scene: there is nothing to remove",
+                keys.join(".")
+            ),
+            ..InputError::default()
+        })),
+    }
 }
 
 /// The model a scene names in `[structure] model` (default: the paper's).
@@ -558,13 +591,46 @@ mod tests {
     fn overrides_parse() {
         let (p, v) = parse_override("structure.alpha=0.3").unwrap();
         assert_eq!(p, ["structure", "alpha"]);
-        assert_eq!(v, Value::Float(0.3));
+        assert_eq!(v, Some(Value::Float(0.3)));
         let (_, v) = parse_override("effects.impact=housner").unwrap();
-        assert_eq!(v, Value::String("housner".into()));
+        assert_eq!(v, Some(Value::String("housner".into())));
         let (_, v) = parse_override("effects.impact={ restitution = 0.9 }").unwrap();
-        assert!(v.is_table());
+        assert!(v.unwrap().is_table());
+        let (p, v) = parse_override("effects.impact = null").unwrap();
+        assert_eq!((p, v), (vec!["effects".into(), "impact".into()], None));
+        // A quoted "null" is the string.
+        let (_, v) = parse_override("structure.model=\"null\"").unwrap();
+        assert_eq!(v, Some(Value::String("null".into())));
         assert!(parse_override("alpha").is_err());
         assert!(parse_override("a..b=1").is_err());
+    }
+
+    /// `key=null` removes a key: a rigid-surface scene goes on a bed without its impact map;
+    /// removing a key the scene lacks is refused with the override named.
+    #[test]
+    fn an_override_of_null_removes_the_key() {
+        let text = "[structure]\nomega_n_over_p = 5.0\nalpha = 0.2\nzeta = 0.01\n\n\
+                    [excitation]\nkind = \"sine-pulse\"\nomega_p_over_p = 4.0\namplitude = 2.0\n\n\
+                    [effects]\nimpact = \"vvel\"\n";
+        let load = |sets: &[&str]| {
+            let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+            load_text(Path::new("s.toml"), text.to_string(), &sets)
+                .and_then(|sc| crate::setup::build(&sc))
+        };
+        let bed = ["ground.kind=winkler", "ground.omega_v_over_p=50"];
+        let refused = load(&bed).err().expect("refused").to_string();
+        assert!(refused.contains("effects.impact"), "{refused}");
+        let setup = load(&[bed[0], bed[1], "effects.impact=null"]).expect("on the bed");
+        assert!(setup.ground.is_some());
+        let missing = load(&["effects.impcat=null"])
+            .err()
+            .expect("refused")
+            .to_string();
+        assert!(
+            missing.contains("effects.impcat=null") && missing.contains("nothing to remove"),
+            "{missing}"
+        );
+        assert!(load(&["nosuch.key=null"]).is_err());
     }
 
     /// An input error carries its parts as fields, and its message is built from them.

@@ -184,8 +184,8 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Setup, SceneError> {
             return Err(src.err(
                 key,
                 "`impact` in [effects] chooses the rigid surface's impact map: a compliant \
-                 [ground] has no impacts (the contact is resolved in time): remove it, or give \
-                 [ground] kind = \"rigid\"",
+                 [ground] has no impacts (the contact is resolved in time): remove it (the \
+                 override `effects.impact=null` removes it), or give [ground] kind = \"rigid\"",
             ));
         }
     }
