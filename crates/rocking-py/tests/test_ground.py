@@ -11,6 +11,7 @@ import subprocess
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 import rocking
 
@@ -139,3 +140,21 @@ def test_a_ground_batch_reports_the_ground_keys_as_the_command(tmp_path):
         assert b.classes[0, j] == r["class"]
         for k in GROUND_KEYS:
             assert b.reported[k][0, j] == float(r[k]), (j, k)
+
+
+def test_a_rigid_scene_goes_on_a_bed_with_none_removing_its_impact_map(tmp_path):
+    """``{"effects.impact": None}`` removes the key, as the command's ``effects.impact=null``:
+    the run equals the command's; a key the scene lacks is refused as bad input."""
+    scene = REPO / "scenes" / "fig5-flexible.toml"
+    bed = {"ground.kind": "winkler", "ground.omega_v_over_p": 50, "ground.zeta_v": 0.05}
+    sets = [f"--set={k}={v}" for k, v in bed.items()]
+    expected = json.loads(cli("run", "--json", str(scene), "--out", str(tmp_path / "run"),
+                              *sets, "--set=effects.impact=null"))
+    s = rocking.load_scene(scene, {**bed, "effects.impact": None}).run().summary
+    assert s.lift_offs == expected["lift_offs"] > 0
+    for k in GROUND_KEYS + ["max_base_moment_over_wb", "max_theta_over_alpha"]:
+        assert getattr(s, k) == expected[k], k
+    with pytest.raises(ValueError, match="effects.impact"):
+        rocking.load_scene(scene, bed)
+    with pytest.raises(ValueError, match="nothing to remove"):
+        rocking.load_scene(scene, {"effects.impcat": None})

@@ -72,11 +72,13 @@ def _toml_value(v: Any) -> str:
 
 
 def _sets(set: Overrides) -> List[str]:
-    """Overrides as ``key.path=value`` strings, from a dict or a list of such strings."""
+    """Overrides as ``key.path=value`` strings, from a dict or a list of such strings. A value of
+    ``None`` removes the key (``key.path=null``), e.g. ``{"effects.impact": None}`` to put a
+    rigid-surface scene on a compliant ground."""
     if set is None:
         return []
     if isinstance(set, Mapping):
-        return [f"{k}={_toml_value(v)}" for k, v in set.items()]
+        return [f"{k}={'null' if v is None else _toml_value(v)}" for k, v in set.items()]
     if isinstance(set, str):
         return [set]
     return [str(s) for s in set]
@@ -217,7 +219,7 @@ class Scene:
     @classmethod
     def load(cls, path: PathLike, set: Overrides = None) -> "Scene":
         """Loads the scene file ``path`` with overrides (``{"structure.alpha": 0.15}`` or
-        ``["structure.alpha=0.15"]``)."""
+        ``["structure.alpha=0.15"]``; ``None`` or ``null`` removes a key)."""
         return cls(_rocking.Scene.load(os.fspath(path), _sets(set)))
 
     @classmethod
