@@ -492,24 +492,18 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
         s: f64,
         c: Contact,
     ) {
-        self.step_rows(&dense, t_old, t_end, s, c);
-        self.peaks_inside(&dense, t_old, t_end, s, c);
-        self.observe(t_end, y, s, c);
-    }
-
-    /// History rows of the step (t_old, t_new] from its dense output.
-    fn step_rows(
-        &mut self,
-        dense: &impl Fn(f64) -> SVector<f64, N>,
-        t_old: f64,
-        t_new: f64,
-        s: f64,
-        c: Contact,
-    ) {
+        // The structure's state at any t of the step (the integrals dropped).
         let at = |t: f64| {
             let z = dense(t);
             V::Y::from_fn(|i| z[i])
         };
+        self.step_rows(&at, t_old, t_end, s, c);
+        self.peaks_inside(&at, t_old, t_end, s, c);
+        self.observe(t_end, y, s, c);
+    }
+
+    /// History rows of the step (t_old, t_new], `at` its state at a time.
+    fn step_rows(&mut self, at: &impl Fn(f64) -> V::Y, t_old: f64, t_new: f64, s: f64, c: Contact) {
         match self.opts.history {
             History::None => {}
             History::Steps => self.record(t_new, &at(t_new), s, c),

@@ -74,11 +74,11 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
         }
     }
 
-    /// Observes the points inside the step (t_old, t_new) of one phase (`dense` its dense
-    /// output, `c` its contact state) where a recorded quantity peaks, in time order.
+    /// Observes the points inside the step (t_old, t_new) of one phase (`at` its state at a
+    /// time, `c` its contact state) where a recorded quantity peaks, in time order.
     pub(super) fn peaks_inside(
         &mut self,
-        dense: &impl Fn(f64) -> SVector<f64, N>,
+        at: &impl Fn(f64) -> V::Y,
         t_old: f64,
         t_new: f64,
         s: f64,
@@ -88,10 +88,6 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
         if h <= 0.0 {
             return;
         }
-        let at = |t: f64| {
-            let z = dense(t);
-            V::Y::from_fn(|i| z[i])
-        };
         let (a, b) = (at(t_old), at(t_new));
         let mut found: Vec<f64> = Vec::new();
         // θ', v' and the top deflection's rate (a rigid column has none).
