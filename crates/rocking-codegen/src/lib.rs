@@ -24,7 +24,7 @@ use std::path::Path;
 pub use error::{Error, Result};
 pub use ir::{load_dir, Float, Function, Golden, Input, Instruction, Ir, Output, Param};
 pub use render::{camel_case, float_literal, render_ground, render_mod, render_variant};
-pub use taylor::{render_taylor, render_taylor_mod, TAYLOR_DIR};
+pub use taylor::{render_taylor, render_taylor_ground, render_taylor_mod, TAYLOR_DIR};
 
 /// Directory of the IR files, relative to the repository root.
 pub const IR_DIR: &str = "generated/ir";
@@ -70,11 +70,21 @@ pub fn render_all(ir_dir: &Path) -> Result<BTreeMap<String, String>> {
             render_taylor(ir)?,
         );
     }
-    out.insert(format!("{TAYLOR_DIR}/mod.rs"), render_taylor_mod(&irs)?);
     // The ground's kernels, when the IR directory has them (`ground/ground.json`).
-    let ground = ir_dir.join("ground").join("ground.json");
-    if ground.is_file() {
-        out.insert(GROUND_RS.to_string(), render_ground(&Ir::load(&ground)?)?);
+    let path = ir_dir.join("ground").join("ground.json");
+    let ground = if path.is_file() {
+        Some(Ir::load(&path)?)
+    } else {
+        None
+    };
+    if let Some(ground) = &ground {
+        out.insert(GROUND_RS.to_string(), render_ground(ground)?);
+        out.insert(
+            format!("{TAYLOR_DIR}/{}.rs", ground.variant),
+            render_taylor_ground(ground)?,
+        );
     }
+    let taylor: Vec<&Ir> = irs.iter().chain(&ground).collect();
+    out.insert(format!("{TAYLOR_DIR}/mod.rs"), render_taylor_mod(&taylor)?);
     Ok(out)
 }

@@ -416,7 +416,7 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Setup, SceneError> {
         sv.and_then(|s| s.max_events),
         defaults.max_events,
     )?;
-    let mut options = Options {
+    let options = Options {
         accuracy,
         max_steps,
         max_events,
@@ -478,15 +478,6 @@ pub fn build_spec(spec: &SceneSpec, src: &Source) -> Result<Setup, SceneError> {
                     g.kind.name()
                 ),
             ));
-        }
-        // No Taylor kernels on compliant ground yet: the preset's DOP853 tolerance instead
-        // (docs/ground.md; never silently another accuracy).
-        if options.accuracy.method == Method::Taylor {
-            let preset = sv.and_then(|s| s.accuracy).unwrap_or(Preset::Default);
-            options.accuracy = Accuracy {
-                method: Method::Dop853,
-                tol: sv.and_then(|s| s.tol).unwrap_or(preset.dop853_tol()),
-            };
         }
     }
     Ok(Setup {

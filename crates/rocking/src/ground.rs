@@ -125,6 +125,44 @@ impl Ground {
         }
     }
 
+    /// [`state`](Self::state) one Taylor order at a time (the generated
+    /// `rocking_kernels::taylor::ground` kernels), handed to `f`: the closure returns the k-th
+    /// coefficients of the outputs when called with k = 0, 1, 2, ... in turn and the series of
+    /// `[θ, v, θ', v']` up to order k.
+    pub(crate) fn state_orders<const N: usize, R>(
+        &self,
+        left: bool,
+        right: bool,
+        f: impl FnOnce(&mut dyn FnMut(usize, &[[f64; N]; 4]) -> [f64; 9]) -> R,
+    ) -> R {
+        use rocking_kernels::taylor::ground as series;
+        let p = self.params();
+        let two = self.kind == GroundKind::TwoSpring;
+        match (left, right) {
+            (true, true) if two => f(&mut series::two_spring_full::<N>(1.0, &p)),
+            (true, true) => f(&mut series::winkler_full::<N>(1.0, &p)),
+            // In flight the ground exerts nothing.
+            (false, false) => f(&mut |_, _| [0.0; 9]),
+            (left, _) => {
+                let s = if left { -1.0 } else { 1.0 };
+                if two {
+                    f(&mut series::two_spring_edge::<N>(s, &p))
+                } else {
+                    f(&mut series::winkler_edge::<N>(s, &p))
+                }
+            }
+        }
+    }
+
+    /// The series of the corners' depths `[d(−B), d(B)]` along the series of `[θ, v, θ', v']`.
+    pub(crate) fn depth_series<const N: usize>(&self, y: &[[f64; N]; 4]) -> [[f64; N]; 2] {
+        let g = rocking_kernels::taylor::ground::flight::<N>(y, &self.params());
+        [
+            g[kernels::flight::DEPTH_LEFT],
+            g[kernels::flight::DEPTH_RIGHT],
+        ]
+    }
+
     /// The corners' depths `[d(−B), d(B)]` at `y` (> 0: the corner presses).
     #[must_use]
     pub fn depths(&self, y: &[f64; 4]) -> [f64; 2] {

@@ -11,7 +11,7 @@ use rocking_kernels::{best_isa, Array, Variant};
 use rocking_motion::GroundMotion;
 use rocking_ode::taylor::{TaylorEvents, TaylorSystem};
 
-use crate::layout::Contact;
+use crate::layout::{Contact, Free};
 
 const RIGHT: f64 = 1.0;
 const LEFT: f64 = -1.0;
@@ -47,6 +47,24 @@ pub trait TaylorVariant: Variant {
     /// `[ground, damping]` power along a rocking-state series.
     fn power_series<const N: usize>(
         x: &[[f64; N]],
+        ug: &[f64; N],
+        s: f64,
+        p: &Self::Params,
+    ) -> [[f64; N]; 2];
+    /// Taylor coefficients of the free base's state `[θ, v, u_1..u_n, θ', v', u_1'..u_n']` on
+    /// compliant ground from `y[i][0]`: M(q) q'' = F + Q_ground solved order by order
+    /// ([`crate::spd::second_order_series`]), `ground(k, base)` the k-th coefficients of
+    /// `[Q_θ, Q_v]` from the series of `[θ, v, θ', v']` up to order k. Returns M_0's pivot.
+    fn free_series<const N: usize>(
+        y: &mut [[f64; N]],
+        ug: &[f64; N],
+        s: f64,
+        p: &Self::Params,
+        ground: &mut dyn FnMut(usize, &[[f64; N]; 4]) -> [f64; 2],
+    ) -> f64;
+    /// `[ground, damping]` power along a free-base series (without the ground's own power).
+    fn free_power_series<const N: usize>(
+        y: &[[f64; N]],
         ug: &[f64; N],
         s: f64,
         p: &Self::Params,
@@ -109,6 +127,45 @@ macro_rules! taylor_variant {
             ) -> [[f64; N]; 2] {
                 use kernels::layout::$nq as l;
                 taylor::$module::power(rows!(x, l::X), ug, s, p)
+            }
+            fn free_series<const N: usize>(
+                y: &mut [[f64; N]],
+                ug: &[f64; N],
+                s: f64,
+                p: &Self::Params,
+                ground: &mut dyn FnMut(usize, &[[f64; N]; 4]) -> [f64; 2],
+            ) -> f64 {
+                use kernels::layout::$nq as l;
+                let mut mass = taylor::$module::free_mass_matrix::<N>(s, p);
+                let mut forcing = taylor::$module::free_forcing::<N>(s, p);
+                let mut qf = [[0.0; N]; l::QF];
+                let mut base = [[0.0; N]; 4];
+                let mut m = [[0.0; N]; l::FREE_MASS_MATRIX];
+                let mut acc = [[0.0; N]; l::QF];
+                let rows = [Free::<Self>::THETA, Free::<Self>::V, Free::<Self>::THETA_DOT, Free::<Self>::V_DOT];
+                crate::spd::second_order_series(y, &mut m, &mut acc, |k, y, mk, fk| {
+                    let y: &[[f64; N]; l::Y] = rows!(y, l::Y);
+                    for (i, qi) in qf.iter_mut().enumerate() {
+                        qi[k] = y[i][k];
+                    }
+                    for (b, &r) in base.iter_mut().zip(&rows) {
+                        b[k] = y[r][k];
+                    }
+                    mk.copy_from_slice(&mass(k, &qf));
+                    fk.copy_from_slice(&forcing(k, y, ug));
+                    let [q_theta, q_v] = ground(k, &base);
+                    fk[Free::<Self>::THETA] += q_theta;
+                    fk[Free::<Self>::V] += q_v;
+                })
+            }
+            fn free_power_series<const N: usize>(
+                y: &[[f64; N]],
+                ug: &[f64; N],
+                s: f64,
+                p: &Self::Params,
+            ) -> [[f64; N]; 2] {
+                use kernels::layout::$nq as l;
+                taylor::$module::free_power(rows!(y, l::Y), ug, s, p)
             }
         }
     )*};
@@ -237,7 +294,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const D: usize> TaylorEvents<D,
 /// ü_g's series on the piece of the motion from `t0`, and whether it vanishes (after the
 /// excitation, or on a piece of zero acceleration): then the kernels' `_free` twins apply.
 #[inline]
-fn excitation_series<M: GroundMotion + ?Sized, const N: usize>(
+pub(crate) fn excitation_series<M: GroundMotion + ?Sized, const N: usize>(
     motion: &M,
     t0: f64,
 ) -> ([f64; N], bool) {

@@ -1024,3 +1024,632 @@ pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Param
     }
     out
 }
+
+/// `free_mass_matrix` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn free_mass_matrix<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 3]) -> [f64; 6] {
+    let w0: f64 = s;
+    let w1: f64 = p[1];
+    let w2: f64 = w0 * w1;
+    let mut d_qf0 = [0.0f64; N];
+    let mut sin_qf0 = [0.0f64; N];
+    let mut cos_qf0 = [0.0f64; N];
+    let w5: f64 = 0.5;
+    let w6: f64 = p[4];
+    let w7: f64 = p[3];
+    let w8: f64 = w6 + w7;
+    let w9: f64 = p[5];
+    let w10: f64 = w8 + w9;
+    let w11: f64 = p[9];
+    let w12: f64 = w10 + w11;
+    let w13: f64 = w5 * w12;
+    let w14: f64 = 2.0;
+    let w15: f64 = w2 * w14;
+    let w16: f64 = w13 * w15;
+    let w17: f64 = p[0];
+    let w19: f64 = w5 * w17;
+    let w20: f64 = 0.375;
+    let w23: f64 = w2 * w6;
+    let w24: f64 = w6 * w19;
+    let w25: f64 = w6 * w20;
+    let w26: f64 = w2 * w7;
+    let w27: f64 = w7 * w17;
+    let w28: f64 = w23 + w26;
+    let w29: f64 = w24 + w27;
+    let w30: f64 = w7 + w25;
+    let w31: f64 = w2 * w9;
+    let w32: f64 = w28 + w31;
+    let w33: f64 = p[10];
+    let w34: f64 = w17 * w33;
+    let w35: f64 = 1.5;
+    let w36: f64 = w33 * w33;
+    let w37: f64 = w35 * w36;
+    let w38: f64 = -0.5;
+    let w39: f64 = w33 * w36;
+    let w40: f64 = w38 * w39;
+    let w41: f64 = w37 + w40;
+    let w42: f64 = w2 * w11;
+    let w43: f64 = w11 * w34;
+    let w44: f64 = w11 * w41;
+    let w45: f64 = w32 + w42;
+    let w46: f64 = w29 + w43;
+    let w47: f64 = w30 + w44;
+    let w48: f64 = w16 - w45;
+    let mut w49 = [0.0f64; N];
+    let mut w54 = [0.0f64; N];
+    let mut w58 = [0.0f64; N];
+    let w60: f64 = p[6];
+    let w61: f64 = w5 * w11;
+    let w62: f64 = w14 * w41;
+    let w63: f64 = w61 * w62;
+    let w64: f64 = w15 * w61;
+    let w65: f64 = w41 * w63;
+    let w67: f64 = w2 * w63;
+    let w68: f64 = w41 * w64;
+    let w69: f64 = w67 + w68;
+    let w70: f64 = w2 * w64;
+    let w71: f64 = w60 + w70;
+    let w72: f64 = 2.0 * w34;
+    let w73: f64 = w61 * w72;
+    let w74: f64 = w34 * w73;
+    let w75: f64 = w71 + w74;
+    let w76: f64 = w5 * w7;
+    let w77: f64 = w14 * w76;
+    let w78: f64 = w15 * w76;
+    let w79: f64 = w2 * w77;
+    let w80: f64 = w78 + w79;
+    let w81: f64 = w2 * w78;
+    let w82: f64 = w69 + w80;
+    let w83: f64 = w65 + w77;
+    let w84: f64 = w75 + w81;
+    let w85: f64 = 2.0 * w17;
+    let w86: f64 = w76 * w85;
+    let w87: f64 = w17 * w86;
+    let w88: f64 = w84 + w87;
+    let w89: f64 = 0.05892857142857143;
+    let w90: f64 = w6 * w89;
+    let w91: f64 = w14 * w90;
+    let w92: f64 = w83 + w91;
+    let w93: f64 = w91 + w92;
+    let w94: f64 = 0.08333333333333333;
+    let w95: f64 = w6 * w94;
+    let w96: f64 = w17 * w95;
+    let w97: f64 = w85 * w96;
+    let w98: f64 = w88 + w97;
+    let w99: f64 = 2.0 * w96;
+    let w100: f64 = w17 * w99;
+    let w101: f64 = w98 + w100;
+    let w102: f64 = 0.1875;
+    let w103: f64 = w6 * w102;
+    let w104: f64 = -w2;
+    let w105: f64 = 2.0 * w104;
+    let w106: f64 = w103 * w105;
+    let w107: f64 = w106 - w82;
+    let w108: f64 = w14 * w103;
+    let w109: f64 = w2 * w108;
+    let w110: f64 = w107 - w109;
+    let w111: f64 = w5 * w6;
+    let w112: f64 = 2.0 * w2;
+    let w113: f64 = w111 * w112;
+    let w114: f64 = w2 * w113;
+    let w115: f64 = w101 + w114;
+    let w123: f64 = w2 * w12;
+    let w124: f64 = w123 - w45;
+    let w129: f64 = w2 * w47;
+    let w131: f64 = 2.0 * w41;
+    let w132: f64 = w61 * w131;
+    let w133: f64 = w34 * w132;
+    let w134: f64 = w27 + w133;
+    let w135: f64 = 0.1375;
+    let w136: f64 = w6 * w135;
+    let w137: f64 = w17 * w136;
+    let w138: f64 = 2.0 * w137;
+    let w139: f64 = w134 + w138;
+    let w146: f64 = w41 * w132;
+    let w147: f64 = w7 + w146;
+    let w148: f64 = 0.11785714285714285;
+    let w149: f64 = w6 * w148;
+    let w150: f64 = w147 + w149;
+    let w151: f64 = w149 + w150;
+    move |k: usize, qf: &[[f64; N]; 3]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5] = series::dots(
+            [
+                (&d_qf0, &cos_qf0),
+                (&d_qf0, &sin_qf0),
+                (&cos_qf0, &qf[2]),
+                (&w49, &w54),
+                (&w49, &w58),
+                (&cos_qf0, &sin_qf0),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &qf[0], &mut d_qf0, &mut sin_qf0, &mut cos_qf0, k);
+        let w22 = series::mul_d(dot2, &cos_qf0, &qf[2], k);
+        w49[k] = w2 * cos_qf0[k];
+        let w50 = cos_qf0[k] * w48;
+        let w51 = sin_qf0[k] * w46;
+        let w52 = w22 * w47;
+        let w53 = w50 + w51;
+        w54[k] = w52 + w53;
+        let w55 = series::mul_d(dot3, &w49, &w54, k);
+        let w56 = cos_qf0[k] * w45;
+        let w57 = w56 - w51;
+        w58[k] = w57 - w52;
+        let w59 = series::mul_d(dot4, &w49, &w58, k);
+        let w66 = series::sq(&qf[2], k);
+        let w116 = qf[2][k] * w110;
+        let w117 = w66 * w93;
+        let w118 = w55 + w116;
+        let w119 = w117 + w118;
+        let w120 = at0(k, w115) + w119;
+        let w121 = w120 - w59;
+        let w125 = cos_qf0[k] * w124;
+        let w126 = w51 + w125;
+        let w127 = w52 + w126;
+        let w130 = series::mul_d(dot5, &cos_qf0, &sin_qf0, k);
+        let w140 = w129 * w130;
+        let w141 = at0(k, w139) + w140;
+        let w144 = sin_qf0[k] * w47;
+        [w121, w127, w141, at0(k, w12), w144, at0(k, w151)]
+    }
+}
+
+/// `free_forcing` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn free_forcing<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 6], &[f64; N]) -> [f64; 3] {
+    let mut d_y0 = [0.0f64; N];
+    let mut sin_y0 = [0.0f64; N];
+    let mut cos_y0 = [0.0f64; N];
+    let w2: f64 = s;
+    let w3: f64 = p[1];
+    let w4: f64 = w2 * w3;
+    let w5: f64 = p[4];
+    let w6: f64 = p[3];
+    let w7: f64 = w5 + w6;
+    let w8: f64 = p[5];
+    let w9: f64 = w7 + w8;
+    let w10: f64 = p[9];
+    let w11: f64 = w9 + w10;
+    let w12: f64 = p[8];
+    let w13: f64 = w11 * w12;
+    let w14: f64 = w4 * w13;
+    let w17: f64 = w4 * w8;
+    let w19: f64 = 1.5;
+    let w20: f64 = p[10];
+    let w21: f64 = w20 * w20;
+    let w22: f64 = w19 * w21;
+    let w23: f64 = -0.5;
+    let w24: f64 = w20 * w21;
+    let w25: f64 = w23 * w24;
+    let w26: f64 = w22 + w25;
+    let w27: f64 = w10 * w26;
+    let w29: f64 = w4 * w10;
+    let w30: f64 = w17 + w29;
+    let w31: f64 = w4 * w6;
+    let w32: f64 = w30 + w31;
+    let w33: f64 = w6 + w27;
+    let w34: f64 = 0.375;
+    let w35: f64 = w5 * w34;
+    let w36: f64 = w33 + w35;
+    let w37: f64 = w4 * w5;
+    let w38: f64 = w32 + w37;
+    let w39: f64 = p[0];
+    let w40: f64 = w20 * w39;
+    let w41: f64 = w10 * w12;
+    let w42: f64 = w40 * w41;
+    let w43: f64 = w6 * w12;
+    let w44: f64 = w39 * w43;
+    let w45: f64 = w42 + w44;
+    let w46: f64 = 0.5;
+    let w47: f64 = w5 * w12;
+    let w48: f64 = w46 * w47;
+    let w49: f64 = w39 * w48;
+    let w50: f64 = w45 + w49;
+    let mut w54 = [0.0f64; N];
+    let w56: f64 = w26 * w41;
+    let w57: f64 = w4 * w41;
+    let w58: f64 = w10 * w40;
+    let w59: f64 = w6 * w39;
+    let w60: f64 = w58 + w59;
+    let w61: f64 = w5 * w46;
+    let w62: f64 = w39 * w61;
+    let w63: f64 = w60 + w62;
+    let w64: f64 = w8 * w12;
+    let w65: f64 = w4 * w64;
+    let w66: f64 = w57 + w65;
+    let w67: f64 = w4 * w43;
+    let w68: f64 = w43 + w56;
+    let w69: f64 = w66 + w67;
+    let w70: f64 = w34 * w47;
+    let w71: f64 = w68 + w70;
+    let w72: f64 = w4 * w47;
+    let w73: f64 = w69 + w72;
+    let mut w77 = [0.0f64; N];
+    let w80: f64 = w26 * w29;
+    let w81: f64 = w31 + w80;
+    let w82: f64 = w34 * w37;
+    let w83: f64 = w81 + w82;
+    let mut w91 = [0.0f64; N];
+    let mut w94 = [0.0f64; N];
+    let mut w95 = [0.0f64; N];
+    let mut w100 = [0.0f64; N];
+    let w102: f64 = 2.0;
+    let w103: f64 = w4 * w102;
+    let w104: f64 = w11 * w46;
+    let w105: f64 = w102 * w104;
+    let w106: f64 = w103 * w104;
+    let w107: f64 = w39 * w46;
+    let mut w108 = [0.0f64; N];
+    let w109: f64 = w5 * w107;
+    let w110: f64 = w31 + w37;
+    let w111: f64 = w59 + w109;
+    let w112: f64 = w6 + w35;
+    let w113: f64 = w17 + w110;
+    let w114: f64 = w29 + w113;
+    let w115: f64 = w58 + w111;
+    let w116: f64 = w27 + w112;
+    let mut w117 = [0.0f64; N];
+    let w120: f64 = w106 - w114;
+    let mut w129 = [0.0f64; N];
+    let mut w130 = [0.0f64; N];
+    let mut w132 = [0.0f64; N];
+    let w135: f64 = w114 - w106;
+    let mut w136 = [0.0f64; N];
+    let mut w143 = [0.0f64; N];
+    let mut w145 = [0.0f64; N];
+    let mut w151 = [0.0f64; N];
+    let mut w157 = [0.0f64; N];
+    let mut w158 = [0.0f64; N];
+    let mut w162 = [0.0f64; N];
+    let w164: f64 = w4 * w116;
+    let w167: f64 = w102 * w164;
+    let mut w168 = [0.0f64; N];
+    let w169: f64 = w26 * w102;
+    let w170: f64 = w10 * w46;
+    let w171: f64 = w103 * w170;
+    let w172: f64 = w169 * w170;
+    let w173: f64 = w26 * w171;
+    let w174: f64 = w26 * w172;
+    let w175: f64 = w4 * w172;
+    let w176: f64 = w173 + w175;
+    let w177: f64 = w102 * w174;
+    let w178: f64 = w6 * w46;
+    let w179: f64 = w103 * w178;
+    let w180: f64 = w102 * w178;
+    let w181: f64 = w4 * w180;
+    let w182: f64 = w179 + w181;
+    let w183: f64 = w102 * w180;
+    let w184: f64 = w176 + w182;
+    let w185: f64 = w177 + w183;
+    let w186: f64 = 0.05892857142857143;
+    let w187: f64 = w5 * w186;
+    let w188: f64 = w102 * w187;
+    let w189: f64 = w102 * w188;
+    let w190: f64 = w185 + w189;
+    let w191: f64 = w189 + w190;
+    let w192: f64 = 0.1875;
+    let w193: f64 = w5 * w192;
+    let w194: f64 = w103 * w193;
+    let w195: f64 = w184 + w194;
+    let w196: f64 = w102 * w193;
+    let w197: f64 = w4 * w196;
+    let w198: f64 = w195 + w197;
+    let mut w205 = [0.0f64; N];
+    let w223: f64 = -1.5;
+    let w224: f64 = p[2];
+    let w225: f64 = w39 * w39;
+    let w226: f64 = w39 * w225;
+    let w227: f64 = w224 / w226;
+    let w228: f64 = w223 * w227;
+    let w229: f64 = w102 * w228;
+    let w231: f64 = w56 + w70;
+    let w232: f64 = w43 + w231;
+    let w235: f64 = w173 + w179;
+    let w236: f64 = w174 + w180;
+    let w237: f64 = w188 + w236;
+    let w238: f64 = w188 + w237;
+    let w239: f64 = w194 + w235;
+    let mut w244 = [0.0f64; N];
+    let w246: f64 = p[7];
+    let w247: f64 = 2.0 * w246;
+    let w248: f64 = 3.0;
+    let w249: f64 = w227 * w248;
+    let w250: f64 = 2.0 * w26;
+    let w251: f64 = w170 * w250;
+    let w252: f64 = w26 * w251;
+    let w253: f64 = w6 + w252;
+    let w254: f64 = 0.11785714285714285;
+    let w255: f64 = w5 * w254;
+    let w256: f64 = w253 + w255;
+    let w257: f64 = w255 + w256;
+    let w258: f64 = w249 / w257;
+    let w259: f64 = w258.sqrt();
+    let w260: f64 = w247 * w259;
+    let w261: f64 = w257 * w260;
+    move |k: usize, y: &[[f64; N]; 6], ug: &[f64; N]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_y0, &cos_y0),
+                (&d_y0, &sin_y0),
+                (&ug, &y[2]),
+                (&sin_y0, &w54),
+                (&cos_y0, &y[3]),
+                (&y[5], &y[4]),
+                (&y[5], &w77),
+                (&cos_y0, &w91),
+                (&y[3], &w94),
+            ],
+            k,
+        );
+        let [dot9, dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17] = series::dots(
+            [
+                (&cos_y0, &w95),
+                (&y[2], &w95),
+                (&sin_y0, &w100),
+                (&cos_y0, &y[2]),
+                (&sin_y0, &y[3]),
+                (&y[3], &w108),
+                (&sin_y0, &y[5]),
+                (&y[3], &w129),
+                (&sin_y0, &w130),
+            ],
+            k,
+        );
+        let [dot18, dot19, dot20, dot21, dot22, dot23, dot24, dot25, dot26] = series::dots(
+            [
+                (&sin_y0, &y[2]),
+                (&y[3], &w132),
+                (&cos_y0, &y[5]),
+                (&w136, &w143),
+                (&w129, &w145),
+                (&w94, &w151),
+                (&w157, &w158),
+                (&y[3], &w162),
+                (&cos_y0, &w77),
+            ],
+            k,
+        );
+        let [dot27, dot28, dot29, dot30, dot31, dot32, dot33, dot34] = series::dots(
+            [
+                (&cos_y0, &y[4]),
+                (&y[2], &y[3]),
+                (&y[5], &w205),
+                (&y[3], &w143),
+                (&cos_y0, &ug),
+                (&y[3], &w168),
+                (&sin_y0, &w117),
+                (&y[3], &w244),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &y[0], &mut d_y0, &mut sin_y0, &mut cos_y0, k);
+        let w28 = series::mul_d(dot2, &ug, &y[2], k);
+        let w51 = ug[k] * w38;
+        let w52 = w28 * w36;
+        let w53 = w51 - w52;
+        w54[k] = w53 - at0(k, w50);
+        let w55 = series::mul_d(dot3, &sin_y0, &w54, k);
+        w77[k] = series::mul_d(dot4, &cos_y0, &y[3], k);
+        let w78 = series::mul_d(dot5, &y[5], &y[4], k);
+        let w79 = series::mul_d(dot6, &y[5], &w77, k);
+        let w84 = ug[k] * w63;
+        let w85 = y[2][k] * w71;
+        let w86 = w36 * w78;
+        let w87 = w79 * w83;
+        let w88 = w85 + w86;
+        let w89 = w87 + w88;
+        let w90 = w89 - w84;
+        w91[k] = w90 - at0(k, w73);
+        let w92 = series::mul_d(dot7, &cos_y0, &w91, k);
+        let w93 = w4 * w77[k];
+        w94[k] = y[4][k] + w93;
+        w95[k] = series::mul_d(dot8, &y[3], &w94, k);
+        let w96 = series::mul_d(dot9, &cos_y0, &w95, k);
+        let w97 = series::mul_d(dot10, &y[2], &w95, k);
+        let w98 = w38 * w95[k];
+        let w99 = w36 * w97;
+        w100[k] = w99 - w98;
+        let w101 = series::mul_d(dot11, &sin_y0, &w100, k);
+        w108[k] = series::mul_d(dot12, &cos_y0, &y[2], k);
+        w117[k] = series::mul_d(dot13, &sin_y0, &y[3], k);
+        let w118 = series::mul_d(dot14, &y[3], &w108, k);
+        let w119 = series::mul_d(dot15, &sin_y0, &y[5], k);
+        let w121 = y[4][k] * w105;
+        let w122 = w77[k] * w120;
+        let w123 = w115 * w117[k];
+        let w124 = w116 * w118;
+        let w125 = w116 * w119;
+        let w126 = w121 + w122;
+        let w127 = w123 + w126;
+        let w128 = w124 + w127;
+        w129[k] = w125 + w128;
+        w130[k] = series::mul_d(dot16, &y[3], &w129, k);
+        let w131 = series::mul_d(dot17, &sin_y0, &w130, k);
+        w132[k] = series::mul_d(dot18, &sin_y0, &y[2], k);
+        let w133 = series::mul_d(dot19, &y[3], &w132, k);
+        let w134 = series::mul_d(dot20, &cos_y0, &y[5], k);
+        w136[k] = cos_y0[k] * w4;
+        let w137 = w77[k] * w115;
+        let w138 = w117[k] * w135;
+        let w139 = w116 * w133;
+        let w140 = w116 * w134;
+        let w141 = w137 + w138;
+        let w142 = w140 + w141;
+        w143[k] = w142 - w139;
+        let w144 = series::mul_d(dot21, &w136, &w143, k);
+        w145[k] = w4 * sin_y0[k];
+        let w146 = series::mul_d(dot22, &w129, &w145, k);
+        let w147 = cos_y0[k] * w115;
+        let w148 = sin_y0[k] * w114;
+        let w149 = w116 * w132[k];
+        let w150 = w149 - w147;
+        w151[k] = w150 - w148;
+        let w152 = series::mul_d(dot23, &w94, &w151, k);
+        let w153 = cos_y0[k] * w114;
+        let w154 = sin_y0[k] * w115;
+        let w155 = w108[k] * w116;
+        let w156 = w153 - w154;
+        w157[k] = w156 - w155;
+        w158[k] = w4 * w117[k];
+        let w159 = series::mul_d(dot24, &w157, &w158, k);
+        let w160 = w144 + w159;
+        let w161 = w160 - w146;
+        w162[k] = w161 - w152;
+        let w163 = series::mul_d(dot25, &y[3], &w162, k);
+        let w165 = series::mul_d(dot26, &cos_y0, &w77, k);
+        let w166 = series::mul_d(dot27, &cos_y0, &y[4], k);
+        w168[k] = series::mul_d(dot28, &y[2], &y[3], k);
+        let w199 = y[3][k] * w198;
+        let w200 = w165 * w167;
+        let w201 = w116 * w166;
+        let w202 = w168[k] * w191;
+        let w203 = w200 + w201;
+        let w204 = w202 + w203;
+        w205[k] = w204 - w199;
+        let w206 = series::mul_d(dot29, &y[5], &w205, k);
+        let w207 = cos_y0[k] * w14;
+        let w208 = w63 * w96;
+        let w209 = w4 * w131;
+        let w210 = w92 + w207;
+        let w211 = w208 + w210;
+        let w212 = w211 - w55;
+        let w213 = w212 - w101;
+        let w214 = w213 - w209;
+        let w215 = w214 - w163;
+        let w216 = w215 - w206;
+        let w218 = series::mul_d(dot30, &y[3], &w143, k);
+        let w219 = w79 * w116;
+        let w220 = at0(k, w13) - w219;
+        let w221 = w220 - w218;
+        let w230 = series::mul_d(dot31, &cos_y0, &ug, k);
+        let w233 = series::sq(&y[3], k);
+        let w234 = series::mul_d(dot32, &y[3], &w168, k);
+        let w240 = series::mul_d(dot33, &sin_y0, &w117, k);
+        let w241 = w164 * w165;
+        let w242 = w164 * w240;
+        let w243 = w201 + w241;
+        w244[k] = w243 - w242;
+        let w245 = series::mul_d(dot34, &y[3], &w244, k);
+        let w262 = sin_y0[k] * w232;
+        let w263 = y[2][k] * w229;
+        let w264 = y[5][k] * w261;
+        let w265 = w36 * w96;
+        let w266 = w36 * w230;
+        let w267 = w233 * w239;
+        let w268 = w234 * w238;
+        let w269 = w262 + w263;
+        let w270 = w265 + w269;
+        let w271 = w268 + w270;
+        let w272 = w271 - w264;
+        let w273 = w272 - w266;
+        let w274 = w273 - w267;
+        let w275 = w274 - w245;
+        [w216, w221, w275]
+    }
+}
+
+/// The first N Taylor coefficients of each output of `free_power` along series inputs.
+#[must_use]
+#[inline(always)]
+pub fn free_power<const N: usize>(y: &[[f64; N]; 6], ug: &[f64; N], s: f64, p: &Params) -> [[f64; N]; 2] {
+    let w1: f64 = p[4];
+    let w2: f64 = 0.5;
+    let w3: f64 = p[0];
+    let mut d_y0 = [0.0f64; N];
+    let mut sin_y0 = [0.0f64; N];
+    let mut cos_y0 = [0.0f64; N];
+    let w6: f64 = w2 * w3;
+    let w7: f64 = s;
+    let w8: f64 = p[1];
+    let w9: f64 = w7 * w8;
+    let w11: f64 = 0.375;
+    let w14: f64 = w1 * w6;
+    let w15: f64 = w1 * w9;
+    let w16: f64 = w1 * w11;
+    let w17: f64 = p[3];
+    let w18: f64 = w3 * w17;
+    let w19: f64 = w9 * w17;
+    let w20: f64 = w14 + w18;
+    let w21: f64 = w15 + w19;
+    let w22: f64 = w16 + w17;
+    let w23: f64 = p[5];
+    let w24: f64 = w9 * w23;
+    let w25: f64 = w21 + w24;
+    let w26: f64 = p[9];
+    let w27: f64 = p[10];
+    let w28: f64 = w3 * w27;
+    let w29: f64 = 1.5;
+    let w30: f64 = w27 * w27;
+    let w31: f64 = w29 * w30;
+    let w32: f64 = -0.5;
+    let w33: f64 = w27 * w30;
+    let w34: f64 = w32 * w33;
+    let w35: f64 = w31 + w34;
+    let w36: f64 = w26 * w28;
+    let w37: f64 = w9 * w26;
+    let w38: f64 = w26 * w35;
+    let w39: f64 = w20 + w36;
+    let w40: f64 = w25 + w37;
+    let w41: f64 = w22 + w38;
+    let mut w47 = [0.0f64; N];
+    let mut w52 = [0.0f64; N];
+    let w56: f64 = p[7];
+    let w57: f64 = 2.0 * w56;
+    let w58: f64 = 3.0;
+    let w59: f64 = p[2];
+    let w60: f64 = w3 * w3;
+    let w61: f64 = w3 * w60;
+    let w62: f64 = w59 / w61;
+    let w63: f64 = w58 * w62;
+    let w64: f64 = w2 * w26;
+    let w65: f64 = 2.0 * w35;
+    let w66: f64 = w64 * w65;
+    let w67: f64 = w35 * w66;
+    let w68: f64 = w17 + w67;
+    let w69: f64 = 0.11785714285714285;
+    let w70: f64 = w1 * w69;
+    let w71: f64 = w68 + w70;
+    let w72: f64 = w70 + w71;
+    let w73: f64 = w63 / w72;
+    let w74: f64 = w73.sqrt();
+    let w75: f64 = w57 * w74;
+    let w76: f64 = w72 * w75;
+    let mut out = [[0.0f64; N]; 2];
+    for k in 0..N {
+        let [dot0, dot1, dot2, dot3, dot4, dot5] = series::dots(
+            [
+                (&d_y0, &cos_y0),
+                (&d_y0, &sin_y0),
+                (&sin_y0, &y[2]),
+                (&y[3], &w47),
+                (&cos_y0, &y[5]),
+                (&ug, &w52),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &y[0], &mut d_y0, &mut sin_y0, &mut cos_y0, k);
+        let w13 = series::mul_d(dot2, &sin_y0, &y[2], k);
+        let w43 = cos_y0[k] * w39;
+        let w44 = sin_y0[k] * w40;
+        let w45 = w13 * w41;
+        let w46 = w43 + w44;
+        w47[k] = w46 - w45;
+        let w48 = series::mul_d(dot3, &y[3], &w47, k);
+        let w50 = series::mul_d(dot4, &cos_y0, &y[5], k);
+        let w51 = w41 * w50;
+        w52[k] = w48 + w51;
+        let w53 = series::mul_d(dot5, &ug, &w52, k);
+        let w54 = -w53;
+        let w77 = series::sq(&y[5], k);
+        let w78 = w76 * w77;
+        out[0][k] = w54;
+        out[1][k] = w78;
+    }
+    out
+}

@@ -823,3 +823,523 @@ pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Param
     }
     out
 }
+
+/// `free_mass_matrix` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn free_mass_matrix<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 3]) -> [f64; 6] {
+    let w0: f64 = s;
+    let w1: f64 = p[1];
+    let w2: f64 = w0 * w1;
+    let mut d_qf0 = [0.0f64; N];
+    let mut sin_qf0 = [0.0f64; N];
+    let mut cos_qf0 = [0.0f64; N];
+    let w5: f64 = 0.5;
+    let w6: f64 = p[4];
+    let w7: f64 = p[3];
+    let w8: f64 = w6 + w7;
+    let w9: f64 = p[5];
+    let w10: f64 = w8 + w9;
+    let w11: f64 = w5 * w10;
+    let w12: f64 = 2.0;
+    let w13: f64 = w2 * w12;
+    let w14: f64 = w11 * w13;
+    let w15: f64 = p[0];
+    let w17: f64 = w5 * w15;
+    let w18: f64 = 0.3914958780198129;
+    let w21: f64 = w2 * w6;
+    let w22: f64 = w6 * w17;
+    let w23: f64 = w6 * w18;
+    let w24: f64 = w2 * w7;
+    let w25: f64 = w7 * w15;
+    let w26: f64 = w21 + w24;
+    let w27: f64 = w22 + w25;
+    let w28: f64 = w7 + w23;
+    let w29: f64 = w2 * w9;
+    let w30: f64 = w26 + w29;
+    let w31: f64 = w14 - w30;
+    let mut w32 = [0.0f64; N];
+    let mut w37 = [0.0f64; N];
+    let mut w41 = [0.0f64; N];
+    let w43: f64 = p[6];
+    let w44: f64 = w5 * w7;
+    let w45: f64 = w12 * w44;
+    let w46: f64 = w13 * w44;
+    let w48: f64 = w2 * w45;
+    let w49: f64 = w46 + w48;
+    let w50: f64 = w2 * w46;
+    let w51: f64 = w43 + w50;
+    let w52: f64 = 2.0 * w15;
+    let w53: f64 = w44 * w52;
+    let w54: f64 = w15 * w53;
+    let w55: f64 = w51 + w54;
+    let w56: f64 = 0.0625;
+    let w57: f64 = w6 * w56;
+    let w58: f64 = w12 * w57;
+    let w59: f64 = w45 + w58;
+    let w60: f64 = w58 + w59;
+    let w61: f64 = 0.08333333333333333;
+    let w62: f64 = w6 * w61;
+    let w63: f64 = w15 * w62;
+    let w64: f64 = w52 * w63;
+    let w65: f64 = w55 + w64;
+    let w66: f64 = 2.0 * w63;
+    let w67: f64 = w15 * w66;
+    let w68: f64 = w65 + w67;
+    let w69: f64 = 0.19574793900990645;
+    let w70: f64 = w6 * w69;
+    let w71: f64 = -w2;
+    let w72: f64 = 2.0 * w71;
+    let w73: f64 = w70 * w72;
+    let w74: f64 = w73 - w49;
+    let w75: f64 = w12 * w70;
+    let w76: f64 = w2 * w75;
+    let w77: f64 = w74 - w76;
+    let w78: f64 = w5 * w6;
+    let w79: f64 = 2.0 * w2;
+    let w80: f64 = w78 * w79;
+    let w81: f64 = w2 * w80;
+    let w82: f64 = w68 + w81;
+    let w90: f64 = w2 * w10;
+    let w91: f64 = w90 - w30;
+    let w96: f64 = w2 * w28;
+    let w98: f64 = 0.1422064359274777;
+    let w99: f64 = w6 * w98;
+    let w100: f64 = w15 * w99;
+    let w101: f64 = 2.0 * w100;
+    let w102: f64 = w25 + w101;
+    let w109: f64 = 0.125;
+    let w110: f64 = w6 * w109;
+    let w111: f64 = w7 + w110;
+    let w112: f64 = w110 + w111;
+    move |k: usize, qf: &[[f64; N]; 3]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5] = series::dots(
+            [
+                (&d_qf0, &cos_qf0),
+                (&d_qf0, &sin_qf0),
+                (&cos_qf0, &qf[2]),
+                (&w32, &w37),
+                (&w32, &w41),
+                (&cos_qf0, &sin_qf0),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &qf[0], &mut d_qf0, &mut sin_qf0, &mut cos_qf0, k);
+        let w20 = series::mul_d(dot2, &cos_qf0, &qf[2], k);
+        w32[k] = w2 * cos_qf0[k];
+        let w33 = cos_qf0[k] * w31;
+        let w34 = sin_qf0[k] * w27;
+        let w35 = w20 * w28;
+        let w36 = w33 + w34;
+        w37[k] = w35 + w36;
+        let w38 = series::mul_d(dot3, &w32, &w37, k);
+        let w39 = cos_qf0[k] * w30;
+        let w40 = w39 - w34;
+        w41[k] = w40 - w35;
+        let w42 = series::mul_d(dot4, &w32, &w41, k);
+        let w47 = series::sq(&qf[2], k);
+        let w83 = qf[2][k] * w77;
+        let w84 = w47 * w60;
+        let w85 = w38 + w83;
+        let w86 = w84 + w85;
+        let w87 = at0(k, w82) + w86;
+        let w88 = w87 - w42;
+        let w92 = cos_qf0[k] * w91;
+        let w93 = w34 + w92;
+        let w94 = w35 + w93;
+        let w97 = series::mul_d(dot5, &cos_qf0, &sin_qf0, k);
+        let w103 = w96 * w97;
+        let w104 = at0(k, w102) + w103;
+        let w107 = sin_qf0[k] * w28;
+        [w88, w94, w104, at0(k, w10), w107, at0(k, w112)]
+    }
+}
+
+/// `free_forcing` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn free_forcing<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 6], &[f64; N]) -> [f64; 3] {
+    let mut d_y0 = [0.0f64; N];
+    let mut sin_y0 = [0.0f64; N];
+    let mut cos_y0 = [0.0f64; N];
+    let w2: f64 = s;
+    let w3: f64 = p[1];
+    let w4: f64 = w2 * w3;
+    let w5: f64 = p[4];
+    let w6: f64 = p[3];
+    let w7: f64 = w5 + w6;
+    let w8: f64 = p[5];
+    let w9: f64 = w7 + w8;
+    let w10: f64 = p[8];
+    let w11: f64 = w9 * w10;
+    let w12: f64 = w4 * w11;
+    let w15: f64 = w4 * w8;
+    let w18: f64 = w4 * w6;
+    let w19: f64 = w15 + w18;
+    let w20: f64 = 0.3914958780198129;
+    let w21: f64 = w5 * w20;
+    let w22: f64 = w6 + w21;
+    let w23: f64 = w4 * w5;
+    let w24: f64 = w19 + w23;
+    let w25: f64 = p[0];
+    let w26: f64 = w6 * w10;
+    let w27: f64 = w25 * w26;
+    let w28: f64 = 0.5;
+    let w29: f64 = w5 * w10;
+    let w30: f64 = w28 * w29;
+    let w31: f64 = w25 * w30;
+    let w32: f64 = w27 + w31;
+    let mut w36 = [0.0f64; N];
+    let w38: f64 = w4 * w26;
+    let w39: f64 = w6 * w25;
+    let w40: f64 = w5 * w28;
+    let w41: f64 = w25 * w40;
+    let w42: f64 = w39 + w41;
+    let w43: f64 = w8 * w10;
+    let w44: f64 = w4 * w43;
+    let w45: f64 = w38 + w44;
+    let w46: f64 = w20 * w29;
+    let w47: f64 = w26 + w46;
+    let w48: f64 = w4 * w29;
+    let w49: f64 = w45 + w48;
+    let mut w53 = [0.0f64; N];
+    let w56: f64 = w20 * w23;
+    let w57: f64 = w18 + w56;
+    let mut w65 = [0.0f64; N];
+    let mut w68 = [0.0f64; N];
+    let mut w69 = [0.0f64; N];
+    let mut w74 = [0.0f64; N];
+    let w76: f64 = 2.0;
+    let w77: f64 = w4 * w76;
+    let w78: f64 = w9 * w28;
+    let w79: f64 = w76 * w78;
+    let w80: f64 = w77 * w78;
+    let w81: f64 = w25 * w28;
+    let mut w82 = [0.0f64; N];
+    let w83: f64 = w5 * w81;
+    let w84: f64 = w18 + w23;
+    let w85: f64 = w39 + w83;
+    let w86: f64 = w15 + w84;
+    let mut w87 = [0.0f64; N];
+    let w90: f64 = w80 - w86;
+    let mut w99 = [0.0f64; N];
+    let mut w100 = [0.0f64; N];
+    let mut w102 = [0.0f64; N];
+    let w105: f64 = w86 - w80;
+    let mut w106 = [0.0f64; N];
+    let mut w113 = [0.0f64; N];
+    let mut w115 = [0.0f64; N];
+    let mut w121 = [0.0f64; N];
+    let mut w127 = [0.0f64; N];
+    let mut w128 = [0.0f64; N];
+    let mut w132 = [0.0f64; N];
+    let w134: f64 = w4 * w22;
+    let w137: f64 = w76 * w134;
+    let mut w138 = [0.0f64; N];
+    let w139: f64 = w6 * w28;
+    let w140: f64 = w77 * w139;
+    let w141: f64 = w76 * w139;
+    let w142: f64 = w4 * w141;
+    let w143: f64 = w140 + w142;
+    let w144: f64 = w76 * w141;
+    let w145: f64 = 0.0625;
+    let w146: f64 = w5 * w145;
+    let w147: f64 = w76 * w146;
+    let w148: f64 = w76 * w147;
+    let w149: f64 = w144 + w148;
+    let w150: f64 = w148 + w149;
+    let w151: f64 = 0.19574793900990645;
+    let w152: f64 = w5 * w151;
+    let w153: f64 = w77 * w152;
+    let w154: f64 = w143 + w153;
+    let w155: f64 = w76 * w152;
+    let w156: f64 = w4 * w155;
+    let w157: f64 = w154 + w156;
+    let mut w164 = [0.0f64; N];
+    let w182: f64 = -1.5452954210407739;
+    let w183: f64 = p[2];
+    let w184: f64 = w25 * w25;
+    let w185: f64 = w25 * w184;
+    let w186: f64 = w183 / w185;
+    let w187: f64 = w182 * w186;
+    let w188: f64 = w76 * w187;
+    let w192: f64 = w141 + w147;
+    let w193: f64 = w147 + w192;
+    let w194: f64 = w140 + w153;
+    let mut w199 = [0.0f64; N];
+    let w201: f64 = p[7];
+    let w202: f64 = 2.0 * w201;
+    let w203: f64 = 3.0905908420815478;
+    let w204: f64 = w186 * w203;
+    let w205: f64 = 0.125;
+    let w206: f64 = w5 * w205;
+    let w207: f64 = w6 + w206;
+    let w208: f64 = w206 + w207;
+    let w209: f64 = w204 / w208;
+    let w210: f64 = w209.sqrt();
+    let w211: f64 = w202 * w210;
+    let w212: f64 = w208 * w211;
+    move |k: usize, y: &[[f64; N]; 6], ug: &[f64; N]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_y0, &cos_y0),
+                (&d_y0, &sin_y0),
+                (&ug, &y[2]),
+                (&sin_y0, &w36),
+                (&cos_y0, &y[3]),
+                (&y[5], &y[4]),
+                (&y[5], &w53),
+                (&cos_y0, &w65),
+                (&y[3], &w68),
+            ],
+            k,
+        );
+        let [dot9, dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17] = series::dots(
+            [
+                (&cos_y0, &w69),
+                (&y[2], &w69),
+                (&sin_y0, &w74),
+                (&cos_y0, &y[2]),
+                (&sin_y0, &y[3]),
+                (&y[3], &w82),
+                (&sin_y0, &y[5]),
+                (&y[3], &w99),
+                (&sin_y0, &w100),
+            ],
+            k,
+        );
+        let [dot18, dot19, dot20, dot21, dot22, dot23, dot24, dot25, dot26] = series::dots(
+            [
+                (&sin_y0, &y[2]),
+                (&y[3], &w102),
+                (&cos_y0, &y[5]),
+                (&w106, &w113),
+                (&w99, &w115),
+                (&w68, &w121),
+                (&w127, &w128),
+                (&y[3], &w132),
+                (&cos_y0, &w53),
+            ],
+            k,
+        );
+        let [dot27, dot28, dot29, dot30, dot31, dot32, dot33, dot34] = series::dots(
+            [
+                (&cos_y0, &y[4]),
+                (&y[2], &y[3]),
+                (&y[5], &w164),
+                (&y[3], &w113),
+                (&cos_y0, &ug),
+                (&y[3], &w138),
+                (&sin_y0, &w87),
+                (&y[3], &w199),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &y[0], &mut d_y0, &mut sin_y0, &mut cos_y0, k);
+        let w17 = series::mul_d(dot2, &ug, &y[2], k);
+        let w33 = ug[k] * w24;
+        let w34 = w17 * w22;
+        let w35 = w33 - w34;
+        w36[k] = w35 - at0(k, w32);
+        let w37 = series::mul_d(dot3, &sin_y0, &w36, k);
+        w53[k] = series::mul_d(dot4, &cos_y0, &y[3], k);
+        let w54 = series::mul_d(dot5, &y[5], &y[4], k);
+        let w55 = series::mul_d(dot6, &y[5], &w53, k);
+        let w58 = ug[k] * w42;
+        let w59 = y[2][k] * w47;
+        let w60 = w22 * w54;
+        let w61 = w55 * w57;
+        let w62 = w59 + w60;
+        let w63 = w61 + w62;
+        let w64 = w63 - w58;
+        w65[k] = w64 - at0(k, w49);
+        let w66 = series::mul_d(dot7, &cos_y0, &w65, k);
+        let w67 = w4 * w53[k];
+        w68[k] = y[4][k] + w67;
+        w69[k] = series::mul_d(dot8, &y[3], &w68, k);
+        let w70 = series::mul_d(dot9, &cos_y0, &w69, k);
+        let w71 = series::mul_d(dot10, &y[2], &w69, k);
+        let w72 = w24 * w69[k];
+        let w73 = w22 * w71;
+        w74[k] = w73 - w72;
+        let w75 = series::mul_d(dot11, &sin_y0, &w74, k);
+        w82[k] = series::mul_d(dot12, &cos_y0, &y[2], k);
+        w87[k] = series::mul_d(dot13, &sin_y0, &y[3], k);
+        let w88 = series::mul_d(dot14, &y[3], &w82, k);
+        let w89 = series::mul_d(dot15, &sin_y0, &y[5], k);
+        let w91 = y[4][k] * w79;
+        let w92 = w53[k] * w90;
+        let w93 = w85 * w87[k];
+        let w94 = w22 * w88;
+        let w95 = w22 * w89;
+        let w96 = w91 + w92;
+        let w97 = w93 + w96;
+        let w98 = w94 + w97;
+        w99[k] = w95 + w98;
+        w100[k] = series::mul_d(dot16, &y[3], &w99, k);
+        let w101 = series::mul_d(dot17, &sin_y0, &w100, k);
+        w102[k] = series::mul_d(dot18, &sin_y0, &y[2], k);
+        let w103 = series::mul_d(dot19, &y[3], &w102, k);
+        let w104 = series::mul_d(dot20, &cos_y0, &y[5], k);
+        w106[k] = cos_y0[k] * w4;
+        let w107 = w53[k] * w85;
+        let w108 = w87[k] * w105;
+        let w109 = w22 * w103;
+        let w110 = w22 * w104;
+        let w111 = w107 + w108;
+        let w112 = w110 + w111;
+        w113[k] = w112 - w109;
+        let w114 = series::mul_d(dot21, &w106, &w113, k);
+        w115[k] = w4 * sin_y0[k];
+        let w116 = series::mul_d(dot22, &w99, &w115, k);
+        let w117 = cos_y0[k] * w85;
+        let w118 = sin_y0[k] * w86;
+        let w119 = w22 * w102[k];
+        let w120 = w119 - w117;
+        w121[k] = w120 - w118;
+        let w122 = series::mul_d(dot23, &w68, &w121, k);
+        let w123 = cos_y0[k] * w86;
+        let w124 = sin_y0[k] * w85;
+        let w125 = w22 * w82[k];
+        let w126 = w123 - w124;
+        w127[k] = w126 - w125;
+        w128[k] = w4 * w87[k];
+        let w129 = series::mul_d(dot24, &w127, &w128, k);
+        let w130 = w114 + w129;
+        let w131 = w130 - w116;
+        w132[k] = w131 - w122;
+        let w133 = series::mul_d(dot25, &y[3], &w132, k);
+        let w135 = series::mul_d(dot26, &cos_y0, &w53, k);
+        let w136 = series::mul_d(dot27, &cos_y0, &y[4], k);
+        w138[k] = series::mul_d(dot28, &y[2], &y[3], k);
+        let w158 = y[3][k] * w157;
+        let w159 = w135 * w137;
+        let w160 = w22 * w136;
+        let w161 = w138[k] * w150;
+        let w162 = w159 + w160;
+        let w163 = w161 + w162;
+        w164[k] = w163 - w158;
+        let w165 = series::mul_d(dot29, &y[5], &w164, k);
+        let w166 = cos_y0[k] * w12;
+        let w167 = w42 * w70;
+        let w168 = w4 * w101;
+        let w169 = w66 + w166;
+        let w170 = w167 + w169;
+        let w171 = w170 - w37;
+        let w172 = w171 - w75;
+        let w173 = w172 - w168;
+        let w174 = w173 - w133;
+        let w175 = w174 - w165;
+        let w177 = series::mul_d(dot30, &y[3], &w113, k);
+        let w178 = w22 * w55;
+        let w179 = at0(k, w11) - w178;
+        let w180 = w179 - w177;
+        let w189 = series::mul_d(dot31, &cos_y0, &ug, k);
+        let w190 = series::sq(&y[3], k);
+        let w191 = series::mul_d(dot32, &y[3], &w138, k);
+        let w195 = series::mul_d(dot33, &sin_y0, &w87, k);
+        let w196 = w134 * w135;
+        let w197 = w134 * w195;
+        let w198 = w160 + w196;
+        w199[k] = w198 - w197;
+        let w200 = series::mul_d(dot34, &y[3], &w199, k);
+        let w213 = sin_y0[k] * w47;
+        let w214 = y[2][k] * w188;
+        let w215 = y[5][k] * w212;
+        let w216 = w22 * w70;
+        let w217 = w22 * w189;
+        let w218 = w190 * w194;
+        let w219 = w191 * w193;
+        let w220 = w213 + w214;
+        let w221 = w216 + w220;
+        let w222 = w219 + w221;
+        let w223 = w222 - w215;
+        let w224 = w223 - w217;
+        let w225 = w224 - w218;
+        let w226 = w225 - w200;
+        [w175, w180, w226]
+    }
+}
+
+/// The first N Taylor coefficients of each output of `free_power` along series inputs.
+#[must_use]
+#[inline(always)]
+pub fn free_power<const N: usize>(y: &[[f64; N]; 6], ug: &[f64; N], s: f64, p: &Params) -> [[f64; N]; 2] {
+    let w1: f64 = p[4];
+    let w2: f64 = 0.5;
+    let w3: f64 = p[0];
+    let mut d_y0 = [0.0f64; N];
+    let mut sin_y0 = [0.0f64; N];
+    let mut cos_y0 = [0.0f64; N];
+    let w6: f64 = w2 * w3;
+    let w7: f64 = s;
+    let w8: f64 = p[1];
+    let w9: f64 = w7 * w8;
+    let w11: f64 = 0.3914958780198129;
+    let w14: f64 = w1 * w6;
+    let w15: f64 = w1 * w9;
+    let w16: f64 = w1 * w11;
+    let w17: f64 = p[3];
+    let w18: f64 = w3 * w17;
+    let w19: f64 = w9 * w17;
+    let w20: f64 = w14 + w18;
+    let w21: f64 = w15 + w19;
+    let w22: f64 = w16 + w17;
+    let w23: f64 = p[5];
+    let w24: f64 = w9 * w23;
+    let w25: f64 = w21 + w24;
+    let mut w31 = [0.0f64; N];
+    let mut w36 = [0.0f64; N];
+    let w40: f64 = p[7];
+    let w41: f64 = 2.0 * w40;
+    let w42: f64 = 3.0905908420815478;
+    let w43: f64 = p[2];
+    let w44: f64 = w3 * w3;
+    let w45: f64 = w3 * w44;
+    let w46: f64 = w43 / w45;
+    let w47: f64 = w42 * w46;
+    let w48: f64 = 0.125;
+    let w49: f64 = w1 * w48;
+    let w50: f64 = w17 + w49;
+    let w51: f64 = w49 + w50;
+    let w52: f64 = w47 / w51;
+    let w53: f64 = w52.sqrt();
+    let w54: f64 = w41 * w53;
+    let w55: f64 = w51 * w54;
+    let mut out = [[0.0f64; N]; 2];
+    for k in 0..N {
+        let [dot0, dot1, dot2, dot3, dot4, dot5] = series::dots(
+            [
+                (&d_y0, &cos_y0),
+                (&d_y0, &sin_y0),
+                (&sin_y0, &y[2]),
+                (&y[3], &w31),
+                (&cos_y0, &y[5]),
+                (&ug, &w36),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &y[0], &mut d_y0, &mut sin_y0, &mut cos_y0, k);
+        let w13 = series::mul_d(dot2, &sin_y0, &y[2], k);
+        let w27 = cos_y0[k] * w20;
+        let w28 = sin_y0[k] * w25;
+        let w29 = w13 * w22;
+        let w30 = w27 + w28;
+        w31[k] = w30 - w29;
+        let w32 = series::mul_d(dot3, &y[3], &w31, k);
+        let w34 = series::mul_d(dot4, &cos_y0, &y[5], k);
+        let w35 = w22 * w34;
+        w36[k] = w32 + w35;
+        let w37 = series::mul_d(dot5, &ug, &w36, k);
+        let w38 = -w37;
+        let w56 = series::sq(&y[5], k);
+        let w57 = w55 * w56;
+        out[0][k] = w38;
+        out[1][k] = w57;
+    }
+    out
+}

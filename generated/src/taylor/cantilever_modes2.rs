@@ -1346,3 +1346,634 @@ pub fn power<const N: usize>(x: &[[f64; N]; 6], ug: &[f64; N], s: f64, p: &Param
     }
     out
 }
+
+/// `free_mass_matrix` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn free_mass_matrix<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 4]) -> [f64; 10] {
+    let w0: f64 = s;
+    let w1: f64 = p[1];
+    let w2: f64 = w0 * w1;
+    let mut d_qf0 = [0.0f64; N];
+    let mut sin_qf0 = [0.0f64; N];
+    let mut cos_qf0 = [0.0f64; N];
+    let w5: f64 = 0.5;
+    let w6: f64 = p[4];
+    let w7: f64 = p[3];
+    let w8: f64 = w6 + w7;
+    let w9: f64 = p[5];
+    let w10: f64 = w8 + w9;
+    let w11: f64 = w5 * w10;
+    let w12: f64 = 2.0;
+    let w13: f64 = w2 * w12;
+    let w14: f64 = w11 * w13;
+    let w15: f64 = w2 * w9;
+    let w18: f64 = w2 * w7;
+    let w19: f64 = w15 + w18;
+    let w20: f64 = -0.21696794755535964;
+    let w21: f64 = w6 * w20;
+    let w22: f64 = w7 + w21;
+    let w23: f64 = 0.3914958780198129;
+    let w24: f64 = w6 * w23;
+    let w25: f64 = w7 + w24;
+    let w26: f64 = w2 * w6;
+    let w27: f64 = w19 + w26;
+    let mut w31 = [0.0f64; N];
+    let w34: f64 = p[0];
+    let w35: f64 = w7 * w34;
+    let w36: f64 = w5 * w6;
+    let w37: f64 = w34 * w36;
+    let w38: f64 = w35 + w37;
+    let mut w39 = [0.0f64; N];
+    let mut w43 = [0.0f64; N];
+    let mut w45 = [0.0f64; N];
+    let w47: f64 = p[6];
+    let w48: f64 = w5 * w7;
+    let w49: f64 = w12 * w48;
+    let w50: f64 = w13 * w48;
+    let mut w52 = [0.0f64; N];
+    let mut w56 = [0.0f64; N];
+    let w58: f64 = 2.0 * w34;
+    let w59: f64 = w48 * w58;
+    let w60: f64 = w34 * w59;
+    let w61: f64 = w47 + w60;
+    let w62: f64 = 0.0625;
+    let w63: f64 = w6 * w62;
+    let w64: f64 = w12 * w63;
+    let w66: f64 = w12 * w64;
+    let w68: f64 = 0.08333333333333333;
+    let w69: f64 = w6 * w68;
+    let w70: f64 = w34 * w69;
+    let w71: f64 = w58 * w70;
+    let w72: f64 = w61 + w71;
+    let w73: f64 = 2.0 * w70;
+    let w74: f64 = w34 * w73;
+    let w75: f64 = w72 + w74;
+    let w76: f64 = -0.10848397377767982;
+    let w77: f64 = w6 * w76;
+    let w78: f64 = -w2;
+    let w79: f64 = 2.0 * w78;
+    let w80: f64 = w77 * w79;
+    let w81: f64 = w12 * w77;
+    let w82: f64 = w2 * w81;
+    let w83: f64 = w80 - w82;
+    let w84: f64 = 0.19574793900990645;
+    let w85: f64 = w6 * w84;
+    let w86: f64 = w79 * w85;
+    let w87: f64 = w12 * w85;
+    let w88: f64 = w2 * w87;
+    let w89: f64 = w86 - w88;
+    let w90: f64 = 2.0 * w2;
+    let w91: f64 = w36 * w90;
+    let w92: f64 = w2 * w91;
+    let w93: f64 = w75 + w92;
+    let w106: f64 = w2 * w10;
+    let w111: f64 = w2 * w25;
+    let w113: f64 = 0.1422064359274777;
+    let w114: f64 = w6 * w113;
+    let w115: f64 = w34 * w114;
+    let w116: f64 = 2.0 * w115;
+    let w117: f64 = w35 + w116;
+    let w121: f64 = w2 * w22;
+    let w122: f64 = -0.02269169672159674;
+    let w123: f64 = w6 * w122;
+    let w124: f64 = w34 * w123;
+    let w125: f64 = 2.0 * w124;
+    let w126: f64 = w35 + w125;
+    let w135: f64 = 0.125;
+    let w136: f64 = w6 * w135;
+    let w137: f64 = w7 + w136;
+    let w138: f64 = w136 + w137;
+    move |k: usize, qf: &[[f64; N]; 4]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6] = series::dots(
+            [
+                (&d_qf0, &cos_qf0),
+                (&d_qf0, &sin_qf0),
+                (&cos_qf0, &w31),
+                (&w39, &w43),
+                (&w39, &w45),
+                (&w52, &w56),
+                (&cos_qf0, &sin_qf0),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &qf[0], &mut d_qf0, &mut sin_qf0, &mut cos_qf0, k);
+        let w28 = qf[2][k] * w25;
+        let w29 = qf[3][k] * w22;
+        let w30 = at0(k, w27) - w28;
+        w31[k] = w30 - w29;
+        let w32 = series::mul_d(dot2, &cos_qf0, &w31, k);
+        w39[k] = w2 * cos_qf0[k];
+        let w40 = cos_qf0[k] * w14;
+        let w41 = sin_qf0[k] * w38;
+        let w42 = w40 + w41;
+        w43[k] = w42 - w32;
+        let w44 = series::mul_d(dot3, &w39, &w43, k);
+        w45[k] = w32 - w41;
+        let w46 = series::mul_d(dot4, &w39, &w45, k);
+        let w51 = qf[2][k] + qf[3][k];
+        w52[k] = w51 - at0(k, w2);
+        let w53 = qf[2][k] * w49;
+        let w54 = qf[3][k] * w49;
+        let w55 = w53 + w54;
+        w56[k] = w55 - at0(k, w50);
+        let w57 = series::mul_d(dot5, &w52, &w56, k);
+        let w65 = series::sq(&qf[3], k);
+        let w67 = series::sq(&qf[2], k);
+        let w94 = qf[2][k] * w89;
+        let w95 = qf[3][k] * w83;
+        let w96 = w65 * w66;
+        let w97 = w66 * w67;
+        let w98 = w94 + w95;
+        let w99 = w44 + w98;
+        let w100 = w57 + w99;
+        let w101 = w96 + w100;
+        let w102 = w97 + w101;
+        let w103 = at0(k, w93) + w102;
+        let w104 = w103 - w46;
+        let w107 = cos_qf0[k] * w106;
+        let w108 = w41 + w107;
+        let w109 = w108 - w32;
+        let w112 = series::mul_d(dot6, &cos_qf0, &sin_qf0, k);
+        let w118 = w111 * w112;
+        let w119 = at0(k, w117) + w118;
+        let w127 = w112 * w121;
+        let w128 = at0(k, w126) + w127;
+        let w131 = w25 * sin_qf0[k];
+        let w133 = w22 * sin_qf0[k];
+        [w104, w109, w119, w128, at0(k, w10), w131, w133, at0(k, w138), at0(k, w7), at0(k, w138)]
+    }
+}
+
+/// `free_forcing` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn free_forcing<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 8], &[f64; N]) -> [f64; 4] {
+    let mut d_y0 = [0.0f64; N];
+    let mut sin_y0 = [0.0f64; N];
+    let mut cos_y0 = [0.0f64; N];
+    let w2: f64 = s;
+    let w3: f64 = p[1];
+    let w4: f64 = w2 * w3;
+    let w5: f64 = p[4];
+    let w6: f64 = p[3];
+    let w7: f64 = w5 + w6;
+    let w8: f64 = p[5];
+    let w9: f64 = w7 + w8;
+    let w10: f64 = p[8];
+    let w11: f64 = w9 * w10;
+    let w12: f64 = w4 * w11;
+    let w15: f64 = w4 * w8;
+    let w20: f64 = w4 * w6;
+    let w21: f64 = w15 + w20;
+    let w22: f64 = -0.21696794755535964;
+    let w23: f64 = w5 * w22;
+    let w24: f64 = w6 + w23;
+    let w25: f64 = 0.3914958780198129;
+    let w26: f64 = w5 * w25;
+    let w27: f64 = w6 + w26;
+    let w28: f64 = w4 * w5;
+    let w29: f64 = w21 + w28;
+    let w30: f64 = p[0];
+    let w31: f64 = w6 * w10;
+    let w32: f64 = w30 * w31;
+    let w33: f64 = 0.5;
+    let w34: f64 = w5 * w10;
+    let w35: f64 = w33 * w34;
+    let w36: f64 = w30 * w35;
+    let w37: f64 = w32 + w36;
+    let mut w43 = [0.0f64; N];
+    let w45: f64 = w4 * w31;
+    let w46: f64 = w6 * w30;
+    let w47: f64 = w5 * w33;
+    let w48: f64 = w30 * w47;
+    let w49: f64 = w46 + w48;
+    let w50: f64 = w8 * w10;
+    let w51: f64 = w4 * w50;
+    let w52: f64 = w45 + w51;
+    let w53: f64 = w22 * w34;
+    let w54: f64 = w31 + w53;
+    let w55: f64 = w25 * w34;
+    let w56: f64 = w31 + w55;
+    let w57: f64 = w4 * w34;
+    let w58: f64 = w52 + w57;
+    let mut w62 = [0.0f64; N];
+    let w65: f64 = w4 * w23;
+    let w69: f64 = w4 * w26;
+    let w70: f64 = w20 + w65;
+    let w71: f64 = w20 + w69;
+    let mut w85 = [0.0f64; N];
+    let mut w88 = [0.0f64; N];
+    let mut w89 = [0.0f64; N];
+    let mut w94 = [0.0f64; N];
+    let mut w95 = [0.0f64; N];
+    let w97: f64 = 2.0;
+    let w98: f64 = w4 * w97;
+    let w99: f64 = w9 * w33;
+    let w100: f64 = w97 * w99;
+    let w101: f64 = w98 * w99;
+    let mut w102 = [0.0f64; N];
+    let mut w103 = [0.0f64; N];
+    let mut w116 = [0.0f64; N];
+    let mut w117 = [0.0f64; N];
+    let mut w119 = [0.0f64; N];
+    let mut w123 = [0.0f64; N];
+    let mut w131 = [0.0f64; N];
+    let mut w133 = [0.0f64; N];
+    let mut w136 = [0.0f64; N];
+    let w138: f64 = w4 * w49;
+    let mut w146 = [0.0f64; N];
+    let w148: f64 = w4 * w27;
+    let w151: f64 = w97 * w148;
+    let mut w152 = [0.0f64; N];
+    let mut w153 = [0.0f64; N];
+    let w154: f64 = w6 * w33;
+    let w155: f64 = w98 * w154;
+    let w156: f64 = w97 * w154;
+    let w157: f64 = w4 * w156;
+    let w158: f64 = w155 + w157;
+    let w159: f64 = w97 * w156;
+    let w160: f64 = 0.0625;
+    let w161: f64 = w5 * w160;
+    let w162: f64 = w97 * w161;
+    let w163: f64 = w97 * w162;
+    let w164: f64 = w159 + w163;
+    let w165: f64 = w163 + w164;
+    let w166: f64 = 0.19574793900990645;
+    let w167: f64 = w5 * w166;
+    let w168: f64 = w98 * w167;
+    let w169: f64 = w158 + w168;
+    let w170: f64 = w97 * w167;
+    let w171: f64 = w4 * w170;
+    let w172: f64 = w169 + w171;
+    let mut w181 = [0.0f64; N];
+    let w183: f64 = w4 * w24;
+    let w184: f64 = w97 * w183;
+    let w185: f64 = -0.10848397377767982;
+    let w186: f64 = w5 * w185;
+    let w187: f64 = w98 * w186;
+    let w188: f64 = w158 + w187;
+    let w189: f64 = w97 * w186;
+    let w190: f64 = w4 * w189;
+    let w191: f64 = w188 + w190;
+    let mut w200 = [0.0f64; N];
+    let w221: f64 = -1.5452954210407739;
+    let w222: f64 = p[2];
+    let w223: f64 = w30 * w30;
+    let w224: f64 = w30 * w223;
+    let w225: f64 = w222 / w224;
+    let w226: f64 = w221 * w225;
+    let w227: f64 = w97 * w226;
+    let w232: f64 = w156 + w162;
+    let w233: f64 = w162 + w232;
+    let w234: f64 = w155 + w168;
+    let mut w238 = [0.0f64; N];
+    let w240: f64 = p[9];
+    let w241: f64 = p[10];
+    let w261: f64 = -60.68985231417138;
+    let w262: f64 = w225 * w261;
+    let w263: f64 = w97 * w262;
+    let w264: f64 = w155 + w187;
+    let mut w268 = [0.0f64; N];
+    let w270: f64 = p[11];
+    move |k: usize, y: &[[f64; N]; 8], ug: &[f64; N]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_y0, &cos_y0),
+                (&d_y0, &sin_y0),
+                (&ug, &y[2]),
+                (&ug, &y[3]),
+                (&sin_y0, &w43),
+                (&cos_y0, &y[4]),
+                (&y[7], &y[5]),
+                (&y[7], &w62),
+                (&y[5], &y[6]),
+            ],
+            k,
+        );
+        let [dot9, dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17] = series::dots(
+            [
+                (&w62, &y[6]),
+                (&cos_y0, &w85),
+                (&y[4], &w88),
+                (&cos_y0, &w89),
+                (&w89, &w94),
+                (&sin_y0, &w95),
+                (&cos_y0, &w94),
+                (&sin_y0, &y[4]),
+                (&y[4], &w102),
+            ],
+            k,
+        );
+        let [dot18, dot19, dot20, dot21, dot22, dot23, dot24, dot25, dot26] = series::dots(
+            [
+                (&sin_y0, &y[6]),
+                (&sin_y0, &y[7]),
+                (&y[4], &w116),
+                (&sin_y0, &w117),
+                (&sin_y0, &w94),
+                (&y[4], &w119),
+                (&cos_y0, &y[6]),
+                (&cos_y0, &y[7]),
+                (&w123, &w131),
+            ],
+            k,
+        );
+        let [dot27, dot28, dot29, dot30, dot31, dot32, dot33, dot34, dot35] = series::dots(
+            [
+                (&w116, &w133),
+                (&w88, &w136),
+                (&sin_y0, &w103),
+                (&w102, &w103),
+                (&y[4], &w146),
+                (&cos_y0, &w62),
+                (&cos_y0, &y[5]),
+                (&y[2], &y[4]),
+                (&y[3], &y[4]),
+            ],
+            k,
+        );
+        let [dot36, dot37, dot38, dot39, dot40, dot41, dot42, dot43] = series::dots(
+            [
+                (&y[6], &w181),
+                (&y[7], &w200),
+                (&y[4], &w131),
+                (&cos_y0, &ug),
+                (&y[4], &w152),
+                (&y[4], &w153),
+                (&y[4], &w238),
+                (&y[4], &w268),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &y[0], &mut d_y0, &mut sin_y0, &mut cos_y0, k);
+        let w18 = series::mul_d(dot2, &ug, &y[2], k);
+        let w19 = series::mul_d(dot3, &ug, &y[3], k);
+        let w38 = ug[k] * w29;
+        let w39 = w18 * w27;
+        let w40 = w19 * w24;
+        let w41 = w38 - w39;
+        let w42 = w41 - w40;
+        w43[k] = w42 - at0(k, w37);
+        let w44 = series::mul_d(dot4, &sin_y0, &w43, k);
+        w62[k] = series::mul_d(dot5, &cos_y0, &y[4], k);
+        let w63 = series::mul_d(dot6, &y[7], &y[5], k);
+        let w64 = series::mul_d(dot7, &y[7], &w62, k);
+        let w67 = series::mul_d(dot8, &y[5], &y[6], k);
+        let w68 = series::mul_d(dot9, &w62, &y[6], k);
+        let w72 = ug[k] * w49;
+        let w73 = y[2][k] * w56;
+        let w74 = y[3][k] * w54;
+        let w75 = w24 * w63;
+        let w76 = w64 * w70;
+        let w77 = w27 * w67;
+        let w78 = w68 * w71;
+        let w79 = w73 + w74;
+        let w80 = w75 + w79;
+        let w81 = w76 + w80;
+        let w82 = w77 + w81;
+        let w83 = w78 + w82;
+        let w84 = w83 - w72;
+        w85[k] = w84 - at0(k, w58);
+        let w86 = series::mul_d(dot10, &cos_y0, &w85, k);
+        let w87 = w4 * w62[k];
+        w88[k] = y[5][k] + w87;
+        w89[k] = series::mul_d(dot11, &y[4], &w88, k);
+        let w90 = series::mul_d(dot12, &cos_y0, &w89, k);
+        let w91 = y[2][k] * w27;
+        let w92 = y[3][k] * w24;
+        let w93 = at0(k, w29) - w91;
+        w94[k] = w93 - w92;
+        w95[k] = series::mul_d(dot13, &w89, &w94, k);
+        let w96 = series::mul_d(dot14, &sin_y0, &w95, k);
+        w102[k] = series::mul_d(dot15, &cos_y0, &w94, k);
+        w103[k] = series::mul_d(dot16, &sin_y0, &y[4], k);
+        let w104 = series::mul_d(dot17, &y[4], &w102, k);
+        let w105 = series::mul_d(dot18, &sin_y0, &y[6], k);
+        let w106 = series::mul_d(dot19, &sin_y0, &y[7], k);
+        let w107 = y[5][k] * w100;
+        let w108 = w62[k] * w101;
+        let w109 = w49 * w103[k];
+        let w110 = w27 * w105;
+        let w111 = w24 * w106;
+        let w112 = w107 + w108;
+        let w113 = w109 + w112;
+        let w114 = w110 + w113;
+        let w115 = w111 + w114;
+        w116[k] = w115 - w104;
+        w117[k] = series::mul_d(dot20, &y[4], &w116, k);
+        let w118 = series::mul_d(dot21, &sin_y0, &w117, k);
+        w119[k] = series::mul_d(dot22, &sin_y0, &w94, k);
+        let w120 = series::mul_d(dot23, &y[4], &w119, k);
+        let w121 = series::mul_d(dot24, &cos_y0, &y[6], k);
+        let w122 = series::mul_d(dot25, &cos_y0, &y[7], k);
+        w123[k] = cos_y0[k] * w4;
+        let w124 = w49 * w62[k];
+        let w125 = w101 * w103[k];
+        let w126 = w27 * w121;
+        let w127 = w24 * w122;
+        let w128 = w120 + w124;
+        let w129 = w126 + w128;
+        let w130 = w127 + w129;
+        w131[k] = w130 - w125;
+        let w132 = series::mul_d(dot26, &w123, &w131, k);
+        w133[k] = w4 * sin_y0[k];
+        let w134 = series::mul_d(dot27, &w116, &w133, k);
+        let w135 = cos_y0[k] * w49;
+        w136[k] = w119[k] + w135;
+        let w137 = series::mul_d(dot28, &w88, &w136, k);
+        let w139 = series::mul_d(dot29, &sin_y0, &w103, k);
+        let w140 = series::mul_d(dot30, &w102, &w103, k);
+        let w141 = w138 * w139;
+        let w142 = w4 * w140;
+        let w143 = w132 + w137;
+        let w144 = w142 + w143;
+        let w145 = w144 - w134;
+        w146[k] = w145 - w141;
+        let w147 = series::mul_d(dot31, &y[4], &w146, k);
+        let w149 = series::mul_d(dot32, &cos_y0, &w62, k);
+        let w150 = series::mul_d(dot33, &cos_y0, &y[5], k);
+        w152[k] = series::mul_d(dot34, &y[2], &y[4], k);
+        w153[k] = series::mul_d(dot35, &y[3], &y[4], k);
+        let w173 = y[4][k] * w172;
+        let w174 = w149 * w151;
+        let w175 = w27 * w150;
+        let w176 = w152[k] * w165;
+        let w177 = w153[k] * w159;
+        let w178 = w174 + w175;
+        let w179 = w176 + w178;
+        let w180 = w177 + w179;
+        w181[k] = w180 - w173;
+        let w182 = series::mul_d(dot36, &y[6], &w181, k);
+        let w192 = y[4][k] * w191;
+        let w193 = w149 * w184;
+        let w194 = w24 * w150;
+        let w195 = w152[k] * w159;
+        let w196 = w153[k] * w165;
+        let w197 = w193 + w194;
+        let w198 = w195 + w197;
+        let w199 = w196 + w198;
+        w200[k] = w199 - w192;
+        let w201 = series::mul_d(dot37, &y[7], &w200, k);
+        let w202 = cos_y0[k] * w12;
+        let w203 = w49 * w90;
+        let w204 = w4 * w118;
+        let w205 = w86 + w202;
+        let w206 = w203 + w205;
+        let w207 = w96 + w206;
+        let w208 = w207 - w44;
+        let w209 = w208 - w204;
+        let w210 = w209 - w147;
+        let w211 = w210 - w182;
+        let w212 = w211 - w201;
+        let w214 = series::mul_d(dot38, &y[4], &w131, k);
+        let w215 = w24 * w64;
+        let w216 = w27 * w68;
+        let w217 = at0(k, w11) - w215;
+        let w218 = w217 - w216;
+        let w219 = w218 - w214;
+        let w228 = series::mul_d(dot39, &cos_y0, &ug, k);
+        let w229 = series::sq(&y[4], k);
+        let w230 = series::mul_d(dot40, &y[4], &w152, k);
+        let w231 = series::mul_d(dot41, &y[4], &w153, k);
+        let w235 = w139 * w148;
+        let w236 = w148 * w149;
+        let w237 = w175 + w236;
+        w238[k] = w237 - w235;
+        let w239 = series::mul_d(dot42, &y[4], &w238, k);
+        let w242 = sin_y0[k] * w56;
+        let w243 = y[2][k] * w227;
+        let w244 = y[7][k] * w241;
+        let w245 = y[6][k] * w240;
+        let w246 = w27 * w90;
+        let w247 = w27 * w228;
+        let w248 = w229 * w234;
+        let w249 = w230 * w233;
+        let w250 = w156 * w231;
+        let w251 = w242 + w243;
+        let w252 = w246 + w251;
+        let w253 = w249 + w252;
+        let w254 = w250 + w253;
+        let w255 = w254 - w244;
+        let w256 = w255 - w245;
+        let w257 = w256 - w247;
+        let w258 = w257 - w248;
+        let w259 = w258 - w239;
+        let w265 = w139 * w183;
+        let w266 = w149 * w183;
+        let w267 = w194 + w266;
+        w268[k] = w267 - w265;
+        let w269 = series::mul_d(dot43, &y[4], &w268, k);
+        let w271 = sin_y0[k] * w54;
+        let w272 = y[3][k] * w263;
+        let w273 = y[7][k] * w270;
+        let w274 = y[6][k] * w241;
+        let w275 = w24 * w90;
+        let w276 = w24 * w228;
+        let w277 = w229 * w264;
+        let w278 = w156 * w230;
+        let w279 = w231 * w233;
+        let w280 = w271 + w272;
+        let w281 = w275 + w280;
+        let w282 = w278 + w281;
+        let w283 = w279 + w282;
+        let w284 = w283 - w273;
+        let w285 = w284 - w274;
+        let w286 = w285 - w276;
+        let w287 = w286 - w277;
+        let w288 = w287 - w269;
+        [w212, w219, w259, w288]
+    }
+}
+
+/// The first N Taylor coefficients of each output of `free_power` along series inputs.
+#[must_use]
+#[inline(always)]
+pub fn free_power<const N: usize>(y: &[[f64; N]; 8], ug: &[f64; N], s: f64, p: &Params) -> [[f64; N]; 2] {
+    let mut d_y0 = [0.0f64; N];
+    let mut sin_y0 = [0.0f64; N];
+    let mut cos_y0 = [0.0f64; N];
+    let w3: f64 = p[0];
+    let w4: f64 = p[3];
+    let w5: f64 = w3 * w4;
+    let w6: f64 = 0.5;
+    let w7: f64 = p[4];
+    let w8: f64 = w6 * w7;
+    let w9: f64 = w3 * w8;
+    let w10: f64 = w5 + w9;
+    let w14: f64 = s;
+    let w15: f64 = p[1];
+    let w16: f64 = w14 * w15;
+    let w17: f64 = w4 * w16;
+    let w18: f64 = p[5];
+    let w19: f64 = w16 * w18;
+    let w20: f64 = w17 + w19;
+    let w21: f64 = -0.21696794755535964;
+    let w22: f64 = w7 * w21;
+    let w23: f64 = w4 + w22;
+    let w24: f64 = 0.3914958780198129;
+    let w25: f64 = w7 * w24;
+    let w26: f64 = w4 + w25;
+    let w27: f64 = w7 * w16;
+    let w28: f64 = w20 + w27;
+    let mut w32 = [0.0f64; N];
+    let mut w36 = [0.0f64; N];
+    let mut w45 = [0.0f64; N];
+    let w49: f64 = p[9];
+    let w50: f64 = p[10];
+    let mut w53 = [0.0f64; N];
+    let w55: f64 = p[11];
+    let mut w58 = [0.0f64; N];
+    let mut out = [[0.0f64; N]; 2];
+    for k in 0..N {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_y0, &cos_y0),
+                (&d_y0, &sin_y0),
+                (&sin_y0, &w32),
+                (&y[4], &w36),
+                (&cos_y0, &y[6]),
+                (&cos_y0, &y[7]),
+                (&ug, &w45),
+                (&y[6], &w53),
+                (&y[7], &w58),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &y[0], &mut d_y0, &mut sin_y0, &mut cos_y0, k);
+        let w12 = y[2][k];
+        let w13 = y[3][k];
+        let w29 = w12 * w26;
+        let w30 = w13 * w23;
+        let w31 = w29 + w30;
+        w32[k] = w31 - at0(k, w28);
+        let w33 = series::mul_d(dot2, &sin_y0, &w32, k);
+        let w35 = cos_y0[k] * w10;
+        w36[k] = w35 - w33;
+        let w37 = series::mul_d(dot3, &y[4], &w36, k);
+        let w39 = series::mul_d(dot4, &cos_y0, &y[6], k);
+        let w41 = series::mul_d(dot5, &cos_y0, &y[7], k);
+        let w42 = w26 * w39;
+        let w43 = w23 * w41;
+        let w44 = w37 + w42;
+        w45[k] = w43 + w44;
+        let w46 = series::mul_d(dot6, &ug, &w45, k);
+        let w47 = -w46;
+        let w51 = y[6][k] * w49;
+        let w52 = y[7][k] * w50;
+        w53[k] = w51 + w52;
+        let w54 = series::mul_d(dot7, &y[6], &w53, k);
+        let w56 = y[6][k] * w50;
+        let w57 = y[7][k] * w55;
+        w58[k] = w56 + w57;
+        let w59 = series::mul_d(dot8, &y[7], &w58, k);
+        let w60 = w54 + w59;
+        out[0][k] = w47;
+        out[1][k] = w60;
+    }
+    out
+}

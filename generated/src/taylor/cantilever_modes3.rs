@@ -2210,3 +2210,802 @@ pub fn power<const N: usize>(x: &[[f64; N]; 8], ug: &[f64; N], s: f64, p: &Param
     }
     out
 }
+
+/// `free_mass_matrix` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn free_mass_matrix<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 5]) -> [f64; 15] {
+    let w0: f64 = s;
+    let w1: f64 = p[1];
+    let w2: f64 = w0 * w1;
+    let mut d_qf0 = [0.0f64; N];
+    let mut sin_qf0 = [0.0f64; N];
+    let mut cos_qf0 = [0.0f64; N];
+    let w5: f64 = 0.5;
+    let w6: f64 = p[4];
+    let w7: f64 = p[3];
+    let w8: f64 = w6 + w7;
+    let w9: f64 = p[5];
+    let w10: f64 = w8 + w9;
+    let w11: f64 = w5 * w10;
+    let w12: f64 = 2.0;
+    let w13: f64 = w2 * w12;
+    let w14: f64 = w11 * w13;
+    let w15: f64 = w2 * w9;
+    let w19: f64 = w2 * w7;
+    let w20: f64 = w15 + w19;
+    let w21: f64 = 0.12721264843305286;
+    let w22: f64 = w6 * w21;
+    let w23: f64 = w7 + w22;
+    let w24: f64 = -0.21696794755535964;
+    let w25: f64 = w6 * w24;
+    let w26: f64 = w7 + w25;
+    let w27: f64 = 0.3914958780198129;
+    let w28: f64 = w6 * w27;
+    let w29: f64 = w7 + w28;
+    let w30: f64 = w2 * w6;
+    let w31: f64 = w20 + w30;
+    let mut w37 = [0.0f64; N];
+    let w40: f64 = p[0];
+    let w41: f64 = w7 * w40;
+    let w42: f64 = w5 * w6;
+    let w43: f64 = w40 * w42;
+    let w44: f64 = w41 + w43;
+    let mut w45 = [0.0f64; N];
+    let mut w49 = [0.0f64; N];
+    let mut w51 = [0.0f64; N];
+    let w53: f64 = p[6];
+    let w54: f64 = w5 * w7;
+    let w55: f64 = w12 * w54;
+    let w56: f64 = w13 * w54;
+    let mut w59 = [0.0f64; N];
+    let mut w65 = [0.0f64; N];
+    let w67: f64 = 2.0 * w40;
+    let w68: f64 = w54 * w67;
+    let w69: f64 = w40 * w68;
+    let w70: f64 = w53 + w69;
+    let w71: f64 = 0.0625;
+    let w72: f64 = w6 * w71;
+    let w73: f64 = w12 * w72;
+    let w75: f64 = w12 * w73;
+    let w78: f64 = 0.08333333333333333;
+    let w79: f64 = w6 * w78;
+    let w80: f64 = w40 * w79;
+    let w81: f64 = w67 * w80;
+    let w82: f64 = w70 + w81;
+    let w83: f64 = 2.0 * w80;
+    let w84: f64 = w40 * w83;
+    let w85: f64 = w82 + w84;
+    let w86: f64 = 0.06360632421652643;
+    let w87: f64 = w6 * w86;
+    let w88: f64 = -w2;
+    let w89: f64 = 2.0 * w88;
+    let w90: f64 = w87 * w89;
+    let w91: f64 = w12 * w87;
+    let w92: f64 = w2 * w91;
+    let w93: f64 = w90 - w92;
+    let w94: f64 = -0.10848397377767982;
+    let w95: f64 = w6 * w94;
+    let w96: f64 = w89 * w95;
+    let w97: f64 = w12 * w95;
+    let w98: f64 = w2 * w97;
+    let w99: f64 = w96 - w98;
+    let w100: f64 = 0.19574793900990645;
+    let w101: f64 = w6 * w100;
+    let w102: f64 = w89 * w101;
+    let w103: f64 = w12 * w101;
+    let w104: f64 = w2 * w103;
+    let w105: f64 = w102 - w104;
+    let w106: f64 = 2.0 * w2;
+    let w107: f64 = w42 * w106;
+    let w108: f64 = w2 * w107;
+    let w109: f64 = w85 + w108;
+    let w126: f64 = w2 * w10;
+    let w131: f64 = w2 * w29;
+    let w133: f64 = 0.1422064359274777;
+    let w134: f64 = w6 * w133;
+    let w135: f64 = w40 * w134;
+    let w136: f64 = 2.0 * w135;
+    let w137: f64 = w41 + w136;
+    let w141: f64 = w2 * w26;
+    let w142: f64 = -0.02269169672159674;
+    let w143: f64 = w6 * w142;
+    let w144: f64 = w40 * w143;
+    let w145: f64 = 2.0 * w144;
+    let w146: f64 = w41 + w145;
+    let w150: f64 = w2 * w23;
+    let w151: f64 = 0.008104093592436109;
+    let w152: f64 = w6 * w151;
+    let w153: f64 = w40 * w152;
+    let w154: f64 = 2.0 * w153;
+    let w155: f64 = w41 + w154;
+    let w166: f64 = 0.125;
+    let w167: f64 = w6 * w166;
+    let w168: f64 = w7 + w167;
+    let w169: f64 = w167 + w168;
+    move |k: usize, qf: &[[f64; N]; 5]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6] = series::dots(
+            [
+                (&d_qf0, &cos_qf0),
+                (&d_qf0, &sin_qf0),
+                (&cos_qf0, &w37),
+                (&w45, &w49),
+                (&w45, &w51),
+                (&w59, &w65),
+                (&cos_qf0, &sin_qf0),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &qf[0], &mut d_qf0, &mut sin_qf0, &mut cos_qf0, k);
+        let w32 = qf[2][k] * w29;
+        let w33 = qf[3][k] * w26;
+        let w34 = qf[4][k] * w23;
+        let w35 = at0(k, w31) - w32;
+        let w36 = w35 - w33;
+        w37[k] = w36 - w34;
+        let w38 = series::mul_d(dot2, &cos_qf0, &w37, k);
+        w45[k] = w2 * cos_qf0[k];
+        let w46 = cos_qf0[k] * w14;
+        let w47 = sin_qf0[k] * w44;
+        let w48 = w46 + w47;
+        w49[k] = w48 - w38;
+        let w50 = series::mul_d(dot3, &w45, &w49, k);
+        w51[k] = w38 - w47;
+        let w52 = series::mul_d(dot4, &w45, &w51, k);
+        let w57 = qf[2][k] + qf[3][k];
+        let w58 = qf[4][k] + w57;
+        w59[k] = w58 - at0(k, w2);
+        let w60 = qf[2][k] * w55;
+        let w61 = qf[3][k] * w55;
+        let w62 = qf[4][k] * w55;
+        let w63 = w60 + w61;
+        let w64 = w62 + w63;
+        w65[k] = w64 - at0(k, w56);
+        let w66 = series::mul_d(dot5, &w59, &w65, k);
+        let w74 = series::sq(&qf[4], k);
+        let w76 = series::sq(&qf[3], k);
+        let w77 = series::sq(&qf[2], k);
+        let w110 = qf[2][k] * w105;
+        let w111 = qf[3][k] * w99;
+        let w112 = qf[4][k] * w93;
+        let w113 = w74 * w75;
+        let w114 = w75 * w76;
+        let w115 = w75 * w77;
+        let w116 = w110 + w111;
+        let w117 = w112 + w116;
+        let w118 = w50 + w117;
+        let w119 = w66 + w118;
+        let w120 = w113 + w119;
+        let w121 = w114 + w120;
+        let w122 = w115 + w121;
+        let w123 = at0(k, w109) + w122;
+        let w124 = w123 - w52;
+        let w127 = cos_qf0[k] * w126;
+        let w128 = w47 + w127;
+        let w129 = w128 - w38;
+        let w132 = series::mul_d(dot6, &cos_qf0, &sin_qf0, k);
+        let w138 = w131 * w132;
+        let w139 = at0(k, w137) + w138;
+        let w147 = w132 * w141;
+        let w148 = at0(k, w146) + w147;
+        let w156 = w132 * w150;
+        let w157 = at0(k, w155) + w156;
+        let w160 = w29 * sin_qf0[k];
+        let w162 = w26 * sin_qf0[k];
+        let w164 = w23 * sin_qf0[k];
+        [w124, w129, w139, w148, w157, at0(k, w10), w160, w162, w164, at0(k, w169), at0(k, w7), at0(k, w7), at0(k, w169), at0(k, w7), at0(k, w169)]
+    }
+}
+
+/// `free_forcing` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn free_forcing<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 10], &[f64; N]) -> [f64; 5] {
+    let mut d_y0 = [0.0f64; N];
+    let mut sin_y0 = [0.0f64; N];
+    let mut cos_y0 = [0.0f64; N];
+    let w2: f64 = s;
+    let w3: f64 = p[1];
+    let w4: f64 = w2 * w3;
+    let w5: f64 = p[4];
+    let w6: f64 = p[3];
+    let w7: f64 = w5 + w6;
+    let w8: f64 = p[5];
+    let w9: f64 = w7 + w8;
+    let w10: f64 = p[8];
+    let w11: f64 = w9 * w10;
+    let w12: f64 = w4 * w11;
+    let w15: f64 = w4 * w8;
+    let w22: f64 = w4 * w6;
+    let w23: f64 = w15 + w22;
+    let w24: f64 = 0.12721264843305286;
+    let w25: f64 = w5 * w24;
+    let w26: f64 = w6 + w25;
+    let w27: f64 = -0.21696794755535964;
+    let w28: f64 = w5 * w27;
+    let w29: f64 = w6 + w28;
+    let w30: f64 = 0.3914958780198129;
+    let w31: f64 = w5 * w30;
+    let w32: f64 = w6 + w31;
+    let w33: f64 = w4 * w5;
+    let w34: f64 = w23 + w33;
+    let w35: f64 = p[0];
+    let w36: f64 = w6 * w10;
+    let w37: f64 = w35 * w36;
+    let w38: f64 = 0.5;
+    let w39: f64 = w5 * w10;
+    let w40: f64 = w38 * w39;
+    let w41: f64 = w35 * w40;
+    let w42: f64 = w37 + w41;
+    let mut w50 = [0.0f64; N];
+    let w52: f64 = w4 * w36;
+    let w53: f64 = w6 * w35;
+    let w54: f64 = w5 * w38;
+    let w55: f64 = w35 * w54;
+    let w56: f64 = w53 + w55;
+    let w57: f64 = w8 * w10;
+    let w58: f64 = w4 * w57;
+    let w59: f64 = w52 + w58;
+    let w60: f64 = w24 * w39;
+    let w61: f64 = w36 + w60;
+    let w62: f64 = w27 * w39;
+    let w63: f64 = w36 + w62;
+    let w64: f64 = w30 * w39;
+    let w65: f64 = w36 + w64;
+    let w66: f64 = w4 * w39;
+    let w67: f64 = w59 + w66;
+    let mut w71 = [0.0f64; N];
+    let w74: f64 = w4 * w25;
+    let w78: f64 = w4 * w28;
+    let w82: f64 = w4 * w31;
+    let w83: f64 = w22 + w74;
+    let w84: f64 = w22 + w78;
+    let w85: f64 = w22 + w82;
+    let mut w105 = [0.0f64; N];
+    let mut w108 = [0.0f64; N];
+    let mut w109 = [0.0f64; N];
+    let mut w116 = [0.0f64; N];
+    let mut w117 = [0.0f64; N];
+    let w119: f64 = 2.0;
+    let w120: f64 = w4 * w119;
+    let w121: f64 = w9 * w38;
+    let w122: f64 = w119 * w121;
+    let w123: f64 = w120 * w121;
+    let mut w124 = [0.0f64; N];
+    let mut w125 = [0.0f64; N];
+    let mut w141 = [0.0f64; N];
+    let mut w142 = [0.0f64; N];
+    let mut w144 = [0.0f64; N];
+    let mut w149 = [0.0f64; N];
+    let mut w159 = [0.0f64; N];
+    let mut w161 = [0.0f64; N];
+    let mut w164 = [0.0f64; N];
+    let w166: f64 = w4 * w56;
+    let mut w174 = [0.0f64; N];
+    let w176: f64 = w4 * w32;
+    let w179: f64 = w119 * w176;
+    let mut w180 = [0.0f64; N];
+    let mut w181 = [0.0f64; N];
+    let mut w182 = [0.0f64; N];
+    let w183: f64 = w6 * w38;
+    let w184: f64 = w120 * w183;
+    let w185: f64 = w119 * w183;
+    let w186: f64 = w4 * w185;
+    let w187: f64 = w184 + w186;
+    let w188: f64 = w119 * w185;
+    let w189: f64 = 0.0625;
+    let w190: f64 = w5 * w189;
+    let w191: f64 = w119 * w190;
+    let w192: f64 = w119 * w191;
+    let w193: f64 = w188 + w192;
+    let w194: f64 = w192 + w193;
+    let w195: f64 = 0.19574793900990645;
+    let w196: f64 = w5 * w195;
+    let w197: f64 = w120 * w196;
+    let w198: f64 = w187 + w197;
+    let w199: f64 = w119 * w196;
+    let w200: f64 = w4 * w199;
+    let w201: f64 = w198 + w200;
+    let mut w212 = [0.0f64; N];
+    let w214: f64 = w4 * w29;
+    let w215: f64 = w119 * w214;
+    let w216: f64 = -0.10848397377767982;
+    let w217: f64 = w5 * w216;
+    let w218: f64 = w120 * w217;
+    let w219: f64 = w187 + w218;
+    let w220: f64 = w119 * w217;
+    let w221: f64 = w4 * w220;
+    let w222: f64 = w219 + w221;
+    let mut w232 = [0.0f64; N];
+    let w234: f64 = w4 * w26;
+    let w235: f64 = w119 * w234;
+    let w236: f64 = 0.06360632421652643;
+    let w237: f64 = w5 * w236;
+    let w238: f64 = w120 * w237;
+    let w239: f64 = w187 + w238;
+    let w240: f64 = w119 * w237;
+    let w241: f64 = w4 * w240;
+    let w242: f64 = w239 + w241;
+    let mut w251 = [0.0f64; N];
+    let w275: f64 = -1.5452954210407739;
+    let w276: f64 = p[2];
+    let w277: f64 = w35 * w35;
+    let w278: f64 = w35 * w277;
+    let w279: f64 = w276 / w278;
+    let w280: f64 = w275 * w279;
+    let w281: f64 = w119 * w280;
+    let w287: f64 = w185 + w191;
+    let w288: f64 = w191 + w287;
+    let w289: f64 = w184 + w197;
+    let mut w293 = [0.0f64; N];
+    let w295: f64 = p[9];
+    let w296: f64 = p[10];
+    let w297: f64 = p[11];
+    let w321: f64 = -60.68985231417138;
+    let w322: f64 = w279 * w321;
+    let w323: f64 = w119 * w322;
+    let w324: f64 = w184 + w218;
+    let mut w328 = [0.0f64; N];
+    let w330: f64 = p[12];
+    let w331: f64 = p[13];
+    let w354: f64 = -475.81828329893136;
+    let w355: f64 = w279 * w354;
+    let w356: f64 = w119 * w355;
+    let w357: f64 = w184 + w238;
+    let mut w361 = [0.0f64; N];
+    let w363: f64 = p[14];
+    move |k: usize, y: &[[f64; N]; 10], ug: &[f64; N]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_y0, &cos_y0),
+                (&d_y0, &sin_y0),
+                (&ug, &y[2]),
+                (&ug, &y[3]),
+                (&ug, &y[4]),
+                (&sin_y0, &w50),
+                (&cos_y0, &y[5]),
+                (&y[9], &y[6]),
+                (&y[9], &w71),
+            ],
+            k,
+        );
+        let [dot9, dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17] = series::dots(
+            [
+                (&y[6], &y[8]),
+                (&w71, &y[8]),
+                (&y[6], &y[7]),
+                (&w71, &y[7]),
+                (&cos_y0, &w105),
+                (&y[5], &w108),
+                (&cos_y0, &w109),
+                (&w109, &w116),
+                (&sin_y0, &w117),
+            ],
+            k,
+        );
+        let [dot18, dot19, dot20, dot21, dot22, dot23, dot24, dot25, dot26] = series::dots(
+            [
+                (&cos_y0, &w116),
+                (&sin_y0, &y[5]),
+                (&y[5], &w124),
+                (&sin_y0, &y[7]),
+                (&sin_y0, &y[8]),
+                (&sin_y0, &y[9]),
+                (&y[5], &w141),
+                (&sin_y0, &w142),
+                (&sin_y0, &w116),
+            ],
+            k,
+        );
+        let [dot27, dot28, dot29, dot30, dot31, dot32, dot33, dot34, dot35] = series::dots(
+            [
+                (&y[5], &w144),
+                (&cos_y0, &y[7]),
+                (&cos_y0, &y[8]),
+                (&cos_y0, &y[9]),
+                (&w149, &w159),
+                (&w141, &w161),
+                (&w108, &w164),
+                (&sin_y0, &w125),
+                (&w124, &w125),
+            ],
+            k,
+        );
+        let [dot36, dot37, dot38, dot39, dot40, dot41, dot42, dot43, dot44] = series::dots(
+            [
+                (&y[5], &w174),
+                (&cos_y0, &w71),
+                (&cos_y0, &y[6]),
+                (&y[2], &y[5]),
+                (&y[3], &y[5]),
+                (&y[4], &y[5]),
+                (&y[7], &w212),
+                (&y[8], &w232),
+                (&y[9], &w251),
+            ],
+            k,
+        );
+        let [dot45, dot46, dot47, dot48, dot49, dot50, dot51, dot52] = series::dots(
+            [
+                (&y[5], &w159),
+                (&cos_y0, &ug),
+                (&y[5], &w180),
+                (&y[5], &w181),
+                (&y[5], &w182),
+                (&y[5], &w293),
+                (&y[5], &w328),
+                (&y[5], &w361),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &y[0], &mut d_y0, &mut sin_y0, &mut cos_y0, k);
+        let w19 = series::mul_d(dot2, &ug, &y[2], k);
+        let w20 = series::mul_d(dot3, &ug, &y[3], k);
+        let w21 = series::mul_d(dot4, &ug, &y[4], k);
+        let w43 = ug[k] * w34;
+        let w44 = w19 * w32;
+        let w45 = w20 * w29;
+        let w46 = w21 * w26;
+        let w47 = w43 - w44;
+        let w48 = w47 - w45;
+        let w49 = w48 - w46;
+        w50[k] = w49 - at0(k, w42);
+        let w51 = series::mul_d(dot5, &sin_y0, &w50, k);
+        w71[k] = series::mul_d(dot6, &cos_y0, &y[5], k);
+        let w72 = series::mul_d(dot7, &y[9], &y[6], k);
+        let w73 = series::mul_d(dot8, &y[9], &w71, k);
+        let w76 = series::mul_d(dot9, &y[6], &y[8], k);
+        let w77 = series::mul_d(dot10, &w71, &y[8], k);
+        let w80 = series::mul_d(dot11, &y[6], &y[7], k);
+        let w81 = series::mul_d(dot12, &w71, &y[7], k);
+        let w86 = ug[k] * w56;
+        let w87 = y[2][k] * w65;
+        let w88 = y[3][k] * w63;
+        let w89 = y[4][k] * w61;
+        let w90 = w26 * w72;
+        let w91 = w73 * w83;
+        let w92 = w29 * w76;
+        let w93 = w77 * w84;
+        let w94 = w32 * w80;
+        let w95 = w81 * w85;
+        let w96 = w87 + w88;
+        let w97 = w89 + w96;
+        let w98 = w90 + w97;
+        let w99 = w91 + w98;
+        let w100 = w92 + w99;
+        let w101 = w93 + w100;
+        let w102 = w94 + w101;
+        let w103 = w95 + w102;
+        let w104 = w103 - w86;
+        w105[k] = w104 - at0(k, w67);
+        let w106 = series::mul_d(dot13, &cos_y0, &w105, k);
+        let w107 = w4 * w71[k];
+        w108[k] = y[6][k] + w107;
+        w109[k] = series::mul_d(dot14, &y[5], &w108, k);
+        let w110 = series::mul_d(dot15, &cos_y0, &w109, k);
+        let w111 = y[2][k] * w32;
+        let w112 = y[3][k] * w29;
+        let w113 = y[4][k] * w26;
+        let w114 = at0(k, w34) - w111;
+        let w115 = w114 - w112;
+        w116[k] = w115 - w113;
+        w117[k] = series::mul_d(dot16, &w109, &w116, k);
+        let w118 = series::mul_d(dot17, &sin_y0, &w117, k);
+        w124[k] = series::mul_d(dot18, &cos_y0, &w116, k);
+        w125[k] = series::mul_d(dot19, &sin_y0, &y[5], k);
+        let w126 = series::mul_d(dot20, &y[5], &w124, k);
+        let w127 = series::mul_d(dot21, &sin_y0, &y[7], k);
+        let w128 = series::mul_d(dot22, &sin_y0, &y[8], k);
+        let w129 = series::mul_d(dot23, &sin_y0, &y[9], k);
+        let w130 = y[6][k] * w122;
+        let w131 = w71[k] * w123;
+        let w132 = w56 * w125[k];
+        let w133 = w32 * w127;
+        let w134 = w29 * w128;
+        let w135 = w26 * w129;
+        let w136 = w130 + w131;
+        let w137 = w132 + w136;
+        let w138 = w133 + w137;
+        let w139 = w134 + w138;
+        let w140 = w135 + w139;
+        w141[k] = w140 - w126;
+        w142[k] = series::mul_d(dot24, &y[5], &w141, k);
+        let w143 = series::mul_d(dot25, &sin_y0, &w142, k);
+        w144[k] = series::mul_d(dot26, &sin_y0, &w116, k);
+        let w145 = series::mul_d(dot27, &y[5], &w144, k);
+        let w146 = series::mul_d(dot28, &cos_y0, &y[7], k);
+        let w147 = series::mul_d(dot29, &cos_y0, &y[8], k);
+        let w148 = series::mul_d(dot30, &cos_y0, &y[9], k);
+        w149[k] = cos_y0[k] * w4;
+        let w150 = w56 * w71[k];
+        let w151 = w123 * w125[k];
+        let w152 = w32 * w146;
+        let w153 = w29 * w147;
+        let w154 = w26 * w148;
+        let w155 = w145 + w150;
+        let w156 = w152 + w155;
+        let w157 = w153 + w156;
+        let w158 = w154 + w157;
+        w159[k] = w158 - w151;
+        let w160 = series::mul_d(dot31, &w149, &w159, k);
+        w161[k] = w4 * sin_y0[k];
+        let w162 = series::mul_d(dot32, &w141, &w161, k);
+        let w163 = cos_y0[k] * w56;
+        w164[k] = w144[k] + w163;
+        let w165 = series::mul_d(dot33, &w108, &w164, k);
+        let w167 = series::mul_d(dot34, &sin_y0, &w125, k);
+        let w168 = series::mul_d(dot35, &w124, &w125, k);
+        let w169 = w166 * w167;
+        let w170 = w4 * w168;
+        let w171 = w160 + w165;
+        let w172 = w170 + w171;
+        let w173 = w172 - w162;
+        w174[k] = w173 - w169;
+        let w175 = series::mul_d(dot36, &y[5], &w174, k);
+        let w177 = series::mul_d(dot37, &cos_y0, &w71, k);
+        let w178 = series::mul_d(dot38, &cos_y0, &y[6], k);
+        w180[k] = series::mul_d(dot39, &y[2], &y[5], k);
+        w181[k] = series::mul_d(dot40, &y[3], &y[5], k);
+        w182[k] = series::mul_d(dot41, &y[4], &y[5], k);
+        let w202 = y[5][k] * w201;
+        let w203 = w177 * w179;
+        let w204 = w32 * w178;
+        let w205 = w180[k] * w194;
+        let w206 = w181[k] * w188;
+        let w207 = w182[k] * w188;
+        let w208 = w203 + w204;
+        let w209 = w205 + w208;
+        let w210 = w206 + w209;
+        let w211 = w207 + w210;
+        w212[k] = w211 - w202;
+        let w213 = series::mul_d(dot42, &y[7], &w212, k);
+        let w223 = y[5][k] * w222;
+        let w224 = w177 * w215;
+        let w225 = w29 * w178;
+        let w226 = w180[k] * w188;
+        let w227 = w181[k] * w194;
+        let w228 = w224 + w225;
+        let w229 = w226 + w228;
+        let w230 = w227 + w229;
+        let w231 = w207 + w230;
+        w232[k] = w231 - w223;
+        let w233 = series::mul_d(dot43, &y[8], &w232, k);
+        let w243 = y[5][k] * w242;
+        let w244 = w177 * w235;
+        let w245 = w26 * w178;
+        let w246 = w182[k] * w194;
+        let w247 = w244 + w245;
+        let w248 = w226 + w247;
+        let w249 = w206 + w248;
+        let w250 = w246 + w249;
+        w251[k] = w250 - w243;
+        let w252 = series::mul_d(dot44, &y[9], &w251, k);
+        let w253 = cos_y0[k] * w12;
+        let w254 = w56 * w110;
+        let w255 = w4 * w143;
+        let w256 = w106 + w253;
+        let w257 = w254 + w256;
+        let w258 = w118 + w257;
+        let w259 = w258 - w51;
+        let w260 = w259 - w255;
+        let w261 = w260 - w175;
+        let w262 = w261 - w213;
+        let w263 = w262 - w233;
+        let w264 = w263 - w252;
+        let w266 = series::mul_d(dot45, &y[5], &w159, k);
+        let w267 = w26 * w73;
+        let w268 = w29 * w77;
+        let w269 = w32 * w81;
+        let w270 = at0(k, w11) - w267;
+        let w271 = w270 - w268;
+        let w272 = w271 - w269;
+        let w273 = w272 - w266;
+        let w282 = series::mul_d(dot46, &cos_y0, &ug, k);
+        let w283 = series::sq(&y[5], k);
+        let w284 = series::mul_d(dot47, &y[5], &w180, k);
+        let w285 = series::mul_d(dot48, &y[5], &w181, k);
+        let w286 = series::mul_d(dot49, &y[5], &w182, k);
+        let w290 = w167 * w176;
+        let w291 = w176 * w177;
+        let w292 = w204 + w291;
+        w293[k] = w292 - w290;
+        let w294 = series::mul_d(dot50, &y[5], &w293, k);
+        let w298 = sin_y0[k] * w65;
+        let w299 = y[2][k] * w281;
+        let w300 = y[9][k] * w297;
+        let w301 = y[8][k] * w296;
+        let w302 = y[7][k] * w295;
+        let w303 = w32 * w110;
+        let w304 = w32 * w282;
+        let w305 = w283 * w289;
+        let w306 = w284 * w288;
+        let w307 = w185 * w285;
+        let w308 = w185 * w286;
+        let w309 = w298 + w299;
+        let w310 = w303 + w309;
+        let w311 = w306 + w310;
+        let w312 = w307 + w311;
+        let w313 = w308 + w312;
+        let w314 = w313 - w300;
+        let w315 = w314 - w301;
+        let w316 = w315 - w302;
+        let w317 = w316 - w304;
+        let w318 = w317 - w305;
+        let w319 = w318 - w294;
+        let w325 = w167 * w214;
+        let w326 = w177 * w214;
+        let w327 = w225 + w326;
+        w328[k] = w327 - w325;
+        let w329 = series::mul_d(dot51, &y[5], &w328, k);
+        let w332 = sin_y0[k] * w63;
+        let w333 = y[3][k] * w323;
+        let w334 = y[9][k] * w331;
+        let w335 = y[8][k] * w330;
+        let w336 = y[7][k] * w296;
+        let w337 = w29 * w110;
+        let w338 = w29 * w282;
+        let w339 = w283 * w324;
+        let w340 = w185 * w284;
+        let w341 = w285 * w288;
+        let w342 = w332 + w333;
+        let w343 = w337 + w342;
+        let w344 = w340 + w343;
+        let w345 = w341 + w344;
+        let w346 = w308 + w345;
+        let w347 = w346 - w334;
+        let w348 = w347 - w335;
+        let w349 = w348 - w336;
+        let w350 = w349 - w338;
+        let w351 = w350 - w339;
+        let w352 = w351 - w329;
+        let w358 = w167 * w234;
+        let w359 = w177 * w234;
+        let w360 = w245 + w359;
+        w361[k] = w360 - w358;
+        let w362 = series::mul_d(dot52, &y[5], &w361, k);
+        let w364 = sin_y0[k] * w61;
+        let w365 = y[4][k] * w356;
+        let w366 = y[9][k] * w363;
+        let w367 = y[8][k] * w331;
+        let w368 = y[7][k] * w297;
+        let w369 = w26 * w110;
+        let w370 = w26 * w282;
+        let w371 = w283 * w357;
+        let w372 = w286 * w288;
+        let w373 = w364 + w365;
+        let w374 = w369 + w373;
+        let w375 = w340 + w374;
+        let w376 = w307 + w375;
+        let w377 = w372 + w376;
+        let w378 = w377 - w366;
+        let w379 = w378 - w367;
+        let w380 = w379 - w368;
+        let w381 = w380 - w370;
+        let w382 = w381 - w371;
+        let w383 = w382 - w362;
+        [w264, w273, w319, w352, w383]
+    }
+}
+
+/// The first N Taylor coefficients of each output of `free_power` along series inputs.
+#[must_use]
+#[inline(always)]
+pub fn free_power<const N: usize>(y: &[[f64; N]; 10], ug: &[f64; N], s: f64, p: &Params) -> [[f64; N]; 2] {
+    let mut d_y0 = [0.0f64; N];
+    let mut sin_y0 = [0.0f64; N];
+    let mut cos_y0 = [0.0f64; N];
+    let w3: f64 = p[0];
+    let w4: f64 = p[3];
+    let w5: f64 = w3 * w4;
+    let w6: f64 = 0.5;
+    let w7: f64 = p[4];
+    let w8: f64 = w6 * w7;
+    let w9: f64 = w3 * w8;
+    let w10: f64 = w5 + w9;
+    let w15: f64 = s;
+    let w16: f64 = p[1];
+    let w17: f64 = w15 * w16;
+    let w18: f64 = w4 * w17;
+    let w19: f64 = p[5];
+    let w20: f64 = w17 * w19;
+    let w21: f64 = w18 + w20;
+    let w22: f64 = 0.12721264843305286;
+    let w23: f64 = w7 * w22;
+    let w24: f64 = w4 + w23;
+    let w25: f64 = -0.21696794755535964;
+    let w26: f64 = w7 * w25;
+    let w27: f64 = w4 + w26;
+    let w28: f64 = 0.3914958780198129;
+    let w29: f64 = w7 * w28;
+    let w30: f64 = w4 + w29;
+    let w31: f64 = w7 * w17;
+    let w32: f64 = w21 + w31;
+    let mut w38 = [0.0f64; N];
+    let mut w42 = [0.0f64; N];
+    let mut w55 = [0.0f64; N];
+    let w59: f64 = p[9];
+    let w60: f64 = p[10];
+    let w61: f64 = p[11];
+    let mut w66 = [0.0f64; N];
+    let w68: f64 = p[12];
+    let w69: f64 = p[13];
+    let mut w74 = [0.0f64; N];
+    let w76: f64 = p[14];
+    let mut w81 = [0.0f64; N];
+    let mut out = [[0.0f64; N]; 2];
+    for k in 0..N {
+        let [dot0, dot1, dot2, dot3, dot4, dot5] = series::dots(
+            [
+                (&d_y0, &cos_y0),
+                (&d_y0, &sin_y0),
+                (&sin_y0, &w38),
+                (&y[5], &w42),
+                (&cos_y0, &y[7]),
+                (&cos_y0, &y[8]),
+            ],
+            k,
+        );
+        let [dot6, dot7, dot8, dot9, dot10] = series::dots(
+            [
+                (&cos_y0, &y[9]),
+                (&ug, &w55),
+                (&y[7], &w66),
+                (&y[8], &w74),
+                (&y[9], &w81),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &y[0], &mut d_y0, &mut sin_y0, &mut cos_y0, k);
+        let w12 = y[2][k];
+        let w13 = y[3][k];
+        let w14 = y[4][k];
+        let w33 = w12 * w30;
+        let w34 = w13 * w27;
+        let w35 = w14 * w24;
+        let w36 = w33 + w34;
+        let w37 = w35 + w36;
+        w38[k] = w37 - at0(k, w32);
+        let w39 = series::mul_d(dot2, &sin_y0, &w38, k);
+        let w41 = cos_y0[k] * w10;
+        w42[k] = w41 - w39;
+        let w43 = series::mul_d(dot3, &y[5], &w42, k);
+        let w45 = series::mul_d(dot4, &cos_y0, &y[7], k);
+        let w47 = series::mul_d(dot5, &cos_y0, &y[8], k);
+        let w49 = series::mul_d(dot6, &cos_y0, &y[9], k);
+        let w50 = w30 * w45;
+        let w51 = w27 * w47;
+        let w52 = w24 * w49;
+        let w53 = w43 + w50;
+        let w54 = w51 + w53;
+        w55[k] = w52 + w54;
+        let w56 = series::mul_d(dot7, &ug, &w55, k);
+        let w57 = -w56;
+        let w62 = y[7][k] * w59;
+        let w63 = y[8][k] * w60;
+        let w64 = y[9][k] * w61;
+        let w65 = w62 + w63;
+        w66[k] = w64 + w65;
+        let w67 = series::mul_d(dot8, &y[7], &w66, k);
+        let w70 = y[7][k] * w60;
+        let w71 = y[8][k] * w68;
+        let w72 = y[9][k] * w69;
+        let w73 = w70 + w71;
+        w74[k] = w72 + w73;
+        let w75 = series::mul_d(dot9, &y[8], &w74, k);
+        let w77 = y[7][k] * w61;
+        let w78 = y[8][k] * w69;
+        let w79 = y[9][k] * w76;
+        let w80 = w77 + w78;
+        w81[k] = w79 + w80;
+        let w82 = series::mul_d(dot10, &y[9], &w81, k);
+        let w83 = w67 + w75;
+        let w84 = w82 + w83;
+        out[0][k] = w57;
+        out[1][k] = w84;
+    }
+    out
+}

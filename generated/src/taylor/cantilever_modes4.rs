@@ -3411,3 +3411,979 @@ pub fn power<const N: usize>(x: &[[f64; N]; 10], ug: &[f64; N], s: f64, p: &Para
     }
     out
 }
+
+/// `free_mass_matrix` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn free_mass_matrix<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 6]) -> [f64; 21] {
+    let w0: f64 = s;
+    let w1: f64 = p[1];
+    let w2: f64 = w0 * w1;
+    let mut d_qf0 = [0.0f64; N];
+    let mut sin_qf0 = [0.0f64; N];
+    let mut cos_qf0 = [0.0f64; N];
+    let w5: f64 = 0.5;
+    let w6: f64 = p[4];
+    let w7: f64 = p[3];
+    let w8: f64 = w6 + w7;
+    let w9: f64 = p[5];
+    let w10: f64 = w8 + w9;
+    let w11: f64 = w5 * w10;
+    let w12: f64 = 2.0;
+    let w13: f64 = w2 * w12;
+    let w14: f64 = w11 * w13;
+    let w15: f64 = w2 * w9;
+    let w20: f64 = w2 * w7;
+    let w21: f64 = w15 + w20;
+    let w22: f64 = -0.09094901081852429;
+    let w23: f64 = w6 * w22;
+    let w24: f64 = w7 + w23;
+    let w25: f64 = 0.12721264843305286;
+    let w26: f64 = w6 * w25;
+    let w27: f64 = w7 + w26;
+    let w28: f64 = -0.21696794755535964;
+    let w29: f64 = w6 * w28;
+    let w30: f64 = w7 + w29;
+    let w31: f64 = 0.3914958780198129;
+    let w32: f64 = w6 * w31;
+    let w33: f64 = w7 + w32;
+    let w34: f64 = w2 * w6;
+    let w35: f64 = w21 + w34;
+    let mut w43 = [0.0f64; N];
+    let w46: f64 = p[0];
+    let w47: f64 = w7 * w46;
+    let w48: f64 = w5 * w6;
+    let w49: f64 = w46 * w48;
+    let w50: f64 = w47 + w49;
+    let mut w51 = [0.0f64; N];
+    let mut w55 = [0.0f64; N];
+    let mut w57 = [0.0f64; N];
+    let w59: f64 = p[6];
+    let w60: f64 = w5 * w7;
+    let w61: f64 = w12 * w60;
+    let w62: f64 = w13 * w60;
+    let mut w66 = [0.0f64; N];
+    let mut w74 = [0.0f64; N];
+    let w76: f64 = 2.0 * w46;
+    let w77: f64 = w60 * w76;
+    let w78: f64 = w46 * w77;
+    let w79: f64 = w59 + w78;
+    let w80: f64 = 0.0625;
+    let w81: f64 = w6 * w80;
+    let w82: f64 = w12 * w81;
+    let w84: f64 = w12 * w82;
+    let w88: f64 = 0.08333333333333333;
+    let w89: f64 = w6 * w88;
+    let w90: f64 = w46 * w89;
+    let w91: f64 = w76 * w90;
+    let w92: f64 = w79 + w91;
+    let w93: f64 = 2.0 * w90;
+    let w94: f64 = w46 * w93;
+    let w95: f64 = w92 + w94;
+    let w96: f64 = -0.04547450540926214;
+    let w97: f64 = w6 * w96;
+    let w98: f64 = -w2;
+    let w99: f64 = 2.0 * w98;
+    let w100: f64 = w97 * w99;
+    let w101: f64 = w12 * w97;
+    let w102: f64 = w2 * w101;
+    let w103: f64 = w100 - w102;
+    let w104: f64 = 0.06360632421652643;
+    let w105: f64 = w6 * w104;
+    let w106: f64 = w99 * w105;
+    let w107: f64 = w12 * w105;
+    let w108: f64 = w2 * w107;
+    let w109: f64 = w106 - w108;
+    let w110: f64 = -0.10848397377767982;
+    let w111: f64 = w6 * w110;
+    let w112: f64 = w99 * w111;
+    let w113: f64 = w12 * w111;
+    let w114: f64 = w2 * w113;
+    let w115: f64 = w112 - w114;
+    let w116: f64 = 0.19574793900990645;
+    let w117: f64 = w6 * w116;
+    let w118: f64 = w99 * w117;
+    let w119: f64 = w12 * w117;
+    let w120: f64 = w2 * w119;
+    let w121: f64 = w118 - w120;
+    let w122: f64 = 2.0 * w2;
+    let w123: f64 = w48 * w122;
+    let w124: f64 = w2 * w123;
+    let w125: f64 = w95 + w124;
+    let w146: f64 = w2 * w10;
+    let w151: f64 = w2 * w33;
+    let w153: f64 = 0.1422064359274777;
+    let w154: f64 = w6 * w153;
+    let w155: f64 = w46 * w154;
+    let w156: f64 = 2.0 * w155;
+    let w157: f64 = w47 + w156;
+    let w161: f64 = w2 * w30;
+    let w162: f64 = -0.02269169672159674;
+    let w163: f64 = w6 * w162;
+    let w164: f64 = w46 * w163;
+    let w165: f64 = 2.0 * w164;
+    let w166: f64 = w47 + w165;
+    let w170: f64 = w2 * w27;
+    let w171: f64 = 0.008104093592436109;
+    let w172: f64 = w6 * w171;
+    let w173: f64 = w46 * w172;
+    let w174: f64 = 2.0 * w173;
+    let w175: f64 = w47 + w174;
+    let w179: f64 = w2 * w24;
+    let w180: f64 = -0.004135583755212658;
+    let w181: f64 = w6 * w180;
+    let w182: f64 = w46 * w181;
+    let w183: f64 = 2.0 * w182;
+    let w184: f64 = w47 + w183;
+    let w197: f64 = 0.125;
+    let w198: f64 = w6 * w197;
+    let w199: f64 = w7 + w198;
+    let w200: f64 = w198 + w199;
+    move |k: usize, qf: &[[f64; N]; 6]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6] = series::dots(
+            [
+                (&d_qf0, &cos_qf0),
+                (&d_qf0, &sin_qf0),
+                (&cos_qf0, &w43),
+                (&w51, &w55),
+                (&w51, &w57),
+                (&w66, &w74),
+                (&cos_qf0, &sin_qf0),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &qf[0], &mut d_qf0, &mut sin_qf0, &mut cos_qf0, k);
+        let w36 = qf[2][k] * w33;
+        let w37 = qf[3][k] * w30;
+        let w38 = qf[4][k] * w27;
+        let w39 = qf[5][k] * w24;
+        let w40 = at0(k, w35) - w36;
+        let w41 = w40 - w37;
+        let w42 = w41 - w38;
+        w43[k] = w42 - w39;
+        let w44 = series::mul_d(dot2, &cos_qf0, &w43, k);
+        w51[k] = w2 * cos_qf0[k];
+        let w52 = cos_qf0[k] * w14;
+        let w53 = sin_qf0[k] * w50;
+        let w54 = w52 + w53;
+        w55[k] = w54 - w44;
+        let w56 = series::mul_d(dot3, &w51, &w55, k);
+        w57[k] = w44 - w53;
+        let w58 = series::mul_d(dot4, &w51, &w57, k);
+        let w63 = qf[2][k] + qf[3][k];
+        let w64 = qf[4][k] + w63;
+        let w65 = qf[5][k] + w64;
+        w66[k] = w65 - at0(k, w2);
+        let w67 = qf[2][k] * w61;
+        let w68 = qf[3][k] * w61;
+        let w69 = qf[4][k] * w61;
+        let w70 = qf[5][k] * w61;
+        let w71 = w67 + w68;
+        let w72 = w69 + w71;
+        let w73 = w70 + w72;
+        w74[k] = w73 - at0(k, w62);
+        let w75 = series::mul_d(dot5, &w66, &w74, k);
+        let w83 = series::sq(&qf[5], k);
+        let w85 = series::sq(&qf[4], k);
+        let w86 = series::sq(&qf[3], k);
+        let w87 = series::sq(&qf[2], k);
+        let w126 = qf[2][k] * w121;
+        let w127 = qf[3][k] * w115;
+        let w128 = qf[4][k] * w109;
+        let w129 = qf[5][k] * w103;
+        let w130 = w83 * w84;
+        let w131 = w84 * w85;
+        let w132 = w84 * w86;
+        let w133 = w84 * w87;
+        let w134 = w126 + w127;
+        let w135 = w128 + w134;
+        let w136 = w129 + w135;
+        let w137 = w56 + w136;
+        let w138 = w75 + w137;
+        let w139 = w130 + w138;
+        let w140 = w131 + w139;
+        let w141 = w132 + w140;
+        let w142 = w133 + w141;
+        let w143 = at0(k, w125) + w142;
+        let w144 = w143 - w58;
+        let w147 = cos_qf0[k] * w146;
+        let w148 = w53 + w147;
+        let w149 = w148 - w44;
+        let w152 = series::mul_d(dot6, &cos_qf0, &sin_qf0, k);
+        let w158 = w151 * w152;
+        let w159 = at0(k, w157) + w158;
+        let w167 = w152 * w161;
+        let w168 = at0(k, w166) + w167;
+        let w176 = w152 * w170;
+        let w177 = at0(k, w175) + w176;
+        let w185 = w152 * w179;
+        let w186 = at0(k, w184) + w185;
+        let w189 = w33 * sin_qf0[k];
+        let w191 = w30 * sin_qf0[k];
+        let w193 = w27 * sin_qf0[k];
+        let w195 = w24 * sin_qf0[k];
+        [w144, w149, w159, w168, w177, w186, at0(k, w10), w189, w191, w193, w195, at0(k, w200), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w200), at0(k, w7), at0(k, w7), at0(k, w200), at0(k, w7), at0(k, w200)]
+    }
+}
+
+/// `free_forcing` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn free_forcing<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 12], &[f64; N]) -> [f64; 6] {
+    let mut d_y0 = [0.0f64; N];
+    let mut sin_y0 = [0.0f64; N];
+    let mut cos_y0 = [0.0f64; N];
+    let w2: f64 = s;
+    let w3: f64 = p[1];
+    let w4: f64 = w2 * w3;
+    let w5: f64 = p[4];
+    let w6: f64 = p[3];
+    let w7: f64 = w5 + w6;
+    let w8: f64 = p[5];
+    let w9: f64 = w7 + w8;
+    let w10: f64 = p[8];
+    let w11: f64 = w9 * w10;
+    let w12: f64 = w4 * w11;
+    let w15: f64 = w4 * w8;
+    let w24: f64 = w4 * w6;
+    let w25: f64 = w15 + w24;
+    let w26: f64 = -0.09094901081852429;
+    let w27: f64 = w5 * w26;
+    let w28: f64 = w6 + w27;
+    let w29: f64 = 0.12721264843305286;
+    let w30: f64 = w5 * w29;
+    let w31: f64 = w6 + w30;
+    let w32: f64 = -0.21696794755535964;
+    let w33: f64 = w5 * w32;
+    let w34: f64 = w6 + w33;
+    let w35: f64 = 0.3914958780198129;
+    let w36: f64 = w5 * w35;
+    let w37: f64 = w6 + w36;
+    let w38: f64 = w4 * w5;
+    let w39: f64 = w25 + w38;
+    let w40: f64 = p[0];
+    let w41: f64 = w6 * w10;
+    let w42: f64 = w40 * w41;
+    let w43: f64 = 0.5;
+    let w44: f64 = w5 * w10;
+    let w45: f64 = w43 * w44;
+    let w46: f64 = w40 * w45;
+    let w47: f64 = w42 + w46;
+    let mut w57 = [0.0f64; N];
+    let w59: f64 = w4 * w41;
+    let w60: f64 = w6 * w40;
+    let w61: f64 = w5 * w43;
+    let w62: f64 = w40 * w61;
+    let w63: f64 = w60 + w62;
+    let w64: f64 = w8 * w10;
+    let w65: f64 = w4 * w64;
+    let w66: f64 = w59 + w65;
+    let w67: f64 = w26 * w44;
+    let w68: f64 = w41 + w67;
+    let w69: f64 = w29 * w44;
+    let w70: f64 = w41 + w69;
+    let w71: f64 = w32 * w44;
+    let w72: f64 = w41 + w71;
+    let w73: f64 = w35 * w44;
+    let w74: f64 = w41 + w73;
+    let w75: f64 = w4 * w44;
+    let w76: f64 = w66 + w75;
+    let mut w80 = [0.0f64; N];
+    let w83: f64 = w4 * w27;
+    let w87: f64 = w4 * w30;
+    let w91: f64 = w4 * w33;
+    let w95: f64 = w4 * w36;
+    let w96: f64 = w24 + w83;
+    let w97: f64 = w24 + w87;
+    let w98: f64 = w24 + w91;
+    let w99: f64 = w24 + w95;
+    let mut w125 = [0.0f64; N];
+    let mut w128 = [0.0f64; N];
+    let mut w129 = [0.0f64; N];
+    let mut w138 = [0.0f64; N];
+    let mut w139 = [0.0f64; N];
+    let w141: f64 = 2.0;
+    let w142: f64 = w4 * w141;
+    let w143: f64 = w9 * w43;
+    let w144: f64 = w141 * w143;
+    let w145: f64 = w142 * w143;
+    let mut w146 = [0.0f64; N];
+    let mut w147 = [0.0f64; N];
+    let mut w166 = [0.0f64; N];
+    let mut w167 = [0.0f64; N];
+    let mut w169 = [0.0f64; N];
+    let mut w175 = [0.0f64; N];
+    let mut w187 = [0.0f64; N];
+    let mut w189 = [0.0f64; N];
+    let mut w192 = [0.0f64; N];
+    let w194: f64 = w4 * w63;
+    let mut w202 = [0.0f64; N];
+    let w204: f64 = w4 * w37;
+    let w207: f64 = w141 * w204;
+    let mut w208 = [0.0f64; N];
+    let mut w209 = [0.0f64; N];
+    let mut w210 = [0.0f64; N];
+    let mut w211 = [0.0f64; N];
+    let w212: f64 = w6 * w43;
+    let w213: f64 = w142 * w212;
+    let w214: f64 = w141 * w212;
+    let w215: f64 = w4 * w214;
+    let w216: f64 = w213 + w215;
+    let w217: f64 = w141 * w214;
+    let w218: f64 = 0.0625;
+    let w219: f64 = w5 * w218;
+    let w220: f64 = w141 * w219;
+    let w221: f64 = w141 * w220;
+    let w222: f64 = w217 + w221;
+    let w223: f64 = w221 + w222;
+    let w224: f64 = 0.19574793900990645;
+    let w225: f64 = w5 * w224;
+    let w226: f64 = w142 * w225;
+    let w227: f64 = w216 + w226;
+    let w228: f64 = w141 * w225;
+    let w229: f64 = w4 * w228;
+    let w230: f64 = w227 + w229;
+    let mut w243 = [0.0f64; N];
+    let w245: f64 = w4 * w34;
+    let w246: f64 = w141 * w245;
+    let w247: f64 = -0.10848397377767982;
+    let w248: f64 = w5 * w247;
+    let w249: f64 = w142 * w248;
+    let w250: f64 = w216 + w249;
+    let w251: f64 = w141 * w248;
+    let w252: f64 = w4 * w251;
+    let w253: f64 = w250 + w252;
+    let mut w264 = [0.0f64; N];
+    let w266: f64 = w4 * w31;
+    let w267: f64 = w141 * w266;
+    let w268: f64 = 0.06360632421652643;
+    let w269: f64 = w5 * w268;
+    let w270: f64 = w142 * w269;
+    let w271: f64 = w216 + w270;
+    let w272: f64 = w141 * w269;
+    let w273: f64 = w4 * w272;
+    let w274: f64 = w271 + w273;
+    let mut w284 = [0.0f64; N];
+    let w286: f64 = w4 * w28;
+    let w287: f64 = w141 * w286;
+    let w288: f64 = -0.04547450540926214;
+    let w289: f64 = w5 * w288;
+    let w290: f64 = w142 * w289;
+    let w291: f64 = w216 + w290;
+    let w292: f64 = w141 * w289;
+    let w293: f64 = w4 * w292;
+    let w294: f64 = w291 + w293;
+    let mut w304 = [0.0f64; N];
+    let w331: f64 = -1.5452954210407739;
+    let w332: f64 = p[2];
+    let w333: f64 = w40 * w40;
+    let w334: f64 = w40 * w333;
+    let w335: f64 = w332 / w334;
+    let w336: f64 = w331 * w335;
+    let w337: f64 = w141 * w336;
+    let w344: f64 = w214 + w220;
+    let w345: f64 = w220 + w344;
+    let w346: f64 = w213 + w226;
+    let mut w350 = [0.0f64; N];
+    let w352: f64 = p[9];
+    let w353: f64 = p[10];
+    let w354: f64 = p[11];
+    let w355: f64 = p[12];
+    let w383: f64 = -60.68985231417138;
+    let w384: f64 = w335 * w383;
+    let w385: f64 = w141 * w384;
+    let w386: f64 = w213 + w249;
+    let mut w390 = [0.0f64; N];
+    let w392: f64 = p[13];
+    let w393: f64 = p[14];
+    let w394: f64 = p[15];
+    let w420: f64 = -475.81828329893136;
+    let w421: f64 = w335 * w420;
+    let w422: f64 = w141 * w421;
+    let w423: f64 = w213 + w270;
+    let mut w427 = [0.0f64; N];
+    let w429: f64 = p[16];
+    let w430: f64 = p[17];
+    let w455: f64 = -1827.1591631398476;
+    let w456: f64 = w335 * w455;
+    let w457: f64 = w141 * w456;
+    let w458: f64 = w213 + w290;
+    let mut w462 = [0.0f64; N];
+    let w464: f64 = p[18];
+    move |k: usize, y: &[[f64; N]; 12], ug: &[f64; N]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_y0, &cos_y0),
+                (&d_y0, &sin_y0),
+                (&ug, &y[2]),
+                (&ug, &y[3]),
+                (&ug, &y[4]),
+                (&ug, &y[5]),
+                (&sin_y0, &w57),
+                (&cos_y0, &y[6]),
+                (&y[11], &y[7]),
+            ],
+            k,
+        );
+        let [dot9, dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17] = series::dots(
+            [
+                (&y[11], &w80),
+                (&y[7], &y[10]),
+                (&w80, &y[10]),
+                (&y[7], &y[9]),
+                (&w80, &y[9]),
+                (&y[7], &y[8]),
+                (&w80, &y[8]),
+                (&cos_y0, &w125),
+                (&y[6], &w128),
+            ],
+            k,
+        );
+        let [dot18, dot19, dot20, dot21, dot22, dot23, dot24, dot25, dot26] = series::dots(
+            [
+                (&cos_y0, &w129),
+                (&w129, &w138),
+                (&sin_y0, &w139),
+                (&cos_y0, &w138),
+                (&sin_y0, &y[6]),
+                (&y[6], &w146),
+                (&sin_y0, &y[8]),
+                (&sin_y0, &y[9]),
+                (&sin_y0, &y[10]),
+            ],
+            k,
+        );
+        let [dot27, dot28, dot29, dot30, dot31, dot32, dot33, dot34, dot35] = series::dots(
+            [
+                (&sin_y0, &y[11]),
+                (&y[6], &w166),
+                (&sin_y0, &w167),
+                (&sin_y0, &w138),
+                (&y[6], &w169),
+                (&cos_y0, &y[8]),
+                (&cos_y0, &y[9]),
+                (&cos_y0, &y[10]),
+                (&cos_y0, &y[11]),
+            ],
+            k,
+        );
+        let [dot36, dot37, dot38, dot39, dot40, dot41, dot42, dot43, dot44] = series::dots(
+            [
+                (&w175, &w187),
+                (&w166, &w189),
+                (&w128, &w192),
+                (&sin_y0, &w147),
+                (&w146, &w147),
+                (&y[6], &w202),
+                (&cos_y0, &w80),
+                (&cos_y0, &y[7]),
+                (&y[2], &y[6]),
+            ],
+            k,
+        );
+        let [dot45, dot46, dot47, dot48, dot49, dot50, dot51, dot52, dot53] = series::dots(
+            [
+                (&y[3], &y[6]),
+                (&y[4], &y[6]),
+                (&y[5], &y[6]),
+                (&y[8], &w243),
+                (&y[9], &w264),
+                (&y[10], &w284),
+                (&y[11], &w304),
+                (&y[6], &w187),
+                (&cos_y0, &ug),
+            ],
+            k,
+        );
+        let [dot54, dot55, dot56, dot57, dot58, dot59, dot60, dot61] = series::dots(
+            [
+                (&y[6], &w208),
+                (&y[6], &w209),
+                (&y[6], &w210),
+                (&y[6], &w211),
+                (&y[6], &w350),
+                (&y[6], &w390),
+                (&y[6], &w427),
+                (&y[6], &w462),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &y[0], &mut d_y0, &mut sin_y0, &mut cos_y0, k);
+        let w20 = series::mul_d(dot2, &ug, &y[2], k);
+        let w21 = series::mul_d(dot3, &ug, &y[3], k);
+        let w22 = series::mul_d(dot4, &ug, &y[4], k);
+        let w23 = series::mul_d(dot5, &ug, &y[5], k);
+        let w48 = ug[k] * w39;
+        let w49 = w20 * w37;
+        let w50 = w21 * w34;
+        let w51 = w22 * w31;
+        let w52 = w23 * w28;
+        let w53 = w48 - w49;
+        let w54 = w53 - w50;
+        let w55 = w54 - w51;
+        let w56 = w55 - w52;
+        w57[k] = w56 - at0(k, w47);
+        let w58 = series::mul_d(dot6, &sin_y0, &w57, k);
+        w80[k] = series::mul_d(dot7, &cos_y0, &y[6], k);
+        let w81 = series::mul_d(dot8, &y[11], &y[7], k);
+        let w82 = series::mul_d(dot9, &y[11], &w80, k);
+        let w85 = series::mul_d(dot10, &y[7], &y[10], k);
+        let w86 = series::mul_d(dot11, &w80, &y[10], k);
+        let w89 = series::mul_d(dot12, &y[7], &y[9], k);
+        let w90 = series::mul_d(dot13, &w80, &y[9], k);
+        let w93 = series::mul_d(dot14, &y[7], &y[8], k);
+        let w94 = series::mul_d(dot15, &w80, &y[8], k);
+        let w100 = ug[k] * w63;
+        let w101 = y[2][k] * w74;
+        let w102 = y[3][k] * w72;
+        let w103 = y[4][k] * w70;
+        let w104 = y[5][k] * w68;
+        let w105 = w28 * w81;
+        let w106 = w82 * w96;
+        let w107 = w31 * w85;
+        let w108 = w86 * w97;
+        let w109 = w34 * w89;
+        let w110 = w90 * w98;
+        let w111 = w37 * w93;
+        let w112 = w94 * w99;
+        let w113 = w101 + w102;
+        let w114 = w103 + w113;
+        let w115 = w104 + w114;
+        let w116 = w105 + w115;
+        let w117 = w106 + w116;
+        let w118 = w107 + w117;
+        let w119 = w108 + w118;
+        let w120 = w109 + w119;
+        let w121 = w110 + w120;
+        let w122 = w111 + w121;
+        let w123 = w112 + w122;
+        let w124 = w123 - w100;
+        w125[k] = w124 - at0(k, w76);
+        let w126 = series::mul_d(dot16, &cos_y0, &w125, k);
+        let w127 = w4 * w80[k];
+        w128[k] = y[7][k] + w127;
+        w129[k] = series::mul_d(dot17, &y[6], &w128, k);
+        let w130 = series::mul_d(dot18, &cos_y0, &w129, k);
+        let w131 = y[2][k] * w37;
+        let w132 = y[3][k] * w34;
+        let w133 = y[4][k] * w31;
+        let w134 = y[5][k] * w28;
+        let w135 = at0(k, w39) - w131;
+        let w136 = w135 - w132;
+        let w137 = w136 - w133;
+        w138[k] = w137 - w134;
+        w139[k] = series::mul_d(dot19, &w129, &w138, k);
+        let w140 = series::mul_d(dot20, &sin_y0, &w139, k);
+        w146[k] = series::mul_d(dot21, &cos_y0, &w138, k);
+        w147[k] = series::mul_d(dot22, &sin_y0, &y[6], k);
+        let w148 = series::mul_d(dot23, &y[6], &w146, k);
+        let w149 = series::mul_d(dot24, &sin_y0, &y[8], k);
+        let w150 = series::mul_d(dot25, &sin_y0, &y[9], k);
+        let w151 = series::mul_d(dot26, &sin_y0, &y[10], k);
+        let w152 = series::mul_d(dot27, &sin_y0, &y[11], k);
+        let w153 = y[7][k] * w144;
+        let w154 = w80[k] * w145;
+        let w155 = w63 * w147[k];
+        let w156 = w37 * w149;
+        let w157 = w34 * w150;
+        let w158 = w31 * w151;
+        let w159 = w28 * w152;
+        let w160 = w153 + w154;
+        let w161 = w155 + w160;
+        let w162 = w156 + w161;
+        let w163 = w157 + w162;
+        let w164 = w158 + w163;
+        let w165 = w159 + w164;
+        w166[k] = w165 - w148;
+        w167[k] = series::mul_d(dot28, &y[6], &w166, k);
+        let w168 = series::mul_d(dot29, &sin_y0, &w167, k);
+        w169[k] = series::mul_d(dot30, &sin_y0, &w138, k);
+        let w170 = series::mul_d(dot31, &y[6], &w169, k);
+        let w171 = series::mul_d(dot32, &cos_y0, &y[8], k);
+        let w172 = series::mul_d(dot33, &cos_y0, &y[9], k);
+        let w173 = series::mul_d(dot34, &cos_y0, &y[10], k);
+        let w174 = series::mul_d(dot35, &cos_y0, &y[11], k);
+        w175[k] = cos_y0[k] * w4;
+        let w176 = w63 * w80[k];
+        let w177 = w145 * w147[k];
+        let w178 = w37 * w171;
+        let w179 = w34 * w172;
+        let w180 = w31 * w173;
+        let w181 = w28 * w174;
+        let w182 = w170 + w176;
+        let w183 = w178 + w182;
+        let w184 = w179 + w183;
+        let w185 = w180 + w184;
+        let w186 = w181 + w185;
+        w187[k] = w186 - w177;
+        let w188 = series::mul_d(dot36, &w175, &w187, k);
+        w189[k] = w4 * sin_y0[k];
+        let w190 = series::mul_d(dot37, &w166, &w189, k);
+        let w191 = cos_y0[k] * w63;
+        w192[k] = w169[k] + w191;
+        let w193 = series::mul_d(dot38, &w128, &w192, k);
+        let w195 = series::mul_d(dot39, &sin_y0, &w147, k);
+        let w196 = series::mul_d(dot40, &w146, &w147, k);
+        let w197 = w194 * w195;
+        let w198 = w4 * w196;
+        let w199 = w188 + w193;
+        let w200 = w198 + w199;
+        let w201 = w200 - w190;
+        w202[k] = w201 - w197;
+        let w203 = series::mul_d(dot41, &y[6], &w202, k);
+        let w205 = series::mul_d(dot42, &cos_y0, &w80, k);
+        let w206 = series::mul_d(dot43, &cos_y0, &y[7], k);
+        w208[k] = series::mul_d(dot44, &y[2], &y[6], k);
+        w209[k] = series::mul_d(dot45, &y[3], &y[6], k);
+        w210[k] = series::mul_d(dot46, &y[4], &y[6], k);
+        w211[k] = series::mul_d(dot47, &y[5], &y[6], k);
+        let w231 = y[6][k] * w230;
+        let w232 = w205 * w207;
+        let w233 = w37 * w206;
+        let w234 = w208[k] * w223;
+        let w235 = w209[k] * w217;
+        let w236 = w210[k] * w217;
+        let w237 = w211[k] * w217;
+        let w238 = w232 + w233;
+        let w239 = w234 + w238;
+        let w240 = w235 + w239;
+        let w241 = w236 + w240;
+        let w242 = w237 + w241;
+        w243[k] = w242 - w231;
+        let w244 = series::mul_d(dot48, &y[8], &w243, k);
+        let w254 = y[6][k] * w253;
+        let w255 = w205 * w246;
+        let w256 = w34 * w206;
+        let w257 = w208[k] * w217;
+        let w258 = w209[k] * w223;
+        let w259 = w255 + w256;
+        let w260 = w257 + w259;
+        let w261 = w258 + w260;
+        let w262 = w236 + w261;
+        let w263 = w237 + w262;
+        w264[k] = w263 - w254;
+        let w265 = series::mul_d(dot49, &y[9], &w264, k);
+        let w275 = y[6][k] * w274;
+        let w276 = w205 * w267;
+        let w277 = w31 * w206;
+        let w278 = w210[k] * w223;
+        let w279 = w276 + w277;
+        let w280 = w257 + w279;
+        let w281 = w235 + w280;
+        let w282 = w278 + w281;
+        let w283 = w237 + w282;
+        w284[k] = w283 - w275;
+        let w285 = series::mul_d(dot50, &y[10], &w284, k);
+        let w295 = y[6][k] * w294;
+        let w296 = w205 * w287;
+        let w297 = w28 * w206;
+        let w298 = w211[k] * w223;
+        let w299 = w296 + w297;
+        let w300 = w257 + w299;
+        let w301 = w235 + w300;
+        let w302 = w236 + w301;
+        let w303 = w298 + w302;
+        w304[k] = w303 - w295;
+        let w305 = series::mul_d(dot51, &y[11], &w304, k);
+        let w306 = cos_y0[k] * w12;
+        let w307 = w63 * w130;
+        let w308 = w4 * w168;
+        let w309 = w126 + w306;
+        let w310 = w307 + w309;
+        let w311 = w140 + w310;
+        let w312 = w311 - w58;
+        let w313 = w312 - w308;
+        let w314 = w313 - w203;
+        let w315 = w314 - w244;
+        let w316 = w315 - w265;
+        let w317 = w316 - w285;
+        let w318 = w317 - w305;
+        let w320 = series::mul_d(dot52, &y[6], &w187, k);
+        let w321 = w28 * w82;
+        let w322 = w31 * w86;
+        let w323 = w34 * w90;
+        let w324 = w37 * w94;
+        let w325 = at0(k, w11) - w321;
+        let w326 = w325 - w322;
+        let w327 = w326 - w323;
+        let w328 = w327 - w324;
+        let w329 = w328 - w320;
+        let w338 = series::mul_d(dot53, &cos_y0, &ug, k);
+        let w339 = series::sq(&y[6], k);
+        let w340 = series::mul_d(dot54, &y[6], &w208, k);
+        let w341 = series::mul_d(dot55, &y[6], &w209, k);
+        let w342 = series::mul_d(dot56, &y[6], &w210, k);
+        let w343 = series::mul_d(dot57, &y[6], &w211, k);
+        let w347 = w195 * w204;
+        let w348 = w204 * w205;
+        let w349 = w233 + w348;
+        w350[k] = w349 - w347;
+        let w351 = series::mul_d(dot58, &y[6], &w350, k);
+        let w356 = sin_y0[k] * w74;
+        let w357 = y[2][k] * w337;
+        let w358 = y[11][k] * w355;
+        let w359 = y[10][k] * w354;
+        let w360 = y[9][k] * w353;
+        let w361 = y[8][k] * w352;
+        let w362 = w37 * w130;
+        let w363 = w37 * w338;
+        let w364 = w339 * w346;
+        let w365 = w340 * w345;
+        let w366 = w214 * w341;
+        let w367 = w214 * w342;
+        let w368 = w214 * w343;
+        let w369 = w356 + w357;
+        let w370 = w362 + w369;
+        let w371 = w365 + w370;
+        let w372 = w366 + w371;
+        let w373 = w367 + w372;
+        let w374 = w368 + w373;
+        let w375 = w374 - w358;
+        let w376 = w375 - w359;
+        let w377 = w376 - w360;
+        let w378 = w377 - w361;
+        let w379 = w378 - w363;
+        let w380 = w379 - w364;
+        let w381 = w380 - w351;
+        let w387 = w195 * w245;
+        let w388 = w205 * w245;
+        let w389 = w256 + w388;
+        w390[k] = w389 - w387;
+        let w391 = series::mul_d(dot59, &y[6], &w390, k);
+        let w395 = sin_y0[k] * w72;
+        let w396 = y[3][k] * w385;
+        let w397 = y[11][k] * w394;
+        let w398 = y[10][k] * w393;
+        let w399 = y[9][k] * w392;
+        let w400 = y[8][k] * w353;
+        let w401 = w34 * w130;
+        let w402 = w34 * w338;
+        let w403 = w339 * w386;
+        let w404 = w214 * w340;
+        let w405 = w341 * w345;
+        let w406 = w395 + w396;
+        let w407 = w401 + w406;
+        let w408 = w404 + w407;
+        let w409 = w405 + w408;
+        let w410 = w367 + w409;
+        let w411 = w368 + w410;
+        let w412 = w411 - w397;
+        let w413 = w412 - w398;
+        let w414 = w413 - w399;
+        let w415 = w414 - w400;
+        let w416 = w415 - w402;
+        let w417 = w416 - w403;
+        let w418 = w417 - w391;
+        let w424 = w195 * w266;
+        let w425 = w205 * w266;
+        let w426 = w277 + w425;
+        w427[k] = w426 - w424;
+        let w428 = series::mul_d(dot60, &y[6], &w427, k);
+        let w431 = sin_y0[k] * w70;
+        let w432 = y[4][k] * w422;
+        let w433 = y[11][k] * w430;
+        let w434 = y[10][k] * w429;
+        let w435 = y[9][k] * w393;
+        let w436 = y[8][k] * w354;
+        let w437 = w31 * w130;
+        let w438 = w31 * w338;
+        let w439 = w339 * w423;
+        let w440 = w342 * w345;
+        let w441 = w431 + w432;
+        let w442 = w437 + w441;
+        let w443 = w404 + w442;
+        let w444 = w366 + w443;
+        let w445 = w440 + w444;
+        let w446 = w368 + w445;
+        let w447 = w446 - w433;
+        let w448 = w447 - w434;
+        let w449 = w448 - w435;
+        let w450 = w449 - w436;
+        let w451 = w450 - w438;
+        let w452 = w451 - w439;
+        let w453 = w452 - w428;
+        let w459 = w195 * w286;
+        let w460 = w205 * w286;
+        let w461 = w297 + w460;
+        w462[k] = w461 - w459;
+        let w463 = series::mul_d(dot61, &y[6], &w462, k);
+        let w465 = sin_y0[k] * w68;
+        let w466 = y[5][k] * w457;
+        let w467 = y[11][k] * w464;
+        let w468 = y[10][k] * w430;
+        let w469 = y[9][k] * w394;
+        let w470 = y[8][k] * w355;
+        let w471 = w28 * w130;
+        let w472 = w28 * w338;
+        let w473 = w339 * w458;
+        let w474 = w343 * w345;
+        let w475 = w465 + w466;
+        let w476 = w471 + w475;
+        let w477 = w404 + w476;
+        let w478 = w366 + w477;
+        let w479 = w367 + w478;
+        let w480 = w474 + w479;
+        let w481 = w480 - w467;
+        let w482 = w481 - w468;
+        let w483 = w482 - w469;
+        let w484 = w483 - w470;
+        let w485 = w484 - w472;
+        let w486 = w485 - w473;
+        let w487 = w486 - w463;
+        [w318, w329, w381, w418, w453, w487]
+    }
+}
+
+/// The first N Taylor coefficients of each output of `free_power` along series inputs.
+#[must_use]
+#[inline(always)]
+pub fn free_power<const N: usize>(y: &[[f64; N]; 12], ug: &[f64; N], s: f64, p: &Params) -> [[f64; N]; 2] {
+    let mut d_y0 = [0.0f64; N];
+    let mut sin_y0 = [0.0f64; N];
+    let mut cos_y0 = [0.0f64; N];
+    let w3: f64 = p[0];
+    let w4: f64 = p[3];
+    let w5: f64 = w3 * w4;
+    let w6: f64 = 0.5;
+    let w7: f64 = p[4];
+    let w8: f64 = w6 * w7;
+    let w9: f64 = w3 * w8;
+    let w10: f64 = w5 + w9;
+    let w16: f64 = s;
+    let w17: f64 = p[1];
+    let w18: f64 = w16 * w17;
+    let w19: f64 = w4 * w18;
+    let w20: f64 = p[5];
+    let w21: f64 = w18 * w20;
+    let w22: f64 = w19 + w21;
+    let w23: f64 = -0.09094901081852429;
+    let w24: f64 = w7 * w23;
+    let w25: f64 = w4 + w24;
+    let w26: f64 = 0.12721264843305286;
+    let w27: f64 = w7 * w26;
+    let w28: f64 = w4 + w27;
+    let w29: f64 = -0.21696794755535964;
+    let w30: f64 = w7 * w29;
+    let w31: f64 = w4 + w30;
+    let w32: f64 = 0.3914958780198129;
+    let w33: f64 = w7 * w32;
+    let w34: f64 = w4 + w33;
+    let w35: f64 = w7 * w18;
+    let w36: f64 = w22 + w35;
+    let mut w44 = [0.0f64; N];
+    let mut w48 = [0.0f64; N];
+    let mut w65 = [0.0f64; N];
+    let w69: f64 = p[9];
+    let w70: f64 = p[10];
+    let w71: f64 = p[11];
+    let w72: f64 = p[12];
+    let mut w79 = [0.0f64; N];
+    let w81: f64 = p[13];
+    let w82: f64 = p[14];
+    let w83: f64 = p[15];
+    let mut w90 = [0.0f64; N];
+    let w92: f64 = p[16];
+    let w93: f64 = p[17];
+    let mut w100 = [0.0f64; N];
+    let w102: f64 = p[18];
+    let mut w109 = [0.0f64; N];
+    let mut out = [[0.0f64; N]; 2];
+    for k in 0..N {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6] = series::dots(
+            [
+                (&d_y0, &cos_y0),
+                (&d_y0, &sin_y0),
+                (&sin_y0, &w44),
+                (&y[6], &w48),
+                (&cos_y0, &y[8]),
+                (&cos_y0, &y[9]),
+                (&cos_y0, &y[10]),
+            ],
+            k,
+        );
+        let [dot7, dot8, dot9, dot10, dot11, dot12] = series::dots(
+            [
+                (&cos_y0, &y[11]),
+                (&ug, &w65),
+                (&y[8], &w79),
+                (&y[9], &w90),
+                (&y[10], &w100),
+                (&y[11], &w109),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &y[0], &mut d_y0, &mut sin_y0, &mut cos_y0, k);
+        let w12 = y[2][k];
+        let w13 = y[3][k];
+        let w14 = y[4][k];
+        let w15 = y[5][k];
+        let w37 = w12 * w34;
+        let w38 = w13 * w31;
+        let w39 = w14 * w28;
+        let w40 = w15 * w25;
+        let w41 = w37 + w38;
+        let w42 = w39 + w41;
+        let w43 = w40 + w42;
+        w44[k] = w43 - at0(k, w36);
+        let w45 = series::mul_d(dot2, &sin_y0, &w44, k);
+        let w47 = cos_y0[k] * w10;
+        w48[k] = w47 - w45;
+        let w49 = series::mul_d(dot3, &y[6], &w48, k);
+        let w51 = series::mul_d(dot4, &cos_y0, &y[8], k);
+        let w53 = series::mul_d(dot5, &cos_y0, &y[9], k);
+        let w55 = series::mul_d(dot6, &cos_y0, &y[10], k);
+        let w57 = series::mul_d(dot7, &cos_y0, &y[11], k);
+        let w58 = w34 * w51;
+        let w59 = w31 * w53;
+        let w60 = w28 * w55;
+        let w61 = w25 * w57;
+        let w62 = w49 + w58;
+        let w63 = w59 + w62;
+        let w64 = w60 + w63;
+        w65[k] = w61 + w64;
+        let w66 = series::mul_d(dot8, &ug, &w65, k);
+        let w67 = -w66;
+        let w73 = y[8][k] * w69;
+        let w74 = y[9][k] * w70;
+        let w75 = y[10][k] * w71;
+        let w76 = y[11][k] * w72;
+        let w77 = w73 + w74;
+        let w78 = w75 + w77;
+        w79[k] = w76 + w78;
+        let w80 = series::mul_d(dot9, &y[8], &w79, k);
+        let w84 = y[8][k] * w70;
+        let w85 = y[9][k] * w81;
+        let w86 = y[10][k] * w82;
+        let w87 = y[11][k] * w83;
+        let w88 = w84 + w85;
+        let w89 = w86 + w88;
+        w90[k] = w87 + w89;
+        let w91 = series::mul_d(dot10, &y[9], &w90, k);
+        let w94 = y[8][k] * w71;
+        let w95 = y[9][k] * w82;
+        let w96 = y[10][k] * w92;
+        let w97 = y[11][k] * w93;
+        let w98 = w94 + w95;
+        let w99 = w96 + w98;
+        w100[k] = w97 + w99;
+        let w101 = series::mul_d(dot11, &y[10], &w100, k);
+        let w103 = y[8][k] * w72;
+        let w104 = y[9][k] * w83;
+        let w105 = y[10][k] * w93;
+        let w106 = y[11][k] * w102;
+        let w107 = w103 + w104;
+        let w108 = w105 + w107;
+        w109[k] = w106 + w108;
+        let w110 = series::mul_d(dot12, &y[11], &w109, k);
+        let w111 = w80 + w91;
+        let w112 = w101 + w111;
+        let w113 = w110 + w112;
+        out[0][k] = w67;
+        out[1][k] = w113;
+    }
+    out
+}

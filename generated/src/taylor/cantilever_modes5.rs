@@ -5020,3 +5020,1170 @@ pub fn power<const N: usize>(x: &[[f64; N]; 12], ug: &[f64; N], s: f64, p: &Para
     }
     out
 }
+
+/// `free_mass_matrix` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn free_mass_matrix<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 7]) -> [f64; 28] {
+    let w0: f64 = s;
+    let w1: f64 = p[1];
+    let w2: f64 = w0 * w1;
+    let mut d_qf0 = [0.0f64; N];
+    let mut sin_qf0 = [0.0f64; N];
+    let mut cos_qf0 = [0.0f64; N];
+    let w5: f64 = 0.5;
+    let w6: f64 = p[4];
+    let w7: f64 = p[3];
+    let w8: f64 = w6 + w7;
+    let w9: f64 = p[5];
+    let w10: f64 = w8 + w9;
+    let w11: f64 = w5 * w10;
+    let w12: f64 = 2.0;
+    let w13: f64 = w2 * w12;
+    let w14: f64 = w11 * w13;
+    let w15: f64 = w2 * w9;
+    let w21: f64 = w2 * w7;
+    let w22: f64 = w15 + w21;
+    let w23: f64 = 0.07073542044968367;
+    let w24: f64 = w6 * w23;
+    let w25: f64 = w7 + w24;
+    let w26: f64 = -0.09094901081852429;
+    let w27: f64 = w6 * w26;
+    let w28: f64 = w7 + w27;
+    let w29: f64 = 0.12721264843305286;
+    let w30: f64 = w6 * w29;
+    let w31: f64 = w7 + w30;
+    let w32: f64 = -0.21696794755535964;
+    let w33: f64 = w6 * w32;
+    let w34: f64 = w7 + w33;
+    let w35: f64 = 0.3914958780198129;
+    let w36: f64 = w6 * w35;
+    let w37: f64 = w7 + w36;
+    let w38: f64 = w2 * w6;
+    let w39: f64 = w22 + w38;
+    let mut w49 = [0.0f64; N];
+    let w52: f64 = p[0];
+    let w53: f64 = w7 * w52;
+    let w54: f64 = w5 * w6;
+    let w55: f64 = w52 * w54;
+    let w56: f64 = w53 + w55;
+    let mut w57 = [0.0f64; N];
+    let mut w61 = [0.0f64; N];
+    let mut w63 = [0.0f64; N];
+    let w65: f64 = p[6];
+    let w66: f64 = w5 * w7;
+    let w67: f64 = w12 * w66;
+    let w68: f64 = w13 * w66;
+    let mut w73 = [0.0f64; N];
+    let mut w83 = [0.0f64; N];
+    let w85: f64 = 2.0 * w52;
+    let w86: f64 = w66 * w85;
+    let w87: f64 = w52 * w86;
+    let w88: f64 = w65 + w87;
+    let w89: f64 = 0.0625;
+    let w90: f64 = w6 * w89;
+    let w91: f64 = w12 * w90;
+    let w93: f64 = w12 * w91;
+    let w98: f64 = 0.08333333333333333;
+    let w99: f64 = w6 * w98;
+    let w100: f64 = w52 * w99;
+    let w101: f64 = w85 * w100;
+    let w102: f64 = w88 + w101;
+    let w103: f64 = 2.0 * w100;
+    let w104: f64 = w52 * w103;
+    let w105: f64 = w102 + w104;
+    let w106: f64 = 0.035367710224841836;
+    let w107: f64 = w6 * w106;
+    let w108: f64 = -w2;
+    let w109: f64 = 2.0 * w108;
+    let w110: f64 = w107 * w109;
+    let w111: f64 = w12 * w107;
+    let w112: f64 = w2 * w111;
+    let w113: f64 = w110 - w112;
+    let w114: f64 = -0.04547450540926214;
+    let w115: f64 = w6 * w114;
+    let w116: f64 = w109 * w115;
+    let w117: f64 = w12 * w115;
+    let w118: f64 = w2 * w117;
+    let w119: f64 = w116 - w118;
+    let w120: f64 = 0.06360632421652643;
+    let w121: f64 = w6 * w120;
+    let w122: f64 = w109 * w121;
+    let w123: f64 = w12 * w121;
+    let w124: f64 = w2 * w123;
+    let w125: f64 = w122 - w124;
+    let w126: f64 = -0.10848397377767982;
+    let w127: f64 = w6 * w126;
+    let w128: f64 = w109 * w127;
+    let w129: f64 = w12 * w127;
+    let w130: f64 = w2 * w129;
+    let w131: f64 = w128 - w130;
+    let w132: f64 = 0.19574793900990645;
+    let w133: f64 = w6 * w132;
+    let w134: f64 = w109 * w133;
+    let w135: f64 = w12 * w133;
+    let w136: f64 = w2 * w135;
+    let w137: f64 = w134 - w136;
+    let w138: f64 = 2.0 * w2;
+    let w139: f64 = w54 * w138;
+    let w140: f64 = w2 * w139;
+    let w141: f64 = w105 + w140;
+    let w166: f64 = w2 * w10;
+    let w171: f64 = w2 * w37;
+    let w173: f64 = 0.1422064359274777;
+    let w174: f64 = w6 * w173;
+    let w175: f64 = w52 * w174;
+    let w176: f64 = 2.0 * w175;
+    let w177: f64 = w53 + w176;
+    let w181: f64 = w2 * w34;
+    let w182: f64 = -0.02269169672159674;
+    let w183: f64 = w6 * w182;
+    let w184: f64 = w52 * w183;
+    let w185: f64 = 2.0 * w184;
+    let w186: f64 = w53 + w185;
+    let w190: f64 = w2 * w31;
+    let w191: f64 = 0.008104093592436109;
+    let w192: f64 = w6 * w191;
+    let w193: f64 = w52 * w192;
+    let w194: f64 = 2.0 * w193;
+    let w195: f64 = w53 + w194;
+    let w199: f64 = w2 * w28;
+    let w200: f64 = -0.004135583755212658;
+    let w201: f64 = w6 * w200;
+    let w202: f64 = w52 * w201;
+    let w203: f64 = 2.0 * w202;
+    let w204: f64 = w53 + w203;
+    let w208: f64 = w2 * w25;
+    let w209: f64 = 0.0025017571076434843;
+    let w210: f64 = w6 * w209;
+    let w211: f64 = w52 * w210;
+    let w212: f64 = 2.0 * w211;
+    let w213: f64 = w53 + w212;
+    let w228: f64 = 0.125;
+    let w229: f64 = w6 * w228;
+    let w230: f64 = w7 + w229;
+    let w231: f64 = w229 + w230;
+    move |k: usize, qf: &[[f64; N]; 7]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6] = series::dots(
+            [
+                (&d_qf0, &cos_qf0),
+                (&d_qf0, &sin_qf0),
+                (&cos_qf0, &w49),
+                (&w57, &w61),
+                (&w57, &w63),
+                (&w73, &w83),
+                (&cos_qf0, &sin_qf0),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &qf[0], &mut d_qf0, &mut sin_qf0, &mut cos_qf0, k);
+        let w40 = qf[2][k] * w37;
+        let w41 = qf[3][k] * w34;
+        let w42 = qf[4][k] * w31;
+        let w43 = qf[5][k] * w28;
+        let w44 = qf[6][k] * w25;
+        let w45 = at0(k, w39) - w40;
+        let w46 = w45 - w41;
+        let w47 = w46 - w42;
+        let w48 = w47 - w43;
+        w49[k] = w48 - w44;
+        let w50 = series::mul_d(dot2, &cos_qf0, &w49, k);
+        w57[k] = w2 * cos_qf0[k];
+        let w58 = cos_qf0[k] * w14;
+        let w59 = sin_qf0[k] * w56;
+        let w60 = w58 + w59;
+        w61[k] = w60 - w50;
+        let w62 = series::mul_d(dot3, &w57, &w61, k);
+        w63[k] = w50 - w59;
+        let w64 = series::mul_d(dot4, &w57, &w63, k);
+        let w69 = qf[2][k] + qf[3][k];
+        let w70 = qf[4][k] + w69;
+        let w71 = qf[5][k] + w70;
+        let w72 = qf[6][k] + w71;
+        w73[k] = w72 - at0(k, w2);
+        let w74 = qf[2][k] * w67;
+        let w75 = qf[3][k] * w67;
+        let w76 = qf[4][k] * w67;
+        let w77 = qf[5][k] * w67;
+        let w78 = qf[6][k] * w67;
+        let w79 = w74 + w75;
+        let w80 = w76 + w79;
+        let w81 = w77 + w80;
+        let w82 = w78 + w81;
+        w83[k] = w82 - at0(k, w68);
+        let w84 = series::mul_d(dot5, &w73, &w83, k);
+        let w92 = series::sq(&qf[6], k);
+        let w94 = series::sq(&qf[5], k);
+        let w95 = series::sq(&qf[4], k);
+        let w96 = series::sq(&qf[3], k);
+        let w97 = series::sq(&qf[2], k);
+        let w142 = qf[2][k] * w137;
+        let w143 = qf[3][k] * w131;
+        let w144 = qf[4][k] * w125;
+        let w145 = qf[5][k] * w119;
+        let w146 = qf[6][k] * w113;
+        let w147 = w92 * w93;
+        let w148 = w93 * w94;
+        let w149 = w93 * w95;
+        let w150 = w93 * w96;
+        let w151 = w93 * w97;
+        let w152 = w142 + w143;
+        let w153 = w144 + w152;
+        let w154 = w145 + w153;
+        let w155 = w146 + w154;
+        let w156 = w62 + w155;
+        let w157 = w84 + w156;
+        let w158 = w147 + w157;
+        let w159 = w148 + w158;
+        let w160 = w149 + w159;
+        let w161 = w150 + w160;
+        let w162 = w151 + w161;
+        let w163 = at0(k, w141) + w162;
+        let w164 = w163 - w64;
+        let w167 = cos_qf0[k] * w166;
+        let w168 = w59 + w167;
+        let w169 = w168 - w50;
+        let w172 = series::mul_d(dot6, &cos_qf0, &sin_qf0, k);
+        let w178 = w171 * w172;
+        let w179 = at0(k, w177) + w178;
+        let w187 = w172 * w181;
+        let w188 = at0(k, w186) + w187;
+        let w196 = w172 * w190;
+        let w197 = at0(k, w195) + w196;
+        let w205 = w172 * w199;
+        let w206 = at0(k, w204) + w205;
+        let w214 = w172 * w208;
+        let w215 = at0(k, w213) + w214;
+        let w218 = w37 * sin_qf0[k];
+        let w220 = w34 * sin_qf0[k];
+        let w222 = w31 * sin_qf0[k];
+        let w224 = w28 * sin_qf0[k];
+        let w226 = w25 * sin_qf0[k];
+        [w164, w169, w179, w188, w197, w206, w215, at0(k, w10), w218, w220, w222, w224, w226, at0(k, w231), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w231), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w231), at0(k, w7), at0(k, w7), at0(k, w231), at0(k, w7), at0(k, w231)]
+    }
+}
+
+/// `free_forcing` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn free_forcing<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 14], &[f64; N]) -> [f64; 7] {
+    let mut d_y0 = [0.0f64; N];
+    let mut sin_y0 = [0.0f64; N];
+    let mut cos_y0 = [0.0f64; N];
+    let w2: f64 = s;
+    let w3: f64 = p[1];
+    let w4: f64 = w2 * w3;
+    let w5: f64 = p[4];
+    let w6: f64 = p[3];
+    let w7: f64 = w5 + w6;
+    let w8: f64 = p[5];
+    let w9: f64 = w7 + w8;
+    let w10: f64 = p[8];
+    let w11: f64 = w9 * w10;
+    let w12: f64 = w4 * w11;
+    let w15: f64 = w4 * w8;
+    let w26: f64 = w4 * w6;
+    let w27: f64 = w15 + w26;
+    let w28: f64 = 0.07073542044968367;
+    let w29: f64 = w5 * w28;
+    let w30: f64 = w6 + w29;
+    let w31: f64 = -0.09094901081852429;
+    let w32: f64 = w5 * w31;
+    let w33: f64 = w6 + w32;
+    let w34: f64 = 0.12721264843305286;
+    let w35: f64 = w5 * w34;
+    let w36: f64 = w6 + w35;
+    let w37: f64 = -0.21696794755535964;
+    let w38: f64 = w5 * w37;
+    let w39: f64 = w6 + w38;
+    let w40: f64 = 0.3914958780198129;
+    let w41: f64 = w5 * w40;
+    let w42: f64 = w6 + w41;
+    let w43: f64 = w4 * w5;
+    let w44: f64 = w27 + w43;
+    let w45: f64 = p[0];
+    let w46: f64 = w6 * w10;
+    let w47: f64 = w45 * w46;
+    let w48: f64 = 0.5;
+    let w49: f64 = w5 * w10;
+    let w50: f64 = w48 * w49;
+    let w51: f64 = w45 * w50;
+    let w52: f64 = w47 + w51;
+    let mut w64 = [0.0f64; N];
+    let w66: f64 = w4 * w46;
+    let w67: f64 = w6 * w45;
+    let w68: f64 = w5 * w48;
+    let w69: f64 = w45 * w68;
+    let w70: f64 = w67 + w69;
+    let w71: f64 = w8 * w10;
+    let w72: f64 = w4 * w71;
+    let w73: f64 = w66 + w72;
+    let w74: f64 = w28 * w49;
+    let w75: f64 = w46 + w74;
+    let w76: f64 = w31 * w49;
+    let w77: f64 = w46 + w76;
+    let w78: f64 = w34 * w49;
+    let w79: f64 = w46 + w78;
+    let w80: f64 = w37 * w49;
+    let w81: f64 = w46 + w80;
+    let w82: f64 = w40 * w49;
+    let w83: f64 = w46 + w82;
+    let w84: f64 = w4 * w49;
+    let w85: f64 = w73 + w84;
+    let mut w89 = [0.0f64; N];
+    let w92: f64 = w4 * w29;
+    let w96: f64 = w4 * w32;
+    let w100: f64 = w4 * w35;
+    let w104: f64 = w4 * w38;
+    let w108: f64 = w4 * w41;
+    let w109: f64 = w26 + w92;
+    let w110: f64 = w26 + w96;
+    let w111: f64 = w26 + w100;
+    let w112: f64 = w26 + w104;
+    let w113: f64 = w26 + w108;
+    let mut w145 = [0.0f64; N];
+    let mut w148 = [0.0f64; N];
+    let mut w149 = [0.0f64; N];
+    let mut w160 = [0.0f64; N];
+    let mut w161 = [0.0f64; N];
+    let w163: f64 = 2.0;
+    let w164: f64 = w4 * w163;
+    let w165: f64 = w9 * w48;
+    let w166: f64 = w163 * w165;
+    let w167: f64 = w164 * w165;
+    let mut w168 = [0.0f64; N];
+    let mut w169 = [0.0f64; N];
+    let mut w191 = [0.0f64; N];
+    let mut w192 = [0.0f64; N];
+    let mut w194 = [0.0f64; N];
+    let mut w201 = [0.0f64; N];
+    let mut w215 = [0.0f64; N];
+    let mut w217 = [0.0f64; N];
+    let mut w220 = [0.0f64; N];
+    let w222: f64 = w4 * w70;
+    let mut w230 = [0.0f64; N];
+    let w232: f64 = w4 * w42;
+    let w235: f64 = w163 * w232;
+    let mut w236 = [0.0f64; N];
+    let mut w237 = [0.0f64; N];
+    let mut w238 = [0.0f64; N];
+    let mut w239 = [0.0f64; N];
+    let mut w240 = [0.0f64; N];
+    let w241: f64 = w6 * w48;
+    let w242: f64 = w164 * w241;
+    let w243: f64 = w163 * w241;
+    let w244: f64 = w4 * w243;
+    let w245: f64 = w242 + w244;
+    let w246: f64 = w163 * w243;
+    let w247: f64 = 0.0625;
+    let w248: f64 = w5 * w247;
+    let w249: f64 = w163 * w248;
+    let w250: f64 = w163 * w249;
+    let w251: f64 = w246 + w250;
+    let w252: f64 = w250 + w251;
+    let w253: f64 = 0.19574793900990645;
+    let w254: f64 = w5 * w253;
+    let w255: f64 = w164 * w254;
+    let w256: f64 = w245 + w255;
+    let w257: f64 = w163 * w254;
+    let w258: f64 = w4 * w257;
+    let w259: f64 = w256 + w258;
+    let mut w274 = [0.0f64; N];
+    let w276: f64 = w4 * w39;
+    let w277: f64 = w163 * w276;
+    let w278: f64 = -0.10848397377767982;
+    let w279: f64 = w5 * w278;
+    let w280: f64 = w164 * w279;
+    let w281: f64 = w245 + w280;
+    let w282: f64 = w163 * w279;
+    let w283: f64 = w4 * w282;
+    let w284: f64 = w281 + w283;
+    let mut w296 = [0.0f64; N];
+    let w298: f64 = w4 * w36;
+    let w299: f64 = w163 * w298;
+    let w300: f64 = 0.06360632421652643;
+    let w301: f64 = w5 * w300;
+    let w302: f64 = w164 * w301;
+    let w303: f64 = w245 + w302;
+    let w304: f64 = w163 * w301;
+    let w305: f64 = w4 * w304;
+    let w306: f64 = w303 + w305;
+    let mut w317 = [0.0f64; N];
+    let w319: f64 = w4 * w33;
+    let w320: f64 = w163 * w319;
+    let w321: f64 = -0.04547450540926214;
+    let w322: f64 = w5 * w321;
+    let w323: f64 = w164 * w322;
+    let w324: f64 = w245 + w323;
+    let w325: f64 = w163 * w322;
+    let w326: f64 = w4 * w325;
+    let w327: f64 = w324 + w326;
+    let mut w338 = [0.0f64; N];
+    let w340: f64 = w4 * w30;
+    let w341: f64 = w163 * w340;
+    let w342: f64 = 0.035367710224841836;
+    let w343: f64 = w5 * w342;
+    let w344: f64 = w164 * w343;
+    let w345: f64 = w245 + w344;
+    let w346: f64 = w163 * w343;
+    let w347: f64 = w4 * w346;
+    let w348: f64 = w345 + w347;
+    let mut w359 = [0.0f64; N];
+    let w389: f64 = -1.5452954210407739;
+    let w390: f64 = p[2];
+    let w391: f64 = w45 * w45;
+    let w392: f64 = w45 * w391;
+    let w393: f64 = w390 / w392;
+    let w394: f64 = w389 * w393;
+    let w395: f64 = w163 * w394;
+    let w403: f64 = w243 + w249;
+    let w404: f64 = w249 + w403;
+    let w405: f64 = w242 + w255;
+    let mut w409 = [0.0f64; N];
+    let w411: f64 = p[9];
+    let w412: f64 = p[10];
+    let w413: f64 = p[11];
+    let w414: f64 = p[12];
+    let w415: f64 = p[13];
+    let w447: f64 = -60.68985231417138;
+    let w448: f64 = w393 * w447;
+    let w449: f64 = w163 * w448;
+    let w450: f64 = w242 + w280;
+    let mut w454 = [0.0f64; N];
+    let w456: f64 = p[14];
+    let w457: f64 = p[15];
+    let w458: f64 = p[16];
+    let w459: f64 = p[17];
+    let w488: f64 = -475.81828329893136;
+    let w489: f64 = w393 * w488;
+    let w490: f64 = w163 * w489;
+    let w491: f64 = w242 + w302;
+    let mut w495 = [0.0f64; N];
+    let w497: f64 = p[18];
+    let w498: f64 = p[19];
+    let w499: f64 = p[20];
+    let w527: f64 = -1827.1591631398476;
+    let w528: f64 = w393 * w527;
+    let w529: f64 = w163 * w528;
+    let w530: f64 = w242 + w323;
+    let mut w534 = [0.0f64; N];
+    let w536: f64 = p[21];
+    let w537: f64 = p[22];
+    let w565: f64 = -4992.978972313684;
+    let w566: f64 = w393 * w565;
+    let w567: f64 = w163 * w566;
+    let w568: f64 = w242 + w344;
+    let mut w572 = [0.0f64; N];
+    let w574: f64 = p[23];
+    move |k: usize, y: &[[f64; N]; 14], ug: &[f64; N]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_y0, &cos_y0),
+                (&d_y0, &sin_y0),
+                (&ug, &y[2]),
+                (&ug, &y[3]),
+                (&ug, &y[4]),
+                (&ug, &y[5]),
+                (&ug, &y[6]),
+                (&sin_y0, &w64),
+                (&cos_y0, &y[7]),
+            ],
+            k,
+        );
+        let [dot9, dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17] = series::dots(
+            [
+                (&y[13], &y[8]),
+                (&y[13], &w89),
+                (&y[8], &y[12]),
+                (&w89, &y[12]),
+                (&y[8], &y[11]),
+                (&w89, &y[11]),
+                (&y[8], &y[10]),
+                (&w89, &y[10]),
+                (&y[8], &y[9]),
+            ],
+            k,
+        );
+        let [dot18, dot19, dot20, dot21, dot22, dot23, dot24, dot25, dot26] = series::dots(
+            [
+                (&w89, &y[9]),
+                (&cos_y0, &w145),
+                (&y[7], &w148),
+                (&cos_y0, &w149),
+                (&w149, &w160),
+                (&sin_y0, &w161),
+                (&cos_y0, &w160),
+                (&sin_y0, &y[7]),
+                (&y[7], &w168),
+            ],
+            k,
+        );
+        let [dot27, dot28, dot29, dot30, dot31, dot32, dot33, dot34, dot35] = series::dots(
+            [
+                (&sin_y0, &y[9]),
+                (&sin_y0, &y[10]),
+                (&sin_y0, &y[11]),
+                (&sin_y0, &y[12]),
+                (&sin_y0, &y[13]),
+                (&y[7], &w191),
+                (&sin_y0, &w192),
+                (&sin_y0, &w160),
+                (&y[7], &w194),
+            ],
+            k,
+        );
+        let [dot36, dot37, dot38, dot39, dot40, dot41, dot42, dot43, dot44] = series::dots(
+            [
+                (&cos_y0, &y[9]),
+                (&cos_y0, &y[10]),
+                (&cos_y0, &y[11]),
+                (&cos_y0, &y[12]),
+                (&cos_y0, &y[13]),
+                (&w201, &w215),
+                (&w191, &w217),
+                (&w148, &w220),
+                (&sin_y0, &w169),
+            ],
+            k,
+        );
+        let [dot45, dot46, dot47, dot48, dot49, dot50, dot51, dot52, dot53] = series::dots(
+            [
+                (&w168, &w169),
+                (&y[7], &w230),
+                (&cos_y0, &w89),
+                (&cos_y0, &y[8]),
+                (&y[2], &y[7]),
+                (&y[3], &y[7]),
+                (&y[4], &y[7]),
+                (&y[5], &y[7]),
+                (&y[6], &y[7]),
+            ],
+            k,
+        );
+        let [dot54, dot55, dot56, dot57, dot58, dot59, dot60, dot61, dot62] = series::dots(
+            [
+                (&y[9], &w274),
+                (&y[10], &w296),
+                (&y[11], &w317),
+                (&y[12], &w338),
+                (&y[13], &w359),
+                (&y[7], &w215),
+                (&cos_y0, &ug),
+                (&y[7], &w236),
+                (&y[7], &w237),
+            ],
+            k,
+        );
+        let [dot63, dot64, dot65, dot66, dot67, dot68, dot69, dot70] = series::dots(
+            [
+                (&y[7], &w238),
+                (&y[7], &w239),
+                (&y[7], &w240),
+                (&y[7], &w409),
+                (&y[7], &w454),
+                (&y[7], &w495),
+                (&y[7], &w534),
+                (&y[7], &w572),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &y[0], &mut d_y0, &mut sin_y0, &mut cos_y0, k);
+        let w21 = series::mul_d(dot2, &ug, &y[2], k);
+        let w22 = series::mul_d(dot3, &ug, &y[3], k);
+        let w23 = series::mul_d(dot4, &ug, &y[4], k);
+        let w24 = series::mul_d(dot5, &ug, &y[5], k);
+        let w25 = series::mul_d(dot6, &ug, &y[6], k);
+        let w53 = ug[k] * w44;
+        let w54 = w21 * w42;
+        let w55 = w22 * w39;
+        let w56 = w23 * w36;
+        let w57 = w24 * w33;
+        let w58 = w25 * w30;
+        let w59 = w53 - w54;
+        let w60 = w59 - w55;
+        let w61 = w60 - w56;
+        let w62 = w61 - w57;
+        let w63 = w62 - w58;
+        w64[k] = w63 - at0(k, w52);
+        let w65 = series::mul_d(dot7, &sin_y0, &w64, k);
+        w89[k] = series::mul_d(dot8, &cos_y0, &y[7], k);
+        let w90 = series::mul_d(dot9, &y[13], &y[8], k);
+        let w91 = series::mul_d(dot10, &y[13], &w89, k);
+        let w94 = series::mul_d(dot11, &y[8], &y[12], k);
+        let w95 = series::mul_d(dot12, &w89, &y[12], k);
+        let w98 = series::mul_d(dot13, &y[8], &y[11], k);
+        let w99 = series::mul_d(dot14, &w89, &y[11], k);
+        let w102 = series::mul_d(dot15, &y[8], &y[10], k);
+        let w103 = series::mul_d(dot16, &w89, &y[10], k);
+        let w106 = series::mul_d(dot17, &y[8], &y[9], k);
+        let w107 = series::mul_d(dot18, &w89, &y[9], k);
+        let w114 = ug[k] * w70;
+        let w115 = y[2][k] * w83;
+        let w116 = y[3][k] * w81;
+        let w117 = y[4][k] * w79;
+        let w118 = y[5][k] * w77;
+        let w119 = y[6][k] * w75;
+        let w120 = w30 * w90;
+        let w121 = w91 * w109;
+        let w122 = w33 * w94;
+        let w123 = w95 * w110;
+        let w124 = w36 * w98;
+        let w125 = w99 * w111;
+        let w126 = w39 * w102;
+        let w127 = w103 * w112;
+        let w128 = w42 * w106;
+        let w129 = w107 * w113;
+        let w130 = w115 + w116;
+        let w131 = w117 + w130;
+        let w132 = w118 + w131;
+        let w133 = w119 + w132;
+        let w134 = w120 + w133;
+        let w135 = w121 + w134;
+        let w136 = w122 + w135;
+        let w137 = w123 + w136;
+        let w138 = w124 + w137;
+        let w139 = w125 + w138;
+        let w140 = w126 + w139;
+        let w141 = w127 + w140;
+        let w142 = w128 + w141;
+        let w143 = w129 + w142;
+        let w144 = w143 - w114;
+        w145[k] = w144 - at0(k, w85);
+        let w146 = series::mul_d(dot19, &cos_y0, &w145, k);
+        let w147 = w4 * w89[k];
+        w148[k] = y[8][k] + w147;
+        w149[k] = series::mul_d(dot20, &y[7], &w148, k);
+        let w150 = series::mul_d(dot21, &cos_y0, &w149, k);
+        let w151 = y[2][k] * w42;
+        let w152 = y[3][k] * w39;
+        let w153 = y[4][k] * w36;
+        let w154 = y[5][k] * w33;
+        let w155 = y[6][k] * w30;
+        let w156 = at0(k, w44) - w151;
+        let w157 = w156 - w152;
+        let w158 = w157 - w153;
+        let w159 = w158 - w154;
+        w160[k] = w159 - w155;
+        w161[k] = series::mul_d(dot22, &w149, &w160, k);
+        let w162 = series::mul_d(dot23, &sin_y0, &w161, k);
+        w168[k] = series::mul_d(dot24, &cos_y0, &w160, k);
+        w169[k] = series::mul_d(dot25, &sin_y0, &y[7], k);
+        let w170 = series::mul_d(dot26, &y[7], &w168, k);
+        let w171 = series::mul_d(dot27, &sin_y0, &y[9], k);
+        let w172 = series::mul_d(dot28, &sin_y0, &y[10], k);
+        let w173 = series::mul_d(dot29, &sin_y0, &y[11], k);
+        let w174 = series::mul_d(dot30, &sin_y0, &y[12], k);
+        let w175 = series::mul_d(dot31, &sin_y0, &y[13], k);
+        let w176 = y[8][k] * w166;
+        let w177 = w89[k] * w167;
+        let w178 = w70 * w169[k];
+        let w179 = w42 * w171;
+        let w180 = w39 * w172;
+        let w181 = w36 * w173;
+        let w182 = w33 * w174;
+        let w183 = w30 * w175;
+        let w184 = w176 + w177;
+        let w185 = w178 + w184;
+        let w186 = w179 + w185;
+        let w187 = w180 + w186;
+        let w188 = w181 + w187;
+        let w189 = w182 + w188;
+        let w190 = w183 + w189;
+        w191[k] = w190 - w170;
+        w192[k] = series::mul_d(dot32, &y[7], &w191, k);
+        let w193 = series::mul_d(dot33, &sin_y0, &w192, k);
+        w194[k] = series::mul_d(dot34, &sin_y0, &w160, k);
+        let w195 = series::mul_d(dot35, &y[7], &w194, k);
+        let w196 = series::mul_d(dot36, &cos_y0, &y[9], k);
+        let w197 = series::mul_d(dot37, &cos_y0, &y[10], k);
+        let w198 = series::mul_d(dot38, &cos_y0, &y[11], k);
+        let w199 = series::mul_d(dot39, &cos_y0, &y[12], k);
+        let w200 = series::mul_d(dot40, &cos_y0, &y[13], k);
+        w201[k] = cos_y0[k] * w4;
+        let w202 = w70 * w89[k];
+        let w203 = w167 * w169[k];
+        let w204 = w42 * w196;
+        let w205 = w39 * w197;
+        let w206 = w36 * w198;
+        let w207 = w33 * w199;
+        let w208 = w30 * w200;
+        let w209 = w195 + w202;
+        let w210 = w204 + w209;
+        let w211 = w205 + w210;
+        let w212 = w206 + w211;
+        let w213 = w207 + w212;
+        let w214 = w208 + w213;
+        w215[k] = w214 - w203;
+        let w216 = series::mul_d(dot41, &w201, &w215, k);
+        w217[k] = w4 * sin_y0[k];
+        let w218 = series::mul_d(dot42, &w191, &w217, k);
+        let w219 = cos_y0[k] * w70;
+        w220[k] = w194[k] + w219;
+        let w221 = series::mul_d(dot43, &w148, &w220, k);
+        let w223 = series::mul_d(dot44, &sin_y0, &w169, k);
+        let w224 = series::mul_d(dot45, &w168, &w169, k);
+        let w225 = w222 * w223;
+        let w226 = w4 * w224;
+        let w227 = w216 + w221;
+        let w228 = w226 + w227;
+        let w229 = w228 - w218;
+        w230[k] = w229 - w225;
+        let w231 = series::mul_d(dot46, &y[7], &w230, k);
+        let w233 = series::mul_d(dot47, &cos_y0, &w89, k);
+        let w234 = series::mul_d(dot48, &cos_y0, &y[8], k);
+        w236[k] = series::mul_d(dot49, &y[2], &y[7], k);
+        w237[k] = series::mul_d(dot50, &y[3], &y[7], k);
+        w238[k] = series::mul_d(dot51, &y[4], &y[7], k);
+        w239[k] = series::mul_d(dot52, &y[5], &y[7], k);
+        w240[k] = series::mul_d(dot53, &y[6], &y[7], k);
+        let w260 = y[7][k] * w259;
+        let w261 = w233 * w235;
+        let w262 = w42 * w234;
+        let w263 = w236[k] * w252;
+        let w264 = w237[k] * w246;
+        let w265 = w238[k] * w246;
+        let w266 = w239[k] * w246;
+        let w267 = w240[k] * w246;
+        let w268 = w261 + w262;
+        let w269 = w263 + w268;
+        let w270 = w264 + w269;
+        let w271 = w265 + w270;
+        let w272 = w266 + w271;
+        let w273 = w267 + w272;
+        w274[k] = w273 - w260;
+        let w275 = series::mul_d(dot54, &y[9], &w274, k);
+        let w285 = y[7][k] * w284;
+        let w286 = w233 * w277;
+        let w287 = w39 * w234;
+        let w288 = w236[k] * w246;
+        let w289 = w237[k] * w252;
+        let w290 = w286 + w287;
+        let w291 = w288 + w290;
+        let w292 = w289 + w291;
+        let w293 = w265 + w292;
+        let w294 = w266 + w293;
+        let w295 = w267 + w294;
+        w296[k] = w295 - w285;
+        let w297 = series::mul_d(dot55, &y[10], &w296, k);
+        let w307 = y[7][k] * w306;
+        let w308 = w233 * w299;
+        let w309 = w36 * w234;
+        let w310 = w238[k] * w252;
+        let w311 = w308 + w309;
+        let w312 = w288 + w311;
+        let w313 = w264 + w312;
+        let w314 = w310 + w313;
+        let w315 = w266 + w314;
+        let w316 = w267 + w315;
+        w317[k] = w316 - w307;
+        let w318 = series::mul_d(dot56, &y[11], &w317, k);
+        let w328 = y[7][k] * w327;
+        let w329 = w233 * w320;
+        let w330 = w33 * w234;
+        let w331 = w239[k] * w252;
+        let w332 = w329 + w330;
+        let w333 = w288 + w332;
+        let w334 = w264 + w333;
+        let w335 = w265 + w334;
+        let w336 = w331 + w335;
+        let w337 = w267 + w336;
+        w338[k] = w337 - w328;
+        let w339 = series::mul_d(dot57, &y[12], &w338, k);
+        let w349 = y[7][k] * w348;
+        let w350 = w233 * w341;
+        let w351 = w30 * w234;
+        let w352 = w240[k] * w252;
+        let w353 = w350 + w351;
+        let w354 = w288 + w353;
+        let w355 = w264 + w354;
+        let w356 = w265 + w355;
+        let w357 = w266 + w356;
+        let w358 = w352 + w357;
+        w359[k] = w358 - w349;
+        let w360 = series::mul_d(dot58, &y[13], &w359, k);
+        let w361 = cos_y0[k] * w12;
+        let w362 = w70 * w150;
+        let w363 = w4 * w193;
+        let w364 = w146 + w361;
+        let w365 = w362 + w364;
+        let w366 = w162 + w365;
+        let w367 = w366 - w65;
+        let w368 = w367 - w363;
+        let w369 = w368 - w231;
+        let w370 = w369 - w275;
+        let w371 = w370 - w297;
+        let w372 = w371 - w318;
+        let w373 = w372 - w339;
+        let w374 = w373 - w360;
+        let w376 = series::mul_d(dot59, &y[7], &w215, k);
+        let w377 = w30 * w91;
+        let w378 = w33 * w95;
+        let w379 = w36 * w99;
+        let w380 = w39 * w103;
+        let w381 = w42 * w107;
+        let w382 = at0(k, w11) - w377;
+        let w383 = w382 - w378;
+        let w384 = w383 - w379;
+        let w385 = w384 - w380;
+        let w386 = w385 - w381;
+        let w387 = w386 - w376;
+        let w396 = series::mul_d(dot60, &cos_y0, &ug, k);
+        let w397 = series::sq(&y[7], k);
+        let w398 = series::mul_d(dot61, &y[7], &w236, k);
+        let w399 = series::mul_d(dot62, &y[7], &w237, k);
+        let w400 = series::mul_d(dot63, &y[7], &w238, k);
+        let w401 = series::mul_d(dot64, &y[7], &w239, k);
+        let w402 = series::mul_d(dot65, &y[7], &w240, k);
+        let w406 = w223 * w232;
+        let w407 = w232 * w233;
+        let w408 = w262 + w407;
+        w409[k] = w408 - w406;
+        let w410 = series::mul_d(dot66, &y[7], &w409, k);
+        let w416 = sin_y0[k] * w83;
+        let w417 = y[2][k] * w395;
+        let w418 = y[13][k] * w415;
+        let w419 = y[12][k] * w414;
+        let w420 = y[11][k] * w413;
+        let w421 = y[10][k] * w412;
+        let w422 = y[9][k] * w411;
+        let w423 = w42 * w150;
+        let w424 = w42 * w396;
+        let w425 = w397 * w405;
+        let w426 = w398 * w404;
+        let w427 = w243 * w399;
+        let w428 = w243 * w400;
+        let w429 = w243 * w401;
+        let w430 = w243 * w402;
+        let w431 = w416 + w417;
+        let w432 = w423 + w431;
+        let w433 = w426 + w432;
+        let w434 = w427 + w433;
+        let w435 = w428 + w434;
+        let w436 = w429 + w435;
+        let w437 = w430 + w436;
+        let w438 = w437 - w418;
+        let w439 = w438 - w419;
+        let w440 = w439 - w420;
+        let w441 = w440 - w421;
+        let w442 = w441 - w422;
+        let w443 = w442 - w424;
+        let w444 = w443 - w425;
+        let w445 = w444 - w410;
+        let w451 = w223 * w276;
+        let w452 = w233 * w276;
+        let w453 = w287 + w452;
+        w454[k] = w453 - w451;
+        let w455 = series::mul_d(dot67, &y[7], &w454, k);
+        let w460 = sin_y0[k] * w81;
+        let w461 = y[3][k] * w449;
+        let w462 = y[13][k] * w459;
+        let w463 = y[12][k] * w458;
+        let w464 = y[11][k] * w457;
+        let w465 = y[10][k] * w456;
+        let w466 = y[9][k] * w412;
+        let w467 = w39 * w150;
+        let w468 = w39 * w396;
+        let w469 = w397 * w450;
+        let w470 = w243 * w398;
+        let w471 = w399 * w404;
+        let w472 = w460 + w461;
+        let w473 = w467 + w472;
+        let w474 = w470 + w473;
+        let w475 = w471 + w474;
+        let w476 = w428 + w475;
+        let w477 = w429 + w476;
+        let w478 = w430 + w477;
+        let w479 = w478 - w462;
+        let w480 = w479 - w463;
+        let w481 = w480 - w464;
+        let w482 = w481 - w465;
+        let w483 = w482 - w466;
+        let w484 = w483 - w468;
+        let w485 = w484 - w469;
+        let w486 = w485 - w455;
+        let w492 = w223 * w298;
+        let w493 = w233 * w298;
+        let w494 = w309 + w493;
+        w495[k] = w494 - w492;
+        let w496 = series::mul_d(dot68, &y[7], &w495, k);
+        let w500 = sin_y0[k] * w79;
+        let w501 = y[4][k] * w490;
+        let w502 = y[13][k] * w499;
+        let w503 = y[12][k] * w498;
+        let w504 = y[11][k] * w497;
+        let w505 = y[10][k] * w457;
+        let w506 = y[9][k] * w413;
+        let w507 = w36 * w150;
+        let w508 = w36 * w396;
+        let w509 = w397 * w491;
+        let w510 = w400 * w404;
+        let w511 = w500 + w501;
+        let w512 = w507 + w511;
+        let w513 = w470 + w512;
+        let w514 = w427 + w513;
+        let w515 = w510 + w514;
+        let w516 = w429 + w515;
+        let w517 = w430 + w516;
+        let w518 = w517 - w502;
+        let w519 = w518 - w503;
+        let w520 = w519 - w504;
+        let w521 = w520 - w505;
+        let w522 = w521 - w506;
+        let w523 = w522 - w508;
+        let w524 = w523 - w509;
+        let w525 = w524 - w496;
+        let w531 = w223 * w319;
+        let w532 = w233 * w319;
+        let w533 = w330 + w532;
+        w534[k] = w533 - w531;
+        let w535 = series::mul_d(dot69, &y[7], &w534, k);
+        let w538 = sin_y0[k] * w77;
+        let w539 = y[5][k] * w529;
+        let w540 = y[13][k] * w537;
+        let w541 = y[12][k] * w536;
+        let w542 = y[11][k] * w498;
+        let w543 = y[10][k] * w458;
+        let w544 = y[9][k] * w414;
+        let w545 = w33 * w150;
+        let w546 = w33 * w396;
+        let w547 = w397 * w530;
+        let w548 = w401 * w404;
+        let w549 = w538 + w539;
+        let w550 = w545 + w549;
+        let w551 = w470 + w550;
+        let w552 = w427 + w551;
+        let w553 = w428 + w552;
+        let w554 = w548 + w553;
+        let w555 = w430 + w554;
+        let w556 = w555 - w540;
+        let w557 = w556 - w541;
+        let w558 = w557 - w542;
+        let w559 = w558 - w543;
+        let w560 = w559 - w544;
+        let w561 = w560 - w546;
+        let w562 = w561 - w547;
+        let w563 = w562 - w535;
+        let w569 = w223 * w340;
+        let w570 = w233 * w340;
+        let w571 = w351 + w570;
+        w572[k] = w571 - w569;
+        let w573 = series::mul_d(dot70, &y[7], &w572, k);
+        let w575 = sin_y0[k] * w75;
+        let w576 = y[6][k] * w567;
+        let w577 = y[13][k] * w574;
+        let w578 = y[12][k] * w537;
+        let w579 = y[11][k] * w499;
+        let w580 = y[10][k] * w459;
+        let w581 = y[9][k] * w415;
+        let w582 = w30 * w150;
+        let w583 = w30 * w396;
+        let w584 = w397 * w568;
+        let w585 = w402 * w404;
+        let w586 = w575 + w576;
+        let w587 = w582 + w586;
+        let w588 = w470 + w587;
+        let w589 = w427 + w588;
+        let w590 = w428 + w589;
+        let w591 = w429 + w590;
+        let w592 = w585 + w591;
+        let w593 = w592 - w577;
+        let w594 = w593 - w578;
+        let w595 = w594 - w579;
+        let w596 = w595 - w580;
+        let w597 = w596 - w581;
+        let w598 = w597 - w583;
+        let w599 = w598 - w584;
+        let w600 = w599 - w573;
+        [w374, w387, w445, w486, w525, w563, w600]
+    }
+}
+
+/// The first N Taylor coefficients of each output of `free_power` along series inputs.
+#[must_use]
+#[inline(always)]
+pub fn free_power<const N: usize>(y: &[[f64; N]; 14], ug: &[f64; N], s: f64, p: &Params) -> [[f64; N]; 2] {
+    let mut d_y0 = [0.0f64; N];
+    let mut sin_y0 = [0.0f64; N];
+    let mut cos_y0 = [0.0f64; N];
+    let w3: f64 = p[0];
+    let w4: f64 = p[3];
+    let w5: f64 = w3 * w4;
+    let w6: f64 = 0.5;
+    let w7: f64 = p[4];
+    let w8: f64 = w6 * w7;
+    let w9: f64 = w3 * w8;
+    let w10: f64 = w5 + w9;
+    let w17: f64 = s;
+    let w18: f64 = p[1];
+    let w19: f64 = w17 * w18;
+    let w20: f64 = w4 * w19;
+    let w21: f64 = p[5];
+    let w22: f64 = w19 * w21;
+    let w23: f64 = w20 + w22;
+    let w24: f64 = 0.07073542044968367;
+    let w25: f64 = w7 * w24;
+    let w26: f64 = w4 + w25;
+    let w27: f64 = -0.09094901081852429;
+    let w28: f64 = w7 * w27;
+    let w29: f64 = w4 + w28;
+    let w30: f64 = 0.12721264843305286;
+    let w31: f64 = w7 * w30;
+    let w32: f64 = w4 + w31;
+    let w33: f64 = -0.21696794755535964;
+    let w34: f64 = w7 * w33;
+    let w35: f64 = w4 + w34;
+    let w36: f64 = 0.3914958780198129;
+    let w37: f64 = w7 * w36;
+    let w38: f64 = w4 + w37;
+    let w39: f64 = w7 * w19;
+    let w40: f64 = w23 + w39;
+    let mut w50 = [0.0f64; N];
+    let mut w54 = [0.0f64; N];
+    let mut w75 = [0.0f64; N];
+    let w79: f64 = p[9];
+    let w80: f64 = p[10];
+    let w81: f64 = p[11];
+    let w82: f64 = p[12];
+    let w83: f64 = p[13];
+    let mut w92 = [0.0f64; N];
+    let w94: f64 = p[14];
+    let w95: f64 = p[15];
+    let w96: f64 = p[16];
+    let w97: f64 = p[17];
+    let mut w106 = [0.0f64; N];
+    let w108: f64 = p[18];
+    let w109: f64 = p[19];
+    let w110: f64 = p[20];
+    let mut w119 = [0.0f64; N];
+    let w121: f64 = p[21];
+    let w122: f64 = p[22];
+    let mut w131 = [0.0f64; N];
+    let w133: f64 = p[23];
+    let mut w142 = [0.0f64; N];
+    let mut out = [[0.0f64; N]; 2];
+    for k in 0..N {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7] = series::dots(
+            [
+                (&d_y0, &cos_y0),
+                (&d_y0, &sin_y0),
+                (&sin_y0, &w50),
+                (&y[7], &w54),
+                (&cos_y0, &y[9]),
+                (&cos_y0, &y[10]),
+                (&cos_y0, &y[11]),
+                (&cos_y0, &y[12]),
+            ],
+            k,
+        );
+        let [dot8, dot9, dot10, dot11, dot12, dot13, dot14] = series::dots(
+            [
+                (&cos_y0, &y[13]),
+                (&ug, &w75),
+                (&y[9], &w92),
+                (&y[10], &w106),
+                (&y[11], &w119),
+                (&y[12], &w131),
+                (&y[13], &w142),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &y[0], &mut d_y0, &mut sin_y0, &mut cos_y0, k);
+        let w12 = y[2][k];
+        let w13 = y[3][k];
+        let w14 = y[4][k];
+        let w15 = y[5][k];
+        let w16 = y[6][k];
+        let w41 = w12 * w38;
+        let w42 = w13 * w35;
+        let w43 = w14 * w32;
+        let w44 = w15 * w29;
+        let w45 = w16 * w26;
+        let w46 = w41 + w42;
+        let w47 = w43 + w46;
+        let w48 = w44 + w47;
+        let w49 = w45 + w48;
+        w50[k] = w49 - at0(k, w40);
+        let w51 = series::mul_d(dot2, &sin_y0, &w50, k);
+        let w53 = cos_y0[k] * w10;
+        w54[k] = w53 - w51;
+        let w55 = series::mul_d(dot3, &y[7], &w54, k);
+        let w57 = series::mul_d(dot4, &cos_y0, &y[9], k);
+        let w59 = series::mul_d(dot5, &cos_y0, &y[10], k);
+        let w61 = series::mul_d(dot6, &cos_y0, &y[11], k);
+        let w63 = series::mul_d(dot7, &cos_y0, &y[12], k);
+        let w65 = series::mul_d(dot8, &cos_y0, &y[13], k);
+        let w66 = w38 * w57;
+        let w67 = w35 * w59;
+        let w68 = w32 * w61;
+        let w69 = w29 * w63;
+        let w70 = w26 * w65;
+        let w71 = w55 + w66;
+        let w72 = w67 + w71;
+        let w73 = w68 + w72;
+        let w74 = w69 + w73;
+        w75[k] = w70 + w74;
+        let w76 = series::mul_d(dot9, &ug, &w75, k);
+        let w77 = -w76;
+        let w84 = y[9][k] * w79;
+        let w85 = y[10][k] * w80;
+        let w86 = y[11][k] * w81;
+        let w87 = y[12][k] * w82;
+        let w88 = y[13][k] * w83;
+        let w89 = w84 + w85;
+        let w90 = w86 + w89;
+        let w91 = w87 + w90;
+        w92[k] = w88 + w91;
+        let w93 = series::mul_d(dot10, &y[9], &w92, k);
+        let w98 = y[9][k] * w80;
+        let w99 = y[10][k] * w94;
+        let w100 = y[11][k] * w95;
+        let w101 = y[12][k] * w96;
+        let w102 = y[13][k] * w97;
+        let w103 = w98 + w99;
+        let w104 = w100 + w103;
+        let w105 = w101 + w104;
+        w106[k] = w102 + w105;
+        let w107 = series::mul_d(dot11, &y[10], &w106, k);
+        let w111 = y[9][k] * w81;
+        let w112 = y[10][k] * w95;
+        let w113 = y[11][k] * w108;
+        let w114 = y[12][k] * w109;
+        let w115 = y[13][k] * w110;
+        let w116 = w111 + w112;
+        let w117 = w113 + w116;
+        let w118 = w114 + w117;
+        w119[k] = w115 + w118;
+        let w120 = series::mul_d(dot12, &y[11], &w119, k);
+        let w123 = y[9][k] * w82;
+        let w124 = y[10][k] * w96;
+        let w125 = y[11][k] * w109;
+        let w126 = y[12][k] * w121;
+        let w127 = y[13][k] * w122;
+        let w128 = w123 + w124;
+        let w129 = w125 + w128;
+        let w130 = w126 + w129;
+        w131[k] = w127 + w130;
+        let w132 = series::mul_d(dot13, &y[12], &w131, k);
+        let w134 = y[9][k] * w83;
+        let w135 = y[10][k] * w97;
+        let w136 = y[11][k] * w110;
+        let w137 = y[12][k] * w122;
+        let w138 = y[13][k] * w133;
+        let w139 = w134 + w135;
+        let w140 = w136 + w139;
+        let w141 = w137 + w140;
+        w142[k] = w138 + w141;
+        let w143 = series::mul_d(dot14, &y[13], &w142, k);
+        let w144 = w93 + w107;
+        let w145 = w120 + w144;
+        let w146 = w132 + w145;
+        let w147 = w143 + w146;
+        out[0][k] = w77;
+        out[1][k] = w147;
+    }
+    out
+}

@@ -7134,3 +7134,1370 @@ pub fn power<const N: usize>(x: &[[f64; N]; 14], ug: &[f64; N], s: f64, p: &Para
     }
     out
 }
+
+/// `free_mass_matrix` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn free_mass_matrix<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 8]) -> [f64; 36] {
+    let w0: f64 = s;
+    let w1: f64 = p[1];
+    let w2: f64 = w0 * w1;
+    let mut d_qf0 = [0.0f64; N];
+    let mut sin_qf0 = [0.0f64; N];
+    let mut cos_qf0 = [0.0f64; N];
+    let w5: f64 = 0.5;
+    let w6: f64 = p[4];
+    let w7: f64 = p[3];
+    let w8: f64 = w6 + w7;
+    let w9: f64 = p[5];
+    let w10: f64 = w8 + w9;
+    let w11: f64 = w5 * w10;
+    let w12: f64 = 2.0;
+    let w13: f64 = w2 * w12;
+    let w14: f64 = w11 * w13;
+    let w15: f64 = w2 * w9;
+    let w22: f64 = w2 * w7;
+    let w23: f64 = w15 + w22;
+    let w24: f64 = -0.0578745285967165;
+    let w25: f64 = w6 * w24;
+    let w26: f64 = w7 + w25;
+    let w27: f64 = 0.07073542044968367;
+    let w28: f64 = w6 * w27;
+    let w29: f64 = w7 + w28;
+    let w30: f64 = -0.09094901081852429;
+    let w31: f64 = w6 * w30;
+    let w32: f64 = w7 + w31;
+    let w33: f64 = 0.12721264843305286;
+    let w34: f64 = w6 * w33;
+    let w35: f64 = w7 + w34;
+    let w36: f64 = -0.21696794755535964;
+    let w37: f64 = w6 * w36;
+    let w38: f64 = w7 + w37;
+    let w39: f64 = 0.3914958780198129;
+    let w40: f64 = w6 * w39;
+    let w41: f64 = w7 + w40;
+    let w42: f64 = w2 * w6;
+    let w43: f64 = w23 + w42;
+    let mut w55 = [0.0f64; N];
+    let w58: f64 = p[0];
+    let w59: f64 = w7 * w58;
+    let w60: f64 = w5 * w6;
+    let w61: f64 = w58 * w60;
+    let w62: f64 = w59 + w61;
+    let mut w63 = [0.0f64; N];
+    let mut w67 = [0.0f64; N];
+    let mut w69 = [0.0f64; N];
+    let w71: f64 = p[6];
+    let w72: f64 = w5 * w7;
+    let w73: f64 = w12 * w72;
+    let w74: f64 = w13 * w72;
+    let mut w80 = [0.0f64; N];
+    let mut w92 = [0.0f64; N];
+    let w94: f64 = 2.0 * w58;
+    let w95: f64 = w72 * w94;
+    let w96: f64 = w58 * w95;
+    let w97: f64 = w71 + w96;
+    let w98: f64 = 0.0625;
+    let w99: f64 = w6 * w98;
+    let w100: f64 = w12 * w99;
+    let w102: f64 = w12 * w100;
+    let w108: f64 = 0.08333333333333333;
+    let w109: f64 = w6 * w108;
+    let w110: f64 = w58 * w109;
+    let w111: f64 = w94 * w110;
+    let w112: f64 = w97 + w111;
+    let w113: f64 = 2.0 * w110;
+    let w114: f64 = w58 * w113;
+    let w115: f64 = w112 + w114;
+    let w116: f64 = -0.02893726429835825;
+    let w117: f64 = w6 * w116;
+    let w118: f64 = -w2;
+    let w119: f64 = 2.0 * w118;
+    let w120: f64 = w117 * w119;
+    let w121: f64 = w12 * w117;
+    let w122: f64 = w2 * w121;
+    let w123: f64 = w120 - w122;
+    let w124: f64 = 0.035367710224841836;
+    let w125: f64 = w6 * w124;
+    let w126: f64 = w119 * w125;
+    let w127: f64 = w12 * w125;
+    let w128: f64 = w2 * w127;
+    let w129: f64 = w126 - w128;
+    let w130: f64 = -0.04547450540926214;
+    let w131: f64 = w6 * w130;
+    let w132: f64 = w119 * w131;
+    let w133: f64 = w12 * w131;
+    let w134: f64 = w2 * w133;
+    let w135: f64 = w132 - w134;
+    let w136: f64 = 0.06360632421652643;
+    let w137: f64 = w6 * w136;
+    let w138: f64 = w119 * w137;
+    let w139: f64 = w12 * w137;
+    let w140: f64 = w2 * w139;
+    let w141: f64 = w138 - w140;
+    let w142: f64 = -0.10848397377767982;
+    let w143: f64 = w6 * w142;
+    let w144: f64 = w119 * w143;
+    let w145: f64 = w12 * w143;
+    let w146: f64 = w2 * w145;
+    let w147: f64 = w144 - w146;
+    let w148: f64 = 0.19574793900990645;
+    let w149: f64 = w6 * w148;
+    let w150: f64 = w119 * w149;
+    let w151: f64 = w12 * w149;
+    let w152: f64 = w2 * w151;
+    let w153: f64 = w150 - w152;
+    let w154: f64 = 2.0 * w2;
+    let w155: f64 = w60 * w154;
+    let w156: f64 = w2 * w155;
+    let w157: f64 = w115 + w156;
+    let w186: f64 = w2 * w10;
+    let w191: f64 = w2 * w41;
+    let w193: f64 = 0.1422064359274777;
+    let w194: f64 = w6 * w193;
+    let w195: f64 = w58 * w194;
+    let w196: f64 = 2.0 * w195;
+    let w197: f64 = w59 + w196;
+    let w201: f64 = w2 * w38;
+    let w202: f64 = -0.02269169672159674;
+    let w203: f64 = w6 * w202;
+    let w204: f64 = w58 * w203;
+    let w205: f64 = 2.0 * w204;
+    let w206: f64 = w59 + w205;
+    let w210: f64 = w2 * w35;
+    let w211: f64 = 0.008104093592436109;
+    let w212: f64 = w6 * w211;
+    let w213: f64 = w58 * w212;
+    let w214: f64 = 2.0 * w213;
+    let w215: f64 = w59 + w214;
+    let w219: f64 = w2 * w32;
+    let w220: f64 = -0.004135583755212658;
+    let w221: f64 = w6 * w220;
+    let w222: f64 = w58 * w221;
+    let w223: f64 = 2.0 * w222;
+    let w224: f64 = w59 + w223;
+    let w228: f64 = w2 * w29;
+    let w229: f64 = 0.0025017571076434843;
+    let w230: f64 = w6 * w229;
+    let w231: f64 = w58 * w230;
+    let w232: f64 = 2.0 * w231;
+    let w233: f64 = w59 + w232;
+    let w237: f64 = w2 * w26;
+    let w238: f64 = -0.00167473032028351;
+    let w239: f64 = w6 * w238;
+    let w240: f64 = w58 * w239;
+    let w241: f64 = 2.0 * w240;
+    let w242: f64 = w59 + w241;
+    let w259: f64 = 0.125;
+    let w260: f64 = w6 * w259;
+    let w261: f64 = w7 + w260;
+    let w262: f64 = w260 + w261;
+    move |k: usize, qf: &[[f64; N]; 8]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6] = series::dots(
+            [
+                (&d_qf0, &cos_qf0),
+                (&d_qf0, &sin_qf0),
+                (&cos_qf0, &w55),
+                (&w63, &w67),
+                (&w63, &w69),
+                (&w80, &w92),
+                (&cos_qf0, &sin_qf0),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &qf[0], &mut d_qf0, &mut sin_qf0, &mut cos_qf0, k);
+        let w44 = qf[2][k] * w41;
+        let w45 = qf[3][k] * w38;
+        let w46 = qf[4][k] * w35;
+        let w47 = qf[5][k] * w32;
+        let w48 = qf[6][k] * w29;
+        let w49 = qf[7][k] * w26;
+        let w50 = at0(k, w43) - w44;
+        let w51 = w50 - w45;
+        let w52 = w51 - w46;
+        let w53 = w52 - w47;
+        let w54 = w53 - w48;
+        w55[k] = w54 - w49;
+        let w56 = series::mul_d(dot2, &cos_qf0, &w55, k);
+        w63[k] = w2 * cos_qf0[k];
+        let w64 = cos_qf0[k] * w14;
+        let w65 = sin_qf0[k] * w62;
+        let w66 = w64 + w65;
+        w67[k] = w66 - w56;
+        let w68 = series::mul_d(dot3, &w63, &w67, k);
+        w69[k] = w56 - w65;
+        let w70 = series::mul_d(dot4, &w63, &w69, k);
+        let w75 = qf[2][k] + qf[3][k];
+        let w76 = qf[4][k] + w75;
+        let w77 = qf[5][k] + w76;
+        let w78 = qf[6][k] + w77;
+        let w79 = qf[7][k] + w78;
+        w80[k] = w79 - at0(k, w2);
+        let w81 = qf[2][k] * w73;
+        let w82 = qf[3][k] * w73;
+        let w83 = qf[4][k] * w73;
+        let w84 = qf[5][k] * w73;
+        let w85 = qf[6][k] * w73;
+        let w86 = qf[7][k] * w73;
+        let w87 = w81 + w82;
+        let w88 = w83 + w87;
+        let w89 = w84 + w88;
+        let w90 = w85 + w89;
+        let w91 = w86 + w90;
+        w92[k] = w91 - at0(k, w74);
+        let w93 = series::mul_d(dot5, &w80, &w92, k);
+        let w101 = series::sq(&qf[7], k);
+        let w103 = series::sq(&qf[6], k);
+        let w104 = series::sq(&qf[5], k);
+        let w105 = series::sq(&qf[4], k);
+        let w106 = series::sq(&qf[3], k);
+        let w107 = series::sq(&qf[2], k);
+        let w158 = qf[2][k] * w153;
+        let w159 = qf[3][k] * w147;
+        let w160 = qf[4][k] * w141;
+        let w161 = qf[5][k] * w135;
+        let w162 = qf[6][k] * w129;
+        let w163 = qf[7][k] * w123;
+        let w164 = w101 * w102;
+        let w165 = w102 * w103;
+        let w166 = w102 * w104;
+        let w167 = w102 * w105;
+        let w168 = w102 * w106;
+        let w169 = w102 * w107;
+        let w170 = w158 + w159;
+        let w171 = w160 + w170;
+        let w172 = w161 + w171;
+        let w173 = w162 + w172;
+        let w174 = w163 + w173;
+        let w175 = w68 + w174;
+        let w176 = w93 + w175;
+        let w177 = w164 + w176;
+        let w178 = w165 + w177;
+        let w179 = w166 + w178;
+        let w180 = w167 + w179;
+        let w181 = w168 + w180;
+        let w182 = w169 + w181;
+        let w183 = at0(k, w157) + w182;
+        let w184 = w183 - w70;
+        let w187 = cos_qf0[k] * w186;
+        let w188 = w65 + w187;
+        let w189 = w188 - w56;
+        let w192 = series::mul_d(dot6, &cos_qf0, &sin_qf0, k);
+        let w198 = w191 * w192;
+        let w199 = at0(k, w197) + w198;
+        let w207 = w192 * w201;
+        let w208 = at0(k, w206) + w207;
+        let w216 = w192 * w210;
+        let w217 = at0(k, w215) + w216;
+        let w225 = w192 * w219;
+        let w226 = at0(k, w224) + w225;
+        let w234 = w192 * w228;
+        let w235 = at0(k, w233) + w234;
+        let w243 = w192 * w237;
+        let w244 = at0(k, w242) + w243;
+        let w247 = w41 * sin_qf0[k];
+        let w249 = w38 * sin_qf0[k];
+        let w251 = w35 * sin_qf0[k];
+        let w253 = w32 * sin_qf0[k];
+        let w255 = w29 * sin_qf0[k];
+        let w257 = w26 * sin_qf0[k];
+        [w184, w189, w199, w208, w217, w226, w235, w244, at0(k, w10), w247, w249, w251, w253, w255, w257, at0(k, w262), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w262), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w262), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w262), at0(k, w7), at0(k, w7), at0(k, w262), at0(k, w7), at0(k, w262)]
+    }
+}
+
+/// `free_forcing` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn free_forcing<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 16], &[f64; N]) -> [f64; 8] {
+    let mut d_y0 = [0.0f64; N];
+    let mut sin_y0 = [0.0f64; N];
+    let mut cos_y0 = [0.0f64; N];
+    let w2: f64 = s;
+    let w3: f64 = p[1];
+    let w4: f64 = w2 * w3;
+    let w5: f64 = p[4];
+    let w6: f64 = p[3];
+    let w7: f64 = w5 + w6;
+    let w8: f64 = p[5];
+    let w9: f64 = w7 + w8;
+    let w10: f64 = p[8];
+    let w11: f64 = w9 * w10;
+    let w12: f64 = w4 * w11;
+    let w15: f64 = w4 * w8;
+    let w28: f64 = w4 * w6;
+    let w29: f64 = w15 + w28;
+    let w30: f64 = -0.0578745285967165;
+    let w31: f64 = w5 * w30;
+    let w32: f64 = w6 + w31;
+    let w33: f64 = 0.07073542044968367;
+    let w34: f64 = w5 * w33;
+    let w35: f64 = w6 + w34;
+    let w36: f64 = -0.09094901081852429;
+    let w37: f64 = w5 * w36;
+    let w38: f64 = w6 + w37;
+    let w39: f64 = 0.12721264843305286;
+    let w40: f64 = w5 * w39;
+    let w41: f64 = w6 + w40;
+    let w42: f64 = -0.21696794755535964;
+    let w43: f64 = w5 * w42;
+    let w44: f64 = w6 + w43;
+    let w45: f64 = 0.3914958780198129;
+    let w46: f64 = w5 * w45;
+    let w47: f64 = w6 + w46;
+    let w48: f64 = w4 * w5;
+    let w49: f64 = w29 + w48;
+    let w50: f64 = p[0];
+    let w51: f64 = w6 * w10;
+    let w52: f64 = w50 * w51;
+    let w53: f64 = 0.5;
+    let w54: f64 = w5 * w10;
+    let w55: f64 = w53 * w54;
+    let w56: f64 = w50 * w55;
+    let w57: f64 = w52 + w56;
+    let mut w71 = [0.0f64; N];
+    let w73: f64 = w4 * w51;
+    let w74: f64 = w6 * w50;
+    let w75: f64 = w5 * w53;
+    let w76: f64 = w50 * w75;
+    let w77: f64 = w74 + w76;
+    let w78: f64 = w8 * w10;
+    let w79: f64 = w4 * w78;
+    let w80: f64 = w73 + w79;
+    let w81: f64 = w30 * w54;
+    let w82: f64 = w51 + w81;
+    let w83: f64 = w33 * w54;
+    let w84: f64 = w51 + w83;
+    let w85: f64 = w36 * w54;
+    let w86: f64 = w51 + w85;
+    let w87: f64 = w39 * w54;
+    let w88: f64 = w51 + w87;
+    let w89: f64 = w42 * w54;
+    let w90: f64 = w51 + w89;
+    let w91: f64 = w45 * w54;
+    let w92: f64 = w51 + w91;
+    let w93: f64 = w4 * w54;
+    let w94: f64 = w80 + w93;
+    let mut w98 = [0.0f64; N];
+    let w101: f64 = w4 * w31;
+    let w105: f64 = w4 * w34;
+    let w109: f64 = w4 * w37;
+    let w113: f64 = w4 * w40;
+    let w117: f64 = w4 * w43;
+    let w121: f64 = w4 * w46;
+    let w122: f64 = w28 + w101;
+    let w123: f64 = w28 + w105;
+    let w124: f64 = w28 + w109;
+    let w125: f64 = w28 + w113;
+    let w126: f64 = w28 + w117;
+    let w127: f64 = w28 + w121;
+    let mut w165 = [0.0f64; N];
+    let mut w168 = [0.0f64; N];
+    let mut w169 = [0.0f64; N];
+    let mut w182 = [0.0f64; N];
+    let mut w183 = [0.0f64; N];
+    let w185: f64 = 2.0;
+    let w186: f64 = w4 * w185;
+    let w187: f64 = w9 * w53;
+    let w188: f64 = w185 * w187;
+    let w189: f64 = w186 * w187;
+    let mut w190 = [0.0f64; N];
+    let mut w191 = [0.0f64; N];
+    let mut w216 = [0.0f64; N];
+    let mut w217 = [0.0f64; N];
+    let mut w219 = [0.0f64; N];
+    let mut w227 = [0.0f64; N];
+    let mut w243 = [0.0f64; N];
+    let mut w245 = [0.0f64; N];
+    let mut w248 = [0.0f64; N];
+    let w250: f64 = w4 * w77;
+    let mut w258 = [0.0f64; N];
+    let w260: f64 = w4 * w47;
+    let w263: f64 = w185 * w260;
+    let mut w264 = [0.0f64; N];
+    let mut w265 = [0.0f64; N];
+    let mut w266 = [0.0f64; N];
+    let mut w267 = [0.0f64; N];
+    let mut w268 = [0.0f64; N];
+    let mut w269 = [0.0f64; N];
+    let w270: f64 = w6 * w53;
+    let w271: f64 = w186 * w270;
+    let w272: f64 = w185 * w270;
+    let w273: f64 = w4 * w272;
+    let w274: f64 = w271 + w273;
+    let w275: f64 = w185 * w272;
+    let w276: f64 = 0.0625;
+    let w277: f64 = w5 * w276;
+    let w278: f64 = w185 * w277;
+    let w279: f64 = w185 * w278;
+    let w280: f64 = w275 + w279;
+    let w281: f64 = w279 + w280;
+    let w282: f64 = 0.19574793900990645;
+    let w283: f64 = w5 * w282;
+    let w284: f64 = w186 * w283;
+    let w285: f64 = w274 + w284;
+    let w286: f64 = w185 * w283;
+    let w287: f64 = w4 * w286;
+    let w288: f64 = w285 + w287;
+    let mut w305 = [0.0f64; N];
+    let w307: f64 = w4 * w44;
+    let w308: f64 = w185 * w307;
+    let w309: f64 = -0.10848397377767982;
+    let w310: f64 = w5 * w309;
+    let w311: f64 = w186 * w310;
+    let w312: f64 = w274 + w311;
+    let w313: f64 = w185 * w310;
+    let w314: f64 = w4 * w313;
+    let w315: f64 = w312 + w314;
+    let mut w328 = [0.0f64; N];
+    let w330: f64 = w4 * w41;
+    let w331: f64 = w185 * w330;
+    let w332: f64 = 0.06360632421652643;
+    let w333: f64 = w5 * w332;
+    let w334: f64 = w186 * w333;
+    let w335: f64 = w274 + w334;
+    let w336: f64 = w185 * w333;
+    let w337: f64 = w4 * w336;
+    let w338: f64 = w335 + w337;
+    let mut w350 = [0.0f64; N];
+    let w352: f64 = w4 * w38;
+    let w353: f64 = w185 * w352;
+    let w354: f64 = -0.04547450540926214;
+    let w355: f64 = w5 * w354;
+    let w356: f64 = w186 * w355;
+    let w357: f64 = w274 + w356;
+    let w358: f64 = w185 * w355;
+    let w359: f64 = w4 * w358;
+    let w360: f64 = w357 + w359;
+    let mut w372 = [0.0f64; N];
+    let w374: f64 = w4 * w35;
+    let w375: f64 = w185 * w374;
+    let w376: f64 = 0.035367710224841836;
+    let w377: f64 = w5 * w376;
+    let w378: f64 = w186 * w377;
+    let w379: f64 = w274 + w378;
+    let w380: f64 = w185 * w377;
+    let w381: f64 = w4 * w380;
+    let w382: f64 = w379 + w381;
+    let mut w394 = [0.0f64; N];
+    let w396: f64 = w4 * w32;
+    let w397: f64 = w185 * w396;
+    let w398: f64 = -0.02893726429835825;
+    let w399: f64 = w5 * w398;
+    let w400: f64 = w186 * w399;
+    let w401: f64 = w274 + w400;
+    let w402: f64 = w185 * w399;
+    let w403: f64 = w4 * w402;
+    let w404: f64 = w401 + w403;
+    let mut w416 = [0.0f64; N];
+    let w449: f64 = -1.5452954210407739;
+    let w450: f64 = p[2];
+    let w451: f64 = w50 * w50;
+    let w452: f64 = w50 * w451;
+    let w453: f64 = w450 / w452;
+    let w454: f64 = w449 * w453;
+    let w455: f64 = w185 * w454;
+    let w464: f64 = w272 + w278;
+    let w465: f64 = w278 + w464;
+    let w466: f64 = w271 + w284;
+    let mut w470 = [0.0f64; N];
+    let w472: f64 = p[9];
+    let w473: f64 = p[10];
+    let w474: f64 = p[11];
+    let w475: f64 = p[12];
+    let w476: f64 = p[13];
+    let w477: f64 = p[14];
+    let w513: f64 = -60.68985231417138;
+    let w514: f64 = w453 * w513;
+    let w515: f64 = w185 * w514;
+    let w516: f64 = w271 + w311;
+    let mut w520 = [0.0f64; N];
+    let w522: f64 = p[15];
+    let w523: f64 = p[16];
+    let w524: f64 = p[17];
+    let w525: f64 = p[18];
+    let w526: f64 = p[19];
+    let w558: f64 = -475.81828329893136;
+    let w559: f64 = w453 * w558;
+    let w560: f64 = w185 * w559;
+    let w561: f64 = w271 + w334;
+    let mut w565 = [0.0f64; N];
+    let w567: f64 = p[20];
+    let w568: f64 = p[21];
+    let w569: f64 = p[22];
+    let w570: f64 = p[23];
+    let w601: f64 = -1827.1591631398476;
+    let w602: f64 = w453 * w601;
+    let w603: f64 = w185 * w602;
+    let w604: f64 = w271 + w356;
+    let mut w608 = [0.0f64; N];
+    let w610: f64 = p[24];
+    let w611: f64 = p[25];
+    let w612: f64 = p[26];
+    let w643: f64 = -4992.978972313684;
+    let w644: f64 = w453 * w643;
+    let w645: f64 = w185 * w644;
+    let w646: f64 = w271 + w378;
+    let mut w650 = [0.0f64; N];
+    let w652: f64 = p[27];
+    let w653: f64 = p[28];
+    let w684: f64 = -11141.925633927905;
+    let w685: f64 = w453 * w684;
+    let w686: f64 = w185 * w685;
+    let w687: f64 = w271 + w400;
+    let mut w691 = [0.0f64; N];
+    let w693: f64 = p[29];
+    move |k: usize, y: &[[f64; N]; 16], ug: &[f64; N]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8, dot9] = series::dots(
+            [
+                (&d_y0, &cos_y0),
+                (&d_y0, &sin_y0),
+                (&ug, &y[2]),
+                (&ug, &y[3]),
+                (&ug, &y[4]),
+                (&ug, &y[5]),
+                (&ug, &y[6]),
+                (&ug, &y[7]),
+                (&sin_y0, &w71),
+                (&cos_y0, &y[8]),
+            ],
+            k,
+        );
+        let [dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17, dot18, dot19] = series::dots(
+            [
+                (&y[15], &y[9]),
+                (&y[15], &w98),
+                (&y[9], &y[14]),
+                (&w98, &y[14]),
+                (&y[9], &y[13]),
+                (&w98, &y[13]),
+                (&y[9], &y[12]),
+                (&w98, &y[12]),
+                (&y[9], &y[11]),
+                (&w98, &y[11]),
+            ],
+            k,
+        );
+        let [dot20, dot21, dot22, dot23, dot24, dot25, dot26, dot27, dot28, dot29] = series::dots(
+            [
+                (&y[9], &y[10]),
+                (&w98, &y[10]),
+                (&cos_y0, &w165),
+                (&y[8], &w168),
+                (&cos_y0, &w169),
+                (&w169, &w182),
+                (&sin_y0, &w183),
+                (&cos_y0, &w182),
+                (&sin_y0, &y[8]),
+                (&y[8], &w190),
+            ],
+            k,
+        );
+        let [dot30, dot31, dot32, dot33, dot34, dot35, dot36, dot37, dot38, dot39] = series::dots(
+            [
+                (&sin_y0, &y[10]),
+                (&sin_y0, &y[11]),
+                (&sin_y0, &y[12]),
+                (&sin_y0, &y[13]),
+                (&sin_y0, &y[14]),
+                (&sin_y0, &y[15]),
+                (&y[8], &w216),
+                (&sin_y0, &w217),
+                (&sin_y0, &w182),
+                (&y[8], &w219),
+            ],
+            k,
+        );
+        let [dot40, dot41, dot42, dot43, dot44, dot45, dot46, dot47, dot48, dot49] = series::dots(
+            [
+                (&cos_y0, &y[10]),
+                (&cos_y0, &y[11]),
+                (&cos_y0, &y[12]),
+                (&cos_y0, &y[13]),
+                (&cos_y0, &y[14]),
+                (&cos_y0, &y[15]),
+                (&w227, &w243),
+                (&w216, &w245),
+                (&w168, &w248),
+                (&sin_y0, &w191),
+            ],
+            k,
+        );
+        let [dot50, dot51, dot52, dot53, dot54, dot55, dot56, dot57, dot58, dot59] = series::dots(
+            [
+                (&w190, &w191),
+                (&y[8], &w258),
+                (&cos_y0, &w98),
+                (&cos_y0, &y[9]),
+                (&y[2], &y[8]),
+                (&y[3], &y[8]),
+                (&y[4], &y[8]),
+                (&y[5], &y[8]),
+                (&y[6], &y[8]),
+                (&y[7], &y[8]),
+            ],
+            k,
+        );
+        let [dot60, dot61, dot62, dot63, dot64, dot65, dot66, dot67, dot68, dot69] = series::dots(
+            [
+                (&y[10], &w305),
+                (&y[11], &w328),
+                (&y[12], &w350),
+                (&y[13], &w372),
+                (&y[14], &w394),
+                (&y[15], &w416),
+                (&y[8], &w243),
+                (&cos_y0, &ug),
+                (&y[8], &w264),
+                (&y[8], &w265),
+            ],
+            k,
+        );
+        let [dot70, dot71, dot72, dot73, dot74, dot75, dot76, dot77, dot78, dot79] = series::dots(
+            [
+                (&y[8], &w266),
+                (&y[8], &w267),
+                (&y[8], &w268),
+                (&y[8], &w269),
+                (&y[8], &w470),
+                (&y[8], &w520),
+                (&y[8], &w565),
+                (&y[8], &w608),
+                (&y[8], &w650),
+                (&y[8], &w691),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &y[0], &mut d_y0, &mut sin_y0, &mut cos_y0, k);
+        let w22 = series::mul_d(dot2, &ug, &y[2], k);
+        let w23 = series::mul_d(dot3, &ug, &y[3], k);
+        let w24 = series::mul_d(dot4, &ug, &y[4], k);
+        let w25 = series::mul_d(dot5, &ug, &y[5], k);
+        let w26 = series::mul_d(dot6, &ug, &y[6], k);
+        let w27 = series::mul_d(dot7, &ug, &y[7], k);
+        let w58 = ug[k] * w49;
+        let w59 = w22 * w47;
+        let w60 = w23 * w44;
+        let w61 = w24 * w41;
+        let w62 = w25 * w38;
+        let w63 = w26 * w35;
+        let w64 = w27 * w32;
+        let w65 = w58 - w59;
+        let w66 = w65 - w60;
+        let w67 = w66 - w61;
+        let w68 = w67 - w62;
+        let w69 = w68 - w63;
+        let w70 = w69 - w64;
+        w71[k] = w70 - at0(k, w57);
+        let w72 = series::mul_d(dot8, &sin_y0, &w71, k);
+        w98[k] = series::mul_d(dot9, &cos_y0, &y[8], k);
+        let w99 = series::mul_d(dot10, &y[15], &y[9], k);
+        let w100 = series::mul_d(dot11, &y[15], &w98, k);
+        let w103 = series::mul_d(dot12, &y[9], &y[14], k);
+        let w104 = series::mul_d(dot13, &w98, &y[14], k);
+        let w107 = series::mul_d(dot14, &y[9], &y[13], k);
+        let w108 = series::mul_d(dot15, &w98, &y[13], k);
+        let w111 = series::mul_d(dot16, &y[9], &y[12], k);
+        let w112 = series::mul_d(dot17, &w98, &y[12], k);
+        let w115 = series::mul_d(dot18, &y[9], &y[11], k);
+        let w116 = series::mul_d(dot19, &w98, &y[11], k);
+        let w119 = series::mul_d(dot20, &y[9], &y[10], k);
+        let w120 = series::mul_d(dot21, &w98, &y[10], k);
+        let w128 = ug[k] * w77;
+        let w129 = y[2][k] * w92;
+        let w130 = y[3][k] * w90;
+        let w131 = y[4][k] * w88;
+        let w132 = y[5][k] * w86;
+        let w133 = y[6][k] * w84;
+        let w134 = y[7][k] * w82;
+        let w135 = w32 * w99;
+        let w136 = w100 * w122;
+        let w137 = w35 * w103;
+        let w138 = w104 * w123;
+        let w139 = w38 * w107;
+        let w140 = w108 * w124;
+        let w141 = w41 * w111;
+        let w142 = w112 * w125;
+        let w143 = w44 * w115;
+        let w144 = w116 * w126;
+        let w145 = w47 * w119;
+        let w146 = w120 * w127;
+        let w147 = w129 + w130;
+        let w148 = w131 + w147;
+        let w149 = w132 + w148;
+        let w150 = w133 + w149;
+        let w151 = w134 + w150;
+        let w152 = w135 + w151;
+        let w153 = w136 + w152;
+        let w154 = w137 + w153;
+        let w155 = w138 + w154;
+        let w156 = w139 + w155;
+        let w157 = w140 + w156;
+        let w158 = w141 + w157;
+        let w159 = w142 + w158;
+        let w160 = w143 + w159;
+        let w161 = w144 + w160;
+        let w162 = w145 + w161;
+        let w163 = w146 + w162;
+        let w164 = w163 - w128;
+        w165[k] = w164 - at0(k, w94);
+        let w166 = series::mul_d(dot22, &cos_y0, &w165, k);
+        let w167 = w4 * w98[k];
+        w168[k] = y[9][k] + w167;
+        w169[k] = series::mul_d(dot23, &y[8], &w168, k);
+        let w170 = series::mul_d(dot24, &cos_y0, &w169, k);
+        let w171 = y[2][k] * w47;
+        let w172 = y[3][k] * w44;
+        let w173 = y[4][k] * w41;
+        let w174 = y[5][k] * w38;
+        let w175 = y[6][k] * w35;
+        let w176 = y[7][k] * w32;
+        let w177 = at0(k, w49) - w171;
+        let w178 = w177 - w172;
+        let w179 = w178 - w173;
+        let w180 = w179 - w174;
+        let w181 = w180 - w175;
+        w182[k] = w181 - w176;
+        w183[k] = series::mul_d(dot25, &w169, &w182, k);
+        let w184 = series::mul_d(dot26, &sin_y0, &w183, k);
+        w190[k] = series::mul_d(dot27, &cos_y0, &w182, k);
+        w191[k] = series::mul_d(dot28, &sin_y0, &y[8], k);
+        let w192 = series::mul_d(dot29, &y[8], &w190, k);
+        let w193 = series::mul_d(dot30, &sin_y0, &y[10], k);
+        let w194 = series::mul_d(dot31, &sin_y0, &y[11], k);
+        let w195 = series::mul_d(dot32, &sin_y0, &y[12], k);
+        let w196 = series::mul_d(dot33, &sin_y0, &y[13], k);
+        let w197 = series::mul_d(dot34, &sin_y0, &y[14], k);
+        let w198 = series::mul_d(dot35, &sin_y0, &y[15], k);
+        let w199 = y[9][k] * w188;
+        let w200 = w98[k] * w189;
+        let w201 = w77 * w191[k];
+        let w202 = w47 * w193;
+        let w203 = w44 * w194;
+        let w204 = w41 * w195;
+        let w205 = w38 * w196;
+        let w206 = w35 * w197;
+        let w207 = w32 * w198;
+        let w208 = w199 + w200;
+        let w209 = w201 + w208;
+        let w210 = w202 + w209;
+        let w211 = w203 + w210;
+        let w212 = w204 + w211;
+        let w213 = w205 + w212;
+        let w214 = w206 + w213;
+        let w215 = w207 + w214;
+        w216[k] = w215 - w192;
+        w217[k] = series::mul_d(dot36, &y[8], &w216, k);
+        let w218 = series::mul_d(dot37, &sin_y0, &w217, k);
+        w219[k] = series::mul_d(dot38, &sin_y0, &w182, k);
+        let w220 = series::mul_d(dot39, &y[8], &w219, k);
+        let w221 = series::mul_d(dot40, &cos_y0, &y[10], k);
+        let w222 = series::mul_d(dot41, &cos_y0, &y[11], k);
+        let w223 = series::mul_d(dot42, &cos_y0, &y[12], k);
+        let w224 = series::mul_d(dot43, &cos_y0, &y[13], k);
+        let w225 = series::mul_d(dot44, &cos_y0, &y[14], k);
+        let w226 = series::mul_d(dot45, &cos_y0, &y[15], k);
+        w227[k] = cos_y0[k] * w4;
+        let w228 = w77 * w98[k];
+        let w229 = w189 * w191[k];
+        let w230 = w47 * w221;
+        let w231 = w44 * w222;
+        let w232 = w41 * w223;
+        let w233 = w38 * w224;
+        let w234 = w35 * w225;
+        let w235 = w32 * w226;
+        let w236 = w220 + w228;
+        let w237 = w230 + w236;
+        let w238 = w231 + w237;
+        let w239 = w232 + w238;
+        let w240 = w233 + w239;
+        let w241 = w234 + w240;
+        let w242 = w235 + w241;
+        w243[k] = w242 - w229;
+        let w244 = series::mul_d(dot46, &w227, &w243, k);
+        w245[k] = w4 * sin_y0[k];
+        let w246 = series::mul_d(dot47, &w216, &w245, k);
+        let w247 = cos_y0[k] * w77;
+        w248[k] = w219[k] + w247;
+        let w249 = series::mul_d(dot48, &w168, &w248, k);
+        let w251 = series::mul_d(dot49, &sin_y0, &w191, k);
+        let w252 = series::mul_d(dot50, &w190, &w191, k);
+        let w253 = w250 * w251;
+        let w254 = w4 * w252;
+        let w255 = w244 + w249;
+        let w256 = w254 + w255;
+        let w257 = w256 - w246;
+        w258[k] = w257 - w253;
+        let w259 = series::mul_d(dot51, &y[8], &w258, k);
+        let w261 = series::mul_d(dot52, &cos_y0, &w98, k);
+        let w262 = series::mul_d(dot53, &cos_y0, &y[9], k);
+        w264[k] = series::mul_d(dot54, &y[2], &y[8], k);
+        w265[k] = series::mul_d(dot55, &y[3], &y[8], k);
+        w266[k] = series::mul_d(dot56, &y[4], &y[8], k);
+        w267[k] = series::mul_d(dot57, &y[5], &y[8], k);
+        w268[k] = series::mul_d(dot58, &y[6], &y[8], k);
+        w269[k] = series::mul_d(dot59, &y[7], &y[8], k);
+        let w289 = y[8][k] * w288;
+        let w290 = w261 * w263;
+        let w291 = w47 * w262;
+        let w292 = w264[k] * w281;
+        let w293 = w265[k] * w275;
+        let w294 = w266[k] * w275;
+        let w295 = w267[k] * w275;
+        let w296 = w268[k] * w275;
+        let w297 = w269[k] * w275;
+        let w298 = w290 + w291;
+        let w299 = w292 + w298;
+        let w300 = w293 + w299;
+        let w301 = w294 + w300;
+        let w302 = w295 + w301;
+        let w303 = w296 + w302;
+        let w304 = w297 + w303;
+        w305[k] = w304 - w289;
+        let w306 = series::mul_d(dot60, &y[10], &w305, k);
+        let w316 = y[8][k] * w315;
+        let w317 = w261 * w308;
+        let w318 = w44 * w262;
+        let w319 = w264[k] * w275;
+        let w320 = w265[k] * w281;
+        let w321 = w317 + w318;
+        let w322 = w319 + w321;
+        let w323 = w320 + w322;
+        let w324 = w294 + w323;
+        let w325 = w295 + w324;
+        let w326 = w296 + w325;
+        let w327 = w297 + w326;
+        w328[k] = w327 - w316;
+        let w329 = series::mul_d(dot61, &y[11], &w328, k);
+        let w339 = y[8][k] * w338;
+        let w340 = w261 * w331;
+        let w341 = w41 * w262;
+        let w342 = w266[k] * w281;
+        let w343 = w340 + w341;
+        let w344 = w319 + w343;
+        let w345 = w293 + w344;
+        let w346 = w342 + w345;
+        let w347 = w295 + w346;
+        let w348 = w296 + w347;
+        let w349 = w297 + w348;
+        w350[k] = w349 - w339;
+        let w351 = series::mul_d(dot62, &y[12], &w350, k);
+        let w361 = y[8][k] * w360;
+        let w362 = w261 * w353;
+        let w363 = w38 * w262;
+        let w364 = w267[k] * w281;
+        let w365 = w362 + w363;
+        let w366 = w319 + w365;
+        let w367 = w293 + w366;
+        let w368 = w294 + w367;
+        let w369 = w364 + w368;
+        let w370 = w296 + w369;
+        let w371 = w297 + w370;
+        w372[k] = w371 - w361;
+        let w373 = series::mul_d(dot63, &y[13], &w372, k);
+        let w383 = y[8][k] * w382;
+        let w384 = w261 * w375;
+        let w385 = w35 * w262;
+        let w386 = w268[k] * w281;
+        let w387 = w384 + w385;
+        let w388 = w319 + w387;
+        let w389 = w293 + w388;
+        let w390 = w294 + w389;
+        let w391 = w295 + w390;
+        let w392 = w386 + w391;
+        let w393 = w297 + w392;
+        w394[k] = w393 - w383;
+        let w395 = series::mul_d(dot64, &y[14], &w394, k);
+        let w405 = y[8][k] * w404;
+        let w406 = w261 * w397;
+        let w407 = w32 * w262;
+        let w408 = w269[k] * w281;
+        let w409 = w406 + w407;
+        let w410 = w319 + w409;
+        let w411 = w293 + w410;
+        let w412 = w294 + w411;
+        let w413 = w295 + w412;
+        let w414 = w296 + w413;
+        let w415 = w408 + w414;
+        w416[k] = w415 - w405;
+        let w417 = series::mul_d(dot65, &y[15], &w416, k);
+        let w418 = cos_y0[k] * w12;
+        let w419 = w77 * w170;
+        let w420 = w4 * w218;
+        let w421 = w166 + w418;
+        let w422 = w419 + w421;
+        let w423 = w184 + w422;
+        let w424 = w423 - w72;
+        let w425 = w424 - w420;
+        let w426 = w425 - w259;
+        let w427 = w426 - w306;
+        let w428 = w427 - w329;
+        let w429 = w428 - w351;
+        let w430 = w429 - w373;
+        let w431 = w430 - w395;
+        let w432 = w431 - w417;
+        let w434 = series::mul_d(dot66, &y[8], &w243, k);
+        let w435 = w32 * w100;
+        let w436 = w35 * w104;
+        let w437 = w38 * w108;
+        let w438 = w41 * w112;
+        let w439 = w44 * w116;
+        let w440 = w47 * w120;
+        let w441 = at0(k, w11) - w435;
+        let w442 = w441 - w436;
+        let w443 = w442 - w437;
+        let w444 = w443 - w438;
+        let w445 = w444 - w439;
+        let w446 = w445 - w440;
+        let w447 = w446 - w434;
+        let w456 = series::mul_d(dot67, &cos_y0, &ug, k);
+        let w457 = series::sq(&y[8], k);
+        let w458 = series::mul_d(dot68, &y[8], &w264, k);
+        let w459 = series::mul_d(dot69, &y[8], &w265, k);
+        let w460 = series::mul_d(dot70, &y[8], &w266, k);
+        let w461 = series::mul_d(dot71, &y[8], &w267, k);
+        let w462 = series::mul_d(dot72, &y[8], &w268, k);
+        let w463 = series::mul_d(dot73, &y[8], &w269, k);
+        let w467 = w251 * w260;
+        let w468 = w260 * w261;
+        let w469 = w291 + w468;
+        w470[k] = w469 - w467;
+        let w471 = series::mul_d(dot74, &y[8], &w470, k);
+        let w478 = sin_y0[k] * w92;
+        let w479 = y[2][k] * w455;
+        let w480 = y[15][k] * w477;
+        let w481 = y[14][k] * w476;
+        let w482 = y[13][k] * w475;
+        let w483 = y[12][k] * w474;
+        let w484 = y[11][k] * w473;
+        let w485 = y[10][k] * w472;
+        let w486 = w47 * w170;
+        let w487 = w47 * w456;
+        let w488 = w457 * w466;
+        let w489 = w458 * w465;
+        let w490 = w272 * w459;
+        let w491 = w272 * w460;
+        let w492 = w272 * w461;
+        let w493 = w272 * w462;
+        let w494 = w272 * w463;
+        let w495 = w478 + w479;
+        let w496 = w486 + w495;
+        let w497 = w489 + w496;
+        let w498 = w490 + w497;
+        let w499 = w491 + w498;
+        let w500 = w492 + w499;
+        let w501 = w493 + w500;
+        let w502 = w494 + w501;
+        let w503 = w502 - w480;
+        let w504 = w503 - w481;
+        let w505 = w504 - w482;
+        let w506 = w505 - w483;
+        let w507 = w506 - w484;
+        let w508 = w507 - w485;
+        let w509 = w508 - w487;
+        let w510 = w509 - w488;
+        let w511 = w510 - w471;
+        let w517 = w251 * w307;
+        let w518 = w261 * w307;
+        let w519 = w318 + w518;
+        w520[k] = w519 - w517;
+        let w521 = series::mul_d(dot75, &y[8], &w520, k);
+        let w527 = sin_y0[k] * w90;
+        let w528 = y[3][k] * w515;
+        let w529 = y[15][k] * w526;
+        let w530 = y[14][k] * w525;
+        let w531 = y[13][k] * w524;
+        let w532 = y[12][k] * w523;
+        let w533 = y[11][k] * w522;
+        let w534 = y[10][k] * w473;
+        let w535 = w44 * w170;
+        let w536 = w44 * w456;
+        let w537 = w457 * w516;
+        let w538 = w272 * w458;
+        let w539 = w459 * w465;
+        let w540 = w527 + w528;
+        let w541 = w535 + w540;
+        let w542 = w538 + w541;
+        let w543 = w539 + w542;
+        let w544 = w491 + w543;
+        let w545 = w492 + w544;
+        let w546 = w493 + w545;
+        let w547 = w494 + w546;
+        let w548 = w547 - w529;
+        let w549 = w548 - w530;
+        let w550 = w549 - w531;
+        let w551 = w550 - w532;
+        let w552 = w551 - w533;
+        let w553 = w552 - w534;
+        let w554 = w553 - w536;
+        let w555 = w554 - w537;
+        let w556 = w555 - w521;
+        let w562 = w251 * w330;
+        let w563 = w261 * w330;
+        let w564 = w341 + w563;
+        w565[k] = w564 - w562;
+        let w566 = series::mul_d(dot76, &y[8], &w565, k);
+        let w571 = sin_y0[k] * w88;
+        let w572 = y[4][k] * w560;
+        let w573 = y[15][k] * w570;
+        let w574 = y[14][k] * w569;
+        let w575 = y[13][k] * w568;
+        let w576 = y[12][k] * w567;
+        let w577 = y[11][k] * w523;
+        let w578 = y[10][k] * w474;
+        let w579 = w41 * w170;
+        let w580 = w41 * w456;
+        let w581 = w457 * w561;
+        let w582 = w460 * w465;
+        let w583 = w571 + w572;
+        let w584 = w579 + w583;
+        let w585 = w538 + w584;
+        let w586 = w490 + w585;
+        let w587 = w582 + w586;
+        let w588 = w492 + w587;
+        let w589 = w493 + w588;
+        let w590 = w494 + w589;
+        let w591 = w590 - w573;
+        let w592 = w591 - w574;
+        let w593 = w592 - w575;
+        let w594 = w593 - w576;
+        let w595 = w594 - w577;
+        let w596 = w595 - w578;
+        let w597 = w596 - w580;
+        let w598 = w597 - w581;
+        let w599 = w598 - w566;
+        let w605 = w251 * w352;
+        let w606 = w261 * w352;
+        let w607 = w363 + w606;
+        w608[k] = w607 - w605;
+        let w609 = series::mul_d(dot77, &y[8], &w608, k);
+        let w613 = sin_y0[k] * w86;
+        let w614 = y[5][k] * w603;
+        let w615 = y[15][k] * w612;
+        let w616 = y[14][k] * w611;
+        let w617 = y[13][k] * w610;
+        let w618 = y[12][k] * w568;
+        let w619 = y[11][k] * w524;
+        let w620 = y[10][k] * w475;
+        let w621 = w38 * w170;
+        let w622 = w38 * w456;
+        let w623 = w457 * w604;
+        let w624 = w461 * w465;
+        let w625 = w613 + w614;
+        let w626 = w621 + w625;
+        let w627 = w538 + w626;
+        let w628 = w490 + w627;
+        let w629 = w491 + w628;
+        let w630 = w624 + w629;
+        let w631 = w493 + w630;
+        let w632 = w494 + w631;
+        let w633 = w632 - w615;
+        let w634 = w633 - w616;
+        let w635 = w634 - w617;
+        let w636 = w635 - w618;
+        let w637 = w636 - w619;
+        let w638 = w637 - w620;
+        let w639 = w638 - w622;
+        let w640 = w639 - w623;
+        let w641 = w640 - w609;
+        let w647 = w251 * w374;
+        let w648 = w261 * w374;
+        let w649 = w385 + w648;
+        w650[k] = w649 - w647;
+        let w651 = series::mul_d(dot78, &y[8], &w650, k);
+        let w654 = sin_y0[k] * w84;
+        let w655 = y[6][k] * w645;
+        let w656 = y[15][k] * w653;
+        let w657 = y[14][k] * w652;
+        let w658 = y[13][k] * w611;
+        let w659 = y[12][k] * w569;
+        let w660 = y[11][k] * w525;
+        let w661 = y[10][k] * w476;
+        let w662 = w35 * w170;
+        let w663 = w35 * w456;
+        let w664 = w457 * w646;
+        let w665 = w462 * w465;
+        let w666 = w654 + w655;
+        let w667 = w662 + w666;
+        let w668 = w538 + w667;
+        let w669 = w490 + w668;
+        let w670 = w491 + w669;
+        let w671 = w492 + w670;
+        let w672 = w665 + w671;
+        let w673 = w494 + w672;
+        let w674 = w673 - w656;
+        let w675 = w674 - w657;
+        let w676 = w675 - w658;
+        let w677 = w676 - w659;
+        let w678 = w677 - w660;
+        let w679 = w678 - w661;
+        let w680 = w679 - w663;
+        let w681 = w680 - w664;
+        let w682 = w681 - w651;
+        let w688 = w251 * w396;
+        let w689 = w261 * w396;
+        let w690 = w407 + w689;
+        w691[k] = w690 - w688;
+        let w692 = series::mul_d(dot79, &y[8], &w691, k);
+        let w694 = sin_y0[k] * w82;
+        let w695 = y[7][k] * w686;
+        let w696 = y[15][k] * w693;
+        let w697 = y[14][k] * w653;
+        let w698 = y[13][k] * w612;
+        let w699 = y[12][k] * w570;
+        let w700 = y[11][k] * w526;
+        let w701 = y[10][k] * w477;
+        let w702 = w32 * w170;
+        let w703 = w32 * w456;
+        let w704 = w457 * w687;
+        let w705 = w463 * w465;
+        let w706 = w694 + w695;
+        let w707 = w702 + w706;
+        let w708 = w538 + w707;
+        let w709 = w490 + w708;
+        let w710 = w491 + w709;
+        let w711 = w492 + w710;
+        let w712 = w493 + w711;
+        let w713 = w705 + w712;
+        let w714 = w713 - w696;
+        let w715 = w714 - w697;
+        let w716 = w715 - w698;
+        let w717 = w716 - w699;
+        let w718 = w717 - w700;
+        let w719 = w718 - w701;
+        let w720 = w719 - w703;
+        let w721 = w720 - w704;
+        let w722 = w721 - w692;
+        [w432, w447, w511, w556, w599, w641, w682, w722]
+    }
+}
+
+/// The first N Taylor coefficients of each output of `free_power` along series inputs.
+#[must_use]
+#[inline(always)]
+pub fn free_power<const N: usize>(y: &[[f64; N]; 16], ug: &[f64; N], s: f64, p: &Params) -> [[f64; N]; 2] {
+    let mut d_y0 = [0.0f64; N];
+    let mut sin_y0 = [0.0f64; N];
+    let mut cos_y0 = [0.0f64; N];
+    let w3: f64 = p[0];
+    let w4: f64 = p[3];
+    let w5: f64 = w3 * w4;
+    let w6: f64 = 0.5;
+    let w7: f64 = p[4];
+    let w8: f64 = w6 * w7;
+    let w9: f64 = w3 * w8;
+    let w10: f64 = w5 + w9;
+    let w18: f64 = s;
+    let w19: f64 = p[1];
+    let w20: f64 = w18 * w19;
+    let w21: f64 = w4 * w20;
+    let w22: f64 = p[5];
+    let w23: f64 = w20 * w22;
+    let w24: f64 = w21 + w23;
+    let w25: f64 = -0.0578745285967165;
+    let w26: f64 = w7 * w25;
+    let w27: f64 = w4 + w26;
+    let w28: f64 = 0.07073542044968367;
+    let w29: f64 = w7 * w28;
+    let w30: f64 = w4 + w29;
+    let w31: f64 = -0.09094901081852429;
+    let w32: f64 = w7 * w31;
+    let w33: f64 = w4 + w32;
+    let w34: f64 = 0.12721264843305286;
+    let w35: f64 = w7 * w34;
+    let w36: f64 = w4 + w35;
+    let w37: f64 = -0.21696794755535964;
+    let w38: f64 = w7 * w37;
+    let w39: f64 = w4 + w38;
+    let w40: f64 = 0.3914958780198129;
+    let w41: f64 = w7 * w40;
+    let w42: f64 = w4 + w41;
+    let w43: f64 = w7 * w20;
+    let w44: f64 = w24 + w43;
+    let mut w56 = [0.0f64; N];
+    let mut w60 = [0.0f64; N];
+    let mut w85 = [0.0f64; N];
+    let w89: f64 = p[9];
+    let w90: f64 = p[10];
+    let w91: f64 = p[11];
+    let w92: f64 = p[12];
+    let w93: f64 = p[13];
+    let w94: f64 = p[14];
+    let mut w105 = [0.0f64; N];
+    let w107: f64 = p[15];
+    let w108: f64 = p[16];
+    let w109: f64 = p[17];
+    let w110: f64 = p[18];
+    let w111: f64 = p[19];
+    let mut w122 = [0.0f64; N];
+    let w124: f64 = p[20];
+    let w125: f64 = p[21];
+    let w126: f64 = p[22];
+    let w127: f64 = p[23];
+    let mut w138 = [0.0f64; N];
+    let w140: f64 = p[24];
+    let w141: f64 = p[25];
+    let w142: f64 = p[26];
+    let mut w153 = [0.0f64; N];
+    let w155: f64 = p[27];
+    let w156: f64 = p[28];
+    let mut w167 = [0.0f64; N];
+    let w169: f64 = p[29];
+    let mut w180 = [0.0f64; N];
+    let mut out = [[0.0f64; N]; 2];
+    for k in 0..N {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_y0, &cos_y0),
+                (&d_y0, &sin_y0),
+                (&sin_y0, &w56),
+                (&y[8], &w60),
+                (&cos_y0, &y[10]),
+                (&cos_y0, &y[11]),
+                (&cos_y0, &y[12]),
+                (&cos_y0, &y[13]),
+                (&cos_y0, &y[14]),
+            ],
+            k,
+        );
+        let [dot9, dot10, dot11, dot12, dot13, dot14, dot15, dot16] = series::dots(
+            [
+                (&cos_y0, &y[15]),
+                (&ug, &w85),
+                (&y[10], &w105),
+                (&y[11], &w122),
+                (&y[12], &w138),
+                (&y[13], &w153),
+                (&y[14], &w167),
+                (&y[15], &w180),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &y[0], &mut d_y0, &mut sin_y0, &mut cos_y0, k);
+        let w12 = y[2][k];
+        let w13 = y[3][k];
+        let w14 = y[4][k];
+        let w15 = y[5][k];
+        let w16 = y[6][k];
+        let w17 = y[7][k];
+        let w45 = w12 * w42;
+        let w46 = w13 * w39;
+        let w47 = w14 * w36;
+        let w48 = w15 * w33;
+        let w49 = w16 * w30;
+        let w50 = w17 * w27;
+        let w51 = w45 + w46;
+        let w52 = w47 + w51;
+        let w53 = w48 + w52;
+        let w54 = w49 + w53;
+        let w55 = w50 + w54;
+        w56[k] = w55 - at0(k, w44);
+        let w57 = series::mul_d(dot2, &sin_y0, &w56, k);
+        let w59 = cos_y0[k] * w10;
+        w60[k] = w59 - w57;
+        let w61 = series::mul_d(dot3, &y[8], &w60, k);
+        let w63 = series::mul_d(dot4, &cos_y0, &y[10], k);
+        let w65 = series::mul_d(dot5, &cos_y0, &y[11], k);
+        let w67 = series::mul_d(dot6, &cos_y0, &y[12], k);
+        let w69 = series::mul_d(dot7, &cos_y0, &y[13], k);
+        let w71 = series::mul_d(dot8, &cos_y0, &y[14], k);
+        let w73 = series::mul_d(dot9, &cos_y0, &y[15], k);
+        let w74 = w42 * w63;
+        let w75 = w39 * w65;
+        let w76 = w36 * w67;
+        let w77 = w33 * w69;
+        let w78 = w30 * w71;
+        let w79 = w27 * w73;
+        let w80 = w61 + w74;
+        let w81 = w75 + w80;
+        let w82 = w76 + w81;
+        let w83 = w77 + w82;
+        let w84 = w78 + w83;
+        w85[k] = w79 + w84;
+        let w86 = series::mul_d(dot10, &ug, &w85, k);
+        let w87 = -w86;
+        let w95 = y[10][k] * w89;
+        let w96 = y[11][k] * w90;
+        let w97 = y[12][k] * w91;
+        let w98 = y[13][k] * w92;
+        let w99 = y[14][k] * w93;
+        let w100 = y[15][k] * w94;
+        let w101 = w95 + w96;
+        let w102 = w97 + w101;
+        let w103 = w98 + w102;
+        let w104 = w99 + w103;
+        w105[k] = w100 + w104;
+        let w106 = series::mul_d(dot11, &y[10], &w105, k);
+        let w112 = y[10][k] * w90;
+        let w113 = y[11][k] * w107;
+        let w114 = y[12][k] * w108;
+        let w115 = y[13][k] * w109;
+        let w116 = y[14][k] * w110;
+        let w117 = y[15][k] * w111;
+        let w118 = w112 + w113;
+        let w119 = w114 + w118;
+        let w120 = w115 + w119;
+        let w121 = w116 + w120;
+        w122[k] = w117 + w121;
+        let w123 = series::mul_d(dot12, &y[11], &w122, k);
+        let w128 = y[10][k] * w91;
+        let w129 = y[11][k] * w108;
+        let w130 = y[12][k] * w124;
+        let w131 = y[13][k] * w125;
+        let w132 = y[14][k] * w126;
+        let w133 = y[15][k] * w127;
+        let w134 = w128 + w129;
+        let w135 = w130 + w134;
+        let w136 = w131 + w135;
+        let w137 = w132 + w136;
+        w138[k] = w133 + w137;
+        let w139 = series::mul_d(dot13, &y[12], &w138, k);
+        let w143 = y[10][k] * w92;
+        let w144 = y[11][k] * w109;
+        let w145 = y[12][k] * w125;
+        let w146 = y[13][k] * w140;
+        let w147 = y[14][k] * w141;
+        let w148 = y[15][k] * w142;
+        let w149 = w143 + w144;
+        let w150 = w145 + w149;
+        let w151 = w146 + w150;
+        let w152 = w147 + w151;
+        w153[k] = w148 + w152;
+        let w154 = series::mul_d(dot14, &y[13], &w153, k);
+        let w157 = y[10][k] * w93;
+        let w158 = y[11][k] * w110;
+        let w159 = y[12][k] * w126;
+        let w160 = y[13][k] * w141;
+        let w161 = y[14][k] * w155;
+        let w162 = y[15][k] * w156;
+        let w163 = w157 + w158;
+        let w164 = w159 + w163;
+        let w165 = w160 + w164;
+        let w166 = w161 + w165;
+        w167[k] = w162 + w166;
+        let w168 = series::mul_d(dot15, &y[14], &w167, k);
+        let w170 = y[10][k] * w94;
+        let w171 = y[11][k] * w111;
+        let w172 = y[12][k] * w127;
+        let w173 = y[13][k] * w142;
+        let w174 = y[14][k] * w156;
+        let w175 = y[15][k] * w169;
+        let w176 = w170 + w171;
+        let w177 = w172 + w176;
+        let w178 = w173 + w177;
+        let w179 = w174 + w178;
+        w180[k] = w175 + w179;
+        let w181 = series::mul_d(dot16, &y[15], &w180, k);
+        let w182 = w106 + w123;
+        let w183 = w139 + w182;
+        let w184 = w154 + w183;
+        let w185 = w168 + w184;
+        let w186 = w181 + w185;
+        out[0][k] = w87;
+        out[1][k] = w186;
+    }
+    out
+}

@@ -9800,3 +9800,1589 @@ pub fn power<const N: usize>(x: &[[f64; N]; 16], ug: &[f64; N], s: f64, p: &Para
     }
     out
 }
+
+/// `free_mass_matrix` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn free_mass_matrix<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 9]) -> [f64; 45] {
+    let w0: f64 = s;
+    let w1: f64 = p[1];
+    let w2: f64 = w0 * w1;
+    let mut d_qf0 = [0.0f64; N];
+    let mut sin_qf0 = [0.0f64; N];
+    let mut cos_qf0 = [0.0f64; N];
+    let w5: f64 = 0.5;
+    let w6: f64 = p[4];
+    let w7: f64 = p[3];
+    let w8: f64 = w6 + w7;
+    let w9: f64 = p[5];
+    let w10: f64 = w8 + w9;
+    let w11: f64 = w5 * w10;
+    let w12: f64 = 2.0;
+    let w13: f64 = w2 * w12;
+    let w14: f64 = w11 * w13;
+    let w15: f64 = w2 * w9;
+    let w23: f64 = w2 * w7;
+    let w24: f64 = w15 + w23;
+    let w25: f64 = 0.048970751581497045;
+    let w26: f64 = w6 * w25;
+    let w27: f64 = w7 + w26;
+    let w28: f64 = -0.0578745285967165;
+    let w29: f64 = w6 * w28;
+    let w30: f64 = w7 + w29;
+    let w31: f64 = 0.07073542044968367;
+    let w32: f64 = w6 * w31;
+    let w33: f64 = w7 + w32;
+    let w34: f64 = -0.09094901081852429;
+    let w35: f64 = w6 * w34;
+    let w36: f64 = w7 + w35;
+    let w37: f64 = 0.12721264843305286;
+    let w38: f64 = w6 * w37;
+    let w39: f64 = w7 + w38;
+    let w40: f64 = -0.21696794755535964;
+    let w41: f64 = w6 * w40;
+    let w42: f64 = w7 + w41;
+    let w43: f64 = 0.3914958780198129;
+    let w44: f64 = w6 * w43;
+    let w45: f64 = w7 + w44;
+    let w46: f64 = w2 * w6;
+    let w47: f64 = w24 + w46;
+    let mut w61 = [0.0f64; N];
+    let w64: f64 = p[0];
+    let w65: f64 = w7 * w64;
+    let w66: f64 = w5 * w6;
+    let w67: f64 = w64 * w66;
+    let w68: f64 = w65 + w67;
+    let mut w69 = [0.0f64; N];
+    let mut w73 = [0.0f64; N];
+    let mut w75 = [0.0f64; N];
+    let w77: f64 = p[6];
+    let w78: f64 = w5 * w7;
+    let w79: f64 = w12 * w78;
+    let w80: f64 = w13 * w78;
+    let mut w87 = [0.0f64; N];
+    let mut w101 = [0.0f64; N];
+    let w103: f64 = 2.0 * w64;
+    let w104: f64 = w78 * w103;
+    let w105: f64 = w64 * w104;
+    let w106: f64 = w77 + w105;
+    let w107: f64 = 0.0625;
+    let w108: f64 = w6 * w107;
+    let w109: f64 = w12 * w108;
+    let w111: f64 = w12 * w109;
+    let w118: f64 = 0.08333333333333333;
+    let w119: f64 = w6 * w118;
+    let w120: f64 = w64 * w119;
+    let w121: f64 = w103 * w120;
+    let w122: f64 = w106 + w121;
+    let w123: f64 = 2.0 * w120;
+    let w124: f64 = w64 * w123;
+    let w125: f64 = w122 + w124;
+    let w126: f64 = 0.024485375790748522;
+    let w127: f64 = w6 * w126;
+    let w128: f64 = -w2;
+    let w129: f64 = 2.0 * w128;
+    let w130: f64 = w127 * w129;
+    let w131: f64 = w12 * w127;
+    let w132: f64 = w2 * w131;
+    let w133: f64 = w130 - w132;
+    let w134: f64 = -0.02893726429835825;
+    let w135: f64 = w6 * w134;
+    let w136: f64 = w129 * w135;
+    let w137: f64 = w12 * w135;
+    let w138: f64 = w2 * w137;
+    let w139: f64 = w136 - w138;
+    let w140: f64 = 0.035367710224841836;
+    let w141: f64 = w6 * w140;
+    let w142: f64 = w129 * w141;
+    let w143: f64 = w12 * w141;
+    let w144: f64 = w2 * w143;
+    let w145: f64 = w142 - w144;
+    let w146: f64 = -0.04547450540926214;
+    let w147: f64 = w6 * w146;
+    let w148: f64 = w129 * w147;
+    let w149: f64 = w12 * w147;
+    let w150: f64 = w2 * w149;
+    let w151: f64 = w148 - w150;
+    let w152: f64 = 0.06360632421652643;
+    let w153: f64 = w6 * w152;
+    let w154: f64 = w129 * w153;
+    let w155: f64 = w12 * w153;
+    let w156: f64 = w2 * w155;
+    let w157: f64 = w154 - w156;
+    let w158: f64 = -0.10848397377767982;
+    let w159: f64 = w6 * w158;
+    let w160: f64 = w129 * w159;
+    let w161: f64 = w12 * w159;
+    let w162: f64 = w2 * w161;
+    let w163: f64 = w160 - w162;
+    let w164: f64 = 0.19574793900990645;
+    let w165: f64 = w6 * w164;
+    let w166: f64 = w129 * w165;
+    let w167: f64 = w12 * w165;
+    let w168: f64 = w2 * w167;
+    let w169: f64 = w166 - w168;
+    let w170: f64 = 2.0 * w2;
+    let w171: f64 = w66 * w170;
+    let w172: f64 = w2 * w171;
+    let w173: f64 = w125 + w172;
+    let w206: f64 = w2 * w10;
+    let w211: f64 = w2 * w45;
+    let w213: f64 = 0.1422064359274777;
+    let w214: f64 = w6 * w213;
+    let w215: f64 = w64 * w214;
+    let w216: f64 = 2.0 * w215;
+    let w217: f64 = w65 + w216;
+    let w221: f64 = w2 * w42;
+    let w222: f64 = -0.02269169672159674;
+    let w223: f64 = w6 * w222;
+    let w224: f64 = w64 * w223;
+    let w225: f64 = 2.0 * w224;
+    let w226: f64 = w65 + w225;
+    let w230: f64 = w2 * w39;
+    let w231: f64 = 0.008104093592436109;
+    let w232: f64 = w6 * w231;
+    let w233: f64 = w64 * w232;
+    let w234: f64 = 2.0 * w233;
+    let w235: f64 = w65 + w234;
+    let w239: f64 = w2 * w36;
+    let w240: f64 = -0.004135583755212658;
+    let w241: f64 = w6 * w240;
+    let w242: f64 = w64 * w241;
+    let w243: f64 = 2.0 * w242;
+    let w244: f64 = w65 + w243;
+    let w248: f64 = w2 * w33;
+    let w249: f64 = 0.0025017571076434843;
+    let w250: f64 = w6 * w249;
+    let w251: f64 = w64 * w250;
+    let w252: f64 = 2.0 * w251;
+    let w253: f64 = w65 + w252;
+    let w257: f64 = w2 * w30;
+    let w258: f64 = -0.00167473032028351;
+    let w259: f64 = w6 * w258;
+    let w260: f64 = w64 * w259;
+    let w261: f64 = 2.0 * w260;
+    let w262: f64 = w65 + w261;
+    let w266: f64 = w2 * w27;
+    let w267: f64 = 0.0011990672617215245;
+    let w268: f64 = w6 * w267;
+    let w269: f64 = w64 * w268;
+    let w270: f64 = 2.0 * w269;
+    let w271: f64 = w65 + w270;
+    let w290: f64 = 0.125;
+    let w291: f64 = w6 * w290;
+    let w292: f64 = w7 + w291;
+    let w293: f64 = w291 + w292;
+    move |k: usize, qf: &[[f64; N]; 9]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6] = series::dots(
+            [
+                (&d_qf0, &cos_qf0),
+                (&d_qf0, &sin_qf0),
+                (&cos_qf0, &w61),
+                (&w69, &w73),
+                (&w69, &w75),
+                (&w87, &w101),
+                (&cos_qf0, &sin_qf0),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &qf[0], &mut d_qf0, &mut sin_qf0, &mut cos_qf0, k);
+        let w48 = qf[2][k] * w45;
+        let w49 = qf[3][k] * w42;
+        let w50 = qf[4][k] * w39;
+        let w51 = qf[5][k] * w36;
+        let w52 = qf[6][k] * w33;
+        let w53 = qf[7][k] * w30;
+        let w54 = qf[8][k] * w27;
+        let w55 = at0(k, w47) - w48;
+        let w56 = w55 - w49;
+        let w57 = w56 - w50;
+        let w58 = w57 - w51;
+        let w59 = w58 - w52;
+        let w60 = w59 - w53;
+        w61[k] = w60 - w54;
+        let w62 = series::mul_d(dot2, &cos_qf0, &w61, k);
+        w69[k] = w2 * cos_qf0[k];
+        let w70 = cos_qf0[k] * w14;
+        let w71 = sin_qf0[k] * w68;
+        let w72 = w70 + w71;
+        w73[k] = w72 - w62;
+        let w74 = series::mul_d(dot3, &w69, &w73, k);
+        w75[k] = w62 - w71;
+        let w76 = series::mul_d(dot4, &w69, &w75, k);
+        let w81 = qf[2][k] + qf[3][k];
+        let w82 = qf[4][k] + w81;
+        let w83 = qf[5][k] + w82;
+        let w84 = qf[6][k] + w83;
+        let w85 = qf[7][k] + w84;
+        let w86 = qf[8][k] + w85;
+        w87[k] = w86 - at0(k, w2);
+        let w88 = qf[2][k] * w79;
+        let w89 = qf[3][k] * w79;
+        let w90 = qf[4][k] * w79;
+        let w91 = qf[5][k] * w79;
+        let w92 = qf[6][k] * w79;
+        let w93 = qf[7][k] * w79;
+        let w94 = qf[8][k] * w79;
+        let w95 = w88 + w89;
+        let w96 = w90 + w95;
+        let w97 = w91 + w96;
+        let w98 = w92 + w97;
+        let w99 = w93 + w98;
+        let w100 = w94 + w99;
+        w101[k] = w100 - at0(k, w80);
+        let w102 = series::mul_d(dot5, &w87, &w101, k);
+        let w110 = series::sq(&qf[8], k);
+        let w112 = series::sq(&qf[7], k);
+        let w113 = series::sq(&qf[6], k);
+        let w114 = series::sq(&qf[5], k);
+        let w115 = series::sq(&qf[4], k);
+        let w116 = series::sq(&qf[3], k);
+        let w117 = series::sq(&qf[2], k);
+        let w174 = qf[2][k] * w169;
+        let w175 = qf[3][k] * w163;
+        let w176 = qf[4][k] * w157;
+        let w177 = qf[5][k] * w151;
+        let w178 = qf[6][k] * w145;
+        let w179 = qf[7][k] * w139;
+        let w180 = qf[8][k] * w133;
+        let w181 = w110 * w111;
+        let w182 = w111 * w112;
+        let w183 = w111 * w113;
+        let w184 = w111 * w114;
+        let w185 = w111 * w115;
+        let w186 = w111 * w116;
+        let w187 = w111 * w117;
+        let w188 = w174 + w175;
+        let w189 = w176 + w188;
+        let w190 = w177 + w189;
+        let w191 = w178 + w190;
+        let w192 = w179 + w191;
+        let w193 = w180 + w192;
+        let w194 = w74 + w193;
+        let w195 = w102 + w194;
+        let w196 = w181 + w195;
+        let w197 = w182 + w196;
+        let w198 = w183 + w197;
+        let w199 = w184 + w198;
+        let w200 = w185 + w199;
+        let w201 = w186 + w200;
+        let w202 = w187 + w201;
+        let w203 = at0(k, w173) + w202;
+        let w204 = w203 - w76;
+        let w207 = cos_qf0[k] * w206;
+        let w208 = w71 + w207;
+        let w209 = w208 - w62;
+        let w212 = series::mul_d(dot6, &cos_qf0, &sin_qf0, k);
+        let w218 = w211 * w212;
+        let w219 = at0(k, w217) + w218;
+        let w227 = w212 * w221;
+        let w228 = at0(k, w226) + w227;
+        let w236 = w212 * w230;
+        let w237 = at0(k, w235) + w236;
+        let w245 = w212 * w239;
+        let w246 = at0(k, w244) + w245;
+        let w254 = w212 * w248;
+        let w255 = at0(k, w253) + w254;
+        let w263 = w212 * w257;
+        let w264 = at0(k, w262) + w263;
+        let w272 = w212 * w266;
+        let w273 = at0(k, w271) + w272;
+        let w276 = w45 * sin_qf0[k];
+        let w278 = w42 * sin_qf0[k];
+        let w280 = w39 * sin_qf0[k];
+        let w282 = w36 * sin_qf0[k];
+        let w284 = w33 * sin_qf0[k];
+        let w286 = w30 * sin_qf0[k];
+        let w288 = w27 * sin_qf0[k];
+        [w204, w209, w219, w228, w237, w246, w255, w264, w273, at0(k, w10), w276, w278, w280, w282, w284, w286, w288, at0(k, w293), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w293), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w293), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w293), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w293), at0(k, w7), at0(k, w7), at0(k, w293), at0(k, w7), at0(k, w293)]
+    }
+}
+
+/// `free_forcing` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn free_forcing<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 18], &[f64; N]) -> [f64; 9] {
+    let mut d_y0 = [0.0f64; N];
+    let mut sin_y0 = [0.0f64; N];
+    let mut cos_y0 = [0.0f64; N];
+    let w2: f64 = s;
+    let w3: f64 = p[1];
+    let w4: f64 = w2 * w3;
+    let w5: f64 = p[4];
+    let w6: f64 = p[3];
+    let w7: f64 = w5 + w6;
+    let w8: f64 = p[5];
+    let w9: f64 = w7 + w8;
+    let w10: f64 = p[8];
+    let w11: f64 = w9 * w10;
+    let w12: f64 = w4 * w11;
+    let w15: f64 = w4 * w8;
+    let w30: f64 = w4 * w6;
+    let w31: f64 = w15 + w30;
+    let w32: f64 = 0.048970751581497045;
+    let w33: f64 = w5 * w32;
+    let w34: f64 = w6 + w33;
+    let w35: f64 = -0.0578745285967165;
+    let w36: f64 = w5 * w35;
+    let w37: f64 = w6 + w36;
+    let w38: f64 = 0.07073542044968367;
+    let w39: f64 = w5 * w38;
+    let w40: f64 = w6 + w39;
+    let w41: f64 = -0.09094901081852429;
+    let w42: f64 = w5 * w41;
+    let w43: f64 = w6 + w42;
+    let w44: f64 = 0.12721264843305286;
+    let w45: f64 = w5 * w44;
+    let w46: f64 = w6 + w45;
+    let w47: f64 = -0.21696794755535964;
+    let w48: f64 = w5 * w47;
+    let w49: f64 = w6 + w48;
+    let w50: f64 = 0.3914958780198129;
+    let w51: f64 = w5 * w50;
+    let w52: f64 = w6 + w51;
+    let w53: f64 = w4 * w5;
+    let w54: f64 = w31 + w53;
+    let w55: f64 = p[0];
+    let w56: f64 = w6 * w10;
+    let w57: f64 = w55 * w56;
+    let w58: f64 = 0.5;
+    let w59: f64 = w5 * w10;
+    let w60: f64 = w58 * w59;
+    let w61: f64 = w55 * w60;
+    let w62: f64 = w57 + w61;
+    let mut w78 = [0.0f64; N];
+    let w80: f64 = w4 * w56;
+    let w81: f64 = w6 * w55;
+    let w82: f64 = w5 * w58;
+    let w83: f64 = w55 * w82;
+    let w84: f64 = w81 + w83;
+    let w85: f64 = w8 * w10;
+    let w86: f64 = w4 * w85;
+    let w87: f64 = w80 + w86;
+    let w88: f64 = w32 * w59;
+    let w89: f64 = w56 + w88;
+    let w90: f64 = w35 * w59;
+    let w91: f64 = w56 + w90;
+    let w92: f64 = w38 * w59;
+    let w93: f64 = w56 + w92;
+    let w94: f64 = w41 * w59;
+    let w95: f64 = w56 + w94;
+    let w96: f64 = w44 * w59;
+    let w97: f64 = w56 + w96;
+    let w98: f64 = w47 * w59;
+    let w99: f64 = w56 + w98;
+    let w100: f64 = w50 * w59;
+    let w101: f64 = w56 + w100;
+    let w102: f64 = w4 * w59;
+    let w103: f64 = w87 + w102;
+    let mut w107 = [0.0f64; N];
+    let w110: f64 = w4 * w33;
+    let w114: f64 = w4 * w36;
+    let w118: f64 = w4 * w39;
+    let w122: f64 = w4 * w42;
+    let w126: f64 = w4 * w45;
+    let w130: f64 = w4 * w48;
+    let w134: f64 = w4 * w51;
+    let w135: f64 = w30 + w110;
+    let w136: f64 = w30 + w114;
+    let w137: f64 = w30 + w118;
+    let w138: f64 = w30 + w122;
+    let w139: f64 = w30 + w126;
+    let w140: f64 = w30 + w130;
+    let w141: f64 = w30 + w134;
+    let mut w185 = [0.0f64; N];
+    let mut w188 = [0.0f64; N];
+    let mut w189 = [0.0f64; N];
+    let mut w204 = [0.0f64; N];
+    let mut w205 = [0.0f64; N];
+    let w207: f64 = 2.0;
+    let w208: f64 = w4 * w207;
+    let w209: f64 = w9 * w58;
+    let w210: f64 = w207 * w209;
+    let w211: f64 = w208 * w209;
+    let mut w212 = [0.0f64; N];
+    let mut w213 = [0.0f64; N];
+    let mut w241 = [0.0f64; N];
+    let mut w242 = [0.0f64; N];
+    let mut w244 = [0.0f64; N];
+    let mut w253 = [0.0f64; N];
+    let mut w271 = [0.0f64; N];
+    let mut w273 = [0.0f64; N];
+    let mut w276 = [0.0f64; N];
+    let w278: f64 = w4 * w84;
+    let mut w286 = [0.0f64; N];
+    let w288: f64 = w4 * w52;
+    let w291: f64 = w207 * w288;
+    let mut w292 = [0.0f64; N];
+    let mut w293 = [0.0f64; N];
+    let mut w294 = [0.0f64; N];
+    let mut w295 = [0.0f64; N];
+    let mut w296 = [0.0f64; N];
+    let mut w297 = [0.0f64; N];
+    let mut w298 = [0.0f64; N];
+    let w299: f64 = w6 * w58;
+    let w300: f64 = w208 * w299;
+    let w301: f64 = w207 * w299;
+    let w302: f64 = w4 * w301;
+    let w303: f64 = w300 + w302;
+    let w304: f64 = w207 * w301;
+    let w305: f64 = 0.0625;
+    let w306: f64 = w5 * w305;
+    let w307: f64 = w207 * w306;
+    let w308: f64 = w207 * w307;
+    let w309: f64 = w304 + w308;
+    let w310: f64 = w308 + w309;
+    let w311: f64 = 0.19574793900990645;
+    let w312: f64 = w5 * w311;
+    let w313: f64 = w208 * w312;
+    let w314: f64 = w303 + w313;
+    let w315: f64 = w207 * w312;
+    let w316: f64 = w4 * w315;
+    let w317: f64 = w314 + w316;
+    let mut w336 = [0.0f64; N];
+    let w338: f64 = w4 * w49;
+    let w339: f64 = w207 * w338;
+    let w340: f64 = -0.10848397377767982;
+    let w341: f64 = w5 * w340;
+    let w342: f64 = w208 * w341;
+    let w343: f64 = w303 + w342;
+    let w344: f64 = w207 * w341;
+    let w345: f64 = w4 * w344;
+    let w346: f64 = w343 + w345;
+    let mut w360 = [0.0f64; N];
+    let w362: f64 = w4 * w46;
+    let w363: f64 = w207 * w362;
+    let w364: f64 = 0.06360632421652643;
+    let w365: f64 = w5 * w364;
+    let w366: f64 = w208 * w365;
+    let w367: f64 = w303 + w366;
+    let w368: f64 = w207 * w365;
+    let w369: f64 = w4 * w368;
+    let w370: f64 = w367 + w369;
+    let mut w383 = [0.0f64; N];
+    let w385: f64 = w4 * w43;
+    let w386: f64 = w207 * w385;
+    let w387: f64 = -0.04547450540926214;
+    let w388: f64 = w5 * w387;
+    let w389: f64 = w208 * w388;
+    let w390: f64 = w303 + w389;
+    let w391: f64 = w207 * w388;
+    let w392: f64 = w4 * w391;
+    let w393: f64 = w390 + w392;
+    let mut w406 = [0.0f64; N];
+    let w408: f64 = w4 * w40;
+    let w409: f64 = w207 * w408;
+    let w410: f64 = 0.035367710224841836;
+    let w411: f64 = w5 * w410;
+    let w412: f64 = w208 * w411;
+    let w413: f64 = w303 + w412;
+    let w414: f64 = w207 * w411;
+    let w415: f64 = w4 * w414;
+    let w416: f64 = w413 + w415;
+    let mut w429 = [0.0f64; N];
+    let w431: f64 = w4 * w37;
+    let w432: f64 = w207 * w431;
+    let w433: f64 = -0.02893726429835825;
+    let w434: f64 = w5 * w433;
+    let w435: f64 = w208 * w434;
+    let w436: f64 = w303 + w435;
+    let w437: f64 = w207 * w434;
+    let w438: f64 = w4 * w437;
+    let w439: f64 = w436 + w438;
+    let mut w452 = [0.0f64; N];
+    let w454: f64 = w4 * w34;
+    let w455: f64 = w207 * w454;
+    let w456: f64 = 0.024485375790748522;
+    let w457: f64 = w5 * w456;
+    let w458: f64 = w208 * w457;
+    let w459: f64 = w303 + w458;
+    let w460: f64 = w207 * w457;
+    let w461: f64 = w4 * w460;
+    let w462: f64 = w459 + w461;
+    let mut w475 = [0.0f64; N];
+    let w511: f64 = -1.5452954210407739;
+    let w512: f64 = p[2];
+    let w513: f64 = w55 * w55;
+    let w514: f64 = w55 * w513;
+    let w515: f64 = w512 / w514;
+    let w516: f64 = w511 * w515;
+    let w517: f64 = w207 * w516;
+    let w527: f64 = w301 + w307;
+    let w528: f64 = w307 + w527;
+    let w529: f64 = w300 + w313;
+    let mut w533 = [0.0f64; N];
+    let w535: f64 = p[9];
+    let w536: f64 = p[10];
+    let w537: f64 = p[11];
+    let w538: f64 = p[12];
+    let w539: f64 = p[13];
+    let w540: f64 = p[14];
+    let w541: f64 = p[15];
+    let w581: f64 = -60.68985231417138;
+    let w582: f64 = w515 * w581;
+    let w583: f64 = w207 * w582;
+    let w584: f64 = w300 + w342;
+    let mut w588 = [0.0f64; N];
+    let w590: f64 = p[16];
+    let w591: f64 = p[17];
+    let w592: f64 = p[18];
+    let w593: f64 = p[19];
+    let w594: f64 = p[20];
+    let w595: f64 = p[21];
+    let w630: f64 = -475.81828329893136;
+    let w631: f64 = w515 * w630;
+    let w632: f64 = w207 * w631;
+    let w633: f64 = w300 + w366;
+    let mut w637 = [0.0f64; N];
+    let w639: f64 = p[22];
+    let w640: f64 = p[23];
+    let w641: f64 = p[24];
+    let w642: f64 = p[25];
+    let w643: f64 = p[26];
+    let w677: f64 = -1827.1591631398476;
+    let w678: f64 = w515 * w677;
+    let w679: f64 = w207 * w678;
+    let w680: f64 = w300 + w389;
+    let mut w684 = [0.0f64; N];
+    let w686: f64 = p[27];
+    let w687: f64 = p[28];
+    let w688: f64 = p[29];
+    let w689: f64 = p[30];
+    let w723: f64 = -4992.978972313684;
+    let w724: f64 = w515 * w723;
+    let w725: f64 = w207 * w724;
+    let w726: f64 = w300 + w412;
+    let mut w730 = [0.0f64; N];
+    let w732: f64 = p[31];
+    let w733: f64 = p[32];
+    let w734: f64 = p[33];
+    let w768: f64 = -11141.925633927905;
+    let w769: f64 = w515 * w768;
+    let w770: f64 = w207 * w769;
+    let w771: f64 = w300 + w435;
+    let mut w775 = [0.0f64; N];
+    let w777: f64 = p[34];
+    let w778: f64 = p[35];
+    let w812: f64 = -21735.164457013216;
+    let w813: f64 = w515 * w812;
+    let w814: f64 = w207 * w813;
+    let w815: f64 = w300 + w458;
+    let mut w819 = [0.0f64; N];
+    let w821: f64 = p[36];
+    move |k: usize, y: &[[f64; N]; 18], ug: &[f64; N]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8, dot9] = series::dots(
+            [
+                (&d_y0, &cos_y0),
+                (&d_y0, &sin_y0),
+                (&ug, &y[2]),
+                (&ug, &y[3]),
+                (&ug, &y[4]),
+                (&ug, &y[5]),
+                (&ug, &y[6]),
+                (&ug, &y[7]),
+                (&ug, &y[8]),
+                (&sin_y0, &w78),
+            ],
+            k,
+        );
+        let [dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17, dot18, dot19] = series::dots(
+            [
+                (&cos_y0, &y[9]),
+                (&y[17], &y[10]),
+                (&y[17], &w107),
+                (&y[10], &y[16]),
+                (&w107, &y[16]),
+                (&y[10], &y[15]),
+                (&w107, &y[15]),
+                (&y[10], &y[14]),
+                (&w107, &y[14]),
+                (&y[10], &y[13]),
+            ],
+            k,
+        );
+        let [dot20, dot21, dot22, dot23, dot24, dot25, dot26, dot27, dot28, dot29] = series::dots(
+            [
+                (&w107, &y[13]),
+                (&y[10], &y[12]),
+                (&w107, &y[12]),
+                (&y[10], &y[11]),
+                (&w107, &y[11]),
+                (&cos_y0, &w185),
+                (&y[9], &w188),
+                (&cos_y0, &w189),
+                (&w189, &w204),
+                (&sin_y0, &w205),
+            ],
+            k,
+        );
+        let [dot30, dot31, dot32, dot33, dot34, dot35, dot36, dot37, dot38, dot39] = series::dots(
+            [
+                (&cos_y0, &w204),
+                (&sin_y0, &y[9]),
+                (&y[9], &w212),
+                (&sin_y0, &y[11]),
+                (&sin_y0, &y[12]),
+                (&sin_y0, &y[13]),
+                (&sin_y0, &y[14]),
+                (&sin_y0, &y[15]),
+                (&sin_y0, &y[16]),
+                (&sin_y0, &y[17]),
+            ],
+            k,
+        );
+        let [dot40, dot41, dot42, dot43, dot44, dot45, dot46, dot47, dot48, dot49] = series::dots(
+            [
+                (&y[9], &w241),
+                (&sin_y0, &w242),
+                (&sin_y0, &w204),
+                (&y[9], &w244),
+                (&cos_y0, &y[11]),
+                (&cos_y0, &y[12]),
+                (&cos_y0, &y[13]),
+                (&cos_y0, &y[14]),
+                (&cos_y0, &y[15]),
+                (&cos_y0, &y[16]),
+            ],
+            k,
+        );
+        let [dot50, dot51, dot52, dot53, dot54, dot55, dot56, dot57, dot58, dot59] = series::dots(
+            [
+                (&cos_y0, &y[17]),
+                (&w253, &w271),
+                (&w241, &w273),
+                (&w188, &w276),
+                (&sin_y0, &w213),
+                (&w212, &w213),
+                (&y[9], &w286),
+                (&cos_y0, &w107),
+                (&cos_y0, &y[10]),
+                (&y[2], &y[9]),
+            ],
+            k,
+        );
+        let [dot60, dot61, dot62, dot63, dot64, dot65, dot66, dot67, dot68, dot69] = series::dots(
+            [
+                (&y[3], &y[9]),
+                (&y[4], &y[9]),
+                (&y[5], &y[9]),
+                (&y[6], &y[9]),
+                (&y[7], &y[9]),
+                (&y[8], &y[9]),
+                (&y[11], &w336),
+                (&y[12], &w360),
+                (&y[13], &w383),
+                (&y[14], &w406),
+            ],
+            k,
+        );
+        let [dot70, dot71, dot72, dot73, dot74, dot75, dot76, dot77, dot78, dot79] = series::dots(
+            [
+                (&y[15], &w429),
+                (&y[16], &w452),
+                (&y[17], &w475),
+                (&y[9], &w271),
+                (&cos_y0, &ug),
+                (&y[9], &w292),
+                (&y[9], &w293),
+                (&y[9], &w294),
+                (&y[9], &w295),
+                (&y[9], &w296),
+            ],
+            k,
+        );
+        let [dot80, dot81, dot82, dot83, dot84, dot85, dot86, dot87, dot88] = series::dots(
+            [
+                (&y[9], &w297),
+                (&y[9], &w298),
+                (&y[9], &w533),
+                (&y[9], &w588),
+                (&y[9], &w637),
+                (&y[9], &w684),
+                (&y[9], &w730),
+                (&y[9], &w775),
+                (&y[9], &w819),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &y[0], &mut d_y0, &mut sin_y0, &mut cos_y0, k);
+        let w23 = series::mul_d(dot2, &ug, &y[2], k);
+        let w24 = series::mul_d(dot3, &ug, &y[3], k);
+        let w25 = series::mul_d(dot4, &ug, &y[4], k);
+        let w26 = series::mul_d(dot5, &ug, &y[5], k);
+        let w27 = series::mul_d(dot6, &ug, &y[6], k);
+        let w28 = series::mul_d(dot7, &ug, &y[7], k);
+        let w29 = series::mul_d(dot8, &ug, &y[8], k);
+        let w63 = ug[k] * w54;
+        let w64 = w23 * w52;
+        let w65 = w24 * w49;
+        let w66 = w25 * w46;
+        let w67 = w26 * w43;
+        let w68 = w27 * w40;
+        let w69 = w28 * w37;
+        let w70 = w29 * w34;
+        let w71 = w63 - w64;
+        let w72 = w71 - w65;
+        let w73 = w72 - w66;
+        let w74 = w73 - w67;
+        let w75 = w74 - w68;
+        let w76 = w75 - w69;
+        let w77 = w76 - w70;
+        w78[k] = w77 - at0(k, w62);
+        let w79 = series::mul_d(dot9, &sin_y0, &w78, k);
+        w107[k] = series::mul_d(dot10, &cos_y0, &y[9], k);
+        let w108 = series::mul_d(dot11, &y[17], &y[10], k);
+        let w109 = series::mul_d(dot12, &y[17], &w107, k);
+        let w112 = series::mul_d(dot13, &y[10], &y[16], k);
+        let w113 = series::mul_d(dot14, &w107, &y[16], k);
+        let w116 = series::mul_d(dot15, &y[10], &y[15], k);
+        let w117 = series::mul_d(dot16, &w107, &y[15], k);
+        let w120 = series::mul_d(dot17, &y[10], &y[14], k);
+        let w121 = series::mul_d(dot18, &w107, &y[14], k);
+        let w124 = series::mul_d(dot19, &y[10], &y[13], k);
+        let w125 = series::mul_d(dot20, &w107, &y[13], k);
+        let w128 = series::mul_d(dot21, &y[10], &y[12], k);
+        let w129 = series::mul_d(dot22, &w107, &y[12], k);
+        let w132 = series::mul_d(dot23, &y[10], &y[11], k);
+        let w133 = series::mul_d(dot24, &w107, &y[11], k);
+        let w142 = ug[k] * w84;
+        let w143 = y[2][k] * w101;
+        let w144 = y[3][k] * w99;
+        let w145 = y[4][k] * w97;
+        let w146 = y[5][k] * w95;
+        let w147 = y[6][k] * w93;
+        let w148 = y[7][k] * w91;
+        let w149 = y[8][k] * w89;
+        let w150 = w34 * w108;
+        let w151 = w109 * w135;
+        let w152 = w37 * w112;
+        let w153 = w113 * w136;
+        let w154 = w40 * w116;
+        let w155 = w117 * w137;
+        let w156 = w43 * w120;
+        let w157 = w121 * w138;
+        let w158 = w46 * w124;
+        let w159 = w125 * w139;
+        let w160 = w49 * w128;
+        let w161 = w129 * w140;
+        let w162 = w52 * w132;
+        let w163 = w133 * w141;
+        let w164 = w143 + w144;
+        let w165 = w145 + w164;
+        let w166 = w146 + w165;
+        let w167 = w147 + w166;
+        let w168 = w148 + w167;
+        let w169 = w149 + w168;
+        let w170 = w150 + w169;
+        let w171 = w151 + w170;
+        let w172 = w152 + w171;
+        let w173 = w153 + w172;
+        let w174 = w154 + w173;
+        let w175 = w155 + w174;
+        let w176 = w156 + w175;
+        let w177 = w157 + w176;
+        let w178 = w158 + w177;
+        let w179 = w159 + w178;
+        let w180 = w160 + w179;
+        let w181 = w161 + w180;
+        let w182 = w162 + w181;
+        let w183 = w163 + w182;
+        let w184 = w183 - w142;
+        w185[k] = w184 - at0(k, w103);
+        let w186 = series::mul_d(dot25, &cos_y0, &w185, k);
+        let w187 = w4 * w107[k];
+        w188[k] = y[10][k] + w187;
+        w189[k] = series::mul_d(dot26, &y[9], &w188, k);
+        let w190 = series::mul_d(dot27, &cos_y0, &w189, k);
+        let w191 = y[2][k] * w52;
+        let w192 = y[3][k] * w49;
+        let w193 = y[4][k] * w46;
+        let w194 = y[5][k] * w43;
+        let w195 = y[6][k] * w40;
+        let w196 = y[7][k] * w37;
+        let w197 = y[8][k] * w34;
+        let w198 = at0(k, w54) - w191;
+        let w199 = w198 - w192;
+        let w200 = w199 - w193;
+        let w201 = w200 - w194;
+        let w202 = w201 - w195;
+        let w203 = w202 - w196;
+        w204[k] = w203 - w197;
+        w205[k] = series::mul_d(dot28, &w189, &w204, k);
+        let w206 = series::mul_d(dot29, &sin_y0, &w205, k);
+        w212[k] = series::mul_d(dot30, &cos_y0, &w204, k);
+        w213[k] = series::mul_d(dot31, &sin_y0, &y[9], k);
+        let w214 = series::mul_d(dot32, &y[9], &w212, k);
+        let w215 = series::mul_d(dot33, &sin_y0, &y[11], k);
+        let w216 = series::mul_d(dot34, &sin_y0, &y[12], k);
+        let w217 = series::mul_d(dot35, &sin_y0, &y[13], k);
+        let w218 = series::mul_d(dot36, &sin_y0, &y[14], k);
+        let w219 = series::mul_d(dot37, &sin_y0, &y[15], k);
+        let w220 = series::mul_d(dot38, &sin_y0, &y[16], k);
+        let w221 = series::mul_d(dot39, &sin_y0, &y[17], k);
+        let w222 = y[10][k] * w210;
+        let w223 = w107[k] * w211;
+        let w224 = w84 * w213[k];
+        let w225 = w52 * w215;
+        let w226 = w49 * w216;
+        let w227 = w46 * w217;
+        let w228 = w43 * w218;
+        let w229 = w40 * w219;
+        let w230 = w37 * w220;
+        let w231 = w34 * w221;
+        let w232 = w222 + w223;
+        let w233 = w224 + w232;
+        let w234 = w225 + w233;
+        let w235 = w226 + w234;
+        let w236 = w227 + w235;
+        let w237 = w228 + w236;
+        let w238 = w229 + w237;
+        let w239 = w230 + w238;
+        let w240 = w231 + w239;
+        w241[k] = w240 - w214;
+        w242[k] = series::mul_d(dot40, &y[9], &w241, k);
+        let w243 = series::mul_d(dot41, &sin_y0, &w242, k);
+        w244[k] = series::mul_d(dot42, &sin_y0, &w204, k);
+        let w245 = series::mul_d(dot43, &y[9], &w244, k);
+        let w246 = series::mul_d(dot44, &cos_y0, &y[11], k);
+        let w247 = series::mul_d(dot45, &cos_y0, &y[12], k);
+        let w248 = series::mul_d(dot46, &cos_y0, &y[13], k);
+        let w249 = series::mul_d(dot47, &cos_y0, &y[14], k);
+        let w250 = series::mul_d(dot48, &cos_y0, &y[15], k);
+        let w251 = series::mul_d(dot49, &cos_y0, &y[16], k);
+        let w252 = series::mul_d(dot50, &cos_y0, &y[17], k);
+        w253[k] = cos_y0[k] * w4;
+        let w254 = w84 * w107[k];
+        let w255 = w211 * w213[k];
+        let w256 = w52 * w246;
+        let w257 = w49 * w247;
+        let w258 = w46 * w248;
+        let w259 = w43 * w249;
+        let w260 = w40 * w250;
+        let w261 = w37 * w251;
+        let w262 = w34 * w252;
+        let w263 = w245 + w254;
+        let w264 = w256 + w263;
+        let w265 = w257 + w264;
+        let w266 = w258 + w265;
+        let w267 = w259 + w266;
+        let w268 = w260 + w267;
+        let w269 = w261 + w268;
+        let w270 = w262 + w269;
+        w271[k] = w270 - w255;
+        let w272 = series::mul_d(dot51, &w253, &w271, k);
+        w273[k] = w4 * sin_y0[k];
+        let w274 = series::mul_d(dot52, &w241, &w273, k);
+        let w275 = cos_y0[k] * w84;
+        w276[k] = w244[k] + w275;
+        let w277 = series::mul_d(dot53, &w188, &w276, k);
+        let w279 = series::mul_d(dot54, &sin_y0, &w213, k);
+        let w280 = series::mul_d(dot55, &w212, &w213, k);
+        let w281 = w278 * w279;
+        let w282 = w4 * w280;
+        let w283 = w272 + w277;
+        let w284 = w282 + w283;
+        let w285 = w284 - w274;
+        w286[k] = w285 - w281;
+        let w287 = series::mul_d(dot56, &y[9], &w286, k);
+        let w289 = series::mul_d(dot57, &cos_y0, &w107, k);
+        let w290 = series::mul_d(dot58, &cos_y0, &y[10], k);
+        w292[k] = series::mul_d(dot59, &y[2], &y[9], k);
+        w293[k] = series::mul_d(dot60, &y[3], &y[9], k);
+        w294[k] = series::mul_d(dot61, &y[4], &y[9], k);
+        w295[k] = series::mul_d(dot62, &y[5], &y[9], k);
+        w296[k] = series::mul_d(dot63, &y[6], &y[9], k);
+        w297[k] = series::mul_d(dot64, &y[7], &y[9], k);
+        w298[k] = series::mul_d(dot65, &y[8], &y[9], k);
+        let w318 = y[9][k] * w317;
+        let w319 = w289 * w291;
+        let w320 = w52 * w290;
+        let w321 = w292[k] * w310;
+        let w322 = w293[k] * w304;
+        let w323 = w294[k] * w304;
+        let w324 = w295[k] * w304;
+        let w325 = w296[k] * w304;
+        let w326 = w297[k] * w304;
+        let w327 = w298[k] * w304;
+        let w328 = w319 + w320;
+        let w329 = w321 + w328;
+        let w330 = w322 + w329;
+        let w331 = w323 + w330;
+        let w332 = w324 + w331;
+        let w333 = w325 + w332;
+        let w334 = w326 + w333;
+        let w335 = w327 + w334;
+        w336[k] = w335 - w318;
+        let w337 = series::mul_d(dot66, &y[11], &w336, k);
+        let w347 = y[9][k] * w346;
+        let w348 = w289 * w339;
+        let w349 = w49 * w290;
+        let w350 = w292[k] * w304;
+        let w351 = w293[k] * w310;
+        let w352 = w348 + w349;
+        let w353 = w350 + w352;
+        let w354 = w351 + w353;
+        let w355 = w323 + w354;
+        let w356 = w324 + w355;
+        let w357 = w325 + w356;
+        let w358 = w326 + w357;
+        let w359 = w327 + w358;
+        w360[k] = w359 - w347;
+        let w361 = series::mul_d(dot67, &y[12], &w360, k);
+        let w371 = y[9][k] * w370;
+        let w372 = w289 * w363;
+        let w373 = w46 * w290;
+        let w374 = w294[k] * w310;
+        let w375 = w372 + w373;
+        let w376 = w350 + w375;
+        let w377 = w322 + w376;
+        let w378 = w374 + w377;
+        let w379 = w324 + w378;
+        let w380 = w325 + w379;
+        let w381 = w326 + w380;
+        let w382 = w327 + w381;
+        w383[k] = w382 - w371;
+        let w384 = series::mul_d(dot68, &y[13], &w383, k);
+        let w394 = y[9][k] * w393;
+        let w395 = w289 * w386;
+        let w396 = w43 * w290;
+        let w397 = w295[k] * w310;
+        let w398 = w395 + w396;
+        let w399 = w350 + w398;
+        let w400 = w322 + w399;
+        let w401 = w323 + w400;
+        let w402 = w397 + w401;
+        let w403 = w325 + w402;
+        let w404 = w326 + w403;
+        let w405 = w327 + w404;
+        w406[k] = w405 - w394;
+        let w407 = series::mul_d(dot69, &y[14], &w406, k);
+        let w417 = y[9][k] * w416;
+        let w418 = w289 * w409;
+        let w419 = w40 * w290;
+        let w420 = w296[k] * w310;
+        let w421 = w418 + w419;
+        let w422 = w350 + w421;
+        let w423 = w322 + w422;
+        let w424 = w323 + w423;
+        let w425 = w324 + w424;
+        let w426 = w420 + w425;
+        let w427 = w326 + w426;
+        let w428 = w327 + w427;
+        w429[k] = w428 - w417;
+        let w430 = series::mul_d(dot70, &y[15], &w429, k);
+        let w440 = y[9][k] * w439;
+        let w441 = w289 * w432;
+        let w442 = w37 * w290;
+        let w443 = w297[k] * w310;
+        let w444 = w441 + w442;
+        let w445 = w350 + w444;
+        let w446 = w322 + w445;
+        let w447 = w323 + w446;
+        let w448 = w324 + w447;
+        let w449 = w325 + w448;
+        let w450 = w443 + w449;
+        let w451 = w327 + w450;
+        w452[k] = w451 - w440;
+        let w453 = series::mul_d(dot71, &y[16], &w452, k);
+        let w463 = y[9][k] * w462;
+        let w464 = w289 * w455;
+        let w465 = w34 * w290;
+        let w466 = w298[k] * w310;
+        let w467 = w464 + w465;
+        let w468 = w350 + w467;
+        let w469 = w322 + w468;
+        let w470 = w323 + w469;
+        let w471 = w324 + w470;
+        let w472 = w325 + w471;
+        let w473 = w326 + w472;
+        let w474 = w466 + w473;
+        w475[k] = w474 - w463;
+        let w476 = series::mul_d(dot72, &y[17], &w475, k);
+        let w477 = cos_y0[k] * w12;
+        let w478 = w84 * w190;
+        let w479 = w4 * w243;
+        let w480 = w186 + w477;
+        let w481 = w478 + w480;
+        let w482 = w206 + w481;
+        let w483 = w482 - w79;
+        let w484 = w483 - w479;
+        let w485 = w484 - w287;
+        let w486 = w485 - w337;
+        let w487 = w486 - w361;
+        let w488 = w487 - w384;
+        let w489 = w488 - w407;
+        let w490 = w489 - w430;
+        let w491 = w490 - w453;
+        let w492 = w491 - w476;
+        let w494 = series::mul_d(dot73, &y[9], &w271, k);
+        let w495 = w34 * w109;
+        let w496 = w37 * w113;
+        let w497 = w40 * w117;
+        let w498 = w43 * w121;
+        let w499 = w46 * w125;
+        let w500 = w49 * w129;
+        let w501 = w52 * w133;
+        let w502 = at0(k, w11) - w495;
+        let w503 = w502 - w496;
+        let w504 = w503 - w497;
+        let w505 = w504 - w498;
+        let w506 = w505 - w499;
+        let w507 = w506 - w500;
+        let w508 = w507 - w501;
+        let w509 = w508 - w494;
+        let w518 = series::mul_d(dot74, &cos_y0, &ug, k);
+        let w519 = series::sq(&y[9], k);
+        let w520 = series::mul_d(dot75, &y[9], &w292, k);
+        let w521 = series::mul_d(dot76, &y[9], &w293, k);
+        let w522 = series::mul_d(dot77, &y[9], &w294, k);
+        let w523 = series::mul_d(dot78, &y[9], &w295, k);
+        let w524 = series::mul_d(dot79, &y[9], &w296, k);
+        let w525 = series::mul_d(dot80, &y[9], &w297, k);
+        let w526 = series::mul_d(dot81, &y[9], &w298, k);
+        let w530 = w279 * w288;
+        let w531 = w288 * w289;
+        let w532 = w320 + w531;
+        w533[k] = w532 - w530;
+        let w534 = series::mul_d(dot82, &y[9], &w533, k);
+        let w542 = sin_y0[k] * w101;
+        let w543 = y[2][k] * w517;
+        let w544 = y[17][k] * w541;
+        let w545 = y[16][k] * w540;
+        let w546 = y[15][k] * w539;
+        let w547 = y[14][k] * w538;
+        let w548 = y[13][k] * w537;
+        let w549 = y[12][k] * w536;
+        let w550 = y[11][k] * w535;
+        let w551 = w52 * w190;
+        let w552 = w52 * w518;
+        let w553 = w519 * w529;
+        let w554 = w520 * w528;
+        let w555 = w301 * w521;
+        let w556 = w301 * w522;
+        let w557 = w301 * w523;
+        let w558 = w301 * w524;
+        let w559 = w301 * w525;
+        let w560 = w301 * w526;
+        let w561 = w542 + w543;
+        let w562 = w551 + w561;
+        let w563 = w554 + w562;
+        let w564 = w555 + w563;
+        let w565 = w556 + w564;
+        let w566 = w557 + w565;
+        let w567 = w558 + w566;
+        let w568 = w559 + w567;
+        let w569 = w560 + w568;
+        let w570 = w569 - w544;
+        let w571 = w570 - w545;
+        let w572 = w571 - w546;
+        let w573 = w572 - w547;
+        let w574 = w573 - w548;
+        let w575 = w574 - w549;
+        let w576 = w575 - w550;
+        let w577 = w576 - w552;
+        let w578 = w577 - w553;
+        let w579 = w578 - w534;
+        let w585 = w279 * w338;
+        let w586 = w289 * w338;
+        let w587 = w349 + w586;
+        w588[k] = w587 - w585;
+        let w589 = series::mul_d(dot83, &y[9], &w588, k);
+        let w596 = sin_y0[k] * w99;
+        let w597 = y[3][k] * w583;
+        let w598 = y[17][k] * w595;
+        let w599 = y[16][k] * w594;
+        let w600 = y[15][k] * w593;
+        let w601 = y[14][k] * w592;
+        let w602 = y[13][k] * w591;
+        let w603 = y[12][k] * w590;
+        let w604 = y[11][k] * w536;
+        let w605 = w49 * w190;
+        let w606 = w49 * w518;
+        let w607 = w519 * w584;
+        let w608 = w301 * w520;
+        let w609 = w521 * w528;
+        let w610 = w596 + w597;
+        let w611 = w605 + w610;
+        let w612 = w608 + w611;
+        let w613 = w609 + w612;
+        let w614 = w556 + w613;
+        let w615 = w557 + w614;
+        let w616 = w558 + w615;
+        let w617 = w559 + w616;
+        let w618 = w560 + w617;
+        let w619 = w618 - w598;
+        let w620 = w619 - w599;
+        let w621 = w620 - w600;
+        let w622 = w621 - w601;
+        let w623 = w622 - w602;
+        let w624 = w623 - w603;
+        let w625 = w624 - w604;
+        let w626 = w625 - w606;
+        let w627 = w626 - w607;
+        let w628 = w627 - w589;
+        let w634 = w279 * w362;
+        let w635 = w289 * w362;
+        let w636 = w373 + w635;
+        w637[k] = w636 - w634;
+        let w638 = series::mul_d(dot84, &y[9], &w637, k);
+        let w644 = sin_y0[k] * w97;
+        let w645 = y[4][k] * w632;
+        let w646 = y[17][k] * w643;
+        let w647 = y[16][k] * w642;
+        let w648 = y[15][k] * w641;
+        let w649 = y[14][k] * w640;
+        let w650 = y[13][k] * w639;
+        let w651 = y[12][k] * w591;
+        let w652 = y[11][k] * w537;
+        let w653 = w46 * w190;
+        let w654 = w46 * w518;
+        let w655 = w519 * w633;
+        let w656 = w522 * w528;
+        let w657 = w644 + w645;
+        let w658 = w653 + w657;
+        let w659 = w608 + w658;
+        let w660 = w555 + w659;
+        let w661 = w656 + w660;
+        let w662 = w557 + w661;
+        let w663 = w558 + w662;
+        let w664 = w559 + w663;
+        let w665 = w560 + w664;
+        let w666 = w665 - w646;
+        let w667 = w666 - w647;
+        let w668 = w667 - w648;
+        let w669 = w668 - w649;
+        let w670 = w669 - w650;
+        let w671 = w670 - w651;
+        let w672 = w671 - w652;
+        let w673 = w672 - w654;
+        let w674 = w673 - w655;
+        let w675 = w674 - w638;
+        let w681 = w279 * w385;
+        let w682 = w289 * w385;
+        let w683 = w396 + w682;
+        w684[k] = w683 - w681;
+        let w685 = series::mul_d(dot85, &y[9], &w684, k);
+        let w690 = sin_y0[k] * w95;
+        let w691 = y[5][k] * w679;
+        let w692 = y[17][k] * w689;
+        let w693 = y[16][k] * w688;
+        let w694 = y[15][k] * w687;
+        let w695 = y[14][k] * w686;
+        let w696 = y[13][k] * w640;
+        let w697 = y[12][k] * w592;
+        let w698 = y[11][k] * w538;
+        let w699 = w43 * w190;
+        let w700 = w43 * w518;
+        let w701 = w519 * w680;
+        let w702 = w523 * w528;
+        let w703 = w690 + w691;
+        let w704 = w699 + w703;
+        let w705 = w608 + w704;
+        let w706 = w555 + w705;
+        let w707 = w556 + w706;
+        let w708 = w702 + w707;
+        let w709 = w558 + w708;
+        let w710 = w559 + w709;
+        let w711 = w560 + w710;
+        let w712 = w711 - w692;
+        let w713 = w712 - w693;
+        let w714 = w713 - w694;
+        let w715 = w714 - w695;
+        let w716 = w715 - w696;
+        let w717 = w716 - w697;
+        let w718 = w717 - w698;
+        let w719 = w718 - w700;
+        let w720 = w719 - w701;
+        let w721 = w720 - w685;
+        let w727 = w279 * w408;
+        let w728 = w289 * w408;
+        let w729 = w419 + w728;
+        w730[k] = w729 - w727;
+        let w731 = series::mul_d(dot86, &y[9], &w730, k);
+        let w735 = sin_y0[k] * w93;
+        let w736 = y[6][k] * w725;
+        let w737 = y[17][k] * w734;
+        let w738 = y[16][k] * w733;
+        let w739 = y[15][k] * w732;
+        let w740 = y[14][k] * w687;
+        let w741 = y[13][k] * w641;
+        let w742 = y[12][k] * w593;
+        let w743 = y[11][k] * w539;
+        let w744 = w40 * w190;
+        let w745 = w40 * w518;
+        let w746 = w519 * w726;
+        let w747 = w524 * w528;
+        let w748 = w735 + w736;
+        let w749 = w744 + w748;
+        let w750 = w608 + w749;
+        let w751 = w555 + w750;
+        let w752 = w556 + w751;
+        let w753 = w557 + w752;
+        let w754 = w747 + w753;
+        let w755 = w559 + w754;
+        let w756 = w560 + w755;
+        let w757 = w756 - w737;
+        let w758 = w757 - w738;
+        let w759 = w758 - w739;
+        let w760 = w759 - w740;
+        let w761 = w760 - w741;
+        let w762 = w761 - w742;
+        let w763 = w762 - w743;
+        let w764 = w763 - w745;
+        let w765 = w764 - w746;
+        let w766 = w765 - w731;
+        let w772 = w279 * w431;
+        let w773 = w289 * w431;
+        let w774 = w442 + w773;
+        w775[k] = w774 - w772;
+        let w776 = series::mul_d(dot87, &y[9], &w775, k);
+        let w779 = sin_y0[k] * w91;
+        let w780 = y[7][k] * w770;
+        let w781 = y[17][k] * w778;
+        let w782 = y[16][k] * w777;
+        let w783 = y[15][k] * w733;
+        let w784 = y[14][k] * w688;
+        let w785 = y[13][k] * w642;
+        let w786 = y[12][k] * w594;
+        let w787 = y[11][k] * w540;
+        let w788 = w37 * w190;
+        let w789 = w37 * w518;
+        let w790 = w519 * w771;
+        let w791 = w525 * w528;
+        let w792 = w779 + w780;
+        let w793 = w788 + w792;
+        let w794 = w608 + w793;
+        let w795 = w555 + w794;
+        let w796 = w556 + w795;
+        let w797 = w557 + w796;
+        let w798 = w558 + w797;
+        let w799 = w791 + w798;
+        let w800 = w560 + w799;
+        let w801 = w800 - w781;
+        let w802 = w801 - w782;
+        let w803 = w802 - w783;
+        let w804 = w803 - w784;
+        let w805 = w804 - w785;
+        let w806 = w805 - w786;
+        let w807 = w806 - w787;
+        let w808 = w807 - w789;
+        let w809 = w808 - w790;
+        let w810 = w809 - w776;
+        let w816 = w279 * w454;
+        let w817 = w289 * w454;
+        let w818 = w465 + w817;
+        w819[k] = w818 - w816;
+        let w820 = series::mul_d(dot88, &y[9], &w819, k);
+        let w822 = sin_y0[k] * w89;
+        let w823 = y[8][k] * w814;
+        let w824 = y[17][k] * w821;
+        let w825 = y[16][k] * w778;
+        let w826 = y[15][k] * w734;
+        let w827 = y[14][k] * w689;
+        let w828 = y[13][k] * w643;
+        let w829 = y[12][k] * w595;
+        let w830 = y[11][k] * w541;
+        let w831 = w34 * w190;
+        let w832 = w34 * w518;
+        let w833 = w519 * w815;
+        let w834 = w526 * w528;
+        let w835 = w822 + w823;
+        let w836 = w831 + w835;
+        let w837 = w608 + w836;
+        let w838 = w555 + w837;
+        let w839 = w556 + w838;
+        let w840 = w557 + w839;
+        let w841 = w558 + w840;
+        let w842 = w559 + w841;
+        let w843 = w834 + w842;
+        let w844 = w843 - w824;
+        let w845 = w844 - w825;
+        let w846 = w845 - w826;
+        let w847 = w846 - w827;
+        let w848 = w847 - w828;
+        let w849 = w848 - w829;
+        let w850 = w849 - w830;
+        let w851 = w850 - w832;
+        let w852 = w851 - w833;
+        let w853 = w852 - w820;
+        [w492, w509, w579, w628, w675, w721, w766, w810, w853]
+    }
+}
+
+/// The first N Taylor coefficients of each output of `free_power` along series inputs.
+#[must_use]
+#[inline(always)]
+pub fn free_power<const N: usize>(y: &[[f64; N]; 18], ug: &[f64; N], s: f64, p: &Params) -> [[f64; N]; 2] {
+    let mut d_y0 = [0.0f64; N];
+    let mut sin_y0 = [0.0f64; N];
+    let mut cos_y0 = [0.0f64; N];
+    let w3: f64 = p[0];
+    let w4: f64 = p[3];
+    let w5: f64 = w3 * w4;
+    let w6: f64 = 0.5;
+    let w7: f64 = p[4];
+    let w8: f64 = w6 * w7;
+    let w9: f64 = w3 * w8;
+    let w10: f64 = w5 + w9;
+    let w19: f64 = s;
+    let w20: f64 = p[1];
+    let w21: f64 = w19 * w20;
+    let w22: f64 = w4 * w21;
+    let w23: f64 = p[5];
+    let w24: f64 = w21 * w23;
+    let w25: f64 = w22 + w24;
+    let w26: f64 = 0.048970751581497045;
+    let w27: f64 = w7 * w26;
+    let w28: f64 = w4 + w27;
+    let w29: f64 = -0.0578745285967165;
+    let w30: f64 = w7 * w29;
+    let w31: f64 = w4 + w30;
+    let w32: f64 = 0.07073542044968367;
+    let w33: f64 = w7 * w32;
+    let w34: f64 = w4 + w33;
+    let w35: f64 = -0.09094901081852429;
+    let w36: f64 = w7 * w35;
+    let w37: f64 = w4 + w36;
+    let w38: f64 = 0.12721264843305286;
+    let w39: f64 = w7 * w38;
+    let w40: f64 = w4 + w39;
+    let w41: f64 = -0.21696794755535964;
+    let w42: f64 = w7 * w41;
+    let w43: f64 = w4 + w42;
+    let w44: f64 = 0.3914958780198129;
+    let w45: f64 = w7 * w44;
+    let w46: f64 = w4 + w45;
+    let w47: f64 = w7 * w21;
+    let w48: f64 = w25 + w47;
+    let mut w62 = [0.0f64; N];
+    let mut w66 = [0.0f64; N];
+    let mut w95 = [0.0f64; N];
+    let w99: f64 = p[9];
+    let w100: f64 = p[10];
+    let w101: f64 = p[11];
+    let w102: f64 = p[12];
+    let w103: f64 = p[13];
+    let w104: f64 = p[14];
+    let w105: f64 = p[15];
+    let mut w118 = [0.0f64; N];
+    let w120: f64 = p[16];
+    let w121: f64 = p[17];
+    let w122: f64 = p[18];
+    let w123: f64 = p[19];
+    let w124: f64 = p[20];
+    let w125: f64 = p[21];
+    let mut w138 = [0.0f64; N];
+    let w140: f64 = p[22];
+    let w141: f64 = p[23];
+    let w142: f64 = p[24];
+    let w143: f64 = p[25];
+    let w144: f64 = p[26];
+    let mut w157 = [0.0f64; N];
+    let w159: f64 = p[27];
+    let w160: f64 = p[28];
+    let w161: f64 = p[29];
+    let w162: f64 = p[30];
+    let mut w175 = [0.0f64; N];
+    let w177: f64 = p[31];
+    let w178: f64 = p[32];
+    let w179: f64 = p[33];
+    let mut w192 = [0.0f64; N];
+    let w194: f64 = p[34];
+    let w195: f64 = p[35];
+    let mut w208 = [0.0f64; N];
+    let w210: f64 = p[36];
+    let mut w223 = [0.0f64; N];
+    let mut out = [[0.0f64; N]; 2];
+    for k in 0..N {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8, dot9] = series::dots(
+            [
+                (&d_y0, &cos_y0),
+                (&d_y0, &sin_y0),
+                (&sin_y0, &w62),
+                (&y[9], &w66),
+                (&cos_y0, &y[11]),
+                (&cos_y0, &y[12]),
+                (&cos_y0, &y[13]),
+                (&cos_y0, &y[14]),
+                (&cos_y0, &y[15]),
+                (&cos_y0, &y[16]),
+            ],
+            k,
+        );
+        let [dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17, dot18] = series::dots(
+            [
+                (&cos_y0, &y[17]),
+                (&ug, &w95),
+                (&y[11], &w118),
+                (&y[12], &w138),
+                (&y[13], &w157),
+                (&y[14], &w175),
+                (&y[15], &w192),
+                (&y[16], &w208),
+                (&y[17], &w223),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &y[0], &mut d_y0, &mut sin_y0, &mut cos_y0, k);
+        let w12 = y[2][k];
+        let w13 = y[3][k];
+        let w14 = y[4][k];
+        let w15 = y[5][k];
+        let w16 = y[6][k];
+        let w17 = y[7][k];
+        let w18 = y[8][k];
+        let w49 = w12 * w46;
+        let w50 = w13 * w43;
+        let w51 = w14 * w40;
+        let w52 = w15 * w37;
+        let w53 = w16 * w34;
+        let w54 = w17 * w31;
+        let w55 = w18 * w28;
+        let w56 = w49 + w50;
+        let w57 = w51 + w56;
+        let w58 = w52 + w57;
+        let w59 = w53 + w58;
+        let w60 = w54 + w59;
+        let w61 = w55 + w60;
+        w62[k] = w61 - at0(k, w48);
+        let w63 = series::mul_d(dot2, &sin_y0, &w62, k);
+        let w65 = cos_y0[k] * w10;
+        w66[k] = w65 - w63;
+        let w67 = series::mul_d(dot3, &y[9], &w66, k);
+        let w69 = series::mul_d(dot4, &cos_y0, &y[11], k);
+        let w71 = series::mul_d(dot5, &cos_y0, &y[12], k);
+        let w73 = series::mul_d(dot6, &cos_y0, &y[13], k);
+        let w75 = series::mul_d(dot7, &cos_y0, &y[14], k);
+        let w77 = series::mul_d(dot8, &cos_y0, &y[15], k);
+        let w79 = series::mul_d(dot9, &cos_y0, &y[16], k);
+        let w81 = series::mul_d(dot10, &cos_y0, &y[17], k);
+        let w82 = w46 * w69;
+        let w83 = w43 * w71;
+        let w84 = w40 * w73;
+        let w85 = w37 * w75;
+        let w86 = w34 * w77;
+        let w87 = w31 * w79;
+        let w88 = w28 * w81;
+        let w89 = w67 + w82;
+        let w90 = w83 + w89;
+        let w91 = w84 + w90;
+        let w92 = w85 + w91;
+        let w93 = w86 + w92;
+        let w94 = w87 + w93;
+        w95[k] = w88 + w94;
+        let w96 = series::mul_d(dot11, &ug, &w95, k);
+        let w97 = -w96;
+        let w106 = y[11][k] * w99;
+        let w107 = y[12][k] * w100;
+        let w108 = y[13][k] * w101;
+        let w109 = y[14][k] * w102;
+        let w110 = y[15][k] * w103;
+        let w111 = y[16][k] * w104;
+        let w112 = y[17][k] * w105;
+        let w113 = w106 + w107;
+        let w114 = w108 + w113;
+        let w115 = w109 + w114;
+        let w116 = w110 + w115;
+        let w117 = w111 + w116;
+        w118[k] = w112 + w117;
+        let w119 = series::mul_d(dot12, &y[11], &w118, k);
+        let w126 = y[11][k] * w100;
+        let w127 = y[12][k] * w120;
+        let w128 = y[13][k] * w121;
+        let w129 = y[14][k] * w122;
+        let w130 = y[15][k] * w123;
+        let w131 = y[16][k] * w124;
+        let w132 = y[17][k] * w125;
+        let w133 = w126 + w127;
+        let w134 = w128 + w133;
+        let w135 = w129 + w134;
+        let w136 = w130 + w135;
+        let w137 = w131 + w136;
+        w138[k] = w132 + w137;
+        let w139 = series::mul_d(dot13, &y[12], &w138, k);
+        let w145 = y[11][k] * w101;
+        let w146 = y[12][k] * w121;
+        let w147 = y[13][k] * w140;
+        let w148 = y[14][k] * w141;
+        let w149 = y[15][k] * w142;
+        let w150 = y[16][k] * w143;
+        let w151 = y[17][k] * w144;
+        let w152 = w145 + w146;
+        let w153 = w147 + w152;
+        let w154 = w148 + w153;
+        let w155 = w149 + w154;
+        let w156 = w150 + w155;
+        w157[k] = w151 + w156;
+        let w158 = series::mul_d(dot14, &y[13], &w157, k);
+        let w163 = y[11][k] * w102;
+        let w164 = y[12][k] * w122;
+        let w165 = y[13][k] * w141;
+        let w166 = y[14][k] * w159;
+        let w167 = y[15][k] * w160;
+        let w168 = y[16][k] * w161;
+        let w169 = y[17][k] * w162;
+        let w170 = w163 + w164;
+        let w171 = w165 + w170;
+        let w172 = w166 + w171;
+        let w173 = w167 + w172;
+        let w174 = w168 + w173;
+        w175[k] = w169 + w174;
+        let w176 = series::mul_d(dot15, &y[14], &w175, k);
+        let w180 = y[11][k] * w103;
+        let w181 = y[12][k] * w123;
+        let w182 = y[13][k] * w142;
+        let w183 = y[14][k] * w160;
+        let w184 = y[15][k] * w177;
+        let w185 = y[16][k] * w178;
+        let w186 = y[17][k] * w179;
+        let w187 = w180 + w181;
+        let w188 = w182 + w187;
+        let w189 = w183 + w188;
+        let w190 = w184 + w189;
+        let w191 = w185 + w190;
+        w192[k] = w186 + w191;
+        let w193 = series::mul_d(dot16, &y[15], &w192, k);
+        let w196 = y[11][k] * w104;
+        let w197 = y[12][k] * w124;
+        let w198 = y[13][k] * w143;
+        let w199 = y[14][k] * w161;
+        let w200 = y[15][k] * w178;
+        let w201 = y[16][k] * w194;
+        let w202 = y[17][k] * w195;
+        let w203 = w196 + w197;
+        let w204 = w198 + w203;
+        let w205 = w199 + w204;
+        let w206 = w200 + w205;
+        let w207 = w201 + w206;
+        w208[k] = w202 + w207;
+        let w209 = series::mul_d(dot17, &y[16], &w208, k);
+        let w211 = y[11][k] * w105;
+        let w212 = y[12][k] * w125;
+        let w213 = y[13][k] * w144;
+        let w214 = y[14][k] * w162;
+        let w215 = y[15][k] * w179;
+        let w216 = y[16][k] * w195;
+        let w217 = y[17][k] * w210;
+        let w218 = w211 + w212;
+        let w219 = w213 + w218;
+        let w220 = w214 + w219;
+        let w221 = w215 + w220;
+        let w222 = w216 + w221;
+        w223[k] = w217 + w222;
+        let w224 = series::mul_d(dot18, &y[17], &w223, k);
+        let w225 = w119 + w139;
+        let w226 = w158 + w225;
+        let w227 = w176 + w226;
+        let w228 = w193 + w227;
+        let w229 = w209 + w228;
+        let w230 = w224 + w229;
+        out[0][k] = w97;
+        out[1][k] = w230;
+    }
+    out
+}

@@ -13100,3 +13100,1827 @@ pub fn power<const N: usize>(x: &[[f64; N]; 18], ug: &[f64; N], s: f64, p: &Para
     }
     out
 }
+
+/// `free_mass_matrix` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn free_mass_matrix<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 10]) -> [f64; 55] {
+    let w0: f64 = s;
+    let w1: f64 = p[1];
+    let w2: f64 = w0 * w1;
+    let mut d_qf0 = [0.0f64; N];
+    let mut sin_qf0 = [0.0f64; N];
+    let mut cos_qf0 = [0.0f64; N];
+    let w5: f64 = 0.5;
+    let w6: f64 = p[4];
+    let w7: f64 = p[3];
+    let w8: f64 = w6 + w7;
+    let w9: f64 = p[5];
+    let w10: f64 = w8 + w9;
+    let w11: f64 = w5 * w10;
+    let w12: f64 = 2.0;
+    let w13: f64 = w2 * w12;
+    let w14: f64 = w11 * w13;
+    let w15: f64 = w2 * w9;
+    let w24: f64 = w2 * w7;
+    let w25: f64 = w15 + w24;
+    let w26: f64 = -0.04244131816301539;
+    let w27: f64 = w6 * w26;
+    let w28: f64 = w7 + w27;
+    let w29: f64 = 0.048970751581497045;
+    let w30: f64 = w6 * w29;
+    let w31: f64 = w7 + w30;
+    let w32: f64 = -0.0578745285967165;
+    let w33: f64 = w6 * w32;
+    let w34: f64 = w7 + w33;
+    let w35: f64 = 0.07073542044968367;
+    let w36: f64 = w6 * w35;
+    let w37: f64 = w7 + w36;
+    let w38: f64 = -0.09094901081852429;
+    let w39: f64 = w6 * w38;
+    let w40: f64 = w7 + w39;
+    let w41: f64 = 0.12721264843305286;
+    let w42: f64 = w6 * w41;
+    let w43: f64 = w7 + w42;
+    let w44: f64 = -0.21696794755535964;
+    let w45: f64 = w6 * w44;
+    let w46: f64 = w7 + w45;
+    let w47: f64 = 0.3914958780198129;
+    let w48: f64 = w6 * w47;
+    let w49: f64 = w7 + w48;
+    let w50: f64 = w2 * w6;
+    let w51: f64 = w25 + w50;
+    let mut w67 = [0.0f64; N];
+    let w70: f64 = p[0];
+    let w71: f64 = w7 * w70;
+    let w72: f64 = w5 * w6;
+    let w73: f64 = w70 * w72;
+    let w74: f64 = w71 + w73;
+    let mut w75 = [0.0f64; N];
+    let mut w79 = [0.0f64; N];
+    let mut w81 = [0.0f64; N];
+    let w83: f64 = p[6];
+    let w84: f64 = w5 * w7;
+    let w85: f64 = w12 * w84;
+    let w86: f64 = w13 * w84;
+    let mut w94 = [0.0f64; N];
+    let mut w110 = [0.0f64; N];
+    let w112: f64 = 2.0 * w70;
+    let w113: f64 = w84 * w112;
+    let w114: f64 = w70 * w113;
+    let w115: f64 = w83 + w114;
+    let w116: f64 = 0.0625;
+    let w117: f64 = w6 * w116;
+    let w118: f64 = w12 * w117;
+    let w120: f64 = w12 * w118;
+    let w128: f64 = 0.08333333333333333;
+    let w129: f64 = w6 * w128;
+    let w130: f64 = w70 * w129;
+    let w131: f64 = w112 * w130;
+    let w132: f64 = w115 + w131;
+    let w133: f64 = 2.0 * w130;
+    let w134: f64 = w70 * w133;
+    let w135: f64 = w132 + w134;
+    let w136: f64 = -0.021220659081507696;
+    let w137: f64 = w6 * w136;
+    let w138: f64 = -w2;
+    let w139: f64 = 2.0 * w138;
+    let w140: f64 = w137 * w139;
+    let w141: f64 = w12 * w137;
+    let w142: f64 = w2 * w141;
+    let w143: f64 = w140 - w142;
+    let w144: f64 = 0.024485375790748522;
+    let w145: f64 = w6 * w144;
+    let w146: f64 = w139 * w145;
+    let w147: f64 = w12 * w145;
+    let w148: f64 = w2 * w147;
+    let w149: f64 = w146 - w148;
+    let w150: f64 = -0.02893726429835825;
+    let w151: f64 = w6 * w150;
+    let w152: f64 = w139 * w151;
+    let w153: f64 = w12 * w151;
+    let w154: f64 = w2 * w153;
+    let w155: f64 = w152 - w154;
+    let w156: f64 = 0.035367710224841836;
+    let w157: f64 = w6 * w156;
+    let w158: f64 = w139 * w157;
+    let w159: f64 = w12 * w157;
+    let w160: f64 = w2 * w159;
+    let w161: f64 = w158 - w160;
+    let w162: f64 = -0.04547450540926214;
+    let w163: f64 = w6 * w162;
+    let w164: f64 = w139 * w163;
+    let w165: f64 = w12 * w163;
+    let w166: f64 = w2 * w165;
+    let w167: f64 = w164 - w166;
+    let w168: f64 = 0.06360632421652643;
+    let w169: f64 = w6 * w168;
+    let w170: f64 = w139 * w169;
+    let w171: f64 = w12 * w169;
+    let w172: f64 = w2 * w171;
+    let w173: f64 = w170 - w172;
+    let w174: f64 = -0.10848397377767982;
+    let w175: f64 = w6 * w174;
+    let w176: f64 = w139 * w175;
+    let w177: f64 = w12 * w175;
+    let w178: f64 = w2 * w177;
+    let w179: f64 = w176 - w178;
+    let w180: f64 = 0.19574793900990645;
+    let w181: f64 = w6 * w180;
+    let w182: f64 = w139 * w181;
+    let w183: f64 = w12 * w181;
+    let w184: f64 = w2 * w183;
+    let w185: f64 = w182 - w184;
+    let w186: f64 = 2.0 * w2;
+    let w187: f64 = w72 * w186;
+    let w188: f64 = w2 * w187;
+    let w189: f64 = w135 + w188;
+    let w226: f64 = w2 * w10;
+    let w231: f64 = w2 * w49;
+    let w233: f64 = 0.1422064359274777;
+    let w234: f64 = w6 * w233;
+    let w235: f64 = w70 * w234;
+    let w236: f64 = 2.0 * w235;
+    let w237: f64 = w71 + w236;
+    let w241: f64 = w2 * w46;
+    let w242: f64 = -0.02269169672159674;
+    let w243: f64 = w6 * w242;
+    let w244: f64 = w70 * w243;
+    let w245: f64 = 2.0 * w244;
+    let w246: f64 = w71 + w245;
+    let w250: f64 = w2 * w43;
+    let w251: f64 = 0.008104093592436109;
+    let w252: f64 = w6 * w251;
+    let w253: f64 = w70 * w252;
+    let w254: f64 = 2.0 * w253;
+    let w255: f64 = w71 + w254;
+    let w259: f64 = w2 * w40;
+    let w260: f64 = -0.004135583755212658;
+    let w261: f64 = w6 * w260;
+    let w262: f64 = w70 * w261;
+    let w263: f64 = 2.0 * w262;
+    let w264: f64 = w71 + w263;
+    let w268: f64 = w2 * w37;
+    let w269: f64 = 0.0025017571076434843;
+    let w270: f64 = w6 * w269;
+    let w271: f64 = w70 * w270;
+    let w272: f64 = 2.0 * w271;
+    let w273: f64 = w71 + w272;
+    let w277: f64 = w2 * w34;
+    let w278: f64 = -0.00167473032028351;
+    let w279: f64 = w6 * w278;
+    let w280: f64 = w70 * w279;
+    let w281: f64 = 2.0 * w280;
+    let w282: f64 = w71 + w281;
+    let w286: f64 = w2 * w31;
+    let w287: f64 = 0.0011990672617215245;
+    let w288: f64 = w6 * w287;
+    let w289: f64 = w70 * w288;
+    let w290: f64 = 2.0 * w289;
+    let w291: f64 = w71 + w290;
+    let w295: f64 = w2 * w28;
+    let w296: f64 = -0.0009006327434963917;
+    let w297: f64 = w6 * w296;
+    let w298: f64 = w70 * w297;
+    let w299: f64 = 2.0 * w298;
+    let w300: f64 = w71 + w299;
+    let w321: f64 = 0.125;
+    let w322: f64 = w6 * w321;
+    let w323: f64 = w7 + w322;
+    let w324: f64 = w322 + w323;
+    move |k: usize, qf: &[[f64; N]; 10]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6] = series::dots(
+            [
+                (&d_qf0, &cos_qf0),
+                (&d_qf0, &sin_qf0),
+                (&cos_qf0, &w67),
+                (&w75, &w79),
+                (&w75, &w81),
+                (&w94, &w110),
+                (&cos_qf0, &sin_qf0),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &qf[0], &mut d_qf0, &mut sin_qf0, &mut cos_qf0, k);
+        let w52 = qf[2][k] * w49;
+        let w53 = qf[3][k] * w46;
+        let w54 = qf[4][k] * w43;
+        let w55 = qf[5][k] * w40;
+        let w56 = qf[6][k] * w37;
+        let w57 = qf[7][k] * w34;
+        let w58 = qf[8][k] * w31;
+        let w59 = qf[9][k] * w28;
+        let w60 = at0(k, w51) - w52;
+        let w61 = w60 - w53;
+        let w62 = w61 - w54;
+        let w63 = w62 - w55;
+        let w64 = w63 - w56;
+        let w65 = w64 - w57;
+        let w66 = w65 - w58;
+        w67[k] = w66 - w59;
+        let w68 = series::mul_d(dot2, &cos_qf0, &w67, k);
+        w75[k] = w2 * cos_qf0[k];
+        let w76 = cos_qf0[k] * w14;
+        let w77 = sin_qf0[k] * w74;
+        let w78 = w76 + w77;
+        w79[k] = w78 - w68;
+        let w80 = series::mul_d(dot3, &w75, &w79, k);
+        w81[k] = w68 - w77;
+        let w82 = series::mul_d(dot4, &w75, &w81, k);
+        let w87 = qf[2][k] + qf[3][k];
+        let w88 = qf[4][k] + w87;
+        let w89 = qf[5][k] + w88;
+        let w90 = qf[6][k] + w89;
+        let w91 = qf[7][k] + w90;
+        let w92 = qf[8][k] + w91;
+        let w93 = qf[9][k] + w92;
+        w94[k] = w93 - at0(k, w2);
+        let w95 = qf[2][k] * w85;
+        let w96 = qf[3][k] * w85;
+        let w97 = qf[4][k] * w85;
+        let w98 = qf[5][k] * w85;
+        let w99 = qf[6][k] * w85;
+        let w100 = qf[7][k] * w85;
+        let w101 = qf[8][k] * w85;
+        let w102 = qf[9][k] * w85;
+        let w103 = w95 + w96;
+        let w104 = w97 + w103;
+        let w105 = w98 + w104;
+        let w106 = w99 + w105;
+        let w107 = w100 + w106;
+        let w108 = w101 + w107;
+        let w109 = w102 + w108;
+        w110[k] = w109 - at0(k, w86);
+        let w111 = series::mul_d(dot5, &w94, &w110, k);
+        let w119 = series::sq(&qf[9], k);
+        let w121 = series::sq(&qf[8], k);
+        let w122 = series::sq(&qf[7], k);
+        let w123 = series::sq(&qf[6], k);
+        let w124 = series::sq(&qf[5], k);
+        let w125 = series::sq(&qf[4], k);
+        let w126 = series::sq(&qf[3], k);
+        let w127 = series::sq(&qf[2], k);
+        let w190 = qf[2][k] * w185;
+        let w191 = qf[3][k] * w179;
+        let w192 = qf[4][k] * w173;
+        let w193 = qf[5][k] * w167;
+        let w194 = qf[6][k] * w161;
+        let w195 = qf[7][k] * w155;
+        let w196 = qf[8][k] * w149;
+        let w197 = qf[9][k] * w143;
+        let w198 = w119 * w120;
+        let w199 = w120 * w121;
+        let w200 = w120 * w122;
+        let w201 = w120 * w123;
+        let w202 = w120 * w124;
+        let w203 = w120 * w125;
+        let w204 = w120 * w126;
+        let w205 = w120 * w127;
+        let w206 = w190 + w191;
+        let w207 = w192 + w206;
+        let w208 = w193 + w207;
+        let w209 = w194 + w208;
+        let w210 = w195 + w209;
+        let w211 = w196 + w210;
+        let w212 = w197 + w211;
+        let w213 = w80 + w212;
+        let w214 = w111 + w213;
+        let w215 = w198 + w214;
+        let w216 = w199 + w215;
+        let w217 = w200 + w216;
+        let w218 = w201 + w217;
+        let w219 = w202 + w218;
+        let w220 = w203 + w219;
+        let w221 = w204 + w220;
+        let w222 = w205 + w221;
+        let w223 = at0(k, w189) + w222;
+        let w224 = w223 - w82;
+        let w227 = cos_qf0[k] * w226;
+        let w228 = w77 + w227;
+        let w229 = w228 - w68;
+        let w232 = series::mul_d(dot6, &cos_qf0, &sin_qf0, k);
+        let w238 = w231 * w232;
+        let w239 = at0(k, w237) + w238;
+        let w247 = w232 * w241;
+        let w248 = at0(k, w246) + w247;
+        let w256 = w232 * w250;
+        let w257 = at0(k, w255) + w256;
+        let w265 = w232 * w259;
+        let w266 = at0(k, w264) + w265;
+        let w274 = w232 * w268;
+        let w275 = at0(k, w273) + w274;
+        let w283 = w232 * w277;
+        let w284 = at0(k, w282) + w283;
+        let w292 = w232 * w286;
+        let w293 = at0(k, w291) + w292;
+        let w301 = w232 * w295;
+        let w302 = at0(k, w300) + w301;
+        let w305 = w49 * sin_qf0[k];
+        let w307 = w46 * sin_qf0[k];
+        let w309 = w43 * sin_qf0[k];
+        let w311 = w40 * sin_qf0[k];
+        let w313 = w37 * sin_qf0[k];
+        let w315 = w34 * sin_qf0[k];
+        let w317 = w31 * sin_qf0[k];
+        let w319 = w28 * sin_qf0[k];
+        [w224, w229, w239, w248, w257, w266, w275, w284, w293, w302, at0(k, w10), w305, w307, w309, w311, w313, w315, w317, w319, at0(k, w324), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w324), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w324), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w324), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w324), at0(k, w7), at0(k, w7), at0(k, w7), at0(k, w324), at0(k, w7), at0(k, w7), at0(k, w324), at0(k, w7), at0(k, w324)]
+    }
+}
+
+/// `free_forcing` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn free_forcing<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 20], &[f64; N]) -> [f64; 10] {
+    let mut d_y0 = [0.0f64; N];
+    let mut sin_y0 = [0.0f64; N];
+    let mut cos_y0 = [0.0f64; N];
+    let w2: f64 = s;
+    let w3: f64 = p[1];
+    let w4: f64 = w2 * w3;
+    let w5: f64 = p[4];
+    let w6: f64 = p[3];
+    let w7: f64 = w5 + w6;
+    let w8: f64 = p[5];
+    let w9: f64 = w7 + w8;
+    let w10: f64 = p[8];
+    let w11: f64 = w9 * w10;
+    let w12: f64 = w4 * w11;
+    let w15: f64 = w4 * w8;
+    let w32: f64 = w4 * w6;
+    let w33: f64 = w15 + w32;
+    let w34: f64 = -0.04244131816301539;
+    let w35: f64 = w5 * w34;
+    let w36: f64 = w6 + w35;
+    let w37: f64 = 0.048970751581497045;
+    let w38: f64 = w5 * w37;
+    let w39: f64 = w6 + w38;
+    let w40: f64 = -0.0578745285967165;
+    let w41: f64 = w5 * w40;
+    let w42: f64 = w6 + w41;
+    let w43: f64 = 0.07073542044968367;
+    let w44: f64 = w5 * w43;
+    let w45: f64 = w6 + w44;
+    let w46: f64 = -0.09094901081852429;
+    let w47: f64 = w5 * w46;
+    let w48: f64 = w6 + w47;
+    let w49: f64 = 0.12721264843305286;
+    let w50: f64 = w5 * w49;
+    let w51: f64 = w6 + w50;
+    let w52: f64 = -0.21696794755535964;
+    let w53: f64 = w5 * w52;
+    let w54: f64 = w6 + w53;
+    let w55: f64 = 0.3914958780198129;
+    let w56: f64 = w5 * w55;
+    let w57: f64 = w6 + w56;
+    let w58: f64 = w4 * w5;
+    let w59: f64 = w33 + w58;
+    let w60: f64 = p[0];
+    let w61: f64 = w6 * w10;
+    let w62: f64 = w60 * w61;
+    let w63: f64 = 0.5;
+    let w64: f64 = w5 * w10;
+    let w65: f64 = w63 * w64;
+    let w66: f64 = w60 * w65;
+    let w67: f64 = w62 + w66;
+    let mut w85 = [0.0f64; N];
+    let w87: f64 = w4 * w61;
+    let w88: f64 = w6 * w60;
+    let w89: f64 = w5 * w63;
+    let w90: f64 = w60 * w89;
+    let w91: f64 = w88 + w90;
+    let w92: f64 = w8 * w10;
+    let w93: f64 = w4 * w92;
+    let w94: f64 = w87 + w93;
+    let w95: f64 = w34 * w64;
+    let w96: f64 = w61 + w95;
+    let w97: f64 = w37 * w64;
+    let w98: f64 = w61 + w97;
+    let w99: f64 = w40 * w64;
+    let w100: f64 = w61 + w99;
+    let w101: f64 = w43 * w64;
+    let w102: f64 = w61 + w101;
+    let w103: f64 = w46 * w64;
+    let w104: f64 = w61 + w103;
+    let w105: f64 = w49 * w64;
+    let w106: f64 = w61 + w105;
+    let w107: f64 = w52 * w64;
+    let w108: f64 = w61 + w107;
+    let w109: f64 = w55 * w64;
+    let w110: f64 = w61 + w109;
+    let w111: f64 = w4 * w64;
+    let w112: f64 = w94 + w111;
+    let mut w116 = [0.0f64; N];
+    let w119: f64 = w4 * w35;
+    let w123: f64 = w4 * w38;
+    let w127: f64 = w4 * w41;
+    let w131: f64 = w4 * w44;
+    let w135: f64 = w4 * w47;
+    let w139: f64 = w4 * w50;
+    let w143: f64 = w4 * w53;
+    let w147: f64 = w4 * w56;
+    let w148: f64 = w32 + w119;
+    let w149: f64 = w32 + w123;
+    let w150: f64 = w32 + w127;
+    let w151: f64 = w32 + w131;
+    let w152: f64 = w32 + w135;
+    let w153: f64 = w32 + w139;
+    let w154: f64 = w32 + w143;
+    let w155: f64 = w32 + w147;
+    let mut w205 = [0.0f64; N];
+    let mut w208 = [0.0f64; N];
+    let mut w209 = [0.0f64; N];
+    let mut w226 = [0.0f64; N];
+    let mut w227 = [0.0f64; N];
+    let w229: f64 = 2.0;
+    let w230: f64 = w4 * w229;
+    let w231: f64 = w9 * w63;
+    let w232: f64 = w229 * w231;
+    let w233: f64 = w230 * w231;
+    let mut w234 = [0.0f64; N];
+    let mut w235 = [0.0f64; N];
+    let mut w266 = [0.0f64; N];
+    let mut w267 = [0.0f64; N];
+    let mut w269 = [0.0f64; N];
+    let mut w279 = [0.0f64; N];
+    let mut w299 = [0.0f64; N];
+    let mut w301 = [0.0f64; N];
+    let mut w304 = [0.0f64; N];
+    let w306: f64 = w4 * w91;
+    let mut w314 = [0.0f64; N];
+    let w316: f64 = w4 * w57;
+    let w319: f64 = w229 * w316;
+    let mut w320 = [0.0f64; N];
+    let mut w321 = [0.0f64; N];
+    let mut w322 = [0.0f64; N];
+    let mut w323 = [0.0f64; N];
+    let mut w324 = [0.0f64; N];
+    let mut w325 = [0.0f64; N];
+    let mut w326 = [0.0f64; N];
+    let mut w327 = [0.0f64; N];
+    let w328: f64 = w6 * w63;
+    let w329: f64 = w230 * w328;
+    let w330: f64 = w229 * w328;
+    let w331: f64 = w4 * w330;
+    let w332: f64 = w329 + w331;
+    let w333: f64 = w229 * w330;
+    let w334: f64 = 0.0625;
+    let w335: f64 = w5 * w334;
+    let w336: f64 = w229 * w335;
+    let w337: f64 = w229 * w336;
+    let w338: f64 = w333 + w337;
+    let w339: f64 = w337 + w338;
+    let w340: f64 = 0.19574793900990645;
+    let w341: f64 = w5 * w340;
+    let w342: f64 = w230 * w341;
+    let w343: f64 = w332 + w342;
+    let w344: f64 = w229 * w341;
+    let w345: f64 = w4 * w344;
+    let w346: f64 = w343 + w345;
+    let mut w367 = [0.0f64; N];
+    let w369: f64 = w4 * w54;
+    let w370: f64 = w229 * w369;
+    let w371: f64 = -0.10848397377767982;
+    let w372: f64 = w5 * w371;
+    let w373: f64 = w230 * w372;
+    let w374: f64 = w332 + w373;
+    let w375: f64 = w229 * w372;
+    let w376: f64 = w4 * w375;
+    let w377: f64 = w374 + w376;
+    let mut w392 = [0.0f64; N];
+    let w394: f64 = w4 * w51;
+    let w395: f64 = w229 * w394;
+    let w396: f64 = 0.06360632421652643;
+    let w397: f64 = w5 * w396;
+    let w398: f64 = w230 * w397;
+    let w399: f64 = w332 + w398;
+    let w400: f64 = w229 * w397;
+    let w401: f64 = w4 * w400;
+    let w402: f64 = w399 + w401;
+    let mut w416 = [0.0f64; N];
+    let w418: f64 = w4 * w48;
+    let w419: f64 = w229 * w418;
+    let w420: f64 = -0.04547450540926214;
+    let w421: f64 = w5 * w420;
+    let w422: f64 = w230 * w421;
+    let w423: f64 = w332 + w422;
+    let w424: f64 = w229 * w421;
+    let w425: f64 = w4 * w424;
+    let w426: f64 = w423 + w425;
+    let mut w440 = [0.0f64; N];
+    let w442: f64 = w4 * w45;
+    let w443: f64 = w229 * w442;
+    let w444: f64 = 0.035367710224841836;
+    let w445: f64 = w5 * w444;
+    let w446: f64 = w230 * w445;
+    let w447: f64 = w332 + w446;
+    let w448: f64 = w229 * w445;
+    let w449: f64 = w4 * w448;
+    let w450: f64 = w447 + w449;
+    let mut w464 = [0.0f64; N];
+    let w466: f64 = w4 * w42;
+    let w467: f64 = w229 * w466;
+    let w468: f64 = -0.02893726429835825;
+    let w469: f64 = w5 * w468;
+    let w470: f64 = w230 * w469;
+    let w471: f64 = w332 + w470;
+    let w472: f64 = w229 * w469;
+    let w473: f64 = w4 * w472;
+    let w474: f64 = w471 + w473;
+    let mut w488 = [0.0f64; N];
+    let w490: f64 = w4 * w39;
+    let w491: f64 = w229 * w490;
+    let w492: f64 = 0.024485375790748522;
+    let w493: f64 = w5 * w492;
+    let w494: f64 = w230 * w493;
+    let w495: f64 = w332 + w494;
+    let w496: f64 = w229 * w493;
+    let w497: f64 = w4 * w496;
+    let w498: f64 = w495 + w497;
+    let mut w512 = [0.0f64; N];
+    let w514: f64 = w4 * w36;
+    let w515: f64 = w229 * w514;
+    let w516: f64 = -0.021220659081507696;
+    let w517: f64 = w5 * w516;
+    let w518: f64 = w230 * w517;
+    let w519: f64 = w332 + w518;
+    let w520: f64 = w229 * w517;
+    let w521: f64 = w4 * w520;
+    let w522: f64 = w519 + w521;
+    let mut w536 = [0.0f64; N];
+    let w575: f64 = -1.5452954210407739;
+    let w576: f64 = p[2];
+    let w577: f64 = w60 * w60;
+    let w578: f64 = w60 * w577;
+    let w579: f64 = w576 / w578;
+    let w580: f64 = w575 * w579;
+    let w581: f64 = w229 * w580;
+    let w592: f64 = w330 + w336;
+    let w593: f64 = w336 + w592;
+    let w594: f64 = w329 + w342;
+    let mut w598 = [0.0f64; N];
+    let w600: f64 = p[9];
+    let w601: f64 = p[10];
+    let w602: f64 = p[11];
+    let w603: f64 = p[12];
+    let w604: f64 = p[13];
+    let w605: f64 = p[14];
+    let w606: f64 = p[15];
+    let w607: f64 = p[16];
+    let w651: f64 = -60.68985231417138;
+    let w652: f64 = w579 * w651;
+    let w653: f64 = w229 * w652;
+    let w654: f64 = w329 + w373;
+    let mut w658 = [0.0f64; N];
+    let w660: f64 = p[17];
+    let w661: f64 = p[18];
+    let w662: f64 = p[19];
+    let w663: f64 = p[20];
+    let w664: f64 = p[21];
+    let w665: f64 = p[22];
+    let w666: f64 = p[23];
+    let w704: f64 = -475.81828329893136;
+    let w705: f64 = w579 * w704;
+    let w706: f64 = w229 * w705;
+    let w707: f64 = w329 + w398;
+    let mut w711 = [0.0f64; N];
+    let w713: f64 = p[24];
+    let w714: f64 = p[25];
+    let w715: f64 = p[26];
+    let w716: f64 = p[27];
+    let w717: f64 = p[28];
+    let w718: f64 = p[29];
+    let w755: f64 = -1827.1591631398476;
+    let w756: f64 = w579 * w755;
+    let w757: f64 = w229 * w756;
+    let w758: f64 = w329 + w422;
+    let mut w762 = [0.0f64; N];
+    let w764: f64 = p[30];
+    let w765: f64 = p[31];
+    let w766: f64 = p[32];
+    let w767: f64 = p[33];
+    let w768: f64 = p[34];
+    let w805: f64 = -4992.978972313684;
+    let w806: f64 = w579 * w805;
+    let w807: f64 = w229 * w806;
+    let w808: f64 = w329 + w446;
+    let mut w812 = [0.0f64; N];
+    let w814: f64 = p[35];
+    let w815: f64 = p[36];
+    let w816: f64 = p[37];
+    let w817: f64 = p[38];
+    let w854: f64 = -11141.925633927905;
+    let w855: f64 = w579 * w854;
+    let w856: f64 = w229 * w855;
+    let w857: f64 = w329 + w470;
+    let mut w861 = [0.0f64; N];
+    let w863: f64 = p[39];
+    let w864: f64 = p[40];
+    let w865: f64 = p[41];
+    let w902: f64 = -21735.164457013216;
+    let w903: f64 = w579 * w902;
+    let w904: f64 = w229 * w903;
+    let w905: f64 = w329 + w494;
+    let mut w909 = [0.0f64; N];
+    let w911: f64 = p[42];
+    let w912: f64 = p[43];
+    let w949: f64 = -38526.0565117064;
+    let w950: f64 = w579 * w949;
+    let w951: f64 = w229 * w950;
+    let w952: f64 = w329 + w518;
+    let mut w956 = [0.0f64; N];
+    let w958: f64 = p[44];
+    move |k: usize, y: &[[f64; N]; 20], ug: &[f64; N]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8, dot9] = series::dots(
+            [
+                (&d_y0, &cos_y0),
+                (&d_y0, &sin_y0),
+                (&ug, &y[2]),
+                (&ug, &y[3]),
+                (&ug, &y[4]),
+                (&ug, &y[5]),
+                (&ug, &y[6]),
+                (&ug, &y[7]),
+                (&ug, &y[8]),
+                (&ug, &y[9]),
+            ],
+            k,
+        );
+        let [dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17, dot18, dot19] = series::dots(
+            [
+                (&sin_y0, &w85),
+                (&cos_y0, &y[10]),
+                (&y[19], &y[11]),
+                (&y[19], &w116),
+                (&y[11], &y[18]),
+                (&w116, &y[18]),
+                (&y[11], &y[17]),
+                (&w116, &y[17]),
+                (&y[11], &y[16]),
+                (&w116, &y[16]),
+            ],
+            k,
+        );
+        let [dot20, dot21, dot22, dot23, dot24, dot25, dot26, dot27, dot28, dot29] = series::dots(
+            [
+                (&y[11], &y[15]),
+                (&w116, &y[15]),
+                (&y[11], &y[14]),
+                (&w116, &y[14]),
+                (&y[11], &y[13]),
+                (&w116, &y[13]),
+                (&y[11], &y[12]),
+                (&w116, &y[12]),
+                (&cos_y0, &w205),
+                (&y[10], &w208),
+            ],
+            k,
+        );
+        let [dot30, dot31, dot32, dot33, dot34, dot35, dot36, dot37, dot38, dot39] = series::dots(
+            [
+                (&cos_y0, &w209),
+                (&w209, &w226),
+                (&sin_y0, &w227),
+                (&cos_y0, &w226),
+                (&sin_y0, &y[10]),
+                (&y[10], &w234),
+                (&sin_y0, &y[12]),
+                (&sin_y0, &y[13]),
+                (&sin_y0, &y[14]),
+                (&sin_y0, &y[15]),
+            ],
+            k,
+        );
+        let [dot40, dot41, dot42, dot43, dot44, dot45, dot46, dot47, dot48, dot49] = series::dots(
+            [
+                (&sin_y0, &y[16]),
+                (&sin_y0, &y[17]),
+                (&sin_y0, &y[18]),
+                (&sin_y0, &y[19]),
+                (&y[10], &w266),
+                (&sin_y0, &w267),
+                (&sin_y0, &w226),
+                (&y[10], &w269),
+                (&cos_y0, &y[12]),
+                (&cos_y0, &y[13]),
+            ],
+            k,
+        );
+        let [dot50, dot51, dot52, dot53, dot54, dot55, dot56, dot57, dot58, dot59] = series::dots(
+            [
+                (&cos_y0, &y[14]),
+                (&cos_y0, &y[15]),
+                (&cos_y0, &y[16]),
+                (&cos_y0, &y[17]),
+                (&cos_y0, &y[18]),
+                (&cos_y0, &y[19]),
+                (&w279, &w299),
+                (&w266, &w301),
+                (&w208, &w304),
+                (&sin_y0, &w235),
+            ],
+            k,
+        );
+        let [dot60, dot61, dot62, dot63, dot64, dot65, dot66, dot67, dot68, dot69] = series::dots(
+            [
+                (&w234, &w235),
+                (&y[10], &w314),
+                (&cos_y0, &w116),
+                (&cos_y0, &y[11]),
+                (&y[2], &y[10]),
+                (&y[3], &y[10]),
+                (&y[4], &y[10]),
+                (&y[5], &y[10]),
+                (&y[6], &y[10]),
+                (&y[7], &y[10]),
+            ],
+            k,
+        );
+        let [dot70, dot71, dot72, dot73, dot74, dot75, dot76, dot77, dot78, dot79] = series::dots(
+            [
+                (&y[8], &y[10]),
+                (&y[9], &y[10]),
+                (&y[12], &w367),
+                (&y[13], &w392),
+                (&y[14], &w416),
+                (&y[15], &w440),
+                (&y[16], &w464),
+                (&y[17], &w488),
+                (&y[18], &w512),
+                (&y[19], &w536),
+            ],
+            k,
+        );
+        let [dot80, dot81, dot82, dot83, dot84, dot85, dot86, dot87, dot88, dot89] = series::dots(
+            [
+                (&y[10], &w299),
+                (&cos_y0, &ug),
+                (&y[10], &w320),
+                (&y[10], &w321),
+                (&y[10], &w322),
+                (&y[10], &w323),
+                (&y[10], &w324),
+                (&y[10], &w325),
+                (&y[10], &w326),
+                (&y[10], &w327),
+            ],
+            k,
+        );
+        let [dot90, dot91, dot92, dot93, dot94, dot95, dot96, dot97] = series::dots(
+            [
+                (&y[10], &w598),
+                (&y[10], &w658),
+                (&y[10], &w711),
+                (&y[10], &w762),
+                (&y[10], &w812),
+                (&y[10], &w861),
+                (&y[10], &w909),
+                (&y[10], &w956),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &y[0], &mut d_y0, &mut sin_y0, &mut cos_y0, k);
+        let w24 = series::mul_d(dot2, &ug, &y[2], k);
+        let w25 = series::mul_d(dot3, &ug, &y[3], k);
+        let w26 = series::mul_d(dot4, &ug, &y[4], k);
+        let w27 = series::mul_d(dot5, &ug, &y[5], k);
+        let w28 = series::mul_d(dot6, &ug, &y[6], k);
+        let w29 = series::mul_d(dot7, &ug, &y[7], k);
+        let w30 = series::mul_d(dot8, &ug, &y[8], k);
+        let w31 = series::mul_d(dot9, &ug, &y[9], k);
+        let w68 = ug[k] * w59;
+        let w69 = w24 * w57;
+        let w70 = w25 * w54;
+        let w71 = w26 * w51;
+        let w72 = w27 * w48;
+        let w73 = w28 * w45;
+        let w74 = w29 * w42;
+        let w75 = w30 * w39;
+        let w76 = w31 * w36;
+        let w77 = w68 - w69;
+        let w78 = w77 - w70;
+        let w79 = w78 - w71;
+        let w80 = w79 - w72;
+        let w81 = w80 - w73;
+        let w82 = w81 - w74;
+        let w83 = w82 - w75;
+        let w84 = w83 - w76;
+        w85[k] = w84 - at0(k, w67);
+        let w86 = series::mul_d(dot10, &sin_y0, &w85, k);
+        w116[k] = series::mul_d(dot11, &cos_y0, &y[10], k);
+        let w117 = series::mul_d(dot12, &y[19], &y[11], k);
+        let w118 = series::mul_d(dot13, &y[19], &w116, k);
+        let w121 = series::mul_d(dot14, &y[11], &y[18], k);
+        let w122 = series::mul_d(dot15, &w116, &y[18], k);
+        let w125 = series::mul_d(dot16, &y[11], &y[17], k);
+        let w126 = series::mul_d(dot17, &w116, &y[17], k);
+        let w129 = series::mul_d(dot18, &y[11], &y[16], k);
+        let w130 = series::mul_d(dot19, &w116, &y[16], k);
+        let w133 = series::mul_d(dot20, &y[11], &y[15], k);
+        let w134 = series::mul_d(dot21, &w116, &y[15], k);
+        let w137 = series::mul_d(dot22, &y[11], &y[14], k);
+        let w138 = series::mul_d(dot23, &w116, &y[14], k);
+        let w141 = series::mul_d(dot24, &y[11], &y[13], k);
+        let w142 = series::mul_d(dot25, &w116, &y[13], k);
+        let w145 = series::mul_d(dot26, &y[11], &y[12], k);
+        let w146 = series::mul_d(dot27, &w116, &y[12], k);
+        let w156 = ug[k] * w91;
+        let w157 = y[2][k] * w110;
+        let w158 = y[3][k] * w108;
+        let w159 = y[4][k] * w106;
+        let w160 = y[5][k] * w104;
+        let w161 = y[6][k] * w102;
+        let w162 = y[7][k] * w100;
+        let w163 = y[8][k] * w98;
+        let w164 = y[9][k] * w96;
+        let w165 = w36 * w117;
+        let w166 = w118 * w148;
+        let w167 = w39 * w121;
+        let w168 = w122 * w149;
+        let w169 = w42 * w125;
+        let w170 = w126 * w150;
+        let w171 = w45 * w129;
+        let w172 = w130 * w151;
+        let w173 = w48 * w133;
+        let w174 = w134 * w152;
+        let w175 = w51 * w137;
+        let w176 = w138 * w153;
+        let w177 = w54 * w141;
+        let w178 = w142 * w154;
+        let w179 = w57 * w145;
+        let w180 = w146 * w155;
+        let w181 = w157 + w158;
+        let w182 = w159 + w181;
+        let w183 = w160 + w182;
+        let w184 = w161 + w183;
+        let w185 = w162 + w184;
+        let w186 = w163 + w185;
+        let w187 = w164 + w186;
+        let w188 = w165 + w187;
+        let w189 = w166 + w188;
+        let w190 = w167 + w189;
+        let w191 = w168 + w190;
+        let w192 = w169 + w191;
+        let w193 = w170 + w192;
+        let w194 = w171 + w193;
+        let w195 = w172 + w194;
+        let w196 = w173 + w195;
+        let w197 = w174 + w196;
+        let w198 = w175 + w197;
+        let w199 = w176 + w198;
+        let w200 = w177 + w199;
+        let w201 = w178 + w200;
+        let w202 = w179 + w201;
+        let w203 = w180 + w202;
+        let w204 = w203 - w156;
+        w205[k] = w204 - at0(k, w112);
+        let w206 = series::mul_d(dot28, &cos_y0, &w205, k);
+        let w207 = w4 * w116[k];
+        w208[k] = y[11][k] + w207;
+        w209[k] = series::mul_d(dot29, &y[10], &w208, k);
+        let w210 = series::mul_d(dot30, &cos_y0, &w209, k);
+        let w211 = y[2][k] * w57;
+        let w212 = y[3][k] * w54;
+        let w213 = y[4][k] * w51;
+        let w214 = y[5][k] * w48;
+        let w215 = y[6][k] * w45;
+        let w216 = y[7][k] * w42;
+        let w217 = y[8][k] * w39;
+        let w218 = y[9][k] * w36;
+        let w219 = at0(k, w59) - w211;
+        let w220 = w219 - w212;
+        let w221 = w220 - w213;
+        let w222 = w221 - w214;
+        let w223 = w222 - w215;
+        let w224 = w223 - w216;
+        let w225 = w224 - w217;
+        w226[k] = w225 - w218;
+        w227[k] = series::mul_d(dot31, &w209, &w226, k);
+        let w228 = series::mul_d(dot32, &sin_y0, &w227, k);
+        w234[k] = series::mul_d(dot33, &cos_y0, &w226, k);
+        w235[k] = series::mul_d(dot34, &sin_y0, &y[10], k);
+        let w236 = series::mul_d(dot35, &y[10], &w234, k);
+        let w237 = series::mul_d(dot36, &sin_y0, &y[12], k);
+        let w238 = series::mul_d(dot37, &sin_y0, &y[13], k);
+        let w239 = series::mul_d(dot38, &sin_y0, &y[14], k);
+        let w240 = series::mul_d(dot39, &sin_y0, &y[15], k);
+        let w241 = series::mul_d(dot40, &sin_y0, &y[16], k);
+        let w242 = series::mul_d(dot41, &sin_y0, &y[17], k);
+        let w243 = series::mul_d(dot42, &sin_y0, &y[18], k);
+        let w244 = series::mul_d(dot43, &sin_y0, &y[19], k);
+        let w245 = y[11][k] * w232;
+        let w246 = w116[k] * w233;
+        let w247 = w91 * w235[k];
+        let w248 = w57 * w237;
+        let w249 = w54 * w238;
+        let w250 = w51 * w239;
+        let w251 = w48 * w240;
+        let w252 = w45 * w241;
+        let w253 = w42 * w242;
+        let w254 = w39 * w243;
+        let w255 = w36 * w244;
+        let w256 = w245 + w246;
+        let w257 = w247 + w256;
+        let w258 = w248 + w257;
+        let w259 = w249 + w258;
+        let w260 = w250 + w259;
+        let w261 = w251 + w260;
+        let w262 = w252 + w261;
+        let w263 = w253 + w262;
+        let w264 = w254 + w263;
+        let w265 = w255 + w264;
+        w266[k] = w265 - w236;
+        w267[k] = series::mul_d(dot44, &y[10], &w266, k);
+        let w268 = series::mul_d(dot45, &sin_y0, &w267, k);
+        w269[k] = series::mul_d(dot46, &sin_y0, &w226, k);
+        let w270 = series::mul_d(dot47, &y[10], &w269, k);
+        let w271 = series::mul_d(dot48, &cos_y0, &y[12], k);
+        let w272 = series::mul_d(dot49, &cos_y0, &y[13], k);
+        let w273 = series::mul_d(dot50, &cos_y0, &y[14], k);
+        let w274 = series::mul_d(dot51, &cos_y0, &y[15], k);
+        let w275 = series::mul_d(dot52, &cos_y0, &y[16], k);
+        let w276 = series::mul_d(dot53, &cos_y0, &y[17], k);
+        let w277 = series::mul_d(dot54, &cos_y0, &y[18], k);
+        let w278 = series::mul_d(dot55, &cos_y0, &y[19], k);
+        w279[k] = cos_y0[k] * w4;
+        let w280 = w91 * w116[k];
+        let w281 = w233 * w235[k];
+        let w282 = w57 * w271;
+        let w283 = w54 * w272;
+        let w284 = w51 * w273;
+        let w285 = w48 * w274;
+        let w286 = w45 * w275;
+        let w287 = w42 * w276;
+        let w288 = w39 * w277;
+        let w289 = w36 * w278;
+        let w290 = w270 + w280;
+        let w291 = w282 + w290;
+        let w292 = w283 + w291;
+        let w293 = w284 + w292;
+        let w294 = w285 + w293;
+        let w295 = w286 + w294;
+        let w296 = w287 + w295;
+        let w297 = w288 + w296;
+        let w298 = w289 + w297;
+        w299[k] = w298 - w281;
+        let w300 = series::mul_d(dot56, &w279, &w299, k);
+        w301[k] = w4 * sin_y0[k];
+        let w302 = series::mul_d(dot57, &w266, &w301, k);
+        let w303 = cos_y0[k] * w91;
+        w304[k] = w269[k] + w303;
+        let w305 = series::mul_d(dot58, &w208, &w304, k);
+        let w307 = series::mul_d(dot59, &sin_y0, &w235, k);
+        let w308 = series::mul_d(dot60, &w234, &w235, k);
+        let w309 = w306 * w307;
+        let w310 = w4 * w308;
+        let w311 = w300 + w305;
+        let w312 = w310 + w311;
+        let w313 = w312 - w302;
+        w314[k] = w313 - w309;
+        let w315 = series::mul_d(dot61, &y[10], &w314, k);
+        let w317 = series::mul_d(dot62, &cos_y0, &w116, k);
+        let w318 = series::mul_d(dot63, &cos_y0, &y[11], k);
+        w320[k] = series::mul_d(dot64, &y[2], &y[10], k);
+        w321[k] = series::mul_d(dot65, &y[3], &y[10], k);
+        w322[k] = series::mul_d(dot66, &y[4], &y[10], k);
+        w323[k] = series::mul_d(dot67, &y[5], &y[10], k);
+        w324[k] = series::mul_d(dot68, &y[6], &y[10], k);
+        w325[k] = series::mul_d(dot69, &y[7], &y[10], k);
+        w326[k] = series::mul_d(dot70, &y[8], &y[10], k);
+        w327[k] = series::mul_d(dot71, &y[9], &y[10], k);
+        let w347 = y[10][k] * w346;
+        let w348 = w317 * w319;
+        let w349 = w57 * w318;
+        let w350 = w320[k] * w339;
+        let w351 = w321[k] * w333;
+        let w352 = w322[k] * w333;
+        let w353 = w323[k] * w333;
+        let w354 = w324[k] * w333;
+        let w355 = w325[k] * w333;
+        let w356 = w326[k] * w333;
+        let w357 = w327[k] * w333;
+        let w358 = w348 + w349;
+        let w359 = w350 + w358;
+        let w360 = w351 + w359;
+        let w361 = w352 + w360;
+        let w362 = w353 + w361;
+        let w363 = w354 + w362;
+        let w364 = w355 + w363;
+        let w365 = w356 + w364;
+        let w366 = w357 + w365;
+        w367[k] = w366 - w347;
+        let w368 = series::mul_d(dot72, &y[12], &w367, k);
+        let w378 = y[10][k] * w377;
+        let w379 = w317 * w370;
+        let w380 = w54 * w318;
+        let w381 = w320[k] * w333;
+        let w382 = w321[k] * w339;
+        let w383 = w379 + w380;
+        let w384 = w381 + w383;
+        let w385 = w382 + w384;
+        let w386 = w352 + w385;
+        let w387 = w353 + w386;
+        let w388 = w354 + w387;
+        let w389 = w355 + w388;
+        let w390 = w356 + w389;
+        let w391 = w357 + w390;
+        w392[k] = w391 - w378;
+        let w393 = series::mul_d(dot73, &y[13], &w392, k);
+        let w403 = y[10][k] * w402;
+        let w404 = w317 * w395;
+        let w405 = w51 * w318;
+        let w406 = w322[k] * w339;
+        let w407 = w404 + w405;
+        let w408 = w381 + w407;
+        let w409 = w351 + w408;
+        let w410 = w406 + w409;
+        let w411 = w353 + w410;
+        let w412 = w354 + w411;
+        let w413 = w355 + w412;
+        let w414 = w356 + w413;
+        let w415 = w357 + w414;
+        w416[k] = w415 - w403;
+        let w417 = series::mul_d(dot74, &y[14], &w416, k);
+        let w427 = y[10][k] * w426;
+        let w428 = w317 * w419;
+        let w429 = w48 * w318;
+        let w430 = w323[k] * w339;
+        let w431 = w428 + w429;
+        let w432 = w381 + w431;
+        let w433 = w351 + w432;
+        let w434 = w352 + w433;
+        let w435 = w430 + w434;
+        let w436 = w354 + w435;
+        let w437 = w355 + w436;
+        let w438 = w356 + w437;
+        let w439 = w357 + w438;
+        w440[k] = w439 - w427;
+        let w441 = series::mul_d(dot75, &y[15], &w440, k);
+        let w451 = y[10][k] * w450;
+        let w452 = w317 * w443;
+        let w453 = w45 * w318;
+        let w454 = w324[k] * w339;
+        let w455 = w452 + w453;
+        let w456 = w381 + w455;
+        let w457 = w351 + w456;
+        let w458 = w352 + w457;
+        let w459 = w353 + w458;
+        let w460 = w454 + w459;
+        let w461 = w355 + w460;
+        let w462 = w356 + w461;
+        let w463 = w357 + w462;
+        w464[k] = w463 - w451;
+        let w465 = series::mul_d(dot76, &y[16], &w464, k);
+        let w475 = y[10][k] * w474;
+        let w476 = w317 * w467;
+        let w477 = w42 * w318;
+        let w478 = w325[k] * w339;
+        let w479 = w476 + w477;
+        let w480 = w381 + w479;
+        let w481 = w351 + w480;
+        let w482 = w352 + w481;
+        let w483 = w353 + w482;
+        let w484 = w354 + w483;
+        let w485 = w478 + w484;
+        let w486 = w356 + w485;
+        let w487 = w357 + w486;
+        w488[k] = w487 - w475;
+        let w489 = series::mul_d(dot77, &y[17], &w488, k);
+        let w499 = y[10][k] * w498;
+        let w500 = w317 * w491;
+        let w501 = w39 * w318;
+        let w502 = w326[k] * w339;
+        let w503 = w500 + w501;
+        let w504 = w381 + w503;
+        let w505 = w351 + w504;
+        let w506 = w352 + w505;
+        let w507 = w353 + w506;
+        let w508 = w354 + w507;
+        let w509 = w355 + w508;
+        let w510 = w502 + w509;
+        let w511 = w357 + w510;
+        w512[k] = w511 - w499;
+        let w513 = series::mul_d(dot78, &y[18], &w512, k);
+        let w523 = y[10][k] * w522;
+        let w524 = w317 * w515;
+        let w525 = w36 * w318;
+        let w526 = w327[k] * w339;
+        let w527 = w524 + w525;
+        let w528 = w381 + w527;
+        let w529 = w351 + w528;
+        let w530 = w352 + w529;
+        let w531 = w353 + w530;
+        let w532 = w354 + w531;
+        let w533 = w355 + w532;
+        let w534 = w356 + w533;
+        let w535 = w526 + w534;
+        w536[k] = w535 - w523;
+        let w537 = series::mul_d(dot79, &y[19], &w536, k);
+        let w538 = cos_y0[k] * w12;
+        let w539 = w91 * w210;
+        let w540 = w4 * w268;
+        let w541 = w206 + w538;
+        let w542 = w539 + w541;
+        let w543 = w228 + w542;
+        let w544 = w543 - w86;
+        let w545 = w544 - w540;
+        let w546 = w545 - w315;
+        let w547 = w546 - w368;
+        let w548 = w547 - w393;
+        let w549 = w548 - w417;
+        let w550 = w549 - w441;
+        let w551 = w550 - w465;
+        let w552 = w551 - w489;
+        let w553 = w552 - w513;
+        let w554 = w553 - w537;
+        let w556 = series::mul_d(dot80, &y[10], &w299, k);
+        let w557 = w36 * w118;
+        let w558 = w39 * w122;
+        let w559 = w42 * w126;
+        let w560 = w45 * w130;
+        let w561 = w48 * w134;
+        let w562 = w51 * w138;
+        let w563 = w54 * w142;
+        let w564 = w57 * w146;
+        let w565 = at0(k, w11) - w557;
+        let w566 = w565 - w558;
+        let w567 = w566 - w559;
+        let w568 = w567 - w560;
+        let w569 = w568 - w561;
+        let w570 = w569 - w562;
+        let w571 = w570 - w563;
+        let w572 = w571 - w564;
+        let w573 = w572 - w556;
+        let w582 = series::mul_d(dot81, &cos_y0, &ug, k);
+        let w583 = series::sq(&y[10], k);
+        let w584 = series::mul_d(dot82, &y[10], &w320, k);
+        let w585 = series::mul_d(dot83, &y[10], &w321, k);
+        let w586 = series::mul_d(dot84, &y[10], &w322, k);
+        let w587 = series::mul_d(dot85, &y[10], &w323, k);
+        let w588 = series::mul_d(dot86, &y[10], &w324, k);
+        let w589 = series::mul_d(dot87, &y[10], &w325, k);
+        let w590 = series::mul_d(dot88, &y[10], &w326, k);
+        let w591 = series::mul_d(dot89, &y[10], &w327, k);
+        let w595 = w307 * w316;
+        let w596 = w316 * w317;
+        let w597 = w349 + w596;
+        w598[k] = w597 - w595;
+        let w599 = series::mul_d(dot90, &y[10], &w598, k);
+        let w608 = sin_y0[k] * w110;
+        let w609 = y[2][k] * w581;
+        let w610 = y[19][k] * w607;
+        let w611 = y[18][k] * w606;
+        let w612 = y[17][k] * w605;
+        let w613 = y[16][k] * w604;
+        let w614 = y[15][k] * w603;
+        let w615 = y[14][k] * w602;
+        let w616 = y[13][k] * w601;
+        let w617 = y[12][k] * w600;
+        let w618 = w57 * w210;
+        let w619 = w57 * w582;
+        let w620 = w583 * w594;
+        let w621 = w584 * w593;
+        let w622 = w330 * w585;
+        let w623 = w330 * w586;
+        let w624 = w330 * w587;
+        let w625 = w330 * w588;
+        let w626 = w330 * w589;
+        let w627 = w330 * w590;
+        let w628 = w330 * w591;
+        let w629 = w608 + w609;
+        let w630 = w618 + w629;
+        let w631 = w621 + w630;
+        let w632 = w622 + w631;
+        let w633 = w623 + w632;
+        let w634 = w624 + w633;
+        let w635 = w625 + w634;
+        let w636 = w626 + w635;
+        let w637 = w627 + w636;
+        let w638 = w628 + w637;
+        let w639 = w638 - w610;
+        let w640 = w639 - w611;
+        let w641 = w640 - w612;
+        let w642 = w641 - w613;
+        let w643 = w642 - w614;
+        let w644 = w643 - w615;
+        let w645 = w644 - w616;
+        let w646 = w645 - w617;
+        let w647 = w646 - w619;
+        let w648 = w647 - w620;
+        let w649 = w648 - w599;
+        let w655 = w307 * w369;
+        let w656 = w317 * w369;
+        let w657 = w380 + w656;
+        w658[k] = w657 - w655;
+        let w659 = series::mul_d(dot91, &y[10], &w658, k);
+        let w667 = sin_y0[k] * w108;
+        let w668 = y[3][k] * w653;
+        let w669 = y[19][k] * w666;
+        let w670 = y[18][k] * w665;
+        let w671 = y[17][k] * w664;
+        let w672 = y[16][k] * w663;
+        let w673 = y[15][k] * w662;
+        let w674 = y[14][k] * w661;
+        let w675 = y[13][k] * w660;
+        let w676 = y[12][k] * w601;
+        let w677 = w54 * w210;
+        let w678 = w54 * w582;
+        let w679 = w583 * w654;
+        let w680 = w330 * w584;
+        let w681 = w585 * w593;
+        let w682 = w667 + w668;
+        let w683 = w677 + w682;
+        let w684 = w680 + w683;
+        let w685 = w681 + w684;
+        let w686 = w623 + w685;
+        let w687 = w624 + w686;
+        let w688 = w625 + w687;
+        let w689 = w626 + w688;
+        let w690 = w627 + w689;
+        let w691 = w628 + w690;
+        let w692 = w691 - w669;
+        let w693 = w692 - w670;
+        let w694 = w693 - w671;
+        let w695 = w694 - w672;
+        let w696 = w695 - w673;
+        let w697 = w696 - w674;
+        let w698 = w697 - w675;
+        let w699 = w698 - w676;
+        let w700 = w699 - w678;
+        let w701 = w700 - w679;
+        let w702 = w701 - w659;
+        let w708 = w307 * w394;
+        let w709 = w317 * w394;
+        let w710 = w405 + w709;
+        w711[k] = w710 - w708;
+        let w712 = series::mul_d(dot92, &y[10], &w711, k);
+        let w719 = sin_y0[k] * w106;
+        let w720 = y[4][k] * w706;
+        let w721 = y[19][k] * w718;
+        let w722 = y[18][k] * w717;
+        let w723 = y[17][k] * w716;
+        let w724 = y[16][k] * w715;
+        let w725 = y[15][k] * w714;
+        let w726 = y[14][k] * w713;
+        let w727 = y[13][k] * w661;
+        let w728 = y[12][k] * w602;
+        let w729 = w51 * w210;
+        let w730 = w51 * w582;
+        let w731 = w583 * w707;
+        let w732 = w586 * w593;
+        let w733 = w719 + w720;
+        let w734 = w729 + w733;
+        let w735 = w680 + w734;
+        let w736 = w622 + w735;
+        let w737 = w732 + w736;
+        let w738 = w624 + w737;
+        let w739 = w625 + w738;
+        let w740 = w626 + w739;
+        let w741 = w627 + w740;
+        let w742 = w628 + w741;
+        let w743 = w742 - w721;
+        let w744 = w743 - w722;
+        let w745 = w744 - w723;
+        let w746 = w745 - w724;
+        let w747 = w746 - w725;
+        let w748 = w747 - w726;
+        let w749 = w748 - w727;
+        let w750 = w749 - w728;
+        let w751 = w750 - w730;
+        let w752 = w751 - w731;
+        let w753 = w752 - w712;
+        let w759 = w307 * w418;
+        let w760 = w317 * w418;
+        let w761 = w429 + w760;
+        w762[k] = w761 - w759;
+        let w763 = series::mul_d(dot93, &y[10], &w762, k);
+        let w769 = sin_y0[k] * w104;
+        let w770 = y[5][k] * w757;
+        let w771 = y[19][k] * w768;
+        let w772 = y[18][k] * w767;
+        let w773 = y[17][k] * w766;
+        let w774 = y[16][k] * w765;
+        let w775 = y[15][k] * w764;
+        let w776 = y[14][k] * w714;
+        let w777 = y[13][k] * w662;
+        let w778 = y[12][k] * w603;
+        let w779 = w48 * w210;
+        let w780 = w48 * w582;
+        let w781 = w583 * w758;
+        let w782 = w587 * w593;
+        let w783 = w769 + w770;
+        let w784 = w779 + w783;
+        let w785 = w680 + w784;
+        let w786 = w622 + w785;
+        let w787 = w623 + w786;
+        let w788 = w782 + w787;
+        let w789 = w625 + w788;
+        let w790 = w626 + w789;
+        let w791 = w627 + w790;
+        let w792 = w628 + w791;
+        let w793 = w792 - w771;
+        let w794 = w793 - w772;
+        let w795 = w794 - w773;
+        let w796 = w795 - w774;
+        let w797 = w796 - w775;
+        let w798 = w797 - w776;
+        let w799 = w798 - w777;
+        let w800 = w799 - w778;
+        let w801 = w800 - w780;
+        let w802 = w801 - w781;
+        let w803 = w802 - w763;
+        let w809 = w307 * w442;
+        let w810 = w317 * w442;
+        let w811 = w453 + w810;
+        w812[k] = w811 - w809;
+        let w813 = series::mul_d(dot94, &y[10], &w812, k);
+        let w818 = sin_y0[k] * w102;
+        let w819 = y[6][k] * w807;
+        let w820 = y[19][k] * w817;
+        let w821 = y[18][k] * w816;
+        let w822 = y[17][k] * w815;
+        let w823 = y[16][k] * w814;
+        let w824 = y[15][k] * w765;
+        let w825 = y[14][k] * w715;
+        let w826 = y[13][k] * w663;
+        let w827 = y[12][k] * w604;
+        let w828 = w45 * w210;
+        let w829 = w45 * w582;
+        let w830 = w583 * w808;
+        let w831 = w588 * w593;
+        let w832 = w818 + w819;
+        let w833 = w828 + w832;
+        let w834 = w680 + w833;
+        let w835 = w622 + w834;
+        let w836 = w623 + w835;
+        let w837 = w624 + w836;
+        let w838 = w831 + w837;
+        let w839 = w626 + w838;
+        let w840 = w627 + w839;
+        let w841 = w628 + w840;
+        let w842 = w841 - w820;
+        let w843 = w842 - w821;
+        let w844 = w843 - w822;
+        let w845 = w844 - w823;
+        let w846 = w845 - w824;
+        let w847 = w846 - w825;
+        let w848 = w847 - w826;
+        let w849 = w848 - w827;
+        let w850 = w849 - w829;
+        let w851 = w850 - w830;
+        let w852 = w851 - w813;
+        let w858 = w307 * w466;
+        let w859 = w317 * w466;
+        let w860 = w477 + w859;
+        w861[k] = w860 - w858;
+        let w862 = series::mul_d(dot95, &y[10], &w861, k);
+        let w866 = sin_y0[k] * w100;
+        let w867 = y[7][k] * w856;
+        let w868 = y[19][k] * w865;
+        let w869 = y[18][k] * w864;
+        let w870 = y[17][k] * w863;
+        let w871 = y[16][k] * w815;
+        let w872 = y[15][k] * w766;
+        let w873 = y[14][k] * w716;
+        let w874 = y[13][k] * w664;
+        let w875 = y[12][k] * w605;
+        let w876 = w42 * w210;
+        let w877 = w42 * w582;
+        let w878 = w583 * w857;
+        let w879 = w589 * w593;
+        let w880 = w866 + w867;
+        let w881 = w876 + w880;
+        let w882 = w680 + w881;
+        let w883 = w622 + w882;
+        let w884 = w623 + w883;
+        let w885 = w624 + w884;
+        let w886 = w625 + w885;
+        let w887 = w879 + w886;
+        let w888 = w627 + w887;
+        let w889 = w628 + w888;
+        let w890 = w889 - w868;
+        let w891 = w890 - w869;
+        let w892 = w891 - w870;
+        let w893 = w892 - w871;
+        let w894 = w893 - w872;
+        let w895 = w894 - w873;
+        let w896 = w895 - w874;
+        let w897 = w896 - w875;
+        let w898 = w897 - w877;
+        let w899 = w898 - w878;
+        let w900 = w899 - w862;
+        let w906 = w307 * w490;
+        let w907 = w317 * w490;
+        let w908 = w501 + w907;
+        w909[k] = w908 - w906;
+        let w910 = series::mul_d(dot96, &y[10], &w909, k);
+        let w913 = sin_y0[k] * w98;
+        let w914 = y[8][k] * w904;
+        let w915 = y[19][k] * w912;
+        let w916 = y[18][k] * w911;
+        let w917 = y[17][k] * w864;
+        let w918 = y[16][k] * w816;
+        let w919 = y[15][k] * w767;
+        let w920 = y[14][k] * w717;
+        let w921 = y[13][k] * w665;
+        let w922 = y[12][k] * w606;
+        let w923 = w39 * w210;
+        let w924 = w39 * w582;
+        let w925 = w583 * w905;
+        let w926 = w590 * w593;
+        let w927 = w913 + w914;
+        let w928 = w923 + w927;
+        let w929 = w680 + w928;
+        let w930 = w622 + w929;
+        let w931 = w623 + w930;
+        let w932 = w624 + w931;
+        let w933 = w625 + w932;
+        let w934 = w626 + w933;
+        let w935 = w926 + w934;
+        let w936 = w628 + w935;
+        let w937 = w936 - w915;
+        let w938 = w937 - w916;
+        let w939 = w938 - w917;
+        let w940 = w939 - w918;
+        let w941 = w940 - w919;
+        let w942 = w941 - w920;
+        let w943 = w942 - w921;
+        let w944 = w943 - w922;
+        let w945 = w944 - w924;
+        let w946 = w945 - w925;
+        let w947 = w946 - w910;
+        let w953 = w307 * w514;
+        let w954 = w317 * w514;
+        let w955 = w525 + w954;
+        w956[k] = w955 - w953;
+        let w957 = series::mul_d(dot97, &y[10], &w956, k);
+        let w959 = sin_y0[k] * w96;
+        let w960 = y[9][k] * w951;
+        let w961 = y[19][k] * w958;
+        let w962 = y[18][k] * w912;
+        let w963 = y[17][k] * w865;
+        let w964 = y[16][k] * w817;
+        let w965 = y[15][k] * w768;
+        let w966 = y[14][k] * w718;
+        let w967 = y[13][k] * w666;
+        let w968 = y[12][k] * w607;
+        let w969 = w36 * w210;
+        let w970 = w36 * w582;
+        let w971 = w583 * w952;
+        let w972 = w591 * w593;
+        let w973 = w959 + w960;
+        let w974 = w969 + w973;
+        let w975 = w680 + w974;
+        let w976 = w622 + w975;
+        let w977 = w623 + w976;
+        let w978 = w624 + w977;
+        let w979 = w625 + w978;
+        let w980 = w626 + w979;
+        let w981 = w627 + w980;
+        let w982 = w972 + w981;
+        let w983 = w982 - w961;
+        let w984 = w983 - w962;
+        let w985 = w984 - w963;
+        let w986 = w985 - w964;
+        let w987 = w986 - w965;
+        let w988 = w987 - w966;
+        let w989 = w988 - w967;
+        let w990 = w989 - w968;
+        let w991 = w990 - w970;
+        let w992 = w991 - w971;
+        let w993 = w992 - w957;
+        [w554, w573, w649, w702, w753, w803, w852, w900, w947, w993]
+    }
+}
+
+/// The first N Taylor coefficients of each output of `free_power` along series inputs.
+#[must_use]
+#[inline(always)]
+pub fn free_power<const N: usize>(y: &[[f64; N]; 20], ug: &[f64; N], s: f64, p: &Params) -> [[f64; N]; 2] {
+    let mut d_y0 = [0.0f64; N];
+    let mut sin_y0 = [0.0f64; N];
+    let mut cos_y0 = [0.0f64; N];
+    let w3: f64 = p[0];
+    let w4: f64 = p[3];
+    let w5: f64 = w3 * w4;
+    let w6: f64 = 0.5;
+    let w7: f64 = p[4];
+    let w8: f64 = w6 * w7;
+    let w9: f64 = w3 * w8;
+    let w10: f64 = w5 + w9;
+    let w20: f64 = s;
+    let w21: f64 = p[1];
+    let w22: f64 = w20 * w21;
+    let w23: f64 = w4 * w22;
+    let w24: f64 = p[5];
+    let w25: f64 = w22 * w24;
+    let w26: f64 = w23 + w25;
+    let w27: f64 = -0.04244131816301539;
+    let w28: f64 = w7 * w27;
+    let w29: f64 = w4 + w28;
+    let w30: f64 = 0.048970751581497045;
+    let w31: f64 = w7 * w30;
+    let w32: f64 = w4 + w31;
+    let w33: f64 = -0.0578745285967165;
+    let w34: f64 = w7 * w33;
+    let w35: f64 = w4 + w34;
+    let w36: f64 = 0.07073542044968367;
+    let w37: f64 = w7 * w36;
+    let w38: f64 = w4 + w37;
+    let w39: f64 = -0.09094901081852429;
+    let w40: f64 = w7 * w39;
+    let w41: f64 = w4 + w40;
+    let w42: f64 = 0.12721264843305286;
+    let w43: f64 = w7 * w42;
+    let w44: f64 = w4 + w43;
+    let w45: f64 = -0.21696794755535964;
+    let w46: f64 = w7 * w45;
+    let w47: f64 = w4 + w46;
+    let w48: f64 = 0.3914958780198129;
+    let w49: f64 = w7 * w48;
+    let w50: f64 = w4 + w49;
+    let w51: f64 = w7 * w22;
+    let w52: f64 = w26 + w51;
+    let mut w68 = [0.0f64; N];
+    let mut w72 = [0.0f64; N];
+    let mut w105 = [0.0f64; N];
+    let w109: f64 = p[9];
+    let w110: f64 = p[10];
+    let w111: f64 = p[11];
+    let w112: f64 = p[12];
+    let w113: f64 = p[13];
+    let w114: f64 = p[14];
+    let w115: f64 = p[15];
+    let w116: f64 = p[16];
+    let mut w131 = [0.0f64; N];
+    let w133: f64 = p[17];
+    let w134: f64 = p[18];
+    let w135: f64 = p[19];
+    let w136: f64 = p[20];
+    let w137: f64 = p[21];
+    let w138: f64 = p[22];
+    let w139: f64 = p[23];
+    let mut w154 = [0.0f64; N];
+    let w156: f64 = p[24];
+    let w157: f64 = p[25];
+    let w158: f64 = p[26];
+    let w159: f64 = p[27];
+    let w160: f64 = p[28];
+    let w161: f64 = p[29];
+    let mut w176 = [0.0f64; N];
+    let w178: f64 = p[30];
+    let w179: f64 = p[31];
+    let w180: f64 = p[32];
+    let w181: f64 = p[33];
+    let w182: f64 = p[34];
+    let mut w197 = [0.0f64; N];
+    let w199: f64 = p[35];
+    let w200: f64 = p[36];
+    let w201: f64 = p[37];
+    let w202: f64 = p[38];
+    let mut w217 = [0.0f64; N];
+    let w219: f64 = p[39];
+    let w220: f64 = p[40];
+    let w221: f64 = p[41];
+    let mut w236 = [0.0f64; N];
+    let w238: f64 = p[42];
+    let w239: f64 = p[43];
+    let mut w254 = [0.0f64; N];
+    let w256: f64 = p[44];
+    let mut w271 = [0.0f64; N];
+    let mut out = [[0.0f64; N]; 2];
+    for k in 0..N {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6] = series::dots(
+            [
+                (&d_y0, &cos_y0),
+                (&d_y0, &sin_y0),
+                (&sin_y0, &w68),
+                (&y[10], &w72),
+                (&cos_y0, &y[12]),
+                (&cos_y0, &y[13]),
+                (&cos_y0, &y[14]),
+            ],
+            k,
+        );
+        let [dot7, dot8, dot9, dot10, dot11, dot12, dot13] = series::dots(
+            [
+                (&cos_y0, &y[15]),
+                (&cos_y0, &y[16]),
+                (&cos_y0, &y[17]),
+                (&cos_y0, &y[18]),
+                (&cos_y0, &y[19]),
+                (&ug, &w105),
+                (&y[12], &w131),
+            ],
+            k,
+        );
+        let [dot14, dot15, dot16, dot17, dot18, dot19, dot20] = series::dots(
+            [
+                (&y[13], &w154),
+                (&y[14], &w176),
+                (&y[15], &w197),
+                (&y[16], &w217),
+                (&y[17], &w236),
+                (&y[18], &w254),
+                (&y[19], &w271),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &y[0], &mut d_y0, &mut sin_y0, &mut cos_y0, k);
+        let w12 = y[2][k];
+        let w13 = y[3][k];
+        let w14 = y[4][k];
+        let w15 = y[5][k];
+        let w16 = y[6][k];
+        let w17 = y[7][k];
+        let w18 = y[8][k];
+        let w19 = y[9][k];
+        let w53 = w12 * w50;
+        let w54 = w13 * w47;
+        let w55 = w14 * w44;
+        let w56 = w15 * w41;
+        let w57 = w16 * w38;
+        let w58 = w17 * w35;
+        let w59 = w18 * w32;
+        let w60 = w19 * w29;
+        let w61 = w53 + w54;
+        let w62 = w55 + w61;
+        let w63 = w56 + w62;
+        let w64 = w57 + w63;
+        let w65 = w58 + w64;
+        let w66 = w59 + w65;
+        let w67 = w60 + w66;
+        w68[k] = w67 - at0(k, w52);
+        let w69 = series::mul_d(dot2, &sin_y0, &w68, k);
+        let w71 = cos_y0[k] * w10;
+        w72[k] = w71 - w69;
+        let w73 = series::mul_d(dot3, &y[10], &w72, k);
+        let w75 = series::mul_d(dot4, &cos_y0, &y[12], k);
+        let w77 = series::mul_d(dot5, &cos_y0, &y[13], k);
+        let w79 = series::mul_d(dot6, &cos_y0, &y[14], k);
+        let w81 = series::mul_d(dot7, &cos_y0, &y[15], k);
+        let w83 = series::mul_d(dot8, &cos_y0, &y[16], k);
+        let w85 = series::mul_d(dot9, &cos_y0, &y[17], k);
+        let w87 = series::mul_d(dot10, &cos_y0, &y[18], k);
+        let w89 = series::mul_d(dot11, &cos_y0, &y[19], k);
+        let w90 = w50 * w75;
+        let w91 = w47 * w77;
+        let w92 = w44 * w79;
+        let w93 = w41 * w81;
+        let w94 = w38 * w83;
+        let w95 = w35 * w85;
+        let w96 = w32 * w87;
+        let w97 = w29 * w89;
+        let w98 = w73 + w90;
+        let w99 = w91 + w98;
+        let w100 = w92 + w99;
+        let w101 = w93 + w100;
+        let w102 = w94 + w101;
+        let w103 = w95 + w102;
+        let w104 = w96 + w103;
+        w105[k] = w97 + w104;
+        let w106 = series::mul_d(dot12, &ug, &w105, k);
+        let w107 = -w106;
+        let w117 = y[12][k] * w109;
+        let w118 = y[13][k] * w110;
+        let w119 = y[14][k] * w111;
+        let w120 = y[15][k] * w112;
+        let w121 = y[16][k] * w113;
+        let w122 = y[17][k] * w114;
+        let w123 = y[18][k] * w115;
+        let w124 = y[19][k] * w116;
+        let w125 = w117 + w118;
+        let w126 = w119 + w125;
+        let w127 = w120 + w126;
+        let w128 = w121 + w127;
+        let w129 = w122 + w128;
+        let w130 = w123 + w129;
+        w131[k] = w124 + w130;
+        let w132 = series::mul_d(dot13, &y[12], &w131, k);
+        let w140 = y[12][k] * w110;
+        let w141 = y[13][k] * w133;
+        let w142 = y[14][k] * w134;
+        let w143 = y[15][k] * w135;
+        let w144 = y[16][k] * w136;
+        let w145 = y[17][k] * w137;
+        let w146 = y[18][k] * w138;
+        let w147 = y[19][k] * w139;
+        let w148 = w140 + w141;
+        let w149 = w142 + w148;
+        let w150 = w143 + w149;
+        let w151 = w144 + w150;
+        let w152 = w145 + w151;
+        let w153 = w146 + w152;
+        w154[k] = w147 + w153;
+        let w155 = series::mul_d(dot14, &y[13], &w154, k);
+        let w162 = y[12][k] * w111;
+        let w163 = y[13][k] * w134;
+        let w164 = y[14][k] * w156;
+        let w165 = y[15][k] * w157;
+        let w166 = y[16][k] * w158;
+        let w167 = y[17][k] * w159;
+        let w168 = y[18][k] * w160;
+        let w169 = y[19][k] * w161;
+        let w170 = w162 + w163;
+        let w171 = w164 + w170;
+        let w172 = w165 + w171;
+        let w173 = w166 + w172;
+        let w174 = w167 + w173;
+        let w175 = w168 + w174;
+        w176[k] = w169 + w175;
+        let w177 = series::mul_d(dot15, &y[14], &w176, k);
+        let w183 = y[12][k] * w112;
+        let w184 = y[13][k] * w135;
+        let w185 = y[14][k] * w157;
+        let w186 = y[15][k] * w178;
+        let w187 = y[16][k] * w179;
+        let w188 = y[17][k] * w180;
+        let w189 = y[18][k] * w181;
+        let w190 = y[19][k] * w182;
+        let w191 = w183 + w184;
+        let w192 = w185 + w191;
+        let w193 = w186 + w192;
+        let w194 = w187 + w193;
+        let w195 = w188 + w194;
+        let w196 = w189 + w195;
+        w197[k] = w190 + w196;
+        let w198 = series::mul_d(dot16, &y[15], &w197, k);
+        let w203 = y[12][k] * w113;
+        let w204 = y[13][k] * w136;
+        let w205 = y[14][k] * w158;
+        let w206 = y[15][k] * w179;
+        let w207 = y[16][k] * w199;
+        let w208 = y[17][k] * w200;
+        let w209 = y[18][k] * w201;
+        let w210 = y[19][k] * w202;
+        let w211 = w203 + w204;
+        let w212 = w205 + w211;
+        let w213 = w206 + w212;
+        let w214 = w207 + w213;
+        let w215 = w208 + w214;
+        let w216 = w209 + w215;
+        w217[k] = w210 + w216;
+        let w218 = series::mul_d(dot17, &y[16], &w217, k);
+        let w222 = y[12][k] * w114;
+        let w223 = y[13][k] * w137;
+        let w224 = y[14][k] * w159;
+        let w225 = y[15][k] * w180;
+        let w226 = y[16][k] * w200;
+        let w227 = y[17][k] * w219;
+        let w228 = y[18][k] * w220;
+        let w229 = y[19][k] * w221;
+        let w230 = w222 + w223;
+        let w231 = w224 + w230;
+        let w232 = w225 + w231;
+        let w233 = w226 + w232;
+        let w234 = w227 + w233;
+        let w235 = w228 + w234;
+        w236[k] = w229 + w235;
+        let w237 = series::mul_d(dot18, &y[17], &w236, k);
+        let w240 = y[12][k] * w115;
+        let w241 = y[13][k] * w138;
+        let w242 = y[14][k] * w160;
+        let w243 = y[15][k] * w181;
+        let w244 = y[16][k] * w201;
+        let w245 = y[17][k] * w220;
+        let w246 = y[18][k] * w238;
+        let w247 = y[19][k] * w239;
+        let w248 = w240 + w241;
+        let w249 = w242 + w248;
+        let w250 = w243 + w249;
+        let w251 = w244 + w250;
+        let w252 = w245 + w251;
+        let w253 = w246 + w252;
+        w254[k] = w247 + w253;
+        let w255 = series::mul_d(dot19, &y[18], &w254, k);
+        let w257 = y[12][k] * w116;
+        let w258 = y[13][k] * w139;
+        let w259 = y[14][k] * w161;
+        let w260 = y[15][k] * w182;
+        let w261 = y[16][k] * w202;
+        let w262 = y[17][k] * w221;
+        let w263 = y[18][k] * w239;
+        let w264 = y[19][k] * w256;
+        let w265 = w257 + w258;
+        let w266 = w259 + w265;
+        let w267 = w260 + w266;
+        let w268 = w261 + w267;
+        let w269 = w262 + w268;
+        let w270 = w263 + w269;
+        w271[k] = w264 + w270;
+        let w272 = series::mul_d(dot20, &y[19], &w271, k);
+        let w273 = w132 + w155;
+        let w274 = w177 + w273;
+        let w275 = w198 + w274;
+        let w276 = w218 + w275;
+        let w277 = w237 + w276;
+        let w278 = w255 + w277;
+        let w279 = w272 + w278;
+        out[0][k] = w107;
+        out[1][k] = w279;
+    }
+    out
+}

@@ -1512,3 +1512,682 @@ pub fn power<const N: usize>(x: &[[f64; N]; 6], ug: &[f64; N], s: f64, p: &Param
     }
     out
 }
+
+/// `free_mass_matrix` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn free_mass_matrix<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 4]) -> [f64; 10] {
+    let w0: f64 = s;
+    let w1: f64 = p[1];
+    let w2: f64 = w0 * w1;
+    let mut d_qf0 = [0.0f64; N];
+    let mut sin_qf0 = [0.0f64; N];
+    let mut cos_qf0 = [0.0f64; N];
+    let w5: f64 = 0.5;
+    let w6: f64 = p[4];
+    let w7: f64 = p[3];
+    let w8: f64 = w6 + w7;
+    let w9: f64 = p[5];
+    let w10: f64 = w8 + w9;
+    let w11: f64 = w5 * w10;
+    let w12: f64 = 2.0;
+    let w13: f64 = w2 * w12;
+    let w14: f64 = w11 * w13;
+    let w15: f64 = w2 * w9;
+    let w18: f64 = w2 * w7;
+    let w19: f64 = w15 + w18;
+    let w20: f64 = 0.3333333333333333;
+    let w21: f64 = w6 * w20;
+    let w22: f64 = w7 + w21;
+    let w23: f64 = 0.375;
+    let w24: f64 = w6 * w23;
+    let w25: f64 = w7 + w24;
+    let w26: f64 = w2 * w6;
+    let w27: f64 = w19 + w26;
+    let mut w31 = [0.0f64; N];
+    let w34: f64 = p[0];
+    let w35: f64 = w7 * w34;
+    let w36: f64 = w5 * w6;
+    let w37: f64 = w34 * w36;
+    let w38: f64 = w35 + w37;
+    let mut w39 = [0.0f64; N];
+    let mut w43 = [0.0f64; N];
+    let mut w45 = [0.0f64; N];
+    let w47: f64 = p[6];
+    let w48: f64 = w5 * w7;
+    let w49: f64 = w12 * w48;
+    let w50: f64 = w13 * w48;
+    let mut w52 = [0.0f64; N];
+    let mut w56 = [0.0f64; N];
+    let w58: f64 = 2.0 * w34;
+    let w59: f64 = w48 * w58;
+    let w60: f64 = w34 * w59;
+    let w61: f64 = w47 + w60;
+    let w62: f64 = 0.05;
+    let w63: f64 = w6 * w62;
+    let w64: f64 = 0.10833333333333334;
+    let w65: f64 = w6 * w64;
+    let mut w68 = [0.0f64; N];
+    let mut w69 = [0.0f64; N];
+    let w71: f64 = w12 * w65;
+    let w72: f64 = w12 * w63;
+    let mut w75 = [0.0f64; N];
+    let w77: f64 = 0.05892857142857143;
+    let w78: f64 = w6 * w77;
+    let w79: f64 = w12 * w78;
+    let w81: f64 = w12 * w79;
+    let w82: f64 = 0.08333333333333333;
+    let w83: f64 = w6 * w82;
+    let w84: f64 = w34 * w83;
+    let w85: f64 = w58 * w84;
+    let w86: f64 = w61 + w85;
+    let w87: f64 = 2.0 * w84;
+    let w88: f64 = w34 * w87;
+    let w89: f64 = w86 + w88;
+    let w90: f64 = 0.16666666666666666;
+    let w91: f64 = w6 * w90;
+    let w92: f64 = -w2;
+    let w93: f64 = 2.0 * w92;
+    let w94: f64 = w91 * w93;
+    let w95: f64 = w12 * w91;
+    let w96: f64 = w2 * w95;
+    let w97: f64 = w94 - w96;
+    let w98: f64 = 0.1875;
+    let w99: f64 = w6 * w98;
+    let w100: f64 = w93 * w99;
+    let w101: f64 = w12 * w99;
+    let w102: f64 = w2 * w101;
+    let w103: f64 = w100 - w102;
+    let w104: f64 = 2.0 * w2;
+    let w105: f64 = w36 * w104;
+    let w106: f64 = w2 * w105;
+    let w107: f64 = w89 + w106;
+    let w120: f64 = w2 * w10;
+    let w125: f64 = w2 * w25;
+    let w127: f64 = 0.1375;
+    let w128: f64 = w6 * w127;
+    let w129: f64 = w34 * w128;
+    let w130: f64 = 2.0 * w129;
+    let w131: f64 = w35 + w130;
+    let w135: f64 = w2 * w22;
+    let w136: f64 = 0.125;
+    let w137: f64 = w6 * w136;
+    let w138: f64 = w34 * w137;
+    let w139: f64 = 2.0 * w138;
+    let w140: f64 = w35 + w139;
+    let w149: f64 = 0.11785714285714285;
+    let w150: f64 = w6 * w149;
+    let w151: f64 = w7 + w150;
+    let w152: f64 = w150 + w151;
+    let w154: f64 = 0.21666666666666667;
+    let w155: f64 = w6 * w154;
+    let w156: f64 = w7 + w155;
+    let w158: f64 = 0.1;
+    let w159: f64 = w6 * w158;
+    let w160: f64 = w7 + w159;
+    let w161: f64 = w159 + w160;
+    move |k: usize, qf: &[[f64; N]; 4]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_qf0, &cos_qf0),
+                (&d_qf0, &sin_qf0),
+                (&cos_qf0, &w31),
+                (&w39, &w43),
+                (&w39, &w45),
+                (&w52, &w56),
+                (&w68, &w69),
+                (&qf[3], &w75),
+                (&cos_qf0, &sin_qf0),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &qf[0], &mut d_qf0, &mut sin_qf0, &mut cos_qf0, k);
+        let w28 = qf[2][k] * w25;
+        let w29 = qf[3][k] * w22;
+        let w30 = at0(k, w27) - w28;
+        w31[k] = w30 - w29;
+        let w32 = series::mul_d(dot2, &cos_qf0, &w31, k);
+        w39[k] = w2 * cos_qf0[k];
+        let w40 = cos_qf0[k] * w14;
+        let w41 = sin_qf0[k] * w38;
+        let w42 = w40 + w41;
+        w43[k] = w42 - w32;
+        let w44 = series::mul_d(dot3, &w39, &w43, k);
+        w45[k] = w32 - w41;
+        let w46 = series::mul_d(dot4, &w39, &w45, k);
+        let w51 = qf[2][k] + qf[3][k];
+        w52[k] = w51 - at0(k, w2);
+        let w53 = qf[2][k] * w49;
+        let w54 = qf[3][k] * w49;
+        let w55 = w53 + w54;
+        w56[k] = w55 - at0(k, w50);
+        let w57 = series::mul_d(dot5, &w52, &w56, k);
+        let w66 = qf[2][k] * w65;
+        let w67 = qf[3][k] * w63;
+        w68[k] = w66 + w67;
+        w69[k] = w12 * qf[3][k];
+        let w70 = series::mul_d(dot6, &w68, &w69, k);
+        let w73 = qf[2][k] * w71;
+        let w74 = qf[3][k] * w72;
+        w75[k] = w73 + w74;
+        let w76 = series::mul_d(dot7, &qf[3], &w75, k);
+        let w80 = series::sq(&qf[2], k);
+        let w108 = qf[2][k] * w103;
+        let w109 = qf[3][k] * w97;
+        let w110 = w80 * w81;
+        let w111 = w108 + w109;
+        let w112 = w44 + w111;
+        let w113 = w57 + w112;
+        let w114 = w70 + w113;
+        let w115 = w76 + w114;
+        let w116 = w110 + w115;
+        let w117 = at0(k, w107) + w116;
+        let w118 = w117 - w46;
+        let w121 = cos_qf0[k] * w120;
+        let w122 = w41 + w121;
+        let w123 = w122 - w32;
+        let w126 = series::mul_d(dot8, &cos_qf0, &sin_qf0, k);
+        let w132 = w125 * w126;
+        let w133 = at0(k, w131) + w132;
+        let w141 = w126 * w135;
+        let w142 = at0(k, w140) + w141;
+        let w145 = w25 * sin_qf0[k];
+        let w147 = w22 * sin_qf0[k];
+        [w118, w123, w133, w142, at0(k, w10), w145, w147, at0(k, w152), at0(k, w156), at0(k, w161)]
+    }
+}
+
+/// `free_forcing` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn free_forcing<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 8], &[f64; N]) -> [f64; 4] {
+    let mut d_y0 = [0.0f64; N];
+    let mut sin_y0 = [0.0f64; N];
+    let mut cos_y0 = [0.0f64; N];
+    let w2: f64 = s;
+    let w3: f64 = p[1];
+    let w4: f64 = w2 * w3;
+    let w5: f64 = p[4];
+    let w6: f64 = p[3];
+    let w7: f64 = w5 + w6;
+    let w8: f64 = p[5];
+    let w9: f64 = w7 + w8;
+    let w10: f64 = p[8];
+    let w11: f64 = w9 * w10;
+    let w12: f64 = w4 * w11;
+    let w15: f64 = w4 * w8;
+    let w20: f64 = w4 * w6;
+    let w21: f64 = w15 + w20;
+    let w22: f64 = 0.3333333333333333;
+    let w23: f64 = w5 * w22;
+    let w24: f64 = w6 + w23;
+    let w25: f64 = 0.375;
+    let w26: f64 = w5 * w25;
+    let w27: f64 = w6 + w26;
+    let w28: f64 = w4 * w5;
+    let w29: f64 = w21 + w28;
+    let w30: f64 = p[0];
+    let w31: f64 = w6 * w10;
+    let w32: f64 = w30 * w31;
+    let w33: f64 = 0.5;
+    let w34: f64 = w5 * w10;
+    let w35: f64 = w33 * w34;
+    let w36: f64 = w30 * w35;
+    let w37: f64 = w32 + w36;
+    let mut w43 = [0.0f64; N];
+    let w45: f64 = w4 * w31;
+    let w46: f64 = w6 * w30;
+    let w47: f64 = w5 * w33;
+    let w48: f64 = w30 * w47;
+    let w49: f64 = w46 + w48;
+    let w50: f64 = w8 * w10;
+    let w51: f64 = w4 * w50;
+    let w52: f64 = w45 + w51;
+    let w53: f64 = w22 * w34;
+    let w54: f64 = w31 + w53;
+    let w55: f64 = w25 * w34;
+    let w56: f64 = w31 + w55;
+    let w57: f64 = w4 * w34;
+    let w58: f64 = w52 + w57;
+    let mut w62 = [0.0f64; N];
+    let w65: f64 = w4 * w23;
+    let w69: f64 = w4 * w26;
+    let w70: f64 = w20 + w65;
+    let w71: f64 = w20 + w69;
+    let mut w85 = [0.0f64; N];
+    let mut w88 = [0.0f64; N];
+    let mut w89 = [0.0f64; N];
+    let mut w94 = [0.0f64; N];
+    let mut w95 = [0.0f64; N];
+    let w97: f64 = 2.0;
+    let w98: f64 = w4 * w97;
+    let w99: f64 = w9 * w33;
+    let w100: f64 = w97 * w99;
+    let w101: f64 = w98 * w99;
+    let mut w102 = [0.0f64; N];
+    let mut w103 = [0.0f64; N];
+    let mut w116 = [0.0f64; N];
+    let mut w117 = [0.0f64; N];
+    let mut w119 = [0.0f64; N];
+    let mut w123 = [0.0f64; N];
+    let mut w131 = [0.0f64; N];
+    let mut w133 = [0.0f64; N];
+    let mut w136 = [0.0f64; N];
+    let w138: f64 = w4 * w49;
+    let mut w146 = [0.0f64; N];
+    let w148: f64 = w4 * w27;
+    let w151: f64 = w97 * w148;
+    let mut w152 = [0.0f64; N];
+    let mut w153 = [0.0f64; N];
+    let w154: f64 = w6 * w33;
+    let w155: f64 = w98 * w154;
+    let w156: f64 = w97 * w154;
+    let w157: f64 = w4 * w156;
+    let w158: f64 = w155 + w157;
+    let w159: f64 = w97 * w156;
+    let w160: f64 = 0.10833333333333334;
+    let w161: f64 = w5 * w160;
+    let w162: f64 = w97 * w161;
+    let w163: f64 = w159 + w162;
+    let w164: f64 = w162 + w163;
+    let w165: f64 = 0.05892857142857143;
+    let w166: f64 = w5 * w165;
+    let w167: f64 = w97 * w166;
+    let w168: f64 = w97 * w167;
+    let w169: f64 = w159 + w168;
+    let w170: f64 = w168 + w169;
+    let w171: f64 = 0.1875;
+    let w172: f64 = w5 * w171;
+    let w173: f64 = w98 * w172;
+    let w174: f64 = w158 + w173;
+    let w175: f64 = w97 * w172;
+    let w176: f64 = w4 * w175;
+    let w177: f64 = w174 + w176;
+    let mut w186 = [0.0f64; N];
+    let w188: f64 = w4 * w24;
+    let w189: f64 = w97 * w188;
+    let w190: f64 = 0.05;
+    let w191: f64 = w5 * w190;
+    let w192: f64 = w97 * w191;
+    let w193: f64 = w97 * w192;
+    let w194: f64 = w159 + w193;
+    let w195: f64 = w193 + w194;
+    let w196: f64 = 0.16666666666666666;
+    let w197: f64 = w5 * w196;
+    let w198: f64 = w98 * w197;
+    let w199: f64 = w158 + w198;
+    let w200: f64 = w97 * w197;
+    let w201: f64 = w4 * w200;
+    let w202: f64 = w199 + w201;
+    let mut w211 = [0.0f64; N];
+    let w232: f64 = 6.0;
+    let w233: f64 = p[2];
+    let w234: f64 = w30 * w30;
+    let w235: f64 = w30 * w234;
+    let w236: f64 = w233 / w235;
+    let w237: f64 = w232 * w236;
+    let w238: f64 = -0.5;
+    let w239: f64 = w237 * w238;
+    let w241: f64 = -1.5;
+    let w242: f64 = w236 * w241;
+    let w243: f64 = w97 * w242;
+    let w247: f64 = w156 + w162;
+    let w248: f64 = w156 + w167;
+    let w249: f64 = w167 + w248;
+    let w250: f64 = w155 + w173;
+    let mut w254 = [0.0f64; N];
+    let w256: f64 = p[9];
+    let w257: f64 = p[10];
+    let w279: f64 = -2.0;
+    let w280: f64 = w236 * w279;
+    let w281: f64 = w97 * w280;
+    let w282: f64 = w156 + w192;
+    let w283: f64 = w192 + w282;
+    let w284: f64 = w155 + w198;
+    let mut w288 = [0.0f64; N];
+    let w290: f64 = p[11];
+    move |k: usize, y: &[[f64; N]; 8], ug: &[f64; N]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_y0, &cos_y0),
+                (&d_y0, &sin_y0),
+                (&ug, &y[2]),
+                (&ug, &y[3]),
+                (&sin_y0, &w43),
+                (&cos_y0, &y[4]),
+                (&y[7], &y[5]),
+                (&y[7], &w62),
+                (&y[5], &y[6]),
+            ],
+            k,
+        );
+        let [dot9, dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17] = series::dots(
+            [
+                (&w62, &y[6]),
+                (&cos_y0, &w85),
+                (&y[4], &w88),
+                (&cos_y0, &w89),
+                (&w89, &w94),
+                (&sin_y0, &w95),
+                (&cos_y0, &w94),
+                (&sin_y0, &y[4]),
+                (&y[4], &w102),
+            ],
+            k,
+        );
+        let [dot18, dot19, dot20, dot21, dot22, dot23, dot24, dot25, dot26] = series::dots(
+            [
+                (&sin_y0, &y[6]),
+                (&sin_y0, &y[7]),
+                (&y[4], &w116),
+                (&sin_y0, &w117),
+                (&sin_y0, &w94),
+                (&y[4], &w119),
+                (&cos_y0, &y[6]),
+                (&cos_y0, &y[7]),
+                (&w123, &w131),
+            ],
+            k,
+        );
+        let [dot27, dot28, dot29, dot30, dot31, dot32, dot33, dot34, dot35] = series::dots(
+            [
+                (&w116, &w133),
+                (&w88, &w136),
+                (&sin_y0, &w103),
+                (&w102, &w103),
+                (&y[4], &w146),
+                (&cos_y0, &w62),
+                (&cos_y0, &y[5]),
+                (&y[2], &y[4]),
+                (&y[3], &y[4]),
+            ],
+            k,
+        );
+        let [dot36, dot37, dot38, dot39, dot40, dot41, dot42, dot43] = series::dots(
+            [
+                (&y[6], &w186),
+                (&y[7], &w211),
+                (&y[4], &w131),
+                (&cos_y0, &ug),
+                (&y[4], &w152),
+                (&y[4], &w153),
+                (&y[4], &w254),
+                (&y[4], &w288),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &y[0], &mut d_y0, &mut sin_y0, &mut cos_y0, k);
+        let w18 = series::mul_d(dot2, &ug, &y[2], k);
+        let w19 = series::mul_d(dot3, &ug, &y[3], k);
+        let w38 = ug[k] * w29;
+        let w39 = w18 * w27;
+        let w40 = w19 * w24;
+        let w41 = w38 - w39;
+        let w42 = w41 - w40;
+        w43[k] = w42 - at0(k, w37);
+        let w44 = series::mul_d(dot4, &sin_y0, &w43, k);
+        w62[k] = series::mul_d(dot5, &cos_y0, &y[4], k);
+        let w63 = series::mul_d(dot6, &y[7], &y[5], k);
+        let w64 = series::mul_d(dot7, &y[7], &w62, k);
+        let w67 = series::mul_d(dot8, &y[5], &y[6], k);
+        let w68 = series::mul_d(dot9, &w62, &y[6], k);
+        let w72 = ug[k] * w49;
+        let w73 = y[2][k] * w56;
+        let w74 = y[3][k] * w54;
+        let w75 = w24 * w63;
+        let w76 = w64 * w70;
+        let w77 = w27 * w67;
+        let w78 = w68 * w71;
+        let w79 = w73 + w74;
+        let w80 = w75 + w79;
+        let w81 = w76 + w80;
+        let w82 = w77 + w81;
+        let w83 = w78 + w82;
+        let w84 = w83 - w72;
+        w85[k] = w84 - at0(k, w58);
+        let w86 = series::mul_d(dot10, &cos_y0, &w85, k);
+        let w87 = w4 * w62[k];
+        w88[k] = y[5][k] + w87;
+        w89[k] = series::mul_d(dot11, &y[4], &w88, k);
+        let w90 = series::mul_d(dot12, &cos_y0, &w89, k);
+        let w91 = y[2][k] * w27;
+        let w92 = y[3][k] * w24;
+        let w93 = at0(k, w29) - w91;
+        w94[k] = w93 - w92;
+        w95[k] = series::mul_d(dot13, &w89, &w94, k);
+        let w96 = series::mul_d(dot14, &sin_y0, &w95, k);
+        w102[k] = series::mul_d(dot15, &cos_y0, &w94, k);
+        w103[k] = series::mul_d(dot16, &sin_y0, &y[4], k);
+        let w104 = series::mul_d(dot17, &y[4], &w102, k);
+        let w105 = series::mul_d(dot18, &sin_y0, &y[6], k);
+        let w106 = series::mul_d(dot19, &sin_y0, &y[7], k);
+        let w107 = y[5][k] * w100;
+        let w108 = w62[k] * w101;
+        let w109 = w49 * w103[k];
+        let w110 = w27 * w105;
+        let w111 = w24 * w106;
+        let w112 = w107 + w108;
+        let w113 = w109 + w112;
+        let w114 = w110 + w113;
+        let w115 = w111 + w114;
+        w116[k] = w115 - w104;
+        w117[k] = series::mul_d(dot20, &y[4], &w116, k);
+        let w118 = series::mul_d(dot21, &sin_y0, &w117, k);
+        w119[k] = series::mul_d(dot22, &sin_y0, &w94, k);
+        let w120 = series::mul_d(dot23, &y[4], &w119, k);
+        let w121 = series::mul_d(dot24, &cos_y0, &y[6], k);
+        let w122 = series::mul_d(dot25, &cos_y0, &y[7], k);
+        w123[k] = cos_y0[k] * w4;
+        let w124 = w49 * w62[k];
+        let w125 = w101 * w103[k];
+        let w126 = w27 * w121;
+        let w127 = w24 * w122;
+        let w128 = w120 + w124;
+        let w129 = w126 + w128;
+        let w130 = w127 + w129;
+        w131[k] = w130 - w125;
+        let w132 = series::mul_d(dot26, &w123, &w131, k);
+        w133[k] = w4 * sin_y0[k];
+        let w134 = series::mul_d(dot27, &w116, &w133, k);
+        let w135 = cos_y0[k] * w49;
+        w136[k] = w119[k] + w135;
+        let w137 = series::mul_d(dot28, &w88, &w136, k);
+        let w139 = series::mul_d(dot29, &sin_y0, &w103, k);
+        let w140 = series::mul_d(dot30, &w102, &w103, k);
+        let w141 = w138 * w139;
+        let w142 = w4 * w140;
+        let w143 = w132 + w137;
+        let w144 = w142 + w143;
+        let w145 = w144 - w134;
+        w146[k] = w145 - w141;
+        let w147 = series::mul_d(dot31, &y[4], &w146, k);
+        let w149 = series::mul_d(dot32, &cos_y0, &w62, k);
+        let w150 = series::mul_d(dot33, &cos_y0, &y[5], k);
+        w152[k] = series::mul_d(dot34, &y[2], &y[4], k);
+        w153[k] = series::mul_d(dot35, &y[3], &y[4], k);
+        let w178 = y[4][k] * w177;
+        let w179 = w149 * w151;
+        let w180 = w27 * w150;
+        let w181 = w152[k] * w170;
+        let w182 = w153[k] * w164;
+        let w183 = w179 + w180;
+        let w184 = w181 + w183;
+        let w185 = w182 + w184;
+        w186[k] = w185 - w178;
+        let w187 = series::mul_d(dot36, &y[6], &w186, k);
+        let w203 = y[4][k] * w202;
+        let w204 = w149 * w189;
+        let w205 = w24 * w150;
+        let w206 = w152[k] * w164;
+        let w207 = w153[k] * w195;
+        let w208 = w204 + w205;
+        let w209 = w206 + w208;
+        let w210 = w207 + w209;
+        w211[k] = w210 - w203;
+        let w212 = series::mul_d(dot37, &y[7], &w211, k);
+        let w213 = cos_y0[k] * w12;
+        let w214 = w49 * w90;
+        let w215 = w4 * w118;
+        let w216 = w86 + w213;
+        let w217 = w214 + w216;
+        let w218 = w96 + w217;
+        let w219 = w218 - w44;
+        let w220 = w219 - w215;
+        let w221 = w220 - w147;
+        let w222 = w221 - w187;
+        let w223 = w222 - w212;
+        let w225 = series::mul_d(dot38, &y[4], &w131, k);
+        let w226 = w24 * w64;
+        let w227 = w27 * w68;
+        let w228 = at0(k, w11) - w226;
+        let w229 = w228 - w227;
+        let w230 = w229 - w225;
+        let w240 = series::mul_d(dot39, &cos_y0, &ug, k);
+        let w244 = series::sq(&y[4], k);
+        let w245 = series::mul_d(dot40, &y[4], &w152, k);
+        let w246 = series::mul_d(dot41, &y[4], &w153, k);
+        let w251 = w139 * w148;
+        let w252 = w148 * w149;
+        let w253 = w180 + w252;
+        w254[k] = w253 - w251;
+        let w255 = series::mul_d(dot42, &y[4], &w254, k);
+        let w258 = sin_y0[k] * w56;
+        let w259 = y[2][k] * w243;
+        let w260 = y[3][k] * w239;
+        let w261 = y[7][k] * w257;
+        let w262 = y[6][k] * w256;
+        let w263 = w27 * w90;
+        let w264 = w27 * w240;
+        let w265 = w244 * w250;
+        let w266 = w245 * w249;
+        let w267 = w246 * w247;
+        let w268 = w258 + w259;
+        let w269 = w260 + w268;
+        let w270 = w263 + w269;
+        let w271 = w266 + w270;
+        let w272 = w267 + w271;
+        let w273 = w272 - w261;
+        let w274 = w273 - w262;
+        let w275 = w274 - w264;
+        let w276 = w275 - w265;
+        let w277 = w276 - w255;
+        let w285 = w139 * w188;
+        let w286 = w149 * w188;
+        let w287 = w205 + w286;
+        w288[k] = w287 - w285;
+        let w289 = series::mul_d(dot43, &y[4], &w288, k);
+        let w291 = sin_y0[k] * w54;
+        let w292 = y[2][k] * w239;
+        let w293 = y[3][k] * w281;
+        let w294 = y[7][k] * w290;
+        let w295 = y[6][k] * w257;
+        let w296 = w24 * w90;
+        let w297 = w24 * w240;
+        let w298 = w244 * w284;
+        let w299 = w245 * w247;
+        let w300 = w246 * w283;
+        let w301 = w291 + w292;
+        let w302 = w293 + w301;
+        let w303 = w296 + w302;
+        let w304 = w299 + w303;
+        let w305 = w300 + w304;
+        let w306 = w305 - w294;
+        let w307 = w306 - w295;
+        let w308 = w307 - w297;
+        let w309 = w308 - w298;
+        let w310 = w309 - w289;
+        [w223, w230, w277, w310]
+    }
+}
+
+/// The first N Taylor coefficients of each output of `free_power` along series inputs.
+#[must_use]
+#[inline(always)]
+pub fn free_power<const N: usize>(y: &[[f64; N]; 8], ug: &[f64; N], s: f64, p: &Params) -> [[f64; N]; 2] {
+    let mut d_y0 = [0.0f64; N];
+    let mut sin_y0 = [0.0f64; N];
+    let mut cos_y0 = [0.0f64; N];
+    let w3: f64 = p[0];
+    let w4: f64 = p[3];
+    let w5: f64 = w3 * w4;
+    let w6: f64 = 0.5;
+    let w7: f64 = p[4];
+    let w8: f64 = w6 * w7;
+    let w9: f64 = w3 * w8;
+    let w10: f64 = w5 + w9;
+    let w14: f64 = s;
+    let w15: f64 = p[1];
+    let w16: f64 = w14 * w15;
+    let w17: f64 = w4 * w16;
+    let w18: f64 = p[5];
+    let w19: f64 = w16 * w18;
+    let w20: f64 = w17 + w19;
+    let w21: f64 = 0.3333333333333333;
+    let w22: f64 = w7 * w21;
+    let w23: f64 = w4 + w22;
+    let w24: f64 = 0.375;
+    let w25: f64 = w7 * w24;
+    let w26: f64 = w4 + w25;
+    let w27: f64 = w7 * w16;
+    let w28: f64 = w20 + w27;
+    let mut w32 = [0.0f64; N];
+    let mut w36 = [0.0f64; N];
+    let mut w45 = [0.0f64; N];
+    let w49: f64 = p[9];
+    let w50: f64 = p[10];
+    let mut w53 = [0.0f64; N];
+    let w55: f64 = p[11];
+    let mut w58 = [0.0f64; N];
+    let mut out = [[0.0f64; N]; 2];
+    for k in 0..N {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_y0, &cos_y0),
+                (&d_y0, &sin_y0),
+                (&sin_y0, &w32),
+                (&y[4], &w36),
+                (&cos_y0, &y[6]),
+                (&cos_y0, &y[7]),
+                (&ug, &w45),
+                (&y[6], &w53),
+                (&y[7], &w58),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &y[0], &mut d_y0, &mut sin_y0, &mut cos_y0, k);
+        let w12 = y[2][k];
+        let w13 = y[3][k];
+        let w29 = w12 * w26;
+        let w30 = w13 * w23;
+        let w31 = w29 + w30;
+        w32[k] = w31 - at0(k, w28);
+        let w33 = series::mul_d(dot2, &sin_y0, &w32, k);
+        let w35 = cos_y0[k] * w10;
+        w36[k] = w35 - w33;
+        let w37 = series::mul_d(dot3, &y[4], &w36, k);
+        let w39 = series::mul_d(dot4, &cos_y0, &y[6], k);
+        let w41 = series::mul_d(dot5, &cos_y0, &y[7], k);
+        let w42 = w26 * w39;
+        let w43 = w23 * w41;
+        let w44 = w37 + w42;
+        w45[k] = w43 + w44;
+        let w46 = series::mul_d(dot6, &ug, &w45, k);
+        let w47 = -w46;
+        let w51 = y[6][k] * w49;
+        let w52 = y[7][k] * w50;
+        w53[k] = w51 + w52;
+        let w54 = series::mul_d(dot7, &y[6], &w53, k);
+        let w56 = y[6][k] * w50;
+        let w57 = y[7][k] * w55;
+        w58[k] = w56 + w57;
+        let w59 = series::mul_d(dot8, &y[7], &w58, k);
+        let w60 = w54 + w59;
+        out[0][k] = w47;
+        out[1][k] = w60;
+    }
+    out
+}

@@ -796,3 +796,505 @@ pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Param
     }
     out
 }
+
+/// `free_mass_matrix` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn free_mass_matrix<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 3]) -> [f64; 6] {
+    let w0: f64 = s;
+    let w1: f64 = p[1];
+    let w2: f64 = w0 * w1;
+    let mut d_qf0 = [0.0f64; N];
+    let mut sin_qf0 = [0.0f64; N];
+    let mut cos_qf0 = [0.0f64; N];
+    let w5: f64 = 0.5;
+    let w6: f64 = p[4];
+    let w7: f64 = p[3];
+    let w8: f64 = w6 + w7;
+    let w9: f64 = w5 * w8;
+    let w10: f64 = 2.0;
+    let w11: f64 = w2 * w10;
+    let w12: f64 = w9 * w11;
+    let w13: f64 = p[0];
+    let w15: f64 = w5 * w13;
+    let w16: f64 = 0.375;
+    let w19: f64 = w2 * w6;
+    let w20: f64 = w6 * w15;
+    let w21: f64 = w6 * w16;
+    let w22: f64 = w2 * w7;
+    let w23: f64 = w7 * w13;
+    let w24: f64 = w19 + w22;
+    let w25: f64 = w20 + w23;
+    let w26: f64 = w7 + w21;
+    let w27: f64 = w12 - w24;
+    let mut w28 = [0.0f64; N];
+    let mut w33 = [0.0f64; N];
+    let mut w37 = [0.0f64; N];
+    let w39: f64 = w5 * w7;
+    let w40: f64 = w10 * w39;
+    let w41: f64 = w11 * w39;
+    let w43: f64 = w2 * w40;
+    let w44: f64 = w41 + w43;
+    let w45: f64 = w2 * w41;
+    let w46: f64 = 2.0 * w13;
+    let w47: f64 = w39 * w46;
+    let w48: f64 = w13 * w47;
+    let w49: f64 = w45 + w48;
+    let w50: f64 = 0.05892857142857143;
+    let w51: f64 = w6 * w50;
+    let w52: f64 = w10 * w51;
+    let w53: f64 = w40 + w52;
+    let w54: f64 = w52 + w53;
+    let w55: f64 = 0.08333333333333333;
+    let w56: f64 = w6 * w55;
+    let w57: f64 = w13 * w56;
+    let w58: f64 = w46 * w57;
+    let w59: f64 = w49 + w58;
+    let w60: f64 = 2.0 * w57;
+    let w61: f64 = w13 * w60;
+    let w62: f64 = w59 + w61;
+    let w63: f64 = 0.1875;
+    let w64: f64 = w6 * w63;
+    let w65: f64 = -w2;
+    let w66: f64 = 2.0 * w65;
+    let w67: f64 = w64 * w66;
+    let w68: f64 = w67 - w44;
+    let w69: f64 = w10 * w64;
+    let w70: f64 = w2 * w69;
+    let w71: f64 = w68 - w70;
+    let w72: f64 = w5 * w6;
+    let w73: f64 = 2.0 * w2;
+    let w74: f64 = w72 * w73;
+    let w75: f64 = w2 * w74;
+    let w76: f64 = w62 + w75;
+    let w84: f64 = w2 * w8;
+    let w85: f64 = w84 - w24;
+    let w90: f64 = w2 * w26;
+    let w92: f64 = 0.1375;
+    let w93: f64 = w6 * w92;
+    let w94: f64 = w13 * w93;
+    let w95: f64 = 2.0 * w94;
+    let w96: f64 = w23 + w95;
+    let w103: f64 = 0.11785714285714285;
+    let w104: f64 = w6 * w103;
+    let w105: f64 = w7 + w104;
+    let w106: f64 = w104 + w105;
+    move |k: usize, qf: &[[f64; N]; 3]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5] = series::dots(
+            [
+                (&d_qf0, &cos_qf0),
+                (&d_qf0, &sin_qf0),
+                (&cos_qf0, &qf[2]),
+                (&w28, &w33),
+                (&w28, &w37),
+                (&cos_qf0, &sin_qf0),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &qf[0], &mut d_qf0, &mut sin_qf0, &mut cos_qf0, k);
+        let w18 = series::mul_d(dot2, &cos_qf0, &qf[2], k);
+        w28[k] = w2 * cos_qf0[k];
+        let w29 = cos_qf0[k] * w27;
+        let w30 = sin_qf0[k] * w25;
+        let w31 = w18 * w26;
+        let w32 = w29 + w30;
+        w33[k] = w31 + w32;
+        let w34 = series::mul_d(dot3, &w28, &w33, k);
+        let w35 = cos_qf0[k] * w24;
+        let w36 = w35 - w30;
+        w37[k] = w36 - w31;
+        let w38 = series::mul_d(dot4, &w28, &w37, k);
+        let w42 = series::sq(&qf[2], k);
+        let w77 = qf[2][k] * w71;
+        let w78 = w42 * w54;
+        let w79 = w34 + w77;
+        let w80 = w78 + w79;
+        let w81 = at0(k, w76) + w80;
+        let w82 = w81 - w38;
+        let w86 = cos_qf0[k] * w85;
+        let w87 = w30 + w86;
+        let w88 = w31 + w87;
+        let w91 = series::mul_d(dot5, &cos_qf0, &sin_qf0, k);
+        let w97 = w90 * w91;
+        let w98 = at0(k, w96) + w97;
+        let w101 = sin_qf0[k] * w26;
+        [w82, w88, w98, at0(k, w8), w101, at0(k, w106)]
+    }
+}
+
+/// `free_forcing` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn free_forcing<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 6], &[f64; N]) -> [f64; 3] {
+    let mut d_y0 = [0.0f64; N];
+    let mut sin_y0 = [0.0f64; N];
+    let mut cos_y0 = [0.0f64; N];
+    let w2: f64 = s;
+    let w3: f64 = p[1];
+    let w4: f64 = w2 * w3;
+    let w5: f64 = p[4];
+    let w6: f64 = p[3];
+    let w7: f64 = w5 + w6;
+    let w8: f64 = p[8];
+    let w9: f64 = w7 * w8;
+    let w10: f64 = w4 * w9;
+    let w13: f64 = w4 * w5;
+    let w16: f64 = w4 * w6;
+    let w17: f64 = 0.375;
+    let w18: f64 = w5 * w17;
+    let w19: f64 = w6 + w18;
+    let w20: f64 = w13 + w16;
+    let w21: f64 = p[0];
+    let w22: f64 = w6 * w8;
+    let w23: f64 = w21 * w22;
+    let w24: f64 = 0.5;
+    let w25: f64 = w5 * w8;
+    let w26: f64 = w24 * w25;
+    let w27: f64 = w21 * w26;
+    let w28: f64 = w23 + w27;
+    let mut w32 = [0.0f64; N];
+    let w34: f64 = w4 * w22;
+    let w35: f64 = w6 * w21;
+    let w36: f64 = w5 * w24;
+    let w37: f64 = w21 * w36;
+    let w38: f64 = w35 + w37;
+    let w39: f64 = w17 * w25;
+    let w40: f64 = w22 + w39;
+    let w41: f64 = w4 * w25;
+    let w42: f64 = w34 + w41;
+    let mut w46 = [0.0f64; N];
+    let w49: f64 = w13 * w17;
+    let w50: f64 = w16 + w49;
+    let mut w58 = [0.0f64; N];
+    let mut w61 = [0.0f64; N];
+    let mut w62 = [0.0f64; N];
+    let mut w67 = [0.0f64; N];
+    let w69: f64 = 2.0;
+    let w70: f64 = w4 * w69;
+    let w71: f64 = w7 * w24;
+    let w72: f64 = w69 * w71;
+    let w73: f64 = w70 * w71;
+    let w74: f64 = w21 * w24;
+    let mut w75 = [0.0f64; N];
+    let w76: f64 = w5 * w74;
+    let w77: f64 = w35 + w76;
+    let mut w78 = [0.0f64; N];
+    let w81: f64 = w73 - w20;
+    let mut w90 = [0.0f64; N];
+    let mut w91 = [0.0f64; N];
+    let mut w93 = [0.0f64; N];
+    let w96: f64 = w20 - w73;
+    let mut w97 = [0.0f64; N];
+    let mut w104 = [0.0f64; N];
+    let mut w106 = [0.0f64; N];
+    let mut w112 = [0.0f64; N];
+    let mut w118 = [0.0f64; N];
+    let mut w119 = [0.0f64; N];
+    let mut w123 = [0.0f64; N];
+    let w125: f64 = w4 * w19;
+    let w128: f64 = w69 * w125;
+    let mut w129 = [0.0f64; N];
+    let w130: f64 = w6 * w24;
+    let w131: f64 = w70 * w130;
+    let w132: f64 = w69 * w130;
+    let w133: f64 = w4 * w132;
+    let w134: f64 = w131 + w133;
+    let w135: f64 = w69 * w132;
+    let w136: f64 = 0.05892857142857143;
+    let w137: f64 = w5 * w136;
+    let w138: f64 = w69 * w137;
+    let w139: f64 = w69 * w138;
+    let w140: f64 = w135 + w139;
+    let w141: f64 = w139 + w140;
+    let w142: f64 = 0.1875;
+    let w143: f64 = w5 * w142;
+    let w144: f64 = w70 * w143;
+    let w145: f64 = w134 + w144;
+    let w146: f64 = w69 * w143;
+    let w147: f64 = w4 * w146;
+    let w148: f64 = w145 + w147;
+    let mut w155 = [0.0f64; N];
+    let w173: f64 = -1.5;
+    let w174: f64 = p[2];
+    let w175: f64 = w21 * w21;
+    let w176: f64 = w21 * w175;
+    let w177: f64 = w174 / w176;
+    let w178: f64 = w173 * w177;
+    let w179: f64 = w69 * w178;
+    let w183: f64 = w132 + w138;
+    let w184: f64 = w138 + w183;
+    let w185: f64 = w131 + w144;
+    let mut w190 = [0.0f64; N];
+    let w192: f64 = p[7];
+    let w193: f64 = 2.0 * w192;
+    let w194: f64 = 3.0;
+    let w195: f64 = w177 * w194;
+    let w196: f64 = 0.11785714285714285;
+    let w197: f64 = w5 * w196;
+    let w198: f64 = w6 + w197;
+    let w199: f64 = w197 + w198;
+    let w200: f64 = w195 / w199;
+    let w201: f64 = w200.sqrt();
+    let w202: f64 = w193 * w201;
+    let w203: f64 = w199 * w202;
+    move |k: usize, y: &[[f64; N]; 6], ug: &[f64; N]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_y0, &cos_y0),
+                (&d_y0, &sin_y0),
+                (&ug, &y[2]),
+                (&sin_y0, &w32),
+                (&cos_y0, &y[3]),
+                (&y[5], &y[4]),
+                (&y[5], &w46),
+                (&cos_y0, &w58),
+                (&y[3], &w61),
+            ],
+            k,
+        );
+        let [dot9, dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17] = series::dots(
+            [
+                (&cos_y0, &w62),
+                (&y[2], &w62),
+                (&sin_y0, &w67),
+                (&cos_y0, &y[2]),
+                (&sin_y0, &y[3]),
+                (&y[3], &w75),
+                (&sin_y0, &y[5]),
+                (&y[3], &w90),
+                (&sin_y0, &w91),
+            ],
+            k,
+        );
+        let [dot18, dot19, dot20, dot21, dot22, dot23, dot24, dot25, dot26] = series::dots(
+            [
+                (&sin_y0, &y[2]),
+                (&y[3], &w93),
+                (&cos_y0, &y[5]),
+                (&w97, &w104),
+                (&w90, &w106),
+                (&w61, &w112),
+                (&w118, &w119),
+                (&y[3], &w123),
+                (&cos_y0, &w46),
+            ],
+            k,
+        );
+        let [dot27, dot28, dot29, dot30, dot31, dot32, dot33, dot34] = series::dots(
+            [
+                (&cos_y0, &y[4]),
+                (&y[2], &y[3]),
+                (&y[5], &w155),
+                (&y[3], &w104),
+                (&cos_y0, &ug),
+                (&y[3], &w129),
+                (&sin_y0, &w78),
+                (&y[3], &w190),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &y[0], &mut d_y0, &mut sin_y0, &mut cos_y0, k);
+        let w15 = series::mul_d(dot2, &ug, &y[2], k);
+        let w29 = ug[k] * w20;
+        let w30 = w15 * w19;
+        let w31 = w29 - w30;
+        w32[k] = w31 - at0(k, w28);
+        let w33 = series::mul_d(dot3, &sin_y0, &w32, k);
+        w46[k] = series::mul_d(dot4, &cos_y0, &y[3], k);
+        let w47 = series::mul_d(dot5, &y[5], &y[4], k);
+        let w48 = series::mul_d(dot6, &y[5], &w46, k);
+        let w51 = ug[k] * w38;
+        let w52 = y[2][k] * w40;
+        let w53 = w19 * w47;
+        let w54 = w48 * w50;
+        let w55 = w52 + w53;
+        let w56 = w54 + w55;
+        let w57 = w56 - w51;
+        w58[k] = w57 - at0(k, w42);
+        let w59 = series::mul_d(dot7, &cos_y0, &w58, k);
+        let w60 = w4 * w46[k];
+        w61[k] = y[4][k] + w60;
+        w62[k] = series::mul_d(dot8, &y[3], &w61, k);
+        let w63 = series::mul_d(dot9, &cos_y0, &w62, k);
+        let w64 = series::mul_d(dot10, &y[2], &w62, k);
+        let w65 = w20 * w62[k];
+        let w66 = w19 * w64;
+        w67[k] = w66 - w65;
+        let w68 = series::mul_d(dot11, &sin_y0, &w67, k);
+        w75[k] = series::mul_d(dot12, &cos_y0, &y[2], k);
+        w78[k] = series::mul_d(dot13, &sin_y0, &y[3], k);
+        let w79 = series::mul_d(dot14, &y[3], &w75, k);
+        let w80 = series::mul_d(dot15, &sin_y0, &y[5], k);
+        let w82 = y[4][k] * w72;
+        let w83 = w46[k] * w81;
+        let w84 = w77 * w78[k];
+        let w85 = w19 * w79;
+        let w86 = w19 * w80;
+        let w87 = w82 + w83;
+        let w88 = w84 + w87;
+        let w89 = w85 + w88;
+        w90[k] = w86 + w89;
+        w91[k] = series::mul_d(dot16, &y[3], &w90, k);
+        let w92 = series::mul_d(dot17, &sin_y0, &w91, k);
+        w93[k] = series::mul_d(dot18, &sin_y0, &y[2], k);
+        let w94 = series::mul_d(dot19, &y[3], &w93, k);
+        let w95 = series::mul_d(dot20, &cos_y0, &y[5], k);
+        w97[k] = cos_y0[k] * w4;
+        let w98 = w46[k] * w77;
+        let w99 = w78[k] * w96;
+        let w100 = w19 * w94;
+        let w101 = w19 * w95;
+        let w102 = w98 + w99;
+        let w103 = w101 + w102;
+        w104[k] = w103 - w100;
+        let w105 = series::mul_d(dot21, &w97, &w104, k);
+        w106[k] = w4 * sin_y0[k];
+        let w107 = series::mul_d(dot22, &w90, &w106, k);
+        let w108 = cos_y0[k] * w77;
+        let w109 = sin_y0[k] * w20;
+        let w110 = w19 * w93[k];
+        let w111 = w110 - w108;
+        w112[k] = w111 - w109;
+        let w113 = series::mul_d(dot23, &w61, &w112, k);
+        let w114 = cos_y0[k] * w20;
+        let w115 = sin_y0[k] * w77;
+        let w116 = w19 * w75[k];
+        let w117 = w114 - w115;
+        w118[k] = w117 - w116;
+        w119[k] = w4 * w78[k];
+        let w120 = series::mul_d(dot24, &w118, &w119, k);
+        let w121 = w105 + w120;
+        let w122 = w121 - w107;
+        w123[k] = w122 - w113;
+        let w124 = series::mul_d(dot25, &y[3], &w123, k);
+        let w126 = series::mul_d(dot26, &cos_y0, &w46, k);
+        let w127 = series::mul_d(dot27, &cos_y0, &y[4], k);
+        w129[k] = series::mul_d(dot28, &y[2], &y[3], k);
+        let w149 = y[3][k] * w148;
+        let w150 = w126 * w128;
+        let w151 = w19 * w127;
+        let w152 = w129[k] * w141;
+        let w153 = w150 + w151;
+        let w154 = w152 + w153;
+        w155[k] = w154 - w149;
+        let w156 = series::mul_d(dot29, &y[5], &w155, k);
+        let w157 = cos_y0[k] * w10;
+        let w158 = w38 * w63;
+        let w159 = w4 * w92;
+        let w160 = w59 + w157;
+        let w161 = w158 + w160;
+        let w162 = w161 - w33;
+        let w163 = w162 - w68;
+        let w164 = w163 - w159;
+        let w165 = w164 - w124;
+        let w166 = w165 - w156;
+        let w168 = series::mul_d(dot30, &y[3], &w104, k);
+        let w169 = w19 * w48;
+        let w170 = at0(k, w9) - w169;
+        let w171 = w170 - w168;
+        let w180 = series::mul_d(dot31, &cos_y0, &ug, k);
+        let w181 = series::sq(&y[3], k);
+        let w182 = series::mul_d(dot32, &y[3], &w129, k);
+        let w186 = series::mul_d(dot33, &sin_y0, &w78, k);
+        let w187 = w125 * w126;
+        let w188 = w125 * w186;
+        let w189 = w151 + w187;
+        w190[k] = w189 - w188;
+        let w191 = series::mul_d(dot34, &y[3], &w190, k);
+        let w204 = sin_y0[k] * w40;
+        let w205 = y[2][k] * w179;
+        let w206 = y[5][k] * w203;
+        let w207 = w19 * w63;
+        let w208 = w19 * w180;
+        let w209 = w181 * w185;
+        let w210 = w182 * w184;
+        let w211 = w204 + w205;
+        let w212 = w207 + w211;
+        let w213 = w210 + w212;
+        let w214 = w213 - w206;
+        let w215 = w214 - w208;
+        let w216 = w215 - w209;
+        let w217 = w216 - w191;
+        [w166, w171, w217]
+    }
+}
+
+/// The first N Taylor coefficients of each output of `free_power` along series inputs.
+#[must_use]
+#[inline(always)]
+pub fn free_power<const N: usize>(y: &[[f64; N]; 6], ug: &[f64; N], s: f64, p: &Params) -> [[f64; N]; 2] {
+    let w1: f64 = p[4];
+    let w2: f64 = 0.5;
+    let w3: f64 = p[0];
+    let mut d_y0 = [0.0f64; N];
+    let mut sin_y0 = [0.0f64; N];
+    let mut cos_y0 = [0.0f64; N];
+    let w6: f64 = w2 * w3;
+    let w7: f64 = s;
+    let w8: f64 = p[1];
+    let w9: f64 = w7 * w8;
+    let w11: f64 = 0.375;
+    let w14: f64 = w1 * w6;
+    let w15: f64 = w1 * w9;
+    let w16: f64 = w1 * w11;
+    let w17: f64 = p[3];
+    let w18: f64 = w3 * w17;
+    let w19: f64 = w9 * w17;
+    let w20: f64 = w14 + w18;
+    let w21: f64 = w15 + w19;
+    let w22: f64 = w16 + w17;
+    let mut w28 = [0.0f64; N];
+    let mut w33 = [0.0f64; N];
+    let w37: f64 = p[7];
+    let w38: f64 = 2.0 * w37;
+    let w39: f64 = 3.0;
+    let w40: f64 = p[2];
+    let w41: f64 = w3 * w3;
+    let w42: f64 = w3 * w41;
+    let w43: f64 = w40 / w42;
+    let w44: f64 = w39 * w43;
+    let w45: f64 = 0.11785714285714285;
+    let w46: f64 = w1 * w45;
+    let w47: f64 = w17 + w46;
+    let w48: f64 = w46 + w47;
+    let w49: f64 = w44 / w48;
+    let w50: f64 = w49.sqrt();
+    let w51: f64 = w38 * w50;
+    let w52: f64 = w48 * w51;
+    let mut out = [[0.0f64; N]; 2];
+    for k in 0..N {
+        let [dot0, dot1, dot2, dot3, dot4, dot5] = series::dots(
+            [
+                (&d_y0, &cos_y0),
+                (&d_y0, &sin_y0),
+                (&sin_y0, &y[2]),
+                (&y[3], &w28),
+                (&cos_y0, &y[5]),
+                (&ug, &w33),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &y[0], &mut d_y0, &mut sin_y0, &mut cos_y0, k);
+        let w13 = series::mul_d(dot2, &sin_y0, &y[2], k);
+        let w24 = cos_y0[k] * w20;
+        let w25 = sin_y0[k] * w21;
+        let w26 = w13 * w22;
+        let w27 = w24 + w25;
+        w28[k] = w27 - w26;
+        let w29 = series::mul_d(dot3, &y[3], &w28, k);
+        let w31 = series::mul_d(dot4, &cos_y0, &y[5], k);
+        let w32 = w22 * w31;
+        w33[k] = w29 + w32;
+        let w34 = series::mul_d(dot5, &ug, &w33, k);
+        let w35 = -w34;
+        let w53 = series::sq(&y[5], k);
+        let w54 = w52 * w53;
+        out[0][k] = w35;
+        out[1][k] = w54;
+    }
+    out
+}

@@ -589,3 +589,408 @@ pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Param
     }
     out
 }
+
+/// `free_mass_matrix` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn free_mass_matrix<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 3]) -> [f64; 6] {
+    let w0: f64 = s;
+    let w1: f64 = p[1];
+    let w2: f64 = w0 * w1;
+    let mut d_qf0 = [0.0f64; N];
+    let mut sin_qf0 = [0.0f64; N];
+    let mut cos_qf0 = [0.0f64; N];
+    let w5: f64 = 0.5;
+    let w6: f64 = p[3];
+    let w7: f64 = p[5];
+    let w8: f64 = w6 + w7;
+    let w9: f64 = w5 * w8;
+    let w10: f64 = 2.0;
+    let w11: f64 = w2 * w10;
+    let w12: f64 = w9 * w11;
+    let w13: f64 = w2 * w7;
+    let w14: f64 = p[0];
+    let w18: f64 = w2 * w6;
+    let w19: f64 = w6 * w14;
+    let w20: f64 = w13 + w18;
+    let w21: f64 = w12 - w20;
+    let mut w22 = [0.0f64; N];
+    let mut w27 = [0.0f64; N];
+    let mut w31 = [0.0f64; N];
+    let w33: f64 = p[6];
+    let w34: f64 = w5 * w6;
+    let w35: f64 = w10 * w34;
+    let w36: f64 = w11 * w34;
+    let w38: f64 = w2 * w35;
+    let w39: f64 = w36 + w38;
+    let w40: f64 = w2 * w36;
+    let w41: f64 = w33 + w40;
+    let w42: f64 = 2.0 * w14;
+    let w43: f64 = w34 * w42;
+    let w44: f64 = w14 * w43;
+    let w45: f64 = w41 + w44;
+    let w53: f64 = w2 * w8;
+    let w54: f64 = w53 - w20;
+    move |k: usize, qf: &[[f64; N]; 3]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5] = series::dots(
+            [
+                (&d_qf0, &cos_qf0),
+                (&d_qf0, &sin_qf0),
+                (&cos_qf0, &qf[2]),
+                (&w22, &w27),
+                (&w22, &w31),
+                (&cos_qf0, &sin_qf0),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &qf[0], &mut d_qf0, &mut sin_qf0, &mut cos_qf0, k);
+        let w17 = series::mul_d(dot2, &cos_qf0, &qf[2], k);
+        w22[k] = w2 * cos_qf0[k];
+        let w23 = cos_qf0[k] * w21;
+        let w24 = sin_qf0[k] * w19;
+        let w25 = w6 * w17;
+        let w26 = w23 + w24;
+        w27[k] = w25 + w26;
+        let w28 = series::mul_d(dot3, &w22, &w27, k);
+        let w29 = cos_qf0[k] * w20;
+        let w30 = w29 - w24;
+        w31[k] = w30 - w25;
+        let w32 = series::mul_d(dot4, &w22, &w31, k);
+        let w37 = series::sq(&qf[2], k);
+        let w46 = qf[2][k] * w39;
+        let w47 = w35 * w37;
+        let w48 = w28 + w47;
+        let w49 = at0(k, w45) + w48;
+        let w50 = w49 - w46;
+        let w51 = w50 - w32;
+        let w55 = cos_qf0[k] * w54;
+        let w56 = w24 + w55;
+        let w57 = w25 + w56;
+        let w59 = series::mul_d(dot5, &cos_qf0, &sin_qf0, k);
+        let w60 = w18 * w59;
+        let w61 = at0(k, w19) + w60;
+        let w64 = w6 * sin_qf0[k];
+        [w51, w57, w61, at0(k, w8), w64, at0(k, w6)]
+    }
+}
+
+/// `free_forcing` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn free_forcing<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 6], &[f64; N]) -> [f64; 3] {
+    let mut d_y0 = [0.0f64; N];
+    let mut sin_y0 = [0.0f64; N];
+    let mut cos_y0 = [0.0f64; N];
+    let w2: f64 = s;
+    let w3: f64 = p[1];
+    let w4: f64 = w2 * w3;
+    let w5: f64 = p[3];
+    let w6: f64 = p[5];
+    let w7: f64 = w5 + w6;
+    let w8: f64 = p[8];
+    let w9: f64 = w7 * w8;
+    let w10: f64 = w4 * w9;
+    let w13: f64 = w4 * w6;
+    let w16: f64 = w4 * w5;
+    let w17: f64 = w13 + w16;
+    let w18: f64 = p[0];
+    let w19: f64 = w5 * w8;
+    let w20: f64 = w18 * w19;
+    let mut w24 = [0.0f64; N];
+    let w26: f64 = w4 * w19;
+    let w27: f64 = w5 * w18;
+    let w28: f64 = w6 * w8;
+    let w29: f64 = w4 * w28;
+    let w30: f64 = w26 + w29;
+    let mut w34 = [0.0f64; N];
+    let mut w36 = [0.0f64; N];
+    let mut w43 = [0.0f64; N];
+    let mut w45 = [0.0f64; N];
+    let mut w50 = [0.0f64; N];
+    let w52: f64 = 2.0;
+    let w53: f64 = w4 * w52;
+    let w54: f64 = 0.5;
+    let w55: f64 = w7 * w54;
+    let w56: f64 = w52 * w55;
+    let w57: f64 = w53 * w55;
+    let mut w63 = [0.0f64; N];
+    let mut w71 = [0.0f64; N];
+    let mut w72 = [0.0f64; N];
+    let mut w74 = [0.0f64; N];
+    let mut w75 = [0.0f64; N];
+    let w78: f64 = w17 - w57;
+    let mut w79 = [0.0f64; N];
+    let mut w86 = [0.0f64; N];
+    let mut w88 = [0.0f64; N];
+    let mut w94 = [0.0f64; N];
+    let mut w96 = [0.0f64; N];
+    let mut w100 = [0.0f64; N];
+    let w104: f64 = w16 * w52;
+    let w106: f64 = w5 * w54;
+    let w107: f64 = w53 * w106;
+    let w108: f64 = w52 * w106;
+    let w109: f64 = w4 * w108;
+    let w110: f64 = w107 + w109;
+    let w111: f64 = w52 * w108;
+    let mut w118 = [0.0f64; N];
+    let w137: f64 = -1.5;
+    let w138: f64 = p[2];
+    let w139: f64 = w18 * w18;
+    let w140: f64 = w18 * w139;
+    let w141: f64 = w138 / w140;
+    let w142: f64 = w137 * w141;
+    let w143: f64 = w52 * w142;
+    let mut w147 = [0.0f64; N];
+    let mut w153 = [0.0f64; N];
+    let w155: f64 = p[7];
+    let w156: f64 = 2.0 * w155;
+    let w157: f64 = 3.0;
+    let w158: f64 = w141 * w157;
+    let w159: f64 = w158 / w5;
+    let w160: f64 = w159.sqrt();
+    let w161: f64 = w156 * w160;
+    let w162: f64 = w5 * w161;
+    move |k: usize, y: &[[f64; N]; 6], ug: &[f64; N]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_y0, &cos_y0),
+                (&d_y0, &sin_y0),
+                (&ug, &y[2]),
+                (&sin_y0, &w24),
+                (&cos_y0, &y[3]),
+                (&y[5], &w36),
+                (&cos_y0, &w43),
+                (&y[3], &w36),
+                (&cos_y0, &w45),
+            ],
+            k,
+        );
+        let [dot9, dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17] = series::dots(
+            [
+                (&y[2], &w45),
+                (&sin_y0, &w50),
+                (&cos_y0, &y[2]),
+                (&y[3], &w63),
+                (&sin_y0, &y[5]),
+                (&y[3], &w71),
+                (&sin_y0, &w72),
+                (&sin_y0, &y[3]),
+                (&sin_y0, &y[2]),
+            ],
+            k,
+        );
+        let [dot18, dot19, dot20, dot21, dot22, dot23, dot24, dot25, dot26] = series::dots(
+            [
+                (&y[3], &w75),
+                (&cos_y0, &y[5]),
+                (&w79, &w86),
+                (&w71, &w88),
+                (&w36, &w94),
+                (&w63, &w96),
+                (&y[3], &w100),
+                (&cos_y0, &w34),
+                (&cos_y0, &y[4]),
+            ],
+            k,
+        );
+        let [dot27, dot28, dot29, dot30, dot31, dot32, dot33, dot34] = series::dots(
+            [
+                (&y[2], &y[3]),
+                (&y[5], &w118),
+                (&y[3], &w86),
+                (&y[5], &w34),
+                (&cos_y0, &ug),
+                (&y[3], &w147),
+                (&sin_y0, &w74),
+                (&y[3], &w153),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &y[0], &mut d_y0, &mut sin_y0, &mut cos_y0, k);
+        let w15 = series::mul_d(dot2, &ug, &y[2], k);
+        let w21 = ug[k] * w17;
+        let w22 = w5 * w15;
+        let w23 = w21 - w22;
+        w24[k] = w23 - at0(k, w20);
+        let w25 = series::mul_d(dot3, &sin_y0, &w24, k);
+        w34[k] = series::mul_d(dot4, &cos_y0, &y[3], k);
+        let w35 = w4 * w34[k];
+        w36[k] = y[4][k] + w35;
+        let w37 = series::mul_d(dot5, &y[5], &w36, k);
+        let w38 = ug[k] * w27;
+        let w39 = y[2][k] * w19;
+        let w40 = w5 * w37;
+        let w41 = w39 + w40;
+        let w42 = w41 - w38;
+        w43[k] = w42 - at0(k, w30);
+        let w44 = series::mul_d(dot6, &cos_y0, &w43, k);
+        w45[k] = series::mul_d(dot7, &y[3], &w36, k);
+        let w46 = series::mul_d(dot8, &cos_y0, &w45, k);
+        let w47 = series::mul_d(dot9, &y[2], &w45, k);
+        let w48 = w17 * w45[k];
+        let w49 = w5 * w47;
+        w50[k] = w49 - w48;
+        let w51 = series::mul_d(dot10, &sin_y0, &w50, k);
+        let w58 = series::mul_d(dot11, &cos_y0, &y[2], k);
+        let w59 = cos_y0[k] * w17;
+        let w60 = sin_y0[k] * w27;
+        let w61 = w5 * w58;
+        let w62 = w59 - w60;
+        w63[k] = w62 - w61;
+        let w64 = series::mul_d(dot12, &y[3], &w63, k);
+        let w65 = series::mul_d(dot13, &sin_y0, &y[5], k);
+        let w66 = y[4][k] * w56;
+        let w67 = w34[k] * w57;
+        let w68 = w5 * w65;
+        let w69 = w66 + w67;
+        let w70 = w68 + w69;
+        w71[k] = w70 - w64;
+        w72[k] = series::mul_d(dot14, &y[3], &w71, k);
+        let w73 = series::mul_d(dot15, &sin_y0, &w72, k);
+        w74[k] = series::mul_d(dot16, &sin_y0, &y[3], k);
+        w75[k] = series::mul_d(dot17, &sin_y0, &y[2], k);
+        let w76 = series::mul_d(dot18, &y[3], &w75, k);
+        let w77 = series::mul_d(dot19, &cos_y0, &y[5], k);
+        w79[k] = cos_y0[k] * w4;
+        let w80 = w27 * w34[k];
+        let w81 = w74[k] * w78;
+        let w82 = w5 * w76;
+        let w83 = w5 * w77;
+        let w84 = w80 + w81;
+        let w85 = w83 + w84;
+        w86[k] = w85 - w82;
+        let w87 = series::mul_d(dot20, &w79, &w86, k);
+        w88[k] = w4 * sin_y0[k];
+        let w89 = series::mul_d(dot21, &w71, &w88, k);
+        let w90 = cos_y0[k] * w27;
+        let w91 = sin_y0[k] * w17;
+        let w92 = w5 * w75[k];
+        let w93 = w90 + w91;
+        w94[k] = w93 - w92;
+        let w95 = series::mul_d(dot22, &w36, &w94, k);
+        w96[k] = w4 * w74[k];
+        let w97 = series::mul_d(dot23, &w63, &w96, k);
+        let w98 = w87 + w95;
+        let w99 = w97 + w98;
+        w100[k] = w99 - w89;
+        let w101 = series::mul_d(dot24, &y[3], &w100, k);
+        let w102 = series::mul_d(dot25, &cos_y0, &w34, k);
+        let w103 = series::mul_d(dot26, &cos_y0, &y[4], k);
+        let w105 = series::mul_d(dot27, &y[2], &y[3], k);
+        let w112 = y[3][k] * w110;
+        let w113 = w102 * w104;
+        let w114 = w5 * w103;
+        let w115 = w105 * w111;
+        let w116 = w113 + w114;
+        let w117 = w115 + w116;
+        w118[k] = w117 - w112;
+        let w119 = series::mul_d(dot28, &y[5], &w118, k);
+        let w120 = cos_y0[k] * w10;
+        let w121 = w27 * w46;
+        let w122 = w4 * w73;
+        let w123 = w44 + w120;
+        let w124 = w121 + w123;
+        let w125 = w124 - w25;
+        let w126 = w125 - w51;
+        let w127 = w126 - w122;
+        let w128 = w127 - w101;
+        let w129 = w128 - w119;
+        let w131 = series::mul_d(dot29, &y[3], &w86, k);
+        let w132 = series::mul_d(dot30, &y[5], &w34, k);
+        let w133 = w5 * w132;
+        let w134 = at0(k, w9) - w131;
+        let w135 = w134 - w133;
+        let w144 = series::mul_d(dot31, &cos_y0, &ug, k);
+        let w145 = y[3][k] * w107;
+        let w146 = w105 * w108;
+        w147[k] = w146 - w145;
+        let w148 = series::mul_d(dot32, &y[3], &w147, k);
+        let w149 = series::mul_d(dot33, &sin_y0, &w74, k);
+        let w150 = w16 * w102;
+        let w151 = w16 * w149;
+        let w152 = w114 + w150;
+        w153[k] = w152 - w151;
+        let w154 = series::mul_d(dot34, &y[3], &w153, k);
+        let w163 = sin_y0[k] * w19;
+        let w164 = y[2][k] * w143;
+        let w165 = y[5][k] * w162;
+        let w166 = w5 * w46;
+        let w167 = w5 * w144;
+        let w168 = w163 + w164;
+        let w169 = w166 + w168;
+        let w170 = w148 + w169;
+        let w171 = w170 - w165;
+        let w172 = w171 - w167;
+        let w173 = w172 - w154;
+        [w129, w135, w173]
+    }
+}
+
+/// The first N Taylor coefficients of each output of `free_power` along series inputs.
+#[must_use]
+#[inline(always)]
+pub fn free_power<const N: usize>(y: &[[f64; N]; 6], ug: &[f64; N], s: f64, p: &Params) -> [[f64; N]; 2] {
+    let w1: f64 = p[3];
+    let w2: f64 = p[0];
+    let mut d_y0 = [0.0f64; N];
+    let mut sin_y0 = [0.0f64; N];
+    let mut cos_y0 = [0.0f64; N];
+    let w6: f64 = s;
+    let w7: f64 = p[1];
+    let w8: f64 = w6 * w7;
+    let w11: f64 = w1 * w2;
+    let w12: f64 = w1 * w8;
+    let w13: f64 = p[5];
+    let w14: f64 = w8 * w13;
+    let w15: f64 = w12 + w14;
+    let mut w21 = [0.0f64; N];
+    let mut w26 = [0.0f64; N];
+    let w30: f64 = p[7];
+    let w31: f64 = 2.0 * w30;
+    let w32: f64 = 3.0;
+    let w33: f64 = p[2];
+    let w34: f64 = w2 * w2;
+    let w35: f64 = w2 * w34;
+    let w36: f64 = w33 / w35;
+    let w37: f64 = w32 * w36;
+    let w38: f64 = w37 / w1;
+    let w39: f64 = w38.sqrt();
+    let w40: f64 = w31 * w39;
+    let w41: f64 = w1 * w40;
+    let mut out = [[0.0f64; N]; 2];
+    for k in 0..N {
+        let [dot0, dot1, dot2, dot3, dot4, dot5] = series::dots(
+            [
+                (&d_y0, &cos_y0),
+                (&d_y0, &sin_y0),
+                (&y[2], &sin_y0),
+                (&y[3], &w21),
+                (&cos_y0, &y[5]),
+                (&ug, &w26),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &y[0], &mut d_y0, &mut sin_y0, &mut cos_y0, k);
+        let w10 = series::mul_d(dot2, &y[2], &sin_y0, k);
+        let w17 = cos_y0[k] * w11;
+        let w18 = sin_y0[k] * w15;
+        let w19 = w1 * w10;
+        let w20 = w17 + w18;
+        w21[k] = w20 - w19;
+        let w22 = series::mul_d(dot3, &y[3], &w21, k);
+        let w24 = series::mul_d(dot4, &cos_y0, &y[5], k);
+        let w25 = w1 * w24;
+        w26[k] = w22 + w25;
+        let w27 = series::mul_d(dot5, &ug, &w26, k);
+        let w28 = -w27;
+        let w42 = series::sq(&y[5], k);
+        let w43 = w41 * w42;
+        out[0][k] = w28;
+        out[1][k] = w43;
+    }
+    out
+}

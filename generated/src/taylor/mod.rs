@@ -158,6 +158,18 @@ pub mod full;
     non_snake_case,
     missing_docs,
 )]
+pub mod ground;
+#[rustfmt::skip]
+#[allow(
+    clippy::all,
+    clippy::pedantic,
+    clippy::nursery,
+    unused_parens,
+    unused_variables,
+    unused_mut,
+    non_snake_case,
+    missing_docs,
+)]
 pub mod massless_base;
 #[rustfmt::skip]
 #[allow(

@@ -555,3 +555,379 @@ pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Param
     }
     out
 }
+
+/// `free_mass_matrix` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn free_mass_matrix<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 3]) -> [f64; 6] {
+    let w0: f64 = p[3];
+    let w1: f64 = p[0];
+    let mut d_qf0 = [0.0f64; N];
+    let mut sin_qf0 = [0.0f64; N];
+    let mut cos_qf0 = [0.0f64; N];
+    let w5: f64 = s;
+    let w6: f64 = p[1];
+    let w7: f64 = w5 * w6;
+    let w10: f64 = w0 * w1;
+    let w11: f64 = w0 * w7;
+    let mut w16 = [0.0f64; N];
+    let mut w17 = [0.0f64; N];
+    let w19: f64 = 0.5;
+    let w20: f64 = w0 * w19;
+    let w21: f64 = 2.0;
+    let w22: f64 = w7 * w21;
+    let w23: f64 = w20 * w22;
+    let w24: f64 = w23 - w11;
+    let mut w27 = [0.0f64; N];
+    let w29: f64 = w20 * w21;
+    let w31: f64 = w7 * w29;
+    let w32: f64 = w23 + w31;
+    let w33: f64 = w7 * w23;
+    let w34: f64 = 2.0 * w1;
+    let w35: f64 = w20 * w34;
+    let w36: f64 = w1 * w35;
+    let w37: f64 = w33 + w36;
+    move |k: usize, qf: &[[f64; N]; 3]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5] = series::dots(
+            [
+                (&d_qf0, &cos_qf0),
+                (&d_qf0, &sin_qf0),
+                (&qf[2], &cos_qf0),
+                (&w16, &w17),
+                (&w17, &w27),
+                (&sin_qf0, &cos_qf0),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &qf[0], &mut d_qf0, &mut sin_qf0, &mut cos_qf0, k);
+        let w9 = series::mul_d(dot2, &qf[2], &cos_qf0, k);
+        let w12 = sin_qf0[k] * w10;
+        let w13 = cos_qf0[k] * w11;
+        let w14 = w0 * w9;
+        let w15 = w12 + w14;
+        w16[k] = w15 - w13;
+        w17[k] = w7 * cos_qf0[k];
+        let w18 = series::mul_d(dot3, &w16, &w17, k);
+        let w25 = cos_qf0[k] * w24;
+        let w26 = w12 + w25;
+        w27[k] = w14 + w26;
+        let w28 = series::mul_d(dot4, &w17, &w27, k);
+        let w30 = series::sq(&qf[2], k);
+        let w38 = qf[2][k] * w32;
+        let w39 = w29 * w30;
+        let w40 = w18 + w28;
+        let w41 = w39 + w40;
+        let w42 = at0(k, w37) + w41;
+        let w43 = w42 - w38;
+        let w46 = series::mul_d(dot5, &sin_qf0, &cos_qf0, k);
+        let w47 = w11 * w46;
+        let w48 = at0(k, w10) + w47;
+        let w51 = w0 * sin_qf0[k];
+        [w43, w15, w48, at0(k, w0), w51, at0(k, w0)]
+    }
+}
+
+/// `free_forcing` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn free_forcing<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 6], &[f64; N]) -> [f64; 3] {
+    let mut d_y0 = [0.0f64; N];
+    let mut sin_y0 = [0.0f64; N];
+    let mut cos_y0 = [0.0f64; N];
+    let w2: f64 = s;
+    let w3: f64 = p[1];
+    let w4: f64 = w2 * w3;
+    let w5: f64 = p[3];
+    let w6: f64 = p[8];
+    let w7: f64 = w5 * w6;
+    let w8: f64 = w4 * w7;
+    let w13: f64 = w4 * w5;
+    let w14: f64 = p[0];
+    let w15: f64 = w7 * w14;
+    let mut w19 = [0.0f64; N];
+    let w21: f64 = w5 * w14;
+    let mut w25 = [0.0f64; N];
+    let mut w27 = [0.0f64; N];
+    let mut w34 = [0.0f64; N];
+    let mut w36 = [0.0f64; N];
+    let mut w40 = [0.0f64; N];
+    let mut w48 = [0.0f64; N];
+    let w51: f64 = 2.0;
+    let w52: f64 = w4 * w51;
+    let w53: f64 = 0.5;
+    let w54: f64 = w5 * w53;
+    let w55: f64 = w51 * w54;
+    let w56: f64 = w52 * w54;
+    let mut w62 = [0.0f64; N];
+    let mut w63 = [0.0f64; N];
+    let mut w65 = [0.0f64; N];
+    let mut w70 = [0.0f64; N];
+    let mut w72 = [0.0f64; N];
+    let mut w73 = [0.0f64; N];
+    let w77: f64 = w13 - w56;
+    let mut w78 = [0.0f64; N];
+    let mut w85 = [0.0f64; N];
+    let mut w87 = [0.0f64; N];
+    let mut w91 = [0.0f64; N];
+    let mut w93 = [0.0f64; N];
+    let w97: f64 = w4 * w55;
+    let w98: f64 = w56 + w97;
+    let w99: f64 = w51 * w55;
+    let mut w105 = [0.0f64; N];
+    let w124: f64 = -1.5;
+    let w125: f64 = p[2];
+    let w126: f64 = w14 * w14;
+    let w127: f64 = w14 * w126;
+    let w128: f64 = w125 / w127;
+    let w129: f64 = w124 * w128;
+    let w130: f64 = w51 * w129;
+    let mut w134 = [0.0f64; N];
+    let mut w138 = [0.0f64; N];
+    let w140: f64 = p[7];
+    let w141: f64 = 2.0 * w140;
+    let w142: f64 = 3.0;
+    let w143: f64 = w128 * w142;
+    let w144: f64 = w143 / w5;
+    let w145: f64 = w144.sqrt();
+    let w146: f64 = w141 * w145;
+    let w147: f64 = w5 * w146;
+    move |k: usize, y: &[[f64; N]; 6], ug: &[f64; N]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_y0, &cos_y0),
+                (&d_y0, &sin_y0),
+                (&y[2], &ug),
+                (&sin_y0, &w19),
+                (&cos_y0, &y[3]),
+                (&y[5], &w27),
+                (&cos_y0, &w34),
+                (&y[3], &w27),
+                (&y[2], &w36),
+            ],
+            k,
+        );
+        let [dot9, dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17] = series::dots(
+            [
+                (&sin_y0, &w40),
+                (&cos_y0, &w36),
+                (&cos_y0, &y[2]),
+                (&y[3], &w48),
+                (&sin_y0, &y[5]),
+                (&y[3], &w62),
+                (&sin_y0, &w63),
+                (&sin_y0, &y[2]),
+                (&w27, &w70),
+            ],
+            k,
+        );
+        let [dot18, dot19, dot20, dot21, dot22, dot23, dot24, dot25, dot26] = series::dots(
+            [
+                (&sin_y0, &y[3]),
+                (&w48, &w73),
+                (&y[3], &w65),
+                (&cos_y0, &y[5]),
+                (&w78, &w85),
+                (&w62, &w87),
+                (&y[3], &w91),
+                (&w27, &w93),
+                (&cos_y0, &w25),
+            ],
+            k,
+        );
+        let [dot27, dot28, dot29, dot30, dot31, dot32, dot33, dot34] = series::dots(
+            [
+                (&y[2], &y[3]),
+                (&y[5], &w105),
+                (&y[3], &w85),
+                (&y[5], &w25),
+                (&cos_y0, &ug),
+                (&y[3], &w134),
+                (&sin_y0, &w72),
+                (&y[3], &w138),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &y[0], &mut d_y0, &mut sin_y0, &mut cos_y0, k);
+        let w12 = series::mul_d(dot2, &y[2], &ug, k);
+        let w16 = ug[k] * w13;
+        let w17 = w5 * w12;
+        let w18 = at0(k, w15) + w17;
+        w19[k] = w18 - w16;
+        let w20 = series::mul_d(dot3, &sin_y0, &w19, k);
+        let w23 = y[4][k];
+        w25[k] = series::mul_d(dot4, &cos_y0, &y[3], k);
+        let w26 = w4 * w25[k];
+        w27[k] = w23 + w26;
+        let w28 = series::mul_d(dot5, &y[5], &w27, k);
+        let w29 = w7 * y[2][k];
+        let w30 = ug[k] * w21;
+        let w31 = w5 * w28;
+        let w32 = w29 + w31;
+        let w33 = w32 - w30;
+        w34[k] = w33 - at0(k, w8);
+        let w35 = series::mul_d(dot6, &cos_y0, &w34, k);
+        w36[k] = series::mul_d(dot7, &y[3], &w27, k);
+        let w37 = series::mul_d(dot8, &y[2], &w36, k);
+        let w38 = w13 * w36[k];
+        let w39 = w5 * w37;
+        w40[k] = w39 - w38;
+        let w41 = series::mul_d(dot9, &sin_y0, &w40, k);
+        let w42 = series::mul_d(dot10, &cos_y0, &w36, k);
+        let w43 = series::mul_d(dot11, &cos_y0, &y[2], k);
+        let w44 = cos_y0[k] * w13;
+        let w45 = sin_y0[k] * w21;
+        let w46 = w5 * w43;
+        let w47 = w45 + w46;
+        w48[k] = w47 - w44;
+        let w49 = series::mul_d(dot12, &y[3], &w48, k);
+        let w50 = series::mul_d(dot13, &sin_y0, &y[5], k);
+        let w57 = w23 * w55;
+        let w58 = w25[k] * w56;
+        let w59 = w5 * w50;
+        let w60 = w57 + w58;
+        let w61 = w49 + w60;
+        w62[k] = w59 + w61;
+        w63[k] = series::mul_d(dot14, &y[3], &w62, k);
+        let w64 = series::mul_d(dot15, &sin_y0, &w63, k);
+        w65[k] = series::mul_d(dot16, &sin_y0, &y[2], k);
+        let w66 = cos_y0[k] * w21;
+        let w67 = sin_y0[k] * w13;
+        let w68 = w5 * w65[k];
+        let w69 = w66 + w67;
+        w70[k] = w69 - w68;
+        let w71 = series::mul_d(dot17, &w27, &w70, k);
+        w72[k] = series::mul_d(dot18, &sin_y0, &y[3], k);
+        w73[k] = w4 * w72[k];
+        let w74 = series::mul_d(dot19, &w48, &w73, k);
+        let w75 = series::mul_d(dot20, &y[3], &w65, k);
+        let w76 = series::mul_d(dot21, &cos_y0, &y[5], k);
+        w78[k] = cos_y0[k] * w4;
+        let w79 = w21 * w25[k];
+        let w80 = w72[k] * w77;
+        let w81 = w5 * w75;
+        let w82 = w5 * w76;
+        let w83 = w79 + w80;
+        let w84 = w82 + w83;
+        w85[k] = w84 - w81;
+        let w86 = series::mul_d(dot22, &w78, &w85, k);
+        w87[k] = w4 * sin_y0[k];
+        let w88 = series::mul_d(dot23, &w62, &w87, k);
+        let w89 = w71 + w86;
+        let w90 = w89 - w74;
+        w91[k] = w90 - w88;
+        let w92 = series::mul_d(dot24, &y[3], &w91, k);
+        w93[k] = cos_y0[k] * w5;
+        let w94 = series::mul_d(dot25, &w27, &w93, k);
+        let w95 = series::mul_d(dot26, &cos_y0, &w25, k);
+        let w96 = series::mul_d(dot27, &y[2], &y[3], k);
+        let w100 = y[3][k] * w98;
+        let w101 = w13 * w95;
+        let w102 = w96 * w99;
+        let w103 = w94 + w101;
+        let w104 = w102 + w103;
+        w105[k] = w104 - w100;
+        let w106 = series::mul_d(dot28, &y[5], &w105, k);
+        let w107 = cos_y0[k] * w8;
+        let w108 = w21 * w42;
+        let w109 = w4 * w64;
+        let w110 = w20 + w107;
+        let w111 = w35 + w110;
+        let w112 = w108 + w111;
+        let w113 = w112 - w41;
+        let w114 = w113 - w109;
+        let w115 = w114 - w92;
+        let w116 = w115 - w106;
+        let w118 = series::mul_d(dot29, &y[3], &w85, k);
+        let w119 = series::mul_d(dot30, &y[5], &w25, k);
+        let w120 = w5 * w119;
+        let w121 = at0(k, w7) - w118;
+        let w122 = w121 - w120;
+        let w131 = series::mul_d(dot31, &cos_y0, &ug, k);
+        let w132 = y[3][k] * w56;
+        let w133 = w55 * w96;
+        w134[k] = w133 - w132;
+        let w135 = series::mul_d(dot32, &y[3], &w134, k);
+        let w136 = series::mul_d(dot33, &sin_y0, &w72, k);
+        let w137 = w13 * w136;
+        w138[k] = w94 - w137;
+        let w139 = series::mul_d(dot34, &y[3], &w138, k);
+        let w148 = w7 * sin_y0[k];
+        let w149 = y[2][k] * w130;
+        let w150 = y[5][k] * w147;
+        let w151 = w5 * w42;
+        let w152 = w5 * w131;
+        let w153 = w148 + w149;
+        let w154 = w151 + w153;
+        let w155 = w135 + w154;
+        let w156 = w155 - w150;
+        let w157 = w156 - w152;
+        let w158 = w157 - w139;
+        [w116, w122, w158]
+    }
+}
+
+/// The first N Taylor coefficients of each output of `free_power` along series inputs.
+#[must_use]
+#[inline(always)]
+pub fn free_power<const N: usize>(y: &[[f64; N]; 6], ug: &[f64; N], s: f64, p: &Params) -> [[f64; N]; 2] {
+    let w1: f64 = p[3];
+    let w2: f64 = p[0];
+    let mut d_y0 = [0.0f64; N];
+    let mut sin_y0 = [0.0f64; N];
+    let mut cos_y0 = [0.0f64; N];
+    let w6: f64 = s;
+    let w7: f64 = p[1];
+    let w8: f64 = w6 * w7;
+    let w11: f64 = w1 * w2;
+    let w12: f64 = w1 * w8;
+    let mut w18 = [0.0f64; N];
+    let mut w23 = [0.0f64; N];
+    let w27: f64 = p[7];
+    let w28: f64 = 2.0 * w27;
+    let w29: f64 = 3.0;
+    let w30: f64 = p[2];
+    let w31: f64 = w2 * w2;
+    let w32: f64 = w2 * w31;
+    let w33: f64 = w30 / w32;
+    let w34: f64 = w29 * w33;
+    let w35: f64 = w34 / w1;
+    let w36: f64 = w35.sqrt();
+    let w37: f64 = w28 * w36;
+    let w38: f64 = w1 * w37;
+    let mut out = [[0.0f64; N]; 2];
+    for k in 0..N {
+        let [dot0, dot1, dot2, dot3, dot4, dot5] = series::dots(
+            [
+                (&d_y0, &cos_y0),
+                (&d_y0, &sin_y0),
+                (&y[2], &sin_y0),
+                (&y[3], &w18),
+                (&cos_y0, &y[5]),
+                (&ug, &w23),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &y[0], &mut d_y0, &mut sin_y0, &mut cos_y0, k);
+        let w10 = series::mul_d(dot2, &y[2], &sin_y0, k);
+        let w14 = cos_y0[k] * w11;
+        let w15 = sin_y0[k] * w12;
+        let w16 = w1 * w10;
+        let w17 = w14 + w15;
+        w18[k] = w17 - w16;
+        let w19 = series::mul_d(dot3, &y[3], &w18, k);
+        let w21 = series::mul_d(dot4, &cos_y0, &y[5], k);
+        let w22 = w1 * w21;
+        w23[k] = w19 + w22;
+        let w24 = series::mul_d(dot5, &ug, &w23, k);
+        let w25 = -w24;
+        let w39 = series::sq(&y[5], k);
+        let w40 = w38 * w39;
+        out[0][k] = w25;
+        out[1][k] = w40;
+    }
+    out
+}

@@ -2710,3 +2710,913 @@ pub fn power<const N: usize>(x: &[[f64; N]; 8], ug: &[f64; N], s: f64, p: &Param
     }
     out
 }
+
+/// `free_mass_matrix` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn free_mass_matrix<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 5]) -> [f64; 15] {
+    let w0: f64 = s;
+    let w1: f64 = p[1];
+    let w2: f64 = w0 * w1;
+    let mut d_qf0 = [0.0f64; N];
+    let mut sin_qf0 = [0.0f64; N];
+    let mut cos_qf0 = [0.0f64; N];
+    let w5: f64 = 0.5;
+    let w6: f64 = p[4];
+    let w7: f64 = p[3];
+    let w8: f64 = w6 + w7;
+    let w9: f64 = p[5];
+    let w10: f64 = w8 + w9;
+    let w11: f64 = w5 * w10;
+    let w12: f64 = 2.0;
+    let w13: f64 = w2 * w12;
+    let w14: f64 = w11 * w13;
+    let w15: f64 = w2 * w9;
+    let w19: f64 = w2 * w7;
+    let w20: f64 = w15 + w19;
+    let w21: f64 = 0.2;
+    let w22: f64 = w6 * w21;
+    let w23: f64 = w7 + w22;
+    let w24: f64 = 0.25;
+    let w25: f64 = w6 * w24;
+    let w26: f64 = w7 + w25;
+    let w27: f64 = 0.3333333333333333;
+    let w28: f64 = w6 * w27;
+    let w29: f64 = w7 + w28;
+    let w30: f64 = w2 * w6;
+    let w31: f64 = w20 + w30;
+    let mut w37 = [0.0f64; N];
+    let w40: f64 = p[0];
+    let w41: f64 = w7 * w40;
+    let w42: f64 = w5 * w6;
+    let w43: f64 = w40 * w42;
+    let w44: f64 = w41 + w43;
+    let mut w45 = [0.0f64; N];
+    let mut w49 = [0.0f64; N];
+    let mut w51 = [0.0f64; N];
+    let w53: f64 = p[6];
+    let w54: f64 = w5 * w7;
+    let w55: f64 = w12 * w54;
+    let w56: f64 = w13 * w54;
+    let mut w59 = [0.0f64; N];
+    let mut w65 = [0.0f64; N];
+    let w67: f64 = 2.0 * w40;
+    let w68: f64 = w54 * w67;
+    let w69: f64 = w40 * w68;
+    let w70: f64 = w53 + w69;
+    let w71: f64 = 0.027777777777777776;
+    let w72: f64 = w6 * w71;
+    let w73: f64 = 0.0625;
+    let w74: f64 = w6 * w73;
+    let w75: f64 = 0.07142857142857142;
+    let w76: f64 = w6 * w75;
+    let mut w81 = [0.0f64; N];
+    let mut w82 = [0.0f64; N];
+    let w84: f64 = w12 * w76;
+    let w85: f64 = w12 * w74;
+    let w86: f64 = w12 * w72;
+    let mut w91 = [0.0f64; N];
+    let w93: f64 = 0.03571428571428571;
+    let w94: f64 = w6 * w93;
+    let w95: f64 = 0.08333333333333333;
+    let w96: f64 = w6 * w95;
+    let mut w99 = [0.0f64; N];
+    let mut w100 = [0.0f64; N];
+    let w102: f64 = w12 * w96;
+    let w103: f64 = w12 * w94;
+    let mut w106 = [0.0f64; N];
+    let w108: f64 = 0.05;
+    let w109: f64 = w6 * w108;
+    let w110: f64 = w12 * w109;
+    let w112: f64 = w12 * w110;
+    let w113: f64 = w40 * w96;
+    let w114: f64 = w67 * w113;
+    let w115: f64 = w70 + w114;
+    let w116: f64 = 2.0 * w113;
+    let w117: f64 = w40 * w116;
+    let w118: f64 = w115 + w117;
+    let w119: f64 = 0.1;
+    let w120: f64 = w6 * w119;
+    let w121: f64 = -w2;
+    let w122: f64 = 2.0 * w121;
+    let w123: f64 = w120 * w122;
+    let w124: f64 = w12 * w120;
+    let w125: f64 = w2 * w124;
+    let w126: f64 = w123 - w125;
+    let w127: f64 = 0.125;
+    let w128: f64 = w6 * w127;
+    let w129: f64 = w122 * w128;
+    let w130: f64 = w12 * w128;
+    let w131: f64 = w2 * w130;
+    let w132: f64 = w129 - w131;
+    let w133: f64 = 0.16666666666666666;
+    let w134: f64 = w6 * w133;
+    let w135: f64 = w122 * w134;
+    let w136: f64 = w12 * w134;
+    let w137: f64 = w2 * w136;
+    let w138: f64 = w135 - w137;
+    let w139: f64 = 2.0 * w2;
+    let w140: f64 = w42 * w139;
+    let w141: f64 = w2 * w140;
+    let w142: f64 = w118 + w141;
+    let w159: f64 = w2 * w10;
+    let w164: f64 = w2 * w29;
+    let w166: f64 = w40 * w128;
+    let w167: f64 = 2.0 * w166;
+    let w168: f64 = w41 + w167;
+    let w172: f64 = w2 * w26;
+    let w173: f64 = w40 * w120;
+    let w174: f64 = 2.0 * w173;
+    let w175: f64 = w41 + w174;
+    let w179: f64 = w2 * w23;
+    let w180: f64 = w41 + w116;
+    let w191: f64 = w7 + w120;
+    let w192: f64 = w120 + w191;
+    let w194: f64 = w7 + w134;
+    let w196: f64 = 0.14285714285714285;
+    let w197: f64 = w6 * w196;
+    let w198: f64 = w7 + w197;
+    let w200: f64 = w7 + w76;
+    let w201: f64 = w76 + w200;
+    let w203: f64 = w7 + w128;
+    let w205: f64 = 0.05555555555555555;
+    let w206: f64 = w6 * w205;
+    let w207: f64 = w7 + w206;
+    let w208: f64 = w206 + w207;
+    move |k: usize, qf: &[[f64; N]; 5]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5] = series::dots(
+            [
+                (&d_qf0, &cos_qf0),
+                (&d_qf0, &sin_qf0),
+                (&cos_qf0, &w37),
+                (&w45, &w49),
+                (&w45, &w51),
+                (&w59, &w65),
+            ],
+            k,
+        );
+        let [dot6, dot7, dot8, dot9, dot10] = series::dots(
+            [
+                (&w81, &w82),
+                (&qf[4], &w91),
+                (&w99, &w100),
+                (&qf[3], &w106),
+                (&cos_qf0, &sin_qf0),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &qf[0], &mut d_qf0, &mut sin_qf0, &mut cos_qf0, k);
+        let w32 = qf[2][k] * w29;
+        let w33 = qf[3][k] * w26;
+        let w34 = qf[4][k] * w23;
+        let w35 = at0(k, w31) - w32;
+        let w36 = w35 - w33;
+        w37[k] = w36 - w34;
+        let w38 = series::mul_d(dot2, &cos_qf0, &w37, k);
+        w45[k] = w2 * cos_qf0[k];
+        let w46 = cos_qf0[k] * w14;
+        let w47 = sin_qf0[k] * w44;
+        let w48 = w46 + w47;
+        w49[k] = w48 - w38;
+        let w50 = series::mul_d(dot3, &w45, &w49, k);
+        w51[k] = w38 - w47;
+        let w52 = series::mul_d(dot4, &w45, &w51, k);
+        let w57 = qf[2][k] + qf[3][k];
+        let w58 = qf[4][k] + w57;
+        w59[k] = w58 - at0(k, w2);
+        let w60 = qf[2][k] * w55;
+        let w61 = qf[3][k] * w55;
+        let w62 = qf[4][k] * w55;
+        let w63 = w60 + w61;
+        let w64 = w62 + w63;
+        w65[k] = w64 - at0(k, w56);
+        let w66 = series::mul_d(dot5, &w59, &w65, k);
+        let w77 = qf[2][k] * w76;
+        let w78 = qf[3][k] * w74;
+        let w79 = qf[4][k] * w72;
+        let w80 = w77 + w78;
+        w81[k] = w79 + w80;
+        w82[k] = w12 * qf[4][k];
+        let w83 = series::mul_d(dot6, &w81, &w82, k);
+        let w87 = qf[2][k] * w84;
+        let w88 = qf[3][k] * w85;
+        let w89 = qf[4][k] * w86;
+        let w90 = w87 + w88;
+        w91[k] = w89 + w90;
+        let w92 = series::mul_d(dot7, &qf[4], &w91, k);
+        let w97 = qf[2][k] * w96;
+        let w98 = qf[3][k] * w94;
+        w99[k] = w97 + w98;
+        w100[k] = w12 * qf[3][k];
+        let w101 = series::mul_d(dot8, &w99, &w100, k);
+        let w104 = qf[2][k] * w102;
+        let w105 = qf[3][k] * w103;
+        w106[k] = w104 + w105;
+        let w107 = series::mul_d(dot9, &qf[3], &w106, k);
+        let w111 = series::sq(&qf[2], k);
+        let w143 = qf[2][k] * w138;
+        let w144 = qf[3][k] * w132;
+        let w145 = qf[4][k] * w126;
+        let w146 = w111 * w112;
+        let w147 = w143 + w144;
+        let w148 = w145 + w147;
+        let w149 = w50 + w148;
+        let w150 = w66 + w149;
+        let w151 = w83 + w150;
+        let w152 = w92 + w151;
+        let w153 = w101 + w152;
+        let w154 = w107 + w153;
+        let w155 = w146 + w154;
+        let w156 = at0(k, w142) + w155;
+        let w157 = w156 - w52;
+        let w160 = cos_qf0[k] * w159;
+        let w161 = w47 + w160;
+        let w162 = w161 - w38;
+        let w165 = series::mul_d(dot10, &cos_qf0, &sin_qf0, k);
+        let w169 = w164 * w165;
+        let w170 = at0(k, w168) + w169;
+        let w176 = w165 * w172;
+        let w177 = at0(k, w175) + w176;
+        let w181 = w165 * w179;
+        let w182 = at0(k, w180) + w181;
+        let w185 = w29 * sin_qf0[k];
+        let w187 = w26 * sin_qf0[k];
+        let w189 = w23 * sin_qf0[k];
+        [w157, w162, w170, w177, w182, at0(k, w10), w185, w187, w189, at0(k, w192), at0(k, w194), at0(k, w198), at0(k, w201), at0(k, w203), at0(k, w208)]
+    }
+}
+
+/// `free_forcing` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn free_forcing<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 10], &[f64; N]) -> [f64; 5] {
+    let mut d_y0 = [0.0f64; N];
+    let mut sin_y0 = [0.0f64; N];
+    let mut cos_y0 = [0.0f64; N];
+    let w2: f64 = s;
+    let w3: f64 = p[1];
+    let w4: f64 = w2 * w3;
+    let w5: f64 = p[4];
+    let w6: f64 = p[3];
+    let w7: f64 = w5 + w6;
+    let w8: f64 = p[5];
+    let w9: f64 = w7 + w8;
+    let w10: f64 = p[8];
+    let w11: f64 = w9 * w10;
+    let w12: f64 = w4 * w11;
+    let w15: f64 = w4 * w8;
+    let w22: f64 = w4 * w6;
+    let w23: f64 = w15 + w22;
+    let w24: f64 = 0.2;
+    let w25: f64 = w5 * w24;
+    let w26: f64 = w6 + w25;
+    let w27: f64 = 0.25;
+    let w28: f64 = w5 * w27;
+    let w29: f64 = w6 + w28;
+    let w30: f64 = 0.3333333333333333;
+    let w31: f64 = w5 * w30;
+    let w32: f64 = w6 + w31;
+    let w33: f64 = w4 * w5;
+    let w34: f64 = w23 + w33;
+    let w35: f64 = p[0];
+    let w36: f64 = w6 * w10;
+    let w37: f64 = w35 * w36;
+    let w38: f64 = 0.5;
+    let w39: f64 = w5 * w10;
+    let w40: f64 = w38 * w39;
+    let w41: f64 = w35 * w40;
+    let w42: f64 = w37 + w41;
+    let mut w50 = [0.0f64; N];
+    let w52: f64 = w4 * w36;
+    let w53: f64 = w6 * w35;
+    let w54: f64 = w5 * w38;
+    let w55: f64 = w35 * w54;
+    let w56: f64 = w53 + w55;
+    let w57: f64 = w8 * w10;
+    let w58: f64 = w4 * w57;
+    let w59: f64 = w52 + w58;
+    let w60: f64 = w24 * w39;
+    let w61: f64 = w36 + w60;
+    let w62: f64 = w27 * w39;
+    let w63: f64 = w36 + w62;
+    let w64: f64 = w30 * w39;
+    let w65: f64 = w36 + w64;
+    let w66: f64 = w4 * w39;
+    let w67: f64 = w59 + w66;
+    let mut w71 = [0.0f64; N];
+    let w74: f64 = w4 * w25;
+    let w78: f64 = w4 * w28;
+    let w82: f64 = w4 * w31;
+    let w83: f64 = w22 + w74;
+    let w84: f64 = w22 + w78;
+    let w85: f64 = w22 + w82;
+    let mut w105 = [0.0f64; N];
+    let mut w108 = [0.0f64; N];
+    let mut w109 = [0.0f64; N];
+    let mut w116 = [0.0f64; N];
+    let mut w117 = [0.0f64; N];
+    let w119: f64 = 2.0;
+    let w120: f64 = w4 * w119;
+    let w121: f64 = w9 * w38;
+    let w122: f64 = w119 * w121;
+    let w123: f64 = w120 * w121;
+    let mut w124 = [0.0f64; N];
+    let mut w125 = [0.0f64; N];
+    let mut w141 = [0.0f64; N];
+    let mut w142 = [0.0f64; N];
+    let mut w144 = [0.0f64; N];
+    let mut w149 = [0.0f64; N];
+    let mut w159 = [0.0f64; N];
+    let mut w161 = [0.0f64; N];
+    let mut w164 = [0.0f64; N];
+    let w166: f64 = w4 * w56;
+    let mut w174 = [0.0f64; N];
+    let w176: f64 = w4 * w32;
+    let w179: f64 = w119 * w176;
+    let mut w180 = [0.0f64; N];
+    let mut w181 = [0.0f64; N];
+    let mut w182 = [0.0f64; N];
+    let w183: f64 = w6 * w38;
+    let w184: f64 = w120 * w183;
+    let w185: f64 = w119 * w183;
+    let w186: f64 = w4 * w185;
+    let w187: f64 = w184 + w186;
+    let w188: f64 = w119 * w185;
+    let w189: f64 = 0.07142857142857142;
+    let w190: f64 = w5 * w189;
+    let w191: f64 = w119 * w190;
+    let w192: f64 = w188 + w191;
+    let w193: f64 = w191 + w192;
+    let w194: f64 = 0.08333333333333333;
+    let w195: f64 = w5 * w194;
+    let w196: f64 = w119 * w195;
+    let w197: f64 = w188 + w196;
+    let w198: f64 = w196 + w197;
+    let w199: f64 = 0.05;
+    let w200: f64 = w5 * w199;
+    let w201: f64 = w119 * w200;
+    let w202: f64 = w119 * w201;
+    let w203: f64 = w188 + w202;
+    let w204: f64 = w202 + w203;
+    let w205: f64 = 0.16666666666666666;
+    let w206: f64 = w5 * w205;
+    let w207: f64 = w120 * w206;
+    let w208: f64 = w187 + w207;
+    let w209: f64 = w119 * w206;
+    let w210: f64 = w4 * w209;
+    let w211: f64 = w208 + w210;
+    let mut w222 = [0.0f64; N];
+    let w224: f64 = w4 * w29;
+    let w225: f64 = w119 * w224;
+    let w226: f64 = 0.0625;
+    let w227: f64 = w5 * w226;
+    let w228: f64 = w119 * w227;
+    let w229: f64 = w188 + w228;
+    let w230: f64 = w228 + w229;
+    let w231: f64 = 0.03571428571428571;
+    let w232: f64 = w5 * w231;
+    let w233: f64 = w119 * w232;
+    let w234: f64 = w119 * w233;
+    let w235: f64 = w188 + w234;
+    let w236: f64 = w234 + w235;
+    let w237: f64 = 0.125;
+    let w238: f64 = w5 * w237;
+    let w239: f64 = w120 * w238;
+    let w240: f64 = w187 + w239;
+    let w241: f64 = w119 * w238;
+    let w242: f64 = w4 * w241;
+    let w243: f64 = w240 + w242;
+    let mut w254 = [0.0f64; N];
+    let w256: f64 = w4 * w26;
+    let w257: f64 = w119 * w256;
+    let w258: f64 = 0.027777777777777776;
+    let w259: f64 = w5 * w258;
+    let w260: f64 = w119 * w259;
+    let w261: f64 = w119 * w260;
+    let w262: f64 = w188 + w261;
+    let w263: f64 = w261 + w262;
+    let w264: f64 = 0.1;
+    let w265: f64 = w5 * w264;
+    let w266: f64 = w120 * w265;
+    let w267: f64 = w187 + w266;
+    let w268: f64 = w119 * w265;
+    let w269: f64 = w4 * w268;
+    let w270: f64 = w267 + w269;
+    let mut w281 = [0.0f64; N];
+    let w305: f64 = 16.0;
+    let w306: f64 = p[2];
+    let w307: f64 = w35 * w35;
+    let w308: f64 = w35 * w307;
+    let w309: f64 = w306 / w308;
+    let w310: f64 = w305 * w309;
+    let w311: f64 = -0.5;
+    let w312: f64 = w310 * w311;
+    let w314: f64 = 12.0;
+    let w315: f64 = w309 * w314;
+    let w316: f64 = w311 * w315;
+    let w317: f64 = -2.0;
+    let w318: f64 = w309 * w317;
+    let w319: f64 = w119 * w318;
+    let w324: f64 = w185 + w191;
+    let w325: f64 = w185 + w196;
+    let w326: f64 = w185 + w201;
+    let w327: f64 = w201 + w326;
+    let w328: f64 = w184 + w207;
+    let mut w332 = [0.0f64; N];
+    let w334: f64 = p[9];
+    let w335: f64 = p[10];
+    let w336: f64 = p[11];
+    let w364: f64 = 36.0;
+    let w365: f64 = w309 * w364;
+    let w366: f64 = w311 * w365;
+    let w367: f64 = -6.0;
+    let w368: f64 = w309 * w367;
+    let w369: f64 = w119 * w368;
+    let w370: f64 = w185 + w228;
+    let w371: f64 = w185 + w233;
+    let w372: f64 = w233 + w371;
+    let w373: f64 = w184 + w239;
+    let mut w377 = [0.0f64; N];
+    let w379: f64 = p[12];
+    let w380: f64 = p[13];
+    let w408: f64 = -14.4;
+    let w409: f64 = w309 * w408;
+    let w410: f64 = w119 * w409;
+    let w411: f64 = w185 + w260;
+    let w412: f64 = w260 + w411;
+    let w413: f64 = w184 + w266;
+    let mut w417 = [0.0f64; N];
+    let w419: f64 = p[14];
+    move |k: usize, y: &[[f64; N]; 10], ug: &[f64; N]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_y0, &cos_y0),
+                (&d_y0, &sin_y0),
+                (&ug, &y[2]),
+                (&ug, &y[3]),
+                (&ug, &y[4]),
+                (&sin_y0, &w50),
+                (&cos_y0, &y[5]),
+                (&y[9], &y[6]),
+                (&y[9], &w71),
+            ],
+            k,
+        );
+        let [dot9, dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17] = series::dots(
+            [
+                (&y[6], &y[8]),
+                (&w71, &y[8]),
+                (&y[6], &y[7]),
+                (&w71, &y[7]),
+                (&cos_y0, &w105),
+                (&y[5], &w108),
+                (&cos_y0, &w109),
+                (&w109, &w116),
+                (&sin_y0, &w117),
+            ],
+            k,
+        );
+        let [dot18, dot19, dot20, dot21, dot22, dot23, dot24, dot25, dot26] = series::dots(
+            [
+                (&cos_y0, &w116),
+                (&sin_y0, &y[5]),
+                (&y[5], &w124),
+                (&sin_y0, &y[7]),
+                (&sin_y0, &y[8]),
+                (&sin_y0, &y[9]),
+                (&y[5], &w141),
+                (&sin_y0, &w142),
+                (&sin_y0, &w116),
+            ],
+            k,
+        );
+        let [dot27, dot28, dot29, dot30, dot31, dot32, dot33, dot34, dot35] = series::dots(
+            [
+                (&y[5], &w144),
+                (&cos_y0, &y[7]),
+                (&cos_y0, &y[8]),
+                (&cos_y0, &y[9]),
+                (&w149, &w159),
+                (&w141, &w161),
+                (&w108, &w164),
+                (&sin_y0, &w125),
+                (&w124, &w125),
+            ],
+            k,
+        );
+        let [dot36, dot37, dot38, dot39, dot40, dot41, dot42, dot43, dot44] = series::dots(
+            [
+                (&y[5], &w174),
+                (&cos_y0, &w71),
+                (&cos_y0, &y[6]),
+                (&y[2], &y[5]),
+                (&y[3], &y[5]),
+                (&y[4], &y[5]),
+                (&y[7], &w222),
+                (&y[8], &w254),
+                (&y[9], &w281),
+            ],
+            k,
+        );
+        let [dot45, dot46, dot47, dot48, dot49, dot50, dot51, dot52] = series::dots(
+            [
+                (&y[5], &w159),
+                (&cos_y0, &ug),
+                (&y[5], &w180),
+                (&y[5], &w181),
+                (&y[5], &w182),
+                (&y[5], &w332),
+                (&y[5], &w377),
+                (&y[5], &w417),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &y[0], &mut d_y0, &mut sin_y0, &mut cos_y0, k);
+        let w19 = series::mul_d(dot2, &ug, &y[2], k);
+        let w20 = series::mul_d(dot3, &ug, &y[3], k);
+        let w21 = series::mul_d(dot4, &ug, &y[4], k);
+        let w43 = ug[k] * w34;
+        let w44 = w19 * w32;
+        let w45 = w20 * w29;
+        let w46 = w21 * w26;
+        let w47 = w43 - w44;
+        let w48 = w47 - w45;
+        let w49 = w48 - w46;
+        w50[k] = w49 - at0(k, w42);
+        let w51 = series::mul_d(dot5, &sin_y0, &w50, k);
+        w71[k] = series::mul_d(dot6, &cos_y0, &y[5], k);
+        let w72 = series::mul_d(dot7, &y[9], &y[6], k);
+        let w73 = series::mul_d(dot8, &y[9], &w71, k);
+        let w76 = series::mul_d(dot9, &y[6], &y[8], k);
+        let w77 = series::mul_d(dot10, &w71, &y[8], k);
+        let w80 = series::mul_d(dot11, &y[6], &y[7], k);
+        let w81 = series::mul_d(dot12, &w71, &y[7], k);
+        let w86 = ug[k] * w56;
+        let w87 = y[2][k] * w65;
+        let w88 = y[3][k] * w63;
+        let w89 = y[4][k] * w61;
+        let w90 = w26 * w72;
+        let w91 = w73 * w83;
+        let w92 = w29 * w76;
+        let w93 = w77 * w84;
+        let w94 = w32 * w80;
+        let w95 = w81 * w85;
+        let w96 = w87 + w88;
+        let w97 = w89 + w96;
+        let w98 = w90 + w97;
+        let w99 = w91 + w98;
+        let w100 = w92 + w99;
+        let w101 = w93 + w100;
+        let w102 = w94 + w101;
+        let w103 = w95 + w102;
+        let w104 = w103 - w86;
+        w105[k] = w104 - at0(k, w67);
+        let w106 = series::mul_d(dot13, &cos_y0, &w105, k);
+        let w107 = w4 * w71[k];
+        w108[k] = y[6][k] + w107;
+        w109[k] = series::mul_d(dot14, &y[5], &w108, k);
+        let w110 = series::mul_d(dot15, &cos_y0, &w109, k);
+        let w111 = y[2][k] * w32;
+        let w112 = y[3][k] * w29;
+        let w113 = y[4][k] * w26;
+        let w114 = at0(k, w34) - w111;
+        let w115 = w114 - w112;
+        w116[k] = w115 - w113;
+        w117[k] = series::mul_d(dot16, &w109, &w116, k);
+        let w118 = series::mul_d(dot17, &sin_y0, &w117, k);
+        w124[k] = series::mul_d(dot18, &cos_y0, &w116, k);
+        w125[k] = series::mul_d(dot19, &sin_y0, &y[5], k);
+        let w126 = series::mul_d(dot20, &y[5], &w124, k);
+        let w127 = series::mul_d(dot21, &sin_y0, &y[7], k);
+        let w128 = series::mul_d(dot22, &sin_y0, &y[8], k);
+        let w129 = series::mul_d(dot23, &sin_y0, &y[9], k);
+        let w130 = y[6][k] * w122;
+        let w131 = w71[k] * w123;
+        let w132 = w56 * w125[k];
+        let w133 = w32 * w127;
+        let w134 = w29 * w128;
+        let w135 = w26 * w129;
+        let w136 = w130 + w131;
+        let w137 = w132 + w136;
+        let w138 = w133 + w137;
+        let w139 = w134 + w138;
+        let w140 = w135 + w139;
+        w141[k] = w140 - w126;
+        w142[k] = series::mul_d(dot24, &y[5], &w141, k);
+        let w143 = series::mul_d(dot25, &sin_y0, &w142, k);
+        w144[k] = series::mul_d(dot26, &sin_y0, &w116, k);
+        let w145 = series::mul_d(dot27, &y[5], &w144, k);
+        let w146 = series::mul_d(dot28, &cos_y0, &y[7], k);
+        let w147 = series::mul_d(dot29, &cos_y0, &y[8], k);
+        let w148 = series::mul_d(dot30, &cos_y0, &y[9], k);
+        w149[k] = cos_y0[k] * w4;
+        let w150 = w56 * w71[k];
+        let w151 = w123 * w125[k];
+        let w152 = w32 * w146;
+        let w153 = w29 * w147;
+        let w154 = w26 * w148;
+        let w155 = w145 + w150;
+        let w156 = w152 + w155;
+        let w157 = w153 + w156;
+        let w158 = w154 + w157;
+        w159[k] = w158 - w151;
+        let w160 = series::mul_d(dot31, &w149, &w159, k);
+        w161[k] = w4 * sin_y0[k];
+        let w162 = series::mul_d(dot32, &w141, &w161, k);
+        let w163 = cos_y0[k] * w56;
+        w164[k] = w144[k] + w163;
+        let w165 = series::mul_d(dot33, &w108, &w164, k);
+        let w167 = series::mul_d(dot34, &sin_y0, &w125, k);
+        let w168 = series::mul_d(dot35, &w124, &w125, k);
+        let w169 = w166 * w167;
+        let w170 = w4 * w168;
+        let w171 = w160 + w165;
+        let w172 = w170 + w171;
+        let w173 = w172 - w162;
+        w174[k] = w173 - w169;
+        let w175 = series::mul_d(dot36, &y[5], &w174, k);
+        let w177 = series::mul_d(dot37, &cos_y0, &w71, k);
+        let w178 = series::mul_d(dot38, &cos_y0, &y[6], k);
+        w180[k] = series::mul_d(dot39, &y[2], &y[5], k);
+        w181[k] = series::mul_d(dot40, &y[3], &y[5], k);
+        w182[k] = series::mul_d(dot41, &y[4], &y[5], k);
+        let w212 = y[5][k] * w211;
+        let w213 = w177 * w179;
+        let w214 = w32 * w178;
+        let w215 = w180[k] * w204;
+        let w216 = w181[k] * w198;
+        let w217 = w182[k] * w193;
+        let w218 = w213 + w214;
+        let w219 = w215 + w218;
+        let w220 = w216 + w219;
+        let w221 = w217 + w220;
+        w222[k] = w221 - w212;
+        let w223 = series::mul_d(dot42, &y[7], &w222, k);
+        let w244 = y[5][k] * w243;
+        let w245 = w177 * w225;
+        let w246 = w29 * w178;
+        let w247 = w180[k] * w198;
+        let w248 = w181[k] * w236;
+        let w249 = w182[k] * w230;
+        let w250 = w245 + w246;
+        let w251 = w247 + w250;
+        let w252 = w248 + w251;
+        let w253 = w249 + w252;
+        w254[k] = w253 - w244;
+        let w255 = series::mul_d(dot43, &y[8], &w254, k);
+        let w271 = y[5][k] * w270;
+        let w272 = w177 * w257;
+        let w273 = w26 * w178;
+        let w274 = w180[k] * w193;
+        let w275 = w181[k] * w230;
+        let w276 = w182[k] * w263;
+        let w277 = w272 + w273;
+        let w278 = w274 + w277;
+        let w279 = w275 + w278;
+        let w280 = w276 + w279;
+        w281[k] = w280 - w271;
+        let w282 = series::mul_d(dot44, &y[9], &w281, k);
+        let w283 = cos_y0[k] * w12;
+        let w284 = w56 * w110;
+        let w285 = w4 * w143;
+        let w286 = w106 + w283;
+        let w287 = w284 + w286;
+        let w288 = w118 + w287;
+        let w289 = w288 - w51;
+        let w290 = w289 - w285;
+        let w291 = w290 - w175;
+        let w292 = w291 - w223;
+        let w293 = w292 - w255;
+        let w294 = w293 - w282;
+        let w296 = series::mul_d(dot45, &y[5], &w159, k);
+        let w297 = w26 * w73;
+        let w298 = w29 * w77;
+        let w299 = w32 * w81;
+        let w300 = at0(k, w11) - w297;
+        let w301 = w300 - w298;
+        let w302 = w301 - w299;
+        let w303 = w302 - w296;
+        let w313 = series::mul_d(dot46, &cos_y0, &ug, k);
+        let w320 = series::sq(&y[5], k);
+        let w321 = series::mul_d(dot47, &y[5], &w180, k);
+        let w322 = series::mul_d(dot48, &y[5], &w181, k);
+        let w323 = series::mul_d(dot49, &y[5], &w182, k);
+        let w329 = w167 * w176;
+        let w330 = w176 * w177;
+        let w331 = w214 + w330;
+        w332[k] = w331 - w329;
+        let w333 = series::mul_d(dot50, &y[5], &w332, k);
+        let w337 = sin_y0[k] * w65;
+        let w338 = y[2][k] * w319;
+        let w339 = y[3][k] * w316;
+        let w340 = y[4][k] * w312;
+        let w341 = y[9][k] * w336;
+        let w342 = y[8][k] * w335;
+        let w343 = y[7][k] * w334;
+        let w344 = w32 * w110;
+        let w345 = w32 * w313;
+        let w346 = w320 * w328;
+        let w347 = w321 * w327;
+        let w348 = w322 * w325;
+        let w349 = w323 * w324;
+        let w350 = w337 + w338;
+        let w351 = w339 + w350;
+        let w352 = w340 + w351;
+        let w353 = w344 + w352;
+        let w354 = w347 + w353;
+        let w355 = w348 + w354;
+        let w356 = w349 + w355;
+        let w357 = w356 - w341;
+        let w358 = w357 - w342;
+        let w359 = w358 - w343;
+        let w360 = w359 - w345;
+        let w361 = w360 - w346;
+        let w362 = w361 - w333;
+        let w374 = w167 * w224;
+        let w375 = w177 * w224;
+        let w376 = w246 + w375;
+        w377[k] = w376 - w374;
+        let w378 = series::mul_d(dot51, &y[5], &w377, k);
+        let w381 = sin_y0[k] * w63;
+        let w382 = y[2][k] * w316;
+        let w383 = y[3][k] * w369;
+        let w384 = y[4][k] * w366;
+        let w385 = y[9][k] * w380;
+        let w386 = y[8][k] * w379;
+        let w387 = y[7][k] * w335;
+        let w388 = w29 * w110;
+        let w389 = w29 * w313;
+        let w390 = w320 * w373;
+        let w391 = w321 * w325;
+        let w392 = w322 * w372;
+        let w393 = w323 * w370;
+        let w394 = w381 + w382;
+        let w395 = w383 + w394;
+        let w396 = w384 + w395;
+        let w397 = w388 + w396;
+        let w398 = w391 + w397;
+        let w399 = w392 + w398;
+        let w400 = w393 + w399;
+        let w401 = w400 - w385;
+        let w402 = w401 - w386;
+        let w403 = w402 - w387;
+        let w404 = w403 - w389;
+        let w405 = w404 - w390;
+        let w406 = w405 - w378;
+        let w414 = w167 * w256;
+        let w415 = w177 * w256;
+        let w416 = w273 + w415;
+        w417[k] = w416 - w414;
+        let w418 = series::mul_d(dot52, &y[5], &w417, k);
+        let w420 = sin_y0[k] * w61;
+        let w421 = y[2][k] * w312;
+        let w422 = y[3][k] * w366;
+        let w423 = y[4][k] * w410;
+        let w424 = y[9][k] * w419;
+        let w425 = y[8][k] * w380;
+        let w426 = y[7][k] * w336;
+        let w427 = w26 * w110;
+        let w428 = w26 * w313;
+        let w429 = w320 * w413;
+        let w430 = w321 * w324;
+        let w431 = w322 * w370;
+        let w432 = w323 * w412;
+        let w433 = w420 + w421;
+        let w434 = w422 + w433;
+        let w435 = w423 + w434;
+        let w436 = w427 + w435;
+        let w437 = w430 + w436;
+        let w438 = w431 + w437;
+        let w439 = w432 + w438;
+        let w440 = w439 - w424;
+        let w441 = w440 - w425;
+        let w442 = w441 - w426;
+        let w443 = w442 - w428;
+        let w444 = w443 - w429;
+        let w445 = w444 - w418;
+        [w294, w303, w362, w406, w445]
+    }
+}
+
+/// The first N Taylor coefficients of each output of `free_power` along series inputs.
+#[must_use]
+#[inline(always)]
+pub fn free_power<const N: usize>(y: &[[f64; N]; 10], ug: &[f64; N], s: f64, p: &Params) -> [[f64; N]; 2] {
+    let mut d_y0 = [0.0f64; N];
+    let mut sin_y0 = [0.0f64; N];
+    let mut cos_y0 = [0.0f64; N];
+    let w3: f64 = p[0];
+    let w4: f64 = p[3];
+    let w5: f64 = w3 * w4;
+    let w6: f64 = 0.5;
+    let w7: f64 = p[4];
+    let w8: f64 = w6 * w7;
+    let w9: f64 = w3 * w8;
+    let w10: f64 = w5 + w9;
+    let w15: f64 = s;
+    let w16: f64 = p[1];
+    let w17: f64 = w15 * w16;
+    let w18: f64 = w4 * w17;
+    let w19: f64 = p[5];
+    let w20: f64 = w17 * w19;
+    let w21: f64 = w18 + w20;
+    let w22: f64 = 0.2;
+    let w23: f64 = w7 * w22;
+    let w24: f64 = w4 + w23;
+    let w25: f64 = 0.25;
+    let w26: f64 = w7 * w25;
+    let w27: f64 = w4 + w26;
+    let w28: f64 = 0.3333333333333333;
+    let w29: f64 = w7 * w28;
+    let w30: f64 = w4 + w29;
+    let w31: f64 = w7 * w17;
+    let w32: f64 = w21 + w31;
+    let mut w38 = [0.0f64; N];
+    let mut w42 = [0.0f64; N];
+    let mut w55 = [0.0f64; N];
+    let w59: f64 = p[9];
+    let w60: f64 = p[10];
+    let w61: f64 = p[11];
+    let mut w66 = [0.0f64; N];
+    let w68: f64 = p[12];
+    let w69: f64 = p[13];
+    let mut w74 = [0.0f64; N];
+    let w76: f64 = p[14];
+    let mut w81 = [0.0f64; N];
+    let mut out = [[0.0f64; N]; 2];
+    for k in 0..N {
+        let [dot0, dot1, dot2, dot3, dot4, dot5] = series::dots(
+            [
+                (&d_y0, &cos_y0),
+                (&d_y0, &sin_y0),
+                (&sin_y0, &w38),
+                (&y[5], &w42),
+                (&cos_y0, &y[7]),
+                (&cos_y0, &y[8]),
+            ],
+            k,
+        );
+        let [dot6, dot7, dot8, dot9, dot10] = series::dots(
+            [
+                (&cos_y0, &y[9]),
+                (&ug, &w55),
+                (&y[7], &w66),
+                (&y[8], &w74),
+                (&y[9], &w81),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &y[0], &mut d_y0, &mut sin_y0, &mut cos_y0, k);
+        let w12 = y[2][k];
+        let w13 = y[3][k];
+        let w14 = y[4][k];
+        let w33 = w12 * w30;
+        let w34 = w13 * w27;
+        let w35 = w14 * w24;
+        let w36 = w33 + w34;
+        let w37 = w35 + w36;
+        w38[k] = w37 - at0(k, w32);
+        let w39 = series::mul_d(dot2, &sin_y0, &w38, k);
+        let w41 = cos_y0[k] * w10;
+        w42[k] = w41 - w39;
+        let w43 = series::mul_d(dot3, &y[5], &w42, k);
+        let w45 = series::mul_d(dot4, &cos_y0, &y[7], k);
+        let w47 = series::mul_d(dot5, &cos_y0, &y[8], k);
+        let w49 = series::mul_d(dot6, &cos_y0, &y[9], k);
+        let w50 = w30 * w45;
+        let w51 = w27 * w47;
+        let w52 = w24 * w49;
+        let w53 = w43 + w50;
+        let w54 = w51 + w53;
+        w55[k] = w52 + w54;
+        let w56 = series::mul_d(dot7, &ug, &w55, k);
+        let w57 = -w56;
+        let w62 = y[7][k] * w59;
+        let w63 = y[8][k] * w60;
+        let w64 = y[9][k] * w61;
+        let w65 = w62 + w63;
+        w66[k] = w64 + w65;
+        let w67 = series::mul_d(dot8, &y[7], &w66, k);
+        let w70 = y[7][k] * w60;
+        let w71 = y[8][k] * w68;
+        let w72 = y[9][k] * w69;
+        let w73 = w70 + w71;
+        w74[k] = w72 + w73;
+        let w75 = series::mul_d(dot9, &y[8], &w74, k);
+        let w77 = y[7][k] * w61;
+        let w78 = y[8][k] * w69;
+        let w79 = y[9][k] * w76;
+        let w80 = w77 + w78;
+        w81[k] = w79 + w80;
+        let w82 = series::mul_d(dot10, &y[9], &w81, k);
+        let w83 = w67 + w75;
+        let w84 = w82 + w83;
+        out[0][k] = w57;
+        out[1][k] = w84;
+    }
+    out
+}

@@ -377,3 +377,297 @@ pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Param
     }
     out
 }
+
+/// `free_mass_matrix` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn free_mass_matrix<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 3]) -> [f64; 6] {
+    let w0: f64 = s;
+    let w1: f64 = p[1];
+    let w2: f64 = w0 * w1;
+    let mut d_qf0 = [0.0f64; N];
+    let mut sin_qf0 = [0.0f64; N];
+    let mut cos_qf0 = [0.0f64; N];
+    let w5: f64 = 0.5;
+    let w6: f64 = p[4];
+    let w7: f64 = p[3];
+    let w8: f64 = w6 + w7;
+    let w9: f64 = p[5];
+    let w10: f64 = w8 + w9;
+    let w11: f64 = w5 * w10;
+    let w12: f64 = 2.0;
+    let w13: f64 = w2 * w12;
+    let w14: f64 = w11 * w13;
+    let w15: f64 = p[0];
+    let w17: f64 = w5 * w15;
+    let w18: f64 = w2 * w6;
+    let w19: f64 = w6 * w17;
+    let w20: f64 = w2 * w7;
+    let w21: f64 = w7 * w15;
+    let w22: f64 = w18 + w20;
+    let w23: f64 = w19 + w21;
+    let w24: f64 = w2 * w9;
+    let w25: f64 = w22 + w24;
+    let w26: f64 = w14 - w25;
+    let mut w27 = [0.0f64; N];
+    let mut w30 = [0.0f64; N];
+    let mut w33 = [0.0f64; N];
+    let w35: f64 = p[6];
+    let w36: f64 = w5 * w7;
+    let w37: f64 = 2.0 * w2;
+    let w38: f64 = w36 * w37;
+    let w39: f64 = w2 * w38;
+    let w40: f64 = w35 + w39;
+    let w41: f64 = 2.0 * w15;
+    let w42: f64 = w36 * w41;
+    let w43: f64 = w15 * w42;
+    let w44: f64 = w40 + w43;
+    let w45: f64 = 0.08333333333333333;
+    let w46: f64 = w6 * w45;
+    let w47: f64 = w15 * w46;
+    let w48: f64 = w41 * w47;
+    let w49: f64 = w44 + w48;
+    let w50: f64 = 2.0 * w47;
+    let w51: f64 = w15 * w50;
+    let w52: f64 = w49 + w51;
+    let w53: f64 = w5 * w6;
+    let w54: f64 = w37 * w53;
+    let w55: f64 = w2 * w54;
+    let w56: f64 = w52 + w55;
+    let w60: f64 = w2 * w10;
+    let w61: f64 = w60 - w25;
+    let w65: f64 = 0.0;
+    let w69: f64 = 1.0;
+    move |k: usize, qf: &[[f64; N]; 3]| {
+        let [dot0, dot1, dot2, dot3] = series::dots(
+            [
+                (&d_qf0, &cos_qf0),
+                (&d_qf0, &sin_qf0),
+                (&w27, &w30),
+                (&w27, &w33),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &qf[0], &mut d_qf0, &mut sin_qf0, &mut cos_qf0, k);
+        w27[k] = w2 * cos_qf0[k];
+        let w28 = cos_qf0[k] * w26;
+        let w29 = sin_qf0[k] * w23;
+        w30[k] = w28 + w29;
+        let w31 = series::mul_d(dot2, &w27, &w30, k);
+        let w32 = cos_qf0[k] * w25;
+        w33[k] = w32 - w29;
+        let w34 = series::mul_d(dot3, &w27, &w33, k);
+        let w57 = w31 + at0(k, w56);
+        let w58 = w57 - w34;
+        let w62 = cos_qf0[k] * w61;
+        let w63 = w29 + w62;
+        [w58, w63, at0(k, w65), at0(k, w10), at0(k, w65), at0(k, w69)]
+    }
+}
+
+/// `free_forcing` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn free_forcing<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 6], &[f64; N]) -> [f64; 3] {
+    let mut d_y0 = [0.0f64; N];
+    let mut sin_y0 = [0.0f64; N];
+    let mut cos_y0 = [0.0f64; N];
+    let w2: f64 = s;
+    let w3: f64 = p[1];
+    let w4: f64 = w2 * w3;
+    let w5: f64 = p[4];
+    let w6: f64 = p[3];
+    let w7: f64 = w5 + w6;
+    let w8: f64 = p[5];
+    let w9: f64 = w7 + w8;
+    let w10: f64 = p[8];
+    let w11: f64 = w9 * w10;
+    let w12: f64 = w4 * w11;
+    let w15: f64 = w4 * w8;
+    let w16: f64 = w4 * w6;
+    let w17: f64 = w15 + w16;
+    let w18: f64 = w4 * w5;
+    let w19: f64 = w17 + w18;
+    let w20: f64 = p[0];
+    let w21: f64 = w6 * w10;
+    let w22: f64 = w20 * w21;
+    let w23: f64 = 0.5;
+    let w24: f64 = w5 * w10;
+    let w25: f64 = w23 * w24;
+    let w26: f64 = w20 * w25;
+    let w27: f64 = w22 + w26;
+    let w29: f64 = w6 * w20;
+    let w30: f64 = w5 * w23;
+    let w31: f64 = w20 * w30;
+    let w32: f64 = w29 + w31;
+    let w33: f64 = w8 * w10;
+    let w34: f64 = w4 * w33;
+    let w35: f64 = w4 * w21;
+    let w36: f64 = w34 + w35;
+    let w37: f64 = w4 * w24;
+    let w38: f64 = w36 + w37;
+    let w40: f64 = w12 - w38;
+    let mut w45 = [0.0f64; N];
+    let mut w46 = [0.0f64; N];
+    let w49: f64 = 2.0;
+    let w50: f64 = w4 * w49;
+    let w51: f64 = w9 * w23;
+    let w52: f64 = w49 * w51;
+    let w53: f64 = w50 * w51;
+    let w54: f64 = w20 * w23;
+    let w55: f64 = w5 * w54;
+    let w56: f64 = w16 + w18;
+    let w57: f64 = w29 + w55;
+    let w58: f64 = w15 + w56;
+    let w60: f64 = w53 - w58;
+    let mut w65 = [0.0f64; N];
+    let mut w66 = [0.0f64; N];
+    let w68: f64 = w58 - w53;
+    let mut w69 = [0.0f64; N];
+    let mut w72 = [0.0f64; N];
+    let mut w74 = [0.0f64; N];
+    let mut w78 = [0.0f64; N];
+    let mut w82 = [0.0f64; N];
+    let mut w83 = [0.0f64; N];
+    let mut w87 = [0.0f64; N];
+    let w107: f64 = 0.0;
+    move |k: usize, y: &[[f64; N]; 6], ug: &[f64; N]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_y0, &cos_y0),
+                (&d_y0, &sin_y0),
+                (&sin_y0, &ug),
+                (&cos_y0, &ug),
+                (&cos_y0, &y[3]),
+                (&y[3], &w45),
+                (&cos_y0, &w46),
+                (&sin_y0, &w46),
+                (&sin_y0, &y[3]),
+            ],
+            k,
+        );
+        let [dot9, dot10, dot11, dot12, dot13, dot14, dot15, dot16] = series::dots(
+            [
+                (&y[3], &w65),
+                (&sin_y0, &w66),
+                (&w69, &w72),
+                (&w65, &w74),
+                (&w45, &w78),
+                (&w82, &w83),
+                (&y[3], &w87),
+                (&y[3], &w72),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &y[0], &mut d_y0, &mut sin_y0, &mut cos_y0, k);
+        let w28 = series::mul_d(dot2, &sin_y0, &ug, k);
+        let w39 = series::mul_d(dot3, &cos_y0, &ug, k);
+        let w42 = y[4][k];
+        let w43 = series::mul_d(dot4, &cos_y0, &y[3], k);
+        let w44 = w4 * w43;
+        w45[k] = w42 + w44;
+        w46[k] = series::mul_d(dot5, &y[3], &w45, k);
+        let w47 = series::mul_d(dot6, &cos_y0, &w46, k);
+        let w48 = series::mul_d(dot7, &sin_y0, &w46, k);
+        let w59 = series::mul_d(dot8, &sin_y0, &y[3], k);
+        let w61 = w42 * w52;
+        let w62 = w43 * w60;
+        let w63 = w57 * w59;
+        let w64 = w61 + w62;
+        w65[k] = w63 + w64;
+        w66[k] = series::mul_d(dot9, &y[3], &w65, k);
+        let w67 = series::mul_d(dot10, &sin_y0, &w66, k);
+        w69[k] = cos_y0[k] * w4;
+        let w70 = w43 * w57;
+        let w71 = w59 * w68;
+        w72[k] = w70 + w71;
+        let w73 = series::mul_d(dot11, &w69, &w72, k);
+        w74[k] = w4 * sin_y0[k];
+        let w75 = series::mul_d(dot12, &w65, &w74, k);
+        let w76 = cos_y0[k] * w57;
+        let w77 = sin_y0[k] * w58;
+        w78[k] = w76 + w77;
+        let w79 = series::mul_d(dot13, &w45, &w78, k);
+        let w80 = cos_y0[k] * w58;
+        let w81 = sin_y0[k] * w57;
+        w82[k] = w80 - w81;
+        w83[k] = w4 * w59;
+        let w84 = series::mul_d(dot14, &w82, &w83, k);
+        let w85 = w73 + w79;
+        let w86 = w84 + w85;
+        w87[k] = w86 - w75;
+        let w88 = series::mul_d(dot15, &y[3], &w87, k);
+        let w89 = cos_y0[k] * w40;
+        let w90 = sin_y0[k] * w27;
+        let w91 = w19 * w28;
+        let w92 = w32 * w39;
+        let w93 = w32 * w47;
+        let w94 = w19 * w48;
+        let w95 = w4 * w67;
+        let w96 = w89 + w90;
+        let w97 = w93 + w96;
+        let w98 = w94 + w97;
+        let w99 = w98 - w91;
+        let w100 = w99 - w92;
+        let w101 = w100 - w95;
+        let w102 = w101 - w88;
+        let w104 = series::mul_d(dot16, &y[3], &w72, k);
+        let w105 = at0(k, w11) - w104;
+        [w102, w105, at0(k, w107)]
+    }
+}
+
+/// The first N Taylor coefficients of each output of `free_power` along series inputs.
+#[must_use]
+#[inline(always)]
+pub fn free_power<const N: usize>(y: &[[f64; N]; 6], ug: &[f64; N], s: f64, p: &Params) -> [[f64; N]; 2] {
+    let w1: f64 = p[4];
+    let w2: f64 = 0.5;
+    let w3: f64 = p[0];
+    let mut d_y0 = [0.0f64; N];
+    let mut sin_y0 = [0.0f64; N];
+    let mut cos_y0 = [0.0f64; N];
+    let w6: f64 = w2 * w3;
+    let w7: f64 = s;
+    let w8: f64 = p[1];
+    let w9: f64 = w7 * w8;
+    let w11: f64 = w1 * w6;
+    let w12: f64 = w1 * w9;
+    let w13: f64 = p[3];
+    let w14: f64 = w3 * w13;
+    let w15: f64 = w9 * w13;
+    let w16: f64 = w11 + w14;
+    let w17: f64 = w12 + w15;
+    let w18: f64 = p[5];
+    let w19: f64 = w9 * w18;
+    let w20: f64 = w17 + w19;
+    let mut w24 = [0.0f64; N];
+    let mut w25 = [0.0f64; N];
+    let w29: f64 = 0.0;
+    let mut out = [[0.0f64; N]; 2];
+    for k in 0..N {
+        let [dot0, dot1, dot2, dot3] = series::dots(
+            [
+                (&d_y0, &cos_y0),
+                (&d_y0, &sin_y0),
+                (&y[3], &w24),
+                (&ug, &w25),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &y[0], &mut d_y0, &mut sin_y0, &mut cos_y0, k);
+        let w22 = cos_y0[k] * w16;
+        let w23 = sin_y0[k] * w20;
+        w24[k] = w22 + w23;
+        w25[k] = series::mul_d(dot2, &y[3], &w24, k);
+        let w26 = series::mul_d(dot3, &ug, &w25, k);
+        let w27 = -w26;
+        out[0][k] = w27;
+        out[1][k] = at0(k, w29);
+    }
+    out
+}

@@ -850,3 +850,547 @@ pub fn power<const N: usize>(x: &[[f64; N]; 4], ug: &[f64; N], s: f64, p: &Param
     }
     out
 }
+
+/// `free_mass_matrix` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn free_mass_matrix<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 3]) -> [f64; 6] {
+    let w0: f64 = s;
+    let w1: f64 = p[1];
+    let w2: f64 = w0 * w1;
+    let mut d_qf0 = [0.0f64; N];
+    let mut sin_qf0 = [0.0f64; N];
+    let mut cos_qf0 = [0.0f64; N];
+    let w5: f64 = 0.5;
+    let w6: f64 = p[4];
+    let w7: f64 = p[3];
+    let w8: f64 = w6 + w7;
+    let w9: f64 = p[5];
+    let w10: f64 = w8 + w9;
+    let w11: f64 = w5 * w10;
+    let w12: f64 = 2.0;
+    let w13: f64 = w2 * w12;
+    let w14: f64 = w11 * w13;
+    let w15: f64 = p[0];
+    let w17: f64 = w5 * w15;
+    let w18: f64 = 0.375;
+    let w21: f64 = w2 * w6;
+    let w22: f64 = w6 * w17;
+    let w23: f64 = w6 * w18;
+    let w24: f64 = w2 * w7;
+    let w25: f64 = w7 * w15;
+    let w26: f64 = w21 + w24;
+    let w27: f64 = w22 + w25;
+    let w28: f64 = w7 + w23;
+    let w29: f64 = w2 * w9;
+    let w30: f64 = w26 + w29;
+    let w31: f64 = w14 - w30;
+    let mut w32 = [0.0f64; N];
+    let mut w37 = [0.0f64; N];
+    let mut w41 = [0.0f64; N];
+    let w43: f64 = p[6];
+    let w44: f64 = w5 * w7;
+    let w45: f64 = w12 * w44;
+    let w46: f64 = w13 * w44;
+    let w48: f64 = w2 * w45;
+    let w49: f64 = w46 + w48;
+    let w50: f64 = w2 * w46;
+    let w51: f64 = w43 + w50;
+    let w52: f64 = 2.0 * w15;
+    let w53: f64 = w44 * w52;
+    let w54: f64 = w15 * w53;
+    let w55: f64 = w51 + w54;
+    let w56: f64 = 0.05892857142857143;
+    let w57: f64 = w6 * w56;
+    let w58: f64 = w12 * w57;
+    let w59: f64 = w45 + w58;
+    let w60: f64 = w58 + w59;
+    let w61: f64 = 0.08333333333333333;
+    let w62: f64 = w6 * w61;
+    let w63: f64 = w15 * w62;
+    let w64: f64 = w52 * w63;
+    let w65: f64 = w55 + w64;
+    let w66: f64 = 2.0 * w63;
+    let w67: f64 = w15 * w66;
+    let w68: f64 = w65 + w67;
+    let w69: f64 = 0.1875;
+    let w70: f64 = w6 * w69;
+    let w71: f64 = -w2;
+    let w72: f64 = 2.0 * w71;
+    let w73: f64 = w70 * w72;
+    let w74: f64 = w73 - w49;
+    let w75: f64 = w12 * w70;
+    let w76: f64 = w2 * w75;
+    let w77: f64 = w74 - w76;
+    let w78: f64 = w5 * w6;
+    let w79: f64 = 2.0 * w2;
+    let w80: f64 = w78 * w79;
+    let w81: f64 = w2 * w80;
+    let w82: f64 = w68 + w81;
+    let w90: f64 = w2 * w10;
+    let w91: f64 = w90 - w30;
+    let w96: f64 = w2 * w28;
+    let w98: f64 = 0.1375;
+    let w99: f64 = w6 * w98;
+    let w100: f64 = w15 * w99;
+    let w101: f64 = 2.0 * w100;
+    let w102: f64 = w25 + w101;
+    let w109: f64 = 0.11785714285714285;
+    let w110: f64 = w6 * w109;
+    let w111: f64 = w7 + w110;
+    let w112: f64 = w110 + w111;
+    move |k: usize, qf: &[[f64; N]; 3]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5] = series::dots(
+            [
+                (&d_qf0, &cos_qf0),
+                (&d_qf0, &sin_qf0),
+                (&cos_qf0, &qf[2]),
+                (&w32, &w37),
+                (&w32, &w41),
+                (&cos_qf0, &sin_qf0),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &qf[0], &mut d_qf0, &mut sin_qf0, &mut cos_qf0, k);
+        let w20 = series::mul_d(dot2, &cos_qf0, &qf[2], k);
+        w32[k] = w2 * cos_qf0[k];
+        let w33 = cos_qf0[k] * w31;
+        let w34 = sin_qf0[k] * w27;
+        let w35 = w20 * w28;
+        let w36 = w33 + w34;
+        w37[k] = w35 + w36;
+        let w38 = series::mul_d(dot3, &w32, &w37, k);
+        let w39 = cos_qf0[k] * w30;
+        let w40 = w39 - w34;
+        w41[k] = w40 - w35;
+        let w42 = series::mul_d(dot4, &w32, &w41, k);
+        let w47 = series::sq(&qf[2], k);
+        let w83 = qf[2][k] * w77;
+        let w84 = w47 * w60;
+        let w85 = w38 + w83;
+        let w86 = w84 + w85;
+        let w87 = at0(k, w82) + w86;
+        let w88 = w87 - w42;
+        let w92 = cos_qf0[k] * w91;
+        let w93 = w34 + w92;
+        let w94 = w35 + w93;
+        let w97 = series::mul_d(dot5, &cos_qf0, &sin_qf0, k);
+        let w103 = w96 * w97;
+        let w104 = at0(k, w102) + w103;
+        let w107 = sin_qf0[k] * w28;
+        [w88, w94, w104, at0(k, w10), w107, at0(k, w112)]
+    }
+}
+
+/// `free_forcing` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn free_forcing<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 6], &[f64; N]) -> [f64; 3] {
+    let w1: f64 = s;
+    let w2: f64 = p[1];
+    let w3: f64 = w1 * w2;
+    let w4: f64 = p[3];
+    let w5: f64 = p[8];
+    let w6: f64 = w4 * w5;
+    let w7: f64 = w3 * w6;
+    let w8: f64 = p[0];
+    let w10: f64 = w4 * w8;
+    let w11: f64 = 0.5;
+    let w12: f64 = p[4];
+    let w13: f64 = w11 * w12;
+    let w14: f64 = w8 * w13;
+    let w15: f64 = w10 + w14;
+    let w16: f64 = p[5];
+    let w17: f64 = w5 * w16;
+    let w18: f64 = w3 * w17;
+    let w19: f64 = w7 + w18;
+    let w20: f64 = 0.375;
+    let w21: f64 = w5 * w12;
+    let w22: f64 = w20 * w21;
+    let w23: f64 = w6 + w22;
+    let w25: f64 = 2.0;
+    let w26: f64 = w3 * w16;
+    let w28: f64 = w3 * w4;
+    let w29: f64 = w26 + w28;
+    let w30: f64 = w12 * w20;
+    let w31: f64 = w4 + w30;
+    let w32: f64 = w3 * w12;
+    let w33: f64 = w29 + w32;
+    let w34: f64 = w6 * w8;
+    let w35: f64 = w11 * w21;
+    let w36: f64 = w8 * w35;
+    let w37: f64 = w34 + w36;
+    let w38: f64 = w11 * w33;
+    let w39: f64 = w11 * w31;
+    let w40: f64 = w11 * w37;
+    let mut w41 = [0.0f64; N];
+    let mut w45 = [0.0f64; N];
+    let w47: f64 = w3 * w21;
+    let w48: f64 = w19 + w47;
+    let mut d_y0 = [0.0f64; N];
+    let mut sin_y0 = [0.0f64; N];
+    let mut cos_y0 = [0.0f64; N];
+    let w50: f64 = w4 + w12;
+    let w51: f64 = w16 + w50;
+    let w52: f64 = w5 * w51;
+    let w53: f64 = w3 * w52;
+    let mut w57 = [0.0f64; N];
+    let w60: f64 = w20 * w32;
+    let w61: f64 = w28 + w60;
+    let mut w65 = [0.0f64; N];
+    let mut w68 = [0.0f64; N];
+    let mut w69 = [0.0f64; N];
+    let mut w75 = [0.0f64; N];
+    let w77: f64 = w3 * w25;
+    let w78: f64 = w11 * w51;
+    let w79: f64 = w25 * w78;
+    let w80: f64 = w77 * w78;
+    let w81: f64 = w8 * w11;
+    let mut w82 = [0.0f64; N];
+    let w83: f64 = w12 * w81;
+    let w84: f64 = w28 + w32;
+    let w85: f64 = w10 + w83;
+    let w86: f64 = w26 + w84;
+    let mut w87 = [0.0f64; N];
+    let w90: f64 = w80 - w86;
+    let mut w99 = [0.0f64; N];
+    let mut w100 = [0.0f64; N];
+    let mut w102 = [0.0f64; N];
+    let w105: f64 = w86 - w80;
+    let mut w106 = [0.0f64; N];
+    let mut w113 = [0.0f64; N];
+    let mut w115 = [0.0f64; N];
+    let mut w121 = [0.0f64; N];
+    let mut w127 = [0.0f64; N];
+    let mut w128 = [0.0f64; N];
+    let mut w132 = [0.0f64; N];
+    let w134: f64 = w3 * w31;
+    let w137: f64 = w25 * w134;
+    let mut w138 = [0.0f64; N];
+    let w139: f64 = w4 * w11;
+    let w140: f64 = w77 * w139;
+    let w141: f64 = w25 * w139;
+    let w142: f64 = w3 * w141;
+    let w143: f64 = w140 + w142;
+    let w144: f64 = w25 * w141;
+    let w145: f64 = 0.05892857142857143;
+    let w146: f64 = w12 * w145;
+    let w147: f64 = w25 * w146;
+    let w148: f64 = w25 * w147;
+    let w149: f64 = w144 + w148;
+    let w150: f64 = w148 + w149;
+    let w151: f64 = 0.1875;
+    let w152: f64 = w12 * w151;
+    let w153: f64 = w77 * w152;
+    let w154: f64 = w143 + w153;
+    let w155: f64 = w25 * w152;
+    let w156: f64 = w3 * w155;
+    let w157: f64 = w154 + w156;
+    let mut w164 = [0.0f64; N];
+    let w185: f64 = -1.5;
+    let w186: f64 = p[2];
+    let w187: f64 = w8 * w8;
+    let w188: f64 = w8 * w187;
+    let w189: f64 = w186 / w188;
+    let w190: f64 = w185 * w189;
+    let w191: f64 = w25 * w190;
+    let w192: f64 = 1.0;
+    let mut w193 = [0.0f64; N];
+    let w194: f64 = w192 / w25;
+    let w195: f64 = w4 * w194;
+    let w197: f64 = w4 * w192;
+    let w198: f64 = w30 * w194;
+    let w199: f64 = w30 * w192;
+    let w200: f64 = w197 + w199;
+    let w201: f64 = w195 + w198;
+    let w204: f64 = w141 + w147;
+    let w205: f64 = w147 + w204;
+    let w206: f64 = w140 + w153;
+    let mut w211 = [0.0f64; N];
+    let w213: f64 = p[7];
+    let w214: f64 = 2.0 * w213;
+    let w215: f64 = 3.0;
+    let w216: f64 = w189 * w215;
+    let w217: f64 = 0.11785714285714285;
+    let w218: f64 = w12 * w217;
+    let w219: f64 = w4 + w218;
+    let w220: f64 = w218 + w219;
+    let w221: f64 = w216 / w220;
+    let w222: f64 = w221.sqrt();
+    let w223: f64 = w214 * w222;
+    let w224: f64 = w220 * w223;
+    move |k: usize, y: &[[f64; N]; 6], ug: &[f64; N]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&y[2], &ug),
+                (&w41, &w45),
+                (&d_y0, &cos_y0),
+                (&d_y0, &sin_y0),
+                (&cos_y0, &y[3]),
+                (&y[5], &y[4]),
+                (&y[5], &w57),
+                (&cos_y0, &w65),
+                (&y[3], &w68),
+            ],
+            k,
+        );
+        let [dot9, dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17] = series::dots(
+            [
+                (&cos_y0, &w69),
+                (&y[2], &w69),
+                (&sin_y0, &w75),
+                (&y[2], &cos_y0),
+                (&y[3], &sin_y0),
+                (&y[3], &w82),
+                (&y[5], &sin_y0),
+                (&y[3], &w99),
+                (&sin_y0, &w100),
+            ],
+            k,
+        );
+        let [dot18, dot19, dot20, dot21, dot22, dot23, dot24, dot25, dot26] = series::dots(
+            [
+                (&y[2], &sin_y0),
+                (&y[3], &w102),
+                (&cos_y0, &y[5]),
+                (&w106, &w113),
+                (&w99, &w115),
+                (&w68, &w121),
+                (&w127, &w128),
+                (&y[3], &w132),
+                (&cos_y0, &w57),
+            ],
+            k,
+        );
+        let [dot27, dot28, dot29, dot30, dot31, dot32, dot33, dot34] = series::dots(
+            [
+                (&cos_y0, &y[4]),
+                (&y[2], &y[3]),
+                (&y[5], &w164),
+                (&y[3], &w113),
+                (&ug, &w193),
+                (&y[3], &w138),
+                (&sin_y0, &w87),
+                (&y[3], &w211),
+            ],
+            k,
+        );
+        let w27 = series::mul_d(dot0, &y[2], &ug, k);
+        w41[k] = y[0][k] * w25;
+        let w42 = ug[k] * w38;
+        let w43 = w27 * w39;
+        let w44 = w42 - w43;
+        w45[k] = w44 - at0(k, w40);
+        let w46 = series::mul_d(dot1, &w41, &w45, k);
+        series::sin_cos_d(dot2, dot3, &y[0], &mut d_y0, &mut sin_y0, &mut cos_y0, k);
+        w57[k] = series::mul_d(dot4, &cos_y0, &y[3], k);
+        let w58 = series::mul_d(dot5, &y[5], &y[4], k);
+        let w59 = series::mul_d(dot6, &y[5], &w57, k);
+        let w62 = w31 * w58;
+        let w63 = w59 * w61;
+        let w64 = w62 + w63;
+        w65[k] = at0(k, w53) + w64;
+        let w66 = series::mul_d(dot7, &cos_y0, &w65, k);
+        let w67 = w3 * w57[k];
+        w68[k] = y[4][k] + w67;
+        w69[k] = series::mul_d(dot8, &y[3], &w68, k);
+        let w70 = series::mul_d(dot9, &cos_y0, &w69, k);
+        let w72 = series::mul_d(dot10, &y[2], &w69, k);
+        let w73 = w33 * w69[k];
+        let w74 = w31 * w72;
+        w75[k] = w74 - w73;
+        let w76 = series::mul_d(dot11, &sin_y0, &w75, k);
+        w82[k] = series::mul_d(dot12, &y[2], &cos_y0, k);
+        w87[k] = series::mul_d(dot13, &y[3], &sin_y0, k);
+        let w88 = series::mul_d(dot14, &y[3], &w82, k);
+        let w89 = series::mul_d(dot15, &y[5], &sin_y0, k);
+        let w91 = y[4][k] * w79;
+        let w92 = w57[k] * w90;
+        let w93 = w85 * w87[k];
+        let w94 = w31 * w88;
+        let w95 = w31 * w89;
+        let w96 = w91 + w92;
+        let w97 = w93 + w96;
+        let w98 = w94 + w97;
+        w99[k] = w95 + w98;
+        w100[k] = series::mul_d(dot16, &y[3], &w99, k);
+        let w101 = series::mul_d(dot17, &sin_y0, &w100, k);
+        w102[k] = series::mul_d(dot18, &y[2], &sin_y0, k);
+        let w103 = series::mul_d(dot19, &y[3], &w102, k);
+        let w104 = series::mul_d(dot20, &cos_y0, &y[5], k);
+        w106[k] = w3 * cos_y0[k];
+        let w107 = w57[k] * w85;
+        let w108 = w87[k] * w105;
+        let w109 = w31 * w103;
+        let w110 = w31 * w104;
+        let w111 = w107 + w108;
+        let w112 = w110 + w111;
+        w113[k] = w112 - w109;
+        let w114 = series::mul_d(dot21, &w106, &w113, k);
+        w115[k] = w3 * sin_y0[k];
+        let w116 = series::mul_d(dot22, &w99, &w115, k);
+        let w117 = cos_y0[k] * w85;
+        let w118 = sin_y0[k] * w86;
+        let w119 = w31 * w102[k];
+        let w120 = w119 - w117;
+        w121[k] = w120 - w118;
+        let w122 = series::mul_d(dot23, &w68, &w121, k);
+        let w123 = cos_y0[k] * w86;
+        let w124 = sin_y0[k] * w85;
+        let w125 = w31 * w82[k];
+        let w126 = w123 - w124;
+        w127[k] = w126 - w125;
+        w128[k] = w3 * w87[k];
+        let w129 = series::mul_d(dot24, &w127, &w128, k);
+        let w130 = w114 + w129;
+        let w131 = w130 - w116;
+        w132[k] = w131 - w122;
+        let w133 = series::mul_d(dot25, &y[3], &w132, k);
+        let w135 = series::mul_d(dot26, &cos_y0, &w57, k);
+        let w136 = series::mul_d(dot27, &cos_y0, &y[4], k);
+        w138[k] = series::mul_d(dot28, &y[2], &y[3], k);
+        let w158 = y[3][k] * w157;
+        let w159 = w135 * w137;
+        let w160 = w31 * w136;
+        let w161 = w138[k] * w150;
+        let w162 = w159 + w160;
+        let w163 = w161 + w162;
+        w164[k] = w163 - w158;
+        let w165 = series::mul_d(dot29, &y[5], &w164, k);
+        let w166 = y[2][k] * w23;
+        let w167 = ug[k] * w15;
+        let w168 = w15 * w70;
+        let w169 = w3 * w101;
+        let w170 = w66 + w166;
+        let w171 = w168 + w170;
+        let w172 = w171 - w167;
+        let w173 = w172 - w46;
+        let w174 = w173 - w76;
+        let w175 = w174 - w169;
+        let w176 = w175 - w133;
+        let w177 = w176 - w165;
+        let w178 = w177 - at0(k, w48);
+        let w180 = series::mul_d(dot30, &y[3], &w113, k);
+        let w181 = w31 * w59;
+        let w182 = at0(k, w52) - w181;
+        let w183 = w182 - w180;
+        w193[k] = series::sq(&y[0], k);
+        let w196 = series::mul_d(dot31, &ug, &w193, k);
+        let w202 = series::sq(&y[3], k);
+        let w203 = series::mul_d(dot32, &y[3], &w138, k);
+        let w207 = series::mul_d(dot33, &sin_y0, &w87, k);
+        let w208 = w134 * w135;
+        let w209 = w134 * w207;
+        let w210 = w160 + w208;
+        w211[k] = w210 - w209;
+        let w212 = series::mul_d(dot34, &y[3], &w211, k);
+        let w225 = y[2][k] * w191;
+        let w226 = ug[k] * w200;
+        let w227 = w23 * y[0][k];
+        let w228 = y[5][k] * w224;
+        let w229 = w31 * w70;
+        let w230 = w196 * w201;
+        let w231 = w202 * w206;
+        let w232 = w203 * w205;
+        let w233 = w225 + w227;
+        let w234 = w229 + w233;
+        let w235 = w230 + w234;
+        let w236 = w232 + w235;
+        let w237 = w236 - w226;
+        let w238 = w237 - w228;
+        let w239 = w238 - w231;
+        let w240 = w239 - w212;
+        [w178, w183, w240]
+    }
+}
+
+/// The first N Taylor coefficients of each output of `free_power` along series inputs.
+#[must_use]
+#[inline(always)]
+pub fn free_power<const N: usize>(y: &[[f64; N]; 6], ug: &[f64; N], s: f64, p: &Params) -> [[f64; N]; 2] {
+    let w1: f64 = p[4];
+    let w2: f64 = 0.5;
+    let w3: f64 = p[0];
+    let w4: f64 = w2 * w3;
+    let w5: f64 = s;
+    let w6: f64 = p[1];
+    let w7: f64 = w5 * w6;
+    let w9: f64 = 0.375;
+    let w12: f64 = w1 * w7;
+    let w13: f64 = w1 * w9;
+    let w14: f64 = w1 * w4;
+    let w15: f64 = p[3];
+    let w16: f64 = w7 * w15;
+    let w17: f64 = w3 * w15;
+    let w18: f64 = w12 + w16;
+    let w19: f64 = w13 + w15;
+    let w20: f64 = w14 + w17;
+    let w21: f64 = p[5];
+    let w22: f64 = w7 * w21;
+    let w23: f64 = w18 + w22;
+    let mut w28 = [0.0f64; N];
+    let w30: f64 = 1.0;
+    let mut w31 = [0.0f64; N];
+    let w32: f64 = 2.0;
+    let w33: f64 = w30 / w32;
+    let w34: f64 = w9 * w33;
+    let w35: f64 = w9 * w30;
+    let w36: f64 = w1 * w34;
+    let w37: f64 = w1 * w35;
+    let w38: f64 = w15 * w33;
+    let w39: f64 = w15 * w30;
+    let w40: f64 = w36 + w38;
+    let w41: f64 = w37 + w39;
+    let mut w47 = [0.0f64; N];
+    let w51: f64 = p[7];
+    let w52: f64 = 2.0 * w51;
+    let w53: f64 = 3.0;
+    let w54: f64 = p[2];
+    let w55: f64 = w3 * w3;
+    let w56: f64 = w3 * w55;
+    let w57: f64 = w54 / w56;
+    let w58: f64 = w53 * w57;
+    let w59: f64 = 0.11785714285714285;
+    let w60: f64 = w1 * w59;
+    let w61: f64 = w15 + w60;
+    let w62: f64 = w60 + w61;
+    let w63: f64 = w58 / w62;
+    let w64: f64 = w63.sqrt();
+    let w65: f64 = w52 * w64;
+    let w66: f64 = w62 * w65;
+    let mut out = [[0.0f64; N]; 2];
+    for k in 0..N {
+        let [dot0, dot1, dot2, dot3] = series::dots(
+            [
+                (&y[0], &y[2]),
+                (&y[3], &w28),
+                (&w31, &y[5]),
+                (&ug, &w47),
+            ],
+            k,
+        );
+        let w11 = series::mul_d(dot0, &y[0], &y[2], k);
+        let w25 = y[0][k] * w23;
+        let w26 = w11 * w19;
+        let w27 = at0(k, w20) + w25;
+        w28[k] = w27 - w26;
+        let w29 = series::mul_d(dot1, &y[3], &w28, k);
+        w31[k] = series::sq(&y[0], k);
+        let w43 = series::mul_d(dot2, &w31, &y[5], k);
+        let w44 = w41 * y[5][k];
+        let w45 = w40 * w43;
+        let w46 = w29 + w44;
+        w47[k] = w46 - w45;
+        let w48 = series::mul_d(dot3, &ug, &w47, k);
+        let w49 = -w48;
+        let w67 = series::sq(&y[5], k);
+        let w68 = w66 * w67;
+        out[0][k] = w49;
+        out[1][k] = w68;
+    }
+    out
+}

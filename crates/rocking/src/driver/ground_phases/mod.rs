@@ -33,6 +33,7 @@ use crate::results::{
 };
 use crate::spd::solve_upper;
 use crate::structure::{Derived, Structure};
+use crate::taylor::TaylorVariant;
 
 /// Indices of the ground kernels' output (the same in every kind and state).
 use gk::winkler_full as go;
@@ -41,6 +42,7 @@ mod contact;
 mod past;
 mod peaks;
 mod record;
+mod series;
 
 use contact::{contact_fraction, Contact, Kin};
 use past::past;
@@ -107,16 +109,18 @@ struct GroundSim<'a, V: Variant, M: GroundMotion + ?Sized, const N: usize> {
     top: V::Shape,
     tol: Tolerances<N>,
     ode_options: OdeOptions,
+    /// Whether the phases run the Taylor method ([`GroundSim::phase_taylor`]).
+    taylor: bool,
     rec: Track,
 }
 
-/// Runs `structure` on `ground` under `motion` with variant `V` (Runge–Kutta: the options'
-/// method when it is one, DOP853 otherwise; see [`crate::simulate_on_ground`]).
+/// Runs `structure` on `ground` under `motion` with variant `V` by the options' method (see
+/// [`crate::simulate_on_ground`]).
 ///
 /// # Panics
 ///
 /// When `N` is not `V::Y::LEN + 3`.
-pub fn simulate_ground<V: Variant, M: GroundMotion + ?Sized, const N: usize>(
+pub fn simulate_ground<V: TaylorVariant, M: GroundMotion + ?Sized, const N: usize>(
     structure: &Structure,
     ground: &Ground,
     motion: &M,
@@ -178,6 +182,7 @@ pub fn simulate_ground<V: Variant, M: GroundMotion + ?Sized, const N: usize>(
         top: V::shape(1.0),
         tol,
         ode_options,
+        taylor: opts.accuracy.method.runge_kutta().is_none(),
         rec: Track {
             min_contact: f64::INFINITY,
             min_pressure: f64::INFINITY,
@@ -204,7 +209,7 @@ pub fn simulate_ground<V: Variant, M: GroundMotion + ?Sized, const N: usize>(
     sim.run()
 }
 
-impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N> {
+impl<V: TaylorVariant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N> {
     /// The state at rest with rotation `theta`, settlement `v` and deformation `us` (missing
     /// entries 0).
     fn y_of(&self, theta: f64, v: f64, us: &[f64]) -> V::Y {
@@ -290,7 +295,11 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
             }
         }
         let end = loop {
-            let end = self.phase(t, y, s, c, carried, fired)?;
+            let end = if self.taylor {
+                self.phase_taylor(t, y, s, c, carried, fired)?
+            } else {
+                self.phase(t, y, s, c, carried, fired)?
+            };
             t = end.t;
             y = end.y;
             carried = end.carried;
@@ -384,19 +393,7 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
             let [l, r] = k.depths(&y);
             SVector::<f64, 4>::new(s * z[theta], l, r, s * z[theta] - over)
         };
-        let falls = |pressing: bool| {
-            if pressing {
-                Direction::Falling
-            } else {
-                Direction::Rising
-            }
-        };
-        let dirs = [
-            Direction::Falling,
-            falls(c.left),
-            falls(c.right),
-            Direction::Rising,
-        ];
+        let dirs = self.directions(c);
         let z0 = SVector::<f64, N>::from_fn(|i, _| match Free::<V>::part(i) {
             FreePart::Integral(k) => carried[k],
             _ => y0.values()[i],
@@ -478,6 +475,25 @@ impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N
             carried: std::array::from_fn(|k| z[integrals + k]),
             event,
         })
+    }
+
+    /// The directions of the events `[s θ, d(−B), d(B), s θ − θ_over]` in contact state `c`: θ
+    /// through zero falling, a pressing corner's depth falling (a lift-off), a lifted one's
+    /// rising (a landing), the overturning angle rising.
+    fn directions(&self, c: Contact) -> [Direction; 4] {
+        let falls = |pressing: bool| {
+            if pressing {
+                Direction::Falling
+            } else {
+                Direction::Rising
+            }
+        };
+        [
+            Direction::Falling,
+            falls(c.left),
+            falls(c.right),
+            Direction::Rising,
+        ]
     }
 
     /// The bookkeeping of every step of every phase: the history rows of (t_old, t_end]

@@ -27,7 +27,7 @@ const CONTACT: usize = 4;
 const LEAST: usize = 5;
 const REACTION_V: usize = 6;
 
-impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N> {
+impl<V: TaylorVariant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N> {
     /// The measures searched for extremes at one state (the forces 0 where the run records none).
     fn peaked(&self, t: f64, y: &V::Y, s: f64, c: Contact) -> Peaked {
         let ug = self.motion.accel(t);

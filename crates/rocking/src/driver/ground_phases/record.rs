@@ -4,7 +4,7 @@
 use super::*;
 use rocking_kernels::kernels::index::free_forces as ff;
 
-impl<V: Variant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N> {
+impl<V: TaylorVariant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V, M, N> {
     /// The maxima at one state.
     pub(super) fn observe(&mut self, t: f64, y: &V::Y, s: f64, c: Contact) {
         let ug = self.motion.accel(t);
