@@ -61,7 +61,7 @@ def quartiles(xs):
 def steps(runs, after=20.0):
     if not all("solver_stats.steps" in next(iter(c.values())) for _, c in runs):
         return
-    print("\nsteps (DOP853 on the bed; the rigid surface's own method)")
+    print("\nsteps (the preset's method on both grounds)")
     print("| ground | total steps | mean per cell | upright cells: steps per τ | per 2π/ω_v |")
     print("|---|---|---|---|---|")
     for label, cells in runs:

@@ -322,13 +322,16 @@ fn stiff_bed_cell() -> (rocking_scene::setup::Setup, Ground) {
 /// `scenes/spectra/fig8-winkler.toml` at ω_p/p = 6, a_p = 3.111… g tan α stopped at τ = 1.020
 /// (a grazing lift-off's return into the bed went unseen: docs/ground.md). It must run to its
 /// end (τ = pulse + 20) with the base never sinking through the bed (a missed landing leaves a
-/// corner below the surface with no force), and its energy balance must close to the integrator's
-/// tolerance, at the scene's preset and at 1e-12.
+/// corner below the surface with no force), and its energy balance must close: to the preset's
+/// target at the scene's preset (the Taylor method at 1e-7), to 1e-10 at tol 1e-12 (the Taylor
+/// step rule's ε is no strict bound of a step's error: the settlement's maximum is 1.8e-11 off
+/// a run at 1e-14 there, 2.7e-10 at 1e-11).
 #[test]
 fn stiff_bed_reproducer_runs_to_its_end_with_the_balance_closed() {
     let (m, g) = stiff_bed_cell();
     let t_end = m.options.t_end * m.structure.derived().p;
-    for tol in [m.options.accuracy.tol, 1e-12] {
+    let preset = (m.options.accuracy.tol, rocking::Preset::Default.target());
+    for (tol, bound) in [preset, (1e-12, 1e-10)] {
         let mut o = Options {
             energy: true,
             event_log: true,
@@ -359,9 +362,10 @@ fn stiff_bed_reproducer_runs_to_its_end_with_the_balance_closed() {
             gs.min_contact_fraction >= 0.0 && gs.min_contact_fraction.is_sign_positive(),
             "{gs:?}"
         );
-        // Measured: 1.2e-7 at the preset's 3e-7 (1,884 steps), 4.5e-14 at 1e-12 (7,914 steps).
+        // Measured (Taylor): 4.8e-7 at the preset's 1e-7 (1,313 steps), 1.0e-11 at 1e-12
+        // (1,661 steps); DOP853 gave 1.2e-7 at its 3e-7 (1,884 steps), 4.5e-14 at 1e-12 (7,914).
         assert!(
-            residual <= tol,
+            residual <= bound,
             "energy balance residual {residual:e} at tol {tol:e}"
         );
     }

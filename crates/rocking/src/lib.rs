@@ -278,9 +278,8 @@ pub fn simulate(
 
 /// Runs a simulation on compliant ground (issue 44, docs/ground.md) with the most specialised
 /// kernel variant for `structure` and `effects`: the free-base equations of the variant and the
-/// ground's kernels, integrated by the options' Runge–Kutta method (DOP853 when the options ask
-/// for the Taylor method, whose compliant-ground kernels do not exist yet: the caller gives the
-/// tolerance, e.g. [`Preset::dop853_tol`]). The energy integrals are always carried; the
+/// ground's kernels, integrated by the options' method (the Taylor method's series solved order
+/// by order at run time, docs/ground.md). The energy integrals are always carried; the
 /// summary's energy balance is reported when `options.energy` is set.
 pub fn simulate_on_ground(
     structure: &Structure,

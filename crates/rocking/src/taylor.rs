@@ -16,6 +16,11 @@ use crate::layout::{Contact, Free};
 const RIGHT: f64 = 1.0;
 const LEFT: f64 = -1.0;
 
+/// The ground's generalised forces `[Q_θ, Q_v]` one Taylor order at a time: coefficient k from
+/// the series of the base's `[θ, v, θ', v']` up to order k.
+pub(crate) type GroundForces<'a, const N: usize> =
+    dyn FnMut(usize, &[[f64; N]; 4]) -> [f64; 2] + 'a;
+
 /// A kernel variant's Taylor-mode kernels (see the generated `rocking_kernels::taylor::<variant>`
 /// for the inputs; series hold their first N coefficients). The series are passed as slices of
 /// the variant's lengths (`V::X::LEN` rows for a rocking state, `V::Xc::LEN` for a contact one):
@@ -60,7 +65,7 @@ pub trait TaylorVariant: Variant {
         ug: &[f64; N],
         s: f64,
         p: &Self::Params,
-        ground: &mut dyn FnMut(usize, &[[f64; N]; 4]) -> [f64; 2],
+        ground: &mut GroundForces<'_, N>,
     ) -> f64;
     /// `[ground, damping]` power along a free-base series (without the ground's own power).
     fn free_power_series<const N: usize>(
@@ -133,7 +138,7 @@ macro_rules! taylor_variant {
                 ug: &[f64; N],
                 s: f64,
                 p: &Self::Params,
-                ground: &mut dyn FnMut(usize, &[[f64; N]; 4]) -> [f64; 2],
+                ground: &mut GroundForces<'_, N>,
             ) -> f64 {
                 use kernels::layout::$nq as l;
                 let mut mass = taylor::$module::free_mass_matrix::<N>(s, p);

@@ -128,6 +128,9 @@ pub fn simulate_ground<V: TaylorVariant, M: GroundMotion + ?Sized, const N: usiz
 ) -> Result<Run, SimError> {
     assert_eq!(N, V::Y::LEN + 3, "state size for variant {}", V::NAME);
     opts.validate()?;
+    if opts.accuracy.method == crate::Method::Taylor && !motion.accel_series(0.0, &mut [0.0; 2]) {
+        return Err(SimError::NoTaylorSeries);
+    }
     let p = structure.params::<V>();
     let derived = structure.derived_by::<V>();
     let uplift = V::static_uplift(&p);

@@ -39,14 +39,16 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const N: usize> TaylorSystem<N>
         }
         let mut dissipation = [0.0; K];
         let (s, p) = (self.s, self.k.p);
-        self.k.ground.state_orders::<K, _>(self.c.left, self.c.right, |ground| {
-            let mut forces = |k: usize, base: &[[f64; K]; 4]| {
-                let g = ground(k, base);
-                dissipation[k] = g[go::DISSIPATION];
-                [g[go::Q_THETA], g[go::Q_V]]
-            };
-            V::free_series(&mut x[..ny], &ug, s, &p, &mut forces);
-        });
+        self.k
+            .ground
+            .state_orders::<K, _>(self.c.left, self.c.right, |ground| {
+                let mut forces = |k: usize, base: &[[f64; K]; 4]| {
+                    let g = ground(k, base);
+                    dissipation[k] = g[go::DISSIPATION];
+                    [g[go::Q_THETA], g[go::Q_V]]
+                };
+                V::free_series(&mut x[..ny], &ug, s, &p, &mut forces);
+            });
         let pw = V::free_power_series(&x[..ny], &ug, s, &p);
         for i in 0..ny {
             let inv = 1.0 / self.scale[i];
@@ -122,9 +124,8 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V
             FreePart::Integral(k) => carried[k] / scale[i],
             _ => y0.values()[i] / scale[i],
         });
-        let unscale = |z: [f64; N]| -> SVector<f64, N> {
-            SVector::<f64, N>::from_fn(|i, _| z[i] * scale[i])
-        };
+        let unscale =
+            |z: [f64; N]| -> SVector<f64, N> { SVector::<f64, N>::from_fn(|i, _| z[i] * scale[i]) };
         let dirs = self.directions(c);
         let g_at = |k: &Kin<V>, y: &V::Y| -> [f64; 4] {
             let [l, r] = k.depths(y);
