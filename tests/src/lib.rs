@@ -21,6 +21,30 @@ pub fn scene(file: &str, sets: &[&str]) -> rocking_scene::setup::Setup {
     rocking_scene::setup::build(&sc).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
 
+/// A dimensionless structure of the compliant-ground tests (R = g = m = 1, α = 0.2, γ_mc = 0,
+/// γ_ib = 1, damping of the fixed base).
+pub fn ground_structure(omega_n_over_p: f64, gamma_mb: f64, zeta: f64) -> Structure {
+    let d = Dimensionless {
+        omega_n_over_p,
+        alpha: 0.2,
+        gamma_mc: 0.0,
+        gamma_mb,
+        gamma_ib: 1.0,
+        zeta,
+        damping: DampingConvention::FixedBase,
+    };
+    Structure::from_dimensionless(&d, None).unwrap()
+}
+
+/// The ground of `kind` under `s` with ω_v = `ratio` p and damping ratio `zeta_v` (g = 1: the
+/// mass is the weight).
+pub fn bed(s: &Structure, kind: rocking::GroundKind, ratio: f64, zeta_v: f64) -> rocking::Ground {
+    let mass = s.static_uplift().weight;
+    let k_v = mass * (ratio * s.derived().p).powi(2);
+    let c_v = 2.0 * zeta_v * (k_v * mass).sqrt();
+    rocking::Ground::from_vertical(kind, s.param("b").unwrap(), k_v, c_v)
+}
+
 /// The frequency of the column mode of the rocking equations linearised about (θ, u) while
 /// rocking about `s`, from the variant's own kernels (M(q) and central differences of F at rest
 /// velocities and no ground motion): the kernel-based form of [`uplifted_frequency_linearised`]

@@ -2,33 +2,11 @@
 //! and the small-amplitude rocking frequency on a Winkler bed.
 
 use rocking::{
-    simulate, simulate_on_ground, DampingConvention, Dimensionless, Effects, EventKind, Ground,
-    GroundKind, History, Options, Run, Structure,
+    simulate, simulate_on_ground, Effects, EventKind, Ground, GroundKind, History, Options, Run,
+    Structure,
 };
 use rocking_motion::{GroundMotion, NoMotion, SinePulse};
-
-/// A dimensionless structure (R = g = m = 1, α = 0.2).
-fn structure(omega_n_over_p: f64, gamma_mb: f64, zeta: f64) -> Structure {
-    let d = Dimensionless {
-        omega_n_over_p,
-        alpha: 0.2,
-        gamma_mc: 0.0,
-        gamma_mb,
-        gamma_ib: 1.0,
-        zeta,
-        damping: DampingConvention::FixedBase,
-    };
-    Structure::from_dimensionless(&d, None).unwrap()
-}
-
-/// The Winkler bed with ω_v = `ratio` p and damping ratio `zeta_v` for `s`.
-fn bed(s: &Structure, kind: GroundKind, ratio: f64, zeta_v: f64) -> Ground {
-    let w = s.static_uplift().weight;
-    let mass = w; // g = 1
-    let k_v = mass * (ratio * s.derived().p).powi(2);
-    let c_v = 2.0 * zeta_v * (k_v * mass).sqrt();
-    Ground::from_vertical(kind, s.param("b").unwrap(), k_v, c_v)
-}
+use rocking_verification::{bed, ground_structure, scene};
 
 fn options(t_end: f64, tol: f64, theta0: f64) -> Options {
     let mut o = Options {
@@ -66,7 +44,7 @@ fn rigid() -> Effects {
 /// accurate (6.4e-9 v0 on a 0.01 τ grid at 1e-10, 3.6e-11 at 1e-12; docs/ground.md).
 #[test]
 fn at_rest_stays_at_the_static_settlement() {
-    let s = structure(10.0, 0.5, 0.0);
+    let s = ground_structure(10.0, 0.5, 0.0);
     for kind in [GroundKind::Winkler, GroundKind::TwoSpring] {
         let g = bed(&s, kind, 30.0, 0.0);
         for tol in [1e-10, 1e-12] {
@@ -99,7 +77,7 @@ fn at_rest_stays_at_the_static_settlement() {
 /// column stays upright.
 #[test]
 fn an_initial_settlement_heaves_about_the_static_one() {
-    let s = structure(10.0, 0.5, 0.0);
+    let s = ground_structure(10.0, 0.5, 0.0);
     let omega_v = 30.0 * s.derived().p;
     for kind in [GroundKind::Winkler, GroundKind::TwoSpring] {
         let g = bed(&s, kind, 30.0, 0.0);
@@ -136,7 +114,7 @@ fn an_initial_settlement_heaves_about_the_static_one() {
 #[test]
 fn energy_is_conserved_through_lift_offs_and_landings() {
     for kind in [GroundKind::Winkler, GroundKind::TwoSpring] {
-        let s = structure(10.0, 0.5, 0.0);
+        let s = ground_structure(10.0, 0.5, 0.0);
         let g = bed(&s, kind, 30.0, 0.0);
         let mut o = options(10.0, 1e-12, 0.1);
         o.initial.u = 0.2 * s.derived().u_cr;
@@ -172,7 +150,7 @@ fn energy_is_conserved_through_lift_offs_and_landings() {
 #[test]
 fn with_damping_the_energy_balance_closes() {
     for kind in [GroundKind::Winkler, GroundKind::TwoSpring] {
-        let s = structure(10.0, 0.5, 0.05);
+        let s = ground_structure(10.0, 0.5, 0.05);
         let g = bed(&s, kind, 30.0, 0.1);
         let pulse = SinePulse::new(1.3 * 0.2f64.tan(), 4.0);
         let r = run(
@@ -197,7 +175,7 @@ fn with_damping_the_energy_balance_closes() {
 /// and the ground's columns the same.
 #[test]
 fn mirror_symmetry() {
-    let s = structure(10.0, 0.5, 0.02);
+    let s = ground_structure(10.0, 0.5, 0.02);
     let g = bed(&s, GroundKind::Winkler, 30.0, 0.05);
     let a = 1.3 * 0.2f64.tan();
     let o = options(8.0, 1e-11, 0.0);
@@ -223,7 +201,7 @@ fn mirror_symmetry() {
 /// The time from release at θ0 = α/2 (rest) to θ = 0 on compliant ground, and on the rigid
 /// surface by the rigid-surface solver.
 fn quarter_periods(ratios: &[f64]) -> (f64, Vec<f64>) {
-    let s = structure(10.0, 0.5, 0.0);
+    let s = ground_structure(10.0, 0.5, 0.0);
     let theta0 = 0.1;
     let mut o = options(5.0, 1e-12, theta0);
     o.history = History::None;
@@ -280,7 +258,7 @@ fn rigid_limit_of_the_quarter_period_is_first_order() {
 /// now: 5–56 lift-offs, residuals up to 1.4e-12 at tol 1e-12.
 #[test]
 fn the_rigid_limit_series_runs_on_past_theta_zero_conserving_energy() {
-    let s = structure(10.0, 0.5, 0.0);
+    let s = ground_structure(10.0, 0.5, 0.0);
     for ratio in [50.0, 100.0, 200.0, 400.0, 800.0, 3200.0] {
         let g = bed(&s, GroundKind::Winkler, ratio, 0.0);
         let mut o = options(10.0, 1e-12, 0.1);
@@ -305,15 +283,14 @@ fn the_rigid_limit_series_runs_on_past_theta_zero_conserving_energy() {
 /// The cell of Study 1's Fig-8 spectrum on the bed of ω_v/p = 200 that first failed
 /// (ω_p/p = 6, a_p = 3.11 g tan α; docs/ground.md): its scene and its ground.
 fn stiff_bed_cell() -> (rocking_scene::setup::Setup, Ground) {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../scenes/spectra/fig8-winkler.toml");
-    let sets = [
-        "ground.omega_v_over_p=200".to_string(),
-        "excitation.omega_p_over_p=6.0".to_string(),
-        "excitation.amplitude=3.111111111111111".to_string(),
-    ];
-    let sc = rocking_scene::scene::load(&path, &sets).unwrap();
-    let m = rocking_scene::setup::build(&sc).unwrap();
+    let m = scene(
+        "spectra/fig8-winkler.toml",
+        &[
+            "ground.omega_v_over_p=200",
+            "excitation.omega_p_over_p=6.0",
+            "excitation.amplitude=3.111111111111111",
+        ],
+    );
     let g = m.ground.expect("a compliant ground");
     (m, g)
 }
@@ -503,7 +480,7 @@ fn minima_inside_steps_are_those_of_finer_grids() {
 /// (bilateral springs, `uplift = false`) under a pulse that lifts the tensionless base's edge.
 #[test]
 fn the_least_pressure_is_the_tension_only_bilateral_springs_carry() {
-    let s = structure(10.0, 0.5, 0.0);
+    let s = ground_structure(10.0, 0.5, 0.0);
     let pulse = SinePulse::new(1.3 * 0.2f64.tan(), 4.0);
     for kind in [GroundKind::Winkler, GroundKind::TwoSpring] {
         let least = |zeta_v: f64, motion: &dyn GroundMotion, uplift: bool| {
@@ -558,7 +535,7 @@ fn effective_restitution(r: &Run, alpha: f64, theta0: f64) -> f64 {
 /// The restitution of the structure's rigid twin released from θ₀ = α/2 at rest: on the rigid
 /// surface under `impact`, and on the Winkler bed of ω_v/p = `ratio` with damping ratio `zeta_v`.
 fn restitution(impact: Option<rocking::ImpactModel>, ratio: f64, zeta_v: f64) -> f64 {
-    let s = structure(10.0, 0.5, 0.0);
+    let s = ground_structure(10.0, 0.5, 0.0);
     let (alpha, theta0) = (0.2, 0.1);
     let o = Options {
         history: History::Grid(2e-4),
@@ -623,7 +600,7 @@ fn a_damped_bed_restitutes_less_as_zeta_v_grows_and_more_than_housners_rule() {
 /// end, no contact phase or flight is shorter than 1e-6 τ, and the balance closes.
 #[test]
 fn a_lift_off_into_a_long_flight_does_not_chatter() {
-    let s = structure(10.0, 0.5, 0.0);
+    let s = ground_structure(10.0, 0.5, 0.0);
     let g = bed(&s, GroundKind::Winkler, 800.0, 0.05);
     let o = Options {
         history: History::None,

@@ -2,32 +2,11 @@
 //! order at run time, against DOP853.
 
 use rocking::{
-    simulate_on_ground, DampingConvention, Dimensionless, Effects, EventKind, Ground, GroundKind,
-    History, Method, Options, Run, Structure,
+    simulate_on_ground, Effects, EventKind, Ground, GroundKind, History, Method, Options, Run,
+    Structure,
 };
 use rocking_motion::{GroundMotion, NoMotion, SinePulse};
-
-/// A dimensionless structure (R = g = m = 1, α = 0.2).
-fn structure(omega_n_over_p: f64, gamma_mb: f64, zeta: f64) -> Structure {
-    let d = Dimensionless {
-        omega_n_over_p,
-        alpha: 0.2,
-        gamma_mc: 0.0,
-        gamma_mb,
-        gamma_ib: 1.0,
-        zeta,
-        damping: DampingConvention::FixedBase,
-    };
-    Structure::from_dimensionless(&d, None).unwrap()
-}
-
-/// The bed of `kind` with ω_v = `ratio` p and damping ratio `zeta_v` for `s`.
-fn bed(s: &Structure, kind: GroundKind, ratio: f64, zeta_v: f64) -> Ground {
-    let mass = s.static_uplift().weight; // g = 1
-    let k_v = mass * (ratio * s.derived().p).powi(2);
-    let c_v = 2.0 * zeta_v * (k_v * mass).sqrt();
-    Ground::from_vertical(kind, s.param("b").unwrap(), k_v, c_v)
-}
+use rocking_verification::{bed, ground_structure, scene};
 
 fn options(method: Method, tol: f64, t_end: f64, theta0: f64) -> Options {
     let mut o = Options {
@@ -74,7 +53,7 @@ fn history_gap(a: &Run, b: &Run, alpha: f64, v0: f64, u_cr: f64) -> f64 {
 #[test]
 fn taylor_against_dop853_on_the_ground() {
     for kind in [GroundKind::Winkler, GroundKind::TwoSpring] {
-        let s = structure(10.0, 0.5, 0.05);
+        let s = ground_structure(10.0, 0.5, 0.05);
         let g = bed(&s, kind, 30.0, 0.1);
         let pulse = SinePulse::new(1.3 * 0.2f64.tan(), 4.0);
         let fx = Effects::default();
@@ -128,7 +107,7 @@ fn taylor_against_dop853_on_the_ground() {
 /// same histories to 1e-9.
 #[test]
 fn the_linear_foundation_twin_by_taylor_is_dop853s() {
-    let s = structure(10.0, 0.5, 0.02);
+    let s = ground_structure(10.0, 0.5, 0.02);
     let g = bed(&s, GroundKind::Winkler, 30.0, 0.05);
     let pulse = SinePulse::new(1.5 * 0.2f64.tan(), 5.0);
     let fx = Effects::default();
@@ -147,7 +126,7 @@ fn the_linear_foundation_twin_by_taylor_is_dop853s() {
 #[test]
 fn taylor_conserves_energy_through_lift_offs_and_landings() {
     for kind in [GroundKind::Winkler, GroundKind::TwoSpring] {
-        let s = structure(10.0, 0.5, 0.0);
+        let s = ground_structure(10.0, 0.5, 0.0);
         let g = bed(&s, kind, 30.0, 0.0);
         let mut o = options(Method::Taylor, 1e-12, 10.0, 0.1);
         o.initial.u = 0.2 * s.derived().u_cr;
@@ -175,7 +154,7 @@ fn taylor_conserves_energy_through_lift_offs_and_landings() {
 /// and the balance closes.
 #[test]
 fn a_lift_off_into_a_long_flight_does_not_chatter_by_taylor() {
-    let s = structure(10.0, 0.5, 0.0);
+    let s = ground_structure(10.0, 0.5, 0.0);
     let g = bed(&s, GroundKind::Winkler, 800.0, 0.05);
     let o = Options {
         history: History::None,
@@ -262,8 +241,6 @@ fn eight_modes_on_a_bed_by_taylor_are_dop853s() {
 /// lift-off inside one step are not missed).
 #[test]
 fn at_the_default_preset_a_cell_counts_the_landings_of_a_tight_run() {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../scenes/spectra/fig8-winkler.toml");
     for (ratio, wp, ap) in [
         (50.0, 2.090909090909091, 12.323232323232324),
         (200.0, 10.0, 6.565656565656566),
@@ -273,8 +250,8 @@ fn at_the_default_preset_a_cell_counts_the_landings_of_a_tight_run() {
             format!("excitation.omega_p_over_p={wp}"),
             format!("excitation.amplitude={ap}"),
         ];
-        let sc = rocking_scene::scene::load(&path, &sets).unwrap();
-        let m = rocking_scene::setup::build(&sc).unwrap();
+        let sets: Vec<&str> = sets.iter().map(String::as_str).collect();
+        let m = scene("spectra/fig8-winkler.toml", &sets);
         assert_eq!(m.options.accuracy.method, Method::Taylor);
         let g = m.ground.unwrap();
         let at = |method, tol| {

@@ -45,7 +45,7 @@ mod record;
 mod series;
 
 use contact::{contact_fraction, Contact, Kin};
-use past::past;
+use past::{past, past_on_polynomial};
 
 /// The structure's energies, power terms and forces: the `free_*` kernels' outputs, in order.
 const KINETIC: usize = 0;
@@ -371,7 +371,6 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V
     ) -> Result<PhaseEnd<V>, SimError> {
         let (nqf, integrals) = (Free::<V>::NQ, Free::<V>::INTEGRALS);
         let theta = Free::<V>::THETA;
-        let (a, b) = (self.derived.alpha, self.k.ground.b);
         let motion = self.motion;
         let over = self.opts.overturn_angle;
         let k = self.k;
@@ -414,17 +413,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V
         // a step-size underflow; docs/ground.md.)
         let mut g_old = g(t0, &z0);
         if let Some(i) = fired {
-            let margin = match dirs[i] {
-                Direction::Rising => -f64::MIN_POSITIVE,
-                Direction::Falling => f64::MIN_POSITIVE,
-                Direction::Either => 0.0,
-            };
-            let on_this_side = match dirs[i] {
-                Direction::Rising => g_old[i] < 0.0,
-                Direction::Falling => g_old[i] > 0.0,
-                Direction::Either => true,
-            };
-            if !on_this_side {
+            if let Some(margin) = start_margin(dirs[i], g_old[i]) {
                 g_old[i] = margin;
             }
         }
@@ -435,30 +424,16 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V
                 .map_or(self.opts.t_end, |k| k.min(self.opts.t_end));
             let info = ode.step(&mut rhs, t_stop)?;
             let st = ode.stats();
-            if st.steps + st.rejected > self.opts.max_steps {
-                return Err(SimError::TooManySteps {
-                    max_steps: self.opts.max_steps,
-                    tau: ode.t() * self.derived.p,
-                });
-            }
+            self.guard_steps(st.steps + st.rejected, ode.t())?;
             let g_new = g(info.t_new, ode.y());
             if first_on_zero && s * ode.y()[theta] < 0.0 {
-                // Started at θ = 0 (not from a switch) and leaning the other way: the other
-                // corner leads from the start.
                 self.rec.stats.add(ode.take_stats());
-                return Ok(PhaseEnd {
-                    t: t0,
-                    y: y0,
-                    carried,
-                    event: Some(0),
-                });
+                return Ok(PhaseEnd::other_corner_leads(t0, y0, carried));
             }
             first_on_zero = false;
             if let Some(ev) = locate(&mut ode, &mut g, &dirs, &g_old, &g_new) {
                 let ev = refine(&mut ode, &mut rhs, &mut g, ev);
-                // A depth v + x sin θ rounds at the size of its terms.
-                let depth = b + ev.y[Free::<V>::V].abs();
-                let noise = 64.0 * f64::EPSILON * [a, depth, depth, a][ev.index];
+                let noise = self.event_noise(ev.y[Free::<V>::V], ev.index);
                 let ev = past(&mut ode, &mut rhs, &mut g, dirs[ev.index], noise, ev);
                 break (info.t_old, ev.t, ev.y, Some(ev.index));
             }
@@ -478,6 +453,24 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V
             carried: std::array::from_fn(|k| z[integrals + k]),
             event,
         })
+    }
+
+    /// The rounding of event function `index` at settlement `v`: 64 ulps of its scale (α for θ;
+    /// a depth v + x sin θ rounds at the size of its terms, B + |v|).
+    fn event_noise(&self, v: f64, index: usize) -> f64 {
+        let (a, depth) = (self.derived.alpha, self.k.ground.b + v.abs());
+        64.0 * f64::EPSILON * [a, depth, depth, a][index]
+    }
+
+    /// The guard on a phase's step count (`steps` so far, `t` the last step's end).
+    fn guard_steps(&self, steps: u64, t: f64) -> Result<(), SimError> {
+        if steps > self.opts.max_steps {
+            return Err(SimError::TooManySteps {
+                max_steps: self.opts.max_steps,
+                tau: t * self.derived.p,
+            });
+        }
+        Ok(())
     }
 
     /// The directions of the events `[s θ, d(−B), d(B), s θ − θ_over]` in contact state `c`: θ
@@ -539,6 +532,16 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V
     }
 }
 
+/// The least value on this phase's side of its surface at which an event function that is not
+/// strictly on that side at the phase's start (`g0`) starts instead, or `None` when it is.
+fn start_margin(dir: Direction, g0: f64) -> Option<f64> {
+    match dir {
+        Direction::Rising if g0 >= 0.0 => Some(-f64::MIN_POSITIVE),
+        Direction::Falling if g0 <= 0.0 => Some(f64::MIN_POSITIVE),
+        _ => None,
+    }
+}
+
 fn corner(left: bool) -> &'static str {
     if left {
         "left-corner"
@@ -562,4 +565,17 @@ struct PhaseEnd<V: Variant> {
     y: V::Y,
     carried: [f64; 3],
     event: Option<usize>,
+}
+
+impl<V: Variant> PhaseEnd<V> {
+    /// A phase started at θ = 0 (not from a switch) whose first step leans the other way: the
+    /// other corner leads from the start.
+    fn other_corner_leads(t0: f64, y0: V::Y, carried: [f64; 3]) -> Self {
+        Self {
+            t: t0,
+            y: y0,
+            carried,
+            event: Some(0),
+        }
+    }
 }

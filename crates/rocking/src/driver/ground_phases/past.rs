@@ -26,11 +26,7 @@ where
     F: FnMut(f64, &SVector<f64, N>) -> SVector<f64, N>,
     G: FnMut(f64, &SVector<f64, N>) -> SVector<f64, 4>,
 {
-    let crossed = |gv: f64| match dir {
-        Direction::Rising => gv > noise,
-        Direction::Falling => gv < -noise,
-        Direction::Either => gv.abs() > noise,
-    };
+    let crossed = |gv: f64| crossed(dir, noise, gv);
     if crossed(ev.g[ev.index]) {
         return ev;
     }
@@ -58,4 +54,35 @@ where
         }
     }
     ev
+}
+
+/// Whether an event function's value `gv` lies past its surface in the event's direction by
+/// more than `noise`.
+pub(super) fn crossed(dir: Direction, noise: f64, gv: f64) -> bool {
+    match dir {
+        Direction::Rising => gv > noise,
+        Direction::Falling => gv < -noise,
+        Direction::Either => gv.abs() > noise,
+    }
+}
+
+/// [`past`] on a Taylor step, whose polynomial is the state at every t of the step: the time
+/// from the root `t` on, up to the step's end `t_end`, at which the event function `g` lies
+/// past its surface by more than `noise` (`t` itself when it does there or no move gets there).
+pub(super) fn past_on_polynomial(
+    g: impl Fn(f64) -> f64,
+    t: f64,
+    t_end: f64,
+    dir: Direction,
+    noise: f64,
+) -> f64 {
+    if crossed(dir, noise, g(t)) {
+        return t;
+    }
+    let ulp = f64::EPSILON * t.abs().max(1.0);
+    (0..=24)
+        .map(|k| t + ulp * f64::from(1u32 << k))
+        .take_while(|&tk| tk <= t_end)
+        .find(|&tk| crossed(dir, noise, g(tk)))
+        .unwrap_or(t)
 }

@@ -135,14 +135,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V
         // As on the Runge–Kutta path: the event that started the phase starts on this phase's
         // side, at the least margin when `past` could not move it there.
         let g0 = g_at(&self.k, &y0);
-        let pin = fired.and_then(|i| {
-            let (margin, on_this_side) = match dirs[i] {
-                Direction::Rising => (-f64::MIN_POSITIVE, g0[i] < 0.0),
-                Direction::Falling => (f64::MIN_POSITIVE, g0[i] > 0.0),
-                Direction::Either => (0.0, true),
-            };
-            (!on_this_side).then_some((i, margin))
-        });
+        let pin = fired.and_then(|i| start_margin(dirs[i], g0[i]).map(|m| (i, m)));
         let mut sys = GroundSeries::<V, M, N> {
             k: self.k,
             motion: self.motion,
@@ -167,22 +160,10 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V
                 .map_or(self.opts.t_end, |k| k.min(self.opts.t_end));
             ode.step(&mut sys, t_stop)?;
             let (t_old, t_new) = (ode.t_old(), ode.t());
-            if ode.stats().steps > self.opts.max_steps {
-                return Err(SimError::TooManySteps {
-                    max_steps: self.opts.max_steps,
-                    tau: t_new * self.derived.p,
-                });
-            }
+            self.guard_steps(ode.stats().steps, t_new)?;
             if first_on_zero && s * ode.y()[theta] < 0.0 {
-                // Started at θ = 0 (not from a switch) and leaning the other way: the other
-                // corner leads from the start.
                 self.rec.stats.add(ode.take_stats());
-                return Ok(PhaseEnd {
-                    t: t0,
-                    y: y0,
-                    carried,
-                    event: Some(0),
-                });
+                return Ok(PhaseEnd::other_corner_leads(t0, y0, carried));
             }
             first_on_zero = false;
             if let Some(ev) = ode.locate(&mut sys, &dirs) {
@@ -192,29 +173,9 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const N: usize> GroundSim<'_, V
                     let z = unscale(ode.dense(t));
                     V::Y::from_fn(|i| z[i])
                 };
-                let ye = y_at(ev.t);
-                let depth = self.k.ground.b + ye.values()[Free::<V>::V].abs();
-                let a = self.derived.alpha;
-                let noise = 64.0 * f64::EPSILON * [a, depth, depth, a][ev.index];
-                let crossed = |gv: f64| match dirs[ev.index] {
-                    Direction::Rising => gv > noise,
-                    Direction::Falling => gv < -noise,
-                    Direction::Either => gv.abs() > noise,
-                };
-                let mut te = ev.t;
-                if !crossed(g_at(&self.k, &ye)[ev.index]) {
-                    let ulp = f64::EPSILON * ev.t.abs().max(1.0);
-                    for k in 0..=24 {
-                        let t = ev.t + ulp * f64::from(1u32 << k);
-                        if t > t_new {
-                            break;
-                        }
-                        if crossed(g_at(&self.k, &y_at(t))[ev.index]) {
-                            te = t;
-                            break;
-                        }
-                    }
-                }
+                let noise = self.event_noise(ev.y[Free::<V>::V] * scale[Free::<V>::V], ev.index);
+                let g = |t: f64| g_at(&self.k, &y_at(t))[ev.index];
+                let te = past_on_polynomial(g, ev.t, t_new, dirs[ev.index], noise);
                 ode.truncate_at(te);
                 break (t_old, te, unscale(*ode.y()), Some(ev.index));
             }
