@@ -167,6 +167,8 @@ impl<V: Layout> Free<V> {
     pub(crate) const V_DOT: usize = Self::NQ + 1;
     /// The first carried integral: the mechanical state's length.
     pub(crate) const INTEGRALS: usize = 2 * Self::NQ;
+    /// Where the base's `[θ, v, θ', v']`, the ground kernels' input, sits.
+    pub(crate) const BASE: [usize; 4] = [Self::THETA, Self::V, Self::THETA_DOT, Self::V_DOT];
 
     /// The rate of coordinate q_i (i from 0).
     pub(crate) const fn rate(i: usize) -> usize {

@@ -96,14 +96,12 @@ impl Ldl {
 /// M_0 q''_k = F_k − Σ_{j=1..k} M_j q''_{k−j} (the Cauchy product of M q'' = F), with one
 /// factorisation of M_0 per series, and `y_{k+1} = [q'_k, q''_k] / (k + 1)`. `m`
 /// (n (n + 1) / 2 rows) and `acc` (n rows, q''s coefficients) are work arrays.
-///
-/// Returns M_0's pivot ([`Ldl::pivot`]).
 pub(crate) fn second_order_series<const N: usize>(
     y: &mut [[f64; N]],
     m: &mut [[f64; N]],
     acc: &mut [[f64; N]],
     mut order: impl FnMut(usize, &[[f64; N]], &mut [f64], &mut [f64]),
-) -> f64 {
+) {
     let (n, nm) = (acc.len(), m.len());
     assert!(
         n <= MAX && nm == n * (n + 1) / 2 && y.len() == 2 * n,
@@ -134,7 +132,6 @@ pub(crate) fn second_order_series<const N: usize>(
             y[n + i][k + 1] = f[i] * inv;
         }
     }
-    ldl.map_or(f64::NAN, |l| l.pivot())
 }
 
 #[cfg(test)]

@@ -59,14 +59,14 @@ pub trait TaylorVariant: Variant {
     /// Taylor coefficients of the free base's state `[θ, v, u_1..u_n, θ', v', u_1'..u_n']` on
     /// compliant ground from `y[i][0]`: M(q) q'' = F + Q_ground solved order by order
     /// ([`crate::spd::second_order_series`]), `ground(k, base)` the k-th coefficients of
-    /// `[Q_θ, Q_v]` from the series of `[θ, v, θ', v']` up to order k. Returns M_0's pivot.
+    /// `[Q_θ, Q_v]` from the series of `[θ, v, θ', v']` up to order k.
     fn free_series<const N: usize>(
         y: &mut [[f64; N]],
         ug: &[f64; N],
         s: f64,
         p: &Self::Params,
         ground: &mut GroundForces<'_, N>,
-    ) -> f64;
+    );
     /// `[ground, damping]` power along a free-base series (without the ground's own power).
     fn free_power_series<const N: usize>(
         y: &[[f64; N]],
@@ -139,7 +139,7 @@ macro_rules! taylor_variant {
                 s: f64,
                 p: &Self::Params,
                 ground: &mut GroundForces<'_, N>,
-            ) -> f64 {
+            ) {
                 use kernels::layout::$nq as l;
                 let mut mass = taylor::$module::free_mass_matrix::<N>(s, p);
                 let mut forcing = taylor::$module::free_forcing::<N>(s, p);
@@ -147,13 +147,12 @@ macro_rules! taylor_variant {
                 let mut base = [[0.0; N]; 4];
                 let mut m = [[0.0; N]; l::FREE_MASS_MATRIX];
                 let mut acc = [[0.0; N]; l::QF];
-                let rows = [Free::<Self>::THETA, Free::<Self>::V, Free::<Self>::THETA_DOT, Free::<Self>::V_DOT];
                 crate::spd::second_order_series(y, &mut m, &mut acc, |k, y, mk, fk| {
                     let y: &[[f64; N]; l::Y] = rows!(y, l::Y);
                     for (i, qi) in qf.iter_mut().enumerate() {
                         qi[k] = y[i][k];
                     }
-                    for (b, &r) in base.iter_mut().zip(&rows) {
+                    for (b, &r) in base.iter_mut().zip(&Free::<Self>::BASE) {
                         b[k] = y[r][k];
                     }
                     mk.copy_from_slice(&mass(k, &qf));
@@ -161,7 +160,7 @@ macro_rules! taylor_variant {
                     let [q_theta, q_v] = ground(k, &base);
                     fk[Free::<Self>::THETA] += q_theta;
                     fk[Free::<Self>::V] += q_v;
-                })
+                });
             }
             fn free_power_series<const N: usize>(
                 y: &[[f64; N]],

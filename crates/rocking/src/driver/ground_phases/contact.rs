@@ -37,13 +37,7 @@ impl<V: Variant> Kin<V> {
     /// `[θ, v, θ', v']` of the ground's kernels.
     pub(super) fn base(&self, y: &V::Y) -> [f64; 4] {
         let y = y.values();
-        [
-            Free::<V>::THETA,
-            Free::<V>::V,
-            Free::<V>::THETA_DOT,
-            Free::<V>::V_DOT,
-        ]
-        .map(|i| y[i])
+        Free::<V>::BASE.map(|i| y[i])
     }
 
     /// The ground's outputs in contact state `c`.

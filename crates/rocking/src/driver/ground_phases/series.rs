@@ -77,13 +77,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const N: usize> TaylorEvents<N,
         let depths = if self.k.bilateral {
             [std::array::from_fn(|k| if k == 0 { 1.0 } else { 0.0 }); 2]
         } else {
-            let base = [
-                Free::<V>::THETA,
-                Free::<V>::V,
-                Free::<V>::THETA_DOT,
-                Free::<V>::V_DOT,
-            ]
-            .map(unscaled);
+            let base = Free::<V>::BASE.map(unscaled);
             self.k.ground.depth_series::<K>(&base)
         };
         let mut over = theta;
