@@ -51,6 +51,7 @@ pub mod ground_statics;
 mod layout;
 mod options;
 mod results;
+pub mod rhs;
 mod spd;
 mod structure;
 mod taylor;

@@ -38,6 +38,16 @@ pub trait TaylorVariant: Variant {
     fn rocking_series<const N: usize>(x: &mut [[f64; N]], ug: &[f64; N], s: f64, p: &Self::Params);
     /// [`rocking_series`](Self::rocking_series) with `ug` ≡ 0 (fewer series products).
     fn rocking_series_free<const N: usize>(x: &mut [[f64; N]], s: f64, p: &Self::Params);
+    /// [`rocking_series`](Self::rocking_series) by a run-time solve: M(q) and F one order at
+    /// a time, M₀ q''ₖ = Fₖ − Σⱼ Mⱼ q''ₖ₋ⱼ ([`crate::spd::second_order_series`]), instead of
+    /// the symbolic solve's series. Equal to rounding, and dearer for every basis generated
+    /// (see [`crate::rhs`]).
+    fn rocking_series_solved<const N: usize>(
+        x: &mut [[f64; N]],
+        ug: &[f64; N],
+        s: f64,
+        p: &Self::Params,
+    );
     /// Taylor coefficients of the contact state `[u_1..u_n, u_1'..u_n']` from `xc[i][0]`.
     fn contact_series<const N: usize>(xc: &mut [[f64; N]], ug: &[f64; N], p: &Self::Params);
     /// [`contact_series`](Self::contact_series) with `ug` ≡ 0.
@@ -102,6 +112,27 @@ macro_rules! taylor_variant {
                 use kernels::layout::$nq as l;
                 let x = rows!(x, l::X);
                 best_isa!(taylor::$module::rocking_rhs_free(x, s, p));
+            }
+            fn rocking_series_solved<const N: usize>(
+                x: &mut [[f64; N]],
+                ug: &[f64; N],
+                s: f64,
+                p: &Self::Params,
+            ) {
+                use kernels::layout::$nq as l;
+                let mut mass = taylor::$module::mass_matrix::<N>(s, p);
+                let mut forcing = taylor::$module::forcing::<N>(s, p);
+                let mut q = [[0.0; N]; l::Q];
+                let mut m = [[0.0; N]; l::MASS_MATRIX];
+                let mut acc = [[0.0; N]; l::Q];
+                crate::spd::second_order_series(x, &mut m, &mut acc, |k, x, mk, fk| {
+                    let x: &[[f64; N]; l::X] = rows!(x, l::X);
+                    for (qi, xi) in q.iter_mut().zip(x) {
+                        qi[k] = xi[k];
+                    }
+                    mk.copy_from_slice(&mass(k, &q));
+                    fk.copy_from_slice(&forcing(k, x, ug));
+                });
             }
             fn contact_series<const N: usize>(
                 xc: &mut [[f64; N]],

@@ -12,6 +12,295 @@ use crate::series::{self, at0};
 /// Name of the variant these kernels belong to.
 pub const NAME: &str = "added_mass";
 
+/// `mass_matrix` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn mass_matrix<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 2]) -> [f64; 3] {
+    let w0: f64 = p[6];
+    let w2: f64 = 1.5;
+    let w3: f64 = p[10];
+    let w4: f64 = w3 * w3;
+    let w5: f64 = w2 * w4;
+    let w6: f64 = -0.5;
+    let w7: f64 = w3 * w4;
+    let w8: f64 = w6 * w7;
+    let w9: f64 = w5 + w8;
+    let w10: f64 = s;
+    let w11: f64 = p[1];
+    let w12: f64 = w10 * w11;
+    let w13: f64 = 0.5;
+    let w14: f64 = p[9];
+    let w15: f64 = w13 * w14;
+    let w16: f64 = 2.0;
+    let w17: f64 = w9 * w16;
+    let w18: f64 = w12 * w16;
+    let w19: f64 = w15 * w17;
+    let w20: f64 = w15 * w18;
+    let w21: f64 = w9 * w19;
+    let w23: f64 = w12 * w19;
+    let w24: f64 = w9 * w20;
+    let w25: f64 = w23 + w24;
+    let w26: f64 = w12 * w20;
+    let w27: f64 = w0 + w26;
+    let w28: f64 = p[0];
+    let w29: f64 = w3 * w28;
+    let w30: f64 = 2.0 * w29;
+    let w31: f64 = w15 * w30;
+    let w32: f64 = w29 * w31;
+    let w33: f64 = w27 + w32;
+    let w34: f64 = p[3];
+    let w35: f64 = w13 * w34;
+    let w36: f64 = w16 * w35;
+    let w37: f64 = w18 * w35;
+    let w38: f64 = w12 * w36;
+    let w39: f64 = w37 + w38;
+    let w40: f64 = w12 * w37;
+    let w41: f64 = w25 + w39;
+    let w42: f64 = w21 + w36;
+    let w43: f64 = w33 + w40;
+    let w44: f64 = 2.0 * w28;
+    let w45: f64 = w35 * w44;
+    let w46: f64 = w28 * w45;
+    let w47: f64 = w43 + w46;
+    let w48: f64 = 0.05892857142857143;
+    let w49: f64 = p[4];
+    let w50: f64 = w48 * w49;
+    let w51: f64 = w16 * w50;
+    let w52: f64 = w42 + w51;
+    let w53: f64 = w51 + w52;
+    let w54: f64 = 0.08333333333333333;
+    let w55: f64 = w49 * w54;
+    let w56: f64 = w28 * w55;
+    let w57: f64 = w44 * w56;
+    let w58: f64 = w47 + w57;
+    let w59: f64 = 2.0 * w56;
+    let w60: f64 = w28 * w59;
+    let w61: f64 = w58 + w60;
+    let w62: f64 = 0.1875;
+    let w63: f64 = w49 * w62;
+    let w64: f64 = -w12;
+    let w65: f64 = 2.0 * w64;
+    let w66: f64 = w63 * w65;
+    let w67: f64 = w66 - w41;
+    let w68: f64 = w16 * w63;
+    let w69: f64 = w12 * w68;
+    let w70: f64 = w67 - w69;
+    let w71: f64 = w13 * w49;
+    let w72: f64 = 2.0 * w12;
+    let w73: f64 = w71 * w72;
+    let w74: f64 = w12 * w73;
+    let w75: f64 = w61 + w74;
+    let w81: f64 = 2.0 * w9;
+    let w82: f64 = w15 * w81;
+    let w83: f64 = w29 * w82;
+    let w84: f64 = w28 * w34;
+    let w85: f64 = w83 + w84;
+    let w86: f64 = 0.1375;
+    let w87: f64 = w49 * w86;
+    let w88: f64 = w28 * w87;
+    let w89: f64 = 2.0 * w88;
+    let w90: f64 = w85 + w89;
+    let w92: f64 = w9 * w82;
+    let w93: f64 = w34 + w92;
+    let w94: f64 = 0.11785714285714285;
+    let w95: f64 = w49 * w94;
+    let w96: f64 = w93 + w95;
+    let w97: f64 = w95 + w96;
+    move |k: usize, q: &[[f64; N]; 2]| {
+        let w22 = series::sq(&q[1], k);
+        let w76 = q[1][k] * w70;
+        let w77 = w22 * w53;
+        let w78 = w76 + w77;
+        let w79 = at0(k, w75) + w78;
+        [w79, at0(k, w90), at0(k, w97)]
+    }
+}
+
+/// `forcing` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn forcing<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 4], &[f64; N]) -> [f64; 2] {
+    let mut d_x0 = [0.0f64; N];
+    let mut sin_x0 = [0.0f64; N];
+    let mut cos_x0 = [0.0f64; N];
+    let w3: f64 = 1.5;
+    let w4: f64 = p[10];
+    let w5: f64 = w4 * w4;
+    let w6: f64 = w3 * w5;
+    let w7: f64 = -0.5;
+    let w8: f64 = w4 * w5;
+    let w9: f64 = w7 * w8;
+    let w10: f64 = w6 + w9;
+    let w11: f64 = s;
+    let w12: f64 = p[1];
+    let w13: f64 = w11 * w12;
+    let w14: f64 = p[9];
+    let w15: f64 = p[8];
+    let w16: f64 = w14 * w15;
+    let w17: f64 = w10 * w16;
+    let w18: f64 = w13 * w16;
+    let w19: f64 = p[0];
+    let w20: f64 = w4 * w19;
+    let w22: f64 = w14 * w20;
+    let w23: f64 = p[3];
+    let w24: f64 = w19 * w23;
+    let w25: f64 = w22 + w24;
+    let w26: f64 = 0.5;
+    let w27: f64 = p[4];
+    let w28: f64 = w26 * w27;
+    let w29: f64 = w19 * w28;
+    let w30: f64 = w25 + w29;
+    let w31: f64 = p[5];
+    let w32: f64 = w15 * w31;
+    let w33: f64 = w13 * w32;
+    let w34: f64 = w18 + w33;
+    let w35: f64 = w15 * w23;
+    let w36: f64 = w13 * w35;
+    let w37: f64 = w17 + w35;
+    let w38: f64 = w34 + w36;
+    let w39: f64 = 0.375;
+    let w40: f64 = w15 * w27;
+    let w41: f64 = w39 * w40;
+    let w42: f64 = w37 + w41;
+    let w43: f64 = w13 * w40;
+    let w44: f64 = w38 + w43;
+    let w48: f64 = w13 * w31;
+    let w49: f64 = w10 * w14;
+    let w51: f64 = w13 * w14;
+    let w52: f64 = w48 + w51;
+    let w53: f64 = w13 * w23;
+    let w54: f64 = w52 + w53;
+    let w55: f64 = w23 + w49;
+    let w56: f64 = w27 * w39;
+    let w57: f64 = w55 + w56;
+    let w58: f64 = w13 * w27;
+    let w59: f64 = w54 + w58;
+    let w60: f64 = w16 * w20;
+    let w61: f64 = w19 * w35;
+    let w62: f64 = w60 + w61;
+    let w63: f64 = w26 * w40;
+    let w64: f64 = w19 * w63;
+    let w65: f64 = w62 + w64;
+    let mut w69 = [0.0f64; N];
+    let mut w72 = [0.0f64; N];
+    let w73: f64 = 2.0;
+    let w74: f64 = w13 * w73;
+    let w75: f64 = w10 * w73;
+    let w76: f64 = w14 * w26;
+    let w77: f64 = w74 * w76;
+    let w78: f64 = w75 * w76;
+    let w79: f64 = w10 * w77;
+    let w80: f64 = w10 * w78;
+    let w81: f64 = w13 * w78;
+    let w82: f64 = w79 + w81;
+    let w83: f64 = w73 * w80;
+    let w84: f64 = w23 * w26;
+    let w85: f64 = w74 * w84;
+    let w86: f64 = w73 * w84;
+    let w87: f64 = w13 * w86;
+    let w88: f64 = w85 + w87;
+    let w89: f64 = w73 * w86;
+    let w90: f64 = w82 + w88;
+    let w91: f64 = w83 + w89;
+    let w92: f64 = 0.05892857142857143;
+    let w93: f64 = w27 * w92;
+    let w94: f64 = w73 * w93;
+    let w95: f64 = w73 * w94;
+    let w96: f64 = w91 + w95;
+    let w97: f64 = w95 + w96;
+    let w98: f64 = 0.1875;
+    let w99: f64 = w27 * w98;
+    let w100: f64 = w74 * w99;
+    let w101: f64 = w90 + w100;
+    let w102: f64 = w73 * w99;
+    let w103: f64 = w13 * w102;
+    let w104: f64 = w101 + w103;
+    let mut w108 = [0.0f64; N];
+    let w118: f64 = -1.5;
+    let w119: f64 = p[2];
+    let w120: f64 = w19 * w19;
+    let w121: f64 = w19 * w120;
+    let w122: f64 = w119 / w121;
+    let w123: f64 = w118 * w122;
+    let w124: f64 = w73 * w123;
+    let w127: f64 = w79 + w85;
+    let w128: f64 = w80 + w86;
+    let w129: f64 = w94 + w128;
+    let w130: f64 = w94 + w129;
+    let w131: f64 = w100 + w127;
+    let w132: f64 = p[7];
+    let w133: f64 = 2.0 * w132;
+    let w134: f64 = 3.0;
+    let w135: f64 = w122 * w134;
+    let w136: f64 = 2.0 * w10;
+    let w137: f64 = w76 * w136;
+    let w138: f64 = w10 * w137;
+    let w139: f64 = w23 + w138;
+    let w140: f64 = 0.11785714285714285;
+    let w141: f64 = w27 * w140;
+    let w142: f64 = w139 + w141;
+    let w143: f64 = w141 + w142;
+    let w144: f64 = w135 / w143;
+    let w145: f64 = w144.sqrt();
+    let w146: f64 = w133 * w145;
+    let w147: f64 = w143 * w146;
+    move |k: usize, x: &[[f64; N]; 4], ug: &[f64; N]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&cos_x0, &x[1]),
+                (&cos_x0, &ug),
+                (&x[1], &ug),
+                (&sin_x0, &w69),
+                (&x[1], &x[2]),
+                (&x[3], &w108),
+                (&x[2], &w72),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w45 = series::mul_d(dot2, &cos_x0, &x[1], k);
+        let w46 = series::mul_d(dot3, &cos_x0, &ug, k);
+        let w50 = series::mul_d(dot4, &x[1], &ug, k);
+        let w66 = ug[k] * w59;
+        let w67 = w50 * w57;
+        let w68 = w66 - w67;
+        w69[k] = w68 - at0(k, w65);
+        let w70 = series::mul_d(dot5, &sin_x0, &w69, k);
+        w72[k] = series::mul_d(dot6, &x[1], &x[2], k);
+        let w106 = x[2][k] * w104;
+        let w107 = w72[k] * w97;
+        w108[k] = w107 - w106;
+        let w109 = series::mul_d(dot7, &x[3], &w108, k);
+        let w110 = cos_x0[k] * w44;
+        let w111 = w42 * w45;
+        let w112 = w30 * w46;
+        let w113 = w111 - w110;
+        let w114 = w113 - w112;
+        let w115 = w114 - w70;
+        let w116 = w115 - w109;
+        let w125 = series::sq(&x[2], k);
+        let w126 = series::mul_d(dot8, &x[2], &w72, k);
+        let w148 = x[1][k] * w124;
+        let w149 = w46 * w57;
+        let w150 = w42 * sin_x0[k];
+        let w151 = x[3][k] * w147;
+        let w152 = w125 * w131;
+        let w153 = w126 * w130;
+        let w154 = w148 + w150;
+        let w155 = w153 + w154;
+        let w156 = w155 - w149;
+        let w157 = w156 - w151;
+        let w158 = w157 - w152;
+        [w116, w158]
+    }
+}
+
 /// Taylor coefficients of the solution of `x' = rocking_rhs(..)`: on entry `x[i][0]` holds
 /// the state at the expansion point; on return `x[i][k]` is the k-th coefficient.
 /// Series inputs hold their first N coefficients.

@@ -12,6 +12,302 @@ use crate::series::{self, at0};
 /// Name of the variant these kernels belong to.
 pub const NAME: &str = "cantilever_modes2";
 
+/// `mass_matrix` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn mass_matrix<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 3]) -> [f64; 6] {
+    let w0: f64 = p[6];
+    let w3: f64 = s;
+    let w4: f64 = p[1];
+    let w5: f64 = w3 * w4;
+    let w6: f64 = 0.5;
+    let w7: f64 = p[3];
+    let w8: f64 = w6 * w7;
+    let w9: f64 = 2.0;
+    let w10: f64 = w5 * w9;
+    let w11: f64 = w8 * w9;
+    let w12: f64 = w8 * w10;
+    let mut w14 = [0.0f64; N];
+    let mut w18 = [0.0f64; N];
+    let w20: f64 = p[0];
+    let w21: f64 = 2.0 * w20;
+    let w22: f64 = w8 * w21;
+    let w23: f64 = w20 * w22;
+    let w24: f64 = w0 + w23;
+    let w25: f64 = 0.0625;
+    let w26: f64 = p[4];
+    let w27: f64 = w25 * w26;
+    let w28: f64 = w9 * w27;
+    let w30: f64 = w9 * w28;
+    let w32: f64 = 0.08333333333333333;
+    let w33: f64 = w26 * w32;
+    let w34: f64 = w20 * w33;
+    let w35: f64 = w21 * w34;
+    let w36: f64 = w24 + w35;
+    let w37: f64 = 2.0 * w34;
+    let w38: f64 = w20 * w37;
+    let w39: f64 = w36 + w38;
+    let w40: f64 = -0.10848397377767982;
+    let w41: f64 = w26 * w40;
+    let w42: f64 = -w5;
+    let w43: f64 = 2.0 * w42;
+    let w44: f64 = w41 * w43;
+    let w45: f64 = w9 * w41;
+    let w46: f64 = w5 * w45;
+    let w47: f64 = w44 - w46;
+    let w48: f64 = 0.19574793900990645;
+    let w49: f64 = w26 * w48;
+    let w50: f64 = w43 * w49;
+    let w51: f64 = w9 * w49;
+    let w52: f64 = w5 * w51;
+    let w53: f64 = w50 - w52;
+    let w54: f64 = w6 * w26;
+    let w55: f64 = 2.0 * w5;
+    let w56: f64 = w54 * w55;
+    let w57: f64 = w5 * w56;
+    let w58: f64 = w39 + w57;
+    let w69: f64 = w7 * w20;
+    let w70: f64 = 0.1422064359274777;
+    let w71: f64 = w26 * w70;
+    let w72: f64 = w20 * w71;
+    let w73: f64 = 2.0 * w72;
+    let w74: f64 = w69 + w73;
+    let w76: f64 = -0.02269169672159674;
+    let w77: f64 = w26 * w76;
+    let w78: f64 = w20 * w77;
+    let w79: f64 = 2.0 * w78;
+    let w80: f64 = w69 + w79;
+    let w82: f64 = 0.125;
+    let w83: f64 = w26 * w82;
+    let w84: f64 = w7 + w83;
+    let w85: f64 = w83 + w84;
+    move |k: usize, q: &[[f64; N]; 3]| {
+        let [dot0] = series::dots(
+            [
+                (&w14, &w18),
+            ],
+            k,
+        );
+        let w13 = q[1][k] + q[2][k];
+        w14[k] = w13 - at0(k, w5);
+        let w15 = q[1][k] * w11;
+        let w16 = q[2][k] * w11;
+        let w17 = w15 + w16;
+        w18[k] = w17 - at0(k, w12);
+        let w19 = series::mul_d(dot0, &w14, &w18, k);
+        let w29 = series::sq(&q[2], k);
+        let w31 = series::sq(&q[1], k);
+        let w59 = q[1][k] * w53;
+        let w60 = q[2][k] * w47;
+        let w61 = w29 * w30;
+        let w62 = w30 * w31;
+        let w63 = w59 + w60;
+        let w64 = w19 + w63;
+        let w65 = w61 + w64;
+        let w66 = w62 + w65;
+        let w67 = at0(k, w58) + w66;
+        [w67, at0(k, w74), at0(k, w80), at0(k, w85), at0(k, w7), at0(k, w85)]
+    }
+}
+
+/// `forcing` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn forcing<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 6], &[f64; N]) -> [f64; 3] {
+    let mut d_x0 = [0.0f64; N];
+    let mut sin_x0 = [0.0f64; N];
+    let mut cos_x0 = [0.0f64; N];
+    let w4: f64 = s;
+    let w5: f64 = p[1];
+    let w6: f64 = w4 * w5;
+    let w7: f64 = p[3];
+    let w8: f64 = p[8];
+    let w9: f64 = w7 * w8;
+    let w10: f64 = w6 * w9;
+    let w11: f64 = p[0];
+    let w13: f64 = w7 * w11;
+    let w14: f64 = 0.5;
+    let w15: f64 = p[4];
+    let w16: f64 = w14 * w15;
+    let w17: f64 = w11 * w16;
+    let w18: f64 = w13 + w17;
+    let w19: f64 = p[5];
+    let w20: f64 = w8 * w19;
+    let w21: f64 = w6 * w20;
+    let w22: f64 = w10 + w21;
+    let w23: f64 = -0.21696794755535964;
+    let w24: f64 = w8 * w15;
+    let w25: f64 = w23 * w24;
+    let w26: f64 = w9 + w25;
+    let w27: f64 = 0.3914958780198129;
+    let w28: f64 = w24 * w27;
+    let w29: f64 = w9 + w28;
+    let w30: f64 = w6 * w24;
+    let w31: f64 = w22 + w30;
+    let mut w37 = [0.0f64; N];
+    let w40: f64 = w6 * w19;
+    let w43: f64 = w6 * w7;
+    let w44: f64 = w40 + w43;
+    let w45: f64 = w15 * w23;
+    let w46: f64 = w7 + w45;
+    let w47: f64 = w15 * w27;
+    let w48: f64 = w7 + w47;
+    let w49: f64 = w6 * w15;
+    let w50: f64 = w44 + w49;
+    let w51: f64 = w9 * w11;
+    let w52: f64 = w14 * w24;
+    let w53: f64 = w11 * w52;
+    let w54: f64 = w51 + w53;
+    let mut w60 = [0.0f64; N];
+    let mut w63 = [0.0f64; N];
+    let mut w64 = [0.0f64; N];
+    let w65: f64 = 2.0;
+    let w66: f64 = w6 * w65;
+    let w67: f64 = w7 * w14;
+    let w68: f64 = w66 * w67;
+    let w69: f64 = w65 * w67;
+    let w70: f64 = w6 * w69;
+    let w71: f64 = w68 + w70;
+    let w72: f64 = w65 * w69;
+    let w73: f64 = 0.0625;
+    let w74: f64 = w15 * w73;
+    let w75: f64 = w65 * w74;
+    let w76: f64 = w65 * w75;
+    let w77: f64 = w72 + w76;
+    let w78: f64 = w76 + w77;
+    let w79: f64 = 0.19574793900990645;
+    let w80: f64 = w15 * w79;
+    let w81: f64 = w66 * w80;
+    let w82: f64 = w71 + w81;
+    let w83: f64 = w65 * w80;
+    let w84: f64 = w6 * w83;
+    let w85: f64 = w82 + w84;
+    let mut w91 = [0.0f64; N];
+    let w93: f64 = -0.10848397377767982;
+    let w94: f64 = w15 * w93;
+    let w95: f64 = w66 * w94;
+    let w96: f64 = w71 + w95;
+    let w97: f64 = w65 * w94;
+    let w98: f64 = w6 * w97;
+    let w99: f64 = w96 + w98;
+    let mut w105 = [0.0f64; N];
+    let w111: f64 = -1.5452954210407739;
+    let w112: f64 = p[2];
+    let w113: f64 = w11 * w11;
+    let w114: f64 = w11 * w113;
+    let w115: f64 = w112 / w114;
+    let w116: f64 = w111 * w115;
+    let w117: f64 = w65 * w116;
+    let w122: f64 = w69 + w75;
+    let w123: f64 = w75 + w122;
+    let w124: f64 = w68 + w81;
+    let w125: f64 = p[9];
+    let w126: f64 = p[10];
+    let w143: f64 = -60.68985231417138;
+    let w144: f64 = w115 * w143;
+    let w145: f64 = w65 * w144;
+    let w146: f64 = w68 + w95;
+    let w147: f64 = p[11];
+    move |k: usize, x: &[[f64; N]; 6], ug: &[f64; N]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&cos_x0, &w37),
+                (&x[1], &ug),
+                (&x[2], &ug),
+                (&sin_x0, &w60),
+                (&x[1], &x[3]),
+            ],
+            k,
+        );
+        let [dot7, dot8, dot9, dot10, dot11, dot12] = series::dots(
+            [
+                (&x[2], &x[3]),
+                (&x[4], &w91),
+                (&x[5], &w105),
+                (&cos_x0, &ug),
+                (&x[3], &w63),
+                (&x[3], &w64),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w32 = x[1][k] * w29;
+        let w33 = x[2][k] * w26;
+        let w34 = ug[k] * w18;
+        let w35 = w32 + w33;
+        let w36 = w35 - w34;
+        w37[k] = w36 - at0(k, w31);
+        let w38 = series::mul_d(dot2, &cos_x0, &w37, k);
+        let w41 = series::mul_d(dot3, &x[1], &ug, k);
+        let w42 = series::mul_d(dot4, &x[2], &ug, k);
+        let w55 = ug[k] * w50;
+        let w56 = w41 * w48;
+        let w57 = w42 * w46;
+        let w58 = w55 - w56;
+        let w59 = w58 - w57;
+        w60[k] = w59 - at0(k, w54);
+        let w61 = series::mul_d(dot5, &sin_x0, &w60, k);
+        w63[k] = series::mul_d(dot6, &x[1], &x[3], k);
+        w64[k] = series::mul_d(dot7, &x[2], &x[3], k);
+        let w87 = x[3][k] * w85;
+        let w88 = w63[k] * w78;
+        let w89 = w64[k] * w72;
+        let w90 = w88 + w89;
+        w91[k] = w90 - w87;
+        let w92 = series::mul_d(dot8, &x[4], &w91, k);
+        let w101 = x[3][k] * w99;
+        let w102 = w63[k] * w72;
+        let w103 = w64[k] * w78;
+        let w104 = w102 + w103;
+        w105[k] = w104 - w101;
+        let w106 = series::mul_d(dot9, &x[5], &w105, k);
+        let w107 = w38 - w61;
+        let w108 = w107 - w92;
+        let w109 = w108 - w106;
+        let w118 = series::mul_d(dot10, &cos_x0, &ug, k);
+        let w119 = series::sq(&x[3], k);
+        let w120 = series::mul_d(dot11, &x[3], &w63, k);
+        let w121 = series::mul_d(dot12, &x[3], &w64, k);
+        let w127 = x[1][k] * w117;
+        let w128 = w29 * sin_x0[k];
+        let w129 = x[4][k] * w125;
+        let w130 = x[5][k] * w126;
+        let w131 = w48 * w118;
+        let w132 = w119 * w124;
+        let w133 = w120 * w123;
+        let w134 = w69 * w121;
+        let w135 = w127 + w128;
+        let w136 = w133 + w135;
+        let w137 = w134 + w136;
+        let w138 = w137 - w129;
+        let w139 = w138 - w130;
+        let w140 = w139 - w131;
+        let w141 = w140 - w132;
+        let w148 = x[2][k] * w145;
+        let w149 = w26 * sin_x0[k];
+        let w150 = x[4][k] * w126;
+        let w151 = x[5][k] * w147;
+        let w152 = w46 * w118;
+        let w153 = w119 * w146;
+        let w154 = w69 * w120;
+        let w155 = w121 * w123;
+        let w156 = w148 + w149;
+        let w157 = w154 + w156;
+        let w158 = w155 + w157;
+        let w159 = w158 - w150;
+        let w160 = w159 - w151;
+        let w161 = w160 - w152;
+        let w162 = w161 - w153;
+        [w109, w141, w162]
+    }
+}
+
 /// Taylor coefficients of the solution of `x' = rocking_rhs(..)`: on entry `x[i][0]` holds
 /// the state at the expansion point; on return `x[i][k]` is the k-th coefficient.
 /// Series inputs hold their first N coefficients.

@@ -12,6 +12,387 @@ use crate::series::{self, at0};
 /// Name of the variant these kernels belong to.
 pub const NAME: &str = "cantilever_modes3";
 
+/// `mass_matrix` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn mass_matrix<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 4]) -> [f64; 10] {
+    let w0: f64 = p[6];
+    let w4: f64 = s;
+    let w5: f64 = p[1];
+    let w6: f64 = w4 * w5;
+    let w7: f64 = 0.5;
+    let w8: f64 = p[3];
+    let w9: f64 = w7 * w8;
+    let w10: f64 = 2.0;
+    let w11: f64 = w6 * w10;
+    let w12: f64 = w9 * w10;
+    let w13: f64 = w9 * w11;
+    let mut w16 = [0.0f64; N];
+    let mut w22 = [0.0f64; N];
+    let w24: f64 = p[0];
+    let w25: f64 = 2.0 * w24;
+    let w26: f64 = w9 * w25;
+    let w27: f64 = w24 * w26;
+    let w28: f64 = w0 + w27;
+    let w29: f64 = 0.0625;
+    let w30: f64 = p[4];
+    let w31: f64 = w29 * w30;
+    let w32: f64 = w10 * w31;
+    let w34: f64 = w10 * w32;
+    let w37: f64 = 0.08333333333333333;
+    let w38: f64 = w30 * w37;
+    let w39: f64 = w24 * w38;
+    let w40: f64 = w25 * w39;
+    let w41: f64 = w28 + w40;
+    let w42: f64 = 2.0 * w39;
+    let w43: f64 = w24 * w42;
+    let w44: f64 = w41 + w43;
+    let w45: f64 = 0.06360632421652643;
+    let w46: f64 = w30 * w45;
+    let w47: f64 = -w6;
+    let w48: f64 = 2.0 * w47;
+    let w49: f64 = w46 * w48;
+    let w50: f64 = w10 * w46;
+    let w51: f64 = w6 * w50;
+    let w52: f64 = w49 - w51;
+    let w53: f64 = -0.10848397377767982;
+    let w54: f64 = w30 * w53;
+    let w55: f64 = w48 * w54;
+    let w56: f64 = w10 * w54;
+    let w57: f64 = w6 * w56;
+    let w58: f64 = w55 - w57;
+    let w59: f64 = 0.19574793900990645;
+    let w60: f64 = w30 * w59;
+    let w61: f64 = w48 * w60;
+    let w62: f64 = w10 * w60;
+    let w63: f64 = w6 * w62;
+    let w64: f64 = w61 - w63;
+    let w65: f64 = w7 * w30;
+    let w66: f64 = 2.0 * w6;
+    let w67: f64 = w65 * w66;
+    let w68: f64 = w6 * w67;
+    let w69: f64 = w44 + w68;
+    let w84: f64 = w8 * w24;
+    let w85: f64 = 0.1422064359274777;
+    let w86: f64 = w30 * w85;
+    let w87: f64 = w24 * w86;
+    let w88: f64 = 2.0 * w87;
+    let w89: f64 = w84 + w88;
+    let w91: f64 = -0.02269169672159674;
+    let w92: f64 = w30 * w91;
+    let w93: f64 = w24 * w92;
+    let w94: f64 = 2.0 * w93;
+    let w95: f64 = w84 + w94;
+    let w97: f64 = 0.008104093592436109;
+    let w98: f64 = w30 * w97;
+    let w99: f64 = w24 * w98;
+    let w100: f64 = 2.0 * w99;
+    let w101: f64 = w84 + w100;
+    let w103: f64 = 0.125;
+    let w104: f64 = w30 * w103;
+    let w105: f64 = w8 + w104;
+    let w106: f64 = w104 + w105;
+    move |k: usize, q: &[[f64; N]; 4]| {
+        let [dot0] = series::dots(
+            [
+                (&w16, &w22),
+            ],
+            k,
+        );
+        let w14 = q[1][k] + q[2][k];
+        let w15 = q[3][k] + w14;
+        w16[k] = w15 - at0(k, w6);
+        let w17 = q[1][k] * w12;
+        let w18 = q[2][k] * w12;
+        let w19 = q[3][k] * w12;
+        let w20 = w17 + w18;
+        let w21 = w19 + w20;
+        w22[k] = w21 - at0(k, w13);
+        let w23 = series::mul_d(dot0, &w16, &w22, k);
+        let w33 = series::sq(&q[3], k);
+        let w35 = series::sq(&q[2], k);
+        let w36 = series::sq(&q[1], k);
+        let w70 = q[1][k] * w64;
+        let w71 = q[2][k] * w58;
+        let w72 = q[3][k] * w52;
+        let w73 = w33 * w34;
+        let w74 = w34 * w35;
+        let w75 = w34 * w36;
+        let w76 = w70 + w71;
+        let w77 = w72 + w76;
+        let w78 = w23 + w77;
+        let w79 = w73 + w78;
+        let w80 = w74 + w79;
+        let w81 = w75 + w80;
+        let w82 = at0(k, w69) + w81;
+        [w82, at0(k, w89), at0(k, w95), at0(k, w101), at0(k, w106), at0(k, w8), at0(k, w8), at0(k, w106), at0(k, w8), at0(k, w106)]
+    }
+}
+
+/// `forcing` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn forcing<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 8], &[f64; N]) -> [f64; 4] {
+    let mut d_x0 = [0.0f64; N];
+    let mut sin_x0 = [0.0f64; N];
+    let mut cos_x0 = [0.0f64; N];
+    let w5: f64 = s;
+    let w6: f64 = p[1];
+    let w7: f64 = w5 * w6;
+    let w8: f64 = p[3];
+    let w9: f64 = p[8];
+    let w10: f64 = w8 * w9;
+    let w11: f64 = w7 * w10;
+    let w12: f64 = p[0];
+    let w14: f64 = w8 * w12;
+    let w15: f64 = 0.5;
+    let w16: f64 = p[4];
+    let w17: f64 = w15 * w16;
+    let w18: f64 = w12 * w17;
+    let w19: f64 = w14 + w18;
+    let w20: f64 = p[5];
+    let w21: f64 = w9 * w20;
+    let w22: f64 = w7 * w21;
+    let w23: f64 = w11 + w22;
+    let w24: f64 = 0.12721264843305286;
+    let w25: f64 = w9 * w16;
+    let w26: f64 = w24 * w25;
+    let w27: f64 = w10 + w26;
+    let w28: f64 = -0.21696794755535964;
+    let w29: f64 = w25 * w28;
+    let w30: f64 = w10 + w29;
+    let w31: f64 = 0.3914958780198129;
+    let w32: f64 = w25 * w31;
+    let w33: f64 = w10 + w32;
+    let w34: f64 = w7 * w25;
+    let w35: f64 = w23 + w34;
+    let mut w43 = [0.0f64; N];
+    let w46: f64 = w7 * w20;
+    let w50: f64 = w7 * w8;
+    let w51: f64 = w46 + w50;
+    let w52: f64 = w16 * w24;
+    let w53: f64 = w8 + w52;
+    let w54: f64 = w16 * w28;
+    let w55: f64 = w8 + w54;
+    let w56: f64 = w16 * w31;
+    let w57: f64 = w8 + w56;
+    let w58: f64 = w7 * w16;
+    let w59: f64 = w51 + w58;
+    let w60: f64 = w10 * w12;
+    let w61: f64 = w15 * w25;
+    let w62: f64 = w12 * w61;
+    let w63: f64 = w60 + w62;
+    let mut w71 = [0.0f64; N];
+    let w73: f64 = 0.19574793900990645;
+    let w74: f64 = w16 * w73;
+    let w76: f64 = -w7;
+    let w77: f64 = 2.0 * w76;
+    let w78: f64 = 2.0;
+    let w79: f64 = w7 * w78;
+    let w80: f64 = w77 - w79;
+    let w81: f64 = w74 * w80;
+    let w82: f64 = 0.0625;
+    let w83: f64 = w16 * w82;
+    let mut w84 = [0.0f64; N];
+    let w85: f64 = w78 * w83;
+    let w86: f64 = w78 * w78;
+    let w87: f64 = w83 * w86;
+    let w88: f64 = w85 + w87;
+    let w89: f64 = w85 + w88;
+    let mut w90 = [0.0f64; N];
+    let mut w91 = [0.0f64; N];
+    let w92: f64 = w8 * w15;
+    let w93: f64 = w79 * w92;
+    let w94: f64 = w78 * w92;
+    let w95: f64 = w7 * w92;
+    let w96: f64 = w78 * w95;
+    let w97: f64 = w93 + w96;
+    let w98: f64 = w78 * w94;
+    let w99: f64 = w81 - w97;
+    let w100: f64 = w89 + w98;
+    let mut w108 = [0.0f64; N];
+    let w110: f64 = -0.10848397377767982;
+    let w111: f64 = w16 * w110;
+    let w112: f64 = w80 * w111;
+    let w113: f64 = w112 - w97;
+    let mut w120 = [0.0f64; N];
+    let w122: f64 = 0.06360632421652643;
+    let w123: f64 = w16 * w122;
+    let w124: f64 = w80 * w123;
+    let w125: f64 = w124 - w97;
+    let mut w131 = [0.0f64; N];
+    let w138: f64 = -1.5452954210407739;
+    let w139: f64 = p[2];
+    let w140: f64 = w12 * w12;
+    let w141: f64 = w12 * w140;
+    let w142: f64 = w139 / w141;
+    let w143: f64 = w138 * w142;
+    let w144: f64 = w78 * w143;
+    let w150: f64 = w85 + w94;
+    let w151: f64 = w85 + w150;
+    let w152: f64 = w74 * w79;
+    let w153: f64 = w93 + w152;
+    let w154: f64 = p[9];
+    let w155: f64 = p[10];
+    let w156: f64 = p[11];
+    let w177: f64 = -60.68985231417138;
+    let w178: f64 = w142 * w177;
+    let w179: f64 = w78 * w178;
+    let w180: f64 = w79 * w111;
+    let w181: f64 = w93 + w180;
+    let w182: f64 = p[12];
+    let w183: f64 = p[13];
+    let w203: f64 = -475.81828329893136;
+    let w204: f64 = w142 * w203;
+    let w205: f64 = w78 * w204;
+    let w206: f64 = w79 * w123;
+    let w207: f64 = w93 + w206;
+    let w208: f64 = p[14];
+    move |k: usize, x: &[[f64; N]; 8], ug: &[f64; N]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&cos_x0, &w43),
+                (&x[1], &ug),
+                (&x[2], &ug),
+                (&x[3], &ug),
+                (&sin_x0, &w71),
+                (&x[1], &x[4]),
+                (&x[2], &x[4]),
+            ],
+            k,
+        );
+        let [dot9, dot10, dot11, dot12, dot13, dot14, dot15, dot16] = series::dots(
+            [
+                (&x[3], &x[4]),
+                (&x[5], &w108),
+                (&x[6], &w120),
+                (&x[7], &w131),
+                (&cos_x0, &ug),
+                (&x[4], &w84),
+                (&x[4], &w90),
+                (&x[4], &w91),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w36 = x[1][k] * w33;
+        let w37 = x[2][k] * w30;
+        let w38 = x[3][k] * w27;
+        let w39 = ug[k] * w19;
+        let w40 = w36 + w37;
+        let w41 = w38 + w40;
+        let w42 = w41 - w39;
+        w43[k] = w42 - at0(k, w35);
+        let w44 = series::mul_d(dot2, &cos_x0, &w43, k);
+        let w47 = series::mul_d(dot3, &x[1], &ug, k);
+        let w48 = series::mul_d(dot4, &x[2], &ug, k);
+        let w49 = series::mul_d(dot5, &x[3], &ug, k);
+        let w64 = ug[k] * w59;
+        let w65 = w47 * w57;
+        let w66 = w48 * w55;
+        let w67 = w49 * w53;
+        let w68 = w64 - w65;
+        let w69 = w68 - w66;
+        let w70 = w69 - w67;
+        w71[k] = w70 - at0(k, w63);
+        let w72 = series::mul_d(dot6, &sin_x0, &w71, k);
+        w84[k] = series::mul_d(dot7, &x[1], &x[4], k);
+        w90[k] = series::mul_d(dot8, &x[2], &x[4], k);
+        w91[k] = series::mul_d(dot9, &x[3], &x[4], k);
+        let w102 = x[4][k] * w99;
+        let w103 = w84[k] * w100;
+        let w104 = w90[k] * w98;
+        let w105 = w91[k] * w98;
+        let w106 = w102 + w103;
+        let w107 = w104 + w106;
+        w108[k] = w105 + w107;
+        let w109 = series::mul_d(dot10, &x[5], &w108, k);
+        let w115 = x[4][k] * w113;
+        let w116 = w84[k] * w98;
+        let w117 = w90[k] * w100;
+        let w118 = w115 + w116;
+        let w119 = w117 + w118;
+        w120[k] = w105 + w119;
+        let w121 = series::mul_d(dot11, &x[6], &w120, k);
+        let w127 = x[4][k] * w125;
+        let w128 = w91[k] * w100;
+        let w129 = w116 + w127;
+        let w130 = w104 + w129;
+        w131[k] = w128 + w130;
+        let w132 = series::mul_d(dot12, &x[7], &w131, k);
+        let w133 = w44 - w72;
+        let w134 = w133 - w109;
+        let w135 = w134 - w121;
+        let w136 = w135 - w132;
+        let w145 = series::mul_d(dot13, &cos_x0, &ug, k);
+        let w146 = series::sq(&x[4], k);
+        let w147 = series::mul_d(dot14, &x[4], &w84, k);
+        let w148 = series::mul_d(dot15, &x[4], &w90, k);
+        let w149 = series::mul_d(dot16, &x[4], &w91, k);
+        let w157 = x[1][k] * w144;
+        let w158 = w33 * sin_x0[k];
+        let w159 = x[5][k] * w154;
+        let w160 = x[6][k] * w155;
+        let w161 = x[7][k] * w156;
+        let w162 = w57 * w145;
+        let w163 = w146 * w153;
+        let w164 = w147 * w151;
+        let w165 = w94 * w148;
+        let w166 = w94 * w149;
+        let w167 = w157 + w158;
+        let w168 = w164 + w167;
+        let w169 = w165 + w168;
+        let w170 = w166 + w169;
+        let w171 = w170 - w159;
+        let w172 = w171 - w160;
+        let w173 = w172 - w161;
+        let w174 = w173 - w162;
+        let w175 = w174 - w163;
+        let w184 = x[2][k] * w179;
+        let w185 = w30 * sin_x0[k];
+        let w186 = x[5][k] * w155;
+        let w187 = x[6][k] * w182;
+        let w188 = x[7][k] * w183;
+        let w189 = w55 * w145;
+        let w190 = w146 * w181;
+        let w191 = w94 * w147;
+        let w192 = w148 * w151;
+        let w193 = w184 + w185;
+        let w194 = w191 + w193;
+        let w195 = w192 + w194;
+        let w196 = w166 + w195;
+        let w197 = w196 - w186;
+        let w198 = w197 - w187;
+        let w199 = w198 - w188;
+        let w200 = w199 - w189;
+        let w201 = w200 - w190;
+        let w209 = x[3][k] * w205;
+        let w210 = w27 * sin_x0[k];
+        let w211 = x[5][k] * w156;
+        let w212 = x[6][k] * w183;
+        let w213 = x[7][k] * w208;
+        let w214 = w53 * w145;
+        let w215 = w146 * w207;
+        let w216 = w149 * w151;
+        let w217 = w209 + w210;
+        let w218 = w191 + w217;
+        let w219 = w165 + w218;
+        let w220 = w216 + w219;
+        let w221 = w220 - w211;
+        let w222 = w221 - w212;
+        let w223 = w222 - w213;
+        let w224 = w223 - w214;
+        let w225 = w224 - w215;
+        [w136, w175, w201, w225]
+    }
+}
+
 /// Taylor coefficients of the solution of `x' = rocking_rhs(..)`: on entry `x[i][0]` holds
 /// the state at the expansion point; on return `x[i][k]` is the k-th coefficient.
 /// Series inputs hold their first N coefficients.

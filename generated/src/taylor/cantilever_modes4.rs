@@ -12,6 +12,484 @@ use crate::series::{self, at0};
 /// Name of the variant these kernels belong to.
 pub const NAME: &str = "cantilever_modes4";
 
+/// `mass_matrix` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn mass_matrix<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 5]) -> [f64; 15] {
+    let w0: f64 = p[6];
+    let w5: f64 = s;
+    let w6: f64 = p[1];
+    let w7: f64 = w5 * w6;
+    let w8: f64 = 0.5;
+    let w9: f64 = p[3];
+    let w10: f64 = w8 * w9;
+    let w11: f64 = 2.0;
+    let w12: f64 = w7 * w11;
+    let w13: f64 = w10 * w11;
+    let w14: f64 = w10 * w12;
+    let mut w18 = [0.0f64; N];
+    let mut w26 = [0.0f64; N];
+    let w28: f64 = p[0];
+    let w29: f64 = 2.0 * w28;
+    let w30: f64 = w10 * w29;
+    let w31: f64 = w28 * w30;
+    let w32: f64 = w0 + w31;
+    let w33: f64 = 0.0625;
+    let w34: f64 = p[4];
+    let w35: f64 = w33 * w34;
+    let w36: f64 = w11 * w35;
+    let w38: f64 = w11 * w36;
+    let w42: f64 = 0.08333333333333333;
+    let w43: f64 = w34 * w42;
+    let w44: f64 = w28 * w43;
+    let w45: f64 = w29 * w44;
+    let w46: f64 = w32 + w45;
+    let w47: f64 = 2.0 * w44;
+    let w48: f64 = w28 * w47;
+    let w49: f64 = w46 + w48;
+    let w50: f64 = -0.04547450540926214;
+    let w51: f64 = w34 * w50;
+    let w52: f64 = -w7;
+    let w53: f64 = 2.0 * w52;
+    let w54: f64 = w51 * w53;
+    let w55: f64 = w11 * w51;
+    let w56: f64 = w7 * w55;
+    let w57: f64 = w54 - w56;
+    let w58: f64 = 0.06360632421652643;
+    let w59: f64 = w34 * w58;
+    let w60: f64 = w53 * w59;
+    let w61: f64 = w11 * w59;
+    let w62: f64 = w7 * w61;
+    let w63: f64 = w60 - w62;
+    let w64: f64 = -0.10848397377767982;
+    let w65: f64 = w34 * w64;
+    let w66: f64 = w53 * w65;
+    let w67: f64 = w11 * w65;
+    let w68: f64 = w7 * w67;
+    let w69: f64 = w66 - w68;
+    let w70: f64 = 0.19574793900990645;
+    let w71: f64 = w34 * w70;
+    let w72: f64 = w53 * w71;
+    let w73: f64 = w11 * w71;
+    let w74: f64 = w7 * w73;
+    let w75: f64 = w72 - w74;
+    let w76: f64 = w8 * w34;
+    let w77: f64 = 2.0 * w7;
+    let w78: f64 = w76 * w77;
+    let w79: f64 = w7 * w78;
+    let w80: f64 = w49 + w79;
+    let w99: f64 = w9 * w28;
+    let w100: f64 = 0.1422064359274777;
+    let w101: f64 = w34 * w100;
+    let w102: f64 = w28 * w101;
+    let w103: f64 = 2.0 * w102;
+    let w104: f64 = w99 + w103;
+    let w106: f64 = -0.02269169672159674;
+    let w107: f64 = w34 * w106;
+    let w108: f64 = w28 * w107;
+    let w109: f64 = 2.0 * w108;
+    let w110: f64 = w99 + w109;
+    let w112: f64 = 0.008104093592436109;
+    let w113: f64 = w34 * w112;
+    let w114: f64 = w28 * w113;
+    let w115: f64 = 2.0 * w114;
+    let w116: f64 = w99 + w115;
+    let w118: f64 = -0.004135583755212658;
+    let w119: f64 = w34 * w118;
+    let w120: f64 = w28 * w119;
+    let w121: f64 = 2.0 * w120;
+    let w122: f64 = w99 + w121;
+    let w124: f64 = 0.125;
+    let w125: f64 = w34 * w124;
+    let w126: f64 = w9 + w125;
+    let w127: f64 = w125 + w126;
+    move |k: usize, q: &[[f64; N]; 5]| {
+        let [dot0] = series::dots(
+            [
+                (&w18, &w26),
+            ],
+            k,
+        );
+        let w15 = q[1][k] + q[2][k];
+        let w16 = q[3][k] + w15;
+        let w17 = q[4][k] + w16;
+        w18[k] = w17 - at0(k, w7);
+        let w19 = q[1][k] * w13;
+        let w20 = q[2][k] * w13;
+        let w21 = q[3][k] * w13;
+        let w22 = q[4][k] * w13;
+        let w23 = w19 + w20;
+        let w24 = w21 + w23;
+        let w25 = w22 + w24;
+        w26[k] = w25 - at0(k, w14);
+        let w27 = series::mul_d(dot0, &w18, &w26, k);
+        let w37 = series::sq(&q[4], k);
+        let w39 = series::sq(&q[3], k);
+        let w40 = series::sq(&q[2], k);
+        let w41 = series::sq(&q[1], k);
+        let w81 = q[1][k] * w75;
+        let w82 = q[2][k] * w69;
+        let w83 = q[3][k] * w63;
+        let w84 = q[4][k] * w57;
+        let w85 = w37 * w38;
+        let w86 = w38 * w39;
+        let w87 = w38 * w40;
+        let w88 = w38 * w41;
+        let w89 = w81 + w82;
+        let w90 = w83 + w89;
+        let w91 = w84 + w90;
+        let w92 = w27 + w91;
+        let w93 = w85 + w92;
+        let w94 = w86 + w93;
+        let w95 = w87 + w94;
+        let w96 = w88 + w95;
+        let w97 = at0(k, w80) + w96;
+        [w97, at0(k, w104), at0(k, w110), at0(k, w116), at0(k, w122), at0(k, w127), at0(k, w9), at0(k, w9), at0(k, w9), at0(k, w127), at0(k, w9), at0(k, w9), at0(k, w127), at0(k, w9), at0(k, w127)]
+    }
+}
+
+/// `forcing` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn forcing<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 10], &[f64; N]) -> [f64; 5] {
+    let mut d_x0 = [0.0f64; N];
+    let mut sin_x0 = [0.0f64; N];
+    let mut cos_x0 = [0.0f64; N];
+    let w6: f64 = s;
+    let w7: f64 = p[1];
+    let w8: f64 = w6 * w7;
+    let w9: f64 = p[3];
+    let w10: f64 = p[8];
+    let w11: f64 = w9 * w10;
+    let w12: f64 = w8 * w11;
+    let w13: f64 = p[0];
+    let w15: f64 = w9 * w13;
+    let w16: f64 = 0.5;
+    let w17: f64 = p[4];
+    let w18: f64 = w16 * w17;
+    let w19: f64 = w13 * w18;
+    let w20: f64 = w15 + w19;
+    let w21: f64 = p[5];
+    let w22: f64 = w10 * w21;
+    let w23: f64 = w8 * w22;
+    let w24: f64 = w12 + w23;
+    let w25: f64 = -0.09094901081852429;
+    let w26: f64 = w10 * w17;
+    let w27: f64 = w25 * w26;
+    let w28: f64 = w11 + w27;
+    let w29: f64 = 0.12721264843305286;
+    let w30: f64 = w26 * w29;
+    let w31: f64 = w11 + w30;
+    let w32: f64 = -0.21696794755535964;
+    let w33: f64 = w26 * w32;
+    let w34: f64 = w11 + w33;
+    let w35: f64 = 0.3914958780198129;
+    let w36: f64 = w26 * w35;
+    let w37: f64 = w11 + w36;
+    let w38: f64 = w8 * w26;
+    let w39: f64 = w24 + w38;
+    let mut w49 = [0.0f64; N];
+    let w52: f64 = w8 * w21;
+    let w57: f64 = w8 * w9;
+    let w58: f64 = w52 + w57;
+    let w59: f64 = w17 * w25;
+    let w60: f64 = w9 + w59;
+    let w61: f64 = w17 * w29;
+    let w62: f64 = w9 + w61;
+    let w63: f64 = w17 * w32;
+    let w64: f64 = w9 + w63;
+    let w65: f64 = w17 * w35;
+    let w66: f64 = w9 + w65;
+    let w67: f64 = w8 * w17;
+    let w68: f64 = w58 + w67;
+    let w69: f64 = w11 * w13;
+    let w70: f64 = w16 * w26;
+    let w71: f64 = w13 * w70;
+    let w72: f64 = w69 + w71;
+    let mut w82 = [0.0f64; N];
+    let w84: f64 = 0.19574793900990645;
+    let w85: f64 = w17 * w84;
+    let w87: f64 = -w8;
+    let w88: f64 = 2.0 * w87;
+    let w89: f64 = 2.0;
+    let w90: f64 = w8 * w89;
+    let w91: f64 = w88 - w90;
+    let w92: f64 = w85 * w91;
+    let w93: f64 = 0.0625;
+    let w94: f64 = w17 * w93;
+    let mut w95 = [0.0f64; N];
+    let w96: f64 = w89 * w94;
+    let w97: f64 = w89 * w89;
+    let w98: f64 = w94 * w97;
+    let w99: f64 = w96 + w98;
+    let w100: f64 = w96 + w99;
+    let mut w101 = [0.0f64; N];
+    let mut w102 = [0.0f64; N];
+    let mut w103 = [0.0f64; N];
+    let w104: f64 = w9 * w16;
+    let w105: f64 = w90 * w104;
+    let w106: f64 = w89 * w104;
+    let w107: f64 = w8 * w104;
+    let w108: f64 = w89 * w107;
+    let w109: f64 = w105 + w108;
+    let w110: f64 = w89 * w106;
+    let w111: f64 = w92 - w109;
+    let w112: f64 = w100 + w110;
+    let mut w122 = [0.0f64; N];
+    let w124: f64 = -0.10848397377767982;
+    let w125: f64 = w17 * w124;
+    let w126: f64 = w91 * w125;
+    let w127: f64 = w126 - w109;
+    let mut w135 = [0.0f64; N];
+    let w137: f64 = 0.06360632421652643;
+    let w138: f64 = w17 * w137;
+    let w139: f64 = w91 * w138;
+    let w140: f64 = w139 - w109;
+    let mut w147 = [0.0f64; N];
+    let w149: f64 = -0.04547450540926214;
+    let w150: f64 = w17 * w149;
+    let w151: f64 = w91 * w150;
+    let w152: f64 = w151 - w109;
+    let mut w159 = [0.0f64; N];
+    let w167: f64 = -1.5452954210407739;
+    let w168: f64 = p[2];
+    let w169: f64 = w13 * w13;
+    let w170: f64 = w13 * w169;
+    let w171: f64 = w168 / w170;
+    let w172: f64 = w167 * w171;
+    let w173: f64 = w89 * w172;
+    let w180: f64 = w96 + w106;
+    let w181: f64 = w96 + w180;
+    let w182: f64 = w85 * w90;
+    let w183: f64 = w105 + w182;
+    let w184: f64 = p[9];
+    let w185: f64 = p[10];
+    let w186: f64 = p[11];
+    let w187: f64 = p[12];
+    let w212: f64 = -60.68985231417138;
+    let w213: f64 = w171 * w212;
+    let w214: f64 = w89 * w213;
+    let w215: f64 = w90 * w125;
+    let w216: f64 = w105 + w215;
+    let w217: f64 = p[13];
+    let w218: f64 = p[14];
+    let w219: f64 = p[15];
+    let w242: f64 = -475.81828329893136;
+    let w243: f64 = w171 * w242;
+    let w244: f64 = w89 * w243;
+    let w245: f64 = w90 * w138;
+    let w246: f64 = w105 + w245;
+    let w247: f64 = p[16];
+    let w248: f64 = p[17];
+    let w270: f64 = -1827.1591631398476;
+    let w271: f64 = w171 * w270;
+    let w272: f64 = w89 * w271;
+    let w273: f64 = w90 * w150;
+    let w274: f64 = w105 + w273;
+    let w275: f64 = p[18];
+    move |k: usize, x: &[[f64; N]; 10], ug: &[f64; N]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&cos_x0, &w49),
+                (&x[1], &ug),
+                (&x[2], &ug),
+                (&x[3], &ug),
+                (&x[4], &ug),
+            ],
+            k,
+        );
+        let [dot7, dot8, dot9, dot10, dot11, dot12, dot13] = series::dots(
+            [
+                (&sin_x0, &w82),
+                (&x[1], &x[5]),
+                (&x[2], &x[5]),
+                (&x[3], &x[5]),
+                (&x[4], &x[5]),
+                (&x[6], &w122),
+                (&x[7], &w135),
+            ],
+            k,
+        );
+        let [dot14, dot15, dot16, dot17, dot18, dot19, dot20] = series::dots(
+            [
+                (&x[8], &w147),
+                (&x[9], &w159),
+                (&cos_x0, &ug),
+                (&x[5], &w95),
+                (&x[5], &w101),
+                (&x[5], &w102),
+                (&x[5], &w103),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w40 = x[1][k] * w37;
+        let w41 = x[2][k] * w34;
+        let w42 = x[3][k] * w31;
+        let w43 = x[4][k] * w28;
+        let w44 = ug[k] * w20;
+        let w45 = w40 + w41;
+        let w46 = w42 + w45;
+        let w47 = w43 + w46;
+        let w48 = w47 - w44;
+        w49[k] = w48 - at0(k, w39);
+        let w50 = series::mul_d(dot2, &cos_x0, &w49, k);
+        let w53 = series::mul_d(dot3, &x[1], &ug, k);
+        let w54 = series::mul_d(dot4, &x[2], &ug, k);
+        let w55 = series::mul_d(dot5, &x[3], &ug, k);
+        let w56 = series::mul_d(dot6, &x[4], &ug, k);
+        let w73 = ug[k] * w68;
+        let w74 = w53 * w66;
+        let w75 = w54 * w64;
+        let w76 = w55 * w62;
+        let w77 = w56 * w60;
+        let w78 = w73 - w74;
+        let w79 = w78 - w75;
+        let w80 = w79 - w76;
+        let w81 = w80 - w77;
+        w82[k] = w81 - at0(k, w72);
+        let w83 = series::mul_d(dot7, &sin_x0, &w82, k);
+        w95[k] = series::mul_d(dot8, &x[1], &x[5], k);
+        w101[k] = series::mul_d(dot9, &x[2], &x[5], k);
+        w102[k] = series::mul_d(dot10, &x[3], &x[5], k);
+        w103[k] = series::mul_d(dot11, &x[4], &x[5], k);
+        let w114 = x[5][k] * w111;
+        let w115 = w95[k] * w112;
+        let w116 = w101[k] * w110;
+        let w117 = w102[k] * w110;
+        let w118 = w103[k] * w110;
+        let w119 = w114 + w115;
+        let w120 = w116 + w119;
+        let w121 = w117 + w120;
+        w122[k] = w118 + w121;
+        let w123 = series::mul_d(dot12, &x[6], &w122, k);
+        let w129 = x[5][k] * w127;
+        let w130 = w95[k] * w110;
+        let w131 = w101[k] * w112;
+        let w132 = w129 + w130;
+        let w133 = w131 + w132;
+        let w134 = w117 + w133;
+        w135[k] = w118 + w134;
+        let w136 = series::mul_d(dot13, &x[7], &w135, k);
+        let w142 = x[5][k] * w140;
+        let w143 = w102[k] * w112;
+        let w144 = w130 + w142;
+        let w145 = w116 + w144;
+        let w146 = w143 + w145;
+        w147[k] = w118 + w146;
+        let w148 = series::mul_d(dot14, &x[8], &w147, k);
+        let w154 = x[5][k] * w152;
+        let w155 = w103[k] * w112;
+        let w156 = w130 + w154;
+        let w157 = w116 + w156;
+        let w158 = w117 + w157;
+        w159[k] = w155 + w158;
+        let w160 = series::mul_d(dot15, &x[9], &w159, k);
+        let w161 = w50 - w83;
+        let w162 = w161 - w123;
+        let w163 = w162 - w136;
+        let w164 = w163 - w148;
+        let w165 = w164 - w160;
+        let w174 = series::mul_d(dot16, &cos_x0, &ug, k);
+        let w175 = series::sq(&x[5], k);
+        let w176 = series::mul_d(dot17, &x[5], &w95, k);
+        let w177 = series::mul_d(dot18, &x[5], &w101, k);
+        let w178 = series::mul_d(dot19, &x[5], &w102, k);
+        let w179 = series::mul_d(dot20, &x[5], &w103, k);
+        let w188 = x[1][k] * w173;
+        let w189 = w37 * sin_x0[k];
+        let w190 = x[6][k] * w184;
+        let w191 = x[7][k] * w185;
+        let w192 = x[8][k] * w186;
+        let w193 = x[9][k] * w187;
+        let w194 = w66 * w174;
+        let w195 = w175 * w183;
+        let w196 = w176 * w181;
+        let w197 = w106 * w177;
+        let w198 = w106 * w178;
+        let w199 = w106 * w179;
+        let w200 = w188 + w189;
+        let w201 = w196 + w200;
+        let w202 = w197 + w201;
+        let w203 = w198 + w202;
+        let w204 = w199 + w203;
+        let w205 = w204 - w190;
+        let w206 = w205 - w191;
+        let w207 = w206 - w192;
+        let w208 = w207 - w193;
+        let w209 = w208 - w194;
+        let w210 = w209 - w195;
+        let w220 = x[2][k] * w214;
+        let w221 = w34 * sin_x0[k];
+        let w222 = x[6][k] * w185;
+        let w223 = x[7][k] * w217;
+        let w224 = x[8][k] * w218;
+        let w225 = x[9][k] * w219;
+        let w226 = w64 * w174;
+        let w227 = w175 * w216;
+        let w228 = w106 * w176;
+        let w229 = w177 * w181;
+        let w230 = w220 + w221;
+        let w231 = w228 + w230;
+        let w232 = w229 + w231;
+        let w233 = w198 + w232;
+        let w234 = w199 + w233;
+        let w235 = w234 - w222;
+        let w236 = w235 - w223;
+        let w237 = w236 - w224;
+        let w238 = w237 - w225;
+        let w239 = w238 - w226;
+        let w240 = w239 - w227;
+        let w249 = x[3][k] * w244;
+        let w250 = w31 * sin_x0[k];
+        let w251 = x[6][k] * w186;
+        let w252 = x[7][k] * w218;
+        let w253 = x[8][k] * w247;
+        let w254 = x[9][k] * w248;
+        let w255 = w62 * w174;
+        let w256 = w175 * w246;
+        let w257 = w178 * w181;
+        let w258 = w249 + w250;
+        let w259 = w228 + w258;
+        let w260 = w197 + w259;
+        let w261 = w257 + w260;
+        let w262 = w199 + w261;
+        let w263 = w262 - w251;
+        let w264 = w263 - w252;
+        let w265 = w264 - w253;
+        let w266 = w265 - w254;
+        let w267 = w266 - w255;
+        let w268 = w267 - w256;
+        let w276 = x[4][k] * w272;
+        let w277 = w28 * sin_x0[k];
+        let w278 = x[6][k] * w187;
+        let w279 = x[7][k] * w219;
+        let w280 = x[8][k] * w248;
+        let w281 = x[9][k] * w275;
+        let w282 = w60 * w174;
+        let w283 = w175 * w274;
+        let w284 = w179 * w181;
+        let w285 = w276 + w277;
+        let w286 = w228 + w285;
+        let w287 = w197 + w286;
+        let w288 = w198 + w287;
+        let w289 = w284 + w288;
+        let w290 = w289 - w278;
+        let w291 = w290 - w279;
+        let w292 = w291 - w280;
+        let w293 = w292 - w281;
+        let w294 = w293 - w282;
+        let w295 = w294 - w283;
+        [w165, w210, w240, w268, w295]
+    }
+}
+
 /// Taylor coefficients of the solution of `x' = rocking_rhs(..)`: on entry `x[i][0]` holds
 /// the state at the expansion point; on return `x[i][k]` is the k-th coefficient.
 /// Series inputs hold their first N coefficients.

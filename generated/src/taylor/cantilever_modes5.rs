@@ -12,6 +12,585 @@ use crate::series::{self, at0};
 /// Name of the variant these kernels belong to.
 pub const NAME: &str = "cantilever_modes5";
 
+/// `mass_matrix` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn mass_matrix<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 6]) -> [f64; 21] {
+    let w0: f64 = p[6];
+    let w6: f64 = s;
+    let w7: f64 = p[1];
+    let w8: f64 = w6 * w7;
+    let w9: f64 = 0.5;
+    let w10: f64 = p[3];
+    let w11: f64 = w9 * w10;
+    let w12: f64 = 2.0;
+    let w13: f64 = w8 * w12;
+    let w14: f64 = w11 * w12;
+    let w15: f64 = w11 * w13;
+    let mut w20 = [0.0f64; N];
+    let mut w30 = [0.0f64; N];
+    let w32: f64 = p[0];
+    let w33: f64 = 2.0 * w32;
+    let w34: f64 = w11 * w33;
+    let w35: f64 = w32 * w34;
+    let w36: f64 = w0 + w35;
+    let w37: f64 = 0.0625;
+    let w38: f64 = p[4];
+    let w39: f64 = w37 * w38;
+    let w40: f64 = w12 * w39;
+    let w42: f64 = w12 * w40;
+    let w47: f64 = 0.08333333333333333;
+    let w48: f64 = w38 * w47;
+    let w49: f64 = w32 * w48;
+    let w50: f64 = w33 * w49;
+    let w51: f64 = w36 + w50;
+    let w52: f64 = 2.0 * w49;
+    let w53: f64 = w32 * w52;
+    let w54: f64 = w51 + w53;
+    let w55: f64 = 0.035367710224841836;
+    let w56: f64 = w38 * w55;
+    let w57: f64 = -w8;
+    let w58: f64 = 2.0 * w57;
+    let w59: f64 = w56 * w58;
+    let w60: f64 = w12 * w56;
+    let w61: f64 = w8 * w60;
+    let w62: f64 = w59 - w61;
+    let w63: f64 = -0.04547450540926214;
+    let w64: f64 = w38 * w63;
+    let w65: f64 = w58 * w64;
+    let w66: f64 = w12 * w64;
+    let w67: f64 = w8 * w66;
+    let w68: f64 = w65 - w67;
+    let w69: f64 = 0.06360632421652643;
+    let w70: f64 = w38 * w69;
+    let w71: f64 = w58 * w70;
+    let w72: f64 = w12 * w70;
+    let w73: f64 = w8 * w72;
+    let w74: f64 = w71 - w73;
+    let w75: f64 = -0.10848397377767982;
+    let w76: f64 = w38 * w75;
+    let w77: f64 = w58 * w76;
+    let w78: f64 = w12 * w76;
+    let w79: f64 = w8 * w78;
+    let w80: f64 = w77 - w79;
+    let w81: f64 = 0.19574793900990645;
+    let w82: f64 = w38 * w81;
+    let w83: f64 = w58 * w82;
+    let w84: f64 = w12 * w82;
+    let w85: f64 = w8 * w84;
+    let w86: f64 = w83 - w85;
+    let w87: f64 = w9 * w38;
+    let w88: f64 = 2.0 * w8;
+    let w89: f64 = w87 * w88;
+    let w90: f64 = w8 * w89;
+    let w91: f64 = w54 + w90;
+    let w114: f64 = w10 * w32;
+    let w115: f64 = 0.1422064359274777;
+    let w116: f64 = w38 * w115;
+    let w117: f64 = w32 * w116;
+    let w118: f64 = 2.0 * w117;
+    let w119: f64 = w114 + w118;
+    let w121: f64 = -0.02269169672159674;
+    let w122: f64 = w38 * w121;
+    let w123: f64 = w32 * w122;
+    let w124: f64 = 2.0 * w123;
+    let w125: f64 = w114 + w124;
+    let w127: f64 = 0.008104093592436109;
+    let w128: f64 = w38 * w127;
+    let w129: f64 = w32 * w128;
+    let w130: f64 = 2.0 * w129;
+    let w131: f64 = w114 + w130;
+    let w133: f64 = -0.004135583755212658;
+    let w134: f64 = w38 * w133;
+    let w135: f64 = w32 * w134;
+    let w136: f64 = 2.0 * w135;
+    let w137: f64 = w114 + w136;
+    let w139: f64 = 0.0025017571076434843;
+    let w140: f64 = w38 * w139;
+    let w141: f64 = w32 * w140;
+    let w142: f64 = 2.0 * w141;
+    let w143: f64 = w114 + w142;
+    let w145: f64 = 0.125;
+    let w146: f64 = w38 * w145;
+    let w147: f64 = w10 + w146;
+    let w148: f64 = w146 + w147;
+    move |k: usize, q: &[[f64; N]; 6]| {
+        let [dot0] = series::dots(
+            [
+                (&w20, &w30),
+            ],
+            k,
+        );
+        let w16 = q[1][k] + q[2][k];
+        let w17 = q[3][k] + w16;
+        let w18 = q[4][k] + w17;
+        let w19 = q[5][k] + w18;
+        w20[k] = w19 - at0(k, w8);
+        let w21 = q[1][k] * w14;
+        let w22 = q[2][k] * w14;
+        let w23 = q[3][k] * w14;
+        let w24 = q[4][k] * w14;
+        let w25 = q[5][k] * w14;
+        let w26 = w21 + w22;
+        let w27 = w23 + w26;
+        let w28 = w24 + w27;
+        let w29 = w25 + w28;
+        w30[k] = w29 - at0(k, w15);
+        let w31 = series::mul_d(dot0, &w20, &w30, k);
+        let w41 = series::sq(&q[5], k);
+        let w43 = series::sq(&q[4], k);
+        let w44 = series::sq(&q[3], k);
+        let w45 = series::sq(&q[2], k);
+        let w46 = series::sq(&q[1], k);
+        let w92 = q[1][k] * w86;
+        let w93 = q[2][k] * w80;
+        let w94 = q[3][k] * w74;
+        let w95 = q[4][k] * w68;
+        let w96 = q[5][k] * w62;
+        let w97 = w41 * w42;
+        let w98 = w42 * w43;
+        let w99 = w42 * w44;
+        let w100 = w42 * w45;
+        let w101 = w42 * w46;
+        let w102 = w92 + w93;
+        let w103 = w94 + w102;
+        let w104 = w95 + w103;
+        let w105 = w96 + w104;
+        let w106 = w31 + w105;
+        let w107 = w97 + w106;
+        let w108 = w98 + w107;
+        let w109 = w99 + w108;
+        let w110 = w100 + w109;
+        let w111 = w101 + w110;
+        let w112 = at0(k, w91) + w111;
+        [w112, at0(k, w119), at0(k, w125), at0(k, w131), at0(k, w137), at0(k, w143), at0(k, w148), at0(k, w10), at0(k, w10), at0(k, w10), at0(k, w10), at0(k, w148), at0(k, w10), at0(k, w10), at0(k, w10), at0(k, w148), at0(k, w10), at0(k, w10), at0(k, w148), at0(k, w10), at0(k, w148)]
+    }
+}
+
+/// `forcing` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn forcing<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 12], &[f64; N]) -> [f64; 6] {
+    let mut d_x0 = [0.0f64; N];
+    let mut sin_x0 = [0.0f64; N];
+    let mut cos_x0 = [0.0f64; N];
+    let w7: f64 = s;
+    let w8: f64 = p[1];
+    let w9: f64 = w7 * w8;
+    let w10: f64 = p[3];
+    let w11: f64 = p[8];
+    let w12: f64 = w10 * w11;
+    let w13: f64 = w9 * w12;
+    let w14: f64 = p[0];
+    let w16: f64 = w10 * w14;
+    let w17: f64 = 0.5;
+    let w18: f64 = p[4];
+    let w19: f64 = w17 * w18;
+    let w20: f64 = w14 * w19;
+    let w21: f64 = w16 + w20;
+    let w22: f64 = p[5];
+    let w23: f64 = w11 * w22;
+    let w24: f64 = w9 * w23;
+    let w25: f64 = w13 + w24;
+    let w26: f64 = 0.07073542044968367;
+    let w27: f64 = w11 * w18;
+    let w28: f64 = w26 * w27;
+    let w29: f64 = w12 + w28;
+    let w30: f64 = -0.09094901081852429;
+    let w31: f64 = w27 * w30;
+    let w32: f64 = w12 + w31;
+    let w33: f64 = 0.12721264843305286;
+    let w34: f64 = w27 * w33;
+    let w35: f64 = w12 + w34;
+    let w36: f64 = -0.21696794755535964;
+    let w37: f64 = w27 * w36;
+    let w38: f64 = w12 + w37;
+    let w39: f64 = 0.3914958780198129;
+    let w40: f64 = w27 * w39;
+    let w41: f64 = w12 + w40;
+    let w42: f64 = w9 * w27;
+    let w43: f64 = w25 + w42;
+    let mut w55 = [0.0f64; N];
+    let w58: f64 = w9 * w22;
+    let w64: f64 = w9 * w10;
+    let w65: f64 = w58 + w64;
+    let w66: f64 = w18 * w26;
+    let w67: f64 = w10 + w66;
+    let w68: f64 = w18 * w30;
+    let w69: f64 = w10 + w68;
+    let w70: f64 = w18 * w33;
+    let w71: f64 = w10 + w70;
+    let w72: f64 = w18 * w36;
+    let w73: f64 = w10 + w72;
+    let w74: f64 = w18 * w39;
+    let w75: f64 = w10 + w74;
+    let w76: f64 = w9 * w18;
+    let w77: f64 = w65 + w76;
+    let w78: f64 = w12 * w14;
+    let w79: f64 = w17 * w27;
+    let w80: f64 = w14 * w79;
+    let w81: f64 = w78 + w80;
+    let mut w93 = [0.0f64; N];
+    let w95: f64 = 0.19574793900990645;
+    let w96: f64 = w18 * w95;
+    let w98: f64 = -w9;
+    let w99: f64 = 2.0 * w98;
+    let w100: f64 = 2.0;
+    let w101: f64 = w9 * w100;
+    let w102: f64 = w99 - w101;
+    let w103: f64 = w96 * w102;
+    let w104: f64 = 0.0625;
+    let w105: f64 = w18 * w104;
+    let mut w106 = [0.0f64; N];
+    let w107: f64 = w100 * w105;
+    let w108: f64 = w100 * w100;
+    let w109: f64 = w105 * w108;
+    let w110: f64 = w107 + w109;
+    let w111: f64 = w107 + w110;
+    let mut w112 = [0.0f64; N];
+    let mut w113 = [0.0f64; N];
+    let mut w114 = [0.0f64; N];
+    let mut w115 = [0.0f64; N];
+    let w116: f64 = w10 * w17;
+    let w117: f64 = w101 * w116;
+    let w118: f64 = w100 * w116;
+    let w119: f64 = w9 * w116;
+    let w120: f64 = w100 * w119;
+    let w121: f64 = w117 + w120;
+    let w122: f64 = w100 * w118;
+    let w123: f64 = w103 - w121;
+    let w124: f64 = w111 + w122;
+    let mut w136 = [0.0f64; N];
+    let w138: f64 = -0.10848397377767982;
+    let w139: f64 = w18 * w138;
+    let w140: f64 = w102 * w139;
+    let w141: f64 = w140 - w121;
+    let mut w150 = [0.0f64; N];
+    let w152: f64 = 0.06360632421652643;
+    let w153: f64 = w18 * w152;
+    let w154: f64 = w102 * w153;
+    let w155: f64 = w154 - w121;
+    let mut w163 = [0.0f64; N];
+    let w165: f64 = -0.04547450540926214;
+    let w166: f64 = w18 * w165;
+    let w167: f64 = w102 * w166;
+    let w168: f64 = w167 - w121;
+    let mut w176 = [0.0f64; N];
+    let w178: f64 = 0.035367710224841836;
+    let w179: f64 = w18 * w178;
+    let w180: f64 = w102 * w179;
+    let w181: f64 = w180 - w121;
+    let mut w189 = [0.0f64; N];
+    let w198: f64 = -1.5452954210407739;
+    let w199: f64 = p[2];
+    let w200: f64 = w14 * w14;
+    let w201: f64 = w14 * w200;
+    let w202: f64 = w199 / w201;
+    let w203: f64 = w198 * w202;
+    let w204: f64 = w100 * w203;
+    let w212: f64 = w107 + w118;
+    let w213: f64 = w107 + w212;
+    let w214: f64 = w96 * w101;
+    let w215: f64 = w117 + w214;
+    let w216: f64 = p[9];
+    let w217: f64 = p[10];
+    let w218: f64 = p[11];
+    let w219: f64 = p[12];
+    let w220: f64 = p[13];
+    let w249: f64 = -60.68985231417138;
+    let w250: f64 = w202 * w249;
+    let w251: f64 = w100 * w250;
+    let w252: f64 = w101 * w139;
+    let w253: f64 = w117 + w252;
+    let w254: f64 = p[14];
+    let w255: f64 = p[15];
+    let w256: f64 = p[16];
+    let w257: f64 = p[17];
+    let w283: f64 = -475.81828329893136;
+    let w284: f64 = w202 * w283;
+    let w285: f64 = w100 * w284;
+    let w286: f64 = w101 * w153;
+    let w287: f64 = w117 + w286;
+    let w288: f64 = p[18];
+    let w289: f64 = p[19];
+    let w290: f64 = p[20];
+    let w315: f64 = -1827.1591631398476;
+    let w316: f64 = w202 * w315;
+    let w317: f64 = w100 * w316;
+    let w318: f64 = w101 * w166;
+    let w319: f64 = w117 + w318;
+    let w320: f64 = p[21];
+    let w321: f64 = p[22];
+    let w346: f64 = -4992.978972313684;
+    let w347: f64 = w202 * w346;
+    let w348: f64 = w100 * w347;
+    let w349: f64 = w101 * w179;
+    let w350: f64 = w117 + w349;
+    let w351: f64 = p[23];
+    move |k: usize, x: &[[f64; N]; 12], ug: &[f64; N]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&cos_x0, &w55),
+                (&x[1], &ug),
+                (&x[2], &ug),
+                (&x[3], &ug),
+                (&x[4], &ug),
+                (&x[5], &ug),
+                (&sin_x0, &w93),
+            ],
+            k,
+        );
+        let [dot9, dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17] = series::dots(
+            [
+                (&x[1], &x[6]),
+                (&x[2], &x[6]),
+                (&x[3], &x[6]),
+                (&x[4], &x[6]),
+                (&x[5], &x[6]),
+                (&x[7], &w136),
+                (&x[8], &w150),
+                (&x[9], &w163),
+                (&x[10], &w176),
+            ],
+            k,
+        );
+        let [dot18, dot19, dot20, dot21, dot22, dot23, dot24] = series::dots(
+            [
+                (&x[11], &w189),
+                (&cos_x0, &ug),
+                (&x[6], &w106),
+                (&x[6], &w112),
+                (&x[6], &w113),
+                (&x[6], &w114),
+                (&x[6], &w115),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w44 = x[1][k] * w41;
+        let w45 = x[2][k] * w38;
+        let w46 = x[3][k] * w35;
+        let w47 = x[4][k] * w32;
+        let w48 = x[5][k] * w29;
+        let w49 = ug[k] * w21;
+        let w50 = w44 + w45;
+        let w51 = w46 + w50;
+        let w52 = w47 + w51;
+        let w53 = w48 + w52;
+        let w54 = w53 - w49;
+        w55[k] = w54 - at0(k, w43);
+        let w56 = series::mul_d(dot2, &cos_x0, &w55, k);
+        let w59 = series::mul_d(dot3, &x[1], &ug, k);
+        let w60 = series::mul_d(dot4, &x[2], &ug, k);
+        let w61 = series::mul_d(dot5, &x[3], &ug, k);
+        let w62 = series::mul_d(dot6, &x[4], &ug, k);
+        let w63 = series::mul_d(dot7, &x[5], &ug, k);
+        let w82 = ug[k] * w77;
+        let w83 = w59 * w75;
+        let w84 = w60 * w73;
+        let w85 = w61 * w71;
+        let w86 = w62 * w69;
+        let w87 = w63 * w67;
+        let w88 = w82 - w83;
+        let w89 = w88 - w84;
+        let w90 = w89 - w85;
+        let w91 = w90 - w86;
+        let w92 = w91 - w87;
+        w93[k] = w92 - at0(k, w81);
+        let w94 = series::mul_d(dot8, &sin_x0, &w93, k);
+        w106[k] = series::mul_d(dot9, &x[1], &x[6], k);
+        w112[k] = series::mul_d(dot10, &x[2], &x[6], k);
+        w113[k] = series::mul_d(dot11, &x[3], &x[6], k);
+        w114[k] = series::mul_d(dot12, &x[4], &x[6], k);
+        w115[k] = series::mul_d(dot13, &x[5], &x[6], k);
+        let w126 = x[6][k] * w123;
+        let w127 = w106[k] * w124;
+        let w128 = w112[k] * w122;
+        let w129 = w113[k] * w122;
+        let w130 = w114[k] * w122;
+        let w131 = w115[k] * w122;
+        let w132 = w126 + w127;
+        let w133 = w128 + w132;
+        let w134 = w129 + w133;
+        let w135 = w130 + w134;
+        w136[k] = w131 + w135;
+        let w137 = series::mul_d(dot14, &x[7], &w136, k);
+        let w143 = x[6][k] * w141;
+        let w144 = w106[k] * w122;
+        let w145 = w112[k] * w124;
+        let w146 = w143 + w144;
+        let w147 = w145 + w146;
+        let w148 = w129 + w147;
+        let w149 = w130 + w148;
+        w150[k] = w131 + w149;
+        let w151 = series::mul_d(dot15, &x[8], &w150, k);
+        let w157 = x[6][k] * w155;
+        let w158 = w113[k] * w124;
+        let w159 = w144 + w157;
+        let w160 = w128 + w159;
+        let w161 = w158 + w160;
+        let w162 = w130 + w161;
+        w163[k] = w131 + w162;
+        let w164 = series::mul_d(dot16, &x[9], &w163, k);
+        let w170 = x[6][k] * w168;
+        let w171 = w114[k] * w124;
+        let w172 = w144 + w170;
+        let w173 = w128 + w172;
+        let w174 = w129 + w173;
+        let w175 = w171 + w174;
+        w176[k] = w131 + w175;
+        let w177 = series::mul_d(dot17, &x[10], &w176, k);
+        let w183 = x[6][k] * w181;
+        let w184 = w115[k] * w124;
+        let w185 = w144 + w183;
+        let w186 = w128 + w185;
+        let w187 = w129 + w186;
+        let w188 = w130 + w187;
+        w189[k] = w184 + w188;
+        let w190 = series::mul_d(dot18, &x[11], &w189, k);
+        let w191 = w56 - w94;
+        let w192 = w191 - w137;
+        let w193 = w192 - w151;
+        let w194 = w193 - w164;
+        let w195 = w194 - w177;
+        let w196 = w195 - w190;
+        let w205 = series::mul_d(dot19, &cos_x0, &ug, k);
+        let w206 = series::sq(&x[6], k);
+        let w207 = series::mul_d(dot20, &x[6], &w106, k);
+        let w208 = series::mul_d(dot21, &x[6], &w112, k);
+        let w209 = series::mul_d(dot22, &x[6], &w113, k);
+        let w210 = series::mul_d(dot23, &x[6], &w114, k);
+        let w211 = series::mul_d(dot24, &x[6], &w115, k);
+        let w221 = x[1][k] * w204;
+        let w222 = w41 * sin_x0[k];
+        let w223 = x[7][k] * w216;
+        let w224 = x[8][k] * w217;
+        let w225 = x[9][k] * w218;
+        let w226 = x[10][k] * w219;
+        let w227 = x[11][k] * w220;
+        let w228 = w75 * w205;
+        let w229 = w206 * w215;
+        let w230 = w207 * w213;
+        let w231 = w118 * w208;
+        let w232 = w118 * w209;
+        let w233 = w118 * w210;
+        let w234 = w118 * w211;
+        let w235 = w221 + w222;
+        let w236 = w230 + w235;
+        let w237 = w231 + w236;
+        let w238 = w232 + w237;
+        let w239 = w233 + w238;
+        let w240 = w234 + w239;
+        let w241 = w240 - w223;
+        let w242 = w241 - w224;
+        let w243 = w242 - w225;
+        let w244 = w243 - w226;
+        let w245 = w244 - w227;
+        let w246 = w245 - w228;
+        let w247 = w246 - w229;
+        let w258 = x[2][k] * w251;
+        let w259 = w38 * sin_x0[k];
+        let w260 = x[7][k] * w217;
+        let w261 = x[8][k] * w254;
+        let w262 = x[9][k] * w255;
+        let w263 = x[10][k] * w256;
+        let w264 = x[11][k] * w257;
+        let w265 = w73 * w205;
+        let w266 = w206 * w253;
+        let w267 = w118 * w207;
+        let w268 = w208 * w213;
+        let w269 = w258 + w259;
+        let w270 = w267 + w269;
+        let w271 = w268 + w270;
+        let w272 = w232 + w271;
+        let w273 = w233 + w272;
+        let w274 = w234 + w273;
+        let w275 = w274 - w260;
+        let w276 = w275 - w261;
+        let w277 = w276 - w262;
+        let w278 = w277 - w263;
+        let w279 = w278 - w264;
+        let w280 = w279 - w265;
+        let w281 = w280 - w266;
+        let w291 = x[3][k] * w285;
+        let w292 = w35 * sin_x0[k];
+        let w293 = x[7][k] * w218;
+        let w294 = x[8][k] * w255;
+        let w295 = x[9][k] * w288;
+        let w296 = x[10][k] * w289;
+        let w297 = x[11][k] * w290;
+        let w298 = w71 * w205;
+        let w299 = w206 * w287;
+        let w300 = w209 * w213;
+        let w301 = w291 + w292;
+        let w302 = w267 + w301;
+        let w303 = w231 + w302;
+        let w304 = w300 + w303;
+        let w305 = w233 + w304;
+        let w306 = w234 + w305;
+        let w307 = w306 - w293;
+        let w308 = w307 - w294;
+        let w309 = w308 - w295;
+        let w310 = w309 - w296;
+        let w311 = w310 - w297;
+        let w312 = w311 - w298;
+        let w313 = w312 - w299;
+        let w322 = x[4][k] * w317;
+        let w323 = w32 * sin_x0[k];
+        let w324 = x[7][k] * w219;
+        let w325 = x[8][k] * w256;
+        let w326 = x[9][k] * w289;
+        let w327 = x[10][k] * w320;
+        let w328 = x[11][k] * w321;
+        let w329 = w69 * w205;
+        let w330 = w206 * w319;
+        let w331 = w210 * w213;
+        let w332 = w322 + w323;
+        let w333 = w267 + w332;
+        let w334 = w231 + w333;
+        let w335 = w232 + w334;
+        let w336 = w331 + w335;
+        let w337 = w234 + w336;
+        let w338 = w337 - w324;
+        let w339 = w338 - w325;
+        let w340 = w339 - w326;
+        let w341 = w340 - w327;
+        let w342 = w341 - w328;
+        let w343 = w342 - w329;
+        let w344 = w343 - w330;
+        let w352 = x[5][k] * w348;
+        let w353 = w29 * sin_x0[k];
+        let w354 = x[7][k] * w220;
+        let w355 = x[8][k] * w257;
+        let w356 = x[9][k] * w290;
+        let w357 = x[10][k] * w321;
+        let w358 = x[11][k] * w351;
+        let w359 = w67 * w205;
+        let w360 = w206 * w350;
+        let w361 = w211 * w213;
+        let w362 = w352 + w353;
+        let w363 = w267 + w362;
+        let w364 = w231 + w363;
+        let w365 = w232 + w364;
+        let w366 = w233 + w365;
+        let w367 = w361 + w366;
+        let w368 = w367 - w354;
+        let w369 = w368 - w355;
+        let w370 = w369 - w356;
+        let w371 = w370 - w357;
+        let w372 = w371 - w358;
+        let w373 = w372 - w359;
+        let w374 = w373 - w360;
+        [w196, w247, w281, w313, w344, w374]
+    }
+}
+
 /// Taylor coefficients of the solution of `x' = rocking_rhs(..)`: on entry `x[i][0]` holds
 /// the state at the expansion point; on return `x[i][k]` is the k-th coefficient.
 /// Series inputs hold their first N coefficients.

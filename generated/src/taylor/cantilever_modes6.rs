@@ -12,6 +12,695 @@ use crate::series::{self, at0};
 /// Name of the variant these kernels belong to.
 pub const NAME: &str = "cantilever_modes6";
 
+/// `mass_matrix` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn mass_matrix<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 7]) -> [f64; 28] {
+    let w0: f64 = p[6];
+    let w7: f64 = s;
+    let w8: f64 = p[1];
+    let w9: f64 = w7 * w8;
+    let w10: f64 = 0.5;
+    let w11: f64 = p[3];
+    let w12: f64 = w10 * w11;
+    let w13: f64 = 2.0;
+    let w14: f64 = w9 * w13;
+    let w15: f64 = w12 * w13;
+    let w16: f64 = w12 * w14;
+    let mut w22 = [0.0f64; N];
+    let mut w34 = [0.0f64; N];
+    let w36: f64 = p[0];
+    let w37: f64 = 2.0 * w36;
+    let w38: f64 = w12 * w37;
+    let w39: f64 = w36 * w38;
+    let w40: f64 = w0 + w39;
+    let w41: f64 = 0.0625;
+    let w42: f64 = p[4];
+    let w43: f64 = w41 * w42;
+    let w44: f64 = w13 * w43;
+    let w46: f64 = w13 * w44;
+    let w52: f64 = 0.08333333333333333;
+    let w53: f64 = w42 * w52;
+    let w54: f64 = w36 * w53;
+    let w55: f64 = w37 * w54;
+    let w56: f64 = w40 + w55;
+    let w57: f64 = 2.0 * w54;
+    let w58: f64 = w36 * w57;
+    let w59: f64 = w56 + w58;
+    let w60: f64 = -0.02893726429835825;
+    let w61: f64 = w42 * w60;
+    let w62: f64 = -w9;
+    let w63: f64 = 2.0 * w62;
+    let w64: f64 = w61 * w63;
+    let w65: f64 = w13 * w61;
+    let w66: f64 = w9 * w65;
+    let w67: f64 = w64 - w66;
+    let w68: f64 = 0.035367710224841836;
+    let w69: f64 = w42 * w68;
+    let w70: f64 = w63 * w69;
+    let w71: f64 = w13 * w69;
+    let w72: f64 = w9 * w71;
+    let w73: f64 = w70 - w72;
+    let w74: f64 = -0.04547450540926214;
+    let w75: f64 = w42 * w74;
+    let w76: f64 = w63 * w75;
+    let w77: f64 = w13 * w75;
+    let w78: f64 = w9 * w77;
+    let w79: f64 = w76 - w78;
+    let w80: f64 = 0.06360632421652643;
+    let w81: f64 = w42 * w80;
+    let w82: f64 = w63 * w81;
+    let w83: f64 = w13 * w81;
+    let w84: f64 = w9 * w83;
+    let w85: f64 = w82 - w84;
+    let w86: f64 = -0.10848397377767982;
+    let w87: f64 = w42 * w86;
+    let w88: f64 = w63 * w87;
+    let w89: f64 = w13 * w87;
+    let w90: f64 = w9 * w89;
+    let w91: f64 = w88 - w90;
+    let w92: f64 = 0.19574793900990645;
+    let w93: f64 = w42 * w92;
+    let w94: f64 = w63 * w93;
+    let w95: f64 = w13 * w93;
+    let w96: f64 = w9 * w95;
+    let w97: f64 = w94 - w96;
+    let w98: f64 = w10 * w42;
+    let w99: f64 = 2.0 * w9;
+    let w100: f64 = w98 * w99;
+    let w101: f64 = w9 * w100;
+    let w102: f64 = w59 + w101;
+    let w129: f64 = w11 * w36;
+    let w130: f64 = 0.1422064359274777;
+    let w131: f64 = w42 * w130;
+    let w132: f64 = w36 * w131;
+    let w133: f64 = 2.0 * w132;
+    let w134: f64 = w129 + w133;
+    let w136: f64 = -0.02269169672159674;
+    let w137: f64 = w42 * w136;
+    let w138: f64 = w36 * w137;
+    let w139: f64 = 2.0 * w138;
+    let w140: f64 = w129 + w139;
+    let w142: f64 = 0.008104093592436109;
+    let w143: f64 = w42 * w142;
+    let w144: f64 = w36 * w143;
+    let w145: f64 = 2.0 * w144;
+    let w146: f64 = w129 + w145;
+    let w148: f64 = -0.004135583755212658;
+    let w149: f64 = w42 * w148;
+    let w150: f64 = w36 * w149;
+    let w151: f64 = 2.0 * w150;
+    let w152: f64 = w129 + w151;
+    let w154: f64 = 0.0025017571076434843;
+    let w155: f64 = w42 * w154;
+    let w156: f64 = w36 * w155;
+    let w157: f64 = 2.0 * w156;
+    let w158: f64 = w129 + w157;
+    let w160: f64 = -0.00167473032028351;
+    let w161: f64 = w42 * w160;
+    let w162: f64 = w36 * w161;
+    let w163: f64 = 2.0 * w162;
+    let w164: f64 = w129 + w163;
+    let w166: f64 = 0.125;
+    let w167: f64 = w42 * w166;
+    let w168: f64 = w11 + w167;
+    let w169: f64 = w167 + w168;
+    move |k: usize, q: &[[f64; N]; 7]| {
+        let [dot0] = series::dots(
+            [
+                (&w22, &w34),
+            ],
+            k,
+        );
+        let w17 = q[1][k] + q[2][k];
+        let w18 = q[3][k] + w17;
+        let w19 = q[4][k] + w18;
+        let w20 = q[5][k] + w19;
+        let w21 = q[6][k] + w20;
+        w22[k] = w21 - at0(k, w9);
+        let w23 = q[1][k] * w15;
+        let w24 = q[2][k] * w15;
+        let w25 = q[3][k] * w15;
+        let w26 = q[4][k] * w15;
+        let w27 = q[5][k] * w15;
+        let w28 = q[6][k] * w15;
+        let w29 = w23 + w24;
+        let w30 = w25 + w29;
+        let w31 = w26 + w30;
+        let w32 = w27 + w31;
+        let w33 = w28 + w32;
+        w34[k] = w33 - at0(k, w16);
+        let w35 = series::mul_d(dot0, &w22, &w34, k);
+        let w45 = series::sq(&q[6], k);
+        let w47 = series::sq(&q[5], k);
+        let w48 = series::sq(&q[4], k);
+        let w49 = series::sq(&q[3], k);
+        let w50 = series::sq(&q[2], k);
+        let w51 = series::sq(&q[1], k);
+        let w103 = q[1][k] * w97;
+        let w104 = q[2][k] * w91;
+        let w105 = q[3][k] * w85;
+        let w106 = q[4][k] * w79;
+        let w107 = q[5][k] * w73;
+        let w108 = q[6][k] * w67;
+        let w109 = w45 * w46;
+        let w110 = w46 * w47;
+        let w111 = w46 * w48;
+        let w112 = w46 * w49;
+        let w113 = w46 * w50;
+        let w114 = w46 * w51;
+        let w115 = w103 + w104;
+        let w116 = w105 + w115;
+        let w117 = w106 + w116;
+        let w118 = w107 + w117;
+        let w119 = w108 + w118;
+        let w120 = w35 + w119;
+        let w121 = w109 + w120;
+        let w122 = w110 + w121;
+        let w123 = w111 + w122;
+        let w124 = w112 + w123;
+        let w125 = w113 + w124;
+        let w126 = w114 + w125;
+        let w127 = at0(k, w102) + w126;
+        [w127, at0(k, w134), at0(k, w140), at0(k, w146), at0(k, w152), at0(k, w158), at0(k, w164), at0(k, w169), at0(k, w11), at0(k, w11), at0(k, w11), at0(k, w11), at0(k, w11), at0(k, w169), at0(k, w11), at0(k, w11), at0(k, w11), at0(k, w11), at0(k, w169), at0(k, w11), at0(k, w11), at0(k, w11), at0(k, w169), at0(k, w11), at0(k, w11), at0(k, w169), at0(k, w11), at0(k, w169)]
+    }
+}
+
+/// `forcing` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn forcing<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 14], &[f64; N]) -> [f64; 7] {
+    let mut d_x0 = [0.0f64; N];
+    let mut sin_x0 = [0.0f64; N];
+    let mut cos_x0 = [0.0f64; N];
+    let w8: f64 = s;
+    let w9: f64 = p[1];
+    let w10: f64 = w8 * w9;
+    let w11: f64 = p[3];
+    let w12: f64 = p[8];
+    let w13: f64 = w11 * w12;
+    let w14: f64 = w10 * w13;
+    let w15: f64 = p[0];
+    let w17: f64 = w11 * w15;
+    let w18: f64 = 0.5;
+    let w19: f64 = p[4];
+    let w20: f64 = w18 * w19;
+    let w21: f64 = w15 * w20;
+    let w22: f64 = w17 + w21;
+    let w23: f64 = p[5];
+    let w24: f64 = w12 * w23;
+    let w25: f64 = w10 * w24;
+    let w26: f64 = w14 + w25;
+    let w27: f64 = -0.0578745285967165;
+    let w28: f64 = w12 * w19;
+    let w29: f64 = w27 * w28;
+    let w30: f64 = w13 + w29;
+    let w31: f64 = 0.07073542044968367;
+    let w32: f64 = w28 * w31;
+    let w33: f64 = w13 + w32;
+    let w34: f64 = -0.09094901081852429;
+    let w35: f64 = w28 * w34;
+    let w36: f64 = w13 + w35;
+    let w37: f64 = 0.12721264843305286;
+    let w38: f64 = w28 * w37;
+    let w39: f64 = w13 + w38;
+    let w40: f64 = -0.21696794755535964;
+    let w41: f64 = w28 * w40;
+    let w42: f64 = w13 + w41;
+    let w43: f64 = 0.3914958780198129;
+    let w44: f64 = w28 * w43;
+    let w45: f64 = w13 + w44;
+    let w46: f64 = w10 * w28;
+    let w47: f64 = w26 + w46;
+    let mut w61 = [0.0f64; N];
+    let w64: f64 = w10 * w23;
+    let w71: f64 = w10 * w11;
+    let w72: f64 = w64 + w71;
+    let w73: f64 = w19 * w27;
+    let w74: f64 = w11 + w73;
+    let w75: f64 = w19 * w31;
+    let w76: f64 = w11 + w75;
+    let w77: f64 = w19 * w34;
+    let w78: f64 = w11 + w77;
+    let w79: f64 = w19 * w37;
+    let w80: f64 = w11 + w79;
+    let w81: f64 = w19 * w40;
+    let w82: f64 = w11 + w81;
+    let w83: f64 = w19 * w43;
+    let w84: f64 = w11 + w83;
+    let w85: f64 = w10 * w19;
+    let w86: f64 = w72 + w85;
+    let w87: f64 = w13 * w15;
+    let w88: f64 = w18 * w28;
+    let w89: f64 = w15 * w88;
+    let w90: f64 = w87 + w89;
+    let mut w104 = [0.0f64; N];
+    let w106: f64 = 0.19574793900990645;
+    let w107: f64 = w19 * w106;
+    let w109: f64 = -w10;
+    let w110: f64 = 2.0 * w109;
+    let w111: f64 = 2.0;
+    let w112: f64 = w10 * w111;
+    let w113: f64 = w110 - w112;
+    let w114: f64 = w107 * w113;
+    let w115: f64 = 0.0625;
+    let w116: f64 = w19 * w115;
+    let mut w117 = [0.0f64; N];
+    let w118: f64 = w111 * w116;
+    let w119: f64 = w111 * w111;
+    let w120: f64 = w116 * w119;
+    let w121: f64 = w118 + w120;
+    let w122: f64 = w118 + w121;
+    let mut w123 = [0.0f64; N];
+    let mut w124 = [0.0f64; N];
+    let mut w125 = [0.0f64; N];
+    let mut w126 = [0.0f64; N];
+    let mut w127 = [0.0f64; N];
+    let w128: f64 = w11 * w18;
+    let w129: f64 = w112 * w128;
+    let w130: f64 = w111 * w128;
+    let w131: f64 = w10 * w128;
+    let w132: f64 = w111 * w131;
+    let w133: f64 = w129 + w132;
+    let w134: f64 = w111 * w130;
+    let w135: f64 = w114 - w133;
+    let w136: f64 = w122 + w134;
+    let mut w150 = [0.0f64; N];
+    let w152: f64 = -0.10848397377767982;
+    let w153: f64 = w19 * w152;
+    let w154: f64 = w113 * w153;
+    let w155: f64 = w154 - w133;
+    let mut w165 = [0.0f64; N];
+    let w167: f64 = 0.06360632421652643;
+    let w168: f64 = w19 * w167;
+    let w169: f64 = w113 * w168;
+    let w170: f64 = w169 - w133;
+    let mut w179 = [0.0f64; N];
+    let w181: f64 = -0.04547450540926214;
+    let w182: f64 = w19 * w181;
+    let w183: f64 = w113 * w182;
+    let w184: f64 = w183 - w133;
+    let mut w193 = [0.0f64; N];
+    let w195: f64 = 0.035367710224841836;
+    let w196: f64 = w19 * w195;
+    let w197: f64 = w113 * w196;
+    let w198: f64 = w197 - w133;
+    let mut w207 = [0.0f64; N];
+    let w209: f64 = -0.02893726429835825;
+    let w210: f64 = w19 * w209;
+    let w211: f64 = w113 * w210;
+    let w212: f64 = w211 - w133;
+    let mut w221 = [0.0f64; N];
+    let w231: f64 = -1.5452954210407739;
+    let w232: f64 = p[2];
+    let w233: f64 = w15 * w15;
+    let w234: f64 = w15 * w233;
+    let w235: f64 = w232 / w234;
+    let w236: f64 = w231 * w235;
+    let w237: f64 = w111 * w236;
+    let w246: f64 = w118 + w130;
+    let w247: f64 = w118 + w246;
+    let w248: f64 = w107 * w112;
+    let w249: f64 = w129 + w248;
+    let w250: f64 = p[9];
+    let w251: f64 = p[10];
+    let w252: f64 = p[11];
+    let w253: f64 = p[12];
+    let w254: f64 = p[13];
+    let w255: f64 = p[14];
+    let w288: f64 = -60.68985231417138;
+    let w289: f64 = w235 * w288;
+    let w290: f64 = w111 * w289;
+    let w291: f64 = w112 * w153;
+    let w292: f64 = w129 + w291;
+    let w293: f64 = p[15];
+    let w294: f64 = p[16];
+    let w295: f64 = p[17];
+    let w296: f64 = p[18];
+    let w297: f64 = p[19];
+    let w326: f64 = -475.81828329893136;
+    let w327: f64 = w235 * w326;
+    let w328: f64 = w111 * w327;
+    let w329: f64 = w112 * w168;
+    let w330: f64 = w129 + w329;
+    let w331: f64 = p[20];
+    let w332: f64 = p[21];
+    let w333: f64 = p[22];
+    let w334: f64 = p[23];
+    let w362: f64 = -1827.1591631398476;
+    let w363: f64 = w235 * w362;
+    let w364: f64 = w111 * w363;
+    let w365: f64 = w112 * w182;
+    let w366: f64 = w129 + w365;
+    let w367: f64 = p[24];
+    let w368: f64 = p[25];
+    let w369: f64 = p[26];
+    let w397: f64 = -4992.978972313684;
+    let w398: f64 = w235 * w397;
+    let w399: f64 = w111 * w398;
+    let w400: f64 = w112 * w196;
+    let w401: f64 = w129 + w400;
+    let w402: f64 = p[27];
+    let w403: f64 = p[28];
+    let w431: f64 = -11141.925633927905;
+    let w432: f64 = w235 * w431;
+    let w433: f64 = w111 * w432;
+    let w434: f64 = w112 * w210;
+    let w435: f64 = w129 + w434;
+    let w436: f64 = p[29];
+    move |k: usize, x: &[[f64; N]; 14], ug: &[f64; N]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8, dot9] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&cos_x0, &w61),
+                (&x[1], &ug),
+                (&x[2], &ug),
+                (&x[3], &ug),
+                (&x[4], &ug),
+                (&x[5], &ug),
+                (&x[6], &ug),
+                (&sin_x0, &w104),
+            ],
+            k,
+        );
+        let [dot10, dot11, dot12, dot13, dot14, dot15, dot16, dot17, dot18, dot19] = series::dots(
+            [
+                (&x[1], &x[7]),
+                (&x[2], &x[7]),
+                (&x[3], &x[7]),
+                (&x[4], &x[7]),
+                (&x[5], &x[7]),
+                (&x[6], &x[7]),
+                (&x[8], &w150),
+                (&x[9], &w165),
+                (&x[10], &w179),
+                (&x[11], &w193),
+            ],
+            k,
+        );
+        let [dot20, dot21, dot22, dot23, dot24, dot25, dot26, dot27, dot28] = series::dots(
+            [
+                (&x[12], &w207),
+                (&x[13], &w221),
+                (&cos_x0, &ug),
+                (&x[7], &w117),
+                (&x[7], &w123),
+                (&x[7], &w124),
+                (&x[7], &w125),
+                (&x[7], &w126),
+                (&x[7], &w127),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w48 = x[1][k] * w45;
+        let w49 = x[2][k] * w42;
+        let w50 = x[3][k] * w39;
+        let w51 = x[4][k] * w36;
+        let w52 = x[5][k] * w33;
+        let w53 = x[6][k] * w30;
+        let w54 = ug[k] * w22;
+        let w55 = w48 + w49;
+        let w56 = w50 + w55;
+        let w57 = w51 + w56;
+        let w58 = w52 + w57;
+        let w59 = w53 + w58;
+        let w60 = w59 - w54;
+        w61[k] = w60 - at0(k, w47);
+        let w62 = series::mul_d(dot2, &cos_x0, &w61, k);
+        let w65 = series::mul_d(dot3, &x[1], &ug, k);
+        let w66 = series::mul_d(dot4, &x[2], &ug, k);
+        let w67 = series::mul_d(dot5, &x[3], &ug, k);
+        let w68 = series::mul_d(dot6, &x[4], &ug, k);
+        let w69 = series::mul_d(dot7, &x[5], &ug, k);
+        let w70 = series::mul_d(dot8, &x[6], &ug, k);
+        let w91 = ug[k] * w86;
+        let w92 = w65 * w84;
+        let w93 = w66 * w82;
+        let w94 = w67 * w80;
+        let w95 = w68 * w78;
+        let w96 = w69 * w76;
+        let w97 = w70 * w74;
+        let w98 = w91 - w92;
+        let w99 = w98 - w93;
+        let w100 = w99 - w94;
+        let w101 = w100 - w95;
+        let w102 = w101 - w96;
+        let w103 = w102 - w97;
+        w104[k] = w103 - at0(k, w90);
+        let w105 = series::mul_d(dot9, &sin_x0, &w104, k);
+        w117[k] = series::mul_d(dot10, &x[1], &x[7], k);
+        w123[k] = series::mul_d(dot11, &x[2], &x[7], k);
+        w124[k] = series::mul_d(dot12, &x[3], &x[7], k);
+        w125[k] = series::mul_d(dot13, &x[4], &x[7], k);
+        w126[k] = series::mul_d(dot14, &x[5], &x[7], k);
+        w127[k] = series::mul_d(dot15, &x[6], &x[7], k);
+        let w138 = x[7][k] * w135;
+        let w139 = w117[k] * w136;
+        let w140 = w123[k] * w134;
+        let w141 = w124[k] * w134;
+        let w142 = w125[k] * w134;
+        let w143 = w126[k] * w134;
+        let w144 = w127[k] * w134;
+        let w145 = w138 + w139;
+        let w146 = w140 + w145;
+        let w147 = w141 + w146;
+        let w148 = w142 + w147;
+        let w149 = w143 + w148;
+        w150[k] = w144 + w149;
+        let w151 = series::mul_d(dot16, &x[8], &w150, k);
+        let w157 = x[7][k] * w155;
+        let w158 = w117[k] * w134;
+        let w159 = w123[k] * w136;
+        let w160 = w157 + w158;
+        let w161 = w159 + w160;
+        let w162 = w141 + w161;
+        let w163 = w142 + w162;
+        let w164 = w143 + w163;
+        w165[k] = w144 + w164;
+        let w166 = series::mul_d(dot17, &x[9], &w165, k);
+        let w172 = x[7][k] * w170;
+        let w173 = w124[k] * w136;
+        let w174 = w158 + w172;
+        let w175 = w140 + w174;
+        let w176 = w173 + w175;
+        let w177 = w142 + w176;
+        let w178 = w143 + w177;
+        w179[k] = w144 + w178;
+        let w180 = series::mul_d(dot18, &x[10], &w179, k);
+        let w186 = x[7][k] * w184;
+        let w187 = w125[k] * w136;
+        let w188 = w158 + w186;
+        let w189 = w140 + w188;
+        let w190 = w141 + w189;
+        let w191 = w187 + w190;
+        let w192 = w143 + w191;
+        w193[k] = w144 + w192;
+        let w194 = series::mul_d(dot19, &x[11], &w193, k);
+        let w200 = x[7][k] * w198;
+        let w201 = w126[k] * w136;
+        let w202 = w158 + w200;
+        let w203 = w140 + w202;
+        let w204 = w141 + w203;
+        let w205 = w142 + w204;
+        let w206 = w201 + w205;
+        w207[k] = w144 + w206;
+        let w208 = series::mul_d(dot20, &x[12], &w207, k);
+        let w214 = x[7][k] * w212;
+        let w215 = w127[k] * w136;
+        let w216 = w158 + w214;
+        let w217 = w140 + w216;
+        let w218 = w141 + w217;
+        let w219 = w142 + w218;
+        let w220 = w143 + w219;
+        w221[k] = w215 + w220;
+        let w222 = series::mul_d(dot21, &x[13], &w221, k);
+        let w223 = w62 - w105;
+        let w224 = w223 - w151;
+        let w225 = w224 - w166;
+        let w226 = w225 - w180;
+        let w227 = w226 - w194;
+        let w228 = w227 - w208;
+        let w229 = w228 - w222;
+        let w238 = series::mul_d(dot22, &cos_x0, &ug, k);
+        let w239 = series::sq(&x[7], k);
+        let w240 = series::mul_d(dot23, &x[7], &w117, k);
+        let w241 = series::mul_d(dot24, &x[7], &w123, k);
+        let w242 = series::mul_d(dot25, &x[7], &w124, k);
+        let w243 = series::mul_d(dot26, &x[7], &w125, k);
+        let w244 = series::mul_d(dot27, &x[7], &w126, k);
+        let w245 = series::mul_d(dot28, &x[7], &w127, k);
+        let w256 = x[1][k] * w237;
+        let w257 = w45 * sin_x0[k];
+        let w258 = x[8][k] * w250;
+        let w259 = x[9][k] * w251;
+        let w260 = x[10][k] * w252;
+        let w261 = x[11][k] * w253;
+        let w262 = x[12][k] * w254;
+        let w263 = x[13][k] * w255;
+        let w264 = w84 * w238;
+        let w265 = w239 * w249;
+        let w266 = w240 * w247;
+        let w267 = w130 * w241;
+        let w268 = w130 * w242;
+        let w269 = w130 * w243;
+        let w270 = w130 * w244;
+        let w271 = w130 * w245;
+        let w272 = w256 + w257;
+        let w273 = w266 + w272;
+        let w274 = w267 + w273;
+        let w275 = w268 + w274;
+        let w276 = w269 + w275;
+        let w277 = w270 + w276;
+        let w278 = w271 + w277;
+        let w279 = w278 - w258;
+        let w280 = w279 - w259;
+        let w281 = w280 - w260;
+        let w282 = w281 - w261;
+        let w283 = w282 - w262;
+        let w284 = w283 - w263;
+        let w285 = w284 - w264;
+        let w286 = w285 - w265;
+        let w298 = x[2][k] * w290;
+        let w299 = w42 * sin_x0[k];
+        let w300 = x[8][k] * w251;
+        let w301 = x[9][k] * w293;
+        let w302 = x[10][k] * w294;
+        let w303 = x[11][k] * w295;
+        let w304 = x[12][k] * w296;
+        let w305 = x[13][k] * w297;
+        let w306 = w82 * w238;
+        let w307 = w239 * w292;
+        let w308 = w130 * w240;
+        let w309 = w241 * w247;
+        let w310 = w298 + w299;
+        let w311 = w308 + w310;
+        let w312 = w309 + w311;
+        let w313 = w268 + w312;
+        let w314 = w269 + w313;
+        let w315 = w270 + w314;
+        let w316 = w271 + w315;
+        let w317 = w316 - w300;
+        let w318 = w317 - w301;
+        let w319 = w318 - w302;
+        let w320 = w319 - w303;
+        let w321 = w320 - w304;
+        let w322 = w321 - w305;
+        let w323 = w322 - w306;
+        let w324 = w323 - w307;
+        let w335 = x[3][k] * w328;
+        let w336 = w39 * sin_x0[k];
+        let w337 = x[8][k] * w252;
+        let w338 = x[9][k] * w294;
+        let w339 = x[10][k] * w331;
+        let w340 = x[11][k] * w332;
+        let w341 = x[12][k] * w333;
+        let w342 = x[13][k] * w334;
+        let w343 = w80 * w238;
+        let w344 = w239 * w330;
+        let w345 = w242 * w247;
+        let w346 = w335 + w336;
+        let w347 = w308 + w346;
+        let w348 = w267 + w347;
+        let w349 = w345 + w348;
+        let w350 = w269 + w349;
+        let w351 = w270 + w350;
+        let w352 = w271 + w351;
+        let w353 = w352 - w337;
+        let w354 = w353 - w338;
+        let w355 = w354 - w339;
+        let w356 = w355 - w340;
+        let w357 = w356 - w341;
+        let w358 = w357 - w342;
+        let w359 = w358 - w343;
+        let w360 = w359 - w344;
+        let w370 = x[4][k] * w364;
+        let w371 = w36 * sin_x0[k];
+        let w372 = x[8][k] * w253;
+        let w373 = x[9][k] * w295;
+        let w374 = x[10][k] * w332;
+        let w375 = x[11][k] * w367;
+        let w376 = x[12][k] * w368;
+        let w377 = x[13][k] * w369;
+        let w378 = w78 * w238;
+        let w379 = w239 * w366;
+        let w380 = w243 * w247;
+        let w381 = w370 + w371;
+        let w382 = w308 + w381;
+        let w383 = w267 + w382;
+        let w384 = w268 + w383;
+        let w385 = w380 + w384;
+        let w386 = w270 + w385;
+        let w387 = w271 + w386;
+        let w388 = w387 - w372;
+        let w389 = w388 - w373;
+        let w390 = w389 - w374;
+        let w391 = w390 - w375;
+        let w392 = w391 - w376;
+        let w393 = w392 - w377;
+        let w394 = w393 - w378;
+        let w395 = w394 - w379;
+        let w404 = x[5][k] * w399;
+        let w405 = w33 * sin_x0[k];
+        let w406 = x[8][k] * w254;
+        let w407 = x[9][k] * w296;
+        let w408 = x[10][k] * w333;
+        let w409 = x[11][k] * w368;
+        let w410 = x[12][k] * w402;
+        let w411 = x[13][k] * w403;
+        let w412 = w76 * w238;
+        let w413 = w239 * w401;
+        let w414 = w244 * w247;
+        let w415 = w404 + w405;
+        let w416 = w308 + w415;
+        let w417 = w267 + w416;
+        let w418 = w268 + w417;
+        let w419 = w269 + w418;
+        let w420 = w414 + w419;
+        let w421 = w271 + w420;
+        let w422 = w421 - w406;
+        let w423 = w422 - w407;
+        let w424 = w423 - w408;
+        let w425 = w424 - w409;
+        let w426 = w425 - w410;
+        let w427 = w426 - w411;
+        let w428 = w427 - w412;
+        let w429 = w428 - w413;
+        let w437 = x[6][k] * w433;
+        let w438 = w30 * sin_x0[k];
+        let w439 = x[8][k] * w255;
+        let w440 = x[9][k] * w297;
+        let w441 = x[10][k] * w334;
+        let w442 = x[11][k] * w369;
+        let w443 = x[12][k] * w403;
+        let w444 = x[13][k] * w436;
+        let w445 = w74 * w238;
+        let w446 = w239 * w435;
+        let w447 = w245 * w247;
+        let w448 = w437 + w438;
+        let w449 = w308 + w448;
+        let w450 = w267 + w449;
+        let w451 = w268 + w450;
+        let w452 = w269 + w451;
+        let w453 = w270 + w452;
+        let w454 = w447 + w453;
+        let w455 = w454 - w439;
+        let w456 = w455 - w440;
+        let w457 = w456 - w441;
+        let w458 = w457 - w442;
+        let w459 = w458 - w443;
+        let w460 = w459 - w444;
+        let w461 = w460 - w445;
+        let w462 = w461 - w446;
+        [w229, w286, w324, w360, w395, w429, w462]
+    }
+}
+
 /// Taylor coefficients of the solution of `x' = rocking_rhs(..)`: on entry `x[i][0]` holds
 /// the state at the expansion point; on return `x[i][k]` is the k-th coefficient.
 /// Series inputs hold their first N coefficients.

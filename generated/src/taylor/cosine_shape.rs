@@ -12,6 +12,223 @@ use crate::series::{self, at0};
 /// Name of the variant these kernels belong to.
 pub const NAME: &str = "cosine_shape";
 
+/// `mass_matrix` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn mass_matrix<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 2]) -> [f64; 3] {
+    let w0: f64 = p[6];
+    let w2: f64 = s;
+    let w3: f64 = p[1];
+    let w4: f64 = w2 * w3;
+    let w5: f64 = 0.5;
+    let w6: f64 = p[3];
+    let w7: f64 = w5 * w6;
+    let w8: f64 = 2.0;
+    let w9: f64 = w4 * w8;
+    let w10: f64 = w7 * w8;
+    let w11: f64 = w7 * w9;
+    let w13: f64 = w4 * w10;
+    let w14: f64 = w11 + w13;
+    let w15: f64 = w4 * w11;
+    let w16: f64 = w0 + w15;
+    let w17: f64 = p[0];
+    let w18: f64 = 2.0 * w17;
+    let w19: f64 = w7 * w18;
+    let w20: f64 = w17 * w19;
+    let w21: f64 = w16 + w20;
+    let w22: f64 = 0.05669011381620933;
+    let w23: f64 = p[4];
+    let w24: f64 = w22 * w23;
+    let w25: f64 = w8 * w24;
+    let w26: f64 = w10 + w25;
+    let w27: f64 = w25 + w26;
+    let w28: f64 = 0.08333333333333333;
+    let w29: f64 = w23 * w28;
+    let w30: f64 = w17 * w29;
+    let w31: f64 = w18 * w30;
+    let w32: f64 = w21 + w31;
+    let w33: f64 = 2.0 * w30;
+    let w34: f64 = w17 * w33;
+    let w35: f64 = w32 + w34;
+    let w36: f64 = 0.18169011381620934;
+    let w37: f64 = w23 * w36;
+    let w38: f64 = -w4;
+    let w39: f64 = 2.0 * w38;
+    let w40: f64 = w37 * w39;
+    let w41: f64 = w40 - w14;
+    let w42: f64 = w8 * w37;
+    let w43: f64 = w4 * w42;
+    let w44: f64 = w41 - w43;
+    let w45: f64 = w5 * w23;
+    let w46: f64 = 2.0 * w4;
+    let w47: f64 = w45 * w46;
+    let w48: f64 = w4 * w47;
+    let w49: f64 = w35 + w48;
+    let w55: f64 = w6 * w17;
+    let w56: f64 = 0.13433248110088486;
+    let w57: f64 = w23 * w56;
+    let w58: f64 = w17 * w57;
+    let w59: f64 = 2.0 * w58;
+    let w60: f64 = w55 + w59;
+    let w62: f64 = 0.11338022763241866;
+    let w63: f64 = w23 * w62;
+    let w64: f64 = w6 + w63;
+    let w65: f64 = w63 + w64;
+    move |k: usize, q: &[[f64; N]; 2]| {
+        let w12 = series::sq(&q[1], k);
+        let w50 = q[1][k] * w44;
+        let w51 = w12 * w27;
+        let w52 = w50 + w51;
+        let w53 = at0(k, w49) + w52;
+        [w53, at0(k, w60), at0(k, w65)]
+    }
+}
+
+/// `forcing` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn forcing<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 4], &[f64; N]) -> [f64; 2] {
+    let mut d_x0 = [0.0f64; N];
+    let mut sin_x0 = [0.0f64; N];
+    let mut cos_x0 = [0.0f64; N];
+    let w3: f64 = s;
+    let w4: f64 = p[1];
+    let w5: f64 = w3 * w4;
+    let w6: f64 = p[3];
+    let w7: f64 = p[8];
+    let w8: f64 = w6 * w7;
+    let w9: f64 = w5 * w8;
+    let w10: f64 = p[0];
+    let w12: f64 = w6 * w10;
+    let w13: f64 = 0.5;
+    let w14: f64 = p[4];
+    let w15: f64 = w13 * w14;
+    let w16: f64 = w10 * w15;
+    let w17: f64 = w12 + w16;
+    let w18: f64 = p[5];
+    let w19: f64 = w7 * w18;
+    let w20: f64 = w5 * w19;
+    let w21: f64 = w9 + w20;
+    let w22: f64 = 0.3633802276324187;
+    let w23: f64 = w7 * w14;
+    let w24: f64 = w22 * w23;
+    let w25: f64 = w8 + w24;
+    let w26: f64 = w5 * w23;
+    let w27: f64 = w21 + w26;
+    let w31: f64 = w5 * w18;
+    let w33: f64 = w5 * w6;
+    let w34: f64 = w31 + w33;
+    let w35: f64 = w14 * w22;
+    let w36: f64 = w6 + w35;
+    let w37: f64 = w5 * w14;
+    let w38: f64 = w34 + w37;
+    let w39: f64 = w8 * w10;
+    let w40: f64 = w13 * w23;
+    let w41: f64 = w10 * w40;
+    let w42: f64 = w39 + w41;
+    let mut w46 = [0.0f64; N];
+    let mut w49 = [0.0f64; N];
+    let w50: f64 = 2.0;
+    let w51: f64 = w5 * w50;
+    let w52: f64 = w6 * w13;
+    let w53: f64 = w51 * w52;
+    let w54: f64 = w50 * w52;
+    let w55: f64 = w5 * w54;
+    let w56: f64 = w53 + w55;
+    let w57: f64 = w50 * w54;
+    let w58: f64 = 0.05669011381620933;
+    let w59: f64 = w14 * w58;
+    let w60: f64 = w50 * w59;
+    let w61: f64 = w50 * w60;
+    let w62: f64 = w57 + w61;
+    let w63: f64 = w61 + w62;
+    let w64: f64 = 0.18169011381620934;
+    let w65: f64 = w14 * w64;
+    let w66: f64 = w51 * w65;
+    let w67: f64 = w56 + w66;
+    let w68: f64 = w50 * w65;
+    let w69: f64 = w5 * w68;
+    let w70: f64 = w67 + w69;
+    let mut w74 = [0.0f64; N];
+    let w84: f64 = -1.5220170474062882;
+    let w85: f64 = p[2];
+    let w86: f64 = w10 * w10;
+    let w87: f64 = w10 * w86;
+    let w88: f64 = w85 / w87;
+    let w89: f64 = w84 * w88;
+    let w90: f64 = w50 * w89;
+    let w93: f64 = w54 + w60;
+    let w94: f64 = w60 + w93;
+    let w95: f64 = w53 + w66;
+    let w96: f64 = p[7];
+    let w97: f64 = 2.0 * w96;
+    let w98: f64 = 3.0440340948125764;
+    let w99: f64 = w88 * w98;
+    let w100: f64 = 0.11338022763241866;
+    let w101: f64 = w14 * w100;
+    let w102: f64 = w6 + w101;
+    let w103: f64 = w101 + w102;
+    let w104: f64 = w99 / w103;
+    let w105: f64 = w104.sqrt();
+    let w106: f64 = w97 * w105;
+    let w107: f64 = w103 * w106;
+    move |k: usize, x: &[[f64; N]; 4], ug: &[f64; N]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&cos_x0, &x[1]),
+                (&cos_x0, &ug),
+                (&x[1], &ug),
+                (&sin_x0, &w46),
+                (&x[1], &x[2]),
+                (&x[3], &w74),
+                (&x[2], &w49),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w28 = series::mul_d(dot2, &cos_x0, &x[1], k);
+        let w29 = series::mul_d(dot3, &cos_x0, &ug, k);
+        let w32 = series::mul_d(dot4, &x[1], &ug, k);
+        let w43 = ug[k] * w38;
+        let w44 = w32 * w36;
+        let w45 = w43 - w44;
+        w46[k] = w45 - at0(k, w42);
+        let w47 = series::mul_d(dot5, &sin_x0, &w46, k);
+        w49[k] = series::mul_d(dot6, &x[1], &x[2], k);
+        let w72 = x[2][k] * w70;
+        let w73 = w49[k] * w63;
+        w74[k] = w73 - w72;
+        let w75 = series::mul_d(dot7, &x[3], &w74, k);
+        let w76 = cos_x0[k] * w27;
+        let w77 = w25 * w28;
+        let w78 = w17 * w29;
+        let w79 = w77 - w76;
+        let w80 = w79 - w78;
+        let w81 = w80 - w47;
+        let w82 = w81 - w75;
+        let w91 = series::sq(&x[2], k);
+        let w92 = series::mul_d(dot8, &x[2], &w49, k);
+        let w108 = x[1][k] * w90;
+        let w109 = w29 * w36;
+        let w110 = w25 * sin_x0[k];
+        let w111 = x[3][k] * w107;
+        let w112 = w91 * w95;
+        let w113 = w92 * w94;
+        let w114 = w108 + w110;
+        let w115 = w113 + w114;
+        let w116 = w115 - w109;
+        let w117 = w116 - w111;
+        let w118 = w117 - w112;
+        [w82, w118]
+    }
+}
+
 /// Taylor coefficients of the solution of `x' = rocking_rhs(..)`: on entry `x[i][0]` holds
 /// the state at the expansion point; on return `x[i][k]` is the k-th coefficient.
 /// Series inputs hold their first N coefficients.

@@ -12,6 +12,350 @@ use crate::series::{self, at0};
 /// Name of the variant these kernels belong to.
 pub const NAME: &str = "cubic_quadratic";
 
+/// `mass_matrix` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn mass_matrix<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 3]) -> [f64; 6] {
+    let w0: f64 = p[6];
+    let w3: f64 = s;
+    let w4: f64 = p[1];
+    let w5: f64 = w3 * w4;
+    let w6: f64 = 0.5;
+    let w7: f64 = p[3];
+    let w8: f64 = w6 * w7;
+    let w9: f64 = 2.0;
+    let w10: f64 = w5 * w9;
+    let w11: f64 = w8 * w9;
+    let w12: f64 = w8 * w10;
+    let mut w14 = [0.0f64; N];
+    let mut w18 = [0.0f64; N];
+    let w20: f64 = p[0];
+    let w21: f64 = 2.0 * w20;
+    let w22: f64 = w8 * w21;
+    let w23: f64 = w20 * w22;
+    let w24: f64 = w0 + w23;
+    let w25: f64 = 0.05;
+    let w26: f64 = p[4];
+    let w27: f64 = w25 * w26;
+    let w28: f64 = 0.10833333333333334;
+    let w29: f64 = w26 * w28;
+    let mut w32 = [0.0f64; N];
+    let mut w33 = [0.0f64; N];
+    let w35: f64 = w9 * w29;
+    let w36: f64 = w9 * w27;
+    let mut w39 = [0.0f64; N];
+    let w41: f64 = 0.05892857142857143;
+    let w42: f64 = w26 * w41;
+    let w43: f64 = w9 * w42;
+    let w45: f64 = w9 * w43;
+    let w46: f64 = 0.08333333333333333;
+    let w47: f64 = w26 * w46;
+    let w48: f64 = w20 * w47;
+    let w49: f64 = w21 * w48;
+    let w50: f64 = w24 + w49;
+    let w51: f64 = 2.0 * w48;
+    let w52: f64 = w20 * w51;
+    let w53: f64 = w50 + w52;
+    let w54: f64 = 0.16666666666666666;
+    let w55: f64 = w26 * w54;
+    let w56: f64 = -w5;
+    let w57: f64 = 2.0 * w56;
+    let w58: f64 = w55 * w57;
+    let w59: f64 = w9 * w55;
+    let w60: f64 = w5 * w59;
+    let w61: f64 = w58 - w60;
+    let w62: f64 = 0.1875;
+    let w63: f64 = w26 * w62;
+    let w64: f64 = w57 * w63;
+    let w65: f64 = w9 * w63;
+    let w66: f64 = w5 * w65;
+    let w67: f64 = w64 - w66;
+    let w68: f64 = w6 * w26;
+    let w69: f64 = 2.0 * w5;
+    let w70: f64 = w68 * w69;
+    let w71: f64 = w5 * w70;
+    let w72: f64 = w53 + w71;
+    let w83: f64 = w7 * w20;
+    let w84: f64 = 0.1375;
+    let w85: f64 = w26 * w84;
+    let w86: f64 = w20 * w85;
+    let w87: f64 = 2.0 * w86;
+    let w88: f64 = w83 + w87;
+    let w90: f64 = 0.125;
+    let w91: f64 = w26 * w90;
+    let w92: f64 = w20 * w91;
+    let w93: f64 = 2.0 * w92;
+    let w94: f64 = w83 + w93;
+    let w96: f64 = 0.11785714285714285;
+    let w97: f64 = w26 * w96;
+    let w98: f64 = w7 + w97;
+    let w99: f64 = w97 + w98;
+    let w101: f64 = 0.21666666666666667;
+    let w102: f64 = w26 * w101;
+    let w103: f64 = w7 + w102;
+    let w105: f64 = 0.1;
+    let w106: f64 = w26 * w105;
+    let w107: f64 = w7 + w106;
+    let w108: f64 = w106 + w107;
+    move |k: usize, q: &[[f64; N]; 3]| {
+        let [dot0, dot1, dot2] = series::dots(
+            [
+                (&w14, &w18),
+                (&w32, &w33),
+                (&q[2], &w39),
+            ],
+            k,
+        );
+        let w13 = q[1][k] + q[2][k];
+        w14[k] = w13 - at0(k, w5);
+        let w15 = q[1][k] * w11;
+        let w16 = q[2][k] * w11;
+        let w17 = w15 + w16;
+        w18[k] = w17 - at0(k, w12);
+        let w19 = series::mul_d(dot0, &w14, &w18, k);
+        let w30 = q[1][k] * w29;
+        let w31 = q[2][k] * w27;
+        w32[k] = w30 + w31;
+        w33[k] = q[2][k] * w9;
+        let w34 = series::mul_d(dot1, &w32, &w33, k);
+        let w37 = q[1][k] * w35;
+        let w38 = q[2][k] * w36;
+        w39[k] = w37 + w38;
+        let w40 = series::mul_d(dot2, &q[2], &w39, k);
+        let w44 = series::sq(&q[1], k);
+        let w73 = q[1][k] * w67;
+        let w74 = q[2][k] * w61;
+        let w75 = w44 * w45;
+        let w76 = w73 + w74;
+        let w77 = w19 + w76;
+        let w78 = w34 + w77;
+        let w79 = w40 + w78;
+        let w80 = w75 + w79;
+        let w81 = at0(k, w72) + w80;
+        [w81, at0(k, w88), at0(k, w94), at0(k, w99), at0(k, w103), at0(k, w108)]
+    }
+}
+
+/// `forcing` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn forcing<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 6], &[f64; N]) -> [f64; 3] {
+    let mut d_x0 = [0.0f64; N];
+    let mut sin_x0 = [0.0f64; N];
+    let mut cos_x0 = [0.0f64; N];
+    let w4: f64 = s;
+    let w5: f64 = p[1];
+    let w6: f64 = w4 * w5;
+    let w7: f64 = p[3];
+    let w8: f64 = p[8];
+    let w9: f64 = w7 * w8;
+    let w10: f64 = w6 * w9;
+    let w11: f64 = p[0];
+    let w13: f64 = w7 * w11;
+    let w14: f64 = 0.5;
+    let w15: f64 = p[4];
+    let w16: f64 = w14 * w15;
+    let w17: f64 = w11 * w16;
+    let w18: f64 = w13 + w17;
+    let w19: f64 = p[5];
+    let w20: f64 = w8 * w19;
+    let w21: f64 = w6 * w20;
+    let w22: f64 = w10 + w21;
+    let w23: f64 = 0.3333333333333333;
+    let w24: f64 = w8 * w15;
+    let w25: f64 = w23 * w24;
+    let w26: f64 = w9 + w25;
+    let w27: f64 = 0.375;
+    let w28: f64 = w24 * w27;
+    let w29: f64 = w9 + w28;
+    let w30: f64 = w6 * w24;
+    let w31: f64 = w22 + w30;
+    let mut w37 = [0.0f64; N];
+    let w40: f64 = w6 * w19;
+    let w43: f64 = w6 * w7;
+    let w44: f64 = w40 + w43;
+    let w45: f64 = w15 * w23;
+    let w46: f64 = w7 + w45;
+    let w47: f64 = w15 * w27;
+    let w48: f64 = w7 + w47;
+    let w49: f64 = w6 * w15;
+    let w50: f64 = w44 + w49;
+    let w51: f64 = w9 * w11;
+    let w52: f64 = w14 * w24;
+    let w53: f64 = w11 * w52;
+    let w54: f64 = w51 + w53;
+    let mut w60 = [0.0f64; N];
+    let mut w63 = [0.0f64; N];
+    let mut w64 = [0.0f64; N];
+    let w65: f64 = 2.0;
+    let w66: f64 = w6 * w65;
+    let w67: f64 = w7 * w14;
+    let w68: f64 = w66 * w67;
+    let w69: f64 = w65 * w67;
+    let w70: f64 = w6 * w69;
+    let w71: f64 = w68 + w70;
+    let w72: f64 = w65 * w69;
+    let w73: f64 = 0.10833333333333334;
+    let w74: f64 = w15 * w73;
+    let w75: f64 = w65 * w74;
+    let w76: f64 = w72 + w75;
+    let w77: f64 = w75 + w76;
+    let w78: f64 = 0.05892857142857143;
+    let w79: f64 = w15 * w78;
+    let w80: f64 = w65 * w79;
+    let w81: f64 = w65 * w80;
+    let w82: f64 = w72 + w81;
+    let w83: f64 = w81 + w82;
+    let w84: f64 = 0.1875;
+    let w85: f64 = w15 * w84;
+    let w86: f64 = w66 * w85;
+    let w87: f64 = w71 + w86;
+    let w88: f64 = w65 * w85;
+    let w89: f64 = w6 * w88;
+    let w90: f64 = w87 + w89;
+    let mut w96 = [0.0f64; N];
+    let w98: f64 = 0.05;
+    let w99: f64 = w15 * w98;
+    let w100: f64 = w65 * w99;
+    let w101: f64 = w65 * w100;
+    let w102: f64 = w72 + w101;
+    let w103: f64 = w101 + w102;
+    let w104: f64 = 0.16666666666666666;
+    let w105: f64 = w15 * w104;
+    let w106: f64 = w66 * w105;
+    let w107: f64 = w71 + w106;
+    let w108: f64 = w65 * w105;
+    let w109: f64 = w6 * w108;
+    let w110: f64 = w107 + w109;
+    let mut w116 = [0.0f64; N];
+    let w122: f64 = 6.0;
+    let w123: f64 = p[2];
+    let w124: f64 = w11 * w11;
+    let w125: f64 = w11 * w124;
+    let w126: f64 = w123 / w125;
+    let w127: f64 = w122 * w126;
+    let w128: f64 = -0.5;
+    let w129: f64 = w127 * w128;
+    let w131: f64 = -1.5;
+    let w132: f64 = w126 * w131;
+    let w133: f64 = w65 * w132;
+    let w137: f64 = w69 + w75;
+    let w138: f64 = w69 + w80;
+    let w139: f64 = w80 + w138;
+    let w140: f64 = w68 + w86;
+    let w141: f64 = p[9];
+    let w142: f64 = p[10];
+    let w161: f64 = -2.0;
+    let w162: f64 = w126 * w161;
+    let w163: f64 = w65 * w162;
+    let w164: f64 = w69 + w100;
+    let w165: f64 = w100 + w164;
+    let w166: f64 = w68 + w106;
+    let w167: f64 = p[11];
+    move |k: usize, x: &[[f64; N]; 6], ug: &[f64; N]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&cos_x0, &w37),
+                (&x[1], &ug),
+                (&x[2], &ug),
+                (&sin_x0, &w60),
+                (&x[1], &x[3]),
+            ],
+            k,
+        );
+        let [dot7, dot8, dot9, dot10, dot11, dot12] = series::dots(
+            [
+                (&x[2], &x[3]),
+                (&x[4], &w96),
+                (&x[5], &w116),
+                (&cos_x0, &ug),
+                (&x[3], &w63),
+                (&x[3], &w64),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w32 = x[1][k] * w29;
+        let w33 = x[2][k] * w26;
+        let w34 = ug[k] * w18;
+        let w35 = w32 + w33;
+        let w36 = w35 - w34;
+        w37[k] = w36 - at0(k, w31);
+        let w38 = series::mul_d(dot2, &cos_x0, &w37, k);
+        let w41 = series::mul_d(dot3, &x[1], &ug, k);
+        let w42 = series::mul_d(dot4, &x[2], &ug, k);
+        let w55 = ug[k] * w50;
+        let w56 = w41 * w48;
+        let w57 = w42 * w46;
+        let w58 = w55 - w56;
+        let w59 = w58 - w57;
+        w60[k] = w59 - at0(k, w54);
+        let w61 = series::mul_d(dot5, &sin_x0, &w60, k);
+        w63[k] = series::mul_d(dot6, &x[1], &x[3], k);
+        w64[k] = series::mul_d(dot7, &x[2], &x[3], k);
+        let w92 = x[3][k] * w90;
+        let w93 = w63[k] * w83;
+        let w94 = w64[k] * w77;
+        let w95 = w93 + w94;
+        w96[k] = w95 - w92;
+        let w97 = series::mul_d(dot8, &x[4], &w96, k);
+        let w112 = x[3][k] * w110;
+        let w113 = w63[k] * w77;
+        let w114 = w64[k] * w103;
+        let w115 = w113 + w114;
+        w116[k] = w115 - w112;
+        let w117 = series::mul_d(dot9, &x[5], &w116, k);
+        let w118 = w38 - w61;
+        let w119 = w118 - w97;
+        let w120 = w119 - w117;
+        let w130 = series::mul_d(dot10, &cos_x0, &ug, k);
+        let w134 = series::sq(&x[3], k);
+        let w135 = series::mul_d(dot11, &x[3], &w63, k);
+        let w136 = series::mul_d(dot12, &x[3], &w64, k);
+        let w143 = x[1][k] * w133;
+        let w144 = x[2][k] * w129;
+        let w145 = w29 * sin_x0[k];
+        let w146 = x[4][k] * w141;
+        let w147 = x[5][k] * w142;
+        let w148 = w48 * w130;
+        let w149 = w134 * w140;
+        let w150 = w135 * w139;
+        let w151 = w136 * w137;
+        let w152 = w143 + w144;
+        let w153 = w145 + w152;
+        let w154 = w150 + w153;
+        let w155 = w151 + w154;
+        let w156 = w155 - w146;
+        let w157 = w156 - w147;
+        let w158 = w157 - w148;
+        let w159 = w158 - w149;
+        let w168 = x[1][k] * w129;
+        let w169 = x[2][k] * w163;
+        let w170 = w26 * sin_x0[k];
+        let w171 = x[4][k] * w142;
+        let w172 = x[5][k] * w167;
+        let w173 = w46 * w130;
+        let w174 = w134 * w166;
+        let w175 = w135 * w137;
+        let w176 = w136 * w165;
+        let w177 = w168 + w169;
+        let w178 = w170 + w177;
+        let w179 = w175 + w178;
+        let w180 = w176 + w179;
+        let w181 = w180 - w171;
+        let w182 = w181 - w172;
+        let w183 = w182 - w173;
+        let w184 = w183 - w174;
+        [w120, w159, w184]
+    }
+}
+
 /// Taylor coefficients of the solution of `x' = rocking_rhs(..)`: on entry `x[i][0]` holds
 /// the state at the expansion point; on return `x[i][k]` is the k-th coefficient.
 /// Series inputs hold their first N coefficients.

@@ -12,6 +12,215 @@ use crate::series::{self, at0};
 /// Name of the variant these kernels belong to.
 pub const NAME: &str = "massless_base";
 
+/// `mass_matrix` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn mass_matrix<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 2]) -> [f64; 3] {
+    let w1: f64 = s;
+    let w2: f64 = p[1];
+    let w3: f64 = w1 * w2;
+    let w4: f64 = 0.5;
+    let w5: f64 = p[3];
+    let w6: f64 = w4 * w5;
+    let w7: f64 = 2.0;
+    let w8: f64 = w3 * w7;
+    let w9: f64 = w6 * w7;
+    let w10: f64 = w6 * w8;
+    let w12: f64 = w3 * w9;
+    let w13: f64 = w10 + w12;
+    let w14: f64 = w3 * w10;
+    let w15: f64 = p[0];
+    let w16: f64 = 2.0 * w15;
+    let w17: f64 = w6 * w16;
+    let w18: f64 = w15 * w17;
+    let w19: f64 = w14 + w18;
+    let w20: f64 = 0.05892857142857143;
+    let w21: f64 = p[4];
+    let w22: f64 = w20 * w21;
+    let w23: f64 = w7 * w22;
+    let w24: f64 = w9 + w23;
+    let w25: f64 = w23 + w24;
+    let w26: f64 = 0.08333333333333333;
+    let w27: f64 = w21 * w26;
+    let w28: f64 = w15 * w27;
+    let w29: f64 = w16 * w28;
+    let w30: f64 = w19 + w29;
+    let w31: f64 = 2.0 * w28;
+    let w32: f64 = w15 * w31;
+    let w33: f64 = w30 + w32;
+    let w34: f64 = 0.1875;
+    let w35: f64 = w21 * w34;
+    let w36: f64 = -w3;
+    let w37: f64 = 2.0 * w36;
+    let w38: f64 = w35 * w37;
+    let w39: f64 = w38 - w13;
+    let w40: f64 = w7 * w35;
+    let w41: f64 = w3 * w40;
+    let w42: f64 = w39 - w41;
+    let w43: f64 = w4 * w21;
+    let w44: f64 = 2.0 * w3;
+    let w45: f64 = w43 * w44;
+    let w46: f64 = w3 * w45;
+    let w47: f64 = w33 + w46;
+    let w53: f64 = w5 * w15;
+    let w54: f64 = 0.1375;
+    let w55: f64 = w21 * w54;
+    let w56: f64 = w15 * w55;
+    let w57: f64 = 2.0 * w56;
+    let w58: f64 = w53 + w57;
+    let w60: f64 = 0.11785714285714285;
+    let w61: f64 = w21 * w60;
+    let w62: f64 = w5 + w61;
+    let w63: f64 = w61 + w62;
+    move |k: usize, q: &[[f64; N]; 2]| {
+        let w11 = series::sq(&q[1], k);
+        let w48 = q[1][k] * w42;
+        let w49 = w11 * w25;
+        let w50 = w48 + w49;
+        let w51 = at0(k, w47) + w50;
+        [w51, at0(k, w58), at0(k, w63)]
+    }
+}
+
+/// `forcing` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn forcing<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 4], &[f64; N]) -> [f64; 2] {
+    let mut d_x0 = [0.0f64; N];
+    let mut sin_x0 = [0.0f64; N];
+    let mut cos_x0 = [0.0f64; N];
+    let w3: f64 = s;
+    let w4: f64 = p[1];
+    let w5: f64 = w3 * w4;
+    let w6: f64 = p[3];
+    let w7: f64 = p[8];
+    let w8: f64 = w6 * w7;
+    let w9: f64 = w5 * w8;
+    let w10: f64 = p[0];
+    let w12: f64 = w6 * w10;
+    let w13: f64 = 0.5;
+    let w14: f64 = p[4];
+    let w15: f64 = w13 * w14;
+    let w16: f64 = w10 * w15;
+    let w17: f64 = w12 + w16;
+    let w18: f64 = 0.375;
+    let w19: f64 = w7 * w14;
+    let w20: f64 = w18 * w19;
+    let w21: f64 = w8 + w20;
+    let w22: f64 = w5 * w19;
+    let w23: f64 = w9 + w22;
+    let w27: f64 = w5 * w14;
+    let w29: f64 = w5 * w6;
+    let w30: f64 = w14 * w18;
+    let w31: f64 = w6 + w30;
+    let w32: f64 = w27 + w29;
+    let w33: f64 = w8 * w10;
+    let w34: f64 = w13 * w19;
+    let w35: f64 = w10 * w34;
+    let w36: f64 = w33 + w35;
+    let mut w40 = [0.0f64; N];
+    let mut w43 = [0.0f64; N];
+    let w44: f64 = 2.0;
+    let w45: f64 = w5 * w44;
+    let w46: f64 = w6 * w13;
+    let w47: f64 = w45 * w46;
+    let w48: f64 = w44 * w46;
+    let w49: f64 = w5 * w48;
+    let w50: f64 = w47 + w49;
+    let w51: f64 = w44 * w48;
+    let w52: f64 = 0.05892857142857143;
+    let w53: f64 = w14 * w52;
+    let w54: f64 = w44 * w53;
+    let w55: f64 = w44 * w54;
+    let w56: f64 = w51 + w55;
+    let w57: f64 = w55 + w56;
+    let w58: f64 = 0.1875;
+    let w59: f64 = w14 * w58;
+    let w60: f64 = w45 * w59;
+    let w61: f64 = w50 + w60;
+    let w62: f64 = w44 * w59;
+    let w63: f64 = w5 * w62;
+    let w64: f64 = w61 + w63;
+    let mut w68 = [0.0f64; N];
+    let w78: f64 = -1.5;
+    let w79: f64 = p[2];
+    let w80: f64 = w10 * w10;
+    let w81: f64 = w10 * w80;
+    let w82: f64 = w79 / w81;
+    let w83: f64 = w78 * w82;
+    let w84: f64 = w44 * w83;
+    let w87: f64 = w48 + w54;
+    let w88: f64 = w54 + w87;
+    let w89: f64 = w47 + w60;
+    let w90: f64 = p[7];
+    let w91: f64 = 2.0 * w90;
+    let w92: f64 = 3.0;
+    let w93: f64 = w82 * w92;
+    let w94: f64 = 0.11785714285714285;
+    let w95: f64 = w14 * w94;
+    let w96: f64 = w6 + w95;
+    let w97: f64 = w95 + w96;
+    let w98: f64 = w93 / w97;
+    let w99: f64 = w98.sqrt();
+    let w100: f64 = w91 * w99;
+    let w101: f64 = w97 * w100;
+    move |k: usize, x: &[[f64; N]; 4], ug: &[f64; N]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&cos_x0, &x[1]),
+                (&cos_x0, &ug),
+                (&x[1], &ug),
+                (&sin_x0, &w40),
+                (&x[1], &x[2]),
+                (&x[3], &w68),
+                (&x[2], &w43),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w24 = series::mul_d(dot2, &cos_x0, &x[1], k);
+        let w25 = series::mul_d(dot3, &cos_x0, &ug, k);
+        let w28 = series::mul_d(dot4, &x[1], &ug, k);
+        let w37 = ug[k] * w32;
+        let w38 = w28 * w31;
+        let w39 = w37 - w38;
+        w40[k] = w39 - at0(k, w36);
+        let w41 = series::mul_d(dot5, &sin_x0, &w40, k);
+        w43[k] = series::mul_d(dot6, &x[1], &x[2], k);
+        let w66 = x[2][k] * w64;
+        let w67 = w43[k] * w57;
+        w68[k] = w67 - w66;
+        let w69 = series::mul_d(dot7, &x[3], &w68, k);
+        let w70 = cos_x0[k] * w23;
+        let w71 = w21 * w24;
+        let w72 = w17 * w25;
+        let w73 = w71 - w70;
+        let w74 = w73 - w72;
+        let w75 = w74 - w41;
+        let w76 = w75 - w69;
+        let w85 = series::sq(&x[2], k);
+        let w86 = series::mul_d(dot8, &x[2], &w43, k);
+        let w102 = x[1][k] * w84;
+        let w103 = w25 * w31;
+        let w104 = w21 * sin_x0[k];
+        let w105 = x[3][k] * w101;
+        let w106 = w85 * w89;
+        let w107 = w86 * w88;
+        let w108 = w102 + w104;
+        let w109 = w107 + w108;
+        let w110 = w109 - w103;
+        let w111 = w110 - w105;
+        let w112 = w111 - w106;
+        [w76, w112]
+    }
+}
+
 /// Taylor coefficients of the solution of `x' = rocking_rhs(..)`: on entry `x[i][0]` holds
 /// the state at the expansion point; on return `x[i][k]` is the k-th coefficient.
 /// Series inputs hold their first N coefficients.

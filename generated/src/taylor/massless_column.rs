@@ -12,6 +12,148 @@ use crate::series::{self, at0};
 /// Name of the variant these kernels belong to.
 pub const NAME: &str = "massless_column";
 
+/// `mass_matrix` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn mass_matrix<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 2]) -> [f64; 3] {
+    let w0: f64 = p[6];
+    let w2: f64 = s;
+    let w3: f64 = p[1];
+    let w4: f64 = w2 * w3;
+    let w5: f64 = 0.5;
+    let w6: f64 = p[3];
+    let w7: f64 = w5 * w6;
+    let w8: f64 = 2.0;
+    let w9: f64 = w4 * w8;
+    let w10: f64 = w7 * w8;
+    let w11: f64 = w7 * w9;
+    let w13: f64 = w4 * w10;
+    let w14: f64 = w11 + w13;
+    let w15: f64 = w4 * w11;
+    let w16: f64 = w0 + w15;
+    let w17: f64 = p[0];
+    let w18: f64 = 2.0 * w17;
+    let w19: f64 = w7 * w18;
+    let w20: f64 = w17 * w19;
+    let w21: f64 = w16 + w20;
+    let w27: f64 = w6 * w17;
+    move |k: usize, q: &[[f64; N]; 2]| {
+        let w12 = series::sq(&q[1], k);
+        let w22 = q[1][k] * w14;
+        let w23 = w10 * w12;
+        let w24 = at0(k, w21) + w23;
+        let w25 = w24 - w22;
+        [w25, at0(k, w27), at0(k, w6)]
+    }
+}
+
+/// `forcing` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn forcing<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 4], &[f64; N]) -> [f64; 2] {
+    let mut d_x0 = [0.0f64; N];
+    let mut sin_x0 = [0.0f64; N];
+    let mut cos_x0 = [0.0f64; N];
+    let w3: f64 = s;
+    let w4: f64 = p[1];
+    let w5: f64 = w3 * w4;
+    let w6: f64 = p[3];
+    let w7: f64 = p[8];
+    let w8: f64 = w6 * w7;
+    let w9: f64 = w5 * w8;
+    let w10: f64 = p[0];
+    let w12: f64 = w6 * w10;
+    let w13: f64 = p[5];
+    let w14: f64 = w7 * w13;
+    let w15: f64 = w5 * w14;
+    let w16: f64 = w9 + w15;
+    let mut w20 = [0.0f64; N];
+    let w23: f64 = w5 * w13;
+    let w25: f64 = w5 * w6;
+    let w26: f64 = w23 + w25;
+    let w27: f64 = w8 * w10;
+    let mut w31 = [0.0f64; N];
+    let w35: f64 = 2.0;
+    let w36: f64 = w5 * w35;
+    let w37: f64 = 0.5;
+    let w38: f64 = w6 * w37;
+    let w39: f64 = w36 * w38;
+    let w40: f64 = w35 * w38;
+    let w41: f64 = w5 * w40;
+    let w42: f64 = w39 + w41;
+    let w43: f64 = w35 * w40;
+    let mut w47 = [0.0f64; N];
+    let w52: f64 = -1.5;
+    let w53: f64 = p[2];
+    let w54: f64 = w10 * w10;
+    let w55: f64 = w10 * w54;
+    let w56: f64 = w53 / w55;
+    let w57: f64 = w52 * w56;
+    let w58: f64 = w35 * w57;
+    let mut w62 = [0.0f64; N];
+    let w64: f64 = p[7];
+    let w65: f64 = 2.0 * w64;
+    let w66: f64 = 3.0;
+    let w67: f64 = w56 * w66;
+    let w68: f64 = w67 / w6;
+    let w69: f64 = w68.sqrt();
+    let w70: f64 = w65 * w69;
+    let w71: f64 = w6 * w70;
+    move |k: usize, x: &[[f64; N]; 4], ug: &[f64; N]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&cos_x0, &w20),
+                (&x[1], &ug),
+                (&sin_x0, &w31),
+                (&x[1], &x[2]),
+                (&x[3], &w47),
+                (&cos_x0, &ug),
+                (&x[2], &w62),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w17 = x[1][k] * w8;
+        let w18 = ug[k] * w12;
+        let w19 = w17 - w18;
+        w20[k] = w19 - at0(k, w16);
+        let w21 = series::mul_d(dot2, &cos_x0, &w20, k);
+        let w24 = series::mul_d(dot3, &x[1], &ug, k);
+        let w28 = ug[k] * w26;
+        let w29 = w6 * w24;
+        let w30 = w28 - w29;
+        w31[k] = w30 - at0(k, w27);
+        let w32 = series::mul_d(dot4, &sin_x0, &w31, k);
+        let w34 = series::mul_d(dot5, &x[1], &x[2], k);
+        let w45 = x[2][k] * w42;
+        let w46 = w34 * w43;
+        w47[k] = w46 - w45;
+        let w48 = series::mul_d(dot6, &x[3], &w47, k);
+        let w49 = w21 - w32;
+        let w50 = w49 - w48;
+        let w59 = series::mul_d(dot7, &cos_x0, &ug, k);
+        let w60 = x[2][k] * w39;
+        let w61 = w34 * w40;
+        w62[k] = w61 - w60;
+        let w63 = series::mul_d(dot8, &x[2], &w62, k);
+        let w72 = x[1][k] * w58;
+        let w73 = w8 * sin_x0[k];
+        let w74 = x[3][k] * w71;
+        let w75 = w6 * w59;
+        let w76 = w72 + w73;
+        let w77 = w63 + w76;
+        let w78 = w77 - w74;
+        let w79 = w78 - w75;
+        [w50, w79]
+    }
+}
+
 /// Taylor coefficients of the solution of `x' = rocking_rhs(..)`: on entry `x[i][0]` holds
 /// the state at the expansion point; on return `x[i][k]` is the k-th coefficient.
 /// Series inputs hold their first N coefficients.

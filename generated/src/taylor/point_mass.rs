@@ -12,6 +12,140 @@ use crate::series::{self, at0};
 /// Name of the variant these kernels belong to.
 pub const NAME: &str = "point_mass";
 
+/// `mass_matrix` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn mass_matrix<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 2]) -> [f64; 3] {
+    let w1: f64 = s;
+    let w2: f64 = p[1];
+    let w3: f64 = w1 * w2;
+    let w4: f64 = 0.5;
+    let w5: f64 = p[3];
+    let w6: f64 = w4 * w5;
+    let w7: f64 = 2.0;
+    let w8: f64 = w3 * w7;
+    let w9: f64 = w6 * w7;
+    let w10: f64 = w6 * w8;
+    let w12: f64 = w3 * w9;
+    let w13: f64 = w10 + w12;
+    let w14: f64 = w3 * w10;
+    let w15: f64 = p[0];
+    let w16: f64 = 2.0 * w15;
+    let w17: f64 = w6 * w16;
+    let w18: f64 = w15 * w17;
+    let w19: f64 = w14 + w18;
+    let w25: f64 = w5 * w15;
+    move |k: usize, q: &[[f64; N]; 2]| {
+        let w11 = series::sq(&q[1], k);
+        let w20 = q[1][k] * w13;
+        let w21 = w9 * w11;
+        let w22 = at0(k, w19) + w21;
+        let w23 = w22 - w20;
+        [w23, at0(k, w25), at0(k, w5)]
+    }
+}
+
+/// `forcing` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn forcing<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 4], &[f64; N]) -> [f64; 2] {
+    let mut d_x0 = [0.0f64; N];
+    let mut sin_x0 = [0.0f64; N];
+    let mut cos_x0 = [0.0f64; N];
+    let w3: f64 = s;
+    let w4: f64 = p[1];
+    let w5: f64 = w3 * w4;
+    let w6: f64 = p[3];
+    let w7: f64 = p[8];
+    let w8: f64 = w6 * w7;
+    let w9: f64 = w5 * w8;
+    let w10: f64 = p[0];
+    let w12: f64 = w6 * w10;
+    let mut w16 = [0.0f64; N];
+    let w20: f64 = w5 * w6;
+    let w21: f64 = w8 * w10;
+    let mut w25 = [0.0f64; N];
+    let w29: f64 = 2.0;
+    let w30: f64 = w5 * w29;
+    let w31: f64 = 0.5;
+    let w32: f64 = w6 * w31;
+    let w33: f64 = w30 * w32;
+    let w34: f64 = w29 * w32;
+    let w35: f64 = w5 * w34;
+    let w36: f64 = w33 + w35;
+    let w37: f64 = w29 * w34;
+    let mut w41 = [0.0f64; N];
+    let w46: f64 = -1.5;
+    let w47: f64 = p[2];
+    let w48: f64 = w10 * w10;
+    let w49: f64 = w10 * w48;
+    let w50: f64 = w47 / w49;
+    let w51: f64 = w46 * w50;
+    let w52: f64 = w29 * w51;
+    let mut w56 = [0.0f64; N];
+    let w58: f64 = p[7];
+    let w59: f64 = 2.0 * w58;
+    let w60: f64 = 3.0;
+    let w61: f64 = w50 * w60;
+    let w62: f64 = w61 / w6;
+    let w63: f64 = w62.sqrt();
+    let w64: f64 = w59 * w63;
+    let w65: f64 = w6 * w64;
+    move |k: usize, x: &[[f64; N]; 4], ug: &[f64; N]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&cos_x0, &w16),
+                (&x[1], &ug),
+                (&sin_x0, &w25),
+                (&x[1], &x[2]),
+                (&x[3], &w41),
+                (&cos_x0, &ug),
+                (&x[2], &w56),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w13 = x[1][k] * w8;
+        let w14 = ug[k] * w12;
+        let w15 = w13 - w14;
+        w16[k] = w15 - at0(k, w9);
+        let w17 = series::mul_d(dot2, &cos_x0, &w16, k);
+        let w19 = series::mul_d(dot3, &x[1], &ug, k);
+        let w22 = ug[k] * w20;
+        let w23 = w6 * w19;
+        let w24 = at0(k, w21) + w23;
+        w25[k] = w24 - w22;
+        let w26 = series::mul_d(dot4, &sin_x0, &w25, k);
+        let w28 = series::mul_d(dot5, &x[1], &x[2], k);
+        let w39 = x[2][k] * w36;
+        let w40 = w28 * w37;
+        w41[k] = w40 - w39;
+        let w42 = series::mul_d(dot6, &x[3], &w41, k);
+        let w43 = w17 + w26;
+        let w44 = w43 - w42;
+        let w53 = series::mul_d(dot7, &cos_x0, &ug, k);
+        let w54 = x[2][k] * w33;
+        let w55 = w28 * w34;
+        w56[k] = w55 - w54;
+        let w57 = series::mul_d(dot8, &x[2], &w56, k);
+        let w66 = x[1][k] * w52;
+        let w67 = w8 * sin_x0[k];
+        let w68 = x[3][k] * w65;
+        let w69 = w6 * w53;
+        let w70 = w66 + w67;
+        let w71 = w57 + w70;
+        let w72 = w71 - w68;
+        let w73 = w72 - w69;
+        [w44, w73]
+    }
+}
+
 /// Taylor coefficients of the solution of `x' = rocking_rhs(..)`: on entry `x[i][0]` holds
 /// the state at the expansion point; on return `x[i][k]` is the k-th coefficient.
 /// Series inputs hold their first N coefficients.

@@ -12,6 +12,501 @@ use crate::series::{self, at0};
 /// Name of the variant these kernels belong to.
 pub const NAME: &str = "polynomial3";
 
+/// `mass_matrix` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn mass_matrix<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 4]) -> [f64; 10] {
+    let w0: f64 = p[6];
+    let w4: f64 = s;
+    let w5: f64 = p[1];
+    let w6: f64 = w4 * w5;
+    let w7: f64 = 0.5;
+    let w8: f64 = p[3];
+    let w9: f64 = w7 * w8;
+    let w10: f64 = 2.0;
+    let w11: f64 = w6 * w10;
+    let w12: f64 = w9 * w10;
+    let w13: f64 = w9 * w11;
+    let mut w16 = [0.0f64; N];
+    let mut w22 = [0.0f64; N];
+    let w24: f64 = p[0];
+    let w25: f64 = 2.0 * w24;
+    let w26: f64 = w9 * w25;
+    let w27: f64 = w24 * w26;
+    let w28: f64 = w0 + w27;
+    let w29: f64 = 0.027777777777777776;
+    let w30: f64 = p[4];
+    let w31: f64 = w29 * w30;
+    let w32: f64 = 0.0625;
+    let w33: f64 = w30 * w32;
+    let w34: f64 = 0.07142857142857142;
+    let w35: f64 = w30 * w34;
+    let mut w40 = [0.0f64; N];
+    let mut w41 = [0.0f64; N];
+    let w43: f64 = w10 * w35;
+    let w44: f64 = w10 * w33;
+    let w45: f64 = w10 * w31;
+    let mut w50 = [0.0f64; N];
+    let w52: f64 = 0.03571428571428571;
+    let w53: f64 = w30 * w52;
+    let w54: f64 = 0.08333333333333333;
+    let w55: f64 = w30 * w54;
+    let mut w58 = [0.0f64; N];
+    let mut w59 = [0.0f64; N];
+    let w61: f64 = w10 * w55;
+    let w62: f64 = w10 * w53;
+    let mut w65 = [0.0f64; N];
+    let w67: f64 = 0.05;
+    let w68: f64 = w30 * w67;
+    let w69: f64 = w10 * w68;
+    let w71: f64 = w10 * w69;
+    let w72: f64 = w24 * w55;
+    let w73: f64 = w25 * w72;
+    let w74: f64 = w28 + w73;
+    let w75: f64 = 2.0 * w72;
+    let w76: f64 = w24 * w75;
+    let w77: f64 = w74 + w76;
+    let w78: f64 = 0.1;
+    let w79: f64 = w30 * w78;
+    let w80: f64 = -w6;
+    let w81: f64 = 2.0 * w80;
+    let w82: f64 = w79 * w81;
+    let w83: f64 = w10 * w79;
+    let w84: f64 = w6 * w83;
+    let w85: f64 = w82 - w84;
+    let w86: f64 = 0.125;
+    let w87: f64 = w30 * w86;
+    let w88: f64 = w81 * w87;
+    let w89: f64 = w10 * w87;
+    let w90: f64 = w6 * w89;
+    let w91: f64 = w88 - w90;
+    let w92: f64 = 0.16666666666666666;
+    let w93: f64 = w30 * w92;
+    let w94: f64 = w81 * w93;
+    let w95: f64 = w10 * w93;
+    let w96: f64 = w6 * w95;
+    let w97: f64 = w94 - w96;
+    let w98: f64 = w7 * w30;
+    let w99: f64 = 2.0 * w6;
+    let w100: f64 = w98 * w99;
+    let w101: f64 = w6 * w100;
+    let w102: f64 = w77 + w101;
+    let w117: f64 = w8 * w24;
+    let w118: f64 = w24 * w87;
+    let w119: f64 = 2.0 * w118;
+    let w120: f64 = w117 + w119;
+    let w122: f64 = w24 * w79;
+    let w123: f64 = 2.0 * w122;
+    let w124: f64 = w117 + w123;
+    let w126: f64 = w75 + w117;
+    let w128: f64 = w8 + w79;
+    let w129: f64 = w79 + w128;
+    let w131: f64 = w8 + w93;
+    let w133: f64 = 0.14285714285714285;
+    let w134: f64 = w30 * w133;
+    let w135: f64 = w8 + w134;
+    let w137: f64 = w8 + w35;
+    let w138: f64 = w35 + w137;
+    let w140: f64 = w8 + w87;
+    let w142: f64 = 0.05555555555555555;
+    let w143: f64 = w30 * w142;
+    let w144: f64 = w8 + w143;
+    let w145: f64 = w143 + w144;
+    move |k: usize, q: &[[f64; N]; 4]| {
+        let [dot0, dot1, dot2, dot3, dot4] = series::dots(
+            [
+                (&w16, &w22),
+                (&w40, &w41),
+                (&q[3], &w50),
+                (&w58, &w59),
+                (&q[2], &w65),
+            ],
+            k,
+        );
+        let w14 = q[1][k] + q[2][k];
+        let w15 = q[3][k] + w14;
+        w16[k] = w15 - at0(k, w6);
+        let w17 = q[1][k] * w12;
+        let w18 = q[2][k] * w12;
+        let w19 = q[3][k] * w12;
+        let w20 = w17 + w18;
+        let w21 = w19 + w20;
+        w22[k] = w21 - at0(k, w13);
+        let w23 = series::mul_d(dot0, &w16, &w22, k);
+        let w36 = q[1][k] * w35;
+        let w37 = q[2][k] * w33;
+        let w38 = q[3][k] * w31;
+        let w39 = w36 + w37;
+        w40[k] = w38 + w39;
+        w41[k] = q[3][k] * w10;
+        let w42 = series::mul_d(dot1, &w40, &w41, k);
+        let w46 = q[1][k] * w43;
+        let w47 = q[2][k] * w44;
+        let w48 = q[3][k] * w45;
+        let w49 = w46 + w47;
+        w50[k] = w48 + w49;
+        let w51 = series::mul_d(dot2, &q[3], &w50, k);
+        let w56 = q[1][k] * w55;
+        let w57 = q[2][k] * w53;
+        w58[k] = w56 + w57;
+        w59[k] = q[2][k] * w10;
+        let w60 = series::mul_d(dot3, &w58, &w59, k);
+        let w63 = q[1][k] * w61;
+        let w64 = q[2][k] * w62;
+        w65[k] = w63 + w64;
+        let w66 = series::mul_d(dot4, &q[2], &w65, k);
+        let w70 = series::sq(&q[1], k);
+        let w103 = q[1][k] * w97;
+        let w104 = q[2][k] * w91;
+        let w105 = q[3][k] * w85;
+        let w106 = w70 * w71;
+        let w107 = w103 + w104;
+        let w108 = w105 + w107;
+        let w109 = w23 + w108;
+        let w110 = w42 + w109;
+        let w111 = w51 + w110;
+        let w112 = w60 + w111;
+        let w113 = w66 + w112;
+        let w114 = w106 + w113;
+        let w115 = at0(k, w102) + w114;
+        [w115, at0(k, w120), at0(k, w124), at0(k, w126), at0(k, w129), at0(k, w131), at0(k, w135), at0(k, w138), at0(k, w140), at0(k, w145)]
+    }
+}
+
+/// `forcing` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn forcing<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 8], &[f64; N]) -> [f64; 4] {
+    let mut d_x0 = [0.0f64; N];
+    let mut sin_x0 = [0.0f64; N];
+    let mut cos_x0 = [0.0f64; N];
+    let w5: f64 = s;
+    let w6: f64 = p[1];
+    let w7: f64 = w5 * w6;
+    let w8: f64 = p[3];
+    let w9: f64 = p[8];
+    let w10: f64 = w8 * w9;
+    let w11: f64 = w7 * w10;
+    let w12: f64 = p[0];
+    let w14: f64 = w8 * w12;
+    let w15: f64 = 0.5;
+    let w16: f64 = p[4];
+    let w17: f64 = w15 * w16;
+    let w18: f64 = w12 * w17;
+    let w19: f64 = w14 + w18;
+    let w20: f64 = p[5];
+    let w21: f64 = w9 * w20;
+    let w22: f64 = w7 * w21;
+    let w23: f64 = w11 + w22;
+    let w24: f64 = 0.2;
+    let w25: f64 = w9 * w16;
+    let w26: f64 = w24 * w25;
+    let w27: f64 = w10 + w26;
+    let w28: f64 = 0.25;
+    let w29: f64 = w25 * w28;
+    let w30: f64 = w10 + w29;
+    let w31: f64 = 0.3333333333333333;
+    let w32: f64 = w25 * w31;
+    let w33: f64 = w10 + w32;
+    let w34: f64 = w7 * w25;
+    let w35: f64 = w23 + w34;
+    let mut w43 = [0.0f64; N];
+    let w46: f64 = w7 * w20;
+    let w50: f64 = w7 * w8;
+    let w51: f64 = w46 + w50;
+    let w52: f64 = w16 * w24;
+    let w53: f64 = w8 + w52;
+    let w54: f64 = w16 * w28;
+    let w55: f64 = w8 + w54;
+    let w56: f64 = w16 * w31;
+    let w57: f64 = w8 + w56;
+    let w58: f64 = w7 * w16;
+    let w59: f64 = w51 + w58;
+    let w60: f64 = w10 * w12;
+    let w61: f64 = w15 * w25;
+    let w62: f64 = w12 * w61;
+    let w63: f64 = w60 + w62;
+    let mut w71 = [0.0f64; N];
+    let w73: f64 = 0.16666666666666666;
+    let w74: f64 = w16 * w73;
+    let w76: f64 = -w7;
+    let w77: f64 = 2.0 * w76;
+    let w78: f64 = 2.0;
+    let w79: f64 = w7 * w78;
+    let w80: f64 = w77 - w79;
+    let w81: f64 = w74 * w80;
+    let w82: f64 = 0.05;
+    let w83: f64 = w16 * w82;
+    let mut w84 = [0.0f64; N];
+    let w85: f64 = w78 * w83;
+    let w86: f64 = w78 * w78;
+    let w87: f64 = w83 * w86;
+    let w88: f64 = w85 + w87;
+    let w89: f64 = w85 + w88;
+    let w90: f64 = 0.08333333333333333;
+    let w91: f64 = w16 * w90;
+    let mut w92 = [0.0f64; N];
+    let w93: f64 = w86 * w91;
+    let w94: f64 = 0.07142857142857142;
+    let w95: f64 = w16 * w94;
+    let mut w96 = [0.0f64; N];
+    let w97: f64 = w86 * w95;
+    let w98: f64 = w8 * w15;
+    let w99: f64 = w79 * w98;
+    let w100: f64 = w78 * w98;
+    let w101: f64 = w7 * w98;
+    let w102: f64 = w78 * w101;
+    let w103: f64 = w99 + w102;
+    let w104: f64 = w78 * w100;
+    let w105: f64 = w81 - w103;
+    let w106: f64 = w89 + w104;
+    let w107: f64 = w93 + w104;
+    let w108: f64 = w97 + w104;
+    let mut w116 = [0.0f64; N];
+    let w118: f64 = 0.125;
+    let w119: f64 = w16 * w118;
+    let w120: f64 = w80 * w119;
+    let w121: f64 = 0.03571428571428571;
+    let w122: f64 = w16 * w121;
+    let w123: f64 = w78 * w91;
+    let w124: f64 = w78 * w122;
+    let w125: f64 = w86 * w122;
+    let w126: f64 = w124 + w125;
+    let w127: f64 = w78 * w123;
+    let w128: f64 = w124 + w126;
+    let w129: f64 = 0.0625;
+    let w130: f64 = w16 * w129;
+    let w131: f64 = w86 * w130;
+    let w132: f64 = w120 - w103;
+    let w133: f64 = w104 + w127;
+    let w134: f64 = w104 + w128;
+    let w135: f64 = w104 + w131;
+    let mut w143 = [0.0f64; N];
+    let w145: f64 = 0.1;
+    let w146: f64 = w16 * w145;
+    let w147: f64 = w80 * w146;
+    let w148: f64 = 0.027777777777777776;
+    let w149: f64 = w16 * w148;
+    let w150: f64 = w78 * w95;
+    let w151: f64 = w78 * w130;
+    let w152: f64 = w78 * w149;
+    let w153: f64 = w86 * w149;
+    let w154: f64 = w152 + w153;
+    let w155: f64 = w78 * w150;
+    let w156: f64 = w78 * w151;
+    let w157: f64 = w152 + w154;
+    let w158: f64 = w147 - w103;
+    let w159: f64 = w104 + w155;
+    let w160: f64 = w104 + w156;
+    let w161: f64 = w104 + w157;
+    let mut w169 = [0.0f64; N];
+    let w176: f64 = 16.0;
+    let w177: f64 = p[2];
+    let w178: f64 = w12 * w12;
+    let w179: f64 = w12 * w178;
+    let w180: f64 = w177 / w179;
+    let w181: f64 = w176 * w180;
+    let w182: f64 = -0.5;
+    let w183: f64 = w181 * w182;
+    let w185: f64 = 12.0;
+    let w186: f64 = w180 * w185;
+    let w187: f64 = w182 * w186;
+    let w188: f64 = -2.0;
+    let w189: f64 = w180 * w188;
+    let w190: f64 = w78 * w189;
+    let w195: f64 = w100 + w150;
+    let w196: f64 = w100 + w123;
+    let w197: f64 = w85 + w100;
+    let w198: f64 = w85 + w197;
+    let w199: f64 = w74 * w79;
+    let w200: f64 = w99 + w199;
+    let w201: f64 = p[9];
+    let w202: f64 = p[10];
+    let w203: f64 = p[11];
+    let w228: f64 = 36.0;
+    let w229: f64 = w180 * w228;
+    let w230: f64 = w182 * w229;
+    let w231: f64 = -6.0;
+    let w232: f64 = w180 * w231;
+    let w233: f64 = w78 * w232;
+    let w234: f64 = w100 + w151;
+    let w235: f64 = w100 + w124;
+    let w236: f64 = w124 + w235;
+    let w237: f64 = w79 * w119;
+    let w238: f64 = w99 + w237;
+    let w239: f64 = p[12];
+    let w240: f64 = p[13];
+    let w265: f64 = -14.4;
+    let w266: f64 = w180 * w265;
+    let w267: f64 = w78 * w266;
+    let w268: f64 = w100 + w152;
+    let w269: f64 = w152 + w268;
+    let w270: f64 = w79 * w146;
+    let w271: f64 = w99 + w270;
+    let w272: f64 = p[14];
+    move |k: usize, x: &[[f64; N]; 8], ug: &[f64; N]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5, dot6, dot7, dot8] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&cos_x0, &w43),
+                (&x[1], &ug),
+                (&x[2], &ug),
+                (&x[3], &ug),
+                (&sin_x0, &w71),
+                (&x[1], &x[4]),
+                (&x[2], &x[4]),
+            ],
+            k,
+        );
+        let [dot9, dot10, dot11, dot12, dot13, dot14, dot15, dot16] = series::dots(
+            [
+                (&x[3], &x[4]),
+                (&x[5], &w116),
+                (&x[6], &w143),
+                (&x[7], &w169),
+                (&cos_x0, &ug),
+                (&x[4], &w84),
+                (&x[4], &w92),
+                (&x[4], &w96),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w36 = x[1][k] * w33;
+        let w37 = x[2][k] * w30;
+        let w38 = x[3][k] * w27;
+        let w39 = ug[k] * w19;
+        let w40 = w36 + w37;
+        let w41 = w38 + w40;
+        let w42 = w41 - w39;
+        w43[k] = w42 - at0(k, w35);
+        let w44 = series::mul_d(dot2, &cos_x0, &w43, k);
+        let w47 = series::mul_d(dot3, &x[1], &ug, k);
+        let w48 = series::mul_d(dot4, &x[2], &ug, k);
+        let w49 = series::mul_d(dot5, &x[3], &ug, k);
+        let w64 = ug[k] * w59;
+        let w65 = w47 * w57;
+        let w66 = w48 * w55;
+        let w67 = w49 * w53;
+        let w68 = w64 - w65;
+        let w69 = w68 - w66;
+        let w70 = w69 - w67;
+        w71[k] = w70 - at0(k, w63);
+        let w72 = series::mul_d(dot6, &sin_x0, &w71, k);
+        w84[k] = series::mul_d(dot7, &x[1], &x[4], k);
+        w92[k] = series::mul_d(dot8, &x[2], &x[4], k);
+        w96[k] = series::mul_d(dot9, &x[3], &x[4], k);
+        let w110 = x[4][k] * w105;
+        let w111 = w84[k] * w106;
+        let w112 = w92[k] * w107;
+        let w113 = w96[k] * w108;
+        let w114 = w110 + w111;
+        let w115 = w112 + w114;
+        w116[k] = w113 + w115;
+        let w117 = series::mul_d(dot10, &x[5], &w116, k);
+        let w137 = x[4][k] * w132;
+        let w138 = w84[k] * w133;
+        let w139 = w92[k] * w134;
+        let w140 = w96[k] * w135;
+        let w141 = w137 + w138;
+        let w142 = w139 + w141;
+        w143[k] = w140 + w142;
+        let w144 = series::mul_d(dot11, &x[6], &w143, k);
+        let w163 = x[4][k] * w158;
+        let w164 = w84[k] * w159;
+        let w165 = w92[k] * w160;
+        let w166 = w96[k] * w161;
+        let w167 = w163 + w164;
+        let w168 = w165 + w167;
+        w169[k] = w166 + w168;
+        let w170 = series::mul_d(dot12, &x[7], &w169, k);
+        let w171 = w44 - w72;
+        let w172 = w171 - w117;
+        let w173 = w172 - w144;
+        let w174 = w173 - w170;
+        let w184 = series::mul_d(dot13, &cos_x0, &ug, k);
+        let w191 = series::sq(&x[4], k);
+        let w192 = series::mul_d(dot14, &x[4], &w84, k);
+        let w193 = series::mul_d(dot15, &x[4], &w92, k);
+        let w194 = series::mul_d(dot16, &x[4], &w96, k);
+        let w204 = x[1][k] * w190;
+        let w205 = x[2][k] * w187;
+        let w206 = x[3][k] * w183;
+        let w207 = w33 * sin_x0[k];
+        let w208 = x[5][k] * w201;
+        let w209 = x[6][k] * w202;
+        let w210 = x[7][k] * w203;
+        let w211 = w57 * w184;
+        let w212 = w191 * w200;
+        let w213 = w192 * w198;
+        let w214 = w193 * w196;
+        let w215 = w194 * w195;
+        let w216 = w204 + w205;
+        let w217 = w206 + w216;
+        let w218 = w207 + w217;
+        let w219 = w213 + w218;
+        let w220 = w214 + w219;
+        let w221 = w215 + w220;
+        let w222 = w221 - w208;
+        let w223 = w222 - w209;
+        let w224 = w223 - w210;
+        let w225 = w224 - w211;
+        let w226 = w225 - w212;
+        let w241 = x[1][k] * w187;
+        let w242 = x[2][k] * w233;
+        let w243 = x[3][k] * w230;
+        let w244 = w30 * sin_x0[k];
+        let w245 = x[5][k] * w202;
+        let w246 = x[6][k] * w239;
+        let w247 = x[7][k] * w240;
+        let w248 = w55 * w184;
+        let w249 = w191 * w238;
+        let w250 = w192 * w196;
+        let w251 = w193 * w236;
+        let w252 = w194 * w234;
+        let w253 = w241 + w242;
+        let w254 = w243 + w253;
+        let w255 = w244 + w254;
+        let w256 = w250 + w255;
+        let w257 = w251 + w256;
+        let w258 = w252 + w257;
+        let w259 = w258 - w245;
+        let w260 = w259 - w246;
+        let w261 = w260 - w247;
+        let w262 = w261 - w248;
+        let w263 = w262 - w249;
+        let w273 = x[1][k] * w183;
+        let w274 = x[2][k] * w230;
+        let w275 = x[3][k] * w267;
+        let w276 = w27 * sin_x0[k];
+        let w277 = x[5][k] * w203;
+        let w278 = x[6][k] * w240;
+        let w279 = x[7][k] * w272;
+        let w280 = w53 * w184;
+        let w281 = w191 * w271;
+        let w282 = w192 * w195;
+        let w283 = w193 * w234;
+        let w284 = w194 * w269;
+        let w285 = w273 + w274;
+        let w286 = w275 + w285;
+        let w287 = w276 + w286;
+        let w288 = w282 + w287;
+        let w289 = w283 + w288;
+        let w290 = w284 + w289;
+        let w291 = w290 - w277;
+        let w292 = w291 - w278;
+        let w293 = w292 - w279;
+        let w294 = w293 - w280;
+        let w295 = w294 - w281;
+        [w174, w226, w263, w295]
+    }
+}
+
 /// Taylor coefficients of the solution of `x' = rocking_rhs(..)`: on entry `x[i][0]` holds
 /// the state at the expansion point; on return `x[i][k]` is the k-th coefficient.
 /// Series inputs hold their first N coefficients.

@@ -12,6 +12,112 @@ use crate::series::{self, at0};
 /// Name of the variant these kernels belong to.
 pub const NAME: &str = "rigid";
 
+/// `mass_matrix` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn mass_matrix<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 2]) -> [f64; 3] {
+    let w0: f64 = p[6];
+    let w1: f64 = s;
+    let w2: f64 = p[1];
+    let w3: f64 = w1 * w2;
+    let w4: f64 = 0.5;
+    let w5: f64 = p[3];
+    let w6: f64 = w4 * w5;
+    let w7: f64 = 2.0 * w3;
+    let w8: f64 = w6 * w7;
+    let w9: f64 = w3 * w8;
+    let w10: f64 = w0 + w9;
+    let w11: f64 = p[0];
+    let w12: f64 = 2.0 * w11;
+    let w13: f64 = w6 * w12;
+    let w14: f64 = w11 * w13;
+    let w15: f64 = w10 + w14;
+    let w16: f64 = 0.08333333333333333;
+    let w17: f64 = p[4];
+    let w18: f64 = w16 * w17;
+    let w19: f64 = w11 * w18;
+    let w20: f64 = w12 * w19;
+    let w21: f64 = w15 + w20;
+    let w22: f64 = 2.0 * w19;
+    let w23: f64 = w11 * w22;
+    let w24: f64 = w21 + w23;
+    let w25: f64 = w4 * w17;
+    let w26: f64 = w7 * w25;
+    let w27: f64 = w3 * w26;
+    let w28: f64 = w24 + w27;
+    let w30: f64 = 0.0;
+    let w32: f64 = 1.0;
+    move |k: usize, q: &[[f64; N]; 2]| {
+        [at0(k, w28), at0(k, w30), at0(k, w32)]
+    }
+}
+
+/// `forcing` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn forcing<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 4], &[f64; N]) -> [f64; 2] {
+    let mut d_x0 = [0.0f64; N];
+    let mut sin_x0 = [0.0f64; N];
+    let mut cos_x0 = [0.0f64; N];
+    let w2: f64 = s;
+    let w3: f64 = p[1];
+    let w4: f64 = w2 * w3;
+    let w5: f64 = p[5];
+    let w7: f64 = w4 * w5;
+    let w8: f64 = p[3];
+    let w9: f64 = w4 * w8;
+    let w10: f64 = w7 + w9;
+    let w11: f64 = p[4];
+    let w12: f64 = w4 * w11;
+    let w13: f64 = w10 + w12;
+    let w14: f64 = p[0];
+    let w15: f64 = p[8];
+    let w16: f64 = w8 * w15;
+    let w17: f64 = w14 * w16;
+    let w18: f64 = 0.5;
+    let w19: f64 = w11 * w15;
+    let w20: f64 = w18 * w19;
+    let w21: f64 = w14 * w20;
+    let w22: f64 = w17 + w21;
+    let w25: f64 = w8 * w14;
+    let w26: f64 = w11 * w18;
+    let w27: f64 = w14 * w26;
+    let w28: f64 = w25 + w27;
+    let w29: f64 = w5 * w15;
+    let w30: f64 = w4 * w29;
+    let w31: f64 = w4 * w16;
+    let w32: f64 = w30 + w31;
+    let w33: f64 = w4 * w19;
+    let w34: f64 = w32 + w33;
+    let w44: f64 = 0.0;
+    move |k: usize, x: &[[f64; N]; 4], ug: &[f64; N]| {
+        let [dot0, dot1, dot2, dot3] = series::dots(
+            [
+                (&d_x0, &cos_x0),
+                (&d_x0, &sin_x0),
+                (&sin_x0, &ug),
+                (&ug, &cos_x0),
+            ],
+            k,
+        );
+        series::sin_cos_d(dot0, dot1, &x[0], &mut d_x0, &mut sin_x0, &mut cos_x0, k);
+        let w23 = series::mul_d(dot2, &sin_x0, &ug, k);
+        let w35 = series::mul_d(dot3, &ug, &cos_x0, k);
+        let w36 = sin_x0[k] * w22;
+        let w37 = w13 * w23;
+        let w38 = cos_x0[k] * w34;
+        let w39 = w28 * w35;
+        let w40 = w36 - w37;
+        let w41 = w40 - w38;
+        let w42 = w41 - w39;
+        [w42, at0(k, w44)]
+    }
+}
+
 /// Taylor coefficients of the solution of `x' = rocking_rhs(..)`: on entry `x[i][0]` holds
 /// the state at the expansion point; on return `x[i][k]` is the k-th coefficient.
 /// Series inputs hold their first N coefficients.

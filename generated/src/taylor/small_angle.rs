@@ -12,6 +12,231 @@ use crate::series::{self, at0};
 /// Name of the variant these kernels belong to.
 pub const NAME: &str = "small_angle";
 
+/// `mass_matrix` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn mass_matrix<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 2]) -> [f64; 3] {
+    let w0: f64 = p[6];
+    let w2: f64 = s;
+    let w3: f64 = p[1];
+    let w4: f64 = w2 * w3;
+    let w5: f64 = 0.5;
+    let w6: f64 = p[3];
+    let w7: f64 = w5 * w6;
+    let w8: f64 = 2.0;
+    let w9: f64 = w4 * w8;
+    let w10: f64 = w7 * w8;
+    let w11: f64 = w7 * w9;
+    let w13: f64 = w4 * w10;
+    let w14: f64 = w11 + w13;
+    let w15: f64 = w4 * w11;
+    let w16: f64 = w0 + w15;
+    let w17: f64 = p[0];
+    let w18: f64 = 2.0 * w17;
+    let w19: f64 = w7 * w18;
+    let w20: f64 = w17 * w19;
+    let w21: f64 = w16 + w20;
+    let w22: f64 = 0.05892857142857143;
+    let w23: f64 = p[4];
+    let w24: f64 = w22 * w23;
+    let w25: f64 = w8 * w24;
+    let w26: f64 = w10 + w25;
+    let w27: f64 = w25 + w26;
+    let w28: f64 = 0.08333333333333333;
+    let w29: f64 = w23 * w28;
+    let w30: f64 = w17 * w29;
+    let w31: f64 = w18 * w30;
+    let w32: f64 = w21 + w31;
+    let w33: f64 = 2.0 * w30;
+    let w34: f64 = w17 * w33;
+    let w35: f64 = w32 + w34;
+    let w36: f64 = 0.1875;
+    let w37: f64 = w23 * w36;
+    let w38: f64 = -w4;
+    let w39: f64 = 2.0 * w38;
+    let w40: f64 = w37 * w39;
+    let w41: f64 = w40 - w14;
+    let w42: f64 = w8 * w37;
+    let w43: f64 = w4 * w42;
+    let w44: f64 = w41 - w43;
+    let w45: f64 = w5 * w23;
+    let w46: f64 = 2.0 * w4;
+    let w47: f64 = w45 * w46;
+    let w48: f64 = w4 * w47;
+    let w49: f64 = w35 + w48;
+    let w55: f64 = w6 * w17;
+    let w56: f64 = 0.1375;
+    let w57: f64 = w23 * w56;
+    let w58: f64 = w17 * w57;
+    let w59: f64 = 2.0 * w58;
+    let w60: f64 = w55 + w59;
+    let w62: f64 = 0.11785714285714285;
+    let w63: f64 = w23 * w62;
+    let w64: f64 = w6 + w63;
+    let w65: f64 = w63 + w64;
+    move |k: usize, q: &[[f64; N]; 2]| {
+        let w12 = series::sq(&q[1], k);
+        let w50 = q[1][k] * w44;
+        let w51 = w12 * w27;
+        let w52 = w50 + w51;
+        let w53 = at0(k, w49) + w52;
+        [w53, at0(k, w60), at0(k, w65)]
+    }
+}
+
+/// `forcing` one Taylor order at a time: the closure called with k = 0, 1, 2, ... in turn
+/// (and series whose coefficients up to k are set) returns each output's k-th
+/// coefficient.
+#[must_use]
+#[inline(always)]
+pub fn forcing<const N: usize>(s: f64, p: &Params) -> impl FnMut(usize, &[[f64; N]; 4], &[f64; N]) -> [f64; 2] {
+    let w1: f64 = s;
+    let w2: f64 = p[1];
+    let w3: f64 = w1 * w2;
+    let w4: f64 = p[3];
+    let w5: f64 = p[8];
+    let w6: f64 = w4 * w5;
+    let w7: f64 = w3 * w6;
+    let w8: f64 = p[0];
+    let w10: f64 = w4 * w8;
+    let w11: f64 = 0.5;
+    let w12: f64 = p[4];
+    let w13: f64 = w11 * w12;
+    let w14: f64 = w8 * w13;
+    let w15: f64 = w10 + w14;
+    let w16: f64 = p[5];
+    let w17: f64 = w5 * w16;
+    let w18: f64 = w3 * w17;
+    let w19: f64 = w7 + w18;
+    let w20: f64 = 0.375;
+    let w21: f64 = w5 * w12;
+    let w22: f64 = w20 * w21;
+    let w23: f64 = w6 + w22;
+    let w25: f64 = 2.0;
+    let w26: f64 = w3 * w16;
+    let w28: f64 = w3 * w4;
+    let w29: f64 = w26 + w28;
+    let w30: f64 = w12 * w20;
+    let w31: f64 = w4 + w30;
+    let w32: f64 = w3 * w12;
+    let w33: f64 = w29 + w32;
+    let w34: f64 = w6 * w8;
+    let w35: f64 = w11 * w21;
+    let w36: f64 = w8 * w35;
+    let w37: f64 = w34 + w36;
+    let w38: f64 = w11 * w33;
+    let w39: f64 = w11 * w31;
+    let w40: f64 = w11 * w37;
+    let mut w41 = [0.0f64; N];
+    let mut w45 = [0.0f64; N];
+    let w47: f64 = w3 * w21;
+    let w48: f64 = w19 + w47;
+    let mut w50 = [0.0f64; N];
+    let w51: f64 = w3 * w25;
+    let w52: f64 = w4 * w11;
+    let w53: f64 = w51 * w52;
+    let w54: f64 = w25 * w52;
+    let w55: f64 = w3 * w54;
+    let w56: f64 = w53 + w55;
+    let w57: f64 = w25 * w54;
+    let w58: f64 = 0.05892857142857143;
+    let w59: f64 = w12 * w58;
+    let w60: f64 = w25 * w59;
+    let w61: f64 = w25 * w60;
+    let w62: f64 = w57 + w61;
+    let w63: f64 = w61 + w62;
+    let w64: f64 = 0.1875;
+    let w65: f64 = w12 * w64;
+    let w66: f64 = w51 * w65;
+    let w67: f64 = w56 + w66;
+    let w68: f64 = w25 * w65;
+    let w69: f64 = w3 * w68;
+    let w70: f64 = w67 + w69;
+    let mut w74 = [0.0f64; N];
+    let w83: f64 = -1.5;
+    let w84: f64 = p[2];
+    let w85: f64 = w8 * w8;
+    let w86: f64 = w8 * w85;
+    let w87: f64 = w84 / w86;
+    let w88: f64 = w83 * w87;
+    let w89: f64 = w25 * w88;
+    let w90: f64 = 1.0;
+    let mut w91 = [0.0f64; N];
+    let w92: f64 = w90 / w25;
+    let w93: f64 = w4 * w92;
+    let w95: f64 = w4 * w90;
+    let w96: f64 = w30 * w92;
+    let w97: f64 = w30 * w90;
+    let w98: f64 = w95 + w97;
+    let w99: f64 = w93 + w96;
+    let w102: f64 = w54 + w60;
+    let w103: f64 = w60 + w102;
+    let w104: f64 = w53 + w66;
+    let w105: f64 = p[7];
+    let w106: f64 = 2.0 * w105;
+    let w107: f64 = 3.0;
+    let w108: f64 = w87 * w107;
+    let w109: f64 = 0.11785714285714285;
+    let w110: f64 = w12 * w109;
+    let w111: f64 = w4 + w110;
+    let w112: f64 = w110 + w111;
+    let w113: f64 = w108 / w112;
+    let w114: f64 = w113.sqrt();
+    let w115: f64 = w106 * w114;
+    let w116: f64 = w112 * w115;
+    move |k: usize, x: &[[f64; N]; 4], ug: &[f64; N]| {
+        let [dot0, dot1, dot2, dot3, dot4, dot5] = series::dots(
+            [
+                (&x[1], &ug),
+                (&w41, &w45),
+                (&x[1], &x[2]),
+                (&x[3], &w74),
+                (&ug, &w91),
+                (&x[2], &w50),
+            ],
+            k,
+        );
+        let w27 = series::mul_d(dot0, &x[1], &ug, k);
+        w41[k] = x[0][k] * w25;
+        let w42 = ug[k] * w38;
+        let w43 = w27 * w39;
+        let w44 = w42 - w43;
+        w45[k] = w44 - at0(k, w40);
+        let w46 = series::mul_d(dot1, &w41, &w45, k);
+        w50[k] = series::mul_d(dot2, &x[1], &x[2], k);
+        let w72 = x[2][k] * w70;
+        let w73 = w50[k] * w63;
+        w74[k] = w73 - w72;
+        let w75 = series::mul_d(dot3, &x[3], &w74, k);
+        let w76 = x[1][k] * w23;
+        let w77 = ug[k] * w15;
+        let w78 = w76 - w77;
+        let w79 = w78 - w46;
+        let w80 = w79 - w75;
+        let w81 = w80 - at0(k, w48);
+        w91[k] = series::sq(&x[0], k);
+        let w94 = series::mul_d(dot4, &ug, &w91, k);
+        let w100 = series::sq(&x[2], k);
+        let w101 = series::mul_d(dot5, &x[2], &w50, k);
+        let w117 = x[1][k] * w89;
+        let w118 = ug[k] * w98;
+        let w119 = w23 * x[0][k];
+        let w120 = x[3][k] * w116;
+        let w121 = w94 * w99;
+        let w122 = w100 * w104;
+        let w123 = w101 * w103;
+        let w124 = w117 + w119;
+        let w125 = w121 + w124;
+        let w126 = w123 + w125;
+        let w127 = w126 - w118;
+        let w128 = w127 - w120;
+        let w129 = w128 - w122;
+        [w81, w129]
+    }
+}
+
 /// Taylor coefficients of the solution of `x' = rocking_rhs(..)`: on entry `x[i][0]` holds
 /// the state at the expansion point; on return `x[i][k]` is the k-th coefficient.
 /// Series inputs hold their first N coefficients.

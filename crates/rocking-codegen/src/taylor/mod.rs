@@ -55,10 +55,13 @@ pub const TAYLOR_DIR: &str = "generated/src/taylor";
 const ODE_FUNCTIONS: &[&str] = &["rocking_rhs", "contact_rhs"];
 const SERIES_FUNCTIONS: &[&str] = &["uplift", "energy", "power", "free_power", "flight"];
 /// The functions rendered one order at a time ([`Mode::Orders`]): the two sides of
-/// M(q) q'' = F(q, q', t) that the solver solves at run time, for the free base on compliant
-/// ground (the structure's mass matrix and forcing, the ground's generalised forces of each
-/// contact state).
+/// M(q) q'' = F(q, q', t) that the solver solves at run time: for the rocking phase on the rigid
+/// surface (where that is cheaper than the symbolic `rocking_rhs`) and for the free base on
+/// compliant ground (the structure's mass matrix and forcing, the ground's generalised forces of
+/// each contact state).
 const ORDER_FUNCTIONS: &[&str] = &[
+    "mass_matrix",
+    "forcing",
     "free_mass_matrix",
     "free_forcing",
     "winkler_full",
