@@ -100,15 +100,12 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         let max = self.rec.forces.max;
         let scale = |k: usize| m_old[k].abs().max(m_new[k].abs()).max(max[k].abs());
         let searched = self.opts.force_extremes;
-        let near: Vec<usize> = (0..MEASURES)
-            .filter(|&k| searched.holds(k))
-            .filter(|&k| {
-                let ends = m_old[k].max(m_new[k]);
-                ends.is_finite() && ends >= max[k] - margin * scale(k)
-            })
-            .collect();
+        let near: [bool; MEASURES] = std::array::from_fn(|k| {
+            let ends = m_old[k].max(m_new[k]);
+            searched.holds(k) && ends.is_finite() && ends >= max[k] - margin * scale(k)
+        });
         let mut rates_new = None;
-        if !near.is_empty() && h > 0.0 {
+        if near.contains(&true) && h > 0.0 {
             // Slopes at both ends: a maximum inside the step rises from its start and falls to
             // its end; the cubic through the ends' values and slopes tells, to O((ω h)⁴),
             // whether it can beat the record. The end's is a one-sided difference on the step's
@@ -125,7 +122,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             // Kept for the next step if the ground acceleration has no kink at t_new.
             rates_new = (self.t_stop(t_old) > t_new).then_some(rate_new);
             let tolerance = (omega_h * omega_h).powi(2) / 192.0;
-            for k in near {
+            for k in (0..MEASURES).filter(|&k| near[k]) {
                 let (d0, d1) = (rate_old[k] * h, rate_new[k] * h);
                 if !(d0 > 0.0 && d1 < 0.0) {
                     continue;
