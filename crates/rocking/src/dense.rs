@@ -32,6 +32,12 @@ pub(crate) trait StepView<X: Array> {
     fn exact_rate(&self, _t: f64) -> Option<X> {
         None
     }
+    /// The second derivative of [`state`](Self::state) at `t`, `[θ'', u'', θ''', u''']`, where the
+    /// integrator has it from the equations (the series of the Taylor step that starts there):
+    /// `None` elsewhere.
+    fn exact_second_rate(&self, _t: f64) -> Option<X> {
+        None
+    }
 }
 
 impl<X: Array, F: Fn(f64) -> X> StepView<X> for F {
@@ -100,5 +106,89 @@ impl<V: Layout, const D: usize> StepView<V::X> for TaylorStep<'_, V, D> {
         let h = self.ode.last_step_size();
         let sum = c[0].abs() + poly::abs_tail(c, h);
         sum * self.scale[r].abs() * (1.0 + 1e-12)
+    }
+
+    /// At the step's start, of a rocking phase: the series' coefficient 1.
+    fn exact_rate(&self, t: f64) -> Option<V::X> {
+        self.start_derivative(t, 1)
+    }
+
+    /// At the step's start, of a rocking phase: twice the series' coefficient 2.
+    fn exact_second_rate(&self, t: f64) -> Option<V::X> {
+        self.start_derivative(t, 2)
+    }
+}
+
+impl<V: Layout, const D: usize> TaylorStep<'_, V, D> {
+    /// The k-th derivative of the rocking state at the step's start, `k!` times the series'
+    /// coefficient k (`None` elsewhere, in full contact, or above the step's order).
+    fn start_derivative(&self, t: f64, k: usize) -> Option<V::X> {
+        let exact = !self.contact && t == self.ode.t_old() && k <= self.ode.order();
+        let c = self.ode.coefficients();
+        let factorial = if k == 2 { 2.0 } else { 1.0 };
+        exact.then(|| V::X::from_fn(|i| factorial * c[i][k] * self.scale[i]))
+    }
+}
+
+/// A finished Taylor step of the rocking phase (`ode`, a copy kept past the step after it) seen
+/// with the first and second derivatives of the state at its end from the series of the step
+/// after it, expanded there: the exact rates [`TaylorStep`] has only at its start.
+pub(crate) struct TaylorStepEnd<'a, V: Layout, const D: usize> {
+    pub ode: &'a Taylor<D>,
+    pub scale: [f64; D],
+    pub rate: V::X,
+    pub second: V::X,
+}
+
+impl<'a, V: Layout, const D: usize> TaylorStepEnd<'a, V, D> {
+    /// The end's rates from `next`, the integrator after the step that starts at this one's end
+    /// (its coefficients 1 and 2, unscaled: x' = c₁, x'' = 2 c₂).
+    pub(crate) fn new(ode: &'a Taylor<D>, next: &Taylor<D>, scale: [f64; D]) -> Self {
+        let c = next.coefficients();
+        Self {
+            ode,
+            scale,
+            rate: V::X::from_fn(|i| c[i][1] * scale[i]),
+            second: V::X::from_fn(|i| 2.0 * c[i][2] * scale[i]),
+        }
+    }
+
+    fn step(&self) -> TaylorStep<'_, V, D> {
+        TaylorStep {
+            ode: self.ode,
+            scale: self.scale,
+            contact: false,
+            variant: PhantomData,
+        }
+    }
+}
+
+impl<V: Layout, const D: usize> StepView<V::X> for TaylorStepEnd<'_, V, D> {
+    fn state(&self, t: f64) -> V::X {
+        self.step().state(t)
+    }
+
+    fn component(&self, i: usize, t: f64) -> f64 {
+        self.step().component(i, t)
+    }
+
+    fn bound(&self, i: usize) -> f64 {
+        self.step().bound(i)
+    }
+
+    fn exact_rate(&self, t: f64) -> Option<V::X> {
+        if t == self.ode.t() {
+            Some(self.rate)
+        } else {
+            self.step().exact_rate(t)
+        }
+    }
+
+    fn exact_second_rate(&self, t: f64) -> Option<V::X> {
+        if t == self.ode.t() {
+            Some(self.second)
+        } else {
+            self.step().exact_second_rate(t)
+        }
     }
 }

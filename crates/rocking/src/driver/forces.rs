@@ -59,6 +59,36 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         }
     }
 
+    /// The rates of the measures `m` at `t` where the step has the state's first and second
+    /// derivatives there (a Taylor step's start from its series, its end from the series of
+    /// the step after it): a difference of `section_forces` along the tangent, over `delta`,
+    /// instead of a probe of the dense output (whose forces would solve M q'' = F again).
+    fn rates_at(
+        &self,
+        step: &impl StepView<V::X>,
+        s: f64,
+        t: f64,
+        delta: f64,
+        m: &[f64; MEASURES],
+    ) -> Option<[f64; MEASURES]> {
+        let second = step.exact_second_rate(t)?;
+        let rate = step.exact_rate(t)?;
+        let x = step.state(t);
+        let mut ug = [0.0; 2];
+        if t < self.motion.end() {
+            self.motion.accel_series(t, &mut ug);
+        }
+        let (x, rate, second) = (x.values(), rate.values(), second.values());
+        let ahead = V::X::from_fn(|i| x[i] + delta * rate[i]);
+        let first = Rocking::<V>::THETA_DOT;
+        let qdd = V::Q::from_fn(|i| rate[first + i] + delta * second[first + i]);
+        let f = V::section_forces(&ahead, &qdd, ug[0] + delta * ug[1], s, &self.p);
+        let m_ahead = Forces::of_kernel(&f)
+            .per_weight(self.weight, self.wb)
+            .measures();
+        Some(std::array::from_fn(|k| (m_ahead[k] - m[k]) / delta))
+    }
+
     /// The forces of the state at the start of a phase (after its event), recorded.
     pub(super) fn forces_start(&mut self, contact: bool, s: f64, t: f64, x: &V::X) -> Forces {
         let f = self.forces_at(contact, s, t, x);
@@ -113,11 +143,18 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             // forces are smooth across a step boundary of a phase that is no kink of the
             // excitation), else a difference on this step.
             let delta = 1e-6 * h;
-            let m_b = at(t_new - delta).measures();
-            let rate_new: [f64; MEASURES] = std::array::from_fn(|k| (m_new[k] - m_b[k]) / delta);
+            let rate_new = self
+                .rates_at(step, s, t_new, delta, &m_new)
+                .unwrap_or_else(|| {
+                    let m_b = at(t_new - delta).measures();
+                    std::array::from_fn(|k| (m_new[k] - m_b[k]) / delta)
+                });
             let rate_old = old.rates.unwrap_or_else(|| {
-                let m_a = at(t_old + delta).measures();
-                std::array::from_fn(|k| (m_a[k] - m_old[k]) / delta)
+                self.rates_at(step, s, t_old, delta, &m_old)
+                    .unwrap_or_else(|| {
+                        let m_a = at(t_old + delta).measures();
+                        std::array::from_fn(|k| (m_a[k] - m_old[k]) / delta)
+                    })
             });
             // Kept for the next step if the ground acceleration has no kink at t_new.
             rates_new = (self.t_stop(t_old) > t_new).then_some(rate_new);

@@ -66,6 +66,21 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         step: Step,
         t_end: f64,
     ) -> Result<f64, SimError> {
+        let t_stop = self.record_step_but_forces(rec, view, step, t_end)?;
+        self.record_step_forces(rec, view, step.t_old, t_end);
+        Ok(t_stop)
+    }
+
+    /// [`record_step`](Self::record_step) without the forces, which the caller records later
+    /// ([`record_step_forces`](Self::record_step_forces), before the next step's): a Taylor
+    /// step's end has its exact rates only from the step after it.
+    pub(super) fn record_step_but_forces(
+        &mut self,
+        rec: &mut PhaseRecord,
+        view: &impl StepView<V::X>,
+        step: Step,
+        t_end: f64,
+    ) -> Result<f64, SimError> {
         self.guard_steps(step.attempts, step.t_new)?;
         let t_old = step.t_old;
         if rec.contact {
@@ -73,9 +88,19 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         } else {
             self.extremes_rocking(view, t_old, t_end);
         }
-        rec.forces = self.extremes_forces(view, rec.contact, rec.s, t_old, rec.forces, t_end);
         self.step_history(t_old, t_end, |t| view.state(t), rec.phase, rec.s);
         Ok(self.t_stop(step.t_new))
+    }
+
+    /// The forces' part of [`record_step`](Self::record_step) over (t_old, t_end].
+    pub(super) fn record_step_forces(
+        &mut self,
+        rec: &mut PhaseRecord,
+        view: &impl StepView<V::X>,
+        t_old: f64,
+        t_end: f64,
+    ) {
+        rec.forces = self.extremes_forces(view, rec.contact, rec.s, t_old, rec.forces, t_end);
     }
 
     /// Tracks |θ| and the top deflection |u| of the rocking state `x`.

@@ -14,7 +14,7 @@ use rocking_kernels::Array;
 
 use super::recorder::Step;
 use super::state::{contact_state, contact_x, rocking_state, Integrals, Next, Sim, LEFT, RIGHT};
-use crate::dense::{StepView, TaylorStep};
+use crate::dense::{StepView, TaylorStep, TaylorStepEnd};
 use crate::layout::{Contact, Rocking};
 use crate::options::History;
 use crate::results::Phase;
@@ -170,9 +170,17 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
         let phase = Phase::rocking(s);
         let mut rec = self.start_phase(phase, s, t0, &x0);
         let mut t_stop = self.t_stop(t0);
+        // The step before (`before`, from `waiting`) when its forces wait for this step's
+        // series: the exact rates at its end.
+        let mut before = ode;
+        let mut waiting = None;
         loop {
             ode.step(&mut sys, t_stop)
                 .map_err(|e| self.explain_failure(e, &unscale(*ode.y()), s))?;
+            if let Some(t_prev) = waiting.take() {
+                let end = TaylorStepEnd::<V, NR>::new(&before, &ode, scale);
+                self.record_step_forces(&mut rec, &end, t_prev, before.t());
+            }
             let (t_old, t_new) = (ode.t_old(), ode.t());
             let step_span = Step {
                 t_old,
@@ -238,8 +246,18 @@ impl<'a, V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: 
                 let carried = Integrals::of(&y, nx);
                 return self.rocking_event(index, t, s, rocking_state::<V>(&y), carried);
             }
-            t_stop = self.record_step(&mut rec, &step, step_span, t_new)?;
-            if t_new >= self.opts.t_end {
+            // The forces of a step that ends at no kink of the excitation wait for the next
+            // step's series (the rates at the end are then exact, not solved again).
+            let last = t_new >= self.opts.t_end;
+            let smooth = self.t_stop(t_old) > t_new;
+            if self.opts.forces && smooth && !last {
+                t_stop = self.record_step_but_forces(&mut rec, &step, step_span, t_new)?;
+                before = ode;
+                waiting = Some(t_old);
+            } else {
+                t_stop = self.record_step(&mut rec, &step, step_span, t_new)?;
+            }
+            if last {
                 let y = unscale(*ode.y());
                 self.stats.add(ode.take_stats());
                 return Ok(Next::Done {
