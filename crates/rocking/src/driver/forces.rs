@@ -138,10 +138,12 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         if near.contains(&true) && h > 0.0 {
             // Slopes at both ends: a maximum inside the step rises from its start and falls to
             // its end; the cubic through the ends' values and slopes tells, to O((ω h)⁴),
-            // whether it can beat the record. The end's is a one-sided difference on the step's
-            // dense output; the start's is the step before's at its end where it took one (the
-            // forces are smooth across a step boundary of a phase that is no kink of the
-            // excitation), else a difference on this step.
+            // whether it can beat the record. Each end's is a difference along the tangent
+            // where the step has the state's derivatives there (a Taylor step's series at its
+            // start, the next step's at its end: `rates_at`), else a one-sided difference on
+            // the step's dense output; the start's is the step before's at its end where it
+            // took one (the forces are smooth across a step boundary of a phase that is no kink
+            // of the excitation).
             let delta = 1e-6 * h;
             let rate_new = self
                 .rates_at(step, s, t_new, delta, &m_new)
