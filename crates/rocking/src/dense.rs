@@ -125,7 +125,7 @@ impl<V: Layout, const D: usize> TaylorStep<'_, V, D> {
     fn start_derivative(&self, t: f64, k: usize) -> Option<V::X> {
         let exact = !self.contact && t == self.ode.t_old() && k <= self.ode.order();
         let c = self.ode.coefficients();
-        let factorial = if k == 2 { 2.0 } else { 1.0 };
+        let factorial = (1..=k).product::<usize>() as f64;
         exact.then(|| V::X::from_fn(|i| factorial * c[i][k] * self.scale[i]))
     }
 }
@@ -142,14 +142,22 @@ pub(crate) struct TaylorStepEnd<'a, V: Layout, const D: usize> {
 
 impl<'a, V: Layout, const D: usize> TaylorStepEnd<'a, V, D> {
     /// The end's rates from `next`, the integrator after the step that starts at this one's end
-    /// (its coefficients 1 and 2, unscaled: x' = c₁, x'' = 2 c₂).
+    /// (that step's rates at its start).
     pub(crate) fn new(ode: &'a Taylor<D>, next: &Taylor<D>, scale: [f64; D]) -> Self {
-        let c = next.coefficients();
+        let after = TaylorStep::<V, D> {
+            ode: next,
+            scale,
+            contact: false,
+            variant: PhantomData,
+        };
+        let start = next.t_old();
+        let rate = after.start_derivative(start, 1);
+        let second = after.start_derivative(start, 2);
         Self {
             ode,
             scale,
-            rate: V::X::from_fn(|i| c[i][1] * scale[i]),
-            second: V::X::from_fn(|i| 2.0 * c[i][2] * scale[i]),
+            rate: rate.expect("a Taylor step runs order 3 or more"),
+            second: second.expect("a Taylor step runs order 3 or more"),
         }
     }
 

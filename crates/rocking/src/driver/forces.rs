@@ -13,7 +13,7 @@ use super::state::{contact_of, contact_x, Ellipse, Sim};
 use crate::dense::StepView;
 use crate::layout::Rocking;
 use crate::results::ForceSummary;
-use crate::taylor::TaylorVariant;
+use crate::taylor::{excitation_series, TaylorVariant};
 
 impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usize>
     Sim<'_, V, M, NR, NC>
@@ -41,12 +41,12 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         Forces::of_kernel(&f)
     }
 
-    /// The forces at `t` of the state `x` whose rate `rate` = [θ', u', θ'', u''] the caller
-    /// has (in full contact θ, θ' and their rates are 0): the accelerations are not solved
-    /// again. Normalised by W and W B.
-    fn forces_with_rate(&self, s: f64, t: f64, x: &V::X, rate: &V::X) -> Forces {
+    /// The forces under the ground acceleration `ug` of the state `x` whose rate `rate` =
+    /// [θ', u', θ'', u''] the caller has (in full contact θ, θ' and their rates are 0): the
+    /// accelerations are not solved again. Normalised by W and W B.
+    fn forces_with_rate(&self, s: f64, ug: f64, x: &V::X, rate: &V::X) -> Forces {
         let qdd = V::Q::from_fn(|i| rate.values()[Rocking::<V>::THETA_DOT + i]);
-        let f = V::section_forces(x, &qdd, self.motion.accel(t), s, &self.p);
+        let f = V::section_forces(x, &qdd, ug, s, &self.p);
         Forces::of_kernel(&f).per_weight(self.weight, self.wb)
     }
 
@@ -54,7 +54,7 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
     fn forces_on_step(&self, step: &impl StepView<V::X>, contact: bool, s: f64, t: f64) -> Forces {
         let x = step.state(t);
         match step.exact_rate(t) {
-            Some(rate) => self.forces_with_rate(s, t, &x, &rate),
+            Some(rate) => self.forces_with_rate(s, self.motion.accel(t), &x, &rate),
             None => self.forces_at(contact, s, t, &x),
         }
     }
@@ -74,18 +74,15 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         let second = step.exact_second_rate(t)?;
         let rate = step.exact_rate(t)?;
         let x = step.state(t);
-        let mut ug = [0.0; 2];
-        if t < self.motion.end() {
-            self.motion.accel_series(t, &mut ug);
-        }
-        let (x, rate, second) = (x.values(), rate.values(), second.values());
-        let ahead = V::X::from_fn(|i| x[i] + delta * rate[i]);
-        let first = Rocking::<V>::THETA_DOT;
-        let qdd = V::Q::from_fn(|i| rate[first + i] + delta * second[first + i]);
-        let f = V::section_forces(&ahead, &qdd, ug[0] + delta * ug[1], s, &self.p);
-        let m_ahead = Forces::of_kernel(&f)
-            .per_weight(self.weight, self.wb)
-            .measures();
+        let (ug, _) = excitation_series::<M, 2>(self.motion, t);
+        let along = |y: &V::X, dy: &V::X| V::X::from_fn(|i| y.values()[i] + delta * dy.values()[i]);
+        let ahead = self.forces_with_rate(
+            s,
+            ug[0] + delta * ug[1],
+            &along(&x, &rate),
+            &along(&rate, &second),
+        );
+        let m_ahead = ahead.measures();
         Some(std::array::from_fn(|k| (m_ahead[k] - m[k]) / delta))
     }
 
