@@ -305,11 +305,11 @@ fn invalid_options_are_errors_naming_the_field() {
     }
 }
 
-/// A sweep cell skips the tracking of max |u| (`Options::max_deflection`, off when a sweep
-/// reports no quantity): what a cell keeps, the class's inputs (overturned, impacts, the first
-/// uplift), max θ/α and the impacts, is the same bit for bit with and without it, by the Taylor
-/// method and by DOP853, on cells that stay in contact, rock and overturn; the skipped max |u|
-/// is NaN (which a summary refuses to serialize), never a number that looks measured.
+/// A sweep cell skips the tracking of max |u| (`Options::max_deflection`, off unless a sweep
+/// reports it): what a cell keeps, the class's inputs (overturned, impacts, the first uplift),
+/// max θ/α, the impacts and the force extremes, is the same bit for bit with and without it, by
+/// the Taylor method and by DOP853, on cells that stay in contact, rock and overturn; the
+/// skipped max |u| is NaN (which a summary leaves out), never a number that looks measured.
 #[test]
 fn skipping_max_deflection_changes_nothing_a_sweep_cell_keeps() {
     let s = fig5_structure(5.0);
@@ -327,7 +327,6 @@ fn skipping_max_deflection_changes_nothing_a_sweep_cell_keeps() {
             let pulse = SinePulse::new(a * ta, wp);
             let mut on = Options {
                 t_end: 2.0 * std::f64::consts::PI / wp + 20.0,
-                forces: false,
                 ..Options::default()
             };
             on.accuracy.method = method;
@@ -348,6 +347,8 @@ fn skipping_max_deflection_changes_nothing_a_sweep_cell_keeps() {
                 "{label}: max θ/α"
             );
             assert_eq!(x.impacts, y.impacts, "{label}: impacts");
+            assert_eq!(x.forces, y.forces, "{label}: force extremes");
+            assert!(x.forces.is_some(), "{label}: forces tracked");
             assert_eq!(x.overturned, y.overturned, "{label}: overturned");
             assert_eq!(
                 x.first_uplift_time, y.first_uplift_time,

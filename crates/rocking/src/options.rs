@@ -347,10 +347,10 @@ pub struct Options {
     /// of them by default; the others are recorded at each step's end, event and the points the
     /// other searches find (a bound of their extremes).
     pub ground_extremes: GroundExtremes,
-    /// Track the largest top deflection |u| ([`Summary::max_u_over_ucr`]; NaN when off): a
-    /// turning-point search on the steps where the top's rate changes sign, and a rest that
-    /// waits until u can no longer exceed it. A sweep whose cells keep only the class, max θ/α
-    /// and the impacts may skip it.
+    /// Track the largest top deflection |u| ([`Summary::max_u_over_ucr`]; NaN, left out of the
+    /// summary, when off): a turning-point search on the steps where the top's rate changes
+    /// sign, and a rest that waits until u can no longer exceed it. A sweep's cells skip it
+    /// unless they report it.
     ///
     /// [`Summary::max_u_over_ucr`]: crate::Summary::max_u_over_ucr
     pub max_deflection: bool,

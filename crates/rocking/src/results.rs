@@ -12,6 +12,11 @@ fn finite<S: Serializer>(x: &f64, s: S) -> Result<S::Ok, S::Error> {
     }
 }
 
+/// A quantity the run did not track (NaN), left out of the summary.
+fn untracked(x: &f64) -> bool {
+    x.is_nan()
+}
+
 /// How an unbounded value (+∞) is written where a format has no infinity: the summary's JSON
 /// (`max_required_friction` once R_v < 0) and history.csv.
 pub const UNBOUNDED: &str = "inf";
@@ -108,9 +113,9 @@ pub struct Summary {
     /// max |θ| / θ_cr.
     #[serde(serialize_with = "finite")]
     pub max_theta_over_theta_cr: f64,
-    /// max |u| / u_cr (0 for a rigid column; NaN, which the summary refuses to serialize, when
+    /// max |u| / u_cr (0 for a rigid column; NaN, left out of the summary, when
     /// [`Options::max_deflection`](crate::Options::max_deflection) is off).
-    #[serde(serialize_with = "finite")]
+    #[serde(serialize_with = "finite", skip_serializing_if = "untracked")]
     pub max_u_over_ucr: f64,
     /// Whether the structure overturned.
     pub overturned: bool,

@@ -233,13 +233,12 @@ impl Base {
         m.options.energy = false;
         m.options.stop_when_known = true;
         // A cell keeps its class, max θ/α and impacts, and the reported quantities: it tracks
-        // the forces (a kernel per step) only for a quantity that needs them and searches inside
-        // steps only for the extremes reported, and max |u| for any quantity (every quantity of
-        // a run is then a number).
+        // the forces (a kernel per step) only for a quantity that needs them, searches inside
+        // steps only for the extremes reported, and tracks max |u| only where it is reported.
         m.options.forces = self.report.iter().any(|k| report::needs_forces(k));
         m.options.force_extremes = report::force_extremes(&self.report);
         m.options.ground_extremes = report::ground_extremes(&self.report);
-        m.options.max_deflection = !self.report.is_empty();
+        m.options.max_deflection = self.report.iter().any(|k| report::needs_deflection(k));
         let path = self.path.display();
         let run = |options: &rocking::Options| {
             report::run_setup(&m, options).map_err(|e| match e {

@@ -10,8 +10,8 @@ mod summary;
 mod tables;
 
 pub use reportable::{
-    force_extremes, ground_extremes, needs_forces, nullable, quantity_label, reportable_keys,
-    unmet_needs, Need, Reportable, REPORTABLE,
+    force_extremes, ground_extremes, needs_deflection, needs_forces, nullable, quantity_label,
+    reportable_keys, unmet_needs, Need, Reportable, REPORTABLE,
 };
 pub use run::{run_setup, simulate, Report};
 pub use summary::{

@@ -43,6 +43,10 @@ pub struct Reportable {
     /// The ground's extreme it is, which a run on compliant ground searches for inside steps
     /// ([`rocking::Options::ground_extremes`]) only when reported ([`ground_extremes`]).
     pub ground_extreme: Option<GroundExtreme>,
+    /// It is the top's largest deflection, which a run tracks
+    /// ([`rocking::Options::max_deflection`]: turning-point searches) only when reported
+    /// ([`needs_deflection`]).
+    pub deflection: bool,
     /// A run may have no value of it: the time of an event that did not happen (`null` in the
     /// summary, an empty field in cells.csv, NaN and masked in Python).
     pub nullable: bool,
@@ -58,6 +62,12 @@ fn entry(key: &str) -> Option<&'static Reportable> {
 /// any of the fixed-base twin's (`fixed_base.KEY`, which a run reports only with the forces).
 pub fn needs_forces(key: &str) -> bool {
     key.starts_with("fixed_base.") || entry(key).is_some_and(|r| r.extreme.is_some())
+}
+
+/// Whether a run must track the top's largest deflection for the reported quantity `key` (its
+/// own or, `fixed_base.KEY`, the twin's).
+pub fn needs_deflection(key: &str) -> bool {
+    entry(key).is_some_and(|r| r.deflection)
 }
 
 /// The force extremes a run must search for to report the quantities `keys`.
@@ -89,6 +99,7 @@ const fn q(
         twin,
         extreme,
         ground_extreme: None,
+        deflection: false,
         nullable: false,
     }
 }
@@ -98,6 +109,14 @@ impl Reportable {
     const fn searching(self, e: GroundExtreme) -> Reportable {
         Reportable {
             ground_extreme: Some(e),
+            ..self
+        }
+    }
+
+    /// This quantity, the top's largest deflection.
+    const fn deflection(self) -> Reportable {
+        Reportable {
+            deflection: true,
             ..self
         }
     }
@@ -117,6 +136,7 @@ const fn time(
         twin: false,
         extreme,
         ground_extreme: None,
+        deflection: false,
         nullable: true,
     }
 }
@@ -151,7 +171,7 @@ pub const REPORTABLE: [Reportable; 46] = [
         false,
         None,
     ),
-    q("max_u_over_ucr", "max |u|/u_cr", ALWAYS, true, None),
+    q("max_u_over_ucr", "max |u|/u_cr", ALWAYS, true, None).deflection(),
     q("impacts", "impacts", ALWAYS, false, None),
     q(
         "significant_impacts",
@@ -471,10 +491,11 @@ mod tests {
     /// The keys a run of `m` and its twin serialize as numbers, and the times they serialize as
     /// `null` (`*_time`, `*_time_s`; a `null` object such as `energy` is an absent group): a run that ends at once with the forces tracked or not (`forces`), as a sweep's
     /// cell runs.
-    fn serialized_keys(m: &Setup, forces: bool) -> (Vec<String>, Vec<String>) {
+    fn serialized_keys(m: &Setup, forces: bool, deflection: bool) -> (Vec<String>, Vec<String>) {
         let probe = rocking::Options {
             t_end: 1e-9,
             forces,
+            max_deflection: deflection,
             history: History::None,
             event_log: false,
             ..m.options
@@ -509,8 +530,8 @@ mod tests {
     }
 
     /// The numeric keys a run of `m` and its twin serialize.
-    fn serialized_numbers(m: &Setup, forces: bool) -> Vec<String> {
-        serialized_keys(m, forces).0
+    fn serialized_numbers(m: &Setup, forces: bool, deflection: bool) -> Vec<String> {
+        serialized_keys(m, forces, deflection).0
     }
 
     fn scene_file(rel: &str) -> PathBuf {
@@ -551,7 +572,7 @@ mod tests {
                 m.options.friction.is_some(),
                 m.options.bearing_over_mean.is_some(),
             ));
-            let (numbers, nulls) = serialized_keys(&m, true);
+            let (numbers, nulls) = serialized_keys(&m, true, true);
             for key in &nulls {
                 assert!(
                     entry(key).is_some_and(|r| r.nullable || !r.reported_by(&m)),
@@ -585,8 +606,8 @@ mod tests {
         ] {
             let sc = scene::load(&scene_file(file), &[]).expect("the scene loads");
             let m = setup::build(&sc).expect("the scene builds");
-            let without = serialized_numbers(&m, false);
-            for key in serialized_numbers(&m, true) {
+            let without = serialized_numbers(&m, false, true);
+            for key in serialized_numbers(&m, true, true) {
                 assert_eq!(
                     needs_forces(&key),
                     !without.contains(&key),
@@ -600,6 +621,31 @@ mod tests {
             }
         }
         assert!(!needs_forces("no_such_key"));
+    }
+
+    /// Likewise the top's largest deflection: a run that does not track it leaves out exactly
+    /// the quantities marked as needing it (its own and the twin's), and reports the rest.
+    #[test]
+    fn a_cell_tracks_the_deflection_for_exactly_the_quantities_that_need_it() {
+        for file in [
+            "scenes/spectra/fig8.toml",
+            "scenes/wind-turbine-elcentro.toml",
+        ] {
+            let sc = scene::load(&scene_file(file), &[]).expect("the scene loads");
+            let m = setup::build(&sc).expect("the scene builds");
+            let without = serialized_numbers(&m, true, false);
+            let with = serialized_numbers(&m, true, true);
+            for key in &with {
+                assert_eq!(
+                    needs_deflection(key),
+                    !without.contains(key),
+                    "{file}: {key}"
+                );
+            }
+            assert!(with.iter().any(|k| needs_deflection(k)), "{file}: {with:?}");
+        }
+        assert!(needs_deflection("fixed_base.max_u_over_ucr"));
+        assert!(!needs_deflection("max_base_moment_over_wb"));
     }
 
     #[test]

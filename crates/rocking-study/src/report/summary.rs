@@ -160,7 +160,10 @@ pub fn quantities(
         if let Some(tf) = &t.forces {
             let mut fixed = serialized(tf)?;
             fixed.retain(|k, _| !k.ends_with("_time"));
-            fixed.insert("max_u_over_ucr".into(), json!(t.max_u_over_ucr));
+            // Left out where the twin did not track it (NaN: `Options::max_deflection` off).
+            if !t.max_u_over_ucr.is_nan() {
+                fixed.insert("max_u_over_ucr".into(), json!(t.max_u_over_ucr));
+            }
             // On compliant ground the twin is the linear foundation: its ground keys too.
             if let Some(g) = &t.ground {
                 let ground = serialized(g)?.into_iter();
