@@ -50,36 +50,43 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
         Forces::of_kernel(&f).per_weight(self.weight, self.wb)
     }
 
-    /// The forces at `t` of a step's state: from the rate the integrator has there, else solved.
-    fn forces_on_step(&self, step: &impl StepView<V::X>, contact: bool, s: f64, t: f64) -> Forces {
-        let x = step.state(t);
+    /// The forces at `t` of a step's state `x` there: from the rate the integrator has there,
+    /// else solved.
+    fn forces_on_step(
+        &self,
+        step: &impl StepView<V::X>,
+        contact: bool,
+        s: f64,
+        t: f64,
+        x: &V::X,
+    ) -> Forces {
         match step.exact_rate(t) {
-            Some(rate) => self.forces_with_rate(s, self.motion.accel(t), &x, &rate),
-            None => self.forces_at(contact, s, t, &x),
+            Some(rate) => self.forces_with_rate(s, self.motion.accel(t), x, &rate),
+            None => self.forces_at(contact, s, t, x),
         }
     }
 
-    /// The rates of the measures `m` at `t` where the step has the state's first and second
-    /// derivatives there (a Taylor step's start from its series, its end from the series of
-    /// the step after it): a difference of `section_forces` along the tangent, over `delta`,
-    /// instead of a probe of the dense output (whose forces would solve M q'' = F again).
+    /// The rates of the measures `m` of the state `x` at `t` where the step has the state's
+    /// first and second derivatives there (a Taylor step's start from its series, its end from
+    /// the series of the step after it): a difference of `section_forces` along the tangent,
+    /// over `delta`, instead of a probe of the dense output (whose forces would solve M q'' = F
+    /// again).
     fn rates_at(
         &self,
         step: &impl StepView<V::X>,
         s: f64,
-        t: f64,
+        (t, x): (f64, &V::X),
         delta: f64,
         m: &[f64; MEASURES],
     ) -> Option<[f64; MEASURES]> {
         let second = step.exact_second_rate(t)?;
         let rate = step.exact_rate(t)?;
-        let x = step.state(t);
         let (ug, _) = excitation_series::<M, 2>(self.motion, t);
         let along = |y: &V::X, dy: &V::X| V::X::from_fn(|i| y.values()[i] + delta * dy.values()[i]);
         let ahead = self.forces_with_rate(
             s,
             ug[0] + delta * ug[1],
-            &along(&x, &rate),
+            &along(x, &rate),
             &along(&rate, &second),
         );
         let m_ahead = ahead.measures();
@@ -115,7 +122,8 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             return old;
         }
         let at = |t: f64| self.forces_at(contact, s, t, &step.state(t));
-        let f_new = self.forces_on_step(step, contact, s, t_new);
+        let x_new = step.state(t_new);
+        let f_new = self.forces_on_step(step, contact, s, t_new, &x_new);
         let h = t_new - t_old;
         // A quantity oscillating at ω rises above its values at both ends of a step of length h
         // by at most (ω h)²/8 of its amplitude: only a step whose ends come within twice that of
@@ -142,35 +150,41 @@ impl<V: TaylorVariant, M: GroundMotion + ?Sized, const NR: usize, const NC: usiz
             // took one (the forces are smooth across a step boundary of a phase that is no kink
             // of the excitation).
             let delta = 1e-6 * h;
-            let rate_new = self
-                .rates_at(step, s, t_new, delta, &m_new)
-                .unwrap_or_else(|| {
-                    let m_b = at(t_new - delta).measures();
-                    std::array::from_fn(|k| (m_new[k] - m_b[k]) / delta)
-                });
             let rate_old = old.rates.unwrap_or_else(|| {
-                self.rates_at(step, s, t_old, delta, &m_old)
+                self.rates_at(step, s, (t_old, &step.state(t_old)), delta, &m_old)
                     .unwrap_or_else(|| {
                         let m_a = at(t_old + delta).measures();
                         std::array::from_fn(|k| (m_a[k] - m_old[k]) / delta)
                     })
             });
-            // Kept for the next step if the ground acceleration has no kink at t_new.
-            rates_new = (self.t_stop(t_old) > t_new).then_some(rate_new);
-            let tolerance = (omega_h * omega_h).powi(2) / 192.0;
-            for k in (0..MEASURES).filter(|&k| near[k]) {
-                let (d0, d1) = (rate_old[k] * h, rate_new[k] * h);
-                if !(d0 > 0.0 && d1 < 0.0) {
-                    continue;
-                }
-                if hermite_max(m_old[k], d0, m_new[k], d1) < max[k] - tolerance * scale(k) {
-                    continue;
-                }
-                // Exact values, on the step's own time τ = t − t_old (the search resolves τ to
-                // √ε of its size; a force changes by (ω δτ)² of its size within δτ of its peak).
-                let (tau, v) = brent_max(|tau| at(t_old + tau).measures()[k], 0.0, h, 1e-9 * h);
-                if v > peak[k] {
-                    (peak[k], when[k]) = (v, t_old + tau);
+            // The end's slopes only where a near quantity rises from the start (else the step
+            // after takes its start's own, where it needs them).
+            let rising: [bool; MEASURES] = std::array::from_fn(|k| near[k] && rate_old[k] > 0.0);
+            if rising.contains(&true) {
+                let rate_new = self
+                    .rates_at(step, s, (t_new, &x_new), delta, &m_new)
+                    .unwrap_or_else(|| {
+                        let m_b = at(t_new - delta).measures();
+                        std::array::from_fn(|k| (m_new[k] - m_b[k]) / delta)
+                    });
+                // Kept for the next step if the ground acceleration has no kink at t_new.
+                rates_new = (self.t_stop(t_old) > t_new).then_some(rate_new);
+                let tolerance = (omega_h * omega_h).powi(2) / 192.0;
+                for k in (0..MEASURES).filter(|&k| rising[k]) {
+                    let (d0, d1) = (rate_old[k] * h, rate_new[k] * h);
+                    if d1.is_nan() || d1 >= 0.0 {
+                        continue;
+                    }
+                    if hermite_max(m_old[k], d0, m_new[k], d1) < max[k] - tolerance * scale(k) {
+                        continue;
+                    }
+                    // Exact values, on the step's own time τ = t − t_old (the search resolves
+                    // τ to √ε of its size; a force changes by (ω δτ)² of its size within δτ of
+                    // its peak).
+                    let (tau, v) = brent_max(|tau| at(t_old + tau).measures()[k], 0.0, h, 1e-9 * h);
+                    if v > peak[k] {
+                        (peak[k], when[k]) = (v, t_old + tau);
+                    }
                 }
             }
         }
